@@ -1,0 +1,75 @@
+//! The interface between the model and force elements (bushings, springs, loads).
+//!
+//! An element acts on at most two bodies `i`, `j`. It returns the *generalized force it applies* to them,
+//! `Q = (Fᵢ, Mᵢ, Fⱼ, Mⱼ)` with moments about each body's reference point (paper: force `F` at `P` does
+//! work through `(F, s × F)`), and its *stiffness* `K = −∂Q/∂Δq` over the 12 coordinates `(Δqᵢ, Δqⱼ)`.
+//! For a conservative elastic element `K` is the Hessian of its energy along left increments and is
+//! symmetric at rest; a world-fixed load at a body point has the non-symmetric load stiffness `−F̃ s̃`.
+//! Equilibrium is `Σ Q − Φ_qᵀ λ = 0`.
+
+use crate::body::BodyRef;
+use crate::constraint::{PairMatrix, RowGradient};
+use crate::error::ModelError;
+use crate::math::Vec3;
+use crate::pose::Pose;
+
+/// Whether an element is part of the structure or an applied load (the paper's `K` holds only the former;
+/// the load increment `Δf` only the latter).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ElementRole {
+    /// Bushings, springs: stiffness of the structure.
+    Elastic,
+    /// Applied loads, ramped by the load parameter.
+    Load,
+}
+
+/// Output of [`ForceElement::evaluate`].
+#[derive(Debug, Clone)]
+pub struct ElementEval {
+    /// Generalized force applied to `(i, j)`.
+    pub force: RowGradient,
+    /// `K = −∂force/∂Δq` (filled only when asked).
+    pub stiffness: PairMatrix,
+}
+
+impl Default for ElementEval {
+    fn default() -> Self {
+        ElementEval { force: RowGradient::zeros(), stiffness: PairMatrix::zeros() }
+    }
+}
+
+/// What an element does at a configuration, for results tables.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ElementReport {
+    /// Force the element applies to body `j` (global, N).
+    pub force: Vec3,
+    /// Moment it applies to body `j` about the element's point on `j` (global, N·m).
+    pub torque: Vec3,
+    /// Deflection: relative translation in the element's frame (m); for a spring, `(L − L₀, 0, 0)`.
+    pub deflection: Vec3,
+    /// Relative rotation vector in the element's frame (rad).
+    pub rotation: Vec3,
+}
+
+/// A bushing, spring, load or any other source of generalized force on one or two bodies.
+pub trait ForceElement: std::fmt::Debug + Send + Sync {
+    /// Unique name.
+    fn name(&self) -> &str;
+    /// The two bodies (`j` may be the ground; a load uses `i = Ground`).
+    fn bodies(&self) -> [BodyRef; 2];
+    /// Structure or load.
+    fn role(&self) -> ElementRole;
+    /// Validates the element and fixes its body-fixed geometry from the design poses. Called once by
+    /// [`Model::add_element`](crate::Model::add_element).
+    fn bind(&mut self, pi: &Pose, pj: &Pose) -> Result<(), ModelError>;
+    /// Generalized force applied at the poses and load parameter `t`; stiffness too when
+    /// `with_stiffness`.
+    fn evaluate(&self, pi: &Pose, pj: &Pose, t: f64, out: &mut ElementEval, with_stiffness: bool);
+    /// `∂Q/∂t` at fixed poses: the load increment direction (zero for elastic elements).
+    fn load_rate(&self, _pi: &Pose, _pj: &Pose, _t: f64, out: &mut RowGradient) {
+        out.fill(0.0);
+    }
+    /// Force, moment and deflection, for reports.
+    fn report(&self, pi: &Pose, pj: &Pose, t: f64) -> ElementReport;
+}

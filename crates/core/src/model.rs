@@ -1,0 +1,194 @@
+//! The [`Model`]: bodies, joints, drivers, elements and loads, by name.
+
+use crate::body::{Body, BodyId, BodyRef};
+use crate::element::ForceElement;
+use crate::error::ModelError;
+use crate::joint::{build_joint, Joint, JointSpec};
+use crate::pose::{Pose, BODY_DOFS};
+use std::collections::HashSet;
+
+/// Index of a joint in a [`Model`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct JointId(pub usize);
+/// Index of an element in a [`Model`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ElementId(pub usize);
+
+/// Where a constraint row comes from, for diagnostics.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RowOrigin {
+    /// The joint.
+    pub joint: JointId,
+    /// The row within the joint.
+    pub row: usize,
+}
+
+/// A scene of rigid bodies held by joints and force elements and loaded by loads and drivers.
+///
+/// The model owns exactly what the scene contains; the solver sizes and assembles only that. Bodies get
+/// six coordinates each, in the order they were added; joint rows are numbered in the order the joints
+/// were added (see [`Model::row_origin`]).
+#[derive(Debug, Default)]
+pub struct Model {
+    bodies: Vec<Body>,
+    joints: Vec<Joint>,
+    elements: Vec<Box<dyn ForceElement>>,
+    names: HashSet<String>,
+}
+
+impl Model {
+    /// An empty model.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    fn claim_name(&mut self, name: &str) -> Result<(), ModelError> {
+        if !self.names.insert(name.to_string()) {
+            return Err(ModelError::DuplicateName { name: name.to_string() });
+        }
+        Ok(())
+    }
+
+    fn check_ref(&self, item: &str, r: BodyRef) -> Result<(), ModelError> {
+        match r {
+            BodyRef::Body(BodyId(index)) if index >= self.bodies.len() => {
+                Err(ModelError::UnknownBody { item: item.to_string(), index, count: self.bodies.len() })
+            }
+            _ => Ok(()),
+        }
+    }
+
+    fn design_pose(&self, r: BodyRef) -> Pose {
+        match r {
+            BodyRef::Ground => Pose::IDENTITY,
+            BodyRef::Body(b) => self.bodies[b.0].design_pose,
+        }
+    }
+
+    /// Adds a rigid body at its design pose.
+    pub fn add_body(&mut self, name: &str, design_pose: Pose) -> Result<BodyId, ModelError> {
+        if !design_pose.is_finite() {
+            return Err(ModelError::NonFinite { item: name.to_string(), what: "design pose" });
+        }
+        self.claim_name(name)?;
+        self.bodies.push(Body { name: name.to_string(), design_pose });
+        Ok(BodyId(self.bodies.len() - 1))
+    }
+
+    /// Adds a joint or driver described by its global design geometry.
+    pub fn add_joint(&mut self, spec: JointSpec) -> Result<JointId, ModelError> {
+        self.check_ref(&spec.name, spec.body_i)?;
+        self.check_ref(&spec.name, spec.body_j)?;
+        if self.names.contains(&spec.name) {
+            return Err(ModelError::DuplicateName { name: spec.name });
+        }
+        let (pi, pj) = (self.design_pose(spec.body_i), self.design_pose(spec.body_j));
+        let joint = build_joint(spec, &pi, &pj)?;
+        self.claim_name(joint.name())?;
+        self.joints.push(joint);
+        Ok(JointId(self.joints.len() - 1))
+    }
+
+    /// Adds a bushing, spring, load or other force element; it is bound to the design poses here.
+    pub fn add_element(&mut self, mut element: impl ForceElement + 'static) -> Result<ElementId, ModelError> {
+        let name = element.name().to_string();
+        let [i, j] = element.bodies();
+        self.check_ref(&name, i)?;
+        self.check_ref(&name, j)?;
+        if self.names.contains(&name) {
+            return Err(ModelError::DuplicateName { name });
+        }
+        element.bind(&self.design_pose(i), &self.design_pose(j))?;
+        self.claim_name(&name)?;
+        self.elements.push(Box::new(element));
+        Ok(ElementId(self.elements.len() - 1))
+    }
+
+    /// The bodies, indexed by [`BodyId`].
+    pub fn bodies(&self) -> &[Body] {
+        &self.bodies
+    }
+    /// The joints and drivers, indexed by [`JointId`].
+    pub fn joints(&self) -> &[Joint] {
+        &self.joints
+    }
+    /// The force elements and loads, indexed by [`ElementId`].
+    pub fn elements(&self) -> &[Box<dyn ForceElement>] {
+        &self.elements
+    }
+    /// Looks up a body by name.
+    pub fn body_id(&self, name: &str) -> Option<BodyId> {
+        self.bodies.iter().position(|b| b.name == name).map(BodyId)
+    }
+    /// Looks up a joint by name.
+    pub fn joint_id(&self, name: &str) -> Option<JointId> {
+        self.joints.iter().position(|j| j.name() == name).map(JointId)
+    }
+    /// Looks up an element by name.
+    pub fn element_id(&self, name: &str) -> Option<ElementId> {
+        self.elements.iter().position(|e| e.name() == name).map(ElementId)
+    }
+    /// Name of a body reference ("ground" for the ground).
+    pub fn body_name(&self, r: BodyRef) -> &str {
+        match r {
+            BodyRef::Ground => "ground",
+            BodyRef::Body(b) => &self.bodies[b.0].name,
+        }
+    }
+    /// Design poses of all bodies: the starting configuration.
+    pub fn design_poses(&self) -> Vec<Pose> {
+        self.bodies.iter().map(|b| b.design_pose).collect()
+    }
+    /// Number of small-motion coordinates (6 per body).
+    pub fn dofs(&self) -> usize {
+        BODY_DOFS * self.bodies.len()
+    }
+    /// Number of constraint rows of all joints and drivers.
+    pub fn constraint_rows(&self) -> usize {
+        self.joints.iter().map(|j| j.rows.len()).sum()
+    }
+    /// Which joint and row a global constraint row index belongs to.
+    pub fn row_origin(&self, mut row: usize) -> Option<RowOrigin> {
+        for (k, j) in self.joints.iter().enumerate() {
+            if row < j.rows.len() {
+                return Some(RowOrigin { joint: JointId(k), row });
+            }
+            row -= j.rows.len();
+        }
+        None
+    }
+    /// A readable name of a constraint row: `joint 'name' row 'label'`.
+    pub fn describe_row(&self, row: usize) -> String {
+        match self.row_origin(row) {
+            Some(o) => {
+                let j = &self.joints[o.joint.0];
+                format!("joint '{}' row '{}'", j.name(), j.rows[o.row].label)
+            }
+            None => format!("constraint row #{row}"),
+        }
+    }
+
+    /// Checks what can be checked without solving: every body is touched by some joint or element.
+    /// (Directions that nothing restrains are found by the solver from the factorization.)
+    pub fn validate(&self) -> Result<(), ModelError> {
+        let mut held = vec![false; self.bodies.len()];
+        let mut mark = |r: BodyRef| {
+            if let BodyRef::Body(b) = r {
+                held[b.0] = true;
+            }
+        };
+        for j in &self.joints {
+            mark(j.spec.body_i);
+            mark(j.spec.body_j);
+        }
+        for e in self.elements.iter().filter(|e| e.role() == crate::element::ElementRole::Elastic) {
+            let [i, j] = e.bodies();
+            mark(i);
+            mark(j);
+        }
+        match held.iter().position(|h| !h) {
+            Some(b) => Err(ModelError::NothingHolds { body: self.bodies[b].name.clone() }),
+            None => Ok(()),
+        }
+    }
+}

@@ -1,0 +1,395 @@
+//! Rubber bushing: six uncoupled linear springs in a local frame, with the exact finite-rotation energy
+//! (paper eqs. 5–8).
+//!
+//! # Model
+//!
+//! The bushing has a hardpoint `P` and a frame `E` (columns: its local x, y, z axes, global components) at
+//! design. The frame is carried by body `i`: `E = Aᵢ E'ᵢ`. Body `j` carries a copy `Eⱼ = Aⱼ E'ⱼ` that
+//! coincides with `E` at design. The hardpoint is fixed on each body, `Pᵢ = rᵢ + sᵢ`, `Pⱼ = rⱼ + sⱼ`
+//! (`s = A s'`), coincident at design. With
+//!
+//! * the deflection `δ = Eᵀ (Pⱼ − Pᵢ)` (local components, m),
+//! * the relative rotation `R = Eᵀ Eⱼ` and its rotation vector `θ = log R` (local, rad, |θ| ≤ π),
+//!
+//! the energy is
+//!
+//! ```text
+//! U = ½ δᵀ K_T δ + ½ θᵀ K_R θ − F_preᵀ δ − M_preᵀ θ,   K_T = diag(Kx, Ky, Kz), K_R = diag(Ku, Kv, Kw).
+//! ```
+//!
+//! # Signs
+//!
+//! * Forces are those the bushing **applies**: on `j` the force `−f` at `Pⱼ` and the moment `−E g`, on `i`
+//!   the force `+f` and the moment `+E g`, where `f = E (K_T δ − F_pre)` and `g = J_l(θ)⁻ᵀ (K_R θ − M_pre)`
+//!   is the moment conjugate to a left rotation increment of `j` relative to `i` (local components).
+//! * Preload: `F_pre` (N) and `M_pre` (N·m), local components, are the force and moment the bushing
+//!   applies **to body `j`** at zero deflection (so `F_pre = (0, 0, 500)` pushes `j` up along the local z
+//!   axis by 500 N in the design configuration). Equivalently, the bushing applies `−F_pre`, `−M_pre` to
+//!   `i` at design.
+//! * Because the frame rides on `i`, the force on `i` has its line of action through `Pⱼ`: the moment on
+//!   `i` about `rᵢ` is `(Pⱼ − rᵢ) × f + E g`. The element is then exactly in self-equilibrium at every
+//!   configuration (the energy is invariant under rigid motions of the pair).
+//!
+//! # Stiffness
+//!
+//! `K = −∂Q/∂Δq` is the derivative of the energy gradient along the exact left increments
+//! `A ← exp(Δπ̃) A` (what a finite difference along [`Pose::apply_increment6`] measures), not the
+//! symmetric second derivative: away from equilibrium of the element its `πᵢπᵢ` and `πⱼπⱼ` blocks carry the
+//! skew parts `[Q_πᵢ]~` and `[Q_πⱼ]~` (`K − Kᵀ = diag(0, [Q_πᵢ]~, 0, [Q_πⱼ]~)`); all other blocks are
+//! symmetric. At design without preload it is the paper's `Bᵀ K_T B + Cᵀ K_R C`.
+//!
+//! # Range
+//!
+//! The rotation vector is taken from the relative quaternion (robust up to and including |θ| = π); the
+//! energy is continuous but its gradient jumps where the relative rotation passes π, far outside any
+//! rubber bushing's range.
+
+use crate::geometry::{add_block, add_rows, check_distinct, check_finite, check_positive, set_jac_block, Jac3};
+use elastokin_core::math::{left_jacobian_inv, skew};
+use elastokin_core::{
+    BodyRef, ElementEval, ElementReport, ElementRole, ForceElement, Mat3, ModelError, PairMatrix, Pose, Vec3,
+};
+use nalgebra::{Rotation3, UnitQuaternion};
+
+/// Largest deviation of `EᵀE` from `I` accepted for a bushing frame; a frame within it is replaced by
+/// the rotation it is closest to (round-off in typed-in axes is tolerated, a wrong frame is not).
+pub const FRAME_TOLERANCE: f64 = 1e-6;
+
+/// Global design data of a bushing: what a user writes. SI units throughout.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct BushingSpec {
+    /// Unique name, used in diagnostics and results.
+    pub name: String,
+    /// Body `i`, which carries the bushing frame (either body may be the ground).
+    pub body_i: BodyRef,
+    /// Body `j`; [`ElementReport`] gives the force and moment applied to it.
+    pub body_j: BodyRef,
+    /// Hardpoint at design (global, m), coincident on both bodies.
+    pub point: Vec3,
+    /// Bushing frame at design: columns are the local x, y, z axes in global components (a rotation).
+    pub frame: Mat3,
+    /// Translational stiffnesses `(Kx, Ky, Kz)` along the local axes, N/m.
+    pub translational: Vec3,
+    /// Rotational stiffnesses `(Ku, Kv, Kw)` about the local axes, N·m/rad.
+    pub rotational: Vec3,
+    /// Force applied to `j` at zero deflection (local components, N).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub preload_force: Vec3,
+    /// Moment applied to `j` at zero rotation (local components, N·m).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub preload_torque: Vec3,
+}
+
+impl BushingSpec {
+    /// Checks the data that do not depend on the design poses; returns the frame as a unit quaternion.
+    fn validate(&self) -> Result<UnitQuaternion<f64>, ModelError> {
+        let name = self.name.as_str();
+        check_distinct(name, self.body_i, self.body_j)?;
+        check_finite(name, "hardpoint", &self.point)?;
+        if !self.frame.iter().all(|c| c.is_finite()) {
+            return Err(ModelError::NonFinite { item: name.to_string(), what: "frame" });
+        }
+        let what_t = ["translational stiffness Kx", "translational stiffness Ky", "translational stiffness Kz"];
+        let what_r = ["rotational stiffness Ku", "rotational stiffness Kv", "rotational stiffness Kw"];
+        for a in 0..3 {
+            check_positive(name, what_t[a], self.translational[a])?;
+            check_positive(name, what_r[a], self.rotational[a])?;
+        }
+        check_finite(name, "preload force", &self.preload_force)?;
+        check_finite(name, "preload torque", &self.preload_torque)?;
+        let e = &self.frame;
+        let ortho = (e.transpose() * e - Mat3::identity()).amax();
+        let det = e.determinant();
+        if ortho > FRAME_TOLERANCE || det < 0.0 {
+            let error = if det < 0.0 { ortho.max((det - 1.0).abs()) } else { ortho };
+            return Err(ModelError::NotOrthonormal { item: name.to_string(), error });
+        }
+        // Snap to the nearest unit quaternion (Shepperd's formula does not normalise).
+        let q = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(*e));
+        Ok(UnitQuaternion::new_normalize(q.into_inner()))
+    }
+}
+
+/// A bushing between two bodies (see the [module docs](self) for the model and its signs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bushing {
+    spec: BushingSpec,
+    /// Hardpoint on `i` and on `j` (local offsets).
+    on_i: Vec3,
+    on_j: Vec3,
+    /// The bushing frame relative to each body: `E = Aᵢ E'ᵢ`, `Eⱼ = Aⱼ E'ⱼ`.
+    frame_i: UnitQuaternion<f64>,
+    frame_j: UnitQuaternion<f64>,
+}
+
+/// Everything the force, stiffness and report share at one configuration.
+struct State {
+    e: Mat3,
+    s_j: Vec3,
+    /// `w = Pⱼ − rᵢ`, the lever of the force on `i`.
+    w: Vec3,
+    delta: Vec3,
+    theta: Vec3,
+    /// `f = E (K_T δ − F_pre)` = ∂U/∂d (the force applied to `i`).
+    f: Vec3,
+    /// `g = J_l⁻ᵀ (K_R θ − M_pre)` (local) and `∂g/∂θ`.
+    g: Vec3,
+    dg: Mat3,
+}
+
+impl Bushing {
+    /// A bushing from global design data, without preload. Checks everything that can be checked
+    /// without the design poses: distinct bodies ([`ModelError::SelfJoint`]), finite data
+    /// ([`ModelError::NonFinite`]), positive stiffnesses ([`ModelError::NotPositive`], naming the
+    /// component), an orthonormal right-handed frame ([`ModelError::NotOrthonormal`]).
+    ///
+    /// `frame` holds the bushing's local x, y, z axes as columns (global components);
+    /// `translational = (Kx, Ky, Kz)` in N/m, `rotational = (Ku, Kv, Kw)` in N·m/rad.
+    pub fn new(
+        name: &str,
+        body_i: BodyRef,
+        body_j: BodyRef,
+        point: Vec3,
+        frame: Mat3,
+        translational: Vec3,
+        rotational: Vec3,
+    ) -> Result<Self, ModelError> {
+        Self::from_spec(BushingSpec {
+            name: name.to_string(),
+            body_i,
+            body_j,
+            point,
+            frame,
+            translational,
+            rotational,
+            preload_force: Vec3::zeros(),
+            preload_torque: Vec3::zeros(),
+        })
+    }
+
+    /// Sets the preload: the force (N) and moment (N·m) the bushing applies to body `j` at zero
+    /// deflection, in the bushing's local frame.
+    pub fn with_preload(mut self, force: Vec3, torque: Vec3) -> Result<Self, ModelError> {
+        self.spec.preload_force = force;
+        self.spec.preload_torque = torque;
+        self.spec.validate()?;
+        Ok(self)
+    }
+
+    /// A bushing from its full description (validated as in [`Bushing::new`]).
+    pub fn from_spec(spec: BushingSpec) -> Result<Self, ModelError> {
+        let frame = spec.validate()?;
+        // Until bound, both bodies are taken at the identity pose (as the ground).
+        Ok(Bushing { on_i: spec.point, on_j: spec.point, frame_i: frame, frame_j: frame, spec })
+    }
+
+    /// The design data.
+    pub fn spec(&self) -> &BushingSpec {
+        &self.spec
+    }
+
+    fn state(&self, pi: &Pose, pj: &Pose) -> State {
+        let q_e = pi.orientation * self.frame_i;
+        let q_ej = pj.orientation * self.frame_j;
+        let e = q_e.to_rotation_matrix().into_inner();
+        let theta = rotation_vector(&(q_e.inverse() * q_ej));
+        let s_i = pi.direction(&self.on_i);
+        let s_j = pj.direction(&self.on_j);
+        let d = (pj.position + s_j) - (pi.position + s_i);
+        let delta = e.transpose() * d;
+        let f = e * (self.spec.translational.component_mul(&delta) - self.spec.preload_force);
+        let m = self.spec.rotational.component_mul(&theta) - self.spec.preload_torque;
+        let (g, dg) = moment_law(&theta, &m, &Mat3::from_diagonal(&self.spec.rotational));
+        State { e, s_j, w: s_i + d, delta, theta, f, g, dg }
+    }
+}
+
+impl ForceElement for Bushing {
+    fn name(&self) -> &str {
+        &self.spec.name
+    }
+
+    fn bodies(&self) -> [BodyRef; 2] {
+        [self.spec.body_i, self.spec.body_j]
+    }
+
+    fn role(&self) -> ElementRole {
+        ElementRole::Elastic
+    }
+
+    fn bind(&mut self, pi: &Pose, pj: &Pose) -> Result<(), ModelError> {
+        let frame = self.spec.validate()?;
+        if !pi.is_finite() || !pj.is_finite() {
+            return Err(ModelError::NonFinite { item: self.spec.name.clone(), what: "design pose" });
+        }
+        self.on_i = pi.to_local_point(&self.spec.point);
+        self.on_j = pj.to_local_point(&self.spec.point);
+        self.frame_i = pi.orientation.inverse() * frame;
+        self.frame_j = pj.orientation.inverse() * frame;
+        Ok(())
+    }
+
+    fn evaluate(&self, pi: &Pose, pj: &Pose, _t: f64, out: &mut ElementEval, with_stiffness: bool) {
+        let st = self.state(pi, pj);
+        let big_g = st.e * st.g;
+        let q = &mut out.force;
+        q.fixed_rows_mut::<3>(0).copy_from(&st.f);
+        q.fixed_rows_mut::<3>(3).copy_from(&(st.w.cross(&st.f) + big_g));
+        q.fixed_rows_mut::<3>(6).copy_from(&(-st.f));
+        q.fixed_rows_mut::<3>(9).copy_from(&(-st.s_j.cross(&st.f) - big_g));
+        if with_stiffness {
+            stiffness(&self.spec.translational, &st, &big_g, &mut out.stiffness);
+        }
+    }
+
+    fn report(&self, pi: &Pose, pj: &Pose, _t: f64) -> ElementReport {
+        let st = self.state(pi, pj);
+        ElementReport { force: -st.f, torque: -(st.e * st.g), deflection: st.delta, rotation: st.theta }
+    }
+}
+
+/// `K = ∂(∇U)/∂Δq` along left increments, with `∇U = (−f, f × w − G, f, sⱼ × f + G)`, `G = E g`.
+///
+/// Variations (`δs = −s̃ δπ`, `δE = δπ̃ᵢ E`, `ω = Eᵀ(δπⱼ − δπᵢ)`, `δθ = J_l⁻¹ ω`):
+/// * `δf = K_g (δd + d̃ δπᵢ) − f̃ δπᵢ`, `K_g = E K_T Eᵀ`, `δd = δrⱼ − s̃ⱼ δπⱼ − δrᵢ + s̃ᵢ δπᵢ`,
+///   so `Df = [−K_g, K_g w̃ − f̃, K_g, −K_g s̃ⱼ]`;
+/// * `δG = −G̃ δπᵢ + H (δπⱼ − δπᵢ)`, `H = E (∂g/∂θ) J_l⁻¹ Eᵀ`, so `DG = [0, −G̃ − H, 0, H]`;
+/// * `δw = δrⱼ − s̃ⱼ δπⱼ − δrᵢ`.
+fn stiffness(kt: &Vec3, st: &State, big_g: &Vec3, out: &mut PairMatrix) {
+    let e = &st.e;
+    let kg = e * Mat3::from_diagonal(kt) * e.transpose();
+    let f_t = skew(&st.f);
+    let w_t = skew(&st.w);
+    let sj_t = skew(&st.s_j);
+    let h = e * st.dg * left_jacobian_inv(&st.theta) * e.transpose();
+
+    let mut df = Jac3::zeros();
+    set_jac_block(&mut df, 0, &(-kg));
+    set_jac_block(&mut df, 1, &(kg * w_t - f_t));
+    set_jac_block(&mut df, 2, &kg);
+    set_jac_block(&mut df, 3, &(-kg * sj_t));
+    let mut dgg = Jac3::zeros();
+    set_jac_block(&mut dgg, 1, &(-skew(big_g) - h));
+    set_jac_block(&mut dgg, 3, &h);
+
+    out.fill(0.0);
+    // r_i: −f
+    add_rows(out, 0, &(-df));
+    // π_i: f × w − G = −w̃ f − G
+    add_rows(out, 1, &(-(w_t * df) - dgg));
+    add_block(out, 1, 0, &(-f_t));
+    add_block(out, 1, 2, &f_t);
+    add_block(out, 1, 3, &(-f_t * sj_t));
+    // r_j: f
+    add_rows(out, 2, &df);
+    // π_j: s_j × f + G
+    add_rows(out, 3, &(sj_t * df + dgg));
+    add_block(out, 3, 3, &(f_t * sj_t));
+}
+
+/// Rotation vector of a unit quaternion (|θ| ≤ π), robust near 0 and near π.
+pub(crate) fn rotation_vector(q: &UnitQuaternion<f64>) -> Vec3 {
+    let (mut w, mut v) = (q.w, q.imag());
+    if w < 0.0 {
+        w = -w;
+        v = -v;
+    }
+    let s = v.norm();
+    if s < 1e-8 {
+        // atan2(s, w)/s = (1/w)(1 − s²/(3w²) + …); w ≈ 1 here.
+        v * (2.0 / w)
+    } else {
+        v * (2.0 * s.atan2(w) / s)
+    }
+}
+
+/// `β(t) = (1 − (t/2) cot(t/2)) / t²` and `β'(t)/t` (series below 0.1 where the closed form loses
+/// digits). `J_l(θ)⁻¹ = I − ½θ̃ + β θ̃²`.
+fn beta(t: f64) -> (f64, f64) {
+    if t < 0.1 {
+        let t2 = t * t;
+        (
+            1.0 / 12.0 + t2 / 720.0 + t2 * t2 / 30240.0 + t2 * t2 * t2 / 1209600.0,
+            1.0 / 360.0 + t2 / 7560.0 + t2 * t2 / 201600.0 + t2 * t2 * t2 / 5987520.0,
+        )
+    } else {
+        let h = 0.5 * t;
+        let (sin, cos) = h.sin_cos();
+        let cot = cos / sin;
+        let c = h * cot;
+        let dc = 0.5 * cot - 0.25 * t / (sin * sin);
+        let b = (1.0 - c) / (t * t);
+        let db = -dc / (t * t) - 2.0 * (1.0 - c) / (t * t * t);
+        (b, db / t)
+    }
+}
+
+/// The rotation-vector law with a general moment: for an energy whose derivative with respect to the
+/// rotation vector is `m(θ)` (here `K_R θ − M_pre`, with `∂m/∂θ = dm`), returns the moment conjugate to a
+/// left rotation increment, `g = J_l(θ)⁻ᵀ m`, and `∂g/∂θ`. With `J_l⁻ᵀ = I + ½θ̃ + βθ̃²`:
+/// `g = m + ½ θ×m + β θ×(θ×m)`; differentiating each product, and `∂β/∂θ = (β'/t) θᵀ`.
+/// (Core's `rotation_vector_moment` is the case `m = Kθ`; the preload needs the general form.)
+pub(crate) fn moment_law(theta: &Vec3, m: &Vec3, dm: &Mat3) -> (Vec3, Mat3) {
+    let (b, db_t) = beta(theta.norm());
+    let th = skew(theta);
+    let p = theta.cross(m);
+    let tp = theta.cross(&p);
+    let g = m + 0.5 * p + b * tp;
+    let dp = -skew(m) + th * dm;
+    let dtp = -skew(&p) + th * dp;
+    let dg = dm + 0.5 * dp + b * dtp + tp * (db_t * theta.transpose());
+    (g, dg)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use elastokin_core::math::{quat_exp, rotation_log, rotation_vector_moment};
+
+    #[test]
+    fn rotation_vector_matches_core_log() {
+        for th in [Vec3::new(0.3, -1.2, 0.8), Vec3::new(1e-9, 2e-9, 0.0), Vec3::new(0.0, 3.1, 0.0), Vec3::zeros()] {
+            let q = quat_exp(&th);
+            let a = rotation_vector(&q);
+            assert!((a - th).norm() < 1e-12 * (1.0 + th.norm()), "{th:?}: {a:?}");
+            if th.norm() > 0.1 {
+                // Core's matrix logarithm (acos of the trace) is only accurate away from 0.
+                let b = rotation_log(&q.to_rotation_matrix().into_inner());
+                assert!((a - b).norm() < 1e-9, "{th:?}: {a:?} {b:?}");
+            }
+        }
+        // Exactly π about a tilted axis: both directions are valid; the magnitude must be π.
+        let axis = Vec3::new(1.0, 2.0, -2.0) / 3.0;
+        let a = rotation_vector(&quat_exp(&(axis * std::f64::consts::PI)));
+        assert!((a.norm() - std::f64::consts::PI).abs() < 1e-12 && a.cross(&axis).norm() < 1e-12);
+    }
+
+    #[test]
+    fn moment_law_without_preload_is_cores_rotation_vector_moment() {
+        let k = Mat3::from_diagonal(&Vec3::new(3.0, 2.0, 5.0));
+        for th in [Vec3::new(0.3, -0.7, 1.1), Vec3::new(0.05, 0.0, 0.02), Vec3::zeros(), Vec3::new(2.0, 1.0, -1.5)] {
+            let (g, dg) = moment_law(&th, &(k * th), &k);
+            let (g2, dg2) = rotation_vector_moment(&th, &k);
+            assert!((g - g2).norm() < 1e-13 && (dg - dg2).norm() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn moment_law_derivative_with_constant_part_matches_finite_difference() {
+        let k = Mat3::from_diagonal(&Vec3::new(3.0, 2.0, 5.0));
+        let m0 = Vec3::new(0.7, -1.3, 0.4);
+        let law = |th: &Vec3| moment_law(th, &(k * th - m0), &k);
+        for th in [Vec3::new(0.3, -0.7, 1.1), Vec3::new(0.02, 0.01, -0.03), Vec3::new(0.099, 0.0, 0.0)] {
+            let (_, dg) = law(&th);
+            let h = 1e-6;
+            for c in 0..3 {
+                let (mut tp, mut tm) = (th, th);
+                tp[c] += h;
+                tm[c] -= h;
+                let fd = (law(&tp).0 - law(&tm).0) / (2.0 * h);
+                assert!((fd - dg.column(c)).norm() < 1e-8, "{th:?} col {c}: {fd:?} vs {:?}", dg.column(c));
+            }
+        }
+    }
+}

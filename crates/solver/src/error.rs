@@ -1,0 +1,67 @@
+//! Typed errors of the solver. Each names what failed and says what to change.
+
+use crate::kkt_factor::FactorError;
+use elastokin_core::ModelError;
+use thiserror::Error;
+
+/// Why a solve or sweep did not produce a result.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum SolverError {
+    /// The model itself is inconsistent.
+    #[error(transparent)]
+    Model(#[from] ModelError),
+    /// The linear algebra refused the system.
+    #[error(transparent)]
+    Factor(#[from] FactorError),
+    /// A body can move in some direction that no joint, bushing or spring resists.
+    #[error("body '{body}' is not restrained in {motion}: add a joint, bushing or spring that holds it, or a driver")]
+    Unrestrained {
+        /// The body that moves most along the free direction.
+        body: String,
+        /// Readable description of the free motion.
+        motion: String,
+    },
+    /// Newton did not converge even after cutting the load step.
+    #[error(
+        "no equilibrium found at load parameter {t}: after {iterations} iterations the force residual is \
+         {force_residual:.3e} N and the constraint residual {constraint_residual:.3e} m; last converged load \
+         parameter {last_converged}; take smaller steps or check the model for a mechanism"
+    )]
+    NoConvergence {
+        /// Load parameter attempted.
+        t: f64,
+        /// Last load parameter reached.
+        last_converged: f64,
+        /// Iterations spent at the last attempt.
+        iterations: usize,
+        /// Scaled force residual at the end.
+        force_residual: f64,
+        /// Constraint residual at the end.
+        constraint_residual: f64,
+    },
+    /// A force-controlled path reached a load the system cannot carry: the tangent turned singular.
+    #[error(
+        "the structure cannot carry the load beyond load parameter {reached:.6} (tangent stiffness along the path \
+         vanishes near there): reduce the load, or follow the path through the limit point with arc-length \
+         continuation (`StaticSolver::arc_length_sweep`)"
+    )]
+    LimitPoint {
+        /// Largest load parameter for which equilibrium was found.
+        reached: f64,
+    },
+    /// Non-finite numbers appeared or were given.
+    #[error("non-finite value in {what}: check the model's inputs for NaN or infinite values")]
+    NonFinite {
+        /// Where.
+        what: &'static str,
+    },
+    /// A load path or option that makes no sense.
+    #[error("invalid {what}: {why}")]
+    InvalidInput {
+        /// What.
+        what: &'static str,
+        /// Why.
+        why: String,
+    },
+}

@@ -1,0 +1,119 @@
+//! What a solve returns: per-step states, joint reactions, element forces, diagnostics.
+
+use crate::solver::Mode;
+use elastokin_core::{ElementReport, Model, Pose, Vec3};
+
+/// A constraint row dropped because it repeats what other rows already constrain.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RedundantRow {
+    /// Model row index.
+    pub row: usize,
+    /// The joint it belongs to.
+    pub joint: String,
+    /// The row's label within the joint.
+    pub label: &'static str,
+}
+
+/// What the analysis of a model found.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Diagnostics {
+    /// Redundant rows (dropped from the solve; their multipliers are reported as zero and the load they
+    /// would share is carried by the rows they repeat).
+    pub redundant: Vec<RedundantRow>,
+}
+
+impl Diagnostics {
+    /// One line per finding, for people.
+    pub fn messages(&self) -> Vec<String> {
+        self.redundant
+            .iter()
+            .map(|r| {
+                format!(
+                    "joint '{}' row '{}' is redundant (it repeats other constraints): dropped from the solve; \
+                     its reaction is carried by the joints it repeats",
+                    r.joint, r.label
+                )
+            })
+            .collect()
+    }
+}
+
+/// Equilibrium (or paper-mode state) at one load parameter.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepResult {
+    /// Load parameter.
+    pub t: f64,
+    /// Body poses.
+    pub poses: Vec<Pose>,
+    /// Multiplier of every model constraint row (zero for dropped redundant rows).
+    pub multipliers: Vec<f64>,
+    /// `‖Φ_qᵀλ − Q‖∞` (N and N·m).
+    pub force_residual: f64,
+    /// The force scale the residual is judged against (largest element or reaction force, at least 1 N).
+    pub force_scale: f64,
+    /// `‖Φ‖∞` (m and rad).
+    pub constraint_residual: f64,
+    /// Newton iterations used for this step (0 in paper mode).
+    pub iterations: usize,
+}
+
+/// Reaction of one joint.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointReaction {
+    /// Force the joint applies to its body `j` (global, N).
+    pub force: Vec3,
+    /// Moment the joint applies to body `j` about the joint's hardpoint (global, N·m).
+    pub torque: Vec3,
+}
+
+impl StepResult {
+    /// Reaction force and moment of every joint on its second body `j`, at the joint's hardpoint.
+    /// For a joint whose `j` is the ground, the reaction on the ground (minus the action on `i`).
+    pub fn joint_reactions(&self, model: &Model) -> Vec<JointReaction> {
+        let mut row = 0;
+        model
+            .joints()
+            .iter()
+            .map(|jt| {
+                let (pi, pj) = (jt.spec.body_i.pose(&self.poses), jt.spec.body_j.pose(&self.poses));
+                let mut g = elastokin_core::RowGradient::zeros();
+                for r in &jt.rows {
+                    g += r.evaluate(&pi, &pj, self.t).gradient * self.multipliers[row];
+                    row += 1;
+                }
+                // The constraint force applied to the bodies is −Φ_qᵀλ.
+                let anchor = pj.point(&jt.anchor_on_j);
+                if jt.spec.body_j.id().is_some() {
+                    let f = -Vec3::new(g[6], g[7], g[8]);
+                    let m_ref = -Vec3::new(g[9], g[10], g[11]);
+                    JointReaction { force: f, torque: m_ref - (anchor - pj.position).cross(&f) }
+                } else {
+                    let f = -Vec3::new(g[0], g[1], g[2]);
+                    let m_ref = -Vec3::new(g[3], g[4], g[5]);
+                    JointReaction { force: -f, torque: -(m_ref - (anchor - pi.position).cross(&f)) }
+                }
+            })
+            .collect()
+    }
+
+    /// Force, moment and deflection of every element at this step.
+    pub fn element_reports(&self, model: &Model) -> Vec<ElementReport> {
+        model
+            .elements()
+            .iter()
+            .map(|e| {
+                let [i, j] = e.bodies();
+                e.report(&i.pose(&self.poses), &j.pose(&self.poses), self.t)
+            })
+            .collect()
+    }
+}
+
+/// A walked load path.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sweep {
+    /// How it was walked.
+    pub mode: Mode,
+    /// The starting equilibrium, then one result per step.
+    pub steps: Vec<StepResult>,
+}

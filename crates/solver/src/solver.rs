@@ -1,0 +1,724 @@
+//! The quasi-static solver: equilibrium, paper-mode and corrected-mode load paths.
+//!
+//! ## Sign convention
+//! Elements return the generalized force `Q` they apply; the constraint force on the bodies is `−Φ_qᵀλ`.
+//! Equilibrium is `R(q, λ, t) = Φ_qᵀλ − Q(q, t) = 0`, `Φ(q, t) = 0`; stiffness `K = −∂Q/∂Δq` is positive for
+//! a spring. A linear step therefore reads `K Δq + Φ_qᵀ λ = f` (DESIGN §4: `K` positive, loads on the
+//! right, the opposite of the paper's sign of eq. 8).
+//!
+//! ## Modes
+//! * [`Mode::Paper`] — paper eq. 9 exactly: `K(qⁿ) Δq + Φ_q(qⁿ)ᵀ λⁿ = Δf + Φ_q(qⁿ⁻¹)ᵀ λⁿ⁻¹`,
+//!   `Φ_q(qⁿ) Δq = −Δt ∂Φ/∂t`, with `K` the elastic stiffness only and `Δf = Δt ∂Q/∂t`. Loads are accumulated
+//!   linearly; the constraints drift. Error `O(Δf)`.
+//! * [`Mode::Corrected`] — each step starts with the same linear predictor (the first Newton iteration from the
+//!   last equilibrium at the new load is exactly that step, with the full tangent), then Newton on the true
+//!   residual until the force and constraint tolerances hold. With `reuse_factorization` the corrector keeps
+//!   the predictor's factorization (chord iterations) and refactors only when convergence stalls.
+//!
+//! Both start from an equilibrium at the first load parameter, found by Newton from the design pose (so a
+//! preloaded spring that does not sit at rest at design is fine).
+
+use crate::assembly::{Assembly, Tangent};
+use crate::error::SolverError;
+use crate::kkt_factor::{redundant_rows, FactorCounters, KktFactor, KktOptions, KktPattern};
+use crate::results::{Diagnostics, RedundantRow, StepResult, Sweep};
+use elastokin_core::{Model, Pose, BODY_DOFS};
+
+/// How to walk a load path.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mode {
+    /// The paper's linear recurrence (eq. 9).
+    Paper,
+    /// Linear predictor + Newton corrector on the true residual.
+    Corrected,
+}
+
+/// Tolerances and switches of the solver.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SolverOptions {
+    /// Force residual tolerance, relative to the largest force of any element, load or joint (and at
+    /// least 1 N): the net applied force vanishes at equilibrium, so it cannot be the scale.
+    pub force_tolerance: f64,
+    /// Constraint residual tolerance (metres for position rows, radians for orientation rows).
+    pub constraint_tolerance: f64,
+    /// Newton iterations per load step before the step is cut.
+    pub max_iterations: usize,
+    /// Keep the factorization across corrector iterations (chord / modified Newton).
+    pub reuse_factorization: bool,
+    /// How many times a step may be halved before the path is declared stuck.
+    pub max_step_cuts: usize,
+    /// Largest rotation increment per Newton iteration (rad); bigger steps are scaled down.
+    pub max_rotation_step: f64,
+    /// Relative tolerance for declaring a constraint row redundant.
+    pub redundancy_tolerance: f64,
+    /// Options of the KKT factorization.
+    pub kkt: KktOptions,
+}
+
+impl Default for SolverOptions {
+    fn default() -> Self {
+        SolverOptions {
+            force_tolerance: 1e-9,
+            constraint_tolerance: 1e-10,
+            max_iterations: 30,
+            reuse_factorization: false,
+            max_step_cuts: 10,
+            max_rotation_step: 0.5,
+            redundancy_tolerance: 1e-9,
+            kkt: KktOptions::default(),
+        }
+    }
+}
+
+/// A load path: the load parameter `t` from `start` to `end` in `steps` equal steps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LoadPath {
+    /// First load parameter (equilibrium is found there first).
+    pub start: f64,
+    /// Last load parameter.
+    pub end: f64,
+    /// Number of steps.
+    pub steps: usize,
+}
+
+impl LoadPath {
+    /// `start..end` in `steps` steps.
+    pub fn new(start: f64, end: f64, steps: usize) -> Self {
+        LoadPath { start, end, steps }
+    }
+}
+
+/// The evolving state: poses, multipliers (one per active row) and the load parameter.
+#[derive(Debug, Clone, PartialEq)]
+pub struct State {
+    /// Body poses.
+    pub poses: Vec<Pose>,
+    /// Multipliers of the active constraint rows.
+    pub lambda: Vec<f64>,
+    /// Load parameter.
+    pub t: f64,
+}
+
+/// Counters that prove reuse: how often each costly operation ran.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Counters {
+    /// Assemblies of the KKT system.
+    pub assemblies: u64,
+    /// From the factorization: symbolic analyses, numeric factorizations, solves, refinement steps.
+    pub factor: FactorCounters,
+}
+
+/// Solves one [`Model`]: analyses its KKT pattern once, then walks load paths with factorization reuse.
+#[derive(Debug)]
+pub struct StaticSolver<'m> {
+    model: &'m Model,
+    options: SolverOptions,
+    assembly: Assembly,
+    factor: KktFactor,
+    diagnostics: Diagnostics,
+    assemblies: u64,
+    rhs: Vec<f64>,
+    scratch: Vec<f64>,
+    /// Norm of the displacement response to a unit load-parameter increment at the start of the last
+    /// corrected sweep (the reference for recognising a limit point).
+    initial_response: Option<f64>,
+    z0: Vec<f64>,
+}
+
+/// Most refinement sweeps for the skew part of the tangent per Newton iteration.
+const SKEW_SWEEPS: usize = 12;
+
+/// A path counts as stuck at a limit point when the response to a load increment has grown this much.
+const LIMIT_RESPONSE_GROWTH: f64 = 10.0;
+
+struct Residual {
+    force: f64,
+    constraint: f64,
+    force_scale: f64,
+}
+
+impl<'m> StaticSolver<'m> {
+    /// Validates the model, finds redundant constraint rows (they are dropped and named in
+    /// [`StaticSolver::diagnostics`]), analyses the KKT pattern once and checks at design that every body is
+    /// restrained.
+    pub fn new(model: &'m Model, options: SolverOptions) -> Result<Self, SolverError> {
+        model.validate()?;
+        let poses = model.design_poses();
+        // Redundancy: rank-revealing check of the full Jacobian at design.
+        let all_rows: Vec<usize> = (0..model.constraint_rows()).collect();
+        let mut full = Assembly::new(model, all_rows);
+        full.assemble(model, &poses, 0.0, &[], None);
+        let dropped = redundant_rows(
+            full.m(),
+            full.n,
+            &full.j_col_ptr,
+            &full.j_row_idx,
+            &full.j_values,
+            options.redundancy_tolerance,
+        );
+        let active: Vec<usize> = (0..model.constraint_rows()).filter(|r| !dropped.contains(r)).collect();
+        let redundant = dropped
+            .iter()
+            .map(|&r| {
+                let o = model.row_origin(r).expect("row exists");
+                let jt = &model.joints()[o.joint.0];
+                RedundantRow { row: r, joint: jt.name().to_string(), label: jt.rows[o.row].label }
+            })
+            .collect();
+        let assembly = Assembly::new(model, active);
+        let pattern = KktPattern {
+            n: assembly.n,
+            m: assembly.m(),
+            k_col_ptr: assembly.k_col_ptr.clone(),
+            k_row_idx: assembly.k_row_idx.clone(),
+            j_col_ptr: assembly.j_col_ptr.clone(),
+            j_row_idx: assembly.j_row_idx.clone(),
+        };
+        let factor = KktFactor::analyze(&pattern, options.kkt.clone())?;
+        let size = assembly.n + assembly.m();
+        let mut solver = StaticSolver {
+            model,
+            options,
+            assembly,
+            factor,
+            diagnostics: Diagnostics { redundant },
+            assemblies: 0,
+            rhs: vec![0.0; size],
+            scratch: vec![0.0; size],
+            initial_response: None,
+            z0: vec![0.0; size],
+        };
+        solver.check_restrained(&poses)?;
+        Ok(solver)
+    }
+
+    /// The model.
+    pub fn model(&self) -> &'m Model {
+        self.model
+    }
+
+    /// What the analysis found (redundant rows dropped).
+    pub fn diagnostics(&self) -> &Diagnostics {
+        &self.diagnostics
+    }
+
+    /// Operation counters since construction.
+    pub fn counters(&self) -> Counters {
+        Counters { assemblies: self.assemblies, factor: self.factor.counters() }
+    }
+
+    /// Model row index of each active multiplier.
+    pub fn active_rows(&self) -> &[usize] {
+        &self.assembly.active_rows
+    }
+
+    /// The design state at load parameter `t` (multipliers zero).
+    pub fn design_state(&self, t: f64) -> State {
+        State { poses: self.model.design_poses(), lambda: vec![0.0; self.assembly.m()], t }
+    }
+
+    fn assemble(&mut self, state: &State, tangent: Option<Tangent>) {
+        self.assemblies += 1;
+        self.assembly.assemble(self.model, &state.poses, state.t, &state.lambda, tangent);
+    }
+
+    fn factorize(&mut self) -> Result<crate::kkt_factor::FactorReport, SolverError> {
+        Ok(self.factor.factorize(&self.assembly.k_values, &self.assembly.j_values)?)
+    }
+
+    /// Applies `Δq` (first `n` entries of `dx`) to the poses.
+    fn apply(poses: &mut [Pose], dx: &[f64], scale: f64) {
+        let mut d = [0.0; BODY_DOFS];
+        for (b, pose) in poses.iter_mut().enumerate() {
+            for k in 0..BODY_DOFS {
+                d[k] = scale * dx[b * BODY_DOFS + k];
+            }
+            pose.apply_increment6(&d);
+        }
+    }
+
+    /// Residual norms at the assembled state: `R = Jᵀλ − Q` and `Φ`.
+    fn residual(&mut self, lambda: &[f64]) -> Residual {
+        let n = self.assembly.n;
+        self.assembly.jt_times(lambda, &mut self.scratch[..n]);
+        let mut force: f64 = 0.0;
+        let mut force_scale: f64 = self.assembly.force_scale.max(1.0);
+        for c in 0..n {
+            let jl = self.scratch[c];
+            let q = self.assembly.applied[c];
+            force = force.max((jl - q).abs());
+            force_scale = force_scale.max(jl.abs()).max(q.abs());
+        }
+        let constraint = self.assembly.phi.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        Residual { force, constraint, force_scale }
+    }
+
+    fn converged(&self, r: &Residual) -> bool {
+        r.force <= self.options.force_tolerance * r.force_scale && r.constraint <= self.options.constraint_tolerance
+    }
+
+    /// Newton on the true residual at the state's load parameter. Returns iterations used.
+    ///
+    /// With `guard`, the corrector may not travel further than the first (predictor) increment: a longer
+    /// walk means Newton left the path — across a limit point to another branch, typically — and the
+    /// step is refused so that the caller cuts it.
+    fn newton(&mut self, state: &mut State, guard: bool) -> Result<(usize, Residual), SolverError> {
+        let n = self.assembly.n;
+        let m = self.assembly.m();
+        let mut factored = false;
+        let mut predictor_norm = 0.0;
+        let mut corrector_travel = 0.0;
+        let mut last_force = f64::INFINITY;
+        let mut iter = 0;
+        loop {
+            let refactor = !factored || !self.options.reuse_factorization;
+            self.assemble(state, if refactor { Some(Tangent::Full) } else { None });
+            let r = self.residual(&state.lambda);
+            if !(r.force.is_finite() && r.constraint.is_finite()) {
+                return Err(SolverError::NonFinite { what: "residual" });
+            }
+            if self.converged(&r) {
+                return Ok((iter, r));
+            }
+            if iter == self.options.max_iterations {
+                return Err(SolverError::NoConvergence {
+                    t: state.t,
+                    last_converged: f64::NAN,
+                    iterations: iter,
+                    force_residual: r.force,
+                    constraint_residual: r.constraint,
+                });
+            }
+            // A chord iteration that stops contracting gets a fresh tangent.
+            if factored && self.options.reuse_factorization && r.force > 0.5 * last_force {
+                self.assemble(state, Some(Tangent::Full));
+                self.factorize()?;
+            } else if refactor {
+                self.factorize()?;
+                factored = true;
+            }
+            last_force = r.force;
+            // rhs = [Q − Jᵀλ ; −Φ]
+            for c in 0..n {
+                self.rhs[c] = self.assembly.applied[c] - self.scratch[c];
+            }
+            for k in 0..m {
+                self.rhs[n + k] = -self.assembly.phi[k];
+            }
+            self.solve_with_skew()?;
+            if self.rhs.iter().any(|v| !v.is_finite()) {
+                return Err(SolverError::NonFinite { what: "Newton increment" });
+            }
+            let step_norm = self.rhs[..n].iter().map(|v| v * v).sum::<f64>().sqrt();
+            if iter == 0 {
+                predictor_norm = step_norm;
+            } else {
+                corrector_travel += step_norm;
+                if guard && corrector_travel > predictor_norm + 1e-12 {
+                    return Err(SolverError::NoConvergence {
+                        t: state.t,
+                        last_converged: f64::NAN,
+                        iterations: iter,
+                        force_residual: r.force,
+                        constraint_residual: r.constraint,
+                    });
+                }
+            }
+            let max_rot = (0..n).filter(|c| c % BODY_DOFS >= 3).fold(0.0f64, |a, c| a.max(self.rhs[c].abs()));
+            let scale =
+                if max_rot > self.options.max_rotation_step { self.options.max_rotation_step / max_rot } else { 1.0 };
+            Self::apply(&mut state.poses, &self.rhs[..n], scale);
+            for k in 0..m {
+                state.lambda[k] += scale * self.rhs[n + k];
+            }
+            iter += 1;
+        }
+    }
+
+    /// Solves `[K_sym + S, Jᵀ; J, 0] z = rhs` in place with the factorization of the symmetric part: after
+    /// `z₀ = KKT_sym⁻¹ rhs`, sweeps `z ← z₀ − KKT_sym⁻¹ [S z; 0]` until the change is below 1e-12 of `z`
+    /// (at most [`SKEW_SWEEPS`]). Without a skew part this is one solve.
+    fn solve_with_skew(&mut self) -> Result<(), SolverError> {
+        let n = self.assembly.n;
+        self.factor.solve_in_place(&mut self.rhs)?;
+        let size = self.rhs.len();
+        self.z0[..size].copy_from_slice(&self.rhs);
+        for _ in 0..SKEW_SWEEPS {
+            let largest = self.assembly.skew_times(&self.rhs[..n], &mut self.scratch[..n]);
+            if largest == 0.0 {
+                return Ok(());
+            }
+            for c in 0..n {
+                self.scratch[c] = -self.scratch[c];
+            }
+            self.scratch[n..size].fill(0.0);
+            self.factor.solve_in_place(&mut self.scratch[..size])?;
+            let mut change: f64 = 0.0;
+            let mut norm: f64 = 0.0;
+            for c in 0..size {
+                let next = self.z0[c] + self.scratch[c];
+                change = change.max((next - self.rhs[c]).abs());
+                norm = norm.max(next.abs());
+                self.rhs[c] = next;
+            }
+            if change <= 1e-12 * norm {
+                break;
+            }
+        }
+        Ok(())
+    }
+
+    /// Static equilibrium at `state.t`, by Newton from `state`.
+    pub fn equilibrium(&mut self, state: &mut State) -> Result<StepResult, SolverError> {
+        let (iterations, r) = self.newton(state, false).map_err(|e| with_last(e, f64::NAN))?;
+        Ok(self.step_result(state, iterations, &r))
+    }
+
+    fn step_result(&self, state: &State, iterations: usize, r: &Residual) -> StepResult {
+        let mut multipliers = vec![0.0; self.model.constraint_rows()];
+        for (k, &row) in self.assembly.active_rows.iter().enumerate() {
+            multipliers[row] = state.lambda[k];
+        }
+        StepResult {
+            t: state.t,
+            poses: state.poses.clone(),
+            multipliers,
+            force_residual: r.force,
+            force_scale: r.force_scale,
+            constraint_residual: r.constraint,
+            iterations,
+        }
+    }
+
+    /// Walks `path` in `mode`, starting from the equilibrium at `path.start` found from the design pose.
+    pub fn sweep(&mut self, path: LoadPath, mode: Mode) -> Result<Sweep, SolverError> {
+        let mut state = self.design_state(path.start);
+        self.sweep_from(&mut state, path, mode)
+    }
+
+    /// Walks `path` from `state` (which is first brought to equilibrium at `path.start`).
+    pub fn sweep_from(&mut self, state: &mut State, path: LoadPath, mode: Mode) -> Result<Sweep, SolverError> {
+        if path.steps == 0 || !path.start.is_finite() || !path.end.is_finite() {
+            return Err(SolverError::InvalidInput {
+                what: "load path",
+                why: format!("need finite ends and at least one step, got {path:?}"),
+            });
+        }
+        state.t = path.start;
+        let first = self.equilibrium(state)?;
+        let mut steps = Vec::with_capacity(path.steps + 1);
+        steps.push(first);
+        let dt = (path.end - path.start) / path.steps as f64;
+        match mode {
+            Mode::Paper => self.paper_steps(state, path, dt, &mut steps)?,
+            Mode::Corrected => {
+                self.initial_response = self.load_response(state);
+                self.corrected_steps(state, path, dt, &mut steps)?
+            }
+        }
+        Ok(Sweep { mode, steps })
+    }
+
+    fn paper_steps(
+        &mut self,
+        state: &mut State,
+        path: LoadPath,
+        dt: f64,
+        steps: &mut Vec<StepResult>,
+    ) -> Result<(), SolverError> {
+        let n = self.assembly.n;
+        let m = self.assembly.m();
+        // Φ_q(qⁿ⁻¹)ᵀ λⁿ⁻¹: the constraint force carried from the previous step.
+        let mut carried = vec![0.0; n];
+        self.assemble(state, None);
+        self.assembly.jt_times(&state.lambda, &mut carried);
+        for step in 1..=path.steps {
+            self.assemble(state, Some(Tangent::Paper));
+            self.factorize()?;
+            for c in 0..n {
+                self.rhs[c] = dt * self.assembly.load_rate[c] + carried[c];
+            }
+            for k in 0..m {
+                self.rhs[n + k] = -dt * self.assembly.phi_rate[k];
+            }
+            // The Jacobian at qⁿ carries λⁿ into the next step.
+            self.factor.solve_in_place(&mut self.rhs)?;
+            if self.rhs.iter().any(|v| !v.is_finite()) {
+                return Err(SolverError::NonFinite { what: "paper-mode step" });
+            }
+            state.lambda.copy_from_slice(&self.rhs[n..n + m]);
+            self.assembly.jt_times(&state.lambda, &mut carried);
+            Self::apply(&mut state.poses, &self.rhs[..n], 1.0);
+            state.t = path.start + dt * step as f64;
+            // Report the true residual of the paper solution (drift), without correcting it.
+            self.assemble(state, None);
+            let r = self.residual(&state.lambda);
+            steps.push(self.step_result(state, 0, &r));
+        }
+        Ok(())
+    }
+
+    fn corrected_steps(
+        &mut self,
+        state: &mut State,
+        path: LoadPath,
+        dt: f64,
+        steps: &mut Vec<StepResult>,
+    ) -> Result<(), SolverError> {
+        for step in 1..=path.steps {
+            let target = path.start + dt * step as f64;
+            let mut sub = dt;
+            let mut cuts = 0;
+            let mut iterations = 0;
+            let mut residual;
+            loop {
+                let saved = state.clone();
+                let next = if (target - state.t).abs() <= sub.abs() * (1.0 + 1e-12) { target } else { state.t + sub };
+                state.t = next;
+                match self.newton(state, true) {
+                    Ok((it, r)) => {
+                        iterations += it;
+                        residual = r;
+                        if next == target {
+                            break;
+                        }
+                    }
+                    Err(SolverError::NoConvergence { iterations: it, force_residual, constraint_residual, .. }) => {
+                        *state = saved;
+                        cuts += 1;
+                        if cuts > self.options.max_step_cuts {
+                            return Err(self.stuck(state, next, it, force_residual, constraint_residual));
+                        }
+                        sub *= 0.5;
+                    }
+                    Err(e) => return Err(e),
+                }
+            }
+            steps.push(self.step_result(state, iterations, &residual));
+        }
+        Ok(())
+    }
+
+    /// Classifies a path that cannot be continued: a limit point when the displacement response to a load
+    /// increment has grown far beyond its value at the start of the path (the tangent along the path is
+    /// losing its stiffness), otherwise a plain convergence failure.
+    fn stuck(&mut self, state: &State, attempted: f64, iterations: usize, force: f64, constraint: f64) -> SolverError {
+        let now = self.load_response(state);
+        let limit = match (now, self.initial_response) {
+            (None, _) => true,
+            (Some(now), Some(start)) => now > LIMIT_RESPONSE_GROWTH * start,
+            (Some(_), None) => false,
+        };
+        if limit {
+            SolverError::LimitPoint { reached: state.t }
+        } else {
+            SolverError::NoConvergence {
+                t: attempted,
+                last_converged: state.t,
+                iterations,
+                force_residual: force,
+                constraint_residual: constraint,
+            }
+        }
+    }
+
+    /// Solves the tangent system for the load direction at `state`: `[K Jᵀ; J 0] [q_t; λ_t] = [∂Q/∂t; −∂Φ/∂t]`,
+    /// leaving `q_t` in `self.rhs[..n]`. Returns `‖q_t‖`, or `None` when the tangent is singular.
+    fn load_response(&mut self, state: &State) -> Option<f64> {
+        let n = self.assembly.n;
+        self.assemble(state, Some(Tangent::Full));
+        self.factorize().ok()?;
+        self.load_direction_rhs();
+        self.factor.solve_in_place(&mut self.rhs).ok()?;
+        let norm = self.rhs[..n].iter().map(|v| v * v).sum::<f64>().sqrt();
+        norm.is_finite().then_some(norm)
+    }
+
+    /// `rhs = [∂Q/∂t; −∂Φ/∂t]` from the assembled state.
+    fn load_direction_rhs(&mut self) {
+        let n = self.assembly.n;
+        self.rhs[..n].copy_from_slice(&self.assembly.load_rate);
+        for (k, r) in self.assembly.phi_rate.iter().enumerate() {
+            self.rhs[n + k] = -r;
+        }
+    }
+
+    /// Follows the equilibrium path by arc length (Riks' normal-plane continuation with a bordered solve of
+    /// the same KKT factorization), so the load parameter may rise, pass a limit point and fall. Starts
+    /// from the equilibrium at `path.start`; stops after `path.steps` steps or when `t` leaves
+    /// `[min(start, end), max(start, end)]`. `arc` is the first step's length in the scaled space
+    /// `‖Δq‖² + ψ² Δt²`, with ψ chosen so that both parts weigh the same at the start.
+    pub fn arc_length_sweep(&mut self, path: LoadPath, arc: f64) -> Result<Sweep, SolverError> {
+        if path.steps == 0 || !(arc.is_finite() && arc > 0.0) {
+            return Err(SolverError::InvalidInput {
+                what: "arc-length path",
+                why: format!("need at least one step and a positive arc length, got {path:?} and {arc}"),
+            });
+        }
+        let n = self.assembly.n;
+        let m = self.assembly.m();
+        let mut state = self.design_state(path.start);
+        let first = self.equilibrium(&mut state)?;
+        let mut steps = vec![first];
+        let direction = (path.end - path.start).signum();
+        let (lo, hi) = (path.start.min(path.end), path.start.max(path.end));
+        let q_t0 = self.load_response(&state).ok_or(SolverError::LimitPoint { reached: state.t })?;
+        let psi2 = (q_t0 * q_t0).max(1e-300);
+        let mut prev_dq = vec![0.0; n];
+        let mut prev_dt = direction;
+        let mut q_t = vec![0.0; n];
+        let mut r_dq = vec![0.0; n + m];
+        for _ in 0..path.steps {
+            // Predictor along the tangent, oriented like the previous step.
+            self.load_response(&state).ok_or(SolverError::LimitPoint { reached: state.t })?;
+            q_t.copy_from_slice(&self.rhs[..n]);
+            let norm = (q_t.iter().map(|v| v * v).sum::<f64>() + psi2).sqrt();
+            let mut dt = arc / norm;
+            let along: f64 = q_t.iter().zip(&prev_dq).map(|(a, b)| a * b).sum::<f64>() + psi2 * prev_dt;
+            if along < 0.0 {
+                dt = -dt;
+            }
+            let start = state.clone();
+            let mut dq_total: Vec<f64> = q_t.iter().map(|v| v * dt).collect();
+            Self::apply(&mut state.poses, &dq_total, 1.0);
+            for k in 0..m {
+                state.lambda[k] += dt * self.rhs[n + k];
+            }
+            state.t += dt;
+            let mut dt_total = dt;
+            // Corrector: Newton on (R, Φ) with the normal-plane constraint (Δq_totalᵀ δq + ψ² Δt_total δt = 0).
+            let mut converged = None;
+            for iter in 0..self.options.max_iterations {
+                self.assemble(&state, Some(Tangent::Full));
+                let r = self.residual(&state.lambda);
+                if self.converged(&r) {
+                    converged = Some((iter, r));
+                    break;
+                }
+                self.factorize()?;
+                // Residual part: [Q − Jᵀλ; −Φ]
+                for c in 0..n {
+                    r_dq[c] = self.assembly.applied[c] - self.scratch[c];
+                }
+                for k in 0..m {
+                    r_dq[n + k] = -self.assembly.phi[k];
+                }
+                self.factor.solve_in_place(&mut r_dq)?;
+                self.load_direction_rhs();
+                self.factor.solve_in_place(&mut self.rhs)?;
+                let num: f64 = dq_total.iter().zip(&r_dq[..n]).map(|(a, b)| a * b).sum();
+                let den: f64 = dq_total.iter().zip(&self.rhs[..n]).map(|(a, b)| a * b).sum::<f64>() + psi2 * dt_total;
+                let dt = if den.abs() > 0.0 { -num / den } else { 0.0 };
+                for c in 0..n + m {
+                    r_dq[c] += dt * self.rhs[c];
+                }
+                if r_dq.iter().any(|v| !v.is_finite()) {
+                    return Err(SolverError::NonFinite { what: "arc-length corrector" });
+                }
+                Self::apply(&mut state.poses, &r_dq[..n], 1.0);
+                for k in 0..m {
+                    state.lambda[k] += r_dq[n + k];
+                }
+                for c in 0..n {
+                    dq_total[c] += r_dq[c];
+                }
+                state.t += dt;
+                dt_total += dt;
+            }
+            let Some((iterations, r)) = converged else {
+                return Err(SolverError::NoConvergence {
+                    t: state.t,
+                    last_converged: start.t,
+                    iterations: self.options.max_iterations,
+                    force_residual: f64::NAN,
+                    constraint_residual: f64::NAN,
+                });
+            };
+            prev_dq.copy_from_slice(&dq_total);
+            prev_dt = dt_total;
+            steps.push(self.step_result(&state, iterations, &r));
+            if state.t < lo - 1e-12 || state.t > hi + 1e-12 {
+                break;
+            }
+        }
+        Ok(Sweep { mode: Mode::Corrected, steps })
+    }
+
+    /// Checks at design that every body is restrained, by inverse iteration on the factorized tangent.
+    fn check_restrained(&mut self, poses: &[Pose]) -> Result<(), SolverError> {
+        let n = self.assembly.n;
+        if n == 0 {
+            return Ok(());
+        }
+        let state = State { poses: poses.to_vec(), lambda: vec![0.0; self.assembly.m()], t: 0.0 };
+        self.assemble(&state, Some(Tangent::Elastic));
+        let report = self.factorize()?;
+        if report.suspect_body_dofs.is_empty() {
+            return Ok(());
+        }
+        // Inverse iteration: the solution of K x = random is dominated by the free direction.
+        self.rhs.fill(0.0);
+        let mut seed = 0x2545F4914F6CDD1Du64;
+        for c in 0..n {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            self.rhs[c] = (seed % 1000) as f64 / 1000.0 - 0.5;
+        }
+        for _ in 0..2 {
+            self.factor.solve_in_place(&mut self.rhs)?;
+            let norm = self.rhs[..n].iter().map(|v| v * v).sum::<f64>().sqrt();
+            if !(norm.is_finite() && norm > 0.0) {
+                break;
+            }
+            for v in self.rhs[..n].iter_mut() {
+                *v /= norm;
+            }
+            self.rhs[n..].fill(0.0);
+        }
+        let (body, motion) = describe_free_motion(self.model, &self.rhs[..n], &report.suspect_body_dofs);
+        Err(SolverError::Unrestrained { body, motion })
+    }
+}
+
+fn with_last(e: SolverError, last: f64) -> SolverError {
+    match e {
+        SolverError::NoConvergence { t, iterations, force_residual, constraint_residual, .. } => {
+            SolverError::NoConvergence { t, last_converged: last, iterations, force_residual, constraint_residual }
+        }
+        other => other,
+    }
+}
+
+/// Names the body and motion of a (near-)null vector of the tangent.
+fn describe_free_motion(model: &Model, x: &[f64], suspects: &[usize]) -> (String, String) {
+    let nb = model.bodies().len();
+    let mut best = (0usize, -1.0f64);
+    for b in 0..nb {
+        let w: f64 = x[b * BODY_DOFS..(b + 1) * BODY_DOFS].iter().map(|v| v * v).sum();
+        if w > best.1 {
+            best = (b, w);
+        }
+    }
+    let b = if best.1 > 0.0 && best.1.is_finite() { best.0 } else { suspects.first().map_or(0, |d| d / BODY_DOFS) };
+    let v = &x[b * BODY_DOFS..(b + 1) * BODY_DOFS];
+    let t = elastokin_core::Vec3::new(v[0], v[1], v[2]);
+    let r = elastokin_core::Vec3::new(v[3], v[4], v[5]);
+    let pose = model.bodies()[b].design_pose;
+    let motion = if !(t.norm().is_finite() && r.norm().is_finite()) || (t.norm() == 0.0 && r.norm() == 0.0) {
+        format!("coordinate {} (Δx, Δy, Δz, Δπx, Δπy, Δπz)", suspects.first().map_or(0, |d| d % BODY_DOFS))
+    } else if r.norm() > 1e-3 * t.norm() {
+        // Any rotation (per metre of lever) beyond noise: a pure translation has none.
+        // A rotation about an axis through the point p where the velocity is parallel to the axis.
+        let axis = r / r.norm();
+        let p = pose.position + r.cross(&t) / r.norm_squared();
+        format!(
+            "rotation about the axis ({:.3}, {:.3}, {:.3}) through ({:.4}, {:.4}, {:.4}) m",
+            axis.x, axis.y, axis.z, p.x, p.y, p.z
+        )
+    } else {
+        let d = t / t.norm();
+        format!("translation along ({:.3}, {:.3}, {:.3})", d.x, d.y, d.z)
+    };
+    (model.bodies()[b].name.clone(), motion)
+}

@@ -1,0 +1,22 @@
+//! # elastokin
+//!
+//! Quasi-static elastokinematics of suspensions: rigid parts joined by kinematic joints, rubber bushings
+//! and springs, solved along a load path for the design parameters vehicle-dynamics engineers use.
+//!
+//! This facade re-exports the workspace crates so a user can depend on one package:
+//! - [`core`]: poses, constraint primitives and joints, the [`Model`](core::Model);
+//! - [`elements`]: bushings, coil springs, point loads;
+//! - [`solver`]: KKT assembly, the quasi-definite LDLᵀ with reuse, paper and corrected stepping.
+//!
+//! Pick the crates directly to leave out what a build does not need (the solver alone does not pull in
+//! serde; rayon and sprs are behind the `parallel` and `matrix-market` features).
+
+pub use elastokin_core as core;
+pub use elastokin_elements as elements;
+pub use elastokin_solver as solver;
+
+/// The names most programs use.
+pub mod prelude {
+    pub use elastokin_core::{BodyId, BodyRef, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
+    pub use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult};
+}

@@ -1,0 +1,92 @@
+//! Stiff, soft, redundant and degenerate scenes.
+
+mod common;
+use common::*;
+use elastokin::elements::{Bushing, PointForce};
+use elastokin::prelude::*;
+
+#[test]
+fn near_rigid_bushing_reproduces_the_revolute_joint() {
+    let l0 = lever_spring_design_length();
+    let rigid = lever(Pivot::Revolute, l0);
+    let stiff = lever(Pivot::Bushing(1e10), l0);
+    let mut a = StaticSolver::new(&rigid, SolverOptions::default()).unwrap();
+    let mut b = StaticSolver::new(&stiff, SolverOptions::default()).unwrap();
+    let sa = a.sweep(LoadPath::new(0.0, 1.0, 5), Mode::Corrected).unwrap();
+    let sb = b.sweep(LoadPath::new(0.0, 1.0, 5), Mode::Corrected).unwrap();
+    let (pa, pb) = (rotation_about_y(&sa.steps[5].poses[0]), rotation_about_y(&sb.steps[5].poses[0]));
+    // Pivot load ~1 kN on 1e10 N/m: 1e-7 m of play, i.e. ~1e-6 rad on a 0.3 m lever.
+    assert!((pa - pb).abs() < 2e-6, "{pa} vs {pb}");
+    let joint = sa.steps[5].joint_reactions(&rigid)[0].force;
+    // The bushing reports the force it applies to the lever; the joint the same.
+    let bushing = sb.steps[5].element_reports(&stiff)[0].force;
+    assert!((joint - bushing).norm() < 1e-3 * joint.norm(), "{joint:?} vs {bushing:?}");
+}
+
+#[test]
+fn soft_bushing_stays_finite_and_exact() {
+    let mut m = Model::new();
+    let p = Vec3::new(0.0, 0.5, 0.0);
+    let body = m.add_body("subframe", Pose::at(p)).unwrap();
+    let k = 1e2;
+    m.add_element(
+        Bushing::new(
+            "soft mount",
+            BodyRef::Ground,
+            body.into(),
+            p,
+            Mat3::identity(),
+            Vec3::new(k, k, k),
+            Vec3::new(10.0, 10.0, 10.0),
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    m.add_element(PointForce::new("push", body.into(), p, Vec3::new(0.0, 50.0, -30.0)).unwrap()).unwrap();
+    let mut solver = StaticSolver::new(&m, SolverOptions::default()).unwrap();
+    let sweep = solver.sweep(LoadPath::new(0.0, 1.0, 3), Mode::Corrected).unwrap();
+    let moved = sweep.steps[3].poses[0].position - p;
+    assert!((moved - Vec3::new(0.0, 0.5, -0.3)).norm() < 1e-12, "{moved:?}");
+}
+
+#[test]
+fn duplicated_revolute_is_named_and_solves_with_correct_motion_and_total_reaction() {
+    let l0 = lever_spring_design_length();
+    let m = lever(Pivot::DoubleRevolute, l0);
+    let mut solver = StaticSolver::new(&m, SolverOptions::default()).unwrap();
+    let d = solver.diagnostics();
+    assert_eq!(d.redundant.len(), 5, "{d:?}");
+    assert!(d.redundant.iter().all(|r| r.joint == "pivot copy"), "{d:?}");
+    assert!(d.messages()[0].contains("pivot copy"));
+    let sweep = solver.sweep(LoadPath::new(0.0, 1.0, 6), Mode::Corrected).unwrap();
+    let phi = rotation_about_y(&sweep.steps[6].poses[0]);
+    assert!((phi - lever_angle(F_TIP, l0)).abs() < 1e-9);
+    let single = lever(Pivot::Revolute, l0);
+    let mut s1 = StaticSolver::new(&single, SolverOptions::default()).unwrap();
+    let r1 = s1.sweep(LoadPath::new(0.0, 1.0, 6), Mode::Corrected).unwrap().steps[6].joint_reactions(&single)[0].force;
+    let r2 = sweep.steps[6].joint_reactions(&m);
+    assert!((r2[0].force + r2[1].force - r1).norm() < 1e-6 * r1.norm());
+}
+
+#[test]
+fn ball_jointed_body_with_nothing_else_is_named_as_unrestrained() {
+    let mut m = Model::new();
+    let rod = m.add_body("strut rod", Pose::at(Vec3::new(0.0, 0.8, 0.3))).unwrap();
+    m.add_joint(JointSpec::spherical("top mount", BodyRef::Ground, rod, Vec3::new(0.0, 0.8, 0.6))).unwrap();
+    let err = StaticSolver::new(&m, SolverOptions::default()).unwrap_err();
+    match &err {
+        SolverError::Unrestrained { body, motion } => {
+            assert_eq!(body, "strut rod");
+            assert!(motion.contains("rotation"), "{motion}");
+        }
+        other => panic!("expected Unrestrained, got {other}"),
+    }
+}
+
+#[test]
+fn body_held_by_nothing_is_refused_before_solving() {
+    let mut m = Model::new();
+    m.add_body("wheel", Pose::default()).unwrap();
+    let err = StaticSolver::new(&m, SolverOptions::default()).unwrap_err();
+    assert!(err.to_string().contains("'wheel' is held by nothing"), "{err}");
+}
