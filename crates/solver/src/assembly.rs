@@ -372,5 +372,4 @@ impl Assembly {
 }
 
 /// Element count from which the `parallel` feature evaluates elements on the rayon pool.
-#[cfg(feature = "parallel")]
 pub const PARALLEL_ELEMENTS: usize = 256;

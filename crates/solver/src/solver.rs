@@ -37,7 +37,9 @@ pub enum Mode {
 #[derive(Debug, Clone, PartialEq)]
 pub struct SolverOptions {
     /// Force residual tolerance, relative to the largest force of any element, load or joint (and at
-    /// least 1 N): the net applied force vanishes at equilibrium, so it cannot be the scale.
+    /// least 1 N): the net applied force vanishes at equilibrium, so it cannot be the scale. It is never
+    /// asked below the rounding noise of the stiffest element, `64 ε k_max |P|_max` (a 1e9 N/m bushing
+    /// 0.5 m from the origin leaves ~7e-6 N).
     pub force_tolerance: f64,
     /// Constraint residual tolerance (metres for position rows, radians for orientation rows).
     pub constraint_tolerance: f64,
@@ -123,7 +125,12 @@ pub struct StaticSolver<'m> {
     /// corrected sweep (the reference for recognising a limit point).
     initial_response: Option<f64>,
     z0: Vec<f64>,
+    /// Force residual left by rounding in the stiffest element (see `update_roundoff_floor`).
+    roundoff_floor: f64,
 }
+
+/// Rounding noise of a stiff element's force, in units of `ε·k·|P|`: a few operations each add `ε`.
+const ROUNDOFF_FACTOR: f64 = 64.0;
 
 /// Most refinement sweeps for the skew part of the tangent per Newton iteration.
 const SKEW_SWEEPS: usize = 12;
@@ -187,6 +194,7 @@ impl<'m> StaticSolver<'m> {
             scratch: vec![0.0; size],
             initial_response: None,
             z0: vec![0.0; size],
+            roundoff_floor: 0.0,
         };
         solver.check_restrained(&poses)?;
         Ok(solver)
@@ -205,6 +213,62 @@ impl<'m> StaticSolver<'m> {
     /// Operation counters since construction.
     pub fn counters(&self) -> Counters {
         Counters { assemblies: self.assemblies, factor: self.factor.counters() }
+    }
+
+    /// The tangent KKT matrix `[K, Jᵀ; J, 0]` at `state` (with `K` the exact, possibly non-symmetric
+    /// tangent) as `(row, col, value)` triplets, of order `n + m`: for inspection, dumps and dense
+    /// reference solves.
+    pub fn kkt_triplets(&mut self, state: &State) -> (usize, Vec<(usize, usize, f64)>) {
+        self.assemble(state, Some(Tangent::Full));
+        let n = self.assembly.n;
+        let a = &self.assembly;
+        let mut out = Vec::with_capacity(2 * (a.k_values.len() + a.j_values.len()));
+        for c in 0..n {
+            for p in a.k_col_ptr[c]..a.k_col_ptr[c + 1] {
+                let (r, v, s) = (a.k_row_idx[p], a.k_values[p], a.k_skew[p]);
+                out.push((r, c, v + s));
+                if r != c {
+                    out.push((c, r, v - s));
+                }
+            }
+            for p in a.j_col_ptr[c]..a.j_col_ptr[c + 1] {
+                let (r, v) = (n + a.j_row_idx[p], a.j_values[p]);
+                out.push((r, c, v));
+                out.push((c, r, v));
+            }
+        }
+        (n + a.m(), out)
+    }
+
+    /// Solves the tangent system `[K, Jᵀ; J, 0] z = rhs` at `state` in place (`rhs` of length `n + m`):
+    /// the response of the equilibrium to a load or constraint perturbation. A compliance matrix is a
+    /// handful of these with one factorization.
+    pub fn tangent_solve(&mut self, state: &State, rhs: &mut [f64]) -> Result<(), SolverError> {
+        let size = self.assembly.n + self.assembly.m();
+        if rhs.len() != size {
+            return Err(SolverError::InvalidInput {
+                what: "right-hand side",
+                why: format!("length {} but the system has {size} unknowns", rhs.len()),
+            });
+        }
+        self.assemble(state, Some(Tangent::Full));
+        self.factorize()?;
+        self.rhs.copy_from_slice(rhs);
+        self.solve_with_skew()?;
+        rhs.copy_from_slice(&self.rhs);
+        Ok(())
+    }
+
+    /// Writes the KKT matrix at `state` in Matrix Market format (feature `matrix-market`).
+    #[cfg(feature = "matrix-market")]
+    pub fn write_kkt_matrix_market(&mut self, state: &State, path: &std::path::Path) -> std::io::Result<()> {
+        let (size, triplets) = self.kkt_triplets(state);
+        let mut tri = sprs::TriMat::new((size, size));
+        for (r, c, v) in triplets {
+            tri.add_triplet(r, c, v);
+        }
+        let csc: sprs::CsMat<f64> = tri.to_csc();
+        sprs::io::write_matrix_market(path, &csc)
     }
 
     /// Model row index of each active multiplier.
@@ -254,7 +318,17 @@ impl<'m> StaticSolver<'m> {
     }
 
     fn converged(&self, r: &Residual) -> bool {
-        r.force <= self.options.force_tolerance * r.force_scale && r.constraint <= self.options.constraint_tolerance
+        let floor = self.roundoff_floor;
+        r.force <= (self.options.force_tolerance * r.force_scale).max(floor)
+            && r.constraint <= self.options.constraint_tolerance
+    }
+
+    /// The force residual that rounding alone leaves in a stiff element: `δ = Pⱼ − Pᵢ` is known to about
+    /// `ε·|P|`, so a stiffness `k` leaves `k·ε·|P|` of noise. Below that no tolerance can be met.
+    fn update_roundoff_floor(&mut self, poses: &[Pose]) {
+        let k_max = self.assembly.k_values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let reach = poses.iter().fold(1.0f64, |a, p| a.max(p.position.amax()));
+        self.roundoff_floor = ROUNDOFF_FACTOR * f64::EPSILON * k_max * reach;
     }
 
     /// Newton on the true residual at the state's load parameter. Returns iterations used.
@@ -273,6 +347,9 @@ impl<'m> StaticSolver<'m> {
         loop {
             let refactor = !factored || !self.options.reuse_factorization;
             self.assemble(state, if refactor { Some(Tangent::Full) } else { None });
+            if refactor {
+                self.update_roundoff_floor(&state.poses);
+            }
             let r = self.residual(&state.lambda);
             if !(r.force.is_finite() && r.constraint.is_finite()) {
                 return Err(SolverError::NonFinite { what: "residual" });
@@ -590,6 +667,7 @@ impl<'m> StaticSolver<'m> {
             let mut converged = None;
             for iter in 0..self.options.max_iterations {
                 self.assemble(&state, Some(Tangent::Full));
+                self.update_roundoff_floor(&state.poses);
                 let r = self.residual(&state.lambda);
                 if self.converged(&r) {
                     converged = Some((iter, r));
