@@ -86,19 +86,21 @@ pub fn left_jacobian_inv(theta: &Vec3) -> Mat3 {
     Mat3::identity() - 0.5 * th + beta * th * th
 }
 
-/// The rotation-vector law of a torsion spring: with energy `½ θᵀ K θ` on the rotation vector θ of a
-/// relative rotation, returns the moment conjugate to a left rotation increment,
-/// `g = J_l(θ)⁻ᵀ K θ`, and its derivative `∂g/∂θ`.
-pub fn rotation_vector_moment(theta: &Vec3, k: &Mat3) -> (Vec3, Mat3) {
+/// The rotation-vector law of a torsion spring: for an energy whose derivative with respect to the
+/// rotation vector θ of a relative rotation is `m(θ)` (for a linear bushing with preload,
+/// `m = K θ − M_pre`, `dm = ∂m/∂θ = K`), returns the moment conjugate to a left rotation increment,
+/// `g = J_l(θ)⁻ᵀ m`, and its derivative `∂g/∂θ`. With `J_l⁻ᵀ = I + ½θ̃ + βθ̃²`,
+/// `g = m + ½ θ×m + β θ×(θ×m)`, each product differentiated, and `∂β/∂θ = (β'/t) θᵀ`.
+pub fn rotation_vector_moment(theta: &Vec3, m: &Vec3, dm: &Mat3) -> (Vec3, Mat3) {
     let t = theta.norm();
     let (beta, dbeta_t) = beta_and_dbeta_over_t(t);
     let th = skew(theta);
-    let m = k * theta;
-    let p = theta.cross(&m);
+    let k = dm;
+    let p = theta.cross(m);
     let tp = theta.cross(&p);
     // J_l⁻ᵀ = I + ½θ̃ + βθ̃²  (θ̃ is skew, so the transpose flips the odd term)
     let g = m + 0.5 * p + beta * tp;
-    let dp = -skew(&m) + th * k;
+    let dp = -skew(m) + th * k;
     let dtp = -skew(&p) + th * dp;
     let dg = k + 0.5 * dp + beta * dtp + tp * (dbeta_t * theta.transpose());
     (g, dg)
@@ -117,14 +119,15 @@ mod tests {
             Vec3::new(0.099, 0.001, 0.0),
             Vec3::new(0.0, 0.0, 0.0),
         ] {
-            let (_, dg) = rotation_vector_moment(&theta, &k);
+            let (_, dg) = rotation_vector_moment(&theta, &(k * theta), &k);
             let h = 1e-6;
             for c in 0..3 {
                 let mut tp = theta;
                 let mut tm = theta;
                 tp[c] += h;
                 tm[c] -= h;
-                let fd = (rotation_vector_moment(&tp, &k).0 - rotation_vector_moment(&tm, &k).0) / (2.0 * h);
+                let fd = (rotation_vector_moment(&tp, &(k * tp), &k).0 - rotation_vector_moment(&tm, &(k * tm), &k).0)
+                    / (2.0 * h);
                 for r in 0..3 {
                     assert!((fd[r] - dg[(r, c)]).abs() < 1e-7, "θ={theta:?} ({r},{c}): fd {} vs {}", fd[r], dg[(r, c)]);
                 }
