@@ -164,3 +164,51 @@ fn multipliers_match_a_pivoted_dense_reference_across_stiffness_ratios() {
         assert!(dq < 1e-14 * scale && lambda < 1e-13 * scale, "ratio 1e{exp}: Δq error {dq:e}, λ error {lambda:e}");
     }
 }
+
+/// A lever on a hinge whose tip is driven down by `travel · t`; no elastic element at all.
+fn driven_lever(travel: f64) -> Model {
+    let mut m = Model::new();
+    let l = m.add_body("lever", Pose::at(Vec3::new(0.25, 0.0, 0.0))).unwrap();
+    m.add_joint(JointSpec::revolute("pivot", BodyRef::Ground, l, Vec3::zeros(), Vec3::y())).unwrap();
+    m.add_joint(JointSpec::point_driver("tip travel", l, Vec3::new(0.5, 0.0, 0.0), Vec3::z(), travel)).unwrap();
+    m
+}
+
+#[test]
+fn pure_kinematics_follows_the_driver_exactly() {
+    let m = driven_lever(-0.3);
+    let mut solver = StaticSolver::new(&m, SolverOptions::default()).unwrap();
+    for mode in [Mode::Corrected, Mode::Paper] {
+        let sweep = solver.sweep(LoadPath::new(0.0, 1.0, 6), mode).unwrap();
+        for s in &sweep.steps {
+            // sin φ = 0.3 t / 0.5 with the tip on the circle of radius 0.5.
+            let expected = (0.3 * s.t / 0.5).asin();
+            let phi = s.poses[0].orientation.scaled_axis().y;
+            let tol = if mode == Mode::Corrected { 1e-9 } else { 0.05 * expected.abs() + 1e-12 };
+            assert!((phi - expected).abs() <= tol, "{mode:?} t={}: φ {phi} vs {expected}", s.t);
+        }
+    }
+}
+
+#[test]
+fn driving_past_the_reach_of_the_mechanism_is_a_named_limit_point() {
+    // The tip can go down 0.5 m at most: t = 0.5 / 0.8 = 0.625.
+    let m = driven_lever(-0.8);
+    let mut solver = StaticSolver::new(&m, SolverOptions::default()).unwrap();
+    match solver.sweep(LoadPath::new(0.0, 1.0, 8), Mode::Corrected).unwrap_err() {
+        SolverError::LimitPoint { reached } => assert!((reached - 0.625).abs() < 2e-3, "reached {reached}"),
+        other => panic!("expected a limit point, got {other}"),
+    }
+}
+
+#[test]
+fn nonsense_options_and_paths_are_refused() {
+    let m = driven_lever(-0.1);
+    let e = StaticSolver::new(&m, SolverOptions { force_tolerance: f64::NAN, ..SolverOptions::default() }).unwrap_err();
+    assert!(e.to_string().contains("force_tolerance"), "{e}");
+    let mut solver = StaticSolver::new(&m, SolverOptions::default()).unwrap();
+    let e = solver.sweep(LoadPath::new(0.0, f64::INFINITY, 3), Mode::Corrected).unwrap_err();
+    assert!(matches!(e, SolverError::InvalidInput { .. }), "{e}");
+    let e = solver.sweep(LoadPath::new(0.0, 1.0, 0), Mode::Paper).unwrap_err();
+    assert!(matches!(e, SolverError::InvalidInput { .. }), "{e}");
+}

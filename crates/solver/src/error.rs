@@ -40,11 +40,12 @@ pub enum SolverError {
         /// Constraint residual at the end.
         constraint_residual: f64,
     },
-    /// A force-controlled path reached a load the system cannot carry: the tangent turned singular.
+    /// The path reached a limit point: the tangent turned singular along it — a load the structure cannot
+    /// carry, or a driven motion the mechanism cannot reach.
     #[error(
-        "the structure cannot carry the load beyond load parameter {reached:.6} (tangent stiffness along the path \
-         vanishes near there): reduce the load, or follow the path through the limit point with arc-length \
-         continuation (`StaticSolver::arc_length_sweep`)"
+        "the path cannot go beyond load parameter {reached:.6}: the tangent turns singular there (a load the \
+         structure cannot carry, or a driven motion the mechanism cannot reach); reduce the load or travel, or \
+         follow a load path through the limit point with arc-length continuation (`StaticSolver::arc_length_sweep`)"
     )]
     LimitPoint {
         /// Largest load parameter for which equilibrium was found.

@@ -72,6 +72,33 @@ impl Default for SolverOptions {
     }
 }
 
+impl SolverOptions {
+    /// Refuses tolerances and limits that cannot work (NaN, zero, negative).
+    pub fn validate(&self) -> Result<(), SolverError> {
+        let positive = [
+            ("force_tolerance", self.force_tolerance),
+            ("constraint_tolerance", self.constraint_tolerance),
+            ("max_rotation_step", self.max_rotation_step),
+            ("redundancy_tolerance", self.redundancy_tolerance),
+        ];
+        for (name, v) in positive {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(SolverError::InvalidInput {
+                    what: "solver option",
+                    why: format!("{name} must be finite and positive, got {v}"),
+                });
+            }
+        }
+        if self.max_iterations == 0 {
+            return Err(SolverError::InvalidInput {
+                what: "solver option",
+                why: "max_iterations must be at least 1".into(),
+            });
+        }
+        Ok(())
+    }
+}
+
 /// A load path: the load parameter `t` from `start` to `end` in `steps` equal steps.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LoadPath {
@@ -149,6 +176,7 @@ impl<'m> StaticSolver<'m> {
     /// [`StaticSolver::diagnostics`]), analyses the KKT pattern once and checks at design that every body is
     /// restrained.
     pub fn new(model: &'m Model, options: SolverOptions) -> Result<Self, SolverError> {
+        options.validate()?;
         model.validate()?;
         let poses = model.design_poses();
         // Redundancy: rank-revealing check of the full Jacobian at design.
