@@ -20,7 +20,7 @@
 //! left-increment coordinates `Δπ`: it is the derivative of the gradient along `A ← exp(Δπ̃)A`, which
 //! differs from the symmetric second derivative of `Φ` by a skew part proportional to the gradient.
 //! Newton needs the former; the solver factorizes its symmetric part and restores the skew part by
-//! refinement sweeps.
+//! GMRES preconditioned with that factorization.
 //!
 //! Columns 0..6 belong to body `i` (`Δr`, `Δπ`), 6..12 to body `j`.
 

@@ -10,7 +10,7 @@
 //! `K` is stored as its upper triangle in two parts, symmetric and skew: an element's exact tangent is
 //! non-symmetric away from equilibrium (see `elastokin_core::constraint`), and a world-fixed torque, which
 //! has no potential on SO(3), leaves a skew part `−½M̃` even at equilibrium. The LDLᵀ factorizes the
-//! symmetric part; the solver restores the skew part by a few refinement sweeps with that factorization,
+//! symmetric part; the solver restores the skew part by GMRES preconditioned with that factorization,
 //! which keeps Newton quadratic.
 
 use elastokin_core::{BodyRef, ElementEval, ElementRole, Model, PairMatrix, Pose, RowGradient, BODY_DOFS};

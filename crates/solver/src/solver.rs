@@ -151,7 +151,7 @@ pub struct StaticSolver<'m> {
     /// Norm of the displacement response to a unit load-parameter increment at the start of the last
     /// corrected sweep (the reference for recognising a limit point).
     initial_response: Option<f64>,
-    z0: Vec<f64>,
+    krylov: Krylov,
     /// Force residual left by rounding in the stiffest element (see `update_roundoff_floor`).
     roundoff_floor: f64,
 }
@@ -159,8 +159,51 @@ pub struct StaticSolver<'m> {
 /// Rounding noise of a stiff element's force, in units of `ε·k·|P|`: a few operations each add `ε`.
 const ROUNDOFF_FACTOR: f64 = 64.0;
 
-/// Most refinement sweeps for the skew part of the tangent per Newton iteration.
-const SKEW_SWEEPS: usize = 12;
+/// Krylov dimension and restarts of the skew-part GMRES, and its relative tolerance.
+const KRYLOV_DIM: usize = 30;
+const KRYLOV_RESTARTS: usize = 4;
+const KRYLOV_TOL: f64 = 1e-13;
+
+/// Which vector the preconditioned skew operator acts on.
+#[derive(Clone, Copy)]
+enum KrylovSlot {
+    Iterate,
+    Basis(usize),
+}
+
+/// GMRES workspace, allocated once, the first time a skew part appears.
+#[derive(Debug, Default)]
+struct Krylov {
+    basis: Vec<Vec<f64>>,
+    work: Vec<f64>,
+    b: Vec<f64>,
+    h: Vec<Vec<f64>>,
+    cs: Vec<f64>,
+    sn: Vec<f64>,
+    g: Vec<f64>,
+    y: Vec<f64>,
+    fresh: bool,
+}
+
+impl Krylov {
+    fn ensure(&mut self, size: usize) {
+        if self.work.len() != size {
+            self.basis = vec![vec![0.0; size]; KRYLOV_DIM];
+            self.work = vec![0.0; size];
+            self.b = vec![0.0; size];
+            self.h = vec![vec![0.0; KRYLOV_DIM]; KRYLOV_DIM + 1];
+            self.cs = vec![0.0; KRYLOV_DIM];
+            self.sn = vec![0.0; KRYLOV_DIM];
+            self.g = vec![0.0; KRYLOV_DIM + 1];
+            self.y = vec![0.0; KRYLOV_DIM];
+        }
+        self.fresh = true;
+    }
+}
+
+fn norm2(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
 
 /// A path counts as stuck at a limit point when the response to a load increment has grown this much.
 const LIMIT_RESPONSE_GROWTH: f64 = 10.0;
@@ -221,7 +264,7 @@ impl<'m> StaticSolver<'m> {
             rhs: vec![0.0; size],
             scratch: vec![0.0; size],
             initial_response: None,
-            z0: vec![0.0; size],
+            krylov: Krylov::default(),
             roundoff_floor: 0.0,
         };
         solver.check_restrained(&poses)?;
@@ -440,36 +483,127 @@ impl<'m> StaticSolver<'m> {
         }
     }
 
-    /// Solves `[K_sym + S, Jᵀ; J, 0] z = rhs` in place with the factorization of the symmetric part: after
-    /// `z₀ = KKT_sym⁻¹ rhs`, sweeps `z ← z₀ − KKT_sym⁻¹ [S z; 0]` until the change is below 1e-12 of `z`
-    /// (at most [`SKEW_SWEEPS`]). Without a skew part this is one solve.
+    /// Solves `[K_sym + S, Jᵀ; J, 0] z = rhs` in place with the factorization of the symmetric part `P`.
+    /// Without a skew part `S` this is one solve. With one, it runs GMRES on the preconditioned system
+    /// `(I + P⁻¹[S; 0]) z = P⁻¹ rhs` from `z₀ = P⁻¹ rhs`: each iteration is one more back-substitution, and
+    /// the count does not depend on how large `S` is against `K` (a fixed-point sweep would stall once
+    /// `‖P⁻¹S‖` nears 1, e.g. a bushing twisted ~1 rad by a world-fixed torque).
     fn solve_with_skew(&mut self) -> Result<(), SolverError> {
         let n = self.assembly.n;
-        self.factor.solve_in_place(&mut self.rhs)?;
         let size = self.rhs.len();
-        self.z0[..size].copy_from_slice(&self.rhs);
-        for _ in 0..SKEW_SWEEPS {
-            let largest = self.assembly.skew_times(&self.rhs[..n], &mut self.scratch[..n]);
-            if largest == 0.0 {
+        self.factor.solve_in_place(&mut self.rhs)?;
+        if self.assembly.skew_times(&self.rhs[..n], &mut self.scratch[..n]) == 0.0 {
+            return Ok(());
+        }
+        let b_norm = norm2(&self.rhs);
+        if b_norm == 0.0 {
+            return Ok(());
+        }
+        self.krylov.ensure(size);
+        for _restart in 0..KRYLOV_RESTARTS {
+            // r = b − A x = −P⁻¹[S x; 0] (b = x₀ = z₀ on entry, and x holds the current iterate).
+            self.preconditioned_skew(KrylovSlot::Iterate)?;
+            let k = &mut self.krylov;
+            for c in 0..size {
+                k.basis[0][c] = -k.work[c];
+            }
+            // On restarts, b − A x needs the original b: add (b − x) back.
+            for c in 0..size {
+                k.basis[0][c] += k.b[c] - self.rhs[c];
+            }
+            let beta = norm2(&k.basis[0][..size]);
+            if beta <= KRYLOV_TOL * b_norm {
                 return Ok(());
             }
-            for c in 0..n {
-                self.scratch[c] = -self.scratch[c];
+            for v in k.basis[0][..size].iter_mut() {
+                *v /= beta;
             }
-            self.scratch[n..size].fill(0.0);
-            self.factor.solve_in_place(&mut self.scratch[..size])?;
-            let mut change: f64 = 0.0;
-            let mut norm: f64 = 0.0;
-            for c in 0..size {
-                let next = self.z0[c] + self.scratch[c];
-                change = change.max((next - self.rhs[c]).abs());
-                norm = norm.max(next.abs());
-                self.rhs[c] = next;
+            k.g.fill(0.0);
+            k.g[0] = beta;
+            let mut used = 0;
+            for j in 0..KRYLOV_DIM {
+                // w = A v_j = v_j + P⁻¹[S v_j; 0]
+                self.preconditioned_skew(KrylovSlot::Basis(j))?;
+                let k = &mut self.krylov;
+                for c in 0..size {
+                    k.work[c] += k.basis[j][c];
+                }
+                // Modified Gram–Schmidt.
+                for i in 0..=j {
+                    let h: f64 = k.work[..size].iter().zip(&k.basis[i][..size]).map(|(a, b)| a * b).sum();
+                    k.h[i][j] = h;
+                    for c in 0..size {
+                        k.work[c] -= h * k.basis[i][c];
+                    }
+                }
+                let h_next = norm2(&k.work[..size]);
+                k.h[j + 1][j] = h_next;
+                // Apply the previous Givens rotations, then make a new one for row j+1.
+                for i in 0..j {
+                    let (c, s) = (k.cs[i], k.sn[i]);
+                    let (a, b) = (k.h[i][j], k.h[i + 1][j]);
+                    k.h[i][j] = c * a + s * b;
+                    k.h[i + 1][j] = -s * a + c * b;
+                }
+                let (a, b) = (k.h[j][j], k.h[j + 1][j]);
+                let r = a.hypot(b);
+                let (c, s) = if r == 0.0 { (1.0, 0.0) } else { (a / r, b / r) };
+                k.cs[j] = c;
+                k.sn[j] = s;
+                k.h[j][j] = r;
+                k.h[j + 1][j] = 0.0;
+                k.g[j + 1] = -s * k.g[j];
+                k.g[j] *= c;
+                used = j + 1;
+                if k.g[j + 1].abs() <= KRYLOV_TOL * b_norm || h_next == 0.0 {
+                    break;
+                }
+                if j + 1 < KRYLOV_DIM {
+                    for c in 0..size {
+                        k.basis[j + 1][c] = k.work[c] / h_next;
+                    }
+                }
             }
-            if change <= 1e-12 * norm {
-                break;
+            // x += V y with H y = g (upper triangular).
+            let k = &mut self.krylov;
+            for i in (0..used).rev() {
+                let mut v = k.g[i];
+                for l in i + 1..used {
+                    v -= k.h[i][l] * k.y[l];
+                }
+                k.y[i] = if k.h[i][i] != 0.0 { v / k.h[i][i] } else { 0.0 };
+            }
+            for i in 0..used {
+                let yi = k.y[i];
+                for c in 0..size {
+                    self.rhs[c] += yi * k.basis[i][c];
+                }
+            }
+            if k.g[used].abs() <= KRYLOV_TOL * b_norm {
+                return Ok(());
             }
         }
+        Ok(())
+    }
+
+    /// `work ← P⁻¹ [S v; 0]` for `v` the current iterate (`self.rhs`) or a Krylov basis vector.
+    fn preconditioned_skew(&mut self, which: KrylovSlot) -> Result<(), SolverError> {
+        let n = self.assembly.n;
+        let size = self.rhs.len();
+        let k = &mut self.krylov;
+        if let KrylovSlot::Iterate = which {
+            if k.fresh {
+                k.b[..size].copy_from_slice(&self.rhs);
+                k.fresh = false;
+            }
+        }
+        let v: &[f64] = match which {
+            KrylovSlot::Iterate => &self.rhs[..n],
+            KrylovSlot::Basis(j) => &k.basis[j][..n],
+        };
+        self.assembly.skew_times(v, &mut k.work[..n]);
+        k.work[n..size].fill(0.0);
+        self.factor.solve_in_place(&mut k.work[..size])?;
         Ok(())
     }
 
