@@ -1,0 +1,49 @@
+//! A built suspension corner and its wheel characteristics.
+
+use crate::hardpoint::Side;
+use elastokin_core::{BodyId, Model, Pose, Vec3};
+
+/// A suspension corner ready to solve: its model and where its wheel is.
+#[derive(Debug)]
+pub struct Corner {
+    /// The multibody model.
+    pub model: Model,
+    /// Which side it was built for.
+    pub side: Side,
+    /// The upright (knuckle with the wheel).
+    pub upright: BodyId,
+    /// Wheel centre at design (global).
+    pub wheel_centre: Vec3,
+    /// Wheel centre as a local point of the upright.
+    pub wheel_centre_local: Vec3,
+    /// Outward spin axis as a local direction of the upright.
+    pub spin_axis_local: Vec3,
+}
+
+/// Wheel position and orientation at one configuration (angles in radians, ISO 8855 / SAE J670 signs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WheelAttitude {
+    /// Toe, toe-in positive.
+    pub toe: f64,
+    /// Camber, top of the wheel outward positive.
+    pub camber: f64,
+    /// Wheel-centre position (global).
+    pub wheel_centre: Vec3,
+}
+
+impl Corner {
+    /// Toe, camber and wheel centre at the given poses.
+    ///
+    /// With `a` the outward spin axis and `s` = +1 left, −1 right: toe = atan2(aₓ, s·a_y) (a toe-in left
+    /// wheel turns its spin axis forward), camber = atan2(−a_z, √(aₓ² + a_y²)) (top outward tips the outward
+    /// axis down).
+    pub fn attitude(&self, poses: &[Pose]) -> WheelAttitude {
+        let pose = poses[self.upright.0];
+        let a = pose.direction(&self.spin_axis_local);
+        WheelAttitude {
+            toe: a.x.atan2(self.side.sign() * a.y),
+            camber: (-a.z).atan2((a.x * a.x + a.y * a.y).sqrt()),
+            wheel_centre: pose.point(&self.wheel_centre_local),
+        }
+    }
+}

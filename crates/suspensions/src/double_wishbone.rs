@@ -1,0 +1,189 @@
+//! Double-wishbone template: upright with wheel, upper and lower arms on the chassis, tie rod, coil spring
+//! on the lower arm.
+
+use crate::connection::{BushingRates, Connection};
+use crate::corner::Corner;
+use crate::hardpoint::Side;
+use elastokin_core::joint::orthonormal_complement;
+use elastokin_core::{BodyRef, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
+use elastokin_elements::{Bushing, CoilSpring};
+use serde::{Deserialize, Serialize};
+
+/// Hardpoints of a left double-wishbone corner (ISO 8855, metres).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DoubleWishboneHardpoints {
+    /// Wheel centre; the spin axis is +y at design.
+    pub wheel_centre: Vec3,
+    /// Upper ball joint (upper arm – upright).
+    pub upper_ball_joint: Vec3,
+    /// Upper arm front pivot on the chassis.
+    pub upper_arm_front: Vec3,
+    /// Upper arm rear pivot on the chassis.
+    pub upper_arm_rear: Vec3,
+    /// Lower ball joint (lower arm – upright).
+    pub lower_ball_joint: Vec3,
+    /// Lower arm front pivot on the chassis.
+    pub lower_arm_front: Vec3,
+    /// Lower arm rear pivot on the chassis.
+    pub lower_arm_rear: Vec3,
+    /// Tie rod inner end (rack, fixed to the chassis when not steering).
+    pub tie_rod_inner: Vec3,
+    /// Tie rod outer end (upright).
+    pub tie_rod_outer: Vec3,
+    /// Spring seat on the chassis.
+    pub spring_chassis: Vec3,
+    /// Spring seat on the lower arm.
+    pub spring_arm: Vec3,
+}
+
+impl DoubleWishboneHardpoints {
+    /// The generic set of `shared/data/hardpoints.md` (Project Chrono's generic vehicle).
+    pub fn generic() -> Self {
+        DoubleWishboneHardpoints {
+            wheel_centre: Vec3::new(-0.040, 1.100, -0.026),
+            upper_ball_joint: Vec3::new(-0.088, 0.808, 0.243),
+            upper_arm_front: Vec3::new(-0.160, 0.539, 0.243),
+            upper_arm_rear: Vec3::new(-0.339, 0.587, 0.249),
+            lower_ball_joint: Vec3::new(-0.040, 0.898, -0.265),
+            lower_arm_front: Vec3::new(0.199, 0.479, -0.206),
+            lower_arm_rear: Vec3::new(-0.279, 0.539, -0.200),
+            tie_rod_inner: Vec3::new(-0.279, 0.479, -0.026),
+            tie_rod_outer: Vec3::new(-0.220, 0.898, -0.026),
+            spring_chassis: Vec3::new(-0.064, 0.659, 0.094),
+            spring_arm: Vec3::new(-0.040, 0.718, -0.206),
+        }
+    }
+}
+
+/// Coil spring of a template: rate and push force at design.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpringSpec {
+    /// Rate, N/m.
+    pub rate: f64,
+    /// Push force at the design position, N.
+    pub design_force: f64,
+}
+
+/// A double-wishbone corner: hardpoints, how each arm meets the chassis, and the spring.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DoubleWishbone {
+    /// Hardpoints of the left corner.
+    pub hardpoints: DoubleWishboneHardpoints,
+    /// Upper arm to chassis: ideal revolute about the front–rear pivot axis, or a bushing at each pivot.
+    pub upper_arm_mounts: Connection,
+    /// Lower arm to chassis, likewise.
+    pub lower_arm_mounts: Connection,
+    /// Coil spring from the chassis seat to the lower arm seat.
+    pub spring: SpringSpec,
+}
+
+impl DoubleWishbone {
+    /// Builds the corner on `side`, with a wheel-centre height driver when `wheel_travel` is true (the
+    /// load parameter `t` is then the wheel travel in metres, bump positive).
+    pub fn build(&self, side: Side, wheel_travel: bool) -> Result<Corner, ModelError> {
+        let h = &self.hardpoints;
+        let p = |v: Vec3| side.place(v);
+        let mut model = Model::new();
+        let wc = p(h.wheel_centre);
+        let upright = model.add_body("upright", Pose::at(wc))?;
+        let upper = model.add_body("upper arm", Pose::at(p(h.upper_ball_joint)))?;
+        let lower = model.add_body("lower arm", Pose::at(p(h.lower_ball_joint)))?;
+        arm_mounts(
+            &mut model,
+            "upper arm",
+            upper.into(),
+            p(h.upper_arm_front),
+            p(h.upper_arm_rear),
+            self.upper_arm_mounts,
+        )?;
+        arm_mounts(
+            &mut model,
+            "lower arm",
+            lower.into(),
+            p(h.lower_arm_front),
+            p(h.lower_arm_rear),
+            self.lower_arm_mounts,
+        )?;
+        model.add_joint(JointSpec::spherical("upper ball joint", upper, upright, p(h.upper_ball_joint)))?;
+        model.add_joint(JointSpec::spherical("lower ball joint", lower, upright, p(h.lower_ball_joint)))?;
+        model.add_joint(JointSpec::distance(
+            "tie rod",
+            BodyRef::Ground,
+            upright,
+            p(h.tie_rod_inner),
+            p(h.tie_rod_outer),
+        ))?;
+        model.add_element(CoilSpring::with_design_force(
+            "spring",
+            BodyRef::Ground,
+            p(h.spring_chassis),
+            lower.into(),
+            p(h.spring_arm),
+            self.spring.rate,
+            self.spring.design_force,
+        )?)?;
+        if wheel_travel {
+            model.add_joint(JointSpec::point_driver("wheel travel", upright, wc, Vec3::z(), 1.0))?;
+        }
+        Ok(Corner {
+            model,
+            side,
+            upright,
+            wheel_centre: wc,
+            wheel_centre_local: Vec3::zeros(),
+            spin_axis_local: Vec3::new(0.0, side.sign(), 0.0),
+        })
+    }
+}
+
+/// Mounts an arm on the chassis through its front and rear pivots: a revolute about the pivot axis, or a
+/// bushing at each pivot with its axis along the pivot axis.
+pub(crate) fn arm_mounts(
+    model: &mut Model,
+    arm_name: &str,
+    arm: BodyRef,
+    front: Vec3,
+    rear: Vec3,
+    connection: Connection,
+) -> Result<(), ModelError> {
+    let axis = rear - front;
+    match connection {
+        Connection::Ideal => {
+            model.add_joint(JointSpec::revolute(&format!("{arm_name} pivot"), BodyRef::Ground, arm, front, axis))?;
+        }
+        Connection::Bushing(rates) => {
+            for (end, point) in [("front", front), ("rear", rear)] {
+                model.add_element(axial_bushing(&format!("{arm_name} {end} bushing"), arm, point, axis, rates)?)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A bushing to the chassis whose local x is `axis`.
+pub(crate) fn axial_bushing(
+    name: &str,
+    body: BodyRef,
+    point: Vec3,
+    axis: Vec3,
+    r: BushingRates,
+) -> Result<Bushing, ModelError> {
+    let n = axis.norm();
+    if !(n.is_finite() && n > 1e-9) {
+        return Err(ModelError::CoincidentPoints { item: name.to_string(), distance: n });
+    }
+    let x = axis / n;
+    let (y, z) = orthonormal_complement(&x);
+    Bushing::new(
+        name,
+        BodyRef::Ground,
+        body,
+        point,
+        Mat3::from_columns(&[x, y, z]),
+        Vec3::new(r.axial, r.radial, r.radial),
+        Vec3::new(r.torsion, r.conical, r.conical),
+    )
+}

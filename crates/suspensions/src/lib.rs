@@ -1,0 +1,36 @@
+//! # elastokin-suspensions
+//!
+//! Suspension templates built from named hardpoints, the kinematics-and-compliance analyses a K&C rig
+//! runs, and the wheel characteristics engineers read from them.
+//!
+//! ```
+//! use elastokin_suspensions::{DoubleWishbone, DoubleWishboneHardpoints, Connection, SpringSpec, Side};
+//! use elastokin_suspensions::analysis::parallel_wheel_travel;
+//! use elastokin_solver::Mode;
+//!
+//! let corner = DoubleWishbone {
+//!     hardpoints: DoubleWishboneHardpoints::generic(),
+//!     upper_arm_mounts: Connection::Ideal,
+//!     lower_arm_mounts: Connection::Ideal,
+//!     spring: SpringSpec { rate: 30e3, design_force: 4000.0 },
+//! }
+//! .build(Side::Left, true)
+//! .unwrap();
+//! let rows = parallel_wheel_travel(&corner, -0.08, 0.08, 16, Mode::Corrected).unwrap();
+//! // At design the spin axis is +y: no toe, no camber.
+//! assert!(rows[8].attitude.toe.abs() < 1e-12 && rows[8].attitude.camber.abs() < 1e-12);
+//! ```
+//!
+//! Dependencies: serde for the hardpoint and template descriptions (model files), nalgebra for vectors,
+//! thiserror for errors. faer, sprs and rayon are left out here: the solving is the solver crate's.
+
+pub mod analysis;
+pub mod connection;
+pub mod corner;
+pub mod double_wishbone;
+pub mod hardpoint;
+
+pub use connection::{BushingRates, Connection};
+pub use corner::{Corner, WheelAttitude};
+pub use double_wishbone::{DoubleWishbone, DoubleWishboneHardpoints, SpringSpec};
+pub use hardpoint::Side;

@@ -1,0 +1,150 @@
+//! Double wishbone against an independent loop closure, stiff bushings against ideal joints, mirror symmetry.
+
+use elastokin_core::Vec3;
+use elastokin_solver::Mode;
+use elastokin_suspensions::analysis::parallel_wheel_travel;
+use elastokin_suspensions::{BushingRates, Connection, DoubleWishbone, DoubleWishboneHardpoints, Side, SpringSpec};
+use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
+
+fn template(mounts: Connection) -> DoubleWishbone {
+    DoubleWishbone {
+        hardpoints: DoubleWishboneHardpoints::generic(),
+        upper_arm_mounts: mounts,
+        lower_arm_mounts: mounts,
+        spring: SpringSpec { rate: 30e3, design_force: 4000.0 },
+    }
+}
+
+fn rotate_about(axis_point: Vec3, axis: Vec3, angle: f64, p: Vec3) -> Vec3 {
+    let r = Rotation3::from_axis_angle(&Unit::new_normalize(axis), angle);
+    axis_point + r * (p - axis_point)
+}
+
+/// Independent loop closure: the arms turn by α (lower) and β (upper) about their pivot axes; the upright
+/// follows its two ball joints (shortest rotation of the kingpin, then γ about it) and keeps its tie-rod
+/// length; the wheel centre is at the asked height. Three equations in (α, β, γ), solved by Newton with a
+/// finite-difference Jacobian. Returns (toe, camber) of the left wheel.
+fn loop_closure(h: &DoubleWishboneHardpoints, travel: f64, guess: &mut [f64; 3]) -> (f64, f64) {
+    let upright = |x: &[f64; 3]| -> (Vec3, Matrix3<f64>) {
+        let lbj = rotate_about(h.lower_arm_front, h.lower_arm_rear - h.lower_arm_front, x[0], h.lower_ball_joint);
+        let ubj = rotate_about(h.upper_arm_front, h.upper_arm_rear - h.upper_arm_front, x[1], h.upper_ball_joint);
+        let k0 = (h.upper_ball_joint - h.lower_ball_joint).normalize();
+        let k1 = (ubj - lbj).normalize();
+        // Shortest rotation taking the design kingpin onto the current one.
+        let cross = k0.cross(&k1);
+        let align = if cross.norm() > 0.0 {
+            Rotation3::from_axis_angle(&Unit::new_normalize(cross), cross.norm().atan2(k0.dot(&k1)))
+        } else {
+            Rotation3::identity()
+        };
+        let spin = Rotation3::from_axis_angle(&Unit::new_normalize(k1), x[2]);
+        (lbj, (spin * align).into_inner())
+    };
+    let tie_len = (h.tie_rod_outer - h.tie_rod_inner).norm();
+    let kp_len = (h.upper_ball_joint - h.lower_ball_joint).norm();
+    let residual = |x: &[f64; 3]| -> Vector3<f64> {
+        let (lbj, r) = upright(x);
+        let ubj = rotate_about(h.upper_arm_front, h.upper_arm_rear - h.upper_arm_front, x[1], h.upper_ball_joint);
+        let place = |p: Vec3| lbj + r * (p - h.lower_ball_joint);
+        Vector3::new(
+            (ubj - lbj).norm() - kp_len,
+            (place(h.tie_rod_outer) - h.tie_rod_inner).norm() - tie_len,
+            place(h.wheel_centre).z - (h.wheel_centre.z + travel),
+        )
+    };
+    for _ in 0..50 {
+        let f = residual(guess);
+        if f.norm() < 1e-14 {
+            break;
+        }
+        let mut jac = Matrix3::zeros();
+        for c in 0..3 {
+            let (mut xp, mut xm) = (*guess, *guess);
+            xp[c] += 1e-7;
+            xm[c] -= 1e-7;
+            jac.set_column(c, &((residual(&xp) - residual(&xm)) / 2e-7));
+        }
+        let dx = jac.lu().solve(&(-f)).expect("loop closure Jacobian is regular away from lock-up");
+        for c in 0..3 {
+            guess[c] += dx[c];
+        }
+    }
+    let (_, r) = upright(guess);
+    let a = r * Vec3::y();
+    (a.x.atan2(a.y), (-a.z).atan2((a.x * a.x + a.y * a.y).sqrt()))
+}
+
+#[test]
+fn toe_and_camber_match_an_independent_loop_closure() {
+    let dw = template(Connection::Ideal);
+    let corner = dw.build(Side::Left, true).unwrap();
+    let rows = parallel_wheel_travel(&corner, -0.08, 0.08, 32, Mode::Corrected).unwrap();
+    let mut guess = [0.0; 3];
+    let mut largest_camber: f64 = 0.0;
+    // Walk outwards from design so the loop closure's Newton always starts close.
+    let mut order: Vec<usize> = (0..rows.len()).collect();
+    order.sort_by(|&a, &b| rows[a].travel.abs().total_cmp(&rows[b].travel.abs()));
+    let mut guesses = [[0.0; 3]; 2];
+    for k in order {
+        let row = rows[k];
+        let g = &mut guesses[usize::from(row.travel > 0.0)];
+        guess.copy_from_slice(g);
+        let (toe, camber) = loop_closure(&dw.hardpoints, row.travel, &mut guess);
+        g.copy_from_slice(&guess);
+        assert!((row.attitude.toe - toe).abs() < 1e-9, "travel {}: toe {} vs {toe}", row.travel, row.attitude.toe);
+        assert!(
+            (row.attitude.camber - camber).abs() < 1e-9,
+            "travel {}: camber {} vs {camber}",
+            row.travel,
+            row.attitude.camber
+        );
+        assert!((row.attitude.wheel_centre.z - (dw.hardpoints.wheel_centre.z + row.travel)).abs() < 1e-10);
+        largest_camber = largest_camber.max(camber.abs());
+    }
+    // The test must exercise real motion: the generic set gains over a degree of camber in ±80 mm.
+    assert!(largest_camber.to_degrees() > 1.0, "{}", largest_camber.to_degrees());
+}
+
+#[test]
+fn stiffer_bushings_converge_to_the_ideal_joint_curves() {
+    let ideal = parallel_wheel_travel(
+        &template(Connection::Ideal).build(Side::Left, true).unwrap(),
+        -0.06,
+        0.06,
+        12,
+        Mode::Corrected,
+    )
+    .unwrap();
+    // Realistic control-arm bushings: radial 5 kN/mm, axial 1 kN/mm, torsion 10 N·m/deg, conical 100 N·m/deg.
+    let rates = BushingRates { radial: 5e6, axial: 1e6, torsion: 10f64.to_degrees(), conical: 100f64.to_degrees() };
+    let deviation = |scale: f64| {
+        // The ideal revolute turns freely about its axis, so the torsion rate stays; the directions the
+        // joint locks get stiffer. (Scaling torsion too leaves a gap that does not close: the torsion
+        // moment and the radial rate that resists it grow together.)
+        let stiffer = BushingRates { torsion: rates.torsion, ..rates.scaled(scale) };
+        let corner = template(Connection::Bushing(stiffer)).build(Side::Left, true).unwrap();
+        let rows = parallel_wheel_travel(&corner, -0.06, 0.06, 12, Mode::Corrected).unwrap();
+        rows.iter()
+            .zip(&ideal)
+            .map(|(b, i)| (b.attitude.toe - i.attitude.toe).abs().max((b.attitude.camber - i.attitude.camber).abs()))
+            .fold(0.0, f64::max)
+    };
+    let (d1, d100, d10000) = (deviation(1.0), deviation(1e2), deviation(1e4));
+    // Compliance deflections scale with 1/stiffness: each factor 100 in rates cuts the gap ~100×.
+    assert!(d1 > 1e-6, "realistic bushings must show compliance: {d1}");
+    assert!(d100 < d1 / 30.0 && d10000 < d100 / 30.0, "{d1:e} {d100:e} {d10000:e}");
+    assert!(d10000 < 1e-6, "{d10000:e}");
+}
+
+#[test]
+fn right_side_mirrors_the_left() {
+    let dw = template(Connection::Ideal);
+    let left = parallel_wheel_travel(&dw.build(Side::Left, true).unwrap(), -0.05, 0.05, 10, Mode::Corrected).unwrap();
+    let right = parallel_wheel_travel(&dw.build(Side::Right, true).unwrap(), -0.05, 0.05, 10, Mode::Corrected).unwrap();
+    for (l, r) in left.iter().zip(&right) {
+        assert!((l.attitude.toe - r.attitude.toe).abs() < 1e-12, "{} {}", l.attitude.toe, r.attitude.toe);
+        assert!((l.attitude.camber - r.attitude.camber).abs() < 1e-12);
+        let (wl, wr) = (l.attitude.wheel_centre, r.attitude.wheel_centre);
+        assert!((wl - Vec3::new(wr.x, -wr.y, wr.z)).norm() < 1e-12);
+    }
+}
