@@ -29,8 +29,10 @@ pub mod connection;
 pub mod corner;
 pub mod double_wishbone;
 pub mod hardpoint;
+pub mod macpherson;
 
 pub use connection::{BushingRates, Connection};
 pub use corner::{Corner, WheelAttitude};
 pub use double_wishbone::{DoubleWishbone, DoubleWishboneHardpoints, SpringSpec};
 pub use hardpoint::Side;
+pub use macpherson::{MacPherson, MacPhersonHardpoints};

@@ -1,0 +1,124 @@
+//! MacPherson strut template: upright with wheel and strut tube, strut rod sliding in it, top mount on the
+//! chassis, lower control arm, tie rod, coil spring from the top mount to the spring seat on the strut.
+
+use crate::connection::Connection;
+use crate::corner::Corner;
+use crate::double_wishbone::{arm_mounts, SpringSpec};
+use crate::hardpoint::Side;
+use elastokin_core::{BodyRef, JointSpec, Model, ModelError, Pose, Vec3};
+use elastokin_elements::CoilSpring;
+use serde::{Deserialize, Serialize};
+
+/// Hardpoints of a left MacPherson corner (ISO 8855, metres).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MacPhersonHardpoints {
+    /// Wheel centre; the spin axis is +y at design.
+    pub wheel_centre: Vec3,
+    /// Lower ball joint (arm – upright).
+    pub lower_ball_joint: Vec3,
+    /// Lower arm front pivot on the chassis.
+    pub lower_arm_front: Vec3,
+    /// Lower arm rear pivot on the chassis.
+    pub lower_arm_rear: Vec3,
+    /// Tie rod outer end (upright).
+    pub tie_rod_outer: Vec3,
+    /// Tie rod inner end (rack).
+    pub tie_rod_inner: Vec3,
+    /// Strut lower point and spring seat on the upright; the strut axis runs from here to the top mount.
+    pub strut_lower: Vec3,
+    /// Strut top mount on the chassis.
+    pub top_mount: Vec3,
+}
+
+impl MacPhersonHardpoints {
+    /// The generic set of `shared/data/hardpoints.md` (Project Chrono's generic vehicle).
+    pub fn generic() -> Self {
+        MacPhersonHardpoints {
+            wheel_centre: Vec3::new(-0.040, 1.100, -0.026),
+            lower_ball_joint: Vec3::new(-0.02165371, 0.94057703, -0.17402826),
+            lower_arm_front: Vec3::new(0.220, 0.520, -0.156),
+            lower_arm_rear: Vec3::new(-0.300, 0.507, -0.137),
+            tie_rod_outer: Vec3::new(-0.2373756, 0.89495045, -0.01605418),
+            tie_rod_inner: Vec3::new(-0.300, 0.520, -0.059),
+            strut_lower: Vec3::new(-0.07402507, 0.8532915, 0.2484536),
+            top_mount: Vec3::new(-0.115, 0.785, 0.579),
+        }
+    }
+}
+
+/// A MacPherson corner: hardpoints, mounts and spring.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MacPherson {
+    /// Hardpoints of the left corner.
+    pub hardpoints: MacPhersonHardpoints,
+    /// Lower arm to chassis: ideal revolute about the pivot axis, or a bushing at each pivot.
+    pub lower_arm_mounts: Connection,
+    /// Strut rod to chassis: an ideal ball joint (the rod cannot spin: it slides in the strut tube on a
+    /// translational joint), or a top-mount bushing whose axis is the strut axis.
+    pub top_mount: Connection,
+    /// Coil spring from the top mount to the spring seat at the strut lower point.
+    pub spring: SpringSpec,
+}
+
+impl MacPherson {
+    /// Builds the corner on `side`, with a wheel-centre height driver when `wheel_travel` is true (the
+    /// load parameter is then the wheel travel in metres, bump positive).
+    pub fn build(&self, side: Side, wheel_travel: bool) -> Result<Corner, ModelError> {
+        let h = &self.hardpoints;
+        let p = |v: Vec3| side.place(v);
+        let mut model = Model::new();
+        let wc = p(h.wheel_centre);
+        let (lower_pt, top) = (p(h.strut_lower), p(h.top_mount));
+        let upright = model.add_body("upright", Pose::at(wc))?;
+        let rod = model.add_body("strut rod", Pose::at((lower_pt + top) / 2.0))?;
+        let arm = model.add_body("lower arm", Pose::at(p(h.lower_ball_joint)))?;
+        arm_mounts(
+            &mut model,
+            "lower arm",
+            arm.into(),
+            p(h.lower_arm_front),
+            p(h.lower_arm_rear),
+            self.lower_arm_mounts,
+        )?;
+        model.add_joint(JointSpec::spherical("lower ball joint", arm, upright, p(h.lower_ball_joint)))?;
+        let axis = top - lower_pt;
+        model.add_joint(JointSpec::translational("strut", upright, rod, lower_pt, axis))?;
+        match self.top_mount {
+            Connection::Ideal => {
+                model.add_joint(JointSpec::spherical("top mount", BodyRef::Ground, rod, top))?;
+            }
+            Connection::Bushing(r) => {
+                model.add_element(crate::double_wishbone::axial_bushing("top mount", rod.into(), top, axis, r)?)?;
+            }
+        }
+        model.add_joint(JointSpec::distance(
+            "tie rod",
+            BodyRef::Ground,
+            upright,
+            p(h.tie_rod_inner),
+            p(h.tie_rod_outer),
+        ))?;
+        model.add_element(CoilSpring::with_design_force(
+            "spring",
+            BodyRef::Ground,
+            top,
+            upright.into(),
+            lower_pt,
+            self.spring.rate,
+            self.spring.design_force,
+        )?)?;
+        if wheel_travel {
+            model.add_joint(JointSpec::point_driver("wheel travel", upright, wc, Vec3::z(), 1.0))?;
+        }
+        Ok(Corner {
+            model,
+            side,
+            upright,
+            wheel_centre: wc,
+            wheel_centre_local: Vec3::zeros(),
+            spin_axis_local: Vec3::new(0.0, side.sign(), 0.0),
+        })
+    }
+}

@@ -1,0 +1,140 @@
+//! MacPherson strut against an independent loop closure, and its top-mount bushing against the ball joint.
+
+use elastokin_core::Vec3;
+use elastokin_solver::Mode;
+use elastokin_suspensions::analysis::parallel_wheel_travel;
+use elastokin_suspensions::{BushingRates, Connection, MacPherson, MacPhersonHardpoints, Side, SpringSpec};
+use nalgebra::{Matrix4, Rotation3, Unit, Vector4};
+
+fn template(arm: Connection, top: Connection) -> MacPherson {
+    MacPherson {
+        hardpoints: MacPhersonHardpoints::generic(),
+        lower_arm_mounts: arm,
+        top_mount: top,
+        spring: SpringSpec { rate: 30e3, design_force: 4500.0 },
+    }
+}
+
+/// Independent loop closure: the lower arm turns by α about its pivot axis; the upright, pinned at the
+/// lower ball joint, turns by the rotation vector ω; its strut line (strut lower → top mount at design)
+/// must pass through the top mount, its tie rod keep its length, its wheel centre sit at the asked
+/// height. Four equations in (α, ω), Newton with a finite-difference Jacobian. Returns (toe, camber).
+fn loop_closure(h: &MacPhersonHardpoints, travel: f64, x: &mut [f64; 4]) -> (f64, f64) {
+    let place = |x: &[f64; 4]| {
+        let axis = Unit::new_normalize(h.lower_arm_rear - h.lower_arm_front);
+        let lbj =
+            h.lower_arm_front + Rotation3::from_axis_angle(&axis, x[0]) * (h.lower_ball_joint - h.lower_arm_front);
+        let r = Rotation3::from_scaled_axis(Vec3::new(x[1], x[2], x[3]));
+        (lbj, r)
+    };
+    let strut0 = (h.top_mount - h.strut_lower).normalize();
+    let tie = (h.tie_rod_outer - h.tie_rod_inner).norm();
+    let residual = |x: &[f64; 4]| {
+        let (lbj, r) = place(x);
+        let at = |p: Vec3| lbj + r * (p - h.lower_ball_joint);
+        let dir = r * strut0;
+        let off = (h.top_mount - at(h.strut_lower)).cross(&dir);
+        // Two independent components of the offset: project on two axes across the strut.
+        let u = dir.cross(&Vec3::x()).normalize();
+        let v = dir.cross(&u);
+        Vector4::new(
+            off.dot(&u),
+            off.dot(&v),
+            (at(h.tie_rod_outer) - h.tie_rod_inner).norm() - tie,
+            at(h.wheel_centre).z - (h.wheel_centre.z + travel),
+        )
+    };
+    for _ in 0..60 {
+        let f = residual(x);
+        if f.norm() < 1e-14 {
+            break;
+        }
+        let mut jac = Matrix4::zeros();
+        for c in 0..4 {
+            let (mut xp, mut xm) = (*x, *x);
+            xp[c] += 1e-7;
+            xm[c] -= 1e-7;
+            jac.set_column(c, &((residual(&xp) - residual(&xm)) / 2e-7));
+        }
+        let dx = jac.lu().solve(&(-f)).expect("regular away from lock-up");
+        for c in 0..4 {
+            x[c] += dx[c];
+        }
+    }
+    assert!(residual(x).norm() < 1e-12, "loop closure did not close: {:?}", residual(x));
+    let (_, r) = place(x);
+    let a = r * Vec3::y();
+    (a.x.atan2(a.y), (-a.z).atan2((a.x * a.x + a.y * a.y).sqrt()))
+}
+
+#[test]
+fn toe_and_camber_match_an_independent_loop_closure() {
+    let mp = template(Connection::Ideal, Connection::Ideal);
+    let corner = mp.build(Side::Left, true).unwrap();
+    let rows = parallel_wheel_travel(&corner, -0.08, 0.08, 32, Mode::Corrected).unwrap();
+    let mut order: Vec<usize> = (0..rows.len()).collect();
+    order.sort_by(|&a, &b| rows[a].travel.abs().total_cmp(&rows[b].travel.abs()));
+    let mut guesses = [[0.0; 4]; 2];
+    let (mut largest_toe, mut largest_camber): (f64, f64) = (0.0, 0.0);
+    for k in order {
+        let row = rows[k];
+        let g = &mut guesses[usize::from(row.travel > 0.0)];
+        let (toe, camber) = loop_closure(&mp.hardpoints, row.travel, g);
+        assert!((row.attitude.toe - toe).abs() < 1e-9, "travel {}: toe {} vs {toe}", row.travel, row.attitude.toe);
+        assert!(
+            (row.attitude.camber - camber).abs() < 1e-9,
+            "travel {}: camber {} vs {camber}",
+            row.travel,
+            row.attitude.camber
+        );
+        largest_toe = largest_toe.max(toe.abs());
+        largest_camber = largest_camber.max(camber.abs());
+    }
+    assert!(largest_toe.to_degrees() > 0.05 && largest_camber.to_degrees() > 0.3, "{largest_toe} {largest_camber}");
+}
+
+#[test]
+fn bushed_macpherson_converges_to_the_ideal_one() {
+    let ideal = parallel_wheel_travel(
+        &template(Connection::Ideal, Connection::Ideal).build(Side::Left, true).unwrap(),
+        -0.05,
+        0.05,
+        10,
+        Mode::Corrected,
+    )
+    .unwrap();
+    let arm = BushingRates { radial: 5e6, axial: 1e6, torsion: 10f64.to_degrees(), conical: 100f64.to_degrees() };
+    // Top mount: stiff radially, soft in torsion about the strut (it carries the steering rotation).
+    let top = BushingRates { radial: 2e6, axial: 1e6, torsion: 2f64.to_degrees(), conical: 50f64.to_degrees() };
+    let deviation = |scale: f64| {
+        // Rotations the ideal joints leave free keep their rates; the locked directions stiffen.
+        let a = BushingRates { torsion: arm.torsion, ..arm.scaled(scale) };
+        let t = BushingRates { torsion: top.torsion, conical: top.conical, ..top.scaled(scale) };
+        let rows = parallel_wheel_travel(
+            &template(Connection::Bushing(a), Connection::Bushing(t)).build(Side::Left, true).unwrap(),
+            -0.05,
+            0.05,
+            10,
+            Mode::Corrected,
+        )
+        .unwrap();
+        rows.iter()
+            .zip(&ideal)
+            .map(|(b, i)| (b.attitude.toe - i.attitude.toe).abs().max((b.attitude.camber - i.attitude.camber).abs()))
+            .fold(0.0, f64::max)
+    };
+    let (d1, d100, d10000) = (deviation(1.0), deviation(1e2), deviation(1e4));
+    assert!(d1 > 1e-6 && d100 < d1 / 30.0 && d10000 < d100 / 30.0, "{d1:e} {d100:e} {d10000:e}");
+}
+
+#[test]
+fn right_macpherson_mirrors_the_left() {
+    let mp = template(Connection::Ideal, Connection::Ideal);
+    let left = parallel_wheel_travel(&mp.build(Side::Left, true).unwrap(), -0.05, 0.05, 10, Mode::Corrected).unwrap();
+    let right = parallel_wheel_travel(&mp.build(Side::Right, true).unwrap(), -0.05, 0.05, 10, Mode::Corrected).unwrap();
+    for (l, r) in left.iter().zip(&right) {
+        assert!(
+            (l.attitude.toe - r.attitude.toe).abs() < 1e-12 && (l.attitude.camber - r.attitude.camber).abs() < 1e-12
+        );
+    }
+}
