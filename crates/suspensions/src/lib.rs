@@ -21,7 +21,7 @@
 //! assert!(rows[8].attitude.toe.abs() < 1e-12 && rows[8].attitude.camber.abs() < 1e-12);
 //! ```
 //!
-//! Dependencies: serde for the hardpoint and template descriptions (model files), nalgebra for vectors,
+//! Dependencies: serde and serde_json for the model files, nalgebra for vectors,
 //! thiserror for errors. faer, sprs and rayon are left out here: the solving is the solver crate's.
 
 pub mod analysis;
@@ -30,9 +30,11 @@ pub mod corner;
 pub mod double_wishbone;
 pub mod hardpoint;
 pub mod macpherson;
+pub mod model_file;
 
 pub use connection::{BushingRates, Connection};
 pub use corner::{Corner, WheelAttitude};
 pub use double_wishbone::{DoubleWishbone, DoubleWishboneHardpoints, SpringSpec};
 pub use hardpoint::Side;
 pub use macpherson::{MacPherson, MacPhersonHardpoints};
+pub use model_file::{FileError, SuspensionFile, Template};
