@@ -6,7 +6,8 @@
 //! This facade re-exports the workspace crates so a user can depend on one package:
 //! - [`core`]: poses, constraint primitives and joints, the [`Model`](core::Model);
 //! - [`elements`]: bushings, coil springs, point loads;
-//! - [`solver`]: KKT assembly, the quasi-definite LDLᵀ with reuse, paper and corrected stepping.
+//! - [`solver`]: KKT assembly, the quasi-definite LDLᵀ with reuse, paper and corrected stepping;
+//! - [`suspensions`]: double-wishbone and MacPherson templates, model files, K&C analyses.
 //!
 //! Pick the crates directly to leave out what a build does not need (the solver alone does not pull in
 //! serde; rayon and sprs are behind the `parallel` and `matrix-market` features).
@@ -14,6 +15,7 @@
 pub use elastokin_core as core;
 pub use elastokin_elements as elements;
 pub use elastokin_solver as solver;
+pub use elastokin_suspensions as suspensions;
 
 /// The names most programs use.
 pub mod prelude {

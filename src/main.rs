@@ -1,0 +1,192 @@
+//! The `elastokin` command: K&C analyses of a suspension model file.
+//!
+//! ```text
+//! elastokin run MODEL [--analysis parallel-travel] [--range FROM,TO] [--steps N] [--mode paper|corrected] [--out DIR]
+//! elastokin check MODEL
+//! ```
+
+use elastokin::solver::{Mode, SolverOptions, StaticSolver};
+use elastokin::suspensions::analysis::{parallel_wheel_travel, TravelRow};
+use elastokin::suspensions::{Side, SuspensionFile};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+const HELP: &str = "\
+elastokin — quasi-static elastokinematics of suspensions
+
+USAGE:
+    elastokin run MODEL [OPTIONS]     run the model's K&C analysis, write CSV, print headline figures
+    elastokin check MODEL             parse, report bodies, degrees of freedom, redundant or unrestrained parts
+    elastokin help                    this text
+
+RUN OPTIONS:
+    --analysis NAME    parallel-travel (default)
+    --range FROM,TO    wheel travel in metres, bump positive (default -0.08,0.08)
+    --steps N          load steps (default 32)
+    --mode MODE        corrected (default) or paper
+    --out DIR          where CSV files go (default out/)
+
+MODEL is a JSON file (SI units, ISO 8855 axes, left corner); see examples/*.json.";
+
+struct RunOptions {
+    model: PathBuf,
+    range: (f64, f64),
+    steps: usize,
+    mode: Mode,
+    out: PathBuf,
+}
+
+fn parse_run(args: &[String]) -> Result<RunOptions, String> {
+    let mut it = args.iter();
+    let model = it.next().ok_or("run needs a MODEL file: elastokin run examples/macpherson.json")?;
+    let mut opts =
+        RunOptions { model: model.into(), range: (-0.08, 0.08), steps: 32, mode: Mode::Corrected, out: "out".into() };
+    while let Some(flag) = it.next() {
+        let mut value = || it.next().ok_or_else(|| format!("{flag} needs a value"));
+        match flag.as_str() {
+            "--analysis" => {
+                let v = value()?;
+                if v != "parallel-travel" {
+                    return Err(format!("unknown analysis '{v}': available is parallel-travel"));
+                }
+            }
+            "--range" => {
+                let v = value()?;
+                let parts: Vec<&str> = v.split(',').collect();
+                let parse = |s: &str| s.trim().parse::<f64>().map_err(|_| format!("--range: '{s}' is not a number"));
+                if parts.len() != 2 {
+                    return Err(format!("--range takes FROM,TO in metres, got '{v}'"));
+                }
+                opts.range = (parse(parts[0])?, parse(parts[1])?);
+                if !(opts.range.0.is_finite() && opts.range.1.is_finite()) || opts.range.0 == opts.range.1 {
+                    return Err(format!("--range needs two different finite values, got '{v}'"));
+                }
+            }
+            "--steps" => {
+                let v = value()?;
+                opts.steps = v
+                    .parse()
+                    .ok()
+                    .filter(|&n| n > 0)
+                    .ok_or_else(|| format!("--steps: '{v}' is not a positive integer"))?;
+            }
+            "--mode" => {
+                opts.mode = match value()?.as_str() {
+                    "corrected" => Mode::Corrected,
+                    "paper" => Mode::Paper,
+                    other => return Err(format!("--mode: '{other}' is neither paper nor corrected")),
+                }
+            }
+            "--out" => opts.out = value()?.into(),
+            other => return Err(format!("unknown option '{other}' (see elastokin help)")),
+        }
+    }
+    Ok(opts)
+}
+
+/// Slope of y against x at x = 0 from the two rows around it (central difference of the computed curve).
+fn slope_at_design(rows: &[TravelRow], y: impl Fn(&TravelRow) -> f64) -> Option<f64> {
+    let k = rows.iter().position(|r| r.travel >= 0.0)?;
+    let (a, b) = if k == 0 {
+        (0, 1)
+    } else if rows[k].travel == 0.0 && k + 1 < rows.len() {
+        (k - 1, k + 1)
+    } else {
+        (k - 1, k)
+    };
+    let (ra, rb) = (rows.get(a)?, rows.get(b)?);
+    Some((y(rb) - y(ra)) / (rb.travel - ra.travel))
+}
+
+fn run(opts: RunOptions) -> Result<(), String> {
+    let file = SuspensionFile::read(&opts.model).map_err(|e| e.to_string())?;
+    let corner = file.suspension.build(Side::Left, true).map_err(|e| format!("{}: {e}", opts.model.display()))?;
+    let rows =
+        parallel_wheel_travel(&corner, opts.range.0, opts.range.1, opts.steps, opts.mode).map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(&opts.out).map_err(|e| format!("{}: {e}", opts.out.display()))?;
+    let csv_path = opts.out.join("parallel_travel.csv");
+    let mut csv = String::from("travel_m,toe_deg,camber_deg,wheel_centre_x_m,wheel_centre_y_m,wheel_centre_z_m\n");
+    for r in &rows {
+        let w = r.attitude.wheel_centre;
+        csv += &format!(
+            "{:.6},{:.6},{:.6},{:.6},{:.6},{:.6}\n",
+            r.travel,
+            r.attitude.toe.to_degrees(),
+            r.attitude.camber.to_degrees(),
+            w.x,
+            w.y,
+            w.z
+        );
+    }
+    std::fs::write(&csv_path, csv).map_err(|e| format!("{}: {e}", csv_path.display()))?;
+    println!(
+        "{} — parallel wheel travel {:+.0}..{:+.0} mm, {} steps",
+        file.name,
+        opts.range.0 * 1e3,
+        opts.range.1 * 1e3,
+        opts.steps
+    );
+    println!("{:>10} {:>10} {:>12} {:>12}", "travel mm", "toe °", "camber °", "track Δ mm");
+    let y0 = corner.wheel_centre.y;
+    let stride = (rows.len() / 8).max(1);
+    for r in rows.iter().step_by(stride) {
+        println!(
+            "{:>10.1} {:>10.4} {:>12.4} {:>12.2}",
+            r.travel * 1e3,
+            r.attitude.toe.to_degrees(),
+            r.attitude.camber.to_degrees(),
+            (r.attitude.wheel_centre.y - y0) * 1e3
+        );
+    }
+    if let (Some(bump), Some(gain)) = (
+        slope_at_design(&rows, |r| r.attitude.toe.to_degrees()),
+        slope_at_design(&rows, |r| r.attitude.camber.to_degrees()),
+    ) {
+        println!("bump steer at design: {:+.4} °/10 mm toe; camber gain {:+.4} °/10 mm", bump * 0.01, gain * 0.01);
+    }
+    println!("wrote {}", csv_path.display());
+    Ok(())
+}
+
+fn check(model: &str) -> Result<(), String> {
+    let file = SuspensionFile::read(model.as_ref()).map_err(|e| e.to_string())?;
+    let corner = file.suspension.build(Side::Left, true).map_err(|e| format!("{model}: {e}"))?;
+    let m = &corner.model;
+    println!("{}", file.name);
+    println!("bodies: {}", m.bodies().iter().map(|b| b.name.as_str()).collect::<Vec<_>>().join(", "));
+    println!("joints: {}, elements: {}", m.joints().len(), m.elements().len());
+    println!("coordinates: {}, constraint rows: {} (with the wheel-travel driver)", m.dofs(), m.constraint_rows());
+    let solver = StaticSolver::new(m, SolverOptions::default()).map_err(|e| format!("{model}: {e}"))?;
+    let d = solver.diagnostics();
+    if d.redundant.is_empty() {
+        println!("redundant constraints: none");
+    }
+    for line in d.messages() {
+        println!("{line}");
+    }
+    println!("every body is restrained");
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let result = match args.first().map(String::as_str) {
+        Some("run") => parse_run(&args[1..]).and_then(run),
+        Some("check") => match args.get(1) {
+            Some(model) => check(model),
+            None => Err("check needs a MODEL file: elastokin check examples/macpherson.json".into()),
+        },
+        Some("help" | "--help" | "-h") | None => {
+            println!("{HELP}");
+            Ok(())
+        }
+        Some(other) => Err(format!("unknown command '{other}' (see elastokin help)")),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::from(2)
+        }
+    }
+}

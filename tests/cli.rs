@@ -1,0 +1,64 @@
+//! The `elastokin` command on every shipped example, and on bad input.
+
+use std::path::Path;
+use std::process::Command;
+
+fn elastokin(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_elastokin")).args(args).current_dir(env!("CARGO_MANIFEST_DIR")).output().unwrap()
+}
+
+fn examples() -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .map(|p| format!("examples/{}", p.file_name().unwrap().to_string_lossy()))
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn run_and_check_every_example() {
+    let out = std::env::temp_dir().join(format!("elastokin-cli-{}", std::process::id()));
+    for model in examples() {
+        let o = elastokin(&["check", &model]);
+        assert!(o.status.success(), "{model}: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(String::from_utf8_lossy(&o.stdout).contains("every body is restrained"));
+        for mode in ["corrected", "paper"] {
+            let o = elastokin(&["run", &model, "--steps", "8", "--mode", mode, "--out", out.to_str().unwrap()]);
+            assert!(o.status.success(), "{model} {mode}: {}", String::from_utf8_lossy(&o.stderr));
+            let csv = std::fs::read_to_string(out.join("parallel_travel.csv")).unwrap();
+            assert_eq!(csv.lines().count(), 1 + 9, "{csv}");
+            assert!(!csv.contains("NaN") && !csv.contains("inf"), "{csv}");
+        }
+    }
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn bad_files_and_arguments_exit_non_zero_with_a_named_problem() {
+    let dir = std::env::temp_dir().join(format!("elastokin-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let typo = dir.join("typo.json");
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(&examples()[0])).unwrap();
+    std::fs::write(&typo, text.replacen("\"spring\"", "\"sprung\"", 1)).unwrap();
+    let cases: Vec<(Vec<String>, &str)> = vec![
+        (vec!["run".into(), typo.display().to_string()], "unknown field `sprung`"),
+        (vec!["check".into(), "no/such/model.json".into()], "no/such/model.json"),
+        (vec!["run".into(), examples()[0].clone(), "--steps".into(), "zero".into()], "--steps"),
+        (vec!["run".into(), examples()[0].clone(), "--mode".into(), "exact".into()], "--mode"),
+        (vec!["run".into(), examples()[0].clone(), "--range".into(), "0.1".into()], "--range"),
+        (vec!["frobnicate".into()], "unknown command"),
+    ];
+    for (args, expected) in cases {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = elastokin(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{args:?} should fail");
+        assert!(err.contains(expected), "{args:?}: {err}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    let o = elastokin(&["help"]);
+    assert!(o.status.success() && String::from_utf8_lossy(&o.stdout).contains("elastokin run MODEL"));
+}
