@@ -32,3 +32,49 @@ pub fn parallel_wheel_travel(
     let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
     Ok(sweep.steps.iter().map(|s| TravelRow { travel: s.t, attitude: corner.attitude(&s.poses) }).collect())
 }
+
+/// The 6×6 compliance of the wheel at the equilibrium of load parameter `t`: column `k` is the response
+/// `(Δ wheel centre, Δ rotation)` to a unit force (k < 3, N, global axes) or unit torque (k ≥ 3, N·m) at
+/// the wheel centre, in m/N and rad/(N·m). It is the inverse tangent of the constrained system, so it
+/// costs one factorization and six back-substitutions. Drivers present in the corner stay held (a
+/// wheel-travel driver makes the vertical row and column zero, as on a K&C rig holding the wheel-centre
+/// height).
+pub fn wheel_compliance(corner: &Corner, t: f64) -> Result<[[f64; 6]; 6], SolverError> {
+    let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
+    let mut state = solver.design_state(t);
+    solver.equilibrium(&mut state)?;
+    let n = corner.model.dofs();
+    let m = solver.active_rows().len();
+    let pose = state.poses[corner.upright.0];
+    let s = pose.point(&corner.wheel_centre_local) - pose.position;
+    let base = corner.upright.0 * elastokin_core::BODY_DOFS;
+    let mut columns = [[0.0; 6]; 6];
+    let mut rhs = vec![0.0; n + m];
+    for (k, column) in columns.iter_mut().enumerate() {
+        rhs.fill(0.0);
+        let mut unit = elastokin_core::Vec3::zeros();
+        unit[k % 3] = 1.0;
+        // Generalized force of a force at the wheel centre (F, s × F), or of a torque (0, M).
+        let (f, moment) = if k < 3 { (unit, s.cross(&unit)) } else { (elastokin_core::Vec3::zeros(), unit) };
+        for c in 0..3 {
+            rhs[base + c] = f[c];
+            rhs[base + 3 + c] = moment[c];
+        }
+        solver.tangent_solve(&state, &mut rhs)?;
+        let dr = elastokin_core::Vec3::new(rhs[base], rhs[base + 1], rhs[base + 2]);
+        let dpi = elastokin_core::Vec3::new(rhs[base + 3], rhs[base + 4], rhs[base + 5]);
+        let dwc = dr + dpi.cross(&s);
+        for c in 0..3 {
+            column[c] = dwc[c];
+            column[3 + c] = dpi[c];
+        }
+    }
+    // Stored by columns above; return rows × columns.
+    let mut out = [[0.0; 6]; 6];
+    for r in 0..6 {
+        for c in 0..6 {
+            out[r][c] = columns[c][r];
+        }
+    }
+    Ok(out)
+}

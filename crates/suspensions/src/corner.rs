@@ -1,7 +1,8 @@
 //! A built suspension corner and its wheel characteristics.
 
 use crate::hardpoint::Side;
-use elastokin_core::{BodyId, Model, Pose, Vec3};
+use elastokin_core::{BodyId, ElementId, Model, ModelError, Pose, Vec3};
+use elastokin_elements::{PointForce, PointTorque};
 
 /// A suspension corner ready to solve: its model and where its wheel is.
 #[derive(Debug)]
@@ -32,6 +33,17 @@ pub struct WheelAttitude {
 }
 
 impl Corner {
+    /// Adds a world-fixed force `force · t` (N per unit load parameter) at the global design point `point`
+    /// of the upright: a contact-patch or wheel-centre load of a K&C test.
+    pub fn add_wheel_force(&mut self, name: &str, point: Vec3, force: Vec3) -> Result<ElementId, ModelError> {
+        self.model.add_element(PointForce::new(name, self.upright.into(), point, force)?)
+    }
+
+    /// Adds a world-fixed torque `torque · t` (N·m per unit load parameter) on the upright.
+    pub fn add_wheel_torque(&mut self, name: &str, torque: Vec3) -> Result<ElementId, ModelError> {
+        self.model.add_element(PointTorque::new(name, self.upright.into(), torque)?)
+    }
+
     /// Toe, camber and wheel centre at the given poses.
     ///
     /// With `a` the outward spin axis and `s` = +1 left, −1 right: toe = atan2(aₓ, s·a_y) (a toe-in left
