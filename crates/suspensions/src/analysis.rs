@@ -78,3 +78,46 @@ pub fn wheel_compliance(corner: &Corner, t: f64) -> Result<[[f64; 6]; 6], Solver
     }
     Ok(out)
 }
+
+/// One row of a force sweep.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ForceRow {
+    /// The applied force (N): the load parameter.
+    pub force: f64,
+    /// Wheel attitude at equilibrium.
+    pub attitude: WheelAttitude,
+    /// Contact-patch point of the upright at equilibrium (global).
+    pub contact_patch: elastokin_core::Vec3,
+}
+
+/// Vertical force at the contact patch from `from` to `to` newtons (upward positive) in `steps` steps —
+/// the paper's vertical force sweep. The corner must be built without the wheel-travel driver: the wheel
+/// is free and the spring and bushings carry the load.
+pub fn vertical_force_sweep(
+    mut corner: Corner,
+    from: f64,
+    to: f64,
+    steps: usize,
+    mode: Mode,
+) -> Result<Vec<ForceRow>, SolverError> {
+    if corner.model.joint_id("wheel travel").is_some() {
+        return Err(SolverError::InvalidInput {
+            what: "corner",
+            why: "a vertical force sweep needs a free wheel: build the corner with wheel_travel = false".into(),
+        });
+    }
+    let patch = corner.contact_patch;
+    corner.add_wheel_force("vertical force", patch, elastokin_core::Vec3::z())?;
+    let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
+    let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
+    let local_patch = corner.model.bodies()[corner.upright.0].design_pose.to_local_point(&patch);
+    Ok(sweep
+        .steps
+        .iter()
+        .map(|s| ForceRow {
+            force: s.t,
+            attitude: corner.attitude(&s.poses),
+            contact_patch: s.poses[corner.upright.0].point(&local_patch),
+        })
+        .collect())
+}

@@ -19,6 +19,13 @@ pub struct Corner {
     pub wheel_centre_local: Vec3,
     /// Outward spin axis as a local direction of the upright.
     pub spin_axis_local: Vec3,
+    /// Contact patch centre at design (global): below the wheel centre by the loaded radius.
+    pub contact_patch: Vec3,
+}
+
+/// Loaded tyre radius when a model file does not give one (m); `shared/data/hardpoints.md` quotes ~0.30.
+pub fn default_loaded_radius() -> f64 {
+    0.30
 }
 
 /// Wheel position and orientation at one configuration (angles in radians, ISO 8855 / SAE J670 signs).

@@ -78,6 +78,9 @@ pub struct DoubleWishbone {
     pub lower_arm_mounts: Connection,
     /// Coil spring from the chassis seat to the lower arm seat.
     pub spring: SpringSpec,
+    /// Loaded tyre radius (m): the contact patch sits this far below the wheel centre at design.
+    #[serde(default = "crate::corner::default_loaded_radius")]
+    pub loaded_radius: f64,
 }
 
 impl DoubleWishbone {
@@ -85,6 +88,13 @@ impl DoubleWishbone {
     /// load parameter `t` is then the wheel travel in metres, bump positive).
     pub fn build(&self, side: Side, wheel_travel: bool) -> Result<Corner, ModelError> {
         let h = &self.hardpoints;
+        if !(self.loaded_radius.is_finite() && self.loaded_radius > 0.0) {
+            return Err(ModelError::NotPositive {
+                item: "suspension".into(),
+                what: "loaded radius",
+                value: self.loaded_radius,
+            });
+        }
         let p = |v: Vec3| side.place(v);
         let mut model = Model::new();
         let wc = p(h.wheel_centre);
@@ -135,6 +145,7 @@ impl DoubleWishbone {
             wheel_centre: wc,
             wheel_centre_local: Vec3::zeros(),
             spin_axis_local: Vec3::new(0.0, side.sign(), 0.0),
+            contact_patch: wc - Vec3::new(0.0, 0.0, self.loaded_radius),
         })
     }
 }

@@ -13,6 +13,7 @@
 //!     upper_arm_mounts: Connection::Ideal,
 //!     lower_arm_mounts: Connection::Ideal,
 //!     spring: SpringSpec { rate: 30e3, design_force: 4000.0 },
+//!     loaded_radius: 0.30,
 //! }
 //! .build(Side::Left, true)
 //! .unwrap();

@@ -60,6 +60,9 @@ pub struct MacPherson {
     pub top_mount: Connection,
     /// Coil spring from the top mount to the spring seat at the strut lower point.
     pub spring: SpringSpec,
+    /// Loaded tyre radius (m): the contact patch sits this far below the wheel centre at design.
+    #[serde(default = "crate::corner::default_loaded_radius")]
+    pub loaded_radius: f64,
 }
 
 impl MacPherson {
@@ -67,6 +70,13 @@ impl MacPherson {
     /// load parameter is then the wheel travel in metres, bump positive).
     pub fn build(&self, side: Side, wheel_travel: bool) -> Result<Corner, ModelError> {
         let h = &self.hardpoints;
+        if !(self.loaded_radius.is_finite() && self.loaded_radius > 0.0) {
+            return Err(ModelError::NotPositive {
+                item: "suspension".into(),
+                what: "loaded radius",
+                value: self.loaded_radius,
+            });
+        }
         let p = |v: Vec3| side.place(v);
         let mut model = Model::new();
         let wc = p(h.wheel_centre);
@@ -119,6 +129,7 @@ impl MacPherson {
             wheel_centre: wc,
             wheel_centre_local: Vec3::zeros(),
             spin_axis_local: Vec3::new(0.0, side.sign(), 0.0),
+            contact_patch: wc - Vec3::new(0.0, 0.0, self.loaded_radius),
         })
     }
 }

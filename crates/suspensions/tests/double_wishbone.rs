@@ -12,6 +12,7 @@ fn template(mounts: Connection) -> DoubleWishbone {
         upper_arm_mounts: mounts,
         lower_arm_mounts: mounts,
         spring: SpringSpec { rate: 30e3, design_force: 4000.0 },
+        loaded_radius: 0.30,
     }
 }
 
@@ -146,5 +147,48 @@ fn right_side_mirrors_the_left() {
         assert!((l.attitude.camber - r.attitude.camber).abs() < 1e-12);
         let (wl, wr) = (l.attitude.wheel_centre, r.attitude.wheel_centre);
         assert!((wl - Vec3::new(wr.x, -wr.y, wr.z)).norm() < 1e-12);
+    }
+}
+
+/// Vertical force sweep on the ideal double wishbone against a second method: the kinematic sweep gives
+/// the spring length L(z) and contact-patch height along the path, and virtual work with the closed-form
+/// spring law gives the force that holds each position, F = −F_push(L) · dL/dz_cp.
+#[test]
+fn vertical_force_sweep_balances_the_spring_by_virtual_work() {
+    let dw = template(Connection::Ideal);
+    let rows = elastokin_suspensions::analysis::vertical_force_sweep(
+        dw.build(Side::Left, false).unwrap(),
+        // Around the design corner load (~1.5 kN here: 4 kN of spring force through a motion ratio of ~0.37).
+        1200.0,
+        1800.0,
+        6,
+        Mode::Corrected,
+    )
+    .unwrap();
+    let h = dw.hardpoints;
+    let spring_length_at = |travel: f64| {
+        // Lower arm angle for this travel from a short driven sweep, then the seat position on the arm.
+        let corner = dw.build(Side::Left, true).unwrap();
+        let mut solver =
+            elastokin_solver::StaticSolver::new(&corner.model, elastokin_solver::SolverOptions::default()).unwrap();
+        let mut state = solver.design_state(travel);
+        let eq = solver.equilibrium(&mut state).unwrap();
+        let arm = eq.poses[corner.model.body_id("lower arm").unwrap().0];
+        let seat = arm.point(&corner.model.bodies()[2].design_pose.to_local_point(&h.spring_arm));
+        let upright = eq.poses[corner.upright.0];
+        let patch = upright.point(&(corner.contact_patch - corner.wheel_centre));
+        ((seat - h.spring_chassis).norm(), patch.z)
+    };
+    let free_length = (h.spring_arm - h.spring_chassis).norm() + dw.spring.design_force / dw.spring.rate;
+    for row in &rows {
+        let travel = row.attitude.wheel_centre.z - h.wheel_centre.z;
+        let e = 1e-5;
+        let (lp, zp) = spring_length_at(travel + e);
+        let (lm, zm) = spring_length_at(travel - e);
+        let (l, _) = spring_length_at(travel);
+        let push = dw.spring.rate * (free_length - l);
+        // Virtual work: F δz_cp = δU_spring = −push δL (the spring pushes its seats apart) → F = −push dL/dz_cp.
+        let force = -push * (lp - lm) / (zp - zm);
+        assert!((force - row.force).abs() < 1e-4 * row.force, "F = {} vs virtual work {force}", row.force);
     }
 }
