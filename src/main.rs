@@ -7,7 +7,7 @@
 
 use elastokin::solver::{Mode, SolverOptions, StaticSolver};
 use elastokin::suspensions::analysis::{parallel_wheel_travel, TravelRow};
-use elastokin::suspensions::{Side, SuspensionFile};
+use elastokin::suspensions::{Rig, Side, SuspensionFile};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -100,7 +100,8 @@ fn slope_at_design(rows: &[TravelRow], y: impl Fn(&TravelRow) -> f64) -> Option<
 
 fn run(opts: RunOptions) -> Result<(), String> {
     let file = SuspensionFile::read(&opts.model).map_err(|e| e.to_string())?;
-    let corner = file.suspension.build(Side::Left, true).map_err(|e| format!("{}: {e}", opts.model.display()))?;
+    let corner =
+        file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| format!("{}: {e}", opts.model.display()))?;
     let rows =
         parallel_wheel_travel(&corner, opts.range.0, opts.range.1, opts.steps, opts.mode).map_err(|e| e.to_string())?;
     std::fs::create_dir_all(&opts.out).map_err(|e| format!("{}: {e}", opts.out.display()))?;
@@ -150,7 +151,7 @@ fn run(opts: RunOptions) -> Result<(), String> {
 
 fn check(model: &str) -> Result<(), String> {
     let file = SuspensionFile::read(model.as_ref()).map_err(|e| e.to_string())?;
-    let corner = file.suspension.build(Side::Left, true).map_err(|e| format!("{model}: {e}"))?;
+    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| format!("{model}: {e}"))?;
     let m = &corner.model;
     println!("{}", file.name);
     println!("bodies: {}", m.bodies().iter().map(|b| b.name.as_str()).collect::<Vec<_>>().join(", "));

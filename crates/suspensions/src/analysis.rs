@@ -1,19 +1,19 @@
 //! K&C analyses: load paths walked by the engine, reduced to wheel characteristics.
 
-use crate::corner::{Corner, WheelAttitude};
+use crate::corner::{Corner, Rig, WheelAttitude};
 use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, StaticSolver};
 
-/// One row of a wheel-travel table.
+/// One row of a driven sweep (wheel travel or steering).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TravelRow {
-    /// Wheel travel (m, bump positive): the load parameter.
+    /// The driven travel (m): wheel travel (bump positive) or rack travel (towards +y).
     pub travel: f64,
     /// Wheel attitude.
     pub attitude: WheelAttitude,
 }
 
-/// Parallel wheel travel from `from` to `to` metres in `steps` steps (the corner must have been built
-/// with its wheel-travel driver). Starts from the equilibrium at `from`.
+/// Parallel wheel travel from `from` to `to` metres in `steps` steps (the corner must be built with
+/// [`Rig::WheelTravel`]). Starts from the equilibrium at `from`.
 pub fn parallel_wheel_travel(
     corner: &Corner,
     from: f64,
@@ -21,11 +21,27 @@ pub fn parallel_wheel_travel(
     steps: usize,
     mode: Mode,
 ) -> Result<Vec<TravelRow>, SolverError> {
-    if corner.model.joint_id("wheel travel").is_none() {
+    driven_sweep(corner, Rig::WheelTravel, from, to, steps, mode)
+}
+
+/// Steering: rack travel from `from` to `to` metres (towards +y) with the wheel-centre height held (the
+/// corner must be built with [`Rig::Steering`]). The rows' `travel` is the rack travel.
+pub fn steering(corner: &Corner, from: f64, to: f64, steps: usize, mode: Mode) -> Result<Vec<TravelRow>, SolverError> {
+    driven_sweep(corner, Rig::Steering, from, to, steps, mode)
+}
+
+fn driven_sweep(
+    corner: &Corner,
+    rig: Rig,
+    from: f64,
+    to: f64,
+    steps: usize,
+    mode: Mode,
+) -> Result<Vec<TravelRow>, SolverError> {
+    if corner.rig != rig {
         return Err(SolverError::InvalidInput {
             what: "corner",
-            why: "parallel wheel travel needs the wheel-travel driver: build the corner with wheel_travel = true"
-                .into(),
+            why: format!("this analysis drives the corner as Rig::{rig:?}, but it was built as Rig::{:?}", corner.rig),
         });
     }
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
@@ -100,10 +116,10 @@ pub fn vertical_force_sweep(
     steps: usize,
     mode: Mode,
 ) -> Result<Vec<ForceRow>, SolverError> {
-    if corner.model.joint_id("wheel travel").is_some() {
+    if corner.rig != Rig::Free {
         return Err(SolverError::InvalidInput {
             what: "corner",
-            why: "a vertical force sweep needs a free wheel: build the corner with wheel_travel = false".into(),
+            why: "a vertical force sweep needs a free wheel: build the corner with Rig::Free".into(),
         });
     }
     let patch = corner.contact_patch;

@@ -1,8 +1,57 @@
 //! A built suspension corner and its wheel characteristics.
 
 use crate::hardpoint::Side;
-use elastokin_core::{BodyId, ElementId, Model, ModelError, Pose, Vec3};
+use elastokin_core::{BodyId, BodyRef, ElementId, JointSpec, Model, ModelError, Pose, Vec3};
 use elastokin_elements::{PointForce, PointTorque};
+
+/// How the corner is held on the K&C rig, and what the load parameter `t` drives.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rig {
+    /// Wheel-centre height driven, `t` = travel in metres (bump positive); rack fixed.
+    WheelTravel,
+    /// Rack driven, `t` = rack travel in metres (towards +y); wheel-centre height held.
+    Steering,
+    /// Wheel-centre height held at design, rack fixed: for forces with the height held as a rig does.
+    HeightHeld,
+    /// No drivers, rack fixed: the wheel rides on the spring (force sweeps with the wheel free).
+    Free,
+}
+
+/// Adds the tie rod, the rack (a body on a lateral slide when steering) and the rig's drivers.
+pub(crate) fn mount_rig(
+    model: &mut Model,
+    rig: Rig,
+    upright: BodyId,
+    wheel_centre: Vec3,
+    tie_rod_inner: Vec3,
+    tie_rod_outer: Vec3,
+) -> Result<(), ModelError> {
+    let inner_body: BodyRef = if rig == Rig::Steering {
+        let rack = model.add_body("rack", Pose::at(tie_rod_inner))?;
+        model.add_joint(JointSpec::translational("rack slide", BodyRef::Ground, rack, tie_rod_inner, Vec3::y()))?;
+        model.add_joint(JointSpec::travel_driver(
+            "rack travel",
+            BodyRef::Ground,
+            rack,
+            tie_rod_inner,
+            Vec3::y(),
+            1.0,
+        ))?;
+        rack.into()
+    } else {
+        BodyRef::Ground
+    };
+    model.add_joint(JointSpec::distance("tie rod", inner_body, upright, tie_rod_inner, tie_rod_outer))?;
+    let travel = match rig {
+        Rig::WheelTravel => Some(1.0),
+        Rig::Steering | Rig::HeightHeld => Some(0.0),
+        Rig::Free => None,
+    };
+    if let Some(travel) = travel {
+        model.add_joint(JointSpec::point_driver("wheel travel", upright, wheel_centre, Vec3::z(), travel))?;
+    }
+    Ok(())
+}
 
 /// A suspension corner ready to solve: its model and where its wheel is.
 #[derive(Debug)]
@@ -11,6 +60,8 @@ pub struct Corner {
     pub model: Model,
     /// Which side it was built for.
     pub side: Side,
+    /// How it is held.
+    pub rig: Rig,
     /// The upright (knuckle with the wheel).
     pub upright: BodyId,
     /// Wheel centre at design (global).

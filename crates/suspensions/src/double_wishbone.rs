@@ -2,7 +2,7 @@
 //! on the lower arm.
 
 use crate::connection::{BushingRates, Connection};
-use crate::corner::Corner;
+use crate::corner::{mount_rig, Corner, Rig};
 use crate::hardpoint::Side;
 use elastokin_core::joint::orthonormal_complement;
 use elastokin_core::{BodyRef, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
@@ -84,9 +84,8 @@ pub struct DoubleWishbone {
 }
 
 impl DoubleWishbone {
-    /// Builds the corner on `side`, with a wheel-centre height driver when `wheel_travel` is true (the
-    /// load parameter `t` is then the wheel travel in metres, bump positive).
-    pub fn build(&self, side: Side, wheel_travel: bool) -> Result<Corner, ModelError> {
+    /// Builds the corner on `side`, held as `rig` says.
+    pub fn build(&self, side: Side, rig: Rig) -> Result<Corner, ModelError> {
         let h = &self.hardpoints;
         if !(self.loaded_radius.is_finite() && self.loaded_radius > 0.0) {
             return Err(ModelError::NotPositive {
@@ -119,13 +118,6 @@ impl DoubleWishbone {
         )?;
         model.add_joint(JointSpec::spherical("upper ball joint", upper, upright, p(h.upper_ball_joint)))?;
         model.add_joint(JointSpec::spherical("lower ball joint", lower, upright, p(h.lower_ball_joint)))?;
-        model.add_joint(JointSpec::distance(
-            "tie rod",
-            BodyRef::Ground,
-            upright,
-            p(h.tie_rod_inner),
-            p(h.tie_rod_outer),
-        ))?;
         model.add_element(CoilSpring::with_design_force(
             "spring",
             BodyRef::Ground,
@@ -135,12 +127,11 @@ impl DoubleWishbone {
             self.spring.rate,
             self.spring.design_force,
         )?)?;
-        if wheel_travel {
-            model.add_joint(JointSpec::point_driver("wheel travel", upright, wc, Vec3::z(), 1.0))?;
-        }
+        mount_rig(&mut model, rig, upright, wc, p(h.tie_rod_inner), p(h.tie_rod_outer))?;
         Ok(Corner {
             model,
             side,
+            rig,
             upright,
             wheel_centre: wc,
             wheel_centre_local: Vec3::zeros(),

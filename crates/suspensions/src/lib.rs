@@ -4,7 +4,7 @@
 //! runs, and the wheel characteristics engineers read from them.
 //!
 //! ```
-//! use elastokin_suspensions::{DoubleWishbone, DoubleWishboneHardpoints, Connection, SpringSpec, Side};
+//! use elastokin_suspensions::{DoubleWishbone, DoubleWishboneHardpoints, Connection, Rig, SpringSpec, Side};
 //! use elastokin_suspensions::analysis::parallel_wheel_travel;
 //! use elastokin_solver::Mode;
 //!
@@ -15,7 +15,7 @@
 //!     spring: SpringSpec { rate: 30e3, design_force: 4000.0 },
 //!     loaded_radius: 0.30,
 //! }
-//! .build(Side::Left, true)
+//! .build(Side::Left, Rig::WheelTravel)
 //! .unwrap();
 //! let rows = parallel_wheel_travel(&corner, -0.08, 0.08, 16, Mode::Corrected).unwrap();
 //! // At design the spin axis is +y: no toe, no camber.
@@ -34,7 +34,7 @@ pub mod macpherson;
 pub mod model_file;
 
 pub use connection::{BushingRates, Connection};
-pub use corner::{Corner, WheelAttitude};
+pub use corner::{Corner, Rig, WheelAttitude};
 pub use double_wishbone::{DoubleWishbone, DoubleWishboneHardpoints, SpringSpec};
 pub use hardpoint::Side;
 pub use macpherson::{MacPherson, MacPhersonHardpoints};

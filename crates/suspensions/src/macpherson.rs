@@ -2,7 +2,7 @@
 //! chassis, lower control arm, tie rod, coil spring from the top mount to the spring seat on the strut.
 
 use crate::connection::Connection;
-use crate::corner::Corner;
+use crate::corner::{mount_rig, Corner, Rig};
 use crate::double_wishbone::{arm_mounts, SpringSpec};
 use crate::hardpoint::Side;
 use elastokin_core::{BodyRef, JointSpec, Model, ModelError, Pose, Vec3};
@@ -66,9 +66,8 @@ pub struct MacPherson {
 }
 
 impl MacPherson {
-    /// Builds the corner on `side`, with a wheel-centre height driver when `wheel_travel` is true (the
-    /// load parameter is then the wheel travel in metres, bump positive).
-    pub fn build(&self, side: Side, wheel_travel: bool) -> Result<Corner, ModelError> {
+    /// Builds the corner on `side`, held as `rig` says.
+    pub fn build(&self, side: Side, rig: Rig) -> Result<Corner, ModelError> {
         let h = &self.hardpoints;
         if !(self.loaded_radius.is_finite() && self.loaded_radius > 0.0) {
             return Err(ModelError::NotPositive {
@@ -103,13 +102,6 @@ impl MacPherson {
                 model.add_element(crate::double_wishbone::axial_bushing("top mount", rod.into(), top, axis, r)?)?;
             }
         }
-        model.add_joint(JointSpec::distance(
-            "tie rod",
-            BodyRef::Ground,
-            upright,
-            p(h.tie_rod_inner),
-            p(h.tie_rod_outer),
-        ))?;
         model.add_element(CoilSpring::with_design_force(
             "spring",
             BodyRef::Ground,
@@ -119,12 +111,11 @@ impl MacPherson {
             self.spring.rate,
             self.spring.design_force,
         )?)?;
-        if wheel_travel {
-            model.add_joint(JointSpec::point_driver("wheel travel", upright, wc, Vec3::z(), 1.0))?;
-        }
+        mount_rig(&mut model, rig, upright, wc, p(h.tie_rod_inner), p(h.tie_rod_outer))?;
         Ok(Corner {
             model,
             side,
+            rig,
             upright,
             wheel_centre: wc,
             wheel_centre_local: Vec3::zeros(),

@@ -12,7 +12,7 @@
 //!
 //! Unknown keys and missing hardpoints are errors that name the key and the line and column in the file.
 
-use crate::corner::Corner;
+use crate::corner::{Corner, Rig};
 use crate::double_wishbone::DoubleWishbone;
 use crate::hardpoint::Side;
 use crate::macpherson::MacPherson;
@@ -34,10 +34,10 @@ pub enum Template {
 
 impl Template {
     /// Builds the corner (see the templates' `build`).
-    pub fn build(&self, side: Side, wheel_travel: bool) -> Result<Corner, ModelError> {
+    pub fn build(&self, side: Side, rig: Rig) -> Result<Corner, ModelError> {
         match self {
-            Template::DoubleWishbone(t) => t.build(side, wheel_travel),
-            Template::MacPherson(t) => t.build(side, wheel_travel),
+            Template::DoubleWishbone(t) => t.build(side, rig),
+            Template::MacPherson(t) => t.build(side, rig),
         }
     }
 }
@@ -97,7 +97,7 @@ impl SuspensionFile {
         })?;
         // Building validates the geometry (coincident points, non-positive rates, …) with named errors.
         file.suspension
-            .build(Side::Left, false)
+            .build(Side::Left, Rig::Free)
             .map_err(|source| FileError::Model { origin: origin.to_string(), source })?;
         Ok(file)
     }

@@ -4,7 +4,7 @@ use elastokin_core::Vec3;
 use elastokin_elements::{PointForce, PointTorque};
 use elastokin_solver::{SolverOptions, StaticSolver};
 use elastokin_suspensions::analysis::wheel_compliance;
-use elastokin_suspensions::{MacPherson, Side, SuspensionFile, Template};
+use elastokin_suspensions::{MacPherson, Rig, Side, SuspensionFile, Template};
 
 fn bushed_macpherson() -> MacPherson {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/macpherson.json");
@@ -18,7 +18,7 @@ fn bushed_macpherson() -> MacPherson {
 /// centre for k < 3, torque for k ≥ 3) of size `size` along axis k.
 fn wheel_response(k: usize, size: f64) -> (Vec3, nalgebra::UnitQuaternion<f64>) {
     let mp = bushed_macpherson();
-    let mut corner = mp.build(Side::Left, true).unwrap();
+    let mut corner = mp.build(Side::Left, Rig::WheelTravel).unwrap();
     let mut unit = Vec3::zeros();
     unit[k % 3] = size;
     // A constant load (present at t = 0): the load parameter also drives the wheel-travel driver.
@@ -41,7 +41,7 @@ fn wheel_response(k: usize, size: f64) -> (Vec3, nalgebra::UnitQuaternion<f64>) 
 
 #[test]
 fn compliance_matrix_equals_finite_differences_of_small_load_sweeps() {
-    let corner = bushed_macpherson().build(Side::Left, true).unwrap();
+    let corner = bushed_macpherson().build(Side::Left, Rig::WheelTravel).unwrap();
     let c = wheel_compliance(&corner, 0.0).unwrap();
     for k in 0..6 {
         let h = if k < 3 { 1.0 } else { 0.5 }; // 1 N, 0.5 N·m: deep in the linear range

@@ -3,7 +3,9 @@
 use elastokin_core::Vec3;
 use elastokin_solver::Mode;
 use elastokin_suspensions::analysis::parallel_wheel_travel;
-use elastokin_suspensions::{BushingRates, Connection, DoubleWishbone, DoubleWishboneHardpoints, Side, SpringSpec};
+use elastokin_suspensions::{
+    BushingRates, Connection, DoubleWishbone, DoubleWishboneHardpoints, Rig, Side, SpringSpec,
+};
 use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
 
 fn template(mounts: Connection) -> DoubleWishbone {
@@ -78,7 +80,7 @@ fn loop_closure(h: &DoubleWishboneHardpoints, travel: f64, guess: &mut [f64; 3])
 #[test]
 fn toe_and_camber_match_an_independent_loop_closure() {
     let dw = template(Connection::Ideal);
-    let corner = dw.build(Side::Left, true).unwrap();
+    let corner = dw.build(Side::Left, Rig::WheelTravel).unwrap();
     let rows = parallel_wheel_travel(&corner, -0.08, 0.08, 32, Mode::Corrected).unwrap();
     let mut guess = [0.0; 3];
     let mut largest_camber: f64 = 0.0;
@@ -109,7 +111,7 @@ fn toe_and_camber_match_an_independent_loop_closure() {
 #[test]
 fn stiffer_bushings_converge_to_the_ideal_joint_curves() {
     let ideal = parallel_wheel_travel(
-        &template(Connection::Ideal).build(Side::Left, true).unwrap(),
+        &template(Connection::Ideal).build(Side::Left, Rig::WheelTravel).unwrap(),
         -0.06,
         0.06,
         12,
@@ -123,7 +125,7 @@ fn stiffer_bushings_converge_to_the_ideal_joint_curves() {
         // joint locks get stiffer. (Scaling torsion too leaves a gap that does not close: the torsion
         // moment and the radial rate that resists it grow together.)
         let stiffer = BushingRates { torsion: rates.torsion, ..rates.scaled(scale) };
-        let corner = template(Connection::Bushing(stiffer)).build(Side::Left, true).unwrap();
+        let corner = template(Connection::Bushing(stiffer)).build(Side::Left, Rig::WheelTravel).unwrap();
         let rows = parallel_wheel_travel(&corner, -0.06, 0.06, 12, Mode::Corrected).unwrap();
         rows.iter()
             .zip(&ideal)
@@ -140,8 +142,12 @@ fn stiffer_bushings_converge_to_the_ideal_joint_curves() {
 #[test]
 fn right_side_mirrors_the_left() {
     let dw = template(Connection::Ideal);
-    let left = parallel_wheel_travel(&dw.build(Side::Left, true).unwrap(), -0.05, 0.05, 10, Mode::Corrected).unwrap();
-    let right = parallel_wheel_travel(&dw.build(Side::Right, true).unwrap(), -0.05, 0.05, 10, Mode::Corrected).unwrap();
+    let left =
+        parallel_wheel_travel(&dw.build(Side::Left, Rig::WheelTravel).unwrap(), -0.05, 0.05, 10, Mode::Corrected)
+            .unwrap();
+    let right =
+        parallel_wheel_travel(&dw.build(Side::Right, Rig::WheelTravel).unwrap(), -0.05, 0.05, 10, Mode::Corrected)
+            .unwrap();
     for (l, r) in left.iter().zip(&right) {
         assert!((l.attitude.toe - r.attitude.toe).abs() < 1e-12, "{} {}", l.attitude.toe, r.attitude.toe);
         assert!((l.attitude.camber - r.attitude.camber).abs() < 1e-12);
@@ -157,7 +163,7 @@ fn right_side_mirrors_the_left() {
 fn vertical_force_sweep_balances_the_spring_by_virtual_work() {
     let dw = template(Connection::Ideal);
     let rows = elastokin_suspensions::analysis::vertical_force_sweep(
-        dw.build(Side::Left, false).unwrap(),
+        dw.build(Side::Left, Rig::Free).unwrap(),
         // Around the design corner load (~1.5 kN here: 4 kN of spring force through a motion ratio of ~0.37).
         1200.0,
         1800.0,
@@ -168,7 +174,7 @@ fn vertical_force_sweep_balances_the_spring_by_virtual_work() {
     let h = dw.hardpoints;
     let spring_length_at = |travel: f64| {
         // Lower arm angle for this travel from a short driven sweep, then the seat position on the arm.
-        let corner = dw.build(Side::Left, true).unwrap();
+        let corner = dw.build(Side::Left, Rig::WheelTravel).unwrap();
         let mut solver =
             elastokin_solver::StaticSolver::new(&corner.model, elastokin_solver::SolverOptions::default()).unwrap();
         let mut state = solver.design_state(travel);

@@ -3,7 +3,7 @@
 use elastokin_core::Vec3;
 use elastokin_solver::Mode;
 use elastokin_suspensions::analysis::parallel_wheel_travel;
-use elastokin_suspensions::{BushingRates, Connection, MacPherson, MacPhersonHardpoints, Side, SpringSpec};
+use elastokin_suspensions::{BushingRates, Connection, MacPherson, MacPhersonHardpoints, Rig, Side, SpringSpec};
 use nalgebra::{Matrix4, Rotation3, Unit, Vector4};
 
 fn template(arm: Connection, top: Connection) -> MacPherson {
@@ -71,7 +71,7 @@ fn loop_closure(h: &MacPhersonHardpoints, travel: f64, x: &mut [f64; 4]) -> (f64
 #[test]
 fn toe_and_camber_match_an_independent_loop_closure() {
     let mp = template(Connection::Ideal, Connection::Ideal);
-    let corner = mp.build(Side::Left, true).unwrap();
+    let corner = mp.build(Side::Left, Rig::WheelTravel).unwrap();
     let rows = parallel_wheel_travel(&corner, -0.08, 0.08, 32, Mode::Corrected).unwrap();
     let mut order: Vec<usize> = (0..rows.len()).collect();
     order.sort_by(|&a, &b| rows[a].travel.abs().total_cmp(&rows[b].travel.abs()));
@@ -97,7 +97,7 @@ fn toe_and_camber_match_an_independent_loop_closure() {
 #[test]
 fn bushed_macpherson_converges_to_the_ideal_one() {
     let ideal = parallel_wheel_travel(
-        &template(Connection::Ideal, Connection::Ideal).build(Side::Left, true).unwrap(),
+        &template(Connection::Ideal, Connection::Ideal).build(Side::Left, Rig::WheelTravel).unwrap(),
         -0.05,
         0.05,
         10,
@@ -112,7 +112,7 @@ fn bushed_macpherson_converges_to_the_ideal_one() {
         let a = BushingRates { torsion: arm.torsion, ..arm.scaled(scale) };
         let t = BushingRates { torsion: top.torsion, conical: top.conical, ..top.scaled(scale) };
         let rows = parallel_wheel_travel(
-            &template(Connection::Bushing(a), Connection::Bushing(t)).build(Side::Left, true).unwrap(),
+            &template(Connection::Bushing(a), Connection::Bushing(t)).build(Side::Left, Rig::WheelTravel).unwrap(),
             -0.05,
             0.05,
             10,
@@ -131,11 +131,38 @@ fn bushed_macpherson_converges_to_the_ideal_one() {
 #[test]
 fn right_macpherson_mirrors_the_left() {
     let mp = template(Connection::Ideal, Connection::Ideal);
-    let left = parallel_wheel_travel(&mp.build(Side::Left, true).unwrap(), -0.05, 0.05, 10, Mode::Corrected).unwrap();
-    let right = parallel_wheel_travel(&mp.build(Side::Right, true).unwrap(), -0.05, 0.05, 10, Mode::Corrected).unwrap();
+    let left =
+        parallel_wheel_travel(&mp.build(Side::Left, Rig::WheelTravel).unwrap(), -0.05, 0.05, 10, Mode::Corrected)
+            .unwrap();
+    let right =
+        parallel_wheel_travel(&mp.build(Side::Right, Rig::WheelTravel).unwrap(), -0.05, 0.05, 10, Mode::Corrected)
+            .unwrap();
     for (l, r) in left.iter().zip(&right) {
         assert!(
             (l.attitude.toe - r.attitude.toe).abs() < 1e-12 && (l.attitude.camber - r.attitude.camber).abs() < 1e-12
         );
+    }
+}
+
+#[test]
+fn rack_travel_steers_left_and_right_wheels_the_same_way() {
+    let mp = template(Connection::Ideal, Connection::Ideal);
+    let steer = |side: Side| {
+        let corner = mp.build(side, Rig::Steering).unwrap();
+        elastokin_suspensions::analysis::steering(&corner, -0.02, 0.02, 8, Mode::Corrected).unwrap()
+    };
+    let (left, right) = (steer(Side::Left), steer(Side::Right));
+    // The rack moving +y swings both wheels the same way, so toe-in on one side is toe-out on the other.
+    // The right corner is the left one mirrored, and mirroring flips the rack direction: the right wheel at
+    // rack travel +s matches the left one at −s with toe kept (toe is defined per side).
+    for (l, r) in left.iter().zip(right.iter().rev()) {
+        assert!((l.travel + r.travel).abs() < 1e-12);
+        assert!((l.attitude.toe - r.attitude.toe).abs() < 1e-10, "{} vs {}", l.attitude.toe, r.attitude.toe);
+    }
+    // Steering moves the wheel a lot in toe and the held wheel centre not at all in height.
+    let (first, last) = (left.first().unwrap(), left.last().unwrap());
+    assert!((last.attitude.toe - first.attitude.toe).abs().to_degrees() > 2.0);
+    for row in &left {
+        assert!((row.attitude.wheel_centre.z - mp.hardpoints.wheel_centre.z).abs() < 1e-10);
     }
 }
