@@ -106,17 +106,24 @@ fn run(opts: RunOptions) -> Result<(), String> {
         parallel_wheel_travel(&corner, opts.range.0, opts.range.1, opts.steps, opts.mode).map_err(|e| e.to_string())?;
     std::fs::create_dir_all(&opts.out).map_err(|e| format!("{}: {e}", opts.out.display()))?;
     let csv_path = opts.out.join("parallel_travel.csv");
-    let mut csv = String::from("travel_m,toe_deg,camber_deg,wheel_centre_x_m,wheel_centre_y_m,wheel_centre_z_m\n");
+    let mut csv = String::from(
+        "travel_m,toe_deg,camber_deg,wheel_centre_x_m,wheel_centre_y_m,wheel_centre_z_m,caster_deg,kingpin_inclination_deg,scrub_radius_m,mechanical_trail_m\n",
+    );
     for r in &rows {
         let w = r.attitude.wheel_centre;
+        let g = r.steering;
         csv += &format!(
-            "{:.6},{:.6},{:.6},{:.6},{:.6},{:.6}\n",
+            "{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6}\n",
             r.travel,
             r.attitude.toe.to_degrees(),
             r.attitude.camber.to_degrees(),
             w.x,
             w.y,
-            w.z
+            w.z,
+            g.caster.to_degrees(),
+            g.kingpin_inclination.to_degrees(),
+            g.scrub_radius,
+            g.mechanical_trail
         );
     }
     std::fs::write(&csv_path, csv).map_err(|e| format!("{}: {e}", csv_path.display()))?;
@@ -144,6 +151,18 @@ fn run(opts: RunOptions) -> Result<(), String> {
         slope_at_design(&rows, |r| r.attitude.camber.to_degrees()),
     ) {
         println!("bump steer at design: {:+.4} °/10 mm toe; camber gain {:+.4} °/10 mm", bump * 0.01, gain * 0.01);
+    }
+    if let Some(design) = rows.iter().min_by(|a, b| a.travel.abs().total_cmp(&b.travel.abs())) {
+        let g = design.steering;
+        println!(
+            "steering axis at {:+.1} mm: caster {:.2}°, kingpin inclination {:.2}°, scrub radius {:.1} mm, trail {:.1} mm, kingpin offset {:.1} mm",
+            design.travel * 1e3,
+            g.caster.to_degrees(),
+            g.kingpin_inclination.to_degrees(),
+            g.scrub_radius * 1e3,
+            g.mechanical_trail * 1e3,
+            g.kingpin_offset * 1e3
+        );
     }
     println!("wrote {}", csv_path.display());
     Ok(())

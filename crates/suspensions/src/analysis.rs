@@ -1,6 +1,6 @@
 //! K&C analyses: load paths walked by the engine, reduced to wheel characteristics.
 
-use crate::corner::{Corner, Rig, WheelAttitude};
+use crate::corner::{Corner, Rig, SteeringGeometry, WheelAttitude};
 use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, StaticSolver};
 
 /// One row of a driven sweep (wheel travel or steering).
@@ -10,6 +10,8 @@ pub struct TravelRow {
     pub travel: f64,
     /// Wheel attitude.
     pub attitude: WheelAttitude,
+    /// Steering-axis geometry.
+    pub steering: SteeringGeometry,
 }
 
 /// Parallel wheel travel from `from` to `to` metres in `steps` steps (the corner must be built with
@@ -46,7 +48,15 @@ fn driven_sweep(
     }
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
-    Ok(sweep.steps.iter().map(|s| TravelRow { travel: s.t, attitude: corner.attitude(&s.poses) }).collect())
+    Ok(sweep
+        .steps
+        .iter()
+        .map(|s| TravelRow {
+            travel: s.t,
+            attitude: corner.attitude(&s.poses),
+            steering: corner.steering_geometry(&s.poses),
+        })
+        .collect())
 }
 
 /// The 6×6 compliance of the wheel at the equilibrium of load parameter `t`: column `k` is the response

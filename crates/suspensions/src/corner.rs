@@ -72,6 +72,28 @@ pub struct Corner {
     pub spin_axis_local: Vec3,
     /// Contact patch centre at design (global): below the wheel centre by the loaded radius.
     pub contact_patch: Vec3,
+    /// The steering axis: its lower and upper points as body-fixed points (lower ball joint on the upright;
+    /// upper ball joint, or the top mount on the strut rod).
+    pub steering_axis: [(BodyRef, Vec3); 2],
+}
+
+/// Steering-axis geometry at one configuration (angles in radians, lengths in metres).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SteeringGeometry {
+    /// Caster: the axis leans back at the top (positive).
+    pub caster: f64,
+    /// Kingpin inclination: the axis leans inboard at the top (positive).
+    pub kingpin_inclination: f64,
+    /// Scrub radius at the ground: positive when the axis meets the ground inboard of the contact patch.
+    pub scrub_radius: f64,
+    /// Mechanical (caster) trail at the ground: positive when the axis meets the ground ahead of the
+    /// contact patch.
+    pub mechanical_trail: f64,
+    /// Kingpin offset at wheel-centre height: lateral distance from the axis to the wheel centre,
+    /// positive when the axis is inboard.
+    pub kingpin_offset: f64,
+    /// Contact patch centre: the lowest point of the wheel-plane circle of the loaded radius.
+    pub contact_patch: Vec3,
 }
 
 /// Loaded tyre radius when a model file does not give one (m); `shared/data/hardpoints.md` quotes ~0.30.
@@ -114,6 +136,40 @@ impl Corner {
             toe: a.x.atan2(self.side.sign() * a.y),
             camber: (-a.z).atan2((a.x * a.x + a.y * a.y).sqrt()),
             wheel_centre: pose.point(&self.wheel_centre_local),
+        }
+    }
+
+    /// Caster, kingpin inclination, scrub radius, trail and kingpin offset at the given poses.
+    ///
+    /// With the axis `u` from its lower to its upper point and `s` = +1 left, −1 right: caster =
+    /// atan2(−uₓ, u_z), KPI = atan2(−s·u_y, u_z). The contact patch is the wheel-plane point a loaded
+    /// radius below the wheel centre, the ground the horizontal plane through it, and `G` the point where
+    /// the axis meets that plane: scrub = s·(P_y − G_y), trail = Gₓ − Pₓ; the kingpin offset is
+    /// s·(W_y − A_y) with `A` the axis point at wheel-centre height `W`.
+    pub fn steering_geometry(&self, poses: &[Pose]) -> SteeringGeometry {
+        let [(lb, ll), (ub, ul)] = self.steering_axis;
+        let lower = lb.pose(poses).point(&ll);
+        let upper = ub.pose(poses).point(&ul);
+        let u = upper - lower;
+        let s = self.side.sign();
+        let pose = poses[self.upright.0];
+        let a = pose.direction(&self.spin_axis_local);
+        let wc = pose.point(&self.wheel_centre_local);
+        // Downward direction in the wheel plane.
+        let up_in_plane = Vec3::z() - a * a.z;
+        let down = -up_in_plane / up_in_plane.norm();
+        let radius = (self.wheel_centre - self.contact_patch).norm();
+        let patch = wc + down * radius;
+        let at_height = |z: f64| lower + u * ((z - lower.z) / u.z);
+        let g = at_height(patch.z);
+        let w = at_height(wc.z);
+        SteeringGeometry {
+            caster: (-u.x).atan2(u.z),
+            kingpin_inclination: (-s * u.y).atan2(u.z),
+            scrub_radius: s * (patch.y - g.y),
+            mechanical_trail: g.x - patch.x,
+            kingpin_offset: s * (wc.y - w.y),
+            contact_patch: patch,
         }
     }
 }

@@ -34,7 +34,7 @@ pub mod macpherson;
 pub mod model_file;
 
 pub use connection::{BushingRates, Connection};
-pub use corner::{Corner, Rig, WheelAttitude};
+pub use corner::{Corner, Rig, SteeringGeometry, WheelAttitude};
 pub use double_wishbone::{DoubleWishbone, DoubleWishboneHardpoints, SpringSpec};
 pub use hardpoint::Side;
 pub use macpherson::{MacPherson, MacPhersonHardpoints};

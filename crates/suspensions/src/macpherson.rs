@@ -121,6 +121,7 @@ impl MacPherson {
             wheel_centre_local: Vec3::zeros(),
             spin_axis_local: Vec3::new(0.0, side.sign(), 0.0),
             contact_patch: wc - Vec3::new(0.0, 0.0, self.loaded_radius),
+            steering_axis: [(upright.into(), p(h.lower_ball_joint) - wc), (rod.into(), top - (lower_pt + top) / 2.0)],
         })
     }
 }

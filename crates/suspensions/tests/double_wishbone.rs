@@ -198,3 +198,42 @@ fn vertical_force_sweep_balances_the_spring_by_virtual_work() {
         assert!((force - row.force).abs() < 1e-4 * row.force, "F = {} vs virtual work {force}", row.force);
     }
 }
+
+#[test]
+fn steering_axis_geometry_at_design_and_mirrored() {
+    let dw = template(Connection::Ideal);
+    let left = dw.build(Side::Left, Rig::WheelTravel).unwrap();
+    let g = left.steering_geometry(&left.model.design_poses());
+    // By hand from the generic hardpoints: u = UBJ − LBJ = (−0.048, −0.090, 0.508); the ground is 0.30 m
+    // below the wheel centre (z = −0.326).
+    let u = Vec3::new(-0.048, -0.090, 0.508);
+    let lbj = Vec3::new(-0.040, 0.898, -0.265);
+    let ground = lbj + u * ((-0.326 - -0.265) / 0.508);
+    let at_wc = lbj + u * ((-0.026 - -0.265) / 0.508);
+    assert!((g.caster - (0.048f64 / 0.508).atan()).abs() < 1e-12, "{}", g.caster.to_degrees());
+    assert!((g.kingpin_inclination - (0.090f64 / 0.508).atan()).abs() < 1e-12);
+    assert!((g.scrub_radius - (1.100 - ground.y)).abs() < 1e-12, "{}", g.scrub_radius);
+    assert!((g.mechanical_trail - (ground.x - -0.040)).abs() < 1e-12, "{}", g.mechanical_trail);
+    assert!((g.kingpin_offset - (1.100 - at_wc.y)).abs() < 1e-12, "{}", g.kingpin_offset);
+    // Through travel, the right corner gives the same numbers.
+    let right = dw.build(Side::Right, Rig::WheelTravel).unwrap();
+    for t in [-0.05, 0.04] {
+        let geometry = |c: &elastokin_suspensions::Corner| {
+            let mut solver =
+                elastokin_solver::StaticSolver::new(&c.model, elastokin_solver::SolverOptions::default()).unwrap();
+            let mut state = solver.design_state(t);
+            solver.equilibrium(&mut state).unwrap();
+            c.steering_geometry(&state.poses)
+        };
+        let (l, r) = (geometry(&left), geometry(&right));
+        for (a, b) in [
+            (l.caster, r.caster),
+            (l.kingpin_inclination, r.kingpin_inclination),
+            (l.scrub_radius, r.scrub_radius),
+            (l.mechanical_trail, r.mechanical_trail),
+            (l.kingpin_offset, r.kingpin_offset),
+        ] {
+            assert!((a - b).abs() < 1e-12, "{a} vs {b}");
+        }
+    }
+}
