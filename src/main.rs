@@ -164,6 +164,19 @@ fn run(opts: RunOptions) -> Result<(), String> {
             g.kingpin_offset * 1e3
         );
     }
+    if opts.range.0 <= 0.0 && opts.range.1 >= 0.0 {
+        let pc = elastokin::suspensions::analysis::patch_compliance(&corner, 0.0).map_err(|e| e.to_string())?;
+        let per_kn = |rad_per_n: f64| rad_per_n.to_degrees() * 1e3;
+        println!(
+            "compliance at design (wheel-centre height held): lateral steer {:+.4} °/kN, lateral camber {:+.4} °/kN, \
+             braking steer {:+.4} °/kN, aligning-torque steer {:+.4} °/(100 N·m), lateral stiffness {:.0} N/mm",
+            per_kn(pc.lateral_steer),
+            per_kn(pc.lateral_camber),
+            per_kn(pc.braking_steer),
+            pc.aligning_torque_steer.to_degrees() * 100.0,
+            pc.lateral_stiffness * 1e-3
+        );
+    }
     println!("wrote {}", csv_path.display());
     Ok(())
 }

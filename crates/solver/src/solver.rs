@@ -312,9 +312,23 @@ impl<'m> StaticSolver<'m> {
     }
 
     /// Solves the tangent system `[K, Jᵀ; J, 0] z = rhs` at `state` in place (`rhs` of length `n + m`):
-    /// the response of the equilibrium to a load or constraint perturbation. A compliance matrix is a
-    /// handful of these with one factorization.
+    /// the response of the equilibrium to a load or constraint perturbation. For several right-hand sides
+    /// at one state, call [`StaticSolver::factorize_tangent`] once and [`StaticSolver::solve_factored`] for
+    /// each: a compliance matrix is a handful of back-substitutions.
     pub fn tangent_solve(&mut self, state: &State, rhs: &mut [f64]) -> Result<(), SolverError> {
+        self.factorize_tangent(state)?;
+        self.solve_factored(rhs)
+    }
+
+    /// Assembles and factorizes the tangent at `state` for [`StaticSolver::solve_factored`].
+    pub fn factorize_tangent(&mut self, state: &State) -> Result<(), SolverError> {
+        self.assemble(state, Some(Tangent::Full));
+        self.factorize()?;
+        Ok(())
+    }
+
+    /// Solves with the tangent last factorized (by [`StaticSolver::factorize_tangent`] or any solve).
+    pub fn solve_factored(&mut self, rhs: &mut [f64]) -> Result<(), SolverError> {
         let size = self.assembly.n + self.assembly.m();
         if rhs.len() != size {
             return Err(SolverError::InvalidInput {
@@ -322,8 +336,6 @@ impl<'m> StaticSolver<'m> {
                 why: format!("length {} but the system has {size} unknowns", rhs.len()),
             });
         }
-        self.assemble(state, Some(Tangent::Full));
-        self.factorize()?;
         self.rhs.copy_from_slice(rhs);
         self.solve_with_skew()?;
         rhs.copy_from_slice(&self.rhs);

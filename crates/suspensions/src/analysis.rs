@@ -76,6 +76,7 @@ pub fn wheel_compliance(corner: &Corner, t: f64) -> Result<[[f64; 6]; 6], Solver
     let base = corner.upright.0 * elastokin_core::BODY_DOFS;
     let mut columns = [[0.0; 6]; 6];
     let mut rhs = vec![0.0; n + m];
+    solver.factorize_tangent(&state)?;
     for (k, column) in columns.iter_mut().enumerate() {
         rhs.fill(0.0);
         let mut unit = elastokin_core::Vec3::zeros();
@@ -86,7 +87,7 @@ pub fn wheel_compliance(corner: &Corner, t: f64) -> Result<[[f64; 6]; 6], Solver
             rhs[base + c] = f[c];
             rhs[base + 3 + c] = moment[c];
         }
-        solver.tangent_solve(&state, &mut rhs)?;
+        solver.solve_factored(&mut rhs)?;
         let dr = elastokin_core::Vec3::new(rhs[base], rhs[base + 1], rhs[base + 2]);
         let dpi = elastokin_core::Vec3::new(rhs[base + 3], rhs[base + 4], rhs[base + 5]);
         let dwc = dr + dpi.cross(&s);
@@ -146,4 +147,79 @@ pub fn vertical_force_sweep(
             contact_patch: s.poses[corner.upright.0].point(&local_patch),
         })
         .collect())
+}
+
+/// Compliance characteristics at the contact patch, read from the wheel compliance matrix (SI: rad/N,
+/// rad/(N·m), N/m). Lateral force is positive inboard (the cornering force on a loaded outer wheel),
+/// longitudinal force positive rearward (braking at the contact patch), aligning torque positive about +z.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PatchCompliance {
+    /// Toe change per lateral force (rad/N).
+    pub lateral_steer: f64,
+    /// Camber change per lateral force (rad/N).
+    pub lateral_camber: f64,
+    /// Lateral stiffness at the contact patch: inboard force per inboard patch displacement (N/m).
+    pub lateral_stiffness: f64,
+    /// Toe change per braking force (rad/N).
+    pub braking_steer: f64,
+    /// Longitudinal stiffness at the contact patch under braking force (N/m).
+    pub longitudinal_stiffness: f64,
+    /// Toe change per aligning torque (rad/(N·m)).
+    pub aligning_torque_steer: f64,
+}
+
+/// Toe and camber changes of a small rotation `dpi` of the wheel with outward spin axis `a` on side `s`.
+fn attitude_change(a: &elastokin_core::Vec3, s: f64, dpi: &elastokin_core::Vec3) -> (f64, f64) {
+    let da = dpi.cross(a);
+    let (ax, ay, az) = (a.x, s * a.y, a.z);
+    let (dax, day, daz) = (da.x, s * da.y, da.z);
+    let h2 = ax * ax + ay * ay;
+    let h = h2.sqrt();
+    let dtoe = (ay * dax - ax * day) / h2;
+    let dh = (ax * dax + ay * day) / h;
+    let dcamber = (-daz * h + az * dh) / (h2 + az * az);
+    (dtoe, dcamber)
+}
+
+/// [`PatchCompliance`] at the equilibrium of load parameter `t` (see [`wheel_compliance`]).
+pub fn patch_compliance(corner: &Corner, t: f64) -> Result<PatchCompliance, SolverError> {
+    let c = wheel_compliance(corner, t)?;
+    let poses = {
+        let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
+        let mut state = solver.design_state(t);
+        solver.equilibrium(&mut state)?;
+        state.poses
+    };
+    let pose = poses[corner.upright.0];
+    let a = pose.direction(&corner.spin_axis_local);
+    let w = pose.point(&corner.wheel_centre_local);
+    let patch = corner.steering_geometry(&poses).contact_patch;
+    let arm = patch - w;
+    let s = corner.side.sign();
+    // Response (Δ patch, Δπ) to a unit force `f` at the patch or a unit torque `m`.
+    let respond = |f: elastokin_core::Vec3, m: elastokin_core::Vec3| {
+        let load = [f, arm.cross(&f) + m];
+        let mut out = [0.0; 6];
+        for r in 0..6 {
+            out[r] = (0..3).map(|k| c[r][k] * load[0][k] + c[r][3 + k] * load[1][k]).sum();
+        }
+        let dw = elastokin_core::Vec3::new(out[0], out[1], out[2]);
+        let dpi = elastokin_core::Vec3::new(out[3], out[4], out[5]);
+        (dw + dpi.cross(&arm), dpi)
+    };
+    let inboard = elastokin_core::Vec3::new(0.0, -s, 0.0);
+    let rearward = elastokin_core::Vec3::new(-1.0, 0.0, 0.0);
+    let zero = elastokin_core::Vec3::zeros();
+    let (dp_lat, dpi_lat) = respond(inboard, zero);
+    let (dp_long, dpi_long) = respond(rearward, zero);
+    let (_, dpi_mz) = respond(zero, elastokin_core::Vec3::z());
+    let (lateral_steer, lateral_camber) = attitude_change(&a, s, &dpi_lat);
+    Ok(PatchCompliance {
+        lateral_steer,
+        lateral_camber,
+        lateral_stiffness: 1.0 / dp_lat.dot(&inboard),
+        braking_steer: attitude_change(&a, s, &dpi_long).0,
+        longitudinal_stiffness: 1.0 / dp_long.dot(&rearward),
+        aligning_torque_steer: attitude_change(&a, s, &dpi_mz).0,
+    })
 }
