@@ -113,6 +113,58 @@ pub struct WheelAttitude {
 }
 
 impl Corner {
+    /// Starts a template's model: checks the loaded radius and adds the upright with its reference point
+    /// at the wheel centre (axes global at design). Returns the model, the upright and the wheel centre.
+    pub(crate) fn start(
+        side: Side,
+        left_wheel_centre: Vec3,
+        loaded_radius: f64,
+    ) -> Result<(Model, BodyId, Vec3), ModelError> {
+        if !(loaded_radius.is_finite() && loaded_radius > 0.0) {
+            return Err(ModelError::NotPositive {
+                item: "suspension".into(),
+                what: "loaded radius",
+                value: loaded_radius,
+            });
+        }
+        let mut model = Model::new();
+        let wc = side.place(left_wheel_centre);
+        let upright = model.add_body("upright", Pose::at(wc))?;
+        Ok((model, upright, wc))
+    }
+
+    /// Completes a template's corner: the spin axis is outward (±y) at design, the contact patch a loaded
+    /// radius below the wheel centre; `steering_axis` holds global design points with their bodies.
+    pub(crate) fn finish(
+        model: Model,
+        side: Side,
+        rig: Rig,
+        upright: BodyId,
+        loaded_radius: f64,
+        steering_axis: [(BodyRef, Vec3); 2],
+    ) -> Corner {
+        let wheel_centre = model.bodies()[upright.0].design_pose.position;
+        let local = |(body, point): (BodyRef, Vec3)| {
+            let pose = match body {
+                BodyRef::Ground => Pose::IDENTITY,
+                BodyRef::Body(b) => model.bodies()[b.0].design_pose,
+            };
+            (body, pose.to_local_point(&point))
+        };
+        let steering_axis = [local(steering_axis[0]), local(steering_axis[1])];
+        Corner {
+            side,
+            rig,
+            upright,
+            wheel_centre,
+            wheel_centre_local: Vec3::zeros(),
+            spin_axis_local: Vec3::new(0.0, side.sign(), 0.0),
+            contact_patch: wheel_centre - Vec3::new(0.0, 0.0, loaded_radius),
+            steering_axis,
+            model,
+        }
+    }
+
     /// Adds a world-fixed force `force · t` (N per unit load parameter) at the global design point `point`
     /// of the upright: a contact-patch or wheel-centre load of a K&C test.
     pub fn add_wheel_force(&mut self, name: &str, point: Vec3, force: Vec3) -> Result<ElementId, ModelError> {

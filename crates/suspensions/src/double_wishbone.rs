@@ -87,17 +87,8 @@ impl DoubleWishbone {
     /// Builds the corner on `side`, held as `rig` says.
     pub fn build(&self, side: Side, rig: Rig) -> Result<Corner, ModelError> {
         let h = &self.hardpoints;
-        if !(self.loaded_radius.is_finite() && self.loaded_radius > 0.0) {
-            return Err(ModelError::NotPositive {
-                item: "suspension".into(),
-                what: "loaded radius",
-                value: self.loaded_radius,
-            });
-        }
         let p = |v: Vec3| side.place(v);
-        let mut model = Model::new();
-        let wc = p(h.wheel_centre);
-        let upright = model.add_body("upright", Pose::at(wc))?;
+        let (mut model, upright, wc) = Corner::start(side, h.wheel_centre, self.loaded_radius)?;
         let upper = model.add_body("upper arm", Pose::at(p(h.upper_ball_joint)))?;
         let lower = model.add_body("lower arm", Pose::at(p(h.lower_ball_joint)))?;
         arm_mounts(
@@ -128,17 +119,14 @@ impl DoubleWishbone {
             self.spring.design_force,
         )?)?;
         mount_rig(&mut model, rig, upright, wc, p(h.tie_rod_inner), p(h.tie_rod_outer))?;
-        Ok(Corner {
+        Ok(Corner::finish(
             model,
             side,
             rig,
             upright,
-            wheel_centre: wc,
-            wheel_centre_local: Vec3::zeros(),
-            spin_axis_local: Vec3::new(0.0, side.sign(), 0.0),
-            contact_patch: wc - Vec3::new(0.0, 0.0, self.loaded_radius),
-            steering_axis: [(upright.into(), p(h.lower_ball_joint) - wc), (upright.into(), p(h.upper_ball_joint) - wc)],
-        })
+            self.loaded_radius,
+            [(upright.into(), p(h.lower_ball_joint)), (upright.into(), p(h.upper_ball_joint))],
+        ))
     }
 }
 

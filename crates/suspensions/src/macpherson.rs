@@ -5,7 +5,7 @@ use crate::connection::Connection;
 use crate::corner::{mount_rig, Corner, Rig};
 use crate::double_wishbone::{arm_mounts, SpringSpec};
 use crate::hardpoint::Side;
-use elastokin_core::{BodyRef, JointSpec, Model, ModelError, Pose, Vec3};
+use elastokin_core::{BodyRef, JointSpec, ModelError, Pose, Vec3};
 use elastokin_elements::CoilSpring;
 use serde::{Deserialize, Serialize};
 
@@ -69,18 +69,9 @@ impl MacPherson {
     /// Builds the corner on `side`, held as `rig` says.
     pub fn build(&self, side: Side, rig: Rig) -> Result<Corner, ModelError> {
         let h = &self.hardpoints;
-        if !(self.loaded_radius.is_finite() && self.loaded_radius > 0.0) {
-            return Err(ModelError::NotPositive {
-                item: "suspension".into(),
-                what: "loaded radius",
-                value: self.loaded_radius,
-            });
-        }
         let p = |v: Vec3| side.place(v);
-        let mut model = Model::new();
-        let wc = p(h.wheel_centre);
+        let (mut model, upright, wc) = Corner::start(side, h.wheel_centre, self.loaded_radius)?;
         let (lower_pt, top) = (p(h.strut_lower), p(h.top_mount));
-        let upright = model.add_body("upright", Pose::at(wc))?;
         let rod = model.add_body("strut rod", Pose::at((lower_pt + top) / 2.0))?;
         let arm = model.add_body("lower arm", Pose::at(p(h.lower_ball_joint)))?;
         arm_mounts(
@@ -112,16 +103,13 @@ impl MacPherson {
             self.spring.design_force,
         )?)?;
         mount_rig(&mut model, rig, upright, wc, p(h.tie_rod_inner), p(h.tie_rod_outer))?;
-        Ok(Corner {
+        Ok(Corner::finish(
             model,
             side,
             rig,
             upright,
-            wheel_centre: wc,
-            wheel_centre_local: Vec3::zeros(),
-            spin_axis_local: Vec3::new(0.0, side.sign(), 0.0),
-            contact_patch: wc - Vec3::new(0.0, 0.0, self.loaded_radius),
-            steering_axis: [(upright.into(), p(h.lower_ball_joint) - wc), (rod.into(), top - (lower_pt + top) / 2.0)],
-        })
+            self.loaded_radius,
+            [(upright.into(), p(h.lower_ball_joint)), (rod.into(), top)],
+        ))
     }
 }
