@@ -9,6 +9,9 @@ use elastokin::solver::{Mode, SolverOptions, StaticSolver};
 use elastokin::suspensions::analysis::{parallel_wheel_travel, TravelRow};
 use elastokin::suspensions::{Rig, Side, SuspensionFile};
 use std::path::PathBuf;
+
+#[path = "plot.rs"]
+mod plot;
 use std::process::ExitCode;
 
 const HELP: &str = "\
@@ -127,6 +130,18 @@ fn run(opts: RunOptions) -> Result<(), String> {
         );
     }
     std::fs::write(&csv_path, csv).map_err(|e| format!("{}: {e}", csv_path.display()))?;
+    let svg_path = opts.out.join("parallel_travel_toe_camber.svg");
+    let curve = |f: &dyn Fn(&TravelRow) -> f64| rows.iter().map(|r| (r.travel * 1e3, f(r).to_degrees())).collect();
+    let svg = plot::line_plot(
+        &format!("{}: toe and camber in parallel wheel travel", file.name.split(" (").next().unwrap_or(&file.name)),
+        "wheel travel [mm], bump +",
+        "angle [deg]",
+        &[
+            plot::Series { name: "toe (in +)", points: curve(&|r| r.attitude.toe) },
+            plot::Series { name: "camber (top out +)", points: curve(&|r| r.attitude.camber) },
+        ],
+    );
+    std::fs::write(&svg_path, svg).map_err(|e| format!("{}: {e}", svg_path.display()))?;
     println!(
         "{} — parallel wheel travel {:+.0}..{:+.0} mm, {} steps",
         file.name,
@@ -146,14 +161,29 @@ fn run(opts: RunOptions) -> Result<(), String> {
             (r.attitude.wheel_centre.y - y0) * 1e3
         );
     }
-    if let (Some(bump), Some(gain)) = (
-        slope_at_design(&rows, |r| r.attitude.toe.to_degrees()),
-        slope_at_design(&rows, |r| r.attitude.camber.to_degrees()),
-    ) {
+    let mut summary = serde_json::json!({
+        "model": file.name,
+        "analysis": "parallel wheel travel",
+        "mode": format!("{:?}", opts.mode).to_lowercase(),
+        "range_m": [opts.range.0, opts.range.1],
+        "steps": opts.steps,
+    });
+    let bump = slope_at_design(&rows, |r| r.attitude.toe.to_degrees());
+    let gain = slope_at_design(&rows, |r| r.attitude.camber.to_degrees());
+    if let (Some(bump), Some(gain)) = (bump, gain) {
         println!("bump steer at design: {:+.4} °/10 mm toe; camber gain {:+.4} °/10 mm", bump * 0.01, gain * 0.01);
+        summary["bump_steer_deg_per_m"] = bump.into();
+        summary["camber_gain_deg_per_m"] = gain.into();
     }
     if let Some(design) = rows.iter().min_by(|a, b| a.travel.abs().total_cmp(&b.travel.abs())) {
         let g = design.steering;
+        summary["steering_axis_at_design"] = serde_json::json!({
+            "caster_deg": g.caster.to_degrees(),
+            "kingpin_inclination_deg": g.kingpin_inclination.to_degrees(),
+            "scrub_radius_m": g.scrub_radius,
+            "mechanical_trail_m": g.mechanical_trail,
+            "kingpin_offset_m": g.kingpin_offset,
+        });
         println!(
             "steering axis at {:+.1} mm: caster {:.2}°, kingpin inclination {:.2}°, scrub radius {:.1} mm, trail {:.1} mm, kingpin offset {:.1} mm",
             design.travel * 1e3,
@@ -167,6 +197,14 @@ fn run(opts: RunOptions) -> Result<(), String> {
     if opts.range.0 <= 0.0 && opts.range.1 >= 0.0 {
         let pc = elastokin::suspensions::analysis::patch_compliance(&corner, 0.0).map_err(|e| e.to_string())?;
         let per_kn = |rad_per_n: f64| rad_per_n.to_degrees() * 1e3;
+        summary["compliance_at_design"] = serde_json::json!({
+            "lateral_steer_deg_per_kn": per_kn(pc.lateral_steer),
+            "lateral_camber_deg_per_kn": per_kn(pc.lateral_camber),
+            "braking_steer_deg_per_kn": per_kn(pc.braking_steer),
+            "aligning_torque_steer_deg_per_knm": pc.aligning_torque_steer.to_degrees() * 1e3,
+            "lateral_stiffness_n_per_m": pc.lateral_stiffness,
+            "longitudinal_stiffness_n_per_m": pc.longitudinal_stiffness,
+        });
         println!(
             "compliance at design (wheel-centre height held): lateral steer {:+.4} °/kN, lateral camber {:+.4} °/kN, \
              braking steer {:+.4} °/kN, aligning-torque steer {:+.4} °/(100 N·m), lateral stiffness {:.0} N/mm",
@@ -177,7 +215,10 @@ fn run(opts: RunOptions) -> Result<(), String> {
             pc.lateral_stiffness * 1e-3
         );
     }
-    println!("wrote {}", csv_path.display());
+    let json_path = opts.out.join("summary.json");
+    let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
+    std::fs::write(&json_path, text).map_err(|e| format!("{}: {e}", json_path.display()))?;
+    println!("wrote {}, {}, {}", csv_path.display(), svg_path.display(), json_path.display());
     Ok(())
 }
 

@@ -31,6 +31,12 @@ fn run_and_check_every_example() {
             let csv = std::fs::read_to_string(out.join("parallel_travel.csv")).unwrap();
             assert_eq!(csv.lines().count(), 1 + 9, "{csv}");
             assert!(!csv.contains("NaN") && !csv.contains("inf"), "{csv}");
+            let summary: serde_json::Value =
+                serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+            assert!(summary["bump_steer_deg_per_m"].is_f64(), "{summary}");
+            assert!(summary["compliance_at_design"]["lateral_steer_deg_per_kn"].is_f64(), "{summary}");
+            let svg = std::fs::read_to_string(out.join("parallel_travel_toe_camber.svg")).unwrap();
+            assert!(svg.contains("<polyline") && !svg.contains("NaN"));
         }
     }
     std::fs::remove_dir_all(&out).ok();
