@@ -175,6 +175,13 @@ fn run(opts: RunOptions) -> Result<(), String> {
         summary["bump_steer_deg_per_m"] = bump.into();
         summary["camber_gain_deg_per_m"] = gain.into();
     }
+    let rate = slope_at_design(&rows, |r| r.wheel_load);
+    let ratio = slope_at_design(&rows, |r| r.spring_deflection);
+    if let (Some(rate), Some(ratio)) = (rate, ratio) {
+        println!("wheel rate at design: {:.2} N/mm; spring motion ratio {:.3}", rate * 1e-3, ratio.abs());
+        summary["wheel_rate_n_per_m"] = rate.into();
+        summary["spring_motion_ratio"] = ratio.abs().into();
+    }
     if let Some(design) = rows.iter().min_by(|a, b| a.travel.abs().total_cmp(&b.travel.abs())) {
         let g = design.steering;
         summary["steering_axis_at_design"] = serde_json::json!({

@@ -12,6 +12,12 @@ pub struct TravelRow {
     pub attitude: WheelAttitude,
     /// Steering-axis geometry.
     pub steering: SteeringGeometry,
+    /// Vertical force the rig applies at the wheel centre to hold its height (N, up +); zero when the
+    /// rig does not hold the height. Its slope against wheel travel is the wheel rate.
+    pub wheel_load: f64,
+    /// Spring deflection `L − L₀` (m, compression negative). Its slope against wheel travel is the
+    /// (signed) spring motion ratio.
+    pub spring_deflection: f64,
 }
 
 /// Parallel wheel travel from `from` to `to` metres in `steps` steps (the corner must be built with
@@ -48,6 +54,8 @@ fn driven_sweep(
     }
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
+    let driver = corner.model.joint_id("wheel travel");
+    let spring = corner.model.element_id("spring");
     Ok(sweep
         .steps
         .iter()
@@ -55,6 +63,8 @@ fn driven_sweep(
             travel: s.t,
             attitude: corner.attitude(&s.poses),
             steering: corner.steering_geometry(&s.poses),
+            wheel_load: driver.map_or(0.0, |d| s.joint_reactions(&corner.model)[d.0].force.z),
+            spring_deflection: spring.map_or(0.0, |e| s.element_reports(&corner.model)[e.0].deflection.x),
         })
         .collect())
 }

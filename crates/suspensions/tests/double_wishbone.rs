@@ -237,3 +237,45 @@ fn steering_axis_geometry_at_design_and_mirrored() {
         }
     }
 }
+
+/// The rig's holding force (from the driver's multiplier) against virtual work with the spring law and
+/// the kinematic spring length, and the wheel rate from it against the same second method.
+#[test]
+fn wheel_load_and_wheel_rate_match_virtual_work() {
+    let dw = template(Connection::Ideal);
+    let corner = dw.build(Side::Left, Rig::WheelTravel).unwrap();
+    let rows = parallel_wheel_travel(&corner, -0.04, 0.04, 16, Mode::Corrected).unwrap();
+    let free_length =
+        (dw.hardpoints.spring_arm - dw.hardpoints.spring_chassis).norm() + dw.spring.design_force / dw.spring.rate;
+    // Virtual work with the rig holding the wheel centre: F δz_wc = δU_spring = −push δL,
+    // push = k (L₀ − L) = −k · deflection.
+    let virtual_force = |k: usize| {
+        let dl =
+            (rows[k + 1].spring_deflection - rows[k - 1].spring_deflection) / (rows[k + 1].travel - rows[k - 1].travel);
+        let push = -dw.spring.rate * rows[k].spring_deflection;
+        -push * dl
+    };
+    for k in 1..rows.len() - 1 {
+        let expected = virtual_force(k);
+        // The central difference of L(z) over 5 mm is good to ~1e-4 here.
+        assert!(
+            (rows[k].wheel_load - expected).abs() < 2e-3 * expected.abs(),
+            "travel {}: {} vs {expected}",
+            rows[k].travel,
+            rows[k].wheel_load
+        );
+    }
+    // Spring deflection at design is the design preload over the rate.
+    let design = &rows[8];
+    assert!(design.travel.abs() < 1e-12);
+    let design_length = (dw.hardpoints.spring_arm - dw.hardpoints.spring_chassis).norm();
+    assert!((design.spring_deflection - (design_length - free_length)).abs() < 1e-12);
+    // Wheel rate: positive and of the size k·MR² (MR from the spring's travel ratio).
+    let mr = (rows[9].spring_deflection - rows[7].spring_deflection) / (rows[9].travel - rows[7].travel);
+    let rate = (rows[9].wheel_load - rows[7].wheel_load) / (rows[9].travel - rows[7].travel);
+    assert!(
+        rate > 0.0 && (rate - dw.spring.rate * mr * mr).abs() < 0.3 * rate,
+        "rate {rate}, k·MR² {}",
+        dw.spring.rate * mr * mr
+    );
+}
