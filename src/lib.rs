@@ -9,8 +9,10 @@
 //! - [`solver`]: KKT assembly, the quasi-definite LDLᵀ with reuse, paper and corrected stepping;
 //! - [`suspensions`]: double-wishbone and MacPherson templates, model files, K&C analyses.
 //!
-//! Pick the crates directly to leave out what a build does not need (the solver alone does not pull in
-//! serde; rayon and sprs are behind the `parallel` and `matrix-market` features).
+//! Pick the crates directly to leave out what a build does not need: the solver alone pulls in neither
+//! serde nor rayon (rayon and sprs are behind its `parallel` and `matrix-market` features). This facade
+//! package also carries the `elastokin` command, which uses serde_json for its reports and rayon to run
+//! `batch` variants on all cores.
 
 pub use elastokin_core as core;
 pub use elastokin_elements as elements;

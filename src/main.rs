@@ -10,7 +10,7 @@ use elastokin::suspensions::analysis::{parallel_wheel_travel, TravelRow};
 use elastokin::suspensions::{Rig, Side, SuspensionFile};
 use std::path::PathBuf;
 
-#[path = "plot.rs"]
+mod batch;
 mod plot;
 use std::process::ExitCode;
 
@@ -20,6 +20,9 @@ elastokin — quasi-static elastokinematics of suspensions
 USAGE:
     elastokin run MODEL [OPTIONS]     run the model's K&C analysis, write CSV, print headline figures
     elastokin check MODEL             parse, report bodies, degrees of freedom, redundant or unrestrained parts
+    elastokin batch MODEL VARIANTS [--out DIR]
+                                      run design variants in parallel (one per line: name: /json/pointer=value; …),
+                                      one table of bump steer, camber gain and wheel rate at design
     elastokin help                    this text
 
 RUN OPTIONS:
@@ -249,6 +252,58 @@ fn check(model: &str) -> Result<(), String> {
     Ok(())
 }
 
+fn run_batch(args: &[String]) -> Result<(), String> {
+    let (model, variants) = match args {
+        [m, v, ..] => (m, v),
+        _ => {
+            return Err(
+                "batch needs MODEL and VARIANTS files: elastokin batch examples/macpherson.json variants.txt".into()
+            )
+        }
+    };
+    let out: PathBuf = match args.get(2..) {
+        Some([flag, dir]) if flag == "--out" => dir.into(),
+        Some([]) | None => "out".into(),
+        Some(other) => return Err(format!("unexpected arguments {other:?} (batch MODEL VARIANTS [--out DIR])")),
+    };
+    let base_text = std::fs::read_to_string(model).map_err(|e| format!("{model}: {e}"))?;
+    SuspensionFile::from_json(&base_text, model).map_err(|e| e.to_string())?;
+    let base: serde_json::Value = serde_json::from_str(&base_text).map_err(|e| format!("{model}: {e}"))?;
+    let text = std::fs::read_to_string(variants).map_err(|e| format!("{variants}: {e}"))?;
+    let list = batch::parse_variants(&text, variants)?;
+    // A variant that names a key the model lacks is a mistake in the file: say so before running anything.
+    for v in &list {
+        batch::apply(&base, v)?;
+    }
+    let results = batch::run_all(&base, &list);
+    std::fs::create_dir_all(&out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let mut csv = String::from("variant,bump_steer_deg_per_m,camber_gain_deg_per_m,wheel_rate_n_per_m,error\n");
+    println!("{:<28} {:>16} {:>16} {:>14}", "variant", "bump °/10 mm", "camber °/10 mm", "rate N/mm");
+    for (v, r) in list.iter().zip(&results) {
+        match r {
+            Ok(o) => {
+                println!(
+                    "{:<28} {:>16.4} {:>16.4} {:>14.2}",
+                    v.name,
+                    o.bump_steer * 0.01,
+                    o.camber_gain * 0.01,
+                    o.wheel_rate * 1e-3
+                );
+                csv +=
+                    &format!("\"{}\",{},{},{},\n", v.name.replace('"', "'"), o.bump_steer, o.camber_gain, o.wheel_rate);
+            }
+            Err(e) => {
+                println!("{:<28} failed: {e}", v.name);
+                csv += &format!("\"{}\",,,,\"{}\"\n", v.name.replace('"', "'"), e.replace('"', "'"));
+            }
+        }
+    }
+    let path = out.join("batch.csv");
+    std::fs::write(&path, csv).map_err(|e| format!("{}: {e}", path.display()))?;
+    println!("wrote {}", path.display());
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
@@ -257,6 +312,7 @@ fn main() -> ExitCode {
             Some(model) => check(model),
             None => Err("check needs a MODEL file: elastokin check examples/macpherson.json".into()),
         },
+        Some("batch") => run_batch(&args[1..]),
         Some("help" | "--help" | "-h") | None => {
             println!("{HELP}");
             Ok(())

@@ -1,0 +1,113 @@
+//! `elastokin batch MODEL VARIANTS`: design variants of one model, run in parallel.
+//!
+//! A variants file has one variant per line: an optional `name:` and then `pointer=value` edits separated
+//! by `;`, where `pointer` is a JSON pointer into the model file and `value` is JSON. Blank lines and lines
+//! starting with `#` are skipped.
+//!
+//! ```text
+//! # raise the inner tie-rod point by 10 mm
+//! tie rod up: /suspension/macpherson/hardpoints/tie_rod_inner/2=-0.049
+//! soft spring: /suspension/macpherson/spring/rate=20000
+//! ```
+
+use elastokin::solver::Mode;
+use elastokin::suspensions::analysis::{parallel_wheel_travel, TravelRow};
+use elastokin::suspensions::{Rig, Side, SuspensionFile};
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// One parsed variant: its name and its edits.
+pub struct Variant {
+    /// Name (the line's label, or `line N`).
+    pub name: String,
+    /// `(JSON pointer, value)` edits.
+    pub edits: Vec<(String, serde_json::Value)>,
+}
+
+/// Parses a variants file; errors name the line.
+pub fn parse_variants(text: &str, origin: &str) -> Result<Vec<Variant>, String> {
+    let mut out = Vec::new();
+    for (k, raw) in text.lines().enumerate() {
+        let line = raw.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let (name, body) = match line.split_once(':') {
+            Some((n, b)) if !n.trim_start().starts_with('/') => (n.trim().to_string(), b),
+            _ => (format!("line {}", k + 1), line),
+        };
+        let mut edits = Vec::new();
+        for edit in body.split(';').map(str::trim).filter(|e| !e.is_empty()) {
+            let (pointer, value) =
+                edit.split_once('=').ok_or_else(|| format!("{origin}:{}: '{edit}' is not pointer=value", k + 1))?;
+            let value: serde_json::Value = serde_json::from_str(value.trim())
+                .map_err(|e| format!("{origin}:{}: value of '{}' is not JSON: {e}", k + 1, pointer.trim()))?;
+            edits.push((pointer.trim().to_string(), value));
+        }
+        if edits.is_empty() {
+            return Err(format!("{origin}:{}: no edits in '{line}'", k + 1));
+        }
+        out.push(Variant { name, edits });
+    }
+    if out.is_empty() {
+        return Err(format!("{origin}: no variants (one per line: name: /json/pointer=value; …)"));
+    }
+    Ok(out)
+}
+
+/// The base model with a variant's edits applied; an edit to a pointer the model lacks is an error.
+pub fn apply(base: &serde_json::Value, v: &Variant) -> Result<SuspensionFile, String> {
+    let mut doc = base.clone();
+    for (pointer, value) in &v.edits {
+        let slot =
+            doc.pointer_mut(pointer).ok_or_else(|| format!("variant '{}': the model has no '{pointer}'", v.name))?;
+        *slot = value.clone();
+    }
+    let text = serde_json::to_string(&doc).map_err(|e| e.to_string())?;
+    SuspensionFile::from_json(&text, &format!("variant '{}'", v.name)).map_err(|e| e.to_string())
+}
+
+/// Headline figures of one variant.
+pub struct Outcome {
+    /// Bump steer at design, deg per metre of travel.
+    pub bump_steer: f64,
+    /// Camber gain at design, deg per metre.
+    pub camber_gain: f64,
+    /// Wheel rate at design, N/m.
+    pub wheel_rate: f64,
+}
+
+fn slope(rows: &[TravelRow], y: impl Fn(&TravelRow) -> f64) -> f64 {
+    // Rows are symmetric about design (odd count): central difference around the middle row.
+    let k = rows.len() / 2;
+    (y(&rows[k + 1]) - y(&rows[k - 1])) / (rows[k + 1].travel - rows[k - 1].travel)
+}
+
+/// Runs one variant: parallel travel ±`half_range` in `steps` (even) steps.
+pub fn evaluate(file: &SuspensionFile, half_range: f64, steps: usize) -> Result<Outcome, String> {
+    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| e.to_string())?;
+    let rows =
+        parallel_wheel_travel(&corner, -half_range, half_range, steps, Mode::Corrected).map_err(|e| e.to_string())?;
+    Ok(Outcome {
+        bump_steer: slope(&rows, |r| r.attitude.toe.to_degrees()),
+        camber_gain: slope(&rows, |r| r.attitude.camber.to_degrees()),
+        wheel_rate: slope(&rows, |r| r.wheel_load),
+    })
+}
+
+/// Runs every variant on the rayon pool, with a progress counter on standard error.
+pub fn run_all(base: &serde_json::Value, variants: &[Variant]) -> Vec<Result<Outcome, String>> {
+    let done = AtomicUsize::new(0);
+    let total = variants.len();
+    let results: Vec<_> = variants
+        .par_iter()
+        .map(|v| {
+            let r = apply(base, v).and_then(|file| evaluate(&file, 0.02, 8));
+            let n = done.fetch_add(1, Ordering::Relaxed) + 1;
+            eprint!("\rbatch: {n}/{total} variants");
+            r
+        })
+        .collect();
+    eprintln!();
+    results
+}
