@@ -24,7 +24,6 @@
 //!
 //! Columns 0..6 belong to body `i` (`Δr`, `Δπ`), 6..12 to body `j`.
 
-use crate::body::BodyRef;
 use crate::math::{skew, Mat3, Vec3};
 use crate::pose::Pose;
 use nalgebra::{SMatrix, SVector};
@@ -196,11 +195,6 @@ impl ConstraintRow {
     pub fn is_driver(&self) -> bool {
         self.driver_rate != 0.0
     }
-}
-
-/// Poses of the two bodies of a pair (ground → identity).
-pub fn pair_poses(poses: &[Pose], i: BodyRef, j: BodyRef) -> (Pose, Pose) {
-    (i.pose(poses), j.pose(poses))
 }
 
 #[cfg(test)]

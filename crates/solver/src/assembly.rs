@@ -81,14 +81,15 @@ pub struct Assembly {
     joint_slots: Vec<PairSlots>,
     /// For each active row, the slot in `j_values` of each of its 12 local coordinates.
     row_slots: Vec<[u32; 12]>,
-    /// For each active row, the global dofs of its 12 local coordinates.
-    row_dofs: Vec<[Option<usize>; 12]>,
     /// Which joint and row within it each active row is.
     row_joint: Vec<(usize, usize)>,
     /// Values of `K` (upper, symmetrised).
     pub k_values: Vec<f64>,
     /// Skew part of `K` above the diagonal: `S = ½(K − Kᵀ)`, entry `(r, c)` with `r < c`.
     pub k_skew: Vec<f64>,
+    /// Whether the last assembled tangent has a skew part at all (most scenes without world-fixed
+    /// torques and away from equilibrium still do; a linear spring-only scene at rest does not).
+    pub has_skew: bool,
     /// Values of `J`.
     pub j_values: Vec<f64>,
     /// Applied generalized force `Q(q, t)` of all elements and loads.
@@ -230,10 +231,10 @@ impl Assembly {
             element_slots,
             joint_slots,
             row_slots,
-            row_dofs,
             row_joint,
             k_values: vec![0.0; nnz_k],
             k_skew: vec![0.0; nnz_k],
+            has_skew: false,
             j_values: vec![0.0; nnz_j],
             applied: vec![0.0; n],
             load_rate: vec![0.0; n],
@@ -255,8 +256,12 @@ impl Assembly {
         let with_k = tangent.is_some();
         self.applied.fill(0.0);
         self.load_rate.fill(0.0);
-        self.k_values.fill(0.0);
-        self.k_skew.fill(0.0);
+        // Without a tangent, K keeps the values of the last one: chord iterations solve with the factorized
+        // symmetric part and must see the skew part that belongs to it.
+        if with_k {
+            self.k_values.fill(0.0);
+            self.k_skew.fill(0.0);
+        }
         let elements = model.elements();
         let eval_one = |e: &dyn elastokin_core::ForceElement, out: &mut ElementEval| {
             let [i, j] = e.bodies();
@@ -335,6 +340,9 @@ impl Assembly {
         if current_joint != usize::MAX {
             self.joint_slots[current_joint].scatter(&geometric, &mut self.k_values, &mut self.k_skew);
         }
+        if with_k {
+            self.has_skew = self.k_skew.iter().any(|&v| v != 0.0);
+        }
     }
 
     /// `y ← Jᵀ λ` over the body coordinates.
@@ -363,11 +371,6 @@ impl Assembly {
             }
         }
         largest
-    }
-
-    /// Gradient of active row `k` (12 local entries) and its global dofs, from the assembled `J`.
-    pub fn row_dofs(&self, k: usize) -> &[Option<usize>; 12] {
-        &self.row_dofs[k]
     }
 }
 

@@ -25,14 +25,15 @@ pub enum SolverError {
     /// Newton did not converge even after cutting the load step.
     #[error(
         "no equilibrium found at load parameter {t}: after {iterations} iterations the force residual is \
-         {force_residual:.3e} N and the constraint residual {constraint_residual:.3e} m; last converged load \
-         parameter {last_converged}; take smaller steps or check the model for a mechanism"
+         {force_residual:.3e} N and the constraint residual {constraint_residual:.3e} m{}; take smaller steps or \
+         check the model for a mechanism",
+        last_converged.map_or(String::new(), |t| format!("; last converged load parameter {t}"))
     )]
     NoConvergence {
         /// Load parameter attempted.
         t: f64,
-        /// Last load parameter reached.
-        last_converged: f64,
+        /// Last load parameter at which equilibrium was found (none when the first equilibrium failed).
+        last_converged: Option<f64>,
         /// Iterations spent at the last attempt.
         iterations: usize,
         /// Scaled force residual at the end.

@@ -182,7 +182,6 @@ struct Krylov {
     sn: Vec<f64>,
     g: Vec<f64>,
     y: Vec<f64>,
-    fresh: bool,
 }
 
 impl Krylov {
@@ -197,7 +196,6 @@ impl Krylov {
             self.g = vec![0.0; KRYLOV_DIM + 1];
             self.y = vec![0.0; KRYLOV_DIM];
         }
-        self.fresh = true;
     }
 }
 
@@ -443,7 +441,7 @@ impl<'m> StaticSolver<'m> {
             if iter == self.options.max_iterations {
                 return Err(SolverError::NoConvergence {
                     t: state.t,
-                    last_converged: f64::NAN,
+                    last_converged: None,
                     iterations: iter,
                     force_residual: r.force,
                     constraint_residual: r.constraint,
@@ -477,7 +475,7 @@ impl<'m> StaticSolver<'m> {
                 if guard && corrector_travel > predictor_norm + 1e-12 {
                     return Err(SolverError::NoConvergence {
                         t: state.t,
-                        last_converged: f64::NAN,
+                        last_converged: None,
                         iterations: iter,
                         force_residual: r.force,
                         constraint_residual: r.constraint,
@@ -501,10 +499,9 @@ impl<'m> StaticSolver<'m> {
     /// the count does not depend on how large `S` is against `K` (a fixed-point sweep would stall once
     /// `‖P⁻¹S‖` nears 1, e.g. a bushing twisted ~1 rad by a world-fixed torque).
     fn solve_with_skew(&mut self) -> Result<(), SolverError> {
-        let n = self.assembly.n;
         let size = self.rhs.len();
         self.factor.solve_in_place(&mut self.rhs)?;
-        if self.assembly.skew_times(&self.rhs[..n], &mut self.scratch[..n]) == 0.0 {
+        if !self.assembly.has_skew {
             return Ok(());
         }
         let b_norm = norm2(&self.rhs);
@@ -512,6 +509,7 @@ impl<'m> StaticSolver<'m> {
             return Ok(());
         }
         self.krylov.ensure(size);
+        self.krylov.b[..size].copy_from_slice(&self.rhs);
         for _restart in 0..KRYLOV_RESTARTS {
             // r = b − A x = −P⁻¹[S x; 0] (b = x₀ = z₀ on entry, and x holds the current iterate).
             self.preconditioned_skew(KrylovSlot::Iterate)?;
@@ -603,12 +601,6 @@ impl<'m> StaticSolver<'m> {
         let n = self.assembly.n;
         let size = self.rhs.len();
         let k = &mut self.krylov;
-        if let KrylovSlot::Iterate = which {
-            if k.fresh {
-                k.b[..size].copy_from_slice(&self.rhs);
-                k.fresh = false;
-            }
-        }
         let v: &[f64] = match which {
             KrylovSlot::Iterate => &self.rhs[..n],
             KrylovSlot::Basis(j) => &k.basis[j][..n],
@@ -621,7 +613,7 @@ impl<'m> StaticSolver<'m> {
 
     /// Static equilibrium at `state.t`, by Newton from `state`.
     pub fn equilibrium(&mut self, state: &mut State) -> Result<StepResult, SolverError> {
-        let (iterations, r) = self.newton(state, false).map_err(|e| with_last(e, f64::NAN))?;
+        let (iterations, r) = self.newton(state, false)?;
         Ok(self.step_result(state, iterations, &r))
     }
 
@@ -716,6 +708,8 @@ impl<'m> StaticSolver<'m> {
         dt: f64,
         steps: &mut Vec<StepResult>,
     ) -> Result<(), SolverError> {
+        // Where a refused sub-step goes back to; `clone_from` reuses its storage, so no step allocates.
+        let mut saved = state.clone();
         for step in 1..=path.steps {
             let target = path.start + dt * step as f64;
             let mut sub = dt;
@@ -723,7 +717,7 @@ impl<'m> StaticSolver<'m> {
             let mut iterations = 0;
             let mut residual;
             loop {
-                let saved = state.clone();
+                saved.clone_from(state);
                 let next = if (target - state.t).abs() <= sub.abs() * (1.0 + 1e-12) { target } else { state.t + sub };
                 state.t = next;
                 match self.newton(state, true) {
@@ -735,7 +729,7 @@ impl<'m> StaticSolver<'m> {
                         }
                     }
                     Err(SolverError::NoConvergence { iterations: it, force_residual, constraint_residual, .. }) => {
-                        *state = saved;
+                        state.clone_from(&saved);
                         cuts += 1;
                         if cuts > self.options.max_step_cuts {
                             return Err(self.stuck(state, next, it, force_residual, constraint_residual));
@@ -765,7 +759,7 @@ impl<'m> StaticSolver<'m> {
         } else {
             SolverError::NoConvergence {
                 t: attempted,
-                last_converged: state.t,
+                last_converged: Some(state.t),
                 iterations,
                 force_residual: force,
                 constraint_residual: constraint,
@@ -839,10 +833,12 @@ impl<'m> StaticSolver<'m> {
             let mut dt_total = dt;
             // Corrector: Newton on (R, Φ) with the normal-plane constraint (Δq_totalᵀ δq + ψ² Δt_total δt = 0).
             let mut converged = None;
+            let mut last = (f64::INFINITY, f64::INFINITY);
             for iter in 0..self.options.max_iterations {
                 self.assemble(&state, Some(Tangent::Full));
                 self.update_roundoff_floor(&state.poses);
                 let r = self.residual(&state.lambda);
+                last = (r.force, r.constraint);
                 if self.converged(&r) {
                     converged = Some((iter, r));
                     break;
@@ -880,10 +876,10 @@ impl<'m> StaticSolver<'m> {
             let Some((iterations, r)) = converged else {
                 return Err(SolverError::NoConvergence {
                     t: state.t,
-                    last_converged: start.t,
+                    last_converged: Some(start.t),
                     iterations: self.options.max_iterations,
-                    force_residual: f64::NAN,
-                    constraint_residual: f64::NAN,
+                    force_residual: last.0,
+                    constraint_residual: last.1,
                 });
             };
             prev_dq.copy_from_slice(&dq_total);
@@ -930,15 +926,6 @@ impl<'m> StaticSolver<'m> {
         }
         let (body, motion) = describe_free_motion(self.model, &self.rhs[..n], &report.suspect_body_dofs);
         Err(SolverError::Unrestrained { body, motion })
-    }
-}
-
-fn with_last(e: SolverError, last: f64) -> SolverError {
-    match e {
-        SolverError::NoConvergence { t, iterations, force_residual, constraint_residual, .. } => {
-            SolverError::NoConvergence { t, last_converged: last, iterations, force_residual, constraint_residual }
-        }
-        other => other,
     }
 }
 
