@@ -11,7 +11,7 @@
 //! ```
 
 use elastokin::solver::Mode;
-use elastokin::suspensions::analysis::{parallel_wheel_travel, TravelRow};
+use elastokin::suspensions::analysis::{parallel_wheel_travel, slope_at_design, TravelRow};
 use elastokin::suspensions::{Rig, Side, SuspensionFile};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -77,21 +77,16 @@ pub struct Outcome {
     pub wheel_rate: f64,
 }
 
-fn slope(rows: &[TravelRow], y: impl Fn(&TravelRow) -> f64) -> f64 {
-    // Rows are symmetric about design (odd count): central difference around the middle row.
-    let k = rows.len() / 2;
-    (y(&rows[k + 1]) - y(&rows[k - 1])) / (rows[k + 1].travel - rows[k - 1].travel)
-}
-
 /// Runs one variant: parallel travel ±`half_range` in `steps` (even) steps.
 pub fn evaluate(file: &SuspensionFile, half_range: f64, steps: usize) -> Result<Outcome, String> {
     let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| e.to_string())?;
     let rows =
         parallel_wheel_travel(&corner, -half_range, half_range, steps, Mode::Corrected).map_err(|e| e.to_string())?;
+    let slope = |y: &dyn Fn(&TravelRow) -> f64| slope_at_design(&rows, y).ok_or("too few steps for a slope at design");
     Ok(Outcome {
-        bump_steer: slope(&rows, |r| r.attitude.toe.to_degrees()),
-        camber_gain: slope(&rows, |r| r.attitude.camber.to_degrees()),
-        wheel_rate: slope(&rows, |r| r.wheel_load),
+        bump_steer: slope(&|r| r.attitude.toe.to_degrees())?,
+        camber_gain: slope(&|r| r.attitude.camber.to_degrees())?,
+        wheel_rate: slope(&|r| r.wheel_load)?,
     })
 }
 

@@ -6,7 +6,7 @@
 //! ```
 
 use elastokin::solver::{Mode, SolverOptions, StaticSolver};
-use elastokin::suspensions::analysis::{parallel_wheel_travel, TravelRow};
+use elastokin::suspensions::analysis::{parallel_wheel_travel, slope_at_design, TravelRow};
 use elastokin::suspensions::{Rig, Side, SuspensionFile};
 use std::path::PathBuf;
 
@@ -88,20 +88,6 @@ fn parse_run(args: &[String]) -> Result<RunOptions, String> {
         }
     }
     Ok(opts)
-}
-
-/// Slope of y against x at x = 0 from the two rows around it (central difference of the computed curve).
-fn slope_at_design(rows: &[TravelRow], y: impl Fn(&TravelRow) -> f64) -> Option<f64> {
-    let k = rows.iter().position(|r| r.travel >= 0.0)?;
-    let (a, b) = if k == 0 {
-        (0, 1)
-    } else if rows[k].travel == 0.0 && k + 1 < rows.len() {
-        (k - 1, k + 1)
-    } else {
-        (k - 1, k)
-    };
-    let (ra, rb) = (rows.get(a)?, rows.get(b)?);
-    Some((y(rb) - y(ra)) / (rb.travel - ra.travel))
 }
 
 fn run(opts: RunOptions) -> Result<(), String> {

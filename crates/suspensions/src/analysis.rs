@@ -38,6 +38,35 @@ pub fn steering(corner: &Corner, from: f64, to: f64, steps: usize, mode: Mode) -
     driven_sweep(corner, Rig::Steering, from, to, steps, mode)
 }
 
+/// Refuses a corner held differently from what the analysis needs.
+fn require_rig(corner: &Corner, rig: Rig) -> Result<(), SolverError> {
+    if corner.rig == rig {
+        return Ok(());
+    }
+    Err(SolverError::InvalidInput {
+        what: "corner",
+        why: format!(
+            "this analysis needs the corner built with Rig::{rig:?}, but it was built with Rig::{:?}",
+            corner.rig
+        ),
+    })
+}
+
+/// Slope of `y` against the driven travel at design (travel 0), by a central difference of the rows on
+/// either side of it (one-sided at the end of the range). `None` with fewer than two rows.
+pub fn slope_at_design(rows: &[TravelRow], y: impl Fn(&TravelRow) -> f64) -> Option<f64> {
+    let k = rows.iter().position(|r| r.travel >= 0.0)?;
+    let (a, b) = if k == 0 {
+        (0, 1)
+    } else if rows[k].travel == 0.0 && k + 1 < rows.len() {
+        (k - 1, k + 1)
+    } else {
+        (k - 1, k)
+    };
+    let (ra, rb) = (rows.get(a)?, rows.get(b)?);
+    Some((y(rb) - y(ra)) / (rb.travel - ra.travel))
+}
+
 fn driven_sweep(
     corner: &Corner,
     rig: Rig,
@@ -46,12 +75,7 @@ fn driven_sweep(
     steps: usize,
     mode: Mode,
 ) -> Result<Vec<TravelRow>, SolverError> {
-    if corner.rig != rig {
-        return Err(SolverError::InvalidInput {
-            what: "corner",
-            why: format!("this analysis drives the corner as Rig::{rig:?}, but it was built as Rig::{:?}", corner.rig),
-        });
-    }
+    require_rig(corner, rig)?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
     let driver = corner.model.joint_id("wheel travel");
@@ -76,6 +100,11 @@ fn driven_sweep(
 /// wheel-travel driver makes the vertical row and column zero, as on a K&C rig holding the wheel-centre
 /// height).
 pub fn wheel_compliance(corner: &Corner, t: f64) -> Result<[[f64; 6]; 6], SolverError> {
+    Ok(compliance_at(corner, t)?.0)
+}
+
+/// The wheel compliance and the equilibrium poses it was taken at.
+fn compliance_at(corner: &Corner, t: f64) -> Result<([[f64; 6]; 6], Vec<elastokin_core::Pose>), SolverError> {
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let mut state = solver.design_state(t);
     solver.equilibrium(&mut state)?;
@@ -113,7 +142,7 @@ pub fn wheel_compliance(corner: &Corner, t: f64) -> Result<[[f64; 6]; 6], Solver
             out[r][c] = columns[c][r];
         }
     }
-    Ok(out)
+    Ok((out, state.poses))
 }
 
 /// One row of a force sweep.
@@ -137,12 +166,7 @@ pub fn vertical_force_sweep(
     steps: usize,
     mode: Mode,
 ) -> Result<Vec<ForceRow>, SolverError> {
-    if corner.rig != Rig::Free {
-        return Err(SolverError::InvalidInput {
-            what: "corner",
-            why: "a vertical force sweep needs a free wheel: build the corner with Rig::Free".into(),
-        });
-    }
+    require_rig(&corner, Rig::Free)?;
     let patch = corner.contact_patch;
     corner.add_wheel_force("vertical force", patch, elastokin_core::Vec3::z())?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
@@ -193,13 +217,7 @@ fn attitude_change(a: &elastokin_core::Vec3, s: f64, dpi: &elastokin_core::Vec3)
 
 /// [`PatchCompliance`] at the equilibrium of load parameter `t` (see [`wheel_compliance`]).
 pub fn patch_compliance(corner: &Corner, t: f64) -> Result<PatchCompliance, SolverError> {
-    let c = wheel_compliance(corner, t)?;
-    let poses = {
-        let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
-        let mut state = solver.design_state(t);
-        solver.equilibrium(&mut state)?;
-        state.poses
-    };
+    let (c, poses) = compliance_at(corner, t)?;
     let pose = poses[corner.upright.0];
     let a = pose.direction(&corner.spin_axis_local);
     let w = pose.point(&corner.wheel_centre_local);

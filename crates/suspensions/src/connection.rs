@@ -1,5 +1,8 @@
-//! How two parts are connected: an ideal joint or a rubber bushing.
+//! How parts meet the chassis and each other: an ideal joint or a rubber bushing, and the coil spring.
 
+use elastokin_core::joint::orthonormal_complement;
+use elastokin_core::{BodyRef, JointSpec, Mat3, Model, ModelError, Vec3};
+use elastokin_elements::Bushing;
 use serde::{Deserialize, Serialize};
 
 /// Rates of a cylindrical rubber bushing (SI: N/m and N·m/rad), in its own frame whose x axis is the
@@ -37,4 +40,63 @@ pub enum Connection {
     Ideal,
     /// A bushing with these rates.
     Bushing(BushingRates),
+}
+
+/// Coil spring of a template: rate and push force at design.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpringSpec {
+    /// Rate, N/m.
+    pub rate: f64,
+    /// Push force at the design position, N.
+    pub design_force: f64,
+}
+
+/// Mounts an arm on the chassis through its front and rear pivots: a revolute about the pivot axis, or a
+/// bushing at each pivot with its axis along the pivot axis.
+pub(crate) fn arm_mounts(
+    model: &mut Model,
+    arm_name: &str,
+    arm: BodyRef,
+    front: Vec3,
+    rear: Vec3,
+    connection: Connection,
+) -> Result<(), ModelError> {
+    let axis = rear - front;
+    match connection {
+        Connection::Ideal => {
+            model.add_joint(JointSpec::revolute(&format!("{arm_name} pivot"), BodyRef::Ground, arm, front, axis))?;
+        }
+        Connection::Bushing(rates) => {
+            for (end, point) in [("front", front), ("rear", rear)] {
+                model.add_element(axial_bushing(&format!("{arm_name} {end} bushing"), arm, point, axis, rates)?)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A bushing to the chassis whose local x is `axis`.
+pub(crate) fn axial_bushing(
+    name: &str,
+    body: BodyRef,
+    point: Vec3,
+    axis: Vec3,
+    r: BushingRates,
+) -> Result<Bushing, ModelError> {
+    let n = axis.norm();
+    if !(n.is_finite() && n > 1e-9) {
+        return Err(ModelError::CoincidentPoints { item: name.to_string(), distance: n });
+    }
+    let x = axis / n;
+    let (y, z) = orthonormal_complement(&x);
+    Bushing::new(
+        name,
+        BodyRef::Ground,
+        body,
+        point,
+        Mat3::from_columns(&[x, y, z]),
+        Vec3::new(r.axial, r.radial, r.radial),
+        Vec3::new(r.torsion, r.conical, r.conical),
+    )
 }

@@ -1,12 +1,11 @@
 //! Double-wishbone template: upright with wheel, upper and lower arms on the chassis, tie rod, coil spring
 //! on the lower arm.
 
-use crate::connection::{BushingRates, Connection};
+use crate::connection::{arm_mounts, Connection, SpringSpec};
 use crate::corner::{mount_rig, Corner, Rig};
 use crate::hardpoint::Side;
-use elastokin_core::joint::orthonormal_complement;
-use elastokin_core::{BodyRef, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
-use elastokin_elements::{Bushing, CoilSpring};
+use elastokin_core::{BodyRef, JointSpec, ModelError, Pose, Vec3};
+use elastokin_elements::CoilSpring;
 use serde::{Deserialize, Serialize};
 
 /// Hardpoints of a left double-wishbone corner (ISO 8855, metres).
@@ -54,16 +53,6 @@ impl DoubleWishboneHardpoints {
             spring_arm: Vec3::new(-0.040, 0.718, -0.206),
         }
     }
-}
-
-/// Coil spring of a template: rate and push force at design.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SpringSpec {
-    /// Rate, N/m.
-    pub rate: f64,
-    /// Push force at the design position, N.
-    pub design_force: f64,
 }
 
 /// A double-wishbone corner: hardpoints, how each arm meets the chassis, and the spring.
@@ -128,53 +117,4 @@ impl DoubleWishbone {
             [(upright.into(), p(h.lower_ball_joint)), (upright.into(), p(h.upper_ball_joint))],
         ))
     }
-}
-
-/// Mounts an arm on the chassis through its front and rear pivots: a revolute about the pivot axis, or a
-/// bushing at each pivot with its axis along the pivot axis.
-pub(crate) fn arm_mounts(
-    model: &mut Model,
-    arm_name: &str,
-    arm: BodyRef,
-    front: Vec3,
-    rear: Vec3,
-    connection: Connection,
-) -> Result<(), ModelError> {
-    let axis = rear - front;
-    match connection {
-        Connection::Ideal => {
-            model.add_joint(JointSpec::revolute(&format!("{arm_name} pivot"), BodyRef::Ground, arm, front, axis))?;
-        }
-        Connection::Bushing(rates) => {
-            for (end, point) in [("front", front), ("rear", rear)] {
-                model.add_element(axial_bushing(&format!("{arm_name} {end} bushing"), arm, point, axis, rates)?)?;
-            }
-        }
-    }
-    Ok(())
-}
-
-/// A bushing to the chassis whose local x is `axis`.
-pub(crate) fn axial_bushing(
-    name: &str,
-    body: BodyRef,
-    point: Vec3,
-    axis: Vec3,
-    r: BushingRates,
-) -> Result<Bushing, ModelError> {
-    let n = axis.norm();
-    if !(n.is_finite() && n > 1e-9) {
-        return Err(ModelError::CoincidentPoints { item: name.to_string(), distance: n });
-    }
-    let x = axis / n;
-    let (y, z) = orthonormal_complement(&x);
-    Bushing::new(
-        name,
-        BodyRef::Ground,
-        body,
-        point,
-        Mat3::from_columns(&[x, y, z]),
-        Vec3::new(r.axial, r.radial, r.radial),
-        Vec3::new(r.torsion, r.conical, r.conical),
-    )
 }

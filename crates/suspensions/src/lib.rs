@@ -33,9 +33,9 @@ pub mod hardpoint;
 pub mod macpherson;
 pub mod model_file;
 
-pub use connection::{BushingRates, Connection};
+pub use connection::{BushingRates, Connection, SpringSpec};
 pub use corner::{Corner, Rig, SteeringGeometry, WheelAttitude};
-pub use double_wishbone::{DoubleWishbone, DoubleWishboneHardpoints, SpringSpec};
+pub use double_wishbone::{DoubleWishbone, DoubleWishboneHardpoints};
 pub use hardpoint::Side;
 pub use macpherson::{MacPherson, MacPhersonHardpoints};
 pub use model_file::{FileError, SuspensionFile, Template};

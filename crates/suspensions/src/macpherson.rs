@@ -1,9 +1,8 @@
 //! MacPherson strut template: upright with wheel and strut tube, strut rod sliding in it, top mount on the
 //! chassis, lower control arm, tie rod, coil spring from the top mount to the spring seat on the strut.
 
-use crate::connection::Connection;
+use crate::connection::{arm_mounts, axial_bushing, Connection, SpringSpec};
 use crate::corner::{mount_rig, Corner, Rig};
-use crate::double_wishbone::{arm_mounts, SpringSpec};
 use crate::hardpoint::Side;
 use elastokin_core::{BodyRef, JointSpec, ModelError, Pose, Vec3};
 use elastokin_elements::CoilSpring;
@@ -90,7 +89,7 @@ impl MacPherson {
                 model.add_joint(JointSpec::spherical("top mount", BodyRef::Ground, rod, top))?;
             }
             Connection::Bushing(r) => {
-                model.add_element(crate::double_wishbone::axial_bushing("top mount", rod.into(), top, axis, r)?)?;
+                model.add_element(axial_bushing("top mount", rod.into(), top, axis, r)?)?;
             }
         }
         model.add_element(CoilSpring::with_design_force(
