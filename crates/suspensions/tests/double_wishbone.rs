@@ -6,7 +6,9 @@ use elastokin_suspensions::analysis::parallel_wheel_travel;
 use elastokin_suspensions::{
     BushingRates, Connection, DoubleWishbone, DoubleWishboneHardpoints, Rig, Side, SpringSpec,
 };
-use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
+use nalgebra::{DVector, Matrix3, Rotation3, Unit};
+
+mod common;
 
 fn template(mounts: Connection) -> DoubleWishbone {
     DoubleWishbone {
@@ -45,33 +47,17 @@ fn loop_closure(h: &DoubleWishboneHardpoints, travel: f64, guess: &mut [f64; 3])
     };
     let tie_len = (h.tie_rod_outer - h.tie_rod_inner).norm();
     let kp_len = (h.upper_ball_joint - h.lower_ball_joint).norm();
-    let residual = |x: &[f64; 3]| -> Vector3<f64> {
+    let residual = |x: &[f64; 3]| -> DVector<f64> {
         let (lbj, r) = upright(x);
         let ubj = rotate_about(h.upper_arm_front, h.upper_arm_rear - h.upper_arm_front, x[1], h.upper_ball_joint);
         let place = |p: Vec3| lbj + r * (p - h.lower_ball_joint);
-        Vector3::new(
+        DVector::from_vec(vec![
             (ubj - lbj).norm() - kp_len,
             (place(h.tie_rod_outer) - h.tie_rod_inner).norm() - tie_len,
             place(h.wheel_centre).z - (h.wheel_centre.z + travel),
-        )
+        ])
     };
-    for _ in 0..50 {
-        let f = residual(guess);
-        if f.norm() < 1e-14 {
-            break;
-        }
-        let mut jac = Matrix3::zeros();
-        for c in 0..3 {
-            let (mut xp, mut xm) = (*guess, *guess);
-            xp[c] += 1e-7;
-            xm[c] -= 1e-7;
-            jac.set_column(c, &((residual(&xp) - residual(&xm)) / 2e-7));
-        }
-        let dx = jac.lu().solve(&(-f)).expect("loop closure Jacobian is regular away from lock-up");
-        for c in 0..3 {
-            guess[c] += dx[c];
-        }
-    }
+    common::newton_fd(residual, guess);
     let (_, r) = upright(guess);
     let a = r * Vec3::y();
     (a.x.atan2(a.y), (-a.z).atan2((a.x * a.x + a.y * a.y).sqrt()))

@@ -4,7 +4,9 @@ use elastokin_core::Vec3;
 use elastokin_solver::Mode;
 use elastokin_suspensions::analysis::parallel_wheel_travel;
 use elastokin_suspensions::{BushingRates, Connection, MacPherson, MacPhersonHardpoints, Rig, Side, SpringSpec};
-use nalgebra::{Matrix4, Rotation3, Unit, Vector4};
+use nalgebra::{DVector, Rotation3, Unit};
+
+mod common;
 
 fn template(arm: Connection, top: Connection) -> MacPherson {
     MacPherson {
@@ -38,31 +40,14 @@ fn loop_closure(h: &MacPhersonHardpoints, travel: f64, x: &mut [f64; 4]) -> (f64
         // Two independent components of the offset: project on two axes across the strut.
         let u = dir.cross(&Vec3::x()).normalize();
         let v = dir.cross(&u);
-        Vector4::new(
+        DVector::from_vec(vec![
             off.dot(&u),
             off.dot(&v),
             (at(h.tie_rod_outer) - h.tie_rod_inner).norm() - tie,
             at(h.wheel_centre).z - (h.wheel_centre.z + travel),
-        )
+        ])
     };
-    for _ in 0..60 {
-        let f = residual(x);
-        if f.norm() < 1e-14 {
-            break;
-        }
-        let mut jac = Matrix4::zeros();
-        for c in 0..4 {
-            let (mut xp, mut xm) = (*x, *x);
-            xp[c] += 1e-7;
-            xm[c] -= 1e-7;
-            jac.set_column(c, &((residual(&xp) - residual(&xm)) / 2e-7));
-        }
-        let dx = jac.lu().solve(&(-f)).expect("regular away from lock-up");
-        for c in 0..4 {
-            x[c] += dx[c];
-        }
-    }
-    assert!(residual(x).norm() < 1e-12, "loop closure did not close: {:?}", residual(x));
+    common::newton_fd(residual, x);
     let (_, r) = place(x);
     let a = r * Vec3::y();
     (a.x.atan2(a.y), (-a.z).atan2((a.x * a.x + a.y * a.y).sqrt()))
