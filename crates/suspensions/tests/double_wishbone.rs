@@ -59,8 +59,7 @@ fn loop_closure(h: &DoubleWishboneHardpoints, travel: f64, guess: &mut [f64; 3])
     };
     common::newton_fd(residual, guess);
     let (_, r) = upright(guess);
-    let a = r * Vec3::y();
-    (a.x.atan2(a.y), (-a.z).atan2((a.x * a.x + a.y * a.y).sqrt()))
+    common::left_toe_camber(&r)
 }
 
 #[test]

@@ -49,8 +49,7 @@ fn loop_closure(h: &MacPhersonHardpoints, travel: f64, x: &mut [f64; 4]) -> (f64
     };
     common::newton_fd(residual, x);
     let (_, r) = place(x);
-    let a = r * Vec3::y();
-    (a.x.atan2(a.y), (-a.z).atan2((a.x * a.x + a.y * a.y).sqrt()))
+    common::left_toe_camber(&r.matrix())
 }
 
 #[test]

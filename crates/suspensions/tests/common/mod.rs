@@ -24,3 +24,10 @@ pub fn newton_fd<const N: usize>(residual: impl Fn(&[f64; N]) -> DVector<f64>, x
     }
     assert!(residual(x).norm() < 1e-12, "loop closure did not close: {:?}", residual(x));
 }
+
+/// Toe and camber of a left wheel whose upright is turned by `r` from design (spin axis +y there),
+/// written out from their definitions: toe = atan2(aₓ, a_y), camber = atan2(−a_z, √(aₓ² + a_y²)).
+pub fn left_toe_camber(r: &nalgebra::Matrix3<f64>) -> (f64, f64) {
+    let a = r * nalgebra::Vector3::y();
+    (a.x.atan2(a.y), (-a.z).atan2((a.x * a.x + a.y * a.y).sqrt()))
+}
