@@ -49,7 +49,7 @@ fn loop_closure(h: &MacPhersonHardpoints, travel: f64, x: &mut [f64; 4]) -> (f64
     };
     common::newton_fd(residual, x);
     let (_, r) = place(x);
-    common::left_toe_camber(&r.matrix())
+    common::left_toe_camber(r.matrix())
 }
 
 #[test]
