@@ -139,7 +139,7 @@ fn run(opts: RunOptions) -> Result<(), String> {
         opts.steps
     );
     println!("{:>10} {:>10} {:>12} {:>12}", "travel mm", "toe °", "camber °", "track Δ mm");
-    let y0 = corner.wheel_centre.y;
+    let y0 = corner.wheel.wheel_centre.y;
     let stride = (rows.len() / 8).max(1);
     for r in rows.iter().step_by(stride) {
         println!(

@@ -318,6 +318,18 @@ impl<'m> StaticSolver<'m> {
         self.solve_factored(rhs)
     }
 
+    /// The rate of the equilibrium along the load path at `state` (an equilibrium): `dq/dt`, `BODY_DOFS`
+    /// per body (translation of the reference point, then rotation as in Δπ), from
+    /// `[K Jᵀ; J 0] [q_t; λ_t] = [∂Q/∂t; −∂Φ/∂t]` with the exact tangent. Under a travel driver it gives the
+    /// velocity of every point per unit travel: instant centres, roll centres and anti-dive lines.
+    pub fn path_tangent(&mut self, state: &State) -> Result<Vec<f64>, SolverError> {
+        let n = self.assembly.n;
+        self.factorize_tangent(state)?;
+        self.load_direction_rhs();
+        self.solve_with_skew()?;
+        Ok(self.rhs[..n].to_vec())
+    }
+
     /// Assembles and factorizes the tangent at `state` for [`StaticSolver::solve_factored`].
     pub fn factorize_tangent(&mut self, state: &State) -> Result<(), SolverError> {
         self.assemble(state, Some(Tangent::Full));

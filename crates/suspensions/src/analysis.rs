@@ -85,8 +85,8 @@ fn driven_sweep(
         .iter()
         .map(|s| TravelRow {
             travel: s.t,
-            attitude: corner.attitude(&s.poses),
-            steering: corner.steering_geometry(&s.poses),
+            attitude: corner.wheel.attitude(&s.poses),
+            steering: corner.wheel.steering_geometry(&s.poses),
             wheel_load: driver.map_or(0.0, |d| s.joint_reactions(&corner.model)[d.0].force.z),
             spring_deflection: spring.map_or(0.0, |e| s.element_reports(&corner.model)[e.0].deflection.x),
         })
@@ -110,9 +110,9 @@ fn compliance_at(corner: &Corner, t: f64) -> Result<([[f64; 6]; 6], Vec<elastoki
     solver.equilibrium(&mut state)?;
     let n = corner.model.dofs();
     let m = solver.active_rows().len();
-    let pose = state.poses[corner.upright.0];
-    let s = pose.point(&corner.wheel_centre_local) - pose.position;
-    let base = corner.upright.0 * elastokin_core::BODY_DOFS;
+    let pose = state.poses[corner.wheel.upright.0];
+    let s = pose.point(&corner.wheel.wheel_centre_local) - pose.position;
+    let base = corner.wheel.upright.0 * elastokin_core::BODY_DOFS;
     let mut columns = [[0.0; 6]; 6];
     let mut rhs = vec![0.0; n + m];
     solver.factorize_tangent(&state)?;
@@ -167,18 +167,18 @@ pub fn vertical_force_sweep(
     mode: Mode,
 ) -> Result<Vec<ForceRow>, SolverError> {
     require_rig(&corner, Rig::Free)?;
-    let patch = corner.contact_patch;
+    let patch = corner.wheel.contact_patch;
     corner.add_wheel_force("vertical force", patch, elastokin_core::Vec3::z())?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
-    let local_patch = corner.model.bodies()[corner.upright.0].design_pose.to_local_point(&patch);
+    let local_patch = corner.model.bodies()[corner.wheel.upright.0].design_pose.to_local_point(&patch);
     Ok(sweep
         .steps
         .iter()
         .map(|s| ForceRow {
             force: s.t,
-            attitude: corner.attitude(&s.poses),
-            contact_patch: s.poses[corner.upright.0].point(&local_patch),
+            attitude: corner.wheel.attitude(&s.poses),
+            contact_patch: s.poses[corner.wheel.upright.0].point(&local_patch),
         })
         .collect())
 }
@@ -218,12 +218,12 @@ fn attitude_change(a: &elastokin_core::Vec3, s: f64, dpi: &elastokin_core::Vec3)
 /// [`PatchCompliance`] at the equilibrium of load parameter `t` (see [`wheel_compliance`]).
 pub fn patch_compliance(corner: &Corner, t: f64) -> Result<PatchCompliance, SolverError> {
     let (c, poses) = compliance_at(corner, t)?;
-    let pose = poses[corner.upright.0];
-    let a = pose.direction(&corner.spin_axis_local);
-    let w = pose.point(&corner.wheel_centre_local);
-    let patch = corner.steering_geometry(&poses).contact_patch;
+    let pose = poses[corner.wheel.upright.0];
+    let a = pose.direction(&corner.wheel.spin_axis_local);
+    let w = pose.point(&corner.wheel.wheel_centre_local);
+    let patch = corner.wheel.steering_geometry(&poses).contact_patch;
     let arm = patch - w;
-    let s = corner.side.sign();
+    let s = corner.wheel.side.sign();
     // Response (Δ patch, Δπ) to a unit force `f` at the patch or a unit torque `m`.
     let respond = |f: elastokin_core::Vec3, m: elastokin_core::Vec3| {
         let load = [f, arm.cross(&f) + m];

@@ -33,10 +33,11 @@ impl BushingRates {
 }
 
 /// A connection of a template: ideal kinematic joint, or bushing.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum Connection {
     /// The template's ideal joint (revolute arm pivot, spherical ball joint, …).
+    #[default]
     Ideal,
     /// A bushing with these rates.
     Bushing(BushingRates),
@@ -69,16 +70,18 @@ pub(crate) fn arm_mounts(
         }
         Connection::Bushing(rates) => {
             for (end, point) in [("front", front), ("rear", rear)] {
-                model.add_element(axial_bushing(&format!("{arm_name} {end} bushing"), arm, point, axis, rates)?)?;
+                let name = format!("{arm_name} {end} bushing");
+                model.add_element(axial_bushing(&name, BodyRef::Ground, arm, point, axis, rates)?)?;
             }
         }
     }
     Ok(())
 }
 
-/// A bushing to the chassis whose local x is `axis`.
+/// A bushing between `carrier` (whose frame it moves with) and `body` at `point`, its local x along `axis`.
 pub(crate) fn axial_bushing(
     name: &str,
+    carrier: BodyRef,
     body: BodyRef,
     point: Vec3,
     axis: Vec3,
@@ -92,7 +95,7 @@ pub(crate) fn axial_bushing(
     let (y, z) = orthonormal_complement(&x);
     Bushing::new(
         name,
-        BodyRef::Ground,
+        carrier,
         body,
         point,
         Mat3::from_columns(&[x, y, z]),

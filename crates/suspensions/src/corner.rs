@@ -1,7 +1,9 @@
-//! A built suspension corner and its wheel characteristics.
+//! A suspension corner ready to solve: the template's parts, the tie rod, the rig that holds it, and the
+//! wheel characteristics read from its poses.
 
+use crate::connection::{axial_bushing, Connection};
 use crate::hardpoint::Side;
-use elastokin_core::{BodyId, BodyRef, ElementId, JointSpec, Model, ModelError, Pose, Vec3};
+use elastokin_core::{BodyId, BodyRef, ElementId, JointSpec, Model, ModelError, Pose, Vec3, BODY_DOFS};
 use elastokin_elements::{PointForce, PointTorque};
 
 /// How the corner is held on the K&C rig, and what the load parameter `t` drives.
@@ -17,51 +19,117 @@ pub enum Rig {
     Free,
 }
 
-/// Adds the tie rod, the rack (a body on a lateral slide when steering) and the rig's drivers.
-pub(crate) fn mount_rig(
+/// A suspension template: something that adds one corner's parts to a model.
+///
+/// The rig (rack, tie-rod inner attachment, drivers) is not the template's: [`Corner::build`] and
+/// [`crate::Axle::build`] add it, so one template serves a lone corner and both sides of an axle.
+pub trait CornerTemplate {
+    /// Adds the corner on `side` to `model`, every body, joint and element name starting with `prefix`
+    /// (`""` for a lone corner, `"left "` / `"right "` on an axle). The tie rod is not added: it is
+    /// returned in [`CornerParts::tie_rod`] for the rig to attach to the rack or the chassis.
+    fn add_corner(&self, model: &mut Model, side: Side, prefix: &str) -> Result<CornerParts, ModelError>;
+}
+
+/// What a template added for one corner.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CornerParts {
+    /// The wheel: upright, wheel centre, contact patch, steering axis.
+    pub wheel: Wheel,
+    /// The tie rod, still to be attached.
+    pub tie_rod: TieRod,
+}
+
+/// A tie rod between the rack (or the chassis when the rack is fixed) and the upright.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TieRod {
+    /// Inner end (rack), global design point.
+    pub inner: Vec3,
+    /// Outer end (upright), global design point.
+    pub outer: Vec3,
+    /// `Ideal`: a distance constraint (ball joints at both ends). `Bushing`: a tie-rod body with a bushing
+    /// at each end, axis along the rod, so the steering compliance of the rod's mounts is modelled.
+    pub connection: Connection,
+}
+
+/// Name `name` of the part of the corner whose names start with `prefix`.
+pub(crate) fn part_name(prefix: &str, name: &str) -> String {
+    format!("{prefix}{name}")
+}
+
+/// Attaches a tie rod between `inner_body` and the upright.
+pub(crate) fn mount_tie_rod(
     model: &mut Model,
-    rig: Rig,
+    prefix: &str,
+    inner_body: BodyRef,
     upright: BodyId,
-    wheel_centre: Vec3,
-    tie_rod_inner: Vec3,
-    tie_rod_outer: Vec3,
+    tie_rod: TieRod,
 ) -> Result<(), ModelError> {
-    let inner_body: BodyRef = if rig == Rig::Steering {
-        let rack = model.add_body("rack", Pose::at(tie_rod_inner))?;
-        model.add_joint(JointSpec::translational("rack slide", BodyRef::Ground, rack, tie_rod_inner, Vec3::y()))?;
-        model.add_joint(JointSpec::travel_driver(
-            "rack travel",
-            BodyRef::Ground,
-            rack,
-            tie_rod_inner,
-            Vec3::y(),
-            1.0,
-        ))?;
-        rack.into()
-    } else {
-        BodyRef::Ground
-    };
-    model.add_joint(JointSpec::distance("tie rod", inner_body, upright, tie_rod_inner, tie_rod_outer))?;
-    let travel = match rig {
-        Rig::WheelTravel => Some(1.0),
-        Rig::Steering | Rig::HeightHeld => Some(0.0),
-        Rig::Free => None,
-    };
-    if let Some(travel) = travel {
-        model.add_joint(JointSpec::point_driver("wheel travel", upright, wheel_centre, Vec3::z(), travel))?;
+    let name = part_name(prefix, "tie rod");
+    match tie_rod.connection {
+        Connection::Ideal => {
+            model.add_joint(JointSpec::distance(&name, inner_body, upright, tie_rod.inner, tie_rod.outer))?;
+        }
+        Connection::Bushing(rates) => {
+            let axis = tie_rod.outer - tie_rod.inner;
+            let rod = model.add_body(&name, Pose::at((tie_rod.inner + tie_rod.outer) / 2.0))?;
+            let inner =
+                axial_bushing(&format!("{name} inner bushing"), inner_body, rod.into(), tie_rod.inner, axis, rates)?;
+            model.add_element(inner)?;
+            let outer = axial_bushing(
+                &format!("{name} outer bushing"),
+                rod.into(),
+                upright.into(),
+                tie_rod.outer,
+                axis,
+                rates,
+            )?;
+            model.add_element(outer)?;
+        }
     }
     Ok(())
 }
 
-/// A suspension corner ready to solve: its model and where its wheel is.
+/// Adds a rack: a body on a lateral slide at `at`, driven by `t` (m towards +y), named "rack".
+pub(crate) fn add_rack(model: &mut Model, at: Vec3) -> Result<BodyRef, ModelError> {
+    let rack = model.add_body("rack", Pose::at(at))?;
+    model.add_joint(JointSpec::translational("rack slide", BodyRef::Ground, rack, at, Vec3::y()))?;
+    model.add_joint(JointSpec::travel_driver("rack travel", BodyRef::Ground, rack, at, Vec3::y(), 1.0))?;
+    Ok(rack.into())
+}
+
+/// Adds a driver of the wheel-centre height: `travel_rate` metres per unit `t` (0 holds the height).
+pub(crate) fn add_wheel_travel_driver(
+    model: &mut Model,
+    prefix: &str,
+    wheel: &Wheel,
+    travel_rate: f64,
+) -> Result<(), ModelError> {
+    model.add_joint(JointSpec::point_driver(
+        &part_name(prefix, "wheel travel"),
+        wheel.upright,
+        wheel.wheel_centre,
+        Vec3::z(),
+        travel_rate,
+    ))?;
+    Ok(())
+}
+
+/// A suspension corner ready to solve: its model, how it is held and where its wheel is.
 #[derive(Debug)]
 pub struct Corner {
     /// The multibody model.
     pub model: Model,
-    /// Which side it was built for.
-    pub side: Side,
     /// How it is held.
     pub rig: Rig,
+    /// The wheel.
+    pub wheel: Wheel,
+}
+
+/// Where a wheel is in a model: its upright, and the wheel's points and axes on it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Wheel {
+    /// Which side it is on.
+    pub side: Side,
     /// The upright (knuckle with the wheel).
     pub upright: BodyId,
     /// Wheel centre at design (global).
@@ -95,7 +163,6 @@ pub struct SteeringGeometry {
     /// Contact patch centre: the lowest point of the wheel-plane circle of the loaded radius.
     pub contact_patch: Vec3,
 }
-
 /// Loaded tyre radius when a model file does not give one (m); `shared/data/hardpoints.md` quotes ~0.30.
 pub fn default_loaded_radius() -> f64 {
     0.30
@@ -112,14 +179,16 @@ pub struct WheelAttitude {
     pub wheel_centre: Vec3,
 }
 
-impl Corner {
-    /// Starts a template's model: checks the loaded radius and adds the upright with its reference point
-    /// at the wheel centre (axes global at design). Returns the model, the upright and the wheel centre.
-    pub(crate) fn start(
+impl Wheel {
+    /// Checks the loaded radius and adds the upright, its reference point at the wheel centre (axes global
+    /// at design), named `{prefix}upright`. Returns the upright and the wheel centre on `side`.
+    pub fn add_upright(
+        model: &mut Model,
         side: Side,
+        prefix: &str,
         left_wheel_centre: Vec3,
         loaded_radius: f64,
-    ) -> Result<(Model, BodyId, Vec3), ModelError> {
+    ) -> Result<(BodyId, Vec3), ModelError> {
         if !(loaded_radius.is_finite() && loaded_radius > 0.0) {
             return Err(ModelError::NotPositive {
                 item: "suspension".into(),
@@ -127,22 +196,21 @@ impl Corner {
                 value: loaded_radius,
             });
         }
-        let mut model = Model::new();
         let wc = side.place(left_wheel_centre);
-        let upright = model.add_body("upright", Pose::at(wc))?;
-        Ok((model, upright, wc))
+        let upright = model.add_body(&part_name(prefix, "upright"), Pose::at(wc))?;
+        Ok((upright, wc))
     }
 
-    /// Completes a template's corner: the spin axis is outward (±y) at design, the contact patch a loaded
-    /// radius below the wheel centre; `steering_axis` holds global design points with their bodies.
-    pub(crate) fn finish(
-        model: Model,
+    /// The wheel on an upright added by [`Wheel::add_upright`]: the spin axis is outward (±y) at design, the
+    /// contact patch a loaded radius below the wheel centre; `steering_axis` holds global design points
+    /// with their bodies.
+    pub fn new(
+        model: &Model,
         side: Side,
-        rig: Rig,
         upright: BodyId,
         loaded_radius: f64,
         steering_axis: [(BodyRef, Vec3); 2],
-    ) -> Corner {
+    ) -> Wheel {
         let wheel_centre = model.bodies()[upright.0].design_pose.position;
         let local = |(body, point): (BodyRef, Vec3)| {
             let pose = match body {
@@ -151,29 +219,15 @@ impl Corner {
             };
             (body, pose.to_local_point(&point))
         };
-        let steering_axis = [local(steering_axis[0]), local(steering_axis[1])];
-        Corner {
+        Wheel {
             side,
-            rig,
             upright,
             wheel_centre,
             wheel_centre_local: Vec3::zeros(),
             spin_axis_local: Vec3::new(0.0, side.sign(), 0.0),
             contact_patch: wheel_centre - Vec3::new(0.0, 0.0, loaded_radius),
-            steering_axis,
-            model,
+            steering_axis: [local(steering_axis[0]), local(steering_axis[1])],
         }
-    }
-
-    /// Adds a world-fixed force `force · t` (N per unit load parameter) at the global design point `point`
-    /// of the upright: a contact-patch or wheel-centre load of a K&C test.
-    pub fn add_wheel_force(&mut self, name: &str, point: Vec3, force: Vec3) -> Result<ElementId, ModelError> {
-        self.model.add_element(PointForce::new(name, self.upright.into(), point, force)?)
-    }
-
-    /// Adds a world-fixed torque `torque · t` (N·m per unit load parameter) on the upright.
-    pub fn add_wheel_torque(&mut self, name: &str, torque: Vec3) -> Result<ElementId, ModelError> {
-        self.model.add_element(PointTorque::new(name, self.upright.into(), torque)?)
     }
 
     /// Toe, camber and wheel centre at the given poses.
@@ -189,6 +243,15 @@ impl Corner {
             camber: (-a.z).atan2((a.x * a.x + a.y * a.y).sqrt()),
             wheel_centre: pose.point(&self.wheel_centre_local),
         }
+    }
+
+    /// Velocity of the upright's material point now at global `point`, for body velocities `rates`
+    /// (`BODY_DOFS` per body: translation of the reference point, then angular velocity, as in Δq).
+    pub fn point_velocity(&self, poses: &[Pose], rates: &[f64], point: Vec3) -> Vec3 {
+        let base = self.upright.0 * BODY_DOFS;
+        let v = Vec3::new(rates[base], rates[base + 1], rates[base + 2]);
+        let w = Vec3::new(rates[base + 3], rates[base + 4], rates[base + 5]);
+        v + w.cross(&(point - poses[self.upright.0].position))
     }
 
     /// Caster, kingpin inclination, scrub radius, trail and kingpin offset at the given poses.
@@ -223,5 +286,34 @@ impl Corner {
             kingpin_offset: s * (wc.y - w.y),
             contact_patch: patch,
         }
+    }
+}
+
+impl Corner {
+    /// Builds `template`'s corner on `side` with its tie rod and held as `rig` says: a rack on a lateral
+    /// slide when steering (else the tie rod's inner end is on the chassis), and the wheel-centre height
+    /// driver the rig needs.
+    pub fn build(template: &impl CornerTemplate, side: Side, rig: Rig) -> Result<Corner, ModelError> {
+        let mut model = Model::new();
+        let parts = template.add_corner(&mut model, side, "")?;
+        let inner = if rig == Rig::Steering { add_rack(&mut model, parts.tie_rod.inner)? } else { BodyRef::Ground };
+        mount_tie_rod(&mut model, "", inner, parts.wheel.upright, parts.tie_rod)?;
+        match rig {
+            Rig::WheelTravel => add_wheel_travel_driver(&mut model, "", &parts.wheel, 1.0)?,
+            Rig::Steering | Rig::HeightHeld => add_wheel_travel_driver(&mut model, "", &parts.wheel, 0.0)?,
+            Rig::Free => {}
+        }
+        Ok(Corner { model, rig, wheel: parts.wheel })
+    }
+
+    /// Adds a world-fixed force `force · t` (N per unit load parameter) at the global design point `point`
+    /// of the upright: a contact-patch or wheel-centre load of a K&C test.
+    pub fn add_wheel_force(&mut self, name: &str, point: Vec3, force: Vec3) -> Result<ElementId, ModelError> {
+        self.model.add_element(PointForce::new(name, self.wheel.upright.into(), point, force)?)
+    }
+
+    /// Adds a world-fixed torque `torque · t` (N·m per unit load parameter) on the upright.
+    pub fn add_wheel_torque(&mut self, name: &str, torque: Vec3) -> Result<ElementId, ModelError> {
+        self.model.add_element(PointTorque::new(name, self.wheel.upright.into(), torque)?)
     }
 }

@@ -2,9 +2,9 @@
 //! on the lower arm.
 
 use crate::connection::{arm_mounts, Connection, SpringSpec};
-use crate::corner::{mount_rig, Corner, Rig};
+use crate::corner::{part_name, Corner, CornerParts, CornerTemplate, Rig, TieRod, Wheel};
 use crate::hardpoint::Side;
-use elastokin_core::{BodyRef, JointSpec, ModelError, Pose, Vec3};
+use elastokin_core::{BodyRef, JointSpec, Model, ModelError, Pose, Vec3};
 use elastokin_elements::CoilSpring;
 use serde::{Deserialize, Serialize};
 
@@ -67,39 +67,37 @@ pub struct DoubleWishbone {
     pub lower_arm_mounts: Connection,
     /// Coil spring from the chassis seat to the lower arm seat.
     pub spring: SpringSpec,
+    /// Tie rod: a distance constraint (`"ideal"`, the default), or a rod with a bushing at each end.
+    #[serde(default)]
+    pub tie_rod: Connection,
     /// Loaded tyre radius (m): the contact patch sits this far below the wheel centre at design.
     #[serde(default = "crate::corner::default_loaded_radius")]
     pub loaded_radius: f64,
 }
 
 impl DoubleWishbone {
-    /// Builds the corner on `side`, held as `rig` says.
+    /// Builds the corner on `side`, held as `rig` says (see [`Corner::build`]).
     pub fn build(&self, side: Side, rig: Rig) -> Result<Corner, ModelError> {
+        Corner::build(self, side, rig)
+    }
+}
+
+impl CornerTemplate for DoubleWishbone {
+    fn add_corner(&self, model: &mut Model, side: Side, prefix: &str) -> Result<CornerParts, ModelError> {
         let h = &self.hardpoints;
         let p = |v: Vec3| side.place(v);
-        let (mut model, upright, wc) = Corner::start(side, h.wheel_centre, self.loaded_radius)?;
-        let upper = model.add_body("upper arm", Pose::at(p(h.upper_ball_joint)))?;
-        let lower = model.add_body("lower arm", Pose::at(p(h.lower_ball_joint)))?;
-        arm_mounts(
-            &mut model,
-            "upper arm",
-            upper.into(),
-            p(h.upper_arm_front),
-            p(h.upper_arm_rear),
-            self.upper_arm_mounts,
-        )?;
-        arm_mounts(
-            &mut model,
-            "lower arm",
-            lower.into(),
-            p(h.lower_arm_front),
-            p(h.lower_arm_rear),
-            self.lower_arm_mounts,
-        )?;
-        model.add_joint(JointSpec::spherical("upper ball joint", upper, upright, p(h.upper_ball_joint)))?;
-        model.add_joint(JointSpec::spherical("lower ball joint", lower, upright, p(h.lower_ball_joint)))?;
+        let n = |name: &str| part_name(prefix, name);
+        let (upright, _) = Wheel::add_upright(model, side, prefix, h.wheel_centre, self.loaded_radius)?;
+        let upper = model.add_body(&n("upper arm"), Pose::at(p(h.upper_ball_joint)))?;
+        let lower = model.add_body(&n("lower arm"), Pose::at(p(h.lower_ball_joint)))?;
+        let (uf, ur) = (p(h.upper_arm_front), p(h.upper_arm_rear));
+        arm_mounts(model, &n("upper arm"), upper.into(), uf, ur, self.upper_arm_mounts)?;
+        let (lf, lr) = (p(h.lower_arm_front), p(h.lower_arm_rear));
+        arm_mounts(model, &n("lower arm"), lower.into(), lf, lr, self.lower_arm_mounts)?;
+        model.add_joint(JointSpec::spherical(&n("upper ball joint"), upper, upright, p(h.upper_ball_joint)))?;
+        model.add_joint(JointSpec::spherical(&n("lower ball joint"), lower, upright, p(h.lower_ball_joint)))?;
         model.add_element(CoilSpring::with_design_force(
-            "spring",
+            &n("spring"),
             BodyRef::Ground,
             p(h.spring_chassis),
             lower.into(),
@@ -107,14 +105,10 @@ impl DoubleWishbone {
             self.spring.rate,
             self.spring.design_force,
         )?)?;
-        mount_rig(&mut model, rig, upright, wc, p(h.tie_rod_inner), p(h.tie_rod_outer))?;
-        Ok(Corner::finish(
-            model,
-            side,
-            rig,
-            upright,
-            self.loaded_radius,
-            [(upright.into(), p(h.lower_ball_joint)), (upright.into(), p(h.upper_ball_joint))],
-        ))
+        let steering_axis = [(upright.into(), p(h.lower_ball_joint)), (upright.into(), p(h.upper_ball_joint))];
+        Ok(CornerParts {
+            wheel: Wheel::new(model, side, upright, self.loaded_radius, steering_axis),
+            tie_rod: TieRod { inner: p(h.tie_rod_inner), outer: p(h.tie_rod_outer), connection: self.tie_rod },
+        })
     }
 }

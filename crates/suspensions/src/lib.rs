@@ -13,6 +13,7 @@
 //!     upper_arm_mounts: Connection::Ideal,
 //!     lower_arm_mounts: Connection::Ideal,
 //!     spring: SpringSpec { rate: 30e3, design_force: 4000.0 },
+//!     tie_rod: Connection::Ideal,
 //!     loaded_radius: 0.30,
 //! }
 //! .build(Side::Left, Rig::WheelTravel)
@@ -34,7 +35,7 @@ pub mod macpherson;
 pub mod model_file;
 
 pub use connection::{BushingRates, Connection, SpringSpec};
-pub use corner::{Corner, Rig, SteeringGeometry, WheelAttitude};
+pub use corner::{Corner, CornerParts, CornerTemplate, Rig, SteeringGeometry, TieRod, Wheel, WheelAttitude};
 pub use double_wishbone::{DoubleWishbone, DoubleWishboneHardpoints};
 pub use hardpoint::Side;
 pub use macpherson::{MacPherson, MacPhersonHardpoints};

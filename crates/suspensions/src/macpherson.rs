@@ -2,9 +2,9 @@
 //! chassis, lower control arm, tie rod, coil spring from the top mount to the spring seat on the strut.
 
 use crate::connection::{arm_mounts, axial_bushing, Connection, SpringSpec};
-use crate::corner::{mount_rig, Corner, Rig};
+use crate::corner::{part_name, Corner, CornerParts, CornerTemplate, Rig, TieRod, Wheel};
 use crate::hardpoint::Side;
-use elastokin_core::{BodyRef, JointSpec, ModelError, Pose, Vec3};
+use elastokin_core::{BodyRef, JointSpec, Model, ModelError, Pose, Vec3};
 use elastokin_elements::CoilSpring;
 use serde::{Deserialize, Serialize};
 
@@ -59,41 +59,45 @@ pub struct MacPherson {
     pub top_mount: Connection,
     /// Coil spring from the top mount to the spring seat at the strut lower point.
     pub spring: SpringSpec,
+    /// Tie rod: a distance constraint (`"ideal"`, the default), or a rod with a bushing at each end.
+    #[serde(default)]
+    pub tie_rod: Connection,
     /// Loaded tyre radius (m): the contact patch sits this far below the wheel centre at design.
     #[serde(default = "crate::corner::default_loaded_radius")]
     pub loaded_radius: f64,
 }
 
 impl MacPherson {
-    /// Builds the corner on `side`, held as `rig` says.
+    /// Builds the corner on `side`, held as `rig` says (see [`Corner::build`]).
     pub fn build(&self, side: Side, rig: Rig) -> Result<Corner, ModelError> {
+        Corner::build(self, side, rig)
+    }
+}
+
+impl CornerTemplate for MacPherson {
+    fn add_corner(&self, model: &mut Model, side: Side, prefix: &str) -> Result<CornerParts, ModelError> {
         let h = &self.hardpoints;
         let p = |v: Vec3| side.place(v);
-        let (mut model, upright, wc) = Corner::start(side, h.wheel_centre, self.loaded_radius)?;
+        let n = |name: &str| part_name(prefix, name);
+        let (upright, _) = Wheel::add_upright(model, side, prefix, h.wheel_centre, self.loaded_radius)?;
         let (lower_pt, top) = (p(h.strut_lower), p(h.top_mount));
-        let rod = model.add_body("strut rod", Pose::at((lower_pt + top) / 2.0))?;
-        let arm = model.add_body("lower arm", Pose::at(p(h.lower_ball_joint)))?;
-        arm_mounts(
-            &mut model,
-            "lower arm",
-            arm.into(),
-            p(h.lower_arm_front),
-            p(h.lower_arm_rear),
-            self.lower_arm_mounts,
-        )?;
-        model.add_joint(JointSpec::spherical("lower ball joint", arm, upright, p(h.lower_ball_joint)))?;
+        let rod = model.add_body(&n("strut rod"), Pose::at((lower_pt + top) / 2.0))?;
+        let arm = model.add_body(&n("lower arm"), Pose::at(p(h.lower_ball_joint)))?;
+        let (lf, lr) = (p(h.lower_arm_front), p(h.lower_arm_rear));
+        arm_mounts(model, &n("lower arm"), arm.into(), lf, lr, self.lower_arm_mounts)?;
+        model.add_joint(JointSpec::spherical(&n("lower ball joint"), arm, upright, p(h.lower_ball_joint)))?;
         let axis = top - lower_pt;
-        model.add_joint(JointSpec::translational("strut", upright, rod, lower_pt, axis))?;
+        model.add_joint(JointSpec::translational(&n("strut"), upright, rod, lower_pt, axis))?;
         match self.top_mount {
             Connection::Ideal => {
-                model.add_joint(JointSpec::spherical("top mount", BodyRef::Ground, rod, top))?;
+                model.add_joint(JointSpec::spherical(&n("top mount"), BodyRef::Ground, rod, top))?;
             }
             Connection::Bushing(r) => {
-                model.add_element(axial_bushing("top mount", rod.into(), top, axis, r)?)?;
+                model.add_element(axial_bushing(&n("top mount"), BodyRef::Ground, rod.into(), top, axis, r)?)?;
             }
         }
         model.add_element(CoilSpring::with_design_force(
-            "spring",
+            &n("spring"),
             BodyRef::Ground,
             top,
             upright.into(),
@@ -101,14 +105,10 @@ impl MacPherson {
             self.spring.rate,
             self.spring.design_force,
         )?)?;
-        mount_rig(&mut model, rig, upright, wc, p(h.tie_rod_inner), p(h.tie_rod_outer))?;
-        Ok(Corner::finish(
-            model,
-            side,
-            rig,
-            upright,
-            self.loaded_radius,
-            [(upright.into(), p(h.lower_ball_joint)), (rod.into(), top)],
-        ))
+        let steering_axis = [(upright.into(), p(h.lower_ball_joint)), (rod.into(), top)];
+        Ok(CornerParts {
+            wheel: Wheel::new(model, side, upright, self.loaded_radius, steering_axis),
+            tie_rod: TieRod { inner: p(h.tie_rod_inner), outer: p(h.tie_rod_outer), connection: self.tie_rod },
+        })
     }
 }

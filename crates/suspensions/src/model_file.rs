@@ -12,11 +12,11 @@
 //!
 //! Unknown keys and missing hardpoints are errors that name the key and the line and column in the file.
 
-use crate::corner::{Corner, Rig};
+use crate::corner::{Corner, CornerParts, CornerTemplate, Rig};
 use crate::double_wishbone::DoubleWishbone;
 use crate::hardpoint::Side;
 use crate::macpherson::MacPherson;
-use elastokin_core::ModelError;
+use elastokin_core::{Model, ModelError};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -33,11 +33,17 @@ pub enum Template {
 }
 
 impl Template {
-    /// Builds the corner (see the templates' `build`).
+    /// Builds the corner (see [`Corner::build`]).
     pub fn build(&self, side: Side, rig: Rig) -> Result<Corner, ModelError> {
+        Corner::build(self, side, rig)
+    }
+}
+
+impl CornerTemplate for Template {
+    fn add_corner(&self, model: &mut Model, side: Side, prefix: &str) -> Result<CornerParts, ModelError> {
         match self {
-            Template::DoubleWishbone(t) => t.build(side, rig),
-            Template::MacPherson(t) => t.build(side, rig),
+            Template::DoubleWishbone(t) => t.add_corner(model, side, prefix),
+            Template::MacPherson(t) => t.add_corner(model, side, prefix),
         }
     }
 }

@@ -22,10 +22,12 @@ fn wheel_response(k: usize, size: f64) -> (Vec3, nalgebra::UnitQuaternion<f64>) 
     let mut unit = Vec3::zeros();
     unit[k % 3] = size;
     // A constant load (present at t = 0): the load parameter also drives the wheel-travel driver.
-    let upright = corner.upright.into();
+    let upright = corner.wheel.upright.into();
     if k < 3 {
-        let probe =
-            PointForce::new("probe", upright, corner.wheel_centre, Vec3::zeros()).unwrap().with_constant(unit).unwrap();
+        let probe = PointForce::new("probe", upright, corner.wheel.wheel_centre, Vec3::zeros())
+            .unwrap()
+            .with_constant(unit)
+            .unwrap();
         corner.model.add_element(probe).unwrap();
     } else {
         let probe = PointTorque::new("probe", upright, Vec3::zeros()).unwrap().with_constant(unit).unwrap();
@@ -35,8 +37,8 @@ fn wheel_response(k: usize, size: f64) -> (Vec3, nalgebra::UnitQuaternion<f64>) 
         StaticSolver::new(&corner.model, SolverOptions { force_tolerance: 1e-13, ..SolverOptions::default() }).unwrap();
     let mut state = solver.design_state(0.0);
     solver.equilibrium(&mut state).unwrap();
-    let pose = state.poses[corner.upright.0];
-    (pose.point(&corner.wheel_centre_local), pose.orientation)
+    let pose = state.poses[corner.wheel.upright.0];
+    (pose.point(&corner.wheel.wheel_centre_local), pose.orientation)
 }
 
 #[test]
@@ -75,19 +77,19 @@ fn attitude_under_patch_force(f: Vec3) -> (f64, f64, Vec3) {
         let mut solver = StaticSolver::new(&corner.model, SolverOptions::default()).unwrap();
         let mut state = solver.design_state(0.0);
         solver.equilibrium(&mut state).unwrap();
-        let patch = corner.steering_geometry(&state.poses).contact_patch;
-        let local = state.poses[corner.upright.0].to_local_point(&patch);
-        corner.model.bodies()[corner.upright.0].design_pose.point(&local)
+        let patch = corner.wheel.steering_geometry(&state.poses).contact_patch;
+        let local = state.poses[corner.wheel.upright.0].to_local_point(&patch);
+        corner.model.bodies()[corner.wheel.upright.0].design_pose.point(&local)
     };
-    let upright = corner.upright.into();
+    let upright = corner.wheel.upright.into();
     let probe = PointForce::new("probe", upright, point, Vec3::zeros()).unwrap().with_constant(f).unwrap();
     corner.model.add_element(probe).unwrap();
     let mut solver =
         StaticSolver::new(&corner.model, SolverOptions { force_tolerance: 1e-13, ..SolverOptions::default() }).unwrap();
     let mut state = solver.design_state(0.0);
     solver.equilibrium(&mut state).unwrap();
-    let a = corner.attitude(&state.poses);
-    let patch = corner.steering_geometry(&state.poses).contact_patch;
+    let a = corner.wheel.attitude(&state.poses);
+    let patch = corner.wheel.steering_geometry(&state.poses).contact_patch;
     (a.toe, a.camber, patch)
 }
 

@@ -16,6 +16,7 @@ fn template(mounts: Connection) -> DoubleWishbone {
         upper_arm_mounts: mounts,
         lower_arm_mounts: mounts,
         spring: SpringSpec { rate: 30e3, design_force: 4000.0 },
+        tie_rod: Connection::Ideal,
         loaded_radius: 0.30,
     }
 }
@@ -166,8 +167,8 @@ fn vertical_force_sweep_balances_the_spring_by_virtual_work() {
         let eq = solver.equilibrium(&mut state).unwrap();
         let arm = eq.poses[corner.model.body_id("lower arm").unwrap().0];
         let seat = arm.point(&corner.model.bodies()[2].design_pose.to_local_point(&h.spring_arm));
-        let upright = eq.poses[corner.upright.0];
-        let patch = upright.point(&(corner.contact_patch - corner.wheel_centre));
+        let upright = eq.poses[corner.wheel.upright.0];
+        let patch = upright.point(&(corner.wheel.contact_patch - corner.wheel.wheel_centre));
         ((seat - h.spring_chassis).norm(), patch.z)
     };
     let free_length = (h.spring_arm - h.spring_chassis).norm() + dw.spring.design_force / dw.spring.rate;
@@ -188,7 +189,7 @@ fn vertical_force_sweep_balances_the_spring_by_virtual_work() {
 fn steering_axis_geometry_at_design_and_mirrored() {
     let dw = template(Connection::Ideal);
     let left = dw.build(Side::Left, Rig::WheelTravel).unwrap();
-    let g = left.steering_geometry(&left.model.design_poses());
+    let g = left.wheel.steering_geometry(&left.model.design_poses());
     // By hand from the generic hardpoints: u = UBJ − LBJ = (−0.048, −0.090, 0.508); the ground is 0.30 m
     // below the wheel centre (z = −0.326).
     let u = Vec3::new(-0.048, -0.090, 0.508);
@@ -208,7 +209,7 @@ fn steering_axis_geometry_at_design_and_mirrored() {
                 elastokin_solver::StaticSolver::new(&c.model, elastokin_solver::SolverOptions::default()).unwrap();
             let mut state = solver.design_state(t);
             solver.equilibrium(&mut state).unwrap();
-            c.steering_geometry(&state.poses)
+            c.wheel.steering_geometry(&state.poses)
         };
         let (l, r) = (geometry(&left), geometry(&right));
         for (a, b) in [

@@ -14,6 +14,7 @@ fn template(arm: Connection, top: Connection) -> MacPherson {
         lower_arm_mounts: arm,
         top_mount: top,
         spring: SpringSpec { rate: 30e3, design_force: 4500.0 },
+        tie_rod: Connection::Ideal,
         loaded_radius: 0.30,
     }
 }
