@@ -629,6 +629,13 @@ impl<'m> StaticSolver<'m> {
         Ok(self.step_result(state, iterations, &r))
     }
 
+    /// The state of a step result (its poses, its active rows' multipliers and its load parameter), to
+    /// continue from it or to ask for its [`StaticSolver::path_tangent`].
+    pub fn state_of(&self, step: &StepResult) -> State {
+        let lambda = self.assembly.active_rows.iter().map(|&row| step.multipliers[row]).collect();
+        State { poses: step.poses.clone(), lambda, t: step.t }
+    }
+
     fn step_result(&self, state: &State, iterations: usize, r: &Residual) -> StepResult {
         let mut multipliers = vec![0.0; self.model.constraint_rows()];
         for (k, &row) in self.assembly.active_rows.iter().enumerate() {

@@ -27,6 +27,7 @@
 //! thiserror for errors. faer, sprs and rayon are left out here: the solving is the solver crate's.
 
 pub mod analysis;
+pub mod axle;
 pub mod connection;
 pub mod corner;
 pub mod double_wishbone;
@@ -34,6 +35,7 @@ pub mod hardpoint;
 pub mod macpherson;
 pub mod model_file;
 
+pub use axle::{Axle, AxleRig, AxleRow, RollCentre};
 pub use connection::{BushingRates, Connection, SpringSpec};
 pub use corner::{Corner, CornerParts, CornerTemplate, Rig, SteeringGeometry, TieRod, Wheel, WheelAttitude};
 pub use double_wishbone::{DoubleWishbone, DoubleWishboneHardpoints};
