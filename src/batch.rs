@@ -11,7 +11,7 @@
 //! ```
 
 use elastokin::solver::Mode;
-use elastokin::suspensions::analysis::{parallel_wheel_travel, slope_at_design, TravelRow};
+use elastokin::suspensions::analysis::{parallel_wheel_travel, slope_at, TravelRow};
 use elastokin::suspensions::{Rig, Side, SuspensionFile};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -82,7 +82,9 @@ pub fn evaluate(file: &SuspensionFile, half_range: f64, steps: usize) -> Result<
     let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| e.to_string())?;
     let rows =
         parallel_wheel_travel(&corner, -half_range, half_range, steps, Mode::Corrected).map_err(|e| e.to_string())?;
-    let slope = |y: &dyn Fn(&TravelRow) -> f64| slope_at_design(&rows, y).ok_or("too few steps for a slope at design");
+    let slope = |y: &dyn Fn(&TravelRow) -> f64| {
+        slope_at(&rows, 0.0, |r| r.travel, y).ok_or("too few steps for a slope at design")
+    };
     Ok(Outcome {
         bump_steer: slope(&|r| r.attitude.toe.to_degrees())?,
         camber_gain: slope(&|r| r.attitude.camber.to_degrees())?,

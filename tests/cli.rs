@@ -18,6 +18,14 @@ fn examples() -> Vec<String> {
     v
 }
 
+/// The files `run` writes for each analysis: (CSV, plots).
+const OUTPUTS: [(&str, &str, &[&str]); 4] = [
+    ("parallel-travel", "parallel_travel.csv", &["parallel_travel_toe_camber.svg"]),
+    ("roll", "roll.csv", &["roll_toe_camber.svg", "roll_centre.svg"]),
+    ("steering", "steering.csv", &["steering.svg"]),
+    ("vertical-force", "vertical_force.csv", &["vertical_force.svg"]),
+];
+
 #[test]
 fn run_and_check_every_example() {
     let out = std::env::temp_dir().join(format!("elastokin-cli-{}", std::process::id()));
@@ -26,19 +34,58 @@ fn run_and_check_every_example() {
         assert!(o.status.success(), "{model}: {}", String::from_utf8_lossy(&o.stderr));
         assert!(String::from_utf8_lossy(&o.stdout).contains("every body is restrained"));
         for mode in ["corrected", "paper"] {
+            std::fs::remove_dir_all(&out).ok();
             let o = elastokin(&["run", &model, "--steps", "8", "--mode", mode, "--out", out.to_str().unwrap()]);
             assert!(o.status.success(), "{model} {mode}: {}", String::from_utf8_lossy(&o.stderr));
-            let csv = std::fs::read_to_string(out.join("parallel_travel.csv")).unwrap();
-            assert_eq!(csv.lines().count(), 1 + 9, "{csv}");
-            assert!(!csv.contains("NaN") && !csv.contains("inf"), "{csv}");
             let summary: serde_json::Value =
                 serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-            assert!(summary["bump_steer_deg_per_m"].is_f64(), "{summary}");
-            assert!(summary["compliance_at_design"]["lateral_steer_deg_per_kn"].is_f64(), "{summary}");
-            let svg = std::fs::read_to_string(out.join("parallel_travel_toe_camber.svg")).unwrap();
-            assert!(svg.contains("<polyline") && !svg.contains("NaN"));
+            for (analysis, csv, plots) in OUTPUTS {
+                let csv = std::fs::read_to_string(out.join(csv)).unwrap();
+                assert_eq!(csv.lines().count(), 1 + 9, "{model} {mode} {analysis}: {csv}");
+                assert!(!csv.contains("NaN") && !csv.contains("inf"), "{csv}");
+                for plot in plots {
+                    let svg = std::fs::read_to_string(out.join(plot)).unwrap();
+                    assert!(svg.contains("<polyline") && !svg.contains("NaN"), "{plot}");
+                }
+                assert!(summary["analyses"][analysis]["parameter"].is_string(), "{analysis}: {summary}");
+            }
+            let a = &summary["analyses"];
+            assert!(a["parallel-travel"]["bump_steer_deg_per_m"].is_f64(), "{summary}");
+            assert!(a["parallel-travel"]["compliance_at_design"]["lateral_steer_deg_per_kn"].is_f64(), "{summary}");
+            assert!(a["roll"]["roll_centre_height_at_design_m"].is_f64(), "{summary}");
+            assert!(a["roll"]["roll_stiffness_nm_per_rad"].is_f64(), "{summary}");
+            assert!(a["steering"]["steer_per_rack_travel_deg_per_m"].is_f64(), "{summary}");
+            assert!(a["vertical-force"]["wheel_rate_n_per_m"].is_f64(), "{summary}");
         }
+        // One analysis alone, with its own range.
+        std::fs::remove_dir_all(&out).ok();
+        let o =
+            elastokin(&["run", &model, "--analysis", "roll", "--range", "-0.02,0.02", "--out", out.to_str().unwrap()]);
+        assert!(o.status.success(), "{model}: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(out.join("roll.csv").exists() && !out.join("parallel_travel.csv").exists());
     }
+    std::fs::remove_dir_all(&out).ok();
+}
+
+/// The figures `run` reports are the engine's, read back through the files: the roll stiffness of the
+/// springs equals the closed form from the wheel rate, k_φ = k_w · T² / 2 (both wheels on their springs,
+/// track T), and the wheel rate from the vertical force sweep matches the one from parallel travel.
+#[test]
+fn run_figures_agree_with_each_other_by_closed_form() {
+    let out = std::env::temp_dir().join(format!("elastokin-figures-{}", std::process::id()));
+    let o = elastokin(&["run", "examples/double_wishbone.json", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let a = &summary["analyses"];
+    let wheel_rate = a["parallel-travel"]["wheel_rate_n_per_m"].as_f64().unwrap();
+    let roll_stiffness = a["roll"]["roll_stiffness_nm_per_rad"].as_f64().unwrap();
+    let track = 2.0 * 1.100;
+    let expected = wheel_rate * track * track / 2.0;
+    // Finite differences over ±5 mm and the small track change limit this to ~1 %.
+    assert!((roll_stiffness - expected).abs() < 0.02 * expected, "{roll_stiffness} vs k_w T²/2 = {expected}");
+    let force_rate = a["vertical-force"]["wheel_rate_n_per_m"].as_f64().unwrap();
+    assert!((force_rate - wheel_rate).abs() < 0.05 * wheel_rate, "{force_rate} vs {wheel_rate}");
     std::fs::remove_dir_all(&out).ok();
 }
 
@@ -56,6 +103,8 @@ fn bad_files_and_arguments_exit_non_zero_with_a_named_problem() {
         (vec!["run".into(), examples()[0].clone(), "--mode".into(), "exact".into()], "--mode"),
         (vec!["run".into(), examples()[0].clone(), "--range".into(), "0.1".into()], "--range"),
         (vec!["frobnicate".into()], "unknown command"),
+        (vec!["run".into(), examples()[0].clone(), "--analysis".into(), "pitch".into()], "unknown analysis 'pitch'"),
+        (vec!["run".into(), examples()[0].clone(), "--range".into(), "0,1".into()], "--range needs --analysis"),
     ];
     for (args, expected) in cases {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
@@ -90,8 +139,8 @@ fn batch_runs_variants_in_parallel_and_agrees_with_run() {
     assert!(r.status.success());
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-    let run_bump = summary["bump_steer_deg_per_m"].as_f64().unwrap();
-    let run_rate = summary["wheel_rate_n_per_m"].as_f64().unwrap();
+    let run_bump = summary["analyses"]["parallel-travel"]["bump_steer_deg_per_m"].as_f64().unwrap();
+    let run_rate = summary["analyses"]["parallel-travel"]["wheel_rate_n_per_m"].as_f64().unwrap();
     assert!((value("baseline", 1) - run_bump).abs() < 1e-6 * run_bump.abs(), "{} vs {run_bump}", value("baseline", 1));
     assert!((value("baseline", 3) - run_rate).abs() < 1e-6 * run_rate, "{} vs {run_rate}", value("baseline", 3));
     // Moving the inner tie-rod point up and down moves bump steer in opposite directions around the baseline.

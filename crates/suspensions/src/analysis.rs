@@ -38,6 +38,27 @@ pub fn steering(corner: &Corner, from: f64, to: f64, steps: usize, mode: Mode) -
     driven_sweep(corner, Rig::Steering, from, to, steps, mode)
 }
 
+/// The vertical force the rig applies at the wheel centre to hold the corner at design (N, up +): the
+/// corner load the design position carries. The corner must hold its wheel-centre height
+/// ([`Rig::WheelTravel`] at `t = 0`, or [`Rig::HeightHeld`]).
+pub fn design_wheel_load(corner: &Corner) -> Result<f64, SolverError> {
+    let driver =
+        corner.model.joint_id("wheel travel").filter(|_| matches!(corner.rig, Rig::WheelTravel | Rig::HeightHeld));
+    let Some(driver) = driver else {
+        return Err(SolverError::InvalidInput {
+            what: "corner",
+            why: format!(
+                "the design wheel load needs the wheel-centre height held, but the corner was built with Rig::{:?}",
+                corner.rig
+            ),
+        });
+    };
+    let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
+    let mut state = solver.design_state(0.0);
+    let step = solver.equilibrium(&mut state)?;
+    Ok(step.joint_reactions(&corner.model)[driver.0].force.z)
+}
+
 /// Refuses a corner held differently from what the analysis needs.
 fn require_rig(corner: &Corner, rig: Rig) -> Result<(), SolverError> {
     if corner.rig == rig {
@@ -52,19 +73,20 @@ fn require_rig(corner: &Corner, rig: Rig) -> Result<(), SolverError> {
     })
 }
 
-/// Slope of `y` against the driven travel at design (travel 0), by a central difference of the rows on
-/// either side of it (one-sided at the end of the range). `None` with fewer than two rows.
-pub fn slope_at_design(rows: &[TravelRow], y: impl Fn(&TravelRow) -> f64) -> Option<f64> {
-    let k = rows.iter().position(|r| r.travel >= 0.0)?;
-    let (a, b) = if k == 0 {
-        (0, 1)
-    } else if rows[k].travel == 0.0 && k + 1 < rows.len() {
-        (k - 1, k + 1)
-    } else {
-        (k - 1, k)
+/// Slope of `y` against `x` at `x = at` over sweep rows (in either order): a central difference of the
+/// rows on either side when a row sits exactly at `at`, else the chord of the two rows that bracket it.
+/// `None` when `at` is outside the rows' range or there are fewer than two rows.
+pub fn slope_at<R>(rows: &[R], at: f64, x: impl Fn(&R) -> f64, y: impl Fn(&R) -> f64) -> Option<f64> {
+    let xs: Vec<f64> = rows.iter().map(&x).collect();
+    let (a, b) = match xs.iter().position(|&v| v == at) {
+        Some(k) if rows.len() >= 2 => (k.saturating_sub(1), (k + 1).min(rows.len() - 1)),
+        Some(_) => return None,
+        None => {
+            let i = xs.windows(2).position(|w| (w[0] - at) * (w[1] - at) < 0.0)?;
+            (i, i + 1)
+        }
     };
-    let (ra, rb) = (rows.get(a)?, rows.get(b)?);
-    Some((y(rb) - y(ra)) / (rb.travel - ra.travel))
+    Some((y(&rows[b]) - y(&rows[a])) / (xs[b] - xs[a]))
 }
 
 fn driven_sweep(
