@@ -64,3 +64,24 @@ fn inconsistent_geometry_is_refused_with_the_item_named() {
     assert!(matches!(err, FileError::Model { .. }), "{err}");
     assert!(err.to_string().starts_with("bad.json"), "{err}");
 }
+
+#[test]
+fn a_bushed_tie_rod_round_trips_and_builds_a_rod() {
+    let text = first_example_text().replacen(
+        "\"spring\"",
+        "\"tie_rod\": { \"bushing\": { \"radial\": 2e7, \"axial\": 2e7, \"torsion\": 50.0, \"conical\": 50.0 } },\n      \"spring\"",
+        1,
+    );
+    let file = SuspensionFile::from_json(&text, "bushed tie rod").unwrap();
+    let again = SuspensionFile::from_json(&file.to_json(), "round trip").unwrap();
+    assert_eq!(file, again);
+    let corner =
+        file.suspension.build(elastokin_suspensions::Side::Left, elastokin_suspensions::Rig::WheelTravel).unwrap();
+    assert!(corner.model.body_id("tie rod").is_some());
+    assert!(corner.model.joint_id("tie rod").is_none(), "the distance constraint is replaced, not doubled");
+    // The default, when the key is absent, is the distance constraint.
+    let plain = SuspensionFile::from_json(&first_example_text(), "plain").unwrap();
+    let corner =
+        plain.suspension.build(elastokin_suspensions::Side::Left, elastokin_suspensions::Rig::WheelTravel).unwrap();
+    assert!(corner.model.joint_id("tie rod").is_some() && corner.model.body_id("tie rod").is_none());
+}
