@@ -220,6 +220,11 @@ fn run_batch(args: &[String]) -> Result<(), String> {
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    // `--help` anywhere (`elastokin run --help`) asks for the help text, not for a model named --help.
+    if args.iter().any(|a| a == "--help" || a == "-h") {
+        println!("{HELP}");
+        return ExitCode::SUCCESS;
+    }
     let result = match args.first().map(String::as_str) {
         Some("run") => parse_run(&args[1..]).and_then(run),
         Some("check") => match args.get(1) {
@@ -227,7 +232,7 @@ fn main() -> ExitCode {
             None => Err("check needs a MODEL file: elastokin check examples/macpherson.json".into()),
         },
         Some("batch") => run_batch(&args[1..]),
-        Some("help" | "--help" | "-h") | None => {
+        Some("help") | None => {
             println!("{HELP}");
             Ok(())
         }

@@ -114,8 +114,10 @@ fn bad_files_and_arguments_exit_non_zero_with_a_named_problem() {
         assert!(err.contains(expected), "{args:?}: {err}");
     }
     std::fs::remove_dir_all(&dir).ok();
-    let o = elastokin(&["help"]);
-    assert!(o.status.success() && String::from_utf8_lossy(&o.stdout).contains("elastokin run MODEL"));
+    for args in [&["help"][..], &["run", "--help"], &["batch", "-h"], &["check", "--help"]] {
+        let o = elastokin(args);
+        assert!(o.status.success() && String::from_utf8_lossy(&o.stdout).contains("elastokin run MODEL"), "{args:?}");
+    }
 }
 
 #[test]
