@@ -1,7 +1,9 @@
 //! K&C analyses: load paths walked by the engine, reduced to wheel characteristics.
 
 use crate::corner::{Corner, Rig, SteeringGeometry, WheelAttitude};
-use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, StaticSolver};
+use elastokin_core::{Model, Vec3};
+use elastokin_elements::PointForce;
+use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult, Sweep};
 
 /// One row of a driven sweep (wheel travel or steering).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -38,15 +40,17 @@ pub fn steering(corner: &Corner, from: f64, to: f64, steps: usize, mode: Mode) -
     driven_sweep(corner, Rig::Steering, from, to, steps, mode)
 }
 
-/// Refuses a corner held differently from what the analysis needs.
-fn require_rig(corner: &Corner, rig: Rig) -> Result<(), SolverError> {
-    if corner.rig == rig {
+/// Refuses a corner held differently from what the analysis needs: `rigs` lists the rigs it accepts.
+fn require_rig(corner: &Corner, rigs: &[Rig]) -> Result<(), SolverError> {
+    if rigs.contains(&corner.rig) {
         return Ok(());
     }
+    let accepted: Vec<String> = rigs.iter().map(|r| format!("Rig::{r:?}")).collect();
     Err(SolverError::InvalidInput {
         what: "corner",
         why: format!(
-            "this analysis needs the corner built with Rig::{rig:?}, but it was built with Rig::{:?}",
+            "this analysis needs the corner built with {}, but it was built with Rig::{:?}",
+            accepted.join(" or "),
             corner.rig
         ),
     })
@@ -75,7 +79,7 @@ fn driven_sweep(
     steps: usize,
     mode: Mode,
 ) -> Result<Vec<TravelRow>, SolverError> {
-    require_rig(corner, rig)?;
+    require_rig(corner, &[rig])?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
     let driver = corner.model.joint_id("wheel travel");
@@ -118,17 +122,17 @@ fn compliance_at(corner: &Corner, t: f64) -> Result<([[f64; 6]; 6], Vec<elastoki
     solver.factorize_tangent(&state)?;
     for (k, column) in columns.iter_mut().enumerate() {
         rhs.fill(0.0);
-        let mut unit = elastokin_core::Vec3::zeros();
+        let mut unit = Vec3::zeros();
         unit[k % 3] = 1.0;
         // Generalized force of a force at the wheel centre (F, s × F), or of a torque (0, M).
-        let (f, moment) = if k < 3 { (unit, s.cross(&unit)) } else { (elastokin_core::Vec3::zeros(), unit) };
+        let (f, moment) = if k < 3 { (unit, s.cross(&unit)) } else { (Vec3::zeros(), unit) };
         for c in 0..3 {
             rhs[base + c] = f[c];
             rhs[base + 3 + c] = moment[c];
         }
         solver.solve_factored(&mut rhs)?;
-        let dr = elastokin_core::Vec3::new(rhs[base], rhs[base + 1], rhs[base + 2]);
-        let dpi = elastokin_core::Vec3::new(rhs[base + 3], rhs[base + 4], rhs[base + 5]);
+        let dr = Vec3::new(rhs[base], rhs[base + 1], rhs[base + 2]);
+        let dpi = Vec3::new(rhs[base + 3], rhs[base + 4], rhs[base + 5]);
         let dwc = dr + dpi.cross(&s);
         for c in 0..3 {
             column[c] = dwc[c];
@@ -145,42 +149,227 @@ fn compliance_at(corner: &Corner, t: f64) -> Result<([[f64; 6]; 6], Vec<elastoki
     Ok((out, state.poses))
 }
 
-/// One row of a force sweep.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ForceRow {
-    /// The applied force (N): the load parameter.
-    pub force: f64,
-    /// Wheel attitude at equilibrium.
+/// Force and moment that one joint or element applies at an equilibrium (global axes, N and N·m).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ComponentForce {
+    /// The joint's or element's name.
+    pub name: String,
+    /// The body the force is applied to: the component's body `j` ("ground" for a joint whose `j` is the
+    /// ground, whose reaction on the ground is then given).
+    pub body: String,
+    /// The body on the other side, which receives the opposite force and moment ("ground" for a part
+    /// mounted on the chassis).
+    pub other_body: String,
+    /// Force applied to `body` (N).
+    pub force: Vec3,
+    /// Moment applied to `body` (N·m), about the joint's hardpoint or the element's point on `body` as the
+    /// body carries it.
+    pub torque: Vec3,
+}
+
+/// The force in every joint and every element at an equilibrium, by name, in model order: what a
+/// durability engineer takes from a K&C load case, and the forces through which the chassis holds the
+/// corner.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ComponentForces {
+    /// Joints and drivers (a driver's force is what the rig applies to hold it).
+    pub joints: Vec<ComponentForce>,
+    /// Bushings, springs and the applied loads.
+    pub elements: Vec<ComponentForce>,
+}
+
+impl ComponentForces {
+    /// Reads every joint reaction and element force of `step`, a solution of `model`.
+    pub fn at(model: &Model, step: &StepResult) -> Self {
+        let joints = model
+            .joints()
+            .iter()
+            .zip(step.joint_reactions(model))
+            .map(|(joint, reaction)| {
+                let (i, j) = (joint.spec.body_i, joint.spec.body_j);
+                // For a joint on the ground as `j`, the reaction reported is the one on the ground.
+                ComponentForce {
+                    name: joint.name().to_string(),
+                    body: model.body_name(j).to_string(),
+                    other_body: model.body_name(i).to_string(),
+                    force: reaction.force,
+                    torque: reaction.torque,
+                }
+            })
+            .collect();
+        let elements = model
+            .elements()
+            .iter()
+            .zip(step.element_reports(model))
+            .map(|(element, report)| {
+                let [i, j] = element.bodies();
+                ComponentForce {
+                    name: element.name().to_string(),
+                    body: model.body_name(j).to_string(),
+                    other_body: model.body_name(i).to_string(),
+                    force: report.force,
+                    torque: report.torque,
+                }
+            })
+            .collect();
+        ComponentForces { joints, elements }
+    }
+
+    /// The joint named `name`.
+    pub fn joint(&self, name: &str) -> Option<&ComponentForce> {
+        self.joints.iter().find(|c| c.name == name)
+    }
+
+    /// The element named `name`.
+    pub fn element(&self, name: &str) -> Option<&ComponentForce> {
+        self.elements.iter().find(|c| c.name == name)
+    }
+}
+
+/// One row of a force or torque sweep at the wheel ([`vertical_force_sweep`], [`wheel_load_sweep`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadRow {
+    /// The applied load: the load parameter (N, or N·m for the aligning torque).
+    pub load: f64,
+    /// Wheel attitude.
     pub attitude: WheelAttitude,
-    /// Contact-patch point of the upright at equilibrium (global).
-    pub contact_patch: elastokin_core::Vec3,
+    /// The upright's contact-patch point (global): the material point of the upright that sat at the
+    /// contact patch where the sweep defines it (see each sweep).
+    pub contact_patch: Vec3,
+    /// Displacement of that point from where it was at design (m). Its slope against a lateral or
+    /// braking load is the inverse of the stiffness at the contact patch.
+    pub patch_displacement: Vec3,
+    /// Vertical force the rig applies at the wheel centre to hold its height (N, up +); zero when the
+    /// wheel is free on its spring.
+    pub wheel_load: f64,
+    /// Force in every joint and element.
+    pub forces: ComponentForces,
+}
+
+/// Name of the vertical force of the corner's share of the vehicle weight in the load analyses.
+const CORNER_LOAD: &str = "corner load";
+
+/// Reads the rows of a load sweep; `patch_local` is the upright's contact-patch point (local).
+fn load_rows(corner: &Corner, sweep: &Sweep, patch_local: Vec3) -> Vec<LoadRow> {
+    let model = &corner.model;
+    let upright = corner.wheel.upright.0;
+    let patch_at_design = model.bodies()[upright].design_pose.point(&patch_local);
+    let driver = model.joint_id("wheel travel");
+    sweep
+        .steps
+        .iter()
+        .map(|s| {
+            let forces = ComponentForces::at(model, s);
+            let contact_patch = s.poses[upright].point(&patch_local);
+            LoadRow {
+                load: s.t,
+                attitude: corner.wheel.attitude(&s.poses),
+                contact_patch,
+                patch_displacement: contact_patch - patch_at_design,
+                wheel_load: driver.map_or(0.0, |d| forces.joints[d.0].force.z),
+                forces,
+            }
+        })
+        .collect()
 }
 
 /// Vertical force at the contact patch from `from` to `to` newtons (upward positive) in `steps` steps —
-/// the paper's vertical force sweep. The corner must be built without the wheel-travel driver: the wheel
-/// is free and the spring and bushings carry the load.
+/// the paper's vertical force sweep. The corner must be built with [`Rig::Free`]: the wheel is free and
+/// the spring and bushings carry the load. The force acts at the upright's point at the design contact
+/// patch (the rows' `contact_patch`); the path starts from the equilibrium at `from`, found from design.
 pub fn vertical_force_sweep(
     mut corner: Corner,
     from: f64,
     to: f64,
     steps: usize,
     mode: Mode,
-) -> Result<Vec<ForceRow>, SolverError> {
-    require_rig(&corner, Rig::Free)?;
+) -> Result<Vec<LoadRow>, SolverError> {
+    require_rig(&corner, &[Rig::Free])?;
     let patch = corner.wheel.contact_patch;
-    corner.add_wheel_force("vertical force", patch, elastokin_core::Vec3::z())?;
+    corner.add_wheel_force("vertical force", patch, Vec3::z())?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
     let local_patch = corner.model.bodies()[corner.wheel.upright.0].design_pose.to_local_point(&patch);
-    Ok(sweep
-        .steps
-        .iter()
-        .map(|s| ForceRow {
-            force: s.t,
-            attitude: corner.wheel.attitude(&s.poses),
-            contact_patch: s.poses[corner.wheel.upright.0].point(&local_patch),
-        })
-        .collect())
+    Ok(load_rows(&corner, &sweep, local_patch))
+}
+
+/// A force or torque a K&C rig applies to the wheel (signs as in [`PatchCompliance`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WheelLoad {
+    /// Lateral force at the contact patch, N, positive inboard: the cornering force on the outer wheel
+    /// of a turn.
+    Lateral,
+    /// Longitudinal force at the contact patch, N, positive rearward: braking with brakes on the upright,
+    /// which react the brake torque there, so the upright carries the tyre's force where the tyre makes it.
+    Braking,
+    /// Longitudinal force at the wheel centre, N, positive forward: drive through a half-shaft from a
+    /// chassis-mounted differential, whose torque the chassis reacts, so the upright receives only the
+    /// force, at the wheel bearing.
+    Traction,
+    /// Torque about +z (global), N·m: the tyre's aligning moment.
+    AligningTorque,
+}
+
+/// Sweeps one [`WheelLoad`] from `from` to `to` (N, or N·m for the aligning torque) in `steps` steps,
+/// walked in `mode`: compliance steer and camber, and the displacement of the contact patch, under road
+/// loads.
+///
+/// The corner must be built with [`Rig::HeightHeld`] (the wheel-centre height held, as a K&C rig does;
+/// the rows then give the rig's holding force) or [`Rig::Free`] (the wheel rides on its spring). Through
+/// the whole sweep the wheel also carries `corner_load` (N, upward, constant) at the design contact
+/// patch: the corner's share of the vehicle's weight, which a free wheel needs to stay near its design
+/// height (with the height held it only changes the holding force).
+///
+/// The patch loads act at the upright's material point at the contact patch of the equilibrium without
+/// the swept load (the lowest point of the wheel there; the rows' `contact_patch`), so that their slope at
+/// zero load is the compliance [`patch_compliance`] takes from the tangent at that equilibrium; the
+/// traction force acts at the wheel centre. Loads keep their global direction as the wheel moves.
+pub fn wheel_load_sweep(
+    mut corner: Corner,
+    load: WheelLoad,
+    corner_load: f64,
+    from: f64,
+    to: f64,
+    steps: usize,
+    mode: Mode,
+) -> Result<Vec<LoadRow>, SolverError> {
+    require_rig(&corner, &[Rig::HeightHeld, Rig::Free])?;
+    add_corner_load(&mut corner, corner_load)?;
+    // The equilibrium without the swept load: where the patch loads act, and where the path starts from.
+    let (mut start, patch_local) = {
+        let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
+        let mut state = solver.design_state(0.0);
+        solver.equilibrium(&mut state)?;
+        let patch = corner.wheel.steering_geometry(&state.poses).contact_patch;
+        let patch_local = state.poses[corner.wheel.upright.0].to_local_point(&patch);
+        (state, patch_local)
+    };
+    let upright_design = corner.model.bodies()[corner.wheel.upright.0].design_pose;
+    let patch_at_design = upright_design.point(&patch_local);
+    let inboard = Vec3::new(0.0, -corner.wheel.side.sign(), 0.0);
+    match load {
+        WheelLoad::Lateral => corner.add_wheel_force("lateral force", patch_at_design, inboard)?,
+        WheelLoad::Braking => corner.add_wheel_force("braking force", patch_at_design, -Vec3::x())?,
+        WheelLoad::Traction => corner.add_wheel_force("traction force", corner.wheel.wheel_centre, Vec3::x())?,
+        WheelLoad::AligningTorque => corner.add_wheel_torque("aligning torque", Vec3::z())?,
+    };
+    let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
+    let sweep = solver.sweep_from(&mut start, LoadPath::new(from, to, steps), mode)?;
+    Ok(load_rows(&corner, &sweep, patch_local))
+}
+
+/// Adds the constant upward `corner_load` (N) at the design contact patch, named [`CORNER_LOAD`].
+fn add_corner_load(corner: &mut Corner, corner_load: f64) -> Result<(), SolverError> {
+    if !corner_load.is_finite() {
+        return Err(SolverError::InvalidInput {
+            what: "corner load",
+            why: format!("the vertical load on the wheel must be a finite force in newtons, got {corner_load}"),
+        });
+    }
+    let force = PointForce::new(CORNER_LOAD, corner.wheel.upright.into(), corner.wheel.contact_patch, Vec3::zeros())?
+        .with_constant(Vec3::new(0.0, 0.0, corner_load))?;
+    corner.model.add_element(force)?;
+    Ok(())
 }
 
 /// Compliance characteristics at the contact patch, read from the wheel compliance matrix (SI: rad/N,
@@ -203,7 +392,7 @@ pub struct PatchCompliance {
 }
 
 /// Toe and camber changes of a small rotation `dpi` of the wheel with outward spin axis `a` on side `s`.
-fn attitude_change(a: &elastokin_core::Vec3, s: f64, dpi: &elastokin_core::Vec3) -> (f64, f64) {
+fn attitude_change(a: &Vec3, s: f64, dpi: &Vec3) -> (f64, f64) {
     let da = dpi.cross(a);
     let (ax, ay, az) = (a.x, s * a.y, a.z);
     let (dax, day, daz) = (da.x, s * da.y, da.z);
@@ -225,22 +414,22 @@ pub fn patch_compliance(corner: &Corner, t: f64) -> Result<PatchCompliance, Solv
     let arm = patch - w;
     let s = corner.wheel.side.sign();
     // Response (Δ patch, Δπ) to a unit force `f` at the patch or a unit torque `m`.
-    let respond = |f: elastokin_core::Vec3, m: elastokin_core::Vec3| {
+    let respond = |f: Vec3, m: Vec3| {
         let load = [f, arm.cross(&f) + m];
         let mut out = [0.0; 6];
         for r in 0..6 {
             out[r] = (0..3).map(|k| c[r][k] * load[0][k] + c[r][3 + k] * load[1][k]).sum();
         }
-        let dw = elastokin_core::Vec3::new(out[0], out[1], out[2]);
-        let dpi = elastokin_core::Vec3::new(out[3], out[4], out[5]);
+        let dw = Vec3::new(out[0], out[1], out[2]);
+        let dpi = Vec3::new(out[3], out[4], out[5]);
         (dw + dpi.cross(&arm), dpi)
     };
-    let inboard = elastokin_core::Vec3::new(0.0, -s, 0.0);
-    let rearward = elastokin_core::Vec3::new(-1.0, 0.0, 0.0);
-    let zero = elastokin_core::Vec3::zeros();
+    let inboard = Vec3::new(0.0, -s, 0.0);
+    let rearward = Vec3::new(-1.0, 0.0, 0.0);
+    let zero = Vec3::zeros();
     let (dp_lat, dpi_lat) = respond(inboard, zero);
     let (dp_long, dpi_long) = respond(rearward, zero);
-    let (_, dpi_mz) = respond(zero, elastokin_core::Vec3::z());
+    let (_, dpi_mz) = respond(zero, Vec3::z());
     let (lateral_steer, lateral_camber) = attitude_change(&a, s, &dpi_lat);
     Ok(PatchCompliance {
         lateral_steer,
