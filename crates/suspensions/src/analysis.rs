@@ -440,3 +440,128 @@ pub fn patch_compliance(corner: &Corner, t: f64) -> Result<PatchCompliance, Solv
         aligning_torque_steer: attitude_change(&a, s, &dpi_mz).0,
     })
 }
+
+/// The corner at rest under its share of the vehicle's weight: see [`static_load_case`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct StaticLoad {
+    /// The corner load (N, upward at the contact patch).
+    pub corner_load: f64,
+    /// Wheel attitude at rest.
+    pub attitude: WheelAttitude,
+    /// Wheel-centre displacement from design (m); its z is the change of ride height at the wheel, bump
+    /// positive.
+    pub wheel_centre_displacement: Vec3,
+    /// The upright's point at the design contact patch, where the corner load acts, at rest (global).
+    pub contact_patch: Vec3,
+    /// Wheel rate at rest: corner load per metre of rise of the contact-patch point (N/m), from the
+    /// tangent of the equilibrium (tyre not included). Positive, or the rest position is refused.
+    pub wheel_rate: f64,
+    /// Spring force (N, compression positive).
+    pub spring_force: f64,
+    /// Spring deflection `L − L₀` (m, compression negative).
+    pub spring_deflection: f64,
+    /// Force in every joint and element (the corner load among the elements, as "corner load").
+    pub forces: ComponentForces,
+    /// Body poses at rest.
+    pub poses: Vec<elastokin_core::Pose>,
+}
+
+/// Sub-steps of the load walk that [`static_load_case`] falls back to.
+const STATIC_LOAD_STEPS: usize = 20;
+
+/// The static load case at design: the corner (built with [`Rig::Free`]) carries `corner_load` newtons
+/// upward at the design contact patch, applied at once, and comes to rest on its spring.
+///
+/// The design position is in general not at rest under the corner load (the spring's design force need
+/// not match it), so the rest position is found by Newton's method on the exact equilibrium equations
+/// from the design position. (The paper's incremental method has no part here: it needs a state at rest
+/// to start from, and that state is what this analysis finds.) Newton can fail from design when the
+/// rest position lies near a limit point of the linkage; the load is then walked instead, with step
+/// cutting, from where the wheel hangs unloaded (spring at its free length) — a walk that also tells a
+/// load the corner cannot carry by the limit point it meets.
+///
+/// A rest position is only one if it is stable: the wheel rate there (see [`StaticLoad::wheel_rate`])
+/// must be positive. Newton finds unstable equilibria as readily as stable ones (a spring so soft that
+/// the linkage's falling motion ratio outweighs its rate has only those), so they are refused.
+///
+/// Errors: another rig or a non-finite load is [`SolverError::InvalidInput`]; a load beyond what the
+/// corner carries is [`SolverError::LimitPoint`] (the largest load reached) or
+/// [`SolverError::InvalidInput`] on the corner load when no rest position is found or the one found is
+/// unstable; model and factorization failures pass through.
+pub fn static_load_case(mut corner: Corner, corner_load: f64) -> Result<StaticLoad, SolverError> {
+    require_rig(&corner, &[Rig::Free])?;
+    if !corner_load.is_finite() {
+        return Err(SolverError::InvalidInput {
+            what: "corner load",
+            why: format!("the vertical load on the wheel must be a finite force in newtons, got {corner_load}"),
+        });
+    }
+    let patch = corner.wheel.contact_patch;
+    corner.add_wheel_force(CORNER_LOAD, patch, Vec3::z())?;
+    let model = &corner.model;
+    let upright = corner.wheel.upright.0;
+    let patch_local = model.bodies()[upright].design_pose.to_local_point(&patch);
+    let mut solver = StaticSolver::new(model, SolverOptions::default())?;
+    let mut state = solver.design_state(corner_load);
+    let step = match solver.equilibrium(&mut state) {
+        Ok(step) => step,
+        Err(SolverError::NoConvergence { .. }) => {
+            state = solver.design_state(0.0);
+            solver.equilibrium(&mut state).map_err(|e| SolverError::InvalidInput {
+                what: "corner load",
+                why: format!(
+                    "no rest position under {corner_load} N was found from the design position, nor the unloaded \
+                     position to walk the load from ({e}); check the spring's rate and design force against the \
+                     corner load"
+                ),
+            })?;
+            let path = LoadPath::new(0.0, corner_load, STATIC_LOAD_STEPS);
+            let mut sweep = solver.sweep_from(&mut state, path, Mode::Corrected).map_err(|e| match e {
+                SolverError::NoConvergence { last_converged: Some(reached), .. } => SolverError::InvalidInput {
+                    what: "corner load",
+                    why: format!(
+                        "no rest position under {corner_load} N: walking the load up from the unloaded position \
+                         found equilibria only up to {reached} N ({e}); check the corner load against the spring's \
+                         rate and design force"
+                    ),
+                },
+                other => other,
+            })?;
+            sweep.steps.pop().expect("a sweep has its starting equilibrium")
+        }
+        Err(e) => return Err(e),
+    };
+    // Stability: the rise of the loaded point per newton of corner load, from the path tangent.
+    let rates = solver.path_tangent(&state)?;
+    let contact_patch = step.poses[upright].point(&patch_local);
+    let wheel_rate = 1.0 / corner.wheel.point_velocity(&step.poses, &rates, contact_patch).z;
+    if !(wheel_rate.is_finite() && wheel_rate > 0.0) {
+        return Err(SolverError::InvalidInput {
+            what: "corner load",
+            why: format!(
+                "the only equilibrium found under {corner_load} N is unstable (wheel rate {wheel_rate:.4e} N/m, \
+                 wheel centre {:+.4} m from design): the spring cannot hold the corner at rest under this load; \
+                 check the spring's rate and design force against the corner load",
+                corner.wheel.attitude(&step.poses).wheel_centre.z - corner.wheel.wheel_centre.z
+            ),
+        });
+    }
+    let forces = ComponentForces::at(model, &step);
+    let attitude = corner.wheel.attitude(&step.poses);
+    let spring = model.element_id("spring").map(|e| step.element_reports(model)[e.0]);
+    let spring_deflection = spring.map_or(0.0, |r| r.deflection.x);
+    // The templates' springs carry no preload beside k·(L₀ − L) (the free length is set from the design
+    // force), so the push has the sign of the shortening; its size is the force the report gives.
+    let spring_force = spring.map_or(0.0, |r| -spring_deflection.signum() * r.force.norm());
+    Ok(StaticLoad {
+        corner_load,
+        attitude,
+        wheel_centre_displacement: attitude.wheel_centre - corner.wheel.wheel_centre,
+        contact_patch,
+        wheel_rate,
+        spring_force,
+        spring_deflection,
+        forces,
+        poses: step.poses,
+    })
+}

@@ -1,13 +1,18 @@
-//! Road loads walked by the engine (lateral, braking, traction, aligning torque), each against a second
-//! method: the linear tangent, the chassis holding the corner in equilibrium, mirror symmetry.
+//! Road loads walked by the engine (lateral, braking, traction, aligning torque) and the static load case,
+//! each against a second method: the linear tangent, the chassis holding the corner in equilibrium, driven
+//! equilibria, mirror symmetry.
 
 use elastokin_core::Vec3;
 use elastokin_elements::PointForce;
-use elastokin_solver::{Mode, SolverError};
+use elastokin_solver::{Mode, SolverError, SolverOptions, StaticSolver, StepResult};
 use elastokin_suspensions::analysis::{
-    patch_compliance, vertical_force_sweep, wheel_compliance, wheel_load_sweep, ComponentForces, LoadRow, WheelLoad,
+    parallel_wheel_travel, patch_compliance, static_load_case, vertical_force_sweep, wheel_compliance,
+    wheel_load_sweep, ComponentForces, LoadRow, WheelLoad,
 };
-use elastokin_suspensions::{Corner, MacPherson, Rig, Side, SuspensionFile, Template};
+use elastokin_suspensions::{
+    Connection, Corner, DoubleWishbone, DoubleWishboneHardpoints, MacPherson, Rig, Side, SpringSpec, SuspensionFile,
+    Template,
+};
 
 /// The shipped bushed MacPherson (also the one of `tests/compliance.rs`).
 fn bushed_macpherson() -> MacPherson {
@@ -237,4 +242,186 @@ fn load_sweeps_refuse_other_rigs() {
     )
     .unwrap_err();
     assert!(matches!(e, SolverError::InvalidInput { what: "corner load", .. }), "{e:?}");
+}
+
+fn double_wishbone(hardpoints: DoubleWishboneHardpoints, spring_rate: f64) -> DoubleWishbone {
+    DoubleWishbone {
+        hardpoints,
+        upper_arm_mounts: Connection::Ideal,
+        lower_arm_mounts: Connection::Ideal,
+        spring: SpringSpec { rate: spring_rate, design_force: 4000.0 },
+        tie_rod: Connection::Ideal,
+        loaded_radius: 0.30,
+    }
+}
+
+/// Equilibrium of `corner` at load parameter `t`, found from design.
+fn equilibrium(corner: &Corner, t: f64) -> StepResult {
+    let mut solver = StaticSolver::new(&corner.model, SolverOptions::default()).unwrap();
+    let mut state = solver.design_state(t);
+    solver.equilibrium(&mut state).unwrap()
+}
+
+/// Holding force of the wheel-travel rig at `travel` with the corner load on the patch as well.
+fn holding_force_with_corner_load(template: &MacPherson, load: f64, travel: f64) -> (f64, StepResult, Corner) {
+    let mut corner = template.build(Side::Left, Rig::WheelTravel).unwrap();
+    add_constant_corner_load(&mut corner, load);
+    let step = equilibrium(&corner, travel);
+    let driver = corner.model.joint_id("wheel travel").unwrap();
+    (step.joint_reactions(&corner.model)[driver.0].force.z, step, corner)
+}
+
+/// Second method: the rest position under the corner load is the wheel travel at which the wheel-travel
+/// rig, with the same corner load on the patch, needs no force to hold the wheel — a scalar root of driven
+/// equilibria (secant method).
+fn rest_travel_by_driven_equilibria(template: &MacPherson, load: f64) -> (f64, StepResult, Corner) {
+    let f = |z: f64| holding_force_with_corner_load(template, load, z).0;
+    let (mut a, mut b) = (0.0, 0.01);
+    let (mut fa, mut fb) = (f(a), f(b));
+    for _ in 0..50 {
+        let c = b - fb * (b - a) / (fb - fa);
+        (a, fa) = (b, fb);
+        b = c;
+        fb = f(b);
+        if fb.abs() < 1e-7 {
+            break;
+        }
+    }
+    assert!(fb.abs() < 1e-7, "secant did not close: {fb}");
+    let (_, step, corner) = holding_force_with_corner_load(template, load, b);
+    (b, step, corner)
+}
+
+#[test]
+fn static_rest_position_equals_the_travel_where_the_rig_needs_no_force() {
+    let mp = bushed_macpherson();
+    // 3 kN: below the design corner load (the wheel droops); 9 kN = 2× the spring's design force, so Newton
+    // starts from a design position 5 kN out of balance and the wheel rises by more than 0.1 m.
+    for load in [3000.0, 2.0 * mp.spring.design_force] {
+        let rest = static_load_case(mp.build(Side::Left, Rig::Free).unwrap(), load).unwrap();
+        let (travel, step, corner) = rest_travel_by_driven_equilibria(&mp, load);
+        let driven = corner.wheel.attitude(&step.poses);
+        println!(
+            "corner load {load} N: ride height {:+.3} mm (driven root {:+.3} mm), toe {:+.4}°, camber {:+.4}°, \
+             spring {:.1} N, wheel rate {:.1} N/mm",
+            rest.wheel_centre_displacement.z * 1e3,
+            travel * 1e3,
+            rest.attitude.toe.to_degrees(),
+            rest.attitude.camber.to_degrees(),
+            rest.spring_force,
+            rest.wheel_rate * 1e-3
+        );
+        // Measured: 1e-10 m and 1e-10 rad at 9 kN (1e-16 at 3 kN); both solves close to 1e-9 of the forces.
+        assert!(
+            (rest.wheel_centre_displacement.z - travel).abs() < 1e-9,
+            "{} vs {travel}",
+            rest.wheel_centre_displacement.z
+        );
+        assert!((rest.attitude.wheel_centre - driven.wheel_centre).norm() < 1e-9);
+        assert!((rest.attitude.toe - driven.toe).abs() < 1e-9, "{} vs {}", rest.attitude.toe, driven.toe);
+        assert!((rest.attitude.camber - driven.camber).abs() < 1e-9);
+        // The spring law with the template's rate: push = −k (L − L₀).
+        assert!((rest.spring_force + mp.spring.rate * rest.spring_deflection).abs() < 1e-6 * rest.spring_force.abs());
+        // Every joint and element is reported by name, with finite forces.
+        for c in rest.forces.joints.iter().chain(&rest.forces.elements) {
+            assert!(c.force.iter().chain(c.torque.iter()).all(|v| v.is_finite()), "{c:?}");
+        }
+        assert_eq!(rest.forces.elements.len(), corner.model.elements().len());
+    }
+}
+
+#[test]
+fn static_wheel_rate_equals_finite_differences_of_rest_positions() {
+    let mp = bushed_macpherson();
+    let rest = |load: f64| static_load_case(mp.build(Side::Left, Rig::Free).unwrap(), load).unwrap();
+    let at = rest(4000.0);
+    let (up, down) = (rest(4010.0), rest(3990.0));
+    let fd = 20.0 / (up.contact_patch.z - down.contact_patch.z);
+    // Measured: ~1e-7 relative (the O(h²) term of a 10 N difference).
+    close(at.wheel_rate, fd, 1e-5, "wheel rate");
+}
+
+/// Conservation law on the static load case: the chassis holds the corner, so the forces and the moments
+/// (about the origin) that it applies through the chassis-side parts, with the corner load, vanish.
+#[test]
+fn static_load_case_forces_and_moments_balance() {
+    let mp = bushed_macpherson();
+    let rest = static_load_case(mp.build(Side::Left, Rig::Free).unwrap(), 5000.0).unwrap();
+    let design = mp.build(Side::Left, Rig::Free).unwrap().model;
+    let h = mp.hardpoints;
+    // Each component's force acts on its body at the design hardpoint the body carries (the tie rod's
+    // reaction at its outer end, the spring's at its seat on the upright).
+    let point_of = |name: &str| match name {
+        "lower arm front bushing" => h.lower_arm_front,
+        "lower arm rear bushing" => h.lower_arm_rear,
+        "top mount" => h.top_mount,
+        "spring" => h.strut_lower,
+        "tie rod" => h.tie_rod_outer,
+        "corner load" => h.wheel_centre - Vec3::new(0.0, 0.0, mp.loaded_radius),
+        other => panic!("unexpected chassis-side component {other}"),
+    };
+    let (mut force, mut moment, mut largest) = (Vec3::zeros(), Vec3::zeros(), 0.0f64);
+    for c in rest.forces.joints.iter().chain(&rest.forces.elements) {
+        if c.other_body != "ground" {
+            assert_ne!(c.body, "ground");
+            continue;
+        }
+        let body = design.body_id(&c.body).unwrap();
+        let local = design.bodies()[body.0].design_pose.to_local_point(&point_of(&c.name));
+        let at = rest.poses[body.0].point(&local);
+        force += c.force;
+        moment += at.cross(&c.force) + c.torque;
+        largest = largest.max(c.force.norm());
+    }
+    // Each of the few bodies is in equilibrium to 1e-9 of the largest force; measured 7e-14 (N, and N·m
+    // at ~1 m).
+    assert!(force.norm() < 1e-8 * largest, "ΣF = {force:?}");
+    assert!(moment.norm() < 1e-8 * largest, "ΣM = {moment:?}");
+    // The spring carries most of the corner load: more than the load itself through a motion ratio < 1.
+    assert!(rest.spring_force > 5000.0, "{}", rest.spring_force);
+}
+
+#[test]
+fn loads_the_corner_cannot_carry_are_refused() {
+    let generic = DoubleWishboneHardpoints::generic();
+    let dw = double_wishbone(generic, 30e3);
+    // Independent: with 3.5 kN on the patch, the wheel-travel rig has to pull the wheel down at every
+    // travel it can reach — the linkage carries no more than ~3.3 kN at the patch.
+    let mut corner = dw.build(Side::Left, Rig::WheelTravel).unwrap();
+    add_constant_corner_load(&mut corner, 3500.0);
+    let rows = parallel_wheel_travel(&corner, -0.2, 0.4, 60, Mode::Corrected).unwrap();
+    let most = rows.iter().map(|r| r.wheel_load).fold(f64::NEG_INFINITY, f64::max);
+    assert!(most < 0.0, "the rig would need no force somewhere: {most}");
+    match static_load_case(dw.build(Side::Left, Rig::Free).unwrap(), 3500.0) {
+        Err(SolverError::LimitPoint { reached }) => {
+            // The largest load the walk reached: 3.5 kN minus the rig's least pull.
+            println!("limit point at {reached} N; least pull {most} N");
+            assert!(reached < 3500.0 && (reached - (3500.0 + most)).abs() < 0.05 * 3500.0, "{reached} vs {most}");
+        }
+        other => panic!("{other:?}"),
+    }
+    // A spring so soft that the falling motion ratio outweighs it: every equilibrium is unstable, as the
+    // independent driven travel shows (the holding force falls in bump).
+    let soft = double_wishbone(generic, 100.0);
+    let rows =
+        parallel_wheel_travel(&soft.build(Side::Left, Rig::WheelTravel).unwrap(), -0.01, 0.01, 2, Mode::Corrected)
+            .unwrap();
+    assert!(rows[2].wheel_load < rows[0].wheel_load, "{} {}", rows[0].wheel_load, rows[2].wheel_load);
+    match static_load_case(soft.build(Side::Left, Rig::Free).unwrap(), rows[1].wheel_load) {
+        Err(SolverError::InvalidInput { what: "corner load", why }) => assert!(why.contains("unstable"), "{why}"),
+        other => panic!("{other:?}"),
+    }
+    // Far beyond anything the MacPherson carries (its linkage locks near 105 kN): a typed error, no NaN.
+    match static_load_case(bushed_macpherson().build(Side::Left, Rig::Free).unwrap(), 1e6) {
+        Err(SolverError::InvalidInput { what: "corner load", .. } | SolverError::LimitPoint { .. }) => {}
+        other => panic!("{other:?}"),
+    }
+    // Not a number.
+    let e = static_load_case(dw.build(Side::Left, Rig::Free).unwrap(), f64::INFINITY).unwrap_err();
+    assert!(matches!(e, SolverError::InvalidInput { what: "corner load", .. }), "{e:?}");
+    // Only a wheel free on its spring comes to rest under a load.
+    match static_load_case(dw.build(Side::Left, Rig::HeightHeld).unwrap(), 2000.0).unwrap_err() {
+        SolverError::InvalidInput { what: "corner", why } => assert!(why.contains("Rig::Free"), "{why}"),
+        other => panic!("{other:?}"),
+    }
 }
