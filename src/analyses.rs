@@ -463,7 +463,7 @@ fn vertical_force(file: &SuspensionFile, s: Settings) -> Result<Report, String> 
             .iter()
             .map(|r| {
                 [
-                    r.force,
+                    r.load,
                     r.attitude.wheel_centre.z - z0,
                     deg(r.attitude.toe),
                     deg(r.attitude.camber),
@@ -482,7 +482,7 @@ fn vertical_force(file: &SuspensionFile, s: Settings) -> Result<Report, String> 
             "wheel travel [mm], bump +",
             &[Series {
                 name: "wheel travel",
-                points: rows.iter().map(|r| (r.force, (r.attitude.wheel_centre.z - z0) * 1e3)).collect(),
+                points: rows.iter().map(|r| (r.load, (r.attitude.wheel_centre.z - z0) * 1e3)).collect(),
             }],
         ),
     )];
@@ -490,7 +490,7 @@ fn vertical_force(file: &SuspensionFile, s: Settings) -> Result<Report, String> 
     let mut headline =
         vec![format!("vertical force {from:.0}..{to:.0} N at the contact patch, wheel free, {} steps", s.steps)];
     headline.push(format!("design wheel load (rig force holding design height): {design_load:.1} N"));
-    if let Some(rate) = slope_at(&rows, design_load, |r| r.force, |r| r.attitude.wheel_centre.z).map(|d| 1.0 / d) {
+    if let Some(rate) = slope_at(&rows, design_load, |r| r.load, |r| r.attitude.wheel_centre.z).map(|d| 1.0 / d) {
         summary["wheel_rate_n_per_m"] = rate.into();
         headline
             .push(format!("wheel rate at the design load: {:.2} N/mm (force over wheel-centre travel)", rate * 1e-3));

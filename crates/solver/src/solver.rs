@@ -703,8 +703,10 @@ impl<'m> StaticSolver<'m> {
             for k in 0..m {
                 self.rhs[n + k] = -dt * self.assembly.phi_rate[k];
             }
-            // The Jacobian at qⁿ carries λⁿ into the next step.
-            self.factor.solve_in_place(&mut self.rhs)?;
+            // The Jacobian at qⁿ carries λⁿ into the next step. The tangent's non-symmetric part (the load
+            // stiffness of world-fixed loads, preloads turning with their lever arms) is solved for too:
+            // without it the walk converges, as the step shrinks, to a different path.
+            self.solve_with_skew()?;
             if self.rhs.iter().any(|v| !v.is_finite()) {
                 return Err(SolverError::NonFinite { what: "paper-mode step" });
             }

@@ -1,7 +1,10 @@
 //! K&C analyses: load paths walked by the engine, reduced to wheel characteristics.
 
 use crate::corner::{Corner, Rig, SteeringGeometry, WheelAttitude};
-use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, StaticSolver};
+use elastokin_core::{Model, Vec3};
+use elastokin_elements::PointForce;
+use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult, Sweep};
+use serde::{Deserialize, Serialize};
 
 /// One row of a driven sweep (wheel travel or steering).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -42,16 +45,9 @@ pub fn steering(corner: &Corner, from: f64, to: f64, steps: usize, mode: Mode) -
 /// corner load the design position carries. The corner must hold its wheel-centre height
 /// ([`Rig::WheelTravel`] at `t = 0`, or [`Rig::HeightHeld`]).
 pub fn design_wheel_load(corner: &Corner) -> Result<f64, SolverError> {
-    let driver =
-        corner.model.joint_id("wheel travel").filter(|_| matches!(corner.rig, Rig::WheelTravel | Rig::HeightHeld));
-    let Some(driver) = driver else {
-        return Err(SolverError::InvalidInput {
-            what: "corner",
-            why: format!(
-                "the design wheel load needs the wheel-centre height held, but the corner was built with Rig::{:?}",
-                corner.rig
-            ),
-        });
+    require_rig(corner, &[Rig::WheelTravel, Rig::HeightHeld])?;
+    let Some(driver) = corner.model.joint_id("wheel travel") else {
+        return Err(SolverError::InvalidInput { what: "corner", why: "it has no \"wheel travel\" driver".into() });
     };
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let mut state = solver.design_state(0.0);
@@ -59,15 +55,17 @@ pub fn design_wheel_load(corner: &Corner) -> Result<f64, SolverError> {
     Ok(step.joint_reactions(&corner.model)[driver.0].force.z)
 }
 
-/// Refuses a corner held differently from what the analysis needs.
-fn require_rig(corner: &Corner, rig: Rig) -> Result<(), SolverError> {
-    if corner.rig == rig {
+/// Refuses a corner held differently from what the analysis needs: `rigs` lists the rigs it accepts.
+fn require_rig(corner: &Corner, rigs: &[Rig]) -> Result<(), SolverError> {
+    if rigs.contains(&corner.rig) {
         return Ok(());
     }
+    let accepted: Vec<String> = rigs.iter().map(|r| format!("Rig::{r:?}")).collect();
     Err(SolverError::InvalidInput {
         what: "corner",
         why: format!(
-            "this analysis needs the corner built with Rig::{rig:?}, but it was built with Rig::{:?}",
+            "this analysis needs the corner built with {}, but it was built with Rig::{:?}",
+            accepted.join(" or "),
             corner.rig
         ),
     })
@@ -97,7 +95,7 @@ fn driven_sweep(
     steps: usize,
     mode: Mode,
 ) -> Result<Vec<TravelRow>, SolverError> {
-    require_rig(corner, rig)?;
+    require_rig(corner, &[rig])?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
     let driver = corner.model.joint_id("wheel travel");
@@ -140,17 +138,17 @@ fn compliance_at(corner: &Corner, t: f64) -> Result<([[f64; 6]; 6], Vec<elastoki
     solver.factorize_tangent(&state)?;
     for (k, column) in columns.iter_mut().enumerate() {
         rhs.fill(0.0);
-        let mut unit = elastokin_core::Vec3::zeros();
+        let mut unit = Vec3::zeros();
         unit[k % 3] = 1.0;
         // Generalized force of a force at the wheel centre (F, s × F), or of a torque (0, M).
-        let (f, moment) = if k < 3 { (unit, s.cross(&unit)) } else { (elastokin_core::Vec3::zeros(), unit) };
+        let (f, moment) = if k < 3 { (unit, s.cross(&unit)) } else { (Vec3::zeros(), unit) };
         for c in 0..3 {
             rhs[base + c] = f[c];
             rhs[base + 3 + c] = moment[c];
         }
         solver.solve_factored(&mut rhs)?;
-        let dr = elastokin_core::Vec3::new(rhs[base], rhs[base + 1], rhs[base + 2]);
-        let dpi = elastokin_core::Vec3::new(rhs[base + 3], rhs[base + 4], rhs[base + 5]);
+        let dr = Vec3::new(rhs[base], rhs[base + 1], rhs[base + 2]);
+        let dpi = Vec3::new(rhs[base + 3], rhs[base + 4], rhs[base + 5]);
         let dwc = dr + dpi.cross(&s);
         for c in 0..3 {
             column[c] = dwc[c];
@@ -167,42 +165,227 @@ fn compliance_at(corner: &Corner, t: f64) -> Result<([[f64; 6]; 6], Vec<elastoki
     Ok((out, state.poses))
 }
 
-/// One row of a force sweep.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ForceRow {
-    /// The applied force (N): the load parameter.
-    pub force: f64,
-    /// Wheel attitude at equilibrium.
+/// Force and moment that one joint or element applies at an equilibrium (global axes, N and N·m).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ComponentForce {
+    /// The joint's or element's name.
+    pub name: String,
+    /// The body the force is applied to: the component's body `j` ("ground" for a joint whose `j` is the
+    /// ground, whose reaction on the ground is then given).
+    pub body: String,
+    /// The body on the other side, which receives the opposite force and moment ("ground" for a part
+    /// mounted on the chassis).
+    pub other_body: String,
+    /// Force applied to `body` (N).
+    pub force: Vec3,
+    /// Moment applied to `body` (N·m), about the joint's hardpoint or the element's point on `body` as the
+    /// body carries it.
+    pub torque: Vec3,
+}
+
+/// The force in every joint and every element at an equilibrium, by name, in model order: what a
+/// durability engineer takes from a K&C load case, and the forces through which the chassis holds the
+/// corner.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ComponentForces {
+    /// Joints and drivers (a driver's force is what the rig applies to hold it).
+    pub joints: Vec<ComponentForce>,
+    /// Bushings, springs and the applied loads.
+    pub elements: Vec<ComponentForce>,
+}
+
+impl ComponentForces {
+    /// Reads every joint reaction and element force of `step`, a solution of `model`.
+    pub fn at(model: &Model, step: &StepResult) -> Self {
+        let joints = model
+            .joints()
+            .iter()
+            .zip(step.joint_reactions(model))
+            .map(|(joint, reaction)| {
+                let (i, j) = (joint.spec.body_i, joint.spec.body_j);
+                // For a joint on the ground as `j`, the reaction reported is the one on the ground.
+                ComponentForce {
+                    name: joint.name().to_string(),
+                    body: model.body_name(j).to_string(),
+                    other_body: model.body_name(i).to_string(),
+                    force: reaction.force,
+                    torque: reaction.torque,
+                }
+            })
+            .collect();
+        let elements = model
+            .elements()
+            .iter()
+            .zip(step.element_reports(model))
+            .map(|(element, report)| {
+                let [i, j] = element.bodies();
+                ComponentForce {
+                    name: element.name().to_string(),
+                    body: model.body_name(j).to_string(),
+                    other_body: model.body_name(i).to_string(),
+                    force: report.force,
+                    torque: report.torque,
+                }
+            })
+            .collect();
+        ComponentForces { joints, elements }
+    }
+
+    /// The joint named `name`.
+    pub fn joint(&self, name: &str) -> Option<&ComponentForce> {
+        self.joints.iter().find(|c| c.name == name)
+    }
+
+    /// The element named `name`.
+    pub fn element(&self, name: &str) -> Option<&ComponentForce> {
+        self.elements.iter().find(|c| c.name == name)
+    }
+}
+
+/// One row of a force or torque sweep at the wheel ([`vertical_force_sweep`], [`wheel_load_sweep`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadRow {
+    /// The applied load: the load parameter (N, or N·m for the aligning torque).
+    pub load: f64,
+    /// Wheel attitude.
     pub attitude: WheelAttitude,
-    /// Contact-patch point of the upright at equilibrium (global).
-    pub contact_patch: elastokin_core::Vec3,
+    /// The upright's contact-patch point (global): the material point of the upright that sat at the
+    /// contact patch where the sweep defines it (see each sweep).
+    pub contact_patch: Vec3,
+    /// Displacement of that point from where it was at design (m). Its slope against a lateral or
+    /// braking load is the inverse of the stiffness at the contact patch.
+    pub patch_displacement: Vec3,
+    /// Vertical force the rig applies at the wheel centre to hold its height (N, up +); zero when the
+    /// wheel is free on its spring.
+    pub wheel_load: f64,
+    /// Force in every joint and element.
+    pub forces: ComponentForces,
+}
+
+/// Name of the vertical force of the corner's share of the vehicle weight in the load analyses.
+const CORNER_LOAD: &str = "corner load";
+
+/// Reads the rows of a load sweep; `patch_local` is the upright's contact-patch point (local).
+fn load_rows(corner: &Corner, sweep: &Sweep, patch_local: Vec3) -> Vec<LoadRow> {
+    let model = &corner.model;
+    let upright = corner.wheel.upright.0;
+    let patch_at_design = model.bodies()[upright].design_pose.point(&patch_local);
+    let driver = model.joint_id("wheel travel");
+    sweep
+        .steps
+        .iter()
+        .map(|s| {
+            let forces = ComponentForces::at(model, s);
+            let contact_patch = s.poses[upright].point(&patch_local);
+            LoadRow {
+                load: s.t,
+                attitude: corner.wheel.attitude(&s.poses),
+                contact_patch,
+                patch_displacement: contact_patch - patch_at_design,
+                wheel_load: driver.map_or(0.0, |d| forces.joints[d.0].force.z),
+                forces,
+            }
+        })
+        .collect()
 }
 
 /// Vertical force at the contact patch from `from` to `to` newtons (upward positive) in `steps` steps —
-/// the paper's vertical force sweep. The corner must be built without the wheel-travel driver: the wheel
-/// is free and the spring and bushings carry the load.
+/// the paper's vertical force sweep. The corner must be built with [`Rig::Free`]: the wheel is free and
+/// the spring and bushings carry the load. The force acts at the upright's point at the design contact
+/// patch (the rows' `contact_patch`); the path starts from the equilibrium at `from`, found from design.
 pub fn vertical_force_sweep(
     mut corner: Corner,
     from: f64,
     to: f64,
     steps: usize,
     mode: Mode,
-) -> Result<Vec<ForceRow>, SolverError> {
-    require_rig(&corner, Rig::Free)?;
+) -> Result<Vec<LoadRow>, SolverError> {
+    require_rig(&corner, &[Rig::Free])?;
     let patch = corner.wheel.contact_patch;
-    corner.add_wheel_force("vertical force", patch, elastokin_core::Vec3::z())?;
+    corner.add_wheel_force("vertical force", patch, Vec3::z())?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
     let local_patch = corner.model.bodies()[corner.wheel.upright.0].design_pose.to_local_point(&patch);
-    Ok(sweep
-        .steps
-        .iter()
-        .map(|s| ForceRow {
-            force: s.t,
-            attitude: corner.wheel.attitude(&s.poses),
-            contact_patch: s.poses[corner.wheel.upright.0].point(&local_patch),
-        })
-        .collect())
+    Ok(load_rows(&corner, &sweep, local_patch))
+}
+
+/// A force or torque a K&C rig applies to the wheel (signs as in [`PatchCompliance`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WheelLoad {
+    /// Lateral force at the contact patch, N, positive inboard: the cornering force on the outer wheel
+    /// of a turn.
+    Lateral,
+    /// Longitudinal force at the contact patch, N, positive rearward: braking with brakes on the upright,
+    /// which react the brake torque there, so the upright carries the tyre's force where the tyre makes it.
+    Braking,
+    /// Longitudinal force at the wheel centre, N, positive forward: drive through a half-shaft from a
+    /// chassis-mounted differential, whose torque the chassis reacts, so the upright receives only the
+    /// force, at the wheel bearing.
+    Traction,
+    /// Torque about +z (global), N·m: the tyre's aligning moment.
+    AligningTorque,
+}
+
+/// Sweeps one [`WheelLoad`] from `from` to `to` (N, or N·m for the aligning torque) in `steps` steps,
+/// walked in `mode`: compliance steer and camber, and the displacement of the contact patch, under road
+/// loads.
+///
+/// The corner must be built with [`Rig::HeightHeld`] (the wheel-centre height held, as a K&C rig does;
+/// the rows then give the rig's holding force) or [`Rig::Free`] (the wheel rides on its spring). Through
+/// the whole sweep the wheel also carries `corner_load` (N, upward, constant) at the design contact
+/// patch: the corner's share of the vehicle's weight, which a free wheel needs to stay near its design
+/// height (with the height held it only changes the holding force).
+///
+/// The patch loads act at the upright's material point at the contact patch of the equilibrium without
+/// the swept load (the lowest point of the wheel there; the rows' `contact_patch`), so that their slope at
+/// zero load is the compliance [`patch_compliance`] takes from the tangent at that equilibrium; the
+/// traction force acts at the wheel centre. Loads keep their global direction as the wheel moves.
+pub fn wheel_load_sweep(
+    mut corner: Corner,
+    load: WheelLoad,
+    corner_load: f64,
+    from: f64,
+    to: f64,
+    steps: usize,
+    mode: Mode,
+) -> Result<Vec<LoadRow>, SolverError> {
+    require_rig(&corner, &[Rig::HeightHeld, Rig::Free])?;
+    add_corner_load(&mut corner, corner_load)?;
+    // The equilibrium without the swept load: where the patch loads act, and where the path starts from.
+    let (mut start, patch_local) = {
+        let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
+        let mut state = solver.design_state(0.0);
+        solver.equilibrium(&mut state)?;
+        let patch = corner.wheel.steering_geometry(&state.poses).contact_patch;
+        let patch_local = state.poses[corner.wheel.upright.0].to_local_point(&patch);
+        (state, patch_local)
+    };
+    let upright_design = corner.model.bodies()[corner.wheel.upright.0].design_pose;
+    let patch_at_design = upright_design.point(&patch_local);
+    let inboard = Vec3::new(0.0, -corner.wheel.side.sign(), 0.0);
+    match load {
+        WheelLoad::Lateral => corner.add_wheel_force("lateral force", patch_at_design, inboard)?,
+        WheelLoad::Braking => corner.add_wheel_force("braking force", patch_at_design, -Vec3::x())?,
+        WheelLoad::Traction => corner.add_wheel_force("traction force", corner.wheel.wheel_centre, Vec3::x())?,
+        WheelLoad::AligningTorque => corner.add_wheel_torque("aligning torque", Vec3::z())?,
+    };
+    let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
+    let sweep = solver.sweep_from(&mut start, LoadPath::new(from, to, steps), mode)?;
+    Ok(load_rows(&corner, &sweep, patch_local))
+}
+
+/// Adds the constant upward `corner_load` (N) at the design contact patch, named [`CORNER_LOAD`].
+fn add_corner_load(corner: &mut Corner, corner_load: f64) -> Result<(), SolverError> {
+    if !corner_load.is_finite() {
+        return Err(SolverError::InvalidInput {
+            what: "corner load",
+            why: format!("the vertical load on the wheel must be a finite force in newtons, got {corner_load}"),
+        });
+    }
+    let force = PointForce::new(CORNER_LOAD, corner.wheel.upright.into(), corner.wheel.contact_patch, Vec3::zeros())?
+        .with_constant(Vec3::new(0.0, 0.0, corner_load))?;
+    corner.model.add_element(force)?;
+    Ok(())
 }
 
 /// Compliance characteristics at the contact patch, read from the wheel compliance matrix (SI: rad/N,
@@ -225,7 +408,7 @@ pub struct PatchCompliance {
 }
 
 /// Toe and camber changes of a small rotation `dpi` of the wheel with outward spin axis `a` on side `s`.
-fn attitude_change(a: &elastokin_core::Vec3, s: f64, dpi: &elastokin_core::Vec3) -> (f64, f64) {
+fn attitude_change(a: &Vec3, s: f64, dpi: &Vec3) -> (f64, f64) {
     let da = dpi.cross(a);
     let (ax, ay, az) = (a.x, s * a.y, a.z);
     let (dax, day, daz) = (da.x, s * da.y, da.z);
@@ -247,22 +430,22 @@ pub fn patch_compliance(corner: &Corner, t: f64) -> Result<PatchCompliance, Solv
     let arm = patch - w;
     let s = corner.wheel.side.sign();
     // Response (Δ patch, Δπ) to a unit force `f` at the patch or a unit torque `m`.
-    let respond = |f: elastokin_core::Vec3, m: elastokin_core::Vec3| {
+    let respond = |f: Vec3, m: Vec3| {
         let load = [f, arm.cross(&f) + m];
         let mut out = [0.0; 6];
         for r in 0..6 {
             out[r] = (0..3).map(|k| c[r][k] * load[0][k] + c[r][3 + k] * load[1][k]).sum();
         }
-        let dw = elastokin_core::Vec3::new(out[0], out[1], out[2]);
-        let dpi = elastokin_core::Vec3::new(out[3], out[4], out[5]);
+        let dw = Vec3::new(out[0], out[1], out[2]);
+        let dpi = Vec3::new(out[3], out[4], out[5]);
         (dw + dpi.cross(&arm), dpi)
     };
-    let inboard = elastokin_core::Vec3::new(0.0, -s, 0.0);
-    let rearward = elastokin_core::Vec3::new(-1.0, 0.0, 0.0);
-    let zero = elastokin_core::Vec3::zeros();
+    let inboard = Vec3::new(0.0, -s, 0.0);
+    let rearward = Vec3::new(-1.0, 0.0, 0.0);
+    let zero = Vec3::zeros();
     let (dp_lat, dpi_lat) = respond(inboard, zero);
     let (dp_long, dpi_long) = respond(rearward, zero);
-    let (_, dpi_mz) = respond(zero, elastokin_core::Vec3::z());
+    let (_, dpi_mz) = respond(zero, Vec3::z());
     let (lateral_steer, lateral_camber) = attitude_change(&a, s, &dpi_lat);
     Ok(PatchCompliance {
         lateral_steer,
@@ -271,5 +454,269 @@ pub fn patch_compliance(corner: &Corner, t: f64) -> Result<PatchCompliance, Solv
         braking_steer: attitude_change(&a, s, &dpi_long).0,
         longitudinal_stiffness: 1.0 / dp_long.dot(&rearward),
         aligning_torque_steer: attitude_change(&a, s, &dpi_mz).0,
+    })
+}
+
+/// The corner at rest under its share of the vehicle's weight: see [`static_load_case`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct StaticLoad {
+    /// The corner load (N, upward at the contact patch).
+    pub corner_load: f64,
+    /// Wheel attitude at rest.
+    pub attitude: WheelAttitude,
+    /// Wheel-centre displacement from design (m); its z is the change of ride height at the wheel, bump
+    /// positive.
+    pub wheel_centre_displacement: Vec3,
+    /// The upright's point at the design contact patch, where the corner load acts, at rest (global).
+    pub contact_patch: Vec3,
+    /// Wheel rate at rest: corner load per metre of rise of the contact-patch point (N/m), from the
+    /// tangent of the equilibrium (tyre not included). Positive, or the rest position is refused.
+    pub wheel_rate: f64,
+    /// Spring force (N, compression positive).
+    pub spring_force: f64,
+    /// Spring deflection `L − L₀` (m, compression negative).
+    pub spring_deflection: f64,
+    /// Force in every joint and element (the corner load among the elements, as "corner load").
+    pub forces: ComponentForces,
+    /// Body poses at rest.
+    pub poses: Vec<elastokin_core::Pose>,
+}
+
+/// Sub-steps of the load walk that [`static_load_case`] falls back to.
+const STATIC_LOAD_STEPS: usize = 20;
+
+/// The static load case at design: the corner (built with [`Rig::Free`]) carries `corner_load` newtons
+/// upward at the design contact patch, applied at once, and comes to rest on its spring.
+///
+/// The design position is in general not at rest under the corner load (the spring's design force need
+/// not match it), so the rest position is found by Newton's method on the exact equilibrium equations
+/// from the design position. (The paper's incremental method has no part here: it needs a state at rest
+/// to start from, and that state is what this analysis finds.) Newton can fail from design when the
+/// rest position lies near a limit point of the linkage; the load is then walked instead, with step
+/// cutting, from where the wheel hangs unloaded (spring at its free length) — a walk that also tells a
+/// load the corner cannot carry by the limit point it meets.
+///
+/// A rest position is only one if it is stable: the wheel rate there (see [`StaticLoad::wheel_rate`])
+/// must be positive. Newton finds unstable equilibria as readily as stable ones (a spring so soft that
+/// the linkage's falling motion ratio outweighs its rate has only those), so they are refused.
+///
+/// Errors: another rig or a non-finite load is [`SolverError::InvalidInput`]; a load beyond what the
+/// corner carries is [`SolverError::LimitPoint`] (the largest load reached) or
+/// [`SolverError::InvalidInput`] on the corner load when no rest position is found or the one found is
+/// unstable; model and factorization failures pass through.
+pub fn static_load_case(mut corner: Corner, corner_load: f64) -> Result<StaticLoad, SolverError> {
+    require_rig(&corner, &[Rig::Free])?;
+    if !corner_load.is_finite() {
+        return Err(SolverError::InvalidInput {
+            what: "corner load",
+            why: format!("the vertical load on the wheel must be a finite force in newtons, got {corner_load}"),
+        });
+    }
+    let patch = corner.wheel.contact_patch;
+    corner.add_wheel_force(CORNER_LOAD, patch, Vec3::z())?;
+    let model = &corner.model;
+    let upright = corner.wheel.upright.0;
+    let patch_local = model.bodies()[upright].design_pose.to_local_point(&patch);
+    let mut solver = StaticSolver::new(model, SolverOptions::default())?;
+    let mut state = solver.design_state(corner_load);
+    let step = match solver.equilibrium(&mut state) {
+        Ok(step) => step,
+        Err(SolverError::NoConvergence { .. }) => {
+            state = solver.design_state(0.0);
+            solver.equilibrium(&mut state).map_err(|e| SolverError::InvalidInput {
+                what: "corner load",
+                why: format!(
+                    "no rest position under {corner_load} N was found from the design position, nor the unloaded \
+                     position to walk the load from ({e}); check the spring's rate and design force against the \
+                     corner load"
+                ),
+            })?;
+            let path = LoadPath::new(0.0, corner_load, STATIC_LOAD_STEPS);
+            let mut sweep = solver.sweep_from(&mut state, path, Mode::Corrected).map_err(|e| match e {
+                SolverError::NoConvergence { last_converged: Some(reached), .. } => SolverError::InvalidInput {
+                    what: "corner load",
+                    why: format!(
+                        "no rest position under {corner_load} N: walking the load up from the unloaded position \
+                         found equilibria only up to {reached} N ({e}); check the corner load against the spring's \
+                         rate and design force"
+                    ),
+                },
+                other => other,
+            })?;
+            sweep.steps.pop().expect("a sweep has its starting equilibrium")
+        }
+        Err(e) => return Err(e),
+    };
+    // Stability: the rise of the loaded point per newton of corner load, from the path tangent.
+    let rates = solver.path_tangent(&state)?;
+    let contact_patch = step.poses[upright].point(&patch_local);
+    let wheel_rate = 1.0 / corner.wheel.point_velocity(&step.poses, &rates, contact_patch).z;
+    if !(wheel_rate.is_finite() && wheel_rate > 0.0) {
+        return Err(SolverError::InvalidInput {
+            what: "corner load",
+            why: format!(
+                "the only equilibrium found under {corner_load} N is unstable (wheel rate {wheel_rate:.4e} N/m, \
+                 wheel centre {:+.4} m from design): the spring cannot hold the corner at rest under this load; \
+                 check the spring's rate and design force against the corner load",
+                corner.wheel.attitude(&step.poses).wheel_centre.z - corner.wheel.wheel_centre.z
+            ),
+        });
+    }
+    let forces = ComponentForces::at(model, &step);
+    let attitude = corner.wheel.attitude(&step.poses);
+    let spring = model.element_id("spring").map(|e| step.element_reports(model)[e.0]);
+    let spring_deflection = spring.map_or(0.0, |r| r.deflection.x);
+    // The templates' springs carry no preload beside k·(L₀ − L) (the free length is set from the design
+    // force), so the push has the sign of the shortening; its size is the force the report gives.
+    let spring_force = spring.map_or(0.0, |r| -spring_deflection.signum() * r.force.norm());
+    Ok(StaticLoad {
+        corner_load,
+        attitude,
+        wheel_centre_displacement: attitude.wheel_centre - corner.wheel.wheel_centre,
+        contact_patch,
+        wheel_rate,
+        spring_force,
+        spring_deflection,
+        forces,
+        poses: step.poses,
+    })
+}
+
+/// Which axle a corner is on: it decides which pitch the braking and drive forces resist.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AxlePosition {
+    /// Front axle: braking dives it, drive lifts it.
+    Front,
+    /// Rear axle: braking lifts it, drive squats it.
+    Rear,
+}
+
+/// What the anti-pitch percentages need from the vehicle (SI units).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VehicleParameters {
+    /// Wheelbase `L` (m).
+    pub wheelbase: f64,
+    /// Height `h` of the centre of gravity above the ground (m).
+    pub cg_height: f64,
+    /// Share `p_f` of the braking force made by the front axle, 0 to 1.
+    pub brake_front_fraction: f64,
+    /// Share `d_f` of the drive force made by the front axle, 0 to 1 (0: rear drive, 1: front drive).
+    pub drive_front_fraction: f64,
+    /// The axle the corner is on.
+    pub axle: AxlePosition,
+}
+
+impl VehicleParameters {
+    /// Refuses values no vehicle has, naming the field.
+    pub fn validate(&self) -> Result<(), SolverError> {
+        let invalid = |why: String| Err(SolverError::InvalidInput { what: "vehicle parameters", why });
+        for (field, value) in [("wheelbase", self.wheelbase), ("cg_height", self.cg_height)] {
+            if !(value.is_finite() && value > 0.0) {
+                return invalid(format!("`{field}` must be a positive length in metres, got {value}"));
+            }
+        }
+        for (field, value) in
+            [("brake_front_fraction", self.brake_front_fraction), ("drive_front_fraction", self.drive_front_fraction)]
+        {
+            if !(0.0..=1.0).contains(&value) {
+                return invalid(format!(
+                    "`{field}` is the front axle's share of the force and must lie in [0, 1], got {value}"
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Side-view geometry of the wheel's motion in bump and the anti-pitch it gives: see [`anti_pitch`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AntiPitch {
+    /// Velocity of the upright's point at the contact patch per metre of wheel-centre travel (m/m).
+    pub patch_velocity: Vec3,
+    /// Velocity of the wheel centre per metre of wheel-centre travel (m/m; its z is 1).
+    pub wheel_centre_velocity: Vec3,
+    /// Side-view swing-arm slope at the contact patch, `tan θ_P = v_P,x / v_P,z`: positive when the patch
+    /// moves forward in bump (the side-view instant centre behind and above a front patch).
+    pub patch_slope: f64,
+    /// Side-view swing-arm slope at the wheel centre, `tan θ_W = v_W,x / v_W,z`.
+    pub wheel_centre_slope: f64,
+    /// `θ_P = atan(tan θ_P)` (rad).
+    pub patch_swing_arm_angle: f64,
+    /// `θ_W = atan(tan θ_W)` (rad).
+    pub wheel_centre_swing_arm_angle: f64,
+    /// Under braking: anti-dive on a front axle, anti-lift on a rear axle (%): the share of the load
+    /// transfer onto (front) or off (rear) the axle that the braking forces carry through the linkage
+    /// instead of the springs. 100 % leaves the springs unchanged; negative adds to the pitch.
+    pub braking: f64,
+    /// Under drive: anti-lift on a front axle, anti-squat on a rear axle (%), likewise.
+    pub traction: f64,
+}
+
+/// Anti-dive, anti-lift and anti-squat of the corner from the instantaneous motion of its wheel at
+/// design (the corner must be built with [`Rig::WheelTravel`]).
+///
+/// The path tangent at design gives the velocity `v_P` of the upright's point at the contact patch and
+/// `v_W` of the wheel centre per metre of bump. By virtual work, a force `F` at a point moving with `v`
+/// acts on the wheel's vertical motion like a vertical force `F·v / v_z` at the patch (whose `v_z` equals
+/// the wheel centre's while the patch lies below the wheel centre, as it does at design).
+///
+/// Braking with brakes on the upright puts the force at the patch: `B` rearward on each wheel is
+/// equivalent to `−B tan θ_P` upward. Deceleration `a` of a car of mass `m` moves `m a h / L` of load from
+/// the rear axle to the front one, and the front wheels brake with `p_f m a` in all:
+/// * front: the springs see `ΔF − B tan θ_P` per wheel with `ΔF = m a h / (2L)` and `B = p_f m a / 2`,
+///   so the linkage carries the share `anti-dive = p_f tan θ_P L / h` (×100 %);
+/// * rear: the wheel loses `ΔF` and brakes with `B = (1 − p_f) m a / 2`, so `anti-lift = (1 − p_f)
+///   (−tan θ_P) L / h`.
+///
+/// Drive through half-shafts from a chassis-mounted differential puts a forward force `T` at the wheel
+/// centre (the chassis reacts the torque), equivalent to `+T tan θ_W` upward. Acceleration moves `m a h / L`
+/// onto the rear axle:
+/// * front: the wheel loses `ΔF` and pushes with `T = d_f m a / 2`, so `anti-lift = d_f tan θ_W L / h`;
+/// * rear: the wheel gains `ΔF` and pushes with `T = (1 − d_f) m a / 2`, so `anti-squat = (1 − d_f)
+///   (−tan θ_W) L / h`.
+///
+/// So the same geometry serves both ends of a car: a front wheel moving forward in bump resists dive and
+/// lift, a rear wheel moving rearward in bump resists lift and squat.
+pub fn anti_pitch(corner: &Corner, vehicle: &VehicleParameters) -> Result<AntiPitch, SolverError> {
+    require_rig(corner, &[Rig::WheelTravel])?;
+    vehicle.validate()?;
+    let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
+    let mut state = solver.design_state(0.0);
+    solver.equilibrium(&mut state)?;
+    let rates = solver.path_tangent(&state)?;
+    let wheel = &corner.wheel;
+    let patch = wheel.steering_geometry(&state.poses).contact_patch;
+    let wheel_centre = wheel.attitude(&state.poses).wheel_centre;
+    let patch_velocity = wheel.point_velocity(&state.poses, &rates, patch);
+    let wheel_centre_velocity = wheel.point_velocity(&state.poses, &rates, wheel_centre);
+    if !patch_velocity.z.is_finite() || patch_velocity.z.abs() <= 1e-6 {
+        return Err(SolverError::InvalidInput {
+            what: "corner",
+            why: format!(
+                "the contact patch does not rise with the wheel centre (it moves ({:.4}, {:.4}, {:.4}) m per metre \
+                 of travel): no side-view swing arm; check the hardpoints",
+                patch_velocity.x, patch_velocity.y, patch_velocity.z
+            ),
+        });
+    }
+    let patch_slope = patch_velocity.x / patch_velocity.z;
+    let wheel_centre_slope = wheel_centre_velocity.x / wheel_centre_velocity.z;
+    let lever = vehicle.wheelbase / vehicle.cg_height;
+    let (p_f, d_f) = (vehicle.brake_front_fraction, vehicle.drive_front_fraction);
+    let (braking, traction) = match vehicle.axle {
+        AxlePosition::Front => (p_f * patch_slope * lever, d_f * wheel_centre_slope * lever),
+        AxlePosition::Rear => ((1.0 - p_f) * -patch_slope * lever, (1.0 - d_f) * -wheel_centre_slope * lever),
+    };
+    Ok(AntiPitch {
+        patch_velocity,
+        wheel_centre_velocity,
+        patch_slope,
+        wheel_centre_slope,
+        patch_swing_arm_angle: patch_slope.atan(),
+        wheel_centre_swing_arm_angle: wheel_centre_slope.atan(),
+        braking: 100.0 * braking,
+        traction: 100.0 * traction,
     })
 }

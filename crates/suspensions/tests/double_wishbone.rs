@@ -181,7 +181,7 @@ fn vertical_force_sweep_balances_the_spring_by_virtual_work() {
         let push = dw.spring.rate * (free_length - l);
         // Virtual work: F δz_cp = δU_spring = −push δL (the spring pushes its seats apart) → F = −push dL/dz_cp.
         let force = -push * (lp - lm) / (zp - zm);
-        assert!((force - row.force).abs() < 1e-4 * row.force, "F = {} vs virtual work {force}", row.force);
+        assert!((force - row.load).abs() < 1e-4 * row.load, "F = {} vs virtual work {force}", row.load);
     }
 }
 
