@@ -4,7 +4,8 @@
 use crate::plot::{line_plot, Series};
 use elastokin::solver::Mode;
 use elastokin::suspensions::analysis::{
-    design_wheel_load, parallel_wheel_travel, patch_compliance, slope_at, vertical_force_sweep, TravelRow,
+    anti_pitch, design_wheel_load, parallel_wheel_travel, patch_compliance, slope_at, static_load_case,
+    vertical_force_sweep, wheel_load_sweep, ComponentForces, LoadRow, TravelRow, WheelLoad,
 };
 use elastokin::suspensions::axle::{axle_sweep, AxleRow};
 use elastokin::suspensions::{Axle, AxleRig, Rig, Side, SuspensionFile};
@@ -21,10 +22,25 @@ pub enum Analysis {
     Steering,
     /// Vertical force at the contact patch, wheel free (the paper's case).
     VerticalForce,
+    /// A road load at the wheel: lateral or braking force at the contact patch, traction force at the
+    /// wheel centre, aligning torque.
+    Road(WheelLoad),
+    /// The corner at rest under the vehicle's corner load, from the design position.
+    StaticLoad,
 }
 
 /// Every analysis, in the order `run` performs them by default.
-pub const ALL: [Analysis; 4] = [Analysis::ParallelTravel, Analysis::Roll, Analysis::Steering, Analysis::VerticalForce];
+pub const ALL: [Analysis; 9] = [
+    Analysis::ParallelTravel,
+    Analysis::Roll,
+    Analysis::Steering,
+    Analysis::VerticalForce,
+    Analysis::Road(WheelLoad::Lateral),
+    Analysis::Road(WheelLoad::Braking),
+    Analysis::Road(WheelLoad::Traction),
+    Analysis::Road(WheelLoad::AligningTorque),
+    Analysis::StaticLoad,
+];
 
 impl Analysis {
     /// The command-line name.
@@ -34,6 +50,11 @@ impl Analysis {
             Analysis::Roll => "roll",
             Analysis::Steering => "steering",
             Analysis::VerticalForce => "vertical-force",
+            Analysis::Road(WheelLoad::Lateral) => "lateral-force",
+            Analysis::Road(WheelLoad::Braking) => "braking-force",
+            Analysis::Road(WheelLoad::Traction) => "traction-force",
+            Analysis::Road(WheelLoad::AligningTorque) => "aligning-torque",
+            Analysis::StaticLoad => "static-load",
         }
     }
 
@@ -49,6 +70,11 @@ impl Analysis {
             Analysis::Roll => "left wheel travel, m (right opposite)",
             Analysis::Steering => "rack travel, m, towards +y (left)",
             Analysis::VerticalForce => "vertical force at the contact patch, N, up +",
+            Analysis::Road(WheelLoad::Lateral) => "lateral force at the contact patch, N, inboard +",
+            Analysis::Road(WheelLoad::Braking) => "braking force at the contact patch, N, rearward +",
+            Analysis::Road(WheelLoad::Traction) => "traction force at the wheel centre, N, forward +",
+            Analysis::Road(WheelLoad::AligningTorque) => "aligning torque, N·m, about +z",
+            Analysis::StaticLoad => "the model file's vehicle.corner_load, N, applied at once",
         }
     }
 }
@@ -62,29 +88,65 @@ pub struct Settings {
     pub steps: usize,
     /// Paper or corrected stepping.
     pub mode: Mode,
+    /// Road loads: the wheel-centre height held by the rig (`true`) or the wheel free on its spring.
+    pub height_held: bool,
 }
 
-/// A table of rows, written as CSV; an empty cell is a value the row does not have (never NaN).
+/// One CSV cell: a number, a name, or nothing (a value the row does not have — never NaN).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Cell {
+    /// A number (written with 9 decimals; a non-finite one is written as an empty cell).
+    Number(f64),
+    /// A name (quoted).
+    Text(String),
+    /// No value.
+    Empty,
+}
+
+impl From<f64> for Cell {
+    fn from(v: f64) -> Cell {
+        Cell::Number(v)
+    }
+}
+
+impl From<Option<f64>> for Cell {
+    fn from(v: Option<f64>) -> Cell {
+        v.map_or(Cell::Empty, Cell::Number)
+    }
+}
+
+/// A table of rows, written as CSV.
 pub struct Table {
     /// File name in the output directory.
     pub file: String,
     /// Column headers, with units.
-    pub columns: Vec<&'static str>,
-    /// Rows, one value per column.
-    pub rows: Vec<Vec<Option<f64>>>,
+    pub columns: Vec<String>,
+    /// Rows, one cell per column.
+    pub rows: Vec<Vec<Cell>>,
 }
 
 impl Table {
+    /// A table of numbers.
+    fn numbers<const N: usize>(file: &str, columns: [&str; N], rows: impl Iterator<Item = [f64; N]>) -> Table {
+        Table {
+            file: file.into(),
+            columns: columns.map(String::from).to_vec(),
+            rows: rows.map(|r| r.map(Cell::from).to_vec()).collect(),
+        }
+    }
+
     /// The CSV text.
     pub fn csv(&self) -> String {
+        let quote = |t: &str| format!("\"{}\"", t.replace('"', "'"));
         let mut out = self.columns.join(",");
         out.push('\n');
         for row in &self.rows {
             let cells: Vec<String> = row
                 .iter()
-                .map(|v| match v {
-                    Some(v) if v.is_finite() => format!("{v:.9}"),
-                    _ => String::new(),
+                .map(|cell| match cell {
+                    Cell::Number(v) if v.is_finite() => format!("{v:.9}"),
+                    Cell::Text(t) => quote(t),
+                    Cell::Number(_) | Cell::Empty => String::new(),
                 })
                 .collect();
             out += &cells.join(",");
@@ -123,6 +185,8 @@ pub fn run(analysis: Analysis, file: &SuspensionFile, settings: Settings) -> Res
         Analysis::Roll => roll(file, settings).map_err(|e| err(&e)),
         Analysis::Steering => steering(file, settings).map_err(|e| err(&e)),
         Analysis::VerticalForce => vertical_force(file, settings).map_err(|e| err(&e)),
+        Analysis::Road(load) => road_load(file, load, settings).map_err(|e| err(&e)),
+        Analysis::StaticLoad => static_load(file).map_err(|e| err(&e)),
     }
 }
 
@@ -131,9 +195,9 @@ fn parallel_travel(file: &SuspensionFile, s: Settings) -> Result<Report, String>
     let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| e.to_string())?;
     let rows = parallel_wheel_travel(&corner, from, to, s.steps, s.mode).map_err(|e| e.to_string())?;
     let y0 = corner.wheel.wheel_centre.y;
-    let table = Table {
-        file: "parallel_travel.csv".into(),
-        columns: vec![
+    let table = Table::numbers(
+        "parallel_travel.csv",
+        [
             "travel_m",
             "toe_deg",
             "camber_deg",
@@ -150,32 +214,27 @@ fn parallel_travel(file: &SuspensionFile, s: Settings) -> Result<Report, String>
             "wheel_load_n",
             "spring_deflection_m",
         ],
-        rows: rows
-            .iter()
-            .map(|r| {
-                let (w, g) = (r.attitude.wheel_centre, r.steering);
-                [
-                    r.travel,
-                    deg(r.attitude.toe),
-                    deg(r.attitude.camber),
-                    w.x,
-                    w.y,
-                    w.z,
-                    corner.wheel.side.sign() * (g.contact_patch.y - corner.wheel.contact_patch.y),
-                    w.x - corner.wheel.wheel_centre.x,
-                    deg(g.caster),
-                    deg(g.kingpin_inclination),
-                    g.scrub_radius,
-                    g.mechanical_trail,
-                    g.kingpin_offset,
-                    r.wheel_load,
-                    r.spring_deflection,
-                ]
-                .map(Some)
-                .to_vec()
-            })
-            .collect(),
-    };
+        rows.iter().map(|r| {
+            let (w, g) = (r.attitude.wheel_centre, r.steering);
+            [
+                r.travel,
+                deg(r.attitude.toe),
+                deg(r.attitude.camber),
+                w.x,
+                w.y,
+                w.z,
+                corner.wheel.side.sign() * (g.contact_patch.y - corner.wheel.contact_patch.y),
+                w.x - corner.wheel.wheel_centre.x,
+                deg(g.caster),
+                deg(g.kingpin_inclination),
+                g.scrub_radius,
+                g.mechanical_trail,
+                g.kingpin_offset,
+                r.wheel_load,
+                r.spring_deflection,
+            ]
+        }),
+    );
     let curve = |f: &dyn Fn(&TravelRow) -> f64| rows.iter().map(|r| (r.travel * 1e3, f(r))).collect();
     let plots = vec![(
         "parallel_travel_toe_camber.svg".into(),
@@ -254,6 +313,34 @@ fn parallel_travel(file: &SuspensionFile, s: Settings) -> Result<Report, String>
             pc.longitudinal_stiffness * 1e-3
         ));
     }
+    if let Some(vehicle) = &file.vehicle {
+        let a = anti_pitch(&corner, vehicle).map_err(|e| e.to_string())?;
+        let (braking, traction) = match vehicle.axle {
+            elastokin::suspensions::analysis::AxlePosition::Front => ("anti-dive", "anti-lift"),
+            elastokin::suspensions::analysis::AxlePosition::Rear => ("anti-lift", "anti-squat"),
+        };
+        summary["anti_pitch"] = json!({
+            "axle": format!("{:?}", vehicle.axle).to_lowercase(),
+            "side_view_swing_arm_angle_at_patch_deg": deg(a.patch_swing_arm_angle),
+            "side_view_swing_arm_angle_at_wheel_centre_deg": deg(a.wheel_centre_swing_arm_angle),
+            "braking_percent": a.braking,
+            "braking_name": braking,
+            "traction_percent": a.traction,
+            "traction_name": traction,
+        });
+        headline.push(format!(
+            "side-view swing arm: {:+.2}° at the patch, {:+.2}° at the wheel centre; {braking} {:+.1} % (brakes \
+             {:.0} % front), {traction} {:+.1} % (drive {:.0} % front), wheelbase {:.2} m, CG {:.2} m",
+            deg(a.patch_swing_arm_angle),
+            deg(a.wheel_centre_swing_arm_angle),
+            a.braking,
+            vehicle.brake_front_fraction * 100.0,
+            a.traction,
+            vehicle.drive_front_fraction * 100.0,
+            vehicle.wheelbase,
+            vehicle.cg_height
+        ));
+    }
     Ok(Report { table, plots, summary, headline })
 }
 
@@ -269,7 +356,7 @@ fn roll(file: &SuspensionFile, s: Settings) -> Result<Report, String> {
     let rows = axle_sweep(&axle, from, to, s.steps, s.mode).map_err(|e| e.to_string())?;
     let table = Table {
         file: "roll.csv".into(),
-        columns: vec![
+        columns: [
             "left_travel_m",
             "roll_angle_deg",
             "left_toe_deg",
@@ -284,26 +371,28 @@ fn roll(file: &SuspensionFile, s: Settings) -> Result<Report, String> {
             "left_wheel_load_n",
             "right_wheel_load_n",
             "roll_moment_nm",
-        ],
+        ]
+        .map(String::from)
+        .to_vec(),
         rows: rows
             .iter()
             .map(|r| {
                 let rc = r.roll_centre;
                 vec![
-                    Some(r.travel),
-                    Some(deg(r.roll_angle)),
-                    Some(deg(r.left.toe)),
-                    Some(deg(r.left.camber)),
-                    Some(deg(ground_camber(r.left.camber, Side::Left, r.roll_angle))),
-                    Some(deg(r.right.toe)),
-                    Some(deg(r.right.camber)),
-                    Some(deg(ground_camber(r.right.camber, Side::Right, r.roll_angle))),
-                    Some(r.track),
-                    rc.map(|c| c.lateral),
-                    rc.map(|c| c.height),
-                    Some(r.left_load),
-                    Some(r.right_load),
-                    Some(r.roll_moment),
+                    r.travel.into(),
+                    deg(r.roll_angle).into(),
+                    deg(r.left.toe).into(),
+                    deg(r.left.camber).into(),
+                    deg(ground_camber(r.left.camber, Side::Left, r.roll_angle)).into(),
+                    deg(r.right.toe).into(),
+                    deg(r.right.camber).into(),
+                    deg(ground_camber(r.right.camber, Side::Right, r.roll_angle)).into(),
+                    r.track.into(),
+                    rc.map(|c| c.lateral).into(),
+                    rc.map(|c| c.height).into(),
+                    r.left_load.into(),
+                    r.right_load.into(),
+                    r.roll_moment.into(),
                 ]
             })
             .collect(),
@@ -390,9 +479,9 @@ fn steering(file: &SuspensionFile, s: Settings) -> Result<Report, String> {
     let (from, to) = s.range.unwrap_or((-0.04, 0.04));
     let axle = Axle::build(&file.suspension, AxleRig::Steering).map_err(|e| e.to_string())?;
     let rows = axle_sweep(&axle, from, to, s.steps, s.mode).map_err(|e| e.to_string())?;
-    let table = Table {
-        file: "steering.csv".into(),
-        columns: vec![
+    let table = Table::numbers(
+        "steering.csv",
+        [
             "rack_travel_m",
             "left_steer_deg",
             "right_steer_deg",
@@ -401,23 +490,18 @@ fn steering(file: &SuspensionFile, s: Settings) -> Result<Report, String> {
             "left_camber_deg",
             "right_camber_deg",
         ],
-        rows: rows
-            .iter()
-            .map(|r| {
-                [
-                    r.travel,
-                    deg(steer_angle(r.left.toe, Side::Left)),
-                    deg(steer_angle(r.right.toe, Side::Right)),
-                    deg(r.left.toe),
-                    deg(r.right.toe),
-                    deg(r.left.camber),
-                    deg(r.right.camber),
-                ]
-                .map(Some)
-                .to_vec()
-            })
-            .collect(),
-    };
+        rows.iter().map(|r| {
+            [
+                r.travel,
+                deg(steer_angle(r.left.toe, Side::Left)),
+                deg(steer_angle(r.right.toe, Side::Right)),
+                deg(r.left.toe),
+                deg(r.right.toe),
+                deg(r.left.camber),
+                deg(r.right.camber),
+            ]
+        }),
+    );
     let curve = |f: &dyn Fn(&AxleRow) -> f64| rows.iter().map(|r| (r.travel * 1e3, f(r))).collect();
     let plots = vec![(
         "steering.svg".into(),
@@ -456,24 +540,13 @@ fn vertical_force(file: &SuspensionFile, s: Settings) -> Result<Report, String> 
     let corner = file.suspension.build(Side::Left, Rig::Free).map_err(|e| e.to_string())?;
     let z0 = corner.wheel.wheel_centre.z;
     let rows = vertical_force_sweep(corner, from, to, s.steps, s.mode).map_err(|e| e.to_string())?;
-    let table = Table {
-        file: "vertical_force.csv".into(),
-        columns: vec!["force_n", "wheel_travel_m", "toe_deg", "camber_deg", "contact_patch_z_m"],
-        rows: rows
-            .iter()
-            .map(|r| {
-                [
-                    r.load,
-                    r.attitude.wheel_centre.z - z0,
-                    deg(r.attitude.toe),
-                    deg(r.attitude.camber),
-                    r.contact_patch.z,
-                ]
-                .map(Some)
-                .to_vec()
-            })
-            .collect(),
-    };
+    let table = Table::numbers(
+        "vertical_force.csv",
+        ["force_n", "wheel_travel_m", "toe_deg", "camber_deg", "contact_patch_z_m"],
+        rows.iter().map(|r| {
+            [r.load, r.attitude.wheel_centre.z - z0, deg(r.attitude.toe), deg(r.attitude.camber), r.contact_patch.z]
+        }),
+    );
     let plots = vec![(
         "vertical_force.svg".into(),
         line_plot(
@@ -496,4 +569,188 @@ fn vertical_force(file: &SuspensionFile, s: Settings) -> Result<Report, String> 
             .push(format!("wheel rate at the design load: {:.2} N/mm (force over wheel-centre travel)", rate * 1e-3));
     }
     Ok(Report { table, plots, summary, headline })
+}
+
+/// Columns of the force in every joint and element: `name force_x_n`, … for each.
+fn component_columns(forces: &ComponentForces) -> Vec<String> {
+    let mut out = Vec::new();
+    for c in forces.joints.iter().chain(&forces.elements) {
+        for (what, unit) in [("force", "n"), ("torque", "nm")] {
+            for axis in ["x", "y", "z"] {
+                out.push(format!("{} {what}_{axis}_{unit}", c.name));
+            }
+        }
+    }
+    out
+}
+
+fn component_values(forces: &ComponentForces) -> Vec<Cell> {
+    forces
+        .joints
+        .iter()
+        .chain(&forces.elements)
+        .flat_map(|c| [c.force, c.torque])
+        .flat_map(|v| [v.x, v.y, v.z])
+        .map(Cell::from)
+        .collect()
+}
+
+fn road_load(file: &SuspensionFile, load: WheelLoad, s: Settings) -> Result<Report, String> {
+    let (unit, default_range) = match load {
+        WheelLoad::Lateral => ("N", (-3000.0, 3000.0)),
+        WheelLoad::Braking | WheelLoad::Traction => ("N", (0.0, 3000.0)),
+        WheelLoad::AligningTorque => ("N·m", (-200.0, 200.0)),
+    };
+    let (from, to) = s.range.unwrap_or(default_range);
+    let corner_load = match &file.vehicle {
+        Some(v) => v.corner_load,
+        None => design_wheel_load(&file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| e.to_string())?)
+            .map_err(|e| e.to_string())?,
+    };
+    let rig = if s.height_held { Rig::HeightHeld } else { Rig::Free };
+    let corner = file.suspension.build(Side::Left, rig).map_err(|e| e.to_string())?;
+    let rows = wheel_load_sweep(corner, load, corner_load, from, to, s.steps, s.mode).map_err(|e| e.to_string())?;
+    let name = Analysis::Road(load).name();
+    let stem = name.replace('-', "_");
+    let mut columns: Vec<String> = [
+        "load",
+        "toe_deg",
+        "camber_deg",
+        "wheel_centre_x_m",
+        "wheel_centre_y_m",
+        "wheel_centre_z_m",
+        "patch_dx_m",
+        "patch_dy_m",
+        "patch_dz_m",
+        "wheel_load_n",
+    ]
+    .map(String::from)
+    .to_vec();
+    columns[0] = format!("load_{}", if unit == "N" { "n" } else { "nm" });
+    if let Some(first) = rows.first() {
+        columns.extend(component_columns(&first.forces));
+    }
+    let table = Table {
+        file: format!("{stem}.csv"),
+        columns,
+        rows: rows
+            .iter()
+            .map(|r| {
+                let (w, d) = (r.attitude.wheel_centre, r.patch_displacement);
+                let mut row: Vec<Cell> =
+                    [r.load, deg(r.attitude.toe), deg(r.attitude.camber), w.x, w.y, w.z, d.x, d.y, d.z, r.wheel_load]
+                        .map(Cell::from)
+                        .to_vec();
+                row.extend(component_values(&r.forces));
+                row
+            })
+            .collect(),
+    };
+    let held = if s.height_held { "wheel-centre height held" } else { "wheel free on its spring" };
+    let curve = |f: &dyn Fn(&LoadRow) -> f64| rows.iter().map(|r| (r.load, f(r))).collect();
+    let plots = vec![(
+        format!("{stem}.svg"),
+        line_plot(
+            &title(file, &format!("toe and camber under {}", name.replace('-', " "))),
+            &format!("{} [{unit}]", Analysis::Road(load).parameter().split(',').next().unwrap_or(name)),
+            "angle [deg]",
+            &[
+                Series { name: "toe (in +)", points: curve(&|r| deg(r.attitude.toe)) },
+                Series { name: "camber (top out +)", points: curve(&|r| deg(r.attitude.camber)) },
+            ],
+        ),
+    )];
+    let mut summary =
+        json!({ "range": [from, to], "steps": s.steps, "corner_load_n": corner_load, "height_held": s.height_held });
+    let mut headline = vec![format!(
+        "{} {from:.0}..{to:.0} {unit} ({held}, corner load {corner_load:.0} N), {} steps",
+        name.replace('-', " "),
+        s.steps
+    )];
+    let per = if unit == "N" { ("°/kN", 1e3) } else { ("°/(100 N·m)", 100.0) };
+    let slope = |y: &dyn Fn(&LoadRow) -> f64| slope_at(&rows, 0.0, |r| r.load, y);
+    if let (Some(steer), Some(camber)) = (slope(&|r| r.attitude.toe), slope(&|r| r.attitude.camber)) {
+        summary["steer_deg_per_unit"] = deg(steer).into();
+        summary["camber_deg_per_unit"] = deg(camber).into();
+        headline.push(format!(
+            "at zero load: steer {:+.4} {}, camber {:+.4} {}",
+            deg(steer) * per.1,
+            per.0,
+            deg(camber) * per.1,
+            per.0
+        ));
+    }
+    if let Some(last) = rows.last() {
+        headline.push(format!(
+            "at {:.0} {unit}: toe {:+.4}°, camber {:+.4}°, contact patch moved ({:+.2}, {:+.2}, {:+.2}) mm",
+            last.load,
+            deg(last.attitude.toe),
+            deg(last.attitude.camber),
+            last.patch_displacement.x * 1e3,
+            last.patch_displacement.y * 1e3,
+            last.patch_displacement.z * 1e3
+        ));
+    }
+    Ok(Report { table, plots, summary, headline })
+}
+
+fn static_load(file: &SuspensionFile) -> Result<Report, String> {
+    let vehicle = file.vehicle.as_ref().ok_or(
+        "the model file has no \"vehicle\" section with the corner_load to carry (see examples/macpherson.json)",
+    )?;
+    let corner = file.suspension.build(Side::Left, Rig::Free).map_err(|e| e.to_string())?;
+    let rest = static_load_case(corner, vehicle.corner_load).map_err(|e| e.to_string())?;
+    let table = Table {
+        file: "static_load.csv".into(),
+        columns: [
+            "component",
+            "body",
+            "other_body",
+            "force_x_n",
+            "force_y_n",
+            "force_z_n",
+            "torque_x_nm",
+            "torque_y_nm",
+            "torque_z_nm",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows: rest
+            .forces
+            .joints
+            .iter()
+            .chain(&rest.forces.elements)
+            .map(|c| {
+                let mut row =
+                    vec![Cell::Text(c.name.clone()), Cell::Text(c.body.clone()), Cell::Text(c.other_body.clone())];
+                row.extend([c.force.x, c.force.y, c.force.z, c.torque.x, c.torque.y, c.torque.z].map(Cell::from));
+                row
+            })
+            .collect(),
+    };
+    let d = rest.wheel_centre_displacement;
+    let summary = json!({
+        "corner_load_n": rest.corner_load,
+        "ride_height_change_m": d.z,
+        "wheel_centre_displacement_m": [d.x, d.y, d.z],
+        "toe_deg": deg(rest.attitude.toe),
+        "camber_deg": deg(rest.attitude.camber),
+        "wheel_rate_n_per_m": rest.wheel_rate,
+        "spring_force_n": rest.spring_force,
+        "spring_deflection_m": rest.spring_deflection,
+    });
+    let mut headline =
+        vec![format!("static load: {:.0} N at the contact patch, from the design position", rest.corner_load)];
+    headline.push(format!(
+        "at rest: wheel centre {:+.2} mm (bump +), toe {:+.4}°, camber {:+.4}°, wheel rate {:.2} N/mm, spring {:.0} N",
+        d.z * 1e3,
+        deg(rest.attitude.toe),
+        deg(rest.attitude.camber),
+        rest.wheel_rate * 1e-3,
+        rest.spring_force
+    ));
+    for c in rest.forces.joints.iter().chain(&rest.forces.elements).take(12) {
+        headline.push(format!("  {:<28} {:>9.1} N {:>9.2} N·m", c.name, c.force.norm(), c.torque.norm()));
+    }
+    Ok(Report { table, plots: Vec::new(), summary, headline })
 }

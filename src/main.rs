@@ -34,9 +34,17 @@ RUN OPTIONS:
                        steering         [rack travel, m, towards +y, full axle, heights held; default -0.04,0.04]
                        vertical-force   [force at the contact patch, N, up +, wheel free;
                                          default 0.5..1.5 x the design wheel load]
+                       lateral-force    [force at the contact patch, N, inboard +; default -3000,3000]
+                       braking-force    [force at the contact patch, N, rearward +; default 0,3000]
+                       traction-force   [force at the wheel centre, N, forward +; default 0,3000]
+                       aligning-torque  [torque about +z, N m; default -200,200]
+                       static-load      [the model's vehicle.corner_load at once, from the design position]
+                       (road loads carry vehicle.corner_load, or the design wheel load when the file has no
+                       vehicle section; with --wheel held the rig holds the wheel-centre height)
     --range FROM,TO    the load parameter's range (needs --analysis: each has its own units)
     --steps N          load steps (default 32)
     --mode MODE        corrected (default) or paper
+    --wheel HOLD       road loads with the wheel-centre height held (default) or free
     --out DIR          where the files go (default out/)
 
 MODEL is a JSON file (SI units, ISO 8855 axes, left corner); see examples/*.json.";
@@ -54,7 +62,7 @@ fn parse_run(args: &[String]) -> Result<RunOptions, String> {
     let mut opts = RunOptions {
         model: model.into(),
         analysis: None,
-        settings: Settings { range: None, steps: 32, mode: Mode::Corrected },
+        settings: Settings { range: None, steps: 32, mode: Mode::Corrected, height_held: true },
         out: "out".into(),
     };
     while let Some(flag) = it.next() {
@@ -96,6 +104,13 @@ fn parse_run(args: &[String]) -> Result<RunOptions, String> {
                     other => return Err(format!("--mode: '{other}' is neither paper nor corrected")),
                 }
             }
+            "--wheel" => {
+                opts.settings.height_held = match value()?.as_str() {
+                    "held" => true,
+                    "free" => false,
+                    other => return Err(format!("--wheel: '{other}' is neither held nor free")),
+                }
+            }
             "--out" => opts.out = value()?.into(),
             other => return Err(format!("unknown option '{other}' (see elastokin help)")),
         }
@@ -121,6 +136,12 @@ fn run(opts: RunOptions) -> Result<(), String> {
     let mut summaries = serde_json::Map::new();
     let mut written = Vec::new();
     for analysis in chosen {
+        if analysis == Analysis::StaticLoad && file.vehicle.is_none() && opts.analysis.is_none() {
+            let why = "the model file has no \"vehicle\" section with the corner_load to carry";
+            println!("\nstatic load: skipped — {why}");
+            summaries.insert(analysis.name().into(), serde_json::json!({ "skipped": why }));
+            continue;
+        }
         let report = analyses::run(analysis, &file, opts.settings)?;
         println!();
         for line in &report.headline {

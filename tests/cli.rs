@@ -19,11 +19,15 @@ fn examples() -> Vec<String> {
 }
 
 /// The files `run` writes for each analysis: (CSV, plots).
-const OUTPUTS: [(&str, &str, &[&str]); 4] = [
+const OUTPUTS: [(&str, &str, &[&str]); 8] = [
     ("parallel-travel", "parallel_travel.csv", &["parallel_travel_toe_camber.svg"]),
     ("roll", "roll.csv", &["roll_toe_camber.svg", "roll_centre.svg"]),
     ("steering", "steering.csv", &["steering.svg"]),
     ("vertical-force", "vertical_force.csv", &["vertical_force.svg"]),
+    ("lateral-force", "lateral_force.csv", &["lateral_force.svg"]),
+    ("braking-force", "braking_force.csv", &["braking_force.svg"]),
+    ("traction-force", "traction_force.csv", &["traction_force.svg"]),
+    ("aligning-torque", "aligning_torque.csv", &["aligning_torque.svg"]),
 ];
 
 #[test]
@@ -56,6 +60,12 @@ fn run_and_check_every_example() {
             assert!(a["roll"]["roll_stiffness_nm_per_rad"].is_f64(), "{summary}");
             assert!(a["steering"]["steer_per_rack_travel_deg_per_m"].is_f64(), "{summary}");
             assert!(a["vertical-force"]["wheel_rate_n_per_m"].is_f64(), "{summary}");
+            assert!(a["lateral-force"]["steer_deg_per_unit"].is_f64(), "{summary}");
+            assert!(a["parallel-travel"]["anti_pitch"]["braking_percent"].is_f64(), "{summary}");
+            // The static load case: a row per joint and element, ride height in the summary.
+            let loads = std::fs::read_to_string(out.join("static_load.csv")).unwrap();
+            assert!(loads.contains("\"spring\"") && loads.contains("\"corner load\"") && !loads.contains("NaN"));
+            assert!(a["static-load"]["ride_height_change_m"].is_f64(), "{summary}");
         }
         // One analysis alone, with its own range.
         std::fs::remove_dir_all(&out).ok();
@@ -63,6 +73,19 @@ fn run_and_check_every_example() {
             elastokin(&["run", &model, "--analysis", "roll", "--range", "-0.02,0.02", "--out", out.to_str().unwrap()]);
         assert!(o.status.success(), "{model}: {}", String::from_utf8_lossy(&o.stderr));
         assert!(out.join("roll.csv").exists() && !out.join("parallel_travel.csv").exists());
+        // A road load with the wheel free.
+        let o = elastokin(&[
+            "run",
+            &model,
+            "--analysis",
+            "braking-force",
+            "--wheel",
+            "free",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{model}: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(String::from_utf8_lossy(&o.stdout).contains("wheel free on its spring"));
     }
     std::fs::remove_dir_all(&out).ok();
 }
@@ -96,6 +119,20 @@ fn bad_files_and_arguments_exit_non_zero_with_a_named_problem() {
     let typo = dir.join("typo.json");
     let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(&examples()[0])).unwrap();
     std::fs::write(&typo, text.replacen("\"spring\"", "\"sprung\"", 1)).unwrap();
+    // The model without its vehicle section: everything but the static load case still runs.
+    let no_vehicle = dir.join("no_vehicle.json");
+    let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();
+    value.as_object_mut().unwrap().remove("vehicle");
+    std::fs::write(&no_vehicle, value.to_string()).unwrap();
+    let o = elastokin(&[
+        "run",
+        no_vehicle.to_str().unwrap(),
+        "--analysis",
+        "lateral-force",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let cases: Vec<(Vec<String>, &str)> = vec![
         (vec!["run".into(), typo.display().to_string()], "unknown field `sprung`"),
         (vec!["check".into(), "no/such/model.json".into()], "no/such/model.json"),
@@ -105,6 +142,11 @@ fn bad_files_and_arguments_exit_non_zero_with_a_named_problem() {
         (vec!["frobnicate".into()], "unknown command"),
         (vec!["run".into(), examples()[0].clone(), "--analysis".into(), "pitch".into()], "unknown analysis 'pitch'"),
         (vec!["run".into(), examples()[0].clone(), "--range".into(), "0,1".into()], "--range needs --analysis"),
+        (vec!["run".into(), examples()[0].clone(), "--wheel".into(), "loose".into()], "--wheel"),
+        (
+            vec!["run".into(), no_vehicle.display().to_string(), "--analysis".into(), "static-load".into()],
+            "no \"vehicle\" section",
+        ),
     ];
     for (args, expected) in cases {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();

@@ -592,10 +592,13 @@ pub enum AxlePosition {
     Rear,
 }
 
-/// What the anti-pitch percentages need from the vehicle (SI units).
+/// What the vehicle-level analyses need from the vehicle (SI units): the static load case and the road
+/// loads carry `corner_load`, the anti-pitch percentages use the rest. A model file's `vehicle` section.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct VehicleParameters {
+    /// The corner's share of the vehicle's weight, N: the vertical force at the contact patch at rest.
+    pub corner_load: f64,
     /// Wheelbase `L` (m).
     pub wheelbase: f64,
     /// Height `h` of the centre of gravity above the ground (m).
@@ -616,6 +619,9 @@ impl VehicleParameters {
             if !(value.is_finite() && value > 0.0) {
                 return invalid(format!("`{field}` must be a positive length in metres, got {value}"));
             }
+        }
+        if !(self.corner_load.is_finite() && self.corner_load > 0.0) {
+            return invalid(format!("`corner_load` must be a positive force in newtons, got {}", self.corner_load));
         }
         for (field, value) in
             [("brake_front_fraction", self.brake_front_fraction), ("drive_front_fraction", self.drive_front_fraction)]

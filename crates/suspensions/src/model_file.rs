@@ -12,6 +12,7 @@
 //!
 //! Unknown keys and missing hardpoints are errors that name the key and the line and column in the file.
 
+use crate::analysis::VehicleParameters;
 use crate::corner::{Corner, CornerParts, CornerTemplate, Rig};
 use crate::double_wishbone::DoubleWishbone;
 use crate::hardpoint::Side;
@@ -56,6 +57,10 @@ pub struct SuspensionFile {
     pub name: String,
     /// The suspension.
     pub suspension: Template,
+    /// The vehicle around it, for the static load case, the road loads and the anti-pitch figures;
+    /// optional (those analyses are then skipped or take the design wheel load).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vehicle: Option<VehicleParameters>,
 }
 
 /// A model file that cannot be read.
@@ -101,6 +106,14 @@ impl SuspensionFile {
             column: e.column(),
             message: e.to_string().split(" at line ").next().unwrap_or_default().to_string(),
         })?;
+        if let Some(vehicle) = &file.vehicle {
+            vehicle.validate().map_err(|e| FileError::Invalid {
+                origin: origin.to_string(),
+                line: text.lines().position(|l| l.contains("\"vehicle\"")).map_or(1, |k| k + 1),
+                column: 1,
+                message: format!("vehicle: {e}"),
+            })?;
+        }
         // Building validates the geometry (coincident points, non-positive rates, …) with named errors.
         file.suspension
             .build(Side::Left, Rig::Free)

@@ -428,6 +428,7 @@ fn loads_the_corner_cannot_carry_are_refused() {
 
 fn front_vehicle() -> VehicleParameters {
     VehicleParameters {
+        corner_load: 3800.0,
         wheelbase: 2.7,
         cg_height: 0.55,
         brake_front_fraction: 0.65,
@@ -575,6 +576,7 @@ fn vehicle_parameters_are_checked_by_field() {
         ("cg_height", VehicleParameters { cg_height: f64::NAN, ..good }),
         ("brake_front_fraction", VehicleParameters { brake_front_fraction: 1.2, ..good }),
         ("drive_front_fraction", VehicleParameters { drive_front_fraction: -0.1, ..good }),
+        ("corner_load", VehicleParameters { corner_load: -1.0, ..good }),
     ];
     let corner = bushed_macpherson().build(Side::Left, Rig::WheelTravel).unwrap();
     // Only a driven wheel travel has the path tangent the anti-pitch geometry reads.
@@ -591,7 +593,7 @@ fn vehicle_parameters_are_checked_by_field() {
         }
     }
     // Model-file form: snake-case axle, unknown keys named.
-    let json = r#"{"wheelbase": 2.7, "cg_height": 0.55, "brake_front_fraction": 0.65, "drive_front_fraction": 1.0, "axle": "rear"}"#;
+    let json = r#"{"corner_load": 3800.0, "wheelbase": 2.7, "cg_height": 0.55, "brake_front_fraction": 0.65, "drive_front_fraction": 1.0, "axle": "rear"}"#;
     let parsed: VehicleParameters = serde_json::from_str(json).unwrap();
     assert_eq!(parsed, VehicleParameters { axle: AxlePosition::Rear, ..good });
     let typo = json.replace("cg_height", "cog_height");
