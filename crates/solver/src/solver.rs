@@ -7,9 +7,11 @@
 //! right, the opposite of the paper's sign of eq. 8).
 //!
 //! ## Modes
-//! * [`Mode::Paper`] — paper eq. 9 exactly: `K(qⁿ) Δq + Φ_q(qⁿ)ᵀ λⁿ = Δf + Φ_q(qⁿ⁻¹)ᵀ λⁿ⁻¹`,
-//!   `Φ_q(qⁿ) Δq = −Δt ∂Φ/∂t`, with `K` the elastic stiffness only and `Δf = Δt ∂Q/∂t`. Loads are accumulated
-//!   linearly; the constraints drift. Error `O(Δf)`.
+//! * [`Mode::Paper`] — paper eq. 9: `K(qⁿ) Δq + Φ_q(qⁿ)ᵀ λⁿ = Δf + Φ_q(qⁿ⁻¹)ᵀ λⁿ⁻¹`,
+//!   `Φ_q(qⁿ) Δq = −Δt ∂Φ/∂t`, with `Δf = Δt ∂Q/∂t` and `K` the elastic stiffness plus the load stiffness of
+//!   world-fixed loads (with the elastic part alone each increment keeps the moment arm it was applied with
+//!   and the recurrence does not converge as `Δf → 0`), solved with its skew part (GMRES on the symmetric
+//!   LDLᵀ). Loads are accumulated linearly; the constraints drift. Error `O(Δf)`.
 //! * [`Mode::Corrected`] — each step starts with the same linear predictor (the first Newton iteration from the
 //!   last equilibrium at the new load is exactly that step, with the full tangent), then Newton on the true
 //!   residual until the force and constraint tolerances hold. With `reuse_factorization` the corrector keeps

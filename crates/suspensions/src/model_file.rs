@@ -78,7 +78,7 @@ pub enum FileError {
     /// The file is not a valid model (bad JSON, unknown key, missing hardpoint, wrong type).
     #[error("{origin}:{line}:{column}: {message}")]
     Invalid {
-        /// The file (or "<text>").
+        /// The file (or the origin given to [`SuspensionFile::from_json`]).
         origin: String,
         /// Line, from 1.
         line: usize,
