@@ -5,7 +5,7 @@ use crate::plot::{line_plot, Series};
 use elastokin::solver::Mode;
 use elastokin::suspensions::analysis::{
     anti_pitch, design_wheel_load, parallel_wheel_travel, patch_compliance, slope_at, static_load_case,
-    vertical_force_sweep, wheel_load_sweep, ComponentForces, LoadRow, TravelRow, WheelLoad,
+    vertical_force_sweep, wheel_compliance, wheel_load_sweep, ComponentForces, LoadRow, TravelRow, WheelLoad,
 };
 use elastokin::suspensions::axle::{axle_sweep, AxleRow};
 use elastokin::suspensions::{Axle, AxleRig, Rig, Side, SuspensionFile};
@@ -292,6 +292,10 @@ fn parallel_travel(file: &SuspensionFile, s: Settings) -> Result<Report, String>
         ));
         summary["wheel_load_at_design_n"] = design.wheel_load.into();
         let pc = patch_compliance(&corner, 0.0).map_err(|e| e.to_string())?;
+        // Rows: wheel-centre translation (m) and rotation (rad); columns: unit force (N) and torque (N·m)
+        // at the wheel centre, global axes; the vertical row and column are zero with the height held.
+        summary["wheel_compliance_at_design"] =
+            json!(wheel_compliance(&corner, 0.0).map_err(|e| e.to_string())?.map(|row| row.to_vec()).to_vec());
         let per_kn = |rad_per_n: f64| deg(rad_per_n) * 1e3;
         summary["compliance_at_design"] = json!({
             "lateral_steer_deg_per_kn": per_kn(pc.lateral_steer),

@@ -61,6 +61,7 @@ fn run_and_check_every_example() {
             assert!(a["steering"]["steer_per_rack_travel_deg_per_m"].is_f64(), "{summary}");
             assert!(a["vertical-force"]["wheel_rate_n_per_m"].is_f64(), "{summary}");
             assert!(a["lateral-force"]["steer_deg_per_unit"].is_f64(), "{summary}");
+            assert!(a["parallel-travel"]["wheel_compliance_at_design"][5][5].is_f64(), "{summary}");
             assert!(a["parallel-travel"]["anti_pitch"]["braking_percent"].is_f64(), "{summary}");
             // The static load case: a row per joint and element, ride height in the summary.
             let loads = std::fs::read_to_string(out.join("static_load.csv")).unwrap();
