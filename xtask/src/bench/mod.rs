@@ -5,7 +5,8 @@
 //! ```
 //!
 //! Sections (each a module named for what it measures): error against run time on the shipped models,
-//! the cost of one step against a bare factorization + solve, scaling with the number of bodies. Output in `bench/results/` (or `--out`): `latest.md`, one CSV per
+//! the cost of one step against a bare factorization + solve, scaling with the number of bodies, stiff and
+//! extreme cases. Output in `bench/results/` (or `--out`): `latest.md`, one CSV per
 //! table, SVG plots; `--save NAME` writes `NAME.json` with the commit id and every figure, `--compare NAME`
 //! prints now/then per figure and flags what got slower than `--threshold` (default 1.25).
 //!
@@ -20,6 +21,7 @@ pub mod report;
 mod scaling;
 pub mod stats;
 mod step_cost;
+mod stiff_cases;
 pub mod track;
 
 use report::{significant, SectionOutput, Table, Target};
@@ -60,8 +62,12 @@ impl Settings {
 type Section = (&'static str, fn(&Settings) -> SectionOutput);
 
 /// The sections, in the order they run and appear.
-const SECTIONS: [Section; 3] =
-    [("error-vs-time", error_vs_time::run), ("step-cost", step_cost::run), ("scaling", scaling::run)];
+const SECTIONS: [Section; 4] = [
+    ("error-vs-time", error_vs_time::run),
+    ("step-cost", step_cost::run),
+    ("scaling", scaling::run),
+    ("stiff-cases", stiff_cases::run),
+];
 
 const USAGE: &str = "\
 usage: cargo xtask bench [--quick] [--out DIR] [--save NAME] [--compare NAME] [--threshold X] [--only SECTIONS]
@@ -70,7 +76,7 @@ usage: cargo xtask bench [--quick] [--out DIR] [--save NAME] [--compare NAME] [-
     --save NAME      also write DIR/NAME.json: the commit id and every figure
     --compare NAME   print now/then for every figure of DIR/NAME.json, flag the slower ones
     --threshold X    flag figures slower than X times then (default 1.25)
-    --only LIST      comma-separated sections: error-vs-time, step-cost, scaling";
+    --only LIST      comma-separated sections: error-vs-time, step-cost, scaling, stiff-cases";
 
 /// Parsed command line.
 #[derive(Debug, Clone, PartialEq)]
