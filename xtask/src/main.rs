@@ -2,8 +2,8 @@
 //!
 //! Tasks:
 //! - `ci`: format check and tests — what `.ci/run` starts with.
-//! - `bench`: the benchmark instrument (error against run time, step cost, scaling, stiff cases), tracked
-//!   over commits; see `bench/mod.rs`.
+//! - `bench`: the benchmark instrument (error against run time, step cost, scaling, stiff cases, batch
+//!   throughput), tracked over commits; see `bench/mod.rs` and the README's "Benchmarks".
 
 use std::process::{Command, ExitCode};
 

@@ -6,7 +6,7 @@
 //!
 //! Sections (each a module named for what it measures): error against run time on the shipped models,
 //! the cost of one step against a bare factorization + solve, scaling with the number of bodies, stiff and
-//! extreme cases. Output in `bench/results/` (or `--out`): `latest.md`, one CSV per
+//! extreme cases, batch throughput. Output in `bench/results/` (or `--out`): `latest.md`, one CSV per
 //! table, SVG plots; `--save NAME` writes `NAME.json` with the commit id and every figure, `--compare NAME`
 //! prints now/then per figure and flags what got slower than `--threshold` (default 1.25).
 //!
@@ -14,6 +14,7 @@
 //! figures to read when the machine is shared.
 
 pub mod alloc;
+mod batch;
 mod error_vs_time;
 mod models;
 pub mod plot;
@@ -56,17 +57,24 @@ impl Settings {
             self.budget()
         }
     }
+
+    /// Repetitions of a whole batch.
+    pub fn batch_budget(&self) -> Budget {
+        let reps = if self.quick { 3 } else { 5 };
+        Budget { seconds: 0.0, min_reps: reps, max_reps: reps }
+    }
 }
 
 /// A section: its name for `--only` and what runs it.
 type Section = (&'static str, fn(&Settings) -> SectionOutput);
 
 /// The sections, in the order they run and appear.
-const SECTIONS: [Section; 4] = [
+const SECTIONS: [Section; 5] = [
     ("error-vs-time", error_vs_time::run),
     ("step-cost", step_cost::run),
     ("scaling", scaling::run),
     ("stiff-cases", stiff_cases::run),
+    ("batch", batch::run),
 ];
 
 const USAGE: &str = "\
@@ -76,7 +84,7 @@ usage: cargo xtask bench [--quick] [--out DIR] [--save NAME] [--compare NAME] [-
     --save NAME      also write DIR/NAME.json: the commit id and every figure
     --compare NAME   print now/then for every figure of DIR/NAME.json, flag the slower ones
     --threshold X    flag figures slower than X times then (default 1.25)
-    --only LIST      comma-separated sections: error-vs-time, step-cost, scaling, stiff-cases";
+    --only LIST      comma-separated sections: error-vs-time, step-cost, scaling, stiff-cases, batch";
 
 /// Parsed command line.
 #[derive(Debug, Clone, PartialEq)]
