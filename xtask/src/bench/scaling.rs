@@ -80,19 +80,15 @@ struct SizeResult {
     sweep_peak_bytes: usize,
 }
 
-fn steps_for(n: usize) -> usize {
-    match n {
-        0..=100 => 40,
-        101..=1000 => 20,
-        _ => 8,
-    }
-}
+/// Steps of every sweep, the same for every N: a per-step time compared across N must come from the same
+/// load path (a longer step takes more Newton iterations).
+const STEPS: usize = 10;
 
 fn measure(n: usize, s: &Settings) -> Result<SizeResult, String> {
     let err = |e: &dyn std::fmt::Display| e.to_string();
     let model = chain(n).map_err(|e| err(&e))?;
     let budget = s.budget_large(n);
-    let k = steps_for(n);
+    let k = STEPS;
     let path = LoadPath::new(0.0, 1.0, k);
     // Peak memory: solver setup, the first equilibrium and a corrected sweep with its results; then the
     // setup and the sweep alone.
@@ -162,8 +158,8 @@ pub fn run(s: &Settings) -> SectionOutput {
         intro: format!(
             "A chain of N suspension-like cells: each body an arm on a 6-axis bushing to the ground, tied to \
              the previous body (the ground for the first) by a ball joint and a link, with a coil spring \
-             across; a tip load at the far end. Load parameter 0 → 1, a sweep of 40 (N ≤ 100), 20 (N ≤ \
-             1000) or 8 steps from the first equilibrium, divided by the step count. Peak memory: live bytes \
+             across; a tip load at the far end. Load parameter 0 → 1 in {STEPS} steps from the first \
+             equilibrium (the same path for every N), time divided by the step count. Peak memory: live bytes \
              above the start during `StaticSolver::new` + a corrected sweep (results included), and each \
              alone. Gain from \
              symbolic reuse: (symbolic + numeric) / numeric. Exponents: least squares of ln time against ln N \
@@ -248,6 +244,7 @@ pub fn run(s: &Settings) -> SectionOutput {
         ("corrected step", |r: &SizeResult| r.corrected_step),
         ("numeric factorization", |r: &SizeResult| r.numeric),
         ("symbolic analysis", |r: &SizeResult| r.symbolic),
+        ("setup (StaticSolver::new)", |r: &SizeResult| r.setup),
         ("peak memory", |r: &SizeResult| r.peak_bytes as f64),
     ] {
         let points: Vec<(f64, f64)> = fitted.iter().map(|r| (r.n as f64, get(r))).collect();
