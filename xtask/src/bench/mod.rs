@@ -229,7 +229,8 @@ pub fn main(args: &[String]) -> ExitCode {
     if let Some(t) = &compare_table {
         result = result.and_then(|_| write(&t.csv, &t.csv_text()));
     }
-    let md = markdown(&provenance, &targets_table, &sections, compare_table.as_ref(), total);
+    let kind = run_kind(&options);
+    let md = markdown(&provenance, &kind, &targets_table, &sections, compare_table.as_ref(), total);
     result = result.and_then(|_| write("latest.md", &md));
     if let Some(name) = &options.save {
         let json = track::to_json(&provenance, &figures);
@@ -238,8 +239,7 @@ pub fn main(args: &[String]) -> ExitCode {
     }
 
     println!(
-        "## Targets ({}, commit {}{})\n",
-        if options.quick { "--quick" } else { "full run" },
+        "## Targets ({kind}, commit {}{})\n",
         short(&provenance.commit),
         if provenance.dirty { ", uncommitted changes" } else { "" }
     );
@@ -313,8 +313,18 @@ fn compare_table(name: &str, then: &track::Provenance, rows: &[track::Comparison
     t
 }
 
+/// "full run", "`--quick` run", or either "of" the sections asked with `--only`.
+fn run_kind(o: &Options) -> String {
+    let kind = if o.quick { "`--quick` run" } else { "full run" };
+    match &o.only {
+        Some(only) => format!("{kind} of {} only", only.join(", ")),
+        None => kind.to_string(),
+    }
+}
+
 fn markdown(
     p: &track::Provenance,
+    kind: &str,
     targets: &Table,
     sections: &[(&str, SectionOutput, f64)],
     compare: Option<&Table>,
@@ -323,11 +333,10 @@ fn markdown(
     let mut md = String::from("# elastokin benchmark\n\n");
     let _ = writeln!(
         md,
-        "Commit `{}`{}, {}, {} thread(s) available, {} s in all. Times are medians of repeated runs on a \
+        "Commit `{}`{}, {kind}, {} thread(s) available, {} s in all. Times are medians of repeated runs on a \
          machine that may be shared: read ratios measured in the same run rather than absolute times.\n",
         p.commit,
         if p.dirty { " with uncommitted changes" } else { "" },
-        if p.quick { "`--quick` run" } else { "full run" },
         p.threads,
         significant(total, 3)
     );
@@ -359,6 +368,12 @@ mod tests {
 
     fn args(s: &str) -> Vec<String> {
         s.split_whitespace().map(str::to_string).collect()
+    }
+
+    #[test]
+    fn partial_runs_say_so() {
+        assert_eq!(run_kind(&parse(&args("--quick")).unwrap()), "`--quick` run");
+        assert_eq!(run_kind(&parse(&args("--only scaling,batch")).unwrap()), "full run of scaling, batch only");
     }
 
     #[test]
