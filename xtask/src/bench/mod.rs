@@ -91,8 +91,8 @@ usage: cargo xtask bench [--quick] [--out DIR] [--save NAME] [--compare NAME] [-
 pub struct Options {
     /// `--quick`.
     pub quick: bool,
-    /// Output directory.
-    pub out: PathBuf,
+    /// `--out DIR`, when given.
+    pub out: Option<PathBuf>,
     /// `--save NAME`.
     pub save: Option<String>,
     /// `--compare NAME`.
@@ -103,22 +103,35 @@ pub struct Options {
     pub only: Option<Vec<String>>,
 }
 
+impl Options {
+    /// Where the report, tables and plots go: `--out`, else `bench/results` (the committed full-run
+    /// results) or, for `--quick`, `bench/results/quick` (ignored by git, so a check before a commit leaves
+    /// the committed results alone).
+    pub fn report_dir(&self) -> PathBuf {
+        let results = models::root().join("bench").join("results");
+        match &self.out {
+            Some(dir) => dir.clone(),
+            None if self.quick => results.join("quick"),
+            None => results,
+        }
+    }
+
+    /// Where `--save` writes and `--compare` reads `NAME.json`: `--out`, else `bench/results`, whether the
+    /// run is quick or not.
+    pub fn saved_dir(&self) -> PathBuf {
+        self.out.clone().unwrap_or_else(|| models::root().join("bench").join("results"))
+    }
+}
+
 /// Parses the arguments after `bench`.
 pub fn parse(args: &[String]) -> Result<Options, String> {
-    let mut o = Options {
-        quick: false,
-        out: models::root().join("bench").join("results"),
-        save: None,
-        compare: None,
-        threshold: 1.25,
-        only: None,
-    };
+    let mut o = Options { quick: false, out: None, save: None, compare: None, threshold: 1.25, only: None };
     let mut it = args.iter();
     while let Some(flag) = it.next() {
         let mut value = || it.next().cloned().ok_or_else(|| format!("{flag} needs a value"));
         match flag.as_str() {
             "--quick" => o.quick = true,
-            "--out" => o.out = PathBuf::from(value()?),
+            "--out" => o.out = Some(PathBuf::from(value()?)),
             "--save" | "--compare" => {
                 let v = value()?;
                 if !track::valid_name(&v) {
@@ -165,7 +178,7 @@ pub fn main(args: &[String]) -> ExitCode {
     // Read the saved results first: a bad name should not cost a whole run.
     let then = match &options.compare {
         Some(name) => {
-            let path = options.out.join(format!("{name}.json"));
+            let path = options.saved_dir().join(format!("{name}.json"));
             match std::fs::read_to_string(&path)
                 .map_err(|e| format!("{}: {e}", path.display()))
                 .and_then(|t| serde_json::from_str(&t).map_err(|e| format!("{}: {e}", path.display())))
@@ -180,8 +193,9 @@ pub fn main(args: &[String]) -> ExitCode {
         }
         None => None,
     };
-    if let Err(e) = std::fs::create_dir_all(&options.out) {
-        eprintln!("{}: {e}", options.out.display());
+    let out = options.report_dir();
+    if let Err(e) = std::fs::create_dir_all(&out) {
+        eprintln!("{}: {e}", out.display());
         return ExitCode::FAILURE;
     }
     let settings = Settings { quick: options.quick };
@@ -209,33 +223,35 @@ pub fn main(args: &[String]) -> ExitCode {
     });
 
     let mut written = Vec::new();
-    let mut write = |file: &str, text: &str| -> Result<(), String> {
-        let path = options.out.join(file);
+    let mut write = |path: PathBuf, text: &str| -> Result<(), String> {
         std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
         written.push(path);
         Ok(())
     };
     let mut result = Ok(());
-    result = result.and_then(|_| write(&targets_table.csv, &targets_table.csv_text()));
+    result = result.and_then(|_| write(out.join(&targets_table.csv), &targets_table.csv_text()));
     for (_, s, _) in &sections {
         for t in &s.tables {
-            result = result.and_then(|_| write(&t.csv, &t.csv_text()));
+            result = result.and_then(|_| write(out.join(&t.csv), &t.csv_text()));
         }
         for (file, svg, _) in &s.plots {
-            result = result.and_then(|_| write(file, svg));
+            result = result.and_then(|_| write(out.join(file), svg));
         }
     }
     let compare_table = comparison.as_ref().map(|(name, p, rows)| compare_table(name, p, rows, options.threshold));
     if let Some(t) = &compare_table {
-        result = result.and_then(|_| write(&t.csv, &t.csv_text()));
+        result = result.and_then(|_| write(out.join(&t.csv), &t.csv_text()));
     }
     let kind = run_kind(&options);
     let md = markdown(&provenance, &kind, &targets_table, &sections, compare_table.as_ref(), total);
-    result = result.and_then(|_| write("latest.md", &md));
+    result = result.and_then(|_| write(out.join("latest.md"), &md));
     if let Some(name) = &options.save {
         let json = track::to_json(&provenance, &figures);
         let text = serde_json::to_string_pretty(&json).unwrap_or_default() + "\n";
-        result = result.and_then(|_| write(&format!("{name}.json"), &text));
+        let dir = options.saved_dir();
+        result = result
+            .and_then(|_| std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display())))
+            .and_then(|_| write(dir.join(format!("{name}.json")), &text));
     }
 
     println!(
@@ -254,9 +270,17 @@ pub fn main(args: &[String]) -> ExitCode {
             rows.iter().filter(|r| r.ratio.is_some()).count(),
             times.len(),
             stats::median(&times).map_or("none".into(), |m| format!("{m:.3}")),
-            options.out.join("latest.md").display(),
+            out.join("latest.md").display(),
             t.csv
         );
+        if let Some((_, (then, _))) = &then {
+            if then.quick != options.quick {
+                println!(
+                    "(The saved run was {}: the figures both runs have are compared, but their repetitions differ.)\n",
+                    if then.quick { "a --quick run" } else { "a full run" }
+                );
+            }
+        }
         if !flagged.rows.is_empty() {
             println!("{}", flagged.markdown());
         }
@@ -268,9 +292,9 @@ pub fn main(args: &[String]) -> ExitCode {
         .filter(|r| r.iter().any(|c| matches!(c, report::Cell::Text(x) if x.starts_with("failed"))))
         .count();
     if failed > 0 {
-        println!("{failed} row(s) marked failed: see {}", options.out.join("latest.md").display());
+        println!("{failed} row(s) marked failed: see {}", out.join("latest.md").display());
     }
-    println!("{:.1} s; results in {}", total, options.out.display());
+    println!("{:.1} s; results in {}", total, out.display());
     match result {
         Ok(()) => {
             for p in &written {
@@ -368,6 +392,17 @@ mod tests {
 
     fn args(s: &str) -> Vec<String> {
         s.split_whitespace().map(str::to_string).collect()
+    }
+
+    #[test]
+    fn quick_reports_stay_out_of_the_committed_results_but_saved_names_do_not() {
+        let quick = parse(&args("--quick")).unwrap();
+        assert!(quick.report_dir().ends_with("bench/results/quick"));
+        assert!(quick.saved_dir().ends_with("bench/results"));
+        let full = parse(&args("")).unwrap();
+        assert_eq!(full.report_dir(), full.saved_dir());
+        let elsewhere = parse(&args("--quick --out /tmp/x")).unwrap();
+        assert_eq!((elsewhere.report_dir(), elsewhere.saved_dir()), (PathBuf::from("/tmp/x"), PathBuf::from("/tmp/x")));
     }
 
     #[test]

@@ -16,14 +16,9 @@ use nalgebra::{DMatrix, DVector};
 use std::hint::black_box;
 
 /// Steps over which a whole step's cost is averaged (the sweep's start, one assembly and in corrected
-/// mode one factorization, is spread over them).
-fn sweep_steps(s: &Settings) -> usize {
-    if s.quick {
-        100
-    } else {
-        400
-    }
-}
+/// mode one factorization, is spread over them). The same in `--quick` and full runs: the step size decides
+/// the Newton iterations of a corrected step, so runs compare only on the same path.
+const SWEEP_STEPS: usize = 400;
 
 struct Part {
     what: &'static str,
@@ -144,7 +139,7 @@ fn measure_model(model_name: &str, stem: &str, s: &Settings, out: &mut SectionOu
     });
 
     // Whole steps: a sweep of k steps from the equilibrium at the start, over k.
-    let k = sweep_steps(s);
+    let k = SWEEP_STEPS;
     let mut start = solver.design_state(case.from);
     solver.equilibrium(&mut start).map_err(|e| err(&e))?;
     let path = LoadPath::new(case.from, case.to, k);
