@@ -1,6 +1,7 @@
 //! Cost of one load step against its floor, on the swing-arm scene of `examples/swing_arm.rs`'s kind:
 //! median wall time of a paper-mode step, a corrected-mode step, and of one bare numeric factorization +
-//! solve of the same KKT. Run with `cargo bench --bench step_cost` (or `cargo xtask bench`).
+//! solve of the same KKT. Run with `cargo bench --bench step_cost`; `cargo xtask bench` measures the same
+//! on the shipped suspension models, with the parts of a step timed alone (`xtask/src/bench/step_cost.rs`).
 //!
 //! Medians and ratios from one run; the machine may be shared, so read the ratios, not the absolutes.
 

@@ -1,21 +1,25 @@
-//! Project automation, run as `cargo xtask <task>` (alias in `.cargo/config.toml`).
+//! Project automation, run as `cargo xtask <task>` (alias in `.cargo/config.toml`, release build).
 //!
 //! Tasks:
-//! - `ci`: format check, clippy, tests — what `.ci/run` runs.
-//! - `bench`: performance tracking (error against run time, scaling, stiff cases).
+//! - `ci`: format check and tests — what `.ci/run` starts with.
+//! - `bench`: the benchmark instrument (error against run time, step cost, scaling, stiff cases, batch
+//!   throughput), tracked over commits; see `bench/mod.rs` and the README's "Benchmarks".
 
 use std::process::{Command, ExitCode};
+
+mod bench;
+
+/// Every allocation is counted, so the benchmark can report peak memory of a measured section.
+#[global_allocator]
+static ALLOCATOR: bench::alloc::Counting = bench::alloc::Counting;
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     match args.first().map(String::as_str) {
         Some("ci") => run_ci(),
-        Some("bench") => {
-            eprintln!("cargo xtask bench: the benchmark instrument is tracked in the bench issue; running the micro-benchmarks in benches/ instead");
-            status(Command::new(cargo()).args(["bench", "--workspace"]))
-        }
+        Some("bench") => bench::main(&args[1..]),
         _ => {
-            eprintln!("usage: cargo xtask <ci|bench>");
+            eprintln!("usage: cargo xtask <ci|bench>   (cargo xtask bench --help for the benchmark's options)");
             ExitCode::from(2)
         }
     }

@@ -1,0 +1,166 @@
+//! Batch throughput: design variants of the shipped MacPherson model per second, evaluated as
+//! `elastokin batch` does (JSON-pointer edits of the model file, parse, parallel travel ±20 mm in 8
+//! corrected steps, bump steer, camber gain and wheel rate at design), on a rayon pool of one thread and
+//! on one of every available thread.
+
+use super::models;
+use super::report::{Cell, Kind, SectionOutput, Table};
+use super::Settings;
+use elastokin_solver::Mode;
+use elastokin_suspensions::analysis::{parallel_wheel_travel, slope_at};
+use elastokin_suspensions::{Rig, Side, SuspensionFile};
+use rayon::prelude::*;
+use serde_json::Value;
+
+/// A grid of variants: inner tie-rod height, spring rate and lower-arm radial rate.
+fn variants(count: usize) -> Vec<Vec<(&'static str, f64)>> {
+    let mut out = Vec::with_capacity(count);
+    let mut k = 0usize;
+    while out.len() < count {
+        let dz = -0.010 + 0.020 * ((k % 5) as f64 / 4.0);
+        let rate = 20_000.0 + 5_000.0 * ((k / 5) % 4) as f64;
+        let radial = 2.0e6 * (1.0 + ((k / 20) % 5) as f64);
+        out.push(vec![
+            ("/suspension/macpherson/hardpoints/tie_rod_inner/2", -0.059 + dz),
+            ("/suspension/macpherson/spring/rate", rate),
+            ("/suspension/macpherson/lower_arm_mounts/bushing/radial", radial),
+        ]);
+        k += 1;
+    }
+    out
+}
+
+/// One variant, start to finish: (bump steer deg/m, camber gain deg/m, wheel rate N/m).
+fn evaluate(base: &Value, edits: &[(&str, f64)]) -> Result<(f64, f64, f64), String> {
+    let mut doc = base.clone();
+    for (pointer, value) in edits {
+        *doc.pointer_mut(pointer).ok_or_else(|| format!("the model has no '{pointer}'"))? = Value::from(*value);
+    }
+    let file = SuspensionFile::from_json(&doc.to_string(), "variant").map_err(|e| e.to_string())?;
+    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| e.to_string())?;
+    let rows = parallel_wheel_travel(&corner, -0.02, 0.02, 8, Mode::Corrected).map_err(|e| e.to_string())?;
+    let slope = |y: fn(&elastokin_suspensions::analysis::TravelRow) -> f64| {
+        slope_at(&rows, 0.0, |r| r.travel, y).ok_or_else(|| "no slope at design".to_string())
+    };
+    Ok((slope(|r| r.attitude.toe.to_degrees())?, slope(|r| r.attitude.camber.to_degrees())?, slope(|r| r.wheel_load)?))
+}
+
+/// CPU time of every thread of this process (s), from `/proc/self/task/*/schedstat` (Linux); `None`
+/// elsewhere. Threads that have exited are not counted, so read it while the pool is alive.
+fn cpu_seconds() -> Option<f64> {
+    let mut ns = 0u64;
+    for task in std::fs::read_dir("/proc/self/task").ok()? {
+        let text = std::fs::read_to_string(task.ok()?.path().join("schedstat")).ok()?;
+        ns += text.split_whitespace().next()?.parse::<u64>().ok()?;
+    }
+    Some(ns as f64 * 1e-9)
+}
+
+/// Runs the section.
+pub fn run(s: &Settings) -> SectionOutput {
+    let count = if s.quick { 32 } else { 128 };
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let mut out = SectionOutput {
+        title: "Batch throughput".into(),
+        intro: format!(
+            "{count} variants of the shipped MacPherson (inner tie-rod height, spring rate, lower-arm radial \
+             rate), each parsed from edited JSON and run as `elastokin batch` runs it. Median wall time of \
+             the whole batch on a rayon pool of 1 thread and of {threads} (all available). CPU time / wall \
+             time is the process's CPU time over the repetitions (Linux): near the thread count when the \
+             threads ran, near 1 when they waited for a core."
+        ),
+        ..SectionOutput::default()
+    };
+    let mut table = Table::new(
+        "Batch throughput",
+        "batch.csv",
+        &[
+            "threads",
+            "variants",
+            "failed variants",
+            "median batch time (s)",
+            "variants per second",
+            "speed-up over 1 thread",
+            "CPU time / wall time",
+            "status",
+        ],
+    );
+    let base = match std::fs::read_to_string(models::root().join("examples/macpherson.json"))
+        .map_err(|e| e.to_string())
+        .and_then(|t| serde_json::from_str::<Value>(&t).map_err(|e| e.to_string()))
+    {
+        Ok(v) => v,
+        Err(e) => {
+            table.row(vec![
+                Cell::Empty,
+                Cell::Empty,
+                Cell::Empty,
+                Cell::Empty,
+                Cell::Empty,
+                Cell::Empty,
+                Cell::Empty,
+                Cell::text(format!("failed: {e}")),
+            ]);
+            out.tables.push(table);
+            return out;
+        }
+    };
+    let list = variants(count);
+    let mut single = None;
+    let mut pools: Vec<usize> = vec![1, threads];
+    pools.dedup();
+    for t in pools {
+        let pool = match rayon::ThreadPoolBuilder::new().num_threads(t).build() {
+            Ok(p) => p,
+            Err(e) => {
+                table.row(vec![
+                    Cell::count(t as u64),
+                    Cell::Empty,
+                    Cell::Empty,
+                    Cell::Empty,
+                    Cell::Empty,
+                    Cell::Empty,
+                    Cell::Empty,
+                    Cell::text(format!("failed: {e}")),
+                ]);
+                continue;
+            }
+        };
+        let run_all = || pool.install(|| list.par_iter().map(|v| evaluate(&base, v)).collect::<Vec<_>>());
+        let results = run_all();
+        let failures: Vec<&String> = results.iter().filter_map(|r| r.as_ref().err()).collect();
+        let cpu_before = cpu_seconds();
+        let wall = std::time::Instant::now();
+        let timing = s.batch_budget().time(run_all);
+        let busy = cpu_before.zip(cpu_seconds()).map(|(a, b)| (b - a) / wall.elapsed().as_secs_f64());
+        let rate = count as f64 / timing.median;
+        if t == 1 {
+            single = Some(rate);
+        }
+        let speedup = single.map(|r1| rate / r1);
+        table.row(vec![
+            Cell::count(t as u64),
+            Cell::count(count as u64),
+            Cell::count(failures.len() as u64),
+            Cell::num(timing.median),
+            Cell::num(rate),
+            Cell::opt(speedup),
+            Cell::opt(busy),
+            Cell::text(if failures.is_empty() {
+                "ok".to_string()
+            } else {
+                format!("failed variants: {}", failures[0])
+            }),
+        ]);
+        let key = if t == 1 { "batch.one_thread" } else { "batch.all_threads" };
+        out.figure(&format!("{key}.variants_per_s"), rate, "1/s", Kind::Rate);
+        if let Some(x) = speedup.filter(|_| t > 1) {
+            out.figure("batch.speedup", x, "", Kind::Other);
+        }
+    }
+    if threads == 1 {
+        out.notes.push("only one thread is available: the all-core row is the one-thread row".into());
+    }
+    out.tables.push(table);
+    out
+}
