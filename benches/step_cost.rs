@@ -7,7 +7,7 @@
 
 use elastokin::elements::{Bushing, CoilSpring, PointForce};
 use elastokin::prelude::*;
-use elastokin::solver::kkt_factor::{KktFactor, KktPattern};
+use elastokin::solver::kkt_factor::KktFactor;
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -84,14 +84,7 @@ fn main() {
     let assembly = elastokin::solver::assembly::Assembly::new(&model, solver.active_rows().to_vec());
     let mut a = assembly;
     a.assemble(&model, &state.poses, 0.5, &state.lambda, Some(elastokin::solver::assembly::Tangent::Full));
-    let pattern = KktPattern {
-        n: a.n,
-        m: a.m(),
-        k_col_ptr: a.k_col_ptr.clone(),
-        k_row_idx: a.k_row_idx.clone(),
-        j_col_ptr: a.j_col_ptr.clone(),
-        j_row_idx: a.j_row_idx.clone(),
-    };
+    let pattern = a.kkt_pattern();
     let mut factor = KktFactor::analyze(&pattern, Default::default()).unwrap();
     let mut rhs = vec![1.0; size];
     let bare = median_ns(

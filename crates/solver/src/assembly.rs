@@ -250,6 +250,20 @@ impl Assembly {
         self.active_rows.len()
     }
 
+    /// The sparsity pattern of the KKT system this assembly fills, for [`KktFactor::analyze`].
+    ///
+    /// [`KktFactor::analyze`]: crate::kkt_factor::KktFactor::analyze
+    pub fn kkt_pattern(&self) -> crate::kkt_factor::KktPattern {
+        crate::kkt_factor::KktPattern {
+            n: self.n,
+            m: self.m(),
+            k_col_ptr: self.k_col_ptr.clone(),
+            k_row_idx: self.k_row_idx.clone(),
+            j_col_ptr: self.j_col_ptr.clone(),
+            j_row_idx: self.j_row_idx.clone(),
+        }
+    }
+
     /// Evaluates everything at `(poses, t)`: applied forces, load rate, `Φ`, `J` and, if asked, `K`.
     /// `lambda` holds one multiplier per active row (used by the geometric stiffness of [`Tangent::Full`]).
     pub fn assemble(&mut self, model: &Model, poses: &[Pose], t: f64, lambda: &[f64], tangent: Option<Tangent>) {

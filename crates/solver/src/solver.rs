@@ -22,7 +22,7 @@
 
 use crate::assembly::{Assembly, Tangent};
 use crate::error::SolverError;
-use crate::kkt_factor::{redundant_rows, FactorCounters, KktFactor, KktOptions, KktPattern};
+use crate::kkt_factor::{redundant_rows, FactorCounters, KktFactor, KktOptions};
 use crate::results::{Diagnostics, RedundantRow, StepResult, Sweep};
 use elastokin_core::{Model, Pose, BODY_DOFS};
 
@@ -244,14 +244,7 @@ impl<'m> StaticSolver<'m> {
             })
             .collect();
         let assembly = Assembly::new(model, active);
-        let pattern = KktPattern {
-            n: assembly.n,
-            m: assembly.m(),
-            k_col_ptr: assembly.k_col_ptr.clone(),
-            k_row_idx: assembly.k_row_idx.clone(),
-            j_col_ptr: assembly.j_col_ptr.clone(),
-            j_row_idx: assembly.j_row_idx.clone(),
-        };
+        let pattern = assembly.kkt_pattern();
         let factor = KktFactor::analyze(&pattern, options.kkt.clone())?;
         let size = assembly.n + assembly.m();
         let mut solver = StaticSolver {

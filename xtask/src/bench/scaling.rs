@@ -11,7 +11,7 @@ use super::Settings;
 use elastokin_core::{BodyRef, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
 use elastokin_elements::{Bushing, CoilSpring, PointForce};
 use elastokin_solver::assembly::{Assembly, Tangent};
-use elastokin_solver::kkt_factor::{KktFactor, KktOptions, KktPattern};
+use elastokin_solver::kkt_factor::{KktFactor, KktOptions};
 use elastokin_solver::{LoadPath, Mode, SolverOptions, StaticSolver};
 
 const MIB: f64 = 1024.0 * 1024.0;
@@ -112,14 +112,7 @@ fn measure(n: usize, s: &Settings) -> Result<SizeResult, String> {
     // Symbolic analysis against numeric factorization of the same KKT.
     let mut assembly = Assembly::new(&model, solver.active_rows().to_vec());
     assembly.assemble(&model, &start.poses, start.t, &start.lambda, Some(Tangent::Full));
-    let pattern = KktPattern {
-        n: assembly.n,
-        m: assembly.m(),
-        k_col_ptr: assembly.k_col_ptr.clone(),
-        k_row_idx: assembly.k_row_idx.clone(),
-        j_col_ptr: assembly.j_col_ptr.clone(),
-        j_row_idx: assembly.j_row_idx.clone(),
-    };
+    let pattern = assembly.kkt_pattern();
     let symbolic = budget.time(|| KktFactor::analyze(&pattern, KktOptions::default()).map(drop));
     let mut factor = KktFactor::analyze(&pattern, KktOptions::default()).map_err(|e| err(&e))?;
     let numeric = budget.time(|| factor.factorize(&assembly.k_values, &assembly.j_values).map(drop));

@@ -10,7 +10,7 @@ use super::Settings;
 use elastokin_core::ElementEval;
 use elastokin_solver::assembly::{Assembly, Tangent};
 use elastokin_solver::dense_reference::solve_dense_pivoted;
-use elastokin_solver::kkt_factor::{KktFactor, KktOptions, KktPattern};
+use elastokin_solver::kkt_factor::{KktFactor, KktOptions};
 use elastokin_solver::{LoadPath, Mode, SolverOptions, StaticSolver};
 use nalgebra::{DMatrix, DVector};
 use std::hint::black_box;
@@ -74,14 +74,7 @@ fn measure_model(model_name: &str, stem: &str, s: &Settings, out: &mut SectionOu
 
     // The floor: numeric factorization and solve of the same (paper-tangent) KKT on its own KktFactor.
     assembly.assemble(model, &state.poses, state.t, &state.lambda, Some(Tangent::Paper));
-    let pattern = KktPattern {
-        n,
-        m,
-        k_col_ptr: assembly.k_col_ptr.clone(),
-        k_row_idx: assembly.k_row_idx.clone(),
-        j_col_ptr: assembly.j_col_ptr.clone(),
-        j_row_idx: assembly.j_row_idx.clone(),
-    };
+    let pattern = assembly.kkt_pattern();
     let symbolic = budget.time(|| KktFactor::analyze(&pattern, KktOptions::default()).map(drop));
     let mut factor = KktFactor::analyze(&pattern, KktOptions::default()).map_err(|e| err(&e))?;
     factor.factorize(&assembly.k_values, &assembly.j_values).map_err(|e| err(&e))?;

@@ -15,7 +15,7 @@ use super::Settings;
 use elastokin_core::{BodyId, BodyRef, JointSpec, Model, Pose, Vec3, BODY_DOFS};
 use elastokin_solver::assembly::{Assembly, Tangent};
 use elastokin_solver::dense_reference::{equilibrate, solve_dense_pivoted};
-use elastokin_solver::kkt_factor::{redundant_rows, KktFactor, KktOptions, KktPattern};
+use elastokin_solver::kkt_factor::{redundant_rows, KktFactor, KktOptions};
 use elastokin_solver::{LoadPath, Mode, SolverOptions, StaticSolver, StepResult};
 use elastokin_suspensions::{Corner, Rig, Side, SuspensionFile, Wheel};
 use nalgebra::DMatrix;
@@ -388,14 +388,7 @@ fn symmetric_check(
     let mut asm = Assembly::new(model, active.to_vec());
     asm.assemble(model, &state.poses, state.t, &state.lambda, Some(Tangent::Full));
     let (n, m) = (asm.n, asm.m());
-    let pattern = KktPattern {
-        n,
-        m,
-        k_col_ptr: asm.k_col_ptr.clone(),
-        k_row_idx: asm.k_row_idx.clone(),
-        j_col_ptr: asm.j_col_ptr.clone(),
-        j_row_idx: asm.j_row_idx.clone(),
-    };
+    let pattern = asm.kkt_pattern();
     let mut factor = KktFactor::analyze(&pattern, KktOptions::default()).map_err(|e| e.to_string())?;
     factor.factorize(&asm.k_values, &asm.j_values).map_err(|e| e.to_string())?;
     let mut z = rhs.to_vec();
