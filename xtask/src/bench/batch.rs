@@ -91,16 +91,7 @@ pub fn run(s: &Settings) -> SectionOutput {
     {
         Ok(v) => v,
         Err(e) => {
-            table.row(vec![
-                Cell::Empty,
-                Cell::Empty,
-                Cell::Empty,
-                Cell::Empty,
-                Cell::Empty,
-                Cell::Empty,
-                Cell::Empty,
-                Cell::text(format!("failed: {e}")),
-            ]);
+            table.failed_row(Vec::new(), e);
             out.tables.push(table);
             return out;
         }
@@ -113,16 +104,7 @@ pub fn run(s: &Settings) -> SectionOutput {
         let pool = match rayon::ThreadPoolBuilder::new().num_threads(t).build() {
             Ok(p) => p,
             Err(e) => {
-                table.row(vec![
-                    Cell::count(t as u64),
-                    Cell::Empty,
-                    Cell::Empty,
-                    Cell::Empty,
-                    Cell::Empty,
-                    Cell::Empty,
-                    Cell::Empty,
-                    Cell::text(format!("failed: {e}")),
-                ]);
+                table.failed_row(vec![Cell::count(t as u64)], e);
                 continue;
             }
         };

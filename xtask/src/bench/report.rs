@@ -102,6 +102,14 @@ impl Table {
         self.rows.push(cells);
     }
 
+    /// Adds a row for a case that failed: `leading` cells, then empty ones, and "failed: …" in the last
+    /// column (the status column of the tables that have one).
+    pub fn failed_row(&mut self, mut leading: Vec<Cell>, error: impl std::fmt::Display) {
+        leading.resize(self.headers.len().saturating_sub(1), Cell::Empty);
+        leading.push(Cell::text(format!("failed: {error}")));
+        self.rows.push(leading);
+    }
+
     /// The table in markdown.
     pub fn markdown(&self) -> String {
         let mut s = format!("| {} |\n|{}\n", self.headers.join(" | "), "---|".repeat(self.headers.len()));
@@ -283,6 +291,17 @@ pub fn slug(s: &str) -> String {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn a_failed_row_keeps_its_leading_cells_and_names_the_failure_last() {
+        let mut t = Table::new("t", "t.csv", &["threads", "time", "rate", "status"]);
+        t.failed_row(vec![Cell::count(2u64)], "pool could not start");
+        let csv = t.csv_text();
+        let row = csv.lines().nth(1).unwrap();
+        assert!(row.starts_with('2') && row.ends_with(",failed: pool could not start"), "{row}");
+        assert_eq!(t.rows[0].len(), 4);
+    }
+
     use super::*;
 
     #[test]
