@@ -32,6 +32,7 @@ pub mod connection;
 pub mod corner;
 pub mod double_wishbone;
 pub mod hardpoint;
+pub mod kc;
 pub mod macpherson;
 pub mod model_file;
 
