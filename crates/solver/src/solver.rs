@@ -624,6 +624,41 @@ impl<'m> StaticSolver<'m> {
         Ok(self.step_result(state, iterations, &r))
     }
 
+    /// One full Newton iteration on the exact equilibrium at `step.t`, from `step`: the step moved by
+    /// `−T⁻¹R` with `T` the exact tangent and `R` its force and constraint residual. How far it moves
+    /// estimates how far `step` is from the equilibrium at its load parameter: the drift of a paper-mode
+    /// step (first order, so the corrected step is that equilibrium to second order in the drift), or
+    /// what remains after a corrected step converged (Newton's next increment). Costs one factorization.
+    /// The returned step reports the residual at the corrected state and `iterations = 1`.
+    pub fn newton_correction(&mut self, step: &StepResult) -> Result<StepResult, SolverError> {
+        let n = self.assembly.n;
+        let m = self.assembly.m();
+        let mut state = self.state_of(step);
+        self.assemble(&state, Some(Tangent::Full));
+        let r = self.residual(&state.lambda);
+        if !(r.force.is_finite() && r.constraint.is_finite()) {
+            return Err(SolverError::NonFinite { what: "residual" });
+        }
+        self.factorize()?;
+        for c in 0..n {
+            self.rhs[c] = self.assembly.applied[c] - self.scratch[c];
+        }
+        for k in 0..m {
+            self.rhs[n + k] = -self.assembly.phi[k];
+        }
+        self.solve_with_skew()?;
+        if self.rhs.iter().any(|v| !v.is_finite()) {
+            return Err(SolverError::NonFinite { what: "Newton increment" });
+        }
+        Self::apply(&mut state.poses, &self.rhs[..n], 1.0);
+        for k in 0..m {
+            state.lambda[k] += self.rhs[n + k];
+        }
+        self.assemble(&state, None);
+        let after = self.residual(&state.lambda);
+        Ok(self.step_result(&state, 1, &after))
+    }
+
     /// The state of a step result (its poses, its active rows' multipliers and its load parameter), to
     /// continue from it or to ask for its [`StaticSolver::path_tangent`].
     pub fn state_of(&self, step: &StepResult) -> State {
