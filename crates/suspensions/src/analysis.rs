@@ -95,22 +95,97 @@ fn driven_sweep(
     steps: usize,
     mode: Mode,
 ) -> Result<Vec<TravelRow>, SolverError> {
+    Ok(driven_sweep_with(corner, rig, from, to, steps, mode, SweepExtras::default())?.rows)
+}
+
+/// What a sweep can take at every step besides its rows, at the cost of more factorizations.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct SweepExtras {
+    /// Every row read again one exact Newton iteration away ([`StaticSolver::newton_correction`]): the
+    /// difference is the row's error estimate. One factorization per row.
+    pub error_estimate: bool,
+    /// The 6×6 wheel compliance ([`wheel_compliance`]) at every step. One factorization and six
+    /// back-substitutions per row.
+    pub compliance: bool,
+}
+
+/// A sweep's rows, and what [`SweepExtras`] asked for, row by row.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepOutput<R> {
+    /// The rows.
+    pub rows: Vec<R>,
+    /// The rows read one Newton iteration closer to the exact equilibrium at their load parameter.
+    pub corrected: Option<Vec<R>>,
+    /// The force and constraint residuals of every step: `(‖Φ_qᵀλ − Q‖∞ / force scale, ‖Φ‖∞)`.
+    pub residuals: Vec<(f64, f64)>,
+    /// The 6×6 wheel compliance at every step (rows: wheel-centre translation, rotation; columns: unit
+    /// force, torque at the wheel centre).
+    pub compliance: Option<Vec<[[f64; 6]; 6]>>,
+}
+
+/// Reads a sweep's rows, and what `extras` asks for, with the solver that walked it.
+pub(crate) fn read_sweep<R>(
+    solver: &mut StaticSolver,
+    wheel: &crate::corner::Wheel,
+    steps: &[StepResult],
+    extras: SweepExtras,
+    mut read: impl FnMut(&mut StaticSolver, &StepResult) -> Result<R, SolverError>,
+) -> Result<SweepOutput<R>, SolverError> {
+    let rows = steps.iter().map(|s| read(solver, s)).collect::<Result<Vec<R>, _>>()?;
+    let corrected = if extras.error_estimate {
+        let mut out = Vec::with_capacity(steps.len());
+        for s in steps {
+            let c = solver.newton_correction(s)?;
+            out.push(read(solver, &c)?);
+        }
+        Some(out)
+    } else {
+        None
+    };
+    let compliance = if extras.compliance {
+        Some(steps.iter().map(|s| compliance_with(solver, wheel, &solver.state_of(s))).collect::<Result<_, _>>()?)
+    } else {
+        None
+    };
+    let residuals = steps.iter().map(|s| (s.force_residual / s.force_scale, s.constraint_residual)).collect();
+    Ok(SweepOutput { rows, corrected, residuals, compliance })
+}
+
+/// [`parallel_wheel_travel`] with [`SweepExtras`].
+pub fn parallel_wheel_travel_with(
+    corner: &Corner,
+    from: f64,
+    to: f64,
+    steps: usize,
+    mode: Mode,
+    extras: SweepExtras,
+) -> Result<SweepOutput<TravelRow>, SolverError> {
+    driven_sweep_with(corner, Rig::WheelTravel, from, to, steps, mode, extras)
+}
+
+fn driven_sweep_with(
+    corner: &Corner,
+    rig: Rig,
+    from: f64,
+    to: f64,
+    steps: usize,
+    mode: Mode,
+    extras: SweepExtras,
+) -> Result<SweepOutput<TravelRow>, SolverError> {
     require_rig(corner, &[rig])?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
     let driver = corner.model.joint_id("wheel travel");
     let spring = corner.model.element_id("spring");
-    Ok(sweep
-        .steps
-        .iter()
-        .map(|s| TravelRow {
+    read_sweep(&mut solver, &corner.wheel, &sweep.steps, extras, |_, s| {
+        Ok(TravelRow {
             travel: s.t,
             attitude: corner.wheel.attitude(&s.poses),
             steering: corner.wheel.steering_geometry(&s.poses),
             wheel_load: driver.map_or(0.0, |d| s.joint_reactions(&corner.model)[d.0].force.z),
             spring_deflection: spring.map_or(0.0, |e| s.element_reports(&corner.model)[e.0].deflection.x),
         })
-        .collect())
+    })
 }
 
 /// The 6×6 compliance of the wheel at the equilibrium of load parameter `t`: column `k` is the response
@@ -128,14 +203,23 @@ fn compliance_at(corner: &Corner, t: f64) -> Result<([[f64; 6]; 6], Vec<elastoki
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let mut state = solver.design_state(t);
     solver.equilibrium(&mut state)?;
-    let n = corner.model.dofs();
+    Ok((compliance_with(&mut solver, &corner.wheel, &state)?, state.poses))
+}
+
+/// The wheel compliance at `state` (an equilibrium of `solver`'s model): see [`wheel_compliance`].
+fn compliance_with(
+    solver: &mut StaticSolver,
+    wheel: &crate::corner::Wheel,
+    state: &elastokin_solver::State,
+) -> Result<[[f64; 6]; 6], SolverError> {
+    let n = solver.model().dofs();
     let m = solver.active_rows().len();
-    let pose = state.poses[corner.wheel.upright.0];
-    let s = pose.point(&corner.wheel.wheel_centre_local) - pose.position;
-    let base = corner.wheel.upright.0 * elastokin_core::BODY_DOFS;
+    let pose = state.poses[wheel.upright.0];
+    let s = pose.point(&wheel.wheel_centre_local) - pose.position;
+    let base = wheel.upright.0 * elastokin_core::BODY_DOFS;
     let mut columns = [[0.0; 6]; 6];
     let mut rhs = vec![0.0; n + m];
-    solver.factorize_tangent(&state)?;
+    solver.factorize_tangent(state)?;
     for (k, column) in columns.iter_mut().enumerate() {
         rhs.fill(0.0);
         let mut unit = Vec3::zeros();
@@ -162,7 +246,7 @@ fn compliance_at(corner: &Corner, t: f64) -> Result<([[f64; 6]; 6], Vec<elastoki
             out[r][c] = columns[c][r];
         }
     }
-    Ok((out, state.poses))
+    Ok(out)
 }
 
 /// Force and moment that one joint or element applies at an equilibrium (global axes, N and N·m).
@@ -266,27 +350,29 @@ pub struct LoadRow {
 const CORNER_LOAD: &str = "corner load";
 
 /// Reads the rows of a load sweep; `patch_local` is the upright's contact-patch point (local).
-fn load_rows(corner: &Corner, sweep: &Sweep, patch_local: Vec3) -> Vec<LoadRow> {
+fn load_rows(
+    solver: &mut StaticSolver,
+    corner: &Corner,
+    sweep: &Sweep,
+    patch_local: Vec3,
+    extras: SweepExtras,
+) -> Result<SweepOutput<LoadRow>, SolverError> {
     let model = &corner.model;
     let upright = corner.wheel.upright.0;
     let patch_at_design = model.bodies()[upright].design_pose.point(&patch_local);
     let driver = model.joint_id("wheel travel");
-    sweep
-        .steps
-        .iter()
-        .map(|s| {
-            let forces = ComponentForces::at(model, s);
-            let contact_patch = s.poses[upright].point(&patch_local);
-            LoadRow {
-                load: s.t,
-                attitude: corner.wheel.attitude(&s.poses),
-                contact_patch,
-                patch_displacement: contact_patch - patch_at_design,
-                wheel_load: driver.map_or(0.0, |d| forces.joints[d.0].force.z),
-                forces,
-            }
+    read_sweep(solver, &corner.wheel, &sweep.steps, extras, |_, s| {
+        let forces = ComponentForces::at(model, s);
+        let contact_patch = s.poses[upright].point(&patch_local);
+        Ok(LoadRow {
+            load: s.t,
+            attitude: corner.wheel.attitude(&s.poses),
+            contact_patch,
+            patch_displacement: contact_patch - patch_at_design,
+            wheel_load: driver.map_or(0.0, |d| forces.joints[d.0].force.z),
+            forces,
         })
-        .collect()
+    })
 }
 
 /// Vertical force at the contact patch from `from` to `to` newtons (upward positive) in `steps` steps —
@@ -294,19 +380,31 @@ fn load_rows(corner: &Corner, sweep: &Sweep, patch_local: Vec3) -> Vec<LoadRow> 
 /// the spring and bushings carry the load. The force acts at the upright's point at the design contact
 /// patch (the rows' `contact_patch`); the path starts from the equilibrium at `from`, found from design.
 pub fn vertical_force_sweep(
-    mut corner: Corner,
+    corner: Corner,
     from: f64,
     to: f64,
     steps: usize,
     mode: Mode,
 ) -> Result<Vec<LoadRow>, SolverError> {
+    Ok(vertical_force_sweep_with(corner, from, to, steps, mode, SweepExtras::default())?.rows)
+}
+
+/// [`vertical_force_sweep`] with [`SweepExtras`].
+pub fn vertical_force_sweep_with(
+    mut corner: Corner,
+    from: f64,
+    to: f64,
+    steps: usize,
+    mode: Mode,
+    extras: SweepExtras,
+) -> Result<SweepOutput<LoadRow>, SolverError> {
     require_rig(&corner, &[Rig::Free])?;
     let patch = corner.wheel.contact_patch;
     corner.add_wheel_force("vertical force", patch, Vec3::z())?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
     let local_patch = corner.model.bodies()[corner.wheel.upright.0].design_pose.to_local_point(&patch);
-    Ok(load_rows(&corner, &sweep, local_patch))
+    load_rows(&mut solver, &corner, &sweep, local_patch, extras)
 }
 
 /// A force or torque a K&C rig applies to the wheel (signs as in [`PatchCompliance`]).
@@ -341,7 +439,7 @@ pub enum WheelLoad {
 /// zero load is the compliance [`patch_compliance`] takes from the tangent at that equilibrium; the
 /// traction force acts at the wheel centre. Loads keep their global direction as the wheel moves.
 pub fn wheel_load_sweep(
-    mut corner: Corner,
+    corner: Corner,
     load: WheelLoad,
     corner_load: f64,
     from: f64,
@@ -349,6 +447,20 @@ pub fn wheel_load_sweep(
     steps: usize,
     mode: Mode,
 ) -> Result<Vec<LoadRow>, SolverError> {
+    Ok(wheel_load_sweep_with(corner, load, corner_load, from, to, steps, mode, SweepExtras::default())?.rows)
+}
+
+/// [`wheel_load_sweep`] with [`SweepExtras`].
+pub fn wheel_load_sweep_with(
+    mut corner: Corner,
+    load: WheelLoad,
+    corner_load: f64,
+    from: f64,
+    to: f64,
+    steps: usize,
+    mode: Mode,
+    extras: SweepExtras,
+) -> Result<SweepOutput<LoadRow>, SolverError> {
     require_rig(&corner, &[Rig::HeightHeld, Rig::Free])?;
     add_corner_load(&mut corner, corner_load)?;
     // The equilibrium without the swept load: where the patch loads act, and where the path starts from.
@@ -371,7 +483,7 @@ pub fn wheel_load_sweep(
     };
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let sweep = solver.sweep_from(&mut start, LoadPath::new(from, to, steps), mode)?;
-    Ok(load_rows(&corner, &sweep, patch_local))
+    load_rows(&mut solver, &corner, &sweep, patch_local, extras)
 }
 
 /// Adds the constant upward `corner_load` (N) at the design contact patch, named [`CORNER_LOAD`].
@@ -480,6 +592,8 @@ pub struct StaticLoad {
     pub forces: ComponentForces,
     /// Body poses at rest.
     pub poses: Vec<elastokin_core::Pose>,
+    /// The converged residuals at rest: force residual over the force scale, and `‖Φ‖∞` (m and rad).
+    pub residuals: (f64, f64),
 }
 
 /// Sub-steps of the load walk that [`static_load_case`] falls back to.
@@ -578,6 +692,7 @@ pub fn static_load_case(mut corner: Corner, corner_load: f64) -> Result<StaticLo
         spring_force,
         spring_deflection,
         forces,
+        residuals: (step.force_residual / step.force_scale, step.constraint_residual),
         poses: step.poses,
     })
 }
@@ -609,6 +724,13 @@ pub struct VehicleParameters {
     pub drive_front_fraction: f64,
     /// The axle the corner is on.
     pub axle: AxlePosition,
+    /// Vertical rate of the tyre (N/m), for the ride rate (wheel rate and tyre in series); optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tyre_rate: Option<f64>,
+    /// Rack travel per turn of the steering wheel (m/rev, the pinion's "c-factor"), for the overall
+    /// steering ratio; optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rack_travel_per_revolution: Option<f64>,
 }
 
 impl VehicleParameters {
@@ -622,6 +744,14 @@ impl VehicleParameters {
         }
         if !(self.corner_load.is_finite() && self.corner_load > 0.0) {
             return invalid(format!("`corner_load` must be a positive force in newtons, got {}", self.corner_load));
+        }
+        for (field, value, unit) in [
+            ("tyre_rate", self.tyre_rate, "a positive rate in N/m"),
+            ("rack_travel_per_revolution", self.rack_travel_per_revolution, "a positive rack travel in metres"),
+        ] {
+            if let Some(v) = value.filter(|v| !(v.is_finite() && *v > 0.0)) {
+                return invalid(format!("`{field}` must be {unit}, got {v}"));
+            }
         }
         for (field, value) in
             [("brake_front_fraction", self.brake_front_fraction), ("drive_front_fraction", self.drive_front_fraction)]

@@ -2,6 +2,7 @@
 //! the tests that need both wheels: opposite wheel travel (roll), parallel travel with track change and
 //! roll-centre migration, and steering of both wheels by one rack.
 
+use crate::analysis::{read_sweep, SweepExtras, SweepOutput};
 use crate::corner::{add_rack, add_wheel_travel_driver, mount_tie_rod, CornerTemplate, Wheel, WheelAttitude};
 use crate::hardpoint::Side;
 use elastokin_core::{BodyRef, Model, ModelError, Pose};
@@ -146,6 +147,18 @@ impl Axle {
 /// where `t` drives nothing). Each row carries both wheels, track, roll angle, wheel loads, roll moment and
 /// — for the travel rigs — the roll centre from the path's exact tangent (one more factorization per row).
 pub fn axle_sweep(axle: &Axle, from: f64, to: f64, steps: usize, mode: Mode) -> Result<Vec<AxleRow>, SolverError> {
+    Ok(axle_sweep_with(axle, from, to, steps, mode, SweepExtras::default())?.rows)
+}
+
+/// [`axle_sweep`] with [`SweepExtras`] (the compliance, when asked, is the left wheel's).
+pub fn axle_sweep_with(
+    axle: &Axle,
+    from: f64,
+    to: f64,
+    steps: usize,
+    mode: Mode,
+    extras: SweepExtras,
+) -> Result<SweepOutput<AxleRow>, SolverError> {
     if matches!(axle.rig, AxleRig::HeightHeld | AxleRig::Free) {
         return Err(SolverError::InvalidInput {
             what: "axle",
@@ -160,8 +173,7 @@ pub fn axle_sweep(axle: &Axle, from: f64, to: f64, steps: usize, mode: Mode) -> 
     let mut solver = StaticSolver::new(model, SolverOptions::default())?;
     let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
     let drivers = (model.joint_id("left wheel travel"), model.joint_id("right wheel travel"));
-    let mut rows = Vec::with_capacity(sweep.steps.len());
-    for step in &sweep.steps {
+    read_sweep(&mut solver, &axle.left, &sweep.steps, extras, |solver, step| {
         let reactions = step.joint_reactions(model);
         let load = |d: Option<elastokin_core::JointId>| d.map_or(0.0, |d| reactions[d.0].force.z);
         let (left, right) = (axle.left.attitude(&step.poses), axle.right.attitude(&step.poses));
@@ -173,7 +185,7 @@ pub fn axle_sweep(axle: &Axle, from: f64, to: f64, steps: usize, mode: Mode) -> 
             let rates = solver.path_tangent(&solver.state_of(step))?;
             axle.roll_centre(&step.poses, &rates)
         };
-        rows.push(AxleRow {
+        Ok(AxleRow {
             travel: step.t,
             left,
             right,
@@ -183,7 +195,6 @@ pub fn axle_sweep(axle: &Axle, from: f64, to: f64, steps: usize, mode: Mode) -> 
             right_load,
             roll_moment: left.wheel_centre.y * left_load + right.wheel_centre.y * right_load,
             roll_centre,
-        });
-    }
-    Ok(rows)
+        })
+    })
 }

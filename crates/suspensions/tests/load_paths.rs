@@ -434,6 +434,8 @@ fn front_vehicle() -> VehicleParameters {
         brake_front_fraction: 0.65,
         drive_front_fraction: 1.0,
         axle: AxlePosition::Front,
+        tyre_rate: None,
+        rack_travel_per_revolution: None,
     }
 }
 
