@@ -72,7 +72,12 @@ fn newton_correction_measures_the_paper_steps_drift() {
         assert!(error > 1e-5, "{error}");
         assert!((estimate / error - 1.0).abs() < 0.05, "estimate {estimate} vs error {error}");
         // The residual falls by a factor 250–1000 (measured; 2.5–20 N down to 0.01–0.02 N).
-        assert!(corrected.force_residual < 1e-2 * p.force_residual, "{} -> {}", p.force_residual, corrected.force_residual);
+        assert!(
+            corrected.force_residual < 1e-2 * p.force_residual,
+            "{} -> {}",
+            p.force_residual,
+            corrected.force_residual
+        );
     }
     // From a converged step the correction is Newton's next increment: at the tolerance's scale.
     let last = exact.steps.last().unwrap();

@@ -1,7 +1,393 @@
 //! The K&C suite: which analyses a K&C rig runs on a suspension, and the typed, serialisable report each
-//! produces (table, headline figures, plots, error estimate). Front ends (the `elastokin` command, the
-//! HTML report, bindings) only render it.
+//! produces (table, headline figures with error estimates, plots, warnings). Front ends (the `elastokin`
+//! command, the HTML report, bindings) only render it.
+//!
+//! Every analysis estimates its own error. Each row is read twice: as walked, and one exact Newton
+//! iteration away ([`StaticSolver::newton_correction`](elastokin_solver::StaticSolver::newton_correction)),
+//! which lands on the equilibrium at the row's load parameter to second order in the row's distance
+//! from it. The difference, column by column and figure by figure, is the estimate: paper mode's drift,
+//! or what remains after a corrected step converged. It costs one factorization per row.
 
 pub mod chart;
+mod loads;
+pub mod report;
+mod travel;
 
 pub use chart::{Chart, Scale, Series, YAxis};
+pub use report::{Accuracy, AnalysisReport, Cell, Figure, KcReport, Notice, Skipped, Table};
+
+use crate::analysis::{SweepExtras, SweepOutput, WheelLoad};
+use crate::model_file::SuspensionFile;
+use elastokin_solver::{Mode, SolverError};
+use serde::Serialize;
+
+/// One K&C test.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(into = "&'static str")]
+pub enum Analysis {
+    /// Both wheel-centre heights driven together.
+    ParallelTravel,
+    /// Opposite wheel travel on the full axle: the body rolls relative to the wheels.
+    Roll,
+    /// Rack travel on the full axle, wheel-centre heights held.
+    Steering,
+    /// Vertical force at the contact patch, wheel free (the paper's case).
+    VerticalForce,
+    /// A road load at the wheel: lateral or braking force at the contact patch, traction force at the
+    /// wheel centre, aligning torque.
+    Road(WheelLoad),
+    /// The corner at rest under the vehicle's corner load, from the design position.
+    StaticLoad,
+}
+
+impl From<Analysis> for &'static str {
+    fn from(a: Analysis) -> &'static str {
+        a.name()
+    }
+}
+
+/// Every analysis, in the order the suite runs them.
+pub const ALL: [Analysis; 9] = [
+    Analysis::ParallelTravel,
+    Analysis::Roll,
+    Analysis::Steering,
+    Analysis::VerticalForce,
+    Analysis::Road(WheelLoad::Lateral),
+    Analysis::Road(WheelLoad::Braking),
+    Analysis::Road(WheelLoad::Traction),
+    Analysis::Road(WheelLoad::AligningTorque),
+    Analysis::StaticLoad,
+];
+
+impl Analysis {
+    /// The name used on the command line and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Analysis::ParallelTravel => "parallel-travel",
+            Analysis::Roll => "roll",
+            Analysis::Steering => "steering",
+            Analysis::VerticalForce => "vertical-force",
+            Analysis::Road(WheelLoad::Lateral) => "lateral-force",
+            Analysis::Road(WheelLoad::Braking) => "braking-force",
+            Analysis::Road(WheelLoad::Traction) => "traction-force",
+            Analysis::Road(WheelLoad::AligningTorque) => "aligning-torque",
+            Analysis::StaticLoad => "static-load",
+        }
+    }
+
+    /// The analysis of a name.
+    pub fn from_name(name: &str) -> Option<Analysis> {
+        ALL.into_iter().find(|a| a.name() == name)
+    }
+
+    /// What the load parameter is, with its unit.
+    pub fn parameter(self) -> &'static str {
+        match self {
+            Analysis::ParallelTravel => "wheel travel, m, bump +",
+            Analysis::Roll => "left wheel travel, m (right opposite)",
+            Analysis::Steering => "rack travel, m, towards +y (left)",
+            Analysis::VerticalForce => "vertical force at the contact patch, N, up +",
+            Analysis::Road(WheelLoad::Lateral) => "lateral force at the contact patch, N, inboard +",
+            Analysis::Road(WheelLoad::Braking) => "braking force at the contact patch, N, rearward +",
+            Analysis::Road(WheelLoad::Traction) => "traction force at the wheel centre, N, forward +",
+            Analysis::Road(WheelLoad::AligningTorque) => "aligning torque, N·m, about +z",
+            Analysis::StaticLoad => "the model file's vehicle.corner_load, N, applied at once",
+        }
+    }
+
+    /// Where the design position sits on the load parameter (the vertical force sweep's is the design
+    /// wheel load, known only once the model is solved, so `None` there).
+    pub fn design_parameter(self) -> Option<f64> {
+        match self {
+            Analysis::VerticalForce | Analysis::StaticLoad => None,
+            _ => Some(0.0),
+        }
+    }
+}
+
+/// The largest estimated error a run accepts before it warns.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Tolerance {
+    /// Angles (toe, camber, steer, caster, …), degrees.
+    pub angle_deg: f64,
+    /// Lengths (wheel-centre position, patch displacement, scrub radius, …), metres.
+    pub length_m: f64,
+    /// Headline figures (slopes, rates, ratios), relative to their value.
+    pub relative: f64,
+}
+
+impl Default for Tolerance {
+    /// 0.001° and 0.001 mm: a tenth of the finest figure engineers read (toe to 0.01°, hardpoints to
+    /// 0.01 mm); 0.5 % on derived figures such as the wheel rate.
+    fn default() -> Self {
+        Tolerance { angle_deg: 1e-3, length_m: 1e-6, relative: 5e-3 }
+    }
+}
+
+/// How the suite walks its paths.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Settings {
+    /// `(from, to)` in the analysis's own parameter, or its default. Only for a run of one analysis.
+    pub range: Option<(f64, f64)>,
+    /// Load steps.
+    pub steps: usize,
+    /// Paper or corrected stepping.
+    #[serde(serialize_with = "mode_name")]
+    pub mode: Mode,
+    /// Road loads: the wheel-centre height held by the rig (`true`) or the wheel free on its spring.
+    pub height_held: bool,
+    /// The 6×6 wheel compliance at every step of the sweeps that have one wheel to read it at.
+    pub compliance: bool,
+    /// When the error estimate is worth a warning.
+    pub tolerance: Tolerance,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            range: None,
+            steps: 32,
+            mode: Mode::Corrected,
+            height_held: true,
+            compliance: false,
+            tolerance: Tolerance::default(),
+        }
+    }
+}
+
+fn mode_name<S: serde::Serializer>(mode: &Mode, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(mode_word(*mode))
+}
+
+/// `paper` or `corrected`.
+pub fn mode_word(mode: Mode) -> &'static str {
+    match mode {
+        Mode::Paper => "paper",
+        Mode::Corrected => "corrected",
+    }
+}
+
+impl Settings {
+    fn extras(&self) -> SweepExtras {
+        SweepExtras { error_estimate: true, compliance: self.compliance }
+    }
+}
+
+/// Why an analysis failed: which one, and the engine's reason.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{analysis}: {message}")]
+pub struct AnalysisError {
+    /// The analysis's name.
+    pub analysis: &'static str,
+    /// What went wrong, and what to change.
+    pub message: String,
+}
+
+/// Runs one analysis on the model in `file`.
+pub fn run(analysis: Analysis, file: &SuspensionFile, settings: &Settings) -> Result<AnalysisReport, AnalysisError> {
+    let result = match analysis {
+        Analysis::ParallelTravel => travel::parallel_travel(file, settings),
+        Analysis::Roll => travel::roll(file, settings),
+        Analysis::Steering => travel::steering(file, settings),
+        Analysis::VerticalForce => loads::vertical_force(file, settings),
+        Analysis::Road(load) => loads::road_load(file, load, settings),
+        Analysis::StaticLoad => loads::static_load(file, settings),
+    };
+    result.map_err(|message| AnalysisError { analysis: analysis.name(), message })
+}
+
+/// Runs `which` (every analysis when empty) on the model in `file`: the K&C suite. The static load case is
+/// skipped, with its reason, when the file has no vehicle section and it was not asked for by name.
+/// `progress` is told each analysis before it starts.
+pub fn run_suite(
+    file: &SuspensionFile,
+    which: &[Analysis],
+    settings: &Settings,
+    mut progress: impl FnMut(Analysis),
+) -> Result<KcReport, AnalysisError> {
+    let chosen: Vec<Analysis> = if which.is_empty() { ALL.to_vec() } else { which.to_vec() };
+    let mut report = KcReport {
+        model: file.name.clone(),
+        settings: *settings,
+        analyses: Vec::new(),
+        skipped: Vec::new(),
+        warnings: Vec::new(),
+    };
+    for analysis in chosen {
+        if analysis == Analysis::StaticLoad && file.vehicle.is_none() && which.is_empty() {
+            report.skipped.push(Skipped {
+                analysis,
+                reason: "the model file has no \"vehicle\" section with the corner_load to carry".into(),
+            });
+            continue;
+        }
+        progress(analysis);
+        report.analyses.push(run(analysis, file, settings)?);
+    }
+    Ok(report)
+}
+
+/// Short model name for plot subtitles (the part before any parenthesis).
+fn short_name(file: &SuspensionFile) -> String {
+    file.name.split(" (").next().unwrap_or(&file.name).to_string()
+}
+
+fn deg(rad: f64) -> f64 {
+    rad.to_degrees()
+}
+
+fn engine(e: impl std::fmt::Display) -> String {
+    e.to_string()
+}
+
+/// What every analysis does with its sweep: the table, figures and charts from the rows, and the error
+/// estimate from the same read of the corrected rows.
+struct Reduction<'a, R> {
+    table: &'a dyn Fn(&[R]) -> Table,
+    figures: &'a dyn Fn(&[R]) -> Vec<Figure>,
+}
+
+/// Builds the report of a sweep: reads `table` and `figures` off the rows and off the corrected rows,
+/// and takes the differences as the error estimate.
+fn finish<R>(
+    analysis: Analysis,
+    description: String,
+    range: (f64, f64),
+    settings: &Settings,
+    out: &SweepOutput<R>,
+    reduce: Reduction<R>,
+    charts: Vec<Chart>,
+) -> AnalysisReport {
+    let table = (reduce.table)(&out.rows);
+    let mut figures = (reduce.figures)(&out.rows);
+    let (columns, method) = match &out.corrected {
+        Some(corrected) => {
+            let other = (reduce.table)(corrected);
+            for (f, g) in figures.iter_mut().zip((reduce.figures)(corrected)) {
+                if let (Some(a), Some(b)) = (f.value, g.value) {
+                    f.error = Some((a - b).abs());
+                }
+            }
+            (
+                table.column_differences(&other),
+                format!("every row against one exact Newton iteration from it ({} mode)", mode_word(settings.mode)),
+            )
+        }
+        None => (vec![None; table.columns.len()], "not estimated".to_string()),
+    };
+    let largest = |suffix: &str| {
+        table
+            .columns
+            .iter()
+            .zip(&columns)
+            .filter(|(name, _)| name.ends_with(suffix))
+            .filter_map(|(_, e)| *e)
+            .fold(0.0f64, f64::max)
+    };
+    let (angle_error_deg, length_error_m) = (largest("_deg"), largest("_m"));
+    let force_residual = out.residuals.iter().map(|r| r.0).fold(0.0f64, f64::max);
+    let constraint_residual = out.residuals.iter().map(|r| r.1).fold(0.0f64, f64::max);
+    let tol = settings.tolerance;
+    let mut warnings = Vec::new();
+    let over_figures: Vec<String> = figures
+        .iter()
+        .filter_map(|f| {
+            let (v, e) = (f.value?, f.error?);
+            (e > tol.relative * v.abs() && e > 0.5 * 10f64.powi(-(f.decimals as i32)))
+                .then(|| format!("{} ±{:.1} %", f.label, 100.0 * e / v.abs().max(f64::MIN_POSITIVE)))
+        })
+        .collect();
+    let within = angle_error_deg <= tol.angle_deg && length_error_m <= tol.length_m && over_figures.is_empty();
+    if !within {
+        let fix = match settings.mode {
+            Mode::Paper => format!(
+                "paper mode's error falls in proportion to the step: try --steps {} or --mode corrected",
+                (settings.steps * 4).min(20_000)
+            ),
+            Mode::Corrected => "the model is near-singular here; run `elastokin check` on it".to_string(),
+        };
+        let mut what = Vec::new();
+        if angle_error_deg > tol.angle_deg {
+            what.push(format!("angles up to {angle_error_deg:.2e} deg (tolerance {:.0e})", tol.angle_deg));
+        }
+        if length_error_m > tol.length_m {
+            what.push(format!("lengths up to {:.2e} mm (tolerance {:.0e})", length_error_m * 1e3, tol.length_m * 1e3));
+        }
+        if !over_figures.is_empty() {
+            what.push(format!("figures {} (tolerance {:.1} %)", over_figures.join(", "), tol.relative * 100.0));
+        }
+        warnings.push(Notice {
+            code: "error-over-tolerance".into(),
+            message: format!("{}: estimated error {}; {fix}", analysis.name(), what.join(", ")),
+        });
+    }
+    let compliance = out.compliance.as_ref().map(|c| compliance_table(analysis, &table, c));
+    AnalysisReport {
+        analysis,
+        parameter: analysis.parameter().into(),
+        description,
+        range,
+        steps: settings.steps,
+        figures,
+        accuracy: Accuracy {
+            method,
+            angle_error_deg,
+            length_error_m,
+            force_residual,
+            constraint_residual,
+            columns: table.columns.iter().cloned().zip(columns).collect(),
+            within_tolerance: within,
+        },
+        table,
+        compliance,
+        wheel_compliance_at_design: None,
+        charts,
+        warnings,
+    }
+}
+
+/// The 6×6 wheel compliance at every row: the load parameter, then the 36 entries by row
+/// (wheel-centre x, y, z in m, rotation about x, y, z in rad) and column (force along x, y, z in N,
+/// torque about x, y, z in N·m) at the wheel centre.
+fn compliance_table(analysis: Analysis, rows: &Table, c: &[[[f64; 6]; 6]]) -> Table {
+    let response = ["x_m", "y_m", "z_m", "rx_rad", "ry_rad", "rz_rad"];
+    let load = ["fx_n", "fy_n", "fz_n", "mx_nm", "my_nm", "mz_nm"];
+    let mut columns = vec![rows.columns[0].clone()];
+    for r in response {
+        for l in load {
+            columns.push(format!("{r}_per_{l}"));
+        }
+    }
+    Table {
+        name: format!("{}_compliance", analysis.name().replace('-', "_")),
+        columns,
+        rows: rows
+            .rows
+            .iter()
+            .zip(c)
+            .map(|(row, m)| {
+                let mut out = vec![row[0].clone()];
+                out.extend(m.iter().flat_map(|r| r.iter().map(|&v| Cell::from(v))));
+                out
+            })
+            .collect(),
+    }
+}
+
+/// A figure missing because the range does not reach the design position.
+fn outside(range: (f64, f64), at: f64, unit: &str) -> String {
+    format!(
+        "the range {}..{} {unit} does not contain the design position ({at} {unit}); give a --range that spans it",
+        range.0, range.1
+    )
+}
+
+/// The reason a figure needs a vehicle-section entry the file lacks.
+fn needs_vehicle(field: &str) -> String {
+    format!("needs vehicle.{field} in the model file")
+}
+
+/// A solver error in the words of the analysis.
+fn solve_error(e: SolverError) -> String {
+    engine(e)
+}

@@ -1,0 +1,337 @@
+//! The force-driven K&C tests: vertical force with the wheel free, the road loads, the static load case.
+
+use super::travel::{axis, chart};
+use super::{
+    deg, finish, mode_word, outside, solve_error, Accuracy, Analysis, AnalysisReport, Cell, Figure, Notice, Reduction,
+    Settings, Table,
+};
+use crate::analysis::{
+    design_wheel_load, slope_at, static_load_case, vertical_force_sweep_with, wheel_load_sweep_with, ComponentForces,
+    LoadRow, WheelLoad,
+};
+use crate::model_file::SuspensionFile;
+use crate::{Rig, Side};
+
+fn model_error(e: elastokin_core::ModelError) -> String {
+    e.to_string()
+}
+
+pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
+    let held = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(model_error)?;
+    let design_load = design_wheel_load(&held).map_err(solve_error)?;
+    let range = s.range.unwrap_or((0.5 * design_load, 1.5 * design_load));
+    let corner = file.suspension.build(Side::Left, Rig::Free).map_err(model_error)?;
+    let z0 = corner.wheel.wheel_centre.z;
+    let out = vertical_force_sweep_with(corner, range.0, range.1, s.steps, s.mode, s.extras()).map_err(solve_error)?;
+    let table = |rows: &[LoadRow]| {
+        Table::numbers(
+            "vertical_force",
+            ["force_n", "wheel_travel_m", "toe_deg", "camber_deg", "contact_patch_z_m"],
+            rows.iter().map(|r| {
+                [r.load, r.attitude.wheel_centre.z - z0, deg(r.attitude.toe), deg(r.attitude.camber), r.contact_patch.z]
+            }),
+        )
+    };
+    let figures = |rows: &[LoadRow]| {
+        let why = format!(
+            "the force range {:.0}..{:.0} N does not contain the design wheel load ({design_load:.0} N); give a \
+             --range that spans it",
+            range.0, range.1
+        );
+        let compliance = slope_at(rows, design_load, |r| r.load, |r| r.attitude.wheel_centre.z);
+        vec![
+            Figure::new("design_wheel_load", "design wheel load (rig force at design height)", "N", 1, design_load),
+            Figure::maybe(
+                "wheel_rate",
+                "wheel rate at the design load (force over wheel-centre travel)",
+                "N/mm",
+                2,
+                compliance.map(|d| 1e-3 / d),
+                &why,
+            ),
+        ]
+    };
+    let charts = vec![chart(
+        file,
+        "vertical_force",
+        "wheel travel under vertical force",
+        "vertical force at the contact patch [N]",
+        axis(
+            "wheel travel [mm], bump +",
+            &out.rows,
+            |r| r.load,
+            &[("wheel travel", &|r: &LoadRow| Some((r.attitude.wheel_centre.z - z0) * 1e3))],
+        ),
+        Some(axis(
+            "angle [deg]",
+            &out.rows,
+            |r| r.load,
+            &[
+                ("toe (in +)", &|r: &LoadRow| Some(deg(r.attitude.toe))),
+                ("camber (top out +)", &|r: &LoadRow| Some(deg(r.attitude.camber))),
+            ],
+        )),
+        Some(design_load),
+    )];
+    let description =
+        format!("vertical force {:.0}..{:.0} N at the contact patch, wheel free, {} steps", range.0, range.1, s.steps);
+    Ok(finish(
+        Analysis::VerticalForce,
+        description,
+        range,
+        s,
+        &out,
+        Reduction { table: &table, figures: &figures },
+        charts,
+    ))
+}
+
+/// Columns of the force in every joint and element: `name force_x_n`, … for each.
+fn component_columns(forces: &ComponentForces) -> Vec<String> {
+    let mut out = Vec::new();
+    for c in forces.joints.iter().chain(&forces.elements) {
+        for (what, unit) in [("force", "n"), ("torque", "nm")] {
+            for axis in ["x", "y", "z"] {
+                out.push(format!("{} {what}_{axis}_{unit}", c.name));
+            }
+        }
+    }
+    out
+}
+
+fn component_values(forces: &ComponentForces) -> Vec<Cell> {
+    forces
+        .joints
+        .iter()
+        .chain(&forces.elements)
+        .flat_map(|c| [c.force, c.torque])
+        .flat_map(|v| [v.x, v.y, v.z])
+        .map(Cell::from)
+        .collect()
+}
+
+pub(super) fn road_load(file: &SuspensionFile, load: WheelLoad, s: &Settings) -> Result<AnalysisReport, String> {
+    let analysis = Analysis::Road(load);
+    let (unit, column, default_range) = match load {
+        WheelLoad::Lateral => ("N", "load_n", (-3000.0, 3000.0)),
+        WheelLoad::Braking | WheelLoad::Traction => ("N", "load_n", (0.0, 3000.0)),
+        WheelLoad::AligningTorque => ("N·m", "load_nm", (-200.0, 200.0)),
+    };
+    let range = s.range.unwrap_or(default_range);
+    let corner_load = match &file.vehicle {
+        Some(v) => v.corner_load,
+        None => design_wheel_load(&file.suspension.build(Side::Left, Rig::WheelTravel).map_err(model_error)?)
+            .map_err(solve_error)?,
+    };
+    let rig = if s.height_held { Rig::HeightHeld } else { Rig::Free };
+    let corner = file.suspension.build(Side::Left, rig).map_err(model_error)?;
+    let out = wheel_load_sweep_with(corner, load, corner_load, range.0, range.1, s.steps, s.mode, s.extras())
+        .map_err(solve_error)?;
+    let name = analysis.name();
+    let stem = name.replace('-', "_");
+    let table = |rows: &[LoadRow]| {
+        let mut columns: Vec<String> = [
+            column,
+            "toe_deg",
+            "camber_deg",
+            "wheel_centre_x_m",
+            "wheel_centre_y_m",
+            "wheel_centre_z_m",
+            "patch_dx_m",
+            "patch_dy_m",
+            "patch_dz_m",
+            "wheel_load_n",
+        ]
+        .map(String::from)
+        .to_vec();
+        if let Some(first) = rows.first() {
+            columns.extend(component_columns(&first.forces));
+        }
+        Table {
+            name: stem.clone(),
+            columns,
+            rows: rows
+                .iter()
+                .map(|r| {
+                    let (w, d) = (r.attitude.wheel_centre, r.patch_displacement);
+                    let mut row: Vec<Cell> = [
+                        r.load,
+                        deg(r.attitude.toe),
+                        deg(r.attitude.camber),
+                        w.x,
+                        w.y,
+                        w.z,
+                        d.x,
+                        d.y,
+                        d.z,
+                        r.wheel_load,
+                    ]
+                    .map(Cell::from)
+                    .to_vec();
+                    row.extend(component_values(&r.forces));
+                    row
+                })
+                .collect(),
+        }
+    };
+    let (per_unit, per_scale) = if unit == "N" { ("deg/kN", 1e3) } else { ("deg/kN·m", 1e3) };
+    let figures = |rows: &[LoadRow]| {
+        let why = outside(range, 0.0, unit);
+        let slope = |y: &dyn Fn(&LoadRow) -> f64| slope_at(rows, 0.0, |r| r.load, y);
+        let mut f = vec![
+            Figure::maybe(
+                "steer",
+                "compliance steer at zero load (toe-in +)",
+                per_unit,
+                4,
+                slope(&|r| deg(r.attitude.toe)).map(|v| v * per_scale),
+                &why,
+            ),
+            Figure::maybe(
+                "camber",
+                "compliance camber at zero load",
+                per_unit,
+                4,
+                slope(&|r| deg(r.attitude.camber)).map(|v| v * per_scale),
+                &why,
+            ),
+        ];
+        if let Some(last) = rows.last() {
+            f.push(Figure::new(
+                "toe_at_end",
+                &format!("toe at {:.0} {unit}", last.load),
+                "deg",
+                4,
+                deg(last.attitude.toe),
+            ));
+            f.push(Figure::new(
+                "camber_at_end",
+                &format!("camber at {:.0} {unit}", last.load),
+                "deg",
+                4,
+                deg(last.attitude.camber),
+            ));
+        }
+        f
+    };
+    let charts = vec![chart(
+        file,
+        &stem,
+        &format!("toe and camber under {}", name.replace('-', " ")),
+        &format!("{} [{unit}]", analysis.parameter().split(',').next().unwrap_or(name)),
+        axis(
+            "angle [deg]",
+            &out.rows,
+            |r| r.load,
+            &[
+                ("toe (in +)", &|r: &LoadRow| Some(deg(r.attitude.toe))),
+                ("camber (top out +)", &|r: &LoadRow| Some(deg(r.attitude.camber))),
+            ],
+        ),
+        Some(axis(
+            "contact patch displacement [mm]",
+            &out.rows,
+            |r| r.load,
+            &[
+                ("patch x", &|r: &LoadRow| Some(r.patch_displacement.x * 1e3)),
+                ("patch y", &|r: &LoadRow| Some(r.patch_displacement.y * 1e3)),
+            ],
+        )),
+        Some(0.0),
+    )];
+    let held = if s.height_held { "wheel-centre height held" } else { "wheel free on its spring" };
+    let description = format!(
+        "{} {:.0}..{:.0} {unit} ({held}, corner load {corner_load:.0} N), {} steps",
+        name.replace('-', " "),
+        range.0,
+        range.1,
+        s.steps
+    );
+    Ok(finish(analysis, description, range, s, &out, Reduction { table: &table, figures: &figures }, charts))
+}
+
+pub(super) fn static_load(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
+    let vehicle = file.vehicle.as_ref().ok_or(
+        "the model file has no \"vehicle\" section with the corner_load to carry (see examples/macpherson.json)",
+    )?;
+    let corner = file.suspension.build(Side::Left, Rig::Free).map_err(model_error)?;
+    let rest = static_load_case(corner, vehicle.corner_load).map_err(solve_error)?;
+    let table = Table {
+        name: "static_load".into(),
+        columns: [
+            "component",
+            "body",
+            "other_body",
+            "force_x_n",
+            "force_y_n",
+            "force_z_n",
+            "torque_x_nm",
+            "torque_y_nm",
+            "torque_z_nm",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows: rest
+            .forces
+            .joints
+            .iter()
+            .chain(&rest.forces.elements)
+            .map(|c| {
+                let mut row =
+                    vec![Cell::Text(c.name.clone()), Cell::Text(c.body.clone()), Cell::Text(c.other_body.clone())];
+                row.extend([c.force.x, c.force.y, c.force.z, c.torque.x, c.torque.y, c.torque.z].map(Cell::from));
+                row
+            })
+            .collect(),
+    };
+    let d = rest.wheel_centre_displacement;
+    let figures = vec![
+        Figure::new("corner_load", "corner load", "N", 0, rest.corner_load),
+        Figure::new("ride_height_change", "ride height change at the wheel centre (bump +)", "mm", 2, d.z * 1e3),
+        Figure::new("toe", "toe at rest", "deg", 4, deg(rest.attitude.toe)),
+        Figure::new("camber", "camber at rest", "deg", 4, deg(rest.attitude.camber)),
+        Figure::new("wheel_rate", "wheel rate at rest", "N/mm", 2, rest.wheel_rate * 1e-3),
+        Figure::new("spring_force", "spring force (compression +)", "N", 0, rest.spring_force),
+        Figure::new("spring_deflection", "spring deflection (compression -)", "mm", 2, rest.spring_deflection * 1e3),
+    ];
+    let (force_residual, constraint_residual) = rest.residuals;
+    let within = constraint_residual <= s.tolerance.length_m;
+    let mut warnings = Vec::new();
+    if !within {
+        warnings.push(Notice {
+            code: "error-over-tolerance".into(),
+            message: format!(
+                "static-load: the rest position leaves the joints apart by {:.2e} mm; the model is near-singular \
+                 there, run `elastokin check` on it",
+                constraint_residual * 1e3
+            ),
+        });
+    }
+    Ok(AnalysisReport {
+        analysis: Analysis::StaticLoad,
+        parameter: Analysis::StaticLoad.parameter().into(),
+        description: format!("static load: {:.0} N at the contact patch, from the design position", rest.corner_load),
+        range: (rest.corner_load, rest.corner_load),
+        steps: 1,
+        figures,
+        table,
+        compliance: None,
+        wheel_compliance_at_design: None,
+        charts: Vec::new(),
+        accuracy: Accuracy {
+            method: format!(
+                "converged residuals of the rest position (Newton on the exact equilibrium; {} mode does not \
+                 apply)",
+                mode_word(s.mode)
+            ),
+            // Newton converged: what is left is the residual's scale, far below any figure printed.
+            angle_error_deg: 0.0,
+            length_error_m: constraint_residual,
+            force_residual,
+            constraint_residual,
+            columns: Vec::new(),
+            within_tolerance: within,
+        },
+        warnings,
+    })
+}

@@ -1,0 +1,343 @@
+//! What a K&C analysis reports: its table, its headline figures (each with its error estimate or the
+//! reason it is missing), its plots and the accuracy of the whole run. Every number in a report is finite:
+//! a figure that cannot be computed carries a reason instead of a value, a table cell is left empty.
+
+use super::chart::Chart;
+use super::Analysis;
+use serde::ser::SerializeStruct;
+use serde::{Serialize, Serializer};
+
+/// One table cell: a number, a name, or nothing (a value the row does not have).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Cell {
+    /// A finite number (a non-finite one is stored as [`Cell::Empty`] by [`Cell::from`]).
+    Number(f64),
+    /// A name.
+    Text(String),
+    /// No value.
+    Empty,
+}
+
+impl From<f64> for Cell {
+    fn from(v: f64) -> Cell {
+        if v.is_finite() {
+            Cell::Number(v)
+        } else {
+            Cell::Empty
+        }
+    }
+}
+
+impl From<Option<f64>> for Cell {
+    fn from(v: Option<f64>) -> Cell {
+        v.map_or(Cell::Empty, Cell::from)
+    }
+}
+
+impl Serialize for Cell {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Cell::Number(v) => s.serialize_f64(*v),
+            Cell::Text(t) => s.serialize_str(t),
+            Cell::Empty => s.serialize_none(),
+        }
+    }
+}
+
+impl Cell {
+    /// The number, if the cell holds one.
+    pub fn number(&self) -> Option<f64> {
+        match self {
+            Cell::Number(v) => Some(*v),
+            _ => None,
+        }
+    }
+}
+
+/// A table of rows: one CSV file. Column names carry their unit as a suffix (`toe_deg`, `travel_m`,
+/// `wheel_load_n`), which is how the error estimate knows angles from lengths.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Table {
+    /// File stem, e.g. `parallel_travel` (written as `parallel_travel.csv`).
+    pub name: String,
+    /// Column names with units.
+    pub columns: Vec<String>,
+    /// Rows, one cell per column.
+    pub rows: Vec<Vec<Cell>>,
+}
+
+impl Table {
+    /// A table of numbers.
+    pub fn numbers<const N: usize>(name: &str, columns: [&str; N], rows: impl Iterator<Item = [f64; N]>) -> Table {
+        Table {
+            name: name.into(),
+            columns: columns.map(String::from).to_vec(),
+            rows: rows.map(|r| r.map(Cell::from).to_vec()).collect(),
+        }
+    }
+
+    /// Largest difference per column between this table and `other` (same shape), over the rows where both
+    /// hold numbers; `None` for a column with no such row.
+    pub fn column_differences(&self, other: &Table) -> Vec<Option<f64>> {
+        (0..self.columns.len())
+            .map(|c| {
+                self.rows
+                    .iter()
+                    .zip(&other.rows)
+                    .filter_map(|(a, b)| Some((a.get(c)?.number()? - b.get(c)?.number()?).abs()))
+                    .filter(|d| d.is_finite())
+                    .reduce(f64::max)
+            })
+            .collect()
+    }
+}
+
+/// One headline figure: a value in `unit`, its error estimate, or the reason it could not be computed.
+/// Serialised as `{"value": …, "unit": …, "error": …}` or `{"value": null, "unit": …, "reason": …}`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Figure {
+    /// Key in the JSON summary, e.g. `bump_steer`.
+    pub key: String,
+    /// What it is, in words, e.g. `bump steer (toe-in +)`.
+    pub label: String,
+    /// Unit of `value`, e.g. `deg/m`.
+    pub unit: String,
+    /// Decimals to print it with.
+    pub decimals: usize,
+    /// The value (always finite), or `None` with `reason`.
+    pub value: Option<f64>,
+    /// Why there is no value.
+    pub reason: Option<String>,
+    /// Estimated error of the value (same unit): how far it is from the figure of the exact equilibria.
+    pub error: Option<f64>,
+}
+
+impl Figure {
+    /// A figure from a computed value: a non-finite value becomes a missing one, with the reason.
+    pub fn new(key: &str, label: &str, unit: &str, decimals: usize, value: f64) -> Figure {
+        Figure::maybe(key, label, unit, decimals, Some(value), "")
+    }
+
+    /// A figure that may be missing: `None` or a non-finite value gives no value and `reason` (or, for a
+    /// non-finite value, a reason saying so).
+    pub fn maybe(key: &str, label: &str, unit: &str, decimals: usize, value: Option<f64>, reason: &str) -> Figure {
+        let (value, reason) = match value {
+            Some(v) if v.is_finite() => (Some(v), None),
+            Some(_) => (
+                None,
+                Some(
+                    "not a finite number here: the geometry makes it undefined (e.g. a slope of a quantity that \
+                     does not move); check the model with `elastokin check`"
+                        .to_string(),
+                ),
+            ),
+            None => (None, Some(reason.to_string())),
+        };
+        Figure { key: key.into(), label: label.into(), unit: unit.into(), decimals, value, reason, error: None }
+    }
+
+    /// The figure as the terminal shows it: `label  value unit  (± error)` or `label  — reason`.
+    pub fn line(&self) -> String {
+        match self.value {
+            Some(v) => {
+                let err = match self.error {
+                    Some(e) if e > 0.5 * 10f64.powi(-(self.decimals as i32)) => {
+                        format!("  (± {})", significant(e, 2))
+                    }
+                    _ => String::new(),
+                };
+                format!("  {:<44} {:>12.*} {}{err}", self.label, self.decimals, v, self.unit)
+            }
+            None => format!("  {:<44} {:>12} — {}", self.label, "n/a", self.reason.as_deref().unwrap_or("")),
+        }
+    }
+}
+
+/// `v` with `digits` significant digits, in plain or scientific notation as fits.
+fn significant(v: f64, digits: usize) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return "0".into();
+    }
+    let magnitude = v.abs().log10().floor() as i32;
+    if (-4..6).contains(&magnitude) {
+        let decimals = (digits as i32 - 1 - magnitude).max(0) as usize;
+        format!("{v:.decimals$}")
+    } else {
+        format!("{v:.*e}", digits.saturating_sub(1))
+    }
+}
+
+impl Serialize for Figure {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut st = s.serialize_struct("Figure", 5)?;
+        st.serialize_field("label", &self.label)?;
+        st.serialize_field("value", &self.value)?;
+        st.serialize_field("unit", &self.unit)?;
+        match &self.reason {
+            Some(r) => st.serialize_field("reason", r)?,
+            None => st.skip_field("reason")?,
+        }
+        match self.error {
+            Some(e) => st.serialize_field("error", &e)?,
+            None => st.skip_field("error")?,
+        }
+        st.end()
+    }
+}
+
+/// How accurate an analysis's rows are, and how that was estimated.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Accuracy {
+    /// How the estimate was made, in words.
+    pub method: String,
+    /// Largest estimated error of any angle in the table (deg).
+    pub angle_error_deg: f64,
+    /// Largest estimated error of any length in the table (m).
+    pub length_error_m: f64,
+    /// Largest force residual of a row, relative to its force scale.
+    pub force_residual: f64,
+    /// Largest constraint residual of a row (m and rad): the drift off the joints.
+    pub constraint_residual: f64,
+    /// Estimated error of every column (its largest over the rows; `null` where the column has no numbers).
+    pub columns: Vec<(String, Option<f64>)>,
+    /// Whether the errors are within the tolerance asked for.
+    pub within_tolerance: bool,
+}
+
+/// Something a user should know about a model or a result: a code to grep for, and what to change.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Notice {
+    /// Short stable code, e.g. `paper-mode-error`.
+    pub code: String,
+    /// What is wrong and what to change.
+    pub message: String,
+}
+
+/// What one K&C analysis produced.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AnalysisReport {
+    /// The analysis.
+    pub analysis: Analysis,
+    /// What the load parameter is, with its unit.
+    pub parameter: String,
+    /// What was run, in one line, e.g. `parallel wheel travel -80..+80 mm, 32 steps`.
+    pub description: String,
+    /// The load parameter's range walked (in the parameter's unit).
+    pub range: (f64, f64),
+    /// Load steps.
+    pub steps: usize,
+    /// Headline figures.
+    pub figures: Vec<Figure>,
+    /// The rows.
+    pub table: Table,
+    /// The 6×6 wheel compliance at every row, when asked for.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub compliance: Option<Table>,
+    /// The 6×6 wheel compliance at design (rows: wheel-centre x, y, z in m and rotation in rad; columns:
+    /// unit force in N and torque in N·m at the wheel centre), where the analysis takes it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wheel_compliance_at_design: Option<[[f64; 6]; 6]>,
+    /// Plots.
+    #[serde(skip)]
+    pub charts: Vec<Chart>,
+    /// The rows' accuracy.
+    pub accuracy: Accuracy,
+    /// Warnings about the result.
+    pub warnings: Vec<Notice>,
+}
+
+impl AnalysisReport {
+    /// The figure with `key`.
+    pub fn figure(&self, key: &str) -> Option<&Figure> {
+        self.figures.iter().find(|f| f.key == key)
+    }
+
+    /// The lines the terminal shows: what was run, the figures, the accuracy, the warnings.
+    pub fn headline(&self) -> Vec<String> {
+        let mut out = vec![self.description.clone()];
+        out.extend(self.figures.iter().map(Figure::line));
+        let a = &self.accuracy;
+        out.push(format!(
+            "  error estimate: angles {} deg, lengths {} mm ({})",
+            significant(a.angle_error_deg, 2),
+            significant(a.length_error_m * 1e3, 2),
+            a.method
+        ));
+        out.extend(self.warnings.iter().map(|w| format!("  warning [{}]: {}", w.code, w.message)));
+        out
+    }
+}
+
+/// An analysis not run, and why.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Skipped {
+    /// The analysis.
+    pub analysis: Analysis,
+    /// Why.
+    pub reason: String,
+}
+
+/// The whole K&C suite's report on one model.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct KcReport {
+    /// The model's name.
+    pub model: String,
+    /// How the paths were walked.
+    pub settings: super::Settings,
+    /// Every analysis run, in order.
+    pub analyses: Vec<AnalysisReport>,
+    /// Analyses left out, with the reason.
+    pub skipped: Vec<Skipped>,
+    /// Warnings about the model (plausibility) and the results.
+    pub warnings: Vec<Notice>,
+}
+
+impl KcReport {
+    /// The report of `analysis`, if it ran.
+    pub fn analysis(&self, analysis: Analysis) -> Option<&AnalysisReport> {
+        self.analyses.iter().find(|a| a.analysis == analysis)
+    }
+
+    /// Every warning: the model's and each analysis's.
+    pub fn all_warnings(&self) -> impl Iterator<Item = &Notice> {
+        self.warnings.iter().chain(self.analyses.iter().flat_map(|a| &a.warnings))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_non_finite_figure_has_a_reason_and_serialises_as_null() {
+        let f = Figure::new("wheel_rate", "wheel rate", "N/mm", 2, f64::NAN);
+        assert_eq!(f.value, None);
+        let json = serde_json::to_value(&f).unwrap();
+        assert!(json["value"].is_null() && json["reason"].as_str().unwrap().contains("not a finite"), "{json}");
+        assert!(!f.line().contains("NaN"), "{}", f.line());
+        let g = Figure::new("wheel_rate", "wheel rate", "N/mm", 2, 35.0);
+        assert_eq!(serde_json::to_value(&g).unwrap()["value"], 35.0);
+    }
+
+    #[test]
+    fn cells_never_hold_non_finite_numbers() {
+        for v in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(Cell::from(v), Cell::Empty);
+        }
+        assert_eq!(Cell::from(1.5), Cell::Number(1.5));
+    }
+
+    #[test]
+    fn column_differences_take_the_largest_over_rows() {
+        let a = Table::numbers("t", ["x_m", "y_deg"], [[0.0, 1.0], [1.0, 2.0]].into_iter());
+        let b = Table::numbers("t", ["x_m", "y_deg"], [[0.0, 1.5], [1.0, 1.75]].into_iter());
+        assert_eq!(a.column_differences(&b), vec![Some(0.0), Some(0.5)]);
+    }
+
+    #[test]
+    fn significant_digits() {
+        assert_eq!(significant(0.000123456, 2), "0.00012");
+        assert_eq!(significant(123.456, 2), "123");
+        assert_eq!(significant(1.2e-9, 2), "1.2e-9");
+    }
+}

@@ -1,0 +1,607 @@
+//! The driven K&C tests: parallel wheel travel on a corner, roll and steering on the full axle.
+
+use super::{
+    deg, finish, needs_vehicle, outside, short_name, solve_error, AnalysisReport, Chart, Figure, Reduction, Scale,
+    Series, Settings, Table, YAxis,
+};
+use super::{Analysis, Cell};
+use crate::analysis::{
+    anti_pitch, parallel_wheel_travel_with, patch_compliance, slope_at, wheel_compliance, TravelRow,
+};
+use crate::axle::{axle_sweep_with, AxleRow};
+use crate::model_file::SuspensionFile;
+use crate::{Axle, AxleRig, Rig, Side};
+
+/// A chart against the load parameter with one or two axes.
+pub(super) fn chart(
+    file: &SuspensionFile,
+    name: &str,
+    title: &str,
+    x_label: &str,
+    left: YAxis,
+    right: Option<YAxis>,
+    design_x: Option<f64>,
+) -> Chart {
+    Chart {
+        name: name.into(),
+        title: title.into(),
+        subtitle: short_name(file),
+        x_label: x_label.into(),
+        x_scale: Scale::Linear,
+        left,
+        right,
+        design_x,
+    }
+}
+
+/// A curve of an axis: its legend, and its y read off a row (`None` where the row has none).
+pub(super) type Curve<'a, R> = (&'a str, &'a dyn Fn(&R) -> Option<f64>);
+
+/// An axis of curves read off rows.
+pub(super) fn axis<R>(label: &str, rows: &[R], x: impl Fn(&R) -> f64, curves: &[Curve<R>]) -> YAxis {
+    YAxis {
+        label: label.into(),
+        scale: Scale::Linear,
+        series: curves
+            .iter()
+            .map(|(name, y)| Series {
+                name: (*name).into(),
+                points: rows.iter().filter_map(|r| y(r).map(|v| (x(r), v))).collect(),
+            })
+            .collect(),
+    }
+}
+
+pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
+    let range = s.range.unwrap_or((-0.08, 0.08));
+    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(solve_error_model)?;
+    let out =
+        parallel_wheel_travel_with(&corner, range.0, range.1, s.steps, s.mode, s.extras()).map_err(solve_error)?;
+    let wheel = &corner.wheel;
+    let sign = wheel.side.sign();
+    let table = |rows: &[TravelRow]| {
+        Table::numbers(
+            "parallel_travel",
+            [
+                "travel_m",
+                "toe_deg",
+                "camber_deg",
+                "wheel_centre_x_m",
+                "wheel_centre_y_m",
+                "wheel_centre_z_m",
+                "half_track_change_m",
+                "wheelbase_change_m",
+                "caster_deg",
+                "kingpin_inclination_deg",
+                "scrub_radius_m",
+                "mechanical_trail_m",
+                "kingpin_offset_m",
+                "wheel_load_n",
+                "spring_deflection_m",
+            ],
+            rows.iter().map(|r| {
+                let (w, g) = (r.attitude.wheel_centre, r.steering);
+                [
+                    r.travel,
+                    deg(r.attitude.toe),
+                    deg(r.attitude.camber),
+                    w.x,
+                    w.y,
+                    w.z,
+                    sign * (g.contact_patch.y - wheel.contact_patch.y),
+                    w.x - wheel.wheel_centre.x,
+                    deg(g.caster),
+                    deg(g.kingpin_inclination),
+                    g.scrub_radius,
+                    g.mechanical_trail,
+                    g.kingpin_offset,
+                    r.wheel_load,
+                    r.spring_deflection,
+                ]
+            }),
+        )
+    };
+    let tyre_rate = file.vehicle.as_ref().and_then(|v| v.tyre_rate);
+    let figures = |rows: &[TravelRow]| {
+        let slope = |y: &dyn Fn(&TravelRow) -> f64| slope_at(rows, 0.0, |r| r.travel, y);
+        let why = outside(range, 0.0, "m");
+        let design = rows.iter().find(|r| r.travel == 0.0);
+        let at_design = |key: &str, label: &str, unit: &str, decimals: usize, y: &dyn Fn(&TravelRow) -> f64| {
+            Figure::maybe(key, label, unit, decimals, design.map(y), &why)
+        };
+        let rate = slope(&|r| r.wheel_load);
+        let mut f = vec![
+            Figure::maybe("bump_steer", "bump steer (toe-in +)", "deg/m", 3, slope(&|r| deg(r.attitude.toe)), &why),
+            Figure::maybe(
+                "camber_gain",
+                "camber gain (top out +)",
+                "deg/m",
+                3,
+                slope(&|r| deg(r.attitude.camber)),
+                &why,
+            ),
+            Figure::maybe("wheel_rate", "wheel rate", "N/mm", 2, rate.map(|k| k * 1e-3), &why),
+            Figure::maybe(
+                "spring_motion_ratio",
+                "spring motion ratio",
+                "-",
+                3,
+                slope(&|r| r.spring_deflection).map(f64::abs),
+                &why,
+            ),
+        ];
+        f.push(match (rate, tyre_rate) {
+            (Some(k), Some(kt)) => Figure::new(
+                "ride_rate",
+                "ride rate (wheel rate and tyre in series)",
+                "N/mm",
+                2,
+                k * kt / (k + kt) * 1e-3,
+            ),
+            (None, _) => Figure::maybe("ride_rate", "ride rate (wheel rate and tyre in series)", "N/mm", 2, None, &why),
+            (_, None) => Figure::maybe(
+                "ride_rate",
+                "ride rate (wheel rate and tyre in series)",
+                "N/mm",
+                2,
+                None,
+                &needs_vehicle("tyre_rate"),
+            ),
+        });
+        f.extend([
+            at_design("wheel_load_at_design", "wheel load at design", "N", 1, &|r| r.wheel_load),
+            at_design("caster", "caster (top rearward +)", "deg", 2, &|r| deg(r.steering.caster)),
+            at_design("kingpin_inclination", "kingpin inclination (top inboard +)", "deg", 2, &|r| {
+                deg(r.steering.kingpin_inclination)
+            }),
+            at_design("scrub_radius", "scrub radius (axis inboard of patch +)", "mm", 1, &|r| {
+                r.steering.scrub_radius * 1e3
+            }),
+            at_design("mechanical_trail", "mechanical trail", "mm", 1, &|r| r.steering.mechanical_trail * 1e3),
+            at_design("kingpin_offset", "kingpin offset at wheel centre", "mm", 1, &|r| {
+                r.steering.kingpin_offset * 1e3
+            }),
+        ]);
+        f
+    };
+    let x = |r: &TravelRow| r.travel * 1e3;
+    let charts = vec![
+        chart(
+            file,
+            "parallel_travel_toe_camber",
+            "toe and camber in parallel wheel travel",
+            "wheel travel [mm], bump +",
+            axis(
+                "angle [deg]",
+                &out.rows,
+                x,
+                &[
+                    ("toe (in +)", &|r: &TravelRow| Some(deg(r.attitude.toe))),
+                    ("camber (top out +)", &|r: &TravelRow| Some(deg(r.attitude.camber))),
+                ],
+            ),
+            None,
+            Some(0.0),
+        ),
+        chart(
+            file,
+            "parallel_travel_wheel_centre",
+            "wheel-centre motion in parallel wheel travel",
+            "wheel travel [mm], bump +",
+            axis(
+                "displacement [mm]",
+                &out.rows,
+                x,
+                &[
+                    ("half-track change (out +)", &|r: &TravelRow| {
+                        Some(sign * (r.steering.contact_patch.y - wheel.contact_patch.y) * 1e3)
+                    }),
+                    ("wheelbase change (forward +)", &|r: &TravelRow| {
+                        Some((r.attitude.wheel_centre.x - wheel.wheel_centre.x) * 1e3)
+                    }),
+                ],
+            ),
+            Some(axis("wheel load [N]", &out.rows, x, &[("wheel load", &|r: &TravelRow| Some(r.wheel_load))])),
+            Some(0.0),
+        ),
+    ];
+    let description =
+        format!("parallel wheel travel {:+.0}..{:+.0} mm, {} steps", range.0 * 1e3, range.1 * 1e3, s.steps);
+    let mut report = finish(
+        Analysis::ParallelTravel,
+        description,
+        range,
+        s,
+        &out,
+        Reduction { table: &table, figures: &figures },
+        charts,
+    );
+    // Figures of the design position itself, from the tangent there (not read off the rows).
+    let pc = patch_compliance(&corner, 0.0).map_err(solve_error)?;
+    let per_kn = |rad_per_n: f64| deg(rad_per_n) * 1e3;
+    report.figures.extend([
+        Figure::new(
+            "lateral_steer",
+            "compliance steer, lateral force (inboard +)",
+            "deg/kN",
+            4,
+            per_kn(pc.lateral_steer),
+        ),
+        Figure::new("lateral_camber", "compliance camber, lateral force", "deg/kN", 4, per_kn(pc.lateral_camber)),
+        Figure::new("braking_steer", "compliance steer, braking force", "deg/kN", 4, per_kn(pc.braking_steer)),
+        Figure::new(
+            "aligning_torque_steer",
+            "compliance steer, aligning torque",
+            "deg/kN·m",
+            4,
+            per_kn(pc.aligning_torque_steer),
+        ),
+        Figure::new("lateral_stiffness", "lateral stiffness at the patch", "N/mm", 0, pc.lateral_stiffness * 1e-3),
+        Figure::new(
+            "longitudinal_stiffness",
+            "longitudinal stiffness at the patch",
+            "N/mm",
+            0,
+            pc.longitudinal_stiffness * 1e-3,
+        ),
+    ]);
+    report.wheel_compliance_at_design = Some(wheel_compliance(&corner, 0.0).map_err(solve_error)?);
+    match &file.vehicle {
+        Some(vehicle) => {
+            let a = anti_pitch(&corner, vehicle).map_err(solve_error)?;
+            let (braking, traction) = match vehicle.axle {
+                crate::analysis::AxlePosition::Front => ("anti-dive", "anti-lift (drive)"),
+                crate::analysis::AxlePosition::Rear => ("anti-lift (braking)", "anti-squat"),
+            };
+            report.figures.extend([
+                Figure::new("braking_anti_pitch", braking, "%", 1, a.braking),
+                Figure::new("traction_anti_pitch", traction, "%", 1, a.traction),
+                Figure::new(
+                    "side_view_swing_arm_angle_at_patch",
+                    "side-view swing arm angle at the patch",
+                    "deg",
+                    2,
+                    deg(a.patch_swing_arm_angle),
+                ),
+                Figure::new(
+                    "side_view_swing_arm_angle_at_wheel_centre",
+                    "side-view swing arm angle at the wheel centre",
+                    "deg",
+                    2,
+                    deg(a.wheel_centre_swing_arm_angle),
+                ),
+            ]);
+        }
+        None => report.figures.push(Figure::maybe(
+            "braking_anti_pitch",
+            "anti-dive / anti-lift",
+            "%",
+            1,
+            None,
+            &needs_vehicle("wheelbase and cg_height (a vehicle section)"),
+        )),
+    }
+    Ok(report)
+}
+
+/// A model error in the words of the analysis.
+fn solve_error_model(e: elastokin_core::ModelError) -> String {
+    e.to_string()
+}
+
+/// Camber of a wheel relative to the ground when the body rolls by `roll` (about +x) relative to it:
+/// the roll tips the top of the left wheel inboard (−y) and the right wheel's outboard.
+fn ground_camber(camber_to_body: f64, side: Side, roll: f64) -> f64 {
+    camber_to_body - side.sign() * roll
+}
+
+pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
+    let range = s.range.unwrap_or((-0.05, 0.05));
+    let axle = Axle::build(&file.suspension, AxleRig::OppositeTravel).map_err(solve_error_model)?;
+    let out = axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras()).map_err(solve_error)?;
+    let table = |rows: &[AxleRow]| Table {
+        name: "roll".into(),
+        columns: [
+            "left_travel_m",
+            "roll_angle_deg",
+            "left_toe_deg",
+            "left_camber_deg",
+            "left_camber_to_ground_deg",
+            "right_toe_deg",
+            "right_camber_deg",
+            "right_camber_to_ground_deg",
+            "track_m",
+            "roll_centre_lateral_m",
+            "roll_centre_height_m",
+            "left_wheel_load_n",
+            "right_wheel_load_n",
+            "roll_moment_nm",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows: rows
+            .iter()
+            .map(|r| {
+                let rc = r.roll_centre;
+                vec![
+                    r.travel.into(),
+                    deg(r.roll_angle).into(),
+                    deg(r.left.toe).into(),
+                    deg(r.left.camber).into(),
+                    deg(ground_camber(r.left.camber, Side::Left, r.roll_angle)).into(),
+                    deg(r.right.toe).into(),
+                    deg(r.right.camber).into(),
+                    deg(ground_camber(r.right.camber, Side::Right, r.roll_angle)).into(),
+                    r.track.into(),
+                    Cell::from(rc.map(|c| c.lateral)),
+                    Cell::from(rc.map(|c| c.height)),
+                    r.left_load.into(),
+                    r.right_load.into(),
+                    r.roll_moment.into(),
+                ]
+            })
+            .collect(),
+    };
+    let figures = |rows: &[AxleRow]| {
+        let why = outside(range, 0.0, "m");
+        let rc = rows.iter().find(|r| r.travel == 0.0).map(|r| r.roll_centre);
+        let rc_why = if rc.is_some() {
+            "the front-view lines through the contact patches are parallel: no roll centre".to_string()
+        } else {
+            why.clone()
+        };
+        let rc = rc.flatten();
+        let slope = |y: &dyn Fn(&AxleRow) -> f64| slope_at(rows, 0.0, |r| r.travel, y);
+        let dphi = slope(&|r| r.roll_angle);
+        let per_roll = |d: Option<f64>| Some(d? / dphi?);
+        vec![
+            Figure::maybe(
+                "roll_centre_height",
+                "roll centre height at design",
+                "mm",
+                1,
+                rc.map(|c| c.height * 1e3),
+                &rc_why,
+            ),
+            Figure::maybe(
+                "roll_centre_lateral",
+                "roll centre lateral offset at design (left +)",
+                "mm",
+                2,
+                rc.map(|c| c.lateral * 1e3),
+                &rc_why,
+            ),
+            Figure::maybe(
+                "roll_steer",
+                "roll steer, left wheel (toe-in +)",
+                "deg/deg",
+                4,
+                per_roll(slope(&|r| r.left.toe)),
+                &why,
+            ),
+            Figure::maybe(
+                "roll_camber",
+                "roll camber to ground, left wheel",
+                "deg/deg",
+                4,
+                per_roll(slope(&|r| ground_camber(r.left.camber, Side::Left, r.roll_angle))),
+                &why,
+            ),
+            Figure::maybe(
+                "roll_stiffness",
+                "roll stiffness of the springs",
+                "N·m/deg",
+                0,
+                per_roll(slope(&|r| r.roll_moment)).map(|k| -k.to_radians()),
+                &why,
+            ),
+        ]
+    };
+    let x = |r: &AxleRow| deg(r.roll_angle);
+    let charts = vec![
+        chart(
+            file,
+            "roll_toe_camber",
+            "toe and camber in roll",
+            "body roll [deg], left side up +",
+            axis(
+                "angle [deg]",
+                &out.rows,
+                x,
+                &[
+                    ("left toe", &|r: &AxleRow| Some(deg(r.left.toe))),
+                    ("right toe", &|r: &AxleRow| Some(deg(r.right.toe))),
+                    ("left camber to ground", &|r: &AxleRow| {
+                        Some(deg(ground_camber(r.left.camber, Side::Left, r.roll_angle)))
+                    }),
+                    ("right camber to ground", &|r: &AxleRow| {
+                        Some(deg(ground_camber(r.right.camber, Side::Right, r.roll_angle)))
+                    }),
+                ],
+            ),
+            None,
+            Some(0.0),
+        ),
+        chart(
+            file,
+            "roll_centre",
+            "roll centre in roll",
+            "body roll [deg], left side up +",
+            axis(
+                "roll centre height above ground [mm]",
+                &out.rows,
+                x,
+                &[("height", &|r: &AxleRow| r.roll_centre.map(|c| c.height * 1e3))],
+            ),
+            Some(axis(
+                "roll centre lateral position [mm], left +",
+                &out.rows,
+                x,
+                &[("lateral position", &|r: &AxleRow| r.roll_centre.map(|c| c.lateral * 1e3))],
+            )),
+            Some(0.0),
+        ),
+    ];
+    let description = format!(
+        "roll (opposite wheel travel {:+.0}..{:+.0} mm on the full axle), {} steps",
+        range.0 * 1e3,
+        range.1 * 1e3,
+        s.steps
+    );
+    Ok(finish(Analysis::Roll, description, range, s, &out, Reduction { table: &table, figures: &figures }, charts))
+}
+
+/// Steer angle of a wheel (positive turning left, about +z) from its toe (toe-in positive).
+fn steer_angle(toe: f64, side: Side) -> f64 {
+    -side.sign() * toe
+}
+
+/// The outer wheel's steer angle that ideal (Ackermann) geometry gives for the inner wheel's `inner`
+/// (both positive, rad): the two wheels' axes meet on the rear axle line, `cot δo − cot δi = T / L`.
+pub fn ideal_outer_steer(inner: f64, track: f64, wheelbase: f64) -> f64 {
+    (1.0 / (1.0 / inner.tan() + track / wheelbase)).atan()
+}
+
+/// Ackermann figures of one steering row: `(inner, outer, ideal outer)` steer angles (rad, positive).
+fn ackermann(r: &AxleRow, track: f64, wheelbase: f64) -> Option<(f64, f64, f64)> {
+    let (left, right) = (steer_angle(r.left.toe, Side::Left), steer_angle(r.right.toe, Side::Right));
+    // Turning left, the left wheel is the inner one.
+    let (inner, outer) = if left + right > 0.0 { (left, right) } else { (-right, -left) };
+    (inner > 1e-9).then(|| (inner, outer, ideal_outer_steer(inner, track, wheelbase)))
+}
+
+pub(super) fn steering(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
+    let range = s.range.unwrap_or((-0.04, 0.04));
+    let axle = Axle::build(&file.suspension, AxleRig::Steering).map_err(solve_error_model)?;
+    let out = axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras()).map_err(solve_error)?;
+    let wheelbase = file.vehicle.as_ref().map(|v| v.wheelbase);
+    // Track between the contact patches at design: the lateral distance Ackermann's rule uses.
+    let track = axle.left.contact_patch.y - axle.right.contact_patch.y;
+    let table = |rows: &[AxleRow]| Table {
+        name: "steering".into(),
+        columns: [
+            "rack_travel_m",
+            "left_steer_deg",
+            "right_steer_deg",
+            "left_toe_deg",
+            "right_toe_deg",
+            "left_camber_deg",
+            "right_camber_deg",
+            "ideal_outer_steer_deg",
+            "ackermann_error_deg",
+            "ackermann_percent",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows: rows
+            .iter()
+            .map(|r| {
+                let a = wheelbase.and_then(|l| ackermann(r, track, l));
+                vec![
+                    r.travel.into(),
+                    deg(steer_angle(r.left.toe, Side::Left)).into(),
+                    deg(steer_angle(r.right.toe, Side::Right)).into(),
+                    deg(r.left.toe).into(),
+                    deg(r.right.toe).into(),
+                    deg(r.left.camber).into(),
+                    deg(r.right.camber).into(),
+                    Cell::from(a.map(|(_, _, ideal)| deg(ideal))),
+                    Cell::from(a.map(|(_, outer, ideal)| deg(outer - ideal))),
+                    Cell::from(a.map(|(inner, outer, ideal)| 100.0 * (inner - outer) / (inner - ideal))),
+                ]
+            })
+            .collect(),
+    };
+    let c_factor = file.vehicle.as_ref().and_then(|v| v.rack_travel_per_revolution);
+    let figures = |rows: &[AxleRow]| {
+        let why = outside(range, 0.0, "m");
+        let mean_steer =
+            |r: &AxleRow| 0.5 * (steer_angle(r.left.toe, Side::Left) + steer_angle(r.right.toe, Side::Right));
+        let per_rack = slope_at(rows, 0.0, |r| r.travel, |r| deg(mean_steer(r)));
+        let mut f = vec![Figure::maybe(
+            "steer_per_rack_travel",
+            "steer per rack travel at design (mean of both wheels)",
+            "deg/mm",
+            4,
+            per_rack.map(|d| d * 1e-3),
+            &why,
+        )];
+        f.push(match (per_rack, c_factor) {
+            (Some(d), Some(c)) => Figure::new(
+                "steering_ratio",
+                "overall steering ratio at design (hand wheel : road wheel)",
+                ":1",
+                2,
+                360.0 / (c * d),
+            ),
+            (None, _) => Figure::maybe("steering_ratio", "overall steering ratio at design", ":1", 2, None, &why),
+            (_, None) => Figure::maybe(
+                "steering_ratio",
+                "overall steering ratio at design",
+                ":1",
+                2,
+                None,
+                &needs_vehicle("rack_travel_per_revolution"),
+            ),
+        });
+        match wheelbase {
+            Some(l) => {
+                // At the end of the rack travel that steers most: where Ackermann is read on a rig.
+                let end = rows.iter().filter_map(|r| ackermann(r, track, l)).max_by(|a, b| a.0.total_cmp(&b.0));
+                let worst = rows
+                    .iter()
+                    .filter_map(|r| ackermann(r, track, l))
+                    .map(|(_, outer, ideal)| deg(outer - ideal))
+                    .max_by(|a, b| a.abs().total_cmp(&b.abs()));
+                let none = "the rack travel steers neither wheel";
+                f.push(Figure::maybe(
+                    "ackermann",
+                    "Ackermann at full steer (100 % = ideal)",
+                    "%",
+                    1,
+                    end.map(|(i, o, ideal)| 100.0 * (i - o) / (i - ideal)),
+                    none,
+                ));
+                f.push(Figure::maybe(
+                    "inner_steer_at_full_rack",
+                    "inner wheel steer at full rack travel",
+                    "deg",
+                    2,
+                    end.map(|(i, _, _)| deg(i)),
+                    none,
+                ));
+                f.push(Figure::maybe(
+                    "ackermann_error",
+                    "largest outer-wheel error against ideal Ackermann",
+                    "deg",
+                    3,
+                    worst,
+                    none,
+                ));
+            }
+            None => f.push(Figure::maybe("ackermann", "Ackermann", "%", 1, None, &needs_vehicle("wheelbase"))),
+        }
+        f
+    };
+    let x = |r: &AxleRow| r.travel * 1e3;
+    let charts = vec![chart(
+        file,
+        "steering",
+        "steer angles",
+        "rack travel [mm], towards left +",
+        axis(
+            "steer angle [deg], left turn +",
+            &out.rows,
+            x,
+            &[
+                ("left wheel", &|r: &AxleRow| Some(deg(steer_angle(r.left.toe, Side::Left)))),
+                ("right wheel", &|r: &AxleRow| Some(deg(steer_angle(r.right.toe, Side::Right)))),
+            ],
+        ),
+        None,
+        Some(0.0),
+    )];
+    let description =
+        format!("steering (rack {:+.0}..{:+.0} mm, heights held), {} steps", range.0 * 1e3, range.1 * 1e3, s.steps);
+    Ok(finish(Analysis::Steering, description, range, s, &out, Reduction { table: &table, figures: &figures }, charts))
+}
