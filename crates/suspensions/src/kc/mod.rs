@@ -13,6 +13,8 @@ mod loads;
 pub mod report;
 mod travel;
 
+pub use travel::ideal_outer_steer;
+
 pub use chart::{Chart, Scale, Series, YAxis};
 pub use report::{Accuracy, AnalysisReport, Cell, Figure, KcReport, Notice, Skipped, Table};
 

@@ -532,7 +532,7 @@ pub(super) fn steering(file: &SuspensionFile, s: &Settings) -> Result<AnalysisRe
                 "overall steering ratio at design (hand wheel : road wheel)",
                 ":1",
                 2,
-                360.0 / (c * d),
+                360.0 / (c * d.abs()),
             ),
             (None, _) => Figure::maybe("steering_ratio", "overall steering ratio at design", ":1", 2, None, &why),
             (_, None) => Figure::maybe(

@@ -1,0 +1,165 @@
+//! The library's K&C suite: its error estimates against converged runs, and its new figures against
+//! closed forms and the engine's own independent paths.
+
+use elastokin_solver::Mode;
+use elastokin_suspensions::analysis::wheel_compliance;
+use elastokin_suspensions::kc::{self, Analysis, Settings};
+use elastokin_suspensions::{Rig, Side, SuspensionFile};
+use std::path::Path;
+
+fn example(name: &str) -> SuspensionFile {
+    SuspensionFile::read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples").join(name)).unwrap()
+}
+
+const EXAMPLES: [&str; 2] = ["macpherson.json", "double_wishbone.json"];
+
+/// Paper mode's error estimate (each row against one exact Newton iteration from it) is within 3× of its
+/// error against a converged corrected run, column by column and figure by figure, on every analysis of
+/// every shipped example.
+#[test]
+fn paper_mode_error_estimate_is_within_3x_of_the_error_against_a_converged_run() {
+    let mut ratios = Vec::new();
+    for name in EXAMPLES {
+        let file = example(name);
+        for analysis in kc::ALL.into_iter().filter(|a| *a != Analysis::StaticLoad) {
+            let paper = kc::run(analysis, &file, &Settings { mode: Mode::Paper, ..Settings::default() }).unwrap();
+            let exact = kc::run(analysis, &file, &Settings::default()).unwrap();
+            let truth = paper.table.column_differences(&exact.table);
+            for ((column, estimate), truth) in paper.accuracy.columns.iter().zip(&truth) {
+                let (Some(e), Some(t)) = (estimate, truth) else { continue };
+                // Below 1e-9 both are rounding noise (forces of 1e-14 N·m in an ideal ball joint).
+                if *t > 1e-9 {
+                    ratios.push((e / t, format!("{name} {} {column}", analysis.name())));
+                }
+            }
+            for (f, g) in paper.figures.iter().zip(&exact.figures) {
+                assert_eq!(f.key, g.key);
+                let (Some(a), Some(b)) = (f.value, g.value) else { continue };
+                let t = (a - b).abs();
+                if t > 1e-9 * a.abs().max(1.0) {
+                    ratios.push((f.error.unwrap() / t, format!("{name} {} figure {}", analysis.name(), f.key)));
+                }
+            }
+        }
+    }
+    ratios.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // Measured: 0.85 (the vertical force sweep's wheel rate, a slope at a load between rows) to 1.03, over
+    // ~500 columns and figures.
+    assert!(ratios.len() > 300, "{}", ratios.len());
+    let (low, high) = (&ratios[0], &ratios[ratios.len() - 1]);
+    assert!(low.0 > 1.0 / 3.0 && high.0 < 3.0, "lowest {low:?}, highest {high:?}");
+}
+
+/// Corrected mode's estimate sits at the Newton tolerance's scale, and no warning is raised; paper mode
+/// at the default 32 steps is off by more than the default tolerance, and says so.
+#[test]
+fn paper_mode_warns_when_its_error_exceeds_the_tolerance_and_corrected_mode_does_not() {
+    let file = example("macpherson.json");
+    let corrected = kc::run(Analysis::ParallelTravel, &file, &Settings::default()).unwrap();
+    // Measured 6e-14 deg and 2e-14 m.
+    assert!(corrected.accuracy.angle_error_deg < 1e-11, "{:?}", corrected.accuracy);
+    assert!(corrected.accuracy.length_error_m < 1e-11, "{:?}", corrected.accuracy);
+    assert!(corrected.accuracy.within_tolerance && corrected.warnings.is_empty(), "{:?}", corrected.warnings);
+    let paper =
+        kc::run(Analysis::ParallelTravel, &file, &Settings { mode: Mode::Paper, ..Settings::default() }).unwrap();
+    assert!(!paper.accuracy.within_tolerance);
+    let warning = &paper.warnings[0];
+    assert_eq!(warning.code, "error-over-tolerance");
+    assert!(warning.message.contains("wheel rate") && warning.message.contains("--steps"), "{}", warning.message);
+    // The wheel rate's own estimate: 8.9 N/mm on 43.9 (the converged figure is 35.0).
+    let rate = paper.figure("wheel_rate").unwrap();
+    let exact = corrected.figure("wheel_rate").unwrap().value.unwrap();
+    assert!((rate.value.unwrap() - exact).abs() > 5.0, "{rate:?} vs {exact}");
+    assert!(rate.error.unwrap() > 5.0, "{rate:?}");
+}
+
+/// Ideal Ackermann: both wheels' axes meet on the rear axle line. For a turn centre at lateral distance
+/// R from the middle of the rear axle, tan δi = L / (R − T/2) and tan δo = L / (R + T/2).
+#[test]
+fn ideal_outer_steer_puts_the_turn_centre_on_the_rear_axle_line() {
+    let (wheelbase, track) = (2.7f64, 1.5f64);
+    for radius in [3.0, 5.0, 12.0, 100.0] {
+        let inner = (wheelbase / (radius - track / 2.0)).atan();
+        let outer = (wheelbase / (radius + track / 2.0)).atan();
+        let got = kc::ideal_outer_steer(inner, track, wheelbase);
+        assert!((got - outer).abs() < 1e-14, "R {radius}: {got} vs {outer}");
+    }
+}
+
+/// Ride rate is the wheel rate in series with the tyre; the overall steering ratio is the hand wheel's
+/// 360° per rack travel per revolution over the road wheel's angle per rack travel; the Ackermann
+/// percentage at full rack is (δi − δo)/(δi − δo,ideal) from the steer columns.
+#[test]
+fn ride_rate_steering_ratio_and_ackermann_follow_from_their_definitions() {
+    for name in EXAMPLES {
+        let file = example(name);
+        let vehicle = file.vehicle.unwrap();
+        let report =
+            kc::run_suite(&file, &[Analysis::ParallelTravel, Analysis::Steering], &Settings::default(), |_| {})
+                .unwrap();
+        let travel = report.analysis(Analysis::ParallelTravel).unwrap();
+        let value = |r: &kc::AnalysisReport, key: &str| r.figure(key).unwrap().value.unwrap();
+        let (kw, kt) = (value(travel, "wheel_rate") * 1e3, vehicle.tyre_rate.unwrap());
+        let ride = value(travel, "ride_rate") * 1e3;
+        assert!((1.0 / ride - (1.0 / kw + 1.0 / kt)).abs() < 1e-12 / ride, "{ride} {kw} {kt}");
+        let steering = report.analysis(Analysis::Steering).unwrap();
+        let per_rack = value(steering, "steer_per_rack_travel"); // deg/mm
+        let ratio = value(steering, "steering_ratio");
+        let c = vehicle.rack_travel_per_revolution.unwrap() * 1e3; // mm/rev
+        assert!((ratio - 360.0 / (c * per_rack.abs())).abs() < 1e-9 * ratio, "{ratio} {per_rack} {c}");
+        // Ackermann at full rack from the table's steer columns.
+        let col = |n: &str| steering.table.columns.iter().position(|c| c == n).unwrap();
+        let (l, r) = (col("left_steer_deg"), col("right_steer_deg"));
+        let last = steering.table.rows.last().unwrap();
+        let (left, right) = (last[l].number().unwrap(), last[r].number().unwrap());
+        let (inner, outer) = if left + right > 0.0 { (left, right) } else { (-right, -left) };
+        let track = 2.0 * file_track_half(&file);
+        let ideal = kc::ideal_outer_steer(inner.to_radians(), track, vehicle.wheelbase).to_degrees();
+        let percent = 100.0 * (inner - outer) / (inner - ideal);
+        let reported = value(steering, "ackermann");
+        assert!((reported - percent).abs() < 1e-6, "{name}: {reported} vs {percent}");
+        assert!(reported.is_finite() && (0.0..200.0).contains(&reported.abs()), "{reported}");
+    }
+}
+
+/// Half the track between the contact patches at design: the left corner's patch y.
+fn file_track_half(file: &SuspensionFile) -> f64 {
+    file.suspension.build(Side::Left, Rig::Free).unwrap().wheel.contact_patch.y
+}
+
+/// `--compliance`: the 6×6 at the design row of the travel sweep is the one a fresh solve at design
+/// gives (`wheel_compliance`, its own solver and equilibrium).
+#[test]
+fn compliance_at_every_step_matches_a_fresh_solve_at_design() {
+    let file = example("double_wishbone.json");
+    let settings = Settings { compliance: true, steps: 8, ..Settings::default() };
+    let report = kc::run(Analysis::ParallelTravel, &file, &settings).unwrap();
+    let table = report.compliance.as_ref().unwrap();
+    assert_eq!(table.columns.len(), 37);
+    assert_eq!(table.rows.len(), 9);
+    let design = table.rows.iter().find(|r| r[0].number() == Some(0.0)).unwrap();
+    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
+    let fresh = wheel_compliance(&corner, 0.0).unwrap();
+    let scale = fresh.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
+    for r in 0..6 {
+        for c in 0..6 {
+            let got = design[1 + 6 * r + c].number().unwrap();
+            // Measured agreement ~1e-16 of the largest entry.
+            assert!((got - fresh[r][c]).abs() < 1e-9 * scale, "({r},{c}): {got} vs {}", fresh[r][c]);
+        }
+    }
+}
+
+/// A range that leaves out the design position leaves the design figures out with that reason.
+#[test]
+fn a_range_without_the_design_position_says_why_figures_are_missing() {
+    let file = example("macpherson.json");
+    let settings = Settings { range: Some((0.01, 0.05)), steps: 8, ..Settings::default() };
+    let report = kc::run(Analysis::ParallelTravel, &file, &settings).unwrap();
+    let f = report.figure("bump_steer").unwrap();
+    assert!(f.value.is_none() && f.reason.as_deref().unwrap().contains("does not contain the design position"));
+    let json = serde_json::to_value(&report).unwrap();
+    let bump =
+        &json["figures"].as_array().unwrap().iter().find(|f| f["label"].as_str().unwrap().starts_with("bump")).unwrap();
+    assert!(bump["value"].is_null() && bump["reason"].is_string(), "{bump}");
+}
