@@ -226,7 +226,8 @@ pub struct AnalysisReport {
     pub range: (f64, f64),
     /// Load steps.
     pub steps: usize,
-    /// Headline figures.
+    /// Headline figures (in JSON an object keyed by each figure's key).
+    #[serde(serialize_with = "figures_by_key")]
     pub figures: Vec<Figure>,
     /// The rows.
     pub table: Table,
@@ -268,6 +269,14 @@ impl AnalysisReport {
     }
 }
 
+fn figures_by_key<S: Serializer>(figures: &[Figure], s: S) -> Result<S::Ok, S::Error> {
+    s.collect_map(figures.iter().map(|f| (&f.key, f)))
+}
+
+fn analyses_by_name<S: Serializer>(analyses: &[AnalysisReport], s: S) -> Result<S::Ok, S::Error> {
+    s.collect_map(analyses.iter().map(|a| (a.analysis.name(), a)))
+}
+
 /// An analysis not run, and why.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Skipped {
@@ -284,7 +293,8 @@ pub struct KcReport {
     pub model: String,
     /// How the paths were walked.
     pub settings: super::Settings,
-    /// Every analysis run, in order.
+    /// Every analysis run, in order (in JSON an object keyed by the analysis's name).
+    #[serde(serialize_with = "analyses_by_name")]
     pub analyses: Vec<AnalysisReport>,
     /// Analyses left out, with the reason.
     pub skipped: Vec<Skipped>,
