@@ -28,3 +28,15 @@ impl Side {
         Vec3::new(left.x, self.sign() * left.y, left.z)
     }
 }
+
+/// Reads a hardpoint `[x, y, z]`, saying how many numbers were given when it is not three (the model file
+/// reader puts the hardpoint's name before the message).
+pub(crate) fn point<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec3, D::Error> {
+    let numbers = Vec::<f64>::deserialize(d)?;
+    match numbers.as_slice() {
+        &[x, y, z] => Ok(Vec3::new(x, y, z)),
+        other => {
+            Err(serde::de::Error::custom(format!("a point is 3 numbers in metres [x, y, z], got {}", other.len())))
+        }
+    }
+}

@@ -65,7 +65,7 @@ pub const MIN_MOTION_RATIO: f64 = 0.1;
 pub const MAX_WHEEL_ANGLE_DEG: f64 = 10.0;
 
 impl Template {
-    /// Every hardpoint with its name in the model file, in the file's order.
+    /// Every hardpoint with its name in the model file, sorted by name.
     pub fn hardpoints(&self) -> Vec<(String, Vec3)> {
         let value = match self {
             Template::DoubleWishbone(t) => serde_json::to_value(t.hardpoints),
@@ -173,14 +173,22 @@ pub fn check_model(file: &SuspensionFile) -> Result<ModelCheck, ModelError> {
     })
 }
 
+/// Whether the hardpoints read as a corner in millimetres: the wheel centre more than 10 m from the centre
+/// line, or a spread over 20 m that, divided by 1000, is a wheel centre 0.2–2 m out with every hardpoint
+/// within 2 m of it.
+pub(crate) fn looks_like_millimetres(points: &[(String, Vec3)]) -> bool {
+    let wc = point(points, "wheel_centre");
+    let spread = points.iter().map(|(_, p)| (p - wc).norm()).fold(0.0, f64::max);
+    let scaled_fits = (200.0..=2000.0).contains(&wc.y.abs()) && spread <= 1e3 * FAR_FROM_WHEEL_CENTRE;
+    wc.y.abs() > 10.0 || (spread > 20.0 && scaled_fits)
+}
+
 /// Millimetres for metres, and a right corner given for the left.
 fn units_and_side(points: &[(String, Vec3)]) -> Vec<Warning> {
     let mut out = Vec::new();
     let wc = point(points, "wheel_centre");
     let spread = points.iter().map(|(_, p)| (p - wc).norm()).fold(0.0, f64::max);
-    // Read in millimetres, a corner is a wheel centre 0.2–2 m out with everything within 2 m of it.
-    let scaled_fits = (200.0..=2000.0).contains(&wc.y.abs()) && spread <= 1e3 * FAR_FROM_WHEEL_CENTRE;
-    if wc.y.abs() > 10.0 || (spread > 20.0 && scaled_fits) {
+    if looks_like_millimetres(points) {
         out.push(Warning {
             code: "millimetres",
             hardpoints: points.iter().map(|(n, _)| n.clone()).collect(),
