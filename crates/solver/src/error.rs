@@ -15,7 +15,11 @@ pub enum SolverError {
     #[error(transparent)]
     Factor(#[from] FactorError),
     /// A body can move in some direction that no joint, bushing or spring resists.
-    #[error("body '{body}' is not restrained in {motion}: add a joint, bushing or spring that holds it, or a driver")]
+    #[error(
+        "'{body}' is free to move ({motion}): no joint, bushing or spring holds it that way; check the hardpoints \
+         of its mounts (two pivots on one line through its ball joint, a tie rod through the steering axis) or \
+         add a mount"
+    )]
     Unrestrained {
         /// The body that moves most along the free direction.
         body: String,
@@ -44,9 +48,9 @@ pub enum SolverError {
     /// The path reached a limit point: the tangent turned singular along it — a load the structure cannot
     /// carry, or a driven motion the mechanism cannot reach.
     #[error(
-        "the path cannot go beyond load parameter {reached:.6}: the tangent turns singular there (a load the \
-         structure cannot carry, or a driven motion the mechanism cannot reach); reduce the load or travel, or \
-         follow a load path through the limit point with arc-length continuation (`StaticSolver::arc_length_sweep`)"
+        "the suspension cannot go beyond {reached:.6} (in the analysis's own unit: travel in m, force in N): there it \
+         locks or gives way (a load it cannot carry, or a travel its arms and tie rod cannot reach); narrow the \
+         range, or check the hardpoints for an arm or tie rod that reaches its end of travel"
     )]
     LimitPoint {
         /// Largest load parameter for which equilibrium was found.
