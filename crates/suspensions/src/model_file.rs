@@ -100,6 +100,15 @@ impl OutOfRange {
     }
 }
 
+/// A value as people write it: `1e308`, not three hundred digits.
+fn number(v: f64) -> String {
+    if v != 0.0 && !(1e-3..1e6).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
 /// Text editors on some systems save UTF-8 with a byte-order mark; JSON has no use for it.
 fn without_byte_order_mark(text: &str) -> &str {
     text.strip_prefix('\u{feff}').unwrap_or(text)
@@ -281,8 +290,9 @@ impl SuspensionFile {
                     return Err(OutOfRange {
                         keys: vec!["hardpoints".into(), name.clone()],
                         message: format!(
-                            "hardpoint '{name}': {axis} = {c} m is beyond ±{MAX_COORDINATE} m; hardpoints are in \
-                             metres from the car's reference point (ISO 8855: x forward, y left, z up){hint}"
+                            "hardpoint '{name}': {axis} = {} m is beyond ±{MAX_COORDINATE} m; hardpoints are in \
+                             metres from the car's reference point (ISO 8855: x forward, y left, z up){hint}",
+                            number(*c)
                         ),
                     });
                 }
@@ -311,8 +321,9 @@ impl SuspensionFile {
             Err(OutOfRange {
                 keys: keys.iter().map(|k| k.to_string()).collect(),
                 message: format!(
-                    "{}: {value} {unit} is outside the accepted range (0, 1e12] {unit} ({typical})",
-                    keys.join(".")
+                    "{}: {} {unit} is outside the accepted range (0, 1e12] {unit} ({typical})",
+                    keys.join("."),
+                    number(value)
                 ),
             })
         };
@@ -322,7 +333,7 @@ impl SuspensionFile {
                 keys: vec!["spring".into(), "design_force".into()],
                 message: format!(
                     "spring.design_force: {} N is beyond ±{MAX_FORCE:e} N (a car's spring carries 2e3–2e4 N)",
-                    spring.design_force
+                    number(spring.design_force)
                 ),
             });
         }
@@ -330,7 +341,8 @@ impl SuspensionFile {
             return Err(OutOfRange {
                 keys: vec!["loaded_radius".into()],
                 message: format!(
-                    "loaded_radius: {loaded_radius} m is outside 0.05–2 m (a car's tyre is 0.25–0.40 m, in metres)"
+                    "loaded_radius: {} m is outside 0.05–2 m (a car's tyre is 0.25–0.40 m, in metres)",
+                    number(loaded_radius)
                 ),
             });
         }
@@ -370,9 +382,14 @@ impl SuspensionFile {
                 if !(lo..=hi).contains(&value) {
                     return Err(OutOfRange {
                         keys: vec!["vehicle".into(), key.into()],
-                        message: format!("vehicle.{key}: {value} {unit} is outside {lo}–{hi} {unit} ({why})")
-                            .replace("  ", " ")
-                            .replace(" )", ")"),
+                        message: format!(
+                            "vehicle.{key}: {} {unit} is outside {}–{} {unit} ({why})",
+                            number(value),
+                            number(lo),
+                            number(hi)
+                        )
+                        .replace("  ", " ")
+                        .replace(" )", ")"),
                     });
                 }
             }

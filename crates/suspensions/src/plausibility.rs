@@ -49,6 +49,26 @@ pub struct ModelCheck {
     pub warnings: Vec<Warning>,
 }
 
+impl ModelCheck {
+    /// The findings as lines for people: degrees of freedom, condition, then `warning [code]: message`.
+    pub fn report(&self) -> Vec<String> {
+        let mut out = vec![format!(
+            "degrees of freedom: {} with the wheel free (counting joints only: bushings and springs hold motions \
+             without removing them), {} with the rig's wheel-travel driver",
+            self.degrees_of_freedom, self.degrees_of_freedom_on_rig
+        )];
+        out.push(match self.condition_estimate {
+            Some(c) => format!(
+                "condition at design: {c:.1e} (stiffest mount over the softest motion, wheel-centre height held; \
+                 above {NEAR_SINGULAR:.0e} the corner is near-singular)"
+            ),
+            None => "condition at design: the joints leave no motion with the wheel-centre height held".into(),
+        });
+        out.extend(self.warnings.iter().map(|w| format!("warning [{}]: {}", w.code, w.message)));
+        out
+    }
+}
+
 /// Hardpoints farther than this from the wheel centre are named (m): a corner fits in a 2 m cube.
 pub const FAR_FROM_WHEEL_CENTRE: f64 = 2.0;
 /// The tie rod's lever about the steering axis below which it cannot steer the wheel (m). A passenger

@@ -227,3 +227,21 @@ fn travel_rows_beyond_plausible_toe_and_a_falling_wheel_rate_are_named() {
     assert_eq!(codes, ["toe-range", "camber-range", "wheel-rate"], "{warnings:#?}");
     assert!(warnings[0].message.contains("toe reaches"), "{}", warnings[0].message);
 }
+
+#[test]
+fn the_report_gives_the_counts_the_condition_and_each_warning_with_its_code() {
+    let clean = check(&example("macpherson.json")).report();
+    assert_eq!(clean.len(), 2, "{clean:#?}");
+    assert!(clean[0].starts_with("degrees of freedom: 9 with the wheel free"), "{}", clean[0]);
+    assert!(clean[0].contains("8 with the rig's wheel-travel driver"), "{}", clean[0]);
+    // Measured 79.
+    assert!(clean[1].starts_with("condition at design: 7.9e1"), "{}", clean[1]);
+    let all_ideal = check(&ideal(example("macpherson.json"))).report();
+    assert!(all_ideal[1].contains("the joints leave no motion"), "{}", all_ideal[1]);
+    let mut v = example("macpherson.json");
+    let (a, b) = (hardpoint(&mut v, "lower_ball_joint"), hardpoint(&mut v, "top_mount"));
+    set_hardpoint(&mut v, "tie_rod_inner", lerp(a, b, 0.4));
+    let lines = check(&v).report();
+    assert_eq!(lines.len(), 3, "{lines:#?}");
+    assert!(lines[2].starts_with("warning [tie-rod-on-steering-axis]: the tie rod ('tie_rod_inner'"), "{}", lines[2]);
+}
