@@ -100,6 +100,27 @@ impl OutOfRange {
     }
 }
 
+/// serde's words for what it expected, in the model file's words: the library's type names mean nothing
+/// to the file's author. Longer names first, so that a name is not replaced inside a longer one.
+const EXPECTED_IN_FILE_WORDS: [(&str, &str); 9] = [
+    ("struct MacPhersonHardpoints", "an object of named hardpoints"),
+    ("struct DoubleWishboneHardpoints", "an object of named hardpoints"),
+    ("struct MacPherson", "an object with the template's hardpoints, mounts, spring and loaded_radius"),
+    ("struct DoubleWishbone", "an object with the template's hardpoints, mounts, spring and loaded_radius"),
+    ("struct SpringSpec", "{\"rate\": N/m, \"design_force\": N}"),
+    ("struct BushingRates", "{\"radial\": N/m, \"axial\": N/m, \"torsion\": N·m/rad, \"conical\": N·m/rad}"),
+    (
+        "struct VehicleParameters",
+        "an object with corner_load, wheelbase, cg_height, brake_front_fraction, drive_front_fraction and axle",
+    ),
+    ("struct SuspensionFile", "an object with name, suspension and, optionally, vehicle"),
+    ("f64", "a number"),
+];
+
+fn in_file_words(message: &str) -> String {
+    EXPECTED_IN_FILE_WORDS.iter().fold(message.to_string(), |m, (code, words)| m.replace(code, words))
+}
+
 /// A value as people write it: `1e308`, not three hundred digits.
 fn number(v: f64) -> String {
     if v != 0.0 && !(1e-3..1e6).contains(&v.abs()) {
@@ -233,6 +254,17 @@ impl SuspensionFile {
         // Syntax first, then the one thing serde cannot say in the file's words: how many templates.
         let value: serde_json::Value =
             serde_json::from_str(text).map_err(|e| invalid(e.line(), e.column(), plain(&e)))?;
+        if let Some(suspension) = value.get("suspension").filter(|s| !s.is_object()) {
+            let (line, column) = locate(text, &["suspension"]);
+            return Err(invalid(
+                line,
+                column,
+                format!(
+                    "suspension: give one template as an object, {{\"macpherson\": {{…}}}} or \
+                     {{\"double_wishbone\": {{…}}}}, got {suspension}"
+                ),
+            ));
+        }
         if let Some(serde_json::Value::Object(templates)) = value.get("suspension") {
             let found: Vec<&str> = templates.keys().map(String::as_str).collect();
             let (line, column) = locate(text, &["suspension"]);
@@ -246,6 +278,9 @@ impl SuspensionFile {
                     ));
                 }
                 [_] => {}
+                [] => {
+                    return Err(invalid(line, column, format!("suspension: give one template ({known}), found none")))
+                }
                 _ => {
                     return Err(invalid(
                         line,
@@ -256,7 +291,7 @@ impl SuspensionFile {
             }
         }
         serde_json::from_str(text).map_err(|e| {
-            let message = plain(&e);
+            let message = in_file_words(&plain(&e));
             // A point's own error cannot know its name: the key just before the error in the text is it.
             let message = match (message.starts_with(POINT_ERROR), key_before(text, e.line(), e.column())) {
                 (true, Some(key)) => format!("hardpoint '{key}': {message}"),

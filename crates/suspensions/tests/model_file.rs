@@ -219,3 +219,43 @@ fn bushing_rates_are_named_by_their_file_keys() {
     assert!(text.contains("conical rate must be positive"), "{text}");
     assert!(!text.contains("Kv") && !text.contains("Ky"), "{text}");
 }
+
+#[test]
+fn wrong_shapes_are_said_in_the_files_words() {
+    type Edit = fn(&mut serde_json::Value);
+    let cases: [(Edit, &str, &str); 6] = [
+        (
+            |v| v["suspension"]["macpherson"]["spring"]["rate"] = "30000".into(),
+            "rate",
+            "invalid type: string \"30000\", expected a number",
+        ),
+        (
+            |v| v["suspension"]["macpherson"]["spring"] = "30000".into(),
+            "spring",
+            "expected {\"rate\": N/m, \"design_force\": N}",
+        ),
+        (
+            |v| v["suspension"]["macpherson"]["lower_arm_mounts"] = serde_json::json!({"bushing": "stiff"}),
+            "lower_arm_mounts",
+            "expected {\"radial\": N/m",
+        ),
+        (
+            |v| v["suspension"]["macpherson"]["hardpoints"]["top_mount"] = "0,0,0".into(),
+            "top_mount",
+            "hardpoint 'top_mount': a point is 3 numbers in metres [x, y, z], got \"0,0,0\"",
+        ),
+        (|v| v["suspension"] = "macpherson".into(), "suspension", "suspension: give one template as an object"),
+        (
+            |v| v["suspension"] = serde_json::json!({}),
+            "suspension",
+            "suspension: give one template (macpherson or double_wishbone), found none",
+        ),
+    ];
+    for (edit, key, words) in cases {
+        let text = macpherson_edited(edit);
+        let (message, line, expected) = invalid(&text, key);
+        assert!(message.contains(words), "{message} lacks {words}");
+        assert!(!message.contains("struct") && !message.contains("f64"), "{message}");
+        assert!(line >= expected && line <= expected + 4, "{message}: line {line}, key on {expected}");
+    }
+}
