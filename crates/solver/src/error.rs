@@ -17,8 +17,7 @@ pub enum SolverError {
     /// A body can move in some direction that no joint, bushing or spring resists.
     #[error(
         "'{body}' is free to move ({motion}): no joint, bushing or spring holds it that way; check the hardpoints \
-         of its mounts (two pivots on one line through its ball joint, a tie rod through the steering axis) or \
-         add a mount"
+         of its mounts (mounts all on one line leave it free to spin about that line) or add a mount"
     )]
     Unrestrained {
         /// The body that moves most along the free direction.

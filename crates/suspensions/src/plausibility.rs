@@ -451,8 +451,9 @@ fn spring_motion_ratio(template: &Template, corner: &Corner) -> Option<f64> {
     ratio.is_finite().then_some(ratio)
 }
 
-/// Warnings of a parallel-travel sweep: toe or camber beyond ±10° inside the travel, or a wheel rate that
-/// is not positive (the corner does not push the wheel back down).
+/// Warnings of a parallel-travel sweep (the rows of [`crate::analysis::parallel_wheel_travel`]: other
+/// sweeps carry no wheel load): toe or camber beyond ±10° inside the travel, or a wheel rate that is not
+/// positive (the corner does not push the wheel back down).
 pub fn check_travel_rows(rows: &[TravelRow]) -> Vec<Warning> {
     let mut out = Vec::new();
     let worst = |f: &dyn Fn(&TravelRow) -> f64| {
