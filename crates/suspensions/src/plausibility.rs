@@ -144,8 +144,9 @@ fn quoted(list: &[String]) -> String {
     list.iter().map(|s| format!("'{s}'")).collect::<Vec<_>>().join(", ")
 }
 
-/// Checks a model without solving it: degrees of freedom, the condition of its stiffness at design, and
-/// the warnings of the geometry (see [`Warning::code`]). Errors only when the corner cannot be built.
+/// Checks a model without a sweep: degrees of freedom, the condition of its stiffness at design, and the
+/// warnings of the geometry (see [`Warning::code`]); the spring's motion ratio takes one equilibrium at
+/// design. Errors only when the corner cannot be built.
 pub fn check_model(file: &SuspensionFile) -> Result<ModelCheck, ModelError> {
     let template = &file.suspension;
     let points = template.hardpoints();
