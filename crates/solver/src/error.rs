@@ -27,10 +27,10 @@ pub enum SolverError {
     },
     /// Newton did not converge even after cutting the load step.
     #[error(
-        "no equilibrium found at load parameter {t}: after {iterations} iterations the force residual is \
-         {force_residual:.3e} N and the constraint residual {constraint_residual:.3e} m{}; take smaller steps or \
-         check the model for a mechanism",
-        last_converged.map_or(String::new(), |t| format!("; last converged load parameter {t}"))
+        "no equilibrium found at {t} (in the analysis's own unit: travel in m, force in N){}: after {iterations} \
+         iterations the forces are out of balance by {force_residual:.3e} N and the joints open by \
+         {constraint_residual:.3e} m; take more steps, or check the model for a part that is free to move",
+        last_converged.map_or(String::new(), |t| format!(", the last one found at {t}"))
     )]
     NoConvergence {
         /// Load parameter attempted.

@@ -83,3 +83,27 @@ fn an_analysis_on_the_wrong_rig_says_how_the_wheel_must_be_held() {
     assert!(message.contains("with the wheel-centre height driven, but it is held with the wheel free"), "{message}");
     assert_plain(&message);
 }
+
+#[test]
+fn every_solver_failure_reads_without_the_librarys_words() {
+    use elastokin_solver::kkt_factor::FactorError;
+    use elastokin_solver::SolverError;
+    let failures = [
+        SolverError::LimitPoint { reached: 0.0065 },
+        SolverError::NoConvergence {
+            t: 0.05,
+            last_converged: Some(0.04),
+            iterations: 30,
+            force_residual: 1.0,
+            constraint_residual: 1e-9,
+        },
+        SolverError::Factor(FactorError::Singular { kind: "body coordinate", index: 7 }),
+        SolverError::Factor(FactorError::NonFiniteSolution { index: 7 }),
+        SolverError::Factor(FactorError::NotFactorized),
+    ];
+    for failure in failures {
+        let message = failure.to_string();
+        assert_plain(&message);
+        assert!(!message.contains("load parameter") && !message.contains("factorize()"), "{message}");
+    }
+}
