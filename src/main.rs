@@ -172,6 +172,9 @@ fn check(model: &str) -> Result<(), String> {
     let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| format!("{model}: {e}"))?;
     let m = &corner.model;
     println!("{}", file.name);
+    // Before the solver: its refusal of a free part would hide the warnings that explain it.
+    let plausibility = elastokin::suspensions::check_model(&file).map_err(|e| format!("{model}: {e}"))?;
+    plausibility.report().iter().for_each(|line| println!("{line}"));
     println!("bodies: {}", m.bodies().iter().map(|b| b.name.as_str()).collect::<Vec<_>>().join(", "));
     println!("joints: {}, elements: {}", m.joints().len(), m.elements().len());
     println!("coordinates: {}, constraint rows: {} (with the wheel-travel driver)", m.dofs(), m.constraint_rows());

@@ -15,7 +15,10 @@ pub enum SolverError {
     #[error(transparent)]
     Factor(#[from] FactorError),
     /// A body can move in some direction that no joint, bushing or spring resists.
-    #[error("body '{body}' is not restrained in {motion}: add a joint, bushing or spring that holds it, or a driver")]
+    #[error(
+        "'{body}' is free to move ({motion}): no joint, bushing or spring holds it that way; check the hardpoints \
+         of its mounts (mounts all on one line leave it free to spin about that line) or add a mount"
+    )]
     Unrestrained {
         /// The body that moves most along the free direction.
         body: String,
@@ -24,10 +27,10 @@ pub enum SolverError {
     },
     /// Newton did not converge even after cutting the load step.
     #[error(
-        "no equilibrium found at load parameter {t}: after {iterations} iterations the force residual is \
-         {force_residual:.3e} N and the constraint residual {constraint_residual:.3e} m{}; take smaller steps or \
-         check the model for a mechanism",
-        last_converged.map_or(String::new(), |t| format!("; last converged load parameter {t}"))
+        "no equilibrium found at {t} (in the analysis's own unit: travel in m, force in N){}: after {iterations} \
+         iterations the forces are out of balance by {force_residual:.3e} N and the joints open by \
+         {constraint_residual:.3e} m; take more steps, or check the model for a part that is free to move",
+        last_converged.map_or(String::new(), |t| format!(", the last one found at {t}"))
     )]
     NoConvergence {
         /// Load parameter attempted.
@@ -44,9 +47,9 @@ pub enum SolverError {
     /// The path reached a limit point: the tangent turned singular along it — a load the structure cannot
     /// carry, or a driven motion the mechanism cannot reach.
     #[error(
-        "the path cannot go beyond load parameter {reached:.6}: the tangent turns singular there (a load the \
-         structure cannot carry, or a driven motion the mechanism cannot reach); reduce the load or travel, or \
-         follow a load path through the limit point with arc-length continuation (`StaticSolver::arc_length_sweep`)"
+        "the suspension cannot go beyond {reached:.6} (in the analysis's own unit: travel in m, force in N): there it \
+         locks or gives way (a load it cannot carry, or a travel its arms and tie rod cannot reach); narrow the \
+         range, or check the hardpoints for an arm or tie rod that reaches its end of travel"
     )]
     LimitPoint {
         /// Largest load parameter for which equilibrium was found.

@@ -348,23 +348,24 @@ pub enum FactorError {
     },
     /// The factorization met a zero or non-finite pivot it could not regularize.
     #[error(
-        "zero or non-finite pivot at {kind} index {index} (original numbering); enable dynamic \
-         regularization (pivot_delta > 0), or restrain that body coordinate / remove that \
-         constraint row"
+        "the equations are singular at {kind} {index}: a part is free to move where nothing holds it, or a \
+         joint repeats another; check the model's degrees of freedom and redundant joints, and add the \
+         missing mount or remove the repeated joint"
     )]
     Singular {
-        /// `"body dof"` or `"constraint row"`.
+        /// `"body coordinate"` or `"constraint row"`.
         kind: &'static str,
         /// Index within that block, original numbering.
         index: usize,
     },
     /// [`KktFactor::solve_in_place`] was called without a valid factorization.
-    #[error("solve_in_place called without a successful factorize() for the current values")]
+    #[error("a solve was asked for before the equations were factorized for the current values")]
     NotFactorized,
     /// The computed solution is not finite (the right-hand side was left unchanged).
     #[error(
-        "the solution is not finite at index {index} (original numbering, x then y); the system \
-         is numerically singular there — see FactorReport::suspect_* for the cause"
+        "the solution is not finite (unknown {index}): the equations are numerically singular — a part \
+         is held by next to nothing or a joint nearly repeats another; check the model's degrees of \
+         freedom and redundant joints"
     )]
     NonFiniteSolution {
         /// First non-finite index in `[x; y]`.
@@ -1069,7 +1070,7 @@ impl KktFactor {
             .min(nn - 1);
             let o = self.perm[p];
             return Err(if o < n {
-                FactorError::Singular { kind: "body dof", index: o }
+                FactorError::Singular { kind: "body coordinate", index: o }
             } else {
                 FactorError::Singular { kind: "constraint row", index: o - n }
             });

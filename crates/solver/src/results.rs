@@ -29,8 +29,9 @@ impl Diagnostics {
             .iter()
             .map(|r| {
                 format!(
-                    "joint '{}' row '{}' is redundant (it repeats other constraints): dropped from the solve; \
-                     its reaction is carried by the joints it repeats",
+                    "joint '{}' repeats what other joints already hold (its '{}' constraint): it carries no load \
+                     of its own, the joints it repeats carry it; remove it, or make it a bushing if it is meant \
+                     to share the load",
                     r.joint, r.label
                 )
             })

@@ -693,7 +693,10 @@ impl<'m> StaticSolver<'m> {
         if path.steps == 0 || !path.start.is_finite() || !path.end.is_finite() {
             return Err(SolverError::InvalidInput {
                 what: "load path",
-                why: format!("need finite ends and at least one step, got {path:?}"),
+                why: format!(
+                    "need finite ends and at least one step, got {} to {} in {} steps",
+                    path.start, path.end, path.steps
+                ),
             });
         }
         state.t = path.start;
@@ -848,7 +851,10 @@ impl<'m> StaticSolver<'m> {
         if path.steps == 0 || !(arc.is_finite() && arc > 0.0) {
             return Err(SolverError::InvalidInput {
                 what: "arc-length path",
-                why: format!("need at least one step and a positive arc length, got {path:?} and {arc}"),
+                why: format!(
+                    "need at least one step and a positive arc length, got {} steps and an arc length of {arc}",
+                    path.steps
+                ),
             });
         }
         let n = self.assembly.n;
@@ -996,7 +1002,8 @@ fn describe_free_motion(model: &Model, x: &[f64], suspects: &[usize]) -> (String
     let r = elastokin_core::Vec3::new(v[3], v[4], v[5]);
     let pose = model.bodies()[b].design_pose;
     let motion = if !(t.norm().is_finite() && r.norm().is_finite()) || (t.norm() == 0.0 && r.norm() == 0.0) {
-        format!("coordinate {} (Δx, Δy, Δz, Δπx, Δπy, Δπz)", suspects.first().map_or(0, |d| d % BODY_DOFS))
+        let coordinate = ["x", "y", "z", "rotation about x", "rotation about y", "rotation about z"];
+        coordinate[suspects.first().map_or(0, |d| d % BODY_DOFS)].to_string()
     } else if r.norm() > 1e-3 * t.norm() {
         // Any rotation (per metre of lever) beyond noise: a pure translation has none.
         // A rotation about an axis through the point p where the velocity is parallel to the axis.

@@ -60,13 +60,19 @@ fn require_rig(corner: &Corner, rigs: &[Rig]) -> Result<(), SolverError> {
     if rigs.contains(&corner.rig) {
         return Ok(());
     }
-    let accepted: Vec<String> = rigs.iter().map(|r| format!("Rig::{r:?}")).collect();
+    let held = |rig: &Rig| match rig {
+        Rig::WheelTravel => "the wheel-centre height driven",
+        Rig::Steering => "the rack driven and the wheel-centre height held",
+        Rig::HeightHeld => "the wheel-centre height held",
+        Rig::Free => "the wheel free on its spring",
+    };
+    let accepted: Vec<&str> = rigs.iter().map(held).collect();
     Err(SolverError::InvalidInput {
         what: "corner",
         why: format!(
-            "this analysis needs the corner built with {}, but it was built with Rig::{:?}",
+            "this analysis needs the corner on the rig with {}, but it is held with {}",
             accepted.join(" or "),
-            corner.rig
+            held(&corner.rig)
         ),
     })
 }

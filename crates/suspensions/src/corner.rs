@@ -192,7 +192,7 @@ impl Wheel {
         if !(loaded_radius.is_finite() && loaded_radius > 0.0) {
             return Err(ModelError::NotPositive {
                 item: "suspension".into(),
-                what: "loaded radius",
+                what: "loaded_radius (m)",
                 value: loaded_radius,
             });
         }

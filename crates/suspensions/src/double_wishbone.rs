@@ -13,26 +13,37 @@ use serde::{Deserialize, Serialize};
 #[serde(deny_unknown_fields)]
 pub struct DoubleWishboneHardpoints {
     /// Wheel centre; the spin axis is +y at design.
+    #[serde(deserialize_with = "crate::hardpoint::point")]
     pub wheel_centre: Vec3,
     /// Upper ball joint (upper arm – upright).
+    #[serde(deserialize_with = "crate::hardpoint::point")]
     pub upper_ball_joint: Vec3,
     /// Upper arm front pivot on the chassis.
+    #[serde(deserialize_with = "crate::hardpoint::point")]
     pub upper_arm_front: Vec3,
     /// Upper arm rear pivot on the chassis.
+    #[serde(deserialize_with = "crate::hardpoint::point")]
     pub upper_arm_rear: Vec3,
     /// Lower ball joint (lower arm – upright).
+    #[serde(deserialize_with = "crate::hardpoint::point")]
     pub lower_ball_joint: Vec3,
     /// Lower arm front pivot on the chassis.
+    #[serde(deserialize_with = "crate::hardpoint::point")]
     pub lower_arm_front: Vec3,
     /// Lower arm rear pivot on the chassis.
+    #[serde(deserialize_with = "crate::hardpoint::point")]
     pub lower_arm_rear: Vec3,
     /// Tie rod inner end (rack, fixed to the chassis when not steering).
+    #[serde(deserialize_with = "crate::hardpoint::point")]
     pub tie_rod_inner: Vec3,
     /// Tie rod outer end (upright).
+    #[serde(deserialize_with = "crate::hardpoint::point")]
     pub tie_rod_outer: Vec3,
     /// Spring seat on the chassis.
+    #[serde(deserialize_with = "crate::hardpoint::point")]
     pub spring_chassis: Vec3,
     /// Spring seat on the lower arm.
+    #[serde(deserialize_with = "crate::hardpoint::point")]
     pub spring_arm: Vec3,
 }
 

@@ -35,6 +35,7 @@ pub mod hardpoint;
 pub mod kc;
 pub mod macpherson;
 pub mod model_file;
+pub mod plausibility;
 
 pub use axle::{Axle, AxleRig, AxleRow, RollCentre};
 pub use connection::{BushingRates, Connection, SpringSpec};
@@ -43,3 +44,4 @@ pub use double_wishbone::{DoubleWishbone, DoubleWishboneHardpoints};
 pub use hardpoint::Side;
 pub use macpherson::{MacPherson, MacPhersonHardpoints};
 pub use model_file::{FileError, SuspensionFile, Template};
+pub use plausibility::{check_model, check_travel_rows, ModelCheck, Warning};

@@ -13,20 +13,28 @@ use serde::{Deserialize, Serialize};
 #[serde(deny_unknown_fields)]
 pub struct MacPhersonHardpoints {
     /// Wheel centre; the spin axis is +y at design.
+    #[serde(deserialize_with = "crate::hardpoint::point")]
     pub wheel_centre: Vec3,
     /// Lower ball joint (arm – upright).
+    #[serde(deserialize_with = "crate::hardpoint::point")]
     pub lower_ball_joint: Vec3,
     /// Lower arm front pivot on the chassis.
+    #[serde(deserialize_with = "crate::hardpoint::point")]
     pub lower_arm_front: Vec3,
     /// Lower arm rear pivot on the chassis.
+    #[serde(deserialize_with = "crate::hardpoint::point")]
     pub lower_arm_rear: Vec3,
     /// Tie rod outer end (upright).
+    #[serde(deserialize_with = "crate::hardpoint::point")]
     pub tie_rod_outer: Vec3,
     /// Tie rod inner end (rack).
+    #[serde(deserialize_with = "crate::hardpoint::point")]
     pub tie_rod_inner: Vec3,
     /// Strut lower point and spring seat on the upright; the strut axis runs from here to the top mount.
+    #[serde(deserialize_with = "crate::hardpoint::point")]
     pub strut_lower: Vec3,
     /// Strut top mount on the chassis.
+    #[serde(deserialize_with = "crate::hardpoint::point")]
     pub top_mount: Vec3,
 }
 

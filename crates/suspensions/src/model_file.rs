@@ -10,9 +10,13 @@
 //!       "spring": { "rate": 30000, "design_force": 4000 } } } }
 //! ```
 //!
-//! Unknown keys and missing hardpoints are errors that name the key and the line and column in the file.
+//! Unknown keys, missing hardpoints, points that are not three numbers, and values no suspension has (a
+//! coordinate beyond ±1000 m, a rate outside (0, 10¹²], a wheelbase outside 0.5–20 m, …) are errors that
+//! name the key, its line and column in the file and, for a value, the accepted range. A UTF-8 byte-order
+//! mark at the start is skipped.
 
 use crate::analysis::VehicleParameters;
+use crate::connection::Connection;
 use crate::corner::{Corner, CornerParts, CornerTemplate, Rig};
 use crate::double_wishbone::DoubleWishbone;
 use crate::hardpoint::Side;
@@ -63,6 +67,129 @@ pub struct SuspensionFile {
     pub vehicle: Option<VehicleParameters>,
 }
 
+/// The templates a model file may name in `suspension`.
+const TEMPLATES: [&str; 2] = ["macpherson", "double_wishbone"];
+
+/// Largest hardpoint coordinate accepted (m): a car fits in ±1000 m a thousand times over, so anything
+/// beyond is a unit or typing mistake.
+pub const MAX_COORDINATE: f64 = 1e3;
+/// Largest rate accepted (N/m or N·m/rad): stiffer than steel parts of a suspension by far.
+pub const MAX_RATE: f64 = 1e12;
+/// Largest spring design force accepted (N).
+pub const MAX_FORCE: f64 = 1e6;
+
+/// How the point reader's error starts (see [`crate::hardpoint`]); the hardpoint's name is put before it.
+const POINT_ERROR: &str = "a point is 3 numbers";
+
+/// A value outside what any suspension has, with the keys leading to it in the file.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[error("{message}")]
+pub struct OutOfRange {
+    /// The keys from the template (or the file's top level, for `vehicle`) down to the value.
+    pub keys: Vec<String>,
+    /// What is wrong, the accepted range and why.
+    pub message: String,
+}
+
+impl OutOfRange {
+    /// As a file error at the value's key in `text`.
+    fn at(self, text: &str, origin: &str) -> FileError {
+        let keys: Vec<&str> = self.keys.iter().map(String::as_str).collect();
+        let (line, column) = locate(text, &keys);
+        FileError::Invalid { origin: origin.to_string(), line, column, message: self.message }
+    }
+}
+
+/// serde's words for what it expected, in the model file's words: the library's type names mean nothing
+/// to the file's author. Longer names first, so that a name is not replaced inside a longer one.
+const EXPECTED_IN_FILE_WORDS: [(&str, &str); 9] = [
+    ("struct MacPhersonHardpoints", "an object of named hardpoints"),
+    ("struct DoubleWishboneHardpoints", "an object of named hardpoints"),
+    ("struct MacPherson", "an object with the template's hardpoints, mounts, spring and loaded_radius"),
+    ("struct DoubleWishbone", "an object with the template's hardpoints, mounts, spring and loaded_radius"),
+    ("struct SpringSpec", "{\"rate\": N/m, \"design_force\": N}"),
+    ("struct BushingRates", "{\"radial\": N/m, \"axial\": N/m, \"torsion\": N·m/rad, \"conical\": N·m/rad}"),
+    (
+        "struct VehicleParameters",
+        "an object with corner_load, wheelbase, cg_height, brake_front_fraction, drive_front_fraction and axle",
+    ),
+    ("struct SuspensionFile", "an object with name, suspension and, optionally, vehicle"),
+    ("f64", "a number"),
+];
+
+fn in_file_words(message: &str) -> String {
+    EXPECTED_IN_FILE_WORDS.iter().fold(message.to_string(), |m, (code, words)| m.replace(code, words))
+}
+
+/// A value as people write it: `1e308`, not three hundred digits.
+fn number(v: f64) -> String {
+    if v != 0.0 && !(1e-3..1e6).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
+/// Text editors on some systems save UTF-8 with a byte-order mark; JSON has no use for it.
+fn without_byte_order_mark(text: &str) -> &str {
+    text.strip_prefix('\u{feff}').unwrap_or(text)
+}
+
+/// Every object key in `text` with its byte offset, in order.
+fn keys(text: &str) -> Vec<(usize, String)> {
+    let bytes = text.as_bytes();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] != b'"' {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        i += 1;
+        while i < bytes.len() && bytes[i] != b'"' {
+            i += if bytes[i] == b'\\' { 2 } else { 1 };
+        }
+        let end = i.min(bytes.len());
+        i += 1;
+        let mut j = i;
+        while j < bytes.len() && bytes[j].is_ascii_whitespace() {
+            j += 1;
+        }
+        if j < bytes.len() && bytes[j] == b':' {
+            out.push((start, text[start + 1..end].to_string()));
+        }
+    }
+    out
+}
+
+/// Line and column (from 1) of the key path `path` in `text`: each key the first after the previous one;
+/// the last key found when the rest are absent.
+fn locate(text: &str, path: &[&str]) -> (usize, usize) {
+    let all = keys(text);
+    let mut at = 0;
+    let mut from = 0;
+    for key in path {
+        if let Some(k) = all[from..].iter().position(|(_, k)| k == key) {
+            at = all[from + k].0;
+            from += k + 1;
+        }
+    }
+    let before = &text[..at];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, column)
+}
+
+/// The last key before line `line`, column `column` (from 1) of `text`.
+fn key_before(text: &str, line: usize, column: usize) -> Option<String> {
+    let line_start: usize = text.split_inclusive('\n').take(line.saturating_sub(1)).map(str::len).sum();
+    let rest = &text[line_start..];
+    let within: usize = rest.chars().take(column).map(char::len_utf8).sum();
+    let offset = line_start + within;
+    keys(text).into_iter().take_while(|(at, _)| *at < offset).last().map(|(_, k)| k)
+}
+
 /// A model file that cannot be read.
 #[derive(Debug, Error)]
 #[non_exhaustive]
@@ -98,27 +225,211 @@ pub enum FileError {
 }
 
 impl SuspensionFile {
-    /// Parses JSON text; `origin` names the source in errors.
+    /// Parses JSON text; `origin` names the source in errors. Refuses values no suspension has (see
+    /// [`SuspensionFile::check_ranges`]) with the key, its line and column, and the accepted range.
     pub fn from_json(text: &str, origin: &str) -> Result<Self, FileError> {
-        let file: SuspensionFile = serde_json::from_str(text).map_err(|e| FileError::Invalid {
-            origin: origin.to_string(),
-            line: e.line(),
-            column: e.column(),
-            message: e.to_string().split(" at line ").next().unwrap_or_default().to_string(),
-        })?;
-        if let Some(vehicle) = &file.vehicle {
-            vehicle.validate().map_err(|e| FileError::Invalid {
-                origin: origin.to_string(),
-                line: text.lines().position(|l| l.contains("\"vehicle\"")).map_or(1, |k| k + 1),
-                column: 1,
-                message: format!("vehicle: {e}"),
-            })?;
-        }
-        // Building validates the geometry (coincident points, non-positive rates, …) with named errors.
-        file.suspension
-            .build(Side::Left, Rig::Free)
-            .map_err(|source| FileError::Model { origin: origin.to_string(), source })?;
+        let text = without_byte_order_mark(text);
+        let file = Self::parse(text, origin)?;
+        file.check_ranges().map_err(|e| e.at(text, origin))?;
+        file.build_check(origin)?;
         Ok(file)
+    }
+
+    /// [`SuspensionFile::from_json`] without the range checks: for studies that scale a model beyond
+    /// plausible values on purpose (bushing rates ×10⁶, the same corner in millimetres).
+    pub fn from_json_any_magnitude(text: &str, origin: &str) -> Result<Self, FileError> {
+        let file = Self::parse(without_byte_order_mark(text), origin)?;
+        file.build_check(origin)?;
+        Ok(file)
+    }
+
+    fn parse(text: &str, origin: &str) -> Result<Self, FileError> {
+        let invalid = |line: usize, column: usize, message: String| FileError::Invalid {
+            origin: origin.to_string(),
+            line,
+            column,
+            message,
+        };
+        let plain = |e: &serde_json::Error| e.to_string().split(" at line ").next().unwrap_or_default().to_string();
+        // Syntax first, then the one thing serde cannot say in the file's words: how many templates.
+        let value: serde_json::Value =
+            serde_json::from_str(text).map_err(|e| invalid(e.line(), e.column(), plain(&e)))?;
+        if let Some(suspension) = value.get("suspension").filter(|s| !s.is_object()) {
+            let (line, column) = locate(text, &["suspension"]);
+            return Err(invalid(
+                line,
+                column,
+                format!(
+                    "suspension: give one template as an object, {{\"macpherson\": {{…}}}} or \
+                     {{\"double_wishbone\": {{…}}}}, got {suspension}"
+                ),
+            ));
+        }
+        if let Some(serde_json::Value::Object(templates)) = value.get("suspension") {
+            let found: Vec<&str> = templates.keys().map(String::as_str).collect();
+            let (line, column) = locate(text, &["suspension"]);
+            let known = "macpherson or double_wishbone";
+            match found.as_slice() {
+                [one] if !TEMPLATES.contains(one) => {
+                    return Err(invalid(
+                        line,
+                        column,
+                        format!("suspension: unknown template '{one}': give one of {known}"),
+                    ));
+                }
+                [_] => {}
+                [] => {
+                    return Err(invalid(line, column, format!("suspension: give one template ({known}), found none")))
+                }
+                _ => {
+                    return Err(invalid(
+                        line,
+                        column,
+                        format!("suspension: give one template ({known}), found {}: {}", found.len(), found.join(", ")),
+                    ));
+                }
+            }
+        }
+        serde_json::from_str(text).map_err(|e| {
+            let message = in_file_words(&plain(&e));
+            // A point's own error cannot know its name: the key just before the error in the text is it.
+            let message = match (message.starts_with(POINT_ERROR), key_before(text, e.line(), e.column())) {
+                (true, Some(key)) => format!("hardpoint '{key}': {message}"),
+                _ => message,
+            };
+            invalid(e.line(), e.column(), message)
+        })
+    }
+
+    /// Building validates the geometry (coincident points, …) with named errors.
+    fn build_check(&self, origin: &str) -> Result<(), FileError> {
+        self.suspension
+            .build(Side::Left, Rig::Free)
+            .map(drop)
+            .map_err(|source| FileError::Model { origin: origin.to_string(), source })
+    }
+
+    /// Refuses values no suspension has: hardpoint coordinates beyond ±1000 m, rates outside
+    /// (0, 10¹²], a loaded radius outside 0.05–2 m, a design force beyond ±10⁶ N, and vehicle
+    /// parameters outside the ranges of road vehicles.
+    pub fn check_ranges(&self) -> Result<(), OutOfRange> {
+        let points = self.suspension.hardpoints();
+        for (name, p) in &points {
+            for (axis, c) in ["x", "y", "z"].into_iter().zip(p.iter()) {
+                if c.is_nan() || c.abs() > MAX_COORDINATE {
+                    let hint = if crate::plausibility::looks_like_millimetres(&points) {
+                        "; the hardpoints look like millimetres: divide every coordinate by 1000"
+                    } else {
+                        ""
+                    };
+                    return Err(OutOfRange {
+                        keys: vec!["hardpoints".into(), name.clone()],
+                        message: format!(
+                            "hardpoint '{name}': {axis} = {} m is beyond ±{MAX_COORDINATE} m; hardpoints are in \
+                             metres from the car's reference point (ISO 8855: x forward, y left, z up){hint}",
+                            number(*c)
+                        ),
+                    });
+                }
+            }
+        }
+        let (spring, loaded_radius, connections) = match &self.suspension {
+            Template::DoubleWishbone(t) => (
+                t.spring,
+                t.loaded_radius,
+                vec![
+                    ("upper_arm_mounts", t.upper_arm_mounts),
+                    ("lower_arm_mounts", t.lower_arm_mounts),
+                    ("tie_rod", t.tie_rod),
+                ],
+            ),
+            Template::MacPherson(t) => (
+                t.spring,
+                t.loaded_radius,
+                vec![("lower_arm_mounts", t.lower_arm_mounts), ("top_mount", t.top_mount), ("tie_rod", t.tie_rod)],
+            ),
+        };
+        let rate = |keys: &[&str], unit: &str, value: f64, typical: &str| {
+            if value > 0.0 && value <= MAX_RATE {
+                return Ok(());
+            }
+            Err(OutOfRange {
+                keys: keys.iter().map(|k| k.to_string()).collect(),
+                message: format!(
+                    "{}: {} {unit} is outside the accepted range (0, 1e12] {unit} ({typical})",
+                    keys.join("."),
+                    number(value)
+                ),
+            })
+        };
+        rate(&["spring", "rate"], "N/m", spring.rate, "a car's coil spring is 1e4–3e5 N/m")?;
+        if spring.design_force.is_nan() || spring.design_force.abs() > MAX_FORCE {
+            return Err(OutOfRange {
+                keys: vec!["spring".into(), "design_force".into()],
+                message: format!(
+                    "spring.design_force: {} N is beyond ±{MAX_FORCE:e} N (a car's spring carries 2e3–2e4 N)",
+                    number(spring.design_force)
+                ),
+            });
+        }
+        if !(0.05..=2.0).contains(&loaded_radius) {
+            return Err(OutOfRange {
+                keys: vec!["loaded_radius".into()],
+                message: format!(
+                    "loaded_radius: {} m is outside 0.05–2 m (a car's tyre is 0.25–0.40 m, in metres)",
+                    number(loaded_radius)
+                ),
+            });
+        }
+        for (key, connection) in connections {
+            if let Connection::Bushing(r) = connection {
+                let typical_t = "a suspension bushing is 1e5–1e8 N/m";
+                let typical_r = "a suspension bushing is 10–1e5 N·m/rad";
+                rate(&[key, "bushing", "radial"], "N/m", r.radial, typical_t)?;
+                rate(&[key, "bushing", "axial"], "N/m", r.axial, typical_t)?;
+                rate(&[key, "bushing", "torsion"], "N·m/rad", r.torsion, typical_r)?;
+                rate(&[key, "bushing", "conical"], "N·m/rad", r.conical, typical_r)?;
+            }
+        }
+        if let Some(v) = &self.vehicle {
+            let fields = [
+                ("wheelbase", v.wheelbase, 0.5, 20.0, "m", "from a kart's to a long bus's"),
+                ("cg_height", v.cg_height, 0.05, 5.0, "m", "the centre of gravity's height above the ground"),
+                ("corner_load", v.corner_load, 1.0, 1e6, "N", "the corner's share of the weight, in newtons"),
+                (
+                    "brake_front_fraction",
+                    v.brake_front_fraction,
+                    0.0,
+                    1.0,
+                    "",
+                    "the front axle's share of the braking force",
+                ),
+                (
+                    "drive_front_fraction",
+                    v.drive_front_fraction,
+                    0.0,
+                    1.0,
+                    "",
+                    "the front axle's share of the drive force",
+                ),
+            ];
+            for (key, value, lo, hi, unit, why) in fields {
+                if !(lo..=hi).contains(&value) {
+                    return Err(OutOfRange {
+                        keys: vec!["vehicle".into(), key.into()],
+                        message: format!(
+                            "vehicle.{key}: {} {unit} is outside {}–{} {unit} ({why})",
+                            number(value),
+                            number(lo),
+                            number(hi)
+                        )
+                        .replace("  ", " ")
+                        .replace(" )", ")"),
+                    });
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Reads a model file.

@@ -225,10 +225,10 @@ fn load_sweeps_refuse_other_rigs() {
         Mode::Paper,
     )
     .unwrap_err();
-    refused(e, "Rig::HeightHeld or Rig::Free");
+    refused(e, "the wheel-centre height held or the wheel free on its spring");
     refused(
         vertical_force_sweep(mp.build(Side::Left, Rig::Steering).unwrap(), 0.0, 1.0, 1, Mode::Paper).unwrap_err(),
-        "Rig::Free",
+        "the wheel free on its spring",
     );
     // A corner load that is no number.
     let e = wheel_load_sweep(
@@ -421,7 +421,9 @@ fn loads_the_corner_cannot_carry_are_refused() {
     assert!(matches!(e, SolverError::InvalidInput { what: "corner load", .. }), "{e:?}");
     // Only a wheel free on its spring comes to rest under a load.
     match static_load_case(dw.build(Side::Left, Rig::HeightHeld).unwrap(), 2000.0).unwrap_err() {
-        SolverError::InvalidInput { what: "corner", why } => assert!(why.contains("Rig::Free"), "{why}"),
+        SolverError::InvalidInput { what: "corner", why } => {
+            assert!(why.contains("the wheel free on its spring"), "{why}")
+        }
         other => panic!("{other:?}"),
     }
 }
@@ -583,7 +585,9 @@ fn vehicle_parameters_are_checked_by_field() {
     let corner = bushed_macpherson().build(Side::Left, Rig::WheelTravel).unwrap();
     // Only a driven wheel travel has the path tangent the anti-pitch geometry reads.
     match anti_pitch(&bushed_macpherson().build(Side::Left, Rig::Free).unwrap(), &good).unwrap_err() {
-        SolverError::InvalidInput { what: "corner", why } => assert!(why.contains("Rig::WheelTravel"), "{why}"),
+        SolverError::InvalidInput { what: "corner", why } => {
+            assert!(why.contains("the wheel-centre height driven"), "{why}")
+        }
         other => panic!("{other:?}"),
     }
     for (field, vehicle) in cases {

@@ -85,3 +85,177 @@ fn a_bushed_tie_rod_round_trips_and_builds_a_rod() {
         plain.suspension.build(elastokin_suspensions::Side::Left, elastokin_suspensions::Rig::WheelTravel).unwrap();
     assert!(corner.model.joint_id("tie rod").is_some() && corner.model.body_id("tie rod").is_none());
 }
+
+/// The shipped MacPherson as a JSON value, edited by `edit`, as text.
+fn macpherson_edited(edit: impl FnOnce(&mut serde_json::Value)) -> String {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/macpherson.json");
+    let mut v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    edit(&mut v);
+    serde_json::to_string_pretty(&v).unwrap()
+}
+
+/// The error's message, its line and the line of `key` in `text`.
+fn invalid(text: &str, key: &str) -> (String, usize, usize) {
+    let expected = text.lines().position(|l| l.contains(&format!("\"{key}\""))).map_or(0, |k| k + 1);
+    match SuspensionFile::from_json(text, "m.json").unwrap_err() {
+        FileError::Invalid { message, line, .. } => (message, line, expected),
+        other => panic!("not a file error with a position: {other}"),
+    }
+}
+
+#[test]
+fn a_point_of_four_numbers_names_the_hardpoint_and_the_count() {
+    let text = macpherson_edited(|v| {
+        v["suspension"]["macpherson"]["hardpoints"]["lower_ball_joint"] = serde_json::json!([0.0, 0.9, -0.17, 1.0])
+    });
+    let (message, line, expected) = invalid(&text, "lower_ball_joint");
+    assert_eq!(message, "hardpoint 'lower_ball_joint': a point is 3 numbers in metres [x, y, z], got 4");
+    // The array spans several lines when pretty-printed: the error sits at its end, after the key.
+    assert!(line >= expected && line <= expected + 6, "{line} vs {expected}");
+}
+
+#[test]
+fn a_byte_order_mark_is_accepted() {
+    let text = format!("\u{feff}{}", first_example_text());
+    let with = SuspensionFile::from_json(&text, "bom.json").unwrap();
+    assert_eq!(with, SuspensionFile::from_json(&first_example_text(), "plain").unwrap());
+}
+
+#[test]
+fn two_templates_or_an_unknown_one_are_named() {
+    let text = macpherson_edited(|v| {
+        let dw = serde_json::json!({ "hardpoints": {} });
+        v["suspension"]["double_wishbone"] = dw;
+    });
+    let (message, line, expected) = invalid(&text, "suspension");
+    assert_eq!(
+        message,
+        "suspension: give one template (macpherson or double_wishbone), found 2: double_wishbone, macpherson"
+    );
+    assert_eq!(line, expected);
+    let text = macpherson_edited(|v| {
+        let t = v["suspension"]["macpherson"].take();
+        v["suspension"] = serde_json::json!({ "trailing_arm": t });
+    });
+    let (message, _, _) = invalid(&text, "suspension");
+    assert_eq!(message, "suspension: unknown template 'trailing_arm': give one of macpherson or double_wishbone");
+}
+
+#[test]
+fn absurd_magnitudes_are_refused_with_the_key_and_the_range() {
+    // (edit, key whose line the error points at, words the message must contain)
+    type Edit = fn(&mut serde_json::Value);
+    let cases: [(Edit, &str, &[&str]); 9] = [
+        (
+            |v| v["suspension"]["macpherson"]["hardpoints"]["tie_rod_inner"][2] = 1e293.into(),
+            "tie_rod_inner",
+            &["hardpoint 'tie_rod_inner'", "z = ", "±1000 m"],
+        ),
+        (
+            |v| v["suspension"]["macpherson"]["hardpoints"]["tie_rod_inner"][1] = 1e6.into(),
+            "tie_rod_inner",
+            &["hardpoint 'tie_rod_inner'", "y = 1e6 m"],
+        ),
+        (
+            |v| v["suspension"]["macpherson"]["spring"]["rate"] = 1e308.into(),
+            "rate",
+            &["spring.rate: 1e308 N/m", "(0, 1e12] N/m"],
+        ),
+        (|v| v["suspension"]["macpherson"]["spring"]["rate"] = 0.0.into(), "rate", &["spring.rate: 0 N/m"]),
+        (
+            |v| v["suspension"]["macpherson"]["top_mount"]["bushing"]["torsion"] = (-1.0).into(),
+            "torsion",
+            &["top_mount.bushing.torsion: -1 N·m/rad"],
+        ),
+        (
+            |v| v["suspension"]["macpherson"]["loaded_radius"] = 300.0.into(),
+            "loaded_radius",
+            &["loaded_radius: 300 m", "0.05–2 m"],
+        ),
+        (|v| v["vehicle"]["wheelbase"] = 1e308.into(), "wheelbase", &["vehicle.wheelbase: 1e308 m", "0.5–20 m"]),
+        (|v| v["vehicle"]["corner_load"] = 0.5.into(), "corner_load", &["vehicle.corner_load: 0.5 N", "1–1e6 N"]),
+        (
+            |v| v["vehicle"]["brake_front_fraction"] = 1.5.into(),
+            "brake_front_fraction",
+            &["vehicle.brake_front_fraction: 1.5 is outside 0–1 (the front axle's share"],
+        ),
+    ];
+    for (edit, key, words) in cases {
+        let text = macpherson_edited(edit);
+        let (message, line, expected) = invalid(&text, key);
+        for w in words {
+            assert!(message.contains(w), "{message} lacks {w}");
+        }
+        assert_eq!(line, expected, "{message}");
+    }
+}
+
+#[test]
+fn a_model_in_millimetres_is_refused_with_the_hint() {
+    let text = macpherson_edited(|v| {
+        for (_, p) in v["suspension"]["macpherson"]["hardpoints"].as_object_mut().unwrap() {
+            for c in p.as_array_mut().unwrap() {
+                *c = (c.as_f64().unwrap() * 1000.0).into();
+            }
+        }
+    });
+    let (message, _, _) = invalid(&text, "wheel_centre");
+    assert!(message.contains("look like millimetres: divide every coordinate by 1000"), "{message}");
+    // Studies that scale a model on purpose can still read it.
+    assert!(SuspensionFile::from_json_any_magnitude(&text, "mm.json").is_ok());
+}
+
+#[test]
+fn bushing_rates_are_named_by_their_file_keys() {
+    // Built from code, without the file's range checks: the corner's own check names the key.
+    let mut file = SuspensionFile::from_json(&first_example_text(), "plain").unwrap();
+    let elastokin_suspensions::Template::DoubleWishbone(ref mut dw) = file.suspension else {
+        panic!("the first example is the double wishbone")
+    };
+    let elastokin_suspensions::Connection::Bushing(ref mut rates) = dw.lower_arm_mounts else { panic!("bushed") };
+    rates.conical = 0.0;
+    let err = file.suspension.build(elastokin_suspensions::Side::Left, elastokin_suspensions::Rig::Free).unwrap_err();
+    let text = err.to_string();
+    assert!(text.contains("conical rate must be positive"), "{text}");
+    assert!(!text.contains("Kv") && !text.contains("Ky"), "{text}");
+}
+
+#[test]
+fn wrong_shapes_are_said_in_the_files_words() {
+    type Edit = fn(&mut serde_json::Value);
+    let cases: [(Edit, &str, &str); 6] = [
+        (
+            |v| v["suspension"]["macpherson"]["spring"]["rate"] = "30000".into(),
+            "rate",
+            "invalid type: string \"30000\", expected a number",
+        ),
+        (
+            |v| v["suspension"]["macpherson"]["spring"] = "30000".into(),
+            "spring",
+            "expected {\"rate\": N/m, \"design_force\": N}",
+        ),
+        (
+            |v| v["suspension"]["macpherson"]["lower_arm_mounts"] = serde_json::json!({"bushing": "stiff"}),
+            "lower_arm_mounts",
+            "expected {\"radial\": N/m",
+        ),
+        (
+            |v| v["suspension"]["macpherson"]["hardpoints"]["top_mount"] = "0,0,0".into(),
+            "top_mount",
+            "hardpoint 'top_mount': a point is 3 numbers in metres [x, y, z], got \"0,0,0\"",
+        ),
+        (|v| v["suspension"] = "macpherson".into(), "suspension", "suspension: give one template as an object"),
+        (
+            |v| v["suspension"] = serde_json::json!({}),
+            "suspension",
+            "suspension: give one template (macpherson or double_wishbone), found none",
+        ),
+    ];
+    for (edit, key, words) in cases {
+        let text = macpherson_edited(edit);
+        let (message, line, expected) = invalid(&text, key);
+        assert!(message.contains(words), "{message} lacks {words}");
+        assert!(!message.contains("struct") && !message.contains("f64"), "{message}");
+        assert!(line >= expected && line <= expected + 4, "{message}: line {line}, key on {expected}");
+    }
+}

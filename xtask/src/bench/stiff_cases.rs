@@ -88,7 +88,7 @@ fn template(doc: &mut Value) -> Option<&mut Value> {
 }
 
 fn parse(doc: &Value, what: &str) -> Result<SuspensionFile, String> {
-    SuspensionFile::from_json(&doc.to_string(), what).map_err(|e| e.to_string())
+    SuspensionFile::from_json_any_magnitude(&doc.to_string(), what).map_err(|e| e.to_string())
 }
 
 fn build(file: &SuspensionFile) -> Result<Corner, String> {

@@ -1,0 +1,508 @@
+//! Plausibility of a model before it is solved: how many ways the corner can move, how well conditioned
+//! its stiffness is at design, and named warnings for geometry that parses but cannot be what the author
+//! meant (millimetres for metres, a right corner given for the left, a tie rod with no lever to steer, an
+//! arm whose pivot axis runs through its own ball joint, …).
+//!
+//! Every warning names the hardpoints involved and says what to change, in the model file's words.
+
+use crate::analysis::TravelRow;
+use crate::connection::Connection;
+use crate::corner::{Corner, Rig};
+use crate::hardpoint::Side;
+use crate::model_file::{SuspensionFile, Template};
+use elastokin_core::{Model, ModelError, Vec3, BODY_DOFS};
+use elastokin_solver::assembly::{Assembly, Tangent};
+use nalgebra::{DMatrix, SymmetricEigen};
+use serde::Serialize;
+
+/// Something in a model that is probably not what its author meant.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Warning {
+    /// Short stable name of the finding: `millimetres`, `wrong-side`, `far-hardpoint`,
+    /// `tie-rod-on-steering-axis`, `pivot-through-ball-joint`, `near-singular`, `motion-ratio`, `toe-range`,
+    /// `camber-range`, `wheel-rate`.
+    pub code: &'static str,
+    /// The model file's hardpoint names involved (empty when the finding is not about hardpoints).
+    pub hardpoints: Vec<String>,
+    /// What is wrong and what to change.
+    pub message: String,
+}
+
+/// What [`check_model`] found.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ModelCheck {
+    /// Ways the corner can move with the wheel free, counting only its joints (bushings and springs hold
+    /// motions but do not remove them): body coordinates − independent joint rows. An all-ideal corner has
+    /// one, the wheel travel; each bushed arm adds the motions its bushings hold elastically.
+    pub degrees_of_freedom: usize,
+    /// The same with the rig's wheel-travel driver holding the wheel-centre height: one fewer when the
+    /// driver adds a new restraint.
+    pub degrees_of_freedom_on_rig: usize,
+    /// Joint rows that repeat others (each makes one joint row carry no load of its own).
+    pub redundant_rows: usize,
+    /// Stiffness of the stiffest body coordinate over that of the softest way the corner can move at design
+    /// with the wheel-centre height held (the elastic stiffness reduced to the motions the joints allow;
+    /// rotations counted at 1 m of lever). `None` when the joints leave no motion (an all-ideal corner on
+    /// the rig).
+    pub condition_estimate: Option<f64>,
+    /// Findings, most fundamental first.
+    pub warnings: Vec<Warning>,
+}
+
+impl ModelCheck {
+    /// The findings as lines for people: degrees of freedom, condition, then `warning [code]: message`.
+    pub fn report(&self) -> Vec<String> {
+        let mut out = vec![format!(
+            "degrees of freedom: {} with the wheel free (counting joints only: bushings and springs hold motions \
+             without removing them), {} with the rig's wheel-travel driver",
+            self.degrees_of_freedom, self.degrees_of_freedom_on_rig
+        )];
+        out.push(match self.condition_estimate {
+            Some(c) => format!(
+                "condition at design: {c:.1e} (stiffest mount over the softest motion, wheel-centre height held; \
+                 above {NEAR_SINGULAR:.0e} the corner is near-singular)"
+            ),
+            None => "condition at design: the joints leave no motion with the wheel-centre height held".into(),
+        });
+        out.extend(self.warnings.iter().map(|w| format!("warning [{}]: {}", w.code, w.message)));
+        out
+    }
+}
+
+/// Hardpoints farther than this from the wheel centre are named (m): a corner fits in a 2 m cube.
+pub const FAR_FROM_WHEEL_CENTRE: f64 = 2.0;
+/// The tie rod's lever about the steering axis below which it cannot steer the wheel (m). A passenger
+/// car's steering arm is 0.10–0.20 m.
+pub const MIN_STEERING_LEVER: f64 = 0.02;
+/// A ball joint closer than this to its arm's pivot axis sits on it (m).
+pub const MIN_ARM_LENGTH: f64 = 0.01;
+/// Condition estimates above this mean a motion held by next to nothing at design (the shipped examples
+/// measure 79 and 300).
+pub const NEAR_SINGULAR: f64 = 1e6;
+/// Spring motion ratios below this mean the spring barely changes length with wheel travel.
+pub const MIN_MOTION_RATIO: f64 = 0.1;
+/// Toe and camber beyond this inside the requested travel are not a suspension working as meant (°).
+pub const MAX_WHEEL_ANGLE_DEG: f64 = 10.0;
+
+impl Template {
+    /// Every hardpoint with its name in the model file, sorted by name.
+    pub fn hardpoints(&self) -> Vec<(String, Vec3)> {
+        let value = match self {
+            Template::DoubleWishbone(t) => serde_json::to_value(t.hardpoints),
+            Template::MacPherson(t) => serde_json::to_value(t.hardpoints),
+        }
+        .expect("hardpoints are plain numbers");
+        let serde_json::Value::Object(map) = value else { unreachable!("hardpoints serialise as an object") };
+        map.into_iter()
+            .map(|(name, v)| {
+                let c: Vec<f64> = serde_json::from_value(v).expect("a hardpoint serialises as three numbers");
+                (name, Vec3::new(c[0], c[1], c[2]))
+            })
+            .collect()
+    }
+}
+
+/// Where the template's parts are, by hardpoint name.
+struct Layout {
+    /// Lower and upper point of the steering axis.
+    steering_axis: [&'static str; 2],
+    /// Each arm: its name, front pivot, rear pivot, ball joint, and how it meets the chassis.
+    arms: Vec<(&'static str, [&'static str; 3], Connection)>,
+}
+
+impl Layout {
+    fn of(template: &Template) -> Layout {
+        match template {
+            Template::DoubleWishbone(t) => Layout {
+                steering_axis: ["lower_ball_joint", "upper_ball_joint"],
+                arms: vec![
+                    ("upper arm", ["upper_arm_front", "upper_arm_rear", "upper_ball_joint"], t.upper_arm_mounts),
+                    ("lower arm", ["lower_arm_front", "lower_arm_rear", "lower_ball_joint"], t.lower_arm_mounts),
+                ],
+            },
+            Template::MacPherson(t) => Layout {
+                steering_axis: ["lower_ball_joint", "top_mount"],
+                arms: vec![(
+                    "lower arm",
+                    ["lower_arm_front", "lower_arm_rear", "lower_ball_joint"],
+                    t.lower_arm_mounts,
+                )],
+            },
+        }
+    }
+}
+
+fn point(points: &[(String, Vec3)], name: &str) -> Vec3 {
+    points.iter().find(|(n, _)| n == name).map(|(_, p)| *p).expect("the layout names the template's hardpoints")
+}
+
+fn names(list: &[&str]) -> Vec<String> {
+    list.iter().map(|s| s.to_string()).collect()
+}
+
+fn quoted(list: &[String]) -> String {
+    list.iter().map(|s| format!("'{s}'")).collect::<Vec<_>>().join(", ")
+}
+
+/// Checks a model without a sweep: degrees of freedom, the condition of its stiffness at design, and the
+/// warnings of the geometry (see [`Warning::code`]); the spring's motion ratio takes one equilibrium at
+/// design. Errors only when the corner cannot be built.
+pub fn check_model(file: &SuspensionFile) -> Result<ModelCheck, ModelError> {
+    let template = &file.suspension;
+    let points = template.hardpoints();
+    let layout = Layout::of(template);
+    let mut warnings = Vec::new();
+
+    let units = units_and_side(&points);
+    // Millimetres make every other figure of the geometry meaningless: say that alone.
+    let in_millimetres = units.iter().any(|w| w.code == "millimetres");
+    warnings.extend(units);
+    if !in_millimetres {
+        warnings.extend(far_hardpoints(&points));
+        warnings.extend(steering_lever(&points, &layout));
+        warnings.extend(arm_pivots(&points, &layout));
+    }
+
+    let free = Corner::build(template, Side::Left, Rig::Free)?;
+    let on_rig = Corner::build(template, Side::Left, Rig::WheelTravel)?;
+    let (dof, redundant) = mobility(&free.model);
+    let (dof_on_rig, _) = mobility(&on_rig.model);
+    let condition_estimate = condition_estimate(&on_rig.model);
+    if let (false, Some(c)) = (in_millimetres, condition_estimate) {
+        if c > NEAR_SINGULAR {
+            warnings.push(Warning {
+                code: "near-singular",
+                hardpoints: Vec::new(),
+                message: format!(
+                    "with the wheel-centre height held, some part of the corner is held {c:.1e} times more \
+                     softly than its stiffest mount: it is held by next to nothing at design and the results \
+                     will be dominated by rounding; look for an arm, tie rod or bushing line that passes \
+                     through another hardpoint, or a bushing rate far below the others"
+                ),
+            });
+        }
+    }
+    if !in_millimetres {
+        warnings.extend(motion_ratio(template, &on_rig));
+    }
+    Ok(ModelCheck {
+        degrees_of_freedom: dof,
+        degrees_of_freedom_on_rig: dof_on_rig,
+        redundant_rows: redundant,
+        condition_estimate,
+        warnings,
+    })
+}
+
+/// Whether the hardpoints read as a corner in millimetres: the wheel centre more than 10 m from the centre
+/// line, or a spread over 20 m that, divided by 1000, is a wheel centre 0.2–2 m out with every hardpoint
+/// within 2 m of it.
+pub(crate) fn looks_like_millimetres(points: &[(String, Vec3)]) -> bool {
+    let wc = point(points, "wheel_centre");
+    let spread = points.iter().map(|(_, p)| (p - wc).norm()).fold(0.0, f64::max);
+    let scaled_fits = (200.0..=2000.0).contains(&wc.y.abs()) && spread <= 1e3 * FAR_FROM_WHEEL_CENTRE;
+    wc.y.abs() > 10.0 || (spread > 20.0 && scaled_fits)
+}
+
+/// Millimetres for metres, and a right corner given for the left.
+fn units_and_side(points: &[(String, Vec3)]) -> Vec<Warning> {
+    let mut out = Vec::new();
+    let wc = point(points, "wheel_centre");
+    let spread = points.iter().map(|(_, p)| (p - wc).norm()).fold(0.0, f64::max);
+    if looks_like_millimetres(points) {
+        out.push(Warning {
+            code: "millimetres",
+            hardpoints: points.iter().map(|(n, _)| n.clone()).collect(),
+            message: format!(
+                "the wheel centre is {:.0} m from the car's centre line and the hardpoints spread over {spread:.0} m: \
+                 they look like millimetres; give every hardpoint in metres (divide by 1000)",
+                wc.y.abs()
+            ),
+        });
+        return out;
+    }
+    let inboard: Vec<String> = points.iter().filter(|(_, p)| p.y < 0.0).map(|(n, _)| n.clone()).collect();
+    if wc.y < 0.0 || 2 * inboard.len() > points.len() {
+        out.push(Warning {
+            code: "wrong-side",
+            hardpoints: inboard.clone(),
+            message: format!(
+                "{} of {} hardpoints ({}) are at y < 0, on the right of the car: a model file describes the \
+                 left corner (y > 0, ISO 8855: x forward, y left, z up) and mirrors it for the right; \
+                 change the sign of every y",
+                inboard.len(),
+                points.len(),
+                quoted(&inboard)
+            ),
+        });
+    }
+    out
+}
+
+/// Hardpoints too far from the wheel centre to belong to the same corner.
+fn far_hardpoints(points: &[(String, Vec3)]) -> Vec<Warning> {
+    let wc = point(points, "wheel_centre");
+    points
+        .iter()
+        .filter(|(_, p)| (p - wc).norm() > FAR_FROM_WHEEL_CENTRE)
+        .map(|(name, p)| Warning {
+            code: "far-hardpoint",
+            hardpoints: vec![name.clone()],
+            message: format!(
+                "hardpoint '{name}' is {:.3} m from the wheel centre (more than {FAR_FROM_WHEEL_CENTRE} m): \
+                 check its coordinates (metres, ISO 8855: x forward, y left, z up)",
+                (p - wc).norm()
+            ),
+        })
+        .collect()
+}
+
+/// The moment arm of the tie rod about the steering axis: the moment a unit tie-rod force makes about it.
+/// Zero when the tie-rod line meets the axis or runs parallel to it: the rod then cannot steer the wheel.
+fn steering_lever(points: &[(String, Vec3)], layout: &Layout) -> Vec<Warning> {
+    let [lower, upper] = layout.steering_axis;
+    let (a, b) = (point(points, lower), point(points, upper));
+    let (inner, outer) = (point(points, "tie_rod_inner"), point(points, "tie_rod_outer"));
+    let (axis, rod) = (b - a, outer - inner);
+    if axis.norm() == 0.0 || rod.norm() == 0.0 {
+        // Coincident points are refused with their own error when the corner is built.
+        return Vec::new();
+    }
+    let lever = (outer - a).cross(&(rod / rod.norm())).dot(&(axis / axis.norm())).abs();
+    if lever >= MIN_STEERING_LEVER {
+        return Vec::new();
+    }
+    vec![Warning {
+        code: "tie-rod-on-steering-axis",
+        hardpoints: names(&["tie_rod_inner", "tie_rod_outer", lower, upper]),
+        message: format!(
+            "the tie rod ('tie_rod_inner' to 'tie_rod_outer') passes {:.1} mm from the steering axis ('{lower}' \
+             to '{upper}'): it has no lever to hold the wheel's steer (at least {:.0} mm is needed, a car's \
+             steering arm is 100–200 mm); move 'tie_rod_outer' ahead of or behind the axis",
+            lever * 1e3,
+            MIN_STEERING_LEVER * 1e3
+        ),
+    }]
+}
+
+/// Arms whose pivot axis passes through their ball joint: the arm then cannot move the ball joint.
+fn arm_pivots(points: &[(String, Vec3)], layout: &Layout) -> Vec<Warning> {
+    let mut out = Vec::new();
+    for (arm, [front, rear, ball], connection) in &layout.arms {
+        let (f, r, j) = (point(points, front), point(points, rear), point(points, ball));
+        let axis = r - f;
+        if axis.norm() == 0.0 {
+            continue;
+        }
+        let reach = (j - f).cross(&(axis / axis.norm())).norm();
+        if reach >= MIN_ARM_LENGTH {
+            continue;
+        }
+        let mounts = match connection {
+            Connection::Ideal => "hinge",
+            Connection::Bushing(_) => "bushings",
+        };
+        out.push(Warning {
+            code: "pivot-through-ball-joint",
+            hardpoints: names(&[front, rear, ball]),
+            message: format!(
+                "the {arm}'s pivot axis ('{front}' to '{rear}') passes {:.1} mm from its ball joint '{ball}': \
+                 the arm cannot swing the ball joint up and down, and nothing but its {mounts} holds it from \
+                 spinning about that line; move '{ball}' outboard or the pivots inboard",
+                reach * 1e3
+            ),
+        });
+    }
+    out
+}
+
+/// Body coordinates − independent joint rows at design, and the number of rows that repeat others.
+pub fn mobility(model: &Model) -> (usize, usize) {
+    let (j, n) = jacobian(model);
+    let rank = rank(&j);
+    (n - rank, j.nrows() - rank)
+}
+
+/// The joints' Jacobian at design (all rows × body coordinates).
+fn jacobian(model: &Model) -> (DMatrix<f64>, usize) {
+    let rows: Vec<usize> = (0..model.constraint_rows()).collect();
+    let mut assembly = Assembly::new(model, rows);
+    let lambda = vec![0.0; assembly.m()];
+    assembly.assemble(model, &model.design_poses(), 0.0, &lambda, Some(Tangent::Elastic));
+    let (m, n) = (assembly.m(), assembly.n);
+    let mut j = DMatrix::zeros(m, n);
+    for c in 0..n {
+        for p in assembly.j_col_ptr[c]..assembly.j_col_ptr[c + 1] {
+            j[(assembly.j_row_idx[p], c)] = assembly.j_values[p];
+        }
+    }
+    (j, n)
+}
+
+/// Relative size under which a singular value counts as zero: rounding of rows of unit size.
+const RANK_TOLERANCE: f64 = 1e-9;
+
+fn rank(j: &DMatrix<f64>) -> usize {
+    if j.nrows() == 0 || j.ncols() == 0 {
+        return 0;
+    }
+    let s = j.clone().svd(false, false).singular_values;
+    let largest = s.max();
+    s.iter().filter(|&&v| v > RANK_TOLERANCE * largest).count()
+}
+
+/// Condition of the elastic stiffness reduced to the motions the joints allow, at design.
+fn condition_estimate(model: &Model) -> Option<f64> {
+    let n = model.dofs();
+    let rows: Vec<usize> = (0..model.constraint_rows()).collect();
+    let mut assembly = Assembly::new(model, rows);
+    let lambda = vec![0.0; assembly.m()];
+    assembly.assemble(model, &model.design_poses(), 0.0, &lambda, Some(Tangent::Elastic));
+    let mut k = DMatrix::zeros(n, n);
+    for c in 0..n {
+        for p in assembly.k_col_ptr[c]..assembly.k_col_ptr[c + 1] {
+            let r = assembly.k_row_idx[p];
+            k[(r, c)] = assembly.k_values[p];
+            k[(c, r)] = assembly.k_values[p];
+        }
+    }
+    let (j, _) = jacobian(model);
+    // The motions the joints allow: the right singular vectors of J with zero singular value.
+    let z = null_space(&j, n)?;
+    let reduced = z.transpose() * &k * &z;
+    let softest = SymmetricEigen::new(reduced).eigenvalues.iter().map(|v| v.abs()).fold(f64::INFINITY, f64::min);
+    // Against the stiffest single coordinate rather than the stiffest allowed motion: a corner left with
+    // one motion that nothing holds must not read as perfectly conditioned.
+    let stiffest = k.diagonal().amax();
+    (stiffest > 0.0 && stiffest.is_finite()).then(|| if softest > 0.0 { stiffest / softest } else { f64::INFINITY })
+}
+
+fn null_space(j: &DMatrix<f64>, n: usize) -> Option<DMatrix<f64>> {
+    if j.nrows() == 0 {
+        return Some(DMatrix::identity(n, n));
+    }
+    // Pad J to square so the SVD returns a full set of right singular vectors.
+    let mut square = DMatrix::zeros(n.max(j.nrows()), n);
+    square.rows_mut(0, j.nrows()).copy_from(j);
+    let svd = square.svd(false, true);
+    let v_t = svd.v_t?;
+    let largest = svd.singular_values.max();
+    let free: Vec<usize> =
+        (0..n).filter(|&i| svd.singular_values[i] <= RANK_TOLERANCE * largest.max(f64::MIN_POSITIVE)).collect();
+    if free.is_empty() {
+        return None;
+    }
+    let mut z = DMatrix::zeros(n, free.len());
+    for (col, &i) in free.iter().enumerate() {
+        z.set_column(col, &v_t.row(i).transpose());
+    }
+    Some(z)
+}
+
+/// Spring length change per metre of wheel travel at design, from the rig's exact path tangent.
+fn motion_ratio(template: &Template, corner: &Corner) -> Vec<Warning> {
+    let Some(ratio) = spring_motion_ratio(template, corner) else { return Vec::new() };
+    if ratio.abs() >= MIN_MOTION_RATIO {
+        return Vec::new();
+    }
+    let (seats, what) = match template {
+        Template::DoubleWishbone(_) => (["spring_chassis", "spring_arm"], "move 'spring_arm' outboard along the arm"),
+        Template::MacPherson(_) => (
+            ["top_mount", "strut_lower"],
+            "the strut should lean with the wheel's travel: check 'top_mount', 'strut_lower' and the lower arm",
+        ),
+    };
+    vec![Warning {
+        code: "motion-ratio",
+        hardpoints: names(&seats),
+        message: format!(
+            "the spring ('{}' to '{}') changes length by {:.3} m per metre of wheel travel at design: it \
+             barely carries the wheel (a car's is 0.5–1); {what}",
+            seats[0],
+            seats[1],
+            ratio.abs()
+        ),
+    }]
+}
+
+fn spring_motion_ratio(template: &Template, corner: &Corner) -> Option<f64> {
+    use elastokin_solver::{SolverOptions, StaticSolver};
+    let points = template.hardpoints();
+    let (chassis, moving, body) = match template {
+        Template::DoubleWishbone(_) => ("spring_chassis", "spring_arm", "lower arm"),
+        Template::MacPherson(_) => ("top_mount", "strut_lower", "upright"),
+    };
+    let (a, b) = (point(&points, chassis), point(&points, moving));
+    let body = corner.model.body_id(body)?;
+    let mut solver = StaticSolver::new(&corner.model, SolverOptions::default()).ok()?;
+    let mut state = solver.design_state(0.0);
+    // The tangent of the path through the rest position; the design position is close to it.
+    if solver.equilibrium(&mut state).is_err() {
+        state = solver.design_state(0.0);
+    }
+    let rates = solver.path_tangent(&state).ok()?;
+    let pose = state.poses[body.0];
+    let base = body.0 * BODY_DOFS;
+    let v = Vec3::new(rates[base], rates[base + 1], rates[base + 2]);
+    let w = Vec3::new(rates[base + 3], rates[base + 4], rates[base + 5]);
+    let seat = pose.point(&corner.model.bodies()[body.0].design_pose.to_local_point(&b));
+    let velocity = v + w.cross(&(seat - pose.position));
+    let along = (seat - a) / (seat - a).norm();
+    let ratio = along.dot(&velocity);
+    ratio.is_finite().then_some(ratio)
+}
+
+/// Warnings of a parallel-travel sweep (the rows of [`crate::analysis::parallel_wheel_travel`]: other
+/// sweeps carry no wheel load): toe or camber beyond ±10° inside the travel, or a wheel rate that is not
+/// positive (the corner does not push the wheel back down).
+pub fn check_travel_rows(rows: &[TravelRow]) -> Vec<Warning> {
+    let mut out = Vec::new();
+    let worst = |f: &dyn Fn(&TravelRow) -> f64| {
+        rows.iter().map(|r| (r.travel, f(r).to_degrees())).fold(None, |best: Option<(f64, f64)>, (t, v)| match best {
+            Some((_, b)) if b.abs() >= v.abs() || v.is_nan() => best,
+            _ => Some((t, v)),
+        })
+    };
+    for (code, what, f) in [
+        ("toe-range", "toe", &(|r: &TravelRow| r.attitude.toe) as &dyn Fn(&TravelRow) -> f64),
+        ("camber-range", "camber", &|r: &TravelRow| r.attitude.camber),
+    ] {
+        if let Some((t, v)) = worst(f) {
+            if v.abs() > MAX_WHEEL_ANGLE_DEG || v.is_nan() {
+                out.push(Warning {
+                    code,
+                    hardpoints: Vec::new(),
+                    message: format!(
+                        "{what} reaches {v:.1}° at {:.0} mm of wheel travel (more than ±{MAX_WHEEL_ANGLE_DEG}°): \
+                         the wheel is not guided as a suspension should be; check the tie rod and arm \
+                         hardpoints, or narrow the travel",
+                        t * 1e3
+                    ),
+                });
+            }
+        }
+    }
+    // The wheel rate is the slope of the rig's force against travel: it must be positive everywhere.
+    for pair in rows.windows(2) {
+        let dz = pair[1].travel - pair[0].travel;
+        if dz == 0.0 {
+            continue;
+        }
+        let rate = (pair[1].wheel_load - pair[0].wheel_load) / dz;
+        if rate <= 0.0 || rate.is_nan() {
+            out.push(Warning {
+                code: "wheel-rate",
+                hardpoints: Vec::new(),
+                message: format!(
+                    "the wheel rate is {:.1} N/mm between {:.0} and {:.0} mm of wheel travel: the corner does \
+                     not push the wheel back; check the spring rate and its seats",
+                    rate * 1e-3,
+                    pair[0].travel * 1e3,
+                    pair[1].travel * 1e3
+                ),
+            });
+            break;
+        }
+    }
+    out
+}

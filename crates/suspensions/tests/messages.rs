@@ -1,0 +1,109 @@
+//! What the solver says about a broken corner is in the model's words: the part's name and what to change,
+//! never the library's type names or matrix numbering.
+
+use elastokin_core::{BodyRef, JointSpec};
+use elastokin_solver::{Mode, SolverOptions, StaticSolver};
+use elastokin_suspensions::analysis::parallel_wheel_travel;
+use elastokin_suspensions::{Corner, Rig, Side, SuspensionFile};
+use serde_json::Value;
+use std::path::Path;
+
+/// The shipped MacPherson with ideal mounts, edited by `edit`, built on `rig`.
+fn ideal_macpherson(rig: Rig, edit: impl FnOnce(&mut Value)) -> (SuspensionFile, Corner) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/macpherson.json");
+    let mut v: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let t = &mut v["suspension"]["macpherson"];
+    t["lower_arm_mounts"] = "ideal".into();
+    t["top_mount"] = "ideal".into();
+    edit(t);
+    let file: SuspensionFile = serde_json::from_value(v).unwrap();
+    let corner = file.suspension.build(Side::Left, rig).unwrap();
+    (file, corner)
+}
+
+fn point(t: &Value, name: &str) -> [f64; 3] {
+    [0, 1, 2].map(|i| t["hardpoints"][name][i].as_f64().unwrap())
+}
+
+/// No type or function names of the code (`Rig::Free`, `StaticSolver::…`) nor matrix numbering.
+fn assert_plain(message: &str) {
+    for code in ["::", "original numbering", "FactorReport", "StaticSolver", "Δπ", "body dof"] {
+        assert!(!message.contains(code), "'{code}' in: {message}");
+    }
+}
+
+#[test]
+fn an_arm_spinning_freely_is_named_with_what_to_check() {
+    // The lower arm's hinge line through its ball joint: nothing holds the arm's spin about that line.
+    let (_, corner) = ideal_macpherson(Rig::WheelTravel, |t| {
+        let (front, ball) = (point(t, "lower_arm_front"), point(t, "lower_ball_joint"));
+        t["hardpoints"]["lower_arm_rear"] = serde_json::json!([0, 1, 2].map(|i| (front[i] + ball[i]) / 2.0));
+    });
+    let message = StaticSolver::new(&corner.model, SolverOptions::default()).unwrap_err().to_string();
+    assert!(message.starts_with("'lower arm' is free to move (rotation about the axis"), "{message}");
+    assert!(message.contains("check the hardpoints of its mounts"), "{message}");
+    assert_plain(&message);
+}
+
+#[test]
+fn a_travel_the_mechanism_cannot_reach_says_to_narrow_the_range() {
+    // A tie rod whose line meets the steering axis locks the wheel's travel (it must steer to rise).
+    let (_, corner) = ideal_macpherson(Rig::WheelTravel, |t| {
+        let (a, b) = (point(t, "lower_ball_joint"), point(t, "top_mount"));
+        t["hardpoints"]["tie_rod_inner"] = serde_json::json!([0, 1, 2].map(|i| a[i] + 0.4 * (b[i] - a[i])));
+    });
+    let message = parallel_wheel_travel(&corner, -0.02, 0.02, 8, Mode::Corrected).unwrap_err().to_string();
+    assert!(message.contains("narrow the range"), "{message}");
+    assert_plain(&message);
+}
+
+#[test]
+fn a_repeated_joint_is_named_with_what_to_do() {
+    let (file, mut corner) = ideal_macpherson(Rig::WheelTravel, |_| {});
+    let h = file.suspension.hardpoints();
+    let at = |n: &str| h.iter().find(|(k, _)| k == n).unwrap().1;
+    let upright = corner.model.body_id("upright").unwrap();
+    let second =
+        JointSpec::distance("second tie rod", BodyRef::Ground, upright, at("tie_rod_inner"), at("tie_rod_outer"));
+    corner.model.add_joint(second).unwrap();
+    let solver = StaticSolver::new(&corner.model, SolverOptions::default()).unwrap();
+    let messages = solver.diagnostics().messages();
+    assert_eq!(messages.len(), 1, "{messages:?}");
+    assert!(messages[0].starts_with("joint '"), "{}", messages[0]);
+    assert!(messages[0].contains("tie rod' repeats what other joints already hold"), "{}", messages[0]);
+    assert!(messages[0].contains("remove it"), "{}", messages[0]);
+    assert_plain(&messages[0]);
+}
+
+#[test]
+fn an_analysis_on_the_wrong_rig_says_how_the_wheel_must_be_held() {
+    let (file, _) = ideal_macpherson(Rig::Free, |_| {});
+    let corner = file.suspension.build(Side::Left, Rig::Free).unwrap();
+    let message = parallel_wheel_travel(&corner, -0.01, 0.01, 2, Mode::Corrected).unwrap_err().to_string();
+    assert!(message.contains("with the wheel-centre height driven, but it is held with the wheel free"), "{message}");
+    assert_plain(&message);
+}
+
+#[test]
+fn every_solver_failure_reads_without_the_librarys_words() {
+    use elastokin_solver::kkt_factor::FactorError;
+    use elastokin_solver::SolverError;
+    let failures = [
+        SolverError::LimitPoint { reached: 0.0065 },
+        SolverError::NoConvergence {
+            t: 0.05,
+            last_converged: Some(0.04),
+            iterations: 30,
+            force_residual: 1.0,
+            constraint_residual: 1e-9,
+        },
+        SolverError::Factor(FactorError::Singular { kind: "body coordinate", index: 7 }),
+        SolverError::Factor(FactorError::NonFiniteSolution { index: 7 }),
+        SolverError::Factor(FactorError::NotFactorized),
+    ];
+    for failure in failures {
+        let message = failure.to_string();
+        assert_plain(&message);
+        assert!(!message.contains("load parameter") && !message.contains("factorize()"), "{message}");
+    }
+}
