@@ -162,3 +162,28 @@ fn a_range_without_the_design_position_says_why_figures_are_missing() {
     let bump = &json["figures"]["bump_steer"];
     assert!(bump["value"].is_null() && bump["reason"].is_string(), "{bump}");
 }
+
+/// The suite carries the plausibility findings: the model's before any solve, and the travel rows' after.
+/// A MacPherson tie rod whose inner point sits on the steering axis (40 % of the way from the lower ball
+/// joint to the top mount) turns the wheel instead of holding it: both are named.
+#[test]
+fn the_suite_names_a_tie_rod_on_the_steering_axis_and_the_toe_it_gives() {
+    let mut v: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/macpherson.json")).unwrap(),
+    )
+    .unwrap();
+    let points = &mut v["suspension"]["macpherson"]["hardpoints"];
+    let point = |p: &serde_json::Value| -> [f64; 3] { [0, 1, 2].map(|k| p[k].as_f64().unwrap()) };
+    let (a, b) = (point(&points["lower_ball_joint"]), point(&points["top_mount"]));
+    points["tie_rod_inner"] = serde_json::json!([0, 1, 2].map(|k| a[k] + 0.4 * (b[k] - a[k])));
+    let file: SuspensionFile = serde_json::from_value(v).unwrap();
+    let report = kc::run_suite(&file, &[Analysis::ParallelTravel], &Settings::default(), |_| {}).unwrap();
+    let codes: Vec<&str> = report.all_warnings().map(|w| w.code).collect();
+    assert!(codes.contains(&"tie-rod-on-steering-axis"), "{codes:?}");
+    assert!(codes.contains(&"toe-range"), "{codes:?}");
+    assert!(report.model_check.as_ref().unwrap().degrees_of_freedom >= 1);
+    // The shipped model has none.
+    let clean =
+        kc::run_suite(&example("macpherson.json"), &[Analysis::ParallelTravel], &Settings::default(), |_| {}).unwrap();
+    assert_eq!(clean.all_warnings().count(), 0, "{:?}", clean.all_warnings().collect::<Vec<_>>());
+}

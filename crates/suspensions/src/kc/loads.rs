@@ -299,7 +299,8 @@ pub(super) fn static_load(file: &SuspensionFile, s: &Settings) -> Result<Analysi
     let mut warnings = Vec::new();
     if !within {
         warnings.push(Notice {
-            code: "error-over-tolerance".into(),
+            code: "error-over-tolerance",
+            hardpoints: Vec::new(),
             message: format!(
                 "static-load: the rest position leaves the joints apart by {:.2e} mm; the model is near-singular \
                  there, run `elastokin check` on it",

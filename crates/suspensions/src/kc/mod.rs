@@ -208,12 +208,18 @@ pub fn run_suite(
     mut progress: impl FnMut(Analysis),
 ) -> Result<KcReport, AnalysisError> {
     let chosen: Vec<Analysis> = if which.is_empty() { ALL.to_vec() } else { which.to_vec() };
+    // The plausibility checks run first: a model that cannot be what its author meant is said to be so even
+    // when an analysis then fails on it. A check that cannot run (the corner does not build) leaves the
+    // analyses to report why.
+    let model_check = crate::plausibility::check_model(file).ok();
+    let warnings = model_check.as_ref().map_or_else(Vec::new, |c| c.warnings.clone());
     let mut report = KcReport {
         model: file.name.clone(),
         settings: *settings,
         analyses: Vec::new(),
         skipped: Vec::new(),
-        warnings: Vec::new(),
+        model_check,
+        warnings,
     };
     for analysis in chosen {
         if analysis == Analysis::StaticLoad && file.vehicle.is_none() && which.is_empty() {
@@ -319,7 +325,8 @@ fn finish<R>(
             what.push(format!("figures {} (tolerance {:.1} %)", over_figures.join(", "), tol.relative * 100.0));
         }
         warnings.push(Notice {
-            code: "error-over-tolerance".into(),
+            code: "error-over-tolerance",
+            hardpoints: Vec::new(),
             message: format!("{}: estimated error {}; {fix}", analysis.name(), what.join(", ")),
         });
     }

@@ -204,14 +204,9 @@ pub struct Accuracy {
     pub within_tolerance: bool,
 }
 
-/// Something a user should know about a model or a result: a code to grep for, and what to change.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Notice {
-    /// Short stable code, e.g. `paper-mode-error`.
-    pub code: String,
-    /// What is wrong and what to change.
-    pub message: String,
-}
+/// Something a user should know about a model or a result: the plausibility checks' warning type, also
+/// used for results (an error estimate over the tolerance), with no hardpoints named.
+pub use crate::plausibility::Warning as Notice;
 
 /// What one K&C analysis produced.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -298,6 +293,9 @@ pub struct KcReport {
     pub analyses: Vec<AnalysisReport>,
     /// Analyses left out, with the reason.
     pub skipped: Vec<Skipped>,
+    /// What the plausibility checks found in the model before it was solved (degrees of freedom,
+    /// condition, warnings), when they could run.
+    pub model_check: Option<crate::plausibility::ModelCheck>,
     /// Warnings about the model (plausibility) and the results.
     pub warnings: Vec<Notice>,
 }

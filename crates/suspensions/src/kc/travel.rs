@@ -216,6 +216,8 @@ pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<Ana
         Reduction { table: &table, figures: &figures },
         charts,
     );
+    // Toe, camber and wheel rate no car has, inside the travel asked for.
+    report.warnings.extend(crate::plausibility::check_travel_rows(&out.rows));
     // Figures of the design position itself, from the tangent there (not read off the rows).
     let pc = patch_compliance(&corner, 0.0).map_err(solve_error)?;
     let per_kn = |rad_per_n: f64| deg(rad_per_n) * 1e3;
