@@ -69,7 +69,7 @@ pub enum Command {
 pub struct RunArgs {
     /// The model file (JSON; see examples/*.json)
     pub model: PathBuf,
-    /// One analysis instead of all of them (its load parameter and default range below)
+    /// One analysis instead of all of them (--help lists each one's load parameter, units and default range)
     #[arg(long, value_enum, value_name = "NAME")]
     pub analysis: Option<AnalysisName>,
     /// The load parameter's range, in the analysis's own units (needs --analysis)

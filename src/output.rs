@@ -307,7 +307,7 @@ impl Drop for Staging {
 }
 
 /// An existing `--out` is replaced whole, so it must be earlier results: nothing but files with the
-/// endings the command writes, at least one of them a CSV that opens with the provenance line. Anything
+/// endings the command writes, at least one of them recognisably written by it ([`is_result`]). Anything
 /// else is somebody's directory, which a run must not delete.
 fn check_replaceable(out: &Path) -> Result<(), Failure> {
     let shown = out.display();
@@ -331,17 +331,39 @@ fn check_replaceable(out: &Path) -> Result<(), Failure> {
                 entry.file_name().to_string_lossy()
             )));
         }
-        if extension == "csv" && !ours {
-            let mut head = Vec::new();
-            std::fs::File::open(&path).and_then(|f| f.take(12).read_to_end(&mut head)).map_err(io)?;
-            ours = head == b"# elastokin ";
+        if !ours {
+            ours = is_result(&path, extension).map_err(io)?;
         }
     }
     if empty || ours {
         Ok(())
     } else {
-        Err(refuse("does not hold elastokin results (no CSV in it opens with the '# elastokin' line)".into()))
+        Err(refuse(
+            "does not hold elastokin results (no CSV in it opens with the '# elastokin' line, no summary.json)".into(),
+        ))
     }
+}
+
+/// Whether `path` is a file the command wrote: a CSV opening with the provenance line, or, from versions
+/// before it, `summary.json` with its `analyses` or `batch.csv` with its header.
+fn is_result(path: &Path, extension: &str) -> std::io::Result<bool> {
+    let name = path.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+    let head = |n: u64| -> std::io::Result<Vec<u8>> {
+        let mut bytes = Vec::new();
+        std::fs::File::open(path)?.take(n).read_to_end(&mut bytes)?;
+        Ok(bytes)
+    };
+    const OLD_BATCH: &[u8] = b"variant,bump_steer_deg_per_m,";
+    Ok(match (extension, name) {
+        ("csv", "batch.csv") => {
+            let h = head(OLD_BATCH.len() as u64)?;
+            h.starts_with(b"# elastokin ") || h == OLD_BATCH
+        }
+        ("csv", _) => head(12)? == b"# elastokin ",
+        ("json", "summary.json") => serde_json::from_slice::<serde_json::Value>(&head(16 << 20)?)
+            .is_ok_and(|v| v.get("analyses").is_some_and(serde_json::Value::is_object)),
+        _ => false,
+    })
 }
 
 /// Progress on standard error: a bar when standard error is a terminal, otherwise one plain line per

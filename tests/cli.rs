@@ -486,7 +486,7 @@ fn a_failed_run_leaves_the_previous_results_untouched() {
 }
 
 #[test]
-fn an_out_that_is_not_an_results_directory_is_refused_and_kept() {
+fn an_out_that_is_not_a_results_directory_is_refused_and_kept() {
     let dir = scratch("outkinds");
     let m = "examples/macpherson.json";
     let file = dir.join("x");
@@ -513,6 +513,14 @@ fn an_out_that_is_not_an_results_directory_is_refused_and_kept() {
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "mine");
     assert_eq!(std::fs::read_to_string(mine.join("notes.txt")).unwrap(), "mine");
     assert!(older.join("measured.csv").exists());
+    // Results of versions before the provenance line are recognised by their summary.json, and replaced.
+    let earlier = dir.join("earlier");
+    std::fs::create_dir(&earlier).unwrap();
+    std::fs::write(earlier.join("summary.json"), r#"{"model": "m", "mode": "corrected", "analyses": {}}"#).unwrap();
+    std::fs::write(earlier.join("steering.csv"), "rack_m,toe_deg\n0.000000000,0.000000000\n").unwrap();
+    let o = elastokin(&["run", m, "--analysis", "roll", "--out", earlier.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(names(&earlier), ["roll.csv", "roll_centre.svg", "roll_toe_camber.svg", "summary.json"]);
     std::fs::remove_dir_all(&dir).ok();
 }
 
