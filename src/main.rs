@@ -75,8 +75,14 @@ pub struct RunArgs {
     /// The load parameter's range, in the analysis's own units (needs --analysis)
     #[arg(long, value_name = "FROM,TO", value_parser = parse_range, allow_hyphen_values = true)]
     pub range: Option<(f64, f64)>,
-    /// Load steps per sweep, 1 to 20000
-    #[arg(long, value_name = "N", default_value_t = 32, value_parser = parse_steps, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 32,
+        value_parser = parse_steps,
+        allow_negative_numbers = true,
+        help = format!("Load steps per sweep, 1 to {MAX_STEPS}")
+    )]
     pub steps: usize,
     /// Corrected: Newton iterations to the exact equilibrium at every step; paper: the paper's linear steps
     #[arg(long, value_enum, default_value_t = ModeName::Corrected)]
@@ -100,7 +106,7 @@ pub struct CheckArgs {
 pub struct BatchArgs {
     /// The model file (JSON; see examples/*.json)
     pub model: PathBuf,
-    /// The variants file (see above; at most 10000 variants)
+    #[arg(help = format!("The variants file, one variant per line (format in --help; at most {})", batch::MAX_VARIANTS))]
     pub variants: PathBuf,
     /// Where batch.csv goes; the directory is replaced as a whole when the batch succeeds
     #[arg(long, value_name = "DIR", default_value = "out")]

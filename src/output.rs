@@ -203,9 +203,6 @@ pub fn note(text: impl std::fmt::Display) {
     let _ = writeln!(std::io::stderr().lock(), "{text}");
 }
 
-/// File name endings of what the command writes.
-pub const OUTPUT_EXTENSIONS: [&str; 5] = ["csv", "svg", "json", "html", "png"];
-
 /// An output directory written whole or not at all.
 ///
 /// The files go into a new directory beside `--out` (`.NAME.tmp-PID` in the same parent, so renaming is
@@ -306,9 +303,9 @@ impl Drop for Staging {
     }
 }
 
-/// An existing `--out` is replaced whole, so it must be earlier results: nothing but files with the
-/// endings the command writes, at least one of them recognisably written by it ([`is_result`]). Anything
-/// else is somebody's directory, which a run must not delete.
+/// An existing `--out` is replaced whole, so it must be earlier results, recognisably written by the
+/// command, and nothing else: somebody's directory, or one with a model file or measurements put beside the
+/// results, must not be deleted by a run.
 fn check_replaceable(out: &Path) -> Result<(), Failure> {
     let shown = out.display();
     let refuse = |why: String| {
@@ -318,51 +315,75 @@ fn check_replaceable(out: &Path) -> Result<(), Failure> {
         ))
     };
     let io = |e: std::io::Error| Failure::Input(format!("--out DIR: '{shown}': {e}"));
-    let mut ours = false;
-    let mut empty = true;
+    let (mut stamped, mut earlier, mut unstamped, mut empty) = (false, false, None, true);
     for entry in std::fs::read_dir(out).map_err(io)? {
         let entry = entry.map_err(io)?;
         empty = false;
-        let path = entry.path();
-        let extension = path.extension().and_then(|e| e.to_str()).unwrap_or_default();
-        if !entry.file_type().is_ok_and(|t| t.is_file()) || !OUTPUT_EXTENSIONS.contains(&extension) {
-            return Err(refuse(format!(
-                "holds '{}', which elastokin does not write",
-                entry.file_name().to_string_lossy()
-            )));
-        }
-        if !ours {
-            ours = is_result(&path, extension).map_err(io)?;
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let is_file = entry.file_type().is_ok_and(|t| t.is_file());
+        match classify(&entry.path(), is_file).map_err(io)? {
+            Found::Stamped => stamped = true,
+            Found::EarlierVersion => earlier = true,
+            Found::UnstampedCsv => unstamped = Some(name),
+            Found::Plot => {}
+            Found::Foreign => return Err(refuse(format!("holds '{name}', which elastokin does not write"))),
         }
     }
-    if empty || ours {
-        Ok(())
-    } else {
-        Err(refuse(
-            "does not hold elastokin results (no CSV in it opens with the '# elastokin' line, no summary.json)".into(),
-        ))
+    match unstamped {
+        // Earlier versions wrote CSVs without the provenance line; beside their summary they are results.
+        Some(name) if !earlier => Err(refuse(format!("holds '{name}', which elastokin did not write"))),
+        _ if empty || stamped || earlier => Ok(()),
+        _ => {
+            Err(refuse("does not hold elastokin results (no summary.json, no CSV with the '# elastokin' line)".into()))
+        }
     }
 }
 
-/// Whether `path` is a file the command wrote: a CSV opening with the provenance line, or, from versions
-/// before it, `summary.json` with its `analyses` or `batch.csv` with its header.
-fn is_result(path: &Path, extension: &str) -> std::io::Result<bool> {
-    let name = path.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+/// File name endings of what the command writes besides CSV and `summary.json`: plots and reports.
+pub const PLOT_EXTENSIONS: [&str; 3] = ["svg", "png", "html"];
+
+/// What a file in an existing `--out` is.
+enum Found {
+    /// A CSV with the provenance line, or `summary.json` with its provenance.
+    Stamped,
+    /// `summary.json` or `batch.csv` of a version before provenance.
+    EarlierVersion,
+    /// A CSV without the provenance line.
+    UnstampedCsv,
+    /// A plot or report.
+    Plot,
+    /// Anything else.
+    Foreign,
+}
+
+fn classify(path: &Path, is_file: bool) -> std::io::Result<Found> {
+    const OLD_BATCH: &[u8] = b"variant,bump_steer_deg_per_m,";
     let head = |n: u64| -> std::io::Result<Vec<u8>> {
         let mut bytes = Vec::new();
         std::fs::File::open(path)?.take(n).read_to_end(&mut bytes)?;
         Ok(bytes)
     };
-    const OLD_BATCH: &[u8] = b"variant,bump_steer_deg_per_m,";
-    Ok(match (extension, name) {
-        ("csv", "batch.csv") => {
+    let name = path.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+    let extension = path.extension().and_then(|e| e.to_str()).unwrap_or_default();
+    Ok(match extension {
+        _ if !is_file => Found::Foreign,
+        "json" if name == "summary.json" => match serde_json::from_slice::<serde_json::Value>(&head(16 << 20)?) {
+            Ok(v) if v.get("provenance").is_some() => Found::Stamped,
+            Ok(v) if v.get("analyses").is_some_and(serde_json::Value::is_object) => Found::EarlierVersion,
+            _ => Found::Foreign,
+        },
+        "csv" => {
             let h = head(OLD_BATCH.len() as u64)?;
-            h.starts_with(b"# elastokin ") || h == OLD_BATCH
+            if h.starts_with(b"# elastokin ") {
+                Found::Stamped
+            } else if name == "batch.csv" && h == OLD_BATCH {
+                Found::EarlierVersion
+            } else {
+                Found::UnstampedCsv
+            }
         }
-        ("csv", _) => head(12)? == b"# elastokin ",
-        ("json", "summary.json") => serde_json::from_slice::<serde_json::Value>(&head(16 << 20)?)
-            .is_ok_and(|v| v.get("analyses").is_some_and(serde_json::Value::is_object)),
-        _ => false,
+        e if PLOT_EXTENSIONS.contains(&e) => Found::Plot,
+        _ => Found::Foreign,
     })
 }
 

@@ -497,10 +497,23 @@ fn an_out_that_is_not_a_results_directory_is_refused_and_kept() {
     let older = dir.join("older");
     std::fs::create_dir(&older).unwrap();
     std::fs::write(older.join("measured.csv"), "travel_m,toe_deg\n0,0\n").unwrap();
+    let plots = dir.join("plots");
+    std::fs::create_dir(&plots).unwrap();
+    std::fs::write(plots.join("sketch.svg"), "<svg/>").unwrap();
+    // Earlier results with the model file put beside them.
+    let with_model = dir.join("with_model");
+    let o = elastokin(&["run", m, "--analysis", "roll", "--out", with_model.to_str().unwrap()]);
+    assert!(o.status.success());
+    std::fs::copy(Path::new(env!("CARGO_MANIFEST_DIR")).join(m), with_model.join("model.json")).unwrap();
     let cases = [
         (&file, format!("--out DIR: '{}' is a file; give a directory", file.display())),
         (&mine, format!("--out DIR: '{}' holds 'notes.txt', which elastokin does not write", mine.display())),
-        (&older, format!("--out DIR: '{}' does not hold elastokin results", older.display())),
+        (&older, format!("--out DIR: '{}' holds 'measured.csv', which elastokin did not write", older.display())),
+        (&plots, format!("--out DIR: '{}' does not hold elastokin results", plots.display())),
+        (
+            &with_model,
+            format!("--out DIR: '{}' holds 'model.json', which elastokin does not write", with_model.display()),
+        ),
     ];
     for (out, expected) in cases {
         let before = names(&dir);
@@ -512,7 +525,7 @@ fn an_out_that_is_not_a_results_directory_is_refused_and_kept() {
     }
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "mine");
     assert_eq!(std::fs::read_to_string(mine.join("notes.txt")).unwrap(), "mine");
-    assert!(older.join("measured.csv").exists());
+    assert!(older.join("measured.csv").exists() && with_model.join("model.json").exists());
     // Results of versions before the provenance line are recognised by their summary.json, and replaced.
     let earlier = dir.join("earlier");
     std::fs::create_dir(&earlier).unwrap();
@@ -621,5 +634,33 @@ fn progress_goes_to_standard_error_and_quiet_silences_all_but_errors() {
     let o = elastokin(&["--quiet", "check", "no/such/model.json"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("MODEL 'no/such/model.json': cannot open it"));
+    std::fs::remove_dir_all(&out).ok();
+}
+
+/// On a terminal the progress is an indicatif bar instead of plain lines. `script` (util-linux) runs the
+/// command on a pseudo-terminal.
+#[cfg(target_os = "linux")]
+#[test]
+fn progress_on_a_terminal_is_a_bar() {
+    let out = scratch("terminal");
+    let bin = env!("CARGO_BIN_EXE_elastokin");
+    for (args, bar) in [
+        (format!("run examples/macpherson.json --analysis roll --steps 8 --out '{}'", out.display()), "analyses ["),
+        (
+            format!("batch examples/macpherson.json examples/macpherson_variants.txt --out '{}'", out.display()),
+            "variants [",
+        ),
+    ] {
+        let o = Command::new("script")
+            .args(["-qec", &format!("'{bin}' {args} > /dev/null"), "/dev/null"])
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .stdin(Stdio::null())
+            .output()
+            .expect("script (util-linux) runs the command on a terminal");
+        let terminal = String::from_utf8_lossy(&o.stdout);
+        assert!(o.status.success(), "{args}: {terminal}");
+        assert!(terminal.contains(bar), "{args}: {terminal}");
+        assert!(!terminal.contains("analyses 1/1: roll") && !terminal.contains(" done: "), "{args}: {terminal}");
+    }
     std::fs::remove_dir_all(&out).ok();
 }
