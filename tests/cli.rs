@@ -444,6 +444,9 @@ fn a_closed_pipe_is_no_crash_and_the_work_still_gets_done() {
                 assert!(p.exists(), "{args:?} did not write {}", p.display());
             }
         }
+        // A usage error with nobody listening is still a usage error, not a crash.
+        let (code, err) = with_closed_output(&["run", m, "--steps", "0"], close_stderr);
+        assert_eq!(code, Some(2), "{err}");
     }
     std::fs::remove_dir_all(&out).ok();
 }
