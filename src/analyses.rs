@@ -95,9 +95,9 @@ pub struct Settings {
 /// One CSV cell: a number, a name, or nothing (a value the row does not have — never NaN).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Cell {
-    /// A number (written with 9 decimals; a non-finite one is written as an empty cell).
+    /// A number (written with 12 significant digits; a non-finite one is written as an empty cell).
     Number(f64),
-    /// A name (quoted).
+    /// A name (quoted where CSV needs it).
     Text(String),
     /// No value.
     Empty,
@@ -115,7 +115,7 @@ impl From<Option<f64>> for Cell {
     }
 }
 
-/// A table of rows, written as CSV.
+/// A table of rows, written as CSV by `output::write_table`.
 pub struct Table {
     /// File name in the output directory.
     pub file: String,
@@ -133,26 +133,6 @@ impl Table {
             columns: columns.map(String::from).to_vec(),
             rows: rows.map(|r| r.map(Cell::from).to_vec()).collect(),
         }
-    }
-
-    /// The CSV text.
-    pub fn csv(&self) -> String {
-        let quote = |t: &str| format!("\"{}\"", t.replace('"', "'"));
-        let mut out = self.columns.join(",");
-        out.push('\n');
-        for row in &self.rows {
-            let cells: Vec<String> = row
-                .iter()
-                .map(|cell| match cell {
-                    Cell::Number(v) if v.is_finite() => format!("{v:.9}"),
-                    Cell::Text(t) => quote(t),
-                    Cell::Number(_) | Cell::Empty => String::new(),
-                })
-                .collect();
-            out += &cells.join(",");
-            out.push('\n');
-        }
-        out
     }
 }
 

@@ -10,11 +10,19 @@
 //! soft spring: /suspension/macpherson/spring/rate=20000
 //! ```
 
+use crate::output::Progress;
 use elastokin::solver::Mode;
 use elastokin::suspensions::analysis::{parallel_wheel_travel, slope_at, TravelRow};
 use elastokin::suspensions::{Rig, Side, SuspensionFile};
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// Each variant walks parallel wheel travel ±`HALF_RANGE` (m)…
+pub const HALF_RANGE: f64 = 0.02;
+/// …in `STEPS` steps (even, so design is a step).
+pub const STEPS: usize = 8;
+/// The most variants a file may hold: each is a sweep of its own, and all results are kept until the
+/// table is written.
+pub const MAX_VARIANTS: usize = 10_000;
 
 /// One parsed variant: its name and its edits.
 pub struct Variant {
@@ -46,6 +54,12 @@ pub fn parse_variants(text: &str, origin: &str) -> Result<Vec<Variant>, String> 
         }
         if edits.is_empty() {
             return Err(format!("{origin}:{}: no edits in '{line}'", k + 1));
+        }
+        if out.len() == MAX_VARIANTS {
+            return Err(format!(
+                "{origin}:{}: more than {MAX_VARIANTS} variants; split the file and run a batch for each part",
+                k + 1
+            ));
         }
         out.push(Variant { name, edits });
     }
@@ -92,19 +106,14 @@ pub fn evaluate(file: &SuspensionFile, half_range: f64, steps: usize) -> Result<
     })
 }
 
-/// Runs every variant on the rayon pool, with a progress counter on standard error.
-pub fn run_all(base: &serde_json::Value, variants: &[Variant]) -> Vec<Result<Outcome, String>> {
-    let done = AtomicUsize::new(0);
-    let total = variants.len();
-    let results: Vec<_> = variants
+/// Runs every variant on the rayon pool, counting each one done on `progress`.
+pub fn run_all(base: &serde_json::Value, variants: &[Variant], progress: &Progress) -> Vec<Result<Outcome, String>> {
+    variants
         .par_iter()
         .map(|v| {
-            let r = apply(base, v).and_then(|file| evaluate(&file, 0.02, 8));
-            let n = done.fetch_add(1, Ordering::Relaxed) + 1;
-            eprint!("\rbatch: {n}/{total} variants");
+            let r = apply(base, v).and_then(|file| evaluate(&file, HALF_RANGE, STEPS));
+            progress.end(Some(&v.name));
             r
         })
-        .collect();
-    eprintln!();
-    results
+        .collect()
 }

@@ -11,8 +11,10 @@
 //!
 //! Pick the crates directly to leave out what a build does not need: the solver alone pulls in neither
 //! serde nor rayon (rayon and sprs are behind its `parallel` and `matrix-market` features). This facade
-//! package also carries the `elastokin` command, which uses serde_json for its reports and rayon to run
-//! `batch` variants on all cores.
+//! package also carries the `elastokin` command, and with it the command's dependencies (a package cannot
+//! keep dependencies for its binary alone): serde_json for its reports, rayon to run `batch` variants on
+//! all cores, clap for its arguments, csv for its tables, sha2 for the model file's hash in every result,
+//! indicatif for progress bars on a terminal.
 
 pub use elastokin_core as core;
 pub use elastokin_elements as elements;

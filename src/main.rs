@@ -1,272 +1,412 @@
 //! The `elastokin` command: K&C analyses of a suspension model file.
 //!
 //! ```text
-//! elastokin run MODEL [--analysis NAME] [--range FROM,TO] [--steps N] [--mode paper|corrected] [--out DIR]
+//! elastokin run MODEL [--analysis NAME] [--range FROM,TO] [--steps N] [--mode paper|corrected]
+//!                     [--wheel held|free] [--out DIR]
 //! elastokin check MODEL
 //! elastokin batch MODEL VARIANTS [--out DIR]
 //! ```
+//!
+//! What the command depends on, and why: clap parses the arguments (help, `--version`, suggestions for
+//! mistyped names, errors that name the argument); csv writes the tables (quoting done right); sha2 gives
+//! each result the model file's SHA-256; indicatif draws progress bars on a terminal.
 
+use clap::{Args, Parser, Subcommand, ValueEnum};
 use elastokin::solver::{Mode, SolverOptions, StaticSolver};
 use elastokin::suspensions::{Rig, Side, SuspensionFile};
-use std::path::PathBuf;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
 
 mod analyses;
 mod batch;
+mod output;
 mod plot;
 use analyses::{Analysis, Settings};
-use std::process::ExitCode;
+use output::{note, write_table, Failure, Progress, Provenance, Staging, Stdout};
 
-const HELP: &str = "\
-elastokin — quasi-static elastokinematics of suspensions
+/// The most load steps a sweep may take.
+pub const MAX_STEPS: usize = 20_000;
 
-USAGE:
-    elastokin run MODEL [OPTIONS]     run the model's K&C tests, write CSV, SVG and summary.json, print headline figures
-    elastokin check MODEL             parse, report bodies, degrees of freedom, redundant or unrestrained parts
-    elastokin batch MODEL VARIANTS [--out DIR]
-                                      run design variants in parallel (one per line: name: /json/pointer=value; …),
-                                      one table of bump steer, camber gain and wheel rate at design
-    elastokin help                    this text
+/// The largest model or variants file read: far beyond any real one, small enough to read at once.
+const MAX_FILE_BYTES: u64 = 16 << 20;
 
-RUN OPTIONS:
-    --analysis NAME    one analysis instead of all of them (its load parameter in brackets):
-                       parallel-travel  [wheel travel, m, bump +; default -0.08,0.08]
-                       roll             [left wheel travel, m, right opposite, full axle; default -0.05,0.05]
-                       steering         [rack travel, m, towards +y, full axle, heights held; default -0.04,0.04]
-                       vertical-force   [force at the contact patch, N, up +, wheel free;
-                                         default 0.5..1.5 x the design wheel load]
-                       lateral-force    [force at the contact patch, N, inboard +; default -3000,3000]
-                       braking-force    [force at the contact patch, N, rearward +; default 0,3000]
-                       traction-force   [force at the wheel centre, N, forward +; default 0,3000]
-                       aligning-torque  [torque about +z, N m; default -200,200]
-                       static-load      [the model's vehicle.corner_load at once, from the design position]
-                       (road loads carry vehicle.corner_load, or the design wheel load when the file has no
-                       vehicle section; with --wheel held the rig holds the wheel-centre height)
-    --range FROM,TO    the load parameter's range (needs --analysis: each has its own units)
-    --steps N          load steps (default 32)
-    --mode MODE        corrected (default) or paper
-    --wheel HOLD       road loads with the wheel-centre height held (default) or free
-    --out DIR          where the files go (default out/)
+const EXIT_STATUS: &str = "\
+Exit status: 0 success; 1 a run that failed while solving or writing (previous results are left \
+untouched); 2 bad arguments or input files.";
 
-MODEL is a JSON file (SI units, ISO 8855 axes, left corner); see examples/*.json.";
-
-struct RunOptions {
-    model: PathBuf,
-    analysis: Option<Analysis>,
-    settings: Settings,
-    out: PathBuf,
+/// elastokin — quasi-static elastokinematics of suspensions.
+///
+/// MODEL is a JSON file (SI units, ISO 8855 axes, left corner); see examples/*.json.
+#[derive(Debug, Parser)]
+#[command(name = "elastokin", version, propagate_version = true, after_help = EXIT_STATUS, arg_required_else_help = true)]
+pub struct Cli {
+    /// Print nothing but errors: no progress, no headline figures (the exit status and the files tell)
+    #[arg(long, short, global = true)]
+    pub quiet: bool,
+    #[command(subcommand)]
+    pub command: Command,
 }
 
-fn parse_run(args: &[String]) -> Result<RunOptions, String> {
-    let mut it = args.iter();
-    let model = it.next().ok_or("run needs a MODEL file: elastokin run examples/macpherson.json")?;
-    let mut opts = RunOptions {
-        model: model.into(),
-        analysis: None,
-        settings: Settings { range: None, steps: 32, mode: Mode::Corrected, height_held: true },
-        out: "out".into(),
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Run the model's K&C tests: write CSV, SVG and summary.json, print headline figures
+    #[command(after_help = EXIT_STATUS)]
+    Run(RunArgs),
+    /// Parse the model and report bodies, degrees of freedom, redundant or unrestrained parts
+    #[command(after_help = EXIT_STATUS)]
+    Check(CheckArgs),
+    /// Run design variants in parallel: one table of bump steer, camber gain and wheel rate at design
+    ///
+    /// VARIANTS has one variant per line: an optional `name:`, then `/json/pointer=value` edits of the
+    /// model separated by `;`. Blank lines and lines starting with `#` are skipped. Each variant walks
+    /// parallel wheel travel ±20 mm in 8 steps, corrected mode.
+    #[command(after_help = EXIT_STATUS)]
+    Batch(BatchArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct RunArgs {
+    /// The model file (JSON; see examples/*.json)
+    pub model: PathBuf,
+    /// One analysis instead of all of them (--help lists each one's load parameter, units and default range)
+    #[arg(long, value_enum, value_name = "NAME")]
+    pub analysis: Option<AnalysisName>,
+    /// The load parameter's range, in the analysis's own units (needs --analysis)
+    #[arg(long, value_name = "FROM,TO", value_parser = parse_range, allow_hyphen_values = true)]
+    pub range: Option<(f64, f64)>,
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 32,
+        value_parser = parse_steps,
+        allow_negative_numbers = true,
+        help = format!("Load steps per sweep, 1 to {MAX_STEPS}")
+    )]
+    pub steps: usize,
+    /// Corrected: Newton iterations to the exact equilibrium at every step; paper: the paper's linear steps
+    #[arg(long, value_enum, default_value_t = ModeName::Corrected)]
+    pub mode: ModeName,
+    /// Road loads with the wheel-centre height held by the rig, or the wheel free on its spring (road
+    /// loads carry vehicle.corner_load, or the design wheel load when the file has no vehicle section)
+    #[arg(long, value_enum, default_value_t = WheelName::Held)]
+    pub wheel: WheelName,
+    /// Where the files go; the directory is replaced as a whole when the run succeeds
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+}
+
+#[derive(Debug, Args)]
+pub struct CheckArgs {
+    /// The model file (JSON; see examples/*.json)
+    pub model: PathBuf,
+}
+
+#[derive(Debug, Args)]
+pub struct BatchArgs {
+    /// The model file (JSON; see examples/*.json)
+    pub model: PathBuf,
+    #[arg(help = format!("The variants file, one variant per line (format in --help; at most {})", batch::MAX_VARIANTS))]
+    pub variants: PathBuf,
+    /// Where batch.csv goes; the directory is replaced as a whole when the batch succeeds
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+}
+
+/// The analyses by their command-line names, each with its load parameter.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum AnalysisName {
+    /// wheel travel, m, bump +; default -0.08,0.08
+    ParallelTravel,
+    /// left wheel travel, m, right opposite, full axle; default -0.05,0.05
+    Roll,
+    /// rack travel, m, towards +y, full axle, heights held; default -0.04,0.04
+    Steering,
+    /// force at the contact patch, N, up +, wheel free; default 0.5..1.5 x the design wheel load
+    VerticalForce,
+    /// force at the contact patch, N, inboard +; default -3000,3000
+    LateralForce,
+    /// force at the contact patch, N, rearward +; default 0,3000
+    BrakingForce,
+    /// force at the wheel centre, N, forward +; default 0,3000
+    TractionForce,
+    /// torque about +z, N m; default -200,200
+    AligningTorque,
+    /// the model's vehicle.corner_load at once, from the design position
+    StaticLoad,
+}
+
+impl AnalysisName {
+    /// The analysis of this name; the unit test below holds every name to one.
+    fn analysis(self) -> Analysis {
+        let value = self.to_possible_value().expect("no analysis name is hidden");
+        Analysis::from_name(value.get_name()).expect("every command-line name is an analysis")
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ModeName {
+    Corrected,
+    Paper,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum WheelName {
+    Held,
+    Free,
+}
+
+fn parse_steps(text: &str) -> Result<usize, String> {
+    let n: u64 = text.trim().parse().map_err(|_| format!("'{text}' is not a whole number of steps"))?;
+    match usize::try_from(n) {
+        Ok(n @ 1..=MAX_STEPS) => Ok(n),
+        Ok(0) => Err("a sweep needs at least 1 step".into()),
+        _ => Err(format!(
+            "at most {MAX_STEPS} steps: every step keeps the solved model in memory and costs solver time; \
+             for a finer look, narrow the sweep with --range"
+        )),
+    }
+}
+
+fn parse_range(text: &str) -> Result<(f64, f64), String> {
+    let (from, to) = text.split_once(',').ok_or("give FROM,TO, e.g. --range -0.02,0.02")?;
+    let parse = |s: &str| match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(format!("'{}' is not a finite number", s.trim())),
     };
-    while let Some(flag) = it.next() {
-        let mut value = || it.next().ok_or_else(|| format!("{flag} needs a value"));
-        match flag.as_str() {
-            "--analysis" => {
-                let v = value()?;
-                let names: Vec<&str> = analyses::ALL.iter().map(|a| a.name()).collect();
-                opts.analysis = Some(
-                    Analysis::from_name(v)
-                        .ok_or_else(|| format!("unknown analysis '{v}': available are {}", names.join(", ")))?,
-                );
-            }
-            "--range" => {
-                let v = value()?;
-                let parts: Vec<&str> = v.split(',').collect();
-                let parse = |s: &str| s.trim().parse::<f64>().map_err(|_| format!("--range: '{s}' is not a number"));
-                if parts.len() != 2 {
-                    return Err(format!("--range takes FROM,TO, got '{v}'"));
-                }
-                let range = (parse(parts[0])?, parse(parts[1])?);
-                if !(range.0.is_finite() && range.1.is_finite()) || range.0 == range.1 {
-                    return Err(format!("--range needs two different finite values, got '{v}'"));
-                }
-                opts.settings.range = Some(range);
-            }
-            "--steps" => {
-                let v = value()?;
-                opts.settings.steps = v
-                    .parse()
-                    .ok()
-                    .filter(|&n| n > 0)
-                    .ok_or_else(|| format!("--steps: '{v}' is not a positive integer"))?;
-            }
-            "--mode" => {
-                opts.settings.mode = match value()?.as_str() {
-                    "corrected" => Mode::Corrected,
-                    "paper" => Mode::Paper,
-                    other => return Err(format!("--mode: '{other}' is neither paper nor corrected")),
-                }
-            }
-            "--wheel" => {
-                opts.settings.height_held = match value()?.as_str() {
-                    "held" => true,
-                    "free" => false,
-                    other => return Err(format!("--wheel: '{other}' is neither held nor free")),
-                }
-            }
-            "--out" => opts.out = value()?.into(),
-            other => return Err(format!("unknown option '{other}' (see elastokin help)")),
-        }
+    let (from, to) = (parse(from)?, parse(to)?);
+    if from == to {
+        return Err("FROM and TO must differ".into());
     }
-    if opts.settings.range.is_some() && opts.analysis.is_none() {
-        return Err("--range needs --analysis NAME: each analysis has its own load parameter and units".into());
+    if !(to - from).is_finite() {
+        return Err("FROM and TO are too far apart to step between".into());
     }
-    Ok(opts)
+    Ok((from, to))
 }
 
-fn run(opts: RunOptions) -> Result<(), String> {
-    let file = SuspensionFile::read(&opts.model).map_err(|e| e.to_string())?;
-    let chosen: Vec<Analysis> = match opts.analysis {
-        Some(a) => vec![a],
+/// Reads an input file whole; errors name the file and what it is for.
+fn read_input(path: &Path, what: &str) -> Result<(Vec<u8>, String), Failure> {
+    let shown = path.display();
+    let fail = |why: String| Failure::Input(format!("{what} '{shown}': {why}"));
+    let file = std::fs::File::open(path).map_err(|e| fail(format!("cannot open it: {e}")))?;
+    let mut bytes = Vec::new();
+    file.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes).map_err(|e| fail(format!("cannot read it: {e}")))?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(fail(format!("larger than {} MiB; is it the right file?", MAX_FILE_BYTES >> 20)));
+    }
+    let text = String::from_utf8(bytes.clone()).map_err(|_| fail("not UTF-8 text".into()))?;
+    Ok((bytes, text))
+}
+
+/// The model file: its bytes (for the provenance hash) and the model parsed from the same bytes.
+fn read_model(path: &Path) -> Result<(Vec<u8>, SuspensionFile), Failure> {
+    let (bytes, text) = read_input(path, "MODEL")?;
+    let file =
+        SuspensionFile::from_json(&text, &path.display().to_string()).map_err(|e| Failure::Input(e.to_string()))?;
+    Ok((bytes, file))
+}
+
+fn mode_name(mode: Mode) -> &'static str {
+    match mode {
+        Mode::Corrected => "corrected",
+        Mode::Paper => "paper",
+    }
+}
+
+fn run(args: RunArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> {
+    if args.range.is_some() && args.analysis.is_none() {
+        return Err(Failure::Input(
+            "--range needs --analysis NAME: each analysis has its own load parameter and units".into(),
+        ));
+    }
+    let mode = match args.mode {
+        ModeName::Corrected => Mode::Corrected,
+        ModeName::Paper => Mode::Paper,
+    };
+    let settings = Settings { range: args.range, steps: args.steps, mode, height_held: args.wheel == WheelName::Held };
+    let (bytes, file) = read_model(&args.model)?;
+    let mut provenance = Provenance::new(&args.model, &bytes, mode_name(mode), args.steps);
+    provenance.wheel = Some(if settings.height_held { "held" } else { "free" });
+    provenance.range = args.range;
+    let chosen: Vec<Analysis> = match args.analysis {
+        Some(a) => vec![a.analysis()],
         None => analyses::ALL.to_vec(),
     };
-    std::fs::create_dir_all(&opts.out).map_err(|e| format!("{}: {e}", opts.out.display()))?;
-    let write = |name: &str, text: &str| {
-        let path = opts.out.join(name);
-        std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display())).map(|()| path)
-    };
-    println!("{} — {} mode", file.name, format!("{:?}", opts.settings.mode).to_lowercase());
-    let mut summaries = serde_json::Map::new();
-    let mut written = Vec::new();
-    for analysis in chosen {
-        if analysis == Analysis::StaticLoad && file.vehicle.is_none() && opts.analysis.is_none() {
-            let why = "the model file has no \"vehicle\" section with the corner_load to carry";
-            println!("\nstatic load: skipped — {why}");
-            summaries.insert(analysis.name().into(), serde_json::json!({ "skipped": why }));
-            continue;
+    let staging = Staging::new(&args.out)?;
+    let progress = Progress::new("analyses", chosen.len(), quiet);
+    let result = (|| -> Result<Vec<PathBuf>, Failure> {
+        out.line(format!("{} — {} mode", file.name, mode_name(mode)))?;
+        let mut summaries = serde_json::Map::new();
+        let mut written = Vec::new();
+        for analysis in chosen {
+            progress.begin(analysis.name());
+            if analysis == Analysis::StaticLoad && file.vehicle.is_none() && args.analysis.is_none() {
+                let why = "the model file has no \"vehicle\" section with the corner_load to carry";
+                progress.suspend(|| out.line(format!("\nstatic load: skipped — {why}")))?;
+                summaries.insert(analysis.name().into(), serde_json::json!({ "skipped": why }));
+                progress.end(None);
+                continue;
+            }
+            let report = analyses::run(analysis, &file, settings).map_err(Failure::Run)?;
+            progress.suspend(|| -> Result<(), Failure> {
+                out.line("")?;
+                report.headline.iter().try_for_each(|line| out.line(line))
+            })?;
+            written.push(staging.write(&report.table.file, &write_table(&report.table, &provenance))?);
+            for (name, svg) in &report.plots {
+                written.push(staging.write(name, svg.as_bytes())?);
+            }
+            let mut entry = report.summary;
+            entry["parameter"] = analysis.parameter().into();
+            summaries.insert(analysis.name().into(), entry);
+            progress.end(None);
         }
-        let report = analyses::run(analysis, &file, opts.settings)?;
-        println!();
-        for line in &report.headline {
-            println!("{line}");
-        }
-        written.push(write(&report.table.file, &report.table.csv())?);
-        for (name, svg) in &report.plots {
-            written.push(write(name, svg)?);
-        }
-        let mut entry = report.summary;
-        entry["parameter"] = analysis.parameter().into();
-        summaries.insert(analysis.name().into(), entry);
-    }
-    let summary = serde_json::json!({
-        "model": file.name,
-        "mode": format!("{:?}", opts.settings.mode).to_lowercase(),
-        "analyses": summaries,
-    });
-    let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
-    written.push(write("summary.json", &text)?);
-    println!();
-    println!("wrote {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
-    Ok(())
+        let summary = serde_json::json!({
+            "model": file.name,
+            "mode": mode_name(mode),
+            "provenance": provenance.to_json(),
+            "analyses": summaries,
+        });
+        let text = serde_json::to_string_pretty(&summary).map_err(|e| Failure::Run(e.to_string()))?;
+        written.push(staging.write("summary.json", text.as_bytes())?);
+        Ok(written)
+    })();
+    progress.finish();
+    let written = result.map_err(|e| Failure::Run(format!("{}\n{}", e.message(), staging.untouched())))?;
+    staging.commit()?;
+    out.line("")?;
+    out.line(format!("wrote {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))
 }
 
-fn check(model: &str) -> Result<(), String> {
-    let file = SuspensionFile::read(model.as_ref()).map_err(|e| e.to_string())?;
-    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| format!("{model}: {e}"))?;
+fn check(args: CheckArgs, out: &Stdout) -> Result<(), Failure> {
+    let model = args.model.display();
+    let (_, file) = read_model(&args.model)?;
+    let input = |e: &dyn std::fmt::Display| Failure::Input(format!("{model}: {e}"));
+    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| input(&e))?;
     let m = &corner.model;
-    println!("{}", file.name);
+    out.line(&file.name)?;
     // Before the solver: its refusal of a free part would hide the warnings that explain it.
-    let plausibility = elastokin::suspensions::check_model(&file).map_err(|e| format!("{model}: {e}"))?;
-    plausibility.report().iter().for_each(|line| println!("{line}"));
-    println!("bodies: {}", m.bodies().iter().map(|b| b.name.as_str()).collect::<Vec<_>>().join(", "));
-    println!("joints: {}, elements: {}", m.joints().len(), m.elements().len());
-    println!("coordinates: {}, constraint rows: {} (with the wheel-travel driver)", m.dofs(), m.constraint_rows());
-    let solver = StaticSolver::new(m, SolverOptions::default()).map_err(|e| format!("{model}: {e}"))?;
+    let plausibility = elastokin::suspensions::check_model(&file).map_err(|e| input(&e))?;
+    for line in plausibility.report() {
+        out.line(line)?;
+    }
+    out.line(format!("bodies: {}", m.bodies().iter().map(|b| b.name.as_str()).collect::<Vec<_>>().join(", ")))?;
+    out.line(format!("joints: {}, elements: {}", m.joints().len(), m.elements().len()))?;
+    out.line(format!(
+        "coordinates: {}, constraint rows: {} (with the wheel-travel driver)",
+        m.dofs(),
+        m.constraint_rows()
+    ))?;
+    let solver = StaticSolver::new(m, SolverOptions::default()).map_err(|e| input(&e))?;
     let d = solver.diagnostics();
     if d.redundant.is_empty() {
-        println!("redundant constraints: none");
+        out.line("redundant constraints: none")?;
     }
     for line in d.messages() {
-        println!("{line}");
+        out.line(line)?;
     }
-    println!("every body is restrained");
-    Ok(())
+    out.line("every body is restrained")
 }
 
-fn run_batch(args: &[String]) -> Result<(), String> {
-    let (model, variants) = match args {
-        [m, v, ..] => (m, v),
-        _ => {
-            return Err(
-                "batch needs MODEL and VARIANTS files: elastokin batch examples/macpherson.json variants.txt".into()
-            )
-        }
-    };
-    let out: PathBuf = match args.get(2..) {
-        Some([flag, dir]) if flag == "--out" => dir.into(),
-        Some([]) | None => "out".into(),
-        Some(other) => return Err(format!("unexpected arguments {other:?} (batch MODEL VARIANTS [--out DIR])")),
-    };
-    let base_text = std::fs::read_to_string(model).map_err(|e| format!("{model}: {e}"))?;
-    SuspensionFile::from_json(&base_text, model).map_err(|e| e.to_string())?;
-    let base: serde_json::Value = serde_json::from_str(&base_text).map_err(|e| format!("{model}: {e}"))?;
-    let text = std::fs::read_to_string(variants).map_err(|e| format!("{variants}: {e}"))?;
-    let list = batch::parse_variants(&text, variants)?;
+fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> {
+    let (bytes, text) = read_input(&args.model, "MODEL")?;
+    let origin = args.model.display().to_string();
+    SuspensionFile::from_json(&text, &origin).map_err(|e| Failure::Input(e.to_string()))?;
+    let base: serde_json::Value = serde_json::from_str(&text).map_err(|e| Failure::Input(format!("{origin}: {e}")))?;
+    let (variant_bytes, variant_text) = read_input(&args.variants, "VARIANTS")?;
+    let list = batch::parse_variants(&variant_text, &args.variants.display().to_string()).map_err(Failure::Input)?;
     // A variant that names a key the model lacks is a mistake in the file: say so before running anything.
     for v in &list {
-        batch::apply(&base, v)?;
+        batch::apply(&base, v).map_err(Failure::Input)?;
     }
-    let results = batch::run_all(&base, &list);
-    std::fs::create_dir_all(&out).map_err(|e| format!("{}: {e}", out.display()))?;
-    let mut csv = String::from("variant,bump_steer_deg_per_m,camber_gain_deg_per_m,wheel_rate_n_per_m,error\n");
-    println!("{:<28} {:>16} {:>16} {:>14}", "variant", "bump °/10 mm", "camber °/10 mm", "rate N/mm");
-    for (v, r) in list.iter().zip(&results) {
-        match r {
-            Ok(o) => {
-                println!(
-                    "{:<28} {:>16.4} {:>16.4} {:>14.2}",
-                    v.name,
-                    o.bump_steer * 0.01,
-                    o.camber_gain * 0.01,
-                    o.wheel_rate * 1e-3
-                );
-                csv +=
-                    &format!("\"{}\",{},{},{},\n", v.name.replace('"', "'"), o.bump_steer, o.camber_gain, o.wheel_rate);
-            }
-            Err(e) => {
-                println!("{:<28} failed: {e}", v.name);
-                csv += &format!("\"{}\",,,,\"{}\"\n", v.name.replace('"', "'"), e.replace('"', "'"));
+    let mut provenance = Provenance::new(&args.model, &bytes, mode_name(Mode::Corrected), batch::STEPS);
+    provenance.range = Some((-batch::HALF_RANGE, batch::HALF_RANGE));
+    provenance.variants = Some((args.variants.display().to_string(), output::sha256_hex(&variant_bytes)));
+    let staging = Staging::new(&args.out)?;
+    let progress = Progress::new("variants", list.len(), quiet);
+    let results = batch::run_all(&base, &list, &progress);
+    progress.finish();
+    let result = (|| {
+        out.line(format!("{:<28} {:>16} {:>16} {:>14}", "variant", "bump °/10 mm", "camber °/10 mm", "rate N/mm"))?;
+        let mut rows = Vec::new();
+        for (v, r) in list.iter().zip(&results) {
+            let name = analyses::Cell::Text(v.name.clone());
+            match r {
+                Ok(o) => {
+                    out.line(format!(
+                        "{:<28} {:>16.4} {:>16.4} {:>14.2}",
+                        v.name,
+                        o.bump_steer * 0.01,
+                        o.camber_gain * 0.01,
+                        o.wheel_rate * 1e-3
+                    ))?;
+                    rows.push(vec![
+                        name,
+                        o.bump_steer.into(),
+                        o.camber_gain.into(),
+                        o.wheel_rate.into(),
+                        analyses::Cell::Empty,
+                    ]);
+                }
+                Err(e) => {
+                    out.line(format!("{:<28} failed: {e}", v.name))?;
+                    let empty = analyses::Cell::Empty;
+                    rows.push(vec![name, empty.clone(), empty.clone(), empty, analyses::Cell::Text(e.clone())]);
+                }
             }
         }
+        let table = analyses::Table {
+            file: "batch.csv".into(),
+            columns: ["variant", "bump_steer_deg_per_m", "camber_gain_deg_per_m", "wheel_rate_n_per_m", "error"]
+                .map(String::from)
+                .to_vec(),
+            rows,
+        };
+        staging.write(&table.file, &write_table(&table, &provenance))
+    })();
+    let path = result.map_err(|e| Failure::Run(format!("{}\n{}", e.message(), staging.untouched())))?;
+    staging.commit()?;
+    let failed = results.iter().filter(|r| r.is_err()).count();
+    if failed > 0 && !quiet {
+        note(format!("{failed} of {} variants failed (their error is in the error column)", results.len()));
     }
-    let path = out.join("batch.csv");
-    std::fs::write(&path, csv).map_err(|e| format!("{}: {e}", path.display()))?;
-    println!("wrote {}", path.display());
-    Ok(())
+    out.line(format!("wrote {}", path.display()))
 }
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    // `--help` anywhere (`elastokin run --help`) asks for the help text, not for a model named --help.
-    if args.iter().any(|a| a == "--help" || a == "-h") {
-        println!("{HELP}");
-        return ExitCode::SUCCESS;
-    }
-    let result = match args.first().map(String::as_str) {
-        Some("run") => parse_run(&args[1..]).and_then(run),
-        Some("check") => match args.get(1) {
-            Some(model) => check(model),
-            None => Err("check needs a MODEL file: elastokin check examples/macpherson.json".into()),
-        },
-        Some("batch") => run_batch(&args[1..]),
-        Some("help") | None => {
-            println!("{HELP}");
-            Ok(())
-        }
-        Some(other) => Err(format!("unknown command '{other}' (see elastokin help)")),
+    // Usage errors exit with status 2, help and --version with 0; clap prints them.
+    let cli = Cli::parse();
+    let out = Stdout::new(cli.quiet);
+    let result = match cli.command {
+        Command::Run(args) => run(args, &out, cli.quiet),
+        Command::Check(args) => check(args, &out),
+        Command::Batch(args) => run_batch(args, &out, cli.quiet),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(message) => {
-            eprintln!("error: {message}");
-            ExitCode::from(2)
+        Err(failure) => {
+            note(format!("error: {}", failure.message()));
+            ExitCode::from(failure.exit_status())
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_analysis_has_its_command_line_name() {
+        let names: Vec<AnalysisName> = AnalysisName::value_variants().to_vec();
+        assert_eq!(names.len(), analyses::ALL.len());
+        for (name, analysis) in names.into_iter().zip(analyses::ALL) {
+            assert_eq!(name.analysis(), analysis);
+        }
+    }
+
+    #[test]
+    fn the_argument_definitions_are_consistent() {
+        use clap::CommandFactory;
+        Cli::command().debug_assert();
     }
 }

@@ -1,10 +1,20 @@
 //! The `elastokin` command on every shipped example, and on bad input.
 
-use std::path::Path;
-use std::process::Command;
+use sha2::{Digest, Sha256};
+use std::collections::BTreeMap;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
 
 fn elastokin(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_elastokin")).args(args).current_dir(env!("CARGO_MANIFEST_DIR")).output().unwrap()
+}
+
+/// The rows of a CSV file the command wrote, read by a CSV reader that skips the provenance comment line.
+fn read_csv(path: &Path) -> Vec<csv::StringRecord> {
+    let mut reader = csv::ReaderBuilder::new().comment(Some(b'#')).from_path(path).unwrap();
+    reader.records().map(Result::unwrap).collect()
 }
 
 fn examples() -> Vec<String> {
@@ -45,7 +55,8 @@ fn run_and_check_every_example() {
                 serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
             for (analysis, csv, plots) in OUTPUTS {
                 let csv = std::fs::read_to_string(out.join(csv)).unwrap();
-                assert_eq!(csv.lines().count(), 1 + 9, "{model} {mode} {analysis}: {csv}");
+                // The provenance line, the header, one row per load step.
+                assert_eq!(csv.lines().count(), 2 + 9, "{model} {mode} {analysis}: {csv}");
                 assert!(!csv.contains("NaN") && !csv.contains("inf"), "{csv}");
                 for plot in plots {
                     let svg = std::fs::read_to_string(out.join(plot)).unwrap();
@@ -64,8 +75,9 @@ fn run_and_check_every_example() {
             assert!(a["parallel-travel"]["wheel_compliance_at_design"][5][5].is_f64(), "{summary}");
             assert!(a["parallel-travel"]["anti_pitch"]["braking_percent"].is_f64(), "{summary}");
             // The static load case: a row per joint and element, ride height in the summary.
-            let loads = std::fs::read_to_string(out.join("static_load.csv")).unwrap();
-            assert!(loads.contains("\"spring\"") && loads.contains("\"corner load\"") && !loads.contains("NaN"));
+            let loads = read_csv(&out.join("static_load.csv"));
+            let components: Vec<&str> = loads.iter().map(|r| &r[0]).collect();
+            assert!(components.contains(&"spring") && components.contains(&"corner load"), "{components:?}");
             assert!(a["static-load"]["ride_height_change_m"].is_f64(), "{summary}");
         }
         // One analysis alone, with its own range.
@@ -131,7 +143,7 @@ fn bad_files_and_arguments_exit_non_zero_with_a_named_problem() {
         "--analysis",
         "lateral-force",
         "--out",
-        dir.to_str().unwrap(),
+        dir.join("out").to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let cases: Vec<(Vec<String>, &str)> = vec![
@@ -140,12 +152,22 @@ fn bad_files_and_arguments_exit_non_zero_with_a_named_problem() {
         (vec!["run".into(), examples()[0].clone(), "--steps".into(), "zero".into()], "--steps"),
         (vec!["run".into(), examples()[0].clone(), "--mode".into(), "exact".into()], "--mode"),
         (vec!["run".into(), examples()[0].clone(), "--range".into(), "0.1".into()], "--range"),
-        (vec!["frobnicate".into()], "unknown command"),
-        (vec!["run".into(), examples()[0].clone(), "--analysis".into(), "pitch".into()], "unknown analysis 'pitch'"),
+        (vec!["frobnicate".into()], "unrecognized subcommand 'frobnicate'"),
+        (
+            vec!["run".into(), examples()[0].clone(), "--analysis".into(), "pitch".into()],
+            "invalid value 'pitch' for '--analysis <NAME>'",
+        ),
         (vec!["run".into(), examples()[0].clone(), "--range".into(), "0,1".into()], "--range needs --analysis"),
         (vec!["run".into(), examples()[0].clone(), "--wheel".into(), "loose".into()], "--wheel"),
         (
-            vec!["run".into(), no_vehicle.display().to_string(), "--analysis".into(), "static-load".into()],
+            vec![
+                "run".into(),
+                no_vehicle.display().to_string(),
+                "--analysis".into(),
+                "static-load".into(),
+                "--out".into(),
+                dir.join("out").display().to_string(),
+            ],
             "no \"vehicle\" section",
         ),
     ];
@@ -157,9 +179,17 @@ fn bad_files_and_arguments_exit_non_zero_with_a_named_problem() {
         assert!(err.contains(expected), "{args:?}: {err}");
     }
     std::fs::remove_dir_all(&dir).ok();
-    for args in [&["help"][..], &["run", "--help"], &["batch", "-h"], &["check", "--help"]] {
+    for (args, usage) in [
+        (&["help"][..], "Usage: elastokin [OPTIONS] <COMMAND>"),
+        (&["--help"], "Usage: elastokin [OPTIONS] <COMMAND>"),
+        (&["run", "--help"], "Usage: elastokin run [OPTIONS] <MODEL>"),
+        (&["help", "run"], "Usage: elastokin run [OPTIONS] <MODEL>"),
+        (&["batch", "-h"], "Usage: elastokin batch [OPTIONS] <MODEL> <VARIANTS>"),
+        (&["check", "--help"], "Usage: elastokin check [OPTIONS] <MODEL>"),
+    ] {
         let o = elastokin(args);
-        assert!(o.status.success() && String::from_utf8_lossy(&o.stdout).contains("elastokin run MODEL"), "{args:?}");
+        let help = String::from_utf8_lossy(&o.stdout);
+        assert!(o.status.success() && help.contains(usage) && help.contains("Exit status: 0 success"), "{args:?}");
     }
 }
 
@@ -174,10 +204,10 @@ fn batch_runs_variants_in_parallel_and_agrees_with_run() {
         out.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let csv = std::fs::read_to_string(out.join("batch.csv")).unwrap();
+    let csv = read_csv(&out.join("batch.csv"));
     let value = |row: &str, col: usize| -> f64 {
-        let line = csv.lines().find(|l| l.starts_with(&format!("\"{row}\""))).unwrap();
-        line.split(',').nth(col).unwrap().parse().unwrap()
+        let record = csv.iter().find(|r| &r[0] == row).unwrap();
+        record[col].parse().unwrap()
     };
     // The baseline variant is the model itself: same figures as `run` (same ±5 mm points around design).
     let r = elastokin(&["run", "examples/macpherson.json", "--out", out.to_str().unwrap()]);
@@ -215,4 +245,425 @@ fn bad_variants_are_named_before_anything_runs() {
         assert!(!o.status.success() && err.contains(expected), "{line}: {err}");
     }
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A fresh scratch directory for one test.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("elastokin-{name}-{}", std::process::id()));
+    std::fs::remove_dir_all(&dir).ok();
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Runs the command, failing the test instead of hanging when it takes longer than `limit`.
+fn elastokin_within(args: &[&str], limit: Duration) -> std::process::Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_elastokin"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > limit {
+            child.kill().ok();
+            panic!("{args:?} still running after {limit:?}");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
+}
+
+/// Every file in `dir` with its bytes.
+fn snapshot(dir: &Path) -> BTreeMap<String, Vec<u8>> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| {
+            let e = e.unwrap();
+            (e.file_name().to_string_lossy().into_owned(), std::fs::read(e.path()).unwrap())
+        })
+        .collect()
+}
+
+/// The names in `dir`.
+fn names(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> =
+        std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn version_help_and_argument_mistakes_are_answered_by_name() {
+    let o = elastokin(&["--version"]);
+    assert!(o.status.success());
+    assert_eq!(String::from_utf8_lossy(&o.stdout), format!("elastokin {}\n", env!("CARGO_PKG_VERSION")));
+    // The long help keeps what each analysis's load parameter is, its units and default range.
+    let o = elastokin(&["run", "--help"]);
+    let help = String::from_utf8_lossy(&o.stdout);
+    for text in [
+        "parallel-travel: wheel travel, m, bump +; default -0.08,0.08",
+        "lateral-force:   force at the contact patch, N, inboard +; default -3000,3000",
+        "static-load:     the model's vehicle.corner_load",
+        "[default: 32]",
+        "--quiet",
+        "Exit status: 0 success; 1 a run that failed while solving or writing",
+    ] {
+        assert!(help.contains(text), "{text}: {help}");
+    }
+    let m = "examples/macpherson.json";
+    let v = "examples/macpherson_variants.txt";
+    let cases: [(&[&str], &str); 7] = [
+        (&["run", m, "extra"], "unexpected argument 'extra' found"),
+        (&["batch", m, v, "extra"], "unexpected argument 'extra' found"),
+        (&["check", m, "--steps", "4"], "unexpected argument '--steps' found"),
+        (&["run", m, "--stpes", "4"], "a similar argument exists: '--steps'"),
+        (&["chek", m], "a similar subcommand exists: 'check'"),
+        (&["check"], "the following required arguments were not provided:\n  <MODEL>"),
+        (&["run", m, "--range", "0,1"], "--range needs --analysis NAME"),
+    ];
+    for (args, expected) in cases {
+        let o = elastokin(args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(expected), "{args:?}: {err}");
+        assert!(o.stdout.is_empty(), "{args:?}");
+    }
+    // No command at all: the help, on standard error, as a usage error.
+    let o = elastokin(&[]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("Commands:"));
+}
+
+#[test]
+fn steps_and_ranges_are_bounded_with_a_reason() {
+    let out = scratch("bounds");
+    let m = "examples/macpherson.json";
+    let limit = Duration::from_secs(60);
+    let too_many = "at most 20000 steps: every step keeps the solved model in memory and costs solver time";
+    for (steps, expected) in [
+        ("0", "a sweep needs at least 1 step"),
+        ("-1", "'-1' is not a whole number of steps"),
+        ("4294967296", too_many),
+        ("18446744073709551615", too_many),
+        ("18446744073709551616", "is not a whole number"),
+        ("20001", too_many),
+    ] {
+        let o = elastokin_within(&["run", m, "--steps", steps, "--out", out.to_str().unwrap()], limit);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "--steps {steps}: {err}");
+        assert!(err.contains(&format!("invalid value '{steps}' for '--steps <N>'")) && err.contains(expected), "{err}");
+    }
+    for range in ["nan,1", "0,inf", "1e308,-1e308", "0.1", "0.02,0.02", "a,b"] {
+        let o = elastokin_within(&["run", m, "--analysis", "roll", "--range", range], limit);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "--range {range}: {err}");
+        assert!(err.contains(&format!("invalid value '{range}' for '--range <FROM,TO>'")), "{err}");
+    }
+    // Nothing was written by the refused runs.
+    assert!(names(&out).is_empty());
+    // The maximum itself runs, one row per step.
+    let target = out.join("max");
+    let o = elastokin_within(
+        &["run", m, "--analysis", "parallel-travel", "--steps", "20000", "--out", target.to_str().unwrap()],
+        Duration::from_secs(300),
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(read_csv(&target.join("parallel_travel.csv")).len(), 20001);
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn too_many_variants_are_refused_before_running() {
+    let dir = scratch("manyvariants");
+    let path = dir.join("many.txt");
+    let text: String =
+        (0..10_001).map(|k| format!("v{k}: /suspension/macpherson/spring/rate={}\n", 20000 + k)).collect();
+    std::fs::write(&path, text).unwrap();
+    let o = elastokin(&[
+        "batch",
+        "examples/macpherson.json",
+        path.to_str().unwrap(),
+        "--out",
+        dir.join("o").to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("many.txt:10001: more than 10000 variants; split the file"), "{err}");
+    assert_eq!(names(&dir), ["many.txt"]);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Spawns the command with its standard output (and, if asked, standard error) closed before it has
+/// written anything, as `elastokin … | head -1` does once head has its line.
+fn with_closed_output(args: &[&str], close_stderr: bool) -> (Option<i32>, String) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_elastokin"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let mut err = String::new();
+    match child.stderr.take() {
+        Some(stderr) if close_stderr => drop(stderr),
+        Some(mut stderr) => {
+            stderr.read_to_string(&mut err).unwrap();
+        }
+        None => {}
+    }
+    (child.wait().unwrap().code(), err)
+}
+
+#[test]
+fn a_closed_pipe_is_no_crash_and_the_work_still_gets_done() {
+    let out = scratch("pipe");
+    let (run_out, batch_out) = (out.join("run"), out.join("batch"));
+    let m = "examples/macpherson.json";
+    let runs: [(&[&str], Option<PathBuf>); 5] = [
+        (&["check", m], None),
+        (&["run", m, "--steps", "8", "--out", run_out.to_str().unwrap()], Some(run_out.join("summary.json"))),
+        (
+            &["batch", m, "examples/macpherson_variants.txt", "--out", batch_out.to_str().unwrap()],
+            Some(batch_out.join("batch.csv")),
+        ),
+        (&["--help"], None),
+        (&["run", "--help"], None),
+    ];
+    for close_stderr in [false, true] {
+        for (args, product) in &runs {
+            if let Some(p) = product {
+                std::fs::remove_dir_all(p.parent().unwrap()).ok();
+            }
+            let (code, err) = with_closed_output(args, close_stderr);
+            assert!(!err.contains("panicked"), "{args:?}: {err}");
+            assert_eq!(code, Some(0), "{args:?}: {err}");
+            if let Some(p) = product {
+                assert!(p.exists(), "{args:?} did not write {}", p.display());
+            }
+        }
+        // A usage error with nobody listening is still a usage error, not a crash.
+        let (code, err) = with_closed_output(&["run", m, "--steps", "0"], close_stderr);
+        assert_eq!(code, Some(2), "{err}");
+    }
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn a_failed_run_leaves_the_previous_results_untouched() {
+    let dir = scratch("whole");
+    let out = dir.join("results");
+    let o = elastokin(&["run", "examples/macpherson.json", "--steps", "8", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let before = snapshot(&out);
+    assert!(before.contains_key("summary.json") && before.contains_key("roll.csv"));
+    // A corner load no spring holds: every sweep before the static load case solves (and would have written
+    // its files), then the static load case fails.
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/macpherson.json")).unwrap();
+    let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();
+    value["vehicle"]["corner_load"] = 1.0e6.into();
+    let heavy = dir.join("heavy.json");
+    std::fs::write(&heavy, value.to_string()).unwrap();
+    let o = elastokin(&["run", heavy.to_str().unwrap(), "--steps", "8", "--out", out.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("static-load:"), "{err}");
+    assert!(err.contains(&format!("previous results in {} left untouched", out.display())), "{err}");
+    // The lateral force sweep ran before the failure: its headline reached standard output, its file did not.
+    assert!(String::from_utf8_lossy(&o.stdout).contains("lateral force"), "{}", String::from_utf8_lossy(&o.stdout));
+    assert_eq!(snapshot(&out), before);
+    assert_eq!(names(&dir), ["heavy.json", "results"]);
+    // Into a new directory the same failure leaves nothing at all.
+    let fresh = dir.join("fresh");
+    let o = elastokin(&["run", heavy.to_str().unwrap(), "--steps", "8", "--out", fresh.to_str().unwrap()]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains(&format!("nothing written to {}", fresh.display())));
+    assert_eq!(names(&dir), ["heavy.json", "results"]);
+    // A successful run replaces the directory whole: no file of the earlier run survives beside the new ones.
+    let o = elastokin(&["run", "examples/macpherson.json", "--analysis", "roll", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(names(&out), ["roll.csv", "roll_centre.svg", "roll_toe_camber.svg", "summary.json"]);
+    assert_eq!(names(&dir), ["heavy.json", "results"]);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn an_out_that_is_not_a_results_directory_is_refused_and_kept() {
+    let dir = scratch("outkinds");
+    let m = "examples/macpherson.json";
+    let file = dir.join("x");
+    std::fs::write(&file, "mine").unwrap();
+    let mine = dir.join("mine");
+    std::fs::create_dir(&mine).unwrap();
+    std::fs::write(mine.join("notes.txt"), "mine").unwrap();
+    let older = dir.join("older");
+    std::fs::create_dir(&older).unwrap();
+    std::fs::write(older.join("measured.csv"), "travel_m,toe_deg\n0,0\n").unwrap();
+    let plots = dir.join("plots");
+    std::fs::create_dir(&plots).unwrap();
+    std::fs::write(plots.join("sketch.svg"), "<svg/>").unwrap();
+    // Earlier results with the model file put beside them.
+    let with_model = dir.join("with_model");
+    let o = elastokin(&["run", m, "--analysis", "roll", "--out", with_model.to_str().unwrap()]);
+    assert!(o.status.success());
+    std::fs::copy(Path::new(env!("CARGO_MANIFEST_DIR")).join(m), with_model.join("model.json")).unwrap();
+    let cases = [
+        (&file, format!("--out DIR: '{}' is a file; give a directory", file.display())),
+        (&mine, format!("--out DIR: '{}' holds 'notes.txt', which elastokin does not write", mine.display())),
+        (&older, format!("--out DIR: '{}' holds 'measured.csv', which elastokin did not write", older.display())),
+        (&plots, format!("--out DIR: '{}' does not hold elastokin results", plots.display())),
+        (
+            &with_model,
+            format!("--out DIR: '{}' holds 'model.json', which elastokin does not write", with_model.display()),
+        ),
+    ];
+    for (out, expected) in cases {
+        let before = names(&dir);
+        let o = elastokin(&["run", m, "--analysis", "roll", "--out", out.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains(&expected), "{err}");
+        assert_eq!(names(&dir), before);
+    }
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "mine");
+    assert_eq!(std::fs::read_to_string(mine.join("notes.txt")).unwrap(), "mine");
+    assert!(older.join("measured.csv").exists() && with_model.join("model.json").exists());
+    // Results of versions before the provenance line are recognised by their summary.json, and replaced.
+    let earlier = dir.join("earlier");
+    std::fs::create_dir(&earlier).unwrap();
+    std::fs::write(earlier.join("summary.json"), r#"{"model": "m", "mode": "corrected", "analyses": {}}"#).unwrap();
+    std::fs::write(earlier.join("steering.csv"), "rack_m,toe_deg\n0.000000000,0.000000000\n").unwrap();
+    let o = elastokin(&["run", m, "--analysis", "roll", "--out", earlier.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(names(&earlier), ["roll.csv", "roll_centre.svg", "roll_toe_camber.svg", "summary.json"]);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Significant digits of a number as written: the mantissa's digits without leading zeros.
+fn significant_digits(cell: &str) -> usize {
+    let mantissa = cell.split(['e', 'E']).next().unwrap();
+    mantissa.chars().filter(char::is_ascii_digit).skip_while(|&c| c == '0').count()
+}
+
+#[test]
+fn every_result_says_what_produced_it() {
+    let out = scratch("provenance");
+    let m = "examples/macpherson.json";
+    let sha: String = Sha256::digest(std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join(m)).unwrap())
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect();
+    let version = env!("CARGO_PKG_VERSION");
+    let args = [
+        "run",
+        m,
+        "--analysis",
+        "roll",
+        "--steps",
+        "8",
+        "--range",
+        "-0.02,0.02",
+        "--wheel",
+        "free",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let o = elastokin(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let p = &summary["provenance"];
+    assert_eq!(p["elastokin"], version);
+    assert_eq!(p["model"], m);
+    assert_eq!(p["model_sha256"], sha.as_str());
+    assert_eq!(p["mode"], "corrected");
+    assert_eq!(p["steps"], 8);
+    assert_eq!(p["wheel"], "free");
+    assert_eq!(p["range"], serde_json::json!([-0.02, 0.02]));
+    assert!(p["command"].as_str().unwrap().ends_with(&args.join(" ")), "{p}");
+    let text = std::fs::read_to_string(out.join("roll.csv")).unwrap();
+    assert_eq!(
+        text.lines().next().unwrap(),
+        format!("# elastokin {version}, model {m} (sha256 {}), corrected mode, 8 steps", &sha[..16])
+    );
+    // A CSV reader takes the rest: every cell a finite number of at most 12 significant digits.
+    let rows = read_csv(&out.join("roll.csv"));
+    assert_eq!(rows.len(), 9);
+    for row in &rows {
+        for cell in row {
+            assert!(cell.parse::<f64>().is_ok_and(f64::is_finite), "{cell}");
+            assert!(significant_digits(cell) <= 12, "{cell}");
+        }
+    }
+    // Twelve digits, not fewer: the old fixed 9 decimals wrote a 0.2 mm roll centre height as 0.000200000.
+    assert!(rows.iter().flat_map(|r| r.iter()).any(|c| significant_digits(c) == 12));
+    // batch.csv names the variants file too.
+    let o = elastokin(&["batch", m, "examples/macpherson_variants.txt", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(out.join("batch.csv")).unwrap();
+    let first = text.lines().next().unwrap();
+    assert!(first.starts_with(&format!("# elastokin {version}, model {m} (sha256 {}), corrected mode, 8 steps, variants examples/macpherson_variants.txt (sha256 ", &sha[..16])), "{first}");
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn progress_goes_to_standard_error_and_quiet_silences_all_but_errors() {
+    let out = scratch("quiet");
+    let m = "examples/macpherson.json";
+    let target = out.join("o");
+    let o = elastokin(&["run", m, "--analysis", "roll", "--steps", "8", "--out", target.to_str().unwrap()]);
+    assert!(o.status.success());
+    // Not a terminal here: one plain line per analysis.
+    assert_eq!(String::from_utf8_lossy(&o.stderr), "analyses 1/1: roll\n");
+    assert!(String::from_utf8_lossy(&o.stdout).contains("roll centre"));
+    let o = elastokin(&["batch", m, "examples/macpherson_variants.txt", "--out", target.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    let variants = read_csv(&target.join("batch.csv")).len();
+    assert_eq!(err.lines().filter(|l| l.starts_with("variants ") && l.contains(" done: ")).count(), variants, "{err}");
+    assert!(err.contains(&format!("variants {variants}/{variants} done: ")) && err.contains("done: baseline"), "{err}");
+    for args in [
+        &["--quiet", "run", m, "--analysis", "roll", "--steps", "8", "--out", target.to_str().unwrap()][..],
+        &["run", m, "-q", "--steps", "8", "--out", target.to_str().unwrap()],
+        &["batch", m, "examples/macpherson_variants.txt", "--quiet", "--out", target.to_str().unwrap()],
+        &["check", "--quiet", m],
+    ] {
+        let o = elastokin(args);
+        assert!(o.status.success(), "{args:?}");
+        assert!(o.stdout.is_empty() && o.stderr.is_empty(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+    }
+    assert!(target.join("batch.csv").exists());
+    // Errors still reach standard error.
+    let o = elastokin(&["--quiet", "check", "no/such/model.json"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("MODEL 'no/such/model.json': cannot open it"));
+    std::fs::remove_dir_all(&out).ok();
+}
+
+/// On a terminal the progress is an indicatif bar instead of plain lines. `script` (util-linux) runs the
+/// command on a pseudo-terminal.
+#[cfg(target_os = "linux")]
+#[test]
+fn progress_on_a_terminal_is_a_bar() {
+    let out = scratch("terminal");
+    let bin = env!("CARGO_BIN_EXE_elastokin");
+    for (args, bar) in [
+        (format!("run examples/macpherson.json --analysis roll --steps 8 --out '{}'", out.display()), "analyses ["),
+        (
+            format!("batch examples/macpherson.json examples/macpherson_variants.txt --out '{}'", out.display()),
+            "variants [",
+        ),
+    ] {
+        let o = Command::new("script")
+            .args(["-qec", &format!("'{bin}' {args} > /dev/null"), "/dev/null"])
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .stdin(Stdio::null())
+            .output()
+            .expect("script (util-linux) runs the command on a terminal");
+        let terminal = String::from_utf8_lossy(&o.stdout);
+        assert!(o.status.success(), "{args}: {terminal}");
+        assert!(terminal.contains(bar), "{args}: {terminal}");
+        assert!(!terminal.contains("analyses 1/1: roll") && !terminal.contains(" done: "), "{args}: {terminal}");
+    }
+    std::fs::remove_dir_all(&out).ok();
 }

@@ -1,0 +1,499 @@
+//! What the `elastokin` command writes, and how: provenance for every result, CSV through the csv crate
+//! with numbers an engineer can read, an output directory that is replaced whole or not at all, standard
+//! output that a closed pipe cannot crash, and progress on standard error.
+
+use crate::analyses::{Cell, Table};
+use indicatif::{ProgressBar, ProgressStyle};
+use sha2::{Digest, Sha256};
+use std::cell::Cell as Flag;
+use std::io::{IsTerminal, Read, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Why the command stops short of success; each kind has its own exit status.
+#[derive(Debug)]
+pub enum Failure {
+    /// Bad input: arguments, a model or variants file, an `--out` that cannot be used. Exit status 2, the
+    /// same as the argument parser's usage errors.
+    Input(String),
+    /// The input was fine but the run failed: an analysis did not solve, a file could not be written.
+    /// Exit status 1.
+    Run(String),
+}
+
+impl Failure {
+    /// The process exit status for this failure.
+    pub fn exit_status(&self) -> u8 {
+        match self {
+            Failure::Input(_) => 2,
+            Failure::Run(_) => 1,
+        }
+    }
+
+    /// The message for standard error.
+    pub fn message(&self) -> &str {
+        match self {
+            Failure::Input(m) | Failure::Run(m) => m,
+        }
+    }
+}
+
+/// What produced a result: written into `summary.json` and as the first line of every CSV, so a file
+/// found later still says which program, model and settings made it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Provenance {
+    /// The elastokin version.
+    pub elastokin: &'static str,
+    /// The model file's path as given on the command line.
+    pub model: String,
+    /// SHA-256 of the model file's bytes (lower-case hex), the bytes that were parsed.
+    pub model_sha256: String,
+    /// `batch`: the variants file's path and SHA-256.
+    pub variants: Option<(String, String)>,
+    /// `corrected` or `paper`.
+    pub mode: &'static str,
+    /// Load steps per sweep.
+    pub steps: usize,
+    /// Road loads: `held` or `free`; `None` where no road load is run.
+    pub wheel: Option<&'static str>,
+    /// The `--range` given, if any (each analysis otherwise has its own default, in `summary.json`).
+    pub range: Option<(f64, f64)>,
+    /// The command line, arguments joined by spaces.
+    pub command: String,
+}
+
+impl Provenance {
+    /// The provenance of a run on the model file whose bytes are `model_bytes`.
+    pub fn new(model: &Path, model_bytes: &[u8], mode: &'static str, steps: usize) -> Provenance {
+        Provenance {
+            elastokin: env!("CARGO_PKG_VERSION"),
+            model: model.display().to_string(),
+            model_sha256: sha256_hex(model_bytes),
+            variants: None,
+            mode,
+            steps,
+            wheel: None,
+            range: None,
+            command: std::env::args_os().map(|a| a.to_string_lossy().into_owned()).collect::<Vec<_>>().join(" "),
+        }
+    }
+
+    /// The JSON object for `summary.json`.
+    pub fn to_json(&self) -> serde_json::Value {
+        let mut v = serde_json::json!({
+            "elastokin": self.elastokin,
+            "model": self.model,
+            "model_sha256": self.model_sha256,
+            "mode": self.mode,
+            "steps": self.steps,
+            "wheel": self.wheel,
+            "range": self.range.map(|(a, b)| [a, b]),
+            "command": self.command,
+        });
+        if let Some((path, sha)) = &self.variants {
+            v["variants"] = path.as_str().into();
+            v["variants_sha256"] = sha.as_str().into();
+        }
+        v
+    }
+
+    /// The comment line that opens every CSV (without the line end):
+    /// `# elastokin 0.1.0, model examples/macpherson.json (sha256 0123456789abcdef), corrected mode, 32 steps`.
+    pub fn comment_line(&self) -> String {
+        let mut line = format!(
+            "# elastokin {}, model {} (sha256 {}), {} mode, {} steps",
+            self.elastokin,
+            self.model,
+            &self.model_sha256[..16.min(self.model_sha256.len())],
+            self.mode,
+            self.steps
+        );
+        if let Some((path, sha)) = &self.variants {
+            line += &format!(", variants {path} (sha256 {})", &sha[..16.min(sha.len())]);
+        }
+        // A line break in a path would end the comment early and leave a broken first row.
+        line.chars().map(|c| if c.is_control() { '?' } else { c }).collect()
+    }
+}
+
+/// SHA-256 of `bytes` as lower-case hex.
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    Sha256::digest(bytes).iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// A number as a CSV cell: at most 12 significant digits, no trailing zeros, plain decimal notation for
+/// magnitudes from 1e-5 up to 1e15 and exponent notation beyond; a non-finite value is an empty cell.
+///
+/// Twelve digits is far beyond what a suspension measurement resolves, and drops the last bits of
+/// floating-point noise: 0.1 + 0.2 is written `0.3`, not `0.30000000000000004`.
+pub fn number(v: f64) -> String {
+    if !v.is_finite() {
+        return String::new();
+    }
+    // Round to 12 significant digits, then print the shortest text that reads back as the rounded value.
+    let rounded: f64 = format!("{v:.11e}").parse().unwrap_or(v);
+    if rounded == 0.0 {
+        "0".into()
+    } else if (1e-5..1e15).contains(&rounded.abs()) {
+        format!("{rounded}")
+    } else {
+        format!("{rounded:e}")
+    }
+}
+
+/// The CSV bytes of `table`: the provenance comment line, the header row, one row per table row. Text is
+/// quoted only where CSV needs it; a missing or non-finite number is an empty cell.
+pub fn write_table(table: &Table, provenance: &Provenance) -> Vec<u8> {
+    let mut bytes = provenance.comment_line().into_bytes();
+    bytes.push(b'\n');
+    // Rows may differ in length only by a mistake in an analysis; writing them as they are beats losing
+    // the file.
+    let mut writer = csv::WriterBuilder::new().flexible(true).from_writer(bytes);
+    let rows = table.rows.iter().map(|row| {
+        row.iter()
+            .map(|cell| match cell {
+                Cell::Number(v) => number(*v),
+                Cell::Text(t) => t.clone(),
+                Cell::Empty => String::new(),
+            })
+            .collect::<Vec<_>>()
+    });
+    // Writing into memory cannot fail: the only errors are I/O errors and unequal row lengths (allowed
+    // above).
+    for record in std::iter::once(table.columns.clone()).chain(rows) {
+        writer.write_record(&record).expect("writing CSV into memory cannot fail");
+    }
+    writer.into_inner().expect("flushing CSV into memory cannot fail")
+}
+
+/// Standard output that a closed pipe cannot crash: `elastokin run MODEL | head -1` must not end in a
+/// panic. Once the reader has gone, further lines are dropped and the command carries on with its real
+/// work (writing its files), so its exit status still tells whether that work succeeded.
+#[derive(Debug)]
+pub struct Stdout {
+    quiet: bool,
+    closed: Flag<bool>,
+}
+
+impl Stdout {
+    /// `quiet`: print nothing at all (the exit status and the files tell).
+    pub fn new(quiet: bool) -> Stdout {
+        Stdout { quiet, closed: Flag::new(false) }
+    }
+
+    /// Prints one line.
+    pub fn line(&self, text: impl std::fmt::Display) -> Result<(), Failure> {
+        if self.quiet || self.closed.get() {
+            return Ok(());
+        }
+        let mut out = std::io::stdout().lock();
+        match writeln!(out, "{text}").and_then(|()| out.flush()) {
+            Ok(()) => Ok(()),
+            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {
+                self.closed.set(true);
+                Ok(())
+            }
+            Err(e) => Err(Failure::Run(format!("standard output: {e}"))),
+        }
+    }
+}
+
+/// Prints a line on standard error; a closed standard error is no reason to stop the work.
+pub fn note(text: impl std::fmt::Display) {
+    let _ = writeln!(std::io::stderr().lock(), "{text}");
+}
+
+/// An output directory written whole or not at all.
+///
+/// The files go into a new directory beside `--out` (`.NAME.tmp-PID` in the same parent, so renaming is
+/// atomic on one file system). [`Staging::commit`] then moves the previous `--out` aside, renames the new
+/// one in and removes the old one: a reader sees the old results or the new ones, never a mix, except in
+/// the instant between the two renames when `--out` does not exist. Dropped without a commit (a failed
+/// run), the new directory is removed and the previous results are untouched.
+#[derive(Debug)]
+pub struct Staging {
+    out: PathBuf,
+    tmp: PathBuf,
+    old: PathBuf,
+    had_previous: bool,
+    committed: bool,
+}
+
+impl Staging {
+    /// Checks that `out` can be replaced and makes the temporary directory beside it.
+    pub fn new(out: &Path) -> Result<Staging, Failure> {
+        let shown = out.display();
+        let name = out.file_name().ok_or_else(|| {
+            Failure::Input(format!(
+                "--out DIR: '{shown}' cannot be replaced as a whole; give a directory of its own, e.g. --out out"
+            ))
+        })?;
+        let had_previous = match std::fs::symlink_metadata(out) {
+            Ok(m) if m.is_dir() => {
+                check_replaceable(out)?;
+                true
+            }
+            Ok(m) if m.is_file() => {
+                return Err(Failure::Input(format!("--out DIR: '{shown}' is a file; give a directory")))
+            }
+            Ok(_) => {
+                return Err(Failure::Input(format!(
+                    "--out DIR: '{shown}' is a link or special file; give a directory itself"
+                )))
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => false,
+            Err(e) => return Err(Failure::Input(format!("--out DIR: '{shown}': {e}"))),
+        };
+        let parent = out.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        std::fs::create_dir_all(parent)
+            .map_err(|e| Failure::Input(format!("--out DIR: cannot make '{}': {e}", parent.display())))?;
+        let (name, pid) = (name.to_string_lossy(), std::process::id());
+        let tmp = parent.join(format!(".{name}.tmp-{pid}"));
+        let old = parent.join(format!(".{name}.old-{pid}"));
+        std::fs::create_dir(&tmp)
+            .map_err(|e| Failure::Input(format!("--out DIR: cannot make '{}': {e}", tmp.display())))?;
+        Ok(Staging { out: out.to_path_buf(), tmp, old, had_previous, committed: false })
+    }
+
+    /// Writes one file; returns the path it will have once committed.
+    pub fn write(&self, name: &str, bytes: &[u8]) -> Result<PathBuf, Failure> {
+        let path = self.tmp.join(name);
+        std::fs::write(&path, bytes).map_err(|e| Failure::Run(format!("{}: {e}", path.display())))?;
+        Ok(self.out.join(name))
+    }
+
+    /// What a failure leaves behind, for its message.
+    pub fn untouched(&self) -> String {
+        if self.had_previous {
+            format!("previous results in {} left untouched", self.out.display())
+        } else {
+            format!("nothing written to {}", self.out.display())
+        }
+    }
+
+    /// Replaces `--out` by the new directory.
+    pub fn commit(mut self) -> Result<(), Failure> {
+        let fail = |what: String, e: std::io::Error| Failure::Run(format!("{what}: {e}"));
+        let rename_in = || format!("renaming {} to {}", self.tmp.display(), self.out.display());
+        if self.had_previous {
+            std::fs::rename(&self.out, &self.old)
+                .map_err(|e| fail(format!("moving {} aside", self.out.display()), e))?;
+            if let Err(e) = std::fs::rename(&self.tmp, &self.out) {
+                // Put the previous results back; the new ones go with the drop.
+                let _ = std::fs::rename(&self.old, &self.out);
+                return Err(fail(rename_in(), e));
+            }
+            self.committed = true;
+            if let Err(e) = std::fs::remove_dir_all(&self.old) {
+                note(format!("warning: could not remove the previous results, moved to {}: {e}", self.old.display()));
+            }
+        } else {
+            std::fs::rename(&self.tmp, &self.out).map_err(|e| fail(rename_in(), e))?;
+            self.committed = true;
+        }
+        Ok(())
+    }
+}
+
+impl Drop for Staging {
+    fn drop(&mut self) {
+        if !self.committed {
+            let _ = std::fs::remove_dir_all(&self.tmp);
+        }
+    }
+}
+
+/// An existing `--out` is replaced whole, so it must be earlier results, recognisably written by the
+/// command, and nothing else: somebody's directory, or one with a model file or measurements put beside the
+/// results, must not be deleted by a run.
+fn check_replaceable(out: &Path) -> Result<(), Failure> {
+    let shown = out.display();
+    let refuse = |why: String| {
+        Failure::Input(format!(
+            "--out DIR: '{shown}' {why}; the directory is replaced as a whole, so give a new directory or one \
+             holding only earlier elastokin results"
+        ))
+    };
+    let io = |e: std::io::Error| Failure::Input(format!("--out DIR: '{shown}': {e}"));
+    let (mut stamped, mut earlier, mut unstamped, mut empty) = (false, false, None, true);
+    for entry in std::fs::read_dir(out).map_err(io)? {
+        let entry = entry.map_err(io)?;
+        empty = false;
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let is_file = entry.file_type().is_ok_and(|t| t.is_file());
+        match classify(&entry.path(), is_file).map_err(io)? {
+            Found::Stamped => stamped = true,
+            Found::EarlierVersion => earlier = true,
+            Found::UnstampedCsv => unstamped = Some(name),
+            Found::Plot => {}
+            Found::Foreign => return Err(refuse(format!("holds '{name}', which elastokin does not write"))),
+        }
+    }
+    match unstamped {
+        // Earlier versions wrote CSVs without the provenance line; beside their summary they are results.
+        Some(name) if !earlier => Err(refuse(format!("holds '{name}', which elastokin did not write"))),
+        _ if empty || stamped || earlier => Ok(()),
+        _ => {
+            Err(refuse("does not hold elastokin results (no summary.json, no CSV with the '# elastokin' line)".into()))
+        }
+    }
+}
+
+/// File name endings of what the command writes besides CSV and `summary.json`: plots and reports.
+pub const PLOT_EXTENSIONS: [&str; 3] = ["svg", "png", "html"];
+
+/// What a file in an existing `--out` is.
+enum Found {
+    /// A CSV with the provenance line, or `summary.json` with its provenance.
+    Stamped,
+    /// `summary.json` or `batch.csv` of a version before provenance.
+    EarlierVersion,
+    /// A CSV without the provenance line.
+    UnstampedCsv,
+    /// A plot or report.
+    Plot,
+    /// Anything else.
+    Foreign,
+}
+
+fn classify(path: &Path, is_file: bool) -> std::io::Result<Found> {
+    const OLD_BATCH: &[u8] = b"variant,bump_steer_deg_per_m,";
+    let head = |n: u64| -> std::io::Result<Vec<u8>> {
+        let mut bytes = Vec::new();
+        std::fs::File::open(path)?.take(n).read_to_end(&mut bytes)?;
+        Ok(bytes)
+    };
+    let name = path.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+    let extension = path.extension().and_then(|e| e.to_str()).unwrap_or_default();
+    Ok(match extension {
+        _ if !is_file => Found::Foreign,
+        "json" if name == "summary.json" => match serde_json::from_slice::<serde_json::Value>(&head(16 << 20)?) {
+            Ok(v) if v.get("provenance").is_some() => Found::Stamped,
+            Ok(v) if v.get("analyses").is_some_and(serde_json::Value::is_object) => Found::EarlierVersion,
+            _ => Found::Foreign,
+        },
+        "csv" => {
+            let h = head(OLD_BATCH.len() as u64)?;
+            if h.starts_with(b"# elastokin ") {
+                Found::Stamped
+            } else if name == "batch.csv" && h == OLD_BATCH {
+                Found::EarlierVersion
+            } else {
+                Found::UnstampedCsv
+            }
+        }
+        e if PLOT_EXTENSIONS.contains(&e) => Found::Plot,
+        _ => Found::Foreign,
+    })
+}
+
+/// Progress on standard error: a bar when standard error is a terminal, otherwise one plain line per
+/// item (for logs), nothing when quiet.
+#[derive(Debug)]
+pub struct Progress {
+    what: &'static str,
+    total: u64,
+    done: AtomicU64,
+    bar: Option<ProgressBar>,
+    quiet: bool,
+}
+
+impl Progress {
+    /// Progress over `total` items of `what` (`"analyses"`, `"variants"`).
+    pub fn new(what: &'static str, total: usize, quiet: bool) -> Progress {
+        let total = total as u64;
+        let bar = (!quiet && std::io::stderr().is_terminal()).then(|| {
+            let style = ProgressStyle::with_template("{prefix} [{bar:30}] {pos}/{len} {msg} ({elapsed})")
+                .unwrap_or_else(|_| ProgressStyle::default_bar())
+                .progress_chars("=> ");
+            ProgressBar::new(total).with_style(style).with_prefix(what)
+        });
+        Progress { what, total, done: AtomicU64::new(0), bar, quiet }
+    }
+
+    /// An item starts (sequential work such as `run`'s analyses).
+    pub fn begin(&self, item: &str) {
+        let n = self.done.load(Ordering::Relaxed) + 1;
+        match &self.bar {
+            Some(bar) => bar.set_message(item.to_string()),
+            None if !self.quiet => note(format!("{} {n}/{}: {item}", self.what, self.total)),
+            None => {}
+        }
+    }
+
+    /// An item is done; `item` names it in the plain lines of work that runs in parallel.
+    pub fn end(&self, item: Option<&str>) {
+        let n = self.done.fetch_add(1, Ordering::Relaxed) + 1;
+        match (&self.bar, item) {
+            (Some(bar), _) => bar.inc(1),
+            (None, Some(item)) if !self.quiet => note(format!("{} {n}/{} done: {item}", self.what, self.total)),
+            (None, _) => {}
+        }
+    }
+
+    /// Runs `f` (which prints to the terminal) with the bar hidden, so the two do not garble each other.
+    pub fn suspend<R>(&self, f: impl FnOnce() -> R) -> R {
+        match &self.bar {
+            Some(bar) => bar.suspend(f),
+            None => f(),
+        }
+    }
+
+    /// Clears the bar.
+    pub fn finish(&self) {
+        if let Some(bar) = &self.bar {
+            bar.finish_and_clear();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_have_twelve_significant_digits_and_no_noise() {
+        assert_eq!(number(0.1 + 0.2), "0.3");
+        assert_eq!(number(1.0 / 3.0), "0.333333333333");
+        assert_eq!(number(-2.0 / 3.0), "-0.666666666667");
+        assert_eq!(number(123456.789), "123456.789");
+        assert_eq!(number(0.0), "0");
+        assert_eq!(number(-0.0), "0");
+        assert_eq!(number(32.0), "32");
+        assert_eq!(number(1.0e-17 / 3.0), "3.33333333333e-18");
+        assert_eq!(number(6.02214076e23), "6.02214076e23");
+        for v in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(number(v), "");
+        }
+        // Whatever comes out reads back within twelve digits.
+        for v in [1.0 / 7.0, 9.999_999_999_999e14, 1.0e-5, 0.999_999_999_999_9, -1234.5678e-9] {
+            let back: f64 = number(v).parse().unwrap();
+            assert!((back - v).abs() <= 5e-12 * v.abs(), "{v} → {}", number(v));
+        }
+    }
+
+    #[test]
+    fn tables_are_csv_with_the_provenance_line_first() {
+        let table = Table {
+            file: "t.csv".into(),
+            columns: vec!["component".into(), "force_n".into(), "note".into()],
+            rows: vec![
+                vec![Cell::Text("spring, coil".into()), Cell::Number(0.1 + 0.2), Cell::Empty],
+                vec![Cell::Text("say \"hi\"".into()), Cell::Number(f64::NAN), Cell::Text("x".into())],
+            ],
+        };
+        let p = Provenance::new(Path::new("m\n.json"), b"{}", "corrected", 8);
+        let text = String::from_utf8(write_table(&table, &p)).unwrap();
+        let sha = sha256_hex(b"{}");
+        assert_eq!(sha, "44136fa355b3678a1146ad16f7e8649e94fb4fc21fe77e8310c060f61caaff8a");
+        assert_eq!(
+            text,
+            format!(
+                "# elastokin {}, model m?.json (sha256 {}), corrected mode, 8 steps\n\
+                 component,force_n,note\n\"spring, coil\",0.3,\n\"say \"\"hi\"\"\",,x\n",
+                env!("CARGO_PKG_VERSION"),
+                &sha[..16]
+            )
+        );
+    }
+}
