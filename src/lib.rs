@@ -13,11 +13,17 @@
 //! serde nor rayon (rayon and sprs are behind its `parallel` and `matrix-market` features). This facade
 //! package also carries the `elastokin` command, which uses serde_json for its reports and rayon to run
 //! `batch` variants on all cores.
+//!
+//! [`plot`] draws the plots of the command and of the benchmark report: on plotters (SVG, and PNG
+//! through the png encoder, with its text in a font compiled in so that no system font is needed), and
+//! thiserror for its error type.
 
 pub use elastokin_core as core;
 pub use elastokin_elements as elements;
 pub use elastokin_solver as solver;
 pub use elastokin_suspensions as suspensions;
+
+pub mod plot;
 
 /// The names most programs use.
 pub mod prelude {

@@ -12,7 +12,6 @@ use std::path::PathBuf;
 
 mod analyses;
 mod batch;
-mod plot;
 use analyses::{Analysis, Settings};
 use std::process::ExitCode;
 
