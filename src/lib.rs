@@ -16,7 +16,7 @@
 //!
 //! [`plot`] draws the plots of the command and of the benchmark report: on plotters (SVG, and PNG
 //! through the png encoder, with its text in a font compiled in so that no system font is needed), and
-//! thiserror for its error type.
+//! thiserror for its error type. Its tests read the SVG back with roxmltree.
 
 pub use elastokin_core as core;
 pub use elastokin_elements as elements;

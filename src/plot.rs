@@ -337,7 +337,11 @@ fn curve(series: &Series, x_scale: Scale, y_scale: Scale, left_out: &mut LeftOut
         // Both coordinates are checked so that one bad point counts once.
         let mut reasons = LeftOut::default();
         match (drawn(x, x_scale, &mut reasons), drawn(y, y_scale, &mut reasons)) {
-            (Some(x), Some(y)) => runs.last_mut().map_or((), |run| run.push((x, y))),
+            (Some(x), Some(y)) => {
+                if let Some(run) = runs.last_mut() {
+                    run.push((x, y));
+                }
+            }
             _ => {
                 if reasons.not_finite > 0 {
                     left_out.not_finite += 1;

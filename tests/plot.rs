@@ -144,9 +144,10 @@ fn a_title_too_long_for_the_width_is_shortened_with_an_ellipsis() {
     let svg = read(plot::svg(&long).unwrap());
     let title = svg.texts.iter().find(|t| t.content.starts_with("toe and camber toe")).unwrap();
     assert!(title.content.ends_with('…'), "{}", title.content);
-    // DejaVu Sans at the title size is about 10 px per character of this text: 820 px hold about 75.
+    // DejaVu Sans at the title size is about 9.6 px per character of this text: the 800 px between the
+    // margins hold about 80.
     let chars = title.content.chars().count();
-    assert!((50..100).contains(&chars), "{chars} characters kept");
+    assert!((50..100).contains(&chars), "{chars} characters kept"); // measured 83
 }
 
 #[test]
@@ -174,14 +175,19 @@ fn the_design_position_is_marked_only_inside_the_range() {
     }
 }
 
-#[test]
-fn a_second_unit_gets_a_right_axis() {
+/// A roll centre: height about 100 mm on the left axis, lateral position ±1100 mm on the right.
+fn roll_centre() -> Chart {
     let roll: Vec<f64> = (0..=10).map(|i| -2.5 + 0.5 * f64::from(i)).collect();
     let height =
         axis("height [mm]", Scale::Linear, vec![("height", roll.iter().map(|&r| (r, 100.0 - 16.0 * r * r)).collect())]);
     let lateral =
         axis("lateral position [mm]", Scale::Linear, vec![("lateral", roll.iter().map(|&r| (r, 440.0 * r)).collect())]);
-    let svg = read(plot::svg(&chart(height, Some(lateral), Some(0.0))).unwrap());
+    chart(height, Some(lateral), Some(0.0))
+}
+
+#[test]
+fn a_second_unit_gets_a_right_axis() {
+    let svg = read(plot::svg(&roll_centre()).unwrap());
     // Height 0..100 on the left; lateral ±1100 on the right (440 × 2.5, padded by 5 %).
     assert_eq!(svg.left_ticks(), ["0", "20", "40", "60", "80", "100"]);
     assert_eq!(svg.right_ticks(), ["-1000", "-500", "0", "500", "1000"]);
@@ -252,25 +258,35 @@ fn log_scales_number_decades_and_count_what_they_leave_out() {
     assert!(!svg.source.contains("NaN") && !svg.source.contains("inf"));
 }
 
-#[test]
-fn png_has_the_svg_size_and_shows_the_curves() {
-    let chart = chart(small_angles(), None, Some(0.0));
-    let svg = read(plot::svg(&chart).unwrap());
-    let bytes = plot::png(&chart).unwrap();
-    std::fs::write(std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("plot_sample.png"), &bytes).unwrap();
+/// The PNG's pixels, after checking that it has the size of the SVG of the same chart; the image is
+/// also left in the target directory to be looked at.
+fn png_pixels(chart: &Chart, file: &str) -> Vec<[u8; 3]> {
+    let svg = read(plot::svg(chart).unwrap());
+    let bytes = plot::png(chart).unwrap();
+    std::fs::write(std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(file), &bytes).unwrap();
     let decoder = png::Decoder::new(std::io::Cursor::new(bytes));
     let mut reader = decoder.read_info().unwrap();
     let mut image = vec![0; reader.output_buffer_size()];
     let info = reader.next_frame(&mut image).unwrap();
     assert_eq!((f64::from(info.width), f64::from(info.height)), (svg.width, svg.height));
     assert_eq!(info.color_type, png::ColorType::Rgb);
-    let pixels: Vec<&[u8]> = image[..info.buffer_size()].chunks(3).collect();
+    image[..info.buffer_size()].chunks(3).map(|p| [p[0], p[1], p[2]]).collect()
+}
+
+#[test]
+fn png_has_the_svg_size_and_shows_the_curves() {
+    let pixels = png_pixels(&chart(small_angles(), None, Some(0.0)), "plot_sample.png");
     let count = |rgb: [u8; 3]| pixels.iter().filter(|p| **p == rgb).count();
-    // The toe curve (first colour, 2 px wide, crossing the 640 px wide frame) and text in black.
+    // The toe curve (first colour, 2 px wide, crossing the 710 px wide frame) and text in black.
     let toe = count([31, 119, 180]);
-    assert!(toe > 1000, "{toe} toe pixels");
+    assert!(toe > 1000, "{toe} toe pixels"); // measured 1951
     let dark = pixels.iter().filter(|p| p.iter().all(|&c| c < 64)).count();
-    assert!(dark > 2000, "{dark} dark pixels (text, frame)");
+    assert!(dark > 2000, "{dark} dark pixels (text, frame)"); // measured 5034
     let white = count([255, 255, 255]);
+    // measured 416 433 of 437 880
     assert!(white > pixels.len() / 2, "mostly background: {white} of {}", pixels.len());
+    // The second colour is the lateral position, drawn against the right axis.
+    let two_axes = png_pixels(&roll_centre(), "plot_two_axes.png");
+    let lateral = two_axes.iter().filter(|p| **p == [214, 39, 40]).count();
+    assert!(lateral > 1000, "{lateral} pixels of the right-axis curve"); // measured 1869
 }
