@@ -2,7 +2,7 @@
 //! command and of `cargo xtask bench`.
 //!
 //! A [`Chart`] says what to draw (curves on a left axis and, for a second unit, a right one, the design
-//! position, linear or log scales); [`svg`] returns it as an SVG document and [`png`] as PNG bytes.
+//! position, linear or log scales); [`svg`] returns it as an SVG document and [`png()`] as PNG bytes.
 //!
 //! - Tick labels are rounded to the precision the tick step needs (`-0.02`, not `-0.019999999999999997`).
 //! - The title and the subtitle (the model's name, smaller, on a second line) are measured with the

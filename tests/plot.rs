@@ -290,3 +290,36 @@ fn png_has_the_svg_size_and_shows_the_curves() {
     let lateral = two_axes.iter().filter(|p| **p == [214, 39, 40]).count();
     assert!(lateral > 1000, "{lateral} pixels of the right-axis curve"); // measured 1869
 }
+
+#[test]
+fn extreme_values_and_labels_still_give_a_plot() {
+    let cases: Vec<Vec<(f64, f64)>> = vec![
+        vec![(0.0, 1e-310), (1.0, 2e-310)],
+        vec![(-1e299, 1e299), (1e299, -1e299)],
+        vec![(0.0, 1e301), (1.0, 1.0)],
+        vec![(1.0, 1.0 + 1e-15), (2.0, 1.0), (3.0, 1.0 - 1e-15)],
+        vec![(0.0, -0.0), (0.0, 0.0)],
+        (0..20_000).map(|i| (f64::from(i), (f64::from(i) * 1e-3).sin())).collect(),
+    ];
+    for points in cases {
+        for scale in [Scale::Linear, Scale::Log] {
+            let mut c = chart(axis("", scale, vec![("", points.clone())]), None, Some(0.5));
+            c.x_scale = scale;
+            c.title = String::new();
+            c.subtitle = "x".repeat(500);
+            let svg = read(plot::svg(&c).unwrap_or_else(|e| panic!("{points:?}: {e}")));
+            assert!(!svg.source.contains("NaN") && !svg.source.contains("inf"));
+            assert!(svg.texts.iter().all(|t| t.x.is_finite() && t.y.is_finite()));
+        }
+    }
+    let many: Vec<(String, Vec<(f64, f64)>)> = (0..40)
+        .map(|k| (format!("variant {k} with a long legend name"), vec![(0.0, f64::from(k)), (1.0, 1.0)]))
+        .collect();
+    let c = chart(axis("y", Scale::Linear, many.iter().map(|(n, p)| (n.as_str(), p.clone())).collect()), None, None);
+    let svg = read(plot::svg(&c).unwrap());
+    // Every legend entry is written, under the frame, inside the canvas.
+    for (name, _) in &many {
+        let entry = svg.text(name).unwrap_or_else(|| panic!("{name}"));
+        assert!(entry.y > svg.frame.1 + svg.frame.3 && entry.y < svg.height, "{entry:?}");
+    }
+}
