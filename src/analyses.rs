@@ -1,7 +1,7 @@
 //! The K&C tests `elastokin run` offers. Each walks one load path of the engine and reduces it to a table
 //! (one CSV), plots (one SVG per curve family), summary figures (JSON) and headline lines for the terminal.
 
-use crate::plot::{line_plot, Series};
+use elastokin::plot::{self, Chart, Scale, Series, YAxis};
 use elastokin::solver::Mode;
 use elastokin::suspensions::analysis::{
     anti_pitch, design_wheel_load, parallel_wheel_travel, patch_compliance, slope_at, static_load_case,
@@ -152,9 +152,38 @@ fn deg(rad: f64) -> f64 {
     rad.to_degrees()
 }
 
-/// Short model name for plot titles (the part before any parenthesis).
-fn title(file: &SuspensionFile, what: &str) -> String {
-    format!("{}: {what}", file.name.split(" (").next().unwrap_or(&file.name))
+/// A vertical axis: its label with the unit, and `(legend name, points)` per curve.
+fn axis<'a>(label: &str, curves: impl IntoIterator<Item = (&'a str, Vec<(f64, f64)>)>) -> YAxis {
+    YAxis {
+        label: label.into(),
+        scale: Scale::Linear,
+        series: curves.into_iter().map(|(name, points)| Series { name: name.into(), points }).collect(),
+    }
+}
+
+/// `(file name, SVG text)` of one plot: `what` as the title, the model's name under it, the design
+/// position marked at `design_x` on the horizontal axis.
+fn plot(
+    file: &SuspensionFile,
+    stem: &str,
+    what: &str,
+    x_label: &str,
+    design_x: f64,
+    left: YAxis,
+    right: Option<YAxis>,
+) -> Result<(String, String), String> {
+    let chart = Chart {
+        name: stem.into(),
+        title: what.into(),
+        subtitle: file.name.clone(),
+        x_label: x_label.into(),
+        x_scale: Scale::Linear,
+        left,
+        right,
+        design_x: Some(design_x),
+    };
+    let svg = plot::svg(&chart).map_err(|e| format!("{stem}: {e}"))?;
+    Ok((format!("{}.svg", chart.name), svg))
 }
 
 /// Runs `analysis` on the model in `file`.
@@ -216,18 +245,21 @@ fn parallel_travel(file: &SuspensionFile, s: Settings) -> Result<Report, String>
         }),
     );
     let curve = |f: &dyn Fn(&TravelRow) -> f64| rows.iter().map(|r| (r.travel * 1e3, f(r))).collect();
-    let plots = vec![(
-        "parallel_travel_toe_camber.svg".into(),
-        line_plot(
-            &title(file, "toe and camber in parallel wheel travel"),
-            "wheel travel [mm], bump +",
+    let plots = vec![plot(
+        file,
+        "parallel_travel_toe_camber",
+        "toe and camber in parallel wheel travel",
+        "wheel travel [mm], bump +",
+        0.0,
+        axis(
             "angle [deg]",
-            &[
-                Series { name: "toe (in +)", points: curve(&|r| deg(r.attitude.toe)) },
-                Series { name: "camber (top out +)", points: curve(&|r| deg(r.attitude.camber)) },
+            [
+                ("toe (in +)", curve(&|r| deg(r.attitude.toe))),
+                ("camber (top out +)", curve(&|r| deg(r.attitude.camber))),
             ],
         ),
-    )];
+        None,
+    )?];
     let mut summary = json!({ "range_m": [from, to], "steps": s.steps });
     let mut headline =
         vec![format!("parallel wheel travel {:+.0}..{:+.0} mm, {} steps", from * 1e3, to * 1e3, s.steps)];
@@ -385,38 +417,46 @@ fn roll(file: &SuspensionFile, s: Settings) -> Result<Report, String> {
         rows.iter().filter_map(|r| f(r).map(|y| (deg(r.roll_angle), y))).collect()
     };
     let plots = vec![
-        (
-            "roll_toe_camber.svg".into(),
-            line_plot(
-                &title(file, "toe and camber in roll"),
-                "body roll [deg], left side up +",
+        plot(
+            file,
+            "roll_toe_camber",
+            "toe and camber in roll",
+            "body roll [deg], left side up +",
+            0.0,
+            axis(
                 "angle [deg]",
-                &[
-                    Series { name: "left toe", points: curve(&|r| Some(deg(r.left.toe))) },
-                    Series { name: "right toe", points: curve(&|r| Some(deg(r.right.toe))) },
-                    Series {
-                        name: "left camber to ground",
-                        points: curve(&|r| Some(deg(ground_camber(r.left.camber, Side::Left, r.roll_angle)))),
-                    },
-                    Series {
-                        name: "right camber to ground",
-                        points: curve(&|r| Some(deg(ground_camber(r.right.camber, Side::Right, r.roll_angle)))),
-                    },
+                [
+                    ("left toe", curve(&|r| Some(deg(r.left.toe)))),
+                    ("right toe", curve(&|r| Some(deg(r.right.toe)))),
+                    (
+                        "left camber to ground",
+                        curve(&|r| Some(deg(ground_camber(r.left.camber, Side::Left, r.roll_angle)))),
+                    ),
+                    (
+                        "right camber to ground",
+                        curve(&|r| Some(deg(ground_camber(r.right.camber, Side::Right, r.roll_angle)))),
+                    ),
                 ],
             ),
-        ),
-        (
-            "roll_centre.svg".into(),
-            line_plot(
-                &title(file, "roll centre in roll"),
-                "body roll [deg], left side up +",
-                "roll centre [mm]",
-                &[
-                    Series { name: "height above ground", points: curve(&|r| r.roll_centre.map(|c| c.height * 1e3)) },
-                    Series { name: "lateral (left +)", points: curve(&|r| r.roll_centre.map(|c| c.lateral * 1e3)) },
-                ],
+            None,
+        )?,
+        // The height (about 100 mm) and the lateral migration (up to metres) on one axis would flatten
+        // the height: each gets its own.
+        plot(
+            file,
+            "roll_centre",
+            "roll centre in roll",
+            "body roll [deg], left side up +",
+            0.0,
+            axis(
+                "roll centre height above ground [mm]",
+                [("height", curve(&|r| r.roll_centre.map(|c| c.height * 1e3)))],
             ),
-        ),
+            Some(axis(
+                "roll centre lateral position [mm], left +",
+                [("lateral position", curve(&|r| r.roll_centre.map(|c| c.lateral * 1e3)))],
+            )),
+        )?,
     ];
     let mut summary = json!({ "range_m": [from, to], "steps": s.steps });
     let mut headline = vec![format!(
@@ -487,18 +527,21 @@ fn steering(file: &SuspensionFile, s: Settings) -> Result<Report, String> {
         }),
     );
     let curve = |f: &dyn Fn(&AxleRow) -> f64| rows.iter().map(|r| (r.travel * 1e3, f(r))).collect();
-    let plots = vec![(
-        "steering.svg".into(),
-        line_plot(
-            &title(file, "steer angles"),
-            "rack travel [mm], towards left +",
+    let plots = vec![plot(
+        file,
+        "steering",
+        "steer angles",
+        "rack travel [mm], towards left +",
+        0.0,
+        axis(
             "steer angle [deg], left turn +",
-            &[
-                Series { name: "left wheel", points: curve(&|r| deg(steer_angle(r.left.toe, Side::Left))) },
-                Series { name: "right wheel", points: curve(&|r| deg(steer_angle(r.right.toe, Side::Right))) },
+            [
+                ("left wheel", curve(&|r| deg(steer_angle(r.left.toe, Side::Left)))),
+                ("right wheel", curve(&|r| deg(steer_angle(r.right.toe, Side::Right)))),
             ],
         ),
-    )];
+        None,
+    )?];
     let mut summary = json!({ "range_m": [from, to], "steps": s.steps });
     let mut headline =
         vec![format!("steering (rack {:+.0}..{:+.0} mm, heights held), {} steps", from * 1e3, to * 1e3, s.steps)];
@@ -531,18 +574,18 @@ fn vertical_force(file: &SuspensionFile, s: Settings) -> Result<Report, String> 
             [r.load, r.attitude.wheel_centre.z - z0, deg(r.attitude.toe), deg(r.attitude.camber), r.contact_patch.z]
         }),
     );
-    let plots = vec![(
-        "vertical_force.svg".into(),
-        line_plot(
-            &title(file, "wheel travel under vertical force"),
-            "vertical force at the contact patch [N]",
+    let plots = vec![plot(
+        file,
+        "vertical_force",
+        "wheel travel under vertical force",
+        "vertical force at the contact patch [N]",
+        design_load,
+        axis(
             "wheel travel [mm], bump +",
-            &[Series {
-                name: "wheel travel",
-                points: rows.iter().map(|r| (r.load, (r.attitude.wheel_centre.z - z0) * 1e3)).collect(),
-            }],
+            [("wheel travel", rows.iter().map(|r| (r.load, (r.attitude.wheel_centre.z - z0) * 1e3)).collect())],
         ),
-    )];
+        None,
+    )?];
     let mut summary = json!({ "range_n": [from, to], "steps": s.steps, "design_wheel_load_n": design_load });
     let mut headline =
         vec![format!("vertical force {from:.0}..{to:.0} N at the contact patch, wheel free, {} steps", s.steps)];
@@ -632,18 +675,21 @@ fn road_load(file: &SuspensionFile, load: WheelLoad, s: Settings) -> Result<Repo
     };
     let held = if s.height_held { "wheel-centre height held" } else { "wheel free on its spring" };
     let curve = |f: &dyn Fn(&LoadRow) -> f64| rows.iter().map(|r| (r.load, f(r))).collect();
-    let plots = vec![(
-        format!("{stem}.svg"),
-        line_plot(
-            &title(file, &format!("toe and camber under {}", name.replace('-', " "))),
-            &format!("{} [{unit}]", Analysis::Road(load).parameter().split(',').next().unwrap_or(name)),
+    let plots = vec![plot(
+        file,
+        &stem,
+        &format!("toe and camber under {}", name.replace('-', " ")),
+        &format!("{} [{unit}]", Analysis::Road(load).parameter().split(',').next().unwrap_or(name)),
+        0.0,
+        axis(
             "angle [deg]",
-            &[
-                Series { name: "toe (in +)", points: curve(&|r| deg(r.attitude.toe)) },
-                Series { name: "camber (top out +)", points: curve(&|r| deg(r.attitude.camber)) },
+            [
+                ("toe (in +)", curve(&|r| deg(r.attitude.toe))),
+                ("camber (top out +)", curve(&|r| deg(r.attitude.camber))),
             ],
         ),
-    )];
+        None,
+    )?];
     let mut summary =
         json!({ "range": [from, to], "steps": s.steps, "corner_load_n": corner_load, "height_held": s.height_held });
     let mut headline = vec![format!(

@@ -15,11 +15,17 @@
 //! keep dependencies for its binary alone): serde_json for its reports, rayon to run `batch` variants on
 //! all cores, clap for its arguments, csv for its tables, sha2 for the model file's hash in every result,
 //! indicatif for progress bars on a terminal.
+//!
+//! [`plot`] draws the plots of the command and of the benchmark report: on plotters (SVG, and PNG
+//! through the png encoder, with its text in a font compiled in so that no system font is needed), and
+//! thiserror for its error type. Its tests read the SVG back with roxmltree.
 
 pub use elastokin_core as core;
 pub use elastokin_elements as elements;
 pub use elastokin_solver as solver;
 pub use elastokin_suspensions as suspensions;
+
+pub mod plot;
 
 /// The names most programs use.
 pub mod prelude {

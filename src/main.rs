@@ -21,7 +21,6 @@ use std::process::ExitCode;
 mod analyses;
 mod batch;
 mod output;
-mod plot;
 use analyses::{Analysis, Settings};
 use output::{note, write_table, Failure, Progress, Provenance, Staging, Stdout};
 

@@ -8,9 +8,9 @@
 //! Run time is the median wall time of `StaticSolver::new` + `sweep` (what a caller pays), repeated.
 
 use super::models::{self, Case, Sweep, SHIPPED};
-use super::plot::{log_log_plot, Series};
 use super::report::{slug, Cell, Judge, Kind, SectionOutput, Table, Target};
 use super::Settings;
+use elastokin::plot::{self, Chart, Scale, Series, YAxis};
 use elastokin_solver::{Counters, LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult};
 use elastokin_suspensions::analysis::slope_at;
 use elastokin_suspensions::WheelAttitude;
@@ -296,14 +296,24 @@ pub fn run(s: &Settings) -> SectionOutput {
             for x in &mut series {
                 x.points.sort_by(|a, b| a.0.total_cmp(&b.0));
             }
-            let file = format!("error_vs_time_{}.svg", slug(&case_name));
-            let svg = log_log_plot(
-                &format!("{case_name}: error against run time"),
-                "median run time (s)",
-                "largest toe or camber error (deg)",
-                &series,
-            );
-            out.plots.push((file, svg, format!("{case_name}: error against run time, one line per mode")));
+            let chart = Chart {
+                name: format!("error_vs_time_{}", slug(&case_name)),
+                title: "error against run time".into(),
+                subtitle: case_name.clone(),
+                x_label: "median run time [s]".into(),
+                x_scale: Scale::Log,
+                left: YAxis { label: "largest toe or camber error [deg]".into(), scale: Scale::Log, series },
+                right: None,
+                design_x: None,
+            };
+            match plot::svg(&chart) {
+                Ok(svg) => out.plots.push((
+                    format!("{}.svg", chart.name),
+                    svg,
+                    format!("{case_name}: error against run time, one line per mode"),
+                )),
+                Err(e) => out.notes.push(format!("{case_name}: the error against run time plot was not drawn: {e}")),
+            }
         }
     }
     out.tables.push(table);

@@ -17,7 +17,6 @@ pub mod alloc;
 mod batch;
 mod error_vs_time;
 mod models;
-pub mod plot;
 pub mod report;
 mod scaling;
 pub mod stats;
