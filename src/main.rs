@@ -18,10 +18,10 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-mod analyses;
 mod batch;
 mod output;
-use analyses::{Analysis, Settings};
+use elastokin::plot;
+use elastokin::suspensions::kc::{self, Analysis, Settings, SuiteEvent, Tolerance};
 use output::{note, write_table, Failure, Progress, Provenance, Staging, Stdout};
 
 /// The most load steps a sweep may take.
@@ -43,6 +43,10 @@ pub struct Cli {
     /// Print nothing but errors: no progress, no headline figures (the exit status and the files tell)
     #[arg(long, short, global = true)]
     pub quiet: bool,
+    /// Treat every warning (implausible model, error estimate over the tolerance) as an error: exit 2
+    /// for the model's, 1 for a result's, and write no results
+    #[arg(long, global = true)]
+    pub strict: bool,
     #[command(subcommand)]
     pub command: Command,
 }
@@ -93,6 +97,17 @@ pub struct RunArgs {
     /// Where the files go; the directory is replaced as a whole when the run succeeds
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
+    /// Largest estimated error accepted without a warning: angles in degrees, lengths in mm, headline
+    /// figures in per cent of their value
+    #[arg(long, value_name = "ANGLE,LENGTH,PERCENT", default_value = "0.001,0.001,0.5", value_parser = parse_tolerance)]
+    pub tolerance: Tolerance,
+    /// Also write the 6x6 wheel compliance at every step (<analysis>_compliance.csv) of parallel travel,
+    /// roll, the vertical force and the road loads
+    #[arg(long)]
+    pub compliance: bool,
+    /// Also write every plot as PNG beside its SVG
+    #[arg(long)]
+    pub png: bool,
 }
 
 #[derive(Debug, Args)]
@@ -167,6 +182,22 @@ fn parse_steps(text: &str) -> Result<usize, String> {
     }
 }
 
+fn parse_tolerance(text: &str) -> Result<Tolerance, String> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    let [angle, length, percent] = parts[..] else {
+        return Err("give ANGLE,LENGTH,PERCENT (degrees, mm, per cent), e.g. --tolerance 0.001,0.001,0.5".into());
+    };
+    let parse = |s: &str, what: &str| match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(format!("{what} '{s}' is not a positive number")),
+    };
+    Ok(Tolerance {
+        angle_deg: parse(angle, "ANGLE")?,
+        length_m: parse(length, "LENGTH")? * 1e-3,
+        relative: parse(percent, "PERCENT")? * 1e-2,
+    })
+}
+
 fn parse_range(text: &str) -> Result<(f64, f64), String> {
     let (from, to) = text.split_once(',').ok_or("give FROM,TO, e.g. --range -0.02,0.02")?;
     let parse = |s: &str| match s.trim().parse::<f64>() {
@@ -205,14 +236,7 @@ fn read_model(path: &Path) -> Result<(Vec<u8>, SuspensionFile), Failure> {
     Ok((bytes, file))
 }
 
-fn mode_name(mode: Mode) -> &'static str {
-    match mode {
-        Mode::Corrected => "corrected",
-        Mode::Paper => "paper",
-    }
-}
-
-fn run(args: RunArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> {
+fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Failure> {
     if args.range.is_some() && args.analysis.is_none() {
         return Err(Failure::Input(
             "--range needs --analysis NAME: each analysis has its own load parameter and units".into(),
@@ -222,50 +246,94 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> {
         ModeName::Corrected => Mode::Corrected,
         ModeName::Paper => Mode::Paper,
     };
-    let settings = Settings { range: args.range, steps: args.steps, mode, height_held: args.wheel == WheelName::Held };
+    let settings = Settings {
+        range: args.range,
+        steps: args.steps,
+        mode,
+        height_held: args.wheel == WheelName::Held,
+        compliance: args.compliance,
+        tolerance: args.tolerance,
+    };
     let (bytes, file) = read_model(&args.model)?;
-    let mut provenance = Provenance::new(&args.model, &bytes, mode_name(mode), args.steps);
+    if strict {
+        // Refuse an implausible model before spending any time on it.
+        if let Ok(check) = elastokin::suspensions::check_model(&file) {
+            if !check.warnings.is_empty() {
+                let lines: Vec<String> =
+                    check.warnings.iter().map(|w| format!("warning [{}]: {}", w.code, w.message)).collect();
+                return Err(Failure::Input(format!(
+                    "{}: refused under --strict:\n{}",
+                    args.model.display(),
+                    lines.join("\n")
+                )));
+            }
+        }
+    }
+    let mut provenance = Provenance::new(&args.model, &bytes, kc::mode_word(mode), args.steps);
     provenance.wheel = Some(if settings.height_held { "held" } else { "free" });
     provenance.range = args.range;
-    let chosen: Vec<Analysis> = match args.analysis {
-        Some(a) => vec![a.analysis()],
-        None => analyses::ALL.to_vec(),
-    };
+    let which: Vec<Analysis> = args.analysis.map(|a| vec![a.analysis()]).unwrap_or_default();
     let staging = Staging::new(&args.out)?;
-    let progress = Progress::new("analyses", chosen.len(), quiet);
+    let count = if which.is_empty() { kc::ALL.len() } else { which.len() };
+    let progress = Progress::new("analyses", count, quiet);
     let result = (|| -> Result<Vec<PathBuf>, Failure> {
-        out.line(format!("{} — {} mode", file.name, mode_name(mode)))?;
-        let mut summaries = serde_json::Map::new();
-        let mut written = Vec::new();
-        for analysis in chosen {
-            progress.begin(analysis.name());
-            if analysis == Analysis::StaticLoad && file.vehicle.is_none() && args.analysis.is_none() {
-                let why = "the model file has no \"vehicle\" section with the corner_load to carry";
-                progress.suspend(|| out.line(format!("\nstatic load: skipped — {why}")))?;
-                summaries.insert(analysis.name().into(), serde_json::json!({ "skipped": why }));
-                progress.end(None);
-                continue;
+        out.line(format!("{} — {} mode", file.name, kc::mode_word(mode)))?;
+        // The terminal hears of each analysis as it ends; a closed pipe stops the printing, not the run.
+        let mut printed: Result<(), Failure> = Ok(());
+        let report = kc::run_suite(&file, &which, &settings, |event| {
+            let said = match event {
+                SuiteEvent::Starting(a) => {
+                    progress.begin(a.name());
+                    Ok(())
+                }
+                SuiteEvent::Done(report) => {
+                    progress.end(None);
+                    progress.suspend(|| -> Result<(), Failure> {
+                        out.line("")?;
+                        report.headline().iter().try_for_each(|line| out.line(line))
+                    })
+                }
+                SuiteEvent::Skipped(s) => {
+                    progress.end(None);
+                    progress.suspend(|| out.line(format!("\n{}: skipped — {}", s.analysis.name(), s.reason)))
+                }
+            };
+            if printed.is_ok() {
+                printed = said;
             }
-            let report = analyses::run(analysis, &file, settings).map_err(Failure::Run)?;
-            progress.suspend(|| -> Result<(), Failure> {
-                out.line("")?;
-                report.headline.iter().try_for_each(|line| out.line(line))
-            })?;
-            written.push(staging.write(&report.table.file, &write_table(&report.table, &provenance))?);
-            for (name, svg) in &report.plots {
-                written.push(staging.write(name, svg.as_bytes())?);
+        })
+        .map_err(|e| Failure::Run(e.to_string()))?;
+        printed?;
+        if !report.warnings.is_empty() {
+            out.line("")?;
+            for w in &report.warnings {
+                out.line(format!("warning [{}]: {}", w.code, w.message))?;
             }
-            let mut entry = report.summary;
-            entry["parameter"] = analysis.parameter().into();
-            summaries.insert(analysis.name().into(), entry);
-            progress.end(None);
         }
-        let summary = serde_json::json!({
-            "model": file.name,
-            "mode": mode_name(mode),
-            "provenance": provenance.to_json(),
-            "analyses": summaries,
-        });
+        if strict {
+            let codes: Vec<&str> = report.all_warnings().map(|w| w.code).collect();
+            if !codes.is_empty() {
+                return Err(Failure::Run(format!("{} warning(s) under --strict: {}", codes.len(), codes.join(", "))));
+            }
+        }
+        let mut written = Vec::new();
+        for analysis in &report.analyses {
+            let table = &analysis.table;
+            written.push(staging.write(&format!("{}.csv", table.name), &write_table(table, &provenance))?);
+            if let Some(c) = &analysis.compliance {
+                written.push(staging.write(&format!("{}.csv", c.name), &write_table(c, &provenance))?);
+            }
+            for chart in &analysis.charts {
+                let svg = plot::svg(chart).map_err(|e| Failure::Run(format!("plot '{}': {e}", chart.name)))?;
+                written.push(staging.write(&format!("{}.svg", chart.name), svg.as_bytes())?);
+                if args.png {
+                    let png = plot::png(chart).map_err(|e| Failure::Run(format!("plot '{}': {e}", chart.name)))?;
+                    written.push(staging.write(&format!("{}.png", chart.name), &png)?);
+                }
+            }
+        }
+        let mut summary = serde_json::to_value(&report).map_err(|e| Failure::Run(e.to_string()))?;
+        summary["provenance"] = provenance.to_json();
         let text = serde_json::to_string_pretty(&summary).map_err(|e| Failure::Run(e.to_string()))?;
         written.push(staging.write("summary.json", text.as_bytes())?);
         Ok(written)
@@ -318,7 +386,7 @@ fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> 
     for v in &list {
         batch::apply(&base, v).map_err(Failure::Input)?;
     }
-    let mut provenance = Provenance::new(&args.model, &bytes, mode_name(Mode::Corrected), batch::STEPS);
+    let mut provenance = Provenance::new(&args.model, &bytes, kc::mode_word(Mode::Corrected), batch::STEPS);
     provenance.range = Some((-batch::HALF_RANGE, batch::HALF_RANGE));
     provenance.variants = Some((args.variants.display().to_string(), output::sha256_hex(&variant_bytes)));
     let staging = Staging::new(&args.out)?;
@@ -329,7 +397,7 @@ fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> 
         out.line(format!("{:<28} {:>16} {:>16} {:>14}", "variant", "bump °/10 mm", "camber °/10 mm", "rate N/mm"))?;
         let mut rows = Vec::new();
         for (v, r) in list.iter().zip(&results) {
-            let name = analyses::Cell::Text(v.name.clone());
+            let name = kc::Cell::Text(v.name.clone());
             match r {
                 Ok(o) => {
                     out.line(format!(
@@ -344,24 +412,24 @@ fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> 
                         o.bump_steer.into(),
                         o.camber_gain.into(),
                         o.wheel_rate.into(),
-                        analyses::Cell::Empty,
+                        kc::Cell::Empty,
                     ]);
                 }
                 Err(e) => {
                     out.line(format!("{:<28} failed: {e}", v.name))?;
-                    let empty = analyses::Cell::Empty;
-                    rows.push(vec![name, empty.clone(), empty.clone(), empty, analyses::Cell::Text(e.clone())]);
+                    let empty = kc::Cell::Empty;
+                    rows.push(vec![name, empty.clone(), empty.clone(), empty, kc::Cell::Text(e.clone())]);
                 }
             }
         }
-        let table = analyses::Table {
-            file: "batch.csv".into(),
+        let table = kc::Table {
+            name: "batch".into(),
             columns: ["variant", "bump_steer_deg_per_m", "camber_gain_deg_per_m", "wheel_rate_n_per_m", "error"]
                 .map(String::from)
                 .to_vec(),
             rows,
         };
-        staging.write(&table.file, &write_table(&table, &provenance))
+        staging.write(&format!("{}.csv", table.name), &write_table(&table, &provenance))
     })();
     let path = result.map_err(|e| Failure::Run(format!("{}\n{}", e.message(), staging.untouched())))?;
     staging.commit()?;
@@ -377,7 +445,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let out = Stdout::new(cli.quiet);
     let result = match cli.command {
-        Command::Run(args) => run(args, &out, cli.quiet),
+        Command::Run(args) => run(args, &out, cli.quiet, cli.strict),
         Command::Check(args) => check(args, &out),
         Command::Batch(args) => run_batch(args, &out, cli.quiet),
     };
@@ -397,8 +465,8 @@ mod tests {
     #[test]
     fn every_analysis_has_its_command_line_name() {
         let names: Vec<AnalysisName> = AnalysisName::value_variants().to_vec();
-        assert_eq!(names.len(), analyses::ALL.len());
-        for (name, analysis) in names.into_iter().zip(analyses::ALL) {
+        assert_eq!(names.len(), kc::ALL.len());
+        for (name, analysis) in names.into_iter().zip(kc::ALL) {
             assert_eq!(name.analysis(), analysis);
         }
     }

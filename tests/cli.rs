@@ -65,20 +65,20 @@ fn run_and_check_every_example() {
                 assert!(summary["analyses"][analysis]["parameter"].is_string(), "{analysis}: {summary}");
             }
             let a = &summary["analyses"];
-            assert!(a["parallel-travel"]["bump_steer_deg_per_m"].is_f64(), "{summary}");
-            assert!(a["parallel-travel"]["compliance_at_design"]["lateral_steer_deg_per_kn"].is_f64(), "{summary}");
-            assert!(a["roll"]["roll_centre_height_at_design_m"].is_f64(), "{summary}");
-            assert!(a["roll"]["roll_stiffness_nm_per_rad"].is_f64(), "{summary}");
-            assert!(a["steering"]["steer_per_rack_travel_deg_per_m"].is_f64(), "{summary}");
-            assert!(a["vertical-force"]["wheel_rate_n_per_m"].is_f64(), "{summary}");
-            assert!(a["lateral-force"]["steer_deg_per_unit"].is_f64(), "{summary}");
+            assert!(a["parallel-travel"]["figures"]["bump_steer"]["value"].is_f64(), "{summary}");
+            assert!(a["parallel-travel"]["figures"]["lateral_steer"]["value"].is_f64(), "{summary}");
+            assert!(a["roll"]["figures"]["roll_centre_height"]["value"].is_f64(), "{summary}");
+            assert!(a["roll"]["figures"]["roll_stiffness"]["value"].is_f64(), "{summary}");
+            assert!(a["steering"]["figures"]["steer_per_rack_travel"]["value"].is_f64(), "{summary}");
+            assert!(a["vertical-force"]["figures"]["wheel_rate"]["value"].is_f64(), "{summary}");
+            assert!(a["lateral-force"]["figures"]["steer"]["value"].is_f64(), "{summary}");
             assert!(a["parallel-travel"]["wheel_compliance_at_design"][5][5].is_f64(), "{summary}");
-            assert!(a["parallel-travel"]["anti_pitch"]["braking_percent"].is_f64(), "{summary}");
+            assert!(a["parallel-travel"]["figures"]["braking_anti_pitch"]["value"].is_f64(), "{summary}");
             // The static load case: a row per joint and element, ride height in the summary.
             let loads = read_csv(&out.join("static_load.csv"));
             let components: Vec<&str> = loads.iter().map(|r| &r[0]).collect();
             assert!(components.contains(&"spring") && components.contains(&"corner load"), "{components:?}");
-            assert!(a["static-load"]["ride_height_change_m"].is_f64(), "{summary}");
+            assert!(a["static-load"]["figures"]["ride_height_change"]["value"].is_f64(), "{summary}");
         }
         // One analysis alone, with its own range.
         std::fs::remove_dir_all(&out).ok();
@@ -114,13 +114,13 @@ fn run_figures_agree_with_each_other_by_closed_form() {
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     let a = &summary["analyses"];
-    let wheel_rate = a["parallel-travel"]["wheel_rate_n_per_m"].as_f64().unwrap();
-    let roll_stiffness = a["roll"]["roll_stiffness_nm_per_rad"].as_f64().unwrap();
+    let wheel_rate = a["parallel-travel"]["figures"]["wheel_rate"]["value"].as_f64().unwrap() * 1e3; // N/m
+    let roll_stiffness = a["roll"]["figures"]["roll_stiffness"]["value"].as_f64().unwrap().to_degrees(); // N·m/rad
     let track = 2.0 * 1.100;
     let expected = wheel_rate * track * track / 2.0;
     // Finite differences over ±5 mm and the small track change limit this to ~1 %.
     assert!((roll_stiffness - expected).abs() < 0.02 * expected, "{roll_stiffness} vs k_w T²/2 = {expected}");
-    let force_rate = a["vertical-force"]["wheel_rate_n_per_m"].as_f64().unwrap();
+    let force_rate = a["vertical-force"]["figures"]["wheel_rate"]["value"].as_f64().unwrap() * 1e3;
     assert!((force_rate - wheel_rate).abs() < 0.05 * wheel_rate, "{force_rate} vs {wheel_rate}");
     std::fs::remove_dir_all(&out).ok();
 }
@@ -214,8 +214,8 @@ fn batch_runs_variants_in_parallel_and_agrees_with_run() {
     assert!(r.status.success());
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-    let run_bump = summary["analyses"]["parallel-travel"]["bump_steer_deg_per_m"].as_f64().unwrap();
-    let run_rate = summary["analyses"]["parallel-travel"]["wheel_rate_n_per_m"].as_f64().unwrap();
+    let run_bump = summary["analyses"]["parallel-travel"]["figures"]["bump_steer"]["value"].as_f64().unwrap();
+    let run_rate = summary["analyses"]["parallel-travel"]["figures"]["wheel_rate"]["value"].as_f64().unwrap() * 1e3;
     assert!((value("baseline", 1) - run_bump).abs() < 1e-6 * run_bump.abs(), "{} vs {run_bump}", value("baseline", 1));
     assert!((value("baseline", 3) - run_rate).abs() < 1e-6 * run_rate, "{} vs {run_rate}", value("baseline", 3));
     // Moving the inner tie-rod point up and down moves bump steer in opposite directions around the baseline.

@@ -198,14 +198,26 @@ pub fn run(analysis: Analysis, file: &SuspensionFile, settings: &Settings) -> Re
     result.map_err(|message| AnalysisError { analysis: analysis.name(), message })
 }
 
-/// Runs `which` (every analysis when empty) on the model in `file`: the K&C suite. The static load case is
-/// skipped, with its reason, when the file has no vehicle section and it was not asked for by name.
-/// `progress` is told each analysis before it starts.
+/// What [`run_suite`] tells its caller as it goes.
+#[derive(Debug, Clone, Copy)]
+pub enum SuiteEvent<'a> {
+    /// An analysis starts.
+    Starting(Analysis),
+    /// An analysis is done.
+    Done(&'a AnalysisReport),
+    /// An analysis is left out.
+    Skipped(&'a Skipped),
+}
+
+/// Runs `which` (every analysis when empty) on the model in `file`: the K&C suite. The plausibility checks
+/// run first ([`KcReport::model_check`]). The static load case is skipped, with its reason, when the file
+/// has no vehicle section and it was not asked for by name. `progress` hears of each analysis as it starts,
+/// ends or is skipped.
 pub fn run_suite(
     file: &SuspensionFile,
     which: &[Analysis],
     settings: &Settings,
-    mut progress: impl FnMut(Analysis),
+    mut progress: impl FnMut(SuiteEvent),
 ) -> Result<KcReport, AnalysisError> {
     let chosen: Vec<Analysis> = if which.is_empty() { ALL.to_vec() } else { which.to_vec() };
     // The plausibility checks run first: a model that cannot be what its author meant is said to be so even
@@ -227,10 +239,12 @@ pub fn run_suite(
                 analysis,
                 reason: "the model file has no \"vehicle\" section with the corner_load to carry".into(),
             });
+            progress(SuiteEvent::Skipped(&report.skipped[report.skipped.len() - 1]));
             continue;
         }
-        progress(analysis);
+        progress(SuiteEvent::Starting(analysis));
         report.analyses.push(run(analysis, file, settings)?);
+        progress(SuiteEvent::Done(&report.analyses[report.analyses.len() - 1]));
     }
     Ok(report)
 }

@@ -146,9 +146,10 @@ impl Figure {
                     }
                     _ => String::new(),
                 };
-                format!("  {:<44} {:>12.*} {}{err}", self.label, self.decimals, v, self.unit)
+                let unit = if self.unit == "-" { "" } else { &self.unit };
+                format!("  {:<58} {:>10.*} {unit}{err}", self.label, self.decimals, v)
             }
-            None => format!("  {:<44} {:>12} — {}", self.label, "n/a", self.reason.as_deref().unwrap_or("")),
+            None => format!("  {:<58} {:>10} — {}", self.label, "n/a", self.reason.as_deref().unwrap_or("")),
         }
     }
 }
@@ -224,10 +225,11 @@ pub struct AnalysisReport {
     /// Headline figures (in JSON an object keyed by each figure's key).
     #[serde(serialize_with = "figures_by_key")]
     pub figures: Vec<Figure>,
-    /// The rows.
+    /// The rows (written as CSV; left out of the JSON summary, which would only repeat them).
+    #[serde(skip)]
     pub table: Table,
-    /// The 6×6 wheel compliance at every row, when asked for.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    /// The 6×6 wheel compliance at every row, when asked for (CSV too).
+    #[serde(skip)]
     pub compliance: Option<Table>,
     /// The 6×6 wheel compliance at design (rows: wheel-centre x, y, z in m and rotation in rad; columns:
     /// unit force in N and torque in N·m at the wheel centre), where the analysis takes it.
