@@ -475,7 +475,7 @@ mod tests {
     #[test]
     fn tables_are_csv_with_the_provenance_line_first() {
         let table = Table {
-            file: "t.csv".into(),
+            name: "t".into(),
             columns: vec!["component".into(), "force_n".into(), "note".into()],
             rows: vec![
                 vec![Cell::Text("spring, coil".into()), Cell::Number(0.1 + 0.2), Cell::Empty],
