@@ -13,11 +13,16 @@
 //! serde nor rayon (rayon and sprs are behind its `parallel` and `matrix-market` features). This facade
 //! package also carries the `elastokin` command, which uses serde_json for its reports and rayon to run
 //! `batch` variants on all cores.
+//!
+//! [`html`] writes the K&C report as one self-contained HTML page; it escapes every text it prints with
+//! html-escape, so names and messages from a model file cannot break the page.
 
 pub use elastokin_core as core;
 pub use elastokin_elements as elements;
 pub use elastokin_solver as solver;
 pub use elastokin_suspensions as suspensions;
+
+pub mod html;
 
 /// The names most programs use.
 pub mod prelude {
