@@ -131,8 +131,15 @@ fn scalar(value: &Value) -> String {
 
 /// The model's hardpoints, read from its serialised form so that every template's points are listed
 /// under the names the model file uses.
-fn hardpoints(model: &SuspensionFile) -> Result<(String, Vec<(String, [f64; 3])>), String> {
-    let value = serde_json::to_value(&model.suspension).map_err(|e| e.to_string())?;
+/// The hardpoints of a model file's template: its name (`macpherson`, `double_wishbone`) and each point's
+/// name and position (m).
+struct Hardpoints {
+    template: String,
+    points: Vec<(String, [f64; 3])>,
+}
+
+fn hardpoints(model: &SuspensionFile) -> Result<Hardpoints, String> {
+    let value = serde_json::to_value(model.suspension).map_err(|e| e.to_string())?;
     let (template, body) = value
         .as_object()
         .and_then(|m| m.iter().next())
@@ -150,13 +157,13 @@ fn hardpoints(model: &SuspensionFile) -> Result<(String, Vec<(String, [f64; 3])>
             .ok_or_else(|| format!("hardpoint {name} is not three numbers: {p}"))?;
         rows.push((name.clone(), xyz));
     }
-    Ok((template.clone(), rows))
+    Ok(Hardpoints { template: template.clone(), points: rows })
 }
 
 fn write_hardpoints(out: Out, model: &SuspensionFile) -> std::fmt::Result {
     writeln!(out, "<section id=\"hardpoints\">")?;
     match hardpoints(model) {
-        Ok((template, points)) => {
+        Ok(Hardpoints { template, points }) => {
             writeln!(out, "<h2>Hardpoints <span class=\"quiet\">({}, left corner)</span></h2>", text(&template))?;
             writeln!(out, "<table class=\"numbers\">")?;
             writeln!(out, "<thead><tr><th>hardpoint</th><th>x [mm]</th><th>y [mm]</th><th>z [mm]</th></tr></thead>")?;
@@ -342,6 +349,7 @@ fn write_accuracy(out: Out, a: &AnalysisReport, report: &KcReport) -> std::fmt::
 }
 
 fn write_chart(out: Out, chart: &Chart, render_chart: &dyn Fn(&Chart) -> Result<String, String>) -> std::fmt::Result {
+    // The plot carries its own title; one that could not be drawn is named in its error.
     writeln!(out, "<figure>")?;
     match render_chart(chart) {
         Ok(svg) => writeln!(out, "{}", inline_svg(&svg))?,
@@ -349,7 +357,6 @@ fn write_chart(out: Out, chart: &Chart, render_chart: &dyn Fn(&Chart) -> Result<
             writeln!(out, "<p class=\"error\">the plot “{}” could not be drawn: {}</p>", text(&chart.title), text(&e))?
         }
     }
-    writeln!(out, "<figcaption>{}</figcaption>", text(&chart.title))?;
     writeln!(out, "</figure>")
 }
 
@@ -536,7 +543,6 @@ section.analysis h2 { font-family: "DejaVu Sans Mono", Menlo, Consolas, monospac
 .charts { display: flex; flex-wrap: wrap; gap: 16px; }
 figure { margin: 8px 0; flex: 1 1 480px; max-width: 100%; }
 figure svg { width: 100%; height: auto; display: block; border: 1px solid #e5e8eb; }
-figcaption { font-size: 0.85em; color: #57606a; text-align: center; }
 details { margin: 6px 0; }
 summary { cursor: pointer; color: #0b5394; }
 .scroll { overflow-x: auto; max-width: 100%; }

@@ -4,10 +4,15 @@
 //! - `ci`: format check and tests — what `.ci/run` starts with.
 //! - `bench`: the benchmark instrument (error against run time, step cost, scaling, stiff cases, batch
 //!   throughput), tracked over commits; see `bench/mod.rs` and the README's "Benchmarks".
+//! - `screenshot`: the HTML K&C report of `examples/macpherson.json`, and its picture taken by headless
+//!   Chromium for the README; see `screenshot.rs`. It uses the `elastokin` facade (the suite and the HTML
+//!   report), html-escape for the text in its plots, sha2 for the model file's checksum in the report's
+//!   provenance and humantime for its date.
 
 use std::process::{Command, ExitCode};
 
 mod bench;
+mod screenshot;
 
 /// Every allocation is counted, so the benchmark can report peak memory of a measured section.
 #[global_allocator]
@@ -18,8 +23,11 @@ fn main() -> ExitCode {
     match args.first().map(String::as_str) {
         Some("ci") => run_ci(),
         Some("bench") => bench::main(&args[1..]),
+        Some("screenshot") => screenshot::main(&args[1..]),
         _ => {
-            eprintln!("usage: cargo xtask <ci|bench>   (cargo xtask bench --help for the benchmark's options)");
+            eprintln!(
+                "usage: cargo xtask <ci|bench|screenshot>   (cargo xtask bench --help for the benchmark's options)"
+            );
             ExitCode::from(2)
         }
     }
