@@ -248,8 +248,8 @@ fn write_analysis(
         out,
         "<p class=\"note\">load parameter: {}; {} to {}, {} steps</p>",
         text(&a.parameter),
-        number(a.range.0, 6),
-        number(a.range.1, 6),
+        plain(a.range.0),
+        plain(a.range.1),
         a.steps
     )?;
 
@@ -487,10 +487,24 @@ fn number(v: f64, decimals: usize) -> String {
     }
 }
 
+/// `v` to six significant digits without trailing zeros (`-0.08`, `3800`, `2071.43`): a parameter as
+/// a person would type it.
+fn plain(v: f64) -> String {
+    let s = significant(v, 6);
+    if s.contains('.') && !s.contains('e') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
 /// `v` with `digits` significant digits, in plain or scientific notation as fits (as the terminal's
-/// headline prints error estimates).
+/// headline prints error estimates); nothing for a non-finite `v`.
 fn significant(v: f64, digits: usize) -> String {
-    if v == 0.0 || !v.is_finite() {
+    if !v.is_finite() {
+        return String::new();
+    }
+    if v == 0.0 {
         return "0".into();
     }
     let magnitude = v.abs().log10().floor() as i32;
@@ -541,7 +555,7 @@ section.analysis { margin-top: 36px; }
 section.analysis h2 { font-family: "DejaVu Sans Mono", Menlo, Consolas, monospace; }
 .description { font-weight: 600; margin: 4px 0; }
 .charts { display: flex; flex-wrap: wrap; gap: 16px; }
-figure { margin: 8px 0; flex: 1 1 480px; max-width: 100%; }
+figure { margin: 8px 0; flex: 0 1 552px; max-width: 100%; }
 figure svg { width: 100%; height: auto; display: block; border: 1px solid #e5e8eb; }
 details { margin: 6px 0; }
 summary { cursor: pointer; color: #0b5394; }
@@ -578,6 +592,11 @@ mod tests {
         assert_eq!(cell(&Cell::Number(f64::NAN), 6), "");
         assert_eq!(significant(0.000123456, 2), "0.00012");
         assert_eq!(significant(1.2e-9, 2), "1.2e-9");
+        assert_eq!(plain(-0.08), "-0.08");
+        assert_eq!(plain(3800.0), "3800");
+        assert_eq!(plain(2071.431612), "2071.43");
+        assert_eq!(plain(0.0), "0");
+        assert_eq!(plain(f64::NAN), "");
     }
 
     #[test]

@@ -57,6 +57,18 @@ fn element_names(html: &str) -> Vec<String> {
     doc.descendants().filter(|n| n.is_element()).map(|n| n.tag_name().name().to_string()).collect()
 }
 
+/// A length error in mm as the accuracy line prints it, for the lengths this suite reaches (its
+/// estimates are below 1e-4 mm, printed in scientific notation, or exactly zero).
+fn significant_mm(m: f64) -> String {
+    let mm = m * 1e3;
+    assert!(mm < 1e-4, "a length error of {mm} mm: extend this helper");
+    if mm == 0.0 {
+        "0".into()
+    } else {
+        format!("{mm:.1e}")
+    }
+}
+
 /// The words of `html` that are a non-finite number as Rust or JavaScript would print it.
 fn non_finite_words(html: &str) -> Vec<String> {
     html.split(|c: char| !c.is_ascii_alphanumeric())
@@ -78,6 +90,26 @@ fn report_is_well_formed_self_contained_and_shows_every_analysis() {
         for f in &a.figures {
             assert!(html.contains(&*html_escape::encode_text(&f.label)), "figure {} missing", f.label);
         }
+        for f in &a.figures {
+            // Each figure's row: value to its decimals, unit, and its error estimate or its reason.
+            let unit = html_escape::encode_text(&f.unit);
+            match f.value {
+                Some(v) => {
+                    let mut value = format!("{:.*}", f.decimals, v);
+                    if value.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
+                        value = value.trim_start_matches('-').to_string(); // a rounded zero has no sign
+                    }
+                    let error = if f.error.is_some() { "± " } else { "not estimated" };
+                    let row =
+                        format!("<td class=\"value\">{value}</td><td>{unit}</td><td class=\"error-estimate\">{error}");
+                    assert!(html.contains(&row), "{}: {row}", f.label);
+                }
+                None => assert!(html.contains(&*html_escape::encode_text(f.reason.as_deref().unwrap()))),
+            }
+        }
+        let verdict = if a.accuracy.within_tolerance { "within tolerance" } else { "over tolerance" };
+        let accuracy = format!("lengths {} mm", significant_mm(a.accuracy.length_error_m));
+        assert!(html.contains(verdict) && html.contains(&accuracy), "{}: {accuracy}", a.analysis.name());
         // The table and its size are in the collapsible part.
         assert!(html.contains(&format!("<code>{}.csv</code>, {} rows", a.table.name, a.table.rows.len())));
     }
@@ -228,4 +260,31 @@ fn skipped_analyses_are_listed_with_their_reason() {
     assert!(html.contains("no provenance given"));
     let all = report_html(suite(), &model(), &provenance(), &title_svg);
     assert!(suite().skipped.is_empty() && all.contains("none: every analysis asked for was run"));
+}
+
+#[test]
+fn hardpoints_of_a_double_wishbone_are_listed_in_mm() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/double_wishbone.json");
+    let file = SuspensionFile::read(&path).unwrap();
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let hardpoints = json["suspension"]["double_wishbone"]["hardpoints"].as_object().unwrap();
+    // No analysis run: the page still stands, with the model and nothing else made up.
+    let report = KcReport {
+        model: file.name.clone(),
+        settings: Settings::default(),
+        analyses: vec![],
+        skipped: vec![],
+        warnings: vec![],
+    };
+    let html = report_html(&report, &file, &provenance(), &title_svg);
+    element_names(&html);
+    assert!(html.contains("(double_wishbone, left corner)"));
+    assert!(hardpoints.len() >= 8);
+    for (name, xyz) in hardpoints {
+        let mm: Vec<String> = (0..3).map(|i| format!("<td>{:.2}</td>", xyz[i].as_f64().unwrap() * 1e3)).collect();
+        let row =
+            format!("<tr><td><code>{name}</code></td>{}</tr>", mm.concat()).replace("<td>-0.00</td>", "<td>0.00</td>");
+        assert!(html.contains(&row), "{row}");
+    }
+    assert!(!html.contains("<svg") && html.contains("no warnings"));
 }
