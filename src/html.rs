@@ -321,9 +321,10 @@ fn write_figures(out: Out, figures: &[Figure]) -> std::fmt::Result {
 fn write_accuracy(out: Out, a: &AnalysisReport, report: &KcReport) -> std::fmt::Result {
     let acc = &a.accuracy;
     let tol = report.settings.tolerance;
-    let or_not = |v: f64, scale: f64| {
+    // An estimate the report could not make is said so, never printed as a number.
+    let or_not = |v: f64, scale: f64, unit: &str| {
         if v.is_finite() {
-            significant(v * scale, 2)
+            format!("{}{unit}", significant(v * scale, 2))
         } else {
             "not estimated".into()
         }
@@ -335,15 +336,16 @@ fn write_accuracy(out: Out, a: &AnalysisReport, report: &KcReport) -> std::fmt::
     };
     writeln!(
         out,
-        "<p class=\"accuracy\">error estimate: angles {} deg, lengths {} mm — {verdict} ({} deg, {} mm, {} % on \
-         figures); force residual {}, constraint residual {}. <span class=\"quiet\">{}</span></p>",
-        text(&or_not(acc.angle_error_deg, 1.0)),
-        text(&or_not(acc.length_error_m, 1e3)),
+        "<p class=\"accuracy\">error estimate: angles {}, lengths {} — {verdict} ({} deg, {} mm, {} % on figures); \
+         force residual {} (relative to the force scale), constraint residual {} (m, rad). \
+         <span class=\"quiet\">{}</span></p>",
+        text(&or_not(acc.angle_error_deg, 1.0, " deg")),
+        text(&or_not(acc.length_error_m, 1e3, " mm")),
         text(&significant(tol.angle_deg, 2)),
         text(&significant(tol.length_m * 1e3, 2)),
         text(&significant(tol.relative * 100.0, 2)),
-        text(&or_not(acc.force_residual, 1.0)),
-        text(&or_not(acc.constraint_residual, 1.0)),
+        text(&or_not(acc.force_residual, 1.0, "")),
+        text(&or_not(acc.constraint_residual, 1.0, "")),
         text(&acc.method)
     )
 }

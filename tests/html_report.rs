@@ -288,3 +288,25 @@ fn hardpoints_of_a_double_wishbone_are_listed_in_mm() {
     }
     assert!(!html.contains("<svg") && html.contains("no warnings"));
 }
+
+#[test]
+fn non_finite_numbers_put_in_the_report_never_reach_the_page() {
+    let mut report = suite().clone();
+    let a = report.analyses.iter_mut().find(|a| a.wheel_compliance_at_design.is_some()).unwrap();
+    a.range = (f64::NAN, f64::INFINITY);
+    a.accuracy.angle_error_deg = f64::NAN;
+    a.accuracy.length_error_m = f64::INFINITY;
+    a.accuracy.force_residual = f64::NEG_INFINITY;
+    a.accuracy.constraint_residual = f64::NAN;
+    a.wheel_compliance_at_design.as_mut().unwrap()[2][2] = f64::NAN;
+    a.table.rows[0][0] = Cell::Number(f64::INFINITY); // past `Cell::from`, which would have made it empty
+    a.figures[0].error = Some(f64::NAN);
+    a.figures[1].value = Some(f64::INFINITY);
+    let html = report_html(&report, &model(), &provenance(), &title_svg);
+    element_names(&html);
+    assert_eq!(non_finite_words(&html), Vec::<String>::new());
+    assert!(html.contains("error estimate: angles not estimated, lengths not estimated — "));
+    assert!(
+        html.contains("force residual not estimated (relative to the force scale), constraint residual not estimated")
+    );
+}
