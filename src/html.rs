@@ -22,21 +22,22 @@ pub const TABLE_ROW_LIMIT: usize = 400;
 /// The K&C report `report` of the model `model`, as one self-contained HTML page.
 ///
 /// `provenance` says how the run was made (elastokin version, model file and its sha256, mode, steps,
-/// tolerance, date, …): every entry of the JSON object is shown, in order, as a definition list. A
-/// value that is not an object is shown as it is.
+/// tolerance, date, …): every entry of the JSON object is shown as a definition list, nested objects
+/// nested. A value that is not an object is shown as it is.
 ///
 /// `render_chart` draws one chart as an SVG document (`<svg …>…</svg>`), which is put in the page
 /// inline. A chart it cannot draw shows the error it returns in its place; the rest of the report is
 /// still written.
-pub fn report_html(
+pub fn report_html<E: std::fmt::Display>(
     report: &KcReport,
     model: &SuspensionFile,
     provenance: &Value,
-    render_chart: &dyn Fn(&Chart) -> Result<String, String>,
+    render_chart: impl Fn(&Chart) -> Result<String, E>,
 ) -> String {
+    let render = |chart: &Chart| render_chart(chart).map_err(|e| e.to_string());
     let mut page = String::new();
     // Writing into a String cannot fail.
-    let _ = write_page(&mut page, report, model, provenance, render_chart);
+    let _ = write_page(&mut page, report, model, provenance, &render);
     page
 }
 

@@ -81,7 +81,7 @@ fn non_finite_words(html: &str) -> Vec<String> {
 fn report_is_well_formed_self_contained_and_shows_every_analysis() {
     let report = suite();
     let file = model();
-    let html = report_html(report, &file, &provenance(), &title_svg);
+    let html = report_html(report, &file, &provenance(), title_svg);
     let elements = element_names(&html);
 
     assert!(report.analyses.len() >= 8, "the suite ran {} analyses", report.analyses.len());
@@ -153,7 +153,7 @@ fn warnings_appear_with_their_code_at_the_top() {
     report.analyses[1]
         .warnings
         .push(Notice { code: "error-over-tolerance".into(), message: "roll: too coarse".into() });
-    let html = report_html(&report, &model(), &provenance(), &title_svg);
+    let html = report_html(&report, &model(), &provenance(), title_svg);
     element_names(&html);
     let warnings = html.find("<section id=\"warnings\">").unwrap();
     let first_analysis = html.find("<section class=\"analysis\"").unwrap();
@@ -169,7 +169,7 @@ fn warnings_appear_with_their_code_at_the_top() {
     for a in &mut report.analyses {
         a.warnings.clear();
     }
-    let html = report_html(&report, &model(), &provenance(), &title_svg);
+    let html = report_html(&report, &model(), &provenance(), title_svg);
     assert!(html.contains("no warnings"));
 }
 
@@ -183,7 +183,7 @@ fn a_chart_that_cannot_be_drawn_shows_why_and_the_report_goes_on() {
             title_svg(chart)
         }
     };
-    let html = report_html(report, &model(), &provenance(), &fails_on_roll);
+    let html = report_html(report, &model(), &provenance(), fails_on_roll);
     element_names(&html);
     let roll = report.analysis(kc::Analysis::Roll).unwrap();
     assert!(!roll.charts.is_empty());
@@ -202,7 +202,7 @@ fn a_figure_without_a_value_shows_its_reason() {
     let reason = "needs vehicle.wheelbase in the model file";
     report.analyses[0].figures.push(Figure::maybe("anti_dive", "anti-dive", "%", 1, None, reason));
     report.analyses[0].figures.push(Figure::new("wheel_rate_x", "wheel rate at the stop", "N/mm", 2, f64::NAN));
-    let html = report_html(&report, &model(), &provenance(), &title_svg);
+    let html = report_html(&report, &model(), &provenance(), title_svg);
     element_names(&html);
     assert!(html.contains(&format!("<td class=\"reason\">n/a — {reason}</td>")), "missing reason");
     assert!(html.contains("n/a — not a finite number here"));
@@ -222,7 +222,7 @@ fn long_tables_are_cut_with_a_note_and_text_is_escaped() {
             .map(|i| vec![Cell::Number(i as f64 * 1e-4), Cell::from(f64::NAN), Cell::Text(format!("<row {i}>"))])
             .collect(),
     };
-    let html = report_html(&report, &model(), &provenance(), &title_svg);
+    let html = report_html(&report, &model(), &provenance(), title_svg);
     let body = html.strip_prefix("<!DOCTYPE html>").unwrap();
     let doc = roxmltree::Document::parse(body).unwrap();
     let title = doc.descendants().find(|n| n.has_tag_name("title")).unwrap();
@@ -252,13 +252,13 @@ fn skipped_analyses_are_listed_with_their_reason() {
         analysis: kc::Analysis::StaticLoad,
         reason: "the model file has no \"vehicle\" section with the corner_load to carry".into(),
     });
-    let html = report_html(&report, &model(), &serde_json::Value::Null, &title_svg);
+    let html = report_html(&report, &model(), &serde_json::Value::Null, title_svg);
     element_names(&html);
     assert!(html.contains(
         "<strong>static-load</strong>: the model file has no \"vehicle\" section with the corner_load to carry"
     ));
     assert!(html.contains("no provenance given"));
-    let all = report_html(suite(), &model(), &provenance(), &title_svg);
+    let all = report_html(suite(), &model(), &provenance(), title_svg);
     assert!(suite().skipped.is_empty() && all.contains("none: every analysis asked for was run"));
 }
 
@@ -276,7 +276,7 @@ fn hardpoints_of_a_double_wishbone_are_listed_in_mm() {
         skipped: vec![],
         warnings: vec![],
     };
-    let html = report_html(&report, &file, &provenance(), &title_svg);
+    let html = report_html(&report, &file, &provenance(), title_svg);
     element_names(&html);
     assert!(html.contains("(double_wishbone, left corner)"));
     assert!(hardpoints.len() >= 8);
@@ -302,7 +302,7 @@ fn non_finite_numbers_put_in_the_report_never_reach_the_page() {
     a.table.rows[0][0] = Cell::Number(f64::INFINITY); // past `Cell::from`, which would have made it empty
     a.figures[0].error = Some(f64::NAN);
     a.figures[1].value = Some(f64::INFINITY);
-    let html = report_html(&report, &model(), &provenance(), &title_svg);
+    let html = report_html(&report, &model(), &provenance(), title_svg);
     element_names(&html);
     assert_eq!(non_finite_words(&html), Vec::<String>::new());
     assert!(html.contains("error estimate: angles not estimated, lengths not estimated — "));

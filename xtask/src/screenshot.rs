@@ -12,6 +12,7 @@ use elastokin::suspensions::kc::{self, Chart, Scale, Settings};
 use elastokin::suspensions::SuspensionFile;
 use html_escape::encode_text as text;
 use sha2::{Digest, Sha256};
+use std::convert::Infallible;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode, Stdio};
@@ -69,7 +70,9 @@ fn run() -> Result<PathBuf, String> {
         "settings": settings,
         "date": humantime::format_rfc3339_seconds(SystemTime::now()).to_string(),
     });
-    let html = elastokin::html::report_html(&report, &file, &provenance, &|chart| Ok(line_chart(chart)));
+    let html = elastokin::html::report_html(&report, &file, &provenance, |chart: &Chart| {
+        Ok::<_, Infallible>(line_chart(chart))
+    });
 
     let dir = root.join("target/screenshot");
     std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
