@@ -72,12 +72,12 @@ fn write_page(
     )?;
     writeln!(out, "</header>")?;
 
+    // Warnings first: what the colleague must know before reading any figure.
+    write_warnings(out, report)?;
     writeln!(out, "<div class=\"columns\">")?;
     write_provenance(out, provenance)?;
     write_hardpoints(out, model)?;
     writeln!(out, "</div>")?;
-
-    write_warnings(out, report)?;
     write_contents(out, report)?;
     for analysis in &report.analyses {
         write_analysis(out, analysis, report, render_chart)?;

@@ -158,6 +158,7 @@ fn warnings_appear_with_their_code_at_the_top() {
     let warnings = html.find("<section id=\"warnings\">").unwrap();
     let first_analysis = html.find("<section class=\"analysis\"").unwrap();
     assert!(warnings < first_analysis, "warnings come before the analyses");
+    assert!(warnings < html.find("<section id=\"provenance\">").unwrap(), "warnings come first");
     let section = &html[warnings..first_analysis];
     assert!(section.contains("<code>implausible-spring</code>"));
     assert!(section.contains("the spring rate is 3 N/m &amp; low"));
