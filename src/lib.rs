@@ -13,19 +13,24 @@
 //! serde nor rayon (rayon and sprs are behind its `parallel` and `matrix-market` features). This facade
 //! package also carries the `elastokin` command, and with it the command's dependencies (a package cannot
 //! keep dependencies for its binary alone): serde_json for its reports, rayon to run `batch` variants on
-//! all cores, clap for its arguments, csv for its tables, sha2 for the model file's hash in every result,
+//! all cores, clap for its arguments, csv for its tables, sha2 for the model file's hash in every result and humantime for its date ([`provenance`]),
 //! indicatif for progress bars on a terminal.
 //!
 //! [`plot`] draws the plots of the command and of the benchmark report: on plotters (SVG, and PNG
 //! through the png encoder, with its text in a font compiled in so that no system font is needed), and
 //! thiserror for its error type. Its tests read the SVG back with roxmltree.
+//!
+//! [`html`] writes the K&C report as one self-contained HTML page; it escapes every text it prints with
+//! html-escape, so names and messages from a model file cannot break the page.
 
 pub use elastokin_core as core;
 pub use elastokin_elements as elements;
 pub use elastokin_solver as solver;
 pub use elastokin_suspensions as suspensions;
 
+pub mod html;
 pub mod plot;
+pub mod provenance;
 
 /// The names most programs use.
 pub mod prelude {

@@ -53,7 +53,7 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Run the model's K&C tests: write CSV, SVG and summary.json, print headline figures
+    /// Run the model's K&C tests: write CSV, SVG, report.html and summary.json, print headline figures
     #[command(after_help = EXIT_STATUS)]
     Run(RunArgs),
     /// Parse the model and report bodies, degrees of freedom, redundant or unrestrained parts
@@ -272,6 +272,7 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
     let mut provenance = Provenance::new(&args.model, &bytes, kc::mode_word(mode), args.steps);
     provenance.wheel = Some(if settings.height_held { "held" } else { "free" });
     provenance.range = args.range;
+    provenance.tolerance = Some(settings.tolerance);
     let which: Vec<Analysis> = args.analysis.map(|a| vec![a.analysis()]).unwrap_or_default();
     let staging = Staging::new(&args.out)?;
     let count = if which.is_empty() { kc::ALL.len() } else { which.len() };
@@ -332,6 +333,8 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
                 }
             }
         }
+        let html = elastokin::html::report_html(&report, &file, &provenance.to_json(), plot::svg);
+        written.push(staging.write("report.html", html.as_bytes())?);
         let mut summary = serde_json::to_value(&report).map_err(|e| Failure::Run(e.to_string()))?;
         summary["provenance"] = provenance.to_json();
         let text = serde_json::to_string_pretty(&summary).map_err(|e| Failure::Run(e.to_string()))?;

@@ -2,9 +2,9 @@
 //! with numbers an engineer can read, an output directory that is replaced whole or not at all, standard
 //! output that a closed pipe cannot crash, and progress on standard error.
 
+pub use elastokin::provenance::{sha256_hex, Provenance};
 use elastokin::suspensions::kc::{Cell, Table};
 use indicatif::{ProgressBar, ProgressStyle};
-use sha2::{Digest, Sha256};
 use std::cell::Cell as Flag;
 use std::io::{IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};
@@ -36,89 +36,6 @@ impl Failure {
             Failure::Input(m) | Failure::Run(m) => m,
         }
     }
-}
-
-/// What produced a result: written into `summary.json` and as the first line of every CSV, so a file
-/// found later still says which program, model and settings made it.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Provenance {
-    /// The elastokin version.
-    pub elastokin: &'static str,
-    /// The model file's path as given on the command line.
-    pub model: String,
-    /// SHA-256 of the model file's bytes (lower-case hex), the bytes that were parsed.
-    pub model_sha256: String,
-    /// `batch`: the variants file's path and SHA-256.
-    pub variants: Option<(String, String)>,
-    /// `corrected` or `paper`.
-    pub mode: &'static str,
-    /// Load steps per sweep.
-    pub steps: usize,
-    /// Road loads: `held` or `free`; `None` where no road load is run.
-    pub wheel: Option<&'static str>,
-    /// The `--range` given, if any (each analysis otherwise has its own default, in `summary.json`).
-    pub range: Option<(f64, f64)>,
-    /// The command line, arguments joined by spaces.
-    pub command: String,
-}
-
-impl Provenance {
-    /// The provenance of a run on the model file whose bytes are `model_bytes`.
-    pub fn new(model: &Path, model_bytes: &[u8], mode: &'static str, steps: usize) -> Provenance {
-        Provenance {
-            elastokin: env!("CARGO_PKG_VERSION"),
-            model: model.display().to_string(),
-            model_sha256: sha256_hex(model_bytes),
-            variants: None,
-            mode,
-            steps,
-            wheel: None,
-            range: None,
-            command: std::env::args_os().map(|a| a.to_string_lossy().into_owned()).collect::<Vec<_>>().join(" "),
-        }
-    }
-
-    /// The JSON object for `summary.json`.
-    pub fn to_json(&self) -> serde_json::Value {
-        let mut v = serde_json::json!({
-            "elastokin": self.elastokin,
-            "model": self.model,
-            "model_sha256": self.model_sha256,
-            "mode": self.mode,
-            "steps": self.steps,
-            "wheel": self.wheel,
-            "range": self.range.map(|(a, b)| [a, b]),
-            "command": self.command,
-        });
-        if let Some((path, sha)) = &self.variants {
-            v["variants"] = path.as_str().into();
-            v["variants_sha256"] = sha.as_str().into();
-        }
-        v
-    }
-
-    /// The comment line that opens every CSV (without the line end):
-    /// `# elastokin 0.1.0, model examples/macpherson.json (sha256 0123456789abcdef), corrected mode, 32 steps`.
-    pub fn comment_line(&self) -> String {
-        let mut line = format!(
-            "# elastokin {}, model {} (sha256 {}), {} mode, {} steps",
-            self.elastokin,
-            self.model,
-            &self.model_sha256[..16.min(self.model_sha256.len())],
-            self.mode,
-            self.steps
-        );
-        if let Some((path, sha)) = &self.variants {
-            line += &format!(", variants {path} (sha256 {})", &sha[..16.min(sha.len())]);
-        }
-        // A line break in a path would end the comment early and leave a broken first row.
-        line.chars().map(|c| if c.is_control() { '?' } else { c }).collect()
-    }
-}
-
-/// SHA-256 of `bytes` as lower-case hex.
-pub fn sha256_hex(bytes: &[u8]) -> String {
-    Sha256::digest(bytes).iter().map(|b| format!("{b:02x}")).collect()
 }
 
 /// A number as a CSV cell: at most 12 significant digits, no trailing zeros, plain decimal notation for

@@ -483,7 +483,7 @@ fn a_failed_run_leaves_the_previous_results_untouched() {
     // A successful run replaces the directory whole: no file of the earlier run survives beside the new ones.
     let o = elastokin(&["run", "examples/macpherson.json", "--analysis", "roll", "--out", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert_eq!(names(&out), ["roll.csv", "roll_centre.svg", "roll_toe_camber.svg", "summary.json"]);
+    assert_eq!(names(&out), ["report.html", "roll.csv", "roll_centre.svg", "roll_toe_camber.svg", "summary.json"]);
     assert_eq!(names(&dir), ["heavy.json", "results"]);
     std::fs::remove_dir_all(&dir).ok();
 }
@@ -536,7 +536,7 @@ fn an_out_that_is_not_a_results_directory_is_refused_and_kept() {
     std::fs::write(earlier.join("steering.csv"), "rack_m,toe_deg\n0.000000000,0.000000000\n").unwrap();
     let o = elastokin(&["run", m, "--analysis", "roll", "--out", earlier.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert_eq!(names(&earlier), ["roll.csv", "roll_centre.svg", "roll_toe_camber.svg", "summary.json"]);
+    assert_eq!(names(&earlier), ["report.html", "roll.csv", "roll_centre.svg", "roll_toe_camber.svg", "summary.json"]);
     std::fs::remove_dir_all(&dir).ok();
 }
 

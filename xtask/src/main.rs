@@ -7,10 +7,14 @@
 //!
 //! It depends on the facade package `elastokin` for `elastokin::plot`, so the benchmark's plots are drawn
 //! by the same renderer as the command's.
+//! - `screenshot`: the HTML K&C report of `examples/macpherson.json`, and its picture taken by headless
+//!   Chromium for the README; see `screenshot.rs`. It uses the `elastokin` facade (the suite, the plots,
+//!   the HTML report and the provenance), as the command does.
 
 use std::process::{Command, ExitCode};
 
 mod bench;
+mod screenshot;
 
 /// Every allocation is counted, so the benchmark can report peak memory of a measured section.
 #[global_allocator]
@@ -21,8 +25,11 @@ fn main() -> ExitCode {
     match args.first().map(String::as_str) {
         Some("ci") => run_ci(),
         Some("bench") => bench::main(&args[1..]),
+        Some("screenshot") => screenshot::main(&args[1..]),
         _ => {
-            eprintln!("usage: cargo xtask <ci|bench>   (cargo xtask bench --help for the benchmark's options)");
+            eprintln!(
+                "usage: cargo xtask <ci|bench|screenshot>   (cargo xtask bench --help for the benchmark's options)"
+            );
             ExitCode::from(2)
         }
     }

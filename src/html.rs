@@ -1,0 +1,611 @@
+//! The K&C report as one self-contained HTML file, the one an engineer mails to a colleague: the
+//! headline figures with their error estimates, the plots inline, the accuracy of every analysis, the
+//! warnings, the hardpoints and the model itself, under a block saying how the run was made.
+//!
+//! The page needs nothing but itself: CSS inline, no script, no font, no link out of the file. It is
+//! written as XHTML-compatible HTML (every element closed, only the five XML entities) so an XML parser
+//! can check that it is well-formed, and it prints on paper as it shows on screen.
+//!
+//! Every number on the page comes from the report or the model file: a figure without a value shows
+//! its reason, an empty table cell stays empty, and nothing non-finite is printed.
+
+use crate::suspensions::kc::{AnalysisReport, Cell, Chart, Figure, KcReport, Notice, Table};
+use crate::suspensions::SuspensionFile;
+use html_escape::{encode_double_quoted_attribute as attr, encode_text as text};
+use serde_json::Value;
+use std::fmt::Write;
+
+/// Rows of an analysis table shown in the page; a longer table is cut there with a note (the CSV beside
+/// the report holds every row), so a fine sweep does not make a file too large to mail.
+pub const TABLE_ROW_LIMIT: usize = 400;
+
+/// The K&C report `report` of the model `model`, as one self-contained HTML page.
+///
+/// `provenance` says how the run was made (elastokin version, model file and its sha256, mode, steps,
+/// tolerance, date, …): every entry of the JSON object is shown as a definition list, nested objects
+/// nested. A value that is not an object is shown as it is.
+///
+/// `render_chart` draws one chart as an SVG document (`<svg …>…</svg>`), which is put in the page
+/// inline. A chart it cannot draw shows the error it returns in its place; the rest of the report is
+/// still written.
+pub fn report_html<E: std::fmt::Display>(
+    report: &KcReport,
+    model: &SuspensionFile,
+    provenance: &Value,
+    render_chart: impl Fn(&Chart) -> Result<String, E>,
+) -> String {
+    let render = |chart: &Chart| render_chart(chart).map_err(|e| e.to_string());
+    let mut page = String::new();
+    // Writing into a String cannot fail.
+    let _ = write_page(&mut page, report, model, provenance, &render);
+    page
+}
+
+type Out<'a> = &'a mut String;
+
+fn write_page(
+    out: Out,
+    report: &KcReport,
+    model: &SuspensionFile,
+    provenance: &Value,
+    render_chart: &dyn Fn(&Chart) -> Result<String, String>,
+) -> std::fmt::Result {
+    writeln!(out, "<!DOCTYPE html>")?;
+    writeln!(out, r#"<html xmlns="http://www.w3.org/1999/xhtml" lang="en">"#)?;
+    writeln!(out, "<head>")?;
+    writeln!(out, r#"<meta charset="utf-8"/>"#)?;
+    writeln!(out, r#"<meta name="viewport" content="width=device-width, initial-scale=1"/>"#)?;
+    writeln!(out, r#"<meta name="generator" content="elastokin {}"/>"#, attr(env!("CARGO_PKG_VERSION")))?;
+    writeln!(out, "<title>K&amp;C report: {}</title>", text(&report.model))?;
+    writeln!(out, "<style>{STYLE}</style>")?;
+    writeln!(out, "</head>")?;
+    writeln!(out, "<body>")?;
+
+    writeln!(out, "<header>")?;
+    writeln!(out, "<h1>K&amp;C report: {}</h1>", text(&report.model))?;
+    writeln!(
+        out,
+        "<p class=\"lede\">{} analyses run, {} skipped; written by elastokin {}.</p>",
+        report.analyses.len(),
+        report.skipped.len(),
+        text(env!("CARGO_PKG_VERSION"))
+    )?;
+    writeln!(out, "</header>")?;
+
+    // Warnings first: what the colleague must know before reading any figure.
+    write_warnings(out, report)?;
+    writeln!(out, "<div class=\"columns\">")?;
+    write_provenance(out, provenance)?;
+    write_hardpoints(out, model)?;
+    writeln!(out, "</div>")?;
+    write_contents(out, report)?;
+    for analysis in &report.analyses {
+        write_analysis(out, analysis, report, render_chart)?;
+    }
+    write_skipped(out, report)?;
+    write_model(out, model)?;
+
+    writeln!(out, "</body>")?;
+    writeln!(out, "</html>")
+}
+
+fn write_provenance(out: Out, provenance: &Value) -> std::fmt::Result {
+    writeln!(out, "<section id=\"provenance\">")?;
+    writeln!(out, "<h2>How this run was made</h2>")?;
+    match provenance {
+        Value::Object(map) if map.is_empty() => writeln!(out, "<p class=\"none\">no provenance given</p>")?,
+        Value::Object(_) => write_value(out, provenance)?,
+        Value::Null => writeln!(out, "<p class=\"none\">no provenance given</p>")?,
+        other => writeln!(out, "<p>{}</p>", text(&scalar(other)))?,
+    }
+    writeln!(out, "</section>")
+}
+
+/// A JSON value in words: an object as a definition list (nested ones nested), anything else as text.
+fn write_value(out: Out, value: &Value) -> std::fmt::Result {
+    match value {
+        Value::Object(map) => {
+            writeln!(out, "<dl>")?;
+            for (key, v) in map {
+                write!(out, "<dt>{}</dt><dd>", text(&key.replace('_', " ")))?;
+                write_value(out, v)?;
+                writeln!(out, "</dd>")?;
+            }
+            writeln!(out, "</dl>")
+        }
+        other => write!(out, "{}", text(&scalar(other))),
+    }
+}
+
+/// A JSON value that is not an object, as text: a string without its quotes, an array of plain values
+/// joined by commas, anything else as compact JSON.
+fn scalar(value: &Value) -> String {
+    match value {
+        Value::String(s) => s.clone(),
+        Value::Null => "—".into(),
+        Value::Array(items) if items.iter().all(|v| !v.is_object() && !v.is_array()) => {
+            items.iter().map(scalar).collect::<Vec<_>>().join(", ")
+        }
+        other => other.to_string(),
+    }
+}
+
+/// The model's hardpoints, read from its serialised form so that every template's points are listed
+/// under the names the model file uses.
+/// The hardpoints of a model file's template: its name (`macpherson`, `double_wishbone`) and each point's
+/// name and position (m).
+struct Hardpoints {
+    template: String,
+    points: Vec<(String, [f64; 3])>,
+}
+
+fn hardpoints(model: &SuspensionFile) -> Result<Hardpoints, String> {
+    let value = serde_json::to_value(model.suspension).map_err(|e| e.to_string())?;
+    let (template, body) = value
+        .as_object()
+        .and_then(|m| m.iter().next())
+        .ok_or_else(|| "the suspension is not a template object".to_string())?;
+    let points = body
+        .get("hardpoints")
+        .and_then(Value::as_object)
+        .ok_or_else(|| format!("the {template} template has no hardpoints object"))?;
+    let mut rows = Vec::with_capacity(points.len());
+    for (name, p) in points {
+        let xyz = p
+            .as_array()
+            .filter(|a| a.len() == 3)
+            .and_then(|a| Some([a[0].as_f64()?, a[1].as_f64()?, a[2].as_f64()?]))
+            .ok_or_else(|| format!("hardpoint {name} is not three numbers: {p}"))?;
+        rows.push((name.clone(), xyz));
+    }
+    Ok(Hardpoints { template: template.clone(), points: rows })
+}
+
+fn write_hardpoints(out: Out, model: &SuspensionFile) -> std::fmt::Result {
+    writeln!(out, "<section id=\"hardpoints\">")?;
+    match hardpoints(model) {
+        Ok(Hardpoints { template, points }) => {
+            writeln!(out, "<h2>Hardpoints <span class=\"quiet\">({}, left corner)</span></h2>", text(&template))?;
+            writeln!(out, "<table class=\"numbers\">")?;
+            writeln!(out, "<thead><tr><th>hardpoint</th><th>x [mm]</th><th>y [mm]</th><th>z [mm]</th></tr></thead>")?;
+            writeln!(out, "<tbody>")?;
+            for (name, p) in points {
+                write!(out, "<tr><td><code>{}</code></td>", text(&name))?;
+                for v in p {
+                    write!(out, "<td>{}</td>", number(v * 1e3, 2))?;
+                }
+                writeln!(out, "</tr>")?;
+            }
+            writeln!(out, "</tbody></table>")?;
+            writeln!(out, "<p class=\"note\">ISO 8855: x forward, y left, z up.</p>")?;
+        }
+        Err(e) => {
+            writeln!(out, "<h2>Hardpoints</h2>")?;
+            writeln!(out, "<p class=\"error\">the hardpoints could not be read: {}</p>", text(&e))?;
+        }
+    }
+    writeln!(out, "</section>")
+}
+
+fn write_warnings(out: Out, report: &KcReport) -> std::fmt::Result {
+    let warnings: Vec<(&str, &Notice)> = report
+        .warnings
+        .iter()
+        .map(|w| ("model", w))
+        .chain(report.analyses.iter().flat_map(|a| a.warnings.iter().map(move |w| (a.analysis.name(), w))))
+        .collect();
+    writeln!(out, "<section id=\"warnings\">")?;
+    writeln!(out, "<h2>Warnings</h2>")?;
+    if warnings.is_empty() {
+        writeln!(out, "<p class=\"none\">no warnings</p>")?;
+    } else {
+        writeln!(out, "<table class=\"warnings\">")?;
+        writeln!(out, "<thead><tr><th>about</th><th>code</th><th>what to do</th></tr></thead>")?;
+        writeln!(out, "<tbody>")?;
+        for (about, w) in warnings {
+            writeln!(
+                out,
+                "<tr><td>{}</td><td><code>{}</code></td><td>{}</td></tr>",
+                text(about),
+                text(&w.code),
+                text(&w.message)
+            )?;
+        }
+        writeln!(out, "</tbody></table>")?;
+    }
+    writeln!(out, "</section>")
+}
+
+fn write_contents(out: Out, report: &KcReport) -> std::fmt::Result {
+    if report.analyses.is_empty() {
+        return Ok(());
+    }
+    writeln!(out, "<nav>")?;
+    writeln!(out, "<h2>Analyses</h2>")?;
+    writeln!(out, "<ol>")?;
+    for a in &report.analyses {
+        writeln!(
+            out,
+            "<li><a href=\"#{}\">{}</a>: {}</li>",
+            attr(a.analysis.name()),
+            text(a.analysis.name()),
+            text(&a.description)
+        )?;
+    }
+    writeln!(out, "</ol>")?;
+    writeln!(out, "</nav>")
+}
+
+fn write_analysis(
+    out: Out,
+    a: &AnalysisReport,
+    report: &KcReport,
+    render_chart: &dyn Fn(&Chart) -> Result<String, String>,
+) -> std::fmt::Result {
+    writeln!(out, "<section class=\"analysis\" id=\"{}\">", attr(a.analysis.name()))?;
+    writeln!(out, "<h2>{}</h2>", text(a.analysis.name()))?;
+    writeln!(out, "<p class=\"description\">{}</p>", text(&a.description))?;
+    writeln!(
+        out,
+        "<p class=\"note\">load parameter: {}; {} to {}, {} steps</p>",
+        text(&a.parameter),
+        plain(a.range.0),
+        plain(a.range.1),
+        a.steps
+    )?;
+
+    write_figures(out, &a.figures)?;
+    write_accuracy(out, a, report)?;
+    if !a.warnings.is_empty() {
+        writeln!(out, "<ul class=\"warnings\">")?;
+        for w in &a.warnings {
+            writeln!(out, "<li><code>{}</code> {}</li>", text(&w.code), text(&w.message))?;
+        }
+        writeln!(out, "</ul>")?;
+    }
+
+    if !a.charts.is_empty() {
+        writeln!(out, "<div class=\"charts\">")?;
+        for chart in &a.charts {
+            write_chart(out, chart, render_chart)?;
+        }
+        writeln!(out, "</div>")?;
+    }
+
+    if let Some(c) = &a.wheel_compliance_at_design {
+        write_compliance_matrix(out, c)?;
+    }
+    write_table(out, &a.table, "the rows")?;
+    if let Some(c) = &a.compliance {
+        write_table(out, c, "the wheel compliance at every row")?;
+    }
+    writeln!(out, "</section>")
+}
+
+fn write_figures(out: Out, figures: &[Figure]) -> std::fmt::Result {
+    if figures.is_empty() {
+        return writeln!(out, "<p class=\"none\">no headline figures</p>");
+    }
+    writeln!(out, "<table class=\"figures\">")?;
+    writeln!(out, "<thead><tr><th>figure</th><th>value</th><th>unit</th><th>error estimate</th></tr></thead>")?;
+    writeln!(out, "<tbody>")?;
+    for f in figures {
+        write!(out, "<tr><td>{}</td>", text(&f.label))?;
+        match f.value.filter(|v| v.is_finite()) {
+            Some(v) => {
+                let error = match f.error.filter(|e| e.is_finite()) {
+                    Some(e) => format!("± {}", significant(e, 2)),
+                    None => "not estimated".into(),
+                };
+                writeln!(
+                    out,
+                    "<td class=\"value\">{}</td><td>{}</td><td class=\"error-estimate\">{}</td></tr>",
+                    number(v, f.decimals),
+                    text(&f.unit),
+                    text(&error)
+                )?;
+            }
+            None => {
+                let reason = f.reason.as_deref().unwrap_or("no reason given");
+                writeln!(
+                    out,
+                    "<td class=\"value\">n/a</td><td>{}</td><td class=\"reason\">n/a — {}</td></tr>",
+                    text(&f.unit),
+                    text(reason)
+                )?;
+            }
+        }
+    }
+    writeln!(out, "</tbody></table>")
+}
+
+fn write_accuracy(out: Out, a: &AnalysisReport, report: &KcReport) -> std::fmt::Result {
+    let acc = &a.accuracy;
+    let tol = report.settings.tolerance;
+    // An estimate the report could not make is said so, never printed as a number.
+    let or_not = |v: f64, scale: f64, unit: &str| {
+        if v.is_finite() {
+            format!("{}{unit}", significant(v * scale, 2))
+        } else {
+            "not estimated".into()
+        }
+    };
+    let verdict = if acc.within_tolerance {
+        "<span class=\"ok\">within tolerance</span>"
+    } else {
+        "<span class=\"bad\">over tolerance</span>"
+    };
+    writeln!(
+        out,
+        "<p class=\"accuracy\">error estimate: angles {}, lengths {} — {verdict} ({} deg, {} mm, {} % on figures); \
+         force residual {} (relative to the force scale), constraint residual {} (m, rad). \
+         <span class=\"quiet\">{}</span></p>",
+        text(&or_not(acc.angle_error_deg, 1.0, " deg")),
+        text(&or_not(acc.length_error_m, 1e3, " mm")),
+        text(&significant(tol.angle_deg, 2)),
+        text(&significant(tol.length_m * 1e3, 2)),
+        text(&significant(tol.relative * 100.0, 2)),
+        text(&or_not(acc.force_residual, 1.0, "")),
+        text(&or_not(acc.constraint_residual, 1.0, "")),
+        text(&acc.method)
+    )
+}
+
+fn write_chart(out: Out, chart: &Chart, render_chart: &dyn Fn(&Chart) -> Result<String, String>) -> std::fmt::Result {
+    // The plot carries its own title; one that could not be drawn is named in its error.
+    writeln!(out, "<figure>")?;
+    match render_chart(chart) {
+        Ok(svg) => writeln!(out, "{}", inline_svg(&svg))?,
+        Err(e) => {
+            writeln!(out, "<p class=\"error\">the plot “{}” could not be drawn: {}</p>", text(&chart.title), text(&e))?
+        }
+    }
+    writeln!(out, "</figure>")
+}
+
+/// An SVG document as an element of the page: without the XML declaration or doctype a standalone file
+/// starts with, which may not appear inside a document.
+fn inline_svg(svg: &str) -> &str {
+    let mut s = svg.trim_start();
+    loop {
+        let prolog = ["<?xml", "<!DOCTYPE", "<!doctype"].iter().any(|p| s.starts_with(p));
+        match s.find('>') {
+            Some(end) if prolog => s = s[end + 1..].trim_start(),
+            _ => return s.trim_end(),
+        }
+    }
+}
+
+fn write_compliance_matrix(out: Out, c: &[[f64; 6]; 6]) -> std::fmt::Result {
+    let rows = ["x [m]", "y [m]", "z [m]", "rot x [rad]", "rot y [rad]", "rot z [rad]"];
+    let columns = ["Fx [N]", "Fy [N]", "Fz [N]", "Mx [N·m]", "My [N·m]", "Mz [N·m]"];
+    writeln!(out, "<details>")?;
+    writeln!(out, "<summary>wheel compliance at design: wheel-centre response per unit load there</summary>")?;
+    writeln!(out, "<div class=\"scroll\"><table class=\"numbers\">")?;
+    write!(out, "<thead><tr><th>response per</th>")?;
+    for c in columns {
+        write!(out, "<th>{}</th>", text(c))?;
+    }
+    writeln!(out, "</tr></thead><tbody>")?;
+    for (name, row) in rows.iter().zip(c) {
+        write!(out, "<tr><th>{}</th>", text(name))?;
+        for &v in row {
+            write!(out, "<td>{}</td>", cell(&Cell::from(v), 3))?;
+        }
+        writeln!(out, "</tr>")?;
+    }
+    writeln!(out, "</tbody></table></div>")?;
+    writeln!(out, "</details>")
+}
+
+fn write_table(out: Out, table: &Table, what: &str) -> std::fmt::Result {
+    let shown = table.rows.len().min(TABLE_ROW_LIMIT);
+    writeln!(out, "<details>")?;
+    writeln!(
+        out,
+        "<summary>{what}: <code>{}.csv</code>, {} rows × {} columns</summary>",
+        text(&table.name),
+        table.rows.len(),
+        table.columns.len()
+    )?;
+    if shown < table.rows.len() {
+        writeln!(
+            out,
+            "<p class=\"note\">the first {shown} of {} rows; every row is in {}.csv</p>",
+            table.rows.len(),
+            text(&table.name)
+        )?;
+    }
+    writeln!(out, "<div class=\"scroll\"><table class=\"numbers\">")?;
+    write!(out, "<thead><tr>")?;
+    for c in &table.columns {
+        write!(out, "<th>{}</th>", text(c))?;
+    }
+    writeln!(out, "</tr></thead>")?;
+    writeln!(out, "<tbody>")?;
+    for row in &table.rows[..shown] {
+        write!(out, "<tr>")?;
+        for c in row {
+            write!(out, "<td>{}</td>", cell(c, 6))?;
+        }
+        writeln!(out, "</tr>")?;
+    }
+    writeln!(out, "</tbody></table></div>")?;
+    writeln!(out, "</details>")
+}
+
+fn write_skipped(out: Out, report: &KcReport) -> std::fmt::Result {
+    writeln!(out, "<section id=\"skipped\">")?;
+    writeln!(out, "<h2>Analyses not run</h2>")?;
+    if report.skipped.is_empty() {
+        writeln!(out, "<p class=\"none\">none: every analysis asked for was run</p>")?;
+    } else {
+        writeln!(out, "<ul>")?;
+        for s in &report.skipped {
+            writeln!(out, "<li><strong>{}</strong>: {}</li>", text(s.analysis.name()), text(&s.reason))?;
+        }
+        writeln!(out, "</ul>")?;
+    }
+    writeln!(out, "</section>")
+}
+
+/// The model file itself, so that the colleague who receives the report can run it again.
+fn write_model(out: Out, model: &SuspensionFile) -> std::fmt::Result {
+    writeln!(out, "<section id=\"model\">")?;
+    writeln!(out, "<h2>Model file</h2>")?;
+    match serde_json::to_string_pretty(model) {
+        Ok(json) => {
+            writeln!(out, "<details>")?;
+            writeln!(out, "<summary>the model as run (JSON, SI units)</summary>")?;
+            writeln!(out, "<pre>{}</pre>", text(&json))?;
+            writeln!(out, "</details>")?;
+        }
+        Err(e) => writeln!(out, "<p class=\"error\">the model could not be written out: {}</p>", text(&e.to_string()))?,
+    }
+    writeln!(out, "</section>")
+}
+
+/// A table cell as text: numbers to `digits` significant digits, names escaped, nothing for an empty cell.
+fn cell(c: &Cell, digits: usize) -> String {
+    match c {
+        Cell::Number(v) if v.is_finite() => significant(*v, digits),
+        Cell::Number(_) | Cell::Empty => String::new(),
+        Cell::Text(t) => text(t).into_owned(),
+    }
+}
+
+/// `v` with `decimals` decimals; the caller has checked that it is finite (an empty string otherwise, so
+/// that nothing non-finite is ever printed).
+fn number(v: f64, decimals: usize) -> String {
+    if v.is_finite() {
+        let s = format!("{v:.decimals$}");
+        // A tiny negative number rounds to "-0.00": print it as the zero it reads as.
+        if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
+            s.trim_start_matches('-').to_string()
+        } else {
+            s
+        }
+    } else {
+        String::new()
+    }
+}
+
+/// `v` to six significant digits without trailing zeros (`-0.08`, `3800`, `2071.43`): a parameter as
+/// a person would type it.
+fn plain(v: f64) -> String {
+    let s = significant(v, 6);
+    if s.contains('.') && !s.contains('e') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+/// `v` with `digits` significant digits, in plain or scientific notation as fits (as the terminal's
+/// headline prints error estimates); nothing for a non-finite `v`.
+fn significant(v: f64, digits: usize) -> String {
+    if !v.is_finite() {
+        return String::new();
+    }
+    if v == 0.0 {
+        return "0".into();
+    }
+    let magnitude = v.abs().log10().floor() as i32;
+    if (-4..6).contains(&magnitude) {
+        let decimals = (digits as i32 - 1 - magnitude).max(0) as usize;
+        format!("{v:.decimals$}")
+    } else {
+        format!("{v:.*e}", digits.saturating_sub(1))
+    }
+}
+
+/// Readable on screen and on paper; system fonts only, so the page looks the same without a network.
+const STYLE: &str = r#"
+:root { color-scheme: light; }
+body { font: 15px/1.45 system-ui, -apple-system, "Segoe UI", "DejaVu Sans", Roboto, sans-serif;
+  color: #1b1f24; background: #fff; max-width: 1120px; margin: 0 auto; padding: 24px 32px 48px; }
+h1 { font-size: 1.6em; margin: 0 0 4px; }
+h2 { font-size: 1.25em; margin: 28px 0 8px; padding-bottom: 4px; border-bottom: 2px solid #d0d7de; }
+header { border-bottom: 3px solid #1f4e79; padding-bottom: 10px; }
+.lede, .note, .quiet { color: #57606a; }
+.note { font-size: 0.9em; margin: 4px 0; }
+.quiet { font-weight: normal; font-size: 0.85em; }
+.none { color: #1a7f37; font-style: italic; }
+.columns { display: flex; flex-wrap: wrap; gap: 8px 40px; }
+.columns > section { flex: 1 1 420px; min-width: 0; }
+dl { display: grid; grid-template-columns: max-content minmax(0, 1fr); gap: 2px 16px; margin: 0; }
+dt { color: #57606a; }
+dd { margin: 0; overflow-wrap: anywhere; }
+dd dl { font-size: 0.95em; }
+table { border-collapse: collapse; margin: 6px 0; }
+th, td { padding: 3px 10px; border-bottom: 1px solid #d8dee4; text-align: left; vertical-align: top; }
+thead th { border-bottom: 2px solid #8c959f; background: #f6f8fa; }
+table.numbers td { text-align: right; font-variant-numeric: tabular-nums; }
+table.numbers td:first-child { text-align: left; }
+table.figures { min-width: 70%; }
+table.figures td.value { text-align: right; font-variant-numeric: tabular-nums; font-weight: 600; }
+table.figures td.error-estimate { color: #57606a; font-variant-numeric: tabular-nums; }
+td.reason { color: #9a6700; }
+table.warnings td:nth-child(2) { white-space: nowrap; }
+code { font-family: "DejaVu Sans Mono", Menlo, Consolas, monospace; font-size: 0.9em;
+  background: #f6f8fa; padding: 0 3px; border-radius: 3px; }
+ul.warnings { color: #9a6700; padding-left: 20px; }
+.ok { color: #1a7f37; font-weight: 600; }
+.bad { color: #cf222e; font-weight: 600; }
+.error { color: #cf222e; border-left: 3px solid #cf222e; padding: 4px 10px; background: #fff5f5; }
+.accuracy { font-size: 0.92em; }
+section.analysis { margin-top: 36px; }
+section.analysis h2 { font-family: "DejaVu Sans Mono", Menlo, Consolas, monospace; }
+.description { font-weight: 600; margin: 4px 0; }
+.charts { display: flex; flex-wrap: wrap; gap: 16px; }
+figure { margin: 8px 0; flex: 0 1 552px; max-width: 100%; }
+figure svg { width: 100%; height: auto; display: block; border: 1px solid #e5e8eb; }
+details { margin: 6px 0; }
+summary { cursor: pointer; color: #0b5394; }
+.scroll { overflow-x: auto; max-width: 100%; }
+.scroll table { font-size: 0.85em; }
+pre { background: #f6f8fa; padding: 10px; overflow-x: auto; font-size: 0.85em; }
+nav ol { columns: 2; margin: 0; }
+@media print {
+  body { max-width: none; padding: 0; font-size: 10pt; }
+  section.analysis { break-before: page; }
+  figure, table.figures, .accuracy { break-inside: avoid; }
+  summary { color: inherit; }
+  a { color: inherit; text-decoration: none; }
+}
+"#;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn prolog_of_a_standalone_svg_is_dropped() {
+        let svg = "<?xml version=\"1.0\"?>\n<!DOCTYPE svg>\n<svg xmlns=\"http://www.w3.org/2000/svg\"></svg>\n";
+        assert_eq!(inline_svg(svg), "<svg xmlns=\"http://www.w3.org/2000/svg\"></svg>");
+        assert_eq!(inline_svg("<svg/>"), "<svg/>");
+    }
+
+    #[test]
+    fn numbers_never_print_non_finite_or_negative_zero() {
+        assert_eq!(number(f64::NAN, 2), "");
+        assert_eq!(number(f64::INFINITY, 2), "");
+        assert_eq!(number(-0.001, 2), "0.00");
+        assert_eq!(number(-1.234, 2), "-1.23");
+        assert_eq!(cell(&Cell::Number(f64::NAN), 6), "");
+        assert_eq!(significant(0.000123456, 2), "0.00012");
+        assert_eq!(significant(1.2e-9, 2), "1.2e-9");
+        assert_eq!(plain(-0.08), "-0.08");
+        assert_eq!(plain(3800.0), "3800");
+        assert_eq!(plain(2071.431612), "2071.43");
+        assert_eq!(plain(0.0), "0");
+        assert_eq!(plain(f64::NAN), "");
+    }
+
+    #[test]
+    fn provenance_values_read_as_words() {
+        assert_eq!(scalar(&serde_json::json!("corrected")), "corrected");
+        assert_eq!(scalar(&serde_json::json!([1, 2.5])), "1, 2.5");
+        assert_eq!(scalar(&serde_json::json!(null)), "—");
+    }
+}

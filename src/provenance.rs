@@ -1,0 +1,103 @@
+//! What produced a result: the elastokin version, the model file and its SHA-256, the stepping and the
+//! command line, written into every result (`summary.json`, the first line of every CSV, the HTML report)
+//! so that a file found later still says how it was made.
+
+use sha2::{Digest, Sha256};
+use std::path::Path;
+
+/// What produced a result: written into `summary.json` and as the first line of every CSV, so a file
+/// found later still says which program, model and settings made it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Provenance {
+    /// The elastokin version.
+    pub elastokin: &'static str,
+    /// The model file's path as given on the command line.
+    pub model: String,
+    /// SHA-256 of the model file's bytes (lower-case hex), the bytes that were parsed.
+    pub model_sha256: String,
+    /// `batch`: the variants file's path and SHA-256.
+    pub variants: Option<(String, String)>,
+    /// `corrected` or `paper`.
+    pub mode: &'static str,
+    /// Load steps per sweep.
+    pub steps: usize,
+    /// Road loads: `held` or `free`; `None` where no road load is run.
+    pub wheel: Option<&'static str>,
+    /// The `--range` given, if any (each analysis otherwise has its own default, in `summary.json`).
+    pub range: Option<(f64, f64)>,
+    /// The command line, arguments joined by spaces.
+    pub command: String,
+    /// When it was made (RFC 3339, UTC, to the second).
+    pub date: String,
+    /// The error tolerance the run was checked against, when it ran analyses.
+    pub tolerance: Option<elastokin_suspensions::kc::Tolerance>,
+}
+
+impl Provenance {
+    /// The provenance of a run on the model file whose bytes are `model_bytes`.
+    pub fn new(model: &Path, model_bytes: &[u8], mode: &'static str, steps: usize) -> Provenance {
+        Provenance {
+            elastokin: env!("CARGO_PKG_VERSION"),
+            model: model.display().to_string(),
+            model_sha256: sha256_hex(model_bytes),
+            variants: None,
+            mode,
+            steps,
+            wheel: None,
+            range: None,
+            command: std::env::args_os().map(|a| a.to_string_lossy().into_owned()).collect::<Vec<_>>().join(" "),
+            date: humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string(),
+            tolerance: None,
+        }
+    }
+
+    /// The JSON object for `summary.json`.
+    pub fn to_json(&self) -> serde_json::Value {
+        let mut v = serde_json::json!({
+            "elastokin": self.elastokin,
+            "model": self.model,
+            "model_sha256": self.model_sha256,
+            "mode": self.mode,
+            "steps": self.steps,
+            "wheel": self.wheel,
+            "range": self.range.map(|(a, b)| [a, b]),
+            "command": self.command,
+            "date": self.date,
+        });
+        if let Some(t) = self.tolerance {
+            v["tolerance"] = serde_json::json!({
+                "angle_deg": t.angle_deg,
+                "length_mm": t.length_m * 1e3,
+                "figures_percent": t.relative * 1e2,
+            });
+        }
+        if let Some((path, sha)) = &self.variants {
+            v["variants"] = path.as_str().into();
+            v["variants_sha256"] = sha.as_str().into();
+        }
+        v
+    }
+
+    /// The comment line that opens every CSV (without the line end):
+    /// `# elastokin 0.1.0, model examples/macpherson.json (sha256 0123456789abcdef), corrected mode, 32 steps`.
+    pub fn comment_line(&self) -> String {
+        let mut line = format!(
+            "# elastokin {}, model {} (sha256 {}), {} mode, {} steps",
+            self.elastokin,
+            self.model,
+            &self.model_sha256[..16.min(self.model_sha256.len())],
+            self.mode,
+            self.steps
+        );
+        if let Some((path, sha)) = &self.variants {
+            line += &format!(", variants {path} (sha256 {})", &sha[..16.min(sha.len())]);
+        }
+        // A line break in a path would end the comment early and leave a broken first row.
+        line.chars().map(|c| if c.is_control() { '?' } else { c }).collect()
+    }
+}
+
+/// SHA-256 of `bytes` as lower-case hex.
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    Sha256::digest(bytes).iter().map(|b| format!("{b:02x}")).collect()
+}

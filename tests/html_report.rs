@@ -1,0 +1,318 @@
+//! The HTML K&C report: well-formed, self-contained, and showing what the report holds — every analysis,
+//! figure (or its reason), plot, warning, hardpoint and skipped analysis — with nothing non-finite.
+
+use elastokin::html::{report_html, TABLE_ROW_LIMIT};
+use elastokin::suspensions::kc::{self, Cell, Chart, Figure, KcReport, Notice, Settings, Table};
+use elastokin::suspensions::SuspensionFile;
+use serde_json::json;
+use std::path::Path;
+use std::sync::OnceLock;
+
+fn model() -> SuspensionFile {
+    SuspensionFile::read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/macpherson.json")).unwrap()
+}
+
+/// The whole suite on the MacPherson example, in few steps: run once, shared by the tests.
+fn suite() -> &'static KcReport {
+    static REPORT: OnceLock<KcReport> = OnceLock::new();
+    REPORT.get_or_init(|| kc::run_suite(&model(), &[], &Settings { steps: 8, ..Default::default() }, |_| {}).unwrap())
+}
+
+fn provenance() -> serde_json::Value {
+    json!({
+        "elastokin_version": "0.1.0",
+        "model_file": "examples/macpherson.json",
+        "model_sha256": "0123abcd",
+        "mode": "corrected",
+        "steps": 8,
+        "tolerance": { "angle_deg": 1e-3, "length_m": 1e-6 },
+        "date": "2026-11-22T20:00:00Z"
+    })
+}
+
+/// A small valid SVG naming the chart and joining the finite points of its left axis's first curve.
+fn title_svg(chart: &Chart) -> Result<String, String> {
+    let points: Vec<String> = chart
+        .left
+        .series
+        .first()
+        .map(|s| s.points.iter().filter(|p| p.0.is_finite() && p.1.is_finite()).map(|p| format!("{},{}", p.0, p.1)))
+        .into_iter()
+        .flatten()
+        .collect();
+    Ok(format!(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 10 10\">\
+         <title>{}</title><polyline fill=\"none\" points=\"{}\"/></svg>",
+        html_escape::encode_text(&chart.title),
+        points.join(" ")
+    ))
+}
+
+/// Parses `html` as XML (the doctype is HTML's, which an XML parser need not know) and returns the
+/// document's element names, in order.
+fn element_names(html: &str) -> Vec<String> {
+    let body = html.strip_prefix("<!DOCTYPE html>").expect("starts with the HTML doctype");
+    let doc = roxmltree::Document::parse(body).unwrap_or_else(|e| panic!("not well-formed: {e}"));
+    assert_eq!(doc.root_element().tag_name().name(), "html");
+    doc.descendants().filter(|n| n.is_element()).map(|n| n.tag_name().name().to_string()).collect()
+}
+
+/// A length error in mm as the accuracy line prints it, for the lengths this suite reaches (its
+/// estimates are below 1e-4 mm, printed in scientific notation, or exactly zero).
+fn significant_mm(m: f64) -> String {
+    let mm = m * 1e3;
+    assert!(mm < 1e-4, "a length error of {mm} mm: extend this helper");
+    if mm == 0.0 {
+        "0".into()
+    } else {
+        format!("{mm:.1e}")
+    }
+}
+
+/// The words of `html` that are a non-finite number as Rust or JavaScript would print it.
+fn non_finite_words(html: &str) -> Vec<String> {
+    html.split(|c: char| !c.is_ascii_alphanumeric())
+        .filter(|w| matches!(w.to_ascii_lowercase().as_str(), "nan" | "inf" | "infinity"))
+        .map(String::from)
+        .collect()
+}
+
+#[test]
+fn report_is_well_formed_self_contained_and_shows_every_analysis() {
+    let report = suite();
+    let file = model();
+    let html = report_html(report, &file, &provenance(), title_svg);
+    let elements = element_names(&html);
+
+    assert!(report.analyses.len() >= 8, "the suite ran {} analyses", report.analyses.len());
+    for a in &report.analyses {
+        assert!(html.contains(&*html_escape::encode_text(&a.description)), "{} missing", a.description);
+        for f in &a.figures {
+            assert!(html.contains(&*html_escape::encode_text(&f.label)), "figure {} missing", f.label);
+        }
+        for f in &a.figures {
+            // Each figure's row: value to its decimals, unit, and its error estimate or its reason.
+            let unit = html_escape::encode_text(&f.unit);
+            match f.value {
+                Some(v) => {
+                    let mut value = format!("{:.*}", f.decimals, v);
+                    if value.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
+                        value = value.trim_start_matches('-').to_string(); // a rounded zero has no sign
+                    }
+                    let error = if f.error.is_some() { "± " } else { "not estimated" };
+                    let row =
+                        format!("<td class=\"value\">{value}</td><td>{unit}</td><td class=\"error-estimate\">{error}");
+                    assert!(html.contains(&row), "{}: {row}", f.label);
+                }
+                None => assert!(html.contains(&*html_escape::encode_text(f.reason.as_deref().unwrap()))),
+            }
+        }
+        let verdict = if a.accuracy.within_tolerance { "within tolerance" } else { "over tolerance" };
+        let accuracy = format!("lengths {} mm", significant_mm(a.accuracy.length_error_m));
+        assert!(html.contains(verdict) && html.contains(&accuracy), "{}: {accuracy}", a.analysis.name());
+        // The table and its size are in the collapsible part.
+        assert!(html.contains(&format!("<code>{}.csv</code>, {} rows", a.table.name, a.table.rows.len())));
+    }
+    let json: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/macpherson.json")).unwrap(),
+    )
+    .unwrap();
+    let hardpoints = json["suspension"]["macpherson"]["hardpoints"].as_object().unwrap();
+    assert_eq!(hardpoints.len(), 8);
+    for (name, xyz) in hardpoints {
+        // Name and the x coordinate in mm, two decimals, in the same row.
+        let x_mm = format!("{:.2}", xyz[0].as_f64().unwrap() * 1e3);
+        assert!(html.contains(&format!("<tr><td><code>{name}</code></td><td>{x_mm}</td>")), "hardpoint {name} {x_mm}");
+    }
+
+    assert_eq!(non_finite_words(&html), Vec::<String>::new());
+    for outside in ["src=\"http", "href=\"http", "<script", "<link", "url(", "@import"] {
+        assert!(!html.contains(outside), "the page reaches outside itself: {outside}");
+    }
+    let charts: usize = report.analyses.iter().map(|a| a.charts.len()).sum();
+    assert!(charts >= 8, "{charts} charts");
+    assert_eq!(html.matches("<svg").count(), charts);
+    assert_eq!(elements.iter().filter(|e| *e == "svg").count(), charts);
+    assert!(elements.iter().filter(|e| *e == "details").count() > report.analyses.len());
+    assert!(!html.contains("<?xml"), "the SVG's XML declaration is left out inline");
+
+    for shown in
+        ["<dt>model sha256</dt><dd>0123abcd</dd>", "<dd>2026-11-22T20:00:00Z</dd>", "<dt>angle deg</dt><dd>0.001</dd>"]
+    {
+        assert!(html.contains(shown), "provenance: {shown}");
+    }
+    assert!(html.contains("no warnings") == (report.all_warnings().count() == 0));
+}
+
+#[test]
+fn warnings_appear_with_their_code_at_the_top() {
+    let mut report = suite().clone();
+    report.warnings.push(Notice {
+        code: "implausible-spring",
+        hardpoints: Vec::new(),
+        message: "the spring rate is 3 N/m & low".into(),
+    });
+    report.analyses[1].warnings.push(Notice {
+        code: "error-over-tolerance",
+        hardpoints: Vec::new(),
+        message: "roll: too coarse".into(),
+    });
+    let html = report_html(&report, &model(), &provenance(), title_svg);
+    element_names(&html);
+    let warnings = html.find("<section id=\"warnings\">").unwrap();
+    let first_analysis = html.find("<section class=\"analysis\"").unwrap();
+    assert!(warnings < first_analysis, "warnings come before the analyses");
+    assert!(warnings < html.find("<section id=\"provenance\">").unwrap(), "warnings come first");
+    let section = &html[warnings..first_analysis];
+    assert!(section.contains("<code>implausible-spring</code>"));
+    assert!(section.contains("the spring rate is 3 N/m &amp; low"));
+    assert!(section.contains("<code>error-over-tolerance</code>"));
+    assert!(section.contains("roll: too coarse"));
+    assert!(!section.contains("no warnings"));
+
+    report.warnings.clear();
+    for a in &mut report.analyses {
+        a.warnings.clear();
+    }
+    let html = report_html(&report, &model(), &provenance(), title_svg);
+    assert!(html.contains("no warnings"));
+}
+
+#[test]
+fn a_chart_that_cannot_be_drawn_shows_why_and_the_report_goes_on() {
+    let report = suite();
+    let fails_on_roll = |chart: &Chart| {
+        if chart.name.starts_with("roll") {
+            Err(format!("no room for {} < here", chart.name))
+        } else {
+            title_svg(chart)
+        }
+    };
+    let html = report_html(report, &model(), &provenance(), fails_on_roll);
+    element_names(&html);
+    let roll = report.analysis(kc::Analysis::Roll).unwrap();
+    assert!(!roll.charts.is_empty());
+    for chart in &roll.charts {
+        assert!(html.contains(&format!("no room for {} &lt; here", chart.name)), "{}", chart.name);
+    }
+    let drawn: usize = report.analyses.iter().flat_map(|a| &a.charts).filter(|c| !c.name.starts_with("roll")).count();
+    assert_eq!(html.matches("<svg").count(), drawn);
+    let last = report.analyses.last().unwrap();
+    assert!(html.contains(&*html_escape::encode_text(&last.description)), "the analyses after the failure are there");
+}
+
+#[test]
+fn a_figure_without_a_value_shows_its_reason() {
+    let mut report = suite().clone();
+    let reason = "needs vehicle.wheelbase in the model file";
+    report.analyses[0].figures.push(Figure::maybe("anti_dive", "anti-dive", "%", 1, None, reason));
+    report.analyses[0].figures.push(Figure::new("wheel_rate_x", "wheel rate at the stop", "N/mm", 2, f64::NAN));
+    let html = report_html(&report, &model(), &provenance(), title_svg);
+    element_names(&html);
+    assert!(html.contains(&format!("<td class=\"reason\">n/a — {reason}</td>")), "missing reason");
+    assert!(html.contains("n/a — not a finite number here"));
+    assert_eq!(non_finite_words(&html), Vec::<String>::new());
+}
+
+#[test]
+fn long_tables_are_cut_with_a_note_and_text_is_escaped() {
+    let mut report = suite().clone();
+    report.model = "strut <b>\"A&B\"</b>".into();
+    let a = &mut report.analyses[0];
+    let rows = 1000;
+    a.table = Table {
+        name: "long_sweep".into(),
+        columns: vec!["travel_m".into(), "toe_deg".into(), "note".into()],
+        rows: (0..rows)
+            .map(|i| vec![Cell::Number(i as f64 * 1e-4), Cell::from(f64::NAN), Cell::Text(format!("<row {i}>"))])
+            .collect(),
+    };
+    let html = report_html(&report, &model(), &provenance(), title_svg);
+    let body = html.strip_prefix("<!DOCTYPE html>").unwrap();
+    let doc = roxmltree::Document::parse(body).unwrap();
+    let title = doc.descendants().find(|n| n.has_tag_name("title")).unwrap();
+    assert_eq!(title.text(), Some("K&C report: strut <b>\"A&B\"</b>"));
+    assert!(!html.contains("<b>"));
+    assert!(html.contains(&format!("the first {TABLE_ROW_LIMIT} of {rows} rows; every row is in long_sweep.csv")));
+    let table = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("details"))
+        .find(|d| d.descendants().any(|n| n.text() == Some("long_sweep.csv")))
+        .unwrap();
+    let body_rows = table
+        .descendants()
+        .filter(|n| n.has_tag_name("tbody"))
+        .flat_map(|b| b.children())
+        .filter(|n| n.has_tag_name("tr"));
+    assert_eq!(body_rows.count(), TABLE_ROW_LIMIT);
+    assert!(html.contains("<td>&lt;row 399&gt;</td>") && !html.contains("row 400&gt;"));
+    assert_eq!(non_finite_words(&html), Vec::<String>::new());
+}
+
+#[test]
+fn skipped_analyses_are_listed_with_their_reason() {
+    let mut report = suite().clone();
+    report.analyses.retain(|a| a.analysis != kc::Analysis::StaticLoad);
+    report.skipped.push(kc::Skipped {
+        analysis: kc::Analysis::StaticLoad,
+        reason: "the model file has no \"vehicle\" section with the corner_load to carry".into(),
+    });
+    let html = report_html(&report, &model(), &serde_json::Value::Null, title_svg);
+    element_names(&html);
+    assert!(html.contains(
+        "<strong>static-load</strong>: the model file has no \"vehicle\" section with the corner_load to carry"
+    ));
+    assert!(html.contains("no provenance given"));
+    let all = report_html(suite(), &model(), &provenance(), title_svg);
+    assert!(suite().skipped.is_empty() && all.contains("none: every analysis asked for was run"));
+}
+
+#[test]
+fn hardpoints_of_a_double_wishbone_are_listed_in_mm() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/double_wishbone.json");
+    let file = SuspensionFile::read(&path).unwrap();
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let hardpoints = json["suspension"]["double_wishbone"]["hardpoints"].as_object().unwrap();
+    // No analysis run: the page still stands, with the model and nothing else made up.
+    let report = KcReport {
+        model: file.name.clone(),
+        settings: Settings::default(),
+        analyses: vec![],
+        skipped: vec![],
+        model_check: None,
+        warnings: vec![],
+    };
+    let html = report_html(&report, &file, &provenance(), title_svg);
+    element_names(&html);
+    assert!(html.contains("(double_wishbone, left corner)"));
+    assert!(hardpoints.len() >= 8);
+    for (name, xyz) in hardpoints {
+        let mm: Vec<String> = (0..3).map(|i| format!("<td>{:.2}</td>", xyz[i].as_f64().unwrap() * 1e3)).collect();
+        let row =
+            format!("<tr><td><code>{name}</code></td>{}</tr>", mm.concat()).replace("<td>-0.00</td>", "<td>0.00</td>");
+        assert!(html.contains(&row), "{row}");
+    }
+    assert!(!html.contains("<svg") && html.contains("no warnings"));
+}
+
+#[test]
+fn non_finite_numbers_put_in_the_report_never_reach_the_page() {
+    let mut report = suite().clone();
+    let a = report.analyses.iter_mut().find(|a| a.wheel_compliance_at_design.is_some()).unwrap();
+    a.range = (f64::NAN, f64::INFINITY);
+    a.accuracy.angle_error_deg = f64::NAN;
+    a.accuracy.length_error_m = f64::INFINITY;
+    a.accuracy.force_residual = f64::NEG_INFINITY;
+    a.accuracy.constraint_residual = f64::NAN;
+    a.wheel_compliance_at_design.as_mut().unwrap()[2][2] = f64::NAN;
+    a.table.rows[0][0] = Cell::Number(f64::INFINITY); // past `Cell::from`, which would have made it empty
+    a.figures[0].error = Some(f64::NAN);
+    a.figures[1].value = Some(f64::INFINITY);
+    let html = report_html(&report, &model(), &provenance(), title_svg);
+    element_names(&html);
+    assert_eq!(non_finite_words(&html), Vec::<String>::new());
+    assert!(html.contains("error estimate: angles not estimated, lengths not estimated — "));
+    assert!(
+        html.contains("force residual not estimated (relative to the force scale), constraint residual not estimated")
+    );
+}
