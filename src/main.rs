@@ -24,8 +24,8 @@ use elastokin::plot;
 use elastokin::suspensions::kc::{self, Analysis, Settings, SuiteEvent, Tolerance};
 use output::{note, write_table, Failure, Progress, Provenance, Staging, Stdout};
 
-/// The most load steps a sweep may take.
-pub const MAX_STEPS: usize = 20_000;
+/// The most load steps a sweep may take (the suite's limit, which its advice on steps respects).
+pub use kc::MAX_STEPS;
 
 /// The largest model or variants file read: far beyond any real one, small enough to read at once.
 const MAX_FILE_BYTES: u64 = 16 << 20;

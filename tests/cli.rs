@@ -667,3 +667,101 @@ fn progress_on_a_terminal_is_a_bar() {
     }
     std::fs::remove_dir_all(&out).ok();
 }
+
+/// Paper mode at the default 32 steps gives the MacPherson wheel rate 25 % high: the command shows the
+/// error estimate beside it and warns; `--tolerance` sets what is accepted; `--strict` writes nothing.
+#[test]
+fn paper_mode_error_is_shown_warned_about_and_refused_under_strict() {
+    let dir = scratch("paper-error");
+    let out = dir.join("out");
+    let run = |extra: &[&str]| {
+        let mut args = vec!["run", "examples/macpherson.json", "--analysis", "parallel-travel", "--mode", "paper"];
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["--out", out.to_str().unwrap()]);
+        elastokin(&args)
+    };
+    let o = run(&[]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // Measured: 43.92 N/mm (± 8.9) against 35.03 N/mm converged.
+    let line = stdout.lines().find(|l| l.trim_start().starts_with("wheel rate")).unwrap();
+    assert!(line.contains("43.9") && line.contains("(± 8.9)"), "{line}");
+    assert!(stdout.contains("warning [error-over-tolerance]: parallel-travel:"), "{stdout}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let rate = &summary["analyses"]["parallel-travel"]["figures"]["wheel_rate"];
+    assert!(rate["error"].as_f64().unwrap() > 5.0, "{rate}");
+    assert_eq!(summary["analyses"]["parallel-travel"]["accuracy"]["within_tolerance"], false);
+    assert_eq!(summary["provenance"]["tolerance"]["angle_deg"], 0.001);
+    // A looser tolerance (1°, 2 mm, 50 %) accepts it.
+    let o = run(&["--tolerance", "1,2,50"]);
+    assert!(!String::from_utf8_lossy(&o.stdout).contains("warning ["), "{}", String::from_utf8_lossy(&o.stdout));
+    // Under --strict the same run fails and leaves the earlier results as they were.
+    let before = snapshot(&out);
+    let o = run(&["--strict"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("error-over-tolerance") && err.contains("left untouched"), "{err}");
+    assert_eq!(snapshot(&out), before);
+    for bad in ["1,2", "0,1,1", "a,1,1", "1,1,-5"] {
+        let o = run(&["--tolerance", bad]);
+        assert_eq!(o.status.code(), Some(2), "{bad}");
+        assert!(String::from_utf8_lossy(&o.stderr).contains("--tolerance"), "{bad}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A MacPherson tie rod whose inner point sits on the steering axis cannot steer the wheel: `check` and
+/// `run` name it; `run --strict` refuses it before solving.
+#[test]
+fn an_implausible_model_is_named_and_refused_under_strict() {
+    let dir = scratch("implausible");
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/macpherson.json")).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let points = &mut v["suspension"]["macpherson"]["hardpoints"];
+    let point = |p: &serde_json::Value| -> [f64; 3] { [0, 1, 2].map(|k| p[k].as_f64().unwrap()) };
+    let (a, b) = (point(&points["lower_ball_joint"]), point(&points["top_mount"]));
+    points["tie_rod_inner"] = serde_json::json!([0, 1, 2].map(|k| a[k] + 0.4 * (b[k] - a[k])));
+    let model = dir.join("tie_rod_on_axis.json");
+    std::fs::write(&model, v.to_string()).unwrap();
+    let model = model.to_str().unwrap();
+    let o = elastokin(&["check", model]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("warning [tie-rod-on-steering-axis]") && stdout.contains("degrees of freedom"), "{stdout}");
+    let out = dir.join("out");
+    let o = elastokin(&["run", model, "--analysis", "parallel-travel", "--out", out.to_str().unwrap()]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success());
+    assert!(
+        stdout.contains("warning [tie-rod-on-steering-axis]") && stdout.contains("warning [toe-range]"),
+        "{stdout}"
+    );
+    std::fs::remove_dir_all(&out).ok();
+    let o = elastokin(&["run", model, "--strict", "--out", out.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("refused under --strict") && err.contains("tie_rod_inner"), "{err}");
+    assert!(!out.exists());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `--compliance` writes the 6×6 at every step; `--png` a PNG beside every SVG; every run a report.html.
+#[test]
+fn compliance_png_and_report_on_request() {
+    let dir = scratch("extras");
+    let out = dir.join("out");
+    let args = ["run", "examples/double_wishbone.json", "--analysis", "parallel-travel", "--steps", "4"];
+    let o = elastokin(&[&args[..], &["--compliance", "--png", "--out", out.to_str().unwrap()]].concat());
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let rows = read_csv(&out.join("parallel_travel_compliance.csv"));
+    // One row per step (header and provenance line read off), the load parameter and 36 entries.
+    assert_eq!(rows.len(), 5);
+    assert_eq!(rows[0].len(), 37);
+    for svg in ["parallel_travel_toe_camber", "parallel_travel_wheel_centre"] {
+        let png = std::fs::read(out.join(format!("{svg}.png"))).unwrap();
+        assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n", "{svg}");
+    }
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(html.starts_with("<!DOCTYPE html>") && html.contains("bump steer") && html.contains("<svg"));
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -107,6 +107,9 @@ impl Analysis {
     }
 }
 
+/// The most load steps a sweep may take: every step keeps its solved state in memory and costs solver time.
+pub const MAX_STEPS: usize = 20_000;
+
 /// The largest estimated error a run accepts before it warns.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Tolerance {
@@ -321,10 +324,22 @@ fn finish<R>(
         .collect();
     let within = angle_error_deg <= tol.angle_deg && length_error_m <= tol.length_m && over_figures.is_empty();
     if !within {
+        // Paper mode's error falls in proportion to the step: the steps that would bring the worst of the
+        // errors to its tolerance.
+        let worst = figures
+            .iter()
+            .filter_map(|f| Some(f.error? / (tol.relative * f.value?.abs())))
+            .filter(|r| r.is_finite())
+            .fold((angle_error_deg / tol.angle_deg).max(length_error_m / tol.length_m), f64::max);
+        let needed = (settings.steps as f64 * worst).ceil();
         let fix = match settings.mode {
+            Mode::Paper if needed <= MAX_STEPS as f64 => format!(
+                "paper mode's error falls in proportion to the step: about --steps {needed:.0} would meet the \
+                 tolerance, or --mode corrected"
+            ),
             Mode::Paper => format!(
-                "paper mode's error falls in proportion to the step: try --steps {} or --mode corrected",
-                (settings.steps * 4).min(20_000)
+                "paper mode's error falls in proportion to the step, and more than {MAX_STEPS} steps would be \
+                 needed: use --mode corrected"
             ),
             Mode::Corrected => "the model is near-singular here; run `elastokin check` on it".to_string(),
         };
