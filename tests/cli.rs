@@ -763,5 +763,10 @@ fn compliance_png_and_report_on_request() {
     }
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     assert!(html.starts_with("<!DOCTYPE html>") && html.contains("bump steer") && html.contains("<svg"));
+    // A range that leaves the design position out says why the design figures are missing.
+    let o = elastokin(&[&args[..], &["--range", "0.01,0.05", "--out", out.to_str().unwrap()]].concat());
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let line = stdout.lines().find(|l| l.trim_start().starts_with("bump steer")).unwrap();
+    assert!(line.contains("n/a") && line.contains("does not contain the design position"), "{line}");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -1,8 +1,8 @@
 //! The driven K&C tests: parallel wheel travel on a corner, roll and steering on the full axle.
 
 use super::{
-    deg, finish, needs_vehicle, outside, short_name, solve_error, AnalysisReport, Chart, Figure, Reduction, Scale,
-    Series, Settings, Table, YAxis,
+    deg, finish, needs_vehicle, outside, short_name, solve_error, AnalysisReport, Chart, Figure, Notice, Reduction,
+    Scale, Series, Settings, Table, YAxis,
 };
 use super::{Analysis, Cell};
 use crate::analysis::{
@@ -247,7 +247,19 @@ pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<Ana
             pc.longitudinal_stiffness * 1e-3,
         ),
     ]);
-    report.wheel_compliance_at_design = Some(wheel_compliance(&corner, 0.0).map_err(solve_error)?);
+    // JSON has no NaN: a matrix with a non-finite entry (a motion nothing holds) is left out, and said so.
+    let compliance = wheel_compliance(&corner, 0.0).map_err(solve_error)?;
+    if compliance.iter().flatten().all(|v| v.is_finite()) {
+        report.wheel_compliance_at_design = Some(compliance);
+    } else {
+        report.warnings.push(Notice {
+            code: "compliance-not-finite",
+            hardpoints: Vec::new(),
+            message: "the wheel compliance at design is not finite: some motion of the wheel is held by \
+                      nothing; run `elastokin check` on the model"
+                .into(),
+        });
+    }
     match &file.vehicle {
         Some(vehicle) => {
             let a = anti_pitch(&corner, vehicle).map_err(solve_error)?;
