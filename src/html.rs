@@ -9,7 +9,7 @@
 //! Every number on the page comes from the report or the model file: a figure without a value shows
 //! its reason, an empty table cell stays empty, and nothing non-finite is printed.
 
-use crate::suspensions::kc::{AnalysisReport, Cell, Chart, Figure, KcReport, Notice, Table};
+use crate::suspensions::kc::{significant, AnalysisReport, Cell, Chart, Figure, KcReport, Notice, Table};
 use crate::suspensions::SuspensionFile;
 use html_escape::{encode_double_quoted_attribute as attr, encode_text as text};
 use serde_json::Value;
@@ -498,24 +498,6 @@ fn plain(v: f64) -> String {
         s.trim_end_matches('0').trim_end_matches('.').to_string()
     } else {
         s
-    }
-}
-
-/// `v` with `digits` significant digits, in plain or scientific notation as fits (as the terminal's
-/// headline prints error estimates); nothing for a non-finite `v`.
-fn significant(v: f64, digits: usize) -> String {
-    if !v.is_finite() {
-        return String::new();
-    }
-    if v == 0.0 {
-        return "0".into();
-    }
-    let magnitude = v.abs().log10().floor() as i32;
-    if (-4..6).contains(&magnitude) {
-        let decimals = (digits as i32 - 1 - magnitude).max(0) as usize;
-        format!("{v:.decimals$}")
-    } else {
-        format!("{v:.*e}", digits.saturating_sub(1))
     }
 }
 

@@ -463,17 +463,7 @@ impl<'m> StaticSolver<'m> {
                 factored = true;
             }
             last_force = r.force;
-            // rhs = [Q − Jᵀλ ; −Φ]
-            for c in 0..n {
-                self.rhs[c] = self.assembly.applied[c] - self.scratch[c];
-            }
-            for k in 0..m {
-                self.rhs[n + k] = -self.assembly.phi[k];
-            }
-            self.solve_with_skew()?;
-            if self.rhs.iter().any(|v| !v.is_finite()) {
-                return Err(SolverError::NonFinite { what: "Newton increment" });
-            }
+            self.newton_increment()?;
             let step_norm = self.rhs[..n].iter().map(|v| v * v).sum::<f64>().sqrt();
             if iter == 0 {
                 predictor_norm = step_norm;
@@ -640,16 +630,7 @@ impl<'m> StaticSolver<'m> {
             return Err(SolverError::NonFinite { what: "residual" });
         }
         self.factorize()?;
-        for c in 0..n {
-            self.rhs[c] = self.assembly.applied[c] - self.scratch[c];
-        }
-        for k in 0..m {
-            self.rhs[n + k] = -self.assembly.phi[k];
-        }
-        self.solve_with_skew()?;
-        if self.rhs.iter().any(|v| !v.is_finite()) {
-            return Err(SolverError::NonFinite { what: "Newton increment" });
-        }
+        self.newton_increment()?;
         Self::apply(&mut state.poses, &self.rhs[..n], 1.0);
         for k in 0..m {
             state.lambda[k] += self.rhs[n + k];
@@ -657,6 +638,23 @@ impl<'m> StaticSolver<'m> {
         self.assemble(&state, None);
         let after = self.residual(&state.lambda);
         Ok(self.step_result(&state, 1, &after))
+    }
+
+    /// The Newton increment `[Δq; Δλ]` into `rhs`, from `rhs = [Q − Jᵀλ ; −Φ]` at the assembled state and
+    /// the factorized tangent (`scratch` holds `Jᵀλ` from [`Self::residual`]).
+    fn newton_increment(&mut self) -> Result<(), SolverError> {
+        let n = self.assembly.n;
+        for c in 0..n {
+            self.rhs[c] = self.assembly.applied[c] - self.scratch[c];
+        }
+        for k in 0..self.assembly.m() {
+            self.rhs[n + k] = -self.assembly.phi[k];
+        }
+        self.solve_with_skew()?;
+        if self.rhs.iter().any(|v| !v.is_finite()) {
+            return Err(SolverError::NonFinite { what: "Newton increment" });
+        }
+        Ok(())
     }
 
     /// The state of a step result (its poses, its active rows' multipliers and its load parameter), to

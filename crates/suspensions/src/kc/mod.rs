@@ -16,7 +16,7 @@ mod travel;
 pub use travel::ideal_outer_steer;
 
 pub use chart::{Chart, Scale, Series, YAxis};
-pub use report::{Accuracy, AnalysisReport, Cell, Figure, KcReport, Notice, Skipped, Table};
+pub use report::{significant, Accuracy, AnalysisReport, Cell, Figure, KcReport, Notice, Skipped, Table};
 
 use crate::analysis::{SweepExtras, SweepOutput, WheelLoad};
 use crate::model_file::SuspensionFile;

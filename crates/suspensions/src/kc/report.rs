@@ -154,9 +154,13 @@ impl Figure {
     }
 }
 
-/// `v` with `digits` significant digits, in plain or scientific notation as fits.
-fn significant(v: f64, digits: usize) -> String {
-    if v == 0.0 || !v.is_finite() {
+/// `v` with `digits` significant digits, in plain or scientific notation as fits (how error estimates are
+/// shown); nothing for a non-finite `v`.
+pub fn significant(v: f64, digits: usize) -> String {
+    if !v.is_finite() {
+        return String::new();
+    }
+    if v == 0.0 {
         return "0".into();
     }
     let magnitude = v.abs().log10().floor() as i32;
