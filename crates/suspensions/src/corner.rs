@@ -1,7 +1,7 @@
 //! A suspension corner ready to solve: the template's parts, the tie rod, the rig that holds it, and the
 //! wheel characteristics read from its poses.
 
-use crate::connection::{axial_bushing, Connection};
+use crate::connection::{axial_bushing, Connection, SpringSpec};
 use crate::hardpoint::Side;
 use elastokin_core::{BodyId, BodyRef, ElementId, JointSpec, Model, ModelError, Pose, Vec3, BODY_DOFS};
 use elastokin_elements::{PointForce, PointTorque};
@@ -49,6 +49,107 @@ pub struct TieRod {
     /// `Ideal`: a distance constraint (ball joints at both ends). `Bushing`: a tie-rod body with a bushing
     /// at each end, axis along the rod, so the steering compliance of the rod's mounts is modelled.
     pub connection: Connection,
+}
+
+/// Farthest a hardpoint may lie from its wheel centre (m). A corner spans a metre or two; a point beyond
+/// this is a typo or a unit slip (millimetres for metres), and far beyond it lengths and lever arms lose
+/// every digit or overflow.
+pub const MAX_HARDPOINT_REACH: f64 = 10.0;
+
+/// Farthest a wheel centre may lie from the vehicle origin (m).
+pub const MAX_WHEEL_CENTRE_DISTANCE: f64 = 100.0;
+
+/// Refuses hardpoints no suspension has: a wheel centre more than [`MAX_WHEEL_CENTRE_DISTANCE`] from the
+/// origin, or a point more than [`MAX_HARDPOINT_REACH`] from the wheel centre. `points` are the left
+/// corner's hardpoints by their model-file names, the wheel centre first.
+pub(crate) fn check_hardpoints(points: &[(&str, Vec3)]) -> Result<(), ModelError> {
+    let Some(&(_, wheel_centre)) = points.first() else { return Ok(()) };
+    let refuse = |name: &str, p: Vec3, what: String| {
+        Err(ModelError::OutOfRange {
+            item: "hardpoints".into(),
+            why: format!(
+                "{name} [{:.4e}, {:.4e}, {:.4e}] lies {what}: hardpoints are in metres (ISO 8855, x forward, \
+                 y left, z up); move it or check its units",
+                p.x, p.y, p.z
+            ),
+        })
+    };
+    if let Some(&(name, _)) = points.iter().find(|(_, p)| !p.iter().all(|c| c.is_finite())) {
+        return Err(ModelError::OutOfRange {
+            item: "hardpoints".into(),
+            why: format!("{name} has a coordinate that is not a finite number: give it in metres"),
+        });
+    }
+    if !(wheel_centre.norm() <= MAX_WHEEL_CENTRE_DISTANCE) {
+        let what = format!("more than {MAX_WHEEL_CENTRE_DISTANCE} m from the vehicle origin");
+        return refuse(points[0].0, wheel_centre, what);
+    }
+    for &(name, p) in &points[1..] {
+        if !((p - wheel_centre).norm() <= MAX_HARDPOINT_REACH) {
+            return refuse(name, p, format!("more than {MAX_HARDPOINT_REACH} m from the wheel centre"));
+        }
+    }
+    Ok(())
+}
+
+/// Refuses a coil spring whose design force and rate give no free length: `L₀ = L + F/k` must be a
+/// positive length (a coil spring pushes; a tension larger than `k·L` would need a negative one).
+pub(crate) fn check_spring(spring: &SpringSpec, design_length: f64) -> Result<(), ModelError> {
+    let SpringSpec { rate, design_force } = *spring;
+    if !(rate.is_finite() && rate > 0.0 && design_force.is_finite()) {
+        // The spring element names these with its own messages.
+        return Ok(());
+    }
+    let free_length = design_length + design_force / rate;
+    let why = if !free_length.is_finite() {
+        format!(
+            "spring.design_force {design_force:.4e} N at spring.rate {rate:.4e} N/m would compress the spring by \
+             more than any length: give the rate in N/m and the push at design in N"
+        )
+    } else if free_length <= 0.0 {
+        format!(
+            "spring.design_force {design_force:.4e} N at spring.rate {rate:.4e} N/m would need a free length of \
+             {free_length:.4e} m for a design length of {design_length:.4} m: a coil spring pushes, so give \
+             spring.design_force as its push at design (N, above -rate × design length)"
+        )
+    } else {
+        return Ok(());
+    };
+    Err(ModelError::OutOfRange { item: "spring".into(), why })
+}
+
+/// Shortest lever a tie-rod pull may have about the steering axis (m). Steering arms are 100–150 mm; a
+/// tie rod along the axis, or through it, has none, and then only rubber holds the wheel's steer.
+pub const MIN_STEERING_ARM: f64 = 1e-3;
+
+/// Refuses a tie rod that cannot steer: the moment about the steering axis (from `axis.0` to `axis.1`,
+/// named by `axis_names`) of a unit pull along the tie rod, `û · ((outer − lower) × d̂)`, is its lever.
+pub(crate) fn check_steering_arm(
+    axis: (Vec3, Vec3),
+    axis_names: (&str, &str),
+    tie_rod_inner: Vec3,
+    tie_rod_outer: Vec3,
+) -> Result<(), ModelError> {
+    let (u, rod) = (axis.1 - axis.0, tie_rod_outer - tie_rod_inner);
+    if !(u.norm() > 1e-9 && rod.norm() > 1e-9) {
+        // Coincident points: the joints and bushings built on them refuse them with their own message.
+        return Ok(());
+    }
+    let lever = u.normalize().dot(&(tie_rod_outer - axis.0).cross(&rod.normalize()));
+    if lever.abs() >= MIN_STEERING_ARM {
+        return Ok(());
+    }
+    Err(ModelError::OutOfRange {
+        item: "tie rod".into(),
+        why: format!(
+            "a pull along the tie rod (tie_rod_inner to tie_rod_outer) has a lever of {:.3} mm about the steering \
+             axis ({} to {}), so the tie rod does not hold the wheel's steer: move tie_rod_outer off the steering \
+             axis, to the side of it, by a steering arm (typically 100 to 150 mm)",
+            lever.abs() * 1e3,
+            axis_names.0,
+            axis_names.1
+        ),
+    })
 }
 
 /// Name `name` of the part of the corner whose names start with `prefix`.

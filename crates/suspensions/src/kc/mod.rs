@@ -295,8 +295,15 @@ fn finish<R>(
         .iter()
         .filter_map(|f| {
             let (v, e) = (f.value?, f.error?);
-            (e > tol.relative * v.abs() && e > 0.5 * 10f64.powi(-(f.decimals as i32)))
-                .then(|| format!("{} ±{:.1} %", f.label, 100.0 * e / v.abs().max(f64::MIN_POSITIVE)))
+            let relative = e / v.abs();
+            (e > tol.relative * v.abs() && e > 0.5 * 10f64.powi(-(f.decimals as i32))).then(|| {
+                // Relative to a figure at or near zero the error is no percentage: give it in the unit.
+                if relative < 10.0 {
+                    format!("{} ±{:.1} %", f.label, 100.0 * relative)
+                } else {
+                    format!("{} ±{e:.2e} {}", f.label, f.unit)
+                }
+            })
         })
         .collect();
     let within = angle_error_deg <= tol.angle_deg && length_error_m <= tol.length_m && over_figures.is_empty();

@@ -1,0 +1,511 @@
+//! Seeded mutation testing of the model files: the shipped examples, each mutated in one to three places
+//! (numbers scaled or replaced by extremes, hardpoints swapped or moved, keys deleted, duplicated or
+//! added, types changed, arrays truncated, connections changed), then read and, when they read, run
+//! through the whole K&C suite. A model the engine cannot accept must be refused with a message; one it
+//! accepts must give a report with no panic and no non-finite number anywhere a user reads it.
+//!
+//! The case counts fit the CI budget. To run a longer campaign, set `ELASTOKIN_FUZZ_CASES` (full-suite
+//! cases; the parse-only cases are scaled with it) and `ELASTOKIN_FUZZ_SEED`, preferably in release:
+//!
+//! ```sh
+//! ELASTOKIN_FUZZ_CASES=5000 ELASTOKIN_FUZZ_SEED=7 cargo test --release -p elastokin-suspensions --test fuzz_models
+//! ```
+//!
+//! `ELASTOKIN_FUZZ_CASE=N` runs case `N` alone (with the same seed), to reproduce a failure.
+//!
+//! Below the campaign: one regression test per bug it (or a user) found, named after the bug.
+
+use elastokin_solver::Mode;
+use elastokin_suspensions::kc::{self, KcReport, Settings};
+use elastokin_suspensions::SuspensionFile;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use serde_json::{json, Value};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::time::{Duration, Instant};
+
+/// The campaign's seed: every case is drawn from it and its index, so a failure is reproducible.
+const SEED: u64 = 0x00E1_A570_F022;
+/// Cases read only (most mutations of the file's structure are refused when read).
+const PARSE_CASES: usize = 2000;
+/// Cases run through the whole suite when they read.
+const SUITE_CASES: usize = 240;
+/// A case slower than this hangs or allocates without bound.
+const SLOW_CASE: Duration = Duration::from_secs(5);
+
+const EXAMPLES: [(&str, &str); 2] = [
+    ("macpherson.json", include_str!("../../../examples/macpherson.json")),
+    ("double_wishbone.json", include_str!("../../../examples/double_wishbone.json")),
+];
+
+/// Factors a number is scaled by.
+const FACTORS: [f64; 9] = [0.0, -1.0, 1e-3, 0.5, 1.01, 2.0, 1e3, 1e6, 1e300];
+
+fn env_number(name: &str) -> Option<u64> {
+    std::env::var(name).ok().map(|v| v.trim().parse().unwrap_or_else(|_| panic!("{name}={v} is not a number")))
+}
+
+fn seed() -> u64 {
+    env_number("ELASTOKIN_FUZZ_SEED").unwrap_or(SEED)
+}
+
+/// `(parse-only cases, full-suite cases)`.
+fn case_counts() -> (usize, usize) {
+    match env_number("ELASTOKIN_FUZZ_CASES") {
+        Some(n) => ((n as usize) * (PARSE_CASES / SUITE_CASES), n as usize),
+        None => (PARSE_CASES, SUITE_CASES),
+    }
+}
+
+/// The generator of case `index` of stream `stream` (each test draws from its own stream).
+fn case_rng(stream: u64, index: usize) -> ChaCha8Rng {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed());
+    rng.set_stream(stream);
+    rng.set_word_pos(u128::from(index as u64) << 20);
+    rng
+}
+
+/// JSON pointers of every value in `v` (depth first), with the values.
+fn walk<'a>(v: &'a Value, at: String, out: &mut Vec<(String, &'a Value)>) {
+    out.push((at.clone(), v));
+    match v {
+        Value::Object(map) => {
+            for (k, child) in map {
+                walk(child, format!("{at}/{}", k.replace('~', "~0").replace('/', "~1")), out);
+            }
+        }
+        Value::Array(items) => {
+            for (k, child) in items.iter().enumerate() {
+                walk(child, format!("{at}/{k}"), out);
+            }
+        }
+        _ => {}
+    }
+}
+
+fn pointers(v: &Value, keep: impl Fn(&str, &Value) -> bool) -> Vec<String> {
+    let mut all = Vec::new();
+    walk(v, String::new(), &mut all);
+    all.into_iter().filter(|(p, v)| keep(p, v)).map(|(p, _)| p).collect()
+}
+
+fn pick<'a, T>(rng: &mut ChaCha8Rng, items: &'a [T]) -> Option<&'a T> {
+    (!items.is_empty()).then(|| &items[rng.random_range(0..items.len())])
+}
+
+fn number(x: f64) -> Value {
+    // A non-finite result (1e308 × 1e300) has no JSON number: it becomes null, one more wrong type.
+    serde_json::Number::from_f64(x).map_or(Value::Null, Value::Number)
+}
+
+fn is_hardpoint(p: &str, v: &Value) -> bool {
+    p.contains("/hardpoints/") && p.matches('/').count() == 4 && v.is_array()
+}
+
+fn is_connection(p: &str) -> bool {
+    ["lower_arm_mounts", "upper_arm_mounts", "top_mount", "tie_rod"].iter().any(|c| p.ends_with(c))
+}
+
+/// Applies one mutation; returns what it did, or `None` when the model has nothing it applies to.
+fn mutate_once(model: &mut Value, rng: &mut ChaCha8Rng, structural: bool) -> Option<String> {
+    let numbers = pointers(model, |_, v| v.is_number());
+    let hardpoints = pointers(model, is_hardpoint);
+    let kind = if structural { rng.random_range(0..11) } else { rng.random_range(0..5) };
+    match kind {
+        0 => {
+            let at = pick(rng, &numbers)?.clone();
+            let factor = *pick(rng, &FACTORS)?;
+            let v = model.pointer_mut(&at)?;
+            let x = v.as_f64()? * factor;
+            *v = number(x);
+            Some(format!("{at} scaled by {factor:e}"))
+        }
+        1 => {
+            let at = pick(rng, &numbers)?.clone();
+            let replacement = match rng.random_range(0..8) {
+                0 => json!(0.0),
+                1 => json!(-0.0),
+                2 => json!(1e-300),
+                3 => json!(1e308),
+                4 => json!(-1e308),
+                5 => json!(u64::MAX),
+                6 => json!(i64::MIN),
+                _ => json!(-rng.random_range(1..1_000_000i64)),
+            };
+            let what = format!("{at} replaced by {replacement}");
+            *model.pointer_mut(&at)? = replacement;
+            Some(what)
+        }
+        2 => {
+            // Two hardpoints swapped, or one moved onto another.
+            let a = pick(rng, &hardpoints)?.clone();
+            let b = pick(rng, &hardpoints)?.clone();
+            let (va, vb) = (model.pointer(&a)?.clone(), model.pointer(&b)?.clone());
+            if rng.random_bool(0.5) {
+                *model.pointer_mut(&a)? = vb;
+                *model.pointer_mut(&b)? = va;
+                Some(format!("{a} and {b} swapped"))
+            } else {
+                *model.pointer_mut(&a)? = vb;
+                Some(format!("{a} moved onto {b}"))
+            }
+        }
+        3 => {
+            // A hardpoint moved by a distance from a hair to absurd, in a random direction.
+            let at = pick(rng, &hardpoints)?.clone();
+            let distance = *pick(rng, &[1e-9, 1e-4, 0.01, 0.1, 1.0, 1e3, 1e6, 1e293])?;
+            let point = model.pointer_mut(&at)?.as_array_mut()?;
+            let mut moved = Vec::new();
+            for c in point.iter_mut() {
+                let x = c.as_f64()? + distance * rng.random_range(-1.0..1.0);
+                moved.push(x);
+                *c = number(x);
+            }
+            Some(format!("{at} moved {distance:e} m to {moved:?}"))
+        }
+        4 => {
+            // A connection made ideal, or a bushing of scaled rates.
+            let at = pick(rng, &["lower_arm_mounts", "upper_arm_mounts", "top_mount", "tie_rod"])?;
+            let template = pointers(model, |p, _| p.matches('/').count() == 2 && p.starts_with("/suspension/"));
+            let owner = pick(rng, &template)?.clone();
+            let factor = *pick(rng, &[1e-9, 1e-3, 1.0, 1e3, 1e9])?;
+            let connection = if rng.random_bool(0.3) {
+                json!("ideal")
+            } else {
+                json!({ "bushing": { "radial": 5e6 * factor, "axial": 1e6 * factor, "torsion": 573.0 * factor,
+                                     "conical": 5730.0 * factor } })
+            };
+            let what = format!("{owner}/{at} set to {connection}");
+            model.pointer_mut(&owner)?.as_object_mut()?.insert(at.to_string(), connection);
+            Some(what)
+        }
+        5 => {
+            let keys = pointers(model, |p, _| !p.is_empty() && !p.ends_with(|c: char| c.is_ascii_digit()));
+            let at = pick(rng, &keys)?.clone();
+            let (parent, key) = at.rsplit_once('/')?;
+            model.pointer_mut(parent)?.as_object_mut()?.remove(key)?;
+            Some(format!("{at} deleted"))
+        }
+        6 => {
+            // A key copied into another object.
+            let keys = pointers(model, |p, _| !p.is_empty() && !p.ends_with(|c: char| c.is_ascii_digit()));
+            let objects = pointers(model, |_, v| v.is_object());
+            let at = pick(rng, &keys)?.clone();
+            let into = pick(rng, &objects)?.clone();
+            let (_, key) = at.rsplit_once('/')?;
+            let value = model.pointer(&at)?.clone();
+            model.pointer_mut(&into)?.as_object_mut()?.insert(key.to_string(), value);
+            Some(format!("{at} copied into {into:?}"))
+        }
+        7 => {
+            let at = pick(rng, &numbers)?.clone();
+            let v = model.pointer_mut(&at)?;
+            let x = v.clone();
+            *v = match rng.random_range(0..3) {
+                0 => json!(x.to_string()),
+                1 => json!([x]),
+                _ => Value::Null,
+            };
+            Some(format!("{at} changed to {v}"))
+        }
+        8 => {
+            let objects = pointers(model, |_, v| v.is_object());
+            let into = pick(rng, &objects)?.clone();
+            model.pointer_mut(&into)?.as_object_mut()?.insert("stiffness".into(), json!(1.0));
+            Some(format!("unknown key added in {into:?}"))
+        }
+        9 => {
+            let arrays = pointers(model, |_, v| v.as_array().is_some_and(|a| !a.is_empty()));
+            let at = pick(rng, &arrays)?.clone();
+            let items = model.pointer_mut(&at)?.as_array_mut()?;
+            let keep = rng.random_range(0..items.len());
+            items.truncate(keep);
+            Some(format!("{at} truncated to {keep} items"))
+        }
+        _ => {
+            let connections = pointers(model, |p, _| is_connection(p));
+            let at = pick(rng, &connections)?.clone();
+            *model.pointer_mut(&at)? = json!(*pick(rng, &["bushing", "rigid", ""])?);
+            Some(format!("{at} set to an unknown connection"))
+        }
+    }
+}
+
+/// A mutated example: its name, the mutations and the JSON text.
+struct Case {
+    example: &'static str,
+    mutations: Vec<String>,
+    text: String,
+}
+
+impl std::fmt::Display for Case {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        write!(f, "{} with {}:\n{}", self.example, self.mutations.join("; "), self.text)
+    }
+}
+
+fn mutated(rng: &mut ChaCha8Rng, structural: bool) -> Case {
+    let (example, text) = *pick(rng, &EXAMPLES).unwrap();
+    let mut model: Value = serde_json::from_str(text).unwrap();
+    let mut mutations = Vec::new();
+    let count = rng.random_range(1..=3);
+    while mutations.len() < count {
+        if let Some(m) = mutate_once(&mut model, rng, structural) {
+            mutations.push(m);
+        }
+    }
+    Case { example, mutations, text: serde_json::to_string_pretty(&model).unwrap() }
+}
+
+/// Whether `text` shows a non-finite number as Rust or JSON writers print it.
+fn shows_non_finite(text: &str) -> bool {
+    text.split(|c: char| !c.is_ascii_alphanumeric()).any(|w| matches!(w, "NaN" | "inf" | "Infinity" | "infinity"))
+}
+
+/// What is wrong with a refusal message, if anything.
+fn check_refusal(message: &str) -> Result<(), String> {
+    if message.trim().is_empty() {
+        return Err("an empty error message".into());
+    }
+    if shows_non_finite(message) {
+        return Err(format!("an error message showing a non-finite number: {message}"));
+    }
+    Ok(())
+}
+
+/// What is wrong with a report, if anything: every number a user reads must be finite.
+fn check_report(report: &KcReport) -> Result<(), String> {
+    let finite = |what: String, v: f64| if v.is_finite() { Ok(()) } else { Err(format!("{what} = {v}")) };
+    for a in &report.analyses {
+        let name = a.analysis.name();
+        for f in &a.figures {
+            if let Some(v) = f.value {
+                finite(format!("{name} figure {}", f.key), v)?;
+            }
+            if let Some(e) = f.error {
+                finite(format!("{name} figure {} error", f.key), e)?;
+            }
+            if f.value.is_none() && f.reason.as_deref().map_or(true, |r| r.trim().is_empty()) {
+                return Err(format!("{name} figure {} has neither a value nor a reason", f.key));
+            }
+        }
+        for table in std::iter::once(&a.table).chain(&a.compliance) {
+            for row in &table.rows {
+                for cell in row {
+                    if let Some(v) = cell.number() {
+                        finite(format!("{name} table {} cell", table.name), v)?;
+                    }
+                }
+            }
+        }
+        for row in a.wheel_compliance_at_design.iter().flatten() {
+            for &v in row {
+                finite(format!("{name} wheel compliance at design"), v)?;
+            }
+        }
+        let acc = &a.accuracy;
+        finite(format!("{name} angle error"), acc.angle_error_deg)?;
+        finite(format!("{name} length error"), acc.length_error_m)?;
+        finite(format!("{name} force residual"), acc.force_residual)?;
+        finite(format!("{name} constraint residual"), acc.constraint_residual)?;
+        for (column, e) in &acc.columns {
+            if let Some(e) = e {
+                finite(format!("{name} error of column {column}"), *e)?;
+            }
+        }
+        for (x, y) in [a.range] {
+            finite(format!("{name} range start"), x)?;
+            finite(format!("{name} range end"), y)?;
+        }
+        for line in a.headline() {
+            if shows_non_finite(&line) {
+                return Err(format!("{name} headline line shows a non-finite number: {line}"));
+            }
+        }
+    }
+    let json = serde_json::to_string(report).map_err(|e| format!("the report does not serialise: {e}"))?;
+    if shows_non_finite(&json) {
+        return Err("the serialised report shows a non-finite number".into());
+    }
+    Ok(())
+}
+
+/// Settings of a suite case: few steps, and sometimes paper mode, the wheel free, the compliance.
+fn settings(rng: &mut ChaCha8Rng) -> Settings {
+    Settings {
+        steps: 4,
+        mode: if rng.random_bool(0.25) { Mode::Paper } else { Mode::Corrected },
+        height_held: rng.random_bool(0.75),
+        compliance: rng.random_bool(0.1),
+        ..Settings::default()
+    }
+}
+
+/// Runs one case: reads the text and, if `suite`, runs the suite on what reads. A panic is caught only to
+/// report it with the case.
+fn run_case(case: &Case, settings: Option<&Settings>) -> Result<&'static str, String> {
+    let outcome = catch_unwind(AssertUnwindSafe(|| {
+        let file = match SuspensionFile::from_json(&case.text, "model.json") {
+            Ok(file) => file,
+            Err(e) => {
+                let message = e.to_string();
+                check_refusal(&message)?;
+                if message.contains("::") {
+                    return Err(format!("an error message naming code: {message}"));
+                }
+                return Ok("refused when read");
+            }
+        };
+        let Some(settings) = settings else { return Ok("read") };
+        match kc::run_suite(&file, &[], settings, |_| {}) {
+            Ok(report) => check_report(&report).map(|()| "ran"),
+            Err(e) => check_refusal(&e.to_string()).map(|()| "refused by an analysis"),
+        }
+    }));
+    match outcome {
+        Ok(result) => result,
+        Err(panic) => {
+            let message = panic
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default();
+            Err(format!("panicked: {message}"))
+        }
+    }
+}
+
+/// Runs `count` cases of `stream`, and fails with every failing case (seed, index, mutations, JSON), the
+/// slowest case, and any case slower than [`SLOW_CASE`].
+fn campaign(stream: u64, count: usize, suite: bool) {
+    let only = env_number("ELASTOKIN_FUZZ_CASE").map(|n| n as usize);
+    let mut failures = Vec::new();
+    let mut outcomes = std::collections::BTreeMap::<&str, usize>::new();
+    let mut slowest = (Duration::ZERO, String::new());
+    let start = Instant::now();
+    for index in (0..count).filter(|i| only.map_or(true, |o| o == *i)) {
+        let mut rng = case_rng(stream, index);
+        // Suite cases mostly change numbers and geometry, which still read; structural changes are refused.
+        let structural = !suite || rng.random_bool(0.1);
+        let case = mutated(&mut rng, structural);
+        let settings = suite.then(|| settings(&mut rng));
+        let t = Instant::now();
+        let result = run_case(&case, settings.as_ref());
+        let took = t.elapsed();
+        let label = format!("case {index} (seed {}, stream {stream}) {settings:?}", seed());
+        if took > slowest.0 {
+            slowest = (took, format!("{label}: {}", case.mutations.join("; ")));
+        }
+        match result {
+            Ok(outcome) if took <= SLOW_CASE => *outcomes.entry(outcome).or_default() += 1,
+            Ok(_) => failures.push(format!("{label} took {took:.1?}: {case}")),
+            Err(why) => failures.push(format!("{label}: {why}\n{case}")),
+        }
+    }
+    eprintln!("{count} cases in {:.1?}: {outcomes:?}; slowest {:.2?}, {}", start.elapsed(), slowest.0, slowest.1);
+    assert!(failures.is_empty(), "{} failing cases:\n\n{}", failures.len(), failures.join("\n\n"));
+}
+
+#[test]
+fn mutated_models_are_read_or_refused_with_a_message() {
+    campaign(1, case_counts().0, false);
+}
+
+#[test]
+fn mutated_models_run_the_suite_without_panic_or_non_finite_output() {
+    campaign(2, case_counts().1, true);
+}
+
+// Regression tests: one per bug, named after it.
+
+/// The example `name` with the values at JSON pointers `edits` replaced.
+fn example_with(name: &str, edits: &[(&str, Value)]) -> String {
+    let text = EXAMPLES.iter().find(|(n, _)| *n == name).unwrap().1;
+    let mut model: Value = serde_json::from_str(text).unwrap();
+    for (at, value) in edits {
+        *model.pointer_mut(at).unwrap_or_else(|| panic!("{name} has no {at}")) = value.clone();
+    }
+    serde_json::to_string_pretty(&model).unwrap()
+}
+
+/// The refusal of a model that must not read, checked as the campaign checks it.
+fn refusal(text: &str) -> String {
+    let message = SuspensionFile::from_json(text, "model.json").expect_err("the model must be refused").to_string();
+    check_refusal(&message).unwrap();
+    message
+}
+
+const MP_HARDPOINTS: &str = "/suspension/macpherson/hardpoints";
+
+fn mp_point(name: &str) -> [f64; 3] {
+    let model: Value = serde_json::from_str(EXAMPLES[0].1).unwrap();
+    let p = &model.pointer(&format!("{MP_HARDPOINTS}/{name}")).unwrap();
+    [0, 1, 2].map(|k| p[k].as_f64().unwrap())
+}
+
+#[test]
+fn zero_spring_design_force_gives_no_nan_wheel_rate() {
+    let text = example_with("macpherson.json", &[("/suspension/macpherson/spring/design_force", json!(0.0))]);
+    let file = SuspensionFile::from_json(&text, "model.json").unwrap();
+    let settings = Settings { steps: 4, ..Settings::default() };
+    // The default range is 0.5–1.5 × the design wheel load, which the spring's design force carries: with
+    // none, there is no range to take a wheel rate over, and the analysis says which key to give.
+    let e = kc::run(kc::Analysis::VerticalForce, &file, &settings).unwrap_err().to_string();
+    check_refusal(&e).unwrap();
+    assert!(e.contains("spring.design_force") && e.contains("--range"), "{e}");
+    // With a range the wheel rate is there.
+    let ranged = Settings { range: Some((-1000.0, 1000.0)), ..settings };
+    let report = kc::run(kc::Analysis::VerticalForce, &file, &ranged).unwrap();
+    let rate = report.figure("wheel_rate").unwrap().value.unwrap();
+    assert!(rate > 10.0 && rate < 100.0, "{rate} N/mm");
+}
+
+#[test]
+fn huge_wheelbase_is_refused_not_an_infinite_anti_dive() {
+    let text = example_with("macpherson.json", &[("/vehicle/wheelbase", json!(1e308))]);
+    let e = refusal(&text);
+    assert!(e.contains("wheelbase") && e.contains("at most 5e1"), "{e}");
+}
+
+#[test]
+fn top_mount_a_thousand_kilometres_away_is_refused() {
+    let [x, y, z] = mp_point("top_mount");
+    let text = example_with("macpherson.json", &[(&format!("{MP_HARDPOINTS}/top_mount"), json!([x, y + 1e6, z]))]);
+    let e = refusal(&text);
+    assert!(e.contains("top_mount") && e.contains("from the wheel centre"), "{e}");
+}
+
+#[test]
+fn tie_rod_point_at_1e293_m_is_refused() {
+    for end in ["tie_rod_inner", "tie_rod_outer"] {
+        let [x, y, _] = mp_point(end);
+        let text = example_with("macpherson.json", &[(&format!("{MP_HARDPOINTS}/{end}"), json!([x, y, 1e293]))]);
+        let e = refusal(&text);
+        assert!(e.contains(end) && e.contains("metres"), "{e}");
+    }
+}
+
+#[test]
+fn macpherson_tie_rod_along_the_steering_axis_is_refused() {
+    let (lower, top) = (mp_point("lower_ball_joint"), mp_point("top_mount"));
+    let along = |t: f64, offset: [f64; 3]| json!([0, 1, 2].map(|k| lower[k] + t * (top[k] - lower[k]) + offset[k]));
+    // On the axis, and parallel to it 80 mm behind: a pull along either has no moment about the axis.
+    for offset in [[0.0; 3], [-0.08, 0.0, 0.0]] {
+        let text = example_with(
+            "macpherson.json",
+            &[
+                (&format!("{MP_HARDPOINTS}/tie_rod_outer"), along(0.2, offset)),
+                (&format!("{MP_HARDPOINTS}/tie_rod_inner"), along(0.5, offset)),
+            ],
+        );
+        let e = refusal(&text);
+        assert!(e.contains("tie_rod_outer") && e.contains("steering axis"), "{e}");
+    }
+}
+
+#[test]
+fn hardpoint_checks_accept_the_shipped_examples() {
+    for (name, text) in EXAMPLES {
+        SuspensionFile::from_json(text, name).unwrap();
+    }
+}
