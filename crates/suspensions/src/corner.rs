@@ -80,6 +80,11 @@ pub(crate) fn check_hardpoints(points: &[(&str, Vec3)]) -> Result<(), ModelError
             why: format!("{name} has a coordinate that is not a finite number: give it in metres"),
         });
     }
+    if !(wheel_centre.y > 0.0) {
+        // The right corner is the mirror image: a left wheel centre at y ≤ 0 puts the two wheels of an
+        // axle on top of each other or crossed.
+        return refuse(points[0].0, wheel_centre, "at y ≤ 0: the model describes the left corner (y > 0)".into());
+    }
     if !(wheel_centre.norm() <= MAX_WHEEL_CENTRE_DISTANCE) {
         let what = format!("more than {MAX_WHEEL_CENTRE_DISTANCE} m from the vehicle origin");
         return refuse(points[0].0, wheel_centre, what);
@@ -92,11 +97,44 @@ pub(crate) fn check_hardpoints(points: &[(&str, Vec3)]) -> Result<(), ModelError
     Ok(())
 }
 
+/// Range of the rates a model accepts: `(least, most)` for translational rates (N/m) and for rotational
+/// ones (N·m/rad). Far wider than rubber or steel: below, a part is held by next to nothing and drifts
+/// anywhere; above, the stiffness swamps every other digit of the equations and then overflows.
+pub const TRANSLATIONAL_RATE_RANGE: (f64, f64) = (1.0, 1e12);
+/// See [`TRANSLATIONAL_RATE_RANGE`].
+pub const ROTATIONAL_RATE_RANGE: (f64, f64) = (1e-3, 1e12);
+
+/// Refuses a rate outside its range, naming its model-file key.
+fn check_rate(key: &str, value: f64, (least, most): (f64, f64), unit: &str) -> Result<(), ModelError> {
+    if value >= least && value <= most {
+        return Ok(());
+    }
+    let got = if value.is_finite() { format!("{value:e}") } else { "not a finite number".into() };
+    Err(ModelError::OutOfRange {
+        item: key.into(),
+        why: format!("{key} must be a rate in {unit} from {least:e} to {most:e}, got {got}"),
+    })
+}
+
+/// Refuses a bushing whose rates are outside [`TRANSLATIONAL_RATE_RANGE`] and [`ROTATIONAL_RATE_RANGE`];
+/// `key` is the connection's model-file key (`lower_arm_mounts`, `tie_rod`, …).
+pub(crate) fn check_connection(key: &str, connection: &Connection) -> Result<(), ModelError> {
+    let Connection::Bushing(r) = connection else { return Ok(()) };
+    for (what, value) in [("radial", r.radial), ("axial", r.axial)] {
+        check_rate(&format!("{key}.bushing.{what}"), value, TRANSLATIONAL_RATE_RANGE, "N/m")?;
+    }
+    for (what, value) in [("torsion", r.torsion), ("conical", r.conical)] {
+        check_rate(&format!("{key}.bushing.{what}"), value, ROTATIONAL_RATE_RANGE, "N·m/rad")?;
+    }
+    Ok(())
+}
+
 /// Refuses a coil spring whose design force and rate give no free length: `L₀ = L + F/k` must be a
 /// positive length (a coil spring pushes; a tension larger than `k·L` would need a negative one).
 pub(crate) fn check_spring(spring: &SpringSpec, design_length: f64) -> Result<(), ModelError> {
     let SpringSpec { rate, design_force } = *spring;
-    if !(rate.is_finite() && rate > 0.0 && design_force.is_finite()) {
+    check_rate("spring.rate", rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
+    if !design_force.is_finite() {
         // The spring element names these with its own messages.
         return Ok(());
     }
@@ -264,6 +302,10 @@ pub struct SteeringGeometry {
     /// Contact patch centre: the lowest point of the wheel-plane circle of the loaded radius.
     pub contact_patch: Vec3,
 }
+/// Largest loaded tyre radius accepted (m): a mining truck's tyre is under 2 m; far beyond, the contact
+/// patch's lever swamps every other length.
+pub const MAX_LOADED_RADIUS: f64 = 5.0;
+
 /// Loaded tyre radius when a model file does not give one (m); `shared/data/hardpoints.md` quotes ~0.30.
 pub fn default_loaded_radius() -> f64 {
     0.30
@@ -290,6 +332,14 @@ impl Wheel {
         left_wheel_centre: Vec3,
         loaded_radius: f64,
     ) -> Result<(BodyId, Vec3), ModelError> {
+        if loaded_radius > MAX_LOADED_RADIUS {
+            return Err(ModelError::OutOfRange {
+                item: "suspension".into(),
+                why: format!(
+                    "loaded_radius must be a tyre radius in metres, at most {MAX_LOADED_RADIUS}, got {loaded_radius:e}"
+                ),
+            });
+        }
         if !(loaded_radius.is_finite() && loaded_radius > 0.0) {
             return Err(ModelError::NotPositive {
                 item: "suspension".into(),

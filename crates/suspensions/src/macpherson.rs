@@ -3,8 +3,8 @@
 
 use crate::connection::{arm_mounts, axial_bushing, Connection, SpringSpec};
 use crate::corner::{
-    check_hardpoints, check_spring, check_steering_arm, part_name, Corner, CornerParts, CornerTemplate, Rig, TieRod,
-    Wheel,
+    check_connection, check_hardpoints, check_spring, check_steering_arm, part_name, Corner, CornerParts,
+    CornerTemplate, Rig, TieRod, Wheel,
 };
 use crate::hardpoint::Side;
 use elastokin_core::{BodyRef, JointSpec, Model, ModelError, Pose, Vec3};
@@ -91,6 +91,9 @@ impl CornerTemplate for MacPherson {
             ("top_mount", h.top_mount),
         ])?;
         check_spring(&self.spring, (h.top_mount - h.strut_lower).norm())?;
+        check_connection("lower_arm_mounts", &self.lower_arm_mounts)?;
+        check_connection("top_mount", &self.top_mount)?;
+        check_connection("tie_rod", &self.tie_rod)?;
         check_steering_arm(
             (h.lower_ball_joint, h.top_mount),
             ("lower_ball_joint", "top_mount"),

@@ -291,21 +291,7 @@ fn finish<R>(
     let constraint_residual = out.residuals.iter().map(|r| r.1).fold(0.0f64, f64::max);
     let tol = settings.tolerance;
     let mut warnings = Vec::new();
-    let over_figures: Vec<String> = figures
-        .iter()
-        .filter_map(|f| {
-            let (v, e) = (f.value?, f.error?);
-            let relative = e / v.abs();
-            (e > tol.relative * v.abs() && e > 0.5 * 10f64.powi(-(f.decimals as i32))).then(|| {
-                // Relative to a figure at or near zero the error is no percentage: give it in the unit.
-                if relative < 10.0 {
-                    format!("{} ±{:.1} %", f.label, 100.0 * relative)
-                } else {
-                    format!("{} ±{e:.2e} {}", f.label, f.unit)
-                }
-            })
-        })
-        .collect();
+    let over_figures: Vec<String> = figures.iter().filter_map(|f| over_tolerance(f, tol.relative)).collect();
     let within = angle_error_deg <= tol.angle_deg && length_error_m <= tol.length_m && over_figures.is_empty();
     if !within {
         let fix = match settings.mode {
@@ -355,6 +341,21 @@ fn finish<R>(
     }
 }
 
+/// A figure whose estimated error is over `relative` of its value (and shows in its printed decimals), as
+/// the warning names it: `label ±x %`, or `label ±e unit` where a percentage means nothing (a figure at or
+/// near zero).
+fn over_tolerance(f: &Figure, relative: f64) -> Option<String> {
+    let (v, e) = (f.value?, f.error?);
+    let ratio = e / v.abs();
+    (e > relative * v.abs() && e > 0.5 * 10f64.powi(-(f.decimals as i32))).then(|| {
+        if ratio < 10.0 {
+            format!("{} ±{:.1} %", f.label, 100.0 * ratio)
+        } else {
+            format!("{} ±{e:.2e} {}", f.label, f.unit)
+        }
+    })
+}
+
 /// The 6×6 wheel compliance at every row: the load parameter, then the 36 entries by row
 /// (wheel-centre x, y, z in m, rotation about x, y, z in rad) and column (force along x, y, z in N,
 /// torque about x, y, z in N·m) at the wheel centre.
@@ -399,4 +400,24 @@ fn needs_vehicle(field: &str) -> String {
 /// A solver error in the words of the analysis.
 fn solve_error(e: SolverError) -> String {
     engine(e)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn figure_error_at_a_zero_figure_is_given_in_its_unit_not_as_infinite_percent() {
+        let mut f = Figure::new("roll_centre_lateral", "roll centre lateral offset", "mm", 1, 0.0);
+        f.error = Some(3.0);
+        let line = over_tolerance(&f, 5e-3).unwrap();
+        assert_eq!(line, "roll centre lateral offset ±3.00e0 mm");
+        // A huge relative error is no percentage either (it printed 300 digits).
+        f.value = Some(1e-300);
+        assert!(!over_tolerance(&f, 5e-3).unwrap().contains('%'));
+        f.value = Some(20.0);
+        assert_eq!(over_tolerance(&f, 5e-3).unwrap(), "roll centre lateral offset ±15.0 %");
+        f.error = Some(0.01);
+        assert_eq!(over_tolerance(&f, 5e-3), None);
+    }
 }

@@ -527,6 +527,16 @@ pub(super) fn steering(file: &SuspensionFile, s: &Settings) -> Result<AnalysisRe
             &why,
         )];
         f.push(match (per_rack, c_factor) {
+            // A rack that does not steer the wheels at design has no ratio (a hand wheel turning forever).
+            (Some(d), Some(_)) if d.abs() < 1e-9 => Figure::maybe(
+                "steering_ratio",
+                "overall steering ratio at design",
+                ":1",
+                2,
+                None,
+                "the rack travel does not steer the wheels at design: check the tie rods (tie_rod_inner, \
+                 tie_rod_outer) and their bushings",
+            ),
             (Some(d), Some(c)) => Figure::new(
                 "steering_ratio",
                 "overall steering ratio at design (hand wheel : road wheel)",
