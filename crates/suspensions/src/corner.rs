@@ -100,9 +100,9 @@ pub(crate) fn check_hardpoints(points: &[(&str, Vec3)]) -> Result<(), ModelError
 /// Range of the rates a model accepts: `(least, most)` for translational rates (N/m) and for rotational
 /// ones (N·m/rad). Far wider than rubber or steel: below, a part is held by next to nothing and drifts
 /// anywhere; above, the stiffness swamps every other digit of the equations and then overflows.
-pub const TRANSLATIONAL_RATE_RANGE: (f64, f64) = (1.0, 1e12);
+pub const TRANSLATIONAL_RATE_RANGE: (f64, f64) = (1.0, 1e15);
 /// See [`TRANSLATIONAL_RATE_RANGE`].
-pub const ROTATIONAL_RATE_RANGE: (f64, f64) = (1e-3, 1e12);
+pub const ROTATIONAL_RATE_RANGE: (f64, f64) = (1e-3, 1e15);
 
 /// Refuses a rate outside its range, naming its model-file key.
 fn check_rate(key: &str, value: f64, (least, most): (f64, f64), unit: &str) -> Result<(), ModelError> {
@@ -157,8 +157,9 @@ pub(crate) fn check_spring(spring: &SpringSpec, design_length: f64) -> Result<()
 }
 
 /// Shortest lever a tie-rod pull may have about the steering axis (m). Steering arms are 100–150 mm; a
-/// tie rod along the axis, or through it, has none, and then only rubber holds the wheel's steer.
-pub const MIN_STEERING_ARM: f64 = 1e-3;
+/// tie rod along the axis, or through it, has none, and then only rubber holds the wheel's steer. A
+/// micrometre keeps near-aligned geometry open to conditioning studies while refusing the degenerate.
+pub const MIN_STEERING_ARM: f64 = 1e-6;
 
 /// Refuses a tie rod that cannot steer: the moment about the steering axis (from `axis.0` to `axis.1`,
 /// named by `axis_names`) of a unit pull along the tie rod, `û · ((outer − lower) × d̂)`, is its lever.
@@ -180,10 +181,10 @@ pub(crate) fn check_steering_arm(
     Err(ModelError::OutOfRange {
         item: "tie rod".into(),
         why: format!(
-            "a pull along the tie rod (tie_rod_inner to tie_rod_outer) has a lever of {:.3} mm about the steering \
-             axis ({} to {}), so the tie rod does not hold the wheel's steer: move tie_rod_outer off the steering \
-             axis, to the side of it, by a steering arm (typically 100 to 150 mm)",
-            lever.abs() * 1e3,
+            "a pull along the tie rod (tie_rod_inner to tie_rod_outer) has a lever of {:.1e} m about the steering \
+             axis ({} to {}), under the {MIN_STEERING_ARM:e} m it needs to hold the wheel's steer: move \
+             tie_rod_outer off the steering axis, to the side of it, by a steering arm (typically 100 to 150 mm)",
+            lever.abs(),
             axis_names.0,
             axis_names.1
         ),
