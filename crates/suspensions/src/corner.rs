@@ -56,6 +56,9 @@ pub struct TieRod {
 /// every digit or overflow.
 pub const MAX_HARDPOINT_REACH: f64 = 10.0;
 
+/// Least lateral position of the left wheel centre (m): half the narrowest track accepted.
+pub const MIN_HALF_TRACK: f64 = 0.05;
+
 /// Farthest a wheel centre may lie from the vehicle origin (m).
 pub const MAX_WHEEL_CENTRE_DISTANCE: f64 = 100.0;
 
@@ -80,10 +83,11 @@ pub(crate) fn check_hardpoints(points: &[(&str, Vec3)]) -> Result<(), ModelError
             why: format!("{name} has a coordinate that is not a finite number: give it in metres"),
         });
     }
-    if !(wheel_centre.y > 0.0) {
+    if !(wheel_centre.y >= MIN_HALF_TRACK) {
         // The right corner is the mirror image: a left wheel centre at y ≤ 0 puts the two wheels of an
-        // axle on top of each other or crossed.
-        return refuse(points[0].0, wheel_centre, "at y ≤ 0: the model describes the left corner (y > 0)".into());
+        // axle on top of each other or crossed, and near 0 leaves the track (Ackermann's T / L) nothing.
+        let what = format!("at y < {MIN_HALF_TRACK} m: the model describes the left corner (y > 0), half a track out");
+        return refuse(points[0].0, wheel_centre, what);
     }
     if !(wheel_centre.norm() <= MAX_WHEEL_CENTRE_DISTANCE) {
         let what = format!("more than {MAX_WHEEL_CENTRE_DISTANCE} m from the vehicle origin");
@@ -129,11 +133,25 @@ pub(crate) fn check_connection(key: &str, connection: &Connection) -> Result<(),
     Ok(())
 }
 
+/// Largest spring force at design accepted (N): a hundred times a heavy truck's; beyond, the spring's
+/// geometric stiffness (force over length) overflows.
+pub const MAX_SPRING_FORCE: f64 = 1e8;
+
 /// Refuses a coil spring whose design force and rate give no free length: `L₀ = L + F/k` must be a
 /// positive length (a coil spring pushes; a tension larger than `k·L` would need a negative one).
 pub(crate) fn check_spring(spring: &SpringSpec, design_length: f64) -> Result<(), ModelError> {
     let SpringSpec { rate, design_force } = *spring;
     check_rate("spring.rate", rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
+    if !(design_force.abs() <= MAX_SPRING_FORCE) {
+        let got = if design_force.is_finite() { format!("{design_force:e}") } else { "not a finite number".into() };
+        return Err(ModelError::OutOfRange {
+            item: "spring".into(),
+            why: format!(
+                "spring.design_force must be a force in N from {:e} to {MAX_SPRING_FORCE:e}, got {got}",
+                -MAX_SPRING_FORCE
+            ),
+        });
+    }
     if !design_force.is_finite() {
         // The spring element names these with its own messages.
         return Ok(());
