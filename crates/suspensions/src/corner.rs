@@ -83,18 +83,18 @@ pub(crate) fn check_hardpoints(points: &[(&str, Vec3)]) -> Result<(), ModelError
             why: format!("{name} has a coordinate that is not a finite number: give it in metres"),
         });
     }
-    if !(wheel_centre.y >= MIN_HALF_TRACK) {
+    if wheel_centre.y < MIN_HALF_TRACK {
         // The right corner is the mirror image: a left wheel centre at y ≤ 0 puts the two wheels of an
         // axle on top of each other or crossed, and near 0 leaves the track (Ackermann's T / L) nothing.
         let what = format!("at y < {MIN_HALF_TRACK} m: the model describes the left corner (y > 0), half a track out");
         return refuse(points[0].0, wheel_centre, what);
     }
-    if !(wheel_centre.norm() <= MAX_WHEEL_CENTRE_DISTANCE) {
+    if wheel_centre.norm() > MAX_WHEEL_CENTRE_DISTANCE {
         let what = format!("more than {MAX_WHEEL_CENTRE_DISTANCE} m from the vehicle origin");
         return refuse(points[0].0, wheel_centre, what);
     }
     for &(name, p) in &points[1..] {
-        if !((p - wheel_centre).norm() <= MAX_HARDPOINT_REACH) {
+        if (p - wheel_centre).norm() > MAX_HARDPOINT_REACH {
             return refuse(name, p, format!("more than {MAX_HARDPOINT_REACH} m from the wheel centre"));
         }
     }
@@ -142,7 +142,7 @@ pub const MAX_SPRING_FORCE: f64 = 1e8;
 pub(crate) fn check_spring(spring: &SpringSpec, design_length: f64) -> Result<(), ModelError> {
     let SpringSpec { rate, design_force } = *spring;
     check_rate("spring.rate", rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
-    if !(design_force.abs() <= MAX_SPRING_FORCE) {
+    if design_force.is_nan() || design_force.abs() > MAX_SPRING_FORCE {
         let got = if design_force.is_finite() { format!("{design_force:e}") } else { "not a finite number".into() };
         return Err(ModelError::OutOfRange {
             item: "spring".into(),
