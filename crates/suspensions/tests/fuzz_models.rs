@@ -273,6 +273,9 @@ fn check_refusal(message: &str) -> Result<(), String> {
     Ok(())
 }
 
+/// Table columns whose cells are empty by definition in some rows.
+const MAY_BE_EMPTY: [&str; 3] = ["ideal_outer_steer_deg", "ackermann_error_deg", "ackermann_percent"];
+
 /// What is wrong with a report, if anything: every number a user reads must be finite.
 fn check_report(report: &KcReport) -> Result<(), String> {
     let finite = |what: String, v: f64| if v.is_finite() { Ok(()) } else { Err(format!("{what} = {v}")) };
@@ -285,15 +288,28 @@ fn check_report(report: &KcReport) -> Result<(), String> {
             if let Some(e) = f.error {
                 finite(format!("{name} figure {} error", f.key), e)?;
             }
-            if f.value.is_none() && f.reason.as_deref().map_or(true, |r| r.trim().is_empty()) {
-                return Err(format!("{name} figure {} has neither a value nor a reason", f.key));
+            match (&f.value, f.reason.as_deref()) {
+                (None, None) => return Err(format!("{name} figure {} has neither a value nor a reason", f.key)),
+                (None, Some(r)) if r.trim().is_empty() => return Err(format!("{name} figure {} has no reason", f.key)),
+                // The report's catch-all for a non-finite value: a NaN or infinity computed upstream, which
+                // the analysis must prevent or explain in its own words.
+                (None, Some(r)) if r.starts_with("not a finite number") => {
+                    return Err(format!("{name} figure {} computed a non-finite value: {r}", f.key))
+                }
+                _ => {}
             }
         }
         for table in std::iter::once(&a.table).chain(&a.compliance) {
             for row in &table.rows {
-                for cell in row {
-                    if let Some(v) = cell.number() {
-                        finite(format!("{name} table {} cell", table.name), v)?;
+                for (cell, column) in row.iter().zip(&table.columns) {
+                    match cell {
+                        kc::Cell::Number(v) => finite(format!("{name} table {} column {column}", table.name), *v)?,
+                        // `Cell::from` empties a non-finite number: only these columns are empty by
+                        // definition (no Ackermann figure where neither wheel steers).
+                        kc::Cell::Empty if !MAY_BE_EMPTY.contains(&column.as_str()) => {
+                            return Err(format!("{name} table {} column {column}: an empty cell", table.name))
+                        }
+                        _ => {}
                     }
                 }
             }
