@@ -346,12 +346,27 @@ fn check_report(report: &KcReport) -> Result<(), String> {
 
 /// Settings of a suite case: few steps, and sometimes paper mode, the wheel free, the compliance.
 fn settings(rng: &mut ChaCha8Rng) -> Settings {
+    let range = rng.random_bool(0.15).then(|| range(rng));
     Settings {
+        range,
         steps: 4,
         mode: if rng.random_bool(0.25) { Mode::Paper } else { Mode::Corrected },
         height_held: rng.random_bool(0.75),
         compliance: rng.random_bool(0.1),
         ..Settings::default()
+    }
+}
+
+/// A range in an analysis's own parameter for a run of one analysis, as `--range` gives it: ordinary,
+/// reversed, empty, tiny or absurd.
+fn range(rng: &mut ChaCha8Rng) -> (f64, f64) {
+    let scale = *pick(rng, &[1e-300, 1e-6, 0.01, 1.0, 100.0, 1e4, 1e8, 1e300, f64::MAX]).unwrap();
+    let (a, b) = (rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+    match rng.random_range(0..4) {
+        0 => (0.0, 0.0),
+        1 => (a * scale, a * scale),
+        2 => (-scale, scale),
+        _ => (a * scale, b * scale),
     }
 }
 
@@ -375,6 +390,28 @@ fn run_case(case: &Case, settings: Option<&Settings>) -> Result<&'static str, St
         };
         let Some(settings) = settings else { return Ok("read") };
         let verbose = std::env::var_os("ELASTOKIN_FUZZ_VERBOSE").is_some();
+        if settings.range.is_some() {
+            // A run of one analysis over a range given by the user.
+            let analysis = kc::ALL[(settings.steps + case.text.len()) % kc::ALL.len()];
+            return match kc::run(analysis, &file, settings) {
+                Ok(report) => {
+                    let suite = KcReport {
+                        model: file.name.clone(),
+                        settings: *settings,
+                        analyses: vec![report],
+                        skipped: Vec::new(),
+                        warnings: Vec::new(),
+                    };
+                    check_report(&suite).map(|()| "ran one analysis over a range")
+                }
+                Err(e) => {
+                    if verbose {
+                        eprintln!("REFUSED {e}");
+                    }
+                    check_refusal(&e.to_string()).map(|()| "refused by an analysis")
+                }
+            };
+        }
         match kc::run_suite(&file, &[], settings, |_| {}) {
             Ok(report) => {
                 if verbose {
@@ -626,4 +663,15 @@ fn wheel_centre_at_y_1e_300_is_refused_not_a_nan_ackermann() {
     let at = "/suspension/macpherson/hardpoints/wheel_centre/1";
     let e = refusal(&example_with("macpherson.json", &[(at, json!(1e-300))]));
     assert!(e.contains("wheel_centre") && e.contains("left corner"), "{e}");
+}
+
+#[test]
+fn empty_range_is_refused_not_a_nan_bump_steer() {
+    let file = SuspensionFile::from_json(EXAMPLES[0].1, "macpherson.json").unwrap();
+    for analysis in kc::ALL {
+        let settings = Settings { range: Some((0.0, 0.0)), steps: 4, ..Settings::default() };
+        let e = kc::run(analysis, &file, &settings).unwrap_err().to_string();
+        check_refusal(&e).unwrap();
+        assert!(e.contains("two different finite ends"), "{e}");
+    }
 }

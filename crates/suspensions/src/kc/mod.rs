@@ -187,6 +187,17 @@ pub struct AnalysisError {
 
 /// Runs one analysis on the model in `file`.
 pub fn run(analysis: Analysis, file: &SuspensionFile, settings: &Settings) -> Result<AnalysisReport, AnalysisError> {
+    if let Some((from, to)) = settings.range {
+        // An empty range walks one point: every slope at design would be 0 / 0.
+        if !(from.is_finite() && to.is_finite()) || from == to {
+            let got =
+                if from.is_finite() && to.is_finite() { format!(", got {from:e} to {to:e}") } else { String::new() };
+            return Err(AnalysisError {
+                analysis: analysis.name(),
+                message: format!("the range needs two different finite ends in the {}{got}", analysis.parameter()),
+            });
+        }
+    }
     let result = match analysis {
         Analysis::ParallelTravel => travel::parallel_travel(file, settings),
         Analysis::Roll => travel::roll(file, settings),
