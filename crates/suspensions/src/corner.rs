@@ -174,6 +174,30 @@ pub(crate) fn check_spring(spring: &SpringSpec, design_length: f64) -> Result<()
     Err(ModelError::OutOfRange { item: "spring".into(), why })
 }
 
+/// Refuses a steering axis (from `axis.0` up to `axis.1`, named by `axis_names`) that is too short to
+/// define a line or does not rise: the scrub radius, trail and kingpin offset are where it meets the
+/// ground and the wheel-centre height, which a level axis never does. It must rise by a tenth of its
+/// length (lean less than 84° from the vertical).
+pub(crate) fn check_steering_axis(axis: (Vec3, Vec3), axis_names: (&str, &str)) -> Result<(), ModelError> {
+    let u = axis.1 - axis.0;
+    let (length, rise) = (u.norm(), u.z);
+    let why = if length < 1e-3 {
+        format!(
+            "{} and {} are {length:.1e} m apart: they must be distinct to define the steering axis",
+            axis_names.0, axis_names.1
+        )
+    } else if rise < 0.1 * length {
+        format!(
+            "the steering axis from {} up to {} rises {rise:.4} m over its {length:.4} m: it must rise (lean less than \
+             84 deg from the vertical) to meet the ground; check the two points",
+            axis_names.0, axis_names.1
+        )
+    } else {
+        return Ok(());
+    };
+    Err(ModelError::OutOfRange { item: "steering axis".into(), why })
+}
+
 /// Shortest lever a tie-rod pull may have about the steering axis (m). Steering arms are 100–150 mm; a
 /// tie rod along the axis, or through it, has none, and then only rubber holds the wheel's steer. A
 /// micrometre keeps near-aligned geometry open to conditioning studies while refusing the degenerate.

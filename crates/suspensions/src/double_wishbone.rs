@@ -3,8 +3,8 @@
 
 use crate::connection::{arm_mounts, Connection, SpringSpec};
 use crate::corner::{
-    check_connection, check_hardpoints, check_spring, check_steering_arm, part_name, Corner, CornerParts,
-    CornerTemplate, Rig, TieRod, Wheel,
+    check_connection, check_hardpoints, check_spring, check_steering_arm, check_steering_axis, part_name, Corner,
+    CornerParts, CornerTemplate, Rig, TieRod, Wheel,
 };
 use crate::hardpoint::Side;
 use elastokin_core::{BodyRef, JointSpec, Model, ModelError, Pose, Vec3};
@@ -105,6 +105,7 @@ impl CornerTemplate for DoubleWishbone {
         check_connection("upper_arm_mounts", &self.upper_arm_mounts)?;
         check_connection("lower_arm_mounts", &self.lower_arm_mounts)?;
         check_connection("tie_rod", &self.tie_rod)?;
+        check_steering_axis((h.lower_ball_joint, h.upper_ball_joint), ("lower_ball_joint", "upper_ball_joint"))?;
         check_steering_arm(
             (h.lower_ball_joint, h.upper_ball_joint),
             ("lower_ball_joint", "upper_ball_joint"),

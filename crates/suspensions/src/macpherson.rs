@@ -3,8 +3,8 @@
 
 use crate::connection::{arm_mounts, axial_bushing, Connection, SpringSpec};
 use crate::corner::{
-    check_connection, check_hardpoints, check_spring, check_steering_arm, part_name, Corner, CornerParts,
-    CornerTemplate, Rig, TieRod, Wheel,
+    check_connection, check_hardpoints, check_spring, check_steering_arm, check_steering_axis, part_name, Corner,
+    CornerParts, CornerTemplate, Rig, TieRod, Wheel,
 };
 use crate::hardpoint::Side;
 use elastokin_core::{BodyRef, JointSpec, Model, ModelError, Pose, Vec3};
@@ -94,6 +94,7 @@ impl CornerTemplate for MacPherson {
         check_connection("lower_arm_mounts", &self.lower_arm_mounts)?;
         check_connection("top_mount", &self.top_mount)?;
         check_connection("tie_rod", &self.tie_rod)?;
+        check_steering_axis((h.lower_ball_joint, h.top_mount), ("lower_ball_joint", "top_mount"))?;
         check_steering_arm(
             (h.lower_ball_joint, h.top_mount),
             ("lower_ball_joint", "top_mount"),

@@ -672,6 +672,28 @@ fn empty_range_is_refused_not_a_nan_bump_steer() {
         let settings = Settings { range: Some((0.0, 0.0)), steps: 4, ..Settings::default() };
         let e = kc::run(analysis, &file, &settings).unwrap_err().to_string();
         check_refusal(&e).unwrap();
-        assert!(e.contains("two different finite ends"), "{e}");
+        assert!(e.contains("two finite ends at least 1e-9 apart"), "{e}");
     }
+}
+
+#[test]
+fn range_of_1e_300_is_refused_not_an_infinite_roll_steer() {
+    let file = SuspensionFile::from_json(EXAMPLES[0].1, "macpherson.json").unwrap();
+    let settings = Settings { range: Some((-1e-300, 1e-300)), steps: 4, ..Settings::default() };
+    let e = kc::run(kc::Analysis::Roll, &file, &settings).unwrap_err().to_string();
+    check_refusal(&e).unwrap();
+    assert!(e.contains("at least 1e-9 apart"), "{e}");
+}
+
+#[test]
+fn ball_joints_on_one_point_are_refused_not_a_nan_scrub_radius() {
+    let model: Value = serde_json::from_str(EXAMPLES[1].1).unwrap();
+    let upper = model["suspension"]["double_wishbone"]["hardpoints"]["upper_ball_joint"].clone();
+    let at = "/suspension/double_wishbone/hardpoints/lower_ball_joint";
+    let e = refusal(&example_with("double_wishbone.json", &[(at, upper)]));
+    assert!(e.contains("lower_ball_joint and upper_ball_joint") && e.contains("steering axis"), "{e}");
+    // A level steering axis never meets the ground.
+    let level = json!([-0.3, 0.85, 0.243]);
+    let e = refusal(&example_with("double_wishbone.json", &[(at, level)]));
+    assert!(e.contains("must rise"), "{e}");
 }

@@ -185,16 +185,23 @@ pub struct AnalysisError {
     pub message: String,
 }
 
+/// Narrowest range an analysis walks, in its own parameter's unit (m, N, N·m).
+pub const MIN_RANGE: f64 = 1e-9;
+
 /// Runs one analysis on the model in `file`.
 pub fn run(analysis: Analysis, file: &SuspensionFile, settings: &Settings) -> Result<AnalysisReport, AnalysisError> {
     if let Some((from, to)) = settings.range {
-        // An empty range walks one point: every slope at design would be 0 / 0.
-        if !(from.is_finite() && to.is_finite()) || from == to {
+        // An empty range walks one point: every slope at design would be 0 / 0; one narrower than
+        // MIN_RANGE (a nanometre, a nanonewton) takes slopes of rounding noise, or overflows them.
+        if !(from.is_finite() && to.is_finite()) || (to - from).abs() < MIN_RANGE {
             let got =
                 if from.is_finite() && to.is_finite() { format!(", got {from:e} to {to:e}") } else { String::new() };
             return Err(AnalysisError {
                 analysis: analysis.name(),
-                message: format!("the range needs two different finite ends in the {}{got}", analysis.parameter()),
+                message: format!(
+                    "the range needs two finite ends at least {MIN_RANGE:e} apart in the {}{got}",
+                    analysis.parameter()
+                ),
             });
         }
     }
