@@ -352,9 +352,11 @@ fn check_report(report: &KcReport) -> Result<(), String> {
 /// Settings of a suite case: few steps, and sometimes paper mode, the wheel free, the compliance.
 fn settings(rng: &mut ChaCha8Rng) -> Settings {
     let range = rng.random_bool(0.15).then(|| range(rng));
+    // Mostly 4 steps (cheap); sometimes 1–3, which leave the design position between rows.
+    let steps = if rng.random_bool(0.2) { rng.random_range(1..=3) } else { 4 };
     Settings {
         range,
-        steps: 4,
+        steps,
         mode: if rng.random_bool(0.25) { Mode::Paper } else { Mode::Corrected },
         height_held: rng.random_bool(0.75),
         compliance: rng.random_bool(0.1),
@@ -701,4 +703,25 @@ fn ball_joints_on_one_point_are_refused_not_a_nan_scrub_radius() {
     let level = json!([-0.3, 0.85, 0.243]);
     let e = refusal(&example_with("double_wishbone.json", &[(at, level)]));
     assert!(e.contains("must rise"), "{e}");
+}
+
+#[test]
+fn zero_steps_are_refused_in_words_not_a_load_path_dump() {
+    let file = SuspensionFile::from_json(EXAMPLES[0].1, "macpherson.json").unwrap();
+    for steps in [0, kc::MAX_STEPS + 1] {
+        let e = kc::run(kc::Analysis::ParallelTravel, &file, &Settings { steps, ..Settings::default() }).unwrap_err();
+        assert!(e.message.contains("--steps must be from 1 to 100000") && !e.message.contains("LoadPath"), "{e}");
+    }
+}
+
+#[test]
+fn odd_steps_say_no_step_lands_on_design_not_that_the_range_misses_it() {
+    let file = SuspensionFile::from_json(EXAMPLES[0].1, "macpherson.json").unwrap();
+    let report = kc::run(kc::Analysis::ParallelTravel, &file, &Settings { steps: 3, ..Settings::default() }).unwrap();
+    let caster = report.figure("caster").unwrap();
+    assert_eq!(caster.value, None);
+    let why = caster.reason.as_deref().unwrap();
+    assert!(why.contains("no step of the range") && why.contains("even --steps"), "{why}");
+    // A slope is read from the two rows that bracket the design position.
+    assert!(report.figure("bump_steer").unwrap().value.is_some());
 }

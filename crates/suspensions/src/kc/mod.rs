@@ -185,11 +185,21 @@ pub struct AnalysisError {
     pub message: String,
 }
 
+/// Most load steps an analysis walks: a few minutes' work, and rows in memory by the hundred thousand;
+/// beyond, a mistyped count would look like a hang.
+pub const MAX_STEPS: usize = 100_000;
+
 /// Narrowest range an analysis walks, in its own parameter's unit (m, N, N·m).
 pub const MIN_RANGE: f64 = 1e-9;
 
 /// Runs one analysis on the model in `file`.
 pub fn run(analysis: Analysis, file: &SuspensionFile, settings: &Settings) -> Result<AnalysisReport, AnalysisError> {
+    if settings.steps == 0 || settings.steps > MAX_STEPS {
+        return Err(AnalysisError {
+            analysis: analysis.name(),
+            message: format!("--steps must be from 1 to {MAX_STEPS}, got {}", settings.steps),
+        });
+    }
     if let Some((from, to)) = settings.range {
         // An empty range walks one point: every slope at design would be 0 / 0; one narrower than
         // MIN_RANGE (a nanometre, a nanonewton) takes slopes of rounding noise, or overflows them.
@@ -451,8 +461,16 @@ fn compliance_table(analysis: Analysis, rows: &Table, c: &[[[f64; 6]; 6]]) -> Ta
     }
 }
 
-/// A figure missing because the range does not reach the design position.
+/// A figure missing because no row sits at the design position: the range does not reach it, or no
+/// step lands on it (an odd number of steps over a symmetric range).
 fn outside(range: (f64, f64), at: f64, unit: &str) -> String {
+    if (range.0 - at) * (range.1 - at) <= 0.0 {
+        return format!(
+            "no step of the range {}..{} {unit} lands on the design position ({at} {unit}): give an even --steps \
+             over a range symmetric about it",
+            range.0, range.1
+        );
+    }
     format!(
         "the range {}..{} {unit} does not contain the design position ({at} {unit}); give a --range that spans it",
         range.0, range.1
