@@ -725,3 +725,22 @@ fn odd_steps_say_no_step_lands_on_design_not_that_the_range_misses_it() {
     // A slope is read from the two rows that bracket the design position.
     assert!(report.figure("bump_steer").unwrap().value.is_some());
 }
+
+#[test]
+fn soft_tie_rod_bushings_toeing_both_wheels_17_deg_give_the_ackermann_reason_and_a_warning() {
+    let mut model: Value = serde_json::from_str(EXAMPLES[0].1).unwrap();
+    model["suspension"]["macpherson"]["tie_rod"] =
+        json!({ "bushing": { "radial": 5000.0, "axial": 1000.0, "torsion": 0.573, "conical": 5.73 } });
+    let file = SuspensionFile::from_json(&model.to_string(), "model.json").unwrap();
+    let report = kc::run_suite(&file, &[], &Settings { steps: 4, ..Settings::default() }, |_| {}).unwrap();
+    let steering = report.analysis(kc::Analysis::Steering).unwrap();
+    let why = steering.figure("ackermann").unwrap().reason.clone().unwrap();
+    // The rack does steer (the figure said it steered neither wheel): both wheels sit toed in at rack centre.
+    assert!(steering.figure("steer_per_rack_travel").unwrap().value.unwrap().abs() > 1e-3);
+    assert!(why.contains("toe at rack centre outweighs"), "{why}");
+    assert!(
+        report.warnings.iter().any(|w| w.message.contains("'tie rod inner bushing' deflects")),
+        "{:?}",
+        report.warnings
+    );
+}
