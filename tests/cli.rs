@@ -721,7 +721,9 @@ fn an_implausible_model_is_named_and_refused_under_strict() {
     let points = &mut v["suspension"]["macpherson"]["hardpoints"];
     let point = |p: &serde_json::Value| -> [f64; 3] { [0, 1, 2].map(|k| p[k].as_f64().unwrap()) };
     let (a, b) = (point(&points["lower_ball_joint"]), point(&points["top_mount"]));
-    points["tie_rod_inner"] = serde_json::json!([0, 1, 2].map(|k| a[k] + 0.4 * (b[k] - a[k])));
+    // 3 mm ahead of the axis (on it exactly, the model is refused as degenerate).
+    points["tie_rod_inner"] =
+        serde_json::json!([0, 1, 2].map(|k| a[k] + 0.4 * (b[k] - a[k]) + if k == 0 { 0.003 } else { 0.0 }));
     let model = dir.join("tie_rod_on_axis.json");
     std::fs::write(&model, v.to_string()).unwrap();
     let model = model.to_str().unwrap();

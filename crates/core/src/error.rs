@@ -84,6 +84,15 @@ pub enum ModelError {
         /// The body.
         body: String,
     },
+    /// Geometry or a value outside what the engine can take (a hardpoint kilometres away, a spring that
+    /// would need a negative free length), with what to change.
+    #[error("'{item}': {why}")]
+    OutOfRange {
+        /// Item.
+        item: String,
+        /// What is wrong and what to change.
+        why: String,
+    },
     /// A frame that is not a rotation.
     #[error("'{item}': the frame is not orthonormal (error {error:.3e}): give orthonormal axes")]
     NotOrthonormal {

@@ -743,20 +743,17 @@ impl VehicleParameters {
     /// Refuses values no vehicle has, naming the field.
     pub fn validate(&self) -> Result<(), SolverError> {
         let invalid = |why: String| Err(SolverError::InvalidInput { what: "vehicle parameters", why });
-        for (field, value) in [("wheelbase", self.wheelbase), ("cg_height", self.cg_height)] {
-            if !(value.is_finite() && value > 0.0) {
-                return invalid(format!("`{field}` must be a positive length in metres, got {value}"));
-            }
-        }
-        if !(self.corner_load.is_finite() && self.corner_load > 0.0) {
-            return invalid(format!("`corner_load` must be a positive force in newtons, got {}", self.corner_load));
-        }
-        for (field, value, unit) in [
-            ("tyre_rate", self.tyre_rate, "a positive rate in N/m"),
-            ("rack_travel_per_revolution", self.rack_travel_per_revolution, "a positive rack travel in metres"),
+        // Upper bounds well beyond any road vehicle: past them the figures (anti-pitch = slope × L / h, the
+        // forces of the corner load) lose their meaning and then overflow.
+        for (field, value, what, limit) in [
+            ("wheelbase", Some(self.wheelbase), "a length in metres", 50.0),
+            ("cg_height", Some(self.cg_height), "a height in metres", 20.0),
+            ("corner_load", Some(self.corner_load), "a force in newtons", 1e7),
+            ("tyre_rate", self.tyre_rate, "a rate in N/m", 1e10),
+            ("rack_travel_per_revolution", self.rack_travel_per_revolution, "a rack travel in metres", 1.0),
         ] {
-            if let Some(v) = value.filter(|v| !(v.is_finite() && *v > 0.0)) {
-                return invalid(format!("`{field}` must be {unit}, got {v}"));
+            if let Some(v) = value.filter(|v| !(*v > 0.0 && *v <= limit)) {
+                return invalid(format!("`{field}` must be {what}, above 0 and at most {limit:e}, got {v:e}"));
             }
         }
         for (field, value) in
@@ -833,7 +830,15 @@ pub fn anti_pitch(corner: &Corner, vehicle: &VehicleParameters) -> Result<AntiPi
     let wheel_centre = wheel.attitude(&state.poses).wheel_centre;
     let patch_velocity = wheel.point_velocity(&state.poses, &rates, patch);
     let wheel_centre_velocity = wheel.point_velocity(&state.poses, &rates, wheel_centre);
-    if !patch_velocity.z.is_finite() || patch_velocity.z.abs() <= 1e-6 {
+    if !patch_velocity.iter().all(|v| v.is_finite()) {
+        return Err(SolverError::InvalidInput {
+            what: "corner",
+            why: "the contact patch's motion in bump cannot be computed (the path tangent at design is not \
+                  finite): no side-view swing arm; check the hardpoints with `elastokin check`"
+                .into(),
+        });
+    }
+    if patch_velocity.z.abs() <= 1e-6 {
         return Err(SolverError::InvalidInput {
             what: "corner",
             why: format!(

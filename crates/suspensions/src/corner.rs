@@ -1,7 +1,7 @@
 //! A suspension corner ready to solve: the template's parts, the tie rod, the rig that holds it, and the
 //! wheel characteristics read from its poses.
 
-use crate::connection::{axial_bushing, Connection};
+use crate::connection::{axial_bushing, Connection, SpringSpec};
 use crate::hardpoint::Side;
 use elastokin_core::{BodyId, BodyRef, ElementId, JointSpec, Model, ModelError, Pose, Vec3, BODY_DOFS};
 use elastokin_elements::{PointForce, PointTorque};
@@ -49,6 +49,194 @@ pub struct TieRod {
     /// `Ideal`: a distance constraint (ball joints at both ends). `Bushing`: a tie-rod body with a bushing
     /// at each end, axis along the rod, so the steering compliance of the rod's mounts is modelled.
     pub connection: Connection,
+}
+
+/// Farthest a hardpoint may lie from its wheel centre (m). A corner spans a metre or two; far beyond,
+/// lengths and lever arms lose every digit or overflow. A corner written in millimetres (a few thousand
+/// "metres") still builds, so that the plausibility check can say what it is (`millimetres`); a point a
+/// little off (a few metres) is named by it too (`far-hardpoint`).
+pub const MAX_HARDPOINT_REACH: f64 = 5e3;
+
+/// Least lateral position of the left wheel centre (m): half the narrowest track accepted.
+pub const MIN_HALF_TRACK: f64 = 0.05;
+
+/// Farthest a wheel centre may lie from the vehicle origin (m); as for [`MAX_HARDPOINT_REACH`], a corner
+/// in millimetres still builds.
+pub const MAX_WHEEL_CENTRE_DISTANCE: f64 = 5e3;
+
+/// Refuses hardpoints no suspension has: a wheel centre more than [`MAX_WHEEL_CENTRE_DISTANCE`] from the
+/// origin, or a point more than [`MAX_HARDPOINT_REACH`] from the wheel centre. `points` are the left
+/// corner's hardpoints by their model-file names, the wheel centre first.
+pub(crate) fn check_hardpoints(points: &[(&str, Vec3)]) -> Result<(), ModelError> {
+    let Some(&(_, wheel_centre)) = points.first() else { return Ok(()) };
+    let refuse = |name: &str, p: Vec3, what: String| {
+        Err(ModelError::OutOfRange {
+            item: "hardpoints".into(),
+            why: format!(
+                "{name} [{:.4e}, {:.4e}, {:.4e}] lies {what}: hardpoints are in metres (ISO 8855, x forward, \
+                 y left, z up); move it or check its units",
+                p.x, p.y, p.z
+            ),
+        })
+    };
+    if let Some(&(name, _)) = points.iter().find(|(_, p)| !p.iter().all(|c| c.is_finite())) {
+        return Err(ModelError::OutOfRange {
+            item: "hardpoints".into(),
+            why: format!("{name} has a coordinate that is not a finite number: give it in metres"),
+        });
+    }
+    if wheel_centre.y.abs() < MIN_HALF_TRACK {
+        // The right corner is the mirror image: a wheel centre near y = 0 puts the two wheels of an axle
+        // on top of each other and leaves the track (Ackermann's T / L) nothing. A right corner given for
+        // the left (y < 0) builds, mirrored, and the plausibility check names it (`wrong-side`).
+        let what = format!(
+            "within {MIN_HALF_TRACK} m of the centre line: the model describes the left corner (y > 0), half a \
+             track out"
+        );
+        return refuse(points[0].0, wheel_centre, what);
+    }
+    if wheel_centre.norm() > MAX_WHEEL_CENTRE_DISTANCE {
+        let what = format!("more than {MAX_WHEEL_CENTRE_DISTANCE} m from the vehicle origin");
+        return refuse(points[0].0, wheel_centre, what);
+    }
+    for &(name, p) in &points[1..] {
+        if (p - wheel_centre).norm() > MAX_HARDPOINT_REACH {
+            return refuse(name, p, format!("more than {MAX_HARDPOINT_REACH} m from the wheel centre"));
+        }
+    }
+    Ok(())
+}
+
+/// Range of the rates a model accepts: `(least, most)` for translational rates (N/m) and for rotational
+/// ones (N·m/rad). Far wider than rubber or steel: below, a part is held by next to nothing and drifts
+/// anywhere; above, the stiffness swamps every other digit of the equations and then overflows.
+pub const TRANSLATIONAL_RATE_RANGE: (f64, f64) = (1.0, 1e15);
+/// See [`TRANSLATIONAL_RATE_RANGE`].
+pub const ROTATIONAL_RATE_RANGE: (f64, f64) = (1e-3, 1e15);
+
+/// Refuses a rate outside its range, naming its model-file key.
+fn check_rate(key: &str, value: f64, (least, most): (f64, f64), unit: &str) -> Result<(), ModelError> {
+    if value >= least && value <= most {
+        return Ok(());
+    }
+    let got = if value.is_finite() { format!("{value:e}") } else { "not a finite number".into() };
+    Err(ModelError::OutOfRange {
+        item: key.into(),
+        why: format!("{key} must be a rate in {unit} from {least:e} to {most:e}, got {got}"),
+    })
+}
+
+/// Refuses a bushing whose rates are outside [`TRANSLATIONAL_RATE_RANGE`] and [`ROTATIONAL_RATE_RANGE`];
+/// `key` is the connection's model-file key (`lower_arm_mounts`, `tie_rod`, …).
+pub(crate) fn check_connection(key: &str, connection: &Connection) -> Result<(), ModelError> {
+    let Connection::Bushing(r) = connection else { return Ok(()) };
+    for (what, value) in [("radial", r.radial), ("axial", r.axial)] {
+        check_rate(&format!("{key}.bushing.{what}"), value, TRANSLATIONAL_RATE_RANGE, "N/m")?;
+    }
+    for (what, value) in [("torsion", r.torsion), ("conical", r.conical)] {
+        check_rate(&format!("{key}.bushing.{what}"), value, ROTATIONAL_RATE_RANGE, "N·m/rad")?;
+    }
+    Ok(())
+}
+
+/// Largest spring force at design accepted (N): a hundred times a heavy truck's; beyond, the spring's
+/// geometric stiffness (force over length) overflows.
+pub const MAX_SPRING_FORCE: f64 = 1e8;
+
+/// Refuses a coil spring whose design force and rate give no free length: `L₀ = L + F/k` must be a
+/// positive length (a coil spring pushes; a tension larger than `k·L` would need a negative one).
+pub(crate) fn check_spring(spring: &SpringSpec, design_length: f64) -> Result<(), ModelError> {
+    let SpringSpec { rate, design_force } = *spring;
+    check_rate("spring.rate", rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
+    if design_force.is_nan() || design_force.abs() > MAX_SPRING_FORCE {
+        let got = if design_force.is_finite() { format!("{design_force:e}") } else { "not a finite number".into() };
+        return Err(ModelError::OutOfRange {
+            item: "spring".into(),
+            why: format!(
+                "spring.design_force must be a force in N from {:e} to {MAX_SPRING_FORCE:e}, got {got}",
+                -MAX_SPRING_FORCE
+            ),
+        });
+    }
+    if !design_force.is_finite() {
+        // The spring element names these with its own messages.
+        return Ok(());
+    }
+    let free_length = design_length + design_force / rate;
+    let why = if !free_length.is_finite() {
+        format!(
+            "spring.design_force {design_force:.4e} N at spring.rate {rate:.4e} N/m would compress the spring by \
+             more than any length: give the rate in N/m and the push at design in N"
+        )
+    } else if free_length <= 0.0 {
+        format!(
+            "spring.design_force {design_force:.4e} N at spring.rate {rate:.4e} N/m would need a free length of \
+             {free_length:.4e} m for a design length of {design_length:.4} m: a coil spring pushes, so give \
+             spring.design_force as its push at design (N, above -rate × design length)"
+        )
+    } else {
+        return Ok(());
+    };
+    Err(ModelError::OutOfRange { item: "spring".into(), why })
+}
+
+/// Refuses a steering axis (from `axis.0` up to `axis.1`, named by `axis_names`) that is too short to
+/// define a line or does not rise: the scrub radius, trail and kingpin offset are where it meets the
+/// ground and the wheel-centre height, which a level axis never does. It must rise by a tenth of its
+/// length (lean less than 84° from the vertical).
+pub(crate) fn check_steering_axis(axis: (Vec3, Vec3), axis_names: (&str, &str)) -> Result<(), ModelError> {
+    let u = axis.1 - axis.0;
+    let (length, rise) = (u.norm(), u.z);
+    let why = if length < 1e-3 {
+        format!(
+            "{} and {} are {length:.1e} m apart: they must be distinct to define the steering axis",
+            axis_names.0, axis_names.1
+        )
+    } else if rise < 0.1 * length {
+        format!(
+            "the steering axis from {} up to {} rises {rise:.4} m over its {length:.4} m: it must rise (lean less than \
+             84 deg from the vertical) to meet the ground; check the two points",
+            axis_names.0, axis_names.1
+        )
+    } else {
+        return Ok(());
+    };
+    Err(ModelError::OutOfRange { item: "steering axis".into(), why })
+}
+
+/// Shortest lever a tie-rod pull may have about the steering axis (m). Steering arms are 100–150 mm; a
+/// tie rod along the axis, or through it, has none, and then only rubber holds the wheel's steer. A
+/// micrometre keeps near-aligned geometry open to conditioning studies while refusing the degenerate.
+pub const MIN_STEERING_ARM: f64 = 1e-6;
+
+/// Refuses a tie rod that cannot steer: the moment about the steering axis (from `axis.0` to `axis.1`,
+/// named by `axis_names`) of a unit pull along the tie rod, `û · ((outer − lower) × d̂)`, is its lever.
+pub(crate) fn check_steering_arm(
+    axis: (Vec3, Vec3),
+    axis_names: (&str, &str),
+    tie_rod_inner: Vec3,
+    tie_rod_outer: Vec3,
+) -> Result<(), ModelError> {
+    let (u, rod) = (axis.1 - axis.0, tie_rod_outer - tie_rod_inner);
+    if !(u.norm() > 1e-9 && rod.norm() > 1e-9) {
+        // Coincident points: the joints and bushings built on them refuse them with their own message.
+        return Ok(());
+    }
+    let lever = u.normalize().dot(&(tie_rod_outer - axis.0).cross(&rod.normalize()));
+    if lever.abs() >= MIN_STEERING_ARM {
+        return Ok(());
+    }
+    Err(ModelError::OutOfRange {
+        item: "tie rod".into(),
+        why: format!(
+            "a pull along the tie rod (tie_rod_inner to tie_rod_outer) has a lever of {:.1e} m about the steering \
+             axis ({} to {}), under the {MIN_STEERING_ARM:e} m it needs to hold the wheel's steer: move \
+             tie_rod_outer off the steering axis, to the side of it, by a steering arm (typically 100 to 150 mm)",
+            lever.abs(),
+            axis_names.0,
+            axis_names.1
+        ),
+    })
 }
 
 /// Name `name` of the part of the corner whose names start with `prefix`.
@@ -163,6 +351,10 @@ pub struct SteeringGeometry {
     /// Contact patch centre: the lowest point of the wheel-plane circle of the loaded radius.
     pub contact_patch: Vec3,
 }
+/// Largest loaded tyre radius accepted (m): a mining truck's tyre is under 2 m; far beyond, the contact
+/// patch's lever swamps every other length.
+pub const MAX_LOADED_RADIUS: f64 = 5.0;
+
 /// Loaded tyre radius when a model file does not give one (m); `shared/data/hardpoints.md` quotes ~0.30.
 pub fn default_loaded_radius() -> f64 {
     0.30
@@ -189,6 +381,14 @@ impl Wheel {
         left_wheel_centre: Vec3,
         loaded_radius: f64,
     ) -> Result<(BodyId, Vec3), ModelError> {
+        if loaded_radius > MAX_LOADED_RADIUS {
+            return Err(ModelError::OutOfRange {
+                item: "suspension".into(),
+                why: format!(
+                    "loaded_radius must be a tyre radius in metres, at most {MAX_LOADED_RADIUS}, got {loaded_radius:e}"
+                ),
+            });
+        }
         if !(loaded_radius.is_finite() && loaded_radius > 0.0) {
             return Err(ModelError::NotPositive {
                 item: "suspension".into(),

@@ -2,7 +2,10 @@
 //! on the lower arm.
 
 use crate::connection::{arm_mounts, Connection, SpringSpec};
-use crate::corner::{part_name, Corner, CornerParts, CornerTemplate, Rig, TieRod, Wheel};
+use crate::corner::{
+    check_connection, check_hardpoints, check_spring, check_steering_arm, check_steering_axis, part_name, Corner,
+    CornerParts, CornerTemplate, Rig, TieRod, Wheel,
+};
 use crate::hardpoint::Side;
 use elastokin_core::{BodyRef, JointSpec, Model, ModelError, Pose, Vec3};
 use elastokin_elements::CoilSpring;
@@ -96,6 +99,30 @@ impl DoubleWishbone {
 impl CornerTemplate for DoubleWishbone {
     fn add_corner(&self, model: &mut Model, side: Side, prefix: &str) -> Result<CornerParts, ModelError> {
         let h = &self.hardpoints;
+        check_hardpoints(&[
+            ("wheel_centre", h.wheel_centre),
+            ("upper_ball_joint", h.upper_ball_joint),
+            ("upper_arm_front", h.upper_arm_front),
+            ("upper_arm_rear", h.upper_arm_rear),
+            ("lower_ball_joint", h.lower_ball_joint),
+            ("lower_arm_front", h.lower_arm_front),
+            ("lower_arm_rear", h.lower_arm_rear),
+            ("tie_rod_inner", h.tie_rod_inner),
+            ("tie_rod_outer", h.tie_rod_outer),
+            ("spring_chassis", h.spring_chassis),
+            ("spring_arm", h.spring_arm),
+        ])?;
+        check_spring(&self.spring, (h.spring_arm - h.spring_chassis).norm())?;
+        check_connection("upper_arm_mounts", &self.upper_arm_mounts)?;
+        check_connection("lower_arm_mounts", &self.lower_arm_mounts)?;
+        check_connection("tie_rod", &self.tie_rod)?;
+        check_steering_axis((h.lower_ball_joint, h.upper_ball_joint), ("lower_ball_joint", "upper_ball_joint"))?;
+        check_steering_arm(
+            (h.lower_ball_joint, h.upper_ball_joint),
+            ("lower_ball_joint", "upper_ball_joint"),
+            h.tie_rod_inner,
+            h.tie_rod_outer,
+        )?;
         let p = |v: Vec3| side.place(v);
         let n = |name: &str| part_name(prefix, name);
         let (upright, _) = Wheel::add_upright(model, side, prefix, h.wheel_centre, self.loaded_radius)?;

@@ -2,7 +2,10 @@
 //! chassis, lower control arm, tie rod, coil spring from the top mount to the spring seat on the strut.
 
 use crate::connection::{arm_mounts, axial_bushing, Connection, SpringSpec};
-use crate::corner::{part_name, Corner, CornerParts, CornerTemplate, Rig, TieRod, Wheel};
+use crate::corner::{
+    check_connection, check_hardpoints, check_spring, check_steering_arm, check_steering_axis, part_name, Corner,
+    CornerParts, CornerTemplate, Rig, TieRod, Wheel,
+};
 use crate::hardpoint::Side;
 use elastokin_core::{BodyRef, JointSpec, Model, ModelError, Pose, Vec3};
 use elastokin_elements::CoilSpring;
@@ -85,6 +88,27 @@ impl MacPherson {
 impl CornerTemplate for MacPherson {
     fn add_corner(&self, model: &mut Model, side: Side, prefix: &str) -> Result<CornerParts, ModelError> {
         let h = &self.hardpoints;
+        check_hardpoints(&[
+            ("wheel_centre", h.wheel_centre),
+            ("lower_ball_joint", h.lower_ball_joint),
+            ("lower_arm_front", h.lower_arm_front),
+            ("lower_arm_rear", h.lower_arm_rear),
+            ("tie_rod_outer", h.tie_rod_outer),
+            ("tie_rod_inner", h.tie_rod_inner),
+            ("strut_lower", h.strut_lower),
+            ("top_mount", h.top_mount),
+        ])?;
+        check_spring(&self.spring, (h.top_mount - h.strut_lower).norm())?;
+        check_connection("lower_arm_mounts", &self.lower_arm_mounts)?;
+        check_connection("top_mount", &self.top_mount)?;
+        check_connection("tie_rod", &self.tie_rod)?;
+        check_steering_axis((h.lower_ball_joint, h.top_mount), ("lower_ball_joint", "top_mount"))?;
+        check_steering_arm(
+            (h.lower_ball_joint, h.top_mount),
+            ("lower_ball_joint", "top_mount"),
+            h.tie_rod_inner,
+            h.tie_rod_outer,
+        )?;
         let p = |v: Vec3| side.place(v);
         let n = |name: &str| part_name(prefix, name);
         let (upright, _) = Wheel::add_upright(model, side, prefix, h.wheel_centre, self.loaded_radius)?;

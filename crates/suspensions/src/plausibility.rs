@@ -506,3 +506,45 @@ pub fn check_travel_rows(rows: &[TravelRow]) -> Vec<Warning> {
     }
     out
 }
+
+/// Largest bushing deflection at the design position that rubber takes: beyond it a bushing bottoms
+/// out, and a model whose bushings go further holds its design position with rates far too soft.
+pub const MAX_DESIGN_DEFLECTION: (f64, f64) = (0.010, 10.0);
+
+/// Bushings that the design position (wheel-centre height held, the spring at its design force) deflects
+/// by more than [`MAX_DESIGN_DEFLECTION`] (m, deg): each a warning naming it. None when the design
+/// position cannot be solved (the analyses then say why).
+pub fn bushing_deflection_at_design(file: &SuspensionFile) -> Vec<Warning> {
+    use crate::{Rig, Side};
+    use elastokin_core::ElementRole;
+    use elastokin_solver::{SolverOptions, StaticSolver};
+    let Ok(corner) = file.suspension.build(Side::Left, Rig::WheelTravel) else { return Vec::new() };
+    let Ok(mut solver) = StaticSolver::new(&corner.model, SolverOptions::default()) else { return Vec::new() };
+    let mut state = solver.design_state(0.0);
+    let Ok(step) = solver.equilibrium(&mut state) else { return Vec::new() };
+    let (most_m, most_deg) = MAX_DESIGN_DEFLECTION;
+    corner
+        .model
+        .elements()
+        .iter()
+        .zip(step.element_reports(&corner.model))
+        .filter(|(e, _)| e.role() == ElementRole::Elastic && e.name() != "spring")
+        .filter_map(|(e, r)| {
+            let (moved, turned) = (r.deflection.norm(), r.rotation.norm().to_degrees());
+            (moved > most_m || turned > most_deg).then(|| Warning {
+                code: "bushing-deflection",
+                hardpoints: Vec::new(),
+                message: format!(
+                    "at the design position '{}' deflects {:.1} mm and {:.1} deg, where rubber takes {} mm and {} \
+                     deg: its rates are too soft for the spring's design force (check the bushing's radial, axial, \
+                     torsion and conical rates, N/m and N·m/rad, and spring.design_force)",
+                    e.name(),
+                    moved * 1e3,
+                    turned,
+                    most_m * 1e3,
+                    most_deg
+                ),
+            })
+        })
+        .collect()
+}

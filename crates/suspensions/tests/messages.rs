@@ -47,13 +47,25 @@ fn an_arm_spinning_freely_is_named_with_what_to_check() {
 
 #[test]
 fn a_travel_the_mechanism_cannot_reach_says_to_narrow_the_range() {
-    // A tie rod whose line meets the steering axis locks the wheel's travel (it must steer to rise).
-    let (_, corner) = ideal_macpherson(Rig::WheelTravel, |t| {
-        let (a, b) = (point(t, "lower_ball_joint"), point(t, "top_mount"));
-        t["hardpoints"]["tie_rod_inner"] = serde_json::json!([0, 1, 2].map(|i| a[i] + 0.4 * (b[i] - a[i])));
-    });
-    let message = parallel_wheel_travel(&corner, -0.02, 0.02, 8, Mode::Corrected).unwrap_err().to_string();
+    // 0.6 m of bump travel is beyond what arms of 0.3–0.4 m reach: the walk from design meets the limit.
+    let (_, corner) = ideal_macpherson(Rig::WheelTravel, |_| {});
+    let message = parallel_wheel_travel(&corner, 0.0, 0.6, 8, Mode::Corrected).unwrap_err().to_string();
     assert!(message.contains("narrow the range"), "{message}");
+    assert_plain(&message);
+}
+
+/// A tie rod whose line meets the steering axis cannot hold the wheel's steer: refused when the corner is
+/// built, naming the hardpoints and what to move.
+#[test]
+fn a_tie_rod_through_the_steering_axis_is_refused_by_name() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/macpherson.json");
+    let mut v: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let t = &mut v["suspension"]["macpherson"];
+    let (a, b) = (point(t, "lower_ball_joint"), point(t, "top_mount"));
+    t["hardpoints"]["tie_rod_inner"] = serde_json::json!([0, 1, 2].map(|i| a[i] + 0.4 * (b[i] - a[i])));
+    let file: SuspensionFile = serde_json::from_value(v).unwrap();
+    let message = file.suspension.build(Side::Left, Rig::WheelTravel).unwrap_err().to_string();
+    assert!(message.contains("tie_rod_inner") && message.contains("steering axis"), "{message}");
     assert_plain(&message);
 }
 

@@ -216,7 +216,7 @@ fn bushing_rates_are_named_by_their_file_keys() {
     rates.conical = 0.0;
     let err = file.suspension.build(elastokin_suspensions::Side::Left, elastokin_suspensions::Rig::Free).unwrap_err();
     let text = err.to_string();
-    assert!(text.contains("conical rate must be positive"), "{text}");
+    assert!(text.contains("lower_arm_mounts.bushing.conical must be a rate in N·m/rad"), "{text}");
     assert!(!text.contains("Kv") && !text.contains("Ky"), "{text}");
 }
 

@@ -57,6 +57,14 @@ fn lerp(a: [f64; 3], b: [f64; 3], s: f64) -> [f64; 3] {
     [0, 1, 2].map(|i| a[i] + s * (b[i] - a[i]))
 }
 
+/// A point 3 mm ahead of the line from `a` to `b`, 40 % of the way along: a tie-rod point that leaves the
+/// tie rod a lever of millimetres about that steering axis (exactly on it the model is refused as
+/// degenerate; see `corner::check_steering_arm`).
+fn near_axis(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    let p = lerp(a, b, 0.4);
+    [p[0] + 0.003, p[1], p[2]]
+}
+
 const EXAMPLES: [&str; 2] = ["macpherson.json", "double_wishbone.json"];
 
 #[test]
@@ -117,7 +125,7 @@ fn tie_rod_on_the_steering_axis_is_named() {
     for (name, upper) in [("macpherson.json", "top_mount"), ("double_wishbone.json", "upper_ball_joint")] {
         for mut v in [example(name), ideal(example(name))] {
             let (a, b) = (hardpoint(&mut v, "lower_ball_joint"), hardpoint(&mut v, upper));
-            set_hardpoint(&mut v, "tie_rod_inner", lerp(a, b, 0.4));
+            set_hardpoint(&mut v, "tie_rod_inner", near_axis(a, b));
             let c = check(&v);
             // With an ideal tie rod the wheel cannot rise without steering (the rod's line meets the
             // axis): the spring's length then does not change either.
@@ -161,7 +169,8 @@ fn a_far_hardpoint_is_named() {
     for name in EXAMPLES {
         let mut v = example(name);
         let p = hardpoint(&mut v, "tie_rod_inner");
-        set_hardpoint(&mut v, "tie_rod_inner", [p[0], p[1], 1e6]);
+        // 5 m up: a typo, not beyond what the corner can be built with (1e6 m is refused when it is built).
+        set_hardpoint(&mut v, "tie_rod_inner", [p[0], p[1], 5.0]);
         let c = check(&v);
         assert!(codes(&c).contains(&"far-hardpoint"), "{name}: {:#?}", c.warnings);
         let far: Vec<_> = c.warnings.iter().filter(|w| w.code == "far-hardpoint").collect();
@@ -219,7 +228,7 @@ fn travel_rows_beyond_plausible_toe_and_a_falling_wheel_rate_are_named() {
     // rate −45.8 N/mm between 60 and 70 mm).
     let mut v = example("macpherson.json");
     let (a, b) = (hardpoint(&mut v, "lower_ball_joint"), hardpoint(&mut v, "top_mount"));
-    set_hardpoint(&mut v, "tie_rod_inner", lerp(a, b, 0.4));
+    set_hardpoint(&mut v, "tie_rod_inner", near_axis(a, b));
     let rows = travel(&v);
     let worst = rows.iter().map(|r| r.attitude.toe.to_degrees().abs()).fold(0.0, f64::max);
     assert!(worst > 100.0, "{worst}");
@@ -241,7 +250,7 @@ fn the_report_gives_the_counts_the_condition_and_each_warning_with_its_code() {
     assert!(all_ideal[1].contains("the joints leave no motion"), "{}", all_ideal[1]);
     let mut v = example("macpherson.json");
     let (a, b) = (hardpoint(&mut v, "lower_ball_joint"), hardpoint(&mut v, "top_mount"));
-    set_hardpoint(&mut v, "tie_rod_inner", lerp(a, b, 0.4));
+    set_hardpoint(&mut v, "tie_rod_inner", near_axis(a, b));
     let lines = check(&v).report();
     assert_eq!(lines.len(), 3, "{lines:#?}");
     assert!(lines[2].starts_with("warning [tie-rod-on-steering-axis]: the tie rod ('tie_rod_inner'"), "{}", lines[2]);

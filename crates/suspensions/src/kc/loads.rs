@@ -19,7 +19,18 @@ fn model_error(e: elastokin_core::ModelError) -> String {
 pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
     let held = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(model_error)?;
     let design_load = design_wheel_load(&held).map_err(solve_error)?;
-    let range = s.range.unwrap_or((0.5 * design_load, 1.5 * design_load));
+    let range = match s.range {
+        Some(range) => range,
+        // Below a newton the default range has no width, and the wheel rate (force over travel) no value.
+        None if design_load.abs() < 1.0 => {
+            return Err(format!(
+                "the corner carries {design_load:.3} N at design, so the default range (0.5 to 1.5 times that) \
+                 has no width: give spring.design_force, the spring's push at the design position (N), or a \
+                 --range in newtons"
+            ))
+        }
+        None => (0.5 * design_load, 1.5 * design_load),
+    };
     let corner = file.suspension.build(Side::Left, Rig::Free).map_err(model_error)?;
     let z0 = corner.wheel.wheel_centre.z;
     let out = vertical_force_sweep_with(corner, range.0, range.1, s.steps, s.mode, s.extras()).map_err(solve_error)?;

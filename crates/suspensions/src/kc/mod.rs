@@ -188,8 +188,32 @@ pub struct AnalysisError {
     pub message: String,
 }
 
+/// Narrowest range an analysis walks, in its own parameter's unit (m, N, N·m).
+pub const MIN_RANGE: f64 = 1e-9;
+
 /// Runs one analysis on the model in `file`.
 pub fn run(analysis: Analysis, file: &SuspensionFile, settings: &Settings) -> Result<AnalysisReport, AnalysisError> {
+    if settings.steps == 0 || settings.steps > MAX_STEPS {
+        return Err(AnalysisError {
+            analysis: analysis.name(),
+            message: format!("--steps must be from 1 to {MAX_STEPS}, got {}", settings.steps),
+        });
+    }
+    if let Some((from, to)) = settings.range {
+        // An empty range walks one point: every slope at design would be 0 / 0; one narrower than
+        // MIN_RANGE (a nanometre, a nanonewton) takes slopes of rounding noise, or overflows them.
+        if !(from.is_finite() && to.is_finite()) || (to - from).abs() < MIN_RANGE {
+            let got =
+                if from.is_finite() && to.is_finite() { format!(", got {from:e} to {to:e}") } else { String::new() };
+            return Err(AnalysisError {
+                analysis: analysis.name(),
+                message: format!(
+                    "the range needs two finite ends at least {MIN_RANGE:e} apart in the {}{got}",
+                    analysis.parameter()
+                ),
+            });
+        }
+    }
     let result = match analysis {
         Analysis::ParallelTravel => travel::parallel_travel(file, settings),
         Analysis::Roll => travel::roll(file, settings),
@@ -236,6 +260,7 @@ pub fn run_suite(
         model_check,
         warnings,
     };
+    report.warnings.extend(crate::plausibility::bushing_deflection_at_design(file));
     for analysis in chosen {
         if analysis == Analysis::StaticLoad && file.vehicle.is_none() && which.is_empty() {
             report.skipped.push(Skipped {
@@ -246,7 +271,14 @@ pub fn run_suite(
             continue;
         }
         progress(SuiteEvent::Starting(analysis));
-        report.analyses.push(run(analysis, file, settings)?);
+        // An analysis that fails on such a model fails because of it: say so with the failure.
+        let result = run(analysis, file, settings).map_err(|mut e| {
+            for w in &report.warnings {
+                e.message.push_str(&format!("; note: {}", w.message));
+            }
+            e
+        });
+        report.analyses.push(result?);
         progress(SuiteEvent::Done(&report.analyses[report.analyses.len() - 1]));
     }
     Ok(report)
@@ -314,14 +346,7 @@ fn finish<R>(
     let constraint_residual = out.residuals.iter().map(|r| r.1).fold(0.0f64, f64::max);
     let tol = settings.tolerance;
     let mut warnings = Vec::new();
-    let over_figures: Vec<String> = figures
-        .iter()
-        .filter_map(|f| {
-            let (v, e) = (f.value?, f.error?);
-            (e > tol.relative * v.abs() && e > 0.5 * 10f64.powi(-(f.decimals as i32)))
-                .then(|| format!("{} ±{:.1} %", f.label, 100.0 * e / v.abs().max(f64::MIN_POSITIVE)))
-        })
-        .collect();
+    let over_figures: Vec<String> = figures.iter().filter_map(|f| over_tolerance(f, tol.relative)).collect();
     let within = angle_error_deg <= tol.angle_deg && length_error_m <= tol.length_m && over_figures.is_empty();
     if !within {
         // Paper mode's error falls in proportion to the step: the steps that would bring the worst of the
@@ -385,6 +410,21 @@ fn finish<R>(
     }
 }
 
+/// A figure whose estimated error is over `relative` of its value (and shows in its printed decimals), as
+/// the warning names it: `label ±x %`, or `label ±e unit` where a percentage means nothing (a figure at or
+/// near zero).
+fn over_tolerance(f: &Figure, relative: f64) -> Option<String> {
+    let (v, e) = (f.value?, f.error?);
+    let ratio = e / v.abs();
+    (e > relative * v.abs() && e > 0.5 * 10f64.powi(-(f.decimals as i32))).then(|| {
+        if ratio < 10.0 {
+            format!("{} ±{:.1} %", f.label, 100.0 * ratio)
+        } else {
+            format!("{} ±{e:.2e} {}", f.label, f.unit)
+        }
+    })
+}
+
 /// The 6×6 wheel compliance at every row: the load parameter, then the 36 entries by row
 /// (wheel-centre x, y, z in m, rotation about x, y, z in rad) and column (force along x, y, z in N,
 /// torque about x, y, z in N·m) at the wheel centre.
@@ -413,8 +453,16 @@ fn compliance_table(analysis: Analysis, rows: &Table, c: &[[[f64; 6]; 6]]) -> Ta
     }
 }
 
-/// A figure missing because the range does not reach the design position.
+/// A figure missing because no row sits at the design position: the range does not reach it, or no
+/// step lands on it (an odd number of steps over a symmetric range).
 fn outside(range: (f64, f64), at: f64, unit: &str) -> String {
+    if (range.0 - at) * (range.1 - at) <= 0.0 {
+        return format!(
+            "no step of the range {}..{} {unit} lands on the design position ({at} {unit}): give an even --steps \
+             over a range symmetric about it",
+            range.0, range.1
+        );
+    }
     format!(
         "the range {}..{} {unit} does not contain the design position ({at} {unit}); give a --range that spans it",
         range.0, range.1
@@ -429,4 +477,24 @@ fn needs_vehicle(field: &str) -> String {
 /// A solver error in the words of the analysis.
 fn solve_error(e: SolverError) -> String {
     engine(e)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn figure_error_at_a_zero_figure_is_given_in_its_unit_not_as_infinite_percent() {
+        let mut f = Figure::new("roll_centre_lateral", "roll centre lateral offset", "mm", 1, 0.0);
+        f.error = Some(3.0);
+        let line = over_tolerance(&f, 5e-3).unwrap();
+        assert_eq!(line, "roll centre lateral offset ±3.00e0 mm");
+        // A huge relative error is no percentage either (it printed 300 digits).
+        f.value = Some(1e-300);
+        assert!(!over_tolerance(&f, 5e-3).unwrap().contains('%'));
+        f.value = Some(20.0);
+        assert_eq!(over_tolerance(&f, 5e-3).unwrap(), "roll centre lateral offset ±15.0 %");
+        f.error = Some(0.01);
+        assert_eq!(over_tolerance(&f, 5e-3), None);
+    }
 }

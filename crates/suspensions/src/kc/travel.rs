@@ -541,6 +541,16 @@ pub(super) fn steering(file: &SuspensionFile, s: &Settings) -> Result<AnalysisRe
             &why,
         )];
         f.push(match (per_rack, c_factor) {
+            // A rack that does not steer the wheels at design has no ratio (a hand wheel turning forever).
+            (Some(d), Some(_)) if d.abs() < 1e-9 => Figure::maybe(
+                "steering_ratio",
+                "overall steering ratio at design",
+                ":1",
+                2,
+                None,
+                "the rack travel does not steer the wheels at design: check the tie rods (tie_rod_inner, \
+                 tie_rod_outer) and their bushings",
+            ),
             (Some(d), Some(c)) => Figure::new(
                 "steering_ratio",
                 "overall steering ratio at design (hand wheel : road wheel)",
@@ -567,7 +577,15 @@ pub(super) fn steering(file: &SuspensionFile, s: &Settings) -> Result<AnalysisRe
                     .filter_map(|r| ackermann(r, track, l))
                     .map(|(_, outer, ideal)| deg(outer - ideal))
                     .max_by(|a, b| a.abs().total_cmp(&b.abs()));
-                let none = "the rack travel steers neither wheel";
+                // Steer angles are read from the design's straight ahead: wheels toed in or out at rack
+                // centre by more than the rack turns them never both turn one way.
+                let turned = rows.iter().any(|r| r.left.toe.abs() > 1e-9 || r.right.toe.abs() > 1e-9);
+                let none = if turned {
+                    "no rack position turns both wheels the same way: their toe at rack centre outweighs the steer \
+                     the rack gives (check the tie rods and their bushings)"
+                } else {
+                    "the rack travel steers neither wheel"
+                };
                 f.push(Figure::maybe(
                     "ackermann",
                     "Ackermann at full steer (100 % = ideal)",

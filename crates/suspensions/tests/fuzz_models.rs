@@ -1,0 +1,754 @@
+//! Seeded mutation testing of the model files: the shipped examples, each mutated in one to three places
+//! (numbers scaled or replaced by extremes, hardpoints swapped or moved, keys deleted, duplicated or
+//! added, types changed, arrays truncated, connections changed), then read and, when they read, run
+//! through the whole K&C suite (or, in some cases, one analysis over a random `--range`), in corrected
+//! or paper mode, the wheel held or free. A model the engine cannot accept must be refused with a
+//! message; one it accepts must give a report with no panic, no non-finite number anywhere a user reads
+//! it, and no figure or cell left out because a NaN was computed on the way.
+//!
+//! The case counts fit the CI budget: 4000 read-only and 1600 full-suite cases take 16–20 s in the dev
+//! profile on two shared cores. To run a longer campaign, set `ELASTOKIN_FUZZ_CASES` (full-suite cases;
+//! the read-only cases are scaled with it) and `ELASTOKIN_FUZZ_SEED`, preferably in release:
+//!
+//! ```sh
+//! ELASTOKIN_FUZZ_CASES=5000 ELASTOKIN_FUZZ_SEED=7 cargo test --release -p elastokin-suspensions --test fuzz_models
+//! ```
+//!
+//! `ELASTOKIN_FUZZ_CASE=N` runs case `N` alone (with the same seed), to reproduce a failure;
+//! `ELASTOKIN_FUZZ_VERBOSE=1` prints every case's mutations, refusals and figures left out with their
+//! reasons (to review the messages users get).
+//!
+//! Below the campaign: one regression test per bug it (or a user) found, named after the bug.
+
+use elastokin_solver::Mode;
+use elastokin_suspensions::kc::{self, KcReport, Settings};
+use elastokin_suspensions::SuspensionFile;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use serde_json::{json, Value};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::time::{Duration, Instant};
+
+/// The campaign's seed: every case is drawn from it and its index, so a failure is reproducible.
+const SEED: u64 = 0x00E1_A570_F022;
+/// Cases read only (most mutations of the file's structure are refused when read).
+const PARSE_CASES: usize = 4000;
+/// Cases run through the whole suite when they read.
+const SUITE_CASES: usize = 1600;
+/// A case slower than this hangs or allocates without bound.
+const SLOW_CASE: Duration = Duration::from_secs(5);
+
+const EXAMPLES: [(&str, &str); 2] = [
+    ("macpherson.json", include_str!("../../../examples/macpherson.json")),
+    ("double_wishbone.json", include_str!("../../../examples/double_wishbone.json")),
+];
+
+/// Factors a number is scaled by.
+const FACTORS: [f64; 9] = [0.0, -1.0, 1e-3, 0.5, 1.01, 2.0, 1e3, 1e6, 1e300];
+
+fn env_number(name: &str) -> Option<u64> {
+    std::env::var(name).ok().map(|v| v.trim().parse().unwrap_or_else(|_| panic!("{name}={v} is not a number")))
+}
+
+fn seed() -> u64 {
+    env_number("ELASTOKIN_FUZZ_SEED").unwrap_or(SEED)
+}
+
+/// `(parse-only cases, full-suite cases)`.
+fn case_counts() -> (usize, usize) {
+    match env_number("ELASTOKIN_FUZZ_CASES") {
+        Some(n) => ((n as usize) * (PARSE_CASES / SUITE_CASES), n as usize),
+        None => (PARSE_CASES, SUITE_CASES),
+    }
+}
+
+/// The generator of case `index` of stream `stream` (each test draws from its own stream).
+fn case_rng(stream: u64, index: usize) -> ChaCha8Rng {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed());
+    rng.set_stream(stream);
+    rng.set_word_pos(u128::from(index as u64) << 20);
+    rng
+}
+
+/// JSON pointers of every value in `v` (depth first), with the values.
+fn walk<'a>(v: &'a Value, at: String, out: &mut Vec<(String, &'a Value)>) {
+    out.push((at.clone(), v));
+    match v {
+        Value::Object(map) => {
+            for (k, child) in map {
+                walk(child, format!("{at}/{}", k.replace('~', "~0").replace('/', "~1")), out);
+            }
+        }
+        Value::Array(items) => {
+            for (k, child) in items.iter().enumerate() {
+                walk(child, format!("{at}/{k}"), out);
+            }
+        }
+        _ => {}
+    }
+}
+
+fn pointers(v: &Value, keep: impl Fn(&str, &Value) -> bool) -> Vec<String> {
+    let mut all = Vec::new();
+    walk(v, String::new(), &mut all);
+    all.into_iter().filter(|(p, v)| keep(p, v)).map(|(p, _)| p).collect()
+}
+
+fn pick<'a, T>(rng: &mut ChaCha8Rng, items: &'a [T]) -> Option<&'a T> {
+    (!items.is_empty()).then(|| &items[rng.random_range(0..items.len())])
+}
+
+fn number(x: f64) -> Value {
+    // A non-finite result (1e308 × 1e300) has no JSON number: it becomes null, one more wrong type.
+    serde_json::Number::from_f64(x).map_or(Value::Null, Value::Number)
+}
+
+fn is_hardpoint(p: &str, v: &Value) -> bool {
+    p.contains("/hardpoints/") && p.matches('/').count() == 4 && v.is_array()
+}
+
+fn is_connection(p: &str) -> bool {
+    ["lower_arm_mounts", "upper_arm_mounts", "top_mount", "tie_rod"].iter().any(|c| p.ends_with(c))
+}
+
+/// Applies one mutation; returns what it did, or `None` when the model has nothing it applies to.
+fn mutate_once(model: &mut Value, rng: &mut ChaCha8Rng, structural: bool) -> Option<String> {
+    let numbers = pointers(model, |_, v| v.is_number());
+    let hardpoints = pointers(model, is_hardpoint);
+    let kind = if structural { rng.random_range(0..11) } else { rng.random_range(0..5) };
+    match kind {
+        0 => {
+            let at = pick(rng, &numbers)?.clone();
+            let factor = *pick(rng, &FACTORS)?;
+            let v = model.pointer_mut(&at)?;
+            let x = v.as_f64()? * factor;
+            *v = number(x);
+            Some(format!("{at} scaled by {factor:e}"))
+        }
+        1 => {
+            let at = pick(rng, &numbers)?.clone();
+            let replacement = match rng.random_range(0..8) {
+                0 => json!(0.0),
+                1 => json!(-0.0),
+                2 => json!(1e-300),
+                3 => json!(1e308),
+                4 => json!(-1e308),
+                5 => json!(u64::MAX),
+                6 => json!(i64::MIN),
+                _ => json!(-rng.random_range(1..1_000_000i64)),
+            };
+            let what = format!("{at} replaced by {replacement}");
+            *model.pointer_mut(&at)? = replacement;
+            Some(what)
+        }
+        2 => {
+            // Two hardpoints swapped, or one moved onto another.
+            let a = pick(rng, &hardpoints)?.clone();
+            let b = pick(rng, &hardpoints)?.clone();
+            let (va, vb) = (model.pointer(&a)?.clone(), model.pointer(&b)?.clone());
+            if rng.random_bool(0.5) {
+                *model.pointer_mut(&a)? = vb;
+                *model.pointer_mut(&b)? = va;
+                Some(format!("{a} and {b} swapped"))
+            } else {
+                *model.pointer_mut(&a)? = vb;
+                Some(format!("{a} moved onto {b}"))
+            }
+        }
+        3 => {
+            // A hardpoint moved by a distance from a hair to absurd, in a random direction.
+            let at = pick(rng, &hardpoints)?.clone();
+            let distance = *pick(rng, &[1e-9, 1e-4, 0.01, 0.1, 1.0, 1e3, 1e6, 1e293])?;
+            let point = model.pointer_mut(&at)?.as_array_mut()?;
+            let mut moved = Vec::new();
+            for c in point.iter_mut() {
+                let x = c.as_f64()? + distance * rng.random_range(-1.0..1.0);
+                moved.push(x);
+                *c = number(x);
+            }
+            Some(format!("{at} moved {distance:e} m to {moved:?}"))
+        }
+        4 => {
+            // A connection made ideal, or a bushing of scaled rates.
+            let at = pick(rng, &["lower_arm_mounts", "upper_arm_mounts", "top_mount", "tie_rod"])?;
+            let template = pointers(model, |p, _| p.matches('/').count() == 2 && p.starts_with("/suspension/"));
+            let owner = pick(rng, &template)?.clone();
+            let factor = *pick(rng, &[1e-9, 1e-3, 1.0, 1e3, 1e9])?;
+            let connection = if rng.random_bool(0.3) {
+                json!("ideal")
+            } else {
+                json!({ "bushing": { "radial": 5e6 * factor, "axial": 1e6 * factor, "torsion": 573.0 * factor,
+                                     "conical": 5730.0 * factor } })
+            };
+            let what = format!("{owner}/{at} set to {connection}");
+            model.pointer_mut(&owner)?.as_object_mut()?.insert(at.to_string(), connection);
+            Some(what)
+        }
+        5 => {
+            let keys = pointers(model, |p, _| !p.is_empty() && !p.ends_with(|c: char| c.is_ascii_digit()));
+            let at = pick(rng, &keys)?.clone();
+            let (parent, key) = at.rsplit_once('/')?;
+            model.pointer_mut(parent)?.as_object_mut()?.remove(key)?;
+            Some(format!("{at} deleted"))
+        }
+        6 => {
+            // A key copied into another object.
+            let keys = pointers(model, |p, _| !p.is_empty() && !p.ends_with(|c: char| c.is_ascii_digit()));
+            let objects = pointers(model, |_, v| v.is_object());
+            let at = pick(rng, &keys)?.clone();
+            let into = pick(rng, &objects)?.clone();
+            let (_, key) = at.rsplit_once('/')?;
+            let value = model.pointer(&at)?.clone();
+            model.pointer_mut(&into)?.as_object_mut()?.insert(key.to_string(), value);
+            Some(format!("{at} copied into {into:?}"))
+        }
+        7 => {
+            let at = pick(rng, &numbers)?.clone();
+            let v = model.pointer_mut(&at)?;
+            let x = v.clone();
+            *v = match rng.random_range(0..3) {
+                0 => json!(x.to_string()),
+                1 => json!([x]),
+                _ => Value::Null,
+            };
+            Some(format!("{at} changed to {v}"))
+        }
+        8 => {
+            let objects = pointers(model, |_, v| v.is_object());
+            let into = pick(rng, &objects)?.clone();
+            model.pointer_mut(&into)?.as_object_mut()?.insert("stiffness".into(), json!(1.0));
+            Some(format!("unknown key added in {into:?}"))
+        }
+        9 => {
+            let arrays = pointers(model, |_, v| v.as_array().is_some_and(|a| !a.is_empty()));
+            let at = pick(rng, &arrays)?.clone();
+            let items = model.pointer_mut(&at)?.as_array_mut()?;
+            let keep = rng.random_range(0..items.len());
+            items.truncate(keep);
+            Some(format!("{at} truncated to {keep} items"))
+        }
+        _ => {
+            let connections = pointers(model, |p, _| is_connection(p));
+            let at = pick(rng, &connections)?.clone();
+            *model.pointer_mut(&at)? = json!(*pick(rng, &["bushing", "rigid", ""])?);
+            Some(format!("{at} set to an unknown connection"))
+        }
+    }
+}
+
+/// A mutated example: its name, the mutations and the JSON text.
+struct Case {
+    example: &'static str,
+    mutations: Vec<String>,
+    text: String,
+}
+
+impl std::fmt::Display for Case {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        write!(f, "{} with {}:\n{}", self.example, self.mutations.join("; "), self.text)
+    }
+}
+
+fn mutated(rng: &mut ChaCha8Rng, structural: bool) -> Case {
+    let (example, text) = *pick(rng, &EXAMPLES).unwrap();
+    let mut model: Value = serde_json::from_str(text).unwrap();
+    let mut mutations = Vec::new();
+    let count = rng.random_range(1..=3);
+    while mutations.len() < count {
+        if let Some(m) = mutate_once(&mut model, rng, structural) {
+            mutations.push(m);
+        }
+    }
+    Case { example, mutations, text: serde_json::to_string_pretty(&model).unwrap() }
+}
+
+/// Whether `text` shows a non-finite number as Rust or JSON writers print it.
+fn shows_non_finite(text: &str) -> bool {
+    text.split(|c: char| !c.is_ascii_alphanumeric()).any(|w| matches!(w, "NaN" | "inf" | "Infinity" | "infinity"))
+}
+
+/// What is wrong with a refusal message, if anything.
+fn check_refusal(message: &str) -> Result<(), String> {
+    if message.trim().is_empty() {
+        return Err("an empty error message".into());
+    }
+    if shows_non_finite(message) {
+        return Err(format!("an error message showing a non-finite number: {message}"));
+    }
+    Ok(())
+}
+
+/// Table columns whose cells are empty by definition in some rows.
+const MAY_BE_EMPTY: [&str; 3] = ["ideal_outer_steer_deg", "ackermann_error_deg", "ackermann_percent"];
+
+/// What is wrong with a report, if anything: every number a user reads must be finite.
+fn check_report(report: &KcReport) -> Result<(), String> {
+    let finite = |what: String, v: f64| if v.is_finite() { Ok(()) } else { Err(format!("{what} = {v}")) };
+    for a in &report.analyses {
+        let name = a.analysis.name();
+        for f in &a.figures {
+            if let Some(v) = f.value {
+                finite(format!("{name} figure {}", f.key), v)?;
+            }
+            if let Some(e) = f.error {
+                finite(format!("{name} figure {} error", f.key), e)?;
+            }
+            match (&f.value, f.reason.as_deref()) {
+                (None, None) => return Err(format!("{name} figure {} has neither a value nor a reason", f.key)),
+                (None, Some(r)) if r.trim().is_empty() => return Err(format!("{name} figure {} has no reason", f.key)),
+                // The report's catch-all for a non-finite value: a NaN or infinity computed upstream, which
+                // the analysis must prevent or explain in its own words.
+                (None, Some(r)) if r.starts_with("not a finite number") => {
+                    return Err(format!("{name} figure {} computed a non-finite value: {r}", f.key))
+                }
+                _ => {}
+            }
+        }
+        for table in std::iter::once(&a.table).chain(&a.compliance) {
+            for row in &table.rows {
+                for (cell, column) in row.iter().zip(&table.columns) {
+                    match cell {
+                        kc::Cell::Number(v) => finite(format!("{name} table {} column {column}", table.name), *v)?,
+                        // `Cell::from` empties a non-finite number: only these columns are empty by
+                        // definition (no Ackermann figure where neither wheel steers).
+                        kc::Cell::Empty if !MAY_BE_EMPTY.contains(&column.as_str()) => {
+                            return Err(format!("{name} table {} column {column}: an empty cell", table.name))
+                        }
+                        _ => {}
+                    }
+                }
+            }
+        }
+        for row in a.wheel_compliance_at_design.iter().flatten() {
+            for &v in row {
+                finite(format!("{name} wheel compliance at design"), v)?;
+            }
+        }
+        let acc = &a.accuracy;
+        finite(format!("{name} angle error"), acc.angle_error_deg)?;
+        finite(format!("{name} length error"), acc.length_error_m)?;
+        finite(format!("{name} force residual"), acc.force_residual)?;
+        finite(format!("{name} constraint residual"), acc.constraint_residual)?;
+        for (column, e) in &acc.columns {
+            if let Some(e) = e {
+                finite(format!("{name} error of column {column}"), *e)?;
+            }
+        }
+        finite(format!("{name} range start"), a.range.0)?;
+        finite(format!("{name} range end"), a.range.1)?;
+        for line in a.headline() {
+            if shows_non_finite(&line) {
+                return Err(format!("{name} headline line shows a non-finite number: {line}"));
+            }
+        }
+    }
+    let json = serde_json::to_string(report).map_err(|e| format!("the report does not serialise: {e}"))?;
+    if shows_non_finite(&json) {
+        return Err("the serialised report shows a non-finite number".into());
+    }
+    Ok(())
+}
+
+/// Settings of a suite case: few steps, and sometimes paper mode, the wheel free, the compliance.
+fn settings(rng: &mut ChaCha8Rng) -> Settings {
+    let range = rng.random_bool(0.15).then(|| range(rng));
+    // Mostly 4 steps (cheap); sometimes 1–3, which leave the design position between rows.
+    let steps = if rng.random_bool(0.2) { rng.random_range(1..=3) } else { 4 };
+    Settings {
+        range,
+        steps,
+        mode: if rng.random_bool(0.25) { Mode::Paper } else { Mode::Corrected },
+        height_held: rng.random_bool(0.75),
+        compliance: rng.random_bool(0.1),
+        ..Settings::default()
+    }
+}
+
+/// A range in an analysis's own parameter for a run of one analysis, as `--range` gives it: ordinary,
+/// reversed, empty, tiny or absurd.
+fn range(rng: &mut ChaCha8Rng) -> (f64, f64) {
+    let scale = *pick(rng, &[1e-300, 1e-6, 0.01, 1.0, 100.0, 1e4, 1e8, 1e300, f64::MAX]).unwrap();
+    let (a, b) = (rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+    match rng.random_range(0..4) {
+        0 => (0.0, 0.0),
+        1 => (a * scale, a * scale),
+        2 => (-scale, scale),
+        _ => (a * scale, b * scale),
+    }
+}
+
+/// Runs one case: reads the text and, if `suite`, runs the suite on what reads. A panic is caught only to
+/// report it with the case.
+fn run_case(case: &Case, settings: Option<&Settings>) -> Result<&'static str, String> {
+    let outcome = catch_unwind(AssertUnwindSafe(|| {
+        let file = match SuspensionFile::from_json(&case.text, "model.json") {
+            Ok(file) => file,
+            Err(e) => {
+                let message = e.to_string();
+                if std::env::var_os("ELASTOKIN_FUZZ_VERBOSE").is_some() {
+                    eprintln!("UNREAD {message}");
+                }
+                check_refusal(&message)?;
+                if message.contains("::") {
+                    return Err(format!("an error message naming code: {message}"));
+                }
+                return Ok("refused when read");
+            }
+        };
+        let Some(settings) = settings else { return Ok("read") };
+        let verbose = std::env::var_os("ELASTOKIN_FUZZ_VERBOSE").is_some();
+        if settings.range.is_some() {
+            // A run of one analysis over a range given by the user.
+            let analysis = kc::ALL[(settings.steps + case.text.len()) % kc::ALL.len()];
+            return match kc::run(analysis, &file, settings) {
+                Ok(report) => {
+                    let suite = KcReport {
+                        model: file.name.clone(),
+                        settings: *settings,
+                        analyses: vec![report],
+                        skipped: Vec::new(),
+                        model_check: None,
+                        warnings: Vec::new(),
+                    };
+                    check_report(&suite).map(|()| "ran one analysis over a range")
+                }
+                Err(e) => {
+                    if verbose {
+                        eprintln!("REFUSED {e}");
+                    }
+                    check_refusal(&e.to_string()).map(|()| "refused by an analysis")
+                }
+            };
+        }
+        match kc::run_suite(&file, &[], settings, |_| {}) {
+            Ok(report) => {
+                if verbose {
+                    for a in &report.analyses {
+                        for f in a.figures.iter().filter(|f| f.value.is_none()) {
+                            eprintln!("MISSING {} {}: {}", a.analysis.name(), f.key, f.reason.as_deref().unwrap_or(""));
+                        }
+                        let empty = a.table.rows.iter().flatten().filter(|c| **c == kc::Cell::Empty).count();
+                        if empty > 0 {
+                            eprintln!("EMPTY {} {empty} cells", a.analysis.name());
+                        }
+                    }
+                }
+                check_report(&report).map(|()| "ran")
+            }
+            Err(e) => {
+                if verbose {
+                    eprintln!("REFUSED {e}");
+                }
+                check_refusal(&e.to_string()).map(|()| "refused by an analysis")
+            }
+        }
+    }));
+    match outcome {
+        Ok(result) => result,
+        Err(panic) => {
+            let message = panic
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default();
+            Err(format!("panicked: {message}"))
+        }
+    }
+}
+
+/// Runs `count` cases of `stream`, and fails with every failing case (seed, index, mutations, JSON), the
+/// slowest case, and any case slower than [`SLOW_CASE`].
+fn campaign(stream: u64, count: usize, suite: bool) {
+    let only = env_number("ELASTOKIN_FUZZ_CASE").map(|n| n as usize);
+    let mut failures = Vec::new();
+    let mut outcomes = std::collections::BTreeMap::<&str, usize>::new();
+    let mut slowest = (Duration::ZERO, String::new());
+    let start = Instant::now();
+    for index in (0..count).filter(|i| only.map_or(true, |o| o == *i)) {
+        let mut rng = case_rng(stream, index);
+        // Suite cases mostly change numbers and geometry, which still read; structural changes are refused.
+        let structural = !suite || rng.random_bool(0.1);
+        let mut case = mutated(&mut rng, structural);
+        // Suite cases are drawn again (a few times) until one reads, so that most of them run the suite.
+        for _ in 0..8 {
+            if !suite || SuspensionFile::from_json(&case.text, "model.json").is_ok() {
+                break;
+            }
+            case = mutated(&mut rng, structural);
+        }
+        let settings = suite.then(|| settings(&mut rng));
+        if std::env::var_os("ELASTOKIN_FUZZ_VERBOSE").is_some() {
+            eprintln!("CASE {index}: {}", case.mutations.join("; "));
+        }
+        let t = Instant::now();
+        let result = run_case(&case, settings.as_ref());
+        let took = t.elapsed();
+        let label = format!("case {index} (seed {}, stream {stream}) {settings:?}", seed());
+        if took > slowest.0 {
+            slowest = (took, format!("{label}: {}", case.mutations.join("; ")));
+        }
+        match result {
+            Ok(outcome) if took <= SLOW_CASE => *outcomes.entry(outcome).or_default() += 1,
+            Ok(_) => failures.push(format!("{label} took {took:.1?}: {case}")),
+            Err(why) => failures.push(format!("{label}: {why}\n{case}")),
+        }
+    }
+    eprintln!("{count} cases in {:.1?}: {outcomes:?}; slowest {:.2?}, {}", start.elapsed(), slowest.0, slowest.1);
+    assert!(failures.is_empty(), "{} failing cases:\n\n{}", failures.len(), failures.join("\n\n"));
+}
+
+#[test]
+fn mutated_models_are_read_or_refused_with_a_message() {
+    campaign(1, case_counts().0, false);
+}
+
+#[test]
+fn mutated_models_run_the_suite_without_panic_or_non_finite_output() {
+    campaign(2, case_counts().1, true);
+}
+
+// Regression tests: one per bug, named after it.
+
+/// The example `name` with the values at JSON pointers `edits` replaced.
+fn example_with(name: &str, edits: &[(&str, Value)]) -> String {
+    let text = EXAMPLES.iter().find(|(n, _)| *n == name).unwrap().1;
+    let mut model: Value = serde_json::from_str(text).unwrap();
+    for (at, value) in edits {
+        *model.pointer_mut(at).unwrap_or_else(|| panic!("{name} has no {at}")) = value.clone();
+    }
+    serde_json::to_string_pretty(&model).unwrap()
+}
+
+/// The refusal of a model that must not read, checked as the campaign checks it.
+fn refusal(text: &str) -> String {
+    let message = SuspensionFile::from_json(text, "model.json").expect_err("the model must be refused").to_string();
+    check_refusal(&message).unwrap();
+    message
+}
+
+const MP_HARDPOINTS: &str = "/suspension/macpherson/hardpoints";
+
+fn mp_point(name: &str) -> [f64; 3] {
+    let model: Value = serde_json::from_str(EXAMPLES[0].1).unwrap();
+    let p = &model.pointer(&format!("{MP_HARDPOINTS}/{name}")).unwrap();
+    [0, 1, 2].map(|k| p[k].as_f64().unwrap())
+}
+
+#[test]
+fn zero_spring_design_force_gives_no_nan_wheel_rate() {
+    let text = example_with("macpherson.json", &[("/suspension/macpherson/spring/design_force", json!(0.0))]);
+    let file = SuspensionFile::from_json(&text, "model.json").unwrap();
+    let settings = Settings { steps: 4, ..Settings::default() };
+    // The default range is 0.5–1.5 × the design wheel load, which the spring's design force carries: with
+    // none, there is no range to take a wheel rate over, and the analysis says which key to give.
+    let e = kc::run(kc::Analysis::VerticalForce, &file, &settings).unwrap_err().to_string();
+    check_refusal(&e).unwrap();
+    assert!(e.contains("spring.design_force") && e.contains("--range"), "{e}");
+    // With a range the wheel rate is there.
+    let ranged = Settings { range: Some((-1000.0, 1000.0)), ..settings };
+    let report = kc::run(kc::Analysis::VerticalForce, &file, &ranged).unwrap();
+    let rate = report.figure("wheel_rate").unwrap().value.unwrap();
+    assert!(rate > 10.0 && rate < 100.0, "{rate} N/mm");
+}
+
+#[test]
+fn huge_wheelbase_is_refused_not_an_infinite_anti_dive() {
+    let text = example_with("macpherson.json", &[("/vehicle/wheelbase", json!(1e308))]);
+    let e = refusal(&text);
+    assert!(e.contains("vehicle.wheelbase") && e.contains("is outside 0.5–20 m"), "{e}");
+}
+
+#[test]
+fn top_mount_a_thousand_kilometres_away_is_refused() {
+    let [x, y, z] = mp_point("top_mount");
+    let text = example_with("macpherson.json", &[(&format!("{MP_HARDPOINTS}/top_mount"), json!([x, y + 1e6, z]))]);
+    let e = refusal(&text);
+    assert!(e.contains("top_mount") && e.contains("beyond ±1000 m"), "{e}");
+}
+
+#[test]
+fn tie_rod_point_at_1e293_m_is_refused() {
+    for end in ["tie_rod_inner", "tie_rod_outer"] {
+        let [x, y, _] = mp_point(end);
+        let text = example_with("macpherson.json", &[(&format!("{MP_HARDPOINTS}/{end}"), json!([x, y, 1e293]))]);
+        let e = refusal(&text);
+        assert!(e.contains(end) && e.contains("metres"), "{e}");
+    }
+}
+
+#[test]
+fn macpherson_tie_rod_along_the_steering_axis_is_refused() {
+    let (lower, top) = (mp_point("lower_ball_joint"), mp_point("top_mount"));
+    let along = |t: f64, offset: [f64; 3]| json!([0, 1, 2].map(|k| lower[k] + t * (top[k] - lower[k]) + offset[k]));
+    // On the axis, and parallel to it 80 mm behind: a pull along either has no moment about the axis.
+    for offset in [[0.0; 3], [-0.08, 0.0, 0.0]] {
+        let text = example_with(
+            "macpherson.json",
+            &[
+                (&format!("{MP_HARDPOINTS}/tie_rod_outer"), along(0.2, offset)),
+                (&format!("{MP_HARDPOINTS}/tie_rod_inner"), along(0.5, offset)),
+            ],
+        );
+        let e = refusal(&text);
+        assert!(e.contains("tie_rod_outer") && e.contains("steering axis"), "{e}");
+    }
+}
+
+#[test]
+fn hardpoint_checks_accept_the_shipped_examples() {
+    for (name, text) in EXAMPLES {
+        SuspensionFile::from_json(text, name).unwrap();
+    }
+}
+
+#[test]
+fn loaded_radius_1e308_is_refused_not_an_infinite_path_tangent() {
+    let text = example_with("double_wishbone.json", &[("/suspension/double_wishbone/loaded_radius", json!(1e308))]);
+    let e = refusal(&text);
+    assert!(e.contains("loaded_radius") && e.contains("is outside 0.05–2 m"), "{e}");
+}
+
+#[test]
+fn bushing_rate_1e308_is_refused_not_an_infinite_stiffness() {
+    let at = "/suspension/macpherson/lower_arm_mounts/bushing/conical";
+    let e = refusal(&example_with("macpherson.json", &[(at, json!(1e308))]));
+    // Refused where the file is read, with the key, its line and the accepted range.
+    assert!(e.contains("lower_arm_mounts.bushing.conical") && e.contains("outside the accepted range"), "{e}");
+    let at = "/suspension/macpherson/spring/rate";
+    let e = refusal(&example_with("macpherson.json", &[(at, json!(3e304))]));
+    assert!(e.contains("spring.rate") && e.contains("outside the accepted range"), "{e}");
+}
+
+#[test]
+fn tie_rod_bushing_of_a_thousandth_newton_per_metre_is_refused_not_an_infinite_steering_ratio() {
+    let rates = json!({ "bushing": { "radial": 5e-3, "axial": 1e-3, "torsion": 5.7e-7, "conical": 5.7e-6 } });
+    // The example's tie rod is ideal, by default: the key is added.
+    let mut model: Value = serde_json::from_str(EXAMPLES[0].1).unwrap();
+    model["suspension"]["macpherson"]["tie_rod"] = rates;
+    let e = refusal(&model.to_string());
+    assert!(e.contains("tie_rod.bushing.radial") && e.contains("N/m"), "{e}");
+}
+
+#[test]
+fn wheel_centre_on_the_centre_line_is_refused_not_a_nan_ackermann() {
+    let at = "/suspension/double_wishbone/hardpoints/wheel_centre";
+    let e = refusal(&example_with("double_wishbone.json", &[(at, json!([-0.04, 0.0, -0.026]))]));
+    assert!(e.contains("wheel_centre") && e.contains("left corner"), "{e}");
+}
+
+#[test]
+fn bushings_a_thousandth_as_stiff_that_let_the_macpherson_settle_at_15_deg_are_named() {
+    let mut model: Value = serde_json::from_str(EXAMPLES[0].1).unwrap();
+    for mount in ["lower_arm_mounts", "top_mount"] {
+        for rate in model["suspension"]["macpherson"][mount]["bushing"].as_object_mut().unwrap().values_mut() {
+            *rate = json!(rate.as_f64().unwrap() * 1e-3);
+        }
+    }
+    let file = SuspensionFile::from_json(&model.to_string(), "model.json").unwrap();
+    let notices = elastokin_suspensions::plausibility::bushing_deflection_at_design(&file);
+    assert!(notices.iter().any(|n| n.message.contains("'top mount' deflects")), "{notices:?}");
+    // The suite says so, with whatever fails on such a model.
+    let settings = Settings { steps: 4, ..Settings::default() };
+    match kc::run_suite(&file, &[], &settings, |_| {}) {
+        Ok(report) => assert!(report.all_warnings().any(|w| w.code == "bushing-deflection")),
+        Err(e) => assert!(e.message.contains("'top mount' deflects"), "{e}"),
+    }
+    // The examples' bushings hold the design position within a fraction of a millimetre.
+    for (name, text) in EXAMPLES {
+        let notices = elastokin_suspensions::plausibility::bushing_deflection_at_design(
+            &SuspensionFile::from_json(text, name).unwrap(),
+        );
+        assert!(notices.is_empty(), "{name}: {notices:?}");
+    }
+}
+
+#[test]
+fn spring_design_force_1e308_is_refused_not_an_infinite_stiffness() {
+    let at = "/suspension/macpherson/spring/design_force";
+    let e = refusal(&example_with("macpherson.json", &[(at, json!(1e308))]));
+    assert!(e.contains("spring.design_force") && e.contains("beyond ±1e6 N"), "{e}");
+}
+
+#[test]
+fn wheel_centre_at_y_1e_300_is_refused_not_a_nan_ackermann() {
+    let at = "/suspension/macpherson/hardpoints/wheel_centre/1";
+    let e = refusal(&example_with("macpherson.json", &[(at, json!(1e-300))]));
+    assert!(e.contains("wheel_centre") && e.contains("left corner"), "{e}");
+}
+
+#[test]
+fn empty_range_is_refused_not_a_nan_bump_steer() {
+    let file = SuspensionFile::from_json(EXAMPLES[0].1, "macpherson.json").unwrap();
+    for analysis in kc::ALL {
+        let settings = Settings { range: Some((0.0, 0.0)), steps: 4, ..Settings::default() };
+        let e = kc::run(analysis, &file, &settings).unwrap_err().to_string();
+        check_refusal(&e).unwrap();
+        assert!(e.contains("two finite ends at least 1e-9 apart"), "{e}");
+    }
+}
+
+#[test]
+fn range_of_1e_300_is_refused_not_an_infinite_roll_steer() {
+    let file = SuspensionFile::from_json(EXAMPLES[0].1, "macpherson.json").unwrap();
+    let settings = Settings { range: Some((-1e-300, 1e-300)), steps: 4, ..Settings::default() };
+    let e = kc::run(kc::Analysis::Roll, &file, &settings).unwrap_err().to_string();
+    check_refusal(&e).unwrap();
+    assert!(e.contains("at least 1e-9 apart"), "{e}");
+}
+
+#[test]
+fn ball_joints_on_one_point_are_refused_not_a_nan_scrub_radius() {
+    let model: Value = serde_json::from_str(EXAMPLES[1].1).unwrap();
+    let upper = model["suspension"]["double_wishbone"]["hardpoints"]["upper_ball_joint"].clone();
+    let at = "/suspension/double_wishbone/hardpoints/lower_ball_joint";
+    let e = refusal(&example_with("double_wishbone.json", &[(at, upper)]));
+    assert!(e.contains("lower_ball_joint and upper_ball_joint") && e.contains("steering axis"), "{e}");
+    // A level steering axis never meets the ground.
+    let level = json!([-0.3, 0.85, 0.243]);
+    let e = refusal(&example_with("double_wishbone.json", &[(at, level)]));
+    assert!(e.contains("must rise"), "{e}");
+}
+
+#[test]
+fn zero_steps_are_refused_in_words_not_a_load_path_dump() {
+    let file = SuspensionFile::from_json(EXAMPLES[0].1, "macpherson.json").unwrap();
+    for steps in [0, kc::MAX_STEPS + 1] {
+        let e = kc::run(kc::Analysis::ParallelTravel, &file, &Settings { steps, ..Settings::default() }).unwrap_err();
+        assert!(
+            e.message.contains(&format!("--steps must be from 1 to {}", kc::MAX_STEPS))
+                && !e.message.contains("LoadPath"),
+            "{e}"
+        );
+    }
+}
+
+#[test]
+fn odd_steps_say_no_step_lands_on_design_not_that_the_range_misses_it() {
+    let file = SuspensionFile::from_json(EXAMPLES[0].1, "macpherson.json").unwrap();
+    let report = kc::run(kc::Analysis::ParallelTravel, &file, &Settings { steps: 3, ..Settings::default() }).unwrap();
+    let caster = report.figure("caster").unwrap();
+    assert_eq!(caster.value, None);
+    let why = caster.reason.as_deref().unwrap();
+    assert!(why.contains("no step of the range") && why.contains("even --steps"), "{why}");
+    // A slope is read from the two rows that bracket the design position.
+    assert!(report.figure("bump_steer").unwrap().value.is_some());
+}
+
+#[test]
+fn soft_tie_rod_bushings_toeing_both_wheels_17_deg_give_the_ackermann_reason_and_a_warning() {
+    let mut model: Value = serde_json::from_str(EXAMPLES[0].1).unwrap();
+    model["suspension"]["macpherson"]["tie_rod"] =
+        json!({ "bushing": { "radial": 5000.0, "axial": 1000.0, "torsion": 0.573, "conical": 5.73 } });
+    let file = SuspensionFile::from_json(&model.to_string(), "model.json").unwrap();
+    let report = kc::run_suite(&file, &[], &Settings { steps: 4, ..Settings::default() }, |_| {}).unwrap();
+    let steering = report.analysis(kc::Analysis::Steering).unwrap();
+    let why = steering.figure("ackermann").unwrap().reason.clone().unwrap();
+    // The rack does steer (the figure said it steered neither wheel): both wheels sit toed in at rack centre.
+    assert!(steering.figure("steer_per_rack_travel").unwrap().value.unwrap().abs() > 1e-3);
+    assert!(why.contains("toe at rack centre outweighs"), "{why}");
+    assert!(
+        report.warnings.iter().any(|w| w.message.contains("'tie rod inner bushing' deflects")),
+        "{:?}",
+        report.warnings
+    );
+}
