@@ -23,8 +23,11 @@
 //! assert!(rows[8].attitude.toe.abs() < 1e-12 && rows[8].attitude.camber.abs() < 1e-12);
 //! ```
 //!
-//! Dependencies: serde and serde_json for the model files, nalgebra for vectors,
-//! thiserror for errors. faer, sprs and rayon are left out here: the solving is the solver crate's.
+//! Dependencies: serde and serde_json for the model files and the K&C reports ([`kc`]), nalgebra for
+//! vectors and the small symmetric eigenproblem of the plausibility check's condition estimate, thiserror
+//! for errors. faer, sprs and rayon are left out here: the solving is the solver crate's. The tests use
+//! rand and rand_chacha for the seeded model mutations of `tests/fuzz_models.rs` (a fixed seed: the same
+//! cases every run).
 
 pub mod analysis;
 pub mod axle;
