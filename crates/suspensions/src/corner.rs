@@ -351,9 +351,10 @@ pub struct SteeringGeometry {
     /// Contact patch centre: the lowest point of the wheel-plane circle of the loaded radius.
     pub contact_patch: Vec3,
 }
-/// Largest loaded tyre radius accepted (m): a mining truck's tyre is under 2 m; far beyond, the contact
-/// patch's lever swamps every other length.
-pub const MAX_LOADED_RADIUS: f64 = 5.0;
+/// Largest loaded tyre radius accepted when a corner is built (m): far beyond, the contact patch's lever
+/// swamps every other length. As for [`MAX_HARDPOINT_REACH`], a corner in millimetres still builds (a
+/// model file is held to a tyre's range, 0.05–2 m, where it is read).
+pub const MAX_LOADED_RADIUS: f64 = 5e3;
 
 /// Loaded tyre radius when a model file does not give one (m); `shared/data/hardpoints.md` quotes ~0.30.
 pub fn default_loaded_radius() -> f64 {
