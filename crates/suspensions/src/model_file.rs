@@ -413,6 +413,23 @@ impl SuspensionFile {
                     "the front axle's share of the drive force",
                 ),
             ];
+            // The optional ones, checked when given.
+            let optional = [
+                ("tyre_rate", v.tyre_rate, 1e4, 1e7, "N/m", "a car's tyre is 2e5–3e5 N/m"),
+                (
+                    "rack_travel_per_revolution",
+                    v.rack_travel_per_revolution,
+                    0.01,
+                    0.2,
+                    "m",
+                    "rack travel per turn of the hand wheel: a car's is 0.04–0.06 m",
+                ),
+            ];
+            let fields = fields.into_iter().chain(
+                optional
+                    .into_iter()
+                    .filter_map(|(key, value, lo, hi, unit, why)| value.map(|value| (key, value, lo, hi, unit, why))),
+            );
             for (key, value, lo, hi, unit, why) in fields {
                 if !(lo..=hi).contains(&value) {
                     return Err(OutOfRange {

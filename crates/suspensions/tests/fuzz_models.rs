@@ -752,3 +752,14 @@ fn soft_tie_rod_bushings_toeing_both_wheels_17_deg_give_the_ackermann_reason_and
         report.warnings
     );
 }
+
+/// Found by the campaign with seed 23 (case 3065): a rack travel per turn of -0 passed, and the overall
+/// steering ratio 360 / (c · dδ/dx) came out infinite. The optional vehicle values are held to their
+/// ranges where the file is read, as the others are.
+#[test]
+fn rack_travel_per_revolution_of_minus_zero_is_refused_not_an_infinite_steering_ratio() {
+    for (key, value) in [("rack_travel_per_revolution", json!(-0.0)), ("tyre_rate", json!(0.0))] {
+        let e = refusal(&example_with("double_wishbone.json", &[(&format!("/vehicle/{key}"), value)]));
+        assert!(e.contains(&format!("vehicle.{key}")) && e.contains("is outside"), "{e}");
+    }
+}
