@@ -326,6 +326,7 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
             }
             for chart in &analysis.charts {
                 let svg = plot::svg(chart).map_err(|e| Failure::Run(format!("plot '{}': {e}", chart.name)))?;
+                let svg = provenance.stamp_svg(&svg);
                 written.push(staging.write(&format!("{}.svg", chart.name), svg.as_bytes())?);
                 if args.png {
                     let png = plot::png(chart).map_err(|e| Failure::Run(format!("plot '{}': {e}", chart.name)))?;

@@ -97,6 +97,19 @@ impl Provenance {
     }
 }
 
+impl Provenance {
+    /// `svg` with the provenance as an XML comment before its root element, so a plot found alone still
+    /// says what made it (a comment may not hold `--`, so a path's double hyphen is spaced).
+    pub fn stamp_svg(&self, svg: &str) -> String {
+        let line = self.comment_line();
+        let text = line.trim_start_matches("# ").replace("--", "- -");
+        match svg.find("<svg") {
+            Some(at) => format!("{}<!-- {text} -->\n{}", &svg[..at], &svg[at..]),
+            None => svg.to_string(),
+        }
+    }
+}
+
 /// SHA-256 of `bytes` as lower-case hex.
 pub fn sha256_hex(bytes: &[u8]) -> String {
     Sha256::digest(bytes).iter().map(|b| format!("{b:02x}")).collect()

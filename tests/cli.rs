@@ -765,6 +765,9 @@ fn compliance_png_and_report_on_request() {
     }
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     assert!(html.starts_with("<!DOCTYPE html>") && html.contains("bump steer") && html.contains("<svg"));
+    // A plot found alone says what made it.
+    let svg = std::fs::read_to_string(out.join("parallel_travel_toe_camber.svg")).unwrap();
+    assert!(svg.contains("<!-- elastokin ") && svg.contains("model examples/double_wishbone.json (sha256 "), "{svg}");
     // A range that leaves the design position out says why the design figures are missing.
     let o = elastokin(&[&args[..], &["--range", "0.01,0.05", "--out", out.to_str().unwrap()]].concat());
     let stdout = String::from_utf8_lossy(&o.stdout);
