@@ -407,7 +407,7 @@ impl Layout {
         let values = |pick: &dyn Fn(&(f64, f64)) -> f64, right: Option<bool>| -> Vec<f64> {
             curves
                 .iter()
-                .filter(|c| right.map_or(true, |r| c.on_right == r))
+                .filter(|c| right.is_none_or(|r| c.on_right == r))
                 .flat_map(|c| c.runs.iter().flatten().map(pick))
                 .collect()
         };
