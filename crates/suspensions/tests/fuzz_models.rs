@@ -464,7 +464,7 @@ fn campaign(stream: u64, count: usize, suite: bool) {
     let mut outcomes = std::collections::BTreeMap::<&str, usize>::new();
     let mut slowest = (Duration::ZERO, String::new());
     let start = Instant::now();
-    for index in (0..count).filter(|i| only.map_or(true, |o| o == *i)) {
+    for index in (0..count).filter(|i| only.is_none_or(|o| o == *i)) {
         let mut rng = case_rng(stream, index);
         // Suite cases mostly change numbers and geometry, which still read; structural changes are refused.
         let structural = !suite || rng.random_bool(0.1);
