@@ -78,6 +78,27 @@ fn beta_closed_form(t: f64) -> (f64, f64) {
     (beta, dbeta / t)
 }
 
+/// Body-fixed x-y-z (Tait-Bryan) angles `φ = (a, b, c)` of `R = Rx(a) Ry(b) Rz(c)`, with `b` in
+/// `[−π/2, π/2]`. Singular (gimbal lock) at `|b| = π/2`.
+pub fn tait_bryan_xyz(r: &Mat3) -> Vec3 {
+    let b = r[(0, 2)].clamp(-1.0, 1.0).asin();
+    let a = (-r[(1, 2)]).atan2(r[(2, 2)]);
+    let c = (-r[(0, 1)]).atan2(r[(0, 0)]);
+    Vec3::new(a, b, c)
+}
+
+/// `E(φ)` with `ω = E(φ) φ̇` for `R = Rx(a) Ry(b) Rz(c)` and `ω` the left (parent-frame) angular velocity,
+/// `Ṙ Rᵀ = ω̃`: its columns are the three gimbal axes `x`, `Rx(a) y`, `Rx(a) Ry(b) z`. Also its derivatives
+/// with respect to `a` and `b` (it does not depend on `c`).
+pub fn tait_bryan_xyz_axes(phi: &Vec3) -> (Mat3, Mat3, Mat3) {
+    let (sa, ca) = phi.x.sin_cos();
+    let (sb, cb) = phi.y.sin_cos();
+    let e = Mat3::new(1.0, 0.0, sb, 0.0, ca, -sa * cb, 0.0, sa, ca * cb);
+    let de_da = Mat3::new(0.0, 0.0, 0.0, 0.0, -sa, -ca * cb, 0.0, ca, -sa * cb);
+    let de_db = Mat3::new(0.0, 0.0, cb, 0.0, 0.0, sa * sb, 0.0, 0.0, -ca * sb);
+    (e, de_da, de_db)
+}
+
 /// Inverse of the left Jacobian of SO(3): `δθ = J_l(θ)⁻¹ ω` for a left perturbation
 /// `exp(ω̃) exp(θ̃)` of a rotation with rotation vector θ.
 pub fn left_jacobian_inv(theta: &Vec3) -> Mat3 {

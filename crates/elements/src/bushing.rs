@@ -38,6 +38,12 @@
 //! skew parts `[Q_πᵢ]~` and `[Q_πⱼ]~` (`K − Kᵀ = diag(0, [Q_πᵢ]~, 0, [Q_πⱼ]~)`); all other blocks are
 //! symmetric. At design without preload it is the paper's `Bᵀ K_T B + Cᵀ K_R C`.
 //!
+//! # Rotation laws
+//!
+//! How the moment follows the relative rotation is chosen per bushing ([`RotationLaw`]); the energy above
+//! is the default. The three agree to first order in the rotation and differ at second order when the
+//! rotational rates differ (see [`RotationLaw`] for the measured differences).
+//!
 //! # Range
 //!
 //! The rotation vector is taken from the relative quaternion (robust up to and including |θ| = π); the
@@ -45,11 +51,71 @@
 //! rubber bushing's range.
 
 use crate::geometry::{add_block, add_rows, check_distinct, check_finite, check_positive, set_jac_block, Jac3};
-use elastokin_core::math::{left_jacobian_inv, quat_log, rotation_vector_moment, skew};
+use elastokin_core::math::{
+    left_jacobian_inv, quat_log, rotation_vector_moment, skew, tait_bryan_xyz, tait_bryan_xyz_axes,
+};
 use elastokin_core::{
     BodyRef, ElementEval, ElementReport, ElementRole, ForceElement, Mat3, ModelError, PairMatrix, Pose, Vec3,
 };
 use nalgebra::{Rotation3, UnitQuaternion};
+
+/// How a bushing's moment follows the relative rotation `R = Eᵀ Eⱼ` of its two frames (rotation vector
+/// `θ`, local components). All three give `M = K θ` for a rotation about one of the bushing's axes; they
+/// differ at second order when the rotational rates differ. At the twist `θ = (0.10, 0, 0.01)` rad of a
+/// bushing with torsion rate 500 and conical rates 4000 N·m/rad, the moment on `j` (local, N·m) is
+/// `(−50.003, 1.750, −39.971)` under [`Energy`](RotationLaw::Energy), `(−50, 0, −40)` under
+/// [`Linear`](RotationLaw::Linear) and `(−49.999, 1.996, −39.909)` under
+/// [`TaitBryanXyz`](RotationLaw::TaitBryanXyz): the law moves the conical moment by up to 5 % of its size
+/// (`tests/bushing_laws.rs`). To match another tool's results, use its law.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize), serde(rename_all = "snake_case"))]
+pub enum RotationLaw {
+    /// The energy `½ θᵀ K_R θ` of the rotation vector (paper eqs. 5–8): conservative, and frame
+    /// independent; the moment is `J_l(θ)⁻ᵀ K_R θ`, its component across `θ` growing with the twist.
+    #[default]
+    Energy,
+    /// `M = K_R θ` as stated, the rotation vector times the rates, applied about the bushing's axes.
+    /// Not derived from an energy: its tangent is not symmetric away from `θ = 0`. Project Chrono's
+    /// generic body–body bushing (`ChLoadBodyBodyBushingGeneric`) computes its torque this way.
+    Linear,
+    /// The energy `½ φᵀ K_R φ` of the body-fixed x-y-z (Tait-Bryan) angles `φ` of `R = Rx Ry Rz`:
+    /// conservative; the moment's component about each gimbal axis is its rate times its angle. Simbody's
+    /// `Force::LinearBushing` uses these angles. Singular at a 90° tilt about the local y axis, far outside
+    /// rubber's range.
+    TaitBryanXyz,
+}
+
+impl RotationLaw {
+    /// The moment `g` (local components) conjugate to a left rotation increment of `j` relative to `i`,
+    /// and `∂g/∂θ`, for the relative rotation `r` with rotation vector `theta`, rates `kr` and preload
+    /// moment `m_pre` (applied to `j` at zero rotation).
+    fn moment(self, theta: &Vec3, r: &Mat3, kr: &Vec3, m_pre: &Vec3) -> (Vec3, Mat3) {
+        let k = Mat3::from_diagonal(kr);
+        match self {
+            RotationLaw::Energy => rotation_vector_moment(theta, &(kr.component_mul(theta) - m_pre), &k),
+            RotationLaw::Linear => (kr.component_mul(theta) - m_pre, k),
+            RotationLaw::TaitBryanXyz => {
+                // U = ½φᵀKφ − M_preᵀφ; ω = E(φ) φ̇ for the left increment, so g = ∂U/∂ω = E⁻ᵀ (Kφ − M_pre).
+                let phi = tait_bryan_xyz(r);
+                let (e, de_da, de_db) = tait_bryan_xyz_axes(&phi);
+                let nan = Mat3::from_element(f64::NAN);
+                // At gimbal lock the moment is undefined: a NaN here is refused by the solver as such.
+                let e_inv_t = e.transpose().try_inverse().unwrap_or(nan);
+                let g = e_inv_t * (kr.component_mul(&phi) - m_pre);
+                // ∂g/∂φₖ = E⁻ᵀ K eₖ − E⁻ᵀ (∂E/∂φₖ)ᵀ g; then ∂φ/∂θ = E⁻¹ J_l(θ).
+                let mut dg_dphi = e_inv_t * k;
+                for (col, de) in [(0, de_da), (1, de_db)] {
+                    let extra = -(e_inv_t * de.transpose() * g);
+                    for row in 0..3 {
+                        dg_dphi[(row, col)] += extra[row];
+                    }
+                }
+                let j_l = left_jacobian_inv(theta).try_inverse().unwrap_or(nan);
+                (g, dg_dphi * e_inv_t.transpose() * j_l)
+            }
+        }
+    }
+}
 
 /// Largest deviation of `EᵀE` from `I` accepted for a bushing frame; a frame within it is replaced by
 /// the rotation it is closest to (round-off in typed-in axes is tolerated, a wrong frame is not).
@@ -79,6 +145,9 @@ pub struct BushingSpec {
     /// Moment applied to `j` at zero rotation (local components, N·m).
     #[cfg_attr(feature = "serde", serde(default))]
     pub preload_torque: Vec3,
+    /// How the moment follows the relative rotation (default: the rotation-vector energy).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub rotation_law: RotationLaw,
 }
 
 impl BushingSpec {
@@ -165,7 +234,14 @@ impl Bushing {
             rotational,
             preload_force: Vec3::zeros(),
             preload_torque: Vec3::zeros(),
+            rotation_law: RotationLaw::default(),
         })
+    }
+
+    /// Sets how the moment follows the relative rotation.
+    pub fn with_rotation_law(mut self, law: RotationLaw) -> Self {
+        self.spec.rotation_law = law;
+        self
     }
 
     /// Sets the preload: the force (N) and moment (N·m) the bushing applies to body `j` at zero
@@ -193,14 +269,15 @@ impl Bushing {
         let q_e = pi.orientation * self.frame_i;
         let q_ej = pj.orientation * self.frame_j;
         let e = q_e.to_rotation_matrix().into_inner();
-        let theta = quat_log(&(q_e.inverse() * q_ej));
+        let relative = q_e.inverse() * q_ej;
+        let theta = quat_log(&relative);
         let s_i = pi.direction(&self.on_i);
         let s_j = pj.direction(&self.on_j);
         let d = (pj.position + s_j) - (pi.position + s_i);
         let delta = e.transpose() * d;
         let f = e * (self.spec.translational.component_mul(&delta) - self.spec.preload_force);
-        let m = self.spec.rotational.component_mul(&theta) - self.spec.preload_torque;
-        let (g, dg) = rotation_vector_moment(&theta, &m, &Mat3::from_diagonal(&self.spec.rotational));
+        let r = relative.to_rotation_matrix().into_inner();
+        let (g, dg) = self.spec.rotation_law.moment(&theta, &r, &self.spec.rotational, &self.spec.preload_torque);
         State { e, s_j, w: s_i + d, delta, theta, f, g, dg }
     }
 }

@@ -69,6 +69,6 @@ pub mod coil_spring;
 mod geometry;
 pub mod point_load;
 
-pub use bushing::{Bushing, BushingSpec};
+pub use bushing::{Bushing, BushingSpec, RotationLaw};
 pub use coil_spring::{CoilSpring, CoilSpringSpec};
 pub use point_load::{PointForce, PointForceSpec, PointTorque, PointTorqueSpec};

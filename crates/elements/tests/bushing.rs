@@ -48,6 +48,7 @@ fn random_case(rng: &mut Rng, grounded: Grounded, preload: bool) -> Case {
         rotational: kr,
         preload_force: f_pre,
         preload_torque: m_pre,
+        rotation_law: Default::default(),
     })
     .unwrap();
     bushing.bind(&design_i, &design_j).unwrap();

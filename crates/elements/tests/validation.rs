@@ -17,6 +17,7 @@ fn bushing_spec() -> BushingSpec {
         rotational: Vec3::new(100.0, 200.0, 300.0),
         preload_force: Vec3::zeros(),
         preload_torque: Vec3::zeros(),
+        rotation_law: Default::default(),
     }
 }
 

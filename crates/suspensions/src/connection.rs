@@ -2,7 +2,7 @@
 
 use elastokin_core::joint::orthonormal_complement;
 use elastokin_core::{BodyRef, JointSpec, Mat3, Model, ModelError, Vec3};
-use elastokin_elements::Bushing;
+use elastokin_elements::{Bushing, RotationLaw};
 use serde::{Deserialize, Serialize};
 
 /// Rates of a cylindrical rubber bushing (SI: N/m and N·m/rad), in its own frame whose x axis is the
@@ -18,9 +18,22 @@ pub struct BushingRates {
     pub torsion: f64,
     /// Conical (tilt of the axis), N·m/rad.
     pub conical: f64,
+    /// How the moment follows the twist: `"energy"` (default), `"linear"` (M = Kθ of the rotation vector)
+    /// or `"tait_bryan_xyz"` (the energy of body-fixed x-y-z angles); see [`RotationLaw`].
+    #[serde(default, skip_serializing_if = "is_default_law")]
+    pub law: RotationLaw,
+}
+
+fn is_default_law(law: &RotationLaw) -> bool {
+    *law == RotationLaw::default()
 }
 
 impl BushingRates {
+    /// Rates with the default rotation law.
+    pub fn new(radial: f64, axial: f64, torsion: f64, conical: f64) -> Self {
+        BushingRates { radial, axial, torsion, conical, law: RotationLaw::default() }
+    }
+
     /// Every rate multiplied by `factor` (for stiffness studies).
     pub fn scaled(self, factor: f64) -> Self {
         BushingRates {
@@ -28,6 +41,7 @@ impl BushingRates {
             axial: self.axial * factor,
             torsion: self.torsion * factor,
             conical: self.conical * factor,
+            law: self.law,
         }
     }
 }
@@ -114,4 +128,5 @@ pub(crate) fn axial_bushing(
         Vec3::new(r.axial, r.radial, r.radial),
         Vec3::new(r.torsion, r.conical, r.conical),
     )
+    .map(|b| b.with_rotation_law(r.law))
 }

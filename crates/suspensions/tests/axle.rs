@@ -189,7 +189,7 @@ fn stiff_bushed_tie_rod_converges_to_the_distance_constraint() {
     // unrestrained.
     let mut gaps = Vec::new();
     for rate in [1e6, 1e8, 1e10] {
-        let rates = BushingRates { radial: rate, axial: rate, torsion: 10.0, conical: 10.0 };
+        let rates = BushingRates::new(rate, rate, 10.0, 10.0);
         let corner = double_wishbone(Connection::Bushing(rates)).build(Side::Left, Rig::WheelTravel).unwrap();
         assert!(
             corner.model.body_id("tie rod").is_some() && corner.model.element_id("tie rod inner bushing").is_some()

@@ -105,7 +105,7 @@ fn stiffer_bushings_converge_to_the_ideal_joint_curves() {
     )
     .unwrap();
     // Realistic control-arm bushings: radial 5 kN/mm, axial 1 kN/mm, torsion 10 N·m/deg, conical 100 N·m/deg.
-    let rates = BushingRates { radial: 5e6, axial: 1e6, torsion: 10f64.to_degrees(), conical: 100f64.to_degrees() };
+    let rates = BushingRates::new(5e6, 1e6, 10f64.to_degrees(), 100f64.to_degrees());
     let deviation = |scale: f64| {
         // The ideal revolute turns freely about its axis, so the torsion rate stays; the directions the
         // joint locks get stiffer. (Scaling torsion too leaves a gap that does not close: the torsion

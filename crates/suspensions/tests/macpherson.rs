@@ -89,9 +89,9 @@ fn bushed_macpherson_converges_to_the_ideal_one() {
         Mode::Corrected,
     )
     .unwrap();
-    let arm = BushingRates { radial: 5e6, axial: 1e6, torsion: 10f64.to_degrees(), conical: 100f64.to_degrees() };
+    let arm = BushingRates::new(5e6, 1e6, 10f64.to_degrees(), 100f64.to_degrees());
     // Top mount: stiff radially, soft in torsion about the strut (it carries the steering rotation).
-    let top = BushingRates { radial: 2e6, axial: 1e6, torsion: 2f64.to_degrees(), conical: 50f64.to_degrees() };
+    let top = BushingRates::new(2e6, 1e6, 2f64.to_degrees(), 50f64.to_degrees());
     let deviation = |scale: f64| {
         // Rotations the ideal joints leave free keep their rates; the locked directions stiffen.
         let a = BushingRates { torsion: arm.torsion, ..arm.scaled(scale) };
