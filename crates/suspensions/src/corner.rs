@@ -209,6 +209,14 @@ pub(crate) fn check_steering_axis(axis: (Vec3, Vec3), axis_names: (&str, &str)) 
 /// micrometre keeps near-aligned geometry open to conditioning studies while refusing the degenerate.
 pub const MIN_STEERING_ARM: f64 = 1e-6;
 
+/// The lever of the tie rod about the steering axis (from `axis.0` to `axis.1`): the moment about the
+/// axis of a unit pull along the rod, `û · ((outer − axis.0) × d̂)` (m, signed). `None` when the axis or
+/// the rod has no length.
+pub(crate) fn tie_rod_lever(axis: (Vec3, Vec3), tie_rod_inner: Vec3, tie_rod_outer: Vec3) -> Option<f64> {
+    let (u, rod) = (axis.1 - axis.0, tie_rod_outer - tie_rod_inner);
+    (u.norm() > 1e-9 && rod.norm() > 1e-9).then(|| u.normalize().dot(&(tie_rod_outer - axis.0).cross(&rod.normalize())))
+}
+
 /// Refuses a tie rod that cannot steer: the moment about the steering axis (from `axis.0` to `axis.1`,
 /// named by `axis_names`) of a unit pull along the tie rod, `û · ((outer − lower) × d̂)`, is its lever.
 pub(crate) fn check_steering_arm(
@@ -217,12 +225,8 @@ pub(crate) fn check_steering_arm(
     tie_rod_inner: Vec3,
     tie_rod_outer: Vec3,
 ) -> Result<(), ModelError> {
-    let (u, rod) = (axis.1 - axis.0, tie_rod_outer - tie_rod_inner);
-    if !(u.norm() > 1e-9 && rod.norm() > 1e-9) {
-        // Coincident points: the joints and bushings built on them refuse them with their own message.
-        return Ok(());
-    }
-    let lever = u.normalize().dot(&(tie_rod_outer - axis.0).cross(&rod.normalize()));
+    // Coincident points: the joints and bushings built on them refuse them with their own message.
+    let Some(lever) = tie_rod_lever(axis, tie_rod_inner, tie_rod_outer) else { return Ok(()) };
     if lever.abs() >= MIN_STEERING_ARM {
         return Ok(());
     }

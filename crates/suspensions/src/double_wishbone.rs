@@ -51,6 +51,23 @@ pub struct DoubleWishboneHardpoints {
 }
 
 impl DoubleWishboneHardpoints {
+    /// Every hardpoint with its model-file name, the wheel centre first.
+    pub fn named(&self) -> Vec<(&'static str, Vec3)> {
+        vec![
+            ("wheel_centre", self.wheel_centre),
+            ("upper_ball_joint", self.upper_ball_joint),
+            ("upper_arm_front", self.upper_arm_front),
+            ("upper_arm_rear", self.upper_arm_rear),
+            ("lower_ball_joint", self.lower_ball_joint),
+            ("lower_arm_front", self.lower_arm_front),
+            ("lower_arm_rear", self.lower_arm_rear),
+            ("tie_rod_inner", self.tie_rod_inner),
+            ("tie_rod_outer", self.tie_rod_outer),
+            ("spring_chassis", self.spring_chassis),
+            ("spring_arm", self.spring_arm),
+        ]
+    }
+
     /// The generic set of `shared/data/hardpoints.md` (Project Chrono's generic vehicle).
     pub fn generic() -> Self {
         DoubleWishboneHardpoints {
@@ -99,19 +116,7 @@ impl DoubleWishbone {
 impl CornerTemplate for DoubleWishbone {
     fn add_corner(&self, model: &mut Model, side: Side, prefix: &str) -> Result<CornerParts, ModelError> {
         let h = &self.hardpoints;
-        check_hardpoints(&[
-            ("wheel_centre", h.wheel_centre),
-            ("upper_ball_joint", h.upper_ball_joint),
-            ("upper_arm_front", h.upper_arm_front),
-            ("upper_arm_rear", h.upper_arm_rear),
-            ("lower_ball_joint", h.lower_ball_joint),
-            ("lower_arm_front", h.lower_arm_front),
-            ("lower_arm_rear", h.lower_arm_rear),
-            ("tie_rod_inner", h.tie_rod_inner),
-            ("tie_rod_outer", h.tie_rod_outer),
-            ("spring_chassis", h.spring_chassis),
-            ("spring_arm", h.spring_arm),
-        ])?;
+        check_hardpoints(&h.named())?;
         check_spring(&self.spring, (h.spring_arm - h.spring_chassis).norm())?;
         check_connection("upper_arm_mounts", &self.upper_arm_mounts)?;
         check_connection("lower_arm_mounts", &self.lower_arm_mounts)?;

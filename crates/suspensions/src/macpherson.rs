@@ -42,6 +42,20 @@ pub struct MacPhersonHardpoints {
 }
 
 impl MacPhersonHardpoints {
+    /// Every hardpoint with its model-file name, the wheel centre first.
+    pub fn named(&self) -> Vec<(&'static str, Vec3)> {
+        vec![
+            ("wheel_centre", self.wheel_centre),
+            ("lower_ball_joint", self.lower_ball_joint),
+            ("lower_arm_front", self.lower_arm_front),
+            ("lower_arm_rear", self.lower_arm_rear),
+            ("tie_rod_outer", self.tie_rod_outer),
+            ("tie_rod_inner", self.tie_rod_inner),
+            ("strut_lower", self.strut_lower),
+            ("top_mount", self.top_mount),
+        ]
+    }
+
     /// The generic set of `shared/data/hardpoints.md` (Project Chrono's generic vehicle).
     pub fn generic() -> Self {
         MacPhersonHardpoints {
@@ -88,16 +102,7 @@ impl MacPherson {
 impl CornerTemplate for MacPherson {
     fn add_corner(&self, model: &mut Model, side: Side, prefix: &str) -> Result<CornerParts, ModelError> {
         let h = &self.hardpoints;
-        check_hardpoints(&[
-            ("wheel_centre", h.wheel_centre),
-            ("lower_ball_joint", h.lower_ball_joint),
-            ("lower_arm_front", h.lower_arm_front),
-            ("lower_arm_rear", h.lower_arm_rear),
-            ("tie_rod_outer", h.tie_rod_outer),
-            ("tie_rod_inner", h.tie_rod_inner),
-            ("strut_lower", h.strut_lower),
-            ("top_mount", h.top_mount),
-        ])?;
+        check_hardpoints(&h.named())?;
         check_spring(&self.spring, (h.top_mount - h.strut_lower).norm())?;
         check_connection("lower_arm_mounts", &self.lower_arm_mounts)?;
         check_connection("top_mount", &self.top_mount)?;

@@ -87,18 +87,12 @@ pub const MAX_WHEEL_ANGLE_DEG: f64 = 10.0;
 impl Template {
     /// Every hardpoint with its name in the model file, sorted by name.
     pub fn hardpoints(&self) -> Vec<(String, Vec3)> {
-        let value = match self {
-            Template::DoubleWishbone(t) => serde_json::to_value(t.hardpoints),
-            Template::MacPherson(t) => serde_json::to_value(t.hardpoints),
-        }
-        .expect("hardpoints are plain numbers");
-        let serde_json::Value::Object(map) = value else { unreachable!("hardpoints serialise as an object") };
-        map.into_iter()
-            .map(|(name, v)| {
-                let c: Vec<f64> = serde_json::from_value(v).expect("a hardpoint serialises as three numbers");
-                (name, Vec3::new(c[0], c[1], c[2]))
-            })
-            .collect()
+        let mut named = match self {
+            Template::DoubleWishbone(t) => t.hardpoints.named(),
+            Template::MacPherson(t) => t.hardpoints.named(),
+        };
+        named.sort_by_key(|(name, _)| *name);
+        named.into_iter().map(|(name, p)| (name.to_string(), p)).collect()
     }
 }
 
@@ -261,14 +255,11 @@ fn far_hardpoints(points: &[(String, Vec3)]) -> Vec<Warning> {
 /// Zero when the tie-rod line meets the axis or runs parallel to it: the rod then cannot steer the wheel.
 fn steering_lever(points: &[(String, Vec3)], layout: &Layout) -> Vec<Warning> {
     let [lower, upper] = layout.steering_axis;
-    let (a, b) = (point(points, lower), point(points, upper));
+    let axis = (point(points, lower), point(points, upper));
     let (inner, outer) = (point(points, "tie_rod_inner"), point(points, "tie_rod_outer"));
-    let (axis, rod) = (b - a, outer - inner);
-    if axis.norm() == 0.0 || rod.norm() == 0.0 {
-        // Coincident points are refused with their own error when the corner is built.
-        return Vec::new();
-    }
-    let lever = (outer - a).cross(&(rod / rod.norm())).dot(&(axis / axis.norm())).abs();
+    // Coincident points are refused with their own error when the corner is built.
+    let Some(lever) = crate::corner::tie_rod_lever(axis, inner, outer) else { return Vec::new() };
+    let lever = lever.abs();
     if lever >= MIN_STEERING_LEVER {
         return Vec::new();
     }

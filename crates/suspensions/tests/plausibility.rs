@@ -255,3 +255,21 @@ fn the_report_gives_the_counts_the_condition_and_each_warning_with_its_code() {
     assert_eq!(lines.len(), 3, "{lines:#?}");
     assert!(lines[2].starts_with("warning [tie-rod-on-steering-axis]: the tie rod ('tie_rod_inner'"), "{}", lines[2]);
 }
+
+/// The templates' named hardpoint lists (what the checks and warnings read) hold every hardpoint of the
+/// model file, with the file's values.
+#[test]
+fn every_hardpoint_of_the_file_is_named() {
+    for name in EXAMPLES {
+        let v = example(name);
+        let file: SuspensionFile = serde_json::from_value(v.clone()).unwrap();
+        let (_, t) = v["suspension"].as_object().unwrap().iter().next().unwrap();
+        let from_file = t["hardpoints"].as_object().unwrap();
+        let named = file.suspension.hardpoints();
+        assert_eq!(named.len(), from_file.len(), "{name}");
+        for (key, p) in &named {
+            let q = &from_file[key.as_str()];
+            assert_eq!([p.x, p.y, p.z], [0, 1, 2].map(|k| q[k].as_f64().unwrap()), "{name}: {key}");
+        }
+    }
+}
