@@ -9,7 +9,7 @@
 //! Every number on the page comes from the report or the model file: a figure without a value shows
 //! its reason, an empty table cell stays empty, and nothing non-finite is printed.
 
-use crate::suspensions::kc::{significant, AnalysisReport, Cell, Chart, Figure, KcReport, Notice, Table};
+use crate::suspensions::kc::{significant, AnalysisReport, Cell, Chart, Figure, KcReport, Table, Warning};
 use crate::suspensions::SuspensionFile;
 use html_escape::{encode_double_quoted_attribute as attr, encode_text as text};
 use serde_json::Value;
@@ -188,7 +188,7 @@ fn write_hardpoints(out: Out, model: &SuspensionFile) -> std::fmt::Result {
 }
 
 fn write_warnings(out: Out, report: &KcReport) -> std::fmt::Result {
-    let warnings: Vec<(&str, &Notice)> = report
+    let warnings: Vec<(&str, &Warning)> = report
         .warnings
         .iter()
         .map(|w| ("model", w))

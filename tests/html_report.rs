@@ -2,7 +2,7 @@
 //! figure (or its reason), plot, warning, hardpoint and skipped analysis — with nothing non-finite.
 
 use elastokin::html::{report_html, TABLE_ROW_LIMIT};
-use elastokin::suspensions::kc::{self, Cell, Chart, Figure, KcReport, Notice, Settings, Table};
+use elastokin::suspensions::kc::{self, Cell, Chart, Figure, KcReport, Settings, Table, Warning};
 use elastokin::suspensions::SuspensionFile;
 use serde_json::json;
 use std::path::Path;
@@ -147,12 +147,12 @@ fn report_is_well_formed_self_contained_and_shows_every_analysis() {
 #[test]
 fn warnings_appear_with_their_code_at_the_top() {
     let mut report = suite().clone();
-    report.warnings.push(Notice {
+    report.warnings.push(Warning {
         code: "implausible-spring",
         hardpoints: Vec::new(),
         message: "the spring rate is 3 N/m & low".into(),
     });
-    report.analyses[1].warnings.push(Notice {
+    report.analyses[1].warnings.push(Warning {
         code: "error-over-tolerance",
         hardpoints: Vec::new(),
         message: "roll: too coarse".into(),

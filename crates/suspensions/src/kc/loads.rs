@@ -2,8 +2,8 @@
 
 use super::travel::{axis, chart};
 use super::{
-    deg, finish, mode_word, outside, solve_error, Accuracy, Analysis, AnalysisReport, Cell, Figure, Notice, Reduction,
-    Settings, Table,
+    deg, finish, mode_word, outside, said, Accuracy, Analysis, AnalysisReport, Cell, Figure, Reduction, Settings,
+    Table, Warning,
 };
 use crate::analysis::{
     design_wheel_load, slope_at, static_load_case, vertical_force_sweep_with, wheel_load_sweep_with, ComponentForces,
@@ -12,13 +12,9 @@ use crate::analysis::{
 use crate::model_file::SuspensionFile;
 use crate::{Rig, Side};
 
-fn model_error(e: elastokin_core::ModelError) -> String {
-    e.to_string()
-}
-
 pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
-    let held = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(model_error)?;
-    let design_load = design_wheel_load(&held).map_err(solve_error)?;
+    let held = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(said)?;
+    let design_load = design_wheel_load(&held).map_err(said)?;
     let range = match s.range {
         Some(range) => range,
         // Below a newton the default range has no width, and the wheel rate (force over travel) no value.
@@ -31,9 +27,9 @@ pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<Anal
         }
         None => (0.5 * design_load, 1.5 * design_load),
     };
-    let corner = file.suspension.build(Side::Left, Rig::Free).map_err(model_error)?;
+    let corner = file.suspension.build(Side::Left, Rig::Free).map_err(said)?;
     let z0 = corner.wheel.wheel_centre.z;
-    let out = vertical_force_sweep_with(corner, range.0, range.1, s.steps, s.mode, s.extras()).map_err(solve_error)?;
+    let out = vertical_force_sweep_with(corner, range.0, range.1, s.steps, s.mode, s.extras()).map_err(said)?;
     let table = |rows: &[LoadRow]| {
         Table::numbers(
             "vertical_force",
@@ -131,13 +127,12 @@ pub(super) fn road_load(file: &SuspensionFile, load: WheelLoad, s: &Settings) ->
     let range = s.range.unwrap_or(default_range);
     let corner_load = match &file.vehicle {
         Some(v) => v.corner_load,
-        None => design_wheel_load(&file.suspension.build(Side::Left, Rig::WheelTravel).map_err(model_error)?)
-            .map_err(solve_error)?,
+        None => design_wheel_load(&file.suspension.build(Side::Left, Rig::WheelTravel).map_err(said)?).map_err(said)?,
     };
     let rig = if s.height_held { Rig::HeightHeld } else { Rig::Free };
-    let corner = file.suspension.build(Side::Left, rig).map_err(model_error)?;
+    let corner = file.suspension.build(Side::Left, rig).map_err(said)?;
     let out = wheel_load_sweep_with(corner, load, corner_load, range.0, range.1, s.steps, s.mode, s.extras())
-        .map_err(solve_error)?;
+        .map_err(said)?;
     let name = analysis.name();
     let stem = name.replace('-', "_");
     let table = |rows: &[LoadRow]| {
@@ -265,8 +260,8 @@ pub(super) fn static_load(file: &SuspensionFile, s: &Settings) -> Result<Analysi
     let vehicle = file.vehicle.as_ref().ok_or(
         "the model file has no \"vehicle\" section with the corner_load to carry (see examples/macpherson.json)",
     )?;
-    let corner = file.suspension.build(Side::Left, Rig::Free).map_err(model_error)?;
-    let rest = static_load_case(corner, vehicle.corner_load).map_err(solve_error)?;
+    let corner = file.suspension.build(Side::Left, Rig::Free).map_err(said)?;
+    let rest = static_load_case(corner, vehicle.corner_load).map_err(said)?;
     let table = Table {
         name: "static_load".into(),
         columns: [
@@ -309,7 +304,7 @@ pub(super) fn static_load(file: &SuspensionFile, s: &Settings) -> Result<Analysi
     let within = constraint_residual <= s.tolerance.length_m;
     let mut warnings = Vec::new();
     if !within {
-        warnings.push(Notice {
+        warnings.push(Warning {
             code: "error-over-tolerance",
             hardpoints: Vec::new(),
             message: format!(

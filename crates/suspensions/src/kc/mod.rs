@@ -16,11 +16,11 @@ mod travel;
 pub use travel::ideal_outer_steer;
 
 pub use chart::{Chart, Scale, Series, YAxis};
-pub use report::{significant, Accuracy, AnalysisReport, Cell, Figure, KcReport, Notice, Skipped, Table};
+pub use report::{significant, Accuracy, AnalysisReport, Cell, Figure, KcReport, Skipped, Table, Warning};
 
 use crate::analysis::{SweepExtras, SweepOutput, WheelLoad};
 use crate::model_file::SuspensionFile;
-use elastokin_solver::{Mode, SolverError};
+use elastokin_solver::Mode;
 use serde::Serialize;
 
 /// One K&C test.
@@ -293,7 +293,9 @@ fn deg(rad: f64) -> f64 {
     rad.to_degrees()
 }
 
-fn engine(e: impl std::fmt::Display) -> String {
+/// An engine error (model or solver) as the analysis's message: the errors already speak the user's
+/// words, so this only takes their text.
+fn said(e: impl std::fmt::Display) -> String {
     e.to_string()
 }
 
@@ -379,7 +381,7 @@ fn finish<R>(
         if !over_figures.is_empty() {
             what.push(format!("figures {} (tolerance {:.1} %)", over_figures.join(", "), tol.relative * 100.0));
         }
-        warnings.push(Notice {
+        warnings.push(Warning {
             code: "error-over-tolerance",
             hardpoints: Vec::new(),
             message: format!("{}: estimated error {}; {fix}", analysis.name(), what.join(", ")),
@@ -472,11 +474,6 @@ fn outside(range: (f64, f64), at: f64, unit: &str) -> String {
 /// The reason a figure needs a vehicle-section entry the file lacks.
 fn needs_vehicle(field: &str) -> String {
     format!("needs vehicle.{field} in the model file")
-}
-
-/// A solver error in the words of the analysis.
-fn solve_error(e: SolverError) -> String {
-    engine(e)
 }
 
 #[cfg(test)]

@@ -211,7 +211,7 @@ pub struct Accuracy {
 
 /// Something a user should know about a model or a result: the plausibility checks' warning type, also
 /// used for results (an error estimate over the tolerance), with no hardpoints named.
-pub use crate::plausibility::Warning as Notice;
+pub use crate::plausibility::Warning;
 
 /// What one K&C analysis produced.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -245,7 +245,7 @@ pub struct AnalysisReport {
     /// The rows' accuracy.
     pub accuracy: Accuracy,
     /// Warnings about the result.
-    pub warnings: Vec<Notice>,
+    pub warnings: Vec<Warning>,
 }
 
 impl AnalysisReport {
@@ -303,7 +303,7 @@ pub struct KcReport {
     /// condition, warnings), when they could run.
     pub model_check: Option<crate::plausibility::ModelCheck>,
     /// Warnings about the model (plausibility) and the results.
-    pub warnings: Vec<Notice>,
+    pub warnings: Vec<Warning>,
 }
 
 impl KcReport {
@@ -313,7 +313,7 @@ impl KcReport {
     }
 
     /// Every warning: the model's and each analysis's.
-    pub fn all_warnings(&self) -> impl Iterator<Item = &Notice> {
+    pub fn all_warnings(&self) -> impl Iterator<Item = &Warning> {
         self.warnings.iter().chain(self.analyses.iter().flat_map(|a| &a.warnings))
     }
 }

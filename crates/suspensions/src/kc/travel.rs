@@ -1,8 +1,8 @@
 //! The driven K&C tests: parallel wheel travel on a corner, roll and steering on the full axle.
 
 use super::{
-    deg, finish, needs_vehicle, outside, short_name, solve_error, AnalysisReport, Chart, Figure, Notice, Reduction,
-    Scale, Series, Settings, Table, YAxis,
+    deg, finish, needs_vehicle, outside, said, short_name, AnalysisReport, Chart, Figure, Reduction, Scale, Series,
+    Settings, Table, Warning, YAxis,
 };
 use super::{Analysis, Cell};
 use crate::analysis::{
@@ -54,9 +54,8 @@ pub(super) fn axis<R>(label: &str, rows: &[R], x: impl Fn(&R) -> f64, curves: &[
 
 pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
     let range = s.range.unwrap_or((-0.08, 0.08));
-    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(solve_error_model)?;
-    let out =
-        parallel_wheel_travel_with(&corner, range.0, range.1, s.steps, s.mode, s.extras()).map_err(solve_error)?;
+    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(said)?;
+    let out = parallel_wheel_travel_with(&corner, range.0, range.1, s.steps, s.mode, s.extras()).map_err(said)?;
     let wheel = &corner.wheel;
     let sign = wheel.side.sign();
     let table = |rows: &[TravelRow]| {
@@ -219,7 +218,7 @@ pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<Ana
     // Toe, camber and wheel rate no car has, inside the travel asked for.
     report.warnings.extend(crate::plausibility::check_travel_rows(&out.rows));
     // Figures of the design position itself, from the tangent there (not read off the rows).
-    let pc = patch_compliance(&corner, 0.0).map_err(solve_error)?;
+    let pc = patch_compliance(&corner, 0.0).map_err(said)?;
     let per_kn = |rad_per_n: f64| deg(rad_per_n) * 1e3;
     report.figures.extend([
         Figure::new(
@@ -248,11 +247,11 @@ pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<Ana
         ),
     ]);
     // JSON has no NaN: a matrix with a non-finite entry (a motion nothing holds) is left out, and said so.
-    let compliance = wheel_compliance(&corner, 0.0).map_err(solve_error)?;
+    let compliance = wheel_compliance(&corner, 0.0).map_err(said)?;
     if compliance.iter().flatten().all(|v| v.is_finite()) {
         report.wheel_compliance_at_design = Some(compliance);
     } else {
-        report.warnings.push(Notice {
+        report.warnings.push(Warning {
             code: "compliance-not-finite",
             hardpoints: Vec::new(),
             message: "the wheel compliance at design is not finite: some motion of the wheel is held by \
@@ -262,7 +261,7 @@ pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<Ana
     }
     match &file.vehicle {
         Some(vehicle) => {
-            let a = anti_pitch(&corner, vehicle).map_err(solve_error)?;
+            let a = anti_pitch(&corner, vehicle).map_err(said)?;
             let (braking, traction) = match vehicle.axle {
                 crate::analysis::AxlePosition::Front => ("anti-dive", "anti-lift (drive)"),
                 crate::analysis::AxlePosition::Rear => ("anti-lift (braking)", "anti-squat"),
@@ -298,11 +297,6 @@ pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<Ana
     Ok(report)
 }
 
-/// A model error in the words of the analysis.
-fn solve_error_model(e: elastokin_core::ModelError) -> String {
-    e.to_string()
-}
-
 /// Camber of a wheel relative to the ground when the body rolls by `roll` (about +x) relative to it:
 /// the roll tips the top of the left wheel inboard (−y) and the right wheel's outboard.
 fn ground_camber(camber_to_body: f64, side: Side, roll: f64) -> f64 {
@@ -311,8 +305,8 @@ fn ground_camber(camber_to_body: f64, side: Side, roll: f64) -> f64 {
 
 pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
     let range = s.range.unwrap_or((-0.05, 0.05));
-    let axle = Axle::build(&file.suspension, AxleRig::OppositeTravel).map_err(solve_error_model)?;
-    let out = axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras()).map_err(solve_error)?;
+    let axle = Axle::build(&file.suspension, AxleRig::OppositeTravel).map_err(said)?;
+    let out = axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras()).map_err(said)?;
     let table = |rows: &[AxleRow]| Table {
         name: "roll".into(),
         columns: [
@@ -486,8 +480,8 @@ fn ackermann(r: &AxleRow, track: f64, wheelbase: f64) -> Option<(f64, f64, f64)>
 
 pub(super) fn steering(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
     let range = s.range.unwrap_or((-0.04, 0.04));
-    let axle = Axle::build(&file.suspension, AxleRig::Steering).map_err(solve_error_model)?;
-    let out = axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras()).map_err(solve_error)?;
+    let axle = Axle::build(&file.suspension, AxleRig::Steering).map_err(said)?;
+    let out = axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras()).map_err(said)?;
     let wheelbase = file.vehicle.as_ref().map(|v| v.wheelbase);
     // Track between the contact patches at design: the lateral distance Ackermann's rule uses.
     let track = axle.left.contact_patch.y - axle.right.contact_patch.y;
