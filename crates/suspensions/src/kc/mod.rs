@@ -418,7 +418,7 @@ fn finish<R>(
 fn over_tolerance(f: &Figure, relative: f64) -> Option<String> {
     let (v, e) = (f.value?, f.error?);
     let ratio = e / v.abs();
-    (e > relative * v.abs() && e > 0.5 * 10f64.powi(-(f.decimals as i32))).then(|| {
+    (e > relative * v.abs() && f.shows(e)).then(|| {
         if ratio < 10.0 {
             format!("{} ±{:.1} %", f.label, 100.0 * ratio)
         } else {

@@ -136,12 +136,18 @@ impl Figure {
         Figure { key: key.into(), label: label.into(), unit: unit.into(), decimals, value, reason, error: None }
     }
 
+    /// Whether an error of `e` shows in the decimals the figure is printed with (more than half its last
+    /// digit).
+    pub fn shows(&self, e: f64) -> bool {
+        e > 0.5 * 10f64.powi(-(self.decimals as i32))
+    }
+
     /// The figure as the terminal shows it: `label  value unit  (± error)` or `label  — reason`.
     pub fn line(&self) -> String {
         match self.value {
             Some(v) => {
                 let err = match self.error {
-                    Some(e) if e > 0.5 * 10f64.powi(-(self.decimals as i32)) => {
+                    Some(e) if self.shows(e) => {
                         format!("  (± {})", significant(e, 2))
                     }
                     _ => String::new(),
