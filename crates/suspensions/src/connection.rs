@@ -105,18 +105,7 @@ pub(crate) fn axial_bushing(
     if !(n.is_finite() && n > 1e-9) {
         return Err(ModelError::CoincidentPoints { item: name.to_string(), distance: n });
     }
-    // Named by the model file's keys: the element itself knows its rates only as stiffnesses along and
-    // about its local axes.
-    for (what, value) in
-        [("radial rate", r.radial), ("axial rate", r.axial), ("torsion rate", r.torsion), ("conical rate", r.conical)]
-    {
-        if !value.is_finite() {
-            return Err(ModelError::NonFinite { item: name.to_string(), what });
-        }
-        if value <= 0.0 {
-            return Err(ModelError::NotPositive { item: name.to_string(), what, value });
-        }
-    }
+    // The rates were checked by their model-file keys when the corner began (`corner::check_connection`).
     let x = axis / n;
     let (y, z) = orthonormal_complement(&x);
     Bushing::new(
