@@ -130,35 +130,16 @@ fn scalar(value: &Value) -> String {
     }
 }
 
-/// The model's hardpoints, read from its serialised form so that every template's points are listed
-/// under the names the model file uses.
-/// The hardpoints of a model file's template: its name (`macpherson`, `double_wishbone`) and each point's
-/// name and position (m).
+/// The hardpoints of a model file: its template's name (`macpherson`, `double_wishbone`, `general`) and
+/// each point's name and position (m).
 struct Hardpoints {
     template: String,
     points: Vec<(String, [f64; 3])>,
 }
 
 fn hardpoints(model: &SuspensionFile) -> Result<Hardpoints, String> {
-    let value = serde_json::to_value(model.suspension).map_err(|e| e.to_string())?;
-    let (template, body) = value
-        .as_object()
-        .and_then(|m| m.iter().next())
-        .ok_or_else(|| "the suspension is not a template object".to_string())?;
-    let points = body
-        .get("hardpoints")
-        .and_then(Value::as_object)
-        .ok_or_else(|| format!("the {template} template has no hardpoints object"))?;
-    let mut rows = Vec::with_capacity(points.len());
-    for (name, p) in points {
-        let xyz = p
-            .as_array()
-            .filter(|a| a.len() == 3)
-            .and_then(|a| Some([a[0].as_f64()?, a[1].as_f64()?, a[2].as_f64()?]))
-            .ok_or_else(|| format!("hardpoint {name} is not three numbers: {p}"))?;
-        rows.push((name.clone(), xyz));
-    }
-    Ok(Hardpoints { template: template.clone(), points: rows })
+    let points = model.suspension.hardpoints().into_iter().map(|(name, p)| (name, [p.x, p.y, p.z])).collect();
+    Ok(Hardpoints { template: model.suspension.kind().to_string(), points })
 }
 
 fn write_hardpoints(out: Out, model: &SuspensionFile) -> std::fmt::Result {

@@ -80,13 +80,17 @@ impl Axle {
         let mut model = Model::new();
         let left = template.add_corner(&mut model, Side::Left, "left ")?;
         let right = template.add_corner(&mut model, Side::Right, "right ")?;
-        let inner = if rig == AxleRig::Steering {
-            add_rack(&mut model, (left.tie_rod.inner + right.tie_rod.inner) / 2.0)?
-        } else {
-            BodyRef::Ground
+        template.add_cross_axle(&mut model, ("left ", &left), ("right ", &right))?;
+        let inner = match (rig, left.tie_rod, right.tie_rod) {
+            (AxleRig::Steering, Some(l), Some(r)) => add_rack(&mut model, (l.inner + r.inner) / 2.0)?,
+            (AxleRig::Steering, _, _) => return Err(crate::corner::no_steering_input()),
+            _ => BodyRef::Ground,
         };
-        mount_tie_rod(&mut model, "left ", inner, left.wheel.upright, left.tie_rod)?;
-        mount_tie_rod(&mut model, "right ", inner, right.wheel.upright, right.tie_rod)?;
+        for (prefix, parts) in [("left ", &left), ("right ", &right)] {
+            if let Some(tie_rod) = parts.tie_rod {
+                mount_tie_rod(&mut model, prefix, inner, &parts.wheel, tie_rod)?;
+            }
+        }
         let travel_rates = match rig {
             AxleRig::ParallelTravel => Some((1.0, 1.0)),
             AxleRig::OppositeTravel => Some((1.0, -1.0)),

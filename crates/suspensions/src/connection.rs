@@ -1,8 +1,7 @@
 //! How parts meet the chassis and each other: an ideal joint or a rubber bushing, and the coil spring.
 
-use elastokin_core::joint::orthonormal_complement;
-use elastokin_core::{BodyRef, JointSpec, Mat3, Model, ModelError, Vec3};
-use elastokin_elements::{Bushing, RotationLaw};
+use crate::general::{Axis, BushingDef, GeneralCorner, JointDef, JointType, Place, CHASSIS};
+use elastokin_elements::RotationLaw;
 use serde::{Deserialize, Serialize};
 
 /// Rates of a cylindrical rubber bushing (SI: N/m and N·m/rad), in its own frame whose x axis is the
@@ -22,6 +21,10 @@ pub struct BushingRates {
     /// or `"tait_bryan_xyz"` (the energy of body-fixed x-y-z angles); see [`RotationLaw`].
     #[serde(default, skip_serializing_if = "is_default_law")]
     pub law: RotationLaw,
+    /// The bushing's axis (left corner, any length), when it is not the template's (the arm's pivot axis,
+    /// the strut axis, the tie rod).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub axis: Option<[f64; 3]>,
 }
 
 fn is_default_law(law: &RotationLaw) -> bool {
@@ -31,7 +34,7 @@ fn is_default_law(law: &RotationLaw) -> bool {
 impl BushingRates {
     /// Rates with the default rotation law.
     pub fn new(radial: f64, axial: f64, torsion: f64, conical: f64) -> Self {
-        BushingRates { radial, axial, torsion, conical, law: RotationLaw::default() }
+        BushingRates { radial, axial, torsion, conical, law: RotationLaw::default(), axis: None }
     }
 
     /// Every rate multiplied by `factor` (for stiffness studies).
@@ -41,7 +44,7 @@ impl BushingRates {
             axial: self.axial * factor,
             torsion: self.torsion * factor,
             conical: self.conical * factor,
-            law: self.law,
+            ..self
         }
     }
 }
@@ -67,55 +70,93 @@ pub struct SpringSpec {
     pub design_force: f64,
 }
 
-/// Mounts an arm on the chassis through its front and rear pivots: a revolute about the pivot axis, or a
-/// bushing at each pivot with its axis along the pivot axis.
-pub(crate) fn arm_mounts(
-    model: &mut Model,
-    arm_name: &str,
-    arm: BodyRef,
-    front: Vec3,
-    rear: Vec3,
-    connection: Connection,
-) -> Result<(), ModelError> {
-    let axis = rear - front;
-    match connection {
-        Connection::Ideal => {
-            model.add_joint(JointSpec::revolute(&format!("{arm_name} pivot"), BodyRef::Ground, arm, front, axis))?;
+/// How an arm meets the chassis at its front and rear pivots. Written as one connection for both
+/// (`"ideal"`: a revolute about the pivot axis; a bushing: the same bushing at each pivot), or as
+/// `{"front": …, "rear": …}` when they differ (an ideal end is then a ball joint).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ArmMounts {
+    /// At the front pivot.
+    pub front: Connection,
+    /// At the rear pivot.
+    pub rear: Connection,
+}
+
+impl From<Connection> for ArmMounts {
+    fn from(both: Connection) -> Self {
+        ArmMounts { front: both, rear: both }
+    }
+}
+
+/// The two-key form of [`ArmMounts`].
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct EachEnd {
+    front: Connection,
+    rear: Connection,
+}
+
+impl Serialize for ArmMounts {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        if self.front == self.rear {
+            self.front.serialize(s)
+        } else {
+            EachEnd { front: self.front, rear: self.rear }.serialize(s)
         }
-        Connection::Bushing(rates) => {
-            for (end, point) in [("front", front), ("rear", rear)] {
-                let name = format!("{arm_name} {end} bushing");
-                model.add_element(axial_bushing(&name, BodyRef::Ground, arm, point, axis, rates)?)?;
+    }
+}
+
+impl<'de> Deserialize<'de> for ArmMounts {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        let value = serde_json::Value::deserialize(d)?;
+        let each = value.as_object().is_some_and(|o| o.contains_key("front") || o.contains_key("rear"));
+        if each {
+            let e: EachEnd = serde_json::from_value(value).map_err(|e| {
+                D::Error::custom(format!("an arm's mounts {{\"front\": …, \"rear\": …}} need both ends: {e}"))
+            })?;
+            Ok(ArmMounts { front: e.front, rear: e.rear })
+        } else {
+            serde_json::from_value::<Connection>(value).map(ArmMounts::from).map_err(D::Error::custom)
+        }
+    }
+}
+
+impl ArmMounts {
+    /// The general model's joints and bushings of the arm `arm` on the chassis, pivots at the hardpoints
+    /// `front` and `rear`: a revolute `"{arm} pivot"` when both ends are ideal; otherwise, per end, a ball
+    /// joint `"{arm} {end} ball joint"` or a bushing `"{arm} {end} bushing"` along the pivot axis.
+    pub(crate) fn expand(&self, arm: &str, front: &str, rear: &str, into: &mut GeneralCorner) {
+        if *self == ArmMounts::from(Connection::Ideal) {
+            into.joints.push(JointDef {
+                name: format!("{arm} pivot"),
+                kind: JointType::Revolute,
+                bodies: [CHASSIS.into(), arm.into()],
+                at: Some(Place::named(front)),
+                to: None,
+                axis: Some(Axis::through(front, rear)),
+                axis_j: None,
+            });
+            return;
+        }
+        for (end, point, connection) in [("front", front, self.front), ("rear", rear, self.rear)] {
+            match connection {
+                Connection::Ideal => into.joints.push(JointDef {
+                    name: format!("{arm} {end} ball joint"),
+                    kind: JointType::Spherical,
+                    bodies: [CHASSIS.into(), arm.into()],
+                    at: Some(Place::named(point)),
+                    to: None,
+                    axis: None,
+                    axis_j: None,
+                }),
+                Connection::Bushing(rates) => into.bushings.push(BushingDef::cylindrical(
+                    &format!("{arm} {end} bushing"),
+                    [CHASSIS, arm],
+                    Place::named(point),
+                    Axis::through(front, rear),
+                    &rates,
+                )),
             }
         }
     }
-    Ok(())
-}
-
-/// A bushing between `carrier` (whose frame it moves with) and `body` at `point`, its local x along `axis`.
-pub(crate) fn axial_bushing(
-    name: &str,
-    carrier: BodyRef,
-    body: BodyRef,
-    point: Vec3,
-    axis: Vec3,
-    r: BushingRates,
-) -> Result<Bushing, ModelError> {
-    let n = axis.norm();
-    if !(n.is_finite() && n > 1e-9) {
-        return Err(ModelError::CoincidentPoints { item: name.to_string(), distance: n });
-    }
-    // The rates were checked by their model-file keys when the corner began (`corner::check_connection`).
-    let x = axis / n;
-    let (y, z) = orthonormal_complement(&x);
-    Bushing::new(
-        name,
-        carrier,
-        body,
-        point,
-        Mat3::from_columns(&[x, y, z]),
-        Vec3::new(r.axial, r.radial, r.radial),
-        Vec3::new(r.torsion, r.conical, r.conical),
-    )
-    .map(|b| b.with_rotation_law(r.law))
 }

@@ -1,7 +1,10 @@
 //! A suspension corner ready to solve: the template's parts, the tie rod, the rig that holds it, and the
 //! wheel characteristics read from its poses.
 
-use crate::connection::{axial_bushing, Connection, SpringSpec};
+use crate::connection::{BushingRates, Connection, SpringSpec};
+use elastokin_core::joint::orthonormal_complement;
+use elastokin_core::Mat3;
+use elastokin_elements::Bushing;
 use crate::hardpoint::Side;
 use elastokin_core::{BodyId, BodyRef, ElementId, JointSpec, Model, ModelError, Pose, Vec3, BODY_DOFS};
 use elastokin_elements::{PointForce, PointTorque};
@@ -28,6 +31,17 @@ pub trait CornerTemplate {
     /// (`""` for a lone corner, `"left "` / `"right "` on an axle). The tie rod is not added: it is
     /// returned in [`CornerParts::tie_rod`] for the rig to attach to the rack or the chassis.
     fn add_corner(&self, model: &mut Model, side: Side, prefix: &str) -> Result<CornerParts, ModelError>;
+
+    /// Adds the parts that join the two corners of an axle (anti-roll bars), after both corners, each
+    /// given with its name prefix. None by default.
+    fn add_cross_axle(
+        &self,
+        _model: &mut Model,
+        _left: (&str, &CornerParts),
+        _right: (&str, &CornerParts),
+    ) -> Result<(), ModelError> {
+        Ok(())
+    }
 }
 
 /// What a template added for one corner.
@@ -35,8 +49,9 @@ pub trait CornerTemplate {
 pub struct CornerParts {
     /// The wheel: upright, wheel centre, contact patch, steering axis.
     pub wheel: Wheel,
-    /// The tie rod, still to be attached.
-    pub tie_rod: TieRod,
+    /// The tie rod, still to be attached; `None` when the corner has no steering input (its toe is held
+    /// by its own links).
+    pub tie_rod: Option<TieRod>,
 }
 
 /// A tie rod between the rack (or the chassis when the rack is fixed) and the upright.
@@ -115,7 +130,7 @@ pub const TRANSLATIONAL_RATE_RANGE: (f64, f64) = (1.0, 1e15);
 pub const ROTATIONAL_RATE_RANGE: (f64, f64) = (1e-3, 1e15);
 
 /// Refuses a rate outside its range, naming its model-file key.
-fn check_rate(key: &str, value: f64, (least, most): (f64, f64), unit: &str) -> Result<(), ModelError> {
+pub(crate) fn check_rate(key: &str, value: f64, (least, most): (f64, f64), unit: &str) -> Result<(), ModelError> {
     if value >= least && value <= most {
         return Ok(());
     }
@@ -139,6 +154,15 @@ pub(crate) fn check_connection(key: &str, connection: &Connection) -> Result<(),
     Ok(())
 }
 
+/// [`check_connection`] for each end of an arm.
+pub(crate) fn check_arm_mounts(key: &str, mounts: &crate::connection::ArmMounts) -> Result<(), ModelError> {
+    if mounts.front == mounts.rear {
+        return check_connection(key, &mounts.front);
+    }
+    check_connection(&format!("{key}.front"), &mounts.front)?;
+    check_connection(&format!("{key}.rear"), &mounts.rear)
+}
+
 /// Largest spring force at design accepted (N): a hundred times a heavy truck's; beyond, the spring's
 /// geometric stiffness (force over length) overflows.
 pub const MAX_SPRING_FORCE: f64 = 1e8;
@@ -146,14 +170,18 @@ pub const MAX_SPRING_FORCE: f64 = 1e8;
 /// Refuses a coil spring whose design force and rate give no free length: `L₀ = L + F/k` must be a
 /// positive length (a coil spring pushes; a tension larger than `k·L` would need a negative one).
 pub(crate) fn check_spring(spring: &SpringSpec, design_length: f64) -> Result<(), ModelError> {
-    let SpringSpec { rate, design_force } = *spring;
-    check_rate("spring.rate", rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
+    check_rate("spring.rate", spring.rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
+    check_spring_force("spring", spring.rate, spring.design_force, design_length)
+}
+
+/// [`check_spring`]'s design-force part for the spring at model-file key `key`, whose rate was checked.
+pub(crate) fn check_spring_force(key: &str, rate: f64, design_force: f64, design_length: f64) -> Result<(), ModelError> {
     if design_force.is_nan() || design_force.abs() > MAX_SPRING_FORCE {
         let got = if design_force.is_finite() { format!("{design_force:e}") } else { "not a finite number".into() };
         return Err(ModelError::OutOfRange {
-            item: "spring".into(),
+            item: key.into(),
             why: format!(
-                "spring.design_force must be a force in N from {:e} to {MAX_SPRING_FORCE:e}, got {got}",
+                "{key}.design_force must be a force in N from {:e} to {MAX_SPRING_FORCE:e}, got {got}",
                 -MAX_SPRING_FORCE
             ),
         });
@@ -165,19 +193,19 @@ pub(crate) fn check_spring(spring: &SpringSpec, design_length: f64) -> Result<()
     let free_length = design_length + design_force / rate;
     let why = if !free_length.is_finite() {
         format!(
-            "spring.design_force {design_force:.4e} N at spring.rate {rate:.4e} N/m would compress the spring by \
+            "{key}.design_force {design_force:.4e} N at {key}.rate {rate:.4e} N/m would compress the spring by \
              more than any length: give the rate in N/m and the push at design in N"
         )
     } else if free_length <= 0.0 {
         format!(
-            "spring.design_force {design_force:.4e} N at spring.rate {rate:.4e} N/m would need a free length of \
+            "{key}.design_force {design_force:.4e} N at {key}.rate {rate:.4e} N/m would need a free length of \
              {free_length:.4e} m for a design length of {design_length:.4} m: a coil spring pushes, so give \
-             spring.design_force as its push at design (N, above -rate × design length)"
+             {key}.design_force as its push at design (N, above -rate × design length)"
         )
     } else {
         return Ok(());
     };
-    Err(ModelError::OutOfRange { item: "spring".into(), why })
+    Err(ModelError::OutOfRange { item: key.into(), why })
 }
 
 /// Refuses a steering axis (from `axis.0` up to `axis.1`, named by `axis_names`) that is too short to
@@ -248,21 +276,50 @@ pub(crate) fn part_name(prefix: &str, name: &str) -> String {
     format!("{prefix}{name}")
 }
 
-/// Attaches a tie rod between `inner_body` and the upright.
+/// A bushing between `carrier` (whose frame it moves with) and `body` at `point`, its local x along `axis`.
+fn axial_bushing(
+    name: &str,
+    carrier: BodyRef,
+    body: BodyRef,
+    point: Vec3,
+    axis: Vec3,
+    r: BushingRates,
+) -> Result<Bushing, ModelError> {
+    let n = axis.norm();
+    if !(n.is_finite() && n > 1e-9) {
+        return Err(ModelError::CoincidentPoints { item: name.to_string(), distance: n });
+    }
+    // The rates were checked by their model-file keys when the corner began (`check_connection`).
+    let x = axis / n;
+    let (y, z) = orthonormal_complement(&x);
+    Bushing::new(
+        name,
+        carrier,
+        body,
+        point,
+        Mat3::from_columns(&[x, y, z]),
+        Vec3::new(r.axial, r.radial, r.radial),
+        Vec3::new(r.torsion, r.conical, r.conical),
+    )
+    .map(|b| b.with_rotation_law(r.law))
+}
+
+/// Attaches a tie rod between `inner_body` and the wheel's upright.
 pub(crate) fn mount_tie_rod(
     model: &mut Model,
     prefix: &str,
     inner_body: BodyRef,
-    upright: BodyId,
+    wheel: &Wheel,
     tie_rod: TieRod,
 ) -> Result<(), ModelError> {
     let name = part_name(prefix, "tie rod");
+    let upright = wheel.upright;
     match tie_rod.connection {
         Connection::Ideal => {
             model.add_joint(JointSpec::distance(&name, inner_body, upright, tie_rod.inner, tie_rod.outer))?;
         }
         Connection::Bushing(rates) => {
-            let axis = tie_rod.outer - tie_rod.inner;
+            let axis = rates.axis.map_or(tie_rod.outer - tie_rod.inner, |a| wheel.side.place(a.into()));
             let rod = model.add_body(&name, Pose::at((tie_rod.inner + tie_rod.outer) / 2.0))?;
             let inner =
                 axial_bushing(&format!("{name} inner bushing"), inner_body, rod.into(), tie_rod.inner, axis, rates)?;
@@ -279,6 +336,16 @@ pub(crate) fn mount_tie_rod(
         }
     }
     Ok(())
+}
+
+/// The error for a steering rig on a corner without a tie rod.
+pub(crate) fn no_steering_input() -> ModelError {
+    ModelError::OutOfRange {
+        item: "corner.tie_rod".into(),
+        why: "the steering analysis needs a steering input: this corner has no tie rod (corner.tie_rod), so its \
+              toe is held by its own links and it cannot be steered"
+            .into(),
+    }
 }
 
 /// Adds a rack: a body on a lateral slide at `at`, driven by `t` (m towards +y), named "rack".
@@ -377,15 +444,18 @@ pub struct WheelAttitude {
 }
 
 impl Wheel {
-    /// Checks the loaded radius and adds the upright, its reference point at the wheel centre (axes global
-    /// at design), named `{prefix}upright`. Returns the upright and the wheel centre on `side`.
-    pub fn add_upright(
-        model: &mut Model,
+    /// The wheel on `upright`: its centre `wheel_centre` and outward `spin_axis` at design (global, this
+    /// side), the contact patch a loaded radius from the centre down the wheel plane; `steering_axis`
+    /// holds global design points with their bodies. Refuses a loaded radius that is not a length.
+    pub fn on(
+        model: &Model,
         side: Side,
-        prefix: &str,
-        left_wheel_centre: Vec3,
+        upright: BodyId,
+        wheel_centre: Vec3,
+        spin_axis: Vec3,
         loaded_radius: f64,
-    ) -> Result<(BodyId, Vec3), ModelError> {
+        steering_axis: [(BodyRef, Vec3); 2],
+    ) -> Result<Wheel, ModelError> {
         if loaded_radius > MAX_LOADED_RADIUS {
             return Err(ModelError::OutOfRange {
                 item: "suspension".into(),
@@ -401,22 +471,6 @@ impl Wheel {
                 value: loaded_radius,
             });
         }
-        let wc = side.place(left_wheel_centre);
-        let upright = model.add_body(&part_name(prefix, "upright"), Pose::at(wc))?;
-        Ok((upright, wc))
-    }
-
-    /// The wheel on an upright added by [`Wheel::add_upright`]: the spin axis is outward (±y) at design, the
-    /// contact patch a loaded radius below the wheel centre; `steering_axis` holds global design points
-    /// with their bodies.
-    pub fn new(
-        model: &Model,
-        side: Side,
-        upright: BodyId,
-        loaded_radius: f64,
-        steering_axis: [(BodyRef, Vec3); 2],
-    ) -> Wheel {
-        let wheel_centre = model.bodies()[upright.0].design_pose.position;
         let local = |(body, point): (BodyRef, Vec3)| {
             let pose = match body {
                 BodyRef::Ground => Pose::IDENTITY,
@@ -424,15 +478,17 @@ impl Wheel {
             };
             (body, pose.to_local_point(&point))
         };
-        Wheel {
+        let pose = model.bodies()[upright.0].design_pose;
+        let a = spin_axis / spin_axis.norm();
+        Ok(Wheel {
             side,
             upright,
             wheel_centre,
-            wheel_centre_local: Vec3::zeros(),
-            spin_axis_local: Vec3::new(0.0, side.sign(), 0.0),
-            contact_patch: wheel_centre - Vec3::new(0.0, 0.0, loaded_radius),
+            wheel_centre_local: pose.to_local_point(&wheel_centre),
+            spin_axis_local: pose.to_local_direction(&a),
+            contact_patch: wheel_centre + down_the_wheel_plane(&a) * loaded_radius,
             steering_axis: [local(steering_axis[0]), local(steering_axis[1])],
-        }
+        })
     }
 
     /// Toe, camber and wheel centre at the given poses.
@@ -475,9 +531,7 @@ impl Wheel {
         let pose = poses[self.upright.0];
         let a = pose.direction(&self.spin_axis_local);
         let wc = pose.point(&self.wheel_centre_local);
-        // Downward direction in the wheel plane.
-        let up_in_plane = Vec3::z() - a * a.z;
-        let down = -up_in_plane / up_in_plane.norm();
+        let down = down_the_wheel_plane(&a);
         let radius = (self.wheel_centre - self.contact_patch).norm();
         let patch = wc + down * radius;
         let at_height = |z: f64| lower + u * ((z - lower.z) / u.z);
@@ -494,6 +548,12 @@ impl Wheel {
     }
 }
 
+/// The downward direction in the plane of a wheel whose spin axis is `a` (unit).
+fn down_the_wheel_plane(a: &Vec3) -> Vec3 {
+    let up_in_plane = Vec3::z() - a * a.z;
+    -up_in_plane / up_in_plane.norm()
+}
+
 impl Corner {
     /// Builds `template`'s corner on `side` with its tie rod and held as `rig` says: a rack on a lateral
     /// slide when steering (else the tie rod's inner end is on the chassis), and the wheel-centre height
@@ -501,8 +561,15 @@ impl Corner {
     pub fn build(template: &impl CornerTemplate, side: Side, rig: Rig) -> Result<Corner, ModelError> {
         let mut model = Model::new();
         let parts = template.add_corner(&mut model, side, "")?;
-        let inner = if rig == Rig::Steering { add_rack(&mut model, parts.tie_rod.inner)? } else { BodyRef::Ground };
-        mount_tie_rod(&mut model, "", inner, parts.wheel.upright, parts.tie_rod)?;
+        match (parts.tie_rod, rig) {
+            (Some(tie_rod), Rig::Steering) => {
+                let rack = add_rack(&mut model, tie_rod.inner)?;
+                mount_tie_rod(&mut model, "", rack, &parts.wheel, tie_rod)?;
+            }
+            (Some(tie_rod), _) => mount_tie_rod(&mut model, "", BodyRef::Ground, &parts.wheel, tie_rod)?,
+            (None, Rig::Steering) => return Err(no_steering_input()),
+            (None, _) => {}
+        }
         match rig {
             Rig::WheelTravel => add_wheel_travel_driver(&mut model, "", &parts.wheel, 1.0)?,
             Rig::Steering | Rig::HeightHeld => add_wheel_travel_driver(&mut model, "", &parts.wheel, 0.0)?,

@@ -1,14 +1,16 @@
 //! Double-wishbone template: upright with wheel, upper and lower arms on the chassis, tie rod, coil spring
 //! on the lower arm.
 
-use crate::connection::{arm_mounts, Connection, SpringSpec};
+use crate::connection::{ArmMounts, Connection, SpringSpec};
 use crate::corner::{
-    check_connection, check_hardpoints, check_spring, check_steering_arm, check_steering_axis, part_name, Corner,
-    CornerParts, CornerTemplate, Rig, TieRod, Wheel,
+    check_arm_mounts, check_connection, check_hardpoints, check_spring, check_steering_arm, check_steering_axis, Corner,
+    CornerParts, CornerTemplate, Rig,
+};
+use crate::general::{
+    BodyDef, BodyPoint, CornerDef, GeneralCorner, Hardpoints, JointDef, JointType, Place, SpringDef, TieRodDef, CHASSIS,
 };
 use crate::hardpoint::Side;
-use elastokin_core::{BodyRef, JointSpec, Model, ModelError, Pose, Vec3};
-use elastokin_elements::CoilSpring;
+use elastokin_core::{Model, ModelError, Vec3};
 use serde::{Deserialize, Serialize};
 
 /// Hardpoints of a left double-wishbone corner (ISO 8855, metres).
@@ -92,10 +94,11 @@ impl DoubleWishboneHardpoints {
 pub struct DoubleWishbone {
     /// Hardpoints of the left corner.
     pub hardpoints: DoubleWishboneHardpoints,
-    /// Upper arm to chassis: ideal revolute about the front–rear pivot axis, or a bushing at each pivot.
-    pub upper_arm_mounts: Connection,
+    /// Upper arm to chassis: an ideal revolute about the front–rear pivot axis, or a bushing at each pivot
+    /// (the same, or its own at each end).
+    pub upper_arm_mounts: ArmMounts,
     /// Lower arm to chassis, likewise.
-    pub lower_arm_mounts: Connection,
+    pub lower_arm_mounts: ArmMounts,
     /// Coil spring from the chassis seat to the lower arm seat.
     pub spring: SpringSpec,
     /// Tie rod: a distance constraint (`"ideal"`, the default), or a rod with a bushing at each end.
@@ -111,6 +114,63 @@ impl DoubleWishbone {
     pub fn build(&self, side: Side, rig: Rig) -> Result<Corner, ModelError> {
         Corner::build(self, side, rig)
     }
+
+    /// The corner in the general form: the bodies `upright`, `upper arm` and `lower arm`, the joints and
+    /// bushings named as in its results, the spring, and the corner description.
+    pub fn expand(&self) -> GeneralCorner {
+        let h = &self.hardpoints;
+        let body = |name: &str, at: &str| BodyDef { name: name.into(), at: Place::named(at) };
+        let ball = |name: &str, arm: &str, at: &str| JointDef {
+            name: name.into(),
+            kind: JointType::Spherical,
+            bodies: [arm.into(), "upright".into()],
+            at: Some(Place::named(at)),
+            to: None,
+            axis: None,
+            axis_j: None,
+        };
+        let mut g = GeneralCorner {
+            hardpoints: Hardpoints(h.named().into_iter().map(|(n, p)| (n.to_string(), p)).collect()),
+            bodies: vec![
+                body("upright", "wheel_centre"),
+                body("upper arm", "upper_ball_joint"),
+                body("lower arm", "lower_ball_joint"),
+            ],
+            joints: Vec::new(),
+            bushings: Vec::new(),
+            springs: Vec::new(),
+            anti_roll_bars: Vec::new(),
+            corner: CornerDef {
+                upright: "upright".into(),
+                wheel_centre: "wheel_centre".into(),
+                spin_axis: [0.0, 1.0, 0.0],
+                loaded_radius: self.loaded_radius,
+                steering_axis: [
+                    BodyPoint { body: "upright".into(), at: Place::named("lower_ball_joint") },
+                    BodyPoint { body: "upright".into(), at: Place::named("upper_ball_joint") },
+                ],
+                tie_rod: Some(TieRodDef {
+                    inner: Place::named("tie_rod_inner"),
+                    outer: Place::named("tie_rod_outer"),
+                    connection: self.tie_rod,
+                }),
+            },
+        };
+        self.upper_arm_mounts.expand("upper arm", "upper_arm_front", "upper_arm_rear", &mut g);
+        self.lower_arm_mounts.expand("lower arm", "lower_arm_front", "lower_arm_rear", &mut g);
+        g.joints.push(ball("upper ball joint", "upper arm", "upper_ball_joint"));
+        g.joints.push(ball("lower ball joint", "lower arm", "lower_ball_joint"));
+        g.springs.push(SpringDef {
+            name: "spring".into(),
+            bodies: [CHASSIS.into(), "lower arm".into()],
+            from: Place::named("spring_chassis"),
+            to: Place::named("spring_arm"),
+            rate: self.spring.rate,
+            design_force: Some(self.spring.design_force),
+            free_length: None,
+        });
+        g
+    }
 }
 
 impl CornerTemplate for DoubleWishbone {
@@ -118,8 +178,8 @@ impl CornerTemplate for DoubleWishbone {
         let h = &self.hardpoints;
         check_hardpoints(&h.named())?;
         check_spring(&self.spring, (h.spring_arm - h.spring_chassis).norm())?;
-        check_connection("upper_arm_mounts", &self.upper_arm_mounts)?;
-        check_connection("lower_arm_mounts", &self.lower_arm_mounts)?;
+        check_arm_mounts("upper_arm_mounts", &self.upper_arm_mounts)?;
+        check_arm_mounts("lower_arm_mounts", &self.lower_arm_mounts)?;
         check_connection("tie_rod", &self.tie_rod)?;
         check_steering_axis((h.lower_ball_joint, h.upper_ball_joint), ("lower_ball_joint", "upper_ball_joint"))?;
         check_steering_arm(
@@ -128,30 +188,6 @@ impl CornerTemplate for DoubleWishbone {
             h.tie_rod_inner,
             h.tie_rod_outer,
         )?;
-        let p = |v: Vec3| side.place(v);
-        let n = |name: &str| part_name(prefix, name);
-        let (upright, _) = Wheel::add_upright(model, side, prefix, h.wheel_centre, self.loaded_radius)?;
-        let upper = model.add_body(&n("upper arm"), Pose::at(p(h.upper_ball_joint)))?;
-        let lower = model.add_body(&n("lower arm"), Pose::at(p(h.lower_ball_joint)))?;
-        let (uf, ur) = (p(h.upper_arm_front), p(h.upper_arm_rear));
-        arm_mounts(model, &n("upper arm"), upper.into(), uf, ur, self.upper_arm_mounts)?;
-        let (lf, lr) = (p(h.lower_arm_front), p(h.lower_arm_rear));
-        arm_mounts(model, &n("lower arm"), lower.into(), lf, lr, self.lower_arm_mounts)?;
-        model.add_joint(JointSpec::spherical(&n("upper ball joint"), upper, upright, p(h.upper_ball_joint)))?;
-        model.add_joint(JointSpec::spherical(&n("lower ball joint"), lower, upright, p(h.lower_ball_joint)))?;
-        model.add_element(CoilSpring::with_design_force(
-            &n("spring"),
-            BodyRef::Ground,
-            p(h.spring_chassis),
-            lower.into(),
-            p(h.spring_arm),
-            self.spring.rate,
-            self.spring.design_force,
-        )?)?;
-        let steering_axis = [(upright.into(), p(h.lower_ball_joint)), (upright.into(), p(h.upper_ball_joint))];
-        Ok(CornerParts {
-            wheel: Wheel::new(model, side, upright, self.loaded_radius, steering_axis),
-            tie_rod: TieRod { inner: p(h.tie_rod_inner), outer: p(h.tie_rod_outer), connection: self.tie_rod },
-        })
+        self.expand().add_corner(model, side, prefix)
     }
 }

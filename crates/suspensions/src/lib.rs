@@ -10,8 +10,8 @@
 //!
 //! let corner = DoubleWishbone {
 //!     hardpoints: DoubleWishboneHardpoints::generic(),
-//!     upper_arm_mounts: Connection::Ideal,
-//!     lower_arm_mounts: Connection::Ideal,
+//!     upper_arm_mounts: Connection::Ideal.into(),
+//!     lower_arm_mounts: Connection::Ideal.into(),
 //!     spring: SpringSpec { rate: 30e3, design_force: 4000.0 },
 //!     tie_rod: Connection::Ideal,
 //!     loaded_radius: 0.30,
@@ -30,10 +30,12 @@
 //! cases every run).
 
 pub mod analysis;
+pub mod anti_roll_bar;
 pub mod axle;
 pub mod connection;
 pub mod corner;
 pub mod double_wishbone;
+pub mod general;
 pub mod hardpoint;
 pub mod kc;
 pub mod macpherson;
@@ -41,9 +43,11 @@ pub mod model_file;
 pub mod plausibility;
 
 pub use axle::{Axle, AxleRig, AxleRow, RollCentre};
-pub use connection::{BushingRates, Connection, SpringSpec};
+pub use anti_roll_bar::AntiRollBar;
+pub use connection::{ArmMounts, BushingRates, Connection, SpringSpec};
 pub use corner::{Corner, CornerParts, CornerTemplate, Rig, SteeringGeometry, TieRod, Wheel, WheelAttitude};
 pub use double_wishbone::{DoubleWishbone, DoubleWishboneHardpoints};
+pub use general::GeneralCorner;
 pub use hardpoint::Side;
 pub use macpherson::{MacPherson, MacPhersonHardpoints};
 pub use model_file::{FileError, SuspensionFile, Template};

@@ -1,14 +1,17 @@
 //! MacPherson strut template: upright with wheel and strut tube, strut rod sliding in it, top mount on the
 //! chassis, lower control arm, tie rod, coil spring from the top mount to the spring seat on the strut.
 
-use crate::connection::{arm_mounts, axial_bushing, Connection, SpringSpec};
+use crate::connection::{ArmMounts, Connection, SpringSpec};
 use crate::corner::{
-    check_connection, check_hardpoints, check_spring, check_steering_arm, check_steering_axis, part_name, Corner,
-    CornerParts, CornerTemplate, Rig, TieRod, Wheel,
+    check_arm_mounts, check_connection, check_hardpoints, check_spring, check_steering_arm, check_steering_axis, Corner,
+    CornerParts, CornerTemplate, Rig,
+};
+use crate::general::{
+    Axis, BodyDef, BodyPoint, BushingDef, CornerDef, GeneralCorner, Hardpoints, JointDef, JointType, Place, SpringDef,
+    TieRodDef, CHASSIS,
 };
 use crate::hardpoint::Side;
-use elastokin_core::{BodyRef, JointSpec, Model, ModelError, Pose, Vec3};
-use elastokin_elements::CoilSpring;
+use elastokin_core::{Model, ModelError, Vec3};
 use serde::{Deserialize, Serialize};
 
 /// Hardpoints of a left MacPherson corner (ISO 8855, metres).
@@ -71,17 +74,37 @@ impl MacPhersonHardpoints {
     }
 }
 
+/// How the strut rod slides in the strut tube.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StrutJoint {
+    /// The rod slides without turning: it steers with the upright, so a top-mount bushing's torsion
+    /// resists steering.
+    #[default]
+    Translational,
+    /// The rod slides and turns in the tube: the upright steers about it, and the top-mount bushing's
+    /// torsion holds the rod's spin (so the top mount must be a bushing).
+    Cylindrical,
+}
+
+fn is_default_strut(strut: &StrutJoint) -> bool {
+    *strut == StrutJoint::default()
+}
+
 /// A MacPherson corner: hardpoints, mounts and spring.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MacPherson {
     /// Hardpoints of the left corner.
     pub hardpoints: MacPhersonHardpoints,
-    /// Lower arm to chassis: ideal revolute about the pivot axis, or a bushing at each pivot.
-    pub lower_arm_mounts: Connection,
-    /// Strut rod to chassis: an ideal ball joint (the rod cannot spin: it slides in the strut tube on a
-    /// translational joint), or a top-mount bushing whose axis is the strut axis.
+    /// Lower arm to chassis: an ideal revolute about the pivot axis, or a bushing at each pivot (the same,
+    /// or its own at each end).
+    pub lower_arm_mounts: ArmMounts,
+    /// Strut rod to chassis: an ideal ball joint, or a top-mount bushing whose axis is the strut axis.
     pub top_mount: Connection,
+    /// The strut's sliding joint (default translational).
+    #[serde(default, skip_serializing_if = "is_default_strut")]
+    pub strut: StrutJoint,
     /// Coil spring from the top mount to the spring seat at the strut lower point.
     pub spring: SpringSpec,
     /// Tie rod: a distance constraint (`"ideal"`, the default), or a rod with a bushing at each end.
@@ -97,6 +120,80 @@ impl MacPherson {
     pub fn build(&self, side: Side, rig: Rig) -> Result<Corner, ModelError> {
         Corner::build(self, side, rig)
     }
+
+    /// The corner in the general form: the bodies `upright`, `strut rod` and `lower arm`, the joints
+    /// and bushings named as in its results, the spring, and the corner description.
+    pub fn expand(&self) -> GeneralCorner {
+        let h = &self.hardpoints;
+        let named = |n: &str| Some(Place::named(n));
+        let body = |name: &str, at: Place| BodyDef { name: name.into(), at };
+        let joint = |name: &str, kind, bodies: [&str; 2], at: &str, axis: Option<Axis>| JointDef {
+            name: name.into(),
+            kind,
+            bodies: bodies.map(str::to_string),
+            at: named(at),
+            to: None,
+            axis,
+            axis_j: None,
+        };
+        let mut g = GeneralCorner {
+            hardpoints: Hardpoints(h.named().into_iter().map(|(n, p)| (n.to_string(), p)).collect()),
+            bodies: vec![
+                body("upright", Place::named("wheel_centre")),
+                body("strut rod", Place::At((h.strut_lower + h.top_mount) / 2.0)),
+                body("lower arm", Place::named("lower_ball_joint")),
+            ],
+            joints: Vec::new(),
+            bushings: Vec::new(),
+            springs: Vec::new(),
+            anti_roll_bars: Vec::new(),
+            corner: CornerDef {
+                upright: "upright".into(),
+                wheel_centre: "wheel_centre".into(),
+                spin_axis: [0.0, 1.0, 0.0],
+                loaded_radius: self.loaded_radius,
+                steering_axis: [
+                    BodyPoint { body: "upright".into(), at: Place::named("lower_ball_joint") },
+                    BodyPoint { body: "strut rod".into(), at: Place::named("top_mount") },
+                ],
+                tie_rod: Some(TieRodDef {
+                    inner: Place::named("tie_rod_inner"),
+                    outer: Place::named("tie_rod_outer"),
+                    connection: self.tie_rod,
+                }),
+            },
+        };
+        self.lower_arm_mounts.expand("lower arm", "lower_arm_front", "lower_arm_rear", &mut g);
+        g.joints.push(joint("lower ball joint", JointType::Spherical, ["lower arm", "upright"], "lower_ball_joint", None));
+        let strut_axis = Axis::through("strut_lower", "top_mount");
+        let strut = match self.strut {
+            StrutJoint::Translational => JointType::Translational,
+            StrutJoint::Cylindrical => JointType::Cylindrical,
+        };
+        g.joints.push(joint("strut", strut, ["upright", "strut rod"], "strut_lower", Some(strut_axis.clone())));
+        match self.top_mount {
+            Connection::Ideal => {
+                g.joints.push(joint("top mount", JointType::Spherical, [CHASSIS, "strut rod"], "top_mount", None))
+            }
+            Connection::Bushing(r) => g.bushings.push(BushingDef::cylindrical(
+                "top mount",
+                [CHASSIS, "strut rod"],
+                Place::named("top_mount"),
+                strut_axis,
+                &r,
+            )),
+        }
+        g.springs.push(SpringDef {
+            name: "spring".into(),
+            bodies: [CHASSIS.into(), "upright".into()],
+            from: Place::named("top_mount"),
+            to: Place::named("strut_lower"),
+            rate: self.spring.rate,
+            design_force: Some(self.spring.design_force),
+            free_length: None,
+        });
+        g
+    }
 }
 
 impl CornerTemplate for MacPherson {
@@ -104,9 +201,17 @@ impl CornerTemplate for MacPherson {
         let h = &self.hardpoints;
         check_hardpoints(&h.named())?;
         check_spring(&self.spring, (h.top_mount - h.strut_lower).norm())?;
-        check_connection("lower_arm_mounts", &self.lower_arm_mounts)?;
+        check_arm_mounts("lower_arm_mounts", &self.lower_arm_mounts)?;
         check_connection("top_mount", &self.top_mount)?;
         check_connection("tie_rod", &self.tie_rod)?;
+        if self.strut == StrutJoint::Cylindrical && self.top_mount == Connection::Ideal {
+            return Err(ModelError::OutOfRange {
+                item: "strut".into(),
+                why: "strut is \"cylindrical\" but top_mount is \"ideal\": nothing would hold the strut rod's spin; \
+                      give top_mount a bushing (its torsion holds the rod) or make the strut \"translational\""
+                    .into(),
+            });
+        }
         check_steering_axis((h.lower_ball_joint, h.top_mount), ("lower_ball_joint", "top_mount"))?;
         check_steering_arm(
             (h.lower_ball_joint, h.top_mount),
@@ -114,38 +219,6 @@ impl CornerTemplate for MacPherson {
             h.tie_rod_inner,
             h.tie_rod_outer,
         )?;
-        let p = |v: Vec3| side.place(v);
-        let n = |name: &str| part_name(prefix, name);
-        let (upright, _) = Wheel::add_upright(model, side, prefix, h.wheel_centre, self.loaded_radius)?;
-        let (lower_pt, top) = (p(h.strut_lower), p(h.top_mount));
-        let rod = model.add_body(&n("strut rod"), Pose::at((lower_pt + top) / 2.0))?;
-        let arm = model.add_body(&n("lower arm"), Pose::at(p(h.lower_ball_joint)))?;
-        let (lf, lr) = (p(h.lower_arm_front), p(h.lower_arm_rear));
-        arm_mounts(model, &n("lower arm"), arm.into(), lf, lr, self.lower_arm_mounts)?;
-        model.add_joint(JointSpec::spherical(&n("lower ball joint"), arm, upright, p(h.lower_ball_joint)))?;
-        let axis = top - lower_pt;
-        model.add_joint(JointSpec::translational(&n("strut"), upright, rod, lower_pt, axis))?;
-        match self.top_mount {
-            Connection::Ideal => {
-                model.add_joint(JointSpec::spherical(&n("top mount"), BodyRef::Ground, rod, top))?;
-            }
-            Connection::Bushing(r) => {
-                model.add_element(axial_bushing(&n("top mount"), BodyRef::Ground, rod.into(), top, axis, r)?)?;
-            }
-        }
-        model.add_element(CoilSpring::with_design_force(
-            &n("spring"),
-            BodyRef::Ground,
-            top,
-            upright.into(),
-            lower_pt,
-            self.spring.rate,
-            self.spring.design_force,
-        )?)?;
-        let steering_axis = [(upright.into(), p(h.lower_ball_joint)), (rod.into(), top)];
-        Ok(CornerParts {
-            wheel: Wheel::new(model, side, upright, self.loaded_radius, steering_axis),
-            tie_rod: TieRod { inner: p(h.tie_rod_inner), outer: p(h.tie_rod_outer), connection: self.tie_rod },
-        })
+        self.expand().add_corner(model, side, prefix)
     }
 }

@@ -19,6 +19,7 @@ use crate::analysis::VehicleParameters;
 use crate::connection::Connection;
 use crate::corner::{Corner, CornerParts, CornerTemplate, Rig};
 use crate::double_wishbone::DoubleWishbone;
+use crate::general::GeneralCorner;
 use crate::hardpoint::Side;
 use crate::macpherson::MacPherson;
 use elastokin_core::{Model, ModelError};
@@ -26,8 +27,8 @@ use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
-/// Which template a file describes.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+/// Which suspension a file describes: a template, or the general form any suspension can be written in.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum Template {
     /// A double-wishbone corner.
@@ -35,12 +36,33 @@ pub enum Template {
     /// A MacPherson strut corner.
     #[serde(rename = "macpherson")]
     MacPherson(MacPherson),
+    /// Any corner: bodies, joints, bushings, springs and the corner description (see [`crate::general`]).
+    General(Box<GeneralCorner>),
 }
 
 impl Template {
     /// Builds the corner (see [`Corner::build`]).
     pub fn build(&self, side: Side, rig: Rig) -> Result<Corner, ModelError> {
         Corner::build(self, side, rig)
+    }
+
+    /// The key naming it in a model file: `macpherson`, `double_wishbone` or `general`.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Template::DoubleWishbone(_) => "double_wishbone",
+            Template::MacPherson(_) => "macpherson",
+            Template::General(_) => "general",
+        }
+    }
+
+    /// The suspension in the general form, which builds the same model: a template's expansion, or the
+    /// general description itself.
+    pub fn expand(&self) -> GeneralCorner {
+        match self {
+            Template::DoubleWishbone(t) => t.expand(),
+            Template::MacPherson(t) => t.expand(),
+            Template::General(g) => (**g).clone(),
+        }
     }
 }
 
@@ -49,6 +71,19 @@ impl CornerTemplate for Template {
         match self {
             Template::DoubleWishbone(t) => t.add_corner(model, side, prefix),
             Template::MacPherson(t) => t.add_corner(model, side, prefix),
+            Template::General(g) => g.add_corner(model, side, prefix),
+        }
+    }
+
+    fn add_cross_axle(
+        &self,
+        model: &mut Model,
+        left: (&str, &CornerParts),
+        right: (&str, &CornerParts),
+    ) -> Result<(), ModelError> {
+        match self {
+            Template::General(g) => g.add_cross_axle(model, left, right),
+            _ => Ok(()),
         }
     }
 }
@@ -68,7 +103,7 @@ pub struct SuspensionFile {
 }
 
 /// The templates a model file may name in `suspension`.
-const TEMPLATES: [&str; 2] = ["macpherson", "double_wishbone"];
+const TEMPLATES: [&str; 3] = ["macpherson", "double_wishbone", "general"];
 
 /// Largest hardpoint coordinate accepted (m): a car fits in ±1000 m a thousand times over, so anything
 /// beyond is a unit or typing mistake.
@@ -260,15 +295,15 @@ impl SuspensionFile {
                 line,
                 column,
                 format!(
-                    "suspension: give one template as an object, {{\"macpherson\": {{…}}}} or \
-                     {{\"double_wishbone\": {{…}}}}, got {suspension}"
+                    "suspension: give one template as an object, {{\"macpherson\": {{…}}}}, \
+                     {{\"double_wishbone\": {{…}}}} or {{\"general\": {{…}}}}, got {suspension}"
                 ),
             ));
         }
         if let Some(serde_json::Value::Object(templates)) = value.get("suspension") {
             let found: Vec<&str> = templates.keys().map(String::as_str).collect();
             let (line, column) = locate(text, &["suspension"]);
-            let known = "macpherson or double_wishbone";
+            let known = "macpherson, double_wishbone or general";
             match found.as_slice() {
                 [one] if !TEMPLATES.contains(one) => {
                     return Err(invalid(
@@ -317,7 +352,8 @@ impl SuspensionFile {
         for (name, p) in &points {
             for (axis, c) in ["x", "y", "z"].into_iter().zip(p.iter()) {
                 if c.is_nan() || c.abs() > MAX_COORDINATE {
-                    let hint = if crate::plausibility::looks_like_millimetres(&points) {
+                    let wc = points.iter().find(|(n, _)| n == self.suspension.wheel_centre_name()).map(|(_, p)| *p);
+                    let hint = if wc.is_some_and(|wc| crate::plausibility::looks_like_millimetres(&points, wc)) {
                         "; the hardpoints look like millimetres: divide every coordinate by 1000"
                     } else {
                         ""
@@ -333,28 +369,96 @@ impl SuspensionFile {
                 }
             }
         }
-        let (spring, loaded_radius, connections) = match &self.suspension {
-            Template::DoubleWishbone(t) => (
-                t.spring,
-                t.loaded_radius,
-                vec![
-                    ("upper_arm_mounts", t.upper_arm_mounts),
-                    ("lower_arm_mounts", t.lower_arm_mounts),
-                    ("tie_rod", t.tie_rod),
-                ],
-            ),
-            Template::MacPherson(t) => (
-                t.spring,
-                t.loaded_radius,
-                vec![("lower_arm_mounts", t.lower_arm_mounts), ("top_mount", t.top_mount), ("tie_rod", t.tie_rod)],
-            ),
+        let typical_t = "a suspension bushing is 1e5–1e8 N/m";
+        let typical_r = "a suspension bushing is 10–1e5 N·m/rad";
+        let typical_spring = "a car's coil spring is 1e4–3e5 N/m";
+        // Every rate with its keys, unit and typical range; every spring force with its keys.
+        let mut rates: Vec<(Vec<String>, &str, f64, &str)> = Vec::new();
+        let mut forces: Vec<(Vec<String>, f64)> = Vec::new();
+        let keys = |k: &[&str]| k.iter().map(|k| k.to_string()).collect::<Vec<_>>();
+        let connection = |rates: &mut Vec<_>, key: Vec<String>, c: &Connection| {
+            if let Connection::Bushing(r) = c {
+                for (what, unit, value, typical) in [
+                    ("radial", "N/m", r.radial, typical_t),
+                    ("axial", "N/m", r.axial, typical_t),
+                    ("torsion", "N·m/rad", r.torsion, typical_r),
+                    ("conical", "N·m/rad", r.conical, typical_r),
+                ] {
+                    let mut k = key.clone();
+                    k.extend(["bushing".to_string(), what.to_string()]);
+                    rates.push((k, unit, value, typical));
+                }
+            }
         };
-        let rate = |keys: &[&str], unit: &str, value: f64, typical: &str| {
+        let arm = |rates: &mut Vec<_>, key: &str, m: &crate::ArmMounts| {
+            if m.front == m.rear {
+                connection(rates, keys(&[key]), &m.front);
+            } else {
+                connection(rates, keys(&[key, "front"]), &m.front);
+                connection(rates, keys(&[key, "rear"]), &m.rear);
+            }
+        };
+        let (loaded_radius, radius_keys) = match &self.suspension {
+            Template::DoubleWishbone(t) => {
+                arm(&mut rates, "upper_arm_mounts", &t.upper_arm_mounts);
+                arm(&mut rates, "lower_arm_mounts", &t.lower_arm_mounts);
+                connection(&mut rates, keys(&["tie_rod"]), &t.tie_rod);
+                rates.push((keys(&["spring", "rate"]), "N/m", t.spring.rate, typical_spring));
+                forces.push((keys(&["spring", "design_force"]), t.spring.design_force));
+                (t.loaded_radius, keys(&["loaded_radius"]))
+            }
+            Template::MacPherson(t) => {
+                arm(&mut rates, "lower_arm_mounts", &t.lower_arm_mounts);
+                connection(&mut rates, keys(&["top_mount"]), &t.top_mount);
+                connection(&mut rates, keys(&["tie_rod"]), &t.tie_rod);
+                rates.push((keys(&["spring", "rate"]), "N/m", t.spring.rate, typical_spring));
+                forces.push((keys(&["spring", "design_force"]), t.spring.design_force));
+                (t.loaded_radius, keys(&["loaded_radius"]))
+            }
+            Template::General(g) => {
+                for b in &g.bushings {
+                    let key = |what: &str| vec!["bushings".to_string(), b.name.clone(), what.to_string()];
+                    let given = [
+                        ("radial", "N/m", b.radial, typical_t),
+                        ("axial", "N/m", b.axial, typical_t),
+                        ("torsion", "N·m/rad", b.torsion, typical_r),
+                        ("conical", "N·m/rad", b.conical, typical_r),
+                    ];
+                    for (what, unit, value, typical) in given {
+                        if let Some(v) = value {
+                            rates.push((key(what), unit, v, typical));
+                        }
+                    }
+                    for (what, unit, values, typical) in
+                        [("translation", "N/m", b.translation, typical_t), ("rotation", "N·m/rad", b.rotation, typical_r)]
+                    {
+                        for v in values.into_iter().flatten() {
+                            rates.push((key(what), unit, v, typical));
+                        }
+                    }
+                }
+                for s in &g.springs {
+                    rates.push((vec!["springs".into(), s.name.clone(), "rate".into()], "N/m", s.rate, typical_spring));
+                    if let Some(f) = s.design_force {
+                        forces.push((vec!["springs".into(), s.name.clone(), "design_force".into()], f));
+                    }
+                }
+                for bar in &g.anti_roll_bars {
+                    let typical = "a car's anti-roll bar is 1e3–1e5 N·m/rad";
+                    rates.push((vec!["anti_roll_bars".into(), bar.name.clone(), "rate".into()], "N·m/rad", bar.rate, typical));
+                }
+                if let Some(t) = &g.corner.tie_rod {
+                    connection(&mut rates, keys(&["corner", "tie_rod", "connection"]), &t.connection);
+                }
+                (g.corner.loaded_radius, keys(&["corner", "loaded_radius"]))
+            }
+        };
+        let rate = |keys: &[String], unit: &str, value: f64, typical: &str| {
             if value > 0.0 && value <= MAX_RATE {
                 return Ok(());
             }
             Err(OutOfRange {
-                keys: keys.iter().map(|k| k.to_string()).collect(),
+                keys: keys.to_vec(),
                 message: format!(
                     "{}: {} {unit} is outside the accepted range (0, 1e12] {unit} ({typical})",
                     keys.join("."),
@@ -362,34 +466,36 @@ impl SuspensionFile {
                 ),
             })
         };
-        rate(&["spring", "rate"], "N/m", spring.rate, "a car's coil spring is 1e4–3e5 N/m")?;
-        if spring.design_force.is_nan() || spring.design_force.abs() > MAX_FORCE {
-            return Err(OutOfRange {
-                keys: vec!["spring".into(), "design_force".into()],
-                message: format!(
-                    "spring.design_force: {} N is beyond ±{MAX_FORCE:e} N (a car's spring carries 2e3–2e4 N)",
-                    number(spring.design_force)
-                ),
-            });
+        // A spring's rate before its force, as the file reads.
+        for (keys, unit, value, typical) in &rates {
+            if keys.last().is_some_and(|k| k == "rate") {
+                rate(keys, unit, *value, typical)?;
+            }
+        }
+        for (keys, force) in &forces {
+            if force.is_nan() || force.abs() > MAX_FORCE {
+                return Err(OutOfRange {
+                    keys: keys.clone(),
+                    message: format!(
+                        "{}: {} N is beyond ±{MAX_FORCE:e} N (a car's spring carries 2e3–2e4 N)",
+                        keys.join("."),
+                        number(*force)
+                    ),
+                });
+            }
         }
         if !(0.05..=2.0).contains(&loaded_radius) {
             return Err(OutOfRange {
-                keys: vec!["loaded_radius".into()],
+                keys: radius_keys.clone(),
                 message: format!(
-                    "loaded_radius: {} m is outside 0.05–2 m (a car's tyre is 0.25–0.40 m, in metres)",
+                    "{}: {} m is outside 0.05–2 m (a car's tyre is 0.25–0.40 m, in metres)",
+                    radius_keys.join("."),
                     number(loaded_radius)
                 ),
             });
         }
-        for (key, connection) in connections {
-            if let Connection::Bushing(r) = connection {
-                let typical_t = "a suspension bushing is 1e5–1e8 N/m";
-                let typical_r = "a suspension bushing is 10–1e5 N·m/rad";
-                rate(&[key, "bushing", "radial"], "N/m", r.radial, typical_t)?;
-                rate(&[key, "bushing", "axial"], "N/m", r.axial, typical_t)?;
-                rate(&[key, "bushing", "torsion"], "N·m/rad", r.torsion, typical_r)?;
-                rate(&[key, "bushing", "conical"], "N·m/rad", r.conical, typical_r)?;
-            }
+        for (keys, unit, value, typical) in &rates {
+            rate(keys, unit, *value, typical)?;
         }
         if let Some(v) = &self.vehicle {
             let fields = [

@@ -6,7 +6,8 @@
 //! Every warning names the hardpoints involved and says what to change, in the model file's words.
 
 use crate::analysis::TravelRow;
-use crate::connection::Connection;
+use crate::connection::{ArmMounts, Connection};
+use crate::general::{Place, CHASSIS};
 use crate::corner::{Corner, Rig};
 use crate::hardpoint::Side;
 use crate::model_file::{SuspensionFile, Template};
@@ -87,41 +88,93 @@ pub const MAX_WHEEL_ANGLE_DEG: f64 = 10.0;
 impl Template {
     /// Every hardpoint with its name in the model file, sorted by name.
     pub fn hardpoints(&self) -> Vec<(String, Vec3)> {
-        let mut named = match self {
-            Template::DoubleWishbone(t) => t.hardpoints.named(),
-            Template::MacPherson(t) => t.hardpoints.named(),
+        let mut named: Vec<(String, Vec3)> = match self {
+            Template::DoubleWishbone(t) => t.hardpoints.named().into_iter().map(|(n, p)| (n.to_string(), p)).collect(),
+            Template::MacPherson(t) => t.hardpoints.named().into_iter().map(|(n, p)| (n.to_string(), p)).collect(),
+            Template::General(g) => g.hardpoints.0.clone(),
         };
-        named.sort_by_key(|(name, _)| *name);
-        named.into_iter().map(|(name, p)| (name.to_string(), p)).collect()
+        named.sort_by(|a, b| a.0.cmp(&b.0));
+        named
+    }
+
+    /// The name of the wheel-centre hardpoint.
+    pub fn wheel_centre_name(&self) -> &str {
+        match self {
+            Template::General(g) => &g.corner.wheel_centre,
+            _ => "wheel_centre",
+        }
     }
 }
 
-/// Where the template's parts are, by hardpoint name.
+/// Where the model's parts are, by hardpoint name.
 struct Layout {
-    /// Lower and upper point of the steering axis.
-    steering_axis: [&'static str; 2],
+    /// The wheel centre.
+    wheel_centre: String,
+    /// Lower and upper point of the steering axis, when both are hardpoints.
+    steering_axis: Option<[String; 2]>,
+    /// Inner and outer end of the tie rod, when it has one given by hardpoints.
+    tie_rod: Option<[String; 2]>,
     /// Each arm: its name, front pivot, rear pivot, ball joint, and how it meets the chassis.
-    arms: Vec<(&'static str, [&'static str; 3], Connection)>,
+    arms: Vec<(&'static str, [&'static str; 3], ArmMounts)>,
+    /// The spring's seats (chassis, moving), the moving seat's body, and what to do about a small ratio.
+    spring: Option<([String; 2], String, String)>,
 }
 
 impl Layout {
     fn of(template: &Template) -> Layout {
+        let strings = |a: [&str; 2]| Some(a.map(str::to_string));
         match template {
             Template::DoubleWishbone(t) => Layout {
-                steering_axis: ["lower_ball_joint", "upper_ball_joint"],
+                wheel_centre: "wheel_centre".into(),
+                steering_axis: strings(["lower_ball_joint", "upper_ball_joint"]),
+                tie_rod: strings(["tie_rod_inner", "tie_rod_outer"]),
                 arms: vec![
                     ("upper arm", ["upper_arm_front", "upper_arm_rear", "upper_ball_joint"], t.upper_arm_mounts),
                     ("lower arm", ["lower_arm_front", "lower_arm_rear", "lower_ball_joint"], t.lower_arm_mounts),
                 ],
+                spring: Some((
+                    ["spring_chassis".into(), "spring_arm".into()],
+                    "lower arm".into(),
+                    "move 'spring_arm' outboard along the arm".into(),
+                )),
             },
             Template::MacPherson(t) => Layout {
-                steering_axis: ["lower_ball_joint", "top_mount"],
+                wheel_centre: "wheel_centre".into(),
+                steering_axis: strings(["lower_ball_joint", "top_mount"]),
+                tie_rod: strings(["tie_rod_inner", "tie_rod_outer"]),
                 arms: vec![(
                     "lower arm",
                     ["lower_arm_front", "lower_arm_rear", "lower_ball_joint"],
                     t.lower_arm_mounts,
                 )],
+                spring: Some((
+                    ["top_mount".into(), "strut_lower".into()],
+                    "upright".into(),
+                    "the strut should lean with the wheel's travel: check 'top_mount', 'strut_lower' and the lower arm"
+                        .into(),
+                )),
             },
+            Template::General(g) => {
+                let name = |p: &Place| match p {
+                    Place::Named(n) => Some(n.clone()),
+                    Place::At(_) => None,
+                };
+                let both = |a: &Place, b: &Place| Some([name(a)?, name(b)?]);
+                let c = &g.corner;
+                // The first spring from the chassis, when its seats are hardpoints.
+                let spring = g.springs.iter().find(|s| s.bodies[0] == CHASSIS).and_then(|s| {
+                    let seats = both(&s.from, &s.to)?;
+                    let advice = format!("move '{}' so that the spring works with the wheel's travel", seats[1]);
+                    Some((seats, s.bodies[1].clone(), advice))
+                });
+                Layout {
+                    wheel_centre: c.wheel_centre.clone(),
+                    steering_axis: both(&c.steering_axis[0].at, &c.steering_axis[1].at),
+                    tie_rod: c.tie_rod.as_ref().and_then(|t| both(&t.inner, &t.outer)),
+                    arms: Vec::new(),
+                    spring,
+                }
+            }
         }
     }
 }
@@ -143,22 +196,24 @@ fn quoted(list: &[String]) -> String {
 /// design. Errors only when the corner cannot be built.
 pub fn check_model(file: &SuspensionFile) -> Result<ModelCheck, ModelError> {
     let template = &file.suspension;
+    // Building first: it refuses, by name, anything the layout below would look up and not find.
+    let free = Corner::build(template, Side::Left, Rig::Free)?;
+    let on_rig = Corner::build(template, Side::Left, Rig::WheelTravel)?;
     let points = template.hardpoints();
     let layout = Layout::of(template);
     let mut warnings = Vec::new();
+    let wc = point(&points, &layout.wheel_centre);
 
-    let units = units_and_side(&points);
+    let units = units_and_side(&points, wc);
     // Millimetres make every other figure of the geometry meaningless: say that alone.
     let in_millimetres = units.iter().any(|w| w.code == "millimetres");
     warnings.extend(units);
     if !in_millimetres {
-        warnings.extend(far_hardpoints(&points));
+        warnings.extend(far_hardpoints(&points, wc));
         warnings.extend(steering_lever(&points, &layout));
         warnings.extend(arm_pivots(&points, &layout));
     }
 
-    let free = Corner::build(template, Side::Left, Rig::Free)?;
-    let on_rig = Corner::build(template, Side::Left, Rig::WheelTravel)?;
     let (dof, redundant) = mobility(&free.model);
     let (dof_on_rig, _) = mobility(&on_rig.model);
     let condition_estimate = condition_estimate(&on_rig.model);
@@ -177,7 +232,7 @@ pub fn check_model(file: &SuspensionFile) -> Result<ModelCheck, ModelError> {
         }
     }
     if !in_millimetres {
-        warnings.extend(motion_ratio(template, &on_rig));
+        warnings.extend(motion_ratio(&points, &layout, &on_rig));
     }
     Ok(ModelCheck {
         degrees_of_freedom: dof,
@@ -191,19 +246,17 @@ pub fn check_model(file: &SuspensionFile) -> Result<ModelCheck, ModelError> {
 /// Whether the hardpoints read as a corner in millimetres: the wheel centre more than 10 m from the centre
 /// line, or a spread over 20 m that, divided by 1000, is a wheel centre 0.2–2 m out with every hardpoint
 /// within 2 m of it.
-pub(crate) fn looks_like_millimetres(points: &[(String, Vec3)]) -> bool {
-    let wc = point(points, "wheel_centre");
+pub(crate) fn looks_like_millimetres(points: &[(String, Vec3)], wc: Vec3) -> bool {
     let spread = points.iter().map(|(_, p)| (p - wc).norm()).fold(0.0, f64::max);
     let scaled_fits = (200.0..=2000.0).contains(&wc.y.abs()) && spread <= 1e3 * FAR_FROM_WHEEL_CENTRE;
     wc.y.abs() > 10.0 || (spread > 20.0 && scaled_fits)
 }
 
 /// Millimetres for metres, and a right corner given for the left.
-fn units_and_side(points: &[(String, Vec3)]) -> Vec<Warning> {
+fn units_and_side(points: &[(String, Vec3)], wc: Vec3) -> Vec<Warning> {
     let mut out = Vec::new();
-    let wc = point(points, "wheel_centre");
     let spread = points.iter().map(|(_, p)| (p - wc).norm()).fold(0.0, f64::max);
-    if looks_like_millimetres(points) {
+    if looks_like_millimetres(points, wc) {
         out.push(Warning {
             code: "millimetres",
             hardpoints: points.iter().map(|(n, _)| n.clone()).collect(),
@@ -234,8 +287,7 @@ fn units_and_side(points: &[(String, Vec3)]) -> Vec<Warning> {
 }
 
 /// Hardpoints too far from the wheel centre to belong to the same corner.
-fn far_hardpoints(points: &[(String, Vec3)]) -> Vec<Warning> {
-    let wc = point(points, "wheel_centre");
+fn far_hardpoints(points: &[(String, Vec3)], wc: Vec3) -> Vec<Warning> {
     points
         .iter()
         .filter(|(_, p)| (p - wc).norm() > FAR_FROM_WHEEL_CENTRE)
@@ -254,9 +306,11 @@ fn far_hardpoints(points: &[(String, Vec3)]) -> Vec<Warning> {
 /// The moment arm of the tie rod about the steering axis: the moment a unit tie-rod force makes about it.
 /// Zero when the tie-rod line meets the axis or runs parallel to it: the rod then cannot steer the wheel.
 fn steering_lever(points: &[(String, Vec3)], layout: &Layout) -> Vec<Warning> {
-    let [lower, upper] = layout.steering_axis;
+    let (Some([lower, upper]), Some([inner_name, outer_name])) = (&layout.steering_axis, &layout.tie_rod) else {
+        return Vec::new();
+    };
     let axis = (point(points, lower), point(points, upper));
-    let (inner, outer) = (point(points, "tie_rod_inner"), point(points, "tie_rod_outer"));
+    let (inner, outer) = (point(points, inner_name), point(points, outer_name));
     // Coincident points are refused with their own error when the corner is built.
     let Some(lever) = crate::corner::tie_rod_lever(axis, inner, outer) else { return Vec::new() };
     let lever = lever.abs();
@@ -265,11 +319,11 @@ fn steering_lever(points: &[(String, Vec3)], layout: &Layout) -> Vec<Warning> {
     }
     vec![Warning {
         code: "tie-rod-on-steering-axis",
-        hardpoints: names(&["tie_rod_inner", "tie_rod_outer", lower, upper]),
+        hardpoints: vec![inner_name.clone(), outer_name.clone(), lower.clone(), upper.clone()],
         message: format!(
-            "the tie rod ('tie_rod_inner' to 'tie_rod_outer') passes {:.1} mm from the steering axis ('{lower}' \
+            "the tie rod ('{inner_name}' to '{outer_name}') passes {:.1} mm from the steering axis ('{lower}' \
              to '{upper}'): it has no lever to hold the wheel's steer (at least {:.0} mm is needed, a car's \
-             steering arm is 100–200 mm); move 'tie_rod_outer' ahead of or behind the axis",
+             steering arm is 100–200 mm); move '{outer_name}' ahead of or behind the axis",
             lever * 1e3,
             MIN_STEERING_LEVER * 1e3
         ),
@@ -289,9 +343,10 @@ fn arm_pivots(points: &[(String, Vec3)], layout: &Layout) -> Vec<Warning> {
         if reach >= MIN_ARM_LENGTH {
             continue;
         }
-        let mounts = match connection {
-            Connection::Ideal => "hinge",
-            Connection::Bushing(_) => "bushings",
+        let mounts = match (connection.front, connection.rear) {
+            (Connection::Ideal, Connection::Ideal) => "hinge",
+            (Connection::Bushing(_), Connection::Bushing(_)) => "bushings",
+            _ => "mounts",
         };
         out.push(Warning {
             code: "pivot-through-ball-joint",
@@ -391,21 +446,15 @@ fn null_space(j: &DMatrix<f64>, n: usize) -> Option<DMatrix<f64>> {
 }
 
 /// Spring length change per metre of wheel travel at design, from the rig's exact path tangent.
-fn motion_ratio(template: &Template, corner: &Corner) -> Vec<Warning> {
-    let Some(ratio) = spring_motion_ratio(template, corner) else { return Vec::new() };
+fn motion_ratio(points: &[(String, Vec3)], layout: &Layout, corner: &Corner) -> Vec<Warning> {
+    let Some((seats, body, what)) = &layout.spring else { return Vec::new() };
+    let Some(ratio) = spring_motion_ratio(points, seats, body, corner) else { return Vec::new() };
     if ratio.abs() >= MIN_MOTION_RATIO {
         return Vec::new();
     }
-    let (seats, what) = match template {
-        Template::DoubleWishbone(_) => (["spring_chassis", "spring_arm"], "move 'spring_arm' outboard along the arm"),
-        Template::MacPherson(_) => (
-            ["top_mount", "strut_lower"],
-            "the strut should lean with the wheel's travel: check 'top_mount', 'strut_lower' and the lower arm",
-        ),
-    };
     vec![Warning {
         code: "motion-ratio",
-        hardpoints: names(&seats),
+        hardpoints: seats.to_vec(),
         message: format!(
             "the spring ('{}' to '{}') changes length by {:.3} m per metre of wheel travel at design: it \
              barely carries the wheel (a car's is 0.5–1); {what}",
@@ -416,14 +465,9 @@ fn motion_ratio(template: &Template, corner: &Corner) -> Vec<Warning> {
     }]
 }
 
-fn spring_motion_ratio(template: &Template, corner: &Corner) -> Option<f64> {
+fn spring_motion_ratio(points: &[(String, Vec3)], seats: &[String; 2], body: &str, corner: &Corner) -> Option<f64> {
     use elastokin_solver::{SolverOptions, StaticSolver};
-    let points = template.hardpoints();
-    let (chassis, moving, body) = match template {
-        Template::DoubleWishbone(_) => ("spring_chassis", "spring_arm", "lower arm"),
-        Template::MacPherson(_) => ("top_mount", "strut_lower", "upright"),
-    };
-    let (a, b) = (point(&points, chassis), point(&points, moving));
+    let (a, b) = (point(points, &seats[0]), point(points, &seats[1]));
     let body = corner.model.body_id(body)?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default()).ok()?;
     let mut state = solver.design_state(0.0);

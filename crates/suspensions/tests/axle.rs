@@ -13,8 +13,8 @@ use elastokin_suspensions::{
 fn double_wishbone(tie_rod: Connection) -> DoubleWishbone {
     DoubleWishbone {
         hardpoints: DoubleWishboneHardpoints::generic(),
-        upper_arm_mounts: Connection::Ideal,
-        lower_arm_mounts: Connection::Ideal,
+        upper_arm_mounts: Connection::Ideal.into(),
+        lower_arm_mounts: Connection::Ideal.into(),
         spring: SpringSpec { rate: 30e3, design_force: 4000.0 },
         tie_rod,
         loaded_radius: 0.30,
@@ -24,8 +24,9 @@ fn double_wishbone(tie_rod: Connection) -> DoubleWishbone {
 fn macpherson() -> MacPherson {
     MacPherson {
         hardpoints: MacPhersonHardpoints::generic(),
-        lower_arm_mounts: Connection::Ideal,
+        lower_arm_mounts: Connection::Ideal.into(),
         top_mount: Connection::Ideal,
+        strut: Default::default(),
         spring: SpringSpec { rate: 30e3, design_force: 4500.0 },
         tie_rod: Connection::Ideal,
         loaded_radius: 0.30,

@@ -13,8 +13,8 @@ mod common;
 fn template(mounts: Connection) -> DoubleWishbone {
     DoubleWishbone {
         hardpoints: DoubleWishboneHardpoints::generic(),
-        upper_arm_mounts: mounts,
-        lower_arm_mounts: mounts,
+        upper_arm_mounts: mounts.into(),
+        lower_arm_mounts: mounts.into(),
         spring: SpringSpec { rate: 30e3, design_force: 4000.0 },
         tie_rod: Connection::Ideal,
         loaded_radius: 0.30,

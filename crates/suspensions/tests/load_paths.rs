@@ -247,8 +247,8 @@ fn load_sweeps_refuse_other_rigs() {
 fn double_wishbone(hardpoints: DoubleWishboneHardpoints, spring_rate: f64) -> DoubleWishbone {
     DoubleWishbone {
         hardpoints,
-        upper_arm_mounts: Connection::Ideal,
-        lower_arm_mounts: Connection::Ideal,
+        upper_arm_mounts: Connection::Ideal.into(),
+        lower_arm_mounts: Connection::Ideal.into(),
         spring: SpringSpec { rate: spring_rate, design_force: 4000.0 },
         tie_rod: Connection::Ideal,
         loaded_radius: 0.30,

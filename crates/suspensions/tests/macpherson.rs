@@ -11,8 +11,9 @@ mod common;
 fn template(arm: Connection, top: Connection) -> MacPherson {
     MacPherson {
         hardpoints: MacPhersonHardpoints::generic(),
-        lower_arm_mounts: arm,
+        lower_arm_mounts: arm.into(),
         top_mount: top,
+        strut: Default::default(),
         spring: SpringSpec { rate: 30e3, design_force: 4500.0 },
         tie_rod: Connection::Ideal,
         loaded_radius: 0.30,

@@ -130,7 +130,7 @@ fn two_templates_or_an_unknown_one_are_named() {
     let (message, line, expected) = invalid(&text, "suspension");
     assert_eq!(
         message,
-        "suspension: give one template (macpherson or double_wishbone), found 2: double_wishbone, macpherson"
+        "suspension: give one template (macpherson, double_wishbone or general), found 2: double_wishbone, macpherson"
     );
     assert_eq!(line, expected);
     let text = macpherson_edited(|v| {
@@ -138,7 +138,7 @@ fn two_templates_or_an_unknown_one_are_named() {
         v["suspension"] = serde_json::json!({ "trailing_arm": t });
     });
     let (message, _, _) = invalid(&text, "suspension");
-    assert_eq!(message, "suspension: unknown template 'trailing_arm': give one of macpherson or double_wishbone");
+    assert_eq!(message, "suspension: unknown template 'trailing_arm': give one of macpherson, double_wishbone or general");
 }
 
 #[test]
@@ -212,8 +212,9 @@ fn bushing_rates_are_named_by_their_file_keys() {
     let elastokin_suspensions::Template::DoubleWishbone(ref mut dw) = file.suspension else {
         panic!("the first example is the double wishbone")
     };
-    let elastokin_suspensions::Connection::Bushing(ref mut rates) = dw.lower_arm_mounts else { panic!("bushed") };
+    let elastokin_suspensions::Connection::Bushing(mut rates) = dw.lower_arm_mounts.front else { panic!("bushed") };
     rates.conical = 0.0;
+    dw.lower_arm_mounts = elastokin_suspensions::Connection::Bushing(rates).into();
     let err = file.suspension.build(elastokin_suspensions::Side::Left, elastokin_suspensions::Rig::Free).unwrap_err();
     let text = err.to_string();
     assert!(text.contains("lower_arm_mounts.bushing.conical must be a rate in N·m/rad"), "{text}");
@@ -248,7 +249,7 @@ fn wrong_shapes_are_said_in_the_files_words() {
         (
             |v| v["suspension"] = serde_json::json!({}),
             "suspension",
-            "suspension: give one template (macpherson or double_wishbone), found none",
+            "suspension: give one template (macpherson, double_wishbone or general), found none",
         ),
     ];
     for (edit, key, words) in cases {

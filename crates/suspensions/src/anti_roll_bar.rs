@@ -1,0 +1,90 @@
+//! The anti-roll bar: a torsion bar across the car, turning in bearings on the chassis, its arms joined by
+//! drop links to a part of each corner. When one wheel rises relative to the other the arms turn by
+//! different angles and the bar twists; in parallel travel they turn alike and it does nothing.
+//!
+//! Model: each half of the bar is a body on a revolute joint to the chassis, about the bar's axis (from
+//! the left bearing `pivot` to its mirror image: a lateral axis); the two halves meet at the car's centre
+//! line in a torsion element of the bar's rate (a bushing whose other rates act only in directions the two
+//! bearings already hold, so they carry no load); each drop link is a distance constraint from the arm's
+//! end to its point on the corner (ball joints at both ends). Only an axle builds it: every corner
+//! analysis moves the two wheels alike (parallel travel, the same force on both), where a bar does not
+//! twist.
+
+use crate::corner::{check_rate, part_name, ROTATIONAL_RATE_RANGE};
+use crate::general::{Place, Resolver};
+use elastokin_core::joint::orthonormal_complement;
+use elastokin_core::{BodyRef, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
+use elastokin_elements::Bushing;
+use serde::{Deserialize, Serialize};
+
+/// Least distance of the bar's bearing from the centre line (m): the two bearings define its axis.
+pub const MIN_BEARING_OFFSET: f64 = 0.05;
+
+/// An anti-roll bar, described on the left (see the [module docs](self)).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AntiRollBar {
+    /// Name: the torsion element's; the halves, bearings and links are named after it per side.
+    pub name: String,
+    /// Torsional rate of the bar, N·m/rad: the moment per radian of twist of one arm relative to the
+    /// other.
+    pub rate: f64,
+    /// The left bearing on the chassis, on the bar's axis.
+    pub pivot: Place,
+    /// The end of the left arm, where the drop link meets it.
+    pub arm_end: Place,
+    /// The drop link's other end, on `link_body`.
+    pub link_end: Place,
+    /// The part of the corner the drop link meets (a lower arm, a strut).
+    pub link_body: String,
+}
+
+impl AntiRollBar {
+    /// Names of the left and right half of the bar, of their bearings and of the drop links, as built on an
+    /// axle whose corners carry the prefixes `"left "` and `"right "`.
+    pub fn part_names(&self, prefix: &str) -> [String; 3] {
+        [
+            part_name(prefix, &self.name),
+            part_name(prefix, &format!("{} bearing", self.name)),
+            part_name(prefix, &format!("{} drop link", self.name)),
+        ]
+    }
+
+    /// Adds the bar (`k`: its index in the file, for messages) between the corners resolved by `sides`.
+    pub(crate) fn add(&self, model: &mut Model, k: usize, sides: (Resolver, Resolver)) -> Result<(), ModelError> {
+        let key = format!("anti_roll_bars[{k}] '{}'", self.name);
+        check_rate(&format!("{key}.rate"), self.rate, ROTATIONAL_RATE_RANGE, "N·m/rad")?;
+        let pivot = sides.0.point(&format!("{key}.pivot"), &self.pivot)?;
+        if pivot.y < MIN_BEARING_OFFSET {
+            return Err(ModelError::OutOfRange {
+                item: key.clone(),
+                why: format!(
+                    "{key}.pivot lies {:.4} m left of the centre line: give the left bearing, at least \
+                     {MIN_BEARING_OFFSET} m out, so that the two bearings define the bar's axis",
+                    pivot.y
+                ),
+            });
+        }
+        let axis = Vec3::y();
+        let mut halves = [BodyRef::Ground; 2];
+        for (half, r) in halves.iter_mut().zip([&sides.0, &sides.1]) {
+            let [body, bearing, link] = self.part_names(r.prefix());
+            let (pivot, arm_end) = (r.point(&format!("{key}.pivot"), &self.pivot)?, r.point(&format!("{key}.arm_end"), &self.arm_end)?);
+            let link_end = r.point(&format!("{key}.link_end"), &self.link_end)?;
+            let on = r.body(model, &format!("{key}.link_body"), &self.link_body)?;
+            let bar = model.add_body(&body, Pose::at(pivot))?;
+            model.add_joint(JointSpec::revolute(&bearing, BodyRef::Ground, bar, pivot, axis))?;
+            model.add_joint(JointSpec::distance(&link, bar, on, arm_end, link_end))?;
+            *half = bar.into();
+        }
+        // The torsion element at the centre line: x along the bar. Its other rates meet no deflection (the
+        // bearings hold both halves on one axis), so they take the torsion rate's size, to keep the tangent
+        // well scaled.
+        let (u, v) = orthonormal_complement(&axis);
+        let centre = Vec3::new(pivot.x, 0.0, pivot.z);
+        let frame = Mat3::from_columns(&[axis, u, v]);
+        let rates = Vec3::repeat(self.rate);
+        model.add_element(Bushing::new(&self.name, halves[0], halves[1], centre, frame, rates, rates)?)?;
+        Ok(())
+    }
+}

@@ -1,0 +1,829 @@
+//! The general model: any suspension corner as named hardpoints, bodies, joints, bushings and springs,
+//! with a corner description that says where the wheel is. Every template expands into it
+//! ([`crate::Template::expand`]) and is built by it: there is one builder.
+//!
+//! ```json
+//! { "general": {
+//!     "hardpoints": { "wheel_centre": [-0.04, 1.1, -0.026], "lower_ball_joint": [ … ], … },
+//!     "bodies": [ { "name": "upright", "at": "wheel_centre" }, { "name": "lower arm", "at": "lower_ball_joint" } ],
+//!     "joints": [
+//!       { "name": "lower arm pivot", "kind": "revolute", "bodies": ["chassis", "lower arm"],
+//!         "at": "lower_arm_front", "axis": ["lower_arm_front", "lower_arm_rear"] },
+//!       { "name": "lower ball joint", "kind": "spherical", "bodies": ["lower arm", "upright"], "at": "lower_ball_joint" } ],
+//!     "bushings": [ { "name": "top mount", "bodies": ["chassis", "strut rod"], "at": "top_mount",
+//!                     "axis": ["strut_lower", "top_mount"],
+//!                     "radial": 2e6, "axial": 5e5, "torsion": 50, "conical": 500 } ],
+//!     "springs": [ { "name": "spring", "bodies": ["chassis", "upright"], "from": "top_mount", "to": "strut_lower",
+//!                    "rate": 30000, "design_force": 4000 } ],
+//!     "corner": { "upright": "upright", "wheel_centre": "wheel_centre",
+//!                 "steering_axis": [ { "body": "upright", "at": "lower_ball_joint" },
+//!                                    { "body": "strut rod", "at": "top_mount" } ],
+//!                 "tie_rod": { "inner": "tie_rod_inner", "outer": "tie_rod_outer" } } } }
+//! ```
+//!
+//! The model describes the **left** corner (y > 0, ISO 8855, metres); the right is its mirror image
+//! (y → −y for points and direction vectors; a bushing frame is mirrored axis by axis and made
+//! right-handed again). `"chassis"` names the ground. The tie rod of the corner description is attached by
+//! the rig: to the rack when steering, to the chassis otherwise; a corner without one (a rear multi-link
+//! whose toe link is an ordinary joint to the chassis) runs every analysis but steering.
+
+use crate::anti_roll_bar::AntiRollBar;
+use crate::connection::{BushingRates, Connection};
+use crate::corner::{
+    check_hardpoints, check_rate, check_steering_arm, check_steering_axis, part_name, CornerParts, CornerTemplate,
+    TieRod, Wheel, ROTATIONAL_RATE_RANGE, TRANSLATIONAL_RATE_RANGE,
+};
+use crate::hardpoint::Side;
+use elastokin_core::joint::orthonormal_complement;
+use elastokin_core::{BodyRef, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
+use elastokin_elements::{Bushing, BushingSpec, CoilSpring, RotationLaw};
+use serde::de::{Error as _, MapAccess, Visitor};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+/// The name of the ground in a general model.
+pub const CHASSIS: &str = "chassis";
+
+/// Named hardpoints of the left corner, in the order given (global coordinates, metres).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Hardpoints(pub Vec<(String, Vec3)>);
+
+impl Hardpoints {
+    /// The point named `name`.
+    pub fn get(&self, name: &str) -> Option<Vec3> {
+        self.0.iter().find(|(n, _)| n == name).map(|(_, p)| *p)
+    }
+}
+
+impl Serialize for Hardpoints {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = s.serialize_map(Some(self.0.len()))?;
+        for (name, p) in &self.0 {
+            map.serialize_entry(name, &[p.x, p.y, p.z])?;
+        }
+        map.end()
+    }
+}
+
+/// A point's own reader, named for the error messages (see `crate::hardpoint::point`).
+#[derive(Deserialize)]
+#[serde(transparent)]
+struct PointValue(#[serde(deserialize_with = "crate::hardpoint::point")] Vec3);
+
+impl<'de> Deserialize<'de> for Hardpoints {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Ordered;
+        impl<'de> Visitor<'de> for Ordered {
+            type Value = Hardpoints;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("an object of named hardpoints, each [x, y, z] in metres")
+            }
+            fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Hardpoints, A::Error> {
+                let mut out: Vec<(String, Vec3)> = Vec::new();
+                while let Some(name) = map.next_key::<String>()? {
+                    let PointValue(p) = map.next_value()?;
+                    if out.iter().any(|(n, _)| *n == name) {
+                        return Err(A::Error::custom(format!("hardpoint '{name}' is given twice: keep one")));
+                    }
+                    out.push((name, p));
+                }
+                Ok(Hardpoints(out))
+            }
+        }
+        d.deserialize_map(Ordered)
+    }
+}
+
+/// A point of the model: a hardpoint by name, or coordinates `[x, y, z]` (left corner, metres).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Place {
+    /// A named hardpoint.
+    Named(String),
+    /// Coordinates.
+    At(Vec3),
+}
+
+impl Place {
+    /// A named hardpoint.
+    pub fn named(name: &str) -> Place {
+        Place::Named(name.to_string())
+    }
+    /// How the file writes it, for messages.
+    fn describe(&self) -> String {
+        match self {
+            Place::Named(n) => format!("'{n}'"),
+            Place::At(p) => format!("[{}, {}, {}]", p.x, p.y, p.z),
+        }
+    }
+}
+
+impl Serialize for Place {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Place::Named(n) => s.serialize_str(n),
+            Place::At(p) => [p.x, p.y, p.z].serialize(s),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Place {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let value = serde_json::Value::deserialize(d)?;
+        place_of(&value).map_err(D::Error::custom)
+    }
+}
+
+fn place_of(value: &serde_json::Value) -> Result<Place, String> {
+    if let Some(name) = value.as_str() {
+        return Ok(Place::named(name));
+    }
+    match numbers(value) {
+        Some(n) if n.len() == 3 => Ok(Place::At(Vec3::new(n[0], n[1], n[2]))),
+        _ => Err(format!("a point is a hardpoint's name or 3 numbers in metres [x, y, z], got {}", short(value))),
+    }
+}
+
+fn numbers(value: &serde_json::Value) -> Option<Vec<f64>> {
+    value.as_array()?.iter().map(|c| c.as_f64()).collect()
+}
+
+fn short(value: &serde_json::Value) -> String {
+    let text = value.to_string();
+    if text.chars().count() > 40 {
+        format!("{}…", text.chars().take(40).collect::<String>())
+    } else {
+        text
+    }
+}
+
+/// A direction: from one point to another (`["a", "b"]`), or a vector `[x, y, z]` (left corner).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Axis {
+    /// From the first point towards the second.
+    Through(Place, Place),
+    /// A direction vector (any length but zero).
+    Vector(Vec3),
+}
+
+impl Axis {
+    /// From hardpoint `a` towards hardpoint `b`.
+    pub fn through(a: &str, b: &str) -> Axis {
+        Axis::Through(Place::named(a), Place::named(b))
+    }
+}
+
+impl Serialize for Axis {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Axis::Through(a, b) => (a, b).serialize(s),
+            Axis::Vector(v) => [v.x, v.y, v.z].serialize(s),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Axis {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let value = serde_json::Value::deserialize(d)?;
+        let fail = || {
+            D::Error::custom(format!(
+                "an axis is two points [\"from\", \"to\"] (hardpoint names or [x, y, z]) or a direction [x, y, z], \
+                 got {}",
+                short(&value)
+            ))
+        };
+        match value.as_array().map(Vec::as_slice) {
+            Some([a, b]) => Ok(Axis::Through(place_of(a).map_err(|_| fail())?, place_of(b).map_err(|_| fail())?)),
+            Some([_, _, _]) => match numbers(&value) {
+                Some(n) => Ok(Axis::Vector(Vec3::new(n[0], n[1], n[2]))),
+                None => Err(fail()),
+            },
+            _ => Err(fail()),
+        }
+    }
+}
+
+/// A rigid part: its name and where its reference point is at design (axes global).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodyDef {
+    /// Name (not `"chassis"`, which is the ground).
+    pub name: String,
+    /// Reference point at design; results give the body's motion there.
+    pub at: Place,
+}
+
+/// The kinds of joint a general model may use (the rig adds the drivers).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum JointType {
+    /// Ball joint at `at`.
+    Spherical,
+    /// Hinge at `at` about `axis`.
+    Revolute,
+    /// Slides along and turns about `axis` through `at`.
+    Cylindrical,
+    /// Slides along `axis` through `at`.
+    Translational,
+    /// Cardan joint at `at`: `axis` fixed in the first body, `axis_j` in the second, perpendicular.
+    Universal,
+    /// Welds the two bodies; reactions at `at`.
+    Fixed,
+    /// A rigid link (two ball joints) from `at` on the first body to `to` on the second.
+    Distance,
+    /// The point `at` of the first body stays on the plane of the second through `to` (default `at`)
+    /// with normal `axis`.
+    InPlane,
+    /// The point `at` of the first body stays on the line of the second through `to` (default `at`)
+    /// along `axis`.
+    InLine,
+    /// `axis` of the first body stays perpendicular to `axis_j` of the second.
+    Perpendicular,
+    /// `axis` of the first body stays parallel to the same axis of the second.
+    ParallelAxes,
+}
+
+/// A kinematic joint between two bodies (by name; `"chassis"` is the ground).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct JointDef {
+    /// Name; reactions are reported under it.
+    pub name: String,
+    /// Kind.
+    pub kind: JointType,
+    /// The two bodies; reactions are those on the second.
+    pub bodies: [String; 2],
+    /// Hardpoint (see [`JointType`] for what each kind uses).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub at: Option<Place>,
+    /// Second point: the far end of a distance link; the second body's point of an in-plane or in-line
+    /// joint.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub to: Option<Place>,
+    /// Axis: hinge, slide, plane normal, line direction, or the first body's axis.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub axis: Option<Axis>,
+    /// The second body's axis (universal, perpendicular).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub axis_j: Option<Axis>,
+}
+
+/// A rubber bushing between two bodies, in its own frame: x along `axis`, y towards `y_axis` (made
+/// perpendicular), z completing a right-handed frame. Either the four rates of a cylindrical bushing
+/// (`radial`, `axial`, `torsion`, `conical`: x is the bushing's axis) or six (`translation` along and
+/// `rotation` about x, y, z).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BushingDef {
+    /// Name; forces and deflections are reported under it.
+    pub name: String,
+    /// The two bodies: the frame moves with the first; forces are those on the second.
+    pub bodies: [String; 2],
+    /// Centre of the bushing at design.
+    pub at: Place,
+    /// The frame's x axis (default: global x).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub axis: Option<Axis>,
+    /// A direction the frame's y axis leans towards (default: any perpendicular to x, which a cylindrical
+    /// bushing does not tell apart).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub y_axis: Option<Axis>,
+    /// Radial rate (across x), N/m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radial: Option<f64>,
+    /// Axial rate (along x), N/m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub axial: Option<f64>,
+    /// Torsion rate (about x), N·m/rad.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub torsion: Option<f64>,
+    /// Conical rate (tilt of x), N·m/rad.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub conical: Option<f64>,
+    /// Rates along x, y, z, N/m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub translation: Option<[f64; 3]>,
+    /// Rates about x, y, z, N·m/rad.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotation: Option<[f64; 3]>,
+    /// How the moment follows the twist (see [`RotationLaw`]).
+    #[serde(default, skip_serializing_if = "is_default_law")]
+    pub law: RotationLaw,
+    /// Force on the second body at zero deflection, in the bushing frame (N).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub preload_force: Option<[f64; 3]>,
+    /// Moment on the second body at zero twist, in the bushing frame (N·m).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub preload_torque: Option<[f64; 3]>,
+}
+
+fn is_default_law(law: &RotationLaw) -> bool {
+    *law == RotationLaw::default()
+}
+
+impl BushingDef {
+    /// A cylindrical bushing with `rates`, its axis `axis`.
+    pub fn cylindrical(name: &str, bodies: [&str; 2], at: Place, axis: Axis, rates: &BushingRates) -> BushingDef {
+        BushingDef {
+            name: name.to_string(),
+            bodies: bodies.map(str::to_string),
+            at,
+            axis: Some(rates.axis.map_or(axis, |a| Axis::Vector(a.into()))),
+            y_axis: None,
+            radial: Some(rates.radial),
+            axial: Some(rates.axial),
+            torsion: Some(rates.torsion),
+            conical: Some(rates.conical),
+            translation: None,
+            rotation: None,
+            law: rates.law,
+            preload_force: None,
+            preload_torque: None,
+        }
+    }
+
+    /// `(translation, rotation)` rates, from whichever set is given; the error names what is missing.
+    fn rates(&self, key: &str) -> Result<(Vec3, Vec3), ModelError> {
+        let cylindrical = [self.radial, self.axial, self.torsion, self.conical];
+        let six = [self.translation, self.rotation];
+        let refuse = |why: &str| {
+            Err(ModelError::OutOfRange {
+                item: key.to_string(),
+                why: format!(
+                    "{key} ('{}'): {why}: give either radial, axial, torsion and conical (a cylindrical bushing, x \
+                     its axis) or translation and rotation (three rates each, along and about x, y, z)",
+                    self.name
+                ),
+            })
+        };
+        let (t, r) = match (cylindrical.iter().any(Option::is_some), six.iter().any(Option::is_some)) {
+            (true, true) => return refuse("both sets of rates are given"),
+            (false, false) => return refuse("no rates are given"),
+            (true, false) => match cylindrical {
+                [Some(radial), Some(axial), Some(torsion), Some(conical)] => {
+                    (Vec3::new(axial, radial, radial), Vec3::new(torsion, conical, conical))
+                }
+                _ => return refuse("a cylindrical bushing needs all four rates"),
+            },
+            (false, true) => match six {
+                [Some(t), Some(r)] => (Vec3::from(t), Vec3::from(r)),
+                _ => return refuse("six rates need both translation and rotation"),
+            },
+        };
+        for (k, what) in ["x", "y", "z"].iter().enumerate() {
+            check_rate(&format!("{key}.translation {what}"), t[k], TRANSLATIONAL_RATE_RANGE, "N/m")?;
+            check_rate(&format!("{key}.rotation {what}"), r[k], ROTATIONAL_RATE_RANGE, "N·m/rad")?;
+        }
+        Ok((t, r))
+    }
+}
+
+/// A coil spring between two bodies: linear, with its push at design or its free length.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpringDef {
+    /// Name.
+    pub name: String,
+    /// The two bodies; the force reported is the one on the second.
+    pub bodies: [String; 2],
+    /// Seat on the first body.
+    pub from: Place,
+    /// Seat on the second body.
+    pub to: Place,
+    /// Rate, N/m.
+    pub rate: f64,
+    /// Push at the design length, N (give this or `free_length`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub design_force: Option<f64>,
+    /// Free length, m (give this or `design_force`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub free_length: Option<f64>,
+}
+
+/// A point on a body, for the steering axis.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodyPoint {
+    /// The body (or `"chassis"`).
+    pub body: String,
+    /// The point at design.
+    pub at: Place,
+}
+
+/// The tie rod: attached by the rig to the rack (steering) or to the chassis.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TieRodDef {
+    /// Inner end (rack).
+    pub inner: Place,
+    /// Outer end (upright).
+    pub outer: Place,
+    /// A distance constraint (`"ideal"`, the default) or a rod with a bushing at each end.
+    #[serde(default)]
+    pub connection: Connection,
+}
+
+/// Where the wheel is and how it is steered: what turns a linkage into a suspension corner.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CornerDef {
+    /// The body that carries the wheel.
+    pub upright: String,
+    /// The hardpoint at the wheel centre.
+    pub wheel_centre: String,
+    /// Outward spin axis of the left wheel at design (default `[0, 1, 0]`; static toe and camber tilt it).
+    #[serde(default = "outward", skip_serializing_if = "is_outward")]
+    pub spin_axis: [f64; 3],
+    /// Loaded tyre radius (m): the contact patch is this far from the wheel centre, down the wheel plane.
+    #[serde(default = "crate::corner::default_loaded_radius")]
+    pub loaded_radius: f64,
+    /// Lower and upper point of the steering (kingpin) axis, each on a body: it gives caster, kingpin
+    /// inclination, scrub radius and trail. For a multi-link, the virtual axis through the link-pair
+    /// intersections.
+    pub steering_axis: [BodyPoint; 2],
+    /// The steering input; without one the steering analysis does not apply.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tie_rod: Option<TieRodDef>,
+}
+
+fn outward() -> [f64; 3] {
+    [0.0, 1.0, 0.0]
+}
+
+fn is_outward(a: &[f64; 3]) -> bool {
+    *a == outward()
+}
+
+/// A suspension corner of any topology (see the [module docs](self)).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GeneralCorner {
+    /// Named hardpoints of the left corner.
+    pub hardpoints: Hardpoints,
+    /// The moving parts.
+    pub bodies: Vec<BodyDef>,
+    /// Kinematic joints.
+    #[serde(default)]
+    pub joints: Vec<JointDef>,
+    /// Rubber bushings.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub bushings: Vec<BushingDef>,
+    /// Coil springs.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub springs: Vec<SpringDef>,
+    /// Anti-roll bars: built on a full axle, coupling the two corners.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub anti_roll_bars: Vec<AntiRollBar>,
+    /// Where the wheel is.
+    pub corner: CornerDef,
+}
+
+/// The bodies of one corner by their file names, and the places resolved on one side.
+pub(crate) struct Resolver<'a> {
+    general: &'a GeneralCorner,
+    side: Side,
+    prefix: &'a str,
+}
+
+impl Resolver<'_> {
+    /// The prefix of the corner's part names.
+    pub(crate) fn prefix(&self) -> &str {
+        self.prefix
+    }
+
+    /// A point placed on the side; `key` names where it is used, for the error.
+    pub(crate) fn point(&self, key: &str, place: &Place) -> Result<Vec3, ModelError> {
+        let left = match place {
+            Place::At(p) => *p,
+            Place::Named(name) => self.general.hardpoints.get(name).ok_or_else(|| ModelError::OutOfRange {
+                item: key.to_string(),
+                why: format!(
+                    "{key}: there is no hardpoint '{name}': add it to hardpoints or use one of {}",
+                    list(self.general.hardpoints.0.iter().map(|(n, _)| n.as_str()))
+                ),
+            })?,
+        };
+        if !left.iter().all(|c| c.is_finite()) {
+            return Err(ModelError::OutOfRange {
+                item: key.to_string(),
+                why: format!("{key}: {} is not three finite numbers in metres", place.describe()),
+            });
+        }
+        Ok(self.side.place(left))
+    }
+
+    /// A direction placed on the side.
+    pub(crate) fn direction(&self, key: &str, axis: &Axis) -> Result<Vec3, ModelError> {
+        let v = match axis {
+            Axis::Vector(v) => self.side.place(*v),
+            Axis::Through(a, b) => self.point(key, b)? - self.point(key, a)?,
+        };
+        let n = v.norm();
+        if !(n.is_finite() && n > 1e-9) {
+            let why = match axis {
+                Axis::Through(a, b) => format!(
+                    "{key}: the axis from {} to {} has no length ({n:.1e} m): give two distinct points",
+                    a.describe(),
+                    b.describe()
+                ),
+                Axis::Vector(_) => format!("{key}: the axis vector has no length: give a non-zero direction"),
+            };
+            return Err(ModelError::OutOfRange { item: key.to_string(), why });
+        }
+        Ok(v)
+    }
+
+    /// A body by its file name (`"chassis"` is the ground).
+    pub(crate) fn body(&self, model: &Model, key: &str, name: &str) -> Result<BodyRef, ModelError> {
+        if name == CHASSIS {
+            return Ok(BodyRef::Ground);
+        }
+        let known = self.general.bodies.iter().any(|b| b.name == name);
+        match model.body_id(&part_name(self.prefix, name)) {
+            Some(id) if known => Ok(id.into()),
+            _ => Err(ModelError::OutOfRange {
+                item: key.to_string(),
+                why: format!(
+                    "{key}: there is no body '{name}': use \"{CHASSIS}\" or one of {}",
+                    list(self.general.bodies.iter().map(|b| b.name.as_str()))
+                ),
+            }),
+        }
+    }
+}
+
+/// `'a', 'b' or 'c'` for messages.
+fn list<'a>(names: impl Iterator<Item = &'a str>) -> String {
+    let names: Vec<String> = names.map(|n| format!("'{n}'")).collect();
+    match names.as_slice() {
+        [] => "none (the list is empty)".into(),
+        [one] => one.clone(),
+        [init @ .., last] => format!("{} or {last}", init.join(", ")),
+    }
+}
+
+/// A mirrored bushing frame: the left frame's x and y mirrored, z completing a right-handed frame.
+fn bushing_frame(x_left: Vec3, y_hint_left: Option<Vec3>, side: Side) -> Result<Mat3, String> {
+    let x = x_left / x_left.norm();
+    let y = match y_hint_left {
+        None => orthonormal_complement(&x).0,
+        Some(h) => {
+            let y = h - x * x.dot(&h);
+            let n = y.norm();
+            if !(n > 1e-6 * h.norm()) {
+                return Err("y_axis is parallel to the bushing's axis: give a direction across it".into());
+            }
+            y / n
+        }
+    };
+    let (x, y) = (side.place(x), side.place(y));
+    Ok(Mat3::from_columns(&[x, y, x.cross(&y)]))
+}
+
+impl GeneralCorner {
+    fn resolver<'a>(&'a self, side: Side, prefix: &'a str) -> Resolver<'a> {
+        Resolver { general: self, side, prefix }
+    }
+
+    /// Hardpoints with the wheel centre first, for the reach checks.
+    fn hardpoints_wheel_centre_first(&self) -> Result<Vec<(&str, Vec3)>, ModelError> {
+        let left = self.resolver(Side::Left, "");
+        let name = self.corner.wheel_centre.as_str();
+        let wc = left.point("corner.wheel_centre", &Place::named(name))?;
+        let mut points = vec![(name, wc)];
+        points.extend(self.hardpoints.0.iter().map(|(n, p)| (n.as_str(), *p)));
+        Ok(points)
+    }
+
+    fn add_joint(&self, model: &mut Model, r: &Resolver, k: usize, j: &JointDef) -> Result<(), ModelError> {
+        let key = format!("joints[{k}] '{}'", j.name);
+        let bi = r.body(model, &format!("{key}.bodies"), &j.bodies[0])?;
+        let bj = r.body(model, &format!("{key}.bodies"), &j.bodies[1])?;
+        let kind = j.kind;
+        let needs = |what: &str, given: bool| -> Result<(), ModelError> {
+            if given {
+                return Ok(());
+            }
+            Err(ModelError::OutOfRange {
+                item: key.clone(),
+                why: format!("{key}: a {} joint needs '{what}': add it", kind_name(kind)),
+            })
+        };
+        let unused = |what: &str, given: bool| -> Result<(), ModelError> {
+            if !given {
+                return Ok(());
+            }
+            Err(ModelError::OutOfRange {
+                item: key.clone(),
+                why: format!("{key}: '{what}' means nothing to a {} joint: remove it", kind_name(kind)),
+            })
+        };
+        use JointType as T;
+        let uses = match kind {
+            T::Spherical | T::Fixed => ["at"].as_slice(),
+            T::Revolute | T::Cylindrical | T::Translational => &["at", "axis"],
+            T::Universal => &["at", "axis", "axis_j"],
+            T::Distance => &["at", "to"],
+            T::InPlane | T::InLine => &["at", "axis", "to?"],
+            T::Perpendicular => &["axis", "axis_j"],
+            T::ParallelAxes => &["axis"],
+        };
+        for (what, given) in [("at", j.at.is_some()), ("to", j.to.is_some()), ("axis", j.axis.is_some())]
+            .into_iter()
+            .chain([("axis_j", j.axis_j.is_some())])
+        {
+            if uses.contains(&what) {
+                needs(what, given)?;
+            } else if !uses.contains(&format!("{what}?").as_str()) {
+                unused(what, given)?;
+            }
+        }
+        let at = j.at.as_ref().map(|p| r.point(&format!("{key}.at"), p)).transpose()?;
+        let to = j.to.as_ref().map(|p| r.point(&format!("{key}.to"), p)).transpose()?;
+        let axis = j.axis.as_ref().map(|a| r.direction(&format!("{key}.axis"), a)).transpose()?;
+        let axis_j = j.axis_j.as_ref().map(|a| r.direction(&format!("{key}.axis_j"), a)).transpose()?;
+        let name = part_name(r.prefix, &j.name);
+        let p = at.unwrap_or_else(Vec3::zeros);
+        let spec = match kind {
+            T::Spherical => JointSpec::spherical(&name, bi, bj, p),
+            T::Revolute => JointSpec::revolute(&name, bi, bj, p, axis.unwrap_or_default()),
+            T::Cylindrical => JointSpec::cylindrical(&name, bi, bj, p, axis.unwrap_or_default()),
+            T::Translational => JointSpec::translational(&name, bi, bj, p, axis.unwrap_or_default()),
+            T::Universal => {
+                JointSpec::universal(&name, bi, bj, p, axis.unwrap_or_default(), axis_j.unwrap_or_default())
+            }
+            T::Fixed => JointSpec::fixed(&name, bi, bj, p),
+            T::Distance => JointSpec::distance(&name, bi, bj, p, to.unwrap_or_default()),
+            T::InPlane => JointSpec { point_j: to, ..JointSpec::in_plane(&name, bi, bj, p, axis.unwrap_or_default()) },
+            T::InLine => JointSpec { point_j: to, ..JointSpec::in_line(&name, bi, bj, p, axis.unwrap_or_default()) },
+            T::Perpendicular => {
+                JointSpec::perpendicular(&name, bi, bj, axis.unwrap_or_default(), axis_j.unwrap_or_default())
+            }
+            T::ParallelAxes => JointSpec::parallel_axes(&name, bi, bj, axis.unwrap_or_default()),
+        };
+        model.add_joint(spec)?;
+        Ok(())
+    }
+
+    fn add_bushing(&self, model: &mut Model, r: &Resolver, k: usize, b: &BushingDef) -> Result<(), ModelError> {
+        let key = format!("bushings[{k}]");
+        let (translational, rotational) = b.rates(&key)?;
+        let key = format!("{key} '{}'", b.name);
+        let bi = r.body(model, &format!("{key}.bodies"), &b.bodies[0])?;
+        let bj = r.body(model, &format!("{key}.bodies"), &b.bodies[1])?;
+        let left = self.resolver(Side::Left, r.prefix);
+        let x = b.axis.as_ref().map(|a| left.direction(&format!("{key}.axis"), a)).transpose()?.unwrap_or(Vec3::x());
+        let y = b.y_axis.as_ref().map(|a| left.direction(&format!("{key}.y_axis"), a)).transpose()?;
+        let frame = bushing_frame(x, y, r.side)
+            .map_err(|why| ModelError::OutOfRange { item: key.clone(), why: format!("{key}: {why}") })?;
+        // Mirroring turns the frame's z axis over (see `bushing_frame`): a preload's z force and x, y
+        // moments change sign in the right corner's frame, so that the right bushing pushes as the mirror
+        // image of the left.
+        let s = r.side.sign();
+        let force = b.preload_force.map_or(Vec3::zeros(), |f| Vec3::new(f[0], f[1], s * f[2]));
+        let torque = b.preload_torque.map_or(Vec3::zeros(), |m| Vec3::new(s * m[0], s * m[1], m[2]));
+        let bushing = Bushing::from_spec(BushingSpec {
+            name: part_name(r.prefix, &b.name),
+            body_i: bi,
+            body_j: bj,
+            point: r.point(&format!("{key}.at"), &b.at)?,
+            frame,
+            translational,
+            rotational,
+            preload_force: force,
+            preload_torque: torque,
+            rotation_law: b.law,
+        })?;
+        model.add_element(bushing)?;
+        Ok(())
+    }
+
+    fn add_spring(&self, model: &mut Model, r: &Resolver, k: usize, s: &SpringDef) -> Result<(), ModelError> {
+        let key = format!("springs[{k}] '{}'", s.name);
+        let bi = r.body(model, &format!("{key}.bodies"), &s.bodies[0])?;
+        let bj = r.body(model, &format!("{key}.bodies"), &s.bodies[1])?;
+        let (from, to) = (r.point(&format!("{key}.from"), &s.from)?, r.point(&format!("{key}.to"), &s.to)?);
+        check_rate(&format!("{key}.rate"), s.rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
+        let name = part_name(r.prefix, &s.name);
+        let spring = match (s.design_force, s.free_length) {
+            (Some(force), None) => {
+                crate::corner::check_spring_force(&key, s.rate, force, (to - from).norm())?;
+                CoilSpring::with_design_force(&name, bi, from, bj, to, s.rate, force)?
+            }
+            (None, Some(free)) => CoilSpring::new(&name, bi, from, bj, to, s.rate, free)?,
+            _ => {
+                return Err(ModelError::OutOfRange {
+                    item: key.clone(),
+                    why: format!("{key}: give either design_force (N, its push at design) or free_length (m)"),
+                })
+            }
+        };
+        model.add_element(spring)?;
+        Ok(())
+    }
+}
+
+fn kind_name(kind: JointType) -> String {
+    serde_json::to_value(kind).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default()
+}
+
+impl CornerTemplate for GeneralCorner {
+    fn add_corner(&self, model: &mut Model, side: Side, prefix: &str) -> Result<CornerParts, ModelError> {
+        check_hardpoints(&self.hardpoints_wheel_centre_first()?)?;
+        let r = self.resolver(side, prefix);
+        let c = &self.corner;
+        if !self.bodies.iter().any(|b| b.name == c.upright) {
+            return Err(ModelError::OutOfRange {
+                item: "corner.upright".into(),
+                why: format!(
+                    "corner.upright: there is no body '{}': name the body that carries the wheel, one of {}",
+                    c.upright,
+                    list(self.bodies.iter().map(|b| b.name.as_str()))
+                ),
+            });
+        }
+        let wheel_centre = r.point("corner.wheel_centre", &Place::named(&c.wheel_centre))?;
+        let steering = [
+            r.point("corner.steering_axis[0].at", &c.steering_axis[0].at)?,
+            r.point("corner.steering_axis[1].at", &c.steering_axis[1].at)?,
+        ];
+        let left = self.resolver(Side::Left, prefix);
+        let axis_left = (
+            left.point("corner.steering_axis[0].at", &c.steering_axis[0].at)?,
+            left.point("corner.steering_axis[1].at", &c.steering_axis[1].at)?,
+        );
+        let axis_names = (c.steering_axis[0].at.describe(), c.steering_axis[1].at.describe());
+        let unquoted = |s: &str| s.trim_matches('\'').to_string();
+        let axis_names = (unquoted(&axis_names.0), unquoted(&axis_names.1));
+        check_steering_axis(axis_left, (&axis_names.0, &axis_names.1))?;
+        if let Some(t) = &c.tie_rod {
+            let (inner, outer) = (left.point("corner.tie_rod.inner", &t.inner)?, left.point("corner.tie_rod.outer", &t.outer)?);
+            check_steering_arm(axis_left, (&axis_names.0, &axis_names.1), inner, outer)?;
+        }
+        for (k, body) in self.bodies.iter().enumerate() {
+            if body.name == CHASSIS {
+                return Err(ModelError::OutOfRange {
+                    item: format!("bodies[{k}]"),
+                    why: format!("bodies[{k}]: '{CHASSIS}' names the ground: give the body another name"),
+                });
+            }
+            let at = r.point(&format!("bodies[{k}] '{}'.at", body.name), &body.at)?;
+            model.add_body(&part_name(prefix, &body.name), Pose::at(at))?;
+        }
+        for (k, j) in self.joints.iter().enumerate() {
+            self.add_joint(model, &r, k, j)?;
+        }
+        for (k, b) in self.bushings.iter().enumerate() {
+            self.add_bushing(model, &r, k, b)?;
+        }
+        for (k, s) in self.springs.iter().enumerate() {
+            self.add_spring(model, &r, k, s)?;
+        }
+        let upright = r.body(model, "corner.upright", &c.upright)?.id().expect("the upright is a body, not the chassis");
+        let spin = Vec3::from(c.spin_axis);
+        if !(spin.iter().all(|v| v.is_finite()) && spin.norm() > 1e-9) {
+            return Err(ModelError::OutOfRange {
+                item: "corner.spin_axis".into(),
+                why: "corner.spin_axis: give the wheel's outward spin axis as a non-zero direction [x, y, z]".into(),
+            });
+        }
+        if spin.y < 0.5 * spin.norm() {
+            return Err(ModelError::OutOfRange {
+                item: "corner.spin_axis".into(),
+                why: format!(
+                    "corner.spin_axis [{}, {}, {}] is more than 60 deg from the left wheel's outward axis [0, 1, 0]: \
+                     give the spin axis of the left wheel, pointing out of the car",
+                    spin.x, spin.y, spin.z
+                ),
+            });
+        }
+        let steering_axis = [
+            (r.body(model, "corner.steering_axis[0].body", &c.steering_axis[0].body)?, steering[0]),
+            (r.body(model, "corner.steering_axis[1].body", &c.steering_axis[1].body)?, steering[1]),
+        ];
+        let wheel = Wheel::on(model, side, upright, wheel_centre, side.place(spin), c.loaded_radius, steering_axis)?;
+        let tie_rod = match &c.tie_rod {
+            None => None,
+            Some(t) => Some(TieRod {
+                inner: r.point("corner.tie_rod.inner", &t.inner)?,
+                outer: r.point("corner.tie_rod.outer", &t.outer)?,
+                connection: t.connection,
+            }),
+        };
+        if let Some(TieRod { connection, .. }) = &tie_rod {
+            crate::corner::check_connection("corner.tie_rod.connection", connection)?;
+        }
+        Ok(CornerParts { wheel, tie_rod })
+    }
+
+    fn add_cross_axle(
+        &self,
+        model: &mut Model,
+        left: (&str, &CornerParts),
+        right: (&str, &CornerParts),
+    ) -> Result<(), ModelError> {
+        for (k, bar) in self.anti_roll_bars.iter().enumerate() {
+            bar.add(model, k, (self.resolver(Side::Left, left.0), self.resolver(Side::Right, right.0)))?;
+        }
+        Ok(())
+    }
+}
