@@ -66,6 +66,10 @@ pub enum Command {
     /// parallel wheel travel ±20 mm in 8 steps, corrected mode.
     #[command(after_help = EXIT_STATUS)]
     Batch(BatchArgs),
+    /// Print the model in the general form (named bodies, joints, bushings, springs and the corner
+    /// description): a template expanded, ready to edit into any other suspension
+    #[command(after_help = EXIT_STATUS)]
+    Expand(CheckArgs),
 }
 
 #[derive(Debug, Args)]
@@ -349,6 +353,17 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
     out.line(format!("wrote {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))
 }
 
+/// `expand`: the model file with its suspension in the general form, which builds the same model.
+fn expand(args: CheckArgs, out: &Stdout) -> Result<(), Failure> {
+    let (_, file) = read_model(&args.model)?;
+    let general = SuspensionFile {
+        suspension: elastokin::suspensions::Template::General(Box::new(file.suspension.expand())),
+        ..file
+    };
+    out.line(general.to_json())?;
+    Ok(())
+}
+
 fn check(args: CheckArgs, out: &Stdout) -> Result<(), Failure> {
     let model = args.model.display();
     let (_, file) = read_model(&args.model)?;
@@ -452,6 +467,7 @@ fn main() -> ExitCode {
         Command::Run(args) => run(args, &out, cli.quiet, cli.strict),
         Command::Check(args) => check(args, &out),
         Command::Batch(args) => run_batch(args, &out, cli.quiet),
+        Command::Expand(args) => expand(args, &out),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -69,7 +69,8 @@ impl AntiRollBar {
         let mut halves = [BodyRef::Ground; 2];
         for (half, r) in halves.iter_mut().zip([&sides.0, &sides.1]) {
             let [body, bearing, link] = self.part_names(r.prefix());
-            let (pivot, arm_end) = (r.point(&format!("{key}.pivot"), &self.pivot)?, r.point(&format!("{key}.arm_end"), &self.arm_end)?);
+            let (pivot, arm_end) =
+                (r.point(&format!("{key}.pivot"), &self.pivot)?, r.point(&format!("{key}.arm_end"), &self.arm_end)?);
             let link_end = r.point(&format!("{key}.link_end"), &self.link_end)?;
             let on = r.body(model, &format!("{key}.link_body"), &self.link_body)?;
             let bar = model.add_body(&body, Pose::at(pivot))?;

@@ -2,11 +2,11 @@
 //! wheel characteristics read from its poses.
 
 use crate::connection::{BushingRates, Connection, SpringSpec};
+use crate::hardpoint::Side;
 use elastokin_core::joint::orthonormal_complement;
 use elastokin_core::Mat3;
-use elastokin_elements::Bushing;
-use crate::hardpoint::Side;
 use elastokin_core::{BodyId, BodyRef, ElementId, JointSpec, Model, ModelError, Pose, Vec3, BODY_DOFS};
+use elastokin_elements::Bushing;
 use elastokin_elements::{PointForce, PointTorque};
 
 /// How the corner is held on the K&C rig, and what the load parameter `t` drives.
@@ -175,7 +175,12 @@ pub(crate) fn check_spring(spring: &SpringSpec, design_length: f64) -> Result<()
 }
 
 /// [`check_spring`]'s design-force part for the spring at model-file key `key`, whose rate was checked.
-pub(crate) fn check_spring_force(key: &str, rate: f64, design_force: f64, design_length: f64) -> Result<(), ModelError> {
+pub(crate) fn check_spring_force(
+    key: &str,
+    rate: f64,
+    design_force: f64,
+    design_length: f64,
+) -> Result<(), ModelError> {
     if design_force.is_nan() || design_force.abs() > MAX_SPRING_FORCE {
         let got = if design_force.is_finite() { format!("{design_force:e}") } else { "not a finite number".into() };
         return Err(ModelError::OutOfRange {

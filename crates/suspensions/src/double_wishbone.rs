@@ -3,8 +3,8 @@
 
 use crate::connection::{ArmMounts, Connection, SpringSpec};
 use crate::corner::{
-    check_arm_mounts, check_connection, check_hardpoints, check_spring, check_steering_arm, check_steering_axis, Corner,
-    CornerParts, CornerTemplate, Rig,
+    check_arm_mounts, check_connection, check_hardpoints, check_spring, check_steering_arm, check_steering_axis,
+    Corner, CornerParts, CornerTemplate, Rig,
 };
 use crate::general::{
     BodyDef, BodyPoint, CornerDef, GeneralCorner, Hardpoints, JointDef, JointType, Place, SpringDef, TieRodDef, CHASSIS,

@@ -756,7 +756,8 @@ impl CornerTemplate for GeneralCorner {
         let axis_names = (unquoted(&axis_names.0), unquoted(&axis_names.1));
         check_steering_axis(axis_left, (&axis_names.0, &axis_names.1))?;
         if let Some(t) = &c.tie_rod {
-            let (inner, outer) = (left.point("corner.tie_rod.inner", &t.inner)?, left.point("corner.tie_rod.outer", &t.outer)?);
+            let (inner, outer) =
+                (left.point("corner.tie_rod.inner", &t.inner)?, left.point("corner.tie_rod.outer", &t.outer)?);
             check_steering_arm(axis_left, (&axis_names.0, &axis_names.1), inner, outer)?;
         }
         for (k, body) in self.bodies.iter().enumerate() {
@@ -778,7 +779,8 @@ impl CornerTemplate for GeneralCorner {
         for (k, s) in self.springs.iter().enumerate() {
             self.add_spring(model, &r, k, s)?;
         }
-        let upright = r.body(model, "corner.upright", &c.upright)?.id().expect("the upright is a body, not the chassis");
+        let upright =
+            r.body(model, "corner.upright", &c.upright)?.id().expect("the upright is a body, not the chassis");
         let spin = Vec3::from(c.spin_axis);
         if !(spin.iter().all(|v| v.is_finite()) && spin.norm() > 1e-9) {
             return Err(ModelError::OutOfRange {

@@ -42,8 +42,8 @@ pub mod macpherson;
 pub mod model_file;
 pub mod plausibility;
 
-pub use axle::{Axle, AxleRig, AxleRow, RollCentre};
 pub use anti_roll_bar::AntiRollBar;
+pub use axle::{Axle, AxleRig, AxleRow, RollCentre};
 pub use connection::{ArmMounts, BushingRates, Connection, SpringSpec};
 pub use corner::{Corner, CornerParts, CornerTemplate, Rig, SteeringGeometry, TieRod, Wheel, WheelAttitude};
 pub use double_wishbone::{DoubleWishbone, DoubleWishboneHardpoints};

@@ -3,8 +3,8 @@
 
 use crate::connection::{ArmMounts, Connection, SpringSpec};
 use crate::corner::{
-    check_arm_mounts, check_connection, check_hardpoints, check_spring, check_steering_arm, check_steering_axis, Corner,
-    CornerParts, CornerTemplate, Rig,
+    check_arm_mounts, check_connection, check_hardpoints, check_spring, check_steering_arm, check_steering_axis,
+    Corner, CornerParts, CornerTemplate, Rig,
 };
 use crate::general::{
     Axis, BodyDef, BodyPoint, BushingDef, CornerDef, GeneralCorner, Hardpoints, JointDef, JointType, Place, SpringDef,
@@ -164,7 +164,13 @@ impl MacPherson {
             },
         };
         self.lower_arm_mounts.expand("lower arm", "lower_arm_front", "lower_arm_rear", &mut g);
-        g.joints.push(joint("lower ball joint", JointType::Spherical, ["lower arm", "upright"], "lower_ball_joint", None));
+        g.joints.push(joint(
+            "lower ball joint",
+            JointType::Spherical,
+            ["lower arm", "upright"],
+            "lower_ball_joint",
+            None,
+        ));
         let strut_axis = Axis::through("strut_lower", "top_mount");
         let strut = match self.strut {
             StrutJoint::Translational => JointType::Translational,

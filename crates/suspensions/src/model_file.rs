@@ -165,6 +165,55 @@ fn number(v: f64) -> String {
     }
 }
 
+/// `value` as pretty JSON at `depth` (two spaces each), arrays of plain values on one line.
+fn write_json(value: &serde_json::Value, depth: usize, out: &mut String) {
+    use serde_json::Value;
+    let indent = |d: usize| "  ".repeat(d);
+    let plain = |v: &Value| !(v.is_array() || v.is_object());
+    let short = inline(value);
+    if value.is_object() && short.len() + 2 * depth <= 110 && !short[1..].contains('{') {
+        out.push_str(&short);
+        return;
+    }
+    match value {
+        Value::Object(map) if !map.is_empty() => {
+            out.push_str("{\n");
+            for (k, (key, v)) in map.iter().enumerate() {
+                out.push_str(&format!("{}{}: ", indent(depth + 1), Value::String(key.clone())));
+                write_json(v, depth + 1, out);
+                out.push_str(if k + 1 < map.len() { ",\n" } else { "\n" });
+            }
+            out.push_str(&format!("{}}}", indent(depth)));
+        }
+        Value::Array(items)
+            if !items.is_empty()
+                && !items.iter().all(|v| plain(v) || v.as_array().is_some_and(|a| a.iter().all(plain))) =>
+        {
+            out.push_str("[\n");
+            for (k, v) in items.iter().enumerate() {
+                out.push_str(&indent(depth + 1));
+                write_json(v, depth + 1, out);
+                out.push_str(if k + 1 < items.len() { ",\n" } else { "\n" });
+            }
+            out.push_str(&format!("{}]", indent(depth)));
+        }
+        other => out.push_str(&inline(other)),
+    }
+}
+
+/// A plain value, or an array of them, on one line.
+fn inline(value: &serde_json::Value) -> String {
+    match value {
+        serde_json::Value::Array(items) => format!("[{}]", items.iter().map(inline).collect::<Vec<_>>().join(", ")),
+        serde_json::Value::Object(map) if !map.is_empty() => {
+            let entries: Vec<String> =
+                map.iter().map(|(k, v)| format!("{}: {}", serde_json::Value::String(k.clone()), inline(v))).collect();
+            format!("{{ {} }}", entries.join(", "))
+        }
+        other => other.to_string(),
+    }
+}
+
 /// Text editors on some systems save UTF-8 with a byte-order mark; JSON has no use for it.
 fn without_byte_order_mark(text: &str) -> &str {
     text.strip_prefix('\u{feff}').unwrap_or(text)
@@ -429,9 +478,10 @@ impl SuspensionFile {
                             rates.push((key(what), unit, v, typical));
                         }
                     }
-                    for (what, unit, values, typical) in
-                        [("translation", "N/m", b.translation, typical_t), ("rotation", "N·m/rad", b.rotation, typical_r)]
-                    {
+                    for (what, unit, values, typical) in [
+                        ("translation", "N/m", b.translation, typical_t),
+                        ("rotation", "N·m/rad", b.rotation, typical_r),
+                    ] {
                         for v in values.into_iter().flatten() {
                             rates.push((key(what), unit, v, typical));
                         }
@@ -445,7 +495,12 @@ impl SuspensionFile {
                 }
                 for bar in &g.anti_roll_bars {
                     let typical = "a car's anti-roll bar is 1e3–1e5 N·m/rad";
-                    rates.push((vec!["anti_roll_bars".into(), bar.name.clone(), "rate".into()], "N·m/rad", bar.rate, typical));
+                    rates.push((
+                        vec!["anti_roll_bars".into(), bar.name.clone(), "rate".into()],
+                        "N·m/rad",
+                        bar.rate,
+                        typical,
+                    ));
                 }
                 if let Some(t) = &g.corner.tie_rod {
                     connection(&mut rates, keys(&["corner", "tie_rod", "connection"]), &t.connection);
@@ -562,9 +617,12 @@ impl SuspensionFile {
         Self::from_json(&text, &path.display().to_string())
     }
 
-    /// The file as pretty JSON.
+    /// The file as pretty JSON, as people write it: one key per line, a point or a pair of names on one.
     pub fn to_json(&self) -> String {
-        serde_json::to_string_pretty(self).expect("a model of plain numbers and strings always serialises")
+        let value = serde_json::to_value(self).expect("a model of plain numbers and strings always serialises");
+        let mut out = String::new();
+        write_json(&value, 0, &mut out);
+        out
     }
 
     /// Writes the file.

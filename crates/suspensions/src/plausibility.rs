@@ -7,8 +7,8 @@
 
 use crate::analysis::TravelRow;
 use crate::connection::{ArmMounts, Connection};
-use crate::general::{Place, CHASSIS};
 use crate::corner::{Corner, Rig};
+use crate::general::{Place, CHASSIS};
 use crate::hardpoint::Side;
 use crate::model_file::{SuspensionFile, Template};
 use elastokin_core::{Model, ModelError, Vec3, BODY_DOFS};

@@ -138,7 +138,10 @@ fn two_templates_or_an_unknown_one_are_named() {
         v["suspension"] = serde_json::json!({ "trailing_arm": t });
     });
     let (message, _, _) = invalid(&text, "suspension");
-    assert_eq!(message, "suspension: unknown template 'trailing_arm': give one of macpherson, double_wishbone or general");
+    assert_eq!(
+        message,
+        "suspension: unknown template 'trailing_arm': give one of macpherson, double_wishbone or general"
+    );
 }
 
 #[test]

@@ -238,7 +238,7 @@ pub enum SuiteEvent<'a> {
 
 /// Runs `which` (every analysis when empty) on the model in `file`: the K&C suite. The plausibility checks
 /// run first ([`KcReport::model_check`]). The static load case is skipped, with its reason, when the file
-/// has no vehicle section and it was not asked for by name. `progress` hears of each analysis as it starts,
+/// has no vehicle section, and steering when the corner has no tie rod, unless asked for by name. `progress` hears of each analysis as it starts,
 /// ends or is skipped.
 pub fn run_suite(
     file: &SuspensionFile,
@@ -261,12 +261,22 @@ pub fn run_suite(
         warnings,
     };
     report.warnings.extend(crate::plausibility::bushing_deflection_at_design(file));
+    let steered = match &file.suspension {
+        crate::Template::General(g) => g.corner.tie_rod.is_some(),
+        _ => true,
+    };
     for analysis in chosen {
-        if analysis == Analysis::StaticLoad && file.vehicle.is_none() && which.is_empty() {
-            report.skipped.push(Skipped {
-                analysis,
-                reason: "the model file has no \"vehicle\" section with the corner_load to carry".into(),
-            });
+        let skip = match analysis {
+            Analysis::StaticLoad if file.vehicle.is_none() => {
+                Some("the model file has no \"vehicle\" section with the corner_load to carry")
+            }
+            Analysis::Steering if !steered => {
+                Some("the corner has no steering input (corner.tie_rod): its toe is held by its own links")
+            }
+            _ => None,
+        };
+        if let (Some(reason), true) = (skip, which.is_empty()) {
+            report.skipped.push(Skipped { analysis, reason: reason.into() });
             progress(SuiteEvent::Skipped(&report.skipped[report.skipped.len() - 1]));
             continue;
         }
