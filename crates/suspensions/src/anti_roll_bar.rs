@@ -13,7 +13,7 @@
 use crate::corner::{check_rate, part_name, ROTATIONAL_RATE_RANGE};
 use crate::general::{Place, Resolver};
 use elastokin_core::joint::orthonormal_complement;
-use elastokin_core::{BodyRef, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
+use elastokin_core::{BodyRef, ElementId, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
 use elastokin_elements::Bushing;
 use serde::{Deserialize, Serialize};
 
@@ -51,7 +51,13 @@ impl AntiRollBar {
     }
 
     /// Adds the bar (`k`: its index in the file, for messages) between the corners resolved by `sides`.
-    pub(crate) fn add(&self, model: &mut Model, k: usize, sides: (Resolver, Resolver)) -> Result<(), ModelError> {
+    /// Returns the torsion element.
+    pub(crate) fn add(
+        &self,
+        model: &mut Model,
+        k: usize,
+        sides: (Resolver, Resolver),
+    ) -> Result<ElementId, ModelError> {
         let key = format!("anti_roll_bars[{k}] '{}'", self.name);
         check_rate(&format!("{key}.rate"), self.rate, ROTATIONAL_RATE_RANGE, "N·m/rad")?;
         let pivot = sides.0.point(&format!("{key}.pivot"), &self.pivot)?;
@@ -85,7 +91,6 @@ impl AntiRollBar {
         let centre = Vec3::new(pivot.x, 0.0, pivot.z);
         let frame = Mat3::from_columns(&[axis, u, v]);
         let rates = Vec3::repeat(self.rate);
-        model.add_element(Bushing::new(&self.name, halves[0], halves[1], centre, frame, rates, rates)?)?;
-        Ok(())
+        model.add_element(Bushing::new(&self.name, halves[0], halves[1], centre, frame, rates, rates)?)
     }
 }

@@ -5,7 +5,7 @@
 use crate::analysis::{read_sweep, SweepExtras, SweepOutput};
 use crate::corner::{add_rack, add_wheel_travel_driver, mount_tie_rod, CornerTemplate, Wheel, WheelAttitude};
 use crate::hardpoint::Side;
-use elastokin_core::{BodyRef, Model, ModelError, Pose};
+use elastokin_core::{BodyRef, ElementId, Model, ModelError, Pose};
 use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, StaticSolver};
 
 /// How the axle is held on the K&C rig, and what the load parameter `t` drives.
@@ -36,6 +36,8 @@ pub struct Axle {
     pub left: Wheel,
     /// The right wheel (the left mirrored, y → −y).
     pub right: Wheel,
+    /// The torsion element of each anti-roll bar.
+    pub anti_roll_bars: Vec<ElementId>,
 }
 
 /// The roll centre at one configuration, in the front view (body axes: the rig holds the body).
@@ -65,6 +67,9 @@ pub struct AxleRow {
     pub left_load: f64,
     /// Vertical force the rig applies at the right wheel centre (N, up +).
     pub right_load: f64,
+    /// Strain energy in the anti-roll bars (J): ½·rate·twist² summed over the bars. Its second derivative
+    /// against the roll angle is the bars' roll stiffness.
+    pub anti_roll_bar_energy: f64,
     /// Moment of the two wheel loads about the x axis, Σ yᵢ·Fᵢ at the wheel centres (N·m). The roll
     /// stiffness is −dM/dφ.
     pub roll_moment: f64,
@@ -80,7 +85,7 @@ impl Axle {
         let mut model = Model::new();
         let left = template.add_corner(&mut model, Side::Left, "left ")?;
         let right = template.add_corner(&mut model, Side::Right, "right ")?;
-        template.add_cross_axle(&mut model, ("left ", &left), ("right ", &right))?;
+        let anti_roll_bars = template.add_cross_axle(&mut model, ("left ", &left), ("right ", &right))?;
         let inner = match (rig, left.tie_rod, right.tie_rod) {
             (AxleRig::Steering, Some(l), Some(r)) => add_rack(&mut model, (l.inner + r.inner) / 2.0)?,
             (AxleRig::Steering, _, _) => return Err(crate::corner::no_steering_input()),
@@ -101,7 +106,7 @@ impl Axle {
             add_wheel_travel_driver(&mut model, "left ", &left.wheel, l)?;
             add_wheel_travel_driver(&mut model, "right ", &right.wheel, r)?;
         }
-        Ok(Axle { model, rig, left: left.wheel, right: right.wheel })
+        Ok(Axle { model, rig, left: left.wheel, right: right.wheel, anti_roll_bars })
     }
 
     /// The roll centre at `poses`, for body velocities `rates` along a wheel-travel path (from
@@ -198,6 +203,17 @@ pub fn axle_sweep_with(
             left_load,
             right_load,
             roll_moment: left.wheel_centre.y * left_load + right.wheel_centre.y * right_load,
+            anti_roll_bar_energy: if axle.anti_roll_bars.is_empty() {
+                0.0
+            } else {
+                let reports = step.element_reports(model);
+                // A bar's torsion element twists about its own x axis only (its two halves turn on one
+                // axis): the energy is half the moment times the twist.
+                axle.anti_roll_bars
+                    .iter()
+                    .map(|e| 0.5 * reports[e.0].torque.norm() * reports[e.0].rotation.x.abs())
+                    .sum()
+            },
             roll_centre,
         })
     })

@@ -33,14 +33,14 @@ pub trait CornerTemplate {
     fn add_corner(&self, model: &mut Model, side: Side, prefix: &str) -> Result<CornerParts, ModelError>;
 
     /// Adds the parts that join the two corners of an axle (anti-roll bars), after both corners, each
-    /// given with its name prefix. None by default.
+    /// given with its name prefix; returns each bar's torsion element. None by default.
     fn add_cross_axle(
         &self,
         _model: &mut Model,
         _left: (&str, &CornerParts),
         _right: (&str, &CornerParts),
-    ) -> Result<(), ModelError> {
-        Ok(())
+    ) -> Result<Vec<ElementId>, ModelError> {
+        Ok(Vec::new())
     }
 }
 

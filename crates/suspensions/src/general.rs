@@ -35,7 +35,7 @@ use crate::corner::{
 };
 use crate::hardpoint::Side;
 use elastokin_core::joint::orthonormal_complement;
-use elastokin_core::{BodyRef, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
+use elastokin_core::{BodyRef, ElementId, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
 use elastokin_elements::{Bushing, BushingSpec, CoilSpring, RotationLaw};
 use serde::de::{Error as _, MapAccess, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -822,10 +822,8 @@ impl CornerTemplate for GeneralCorner {
         model: &mut Model,
         left: (&str, &CornerParts),
         right: (&str, &CornerParts),
-    ) -> Result<(), ModelError> {
-        for (k, bar) in self.anti_roll_bars.iter().enumerate() {
-            bar.add(model, k, (self.resolver(Side::Left, left.0), self.resolver(Side::Right, right.0)))?;
-        }
-        Ok(())
+    ) -> Result<Vec<ElementId>, ModelError> {
+        let sides = || (self.resolver(Side::Left, left.0), self.resolver(Side::Right, right.0));
+        self.anti_roll_bars.iter().enumerate().map(|(k, bar)| bar.add(model, k, sides())).collect()
     }
 }

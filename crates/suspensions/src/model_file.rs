@@ -80,10 +80,10 @@ impl CornerTemplate for Template {
         model: &mut Model,
         left: (&str, &CornerParts),
         right: (&str, &CornerParts),
-    ) -> Result<(), ModelError> {
+    ) -> Result<Vec<elastokin_core::ElementId>, ModelError> {
         match self {
             Template::General(g) => g.add_cross_axle(model, left, right),
-            _ => Ok(()),
+            _ => Ok(Vec::new()),
         }
     }
 }

@@ -303,9 +303,20 @@ fn ground_camber(camber_to_body: f64, side: Side, roll: f64) -> f64 {
     camber_to_body - side.sign() * roll
 }
 
+/// The second derivative of `y` against `x` at the row where the travel is zero, from it and its two
+/// neighbours (a parabola through the three points); `None` when there is no such row inside the range.
+fn curvature_at(rows: &[AxleRow], x: impl Fn(&AxleRow) -> f64, y: impl Fn(&AxleRow) -> f64) -> Option<f64> {
+    let k = rows.iter().position(|r| r.travel == 0.0)?;
+    let (a, b, c) = (rows.get(k.checked_sub(1)?)?, &rows[k], rows.get(k + 1)?);
+    let (s0, s1) = ((y(b) - y(a)) / (x(b) - x(a)), (y(c) - y(b)) / (x(c) - x(b)));
+    let value = 2.0 * (s1 - s0) / (x(c) - x(a));
+    value.is_finite().then_some(value)
+}
+
 pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
     let range = s.range.unwrap_or((-0.05, 0.05));
     let axle = Axle::build(&file.suspension, AxleRig::OppositeTravel).map_err(said)?;
+    let has_bars = !axle.anti_roll_bars.is_empty();
     let out = axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras()).map_err(said)?;
     let table = |rows: &[AxleRow]| Table {
         name: "roll".into(),
@@ -324,6 +335,7 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
             "left_wheel_load_n",
             "right_wheel_load_n",
             "roll_moment_nm",
+            "anti_roll_bar_energy_j",
         ]
         .map(String::from)
         .to_vec(),
@@ -346,6 +358,7 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
                     r.left_load.into(),
                     r.right_load.into(),
                     r.roll_moment.into(),
+                    r.anti_roll_bar_energy.into(),
                 ]
             })
             .collect(),
@@ -362,6 +375,11 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
         let slope = |y: &dyn Fn(&AxleRow) -> f64| slope_at(rows, 0.0, |r| r.travel, y);
         let dphi = slope(&|r| r.roll_angle);
         let per_roll = |d: Option<f64>| Some(d? / dphi?);
+        // N·m/rad: the wheel loads' moment against the roll angle.
+        let total = per_roll(slope(&|r| r.roll_moment)).map(|k| -k);
+        // The bars' energy is U(φ) ≈ ½·K·φ² about design: K is its curvature, from the rows on either side.
+        let bars = if has_bars { curvature_at(rows, |r| r.roll_angle, |r| r.anti_roll_bar_energy) } else { None };
+        let bar_why = if has_bars { why.clone() } else { "the model has no anti-roll bar".to_string() };
         vec![
             Figure::maybe(
                 "roll_centre_height",
@@ -397,11 +415,27 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
             ),
             Figure::maybe(
                 "roll_stiffness",
-                "roll stiffness of the springs",
+                "roll stiffness (springs, bushings and bars)",
                 "N·m/deg",
                 0,
-                per_roll(slope(&|r| r.roll_moment)).map(|k| -k.to_radians()),
+                total.map(|k| k.to_radians()),
                 &why,
+            ),
+            Figure::maybe(
+                "anti_roll_bar_roll_stiffness",
+                "roll stiffness of the anti-roll bars",
+                "N·m/deg",
+                0,
+                bars.map(|k| k.to_radians()),
+                &bar_why,
+            ),
+            Figure::maybe(
+                "anti_roll_bar_share",
+                "anti-roll bars' share of the roll stiffness",
+                "%",
+                1,
+                bars.zip(total).map(|(b, t)| 100.0 * b / t),
+                &bar_why,
             ),
         ]
     };
