@@ -53,7 +53,9 @@ fn run_and_check_every_example() {
             assert!(o.status.success(), "{model} {mode}: {}", String::from_utf8_lossy(&o.stderr));
             let summary: serde_json::Value =
                 serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-            for (analysis, csv, plots) in OUTPUTS {
+            // The five-link corner's toe is held by a link to the chassis: it has no steering to run.
+            let steered = !model.contains("five_link");
+            for (analysis, csv, plots) in OUTPUTS.into_iter().filter(|(a, _, _)| steered || *a != "steering") {
                 let csv = std::fs::read_to_string(out.join(csv)).unwrap();
                 // The provenance line, the header, one row per load step.
                 assert_eq!(csv.lines().count(), 2 + 9, "{model} {mode} {analysis}: {csv}");
@@ -69,7 +71,7 @@ fn run_and_check_every_example() {
             assert!(a["parallel-travel"]["figures"]["lateral_steer"]["value"].is_f64(), "{summary}");
             assert!(a["roll"]["figures"]["roll_centre_height"]["value"].is_f64(), "{summary}");
             assert!(a["roll"]["figures"]["roll_stiffness"]["value"].is_f64(), "{summary}");
-            assert!(a["steering"]["figures"]["steer_per_rack_travel"]["value"].is_f64(), "{summary}");
+            assert!(!steered || a["steering"]["figures"]["steer_per_rack_travel"]["value"].is_f64(), "{summary}");
             assert!(a["vertical-force"]["figures"]["wheel_rate"]["value"].is_f64(), "{summary}");
             assert!(a["lateral-force"]["figures"]["steer"]["value"].is_f64(), "{summary}");
             assert!(a["parallel-travel"]["wheel_compliance_at_design"][5][5].is_f64(), "{summary}");

@@ -58,14 +58,14 @@ impl AntiRollBar {
         k: usize,
         sides: (Resolver, Resolver),
     ) -> Result<ElementId, ModelError> {
-        let key = format!("anti_roll_bars[{k}] '{}'", self.name);
+        let key = format!("anti_roll_bars[{k}] ({})", self.name);
         check_rate(&format!("{key}.rate"), self.rate, ROTATIONAL_RATE_RANGE, "N·m/rad")?;
         let pivot = sides.0.point(&format!("{key}.pivot"), &self.pivot)?;
         if pivot.y < MIN_BEARING_OFFSET {
             return Err(ModelError::OutOfRange {
                 item: key.clone(),
                 why: format!(
-                    "{key}.pivot lies {:.4} m left of the centre line: give the left bearing, at least \
+                    "pivot lies {:.4} m left of the centre line: give the left bearing, at least \
                      {MIN_BEARING_OFFSET} m out, so that the two bearings define the bar's axis",
                     pivot.y
                 ),

@@ -347,11 +347,10 @@ impl BushingDef {
         let six = [self.translation, self.rotation];
         let refuse = |why: &str| {
             Err(ModelError::OutOfRange {
-                item: key.to_string(),
+                item: format!("{key} ({})", self.name),
                 why: format!(
-                    "{key} ('{}'): {why}: give either radial, axial, torsion and conical (a cylindrical bushing, x \
-                     its axis) or translation and rotation (three rates each, along and about x, y, z)",
-                    self.name
+                    "{why}: give either radial, axial, torsion and conical (a cylindrical bushing, x its axis) or \
+                     translation and rotation (three rates each, along and about x, y, z)"
                 ),
             })
         };
@@ -497,7 +496,7 @@ impl Resolver<'_> {
             Place::Named(name) => self.general.hardpoints.get(name).ok_or_else(|| ModelError::OutOfRange {
                 item: key.to_string(),
                 why: format!(
-                    "{key}: there is no hardpoint '{name}': add it to hardpoints or use one of {}",
+                    "there is no hardpoint '{name}': add it to hardpoints or use one of {}",
                     list(self.general.hardpoints.0.iter().map(|(n, _)| n.as_str()))
                 ),
             })?,
@@ -505,7 +504,7 @@ impl Resolver<'_> {
         if !left.iter().all(|c| c.is_finite()) {
             return Err(ModelError::OutOfRange {
                 item: key.to_string(),
-                why: format!("{key}: {} is not three finite numbers in metres", place.describe()),
+                why: format!("{} is not three finite numbers in metres", place.describe()),
             });
         }
         Ok(self.side.place(left))
@@ -521,11 +520,11 @@ impl Resolver<'_> {
         if !(n.is_finite() && n > 1e-9) {
             let why = match axis {
                 Axis::Through(a, b) => format!(
-                    "{key}: the axis from {} to {} has no length ({n:.1e} m): give two distinct points",
+                    "the axis from {} to {} has no length ({n:.1e} m): give two distinct points",
                     a.describe(),
                     b.describe()
                 ),
-                Axis::Vector(_) => format!("{key}: the axis vector has no length: give a non-zero direction"),
+                Axis::Vector(_) => format!("the axis vector has no length: give a non-zero direction"),
             };
             return Err(ModelError::OutOfRange { item: key.to_string(), why });
         }
@@ -543,7 +542,7 @@ impl Resolver<'_> {
             _ => Err(ModelError::OutOfRange {
                 item: key.to_string(),
                 why: format!(
-                    "{key}: there is no body '{name}': use \"{CHASSIS}\" or one of {}",
+                    "there is no body '{name}': use \"{CHASSIS}\" or one of {}",
                     list(self.general.bodies.iter().map(|b| b.name.as_str()))
                 ),
             }),
@@ -569,7 +568,7 @@ fn bushing_frame(x_left: Vec3, y_hint_left: Option<Vec3>, side: Side) -> Result<
         Some(h) => {
             let y = h - x * x.dot(&h);
             let n = y.norm();
-            if !(n > 1e-6 * h.norm()) {
+            if n.is_nan() || n <= 1e-6 * h.norm() {
                 return Err("y_axis is parallel to the bushing's axis: give a direction across it".into());
             }
             y / n
@@ -595,7 +594,7 @@ impl GeneralCorner {
     }
 
     fn add_joint(&self, model: &mut Model, r: &Resolver, k: usize, j: &JointDef) -> Result<(), ModelError> {
-        let key = format!("joints[{k}] '{}'", j.name);
+        let key = format!("joints[{k}] ({})", j.name);
         let bi = r.body(model, &format!("{key}.bodies"), &j.bodies[0])?;
         let bj = r.body(model, &format!("{key}.bodies"), &j.bodies[1])?;
         let kind = j.kind;
@@ -605,7 +604,7 @@ impl GeneralCorner {
             }
             Err(ModelError::OutOfRange {
                 item: key.clone(),
-                why: format!("{key}: a {} joint needs '{what}': add it", kind_name(kind)),
+                why: format!("a {} joint needs '{what}': add it", kind_name(kind)),
             })
         };
         let unused = |what: &str, given: bool| -> Result<(), ModelError> {
@@ -614,7 +613,7 @@ impl GeneralCorner {
             }
             Err(ModelError::OutOfRange {
                 item: key.clone(),
-                why: format!("{key}: '{what}' means nothing to a {} joint: remove it", kind_name(kind)),
+                why: format!("'{what}' means nothing to a {} joint: remove it", kind_name(kind)),
             })
         };
         use JointType as T;
@@ -667,14 +666,14 @@ impl GeneralCorner {
     fn add_bushing(&self, model: &mut Model, r: &Resolver, k: usize, b: &BushingDef) -> Result<(), ModelError> {
         let key = format!("bushings[{k}]");
         let (translational, rotational) = b.rates(&key)?;
-        let key = format!("{key} '{}'", b.name);
+        let key = format!("{key} ({})", b.name);
         let bi = r.body(model, &format!("{key}.bodies"), &b.bodies[0])?;
         let bj = r.body(model, &format!("{key}.bodies"), &b.bodies[1])?;
         let left = self.resolver(Side::Left, r.prefix);
         let x = b.axis.as_ref().map(|a| left.direction(&format!("{key}.axis"), a)).transpose()?.unwrap_or(Vec3::x());
         let y = b.y_axis.as_ref().map(|a| left.direction(&format!("{key}.y_axis"), a)).transpose()?;
         let frame = bushing_frame(x, y, r.side)
-            .map_err(|why| ModelError::OutOfRange { item: key.clone(), why: format!("{key}: {why}") })?;
+            .map_err(|why| ModelError::OutOfRange { item: key.clone(), why: format!("{why}") })?;
         // Mirroring turns the frame's z axis over (see `bushing_frame`): a preload's z force and x, y
         // moments change sign in the right corner's frame, so that the right bushing pushes as the mirror
         // image of the left.
@@ -698,7 +697,7 @@ impl GeneralCorner {
     }
 
     fn add_spring(&self, model: &mut Model, r: &Resolver, k: usize, s: &SpringDef) -> Result<(), ModelError> {
-        let key = format!("springs[{k}] '{}'", s.name);
+        let key = format!("springs[{k}] ({})", s.name);
         let bi = r.body(model, &format!("{key}.bodies"), &s.bodies[0])?;
         let bj = r.body(model, &format!("{key}.bodies"), &s.bodies[1])?;
         let (from, to) = (r.point(&format!("{key}.from"), &s.from)?, r.point(&format!("{key}.to"), &s.to)?);
@@ -713,7 +712,7 @@ impl GeneralCorner {
             _ => {
                 return Err(ModelError::OutOfRange {
                     item: key.clone(),
-                    why: format!("{key}: give either design_force (N, its push at design) or free_length (m)"),
+                    why: format!("give either design_force (N, its push at design) or free_length (m)"),
                 })
             }
         };
@@ -730,12 +729,18 @@ impl CornerTemplate for GeneralCorner {
     fn add_corner(&self, model: &mut Model, side: Side, prefix: &str) -> Result<CornerParts, ModelError> {
         check_hardpoints(&self.hardpoints_wheel_centre_first()?)?;
         let r = self.resolver(side, prefix);
+        if let Some(k) = self.bodies.iter().position(|b| b.name == CHASSIS) {
+            return Err(ModelError::OutOfRange {
+                item: format!("bodies[{k}]"),
+                why: format!("'{CHASSIS}' names the ground: give the body another name"),
+            });
+        }
         let c = &self.corner;
         if !self.bodies.iter().any(|b| b.name == c.upright) {
             return Err(ModelError::OutOfRange {
                 item: "corner.upright".into(),
                 why: format!(
-                    "corner.upright: there is no body '{}': name the body that carries the wheel, one of {}",
+                    "there is no body '{}': name the body that carries the wheel, one of {}",
                     c.upright,
                     list(self.bodies.iter().map(|b| b.name.as_str()))
                 ),
@@ -761,13 +766,7 @@ impl CornerTemplate for GeneralCorner {
             check_steering_arm(axis_left, (&axis_names.0, &axis_names.1), inner, outer)?;
         }
         for (k, body) in self.bodies.iter().enumerate() {
-            if body.name == CHASSIS {
-                return Err(ModelError::OutOfRange {
-                    item: format!("bodies[{k}]"),
-                    why: format!("bodies[{k}]: '{CHASSIS}' names the ground: give the body another name"),
-                });
-            }
-            let at = r.point(&format!("bodies[{k}] '{}'.at", body.name), &body.at)?;
+            let at = r.point(&format!("bodies[{k}] ({}).at", body.name), &body.at)?;
             model.add_body(&part_name(prefix, &body.name), Pose::at(at))?;
         }
         for (k, j) in self.joints.iter().enumerate() {
@@ -785,14 +784,14 @@ impl CornerTemplate for GeneralCorner {
         if !(spin.iter().all(|v| v.is_finite()) && spin.norm() > 1e-9) {
             return Err(ModelError::OutOfRange {
                 item: "corner.spin_axis".into(),
-                why: "corner.spin_axis: give the wheel's outward spin axis as a non-zero direction [x, y, z]".into(),
+                why: "give the wheel's outward spin axis as a non-zero direction [x, y, z]".into(),
             });
         }
         if spin.y < 0.5 * spin.norm() {
             return Err(ModelError::OutOfRange {
                 item: "corner.spin_axis".into(),
                 why: format!(
-                    "corner.spin_axis [{}, {}, {}] is more than 60 deg from the left wheel's outward axis [0, 1, 0]: \
+                    "[{}, {}, {}] is more than 60 deg from the left wheel's outward axis [0, 1, 0]: \
                      give the spin axis of the left wheel, pointing out of the car",
                     spin.x, spin.y, spin.z
                 ),

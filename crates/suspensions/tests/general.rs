@@ -225,3 +225,50 @@ fn anti_roll_bar_share_of_roll_stiffness_is_what_it_adds() {
     assert!((share - 100.0 * bar / total).abs() < 1e-9, "{share}");
     assert_eq!(figure(&bare, "anti_roll_bar_roll_stiffness"), None);
 }
+
+/// A general model with one edit: the error names the item and says what to give.
+#[test]
+fn mistakes_in_a_general_model_are_named() {
+    let text = std::fs::read_to_string(example_path("five_link.json")).unwrap();
+    let base: serde_json::Value = serde_json::from_str(&text).unwrap();
+    type Edit = fn(&mut serde_json::Value);
+    let cases: [(Edit, &[&str]); 7] = [
+        (
+            |v| v["suspension"]["general"]["joints"][0]["bodies"][1] = "carrier".into(),
+            &["joints[0] (upper front link)", "no body 'carrier'", "'wheel carrier'"],
+        ),
+        (
+            |v| v["suspension"]["general"]["joints"][1]["to"] = "nowhere".into(),
+            &["joints[1] (upper rear link).to", "no hardpoint 'nowhere'"],
+        ),
+        (
+            |v| {
+                let joint = &mut v["suspension"]["general"]["joints"][2];
+                joint["kind"] = "revolute".into();
+                joint.as_object_mut().unwrap().remove("to");
+            },
+            &["joints[2] (lower front link)", "a revolute joint needs 'axis'"],
+        ),
+        (
+            |v| v["suspension"]["general"]["joints"][3]["kind"] = "spherical".into(),
+            &["'to' means nothing to a spherical joint"],
+        ),
+        (|v| v["suspension"]["general"]["bodies"][0]["name"] = "chassis".into(), &["'chassis' names the ground"]),
+        (|v| v["suspension"]["general"]["corner"]["upright"] = "hub".into(), &["corner.upright", "no body 'hub'"]),
+        (
+            |v| {
+                v["suspension"]["general"]["bushings"] = serde_json::json!([{ "name": "b", "bodies": ["chassis", "wheel carrier"],
+                    "at": "wheel_centre", "radial": 1e6, "translation": [1e6, 1e6, 1e6] }])
+            },
+            &["bushings[0] (b)", "both sets of rates are given", "radial, axial, torsion and conical"],
+        ),
+    ];
+    for (edit, expected) in cases {
+        let mut value = base.clone();
+        edit(&mut value);
+        let err = SuspensionFile::from_json(&value.to_string(), "edited").unwrap_err().to_string();
+        for e in expected {
+            assert!(err.contains(e), "'{e}' not in: {err}");
+        }
+    }
+}

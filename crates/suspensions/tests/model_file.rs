@@ -130,7 +130,7 @@ fn two_templates_or_an_unknown_one_are_named() {
     let (message, line, expected) = invalid(&text, "suspension");
     assert_eq!(
         message,
-        "suspension: give one template (macpherson, double_wishbone or general), found 2: double_wishbone, macpherson"
+        "suspension: give one template (macpherson, double_wishbone or general), found 2: macpherson, double_wishbone"
     );
     assert_eq!(line, expected);
     let text = macpherson_edited(|v| {
