@@ -524,7 +524,7 @@ impl Resolver<'_> {
                     a.describe(),
                     b.describe()
                 ),
-                Axis::Vector(_) => format!("the axis vector has no length: give a non-zero direction"),
+                Axis::Vector(_) => "the axis vector has no length: give a non-zero direction".to_string(),
             };
             return Err(ModelError::OutOfRange { item: key.to_string(), why });
         }
@@ -672,8 +672,7 @@ impl GeneralCorner {
         let left = self.resolver(Side::Left, r.prefix);
         let x = b.axis.as_ref().map(|a| left.direction(&format!("{key}.axis"), a)).transpose()?.unwrap_or(Vec3::x());
         let y = b.y_axis.as_ref().map(|a| left.direction(&format!("{key}.y_axis"), a)).transpose()?;
-        let frame = bushing_frame(x, y, r.side)
-            .map_err(|why| ModelError::OutOfRange { item: key.clone(), why: format!("{why}") })?;
+        let frame = bushing_frame(x, y, r.side).map_err(|why| ModelError::OutOfRange { item: key.clone(), why })?;
         // Mirroring turns the frame's z axis over (see `bushing_frame`): a preload's z force and x, y
         // moments change sign in the right corner's frame, so that the right bushing pushes as the mirror
         // image of the left.
@@ -712,7 +711,7 @@ impl GeneralCorner {
             _ => {
                 return Err(ModelError::OutOfRange {
                     item: key.clone(),
-                    why: format!("give either design_force (N, its push at design) or free_length (m)"),
+                    why: "give either design_force (N, its push at design) or free_length (m)".into(),
                 })
             }
         };
