@@ -98,6 +98,10 @@ pub struct RunArgs {
     /// loads carry vehicle.corner_load, or the design wheel load when the file has no vehicle section)
     #[arg(long, value_enum, default_value_t = WheelName::Held)]
     pub wheel: WheelName,
+    /// Where the vertical, lateral and braking forces act: the contact patch, as the tyre loads the wheel,
+    /// or the wheel centre, as a rig loading the hub does (traction acts at the wheel centre either way)
+    #[arg(long, value_enum, default_value_t = LoadPointName::ContactPatch)]
+    pub load_point: LoadPointName,
     /// Where the files go; the directory is replaced as a whole when the run succeeds
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
@@ -166,6 +170,14 @@ impl AnalysisName {
 pub enum ModeName {
     Corrected,
     Paper,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum LoadPointName {
+    /// At the contact patch.
+    ContactPatch,
+    /// At the wheel centre.
+    WheelCentre,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -255,6 +267,10 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
         steps: args.steps,
         mode,
         height_held: args.wheel == WheelName::Held,
+        load_point: match args.load_point {
+            LoadPointName::ContactPatch => elastokin::suspensions::LoadPoint::ContactPatch,
+            LoadPointName::WheelCentre => elastokin::suspensions::LoadPoint::WheelCentre,
+        },
         compliance: args.compliance,
         tolerance: args.tolerance,
     };
@@ -275,6 +291,10 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
     }
     let mut provenance = Provenance::new(&args.model, &bytes, kc::mode_word(mode), args.steps);
     provenance.wheel = Some(if settings.height_held { "held" } else { "free" });
+    provenance.load_point = Some(match settings.load_point {
+        elastokin::suspensions::LoadPoint::ContactPatch => "contact_patch",
+        elastokin::suspensions::LoadPoint::WheelCentre => "wheel_centre",
+    });
     provenance.range = args.range;
     provenance.tolerance = Some(settings.tolerance);
     let which: Vec<Analysis> = args.analysis.map(|a| vec![a.analysis()]).unwrap_or_default();

@@ -23,6 +23,8 @@ pub struct Provenance {
     pub steps: usize,
     /// Road loads: `held` or `free`; `None` where no road load is run.
     pub wheel: Option<&'static str>,
+    /// Load analyses: `contact_patch` or `wheel_centre`; `None` where no load is run.
+    pub load_point: Option<&'static str>,
     /// The `--range` given, if any (each analysis otherwise has its own default, in `summary.json`).
     pub range: Option<(f64, f64)>,
     /// The command line, arguments joined by spaces.
@@ -44,6 +46,7 @@ impl Provenance {
             mode,
             steps,
             wheel: None,
+            load_point: None,
             range: None,
             command: std::env::args_os().map(|a| a.to_string_lossy().into_owned()).collect::<Vec<_>>().join(" "),
             date: humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string(),
@@ -60,6 +63,7 @@ impl Provenance {
             "mode": self.mode,
             "steps": self.steps,
             "wheel": self.wheel,
+            "load_point": self.load_point,
             "range": self.range.map(|(a, b)| [a, b]),
             "command": self.command,
             "date": self.date,

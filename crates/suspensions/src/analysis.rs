@@ -406,7 +406,7 @@ pub fn vertical_force_sweep_with(
 ) -> Result<SweepOutput<LoadRow>, SolverError> {
     require_rig(&corner, &[Rig::Free])?;
     let patch = corner.wheel.contact_patch;
-    corner.add_wheel_force("vertical force", patch, Vec3::z())?;
+    corner.add_wheel_force("vertical force", corner.load_point_at(patch), Vec3::z())?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
     let local_patch = corner.model.bodies()[corner.wheel.upright.0].design_pose.to_local_point(&patch);
@@ -443,7 +443,8 @@ pub enum WheelLoad {
 /// The patch loads act at the upright's material point at the contact patch of the equilibrium without
 /// the swept load (the lowest point of the wheel there; the rows' `contact_patch`), so that their slope at
 /// zero load is the compliance [`patch_compliance`] takes from the tangent at that equilibrium; the
-/// traction force acts at the wheel centre. Loads keep their global direction as the wheel moves.
+/// traction force acts at the wheel centre. With [`Corner::load_point`] at the wheel centre, the lateral
+/// and braking forces act there too. Loads keep their global direction as the wheel moves.
 pub fn wheel_load_sweep(
     corner: Corner,
     load: WheelLoad,
@@ -482,8 +483,12 @@ pub fn wheel_load_sweep_with(
     let patch_at_design = upright_design.point(&patch_local);
     let inboard = Vec3::new(0.0, -corner.wheel.side.sign(), 0.0);
     match load {
-        WheelLoad::Lateral => corner.add_wheel_force("lateral force", patch_at_design, inboard)?,
-        WheelLoad::Braking => corner.add_wheel_force("braking force", patch_at_design, -Vec3::x())?,
+        WheelLoad::Lateral => {
+            corner.add_wheel_force("lateral force", corner.load_point_at(patch_at_design), inboard)?
+        }
+        WheelLoad::Braking => {
+            corner.add_wheel_force("braking force", corner.load_point_at(patch_at_design), -Vec3::x())?
+        }
         WheelLoad::Traction => corner.add_wheel_force("traction force", corner.wheel.wheel_centre, Vec3::x())?,
         WheelLoad::AligningTorque => corner.add_wheel_torque("aligning torque", Vec3::z())?,
     };

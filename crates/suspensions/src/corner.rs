@@ -387,6 +387,20 @@ pub struct Corner {
     pub rig: Rig,
     /// The wheel.
     pub wheel: Wheel,
+    /// Where the rig applies the vertical, lateral and braking forces of the load analyses.
+    pub load_point: LoadPoint,
+}
+
+/// Where a K&C rig applies its forces to the wheel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LoadPoint {
+    /// At the contact patch, as the tyre does (the default): the force's lever about the wheel centre
+    /// (the loaded radius) turns the wheel too.
+    #[default]
+    ContactPatch,
+    /// At the wheel centre, as a rig that loads the hub does: the force alone, without the tyre's lever.
+    WheelCentre,
 }
 
 /// Where a wheel is in a model: its upright, and the wheel's points and axes on it.
@@ -560,6 +574,15 @@ fn down_the_wheel_plane(a: &Vec3) -> Vec3 {
 }
 
 impl Corner {
+    /// The design point where the rig's forces act (see [`LoadPoint`]): `patch` (a contact-patch point) or
+    /// the wheel centre.
+    pub fn load_point_at(&self, patch: Vec3) -> Vec3 {
+        match self.load_point {
+            LoadPoint::ContactPatch => patch,
+            LoadPoint::WheelCentre => self.wheel.wheel_centre,
+        }
+    }
+
     /// Builds `template`'s corner on `side` with its tie rod and held as `rig` says: a rack on a lateral
     /// slide when steering (else the tie rod's inner end is on the chassis), and the wheel-centre height
     /// driver the rig needs.
@@ -580,7 +603,7 @@ impl Corner {
             Rig::Steering | Rig::HeightHeld => add_wheel_travel_driver(&mut model, "", &parts.wheel, 0.0)?,
             Rig::Free => {}
         }
-        Ok(Corner { model, rig, wheel: parts.wheel })
+        Ok(Corner { model, rig, wheel: parts.wheel, load_point: LoadPoint::default() })
     }
 
     /// Adds a world-fixed force `force · t` (N per unit load parameter) at the global design point `point`

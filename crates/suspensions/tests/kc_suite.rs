@@ -202,3 +202,56 @@ fn the_suite_names_a_tie_rod_on_the_steering_axis_and_the_toe_it_gives() {
         kc::run_suite(&example("macpherson.json"), &[Analysis::ParallelTravel], &Settings::default(), |_| {}).unwrap();
     assert_eq!(clean.all_warnings().count(), 0, "{:?}", clean.all_warnings().collect::<Vec<_>>());
 }
+
+/// `load_point: WheelCentre`: the lateral-force sweep's compliance steer and camber at zero load are the
+/// wheel-centre compliance's own entries (the tangent's inverse at that equilibrium, a second method),
+/// and differ from the contact-patch figures by the tyre's lever.
+#[test]
+fn lateral_force_at_the_wheel_centre_is_the_wheel_centre_compliance() {
+    use elastokin_suspensions::LoadPoint;
+    let file = example("macpherson.json");
+    let h = 5.0;
+    let settings =
+        |load_point| Settings { range: Some((-h, h)), steps: 2, compliance: true, load_point, ..Settings::default() };
+    let at_centre = kc::run(
+        Analysis::Road(elastokin_suspensions::analysis::WheelLoad::Lateral),
+        &file,
+        &settings(LoadPoint::WheelCentre),
+    )
+    .unwrap();
+    let at_patch = kc::run(
+        Analysis::Road(elastokin_suspensions::analysis::WheelLoad::Lateral),
+        &file,
+        &settings(LoadPoint::ContactPatch),
+    )
+    .unwrap();
+    let c = at_centre.compliance.as_ref().unwrap();
+    let zero = c.rows.iter().find(|r| r[0].number() == Some(0.0)).unwrap();
+    let entry = |r: usize, k: usize| zero[1 + 6 * r + k].number().unwrap();
+    // The spin axis at zero load, from the table's toe τ and camber γ: a = (cos γ sin τ, cos γ cos τ, −sin γ).
+    let t = &at_centre.table;
+    let column = |name: &str| t.columns.iter().position(|c| c == name).unwrap();
+    let row = t.rows.iter().find(|r| r[0].number() == Some(0.0)).unwrap();
+    let (tau, gamma) = (
+        row[column("toe_deg")].number().unwrap().to_radians(),
+        row[column("camber_deg")].number().unwrap().to_radians(),
+    );
+    let a = nalgebra::Vector3::new(gamma.cos() * tau.sin(), gamma.cos() * tau.cos(), -gamma.sin());
+    // An inboard (−y) unit force turns the wheel by −(column 1's rotation); the spin axis moves by Δπ × a.
+    let turn = -nalgebra::Vector3::new(entry(3, 1), entry(4, 1), entry(5, 1));
+    let da = turn.cross(&a);
+    let rho = a.x.hypot(a.y);
+    let d_toe = (a.y * da.x - a.x * da.y) / (rho * rho);
+    let d_rho = (a.x * da.x + a.y * da.y) / rho;
+    let d_camber = (rho * -da.z + a.z * d_rho) / (rho * rho + a.z * a.z);
+    let (steer, camber) = (d_toe.to_degrees() * 1e3, d_camber.to_degrees() * 1e3);
+    let figure = |r: &kc::AnalysisReport, key: &str| r.figure(key).unwrap().value.unwrap();
+    // Measured: 1.3e-10 relative (the sweep's central difference over ±5 N against the tangent).
+    for (got, want) in [(figure(&at_centre, "steer"), steer), (figure(&at_centre, "camber"), camber)] {
+        assert!((got - want).abs() < 1e-8 * want.abs(), "{got} vs {want} deg/kN");
+    }
+    // At the patch the tyre's lever adds a moment about x of the loaded radius times the force: the
+    // camber changes by far more than the sweep's error.
+    let lever = (figure(&at_patch, "camber") - camber).abs();
+    assert!(lever > 1e-2 * camber.abs(), "{lever}");
+}

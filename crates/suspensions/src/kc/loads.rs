@@ -12,6 +12,14 @@ use crate::analysis::{
 use crate::model_file::SuspensionFile;
 use crate::{Rig, Side};
 
+/// Where the rig's forces act, in words.
+fn where_loaded(s: &Settings) -> &'static str {
+    match s.load_point {
+        crate::LoadPoint::ContactPatch => "contact patch",
+        crate::LoadPoint::WheelCentre => "wheel centre",
+    }
+}
+
 pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
     let held = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(said)?;
     let design_load = design_wheel_load(&held).map_err(said)?;
@@ -27,7 +35,8 @@ pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<Anal
         }
         None => (0.5 * design_load, 1.5 * design_load),
     };
-    let corner = file.suspension.build(Side::Left, Rig::Free).map_err(said)?;
+    let mut corner = file.suspension.build(Side::Left, Rig::Free).map_err(said)?;
+    corner.load_point = s.load_point;
     let z0 = corner.wheel.wheel_centre.z;
     let out = vertical_force_sweep_with(corner, range.0, range.1, s.steps, s.mode, s.extras()).map_err(said)?;
     let table = |rows: &[LoadRow]| {
@@ -62,7 +71,7 @@ pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<Anal
         file,
         "vertical_force",
         "wheel travel under vertical force",
-        "vertical force at the contact patch [N]",
+        &format!("vertical force at the {} [N]", where_loaded(s)),
         axis(
             "wheel travel [mm], bump +",
             &out.rows,
@@ -80,8 +89,13 @@ pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<Anal
         )),
         Some(design_load),
     )];
-    let description =
-        format!("vertical force {:.0}..{:.0} N at the contact patch, wheel free, {} steps", range.0, range.1, s.steps);
+    let description = format!(
+        "vertical force {:.0}..{:.0} N at the {}, wheel free, {} steps",
+        range.0,
+        range.1,
+        where_loaded(s),
+        s.steps
+    );
     Ok(finish(
         Analysis::VerticalForce,
         description,
@@ -130,7 +144,8 @@ pub(super) fn road_load(file: &SuspensionFile, load: WheelLoad, s: &Settings) ->
         None => design_wheel_load(&file.suspension.build(Side::Left, Rig::WheelTravel).map_err(said)?).map_err(said)?,
     };
     let rig = if s.height_held { Rig::HeightHeld } else { Rig::Free };
-    let corner = file.suspension.build(Side::Left, rig).map_err(said)?;
+    let mut corner = file.suspension.build(Side::Left, rig).map_err(said)?;
+    corner.load_point = s.load_point;
     let out = wheel_load_sweep_with(corner, load, corner_load, range.0, range.1, s.steps, s.mode, s.extras())
         .map_err(said)?;
     let name = analysis.name();
@@ -246,8 +261,13 @@ pub(super) fn road_load(file: &SuspensionFile, load: WheelLoad, s: &Settings) ->
         Some(0.0),
     )];
     let held = if s.height_held { "wheel-centre height held" } else { "wheel free on its spring" };
+    let at = match load {
+        WheelLoad::Lateral | WheelLoad::Braking => format!(" at the {}", where_loaded(s)),
+        WheelLoad::Traction => " at the wheel centre".into(),
+        WheelLoad::AligningTorque => String::new(),
+    };
     let description = format!(
-        "{} {:.0}..{:.0} {unit} ({held}, corner load {corner_load:.0} N), {} steps",
+        "{} {:.0}..{:.0} {unit}{at} ({held}, corner load {corner_load:.0} N), {} steps",
         name.replace('-', " "),
         range.0,
         range.1,

@@ -141,6 +141,8 @@ pub struct Settings {
     pub mode: Mode,
     /// Road loads: the wheel-centre height held by the rig (`true`) or the wheel free on its spring.
     pub height_held: bool,
+    /// Where the vertical, lateral and braking forces act (traction always acts at the wheel centre).
+    pub load_point: crate::LoadPoint,
     /// The 6×6 wheel compliance at every step of the sweeps that have one wheel to read it at.
     pub compliance: bool,
     /// When the error estimate is worth a warning.
@@ -154,6 +156,7 @@ impl Default for Settings {
             steps: 32,
             mode: Mode::Corrected,
             height_held: true,
+            load_point: crate::LoadPoint::ContactPatch,
             compliance: false,
             tolerance: Tolerance::default(),
         }
