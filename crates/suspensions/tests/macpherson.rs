@@ -152,3 +152,69 @@ fn rack_travel_steers_left_and_right_wheels_the_same_way() {
         assert!((row.attitude.wheel_centre.z - mp.hardpoints.wheel_centre.z).abs() < 1e-10);
     }
 }
+
+/// The strut's sliding joint decides whether the top mount turns with the steering. Translational: the rod
+/// turns with the upright, so the top-mount bushing's twist about the strut axis is the upright's rotation
+/// about it. Cylindrical: the upright turns about the rod, and the bushing, holding only the rod's spin,
+/// barely twists.
+#[test]
+fn a_cylindrical_strut_leaves_the_top_mount_out_of_the_steering() {
+    use elastokin_core::math::rotation_log;
+    use elastokin_solver::{LoadPath, SolverOptions, StaticSolver};
+    use elastokin_suspensions::macpherson::StrutJoint;
+    let bushed = Connection::Bushing(BushingRates::new(2e6, 1e6, 115.0, 2865.0));
+    let h = MacPhersonHardpoints::generic();
+    let strut_axis = (h.top_mount - h.strut_lower).normalize();
+    let mut twists = Vec::new();
+    for strut in [StrutJoint::Translational, StrutJoint::Cylindrical] {
+        let mut t = template(bushed, bushed);
+        t.strut = strut;
+        let corner = t.build(Side::Left, Rig::Steering).unwrap();
+        let model = &corner.model;
+        let mut solver = StaticSolver::new(model, SolverOptions::default()).unwrap();
+        let sweep = solver.sweep(LoadPath::new(0.0, 0.02, 4), Mode::Corrected).unwrap();
+        let last = sweep.steps.last().unwrap();
+        let top = model.element_id("top mount").unwrap();
+        let twist = last.element_reports(model)[top.0].rotation.x;
+        let upright = rotation_log(&last.poses[corner.wheel.upright.0].rotation()).dot(&strut_axis);
+        twists.push((twist, upright));
+    }
+    let (translational, cylindrical) = (twists[0], twists[1]);
+    // The rack's 20 mm steers the upright by several degrees about the strut axis either way.
+    assert!(translational.1.abs() > 0.05 && cylindrical.1.abs() > 0.05, "{twists:?}");
+    // Measured: 1.4e-17 rad: the rod turns with the upright exactly.
+    assert!((translational.0 - translational.1).abs() < 1e-15, "{twists:?}");
+    // Measured: 1.2e-16 rad of 0.10 rad: the cylindrical joint passes no moment about its axis, so nothing
+    // twists the rod.
+    assert!(cylindrical.0.abs() < 1e-14, "{twists:?}");
+}
+
+/// Each end of an arm takes its own bushing: at every step of a lateral load the front and rear bushings'
+/// radial force over their radial deflection is the rate written for that end.
+#[test]
+fn each_arm_end_takes_its_own_bushing_rates() {
+    use elastokin_solver::{LoadPath, SolverOptions, StaticSolver};
+    use elastokin_suspensions::ArmMounts;
+    let (front, rear) = (BushingRates::new(5e6, 1.2e6, 500.0, 5000.0), BushingRates::new(2.5e6, 0.7e6, 500.0, 5000.0));
+    let mut t = template(Connection::Ideal, Connection::Ideal);
+    t.lower_arm_mounts = ArmMounts { front: Connection::Bushing(front), rear: Connection::Bushing(rear) };
+    let mut corner = t.build(Side::Left, Rig::HeightHeld).unwrap();
+    let patch = corner.wheel.contact_patch;
+    corner.add_wheel_force("lateral", patch, Vec3::new(-200.0, -3000.0, 0.0)).unwrap();
+    let model = &corner.model;
+    let mut solver = StaticSolver::new(model, SolverOptions::default()).unwrap();
+    let sweep = solver.sweep(LoadPath::new(0.0, 1.0, 2), Mode::Corrected).unwrap();
+    let last = sweep.steps.last().unwrap();
+    let reports = last.element_reports(model);
+    for (name, rates) in [("lower arm front bushing", front), ("lower arm rear bushing", rear)] {
+        let r = reports[model.element_id(name).unwrap().0];
+        let radial = r.deflection.y.hypot(r.deflection.z);
+        assert!(radial > 1e-5, "{name} deflects: {radial}");
+        // The force is reported in global axes; across the bushing's axis it is the radial rate times the
+        // radial deflection (the frame moves with the chassis, which does not move).
+        let axis = (t.hardpoints.lower_arm_rear - t.hardpoints.lower_arm_front).normalize();
+        let across = (r.force - axis * r.force.dot(&axis)).norm();
+        // Measured: 1.9e-16 relative.
+        assert!((across / radial - rates.radial).abs() < 1e-14 * rates.radial, "{name}: {}", across / radial);
+    }
+}
