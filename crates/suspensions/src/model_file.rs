@@ -247,8 +247,9 @@ fn keys(text: &str) -> Vec<(usize, String)> {
     out
 }
 
-/// Line and column (from 1) of the key path `path` in `text`: each key the first after the previous one;
-/// the last key found when the rest are absent.
+/// Line and column (from 1) of the key path `path` in `text`: each key the first after the previous one
+/// (or, for a part's name in the general form, the string value itself); the last found when the rest are
+/// absent.
 fn locate(text: &str, path: &[&str]) -> (usize, usize) {
     let all = keys(text);
     let mut at = 0;
@@ -257,6 +258,10 @@ fn locate(text: &str, path: &[&str]) -> (usize, usize) {
         if let Some(k) = all[from..].iter().position(|(_, k)| k == key) {
             at = all[from + k].0;
             from += k + 1;
+        } else if let Some(offset) = text[at..].find(&format!("\"{key}\"")) {
+            // A part's name (a string value, not a key): the keys after it are that part's.
+            at += offset;
+            from = all.iter().position(|(o, _)| *o > at).unwrap_or(all.len());
         }
     }
     let before = &text[..at];

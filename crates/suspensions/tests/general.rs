@@ -272,3 +272,15 @@ fn mistakes_in_a_general_model_are_named() {
         }
     }
 }
+
+/// A rate out of range in the general form is located at the named part's own key.
+#[test]
+fn a_general_model_rate_out_of_range_is_located_at_its_part() {
+    let text = std::fs::read_to_string(example_path("double_wishbone_axle.json")).unwrap();
+    let edited = text.replacen("\"rate\": 6000.0", "\"rate\": -6000.0", 1);
+    assert_ne!(edited, text);
+    let err = SuspensionFile::from_json(&edited, "axle.json").unwrap_err().to_string();
+    let line = edited.lines().position(|l| l.contains("-6000.0")).unwrap() + 1;
+    assert!(err.starts_with(&format!("axle.json:{line}:")), "{err}");
+    assert!(err.contains("anti_roll_bars.anti-roll bar.rate") && err.contains("N·m/rad"), "{err}");
+}
