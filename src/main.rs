@@ -144,7 +144,7 @@ pub enum AnalysisName {
     Roll,
     /// rack travel, m, towards +y, full axle, heights held; default -0.04,0.04
     Steering,
-    /// force at the contact patch, N, up +, wheel free; default 0.5..1.5 x the design wheel load
+    /// force at the contact patch (or --load-point), N, up +, wheel free; default 0.5..1.5 x the design wheel load
     VerticalForce,
     /// force at the contact patch, N, inboard +; default -3000,3000
     LateralForce,
@@ -156,6 +156,8 @@ pub enum AnalysisName {
     AligningTorque,
     /// the model's vehicle.corner_load at once, from the design position
     StaticLoad,
+    /// the general model's own load case ("loads"), fraction applied; default 0,1
+    Loads,
 }
 
 impl AnalysisName {

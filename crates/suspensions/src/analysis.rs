@@ -3,7 +3,7 @@
 use crate::corner::{Corner, Rig, SteeringGeometry, WheelAttitude};
 use elastokin_core::{Model, Vec3};
 use elastokin_elements::PointForce;
-use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult, Sweep};
+use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, State, StaticSolver, StepResult, Sweep};
 use serde::{Deserialize, Serialize};
 
 /// One row of a driven sweep (wheel travel or steering).
@@ -470,15 +470,7 @@ pub fn wheel_load_sweep_with(
 ) -> Result<SweepOutput<LoadRow>, SolverError> {
     require_rig(&corner, &[Rig::HeightHeld, Rig::Free])?;
     add_corner_load(&mut corner, corner_load)?;
-    // The equilibrium without the swept load: where the patch loads act, and where the path starts from.
-    let (mut start, patch_local) = {
-        let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
-        let mut state = solver.design_state(0.0);
-        solver.equilibrium(&mut state)?;
-        let patch = corner.wheel.steering_geometry(&state.poses).contact_patch;
-        let patch_local = state.poses[corner.wheel.upright.0].to_local_point(&patch);
-        (state, patch_local)
-    };
+    let (mut start, patch_local) = rest_without_swept_load(&corner)?;
     let upright_design = corner.model.bodies()[corner.wheel.upright.0].design_pose;
     let patch_at_design = upright_design.point(&patch_local);
     let inboard = Vec3::new(0.0, -corner.wheel.side.sign(), 0.0);
@@ -492,6 +484,38 @@ pub fn wheel_load_sweep_with(
         WheelLoad::Traction => corner.add_wheel_force("traction force", corner.wheel.wheel_centre, Vec3::x())?,
         WheelLoad::AligningTorque => corner.add_wheel_torque("aligning torque", Vec3::z())?,
     };
+    let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
+    let sweep = solver.sweep_from(&mut start, LoadPath::new(from, to, steps), mode)?;
+    load_rows(&mut solver, &corner, &sweep, patch_local, extras)
+}
+
+/// The equilibrium without the swept load (the load parameter at zero): where the patch loads act, and
+/// where the path starts from; with the contact patch there as a point of the upright.
+fn rest_without_swept_load(corner: &Corner) -> Result<(State, Vec3), SolverError> {
+    let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
+    let mut state = solver.design_state(0.0);
+    solver.equilibrium(&mut state)?;
+    let patch = corner.wheel.steering_geometry(&state.poses).contact_patch;
+    let patch_local = state.poses[corner.wheel.upright.0].to_local_point(&patch);
+    Ok((state, patch_local))
+}
+
+/// Sweeps the loads a model file describes (`loads` of the general form, added to `corner` by
+/// [`crate::GeneralCorner::add_loads`], each ramped by the load parameter) from `from` to `to` times their
+/// values, in `steps` steps walked in `mode`, with `corner_load` carried at the contact patch as in
+/// [`wheel_load_sweep`]. The corner must be built with [`Rig::HeightHeld`] or [`Rig::Free`].
+pub fn model_load_sweep_with(
+    mut corner: Corner,
+    corner_load: f64,
+    from: f64,
+    to: f64,
+    steps: usize,
+    mode: Mode,
+    extras: SweepExtras,
+) -> Result<SweepOutput<LoadRow>, SolverError> {
+    require_rig(&corner, &[Rig::HeightHeld, Rig::Free])?;
+    add_corner_load(&mut corner, corner_load)?;
+    let (mut start, patch_local) = rest_without_swept_load(&corner)?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let sweep = solver.sweep_from(&mut start, LoadPath::new(from, to, steps), mode)?;
     load_rows(&mut solver, &corner, &sweep, patch_local, extras)

@@ -36,7 +36,7 @@ use crate::corner::{
 use crate::hardpoint::Side;
 use elastokin_core::joint::orthonormal_complement;
 use elastokin_core::{BodyRef, ElementId, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
-use elastokin_elements::{Bushing, BushingSpec, CoilSpring, RotationLaw};
+use elastokin_elements::{Bushing, BushingSpec, CoilSpring, PointForce, PointTorque, RotationLaw};
 use serde::de::{Error as _, MapAccess, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
@@ -398,6 +398,26 @@ pub struct SpringDef {
     pub free_length: Option<f64>,
 }
 
+/// A load on a body: a force at a point and/or a moment, world-fixed in direction, swept by the `loads`
+/// analysis from zero to these values (the load parameter is the fraction applied).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadDef {
+    /// Name; the table's columns and the messages use it.
+    pub name: String,
+    /// The body it acts on.
+    pub body: String,
+    /// Where the force acts (needed with `force`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub at: Option<Place>,
+    /// Force, N, global axes (left corner; mirrored for the right).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub force: Option<[f64; 3]>,
+    /// Moment, N·m, global axes (left corner; mirrored for the right).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub torque: Option<[f64; 3]>,
+}
+
 /// A point on a body, for the steering axis.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -472,6 +492,9 @@ pub struct GeneralCorner {
     /// Anti-roll bars: built on a full axle, coupling the two corners.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub anti_roll_bars: Vec<AntiRollBar>,
+    /// A load case at any point of any body, run by the `loads` analysis.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub loads: Vec<LoadDef>,
     /// Where the wheel is.
     pub corner: CornerDef,
 }
@@ -716,6 +739,47 @@ impl GeneralCorner {
             }
         };
         model.add_element(spring)?;
+        Ok(())
+    }
+}
+
+impl GeneralCorner {
+    /// Adds the file's load case to a corner built from this model on `side` (names prefixed by
+    /// `prefix`): each force and moment ramped by the load parameter. A force needs a point; a load needs
+    /// a force or a moment.
+    pub fn add_loads(&self, model: &mut Model, side: Side, prefix: &str) -> Result<(), ModelError> {
+        let r = self.resolver(side, prefix);
+        for (k, load) in self.loads.iter().enumerate() {
+            let key = format!("loads[{k}] ({})", load.name);
+            let refuse = |why: &str| Err(ModelError::OutOfRange { item: key.clone(), why: why.to_string() });
+            let body = r.body(model, &format!("{key}.body"), &load.body)?;
+            let finite = |v: &[f64; 3]| v.iter().all(|c| c.is_finite());
+            match (load.force, load.torque, &load.at) {
+                (None, None, _) => {
+                    return refuse("give a force (N, with the point 'at' where it acts) or a torque (N·m)")
+                }
+                (Some(_), _, None) => return refuse("a force needs the point 'at' where it acts"),
+                (None, Some(_), Some(_)) => return refuse("'at' means nothing to a torque alone: remove it"),
+                _ => {}
+            }
+            if load.force.is_some_and(|f| !finite(&f)) || load.torque.is_some_and(|t| !finite(&t)) {
+                return refuse("the force and torque must be finite numbers");
+            }
+            let name = part_name(prefix, &load.name);
+            let s = side.sign();
+            if let (Some(f), Some(at)) = (load.force, &load.at) {
+                let point = r.point(&format!("{key}.at"), at)?;
+                let force = Vec3::new(f[0], s * f[1], f[2]);
+                let label = if load.torque.is_some() { format!("{name} force") } else { name.clone() };
+                model.add_element(PointForce::new(&label, body, point, force)?)?;
+            }
+            if let Some(t) = load.torque {
+                // A moment is a pseudo-vector: its mirror image keeps y and turns x and z over.
+                let torque = Vec3::new(s * t[0], t[1], s * t[2]);
+                let label = if load.force.is_some() { format!("{name} torque") } else { name.clone() };
+                model.add_element(PointTorque::new(&label, body, torque)?)?;
+            }
+        }
         Ok(())
     }
 }

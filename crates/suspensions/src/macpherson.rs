@@ -147,6 +147,7 @@ impl MacPherson {
             bushings: Vec::new(),
             springs: Vec::new(),
             anti_roll_bars: Vec::new(),
+            loads: Vec::new(),
             corner: CornerDef {
                 upright: "upright".into(),
                 wheel_centre: "wheel_centre".into(),

@@ -284,3 +284,38 @@ fn a_general_model_rate_out_of_range_is_located_at_its_part() {
     assert!(err.starts_with(&format!("axle.json:{line}:")), "{err}");
     assert!(err.contains("anti_roll_bars.anti-roll bar.rate") && err.contains("N·m/rad"), "{err}");
 }
+
+/// The five-link corner's own load case: on the wheel carrier, held at its design height, the links, the
+/// rig, the spring, the corner load and the file's loads balance at every row (the force each applies
+/// to the carrier sums to zero), and the full row carries the file's force.
+#[test]
+fn model_loads_balance_on_the_wheel_carrier() {
+    let file = example("five_link.json");
+    let report = kc::run(kc::Analysis::ModelLoads, &file, &Settings { steps: 4, ..Settings::default() }).unwrap();
+    let t = &report.table;
+    let mut worst: f64 = 0.0;
+    for row in &t.rows {
+        for axis in ["x", "y", "z"] {
+            let suffix = format!(" force_{axis}_n");
+            let sum: f64 = t
+                .columns
+                .iter()
+                .zip(row)
+                .filter(|(c, _)| c.ends_with(&suffix))
+                .map(|(_, v)| v.number().unwrap_or(0.0))
+                .sum();
+            worst = worst.max(sum.abs());
+        }
+    }
+    // Measured: 3.5e-7 N against loads of 4000 N: the rows' converged force residual.
+    assert!(worst < 1e-5, "{worst:e} N");
+    let last = t.rows.last().unwrap();
+    let column = |name: &str| t.columns.iter().position(|c| c == name).unwrap();
+    assert_eq!(last[0].number(), Some(1.0));
+    assert!((last[column("cornering force force_y_n")].number().unwrap() + 4000.0).abs() < 1e-9);
+    // Without a load case the suite says why it leaves the analysis out.
+    let template =
+        kc::run_suite(&example("macpherson.json"), &[], &Settings { steps: 2, ..Settings::default() }, |_| {});
+    let skipped = template.unwrap().skipped;
+    assert!(skipped.iter().any(|s| s.analysis == kc::Analysis::ModelLoads && s.reason.contains("no load case")));
+}

@@ -6,11 +6,15 @@ use super::{
     Table, Warning,
 };
 use crate::analysis::{
-    design_wheel_load, slope_at, static_load_case, vertical_force_sweep_with, wheel_load_sweep_with, ComponentForces,
-    LoadRow, WheelLoad,
+    design_wheel_load, model_load_sweep_with, slope_at, static_load_case, vertical_force_sweep_with,
+    wheel_load_sweep_with, ComponentForces, LoadRow, WheelLoad,
 };
 use crate::model_file::SuspensionFile;
 use crate::{Rig, Side};
+
+/// Why the `loads` analysis cannot run.
+pub(super) const NO_LOADS: &str = "the model has no load case: give \"loads\" in the general form (a force at a point \
+                                    of a body, or a moment), see docs/model-file.md";
 
 /// Where the rig's forces act, in words.
 fn where_loaded(s: &Settings) -> &'static str {
@@ -132,11 +136,21 @@ fn component_values(forces: &ComponentForces) -> Vec<Cell> {
 }
 
 pub(super) fn road_load(file: &SuspensionFile, load: WheelLoad, s: &Settings) -> Result<AnalysisReport, String> {
-    let analysis = Analysis::Road(load);
-    let (unit, column, default_range) = match load {
-        WheelLoad::Lateral => ("N", "load_n", (-3000.0, 3000.0)),
-        WheelLoad::Braking | WheelLoad::Traction => ("N", "load_n", (0.0, 3000.0)),
-        WheelLoad::AligningTorque => ("N·m", "load_nm", (-200.0, 200.0)),
+    loaded(file, Analysis::Road(load), s)
+}
+
+/// The model file's own load case (`loads` of the general form), applied from zero to its full value.
+pub(super) fn model_loads(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
+    loaded(file, Analysis::ModelLoads, s)
+}
+
+/// A road load or the model's own loads, swept with the corner load carried.
+fn loaded(file: &SuspensionFile, analysis: Analysis, s: &Settings) -> Result<AnalysisReport, String> {
+    let (unit, column, default_range) = match analysis {
+        Analysis::Road(WheelLoad::Lateral) => ("N", "load_n", (-3000.0, 3000.0)),
+        Analysis::Road(WheelLoad::Braking | WheelLoad::Traction) => ("N", "load_n", (0.0, 3000.0)),
+        Analysis::Road(WheelLoad::AligningTorque) => ("N·m", "load_nm", (-200.0, 200.0)),
+        _ => ("of the load case", "fraction", (0.0, 1.0)),
     };
     let range = s.range.unwrap_or(default_range);
     let corner_load = match &file.vehicle {
@@ -146,8 +160,20 @@ pub(super) fn road_load(file: &SuspensionFile, load: WheelLoad, s: &Settings) ->
     let rig = if s.height_held { Rig::HeightHeld } else { Rig::Free };
     let mut corner = file.suspension.build(Side::Left, rig).map_err(said)?;
     corner.load_point = s.load_point;
-    let out = wheel_load_sweep_with(corner, load, corner_load, range.0, range.1, s.steps, s.mode, s.extras())
-        .map_err(said)?;
+    let out = match analysis {
+        Analysis::Road(load) => {
+            wheel_load_sweep_with(corner, load, corner_load, range.0, range.1, s.steps, s.mode, s.extras())
+        }
+        _ => {
+            let general = match &file.suspension {
+                crate::Template::General(g) if !g.loads.is_empty() => g,
+                _ => return Err(NO_LOADS.into()),
+            };
+            general.add_loads(&mut corner.model, Side::Left, "").map_err(said)?;
+            model_load_sweep_with(corner, corner_load, range.0, range.1, s.steps, s.mode, s.extras())
+        }
+    }
+    .map_err(said)?;
     let name = analysis.name();
     let stem = name.replace('-', "_");
     let table = |rows: &[LoadRow]| {
@@ -195,7 +221,11 @@ pub(super) fn road_load(file: &SuspensionFile, load: WheelLoad, s: &Settings) ->
                 .collect(),
         }
     };
-    let (per_unit, per_scale) = if unit == "N" { ("deg/kN", 1e3) } else { ("deg/kN·m", 1e3) };
+    let (per_unit, per_scale) = match unit {
+        "N" => ("deg/kN", 1e3),
+        "N·m" => ("deg/kN·m", 1e3),
+        _ => ("deg per load case", 1.0),
+    };
     let figures = |rows: &[LoadRow]| {
         let why = outside(range, 0.0, unit);
         let slope = |y: &dyn Fn(&LoadRow) -> f64| slope_at(rows, 0.0, |r| r.load, y);
@@ -261,10 +291,10 @@ pub(super) fn road_load(file: &SuspensionFile, load: WheelLoad, s: &Settings) ->
         Some(0.0),
     )];
     let held = if s.height_held { "wheel-centre height held" } else { "wheel free on its spring" };
-    let at = match load {
-        WheelLoad::Lateral | WheelLoad::Braking => format!(" at the {}", where_loaded(s)),
-        WheelLoad::Traction => " at the wheel centre".into(),
-        WheelLoad::AligningTorque => String::new(),
+    let at = match analysis {
+        Analysis::Road(WheelLoad::Lateral | WheelLoad::Braking) => format!(" at the {}", where_loaded(s)),
+        Analysis::Road(WheelLoad::Traction) => " at the wheel centre".into(),
+        _ => String::new(),
     };
     let description = format!(
         "{} {:.0}..{:.0} {unit}{at} ({held}, corner load {corner_load:.0} N), {} steps",

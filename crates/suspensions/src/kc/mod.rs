@@ -40,6 +40,8 @@ pub enum Analysis {
     Road(WheelLoad),
     /// The corner at rest under the vehicle's corner load, from the design position.
     StaticLoad,
+    /// The model file's own load case (`loads` of the general form), from zero to its full value.
+    ModelLoads,
 }
 
 impl From<Analysis> for &'static str {
@@ -49,7 +51,7 @@ impl From<Analysis> for &'static str {
 }
 
 /// Every analysis, in the order the suite runs them.
-pub const ALL: [Analysis; 9] = [
+pub const ALL: [Analysis; 10] = [
     Analysis::ParallelTravel,
     Analysis::Roll,
     Analysis::Steering,
@@ -59,6 +61,7 @@ pub const ALL: [Analysis; 9] = [
     Analysis::Road(WheelLoad::Traction),
     Analysis::Road(WheelLoad::AligningTorque),
     Analysis::StaticLoad,
+    Analysis::ModelLoads,
 ];
 
 impl Analysis {
@@ -74,6 +77,7 @@ impl Analysis {
             Analysis::Road(WheelLoad::Traction) => "traction-force",
             Analysis::Road(WheelLoad::AligningTorque) => "aligning-torque",
             Analysis::StaticLoad => "static-load",
+            Analysis::ModelLoads => "loads",
         }
     }
 
@@ -94,6 +98,7 @@ impl Analysis {
             Analysis::Road(WheelLoad::Traction) => "traction force at the wheel centre, N, forward +",
             Analysis::Road(WheelLoad::AligningTorque) => "aligning torque, N·m, about +z",
             Analysis::StaticLoad => "the model file's vehicle.corner_load, N, applied at once",
+            Analysis::ModelLoads => "fraction of the model file's loads applied, 0 to 1",
         }
     }
 
@@ -224,6 +229,7 @@ pub fn run(analysis: Analysis, file: &SuspensionFile, settings: &Settings) -> Re
         Analysis::VerticalForce => loads::vertical_force(file, settings),
         Analysis::Road(load) => loads::road_load(file, load, settings),
         Analysis::StaticLoad => loads::static_load(file, settings),
+        Analysis::ModelLoads => loads::model_loads(file, settings),
     };
     result.map_err(|message| AnalysisError { analysis: analysis.name(), message })
 }
@@ -264,9 +270,9 @@ pub fn run_suite(
         warnings,
     };
     report.warnings.extend(crate::plausibility::bushing_deflection_at_design(file));
-    let steered = match &file.suspension {
-        crate::Template::General(g) => g.corner.tie_rod.is_some(),
-        _ => true,
+    let (steered, loaded) = match &file.suspension {
+        crate::Template::General(g) => (g.corner.tie_rod.is_some(), !g.loads.is_empty()),
+        _ => (true, false),
     };
     for analysis in chosen {
         let skip = match analysis {
@@ -276,6 +282,7 @@ pub fn run_suite(
             Analysis::Steering if !steered => {
                 Some("the corner has no steering input (corner.tie_rod): its toe is held by its own links")
             }
+            Analysis::ModelLoads if !loaded => Some("the model file has no load case (\"loads\" of the general form)"),
             _ => None,
         };
         if let (Some(reason), true) = (skip, which.is_empty()) {
