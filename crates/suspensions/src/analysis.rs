@@ -180,7 +180,7 @@ fn driven_sweep_with(
 ) -> Result<SweepOutput<TravelRow>, SolverError> {
     require_rig(corner, &[rig])?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
-    let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
+    let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?.complete()?;
     let driver = corner.model.joint_id("wheel travel");
     let spring = corner.model.element_id("spring");
     read_sweep(&mut solver, &corner.wheel, &sweep.steps, extras, |_, s| {
@@ -408,7 +408,7 @@ pub fn vertical_force_sweep_with(
     let patch = corner.wheel.contact_patch;
     corner.add_wheel_force("vertical force", patch, Vec3::z())?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
-    let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
+    let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?.complete()?;
     let local_patch = corner.model.bodies()[corner.wheel.upright.0].design_pose.to_local_point(&patch);
     load_rows(&mut solver, &corner, &sweep, local_patch, extras)
 }
@@ -488,7 +488,7 @@ pub fn wheel_load_sweep_with(
         WheelLoad::AligningTorque => corner.add_wheel_torque("aligning torque", Vec3::z())?,
     };
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
-    let sweep = solver.sweep_from(&mut start, LoadPath::new(from, to, steps), mode)?;
+    let sweep = solver.sweep_from(&mut start, LoadPath::new(from, to, steps), mode)?.complete()?;
     load_rows(&mut solver, &corner, &sweep, patch_local, extras)
 }
 
@@ -621,7 +621,8 @@ const STATIC_LOAD_STEPS: usize = 20;
 /// the linkage's falling motion ratio outweighs its rate has only those), so they are refused.
 ///
 /// Errors: another rig or a non-finite load is [`SolverError::InvalidInput`]; a load beyond what the
-/// corner carries is [`SolverError::LimitPoint`] (the largest load reached) or
+/// corner carries is [`SolverError::LimitPoint`] (the largest load it carries, located to 1e-6 of the
+/// load) or
 /// [`SolverError::InvalidInput`] on the corner load when no rest position is found or the one found is
 /// unstable; model and factorization failures pass through.
 pub fn static_load_case(mut corner: Corner, corner_load: f64) -> Result<StaticLoad, SolverError> {
@@ -652,7 +653,8 @@ pub fn static_load_case(mut corner: Corner, corner_load: f64) -> Result<StaticLo
                 ),
             })?;
             let path = LoadPath::new(0.0, corner_load, STATIC_LOAD_STEPS);
-            let mut sweep = solver.sweep_from(&mut state, path, Mode::Corrected).map_err(|e| match e {
+            let sweep = solver.sweep_from(&mut state, path, Mode::Corrected).and_then(Sweep::complete);
+            let mut sweep = sweep.map_err(|e| match e {
                 SolverError::NoConvergence { last_converged: Some(reached), .. } => SolverError::InvalidInput {
                     what: "corner load",
                     why: format!(

@@ -171,7 +171,7 @@ pub fn axle_sweep_with(
     }
     let model = &axle.model;
     let mut solver = StaticSolver::new(model, SolverOptions::default())?;
-    let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
+    let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?.complete()?;
     let drivers = (model.joint_id("left wheel travel"), model.joint_id("right wheel travel"));
     read_sweep(&mut solver, &axle.left, &sweep.steps, extras, |solver, step| {
         let reactions = step.joint_reactions(model);
