@@ -29,7 +29,7 @@ pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<Anal
     };
     let corner = file.suspension.build(Side::Left, Rig::Free).map_err(said)?;
     let z0 = corner.wheel.wheel_centre.z;
-    let out = vertical_force_sweep_with(corner, range.0, range.1, s.steps, s.mode, s.extras()).map_err(said)?;
+    let out = vertical_force_sweep_with(corner, range.0, range.1, s.steps, s.mode, s.extras(range)).map_err(said)?;
     let table = |rows: &[LoadRow]| {
         Table::numbers(
             "vertical_force",
@@ -131,7 +131,7 @@ pub(super) fn road_load(file: &SuspensionFile, load: WheelLoad, s: &Settings) ->
     };
     let rig = if s.height_held { Rig::HeightHeld } else { Rig::Free };
     let corner = file.suspension.build(Side::Left, rig).map_err(said)?;
-    let out = wheel_load_sweep_with(corner, load, corner_load, range.0, range.1, s.steps, s.mode, s.extras())
+    let out = wheel_load_sweep_with(corner, load, corner_load, range.0, range.1, s.steps, s.mode, s.extras(range))
         .map_err(said)?;
     let name = analysis.name();
     let stem = name.replace('-', "_");
