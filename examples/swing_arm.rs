@@ -47,8 +47,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     let mut solver = StaticSolver::new(&model, SolverOptions::default())?;
     let path = LoadPath::new(-1.0, 1.0, 20);
-    let corrected = solver.sweep(path, Mode::Corrected)?;
-    let paper = solver.sweep(path, Mode::Paper)?;
+    // `complete` refuses a path that stopped at a limit point (a load the arm cannot carry).
+    let corrected = solver.sweep(path, Mode::Corrected)?.complete()?;
+    let paper = solver.sweep(path, Mode::Paper)?.complete()?;
 
     println!("vertical force sweep of a swing arm (wheel-centre height, arm pitch, spring and bushing loads)");
     println!(

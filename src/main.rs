@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! elastokin run MODEL [--analysis NAME] [--range FROM,TO] [--steps N] [--mode paper|corrected]
-//!                     [--wheel held|free] [--out DIR]
+//!                     [--wheel held|free] [--through-limits [--arc-step VALUE]] [--out DIR]
 //! elastokin check MODEL
 //! elastokin batch MODEL VARIANTS [--out DIR]
 //! ```
@@ -116,6 +116,17 @@ pub struct RunArgs {
     /// Also write every plot as PNG beside its SVG
     #[arg(long)]
     pub png: bool,
+    /// At a limit point (a load the suspension cannot carry, a travel its linkage cannot reach), follow the
+    /// path on through it by arc length and plot all of it; without it the sweep stops there. Either way a
+    /// warning (limit-point) names the load
+    #[arg(long)]
+    pub through_limits: bool,
+    /// The arc-length step of --through-limits, in the analysis's own units like --range (m, N or N m):
+    /// the change of travel or load of the first arc-length step, from the last load step before the
+    /// limit point; later steps change the load less where the suspension gives way. Default: one load
+    /// step, (TO - FROM) / STEPS (needs --analysis)
+    #[arg(long, value_name = "VALUE", requires = "through_limits", value_parser = parse_arc_step, allow_negative_numbers = true)]
+    pub arc_step: Option<f64>,
 }
 
 #[derive(Debug, Args)]
@@ -200,6 +211,16 @@ fn parse_steps(text: &str) -> Result<usize, String> {
     }
 }
 
+fn parse_arc_step(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(format!(
+            "'{text}' is not a positive number: give the arc-length step in the analysis's own units (m for \
+             travel, N for a force, N m for the aligning torque), e.g. --arc-step 50"
+        )),
+    }
+}
+
 fn parse_tolerance(text: &str) -> Result<Tolerance, String> {
     let parts: Vec<&str> = text.split(',').map(str::trim).collect();
     let [angle, length, percent] = parts[..] else {
@@ -260,6 +281,11 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
             "--range needs --analysis NAME: each analysis has its own load parameter and units".into(),
         ));
     }
+    if args.arc_step.is_some() && args.analysis.is_none() {
+        return Err(Failure::Input(
+            "--arc-step needs --analysis NAME: each analysis has its own load parameter and units".into(),
+        ));
+    }
     let mode = match args.mode {
         ModeName::Corrected => Mode::Corrected,
         ModeName::Paper => Mode::Paper,
@@ -275,6 +301,8 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
         },
         compliance: args.compliance,
         tolerance: args.tolerance,
+        through_limits: args.through_limits,
+        arc_step: args.arc_step,
     };
     let (bytes, file) = read_model(&args.model)?;
     if strict {

@@ -777,3 +777,109 @@ fn compliance_png_and_report_on_request() {
     assert!(line.contains("n/a") && line.contains("does not contain the design position"), "{line}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The shipped double wishbone on ideal arm pivots: with the wheel free it carries about 3.3 kN upward at
+/// the contact patch, so a vertical force to 6 kN meets a limit point. Returns the model file's path.
+fn ideal_pivot_double_wishbone(dir: &Path) -> PathBuf {
+    let text =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/double_wishbone.json")).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["suspension"]["double_wishbone"]["upper_arm_mounts"] = "ideal".into();
+    v["suspension"]["double_wishbone"]["lower_arm_mounts"] = "ideal".into();
+    let model = dir.join("ideal_pivots.json");
+    std::fs::write(&model, v.to_string()).unwrap();
+    model
+}
+
+/// A vertical force beyond what the corner carries: `run` writes the rows up to the limit point and names
+/// its load; `run --through-limits` writes the whole path through it; both succeed. The limit load they
+/// give is the one the static load case meets walking 3.5 kN onto the corner from its unloaded position
+/// (another path, in other steps).
+#[test]
+fn a_limit_point_is_named_and_through_limits_writes_the_path_past_it() {
+    use elastokin::solver::SolverError;
+    use elastokin::suspensions::{analysis::static_load_case, Rig, Side, SuspensionFile};
+    let dir = scratch("limit-point");
+    let model = ideal_pivot_double_wishbone(&dir);
+    let file = SuspensionFile::read(&model).unwrap();
+    let reached = match static_load_case(file.suspension.build(Side::Left, Rig::Free).unwrap(), 3500.0) {
+        Err(SolverError::LimitPoint { reached }) => reached,
+        other => panic!("{other:?}"),
+    };
+    let out = dir.join("out");
+    let run = |extra: &[&str]| {
+        let mut args = vec!["run", model.to_str().unwrap(), "--analysis", "vertical-force", "--range", "0,6000"];
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["--out", out.to_str().unwrap()]);
+        elastokin(&args)
+    };
+    let loads = || -> Vec<f64> {
+        read_csv(&out.join("vertical_force.csv")).iter().map(|r| r[0].parse::<f64>().unwrap()).collect()
+    };
+    let summary = || -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+    };
+    // Stopped at the limit point: the 32 steps of 187.5 N below it, then the row at it.
+    let o = run(&[]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stopped = loads();
+    let below = (reached / 187.5).floor() as usize + 1;
+    assert_eq!(stopped.len(), below + 1, "{stopped:?}");
+    let fold = stopped[below];
+    println!("limit point {fold} N; the static load case's {reached} N");
+    // Both located to 1e-6 of their ranges (6e-3 and 3.5e-3 N); measured 4.2e-3 N apart.
+    assert!((fold - reached).abs() < 1e-2, "{fold} vs {reached}");
+    let line = format!("warning [limit-point]: vertical-force: the suspension gives way at {reached:.2} N");
+    assert!(stdout.contains(&line), "{stdout}");
+    let codes = summary()["analyses"]["vertical-force"]["warnings"].to_string();
+    assert!(codes.contains("limit-point") && codes.contains("--through-limits"), "{codes}");
+    // Through it by arc length, steps of 100 N: the same rows up to the last step before it, then the path
+    // over the limit load and down until it leaves the range below 0 N.
+    let o = run(&["--through-limits", "--arc-step", "100", "--png"]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    for file in ["vertical_force.csv", "vertical_force.svg", "vertical_force.png", "report.html", "summary.json"] {
+        assert!(out.join(file).exists(), "{file}");
+    }
+    let through = loads();
+    assert_eq!(through[..below], stopped[..below]);
+    assert!(through.len() > below + 5 && through.iter().all(|&f| f <= fold + 1e-6), "{through:?}");
+    assert!(*through.last().unwrap() < 0.0, "{through:?}");
+    assert!(stdout.contains("until it leaves the range") && stdout.contains("by arc length"), "{stdout}");
+    let s = summary();
+    assert_eq!(s["settings"]["through_limits"], true);
+    assert_eq!(s["settings"]["arc_step"], 100.0);
+    let svg = std::fs::read_to_string(out.join("vertical_force.svg")).unwrap();
+    assert!(svg.contains("<polyline") && !svg.contains("NaN"));
+    let csv = std::fs::read_to_string(out.join("vertical_force.csv")).unwrap();
+    assert!(!csv.contains("NaN") && !csv.contains("inf"));
+    // Under --strict the limit point is an error, and the results stay as they were.
+    let before = snapshot(&out);
+    let o = run(&["--strict"]);
+    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("limit-point"));
+    assert_eq!(snapshot(&out), before);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn an_arc_step_without_its_flag_analysis_or_length_is_refused_by_name() {
+    let m = "examples/double_wishbone.json";
+    let one = ["run", m, "--analysis", "vertical-force"];
+    for (args, says) in [
+        (vec!["--arc-step", "100"], "--through-limits"),
+        (vec!["--through-limits", "--arc-step", "-5"], "not a positive number"),
+        (vec!["--through-limits", "--arc-step", "nan"], "not a positive number"),
+        (vec!["--through-limits", "--arc-step", "0"], "not a positive number"),
+    ] {
+        let o = elastokin(&[&one[..], &args[..]].concat());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(says) && err.contains("--arc-step"), "{args:?}: {err}");
+    }
+    let o = elastokin(&["run", m, "--through-limits", "--arc-step", "100"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("--arc-step needs --analysis"), "{err}");
+}

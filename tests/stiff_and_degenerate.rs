@@ -195,9 +195,19 @@ fn driving_past_the_reach_of_the_mechanism_is_a_named_limit_point() {
     // The tip can go down 0.5 m at most: t = 0.5 / 0.8 = 0.625.
     let m = driven_lever(-0.8);
     let mut solver = StaticSolver::new(&m, SolverOptions::default()).unwrap();
-    match solver.sweep(LoadPath::new(0.0, 1.0, 8), Mode::Corrected).unwrap_err() {
-        SolverError::LimitPoint { reached } => assert!((reached - 0.625).abs() < 2e-3, "reached {reached}"),
-        other => panic!("expected a limit point, got {other}"),
+    for mode in [Mode::Corrected, Mode::Paper] {
+        let sweep = solver.sweep(LoadPath::new(0.0, 1.0, 8), mode).unwrap();
+        // The steps at t = 0 … 0.5; the fold is at 0.625, the tip straight below the pivot.
+        assert_eq!(sweep.steps.len(), 5, "{mode:?}");
+        let limit = sweep.limit.clone().expect("the tip cannot go below its reach");
+        // Located to 1e-6 of the range; measured exactly 0.625 in both modes (the step at 0.625 lands on
+        // the fold, and no trial beyond it converges).
+        println!("{mode:?}: limit at {}", limit.t);
+        assert!((limit.t - 0.625).abs() < 1e-6, "{mode:?}: reached {}", limit.t);
+        match sweep.complete().unwrap_err() {
+            SolverError::LimitPoint { reached } => assert_eq!(reached, limit.t),
+            other => panic!("expected a limit point, got {other}"),
+        }
     }
 }
 

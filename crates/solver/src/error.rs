@@ -45,14 +45,17 @@ pub enum SolverError {
         constraint_residual: f64,
     },
     /// The path reached a limit point: the tangent turned singular along it — a load the structure cannot
-    /// carry, or a driven motion the mechanism cannot reach.
+    /// carry, or a driven motion the mechanism cannot reach. A sweep itself returns what it found up to
+    /// the limit point ([`Sweep::limit`](crate::Sweep::limit)); this error is for a caller that needs the
+    /// whole path ([`Sweep::complete`](crate::Sweep::complete)), or an arc-length path that starts on one.
     #[error(
         "the suspension cannot go beyond {reached:.6} (in the analysis's own unit: travel in m, force in N): there it \
          locks or gives way (a load it cannot carry, or a travel its arms and tie rod cannot reach); narrow the \
          range, or check the hardpoints for an arm or tie rod that reaches its end of travel"
     )]
     LimitPoint {
-        /// Largest load parameter for which equilibrium was found.
+        /// Largest load parameter for which equilibrium was found: the limit point's, to
+        /// [`LIMIT_POINT_TOLERANCE`](crate::LIMIT_POINT_TOLERANCE) of the sweep's range.
         reached: f64,
     },
     /// Non-finite numbers appeared or were given.

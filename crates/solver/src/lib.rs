@@ -2,7 +2,9 @@
 //!
 //! KKT assembly with a fixed pattern, a quasi-definite sparse LDLᵀ with factorization reuse, and the two
 //! ways of walking a load path: the paper's linear recurrence (eq. 9) and a linear predictor followed by
-//! Newton iterations on the exact residual. Arc-length continuation follows a path through a limit point.
+//! Newton iterations on the exact residual. A sweep that meets a limit point stops there with every
+//! equilibrium it found and the limit point located by bisection; arc-length continuation follows the path
+//! through it.
 //!
 //! ```
 //! use elastokin_core::{BodyRef, JointSpec, Model, Pose, Vec3};
@@ -53,5 +55,5 @@ pub mod solver;
 
 pub use error::SolverError;
 pub use kkt_factor::{FactorCounters, KktOptions};
-pub use results::{Diagnostics, JointReaction, RedundantRow, StepResult, Sweep};
-pub use solver::{Counters, LoadPath, Mode, SolverOptions, State, StaticSolver};
+pub use results::{Diagnostics, JointReaction, LimitPoint, RedundantRow, StepResult, Sweep};
+pub use solver::{ArcStep, Counters, LoadPath, Mode, SolverOptions, State, StaticSolver, LIMIT_POINT_TOLERANCE};

@@ -1,5 +1,6 @@
 //! What a solve returns: per-step states, joint reactions, element forces, diagnostics.
 
+use crate::error::SolverError;
 use crate::solver::Mode;
 use elastokin_core::{ElementReport, Model, Pose, Vec3};
 
@@ -110,11 +111,53 @@ impl StepResult {
     }
 }
 
+/// Where a load-controlled path folds: the load parameter beyond which it has no equilibrium nearby (a
+/// load the structure cannot carry, or a driven motion the mechanism cannot make). There the tangent
+/// `[K Jᵀ; J 0]` turns singular.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LimitPoint {
+    /// Load parameter of the limit point: the furthest along the path at which equilibrium was found,
+    /// within [`LIMIT_POINT_TOLERANCE`](crate::solver::LIMIT_POINT_TOLERANCE)` · |end − start|` of the
+    /// fold.
+    pub t: f64,
+    /// The nearest load parameter past `t` at which no equilibrium was found: the fold lies between `t`
+    /// and `beyond`.
+    pub beyond: f64,
+    /// The equilibrium at `t`.
+    pub step: StepResult,
+}
+
 /// A walked load path.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Sweep {
     /// How it was walked.
     pub mode: Mode,
-    /// The starting equilibrium, then one result per step.
+    /// The starting equilibrium, then one result per step: every step when the path was walked to its
+    /// end, the steps before the limit point when it stopped at one (a step on the limit point itself is
+    /// left to [`Sweep::limit`]; the starting equilibrium is always kept).
     pub steps: Vec<StepResult>,
+    /// The limit point where the path stopped, if it met one (always `None` for an arc-length path,
+    /// which goes through them).
+    pub limit: Option<LimitPoint>,
+}
+
+impl Sweep {
+    /// Whether the path was walked to its end (it met no limit point).
+    pub fn is_complete(&self) -> bool {
+        self.limit.is_none()
+    }
+
+    /// The sweep if it was walked to its end, else [`SolverError::LimitPoint`] with the limit point's
+    /// load parameter: for a caller that needs the whole path.
+    pub fn complete(self) -> Result<Sweep, SolverError> {
+        match &self.limit {
+            None => Ok(self),
+            Some(limit) => Err(SolverError::LimitPoint { reached: limit.t }),
+        }
+    }
+
+    /// Every equilibrium found, in the order of the path: the steps, then the limit point's.
+    pub fn equilibria(&self) -> impl Iterator<Item = &StepResult> {
+        self.steps.iter().chain(self.limit.as_ref().map(|l| &l.step))
+    }
 }

@@ -23,7 +23,7 @@
 use crate::assembly::{Assembly, Tangent};
 use crate::error::SolverError;
 use crate::kkt_factor::{redundant_rows, FactorCounters, KktFactor, KktOptions};
-use crate::results::{Diagnostics, RedundantRow, StepResult, Sweep};
+use crate::results::{Diagnostics, LimitPoint, RedundantRow, StepResult, Sweep};
 use elastokin_core::{Model, Pose, BODY_DOFS};
 
 /// How to walk a load path.
@@ -207,6 +207,51 @@ fn norm2(v: &[f64]) -> f64 {
 
 /// A path counts as stuck at a limit point when the response to a load increment has grown this much.
 const LIMIT_RESPONSE_GROWTH: f64 = 10.0;
+
+/// How closely a sweep locates a limit point it stops at, relative to the range of its load parameter
+/// `|end − start|`: the fold lies between [`LimitPoint::t`] and [`LimitPoint::beyond`], which bisection
+/// brings this close.
+pub const LIMIT_POINT_TOLERANCE: f64 = 1e-6;
+
+/// The length of each step of an arc-length path ([`StaticSolver::arc_length_sweep`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ArcStep {
+    /// In the load parameter's own unit (N for a force, m for a driven travel): the change of the load
+    /// parameter that the first step makes along the path's tangent. Every later step has the same
+    /// length in the scaled space, so it changes the load less where the path softens.
+    Load(f64),
+    /// In the scaled space `‖Δq‖² + ψ² Δt²` itself (ψ = ‖dq/dt‖ at the start).
+    Scaled(f64),
+}
+
+/// What a paper step tells of a fold.
+struct PaperStep {
+    /// `‖Δq‖ / |Δt|`.
+    response: f64,
+    /// The largest change of a generalized load it makes (N, N·m).
+    load_change: f64,
+    /// The largest change of a driven constraint it makes (m, rad).
+    drive_change: f64,
+}
+
+/// How a walk of the exact path under a paper-mode sweep ended.
+enum ExactWalk {
+    /// At its target.
+    Reached,
+    /// At a limit point.
+    Limit(LimitPoint),
+    /// Stuck, not at a limit point.
+    Failed,
+}
+
+/// How a corrected step ended.
+enum StepOutcome {
+    /// At its target load, with the Newton iterations spent and the residual there.
+    Reached { iterations: usize, residual: Residual },
+    /// Not even after every cut: `attempted` is the load that failed last (the state is left at the last
+    /// equilibrium found).
+    Stuck { attempted: f64, iterations: usize, force: f64, constraint: f64 },
+}
 
 struct Residual {
     force: f64,
@@ -681,12 +726,35 @@ impl<'m> StaticSolver<'m> {
     }
 
     /// Walks `path` in `mode`, starting from the equilibrium at `path.start` found from the design pose.
+    /// A path that meets a limit point stops there and returns what it found: see
+    /// [`StaticSolver::sweep_from`].
     pub fn sweep(&mut self, path: LoadPath, mode: Mode) -> Result<Sweep, SolverError> {
         let mut state = self.design_state(path.start);
         self.sweep_from(&mut state, path, mode)
     }
 
     /// Walks `path` from `state` (which is first brought to equilibrium at `path.start`).
+    ///
+    /// ## At a limit point
+    /// Where the path folds (its tangent turns singular: a load the structure cannot carry, or a driven
+    /// motion the mechanism cannot make), load control finds no equilibrium beyond. The sweep stops there
+    /// and still returns `Ok`: [`Sweep::steps`] holds every equilibrium found before the fold and
+    /// [`Sweep::limit`] the fold itself, its load parameter located by bisection to
+    /// [`LIMIT_POINT_TOLERANCE`]` · |end − start|`, with its equilibrium. [`Sweep::complete`] turns such a
+    /// sweep into [`SolverError::LimitPoint`] for a caller that needs the whole path;
+    /// [`StaticSolver::arc_length_sweep`] follows the path through the fold.
+    ///
+    /// How a fold is told from a failure: in [`Mode::Corrected`], a step that does not converge even
+    /// after [`SolverOptions::max_step_cuts`] halvings is a limit point when the displacement response to
+    /// a load increment has grown more than tenfold since the start of the path, and
+    /// [`SolverError::NoConvergence`] otherwise. [`Mode::Paper`] takes no Newton steps: a paper step
+    /// whose response grew tenfold, or whose drift grew by more than the load (or driven travel) it added
+    /// (it jumped across a fold), is checked on the exact path, walked in corrected steps from the starting equilibrium as far
+    /// as that step (and no further than the last check had to); a fold found there ends the sweep, and
+    /// the paper steps past it are dropped. In both modes the bisection then narrows between
+    /// the last load parameter with an equilibrium and the first without one, each trial a Newton solve
+    /// from the last equilibrium found, its corrector kept within the reach of its predictor so that it
+    /// cannot jump to another branch of the path.
     pub fn sweep_from(&mut self, state: &mut State, path: LoadPath, mode: Mode) -> Result<Sweep, SolverError> {
         if path.steps == 0 || !path.start.is_finite() || !path.end.is_finite() {
             return Err(SolverError::InvalidInput {
@@ -702,14 +770,50 @@ impl<'m> StaticSolver<'m> {
         let mut steps = Vec::with_capacity(path.steps + 1);
         steps.push(first);
         let dt = (path.end - path.start) / path.steps as f64;
-        match mode {
-            Mode::Paper => self.paper_steps(state, path, dt, &mut steps)?,
+        let limit = match mode {
+            Mode::Paper => {
+                // Taken only if a paper step looks like a fold (see `exact_walk`).
+                self.initial_response = None;
+                self.paper_steps(state, path, dt, &mut steps)?
+            }
             Mode::Corrected => {
                 self.initial_response = self.load_response(state);
                 self.corrected_steps(state, path, dt, &mut steps)?
             }
+        };
+        if let Some(limit) = &limit {
+            // The steps before the fold (paper steps may have gone past it; the last corrected step may be
+            // the fold itself, which the limit point holds), after the starting equilibrium.
+            let before = steps[1..].iter().take_while(|s| (limit.t - s.t) * dt.signum() > 0.0).count();
+            steps.truncate(1 + before);
         }
-        Ok(Sweep { mode, steps })
+        Ok(Sweep { mode, steps, limit })
+    }
+
+    /// One paper step's increment `[Δq; λⁿ]` into `rhs` from `state`, with what tells a fold: see
+    /// [`PaperStep`].
+    fn paper_increment(&mut self, state: &State, dt: f64, carried: &[f64]) -> Result<PaperStep, SolverError> {
+        let n = self.assembly.n;
+        let m = self.assembly.m();
+        self.assemble(state, Some(Tangent::Paper));
+        self.factorize()?;
+        for c in 0..n {
+            self.rhs[c] = dt * self.assembly.load_rate[c] + carried[c];
+        }
+        for k in 0..m {
+            self.rhs[n + k] = -dt * self.assembly.phi_rate[k];
+        }
+        // The Jacobian at qⁿ carries λⁿ into the next step. The tangent's non-symmetric part (the load
+        // stiffness of world-fixed loads, preloads turning with their lever arms) is solved for too:
+        // without it the walk converges, as the step shrinks, to a different path.
+        self.solve_with_skew()?;
+        let response = if dt == 0.0 { 0.0 } else { norm2(&self.rhs[..n]) / dt.abs() };
+        let largest = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        Ok(PaperStep {
+            response,
+            load_change: dt.abs() * largest(&self.assembly.load_rate),
+            drive_change: dt.abs() * largest(&self.assembly.phi_rate),
+        })
     }
 
     fn paper_steps(
@@ -718,29 +822,26 @@ impl<'m> StaticSolver<'m> {
         path: LoadPath,
         dt: f64,
         steps: &mut Vec<StepResult>,
-    ) -> Result<(), SolverError> {
+    ) -> Result<Option<LimitPoint>, SolverError> {
         let n = self.assembly.n;
         let m = self.assembly.m();
         // Φ_q(qⁿ⁻¹)ᵀ λⁿ⁻¹: the constraint force carried from the previous step.
         let mut carried = vec![0.0; n];
         self.assemble(state, None);
         self.assembly.jt_times(&state.lambda, &mut carried);
+        // What a step's response is compared with to suspect a fold: the first step's (raised past a step
+        // that was checked and found no fold).
+        let mut reference: Option<f64> = None;
+        // The exact path, walked only as far as a suspect step needs (`None` once it cannot be walked).
+        let mut exact = Some(self.state_of(&steps[0]));
         for step in 1..=path.steps {
-            self.assemble(state, Some(Tangent::Paper));
-            self.factorize()?;
-            for c in 0..n {
-                self.rhs[c] = dt * self.assembly.load_rate[c] + carried[c];
-            }
-            for k in 0..m {
-                self.rhs[n + k] = -dt * self.assembly.phi_rate[k];
-            }
-            // The Jacobian at qⁿ carries λⁿ into the next step. The tangent's non-symmetric part (the load
-            // stiffness of world-fixed loads, preloads turning with their lever arms) is solved for too:
-            // without it the walk converges, as the step shrinks, to a different path.
-            self.solve_with_skew()?;
+            let paper = self.paper_increment(state, dt, &carried)?;
             if self.rhs.iter().any(|v| !v.is_finite()) {
                 return Err(SolverError::NonFinite { what: "paper-mode step" });
             }
+            let response = *reference.get_or_insert(paper.response);
+            let before = &steps[steps.len() - 1];
+            let previous = (before.force_residual, before.constraint_residual);
             state.lambda.copy_from_slice(&self.rhs[n..n + m]);
             self.assembly.jt_times(&state.lambda, &mut carried);
             Self::apply(&mut state.poses, &self.rhs[..n], 1.0);
@@ -748,9 +849,58 @@ impl<'m> StaticSolver<'m> {
             // Report the true residual of the paper solution (drift), without correcting it.
             self.assemble(state, None);
             let r = self.residual(&state.lambda);
+            // A fold ahead or behind: the response grew tenfold, or the step left its linearisation (its drift
+            // grew by more than the change of load or travel it made: a step that jumped across a fold to
+            // another branch). (The paper tangent's negative pivots tell nothing: it lacks the joint
+            // reactions' geometric stiffness, and a stable lever under a world-fixed load has some.)
+            let suspect = paper.response > LIMIT_RESPONSE_GROWTH * response
+                || (paper.load_change > 0.0 && r.force - previous.0 > paper.load_change)
+                || (paper.drive_change > 0.0 && r.constraint - previous.1 > paper.drive_change);
+            if suspect {
+                if let Some(mut at) = exact.take() {
+                    match self.exact_walk(&mut at, steps, state.t, path, dt)? {
+                        ExactWalk::Reached => {
+                            exact = Some(at);
+                            reference = Some(paper.response);
+                        }
+                        ExactWalk::Limit(limit) => return Ok(Some(limit)),
+                        // Paper mode never promised the exact path: it goes on without the check.
+                        ExactWalk::Failed => {}
+                    }
+                }
+            }
             steps.push(self.step_result(state, 0, &r));
         }
-        Ok(())
+        Ok(None)
+    }
+
+    /// Walks the exact path of a paper-mode sweep from `at` (an equilibrium on it) to `target` in corrected
+    /// steps of `dt`, to check a suspected fold.
+    fn exact_walk(
+        &mut self,
+        at: &mut State,
+        steps: &[StepResult],
+        target: f64,
+        path: LoadPath,
+        dt: f64,
+    ) -> Result<ExactWalk, SolverError> {
+        if self.initial_response.is_none() {
+            let first = self.state_of(&steps[0]);
+            self.initial_response = self.load_response(&first);
+        }
+        let mut saved = at.clone();
+        while (target - at.t) * dt.signum() > 0.0 {
+            let next = if (target - at.t).abs() <= dt.abs() * (1.0 + 1e-12) { target } else { at.t + dt };
+            if let StepOutcome::Stuck { attempted, iterations, force, constraint } =
+                self.corrected_step(at, next, dt, &mut saved)?
+            {
+                return Ok(match self.stuck(at, attempted, iterations, force, constraint, path) {
+                    Ok(limit) => ExactWalk::Limit(limit),
+                    Err(_) => ExactWalk::Failed,
+                });
+            }
+        }
+        Ok(ExactWalk::Reached)
     }
 
     fn corrected_steps(
@@ -759,47 +909,77 @@ impl<'m> StaticSolver<'m> {
         path: LoadPath,
         dt: f64,
         steps: &mut Vec<StepResult>,
-    ) -> Result<(), SolverError> {
+    ) -> Result<Option<LimitPoint>, SolverError> {
         // Where a refused sub-step goes back to; `clone_from` reuses its storage, so no step allocates.
         let mut saved = state.clone();
         for step in 1..=path.steps {
             let target = path.start + dt * step as f64;
-            let mut sub = dt;
-            let mut cuts = 0;
-            let mut iterations = 0;
-            let mut residual;
-            loop {
-                saved.clone_from(state);
-                let next = if (target - state.t).abs() <= sub.abs() * (1.0 + 1e-12) { target } else { state.t + sub };
-                state.t = next;
-                match self.newton(state, true) {
-                    Ok((it, r)) => {
-                        iterations += it;
-                        residual = r;
-                        if next == target {
-                            break;
-                        }
-                    }
-                    Err(SolverError::NoConvergence { iterations: it, force_residual, constraint_residual, .. }) => {
-                        state.clone_from(&saved);
-                        cuts += 1;
-                        if cuts > self.options.max_step_cuts {
-                            return Err(self.stuck(state, next, it, force_residual, constraint_residual));
-                        }
-                        sub *= 0.5;
-                    }
-                    Err(e) => return Err(e),
+            match self.corrected_step(state, target, dt, &mut saved)? {
+                StepOutcome::Reached { iterations, residual } => {
+                    steps.push(self.step_result(state, iterations, &residual))
+                }
+                StepOutcome::Stuck { attempted, iterations, force, constraint } => {
+                    return self.stuck(state, attempted, iterations, force, constraint, path).map(Some);
                 }
             }
-            steps.push(self.step_result(state, iterations, &residual));
         }
-        Ok(())
+        Ok(None)
     }
 
-    /// Classifies a path that cannot be continued: a limit point when the displacement response to a load
-    /// increment has grown far beyond its value at the start of the path (the tangent along the path is
-    /// losing its stiffness), otherwise a plain convergence failure.
-    fn stuck(&mut self, state: &State, attempted: f64, iterations: usize, force: f64, constraint: f64) -> SolverError {
+    /// Brings `state`, an equilibrium, to the equilibrium at `target` by Newton steps of at most `dt`,
+    /// halving a step that does not converge (at most [`SolverOptions::max_step_cuts`] times in all).
+    fn corrected_step(
+        &mut self,
+        state: &mut State,
+        target: f64,
+        dt: f64,
+        saved: &mut State,
+    ) -> Result<StepOutcome, SolverError> {
+        let mut sub = dt;
+        let mut cuts = 0;
+        let mut iterations = 0;
+        loop {
+            saved.clone_from(state);
+            let next = if (target - state.t).abs() <= sub.abs() * (1.0 + 1e-12) { target } else { state.t + sub };
+            state.t = next;
+            match self.newton(state, true) {
+                Ok((it, residual)) => {
+                    iterations += it;
+                    if next == target {
+                        return Ok(StepOutcome::Reached { iterations, residual });
+                    }
+                }
+                Err(SolverError::NoConvergence { iterations: it, force_residual, constraint_residual, .. }) => {
+                    state.clone_from(saved);
+                    cuts += 1;
+                    if cuts > self.options.max_step_cuts {
+                        return Ok(StepOutcome::Stuck {
+                            attempted: next,
+                            iterations: it,
+                            force: force_residual,
+                            constraint: constraint_residual,
+                        });
+                    }
+                    sub *= 0.5;
+                }
+                Err(e) => return Err(e),
+            }
+        }
+    }
+
+    /// Classifies a path that cannot be continued past `state` (the last equilibrium; `attempted` is the
+    /// load parameter that failed): a limit point when the displacement response to a load increment has
+    /// grown far beyond its value at the start of the path (the tangent along the path is losing its
+    /// stiffness), then located by [`Self::locate_limit`]; otherwise a plain convergence failure.
+    fn stuck(
+        &mut self,
+        state: &State,
+        attempted: f64,
+        iterations: usize,
+        force: f64,
+        constraint: f64,
+        path: LoadPath,
+    ) -> Result<LimitPoint, SolverError> {
         let now = self.load_response(state);
         let limit = match (now, self.initial_response) {
             (None, _) => true,
@@ -807,16 +987,48 @@ impl<'m> StaticSolver<'m> {
             (Some(_), None) => false,
         };
         if limit {
-            SolverError::LimitPoint { reached: state.t }
+            Ok(self.locate_limit(state, attempted, path))
         } else {
-            SolverError::NoConvergence {
+            Err(SolverError::NoConvergence {
                 t: attempted,
                 last_converged: Some(state.t),
                 iterations,
                 force_residual: force,
                 constraint_residual: constraint,
+            })
+        }
+    }
+
+    /// Narrows a limit point by bisection on the load parameter, between `state` (the last equilibrium
+    /// found) and `failed` (a load parameter at which none was found), to [`LIMIT_POINT_TOLERANCE`] of the
+    /// path's range. Each trial is a Newton solve from the last equilibrium found, with the corrector kept
+    /// within its predictor's reach: a trial that does not converge so has no equilibrium on this branch.
+    fn locate_limit(&mut self, state: &State, failed: f64, path: LoadPath) -> LimitPoint {
+        let tolerance = LIMIT_POINT_TOLERANCE * (path.end - path.start).abs();
+        let mut good = state.clone();
+        let mut trial = state.clone();
+        let mut found = None;
+        let mut beyond = failed;
+        while (beyond - good.t).abs() > tolerance {
+            let mid = 0.5 * (good.t + beyond);
+            if mid == good.t || mid == beyond {
+                break;
+            }
+            trial.clone_from(&good);
+            trial.t = mid;
+            match self.newton(&mut trial, true) {
+                Ok(result) => {
+                    good.clone_from(&trial);
+                    found = Some(result);
+                }
+                Err(_) => beyond = mid,
             }
         }
+        let (iterations, residual) = found.unwrap_or_else(|| {
+            self.assemble(&good, None);
+            (0, self.residual(&good.lambda))
+        });
+        LimitPoint { t: good.t, beyond, step: self.step_result(&good, iterations, &residual) }
     }
 
     /// Solves the tangent system for the load direction at `state`: `[K Jᵀ; J 0] [q_t; λ_t] = [∂Q/∂t; −∂Φ/∂t]`,
@@ -840,111 +1052,197 @@ impl<'m> StaticSolver<'m> {
         }
     }
 
+    /// Follows the equilibrium path by arc length from the equilibrium at `path.start` (found from the
+    /// design pose), through limit points: see [`StaticSolver::arc_length_sweep_from`].
+    pub fn arc_length_sweep(&mut self, path: LoadPath, step: ArcStep) -> Result<Sweep, SolverError> {
+        let mut state = self.design_state(path.start);
+        self.arc_length_sweep_from(&mut state, path, step)
+    }
+
     /// Follows the equilibrium path by arc length (Riks' normal-plane continuation with a bordered solve of
-    /// the same KKT factorization), so the load parameter may rise, pass a limit point and fall. Starts
-    /// from the equilibrium at `path.start`; stops after `path.steps` steps or when `t` leaves
-    /// `[min(start, end), max(start, end)]`. `arc` is the first step's length in the scaled space
-    /// `‖Δq‖² + ψ² Δt²`, with ψ chosen so that both parts weigh the same at the start.
-    pub fn arc_length_sweep(&mut self, path: LoadPath, arc: f64) -> Result<Sweep, SolverError> {
-        if path.steps == 0 || !(arc.is_finite() && arc > 0.0) {
+    /// the same KKT factorization), so the load parameter may rise, pass a limit point and fall: where a
+    /// [`StaticSolver::sweep`] stops at a fold, this goes on along the path through it (snap-through under
+    /// a load, or a mechanism folding over under a driven motion), and never reports one.
+    ///
+    /// Starts from `state`, brought first to equilibrium at its own load parameter `state.t` (which must
+    /// lie between `path.start` and `path.end`), heading towards `path.end`; stops after `path.steps`
+    /// steps or at the first step outside `[min(start, end), max(start, end)]` (that step is kept).
+    ///
+    /// Every step has the same length in the scaled space `‖Δq‖² + ψ² Δt²`, with `ψ = ‖dq/dt‖` at the
+    /// start so that both parts weigh the same there; `step` gives it in that space or, with
+    /// [`ArcStep::Load`], as the change of the load parameter of the first step (`arc = |Δt₀| ·
+    /// √(‖dq/dt‖² + ψ²) = √2 ψ |Δt₀|`): where the path softens the steps change the load less and the
+    /// displacement more, and at a limit point they go into displacement alone. A step whose corrector
+    /// does not converge is halved, at most [`SolverOptions::max_step_cuts`] times.
+    pub fn arc_length_sweep_from(
+        &mut self,
+        state: &mut State,
+        path: LoadPath,
+        step: ArcStep,
+    ) -> Result<Sweep, SolverError> {
+        let length = match step {
+            ArcStep::Load(v) | ArcStep::Scaled(v) => v,
+        };
+        let (lo, hi) = (path.start.min(path.end), path.start.max(path.end));
+        if path.steps == 0 || !(length.is_finite() && length > 0.0) || !(lo.is_finite() && hi.is_finite()) {
             return Err(SolverError::InvalidInput {
                 what: "arc-length path",
                 why: format!(
-                    "need at least one step and a positive arc length, got {} steps and an arc length of {arc}",
-                    path.steps
+                    "need finite ends, at least one step and a positive step length, got {} to {} in {} steps \
+                     of {length}",
+                    path.start, path.end, path.steps
                 ),
+            });
+        }
+        if !(lo..=hi).contains(&state.t) {
+            return Err(SolverError::InvalidInput {
+                what: "arc-length path",
+                why: format!("the starting load {} lies outside the range {} to {}", state.t, path.start, path.end),
             });
         }
         let n = self.assembly.n;
         let m = self.assembly.m();
-        let mut state = self.design_state(path.start);
-        let first = self.equilibrium(&mut state)?;
+        let first = self.equilibrium(state)?;
         let mut steps = vec![first];
         let direction = (path.end - path.start).signum();
-        let (lo, hi) = (path.start.min(path.end), path.start.max(path.end));
-        let q_t0 = self.load_response(&state).ok_or(SolverError::LimitPoint { reached: state.t })?;
+        let q_t0 = self.load_response(state).ok_or(SolverError::LimitPoint { reached: state.t })?;
         let psi2 = (q_t0 * q_t0).max(1e-300);
+        let arc = match step {
+            ArcStep::Scaled(arc) => arc,
+            ArcStep::Load(dt) => dt * (q_t0 * q_t0 + psi2).sqrt(),
+        };
         let mut prev_dq = vec![0.0; n];
         let mut prev_dt = direction;
         let mut q_t = vec![0.0; n];
         let mut r_dq = vec![0.0; n + m];
+        let mut dq_total = vec![0.0; n];
+        let mut start = state.clone();
         for _ in 0..path.steps {
-            // Predictor along the tangent, oriented like the previous step.
-            self.load_response(&state).ok_or(SolverError::LimitPoint { reached: state.t })?;
-            q_t.copy_from_slice(&self.rhs[..n]);
-            let norm = (q_t.iter().map(|v| v * v).sum::<f64>() + psi2).sqrt();
-            let mut dt = arc / norm;
-            let along: f64 = q_t.iter().zip(&prev_dq).map(|(a, b)| a * b).sum::<f64>() + psi2 * prev_dt;
-            if along < 0.0 {
-                dt = -dt;
-            }
-            let start = state.clone();
-            let mut dq_total: Vec<f64> = q_t.iter().map(|v| v * dt).collect();
-            Self::apply(&mut state.poses, &dq_total, 1.0);
-            for k in 0..m {
-                state.lambda[k] += dt * self.rhs[n + k];
-            }
-            state.t += dt;
-            let mut dt_total = dt;
-            // Corrector: Newton on (R, Φ) with the normal-plane constraint (Δq_totalᵀ δq + ψ² Δt_total δt = 0).
-            let mut converged = None;
-            let mut last = (f64::INFINITY, f64::INFINITY);
-            for iter in 0..self.options.max_iterations {
-                self.assemble(&state, Some(Tangent::Full));
-                self.update_roundoff_floor(&state.poses);
-                let r = self.residual(&state.lambda);
-                last = (r.force, r.constraint);
-                if self.converged(&r) {
-                    converged = Some((iter, r));
-                    break;
+            start.clone_from(state);
+            let mut cuts = 0;
+            let (iterations, r, dt_total) = loop {
+                let length = arc * 0.5f64.powi(cuts);
+                match self.arc_length_step(
+                    state,
+                    length,
+                    psi2,
+                    (&prev_dq, prev_dt),
+                    (&mut q_t, &mut r_dq, &mut dq_total),
+                ) {
+                    Ok(done) => break done,
+                    Err(e @ (SolverError::NoConvergence { .. } | SolverError::NonFinite { .. })) => {
+                        state.clone_from(&start);
+                        cuts += 1;
+                        if cuts as usize > self.options.max_step_cuts {
+                            return Err(match e {
+                                SolverError::NoConvergence {
+                                    t,
+                                    iterations,
+                                    force_residual,
+                                    constraint_residual,
+                                    ..
+                                } => SolverError::NoConvergence {
+                                    t,
+                                    last_converged: Some(start.t),
+                                    iterations,
+                                    force_residual,
+                                    constraint_residual,
+                                },
+                                other => other,
+                            });
+                        }
+                    }
+                    Err(e) => return Err(e),
                 }
-                self.factorize()?;
-                // Residual part: [Q − Jᵀλ; −Φ]
-                for c in 0..n {
-                    r_dq[c] = self.assembly.applied[c] - self.scratch[c];
-                }
-                for k in 0..m {
-                    r_dq[n + k] = -self.assembly.phi[k];
-                }
-                self.factor.solve_in_place(&mut r_dq)?;
-                self.load_direction_rhs();
-                self.factor.solve_in_place(&mut self.rhs)?;
-                let num: f64 = dq_total.iter().zip(&r_dq[..n]).map(|(a, b)| a * b).sum();
-                let den: f64 = dq_total.iter().zip(&self.rhs[..n]).map(|(a, b)| a * b).sum::<f64>() + psi2 * dt_total;
-                let dt = if den.abs() > 0.0 { -num / den } else { 0.0 };
-                for c in 0..n + m {
-                    r_dq[c] += dt * self.rhs[c];
-                }
-                if r_dq.iter().any(|v| !v.is_finite()) {
-                    return Err(SolverError::NonFinite { what: "arc-length corrector" });
-                }
-                Self::apply(&mut state.poses, &r_dq[..n], 1.0);
-                for k in 0..m {
-                    state.lambda[k] += r_dq[n + k];
-                }
-                for c in 0..n {
-                    dq_total[c] += r_dq[c];
-                }
-                state.t += dt;
-                dt_total += dt;
-            }
-            let Some((iterations, r)) = converged else {
-                return Err(SolverError::NoConvergence {
-                    t: state.t,
-                    last_converged: Some(start.t),
-                    iterations: self.options.max_iterations,
-                    force_residual: last.0,
-                    constraint_residual: last.1,
-                });
             };
             prev_dq.copy_from_slice(&dq_total);
             prev_dt = dt_total;
-            steps.push(self.step_result(&state, iterations, &r));
+            steps.push(self.step_result(state, iterations, &r));
             if state.t < lo - 1e-12 || state.t > hi + 1e-12 {
                 break;
             }
         }
-        Ok(Sweep { mode: Mode::Corrected, steps })
+        Ok(Sweep { mode: Mode::Corrected, steps, limit: None })
+    }
+
+    /// One arc-length step of scaled length `arc` from the equilibrium `state`, oriented like the previous
+    /// step `(Δq, Δt)`: the predictor along the tangent, then Newton on `(R, Φ)` with the normal-plane
+    /// constraint. Leaves the step's `Δq` in `dq_total`; returns the iterations, the residual and `Δt`.
+    fn arc_length_step(
+        &mut self,
+        state: &mut State,
+        arc: f64,
+        psi2: f64,
+        (prev_dq, prev_dt): (&[f64], f64),
+        (q_t, r_dq, dq_total): (&mut [f64], &mut [f64], &mut [f64]),
+    ) -> Result<(usize, Residual, f64), SolverError> {
+        let n = self.assembly.n;
+        let m = self.assembly.m();
+        // Predictor along the tangent, oriented like the previous step.
+        self.load_response(state).ok_or(SolverError::LimitPoint { reached: state.t })?;
+        q_t.copy_from_slice(&self.rhs[..n]);
+        let norm = (q_t.iter().map(|v| v * v).sum::<f64>() + psi2).sqrt();
+        let mut dt = arc / norm;
+        let along: f64 = q_t.iter().zip(prev_dq).map(|(a, b)| a * b).sum::<f64>() + psi2 * prev_dt;
+        if along < 0.0 {
+            dt = -dt;
+        }
+        for (d, v) in dq_total.iter_mut().zip(q_t.iter()) {
+            *d = v * dt;
+        }
+        Self::apply(&mut state.poses, dq_total, 1.0);
+        for k in 0..m {
+            state.lambda[k] += dt * self.rhs[n + k];
+        }
+        state.t += dt;
+        let mut dt_total = dt;
+        // Corrector: Newton on (R, Φ) with the normal-plane constraint (Δq_totalᵀ δq + ψ² Δt_total δt = 0).
+        let mut last = (f64::INFINITY, f64::INFINITY);
+        for iter in 0..self.options.max_iterations {
+            self.assemble(state, Some(Tangent::Full));
+            self.update_roundoff_floor(&state.poses);
+            let r = self.residual(&state.lambda);
+            last = (r.force, r.constraint);
+            if self.converged(&r) {
+                return Ok((iter, r, dt_total));
+            }
+            self.factorize()?;
+            // Residual part: [Q − Jᵀλ; −Φ]
+            for c in 0..n {
+                r_dq[c] = self.assembly.applied[c] - self.scratch[c];
+            }
+            for k in 0..m {
+                r_dq[n + k] = -self.assembly.phi[k];
+            }
+            self.factor.solve_in_place(r_dq)?;
+            self.load_direction_rhs();
+            self.factor.solve_in_place(&mut self.rhs)?;
+            let num: f64 = dq_total.iter().zip(&r_dq[..n]).map(|(a, b)| a * b).sum();
+            let den: f64 = dq_total.iter().zip(&self.rhs[..n]).map(|(a, b)| a * b).sum::<f64>() + psi2 * dt_total;
+            let dt = if den.abs() > 0.0 { -num / den } else { 0.0 };
+            for c in 0..n + m {
+                r_dq[c] += dt * self.rhs[c];
+            }
+            if r_dq.iter().any(|v| !v.is_finite()) {
+                return Err(SolverError::NonFinite { what: "arc-length corrector" });
+            }
+            Self::apply(&mut state.poses, &r_dq[..n], 1.0);
+            for k in 0..m {
+                state.lambda[k] += r_dq[n + k];
+            }
+            for c in 0..n {
+                dq_total[c] += r_dq[c];
+            }
+            state.t += dt;
+            dt_total += dt;
+        }
+        Err(SolverError::NoConvergence {
+            t: state.t,
+            last_converged: None,
+            iterations: self.options.max_iterations,
+            force_residual: last.0,
+            constraint_residual: last.1,
+        })
     }
 
     /// Checks at design that every body is restrained, by inverse iteration on the factorized tangent.

@@ -3,7 +3,7 @@
 use crate::corner::{Corner, Rig, SteeringGeometry, WheelAttitude};
 use elastokin_core::{Model, Vec3};
 use elastokin_elements::PointForce;
-use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, State, StaticSolver, StepResult, Sweep};
+use elastokin_solver::{ArcStep, LoadPath, Mode, SolverError, SolverOptions, State, StaticSolver, StepResult, Sweep};
 use serde::{Deserialize, Serialize};
 
 /// One row of a driven sweep (wheel travel or steering).
@@ -101,11 +101,12 @@ fn driven_sweep(
     steps: usize,
     mode: Mode,
 ) -> Result<Vec<TravelRow>, SolverError> {
-    Ok(driven_sweep_with(corner, rig, from, to, steps, mode, SweepExtras::default())?.rows)
+    whole(driven_sweep_with(corner, rig, from, to, steps, mode, SweepExtras::default())?)
 }
 
-/// What a sweep can take at every step besides its rows, at the cost of more factorizations.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// What a sweep can do besides walking its rows: read more at every step, at the cost of more
+/// factorizations, and go on through a limit point.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SweepExtras {
     /// Every row read again one exact Newton iteration away ([`StaticSolver::newton_correction`]): the
     /// difference is the row's error estimate. One factorization per row.
@@ -113,13 +114,51 @@ pub struct SweepExtras {
     /// The 6×6 wheel compliance ([`wheel_compliance`]) at every step. One factorization and six
     /// back-substitutions per row.
     pub compliance: bool,
+    /// What to do at a limit point (a load the corner cannot carry, a travel its linkage cannot reach):
+    /// `None` stops there; `Some(step)` follows the path on through it by arc length
+    /// ([`StaticSolver::arc_length_sweep_from`]) from the last step before it, with steps of `step` in the
+    /// sweep's own unit (N, N·m or m): the change of load or travel of the first arc-length step
+    /// ([`ArcStep::Load`]). At most [`MAX_ARC_STEPS_PER_RANGE`] steps of that size per range are taken,
+    /// and at most [`crate::kc::MAX_STEPS`].
+    pub through_limits: Option<f64>,
+}
+
+/// How many arc-length steps of [`SweepExtras::through_limits`] a path through a limit point may take,
+/// per step that would span the sweep's range: room for the displacement the path makes where it
+/// carries no more load.
+pub const MAX_ARC_STEPS_PER_RANGE: f64 = 10.0;
+
+/// Where a sweep met a limit point, and what it did there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SweepLimit {
+    /// The load parameter of the limit point (N, N·m or m: the sweep's own unit), located to
+    /// [`elastokin_solver::LIMIT_POINT_TOLERANCE`] of the range.
+    pub at: f64,
+    /// How the rows go on past it: `None` when the sweep stopped there (its last row is then the
+    /// equilibrium at the limit point).
+    pub through: Option<ArcLengthRows>,
+}
+
+/// The rows of a sweep that followed its path through a limit point by arc length.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ArcLengthRows {
+    /// Index of the first row walked by arc length: the rows before it are the sweep's own steps, up to
+    /// the last one before the limit point.
+    pub first_row: usize,
+    /// The arc-length step asked for ([`SweepExtras::through_limits`]).
+    pub step: f64,
+    /// Whether the path left the range (its last row lies just beyond it); if not, it stopped after the
+    /// most steps allowed.
+    pub left_range: bool,
 }
 
 /// A sweep's rows, and what [`SweepExtras`] asked for, row by row.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SweepOutput<R> {
-    /// The rows.
+    /// The rows: every step of the sweep; up to the limit point, or through it, if it met one.
     pub rows: Vec<R>,
+    /// Where the sweep met a limit point, if it did.
+    pub limit: Option<SweepLimit>,
     /// The rows read one Newton iteration closer to the exact equilibrium at their load parameter.
     pub corrected: Option<Vec<R>>,
     /// The force and constraint residuals of every step: `(‖Φ_qᵀλ − Q‖∞ / force scale, ‖Φ‖∞)`.
@@ -129,14 +168,66 @@ pub struct SweepOutput<R> {
     pub compliance: Option<Vec<[[f64; 6]; 6]>>,
 }
 
+/// The equilibria of a walked load path, and where it met a limit point.
+pub(crate) struct Walked {
+    steps: Vec<StepResult>,
+    limit: Option<SweepLimit>,
+}
+
+/// Walks `path` from `state` in `mode`. At a limit point the rows stop with the equilibrium there, or,
+/// with `through` (see [`SweepExtras::through_limits`]), go on through it by arc length from the last
+/// step before it.
+pub(crate) fn walk(
+    solver: &mut StaticSolver,
+    state: &mut State,
+    path: LoadPath,
+    mode: Mode,
+    through: Option<f64>,
+) -> Result<Walked, SolverError> {
+    let Sweep { mut steps, limit, .. } = solver.sweep_from(state, path, mode)?;
+    let Some(limit) = limit else { return Ok(Walked { steps, limit: None }) };
+    let Some(step) = through else {
+        steps.push(limit.step);
+        return Ok(Walked { steps, limit: Some(SweepLimit { at: limit.t, through: None }) });
+    };
+    let range = (path.end - path.start).abs();
+    if !(step.is_finite() && step > 0.0) {
+        return Err(SolverError::InvalidInput {
+            what: "arc-length step",
+            why: format!("it must be a positive length in the sweep's own unit (N, N·m or m), got {step}"),
+        });
+    }
+    let most = (MAX_ARC_STEPS_PER_RANGE * range / step).ceil().clamp(1.0, crate::kc::MAX_STEPS as f64) as usize;
+    let first_row = steps.len();
+    let mut from = solver.state_of(&steps[first_row - 1]);
+    let arc =
+        solver.arc_length_sweep_from(&mut from, LoadPath::new(path.start, path.end, most), ArcStep::Load(step))?;
+    let (lo, hi) = (path.start.min(path.end), path.start.max(path.end));
+    let left_range = arc.steps.last().is_some_and(|s| !(lo..=hi).contains(&s.t));
+    // Its first equilibrium is the last step's.
+    steps.extend(arc.steps.into_iter().skip(1));
+    let through = Some(ArcLengthRows { first_row, step, left_range });
+    Ok(Walked { steps, limit: Some(SweepLimit { at: limit.t, through }) })
+}
+
+/// The rows of a sweep that must cover its whole range: a limit point is [`SolverError::LimitPoint`].
+pub(crate) fn whole<R>(out: SweepOutput<R>) -> Result<Vec<R>, SolverError> {
+    match out.limit {
+        Some(limit) => Err(SolverError::LimitPoint { reached: limit.at }),
+        None => Ok(out.rows),
+    }
+}
+
 /// Reads a sweep's rows, and what `extras` asks for, with the solver that walked it.
 pub(crate) fn read_sweep<R>(
     solver: &mut StaticSolver,
     wheel: &crate::corner::Wheel,
-    steps: &[StepResult],
+    walked: Walked,
     extras: SweepExtras,
     mut read: impl FnMut(&mut StaticSolver, &StepResult) -> Result<R, SolverError>,
 ) -> Result<SweepOutput<R>, SolverError> {
+    let Walked { steps, limit } = walked;
+    let steps = &steps[..];
     let rows = steps.iter().map(|s| read(solver, s)).collect::<Result<Vec<R>, _>>()?;
     let corrected = if extras.error_estimate {
         let mut out = Vec::with_capacity(steps.len());
@@ -154,7 +245,7 @@ pub(crate) fn read_sweep<R>(
         None
     };
     let residuals = steps.iter().map(|s| (s.force_residual / s.force_scale, s.constraint_residual)).collect();
-    Ok(SweepOutput { rows, corrected, residuals, compliance })
+    Ok(SweepOutput { rows, limit, corrected, residuals, compliance })
 }
 
 /// [`parallel_wheel_travel`] with [`SweepExtras`].
@@ -180,10 +271,11 @@ fn driven_sweep_with(
 ) -> Result<SweepOutput<TravelRow>, SolverError> {
     require_rig(corner, &[rig])?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
-    let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
+    let mut start = solver.design_state(from);
+    let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, extras.through_limits)?;
     let driver = corner.model.joint_id("wheel travel");
     let spring = corner.model.element_id("spring");
-    read_sweep(&mut solver, &corner.wheel, &sweep.steps, extras, |_, s| {
+    read_sweep(&mut solver, &corner.wheel, walked, extras, |_, s| {
         Ok(TravelRow {
             travel: s.t,
             attitude: corner.wheel.attitude(&s.poses),
@@ -359,7 +451,7 @@ const CORNER_LOAD: &str = "corner load";
 fn load_rows(
     solver: &mut StaticSolver,
     corner: &Corner,
-    sweep: &Sweep,
+    walked: Walked,
     patch_local: Vec3,
     extras: SweepExtras,
 ) -> Result<SweepOutput<LoadRow>, SolverError> {
@@ -367,7 +459,7 @@ fn load_rows(
     let upright = corner.wheel.upright.0;
     let patch_at_design = model.bodies()[upright].design_pose.point(&patch_local);
     let driver = model.joint_id("wheel travel");
-    read_sweep(solver, &corner.wheel, &sweep.steps, extras, |_, s| {
+    read_sweep(solver, &corner.wheel, walked, extras, |_, s| {
         let forces = ComponentForces::at(model, s);
         let contact_patch = s.poses[upright].point(&patch_local);
         Ok(LoadRow {
@@ -392,7 +484,7 @@ pub fn vertical_force_sweep(
     steps: usize,
     mode: Mode,
 ) -> Result<Vec<LoadRow>, SolverError> {
-    Ok(vertical_force_sweep_with(corner, from, to, steps, mode, SweepExtras::default())?.rows)
+    whole(vertical_force_sweep_with(corner, from, to, steps, mode, SweepExtras::default())?)
 }
 
 /// [`vertical_force_sweep`] with [`SweepExtras`].
@@ -408,9 +500,10 @@ pub fn vertical_force_sweep_with(
     let patch = corner.wheel.contact_patch;
     corner.add_wheel_force("vertical force", corner.load_point_at(patch), Vec3::z())?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
-    let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
+    let mut start = solver.design_state(from);
+    let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, extras.through_limits)?;
     let local_patch = corner.model.bodies()[corner.wheel.upright.0].design_pose.to_local_point(&patch);
-    load_rows(&mut solver, &corner, &sweep, local_patch, extras)
+    load_rows(&mut solver, &corner, walked, local_patch, extras)
 }
 
 /// A force or torque a K&C rig applies to the wheel (signs as in [`PatchCompliance`]).
@@ -454,7 +547,7 @@ pub fn wheel_load_sweep(
     steps: usize,
     mode: Mode,
 ) -> Result<Vec<LoadRow>, SolverError> {
-    Ok(wheel_load_sweep_with(corner, load, corner_load, from, to, steps, mode, SweepExtras::default())?.rows)
+    whole(wheel_load_sweep_with(corner, load, corner_load, from, to, steps, mode, SweepExtras::default())?)
 }
 
 /// [`wheel_load_sweep`] with [`SweepExtras`].
@@ -485,8 +578,8 @@ pub fn wheel_load_sweep_with(
         WheelLoad::AligningTorque => corner.add_wheel_torque("aligning torque", Vec3::z())?,
     };
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
-    let sweep = solver.sweep_from(&mut start, LoadPath::new(from, to, steps), mode)?;
-    load_rows(&mut solver, &corner, &sweep, patch_local, extras)
+    let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, extras.through_limits)?;
+    load_rows(&mut solver, &corner, walked, patch_local, extras)
 }
 
 /// The equilibrium without the swept load (the load parameter at zero): where the patch loads act, and
@@ -517,8 +610,8 @@ pub fn model_load_sweep_with(
     add_corner_load(&mut corner, corner_load)?;
     let (mut start, patch_local) = rest_without_swept_load(&corner)?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
-    let sweep = solver.sweep_from(&mut start, LoadPath::new(from, to, steps), mode)?;
-    load_rows(&mut solver, &corner, &sweep, patch_local, extras)
+    let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, extras.through_limits)?;
+    load_rows(&mut solver, &corner, walked, patch_local, extras)
 }
 
 /// Adds the constant upward `corner_load` (N) at the design contact patch, named [`CORNER_LOAD`].
@@ -650,7 +743,8 @@ const STATIC_LOAD_STEPS: usize = 20;
 /// the linkage's falling motion ratio outweighs its rate has only those), so they are refused.
 ///
 /// Errors: another rig or a non-finite load is [`SolverError::InvalidInput`]; a load beyond what the
-/// corner carries is [`SolverError::LimitPoint`] (the largest load reached) or
+/// corner carries is [`SolverError::LimitPoint`] (the largest load it carries, located to 1e-6 of the
+/// load) or
 /// [`SolverError::InvalidInput`] on the corner load when no rest position is found or the one found is
 /// unstable; model and factorization failures pass through.
 pub fn static_load_case(mut corner: Corner, corner_load: f64) -> Result<StaticLoad, SolverError> {
@@ -681,7 +775,8 @@ pub fn static_load_case(mut corner: Corner, corner_load: f64) -> Result<StaticLo
                 ),
             })?;
             let path = LoadPath::new(0.0, corner_load, STATIC_LOAD_STEPS);
-            let mut sweep = solver.sweep_from(&mut state, path, Mode::Corrected).map_err(|e| match e {
+            let sweep = solver.sweep_from(&mut state, path, Mode::Corrected).and_then(Sweep::complete);
+            let mut sweep = sweep.map_err(|e| match e {
                 SolverError::NoConvergence { last_converged: Some(reached), .. } => SolverError::InvalidInput {
                     what: "corner load",
                     why: format!(

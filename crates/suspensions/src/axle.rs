@@ -2,7 +2,7 @@
 //! the tests that need both wheels: opposite wheel travel (roll), parallel travel with track change and
 //! roll-centre migration, and steering of both wheels by one rack.
 
-use crate::analysis::{read_sweep, SweepExtras, SweepOutput};
+use crate::analysis::{read_sweep, walk, whole, SweepExtras, SweepOutput};
 use crate::corner::{add_rack, add_wheel_travel_driver, mount_tie_rod, CornerTemplate, Wheel, WheelAttitude};
 use crate::hardpoint::Side;
 use elastokin_core::{BodyRef, ElementId, Model, ModelError, Pose};
@@ -156,7 +156,7 @@ impl Axle {
 /// where `t` drives nothing). Each row carries both wheels, track, roll angle, wheel loads, roll moment and
 /// — for the travel rigs — the roll centre from the path's exact tangent (one more factorization per row).
 pub fn axle_sweep(axle: &Axle, from: f64, to: f64, steps: usize, mode: Mode) -> Result<Vec<AxleRow>, SolverError> {
-    Ok(axle_sweep_with(axle, from, to, steps, mode, SweepExtras::default())?.rows)
+    whole(axle_sweep_with(axle, from, to, steps, mode, SweepExtras::default())?)
 }
 
 /// [`axle_sweep`] with [`SweepExtras`] (the compliance, when asked, is the left wheel's).
@@ -180,9 +180,10 @@ pub fn axle_sweep_with(
     }
     let model = &axle.model;
     let mut solver = StaticSolver::new(model, SolverOptions::default())?;
-    let sweep = solver.sweep(LoadPath::new(from, to, steps), mode)?;
+    let mut start = solver.design_state(from);
+    let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, extras.through_limits)?;
     let drivers = (model.joint_id("left wheel travel"), model.joint_id("right wheel travel"));
-    read_sweep(&mut solver, &axle.left, &sweep.steps, extras, |solver, step| {
+    read_sweep(&mut solver, &axle.left, walked, extras, |solver, step| {
         let reactions = step.joint_reactions(model);
         let load = |d: Option<elastokin_core::JointId>| d.map_or(0.0, |d| reactions[d.0].force.z);
         let (left, right) = (axle.left.attitude(&step.poses), axle.right.attitude(&step.poses));

@@ -2,7 +2,7 @@
 //! closed forms and the engine's own independent paths.
 
 use elastokin_solver::Mode;
-use elastokin_suspensions::analysis::wheel_compliance;
+use elastokin_suspensions::analysis::{vertical_force_sweep_with, wheel_compliance, SweepExtras};
 use elastokin_suspensions::kc::{self, Analysis, Settings};
 use elastokin_suspensions::{Rig, Side, SuspensionFile};
 use std::path::Path;
@@ -21,7 +21,8 @@ fn paper_mode_error_estimate_is_within_3x_of_the_error_against_a_converged_run()
     let mut ratios = Vec::new();
     for name in EXAMPLES {
         let file = example(name);
-        for analysis in kc::ALL.into_iter().filter(|a| *a != Analysis::StaticLoad) {
+        // The static load has no sweep; the templates have no load case of their own.
+        for analysis in kc::ALL.into_iter().filter(|a| !matches!(a, Analysis::StaticLoad | Analysis::ModelLoads)) {
             let paper = kc::run(analysis, &file, &Settings { mode: Mode::Paper, ..Settings::default() }).unwrap();
             let exact = kc::run(analysis, &file, &Settings::default()).unwrap();
             let truth = paper.table.column_differences(&exact.table);
@@ -254,4 +255,134 @@ fn lateral_force_at_the_wheel_centre_is_the_wheel_centre_compliance() {
     // camber changes by far more than the sweep's error.
     let lever = (figure(&at_patch, "camber") - camber).abs();
     assert!(lever > 1e-2 * camber.abs(), "{lever}");
+}
+
+/// The shipped double wishbone on ideal arm pivots instead of bushings: with the wheel free it carries
+/// only about 3.3 kN upward at the contact patch (the arms' motion ratio falls faster than the spring
+/// stiffens), so a vertical force sweep to 6 kN meets a limit point.
+fn ideal_pivot_double_wishbone() -> SuspensionFile {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/double_wishbone.json");
+    let mut v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let template = &mut v["suspension"]["double_wishbone"];
+    template["upper_arm_mounts"] = "ideal".into();
+    template["lower_arm_mounts"] = "ideal".into();
+    serde_json::from_value(v).unwrap()
+}
+
+const FOLD_RANGE: (f64, f64) = (0.0, 6000.0);
+const FOLD_STEPS: usize = 32;
+
+/// The limit point by a second method: the turning point of the arc-length path through it (fine steps
+/// from the last load step before it), by the parabola of load against wheel-centre height through the
+/// three points around its peak.
+fn turning_point(file: &SuspensionFile) -> f64 {
+    let corner = file.suspension.build(Side::Left, Rig::Free).unwrap();
+    let extras = SweepExtras { through_limits: Some(1.0), ..SweepExtras::default() };
+    let (from, to) = FOLD_RANGE;
+    let out = vertical_force_sweep_with(corner, from, to, FOLD_STEPS, Mode::Corrected, extras).unwrap();
+    let arc = out.limit.unwrap().through.unwrap();
+    let path = &out.rows[arc.first_row - 1..];
+    let peak = (1..path.len() - 1).max_by(|&a, &b| path[a].load.total_cmp(&path[b].load)).unwrap();
+    let point = |k: usize| (path[k].attitude.wheel_centre.z, path[k].load);
+    let ((x0, y0), (x1, y1), (x2, y2)) = (point(peak - 1), point(peak), point(peak + 1));
+    let (d01, d12) = ((y1 - y0) / (x1 - x0), (y2 - y1) / (x2 - x1));
+    let a = (d12 - d01) / (x2 - x0);
+    let b = d01 - a * (x0 + x1);
+    y0 - a * x0 * x0 - b * x0 - b * b / (4.0 * a)
+}
+
+/// A vertical force beyond what the corner carries: the report keeps every row before the limit point and
+/// the row at it, and a `limit-point` warning names the load where the suspension gives way, the load
+/// the arc-length path turns at.
+#[test]
+fn a_vertical_force_sweep_past_what_the_corner_carries_keeps_its_rows_and_names_the_load() {
+    let file = ideal_pivot_double_wishbone();
+    let turning = turning_point(&file);
+    let settings = Settings { range: Some(FOLD_RANGE), steps: FOLD_STEPS, ..Settings::default() };
+    let report = kc::run(Analysis::VerticalForce, &file, &settings).unwrap();
+    let loads: Vec<f64> = report.table.rows.iter().map(|r| r[0].number().unwrap()).collect();
+    let range = FOLD_RANGE.1 - FOLD_RANGE.0;
+    let fold = *loads.last().unwrap();
+    println!("limit point {fold} N, arc-length turning point {turning} N: {:.3e} N apart", fold - turning);
+    // Within 1e-6 of the range (6e-3 N), where bisection brackets the fold; measured 4.5e-3 N.
+    assert!((fold - turning).abs() <= 1e-6 * range, "{fold} vs {turning}");
+    // Every load step below the limit point, then the limit point's row.
+    let dt = range / FOLD_STEPS as f64;
+    let below = (turning / dt).floor() as usize + 1;
+    assert_eq!(loads.len(), below + 1, "{loads:?}");
+    assert!(loads[..below].iter().enumerate().all(|(k, &f)| f == k as f64 * dt), "{loads:?}");
+    // The rows kept are those of a run that stops short of the limit point.
+    let short = Settings { range: Some((0.0, dt * (below - 1) as f64)), steps: below - 1, ..settings };
+    let short = kc::run(Analysis::VerticalForce, &file, &short).unwrap();
+    assert_eq!(short.table.rows, report.table.rows[..below]);
+    assert!(short.warnings.iter().all(|w| w.code != "limit-point"));
+    // The warning names the load as the second method gives it, to the digits printed.
+    let warning = report.warnings.iter().find(|w| w.code == "limit-point").expect("a limit-point warning");
+    assert!(warning.message.contains(&format!("gives way at {turning:.2} N")), "{}", warning.message);
+    assert!(warning.message.contains("--through-limits"), "{}", warning.message);
+    assert!(report.description.contains(&format!("stopped at the limit point at {turning:.2} N")));
+    // The figures at design are read off the rows kept: the design load lies before the limit point.
+    assert_eq!(report.figure("wheel_rate").unwrap().value, short.figure("wheel_rate").unwrap().value);
+    let json = serde_json::to_string(&report).unwrap();
+    assert!(!json.contains("NaN") && !json.contains("inf"), "{json}");
+}
+
+/// With `through_limits` the rows go on past the limit point by arc length: the load rises to the limit
+/// load and falls as the wheel keeps rising, until the path leaves the range below its start.
+#[test]
+fn through_limits_follows_the_vertical_force_past_the_limit_point() {
+    let file = ideal_pivot_double_wishbone();
+    let turning = turning_point(&file);
+    let step = 50.0;
+    let settings = Settings {
+        range: Some(FOLD_RANGE),
+        steps: FOLD_STEPS,
+        through_limits: true,
+        arc_step: Some(step),
+        ..Settings::default()
+    };
+    let report = kc::run(Analysis::VerticalForce, &file, &settings).unwrap();
+    let column = |name: &str| {
+        let c = report.table.columns.iter().position(|n| n == name).unwrap();
+        report.table.rows.iter().map(|r| r[c].number().unwrap()).collect::<Vec<f64>>()
+    };
+    let (loads, travel) = (column("force_n"), column("wheel_travel_m"));
+    let dt = (FOLD_RANGE.1 - FOLD_RANGE.0) / FOLD_STEPS as f64;
+    let below = (turning / dt).floor() as usize + 1;
+    assert!(loads[..below].iter().enumerate().all(|(k, &f)| f == k as f64 * dt), "{loads:?}");
+    // The first arc-length step changes the load by about the step asked for (in newtons): its predictor
+    // by exactly that, and the corrector, on the plane normal to it, by less where the path bends.
+    let first = loads[below] - loads[below - 1];
+    println!("first arc-length step {first} N; {} rows", loads.len());
+    // Measured 47.4 N, so close to the limit point.
+    assert!(first < step && first > 0.9 * step, "{first}");
+    // Up to the limit load, not beyond it (the rows are exact equilibria), and down past the range's start.
+    let peak = loads.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+    println!("highest row {peak} N, limit {turning} N");
+    assert!(peak <= turning + 1e-6 && peak > turning - step, "{peak} vs {turning}");
+    assert!(*loads.last().unwrap() < FOLD_RANGE.0, "{loads:?}");
+    // The wheel rises up to the limit point and stays above it beyond: it snaps up through it.
+    let top = loads.iter().position(|&f| f == peak).unwrap();
+    assert!(travel[..=top].windows(2).all(|w| w[1] > w[0]), "{travel:?}");
+    assert!(travel[top + 1..].iter().all(|&z| z > travel[top]), "{travel:?}");
+    println!("largest force residual {:.3e}", report.accuracy.force_residual);
+    // Every row an equilibrium to the solver's tolerance; measured 4.2e-10 of the force scale.
+    assert!(report.accuracy.force_residual <= 1e-9, "{}", report.accuracy.force_residual);
+    let warning = report.warnings.iter().find(|w| w.code == "limit-point").expect("a limit-point warning");
+    assert!(warning.message.contains(&format!("gives way at {turning:.2} N")), "{}", warning.message);
+    assert!(warning.message.contains("until it leaves the range"), "{}", warning.message);
+    assert!(report.description.contains("by arc length"), "{}", report.description);
+    // The chart is the whole path.
+    assert_eq!(report.charts[0].left.series[0].points.len(), loads.len());
+}
+
+/// A step of no length is refused in words.
+#[test]
+fn an_arc_step_of_no_length_is_refused_naming_it() {
+    let file = ideal_pivot_double_wishbone();
+    for bad in [0.0, -5.0, f64::NAN] {
+        let settings = Settings { through_limits: true, arc_step: Some(bad), ..Settings::default() };
+        let e = kc::run(Analysis::VerticalForce, &file, &settings).unwrap_err().to_string();
+        assert!(e.contains("--arc-step must be a positive length") && !e.contains("NaN"), "{e}");
+    }
 }

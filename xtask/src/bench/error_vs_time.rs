@@ -34,7 +34,7 @@ struct Reference<'m> {
 impl<'m> Reference<'m> {
     fn new(case: &'m Case) -> Result<Self, SolverError> {
         let mut solver = StaticSolver::new(&case.corner.model, models::tight_options())?;
-        let path = solver.sweep(LoadPath::new(case.from, case.to, REFERENCE_STEPS), Mode::Corrected)?.steps;
+        let path = solver.sweep(LoadPath::new(case.from, case.to, REFERENCE_STEPS), Mode::Corrected)?.complete()?.steps;
         Ok(Reference { solver, path, cache: HashMap::new(), case })
     }
 
@@ -97,7 +97,7 @@ fn measure(case: &Case, reference: &mut Reference, mode: Mode, steps: usize, reu
     let path = LoadPath::new(case.from, case.to, steps);
     let once = || -> Result<_, SolverError> {
         let mut solver = StaticSolver::new(&case.corner.model, options.clone())?;
-        let sweep = solver.sweep(path, mode)?;
+        let sweep = solver.sweep(path, mode)?.complete()?;
         Ok((sweep, solver.counters()))
     };
     let outcome = (|| -> Result<Outcome, String> {

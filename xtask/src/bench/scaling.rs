@@ -12,7 +12,7 @@ use elastokin_core::{BodyRef, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
 use elastokin_elements::{Bushing, CoilSpring, PointForce};
 use elastokin_solver::assembly::{Assembly, Tangent};
 use elastokin_solver::kkt_factor::{KktFactor, KktOptions};
-use elastokin_solver::{LoadPath, Mode, SolverOptions, StaticSolver};
+use elastokin_solver::{LoadPath, Mode, SolverOptions, StaticSolver, Sweep};
 
 const MIB: f64 = 1024.0 * 1024.0;
 
@@ -94,7 +94,7 @@ fn measure(n: usize, s: &Settings) -> Result<SizeResult, String> {
     // setup and the sweep alone.
     let (measured, usage) = alloc::track(|| -> Result<_, String> {
         let mut solver = StaticSolver::new(&model, SolverOptions::default()).map_err(|e| err(&e))?;
-        let sweep = solver.sweep(path, Mode::Corrected).map_err(|e| err(&e))?;
+        let sweep = solver.sweep(path, Mode::Corrected).and_then(Sweep::complete).map_err(|e| err(&e))?;
         let iterations: usize = sweep.steps.iter().skip(1).map(|r| r.iterations).sum();
         Ok(iterations as f64 / k as f64)
     });

@@ -144,7 +144,9 @@ fn measure_model(model_name: &str, stem: &str, s: &Settings, out: &mut SectionOu
         let options = SolverOptions { reuse_factorization: reuse, ..SolverOptions::default() };
         let mut solver = StaticSolver::new(model, options).map_err(|e| err(&e))?;
         let before = solver.counters();
-        let (sweep, usage) = alloc::track(|| solver.sweep_from(&mut start.clone(), path, mode));
+        let (sweep, usage) = alloc::track(|| {
+            solver.sweep_from(&mut start.clone(), path, mode).and_then(elastokin_solver::Sweep::complete)
+        });
         let sweep = sweep.map_err(|e| format!("{what}: {e}"))?;
         let after = solver.counters();
         let t = budget.time(|| solver.sweep_from(&mut start.clone(), path, mode).map(drop));

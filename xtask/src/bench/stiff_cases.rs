@@ -433,7 +433,11 @@ fn solve(scene: &Scene, unit: f64, travel: Travel, steps: usize) -> Result<Outco
     let results = match travel {
         Travel::Sweep => {
             let half = 0.08 / unit;
-            solver.sweep(LoadPath::new(-half, half, steps), Mode::Corrected).map_err(|e| e.to_string())?.steps
+            solver
+                .sweep(LoadPath::new(-half, half, steps), Mode::Corrected)
+                .and_then(elastokin_solver::Sweep::complete)
+                .map_err(|e| e.to_string())?
+                .steps
         }
         Travel::At(t) => vec![solver.equilibrium(&mut solver.design_state(t)).map_err(|e| e.to_string())?],
     };

@@ -42,7 +42,7 @@ pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<Anal
     let mut corner = file.suspension.build(Side::Left, Rig::Free).map_err(said)?;
     corner.load_point = s.load_point;
     let z0 = corner.wheel.wheel_centre.z;
-    let out = vertical_force_sweep_with(corner, range.0, range.1, s.steps, s.mode, s.extras()).map_err(said)?;
+    let out = vertical_force_sweep_with(corner, range.0, range.1, s.steps, s.mode, s.extras(range)).map_err(said)?;
     let table = |rows: &[LoadRow]| {
         Table::numbers(
             "vertical_force",
@@ -162,7 +162,7 @@ fn loaded(file: &SuspensionFile, analysis: Analysis, s: &Settings) -> Result<Ana
     corner.load_point = s.load_point;
     let out = match analysis {
         Analysis::Road(load) => {
-            wheel_load_sweep_with(corner, load, corner_load, range.0, range.1, s.steps, s.mode, s.extras())
+            wheel_load_sweep_with(corner, load, corner_load, range.0, range.1, s.steps, s.mode, s.extras(range))
         }
         _ => {
             let general = match &file.suspension {
@@ -170,7 +170,7 @@ fn loaded(file: &SuspensionFile, analysis: Analysis, s: &Settings) -> Result<Ana
                 _ => return Err(NO_LOADS.into()),
             };
             general.add_loads(&mut corner.model, Side::Left, "").map_err(said)?;
-            model_load_sweep_with(corner, corner_load, range.0, range.1, s.steps, s.mode, s.extras())
+            model_load_sweep_with(corner, corner_load, range.0, range.1, s.steps, s.mode, s.extras(range))
         }
     }
     .map_err(said)?;

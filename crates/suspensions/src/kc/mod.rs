@@ -18,7 +18,7 @@ pub use travel::ideal_outer_steer;
 pub use chart::{Chart, Scale, Series, YAxis};
 pub use report::{significant, Accuracy, AnalysisReport, Cell, Figure, KcReport, Skipped, Table, Warning};
 
-use crate::analysis::{SweepExtras, SweepOutput, WheelLoad};
+use crate::analysis::{SweepExtras, SweepLimit, SweepOutput, WheelLoad};
 use crate::model_file::SuspensionFile;
 use elastokin_solver::Mode;
 use serde::Serialize;
@@ -102,6 +102,21 @@ impl Analysis {
         }
     }
 
+    /// The unit of the load parameter (and of `--range` and `--arc-step`).
+    pub fn unit(self) -> &'static str {
+        match self {
+            Analysis::ParallelTravel | Analysis::Roll | Analysis::Steering => "m",
+            Analysis::Road(WheelLoad::AligningTorque) => "N·m",
+            Analysis::VerticalForce | Analysis::Road(_) | Analysis::StaticLoad => "N",
+            Analysis::ModelLoads => "of the load case",
+        }
+    }
+
+    /// Whether the load parameter drives a travel (else it is a force or torque).
+    fn is_travel(self) -> bool {
+        self.unit() == "m"
+    }
+
     /// Where the design position sits on the load parameter (the vertical force sweep's is the design
     /// wheel load, known only once the model is solved, so `None` there).
     pub fn design_parameter(self) -> Option<f64> {
@@ -152,6 +167,16 @@ pub struct Settings {
     pub compliance: bool,
     /// When the error estimate is worth a warning.
     pub tolerance: Tolerance,
+    /// At a limit point (a load the suspension cannot carry, a travel its linkage cannot reach): `false`
+    /// stops the sweep there, with a warning (`limit-point`); `true` follows the path on through it by
+    /// arc length, from the last step before it (see [`SweepExtras::through_limits`]; those rows are exact
+    /// equilibria in either mode).
+    pub through_limits: bool,
+    /// The arc-length step with `through_limits`, in the analysis's own unit ([`Analysis::unit`]: m, N or
+    /// N·m): the change of load or travel of the first arc-length step (later steps have the same length
+    /// in the scaled space of load and displacement, so they change the load less where the suspension
+    /// gives way). `None`: one load step, `|to − from| / steps`. Only for a run of one analysis.
+    pub arc_step: Option<f64>,
 }
 
 impl Default for Settings {
@@ -164,6 +189,8 @@ impl Default for Settings {
             load_point: crate::LoadPoint::ContactPatch,
             compliance: false,
             tolerance: Tolerance::default(),
+            through_limits: false,
+            arc_step: None,
         }
     }
 }
@@ -181,8 +208,14 @@ pub fn mode_word(mode: Mode) -> &'static str {
 }
 
 impl Settings {
-    fn extras(&self) -> SweepExtras {
-        SweepExtras { error_estimate: true, compliance: self.compliance }
+    /// What the sweeps over `range` take besides their rows.
+    fn extras(&self, range: (f64, f64)) -> SweepExtras {
+        let one_step = (range.1 - range.0).abs() / self.steps as f64;
+        SweepExtras {
+            error_estimate: true,
+            compliance: self.compliance,
+            through_limits: self.through_limits.then(|| self.arc_step.unwrap_or(one_step)),
+        }
     }
 }
 
@@ -205,6 +238,17 @@ pub fn run(analysis: Analysis, file: &SuspensionFile, settings: &Settings) -> Re
         return Err(AnalysisError {
             analysis: analysis.name(),
             message: format!("--steps must be from 1 to {MAX_STEPS}, got {}", settings.steps),
+        });
+    }
+    if let Some(step) = settings.arc_step.filter(|v| !(v.is_finite() && *v > 0.0)) {
+        let got = if step.is_finite() { format!("{step:e}") } else { "a value that is not a finite number".into() };
+        return Err(AnalysisError {
+            analysis: analysis.name(),
+            message: format!(
+                "--arc-step must be a positive length in the {} (the change of load or travel of an \
+                 arc-length step), got {got}",
+                analysis.parameter()
+            ),
         });
     }
     if let Some((from, to)) = settings.range {
@@ -330,7 +374,7 @@ struct Reduction<'a, R> {
 /// and takes the differences as the error estimate.
 fn finish<R>(
     analysis: Analysis,
-    description: String,
+    mut description: String,
     range: (f64, f64),
     settings: &Settings,
     out: &SweepOutput<R>,
@@ -368,6 +412,12 @@ fn finish<R>(
     let constraint_residual = out.residuals.iter().map(|r| r.1).fold(0.0f64, f64::max);
     let tol = settings.tolerance;
     let mut warnings = Vec::new();
+    if let Some(limit) = &out.limit {
+        description.push_str(&limit_description(analysis, limit));
+        // The table's first column is the load parameter.
+        let last = table.rows.last().and_then(|r| r.first()).and_then(Cell::number).unwrap_or(limit.at);
+        warnings.push(limit_warning(analysis, limit, last));
+    }
     let over_figures: Vec<String> = figures.iter().filter_map(|f| over_tolerance(f, tol.relative)).collect();
     let within = angle_error_deg <= tol.angle_deg && length_error_m <= tol.length_m && over_figures.is_empty();
     if !within {
@@ -430,6 +480,54 @@ fn finish<R>(
         charts,
         warnings,
     }
+}
+
+/// A load or travel in the analysis's unit, as the descriptions and warnings give it.
+fn amount(analysis: Analysis, v: f64) -> String {
+    format!("{} {}", significant(v, 6), analysis.unit())
+}
+
+/// The end of the description line of a sweep that met a limit point.
+fn limit_description(analysis: Analysis, limit: &SweepLimit) -> String {
+    match limit.through {
+        None => format!(", stopped at the limit point at {}", amount(analysis, limit.at)),
+        Some(_) => format!(", through the limit point at {} by arc length", amount(analysis, limit.at)),
+    }
+}
+
+/// The warning of a sweep that met a limit point: where the suspension gives way (or its linkage reaches
+/// the end of its travel), what the table holds, and how to see beyond. `last` is the last row's load.
+fn limit_warning(analysis: Analysis, limit: &SweepLimit, last: f64) -> Warning {
+    let at = amount(analysis, limit.at);
+    let what = if analysis.is_travel() {
+        format!(
+            "the linkage cannot go beyond {at}: an arm or the tie rod reaches the end of its travel there, and \
+             beyond it the mechanism would have to fold over"
+        )
+    } else {
+        format!(
+            "the suspension gives way at {at}: it carries no more load there, and under a load that keeps rising \
+             the wheel would snap through"
+        )
+    };
+    let then = match limit.through {
+        None => "the table and plots stop there, their last row at the limit point; run the analysis with \
+                 --through-limits to follow the path through it by arc length"
+            .to_string(),
+        Some(arc) if arc.left_range => format!(
+            "the table and plots follow the path through it by arc length (steps of {} at first) until it leaves \
+             the range at {}",
+            amount(analysis, arc.step),
+            amount(analysis, last)
+        ),
+        Some(arc) => format!(
+            "the table and plots follow the path through it by arc length (steps of {} at first), but the path \
+             stopped after the most steps allowed at {}, inside the range; give a larger --arc-step",
+            amount(analysis, arc.step),
+            amount(analysis, last)
+        ),
+    };
+    Warning { code: "limit-point", hardpoints: Vec::new(), message: format!("{}: {what}; {then}", analysis.name()) }
 }
 
 /// A figure whose estimated error is over `relative` of its value (and shows in its printed decimals), as

@@ -55,7 +55,7 @@ pub(super) fn axis<R>(label: &str, rows: &[R], x: impl Fn(&R) -> f64, curves: &[
 pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
     let range = s.range.unwrap_or((-0.08, 0.08));
     let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(said)?;
-    let out = parallel_wheel_travel_with(&corner, range.0, range.1, s.steps, s.mode, s.extras()).map_err(said)?;
+    let out = parallel_wheel_travel_with(&corner, range.0, range.1, s.steps, s.mode, s.extras(range)).map_err(said)?;
     let wheel = &corner.wheel;
     let sign = wheel.side.sign();
     let table = |rows: &[TravelRow]| {
@@ -317,7 +317,7 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
     let range = s.range.unwrap_or((-0.05, 0.05));
     let axle = Axle::build(&file.suspension, AxleRig::OppositeTravel).map_err(said)?;
     let has_bars = !axle.anti_roll_bars.is_empty();
-    let out = axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras()).map_err(said)?;
+    let out = axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras(range)).map_err(said)?;
     let table = |rows: &[AxleRow]| Table {
         name: "roll".into(),
         columns: [
@@ -515,7 +515,7 @@ fn ackermann(r: &AxleRow, track: f64, wheelbase: f64) -> Option<(f64, f64, f64)>
 pub(super) fn steering(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
     let range = s.range.unwrap_or((-0.04, 0.04));
     let axle = Axle::build(&file.suspension, AxleRig::Steering).map_err(said)?;
-    let out = axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras()).map_err(said)?;
+    let out = axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras(range)).map_err(said)?;
     let wheelbase = file.vehicle.as_ref().map(|v| v.wheelbase);
     // Track between the contact patches at design: the lateral distance Ackermann's rule uses.
     let track = axle.left.contact_patch.y - axle.right.contact_patch.y;
