@@ -22,10 +22,11 @@
 //! progressive table sampled from `F = c p²` (points `(0, 0)`, `(h, c h²)`, `(2h, 4c h²)`, …) starts with
 //! slope zero (see the [curve's end slopes](crate::curve)), so the force is C¹ through contact and Newton's
 //! method converges quadratically there as everywhere. A table whose first segment rises at once (a
-//! linear stop, `(0, 0)`, `(h, k h)`) puts a kink in the force at contact: the tangent on one side does not
-//! see the other, and the solver may spend an extra iteration on the load step where the stop engages
-//! (`crates/solver/tests/nonlinear_elements.rs` measures it). Exactly at `p = 0` the stop counts as not in
-//! contact.
+//! linear stop, `(0, 0)`, `(h, k h)`) puts a kink in the force at contact. The load step on which such a
+//! stop engages starts before contact, with a tangent that does not see the stop: Newton's first iteration
+//! overshoots into it and gains nothing, and the step may take one iteration more than its neighbours;
+//! from there the convergence is quadratic again (`crates/solver/tests/nonlinear_elements.rs` measures
+//! both). Exactly at `p = 0` the stop counts as not in contact.
 //!
 //! # Stiffness
 //!
