@@ -36,6 +36,33 @@
 //! a deflection beyond the measured range keeps the last measured rate (which may be zero, see step 1).
 //! Give points up to the largest deflection the analysis should see if that rate is not what the part does
 //! beyond.
+//!
+//! # Example
+//!
+//! ```
+//! use elastokin_core::{BodyRef, Model, Pose, Vec3};
+//! use elastokin_elements::{CoilSpring, Curve, Stop};
+//!
+//! let mut model = Model::new();
+//! let arm = model.add_body("lower arm", Pose::at(Vec3::new(0.0, 0.6, 0.0))).unwrap();
+//! let (top, seat) = (Vec3::new(0.0, 0.5, 0.55), Vec3::new(0.0, 0.5, 0.2));
+//! // The data sheet: push force (N) against compression from the free length (m).
+//! let sheet = Curve::new("spring", [[0.0, 0.0], [0.03, 900.0], [0.06, 2000.0], [0.09, 3600.0]]).unwrap();
+//! // 2000 N at the design length (0.35 m): the free length is where the sheet's 0.06 m puts it.
+//! let spring =
+//!     CoilSpring::with_curve_and_design_force("spring", BodyRef::Ground, top, arm.into(), seat, sheet, 2000.0)
+//!         .unwrap();
+//! assert!((spring.spec().free_length - 0.41).abs() < 1e-12);
+//! model.add_element(spring).unwrap();
+//! // A progressive bump stop that touches after 40 mm more compression.
+//! let rubber = Curve::new("bump stop", [[0.0, 0.0], [0.01, 200.0], [0.02, 800.0]]).unwrap();
+//! let stop = Stop::bump("bump stop", BodyRef::Ground, top, arm.into(), seat, 0.04, rubber).unwrap();
+//! model.add_element(stop).unwrap();
+//!
+//! // A table must list its points by increasing x; the error names the curve and the point.
+//! let err = Curve::new("spring", [[0.0, 0.0], [0.03, 900.0], [0.02, 1200.0]]).unwrap_err();
+//! assert!(err.to_string().contains("'spring': point 2"));
+//! ```
 
 use crate::geometry::check_positive;
 use elastokin_core::ModelError;
@@ -133,12 +160,12 @@ impl Curve {
             return (p[last][1] + m * (x - p[last][0]), m);
         }
         // Number of points at or left of x: 0 before the table (and for NaN, which compares false).
-        let right_of = p.partition_point(|q| q[0] <= x);
-        if right_of == 0 {
+        let at_or_left = p.partition_point(|q| q[0] <= x);
+        if at_or_left == 0 {
             let m = self.slopes[0];
             return (p[0][1] + m * (x - p[0][0]), m);
         }
-        let k = right_of - 1;
+        let k = at_or_left - 1;
         let h = p[k + 1][0] - p[k][0];
         let d = secant(p, k);
         let (m0, m1) = (self.slopes[k], self.slopes[k + 1]);
