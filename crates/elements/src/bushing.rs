@@ -1,5 +1,5 @@
-//! Rubber bushing: six uncoupled linear springs in a local frame, with the exact finite-rotation energy
-//! (paper eqs. 5–8).
+//! Rubber bushing: six uncoupled springs in a local frame, linear or with measured curves, with the exact
+//! finite-rotation energy (paper eqs. 5–8).
 //!
 //! # Model
 //!
@@ -17,11 +17,24 @@
 //! U = ½ δᵀ K_T δ + ½ θᵀ K_R θ − F_preᵀ δ − M_preᵀ θ,   K_T = diag(Kx, Ky, Kz), K_R = diag(Ku, Kv, Kw).
 //! ```
 //!
+//! # Measured curves
+//!
+//! Each of the six directions has a [`Characteristic`]: its rate, as above, or a curve from a rig test —
+//! the force along that local axis against the deflection along it (N against m), or the moment about it
+//! against that component of the rotation (N·m against rad). The curve is the monotone cubic through the
+//! table, **linear past its ends** with the end slopes ([`Curve`](crate::Curve)); it passes through
+//! `(0, 0)` (a force at zero deflection is the preload, given separately) and never decreases. The terms
+//! `K_T δ` and `K_R θ` become the vectors of curve values `(Fx(δx), Fy(δy), Fz(δz))` and
+//! `(Mu(θu), Mv(θv), Mw(θw))`, and `K_T`, `K_R` in the tangent the diagonals of their slopes; the energy
+//! is the sum of the six curves' integrals. A curve's direction is uncoupled from the others, as a rate's
+//! is.
+//!
 //! # Signs
 //!
 //! * Forces are those the bushing **applies**: on `j` the force `−f` at `Pⱼ` and the moment `−E g`, on `i`
 //!   the force `+f` and the moment `+E g`, where `f = E (K_T δ − F_pre)` and `g = J_l(θ)⁻ᵀ (K_R θ − M_pre)`
-//!   is the moment conjugate to a left rotation increment of `j` relative to `i` (local components).
+//!   is the moment conjugate to a left rotation increment of `j` relative to `i` (local components); with
+//!   curves, `K_T δ` and `K_R θ` are the curves' values.
 //! * Preload: `F_pre` (N) and `M_pre` (N·m), local components, are the force and moment the bushing
 //!   applies **to body `j`** at zero deflection (so `F_pre = (0, 0, 500)` pushes `j` up along the local z
 //!   axis by 500 N in the design configuration). Equivalently, the bushing applies `−F_pre`, `−M_pre` to
@@ -50,7 +63,8 @@
 //! energy is continuous but its gradient jumps where the relative rotation passes π, far outside any
 //! rubber bushing's range.
 
-use crate::geometry::{add_block, add_rows, check_distinct, check_finite, check_positive, set_jac_block, Jac3};
+use crate::curve::{Anchor, Characteristic};
+use crate::geometry::{add_block, add_rows, check_distinct, check_finite, set_jac_block, Jac3};
 use elastokin_core::math::{
     left_jacobian_inv, quat_log, rotation_vector_moment, skew, tait_bryan_xyz, tait_bryan_xyz_axes,
 };
@@ -67,6 +81,9 @@ use nalgebra::{Rotation3, UnitQuaternion};
 /// [`Linear`](RotationLaw::Linear) and `(−49.999, 1.996, −39.909)` under
 /// [`TaitBryanXyz`](RotationLaw::TaitBryanXyz): the law moves the conical moment by up to 5 % of its size
 /// (`tests/bushing_laws.rs`). To match another tool's results, use its law.
+///
+/// With measured curves for the rotations, each law takes the vector of the curves' moments where it
+/// takes `K θ` (or `K φ`), and the diagonal of their slopes where it takes `K`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize), serde(rename_all = "snake_case"))]
 pub enum RotationLaw {
@@ -87,21 +104,31 @@ pub enum RotationLaw {
 
 impl RotationLaw {
     /// The moment `g` (local components) conjugate to a left rotation increment of `j` relative to `i`,
-    /// and `∂g/∂θ`, for the relative rotation `r` with rotation vector `theta`, rates `kr` and preload
-    /// moment `m_pre` (applied to `j` at zero rotation).
-    fn moment(self, theta: &Vec3, r: &Mat3, kr: &Vec3, m_pre: &Vec3) -> (Vec3, Mat3) {
-        let k = Mat3::from_diagonal(kr);
+    /// and `∂g/∂θ`, for the relative rotation `r` with rotation vector `theta`, the characteristics `kr`
+    /// about the three axes and the preload moment `m_pre` (applied to `j` at zero rotation).
+    fn moment(self, theta: &Vec3, r: &Mat3, kr: &[Characteristic; 3], m_pre: &Vec3) -> (Vec3, Mat3) {
+        // The law's angles' moments `m = K(angles) − M_pre` (rates times angles, or the curves' values) and
+        // `∂m/∂angles`, diagonal: the one place a rate and a curve differ.
+        let of = |angles: &Vec3| {
+            let (values, slopes) = along_axes(kr, angles);
+            (values - m_pre, Mat3::from_diagonal(&slopes))
+        };
         match self {
-            RotationLaw::Energy => rotation_vector_moment(theta, &(kr.component_mul(theta) - m_pre), &k),
-            RotationLaw::Linear => (kr.component_mul(theta) - m_pre, k),
+            RotationLaw::Energy => {
+                let (m, k) = of(theta);
+                rotation_vector_moment(theta, &m, &k)
+            }
+            RotationLaw::Linear => of(theta),
             RotationLaw::TaitBryanXyz => {
-                // U = ½φᵀKφ − M_preᵀφ; ω = E(φ) φ̇ for the left increment, so g = ∂U/∂ω = E⁻ᵀ (Kφ − M_pre).
+                // U = ½φᵀKφ − M_preᵀφ (with curves, the sum of their integrals); ω = E(φ) φ̇ for the left
+                // increment, so g = ∂U/∂ω = E⁻ᵀ (Kφ − M_pre).
                 let phi = tait_bryan_xyz(r);
                 let (e, de_da, de_db) = tait_bryan_xyz_axes(&phi);
                 let nan = Mat3::from_element(f64::NAN);
                 // At gimbal lock the moment is undefined: a NaN here is refused by the solver as such.
                 let e_inv_t = e.transpose().try_inverse().unwrap_or(nan);
-                let g = e_inv_t * (kr.component_mul(&phi) - m_pre);
+                let (m, k) = of(&phi);
+                let g = e_inv_t * m;
                 // ∂g/∂φₖ = E⁻ᵀ K eₖ − E⁻ᵀ (∂E/∂φₖ)ᵀ g; then ∂φ/∂θ = E⁻¹ J_l(θ).
                 let mut dg_dphi = e_inv_t * k;
                 for (col, de) in [(0, de_da), (1, de_db)] {
@@ -115,6 +142,16 @@ impl RotationLaw {
             }
         }
     }
+}
+
+/// The three characteristics' values and slopes at `x` (component by component).
+fn along_axes(k: &[Characteristic; 3], x: &Vec3) -> (Vec3, Vec3) {
+    let mut values = Vec3::zeros();
+    let mut slopes = Vec3::zeros();
+    for a in 0..3 {
+        (values[a], slopes[a]) = k[a].value_and_slope(x[a]);
+    }
+    (values, slopes)
 }
 
 /// Largest deviation of `EᵀE` from `I` accepted for a bushing frame; a frame within it is replaced by
@@ -135,10 +172,12 @@ pub struct BushingSpec {
     pub point: Vec3,
     /// Bushing frame at design: columns are the local x, y, z axes in global components (a rotation).
     pub frame: Mat3,
-    /// Translational stiffnesses `(Kx, Ky, Kz)` along the local axes, N/m.
-    pub translational: Vec3,
-    /// Rotational stiffnesses `(Ku, Kv, Kw)` about the local axes, N·m/rad.
-    pub rotational: Vec3,
+    /// Along the local x, y, z axes: the rates `(Kx, Ky, Kz)` (N/m) or curves of force (N) against
+    /// deflection (m).
+    pub translational: [Characteristic; 3],
+    /// About the local x, y, z axes: the rates `(Ku, Kv, Kw)` (N·m/rad) or curves of moment (N·m) against
+    /// rotation (rad).
+    pub rotational: [Characteristic; 3],
     /// Force applied to `j` at zero deflection (local components, N).
     #[cfg_attr(feature = "serde", serde(default))]
     pub preload_force: Vec3,
@@ -162,8 +201,8 @@ impl BushingSpec {
         let what_t = ["translational stiffness Kx", "translational stiffness Ky", "translational stiffness Kz"];
         let what_r = ["rotational stiffness Ku", "rotational stiffness Kv", "rotational stiffness Kw"];
         for a in 0..3 {
-            check_positive(name, what_t[a], self.translational[a])?;
-            check_positive(name, what_r[a], self.rotational[a])?;
+            self.translational[a].check(name, what_t[a], Anchor::ThroughOrigin)?;
+            self.rotational[a].check(name, what_r[a], Anchor::ThroughOrigin)?;
         }
         check_finite(name, "preload force", &self.preload_force)?;
         check_finite(name, "preload torque", &self.preload_torque)?;
@@ -200,6 +239,8 @@ struct State {
     w: Vec3,
     delta: Vec3,
     theta: Vec3,
+    /// `∂f/∂δ` in local components: the diagonal of `K_T`, or of the curves' slopes at `δ`.
+    kt: Vec3,
     /// `f = E (K_T δ − F_pre)` = ∂U/∂d (the force applied to `i`).
     f: Vec3,
     /// `g = J_l⁻ᵀ (K_R θ − M_pre)` (local) and `∂g/∂θ`.
@@ -223,6 +264,24 @@ impl Bushing {
         frame: Mat3,
         translational: Vec3,
         rotational: Vec3,
+    ) -> Result<Self, ModelError> {
+        let (translational, rotational) = (Characteristic::rates(&translational), Characteristic::rates(&rotational));
+        Self::with_characteristics(name, body_i, body_j, point, frame, translational, rotational)
+    }
+
+    /// A bushing whose directions each have a rate or a measured curve ([`Characteristic`]), without
+    /// preload: `translational` along the local x, y, z axes (N/m, or N against m), `rotational` about
+    /// them (N·m/rad, or N·m against rad). Checked as in [`Bushing::new`]; a curve that does not pass
+    /// through `(0, 0)`, decreases somewhere or is flat is [`ModelError::OutOfRange`], naming the
+    /// direction.
+    pub fn with_characteristics(
+        name: &str,
+        body_i: BodyRef,
+        body_j: BodyRef,
+        point: Vec3,
+        frame: Mat3,
+        translational: [Characteristic; 3],
+        rotational: [Characteristic; 3],
     ) -> Result<Self, ModelError> {
         Self::from_spec(BushingSpec {
             name: name.to_string(),
@@ -275,10 +334,11 @@ impl Bushing {
         let s_j = pj.direction(&self.on_j);
         let d = (pj.position + s_j) - (pi.position + s_i);
         let delta = e.transpose() * d;
-        let f = e * (self.spec.translational.component_mul(&delta) - self.spec.preload_force);
+        let (force, kt) = along_axes(&self.spec.translational, &delta);
+        let f = e * (force - self.spec.preload_force);
         let r = relative.to_rotation_matrix().into_inner();
         let (g, dg) = self.spec.rotation_law.moment(&theta, &r, &self.spec.rotational, &self.spec.preload_torque);
-        State { e, s_j, w: s_i + d, delta, theta, f, g, dg }
+        State { e, s_j, w: s_i + d, delta, theta, kt, f, g, dg }
     }
 }
 
@@ -316,7 +376,7 @@ impl ForceElement for Bushing {
         q.fixed_rows_mut::<3>(6).copy_from(&(-st.f));
         q.fixed_rows_mut::<3>(9).copy_from(&(-st.s_j.cross(&st.f) - big_g));
         if with_stiffness {
-            stiffness(&self.spec.translational, &st, &big_g, &mut out.stiffness);
+            stiffness(&st, &big_g, &mut out.stiffness);
         }
     }
 
@@ -329,13 +389,13 @@ impl ForceElement for Bushing {
 /// `K = ∂(∇U)/∂Δq` along left increments, with `∇U = (−f, f × w − G, f, sⱼ × f + G)`, `G = E g`.
 ///
 /// Variations (`δs = −s̃ δπ`, `δE = δπ̃ᵢ E`, `ω = Eᵀ(δπⱼ − δπᵢ)`, `δθ = J_l⁻¹ ω`):
-/// * `δf = K_g (δd + d̃ δπᵢ) − f̃ δπᵢ`, `K_g = E K_T Eᵀ`, `δd = δrⱼ − s̃ⱼ δπⱼ − δrᵢ + s̃ᵢ δπᵢ`,
-///   so `Df = [−K_g, K_g w̃ − f̃, K_g, −K_g s̃ⱼ]`;
+/// * `δf = K_g (δd + d̃ δπᵢ) − f̃ δπᵢ`, `K_g = E K_T Eᵀ` (`K_T` the diagonal of the rates or of the
+///   curves' slopes), `δd = δrⱼ − s̃ⱼ δπⱼ − δrᵢ + s̃ᵢ δπᵢ`, so `Df = [−K_g, K_g w̃ − f̃, K_g, −K_g s̃ⱼ]`;
 /// * `δG = −G̃ δπᵢ + H (δπⱼ − δπᵢ)`, `H = E (∂g/∂θ) J_l⁻¹ Eᵀ`, so `DG = [0, −G̃ − H, 0, H]`;
 /// * `δw = δrⱼ − s̃ⱼ δπⱼ − δrᵢ`.
-fn stiffness(kt: &Vec3, st: &State, big_g: &Vec3, out: &mut PairMatrix) {
+fn stiffness(st: &State, big_g: &Vec3, out: &mut PairMatrix) {
     let e = &st.e;
-    let kg = e * Mat3::from_diagonal(kt) * e.transpose();
+    let kg = e * Mat3::from_diagonal(&st.kt) * e.transpose();
     let f_t = skew(&st.f);
     let w_t = skew(&st.w);
     let sj_t = skew(&st.s_j);

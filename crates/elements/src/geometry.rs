@@ -1,6 +1,8 @@
-//! Validation of design data and small block helpers shared by the elements.
+//! Validation of design data, small block helpers, and the line between two seats that springs and stops
+//! share.
 
-use elastokin_core::{BodyRef, Mat3, ModelError, PairMatrix, Vec3};
+use elastokin_core::math::skew;
+use elastokin_core::{BodyRef, ElementEval, Mat3, ModelError, PairMatrix, Pose, Vec3};
 use nalgebra::SMatrix;
 
 /// A 3×12 Jacobian of a 3-vector over the coordinates `(Δrᵢ, Δπᵢ, Δrⱼ, Δπⱼ)`.
@@ -62,4 +64,102 @@ pub(crate) fn add_rows(out: &mut PairMatrix, r: usize, m: &Jac3) {
 #[inline]
 pub(crate) fn set_jac_block(jac: &mut Jac3, c: usize, m: &Mat3) {
     jac.fixed_view_mut::<3, 3>(0, 3 * c).copy_from(m);
+}
+
+/// Below this fraction of the design length the direction of a line falls back to the design direction.
+const DEGENERATE_FRACTION: f64 = 1e-9;
+
+/// Two seats, one on each body, and the line between them: the geometry of coil springs and stops.
+///
+/// Points `Pᵢ = rᵢ + sᵢ`, `Pⱼ = rⱼ + sⱼ` (`s = A s'`), separation `d = Pⱼ − Pᵢ`, length `L = |d|`, unit
+/// vector `n = d / L` from `i` to `j`. Below `1e-9 · L_design` the direction is undefined; `n` is then the
+/// design direction carried by body `i`, and the transverse term of the tangent is dropped so that the
+/// values stay finite (the two seats through each other is not a physical configuration).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Seats {
+    on_i: Vec3,
+    on_j: Vec3,
+    /// Design direction `n` in body-`i` components (fallback when `L → 0`).
+    axis_i: Vec3,
+    /// Length below which the fallback is used.
+    min_length: f64,
+}
+
+/// The line between the seats at one configuration.
+pub(crate) struct Line {
+    pub s_i: Vec3,
+    pub s_j: Vec3,
+    pub n: Vec3,
+    pub length: f64,
+    pub degenerate: bool,
+}
+
+impl Seats {
+    /// Seats at the global design points, with both bodies at the identity pose until bound. The points
+    /// must be distinct (checked by the element).
+    pub fn new(point_i: &Vec3, point_j: &Vec3) -> Self {
+        let d = point_j - point_i;
+        let len = d.norm();
+        Seats { on_i: *point_i, on_j: *point_j, axis_i: d / len, min_length: DEGENERATE_FRACTION * len }
+    }
+
+    /// Fixes the seats on the bodies from their design poses.
+    pub fn bind(&mut self, pi: &Pose, pj: &Pose, point_i: &Vec3, point_j: &Vec3) {
+        self.on_i = pi.to_local_point(point_i);
+        self.on_j = pj.to_local_point(point_j);
+        let d = point_j - point_i;
+        self.axis_i = pi.to_local_direction(&(d / d.norm()));
+    }
+
+    /// The line at the poses.
+    pub fn line(&self, pi: &Pose, pj: &Pose) -> Line {
+        let s_i = pi.direction(&self.on_i);
+        let s_j = pj.direction(&self.on_j);
+        let d = (pj.position + s_j) - (pi.position + s_i);
+        let length = d.norm();
+        let degenerate = length < self.min_length;
+        let n = if degenerate { pi.direction(&self.axis_i) } else { d / length };
+        Line { s_i, s_j, n, length, degenerate }
+    }
+}
+
+/// Generalized force and stiffness of a force `push` along the line that pushes the seats apart (the force
+/// on `j` is `φ = push · n` at `Pⱼ`, on `i` its opposite at `Pᵢ`), with the axial rate
+/// `rate = −∂push/∂L`.
+///
+/// `∂φ/∂d = T = −rate nnᵀ + (push/L)(I − nnᵀ)`, `δd = B Δq`, `B = [−I, s̃ᵢ, I, −s̃ⱼ]`, and
+/// `K = −∂Q/∂Δq = −Bᵀ T B + diag(0, φ̃ s̃ᵢ, 0, −φ̃ s̃ⱼ)`: rows `(Dφ, s̃ᵢ Dφ + φ̃ s̃ᵢ, −Dφ, −s̃ⱼ Dφ − φ̃ s̃ⱼ)`
+/// with `Dφ = T B`. The second term, from the lever arms turning with the bodies, is the skew part
+/// `K − Kᵀ = diag(0, [Q_πᵢ]~, 0, [Q_πⱼ]~)` every left-increment tangent carries.
+pub(crate) fn push_along(line: &Line, push: f64, rate: f64, out: &mut ElementEval, with_stiffness: bool) {
+    let phi = line.n * push;
+    let q = &mut out.force;
+    q.fixed_rows_mut::<3>(0).copy_from(&(-phi));
+    q.fixed_rows_mut::<3>(3).copy_from(&(-line.s_i.cross(&phi)));
+    q.fixed_rows_mut::<3>(6).copy_from(&phi);
+    q.fixed_rows_mut::<3>(9).copy_from(&line.s_j.cross(&phi));
+    if !with_stiffness {
+        return;
+    }
+    let nn = line.n * line.n.transpose();
+    let mut t = -rate * nn;
+    if !line.degenerate {
+        t += (push / line.length) * (Mat3::identity() - nn);
+    }
+    let si_t = skew(&line.s_i);
+    let sj_t = skew(&line.s_j);
+    let phi_t = skew(&phi);
+    let mut dphi = Jac3::zeros();
+    set_jac_block(&mut dphi, 0, &(-t));
+    set_jac_block(&mut dphi, 1, &(t * si_t));
+    set_jac_block(&mut dphi, 2, &t);
+    set_jac_block(&mut dphi, 3, &(-t * sj_t));
+    let out = &mut out.stiffness;
+    out.fill(0.0);
+    add_rows(out, 0, &dphi);
+    add_rows(out, 1, &(si_t * dphi));
+    add_block(out, 1, 1, &(phi_t * si_t));
+    add_rows(out, 2, &(-dphi));
+    add_rows(out, 3, &(-(sj_t * dphi)));
+    add_block(out, 3, 3, &(-(phi_t * sj_t)));
 }

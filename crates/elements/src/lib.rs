@@ -4,8 +4,9 @@
 //!
 //! | element | role | model |
 //! |---|---|---|
-//! | [`Bushing`] | elastic | six linear springs in a local frame, exact finite-rotation energy (paper eqs. 5–8) |
-//! | [`CoilSpring`] | elastic | linear spring between two body points, free length and preload |
+//! | [`Bushing`] | elastic | six springs (rates or curves) in a local frame, finite-rotation energy (paper eqs. 5–8) |
+//! | [`CoilSpring`] | elastic | spring between two body points: a rate, or the data sheet's push force curve |
+//! | [`Stop`] | elastic | bump or rebound stop between two body points: a clearance, then a force curve |
 //! | [`PointForce`] | load | world-fixed force at a body point, ramped by the load parameter |
 //! | [`PointTorque`] | load | world-fixed moment on a body, ramped by the load parameter |
 //!
@@ -20,6 +21,12 @@
 //! (`K − Kᵀ = diag(0, [Q_πᵢ]~, 0, [Q_πⱼ]~)`).
 //! Evaluation neither allocates nor panics; non-finite poses give non-finite results, so that the solver
 //! sees them.
+//!
+//! Measured characteristics are [`Curve`]s: a table of points, the monotone C¹ cubic of Fritsch and Carlson
+//! through it (continuous force and rate, no overshoot between points) and straight lines past its ends
+//! with the end slopes. A [`Characteristic`] is a rate or a curve; the elements' tangents take the curve's
+//! slope where the linear law takes the rate, so Newton's method stays quadratic across the points of a
+//! table.
 //!
 //! ```
 //! use elastokin_core::{BodyRef, ElementEval, Mat3, Model, ModelError, Pose, Vec3};
@@ -59,16 +66,22 @@
 //! Dependencies: elastokin-core for the interface and rotation algebra, nalgebra for the fixed-size
 //! 3×3 and 12×12 blocks (stack values, so evaluation does not allocate), serde behind the `serde`
 //! feature (it derives `Serialize`/`Deserialize` on the parameter structs [`BushingSpec`],
-//! [`CoilSpringSpec`], [`PointForceSpec`], [`PointTorqueSpec`] and forwards core's `serde` feature).
+//! [`CoilSpringSpec`], [`StopSpec`], [`PointForceSpec`], [`PointTorqueSpec`], on [`Characteristic`] and
+//! [`Curve`] — a curve is written as its list of `[x, y]` points and checked when read — and forwards
+//! core's `serde` feature).
 //! faer, sprs and rayon are left out: an element works on one body pair with 12×12 dense blocks, so
 //! there is no sparse or parallel work here — assembly, factorization and any parallel evaluation are
 //! the solver's. Model files (and with them serde as a default) live in the suspensions crate.
 
 pub mod bushing;
 pub mod coil_spring;
+pub mod curve;
 mod geometry;
 pub mod point_load;
+pub mod stop;
 
 pub use bushing::{Bushing, BushingSpec, RotationLaw};
 pub use coil_spring::{CoilSpring, CoilSpringSpec};
+pub use curve::{Characteristic, Curve};
 pub use point_load::{PointForce, PointForceSpec, PointTorque, PointTorqueSpec};
+pub use stop::{Stop, StopKind, StopSpec};

@@ -6,7 +6,7 @@ mod common;
 use common::*;
 use elastokin_core::math::{rotation_log, skew};
 use elastokin_core::{BodyId, BodyRef, ElementRole, ForceElement, Mat3, PairMatrix, Pose, Vec3};
-use elastokin_elements::{Bushing, BushingSpec};
+use elastokin_elements::{Bushing, BushingSpec, Characteristic};
 
 /// Which body is the ground in a case.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -44,8 +44,8 @@ fn random_case(rng: &mut Rng, grounded: Grounded, preload: bool) -> Case {
         body_j,
         point,
         frame,
-        translational: kt,
-        rotational: kr,
+        translational: Characteristic::rates(&kt),
+        rotational: Characteristic::rates(&kr),
         preload_force: f_pre,
         preload_torque: m_pre,
         rotation_law: Default::default(),

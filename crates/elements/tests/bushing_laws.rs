@@ -7,7 +7,7 @@ mod common;
 use common::*;
 use elastokin_core::math::rotation_log;
 use elastokin_core::{BodyId, BodyRef, ForceElement, Mat3, Pose, Vec3};
-use elastokin_elements::{Bushing, BushingSpec, RotationLaw};
+use elastokin_elements::{Bushing, BushingSpec, Characteristic, RotationLaw};
 
 const LAWS: [RotationLaw; 3] = [RotationLaw::Energy, RotationLaw::Linear, RotationLaw::TaitBryanXyz];
 
@@ -19,8 +19,8 @@ fn grounded(kr: Vec3, m_pre: Vec3, law: RotationLaw) -> Bushing {
         body_j: BodyRef::Body(BodyId(0)),
         point: Vec3::zeros(),
         frame: Mat3::identity(),
-        translational: Vec3::new(1e6, 2e6, 3e6),
-        rotational: kr,
+        translational: Characteristic::rates(&Vec3::new(1e6, 2e6, 3e6)),
+        rotational: Characteristic::rates(&kr),
         preload_force: Vec3::zeros(),
         preload_torque: m_pre,
         rotation_law: law,

@@ -1,7 +1,7 @@
 //! Bad input is refused with the right `ModelError`, naming the element, without panicking.
 
 use elastokin_core::{BodyId, BodyRef, ElementEval, ForceElement, Mat3, Model, ModelError, Pose, Vec3};
-use elastokin_elements::{Bushing, BushingSpec, CoilSpring, PointForce, PointTorque};
+use elastokin_elements::{Bushing, BushingSpec, Characteristic, CoilSpring, PointForce, PointTorque};
 
 const A: BodyRef = BodyRef::Body(BodyId(0));
 const B: BodyRef = BodyRef::Body(BodyId(1));
@@ -13,8 +13,8 @@ fn bushing_spec() -> BushingSpec {
         body_j: A,
         point: Vec3::new(0.2, 0.4, -0.2),
         frame: Mat3::identity(),
-        translational: Vec3::new(1e6, 2e6, 3e6),
-        rotational: Vec3::new(100.0, 200.0, 300.0),
+        translational: Characteristic::rates(&Vec3::new(1e6, 2e6, 3e6)),
+        rotational: Characteristic::rates(&Vec3::new(100.0, 200.0, 300.0)),
         preload_force: Vec3::zeros(),
         preload_torque: Vec3::zeros(),
         rotation_law: Default::default(),
@@ -31,7 +31,7 @@ fn bushing_err(f: impl FnOnce(&mut BushingSpec)) -> ModelError {
 
 #[test]
 fn bushing_stiffness_must_be_positive_and_finite() {
-    match bushing_err(|s| s.translational.x = 0.0) {
+    match bushing_err(|s| s.translational[0] = Characteristic::Rate(0.0)) {
         ModelError::NotPositive { item, what, value } => {
             assert_eq!(item, "front bush");
             assert!(what.contains("Kx"), "{what}");
@@ -39,15 +39,18 @@ fn bushing_stiffness_must_be_positive_and_finite() {
         }
         e => panic!("{e:?}"),
     }
-    match bushing_err(|s| s.rotational.z = -5.0) {
+    match bushing_err(|s| s.rotational[2] = Characteristic::Rate(-5.0)) {
         ModelError::NotPositive { what, value, .. } => assert!(what.contains("Kw") && value == -5.0),
         e => panic!("{e:?}"),
     }
-    match bushing_err(|s| s.translational.y = f64::NAN) {
+    match bushing_err(|s| s.translational[1] = Characteristic::Rate(f64::NAN)) {
         ModelError::NonFinite { what, .. } => assert!(what.contains("Ky")),
         e => panic!("{e:?}"),
     }
-    assert!(matches!(bushing_err(|s| s.rotational.y = f64::INFINITY), ModelError::NonFinite { .. }));
+    assert!(matches!(
+        bushing_err(|s| s.rotational[1] = Characteristic::Rate(f64::INFINITY)),
+        ModelError::NonFinite { .. }
+    ));
     assert!(matches!(bushing_err(|s| s.point.z = f64::NAN), ModelError::NonFinite { .. }));
     assert!(matches!(bushing_err(|s| s.preload_torque.x = f64::NAN), ModelError::NonFinite { .. }));
     assert!(matches!(bushing_err(|s| s.body_i = A), ModelError::SelfJoint { .. }));

@@ -139,6 +139,7 @@ impl DoubleWishbone {
             joints: Vec::new(),
             bushings: Vec::new(),
             springs: Vec::new(),
+            stops: Vec::new(),
             anti_roll_bars: Vec::new(),
             loads: Vec::new(),
             corner: CornerDef {
@@ -166,7 +167,8 @@ impl DoubleWishbone {
             bodies: [CHASSIS.into(), "lower arm".into()],
             from: Place::named("spring_chassis"),
             to: Place::named("spring_arm"),
-            rate: self.spring.rate,
+            rate: Some(self.spring.rate),
+            curve: None,
             design_force: Some(self.spring.design_force),
             free_length: None,
         });

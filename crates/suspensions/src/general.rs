@@ -36,7 +36,9 @@ use crate::corner::{
 use crate::hardpoint::Side;
 use elastokin_core::joint::orthonormal_complement;
 use elastokin_core::{BodyRef, ElementId, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
-use elastokin_elements::{Bushing, BushingSpec, CoilSpring, PointForce, PointTorque, RotationLaw};
+use elastokin_elements::{
+    Bushing, BushingSpec, Characteristic, CoilSpring, Curve, PointForce, PointTorque, RotationLaw, Stop,
+};
 use serde::de::{Error as _, MapAccess, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
@@ -267,6 +269,71 @@ pub struct JointDef {
     pub axis_j: Option<Axis>,
 }
 
+/// What a bushing direction or a spring is given: a rate (a number: N/m, or N·m/rad for a twist), or a
+/// measured curve `{"curve": [[deflection, force], …]}` (m and N, or rad and N·m), passed through by a
+/// monotone cubic and continued as a straight line past its ends (see `elastokin_elements::Curve`).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Stiffness {
+    /// A constant rate.
+    Rate(f64),
+    /// A table of points, `x` increasing.
+    Curve(Vec<[f64; 2]>),
+}
+
+impl Stiffness {
+    /// The rate, when it is one.
+    pub fn rate(&self) -> Option<f64> {
+        match self {
+            Stiffness::Rate(k) => Some(*k),
+            Stiffness::Curve(_) => None,
+        }
+    }
+
+    /// The element's characteristic; `item` names it in errors (a rate is checked by the element).
+    fn characteristic(&self, item: &str) -> Result<Characteristic, ModelError> {
+        match self {
+            Stiffness::Rate(k) => Ok(Characteristic::Rate(*k)),
+            Stiffness::Curve(points) => Ok(Characteristic::Curve(Curve::new(item, points.clone())?)),
+        }
+    }
+}
+
+impl From<f64> for Stiffness {
+    fn from(rate: f64) -> Self {
+        Stiffness::Rate(rate)
+    }
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CurveForm {
+    curve: Vec<[f64; 2]>,
+}
+
+impl Serialize for Stiffness {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Stiffness::Rate(k) => s.serialize_f64(*k),
+            Stiffness::Curve(points) => CurveForm { curve: points.clone() }.serialize(s),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Stiffness {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let value = serde_json::Value::deserialize(d)?;
+        if let Some(k) = value.as_f64() {
+            return Ok(Stiffness::Rate(k));
+        }
+        serde_json::from_value::<CurveForm>(value.clone()).map(|c| Stiffness::Curve(c.curve)).map_err(|_| {
+            D::Error::custom(format!(
+                "a stiffness is a rate (a number) or {{\"curve\": [[deflection, force], …]}}, got {}",
+                short(&value)
+            ))
+        })
+    }
+}
+
 /// A rubber bushing between two bodies, in its own frame: x along `axis`, y towards `y_axis` (made
 /// perpendicular), z completing a right-handed frame. Either the four rates of a cylindrical bushing
 /// (`radial`, `axial`, `torsion`, `conical`: x is the bushing's axis) or six (`translation` along and
@@ -289,22 +356,22 @@ pub struct BushingDef {
     pub y_axis: Option<Axis>,
     /// Radial rate (across x), N/m.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub radial: Option<f64>,
+    pub radial: Option<Stiffness>,
     /// Axial rate (along x), N/m.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub axial: Option<f64>,
+    pub axial: Option<Stiffness>,
     /// Torsion rate (about x), N·m/rad.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub torsion: Option<f64>,
+    pub torsion: Option<Stiffness>,
     /// Conical rate (tilt of x), N·m/rad.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub conical: Option<f64>,
+    pub conical: Option<Stiffness>,
     /// Rates along x, y, z, N/m.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub translation: Option<[f64; 3]>,
+    pub translation: Option<[Stiffness; 3]>,
     /// Rates about x, y, z, N·m/rad.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub rotation: Option<[f64; 3]>,
+    pub rotation: Option<[Stiffness; 3]>,
     /// How the moment follows the twist (see [`RotationLaw`]).
     #[serde(default, skip_serializing_if = "is_default_law")]
     pub law: RotationLaw,
@@ -329,10 +396,10 @@ impl BushingDef {
             at,
             axis: Some(rates.axis.map_or(axis, |a| Axis::Vector(a.into()))),
             y_axis: None,
-            radial: Some(rates.radial),
-            axial: Some(rates.axial),
-            torsion: Some(rates.torsion),
-            conical: Some(rates.conical),
+            radial: Some(rates.radial.into()),
+            axial: Some(rates.axial.into()),
+            torsion: Some(rates.torsion.into()),
+            conical: Some(rates.conical.into()),
             translation: None,
             rotation: None,
             law: rates.law,
@@ -341,42 +408,58 @@ impl BushingDef {
         }
     }
 
-    /// `(translation, rotation)` rates, from whichever set is given; the error names what is missing.
-    fn rates(&self, key: &str) -> Result<(Vec3, Vec3), ModelError> {
-        let cylindrical = [self.radial, self.axial, self.torsion, self.conical];
-        let six = [self.translation, self.rotation];
+    /// `(translation, rotation)` characteristics along and about x, y, z, from whichever set is given;
+    /// the error names what is missing or out of range.
+    fn rates(&self, key: &str) -> Result<([Characteristic; 3], [Characteristic; 3]), ModelError> {
+        let cylindrical = [&self.radial, &self.axial, &self.torsion, &self.conical];
+        let six = [&self.translation, &self.rotation];
         let refuse = |why: &str| {
             Err(ModelError::OutOfRange {
                 item: format!("{key} ({})", self.name),
                 why: format!(
                     "{why}: give either radial, axial, torsion and conical (a cylindrical bushing, x its axis) or \
-                     translation and rotation (three rates each, along and about x, y, z)"
+                     translation and rotation (three rates or curves each, along and about x, y, z)"
                 ),
             })
         };
-        let (t, r) = match (cylindrical.iter().any(Option::is_some), six.iter().any(Option::is_some)) {
-            (true, true) => return refuse("both sets of rates are given"),
-            (false, false) => return refuse("no rates are given"),
-            (true, false) => match cylindrical {
-                [Some(radial), Some(axial), Some(torsion), Some(conical)] => {
-                    (Vec3::new(axial, radial, radial), Vec3::new(torsion, conical, conical))
-                }
-                _ => return refuse("a cylindrical bushing needs all four rates"),
-            },
-            (false, true) => match six {
-                [Some(t), Some(r)] => (Vec3::from(t), Vec3::from(r)),
-                _ => return refuse("six rates need both translation and rotation"),
-            },
-        };
+        let (t, r): ([&Stiffness; 3], [&Stiffness; 3]) =
+            match (cylindrical.iter().any(|c| c.is_some()), six.iter().any(|c| c.is_some())) {
+                (true, true) => return refuse("both sets of rates are given"),
+                (false, false) => return refuse("no rates are given"),
+                (true, false) => match cylindrical {
+                    [Some(radial), Some(axial), Some(torsion), Some(conical)] => {
+                        ([axial, radial, radial], [torsion, conical, conical])
+                    }
+                    _ => return refuse("a cylindrical bushing needs all four rates"),
+                },
+                (false, true) => match six {
+                    [Some(t), Some(r)] => (t.each_ref(), r.each_ref()),
+                    _ => return refuse("six rates need both translation and rotation"),
+                },
+            };
+        let mut out: [Vec<Characteristic>; 2] = [Vec::new(), Vec::new()];
         for (k, what) in ["x", "y", "z"].iter().enumerate() {
-            check_rate(&format!("{key}.translation {what}"), t[k], TRANSLATIONAL_RATE_RANGE, "N/m")?;
-            check_rate(&format!("{key}.rotation {what}"), r[k], ROTATIONAL_RATE_RANGE, "N·m/rad")?;
+            for (set, (name, stiffness, range, unit)) in [
+                ("translation", t[k], TRANSLATIONAL_RATE_RANGE, "N/m"),
+                ("rotation", r[k], ROTATIONAL_RATE_RANGE, "N·m/rad"),
+            ]
+            .into_iter()
+            .enumerate()
+            {
+                let item = format!("{key} ({}).{name} {what}", self.name);
+                if let Some(rate) = stiffness.rate() {
+                    check_rate(&item, rate, range, unit)?;
+                }
+                out[set].push(stiffness.characteristic(&item)?);
+            }
         }
+        let [t, r] = out.map(|v| <[Characteristic; 3]>::try_from(v).expect("three directions"));
         Ok((t, r))
     }
 }
 
-/// A coil spring between two bodies: linear, with its push at design or its free length.
+/// A coil spring between two bodies: a rate or a measured curve, with its push at design or its free
+/// length.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SpringDef {
@@ -388,14 +471,50 @@ pub struct SpringDef {
     pub from: Place,
     /// Seat on the second body.
     pub to: Place,
-    /// Rate, N/m.
-    pub rate: f64,
+    /// Rate, N/m (give this or `curve`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rate: Option<f64>,
+    /// The data sheet: push force (N) against compression from the free length (m), `[[0, 0], …]`
+    /// (give this or `rate`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub curve: Option<Vec<[f64; 2]>>,
     /// Push at the design length, N (give this or `free_length`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub design_force: Option<f64>,
     /// Free length, m (give this or `design_force`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub free_length: Option<f64>,
+}
+
+/// Bump or rebound.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StopType {
+    /// Acts when the two points come closer than at design by more than the clearance; pushes them apart.
+    Bump,
+    /// Acts when they move apart by more than the clearance; pulls them together.
+    Rebound,
+}
+
+/// A bump or rebound stop along the line of two points (the spring or damper axis): free over its
+/// clearance from the design length, then the force of its curve against the travel past contact.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StopDef {
+    /// Name.
+    pub name: String,
+    /// Bump or rebound.
+    pub kind: StopType,
+    /// The two bodies; the force reported is the one on the second.
+    pub bodies: [String; 2],
+    /// Point on the first body.
+    pub from: Place,
+    /// Point on the second body.
+    pub to: Place,
+    /// Travel from the design length to first contact, m.
+    pub clearance: f64,
+    /// Force (N) against travel past contact (m), from `[0, 0]`.
+    pub curve: Vec<[f64; 2]>,
 }
 
 /// A load on a body: a force at a point and/or a moment, world-fixed in direction, swept by the `loads`
@@ -489,6 +608,9 @@ pub struct GeneralCorner {
     /// Coil springs.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub springs: Vec<SpringDef>,
+    /// Bump and rebound stops.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub stops: Vec<StopDef>,
     /// Anti-roll bars: built on a full axle, coupling the two corners.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub anti_roll_bars: Vec<AntiRollBar>,
@@ -723,22 +845,49 @@ impl GeneralCorner {
         let bi = r.body(model, &format!("{key}.bodies"), &s.bodies[0])?;
         let bj = r.body(model, &format!("{key}.bodies"), &s.bodies[1])?;
         let (from, to) = (r.point(&format!("{key}.from"), &s.from)?, r.point(&format!("{key}.to"), &s.to)?);
-        check_rate(&format!("{key}.rate"), s.rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
         let name = part_name(r.prefix, &s.name);
-        let spring = match (s.design_force, s.free_length) {
-            (Some(force), None) => {
-                crate::corner::check_spring_force(&key, s.rate, force, (to - from).norm())?;
-                CoilSpring::with_design_force(&name, bi, from, bj, to, s.rate, force)?
+        let refuse = |why: &str| Err(ModelError::OutOfRange { item: key.clone(), why: why.to_string() });
+        let spring = match (s.rate, &s.curve, s.design_force, s.free_length) {
+            (Some(_), Some(_), _, _) | (None, None, _, _) => {
+                return refuse("give either rate (N/m) or curve (push force in N against compression in m)")
             }
-            (None, Some(free)) => CoilSpring::new(&name, bi, from, bj, to, s.rate, free)?,
-            _ => {
-                return Err(ModelError::OutOfRange {
-                    item: key.clone(),
-                    why: "give either design_force (N, its push at design) or free_length (m)".into(),
-                })
+            (_, _, Some(_), Some(_)) | (_, _, None, None) => {
+                return refuse("give either design_force (N, its push at design) or free_length (m)")
+            }
+            (Some(rate), None, Some(force), None) => {
+                check_rate(&format!("{key}.rate"), rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
+                crate::corner::check_spring_force(&key, rate, force, (to - from).norm())?;
+                CoilSpring::with_design_force(&name, bi, from, bj, to, rate, force)?
+            }
+            (Some(rate), None, None, Some(free)) => {
+                check_rate(&format!("{key}.rate"), rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
+                CoilSpring::new(&name, bi, from, bj, to, rate, free)?
+            }
+            (None, Some(points), Some(force), None) => {
+                let curve = Curve::new(&format!("{key}.curve"), points.clone())?;
+                CoilSpring::with_curve_and_design_force(&name, bi, from, bj, to, curve, force)?
+            }
+            (None, Some(points), None, Some(free)) => {
+                let curve = Curve::new(&format!("{key}.curve"), points.clone())?;
+                CoilSpring::with_curve(&name, bi, from, bj, to, curve, free)?
             }
         };
         model.add_element(spring)?;
+        Ok(())
+    }
+
+    fn add_stop(&self, model: &mut Model, r: &Resolver, k: usize, s: &StopDef) -> Result<(), ModelError> {
+        let key = format!("stops[{k}] ({})", s.name);
+        let bi = r.body(model, &format!("{key}.bodies"), &s.bodies[0])?;
+        let bj = r.body(model, &format!("{key}.bodies"), &s.bodies[1])?;
+        let (from, to) = (r.point(&format!("{key}.from"), &s.from)?, r.point(&format!("{key}.to"), &s.to)?);
+        let curve = Curve::new(&format!("{key}.curve"), s.curve.clone())?;
+        let name = part_name(r.prefix, &s.name);
+        let stop = match s.kind {
+            StopType::Bump => Stop::bump(&name, bi, from, bj, to, s.clearance, curve)?,
+            StopType::Rebound => Stop::rebound(&name, bi, from, bj, to, s.clearance, curve)?,
+        };
+        model.add_element(stop)?;
         Ok(())
     }
 }
@@ -840,6 +989,9 @@ impl CornerTemplate for GeneralCorner {
         }
         for (k, s) in self.springs.iter().enumerate() {
             self.add_spring(model, &r, k, s)?;
+        }
+        for (k, s) in self.stops.iter().enumerate() {
+            self.add_stop(model, &r, k, s)?;
         }
         let upright =
             r.body(model, "corner.upright", &c.upright)?.id().expect("the upright is a body, not the chassis");

@@ -146,6 +146,7 @@ impl MacPherson {
             joints: Vec::new(),
             bushings: Vec::new(),
             springs: Vec::new(),
+            stops: Vec::new(),
             anti_roll_bars: Vec::new(),
             loads: Vec::new(),
             corner: CornerDef {
@@ -195,7 +196,8 @@ impl MacPherson {
             bodies: [CHASSIS.into(), "upright".into()],
             from: Place::named("top_mount"),
             to: Place::named("strut_lower"),
-            rate: self.spring.rate,
+            rate: Some(self.spring.rate),
+            curve: None,
             design_force: Some(self.spring.design_force),
             free_length: None,
         });

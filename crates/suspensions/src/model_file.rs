@@ -19,7 +19,7 @@ use crate::analysis::VehicleParameters;
 use crate::connection::Connection;
 use crate::corner::{Corner, CornerParts, CornerTemplate, Rig};
 use crate::double_wishbone::DoubleWishbone;
-use crate::general::GeneralCorner;
+use crate::general::{GeneralCorner, Stiffness};
 use crate::hardpoint::Side;
 use crate::macpherson::MacPherson;
 use elastokin_core::{Model, ModelError};
@@ -473,27 +473,35 @@ impl SuspensionFile {
                 for b in &g.bushings {
                     let key = |what: &str| vec!["bushings".to_string(), b.name.clone(), what.to_string()];
                     let given = [
-                        ("radial", "N/m", b.radial, typical_t),
-                        ("axial", "N/m", b.axial, typical_t),
-                        ("torsion", "N·m/rad", b.torsion, typical_r),
-                        ("conical", "N·m/rad", b.conical, typical_r),
+                        ("radial", "N/m", &b.radial, typical_t),
+                        ("axial", "N/m", &b.axial, typical_t),
+                        ("torsion", "N·m/rad", &b.torsion, typical_r),
+                        ("conical", "N·m/rad", &b.conical, typical_r),
                     ];
+                    // Rates here; a curve's points are checked by the curve, naming the point.
                     for (what, unit, value, typical) in given {
-                        if let Some(v) = value {
+                        if let Some(v) = value.as_ref().and_then(Stiffness::rate) {
                             rates.push((key(what), unit, v, typical));
                         }
                     }
                     for (what, unit, values, typical) in [
-                        ("translation", "N/m", b.translation, typical_t),
-                        ("rotation", "N·m/rad", b.rotation, typical_r),
+                        ("translation", "N/m", &b.translation, typical_t),
+                        ("rotation", "N·m/rad", &b.rotation, typical_r),
                     ] {
-                        for v in values.into_iter().flatten() {
+                        for v in values.iter().flatten().filter_map(Stiffness::rate) {
                             rates.push((key(what), unit, v, typical));
                         }
                     }
                 }
                 for s in &g.springs {
-                    rates.push((vec!["springs".into(), s.name.clone(), "rate".into()], "N/m", s.rate, typical_spring));
+                    if let Some(rate) = s.rate {
+                        rates.push((
+                            vec!["springs".into(), s.name.clone(), "rate".into()],
+                            "N/m",
+                            rate,
+                            typical_spring,
+                        ));
+                    }
                     if let Some(f) = s.design_force {
                         forces.push((vec!["springs".into(), s.name.clone(), "design_force".into()], f));
                     }

@@ -558,12 +558,15 @@ pub fn bushing_deflection_at_design(file: &SuspensionFile) -> Vec<Warning> {
     let mut state = solver.design_state(0.0);
     let Ok(step) = solver.equilibrium(&mut state) else { return Vec::new() };
     let (most_m, most_deg) = MAX_DESIGN_DEFLECTION;
+    // The model's bushings, and the tie rod's that the rig adds: springs and stops deflect by design.
+    let mut bushings: Vec<String> = file.suspension.expand().bushings.into_iter().map(|b| b.name).collect();
+    bushings.extend(["tie rod inner bushing".to_string(), "tie rod outer bushing".to_string()]);
     corner
         .model
         .elements()
         .iter()
         .zip(step.element_reports(&corner.model))
-        .filter(|(e, _)| e.role() == ElementRole::Elastic && e.name() != "spring")
+        .filter(|(e, _)| e.role() == ElementRole::Elastic && bushings.iter().any(|b| b == e.name()))
         .filter_map(|(e, r)| {
             let (moved, turned) = (r.deflection.norm(), r.rotation.norm().to_degrees());
             (moved > most_m || turned > most_deg).then(|| Warning {

@@ -319,3 +319,77 @@ fn model_loads_balance_on_the_wheel_carrier() {
     let skipped = template.unwrap().skipped;
     assert!(skipped.iter().any(|s| s.analysis == kc::Analysis::ModelLoads && s.reason.contains("no load case")));
 }
+
+/// The shipped axle example's corner on ideal pivots (as [`ideal_axle_with_bar`]) with its stops.
+fn ideal_corner_with_stops() -> (SuspensionFile, SuspensionFile) {
+    let with = ideal_axle_with_bar();
+    let Template::General(axle) = example("double_wishbone_axle.json").suspension else { panic!("general form") };
+    let mut stops = with.clone();
+    let Template::General(ref mut g) = stops.suspension else { unreachable!() };
+    g.stops = axle.stops.clone();
+    (stops, with)
+}
+
+/// Bump and rebound stops against virtual work: with the wheel-centre height driven on an ideal linkage,
+/// a stop changes no position, only the rig's force, by the stop's push times the rate at which the wheel
+/// travel shortens the stop (its length's path derivative, from the exact tangent). Nothing at all
+/// changes before a stop touches.
+#[test]
+fn stops_add_their_push_times_their_motion_ratio_to_the_wheel_load() {
+    use elastokin_solver::{LoadPath, Mode, SolverOptions, StaticSolver};
+    use elastokin_suspensions::{Rig, Side};
+    let (with, without) = ideal_corner_with_stops();
+    let points = with.suspension.hardpoints();
+    let p = |n: &str| points.iter().find(|(m, _)| m == n).unwrap().1;
+    let (chassis, seat) = (p("spring_chassis"), p("spring_arm"));
+    let run = |file: &SuspensionFile| {
+        let corner = file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
+        let mut solver = StaticSolver::new(&corner.model, SolverOptions::default()).unwrap();
+        let sweep = solver.sweep(LoadPath::new(-0.08, 0.08, 32), Mode::Corrected).unwrap();
+        let driver = corner.model.joint_id("wheel travel").unwrap();
+        let arm = corner.model.body_id("lower arm").unwrap().0;
+        let local = corner.model.bodies()[arm].design_pose.to_local_point(&seat);
+        let mut rows = Vec::new();
+        for step in &sweep.steps {
+            let load = step.joint_reactions(&corner.model)[driver.0].force.z;
+            let rates = solver.path_tangent(&solver.state_of(step)).unwrap();
+            let pose = step.poses[arm];
+            let at = pose.point(&local);
+            let (v, w) = (
+                nalgebra::Vector3::new(rates[6 * arm], rates[6 * arm + 1], rates[6 * arm + 2]),
+                nalgebra::Vector3::new(rates[6 * arm + 3], rates[6 * arm + 4], rates[6 * arm + 5]),
+            );
+            let length_rate = (at - chassis).normalize().dot(&(v + w.cross(&(at - pose.position))));
+            let push: f64 = ["bump stop", "rebound stop"]
+                .iter()
+                .filter_map(|n| corner.model.element_id(n))
+                .map(|e| {
+                    let r = step.element_reports(&corner.model)[e.0];
+                    // The force on the arm along the stop's line, from the chassis towards the seat: its push.
+                    r.force.dot(&(at - chassis).normalize())
+                })
+                .sum();
+            rows.push((step.t, load, length_rate, push));
+        }
+        rows
+    };
+    let (a, b) = (run(&with), run(&without));
+    let (mut touched, mut worst, mut before) = (0, 0.0_f64, 0.0_f64);
+    for ((t, load, length_rate, push), (_, bare, _, _)) in a.iter().zip(&b) {
+        if push.abs() > 0.0 {
+            touched += 1;
+            // Virtual work: the rig's force times δs balances the stop's push times −δL.
+            let expected = -push * length_rate;
+            worst = worst.max((load - bare - expected).abs() / expected.abs());
+            assert!(expected.signum() == (if *t > 0.0 { 1.0 } else { -1.0 }), "{t}: the stop resists the travel");
+        } else {
+            before = before.max((load - bare).abs());
+        }
+    }
+    // Both stops touch inside ±80 mm: the bump stop from about +50 mm, the rebound stop from about −70 mm.
+    assert!(touched >= 4, "{touched}");
+    // Measured: 1.6e-12 N before contact, 7.5e-9 relative in contact (the rows' converged residuals), over
+    // 9 rows in contact.
+    assert!(before < 1e-10, "{before:e} N");
+    assert!(worst < 5e-7, "{worst:e}");
+}

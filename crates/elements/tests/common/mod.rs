@@ -107,28 +107,73 @@ pub fn fd_stiffness(e: &dyn ForceElement, pi: &Pose, pj: &Pose, t: f64) -> PairM
 /// Block-wise relative comparison of two 12-vectors: each 3-block within `rel` of its own size, with a
 /// floor of `1e-4` of the largest entry (finite-difference noise).
 pub fn assert_vec_close(what: &str, a: &RowGradient, b: &RowGradient, rel: f64) {
+    let (err, blk) = worst_vec_block(a, b);
+    assert!(
+        err <= rel,
+        "{what}: block {blk}: {:?} vs {:?} (relative error {err:e})",
+        a.fixed_rows::<3>(3 * blk),
+        b.fixed_rows::<3>(3 * blk)
+    );
+}
+
+/// The figure [`assert_vec_close`] judges: the largest block-wise relative difference.
+pub fn vec_close_error(a: &RowGradient, b: &RowGradient) -> f64 {
+    worst_vec_block(a, b).0
+}
+
+/// Largest `|x − y|∞ / max(|x|∞, |y|∞, floor)` over the 3-blocks, and where.
+fn worst_vec_block(a: &RowGradient, b: &RowGradient) -> (f64, usize) {
     let floor = 1e-4 * a.amax().max(b.amax()).max(1e-300);
+    let mut worst = (0.0, 0);
     for blk in 0..4 {
         let x = a.fixed_rows::<3>(3 * blk);
         let y = b.fixed_rows::<3>(3 * blk);
-        let err = (x - y).amax();
-        let scale = x.amax().max(y.amax()).max(floor);
-        assert!(err <= rel * scale, "{what}: block {blk}: {x:?} vs {y:?} (err {err:e}, scale {scale:e})");
+        let err = (x - y).amax() / x.amax().max(y.amax()).max(floor);
+        if err.is_nan() {
+            return (f64::NAN, blk);
+        }
+        if err > worst.0 {
+            worst = (err, blk);
+        }
     }
+    worst
 }
 
 /// Block-wise relative comparison of two 12×12 matrices (3×3 blocks, same floor as above).
 pub fn assert_mat_close(what: &str, a: &PairMatrix, b: &PairMatrix, rel: f64) {
+    let (err, r, c) = worst_block(a, b);
+    assert!(
+        err <= rel,
+        "{what}: block ({r},{c}): {} vs {} (relative error {err:e})",
+        a.fixed_view::<3, 3>(3 * r, 3 * c),
+        b.fixed_view::<3, 3>(3 * r, 3 * c)
+    );
+}
+
+/// The figure [`assert_mat_close`] judges: the largest block-wise relative difference (the measured
+/// agreement a tolerance is set from).
+pub fn mat_close_error(a: &PairMatrix, b: &PairMatrix) -> f64 {
+    worst_block(a, b).0
+}
+
+/// Largest `|x − y|∞ / max(|x|∞, |y|∞, floor)` over the 3×3 blocks, and where.
+fn worst_block(a: &PairMatrix, b: &PairMatrix) -> (f64, usize, usize) {
     let floor = 1e-4 * a.amax().max(b.amax()).max(1e-300);
+    let mut worst = (0.0, 0, 0);
     for r in 0..4 {
         for c in 0..4 {
             let x = a.fixed_view::<3, 3>(3 * r, 3 * c);
             let y = b.fixed_view::<3, 3>(3 * r, 3 * c);
-            let err = (x - y).amax();
-            let scale = x.amax().max(y.amax()).max(floor);
-            assert!(err <= rel * scale, "{what}: block ({r},{c}): {x} vs {y} (err {err:e}, scale {scale:e})");
+            let err = (x - y).amax() / x.amax().max(y.amax()).max(floor);
+            if err.is_nan() {
+                return (f64::NAN, r, c);
+            }
+            if err > worst.0 {
+                worst = (err, r, c);
+            }
         }
     }
+    worst
 }
 
 /// `K − Kᵀ` predicted for a left-increment tangent: `diag(0, [Q_πᵢ]~, 0, [Q_πⱼ]~)`.
