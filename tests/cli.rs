@@ -883,3 +883,35 @@ fn an_arc_step_without_its_flag_analysis_or_length_is_refused_by_name() {
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(err.contains("--arc-step needs --analysis"), "{err}");
 }
+
+/// `expand` prints the model in the general form: it reads back, and runs to the same CSV, byte for byte
+/// after the provenance line.
+#[test]
+fn expand_prints_a_general_model_that_runs_the_same() {
+    let dir = scratch("expand");
+    for model in ["examples/macpherson.json", "examples/double_wishbone.json"] {
+        let o = elastokin(&["expand", model]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let text = String::from_utf8(o.stdout).unwrap();
+        assert!(text.contains("\"general\"") && text.contains("\"corner\""), "{text}");
+        let expanded = dir.join("expanded.json");
+        std::fs::write(&expanded, &text).unwrap();
+        let csv = |path: &str, out: &str| {
+            let out = dir.join(out);
+            let o = elastokin(&[
+                "run",
+                path,
+                "--analysis",
+                "lateral-force",
+                "--steps",
+                "4",
+                "--out",
+                out.to_str().unwrap(),
+            ]);
+            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+            let text = std::fs::read_to_string(out.join("lateral_force.csv")).unwrap();
+            text.lines().skip(1).map(str::to_string).collect::<Vec<_>>()
+        };
+        assert_eq!(csv(model, "template"), csv(expanded.to_str().unwrap(), "general"), "{model}");
+    }
+}

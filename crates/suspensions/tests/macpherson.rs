@@ -218,3 +218,30 @@ fn each_arm_end_takes_its_own_bushing_rates() {
         assert!((across / radial - rates.radial).abs() < 1e-14 * rates.radial, "{name}: {}", across / radial);
     }
 }
+
+/// A connection's own bushing axis: a bushing as stiff along its axis as across it, and as stiff in torsion
+/// as in tilt, has no axis to speak of, so any axis gives the same corner (a symmetry); an anisotropic one
+/// turned onto another axis gives another corner.
+#[test]
+fn a_bushing_axis_matters_only_to_an_anisotropic_bushing() {
+    let toe_under_load = |rates: BushingRates| {
+        let mut t = template(Connection::Bushing(rates), Connection::Ideal);
+        t.tie_rod = Connection::Ideal;
+        let mut corner = t.build(Side::Left, Rig::HeightHeld).unwrap();
+        let patch = corner.wheel.contact_patch;
+        corner.add_wheel_force("lateral", patch, Vec3::new(-500.0, -3000.0, 0.0)).unwrap();
+        let mut solver =
+            elastokin_solver::StaticSolver::new(&corner.model, elastokin_solver::SolverOptions::default()).unwrap();
+        let sweep = solver.sweep(elastokin_solver::LoadPath::new(0.0, 1.0, 2), Mode::Corrected).unwrap();
+        corner.wheel.attitude(&sweep.steps.last().unwrap().poses)
+    };
+    let tilted = Some([0.2, 0.9, 0.4]);
+    let isotropic = BushingRates::new(3e6, 3e6, 2000.0, 2000.0);
+    let (a, b) = (toe_under_load(isotropic), toe_under_load(BushingRates { axis: tilted, ..isotropic }));
+    // Measured: 3.7e-16 rad.
+    assert!((a.toe - b.toe).abs() < 1e-14 && (a.camber - b.camber).abs() < 1e-14, "{a:?} {b:?}");
+    let anisotropic = BushingRates::new(5e6, 0.5e6, 300.0, 5000.0);
+    let (c, d) = (toe_under_load(anisotropic), toe_under_load(BushingRates { axis: tilted, ..anisotropic }));
+    // Measured: 4.1e-3 rad.
+    assert!((c.toe - d.toe).abs() > 1e-5, "{c:?} {d:?}");
+}
