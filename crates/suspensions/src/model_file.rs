@@ -518,6 +518,24 @@ impl SuspensionFile {
                 if let Some(t) = &g.corner.tie_rod {
                     connection(&mut rates, keys(&["corner", "tie_rod", "connection"]), &t.connection);
                 }
+                for load in &g.loads {
+                    for (what, values) in [("force", load.force), ("torque", load.torque)] {
+                        let largest = values.map_or(0.0, |v| {
+                            v.iter().fold(0.0_f64, |m, c| if c.is_nan() { f64::NAN } else { m.max(c.abs()) })
+                        });
+                        if largest.is_nan() || largest > MAX_FORCE {
+                            return Err(OutOfRange {
+                                keys: vec!["loads".into(), load.name.clone(), what.into()],
+                                message: format!(
+                                    "loads.{}.{what}: a component of {} is beyond ±{MAX_FORCE:e} (N or N·m): give \
+                                     a load a suspension carries",
+                                    load.name,
+                                    number(largest)
+                                ),
+                            });
+                        }
+                    }
+                }
                 (g.corner.loaded_radius, keys(&["corner", "loaded_radius"]))
             }
         };

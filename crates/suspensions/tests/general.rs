@@ -568,3 +568,61 @@ fn a_curve_spring_carries_the_wheel_by_virtual_work() {
     // Measured: 6.0e-11 relative.
     assert!(worst < 1e-9, "{worst:e}");
 }
+
+/// Every joint kind a general model takes builds the joint the core builds from the same geometry (a
+/// point, a second point, axes from two points or a vector), on the right corner mirrored.
+#[test]
+fn every_joint_kind_builds_what_the_core_builds() {
+    use elastokin_core::{BodyRef, JointSpec, Model, Pose};
+    use elastokin_suspensions::corner::CornerTemplate;
+    use elastokin_suspensions::Side;
+    let text = r#"{ "general": {
+        "hardpoints": { "wheel_centre": [0, 0.8, 0], "a": [0.1, 0.6, 0.05], "b": [0.1, 0.5, 0.3],
+                        "c": [-0.2, 0.55, 0.1], "top": [0, 0.75, 0.4], "bottom": [0, 0.78, -0.2] },
+        "bodies": [ { "name": "upright", "at": "wheel_centre" } ],
+        "joints": [
+          { "name": "s", "kind": "spherical", "bodies": ["chassis", "upright"], "at": "a" },
+          { "name": "r", "kind": "revolute", "bodies": ["chassis", "upright"], "at": "a", "axis": ["a", "b"] },
+          { "name": "c", "kind": "cylindrical", "bodies": ["chassis", "upright"], "at": "b", "axis": [0, 0.3, 1] },
+          { "name": "t", "kind": "translational", "bodies": ["chassis", "upright"], "at": "c", "axis": ["c", "a"] },
+          { "name": "u", "kind": "universal", "bodies": ["chassis", "upright"], "at": "a", "axis": [1, 0, 0], "axis_j": [0, 1, 0] },
+          { "name": "f", "kind": "fixed", "bodies": ["chassis", "upright"], "at": "c" },
+          { "name": "d", "kind": "distance", "bodies": ["chassis", "upright"], "at": "a", "to": "c" },
+          { "name": "p", "kind": "in_plane", "bodies": ["upright", "chassis"], "at": "b", "axis": [0, 0, 1], "to": "c" },
+          { "name": "l", "kind": "in_line", "bodies": ["upright", "chassis"], "at": "b", "axis": ["a", "b"] },
+          { "name": "x", "kind": "perpendicular", "bodies": ["chassis", "upright"], "axis": [1, 0, 0], "axis_j": [0, 0, 1] },
+          { "name": "q", "kind": "parallel_axes", "bodies": ["chassis", "upright"], "axis": ["a", "c"] } ],
+        "corner": { "upright": "upright", "wheel_centre": "wheel_centre",
+                    "steering_axis": [ { "body": "upright", "at": "bottom" }, { "body": "upright", "at": "top" } ] } } }"#;
+    let Template::General(g) = serde_json::from_str::<Template>(text).unwrap() else { panic!("general form") };
+    let p = |n: &str| g.hardpoints.get(n).unwrap();
+    for side in [Side::Left, Side::Right] {
+        let mut built = Model::new();
+        g.add_corner(&mut built, side, "").unwrap();
+        let mut code = Model::new();
+        let at = |v| side.place(v);
+        let upright = code.add_body("upright", Pose::at(at(p("wheel_centre")))).unwrap();
+        let (ground, u) = (BodyRef::Ground, BodyRef::from(upright));
+        let v = |x: f64, y: f64, z: f64| side.place(nalgebra::Vector3::new(x, y, z));
+        let specs = [
+            JointSpec::spherical("s", ground, u, at(p("a"))),
+            JointSpec::revolute("r", ground, u, at(p("a")), at(p("b")) - at(p("a"))),
+            JointSpec::cylindrical("c", ground, u, at(p("b")), v(0.0, 0.3, 1.0)),
+            JointSpec::translational("t", ground, u, at(p("c")), at(p("a")) - at(p("c"))),
+            JointSpec::universal("u", ground, u, at(p("a")), v(1.0, 0.0, 0.0), v(0.0, 1.0, 0.0)),
+            JointSpec::fixed("f", ground, u, at(p("c"))),
+            JointSpec::distance("d", ground, u, at(p("a")), at(p("c"))),
+            JointSpec {
+                point_j: Some(at(p("c"))),
+                ..JointSpec::in_plane("p", u, ground, at(p("b")), v(0.0, 0.0, 1.0))
+            },
+            JointSpec::in_line("l", u, ground, at(p("b")), at(p("b")) - at(p("a"))),
+            JointSpec::perpendicular("x", ground, u, v(1.0, 0.0, 0.0), v(0.0, 0.0, 1.0)),
+            JointSpec::parallel_axes("q", ground, u, at(p("c")) - at(p("a"))),
+        ];
+        for spec in specs {
+            code.add_joint(spec).unwrap();
+        }
+        assert_eq!(built.joints(), code.joints(), "{side:?}");
+    }
+}

@@ -231,6 +231,12 @@ pub struct AnalysisError {
 
 /// Narrowest range an analysis walks, in its own parameter's unit (m, N, N·m).
 pub const MIN_RANGE: f64 = 1e-9;
+/// The largest travel a range may reach (m).
+pub const MAX_RANGE_TRAVEL: f64 = 1e3;
+/// The largest force or torque a range may reach (N, N·m).
+pub const MAX_RANGE_LOAD: f64 = 1e8;
+/// The largest multiple of the model's own load case a range may reach.
+pub const MAX_RANGE_FRACTION: f64 = 1e6;
 
 /// Runs one analysis on the model in `file`.
 pub fn run(analysis: Analysis, file: &SuspensionFile, settings: &Settings) -> Result<AnalysisReport, AnalysisError> {
@@ -261,6 +267,23 @@ pub fn run(analysis: Analysis, file: &SuspensionFile, settings: &Settings) -> Re
                 analysis: analysis.name(),
                 message: format!(
                     "the range needs two finite ends at least {MIN_RANGE:e} apart in the {}{got}",
+                    analysis.parameter()
+                ),
+            });
+        }
+        // Far beyond what a suspension meets, the solver's numbers overflow before the linkage says
+        // anything: a travel of kilometres, a force of a thousand tonnes.
+        let most = match analysis.unit() {
+            "m" => MAX_RANGE_TRAVEL,
+            "N" | "N·m" => MAX_RANGE_LOAD,
+            _ => MAX_RANGE_FRACTION,
+        };
+        if from.abs().max(to.abs()) > most {
+            return Err(AnalysisError {
+                analysis: analysis.name(),
+                message: format!(
+                    "the range {from:e} to {to:e} reaches beyond {most:e} in the {}: no suspension meets that; \
+                     give a range in the analysis's own units",
                     analysis.parameter()
                 ),
             });
