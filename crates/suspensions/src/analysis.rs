@@ -552,7 +552,7 @@ pub fn wheel_load_sweep(
 
 /// [`wheel_load_sweep`] with [`SweepExtras`].
 pub fn wheel_load_sweep_with(
-    mut corner: Corner,
+    corner: Corner,
     load: WheelLoad,
     corner_load: f64,
     from: f64,
@@ -561,24 +561,40 @@ pub fn wheel_load_sweep_with(
     mode: Mode,
     extras: SweepExtras,
 ) -> Result<SweepOutput<LoadRow>, SolverError> {
+    let inboard = Vec3::new(0.0, -corner.wheel.side.sign(), 0.0);
+    let add = |corner: &mut Corner, patch_at_design: Vec3| -> Result<(), SolverError> {
+        match load {
+            WheelLoad::Lateral => {
+                corner.add_wheel_force("lateral force", corner.load_point_at(patch_at_design), inboard)?
+            }
+            WheelLoad::Braking => {
+                corner.add_wheel_force("braking force", corner.load_point_at(patch_at_design), -Vec3::x())?
+            }
+            WheelLoad::Traction => corner.add_wheel_force("traction force", corner.wheel.wheel_centre, Vec3::x())?,
+            WheelLoad::AligningTorque => corner.add_wheel_torque("aligning torque", Vec3::z())?,
+        };
+        Ok(())
+    };
+    loaded_sweep(corner, corner_load, LoadPath::new(from, to, steps), mode, extras, add)
+}
+
+/// The sweep of loads that `add` puts on the corner (given the contact patch as a design point of the
+/// upright, at rest without them), with `corner_load` carried: the road loads and the model's own.
+fn loaded_sweep(
+    mut corner: Corner,
+    corner_load: f64,
+    path: LoadPath,
+    mode: Mode,
+    extras: SweepExtras,
+    add: impl FnOnce(&mut Corner, Vec3) -> Result<(), SolverError>,
+) -> Result<SweepOutput<LoadRow>, SolverError> {
     require_rig(&corner, &[Rig::HeightHeld, Rig::Free])?;
     add_corner_load(&mut corner, corner_load)?;
     let (mut start, patch_local) = rest_without_swept_load(&corner)?;
-    let upright_design = corner.model.bodies()[corner.wheel.upright.0].design_pose;
-    let patch_at_design = upright_design.point(&patch_local);
-    let inboard = Vec3::new(0.0, -corner.wheel.side.sign(), 0.0);
-    match load {
-        WheelLoad::Lateral => {
-            corner.add_wheel_force("lateral force", corner.load_point_at(patch_at_design), inboard)?
-        }
-        WheelLoad::Braking => {
-            corner.add_wheel_force("braking force", corner.load_point_at(patch_at_design), -Vec3::x())?
-        }
-        WheelLoad::Traction => corner.add_wheel_force("traction force", corner.wheel.wheel_centre, Vec3::x())?,
-        WheelLoad::AligningTorque => corner.add_wheel_torque("aligning torque", Vec3::z())?,
-    };
+    let patch_at_design = corner.model.bodies()[corner.wheel.upright.0].design_pose.point(&patch_local);
+    add(&mut corner, patch_at_design)?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
-    let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, extras.through_limits)?;
+    let walked = walk(&mut solver, &mut start, path, mode, extras.through_limits)?;
     load_rows(&mut solver, &corner, walked, patch_local, extras)
 }
 
@@ -598,7 +614,7 @@ fn rest_without_swept_load(corner: &Corner) -> Result<(State, Vec3), SolverError
 /// values, in `steps` steps walked in `mode`, with `corner_load` carried at the contact patch as in
 /// [`wheel_load_sweep`]. The corner must be built with [`Rig::HeightHeld`] or [`Rig::Free`].
 pub fn model_load_sweep_with(
-    mut corner: Corner,
+    corner: Corner,
     corner_load: f64,
     from: f64,
     to: f64,
@@ -606,12 +622,7 @@ pub fn model_load_sweep_with(
     mode: Mode,
     extras: SweepExtras,
 ) -> Result<SweepOutput<LoadRow>, SolverError> {
-    require_rig(&corner, &[Rig::HeightHeld, Rig::Free])?;
-    add_corner_load(&mut corner, corner_load)?;
-    let (mut start, patch_local) = rest_without_swept_load(&corner)?;
-    let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
-    let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, extras.through_limits)?;
-    load_rows(&mut solver, &corner, walked, patch_local, extras)
+    loaded_sweep(corner, corner_load, LoadPath::new(from, to, steps), mode, extras, |_, _| Ok(()))
 }
 
 /// Adds the constant upward `corner_load` (N) at the design contact patch, named [`CORNER_LOAD`].

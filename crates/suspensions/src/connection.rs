@@ -1,6 +1,7 @@
 //! How parts meet the chassis and each other: an ideal joint or a rubber bushing, and the coil spring.
 
-use crate::general::{Axis, BushingDef, GeneralCorner, JointDef, JointType, Place, CHASSIS};
+use crate::general::{Axis, BushingDef, GeneralCorner, Place, CHASSIS};
+use elastokin_core::JointKind;
 use elastokin_elements::RotationLaw;
 use serde::{Deserialize, Serialize};
 
@@ -127,28 +128,19 @@ impl ArmMounts {
     /// joint `"{arm} {end} ball joint"` or a bushing `"{arm} {end} bushing"` along the pivot axis.
     pub(crate) fn expand(&self, arm: &str, front: &str, rear: &str, into: &mut GeneralCorner) {
         if *self == ArmMounts::from(Connection::Ideal) {
-            into.joints.push(JointDef {
-                name: format!("{arm} pivot"),
-                kind: JointType::Revolute,
-                bodies: [CHASSIS.into(), arm.into()],
-                at: Some(Place::named(front)),
-                to: None,
-                axis: Some(Axis::through(front, rear)),
-                axis_j: None,
-            });
+            let axis = Some(Axis::through(front, rear));
+            into.push_joint(&format!("{arm} pivot"), JointKind::Revolute, [CHASSIS, arm], front, axis);
             return;
         }
         for (end, point, connection) in [("front", front, self.front), ("rear", rear, self.rear)] {
             match connection {
-                Connection::Ideal => into.joints.push(JointDef {
-                    name: format!("{arm} {end} ball joint"),
-                    kind: JointType::Spherical,
-                    bodies: [CHASSIS.into(), arm.into()],
-                    at: Some(Place::named(point)),
-                    to: None,
-                    axis: None,
-                    axis_j: None,
-                }),
+                Connection::Ideal => into.push_joint(
+                    &format!("{arm} {end} ball joint"),
+                    JointKind::Spherical,
+                    [CHASSIS, arm],
+                    point,
+                    None,
+                ),
                 Connection::Bushing(rates) => into.bushings.push(BushingDef::cylindrical(
                     &format!("{arm} {end} bushing"),
                     [CHASSIS, arm],

@@ -6,10 +6,9 @@ use crate::corner::{
     check_arm_mounts, check_connection, check_hardpoints, check_spring, check_steering_arm, check_steering_axis,
     Corner, CornerParts, CornerTemplate, Rig,
 };
-use crate::general::{
-    BodyDef, BodyPoint, CornerDef, GeneralCorner, Hardpoints, JointDef, JointType, Place, SpringDef, TieRodDef, CHASSIS,
-};
+use crate::general::{GeneralCorner, Place, CHASSIS};
 use crate::hardpoint::Side;
+use elastokin_core::JointKind;
 use elastokin_core::{Model, ModelError, Vec3};
 use serde::{Deserialize, Serialize};
 
@@ -118,60 +117,24 @@ impl DoubleWishbone {
     /// The corner in the general form: the bodies `upright`, `upper arm` and `lower arm`, the joints and
     /// bushings named as in its results, the spring, and the corner description.
     pub fn expand(&self) -> GeneralCorner {
-        let h = &self.hardpoints;
-        let body = |name: &str, at: &str| BodyDef { name: name.into(), at: Place::named(at) };
-        let ball = |name: &str, arm: &str, at: &str| JointDef {
-            name: name.into(),
-            kind: JointType::Spherical,
-            bodies: [arm.into(), "upright".into()],
-            at: Some(Place::named(at)),
-            to: None,
-            axis: None,
-            axis_j: None,
-        };
-        let mut g = GeneralCorner {
-            hardpoints: Hardpoints(h.named().into_iter().map(|(n, p)| (n.to_string(), p)).collect()),
-            bodies: vec![
-                body("upright", "wheel_centre"),
-                body("upper arm", "upper_ball_joint"),
-                body("lower arm", "lower_ball_joint"),
+        let mut g = GeneralCorner::template(
+            self.hardpoints.named(),
+            vec![
+                ("upright", Place::named("wheel_centre")),
+                ("upper arm", Place::named("upper_ball_joint")),
+                ("lower arm", Place::named("lower_ball_joint")),
             ],
-            joints: Vec::new(),
-            bushings: Vec::new(),
-            springs: Vec::new(),
-            stops: Vec::new(),
-            anti_roll_bars: Vec::new(),
-            loads: Vec::new(),
-            corner: CornerDef {
-                upright: "upright".into(),
-                wheel_centre: "wheel_centre".into(),
-                spin_axis: [0.0, 1.0, 0.0],
-                loaded_radius: self.loaded_radius,
-                steering_axis: [
-                    BodyPoint { body: "upright".into(), at: Place::named("lower_ball_joint") },
-                    BodyPoint { body: "upright".into(), at: Place::named("upper_ball_joint") },
-                ],
-                tie_rod: Some(TieRodDef {
-                    inner: Place::named("tie_rod_inner"),
-                    outer: Place::named("tie_rod_outer"),
-                    connection: self.tie_rod,
-                }),
-            },
-        };
+            self.loaded_radius,
+            [("upright", "lower_ball_joint"), ("upright", "upper_ball_joint")],
+            self.tie_rod,
+            (&self.spring, [CHASSIS, "lower arm"], ["spring_chassis", "spring_arm"]),
+        );
         self.upper_arm_mounts.expand("upper arm", "upper_arm_front", "upper_arm_rear", &mut g);
         self.lower_arm_mounts.expand("lower arm", "lower_arm_front", "lower_arm_rear", &mut g);
-        g.joints.push(ball("upper ball joint", "upper arm", "upper_ball_joint"));
-        g.joints.push(ball("lower ball joint", "lower arm", "lower_ball_joint"));
-        g.springs.push(SpringDef {
-            name: "spring".into(),
-            bodies: [CHASSIS.into(), "lower arm".into()],
-            from: Place::named("spring_chassis"),
-            to: Place::named("spring_arm"),
-            rate: Some(self.spring.rate),
-            curve: None,
-            design_force: Some(self.spring.design_force),
-            free_length: None,
-        });
+        for arm in ["upper", "lower"] {
+            let (name, joint) = (format!("{arm} arm"), format!("{arm} ball joint"));
+            g.push_joint(&joint, JointKind::Spherical, [&name, "upright"], &format!("{arm}_ball_joint"), None);
+        }
         g
     }
 }

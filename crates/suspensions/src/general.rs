@@ -35,7 +35,7 @@ use crate::corner::{
 };
 use crate::hardpoint::Side;
 use elastokin_core::joint::orthonormal_complement;
-use elastokin_core::{BodyRef, ElementId, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
+use elastokin_core::{BodyRef, ElementId, JointKind, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
 use elastokin_elements::{
     Bushing, BushingSpec, Characteristic, CoilSpring, Curve, PointForce, PointTorque, RotationLaw, Stop,
 };
@@ -214,47 +214,18 @@ pub struct BodyDef {
     pub at: Place,
 }
 
-/// The kinds of joint a general model may use (the rig adds the drivers).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum JointType {
-    /// Ball joint at `at`.
-    Spherical,
-    /// Hinge at `at` about `axis`.
-    Revolute,
-    /// Slides along and turns about `axis` through `at`.
-    Cylindrical,
-    /// Slides along `axis` through `at`.
-    Translational,
-    /// Cardan joint at `at`: `axis` fixed in the first body, `axis_j` in the second, perpendicular.
-    Universal,
-    /// Welds the two bodies; reactions at `at`.
-    Fixed,
-    /// A rigid link (two ball joints) from `at` on the first body to `to` on the second.
-    Distance,
-    /// The point `at` of the first body stays on the plane of the second through `to` (default `at`)
-    /// with normal `axis`.
-    InPlane,
-    /// The point `at` of the first body stays on the line of the second through `to` (default `at`)
-    /// along `axis`.
-    InLine,
-    /// `axis` of the first body stays perpendicular to `axis_j` of the second.
-    Perpendicular,
-    /// `axis` of the first body stays parallel to the same axis of the second.
-    ParallelAxes,
-}
-
 /// A kinematic joint between two bodies (by name; `"chassis"` is the ground).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct JointDef {
     /// Name; reactions are reported under it.
     pub name: String,
-    /// Kind.
-    pub kind: JointType,
+    /// Kind (every kind of [`JointKind`] but the drivers, which are the rig's): what each takes is in
+    /// `docs/model-file.md`.
+    pub kind: JointKind,
     /// The two bodies; reactions are those on the second.
     pub bodies: [String; 2],
-    /// Hardpoint (see [`JointType`] for what each kind uses).
+    /// Hardpoint (see [`JointKind`] for what each kind uses).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub at: Option<Place>,
     /// Second point: the far end of a distance link; the second body's point of an in-plane or in-line
@@ -724,6 +695,66 @@ fn bushing_frame(x_left: Vec3, y_hint_left: Option<Vec3>, side: Side) -> Result<
 }
 
 impl GeneralCorner {
+    /// A template's corner in the general form, before its parts: its hardpoints (the wheel centre named
+    /// `wheel_centre`), its bodies as `(name, hardpoint)` (the upright, named `upright`, first), its tyre's
+    /// loaded radius, its steering axis as `(body, hardpoint)` from the lower to the upper point, its tie rod
+    /// from `tie_rod_inner` to `tie_rod_outer`, and its linear coil spring between `seats` on `bodies`.
+    pub(crate) fn template(
+        hardpoints: Vec<(&str, Vec3)>,
+        bodies: Vec<(&str, Place)>,
+        loaded_radius: f64,
+        steering_axis: [(&str, &str); 2],
+        tie_rod: Connection,
+        spring: (&crate::SpringSpec, [&str; 2], [&str; 2]),
+    ) -> GeneralCorner {
+        let (spec, spring_bodies, seats) = spring;
+        let at = |(body, at): (&str, &str)| BodyPoint { body: body.into(), at: Place::named(at) };
+        GeneralCorner {
+            hardpoints: Hardpoints(hardpoints.into_iter().map(|(n, p)| (n.to_string(), p)).collect()),
+            bodies: bodies.into_iter().map(|(name, at)| BodyDef { name: name.into(), at }).collect(),
+            joints: Vec::new(),
+            bushings: Vec::new(),
+            springs: vec![SpringDef {
+                name: "spring".into(),
+                bodies: spring_bodies.map(str::to_string),
+                from: Place::named(seats[0]),
+                to: Place::named(seats[1]),
+                rate: Some(spec.rate),
+                curve: None,
+                design_force: Some(spec.design_force),
+                free_length: None,
+            }],
+            stops: Vec::new(),
+            anti_roll_bars: Vec::new(),
+            loads: Vec::new(),
+            corner: CornerDef {
+                upright: "upright".into(),
+                wheel_centre: "wheel_centre".into(),
+                spin_axis: outward(),
+                loaded_radius,
+                steering_axis: steering_axis.map(at),
+                tie_rod: Some(TieRodDef {
+                    inner: Place::named("tie_rod_inner"),
+                    outer: Place::named("tie_rod_outer"),
+                    connection: tie_rod,
+                }),
+            },
+        }
+    }
+
+    /// Adds a joint of `kind` named `name` between `bodies` at the hardpoint `at`, about `axis`.
+    pub(crate) fn push_joint(&mut self, name: &str, kind: JointKind, bodies: [&str; 2], at: &str, axis: Option<Axis>) {
+        self.joints.push(JointDef {
+            name: name.into(),
+            kind,
+            bodies: bodies.map(str::to_string),
+            at: Some(Place::named(at)),
+            to: None,
+            axis,
+            axis_j: None,
+        });
+    }
+
     fn resolver<'a>(&'a self, side: Side, prefix: &'a str) -> Resolver<'a> {
         Resolver { general: self, side, prefix }
     }
@@ -761,7 +792,7 @@ impl GeneralCorner {
                 why: format!("'{what}' means nothing to a {} joint: remove it", kind_name(kind)),
             })
         };
-        use JointType as T;
+        use JointKind as T;
         let uses = match kind {
             T::Spherical | T::Fixed => ["at"].as_slice(),
             T::Revolute | T::Cylindrical | T::Translational => &["at", "axis"],
@@ -770,7 +801,15 @@ impl GeneralCorner {
             T::InPlane | T::InLine => &["at", "axis", "to?"],
             T::Perpendicular => &["axis", "axis_j"],
             T::ParallelAxes => &["axis"],
+            T::PointDriver | T::TravelDriver => &[],
         };
+        let driver = || ModelError::OutOfRange {
+            item: key.clone(),
+            why: "a driver is the rig's (wheel travel, rack travel), not the model's: use a joint".into(),
+        };
+        if matches!(kind, T::PointDriver | T::TravelDriver) {
+            return Err(driver());
+        }
         for (what, given) in [("at", j.at.is_some()), ("to", j.to.is_some()), ("axis", j.axis.is_some())]
             .into_iter()
             .chain([("axis_j", j.axis_j.is_some())])
@@ -788,22 +827,28 @@ impl GeneralCorner {
         let name = part_name(r.prefix, &j.name);
         let p = at.unwrap_or_else(Vec3::zeros);
         let spec = match kind {
-            T::Spherical => JointSpec::spherical(&name, bi, bj, p),
-            T::Revolute => JointSpec::revolute(&name, bi, bj, p, axis.unwrap_or_default()),
-            T::Cylindrical => JointSpec::cylindrical(&name, bi, bj, p, axis.unwrap_or_default()),
-            T::Translational => JointSpec::translational(&name, bi, bj, p, axis.unwrap_or_default()),
+            T::Spherical => Some(JointSpec::spherical(&name, bi, bj, p)),
+            T::Revolute => Some(JointSpec::revolute(&name, bi, bj, p, axis.unwrap_or_default())),
+            T::Cylindrical => Some(JointSpec::cylindrical(&name, bi, bj, p, axis.unwrap_or_default())),
+            T::Translational => Some(JointSpec::translational(&name, bi, bj, p, axis.unwrap_or_default())),
             T::Universal => {
-                JointSpec::universal(&name, bi, bj, p, axis.unwrap_or_default(), axis_j.unwrap_or_default())
+                Some(JointSpec::universal(&name, bi, bj, p, axis.unwrap_or_default(), axis_j.unwrap_or_default()))
             }
-            T::Fixed => JointSpec::fixed(&name, bi, bj, p),
-            T::Distance => JointSpec::distance(&name, bi, bj, p, to.unwrap_or_default()),
-            T::InPlane => JointSpec { point_j: to, ..JointSpec::in_plane(&name, bi, bj, p, axis.unwrap_or_default()) },
-            T::InLine => JointSpec { point_j: to, ..JointSpec::in_line(&name, bi, bj, p, axis.unwrap_or_default()) },
+            T::Fixed => Some(JointSpec::fixed(&name, bi, bj, p)),
+            T::Distance => Some(JointSpec::distance(&name, bi, bj, p, to.unwrap_or_default())),
+            T::InPlane => {
+                Some(JointSpec { point_j: to, ..JointSpec::in_plane(&name, bi, bj, p, axis.unwrap_or_default()) })
+            }
+            T::InLine => {
+                Some(JointSpec { point_j: to, ..JointSpec::in_line(&name, bi, bj, p, axis.unwrap_or_default()) })
+            }
             T::Perpendicular => {
-                JointSpec::perpendicular(&name, bi, bj, axis.unwrap_or_default(), axis_j.unwrap_or_default())
+                Some(JointSpec::perpendicular(&name, bi, bj, axis.unwrap_or_default(), axis_j.unwrap_or_default()))
             }
-            T::ParallelAxes => JointSpec::parallel_axes(&name, bi, bj, axis.unwrap_or_default()),
+            T::ParallelAxes => Some(JointSpec::parallel_axes(&name, bi, bj, axis.unwrap_or_default())),
+            T::PointDriver | T::TravelDriver => None,
         };
+        let Some(spec) = spec else { return Err(driver()) };
         model.add_joint(spec)?;
         Ok(())
     }
@@ -933,7 +978,7 @@ impl GeneralCorner {
     }
 }
 
-fn kind_name(kind: JointType) -> String {
+fn kind_name(kind: JointKind) -> String {
     serde_json::to_value(kind).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default()
 }
 

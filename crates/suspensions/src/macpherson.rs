@@ -6,11 +6,9 @@ use crate::corner::{
     check_arm_mounts, check_connection, check_hardpoints, check_spring, check_steering_arm, check_steering_axis,
     Corner, CornerParts, CornerTemplate, Rig,
 };
-use crate::general::{
-    Axis, BodyDef, BodyPoint, BushingDef, CornerDef, GeneralCorner, Hardpoints, JointDef, JointType, Place, SpringDef,
-    TieRodDef, CHASSIS,
-};
+use crate::general::{Axis, BushingDef, GeneralCorner, Place, CHASSIS};
 use crate::hardpoint::Side;
+use elastokin_core::JointKind;
 use elastokin_core::{Model, ModelError, Vec3};
 use serde::{Deserialize, Serialize};
 
@@ -125,63 +123,29 @@ impl MacPherson {
     /// and bushings named as in its results, the spring, and the corner description.
     pub fn expand(&self) -> GeneralCorner {
         let h = &self.hardpoints;
-        let named = |n: &str| Some(Place::named(n));
-        let body = |name: &str, at: Place| BodyDef { name: name.into(), at };
-        let joint = |name: &str, kind, bodies: [&str; 2], at: &str, axis: Option<Axis>| JointDef {
-            name: name.into(),
-            kind,
-            bodies: bodies.map(str::to_string),
-            at: named(at),
-            to: None,
-            axis,
-            axis_j: None,
-        };
-        let mut g = GeneralCorner {
-            hardpoints: Hardpoints(h.named().into_iter().map(|(n, p)| (n.to_string(), p)).collect()),
-            bodies: vec![
-                body("upright", Place::named("wheel_centre")),
-                body("strut rod", Place::At((h.strut_lower + h.top_mount) / 2.0)),
-                body("lower arm", Place::named("lower_ball_joint")),
+        let mut g = GeneralCorner::template(
+            h.named(),
+            vec![
+                ("upright", Place::named("wheel_centre")),
+                ("strut rod", Place::At((h.strut_lower + h.top_mount) / 2.0)),
+                ("lower arm", Place::named("lower_ball_joint")),
             ],
-            joints: Vec::new(),
-            bushings: Vec::new(),
-            springs: Vec::new(),
-            stops: Vec::new(),
-            anti_roll_bars: Vec::new(),
-            loads: Vec::new(),
-            corner: CornerDef {
-                upright: "upright".into(),
-                wheel_centre: "wheel_centre".into(),
-                spin_axis: [0.0, 1.0, 0.0],
-                loaded_radius: self.loaded_radius,
-                steering_axis: [
-                    BodyPoint { body: "upright".into(), at: Place::named("lower_ball_joint") },
-                    BodyPoint { body: "strut rod".into(), at: Place::named("top_mount") },
-                ],
-                tie_rod: Some(TieRodDef {
-                    inner: Place::named("tie_rod_inner"),
-                    outer: Place::named("tie_rod_outer"),
-                    connection: self.tie_rod,
-                }),
-            },
-        };
+            self.loaded_radius,
+            [("upright", "lower_ball_joint"), ("strut rod", "top_mount")],
+            self.tie_rod,
+            (&self.spring, [CHASSIS, "upright"], ["top_mount", "strut_lower"]),
+        );
         self.lower_arm_mounts.expand("lower arm", "lower_arm_front", "lower_arm_rear", &mut g);
-        g.joints.push(joint(
-            "lower ball joint",
-            JointType::Spherical,
-            ["lower arm", "upright"],
-            "lower_ball_joint",
-            None,
-        ));
+        g.push_joint("lower ball joint", JointKind::Spherical, ["lower arm", "upright"], "lower_ball_joint", None);
         let strut_axis = Axis::through("strut_lower", "top_mount");
         let strut = match self.strut {
-            StrutJoint::Translational => JointType::Translational,
-            StrutJoint::Cylindrical => JointType::Cylindrical,
+            StrutJoint::Translational => JointKind::Translational,
+            StrutJoint::Cylindrical => JointKind::Cylindrical,
         };
-        g.joints.push(joint("strut", strut, ["upright", "strut rod"], "strut_lower", Some(strut_axis.clone())));
+        g.push_joint("strut", strut, ["upright", "strut rod"], "strut_lower", Some(strut_axis.clone()));
         match self.top_mount {
             Connection::Ideal => {
-                g.joints.push(joint("top mount", JointType::Spherical, [CHASSIS, "strut rod"], "top_mount", None))
+                g.push_joint("top mount", JointKind::Spherical, [CHASSIS, "strut rod"], "top_mount", None)
             }
             Connection::Bushing(r) => g.bushings.push(BushingDef::cylindrical(
                 "top mount",
@@ -191,16 +155,6 @@ impl MacPherson {
                 &r,
             )),
         }
-        g.springs.push(SpringDef {
-            name: "spring".into(),
-            bodies: [CHASSIS.into(), "upright".into()],
-            from: Place::named("top_mount"),
-            to: Place::named("strut_lower"),
-            rate: Some(self.spring.rate),
-            curve: None,
-            design_force: Some(self.spring.design_force),
-            free_length: None,
-        });
         g
     }
 }

@@ -271,7 +271,8 @@ fn wheel_load_and_wheel_rate_match_virtual_work() {
 /// force, not the driven linkage's positions).
 #[test]
 fn the_general_axle_example_matches_the_loop_closure() {
-    use elastokin_suspensions::general::{Axis, JointDef, JointType, Place};
+    use elastokin_core::JointKind;
+    use elastokin_suspensions::general::{Axis, JointDef, Place};
     use elastokin_suspensions::{SuspensionFile, Template};
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/double_wishbone_axle.json");
     let mut file = SuspensionFile::read(&path).unwrap();
@@ -282,7 +283,7 @@ fn the_general_axle_example_matches_the_loop_closure() {
         let (front, rear) = (format!("{arm}_arm_front"), format!("{arm}_arm_rear"));
         g.joints.push(JointDef {
             name: format!("{arm} arm pivot"),
-            kind: JointType::Revolute,
+            kind: JointKind::Revolute,
             bodies: ["chassis".into(), format!("{arm} arm")],
             at: Some(Place::named(&front)),
             to: None,

@@ -411,7 +411,7 @@ fn the_right_corner_mirrors_the_left_with_preloaded_six_rate_bushings() {
         .push(elastokin_suspensions::general::BodyDef { name: "toe link".into(), at: Place::named("toe_link_inner") });
     g.joints.push(elastokin_suspensions::general::JointDef {
         name: "toe link outer".into(),
-        kind: elastokin_suspensions::general::JointType::Spherical,
+        kind: elastokin_core::JointKind::Spherical,
         bodies: ["toe link".into(), "wheel carrier".into()],
         at: Some(Place::named("toe_link_outer")),
         to: None,
