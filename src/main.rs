@@ -13,6 +13,7 @@
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use elastokin::solver::{Mode, SolverOptions, StaticSolver};
+use elastokin::suspensions::chrono::Imported;
 use elastokin::suspensions::{Rig, Side, SuspensionFile};
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -70,6 +71,28 @@ pub enum Command {
     /// description): a template expanded, ready to edit into any other suspension
     #[command(after_help = EXIT_STATUS)]
     Expand(CheckArgs),
+    /// Read another tool's suspension file and print it as an elastokin model file (the general form);
+    /// what was read, taken or left out goes to standard error, a line each
+    #[command(after_help = EXIT_STATUS)]
+    Import(ImportArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct ImportArgs {
+    /// The format: `chrono`, a Project Chrono vehicle suspension file (data/vehicle/*/suspension/*.json)
+    #[arg(value_enum)]
+    pub format: ImportFormat,
+    /// The file
+    pub file: PathBuf,
+    /// The loaded tyre radius, m (a Chrono suspension file has no tyre; default 0.3)
+    #[arg(long, value_name = "M")]
+    pub loaded_radius: Option<f64>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ImportFormat {
+    /// Project Chrono (projectchrono/chrono) suspension JSON
+    Chrono,
 }
 
 #[derive(Debug, Args)]
@@ -267,12 +290,39 @@ fn read_input(path: &Path, what: &str) -> Result<(Vec<u8>, String), Failure> {
     Ok((bytes, text))
 }
 
-/// The model file: its bytes (for the provenance hash) and the model parsed from the same bytes.
-fn read_model(path: &Path) -> Result<(Vec<u8>, SuspensionFile), Failure> {
+/// A model read from a file: its bytes (for the provenance hash), the model parsed from them and, for
+/// another tool's file, how it was read.
+struct ModelInput {
+    bytes: Vec<u8>,
+    file: SuspensionFile,
+    imported: Option<Imported>,
+}
+
+impl ModelInput {
+    /// The line that says which format the file was read as (another tool's only), with the count of notes.
+    fn format_line(&self) -> Option<String> {
+        self.imported.as_ref().map(|i| {
+            format!(
+                "read as a Project Chrono {} suspension ({} notes: `elastokin import chrono FILE` lists them)",
+                i.template,
+                i.notes.len()
+            )
+        })
+    }
+}
+
+/// The model file: an elastokin model file, or a Project Chrono suspension file (recognised by its
+/// `"Type": "Suspension"` and `"Template"`).
+fn read_model(path: &Path) -> Result<ModelInput, Failure> {
     let (bytes, text) = read_input(path, "MODEL")?;
-    let file =
-        SuspensionFile::from_json(&text, &path.display().to_string()).map_err(|e| Failure::Input(e.to_string()))?;
-    Ok((bytes, file))
+    let origin = path.display().to_string();
+    if elastokin::suspensions::chrono::is_chrono(&text) {
+        let imported = elastokin::suspensions::chrono::import(&text, &origin, None)
+            .map_err(|e| Failure::Input(format!("{e} (read as a Project Chrono suspension file)")))?;
+        return Ok(ModelInput { bytes, file: imported.file.clone(), imported: Some(imported) });
+    }
+    let file = SuspensionFile::from_json(&text, &origin).map_err(|e| Failure::Input(e.to_string()))?;
+    Ok(ModelInput { bytes, file, imported: None })
 }
 
 fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Failure> {
@@ -304,7 +354,11 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
         through_limits: args.through_limits,
         arc_step: args.arc_step,
     };
-    let (bytes, file) = read_model(&args.model)?;
+    let read = read_model(&args.model)?;
+    if let (Some(line), false) = (read.format_line(), quiet) {
+        out.line(line)?;
+    }
+    let ModelInput { bytes, file, .. } = read;
     if strict {
         // Refuse an implausible model before spending any time on it.
         if let Ok(check) = elastokin::suspensions::check_model(&file) {
@@ -403,9 +457,29 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
     out.line(format!("wrote {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))
 }
 
+/// `import`: another tool's file as an elastokin model file on standard output, the notes on standard error.
+fn import(args: ImportArgs, out: &Stdout) -> Result<(), Failure> {
+    let ImportFormat::Chrono = args.format;
+    let (_, text) = read_input(&args.file, "FILE")?;
+    let origin = args.file.display().to_string();
+    if !elastokin::suspensions::chrono::is_chrono(&text) {
+        return Err(Failure::Input(format!(
+            "{origin}: not a Project Chrono suspension file (a JSON object with \"Type\": \"Suspension\" and a \"Template\")"
+        )));
+    }
+    let imported = elastokin::suspensions::chrono::import(&text, &origin, args.loaded_radius)
+        .map_err(|e| Failure::Input(e.to_string()))?;
+    note(format!("read as a Project Chrono {} suspension", imported.template));
+    for n in &imported.notes {
+        note(format!("note: {n}"));
+    }
+    out.line(imported.file.to_json())?;
+    Ok(())
+}
+
 /// `expand`: the model file with its suspension in the general form, which builds the same model.
 fn expand(args: CheckArgs, out: &Stdout) -> Result<(), Failure> {
-    let (_, file) = read_model(&args.model)?;
+    let file = read_model(&args.model)?.file;
     let general = SuspensionFile {
         suspension: elastokin::suspensions::Template::General(Box::new(file.suspension.expand())),
         ..file
@@ -416,7 +490,14 @@ fn expand(args: CheckArgs, out: &Stdout) -> Result<(), Failure> {
 
 fn check(args: CheckArgs, out: &Stdout) -> Result<(), Failure> {
     let model = args.model.display();
-    let (_, file) = read_model(&args.model)?;
+    let read = read_model(&args.model)?;
+    if let Some(line) = read.format_line() {
+        out.line(line)?;
+        for n in read.imported.iter().flat_map(|i| &i.notes) {
+            out.line(format!("note: {n}"))?;
+        }
+    }
+    let file = read.file;
     let input = |e: &dyn std::fmt::Display| Failure::Input(format!("{model}: {e}"));
     let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| input(&e))?;
     let m = &corner.model;
@@ -518,6 +599,7 @@ fn main() -> ExitCode {
         Command::Check(args) => check(args, &out),
         Command::Batch(args) => run_batch(args, &out, cli.quiet),
         Command::Expand(args) => expand(args, &out),
+        Command::Import(args) => import(args, &out),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -455,6 +455,10 @@ pub struct SpringDef {
     /// Free length, m (give this or `design_force`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub free_length: Option<f64>,
+    /// A constant push added to the rate's or the curve's, N (with `free_length`; with `design_force` the
+    /// push at design already says it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub preload: Option<f64>,
 }
 
 /// Bump or rebound.
@@ -723,6 +727,7 @@ impl GeneralCorner {
                 curve: None,
                 design_force: Some(spec.design_force),
                 free_length: None,
+                preload: None,
             }],
             stops: Vec::new(),
             anti_roll_bars: Vec::new(),
@@ -892,6 +897,9 @@ impl GeneralCorner {
         let (from, to) = (r.point(&format!("{key}.from"), &s.from)?, r.point(&format!("{key}.to"), &s.to)?);
         let name = part_name(r.prefix, &s.name);
         let refuse = |why: &str| Err(ModelError::OutOfRange { item: key.clone(), why: why.to_string() });
+        if s.preload.is_some() && s.design_force.is_some() {
+            return refuse("give a preload with free_length only: with design_force the push at design includes it");
+        }
         let spring = match (s.rate, &s.curve, s.design_force, s.free_length) {
             (Some(_), Some(_), _, _) | (None, None, _, _) => {
                 return refuse("give either rate (N/m) or curve (push force in N against compression in m)")
@@ -916,6 +924,10 @@ impl GeneralCorner {
                 let curve = Curve::new(&format!("{key}.curve"), points.clone())?;
                 CoilSpring::with_curve(&name, bi, from, bj, to, curve, free)?
             }
+        };
+        let spring = match s.preload {
+            Some(preload) => spring.with_preload(preload)?,
+            None => spring,
         };
         model.add_element(spring)?;
         Ok(())

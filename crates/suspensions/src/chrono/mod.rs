@@ -1,0 +1,657 @@
+//! Project Chrono's vehicle suspension files, read into the general model.
+//!
+//! Project Chrono (BSD-3-Clause, `projectchrono/chrono`) describes each suspension subsystem of its wheeled
+//! vehicles in a JSON file under `data/vehicle/*/suspension/`: a `"Template"` (the subsystem's class) and
+//! its hardpoints, bodies, joints and spring-damper elements, for the left side. [`import`] reads one into
+//! a [`SuspensionFile`] in the general form, so every analysis runs on it, and lists what it read and what
+//! it left out ([`Imported::notes`]).
+//!
+//! # Conventions
+//! - Chrono's suspension frame is the vehicle's: x forward, y left, z up (ISO 8855), metres; the points are
+//!   the left side's and Chrono mirrors them for the right (y → −y), as the general model does.
+//! - The spindle's `COM` is the wheel centre; the spindle turns on the upright, so for statics the two are
+//!   one body, the upright.
+//! - `Camber Angle (deg)` γ and `Toe Angle (deg)` τ turn the left spindle by `Rz(−τ) Rx(−γ)`: its
+//!   outward spin axis is `(cos γ sin τ, cos γ cos τ, −sin γ)`, whose camber (top out +) is γ and toe (in +)
+//!   is τ.
+//! - A spring or shock (`ChLinkTSDA`) pushes its two points apart with `P − k (L − L₀)` or
+//!   `P − f(L − L₀)` for a `Spring Curve Data` table `f` of extension against force: a coil spring of
+//!   rate `k` (or the curve of push against compression `c = L₀ − L`, points `(−x, −f)`), free length `L₀`
+//!   and preload `P`. Chrono interpolates the table linearly; elastokin passes a monotone cubic through the
+//!   same points (the same at the points, smoother between). `Minimum Length` and `Maximum Length` add a
+//!   bump and a rebound stop touching at those lengths, with Chrono's built-in curve (from an ADAMS/Car
+//!   example: 200 N at 2 mm to 125 kN at 60 mm).
+//! - A joint with `Bushing Data` is, in Chrono, a six-way bushing in the joint's frame (z along its axis):
+//!   `Stiffness Linear` along the three axes, `Stiffness Rotational` about the axes the joint holds and the
+//!   `DOF` rates about the ones it leaves free, the moment `M = Kθ` (`ChLoadBodyBodyBushingGeneric`). It
+//!   is read as that bushing: the same frame, the six rates, [`RotationLaw::Linear`]. A zero rate (Chrono
+//!   files give 0 for the free directions) is taken as the least rate the engine accepts
+//!   ([`ROTATIONAL_RATE_RANGE`]`.0`, 10⁻³ N·m/rad), said in the notes.
+//! - Masses, inertias, radii and widths are read and left out (statics); shocks and dampers too (no
+//!   velocity); each is listed in the notes. A key the importer does not know is a note too: nothing is
+//!   dropped unsaid.
+//! - Chrono's suspension files give no tyre: the loaded radius is [`crate::corner::default_loaded_radius`]
+//!   unless the caller gives one.
+
+mod double_wishbone;
+mod macpherson;
+
+use crate::corner::{ROTATIONAL_RATE_RANGE, TRANSLATIONAL_RATE_RANGE};
+use crate::general::{
+    Axis, BodyDef, BodyPoint, BushingDef, CornerDef, GeneralCorner, Hardpoints, JointDef, Place, SpringDef, StopDef,
+    StopType, TieRodDef, CHASSIS,
+};
+use crate::model_file::{FileError, SuspensionFile, Template};
+use crate::Connection;
+use elastokin_core::{JointKind, Vec3};
+use elastokin_elements::RotationLaw;
+use serde_json::Value;
+use std::cell::RefCell;
+use std::collections::BTreeSet;
+
+/// A Chrono suspension read into the general form.
+#[derive(Debug, Clone)]
+pub struct Imported {
+    /// The model file.
+    pub file: SuspensionFile,
+    /// Chrono's template name (`DoubleWishbone`, …).
+    pub template: String,
+    /// What was read and left out, and how values were taken, one line each.
+    pub notes: Vec<String>,
+}
+
+/// The Chrono templates [`import`] reads.
+pub const SUPPORTED: [&str; 3] = ["DoubleWishbone", "DoubleWishboneReduced", "MacPhersonStrut"];
+
+/// Whether `text` is a Chrono suspension file: a JSON object (with `//` comments allowed) whose `"Type"` is
+/// `"Suspension"` and which names a `"Template"`.
+pub fn is_chrono(text: &str) -> bool {
+    serde_json::from_str::<Value>(&without_comments(text))
+        .is_ok_and(|v| v.get("Type").and_then(Value::as_str) == Some("Suspension") && v.get("Template").is_some())
+}
+
+/// Reads a Chrono suspension file; `origin` names it in errors, `loaded_radius` (m) is the tyre's (Chrono's
+/// suspension files have none).
+pub fn import(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Imported, FileError> {
+    let invalid = |message: String| FileError::Invalid { origin: origin.to_string(), line: 1, column: 1, message };
+    let clean = without_comments(text.strip_prefix('\u{feff}').unwrap_or(text));
+    let value: Value = serde_json::from_str(&clean).map_err(|e| FileError::Invalid {
+        origin: origin.to_string(),
+        line: e.line(),
+        column: e.column(),
+        message: e.to_string().split(" at line ").next().unwrap_or_default().to_string(),
+    })?;
+    let doc = Doc::new(&value);
+    let template = doc.str("Template").map_err(invalid)?;
+    let name = doc.optional_str("Name").unwrap_or_else(|| template.clone());
+    doc.expect("Type");
+    let mut b = Builder::new(&doc, loaded_radius);
+    let built = match template.as_str() {
+        "DoubleWishbone" => double_wishbone::read(&doc, &mut b, false),
+        "DoubleWishboneReduced" => double_wishbone::read(&doc, &mut b, true),
+        "MacPhersonStrut" => macpherson::read(&doc, &mut b),
+        other => Err(refused(other)),
+    };
+    built.map_err(invalid)?;
+    let notes = b.finish(&doc);
+    let file = SuspensionFile {
+        name: format!("{name} (Project Chrono {template})"),
+        suspension: Template::General(Box::new(b.general)),
+        vehicle: None,
+    };
+    // The general model's own checks, by the same builder as every model.
+    let text = file.to_json();
+    let file = SuspensionFile::from_json(&text, origin)?;
+    Ok(Imported { file, template, notes })
+}
+
+/// Why a Chrono template is not read.
+fn refused(template: &str) -> String {
+    let why = match template {
+        "LeafspringAxle" | "SAELeafspringAxle" | "ToeBarLeafspringAxle" | "SAEToeBarLeafspringAxle" => {
+            "a leaf spring is a beam, not joints and springs: elastokin does not model it"
+        }
+        "SolidAxle"
+        | "SolidThreeLinkAxle"
+        | "SolidBellcrankThreeLinkAxle"
+        | "DeDionAxle"
+        | "ToeBarDeDionAxle"
+        | "PushPipeAxle"
+        | "ToeBarPushPipeAxle"
+        | "RigidPanhardAxle"
+        | "ToeBarRigidPanhardAxle"
+        | "RigidPinnedAxle"
+        | "HendricksonPRIMAXX" => {
+            "an axle joins both wheels in one body; the general model describes one corner and its mirror image"
+        }
+        "RigidSuspension" => "it has no suspension motion to analyse",
+        _ => "not a template this importer reads",
+    };
+    format!("Project Chrono template '{template}': {why}; it reads {}", SUPPORTED.join(", "))
+}
+
+/// `text` without `//` and `/* */` comments outside strings (Chrono's files carry them; JSON does not).
+pub fn without_comments(text: &str) -> String {
+    let (mut out, mut chars) = (String::with_capacity(text.len()), text.chars().peekable());
+    let mut in_string = false;
+    while let Some(c) = chars.next() {
+        if in_string {
+            out.push(c);
+            match c {
+                '\\' => out.extend(chars.next()),
+                '"' => in_string = false,
+                _ => {}
+            }
+            continue;
+        }
+        match (c, chars.peek()) {
+            ('"', _) => {
+                in_string = true;
+                out.push(c);
+            }
+            ('/', Some('/')) => {
+                // Keep the line break, so that line numbers in errors stay right.
+                for d in chars.by_ref() {
+                    if d == '\n' {
+                        out.push('\n');
+                        break;
+                    }
+                }
+            }
+            ('/', Some('*')) => {
+                chars.next();
+                let mut last = ' ';
+                for d in chars.by_ref() {
+                    if d == '\n' {
+                        out.push('\n');
+                    }
+                    if last == '*' && d == '/' {
+                        break;
+                    }
+                    last = d;
+                }
+            }
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
+/// A Chrono document, with the keys read so far (every other key is reported).
+pub(crate) struct Doc<'a> {
+    root: &'a Value,
+    read: RefCell<BTreeSet<String>>,
+}
+
+/// What a key is for, when it is read only to be left out.
+const FOR_DYNAMICS: &str = "mass, inertia and sizes: read and left out (statics)";
+
+impl<'a> Doc<'a> {
+    fn new(root: &'a Value) -> Self {
+        Doc { root, read: RefCell::new(BTreeSet::new()) }
+    }
+
+    fn at(&self, path: &str) -> Option<&'a Value> {
+        path.split('/').try_fold(self.root, |v, key| v.get(key))
+    }
+
+    /// Marks `path` (keys joined by `/`) as read.
+    pub(crate) fn expect(&self, path: &str) {
+        self.read.borrow_mut().insert(path.to_string());
+    }
+
+    pub(crate) fn has(&self, path: &str) -> bool {
+        self.at(path).is_some()
+    }
+
+    fn str(&self, path: &str) -> Result<String, String> {
+        self.expect(path);
+        self.at(path)
+            .and_then(Value::as_str)
+            .map(str::to_string)
+            .ok_or_else(|| format!("\"{path}\" is missing: a Chrono suspension file names its template"))
+    }
+
+    fn optional_str(&self, path: &str) -> Option<String> {
+        self.expect(path);
+        self.at(path).and_then(Value::as_str).map(str::to_string)
+    }
+
+    /// A number at `path`.
+    pub(crate) fn number(&self, path: &str) -> Result<f64, String> {
+        self.expect(path);
+        match self.at(path) {
+            Some(v) => {
+                v.as_f64().ok_or_else(|| format!("\"{}\" must be a number, got {v}", path.replace('/', "\" / \"")))
+            }
+            None => Err(format!("\"{}\" is missing", path.replace('/', "\" / \""))),
+        }
+    }
+
+    /// A number at `path`, when given.
+    pub(crate) fn optional_number(&self, path: &str) -> Result<Option<f64>, String> {
+        if self.has(path) {
+            self.number(path).map(Some)
+        } else {
+            Ok(None)
+        }
+    }
+
+    /// A point `[x, y, z]` at `path`.
+    pub(crate) fn point(&self, path: &str) -> Result<Vec3, String> {
+        self.expect(path);
+        let v = self.at(path).ok_or_else(|| format!("\"{}\" is missing", path.replace('/', "\" / \"")))?;
+        match v.as_array().map(|a| a.iter().map(Value::as_f64).collect::<Option<Vec<f64>>>()) {
+            Some(Some(c)) if c.len() == 3 => Ok(Vec3::new(c[0], c[1], c[2])),
+            _ => Err(format!("\"{}\" must be a point [x, y, z] in metres, got {v}", path.replace('/', "\" / \""))),
+        }
+    }
+
+    /// A table `[[x, y], …]` at `path`.
+    pub(crate) fn table(&self, path: &str) -> Result<Vec<[f64; 2]>, String> {
+        self.expect(path);
+        let v = self.at(path).ok_or_else(|| format!("\"{path}\" is missing"))?;
+        let rows = v.as_array().ok_or_else(|| format!("\"{path}\" must be a table [[x, y], …]"))?;
+        rows.iter()
+            .map(|r| match r.as_array().map(|a| a.iter().map(Value::as_f64).collect::<Option<Vec<f64>>>()) {
+                Some(Some(p)) if p.len() == 2 => Ok([p[0], p[1]]),
+                _ => Err(format!("\"{path}\": every row is [x, y], got {r}")),
+            })
+            .collect()
+    }
+
+    /// Marks the keys under `object` that carry only dynamics as read, with their reason.
+    pub(crate) fn dynamics(&self, object: &str, keys: &[&str], notes: &mut Vec<String>) {
+        let given: Vec<&str> = keys.iter().copied().filter(|k| self.has(&format!("{object}/{k}"))).collect();
+        for k in &given {
+            self.expect(&format!("{object}/{k}"));
+        }
+        if !given.is_empty() {
+            notes.push(format!("{object}: {} — {FOR_DYNAMICS}", given.join(", ")));
+        }
+    }
+
+    /// Every key of the document that was not read, as `a / b / c`.
+    fn unread(&self) -> Vec<String> {
+        fn walk(v: &Value, path: String, read: &BTreeSet<String>, out: &mut Vec<String>) {
+            if read.contains(&path) {
+                return;
+            }
+            match v.as_object() {
+                Some(map) if !map.is_empty() => {
+                    for (k, child) in map {
+                        let p = if path.is_empty() { k.clone() } else { format!("{path}/{k}") };
+                        walk(child, p, read, out);
+                    }
+                }
+                _ => out.push(path),
+            }
+        }
+        let mut out = Vec::new();
+        walk(self.root, String::new(), &self.read.borrow(), &mut out);
+        out.into_iter().map(|p| p.replace('/', " / ")).collect()
+    }
+}
+
+/// The general model being written, and what was noted on the way.
+pub(crate) struct Builder {
+    pub(crate) general: GeneralCorner,
+    pub(crate) notes: Vec<String>,
+}
+
+impl Builder {
+    fn new(doc: &Doc, loaded_radius: Option<f64>) -> Self {
+        let mut notes = Vec::new();
+        if loaded_radius.is_none() {
+            notes.push(format!(
+                "loaded tyre radius: not in a Chrono suspension file; {} m taken (edit corner.loaded_radius)",
+                crate::corner::default_loaded_radius()
+            ));
+        }
+        doc.expect("Name");
+        let general = GeneralCorner {
+            hardpoints: Hardpoints::default(),
+            bodies: Vec::new(),
+            joints: Vec::new(),
+            bushings: Vec::new(),
+            springs: Vec::new(),
+            stops: Vec::new(),
+            anti_roll_bars: Vec::new(),
+            loads: Vec::new(),
+            corner: CornerDef {
+                upright: "upright".into(),
+                wheel_centre: "wheel_centre".into(),
+                spin_axis: [0.0, 1.0, 0.0],
+                loaded_radius: loaded_radius.unwrap_or_else(crate::corner::default_loaded_radius),
+                steering_axis: [
+                    BodyPoint { body: "upright".into(), at: Place::named("wheel_centre") },
+                    BodyPoint { body: "upright".into(), at: Place::named("wheel_centre") },
+                ],
+                tie_rod: None,
+            },
+        };
+        Builder { general, notes }
+    }
+
+    /// Adds the hardpoint `name` at the point read from `path`; returns its name.
+    pub(crate) fn hardpoint(&mut self, doc: &Doc, name: &str, path: &str) -> Result<String, String> {
+        let p = doc.point(path)?;
+        self.general.hardpoints.0.push((name.to_string(), p));
+        Ok(name.to_string())
+    }
+
+    /// The wheel: the spindle's centre, camber and toe, and the upright that carries it.
+    pub(crate) fn wheel(&mut self, doc: &Doc) -> Result<(), String> {
+        self.hardpoint(doc, "wheel_centre", "Spindle/COM")?;
+        self.general.bodies.push(BodyDef { name: "upright".into(), at: Place::named("wheel_centre") });
+        doc.dynamics("Spindle", &["Mass", "Inertia", "Radius", "Width"], &mut self.notes);
+        doc.dynamics(
+            "Upright",
+            &["Mass", "COM", "Inertia", "Moments of Inertia", "Products of Inertia", "Radius"],
+            &mut self.notes,
+        );
+        doc.dynamics("Axle", &["Inertia"], &mut self.notes);
+        doc.expect("Vehicle-Frame Inertia");
+        let camber = doc.optional_number("Camber Angle (deg)")?.unwrap_or(0.0).to_radians();
+        let toe = doc.optional_number("Toe Angle (deg)")?.unwrap_or(0.0).to_radians();
+        self.general.corner.spin_axis = [camber.cos() * toe.sin(), camber.cos() * toe.cos(), -camber.sin()];
+        Ok(())
+    }
+
+    /// Adds a body at the hardpoint `at`.
+    pub(crate) fn body(&mut self, name: &str, at: &str) {
+        self.general.bodies.push(BodyDef { name: name.into(), at: Place::named(at) });
+    }
+
+    /// The steering axis from `lower` on `lower_body` to `upper` on `upper_body`.
+    pub(crate) fn steering_axis(&mut self, lower: (&str, &str), upper: (&str, &str)) {
+        let at = |(body, point): (&str, &str)| BodyPoint { body: body.into(), at: Place::named(point) };
+        self.general.corner.steering_axis = [at(lower), at(upper)];
+    }
+
+    /// A joint of `kind` at `at` (hardpoint name or coordinates), or — when `bushing` holds Chrono's
+    /// `Bushing Data` — the bushing Chrono puts there instead. `frame` is Chrono's joint frame as `(u, w)`:
+    /// w its axis, u its x axis (v = w × u).
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn joint(
+        &mut self,
+        doc: &Doc,
+        name: &str,
+        kind: JointKind,
+        bodies: [&str; 2],
+        at: Place,
+        frame: Option<(Vec3, Vec3)>,
+        bushing: Option<&str>,
+    ) -> Result<(), String> {
+        let data = bushing.filter(|path| doc.has(path));
+        let Some(path) = data else {
+            // Chrono's universal joint crosses the frame's u (on the first body) and v (on the second).
+            let (axis, axis_j) = match (kind, frame) {
+                (JointKind::Revolute | JointKind::Cylindrical, Some((_, w))) => (Some(Axis::Vector(w)), None),
+                (JointKind::Universal, Some((u, w))) => (Some(Axis::Vector(u)), Some(Axis::Vector(w.cross(&u)))),
+                _ => (None, None),
+            };
+            self.general.joints.push(JointDef {
+                name: name.into(),
+                kind,
+                bodies: bodies.map(str::to_string),
+                at: Some(at),
+                to: None,
+                axis,
+                axis_j,
+            });
+            return Ok(());
+        };
+        // Chrono's K: translations all K_lin; rotations K_rot about the axes the joint holds, the DOF rate
+        // about the ones it frees. The frame here: x = w (the axis), y = u, z = v.
+        let k_lin = doc.number(&format!("{path}/Stiffness Linear"))?;
+        let k_rot = doc.number(&format!("{path}/Stiffness Rotational"))?;
+        let (k_lin_dof, k_rot_dof) = if doc.has(&format!("{path}/DOF")) {
+            (
+                doc.number(&format!("{path}/DOF/Stiffness Linear"))?,
+                doc.number(&format!("{path}/DOF/Stiffness Rotational"))?,
+            )
+        } else {
+            (0.0, 0.0)
+        };
+        for damping in ["Damping Linear", "Damping Rotational", "DOF/Damping Linear", "DOF/Damping Rotational"] {
+            doc.expect(&format!("{path}/{damping}"));
+        }
+        let _ = k_lin_dof; // Chrono applies it to no direction of the joints it uses for suspensions.
+        let (u, w) = frame.unwrap_or((Vec3::x(), Vec3::z()));
+        // About (w, u, v):
+        let rotation = match kind {
+            JointKind::Spherical => [k_rot_dof; 3],
+            JointKind::Revolute => [k_rot_dof, k_rot, k_rot],
+            JointKind::Universal => [k_rot, k_rot_dof, k_rot_dof],
+            _ => [k_rot; 3],
+        };
+        let least = |k: f64, (lo, _): (f64, f64), what: &str, notes: &mut Vec<String>| {
+            if k < lo {
+                notes.push(format!(
+                    "{}: {what} rate {k} taken as {lo} (the least the engine takes: a rate of zero holds nothing)",
+                    path.replace('/', " / ")
+                ));
+                lo
+            } else {
+                k
+            }
+        };
+        let t = least(k_lin, TRANSLATIONAL_RATE_RANGE, "linear", &mut self.notes);
+        let mut r = [0.0; 3];
+        for (slot, k) in r.iter_mut().zip(rotation) {
+            *slot = least(k, ROTATIONAL_RATE_RANGE, "rotational", &mut self.notes);
+        }
+        self.notes.dedup();
+        self.general.bushings.push(BushingDef {
+            name: name.into(),
+            bodies: bodies.map(str::to_string),
+            at,
+            axis: Some(Axis::Vector(w)),
+            y_axis: Some(Axis::Vector(u)),
+            radial: None,
+            axial: None,
+            torsion: None,
+            conical: None,
+            translation: Some([t.into(), t.into(), t.into()]),
+            rotation: Some(r.map(Into::into)),
+            law: RotationLaw::Linear,
+            preload_force: None,
+            preload_torque: None,
+        });
+        Ok(())
+    }
+
+    /// A Chrono spring (`ChLinkTSDA` read by its functor) named `name` between `bodies`, seats `from`, `to`
+    /// (hardpoint names); with its stops when it has `Minimum Length` and `Maximum Length`. `object` is
+    /// its JSON object.
+    pub(crate) fn spring(
+        &mut self,
+        doc: &Doc,
+        object: &str,
+        name: &str,
+        bodies: [&str; 2],
+        seats: [&str; 2],
+    ) -> Result<(), String> {
+        let key = |k: &str| format!("{object}/{k}");
+        let free_length = doc.number(&key("Free Length"))?;
+        let preload = doc.optional_number(&key("Preload"))?;
+        let (rate, curve) = if doc.has(&key("Spring Curve Data")) {
+            // Chrono: push = P − f(L − L₀); here: push against compression c = L₀ − L, so (−x, −f).
+            let mut table: Vec<[f64; 2]> =
+                doc.table(&key("Spring Curve Data"))?.into_iter().map(|[x, f]| [-x, -f]).collect();
+            table.reverse();
+            (None, Some(table))
+        } else {
+            (Some(doc.number(&key("Spring Coefficient"))?), None)
+        };
+        for damping in
+            ["Damping Coefficient", "Damping Curve Data", "Degressivity Compression", "Degressivity Expansion"]
+        {
+            if doc.has(&key(damping)) {
+                doc.expect(&key(damping));
+                self.notes.push(format!("{object} / {damping}: damping, left out (statics: no velocity)"));
+            }
+        }
+        self.general.springs.push(SpringDef {
+            name: name.into(),
+            bodies: bodies.map(str::to_string),
+            from: Place::named(seats[0]),
+            to: Place::named(seats[1]),
+            rate,
+            curve,
+            design_force: None,
+            free_length: Some(free_length),
+            preload: preload.filter(|p| *p != 0.0),
+        });
+        if let (Some(min), Some(max)) =
+            (doc.optional_number(&key("Minimum Length"))?, doc.optional_number(&key("Maximum Length"))?)
+        {
+            let p = |n: &str| self.general.hardpoints.get(n).ok_or_else(|| format!("no hardpoint {n}"));
+            let design = (p(seats[1])? - p(seats[0])?).norm();
+            for (kind, clearance, what) in
+                [(StopType::Bump, design - min, "Minimum Length"), (StopType::Rebound, max - design, "Maximum Length")]
+            {
+                if clearance < 0.0 {
+                    return Err(format!(
+                        "{object} / {what} {} m: the spring's stop is already in contact at the design length {design:.4} m; \
+                         elastokin's stops start free",
+                        if kind == StopType::Bump { min } else { max }
+                    ));
+                }
+                let stop = if kind == StopType::Bump { "bump stop" } else { "rebound stop" };
+                self.general.stops.push(StopDef {
+                    name: format!("{name} {stop}"),
+                    kind,
+                    bodies: bodies.map(str::to_string),
+                    from: Place::named(seats[0]),
+                    to: Place::named(seats[1]),
+                    clearance,
+                    curve: CHRONO_STOP_CURVE.to_vec(),
+                });
+            }
+            self.notes.push(format!(
+                "{object} / Minimum Length, Maximum Length: a bump and a rebound stop with Chrono's built-in curve"
+            ));
+        }
+        Ok(())
+    }
+
+    /// A Chrono shock: a damper, left out in statics; a spring-damper's spring (`Spring Coefficient` or a
+    /// curve) is a spring named `name` between `bodies`, at the shock's points `seats` (JSON keys under
+    /// `Shock`).
+    pub(crate) fn shock(&mut self, doc: &Doc, name: &str, bodies: [&str; 2], seats: [&str; 2]) -> Result<(), String> {
+        if doc.has("Shock/Spring Coefficient") || doc.has("Shock/Spring Curve Data") {
+            let from = self.hardpoint(doc, "shock_chassis", &format!("Shock/{}", seats[0]))?;
+            let to = self.hardpoint(
+                doc,
+                &format!("shock_{}", seats[1].trim_start_matches("Location ").to_lowercase()),
+                &format!("Shock/{}", seats[1]),
+            )?;
+            return self.spring(doc, "Shock", name, bodies, [&from, &to]);
+        }
+        for key in seats.iter().copied().chain([
+            "Damping Coefficient",
+            "Damping Curve Data",
+            "Degressivity Compression",
+            "Degressivity Expansion",
+            "Map Data",
+        ]) {
+            doc.expect(&format!("Shock/{key}"));
+        }
+        if doc.has("Shock") {
+            self.notes.push("Shock: a damper, left out (statics: no velocity)".into());
+        }
+        Ok(())
+    }
+
+    /// The tie rod from `inner` to `outer`: a distance link, or Chrono's rod body (`Mass` given) with a
+    /// universal joint at the rack and a ball joint at the upright, which with ideal joints is the same
+    /// link. With `Bushing Data` on the rod both joints are Chrono's bushings.
+    pub(crate) fn tie_rod(&mut self, doc: &Doc, inner: &str, outer: &str) -> Result<(), String> {
+        doc.dynamics("Tierod", &["Mass", "Inertia", "Radius"], &mut self.notes);
+        if doc.has("Tierod/Bushing Data") {
+            let path = "Tierod/Bushing Data";
+            let k_lin = doc.number(&format!("{path}/Stiffness Linear"))?;
+            let k_rot = doc.number(&format!("{path}/Stiffness Rotational"))?;
+            let k_rot_dof = doc.optional_number(&format!("{path}/DOF/Stiffness Rotational"))?.unwrap_or(0.0);
+            for k in [
+                "Damping Linear",
+                "Damping Rotational",
+                "DOF/Damping Linear",
+                "DOF/Damping Rotational",
+                "DOF/Stiffness Linear",
+            ] {
+                doc.expect(&format!("{path}/{k}"));
+            }
+            // The tie rod's bushings are one rate set for both ends here: translations k_lin, tilt the DOF
+            // rate, twist about the rod Chrono's universal joint's k_rot (the ball joint's end leaves it free).
+            let (lo, _) = ROTATIONAL_RATE_RANGE;
+            let conical = k_rot_dof.max(lo);
+            self.notes.push(format!(
+                "Tierod / Bushing Data: a rod with a bushing at each end, radial and axial {k_lin} N/m, conical {conical} \
+                 N·m/rad, torsion {k_rot} N·m/rad at both ends (Chrono frees the twist at the upright's ball joint)"
+            ));
+            self.general.corner.tie_rod = Some(TieRodDef {
+                inner: Place::named(inner),
+                outer: Place::named(outer),
+                connection: Connection::Bushing(crate::BushingRates {
+                    radial: k_lin.max(TRANSLATIONAL_RATE_RANGE.0),
+                    axial: k_lin.max(TRANSLATIONAL_RATE_RANGE.0),
+                    torsion: k_rot.max(lo),
+                    conical,
+                    law: RotationLaw::Linear,
+                    axis: None,
+                }),
+            });
+        } else {
+            self.general.corner.tie_rod = Some(TieRodDef {
+                inner: Place::named(inner),
+                outer: Place::named(outer),
+                connection: Connection::Ideal,
+            });
+        }
+        Ok(())
+    }
+
+    /// The notes, with every key of the document that was not read.
+    fn finish(&mut self, doc: &Doc) -> Vec<String> {
+        let mut notes = std::mem::take(&mut self.notes);
+        notes.extend(doc.unread().into_iter().map(|k| format!("{k}: not understood, left out")));
+        notes
+    }
+}
+
+/// Chrono's built-in stop curve (`SpringForce::enable_stops`, from an ADAMS/Car example): force (N)
+/// against travel past contact (m).
+pub const CHRONO_STOP_CURVE: [[f64; 2]; 11] = [
+    [0.0, 0.0],
+    [2.0e-3, 200.0],
+    [4.0e-3, 400.0],
+    [6.0e-3, 600.0],
+    [8.0e-3, 800.0],
+    [10.0e-3, 1000.0],
+    [20.0e-3, 2500.0],
+    [30.0e-3, 4500.0],
+    [40.0e-3, 7500.0],
+    [50.0e-3, 12500.0],
+    [60.0e-3, 125000.0],
+];
+
+/// Chrono's frame of a revolute joint between an arm and the chassis, from the arm's front and back pivots
+/// and its outer point: w along the pivot axis (front − back), v normal to the arm's plane, u = v × w.
+/// Returns `(u, w)`.
+pub(crate) fn arm_frame(front: Vec3, back: Vec3, outer: Vec3) -> (Vec3, Vec3) {
+    let v = (back - outer).cross(&(front - outer)).normalize();
+    let w = (front - back).normalize();
+    (v.cross(&w), w)
+}
+
+/// The midpoint of two hardpoints of `b`.
+pub(crate) fn midpoint(b: &Builder, p: &str, q: &str) -> Result<Place, String> {
+    let get = |n: &str| b.general.hardpoints.get(n).ok_or_else(|| format!("no hardpoint {n}"));
+    Ok(Place::At((get(p)? + get(q)?) / 2.0))
+}
+
+/// The chassis, by the general model's name.
+pub(crate) const GROUND: &str = CHASSIS;
