@@ -250,7 +250,7 @@ fn keys(text: &str) -> Vec<(usize, String)> {
 /// Line and column (from 1) of the key path `path` in `text`: each key the first after the previous one
 /// (or, for a part's name in the general form, the string value itself); the last found when the rest are
 /// absent.
-fn locate(text: &str, path: &[&str]) -> (usize, usize) {
+pub(crate) fn locate(text: &str, path: &[&str]) -> (usize, usize) {
     let all = keys(text);
     let mut at = 0;
     let mut from = 0;

@@ -6,7 +6,6 @@ use elastokin_suspensions::analysis::parallel_wheel_travel;
 use elastokin_suspensions::{
     BushingRates, Connection, DoubleWishbone, DoubleWishboneHardpoints, Rig, Side, SpringSpec,
 };
-use nalgebra::{DVector, Matrix3, Rotation3, Unit};
 
 mod common;
 
@@ -19,48 +18,6 @@ fn template(mounts: Connection) -> DoubleWishbone {
         tie_rod: Connection::Ideal,
         loaded_radius: 0.30,
     }
-}
-
-fn rotate_about(axis_point: Vec3, axis: Vec3, angle: f64, p: Vec3) -> Vec3 {
-    let r = Rotation3::from_axis_angle(&Unit::new_normalize(axis), angle);
-    axis_point + r * (p - axis_point)
-}
-
-/// Independent loop closure: the arms turn by α (lower) and β (upper) about their pivot axes; the upright
-/// follows its two ball joints (shortest rotation of the kingpin, then γ about it) and keeps its tie-rod
-/// length; the wheel centre is at the asked height. Three equations in (α, β, γ), solved by Newton with a
-/// finite-difference Jacobian. Returns (toe, camber) of the left wheel.
-fn loop_closure(h: &DoubleWishboneHardpoints, travel: f64, guess: &mut [f64; 3]) -> (f64, f64) {
-    let upright = |x: &[f64; 3]| -> (Vec3, Matrix3<f64>) {
-        let lbj = rotate_about(h.lower_arm_front, h.lower_arm_rear - h.lower_arm_front, x[0], h.lower_ball_joint);
-        let ubj = rotate_about(h.upper_arm_front, h.upper_arm_rear - h.upper_arm_front, x[1], h.upper_ball_joint);
-        let k0 = (h.upper_ball_joint - h.lower_ball_joint).normalize();
-        let k1 = (ubj - lbj).normalize();
-        // Shortest rotation taking the design kingpin onto the current one.
-        let cross = k0.cross(&k1);
-        let align = if cross.norm() > 0.0 {
-            Rotation3::from_axis_angle(&Unit::new_normalize(cross), cross.norm().atan2(k0.dot(&k1)))
-        } else {
-            Rotation3::identity()
-        };
-        let spin = Rotation3::from_axis_angle(&Unit::new_normalize(k1), x[2]);
-        (lbj, (spin * align).into_inner())
-    };
-    let tie_len = (h.tie_rod_outer - h.tie_rod_inner).norm();
-    let kp_len = (h.upper_ball_joint - h.lower_ball_joint).norm();
-    let residual = |x: &[f64; 3]| -> DVector<f64> {
-        let (lbj, r) = upright(x);
-        let ubj = rotate_about(h.upper_arm_front, h.upper_arm_rear - h.upper_arm_front, x[1], h.upper_ball_joint);
-        let place = |p: Vec3| lbj + r * (p - h.lower_ball_joint);
-        DVector::from_vec(vec![
-            (ubj - lbj).norm() - kp_len,
-            (place(h.tie_rod_outer) - h.tie_rod_inner).norm() - tie_len,
-            place(h.wheel_centre).z - (h.wheel_centre.z + travel),
-        ])
-    };
-    common::newton_fd(residual, guess);
-    let (_, r) = upright(guess);
-    common::left_toe_camber(&r)
 }
 
 #[test]
@@ -78,7 +35,7 @@ fn toe_and_camber_match_an_independent_loop_closure() {
         let row = rows[k];
         let g = &mut guesses[usize::from(row.travel > 0.0)];
         guess.copy_from_slice(g);
-        let (toe, camber) = loop_closure(&dw.hardpoints, row.travel, &mut guess);
+        let (toe, camber) = common::double_wishbone_closure(&dw.hardpoints, row.travel, &mut guess);
         g.copy_from_slice(&guess);
         assert!((row.attitude.toe - toe).abs() < 1e-9, "travel {}: toe {} vs {toe}", row.travel, row.attitude.toe);
         assert!(
@@ -311,7 +268,7 @@ fn the_general_axle_example_matches_the_loop_closure() {
     for half in [rows[8..].iter().collect::<Vec<_>>(), rows[..=8].iter().rev().collect()] {
         let mut guess = [0.0; 3];
         for row in half {
-            let (toe, camber) = loop_closure(&h, row.travel, &mut guess);
+            let (toe, camber) = common::double_wishbone_closure(&h, row.travel, &mut guess);
             worst = worst.max((row.attitude.toe - toe).abs()).max((row.attitude.camber - camber).abs());
         }
     }

@@ -4,7 +4,6 @@ use elastokin_core::Vec3;
 use elastokin_solver::Mode;
 use elastokin_suspensions::analysis::parallel_wheel_travel;
 use elastokin_suspensions::{BushingRates, Connection, MacPherson, MacPhersonHardpoints, Rig, Side, SpringSpec};
-use nalgebra::{DVector, Rotation3, Unit};
 
 mod common;
 
@@ -20,40 +19,6 @@ fn template(arm: Connection, top: Connection) -> MacPherson {
     }
 }
 
-/// Independent loop closure: the lower arm turns by α about its pivot axis; the upright, pinned at the
-/// lower ball joint, turns by the rotation vector ω; its strut line (strut lower → top mount at design)
-/// must pass through the top mount, its tie rod keep its length, its wheel centre sit at the asked
-/// height. Four equations in (α, ω), Newton with a finite-difference Jacobian. Returns (toe, camber).
-fn loop_closure(h: &MacPhersonHardpoints, travel: f64, x: &mut [f64; 4]) -> (f64, f64) {
-    let place = |x: &[f64; 4]| {
-        let axis = Unit::new_normalize(h.lower_arm_rear - h.lower_arm_front);
-        let lbj =
-            h.lower_arm_front + Rotation3::from_axis_angle(&axis, x[0]) * (h.lower_ball_joint - h.lower_arm_front);
-        let r = Rotation3::from_scaled_axis(Vec3::new(x[1], x[2], x[3]));
-        (lbj, r)
-    };
-    let strut0 = (h.top_mount - h.strut_lower).normalize();
-    let tie = (h.tie_rod_outer - h.tie_rod_inner).norm();
-    let residual = |x: &[f64; 4]| {
-        let (lbj, r) = place(x);
-        let at = |p: Vec3| lbj + r * (p - h.lower_ball_joint);
-        let dir = r * strut0;
-        let off = (h.top_mount - at(h.strut_lower)).cross(&dir);
-        // Two independent components of the offset: project on two axes across the strut.
-        let u = dir.cross(&Vec3::x()).normalize();
-        let v = dir.cross(&u);
-        DVector::from_vec(vec![
-            off.dot(&u),
-            off.dot(&v),
-            (at(h.tie_rod_outer) - h.tie_rod_inner).norm() - tie,
-            at(h.wheel_centre).z - (h.wheel_centre.z + travel),
-        ])
-    };
-    common::newton_fd(residual, x);
-    let (_, r) = place(x);
-    common::left_toe_camber(r.matrix())
-}
-
 #[test]
 fn toe_and_camber_match_an_independent_loop_closure() {
     let mp = template(Connection::Ideal, Connection::Ideal);
@@ -66,7 +31,7 @@ fn toe_and_camber_match_an_independent_loop_closure() {
     for k in order {
         let row = rows[k];
         let g = &mut guesses[usize::from(row.travel > 0.0)];
-        let (toe, camber) = loop_closure(&mp.hardpoints, row.travel, g);
+        let (toe, camber) = common::macpherson_closure(&mp.hardpoints, row.travel, g);
         assert!((row.attitude.toe - toe).abs() < 1e-9, "travel {}: toe {} vs {toe}", row.travel, row.attitude.toe);
         assert!(
             (row.attitude.camber - camber).abs() < 1e-9,

@@ -73,8 +73,15 @@ pub fn is_chrono(text: &str) -> bool {
 /// Reads a Chrono suspension file; `origin` names it in errors, `loaded_radius` (m) is the tyre's (Chrono's
 /// suspension files have none).
 pub fn import(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Imported, FileError> {
-    let invalid = |message: String| FileError::Invalid { origin: origin.to_string(), line: 1, column: 1, message };
     let clean = without_comments(text.strip_prefix('\u{feff}').unwrap_or(text));
+    // An error names its keys in quotes ("Spring" / "Free Length" is missing); it is located at them, or at
+    // the template's name.
+    let invalid = |message: String| {
+        let keys: Vec<&str> = message.split(':').next().unwrap_or("").split('"').skip(1).step_by(2).collect();
+        let keys = if keys.is_empty() { vec!["Template"] } else { keys };
+        let (line, column) = crate::model_file::locate(&clean, &keys);
+        FileError::Invalid { origin: origin.to_string(), line, column, message }
+    };
     let value: Value = serde_json::from_str(&clean).map_err(|e| FileError::Invalid {
         origin: origin.to_string(),
         line: e.line(),

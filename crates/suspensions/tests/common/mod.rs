@@ -1,6 +1,10 @@
 //! Reference machinery of the loop-closure tests, independent of the engine.
 
-use nalgebra::{DMatrix, DVector};
+#![allow(dead_code)] // Each test file uses the closures it needs.
+
+use elastokin_core::Vec3;
+use elastokin_suspensions::{DoubleWishboneHardpoints, MacPhersonHardpoints};
+use nalgebra::{DMatrix, DVector, Matrix3, Rotation3, Unit};
 
 /// Newton's method with a central-difference Jacobian on `residual(x) = 0`, from the guess in `x`;
 /// panics when it does not close (the tests start it near a solution).
@@ -30,4 +34,80 @@ pub fn newton_fd<const N: usize>(residual: impl Fn(&[f64; N]) -> DVector<f64>, x
 pub fn left_toe_camber(r: &nalgebra::Matrix3<f64>) -> (f64, f64) {
     let a = r * nalgebra::Vector3::y();
     (a.x.atan2(a.y), (-a.z).atan2((a.x * a.x + a.y * a.y).sqrt()))
+}
+
+fn rotate_about(axis_point: Vec3, axis: Vec3, angle: f64, p: Vec3) -> Vec3 {
+    let r = Rotation3::from_axis_angle(&Unit::new_normalize(axis), angle);
+    axis_point + r * (p - axis_point)
+}
+
+/// Independent loop closure: the arms turn by α (lower) and β (upper) about their pivot axes; the upright
+/// follows its two ball joints (shortest rotation of the kingpin, then γ about it) and keeps its tie-rod
+/// length; the wheel centre is at the asked height. Three equations in (α, β, γ), solved by Newton with a
+/// finite-difference Jacobian. Returns (toe, camber) of the left wheel.
+pub fn double_wishbone_closure(h: &DoubleWishboneHardpoints, travel: f64, guess: &mut [f64; 3]) -> (f64, f64) {
+    let upright = |x: &[f64; 3]| -> (Vec3, Matrix3<f64>) {
+        let lbj = rotate_about(h.lower_arm_front, h.lower_arm_rear - h.lower_arm_front, x[0], h.lower_ball_joint);
+        let ubj = rotate_about(h.upper_arm_front, h.upper_arm_rear - h.upper_arm_front, x[1], h.upper_ball_joint);
+        let k0 = (h.upper_ball_joint - h.lower_ball_joint).normalize();
+        let k1 = (ubj - lbj).normalize();
+        // Shortest rotation taking the design kingpin onto the current one.
+        let cross = k0.cross(&k1);
+        let align = if cross.norm() > 0.0 {
+            Rotation3::from_axis_angle(&Unit::new_normalize(cross), cross.norm().atan2(k0.dot(&k1)))
+        } else {
+            Rotation3::identity()
+        };
+        let spin = Rotation3::from_axis_angle(&Unit::new_normalize(k1), x[2]);
+        (lbj, (spin * align).into_inner())
+    };
+    let tie_len = (h.tie_rod_outer - h.tie_rod_inner).norm();
+    let kp_len = (h.upper_ball_joint - h.lower_ball_joint).norm();
+    let residual = |x: &[f64; 3]| -> DVector<f64> {
+        let (lbj, r) = upright(x);
+        let ubj = rotate_about(h.upper_arm_front, h.upper_arm_rear - h.upper_arm_front, x[1], h.upper_ball_joint);
+        let place = |p: Vec3| lbj + r * (p - h.lower_ball_joint);
+        DVector::from_vec(vec![
+            (ubj - lbj).norm() - kp_len,
+            (place(h.tie_rod_outer) - h.tie_rod_inner).norm() - tie_len,
+            place(h.wheel_centre).z - (h.wheel_centre.z + travel),
+        ])
+    };
+    newton_fd(residual, guess);
+    let (_, r) = upright(guess);
+    left_toe_camber(&r)
+}
+
+/// Independent loop closure: the lower arm turns by α about its pivot axis; the upright, pinned at the
+/// lower ball joint, turns by the rotation vector ω; its strut line (strut lower → top mount at design)
+/// must pass through the top mount, its tie rod keep its length, its wheel centre sit at the asked
+/// height. Four equations in (α, ω), Newton with a finite-difference Jacobian. Returns (toe, camber).
+pub fn macpherson_closure(h: &MacPhersonHardpoints, travel: f64, x: &mut [f64; 4]) -> (f64, f64) {
+    let place = |x: &[f64; 4]| {
+        let axis = Unit::new_normalize(h.lower_arm_rear - h.lower_arm_front);
+        let lbj =
+            h.lower_arm_front + Rotation3::from_axis_angle(&axis, x[0]) * (h.lower_ball_joint - h.lower_arm_front);
+        let r = Rotation3::from_scaled_axis(Vec3::new(x[1], x[2], x[3]));
+        (lbj, r)
+    };
+    let strut0 = (h.top_mount - h.strut_lower).normalize();
+    let tie = (h.tie_rod_outer - h.tie_rod_inner).norm();
+    let residual = |x: &[f64; 4]| {
+        let (lbj, r) = place(x);
+        let at = |p: Vec3| lbj + r * (p - h.lower_ball_joint);
+        let dir = r * strut0;
+        let off = (h.top_mount - at(h.strut_lower)).cross(&dir);
+        // Two independent components of the offset: project on two axes across the strut.
+        let u = dir.cross(&Vec3::x()).normalize();
+        let v = dir.cross(&u);
+        DVector::from_vec(vec![
+            off.dot(&u),
+            off.dot(&v),
+            (at(h.tie_rod_outer) - h.tie_rod_inner).norm() - tie,
+            at(h.wheel_centre).z - (h.wheel_centre.z + travel),
+        ])
+    };
+    newton_fd(residual, x);
+    let (_, r) = place(x);
+    left_toe_camber(r.matrix())
 }
