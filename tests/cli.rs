@@ -915,3 +915,38 @@ fn expand_prints_a_general_model_that_runs_the_same() {
         assert_eq!(csv(model, "template"), csv(expanded.to_str().unwrap(), "general"), "{model}");
     }
 }
+
+/// A Project Chrono suspension file: `import chrono` writes the general model (the notes on standard
+/// error), and `run` takes the Chrono file directly, saying so on its first line; an axle is refused by
+/// name.
+#[test]
+fn a_chrono_file_is_imported_and_run_directly() {
+    let file = "tests/data/chrono/DoubleWishbone.json";
+    let o = elastokin(&["import", "chrono", file]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let model = String::from_utf8(o.stdout).unwrap();
+    assert!(model.contains("\"general\"") && model.contains("Project Chrono DoubleWishbone"), "{model}");
+    let notes = String::from_utf8(o.stderr).unwrap();
+    assert!(notes.contains("note: Shock: a damper, left out") && notes.contains("loaded tyre radius"), "{notes}");
+    let dir = scratch("chrono");
+    let o = elastokin(&[
+        "run",
+        file,
+        "--analysis",
+        "parallel-travel",
+        "--steps",
+        "4",
+        "--out",
+        dir.join("out").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stdout = String::from_utf8(o.stdout).unwrap();
+    assert!(
+        stdout.lines().next().unwrap().starts_with("read as a Project Chrono DoubleWishbone suspension"),
+        "{stdout}"
+    );
+    let o = elastokin(&["check", "tests/data/chrono/SolidAxle.json"]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = String::from_utf8(o.stderr).unwrap();
+    assert!(e.contains("SolidAxle.json:4:3") && e.contains("an axle joins both wheels in one body"), "{e}");
+}

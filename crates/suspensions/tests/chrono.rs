@@ -6,7 +6,7 @@ use elastokin_solver::Mode;
 use elastokin_suspensions::analysis::parallel_wheel_travel;
 use elastokin_suspensions::chrono::{import, Imported};
 use elastokin_suspensions::kc::{self, Settings};
-use elastokin_suspensions::{DoubleWishboneHardpoints, MacPhersonHardpoints, Rig, Side};
+use elastokin_suspensions::{DoubleWishboneHardpoints, MacPhersonHardpoints, Rig, Side, Template};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
@@ -18,6 +18,11 @@ fn data() -> PathBuf {
 
 fn text(name: &str) -> String {
     std::fs::read_to_string(data().join(name)).unwrap()
+}
+
+/// The file's JSON (its `//` comments removed), read here for the numbers the tests check against.
+fn json(name: &str) -> Value {
+    serde_json::from_str(&elastokin_suspensions::chrono::without_comments(&text(name))).unwrap()
 }
 
 fn read(name: &str) -> Imported {
@@ -84,7 +89,7 @@ fn every_shipped_chrono_file_runs_or_is_refused_as_the_readme_says() {
 #[test]
 fn the_double_wishbone_reading_matches_the_loop_closure() {
     for name in ["DoubleWishbone.json", "hmmwv/HMMWV_DoubleWishboneFront.json"] {
-        let v: Value = serde_json::from_str(&text(name)).unwrap();
+        let v = json(name);
         let h = DoubleWishboneHardpoints {
             wheel_centre: point(&v, "Spindle", "COM"),
             upper_ball_joint: point(&v, "Upper Control Arm", "Location Upright"),
@@ -118,7 +123,7 @@ fn the_double_wishbone_reading_matches_the_loop_closure() {
 /// loop closure on the file's points.
 #[test]
 fn the_macpherson_reading_matches_the_loop_closure() {
-    let v: Value = serde_json::from_str(&text("MacPhersonStrut.json")).unwrap();
+    let v = json("MacPhersonStrut.json");
     let h = MacPhersonHardpoints {
         wheel_centre: point(&v, "Spindle", "COM"),
         lower_ball_joint: point(&v, "Control Arm", "Location Upright"),
@@ -158,4 +163,177 @@ fn a_road_load_on_an_ideal_linkage_is_not_cut_to_nothing() {
     // Measured: 2.9e-10 deg: an ideal linkage on the rig does not steer (the rest is its joints closed to
     // their 1e-10 m tolerance).
     assert!(moved < 1e-8, "{moved:e} deg");
+}
+
+/// The file's JSON with `edit` applied, read.
+fn edited(name: &str, edit: impl FnOnce(&mut Value)) -> Imported {
+    let mut v = json(name);
+    edit(&mut v);
+    import(&v.to_string(), name, None).unwrap()
+}
+
+/// Camber and toe: Chrono turns the left spindle by Rz(−τ) Rx(−γ) (`ChDoubleWishbone::InitializeSide`,
+/// sign −1 on the left); elastokin reads that spindle's camber (top out +) and toe (in +) as γ and τ.
+#[test]
+fn chrono_camber_and_toe_are_the_wheels_at_design() {
+    let (gamma, tau) = (1.5_f64, -0.4_f64);
+    let imported = edited("DoubleWishbone.json", |v| {
+        v["Camber Angle (deg)"] = gamma.into();
+        v["Toe Angle (deg)"] = tau.into();
+    });
+    let corner = imported.file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
+    let a = corner.wheel.attitude(&corner.model.design_poses());
+    // The spindle axis, rotated here as Chrono does: Rz(−τ) Rx(−γ) applied to the wheel's +y.
+    let r = nalgebra::Rotation3::from_axis_angle(&nalgebra::Vector3::z_axis(), -tau.to_radians())
+        * nalgebra::Rotation3::from_axis_angle(&nalgebra::Vector3::x_axis(), -gamma.to_radians());
+    let spin = r * Vec3::y();
+    // Chrono's Rz(−τ) turns a left spindle's axis forward for τ < 0: toe-in is +τ in elastokin's sign.
+    assert!((spin.x.atan2(spin.y).to_degrees() - tau).abs() < 1e-12);
+    // Measured: 2e-16 deg.
+    assert!((a.toe.to_degrees() - tau).abs() < 1e-12 && (a.camber.to_degrees() - gamma).abs() < 1e-12, "{a:?}");
+}
+
+/// Free length, rate and preload: at design the spring pushes P + k (L₀ − L) with L its design length
+/// between the file's two points (Chrono's `LinearSpringForce`: P − k (L − L₀)).
+#[test]
+fn a_chrono_spring_pushes_its_preload_plus_rate_times_compression() {
+    let v = json("DoubleWishbone.json");
+    let (k, free) = (v["Spring"]["Spring Coefficient"].as_f64().unwrap(), v["Spring"]["Free Length"].as_f64().unwrap());
+    let length = (point(&v, "Spring", "Location Arm") - point(&v, "Spring", "Location Chassis")).norm();
+    for preload in [0.0, 750.0] {
+        let imported = edited("DoubleWishbone.json", |v| v["Spring"]["Preload"] = preload.into());
+        let corner = imported.file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
+        let e = corner.model.element_id("spring").unwrap();
+        let poses = corner.model.design_poses();
+        let r = corner.model.elements()[e.0].report(
+            &elastokin_core::Pose::IDENTITY,
+            &poses[corner.model.body_id("lower arm").unwrap().0],
+            0.0,
+        );
+        let push = preload + k * (free - length);
+        // Measured: 0 N (|force| against the hand-computed push of about 11 kN).
+        assert!((r.force.norm() - push.abs()).abs() < 1e-8 * push.abs(), "{} vs {push}", r.force.norm());
+    }
+}
+
+/// `Spring Curve Data` (extension, force) is the curve of push against compression (−x, −f): on the
+/// generic file, whose table is a straight line of 369 150 N/m, the wheel rate is that of the linear file
+/// (369 149 N/m) to their rates' ratio.
+#[test]
+fn a_chrono_spring_curve_is_its_push_against_compression() {
+    let rate = |name: &str| {
+        let report =
+            kc::run(kc::Analysis::ParallelTravel, &read(name).file, &Settings { steps: 8, ..Settings::default() })
+                .unwrap();
+        report.figure("wheel_rate").unwrap().value.unwrap()
+    };
+    let (curve, linear) = (rate("DoubleWishboneCurve.json"), rate("DoubleWishbone.json"));
+    // Measured: 2.7e-6 against the rates' ratio 369150/369149 − 1 = 2.7e-6.
+    assert!(((curve / linear - 1.0) - (369150.0 / 369149.0 - 1.0)).abs() < 1e-8, "{curve} vs {linear}");
+    let imported = read("DoubleWishboneCurve.json");
+    let Template::General(g) = &imported.file.suspension else { panic!("general form") };
+    let table = g.springs[0].curve.as_ref().unwrap();
+    assert_eq!(table.first(), Some(&[-0.1, -36915.0]));
+    assert_eq!(table.last(), Some(&[0.1, 36915.0]));
+}
+
+/// `Minimum Length` and `Maximum Length`: a bump and a rebound stop touching at those lengths, with Chrono's
+/// built-in curve.
+#[test]
+fn chrono_minimum_and_maximum_lengths_are_stops_that_touch_there() {
+    let v = json("DoubleWishbone.json");
+    let length = (point(&v, "Spring", "Location Arm") - point(&v, "Spring", "Location Chassis")).norm();
+    let imported = edited("DoubleWishbone.json", |v| {
+        v["Spring"]["Minimum Length"] = (length - 0.02).into();
+        v["Spring"]["Maximum Length"] = (length + 0.03).into();
+    });
+    let Template::General(g) = &imported.file.suspension else { panic!("general form") };
+    assert_eq!(g.stops.len(), 2);
+    assert!((g.stops[0].clearance - 0.02).abs() < 1e-15 && (g.stops[1].clearance - 0.03).abs() < 1e-15);
+    assert_eq!(g.stops[0].curve, elastokin_suspensions::chrono::CHRONO_STOP_CURVE.to_vec());
+    // The bump stop touches once the spring is 20 mm shorter: beyond, the wheel carries more.
+    let run = |f: &elastokin_suspensions::SuspensionFile| {
+        let corner = f.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
+        parallel_wheel_travel(&corner, -0.06, 0.06, 12, Mode::Corrected).unwrap()
+    };
+    let (with, without) = (run(&imported.file), run(&read("DoubleWishbone.json").file));
+    let extra: Vec<f64> = with.iter().zip(&without).map(|(a, b)| a.wheel_load - b.wheel_load).collect();
+    // From −40 to +40 mm neither touches: measured 1.7e-11 N.
+    assert!(extra[2..=10].iter().all(|e| e.abs() < 1e-9), "{extra:?}");
+    // At +60 mm the bump stop pushes the wheel down (231 and 468 N more at +50, +60 mm); at −60 mm the
+    // rebound stop holds it up (24 N less).
+    assert!(extra[11] > 100.0 && extra[12] > extra[11] && extra[0] < -10.0, "{extra:?}");
+}
+
+/// `Bushing Data` on a control arm: Chrono's revolute joint becomes its six-way bushing at the pivots'
+/// midpoint, x along the pivot axis (front − back), y Chrono's u, translations `Stiffness Linear`,
+/// rotations the DOF rate about the axis and `Stiffness Rotational` across it, M = Kθ.
+#[test]
+fn chrono_bushing_data_is_the_joints_bushing() {
+    let name = "hmmwv/HMMWV_DoubleWishboneFront_bushings.json";
+    let v = json(name);
+    let imported = read(name);
+    let Template::General(g) = &imported.file.suspension else { panic!("general form") };
+    let b = g.bushings.iter().find(|b| b.name == "lower arm pivot").unwrap();
+    let data = &v["Lower Control Arm"]["Bushing Data"];
+    let (k_lin, k_rot) = (data["Stiffness Linear"].as_f64().unwrap(), data["Stiffness Rotational"].as_f64().unwrap());
+    let rates = |s: &Option<[elastokin_suspensions::general::Stiffness; 3]>| {
+        s.as_ref().unwrap().clone().map(|k| k.rate().unwrap())
+    };
+    assert_eq!(rates(&b.translation), [k_lin; 3]);
+    // The DOF rate of the file is 0: taken as the least rate the engine takes.
+    assert_eq!(rates(&b.rotation), [1e-3, k_rot, k_rot]);
+    assert_eq!(b.law, elastokin_elements::RotationLaw::Linear);
+    let (f, back, ball) = (
+        point(&v, "Lower Control Arm", "Location Chassis Front"),
+        point(&v, "Lower Control Arm", "Location Chassis Back"),
+        point(&v, "Lower Control Arm", "Location Upright"),
+    );
+    let w = (f - back).normalize();
+    let vv = (back - ball).cross(&(f - ball)).normalize();
+    let u = vv.cross(&w);
+    match (&b.axis, &b.y_axis, &b.at) {
+        (
+            Some(elastokin_suspensions::general::Axis::Vector(x)),
+            Some(elastokin_suspensions::general::Axis::Vector(y)),
+            elastokin_suspensions::general::Place::At(p),
+        ) => {
+            assert!((x - w).norm() < 1e-15 && (y - u).norm() < 1e-15 && (p - (f + back) / 2.0).norm() < 1e-15);
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(imported.notes.iter().any(|n| n.contains("taken as 0.001")), "{:?}", imported.notes);
+}
+
+/// Chrono's reduced double wishbone (each arm two distance links) has the kinematics of the full one: the
+/// double wishbone's loop closure on its points.
+#[test]
+fn the_reduced_double_wishbone_matches_the_loop_closure() {
+    let name = "hmmwv/HMMWV_DoubleWishboneReducedFront.json";
+    let v = json(name);
+    let h = DoubleWishboneHardpoints {
+        wheel_centre: point(&v, "Spindle", "COM"),
+        upper_ball_joint: point(&v, "Upper Control Arm", "Location Upright"),
+        upper_arm_front: point(&v, "Upper Control Arm", "Location Chassis Front"),
+        upper_arm_rear: point(&v, "Upper Control Arm", "Location Chassis Back"),
+        lower_ball_joint: point(&v, "Lower Control Arm", "Location Upright"),
+        lower_arm_front: point(&v, "Lower Control Arm", "Location Chassis Front"),
+        lower_arm_rear: point(&v, "Lower Control Arm", "Location Chassis Back"),
+        tie_rod_inner: point(&v, "Tierod", "Location Chassis"),
+        tie_rod_outer: point(&v, "Tierod", "Location Upright"),
+        spring_chassis: point(&v, "Shock", "Location Chassis"),
+        spring_arm: point(&v, "Shock", "Location Upright"),
+    };
+    let corner = read(name).file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
+    let rows = parallel_wheel_travel(&corner, -0.08, 0.08, 16, Mode::Corrected).unwrap();
+    let mut worst: f64 = 0.0;
+    for half in [rows[8..].iter().collect::<Vec<_>>(), rows[..=8].iter().rev().collect()] {
+        let mut guess = [0.0; 3];
+        for row in half {
+            let (toe, camber) = common::double_wishbone_closure(&h, row.travel, &mut guess);
+            worst = worst.max((row.attitude.toe - toe).abs()).max((row.attitude.camber - camber).abs());
+        }
+    }
+    // Measured: 4.2e-12 rad.
+    assert!(worst < 1e-10, "{worst:e}");
 }
