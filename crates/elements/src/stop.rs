@@ -3,8 +3,9 @@
 //! # Model
 //!
 //! A stop acts along the line between a point on body `i` and a point on body `j` (the same geometry as a
-//! [`CoilSpring`](crate::CoilSpring): `d = Pⱼ − Pᵢ`, `L = |d|`, `n = d / L`). Its clearance `e ≥ 0` is
-//! measured from the design length `L_d = |Pⱼ − Pᵢ|` at design; past it, the penetration `p` drives a force
+//! [`CoilSpring`](crate::CoilSpring): `d = Pⱼ − Pᵢ`, `L = |d|`, `n = d / L`). Its clearance `e` is
+//! measured from the design length `L_d = |Pⱼ − Pᵢ|` at design (negative: the stop is already in contact
+//! at design by `−e`, as another tool's data may have it); past it, the penetration `p` drives a force
 //! from the stop's curve `F(p)` (N against m, the rubber's data sheet):
 //!
 //! * a **bump stop** ([`StopKind::Bump`]) touches when the length has shortened by the clearance,
@@ -84,14 +85,15 @@ impl StopSpec {
         if !self.clearance.is_finite() {
             return Err(ModelError::NonFinite { item: name.to_string(), what: "clearance" });
         }
-        if self.clearance < 0.0 {
+        let design = self.design_length();
+        if self.kind == StopKind::Rebound && design + self.clearance < MIN_SPRING_LENGTH {
             return refuse(format!(
-                "the clearance is {} m: it is the travel from design to first contact, zero or positive; a stop \
-                 already compressed at design is a spring with a preload",
+                "a rebound-stop clearance of {} m puts first contact at a length of zero or less (the design length \
+                 is {design} m): give the travel from design to first contact, negative only when the stop is \
+                 already in contact at design",
                 self.clearance
             ));
         }
-        let design = self.design_length();
         if self.kind == StopKind::Bump && design - self.clearance < MIN_SPRING_LENGTH {
             return refuse(format!(
                 "a bump-stop clearance of {} m is not shorter than the design length {design} m between its \
@@ -129,7 +131,7 @@ impl Stop {
     /// than at design, `p` the travel past that. Errors: same bodies ([`ModelError::SelfJoint`]),
     /// non-finite data ([`ModelError::NonFinite`]), points closer than
     /// [`MIN_SPRING_LENGTH`] ([`ModelError::CoincidentPoints`]),
-    /// and [`ModelError::OutOfRange`] for a negative clearance, a clearance not shorter than the design
+    /// and [`ModelError::OutOfRange`] for a contact length of zero or less (a clearance not shorter than the design
     /// length, or a curve that does not start at `(0, 0)`, decreases somewhere or is flat.
     pub fn bump(
         name: &str,

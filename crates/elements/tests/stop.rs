@@ -220,8 +220,11 @@ fn stops_that_cannot_work_are_refused_by_name() {
     };
     assert!(Stop::from_spec(good.clone()).is_ok());
     let text = |e: ModelError| e.to_string();
-    let t = text(refused(StopSpec { clearance: -0.01, ..good.clone() }));
-    assert!(t.contains("clearance") && t.contains("-0.01"), "{t}");
+    // A negative clearance: in contact at design (another tool's data); a rebound stop touching at a length
+    // of zero or less is refused.
+    assert!(Stop::from_spec(StopSpec { clearance: -0.01, ..good.clone() }).is_ok());
+    let t = text(refused(StopSpec { clearance: -0.5, kind: StopKind::Rebound, ..good.clone() }));
+    assert!(t.contains("clearance") && t.contains("-0.5"), "{t}");
     assert!(matches!(
         refused(StopSpec { clearance: f64::NAN, ..good.clone() }),
         ModelError::NonFinite { what: "clearance", .. }

@@ -41,10 +41,13 @@ fn point(v: &Value, object: &str, key: &str) -> Vec3 {
 fn every_shipped_chrono_file_runs_or_is_refused_as_the_readme_says() {
     let readme = text("README.md");
     let mut files: Vec<String> = Vec::new();
-    for dir in [data(), data().join("hmmwv")] {
+    let mut dirs = vec![data()];
+    while let Some(dir) = dirs.pop() {
         for e in std::fs::read_dir(&dir).unwrap() {
             let p = e.unwrap().path();
-            if p.extension().is_some_and(|x| x == "json") {
+            if p.is_dir() {
+                dirs.push(p);
+            } else if p.extension().is_some_and(|x| x == "json") {
                 files.push(p.strip_prefix(data()).unwrap().to_string_lossy().into_owned());
             }
         }

@@ -520,10 +520,10 @@ impl Builder {
                 [(StopType::Bump, design - min, "Minimum Length"), (StopType::Rebound, max - design, "Maximum Length")]
             {
                 if clearance < 0.0 {
-                    return Err(format!(
-                        "{object} / {what} {} m: the spring's stop is already in contact at the design length {design:.4} m; \
-                         elastokin's stops start free",
-                        if kind == StopType::Bump { min } else { max }
+                    self.notes.push(format!(
+                        "{object} / {what} {} m: the stop is in contact at the design length {design:.4} m, by {:.4} m",
+                        if kind == StopType::Bump { min } else { max },
+                        -clearance
                     ));
                 }
                 let stop = if kind == StopType::Bump { "bump stop" } else { "rebound stop" };
