@@ -340,3 +340,27 @@ fn the_reduced_double_wishbone_matches_the_loop_closure() {
     // Measured: 4.2e-12 rad.
     assert!(worst < 1e-10, "{worst:e}");
 }
+
+/// On the full axle the right corner of each Chrono reading is the left one mirrored.
+#[test]
+fn chrono_readings_mirror_on_the_axle() {
+    use elastokin_suspensions::{axle::axle_sweep, Axle, AxleRig};
+    for name in [
+        "DoubleWishbone.json",
+        "MacPhersonStrut.json",
+        "hmmwv/HMMWV_DoubleWishboneFront_bushings.json",
+        "hmmwv/HMMWV_DoubleWishboneReducedFront.json",
+    ] {
+        let file = read(name).file;
+        let axle = Axle::build(&file.suspension, AxleRig::ParallelTravel).unwrap();
+        let rows = axle_sweep(&axle, -0.05, 0.05, 4, Mode::Corrected).unwrap();
+        let worst = rows.iter().fold(0.0_f64, |m, r| {
+            m.max((r.left.toe - r.right.toe).abs())
+                .max((r.left.camber - r.right.camber).abs())
+                .max((r.left.wheel_centre.y + r.right.wheel_centre.y).abs())
+                .max((r.left_load - r.right_load).abs() / 1e4)
+        });
+        // Measured: 0, and 7.7e-16 with the six-way bushings.
+        assert!(worst < 1e-13, "{name}: {worst:e}");
+    }
+}
