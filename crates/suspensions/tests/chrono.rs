@@ -364,3 +364,47 @@ fn chrono_readings_mirror_on_the_axle() {
         assert!(worst < 1e-13, "{name}: {worst:e}");
     }
 }
+
+/// Chrono's curve spring carries the wheel by virtual work: at every row of the driven travel the rig's
+/// force is the push the table gives (`−f(L − L₀)`, interpolated here from the file's table) times the
+/// rate at which the travel shortens the spring (from the exact path tangent).
+#[test]
+fn a_chrono_curve_spring_carries_the_wheel_by_virtual_work() {
+    use elastokin_solver::{LoadPath, SolverOptions, StaticSolver};
+    let v = json("DoubleWishboneCurve.json");
+    let table: Vec<(f64, f64)> = v["Spring"]["Spring Curve Data"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| (r[0].as_f64().unwrap(), r[1].as_f64().unwrap()))
+        .collect();
+    let free = v["Spring"]["Free Length"].as_f64().unwrap();
+    // Chrono's map, linear between its points (this table is a straight line, so the curve through it is too).
+    let map = |x: f64| {
+        let k = table.windows(2).position(|w| x <= w[1].0).unwrap_or(table.len() - 2);
+        let ((x0, f0), (x1, f1)) = (table[k], table[k + 1]);
+        f0 + (f1 - f0) * (x - x0) / (x1 - x0)
+    };
+    let (chassis, seat) = (point(&v, "Spring", "Location Chassis"), point(&v, "Spring", "Location Arm"));
+    let corner = read("DoubleWishboneCurve.json").file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
+    let mut solver = StaticSolver::new(&corner.model, SolverOptions::default()).unwrap();
+    let sweep = solver.sweep(LoadPath::new(-0.06, 0.06, 12), Mode::Corrected).unwrap();
+    let driver = corner.model.joint_id("wheel travel").unwrap();
+    let arm = corner.model.body_id("lower arm").unwrap().0;
+    let local = corner.model.bodies()[arm].design_pose.to_local_point(&seat);
+    let mut worst: f64 = 0.0;
+    for step in &sweep.steps {
+        let load = step.joint_reactions(&corner.model)[driver.0].force.z;
+        let rates = solver.path_tangent(&solver.state_of(step)).unwrap();
+        let pose = step.poses[arm];
+        let at = pose.point(&local);
+        let velocity = Vec3::new(rates[6 * arm], rates[6 * arm + 1], rates[6 * arm + 2])
+            + Vec3::new(rates[6 * arm + 3], rates[6 * arm + 4], rates[6 * arm + 5]).cross(&(at - pose.position));
+        let length = (at - chassis).norm();
+        let push = -map(length - free);
+        let expected = -push * (at - chassis).normalize().dot(&velocity);
+        worst = worst.max((load - expected).abs() / expected.abs());
+    }
+    // Measured: 1.5e-13 relative.
+    assert!(worst < 1e-11, "{worst:e}");
+}
