@@ -34,6 +34,7 @@
 //!   unless the caller gives one.
 
 mod double_wishbone;
+mod generic_wheeled;
 mod macpherson;
 
 use crate::corner::{ROTATIONAL_RATE_RANGE, TRANSLATIONAL_RATE_RANGE};
@@ -61,7 +62,8 @@ pub struct Imported {
 }
 
 /// The Chrono templates [`import`] reads.
-pub const SUPPORTED: [&str; 3] = ["DoubleWishbone", "DoubleWishboneReduced", "MacPhersonStrut"];
+pub const SUPPORTED: [&str; 4] =
+    ["DoubleWishbone", "DoubleWishboneReduced", "MacPhersonStrut", "GenericWheeledSuspension"];
 
 /// Whether `text` is a Chrono suspension file: a JSON object (with `//` comments allowed) whose `"Type"` is
 /// `"Suspension"` and which names a `"Template"`.
@@ -90,6 +92,7 @@ pub fn import(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Im
         "DoubleWishbone" => double_wishbone::read(&doc, &mut b, false),
         "DoubleWishboneReduced" => double_wishbone::read(&doc, &mut b, true),
         "MacPhersonStrut" => macpherson::read(&doc, &mut b),
+        "GenericWheeledSuspension" => generic_wheeled::read(&doc, &mut b),
         other => Err(refused(other)),
     };
     built.map_err(invalid)?;
