@@ -34,6 +34,7 @@
 //!   unless the caller gives one.
 
 mod double_wishbone;
+mod generic_wheeled;
 mod macpherson;
 
 use crate::corner::{ROTATIONAL_RATE_RANGE, TRANSLATIONAL_RATE_RANGE};
@@ -61,7 +62,8 @@ pub struct Imported {
 }
 
 /// The Chrono templates [`import`] reads.
-pub const SUPPORTED: [&str; 3] = ["DoubleWishbone", "DoubleWishboneReduced", "MacPhersonStrut"];
+pub const SUPPORTED: [&str; 4] =
+    ["DoubleWishbone", "DoubleWishboneReduced", "MacPhersonStrut", "GenericWheeledSuspension"];
 
 /// Whether `text` is a Chrono suspension file: a JSON object (with `//` comments allowed) whose `"Type"` is
 /// `"Suspension"` and which names a `"Template"`.
@@ -97,6 +99,7 @@ pub fn import(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Im
         "DoubleWishbone" => double_wishbone::read(&doc, &mut b, false),
         "DoubleWishboneReduced" => double_wishbone::read(&doc, &mut b, true),
         "MacPhersonStrut" => macpherson::read(&doc, &mut b),
+        "GenericWheeledSuspension" => generic_wheeled::read(&doc, &mut b),
         other => Err(refused(other)),
     };
     built.map_err(invalid)?;
@@ -198,8 +201,44 @@ impl<'a> Doc<'a> {
         Doc { root, read: RefCell::new(BTreeSet::new()) }
     }
 
+    /// The value at `path`: keys joined by `/`, an index into an array as its number (`Bodies/0/Name`).
     fn at(&self, path: &str) -> Option<&'a Value> {
-        path.split('/').try_fold(self.root, |v, key| v.get(key))
+        path.split('/').try_fold(self.root, |v, key| match v {
+            Value::Array(items) => key.parse::<usize>().ok().and_then(|i| items.get(i)),
+            _ => v.get(key),
+        })
+    }
+
+    /// `path` split for messages: each key, and after it the element of an array it indexes, by its `Name`
+    /// when it has one (`[RevoluteUCA]`), else by its index (`[0]`).
+    fn segments(&self, path: &str) -> Vec<(String, String)> {
+        let mut out: Vec<(String, String)> = Vec::new();
+        let mut at = Some(self.root);
+        for key in path.split('/') {
+            match (at, out.last_mut()) {
+                (Some(Value::Array(items)), Some(last)) => {
+                    let item = key.parse::<usize>().ok().and_then(|i| items.get(i));
+                    let name = item.and_then(|v| v.get("Name")).and_then(Value::as_str).unwrap_or(key);
+                    last.1.push_str(&format!("[{name}]"));
+                    at = item;
+                }
+                _ => {
+                    out.push((key.to_string(), String::new()));
+                    at = at.and_then(|v| v.get(key));
+                }
+            }
+        }
+        out
+    }
+
+    /// `path` as the notes show it: `Joints[RevoluteUCA] / Bushing Data`.
+    pub(crate) fn shown(&self, path: &str) -> String {
+        self.segments(path).iter().map(|(k, element)| format!("{k}{element}")).collect::<Vec<_>>().join(" / ")
+    }
+
+    /// `path` as the errors show it, keys quoted: `"Joints"[RevoluteUCA] / "Position"`.
+    fn quoted(&self, path: &str) -> String {
+        self.segments(path).iter().map(|(k, element)| format!("\"{k}\"{element}")).collect::<Vec<_>>().join(" / ")
     }
 
     /// Marks `path` (keys joined by `/`) as read.
@@ -228,10 +267,8 @@ impl<'a> Doc<'a> {
     pub(crate) fn number(&self, path: &str) -> Result<f64, String> {
         self.expect(path);
         match self.at(path) {
-            Some(v) => {
-                v.as_f64().ok_or_else(|| format!("\"{}\" must be a number, got {v}", path.replace('/', "\" / \"")))
-            }
-            None => Err(format!("\"{}\" is missing", path.replace('/', "\" / \""))),
+            Some(v) => v.as_f64().ok_or_else(|| format!("{} must be a number, got {v}", self.quoted(path))),
+            None => Err(format!("{} is missing", self.quoted(path))),
         }
     }
 
@@ -247,22 +284,22 @@ impl<'a> Doc<'a> {
     /// A point `[x, y, z]` at `path`.
     pub(crate) fn point(&self, path: &str) -> Result<Vec3, String> {
         self.expect(path);
-        let v = self.at(path).ok_or_else(|| format!("\"{}\" is missing", path.replace('/', "\" / \"")))?;
+        let v = self.at(path).ok_or_else(|| format!("{} is missing", self.quoted(path)))?;
         match v.as_array().map(|a| a.iter().map(Value::as_f64).collect::<Option<Vec<f64>>>()) {
             Some(Some(c)) if c.len() == 3 => Ok(Vec3::new(c[0], c[1], c[2])),
-            _ => Err(format!("\"{}\" must be a point [x, y, z] in metres, got {v}", path.replace('/', "\" / \""))),
+            _ => Err(format!("{} must be a point [x, y, z] in metres, got {v}", self.quoted(path))),
         }
     }
 
     /// A table `[[x, y], …]` at `path`.
     pub(crate) fn table(&self, path: &str) -> Result<Vec<[f64; 2]>, String> {
         self.expect(path);
-        let v = self.at(path).ok_or_else(|| format!("\"{path}\" is missing"))?;
-        let rows = v.as_array().ok_or_else(|| format!("\"{path}\" must be a table [[x, y], …]"))?;
+        let v = self.at(path).ok_or_else(|| format!("{} is missing", self.quoted(path)))?;
+        let rows = v.as_array().ok_or_else(|| format!("{} must be a table [[x, y], …]", self.quoted(path)))?;
         rows.iter()
             .map(|r| match r.as_array().map(|a| a.iter().map(Value::as_f64).collect::<Option<Vec<f64>>>()) {
                 Some(Some(p)) if p.len() == 2 => Ok([p[0], p[1]]),
-                _ => Err(format!("\"{path}\": every row is [x, y], got {r}")),
+                _ => Err(format!("{}: every row is [x, y], got {r}", self.quoted(path))),
             })
             .collect()
     }
@@ -274,21 +311,27 @@ impl<'a> Doc<'a> {
             self.expect(&format!("{object}/{k}"));
         }
         if !given.is_empty() {
-            notes.push(format!("{object}: {} — {FOR_DYNAMICS}", given.join(", ")));
+            notes.push(format!("{}: {} — {FOR_DYNAMICS}", self.shown(object), given.join(", ")));
         }
     }
 
-    /// Every key of the document that was not read, as `a / b / c`.
+    /// Every key of the document that was not read, as [`Doc::shown`] shows it. A list of objects (Chrono's
+    /// `Bodies`, `Joints`, …) is walked element by element.
     fn unread(&self) -> Vec<String> {
         fn walk(v: &Value, path: String, read: &BTreeSet<String>, out: &mut Vec<String>) {
             if read.contains(&path) {
                 return;
             }
-            match v.as_object() {
-                Some(map) if !map.is_empty() => {
+            let join = |k: &str| if path.is_empty() { k.to_string() } else { format!("{path}/{k}") };
+            match v {
+                Value::Object(map) if !map.is_empty() => {
                     for (k, child) in map {
-                        let p = if path.is_empty() { k.clone() } else { format!("{path}/{k}") };
-                        walk(child, p, read, out);
+                        walk(child, join(k), read, out);
+                    }
+                }
+                Value::Array(items) if !items.is_empty() && items.iter().all(Value::is_object) => {
+                    for (i, child) in items.iter().enumerate() {
+                        walk(child, join(&i.to_string()), read, out);
                     }
                 }
                 _ => out.push(path),
@@ -296,7 +339,7 @@ impl<'a> Doc<'a> {
         }
         let mut out = Vec::new();
         walk(self.root, String::new(), &self.read.borrow(), &mut out);
-        out.into_iter().map(|p| p.replace('/', " / ")).collect()
+        out.into_iter().map(|p| self.shown(&p)).collect()
     }
 }
 
@@ -396,6 +439,10 @@ impl Builder {
             let (axis, axis_j) = match (kind, frame) {
                 (JointKind::Revolute | JointKind::Cylindrical, Some((_, w))) => (Some(Axis::Vector(w)), None),
                 (JointKind::Universal, Some((u, w))) => (Some(Axis::Vector(u)), Some(Axis::Vector(w.cross(&u)))),
+                // Chrono's point-line keeps the first body's point on the frame's x axis; point-plane on its
+                // xy plane (normal z).
+                (JointKind::InLine, Some((u, _))) => (Some(Axis::Vector(u)), None),
+                (JointKind::InPlane, Some((_, w))) => (Some(Axis::Vector(w)), None),
                 _ => (None, None),
             };
             self.general.joints.push(JointDef {
@@ -437,7 +484,7 @@ impl Builder {
             if k < lo {
                 notes.push(format!(
                     "{}: {what} rate {k} taken as {lo} (the least the engine takes: a rate of zero holds nothing)",
-                    path.replace('/', " / ")
+                    doc.shown(path)
                 ));
                 lo
             } else {
@@ -497,7 +544,7 @@ impl Builder {
         {
             if doc.has(&key(damping)) {
                 doc.expect(&key(damping));
-                self.notes.push(format!("{object} / {damping}: damping, left out (statics: no velocity)"));
+                self.notes.push(format!("{} / {damping}: damping, left out (statics: no velocity)", doc.shown(object)));
             }
         }
         self.general.springs.push(SpringDef {
@@ -521,7 +568,8 @@ impl Builder {
             {
                 if clearance < 0.0 {
                     self.notes.push(format!(
-                        "{object} / {what} {} m: the stop is in contact at the design length {design:.4} m, by {:.4} m",
+                        "{} / {what} {} m: the stop is in contact at the design length {design:.4} m, by {:.4} m",
+                        doc.shown(object),
                         if kind == StopType::Bump { min } else { max },
                         -clearance
                     ));
@@ -538,7 +586,8 @@ impl Builder {
                 });
             }
             self.notes.push(format!(
-                "{object} / Minimum Length, Maximum Length: a bump and a rebound stop with Chrono's built-in curve"
+                "{} / Minimum Length, Maximum Length: a bump and a rebound stop with Chrono's built-in curve",
+                doc.shown(object)
             ));
         }
         Ok(())
