@@ -178,7 +178,7 @@ pub enum AnalysisName {
     Roll,
     /// rack travel, m, towards +y, full axle, heights held; default -0.04,0.04
     Steering,
-    /// force at the contact patch (or --load-point), N, up +, wheel free; default 0.5..1.5 x the design wheel load
+    /// force at the contact patch (or --load-point), N, up +, wheel free; default 0.5..1.5 x the design wheel load (0..3000 N when it is nothing)
     VerticalForce,
     /// force at the contact patch, N, inboard +; default -3000,3000
     LateralForce,

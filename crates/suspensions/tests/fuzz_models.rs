@@ -542,10 +542,18 @@ fn zero_spring_design_force_gives_no_nan_wheel_rate() {
     let file = SuspensionFile::from_json(&text, "model.json").unwrap();
     let settings = Settings { steps: 4, ..Settings::default() };
     // The default range is 0.5–1.5 × the design wheel load, which the spring's design force carries: with
-    // none, there is no range to take a wheel rate over, and the analysis says which key to give.
-    let e = kc::run(kc::Analysis::VerticalForce, &file, &settings).unwrap_err().to_string();
-    check_refusal(&e).unwrap();
-    assert!(e.contains("spring.design_force") && e.contains("--range"), "{e}");
+    // none, a range around nothing would have no width, so 0 to 3 kN is taken, and the wheel rate is there.
+    let report = kc::run(kc::Analysis::VerticalForce, &file, &settings).unwrap();
+    assert_eq!(report.range, (0.0, 3000.0));
+    check_report(&KcReport {
+        model: file.name.clone(),
+        settings,
+        analyses: vec![report],
+        skipped: Vec::new(),
+        model_check: None,
+        warnings: Vec::new(),
+    })
+    .unwrap();
     // With a range the wheel rate is there.
     let ranged = Settings { range: Some((-1000.0, 1000.0)), ..settings };
     let report = kc::run(kc::Analysis::VerticalForce, &file, &ranged).unwrap();

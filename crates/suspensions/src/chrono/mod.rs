@@ -36,13 +36,17 @@
 mod double_wishbone;
 mod generic_wheeled;
 mod macpherson;
+mod multi_link;
+mod semi_trailing_arm;
+mod single_wishbone;
+mod three_link_irs;
 
 use crate::corner::{ROTATIONAL_RATE_RANGE, TRANSLATIONAL_RATE_RANGE};
 use crate::general::{
     Axis, BodyDef, BodyPoint, BushingDef, CornerDef, GeneralCorner, Hardpoints, JointDef, Place, SpringDef, StopDef,
     StopType, TieRodDef, CHASSIS,
 };
-use crate::model_file::{FileError, SuspensionFile, Template};
+use crate::model_file::{FileError, SuspensionFile, Template, MAX_COORDINATE};
 use crate::Connection;
 use elastokin_core::{JointKind, Vec3};
 use elastokin_elements::RotationLaw;
@@ -62,8 +66,16 @@ pub struct Imported {
 }
 
 /// The Chrono templates [`import`] reads.
-pub const SUPPORTED: [&str; 4] =
-    ["DoubleWishbone", "DoubleWishboneReduced", "MacPhersonStrut", "GenericWheeledSuspension"];
+pub const SUPPORTED: [&str; 8] = [
+    "DoubleWishbone",
+    "DoubleWishboneReduced",
+    "MacPhersonStrut",
+    "MultiLink",
+    "SemiTrailingArm",
+    "SingleWishbone",
+    "ThreeLinkIRS",
+    "GenericWheeledSuspension",
+];
 
 /// Whether `text` is a Chrono suspension file: a JSON object (with `//` comments allowed) whose `"Type"` is
 /// `"Suspension"` and which names a `"Template"`.
@@ -99,6 +111,10 @@ pub fn import(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Im
         "DoubleWishbone" => double_wishbone::read(&doc, &mut b, false),
         "DoubleWishboneReduced" => double_wishbone::read(&doc, &mut b, true),
         "MacPhersonStrut" => macpherson::read(&doc, &mut b),
+        "MultiLink" => multi_link::read(&doc, &mut b),
+        "SemiTrailingArm" => semi_trailing_arm::read(&doc, &mut b),
+        "SingleWishbone" => single_wishbone::read(&doc, &mut b),
+        "ThreeLinkIRS" => three_link_irs::read(&doc, &mut b),
         "GenericWheeledSuspension" => generic_wheeled::read(&doc, &mut b),
         other => Err(refused(other)),
     };
@@ -386,6 +402,17 @@ impl Builder {
     /// Adds the hardpoint `name` at the point read from `path`; returns its name.
     pub(crate) fn hardpoint(&mut self, doc: &Doc, name: &str, path: &str) -> Result<String, String> {
         let p = doc.point(path)?;
+        // Refused here, by the file's key, before a frame or a midpoint is taken from it.
+        if p.amax() > MAX_COORDINATE {
+            return Err(format!(
+                "\"{}\" [{:?}, {:?}, {:?}]: a coordinate beyond ±{MAX_COORDINATE} m; Chrono's points are in metres from the \
+                 suspension's reference point",
+                path.replace('/', "\" / \""),
+                p.x,
+                p.y,
+                p.z
+            ));
+        }
         self.general.hardpoints.0.push((name.to_string(), p));
         Ok(name.to_string())
     }
@@ -411,6 +438,27 @@ impl Builder {
     /// Adds a body at the hardpoint `at`.
     pub(crate) fn body(&mut self, name: &str, at: &str) {
         self.general.bodies.push(BodyDef { name: name.into(), at: Place::named(at) });
+    }
+
+    /// The steering axis of a wheel carrier without a kingpin (a trailing arm that carries the spindle): the
+    /// wheel's own vertical through its centre — the z axis of Chrono's spindle frame, the chassis's z turned
+    /// by the toe and camber — from the wheel centre to the hardpoint `steering_axis_upper` 0.1 m up it, both
+    /// on the upright. With no camber it is the vertical through the wheel centre: caster, kingpin
+    /// inclination and kingpin offset zero.
+    pub(crate) fn wheel_vertical_steering_axis(&mut self) -> Result<(), String> {
+        let centre = self.general.hardpoints.get("wheel_centre").ok_or("no hardpoint wheel_centre")?;
+        let spin = Vec3::from(self.general.corner.spin_axis);
+        let up = Vec3::z() - spin * spin.z;
+        // Within the 60° of camber the general model takes, |up| = cos γ ≥ 0.5.
+        if up.norm() <= 0.5 {
+            return Err(format!(
+                "\"Camber Angle (deg)\" {:.1}: the wheel lies too flat to have a vertical; give a camber within ±60°",
+                (-spin.z).asin().to_degrees()
+            ));
+        }
+        self.general.hardpoints.0.push(("steering_axis_upper".into(), centre + 0.1 * up.normalize()));
+        self.steering_axis(("upright", "wheel_centre"), ("upright", "steering_axis_upper"));
+        Ok(())
     }
 
     /// The steering axis from `lower` on `lower_body` to `upper` on `upper_body`.
@@ -711,3 +759,41 @@ pub(crate) fn midpoint(b: &Builder, p: &str, q: &str) -> Result<Place, String> {
 
 /// The chassis, by the general model's name.
 pub(crate) const GROUND: &str = CHASSIS;
+
+/// A direction `[x, y, z]` at `path` (any length but zero).
+pub(crate) fn direction(doc: &Doc, path: &str) -> Result<Vec3, String> {
+    let shown = path.replace('/', "\" / \"");
+    let d =
+        doc.point(path).map_err(|_| format!("\"{shown}\" must be a direction [x, y, z], of any length but zero"))?;
+    // Scaled by its largest component, so that its length is finite however long it is given.
+    let largest = d.amax();
+    if largest == 0.0 {
+        return Err(format!("\"{shown}\" is [0, 0, 0]: give the direction [x, y, z], of any length but zero"));
+    }
+    Ok(d / largest)
+}
+
+/// Chrono's frame of a universal joint whose cross pins are `u` (on the first body) and `v` made
+/// perpendicular to it (on the second), as [`Builder::joint`] takes it: `(û, ŵ)` with ŵ = û × v
+/// normalised, so that the joint crosses û with ŵ × û. `parallel` is the refusal when the two are
+/// parallel.
+pub(crate) fn cross_frame(u: Vec3, v: Vec3, parallel: &str) -> Result<(Vec3, Vec3), String> {
+    let (u, v) = (u.normalize(), v.normalize());
+    let w = u.cross(&v);
+    // Finite: a zero direction is refused by `direction`, which also scales a long one.
+    if w.norm() <= 1e-6 {
+        return Err(parallel.to_string());
+    }
+    Ok((u, w.normalize()))
+}
+
+/// `frame` (a `(u, w)` of [`Builder::joint`]) when it is one: finite, of unit axes. `why` says what makes it
+/// fail, and how to fix that.
+pub(crate) fn checked_frame(frame: (Vec3, Vec3), why: &str) -> Result<(Vec3, Vec3), String> {
+    let unit = |a: Vec3| (a.norm() - 1.0).abs() < 1e-9;
+    if unit(frame.0) && unit(frame.1) {
+        Ok(frame)
+    } else {
+        Err(why.to_string())
+    }
+}

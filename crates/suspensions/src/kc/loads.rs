@@ -16,6 +16,9 @@ use crate::{Rig, Side};
 pub(super) const NO_LOADS: &str = "the model has no load case: give \"loads\" in the general form (a force at a point \
                                     of a body, or a moment), see docs/model-file.md";
 
+/// The top of the vertical-force range of a corner that carries nothing at design (N).
+const UNLOADED_RANGE_TOP: f64 = 3000.0;
+
 /// Where the rig's forces act, in words.
 fn where_loaded(s: &Settings) -> &'static str {
     match s.load_point {
@@ -27,16 +30,12 @@ fn where_loaded(s: &Settings) -> &'static str {
 pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
     let held = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(said)?;
     let design_load = design_wheel_load(&held).map_err(said)?;
+    // The default range is 0.5 to 1.5 times the design wheel load. A corner that carries next to nothing at
+    // design (its spring at its free length, as some imported data have it) gets 0 to 3 kN instead: a
+    // range around nothing would have no width.
     let range = match s.range {
         Some(range) => range,
-        // Below a newton the default range has no width, and the wheel rate (force over travel) no value.
-        None if design_load.abs() < 1.0 => {
-            return Err(format!(
-                "the corner carries {design_load:.3} N at design, so the default range (0.5 to 1.5 times that) \
-                 has no width: give spring.design_force, the spring's push at the design position (N), or a \
-                 --range in newtons"
-            ))
-        }
+        None if design_load.abs() < 1.0 => (0.0, UNLOADED_RANGE_TOP),
         None => (0.5 * design_load, 1.5 * design_load),
     };
     let mut corner = file.suspension.build(Side::Left, Rig::Free).map_err(said)?;
