@@ -88,37 +88,85 @@ impl From<Connection> for ArmMounts {
     }
 }
 
-/// The two-key form of [`ArmMounts`].
-#[derive(Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct EachEnd {
-    front: Connection,
-    rear: Connection,
+/// A part with two ends, each its own [`Connection`], written as one connection for both or as an object of
+/// the two ends by name.
+fn serialize_ends<S: serde::Serializer>(s: S, names: [&str; 2], ends: [Connection; 2]) -> Result<S::Ok, S::Error> {
+    use serde::ser::SerializeMap;
+    if ends[0] == ends[1] {
+        return ends[0].serialize(s);
+    }
+    let mut map = s.serialize_map(Some(2))?;
+    map.serialize_entry(names[0], &ends[0])?;
+    map.serialize_entry(names[1], &ends[1])?;
+    map.end()
+}
+
+/// Reads what [`serialize_ends`] writes; `what` names the part in the error.
+fn deserialize_ends<'de, D: serde::Deserializer<'de>>(
+    d: D,
+    names: [&str; 2],
+    what: &str,
+) -> Result<[Connection; 2], D::Error> {
+    use serde::de::Error;
+    let value = serde_json::Value::deserialize(d)?;
+    let Some(object) = value.as_object().filter(|o| names.iter().any(|n| o.contains_key(*n))) else {
+        return serde_json::from_value::<Connection>(value).map(|c| [c, c]).map_err(D::Error::custom);
+    };
+    let needs = || D::Error::custom(format!("{what} {{\"{}\": …, \"{}\": …}} need both ends", names[0], names[1]));
+    if let Some(other) = object.keys().find(|k| !names.contains(&k.as_str())) {
+        return Err(D::Error::custom(format!(
+            "{what}: unknown end '{other}', give \"{}\" and \"{}\"",
+            names[0], names[1]
+        )));
+    }
+    let end = |name: &str| -> Result<Connection, D::Error> {
+        let v = object.get(name).ok_or_else(needs)?;
+        serde_json::from_value(v.clone()).map_err(|e| D::Error::custom(format!("{what}, {name}: {e}")))
+    };
+    Ok([end(names[0])?, end(names[1])?])
 }
 
 impl Serialize for ArmMounts {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        if self.front == self.rear {
-            self.front.serialize(s)
-        } else {
-            EachEnd { front: self.front, rear: self.rear }.serialize(s)
-        }
+        serialize_ends(s, ["front", "rear"], [self.front, self.rear])
     }
 }
 
 impl<'de> Deserialize<'de> for ArmMounts {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        use serde::de::Error;
-        let value = serde_json::Value::deserialize(d)?;
-        let each = value.as_object().is_some_and(|o| o.contains_key("front") || o.contains_key("rear"));
-        if each {
-            let e: EachEnd = serde_json::from_value(value).map_err(|e| {
-                D::Error::custom(format!("an arm's mounts {{\"front\": …, \"rear\": …}} need both ends: {e}"))
-            })?;
-            Ok(ArmMounts { front: e.front, rear: e.rear })
-        } else {
-            serde_json::from_value::<Connection>(value).map(ArmMounts::from).map_err(D::Error::custom)
-        }
+        let [front, rear] = deserialize_ends(d, ["front", "rear"], "an arm's mounts")?;
+        Ok(ArmMounts { front, rear })
+    }
+}
+
+/// How a tie rod meets the rack (its inner end) and the upright (its outer end): one connection for both
+/// (`"ideal"`: a distance link, ball joints at both ends), or `{"inner": …, "outer": …}`. With a bushing at
+/// either end the rod is a body; an ideal end is then a universal joint at the rack (which holds the rod's
+/// spin) or a ball joint at the upright.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct TieRodMounts {
+    /// At the rack (or the chassis).
+    pub inner: Connection,
+    /// At the upright.
+    pub outer: Connection,
+}
+
+impl From<Connection> for TieRodMounts {
+    fn from(both: Connection) -> Self {
+        TieRodMounts { inner: both, outer: both }
+    }
+}
+
+impl Serialize for TieRodMounts {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        serialize_ends(s, ["inner", "outer"], [self.inner, self.outer])
+    }
+}
+
+impl<'de> Deserialize<'de> for TieRodMounts {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let [inner, outer] = deserialize_ends(d, ["inner", "outer"], "a tie rod's mounts")?;
+        Ok(TieRodMounts { inner, outer })
     }
 }
 

@@ -1,7 +1,7 @@
 //! A suspension corner ready to solve: the template's parts, the tie rod, the rig that holds it, and the
 //! wheel characteristics read from its poses.
 
-use crate::connection::{BushingRates, Connection, SpringSpec};
+use crate::connection::{BushingRates, Connection, SpringSpec, TieRodMounts};
 use crate::hardpoint::Side;
 use elastokin_core::joint::orthonormal_complement;
 use elastokin_core::Mat3;
@@ -61,9 +61,11 @@ pub struct TieRod {
     pub inner: Vec3,
     /// Outer end (upright), global design point.
     pub outer: Vec3,
-    /// `Ideal`: a distance constraint (ball joints at both ends). `Bushing`: a tie-rod body with a bushing
-    /// at each end, axis along the rod, so the steering compliance of the rod's mounts is modelled.
-    pub connection: Connection,
+    /// Both ends ideal: a distance constraint (ball joints at both ends). A bushing at either end: a tie-rod
+    /// body, each bushing's axis along the rod, so the steering compliance of the rod's mounts is modelled;
+    /// an ideal end of it is a universal joint at the rack (holding the rod's spin) or a ball joint at the
+    /// upright.
+    pub connection: TieRodMounts,
 }
 
 /// Farthest a hardpoint may lie from its wheel centre (m). A corner spans a metre or two; far beyond,
@@ -152,6 +154,15 @@ pub(crate) fn check_connection(key: &str, connection: &Connection) -> Result<(),
         check_rate(&format!("{key}.bushing.{what}"), value, ROTATIONAL_RATE_RANGE, "N·m/rad")?;
     }
     Ok(())
+}
+
+/// [`check_connection`] for each end of a tie rod.
+pub(crate) fn check_tie_rod_mounts(key: &str, mounts: &TieRodMounts) -> Result<(), ModelError> {
+    if mounts.inner == mounts.outer {
+        return check_connection(key, &mounts.inner);
+    }
+    check_connection(&format!("{key}.inner"), &mounts.inner)?;
+    check_connection(&format!("{key}.outer"), &mounts.outer)
 }
 
 /// [`check_connection`] for each end of an arm.
@@ -319,25 +330,32 @@ pub(crate) fn mount_tie_rod(
 ) -> Result<(), ModelError> {
     let name = part_name(prefix, "tie rod");
     let upright = wheel.upright;
-    match tie_rod.connection {
-        Connection::Ideal => {
-            model.add_joint(JointSpec::distance(&name, inner_body, upright, tie_rod.inner, tie_rod.outer))?;
-        }
-        Connection::Bushing(rates) => {
-            let axis = rates.axis.map_or(tie_rod.outer - tie_rod.inner, |a| wheel.side.place(a.into()));
-            let rod = model.add_body(&name, Pose::at((tie_rod.inner + tie_rod.outer) / 2.0))?;
-            let inner =
-                axial_bushing(&format!("{name} inner bushing"), inner_body, rod.into(), tie_rod.inner, axis, rates)?;
-            model.add_element(inner)?;
-            let outer = axial_bushing(
-                &format!("{name} outer bushing"),
-                rod.into(),
-                upright.into(),
-                tie_rod.outer,
-                axis,
-                rates,
-            )?;
-            model.add_element(outer)?;
+    let TieRodMounts { inner, outer } = tie_rod.connection;
+    if (inner, outer) == (Connection::Ideal, Connection::Ideal) {
+        model.add_joint(JointSpec::distance(&name, inner_body, upright, tie_rod.inner, tie_rod.outer))?;
+        return Ok(());
+    }
+    let rod_axis = tie_rod.outer - tie_rod.inner;
+    let rod = model.add_body(&name, Pose::at((tie_rod.inner + tie_rod.outer) / 2.0))?;
+    let ends = [
+        ("inner", inner_body, BodyRef::from(rod), tie_rod.inner, inner),
+        ("outer", BodyRef::from(rod), BodyRef::from(upright), tie_rod.outer, outer),
+    ];
+    for (end, carrier, body, point, connection) in ends {
+        match connection {
+            Connection::Bushing(rates) => {
+                let axis = rates.axis.map_or(rod_axis, |a| wheel.side.place(a.into()));
+                let bushing = axial_bushing(&format!("{name} {end} bushing"), carrier, body, point, axis, rates)?;
+                model.add_element(bushing)?;
+            }
+            // At the rack a universal joint, its cross across the rod, so that the rod cannot spin.
+            Connection::Ideal if end == "inner" => {
+                let (u, v) = orthonormal_complement(&rod_axis.normalize());
+                model.add_joint(JointSpec::universal(&format!("{name} {end} joint"), carrier, body, point, u, v))?;
+            }
+            Connection::Ideal => {
+                model.add_joint(JointSpec::spherical(&format!("{name} {end} joint"), carrier, body, point))?;
+            }
         }
     }
     Ok(())

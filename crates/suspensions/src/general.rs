@@ -28,7 +28,7 @@
 //! whose toe link is an ordinary joint to the chassis) runs every analysis but steering.
 
 use crate::anti_roll_bar::AntiRollBar;
-use crate::connection::{BushingRates, Connection};
+use crate::connection::{BushingRates, Connection, TieRodMounts};
 use crate::corner::{
     check_hardpoints, check_rate, check_steering_arm, check_steering_axis, part_name, CornerParts, CornerTemplate,
     TieRod, Wheel, ROTATIONAL_RATE_RANGE, TRANSLATIONAL_RATE_RANGE,
@@ -530,9 +530,10 @@ pub struct TieRodDef {
     pub inner: Place,
     /// Outer end (upright).
     pub outer: Place,
-    /// A distance constraint (`"ideal"`, the default) or a rod with a bushing at each end.
+    /// A distance constraint (`"ideal"`, the default), a rod with a bushing at each end, or
+    /// `{"inner": …, "outer": …}` (see [`TieRodMounts`]).
     #[serde(default)]
-    pub connection: Connection,
+    pub connection: TieRodMounts,
 }
 
 /// Where the wheel is and how it is steered: what turns a linkage into a suspension corner.
@@ -741,7 +742,7 @@ impl GeneralCorner {
                 tie_rod: Some(TieRodDef {
                     inner: Place::named("tie_rod_inner"),
                     outer: Place::named("tie_rod_outer"),
-                    connection: tie_rod,
+                    connection: tie_rod.into(),
                 }),
             },
         }
@@ -1083,7 +1084,7 @@ impl CornerTemplate for GeneralCorner {
             }),
         };
         if let Some(TieRod { connection, .. }) = &tie_rod {
-            crate::corner::check_connection("corner.tie_rod.connection", connection)?;
+            crate::corner::check_tie_rod_mounts("corner.tie_rod.connection", connection)?;
         }
         Ok(CornerParts { wheel, tie_rod })
     }

@@ -45,7 +45,7 @@ pub mod plausibility;
 
 pub use anti_roll_bar::AntiRollBar;
 pub use axle::{Axle, AxleRig, AxleRow, RollCentre};
-pub use connection::{ArmMounts, BushingRates, Connection, SpringSpec};
+pub use connection::{ArmMounts, BushingRates, Connection, SpringSpec, TieRodMounts};
 pub use corner::{Corner, CornerParts, CornerTemplate, LoadPoint, Rig, SteeringGeometry, TieRod, Wheel, WheelAttitude};
 pub use double_wishbone::{DoubleWishbone, DoubleWishboneHardpoints};
 pub use general::GeneralCorner;

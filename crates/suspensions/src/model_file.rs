@@ -516,7 +516,13 @@ impl SuspensionFile {
                     ));
                 }
                 if let Some(t) = &g.corner.tie_rod {
-                    connection(&mut rates, keys(&["corner", "tie_rod", "connection"]), &t.connection);
+                    let m = &t.connection;
+                    if m.inner == m.outer {
+                        connection(&mut rates, keys(&["corner", "tie_rod", "connection"]), &m.inner);
+                    } else {
+                        connection(&mut rates, keys(&["corner", "tie_rod", "connection", "inner"]), &m.inner);
+                        connection(&mut rates, keys(&["corner", "tie_rod", "connection", "outer"]), &m.outer);
+                    }
                 }
                 for load in &g.loads {
                     for (what, values) in [("force", load.force), ("torque", load.torque)] {

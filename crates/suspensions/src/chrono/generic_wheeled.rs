@@ -337,7 +337,7 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
             b.general.corner.tie_rod = Some(TieRodDef {
                 inner: Place::named("tie_rod_inner"),
                 outer: Place::named("tie_rod_outer"),
-                connection: Connection::Ideal,
+                connection: Connection::Ideal.into(),
             });
             b.notes
                 .push(format!("{what}: the corner's tie rod, from the rack (steering) or the chassis to the upright"));

@@ -688,31 +688,35 @@ impl Builder {
             ] {
                 doc.expect(&format!("{path}/{k}"));
             }
-            // The tie rod's bushings are one rate set for both ends here: translations k_lin, tilt the DOF
-            // rate, twist about the rod Chrono's universal joint's k_rot (the ball joint's end leaves it free).
+            // Chrono's rod has a universal joint at the rack (its twist about the rod held: k_rot) and a ball
+            // joint at the upright (every rotation free: the DOF rate), each a bushing with this data.
             let (lo, _) = ROTATIONAL_RATE_RANGE;
-            let conical = k_rot_dof.max(lo);
+            let dof = k_rot_dof.max(lo);
+            let rates = |torsion: f64| {
+                Connection::Bushing(crate::BushingRates {
+                    radial: k_lin.max(TRANSLATIONAL_RATE_RANGE.0),
+                    axial: k_lin.max(TRANSLATIONAL_RATE_RANGE.0),
+                    torsion,
+                    conical: dof,
+                    law: RotationLaw::Linear,
+                    axis: None,
+                })
+            };
             self.notes.push(format!(
-                "Tierod / Bushing Data: a rod with a bushing at each end, radial and axial {k_lin} N/m, conical {conical} \
-                 N·m/rad, torsion {k_rot} N·m/rad at both ends (Chrono frees the twist at the upright's ball joint)"
+                "Tierod / Bushing Data: a rod with a bushing at each end, radial and axial {k_lin} N/m, conical {dof} \
+                 N·m/rad; torsion {} N·m/rad at the rack (Chrono's universal joint), {dof} at the upright (its ball joint)",
+                k_rot.max(lo)
             ));
             self.general.corner.tie_rod = Some(TieRodDef {
                 inner: Place::named(inner),
                 outer: Place::named(outer),
-                connection: Connection::Bushing(crate::BushingRates {
-                    radial: k_lin.max(TRANSLATIONAL_RATE_RANGE.0),
-                    axial: k_lin.max(TRANSLATIONAL_RATE_RANGE.0),
-                    torsion: k_rot.max(lo),
-                    conical,
-                    law: RotationLaw::Linear,
-                    axis: None,
-                }),
+                connection: crate::connection::TieRodMounts { inner: rates(k_rot.max(lo)), outer: rates(dof) },
             });
         } else {
             self.general.corner.tie_rod = Some(TieRodDef {
                 inner: Place::named(inner),
                 outer: Place::named(outer),
-                connection: Connection::Ideal,
+                connection: Connection::Ideal.into(),
             });
         }
         Ok(())
