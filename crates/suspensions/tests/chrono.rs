@@ -35,6 +35,23 @@ fn point(v: &Value, object: &str, key: &str) -> Vec3 {
     Vec3::new(p[0].as_f64().unwrap(), p[1].as_f64().unwrap(), p[2].as_f64().unwrap())
 }
 
+/// The double wishbone's hardpoints from a Chrono file, the spring's lower seat at `spring` (object, key).
+fn dw_hardpoints(v: &Value, spring: (&str, &str)) -> DoubleWishboneHardpoints {
+    DoubleWishboneHardpoints {
+        wheel_centre: point(v, "Spindle", "COM"),
+        upper_ball_joint: point(v, "Upper Control Arm", "Location Upright"),
+        upper_arm_front: point(v, "Upper Control Arm", "Location Chassis Front"),
+        upper_arm_rear: point(v, "Upper Control Arm", "Location Chassis Back"),
+        lower_ball_joint: point(v, "Lower Control Arm", "Location Upright"),
+        lower_arm_front: point(v, "Lower Control Arm", "Location Chassis Front"),
+        lower_arm_rear: point(v, "Lower Control Arm", "Location Chassis Back"),
+        tie_rod_inner: point(v, "Tierod", "Location Chassis"),
+        tie_rod_outer: point(v, "Tierod", "Location Upright"),
+        spring_chassis: point(v, spring.0, "Location Chassis"),
+        spring_arm: point(v, spring.0, spring.1),
+    }
+}
+
 /// Every shipped file: read and run through every analysis that applies, or refused with the reason the
 /// table in `tests/data/chrono/README.md` gives for it.
 #[test]
@@ -96,29 +113,9 @@ fn every_shipped_chrono_file_runs_or_is_refused_as_the_readme_says() {
 fn the_double_wishbone_reading_matches_the_loop_closure() {
     for name in ["DoubleWishbone.json", "hmmwv/HMMWV_DoubleWishboneFront.json"] {
         let v = json(name);
-        let h = DoubleWishboneHardpoints {
-            wheel_centre: point(&v, "Spindle", "COM"),
-            upper_ball_joint: point(&v, "Upper Control Arm", "Location Upright"),
-            upper_arm_front: point(&v, "Upper Control Arm", "Location Chassis Front"),
-            upper_arm_rear: point(&v, "Upper Control Arm", "Location Chassis Back"),
-            lower_ball_joint: point(&v, "Lower Control Arm", "Location Upright"),
-            lower_arm_front: point(&v, "Lower Control Arm", "Location Chassis Front"),
-            lower_arm_rear: point(&v, "Lower Control Arm", "Location Chassis Back"),
-            tie_rod_inner: point(&v, "Tierod", "Location Chassis"),
-            tie_rod_outer: point(&v, "Tierod", "Location Upright"),
-            spring_chassis: point(&v, "Spring", "Location Chassis"),
-            spring_arm: point(&v, "Spring", "Location Arm"),
-        };
+        let h = dw_hardpoints(&v, ("Spring", "Location Arm"));
         let corner = read(name).file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
-        let rows = parallel_wheel_travel(&corner, -0.08, 0.08, 16, Mode::Corrected).unwrap();
-        let mut worst: f64 = 0.0;
-        for half in [rows[8..].iter().collect::<Vec<_>>(), rows[..=8].iter().rev().collect()] {
-            let mut guess = [0.0; 3];
-            for row in half {
-                let (toe, camber) = common::double_wishbone_closure(&h, row.travel, &mut guess);
-                worst = worst.max((row.attitude.toe - toe).abs()).max((row.attitude.camber - camber).abs());
-            }
-        }
+        let worst = common::travel_against_closure(&corner, |t, g| common::double_wishbone_closure(&h, t, g));
         // Measured: 1.7e-14 rad (generic), 1.6e-11 rad (HMMWV).
         assert!(worst < 1e-9, "{name}: {worst:e}");
     }
@@ -141,15 +138,7 @@ fn the_macpherson_reading_matches_the_loop_closure() {
         top_mount: point(&v, "Spring", "Location Chassis"),
     };
     let corner = read("MacPhersonStrut.json").file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
-    let rows = parallel_wheel_travel(&corner, -0.08, 0.08, 16, Mode::Corrected).unwrap();
-    let mut worst: f64 = 0.0;
-    for half in [rows[8..].iter().collect::<Vec<_>>(), rows[..=8].iter().rev().collect()] {
-        let mut guess = [0.0; 4];
-        for row in half {
-            let (toe, camber) = common::macpherson_closure(&h, row.travel, &mut guess);
-            worst = worst.max((row.attitude.toe - toe).abs()).max((row.attitude.camber - camber).abs());
-        }
-    }
+    let worst = common::travel_against_closure(&corner, |t, g| common::macpherson_closure(&h, t, g));
     // Measured: 4.5e-12 rad.
     assert!(worst < 1e-10, "{worst:e}");
 }
@@ -317,29 +306,9 @@ fn chrono_bushing_data_is_the_joints_bushing() {
 fn the_reduced_double_wishbone_matches_the_loop_closure() {
     let name = "hmmwv/HMMWV_DoubleWishboneReducedFront.json";
     let v = json(name);
-    let h = DoubleWishboneHardpoints {
-        wheel_centre: point(&v, "Spindle", "COM"),
-        upper_ball_joint: point(&v, "Upper Control Arm", "Location Upright"),
-        upper_arm_front: point(&v, "Upper Control Arm", "Location Chassis Front"),
-        upper_arm_rear: point(&v, "Upper Control Arm", "Location Chassis Back"),
-        lower_ball_joint: point(&v, "Lower Control Arm", "Location Upright"),
-        lower_arm_front: point(&v, "Lower Control Arm", "Location Chassis Front"),
-        lower_arm_rear: point(&v, "Lower Control Arm", "Location Chassis Back"),
-        tie_rod_inner: point(&v, "Tierod", "Location Chassis"),
-        tie_rod_outer: point(&v, "Tierod", "Location Upright"),
-        spring_chassis: point(&v, "Shock", "Location Chassis"),
-        spring_arm: point(&v, "Shock", "Location Upright"),
-    };
+    let h = dw_hardpoints(&v, ("Shock", "Location Upright"));
     let corner = read(name).file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
-    let rows = parallel_wheel_travel(&corner, -0.08, 0.08, 16, Mode::Corrected).unwrap();
-    let mut worst: f64 = 0.0;
-    for half in [rows[8..].iter().collect::<Vec<_>>(), rows[..=8].iter().rev().collect()] {
-        let mut guess = [0.0; 3];
-        for row in half {
-            let (toe, camber) = common::double_wishbone_closure(&h, row.travel, &mut guess);
-            worst = worst.max((row.attitude.toe - toe).abs()).max((row.attitude.camber - camber).abs());
-        }
-    }
+    let worst = common::travel_against_closure(&corner, |t, g| common::double_wishbone_closure(&h, t, g));
     // Measured: 4.2e-12 rad.
     assert!(worst < 1e-10, "{worst:e}");
 }

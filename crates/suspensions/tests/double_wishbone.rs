@@ -263,15 +263,7 @@ fn the_general_axle_example_matches_the_loop_closure() {
         spring_arm: p("spring_arm"),
     };
     let corner = file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
-    let rows = parallel_wheel_travel(&corner, -0.08, 0.08, 16, Mode::Corrected).unwrap();
-    let mut worst: f64 = 0.0;
-    for half in [rows[8..].iter().collect::<Vec<_>>(), rows[..=8].iter().rev().collect()] {
-        let mut guess = [0.0; 3];
-        for row in half {
-            let (toe, camber) = common::double_wishbone_closure(&h, row.travel, &mut guess);
-            worst = worst.max((row.attitude.toe - toe).abs()).max((row.attitude.camber - camber).abs());
-        }
-    }
+    let worst = common::travel_against_closure(&corner, |t, g| common::double_wishbone_closure(&h, t, g));
     // Measured: 7.7e-13 rad.
     assert!(worst < 1e-11, "{worst:e}");
 }

@@ -111,3 +111,24 @@ pub fn macpherson_closure(h: &MacPhersonHardpoints, travel: f64, x: &mut [f64; 4
     let (_, r) = place(x);
     left_toe_camber(r.matrix())
 }
+
+/// The largest toe or camber difference (rad) between a corner's parallel travel of ±80 mm in 16 steps and
+/// a loop closure `closure(travel, guess) -> (toe, camber)`, walked outwards from design in both directions
+/// so that each closure starts from its neighbour's solution.
+pub fn travel_against_closure<const N: usize>(
+    corner: &elastokin_suspensions::Corner,
+    closure: impl Fn(f64, &mut [f64; N]) -> (f64, f64),
+) -> f64 {
+    use elastokin_solver::Mode;
+    let rows =
+        elastokin_suspensions::analysis::parallel_wheel_travel(corner, -0.08, 0.08, 16, Mode::Corrected).unwrap();
+    let mut worst: f64 = 0.0;
+    for half in [rows[8..].iter().collect::<Vec<_>>(), rows[..=8].iter().rev().collect()] {
+        let mut guess = [0.0; N];
+        for row in half {
+            let (toe, camber) = closure(row.travel, &mut guess);
+            worst = worst.max((row.attitude.toe - toe).abs()).max((row.attitude.camber - camber).abs());
+        }
+    }
+    worst
+}
