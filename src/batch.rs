@@ -69,7 +69,9 @@ pub fn parse_variants(text: &str, origin: &str) -> Result<Vec<Variant>, String> 
     Ok(out)
 }
 
-/// The base model with a variant's edits applied; an edit to a pointer the model lacks is an error.
+/// The base model with a variant's edits applied; an edit to a pointer the model lacks is an error. A
+/// Project Chrono suspension file (the pointers then name its own keys: `/Spring/Spring Coefficient`) is read
+/// after the edits, as `run` reads it.
 pub fn apply(base: &serde_json::Value, v: &Variant) -> Result<SuspensionFile, String> {
     let mut doc = base.clone();
     for (pointer, value) in &v.edits {
@@ -78,7 +80,11 @@ pub fn apply(base: &serde_json::Value, v: &Variant) -> Result<SuspensionFile, St
         *slot = value.clone();
     }
     let text = serde_json::to_string(&doc).map_err(|e| e.to_string())?;
-    SuspensionFile::from_json(&text, &format!("variant '{}'", v.name)).map_err(|e| e.to_string())
+    let origin = format!("variant '{}'", v.name);
+    if elastokin::suspensions::chrono::is_chrono(&text) {
+        return elastokin::suspensions::chrono::import(&text, &origin, None).map(|i| i.file).map_err(|e| e.to_string());
+    }
+    SuspensionFile::from_json(&text, &origin).map_err(|e| e.to_string())
 }
 
 /// Headline figures of one variant.

@@ -526,9 +526,14 @@ fn check(args: CheckArgs, out: &Stdout) -> Result<(), Failure> {
 }
 
 fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> {
-    let (bytes, text) = read_input(&args.model, "MODEL")?;
+    let read = read_model(&args.model)?;
+    if let (Some(line), false) = (read.format_line(), quiet) {
+        out.line(line)?;
+    }
+    let bytes = read.bytes;
     let origin = args.model.display().to_string();
-    SuspensionFile::from_json(&text, &origin).map_err(|e| Failure::Input(e.to_string()))?;
+    // The variants edit the file as written: a Chrono file's own keys (its comments removed).
+    let text = elastokin::suspensions::chrono::without_comments(&String::from_utf8_lossy(&bytes));
     let base: serde_json::Value = serde_json::from_str(&text).map_err(|e| Failure::Input(format!("{origin}: {e}")))?;
     let (variant_bytes, variant_text) = read_input(&args.variants, "VARIANTS")?;
     let list = batch::parse_variants(&variant_text, &args.variants.display().to_string()).map_err(Failure::Input)?;

@@ -950,3 +950,27 @@ fn a_chrono_file_is_imported_and_run_directly() {
     let e = String::from_utf8(o.stderr).unwrap();
     assert!(e.contains("SolidAxle.json:4:3") && e.contains("an axle joins both wheels in one body"), "{e}");
 }
+
+/// `batch` on a Project Chrono file: the variants edit Chrono's own keys. On the generic double wishbone,
+/// whose linkage is ideal and whose only elastic part is the spring (its push at design, k (L₀ − L), is in
+/// proportion to its rate too), the wheel rate is in proportion to the spring rate.
+#[test]
+fn batch_varies_a_chrono_file_by_its_own_keys() {
+    let dir = scratch("chrono-batch");
+    let variants = dir.join("variants.txt");
+    std::fs::write(&variants, "soft: /Spring/Spring Coefficient=200000\nstiff: /Spring/Spring Coefficient=500000\n")
+        .unwrap();
+    let out = dir.join("out");
+    let o = elastokin(&[
+        "batch",
+        "tests/data/chrono/DoubleWishbone.json",
+        variants.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = read_csv(&out.join("batch.csv"));
+    let rate = |name: &str| csv.iter().find(|r| &r[0] == name).unwrap()[3].parse::<f64>().unwrap();
+    // Measured: 0.4 to the CSV's 12 digits.
+    assert!((rate("soft") / rate("stiff") - 0.4).abs() < 1e-10, "{} {}", rate("soft"), rate("stiff"));
+}
