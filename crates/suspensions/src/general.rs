@@ -700,6 +700,29 @@ fn bushing_frame(x_left: Vec3, y_hint_left: Option<Vec3>, side: Side) -> Result<
 }
 
 impl GeneralCorner {
+    /// A corner with nothing in it yet but its description: the upright, named `upright`, carries the wheel
+    /// whose centre is the hardpoint `wheel_centre`, its spin axis outward (+y).
+    pub(crate) fn empty(loaded_radius: f64, steering_axis: [BodyPoint; 2], tie_rod: Option<TieRodDef>) -> Self {
+        GeneralCorner {
+            hardpoints: Hardpoints::default(),
+            bodies: Vec::new(),
+            joints: Vec::new(),
+            bushings: Vec::new(),
+            springs: Vec::new(),
+            stops: Vec::new(),
+            anti_roll_bars: Vec::new(),
+            loads: Vec::new(),
+            corner: CornerDef {
+                upright: "upright".into(),
+                wheel_centre: "wheel_centre".into(),
+                spin_axis: outward(),
+                loaded_radius,
+                steering_axis,
+                tie_rod,
+            },
+        }
+    }
+
     /// A template's corner in the general form, before its parts: its hardpoints (the wheel centre named
     /// `wheel_centre`), its bodies as `(name, hardpoint)` (the upright, named `upright`, first), its tyre's
     /// loaded radius, its steering axis as `(body, hardpoint)` from the lower to the upper point, its tie rod
@@ -714,38 +737,26 @@ impl GeneralCorner {
     ) -> GeneralCorner {
         let (spec, spring_bodies, seats) = spring;
         let at = |(body, at): (&str, &str)| BodyPoint { body: body.into(), at: Place::named(at) };
-        GeneralCorner {
-            hardpoints: Hardpoints(hardpoints.into_iter().map(|(n, p)| (n.to_string(), p)).collect()),
-            bodies: bodies.into_iter().map(|(name, at)| BodyDef { name: name.into(), at }).collect(),
-            joints: Vec::new(),
-            bushings: Vec::new(),
-            springs: vec![SpringDef {
-                name: "spring".into(),
-                bodies: spring_bodies.map(str::to_string),
-                from: Place::named(seats[0]),
-                to: Place::named(seats[1]),
-                rate: Some(spec.rate),
-                curve: None,
-                design_force: Some(spec.design_force),
-                free_length: None,
-                preload: None,
-            }],
-            stops: Vec::new(),
-            anti_roll_bars: Vec::new(),
-            loads: Vec::new(),
-            corner: CornerDef {
-                upright: "upright".into(),
-                wheel_centre: "wheel_centre".into(),
-                spin_axis: outward(),
-                loaded_radius,
-                steering_axis: steering_axis.map(at),
-                tie_rod: Some(TieRodDef {
-                    inner: Place::named("tie_rod_inner"),
-                    outer: Place::named("tie_rod_outer"),
-                    connection: tie_rod.into(),
-                }),
-            },
-        }
+        let tie_rod = TieRodDef {
+            inner: Place::named("tie_rod_inner"),
+            outer: Place::named("tie_rod_outer"),
+            connection: tie_rod.into(),
+        };
+        let mut g = GeneralCorner::empty(loaded_radius, steering_axis.map(at), Some(tie_rod));
+        g.hardpoints = Hardpoints(hardpoints.into_iter().map(|(n, p)| (n.to_string(), p)).collect());
+        g.bodies = bodies.into_iter().map(|(name, at)| BodyDef { name: name.into(), at }).collect();
+        g.springs.push(SpringDef {
+            name: "spring".into(),
+            bodies: spring_bodies.map(str::to_string),
+            from: Place::named(seats[0]),
+            to: Place::named(seats[1]),
+            rate: Some(spec.rate),
+            curve: None,
+            design_force: Some(spec.design_force),
+            free_length: None,
+            preload: None,
+        });
+        g
     }
 
     /// Adds a joint of `kind` named `name` between `bodies` at the hardpoint `at`, about `axis`.
@@ -809,6 +820,7 @@ impl GeneralCorner {
             T::ParallelAxes => &["axis"],
             T::PointDriver | T::TravelDriver => &[],
         };
+        // Before the keys: a driver's keys are not the question.
         let driver = || ModelError::OutOfRange {
             item: key.clone(),
             why: "a driver is the rig's (wheel travel, rack travel), not the model's: use a joint".into(),
@@ -833,28 +845,23 @@ impl GeneralCorner {
         let name = part_name(r.prefix, &j.name);
         let p = at.unwrap_or_else(Vec3::zeros);
         let spec = match kind {
-            T::Spherical => Some(JointSpec::spherical(&name, bi, bj, p)),
-            T::Revolute => Some(JointSpec::revolute(&name, bi, bj, p, axis.unwrap_or_default())),
-            T::Cylindrical => Some(JointSpec::cylindrical(&name, bi, bj, p, axis.unwrap_or_default())),
-            T::Translational => Some(JointSpec::translational(&name, bi, bj, p, axis.unwrap_or_default())),
+            T::Spherical => JointSpec::spherical(&name, bi, bj, p),
+            T::Revolute => JointSpec::revolute(&name, bi, bj, p, axis.unwrap_or_default()),
+            T::Cylindrical => JointSpec::cylindrical(&name, bi, bj, p, axis.unwrap_or_default()),
+            T::Translational => JointSpec::translational(&name, bi, bj, p, axis.unwrap_or_default()),
             T::Universal => {
-                Some(JointSpec::universal(&name, bi, bj, p, axis.unwrap_or_default(), axis_j.unwrap_or_default()))
+                JointSpec::universal(&name, bi, bj, p, axis.unwrap_or_default(), axis_j.unwrap_or_default())
             }
-            T::Fixed => Some(JointSpec::fixed(&name, bi, bj, p)),
-            T::Distance => Some(JointSpec::distance(&name, bi, bj, p, to.unwrap_or_default())),
-            T::InPlane => {
-                Some(JointSpec { point_j: to, ..JointSpec::in_plane(&name, bi, bj, p, axis.unwrap_or_default()) })
-            }
-            T::InLine => {
-                Some(JointSpec { point_j: to, ..JointSpec::in_line(&name, bi, bj, p, axis.unwrap_or_default()) })
-            }
+            T::Fixed => JointSpec::fixed(&name, bi, bj, p),
+            T::Distance => JointSpec::distance(&name, bi, bj, p, to.unwrap_or_default()),
+            T::InPlane => JointSpec { point_j: to, ..JointSpec::in_plane(&name, bi, bj, p, axis.unwrap_or_default()) },
+            T::InLine => JointSpec { point_j: to, ..JointSpec::in_line(&name, bi, bj, p, axis.unwrap_or_default()) },
             T::Perpendicular => {
-                Some(JointSpec::perpendicular(&name, bi, bj, axis.unwrap_or_default(), axis_j.unwrap_or_default()))
+                JointSpec::perpendicular(&name, bi, bj, axis.unwrap_or_default(), axis_j.unwrap_or_default())
             }
-            T::ParallelAxes => Some(JointSpec::parallel_axes(&name, bi, bj, axis.unwrap_or_default())),
-            T::PointDriver | T::TravelDriver => None,
+            T::ParallelAxes => JointSpec::parallel_axes(&name, bi, bj, axis.unwrap_or_default()),
+            T::PointDriver | T::TravelDriver => return Err(driver()),
         };
-        let Some(spec) = spec else { return Err(driver()) };
         model.add_joint(spec)?;
         Ok(())
     }
