@@ -2,10 +2,7 @@
 //! on the lower arm.
 
 use crate::connection::{ArmMounts, Connection, SpringSpec};
-use crate::corner::{
-    check_arm_mounts, check_connection, check_hardpoints, check_spring, check_steering_arm, check_steering_axis,
-    Corner, CornerParts, CornerTemplate, Rig,
-};
+use crate::corner::{check_arm_mounts, check_connection, check_spring, Corner, CornerParts, CornerTemplate, Rig};
 use crate::general::{GeneralCorner, Place, CHASSIS};
 use crate::hardpoint::Side;
 use elastokin_core::JointKind;
@@ -142,18 +139,12 @@ impl DoubleWishbone {
 impl CornerTemplate for DoubleWishbone {
     fn add_corner(&self, model: &mut Model, side: Side, prefix: &str) -> Result<CornerParts, ModelError> {
         let h = &self.hardpoints;
-        check_hardpoints(&h.named())?;
         check_spring(&self.spring, (h.spring_arm - h.spring_chassis).norm())?;
         check_arm_mounts("upper_arm_mounts", &self.upper_arm_mounts)?;
         check_arm_mounts("lower_arm_mounts", &self.lower_arm_mounts)?;
         check_connection("tie_rod", &self.tie_rod)?;
-        check_steering_axis((h.lower_ball_joint, h.upper_ball_joint), ("lower_ball_joint", "upper_ball_joint"))?;
-        check_steering_arm(
-            (h.lower_ball_joint, h.upper_ball_joint),
-            ("lower_ball_joint", "upper_ball_joint"),
-            h.tie_rod_inner,
-            h.tie_rod_outer,
-        )?;
+        // The hardpoints' reach, the steering axis and the tie rod's lever are the general builder's checks,
+        // which name the same hardpoints.
         self.expand().add_corner(model, side, prefix)
     }
 }

@@ -2,10 +2,7 @@
 //! chassis, lower control arm, tie rod, coil spring from the top mount to the spring seat on the strut.
 
 use crate::connection::{ArmMounts, Connection, SpringSpec};
-use crate::corner::{
-    check_arm_mounts, check_connection, check_hardpoints, check_spring, check_steering_arm, check_steering_axis,
-    Corner, CornerParts, CornerTemplate, Rig,
-};
+use crate::corner::{check_arm_mounts, check_connection, check_spring, Corner, CornerParts, CornerTemplate, Rig};
 use crate::general::{Axis, BushingDef, GeneralCorner, Place, CHASSIS};
 use crate::hardpoint::Side;
 use elastokin_core::JointKind;
@@ -162,7 +159,6 @@ impl MacPherson {
 impl CornerTemplate for MacPherson {
     fn add_corner(&self, model: &mut Model, side: Side, prefix: &str) -> Result<CornerParts, ModelError> {
         let h = &self.hardpoints;
-        check_hardpoints(&h.named())?;
         check_spring(&self.spring, (h.top_mount - h.strut_lower).norm())?;
         check_arm_mounts("lower_arm_mounts", &self.lower_arm_mounts)?;
         check_connection("top_mount", &self.top_mount)?;
@@ -175,13 +171,8 @@ impl CornerTemplate for MacPherson {
                     .into(),
             });
         }
-        check_steering_axis((h.lower_ball_joint, h.top_mount), ("lower_ball_joint", "top_mount"))?;
-        check_steering_arm(
-            (h.lower_ball_joint, h.top_mount),
-            ("lower_ball_joint", "top_mount"),
-            h.tie_rod_inner,
-            h.tie_rod_outer,
-        )?;
+        // The hardpoints' reach, the steering axis and the tie rod's lever are the general builder's checks,
+        // which name the same hardpoints.
         self.expand().add_corner(model, side, prefix)
     }
 }
