@@ -218,11 +218,7 @@ impl ForceElement for Stop {
 
     fn bind(&mut self, pi: &Pose, pj: &Pose) -> Result<(), ModelError> {
         self.spec.validate()?;
-        if !pi.is_finite() || !pj.is_finite() {
-            return Err(ModelError::NonFinite { item: self.spec.name.clone(), what: "design pose" });
-        }
-        self.seats.bind(pi, pj, &self.spec.point_i, &self.spec.point_j);
-        Ok(())
+        self.seats.bind(&self.spec.name, pi, pj, &self.spec.point_i, &self.spec.point_j)
     }
 
     fn evaluate(&self, pi: &Pose, pj: &Pose, _t: f64, out: &mut ElementEval, with_stiffness: bool) {
