@@ -85,21 +85,21 @@ impl StopSpec {
         if !self.clearance.is_finite() {
             return Err(ModelError::NonFinite { item: name.to_string(), what: "clearance" });
         }
-        let design = self.design_length();
-        if self.kind == StopKind::Rebound && design + self.clearance < MIN_SPRING_LENGTH {
-            return refuse(format!(
-                "a rebound-stop clearance of {} m puts first contact at a length of zero or less (the design length \
-                 is {design} m): give the travel from design to first contact, negative only when the stop is \
-                 already in contact at design",
-                self.clearance
-            ));
-        }
-        if self.kind == StopKind::Bump && design - self.clearance < MIN_SPRING_LENGTH {
-            return refuse(format!(
-                "a bump-stop clearance of {} m is not shorter than the design length {design} m between its \
-                 points: the stop could never touch; give the travel to first contact",
-                self.clearance
-            ));
+        if self.contact_length() < MIN_SPRING_LENGTH {
+            let design = self.design_length();
+            return refuse(match self.kind {
+                StopKind::Rebound => format!(
+                    "a rebound-stop clearance of {} m puts first contact at a length of zero or less (the design \
+                     length is {design} m): give the travel from design to first contact, negative only when the \
+                     stop is already in contact at design",
+                    self.clearance
+                ),
+                StopKind::Bump => format!(
+                    "a bump-stop clearance of {} m is not shorter than the design length {design} m between its \
+                     points: the stop could never touch; give the travel to first contact",
+                    self.clearance
+                ),
+            });
         }
         self.curve.check_rising(name, "stop force", Anchor::StartsAtOrigin)
     }
