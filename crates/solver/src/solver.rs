@@ -692,18 +692,23 @@ impl<'m> StaticSolver<'m> {
     /// The Newton increment `[Δq; Δλ]` into `rhs`, from `rhs = [Q − Jᵀλ ; −Φ]` at the assembled state and
     /// the factorized tangent (`scratch` holds `Jᵀλ` from [`Self::residual`]).
     fn newton_increment(&mut self) -> Result<(), SolverError> {
-        let n = self.assembly.n;
-        for c in 0..n {
-            self.rhs[c] = self.assembly.applied[c] - self.scratch[c];
-        }
-        for k in 0..self.assembly.m() {
-            self.rhs[n + k] = -self.assembly.phi[k];
-        }
+        Self::residual_rhs(&self.assembly, &self.scratch, &mut self.rhs);
         self.solve_with_skew()?;
         if self.rhs.iter().any(|v| !v.is_finite()) {
             return Err(SolverError::NonFinite { what: "Newton increment" });
         }
         Ok(())
+    }
+
+    /// `out = [Q − Jᵀλ ; −Φ]` at the assembled state, `jt_lambda` holding `Jᵀλ` (from [`Self::residual`]).
+    fn residual_rhs(assembly: &Assembly, jt_lambda: &[f64], out: &mut [f64]) {
+        let n = assembly.n;
+        for c in 0..n {
+            out[c] = assembly.applied[c] - jt_lambda[c];
+        }
+        for k in 0..assembly.m() {
+            out[n + k] = -assembly.phi[k];
+        }
     }
 
     /// The state of a step result (its poses, its active rows' multipliers and its load parameter), to
@@ -1212,12 +1217,7 @@ impl<'m> StaticSolver<'m> {
             }
             self.factorize()?;
             // Residual part: [Q − Jᵀλ; −Φ]
-            for c in 0..n {
-                r_dq[c] = self.assembly.applied[c] - self.scratch[c];
-            }
-            for k in 0..m {
-                r_dq[n + k] = -self.assembly.phi[k];
-            }
+            Self::residual_rhs(&self.assembly, &self.scratch, r_dq);
             self.factor.solve_in_place(r_dq)?;
             self.load_direction_rhs();
             self.factor.solve_in_place(&mut self.rhs)?;
