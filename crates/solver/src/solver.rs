@@ -1139,26 +1139,14 @@ impl<'m> StaticSolver<'m> {
                     (&mut q_t, &mut r_dq, &mut dq_total),
                 ) {
                     Ok(done) => break done,
-                    Err(e @ (SolverError::NoConvergence { .. } | SolverError::NonFinite { .. })) => {
+                    Err(mut e @ (SolverError::NoConvergence { .. } | SolverError::NonFinite { .. })) => {
                         state.clone_from(&start);
                         cuts += 1;
                         if cuts as usize > self.options.max_step_cuts {
-                            return Err(match e {
-                                SolverError::NoConvergence {
-                                    t,
-                                    iterations,
-                                    force_residual,
-                                    constraint_residual,
-                                    ..
-                                } => SolverError::NoConvergence {
-                                    t,
-                                    last_converged: Some(start.t),
-                                    iterations,
-                                    force_residual,
-                                    constraint_residual,
-                                },
-                                other => other,
-                            });
+                            if let SolverError::NoConvergence { last_converged, .. } = &mut e {
+                                *last_converged = Some(start.t);
+                            }
+                            return Err(e);
                         }
                     }
                     Err(e) => return Err(e),
