@@ -104,9 +104,15 @@ pub enum RotationLaw {
 
 impl RotationLaw {
     /// The moment `g` (local components) conjugate to a left rotation increment of `j` relative to `i`,
-    /// and `∂g/∂θ`, for the relative rotation `r` with rotation vector `theta`, the characteristics `kr`
-    /// about the three axes and the preload moment `m_pre` (applied to `j` at zero rotation).
-    fn moment(self, theta: &Vec3, r: &Mat3, kr: &[Characteristic; 3], m_pre: &Vec3) -> (Vec3, Mat3) {
+    /// and `∂g/∂θ`, for the relative rotation `relative` with rotation vector `theta`, the characteristics
+    /// `kr` about the three axes and the preload moment `m_pre` (applied to `j` at zero rotation).
+    fn moment(
+        self,
+        theta: &Vec3,
+        relative: &UnitQuaternion<f64>,
+        kr: &[Characteristic; 3],
+        m_pre: &Vec3,
+    ) -> (Vec3, Mat3) {
         // The law's angles' moments `m = K(angles) − M_pre` (rates times angles, or the curves' values) and
         // `∂m/∂angles`, diagonal: the one place a rate and a curve differ.
         let of = |angles: &Vec3| {
@@ -122,7 +128,7 @@ impl RotationLaw {
             RotationLaw::TaitBryanXyz => {
                 // U = ½φᵀKφ − M_preᵀφ (with curves, the sum of their integrals); ω = E(φ) φ̇ for the left
                 // increment, so g = ∂U/∂ω = E⁻ᵀ (Kφ − M_pre).
-                let phi = tait_bryan_xyz(r);
+                let phi = tait_bryan_xyz(&relative.to_rotation_matrix().into_inner());
                 let (e, de_da, de_db) = tait_bryan_xyz_axes(&phi);
                 let nan = Mat3::from_element(f64::NAN);
                 // At gimbal lock the moment is undefined: a NaN here is refused by the solver as such.
@@ -336,8 +342,8 @@ impl Bushing {
         let delta = e.transpose() * d;
         let (force, kt) = along_axes(&self.spec.translational, &delta);
         let f = e * (force - self.spec.preload_force);
-        let r = relative.to_rotation_matrix().into_inner();
-        let (g, dg) = self.spec.rotation_law.moment(&theta, &r, &self.spec.rotational, &self.spec.preload_torque);
+        let (g, dg) =
+            self.spec.rotation_law.moment(&theta, &relative, &self.spec.rotational, &self.spec.preload_torque);
         State { e, s_j, w: s_i + d, delta, theta, kt, f, g, dg }
     }
 }

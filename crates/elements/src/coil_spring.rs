@@ -127,16 +127,7 @@ impl CoilSpring {
         rate: f64,
         free_length: f64,
     ) -> Result<Self, ModelError> {
-        Self::from_spec(CoilSpringSpec {
-            name: name.to_string(),
-            body_i,
-            point_i,
-            body_j,
-            point_j,
-            characteristic: Characteristic::Rate(rate),
-            free_length,
-            preload: 0.0,
-        })
+        Self::without_preload(name, body_i, point_i, body_j, point_j, Characteristic::Rate(rate), free_length)
     }
 
     /// A linear spring given the push force at design instead of the free length:
@@ -166,16 +157,7 @@ impl CoilSpring {
         curve: Curve,
         free_length: f64,
     ) -> Result<Self, ModelError> {
-        Self::from_spec(CoilSpringSpec {
-            name: name.to_string(),
-            body_i,
-            point_i,
-            body_j,
-            point_j,
-            characteristic: Characteristic::Curve(curve),
-            free_length,
-            preload: 0.0,
-        })
+        Self::without_preload(name, body_i, point_i, body_j, point_j, Characteristic::Curve(curve), free_length)
     }
 
     /// A spring with the push force curve of [`CoilSpring::with_curve`], given the push force at design
@@ -220,6 +202,20 @@ impl CoilSpring {
             });
         };
         let free_length = (point_j - point_i).norm() + compression;
+        Self::without_preload(name, body_i, point_i, body_j, point_j, characteristic, free_length)
+    }
+
+    /// A spring from its seats, characteristic and free length, without preload (validated by
+    /// [`CoilSpring::from_spec`]).
+    fn without_preload(
+        name: &str,
+        body_i: BodyRef,
+        point_i: Vec3,
+        body_j: BodyRef,
+        point_j: Vec3,
+        characteristic: Characteristic,
+        free_length: f64,
+    ) -> Result<Self, ModelError> {
         Self::from_spec(CoilSpringSpec {
             name: name.to_string(),
             body_i,
@@ -278,11 +274,7 @@ impl ForceElement for CoilSpring {
 
     fn bind(&mut self, pi: &Pose, pj: &Pose) -> Result<(), ModelError> {
         self.spec.validate()?;
-        if !pi.is_finite() || !pj.is_finite() {
-            return Err(ModelError::NonFinite { item: self.spec.name.clone(), what: "design pose" });
-        }
-        self.seats.bind(pi, pj, &self.spec.point_i, &self.spec.point_j);
-        Ok(())
+        self.seats.bind(&self.spec.name, pi, pj, &self.spec.point_i, &self.spec.point_j)
     }
 
     fn evaluate(&self, pi: &Pose, pj: &Pose, _t: f64, out: &mut ElementEval, with_stiffness: bool) {

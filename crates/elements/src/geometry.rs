@@ -103,12 +103,17 @@ impl Seats {
         Seats { on_i: *point_i, on_j: *point_j, axis_i: d / len, min_length: DEGENERATE_FRACTION * len }
     }
 
-    /// Fixes the seats on the bodies from their design poses.
-    pub fn bind(&mut self, pi: &Pose, pj: &Pose, point_i: &Vec3, point_j: &Vec3) {
+    /// Fixes the seats on the bodies from their design poses; a non-finite pose is
+    /// [`ModelError::NonFinite`] naming the element `name`.
+    pub fn bind(&mut self, name: &str, pi: &Pose, pj: &Pose, point_i: &Vec3, point_j: &Vec3) -> Result<(), ModelError> {
+        if !pi.is_finite() || !pj.is_finite() {
+            return Err(ModelError::NonFinite { item: name.to_string(), what: "design pose" });
+        }
         self.on_i = pi.to_local_point(point_i);
         self.on_j = pj.to_local_point(point_j);
         let d = point_j - point_i;
         self.axis_i = pi.to_local_direction(&(d / d.norm()));
+        Ok(())
     }
 
     /// The line at the poses.

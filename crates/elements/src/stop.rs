@@ -85,21 +85,21 @@ impl StopSpec {
         if !self.clearance.is_finite() {
             return Err(ModelError::NonFinite { item: name.to_string(), what: "clearance" });
         }
-        let design = self.design_length();
-        if self.kind == StopKind::Rebound && design + self.clearance < MIN_SPRING_LENGTH {
-            return refuse(format!(
-                "a rebound-stop clearance of {} m puts first contact at a length of zero or less (the design length \
-                 is {design} m): give the travel from design to first contact, negative only when the stop is \
-                 already in contact at design",
-                self.clearance
-            ));
-        }
-        if self.kind == StopKind::Bump && design - self.clearance < MIN_SPRING_LENGTH {
-            return refuse(format!(
-                "a bump-stop clearance of {} m is not shorter than the design length {design} m between its \
-                 points: the stop could never touch; give the travel to first contact",
-                self.clearance
-            ));
+        if self.contact_length() < MIN_SPRING_LENGTH {
+            let design = self.design_length();
+            return refuse(match self.kind {
+                StopKind::Rebound => format!(
+                    "a rebound-stop clearance of {} m puts first contact at a length of zero or less (the design \
+                     length is {design} m): give the travel from design to first contact, negative only when the \
+                     stop is already in contact at design",
+                    self.clearance
+                ),
+                StopKind::Bump => format!(
+                    "a bump-stop clearance of {} m is not shorter than the design length {design} m between its \
+                     points: the stop could never touch; give the travel to first contact",
+                    self.clearance
+                ),
+            });
         }
         self.curve.check_rising(name, "stop force", Anchor::StartsAtOrigin)
     }
@@ -218,11 +218,7 @@ impl ForceElement for Stop {
 
     fn bind(&mut self, pi: &Pose, pj: &Pose) -> Result<(), ModelError> {
         self.spec.validate()?;
-        if !pi.is_finite() || !pj.is_finite() {
-            return Err(ModelError::NonFinite { item: self.spec.name.clone(), what: "design pose" });
-        }
-        self.seats.bind(pi, pj, &self.spec.point_i, &self.spec.point_j);
-        Ok(())
+        self.seats.bind(&self.spec.name, pi, pj, &self.spec.point_i, &self.spec.point_j)
     }
 
     fn evaluate(&self, pi: &Pose, pj: &Pose, _t: f64, out: &mut ElementEval, with_stiffness: bool) {

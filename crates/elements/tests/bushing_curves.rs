@@ -22,7 +22,7 @@ fn spec(
 ) -> BushingSpec {
     BushingSpec {
         name: "bush".into(),
-        body_i: if grounded_i { BodyRef::Ground } else { BodyRef::Body(BodyId(0)) },
+        body_i: body(grounded_i, 0),
         body_j: BodyRef::Body(BodyId(1)),
         point,
         frame,

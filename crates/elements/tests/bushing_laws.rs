@@ -163,6 +163,15 @@ fn each_law_meets_its_closed_form_at_a_large_twist() {
         (moment(RotationLaw::Energy), moment(RotationLaw::Linear), moment(RotationLaw::TaitBryanXyz));
     let close = |a: Vec3, b: [f64; 3]| (a - Vec3::from(b)).amax() < 1e-3;
     assert!(close(energy, [-50.003, 1.750, -39.971]), "{energy:?}");
+    // The figures above are the law's docs', read off this code; the energy law's moment from its energy
+    // `½ θᵀKθ`, written here and differentiated along `j`'s rotation increments, is the independent check.
+    let u = |pi: &Pose, p: &Pose| {
+        let rot = rotation_log(&(pi.rotation().transpose() * p.rotation()));
+        0.5 * rot.dot(&kr.component_mul(&rot))
+    };
+    let grad = fd_scalar(&Pose::IDENTITY, &pj, u);
+    let expected = -Vec3::new(grad[9], grad[10], grad[11]);
+    assert!((energy - expected).amax() < 1e-6 * expected.amax(), "{energy:?} vs {expected:?}");
     assert!(close(linear, [-50.0, 0.0, -40.0]), "{linear:?}");
     // The Tait-Bryan moment from its gimbal-axis form, written here: the angles of this rotation by the
     // test's own search, the axes built from them, and the moment whose component about each axis is

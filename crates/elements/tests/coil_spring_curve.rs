@@ -34,14 +34,6 @@ fn data_sheet() -> Curve {
     .unwrap()
 }
 
-fn body(grounded: bool, id: usize) -> BodyRef {
-    if grounded {
-        BodyRef::Ground
-    } else {
-        BodyRef::Body(BodyId(id))
-    }
-}
-
 /// A random spring geometry and moved poses; returns the seats' global positions at the moved poses too.
 struct Geometry {
     point_i: Vec3,

@@ -21,14 +21,6 @@ fn parabola_table() -> Curve {
     Curve::new("stop", [0.0, 0.003, 0.008, 0.014, 0.02].map(|p| [p, C * p * p + B * p])).unwrap()
 }
 
-fn body(grounded: bool, id: usize) -> BodyRef {
-    if grounded {
-        BodyRef::Ground
-    } else {
-        BodyRef::Body(BodyId(id))
-    }
-}
-
 /// A stop's design geometry and poses at which its points are a chosen distance apart.
 struct Case {
     stop: Stop,

@@ -692,18 +692,23 @@ impl<'m> StaticSolver<'m> {
     /// The Newton increment `[Δq; Δλ]` into `rhs`, from `rhs = [Q − Jᵀλ ; −Φ]` at the assembled state and
     /// the factorized tangent (`scratch` holds `Jᵀλ` from [`Self::residual`]).
     fn newton_increment(&mut self) -> Result<(), SolverError> {
-        let n = self.assembly.n;
-        for c in 0..n {
-            self.rhs[c] = self.assembly.applied[c] - self.scratch[c];
-        }
-        for k in 0..self.assembly.m() {
-            self.rhs[n + k] = -self.assembly.phi[k];
-        }
+        Self::residual_rhs(&self.assembly, &self.scratch, &mut self.rhs);
         self.solve_with_skew()?;
         if self.rhs.iter().any(|v| !v.is_finite()) {
             return Err(SolverError::NonFinite { what: "Newton increment" });
         }
         Ok(())
+    }
+
+    /// `out = [Q − Jᵀλ ; −Φ]` at the assembled state, `jt_lambda` holding `Jᵀλ` (from [`Self::residual`]).
+    fn residual_rhs(assembly: &Assembly, jt_lambda: &[f64], out: &mut [f64]) {
+        let n = assembly.n;
+        for c in 0..n {
+            out[c] = assembly.applied[c] - jt_lambda[c];
+        }
+        for k in 0..assembly.m() {
+            out[n + k] = -assembly.phi[k];
+        }
     }
 
     /// The state of a step result (its poses, its active rows' multipliers and its load parameter), to
@@ -1134,26 +1139,14 @@ impl<'m> StaticSolver<'m> {
                     (&mut q_t, &mut r_dq, &mut dq_total),
                 ) {
                     Ok(done) => break done,
-                    Err(e @ (SolverError::NoConvergence { .. } | SolverError::NonFinite { .. })) => {
+                    Err(mut e @ (SolverError::NoConvergence { .. } | SolverError::NonFinite { .. })) => {
                         state.clone_from(&start);
                         cuts += 1;
                         if cuts as usize > self.options.max_step_cuts {
-                            return Err(match e {
-                                SolverError::NoConvergence {
-                                    t,
-                                    iterations,
-                                    force_residual,
-                                    constraint_residual,
-                                    ..
-                                } => SolverError::NoConvergence {
-                                    t,
-                                    last_converged: Some(start.t),
-                                    iterations,
-                                    force_residual,
-                                    constraint_residual,
-                                },
-                                other => other,
-                            });
+                            if let SolverError::NoConvergence { last_converged, .. } = &mut e {
+                                *last_converged = Some(start.t);
+                            }
+                            return Err(e);
                         }
                     }
                     Err(e) => return Err(e),
@@ -1212,12 +1205,7 @@ impl<'m> StaticSolver<'m> {
             }
             self.factorize()?;
             // Residual part: [Q − Jᵀλ; −Φ]
-            for c in 0..n {
-                r_dq[c] = self.assembly.applied[c] - self.scratch[c];
-            }
-            for k in 0..m {
-                r_dq[n + k] = -self.assembly.phi[k];
-            }
+            Self::residual_rhs(&self.assembly, &self.scratch, r_dq);
             self.factor.solve_in_place(r_dq)?;
             self.load_direction_rhs();
             self.factor.solve_in_place(&mut self.rhs)?;

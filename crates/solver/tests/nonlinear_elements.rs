@@ -107,6 +107,11 @@ fn compression(step: &StepResult) -> f64 {
     -step.poses[0].position.z
 }
 
+/// The largest distance (m) of a step's compression from the one the curves written here give at its load.
+fn worst_compression_error(steps: &[StepResult], stop: fn(f64) -> f64) -> f64 {
+    steps.iter().map(|s| (compression(s) - compression_for(s.t * LOAD, stop)).abs()).fold(0.0, f64::max)
+}
+
 /// Relative force residuals `e₀, e₁, …, e_count` of Newton's iteration from the equilibrium `from` with the
 /// load raised to `t`: `e₀` is the load step itself (`from` is converged), each further one the residual
 /// after one more [`StaticSolver::newton_correction`] — the exact Newton iteration the sweep runs, one at a
@@ -145,10 +150,7 @@ fn newton_stays_quadratic_across_table_points_and_a_smooth_stop_contact() {
     let steps = &sweep.steps;
 
     // (a) Every step's equilibrium against the curves written here.
-    let worst = steps
-        .iter()
-        .map(|s| (compression(s) - compression_for(s.t * LOAD, progressive_stop_force)).abs())
-        .fold(0.0, f64::max);
+    let worst = worst_compression_error(steps, progressive_stop_force);
     // Measured: 2.3e-11 m, the solver's force tolerance (1e-9 of ~2 kN) over the rate (~4e4 N/m).
     assert!(worst < 1e-9, "{worst}");
     // The walk crosses the spring's points at 0.02 and 0.04 m at steps 4 and 9, touches the stop, and
@@ -199,10 +201,7 @@ fn a_stop_with_a_kink_at_contact_costs_at_most_an_extra_iteration() {
     let mut solver = StaticSolver::new(&model, SolverOptions::default()).unwrap();
     let sweep = solver.sweep(LoadPath::new(0.0, 1.0, STEPS), Mode::Corrected).unwrap();
     let steps = &sweep.steps;
-    let worst = steps
-        .iter()
-        .map(|s| (compression(s) - compression_for(s.t * LOAD, linear_stop_force)).abs())
-        .fold(0.0, f64::max);
+    let worst = worst_compression_error(steps, linear_stop_force);
     // Measured: 7.5e-13 m.
     assert!(worst < 5e-11, "{worst}");
     let contact = contact_step(steps);

@@ -3,7 +3,7 @@
 #![allow(dead_code)]
 
 use elastokin_core::math::quat_exp;
-use elastokin_core::{ElementEval, ForceElement, Mat3, PairMatrix, Pose, RowGradient, Vec3};
+use elastokin_core::{BodyId, BodyRef, ElementEval, ForceElement, Mat3, PairMatrix, Pose, RowGradient, Vec3};
 use nalgebra::UnitQuaternion;
 
 /// SplitMix64: deterministic, dependency-free.
@@ -47,6 +47,15 @@ impl Rng {
     }
     pub fn pose(&mut self, half: f64) -> Pose {
         Pose { position: self.vec(half), orientation: self.orientation() }
+    }
+}
+
+/// The ground, or body `id` when `grounded` is false.
+pub fn body(grounded: bool, id: usize) -> BodyRef {
+    if grounded {
+        BodyRef::Ground
+    } else {
+        BodyRef::Body(BodyId(id))
     }
 }
 
