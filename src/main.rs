@@ -538,15 +538,15 @@ fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> 
     let (variant_bytes, variant_text) = read_input(&args.variants, "VARIANTS")?;
     let list = batch::parse_variants(&variant_text, &args.variants.display().to_string()).map_err(Failure::Input)?;
     // A variant that names a key the model lacks is a mistake in the file: say so before running anything.
-    for v in &list {
-        batch::apply(&base, v).map_err(Failure::Input)?;
-    }
+    // The models read here are the ones run.
+    let files: Vec<SuspensionFile> =
+        list.iter().map(|v| batch::apply(&base, v)).collect::<Result<_, _>>().map_err(Failure::Input)?;
     let mut provenance = Provenance::new(&args.model, &bytes, kc::mode_word(Mode::Corrected), batch::STEPS);
     provenance.range = Some((-batch::HALF_RANGE, batch::HALF_RANGE));
     provenance.variants = Some((args.variants.display().to_string(), output::sha256_hex(&variant_bytes)));
     let staging = Staging::new(&args.out)?;
     let progress = Progress::new("variants", list.len(), quiet);
-    let results = batch::run_all(&base, &list, &progress);
+    let results = batch::run_all(&list, &files, &progress);
     progress.finish();
     let result = (|| {
         out.line(format!("{:<28} {:>16} {:>16} {:>14}", "variant", "bump °/10 mm", "camber °/10 mm", "rate N/mm"))?;
