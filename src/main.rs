@@ -426,6 +426,8 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
             }
         }
         let mut written = Vec::new();
+        // Each plot is drawn once: for its file and for the report's page.
+        let mut svgs = std::collections::HashMap::new();
         for analysis in &report.analyses {
             let table = &analysis.table;
             written.push(staging.write(&format!("{}.csv", table.name), &write_table(table, &provenance))?);
@@ -434,15 +436,18 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
             }
             for chart in &analysis.charts {
                 let svg = plot::svg(chart).map_err(|e| Failure::Run(format!("plot '{}': {e}", chart.name)))?;
-                let svg = provenance.stamp_svg(&svg);
-                written.push(staging.write(&format!("{}.svg", chart.name), svg.as_bytes())?);
+                let stamped = provenance.stamp_svg(&svg);
+                written.push(staging.write(&format!("{}.svg", chart.name), stamped.as_bytes())?);
+                svgs.insert(chart.name.as_str(), svg);
                 if args.png {
                     let png = plot::png(chart).map_err(|e| Failure::Run(format!("plot '{}': {e}", chart.name)))?;
                     written.push(staging.write(&format!("{}.png", chart.name), &png)?);
                 }
             }
         }
-        let html = elastokin::html::report_html(&report, &file, &provenance.to_json(), plot::svg);
+        let drawn =
+            |chart: &kc::Chart| svgs.get(chart.name.as_str()).map_or_else(|| plot::svg(chart), |svg| Ok(svg.clone()));
+        let html = elastokin::html::report_html(&report, &file, &provenance.to_json(), drawn);
         written.push(staging.write("report.html", html.as_bytes())?);
         let mut summary = serde_json::to_value(&report).map_err(|e| Failure::Run(e.to_string()))?;
         summary["provenance"] = provenance.to_json();
