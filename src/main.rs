@@ -355,7 +355,7 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
         arc_step: args.arc_step,
     };
     let read = read_model(&args.model)?;
-    if let (Some(line), false) = (read.format_line(), quiet) {
+    if let Some(line) = read.format_line() {
         out.line(line)?;
     }
     let ModelInput { bytes, file, .. } = read;
@@ -532,7 +532,7 @@ fn check(args: CheckArgs, out: &Stdout) -> Result<(), Failure> {
 
 fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> {
     let read = read_model(&args.model)?;
-    if let (Some(line), false) = (read.format_line(), quiet) {
+    if let Some(line) = read.format_line() {
         out.line(line)?;
     }
     let bytes = read.bytes;
