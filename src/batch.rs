@@ -112,12 +112,14 @@ pub fn evaluate(file: &SuspensionFile, half_range: f64, steps: usize) -> Result<
     })
 }
 
-/// Runs every variant on the rayon pool, counting each one done on `progress`.
-pub fn run_all(base: &serde_json::Value, variants: &[Variant], progress: &Progress) -> Vec<Result<Outcome, String>> {
+/// Runs every variant, `files[k]` being `variants[k]` applied, on the rayon pool, counting each one done on
+/// `progress`.
+pub fn run_all(variants: &[Variant], files: &[SuspensionFile], progress: &Progress) -> Vec<Result<Outcome, String>> {
     variants
         .par_iter()
-        .map(|v| {
-            let r = apply(base, v).and_then(|file| evaluate(&file, HALF_RANGE, STEPS));
+        .zip(files)
+        .map(|(v, file)| {
+            let r = evaluate(file, HALF_RANGE, STEPS);
             progress.end(Some(&v.name));
             r
         })

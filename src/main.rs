@@ -355,7 +355,7 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
         arc_step: args.arc_step,
     };
     let read = read_model(&args.model)?;
-    if let (Some(line), false) = (read.format_line(), quiet) {
+    if let Some(line) = read.format_line() {
         out.line(line)?;
     }
     let ModelInput { bytes, file, .. } = read;
@@ -426,6 +426,8 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
             }
         }
         let mut written = Vec::new();
+        // Each plot is drawn once: for its file and for the report's page.
+        let mut svgs = std::collections::HashMap::new();
         for analysis in &report.analyses {
             let table = &analysis.table;
             written.push(staging.write(&format!("{}.csv", table.name), &write_table(table, &provenance))?);
@@ -434,15 +436,18 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
             }
             for chart in &analysis.charts {
                 let svg = plot::svg(chart).map_err(|e| Failure::Run(format!("plot '{}': {e}", chart.name)))?;
-                let svg = provenance.stamp_svg(&svg);
-                written.push(staging.write(&format!("{}.svg", chart.name), svg.as_bytes())?);
+                let stamped = provenance.stamp_svg(&svg);
+                written.push(staging.write(&format!("{}.svg", chart.name), stamped.as_bytes())?);
+                svgs.insert(chart.name.as_str(), svg);
                 if args.png {
                     let png = plot::png(chart).map_err(|e| Failure::Run(format!("plot '{}': {e}", chart.name)))?;
                     written.push(staging.write(&format!("{}.png", chart.name), &png)?);
                 }
             }
         }
-        let html = elastokin::html::report_html(&report, &file, &provenance.to_json(), plot::svg);
+        let drawn =
+            |chart: &kc::Chart| svgs.get(chart.name.as_str()).map_or_else(|| plot::svg(chart), |svg| Ok(svg.clone()));
+        let html = elastokin::html::report_html(&report, &file, &provenance.to_json(), drawn);
         written.push(staging.write("report.html", html.as_bytes())?);
         let mut summary = serde_json::to_value(&report).map_err(|e| Failure::Run(e.to_string()))?;
         summary["provenance"] = provenance.to_json();
@@ -527,7 +532,7 @@ fn check(args: CheckArgs, out: &Stdout) -> Result<(), Failure> {
 
 fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> {
     let read = read_model(&args.model)?;
-    if let (Some(line), false) = (read.format_line(), quiet) {
+    if let Some(line) = read.format_line() {
         out.line(line)?;
     }
     let bytes = read.bytes;
@@ -538,15 +543,15 @@ fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> 
     let (variant_bytes, variant_text) = read_input(&args.variants, "VARIANTS")?;
     let list = batch::parse_variants(&variant_text, &args.variants.display().to_string()).map_err(Failure::Input)?;
     // A variant that names a key the model lacks is a mistake in the file: say so before running anything.
-    for v in &list {
-        batch::apply(&base, v).map_err(Failure::Input)?;
-    }
+    // The models read here are the ones run.
+    let files: Vec<SuspensionFile> =
+        list.iter().map(|v| batch::apply(&base, v)).collect::<Result<_, _>>().map_err(Failure::Input)?;
     let mut provenance = Provenance::new(&args.model, &bytes, kc::mode_word(Mode::Corrected), batch::STEPS);
     provenance.range = Some((-batch::HALF_RANGE, batch::HALF_RANGE));
     provenance.variants = Some((args.variants.display().to_string(), output::sha256_hex(&variant_bytes)));
     let staging = Staging::new(&args.out)?;
     let progress = Progress::new("variants", list.len(), quiet);
-    let results = batch::run_all(&base, &list, &progress);
+    let results = batch::run_all(&list, &files, &progress);
     progress.finish();
     let result = (|| {
         out.line(format!("{:<28} {:>16} {:>16} {:>14}", "variant", "bump °/10 mm", "camber °/10 mm", "rate N/mm"))?;

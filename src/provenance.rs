@@ -99,9 +99,7 @@ impl Provenance {
         // A line break in a path would end the comment early and leave a broken first row.
         line.chars().map(|c| if c.is_control() { '?' } else { c }).collect()
     }
-}
 
-impl Provenance {
     /// `svg` with the provenance as an XML comment before its root element, so a plot found alone still
     /// says what made it (a comment may not hold `--`, so a path's double hyphen is spaced).
     pub fn stamp_svg(&self, svg: &str) -> String {

@@ -11,6 +11,13 @@ fn elastokin(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_elastokin")).args(args).current_dir(env!("CARGO_MANIFEST_DIR")).output().unwrap()
 }
 
+/// Runs the command and holds it to success, showing its standard error when it fails.
+fn succeeds(args: &[&str]) -> std::process::Output {
+    let o = elastokin(args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    o
+}
+
 /// The rows of a CSV file the command wrote, read by a CSV reader that skips the provenance comment line.
 fn read_csv(path: &Path) -> Vec<csv::StringRecord> {
     let mut reader = csv::ReaderBuilder::new().comment(Some(b'#')).from_path(path).unwrap();
@@ -111,8 +118,7 @@ fn run_and_check_every_example() {
 #[test]
 fn run_figures_agree_with_each_other_by_closed_form() {
     let out = std::env::temp_dir().join(format!("elastokin-figures-{}", std::process::id()));
-    let o = elastokin(&["run", "examples/double_wishbone.json", "--out", out.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    succeeds(&["run", "examples/double_wishbone.json", "--out", out.to_str().unwrap()]);
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     let a = &summary["analyses"];
@@ -139,7 +145,7 @@ fn bad_files_and_arguments_exit_non_zero_with_a_named_problem() {
     let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();
     value.as_object_mut().unwrap().remove("vehicle");
     std::fs::write(&no_vehicle, value.to_string()).unwrap();
-    let o = elastokin(&[
+    succeeds(&[
         "run",
         no_vehicle.to_str().unwrap(),
         "--analysis",
@@ -147,7 +153,6 @@ fn bad_files_and_arguments_exit_non_zero_with_a_named_problem() {
         "--out",
         dir.join("out").to_str().unwrap(),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let cases: Vec<(Vec<String>, &str)> = vec![
         (vec!["run".into(), typo.display().to_string()], "unknown field `sprung`"),
         (vec!["check".into(), "no/such/model.json".into()], "no/such/model.json"),
@@ -198,14 +203,13 @@ fn bad_files_and_arguments_exit_non_zero_with_a_named_problem() {
 #[test]
 fn batch_runs_variants_in_parallel_and_agrees_with_run() {
     let out = std::env::temp_dir().join(format!("elastokin-batch-{}", std::process::id()));
-    let o = elastokin(&[
+    succeeds(&[
         "batch",
         "examples/macpherson.json",
         "examples/macpherson_variants.txt",
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let csv = read_csv(&out.join("batch.csv"));
     let value = |row: &str, col: usize| -> f64 {
         let record = csv.iter().find(|r| &r[0] == row).unwrap();
@@ -457,8 +461,7 @@ fn a_closed_pipe_is_no_crash_and_the_work_still_gets_done() {
 fn a_failed_run_leaves_the_previous_results_untouched() {
     let dir = scratch("whole");
     let out = dir.join("results");
-    let o = elastokin(&["run", "examples/macpherson.json", "--steps", "8", "--out", out.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    succeeds(&["run", "examples/macpherson.json", "--steps", "8", "--out", out.to_str().unwrap()]);
     let before = snapshot(&out);
     assert!(before.contains_key("summary.json") && before.contains_key("roll.csv"));
     // A corner load no spring holds: every sweep before the static load case solves (and would have written
@@ -483,8 +486,7 @@ fn a_failed_run_leaves_the_previous_results_untouched() {
     assert!(String::from_utf8_lossy(&o.stderr).contains(&format!("nothing written to {}", fresh.display())));
     assert_eq!(names(&dir), ["heavy.json", "results"]);
     // A successful run replaces the directory whole: no file of the earlier run survives beside the new ones.
-    let o = elastokin(&["run", "examples/macpherson.json", "--analysis", "roll", "--out", out.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    succeeds(&["run", "examples/macpherson.json", "--analysis", "roll", "--out", out.to_str().unwrap()]);
     assert_eq!(names(&out), ["report.html", "roll.csv", "roll_centre.svg", "roll_toe_camber.svg", "summary.json"]);
     assert_eq!(names(&dir), ["heavy.json", "results"]);
     std::fs::remove_dir_all(&dir).ok();
@@ -536,8 +538,7 @@ fn an_out_that_is_not_a_results_directory_is_refused_and_kept() {
     std::fs::create_dir(&earlier).unwrap();
     std::fs::write(earlier.join("summary.json"), r#"{"model": "m", "mode": "corrected", "analyses": {}}"#).unwrap();
     std::fs::write(earlier.join("steering.csv"), "rack_m,toe_deg\n0.000000000,0.000000000\n").unwrap();
-    let o = elastokin(&["run", m, "--analysis", "roll", "--out", earlier.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    succeeds(&["run", m, "--analysis", "roll", "--out", earlier.to_str().unwrap()]);
     assert_eq!(names(&earlier), ["report.html", "roll.csv", "roll_centre.svg", "roll_toe_camber.svg", "summary.json"]);
     std::fs::remove_dir_all(&dir).ok();
 }
@@ -571,8 +572,7 @@ fn every_result_says_what_produced_it() {
         "--out",
         out.to_str().unwrap(),
     ];
-    let o = elastokin(&args);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    succeeds(&args);
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     let p = &summary["provenance"];
@@ -601,8 +601,7 @@ fn every_result_says_what_produced_it() {
     // Twelve digits, not fewer: the old fixed 9 decimals wrote a 0.2 mm roll centre height as 0.000200000.
     assert!(rows.iter().flat_map(|r| r.iter()).any(|c| significant_digits(c) == 12));
     // batch.csv names the variants file too.
-    let o = elastokin(&["batch", m, "examples/macpherson_variants.txt", "--out", out.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    succeeds(&["batch", m, "examples/macpherson_variants.txt", "--out", out.to_str().unwrap()]);
     let text = std::fs::read_to_string(out.join("batch.csv")).unwrap();
     let first = text.lines().next().unwrap();
     assert!(first.starts_with(&format!("# elastokin {version}, model {m} (sha256 {}), corrected mode, 8 steps, variants examples/macpherson_variants.txt (sha256 ", &sha[..16])), "{first}");
@@ -755,8 +754,7 @@ fn compliance_png_and_report_on_request() {
     let dir = scratch("extras");
     let out = dir.join("out");
     let args = ["run", "examples/double_wishbone.json", "--analysis", "parallel-travel", "--steps", "4"];
-    let o = elastokin(&[&args[..], &["--compliance", "--png", "--out", out.to_str().unwrap()]].concat());
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    succeeds(&[&args[..], &["--compliance", "--png", "--out", out.to_str().unwrap()]].concat());
     let rows = read_csv(&out.join("parallel_travel_compliance.csv"));
     // One row per step (header and provenance line read off), the load parameter and 36 entries.
     assert_eq!(rows.len(), 5);
@@ -890,25 +888,14 @@ fn an_arc_step_without_its_flag_analysis_or_length_is_refused_by_name() {
 fn expand_prints_a_general_model_that_runs_the_same() {
     let dir = scratch("expand");
     for model in ["examples/macpherson.json", "examples/double_wishbone.json"] {
-        let o = elastokin(&["expand", model]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let o = succeeds(&["expand", model]);
         let text = String::from_utf8(o.stdout).unwrap();
         assert!(text.contains("\"general\"") && text.contains("\"corner\""), "{text}");
         let expanded = dir.join("expanded.json");
         std::fs::write(&expanded, &text).unwrap();
         let csv = |path: &str, out: &str| {
             let out = dir.join(out);
-            let o = elastokin(&[
-                "run",
-                path,
-                "--analysis",
-                "lateral-force",
-                "--steps",
-                "4",
-                "--out",
-                out.to_str().unwrap(),
-            ]);
-            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+            succeeds(&["run", path, "--analysis", "lateral-force", "--steps", "4", "--out", out.to_str().unwrap()]);
             let text = std::fs::read_to_string(out.join("lateral_force.csv")).unwrap();
             text.lines().skip(1).map(str::to_string).collect::<Vec<_>>()
         };
@@ -922,14 +909,13 @@ fn expand_prints_a_general_model_that_runs_the_same() {
 #[test]
 fn a_chrono_file_is_imported_and_run_directly() {
     let file = "tests/data/chrono/DoubleWishbone.json";
-    let o = elastokin(&["import", "chrono", file]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = succeeds(&["import", "chrono", file]);
     let model = String::from_utf8(o.stdout).unwrap();
     assert!(model.contains("\"general\"") && model.contains("Project Chrono DoubleWishbone"), "{model}");
     let notes = String::from_utf8(o.stderr).unwrap();
     assert!(notes.contains("note: Shock: a damper, left out") && notes.contains("loaded tyre radius"), "{notes}");
     let dir = scratch("chrono");
-    let o = elastokin(&[
+    let o = succeeds(&[
         "run",
         file,
         "--analysis",
@@ -939,7 +925,6 @@ fn a_chrono_file_is_imported_and_run_directly() {
         "--out",
         dir.join("out").to_str().unwrap(),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let stdout = String::from_utf8(o.stdout).unwrap();
     assert!(
         stdout.lines().next().unwrap().starts_with("read as a Project Chrono DoubleWishbone suspension"),
@@ -961,14 +946,13 @@ fn batch_varies_a_chrono_file_by_its_own_keys() {
     std::fs::write(&variants, "soft: /Spring/Spring Coefficient=200000\nstiff: /Spring/Spring Coefficient=500000\n")
         .unwrap();
     let out = dir.join("out");
-    let o = elastokin(&[
+    succeeds(&[
         "batch",
         "tests/data/chrono/DoubleWishbone.json",
         variants.to_str().unwrap(),
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let csv = read_csv(&out.join("batch.csv"));
     let rate = |name: &str| csv.iter().find(|r| &r[0] == name).unwrap()[3].parse::<f64>().unwrap();
     // Measured: 0.4 to the CSV's 12 digits.

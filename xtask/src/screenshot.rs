@@ -49,8 +49,9 @@ fn run() -> Result<PathBuf, String> {
     let chromium = find_chromium()?;
     let root = workspace_root();
     let model_path = root.join(MODEL);
-    let bytes = std::fs::read(&model_path).map_err(|e| format!("{}: {e}", model_path.display()))?;
-    let file = SuspensionFile::read(&model_path).map_err(|e| e.to_string())?;
+    // Read once: the bytes hashed for the provenance are the ones parsed.
+    let text = std::fs::read_to_string(&model_path).map_err(|e| format!("{}: {e}", model_path.display()))?;
+    let file = SuspensionFile::from_json(&text, &model_path.display().to_string()).map_err(|e| e.to_string())?;
     let settings = Settings::default();
     let report = kc::run_suite(&file, &[], &settings, |event| {
         if let SuiteEvent::Starting(a) = event {
@@ -58,7 +59,8 @@ fn run() -> Result<PathBuf, String> {
         }
     })
     .map_err(|e| e.to_string())?;
-    let mut provenance = Provenance::new(Path::new(MODEL), &bytes, kc::mode_word(settings.mode), settings.steps);
+    let mut provenance =
+        Provenance::new(Path::new(MODEL), text.as_bytes(), kc::mode_word(settings.mode), settings.steps);
     provenance.tolerance = Some(settings.tolerance);
     let html = elastokin::html::report_html(&report, &file, &provenance.to_json(), elastokin::plot::svg);
 
