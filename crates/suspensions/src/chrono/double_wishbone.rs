@@ -59,10 +59,7 @@ pub(super) fn read(doc: &Doc, b: &mut Builder, reduced: bool) -> Result<(), Stri
     if reduced {
         b.shock(doc, "spring", [GROUND, "upright"], ["Location Chassis", "Location Upright"])?;
     } else {
-        let c = b.hardpoint(doc, "spring_chassis", "Spring/Location Chassis")?;
-        let a = b.hardpoint(doc, "spring_arm", "Spring/Location Arm")?;
-        b.spring(doc, "Spring", "spring", [GROUND, "lower arm"], [&c, &a])?;
-        b.shock(doc, "shock", [GROUND, "lower arm"], ["Location Chassis", "Location Arm"])?;
+        b.spring_and_shock(doc, "lower arm", "Arm")?;
     }
     Ok(())
 }

@@ -669,6 +669,17 @@ impl Builder {
         Ok(())
     }
 
+    /// The spring from `Spring / Location Chassis` to `Spring / Location <seat>` (hardpoints `spring_chassis`
+    /// and `spring_<seat>`) and the shock between the same keys under `Shock`, both from the chassis to
+    /// `body`.
+    pub(crate) fn spring_and_shock(&mut self, doc: &Doc, body: &str, seat: &str) -> Result<(), String> {
+        let on_body = format!("Location {seat}");
+        let c = self.hardpoint(doc, "spring_chassis", "Spring/Location Chassis")?;
+        let s = self.hardpoint(doc, &format!("spring_{}", seat.to_lowercase()), &format!("Spring/{on_body}"))?;
+        self.spring(doc, "Spring", "spring", [GROUND, body], [&c, &s])?;
+        self.shock(doc, "shock", [GROUND, body], ["Location Chassis", &on_body])
+    }
+
     /// The tie rod from `inner` to `outer`: a distance link, or Chrono's rod body (`Mass` given) with a
     /// universal joint at the rack and a ball joint at the upright, which with ideal joints is the same
     /// link. With `Bushing Data` on the rod both joints are Chrono's bushings.

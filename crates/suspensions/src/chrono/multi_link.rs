@@ -81,9 +81,5 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     let virtual_joint = (p(b, &lower[0])? + p(b, &lower[1])?) / 2.0;
     b.general.hardpoints.0.push(("steering_axis_lower".into(), virtual_joint));
     b.steering_axis(("upright", "steering_axis_lower"), ("upright", &ball));
-    let c = b.hardpoint(doc, "spring_chassis", "Spring/Location Chassis")?;
-    let l = b.hardpoint(doc, "spring_link", "Spring/Location Link")?;
-    b.spring(doc, "Spring", "spring", [GROUND, "trailing link"], [&c, &l])?;
-    b.shock(doc, "shock", [GROUND, "trailing link"], ["Location Chassis", "Location Link"])?;
-    Ok(())
+    b.spring_and_shock(doc, "trailing link", "Link")
 }

@@ -39,9 +39,5 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
         Some("Trailing Arm/Bushing Data"),
     )?;
     b.wheel_vertical_steering_axis()?;
-    let c = b.hardpoint(doc, "spring_chassis", "Spring/Location Chassis")?;
-    let a = b.hardpoint(doc, "spring_arm", "Spring/Location Arm")?;
-    b.spring(doc, "Spring", "spring", [GROUND, "upright"], [&c, &a])?;
-    b.shock(doc, "shock", [GROUND, "upright"], ["Location Chassis", "Location Arm"])?;
-    Ok(())
+    b.spring_and_shock(doc, "upright", "Arm")
 }
