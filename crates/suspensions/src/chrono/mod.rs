@@ -669,6 +669,55 @@ impl Builder {
         Ok(())
     }
 
+    /// An arm's points: its pivots `<key> / Location Chassis Front` and `… Back` and its ball joint
+    /// `… Location Upright`, as the hardpoints `<short>_arm_front`, `<short>_arm_back` and `<short>_ball_joint`;
+    /// its `dynamics` keys read and left out. Returns the three names.
+    pub(crate) fn arm_points(
+        &mut self,
+        doc: &Doc,
+        key: &str,
+        short: &str,
+        dynamics: &[&str],
+    ) -> Result<[String; 3], String> {
+        let front = self.hardpoint(doc, &format!("{short}_arm_front"), &format!("{key}/Location Chassis Front"))?;
+        let back = self.hardpoint(doc, &format!("{short}_arm_back"), &format!("{key}/Location Chassis Back"))?;
+        let ball = self.hardpoint(doc, &format!("{short}_ball_joint"), &format!("{key}/Location Upright"))?;
+        doc.dynamics(key, dynamics, &mut self.notes);
+        Ok([front, back, ball])
+    }
+
+    /// The arm `<short> arm` on the points of [`Builder::arm_points`]: a revolute joint `<short> arm pivot` to
+    /// the chassis at the pivots' midpoint in [`arm_frame`] (Chrono's bushing there when `bushing`, its path,
+    /// holds `Bushing Data`) and the ball joint `<short> ball joint` to the upright. With `degenerate`, an arm
+    /// with no plane (its ball joint on its pivot axis) is refused with that message.
+    pub(crate) fn arm_joints(
+        &mut self,
+        doc: &Doc,
+        short: &str,
+        [front, back, ball]: &[String; 3],
+        bushing: Option<&str>,
+        degenerate: Option<&str>,
+    ) -> Result<(), String> {
+        let arm = format!("{short} arm");
+        let p = |b: &Builder, n: &str| b.general.hardpoints.get(n).ok_or_else(|| format!("no hardpoint {n}"));
+        self.body(&arm, ball);
+        let mut frame = arm_frame(p(self, front)?, p(self, back)?, p(self, ball)?);
+        if let Some(why) = degenerate {
+            frame = checked_frame(frame, why)?;
+        }
+        let at = midpoint(self, front, back)?;
+        self.joint(doc, &format!("{arm} pivot"), JointKind::Revolute, [GROUND, &arm], at, Some(frame), bushing)?;
+        self.joint(
+            doc,
+            &format!("{short} ball joint"),
+            JointKind::Spherical,
+            [&arm, "upright"],
+            Place::named(ball),
+            None,
+            None,
+        )
+    }
+
     /// The spring from `Spring / Location Chassis` to `Spring / Location <seat>` (hardpoints `spring_chassis`
     /// and `spring_<seat>`) and the shock between the same keys under `Shock`, both from the chassis to
     /// `body`.
