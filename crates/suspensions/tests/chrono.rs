@@ -52,6 +52,15 @@ fn dw_hardpoints(v: &Value, spring: (&str, &str)) -> DoubleWishboneHardpoints {
     }
 }
 
+/// The largest toe or camber difference (rad) between a double wishbone file's reading and the double
+/// wishbone's loop closure on the file's own points (read here from its JSON), the spring's lower seat at
+/// `spring` (object, key).
+fn double_wishbone_against_closure(name: &str, spring: (&str, &str)) -> f64 {
+    let h = dw_hardpoints(&json(name), spring);
+    let corner = read(name).file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
+    common::travel_against_closure(&corner, |t, g| common::double_wishbone_closure(&h, t, g))
+}
+
 /// Every shipped file: read and run through every analysis that applies, or refused with the reason the
 /// table in `tests/data/chrono/README.md` gives for it.
 #[test]
@@ -112,10 +121,7 @@ fn every_shipped_chrono_file_runs_or_is_refused_as_the_readme_says() {
 #[test]
 fn the_double_wishbone_reading_matches_the_loop_closure() {
     for name in ["DoubleWishbone.json", "hmmwv/HMMWV_DoubleWishboneFront.json"] {
-        let v = json(name);
-        let h = dw_hardpoints(&v, ("Spring", "Location Arm"));
-        let corner = read(name).file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
-        let worst = common::travel_against_closure(&corner, |t, g| common::double_wishbone_closure(&h, t, g));
+        let worst = double_wishbone_against_closure(name, ("Spring", "Location Arm"));
         // Measured: 1.7e-14 rad (generic), 1.6e-11 rad (HMMWV).
         assert!(worst < 1e-9, "{name}: {worst:e}");
     }
@@ -304,11 +310,8 @@ fn chrono_bushing_data_is_the_joints_bushing() {
 /// double wishbone's loop closure on its points.
 #[test]
 fn the_reduced_double_wishbone_matches_the_loop_closure() {
-    let name = "hmmwv/HMMWV_DoubleWishboneReducedFront.json";
-    let v = json(name);
-    let h = dw_hardpoints(&v, ("Shock", "Location Upright"));
-    let corner = read(name).file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
-    let worst = common::travel_against_closure(&corner, |t, g| common::double_wishbone_closure(&h, t, g));
+    let worst =
+        double_wishbone_against_closure("hmmwv/HMMWV_DoubleWishboneReducedFront.json", ("Shock", "Location Upright"));
     // Measured: 4.2e-12 rad.
     assert!(worst < 1e-10, "{worst:e}");
 }
