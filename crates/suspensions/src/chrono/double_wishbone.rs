@@ -6,7 +6,7 @@
 //! distance links from its pivots to its ball joint on the upright, and its `Shock` is the spring-damper
 //! from the chassis to the upright.
 
-use super::{Builder, Doc, GROUND};
+use super::{Builder, Doc, CHASSIS};
 use crate::general::Place;
 use elastokin_core::JointKind;
 
@@ -26,7 +26,7 @@ pub(super) fn read(doc: &Doc, b: &mut Builder, reduced: bool) -> Result<(), Stri
                 b.general.joints.push(crate::general::JointDef {
                     name: format!("{arm} {end} link"),
                     kind: JointKind::Distance,
-                    bodies: [GROUND.into(), "upright".into()],
+                    bodies: [CHASSIS.into(), "upright".into()],
                     at: Some(Place::named(pivot)),
                     to: Some(Place::named(ball)),
                     axis: None,
@@ -42,7 +42,7 @@ pub(super) fn read(doc: &Doc, b: &mut Builder, reduced: bool) -> Result<(), Stri
     b.tie_rod(doc, &inner, &outer)?;
     b.steering_axis(("upright", "lower_ball_joint"), ("upright", "upper_ball_joint"));
     if reduced {
-        b.shock(doc, "spring", [GROUND, "upright"], ["Location Chassis", "Location Upright"])?;
+        b.shock(doc, "spring", [CHASSIS, "upright"], ["Location Chassis", "Location Upright"])?;
     } else {
         b.spring_and_shock(doc, "lower arm", "Arm")?;
     }

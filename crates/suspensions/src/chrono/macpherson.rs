@@ -4,7 +4,7 @@
 //! on it (cylindrical joint along the spring axis), so the upright steers about the strut; the tie rod; the
 //! spring from the chassis to the upright.
 
-use super::{Builder, Doc, GROUND};
+use super::{Builder, Doc, CHASSIS};
 use crate::general::Place;
 use elastokin_core::JointKind;
 
@@ -32,12 +32,12 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
         Some(strut_frame),
         None,
     )?;
-    b.joint(doc, "top mount", JointKind::Universal, [GROUND, "strut"], Place::named(&top), Some(strut_frame), None)?;
+    b.joint(doc, "top mount", JointKind::Universal, [CHASSIS, "strut"], Place::named(&top), Some(strut_frame), None)?;
     let inner = b.hardpoint(doc, "tie_rod_inner", "Tierod/Location Chassis")?;
     let outer = b.hardpoint(doc, "tie_rod_outer", "Tierod/Location Upright")?;
     b.tie_rod(doc, &inner, &outer)?;
     b.steering_axis(("upright", ball), ("strut", &top));
-    b.spring(doc, "Spring", "spring", [GROUND, "upright"], [&top, &lower])?;
-    b.shock(doc, "shock", [GROUND, "upright"], ["Location Chassis", "Location Upright"])?;
+    b.spring(doc, "Spring", "spring", [CHASSIS, "upright"], [&top, &lower])?;
+    b.shock(doc, "shock", [CHASSIS, "upright"], ["Location Chassis", "Location Upright"])?;
     Ok(())
 }

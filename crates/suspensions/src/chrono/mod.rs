@@ -706,7 +706,7 @@ impl Builder {
             frame = checked_frame(frame, why)?;
         }
         let at = midpoint(self, front, back)?;
-        self.joint(doc, &format!("{arm} pivot"), JointKind::Revolute, [GROUND, &arm], at, Some(frame), bushing)?;
+        self.joint(doc, &format!("{arm} pivot"), JointKind::Revolute, [CHASSIS, &arm], at, Some(frame), bushing)?;
         self.joint(
             doc,
             &format!("{short} ball joint"),
@@ -725,8 +725,8 @@ impl Builder {
         let on_body = format!("Location {seat}");
         let c = self.hardpoint(doc, "spring_chassis", "Spring/Location Chassis")?;
         let s = self.hardpoint(doc, &format!("spring_{}", seat.to_lowercase()), &format!("Spring/{on_body}"))?;
-        self.spring(doc, "Spring", "spring", [GROUND, body], [&c, &s])?;
-        self.shock(doc, "shock", [GROUND, body], ["Location Chassis", &on_body])
+        self.spring(doc, "Spring", "spring", [CHASSIS, body], [&c, &s])?;
+        self.shock(doc, "shock", [CHASSIS, body], ["Location Chassis", &on_body])
     }
 
     /// The tie rod from `inner` to `outer`: a distance link, or Chrono's rod body (`Mass` given) with a
@@ -820,9 +820,6 @@ pub(crate) fn midpoint(b: &Builder, p: &str, q: &str) -> Result<Place, String> {
     let get = |n: &str| b.general.hardpoints.get(n).ok_or_else(|| format!("no hardpoint {n}"));
     Ok(Place::At((get(p)? + get(q)?) / 2.0))
 }
-
-/// The chassis, by the general model's name.
-pub(crate) const GROUND: &str = CHASSIS;
 
 /// A direction `[x, y, z]` at `path` (any length but zero).
 pub(crate) fn direction(doc: &Doc, path: &str) -> Result<Vec3, String> {

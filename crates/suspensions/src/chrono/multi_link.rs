@@ -13,7 +13,7 @@
 //! the midpoint of the lateral and trailing links' ball joints on the upright (`steering_axis_lower`), the
 //! two lower links standing in for one lower ball joint.
 
-use super::{cross_frame, direction, Builder, Doc, GROUND};
+use super::{cross_frame, direction, Builder, Doc, CHASSIS};
 use crate::general::Place;
 use elastokin_core::JointKind;
 
@@ -58,7 +58,7 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
             doc,
             &format!("{link} mount"),
             JointKind::Universal,
-            [link, GROUND],
+            [link, CHASSIS],
             Place::named(&inner),
             Some(frame),
             None,

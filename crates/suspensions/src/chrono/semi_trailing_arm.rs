@@ -8,7 +8,7 @@
 //! Steering axis: the arm has no kingpin; the axis is the wheel's own vertical through its centre (see
 //! [`super::Builder::wheel_vertical_steering_axis`]).
 
-use super::{checked_frame, midpoint, Builder, Doc, GROUND};
+use super::{checked_frame, midpoint, Builder, Doc, CHASSIS};
 use elastokin_core::JointKind;
 
 pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
@@ -33,7 +33,7 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
         doc,
         "trailing arm pivot",
         JointKind::Revolute,
-        [GROUND, "upright"],
+        [CHASSIS, "upright"],
         at,
         Some(frame),
         Some("Trailing Arm/Bushing Data"),
