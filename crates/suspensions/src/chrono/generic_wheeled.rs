@@ -555,14 +555,7 @@ fn describe(part: &Part) -> String {
 
 /// Marks a body's or element's drawing and contact shapes as read, with a note.
 fn shapes(doc: &Doc, path: &str, notes: &mut Vec<String>) {
-    let given: Vec<&str> =
-        ["Visualization", "Contact"].into_iter().filter(|k| doc.has(&format!("{path}/{k}"))).collect();
-    for k in &given {
-        doc.expect(&format!("{path}/{k}"));
-    }
-    if !given.is_empty() {
-        notes.push(format!("{}: {} — shapes to draw and collide, left out", doc.shown(path), given.join(", ")));
-    }
+    doc.left_out(path, &["Visualization", "Contact"], "shapes to draw and collide, left out", notes);
 }
 
 /// `name`, or `name 2`, `name 3`, … when taken.

@@ -322,12 +322,18 @@ impl<'a> Doc<'a> {
 
     /// Marks the keys under `object` that carry only dynamics as read, with their reason.
     pub(crate) fn dynamics(&self, object: &str, keys: &[&str], notes: &mut Vec<String>) {
+        self.left_out(object, keys, FOR_DYNAMICS, notes);
+    }
+
+    /// Marks those of `keys` under `object` that the file gives as read, and notes them with `why` they are
+    /// left out.
+    pub(crate) fn left_out(&self, object: &str, keys: &[&str], why: &str, notes: &mut Vec<String>) {
         let given: Vec<&str> = keys.iter().copied().filter(|k| self.has(&format!("{object}/{k}"))).collect();
         for k in &given {
             self.expect(&format!("{object}/{k}"));
         }
         if !given.is_empty() {
-            notes.push(format!("{}: {} — {FOR_DYNAMICS}", self.shown(object), given.join(", ")));
+            notes.push(format!("{}: {} — {why}", self.shown(object), given.join(", ")));
         }
     }
 
