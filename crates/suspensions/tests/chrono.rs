@@ -251,7 +251,23 @@ fn chrono_minimum_and_maximum_lengths_are_stops_that_touch_there() {
     let Template::General(g) = &imported.file.suspension else { panic!("general form") };
     assert_eq!(g.stops.len(), 2);
     assert!((g.stops[0].clearance - 0.02).abs() < 1e-15 && (g.stops[1].clearance - 0.03).abs() < 1e-15);
-    assert_eq!(g.stops[0].curve, elastokin_suspensions::chrono::CHRONO_STOP_CURVE.to_vec());
+    // Chrono's bump and rebound curve, as `SpringForce::enable_stops` (chrono_vehicle/ChSubsysDefs.cpp) adds
+    // its points: travel past contact (m), force (N).
+    let chrono_curve = vec![
+        [0.0, 0.0],
+        [2.0e-3, 200.0],
+        [4.0e-3, 400.0],
+        [6.0e-3, 600.0],
+        [8.0e-3, 800.0],
+        [10.0e-3, 1000.0],
+        [20.0e-3, 2500.0],
+        [30.0e-3, 4500.0],
+        [40.0e-3, 7500.0],
+        [50.0e-3, 12500.0],
+        [60.0e-3, 125000.0],
+    ];
+    assert_eq!(g.stops[0].curve, chrono_curve);
+    assert_eq!(g.stops[1].curve, chrono_curve);
     // The bump stop touches once the spring is 20 mm shorter: beyond, the wheel carries more.
     let run = |f: &elastokin_suspensions::SuspensionFile| {
         let corner = f.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
