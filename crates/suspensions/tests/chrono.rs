@@ -52,6 +52,15 @@ fn dw_hardpoints(v: &Value, spring: (&str, &str)) -> DoubleWishboneHardpoints {
     }
 }
 
+/// The largest toe or camber difference (rad) between a double wishbone file's reading and the double
+/// wishbone's loop closure on the file's own points (read here from its JSON), the spring's lower seat at
+/// `spring` (object, key).
+fn double_wishbone_against_closure(name: &str, spring: (&str, &str)) -> f64 {
+    let h = dw_hardpoints(&json(name), spring);
+    let corner = read(name).file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
+    common::travel_against_closure(&corner, |t, g| common::double_wishbone_closure(&h, t, g))
+}
+
 /// Every shipped file: read and run through every analysis that applies, or refused with the reason the
 /// table in `tests/data/chrono/README.md` gives for it.
 #[test]
@@ -112,10 +121,7 @@ fn every_shipped_chrono_file_runs_or_is_refused_as_the_readme_says() {
 #[test]
 fn the_double_wishbone_reading_matches_the_loop_closure() {
     for name in ["DoubleWishbone.json", "hmmwv/HMMWV_DoubleWishboneFront.json"] {
-        let v = json(name);
-        let h = dw_hardpoints(&v, ("Spring", "Location Arm"));
-        let corner = read(name).file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
-        let worst = common::travel_against_closure(&corner, |t, g| common::double_wishbone_closure(&h, t, g));
+        let worst = double_wishbone_against_closure(name, ("Spring", "Location Arm"));
         // Measured: 1.7e-14 rad (generic), 1.6e-11 rad (HMMWV).
         assert!(worst < 1e-9, "{name}: {worst:e}");
     }
@@ -245,7 +251,23 @@ fn chrono_minimum_and_maximum_lengths_are_stops_that_touch_there() {
     let Template::General(g) = &imported.file.suspension else { panic!("general form") };
     assert_eq!(g.stops.len(), 2);
     assert!((g.stops[0].clearance - 0.02).abs() < 1e-15 && (g.stops[1].clearance - 0.03).abs() < 1e-15);
-    assert_eq!(g.stops[0].curve, elastokin_suspensions::chrono::CHRONO_STOP_CURVE.to_vec());
+    // Chrono's bump and rebound curve, as `SpringForce::enable_stops` (chrono_vehicle/ChSubsysDefs.cpp) adds
+    // its points: travel past contact (m), force (N).
+    let chrono_curve = vec![
+        [0.0, 0.0],
+        [2.0e-3, 200.0],
+        [4.0e-3, 400.0],
+        [6.0e-3, 600.0],
+        [8.0e-3, 800.0],
+        [10.0e-3, 1000.0],
+        [20.0e-3, 2500.0],
+        [30.0e-3, 4500.0],
+        [40.0e-3, 7500.0],
+        [50.0e-3, 12500.0],
+        [60.0e-3, 125000.0],
+    ];
+    assert_eq!(g.stops[0].curve, chrono_curve);
+    assert_eq!(g.stops[1].curve, chrono_curve);
     // The bump stop touches once the spring is 20 mm shorter: beyond, the wheel carries more.
     let run = |f: &elastokin_suspensions::SuspensionFile| {
         let corner = f.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
@@ -304,11 +326,8 @@ fn chrono_bushing_data_is_the_joints_bushing() {
 /// double wishbone's loop closure on its points.
 #[test]
 fn the_reduced_double_wishbone_matches_the_loop_closure() {
-    let name = "hmmwv/HMMWV_DoubleWishboneReducedFront.json";
-    let v = json(name);
-    let h = dw_hardpoints(&v, ("Shock", "Location Upright"));
-    let corner = read(name).file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
-    let worst = common::travel_against_closure(&corner, |t, g| common::double_wishbone_closure(&h, t, g));
+    let worst =
+        double_wishbone_against_closure("hmmwv/HMMWV_DoubleWishboneReducedFront.json", ("Shock", "Location Upright"));
     // Measured: 4.2e-12 rad.
     assert!(worst < 1e-10, "{worst:e}");
 }

@@ -28,9 +28,25 @@ fn replica() -> Imported {
     import(&text(REPLICA), REPLICA, None).unwrap()
 }
 
-/// The replica as JSON (its `//` comments taken out), to edit.
+/// A file as JSON (its `//` comments taken out), to edit or to read numbers from.
+fn chrono_json(path: &str) -> Value {
+    serde_json::from_str(&elastokin_suspensions::chrono::without_comments(&text(path))).unwrap()
+}
+
+/// The replica as JSON, to edit.
 fn replica_json() -> Value {
-    serde_json::from_str(&elastokin_suspensions::chrono::without_comments(&text(REPLICA))).unwrap()
+    chrono_json(REPLICA)
+}
+
+/// The upper arm's pivots and ball joint (front, back, upright) as Chrono's `DoubleWishbone` file for the
+/// same suspension gives them.
+fn upper_arm_of_template() -> [Value; 3] {
+    let v = chrono_json(TEMPLATE);
+    ["Location Chassis Front", "Location Chassis Back", "Location Upright"].map(|k| v["Upper Control Arm"][k].clone())
+}
+
+fn vec3(v: &Value) -> Vec3 {
+    Vec3::new(v[0].as_f64().unwrap(), v[1].as_f64().unwrap(), v[2].as_f64().unwrap())
 }
 
 #[test]
@@ -118,8 +134,7 @@ fn the_replica_and_the_double_wishbone_file_read_the_same_suspension() {
     // in the steer figure (a slope through the rows).
     let mut exact = replica_json();
     // The upper arm's pivots and ball joint, from the DoubleWishbone file.
-    let (front, back, outer) =
-        (Vec3::new(-0.048, 0.446, 0.245), Vec3::new(-0.268, 0.478, 0.196), Vec3::new(-0.053, 0.716, 0.215));
+    let [front, back, outer] = upper_arm_of_template().map(|p| vec3(&p));
     let w = (front - back).normalize();
     let v = (back - outer).cross(&(front - outer)).normalize();
     let frame = Rotation3::from_matrix_unchecked(Matrix3::from_columns(&[v.cross(&w), v, w]));
@@ -257,12 +272,12 @@ fn a_rod_body_and_arms_of_links_read_as_the_same_corner() {
     let mut v = replica_json();
     v["Bodies"].as_array_mut().unwrap().retain(|b| b["Name"] != "UCA");
     v["Joints"].as_array_mut().unwrap().retain(|j| j["Body2"] != "UCA" && j["Body1"] != "UCA");
-    let ball = json!([-0.053, 0.716, 0.215]);
+    let [front, back, ball] = upper_arm_of_template();
     v["Distance Constraints"].as_array_mut().unwrap().extend([
         json!({ "Name": "UCA front", "Mirrored": true, "Body1": "Chassis", "Body2": "Upright",
-            "Point1": [-0.048, 0.446, 0.245], "Point2": ball }),
+            "Point1": front, "Point2": ball }),
         json!({ "Name": "UCA back", "Mirrored": true, "Body1": "Chassis", "Body2": "Upright",
-            "Point1": [-0.268, 0.478, 0.196], "Point2": ball }),
+            "Point1": back, "Point2": ball }),
     ]);
     let links = import(&v.to_string(), "links", None).unwrap();
     assert!(

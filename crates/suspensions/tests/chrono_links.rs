@@ -224,32 +224,21 @@ fn ideal_against_closure(path: &str, closure: Linkage) -> f64 {
     worst
 }
 
+/// Each template's travel against its loop closure, with the worst difference allowed (rad).
 #[test]
-fn multi_link_travel_matches_its_loop_closure() {
-    let worst = ideal_against_closure("MultiLink.json", multi_link);
-    // Measured: 3.5e-15 rad (the engine's rows converge to its force and constraint tolerances).
-    assert!(worst < 2e-13, "{worst:e}");
-}
-
-#[test]
-fn semi_trailing_arm_travel_matches_its_loop_closure() {
-    let worst = ideal_against_closure("SemiTrailingArm.json", semi_trailing_arm);
-    // Measured: 1.5e-16 rad (the engine's rows converge to its force and constraint tolerances).
-    assert!(worst < 1e-14, "{worst:e}");
-}
-
-#[test]
-fn three_link_irs_travel_matches_its_loop_closure() {
-    let worst = ideal_against_closure("ThreeLinkIRS.json", three_link);
-    // Measured: 6.0e-12 rad (the engine's rows converge to its force and constraint tolerances).
-    assert!(worst < 3e-10, "{worst:e}");
-}
-
-#[test]
-fn single_wishbone_travel_matches_its_loop_closure() {
-    let worst = ideal_against_closure("gator/Gator_SingleWishboneFront.json", single_wishbone);
-    // Measured: 1.3e-11 rad (the engine's rows converge to its force and constraint tolerances).
-    assert!(worst < 5e-10, "{worst:e}");
+fn each_templates_travel_matches_its_loop_closure() {
+    // Measured: 3.5e-15, 1.5e-16, 6.0e-12 and 1.3e-11 rad (the engine's rows converge to its force and
+    // constraint tolerances).
+    let cases: [(&str, Linkage, f64); 4] = [
+        ("MultiLink.json", multi_link, 2e-13),
+        ("SemiTrailingArm.json", semi_trailing_arm, 1e-14),
+        ("ThreeLinkIRS.json", three_link, 3e-10),
+        ("gator/Gator_SingleWishboneFront.json", single_wishbone, 5e-10),
+    ];
+    for (path, closure, tolerance) in cases {
+        let worst = ideal_against_closure(path, closure);
+        assert!(worst < tolerance, "{path}: {worst:e}");
+    }
 }
 
 /// Every file of the four templates: each key read (none "not understood"), Chrono's topology (its moving

@@ -26,7 +26,7 @@
 //! mirrored body, the subchassis, rotational spring-dampers (`RSDAs`: the general model has no rotational
 //! spring), a joint type Chrono does not read.
 
-use super::{Builder, Doc, GROUND};
+use super::{Builder, Doc, CHASSIS};
 use crate::general::{BodyDef, JointDef, Place, TieRodDef};
 use crate::Connection;
 use elastokin_core::{JointKind, Vec3};
@@ -121,7 +121,7 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     };
     let general_name = |n: &str| if n == upright { "upright".to_string() } else { n.to_string() };
     for name in positions.keys() {
-        if name != &upright && (name.eq_ignore_ascii_case(GROUND) || name == "upright") {
+        if name != &upright && (name.eq_ignore_ascii_case(CHASSIS) || name == "upright") {
             return Err(format!(
                 "body '{name}': the general model names the ground 'chassis' and the spindle's body 'upright'; \
                  rename this body"
@@ -361,7 +361,7 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
             ];
             let mut bodies = parts.map(|p| body_name(&p, &general_name));
             // The chassis first, as the general model's checks read a spring.
-            if bodies[1] == GROUND {
+            if bodies[1] == CHASSIS {
                 bodies.swap(0, 1);
                 seats.swap(0, 1);
             }
@@ -541,7 +541,7 @@ fn body_name(part: &Part, general_name: &impl Fn(&str) -> String) -> String {
     match part {
         Part::Body(n) => general_name(n),
         // The steering link has been taken as the tie rod's rack before any element is written.
-        Part::Chassis | Part::Steering => GROUND.to_string(),
+        Part::Chassis | Part::Steering => CHASSIS.to_string(),
     }
 }
 
@@ -555,14 +555,7 @@ fn describe(part: &Part) -> String {
 
 /// Marks a body's or element's drawing and contact shapes as read, with a note.
 fn shapes(doc: &Doc, path: &str, notes: &mut Vec<String>) {
-    let given: Vec<&str> =
-        ["Visualization", "Contact"].into_iter().filter(|k| doc.has(&format!("{path}/{k}"))).collect();
-    for k in &given {
-        doc.expect(&format!("{path}/{k}"));
-    }
-    if !given.is_empty() {
-        notes.push(format!("{}: {} — shapes to draw and collide, left out", doc.shown(path), given.join(", ")));
-    }
+    doc.left_out(path, &["Visualization", "Contact"], "shapes to draw and collide, left out", notes);
 }
 
 /// `name`, or `name 2`, `name 3`, … when taken.

@@ -4,38 +4,24 @@
 //! on it (cylindrical joint along the spring axis), so the upright steers about the strut; the tie rod; the
 //! spring from the chassis to the upright.
 
-use super::{arm_frame, midpoint, Builder, Doc, GROUND};
+use super::{Builder, Doc, CHASSIS};
 use crate::general::Place;
 use elastokin_core::JointKind;
 
 pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     b.wheel(doc)?;
-    let front = b.hardpoint(doc, "lower_arm_front", "Control Arm/Location Chassis Front")?;
-    let back = b.hardpoint(doc, "lower_arm_back", "Control Arm/Location Chassis Back")?;
-    let ball = b.hardpoint(doc, "lower_ball_joint", "Control Arm/Location Upright")?;
-    doc.dynamics("Control Arm", &["Mass", "COM", "Inertia", "Radius"], &mut b.notes);
+    let points = b.arm_points(doc, "Control Arm", "lower", &["Mass", "COM", "Inertia", "Radius"])?;
     doc.dynamics("Strut", &["Mass", "Inertia", "Radius"], &mut b.notes);
     let top = b.hardpoint(doc, "strut_top", "Spring/Location Chassis")?;
     let lower = b.hardpoint(doc, "strut_lower", "Spring/Location Upright")?;
-    let p = |b: &Builder, n: &str| b.general.hardpoints.get(n).expect("read above");
-    b.body("lower arm", &ball);
+    b.arm_joints(doc, "lower", &points, Some("Control Arm/Bushing Data"), None)?;
     b.body("strut", &top);
-    let frame = arm_frame(p(b, &front), p(b, &back), p(b, &ball));
-    let at = midpoint(b, &front, &back)?;
-    b.joint(
-        doc,
-        "lower arm pivot",
-        JointKind::Revolute,
-        [GROUND, "lower arm"],
-        at,
-        Some(frame),
-        Some("Control Arm/Bushing Data"),
-    )?;
-    b.joint(doc, "lower ball joint", JointKind::Spherical, ["lower arm", "upright"], Place::named(&ball), None, None)?;
+    let [_, back, ball] = &points;
+    let p = |b: &Builder, n: &str| b.general.hardpoints.get(n).expect("read above");
     // Chrono's strut frame: w along the strut (up), v normal to the plane of the strut and the arm's back
     // pivot, u = v × w.
     let w = (p(b, &top) - p(b, &lower)).normalize();
-    let v = (p(b, &lower) - p(b, &back)).cross(&(p(b, &top) - p(b, &back))).normalize();
+    let v = (p(b, &lower) - p(b, back)).cross(&(p(b, &top) - p(b, back))).normalize();
     let strut_frame = (v.cross(&w), w);
     b.joint(
         doc,
@@ -46,12 +32,12 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
         Some(strut_frame),
         None,
     )?;
-    b.joint(doc, "top mount", JointKind::Universal, [GROUND, "strut"], Place::named(&top), Some(strut_frame), None)?;
+    b.joint(doc, "top mount", JointKind::Universal, [CHASSIS, "strut"], Place::named(&top), Some(strut_frame), None)?;
     let inner = b.hardpoint(doc, "tie_rod_inner", "Tierod/Location Chassis")?;
     let outer = b.hardpoint(doc, "tie_rod_outer", "Tierod/Location Upright")?;
     b.tie_rod(doc, &inner, &outer)?;
-    b.steering_axis(("upright", &ball), ("strut", &top));
-    b.spring(doc, "Spring", "spring", [GROUND, "upright"], [&top, &lower])?;
-    b.shock(doc, "shock", [GROUND, "upright"], ["Location Chassis", "Location Upright"])?;
+    b.steering_axis(("upright", ball), ("strut", &top));
+    b.spring(doc, "Spring", "spring", [CHASSIS, "upright"], [&top, &lower])?;
+    b.shock(doc, "shock", [CHASSIS, "upright"], ["Location Chassis", "Location Upright"])?;
     Ok(())
 }

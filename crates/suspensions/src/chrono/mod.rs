@@ -322,12 +322,18 @@ impl<'a> Doc<'a> {
 
     /// Marks the keys under `object` that carry only dynamics as read, with their reason.
     pub(crate) fn dynamics(&self, object: &str, keys: &[&str], notes: &mut Vec<String>) {
+        self.left_out(object, keys, FOR_DYNAMICS, notes);
+    }
+
+    /// Marks those of `keys` under `object` that the file gives as read, and notes them with `why` they are
+    /// left out.
+    pub(crate) fn left_out(&self, object: &str, keys: &[&str], why: &str, notes: &mut Vec<String>) {
         let given: Vec<&str> = keys.iter().copied().filter(|k| self.has(&format!("{object}/{k}"))).collect();
         for k in &given {
             self.expect(&format!("{object}/{k}"));
         }
         if !given.is_empty() {
-            notes.push(format!("{}: {} — {FOR_DYNAMICS}", self.shown(object), given.join(", ")));
+            notes.push(format!("{}: {} — {why}", self.shown(object), given.join(", ")));
         }
     }
 
@@ -669,6 +675,66 @@ impl Builder {
         Ok(())
     }
 
+    /// An arm's points: its pivots `<key> / Location Chassis Front` and `… Back` and its ball joint
+    /// `… Location Upright`, as the hardpoints `<short>_arm_front`, `<short>_arm_back` and `<short>_ball_joint`;
+    /// its `dynamics` keys read and left out. Returns the three names.
+    pub(crate) fn arm_points(
+        &mut self,
+        doc: &Doc,
+        key: &str,
+        short: &str,
+        dynamics: &[&str],
+    ) -> Result<[String; 3], String> {
+        let front = self.hardpoint(doc, &format!("{short}_arm_front"), &format!("{key}/Location Chassis Front"))?;
+        let back = self.hardpoint(doc, &format!("{short}_arm_back"), &format!("{key}/Location Chassis Back"))?;
+        let ball = self.hardpoint(doc, &format!("{short}_ball_joint"), &format!("{key}/Location Upright"))?;
+        doc.dynamics(key, dynamics, &mut self.notes);
+        Ok([front, back, ball])
+    }
+
+    /// The arm `<short> arm` on the points of [`Builder::arm_points`]: a revolute joint `<short> arm pivot` to
+    /// the chassis at the pivots' midpoint in [`arm_frame`] (Chrono's bushing there when `bushing`, its path,
+    /// holds `Bushing Data`) and the ball joint `<short> ball joint` to the upright. With `degenerate`, an arm
+    /// with no plane (its ball joint on its pivot axis) is refused with that message.
+    pub(crate) fn arm_joints(
+        &mut self,
+        doc: &Doc,
+        short: &str,
+        [front, back, ball]: &[String; 3],
+        bushing: Option<&str>,
+        degenerate: Option<&str>,
+    ) -> Result<(), String> {
+        let arm = format!("{short} arm");
+        let p = |b: &Builder, n: &str| b.general.hardpoints.get(n).ok_or_else(|| format!("no hardpoint {n}"));
+        self.body(&arm, ball);
+        let mut frame = arm_frame(p(self, front)?, p(self, back)?, p(self, ball)?);
+        if let Some(why) = degenerate {
+            frame = checked_frame(frame, why)?;
+        }
+        let at = midpoint(self, front, back)?;
+        self.joint(doc, &format!("{arm} pivot"), JointKind::Revolute, [CHASSIS, &arm], at, Some(frame), bushing)?;
+        self.joint(
+            doc,
+            &format!("{short} ball joint"),
+            JointKind::Spherical,
+            [&arm, "upright"],
+            Place::named(ball),
+            None,
+            None,
+        )
+    }
+
+    /// The spring from `Spring / Location Chassis` to `Spring / Location <seat>` (hardpoints `spring_chassis`
+    /// and `spring_<seat>`) and the shock between the same keys under `Shock`, both from the chassis to
+    /// `body`.
+    pub(crate) fn spring_and_shock(&mut self, doc: &Doc, body: &str, seat: &str) -> Result<(), String> {
+        let on_body = format!("Location {seat}");
+        let c = self.hardpoint(doc, "spring_chassis", "Spring/Location Chassis")?;
+        let s = self.hardpoint(doc, &format!("spring_{}", seat.to_lowercase()), &format!("Spring/{on_body}"))?;
+        self.spring(doc, "Spring", "spring", [CHASSIS, body], [&c, &s])?;
+        self.shock(doc, "shock", [CHASSIS, body], ["Location Chassis", &on_body])
+    }
+
     /// The tie rod from `inner` to `outer`: a distance link, or Chrono's rod body (`Mass` given) with a
     /// universal joint at the rack and a ball joint at the upright, which with ideal joints is the same
     /// link. With `Bushing Data` on the rod both joints are Chrono's bushings.
@@ -760,9 +826,6 @@ pub(crate) fn midpoint(b: &Builder, p: &str, q: &str) -> Result<Place, String> {
     let get = |n: &str| b.general.hardpoints.get(n).ok_or_else(|| format!("no hardpoint {n}"));
     Ok(Place::At((get(p)? + get(q)?) / 2.0))
 }
-
-/// The chassis, by the general model's name.
-pub(crate) const GROUND: &str = CHASSIS;
 
 /// A direction `[x, y, z]` at `path` (any length but zero).
 pub(crate) fn direction(doc: &Doc, path: &str) -> Result<Vec3, String> {

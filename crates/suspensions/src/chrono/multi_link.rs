@@ -13,27 +13,26 @@
 //! the midpoint of the lateral and trailing links' ball joints on the upright (`steering_axis_lower`), the
 //! two lower links standing in for one lower ball joint.
 
-use super::{arm_frame, checked_frame, cross_frame, direction, midpoint, Builder, Doc, GROUND};
+use super::{cross_frame, direction, Builder, Doc, CHASSIS};
 use crate::general::Place;
 use elastokin_core::JointKind;
 
 pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     b.wheel(doc)?;
-    let front = b.hardpoint(doc, "upper_arm_front", "Upper Arm/Location Chassis Front")?;
-    let back = b.hardpoint(doc, "upper_arm_back", "Upper Arm/Location Chassis Back")?;
-    let ball = b.hardpoint(doc, "upper_ball_joint", "Upper Arm/Location Upright")?;
-    doc.dynamics("Upper Arm", &["Mass", "COM", "Inertia", "Radius"], &mut b.notes);
-    let p = |b: &Builder, n: &str| b.general.hardpoints.get(n).ok_or_else(|| format!("no hardpoint {n}"));
-    b.body("upper arm", &ball);
-    let frame = checked_frame(
-        arm_frame(p(b, &front)?, p(b, &back)?, p(b, &ball)?),
-        "\"Upper Arm\": \"Location Upright\" lies on the line of \"Location Chassis Front\" and \"Location \
-         Chassis Back\", or these two coincide: the arm has no plane to turn in; move the upright point off \
-         the pivot axis",
+    let points = b.arm_points(doc, "Upper Arm", "upper", &["Mass", "COM", "Inertia", "Radius"])?;
+    b.arm_joints(
+        doc,
+        "upper",
+        &points,
+        None,
+        Some(
+            "\"Upper Arm\": \"Location Upright\" lies on the line of \"Location Chassis Front\" and \"Location \
+             Chassis Back\", or these two coincide: the arm has no plane to turn in; move the upright point off \
+             the pivot axis",
+        ),
     )?;
-    let at = midpoint(b, &front, &back)?;
-    b.joint(doc, "upper arm pivot", JointKind::Revolute, [GROUND, "upper arm"], at, Some(frame), None)?;
-    b.joint(doc, "upper ball joint", JointKind::Spherical, ["upper arm", "upright"], Place::named(&ball), None, None)?;
+    let ball = &points[2];
+    let p = |b: &Builder, n: &str| b.general.hardpoints.get(n).ok_or_else(|| format!("no hardpoint {n}"));
     let mut lower = Vec::new();
     for (link, key, short) in
         [("lateral link", "Lateral", "lateral"), ("trailing link", "Trailing Link", "trailing_link")]
@@ -59,7 +58,7 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
             doc,
             &format!("{link} mount"),
             JointKind::Universal,
-            [link, GROUND],
+            [link, CHASSIS],
             Place::named(&inner),
             Some(frame),
             None,
@@ -80,10 +79,6 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     b.tie_rod(doc, &inner, &outer)?;
     let virtual_joint = (p(b, &lower[0])? + p(b, &lower[1])?) / 2.0;
     b.general.hardpoints.0.push(("steering_axis_lower".into(), virtual_joint));
-    b.steering_axis(("upright", "steering_axis_lower"), ("upright", &ball));
-    let c = b.hardpoint(doc, "spring_chassis", "Spring/Location Chassis")?;
-    let l = b.hardpoint(doc, "spring_link", "Spring/Location Link")?;
-    b.spring(doc, "Spring", "spring", [GROUND, "trailing link"], [&c, &l])?;
-    b.shock(doc, "shock", [GROUND, "trailing link"], ["Location Chassis", "Location Link"])?;
-    Ok(())
+    b.steering_axis(("upright", "steering_axis_lower"), ("upright", ball));
+    b.spring_and_shock(doc, "trailing link", "Link")
 }

@@ -8,7 +8,7 @@
 //! Steering axis: the arm has no kingpin; the axis is the wheel's own vertical through its centre (see
 //! [`super::Builder::wheel_vertical_steering_axis`]).
 
-use super::{checked_frame, midpoint, Builder, Doc, GROUND};
+use super::{checked_frame, midpoint, Builder, Doc, CHASSIS};
 use elastokin_core::JointKind;
 
 pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
@@ -33,15 +33,11 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
         doc,
         "trailing arm pivot",
         JointKind::Revolute,
-        [GROUND, "upright"],
+        [CHASSIS, "upright"],
         at,
         Some(frame),
         Some("Trailing Arm/Bushing Data"),
     )?;
     b.wheel_vertical_steering_axis()?;
-    let c = b.hardpoint(doc, "spring_chassis", "Spring/Location Chassis")?;
-    let a = b.hardpoint(doc, "spring_arm", "Spring/Location Arm")?;
-    b.spring(doc, "Spring", "spring", [GROUND, "upright"], [&c, &a])?;
-    b.shock(doc, "shock", [GROUND, "upright"], ["Location Chassis", "Location Arm"])?;
-    Ok(())
+    b.spring_and_shock(doc, "upright", "Arm")
 }

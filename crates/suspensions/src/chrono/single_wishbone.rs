@@ -8,7 +8,7 @@
 //! Steering axis: that kingpin, from the arm's upright joint (`arm_upright`) to `steering_axis_upper`
 //! 0.1 m above it, both on the upright.
 
-use super::{Builder, Doc, GROUND};
+use super::{Builder, Doc, CHASSIS};
 use crate::general::Place;
 use elastokin_core::{JointKind, Vec3};
 
@@ -27,7 +27,7 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
         doc,
         "arm pivot",
         JointKind::Revolute,
-        [GROUND, "control arm"],
+        [CHASSIS, "control arm"],
         Place::named(&pivot),
         Some((-Vec3::z(), Vec3::x())),
         Some("Control Arm/Bushing Data"),
@@ -47,6 +47,6 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     let inner = b.hardpoint(doc, "tie_rod_inner", "Tierod/Location Chassis")?;
     let outer = b.hardpoint(doc, "tie_rod_outer", "Tierod/Location Upright")?;
     b.tie_rod(doc, &inner, &outer)?;
-    b.shock(doc, "spring", [GROUND, "control arm"], ["Location Chassis", "Location Arm"])?;
+    b.shock(doc, "spring", [CHASSIS, "control arm"], ["Location Chassis", "Location Arm"])?;
     Ok(())
 }

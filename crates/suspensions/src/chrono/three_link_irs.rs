@@ -10,7 +10,7 @@
 //! Steering axis: the arm has no kingpin; the axis is the wheel's own vertical through its centre (see
 //! [`super::Builder::wheel_vertical_steering_axis`]), as for the semi-trailing arm.
 
-use super::{cross_frame, direction, Builder, Doc, GROUND};
+use super::{cross_frame, direction, Builder, Doc, CHASSIS};
 use crate::general::Place;
 use elastokin_core::{JointKind, Vec3};
 
@@ -24,7 +24,7 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
         doc,
         "trailing arm pivot",
         JointKind::Spherical,
-        [GROUND, "upright"],
+        [CHASSIS, "upright"],
         Place::named(&pivot),
         None,
         Some("Trailing Arm/Bushing Data Chassis"),
@@ -56,16 +56,12 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
             doc,
             &format!("{link} mount"),
             JointKind::Universal,
-            [link, GROUND],
+            [link, CHASSIS],
             Place::named(&chassis),
             Some(frame),
             Some(&format!("{key}/Bushing Data Chassis")),
         )?;
     }
     b.wheel_vertical_steering_axis()?;
-    let c = b.hardpoint(doc, "spring_chassis", "Spring/Location Chassis")?;
-    let a = b.hardpoint(doc, "spring_arm", "Spring/Location Arm")?;
-    b.spring(doc, "Spring", "spring", [GROUND, "upright"], [&c, &a])?;
-    b.shock(doc, "shock", [GROUND, "upright"], ["Location Chassis", "Location Arm"])?;
-    Ok(())
+    b.spring_and_shock(doc, "upright", "Arm")
 }
