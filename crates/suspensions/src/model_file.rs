@@ -215,7 +215,7 @@ fn inline(value: &serde_json::Value) -> String {
 }
 
 /// Text editors on some systems save UTF-8 with a byte-order mark; JSON has no use for it.
-fn without_byte_order_mark(text: &str) -> &str {
+pub(crate) fn without_byte_order_mark(text: &str) -> &str {
     text.strip_prefix('\u{feff}').unwrap_or(text)
 }
 

@@ -43,8 +43,8 @@ mod three_link_irs;
 
 use crate::corner::{ROTATIONAL_RATE_RANGE, TRANSLATIONAL_RATE_RANGE};
 use crate::general::{
-    Axis, BodyDef, BodyPoint, BushingDef, CornerDef, GeneralCorner, Hardpoints, JointDef, Place, SpringDef, StopDef,
-    StopType, TieRodDef, CHASSIS,
+    Axis, BodyDef, BodyPoint, BushingDef, GeneralCorner, JointDef, Place, SpringDef, StopDef, StopType, TieRodDef,
+    CHASSIS,
 };
 use crate::model_file::{FileError, SuspensionFile, Template, MAX_COORDINATE};
 use crate::Connection;
@@ -87,7 +87,7 @@ pub fn is_chrono(text: &str) -> bool {
 /// Reads a Chrono suspension file; `origin` names it in errors, `loaded_radius` (m) is the tyre's (Chrono's
 /// suspension files have none).
 pub fn import(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Imported, FileError> {
-    let clean = without_comments(text.strip_prefix('\u{feff}').unwrap_or(text));
+    let clean = without_comments(crate::model_file::without_byte_order_mark(text));
     // An error names its keys in quotes ("Spring" / "Free Length" is missing); it is located at them, or at
     // the template's name.
     let invalid = |message: String| {
@@ -381,27 +381,10 @@ impl Builder {
             ));
         }
         doc.expect("Name");
-        let general = GeneralCorner {
-            hardpoints: Hardpoints::default(),
-            bodies: Vec::new(),
-            joints: Vec::new(),
-            bushings: Vec::new(),
-            springs: Vec::new(),
-            stops: Vec::new(),
-            anti_roll_bars: Vec::new(),
-            loads: Vec::new(),
-            corner: CornerDef {
-                upright: "upright".into(),
-                wheel_centre: "wheel_centre".into(),
-                spin_axis: [0.0, 1.0, 0.0],
-                loaded_radius: loaded_radius.unwrap_or_else(crate::corner::default_loaded_radius),
-                steering_axis: [
-                    BodyPoint { body: "upright".into(), at: Place::named("wheel_centre") },
-                    BodyPoint { body: "upright".into(), at: Place::named("wheel_centre") },
-                ],
-                tie_rod: None,
-            },
-        };
+        // The steering axis is the reader's to give; until then it is a point.
+        let at_centre = || BodyPoint { body: "upright".into(), at: Place::named("wheel_centre") };
+        let loaded_radius = loaded_radius.unwrap_or_else(crate::corner::default_loaded_radius);
+        let general = GeneralCorner::empty(loaded_radius, [at_centre(), at_centre()], None);
         Builder { general, notes }
     }
 
