@@ -2,7 +2,6 @@
 
 use crate::corner::{Corner, Rig, SteeringGeometry, WheelAttitude};
 use elastokin_core::{Model, Vec3};
-use elastokin_elements::PointForce;
 use elastokin_solver::{ArcStep, LoadPath, Mode, SolverError, SolverOptions, State, StaticSolver, StepResult, Sweep};
 use serde::{Deserialize, Serialize};
 
@@ -222,6 +221,7 @@ pub(crate) fn whole<R>(out: SweepOutput<R>) -> Result<Vec<R>, SolverError> {
 pub(crate) fn read_sweep<R>(
     solver: &mut StaticSolver,
     wheel: &crate::corner::Wheel,
+    partner: Option<&crate::corner::Wheel>,
     walked: Walked,
     extras: SweepExtras,
     mut read: impl FnMut(&mut StaticSolver, &StepResult) -> Result<R, SolverError>,
@@ -240,7 +240,12 @@ pub(crate) fn read_sweep<R>(
         None
     };
     let compliance = if extras.compliance {
-        Some(steps.iter().map(|s| compliance_with(solver, wheel, &solver.state_of(s))).collect::<Result<_, _>>()?)
+        Some(
+            steps
+                .iter()
+                .map(|s| compliance_with(solver, wheel, partner, &solver.state_of(s)))
+                .collect::<Result<_, _>>()?,
+        )
     } else {
         None
     };
@@ -275,7 +280,7 @@ fn driven_sweep_with(
     let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, extras.through_limits)?;
     let driver = corner.model.joint_id("wheel travel");
     let spring = corner.model.element_id("spring");
-    read_sweep(&mut solver, &corner.wheel, walked, extras, |_, s| {
+    read_sweep(&mut solver, &corner.wheel, corner.partner.as_ref(), walked, extras, |_, s| {
         Ok(TravelRow {
             travel: s.t,
             attitude: corner.wheel.attitude(&s.poses),
@@ -291,7 +296,8 @@ fn driven_sweep_with(
 /// the wheel centre, in m/N and rad/(N·m). It is the inverse tangent of the constrained system, so it
 /// costs one factorization and six back-substitutions. Drivers present in the corner stay held (a
 /// wheel-travel driver makes the vertical row and column zero, as on a K&C rig holding the wheel-centre
-/// height).
+/// height). With a partner wheel (a solid axle) each unit load acts on both wheels as mirror images, as
+/// the load sweeps apply them; the response is the corner's own wheel's.
 pub fn wheel_compliance(corner: &Corner, t: f64) -> Result<[[f64; 6]; 6], SolverError> {
     Ok(compliance_at(corner, t)?.0)
 }
@@ -301,17 +307,29 @@ fn compliance_at(corner: &Corner, t: f64) -> Result<([[f64; 6]; 6], Vec<elastoki
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let mut state = solver.design_state(t);
     solver.equilibrium(&mut state)?;
-    Ok((compliance_with(&mut solver, &corner.wheel, &state)?, state.poses))
+    Ok((compliance_with(&mut solver, &corner.wheel, corner.partner.as_ref(), &state)?, state.poses))
 }
 
 /// The wheel compliance at `state` (an equilibrium of `solver`'s model): see [`wheel_compliance`].
 fn compliance_with(
     solver: &mut StaticSolver,
     wheel: &crate::corner::Wheel,
+    partner: Option<&crate::corner::Wheel>,
     state: &elastokin_solver::State,
 ) -> Result<[[f64; 6]; 6], SolverError> {
     let n = solver.model().dofs();
     let m = solver.active_rows().len();
+    // Generalized force on `w`'s upright of a force `f` at its wheel centre and a torque `moment`.
+    let load = |rhs: &mut [f64], w: &crate::corner::Wheel, f: Vec3, moment: Vec3| {
+        let pose = state.poses[w.upright.0];
+        let arm = pose.point(&w.wheel_centre_local) - pose.position;
+        let (f, moment) = (f, arm.cross(&f) + moment);
+        let base = w.upright.0 * elastokin_core::BODY_DOFS;
+        for c in 0..3 {
+            rhs[base + c] += f[c];
+            rhs[base + 3 + c] += moment[c];
+        }
+    };
     let pose = state.poses[wheel.upright.0];
     let s = pose.point(&wheel.wheel_centre_local) - pose.position;
     let base = wheel.upright.0 * elastokin_core::BODY_DOFS;
@@ -322,11 +340,13 @@ fn compliance_with(
         rhs.fill(0.0);
         let mut unit = Vec3::zeros();
         unit[k % 3] = 1.0;
-        // Generalized force of a force at the wheel centre (F, s × F), or of a torque (0, M).
-        let (f, moment) = if k < 3 { (unit, s.cross(&unit)) } else { (Vec3::zeros(), unit) };
-        for c in 0..3 {
-            rhs[base + c] = f[c];
-            rhs[base + 3 + c] = moment[c];
+        // A force at the wheel centre, or a torque.
+        let (f, moment) = if k < 3 { (unit, Vec3::zeros()) } else { (Vec3::zeros(), unit) };
+        load(&mut rhs, wheel, f, moment);
+        if let Some(partner) = partner {
+            // The mirror image: a force keeps x and z and turns y over; a moment (a pseudo-vector) the reverse.
+            let (fm, mm) = (Vec3::new(f.x, -f.y, f.z), Vec3::new(-moment.x, moment.y, -moment.z));
+            load(&mut rhs, partner, fm, mm);
         }
         solver.solve_factored(&mut rhs)?;
         let dr = Vec3::new(rhs[base], rhs[base + 1], rhs[base + 2]);
@@ -459,7 +479,7 @@ fn load_rows(
     let upright = corner.wheel.upright.0;
     let patch_at_design = model.bodies()[upright].design_pose.point(&patch_local);
     let driver = model.joint_id("wheel travel");
-    read_sweep(solver, &corner.wheel, walked, extras, |_, s| {
+    read_sweep(solver, &corner.wheel, corner.partner.as_ref(), walked, extras, |_, s| {
         let forces = ComponentForces::at(model, s);
         let contact_patch = s.poses[upright].point(&patch_local);
         Ok(LoadRow {
@@ -633,9 +653,8 @@ fn add_corner_load(corner: &mut Corner, corner_load: f64) -> Result<(), SolverEr
             why: format!("the vertical load on the wheel must be a finite force in newtons, got {corner_load}"),
         });
     }
-    let force = PointForce::new(CORNER_LOAD, corner.wheel.upright.into(), corner.wheel.contact_patch, Vec3::zeros())?
-        .with_constant(Vec3::new(0.0, 0.0, corner_load))?;
-    corner.model.add_element(force)?;
+    let patch = corner.wheel.contact_patch;
+    corner.add_wheel_force_with_constant(CORNER_LOAD, patch, Vec3::zeros(), Vec3::new(0.0, 0.0, corner_load))?;
     Ok(())
 }
 

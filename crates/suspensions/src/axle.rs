@@ -3,9 +3,12 @@
 //! roll-centre migration, and steering of both wheels by one rack.
 
 use crate::analysis::{read_sweep, walk, whole, SweepExtras, SweepOutput};
-use crate::corner::{add_rack, add_wheel_travel_driver, mount_tie_rod, CornerTemplate, Wheel, WheelAttitude};
+use crate::corner::{
+    add_rack, add_wheel_travel_driver, mount_rod, mount_tie_rod, CornerParts, CornerTemplate, CrossAxle, Wheel,
+    WheelAttitude,
+};
 use crate::hardpoint::Side;
-use elastokin_core::{BodyRef, ElementId, Model, ModelError, Pose};
+use elastokin_core::{BodyRef, ElementId, Model, ModelError, Pose, Vec3};
 use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, StaticSolver};
 
 /// How the axle is held on the K&C rig, and what the load parameter `t` drives.
@@ -83,19 +86,8 @@ impl Axle {
     /// one rack (a body on a lateral slide when steering, else the chassis), held as `rig` says.
     pub fn build(template: &impl CornerTemplate, rig: AxleRig) -> Result<Axle, ModelError> {
         let mut model = Model::new();
-        let left = template.add_corner(&mut model, Side::Left, "left ")?;
-        let right = template.add_corner(&mut model, Side::Right, "right ")?;
-        let anti_roll_bars = template.add_cross_axle(&mut model, ("left ", &left), ("right ", &right))?;
-        let inner = match (rig, left.tie_rod, right.tie_rod) {
-            (AxleRig::Steering, Some(l), Some(r)) => add_rack(&mut model, (l.inner + r.inner) / 2.0)?,
-            (AxleRig::Steering, _, _) => return Err(crate::corner::no_steering_input()),
-            _ => BodyRef::Ground,
-        };
-        for (prefix, parts) in [("left ", &left), ("right ", &right)] {
-            if let Some(tie_rod) = parts.tie_rod {
-                mount_tie_rod(&mut model, prefix, inner, &parts.wheel, tie_rod)?;
-            }
-        }
+        let (left, right, cross) =
+            add_both_corners(&mut model, template, ["left ", "right "], rig == AxleRig::Steering)?;
         let travel_rates = match rig {
             AxleRig::ParallelTravel => Some((1.0, 1.0)),
             AxleRig::OppositeTravel => Some((1.0, -1.0)),
@@ -103,10 +95,10 @@ impl Axle {
             AxleRig::Free => None,
         };
         if let Some((l, r)) = travel_rates {
-            add_wheel_travel_driver(&mut model, "left ", &left.wheel, l)?;
-            add_wheel_travel_driver(&mut model, "right ", &right.wheel, r)?;
+            let axle_only = template.builds_on_axle_only();
+            add_travel_drivers(&mut model, axle_only, ("left ", &left.wheel, l), ("right ", &right.wheel, r))?;
         }
-        Ok(Axle { model, rig, left: left.wheel, right: right.wheel, anti_roll_bars })
+        Ok(Axle { model, rig, left: left.wheel, right: right.wheel, anti_roll_bars: cross.anti_roll_bars })
     }
 
     /// The roll centre at `poses`, for body velocities `rates` along a wheel-travel path (from
@@ -151,6 +143,69 @@ impl Axle {
     }
 }
 
+/// Adds both corners of `template` to `model`, their part names starting with `prefixes` (left, right),
+/// the parts they share and those across, and the steering: the tie rods (and a solid axle's steering
+/// link) on one rack when `steering` (a body on a slide at the middle of the tie rods' inner ends, along
+/// y; at the steering link's inner end, along its axis), else on the chassis.
+pub(crate) fn add_both_corners(
+    model: &mut Model,
+    template: &impl CornerTemplate,
+    prefixes: [&str; 2],
+    steering: bool,
+) -> Result<(CornerParts, CornerParts, CrossAxle), ModelError> {
+    template.add_axle_bodies(model)?;
+    let left = template.add_corner(model, Side::Left, prefixes[0])?;
+    let right = template.add_corner(model, Side::Right, prefixes[1])?;
+    let cross = template.add_cross_axle(model, (prefixes[0], &left), (prefixes[1], &right))?;
+    let inner = match (steering, left.tie_rod, right.tie_rod, cross.steering_link) {
+        (false, ..) => BodyRef::Ground,
+        (true, _, _, Some(link)) => add_rack(model, link.rod.inner, link.rack_axis)?,
+        (true, Some(l), Some(r), None) => add_rack(model, (l.inner + r.inner) / 2.0, Vec3::y())?,
+        (true, ..) => return Err(crate::corner::no_steering_input()),
+    };
+    for (prefix, parts) in [(prefixes[0], &left), (prefixes[1], &right)] {
+        if let Some(tie_rod) = parts.tie_rod {
+            mount_tie_rod(model, prefix, inner, &parts.wheel, tie_rod)?;
+        }
+    }
+    if let Some(link) = cross.steering_link {
+        mount_rod(model, "steering link", inner, link.body, Side::Left, link.rod)?;
+    }
+    Ok((left, right, cross))
+}
+
+/// Adds the wheel-centre height drivers of two wheels, each `(prefix, wheel, travel rate)`. On a solid
+/// axle (`axle_only`) whose joints leave it one way to move once the first wheel's height is driven (its
+/// roll locked, as a four-link axle with a Panhard rod on ideal joints is), the second wheel's height
+/// follows from the first's: its driver is left out when it would drive the same travel, and the rig is
+/// refused when it would drive another (opposite travel).
+pub(crate) fn add_travel_drivers(
+    model: &mut Model,
+    axle_only: bool,
+    first: (&str, &Wheel, f64),
+    second: (&str, &Wheel, f64),
+) -> Result<(), ModelError> {
+    add_wheel_travel_driver(model, first.0, first.1, first.2)?;
+    if axle_only && crate::plausibility::mobility(model).0 == 0 {
+        if first.2 == second.2 {
+            return Ok(());
+        }
+        return Err(roll_locked());
+    }
+    add_wheel_travel_driver(model, second.0, second.1, second.2)
+}
+
+/// The refusal of opposite wheel travel on a solid axle whose joints lock its roll.
+pub(crate) fn roll_locked() -> ModelError {
+    ModelError::OutOfRange {
+        item: "axle".into(),
+        why: "the axle's joints leave it one way to move, in travel: its roll is locked (ideal links that bind \
+              in roll, such as four angled links and a Panhard rod), so its wheels cannot travel opposite; make a \
+              link a bushing to give it roll"
+            .into(),
+    }
+}
+
 /// Walks the axle's driven path from `from` to `to` in `steps` steps: parallel travel, opposite travel or
 /// steering, whichever the axle was built for (refused for [`AxleRig::HeightHeld`] and [`AxleRig::Free`],
 /// where `t` drives nothing). Each row carries both wheels, track, roll angle, wheel loads, roll moment and
@@ -183,7 +238,7 @@ pub fn axle_sweep_with(
     let mut start = solver.design_state(from);
     let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, extras.through_limits)?;
     let drivers = (model.joint_id("left wheel travel"), model.joint_id("right wheel travel"));
-    read_sweep(&mut solver, &axle.left, walked, extras, |solver, step| {
+    read_sweep(&mut solver, &axle.left, None, walked, extras, |solver, step| {
         let reactions = step.joint_reactions(model);
         let load = |d: Option<elastokin_core::JointId>| d.map_or(0.0, |d| reactions[d.0].force.z);
         let (left, right) = (axle.left.attitude(&step.poses), axle.right.attitude(&step.poses));

@@ -32,16 +32,49 @@ pub trait CornerTemplate {
     /// returned in [`CornerParts::tie_rod`] for the rig to attach to the rack or the chassis.
     fn add_corner(&self, model: &mut Model, side: Side, prefix: &str) -> Result<CornerParts, ModelError>;
 
-    /// Adds the parts that join the two corners of an axle (anti-roll bars), after both corners, each
-    /// given with its name prefix; returns each bar's torsion element. None by default.
+    /// Whether the two corners share parts (a solid axle's tube): then the template builds only on a whole
+    /// axle, and [`Corner::build`] builds both sides. False by default.
+    fn builds_on_axle_only(&self) -> bool {
+        false
+    }
+
+    /// Adds the bodies the two corners share, before either corner. None by default.
+    fn add_axle_bodies(&self, _model: &mut Model) -> Result<(), ModelError> {
+        Ok(())
+    }
+
+    /// Adds the parts that join the two corners of an axle (anti-roll bars, the shared parts' joints and
+    /// elements), after both corners, each given with its name prefix. None by default.
     fn add_cross_axle(
         &self,
         _model: &mut Model,
         _left: (&str, &CornerParts),
         _right: (&str, &CornerParts),
-    ) -> Result<Vec<ElementId>, ModelError> {
-        Ok(Vec::new())
+    ) -> Result<CrossAxle, ModelError> {
+        Ok(CrossAxle::default())
     }
+}
+
+/// What a template added across the two corners of an axle.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct CrossAxle {
+    /// The torsion element of each anti-roll bar.
+    pub anti_roll_bars: Vec<ElementId>,
+    /// The axle's steering input, still to be attached to the rack or the chassis, when its corners have
+    /// no tie rods of their own.
+    pub steering_link: Option<SteeringLink>,
+}
+
+/// A solid axle's steering input: a rod from the steering box (the rack, or the chassis when the rack is
+/// fixed) to a part of the axle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SteeringLink {
+    /// The part it pushes.
+    pub body: BodyRef,
+    /// The rod: `inner` at the steering box, `outer` on `body`.
+    pub rod: TieRod,
+    /// Unit direction in which the steering input moves the inner end.
+    pub rack_axis: Vec3,
 }
 
 /// What a template added for one corner.
@@ -328,23 +361,35 @@ pub(crate) fn mount_tie_rod(
     wheel: &Wheel,
     tie_rod: TieRod,
 ) -> Result<(), ModelError> {
-    let name = part_name(prefix, "tie rod");
-    let upright = wheel.upright;
-    let TieRodMounts { inner, outer } = tie_rod.connection;
+    mount_rod(model, &part_name(prefix, "tie rod"), inner_body, wheel.upright.into(), wheel.side, tie_rod)
+}
+
+/// Attaches a rod named `name` from `inner_body` at `rod.inner` to `outer_body` at `rod.outer`: a distance
+/// constraint when both ends are ideal, else a rod body with its end connections (a bushing's own axis
+/// given on the left is placed on `side`).
+pub(crate) fn mount_rod(
+    model: &mut Model,
+    name: &str,
+    inner_body: BodyRef,
+    outer_body: BodyRef,
+    side: Side,
+    rod: TieRod,
+) -> Result<(), ModelError> {
+    let TieRodMounts { inner, outer } = rod.connection;
     if (inner, outer) == (Connection::Ideal, Connection::Ideal) {
-        model.add_joint(JointSpec::distance(&name, inner_body, upright, tie_rod.inner, tie_rod.outer))?;
+        model.add_joint(JointSpec::distance(name, inner_body, outer_body, rod.inner, rod.outer))?;
         return Ok(());
     }
-    let rod_axis = tie_rod.outer - tie_rod.inner;
-    let rod = model.add_body(&name, Pose::at((tie_rod.inner + tie_rod.outer) / 2.0))?;
+    let rod_axis = rod.outer - rod.inner;
+    let body = model.add_body(name, Pose::at((rod.inner + rod.outer) / 2.0))?;
     let ends = [
-        ("inner", inner_body, BodyRef::from(rod), tie_rod.inner, inner),
-        ("outer", BodyRef::from(rod), BodyRef::from(upright), tie_rod.outer, outer),
+        ("inner", inner_body, BodyRef::from(body), rod.inner, inner),
+        ("outer", BodyRef::from(body), outer_body, rod.outer, outer),
     ];
     for (end, carrier, body, point, connection) in ends {
         match connection {
             Connection::Bushing(rates) => {
-                let axis = rates.axis.map_or(rod_axis, |a| wheel.side.place(a.into()));
+                let axis = rates.axis.map_or(rod_axis, |a| side.place(a.into()));
                 let bushing = axial_bushing(&format!("{name} {end} bushing"), carrier, body, point, axis, rates)?;
                 model.add_element(bushing)?;
             }
@@ -365,17 +410,18 @@ pub(crate) fn mount_tie_rod(
 pub(crate) fn no_steering_input() -> ModelError {
     ModelError::OutOfRange {
         item: "corner.tie_rod".into(),
-        why: "the steering analysis needs a steering input: this corner has no tie rod (corner.tie_rod), so its \
-              toe is held by its own links and it cannot be steered"
+        why: "the steering analysis needs a steering input: this corner has no tie rod (corner.tie_rod, or a solid \
+              axle's axle.steering_link), so its toe is held by its own links and it cannot be steered"
             .into(),
     }
 }
 
-/// Adds a rack: a body on a lateral slide at `at`, driven by `t` (m towards +y), named "rack".
-pub(crate) fn add_rack(model: &mut Model, at: Vec3) -> Result<BodyRef, ModelError> {
+/// Adds a rack: a body on a slide along the unit `axis` at `at`, driven by `t` (m along `axis`), named
+/// "rack".
+pub(crate) fn add_rack(model: &mut Model, at: Vec3, axis: Vec3) -> Result<BodyRef, ModelError> {
     let rack = model.add_body("rack", Pose::at(at))?;
-    model.add_joint(JointSpec::translational("rack slide", BodyRef::Ground, rack, at, Vec3::y()))?;
-    model.add_joint(JointSpec::travel_driver("rack travel", BodyRef::Ground, rack, at, Vec3::y(), 1.0))?;
+    model.add_joint(JointSpec::translational("rack slide", BodyRef::Ground, rack, at, axis))?;
+    model.add_joint(JointSpec::travel_driver("rack travel", BodyRef::Ground, rack, at, axis, 1.0))?;
     Ok(rack.into())
 }
 
@@ -405,6 +451,9 @@ pub struct Corner {
     pub rig: Rig,
     /// The wheel.
     pub wheel: Wheel,
+    /// The wheel across the axle when the corner cannot stand alone (a solid axle; see [`Corner::build`]):
+    /// held by the same rig and loaded as the mirror image of `wheel`.
+    pub partner: Option<Wheel>,
     /// Where the rig applies the vertical, lateral and braking forces of the load analyses.
     pub load_point: LoadPoint,
 }
@@ -604,34 +653,101 @@ impl Corner {
     /// Builds `template`'s corner on `side` with its tie rod and held as `rig` says: a rack on a lateral
     /// slide when steering (else the tie rod's inner end is on the chassis), and the wheel-centre height
     /// driver the rig needs.
+    ///
+    /// A template whose corners share parts ([`CornerTemplate::builds_on_axle_only`], a solid axle) is
+    /// built whole: the corner on `side` named as a lone corner's (`"upright"`, `"wheel travel"`), its
+    /// partner on the other side named `"left …"` or `"right …"` and held by the same rig, so that travel
+    /// moves both wheels alike; the loads of [`Corner::add_wheel_force`] and [`Corner::add_wheel_torque`]
+    /// act on both as mirror images.
     pub fn build(template: &impl CornerTemplate, side: Side, rig: Rig) -> Result<Corner, ModelError> {
         let mut model = Model::new();
+        let travel_rate = match rig {
+            Rig::WheelTravel => Some(1.0),
+            Rig::Steering | Rig::HeightHeld => Some(0.0),
+            Rig::Free => None,
+        };
+        if template.builds_on_axle_only() {
+            let other = partner_prefix(side);
+            let prefixes = match side {
+                Side::Left => ["", other],
+                Side::Right => [other, ""],
+            };
+            let (left, right, _) = crate::axle::add_both_corners(&mut model, template, prefixes, rig == Rig::Steering)?;
+            let (own, partner) = match side {
+                Side::Left => (left.wheel, right.wheel),
+                Side::Right => (right.wheel, left.wheel),
+            };
+            if let Some(rate) = travel_rate {
+                crate::axle::add_travel_drivers(&mut model, true, ("", &own, rate), (other, &partner, rate))?;
+            }
+            let load_point = LoadPoint::default();
+            return Ok(Corner { model, rig, wheel: own, partner: Some(partner), load_point });
+        }
         let parts = template.add_corner(&mut model, side, "")?;
         match (parts.tie_rod, rig) {
             (Some(tie_rod), Rig::Steering) => {
-                let rack = add_rack(&mut model, tie_rod.inner)?;
+                let rack = add_rack(&mut model, tie_rod.inner, Vec3::y())?;
                 mount_tie_rod(&mut model, "", rack, &parts.wheel, tie_rod)?;
             }
             (Some(tie_rod), _) => mount_tie_rod(&mut model, "", BodyRef::Ground, &parts.wheel, tie_rod)?,
             (None, Rig::Steering) => return Err(no_steering_input()),
             (None, _) => {}
         }
-        match rig {
-            Rig::WheelTravel => add_wheel_travel_driver(&mut model, "", &parts.wheel, 1.0)?,
-            Rig::Steering | Rig::HeightHeld => add_wheel_travel_driver(&mut model, "", &parts.wheel, 0.0)?,
-            Rig::Free => {}
+        if let Some(rate) = travel_rate {
+            add_wheel_travel_driver(&mut model, "", &parts.wheel, rate)?;
         }
-        Ok(Corner { model, rig, wheel: parts.wheel, load_point: LoadPoint::default() })
+        Ok(Corner { model, rig, wheel: parts.wheel, partner: None, load_point: LoadPoint::default() })
+    }
+
+    /// The prefix of the partner wheel's part names, when the corner has one.
+    pub fn partner_prefix(&self) -> Option<&'static str> {
+        self.partner.map(|_| partner_prefix(self.wheel.side))
     }
 
     /// Adds a world-fixed force `force · t` (N per unit load parameter) at the global design point `point`
-    /// of the upright: a contact-patch or wheel-centre load of a K&C test.
+    /// of the upright: a contact-patch or wheel-centre load of a K&C test. With a partner wheel (a solid
+    /// axle), its mirror image acts on the partner too, at the mirror image of `point`.
     pub fn add_wheel_force(&mut self, name: &str, point: Vec3, force: Vec3) -> Result<ElementId, ModelError> {
-        self.model.add_element(PointForce::new(name, self.wheel.upright.into(), point, force)?)
+        self.add_wheel_force_with_constant(name, point, force, Vec3::zeros())
     }
 
-    /// Adds a world-fixed torque `torque · t` (N·m per unit load parameter) on the upright.
+    /// [`Corner::add_wheel_force`] with a constant part `constant` (N) beside the ramped `force · t`.
+    pub fn add_wheel_force_with_constant(
+        &mut self,
+        name: &str,
+        point: Vec3,
+        force: Vec3,
+        constant: Vec3,
+    ) -> Result<ElementId, ModelError> {
+        let element = |upright: BodyId, name: &str, point: Vec3, force: Vec3, constant: Vec3| {
+            PointForce::new(name, upright.into(), point, force)?.with_constant(constant)
+        };
+        let id = self.model.add_element(element(self.wheel.upright, name, point, force, constant)?)?;
+        if let (Some(partner), Some(prefix)) = (self.partner, self.partner_prefix()) {
+            let m = |v: Vec3| Vec3::new(v.x, -v.y, v.z);
+            let mirrored = element(partner.upright, &part_name(prefix, name), m(point), m(force), m(constant))?;
+            self.model.add_element(mirrored)?;
+        }
+        Ok(id)
+    }
+
+    /// Adds a world-fixed torque `torque · t` (N·m per unit load parameter) on the upright; with a partner
+    /// wheel, its mirror image on the partner.
     pub fn add_wheel_torque(&mut self, name: &str, torque: Vec3) -> Result<ElementId, ModelError> {
-        self.model.add_element(PointTorque::new(name, self.wheel.upright.into(), torque)?)
+        let id = self.model.add_element(PointTorque::new(name, self.wheel.upright.into(), torque)?)?;
+        if let (Some(partner), Some(prefix)) = (self.partner, self.partner_prefix()) {
+            // A moment is a pseudo-vector: its mirror image keeps y and turns x and z over.
+            let mirrored = Vec3::new(-torque.x, torque.y, -torque.z);
+            self.model.add_element(PointTorque::new(&part_name(prefix, name), partner.upright.into(), mirrored)?)?;
+        }
+        Ok(id)
+    }
+}
+
+/// The part-name prefix of the wheel across the axle from one on `side`.
+fn partner_prefix(side: Side) -> &'static str {
+    match side {
+        Side::Left => "right ",
+        Side::Right => "left ",
     }
 }

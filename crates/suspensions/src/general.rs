@@ -31,11 +31,11 @@ use crate::anti_roll_bar::AntiRollBar;
 use crate::connection::{BushingRates, Connection, TieRodMounts};
 use crate::corner::{
     check_hardpoints, check_rate, check_steering_arm, check_steering_axis, part_name, CornerParts, CornerTemplate,
-    TieRod, Wheel, ROTATIONAL_RATE_RANGE, TRANSLATIONAL_RATE_RANGE,
+    CrossAxle, SteeringLink, TieRod, Wheel, MAX_WHEEL_CENTRE_DISTANCE, ROTATIONAL_RATE_RANGE, TRANSLATIONAL_RATE_RANGE,
 };
 use crate::hardpoint::Side;
 use elastokin_core::joint::orthonormal_complement;
-use elastokin_core::{BodyRef, ElementId, JointKind, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
+use elastokin_core::{BodyRef, JointKind, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
 use elastokin_elements::{
     Bushing, BushingSpec, Characteristic, CoilSpring, Curve, PointForce, PointTorque, RotationLaw, Stop,
 };
@@ -50,6 +50,11 @@ pub const CHASSIS: &str = "chassis";
 pub struct Hardpoints(pub Vec<(String, Vec3)>);
 
 impl Hardpoints {
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+
     /// The point named `name`.
     pub fn get(&self, name: &str) -> Option<Vec3> {
         self.0.iter().find(|(n, _)| n == name).map(|(_, p)| *p)
@@ -567,6 +572,56 @@ fn is_outward(a: &[f64; 3]) -> bool {
     *a == outward()
 }
 
+/// The steering input of a solid axle: a rod (a drag link) from the steering box's arm to a part of the
+/// axle, which the rig moves along `rack_axis` when steering and holds on the chassis otherwise.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SteeringLinkDef {
+    /// The part it pushes (an axle body, or `"left …"` / `"right …"` for a corner's).
+    pub body: String,
+    /// End at the steering box (axle hardpoint or coordinates, not mirrored).
+    pub inner: Place,
+    /// End on `body`.
+    pub outer: Place,
+    /// A distance constraint (`"ideal"`, the default), or a rod with bushings (see [`TieRodMounts`]).
+    #[serde(default)]
+    pub connection: TieRodMounts,
+    /// Direction in which the steering input moves the inner end (default `[0, 1, 0]`, a rack's; a
+    /// pitman arm's end moves along the drag link).
+    #[serde(default = "outward", skip_serializing_if = "is_outward")]
+    pub rack_axis: [f64; 3],
+}
+
+/// The parts two corners share: the axle tube of a solid axle and what hangs on it once (a tie rod
+/// across, a Panhard rod, a bell crank). Written as they are in the car, both sides given, nothing
+/// mirrored; built once, on the whole axle. A corner names an axle body by its name; an axle part names a
+/// corner's body or hardpoint as `"left …"` or `"right …"` (the corner's, placed on that side). A model
+/// with an `axle` builds only whole: every corner analysis moves and loads both wheels alike.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AxleDef {
+    /// Named points of the axle's own parts (global, not mirrored).
+    #[serde(default, skip_serializing_if = "Hardpoints::is_empty")]
+    pub hardpoints: Hardpoints,
+    /// The shared bodies.
+    pub bodies: Vec<BodyDef>,
+    /// Kinematic joints of the shared parts.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub joints: Vec<JointDef>,
+    /// Bushings of the shared parts.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub bushings: Vec<BushingDef>,
+    /// Springs between shared parts (each corner's own springs go in the corner).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub springs: Vec<SpringDef>,
+    /// Stops between shared parts.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub stops: Vec<StopDef>,
+    /// The steering input, when the corners have no tie rods of their own.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steering_link: Option<SteeringLinkDef>,
+}
+
 /// A suspension corner of any topology (see the [module docs](self)).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -593,15 +648,21 @@ pub struct GeneralCorner {
     /// A load case at any point of any body, run by the `loads` analysis.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub loads: Vec<LoadDef>,
+    /// Parts shared by the two corners (a solid axle): the model then builds only as a whole axle.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub axle: Option<AxleDef>,
     /// Where the wheel is.
     pub corner: CornerDef,
 }
 
-/// The bodies of one corner by their file names, and the places resolved on one side.
+/// The bodies of one corner by their file names, and the places resolved on one side; or, for the parts
+/// two corners share ([`AxleDef`]), the axle's own names and each side's by `"left …"` / `"right …"`.
 pub(crate) struct Resolver<'a> {
     general: &'a GeneralCorner,
     side: Side,
     prefix: &'a str,
+    /// For the shared parts: the left and right corners' name prefixes.
+    shared: Option<(&'a str, &'a str)>,
 }
 
 impl Resolver<'_> {
@@ -610,17 +671,51 @@ impl Resolver<'_> {
         self.prefix
     }
 
+    /// The axle's bodies, none without one.
+    fn axle_bodies(&self) -> &[BodyDef] {
+        self.general.axle.as_ref().map_or(&[], |a| a.bodies.as_slice())
+    }
+
+    /// A corner's name `"left x"` / `"right x"` split into its side, that side's prefix and `x`.
+    fn sided<'n>(&self, name: &'n str) -> Option<(Side, &str, &'n str)> {
+        let (left, right) = self.shared?;
+        if let Some(rest) = name.strip_prefix("left ") {
+            return Some((Side::Left, left, rest));
+        }
+        name.strip_prefix("right ").map(|rest| (Side::Right, right, rest))
+    }
+
     /// A point placed on the side; `key` names where it is used, for the error.
     pub(crate) fn point(&self, key: &str, place: &Place) -> Result<Vec3, ModelError> {
-        let left = match place {
-            Place::At(p) => *p,
-            Place::Named(name) => self.general.hardpoints.get(name).ok_or_else(|| ModelError::OutOfRange {
-                item: key.to_string(),
-                why: format!(
+        let missing = |name: &str| {
+            let why = match self.shared {
+                None => format!(
                     "there is no hardpoint '{name}': add it to hardpoints or use one of {}",
                     list(self.general.hardpoints.0.iter().map(|(n, _)| n.as_str()))
                 ),
-            })?,
+                Some(_) => {
+                    let own = self.general.axle.as_ref().map(|a| &a.hardpoints.0);
+                    format!(
+                        "there is no hardpoint '{name}': add it to axle.hardpoints, name a corner's as \
+                         \"left …\" or \"right …\", or use one of {}",
+                        list(own.into_iter().flatten().map(|(n, _)| n.as_str()))
+                    )
+                }
+            };
+            ModelError::OutOfRange { item: key.to_string(), why }
+        };
+        let (side, left) = match place {
+            Place::At(p) => (self.side, *p),
+            Place::Named(name) => match self.shared {
+                None => (self.side, self.general.hardpoints.get(name).ok_or_else(|| missing(name))?),
+                Some(_) => match (self.general.axle.as_ref().and_then(|a| a.hardpoints.get(name)), self.sided(name)) {
+                    (Some(p), _) => (Side::Left, p),
+                    (None, Some((side, _, corner))) => {
+                        (side, self.general.hardpoints.get(corner).ok_or_else(|| missing(name))?)
+                    }
+                    (None, None) => return Err(missing(name)),
+                },
+            },
         };
         if !left.iter().all(|c| c.is_finite()) {
             return Err(ModelError::OutOfRange {
@@ -628,7 +723,7 @@ impl Resolver<'_> {
                 why: format!("{} is not three finite numbers in metres", place.describe()),
             });
         }
-        Ok(self.side.place(left))
+        Ok(side.place(left))
     }
 
     /// A direction placed on the side.
@@ -652,22 +747,38 @@ impl Resolver<'_> {
         Ok(v)
     }
 
-    /// A body by its file name (`"chassis"` is the ground).
+    /// A body by its file name (`"chassis"` is the ground): a corner's own, else an axle body; on the
+    /// shared parts, an axle body or a corner's as `"left …"` / `"right …"`.
     pub(crate) fn body(&self, model: &Model, key: &str, name: &str) -> Result<BodyRef, ModelError> {
         if name == CHASSIS {
             return Ok(BodyRef::Ground);
         }
-        let known = self.general.bodies.iter().any(|b| b.name == name);
-        match model.body_id(&part_name(self.prefix, name)) {
-            Some(id) if known => Ok(id.into()),
-            _ => Err(ModelError::OutOfRange {
-                item: key.to_string(),
-                why: format!(
-                    "there is no body '{name}': use \"{CHASSIS}\" or one of {}",
-                    list(self.general.bodies.iter().map(|b| b.name.as_str()))
-                ),
-            }),
+        let corner_body = |prefix: &str, name: &str| {
+            let known = self.general.bodies.iter().any(|b| b.name == name);
+            model.body_id(&part_name(prefix, name)).filter(|_| known)
+        };
+        let axle_body = || model.body_id(name).filter(|_| self.axle_bodies().iter().any(|b| b.name == name));
+        let found = match self.shared {
+            None => corner_body(self.prefix, name).or_else(axle_body),
+            Some(_) => axle_body().or_else(|| self.sided(name).and_then(|(_, prefix, rest)| corner_body(prefix, rest))),
+        };
+        if let Some(id) = found {
+            return Ok(id.into());
         }
+        let axle = self.axle_bodies().iter().map(|b| b.name.as_str());
+        let why = match self.shared {
+            None => format!(
+                "there is no body '{name}': use \"{CHASSIS}\" or one of {}",
+                list(self.general.bodies.iter().map(|b| b.name.as_str()).chain(axle))
+            ),
+            Some(_) => format!(
+                "there is no body '{name}': use \"{CHASSIS}\", a corner's as \"left …\" or \"right …\" (one of \
+                 {}), or one of the axle's, {}",
+                list(self.general.bodies.iter().map(|b| b.name.as_str())),
+                list(axle)
+            ),
+        };
+        Err(ModelError::OutOfRange { item: key.to_string(), why })
     }
 }
 
@@ -712,6 +823,7 @@ impl GeneralCorner {
             stops: Vec::new(),
             anti_roll_bars: Vec::new(),
             loads: Vec::new(),
+            axle: None,
             corner: CornerDef {
                 upright: "upright".into(),
                 wheel_centre: "wheel_centre".into(),
@@ -759,6 +871,11 @@ impl GeneralCorner {
         g
     }
 
+    /// Whether it has a steering input: the corner's tie rod, or a solid axle's steering link.
+    pub fn is_steered(&self) -> bool {
+        self.corner.tie_rod.is_some() || self.axle.as_ref().is_some_and(|a| a.steering_link.is_some())
+    }
+
     /// Adds a joint of `kind` named `name` between `bodies` at the hardpoint `at`, about `axis`.
     pub(crate) fn push_joint(&mut self, name: &str, kind: JointKind, bodies: [&str; 2], at: &str, axis: Option<Axis>) {
         self.joints.push(JointDef {
@@ -773,7 +890,12 @@ impl GeneralCorner {
     }
 
     fn resolver<'a>(&'a self, side: Side, prefix: &'a str) -> Resolver<'a> {
-        Resolver { general: self, side, prefix }
+        Resolver { general: self, side, prefix, shared: None }
+    }
+
+    /// The resolver of the shared parts, between corners named with `left` and `right` prefixes.
+    fn shared_resolver<'a>(&'a self, left: &'a str, right: &'a str) -> Resolver<'a> {
+        Resolver { general: self, side: Side::Left, prefix: "", shared: Some((left, right)) }
     }
 
     /// Hardpoints with the wheel centre first, for the reach checks.
@@ -872,7 +994,7 @@ impl GeneralCorner {
         let key = format!("{key} ({})", b.name);
         let bi = r.body(model, &format!("{key}.bodies"), &b.bodies[0])?;
         let bj = r.body(model, &format!("{key}.bodies"), &b.bodies[1])?;
-        let left = self.resolver(Side::Left, r.prefix);
+        let left = Resolver { side: Side::Left, ..*r };
         let x = b.axis.as_ref().map(|a| left.direction(&format!("{key}.axis"), a)).transpose()?.unwrap_or(Vec3::x());
         let y = b.y_axis.as_ref().map(|a| left.direction(&format!("{key}.y_axis"), a)).transpose()?;
         let frame = bushing_frame(x, y, r.side).map_err(|why| ModelError::OutOfRange { item: key.clone(), why })?;
@@ -1096,13 +1218,88 @@ impl CornerTemplate for GeneralCorner {
         Ok(CornerParts { wheel, tie_rod })
     }
 
+    fn builds_on_axle_only(&self) -> bool {
+        self.axle.is_some()
+    }
+
+    fn add_axle_bodies(&self, model: &mut Model) -> Result<(), ModelError> {
+        let Some(axle) = &self.axle else { return Ok(()) };
+        let r = self.shared_resolver("left ", "right ");
+        let refuse = |item: String, why: String| Err(ModelError::OutOfRange { item, why });
+        for (name, p) in &axle.hardpoints.0 {
+            if !(p.iter().all(|c| c.is_finite()) && p.norm() <= MAX_WHEEL_CENTRE_DISTANCE) {
+                let why = format!(
+                    "{name} must lie within {MAX_WHEEL_CENTRE_DISTANCE} m of the vehicle origin, in metres (ISO 8855, \
+                     x forward, y left, z up)"
+                );
+                return refuse("axle.hardpoints".into(), why);
+            }
+        }
+        for (k, body) in axle.bodies.iter().enumerate() {
+            let key = format!("axle.bodies[{k}] ({})", body.name);
+            if body.name == CHASSIS {
+                return refuse(key, format!("'{CHASSIS}' names the ground: give the body another name"));
+            }
+            if self.bodies.iter().any(|b| b.name == body.name) || r.sided(&body.name).is_some() {
+                let why = "a corner's body has this name, or the axle's parts call a corner's body so: give the \
+                           axle's body another name";
+                return refuse(key, why.into());
+            }
+            let at = r.point(&format!("{key}.at"), &body.at)?;
+            model.add_body(&body.name, Pose::at(at))?;
+        }
+        Ok(())
+    }
+
     fn add_cross_axle(
         &self,
         model: &mut Model,
         left: (&str, &CornerParts),
         right: (&str, &CornerParts),
-    ) -> Result<Vec<ElementId>, ModelError> {
+    ) -> Result<CrossAxle, ModelError> {
         let sides = || (self.resolver(Side::Left, left.0), self.resolver(Side::Right, right.0));
-        self.anti_roll_bars.iter().enumerate().map(|(k, bar)| bar.add(model, k, sides())).collect()
+        let anti_roll_bars = self
+            .anti_roll_bars
+            .iter()
+            .enumerate()
+            .map(|(k, bar)| bar.add(model, k, sides()))
+            .collect::<Result<_, _>>()?;
+        let Some(axle) = &self.axle else { return Ok(CrossAxle { anti_roll_bars, steering_link: None }) };
+        let r = self.shared_resolver(left.0, right.0);
+        // The shared parts' messages name them under `axle.`.
+        let under_axle = |e: ModelError| match e {
+            ModelError::OutOfRange { item, why } if !item.starts_with("axle") => {
+                ModelError::OutOfRange { item: format!("axle.{item}"), why }
+            }
+            other => other,
+        };
+        for (k, j) in axle.joints.iter().enumerate() {
+            self.add_joint(model, &r, k, j).map_err(under_axle)?;
+        }
+        for (k, b) in axle.bushings.iter().enumerate() {
+            self.add_bushing(model, &r, k, b).map_err(under_axle)?;
+        }
+        for (k, sp) in axle.springs.iter().enumerate() {
+            self.add_spring(model, &r, k, sp).map_err(under_axle)?;
+        }
+        for (k, st) in axle.stops.iter().enumerate() {
+            self.add_stop(model, &r, k, st).map_err(under_axle)?;
+        }
+        let steering_link = match &axle.steering_link {
+            None => None,
+            Some(link) => {
+                let key = "axle.steering_link";
+                let rod = TieRod {
+                    inner: r.point(&format!("{key}.inner"), &link.inner)?,
+                    outer: r.point(&format!("{key}.outer"), &link.outer)?,
+                    connection: link.connection,
+                };
+                crate::corner::check_tie_rod_mounts(&format!("{key}.connection"), &link.connection)?;
+                let axis = r.direction(&format!("{key}.rack_axis"), &Axis::Vector(Vec3::from(link.rack_axis)))?;
+                let body = r.body(model, &format!("{key}.body"), &link.body)?;
+                Some(SteeringLink { body, rod, rack_axis: axis.normalize() })
+            }
+        };
+        Ok(CrossAxle { anti_roll_bars, steering_link })
     }
 }

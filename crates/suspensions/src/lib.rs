@@ -46,9 +46,11 @@ pub mod plausibility;
 pub use anti_roll_bar::AntiRollBar;
 pub use axle::{Axle, AxleRig, AxleRow, RollCentre};
 pub use connection::{ArmMounts, BushingRates, Connection, SpringSpec, TieRodMounts};
-pub use corner::{Corner, CornerParts, CornerTemplate, LoadPoint, Rig, SteeringGeometry, TieRod, Wheel, WheelAttitude};
+pub use corner::{
+    Corner, CornerParts, CornerTemplate, CrossAxle, LoadPoint, Rig, SteeringGeometry, TieRod, Wheel, WheelAttitude,
+};
 pub use double_wishbone::{DoubleWishbone, DoubleWishboneHardpoints};
-pub use general::GeneralCorner;
+pub use general::{AxleDef, GeneralCorner, SteeringLinkDef};
 pub use hardpoint::Side;
 pub use macpherson::{MacPherson, MacPhersonHardpoints};
 pub use model_file::{FileError, SuspensionFile, Template};

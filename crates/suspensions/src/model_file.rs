@@ -75,15 +75,26 @@ impl CornerTemplate for Template {
         }
     }
 
+    fn builds_on_axle_only(&self) -> bool {
+        matches!(self, Template::General(g) if g.builds_on_axle_only())
+    }
+
+    fn add_axle_bodies(&self, model: &mut Model) -> Result<(), ModelError> {
+        match self {
+            Template::General(g) => g.add_axle_bodies(model),
+            _ => Ok(()),
+        }
+    }
+
     fn add_cross_axle(
         &self,
         model: &mut Model,
         left: (&str, &CornerParts),
         right: (&str, &CornerParts),
-    ) -> Result<Vec<elastokin_core::ElementId>, ModelError> {
+    ) -> Result<crate::corner::CrossAxle, ModelError> {
         match self {
             Template::General(g) => g.add_cross_axle(model, left, right),
-            _ => Ok(Vec::new()),
+            _ => Ok(Default::default()),
         }
     }
 }

@@ -7,8 +7,6 @@
 //! from the chassis to the upright.
 
 use super::{Builder, Doc, CHASSIS};
-use crate::general::Place;
-use elastokin_core::JointKind;
 
 pub(super) fn read(doc: &Doc, b: &mut Builder, reduced: bool) -> Result<(), String> {
     b.wheel(doc)?;
@@ -23,15 +21,7 @@ pub(super) fn read(doc: &Doc, b: &mut Builder, reduced: bool) -> Result<(), Stri
         let [front, back, ball] = &points;
         if reduced {
             for (end, pivot) in [("front", front), ("back", back)] {
-                b.general.joints.push(crate::general::JointDef {
-                    name: format!("{arm} {end} link"),
-                    kind: JointKind::Distance,
-                    bodies: [CHASSIS.into(), "upright".into()],
-                    at: Some(Place::named(pivot)),
-                    to: Some(Place::named(ball)),
-                    axis: None,
-                    axis_j: None,
-                });
+                b.link(&format!("{arm} {end} link"), [CHASSIS, "upright"], pivot, ball);
             }
             continue;
         }

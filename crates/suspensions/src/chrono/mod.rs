@@ -39,13 +39,15 @@ mod macpherson;
 mod multi_link;
 mod semi_trailing_arm;
 mod single_wishbone;
+mod solid_axle;
 mod three_link_irs;
 
 use crate::corner::{ROTATIONAL_RATE_RANGE, TRANSLATIONAL_RATE_RANGE};
 use crate::general::{
-    Axis, BodyDef, BodyPoint, BushingDef, GeneralCorner, JointDef, Place, SpringDef, StopDef, StopType, TieRodDef,
-    CHASSIS,
+    Axis, AxleDef, BodyDef, BodyPoint, BushingDef, GeneralCorner, Hardpoints, JointDef, Place, SpringDef, StopDef,
+    StopType, TieRodDef, CHASSIS,
 };
+use crate::hardpoint::Side;
 use crate::model_file::{FileError, SuspensionFile, Template, MAX_COORDINATE};
 use crate::Connection;
 use elastokin_core::{JointKind, Vec3};
@@ -66,7 +68,7 @@ pub struct Imported {
 }
 
 /// The Chrono templates [`import`] reads.
-pub const SUPPORTED: [&str; 8] = [
+pub const SUPPORTED: [&str; 11] = [
     "DoubleWishbone",
     "DoubleWishboneReduced",
     "MacPhersonStrut",
@@ -75,6 +77,9 @@ pub const SUPPORTED: [&str; 8] = [
     "SingleWishbone",
     "ThreeLinkIRS",
     "GenericWheeledSuspension",
+    "SolidAxle",
+    "SolidThreeLinkAxle",
+    "SolidBellcrankThreeLinkAxle",
 ];
 
 /// Whether `text` is a Chrono suspension file: a JSON object (with `//` comments allowed) whose `"Type"` is
@@ -116,6 +121,9 @@ pub fn import(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Im
         "SingleWishbone" => single_wishbone::read(&doc, &mut b),
         "ThreeLinkIRS" => three_link_irs::read(&doc, &mut b),
         "GenericWheeledSuspension" => generic_wheeled::read(&doc, &mut b),
+        "SolidAxle" => solid_axle::read_solid_axle(&doc, &mut b),
+        "SolidThreeLinkAxle" => solid_axle::read_three_link(&doc, &mut b),
+        "SolidBellcrankThreeLinkAxle" => solid_axle::read_bellcrank_three_link(&doc, &mut b),
         other => Err(refused(other)),
     };
     built.map_err(invalid)?;
@@ -137,10 +145,7 @@ fn refused(template: &str) -> String {
         "LeafspringAxle" | "SAELeafspringAxle" | "ToeBarLeafspringAxle" | "SAEToeBarLeafspringAxle" => {
             "a leaf spring is a beam, not joints and springs: elastokin does not model it"
         }
-        "SolidAxle"
-        | "SolidThreeLinkAxle"
-        | "SolidBellcrankThreeLinkAxle"
-        | "DeDionAxle"
+        "DeDionAxle"
         | "ToeBarDeDionAxle"
         | "PushPipeAxle"
         | "ToeBarPushPipeAxle"
@@ -148,7 +153,8 @@ fn refused(template: &str) -> String {
         | "ToeBarRigidPanhardAxle"
         | "RigidPinnedAxle"
         | "HendricksonPRIMAXX" => {
-            "an axle joins both wheels in one body; the general model describes one corner and its mirror image"
+            "an axle this importer does not read yet (its solid axles are SolidAxle, SolidThreeLinkAxle and \
+             SolidBellcrankThreeLinkAxle)"
         }
         "RigidSuspension" => "it has no suspension motion to analyse",
         _ => "not a template this importer reads",
@@ -369,6 +375,8 @@ impl<'a> Doc<'a> {
 pub(crate) struct Builder {
     pub(crate) general: GeneralCorner,
     pub(crate) notes: Vec<String>,
+    /// Whether parts go to the axle (the parts the two corners share, [`AxleDef`]) rather than the corner.
+    shared: bool,
 }
 
 impl Builder {
@@ -385,7 +393,94 @@ impl Builder {
         let at_centre = || BodyPoint { body: "upright".into(), at: Place::named("wheel_centre") };
         let loaded_radius = loaded_radius.unwrap_or_else(crate::corner::default_loaded_radius);
         let general = GeneralCorner::empty(loaded_radius, [at_centre(), at_centre()], None);
-        Builder { general, notes }
+        Builder { general, notes, shared: false }
+    }
+
+    /// Sends the parts that follow to the axle (`true`: shared by both corners, written as they are, not
+    /// mirrored) or to the corner (`false`).
+    pub(crate) fn on_axle(&mut self, shared: bool) {
+        if shared && self.general.axle.is_none() {
+            self.general.axle = Some(AxleDef {
+                hardpoints: Hardpoints::default(),
+                bodies: Vec::new(),
+                joints: Vec::new(),
+                bushings: Vec::new(),
+                springs: Vec::new(),
+                stops: Vec::new(),
+                steering_link: None,
+            });
+        }
+        self.shared = shared;
+    }
+
+    /// The axle's parts; made by [`Builder::on_axle`].
+    pub(crate) fn axle(&mut self) -> &mut AxleDef {
+        self.general.axle.as_mut().expect("on_axle(true) came first")
+    }
+
+    fn hardpoints_mut(&mut self) -> &mut Hardpoints {
+        if self.shared {
+            &mut self.axle().hardpoints
+        } else {
+            &mut self.general.hardpoints
+        }
+    }
+
+    fn bodies_mut(&mut self) -> &mut Vec<BodyDef> {
+        if self.shared {
+            &mut self.axle().bodies
+        } else {
+            &mut self.general.bodies
+        }
+    }
+
+    fn joints_mut(&mut self) -> &mut Vec<JointDef> {
+        if self.shared {
+            &mut self.axle().joints
+        } else {
+            &mut self.general.joints
+        }
+    }
+
+    fn bushings_mut(&mut self) -> &mut Vec<BushingDef> {
+        if self.shared {
+            &mut self.axle().bushings
+        } else {
+            &mut self.general.bushings
+        }
+    }
+
+    fn springs_mut(&mut self) -> &mut Vec<SpringDef> {
+        if self.shared {
+            &mut self.axle().springs
+        } else {
+            &mut self.general.springs
+        }
+    }
+
+    fn stops_mut(&mut self) -> &mut Vec<StopDef> {
+        if self.shared {
+            &mut self.axle().stops
+        } else {
+            &mut self.general.stops
+        }
+    }
+
+    /// The point of the hardpoint `name` where the parts go: the corner's (left side), or on the axle its
+    /// own or a corner's as `"left …"` / `"right …"` placed on that side.
+    pub(crate) fn point_of(&self, name: &str) -> Result<Vec3, String> {
+        let corner = |n: &str| self.general.hardpoints.get(n);
+        let found = match (&self.general.axle, self.shared) {
+            (Some(axle), true) => axle.hardpoints.get(name).or_else(|| {
+                let (side, rest) = match name.strip_prefix("left ") {
+                    Some(rest) => (Side::Left, rest),
+                    None => (Side::Right, name.strip_prefix("right ")?),
+                };
+                corner(rest).map(|p| side.place(p))
+            }),
+            _ => corner(name),
+        };
+        found.ok_or_else(|| format!("no hardpoint {name}"))
     }
 
     /// Adds the hardpoint `name` at the point read from `path`; returns its name.
@@ -402,7 +497,7 @@ impl Builder {
                 p.z
             ));
         }
-        self.general.hardpoints.0.push((name.to_string(), p));
+        self.hardpoints_mut().0.push((name.to_string(), p));
         Ok(name.to_string())
     }
 
@@ -424,9 +519,23 @@ impl Builder {
         Ok(())
     }
 
+    /// A rigid link named `name` from `from` on `bodies[0]` to `to` on `bodies[1]` (hardpoint names): a
+    /// distance constraint.
+    pub(crate) fn link(&mut self, name: &str, bodies: [&str; 2], from: &str, to: &str) {
+        self.joints_mut().push(JointDef {
+            name: name.into(),
+            kind: JointKind::Distance,
+            bodies: bodies.map(str::to_string),
+            at: Some(Place::named(from)),
+            to: Some(Place::named(to)),
+            axis: None,
+            axis_j: None,
+        });
+    }
+
     /// Adds a body at the hardpoint `at`.
     pub(crate) fn body(&mut self, name: &str, at: &str) {
-        self.general.bodies.push(BodyDef { name: name.into(), at: Place::named(at) });
+        self.bodies_mut().push(BodyDef { name: name.into(), at: Place::named(at) });
     }
 
     /// The steering axis of a wheel carrier without a kingpin (a trailing arm that carries the spindle): the
@@ -482,7 +591,7 @@ impl Builder {
                 (JointKind::InPlane, Some((_, w))) => (Some(Axis::Vector(w)), None),
                 _ => (None, None),
             };
-            self.general.joints.push(JointDef {
+            self.joints_mut().push(JointDef {
                 name: name.into(),
                 kind,
                 bodies: bodies.map(str::to_string),
@@ -534,7 +643,7 @@ impl Builder {
             *slot = least(k, ROTATIONAL_RATE_RANGE, "rotational", &mut self.notes);
         }
         self.notes.dedup();
-        self.general.bushings.push(BushingDef {
+        self.bushings_mut().push(BushingDef {
             name: name.into(),
             bodies: bodies.map(str::to_string),
             at,
@@ -584,7 +693,7 @@ impl Builder {
                 self.notes.push(format!("{} / {damping}: damping, left out (statics: no velocity)", doc.shown(object)));
             }
         }
-        self.general.springs.push(SpringDef {
+        self.springs_mut().push(SpringDef {
             name: name.into(),
             bodies: bodies.map(str::to_string),
             from: Place::named(seats[0]),
@@ -598,8 +707,7 @@ impl Builder {
         if let (Some(min), Some(max)) =
             (doc.optional_number(&key("Minimum Length"))?, doc.optional_number(&key("Maximum Length"))?)
         {
-            let p = |n: &str| self.general.hardpoints.get(n).ok_or_else(|| format!("no hardpoint {n}"));
-            let design = (p(seats[1])? - p(seats[0])?).norm();
+            let design = (self.point_of(seats[1])? - self.point_of(seats[0])?).norm();
             for (kind, clearance, what) in
                 [(StopType::Bump, design - min, "Minimum Length"), (StopType::Rebound, max - design, "Maximum Length")]
             {
@@ -612,7 +720,7 @@ impl Builder {
                     ));
                 }
                 let stop = if kind == StopType::Bump { "bump stop" } else { "rebound stop" };
-                self.general.stops.push(StopDef {
+                self.stops_mut().push(StopDef {
                     name: format!("{name} {stop}"),
                     kind,
                     bodies: bodies.map(str::to_string),
@@ -688,9 +796,8 @@ impl Builder {
         degenerate: Option<&str>,
     ) -> Result<(), String> {
         let arm = format!("{short} arm");
-        let p = |b: &Builder, n: &str| b.general.hardpoints.get(n).ok_or_else(|| format!("no hardpoint {n}"));
         self.body(&arm, ball);
-        let mut frame = arm_frame(p(self, front)?, p(self, back)?, p(self, ball)?);
+        let mut frame = arm_frame(self.point_of(front)?, self.point_of(back)?, self.point_of(ball)?);
         if let Some(why) = degenerate {
             frame = checked_frame(frame, why)?;
         }
@@ -806,8 +913,7 @@ pub(crate) fn arm_frame(front: Vec3, back: Vec3, outer: Vec3) -> (Vec3, Vec3) {
 
 /// The midpoint of two hardpoints of `b`.
 pub(crate) fn midpoint(b: &Builder, p: &str, q: &str) -> Result<Place, String> {
-    let get = |n: &str| b.general.hardpoints.get(n).ok_or_else(|| format!("no hardpoint {n}"));
-    Ok(Place::At((get(p)? + get(q)?) / 2.0))
+    Ok(Place::At((b.point_of(p)? + b.point_of(q)?) / 2.0))
 }
 
 /// A direction `[x, y, z]` at `path` (any length but zero).

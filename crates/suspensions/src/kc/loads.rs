@@ -169,6 +169,10 @@ fn loaded(file: &SuspensionFile, analysis: Analysis, s: &Settings) -> Result<Ana
                 _ => return Err(NO_LOADS.into()),
             };
             general.add_loads(&mut corner.model, Side::Left, "").map_err(said)?;
+            if let Some(prefix) = corner.partner_prefix() {
+                // A solid axle: the load case on both sides, as the mirror image.
+                general.add_loads(&mut corner.model, Side::Right, prefix).map_err(said)?;
+            }
             model_load_sweep_with(corner, corner_load, range.0, range.1, s.steps, s.mode, s.extras(range))
         }
     }

@@ -338,8 +338,14 @@ pub fn run_suite(
     };
     report.warnings.extend(crate::plausibility::bushing_deflection_at_design(file));
     let (steered, loaded) = match &file.suspension {
-        crate::Template::General(g) => (g.corner.tie_rod.is_some(), !g.loads.is_empty()),
+        crate::Template::General(g) => (g.is_steered(), !g.loads.is_empty()),
         _ => (true, false),
+    };
+    // A solid axle built whole, its wheels free: two ways to move (travel and roll), or one.
+    let roll_locked = |template: &crate::Template| {
+        crate::CornerTemplate::builds_on_axle_only(template)
+            && crate::Corner::build(template, crate::Side::Left, crate::Rig::Free)
+                .is_ok_and(|c| crate::plausibility::mobility(&c.model).0 < 2)
     };
     for analysis in chosen {
         let skip = match analysis {
@@ -347,9 +353,13 @@ pub fn run_suite(
                 Some("the model file has no \"vehicle\" section with the corner_load to carry")
             }
             Analysis::Steering if !steered => {
-                Some("the corner has no steering input (corner.tie_rod): its toe is held by its own links")
+                Some("the corner has no steering input (corner.tie_rod, or axle.steering_link): its toe is held by its own links")
             }
             Analysis::ModelLoads if !loaded => Some("the model file has no load case (\"loads\" of the general form)"),
+            Analysis::Roll if roll_locked(&file.suspension) => Some(
+                "the axle's joints lock its roll (with the wheels free it has one way to move, in travel): its \
+                 wheels cannot travel opposite",
+            ),
             _ => None,
         };
         if let (Some(reason), true) = (skip, which.is_empty()) {
