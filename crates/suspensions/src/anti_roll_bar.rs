@@ -40,11 +40,12 @@ pub struct AntiRollBar {
 }
 
 impl AntiRollBar {
-    /// Names of the left and right half of the bar, of their bearings and of the drop links, as built on an
-    /// axle whose corners carry the prefixes `"left "` and `"right "`.
+    /// Names of one half of the bar, of its bearing and of its drop link, on the corner whose part names
+    /// start with `prefix` (`"left "`, `"right "`; `""` for the corner of a solid axle built whole, whose
+    /// half must not take the torsion element's own name).
     pub fn part_names(&self, prefix: &str) -> [String; 3] {
         [
-            part_name(prefix, &self.name),
+            part_name(prefix, &format!("{} half", self.name)),
             part_name(prefix, &format!("{} bearing", self.name)),
             part_name(prefix, &format!("{} drop link", self.name)),
         ]

@@ -723,6 +723,19 @@ impl Resolver<'_> {
                 why: format!("{} is not three finite numbers in metres", place.describe()),
             });
         }
+        // As far as a corner's points may reach (a model in millimetres still builds, for the plausibility
+        // check to name it); beyond, lengths and lever arms overflow.
+        let limit = MAX_WHEEL_CENTRE_DISTANCE + crate::corner::MAX_HARDPOINT_REACH;
+        if left.norm() > limit {
+            return Err(ModelError::OutOfRange {
+                item: key.to_string(),
+                why: format!(
+                    "{} lies more than {limit:e} m from the vehicle origin: points are in metres (ISO 8855, x \
+                     forward, y left, z up); check its units",
+                    place.describe()
+                ),
+            });
+        }
         Ok(side.place(left))
     }
 

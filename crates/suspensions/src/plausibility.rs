@@ -222,12 +222,19 @@ pub fn check_model(file: &SuspensionFile) -> Result<ModelCheck, ModelError> {
             warnings.push(Warning {
                 code: "near-singular",
                 hardpoints: Vec::new(),
-                message: format!(
-                    "with the wheel-centre height held, some part of the corner is held {c:.1e} times more \
-                     softly than its stiffest mount: it is held by next to nothing at design and the results \
-                     will be dominated by rounding; look for an arm, tie rod or bushing line that passes \
-                     through another hardpoint, or a bushing rate far below the others"
-                ),
+                message: if c.is_finite() {
+                    format!(
+                        "with the wheel-centre height held, some part of the corner is held {c:.1e} times more \
+                         softly than its stiffest mount: it is held by next to nothing at design and the results \
+                         will be dominated by rounding; look for an arm, tie rod or bushing line that passes \
+                         through another hardpoint, or a bushing rate far below the others"
+                    )
+                } else {
+                    "with the wheel-centre height held, some part of the corner can move with nothing at all \
+                     resisting it at design: no joint, bushing or spring holds that motion; look for an arm, \
+                     tie rod or link that passes through another hardpoint, or an arm of no length"
+                        .to_string()
+                },
             });
         }
     }

@@ -1,6 +1,8 @@
 //! The general model file: every template expands into it and builds the same model through the one
 //! builder; any corner written in it runs every analysis.
 
+mod common;
+
 use elastokin_suspensions::kc::{self, Settings};
 use elastokin_suspensions::{SuspensionFile, Template};
 use std::path::Path;
@@ -624,5 +626,135 @@ fn every_joint_kind_builds_what_the_core_builds() {
             code.add_joint(spec).unwrap();
         }
         assert_eq!(built.joints(), code.joints(), "{side:?}");
+    }
+}
+
+/// A wheel's centre and outward spin axis.
+type WheelPose = (nalgebra::Vector3<f64>, nalgebra::Vector3<f64>);
+
+/// The live axle of `examples/four_link_axle.json`, solved in the test by its own loop closure: the tube's
+/// pose (translation and rotation vector about its reference point) such that the four links keep their
+/// lengths (the right ones the left's mirror images) and the wheel centres are at the heights the rig asks
+/// (`left`, `right` per unit travel). Returns both wheel centres and spin axes.
+fn four_link_closure(
+    file: &SuspensionFile,
+    (left, right): (f64, f64),
+) -> impl Fn(f64, &mut [f64; 6]) -> [WheelPose; 2] {
+    use nalgebra::{DVector, Rotation3, Vector3};
+    let Template::General(g) = &file.suspension else { panic!("the example is in the general form") };
+    let p = |n: &str| g.hardpoints.get(n).unwrap();
+    let centre = g.axle.as_ref().unwrap().hardpoints.get("axle_centre").unwrap();
+    let mirror = |q: Vector3<f64>| Vector3::new(q.x, -q.y, q.z);
+    let links: Vec<(Vector3<f64>, Vector3<f64>)> = ["lower_link", "upper_link"]
+        .iter()
+        .flat_map(|l| {
+            let (c, a) = (p(&format!("{l}_chassis")), p(&format!("{l}_axle")));
+            [(c, a), (mirror(c), mirror(a))]
+        })
+        .collect();
+    let wc = p("wheel_centre");
+    let moved = move |x: &[f64], q: Vector3<f64>| {
+        centre + Vector3::new(x[0], x[1], x[2]) + Rotation3::new(Vector3::new(x[3], x[4], x[5])) * (q - centre)
+    };
+    move |t, x| {
+        let residual = |x: &[f64; 6]| {
+            let mut f: Vec<f64> = links.iter().map(|(c, a)| (moved(x, *a) - c).norm() - (a - c).norm()).collect();
+            f.push(moved(x, wc).z - wc.z - left * t);
+            f.push(moved(x, mirror(wc)).z - wc.z - right * t);
+            DVector::from_vec(f)
+        };
+        common::newton_fd(residual, x);
+        let turn = Rotation3::new(Vector3::new(x[3], x[4], x[5]));
+        [(moved(x, wc), turn * Vector3::y()), (moved(x, mirror(wc)), turn * -Vector3::y())]
+    }
+}
+
+/// The live axle in parallel and opposite travel: both wheels' centres, toe and camber against the
+/// closure; the axle moves both wheels alike in the corner's parallel travel.
+#[test]
+fn four_link_axle_travel_and_roll_match_their_loop_closure() {
+    use elastokin_solver::Mode;
+    use elastokin_suspensions::axle::axle_sweep;
+    use elastokin_suspensions::{Axle, AxleRig};
+    let file = example("four_link_axle.json");
+    let toe_camber = |a: nalgebra::Vector3<f64>, s: f64| (a.x.atan2(s * a.y), (-a.z).atan2(a.x.hypot(a.y)));
+    let mut worst_angle: f64 = 0.0;
+    let mut worst_centre: f64 = 0.0;
+    let mut moved: f64 = 0.0;
+    for (rig, rates) in [(AxleRig::ParallelTravel, (1.0, 1.0)), (AxleRig::OppositeTravel, (1.0, -1.0))] {
+        let axle = Axle::build(&file.suspension, rig).unwrap();
+        let rows = axle_sweep(&axle, -0.06, 0.06, 12, Mode::Corrected).unwrap();
+        let closure = four_link_closure(&file, rates);
+        for half in [rows[6..].iter().collect::<Vec<_>>(), rows[..=6].iter().rev().collect()] {
+            let mut guess = [0.0; 6];
+            for row in half {
+                let reference = closure(row.travel, &mut guess);
+                for ((attitude, s), (centre, spin)) in [(row.left, 1.0), (row.right, -1.0)].into_iter().zip(reference) {
+                    let (toe, camber) = toe_camber(spin, s);
+                    worst_angle = worst_angle.max((attitude.toe - toe).abs()).max((attitude.camber - camber).abs());
+                    worst_centre = worst_centre.max((attitude.wheel_centre - centre).amax());
+                }
+            }
+        }
+        // Content: the wheel centres move fore and aft in travel, the wheels camber and steer in roll.
+        moved = moved.max((rows[0].left.wheel_centre.x - rows[12].left.wheel_centre.x).abs());
+        if rig == AxleRig::OppositeTravel {
+            assert!((rows[0].left.camber - rows[12].left.camber).abs() > 0.05);
+            assert!((rows[0].left.toe - rows[12].left.toe).abs() > 1e-3);
+        }
+    }
+    assert!(moved > 1e-3, "{moved} m");
+    // Measured: 3.0e-13 rad and 3.5e-13 m.
+    assert!(worst_angle < 3e-11 && worst_centre < 3e-11, "{worst_angle:e} rad, {worst_centre:e} m");
+}
+
+/// Mistakes in the axle section, or in the names across it, are refused by the item and the name.
+#[test]
+fn mistakes_in_an_axle_section_are_named() {
+    let text = std::fs::read_to_string(example_path("four_link_axle.json")).unwrap();
+    let base: serde_json::Value = serde_json::from_str(&text).unwrap();
+    type Edit = fn(&mut serde_json::Value);
+    let cases: [(Edit, &[&str]); 6] = [
+        (
+            |v| v["suspension"]["general"]["axle"]["bodies"][0]["name"] = "upright".into(),
+            &["axle.bodies[0] (upright)", "a corner's body has this name"],
+        ),
+        (
+            |v| v["suspension"]["general"]["axle"]["bodies"][0]["name"] = "left tube".into(),
+            &["axle.bodies[0] (left tube)", "give the axle's body another name"],
+        ),
+        (
+            |v| v["suspension"]["general"]["joints"][1]["bodies"][1] = "axle tub".into(),
+            &["joints[1] (lower link)", "no body 'axle tub'", "'axle tube'"],
+        ),
+        (
+            |v| {
+                v["suspension"]["general"]["axle"]["joints"] = serde_json::json!([{ "name": "panhard rod",
+                    "kind": "distance", "bodies": ["axle tube", "left hub"], "at": "axle_centre", "to": "left wheel_centre" }])
+            },
+            &["axle.joints[0] (panhard rod)", "no body 'left hub'", "\"left …\"", "'upright'"],
+        ),
+        (
+            |v| {
+                v["suspension"]["general"]["axle"]["joints"] = serde_json::json!([{ "name": "panhard rod",
+                    "kind": "distance", "bodies": ["axle tube", "chassis"], "at": "axle_centre", "to": "middle" }])
+            },
+            &["axle.joints[0] (panhard rod).to", "no hardpoint 'middle'", "axle.hardpoints", "'axle_centre'"],
+        ),
+        (
+            |v| {
+                v["suspension"]["general"]["axle"]["steering_link"] =
+                    serde_json::json!({ "body": "drag link", "inner": [0.5, 0.3, 0.3], "outer": "left wheel_top" })
+            },
+            &["axle.steering_link.body", "no body 'drag link'"],
+        ),
+    ];
+    for (edit, expected) in cases {
+        let mut value = base.clone();
+        edit(&mut value);
+        let err = SuspensionFile::from_json(&value.to_string(), "edited").unwrap_err().to_string();
+        for e in expected {
+            assert!(err.contains(e), "'{e}' not in: {err}");
+        }
     }
 }

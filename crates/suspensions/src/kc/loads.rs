@@ -58,6 +58,14 @@ pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<Anal
             range.0, range.1
         );
         let compliance = slope_at(rows, design_load, |r| r.load, |r| r.attitude.wheel_centre.z);
+        // A wheel the joints hold at its height does not rise under the force: no rate, and that is why.
+        let held = "the wheel centre does not rise under the vertical force: the joints hold its height (a link \
+                    through the wheel centre, or an axle locked in travel); check the model with `elastokin check`";
+        let (rate, why) = match compliance {
+            Some(d) if d.abs() > 0.0 => (Some(1e-3 / d), why),
+            Some(_) => (None, held.to_string()),
+            None => (None, why),
+        };
         vec![
             Figure::new("design_wheel_load", "design wheel load (rig force at design height)", "N", 1, design_load),
             Figure::maybe(
@@ -65,7 +73,7 @@ pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<Anal
                 "wheel rate at the design load (force over wheel-centre travel)",
                 "N/mm",
                 2,
-                compliance.map(|d| 1e-3 / d),
+                rate,
                 &why,
             ),
         ]
