@@ -279,7 +279,7 @@ fn driven_sweep_with(
     let mut start = solver.design_state(from);
     let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, extras.through_limits)?;
     let driver = corner.model.joint_id("wheel travel");
-    let spring = corner.model.element_id("spring");
+    let spring = corner.spring;
     read_sweep(&mut solver, &corner.wheel, corner.partner.as_ref(), walked, extras, |_, s| {
         Ok(TravelRow {
             travel: s.t,
@@ -838,7 +838,7 @@ pub fn static_load_case(mut corner: Corner, corner_load: f64) -> Result<StaticLo
     }
     let forces = ComponentForces::at(model, &step);
     let attitude = corner.wheel.attitude(&step.poses);
-    let spring = model.element_id("spring").map(|e| step.element_reports(model)[e.0]);
+    let spring = corner.spring.map(|e| step.element_reports(model)[e.0]);
     let spring_deflection = spring.map_or(0.0, |r| r.deflection.x);
     // The templates' springs carry no preload beside k·(L₀ − L) (the free length is set from the design
     // force), so the push has the sign of the shortening; its size is the force the report gives.

@@ -85,6 +85,9 @@ pub struct CornerParts {
     /// The tie rod, still to be attached; `None` when the corner has no steering input (its toe is held
     /// by its own links).
     pub tie_rod: Option<TieRod>,
+    /// The corner's own spring (its first), whose deflection gives the spring's motion ratio; `None` when
+    /// it has none.
+    pub spring: Option<ElementId>,
 }
 
 /// A tie rod between the rack (or the chassis when the rack is fixed) and the upright.
@@ -451,6 +454,8 @@ pub struct Corner {
     pub rig: Rig,
     /// The wheel.
     pub wheel: Wheel,
+    /// The corner's own spring (see [`CornerParts::spring`]).
+    pub spring: Option<ElementId>,
     /// The wheel across the axle when the corner cannot stand alone (a solid axle; see [`Corner::build`]):
     /// held by the same rig and loaded as the mirror image of `wheel`.
     pub partner: Option<Wheel>,
@@ -674,14 +679,15 @@ impl Corner {
             };
             let (left, right, _) = crate::axle::add_both_corners(&mut model, template, prefixes, rig == Rig::Steering)?;
             let (own, partner) = match side {
-                Side::Left => (left.wheel, right.wheel),
-                Side::Right => (right.wheel, left.wheel),
+                Side::Left => (left, right),
+                Side::Right => (right, left),
             };
+            let (spring, own, partner) = (own.spring, own.wheel, partner.wheel);
             if let Some(rate) = travel_rate {
                 crate::axle::add_travel_drivers(&mut model, true, ("", &own, rate), (other, &partner, rate))?;
             }
             let load_point = LoadPoint::default();
-            return Ok(Corner { model, rig, wheel: own, partner: Some(partner), load_point });
+            return Ok(Corner { model, rig, wheel: own, spring, partner: Some(partner), load_point });
         }
         let parts = template.add_corner(&mut model, side, "")?;
         match (parts.tie_rod, rig) {
@@ -696,7 +702,8 @@ impl Corner {
         if let Some(rate) = travel_rate {
             add_wheel_travel_driver(&mut model, "", &parts.wheel, rate)?;
         }
-        Ok(Corner { model, rig, wheel: parts.wheel, partner: None, load_point: LoadPoint::default() })
+        let spring = parts.spring;
+        Ok(Corner { model, rig, wheel: parts.wheel, spring, partner: None, load_point: LoadPoint::default() })
     }
 
     /// The prefix of the partner wheel's part names, when the corner has one.

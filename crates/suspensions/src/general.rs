@@ -35,7 +35,7 @@ use crate::corner::{
 };
 use crate::hardpoint::Side;
 use elastokin_core::joint::orthonormal_complement;
-use elastokin_core::{BodyRef, JointKind, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
+use elastokin_core::{BodyRef, ElementId, JointKind, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
 use elastokin_elements::{
     Bushing, BushingSpec, Characteristic, CoilSpring, Curve, PointForce, PointTorque, RotationLaw, Stop,
 };
@@ -1033,7 +1033,7 @@ impl GeneralCorner {
         Ok(())
     }
 
-    fn add_spring(&self, model: &mut Model, r: &Resolver, k: usize, s: &SpringDef) -> Result<(), ModelError> {
+    fn add_spring(&self, model: &mut Model, r: &Resolver, k: usize, s: &SpringDef) -> Result<ElementId, ModelError> {
         let key = format!("springs[{k}] ({})", s.name);
         let bi = r.body(model, &format!("{key}.bodies"), &s.bodies[0])?;
         let bj = r.body(model, &format!("{key}.bodies"), &s.bodies[1])?;
@@ -1072,8 +1072,7 @@ impl GeneralCorner {
             Some(preload) => spring.with_preload(preload)?,
             None => spring,
         };
-        model.add_element(spring)?;
-        Ok(())
+        model.add_element(spring)
     }
 
     fn add_stop(&self, model: &mut Model, r: &Resolver, k: usize, s: &StopDef) -> Result<(), ModelError> {
@@ -1187,8 +1186,9 @@ impl CornerTemplate for GeneralCorner {
         for (k, b) in self.bushings.iter().enumerate() {
             self.add_bushing(model, &r, k, b)?;
         }
+        let mut springs = Vec::with_capacity(self.springs.len());
         for (k, s) in self.springs.iter().enumerate() {
-            self.add_spring(model, &r, k, s)?;
+            springs.push(self.add_spring(model, &r, k, s)?);
         }
         for (k, s) in self.stops.iter().enumerate() {
             self.add_stop(model, &r, k, s)?;
@@ -1228,7 +1228,7 @@ impl CornerTemplate for GeneralCorner {
         if let Some(TieRod { connection, .. }) = &tie_rod {
             crate::corner::check_tie_rod_mounts("corner.tie_rod.connection", connection)?;
         }
-        Ok(CornerParts { wheel, tie_rod })
+        Ok(CornerParts { wheel, tie_rod, spring: springs.first().copied() })
     }
 
     fn builds_on_axle_only(&self) -> bool {

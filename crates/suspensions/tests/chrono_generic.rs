@@ -173,12 +173,78 @@ fn the_replica_axle_is_mirror_symmetric() {
     assert!((rows[16].left.toe - rows[0].left.toe).abs() > 1e-3 && rows[16].left_load > rows[0].left_load);
 }
 
+/// Chrono's UAZ replica gives its spring a `Minimum Length` above its `Maximum Length`: both stops would
+/// press at every length. Refused by name; with the two swapped it reads whole: the axle tube and the tie
+/// rod across are the model's axle, the drag link its steering link, the leaf spring's rotational springs
+/// torsion bushings on their revolute joints; every analysis runs.
 #[test]
-fn the_uaz_replica_is_refused_for_its_axle_beam() {
+fn the_uaz_replica_is_refused_for_its_stops_and_reads_as_an_axle_when_they_are_swapped() {
     let e = import(&text(UAZ), UAZ, None).unwrap_err().to_string();
-    for said in ["'Axle Tube'", "not mirrored", "shared by both sides", "\"Mirrored\": true"] {
+    for said in ["TSDAs", "\"Minimum Length\" 0.28", "\"Maximum Length\" 0.12", "swap the two values"] {
         assert!(e.contains(said), "no '{said}' in: {e}");
     }
+    let mut v = chrono_json(UAZ);
+    v["TSDAs"][0]["Minimum Length"] = json!(0.12);
+    v["TSDAs"][0]["Maximum Length"] = json!(0.28);
+    let imported = import(&v.to_string(), "swapped", None).unwrap();
+    assert!(!imported.notes.iter().any(|n| n.contains("not understood")), "{:#?}", imported.notes);
+    let elastokin_suspensions::Template::General(g) = &imported.file.suspension else { panic!("the general form") };
+    let axle = g.axle.as_ref().expect("the shared bodies go in the axle");
+    let names: Vec<&str> = axle.bodies.iter().map(|b| b.name.as_str()).collect();
+    assert_eq!(names, ["Axle Tube", "Tierod"]);
+    assert_eq!(axle.steering_link.as_ref().unwrap().body, "left upright");
+    assert_eq!(g.bushings.len(), 4, "the four RSDAs of a side");
+    let report = kc::run_suite(&imported.file, &[], &Settings { steps: 4, ..Settings::default() }, |_| {}).unwrap();
+    assert!(report.skipped.iter().all(|s| s.analysis == Analysis::StaticLoad || s.analysis == Analysis::ModelLoads));
+    assert!(report.analyses.iter().any(|a| a.analysis == Analysis::Steering));
+}
+
+/// A rotational spring (RSDA) on the lower arm's revolute joint, rate `k` and preload `P`: the rig's
+/// wheel load in parallel travel grows by `(k θ − P) dθ/dz` (virtual work), θ the arm's turn about its
+/// pivot axis read from the poses.
+#[test]
+fn an_rsda_is_a_torsion_spring_on_its_revolute_by_virtual_work() {
+    let (k, preload): (f64, f64) = (2000.0, 150.0);
+    let mut v = replica_json();
+    // RevoluteLCA: Body1 Chassis, Body2 LCA; its axis is its frame's z.
+    let q = &v["Joints"][2]["Rotation"];
+    let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+        q[0].as_f64().unwrap(),
+        q[1].as_f64().unwrap(),
+        q[2].as_f64().unwrap(),
+        q[3].as_f64().unwrap(),
+    ));
+    let axis = q * nalgebra::Vector3::z();
+    v["RSDAs"] = json!([{ "Name": "LCA torsion", "Mirrored": true, "Body1": "Chassis", "Body2": "LCA",
+        "Position": v["Joints"][2]["Position"].clone(), "Axis": [axis.x, axis.y, axis.z],
+        "Spring Coefficient": k, "Preload": preload, "Free Angle": 0.0 }]);
+    let plain = replica().file;
+    let sprung = import(&v.to_string(), "rsda", None).unwrap().file;
+    let walk = |file: &SuspensionFile| {
+        let corner = file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
+        let rows = parallel_wheel_travel(&corner, -0.05, 0.05, 20, Mode::Corrected).unwrap();
+        let mut solver = elastokin_solver::StaticSolver::new(&corner.model, Default::default()).unwrap();
+        let mut state = solver.design_state(-0.05);
+        let sweep =
+            solver.sweep_from(&mut state, elastokin_solver::LoadPath::new(-0.05, 0.05, 20), Mode::Corrected).unwrap();
+        let lca = corner.model.body_id("LCA").unwrap();
+        let turn: Vec<f64> = sweep.steps.iter().map(|s| s.poses[lca.0].orientation.scaled_axis().dot(&axis)).collect();
+        (rows, turn)
+    };
+    let (base, _) = walk(&plain);
+    let (rows, theta) = walk(&sprung);
+    let mut worst: f64 = 0.0;
+    for i in 1..20 {
+        let dtheta_dz = (theta[i + 1] - theta[i - 1]) / (rows[i + 1].travel - rows[i - 1].travel);
+        let expected = (k * theta[i] - preload) * dtheta_dz;
+        let added = rows[i].wheel_load - base[i].wheel_load;
+        worst = worst.max((added - expected).abs() / expected.abs().max(1.0));
+    }
+    // The spring adds tens of newtons: the comparison has content.
+    assert!((rows[10].wheel_load - base[10].wheel_load).abs() > 10.0);
+    // Measured: 5.2e-5, the truncation of the central difference dθ/dz over 5 mm steps (with P's sign turned
+    // the difference is of order one).
+    assert!(worst < 2e-3, "{worst:e}");
 }
 
 /// Each refusal names the element and says what to give instead; none panics.
@@ -186,7 +252,7 @@ fn the_uaz_replica_is_refused_for_its_axle_beam() {
 fn what_is_not_a_corner_and_its_mirror_image_is_refused_by_name() {
     type Edit = fn(&mut Value);
     let cases: [(Edit, &[&str]); 7] = [
-        (|v| v["Joints"][1]["Mirrored"] = json!(false), &["Joints[SphericalUCA]", "not mirrored"]),
+        (|v| v["Joints"][1]["Mirrored"] = json!(false), &["Joints[SphericalUCA]", "a body of each side", "\"Left\""]),
         (|v| v["Joints"][1]["Body2"] = json!(["Upright", "Left"]), &["Joints[SphericalUCA]", "name the body alone"]),
         (|v| v["Joints"][0]["Type"] = json!("Prismatic"), &["Joints[RevoluteUCA]", "'Prismatic'", "\"Revolute\""]),
         (|v| v["Joints"][0]["Body1"] = json!("Subchassis"), &["Joints[RevoluteUCA]", "subchassis"]),
@@ -194,9 +260,9 @@ fn what_is_not_a_corner_and_its_mirror_image_is_refused_by_name() {
         (
             |v| {
                 v["RSDAs"] = json!([{ "Name": "Roll", "Mirrored": true, "Body1": "Chassis", "Body2": "LCA",
-                    "Position": [0, 0.3, 0], "Axis": [1, 0, 0], "Spring Coefficient": 100, "Free Angle": 0 }])
+                    "Position": [0, 0.3, 0], "Axis": [0, 0, 1], "Spring Coefficient": 100, "Free Angle": 0 }])
             },
-            &["RSDAs[Roll]", "rotational spring"],
+            &["RSDAs[Roll]", "no revolute joint about its axis"],
         ),
         (|v| v["Distance Constraints"][0]["Body2"] = json!("LCA"), &["Distance Constraints[Tierod]", "'LCA'"]),
     ];

@@ -20,7 +20,9 @@
 //!   and preload `P`. Chrono interpolates the table linearly; elastokin passes a monotone cubic through the
 //!   same points (the same at the points, smoother between). `Minimum Length` and `Maximum Length` add a
 //!   bump and a rebound stop touching at those lengths, with Chrono's built-in curve (from an ADAMS/Car
-//!   example: 200 N at 2 mm to 125 kN at 60 mm).
+//!   example: 200 N at 2 mm to 125 kN at 60 mm). Past 60 mm Chrono holds the stop's force at 125 kN, where
+//!   elastokin continues the last piece of the curve straight: the two differ only past 60 mm of stop travel.
+//!   A `Minimum Length` not below the `Maximum Length` (both stops in contact at every length) is refused.
 //! - A joint with `Bushing Data` is, in Chrono, a six-way bushing in the joint's frame (z along its axis):
 //!   `Stiffness Linear` along the three axes, `Stiffness Rotational` about the axes the joint holds and the
 //!   `DOF` rates about the ones it leaves free, the moment `M = Kθ` (`ChLoadBodyBodyBushingGeneric`). It
@@ -535,7 +537,44 @@ impl Builder {
 
     /// Adds a body at the hardpoint `at`.
     pub(crate) fn body(&mut self, name: &str, at: &str) {
-        self.bodies_mut().push(BodyDef { name: name.into(), at: Place::named(at) });
+        self.body_at(name, Place::named(at));
+    }
+
+    /// Adds a body with its reference point at `at`.
+    pub(crate) fn body_at(&mut self, name: &str, at: Place) {
+        self.bodies_mut().push(BodyDef { name: name.into(), at });
+    }
+
+    /// A rotational spring of `rate` (N·m/rad) about `axis` between `bodies`, pushing `preload` (N·m) about
+    /// it on the second at design: a bushing of that torsion rate on the revolute joint the two bodies turn
+    /// on about that axis, which holds its other directions (their rates, the least the engine takes, meet
+    /// no deflection there), with Chrono's law `M = Kθ`.
+    pub(crate) fn torsion_spring(
+        &mut self,
+        name: &str,
+        bodies: [&str; 2],
+        at: Place,
+        axis: Vec3,
+        rate: f64,
+        preload: f64,
+    ) {
+        let (t, r) = (TRANSLATIONAL_RATE_RANGE.0, ROTATIONAL_RATE_RANGE.0);
+        self.bushings_mut().push(BushingDef {
+            name: name.into(),
+            bodies: bodies.map(str::to_string),
+            at,
+            axis: Some(Axis::Vector(axis)),
+            y_axis: None,
+            radial: None,
+            axial: None,
+            torsion: None,
+            conical: None,
+            translation: Some([t.into(), t.into(), t.into()]),
+            rotation: Some([rate.into(), r.into(), r.into()]),
+            law: RotationLaw::Linear,
+            preload_force: None,
+            preload_torque: (preload != 0.0).then_some([preload, 0.0, 0.0]),
+        });
     }
 
     /// The steering axis of a wheel carrier without a kingpin (a trailing arm that carries the spindle): the
@@ -707,6 +746,16 @@ impl Builder {
         if let (Some(min), Some(max)) =
             (doc.optional_number(&key("Minimum Length"))?, doc.optional_number(&key("Maximum Length"))?)
         {
+            if min >= max {
+                // Chrono would press both stops at once: past 60 mm each holds its last force, so between
+                // the two they cancel, and the spring meets a wall where either leaves that plateau.
+                return Err(format!(
+                    "\"{object}\" / \"Minimum Length\" {min} m is not below \"Maximum Length\" {max} m: the bump \
+                     stop (pressed below the minimum) and the rebound stop (pulled above the maximum) would both \
+                     be in contact at every length; swap the two values, or remove them to leave the spring \
+                     without stops"
+                ));
+            }
             let design = (self.point_of(seats[1])? - self.point_of(seats[0])?).norm();
             for (kind, clearance, what) in
                 [(StopType::Bump, design - min, "Minimum Length"), (StopType::Rebound, max - design, "Maximum Length")]

@@ -120,14 +120,24 @@ pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<Ana
                 &why,
             ),
             Figure::maybe("wheel_rate", "wheel rate", "N/mm", 2, rate.map(|k| k * 1e-3), &why),
-            Figure::maybe(
-                "spring_motion_ratio",
-                "spring motion ratio",
-                "-",
-                3,
-                slope(&|r| r.spring_deflection).map(f64::abs),
-                &why,
-            ),
+            match corner.spring {
+                Some(_) => Figure::maybe(
+                    "spring_motion_ratio",
+                    "spring motion ratio",
+                    "-",
+                    3,
+                    slope(&|r| r.spring_deflection).map(f64::abs),
+                    &why,
+                ),
+                None => Figure::maybe(
+                    "spring_motion_ratio",
+                    "spring motion ratio",
+                    "-",
+                    3,
+                    None,
+                    "the corner has no spring of its own (corner springs: none)",
+                ),
+            },
         ];
         f.push(match (rate, tyre_rate) {
             (Some(k), Some(kt)) => Figure::new(
