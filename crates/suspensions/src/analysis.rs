@@ -296,8 +296,8 @@ fn driven_sweep_with(
 /// the wheel centre, in m/N and rad/(N·m). It is the inverse tangent of the constrained system, so it
 /// costs one factorization and six back-substitutions. Drivers present in the corner stay held (a
 /// wheel-travel driver makes the vertical row and column zero, as on a K&C rig holding the wheel-centre
-/// height). With a partner wheel (a solid axle) each unit load acts on both wheels as mirror images, as
-/// the load sweeps apply them; the response is the corner's own wheel's.
+/// height). With a partner wheel (a solid axle) each unit load acts on both wheels alike, in phase, as the
+/// load sweeps apply them; the response is the corner's own wheel's.
 pub fn wheel_compliance(corner: &Corner, t: f64) -> Result<[[f64; 6]; 6], SolverError> {
     Ok(compliance_at(corner, t)?.0)
 }
@@ -344,9 +344,8 @@ fn compliance_with(
         let (f, moment) = if k < 3 { (unit, Vec3::zeros()) } else { (Vec3::zeros(), unit) };
         load(&mut rhs, wheel, f, moment);
         if let Some(partner) = partner {
-            // The mirror image: a force keeps x and z and turns y over; a moment (a pseudo-vector) the reverse.
-            let (fm, mm) = (Vec3::new(f.x, -f.y, f.z), Vec3::new(-moment.x, moment.y, -moment.z));
-            load(&mut rhs, partner, fm, mm);
+            // The same load on the partner's wheel centre, in phase (as `Corner::add_wheel_force`).
+            load(&mut rhs, partner, f, moment);
         }
         solver.solve_factored(&mut rhs)?;
         let dr = Vec3::new(rhs[base], rhs[base + 1], rhs[base + 2]);

@@ -457,7 +457,7 @@ pub struct Corner {
     /// The corner's own spring (see [`CornerParts::spring`]).
     pub spring: Option<ElementId>,
     /// The wheel across the axle when the corner cannot stand alone (a solid axle; see [`Corner::build`]):
-    /// held by the same rig and loaded as the mirror image of `wheel`.
+    /// held by the same rig and loaded as `wheel` is, in phase.
     pub partner: Option<Wheel>,
     /// Where the rig applies the vertical, lateral and braking forces of the load analyses.
     pub load_point: LoadPoint,
@@ -663,7 +663,7 @@ impl Corner {
     /// built whole: the corner on `side` named as a lone corner's (`"upright"`, `"wheel travel"`), its
     /// partner on the other side named `"left …"` or `"right …"` and held by the same rig, so that travel
     /// moves both wheels alike; the loads of [`Corner::add_wheel_force`] and [`Corner::add_wheel_torque`]
-    /// act on both as mirror images.
+    /// act on both, in phase (see there).
     pub fn build(template: &impl CornerTemplate, side: Side, rig: Rig) -> Result<Corner, ModelError> {
         let mut model = Model::new();
         let travel_rate = match rig {
@@ -713,7 +713,9 @@ impl Corner {
 
     /// Adds a world-fixed force `force · t` (N per unit load parameter) at the global design point `point`
     /// of the upright: a contact-patch or wheel-centre load of a K&C test. With a partner wheel (a solid
-    /// axle), its mirror image acts on the partner too, at the mirror image of `point`.
+    /// axle), the same force acts on the partner too, at the mirror image of `point`: in phase, as a K&C
+    /// rig loads an axle in a turn (the lateral forces of both tyres point the same way; mirror images would
+    /// only squeeze the tube).
     pub fn add_wheel_force(&mut self, name: &str, point: Vec3, force: Vec3) -> Result<ElementId, ModelError> {
         self.add_wheel_force_with_constant(name, point, force, Vec3::zeros())
     }
@@ -731,21 +733,18 @@ impl Corner {
         };
         let id = self.model.add_element(element(self.wheel.upright, name, point, force, constant)?)?;
         if let (Some(partner), Some(prefix)) = (self.partner, self.partner_prefix()) {
-            let m = |v: Vec3| Vec3::new(v.x, -v.y, v.z);
-            let mirrored = element(partner.upright, &part_name(prefix, name), m(point), m(force), m(constant))?;
-            self.model.add_element(mirrored)?;
+            let point = Vec3::new(point.x, -point.y, point.z);
+            self.model.add_element(element(partner.upright, &part_name(prefix, name), point, force, constant)?)?;
         }
         Ok(id)
     }
 
     /// Adds a world-fixed torque `torque · t` (N·m per unit load parameter) on the upright; with a partner
-    /// wheel, its mirror image on the partner.
+    /// wheel, the same torque on the partner (in phase, as [`Corner::add_wheel_force`]).
     pub fn add_wheel_torque(&mut self, name: &str, torque: Vec3) -> Result<ElementId, ModelError> {
         let id = self.model.add_element(PointTorque::new(name, self.wheel.upright.into(), torque)?)?;
         if let (Some(partner), Some(prefix)) = (self.partner, self.partner_prefix()) {
-            // A moment is a pseudo-vector: its mirror image keeps y and turns x and z over.
-            let mirrored = Vec3::new(-torque.x, torque.y, -torque.z);
-            self.model.add_element(PointTorque::new(&part_name(prefix, name), partner.upright.into(), mirrored)?)?;
+            self.model.add_element(PointTorque::new(&part_name(prefix, name), partner.upright.into(), torque)?)?;
         }
         Ok(id)
     }

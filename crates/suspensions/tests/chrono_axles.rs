@@ -353,7 +353,7 @@ fn a_symmetric_solid_axle_is_its_own_mirror_image() {
     assert!(worst_angle < 5e-12 && worst_load < 4e-10, "{worst_angle:e} rad, {worst_load:e} relative");
 }
 
-/// A corner analysis on a solid axle loads both wheels as mirror images: the vertical force at both wheel
+/// A corner analysis on a solid axle loads both wheels alike: the vertical force at both wheel
 /// centres lifts the symmetric three-link axle to the height where parallel travel needs that force, which
 /// a force on one wheel alone (the axle would roll) would not.
 #[test]
