@@ -597,7 +597,7 @@ pub struct SteeringLinkDef {
 /// mirrored; built once, on the whole axle. A corner names an axle body by its name; an axle part names a
 /// corner's body or hardpoint as `"left …"` or `"right …"` (the corner's, placed on that side). A model
 /// with an `axle` builds only whole: every corner analysis moves and loads both wheels alike.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AxleDef {
     /// Named points of the axle's own parts (global, not mirrored).

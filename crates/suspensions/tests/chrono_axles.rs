@@ -85,26 +85,54 @@ impl Travel {
     }
 }
 
-/// `ChSolidThreeLinkAxle`: the triangular link turns about y at the midpoint of its chassis points (its apex,
-/// the midpoint of its axle points, stays in the plane across y at its distance from that axis); each
-/// longitudinal link keeps its length; the wheels turn with the tube. Unknowns: the tube's six.
+/// The tube of a three-link axle: the triangular link turns about y at the midpoint of its chassis points
+/// (its apex, the midpoint of its axle points, stays in the plane across y at its distance from that axis);
+/// each longitudinal link keeps its length.
+#[derive(Clone, Copy)]
+struct ThreeLinks {
+    tube: Tube,
+    pivot: V,
+    apex: V,
+    link: (V, V),
+}
+
+impl ThreeLinks {
+    fn of(chrono: &Value) -> ThreeLinks {
+        let centred = |p: V| (p + mirror(p)) / 2.0;
+        ThreeLinks {
+            tube: Tube { centre: point(chrono, "Axle Tube/COM") },
+            pivot: centred(point(chrono, "Triangular Link/Location Chassis")),
+            apex: centred(point(chrono, "Triangular Link/Location Axle")),
+            link: (
+                point(chrono, "Longitudinal Link/Location Chassis"),
+                point(chrono, "Longitudinal Link/Location Axle"),
+            ),
+        }
+    }
+
+    /// The four residuals of the tube's pose `x[0..6]`: the triangle's two, each link's length change.
+    fn residuals(&self, x: &[f64]) -> Vec<f64> {
+        let arm = |a: V| (a.x - self.pivot.x).hypot(a.z - self.pivot.z);
+        let a = self.tube.moved(x, self.apex);
+        let mut f = vec![a.y - self.apex.y, arm(a) - arm(self.apex)];
+        let (c, p) = self.link;
+        for (c, p) in [(c, p), (mirror(c), mirror(p))] {
+            f.push((self.tube.moved(x, p) - c).norm() - (p - c).norm());
+        }
+        f
+    }
+}
+
+/// `ChSolidThreeLinkAxle`: the three-link tube ([`ThreeLinks`]); the wheels turn with the tube. Unknowns:
+/// the tube's six.
 fn three_link_closure(chrono: &Value, travel: Travel) -> impl Fn(f64, &mut [f64; 6]) -> [(f64, f64); 2] {
-    let tube = Tube { centre: point(chrono, "Axle Tube/COM") };
-    let centred = |p: V| (p + mirror(p)) / 2.0;
-    let pivot = centred(point(chrono, "Triangular Link/Location Chassis"));
-    let apex = centred(point(chrono, "Triangular Link/Location Axle"));
-    let (lc, la) =
-        (point(chrono, "Longitudinal Link/Location Chassis"), point(chrono, "Longitudinal Link/Location Axle"));
+    let links = ThreeLinks::of(chrono);
+    let tube = links.tube;
     let wc = point(chrono, "Spindle/COM");
     assert!(chrono.get("Camber Angle (deg)").is_none() && chrono.get("Toe Angle (deg)").is_none());
-    let arm = move |a: V| (a.x - pivot.x).hypot(a.z - pivot.z);
     move |t, x| {
         let residual = |x: &[f64; 6]| {
-            let a = tube.moved(x, apex);
-            let mut f = vec![a.y - apex.y, arm(a) - arm(apex)];
-            for (c, p) in [(lc, la), (mirror(lc), mirror(la))] {
-                f.push((tube.moved(x, p) - c).norm() - (p - c).norm());
-            }
+            let mut f = links.residuals(x);
             let (left, right, _) = travel.at(t);
             f.push(tube.moved(x, wc).z - wc.z - left);
             f.push(tube.moved(x, mirror(wc)).z - wc.z - right);
@@ -121,12 +149,8 @@ fn three_link_closure(chrono: &Value, travel: Travel) -> impl Fn(f64, &mut [f64;
 /// steering box (held, or moved along the drag link when steering) to the crank and each tie rod from the crank to its knuckle keep their lengths.
 /// Unknowns: the tube's six, φ, ψ left, ψ right.
 fn bellcrank_closure(chrono: &Value, travel: Travel) -> impl Fn(f64, &mut [f64; 9]) -> [(f64, f64); 2] {
-    let tube = Tube { centre: point(chrono, "Axle Tube/COM") };
-    let centred = |p: V| (p + mirror(p)) / 2.0;
-    let pivot = centred(point(chrono, "Triangular Link/Location Chassis"));
-    let apex = centred(point(chrono, "Triangular Link/Location Axle"));
-    let (lc, la) =
-        (point(chrono, "Longitudinal Link/Location Chassis"), point(chrono, "Longitudinal Link/Location Axle"));
+    let links = ThreeLinks::of(chrono);
+    let tube = links.tube;
     let wc = point(chrono, "Spindle/COM");
     let (kl, ku) = (point(chrono, "Knuckle/Location Lower"), point(chrono, "Knuckle/Location Upper"));
     let knuckle_rod = point(chrono, "Knuckle/Location Tierod");
@@ -134,7 +158,6 @@ fn bellcrank_closure(chrono: &Value, travel: Travel) -> impl Fn(f64, &mut [f64; 
     let crank_rod = point(chrono, "Bellcrank/Location Tierod");
     let (box_end, crank_drag) =
         (point(chrono, "Draglink/Location Steering"), point(chrono, "Draglink/Location Bellcrank"));
-    let arm = move |a: V| (a.x - pivot.x).hypot(a.z - pivot.z);
     // A knuckle point (left, or mirrored for the right) turned by ψ about its kingpin, on the tube.
     let knuckle = move |x: &[f64], side: f64, psi: f64, p: V| {
         let m = |q: V| if side > 0.0 { q } else { mirror(q) };
@@ -147,11 +170,7 @@ fn bellcrank_closure(chrono: &Value, travel: Travel) -> impl Fn(f64, &mut [f64; 
     };
     move |t, x| {
         let residual = |x: &[f64; 9]| {
-            let a = tube.moved(x, apex);
-            let mut f = vec![a.y - apex.y, arm(a) - arm(apex)];
-            for (c, p) in [(lc, la), (mirror(lc), mirror(la))] {
-                f.push((tube.moved(x, p) - c).norm() - (p - c).norm());
-            }
+            let mut f = links.residuals(x);
             let (left, right, rack) = travel.at(t);
             f.push(knuckle(x, 1.0, x[7], wc).z - wc.z - left);
             f.push(knuckle(x, -1.0, x[8], wc).z - wc.z - right);

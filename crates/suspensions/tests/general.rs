@@ -228,12 +228,26 @@ fn anti_roll_bar_share_of_roll_stiffness_is_what_it_adds() {
 }
 
 /// A general model with one edit: the error names the item and says what to give.
+/// An edit of a model file, and the words its refusal must say.
+type Refusal = (fn(&mut serde_json::Value), &'static [&'static str]);
+
+/// Each edit of `base` is refused with every one of its words in the message.
+fn refused_as_said(base: &serde_json::Value, cases: &[Refusal]) {
+    for (edit, expected) in cases {
+        let mut value = base.clone();
+        edit(&mut value);
+        let err = SuspensionFile::from_json(&value.to_string(), "edited").unwrap_err().to_string();
+        for e in *expected {
+            assert!(err.contains(e), "'{e}' not in: {err}");
+        }
+    }
+}
+
 #[test]
 fn mistakes_in_a_general_model_are_named() {
     let text = std::fs::read_to_string(example_path("five_link.json")).unwrap();
     let base: serde_json::Value = serde_json::from_str(&text).unwrap();
-    type Edit = fn(&mut serde_json::Value);
-    let cases: [(Edit, &[&str]); 7] = [
+    let cases: [Refusal; 7] = [
         (
             |v| v["suspension"]["general"]["joints"][0]["bodies"][1] = "carrier".into(),
             &["joints[0] (upper front link)", "no body 'carrier'", "'wheel carrier'"],
@@ -264,14 +278,7 @@ fn mistakes_in_a_general_model_are_named() {
             &["bushings[0] (b)", "both sets of rates are given", "radial, axial, torsion and conical"],
         ),
     ];
-    for (edit, expected) in cases {
-        let mut value = base.clone();
-        edit(&mut value);
-        let err = SuspensionFile::from_json(&value.to_string(), "edited").unwrap_err().to_string();
-        for e in expected {
-            assert!(err.contains(e), "'{e}' not in: {err}");
-        }
-    }
+    refused_as_said(&base, &cases);
 }
 
 /// A rate out of range in the general form is located at the named part's own key.
@@ -713,8 +720,7 @@ fn four_link_axle_travel_and_roll_match_their_loop_closure() {
 fn mistakes_in_an_axle_section_are_named() {
     let text = std::fs::read_to_string(example_path("four_link_axle.json")).unwrap();
     let base: serde_json::Value = serde_json::from_str(&text).unwrap();
-    type Edit = fn(&mut serde_json::Value);
-    let cases: [(Edit, &[&str]); 6] = [
+    let cases: [Refusal; 6] = [
         (
             |v| v["suspension"]["general"]["axle"]["bodies"][0]["name"] = "upright".into(),
             &["axle.bodies[0] (upright)", "a corner's body has this name"],
@@ -749,14 +755,7 @@ fn mistakes_in_an_axle_section_are_named() {
             &["axle.steering_link.body", "no body 'drag link'"],
         ),
     ];
-    for (edit, expected) in cases {
-        let mut value = base.clone();
-        edit(&mut value);
-        let err = SuspensionFile::from_json(&value.to_string(), "edited").unwrap_err().to_string();
-        for e in expected {
-            assert!(err.contains(e), "'{e}' not in: {err}");
-        }
-    }
+    refused_as_said(&base, &cases);
 }
 
 /// The live axle with its lower links made bushings, so that the wheels give under load: a corner of a

@@ -402,15 +402,7 @@ impl Builder {
     /// mirrored) or to the corner (`false`).
     pub(crate) fn on_axle(&mut self, shared: bool) {
         if shared && self.general.axle.is_none() {
-            self.general.axle = Some(AxleDef {
-                hardpoints: Hardpoints::default(),
-                bodies: Vec::new(),
-                joints: Vec::new(),
-                bushings: Vec::new(),
-                springs: Vec::new(),
-                stops: Vec::new(),
-                steering_link: None,
-            });
+            self.general.axle = Some(AxleDef::default());
         }
         self.shared = shared;
     }
