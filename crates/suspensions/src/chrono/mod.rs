@@ -35,6 +35,7 @@
 
 mod double_wishbone;
 mod generic_wheeled;
+mod hendrickson_primaxx;
 mod macpherson;
 mod multi_link;
 mod semi_trailing_arm;
@@ -68,7 +69,7 @@ pub struct Imported {
 }
 
 /// The Chrono templates [`import`] reads.
-pub const SUPPORTED: [&str; 11] = [
+pub const SUPPORTED: [&str; 12] = [
     "DoubleWishbone",
     "DoubleWishboneReduced",
     "MacPhersonStrut",
@@ -80,6 +81,7 @@ pub const SUPPORTED: [&str; 11] = [
     "SolidAxle",
     "SolidThreeLinkAxle",
     "SolidBellcrankThreeLinkAxle",
+    "HendricksonPRIMAXX",
 ];
 
 /// Whether `text` is a Chrono suspension file: a JSON object (with `//` comments allowed) whose `"Type"` is
@@ -124,6 +126,7 @@ pub fn import(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Im
         "SolidAxle" => solid_axle::read_solid_axle(&doc, &mut b),
         "SolidThreeLinkAxle" => solid_axle::read_three_link(&doc, &mut b),
         "SolidBellcrankThreeLinkAxle" => solid_axle::read_bellcrank_three_link(&doc, &mut b),
+        "HendricksonPRIMAXX" => hendrickson_primaxx::read(&doc, &mut b),
         other => Err(refused(other)),
     };
     built.map_err(invalid)?;
@@ -151,8 +154,7 @@ fn refused(template: &str) -> String {
         | "ToeBarPushPipeAxle"
         | "RigidPanhardAxle"
         | "ToeBarRigidPanhardAxle"
-        | "RigidPinnedAxle"
-        | "HendricksonPRIMAXX" => {
+        | "RigidPinnedAxle" => {
             "an axle this importer does not read yet (its solid axles are SolidAxle, SolidThreeLinkAxle and \
              SolidBellcrankThreeLinkAxle)"
         }
