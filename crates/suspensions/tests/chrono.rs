@@ -113,7 +113,8 @@ fn every_shipped_chrono_file_runs_or_is_refused_as_the_readme_says() {
             }
         }
     }
-    assert!(ran >= 6 && refused >= 6, "{ran} read, {refused} refused");
+    // Chrono's rigid suspension (nothing moves) is refused, whatever else comes to be read.
+    assert!(ran >= 6 && refused >= 1, "{ran} read, {refused} refused");
 }
 
 /// Chrono's generic double wishbone, read, against the double wishbone's loop closure on the file's own

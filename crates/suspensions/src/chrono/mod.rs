@@ -37,6 +37,7 @@
 
 mod double_wishbone;
 mod generic_wheeled;
+mod hendrickson_primaxx;
 mod macpherson;
 mod multi_link;
 mod rigid_panhard_axle;
@@ -71,7 +72,7 @@ pub struct Imported {
 }
 
 /// The Chrono templates [`import`] reads.
-pub const SUPPORTED: [&str; 13] = [
+pub const SUPPORTED: [&str; 14] = [
     "DoubleWishbone",
     "DoubleWishboneReduced",
     "MacPhersonStrut",
@@ -85,6 +86,7 @@ pub const SUPPORTED: [&str; 13] = [
     "SolidBellcrankThreeLinkAxle",
     "RigidPanhardAxle",
     "ToeBarRigidPanhardAxle",
+    "HendricksonPRIMAXX",
 ];
 
 /// Whether `text` is a Chrono suspension file: a JSON object (with `//` comments allowed) whose `"Type"` is
@@ -131,6 +133,7 @@ pub fn import(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Im
         "SolidBellcrankThreeLinkAxle" => solid_axle::read_bellcrank_three_link(&doc, &mut b),
         "RigidPanhardAxle" => rigid_panhard_axle::read_rigid(&doc, &mut b),
         "ToeBarRigidPanhardAxle" => rigid_panhard_axle::read_toe_bar(&doc, &mut b),
+        "HendricksonPRIMAXX" => hendrickson_primaxx::read(&doc, &mut b),
         other => Err(refused(other)),
     };
     built.map_err(invalid)?;
@@ -152,10 +155,8 @@ fn refused(template: &str) -> String {
         "LeafspringAxle" | "SAELeafspringAxle" | "ToeBarLeafspringAxle" | "SAEToeBarLeafspringAxle" => {
             "a leaf spring is a beam, not joints and springs: elastokin does not model it"
         }
-        "DeDionAxle" | "ToeBarDeDionAxle" | "PushPipeAxle" | "ToeBarPushPipeAxle" | "RigidPinnedAxle"
-        | "HendricksonPRIMAXX" => {
-            "an axle this importer does not read yet (its solid axles are SolidAxle, SolidThreeLinkAxle and \
-             SolidBellcrankThreeLinkAxle)"
+        "DeDionAxle" | "ToeBarDeDionAxle" | "PushPipeAxle" | "ToeBarPushPipeAxle" | "RigidPinnedAxle" => {
+            "an axle this importer does not read yet"
         }
         "RigidSuspension" => "it has no suspension motion to analyse",
         _ => "not a template this importer reads",

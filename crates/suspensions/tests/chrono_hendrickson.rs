@@ -1,0 +1,354 @@
+//! Project Chrono's `HendricksonPRIMAXX` (the generic file, copied unchanged into `tests/data/chrono/`,
+//! BSD-3-Clause) read into the general model with an `axle`: both wheels follow, in parallel travel and in
+//! steering, the closure equations of the linkage `ChHendricksonPRIMAXX` builds, written out here from the
+//! Chrono file (not from the import); the rig's force is the virtual work of the springs as Chrono attaches
+//! them; the axle cannot roll, and opposite travel is refused by name.
+
+use elastokin_solver::Mode;
+use elastokin_suspensions::analysis::parallel_wheel_travel;
+use elastokin_suspensions::axle::axle_sweep;
+use elastokin_suspensions::chrono::{import, without_comments};
+use elastokin_suspensions::{Axle, AxleRig, Rig, Side, SuspensionFile};
+use nalgebra::{DMatrix, DVector, Rotation3, Unit, Vector3};
+use serde_json::Value;
+use std::path::Path;
+
+type V = Vector3<f64>;
+
+const FILE: &str = "HendricksonPRIMAXX.json";
+
+fn fixture(path: &str) -> String {
+    let full = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/chrono").join(path);
+    std::fs::read_to_string(&full).unwrap_or_else(|e| panic!("{}: {e}", full.display()))
+}
+
+/// The Chrono file as JSON, and the model imported from it.
+fn read() -> (Value, SuspensionFile) {
+    let text = fixture(FILE);
+    let chrono = serde_json::from_str(&without_comments(&text)).unwrap();
+    (chrono, import(&text, FILE, None).unwrap_or_else(|e| panic!("{FILE}: {e}")).file)
+}
+
+/// The point at `path` (keys joined by `/`) of a Chrono file: the left side's, as Chrono gives it.
+fn point(chrono: &Value, path: &str) -> V {
+    let v = path.split('/').fold(chrono, |v, key| &v[key]);
+    let c: Vec<f64> = v.as_array().unwrap_or_else(|| panic!("{path}")).iter().map(|x| x.as_f64().unwrap()).collect();
+    V::new(c[0], c[1], c[2])
+}
+
+/// The right side's mirror image of a left point, as Chrono places it (y → −y).
+fn mirror(p: V) -> V {
+    V::new(p.x, -p.y, p.z)
+}
+
+/// A left point, or its mirror image for the right side (`side` −1).
+fn on_side(side: f64, p: V) -> V {
+    if side > 0.0 {
+        p
+    } else {
+        mirror(p)
+    }
+}
+
+/// Toe and camber of a wheel on side `s` (+1 left) whose outward spin axis is `a`, from their definitions.
+fn toe_camber(a: V, s: f64) -> (f64, f64) {
+    (a.x.atan2(s * a.y), (-a.z).atan2(a.x.hypot(a.y)))
+}
+
+/// Newton's method on `residual(x) = 0` with more equations than unknowns, all holding at the solution
+/// (Chrono's joints repeat some constraints): each step the least-squares solution of the linearised
+/// equations, with a central-difference Jacobian.
+fn newton_least_squares<const N: usize>(residual: impl Fn(&[f64; N]) -> DVector<f64>, x: &mut [f64; N]) {
+    for _ in 0..60 {
+        let f = residual(x);
+        if f.norm() < 1e-14 {
+            return;
+        }
+        let mut jac = DMatrix::zeros(f.len(), N);
+        for c in 0..N {
+            let (mut xp, mut xm) = (*x, *x);
+            xp[c] += 1e-7;
+            xm[c] -= 1e-7;
+            jac.set_column(c, &((residual(&xp) - residual(&xm)) / 2e-7));
+        }
+        let dx = jac.svd(true, true).solve(&(-f), 1e-12).expect("SVD of the closure Jacobian");
+        for c in 0..N {
+            x[c] += dx[c];
+        }
+    }
+    assert!(residual(x).norm() < 1e-12, "loop closure did not close: {:?}", residual(x));
+}
+
+/// What the rig drives with `t`.
+#[derive(Clone, Copy)]
+enum Travel {
+    /// The left wheel-centre height by `t` (the right follows: the axle has one way to move).
+    Parallel,
+    /// Both tie rods' inner ends by `t` across the car (+y), the left wheel-centre height held.
+    Steering,
+}
+
+/// The closure's answer: per wheel (left, right) toe, camber and the wheel centre's fore-aft position
+/// (m); and the length of each side's `Shock Lower Beam` (m).
+#[derive(Clone, Copy, Debug)]
+struct Solved {
+    wheels: [(f64, f64, f64); 2],
+    springs: [f64; 2],
+}
+
+/// `ChHendricksonPRIMAXX`: the axle housing moves by `x[0..3]` and turns by the rotation vector `x[3..6]`
+/// about its `COM`; each torque rod and each lower beam (left torque rod, right, left lower beam, right)
+/// turns by `x[6..10]` about the line across the car (y) through its `Chassis Attachment Point`, and its
+/// `Axle Housing Attachment Point` is the housing's (a revolute joint to the chassis, a ball joint to the
+/// housing); each knuckle turns by ψ (`x[10]` left, `x[11]` right) about its kingpin (lower to upper
+/// attachment point) on the housing; each tie rod (a distance constraint) from its chassis point — moved
+/// across the car when steering — to its knuckle point keeps its length; the left wheel centre is at the
+/// asked height. Fifteen equations in twelve unknowns, three of them repeating others (the rods of the
+/// two sides hold the housing against the same motions across the car).
+fn closure(chrono: &Value, travel: Travel) -> impl Fn(f64, &mut [f64; 12]) -> Solved {
+    let centre = point(chrono, "Axle Housing/COM");
+    let rods: Vec<(V, V)> = ["Torque Rod", "Lower Beam"]
+        .iter()
+        .flat_map(|k| {
+            let c = point(chrono, &format!("{k}/Chassis Attachment Point"));
+            let a = point(chrono, &format!("{k}/Axle Housing Attachment Point"));
+            [(c, a), (mirror(c), mirror(a))]
+        })
+        .collect();
+    let wc = point(chrono, "Spindle/COM");
+    let (kl, ku) = (point(chrono, "Knuckle/Lower Attachment Point"), point(chrono, "Knuckle/Upper Attachment Point"));
+    let (rod_inner, rod_outer) = (point(chrono, "Tierod/Location Chassis"), point(chrono, "Tierod/Location Knuckle"));
+    let (spring_chassis, spring_housing) =
+        (point(chrono, "Shock Lower Beam/Location Chassis"), point(chrono, "Shock Lower Beam/Location Lower Beam"));
+    assert!(chrono.get("Camber Angle (deg)").is_none() && chrono.get("Toe Angle (deg)").is_none());
+    let housing = move |x: &[f64], p: V| {
+        centre + V::new(x[0], x[1], x[2]) + Rotation3::new(V::new(x[3], x[4], x[5])) * (p - centre)
+    };
+    // A knuckle point (left, or mirrored for the right) turned by ψ about its kingpin, on the housing.
+    let knuckle = move |x: &[f64], side: f64, psi: f64, p: V| {
+        let (lower, upper) = (on_side(side, kl), on_side(side, ku));
+        let turned =
+            lower + Rotation3::from_axis_angle(&Unit::new_normalize(upper - lower), psi) * (on_side(side, p) - lower);
+        housing(x, turned)
+    };
+    move |t, x| {
+        let rack = match travel {
+            Travel::Parallel => 0.0,
+            Travel::Steering => t,
+        };
+        let residual = |x: &[f64; 12]| {
+            let mut f: Vec<f64> = Vec::new();
+            for (k, (c, a)) in rods.iter().enumerate() {
+                let on_rod = c + Rotation3::from_axis_angle(&V::y_axis(), x[6 + k]) * (a - c);
+                f.extend((housing(x, *a) - on_rod).iter());
+            }
+            for (side, psi) in [(1.0, x[10]), (-1.0, x[11])] {
+                let inner = on_side(side, rod_inner) + V::y() * rack;
+                f.push((knuckle(x, side, psi, rod_outer) - inner).norm() - (rod_outer - rod_inner).norm());
+            }
+            let height = match travel {
+                Travel::Parallel => t,
+                Travel::Steering => 0.0,
+            };
+            f.push(knuckle(x, 1.0, x[10], wc).z - wc.z - height);
+            DVector::from_vec(f)
+        };
+        newton_least_squares(residual, x);
+        let wheel = |side: f64, psi: f64| {
+            let at = knuckle(x, side, psi, wc);
+            let (toe, camber) = toe_camber(knuckle(x, side, psi, wc + V::y()) - at, side);
+            (toe, camber, at.x)
+        };
+        let spring = |side: f64| (housing(x, on_side(side, spring_housing)) - on_side(side, spring_chassis)).norm();
+        Solved { wheels: [wheel(1.0, x[10]), wheel(-1.0, x[11])], springs: [spring(1.0), spring(-1.0)] }
+    }
+}
+
+/// One engine row: travel, and per wheel toe, camber and wheel-centre x.
+type Row = (f64, [(f64, f64, f64); 2]);
+
+/// Largest toe or camber difference (rad) and wheel-centre x difference (m) of both wheels between `rows`
+/// and `closure`, walked outwards from the design row (index `design`) in both directions, each closure
+/// starting from its neighbour's solution; and the largest range over the rows, of either wheel, of its
+/// toe (rad), its camber (rad) and its wheel centre's x (m).
+fn against(rows: &[Row], design: usize, closure: impl Fn(f64, &mut [f64; 12]) -> Solved) -> ([f64; 2], [f64; 3]) {
+    let (mut angle, mut along): (f64, f64) = (0.0, 0.0);
+    for half in [rows[design..].iter().collect::<Vec<_>>(), rows[..=design].iter().rev().collect()] {
+        let mut guess = [0.0; 12];
+        for (t, engine) in half {
+            let reference = closure(*t, &mut guess);
+            for (e, r) in engine.iter().zip(reference.wheels) {
+                angle = angle.max((e.0 - r.0).abs()).max((e.1 - r.1).abs());
+                along = along.max((e.2 - r.2).abs());
+            }
+        }
+    }
+    let range = |value: &dyn Fn(&(f64, f64, f64)) -> f64| {
+        let mut widest: f64 = 0.0;
+        for w in 0..2 {
+            let (lo, hi) =
+                rows.iter().map(|r| value(&r.1[w])).fold((f64::MAX, f64::MIN), |(lo, hi), a| (lo.min(a), hi.max(a)));
+            widest = widest.max(hi - lo);
+        }
+        widest
+    };
+    ([angle, along], [range(&|w| w.0), range(&|w| w.1), range(&|w| w.2)])
+}
+
+/// The corner's parallel travel of ±80 mm in 16 steps (design at row 8): the axle built whole, both wheels
+/// (the partner's read from the same poses); and the rig's force at each row.
+fn corner_rows(file: &SuspensionFile) -> (Vec<Row>, Vec<f64>) {
+    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
+    let partner = corner.partner.expect("an axle builds whole");
+    let solver_rows = parallel_wheel_travel(&corner, -0.08, 0.08, 16, Mode::Corrected).unwrap();
+    // The partner's attitude needs the poses: walk the same path again with the poses kept.
+    let mut solver = elastokin_solver::StaticSolver::new(&corner.model, Default::default()).unwrap();
+    let mut state = solver.design_state(-0.08);
+    let sweep =
+        solver.sweep_from(&mut state, elastokin_solver::LoadPath::new(-0.08, 0.08, 16), Mode::Corrected).unwrap();
+    let rows = solver_rows
+        .iter()
+        .zip(&sweep.steps)
+        .map(|(r, s)| {
+            let (a, p) = (r.attitude, partner.attitude(&s.poses));
+            (r.travel, [(a.toe, a.camber, a.wheel_centre.x), (p.toe, p.camber, p.wheel_centre.x)])
+        })
+        .collect();
+    (rows, solver_rows.iter().map(|r| r.wheel_load).collect())
+}
+
+/// Both wheels over the steering rig's ±40 mm of tie-rod travel across the car, in 12 steps (design at
+/// row 6), both wheel heights held.
+fn steering_rows(file: &SuspensionFile) -> Vec<Row> {
+    let axle = Axle::build(&file.suspension, AxleRig::Steering).unwrap();
+    let rows = axle_sweep(&axle, -0.04, 0.04, 12, Mode::Corrected).unwrap();
+    rows.iter()
+        .map(|r| {
+            let (l, rt) = (r.left, r.right);
+            (r.travel, [(l.toe, l.camber, l.wheel_centre.x), (rt.toe, rt.camber, rt.wheel_centre.x)])
+        })
+        .collect()
+}
+
+/// The axle's travel and steering against the closure of Chrono's linkage: both wheels' toe, camber and
+/// fore-aft position. The housing pitches as it travels (the two rods of a side are not parallel), so the
+/// knuckles steer against the tie rods held on the chassis.
+#[test]
+fn the_hendrickson_axle_travels_and_steers_as_its_loop_closure() {
+    let (chrono, file) = read();
+    let ([angle, along], [toe, camber, fore_aft]) =
+        against(&corner_rows(&file).0, 8, closure(&chrono, Travel::Parallel));
+    // Over ±80 mm the wheels toe out by up to 0.096 rad, camber by 0.024 rad and move 16 mm fore and aft.
+    assert!(toe > 5e-2 && camber > 1e-2 && fore_aft > 1e-2, "travel: {toe} rad, {camber} rad, {fore_aft} m");
+    // Measured: 4.9e-10 rad and 1.5e-11 m (the rows are closed to the joints' 1e-10 m: the two wheels of
+    // the engine's own rows differ by as much).
+    assert!(angle < 2e-8 && along < 1e-9, "travel: {angle:e} rad, {along:e} m");
+
+    let ([angle, along], [toe, camber, fore_aft]) =
+        against(&steering_rows(&file), 6, closure(&chrono, Travel::Steering));
+    // Over ±40 mm across the car the wheels steer by 0.84 rad, camber by 0.13 rad (the kingpins lean) and
+    // their centres swing 60 mm fore and aft about the kingpins.
+    assert!(toe > 0.5 && camber > 0.1 && fore_aft > 0.05, "steering: {toe} rad, {camber} rad, {fore_aft} m");
+    // Measured: 6.7e-10 rad and 5.5e-11 m.
+    assert!(angle < 3e-8 && along < 3e-9, "steering: {angle:e} rad, {along:e} m");
+}
+
+/// The rig's force in parallel travel is the springs' virtual work as Chrono builds them: each side's
+/// `Shock Lower Beam` from the chassis to the axle housing (not the lower beam), its rest length its design
+/// length (Chrono sets none), pushing `k (L₀ − L)`; `Shock Axle Housing`, of rate zero, pushes nothing.
+/// The rate at which the travel changes each spring's length is the closure's, by central differences.
+#[test]
+fn the_rigs_force_is_the_virtual_work_of_chronos_springs() {
+    let (chrono, file) = read();
+    let (rows, loads) = corner_rows(&file);
+    let k = chrono["Shock Lower Beam"]["Spring Coefficient"].as_f64().unwrap();
+    let rest = (point(&chrono, "Shock Lower Beam/Location Lower Beam")
+        - point(&chrono, "Shock Lower Beam/Location Chassis"))
+    .norm();
+    let solve = closure(&chrono, Travel::Parallel);
+    let mut worst: f64 = 0.0;
+    let h = 1e-5;
+    for ((t, _), load) in rows.iter().zip(&loads) {
+        let mut guess = [0.0; 12];
+        let at = |s: f64, g: &mut [f64; 12]| solve(s, g).springs;
+        let (ahead, behind, here) = (at(t + h, &mut guess.clone()), at(t - h, &mut guess.clone()), at(*t, &mut guess));
+        // The rig's work F dz stores k (L − L₀) dL in each spring.
+        let expected: f64 = (0..2).map(|s| k * (here[s] - rest) * (ahead[s] - behind[s]) / (2.0 * h)).sum();
+        worst = worst.max((load - expected).abs());
+    }
+    // The springs carry 84 kN at +80 mm and 79 kN at −80 mm (nothing at design, their rest length): the
+    // comparison has content.
+    assert!(loads[16] > 8e4 && loads[0] < -7.5e4 && loads[8].abs() < 1e-6, "{loads:?}");
+    // Measured: 2.0e-4 N (2.4e-9 of the load; the closure's central differences over 10 µm).
+    assert!(worst < 1e-2, "{worst:e} N");
+}
+
+/// With ideal joints the torque rods and lower beams hold the housing from rolling: opposite travel is
+/// refused by name, a corner's travel drives the left wheel with the right following, and the suite skips
+/// roll with that reason (and runs the rest).
+#[test]
+fn the_hendrickson_axle_cannot_roll_and_says_so() {
+    let (_, file) = read();
+    let e = Axle::build(&file.suspension, AxleRig::OppositeTravel).unwrap_err().to_string();
+    assert!(e.contains("its roll is locked"), "{e}");
+    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
+    assert!(corner.model.joint_id("wheel travel").is_some());
+    assert!(corner.model.joint_id("right wheel travel").is_none());
+    let report = elastokin_suspensions::kc::run_suite(
+        &file,
+        &[],
+        &elastokin_suspensions::kc::Settings { steps: 4, ..Default::default() },
+        |_| {},
+    )
+    .unwrap();
+    let roll = report.skipped.iter().find(|s| s.analysis == elastokin_suspensions::kc::Analysis::Roll).unwrap();
+    assert!(roll.reason.contains("lock its roll"), "{}", roll.reason);
+    assert!(report.analyses.iter().any(|a| a.analysis == elastokin_suspensions::kc::Analysis::Steering));
+}
+
+/// Every key of the file is read or noted with its reason: the transverse beam Chrono joins to nothing,
+/// the free lengths Chrono does not use, the lower beam's spring on the housing. A camber or toe angle,
+/// which this template does not read, leaves the wheel square and is noted.
+#[test]
+fn every_key_is_read_or_noted() {
+    let text = fixture(FILE);
+    let notes = import(&text, FILE, None).unwrap().notes;
+    assert!(!notes.iter().any(|n| n.contains("not understood")), "{notes:?}");
+    for expected in [
+        "Transverse Beam: Mass, COM, Inertia, Radius — Chrono makes this body but joins it to nothing",
+        "Lower Beam: Transverse Beam Attachment Point",
+        "Shock Lower Beam / Free Length 0.3948 m: not used by Chrono",
+        "Shock Lower Beam: Chrono joins it to the axle housing",
+        "Shock Axle Housing: a damper",
+    ] {
+        assert!(notes.iter().any(|n| n.starts_with(expected)), "{expected}: {notes:?}");
+    }
+    let mut chrono: Value = serde_json::from_str(&without_comments(&text)).unwrap();
+    chrono["Camber Angle (deg)"] = 2.0.into();
+    let imported = import(&chrono.to_string(), FILE, None).unwrap();
+    assert!(imported.notes.iter().any(|n| n.starts_with("Camber Angle (deg), Toe Angle (deg): not read")));
+    let corner = imported.file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
+    let a = corner.wheel.attitude(&corner.model.design_poses());
+    // Measured: 0 rad.
+    assert!(a.camber.abs() < 1e-15 && a.toe.abs() < 1e-15, "{a:?}");
+}
+
+/// Input the linkage cannot be built from is refused, naming the keys and how to fix them.
+#[test]
+fn bad_input_is_refused_by_its_keys() {
+    let refused = |edit: &dyn Fn(&mut Value)| {
+        let mut chrono: Value = serde_json::from_str(&without_comments(&fixture(FILE))).unwrap();
+        edit(&mut chrono);
+        import(&chrono.to_string(), FILE, None).unwrap_err().to_string()
+    };
+    let e = refused(&|v| v["Knuckle"]["Upper Attachment Point"] = v["Knuckle"]["Lower Attachment Point"].clone());
+    assert!(e.contains("\"Knuckle\" / \"Lower Attachment Point\" and \"Upper Attachment Point\" coincide"), "{e}");
+    let e = refused(&|v| v["Torque Rod"]["Axle Housing Attachment Point"] = serde_json::json!([0.629, 0.7, 0.1]));
+    assert!(e.contains("\"Torque Rod\" / \"Chassis Attachment Point\" and \"Axle Housing Attachment Point\" lie on one line across the car"), "{e}");
+    let e = refused(&|v| v["Shock Axle Housing"]["Preload"] = 500.0.into());
+    assert!(e.contains("\"Shock Axle Housing\" / \"Preload\" on a spring-damper of rate zero"), "{e}");
+    let e = refused(&|v| v["Shock Lower Beam"]["Map Data"] = serde_json::json!([[0.0, 0.0, 0.0]]));
+    assert!(e.contains("\"Shock Lower Beam\" / \"Map Data\""), "{e}");
+    let e = refused(&|v| v["Lower Beam"]["Chassis Attachment Point"] = serde_json::json!([0.629, 0.65]));
+    assert!(e.contains("\"Lower Beam\" / \"Chassis Attachment Point\" must be a point"), "{e}");
+}
