@@ -37,6 +37,8 @@ mod double_wishbone;
 mod generic_wheeled;
 mod macpherson;
 mod multi_link;
+mod push_pipe_axle;
+mod rigid_pinned_axle;
 mod semi_trailing_arm;
 mod single_wishbone;
 mod solid_axle;
@@ -68,7 +70,7 @@ pub struct Imported {
 }
 
 /// The Chrono templates [`import`] reads.
-pub const SUPPORTED: [&str; 11] = [
+pub const SUPPORTED: [&str; 13] = [
     "DoubleWishbone",
     "DoubleWishboneReduced",
     "MacPhersonStrut",
@@ -80,6 +82,8 @@ pub const SUPPORTED: [&str; 11] = [
     "SolidAxle",
     "SolidThreeLinkAxle",
     "SolidBellcrankThreeLinkAxle",
+    "PushPipeAxle",
+    "ToeBarPushPipeAxle",
 ];
 
 /// Whether `text` is a Chrono suspension file: a JSON object (with `//` comments allowed) whose `"Type"` is
@@ -124,6 +128,9 @@ pub fn import(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Im
         "SolidAxle" => solid_axle::read_solid_axle(&doc, &mut b),
         "SolidThreeLinkAxle" => solid_axle::read_three_link(&doc, &mut b),
         "SolidBellcrankThreeLinkAxle" => solid_axle::read_bellcrank_three_link(&doc, &mut b),
+        "PushPipeAxle" => push_pipe_axle::read_push_pipe(&doc, &mut b),
+        "ToeBarPushPipeAxle" => push_pipe_axle::read_toe_bar(&doc, &mut b),
+        "RigidPinnedAxle" => rigid_pinned_axle::read(&doc),
         other => Err(refused(other)),
     };
     built.map_err(invalid)?;
@@ -145,14 +152,7 @@ fn refused(template: &str) -> String {
         "LeafspringAxle" | "SAELeafspringAxle" | "ToeBarLeafspringAxle" | "SAEToeBarLeafspringAxle" => {
             "a leaf spring is a beam, not joints and springs: elastokin does not model it"
         }
-        "DeDionAxle"
-        | "ToeBarDeDionAxle"
-        | "PushPipeAxle"
-        | "ToeBarPushPipeAxle"
-        | "RigidPanhardAxle"
-        | "ToeBarRigidPanhardAxle"
-        | "RigidPinnedAxle"
-        | "HendricksonPRIMAXX" => {
+        "DeDionAxle" | "ToeBarDeDionAxle" | "RigidPanhardAxle" | "ToeBarRigidPanhardAxle" | "HendricksonPRIMAXX" => {
             "an axle this importer does not read yet (its solid axles are SolidAxle, SolidThreeLinkAxle and \
              SolidBellcrankThreeLinkAxle)"
         }
