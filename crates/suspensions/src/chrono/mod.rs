@@ -40,7 +40,9 @@ mod generic_wheeled;
 mod hendrickson_primaxx;
 mod macpherson;
 mod multi_link;
+mod push_pipe_axle;
 mod rigid_panhard_axle;
+mod rigid_pinned_axle;
 mod semi_trailing_arm;
 mod single_wishbone;
 mod solid_axle;
@@ -72,7 +74,7 @@ pub struct Imported {
 }
 
 /// The Chrono templates [`import`] reads.
-pub const SUPPORTED: [&str; 14] = [
+pub const SUPPORTED: [&str; 16] = [
     "DoubleWishbone",
     "DoubleWishboneReduced",
     "MacPhersonStrut",
@@ -87,6 +89,8 @@ pub const SUPPORTED: [&str; 14] = [
     "RigidPanhardAxle",
     "ToeBarRigidPanhardAxle",
     "HendricksonPRIMAXX",
+    "PushPipeAxle",
+    "ToeBarPushPipeAxle",
 ];
 
 /// Whether `text` is a Chrono suspension file: a JSON object (with `//` comments allowed) whose `"Type"` is
@@ -134,6 +138,9 @@ pub fn import(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Im
         "RigidPanhardAxle" => rigid_panhard_axle::read_rigid(&doc, &mut b),
         "ToeBarRigidPanhardAxle" => rigid_panhard_axle::read_toe_bar(&doc, &mut b),
         "HendricksonPRIMAXX" => hendrickson_primaxx::read(&doc, &mut b),
+        "PushPipeAxle" => push_pipe_axle::read_push_pipe(&doc, &mut b),
+        "ToeBarPushPipeAxle" => push_pipe_axle::read_toe_bar(&doc, &mut b),
+        "RigidPinnedAxle" => rigid_pinned_axle::read(&doc),
         other => Err(refused(other)),
     };
     built.map_err(invalid)?;
@@ -155,9 +162,7 @@ fn refused(template: &str) -> String {
         "LeafspringAxle" | "SAELeafspringAxle" | "ToeBarLeafspringAxle" | "SAEToeBarLeafspringAxle" => {
             "a leaf spring is a beam, not joints and springs: elastokin does not model it"
         }
-        "DeDionAxle" | "ToeBarDeDionAxle" | "PushPipeAxle" | "ToeBarPushPipeAxle" | "RigidPinnedAxle" => {
-            "an axle this importer does not read yet"
-        }
+        "DeDionAxle" | "ToeBarDeDionAxle" => "an axle this importer does not read yet",
         "RigidSuspension" => "it has no suspension motion to analyse",
         _ => "not a template this importer reads",
     };
@@ -739,13 +744,19 @@ impl Builder {
             (doc.optional_number(&key("Minimum Length"))?, doc.optional_number(&key("Maximum Length"))?)
         {
             if min >= max {
-                // Chrono would press both stops at once: past 60 mm each holds its last force, so between
+                // Chrono would press both stops at once: past its table each holds its last force, so between
                 // the two they cancel, and the spring meets a wall where either leaves that plateau.
+                let design = (self.point_of(seats[1])? - self.point_of(seats[0])?).norm();
+                let [.., [reach, most]] = CHRONO_STOP_CURVE;
                 return Err(format!(
-                    "\"{object}\" / \"Minimum Length\" {min} m is not below \"Maximum Length\" {max} m: the bump \
-                     stop (pressed below the minimum) and the rebound stop (pulled above the maximum) would both \
-                     be in contact at every length; swap the two values, or remove them to leave the spring \
-                     without stops"
+                    "\"{object}\" / \"Minimum Length\" {min} m is not below \"Maximum Length\" {max} m: the stops are \
+                     crossed (the bump stop acts below the minimum, the rebound stop above the maximum, so here both \
+                     press at once: in Chrono {most} N each way, cancelling from {:.4} to {:.4} m and stopping the \
+                     spring hard outside that); give Minimum Length below the spring's design length {design:.4} m \
+                     and Maximum Length above it ({max} and {min}, swapped), or remove them to leave the spring \
+                     without stops",
+                    max + reach,
+                    min - reach
                 ));
             }
             let design = (self.point_of(seats[1])? - self.point_of(seats[0])?).norm();
