@@ -620,6 +620,10 @@ pub struct AxleDef {
     /// The steering input, when the corners have no tie rods of their own.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub steering_link: Option<SteeringLinkDef>,
+    /// Names of the axle's bushings that are anti-roll bars' torsion springs (a bar built of its own parts,
+    /// twisting about the bushing's x axis): the roll analysis counts their energy as the bars'.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub anti_roll_bar_springs: Vec<String>,
 }
 
 /// A suspension corner of any topology (see the [module docs](self)).
@@ -1297,6 +1301,22 @@ impl CornerTemplate for GeneralCorner {
         }
         for (k, st) in axle.stops.iter().enumerate() {
             self.add_stop(model, &r, k, st).map_err(under_axle)?;
+        }
+        let mut anti_roll_bars = anti_roll_bars;
+        for (k, name) in axle.anti_roll_bar_springs.iter().enumerate() {
+            let known = axle.bushings.iter().any(|b| &b.name == name);
+            match model.element_id(name).filter(|_| known) {
+                Some(id) => anti_roll_bars.push(id),
+                None => {
+                    return Err(ModelError::OutOfRange {
+                        item: format!("axle.anti_roll_bar_springs[{k}]"),
+                        why: format!(
+                            "there is no axle bushing '{name}': name one of {}",
+                            list(axle.bushings.iter().map(|b| b.name.as_str()))
+                        ),
+                    })
+                }
+            }
         }
         let steering_link = match &axle.steering_link {
             None => None,

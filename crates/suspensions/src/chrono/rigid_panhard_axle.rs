@@ -25,8 +25,8 @@
 //!   joint of each arm's end on the tube (normal z), and the spring as a bushing between the halves whose
 //!   torsion (about the bar's axis) is the bar's rate, its other rates of the same size acting in
 //!   directions the revolute joint between the halves already holds (as `anti_roll_bars` builds its
-//!   torsion element). The roll analysis counts it in the roll stiffness; its figure for the bars alone
-//!   reports none (it reads the `anti_roll_bars`). `Location Chassis` gives the bar's axis (its x and z)
+//!   torsion element), named in the axle's `anti_roll_bar_springs` so that the roll analysis reports the
+//!   bar's roll stiffness and share. `Location Chassis` gives the bar's axis (its x and z)
 //!   and Chrono's placing of the halves; its y places nothing else. `Rotational Damping` is a damping:
 //!   left out.
 //! - `RigidPanhardAxle`: the spindle turns on the tube itself: the wheel's upright is welded to the tube at
@@ -197,6 +197,8 @@ fn anti_roll_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
             None,
         )?;
     }
+    // The roll analysis reports the bar's share of the roll stiffness from this bushing's energy.
+    b.axle().anti_roll_bar_springs.push("anti-roll bar".into());
     b.notes.push(format!(
         "Anti Roll Bar: two halves on revolute joints about the lateral axis, a bushing of torsional rate {rate} \
          N·m/rad between them, each arm's end held on the axle tube's horizontal plane (Chrono's point-plane joint)"
