@@ -720,7 +720,11 @@ fn four_link_axle_travel_and_roll_match_their_loop_closure() {
 fn mistakes_in_an_axle_section_are_named() {
     let text = std::fs::read_to_string(example_path("four_link_axle.json")).unwrap();
     let base: serde_json::Value = serde_json::from_str(&text).unwrap();
-    let cases: [Refusal; 6] = [
+    let cases: [Refusal; 7] = [
+        (
+            |v| v["suspension"]["general"]["axle"]["anti_roll_bar_springs"] = serde_json::json!(["bar"]),
+            &["axle.anti_roll_bar_springs[0]", "no axle bushing 'bar'"],
+        ),
         (
             |v| v["suspension"]["general"]["axle"]["bodies"][0]["name"] = "upright".into(),
             &["axle.bodies[0] (upright)", "a corner's body has this name"],
