@@ -113,7 +113,8 @@ fn every_shipped_chrono_file_runs_or_is_refused_as_the_readme_says() {
             }
         }
     }
-    assert!(ran >= 6 && refused >= 6, "{ran} read, {refused} refused");
+    // Refused for good: RigidSuspension (no motion) and the UAZ's replica (not mirrored).
+    assert!(ran >= 6 && refused >= 2, "{ran} read, {refused} refused");
 }
 
 /// Chrono's generic double wishbone, read, against the double wishbone's loop closure on the file's own
@@ -251,8 +252,9 @@ fn chrono_minimum_and_maximum_lengths_are_stops_that_touch_there() {
     let Template::General(g) = &imported.file.suspension else { panic!("general form") };
     assert_eq!(g.stops.len(), 2);
     assert!((g.stops[0].clearance - 0.02).abs() < 1e-15 && (g.stops[1].clearance - 0.03).abs() < 1e-15);
-    // Chrono's bump and rebound curve, as `SpringForce::enable_stops` (chrono_vehicle/ChSubsysDefs.cpp) adds
-    // its points: travel past contact (m), force (N).
+    // Chrono's bump and rebound curve, as `SpringForce::enable_stops` (chrono/utils/ChForceFunctors.cpp) adds
+    // its points: travel past contact (m), force (N); its table (not extrapolating) holds the last force
+    // beyond, written out as a last, flat interval.
     let chrono_curve = vec![
         [0.0, 0.0],
         [2.0e-3, 200.0],
@@ -265,6 +267,7 @@ fn chrono_minimum_and_maximum_lengths_are_stops_that_touch_there() {
         [40.0e-3, 7500.0],
         [50.0e-3, 12500.0],
         [60.0e-3, 125000.0],
+        [70.0e-3, 125000.0],
     ];
     assert_eq!(g.stops[0].curve, chrono_curve);
     assert_eq!(g.stops[1].curve, chrono_curve);
