@@ -905,8 +905,8 @@ fn expand_prints_a_general_model_that_runs_the_same() {
 }
 
 /// A Project Chrono suspension file: `import chrono` writes the general model (the notes on standard
-/// error), and `run` takes the Chrono file directly, saying so on its first line; an axle is refused by
-/// name.
+/// error), and `run` takes the Chrono file directly, saying so on its first line; a template it does not
+/// read is refused by name, at its key.
 #[test]
 fn a_chrono_file_is_imported_and_run_directly() {
     let file = "tests/data/chrono/DoubleWishbone.json";
@@ -931,10 +931,10 @@ fn a_chrono_file_is_imported_and_run_directly() {
         stdout.lines().next().unwrap().starts_with("read as a Project Chrono DoubleWishbone suspension"),
         "{stdout}"
     );
-    let o = elastokin(&["check", "tests/data/chrono/DeDionAxle.json"]);
+    let o = elastokin(&["check", "tests/data/chrono/RigidSuspension.json"]);
     assert_eq!(o.status.code(), Some(2));
     let e = String::from_utf8(o.stderr).unwrap();
-    assert!(e.contains("DeDionAxle.json:4:3") && e.contains("an axle this importer does not read yet"), "{e}");
+    assert!(e.contains("RigidSuspension.json:4:3") && e.contains("it has no suspension motion to analyse"), "{e}");
 }
 
 /// `batch` on a Project Chrono file: the variants edit Chrono's own keys. On the generic double wishbone,

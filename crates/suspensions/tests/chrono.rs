@@ -252,8 +252,9 @@ fn chrono_minimum_and_maximum_lengths_are_stops_that_touch_there() {
     let Template::General(g) = &imported.file.suspension else { panic!("general form") };
     assert_eq!(g.stops.len(), 2);
     assert!((g.stops[0].clearance - 0.02).abs() < 1e-15 && (g.stops[1].clearance - 0.03).abs() < 1e-15);
-    // Chrono's bump and rebound curve, as `SpringForce::enable_stops` (chrono_vehicle/ChSubsysDefs.cpp) adds
-    // its points: travel past contact (m), force (N).
+    // Chrono's bump and rebound curve, as `SpringForce::enable_stops` (chrono/utils/ChForceFunctors.cpp) adds
+    // its points: travel past contact (m), force (N); its table (not extrapolating) holds the last force
+    // beyond, written out as a last, flat interval.
     let chrono_curve = vec![
         [0.0, 0.0],
         [2.0e-3, 200.0],
@@ -266,9 +267,15 @@ fn chrono_minimum_and_maximum_lengths_are_stops_that_touch_there() {
         [40.0e-3, 7500.0],
         [50.0e-3, 12500.0],
         [60.0e-3, 125000.0],
+        [70.0e-3, 125000.0],
     ];
     assert_eq!(g.stops[0].curve, chrono_curve);
     assert_eq!(g.stops[1].curve, chrono_curve);
+    // Past the table the stop holds 125 kN, as Chrono's does (its slope there zero).
+    let curve = elastokin_elements::Curve::new("stop", chrono_curve.clone()).unwrap();
+    for x in [0.065, 0.08, 0.2] {
+        assert_eq!(curve.value_and_slope(x), (125000.0, 0.0), "{x}");
+    }
     // The bump stop touches once the spring is 20 mm shorter: beyond, the wheel carries more.
     let run = |f: &elastokin_suspensions::SuspensionFile| {
         let corner = f.suspension.build(Side::Left, Rig::WheelTravel).unwrap();

@@ -20,9 +20,8 @@
 //!   and preload `P`. Chrono interpolates the table linearly; elastokin passes a monotone cubic through the
 //!   same points (the same at the points, smoother between). `Minimum Length` and `Maximum Length` add a
 //!   bump and a rebound stop touching at those lengths, with Chrono's built-in curve (from an ADAMS/Car
-//!   example: 200 N at 2 mm to 125 kN at 60 mm). Past 60 mm Chrono holds the stop's force at 125 kN, where
-//!   elastokin continues the last piece of the curve straight: the two differ only past 60 mm of stop travel.
-//!   A `Minimum Length` not below the `Maximum Length` (both stops in contact at every length) is refused.
+//!   example: 200 N at 2 mm to 125 kN at 60 mm, and 125 kN beyond, as Chrono's table holds it). A
+//!   `Minimum Length` not below the `Maximum Length` (both stops in contact at every length) is refused.
 //! - A joint with `Bushing Data` is, in Chrono, a six-way bushing in the joint's frame (z along its axis):
 //!   `Stiffness Linear` along the three axes, `Stiffness Rotational` about the axes the joint holds and the
 //!   `DOF` rates about the ones it leaves free, the moment `M = Kθ` (`ChLoadBodyBodyBushingGeneric`). It
@@ -35,6 +34,7 @@
 //! - Chrono's suspension files give no tyre: the loaded radius is [`crate::corner::default_loaded_radius`]
 //!   unless the caller gives one.
 
+mod de_dion_axle;
 mod double_wishbone;
 mod generic_wheeled;
 mod hendrickson_primaxx;
@@ -74,7 +74,7 @@ pub struct Imported {
 }
 
 /// The Chrono templates [`import`] reads.
-pub const SUPPORTED: [&str; 16] = [
+pub const SUPPORTED: [&str; 18] = [
     "DoubleWishbone",
     "DoubleWishboneReduced",
     "MacPhersonStrut",
@@ -91,6 +91,8 @@ pub const SUPPORTED: [&str; 16] = [
     "HendricksonPRIMAXX",
     "PushPipeAxle",
     "ToeBarPushPipeAxle",
+    "DeDionAxle",
+    "ToeBarDeDionAxle",
 ];
 
 /// Whether `text` is a Chrono suspension file: a JSON object (with `//` comments allowed) whose `"Type"` is
@@ -141,6 +143,8 @@ pub fn import(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Im
         "PushPipeAxle" => push_pipe_axle::read_push_pipe(&doc, &mut b),
         "ToeBarPushPipeAxle" => push_pipe_axle::read_toe_bar(&doc, &mut b),
         "RigidPinnedAxle" => rigid_pinned_axle::read(&doc),
+        "DeDionAxle" => de_dion_axle::read_de_dion(&doc, &mut b),
+        "ToeBarDeDionAxle" => de_dion_axle::read_toe_bar(&doc, &mut b),
         other => Err(refused(other)),
     };
     built.map_err(invalid)?;
@@ -162,7 +166,6 @@ fn refused(template: &str) -> String {
         "LeafspringAxle" | "SAELeafspringAxle" | "ToeBarLeafspringAxle" | "SAEToeBarLeafspringAxle" => {
             "a leaf spring is a beam, not joints and springs: elastokin does not model it"
         }
-        "DeDionAxle" | "ToeBarDeDionAxle" => "an axle this importer does not read yet",
         "RigidSuspension" => "it has no suspension motion to analyse",
         _ => "not a template this importer reads",
     };
@@ -939,8 +942,13 @@ impl Builder {
 }
 
 /// Chrono's built-in stop curve (`SpringForce::enable_stops`, from an ADAMS/Car example): force (N)
-/// against travel past contact (m).
-pub const CHRONO_STOP_CURVE: [[f64; 2]; 11] = [
+/// against travel past contact (m). Chrono's table (`ChFunctionInterp`, not extrapolating) holds its last
+/// force past 60 mm; elastokin's curve continues straight with its end slope, so that flat end is written
+/// out as a last point at 70 mm (the cubic then arrives level at 60 mm, where Chrono's straight pieces
+/// turn sharply: between 50 and 60 mm the two differ by up to 13 kN, as they did without that point, now
+/// mostly above Chrono's). It matters where a stop is driven past 60 mm: Chrono's `DeDionAxle` file has
+/// both stops 80 mm in contact at design, where they cancel.
+pub const CHRONO_STOP_CURVE: [[f64; 2]; 12] = [
     [0.0, 0.0],
     [2.0e-3, 200.0],
     [4.0e-3, 400.0],
@@ -952,6 +960,7 @@ pub const CHRONO_STOP_CURVE: [[f64; 2]; 11] = [
     [40.0e-3, 7500.0],
     [50.0e-3, 12500.0],
     [60.0e-3, 125000.0],
+    [70.0e-3, 125000.0],
 ];
 
 /// Chrono's frame of a revolute joint between an arm and the chassis, from the arm's front and back pivots

@@ -36,7 +36,7 @@ use elastokin_core::{JointKind, Vec3};
 pub(super) const AXLE_TUBE: &str = "axle tube";
 
 /// The axle tube (`Axle Tube / COM`), read onto the axle.
-fn axle_tube(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn axle_tube(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     b.on_axle(true);
     let at = b.hardpoint(doc, "axle_tube", "Axle Tube/COM")?;
     b.body(AXLE_TUBE, &at);
@@ -47,7 +47,7 @@ fn axle_tube(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 
 /// The knuckle (the upright) on its kingpin to the tube, and the kingpin as the steering axis; returns
 /// nothing but the hardpoints `knuckle_lower` and `knuckle_upper`.
-fn knuckle(doc: &Doc, b: &mut Builder, extra: &[&str]) -> Result<(), String> {
+pub(super) fn knuckle(doc: &Doc, b: &mut Builder, extra: &[&str]) -> Result<(), String> {
     let lower = b.hardpoint(doc, "knuckle_lower", "Knuckle/Location Lower")?;
     let upper = b.hardpoint(doc, "knuckle_upper", "Knuckle/Location Upper")?;
     let mut dynamics = vec!["Mass", "COM", "Inertia", "Radius"];
