@@ -43,6 +43,7 @@ mod multi_link;
 mod push_pipe_axle;
 mod rigid_panhard_axle;
 mod rigid_pinned_axle;
+mod sae_leaf_spring_axle;
 mod semi_trailing_arm;
 mod single_wishbone;
 mod solid_axle;
@@ -74,7 +75,7 @@ pub struct Imported {
 }
 
 /// The Chrono templates [`import`] reads.
-pub const SUPPORTED: [&str; 18] = [
+pub const SUPPORTED: [&str; 20] = [
     "DoubleWishbone",
     "DoubleWishboneReduced",
     "MacPhersonStrut",
@@ -93,6 +94,8 @@ pub const SUPPORTED: [&str; 18] = [
     "ToeBarPushPipeAxle",
     "DeDionAxle",
     "ToeBarDeDionAxle",
+    "SAELeafspringAxle",
+    "SAEToeBarLeafspringAxle",
 ];
 
 /// Whether `text` is a Chrono suspension file: a JSON object (with `//` comments allowed) whose `"Type"` is
@@ -145,6 +148,8 @@ pub fn import(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Im
         "RigidPinnedAxle" => rigid_pinned_axle::read(&doc),
         "DeDionAxle" => de_dion_axle::read_de_dion(&doc, &mut b),
         "ToeBarDeDionAxle" => de_dion_axle::read_toe_bar(&doc, &mut b),
+        "SAELeafspringAxle" => sae_leaf_spring_axle::read_sae(&doc, &mut b),
+        "SAEToeBarLeafspringAxle" => sae_leaf_spring_axle::read_toe_bar(&doc, &mut b),
         other => Err(refused(other)),
     };
     built.map_err(invalid)?;
@@ -163,7 +168,7 @@ pub fn import(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Im
 /// Why a Chrono template is not read.
 fn refused(template: &str) -> String {
     let why = match template {
-        "LeafspringAxle" | "SAELeafspringAxle" | "ToeBarLeafspringAxle" | "SAEToeBarLeafspringAxle" => {
+        "LeafspringAxle" | "ToeBarLeafspringAxle" => {
             "a leaf spring is a beam, not joints and springs: elastokin does not model it"
         }
         "RigidSuspension" => "it has no suspension motion to analyse",
