@@ -37,6 +37,7 @@
 
 mod double_wishbone;
 mod generic_wheeled;
+mod leaf_spring_axle;
 mod macpherson;
 mod multi_link;
 mod semi_trailing_arm;
@@ -70,7 +71,7 @@ pub struct Imported {
 }
 
 /// The Chrono templates [`import`] reads.
-pub const SUPPORTED: [&str; 11] = [
+pub const SUPPORTED: [&str; 13] = [
     "DoubleWishbone",
     "DoubleWishboneReduced",
     "MacPhersonStrut",
@@ -82,6 +83,8 @@ pub const SUPPORTED: [&str; 11] = [
     "SolidAxle",
     "SolidThreeLinkAxle",
     "SolidBellcrankThreeLinkAxle",
+    "LeafspringAxle",
+    "ToeBarLeafspringAxle",
 ];
 
 /// Whether `text` is a Chrono suspension file: a JSON object (with `//` comments allowed) whose `"Type"` is
@@ -126,6 +129,8 @@ pub fn import(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Im
         "SolidAxle" => solid_axle::read_solid_axle(&doc, &mut b),
         "SolidThreeLinkAxle" => solid_axle::read_three_link(&doc, &mut b),
         "SolidBellcrankThreeLinkAxle" => solid_axle::read_bellcrank_three_link(&doc, &mut b),
+        "LeafspringAxle" => leaf_spring_axle::read_leaf_spring_axle(&doc, &mut b),
+        "ToeBarLeafspringAxle" => leaf_spring_axle::read_toe_bar_leaf_spring_axle(&doc, &mut b),
         other => Err(refused(other)),
     };
     built.map_err(invalid)?;
@@ -144,7 +149,7 @@ pub fn import(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Im
 /// Why a Chrono template is not read.
 fn refused(template: &str) -> String {
     let why = match template {
-        "LeafspringAxle" | "SAELeafspringAxle" | "ToeBarLeafspringAxle" | "SAEToeBarLeafspringAxle" => {
+        "SAELeafspringAxle" | "SAEToeBarLeafspringAxle" => {
             "a leaf spring is a beam, not joints and springs: elastokin does not model it"
         }
         "DeDionAxle"
