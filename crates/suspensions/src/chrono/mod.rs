@@ -38,6 +38,7 @@ mod de_dion_axle;
 mod double_wishbone;
 mod generic_wheeled;
 mod hendrickson_primaxx;
+mod leaf_spring_axle;
 mod macpherson;
 mod multi_link;
 mod push_pipe_axle;
@@ -75,7 +76,7 @@ pub struct Imported {
 }
 
 /// The Chrono templates [`import`] reads.
-pub const SUPPORTED: [&str; 20] = [
+pub const SUPPORTED: [&str; 22] = [
     "DoubleWishbone",
     "DoubleWishboneReduced",
     "MacPhersonStrut",
@@ -96,6 +97,8 @@ pub const SUPPORTED: [&str; 20] = [
     "ToeBarDeDionAxle",
     "SAELeafspringAxle",
     "SAEToeBarLeafspringAxle",
+    "LeafspringAxle",
+    "ToeBarLeafspringAxle",
 ];
 
 /// Whether `text` is a Chrono suspension file: a JSON object (with `//` comments allowed) whose `"Type"` is
@@ -150,6 +153,8 @@ pub fn import(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Im
         "ToeBarDeDionAxle" => de_dion_axle::read_toe_bar(&doc, &mut b),
         "SAELeafspringAxle" => sae_leaf_spring_axle::read_sae(&doc, &mut b),
         "SAEToeBarLeafspringAxle" => sae_leaf_spring_axle::read_toe_bar(&doc, &mut b),
+        "LeafspringAxle" => leaf_spring_axle::read_leaf_spring_axle(&doc, &mut b),
+        "ToeBarLeafspringAxle" => leaf_spring_axle::read_toe_bar_leaf_spring_axle(&doc, &mut b),
         other => Err(refused(other)),
     };
     built.map_err(invalid)?;
@@ -168,9 +173,6 @@ pub fn import(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Im
 /// Why a Chrono template is not read.
 fn refused(template: &str) -> String {
     let why = match template {
-        "LeafspringAxle" | "ToeBarLeafspringAxle" => {
-            "a leaf spring is a beam, not joints and springs: elastokin does not model it"
-        }
         "RigidSuspension" => "it has no suspension motion to analyse",
         _ => "not a template this importer reads",
     };

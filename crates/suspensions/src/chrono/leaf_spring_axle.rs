@@ -1,0 +1,169 @@
+//! Chrono's leaf-spring axles: `LeafspringAxle` (`ChLeafspringAxle`) and `ToeBarLeafspringAxle`
+//! (`ChToeBarLeafspringAxle`). Chrono does not model the leaf as a beam in these templates: the axle tube
+//! rides on a guide to the chassis and is carried by a coil spring on each side, so they read into joints
+//! and springs. One tube carries both wheels: the model gets an `axle` ([`crate::general::AxleDef`]) with
+//! the tube, its guide and what Chrono builds once across, and each corner's own parts (its knuckle, its
+//! spring) as the left corner, mirrored.
+//!
+//! - The guide (`ChLinkLockRevolutePrismatic` between the chassis and the tube, at `Axle Tube / COM`, its
+//!   frame the chassis's turned a quarter about y: x down, z forward) locks the link coordinates y, z and the
+//!   rotations about x and y: the tube slides along the frame's x and turns about its z. Chrono measures
+//!   the offset of the chassis's marker from the tube's in the tube's marker frame (`ChLinkMarkers`), so the
+//!   chassis's point stays on the tube's vertical line through that point, which turns with the tube: an
+//!   `in_line` joint whose line is the tube's (`[chassis, axle tube]`, the point on the first body, the line
+//!   on the second), and a `parallel_axes` joint keeping the tube's forward axis along the chassis's. The
+//!   tube then travels and rolls; it does not pitch, yaw, or move sideways or fore and aft.
+//! - `LeafspringAxle`: the spindle turns on the tube itself (a revolute joint), so the wheel's upright is
+//!   welded to the tube at the wheel centre and nothing steers it; the steering axis is the wheel's
+//!   vertical. Chrono joins the spring to a subchassis beam when the vehicle has one; in a suspension file
+//!   alone it is the chassis.
+//! - `ToeBarLeafspringAxle`: a knuckle on a kingpin (revolute, from `Location Upper` to `Location Lower`,
+//!   Chrono's frame: w down the kingpin, u normal to the plane of the kingpin and the spindle) at each end
+//!   of the tube; the toe bar (`Tierod`) across from knuckle to knuckle, a body on a ball joint on the left
+//!   and a universal joint on the right (which only stops the rod spinning on its own axis): the distance
+//!   between its two ends; the drag link from the steering link (`Draglink / Location Chassis`, as given) to
+//!   the knuckle's arm (`Knuckle / Location Draglink`, as given: the left knuckle's when its y is not
+//!   negative, else the right one's), a body on a ball joint at the steering end and a universal joint at
+//!   the knuckle: the axle's steering input, driven along its own line (a pitman arm's end moves across
+//!   its arm). The steering axis is the kingpin. Chrono reads the knuckle's centre of mass as a point and
+//!   places the knuckle's body there; statics has no use for it.
+//!
+//! Springs (and stops from `Minimum Length` / `Maximum Length`) run from the chassis to the tube on each
+//! side; the shocks are dampers, left out.
+
+use super::solid_axle::AXLE_TUBE;
+use super::{midpoint, Builder, Doc, CHASSIS};
+use crate::general::{Axis, JointDef, Place, SteeringLinkDef};
+use elastokin_core::{JointKind, Vec3};
+
+/// The axle tube (`Axle Tube / COM`) on Chrono's guide to the chassis, read onto the axle.
+fn axle_tube_on_guide(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+    b.on_axle(true);
+    let at = b.hardpoint(doc, "axle_tube", "Axle Tube/COM")?;
+    b.body(AXLE_TUBE, &at);
+    doc.dynamics("Axle Tube", &["Mass", "Inertia", "Radius"], &mut b.notes);
+    // The guide's frame: x along the chassis's −z (its slide), z along the chassis's x (its turn).
+    let (slide, turn) = (-Vec3::z(), Vec3::x());
+    b.joint(doc, "axle guide", JointKind::InLine, [CHASSIS, AXLE_TUBE], Place::named(&at), Some((slide, turn)), None)?;
+    b.axle().joints.push(JointDef {
+        name: "axle guide roll axis".into(),
+        kind: JointKind::ParallelAxes,
+        bodies: [CHASSIS.into(), AXLE_TUBE.into()],
+        at: None,
+        to: None,
+        axis: Some(Axis::Vector(turn)),
+        axis_j: None,
+    });
+    b.notes.push(
+        "Axle Tube: on Chrono's revolute-prismatic guide to the chassis, an in-line joint (the tube slides along \
+         its vertical through its COM) and a parallel-axes joint (it turns only about the forward axis)"
+            .into(),
+    );
+    b.on_axle(false);
+    Ok(())
+}
+
+/// The knuckle (the upright) on its kingpin to the tube, and the kingpin as the steering axis.
+fn knuckle(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+    let lower = b.hardpoint(doc, "knuckle_lower", "Knuckle/Location Lower")?;
+    let upper = b.hardpoint(doc, "knuckle_upper", "Knuckle/Location Upper")?;
+    doc.dynamics("Knuckle", &["Mass", "COM", "Inertia", "Radius"], &mut b.notes);
+    let (l, u, s) = (b.point_of(&lower)?, b.point_of(&upper)?, b.point_of("wheel_centre")?);
+    let w = l - u;
+    if w.norm() < 1e-6 {
+        return Err("\"Knuckle\" / \"Location Lower\" and \"Location Upper\" coincide: they are the kingpin's two \
+                    ends; give two distinct points"
+            .into());
+    }
+    // Chrono's frame: w down the kingpin, u normal to the plane of the kingpin and the spindle (any normal
+    // to the kingpin when the spindle is on it: a revolute joint turns about w alone).
+    let u_axis = (u - s).cross(&(l - s));
+    let u_axis = if u_axis.norm() > 1e-9 {
+        u_axis.normalize()
+    } else {
+        elastokin_core::joint::orthonormal_complement(&w.normalize()).0
+    };
+    let at = midpoint(b, &upper, &lower)?;
+    b.joint(doc, "kingpin", JointKind::Revolute, [AXLE_TUBE, "upright"], at, Some((u_axis, w.normalize())), None)?;
+    b.steering_axis(("upright", &lower), ("upright", &upper));
+    Ok(())
+}
+
+/// The toe bar across, from the left knuckle's `Tierod / Location Knuckle` to the right's.
+fn toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+    let end = b.hardpoint(doc, "tie_rod_knuckle", "Tierod/Location Knuckle")?;
+    doc.dynamics("Tierod", &["Mass", "Inertia", "Radius"], &mut b.notes);
+    let p = b.point_of(&end)?;
+    if p.y.abs() < 1e-6 {
+        return Err(format!(
+            "\"Tierod\" / \"Location Knuckle\" [{:?}, {:?}, {:?}] is on the centre line: the toe bar runs from \
+             the left knuckle's point to its mirror image on the right; give the left knuckle's point (y > 0)",
+            p.x, p.y, p.z
+        ));
+    }
+    b.on_axle(true);
+    b.link("tie rod", ["left upright", "right upright"], &format!("left {end}"), &format!("right {end}"));
+    b.on_axle(false);
+    Ok(())
+}
+
+/// The drag link from `Draglink / Location Chassis` on the steering link to `Knuckle / Location Draglink`
+/// on the knuckle it steers (the left one unless that point's y is negative), both as given: the axle's
+/// steering input, moved along its own line.
+fn drag_link(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+    b.on_axle(true);
+    let inner = b.hardpoint(doc, "drag_link_steering", "Draglink/Location Chassis")?;
+    let outer = b.hardpoint(doc, "drag_link_knuckle", "Knuckle/Location Draglink")?;
+    doc.dynamics("Draglink", &["Mass", "Inertia", "Radius"], &mut b.notes);
+    let (p, q) = (b.point_of(&inner)?, b.point_of(&outer)?);
+    let along = q - p;
+    if along.norm() < 1e-6 {
+        return Err("\"Draglink\" / \"Location Chassis\" and \"Knuckle\" / \"Location Draglink\" coincide: they are \
+                    the drag link's two ends; give two distinct points"
+            .into());
+    }
+    // Chrono: a negative y puts the drag link on the right knuckle, at the point as given.
+    let side = if q.y < 0.0 { "right" } else { "left" };
+    let axis = along.normalize();
+    b.axle().steering_link = Some(SteeringLinkDef {
+        body: format!("{side} upright"),
+        inner: Place::named(&inner),
+        outer: Place::named(&outer),
+        connection: crate::Connection::Ideal.into(),
+        rack_axis: [axis.x, axis.y, axis.z],
+    });
+    b.notes.push(format!(
+        "Draglink: the steering input, on the {side} knuckle; the steering analysis moves its steering end along \
+         the drag link"
+    ));
+    b.on_axle(false);
+    Ok(())
+}
+
+/// `LeafspringAxle`.
+pub(super) fn read_leaf_spring_axle(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+    b.wheel(doc)?;
+    axle_tube_on_guide(doc, b)?;
+    // The spindle turns on the tube: the upright is the tube's end.
+    b.joint(
+        doc,
+        "spindle housing",
+        JointKind::Fixed,
+        [AXLE_TUBE, "upright"],
+        Place::named("wheel_centre"),
+        None,
+        None,
+    )?;
+    b.wheel_vertical_steering_axis()?;
+    b.spring_and_shock(doc, AXLE_TUBE, "Axle")
+}
+
+/// `ToeBarLeafspringAxle`.
+pub(super) fn read_toe_bar_leaf_spring_axle(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+    b.wheel(doc)?;
+    axle_tube_on_guide(doc, b)?;
+    knuckle(doc, b)?;
+    toe_bar(doc, b)?;
+    drag_link(doc, b)?;
+    b.spring_and_shock(doc, AXLE_TUBE, "Axle")
+}
