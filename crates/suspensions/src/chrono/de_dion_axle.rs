@@ -31,9 +31,9 @@
 //! Chrono reads `Axle Tube / Location Stabilizer` not at all (it puts the anti-roll bar's connector at the
 //! origin, and the bar is another subsystem's file): it is listed in the notes as left out.
 
-use super::solid_axle::{axle_tube, knuckle, AXLE_TUBE};
+use super::solid_axle::{axle_tube, knuckle, knuckle_drag_link, toe_bar, AXLE_TUBE};
 use super::{Builder, Doc, CHASSIS};
-use crate::general::{Place, SteeringLinkDef};
+use crate::general::Place;
 use elastokin_core::{JointKind, Vec3};
 
 /// Where the Watt centre link turns on the tube.
@@ -144,47 +144,7 @@ pub(super) fn read_toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     knuckle(doc, b, &[])?;
     guides(doc, b, WattPivot::Midpoint)?;
 
-    // The toe bar across, knuckle to knuckle.
-    let rod = b.hardpoint(doc, "tie_rod_knuckle", "Tierod/Location Knuckle")?;
-    doc.dynamics("Tierod", &["Mass", "Inertia", "Radius"], &mut b.notes);
-    b.on_axle(true);
-    let (left, right) = (format!("left {rod}"), format!("right {rod}"));
-    if (b.point_of(&left)? - b.point_of(&right)?).norm() < 1e-6 {
-        return Err(
-            "\"Tierod\" / \"Location Knuckle\" is on the centre plane: the toe bar would have no length; give \
-                    the left knuckle's point"
-                .into(),
-        );
-    }
-    b.link("tie rod", ["left upright", "right upright"], &left, &right);
-
-    // The drag link from the steering arm to one knuckle: Chrono's sign of y picks the knuckle.
-    let inner = b.hardpoint(doc, "drag_link_steering", "Draglink/Location Chassis")?;
-    let outer = b.hardpoint(doc, "drag_link_knuckle", "Knuckle/Location Draglink")?;
-    doc.dynamics("Draglink", &["Mass", "Inertia", "Radius"], &mut b.notes);
-    let (p, q) = (b.point_of(&inner)?, b.point_of(&outer)?);
-    let side = if q.y < 0.0 { "right" } else { "left" };
-    let along = q - p;
-    if along.norm() < 1e-6 {
-        return Err(
-            "\"Draglink\" / \"Location Chassis\" and \"Knuckle\" / \"Location Draglink\" coincide: they are the \
-                    drag link's two ends; give two distinct points"
-                .into(),
-        );
-    }
-    let axis = along.normalize();
-    b.axle().steering_link = Some(SteeringLinkDef {
-        body: format!("{side} upright"),
-        inner: Place::named(&inner),
-        outer: Place::named(&outer),
-        connection: crate::Connection::Ideal.into(),
-        rack_axis: [axis.x, axis.y, axis.z],
-    });
-    b.notes.push(format!(
-        "Draglink: to the {side} knuckle (Knuckle / Location Draglink's y {}), the steering input; the steering \
-         analysis moves its steering-arm end along the drag link",
-        if q.y < 0.0 { "negative" } else { "not negative" }
-    ));
-    b.on_axle(false);
+    toe_bar(doc, b)?;
+    knuckle_drag_link(doc, b)?;
     b.spring_and_shock(doc, AXLE_TUBE, "Axle")
 }

@@ -31,9 +31,9 @@
 //! Springs (and stops from `Minimum Length` / `Maximum Length`) run from the chassis to the tube on each
 //! side; the shocks are dampers, left out.
 
-use super::solid_axle::AXLE_TUBE;
-use super::{midpoint, Builder, Doc, CHASSIS};
-use crate::general::{Axis, JointDef, Place, SteeringLinkDef};
+use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, AXLE_TUBE};
+use super::{Builder, Doc, CHASSIS};
+use crate::general::{Axis, JointDef, Place};
 use elastokin_core::{JointKind, Vec3};
 
 /// The axle tube (`Axle Tube / COM`) on Chrono's guide to the chassis, read onto the axle.
@@ -63,83 +63,6 @@ fn axle_tube_on_guide(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     Ok(())
 }
 
-/// The knuckle (the upright) on its kingpin to the tube, and the kingpin as the steering axis.
-fn knuckle(doc: &Doc, b: &mut Builder) -> Result<(), String> {
-    let lower = b.hardpoint(doc, "knuckle_lower", "Knuckle/Location Lower")?;
-    let upper = b.hardpoint(doc, "knuckle_upper", "Knuckle/Location Upper")?;
-    doc.dynamics("Knuckle", &["Mass", "COM", "Inertia", "Radius"], &mut b.notes);
-    let (l, u, s) = (b.point_of(&lower)?, b.point_of(&upper)?, b.point_of("wheel_centre")?);
-    let w = l - u;
-    if w.norm() < 1e-6 {
-        return Err("\"Knuckle\" / \"Location Lower\" and \"Location Upper\" coincide: they are the kingpin's two \
-                    ends; give two distinct points"
-            .into());
-    }
-    // Chrono's frame: w down the kingpin, u normal to the plane of the kingpin and the spindle (any normal
-    // to the kingpin when the spindle is on it: a revolute joint turns about w alone).
-    let u_axis = (u - s).cross(&(l - s));
-    let u_axis = if u_axis.norm() > 1e-9 {
-        u_axis.normalize()
-    } else {
-        elastokin_core::joint::orthonormal_complement(&w.normalize()).0
-    };
-    let at = midpoint(b, &upper, &lower)?;
-    b.joint(doc, "kingpin", JointKind::Revolute, [AXLE_TUBE, "upright"], at, Some((u_axis, w.normalize())), None)?;
-    b.steering_axis(("upright", &lower), ("upright", &upper));
-    Ok(())
-}
-
-/// The toe bar across, from the left knuckle's `Tierod / Location Knuckle` to the right's.
-fn toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
-    let end = b.hardpoint(doc, "tie_rod_knuckle", "Tierod/Location Knuckle")?;
-    doc.dynamics("Tierod", &["Mass", "Inertia", "Radius"], &mut b.notes);
-    let p = b.point_of(&end)?;
-    if p.y.abs() < 1e-6 {
-        return Err(format!(
-            "\"Tierod\" / \"Location Knuckle\" [{:?}, {:?}, {:?}] is on the centre line: the toe bar runs from \
-             the left knuckle's point to its mirror image on the right; give the left knuckle's point (y > 0)",
-            p.x, p.y, p.z
-        ));
-    }
-    b.on_axle(true);
-    b.link("tie rod", ["left upright", "right upright"], &format!("left {end}"), &format!("right {end}"));
-    b.on_axle(false);
-    Ok(())
-}
-
-/// The drag link from `Draglink / Location Chassis` on the steering link to `Knuckle / Location Draglink`
-/// on the knuckle it steers (the left one unless that point's y is negative), both as given: the axle's
-/// steering input, moved along its own line.
-fn drag_link(doc: &Doc, b: &mut Builder) -> Result<(), String> {
-    b.on_axle(true);
-    let inner = b.hardpoint(doc, "drag_link_steering", "Draglink/Location Chassis")?;
-    let outer = b.hardpoint(doc, "drag_link_knuckle", "Knuckle/Location Draglink")?;
-    doc.dynamics("Draglink", &["Mass", "Inertia", "Radius"], &mut b.notes);
-    let (p, q) = (b.point_of(&inner)?, b.point_of(&outer)?);
-    let along = q - p;
-    if along.norm() < 1e-6 {
-        return Err("\"Draglink\" / \"Location Chassis\" and \"Knuckle\" / \"Location Draglink\" coincide: they are \
-                    the drag link's two ends; give two distinct points"
-            .into());
-    }
-    // Chrono: a negative y puts the drag link on the right knuckle, at the point as given.
-    let side = if q.y < 0.0 { "right" } else { "left" };
-    let axis = along.normalize();
-    b.axle().steering_link = Some(SteeringLinkDef {
-        body: format!("{side} upright"),
-        inner: Place::named(&inner),
-        outer: Place::named(&outer),
-        connection: crate::Connection::Ideal.into(),
-        rack_axis: [axis.x, axis.y, axis.z],
-    });
-    b.notes.push(format!(
-        "Draglink: the steering input, on the {side} knuckle; the steering analysis moves its steering end along \
-         the drag link"
-    ));
-    b.on_axle(false);
-    Ok(())
-}
-
 /// `LeafspringAxle`.
 pub(super) fn read_leaf_spring_axle(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     b.wheel(doc)?;
@@ -162,8 +85,8 @@ pub(super) fn read_leaf_spring_axle(doc: &Doc, b: &mut Builder) -> Result<(), St
 pub(super) fn read_toe_bar_leaf_spring_axle(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     b.wheel(doc)?;
     axle_tube_on_guide(doc, b)?;
-    knuckle(doc, b)?;
+    knuckle(doc, b, &[])?;
     toe_bar(doc, b)?;
-    drag_link(doc, b)?;
+    knuckle_drag_link(doc, b)?;
     b.spring_and_shock(doc, AXLE_TUBE, "Axle")
 }

@@ -38,10 +38,10 @@
 //! (Read as Chrono builds it, the vertical-force sweep could not even start: from design, its first Newton
 //! iterate at half the design load lands 11 mm into a stop that has flattened from 11 MN/m to 0.5 MN/m.)
 
-use super::solid_axle::AXLE_TUBE;
-use super::{midpoint, Builder, Doc, CHASSIS};
-use crate::general::{Place, SteeringLinkDef};
-use elastokin_core::{JointKind, Vec3};
+use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, AXLE_TUBE};
+use super::{Builder, Doc, CHASSIS};
+use crate::general::Place;
+use elastokin_core::JointKind;
 
 /// The axle tube (`Axle Tube / COM`) on its push pipe's ball joint to the chassis, and the Panhard rod:
 /// read onto the axle.
@@ -89,75 +89,12 @@ pub(super) fn read_push_pipe(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     spring_and_shock(doc, b)
 }
 
-/// The knuckle (the upright) on its kingpin to the tube, in Chrono's frame (w down the kingpin, u normal to
-/// the plane of the kingpin and the wheel centre), and the kingpin as the steering axis.
-fn knuckle(doc: &Doc, b: &mut Builder) -> Result<(), String> {
-    let lower = b.hardpoint(doc, "knuckle_lower", "Knuckle/Location Lower")?;
-    let upper = b.hardpoint(doc, "knuckle_upper", "Knuckle/Location Upper")?;
-    doc.dynamics("Knuckle", &["Mass", "COM", "Inertia", "Radius"], &mut b.notes);
-    let (l, u, s) = (b.point_of(&lower)?, b.point_of(&upper)?, b.point_of("wheel_centre")?);
-    let w = l - u;
-    if w.norm() < 1e-6 {
-        return Err("\"Knuckle\" / \"Location Lower\" and \"Location Upper\" coincide: they are the kingpin's two \
-                    ends; give two distinct points"
-            .into());
-    }
-    let u_axis = (u - s).cross(&(l - s));
-    // With the wheel centre on the kingpin Chrono's u is undefined; any normal to the kingpin serves, as a
-    // revolute joint uses only w.
-    let u_axis = if u_axis.norm() > 1e-9 {
-        u_axis.normalize()
-    } else {
-        elastokin_core::joint::orthonormal_complement(&w.normalize()).0
-    };
-    let at = midpoint(b, &upper, &lower)?;
-    b.joint(doc, "kingpin", JointKind::Revolute, [AXLE_TUBE, "upright"], at, Some((u_axis, w.normalize())), None)?;
-    b.steering_axis(("upright", &lower), ("upright", &upper));
-    Ok(())
-}
-
 /// `ToeBarPushPipeAxle`.
 pub(super) fn read_toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     b.wheel(doc)?;
     tube_push_pipe_and_panhard_rod(doc, b)?;
-    knuckle(doc, b)?;
-    let knuckle_tie_rod = b.hardpoint(doc, "tie_rod_knuckle", "Tierod/Location Knuckle")?;
-    if b.point_of(&knuckle_tie_rod)?.y.abs() < 1e-6 {
-        let why = "\"Tierod\" / \"Location Knuckle\" is on the centre plane (y = 0): the toe bar runs from the \
-                   left knuckle's point to its mirror image; give the left knuckle's point";
-        return Err(why.into());
-    }
-    doc.dynamics("Tierod", &["Mass", "Inertia", "Radius"], &mut b.notes);
-    b.on_axle(true);
-    b.link(
-        "toe bar",
-        ["left upright", "right upright"],
-        &format!("left {knuckle_tie_rod}"),
-        &format!("right {knuckle_tie_rod}"),
-    );
-    // The drag link's knuckle end, as Chrono places it: on the left knuckle for y ≥ 0, else the right's.
-    let on_knuckle = b.hardpoint(doc, "drag_link_knuckle", "Knuckle/Location Draglink")?;
-    let knuckle = if b.point_of(&on_knuckle)?.y < 0.0 { "right upright" } else { "left upright" };
-    let at_box = b.hardpoint(doc, "drag_link_steering", "Draglink/Location Chassis")?;
-    doc.dynamics("Draglink", &["Mass", "Inertia", "Radius"], &mut b.notes);
-    let along: Vec3 = b.point_of(&on_knuckle)? - b.point_of(&at_box)?;
-    if along.norm() < 1e-6 {
-        return Err("\"Draglink\" / \"Location Chassis\" and \"Knuckle\" / \"Location Draglink\" coincide: they are \
-                    the drag link's two ends; give two distinct points"
-            .into());
-    }
-    let axis = along.normalize();
-    b.axle().steering_link = Some(SteeringLinkDef {
-        body: knuckle.into(),
-        inner: Place::named(&at_box),
-        outer: Place::named(&on_knuckle),
-        connection: crate::Connection::Ideal.into(),
-        rack_axis: [axis.x, axis.y, axis.z],
-    });
-    b.notes.push(format!(
-        "Draglink: the steering input, on the {}; the steering analysis moves its steering-box end along the drag link",
-        knuckle.replace("upright", "knuckle")
-    ));
-    b.on_axle(false);
+    knuckle(doc, b, &[])?;
+    toe_bar(doc, b)?;
+    knuckle_drag_link(doc, b)?;
     spring_and_shock(doc, b)
 }

@@ -46,10 +46,10 @@
 //! (Chrono hangs `RigidPanhardAxle`'s on a subchassis when the vehicle has one; a suspension alone has the
 //! chassis); the shocks are dampers.
 
-use super::solid_axle::AXLE_TUBE;
-use super::{midpoint, Builder, Doc, CHASSIS};
+use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, AXLE_TUBE};
+use super::{Builder, Doc, CHASSIS};
 use crate::corner::{ROTATIONAL_RATE_RANGE, TRANSLATIONAL_RATE_RANGE};
-use crate::general::{Axis, BushingDef, JointDef, Place, SteeringLinkDef};
+use crate::general::{Axis, BushingDef, JointDef, Place};
 use crate::hardpoint::Side;
 use elastokin_core::{JointKind, Vec3};
 use elastokin_elements::RotationLaw;
@@ -207,75 +207,6 @@ fn anti_roll_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     Ok(())
 }
 
-/// The knuckle (the upright) on its kingpin to the tube, and the kingpin as the steering axis.
-fn knuckle(doc: &Doc, b: &mut Builder) -> Result<(), String> {
-    let lower = b.hardpoint(doc, "knuckle_lower", "Knuckle/Location Lower")?;
-    let upper = b.hardpoint(doc, "knuckle_upper", "Knuckle/Location Upper")?;
-    // Chrono places the knuckle's body at its centre of mass; statics has no use for it.
-    doc.dynamics("Knuckle", &["Mass", "COM", "Inertia", "Radius"], &mut b.notes);
-    let (l, u, s) = (b.point_of(&lower)?, b.point_of(&upper)?, b.point_of("wheel_centre")?);
-    let w = l - u;
-    if w.norm() < 1e-6 {
-        return Err("\"Knuckle\" / \"Location Lower\" and \"Location Upper\" coincide: they are the kingpin's two \
-                    ends; give two distinct points"
-            .into());
-    }
-    // Chrono's frame: w down the kingpin, u normal to the plane of the kingpin and the spindle.
-    let u_axis = (u - s).cross(&(l - s));
-    let u_axis = if u_axis.norm() > 1e-9 {
-        u_axis.normalize()
-    } else {
-        elastokin_core::joint::orthonormal_complement(&w.normalize()).0
-    };
-    let at = midpoint(b, &upper, &lower)?;
-    b.joint(doc, "kingpin", JointKind::Revolute, [AXLE_TUBE, "upright"], at, Some((u_axis, w.normalize())), None)?;
-    b.steering_axis(("upright", &lower), ("upright", &upper));
-    Ok(())
-}
-
-/// The toe bar across from knuckle to knuckle, and the drag link from the steering box to the knuckle that
-/// `Knuckle / Location Draglink` names by the sign of its y.
-fn toe_bar_and_drag_link(doc: &Doc, b: &mut Builder) -> Result<(), String> {
-    let knuckle_tie_rod = b.hardpoint(doc, "tie_rod_knuckle", "Tierod/Location Knuckle")?;
-    doc.dynamics("Tierod", &["Mass", "Inertia", "Radius"], &mut b.notes);
-    b.on_axle(true);
-    let (left, right) = (format!("left {knuckle_tie_rod}"), format!("right {knuckle_tie_rod}"));
-    if (b.point_of(&left)? - b.point_of(&right)?).norm() < 1e-6 {
-        return Err("\"Tierod\" / \"Location Knuckle\" lies on the centre line: the toe bar runs from it to its \
-                    mirror image on the right knuckle; give the left knuckle's point"
-            .into());
-    }
-    b.link("tie rod", ["left upright", "right upright"], &left, &right);
-    let inner = b.hardpoint(doc, "drag_link_steering", "Draglink/Location Chassis")?;
-    // Chrono: a negative y puts the drag link on the right knuckle, at the point as given.
-    let outer = b.hardpoint(doc, "drag_link_knuckle", "Knuckle/Location Draglink")?;
-    doc.dynamics("Draglink", &["Mass", "Inertia", "Radius"], &mut b.notes);
-    let (p_inner, p_outer) = (b.point_of(&inner)?, b.point_of(&outer)?);
-    let knuckle = if p_outer.y < 0.0 { "right upright" } else { "left upright" };
-    let along = p_outer - p_inner;
-    if along.norm() < 1e-6 {
-        return Err(
-            "\"Draglink\" / \"Location Chassis\" and \"Knuckle\" / \"Location Draglink\" coincide: they are the \
-                    drag link's two ends; give two distinct points"
-                .into(),
-        );
-    }
-    let axis = along.normalize();
-    b.axle().steering_link = Some(SteeringLinkDef {
-        body: knuckle.into(),
-        inner: Place::named(&inner),
-        outer: Place::named(&outer),
-        connection: crate::Connection::Ideal.into(),
-        rack_axis: [axis.x, axis.y, axis.z],
-    });
-    b.notes.push(format!(
-        "Draglink: the steering input, on the {}; the steering analysis moves its steering-box end along the drag link",
-        knuckle.replace("upright", "knuckle")
-    ));
-    b.on_axle(false);
-    Ok(())
-}
-
 /// `RigidPanhardAxle`.
 pub(super) fn read_rigid(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     b.wheel(doc)?;
@@ -300,8 +231,9 @@ pub(super) fn read_rigid(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 pub(super) fn read_toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     b.wheel(doc)?;
     axle_tube(doc, b)?;
-    knuckle(doc, b)?;
-    toe_bar_and_drag_link(doc, b)?;
+    knuckle(doc, b, &[])?;
+    toe_bar(doc, b)?;
+    knuckle_drag_link(doc, b)?;
     panhard_rod(doc, b)?;
     anti_roll_bar(doc, b)?;
     b.spring_and_shock(doc, AXLE_TUBE, "Axle")

@@ -49,11 +49,10 @@
 //!   Chrono builds them. `Clamp Bushing Data` would make the clamps' joints bushings under the lateral RSDAs:
 //!   a rotational spring on a bushing is not a torsion bushing on a revolute joint, and is refused by name.
 
-use super::solid_axle::AXLE_TUBE;
+use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, AXLE_TUBE};
 use super::{Builder, Doc, CHASSIS};
 use crate::corner::ROTATIONAL_RATE_RANGE;
-use crate::general::{Place, SteeringLinkDef};
-use crate::Connection;
+use crate::general::Place;
 use elastokin_core::{JointKind, Vec3};
 
 /// `SAELeafspringAxle`.
@@ -79,9 +78,9 @@ pub(super) fn read_sae(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 pub(super) fn read_toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     b.wheel(doc)?;
     axle_tube(doc, b)?;
-    knuckle(doc, b)?;
+    knuckle(doc, b, &[])?;
     toe_bar(doc, b)?;
-    drag_link(doc, b)?;
+    knuckle_drag_link(doc, b)?;
     leaf_spring(doc, b)?;
     springs(doc, b)
 }
@@ -97,84 +96,6 @@ fn axle_tube(doc: &Doc, b: &mut Builder) -> Result<(), String> {
         doc.expect("Output");
         b.notes.push("Output: Chrono's output switch, not part of the suspension".into());
     }
-    Ok(())
-}
-
-/// The knuckle (the upright) on its kingpin to the tube, the kingpin its steering axis.
-fn knuckle(doc: &Doc, b: &mut Builder) -> Result<(), String> {
-    let lower = b.hardpoint(doc, "knuckle_lower", "Knuckle/Location Lower")?;
-    let upper = b.hardpoint(doc, "knuckle_upper", "Knuckle/Location Upper")?;
-    // Chrono reads the knuckle's centre of mass as a point too; statics has no use for it.
-    doc.dynamics("Knuckle", &["Mass", "COM", "Inertia", "Radius"], &mut b.notes);
-    let (l, u, s) = (b.point_of(&lower)?, b.point_of(&upper)?, b.point_of("wheel_centre")?);
-    let w = l - u;
-    if w.norm() < 1e-6 {
-        return Err("\"Knuckle\" / \"Location Lower\" and \"Location Upper\" coincide: they are the kingpin's two \
-                    ends; give two distinct points"
-            .into());
-    }
-    // Chrono's frame: w down the kingpin, u normal to the plane of the kingpin and the spindle.
-    let u_axis = (u - s).cross(&(l - s));
-    let u_axis = if u_axis.norm() > 1e-9 {
-        u_axis.normalize()
-    } else {
-        elastokin_core::joint::orthonormal_complement(&w.normalize()).0
-    };
-    let at = Place::At((l + u) / 2.0);
-    b.joint(doc, "kingpin", JointKind::Revolute, [AXLE_TUBE, "upright"], at, Some((u_axis, w.normalize())), None)?;
-    b.steering_axis(("upright", &lower), ("upright", &upper));
-    Ok(())
-}
-
-/// The toe bar from knuckle to knuckle: a body on a ball joint and a universal joint, the distance between
-/// its ends.
-fn toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
-    let end = b.hardpoint(doc, "tie_rod_knuckle", "Tierod/Location Knuckle")?;
-    doc.dynamics("Tierod", &["Mass", "Inertia", "Radius"], &mut b.notes);
-    if b.point_of(&end)?.y.abs() < 1e-6 {
-        return Err("\"Tierod\" / \"Location Knuckle\" is on the car's centre plane: it is the left knuckle's end of \
-                    the toe bar across, and the right end is its mirror image; give the left end"
-            .into());
-    }
-    b.on_axle(true);
-    b.link("tie rod", ["left upright", "right upright"], &format!("left {end}"), &format!("right {end}"));
-    b.on_axle(false);
-    b.notes.push(
-        "Tierod: the toe bar across, a body on a ball joint and a universal joint: the distance between its ends"
-            .into(),
-    );
-    Ok(())
-}
-
-/// The drag link from the steering box to the knuckle: the axle's steering input.
-fn drag_link(doc: &Doc, b: &mut Builder) -> Result<(), String> {
-    b.on_axle(true);
-    let inner = b.hardpoint(doc, "drag_link_chassis", "Draglink/Location Chassis")?;
-    // The point as given: Chrono flips a negative y to read it as the left's, then mirrors it back onto
-    // the right knuckle.
-    let outer = b.hardpoint(doc, "drag_link_knuckle", "Knuckle/Location Draglink")?;
-    doc.dynamics("Draglink", &["Mass", "Inertia", "Radius"], &mut b.notes);
-    let (p, q) = (b.point_of(&inner)?, b.point_of(&outer)?);
-    let knuckle = if q.y < 0.0 { "right upright" } else { "left upright" };
-    if (q - p).norm() < 1e-6 {
-        return Err("\"Draglink\" / \"Location Chassis\" and \"Knuckle\" / \"Location Draglink\" coincide: they are \
-                    the drag link's two ends; give two distinct points"
-            .into());
-    }
-    let axis = (q - p).normalize();
-    b.axle().steering_link = Some(SteeringLinkDef {
-        body: knuckle.into(),
-        inner: Place::named(&inner),
-        outer: Place::named(&outer),
-        connection: Connection::Ideal.into(),
-        rack_axis: [axis.x, axis.y, axis.z],
-    });
-    b.on_axle(false);
-    b.notes.push(format!(
-        "Draglink: the steering input, from the steering box to the {} knuckle; the steering analysis moves its \
-         steering-box end along the drag link",
-        if q.y < 0.0 { "right" } else { "left" }
-    ));
     Ok(())
 }
 

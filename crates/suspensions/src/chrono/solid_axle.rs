@@ -75,6 +75,58 @@ pub(super) fn knuckle(doc: &Doc, b: &mut Builder, extra: &[&str]) -> Result<(), 
     Ok(())
 }
 
+/// The toe bar across, from the left knuckle's `Tierod / Location Knuckle` to its mirror image on the right:
+/// Chrono's rod on a ball joint and a universal joint (which only stops its spin), a distance link.
+pub(super) fn toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+    let end = b.hardpoint(doc, "tie_rod_knuckle", "Tierod/Location Knuckle")?;
+    doc.dynamics("Tierod", &["Mass", "Inertia", "Radius"], &mut b.notes);
+    let p = b.point_of(&end)?;
+    if p.y.abs() < 1e-6 {
+        return Err(format!(
+            "\"Tierod\" / \"Location Knuckle\" [{:?}, {:?}, {:?}] is on the centre line: the toe bar runs from \
+             the left knuckle's point to its mirror image on the right; give the left knuckle's point (y > 0)",
+            p.x, p.y, p.z
+        ));
+    }
+    b.on_axle(true);
+    b.link("tie rod", ["left upright", "right upright"], &format!("left {end}"), &format!("right {end}"));
+    b.on_axle(false);
+    Ok(())
+}
+
+/// The drag link from the steering box (`Draglink / Location Chassis`) to a knuckle's arm (`Knuckle /
+/// Location Draglink`, on the left knuckle, or on the right one at the point as given when its y is negative,
+/// as Chrono reads it): the axle's steering input, moved along its own line.
+pub(super) fn knuckle_drag_link(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+    b.on_axle(true);
+    let inner = b.hardpoint(doc, "drag_link_steering", "Draglink/Location Chassis")?;
+    let outer = b.hardpoint(doc, "drag_link_knuckle", "Knuckle/Location Draglink")?;
+    doc.dynamics("Draglink", &["Mass", "Inertia", "Radius"], &mut b.notes);
+    let (p, q) = (b.point_of(&inner)?, b.point_of(&outer)?);
+    let along = q - p;
+    if along.norm() < 1e-6 {
+        return Err("\"Draglink\" / \"Location Chassis\" and \"Knuckle\" / \"Location Draglink\" coincide: they are \
+                    the drag link's two ends; give two distinct points"
+            .into());
+    }
+    // Chrono: a negative y puts the drag link on the right knuckle, at the point as given.
+    let side = if q.y < 0.0 { "right" } else { "left" };
+    let axis = along.normalize();
+    b.axle().steering_link = Some(SteeringLinkDef {
+        body: format!("{side} upright"),
+        inner: Place::named(&inner),
+        outer: Place::named(&outer),
+        connection: crate::Connection::Ideal.into(),
+        rack_axis: [axis.x, axis.y, axis.z],
+    });
+    b.notes.push(format!(
+        "Draglink: the steering input, on the {side} knuckle; the steering analysis moves its steering-box end along \
+         the drag link"
+    ));
+    b.on_axle(false);
+    Ok(())
+}
+
 /// Chrono's `Triangular Link` and `Longitudinal Link`s of a three-link axle.
 fn three_links(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     let chassis = b.hardpoint(doc, "triangle_chassis", "Triangular Link/Location Chassis")?;
