@@ -31,7 +31,7 @@
 //! Chrono reads `Axle Tube / Location Stabilizer` not at all (it puts the anti-roll bar's connector at the
 //! origin, and the bar is another subsystem's file): it is listed in the notes as left out.
 
-use super::solid_axle::{axle_tube, knuckle, knuckle_drag_link, toe_bar, AXLE_TUBE};
+use super::solid_axle::{axle_tube, knuckle, knuckle_drag_link, toe_bar, wheel_on_tube, AXLE_TUBE};
 use super::{Builder, Doc, CHASSIS};
 use crate::general::Place;
 use elastokin_core::{JointKind, Vec3};
@@ -117,18 +117,8 @@ fn guides(doc: &Doc, b: &mut Builder, pivot: WattPivot) -> Result<(), String> {
 pub(super) fn read_de_dion(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     b.wheel(doc)?;
     axle_tube(doc, b)?;
-    // The spindle turns on the tube: the upright is the tube's end.
-    b.joint(
-        doc,
-        "spindle housing",
-        JointKind::Fixed,
-        [AXLE_TUBE, "upright"],
-        Place::named("wheel_centre"),
-        None,
-        None,
-    )?;
+    wheel_on_tube(doc, b)?;
     guides(doc, b, WattPivot::DeDion)?;
-    b.wheel_vertical_steering_axis()?;
     b.notes.push(
         "Spring: Chrono hangs it on the subchassis when the vehicle has one; a suspension file names none: on the \
          chassis"

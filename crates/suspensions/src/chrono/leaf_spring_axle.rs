@@ -31,7 +31,7 @@
 //! Springs (and stops from `Minimum Length` / `Maximum Length`) run from the chassis to the tube on each
 //! side; the shocks are dampers, left out.
 
-use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, AXLE_TUBE};
+use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, wheel_on_tube, AXLE_TUBE};
 use super::{Builder, Doc, CHASSIS};
 use crate::general::{Axis, JointDef, Place};
 use elastokin_core::{JointKind, Vec3};
@@ -67,17 +67,7 @@ fn axle_tube_on_guide(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 pub(super) fn read_leaf_spring_axle(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     b.wheel(doc)?;
     axle_tube_on_guide(doc, b)?;
-    // The spindle turns on the tube: the upright is the tube's end.
-    b.joint(
-        doc,
-        "spindle housing",
-        JointKind::Fixed,
-        [AXLE_TUBE, "upright"],
-        Place::named("wheel_centre"),
-        None,
-        None,
-    )?;
-    b.wheel_vertical_steering_axis()?;
+    wheel_on_tube(doc, b)?;
     b.spring_and_shock(doc, AXLE_TUBE, "Axle")
 }
 

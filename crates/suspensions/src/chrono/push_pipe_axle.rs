@@ -38,7 +38,7 @@
 //! (Read as Chrono builds it, the vertical-force sweep could not even start: from design, its first Newton
 //! iterate at half the design load lands 11 mm into a stop that has flattened from 11 MN/m to 0.5 MN/m.)
 
-use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, AXLE_TUBE};
+use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, wheel_on_tube, AXLE_TUBE};
 use super::{Builder, Doc, CHASSIS};
 use crate::general::Place;
 use elastokin_core::JointKind;
@@ -75,17 +75,7 @@ fn spring_and_shock(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 pub(super) fn read_push_pipe(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     b.wheel(doc)?;
     tube_push_pipe_and_panhard_rod(doc, b)?;
-    // The spindle turns on the tube: the upright is the tube's end.
-    b.joint(
-        doc,
-        "spindle housing",
-        JointKind::Fixed,
-        [AXLE_TUBE, "upright"],
-        Place::named("wheel_centre"),
-        None,
-        None,
-    )?;
-    b.wheel_vertical_steering_axis()?;
+    wheel_on_tube(doc, b)?;
     spring_and_shock(doc, b)
 }
 

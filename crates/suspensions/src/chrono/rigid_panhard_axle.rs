@@ -46,7 +46,7 @@
 //! (Chrono hangs `RigidPanhardAxle`'s on a subchassis when the vehicle has one; a suspension alone has the
 //! chassis); the shocks are dampers.
 
-use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, AXLE_TUBE};
+use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, wheel_on_tube, AXLE_TUBE};
 use super::{Builder, Doc, CHASSIS};
 use crate::corner::{ROTATIONAL_RATE_RANGE, TRANSLATIONAL_RATE_RANGE};
 use crate::general::{Axis, BushingDef, JointDef, Place};
@@ -211,17 +211,7 @@ fn anti_roll_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 pub(super) fn read_rigid(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     b.wheel(doc)?;
     axle_tube(doc, b)?;
-    // The spindle turns on the tube: the upright is the tube's end.
-    b.joint(
-        doc,
-        "spindle housing",
-        JointKind::Fixed,
-        [AXLE_TUBE, "upright"],
-        Place::named("wheel_centre"),
-        None,
-        None,
-    )?;
-    b.wheel_vertical_steering_axis()?;
+    wheel_on_tube(doc, b)?;
     panhard_rod(doc, b)?;
     anti_roll_bar(doc, b)?;
     b.spring_and_shock(doc, AXLE_TUBE, "Axle")

@@ -49,7 +49,7 @@
 //!   Chrono builds them. `Clamp Bushing Data` would make the clamps' joints bushings under the lateral RSDAs:
 //!   a rotational spring on a bushing is not a torsion bushing on a revolute joint, and is refused by name.
 
-use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, AXLE_TUBE};
+use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, wheel_on_tube, AXLE_TUBE};
 use super::{Builder, Doc, CHASSIS};
 use crate::corner::ROTATIONAL_RATE_RANGE;
 use crate::general::Place;
@@ -59,17 +59,7 @@ use elastokin_core::{JointKind, Vec3};
 pub(super) fn read_sae(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     b.wheel(doc)?;
     axle_tube(doc, b)?;
-    // The spindle turns on the tube: the upright is the tube's end.
-    b.joint(
-        doc,
-        "spindle housing",
-        JointKind::Fixed,
-        [AXLE_TUBE, "upright"],
-        Place::named("wheel_centre"),
-        None,
-        None,
-    )?;
-    b.wheel_vertical_steering_axis()?;
+    wheel_on_tube(doc, b)?;
     leaf_spring(doc, b)?;
     springs(doc, b)
 }

@@ -45,6 +45,21 @@ pub(super) fn axle_tube(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     Ok(())
 }
 
+/// The wheel turning on the tube itself: the corner's upright welded to the tube at the wheel centre, its
+/// steering axis the wheel's vertical (nothing steers it).
+pub(super) fn wheel_on_tube(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+    b.joint(
+        doc,
+        "spindle housing",
+        JointKind::Fixed,
+        [AXLE_TUBE, "upright"],
+        Place::named("wheel_centre"),
+        None,
+        None,
+    )?;
+    b.wheel_vertical_steering_axis()
+}
+
 /// The knuckle (the upright) on its kingpin to the tube, and the kingpin as the steering axis; returns
 /// nothing but the hardpoints `knuckle_lower` and `knuckle_upper`.
 pub(super) fn knuckle(doc: &Doc, b: &mut Builder, extra: &[&str]) -> Result<(), String> {
@@ -283,18 +298,8 @@ pub(super) fn read_solid_axle(doc: &Doc, b: &mut Builder) -> Result<(), String> 
 pub(super) fn read_three_link(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     b.wheel(doc)?;
     axle_tube(doc, b)?;
-    // The spindle turns on the tube: the upright is the tube's end.
-    b.joint(
-        doc,
-        "spindle housing",
-        JointKind::Fixed,
-        [AXLE_TUBE, "upright"],
-        Place::named("wheel_centre"),
-        None,
-        None,
-    )?;
+    wheel_on_tube(doc, b)?;
     three_links(doc, b)?;
-    b.wheel_vertical_steering_axis()?;
     spring_and_shock(doc, b)
 }
 
