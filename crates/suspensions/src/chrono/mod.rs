@@ -33,6 +33,13 @@
 //!   dropped unsaid.
 //! - Chrono's suspension files give no tyre: the loaded radius is [`crate::corner::default_loaded_radius`]
 //!   unless the caller gives one.
+//! - An axle whose wheels share a body (a solid axle, a De Dion tube, a beam on leaf springs) is read whole:
+//!   what Chrono builds once (the tube, a tie rod or toe bar across, a Panhard rod, a drag link) goes in the
+//!   model's `axle` ([`crate::general::AxleDef`]), written as Chrono places it, and each side's parts in the
+//!   corner, mirrored. A link Chrono builds as a body on a ball joint and a universal joint (which only
+//!   stops the link spinning) is the distance constraint between its ends; a drag link is the steering
+//!   input, moved along its own line. Where Chrono's ideal joints lock the axle's roll, the roll analysis is
+//!   skipped with that reason.
 
 mod de_dion_axle;
 mod double_wishbone;
