@@ -8,25 +8,13 @@ use elastokin_suspensions::chrono::{import, Imported};
 use elastokin_suspensions::kc::{self, Settings};
 use elastokin_suspensions::{DoubleWishboneHardpoints, MacPhersonHardpoints, Rig, Side, Template};
 use serde_json::Value;
-use std::path::{Path, PathBuf};
 
 mod common;
 
-fn data() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/chrono")
-}
-
-fn text(name: &str) -> String {
-    std::fs::read_to_string(data().join(name)).unwrap()
-}
-
-/// The file's JSON (its `//` comments removed), read here for the numbers the tests check against.
-fn json(name: &str) -> Value {
-    serde_json::from_str(&elastokin_suspensions::chrono::without_comments(&text(name))).unwrap()
-}
+use common::chrono::{chrono_json, fixture, fixture_dir};
 
 fn read(name: &str) -> Imported {
-    import(&text(name), name, None).unwrap()
+    import(&fixture(name), name, None).unwrap()
 }
 
 /// A point of the Chrono file, read here from its JSON.
@@ -56,7 +44,7 @@ fn dw_hardpoints(v: &Value, spring: (&str, &str)) -> DoubleWishboneHardpoints {
 /// wishbone's loop closure on the file's own points (read here from its JSON), the spring's lower seat at
 /// `spring` (object, key).
 fn double_wishbone_against_closure(name: &str, spring: (&str, &str)) -> f64 {
-    let h = dw_hardpoints(&json(name), spring);
+    let h = dw_hardpoints(&chrono_json(name), spring);
     let corner = read(name).file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
     common::travel_against_closure(&corner, |t, g| common::double_wishbone_closure(&h, t, g))
 }
@@ -65,16 +53,16 @@ fn double_wishbone_against_closure(name: &str, spring: (&str, &str)) -> f64 {
 /// table in `tests/data/chrono/README.md` gives for it.
 #[test]
 fn every_shipped_chrono_file_runs_or_is_refused_as_the_readme_says() {
-    let readme = text("README.md");
+    let readme = fixture("README.md");
     let mut files: Vec<String> = Vec::new();
-    let mut dirs = vec![data()];
+    let mut dirs = vec![fixture_dir()];
     while let Some(dir) = dirs.pop() {
         for e in std::fs::read_dir(&dir).unwrap() {
             let p = e.unwrap().path();
             if p.is_dir() {
                 dirs.push(p);
             } else if p.extension().is_some_and(|x| x == "json") {
-                files.push(p.strip_prefix(data()).unwrap().to_string_lossy().into_owned());
+                files.push(p.strip_prefix(fixture_dir()).unwrap().to_string_lossy().into_owned());
             }
         }
     }
@@ -86,7 +74,7 @@ fn every_shipped_chrono_file_runs_or_is_refused_as_the_readme_says() {
             .lines()
             .find(|l| l.starts_with(&format!("| `{name}`")))
             .unwrap_or_else(|| panic!("{name} not in the README"));
-        match import(&text(name), name, None) {
+        match import(&fixture(name), name, None) {
             Ok(imported) => {
                 assert!(row.ends_with("| yes |"), "{name} reads, but the README says: {row}");
                 let settings = Settings { steps: 4, ..Settings::default() };
@@ -133,7 +121,7 @@ fn the_double_wishbone_reading_matches_the_loop_closure() {
 /// loop closure on the file's points.
 #[test]
 fn the_macpherson_reading_matches_the_loop_closure() {
-    let v = json("MacPhersonStrut.json");
+    let v = chrono_json("MacPhersonStrut.json");
     let h = MacPhersonHardpoints {
         wheel_centre: point(&v, "Spindle", "COM"),
         lower_ball_joint: point(&v, "Control Arm", "Location Upright"),
@@ -169,9 +157,7 @@ fn a_road_load_on_an_ideal_linkage_is_not_cut_to_nothing() {
 
 /// The file's JSON with `edit` applied, read.
 fn edited(name: &str, edit: impl FnOnce(&mut Value)) -> Imported {
-    let mut v = json(name);
-    edit(&mut v);
-    import(&v.to_string(), name, None).unwrap()
+    common::chrono::edited(name, edit).unwrap()
 }
 
 /// Camber and toe: Chrono turns the left spindle by Rz(−τ) Rx(−γ) (`ChDoubleWishbone::InitializeSide`,
@@ -199,7 +185,7 @@ fn chrono_camber_and_toe_are_the_wheels_at_design() {
 /// between the file's two points (Chrono's `LinearSpringForce`: P − k (L − L₀)).
 #[test]
 fn a_chrono_spring_pushes_its_preload_plus_rate_times_compression() {
-    let v = json("DoubleWishbone.json");
+    let v = chrono_json("DoubleWishbone.json");
     let (k, free) = (v["Spring"]["Spring Coefficient"].as_f64().unwrap(), v["Spring"]["Free Length"].as_f64().unwrap());
     let length = (point(&v, "Spring", "Location Arm") - point(&v, "Spring", "Location Chassis")).norm();
     for preload in [0.0, 750.0] {
@@ -243,7 +229,7 @@ fn a_chrono_spring_curve_is_its_push_against_compression() {
 /// built-in curve.
 #[test]
 fn chrono_minimum_and_maximum_lengths_are_stops_that_touch_there() {
-    let v = json("DoubleWishbone.json");
+    let v = chrono_json("DoubleWishbone.json");
     let length = (point(&v, "Spring", "Location Arm") - point(&v, "Spring", "Location Chassis")).norm();
     let imported = edited("DoubleWishbone.json", |v| {
         v["Spring"]["Minimum Length"] = (length - 0.02).into();
@@ -296,7 +282,7 @@ fn chrono_minimum_and_maximum_lengths_are_stops_that_touch_there() {
 #[test]
 fn chrono_bushing_data_is_the_joints_bushing() {
     let name = "hmmwv/HMMWV_DoubleWishboneFront_bushings.json";
-    let v = json(name);
+    let v = chrono_json(name);
     let imported = read(name);
     let Template::General(g) = &imported.file.suspension else { panic!("general form") };
     let b = g.bushings.iter().find(|b| b.name == "lower arm pivot").unwrap();
@@ -370,7 +356,7 @@ fn chrono_readings_mirror_on_the_axle() {
 #[test]
 fn a_chrono_curve_spring_carries_the_wheel_by_virtual_work() {
     use elastokin_solver::{LoadPath, SolverOptions, StaticSolver};
-    let v = json("DoubleWishboneCurve.json");
+    let v = chrono_json("DoubleWishboneCurve.json");
     let table: Vec<(f64, f64)> = v["Spring"]["Spring Curve Data"]
         .as_array()
         .unwrap()

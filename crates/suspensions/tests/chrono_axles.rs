@@ -6,84 +6,14 @@
 
 mod common;
 
+use common::chrono::{against, axle_rows, corner_rows, mirror, point, read, toe_camber, Travel, Tube, V};
 use common::newton_fd;
 use elastokin_solver::Mode;
 use elastokin_suspensions::analysis::{parallel_wheel_travel, vertical_force_sweep};
 use elastokin_suspensions::axle::axle_sweep;
-use elastokin_suspensions::chrono::{import, without_comments};
-use elastokin_suspensions::{Axle, AxleRig, Rig, Side, SuspensionFile};
-use nalgebra::{DVector, Rotation3, Unit, Vector3};
+use elastokin_suspensions::{Axle, AxleRig, Rig, Side};
+use nalgebra::{DVector, Rotation3, Unit};
 use serde_json::Value;
-use std::path::Path;
-
-type V = Vector3<f64>;
-
-fn fixture(path: &str) -> String {
-    let full = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/chrono").join(path);
-    std::fs::read_to_string(&full).unwrap_or_else(|e| panic!("{}: {e}", full.display()))
-}
-
-/// The Chrono file as JSON, and the model imported from it.
-fn read(path: &str) -> (Value, SuspensionFile) {
-    let text = fixture(path);
-    let chrono = serde_json::from_str(&without_comments(&text)).unwrap();
-    (chrono, import(&text, path, None).unwrap_or_else(|e| panic!("{path}: {e}")).file)
-}
-
-/// The point at `path` (keys joined by `/`) of a Chrono file: the left side's, as Chrono gives it.
-fn point(chrono: &Value, path: &str) -> V {
-    let v = path.split('/').fold(chrono, |v, key| &v[key]);
-    let c: Vec<f64> = v.as_array().unwrap_or_else(|| panic!("{path}")).iter().map(|x| x.as_f64().unwrap()).collect();
-    V::new(c[0], c[1], c[2])
-}
-
-/// The right side's mirror image of a left point, as Chrono places it (y → −y).
-fn mirror(p: V) -> V {
-    V::new(p.x, -p.y, p.z)
-}
-
-#[derive(Clone, Copy)]
-/// The axle tube moved by `x[0..3]` (translation) and `x[3..6]` (rotation vector about the tube's `COM`).
-struct Tube {
-    centre: V,
-}
-
-impl Tube {
-    fn rotation(&self, x: &[f64]) -> Rotation3<f64> {
-        Rotation3::new(V::new(x[3], x[4], x[5]))
-    }
-
-    fn moved(&self, x: &[f64], p: V) -> V {
-        self.centre + V::new(x[0], x[1], x[2]) + self.rotation(x) * (p - self.centre)
-    }
-}
-
-/// Toe and camber of a wheel on side `s` (+1 left) whose outward spin axis is `a`, from their definitions.
-fn toe_camber(a: V, s: f64) -> (f64, f64) {
-    (a.x.atan2(s * a.y), (-a.z).atan2(a.x.hypot(a.y)))
-}
-
-/// What the rig drives with `t`.
-#[derive(Clone, Copy)]
-enum Travel {
-    /// Both wheel-centre heights by `t`.
-    Parallel,
-    /// The left wheel-centre height by `t`, the right by `−t`.
-    Opposite,
-    /// The steering box's end of the drag link by `t` along the drag link, both heights held.
-    Steering,
-}
-
-impl Travel {
-    /// Left and right wheel-centre travel, and steering-box travel, at `t`.
-    fn at(self, t: f64) -> (f64, f64, f64) {
-        match self {
-            Travel::Parallel => (t, t, 0.0),
-            Travel::Opposite => (t, -t, 0.0),
-            Travel::Steering => (0.0, 0.0, t),
-        }
-    }
-}
 
 /// The tube of a three-link axle: the triangular link turns about y at the midpoint of its chassis points
 /// (its apex, the midpoint of its axle points, stays in the plane across y at its distance from that axis);
@@ -253,61 +183,6 @@ fn solid_axle_closure(chrono: &Value) -> impl Fn(f64, &mut [f64; 15]) -> [(f64, 
         let spin = |side: f64, psi: f64| knuckle(x, side, psi, wc + V::y()) - knuckle(x, side, psi, wc);
         [toe_camber(spin(1.0, x[6]), 1.0), toe_camber(spin(-1.0, x[7]), -1.0)]
     }
-}
-
-/// Largest toe or camber difference (rad) of both wheels between `rows` (travel, left, right attitudes)
-/// and `closure`, walked outwards from the design row (index `design`) in both directions, each closure
-/// starting from its neighbour's solution; and the largest range of the four angles over the rows.
-fn against<const N: usize>(
-    rows: &[(f64, [(f64, f64); 2])],
-    design: usize,
-    closure: impl Fn(f64, &mut [f64; N]) -> [(f64, f64); 2],
-) -> (f64, f64) {
-    let mut worst: f64 = 0.0;
-    for half in [rows[design..].iter().collect::<Vec<_>>(), rows[..=design].iter().rev().collect()] {
-        let mut guess = [0.0; N];
-        for (t, engine) in half {
-            let reference = closure(*t, &mut guess);
-            for (e, r) in engine.iter().zip(reference) {
-                worst = worst.max((e.0 - r.0).abs()).max((e.1 - r.1).abs());
-            }
-        }
-    }
-    let mut range: f64 = 0.0;
-    for k in 0..4 {
-        let angle = |r: &(f64, [(f64, f64); 2])| if k % 2 == 0 { r.1[k / 2].0 } else { r.1[k / 2].1 };
-        let (lo, hi) = rows.iter().map(angle).fold((f64::MAX, f64::MIN), |(lo, hi), a| (lo.min(a), hi.max(a)));
-        range = range.max(hi - lo);
-    }
-    (worst, range)
-}
-
-/// Both wheels of the axle over `rig`'s sweep of ±`reach`, in 12 steps (design at row 6).
-fn axle_rows(file: &SuspensionFile, rig: AxleRig, reach: f64) -> Vec<(f64, [(f64, f64); 2])> {
-    let axle = Axle::build(&file.suspension, rig).unwrap();
-    let rows = axle_sweep(&axle, -reach, reach, 12, Mode::Corrected).unwrap();
-    rows.iter().map(|r| (r.travel, [(r.left.toe, r.left.camber), (r.right.toe, r.right.camber)])).collect()
-}
-
-/// The corner's parallel travel of ±80 mm in 16 steps (design at row 8): the solid axle built whole, both
-/// wheels (the partner's read from the same poses).
-fn corner_rows(file: &SuspensionFile) -> Vec<(f64, [(f64, f64); 2])> {
-    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
-    let partner = corner.partner.expect("a solid axle builds whole");
-    let solver_rows = parallel_wheel_travel(&corner, -0.08, 0.08, 16, Mode::Corrected).unwrap();
-    // The partner's attitude needs the poses: walk the same path again with the poses kept.
-    let mut solver = elastokin_solver::StaticSolver::new(&corner.model, Default::default()).unwrap();
-    let mut state = solver.design_state(-0.08);
-    let sweep =
-        solver.sweep_from(&mut state, elastokin_solver::LoadPath::new(-0.08, 0.08, 16), Mode::Corrected).unwrap();
-    solver_rows
-        .iter()
-        .zip(&sweep.steps)
-        .map(|(r, s)| {
-            let p = partner.attitude(&s.poses);
-            (r.travel, [(r.attitude.toe, r.attitude.camber), (p.toe, p.camber)])
-        })
-        .collect()
 }
 
 /// Each solid axle's travel against its loop closure: parallel travel of the corner (built whole) and of

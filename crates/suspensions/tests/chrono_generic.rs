@@ -5,6 +5,9 @@
 //! Fixtures: Project Chrono (BSD-3-Clause, `tests/data/chrono/LICENSE`), `data/vehicle/` at
 //! commit 7689fbc02d12c5419fa6acad8791100fd89979dd, bytes unchanged.
 
+mod common;
+
+use common::chrono::{chrono_json, fixture};
 use elastokin_core::Vec3;
 use elastokin_solver::Mode;
 use elastokin_suspensions::analysis::{parallel_wheel_travel, WheelLoad};
@@ -14,23 +17,13 @@ use elastokin_suspensions::kc::{self, Analysis, AnalysisReport, Settings};
 use elastokin_suspensions::{check_model, Axle, AxleRig, Rig, Side, SuspensionFile};
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion};
 use serde_json::{json, Value};
-use std::path::Path;
 
 const REPLICA: &str = "hmmwv/HMMWV_DoubleWishboneFront_replica.json";
 const TEMPLATE: &str = "hmmwv/HMMWV_DoubleWishboneFront.json";
 const UAZ: &str = "uaz/UAZBUS_FrontSAELeafspringAxle_replica.json";
 
-fn text(path: &str) -> String {
-    std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/chrono").join(path)).unwrap()
-}
-
 fn replica() -> Imported {
-    import(&text(REPLICA), REPLICA, None).unwrap()
-}
-
-/// A file as JSON (its `//` comments taken out), to edit or to read numbers from.
-fn chrono_json(path: &str) -> Value {
-    serde_json::from_str(&elastokin_suspensions::chrono::without_comments(&text(path))).unwrap()
+    import(&fixture(REPLICA), REPLICA, None).unwrap()
 }
 
 /// The replica as JSON, to edit.
@@ -108,7 +101,7 @@ fn differences(a: &SuspensionFile, b: &SuspensionFile) -> [f64; 7] {
 /// the axis through the two pivots. Given the exact frame instead, the two agree to rounding.
 #[test]
 fn the_replica_and_the_double_wishbone_file_read_the_same_suspension() {
-    let template = import(&text(TEMPLATE), TEMPLATE, None).unwrap().file;
+    let template = import(&fixture(TEMPLATE), TEMPLATE, None).unwrap().file;
     // The figures themselves, so that agreement is not agreement on nothing: bump steer and a lateral
     // compliance of the HMMWV's size.
     let rows = parallel_wheel_travel(
@@ -179,7 +172,7 @@ fn the_replica_axle_is_mirror_symmetric() {
 /// torsion bushings on their revolute joints; every analysis runs.
 #[test]
 fn the_uaz_replica_is_refused_for_its_stops_and_reads_as_an_axle_when_they_are_swapped() {
-    let e = import(&text(UAZ), UAZ, None).unwrap_err().to_string();
+    let e = import(&fixture(UAZ), UAZ, None).unwrap_err().to_string();
     for said in ["TSDAs", "\"Minimum Length\" 0.28", "\"Maximum Length\" 0.12", "swapped"] {
         assert!(e.contains(said), "no '{said}' in: {e}");
     }
@@ -351,7 +344,7 @@ fn a_rod_body_and_arms_of_links_read_as_the_same_corner() {
         "{:#?}",
         links.notes
     );
-    let template = import(&text(TEMPLATE), TEMPLATE, None).unwrap().file;
+    let template = import(&fixture(TEMPLATE), TEMPLATE, None).unwrap().file;
     // Measured: 9e-12 to 1.2e-10 (rad, relative load, relative figures, deg).
     let diff = differences(&links.file, &template);
     let within = [1e-10, 2e-10, 1e-9, 1e-9, 1e-10, 1e-10, 2e-10];

@@ -4,42 +4,18 @@
 //! Chrono file (not from the import); the rig's force is the virtual work of the springs as Chrono attaches
 //! them; the axle cannot roll, and opposite travel is refused by name.
 
-use elastokin_solver::Mode;
-use elastokin_suspensions::analysis::parallel_wheel_travel;
-use elastokin_suspensions::axle::axle_sweep;
-use elastokin_suspensions::chrono::{import, without_comments};
-use elastokin_suspensions::{Axle, AxleRig, Rig, Side, SuspensionFile};
-use nalgebra::{DMatrix, DVector, Rotation3, Unit, Vector3};
-use serde_json::Value;
-use std::path::Path;
+mod common;
 
-type V = Vector3<f64>;
+use common::chrono::{
+    axle_rows_of, corner_rows_of, edited, fixture, mirror, point, read, spread, toe_camber, walk_out, Travel, V,
+};
+use common::newton_least_squares;
+use elastokin_suspensions::chrono::import;
+use elastokin_suspensions::{Axle, AxleRig, Rig, Side, SuspensionFile};
+use nalgebra::{DVector, Rotation3, Unit};
+use serde_json::Value;
 
 const FILE: &str = "HendricksonPRIMAXX.json";
-
-fn fixture(path: &str) -> String {
-    let full = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/chrono").join(path);
-    std::fs::read_to_string(&full).unwrap_or_else(|e| panic!("{}: {e}", full.display()))
-}
-
-/// The Chrono file as JSON, and the model imported from it.
-fn read() -> (Value, SuspensionFile) {
-    let text = fixture(FILE);
-    let chrono = serde_json::from_str(&without_comments(&text)).unwrap();
-    (chrono, import(&text, FILE, None).unwrap_or_else(|e| panic!("{FILE}: {e}")).file)
-}
-
-/// The point at `path` (keys joined by `/`) of a Chrono file: the left side's, as Chrono gives it.
-fn point(chrono: &Value, path: &str) -> V {
-    let v = path.split('/').fold(chrono, |v, key| &v[key]);
-    let c: Vec<f64> = v.as_array().unwrap_or_else(|| panic!("{path}")).iter().map(|x| x.as_f64().unwrap()).collect();
-    V::new(c[0], c[1], c[2])
-}
-
-/// The right side's mirror image of a left point, as Chrono places it (y → −y).
-fn mirror(p: V) -> V {
-    V::new(p.x, -p.y, p.z)
-}
 
 /// A left point, or its mirror image for the right side (`side` −1).
 fn on_side(side: f64, p: V) -> V {
@@ -48,44 +24,6 @@ fn on_side(side: f64, p: V) -> V {
     } else {
         mirror(p)
     }
-}
-
-/// Toe and camber of a wheel on side `s` (+1 left) whose outward spin axis is `a`, from their definitions.
-fn toe_camber(a: V, s: f64) -> (f64, f64) {
-    (a.x.atan2(s * a.y), (-a.z).atan2(a.x.hypot(a.y)))
-}
-
-/// Newton's method on `residual(x) = 0` with more equations than unknowns, all holding at the solution
-/// (Chrono's joints repeat some constraints): each step the least-squares solution of the linearised
-/// equations, with a central-difference Jacobian.
-fn newton_least_squares<const N: usize>(residual: impl Fn(&[f64; N]) -> DVector<f64>, x: &mut [f64; N]) {
-    for _ in 0..60 {
-        let f = residual(x);
-        if f.norm() < 1e-14 {
-            return;
-        }
-        let mut jac = DMatrix::zeros(f.len(), N);
-        for c in 0..N {
-            let (mut xp, mut xm) = (*x, *x);
-            xp[c] += 1e-7;
-            xm[c] -= 1e-7;
-            jac.set_column(c, &((residual(&xp) - residual(&xm)) / 2e-7));
-        }
-        let dx = jac.svd(true, true).solve(&(-f), 1e-12).expect("SVD of the closure Jacobian");
-        for c in 0..N {
-            x[c] += dx[c];
-        }
-    }
-    assert!(residual(x).norm() < 1e-12, "loop closure did not close: {:?}", residual(x));
-}
-
-/// What the rig drives with `t`.
-#[derive(Clone, Copy)]
-enum Travel {
-    /// The left wheel-centre height by `t` (the right follows: the axle has one way to move).
-    Parallel,
-    /// Both tie rods' inner ends by `t` across the car (+y), the left wheel-centre height held.
-    Steering,
 }
 
 /// The closure's answer: per wheel (left, right) toe, camber and the wheel centre's fore-aft position
@@ -103,8 +41,9 @@ struct Solved {
 /// housing); each knuckle turns by ψ (`x[10]` left, `x[11]` right) about its kingpin (lower to upper
 /// attachment point) on the housing; each tie rod (a distance constraint) from its chassis point — moved
 /// across the car when steering — to its knuckle point keeps its length; the left wheel centre is at the
-/// asked height. Fifteen equations in twelve unknowns, three of them repeating others (the rods of the
-/// two sides hold the housing against the same motions across the car).
+/// asked height (the right's follows: the axle cannot roll). Fifteen equations in twelve unknowns, three of
+/// them repeating others (the rods of the two sides hold the housing against the same motions across the
+/// car).
 fn closure(chrono: &Value, travel: Travel) -> impl Fn(f64, &mut [f64; 12]) -> Solved {
     let centre = point(chrono, "Axle Housing/COM");
     let rods: Vec<(V, V)> = ["Torque Rod", "Lower Beam"]
@@ -132,10 +71,7 @@ fn closure(chrono: &Value, travel: Travel) -> impl Fn(f64, &mut [f64; 12]) -> So
         housing(x, turned)
     };
     move |t, x| {
-        let rack = match travel {
-            Travel::Parallel => 0.0,
-            Travel::Steering => t,
-        };
+        let (height, _, rack) = travel.at(t);
         let residual = |x: &[f64; 12]| {
             let mut f: Vec<f64> = Vec::new();
             for (k, (c, a)) in rods.iter().enumerate() {
@@ -146,10 +82,6 @@ fn closure(chrono: &Value, travel: Travel) -> impl Fn(f64, &mut [f64; 12]) -> So
                 let inner = on_side(side, rod_inner) + V::y() * rack;
                 f.push((knuckle(x, side, psi, rod_outer) - inner).norm() - (rod_outer - rod_inner).norm());
             }
-            let height = match travel {
-                Travel::Parallel => t,
-                Travel::Steering => 0.0,
-            };
             f.push(knuckle(x, 1.0, x[10], wc).z - wc.z - height);
             DVector::from_vec(f)
         };
@@ -173,22 +105,17 @@ type Row = (f64, [(f64, f64, f64); 2]);
 /// toe (rad), its camber (rad) and its wheel centre's x (m).
 fn against(rows: &[Row], design: usize, closure: impl Fn(f64, &mut [f64; 12]) -> Solved) -> ([f64; 2], [f64; 3]) {
     let (mut angle, mut along): (f64, f64) = (0.0, 0.0);
-    for half in [rows[design..].iter().collect::<Vec<_>>(), rows[..=design].iter().rev().collect()] {
-        let mut guess = [0.0; 12];
-        for (t, engine) in half {
-            let reference = closure(*t, &mut guess);
-            for (e, r) in engine.iter().zip(reference.wheels) {
-                angle = angle.max((e.0 - r.0).abs()).max((e.1 - r.1).abs());
-                along = along.max((e.2 - r.2).abs());
-            }
+    walk_out(rows, design, |(t, engine), guess| {
+        let reference = closure(*t, guess);
+        for (e, r) in engine.iter().zip(reference.wheels) {
+            angle = angle.max((e.0 - r.0).abs()).max((e.1 - r.1).abs());
+            along = along.max((e.2 - r.2).abs());
         }
-    }
+    });
     let range = |value: &dyn Fn(&(f64, f64, f64)) -> f64| {
         let mut widest: f64 = 0.0;
         for w in 0..2 {
-            let (lo, hi) =
-                rows.iter().map(|r| value(&r.1[w])).fold((f64::MAX, f64::MIN), |(lo, hi), a| (lo.min(a), hi.max(a)));
-            widest = widest.max(hi - lo);
+            widest = widest.max(spread(rows, |r| value(&r.1[w])));
         }
         widest
     };
@@ -198,36 +125,21 @@ fn against(rows: &[Row], design: usize, closure: impl Fn(f64, &mut [f64; 12]) ->
 /// The corner's parallel travel of ±80 mm in 16 steps (design at row 8): the axle built whole, both wheels
 /// (the partner's read from the same poses); and the rig's force at each row.
 fn corner_rows(file: &SuspensionFile) -> (Vec<Row>, Vec<f64>) {
-    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
-    let partner = corner.partner.expect("an axle builds whole");
-    let solver_rows = parallel_wheel_travel(&corner, -0.08, 0.08, 16, Mode::Corrected).unwrap();
-    // The partner's attitude needs the poses: walk the same path again with the poses kept.
-    let mut solver = elastokin_solver::StaticSolver::new(&corner.model, Default::default()).unwrap();
-    let mut state = solver.design_state(-0.08);
-    let sweep =
-        solver.sweep_from(&mut state, elastokin_solver::LoadPath::new(-0.08, 0.08, 16), Mode::Corrected).unwrap();
-    let rows = solver_rows
-        .iter()
-        .zip(&sweep.steps)
-        .map(|(r, s)| {
-            let (a, p) = (r.attitude, partner.attitude(&s.poses));
-            (r.travel, [(a.toe, a.camber, a.wheel_centre.x), (p.toe, p.camber, p.wheel_centre.x)])
-        })
-        .collect();
-    (rows, solver_rows.iter().map(|r| r.wheel_load).collect())
+    corner_rows_of(file, |r, p| {
+        let a = r.attitude;
+        ((r.travel, [(a.toe, a.camber, a.wheel_centre.x), (p.toe, p.camber, p.wheel_centre.x)]), r.wheel_load)
+    })
+    .into_iter()
+    .unzip()
 }
 
 /// Both wheels over the steering rig's ±40 mm of tie-rod travel across the car, in 12 steps (design at
 /// row 6), both wheel heights held.
 fn steering_rows(file: &SuspensionFile) -> Vec<Row> {
-    let axle = Axle::build(&file.suspension, AxleRig::Steering).unwrap();
-    let rows = axle_sweep(&axle, -0.04, 0.04, 12, Mode::Corrected).unwrap();
-    rows.iter()
-        .map(|r| {
-            let (l, rt) = (r.left, r.right);
-            (r.travel, [(l.toe, l.camber, l.wheel_centre.x), (rt.toe, rt.camber, rt.wheel_centre.x)])
-        })
-        .collect()
+    axle_rows_of(file, AxleRig::Steering, 0.04, |r| {
+        let (l, rt) = (r.left, r.right);
+        (r.travel, [(l.toe, l.camber, l.wheel_centre.x), (rt.toe, rt.camber, rt.wheel_centre.x)])
+    })
 }
 
 /// The axle's travel and steering against the closure of Chrono's linkage: both wheels' toe, camber and
@@ -235,7 +147,7 @@ fn steering_rows(file: &SuspensionFile) -> Vec<Row> {
 /// knuckles steer against the tie rods held on the chassis.
 #[test]
 fn the_hendrickson_axle_travels_and_steers_as_its_loop_closure() {
-    let (chrono, file) = read();
+    let (chrono, file) = read(FILE);
     let ([angle, along], [toe, camber, fore_aft]) =
         against(&corner_rows(&file).0, 8, closure(&chrono, Travel::Parallel));
     // Over ±80 mm the wheels toe out by up to 0.096 rad, camber by 0.024 rad and move 16 mm fore and aft.
@@ -259,7 +171,7 @@ fn the_hendrickson_axle_travels_and_steers_as_its_loop_closure() {
 /// The rate at which the travel changes each spring's length is the closure's, by central differences.
 #[test]
 fn the_rigs_force_is_the_virtual_work_of_chronos_springs() {
-    let (chrono, file) = read();
+    let (chrono, file) = read(FILE);
     let (rows, loads) = corner_rows(&file);
     let k = chrono["Shock Lower Beam"]["Spring Coefficient"].as_f64().unwrap();
     let rest = (point(&chrono, "Shock Lower Beam/Location Lower Beam")
@@ -288,7 +200,7 @@ fn the_rigs_force_is_the_virtual_work_of_chronos_springs() {
 /// roll with that reason (and runs the rest).
 #[test]
 fn the_hendrickson_axle_cannot_roll_and_says_so() {
-    let (_, file) = read();
+    let (_, file) = read(FILE);
     let e = Axle::build(&file.suspension, AxleRig::OppositeTravel).unwrap_err().to_string();
     assert!(e.contains("its roll is locked"), "{e}");
     let corner = file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
@@ -323,9 +235,7 @@ fn every_key_is_read_or_noted() {
     ] {
         assert!(notes.iter().any(|n| n.starts_with(expected)), "{expected}: {notes:?}");
     }
-    let mut chrono: Value = serde_json::from_str(&without_comments(&text)).unwrap();
-    chrono["Camber Angle (deg)"] = 2.0.into();
-    let imported = import(&chrono.to_string(), FILE, None).unwrap();
+    let imported = edited(FILE, |v| v["Camber Angle (deg)"] = 2.0.into()).unwrap();
     assert!(imported.notes.iter().any(|n| n.starts_with("Camber Angle (deg), Toe Angle (deg): not read")));
     let corner = imported.file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
     let a = corner.wheel.attitude(&corner.model.design_poses());
@@ -336,11 +246,7 @@ fn every_key_is_read_or_noted() {
 /// Input the linkage cannot be built from is refused, naming the keys and how to fix them.
 #[test]
 fn bad_input_is_refused_by_its_keys() {
-    let refused = |edit: &dyn Fn(&mut Value)| {
-        let mut chrono: Value = serde_json::from_str(&without_comments(&fixture(FILE))).unwrap();
-        edit(&mut chrono);
-        import(&chrono.to_string(), FILE, None).unwrap_err().to_string()
-    };
+    let refused = |edit: &dyn Fn(&mut Value)| edited(FILE, edit).unwrap_err();
     let e = refused(&|v| v["Knuckle"]["Upper Attachment Point"] = v["Knuckle"]["Lower Attachment Point"].clone());
     assert!(e.contains("\"Knuckle\" / \"Lower Attachment Point\" and \"Upper Attachment Point\" coincide"), "{e}");
     let e = refused(&|v| v["Torque Rod"]["Axle Housing Attachment Point"] = serde_json::json!([0.629, 0.7, 0.1]));

@@ -6,36 +6,22 @@
 
 mod common;
 
+use common::chrono::{
+    axle_rows_of, edited, fixture, mirror, number, point, read_edited, spread, toe_camber, walk_out, Travel, Tube, V,
+};
 use common::newton_fd;
 use elastokin_core::JointSpec;
 use elastokin_solver::{LoadPath, Mode, StaticSolver};
-use elastokin_suspensions::axle::axle_sweep;
-use elastokin_suspensions::chrono::{import, without_comments};
+use elastokin_suspensions::chrono::import;
 use elastokin_suspensions::kc::{self, Settings};
 use elastokin_suspensions::{Axle, AxleRig, SuspensionFile, WheelAttitude};
-use nalgebra::{DVector, Rotation3, Unit, Vector3};
+use nalgebra::{DVector, Rotation3, Unit};
 use serde_json::Value;
-use std::path::Path;
-
-type V = Vector3<f64>;
 
 /// Chrono's `LeafspringAxle` file (its spring's stops overlap: refused as shipped, read here without them).
 const LEAF: &str = "citybus/CityBus_LeafspringAxle.json";
 /// Chrono's `ToeBarLeafspringAxle` file.
 const TOE_BAR: &str = "mtv/FMTV_ToeBarLeafSpringAxle.json";
-
-fn fixture(path: &str) -> String {
-    let full = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/chrono").join(path);
-    std::fs::read_to_string(&full).unwrap_or_else(|e| panic!("{}: {e}", full.display()))
-}
-
-/// The Chrono file's JSON with `edit` applied, and the model imported from it.
-fn read_edited(path: &str, edit: impl FnOnce(&mut Value)) -> (Value, SuspensionFile) {
-    let mut chrono: Value = serde_json::from_str(&without_comments(&fixture(path))).unwrap();
-    edit(&mut chrono);
-    let file = import(&chrono.to_string(), path, None).unwrap_or_else(|e| panic!("{path}: {e}")).file;
-    (chrono, file)
-}
 
 /// The leaf-spring axle's file with its spring's `Minimum Length` and `Maximum Length` (0.5 and 0.3 m: both
 /// stops would press at every length) taken out, as the refusal asks.
@@ -66,50 +52,6 @@ fn toe_bar_right() -> (Value, SuspensionFile) {
     })
 }
 
-/// The point at `path` (keys joined by `/`) of a Chrono file: the left side's, as Chrono gives it.
-fn point(chrono: &Value, path: &str) -> V {
-    let v = path.split('/').fold(chrono, |v, key| &v[key]);
-    let c: Vec<f64> = v.as_array().unwrap_or_else(|| panic!("{path}")).iter().map(|x| x.as_f64().unwrap()).collect();
-    V::new(c[0], c[1], c[2])
-}
-
-fn number(chrono: &Value, path: &str) -> f64 {
-    path.split('/').fold(chrono, |v, key| &v[key]).as_f64().unwrap_or_else(|| panic!("{path}"))
-}
-
-/// The right side's mirror image of a left point, as Chrono places it (y → −y).
-fn mirror(p: V) -> V {
-    V::new(p.x, -p.y, p.z)
-}
-
-/// Toe and camber of a wheel on side `s` (+1 left) whose outward spin axis is `a`, from their definitions.
-fn toe_camber(a: V, s: f64) -> (f64, f64) {
-    (a.x.atan2(s * a.y), (-a.z).atan2(a.x.hypot(a.y)))
-}
-
-/// What is driven: each wheel centre's rise (m) and the steering end's travel along the drag link (m).
-#[derive(Clone, Copy)]
-struct Drive {
-    left: f64,
-    right: f64,
-    steer: f64,
-}
-
-impl Drive {
-    fn parallel(t: f64) -> Drive {
-        Drive { left: t, right: t, steer: 0.0 }
-    }
-    fn opposite(t: f64) -> Drive {
-        Drive { left: t, right: -t, steer: 0.0 }
-    }
-    fn uneven(t: f64) -> Drive {
-        Drive { left: t, right: t / 2.0, steer: 0.0 }
-    }
-    fn steering(t: f64) -> Drive {
-        Drive { left: 0.0, right: 0.0, steer: t }
-    }
-}
-
 /// The closure's answer: each wheel's centre and outward spin axis, each spring's length (left, right).
 struct Solved {
     centre: [V; 2],
@@ -117,33 +59,17 @@ struct Solved {
     springs: [f64; 2],
 }
 
-/// The axle tube moved by `x[0..3]` (translation) and `x[3..6]` (rotation vector about its `COM`).
-#[derive(Clone, Copy)]
-struct Tube {
-    centre: V,
-}
-
-impl Tube {
-    fn rotation(&self, x: &[f64]) -> Rotation3<f64> {
-        Rotation3::new(V::new(x[3], x[4], x[5]))
-    }
-
-    fn moved(&self, x: &[f64], p: V) -> V {
-        self.centre + V::new(x[0], x[1], x[2]) + self.rotation(x) * (p - self.centre)
-    }
-
-    /// Chrono's `ChLinkLockRevolutePrismatic` guide between the chassis (first body) and the tube (second),
-    /// both markers at the tube's `COM` in the frame G, the chassis's turned a quarter about y (its axes
-    /// x = −z, y = y, z = x of the chassis). `ChLinkMarkers` takes the first marker's offset from the
-    /// second in the second's frame (the tube's, turned by R: axes R·G), and the first's rotation relative
-    /// to the second; the REVOLUTEPRISMATIC mask locks the offset's y and z and the rotation's e1 and e2 (it
-    /// turns about G's z alone). Four residuals.
-    fn guide(&self, x: &[f64]) -> [f64; 4] {
-        let r = self.rotation(x);
-        let (y_g, z_g, x_g) = (V::y(), V::x(), -V::z());
-        let offset = self.centre - self.moved(x, self.centre);
-        [(r * y_g).dot(&offset), (r * z_g).dot(&offset), (r * z_g).dot(&x_g), (r * z_g).dot(&y_g)]
-    }
+/// Chrono's `ChLinkLockRevolutePrismatic` guide between the chassis (first body) and the tube (second),
+/// both markers at the tube's `COM` in the frame G, the chassis's turned a quarter about y (its axes
+/// x = −z, y = y, z = x of the chassis). `ChLinkMarkers` takes the first marker's offset from the
+/// second in the second's frame (the tube's, turned by R: axes R·G), and the first's rotation relative
+/// to the second; the REVOLUTEPRISMATIC mask locks the offset's y and z and the rotation's e1 and e2 (it
+/// turns about G's z alone). Four residuals.
+fn guide(tube: &Tube, x: &[f64]) -> [f64; 4] {
+    let r = tube.rotation(x);
+    let (y_g, z_g, x_g) = (V::y(), V::x(), -V::z());
+    let offset = tube.centre - tube.moved(x, tube.centre);
+    [(r * y_g).dot(&offset), (r * z_g).dot(&offset), (r * z_g).dot(&x_g), (r * z_g).dot(&y_g)]
 }
 
 /// The two springs' lengths, from `Spring / Location Chassis` to `Location Axle` on the tube, and its
@@ -154,16 +80,17 @@ fn spring_lengths(chrono: &Value, tube: Tube, x: &[f64]) -> [f64; 2] {
 }
 
 /// `ChLeafspringAxle`: the tube on its guide; each spindle turns on the tube (the wheel moves with it).
-/// Unknowns: the tube's six.
-fn leaf_closure(chrono: &Value) -> impl Fn(Drive, &mut [f64; 6]) -> Solved + '_ {
+/// Driven by the left and right wheel-centre rises and the steering travel ([`Travel::at`]). Unknowns:
+/// the tube's six.
+fn leaf_closure(chrono: &Value) -> impl Fn((f64, f64, f64), &mut [f64; 6]) -> Solved + '_ {
     let tube = Tube { centre: point(chrono, "Axle Tube/COM") };
     let wc = point(chrono, "Spindle/COM");
     assert!(chrono.get("Camber Angle (deg)").is_none() && chrono.get("Toe Angle (deg)").is_none());
-    move |drive, x| {
+    move |(left, right, _), x| {
         let residual = |x: &[f64; 6]| {
-            let mut f = tube.guide(x).to_vec();
-            f.push(tube.moved(x, wc).z - wc.z - drive.left);
-            f.push(tube.moved(x, mirror(wc)).z - wc.z - drive.right);
+            let mut f = guide(&tube, x).to_vec();
+            f.push(tube.moved(x, wc).z - wc.z - left);
+            f.push(tube.moved(x, mirror(wc)).z - wc.z - right);
             DVector::from_vec(f)
         };
         newton_fd(residual, x);
@@ -181,8 +108,9 @@ fn leaf_closure(chrono: &Value) -> impl Fn(Drive, &mut [f64; 6]) -> Solved + '_ 
 /// to the right one, which only stops it spinning on its own axis) keeps the distance of its ends; the drag
 /// link (a ball joint at the steering end, a universal joint at the knuckle) keeps its length from the
 /// steering end (held, or moved along the drag link) to the knuckle's arm, on the left knuckle unless the
-/// arm's point has a negative y, both points as given. Unknowns: the tube's six, ψ left, ψ right.
-fn toe_bar_closure(chrono: &Value) -> impl Fn(Drive, &mut [f64; 8]) -> Solved + '_ {
+/// arm's point has a negative y, both points as given. Driven as [`leaf_closure`] is. Unknowns: the tube's
+/// six, ψ left, ψ right.
+fn toe_bar_closure(chrono: &Value) -> impl Fn((f64, f64, f64), &mut [f64; 8]) -> Solved + '_ {
     let tube = Tube { centre: point(chrono, "Axle Tube/COM") };
     let wc = point(chrono, "Spindle/COM");
     assert!(chrono.get("Camber Angle (deg)").is_none() && chrono.get("Toe Angle (deg)").is_none());
@@ -198,14 +126,14 @@ fn toe_bar_closure(chrono: &Value) -> impl Fn(Drive, &mut [f64; 8]) -> Solved + 
         tube.moved(x, lower + Rotation3::from_axis_angle(&Unit::new_normalize(upper - lower), psi) * (p - lower))
     };
     let psi = |x: &[f64], side: f64| if side > 0.0 { x[6] } else { x[7] };
-    move |drive, x| {
+    move |(left, right, steer), x| {
         let residual = |x: &[f64; 8]| {
-            let mut f = tube.guide(x).to_vec();
-            f.push(knuckle(x, 1.0, x[6], wc).z - wc.z - drive.left);
-            f.push(knuckle(x, -1.0, x[7], mirror(wc)).z - wc.z - drive.right);
+            let mut f = guide(&tube, x).to_vec();
+            f.push(knuckle(x, 1.0, x[6], wc).z - wc.z - left);
+            f.push(knuckle(x, -1.0, x[7], mirror(wc)).z - wc.z - right);
             let ends = knuckle(x, 1.0, x[6], bar) - knuckle(x, -1.0, x[7], mirror(bar));
             f.push(ends.norm() - 2.0 * bar.y);
-            let steering_now = steering_end + (arm - steering_end).normalize() * drive.steer;
+            let steering_now = steering_end + (arm - steering_end).normalize() * steer;
             f.push((knuckle(x, arm_side, psi(x, arm_side), arm) - steering_now).norm() - (arm - steering_end).norm());
             DVector::from_vec(f)
         };
@@ -230,9 +158,11 @@ struct Row {
 
 /// Both wheels of the axle over `rig`'s sweep of ±`reach`, in 12 steps (design at row 6).
 fn axle_rows(file: &SuspensionFile, rig: AxleRig, reach: f64) -> Vec<Row> {
-    let axle = Axle::build(&file.suspension, rig).unwrap();
-    let rows = axle_sweep(&axle, -reach, reach, 12, Mode::Corrected).unwrap();
-    rows.iter().map(|r| Row { t: r.travel, wheels: [r.left, r.right], loads: [r.left_load, r.right_load] }).collect()
+    axle_rows_of(file, rig, reach, |r| Row {
+        t: r.travel,
+        wheels: [r.left, r.right],
+        loads: [r.left_load, r.right_load],
+    })
 }
 
 /// Both wheels over ±`reach` of uneven travel (the left wheel centre rises by t, the right by t/2: the axle
@@ -264,65 +194,54 @@ struct Found {
     centre_range: f64,
 }
 
-/// `rows` against `closure` driven by `drive(t)`, walked outwards from the design row (index 6) in both
-/// directions, each closure starting from its neighbour's solution.
+/// `rows` against `closure` driven by `travel` at each row's `t`, walked out from the design row (index 6;
+/// see [`walk_out`]).
 fn against<const N: usize>(
     rows: &[Row],
-    drive: impl Fn(f64) -> Drive,
-    closure: impl Fn(Drive, &mut [f64; N]) -> Solved,
+    travel: Travel,
+    closure: impl Fn((f64, f64, f64), &mut [f64; N]) -> Solved,
 ) -> Found {
     let mut found = Found::default();
-    for half in [rows[6..].iter().collect::<Vec<_>>(), rows[..=6].iter().rev().collect()] {
-        let mut guess = [0.0; N];
-        for row in half {
-            let reference = closure(drive(row.t), &mut guess);
-            for (k, (wheel, side)) in row.wheels.iter().zip([1.0, -1.0]).enumerate() {
-                let (toe, camber) = toe_camber(reference.spin[k], side);
-                found.angle = found.angle.max((wheel.toe - toe).abs()).max((wheel.camber - camber).abs());
-                found.centre = found.centre.max((wheel.wheel_centre - reference.centre[k]).amax());
-            }
+    walk_out(rows, 6, |row, guess| {
+        let reference = closure(travel.at(row.t), guess);
+        for (k, (wheel, side)) in row.wheels.iter().zip([1.0, -1.0]).enumerate() {
+            let (toe, camber) = toe_camber(reference.spin[k], side);
+            found.angle = found.angle.max((wheel.toe - toe).abs()).max((wheel.camber - camber).abs());
+            found.centre = found.centre.max((wheel.wheel_centre - reference.centre[k]).amax());
         }
-    }
-    let range = |f: &dyn Fn(&Row) -> f64| {
-        let (lo, hi) = rows.iter().map(f).fold((f64::MAX, f64::MIN), |(lo, hi), a| (lo.min(a), hi.max(a)));
-        hi - lo
-    };
+    });
     for k in 0..2 {
-        found.angle_range = found.angle_range.max(range(&|r| r.wheels[k].toe)).max(range(&|r| r.wheels[k].camber));
-        found.centre_range =
-            found.centre_range.max(range(&|r| r.wheels[k].wheel_centre.x)).max(range(&|r| r.wheels[k].wheel_centre.y));
+        let range = |f: &dyn Fn(&WheelAttitude) -> f64| spread(rows, |r| f(&r.wheels[k]));
+        found.angle_range = found.angle_range.max(range(&|w| w.toe)).max(range(&|w| w.camber));
+        found.centre_range = found.centre_range.max(range(&|w| w.wheel_centre.x)).max(range(&|w| w.wheel_centre.y));
     }
     found
 }
 
 /// The largest relative difference between the rig's work on the wheels and the springs' by virtual work:
 /// at each row, `Σ Fᵢ·dzᵢ/dt = −Σ push_k·dL_k/dt` over the springs (push `k (L₀ − L)`, lengths from the
-/// closure, their rates by central differences of it), the wheel rises `dzᵢ/dt` those of `drive`.
+/// closure, their rates by central differences of it), the wheel rises `dzᵢ/dt` those of `travel`.
 fn virtual_work<const N: usize>(
     chrono: &Value,
     rows: &[Row],
-    drive: impl Fn(f64) -> Drive,
-    closure: impl Fn(Drive, &mut [f64; N]) -> Solved,
+    travel: Travel,
+    closure: impl Fn((f64, f64, f64), &mut [f64; N]) -> Solved,
 ) -> f64 {
     let (k, free) = (number(chrono, "Spring/Spring Coefficient"), number(chrono, "Spring/Free Length"));
     assert!(chrono["Spring"].get("Preload").is_none());
     let h = 1e-4;
     let mut worst: f64 = 0.0;
-    for half in [rows[6..].iter().collect::<Vec<_>>(), rows[..=6].iter().rev().collect()] {
-        let mut guess = [0.0; N];
-        for row in half {
-            let at = closure(drive(row.t), &mut guess);
-            let (mut up, mut down) = (guess, guess);
-            let (ahead, behind) = (closure(drive(row.t + h), &mut up), closure(drive(row.t - h), &mut down));
-            let work: Vec<f64> = (0..2)
-                .map(|s| -k * (free - at.springs[s]) * (ahead.springs[s] - behind.springs[s]) / (2.0 * h))
-                .collect();
-            let rise = (drive(1.0).left - drive(0.0).left, drive(1.0).right - drive(0.0).right);
-            let rig = row.loads[0] * rise.0 + row.loads[1] * rise.1;
-            // Relative to the springs' shares: in opposite travel at design the two cancel.
-            worst = worst.max((rig - work.iter().sum::<f64>()).abs() / work.iter().map(|w| w.abs()).sum::<f64>());
-        }
-    }
+    walk_out(rows, 6, |row, guess| {
+        let at = closure(travel.at(row.t), guess);
+        let (mut up, mut down) = (*guess, *guess);
+        let (ahead, behind) = (closure(travel.at(row.t + h), &mut up), closure(travel.at(row.t - h), &mut down));
+        let work: Vec<f64> =
+            (0..2).map(|s| -k * (free - at.springs[s]) * (ahead.springs[s] - behind.springs[s]) / (2.0 * h)).collect();
+        let (rise, start) = (travel.at(1.0), travel.at(0.0));
+        let rig = row.loads[0] * (rise.0 - start.0) + row.loads[1] * (rise.1 - start.1);
+        // Relative to the springs' shares: in opposite travel at design the two cancel.
+        worst = worst.max((rig - work.iter().sum::<f64>()).abs() / work.iter().map(|w| w.abs()).sum::<f64>());
+    });
     worst
 }
 
@@ -336,29 +255,29 @@ fn the_leaf_spring_axle_matches_its_loop_closure() {
     let (chrono, file) = leaf();
 
     let rows = axle_rows(&file, AxleRig::ParallelTravel, 0.05);
-    let found = against(&rows, Drive::parallel, leaf_closure(&chrono));
+    let found = against(&rows, Travel::Parallel, leaf_closure(&chrono));
     // Nothing but the height moves: measured 5.3e-17 rad and 0 m of range, as the closure has it.
     assert!(found.angle_range < 1e-12 && found.centre_range < 1e-12, "{found:?}");
     // Measured: 5.0e-17 rad, 5.5e-11 m (the wheel-height drivers closed to their tolerance).
     assert!(found.angle < 5e-15 && found.centre < 5e-9, "{found:?}");
     // The springs carry 71 kN more over the travel: the comparison by virtual work has content.
     assert!(rows[12].loads[0] - rows[0].loads[0] > 5e4, "{} N", rows[12].loads[0] - rows[0].loads[0]);
-    let worst = virtual_work(&chrono, &rows, Drive::parallel, leaf_closure(&chrono));
+    let worst = virtual_work(&chrono, &rows, Travel::Parallel, leaf_closure(&chrono));
     // Measured: 7.4e-10 relative.
     assert!(worst < 5e-8, "parallel travel by virtual work: {worst:e}");
 
     let rows = axle_rows(&file, AxleRig::OppositeTravel, 0.05);
-    let found = against(&rows, Drive::opposite, leaf_closure(&chrono));
+    let found = against(&rows, Travel::Opposite, leaf_closure(&chrono));
     // The wheels camber over 0.106 rad and their centres move in by 1.3 mm.
     assert!(found.angle_range > 0.1 && found.centre_range > 1e-3, "{found:?}");
     // Measured: 7.0e-14 rad, 1.5e-12 m.
     assert!(found.angle < 5e-12 && found.centre < 1e-10, "{found:?}");
-    let worst = virtual_work(&chrono, &rows, Drive::opposite, leaf_closure(&chrono));
+    let worst = virtual_work(&chrono, &rows, Travel::Opposite, leaf_closure(&chrono));
     // Measured: 1.2e-9 relative.
     assert!(worst < 1e-7, "opposite travel by virtual work: {worst:e}");
 
     let rows = uneven_rows(&file, 0.08);
-    let found = against(&rows, Drive::uneven, leaf_closure(&chrono));
+    let found = against(&rows, Travel::Uneven, leaf_closure(&chrono));
     // The wheels camber over 0.043 rad and their centres move across by 1.5 mm.
     assert!(found.angle_range > 0.04 && found.centre_range > 1e-3, "{found:?}");
     // Measured: 4.3e-14 rad, 3.0e-13 m.
@@ -381,34 +300,34 @@ fn the_leaf_spring_axle_matches_its_loop_closure() {
 fn the_toe_bar_leaf_spring_axle_matches_its_loop_closure() {
     for (what, (chrono, file)) in [("left drag link", toe_bar()), ("right drag link", toe_bar_right())] {
         let rows = axle_rows(&file, AxleRig::ParallelTravel, 0.05);
-        let found = against(&rows, Drive::parallel, toe_bar_closure(&chrono));
+        let found = against(&rows, Travel::Parallel, toe_bar_closure(&chrono));
         // The wheels toe over 6.8 mrad (the drag link's arc over ±50 mm) and their centres move by 0.6 mm.
         assert!(found.angle_range > 5e-3 && found.centre_range > 1e-4, "{what}: {found:?}");
         // Measured: 3.6e-11 rad, 3.4e-12 m (both sides).
         assert!(found.angle < 3e-9 && found.centre < 3e-10, "{what}: {found:?}");
-        let worst = virtual_work(&chrono, &rows, Drive::parallel, toe_bar_closure(&chrono));
+        let worst = virtual_work(&chrono, &rows, Travel::Parallel, toe_bar_closure(&chrono));
         // Measured: 1.2e-10 relative.
         assert!(worst < 1e-8, "{what}: parallel travel by virtual work: {worst:e}");
 
         let rows = axle_rows(&file, AxleRig::OppositeTravel, 0.05);
-        let found = against(&rows, Drive::opposite, toe_bar_closure(&chrono));
+        let found = against(&rows, Travel::Opposite, toe_bar_closure(&chrono));
         // The wheels camber over 0.1 rad.
         assert!(found.angle_range > 0.05, "{what}: {found:?}");
         // Measured: 1.7e-11 rad, 1.6e-12 m.
         assert!(found.angle < 1e-9 && found.centre < 1e-10, "{what}: {found:?}");
-        let worst = virtual_work(&chrono, &rows, Drive::opposite, toe_bar_closure(&chrono));
+        let worst = virtual_work(&chrono, &rows, Travel::Opposite, toe_bar_closure(&chrono));
         // Measured: 2.9e-9 relative.
         assert!(worst < 2e-7, "{what}: opposite travel by virtual work: {worst:e}");
 
         let rows = axle_rows(&file, AxleRig::Steering, 0.04);
-        let found = against(&rows, Drive::steering, toe_bar_closure(&chrono));
+        let found = against(&rows, Travel::Steering, toe_bar_closure(&chrono));
         // The wheels steer over 0.44 rad.
         assert!(found.angle_range > 0.1, "{what}: {found:?}");
         // Measured: 1.2e-12 rad, 1.1e-13 m.
         assert!(found.angle < 1e-10 && found.centre < 1e-11, "{what}: {found:?}");
 
         let rows = uneven_rows(&file, 0.08);
-        let found = against(&rows, Drive::uneven, toe_bar_closure(&chrono));
+        let found = against(&rows, Travel::Uneven, toe_bar_closure(&chrono));
         // The wheels camber over 0.04 rad.
         assert!(found.angle_range > 0.03, "{what}: {found:?}");
         // Measured: 1.8e-11 rad, 1.7e-12 m (4.8e-14 rad, 1.3e-13 m with the drag link on the left).
@@ -419,11 +338,7 @@ fn the_toe_bar_leaf_spring_axle_matches_its_loop_closure() {
 /// A toe-bar axle whose points leave a part without length is refused by the key to fix.
 #[test]
 fn a_toe_bar_axle_without_a_part_is_refused_by_its_key() {
-    let refused = |edit: fn(&mut Value)| {
-        let mut chrono: Value = serde_json::from_str(&without_comments(&fixture(TOE_BAR))).unwrap();
-        edit(&mut chrono);
-        import(&chrono.to_string(), TOE_BAR, None).unwrap_err().to_string()
-    };
+    let refused = |edit: fn(&mut Value)| edited(TOE_BAR, edit).unwrap_err();
     let e = refused(|v| v["Tierod"]["Location Knuckle"][1] = 0.0.into());
     assert!(e.contains("\"Tierod\" / \"Location Knuckle\"") && e.contains("centre line"), "{e}");
     let e = refused(|v| v["Draglink"]["Location Chassis"] = v["Knuckle"]["Location Draglink"].clone());

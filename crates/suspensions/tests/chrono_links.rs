@@ -4,6 +4,9 @@
 //! its wheel follows, over parallel travel, the closure equations of Chrono's own linkage written out here
 //! from the Chrono file (not from the import); and the axle built from it is its own mirror image.
 
+mod common;
+
+use common::chrono::{chrono_json, edited, fixture, point, spread, toe_camber};
 use elastokin_solver::Mode;
 use elastokin_suspensions::analysis::parallel_wheel_travel;
 use elastokin_suspensions::axle::axle_sweep;
@@ -12,28 +15,9 @@ use elastokin_suspensions::kc::{self, Analysis, Settings};
 use elastokin_suspensions::{check_model, Axle, AxleRig, Rig, Side, SuspensionFile, Template};
 use nalgebra::{DMatrix, DVector, Rotation3, Unit, Vector3};
 use serde_json::Value;
-use std::path::Path;
-
-/// A fixture's text: `tests/data/chrono/<path>` at the repository root.
-fn fixture(path: &str) -> String {
-    let full = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/chrono").join(path);
-    std::fs::read_to_string(&full).unwrap_or_else(|e| panic!("{}: {e}", full.display()))
-}
 
 fn imported(path: &str) -> Imported {
     import(&fixture(path), path, None).unwrap_or_else(|e| panic!("{path}: {e}"))
-}
-
-/// The Chrono file as JSON (without the `//` comments some Chrono files carry).
-fn chrono_json(text: &str) -> Value {
-    serde_json::from_str(&elastokin_suspensions::chrono::without_comments(text)).unwrap()
-}
-
-/// The point `[x, y, z]` at `path` (keys joined by `/`) of a Chrono file.
-fn point(chrono: &Value, path: &str) -> Vector3<f64> {
-    let v = path.split('/').fold(chrono, |v, key| &v[key]);
-    let c: Vec<f64> = v.as_array().unwrap_or_else(|| panic!("{path}")).iter().map(|x| x.as_f64().unwrap()).collect();
-    Vector3::new(c[0], c[1], c[2])
 }
 
 /// The wheel's outward spin axis at design from the file's camber and toe (Chrono: `Rz(−τ) Rx(−γ)` turns
@@ -201,22 +185,17 @@ fn against_closure(file: &SuspensionFile, closure: &Closure) -> (f64, f64, f64) 
         let mut guess = DVector::zeros(closure.unknowns);
         for row in half {
             guess = newton(&|x| (closure.residual)(x, row.travel), guess);
-            let a = (closure.spin)(&guess);
-            let toe = a.x.atan2(a.y);
-            let camber = (-a.z).atan2(a.x.hypot(a.y));
+            let (toe, camber) = toe_camber((closure.spin)(&guess), 1.0);
             worst = worst.max((toe - row.attitude.toe).abs()).max((camber - row.attitude.camber).abs());
         }
     }
-    let range = |f: &dyn Fn(&elastokin_suspensions::analysis::TravelRow) -> f64| {
-        rows.iter().map(f).fold(f64::MIN, f64::max) - rows.iter().map(f).fold(f64::MAX, f64::min)
-    };
-    (worst, range(&|r| r.attitude.toe), range(&|r| r.attitude.camber))
+    (worst, spread(&rows, |r| r.attitude.toe), spread(&rows, |r| r.attitude.camber))
 }
 
 /// The file as Chrono gives it, with every ideal joint: imported, checked, and its toe and camber in
 /// parallel travel against `closure`; returns the worst difference (rad).
 fn ideal_against_closure(path: &str, closure: Linkage) -> f64 {
-    let chrono = chrono_json(&fixture(path));
+    let chrono = chrono_json(path);
     let file = imported(path).file;
     let (worst, toe_range, camber_range) = against_closure(&file, &closure(&chrono));
     // The wheel toes or cambers by a measurable amount over the travel: the comparison has content.
@@ -359,7 +338,7 @@ fn the_axle_is_its_own_mirror_image() {
 /// frees 0) added at `places` (JSON objects; a tie rod also gets Chrono's rod body, whose `Mass` makes it
 /// one): the file's text with those edits.
 fn with_bushings(path: &str, places: &[&str], k: f64) -> String {
-    let mut chrono = chrono_json(&fixture(path));
+    let mut chrono = chrono_json(path);
     let data = serde_json::json!({
         "Stiffness Linear": k, "Damping Linear": 1e3, "Stiffness Rotational": k / 100.0, "Damping Rotational": 10.0,
         "DOF": { "Stiffness Linear": 0, "Damping Linear": 0, "Stiffness Rotational": 0, "Damping Rotational": 0 }
@@ -417,7 +396,7 @@ fn bushing_data_becomes_chronos_bushings_and_stiff_ones_approach_the_closure() {
                 assert!(g.joints.iter().all(|j| j.name != *name), "{path}: {name} is a bushing, not a joint");
             }
             check_model(&read.file).unwrap_or_else(|e| panic!("{path}: {e}"));
-            errors.push(against_closure(&read.file, &closure(&chrono_json(&fixture(path)))).0);
+            errors.push(against_closure(&read.file, &closure(&chrono_json(path))).0);
         }
         // Measured: 1.4e-2 → 1.4e-4 rad (semi-trailing arm), 2.5e-2 → 2.8e-4 (three-link), 9.3e-3 → 9.6e-5
         // (single wishbone): 90 to 98 times closer.
@@ -451,7 +430,7 @@ fn a_bushed_tie_rod_is_a_rod_with_a_bushing_at_each_end() {
         .map(|k| {
             let read =
                 import(&with_bushings("MultiLink.json", &["Tierod/Bushing Data"], k), "MultiLink.json", None).unwrap();
-            against_closure(&read.file, &multi_link(&chrono_json(&fixture("MultiLink.json")))).0
+            against_closure(&read.file, &multi_link(&chrono_json("MultiLink.json"))).0
         })
         .to_vec();
     // Measured: 6.5e-4 → 6.5e-6 rad, 99.9 times closer.
@@ -517,11 +496,9 @@ fn mistakes_are_refused_by_name() {
         ),
     ];
     for (path, edit, expected) in cases {
-        let mut chrono = chrono_json(&fixture(path));
-        edit(&mut chrono);
-        let message = match import(&chrono.to_string(), path, None) {
+        let message = match edited(path, edit) {
             Ok(_) => panic!("{path}: {expected:?} was read"),
-            Err(e) => e.to_string(),
+            Err(e) => e,
         };
         for part in expected {
             assert!(message.contains(part), "{path}: '{message}' does not say '{part}'");
@@ -540,7 +517,7 @@ fn steering_axes_and_crosses_are_where_chrono_puts_them() {
         Place::At(p) => *p,
     };
     let axis_of = |path: &str| {
-        let chrono = chrono_json(&fixture(path));
+        let chrono = chrono_json(path);
         let Template::General(g) = imported(path).file.suspension else { panic!("{path}: the general form") };
         let [lower, upper] = &g.corner.steering_axis;
         assert_eq!((lower.body.as_str(), upper.body.as_str()), ("upright", "upright"), "{path}");

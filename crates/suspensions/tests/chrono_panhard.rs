@@ -6,68 +6,31 @@
 
 mod common;
 
+use common::chrono::{edited, mirror, point, spread, toe_camber, walk_out, Travel, Tube, V};
 use common::newton_fd;
 use elastokin_solver::{LoadPath, Mode, StaticSolver};
 use elastokin_suspensions::axle::axle_sweep;
-use elastokin_suspensions::chrono::{import, without_comments};
 use elastokin_suspensions::{Axle, AxleRig, SuspensionFile, Template};
-use nalgebra::{DVector, Rotation3, Unit, Vector3};
+use nalgebra::{DVector, Rotation3, Unit};
 use serde_json::Value;
-use std::path::Path;
-
-type V = Vector3<f64>;
 
 const REAR: &str = "gclass/G500_RearAxle.json";
 const FRONT: &str = "gclass/G500_FrontAxle.json";
 
-fn fixture(path: &str) -> String {
-    let full = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/chrono").join(path);
-    std::fs::read_to_string(&full).unwrap_or_else(|e| panic!("{}: {e}", full.display()))
-}
-
 /// The Chrono file as JSON, and the model imported from it.
 fn read(path: &str) -> (Value, SuspensionFile) {
-    let text = fixture(path);
-    let chrono: Value = serde_json::from_str(&without_comments(&text)).unwrap();
+    let (chrono, file) = common::chrono::read(path);
     // The closures below turn the wheels' design spin axis ±y: the files give no camber and no toe.
     assert_eq!(chrono["Camber Angle (deg)"].as_f64(), Some(0.0));
     assert_eq!(chrono["Toe Angle (deg)"].as_f64(), Some(0.0));
-    (chrono, import(&text, path, None).unwrap_or_else(|e| panic!("{path}: {e}")).file)
+    (chrono, file)
 }
 
-/// The point at `path` (keys joined by `/`) of a Chrono file, as Chrono gives it.
-fn point(chrono: &Value, path: &str) -> V {
-    let v = path.split('/').fold(chrono, |v, key| &v[key]);
-    let c: Vec<f64> = v.as_array().unwrap_or_else(|| panic!("{path}")).iter().map(|x| x.as_f64().unwrap()).collect();
-    V::new(c[0], c[1], c[2])
-}
-
-/// The right side's mirror image of a left point, as Chrono places it (y → −y).
-fn mirror(p: V) -> V {
-    V::new(p.x, -p.y, p.z)
-}
-
-/// The axle tube moved by `x[0..3]` (translation) and `x[3..6]` (rotation vector about the tube's `COM`).
-#[derive(Clone, Copy)]
-struct Tube {
-    centre: V,
-}
-
-impl Tube {
-    fn rotation(&self, x: &[f64]) -> Rotation3<f64> {
-        Rotation3::new(V::new(x[3], x[4], x[5]))
-    }
-
-    fn moved(&self, x: &[f64], p: V) -> V {
-        self.centre + V::new(x[0], x[1], x[2]) + self.rotation(x) * (p - self.centre)
-    }
-
-    /// Chrono's planar guide (`ChLinkLockPlanar`, normal x): the chassis's point at the tube's centre stays on
-    /// the tube's plane of normal x, and the tube's x axis stays square to the chassis's y and z.
-    fn guide(&self, x: &[f64]) -> [f64; 3] {
-        let n = self.rotation(x) * V::x();
-        [-n.dot(&V::new(x[0], x[1], x[2])), n.y, n.z]
-    }
+/// Chrono's planar guide (`ChLinkLockPlanar`, normal x): the chassis's point at the tube's centre stays on
+/// the tube's plane of normal x, and the tube's x axis stays square to the chassis's y and z.
+fn guide(tube: &Tube, x: &[f64]) -> [f64; 3] {
+    let n = tube.rotation(x) * V::x();
+    [-n.dot(&V::new(x[0], x[1], x[2])), n.y, n.z]
 }
 
 /// Chrono's anti-roll bar: each half turns by θ about y through the midpoint of `Location Chassis` and its
@@ -107,33 +70,6 @@ impl Bar {
     }
 }
 
-/// Toe and camber of a wheel on side `s` (+1 left) whose outward spin axis is `a`, from their definitions.
-fn toe_camber(a: V, s: f64) -> (f64, f64) {
-    (a.x.atan2(s * a.y), (-a.z).atan2(a.x.hypot(a.y)))
-}
-
-/// What the rig drives with `t`.
-#[derive(Clone, Copy)]
-enum Travel {
-    /// Both wheel-centre heights by `t`.
-    Parallel,
-    /// The left wheel-centre height by `t`, the right by `−t`.
-    Opposite,
-    /// The steering box's end of the drag link by `t` along the drag link, both heights held.
-    Steering,
-}
-
-impl Travel {
-    /// Left and right wheel-centre travel, and steering-box travel, at `t`.
-    fn at(self, t: f64) -> (f64, f64, f64) {
-        match self {
-            Travel::Parallel => (t, t, 0.0),
-            Travel::Opposite => (t, -t, 0.0),
-            Travel::Steering => (0.0, 0.0, t),
-        }
-    }
-}
-
 /// What a closure and the engine give at one row: each wheel's (toe, camber), the left wheel centre's
 /// lateral position, and the bar's twist (the left half's turn about y less the right's).
 #[derive(Clone, Copy, Debug)]
@@ -153,7 +89,7 @@ fn rigid_closure(chrono: &Value, travel: Travel) -> impl Fn(f64, &mut [f64; 8]) 
     let bar = Bar::of(chrono);
     move |t, x| {
         let residual = |x: &[f64; 8]| {
-            let mut f = tube.guide(x).to_vec();
+            let mut f = guide(&tube, x).to_vec();
             f.push((tube.moved(x, pa) - pc).norm() - (pa - pc).norm());
             let (left, right, _) = travel.at(t);
             f.push(tube.moved(x, wc).z - wc.z - left);
@@ -196,7 +132,7 @@ fn toe_bar_closure(chrono: &Value, travel: Travel) -> impl Fn(f64, &mut [f64; 10
     };
     move |t, x| {
         let residual = |x: &[f64; 10]| {
-            let mut f = tube.guide(x).to_vec();
+            let mut f = guide(&tube, x).to_vec();
             f.push((tube.moved(x, pa) - pc).norm() - (pa - pc).norm());
             let (left, right, steer) = travel.at(t);
             f.push(knuckle(x, 1.0, x[6], wc).z - wc.z - left);
@@ -249,21 +185,15 @@ fn against<const N: usize>(
     closure: impl Fn(f64, &mut [f64; N]) -> Row,
 ) -> ([f64; 3], [f64; 3]) {
     let mut worst = [0.0_f64; 3];
-    for half in [rows[design..].iter().collect::<Vec<_>>(), rows[..=design].iter().rev().collect()] {
-        let mut guess = [0.0; N];
-        for (t, engine) in half {
-            let reference = closure(*t, &mut guess);
-            for (e, r) in engine.wheels.iter().zip(reference.wheels) {
-                worst[0] = worst[0].max((e.0 - r.0).abs()).max((e.1 - r.1).abs());
-            }
-            worst[1] = worst[1].max((engine.left_y - reference.left_y).abs());
-            worst[2] = worst[2].max((engine.twist - reference.twist).abs());
+    walk_out(rows, design, |(t, engine), guess| {
+        let reference = closure(*t, guess);
+        for (e, r) in engine.wheels.iter().zip(reference.wheels) {
+            worst[0] = worst[0].max((e.0 - r.0).abs()).max((e.1 - r.1).abs());
         }
-    }
-    let range = |f: &dyn Fn(&Row) -> f64| {
-        let (lo, hi) = rows.iter().map(|(_, r)| f(r)).fold((f64::MAX, f64::MIN), |(lo, hi), a| (lo.min(a), hi.max(a)));
-        hi - lo
-    };
+        worst[1] = worst[1].max((engine.left_y - reference.left_y).abs());
+        worst[2] = worst[2].max((engine.twist - reference.twist).abs());
+    });
+    let range = |f: &dyn Fn(&Row) -> f64| spread(rows, |(_, r)| f(r));
     let angles = (0..4)
         .map(|k| range(&|r: &Row| if k % 2 == 0 { r.wheels[k / 2].0 } else { r.wheels[k / 2].1 }))
         .fold(0.0, f64::max);
@@ -422,13 +352,6 @@ fn the_anti_roll_bars_roll_stiffness_is_its_closed_form() {
         // Measured: 1.8e-5 (rear) and 1.7e-5 (front), the figure's curvature over the sweep's steps.
         assert!(error < 1e-3, "{path}: {reported} N·m/deg reported, {expected} N·m/rad expected");
     }
-}
-
-/// The file's JSON with `edit` applied, imported.
-fn edited(path: &str, edit: impl FnOnce(&mut Value)) -> Result<elastokin_suspensions::chrono::Imported, String> {
-    let mut v: Value = serde_json::from_str(&without_comments(&fixture(path))).unwrap();
-    edit(&mut v);
-    import(&v.to_string(), path, None).map_err(|e| e.to_string())
 }
 
 /// Bad anti-roll bar, Panhard rod and drag link data is refused by its keys, with what to give instead; a

@@ -7,97 +7,24 @@
 
 mod common;
 
+use common::chrono::{
+    against, axle_rows, chrono_json, corner_rows, fixture, mirror, point, read_edited, toe_camber, uncross_stops,
+    Angles, Travel, Tube, V,
+};
 use common::newton_fd;
-use elastokin_solver::Mode;
-use elastokin_suspensions::analysis::parallel_wheel_travel;
-use elastokin_suspensions::axle::axle_sweep;
-use elastokin_suspensions::chrono::{import, without_comments};
+use elastokin_suspensions::chrono::import;
 use elastokin_suspensions::kc::{self, Analysis, Settings};
-use elastokin_suspensions::{Axle, AxleRig, Rig, Side, SuspensionFile, Template};
-use nalgebra::{DVector, Rotation3, Unit, Vector3};
+use elastokin_suspensions::{AxleRig, Rig, Side, SuspensionFile, Template};
+use nalgebra::{DVector, Rotation3, Unit};
 use serde_json::Value;
-use std::path::Path;
-
-type V = Vector3<f64>;
 
 const REAR: &str = "uaz/UAZBUS_RearPushPipeAxle.json";
 const FRONT: &str = "uaz/UAZBUS_FrontPushPipeAxle.json";
 
-fn fixture(path: &str) -> String {
-    let full = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/chrono").join(path);
-    std::fs::read_to_string(&full).unwrap_or_else(|e| panic!("{}: {e}", full.display()))
-}
-
-fn chrono(path: &str) -> Value {
-    serde_json::from_str(&without_comments(&fixture(path))).unwrap()
-}
-
-/// The Chrono file as JSON, and the model imported from it with its spring's `Minimum Length` and `Maximum
-/// Length` swapped (the file's are crossed, and refused).
+/// The Chrono file as JSON with its spring's `Minimum Length` and `Maximum Length` swapped (the file's are
+/// crossed, and refused), and the model imported from it.
 fn read_swapped(path: &str) -> (Value, SuspensionFile) {
-    let original = chrono(path);
-    let mut swapped = original.clone();
-    let spring = &mut swapped["Spring"];
-    let (min, max) = (spring["Minimum Length"].clone(), spring["Maximum Length"].clone());
-    spring["Minimum Length"] = max;
-    spring["Maximum Length"] = min;
-    let file = import(&swapped.to_string(), path, None).unwrap_or_else(|e| panic!("{path}: {e}")).file;
-    (original, file)
-}
-
-/// The point at `path` (keys joined by `/`) of a Chrono file: as Chrono gives it.
-fn point(chrono: &Value, path: &str) -> V {
-    let v = path.split('/').fold(chrono, |v, key| &v[key]);
-    let c: Vec<f64> = v.as_array().unwrap_or_else(|| panic!("{path}")).iter().map(|x| x.as_f64().unwrap()).collect();
-    V::new(c[0], c[1], c[2])
-}
-
-/// The right side's mirror image of a left point, as Chrono places it (y → −y).
-fn mirror(p: V) -> V {
-    V::new(p.x, -p.y, p.z)
-}
-
-#[derive(Clone, Copy)]
-/// The axle tube moved by `x[0..3]` (translation) and `x[3..6]` (rotation vector about the tube's `COM`).
-struct Tube {
-    centre: V,
-}
-
-impl Tube {
-    fn rotation(&self, x: &[f64]) -> Rotation3<f64> {
-        Rotation3::new(V::new(x[3], x[4], x[5]))
-    }
-
-    fn moved(&self, x: &[f64], p: V) -> V {
-        self.centre + V::new(x[0], x[1], x[2]) + self.rotation(x) * (p - self.centre)
-    }
-}
-
-/// Toe and camber of a wheel on side `s` (+1 left) whose outward spin axis is `a`, from their definitions.
-fn toe_camber(a: V, s: f64) -> (f64, f64) {
-    (a.x.atan2(s * a.y), (-a.z).atan2(a.x.hypot(a.y)))
-}
-
-/// What the rig drives with `t`.
-#[derive(Clone, Copy)]
-enum Travel {
-    /// Both wheel-centre heights by `t`.
-    Parallel,
-    /// The left wheel-centre height by `t`, the right by `−t`.
-    Opposite,
-    /// The steering box's end of the drag link by `t` along the drag link, both heights held.
-    Steering,
-}
-
-impl Travel {
-    /// Left and right wheel-centre travel, and steering-box travel, at `t`.
-    fn at(self, t: f64) -> (f64, f64, f64) {
-        match self {
-            Travel::Parallel => (t, t, 0.0),
-            Travel::Opposite => (t, -t, 0.0),
-            Travel::Steering => (0.0, 0.0, t),
-        }
-    }
+    read_edited(path, |v| assert!(uncross_stops(&mut v["Spring"]), "{path}: the stops are not crossed"))
 }
 
 /// The push pipe's ball joint (`Axle Tube / Location Connector Chassis`) holds its point on the tube; the
@@ -173,61 +100,12 @@ fn toe_bar_closure(chrono: &Value, travel: Travel) -> impl Fn(f64, &mut [f64; 8]
     }
 }
 
-/// Largest toe or camber difference (rad) of both wheels between `rows` (travel, left, right attitudes)
-/// and `closure`, walked outwards from the design row (index `design`) in both directions, each closure
-/// starting from its neighbour's solution; and the largest range of the four angles over the rows.
-fn against<const N: usize>(
-    rows: &[(f64, [(f64, f64); 2])],
-    design: usize,
-    closure: impl Fn(f64, &mut [f64; N]) -> [(f64, f64); 2],
-) -> (f64, f64) {
-    let mut worst: f64 = 0.0;
-    for half in [rows[design..].iter().collect::<Vec<_>>(), rows[..=design].iter().rev().collect()] {
-        let mut guess = [0.0; N];
-        for (t, engine) in half {
-            let reference = closure(*t, &mut guess);
-            for (e, r) in engine.iter().zip(reference) {
-                worst = worst.max((e.0 - r.0).abs()).max((e.1 - r.1).abs());
-            }
-        }
-    }
-    let mut range: f64 = 0.0;
-    for k in 0..4 {
-        let angle = |r: &(f64, [(f64, f64); 2])| if k % 2 == 0 { r.1[k / 2].0 } else { r.1[k / 2].1 };
-        let (lo, hi) = rows.iter().map(angle).fold((f64::MAX, f64::MIN), |(lo, hi), a| (lo.min(a), hi.max(a)));
-        range = range.max(hi - lo);
-    }
-    (worst, range)
-}
-
-/// Both wheels of the axle over `rig`'s sweep of ±`reach`, in 12 steps (design at row 6).
-fn axle_rows(file: &SuspensionFile, rig: AxleRig, reach: f64) -> Vec<(f64, [(f64, f64); 2])> {
-    let axle = Axle::build(&file.suspension, rig).unwrap();
-    let rows = axle_sweep(&axle, -reach, reach, 12, Mode::Corrected).unwrap();
-    rows.iter().map(|r| (r.travel, [(r.left.toe, r.left.camber), (r.right.toe, r.right.camber)])).collect()
-}
-
-/// The corner's parallel travel of ±80 mm in 16 steps (design at row 8): the axle built whole, both wheels
-/// (the partner's read from the same poses).
-fn corner_rows(file: &SuspensionFile) -> Vec<(f64, [(f64, f64); 2])> {
+/// The corner's parallel travel (see [`common::chrono::corner_rows`]), both heights driven: the tube's ball
+/// joint and Panhard rod leave it travel and roll.
+fn corner_rows_both_driven(file: &SuspensionFile) -> Vec<Angles> {
     let corner = file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
-    let partner = corner.partner.expect("an axle builds whole");
-    // Both heights driven: the tube's ball joint and Panhard rod leave it travel and roll.
     assert!(corner.model.joint_id("right wheel travel").is_some());
-    let solver_rows = parallel_wheel_travel(&corner, -0.08, 0.08, 16, Mode::Corrected).unwrap();
-    // The partner's attitude needs the poses: walk the same path again with the poses kept.
-    let mut solver = elastokin_solver::StaticSolver::new(&corner.model, Default::default()).unwrap();
-    let mut state = solver.design_state(-0.08);
-    let sweep =
-        solver.sweep_from(&mut state, elastokin_solver::LoadPath::new(-0.08, 0.08, 16), Mode::Corrected).unwrap();
-    solver_rows
-        .iter()
-        .zip(&sweep.steps)
-        .map(|(r, s)| {
-            let p = partner.attitude(&s.poses);
-            (r.travel, [(r.attitude.toe, r.attitude.camber), (p.toe, p.camber)])
-        })
-        .collect()
+    corner_rows(file)
 }
 
 /// The push-pipe axle (the UAZ bus's rear): its wheels in parallel travel (toe from the Panhard rod's arc)
@@ -235,7 +113,7 @@ fn corner_rows(file: &SuspensionFile) -> Vec<(f64, [(f64, f64); 2])> {
 #[test]
 fn the_push_pipe_axle_travels_as_its_loop_closure() {
     let (chrono, file) = read_swapped(REAR);
-    let (worst, range) = against(&corner_rows(&file), 8, push_pipe_closure(&chrono, Travel::Parallel));
+    let (worst, range) = against(&corner_rows_both_driven(&file), 8, push_pipe_closure(&chrono, Travel::Parallel));
     // The Panhard rod's arc yaws the tube as it pitches about the ball joint.
     assert!(range > 1e-3, "push-pipe axle travel: the wheels toe {range} rad");
     // Measured: 5.4e-13 rad, of a toe range of 3.5e-3 rad.
@@ -252,7 +130,7 @@ fn the_push_pipe_axle_travels_as_its_loop_closure() {
 #[test]
 fn the_toe_bar_push_pipe_axle_travels_and_steers_as_its_loop_closure() {
     let (chrono, file) = read_swapped(FRONT);
-    let (worst, range) = against(&corner_rows(&file), 8, toe_bar_closure(&chrono, Travel::Parallel));
+    let (worst, range) = against(&corner_rows_both_driven(&file), 8, toe_bar_closure(&chrono, Travel::Parallel));
     assert!(range > 1e-2, "toe-bar axle travel: the wheels toe {range} rad");
     // Measured: 2.6e-12 rad, of a toe range of 0.30 rad (the drag link, 0.2 m above the ball joint's
     // height, pulls the knuckle's arm as the tube pitches).
@@ -301,7 +179,7 @@ fn crossed_stops_are_refused_by_name_and_the_files_run_with_them_swapped() {
 /// spindles only): refused by name, at the pin.
 #[test]
 fn a_rigid_pinned_axle_is_refused_by_name() {
-    let v = chrono("RigidPinnedAxle.json");
+    let v = chrono_json("RigidPinnedAxle.json");
     let mut keys: Vec<&str> = v.as_object().unwrap().keys().map(String::as_str).collect();
     keys.sort_unstable();
     assert_eq!(keys, ["Axle", "Name", "Spindle", "Template", "Tube", "Type"]);

@@ -10,33 +10,26 @@
 //! work, not the import), and the toe-bar axle against a second reading of the same suspension, Chrono's
 //! generic-wheeled replica of it.
 
-use elastokin_solver::Mode;
-use elastokin_suspensions::axle::axle_sweep;
-use elastokin_suspensions::chrono::{import, without_comments};
-use elastokin_suspensions::{Axle, AxleRig, SuspensionFile};
-use nalgebra::{DMatrix, DVector, Rotation3, Unit, Vector3};
-use serde_json::{json, Value};
-use std::path::Path;
+mod common;
 
-type V = Vector3<f64>;
+use common::chrono::{
+    axle_rows_of, chrono_json, fixture, mirror, number, point, spread, toe_camber, uncross_stops, Travel, V,
+};
+use elastokin_suspensions::chrono::import;
+use elastokin_suspensions::SuspensionFile;
+use nalgebra::{DMatrix, DVector, Rotation3, Unit};
+use serde_json::{json, Value};
 
 const REAR: &str = "uaz/UAZBUS_RearSAELeafspringAxle.json";
 const FRONT: &str = "uaz/UAZBUS_FrontSAELeafspringAxle.json";
 const REPLICA: &str = "uaz/UAZBUS_FrontSAELeafspringAxle_replica.json";
 
-fn text(path: &str) -> String {
-    let full = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/chrono").join(path);
-    std::fs::read_to_string(&full).unwrap_or_else(|e| panic!("{}: {e}", full.display()))
-}
-
 /// The Chrono file as JSON, its spring's `Minimum Length` and `Maximum Length` swapped (the spring is the
 /// template's `Auxiliary Spring`, or the replica's first TSDA).
 fn swapped(path: &str) -> Value {
-    let mut v: Value = serde_json::from_str(&without_comments(&text(path))).unwrap();
+    let mut v = chrono_json(path);
     let spring = if v.get("TSDAs").is_some() { &mut v["TSDAs"][0] } else { &mut v["Auxiliary Spring"] };
-    let (min, max) = (spring["Minimum Length"].clone(), spring["Maximum Length"].clone());
-    spring["Minimum Length"] = max;
-    spring["Maximum Length"] = min;
+    assert!(uncross_stops(spring), "{path}: the stops are not crossed");
     v
 }
 
@@ -44,29 +37,8 @@ fn read(v: &Value) -> SuspensionFile {
     import(&v.to_string(), "swapped", None).unwrap_or_else(|e| panic!("{e}")).file
 }
 
-/// The point at `path` (keys joined by `/`) of a Chrono file: the left side's, as Chrono gives it.
-fn point(chrono: &Value, path: &str) -> V {
-    let v = path.split('/').fold(chrono, |v, key| &v[key]);
-    let c: Vec<f64> = v.as_array().unwrap_or_else(|| panic!("{path}")).iter().map(|x| x.as_f64().unwrap()).collect();
-    V::new(c[0], c[1], c[2])
-}
-
-fn number(chrono: &Value, path: &str) -> f64 {
-    path.split('/').fold(chrono, |v, key| &v[key]).as_f64().unwrap_or_else(|| panic!("{path}"))
-}
-
-/// The right side's mirror image of a left point, as Chrono places it (y → −y).
-fn mirror(p: V) -> V {
-    V::new(p.x, -p.y, p.z)
-}
-
 fn turn(axis: V, angle: f64) -> Rotation3<f64> {
     Rotation3::from_axis_angle(&Unit::new_normalize(axis), angle)
-}
-
-/// Toe and camber of a wheel on side `s` (+1 left) whose outward spin axis is `a`, from their definitions.
-fn toe_camber(a: V, s: f64) -> (f64, f64) {
-    (a.x.atan2(s * a.y), (-a.z).atan2(a.x.hypot(a.y)))
 }
 
 /// A wheel's toe, camber and centre.
@@ -75,39 +47,10 @@ type Wheel = (f64, f64, V);
 /// A row of a sweep: the driven travel and both wheels.
 type Row = (f64, [Wheel; 2]);
 
-/// What the rig drives with `t`: the left and right wheel-centre heights and the steering box's end of
-/// the drag link (moved along the drag link).
-#[derive(Clone, Copy, Debug)]
-enum Travel {
-    Parallel,
-    Opposite,
-    Steering,
-}
-
-impl Travel {
-    fn at(self, t: f64) -> (f64, f64, f64) {
-        match self {
-            Travel::Parallel => (t, t, 0.0),
-            Travel::Opposite => (t, -t, 0.0),
-            Travel::Steering => (0.0, 0.0, t),
-        }
-    }
-
-    fn rig(self) -> AxleRig {
-        match self {
-            Travel::Parallel => AxleRig::ParallelTravel,
-            Travel::Opposite => AxleRig::OppositeTravel,
-            Travel::Steering => AxleRig::Steering,
-        }
-    }
-}
-
 /// Both wheels of the axle over `travel`'s sweep of ±`reach`, in 12 steps (design at row 6).
 fn axle_rows(file: &SuspensionFile, travel: Travel, reach: f64) -> Vec<Row> {
-    let axle = Axle::build(&file.suspension, travel.rig()).unwrap();
-    let rows = axle_sweep(&axle, -reach, reach, 12, Mode::Corrected).unwrap();
     let wheel = |w: &elastokin_suspensions::WheelAttitude| (w.toe, w.camber, w.wheel_centre);
-    rows.iter().map(|r| (r.travel, [wheel(&r.left), wheel(&r.right)])).collect()
+    axle_rows_of(file, travel.rig(), reach, |r| (r.travel, [wheel(&r.left), wheel(&r.right)]))
 }
 
 /// The toe bar's points: the kingpin (`Location Lower` to `Location Upper`), the toe bar's end on the left
@@ -374,15 +317,11 @@ fn compare(rows: &[Row], mut reference: impl FnMut(f64, usize) -> [Wheel; 2]) ->
 /// How far the wheels move over `rows`: the largest range of any toe or camber (rad), and of a wheel
 /// centre's x (m).
 fn ranges(rows: &[Row]) -> (f64, f64) {
-    let spread = |f: &dyn Fn(&Row) -> f64| {
-        let (lo, hi) = rows.iter().map(f).fold((f64::MAX, f64::MIN), |(lo, hi), a| (lo.min(a), hi.max(a)));
-        hi - lo
-    };
     let mut angle: f64 = 0.0;
     let mut x: f64 = 0.0;
     for s in 0..2 {
-        angle = angle.max(spread(&|r| r.1[s].0)).max(spread(&|r| r.1[s].1));
-        x = x.max(spread(&|r| r.1[s].2.x));
+        angle = angle.max(spread(rows, |r| r.1[s].0)).max(spread(rows, |r| r.1[s].1));
+        x = x.max(spread(rows, |r| r.1[s].2.x));
     }
     (angle, x)
 }
@@ -411,7 +350,7 @@ fn against_equilibrium(leaves: &LeafAxle, rows: &[Row], travel: Travel) -> (f64,
 #[test]
 fn the_uaz_leaf_spring_axles_are_refused_for_their_stops_and_read_whole_when_swapped() {
     for path in [REAR, FRONT] {
-        let e = import(&text(path), path, None).unwrap_err().to_string();
+        let e = import(&fixture(path), path, None).unwrap_err().to_string();
         for said in ["\"Auxiliary Spring\"", "\"Minimum Length\" 0.28", "\"Maximum Length\" 0.12", "swapped"] {
             assert!(e.contains(said), "{path}: no '{said}' in: {e}");
         }

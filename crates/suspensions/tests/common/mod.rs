@@ -1,4 +1,5 @@
-//! Reference machinery of the loop-closure tests, independent of the engine.
+//! Reference machinery of the loop-closure tests, independent of the engine; what the tests of Chrono's
+//! files share (their fixtures, and the engine's rows they walk a closure along) is in [`chrono`].
 
 #![allow(dead_code)] // Each test file uses the closures it needs.
 
@@ -6,9 +7,28 @@ use elastokin_core::Vec3;
 use elastokin_suspensions::{DoubleWishboneHardpoints, MacPhersonHardpoints};
 use nalgebra::{DMatrix, DVector, Matrix3, Rotation3, Unit};
 
+pub mod chrono;
+
 /// Newton's method with a central-difference Jacobian on `residual(x) = 0`, from the guess in `x`;
 /// panics when it does not close (the tests start it near a solution).
 pub fn newton_fd<const N: usize>(residual: impl Fn(&[f64; N]) -> DVector<f64>, x: &mut [f64; N]) {
+    newton_fd_by(residual, x, |jac, f| jac.lu().solve(f).expect("loop closure Jacobian is regular away from lock-up"));
+}
+
+/// Newton's method on `residual(x) = 0` with more equations than unknowns, all holding at the solution
+/// (Chrono's joints repeat some constraints): each step the least-squares solution of the linearised
+/// equations, with a central-difference Jacobian; from the guess in `x`, panicking when it does not close.
+pub fn newton_least_squares<const N: usize>(residual: impl Fn(&[f64; N]) -> DVector<f64>, x: &mut [f64; N]) {
+    newton_fd_by(residual, x, |jac, f| jac.svd(true, true).solve(f, 1e-12).expect("SVD of the closure Jacobian"));
+}
+
+/// The Newton iteration of [`newton_fd`] and [`newton_least_squares`], which differ only in how a step
+/// `solve(J, −f)` solves the linearised equations.
+fn newton_fd_by<const N: usize>(
+    residual: impl Fn(&[f64; N]) -> DVector<f64>,
+    x: &mut [f64; N],
+    solve: impl Fn(DMatrix<f64>, &DVector<f64>) -> DVector<f64>,
+) {
     for _ in 0..60 {
         let f = residual(x);
         if f.norm() < 1e-14 {
@@ -21,7 +41,7 @@ pub fn newton_fd<const N: usize>(residual: impl Fn(&[f64; N]) -> DVector<f64>, x
             xm[c] -= 1e-7;
             jac.set_column(c, &((residual(&xp) - residual(&xm)) / 2e-7));
         }
-        let dx = jac.lu().solve(&(-f)).expect("loop closure Jacobian is regular away from lock-up");
+        let dx = solve(jac, &(-f));
         for c in 0..N {
             x[c] += dx[c];
         }
