@@ -32,6 +32,10 @@ pub struct RowOrigin {
 pub struct Model {
     bodies: Vec<Body>,
     joints: Vec<Joint>,
+    /// After each joint, the number of constraint rows of it and all before it: joint `k`'s rows are
+    /// `row_end[k - 1]..row_end[k]`. Kept as joints are added, so that a row's joint is found by bisection
+    /// (a scan of the joints for each row made setting up a model quadratic in its size).
+    row_end: Vec<usize>,
     elements: Vec<Box<dyn ForceElement>>,
     names: HashSet<String>,
 }
@@ -85,6 +89,7 @@ impl Model {
         let (pi, pj) = (self.design_pose(spec.body_i), self.design_pose(spec.body_j));
         let joint = build_joint(spec, &pi, &pj)?;
         self.claim_name(joint.name())?;
+        self.row_end.push(self.constraint_rows() + joint.rows.len());
         self.joints.push(joint);
         Ok(JointId(self.joints.len() - 1))
     }
@@ -145,17 +150,14 @@ impl Model {
     }
     /// Number of constraint rows of all joints and drivers.
     pub fn constraint_rows(&self) -> usize {
-        self.joints.iter().map(|j| j.rows.len()).sum()
+        self.row_end.last().copied().unwrap_or(0)
     }
     /// Which joint and row a global constraint row index belongs to.
-    pub fn row_origin(&self, mut row: usize) -> Option<RowOrigin> {
-        for (k, j) in self.joints.iter().enumerate() {
-            if row < j.rows.len() {
-                return Some(RowOrigin { joint: JointId(k), row });
-            }
-            row -= j.rows.len();
-        }
-        None
+    pub fn row_origin(&self, row: usize) -> Option<RowOrigin> {
+        // The first joint whose rows end after `row` (a joint without rows ends where it starts).
+        let k = self.row_end.partition_point(|&end| end <= row);
+        let start = if k == 0 { 0 } else { self.row_end[k - 1] };
+        (k < self.joints.len()).then(|| RowOrigin { joint: JointId(k), row: row - start })
     }
     /// A readable name of a constraint row: `joint 'name' row 'label'`.
     pub fn describe_row(&self, row: usize) -> String {

@@ -169,3 +169,34 @@ fn degenerate_joints_are_refused_with_named_errors() {
     let e = m.validate().unwrap_err();
     assert!(matches!(e, ModelError::NothingHolds { ref body } if body == "loose wheel"), "{e}");
 }
+
+/// A constraint row's joint and its row within it: for a model of joints of every row count, each global
+/// row against the rows counted out joint by joint in the test, and nothing past the last.
+#[test]
+fn each_constraint_row_is_found_in_its_joint() {
+    let mut m = Model::new();
+    let p = Pose { position: Vec3::new(0.0, 0.5, 0.0), orientation: UnitQuaternion::identity() };
+    let bodies: Vec<BodyRef> = (0..4).map(|k| m.add_body(&format!("b{k}"), p).unwrap().into()).collect();
+    let at = Vec3::new(0.0, 0.5, 0.0);
+    let specs = [
+        JointSpec::spherical("ball", BodyRef::Ground, bodies[0], at),
+        JointSpec::distance("link", bodies[0], bodies[1], at, at + Vec3::x()),
+        JointSpec::revolute("hinge", bodies[1], bodies[2], at, Vec3::y()),
+        JointSpec::fixed("weld", bodies[2], bodies[3], at),
+        JointSpec::in_plane("plane", BodyRef::Ground, bodies[3], at, Vec3::z()),
+    ];
+    let mut expected = Vec::new();
+    for spec in specs {
+        let id = m.add_joint(spec).unwrap();
+        let rows = m.joints()[id.0].rows.len();
+        expected.extend((0..rows).map(|r| (id.0, r)));
+    }
+    // 3 + 1 + 5 + 6 + 1 rows.
+    assert_eq!(expected.len(), 16);
+    assert_eq!(m.constraint_rows(), expected.len());
+    for (row, &(joint, within)) in expected.iter().enumerate() {
+        let o = m.row_origin(row).unwrap();
+        assert_eq!((o.joint.0, o.row), (joint, within), "row {row}");
+    }
+    assert!(m.row_origin(expected.len()).is_none());
+}

@@ -267,19 +267,26 @@ impl<'m> StaticSolver<'m> {
         options.validate()?;
         model.validate()?;
         let poses = model.design_poses();
-        // Redundancy: rank-revealing check of the full Jacobian at design.
-        let all_rows: Vec<usize> = (0..model.constraint_rows()).collect();
-        let mut full = Assembly::new(model, all_rows);
-        full.assemble(model, &poses, 0.0, &[], None);
-        let dropped = redundant_rows(
-            full.m(),
-            full.n,
-            &full.j_col_ptr,
-            &full.j_row_idx,
-            &full.j_values,
-            options.redundancy_tolerance,
-        );
-        let active: Vec<usize> = (0..model.constraint_rows()).filter(|r| !dropped.contains(r)).collect();
+        // Redundancy: rank-revealing check of the full Jacobian at design. The all-rows assembly is
+        // dropped before the active one is made, so that the two are never held at once.
+        let dropped = {
+            let all_rows: Vec<usize> = (0..model.constraint_rows()).collect();
+            let mut full = Assembly::new(model, all_rows);
+            full.assemble(model, &poses, 0.0, &[], None);
+            redundant_rows(
+                full.m(),
+                full.n,
+                &full.j_col_ptr,
+                &full.j_row_idx,
+                &full.j_values,
+                options.redundancy_tolerance,
+            )
+        };
+        let mut is_dropped = vec![false; model.constraint_rows()];
+        for &r in &dropped {
+            is_dropped[r] = true;
+        }
+        let active: Vec<usize> = (0..model.constraint_rows()).filter(|&r| !is_dropped[r]).collect();
         let redundant = dropped
             .iter()
             .map(|&r| {
