@@ -827,3 +827,32 @@ fn a_solid_axles_compliance_is_finite_differences_of_in_phase_loads() {
     // the tangent's partner loads mirrored instead, 1.4e-2.
     assert!(worst < 1e-3, "{worst:e} of the largest entry");
 }
+
+/// The model's own load case on a solid axle acts on both sides: 1000 N up at each contact patch (the right
+/// the left's mirror image; the patch is 0.31 m below the wheel centre), with the wheels free and carrying
+/// the vehicle's corner load there, lands the wheel where the vertical-force analysis (a force at both
+/// patches alike) puts it under the same total, 5200 N. On the left wheel alone, the axle would roll and
+/// the wheel centre land elsewhere.
+#[test]
+fn a_solid_axles_own_load_case_acts_on_both_sides() {
+    use elastokin_suspensions::kc::Analysis;
+    let text = std::fs::read_to_string(example_path("four_link_axle.json")).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["suspension"]["general"]["loads"] = serde_json::json!([{ "name": "lift", "body": "upright", "at": [0.0, 0.75, -0.01], "force": [0.0, 0.0, 1000.0] }]);
+    let file = SuspensionFile::from_json(&v.to_string(), "loaded").unwrap();
+    assert_eq!(file.vehicle.as_ref().unwrap().corner_load, 4200.0);
+    let z = |analysis: Analysis, range: (f64, f64)| {
+        let settings = Settings { range: Some(range), steps: 4, height_held: false, ..Settings::default() };
+        let report = kc::run_suite(&file, &[analysis], &settings, |_| {}).unwrap();
+        let table = &report.analyses[0].table;
+        let column = table.columns.iter().position(|c| c == "wheel_centre_z_m" || c == "wheel_travel_m").unwrap();
+        table.rows.last().unwrap()[column].number().unwrap()
+    };
+    let design_z = 0.30;
+    let by_loads = z(Analysis::ModelLoads, (0.0, 1.0)) - design_z;
+    let by_force = z(Analysis::VerticalForce, (4200.0, 5200.0));
+    // The wheel rises by centimetres: the comparison has content.
+    assert!(by_loads > 0.01, "{by_loads} m");
+    // Measured: 5.6e-17 m (with the load case on the left only, 2.4e-3 m).
+    assert!((by_loads - by_force).abs() < 5e-15, "{by_loads} m by the load case, {by_force} m by the vertical force");
+}
