@@ -50,7 +50,9 @@
 //!    that scaling is exact. Scaled quantities carry a hat:
 //!    `K̂ = S_x K S_x`, `Ĵ = S_y J S_x`; `x = S_x x̂`, `y = S_y ŷ`. This makes a
 //!    1e8 stiffness ratio and unit-scale constraint rows comparable before any
-//!    pivot is taken. The (2,2) block is zero and does not take part.
+//!    pivot is taken. The (2,2) block is zero and does not take part. Each
+//!    factorization starts from the last one's scaling, so that a load path's
+//!    slowly changing values take one confirming sweep.
 //! 2. **Penalty.** `ρ = max_k K̂_kk / max_i ‖Ĵ_i‖²` (both in scaled units; `ρ`
 //!    falls back to `1/max‖Ĵ_i‖²` for `K = 0`), overridable by
 //!    [`KktOptions::rho`]. `ε` ([`KktOptions::epsilon`]) is dimensionless: the
@@ -906,12 +908,15 @@ impl KktFactor {
         self.counters
     }
 
-    /// Ruiz equilibration of the true KKT matrix into `self.scale`.
+    /// Ruiz equilibration of the true KKT matrix into `self.scale`, starting from the last factorization's
+    /// scaling (all ones after `analyze`): along a load path the values change little from one
+    /// factorization to the next, and one sweep then confirms that every row's largest entry is still
+    /// within a factor 2 of 1, where sweeps from ones took several each time. Values that changed by more
+    /// are equilibrated from there, sweep by sweep, to the same criterion.
     fn compute_scaling(&mut self) {
         let n = self.n;
         let s = &mut self.scale;
         let rm = &mut self.row_max;
-        s.fill(1.0);
         for _ in 0..self.options.scaling_iterations {
             rm.fill(0.0);
             for c in 0..n {

