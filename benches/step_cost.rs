@@ -1,5 +1,5 @@
 //! Cost of one load step against its floor, on the swing-arm scene of `examples/swing_arm.rs`'s kind:
-//! median wall time of a paper-mode step, a corrected-mode step, and of one bare numeric factorization +
+//! median wall time of a paper-mode step, a corrected-mode step, and of one `KktFactor` numeric factorization +
 //! solve of the same KKT. Run with `cargo bench --bench step_cost`; `cargo xtask bench` measures the same
 //! on the shipped suspension models, with the parts of a step timed alone (`xtask/src/bench/step_cost.rs`).
 //!
@@ -96,7 +96,7 @@ fn main() {
         2001,
     );
     println!("step cost, {} unknowns + {} multipliers (median of runs)", a.n, a.m());
-    println!("{:<40} {:>12}", "bare factorization + solve", format!("{:.2} µs", bare / 1e3));
+    println!("{:<40} {:>12}", "KktFactor factorization + solve", format!("{:.2} µs", bare / 1e3));
     println!("{:<40} {:>12} {:>8.2}x", "paper-mode step", format!("{:.2} µs", paper / 1e3), paper / bare);
     println!("{:<40} {:>12} {:>8.2}x", "corrected-mode step", format!("{:.2} µs", corrected / 1e3), corrected / bare);
 }
