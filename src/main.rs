@@ -359,9 +359,11 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
         out.line(line)?;
     }
     let ModelInput { bytes, file, .. } = read;
+    // Checked once: `--strict` refuses an implausible model before spending any time on it, and the suite
+    // reports the same check.
+    let model_check = elastokin::suspensions::check_model(&file).ok();
     if strict {
-        // Refuse an implausible model before spending any time on it.
-        if let Ok(check) = elastokin::suspensions::check_model(&file) {
+        if let Some(check) = &model_check {
             if !check.warnings.is_empty() {
                 let lines: Vec<String> =
                     check.warnings.iter().map(|w| format!("warning [{}]: {}", w.code, w.message)).collect();
@@ -389,7 +391,7 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
         out.line(format!("{} — {} mode", file.name, kc::mode_word(mode)))?;
         // The terminal hears of each analysis as it ends; a closed pipe stops the printing, not the run.
         let mut printed: Result<(), Failure> = Ok(());
-        let report = kc::run_suite(&file, &which, &settings, |event| {
+        let report = kc::run_suite_checked(&file, model_check, &which, &settings, |event| {
             let said = match event {
                 SuiteEvent::Starting(a) => {
                     progress.begin(a.name());

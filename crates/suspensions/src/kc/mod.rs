@@ -320,13 +320,24 @@ pub fn run_suite(
     file: &SuspensionFile,
     which: &[Analysis],
     settings: &Settings,
-    mut progress: impl FnMut(SuiteEvent),
+    progress: impl FnMut(SuiteEvent),
 ) -> Result<KcReport, AnalysisError> {
-    let chosen: Vec<Analysis> = if which.is_empty() { ALL.to_vec() } else { which.to_vec() };
     // The plausibility checks run first: a model that cannot be what its author meant is said to be so even
     // when an analysis then fails on it. A check that cannot run (the corner does not build) leaves the
     // analyses to report why.
-    let model_check = crate::plausibility::check_model(file).ok();
+    run_suite_checked(file, crate::plausibility::check_model(file).ok(), which, settings, progress)
+}
+
+/// [`run_suite`] with the model's plausibility check already made (`None` when it could not run), for a
+/// caller that looked at it first (`run --strict` refuses a model it warns of before spending time on it).
+pub fn run_suite_checked(
+    file: &SuspensionFile,
+    model_check: Option<crate::ModelCheck>,
+    which: &[Analysis],
+    settings: &Settings,
+    mut progress: impl FnMut(SuiteEvent),
+) -> Result<KcReport, AnalysisError> {
+    let chosen: Vec<Analysis> = if which.is_empty() { ALL.to_vec() } else { which.to_vec() };
     let warnings = model_check.as_ref().map_or_else(Vec::new, |c| c.warnings.clone());
     let mut report = KcReport {
         model: file.name.clone(),
