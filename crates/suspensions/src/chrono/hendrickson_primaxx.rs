@@ -5,7 +5,7 @@
 //! What `ChHendricksonPRIMAXX::Construct` and `InitializeSide` build, and how it reads:
 //! - The axle housing, a body at `Axle Housing / COM` (the axle's).
 //! - Per side, a knuckle (the corner's upright, which carries the spindle) on a revolute kingpin to the
-//!   housing, its axis from `Knuckle / Lower Attachment Point` to `Upper Attachment Point`, at their
+//!   housing, its axis through `Knuckle / Lower Attachment Point` and `Upper Attachment Point`, at their
 //!   midpoint; the kingpin is the steering axis.
 //! - Per side, a torque rod and a lower beam, each a body on a revolute joint to the chassis at its
 //!   `Chassis Attachment Point` (Chrono's frame: the chassis's turned a quarter about x, so the axis is
@@ -42,7 +42,8 @@
 //!
 //! Masses, inertias, radii and the bodies' centres of mass are read and left out (statics).
 
-use super::{midpoint, Builder, Doc, CHASSIS};
+use super::solid_axle::kingpin;
+use super::{Builder, Doc, CHASSIS};
 use crate::general::Place;
 use elastokin_core::{JointKind, Vec3};
 
@@ -73,7 +74,9 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
          has no position at rest and carries nothing; left out",
         &mut b.notes,
     );
-    knuckle(doc, b)?;
+    // The kingpin's axis points down it, as the other axles' (Chrono's frame here points it up; a revolute
+    // joint turns about the line alone).
+    kingpin(doc, b, ["Lower Attachment Point", "Upper Attachment Point"], AXLE_HOUSING, &[])?;
     rod(doc, b, "Torque Rod", "torque rod", "torque_rod")?;
     rod(doc, b, "Lower Beam", "lower beam", "lower_beam")?;
     doc.left_out(
@@ -99,31 +102,6 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
         "spring",
         ["spring_chassis", "spring_lower_beam"],
     )
-}
-
-/// The knuckle (the upright) on its kingpin to the housing, and the kingpin as the steering axis.
-fn knuckle(doc: &Doc, b: &mut Builder) -> Result<(), String> {
-    let lower = b.hardpoint(doc, "knuckle_lower", "Knuckle/Lower Attachment Point")?;
-    let upper = b.hardpoint(doc, "knuckle_upper", "Knuckle/Upper Attachment Point")?;
-    doc.dynamics("Knuckle", &["Mass", "COM", "Inertia", "Radius"], &mut b.notes);
-    let (l, u, s) = (b.point_of(&lower)?, b.point_of(&upper)?, b.point_of("wheel_centre")?);
-    let w = u - l;
-    if w.norm() < 1e-6 {
-        return Err("\"Knuckle\" / \"Lower Attachment Point\" and \"Upper Attachment Point\" coincide: they are the \
-                    kingpin's two ends; give two distinct points"
-            .into());
-    }
-    // Chrono's frame: w up the kingpin, u normal to the plane of the kingpin and the spindle.
-    let u_axis = (u - s).cross(&(l - s));
-    let u_axis = if u_axis.norm() > 1e-9 {
-        u_axis.normalize()
-    } else {
-        elastokin_core::joint::orthonormal_complement(&w.normalize()).0
-    };
-    let at = midpoint(b, &upper, &lower)?;
-    b.joint(doc, "kingpin", JointKind::Revolute, [AXLE_HOUSING, "upright"], at, Some((u_axis, w.normalize())), None)?;
-    b.steering_axis(("upright", &lower), ("upright", &upper));
-    Ok(())
 }
 
 /// A torque rod or a lower beam (`key`): the body `name` on a revolute joint across the car (y) to the

@@ -60,24 +60,30 @@ pub(super) fn wheel_on_tube(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     b.wheel_vertical_steering_axis()
 }
 
-/// The knuckle (the upright) on its kingpin to the tube, and the kingpin as the steering axis; returns
-/// nothing but the hardpoints `knuckle_lower` and `knuckle_upper`.
+/// The knuckle (the upright) on its kingpin to the tube from `Knuckle / Location Lower` to `Location Upper`,
+/// the kingpin its steering axis; `extra` are the knuckle's further keys that statics leaves out.
 pub(super) fn knuckle(doc: &Doc, b: &mut Builder, extra: &[&str]) -> Result<(), String> {
-    let lower = b.hardpoint(doc, "knuckle_lower", "Knuckle/Location Lower")?;
-    let upper = b.hardpoint(doc, "knuckle_upper", "Knuckle/Location Upper")?;
+    kingpin(doc, b, ["Location Lower", "Location Upper"], AXLE_TUBE, extra)
+}
+
+/// The knuckle (the upright) on a kingpin to `on`, between `Knuckle / <keys[0]>` (lower) and `Knuckle /
+/// <keys[1]>` (upper, hardpoints `knuckle_lower`, `knuckle_upper`), in Chrono's frame: w down the kingpin, u
+/// normal to the plane of the kingpin and the spindle (any normal to the kingpin when the spindle is on it:
+/// a revolute joint turns about w alone); the kingpin is the steering axis.
+pub(super) fn kingpin(doc: &Doc, b: &mut Builder, keys: [&str; 2], on: &str, extra: &[&str]) -> Result<(), String> {
+    let lower = b.hardpoint(doc, "knuckle_lower", &format!("Knuckle/{}", keys[0]))?;
+    let upper = b.hardpoint(doc, "knuckle_upper", &format!("Knuckle/{}", keys[1]))?;
     let mut dynamics = vec!["Mass", "COM", "Inertia", "Radius"];
     dynamics.extend_from_slice(extra);
     doc.dynamics("Knuckle", &dynamics, &mut b.notes);
     let (l, u, s) = (b.point_of(&lower)?, b.point_of(&upper)?, b.point_of("wheel_centre")?);
-    // Chrono reads the knuckle's centre of mass as a point too; statics has no use for it.
-    doc.expect("Knuckle/COM");
     let w = l - u;
     if w.norm() < 1e-6 {
-        return Err("\"Knuckle\" / \"Location Lower\" and \"Location Upper\" coincide: they are the kingpin's two \
-                    ends; give two distinct points"
-            .into());
+        return Err(format!(
+            "\"Knuckle\" / \"{}\" and \"{}\" coincide: they are the kingpin's two ends; give two distinct points",
+            keys[0], keys[1]
+        ));
     }
-    // Chrono's frame: w down the kingpin, u normal to the plane of the kingpin and the spindle.
     let u_axis = (u - s).cross(&(l - s));
     let u_axis = if u_axis.norm() > 1e-9 {
         u_axis.normalize()
@@ -85,7 +91,7 @@ pub(super) fn knuckle(doc: &Doc, b: &mut Builder, extra: &[&str]) -> Result<(), 
         elastokin_core::joint::orthonormal_complement(&w.normalize()).0
     };
     let at = midpoint(b, &upper, &lower)?;
-    b.joint(doc, "kingpin", JointKind::Revolute, [AXLE_TUBE, "upright"], at, Some((u_axis, w.normalize())), None)?;
+    b.joint(doc, "kingpin", JointKind::Revolute, [on, "upright"], at, Some((u_axis, w.normalize())), None)?;
     b.steering_axis(("upright", &lower), ("upright", &upper));
     Ok(())
 }
