@@ -352,11 +352,10 @@ pub fn run_suite_checked(
         crate::Template::General(g) => (g.is_steered(), !g.loads.is_empty()),
         _ => (true, false),
     };
-    // A solid axle built whole, its wheels free: two ways to move (travel and roll), or one.
+    // The roll rig's own refusal decides: a solid axle whose joints lock its roll cannot travel opposite.
     let roll_locked = |template: &crate::Template| {
         crate::CornerTemplate::builds_on_axle_only(template)
-            && crate::Corner::build(template, crate::Side::Left, crate::Rig::Free)
-                .is_ok_and(|c| crate::plausibility::mobility(&c.model).0 < 2)
+            && crate::Axle::build(template, crate::AxleRig::OppositeTravel).err() == Some(crate::axle::roll_locked())
     };
     for analysis in chosen {
         let skip = match analysis {
