@@ -275,6 +275,10 @@ pub struct SolveReport {
     pub backward_error: f64,
     /// Whether `backward_error ≤ refinement_tol`.
     pub converged: bool,
+    /// Whether the residuals and the backward error were measured. A solve for a Newton increment
+    /// (`Accuracy::Increment` of a dense backend) skips the measurement; its report then reads 0 and
+    /// `converged: false`.
+    pub measured: bool,
 }
 
 /// Work counters, cumulative over the lifetime of a [`KktFactor`].
@@ -1251,6 +1255,7 @@ impl KktFactor {
             residual_y,
             backward_error: eta,
             converged: eta <= self.options.refinement_tol,
+            measured: true,
         })
     }
 }

@@ -49,11 +49,13 @@
 pub mod assembly;
 pub mod dense_reference;
 pub mod error;
+pub mod kkt_backend;
 pub mod kkt_factor;
 pub mod results;
 pub mod solver;
 
 pub use error::SolverError;
+pub use kkt_backend::{Accuracy, BackendChoice, KktBackend};
 pub use kkt_factor::{FactorCounters, KktOptions};
 pub use results::{Diagnostics, JointReaction, LimitPoint, RedundantRow, StepResult, Sweep};
 pub use solver::{ArcStep, Counters, LoadPath, Mode, SolverOptions, State, StaticSolver, LIMIT_POINT_TOLERANCE};

@@ -22,7 +22,8 @@
 
 use crate::assembly::{Assembly, Tangent};
 use crate::error::SolverError;
-use crate::kkt_factor::{redundant_rows, FactorCounters, KktFactor, KktOptions};
+use crate::kkt_backend::{Accuracy, AutoKkt, BackendChoice, KktBackend, KktValues};
+use crate::kkt_factor::{redundant_rows, FactorCounters, KktOptions};
 use crate::results::{Diagnostics, LimitPoint, RedundantRow, StepResult, Sweep};
 use elastokin_core::{Model, Pose, BODY_DOFS};
 
@@ -57,6 +58,9 @@ pub struct SolverOptions {
     pub redundancy_tolerance: f64,
     /// Options of the KKT factorization.
     pub kkt: KktOptions,
+    /// Which factorization of the KKT system: by default the dense LU for small systems and the sparse
+    /// LDLᵀ for large ones ([`crate::kkt_backend`]).
+    pub backend: BackendChoice,
 }
 
 impl Default for SolverOptions {
@@ -70,6 +74,7 @@ impl Default for SolverOptions {
             max_rotation_step: 0.5,
             redundancy_tolerance: 1e-9,
             kkt: KktOptions::default(),
+            backend: BackendChoice::Auto,
         }
     }
 }
@@ -145,7 +150,7 @@ pub struct StaticSolver<'m> {
     model: &'m Model,
     options: SolverOptions,
     assembly: Assembly,
-    factor: KktFactor,
+    factor: AutoKkt,
     diagnostics: Diagnostics,
     assemblies: u64,
     rhs: Vec<f64>,
@@ -297,7 +302,7 @@ impl<'m> StaticSolver<'m> {
             .collect();
         let assembly = Assembly::new(model, active);
         let pattern = assembly.kkt_pattern();
-        let factor = KktFactor::analyze(&pattern, options.kkt.clone())?;
+        let factor = AutoKkt::analyze(&pattern, options.kkt.clone(), options.backend)?;
         let size = assembly.n + assembly.m();
         let mut solver = StaticSolver {
             model,
@@ -373,7 +378,7 @@ impl<'m> StaticSolver<'m> {
         let n = self.assembly.n;
         self.factorize_tangent(state)?;
         self.load_direction_rhs();
-        self.solve_with_skew()?;
+        self.solve_with_skew(Accuracy::Refined)?;
         Ok(self.rhs[..n].to_vec())
     }
 
@@ -394,7 +399,7 @@ impl<'m> StaticSolver<'m> {
             });
         }
         self.rhs.copy_from_slice(rhs);
-        self.solve_with_skew()?;
+        self.solve_with_skew(Accuracy::Refined)?;
         rhs.copy_from_slice(&self.rhs);
         Ok(())
     }
@@ -427,7 +432,9 @@ impl<'m> StaticSolver<'m> {
     }
 
     fn factorize(&mut self) -> Result<crate::kkt_factor::FactorReport, SolverError> {
-        Ok(self.factor.factorize(&self.assembly.k_values, &self.assembly.j_values)?)
+        let a = &self.assembly;
+        let values = KktValues { k: &a.k_values, k_skew: a.has_skew.then_some(&a.k_skew[..]), j: &a.j_values };
+        Ok(self.factor.factorize(values)?)
     }
 
     /// Applies `Δq` (first `n` entries of `dx`) to the poses.
@@ -551,10 +558,13 @@ impl<'m> StaticSolver<'m> {
     /// `(I + P⁻¹[S; 0]) z = P⁻¹ rhs` from `z₀ = P⁻¹ rhs`: each iteration is one more back-substitution, and
     /// the count does not depend on how large `S` is against `K` (a fixed-point sweep would stall once
     /// `‖P⁻¹S‖` nears 1, e.g. a bushing twisted ~1 rad by a world-fixed torque).
-    fn solve_with_skew(&mut self) -> Result<(), SolverError> {
+    ///
+    /// A backend that factorizes the skew part with the rest (the dense LU) solves the whole system at
+    /// once, and GMRES is left out.
+    fn solve_with_skew(&mut self, accuracy: Accuracy) -> Result<(), SolverError> {
         let size = self.rhs.len();
-        self.factor.solve_in_place(&mut self.rhs)?;
-        if !self.assembly.has_skew {
+        self.factor.solve_in_place(&mut self.rhs, accuracy)?;
+        if !self.assembly.has_skew || self.factor.solves_skew() {
             return Ok(());
         }
         let b_norm = norm2(&self.rhs);
@@ -660,7 +670,7 @@ impl<'m> StaticSolver<'m> {
         };
         self.assembly.skew_times(v, &mut k.work[..n]);
         k.work[n..size].fill(0.0);
-        self.factor.solve_in_place(&mut k.work[..size])?;
+        self.factor.solve_in_place(&mut k.work[..size], Accuracy::Refined)?;
         Ok(())
     }
 
@@ -700,7 +710,7 @@ impl<'m> StaticSolver<'m> {
     /// the factorized tangent (`scratch` holds `Jᵀλ` from [`Self::residual`]).
     fn newton_increment(&mut self) -> Result<(), SolverError> {
         Self::residual_rhs(&self.assembly, &self.scratch, &mut self.rhs);
-        self.solve_with_skew()?;
+        self.solve_with_skew(Accuracy::Increment)?;
         if self.rhs.iter().any(|v| !v.is_finite()) {
             return Err(SolverError::NonFinite { what: "Newton increment" });
         }
@@ -822,7 +832,7 @@ impl<'m> StaticSolver<'m> {
         // The Jacobian at qⁿ carries λⁿ into the next step. The tangent's non-symmetric part (the load
         // stiffness of world-fixed loads, preloads turning with their lever arms) is solved for too:
         // without it the walk converges, as the step shrinks, to a different path.
-        self.solve_with_skew()?;
+        self.solve_with_skew(Accuracy::Refined)?;
         let response = if dt == 0.0 { 0.0 } else { norm2(&self.rhs[..n]) / dt.abs() };
         let largest = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
         Ok(PaperStep {
@@ -1054,7 +1064,7 @@ impl<'m> StaticSolver<'m> {
         self.assemble(state, Some(Tangent::Full));
         self.factorize().ok()?;
         self.load_direction_rhs();
-        self.factor.solve_in_place(&mut self.rhs).ok()?;
+        self.factor.solve_in_place(&mut self.rhs, Accuracy::Refined).ok()?;
         let norm = self.rhs[..n].iter().map(|v| v * v).sum::<f64>().sqrt();
         norm.is_finite().then_some(norm)
     }
@@ -1213,9 +1223,9 @@ impl<'m> StaticSolver<'m> {
             self.factorize()?;
             // Residual part: [Q − Jᵀλ; −Φ]
             Self::residual_rhs(&self.assembly, &self.scratch, r_dq);
-            self.factor.solve_in_place(r_dq)?;
+            self.factor.solve_in_place(r_dq, Accuracy::Refined)?;
             self.load_direction_rhs();
-            self.factor.solve_in_place(&mut self.rhs)?;
+            self.factor.solve_in_place(&mut self.rhs, Accuracy::Refined)?;
             let num: f64 = dq_total.iter().zip(&r_dq[..n]).map(|(a, b)| a * b).sum();
             let den: f64 = dq_total.iter().zip(&self.rhs[..n]).map(|(a, b)| a * b).sum::<f64>() + psi2 * dt_total;
             let dt = if den.abs() > 0.0 { -num / den } else { 0.0 };
@@ -1266,7 +1276,7 @@ impl<'m> StaticSolver<'m> {
             self.rhs[c] = (seed % 1000) as f64 / 1000.0 - 0.5;
         }
         for _ in 0..2 {
-            self.factor.solve_in_place(&mut self.rhs)?;
+            self.factor.solve_in_place(&mut self.rhs, Accuracy::Refined)?;
             let norm = self.rhs[..n].iter().map(|v| v * v).sum::<f64>().sqrt();
             if !(norm.is_finite() && norm > 0.0) {
                 break;

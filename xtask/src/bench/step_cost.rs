@@ -12,6 +12,7 @@ use super::Settings;
 use elastokin_core::ElementEval;
 use elastokin_solver::assembly::{Assembly, Tangent};
 use elastokin_solver::dense_reference::solve_dense_pivoted;
+use elastokin_solver::kkt_backend::{Accuracy, AutoKkt, BackendChoice, KktBackend, KktValues};
 use elastokin_solver::kkt_factor::{KktFactor, KktOptions, KktPattern};
 use elastokin_solver::{LoadPath, Mode, SolverOptions, StaticSolver};
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
@@ -371,7 +372,76 @@ pub fn run(s: &Settings) -> SectionOutput {
     }
     out.tables.push(table);
     out.tables.push(steps);
+    out.tables.push(crossover(s, &mut out.notes));
     out
+}
+
+/// Chain lengths of the crossover table: KKT orders from about 20 to 240.
+const CROSSOVER_CELLS: [usize; 9] = [2, 3, 4, 6, 8, 9, 10, 12, 24];
+
+/// The dense LU against the sparse LDLᵀ by KKT order, on the full tangent of the scaling section's chain
+/// of suspension-like cells: where [`elastokin_solver::kkt_backend::DENSE_MAX_ORDER`] comes from. The
+/// sparse LDLᵀ is timed on the symmetric part alone (the skew part would cost it GMRES iterations on
+/// top), so the crossover it gives is the conservative one for the dense LU.
+fn crossover(s: &Settings, notes: &mut Vec<String>) -> Table {
+    let mut table = Table::new(
+        "Dense LU against sparse LDLᵀ by order",
+        "step_cost_crossover.csv",
+        &["cells", "order n + m", "dense LU (µs)", "sparse LDLᵀ (µs)", "dense / sparse", "dense from reference"],
+    );
+    let budget = s.budget();
+    for cells in CROSSOVER_CELLS {
+        let measured = (|| -> Result<_, String> {
+            let model = super::scaling::chain(cells).map_err(|e| e.to_string())?;
+            let mut solver = StaticSolver::new(&model, SolverOptions::default()).map_err(|e| e.to_string())?;
+            let mut state = solver.design_state(0.5);
+            solver.equilibrium(&mut state).map_err(|e| e.to_string())?;
+            let mut assembly = Assembly::new(&model, solver.active_rows().to_vec());
+            assembly.assemble(&model, &state.poses, state.t, &state.lambda, Some(Tangent::Full));
+            let pattern = assembly.kkt_pattern();
+            let size = pattern.n + pattern.m;
+            let rhs0: Vec<f64> = (0..size).map(|k| if k < pattern.n { assembly.load_rate[k] } else { 0.0 }).collect();
+            let skew = assembly.has_skew.then_some(&assembly.k_skew[..]);
+            let values = KktValues { k: &assembly.k_values, k_skew: skew, j: &assembly.j_values };
+            let symmetric = KktValues { k_skew: None, ..values };
+            let mut rhs = rhs0.clone();
+            let mut timed = |choice: BackendChoice, values: KktValues<'_>| -> Result<(f64, Vec<f64>), String> {
+                let mut backend =
+                    AutoKkt::analyze(&pattern, KktOptions::default(), choice).map_err(|e| e.to_string())?;
+                let t = budget.time(|| {
+                    backend.factorize(values).map(drop)?;
+                    rhs.copy_from_slice(&rhs0);
+                    backend.solve_in_place(&mut rhs, Accuracy::Refined).map(drop)
+                });
+                Ok((t.median, rhs.clone()))
+            };
+            let (dense, z) = timed(BackendChoice::Dense, values)?;
+            let (sparse, _) = timed(BackendChoice::Sparse, symmetric)?;
+            // The dense solution of the full tangent against the pivoted reference of the same matrix.
+            let (order, triplets) = solver.kkt_triplets(&state);
+            let mut a = DMatrix::<f64>::zeros(order, order);
+            for (r, c, v) in triplets {
+                a[(r, c)] += v;
+            }
+            let (n, m) = (pattern.n, pattern.m);
+            let kd = a.view((0, 0), (n, n)).into_owned();
+            let jd = a.view((n, 0), (m, n)).into_owned();
+            let reference = solve_dense_pivoted(n, m, &kd, &jd, &rhs0).ok_or("dense pivoted reference failed")?;
+            Ok((size, dense, sparse, relative_difference(&z, &reference)))
+        })();
+        match measured {
+            Ok((size, dense, sparse, off)) => table.row(vec![
+                Cell::count(cells as u64),
+                Cell::count(size as u64),
+                Cell::num(dense * 1e6),
+                Cell::num(sparse * 1e6),
+                Cell::num(dense / sparse),
+                Cell::Num(off, 2),
+            ]),
+            Err(e) => notes.push(format!("crossover, {cells} cells: {e}")),
+        }
+    }
+    table
 }
 
 /// Microseconds with two decimals, or nothing when not measured.

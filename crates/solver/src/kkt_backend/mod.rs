@@ -1,0 +1,81 @@
+//! Interchangeable factorizations of the KKT (saddle-point) system behind one interface.
+//!
+//! ```text
+//! [ K + S   Jᵀ ] [ x ]   [ a ]
+//! [ J       0  ] [ y ] = [ b ]
+//! ```
+//!
+//! `K` is the symmetric part of the tangent stiffness, `S` its skew part (world-fixed loads, preloads
+//! turning with their lever arms, an element away from its own equilibrium), `J` the constraint
+//! Jacobian. The [`StaticSolver`](crate::StaticSolver) assembles values into one fixed pattern
+//! ([`KktPattern`]) and hands them to a [`KktBackend`]:
+//!
+//! * [`KktFactor`](crate::kkt_factor::KktFactor) — the sparse quasi-definite LDLᵀ with scaling,
+//!   dynamic regularization and refinement ([`sparse_ldlt`]). It factorizes the symmetric part only; the
+//!   solver wraps GMRES around it for `S`. Its cost grows with the factor's fill, not with the order
+//!   cubed: the choice for a whole vehicle or a long chain.
+//! * [`DenseLu`] — an equilibrated LU with partial pivoting of the whole non-symmetric matrix, `S`
+//!   included ([`dense_lu`]): no GMRES, no augmented-Lagrangian regularization, one refinement only when
+//!   the measured backward error asks for it. Its cost grows as the order cubed, and on the small systems
+//!   of a suspension corner or an axle it beats the sparse path's bookkeeping.
+//! * [`AutoKkt`] ([`auto`]) — picks one of the two by the order `n + m` ([`DENSE_MAX_ORDER`], the
+//!   measured crossover), and falls back to the sparse LDLᵀ for a factorization the dense LU finds
+//!   singular (the sparse path regularizes and names the suspects).
+//!
+//! Every backend's solution is checked against the dense pivoted reference in `tests/kkt_backend.rs`.
+
+pub mod auto;
+pub mod dense_lu;
+pub mod sparse_ldlt;
+
+pub use auto::{AutoKkt, BackendChoice, DENSE_MAX_ORDER};
+pub use dense_lu::DenseLu;
+
+use crate::kkt_factor::{FactorCounters, FactorError, FactorReport, SolveReport};
+
+/// The values of one KKT system, each aligned with its row-index array of the [`KktPattern`]
+/// (`k` and `k_skew` with `k_row_idx`, `j` with `j_row_idx`).
+///
+/// [`KktPattern`]: crate::kkt_factor::KktPattern
+#[derive(Debug, Clone, Copy)]
+pub struct KktValues<'a> {
+    /// Upper triangle of the symmetric part `K` (diagonal included).
+    pub k: &'a [f64],
+    /// Skew part above the diagonal: entry `(r, c)`, `r < c`, of `S = ½(K_full − K_fullᵀ)`, so that the
+    /// full tangent holds `K + S` at `(r, c)` and `K − S` at `(c, r)`. `None` when the tangent is
+    /// symmetric.
+    pub k_skew: Option<&'a [f64]>,
+    /// `J`.
+    pub j: &'a [f64],
+}
+
+/// How accurate a solve must be.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Accuracy {
+    /// To the backend's refinement tolerance, measured: a compliance, a path tangent, a joint force.
+    Refined,
+    /// One application of the factorization, the backward error not measured: a Newton increment,
+    /// whose error the next iteration's residual sees and corrects.
+    Increment,
+}
+
+/// One factorization of the KKT system of a fixed pattern: numeric factorization per set of values, then
+/// any number of solves.
+pub trait KktBackend: std::fmt::Debug + Send {
+    /// What it is, for reports ("dense LU", "sparse LDLᵀ").
+    fn name(&self) -> &'static str;
+
+    /// Whether [`KktBackend::factorize`] takes the skew part into the factorization, so that a solve
+    /// solves the non-symmetric system directly. When `false` the caller must account for `S` itself
+    /// (the solver's GMRES).
+    fn solves_skew(&self) -> bool;
+
+    /// Numeric factorization of new values.
+    fn factorize(&mut self, values: KktValues<'_>) -> Result<FactorReport, FactorError>;
+
+    /// Solves in place with the last factorization: `rhs = [a; b]` becomes `[x; y]`.
+    fn solve_in_place(&mut self, rhs: &mut [f64], accuracy: Accuracy) -> Result<SolveReport, FactorError>;
+
+    /// Work counters since construction.
+    fn counters(&self) -> FactorCounters;
+}
