@@ -63,3 +63,63 @@ fn chord_corrector_reuses_the_factorization_and_reaches_the_same_answer() {
         "chord iterations must reuse factorizations"
     );
 }
+
+/// A body on a bushing pushed through the bushing's own point: the deflection is `F t / k` exactly, a
+/// straight path. The predictor extrapolates it exactly from the first step on, so every later step is
+/// an equilibrium before any Newton iteration. The one factorization is the load response's that a
+/// corrected sweep starts with: the first step's single chord iteration solves with it.
+#[test]
+fn a_straight_path_is_predicted_exactly_and_takes_no_iteration_after_its_first_step() {
+    use elastokin::elements::{Bushing, PointForce};
+    let mut m = Model::new();
+    let at = Vec3::new(0.1, 0.7, -0.2);
+    let body = m.add_body("block", Pose::at(at)).unwrap();
+    let k = Vec3::new(2e5, 5e5, 1e6);
+    m.add_element(
+        Bushing::new("mount", BodyRef::Ground, body.into(), at, Mat3::identity(), k, Vec3::new(1e3, 1e3, 1e3)).unwrap(),
+    )
+    .unwrap();
+    let force = Vec3::new(300.0, -200.0, 1000.0);
+    m.add_element(PointForce::new("push", body.into(), at, force).unwrap()).unwrap();
+    let options = SolverOptions { reuse_factorization: true, ..SolverOptions::default() };
+    let mut solver = StaticSolver::new(&m, options).unwrap();
+    let before = solver.counters();
+    let sweep = solver.sweep(LoadPath::new(0.0, 1.0, 20), Mode::Corrected).unwrap();
+    let after = solver.counters();
+    let iterations: Vec<usize> = sweep.steps.iter().map(|s| s.iterations).collect();
+    assert_eq!(iterations[0], 0, "the design pose is the equilibrium at t = 0");
+    assert_eq!(iterations[1], 1, "the first step has nothing to extrapolate from");
+    assert!(iterations[2..].iter().all(|&i| i == 0), "{iterations:?}");
+    assert_eq!(after.factor.numeric_factorizations - before.factor.numeric_factorizations, 1);
+    let mut worst: f64 = 0.0;
+    for s in &sweep.steps {
+        let expected = at + force.component_div(&k) * s.t;
+        worst = worst.max((s.poses[0].position - expected).norm());
+    }
+    // Measured: 5.9e-16 m (the deflections are up to 1 mm).
+    assert!(worst < 5e-14, "{worst:e}");
+}
+
+/// On the lever's curved path (closed form), the kept factorization and the extrapolating predictor
+/// reach the closed-form angle at every step, with a few factorizations for the whole sweep.
+#[test]
+fn chord_steps_from_the_predictor_follow_the_lever_with_few_factorizations() {
+    let l0 = lever_spring_design_length();
+    let m = lever(Pivot::Revolute, l0);
+    let options = SolverOptions { reuse_factorization: true, ..SolverOptions::default() };
+    let mut solver = StaticSolver::new(&m, options).unwrap();
+    let sweep = solver.sweep(LoadPath::new(0.0, 1.0, 200), Mode::Corrected).unwrap();
+    let mut worst: f64 = 0.0;
+    for step in &sweep.steps {
+        worst = worst.max((rotation_about_y(&step.poses[0]) - lever_angle(F_TIP * step.t, l0)).abs());
+    }
+    let iterations: usize = sweep.steps.iter().map(|s| s.iterations).sum();
+    let factorizations = solver.counters().factor.numeric_factorizations;
+    println!("worst angle error {worst:e} rad, {iterations} iterations, {factorizations} factorizations");
+    // Measured: 8.4e-10 rad against the closed form (chord iterations stop as soon as the residual is
+    // within the tolerance, where full Newton's last quadratic step overshoots far below it), 264
+    // iterations and 5 factorizations for 200 steps of a lever that turns past 35°.
+    assert!(worst < 1e-8, "{worst:e}");
+    assert!(factorizations <= 10, "{factorizations}");
+    assert!(iterations <= 300, "{iterations}");
+}

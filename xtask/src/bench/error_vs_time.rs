@@ -275,18 +275,24 @@ pub fn run(s: &Settings) -> SectionOutput {
                     .filter(|r| r.mode == Mode::Corrected && r.steps == 160)
                     .filter_map(|r| r.outcome.as_ref().ok().map(|o| (r.reuse, o)))
                     .min_by(|a, b| a.1.time.total_cmp(&b.1.time));
+                let points = 161.0;
                 out.targets.push(Target {
-                    goal: format!("{model_name}: corrected parallel travel, 161 points to 1e-9 relative residual, one core"),
-                    measured: best.map(|(_, o)| o.time * 1e3).ok_or_else(|| "the 160-step corrected sweep failed".into()),
-                    limit: 2.0,
-                    unit: "ms".into(),
+                    goal: format!(
+                        "{model_name}: corrected parallel travel, 161 points to 1e-9 relative residual, one core, per point"
+                    ),
+                    measured: best
+                        .map(|(_, o)| o.time * 1e6 / points)
+                        .ok_or_else(|| "the 160-step corrected sweep failed".into()),
+                    limit: 6.0,
+                    unit: "µs".into(),
                     judge: Judge::AtMost,
                     detail: best.map_or_else(String::new, |(reuse, o)| {
                         format!(
-                            "median of {} runs, StaticSolver::new + sweep ({:.3} ms of it setup), {}, largest relative residual {:.1e}, {} factorizations",
+                            "median of {} runs of StaticSolver::new + sweep, {:.3} ms in all ({:.3} ms of it setup), {}, largest relative residual {:.1e}, {} factorizations",
                             o.reps,
+                            o.time * 1e3,
                             setup.median * 1e3,
-                            if reuse { "factorization reuse" } else { "no reuse" },
+                            if reuse { "predictor and chord iterations (reuse_factorization)" } else { "full Newton" },
                             o.max_relative_residual,
                             o.counters.factor.numeric_factorizations
                         )
