@@ -3,7 +3,7 @@
 //! Tasks:
 //! - `ci`: format check and tests — what `.ci/run` starts with.
 //! - `bench`: the benchmark instrument (error against run time, step cost, scaling, stiff cases, batch
-//!   throughput), tracked over commits; see `bench/mod.rs` and the README's "Benchmarks".
+//!   throughput, Exudyn side by side), tracked over commits; see `bench/mod.rs` and the README's "Benchmarks".
 //!
 //! It depends on the facade package `elastokin` for `elastokin::plot`, so the benchmark's plots are drawn
 //! by the same renderer as the command's.

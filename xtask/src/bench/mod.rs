@@ -6,7 +6,8 @@
 //!
 //! Sections (each a module named for what it measures): error against run time on the shipped models,
 //! the cost of one step against a bare factorization + solve, scaling with the number of bodies, stiff and
-//! extreme cases, batch throughput. Output in `bench/results/` (or `--out`): `latest.md`, one CSV per
+//! extreme cases, batch throughput, and (when Python with Exudyn is installed) the same sweep in Exudyn,
+//! side by side. Output in `bench/results/` (or `--out`): `latest.md`, one CSV per
 //! table, SVG plots; `--save NAME` writes `NAME.json` with the commit id and every figure, `--compare NAME`
 //! prints now/then per figure and flags what got slower than `--threshold` (default 1.25).
 //!
@@ -16,6 +17,7 @@
 pub mod alloc;
 mod batch;
 mod error_vs_time;
+mod exudyn;
 mod models;
 pub mod report;
 mod scaling;
@@ -68,12 +70,13 @@ impl Settings {
 type Section = (&'static str, fn(&Settings) -> SectionOutput);
 
 /// The sections, in the order they run and appear.
-const SECTIONS: [Section; 5] = [
+const SECTIONS: [Section; 6] = [
     ("error-vs-time", error_vs_time::run),
     ("step-cost", step_cost::run),
     ("scaling", scaling::run),
     ("stiff-cases", stiff_cases::run),
     ("batch", batch::run),
+    ("exudyn", exudyn::run),
 ];
 
 const USAGE: &str = "\
@@ -83,7 +86,8 @@ usage: cargo xtask bench [--quick] [--out DIR] [--save NAME] [--compare NAME] [-
     --save NAME      also write DIR/NAME.json: the commit id and every figure
     --compare NAME   print now/then for every figure of DIR/NAME.json, flag the slower ones
     --threshold X    flag figures slower than X times then (default 1.25)
-    --only LIST      comma-separated sections: error-vs-time, step-cost, scaling, stiff-cases, batch";
+    --only LIST      comma-separated sections: error-vs-time, step-cost, scaling, stiff-cases, batch, exudyn
+                     (exudyn needs Python with Exudyn, `pip install exudyn`; without it, it is skipped)";
 
 /// Parsed command line.
 #[derive(Debug, Clone, PartialEq)]

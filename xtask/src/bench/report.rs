@@ -184,6 +184,9 @@ pub enum Judge {
     AtMost,
     /// An exponent at most the limit; a miss is told as the difference.
     ExponentAtMost,
+    /// Measured at least the limit (a speed-up: more is better); a miss is told as the fraction of the
+    /// limit reached.
+    AtLeast,
 }
 
 /// A target of the issue, measured.
@@ -206,10 +209,11 @@ pub struct Target {
 impl Target {
     /// "PASS", "MISS" or "FAILED".
     pub fn status(&self) -> &'static str {
-        match self.measured {
-            Ok(v) if v <= self.limit => "PASS",
-            Ok(_) => "MISS",
-            Err(_) => "FAILED",
+        match (&self.measured, self.judge) {
+            (Ok(v), Judge::AtLeast) if *v >= self.limit => "PASS",
+            (Ok(v), Judge::AtMost | Judge::ExponentAtMost) if *v <= self.limit => "PASS",
+            (Ok(_), _) => "MISS",
+            (Err(_), _) => "FAILED",
         }
     }
 
@@ -222,6 +226,10 @@ impl Target {
             }
             (Ok(v), Judge::ExponentAtMost) if *v <= self.limit => format!("{:.2} below", self.limit - v),
             (Ok(v), Judge::ExponentAtMost) => format!("missed by {:.2} in the exponent", v - self.limit),
+            (Ok(v), Judge::AtLeast) if *v >= self.limit => format!("{:.2}× the limit", v / self.limit),
+            (Ok(v), Judge::AtLeast) => {
+                format!("{:.2}× the limit: short by {:.0}%", v / self.limit, (1.0 - v / self.limit) * 100.0)
+            }
             (Err(e), _) => e.clone(),
         }
     }
@@ -342,6 +350,27 @@ mod tests {
         let exp = t(Ok(2.3), Judge::ExponentAtMost);
         assert!(exp.margin().contains("0.30"), "{}", exp.margin());
         assert_eq!(t(Err("no run".into()), Judge::AtMost).status(), "FAILED");
+    }
+
+    #[test]
+    fn an_at_least_target_passes_above_its_limit_and_says_how_far_short_below() {
+        let t = |v: f64| Target {
+            goal: "g".into(),
+            measured: Ok(v),
+            limit: 30.0,
+            unit: "×".into(),
+            judge: Judge::AtLeast,
+            detail: String::new(),
+        };
+        assert_eq!(t(30.0).status(), "PASS");
+        assert_eq!(t(45.0).status(), "PASS");
+        assert!(t(45.0).margin().contains("1.50×"), "{}", t(45.0).margin());
+        let miss = t(7.5);
+        assert_eq!(miss.status(), "MISS");
+        assert!(miss.margin().contains("0.25×") && miss.margin().contains("short by 75%"), "{}", miss.margin());
+        // The same figure under an at-most target is judged the other way.
+        let at_most = Target { judge: Judge::AtMost, ..t(7.5) };
+        assert_eq!(at_most.status(), "PASS");
     }
 
     #[test]
