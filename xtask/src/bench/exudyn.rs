@@ -152,13 +152,21 @@ fn compare(
         let mut at_target = None;
         for steps in STEPS {
             let path = LoadPath::new(case.from, case.to, steps);
-            let elastokin_sweep = |start: &elastokin_solver::State| {
-                StaticSolver::new(&case.corner.model, SolverOptions::default())
+            // Both of elastokin's policies for corrected steps, the faster one compared: full Newton, and
+            // the extrapolating predictor with chord iterations (`reuse_factorization`).
+            let elastokin_sweep = |start: &elastokin_solver::State, reuse_factorization: bool| {
+                let options = SolverOptions { reuse_factorization, ..SolverOptions::default() };
+                StaticSolver::new(&case.corner.model, options)
                     .and_then(|mut solver| solver.sweep_from(&mut start.clone(), path, Mode::Corrected))
                     .and_then(elastokin_solver::Sweep::complete)
             };
-            let sweep = elastokin_sweep(&start).map_err(|e| format!("elastokin, {steps} steps: {e}"))?;
-            let elastokin = s.budget().time(|| elastokin_sweep(&start).map(drop)).median;
+            let sweep = elastokin_sweep(&start, false).map_err(|e| format!("elastokin, {steps} steps: {e}"))?;
+            let newton = s.budget().time(|| elastokin_sweep(&start, false).map(drop)).median;
+            let chord = s.budget().time(|| elastokin_sweep(&start, true).map(drop)).median;
+            let (elastokin, policy) =
+                if chord < newton { (chord, "predictor and chord") } else { (newton, "full Newton") };
+            out.figure(&format!("exudyn.{steps}_steps.elastokin_full_newton_s"), newton, "s", Kind::Time);
+            out.figure(&format!("exudyn.{steps}_steps.elastokin_chord_s"), chord, "s", Kind::Time);
             let key = format!("exudyn.{steps}_steps");
             out.figure(&format!("{key}.elastokin_s"), elastokin, "s", Kind::Time);
             let mut fastest: Option<(f64, &str)> = None;
@@ -204,7 +212,7 @@ fn compare(
                 at_target = fastest.map(|(exudyn, newton)| {
                     let text = format!(
                         "{steps} steps, Exudyn {version}: its {newton} Newton {:.3} ms, elastokin's corrected \
-                         sweep {:.3} ms (medians, same run)",
+                         sweep ({policy}) {:.3} ms (medians, same run)",
                         exudyn * 1e3,
                         elastokin * 1e3
                     );
