@@ -123,3 +123,53 @@ fn chord_steps_from_the_predictor_follow_the_lever_with_few_factorizations() {
     assert!(factorizations <= 10, "{factorizations}");
     assert!(iterations <= 300, "{iterations}");
 }
+
+/// A design study's variants share one workspace: the second MacPherson (another spring rate and inner
+/// tie-rod height) reuses the first's analysis, and its sweep is the one a fresh solver walks, to the
+/// bit, whichever variant the workspace served before. A double wishbone, another topology, is analysed
+/// afresh.
+#[test]
+fn variants_of_one_topology_share_a_workspace_and_get_a_fresh_solvers_results() {
+    use elastokin::solver::SolverWorkspace;
+    use elastokin::suspensions::{Rig, Side, SuspensionFile};
+    let read = |name: &str, edit: &dyn Fn(&mut serde_json::Value)| {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(name);
+        let mut doc: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+        edit(&mut doc);
+        let file = SuspensionFile::from_json(&doc.to_string(), name).unwrap();
+        file.suspension.build(Side::Left, Rig::WheelTravel).unwrap()
+    };
+    let base = read("macpherson.json", &|_| {});
+    let variant = read("macpherson.json", &|d| {
+        d["suspension"]["macpherson"]["spring"]["rate"] = 24_000.0.into();
+        d["suspension"]["macpherson"]["hardpoints"]["tie_rod_inner"][2] = (-0.049).into();
+    });
+    let other = read("double_wishbone.json", &|_| {});
+    let options = SolverOptions { reuse_factorization: true, ..SolverOptions::default() };
+    let path = LoadPath::new(-0.08, 0.08, 160);
+    let walk = |model: &Model, workspace: Option<SolverWorkspace>| {
+        let mut solver = StaticSolver::with_workspace(model, options.clone(), workspace).unwrap();
+        let sweep = solver.sweep(path, Mode::Corrected).unwrap();
+        let symbolic = solver.counters().factor.symbolic_analyses;
+        (sweep, symbolic, solver.into_workspace())
+    };
+    let (fresh, symbolic, _) = walk(&variant.model, None);
+    assert_eq!(symbolic, 1);
+    let (_, _, workspace) = walk(&base.model, None);
+    let (reused, symbolic, workspace) = walk(&variant.model, Some(workspace));
+    assert_eq!(symbolic, 0, "the variant's analysis is the base's");
+    assert_eq!(reused.steps.len(), 161);
+    for (a, b) in fresh.steps.iter().zip(&reused.steps) {
+        assert_eq!(a.poses, b.poses);
+        assert_eq!(a.multipliers, b.multipliers);
+    }
+    // The variant moved the wheel somewhere else: the comparison above is not of two identical models.
+    let toe = |s: &elastokin::solver::StepResult, c: &elastokin::suspensions::Corner| c.wheel.attitude(&s.poses).toe;
+    let (b0, v0) = (walk(&base.model, None).0, &reused);
+    assert!((toe(&b0.steps[160], &base) - toe(&v0.steps[160], &variant)).abs() > 1e-4);
+    // Another topology: analysed afresh, and the same as a fresh solver's.
+    let (other_reused, symbolic, _) = walk(&other.model, Some(workspace));
+    assert_eq!(symbolic, 1);
+    let (other_fresh, _, _) = walk(&other.model, None);
+    assert_eq!(other_fresh.steps, other_reused.steps);
+}

@@ -912,6 +912,14 @@ impl KktFactor {
         self.counters
     }
 
+    /// Forgets the scaling, the factorization and the counters, keeping the analysis and every buffer:
+    /// the next factorization is the one a freshly analysed factor would make.
+    pub fn reset(&mut self) {
+        self.scale.fill(1.0);
+        self.factorized = false;
+        self.counters = FactorCounters::default();
+    }
+
     /// Ruiz equilibration of the true KKT matrix into `self.scale`, starting from the last factorization's
     /// scaling (all ones after `analyze`): along a load path the values change little from one
     /// factorization to the next, and one sweep then confirms that every row's largest entry is still

@@ -58,4 +58,6 @@ pub use error::SolverError;
 pub use kkt_backend::{Accuracy, BackendChoice, KktBackend};
 pub use kkt_factor::{FactorCounters, KktOptions};
 pub use results::{Diagnostics, JointReaction, LimitPoint, RedundantRow, StepResult, Sweep};
-pub use solver::{ArcStep, Counters, LoadPath, Mode, SolverOptions, State, StaticSolver, LIMIT_POINT_TOLERANCE};
+pub use solver::{
+    ArcStep, Counters, LoadPath, Mode, SolverOptions, SolverWorkspace, State, StaticSolver, LIMIT_POINT_TOLERANCE,
+};

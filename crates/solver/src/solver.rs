@@ -158,26 +158,57 @@ pub struct Counters {
 pub struct StaticSolver<'m> {
     model: &'m Model,
     options: SolverOptions,
-    assembly: Assembly,
-    factor: AutoKkt,
+    work: SolverWorkspace,
     diagnostics: Diagnostics,
     assemblies: u64,
-    rhs: Vec<f64>,
-    scratch: Vec<f64>,
     /// Norm of the displacement response to a unit load-parameter increment at the start of the last
     /// corrected sweep (the reference for recognising a limit point).
     initial_response: Option<f64>,
-    krylov: Krylov,
     /// Force residual left by rounding in the stiffest element (see `update_roundoff_floor`).
     roundoff_floor: f64,
     /// The tangent last assembled with a stiffness, and the one last factorized: chord iterations start
     /// from a kept factorization only when it is of the full tangent.
     assembled: Option<Tangent>,
     factored: Option<Tangent>,
+}
+
+/// What a [`StaticSolver`] allocates for one topology of model: the KKT pattern and slot maps, the
+/// factorization's analysis and every buffer. A design study keeps it from one variant to the next
+/// ([`StaticSolver::into_workspace`], [`StaticSolver::with_workspace`]).
+#[derive(Debug)]
+pub struct SolverWorkspace {
+    topology: Topology,
+    backend: BackendChoice,
+    kkt: KktOptions,
+    assembly: Assembly,
+    factor: AutoKkt,
+    rhs: Vec<f64>,
+    scratch: Vec<f64>,
+    krylov: Krylov,
     /// The last corrected steps' increments, for the next step's predictor.
     history: Option<PathHistory>,
     /// What the Newton iterations of the current call have moved `[Δq; Δλ]`, summed.
     moved: Vec<f64>,
+}
+
+/// What a model's KKT pattern is made from: its bodies, and the bodies each element and joint couples
+/// (with the joint's row count).
+#[derive(Debug, Clone, PartialEq, Eq)]
+struct Topology {
+    bodies: usize,
+    elements: Vec<[Option<usize>; 2]>,
+    joints: Vec<([Option<usize>; 2], usize)>,
+}
+
+impl Topology {
+    fn of(model: &Model) -> Self {
+        let id = |b: elastokin_core::BodyRef| b.id().map(|i| i.0);
+        Topology {
+            bodies: model.bodies().len(),
+            elements: model.elements().iter().map(|e| e.bodies().map(id)).collect(),
+            joints: model.joints().iter().map(|j| ([id(j.spec.body_i), id(j.spec.body_j)], j.rows.len())).collect(),
+        }
+    }
 }
 
 /// The increments `[Δq; Δλ]` of the last converged corrected steps along a path, newest first, the
@@ -322,6 +353,24 @@ impl<'m> StaticSolver<'m> {
     /// [`StaticSolver::diagnostics`]), analyses the KKT pattern once and checks at design that every body is
     /// restrained.
     pub fn new(model: &'m Model, options: SolverOptions) -> Result<Self, SolverError> {
+        Self::with_workspace(model, options, None)
+    }
+
+    /// As [`StaticSolver::new`], reusing `workspace` — the pattern, slot maps, factorization analysis and
+    /// buffers a solver of another model left ([`StaticSolver::into_workspace`]) — when `model` has the same
+    /// topology: the same bodies, elements and joints between the same bodies, the same rows kept after
+    /// the redundancy check, and the same factorization options. A design study's variants (other
+    /// hardpoints, rates, loads) then skip the analysis. Whatever depends on values is done again for
+    /// `model`: validation, the redundancy check and the restraint check at design. The factorization
+    /// forgets its scaling and counters, so results do not depend on which variant the workspace served
+    /// before (they are those of [`StaticSolver::new`], to the bit) and [`StaticSolver::counters`] shows
+    /// `symbolic_analyses: 0` when the analysis was reused. A workspace of another topology is dropped
+    /// and the model analysed afresh.
+    pub fn with_workspace(
+        model: &'m Model,
+        options: SolverOptions,
+        workspace: Option<SolverWorkspace>,
+    ) -> Result<Self, SolverError> {
         options.validate()?;
         model.validate()?;
         let poses = model.design_poses();
@@ -353,29 +402,57 @@ impl<'m> StaticSolver<'m> {
                 RedundantRow { row: r, joint: jt.name().to_string(), label: jt.rows[o.row].label }
             })
             .collect();
-        let assembly = Assembly::new(model, active);
-        let pattern = assembly.kkt_pattern();
-        let factor = AutoKkt::analyze(&pattern, options.kkt.clone(), options.backend)?;
-        let size = assembly.n + assembly.m();
+        let topology = Topology::of(model);
+        let reusable = workspace.filter(|w| {
+            w.topology == topology
+                && w.assembly.active_rows == active
+                && w.backend == options.backend
+                && w.kkt == options.kkt
+        });
+        let workspace = match reusable {
+            Some(mut w) => {
+                w.factor.reset();
+                w.history = None;
+                w
+            }
+            None => {
+                let assembly = Assembly::new(model, active);
+                let pattern = assembly.kkt_pattern();
+                let factor = AutoKkt::analyze(&pattern, options.kkt.clone(), options.backend)?;
+                let size = assembly.n + assembly.m();
+                SolverWorkspace {
+                    topology,
+                    backend: options.backend,
+                    kkt: options.kkt.clone(),
+                    assembly,
+                    factor,
+                    rhs: vec![0.0; size],
+                    scratch: vec![0.0; size],
+                    krylov: Krylov::default(),
+                    history: None,
+                    moved: vec![0.0; size],
+                }
+            }
+        };
         let mut solver = StaticSolver {
             model,
             options,
-            assembly,
-            factor,
+            work: workspace,
             diagnostics: Diagnostics { redundant },
             assemblies: 0,
-            rhs: vec![0.0; size],
-            scratch: vec![0.0; size],
             initial_response: None,
-            krylov: Krylov::default(),
             roundoff_floor: 0.0,
             assembled: None,
             factored: None,
-            history: None,
-            moved: vec![0.0; size],
         };
         solver.check_restrained(&poses)?;
         Ok(solver)
+    }
+
+    /// The solver's allocations, to solve another model of the same topology with
+    /// [`StaticSolver::with_workspace`].
+    pub fn into_workspace(self) -> SolverWorkspace {
+        self.work
     }
 
     /// The model.
@@ -390,7 +467,7 @@ impl<'m> StaticSolver<'m> {
 
     /// Operation counters since construction.
     pub fn counters(&self) -> Counters {
-        Counters { assemblies: self.assemblies, factor: self.factor.counters() }
+        Counters { assemblies: self.assemblies, factor: self.work.factor.counters() }
     }
 
     /// The tangent KKT matrix `[K, Jᵀ; J, 0]` at `state` (with `K` the exact, possibly non-symmetric
@@ -398,8 +475,8 @@ impl<'m> StaticSolver<'m> {
     /// reference solves.
     pub fn kkt_triplets(&mut self, state: &State) -> (usize, Vec<(usize, usize, f64)>) {
         self.assemble(state, Some(Tangent::Full));
-        let n = self.assembly.n;
-        let a = &self.assembly;
+        let n = self.work.assembly.n;
+        let a = &self.work.assembly;
         let mut out = Vec::with_capacity(2 * (a.k_values.len() + a.j_values.len()));
         for c in 0..n {
             for p in a.k_col_ptr[c]..a.k_col_ptr[c + 1] {
@@ -432,11 +509,11 @@ impl<'m> StaticSolver<'m> {
     /// `[K Jᵀ; J 0] [q_t; λ_t] = [∂Q/∂t; −∂Φ/∂t]` with the exact tangent. Under a travel driver it gives the
     /// velocity of every point per unit travel: instant centres, roll centres and anti-dive lines.
     pub fn path_tangent(&mut self, state: &State) -> Result<Vec<f64>, SolverError> {
-        let n = self.assembly.n;
+        let n = self.work.assembly.n;
         self.factorize_tangent(state)?;
         self.load_direction_rhs();
         self.solve_with_skew(Accuracy::Refined)?;
-        Ok(self.rhs[..n].to_vec())
+        Ok(self.work.rhs[..n].to_vec())
     }
 
     /// Assembles and factorizes the tangent at `state` for [`StaticSolver::solve_factored`].
@@ -448,16 +525,16 @@ impl<'m> StaticSolver<'m> {
 
     /// Solves with the tangent last factorized (by [`StaticSolver::factorize_tangent`] or any solve).
     pub fn solve_factored(&mut self, rhs: &mut [f64]) -> Result<(), SolverError> {
-        let size = self.assembly.n + self.assembly.m();
+        let size = self.work.assembly.n + self.work.assembly.m();
         if rhs.len() != size {
             return Err(SolverError::InvalidInput {
                 what: "right-hand side",
                 why: format!("length {} but the system has {size} unknowns", rhs.len()),
             });
         }
-        self.rhs.copy_from_slice(rhs);
+        self.work.rhs.copy_from_slice(rhs);
         self.solve_with_skew(Accuracy::Refined)?;
-        rhs.copy_from_slice(&self.rhs);
+        rhs.copy_from_slice(&self.work.rhs);
         Ok(())
     }
 
@@ -475,12 +552,12 @@ impl<'m> StaticSolver<'m> {
 
     /// Model row index of each active multiplier.
     pub fn active_rows(&self) -> &[usize] {
-        &self.assembly.active_rows
+        &self.work.assembly.active_rows
     }
 
     /// The design state at load parameter `t` (multipliers zero).
     pub fn design_state(&self, t: f64) -> State {
-        State { poses: self.model.design_poses(), lambda: vec![0.0; self.assembly.m()], t }
+        State { poses: self.model.design_poses(), lambda: vec![0.0; self.work.assembly.m()], t }
     }
 
     fn assemble(&mut self, state: &State, tangent: Option<Tangent>) {
@@ -488,14 +565,14 @@ impl<'m> StaticSolver<'m> {
         if tangent.is_some() {
             self.assembled = tangent;
         }
-        self.assembly.assemble(self.model, &state.poses, state.t, &state.lambda, tangent);
+        self.work.assembly.assemble(self.model, &state.poses, state.t, &state.lambda, tangent);
     }
 
     fn factorize(&mut self) -> Result<crate::kkt_factor::FactorReport, SolverError> {
-        let a = &self.assembly;
+        let a = &self.work.assembly;
         let values = KktValues { k: &a.k_values, k_skew: a.has_skew.then_some(&a.k_skew[..]), j: &a.j_values };
         self.factored = None;
-        let report = self.factor.factorize(values)?;
+        let report = self.work.factor.factorize(values)?;
         self.factored = self.assembled;
         Ok(report)
     }
@@ -513,17 +590,17 @@ impl<'m> StaticSolver<'m> {
 
     /// Residual norms at the assembled state: `R = Jᵀλ − Q` and `Φ`.
     fn residual(&mut self, lambda: &[f64]) -> Residual {
-        let n = self.assembly.n;
-        self.assembly.jt_times(lambda, &mut self.scratch[..n]);
+        let n = self.work.assembly.n;
+        self.work.assembly.jt_times(lambda, &mut self.work.scratch[..n]);
         let mut force: f64 = 0.0;
-        let mut force_scale: f64 = self.assembly.force_scale.max(1.0);
+        let mut force_scale: f64 = self.work.assembly.force_scale.max(1.0);
         for c in 0..n {
-            let jl = self.scratch[c];
-            let q = self.assembly.applied[c];
+            let jl = self.work.scratch[c];
+            let q = self.work.assembly.applied[c];
             force = force.max((jl - q).abs());
             force_scale = force_scale.max(jl.abs()).max(q.abs());
         }
-        let constraint = self.assembly.phi.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let constraint = self.work.assembly.phi.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         Residual { force, constraint, force_scale }
     }
 
@@ -536,7 +613,7 @@ impl<'m> StaticSolver<'m> {
     /// The force residual that rounding alone leaves in a stiff element: `δ = Pⱼ − Pᵢ` is known to about
     /// `ε·|P|`, so a stiffness `k` leaves `k·ε·|P|` of noise. Below that no tolerance can be met.
     fn update_roundoff_floor(&mut self, poses: &[Pose]) {
-        let k_max = self.assembly.k_values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let k_max = self.work.assembly.k_values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         let reach = poses.iter().fold(1.0f64, |a, p| a.max(p.position.amax()));
         self.roundoff_floor = ROUNDOFF_FACTOR * f64::EPSILON * k_max * reach;
     }
@@ -553,8 +630,8 @@ impl<'m> StaticSolver<'m> {
     /// predictor applied before the call: a longer walk means Newton left the path — across a limit
     /// point to another branch, typically — and the step is refused so that the caller cuts it.
     fn newton(&mut self, state: &mut State, start: NewtonStart) -> Result<(usize, Residual), SolverError> {
-        let n = self.assembly.n;
-        let m = self.assembly.m();
+        let n = self.work.assembly.n;
+        let m = self.work.assembly.m();
         let reuse = self.options.reuse_factorization;
         // Whether the factorization in hand may serve this iteration.
         let mut factored = reuse && !start.fresh && self.factored == Some(Tangent::Full);
@@ -562,7 +639,7 @@ impl<'m> StaticSolver<'m> {
         let mut corrector_travel = 0.0;
         let mut last_merit = f64::INFINITY;
         let mut iter = 0;
-        self.moved.fill(0.0);
+        self.work.moved.fill(0.0);
         loop {
             let refactor = !factored;
             self.assemble(state, if refactor { Some(Tangent::Full) } else { None });
@@ -597,7 +674,7 @@ impl<'m> StaticSolver<'m> {
             }
             last_merit = merit;
             self.newton_increment()?;
-            let step_norm = self.rhs[..n].iter().map(|v| v * v).sum::<f64>().sqrt();
+            let step_norm = self.work.rhs[..n].iter().map(|v| v * v).sum::<f64>().sqrt();
             if iter == 0 {
                 first_norm = step_norm;
             } else {
@@ -616,14 +693,14 @@ impl<'m> StaticSolver<'m> {
                     });
                 }
             }
-            let max_rot = (0..n).filter(|c| c % BODY_DOFS >= 3).fold(0.0f64, |a, c| a.max(self.rhs[c].abs()));
+            let max_rot = (0..n).filter(|c| c % BODY_DOFS >= 3).fold(0.0f64, |a, c| a.max(self.work.rhs[c].abs()));
             let scale =
                 if max_rot > self.options.max_rotation_step { self.options.max_rotation_step / max_rot } else { 1.0 };
-            Self::apply(&mut state.poses, &self.rhs[..n], scale);
+            Self::apply(&mut state.poses, &self.work.rhs[..n], scale);
             for k in 0..m {
-                state.lambda[k] += scale * self.rhs[n + k];
+                state.lambda[k] += scale * self.work.rhs[n + k];
             }
-            for (moved, d) in self.moved.iter_mut().zip(&self.rhs) {
+            for (moved, d) in self.work.moved.iter_mut().zip(&self.work.rhs) {
                 *moved += scale * d;
             }
             iter += 1;
@@ -645,27 +722,27 @@ impl<'m> StaticSolver<'m> {
     /// A backend that factorizes the skew part with the rest (the dense LU) solves the whole system at
     /// once, and GMRES is left out.
     fn solve_with_skew(&mut self, accuracy: Accuracy) -> Result<(), SolverError> {
-        let size = self.rhs.len();
-        self.factor.solve_in_place(&mut self.rhs, accuracy)?;
-        if !self.assembly.has_skew || self.factor.solves_skew() {
+        let size = self.work.rhs.len();
+        self.work.factor.solve_in_place(&mut self.work.rhs, accuracy)?;
+        if !self.work.assembly.has_skew || self.work.factor.solves_skew() {
             return Ok(());
         }
-        let b_norm = norm2(&self.rhs);
+        let b_norm = norm2(&self.work.rhs);
         if b_norm == 0.0 {
             return Ok(());
         }
-        self.krylov.ensure(size);
-        self.krylov.b[..size].copy_from_slice(&self.rhs);
+        self.work.krylov.ensure(size);
+        self.work.krylov.b[..size].copy_from_slice(&self.work.rhs);
         for _restart in 0..KRYLOV_RESTARTS {
             // r = b − A x = −P⁻¹[S x; 0] (b = x₀ = z₀ on entry, and x holds the current iterate).
             self.preconditioned_skew(KrylovSlot::Iterate)?;
-            let k = &mut self.krylov;
+            let k = &mut self.work.krylov;
             for c in 0..size {
                 k.basis[0][c] = -k.work[c];
             }
             // On restarts, b − A x needs the original b: add (b − x) back.
             for c in 0..size {
-                k.basis[0][c] += k.b[c] - self.rhs[c];
+                k.basis[0][c] += k.b[c] - self.work.rhs[c];
             }
             let beta = norm2(&k.basis[0][..size]);
             if beta <= KRYLOV_TOL * b_norm {
@@ -680,7 +757,7 @@ impl<'m> StaticSolver<'m> {
             for j in 0..KRYLOV_DIM {
                 // w = A v_j = v_j + P⁻¹[S v_j; 0]
                 self.preconditioned_skew(KrylovSlot::Basis(j))?;
-                let k = &mut self.krylov;
+                let k = &mut self.work.krylov;
                 for c in 0..size {
                     k.work[c] += k.basis[j][c];
                 }
@@ -721,7 +798,7 @@ impl<'m> StaticSolver<'m> {
                 }
             }
             // x += V y with H y = g (upper triangular).
-            let k = &mut self.krylov;
+            let k = &mut self.work.krylov;
             for i in (0..used).rev() {
                 let mut v = k.g[i];
                 for l in i + 1..used {
@@ -732,7 +809,7 @@ impl<'m> StaticSolver<'m> {
             for i in 0..used {
                 let yi = k.y[i];
                 for c in 0..size {
-                    self.rhs[c] += yi * k.basis[i][c];
+                    self.work.rhs[c] += yi * k.basis[i][c];
                 }
             }
             if k.g[used].abs() <= KRYLOV_TOL * b_norm {
@@ -742,18 +819,18 @@ impl<'m> StaticSolver<'m> {
         Ok(())
     }
 
-    /// `work ← P⁻¹ [S v; 0]` for `v` the current iterate (`self.rhs`) or a Krylov basis vector.
+    /// `work ← P⁻¹ [S v; 0]` for `v` the current iterate (`self.work.rhs`) or a Krylov basis vector.
     fn preconditioned_skew(&mut self, which: KrylovSlot) -> Result<(), SolverError> {
-        let n = self.assembly.n;
-        let size = self.rhs.len();
-        let k = &mut self.krylov;
+        let n = self.work.assembly.n;
+        let size = self.work.rhs.len();
+        let k = &mut self.work.krylov;
         let v: &[f64] = match which {
-            KrylovSlot::Iterate => &self.rhs[..n],
+            KrylovSlot::Iterate => &self.work.rhs[..n],
             KrylovSlot::Basis(j) => &k.basis[j][..n],
         };
-        self.assembly.skew_times(v, &mut k.work[..n]);
+        self.work.assembly.skew_times(v, &mut k.work[..n]);
         k.work[n..size].fill(0.0);
-        self.factor.solve_in_place(&mut k.work[..size], Accuracy::Refined)?;
+        self.work.factor.solve_in_place(&mut k.work[..size], Accuracy::Refined)?;
         Ok(())
     }
 
@@ -770,8 +847,8 @@ impl<'m> StaticSolver<'m> {
     /// what remains after a corrected step converged (Newton's next increment). Costs one factorization.
     /// The returned step reports the residual at the corrected state and `iterations = 1`.
     pub fn newton_correction(&mut self, step: &StepResult) -> Result<StepResult, SolverError> {
-        let n = self.assembly.n;
-        let m = self.assembly.m();
+        let n = self.work.assembly.n;
+        let m = self.work.assembly.m();
         let mut state = self.state_of(step);
         self.assemble(&state, Some(Tangent::Full));
         let r = self.residual(&state.lambda);
@@ -780,9 +857,9 @@ impl<'m> StaticSolver<'m> {
         }
         self.factorize()?;
         self.newton_increment()?;
-        Self::apply(&mut state.poses, &self.rhs[..n], 1.0);
+        Self::apply(&mut state.poses, &self.work.rhs[..n], 1.0);
         for k in 0..m {
-            state.lambda[k] += self.rhs[n + k];
+            state.lambda[k] += self.work.rhs[n + k];
         }
         self.assemble(&state, None);
         let after = self.residual(&state.lambda);
@@ -792,9 +869,9 @@ impl<'m> StaticSolver<'m> {
     /// The Newton increment `[Δq; Δλ]` into `rhs`, from `rhs = [Q − Jᵀλ ; −Φ]` at the assembled state and
     /// the factorized tangent (`scratch` holds `Jᵀλ` from [`Self::residual`]).
     fn newton_increment(&mut self) -> Result<(), SolverError> {
-        Self::residual_rhs(&self.assembly, &self.scratch, &mut self.rhs);
+        Self::residual_rhs(&self.work.assembly, &self.work.scratch, &mut self.work.rhs);
         self.solve_with_skew(Accuracy::Increment)?;
-        if self.rhs.iter().any(|v| !v.is_finite()) {
+        if self.work.rhs.iter().any(|v| !v.is_finite()) {
             return Err(SolverError::NonFinite { what: "Newton increment" });
         }
         Ok(())
@@ -814,13 +891,13 @@ impl<'m> StaticSolver<'m> {
     /// The state of a step result (its poses, its active rows' multipliers and its load parameter), to
     /// continue from it or to ask for its [`StaticSolver::path_tangent`].
     pub fn state_of(&self, step: &StepResult) -> State {
-        let lambda = self.assembly.active_rows.iter().map(|&row| step.multipliers[row]).collect();
+        let lambda = self.work.assembly.active_rows.iter().map(|&row| step.multipliers[row]).collect();
         State { poses: step.poses.clone(), lambda, t: step.t }
     }
 
     fn step_result(&self, state: &State, iterations: usize, r: &Residual) -> StepResult {
         let mut multipliers = vec![0.0; self.model.constraint_rows()];
-        for (k, &row) in self.assembly.active_rows.iter().enumerate() {
+        for (k, &row) in self.work.assembly.active_rows.iter().enumerate() {
             multipliers[row] = state.lambda[k];
         }
         StepResult {
@@ -875,7 +952,7 @@ impl<'m> StaticSolver<'m> {
             });
         }
         state.t = path.start;
-        self.history = None;
+        self.work.history = None;
         let first = self.equilibrium(state)?;
         let mut steps = Vec::with_capacity(path.steps + 1);
         steps.push(first);
@@ -903,26 +980,26 @@ impl<'m> StaticSolver<'m> {
     /// One paper step's increment `[Δq; λⁿ]` into `rhs` from `state`, with what tells a fold: see
     /// [`PaperStep`].
     fn paper_increment(&mut self, state: &State, dt: f64, carried: &[f64]) -> Result<PaperStep, SolverError> {
-        let n = self.assembly.n;
-        let m = self.assembly.m();
+        let n = self.work.assembly.n;
+        let m = self.work.assembly.m();
         self.assemble(state, Some(Tangent::Paper));
         self.factorize()?;
         for c in 0..n {
-            self.rhs[c] = dt * self.assembly.load_rate[c] + carried[c];
+            self.work.rhs[c] = dt * self.work.assembly.load_rate[c] + carried[c];
         }
         for k in 0..m {
-            self.rhs[n + k] = -dt * self.assembly.phi_rate[k];
+            self.work.rhs[n + k] = -dt * self.work.assembly.phi_rate[k];
         }
         // The Jacobian at qⁿ carries λⁿ into the next step. The tangent's non-symmetric part (the load
         // stiffness of world-fixed loads, preloads turning with their lever arms) is solved for too:
         // without it the walk converges, as the step shrinks, to a different path.
         self.solve_with_skew(Accuracy::Refined)?;
-        let response = if dt == 0.0 { 0.0 } else { norm2(&self.rhs[..n]) / dt.abs() };
+        let response = if dt == 0.0 { 0.0 } else { norm2(&self.work.rhs[..n]) / dt.abs() };
         let largest = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
         Ok(PaperStep {
             response,
-            load_change: dt.abs() * largest(&self.assembly.load_rate),
-            drive_change: dt.abs() * largest(&self.assembly.phi_rate),
+            load_change: dt.abs() * largest(&self.work.assembly.load_rate),
+            drive_change: dt.abs() * largest(&self.work.assembly.phi_rate),
         })
     }
 
@@ -933,12 +1010,12 @@ impl<'m> StaticSolver<'m> {
         dt: f64,
         steps: &mut Vec<StepResult>,
     ) -> Result<Option<LimitPoint>, SolverError> {
-        let n = self.assembly.n;
-        let m = self.assembly.m();
+        let n = self.work.assembly.n;
+        let m = self.work.assembly.m();
         // Φ_q(qⁿ⁻¹)ᵀ λⁿ⁻¹: the constraint force carried from the previous step.
         let mut carried = vec![0.0; n];
         self.assemble(state, None);
-        self.assembly.jt_times(&state.lambda, &mut carried);
+        self.work.assembly.jt_times(&state.lambda, &mut carried);
         // What a step's response is compared with to suspect a fold: the first step's (raised past a step
         // that was checked and found no fold).
         let mut reference: Option<f64> = None;
@@ -946,15 +1023,15 @@ impl<'m> StaticSolver<'m> {
         let mut exact = Some(self.state_of(&steps[0]));
         for step in 1..=path.steps {
             let paper = self.paper_increment(state, dt, &carried)?;
-            if self.rhs.iter().any(|v| !v.is_finite()) {
+            if self.work.rhs.iter().any(|v| !v.is_finite()) {
                 return Err(SolverError::NonFinite { what: "paper-mode step" });
             }
             let response = *reference.get_or_insert(paper.response);
             let before = &steps[steps.len() - 1];
             let previous = (before.force_residual, before.constraint_residual);
-            state.lambda.copy_from_slice(&self.rhs[n..n + m]);
-            self.assembly.jt_times(&state.lambda, &mut carried);
-            Self::apply(&mut state.poses, &self.rhs[..n], 1.0);
+            state.lambda.copy_from_slice(&self.work.rhs[n..n + m]);
+            self.work.assembly.jt_times(&state.lambda, &mut carried);
+            Self::apply(&mut state.poses, &self.work.rhs[..n], 1.0);
             state.t = path.start + dt * step as f64;
             // Report the true residual of the paper solution (drift), without correcting it.
             self.assemble(state, None);
@@ -999,7 +1076,7 @@ impl<'m> StaticSolver<'m> {
             self.initial_response = self.load_response(&first);
         }
         let mut saved = at.clone();
-        self.history = None;
+        self.work.history = None;
         while (target - at.t) * dt.signum() > 0.0 {
             let next = if (target - at.t).abs() <= dt.abs() * (1.0 + 1e-12) { target } else { at.t + dt };
             if let StepOutcome::Stuck { attempted, iterations, force, constraint } =
@@ -1066,7 +1143,7 @@ impl<'m> StaticSolver<'m> {
                     state.clone_from(saved);
                     // The shorter step starts from the last equilibrium without extrapolating: a step
                     // that failed may have failed because the path turned.
-                    self.history = None;
+                    self.work.history = None;
                     cuts += 1;
                     if cuts > self.options.max_step_cuts {
                         return Ok(StepOutcome::Stuck {
@@ -1094,11 +1171,11 @@ impl<'m> StaticSolver<'m> {
     /// last `p + 1` equilibria errs by `O(dt^{p+1})`, and the chord iterations that follow start that
     /// much closer.
     fn predict(&mut self, state: &mut State, dt: f64) -> Option<f64> {
-        let n = self.assembly.n;
+        let n = self.work.assembly.n;
         if !self.options.reuse_factorization {
             return None;
         }
-        let h = self.history.as_mut().filter(|h| h.t_end == state.t && h.count > 0)?;
+        let h = self.work.history.as_mut().filter(|h| h.t_end == state.t && h.count > 0)?;
         // Nodes: the load parameter of each equilibrium relative to the newest, 0, −dt₁, −dt₁−dt₂, …
         let mut nodes = [0.0; PREDICTOR_STEPS + 1];
         for k in 1..=h.count {
@@ -1130,8 +1207,8 @@ impl<'m> StaticSolver<'m> {
     /// Keeps the increment of a corrected step that converged — the predictor's, if `predicted`, plus
     /// what Newton moved — for the next step's predictor.
     fn remember_step(&mut self, predicted: bool, dt: f64, t_end: f64) {
-        let size = self.moved.len();
-        let h = self.history.get_or_insert_with(|| PathHistory {
+        let size = self.work.moved.len();
+        let h = self.work.history.get_or_insert_with(|| PathHistory {
             steps: std::array::from_fn(|_| vec![0.0; size]),
             dts: [0.0; PREDICTOR_STEPS],
             count: 0,
@@ -1143,7 +1220,7 @@ impl<'m> StaticSolver<'m> {
         h.steps.rotate_right(1);
         h.dts.rotate_right(1);
         let applied = if predicted { 1.0 } else { 0.0 };
-        for ((s, p), d) in h.steps[0].iter_mut().zip(&h.predicted).zip(&self.moved) {
+        for ((s, p), d) in h.steps[0].iter_mut().zip(&h.predicted).zip(&self.work.moved) {
             *s = applied * p + d;
         }
         h.dts[0] = dt;
@@ -1216,23 +1293,23 @@ impl<'m> StaticSolver<'m> {
     }
 
     /// Solves the tangent system for the load direction at `state`: `[K Jᵀ; J 0] [q_t; λ_t] = [∂Q/∂t; −∂Φ/∂t]`,
-    /// leaving `q_t` in `self.rhs[..n]`. Returns `‖q_t‖`, or `None` when the tangent is singular.
+    /// leaving `q_t` in `self.work.rhs[..n]`. Returns `‖q_t‖`, or `None` when the tangent is singular.
     fn load_response(&mut self, state: &State) -> Option<f64> {
-        let n = self.assembly.n;
+        let n = self.work.assembly.n;
         self.assemble(state, Some(Tangent::Full));
         self.factorize().ok()?;
         self.load_direction_rhs();
-        self.factor.solve_in_place(&mut self.rhs, Accuracy::Refined).ok()?;
-        let norm = self.rhs[..n].iter().map(|v| v * v).sum::<f64>().sqrt();
+        self.work.factor.solve_in_place(&mut self.work.rhs, Accuracy::Refined).ok()?;
+        let norm = self.work.rhs[..n].iter().map(|v| v * v).sum::<f64>().sqrt();
         norm.is_finite().then_some(norm)
     }
 
     /// `rhs = [∂Q/∂t; −∂Φ/∂t]` from the assembled state.
     fn load_direction_rhs(&mut self) {
-        let n = self.assembly.n;
-        self.rhs[..n].copy_from_slice(&self.assembly.load_rate);
-        for (k, r) in self.assembly.phi_rate.iter().enumerate() {
-            self.rhs[n + k] = -r;
+        let n = self.work.assembly.n;
+        self.work.rhs[..n].copy_from_slice(&self.work.assembly.load_rate);
+        for (k, r) in self.work.assembly.phi_rate.iter().enumerate() {
+            self.work.rhs[n + k] = -r;
         }
     }
 
@@ -1284,8 +1361,8 @@ impl<'m> StaticSolver<'m> {
                 why: format!("the starting load {} lies outside the range {} to {}", state.t, path.start, path.end),
             });
         }
-        let n = self.assembly.n;
-        let m = self.assembly.m();
+        let n = self.work.assembly.n;
+        let m = self.work.assembly.m();
         let first = self.equilibrium(state)?;
         let mut steps = vec![first];
         let direction = (path.end - path.start).signum();
@@ -1348,11 +1425,11 @@ impl<'m> StaticSolver<'m> {
         (prev_dq, prev_dt): (&[f64], f64),
         (q_t, r_dq, dq_total): (&mut [f64], &mut [f64], &mut [f64]),
     ) -> Result<(usize, Residual, f64), SolverError> {
-        let n = self.assembly.n;
-        let m = self.assembly.m();
+        let n = self.work.assembly.n;
+        let m = self.work.assembly.m();
         // Predictor along the tangent, oriented like the previous step.
         self.load_response(state).ok_or(SolverError::LimitPoint { reached: state.t })?;
-        q_t.copy_from_slice(&self.rhs[..n]);
+        q_t.copy_from_slice(&self.work.rhs[..n]);
         let norm = (q_t.iter().map(|v| v * v).sum::<f64>() + psi2).sqrt();
         let mut dt = arc / norm;
         let along: f64 = q_t.iter().zip(prev_dq).map(|(a, b)| a * b).sum::<f64>() + psi2 * prev_dt;
@@ -1364,7 +1441,7 @@ impl<'m> StaticSolver<'m> {
         }
         Self::apply(&mut state.poses, dq_total, 1.0);
         for k in 0..m {
-            state.lambda[k] += dt * self.rhs[n + k];
+            state.lambda[k] += dt * self.work.rhs[n + k];
         }
         state.t += dt;
         let mut dt_total = dt;
@@ -1380,15 +1457,15 @@ impl<'m> StaticSolver<'m> {
             }
             self.factorize()?;
             // Residual part: [Q − Jᵀλ; −Φ]
-            Self::residual_rhs(&self.assembly, &self.scratch, r_dq);
-            self.factor.solve_in_place(r_dq, Accuracy::Refined)?;
+            Self::residual_rhs(&self.work.assembly, &self.work.scratch, r_dq);
+            self.work.factor.solve_in_place(r_dq, Accuracy::Refined)?;
             self.load_direction_rhs();
-            self.factor.solve_in_place(&mut self.rhs, Accuracy::Refined)?;
+            self.work.factor.solve_in_place(&mut self.work.rhs, Accuracy::Refined)?;
             let num: f64 = dq_total.iter().zip(&r_dq[..n]).map(|(a, b)| a * b).sum();
-            let den: f64 = dq_total.iter().zip(&self.rhs[..n]).map(|(a, b)| a * b).sum::<f64>() + psi2 * dt_total;
+            let den: f64 = dq_total.iter().zip(&self.work.rhs[..n]).map(|(a, b)| a * b).sum::<f64>() + psi2 * dt_total;
             let dt = if den.abs() > 0.0 { -num / den } else { 0.0 };
             for c in 0..n + m {
-                r_dq[c] += dt * self.rhs[c];
+                r_dq[c] += dt * self.work.rhs[c];
             }
             if r_dq.iter().any(|v| !v.is_finite()) {
                 return Err(SolverError::NonFinite { what: "arc-length corrector" });
@@ -1414,37 +1491,37 @@ impl<'m> StaticSolver<'m> {
 
     /// Checks at design that every body is restrained, by inverse iteration on the factorized tangent.
     fn check_restrained(&mut self, poses: &[Pose]) -> Result<(), SolverError> {
-        let n = self.assembly.n;
+        let n = self.work.assembly.n;
         if n == 0 {
             return Ok(());
         }
-        let state = State { poses: poses.to_vec(), lambda: vec![0.0; self.assembly.m()], t: 0.0 };
+        let state = State { poses: poses.to_vec(), lambda: vec![0.0; self.work.assembly.m()], t: 0.0 };
         self.assemble(&state, Some(Tangent::Elastic));
         let report = self.factorize()?;
         if report.suspect_body_dofs.is_empty() {
             return Ok(());
         }
         // Inverse iteration: the solution of K x = random is dominated by the free direction.
-        self.rhs.fill(0.0);
+        self.work.rhs.fill(0.0);
         let mut seed = 0x2545F4914F6CDD1Du64;
         for c in 0..n {
             seed ^= seed << 13;
             seed ^= seed >> 7;
             seed ^= seed << 17;
-            self.rhs[c] = (seed % 1000) as f64 / 1000.0 - 0.5;
+            self.work.rhs[c] = (seed % 1000) as f64 / 1000.0 - 0.5;
         }
         for _ in 0..2 {
-            self.factor.solve_in_place(&mut self.rhs, Accuracy::Refined)?;
-            let norm = self.rhs[..n].iter().map(|v| v * v).sum::<f64>().sqrt();
+            self.work.factor.solve_in_place(&mut self.work.rhs, Accuracy::Refined)?;
+            let norm = self.work.rhs[..n].iter().map(|v| v * v).sum::<f64>().sqrt();
             if !(norm.is_finite() && norm > 0.0) {
                 break;
             }
-            for v in self.rhs[..n].iter_mut() {
+            for v in self.work.rhs[..n].iter_mut() {
                 *v /= norm;
             }
-            self.rhs[n..].fill(0.0);
+            self.work.rhs[n..].fill(0.0);
         }
-        let (body, motion) = describe_free_motion(self.model, &self.rhs[..n], &report.suspect_body_dofs);
+        let (body, motion) = describe_free_motion(self.model, &self.work.rhs[..n], &report.suspect_body_dofs);
         Err(SolverError::Unrestrained { body, motion })
     }
 }

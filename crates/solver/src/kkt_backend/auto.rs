@@ -134,4 +134,14 @@ impl KktBackend for AutoKkt {
         }
         sum
     }
+
+    fn reset(&mut self) {
+        if let Some(d) = self.dense.as_mut() {
+            d.reset();
+        }
+        if let Some(s) = self.sparse.as_mut() {
+            KktBackend::reset(s);
+        }
+        self.active = if self.dense.is_some() { Active::Dense } else { Active::Sparse };
+    }
 }

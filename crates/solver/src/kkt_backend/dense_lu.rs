@@ -442,4 +442,10 @@ impl KktBackend for DenseLu {
     fn counters(&self) -> FactorCounters {
         self.counters
     }
+
+    fn reset(&mut self) {
+        self.scale.fill(1.0);
+        self.factorized = false;
+        self.counters = FactorCounters::default();
+    }
 }

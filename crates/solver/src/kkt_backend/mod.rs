@@ -76,6 +76,11 @@ pub trait KktBackend: std::fmt::Debug + Send {
     /// Solves in place with the last factorization: `rhs = [a; b]` becomes `[x; y]`.
     fn solve_in_place(&mut self, rhs: &mut [f64], accuracy: Accuracy) -> Result<SolveReport, FactorError>;
 
-    /// Work counters since construction.
+    /// Work counters since construction or the last [`KktBackend::reset`].
     fn counters(&self) -> FactorCounters;
+
+    /// Forgets what the values left — the scaling, the factorization, the counters — and keeps the
+    /// analysis and the buffers: the backend then factorizes another set of values of the same pattern
+    /// exactly as a freshly analysed one would.
+    fn reset(&mut self);
 }

@@ -26,4 +26,8 @@ impl KktBackend for KktFactor {
     fn counters(&self) -> FactorCounters {
         KktFactor::counters(self)
     }
+
+    fn reset(&mut self) {
+        KktFactor::reset(self)
+    }
 }
