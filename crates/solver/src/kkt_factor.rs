@@ -93,7 +93,9 @@
 //!    `ω = max_i |r_i| / (|KKT|·|z| + |rhs|)_i` is below
 //!    [`KktOptions::refinement_tol`] (2·ε_mach), stops improving by at least a
 //!    factor 2, or [`KktOptions::max_refinement`] steps were made. A step that
-//!    does not reduce `ω` is discarded. (A normwise criterion was tried first:
+//!    does not reduce `ω` is discarded. A row whose terms all sit at rounding level (a constraint row
+//!    met by unknowns that are exactly 0 and came out `1e-20`) would read `ω = 1` whatever the
+//!    solution; it is measured normwise instead. (A normwise criterion was tried first:
 //!    it declared convergence after one step while the forward error was still
 //!    1e-10 at stiffness ratio 1e12; the componentwise one does not.)
 //!
@@ -271,7 +273,8 @@ pub struct SolveReport {
     /// `‖J x − b‖∞`.
     pub residual_y: f64,
     /// Componentwise (Oettli–Prager) backward error of the final `[x; y]`,
-    /// `max_i |r_i| / (|KKT|·|[x; y]| + |[a; b]|)_i`; invariant under scaling.
+    /// `max_i |r_i| / (|KKT|·|[x; y]| + |[a; b]|)_i`, invariant under scaling; a row whose terms are
+    /// all at rounding level is measured normwise (see `kkt_backend::backward_error`).
     pub backward_error: f64,
     /// Whether `backward_error ≤ refinement_tol`.
     pub converged: bool,
@@ -417,6 +420,8 @@ pub struct KktFactor {
     // Numeric workspaces.
     scale: Vec<f64>,
     row_max: Vec<f64>,
+    /// Largest entry of each row of the true KKT, original units (for the backward error).
+    row_norm: Vec<f64>,
     k_val: Vec<f64>,
     j_val: Vec<f64>,
     k_hat: Vec<f64>,
@@ -862,6 +867,7 @@ impl KktFactor {
             mem,
             scale,
             row_max: vec![0.0; nn],
+            row_norm: vec![0.0; nn],
             k_val: vec![0.0; k_nnz],
             j_val: vec![0.0; j_nnz],
             k_hat: vec![0.0; k_nnz],
@@ -975,6 +981,19 @@ impl KktFactor {
         let nn = n + m;
         self.k_val.copy_from_slice(k_values);
         self.j_val.copy_from_slice(j_values);
+        self.row_norm.fill(0.0);
+        for c in 0..n {
+            for e in self.k_col_ptr[c]..self.k_col_ptr[c + 1] {
+                let (r, v) = (self.k_row_idx[e], self.k_val[e].abs());
+                self.row_norm[r] = self.row_norm[r].max(v);
+                self.row_norm[c] = self.row_norm[c].max(v);
+            }
+            for e in self.j_col_ptr[c]..self.j_col_ptr[c + 1] {
+                let (i, v) = (n + self.j_row_idx[e], self.j_val[e].abs());
+                self.row_norm[i] = self.row_norm[i].max(v);
+                self.row_norm[c] = self.row_norm[c].max(v);
+            }
+        }
         self.compute_scaling();
 
         // Scaled values and ρ.
@@ -1168,8 +1187,8 @@ impl KktFactor {
     }
 
     /// `r = rhs0 − KKT z` with the original values (`den` receives
-    /// `|KKT|·|z| + |rhs0|`); returns the componentwise backward error
-    /// `max_i |r_i| / (|KKT|·|z| + |rhs0|)_i` (0/0 counts as 0).
+    /// `|KKT|·|z| + |rhs0|`); returns its backward error ([`crate::kkt_backend::backward_error`]:
+    /// componentwise, rows at rounding level normwise).
     fn residual(&self, z: &[f64], r: &mut [f64], den: &mut [f64]) -> f64 {
         let n = self.n;
         r.copy_from_slice(&self.rhs0);
@@ -1197,14 +1216,8 @@ impl KktFactor {
                 den[i] += (v * zc).abs();
             }
         }
-        let mut omega = 0.0f64;
-        for (ri, di) in r.iter().zip(den.iter()) {
-            if *ri != 0.0 {
-                let q = ri.abs() / *di;
-                omega = if q.is_nan() { f64::INFINITY } else { omega.max(q) };
-            }
-        }
-        omega
+        let z_norm = z.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        crate::kkt_backend::backward_error(r, den, &self.row_norm, &self.rhs0, z_norm)
     }
 
     /// Solve for (x, y) in place: `rhs = [a; b]` (length n+m) becomes `[x; y]`;

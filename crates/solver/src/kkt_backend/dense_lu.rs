@@ -52,6 +52,8 @@ pub struct DenseLu {
     j_val: Vec<f64>,
     scale: Vec<f64>,
     row_max: Vec<f64>,
+    /// Largest entry of each row of the true matrix, original units (for the backward error).
+    row_norm: Vec<f64>,
     /// `L` (unit, below the diagonal) and `U` of the scaled matrix, column-major, order `n + m`.
     lu: Vec<f64>,
     /// Row exchanged with row `k` at elimination step `k`.
@@ -92,6 +94,7 @@ impl DenseLu {
             j_val: vec![0.0; pattern.j_row_idx.len()],
             scale: vec![1.0; size],
             row_max: vec![0.0; size],
+            row_norm: vec![0.0; size],
             lu,
             swap: vec![0; size],
             z: vec![0.0; size],
@@ -255,8 +258,7 @@ impl DenseLu {
         }
     }
 
-    /// `r = rhs0 − A z` in original units; returns the componentwise backward error
-    /// `max_i |r_i| / (|A|·|z| + |rhs0|)_i` (0/0 counts as 0).
+    /// `r = rhs0 − A z` in original units; returns its backward error ([`super::backward_error`]).
     fn residual(&self, z: &[f64], r: &mut [f64], den: &mut [f64]) -> f64 {
         r.copy_from_slice(&self.rhs0);
         for (d, b) in den.iter_mut().zip(&self.rhs0) {
@@ -266,14 +268,8 @@ impl DenseLu {
             r[row] -= v * z[col];
             den[row] += (v * z[col]).abs();
         });
-        let mut omega = 0.0f64;
-        for (ri, di) in r.iter().zip(den.iter()) {
-            if *ri != 0.0 {
-                let q = ri.abs() / di;
-                omega = if q.is_nan() { f64::INFINITY } else { omega.max(q) };
-            }
-        }
-        omega
+        let z_norm = z.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        super::backward_error(r, den, &self.row_norm, &self.rhs0, z_norm)
     }
 }
 
@@ -332,6 +328,10 @@ impl KktBackend for DenseLu {
         if let Some(skew) = values.k_skew {
             copy_checked("k_skew", skew, &mut self.skew_val)?;
         }
+        let mut row_norm = std::mem::take(&mut self.row_norm);
+        row_norm.fill(0.0);
+        self.for_each_entry(|r, _, v| row_norm[r] = row_norm[r].max(v.abs()));
+        self.row_norm = row_norm;
         let fresh = self.counters.numeric_factorizations == 0;
         if fresh || !self.measure_rows(SCALING_DRIFT) {
             self.equilibrate();
