@@ -410,22 +410,20 @@ pub struct KktFactor {
     a_val: Vec<f64>,
     l_val: Vec<f64>,
     mem: MemBuffer,
-    // Numeric workspaces.
+    // Numeric workspaces. The scaled `K̂` is not kept: each of its entries is formed where it is used, by
+    // the same product. Row maxima of the scaling and the pivots are not kept either: the first use
+    // `tmp` (a solve workspace, free during a factorization), the second are read from the factor.
     scale: Vec<f64>,
-    row_max: Vec<f64>,
     k_val: Vec<f64>,
     j_val: Vec<f64>,
-    k_hat: Vec<f64>,
     j_hat: Vec<f64>,
     w: Vec<f64>,
     al_diag: Vec<f64>,
-    pivots: Vec<f64>,
     rho: f64,
     // Solve workspaces.
     z: Vec<f64>,
     z_new: Vec<f64>,
     r: Vec<f64>,
-    r_new: Vec<f64>,
     rhs0: Vec<f64>,
     tmp: Vec<f64>,
     factorized: bool,
@@ -654,13 +652,13 @@ fn amd_order(dim: usize, col_ptr: &[usize], row_idx: &[usize]) -> Result<(Vec<us
     Ok((perm, perm_inv))
 }
 
-/// Reads the pivots `D` (factor order) out of faer's LDLᵀ storage.
-fn extract_pivots(symbolic: &SymbolicCholesky<usize>, l_val: &[f64], out: &mut [f64]) {
+/// Visits the pivots `D` in factor order, `(step, pivot)`, read out of faer's LDLᵀ storage.
+fn for_each_pivot(symbolic: &SymbolicCholesky<usize>, l_val: &[f64], mut visit: impl FnMut(usize, f64)) {
     match symbolic.raw() {
         SymbolicCholeskyRaw::Simplicial(s) => {
             let cp = s.col_ptr();
-            for (k, d) in out.iter_mut().enumerate() {
-                *d = l_val[cp[k]];
+            for k in 0..s.nrows() {
+                visit(k, l_val[cp[k]]);
             }
         }
         SymbolicCholeskyRaw::Supernodal(s) => {
@@ -670,7 +668,7 @@ fn extract_pivots(symbolic: &SymbolicCholesky<usize>, l_val: &[f64], out: &mut [
                 let start = sn.start();
                 let v = sn.val();
                 for j in 0..v.ncols() {
-                    out[start + j] = v[(j, j)];
+                    visit(start + j, v[(j, j)]);
                 }
             }
         }
@@ -857,19 +855,15 @@ impl KktFactor {
             l_val: vec![0.0; l_len],
             mem,
             scale,
-            row_max: vec![0.0; nn],
             k_val: vec![0.0; k_nnz],
             j_val: vec![0.0; j_nnz],
-            k_hat: vec![0.0; k_nnz],
             j_hat: vec![0.0; j_nnz],
             w: vec![0.0; n],
             al_diag: vec![0.0; n],
-            pivots: vec![0.0; nn],
             rho: 1.0,
             z: vec![0.0; nn],
             z_new: vec![0.0; nn],
             r: vec![0.0; nn],
-            r_new: vec![0.0; nn],
             rhs0: vec![0.0; nn],
             tmp: vec![0.0; nn],
             factorized: false,
@@ -916,7 +910,7 @@ impl KktFactor {
     fn compute_scaling(&mut self) {
         let n = self.n;
         let s = &mut self.scale;
-        let rm = &mut self.row_max;
+        let rm = &mut self.tmp;
         for _ in 0..self.options.scaling_iterations {
             rm.fill(0.0);
             for c in 0..n {
@@ -971,10 +965,8 @@ impl KktFactor {
         for c in 0..n {
             for e in self.k_col_ptr[c]..self.k_col_ptr[c + 1] {
                 let r = self.k_row_idx[e];
-                let v = self.k_val[e] * s[r] * s[c];
-                self.k_hat[e] = v;
                 if r == c {
-                    kdiag_max = kdiag_max.max(v);
+                    kdiag_max = kdiag_max.max(self.k_val[e] * s[r] * s[c]);
                 }
             }
             for e in self.j_col_ptr[c]..self.j_col_ptr[c + 1] {
@@ -1009,7 +1001,8 @@ impl KktFactor {
                 self.w[r] = 0.0;
             }
             for e in self.k_col_ptr[c]..self.k_col_ptr[c + 1] {
-                self.w[self.k_row_idx[e]] += self.k_hat[e];
+                let r = self.k_row_idx[e];
+                self.w[r] += self.k_val[e] * s[r] * s[c];
             }
             for e in self.j_col_ptr[c]..self.j_col_ptr[c + 1] {
                 let i = self.j_row_idx[e];
@@ -1080,13 +1073,11 @@ impl KktFactor {
                 FactorError::Singular { kind: "constraint row", index: o - n }
             });
         }
-        extract_pivots(symbolic, &self.l_val, &mut self.pivots);
-
         // Pivot statistics and suspects.
         let tol = self.options.suspect_tol;
         let eps = self.options.epsilon;
         let (mut bmin, mut bmax, mut cmin, mut cmax) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
-        for (p, &d) in self.pivots.iter().enumerate() {
+        for_each_pivot(symbolic, &self.l_val, |p, d| {
             let o = self.perm[p];
             let regularized = delta > 0.0 && d.abs() == delta;
             if regularized {
@@ -1109,7 +1100,7 @@ impl KktFactor {
                     report.suspect_constraint_rows.push(o - n);
                 }
             }
-        }
+        });
         report.min_body_pivot = if n > 0 { bmin } else { 0.0 };
         report.max_body_pivot = bmax;
         report.min_constraint_pivot = if m > 0 { cmin } else { 0.0 };
@@ -1157,8 +1148,9 @@ impl KktFactor {
 
     /// `r = rhs0 − KKT z` with the original values (`den` receives
     /// `|KKT|·|z| + |rhs0|`); returns the componentwise backward error
-    /// `max_i |r_i| / (|KKT|·|z| + |rhs0|)_i` (0/0 counts as 0).
-    fn residual(&self, z: &[f64], r: &mut [f64], den: &mut [f64]) -> f64 {
+    /// `max_i |r_i| / (|KKT|·|z| + |rhs0|)_i` (0/0 counts as 0) and `‖r‖∞` over
+    /// the body coordinates and over the constraint rows.
+    fn residual(&self, z: &[f64], r: &mut [f64], den: &mut [f64]) -> (f64, f64, f64) {
         let n = self.n;
         r.copy_from_slice(&self.rhs0);
         for (d, b) in den.iter_mut().zip(&self.rhs0) {
@@ -1192,7 +1184,7 @@ impl KktFactor {
                 omega = if q.is_nan() { f64::INFINITY } else { omega.max(q) };
             }
         }
-        omega
+        (omega, max_abs(&r[..n]), max_abs(&r[n..]))
     }
 
     /// Solve for (x, y) in place: `rhs = [a; b]` (length n+m) becomes `[x; y]`;
@@ -1200,7 +1192,7 @@ impl KktFactor {
     /// stops improving or `options.max_refinement` steps. On error `rhs` is
     /// left unchanged.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<SolveReport, FactorError> {
-        let (n, nn) = (self.n, self.n + self.m);
+        let nn = self.n + self.m;
         if !self.factorized {
             return Err(FactorError::NotFactorized);
         }
@@ -1214,34 +1206,34 @@ impl KktFactor {
         }
         let mut r = std::mem::take(&mut self.r);
         let mut den = std::mem::take(&mut self.tmp);
-        let mut eta = self.residual(&self.z, &mut r, &mut den);
+        let (mut eta, mut residual_x, mut residual_y) = self.residual(&self.z, &mut r, &mut den);
         self.r = r;
         self.tmp = den;
         let mut steps = 0;
         while steps < self.options.max_refinement && eta > self.options.refinement_tol {
             steps += 1;
+            // The correction is made from `r`, which then takes the new residual: a step that is
+            // discarded leaves `z` and the norms of the residual it had.
             self.apply_inverse(false);
             for (zn, z) in self.z_new.iter_mut().zip(self.z.iter()) {
                 *zn += z;
             }
-            let mut r_new = std::mem::take(&mut self.r_new);
+            let mut r = std::mem::take(&mut self.r);
             let mut den = std::mem::take(&mut self.tmp);
-            let eta_new = self.residual(&self.z_new, &mut r_new, &mut den);
-            self.r_new = r_new;
+            let (eta_new, new_x, new_y) = self.residual(&self.z_new, &mut r, &mut den);
+            self.r = r;
             self.tmp = den;
             if eta_new.is_nan() || eta_new >= eta || self.z_new.iter().any(|v| !v.is_finite()) {
                 break;
             }
             std::mem::swap(&mut self.z, &mut self.z_new);
-            std::mem::swap(&mut self.r, &mut self.r_new);
+            (residual_x, residual_y) = (new_x, new_y);
             let ratio = eta_new / eta;
             eta = eta_new;
             if ratio > 0.5 {
                 break;
             }
         }
-        let residual_x = max_abs(&self.r[..n]);
-        let residual_y = max_abs(&self.r[n..]);
         rhs.copy_from_slice(&self.z);
         self.counters.solves += 1;
         self.counters.refinement_steps += steps as u64;
