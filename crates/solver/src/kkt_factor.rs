@@ -393,13 +393,16 @@ pub struct KktFactor {
     j_row_idx: Vec<usize>,
     // Slot in the factor input of every entry of J (CSC order). J's pattern is kept by columns only.
     j_slot: Vec<usize>,
-    // Body block of K + ρJᵀJ (upper, original numbering) and its slots.
-    pb_ptr: Vec<usize>,
-    pb_row: Vec<usize>,
+    // Pattern of the body block of K + ρJᵀJ (upper, original numbering), `None` when it is K's own (J
+    // adds no entry to K's pattern, as in every assembly's, where each joint couples its two bodies in
+    // K), and the slots of its entries.
+    pb_pattern: Option<(Vec<usize>, Vec<usize>)>,
     pb_slot: Vec<usize>,
     cdiag_slot: Vec<usize>,
     // Permutation: perm[p] = original index eliminated at step p.
     perm: Vec<usize>,
+    // Signs for faer's signed regularization (+1 body, −1 constraint, factor order); empty unless
+    // `options.signed_regularization`.
     signs: Vec<i8>,
     // faer structures.
     a_pattern: Option<SymbolicSparseColMat<usize>>,
@@ -691,7 +694,8 @@ impl KktFactor {
         let j_nnz = pattern.j_row_idx.len();
 
         // J by rows, for the pattern of JᵀJ and the ordering only.
-        let (jr_ptr, jr_col, _) = transpose_pattern(m, n, &pattern.j_col_ptr, &pattern.j_row_idx);
+        let (jr_ptr, jr_col, jr_src) = transpose_pattern(m, n, &pattern.j_col_ptr, &pattern.j_row_idx);
+        drop(jr_src);
 
         // Upper pattern of K + JᵀJ, column by column.
         let mut pb_ptr = Vec::with_capacity(n + 1);
@@ -715,6 +719,7 @@ impl KktFactor {
             pb_row[start..].sort_unstable();
             pb_ptr.push(pb_row.len());
         }
+        drop(mark);
 
         // Ordering: AMD on the body block, constraints after their last dof.
         let (bperm, bperm_inv) = amd_order(n, &pb_ptr, &pb_row)?;
@@ -725,6 +730,7 @@ impl KktFactor {
                 *k = if *k == n { p } else { (*k).max(p) };
             }
         }
+        drop((jr_ptr, jr_col, bperm_inv));
         let mut bucket_ptr = vec![0usize; n + 2];
         for &k in &key {
             bucket_ptr[k + 1] += 1;
@@ -749,41 +755,48 @@ impl KktFactor {
                 perm.push(n + i);
             }
         }
+        drop((bperm, key, bucket_ptr, bucket));
         let mut perm_inv = vec![0usize; nn];
         for (p, &o) in perm.iter().enumerate() {
             perm_inv[o] = p;
         }
-        let signs: Vec<i8> = perm.iter().map(|&o| if o < n { 1 } else { -1 }).collect();
+        let signs: Vec<i8> = if options.signed_regularization {
+            perm.iter().map(|&o| if o < n { 1 } else { -1 }).collect()
+        } else {
+            Vec::new()
+        };
 
-        // Entries of the augmented matrix in original numbering (upper):
-        // body block, then J block in J's CSC order, then the constraint diagonal.
+        // Entries of the augmented matrix (upper), listed in original numbering: body block, then J block in
+        // J's CSC order, then the constraint diagonal; stored at once in permuted numbering.
         let pb_nnz = pb_row.len();
         let mut entries: Vec<(usize, usize)> = Vec::with_capacity(pb_nnz + j_nnz + m);
+        let mut push = |r: usize, c: usize| {
+            let (a, b) = (perm_inv[r], perm_inv[c]);
+            entries.push((a.min(b), a.max(b)));
+        };
         for c in 0..n {
             for &r in &pb_row[pb_ptr[c]..pb_ptr[c + 1]] {
-                entries.push((r, c));
+                push(r, c);
             }
         }
         for c in 0..n {
             for &i in &pattern.j_row_idx[pattern.j_col_ptr[c]..pattern.j_col_ptr[c + 1]] {
-                entries.push((c, n + i));
+                push(c, n + i);
             }
         }
         for i in 0..m {
-            entries.push((n + i, n + i));
+            push(n + i, n + i);
         }
-        let to_side = |entries: &mut [(usize, usize)], side: Side| {
-            for e in entries.iter_mut() {
-                let (a, b) = (perm_inv[e.0], perm_inv[e.1]);
-                *e = match side {
-                    Side::Upper => (a.min(b), a.max(b)),
-                    Side::Lower => (a.max(b), a.min(b)),
-                };
-            }
+        drop(perm_inv);
+        let a_nnz = entries.len();
+        // J adds nothing to K's pattern in every assembly's KKT: the body block is then read through K's.
+        let pb_pattern = if pb_ptr == pattern.k_col_ptr && pb_row == pattern.k_row_idx {
+            None
+        } else {
+            pb_row.shrink_to_fit();
+            Some((pb_ptr, pb_row))
         };
-        let mut permuted = entries.clone();
-        to_side(&mut permuted, Side::Upper);
-        let (mut a_ptr, mut a_row, mut slot) = build_csc(nn, &permuted);
+        let (mut a_ptr, mut a_row, mut slot) = build_csc(nn, &entries);
 
         let mut symbolic = None;
         let mut a_pattern = None;
@@ -813,9 +826,10 @@ impl KktFactor {
                         Spec::default(),
                     );
                     // The supernodal kernel reads the lower triangle.
-                    permuted.copy_from_slice(&entries);
-                    to_side(&mut permuted, Side::Lower);
-                    (a_ptr, a_row, slot) = build_csc(nn, &permuted);
+                    for e in entries.iter_mut() {
+                        *e = (e.1, e.0);
+                    }
+                    (a_ptr, a_row, slot) = build_csc(nn, &entries);
                     SymbolicSparseColMat::<usize>::new_checked(nn, nn, a_ptr, None, a_row)
                 }
             };
@@ -824,9 +838,11 @@ impl KktFactor {
             symbolic = Some(sym);
             a_pattern = Some(pat);
         }
-        let pb_slot = slot[..pb_nnz].to_vec();
-        let j_slot = slot[pb_nnz..pb_nnz + j_nnz].to_vec();
-        let cdiag_slot = slot[pb_nnz + j_nnz..].to_vec();
+        drop(entries);
+        let cdiag_slot = slot.split_off(pb_nnz + j_nnz);
+        let j_slot = slot.split_off(pb_nnz);
+        let mut pb_slot = slot;
+        pb_slot.shrink_to_fit();
         let mem = MemBuffer::try_new(req).map_err(alloc_err)?;
 
         Ok(Self {
@@ -838,15 +854,14 @@ impl KktFactor {
             j_col_ptr: pattern.j_col_ptr.clone(),
             j_row_idx: pattern.j_row_idx.clone(),
             j_slot,
-            pb_ptr,
-            pb_row,
+            pb_pattern,
             pb_slot,
             cdiag_slot,
             perm,
             signs,
             a_pattern,
             symbolic,
-            a_val: vec![0.0; entries.len()],
+            a_val: vec![0.0; a_nnz],
             l_val: vec![0.0; l_len],
             mem,
             scale,
@@ -987,11 +1002,15 @@ impl KktFactor {
 
         // The body block K̂ + ρĴᵀĴ, entry by entry of its pattern: K̂'s entry, then ρ Ĵ_ic Ĵ_ir over the
         // rows i that the columns c and r share, in increasing i (a merge of the two sorted columns of J).
+        let (pb_ptr, pb_row) = match &self.pb_pattern {
+            Some((ptr, row)) => (ptr, row),
+            None => (&self.k_col_ptr, &self.k_row_idx),
+        };
         for c in 0..n {
             let (mut e, k_end) = (self.k_col_ptr[c], self.k_col_ptr[c + 1]);
             let jc = self.j_col_ptr[c]..self.j_col_ptr[c + 1];
-            for t in self.pb_ptr[c]..self.pb_ptr[c + 1] {
-                let r = self.pb_row[t];
+            for t in pb_ptr[c]..pb_ptr[c + 1] {
+                let r = pb_row[t];
                 let mut acc = 0.0;
                 if e < k_end && self.k_row_idx[e] == r {
                     acc += self.k_val[e] * s[r] * s[c];
@@ -1077,7 +1096,7 @@ impl KktFactor {
                 bmin = bmin.min(d.abs());
                 bmax = bmax.max(d.abs());
                 // The diagonal of K̂ + ρĴᵀĴ, the last entry of its column.
-                let diag = self.a_val[self.pb_slot[self.pb_ptr[o + 1] - 1]];
+                let diag = self.a_val[self.pb_slot[pb_ptr[o + 1] - 1]];
                 let small = d.abs() <= tol * if diag > 0.0 { diag } else { 1.0 };
                 if regularized || small {
                     report.suspect_body_dofs.push(o);
