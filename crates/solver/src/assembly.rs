@@ -3,9 +3,10 @@
 //! The pattern is found once per model from what the scene contains: a dense 6×6 block on the diagonal
 //! of every body, an off-diagonal block for every pair of bodies that an element or a joint couples
 //! (a joint couples its bodies through the geometric stiffness of its reaction), and in `J` the 12
-//! coordinates of the two bodies of every active constraint row. Each element, joint and row keeps a
-//! list of slots into the value arrays, so re-assembly at a new configuration writes values in place
-//! and allocates nothing.
+//! coordinates of the two bodies of every active constraint row. Each element and joint keeps where its
+//! off-diagonal block sits in its columns and each row its position in its bodies' columns, the rest of
+//! every slot following from the pattern's block layout, so re-assembly at a new configuration writes
+//! values in place and allocates nothing.
 //!
 //! `K` is stored as its upper triangle in two parts, symmetric and skew: an element's exact tangent is
 //! non-symmetric away from equilibrium (see `elastokin_core::constraint`), and a world-fixed torque, which
@@ -40,24 +41,51 @@ fn pair_dofs(i: BodyRef, j: BodyRef) -> [Option<usize>; 12] {
     out
 }
 
-/// Where a 12×12 pair block lands in the upper-triangular value array.
-#[derive(Debug, Clone, Default)]
-struct PairSlots {
-    /// `(local index p·12+q, slot, weight, skew weight)`: weight ½ off the diagonal (symmetrisation), 1 on
-    /// it; skew weight +½ when the entry lands above the diagonal, −½ below, 0 on it.
-    entries: Vec<(u16, u32, f64, f64)>,
+/// Offset of a body pair's off-diagonal block within each of its columns of `K`'s upper triangle, or
+/// [`NO_SLOT`] for a pair with one body (the other the ground): every slot of the pair's 12×12 block then
+/// follows from the column pointers (see [`k_slot`]), so that no per-entry slot map is kept (one was
+/// 144 entries of 24 bytes for each element and joint between two bodies: more than half of what the
+/// solver held).
+type PairBlock = u32;
+
+/// Slot of the upper-triangle entry `(r, c)` of `K`, `r ≤ c`, in the block pattern of [`Assembly::new`]:
+/// column `c` lists 6 rows of every off-diagonal block above its body's diagonal block in block order,
+/// then the diagonal block's rows up to `c` itself, the last entry of the column.
+#[inline]
+fn k_slot(k_col_ptr: &[usize], offdiag: PairBlock, r: usize, c: usize) -> usize {
+    if r / BODY_DOFS == c / BODY_DOFS {
+        k_col_ptr[c + 1] - 1 - (c - r)
+    } else {
+        k_col_ptr[c] + offdiag as usize + r % BODY_DOFS
+    }
 }
 
-impl PairSlots {
-    /// Adds the symmetric part of `block` to `values` and its skew part to `skew` (both upper triangles).
-    #[inline]
-    fn scatter(&self, block: &PairMatrix, values: &mut [f64], skew: &mut [f64]) {
-        let data = block.as_slice(); // column-major: index = q*12 + p
-        for &(local, slot, weight, skew_weight) in &self.entries {
-            let (p, q) = (local as usize / 12, local as usize % 12);
+/// Adds the symmetric part of `block` (over the 12 coordinates `dofs`) to `values` and its skew part to
+/// `skew` (both upper triangles): weight ½ off the diagonal (symmetrisation), 1 on it; skew weight +½ when
+/// the entry lands above the diagonal, −½ below, 0 on it.
+#[inline]
+fn scatter(
+    dofs: &[Option<usize>; 12],
+    offdiag: PairBlock,
+    k_col_ptr: &[usize],
+    block: &PairMatrix,
+    values: &mut [f64],
+    skew: &mut [f64],
+) {
+    let data = block.as_slice(); // column-major: index = q*12 + p
+    for p in 0..12 {
+        let Some(gp) = dofs[p] else { continue };
+        for q in 0..12 {
+            let Some(gq) = dofs[q] else { continue };
+            let (weight, skew_weight) = match gp.cmp(&gq) {
+                std::cmp::Ordering::Equal => (1.0, 0.0),
+                std::cmp::Ordering::Less => (0.5, 0.5),
+                std::cmp::Ordering::Greater => (0.5, -0.5),
+            };
+            let slot = k_slot(k_col_ptr, offdiag, gp.min(gq), gp.max(gq));
             let v = data[q * 12 + p];
-            values[slot as usize] += weight * v;
-            skew[slot as usize] += skew_weight * v;
+            values[slot] += weight * v;
+            skew[slot] += skew_weight * v;
         }
     }
 }
@@ -77,10 +105,13 @@ pub struct Assembly {
     pub j_col_ptr: Vec<usize>,
     /// Row indices of `J`.
     pub j_row_idx: Vec<usize>,
-    element_slots: Vec<PairSlots>,
-    joint_slots: Vec<PairSlots>,
-    /// For each active row, the slot in `j_values` of each of its 12 local coordinates.
-    row_slots: Vec<[u32; 12]>,
+    /// Where each element's stiffness lands in `K` (see [`k_slot`]).
+    element_blocks: Vec<PairBlock>,
+    /// Where each joint's geometric stiffness lands in `K`.
+    joint_blocks: Vec<PairBlock>,
+    /// For each active row and each of its two bodies, the row's position in that body's columns of `J`:
+    /// the same in all six, as every row that touches a body touches all six of its coordinates.
+    row_slots: Vec<[u32; 2]>,
     /// Which joint and row within it each active row is.
     row_joint: Vec<(usize, usize)>,
     /// Values of `K` (upper, symmetrised).
@@ -102,6 +133,7 @@ pub struct Assembly {
     pub phi: Vec<f64>,
     /// `∂Φ/∂t` of the active rows (minus the driver rates).
     pub phi_rate: Vec<f64>,
+    /// Evaluations of one chunk of elements (see [`EVAL_CHUNK`]).
     evals: Vec<ElementEval>,
 }
 
@@ -138,8 +170,14 @@ impl Assembly {
         for blocks in &mut col_blocks {
             blocks.sort_unstable();
         }
+        // Each column block holds 6×6 entries per off-diagonal block and the 21 of its diagonal block's
+        // upper triangle: reserved exactly, as the pattern is kept for the solver's lifetime.
+        let nnz_k: usize = col_blocks
+            .iter()
+            .map(|blocks| BODY_DOFS * BODY_DOFS * (blocks.len() - 1) + BODY_DOFS * (BODY_DOFS + 1) / 2)
+            .sum();
         let mut k_col_ptr = Vec::with_capacity(n + 1);
-        let mut k_row_idx = Vec::new();
+        let mut k_row_idx = Vec::with_capacity(nnz_k);
         k_col_ptr.push(0);
         for b in 0..nb {
             for cl in 0..BODY_DOFS {
@@ -155,36 +193,27 @@ impl Assembly {
                 k_col_ptr.push(k_row_idx.len());
             }
         }
-        let k_slot = |row: usize, col: usize| -> u32 {
-            let (r, c) = if row <= col { (row, col) } else { (col, row) };
-            let range = k_col_ptr[c]..k_col_ptr[c + 1];
-            let pos = k_row_idx[range.clone()].binary_search(&r).expect("pattern holds every coupled pair");
-            (range.start + pos) as u32
-        };
-        let pair_slots = |i: BodyRef, j: BodyRef| -> PairSlots {
-            let dofs = pair_dofs(i, j);
-            let mut entries = Vec::new();
-            for p in 0..12 {
-                for q in 0..12 {
-                    if let (Some(gp), Some(gq)) = (dofs[p], dofs[q]) {
-                        let (weight, skew_weight) = match gp.cmp(&gq) {
-                            std::cmp::Ordering::Equal => (1.0, 0.0),
-                            std::cmp::Ordering::Less => (0.5, 0.5),
-                            std::cmp::Ordering::Greater => (0.5, -0.5),
-                        };
-                        entries.push(((p * 12 + q) as u16, k_slot(gp, gq), weight, skew_weight));
-                    }
+        debug_assert_eq!(k_row_idx.len(), nnz_k);
+        let pair_block = |i: BodyRef, j: BodyRef| -> PairBlock {
+            match (i.id(), j.id()) {
+                (Some(a), Some(b)) if a != b => {
+                    let (a, b) = (a.0.min(b.0), a.0.max(b.0));
+                    let pos = col_blocks[b].binary_search(&a).expect("pattern holds every coupled pair");
+                    (BODY_DOFS * pos) as PairBlock
                 }
+                _ => NO_SLOT,
             }
-            PairSlots { entries }
         };
-        let element_slots = model.elements().iter().map(|e| {
-            let [i, j] = e.bodies();
-            pair_slots(i, j)
-        });
-        let element_slots: Vec<PairSlots> = element_slots.collect();
-        let joint_slots: Vec<PairSlots> =
-            model.joints().iter().map(|jt| pair_slots(jt.spec.body_i, jt.spec.body_j)).collect();
+        let element_blocks: Vec<PairBlock> = model
+            .elements()
+            .iter()
+            .map(|e| {
+                let [i, j] = e.bodies();
+                pair_block(i, j)
+            })
+            .collect();
+        let joint_blocks: Vec<PairBlock> =
+            model.joints().iter().map(|jt| pair_block(jt.spec.body_i, jt.spec.body_j)).collect();
 
         // J: triplets (row, col) of the active rows, then CSC.
         let mut row_joint = Vec::with_capacity(active_rows.len());
@@ -207,19 +236,18 @@ impl Assembly {
         }
         let mut fill = j_col_ptr[..n].to_vec();
         let mut j_row_idx = vec![0usize; j_col_ptr[n]];
-        let mut row_slots = vec![[NO_SLOT; 12]; active_rows.len()];
+        let mut row_slots = vec![[NO_SLOT; 2]; active_rows.len()];
         // Rows are visited in increasing order, so each column's row list comes out sorted.
         for (k, dofs) in row_dofs.iter().enumerate() {
             for (local, d) in dofs.iter().enumerate() {
                 if let Some(c) = *d {
                     j_row_idx[fill[c]] = k;
-                    row_slots[k][local] = fill[c] as u32;
+                    row_slots[k][local / BODY_DOFS] = (fill[c] - j_col_ptr[c]) as u32;
                     fill[c] += 1;
                 }
             }
         }
         let m = active_rows.len();
-        let nnz_k = k_row_idx.len();
         let nnz_j = j_row_idx.len();
         Assembly {
             n,
@@ -228,8 +256,8 @@ impl Assembly {
             k_row_idx,
             j_col_ptr,
             j_row_idx,
-            element_slots,
-            joint_slots,
+            element_blocks,
+            joint_blocks,
             row_slots,
             row_joint,
             k_values: vec![0.0; nnz_k],
@@ -241,7 +269,7 @@ impl Assembly {
             force_scale: 0.0,
             phi: vec![0.0; m],
             phi_rate: vec![0.0; m],
-            evals: vec![ElementEval::default(); model.elements().len()],
+            evals: vec![ElementEval::default(); model.elements().len().min(EVAL_CHUNK)],
         }
     }
 
@@ -281,68 +309,75 @@ impl Assembly {
             let [i, j] = e.bodies();
             e.evaluate(&i.pose(poses), &j.pose(poses), t, out, with_k);
         };
-        #[cfg(feature = "parallel")]
-        {
-            use rayon::prelude::*;
-            if elements.len() >= PARALLEL_ELEMENTS {
-                self.evals.par_iter_mut().zip(elements.par_iter()).for_each(|(out, e)| eval_one(e.as_ref(), out));
-            } else {
-                self.evals.iter_mut().zip(elements.iter()).for_each(|(out, e)| eval_one(e.as_ref(), out));
-            }
-        }
-        #[cfg(not(feature = "parallel"))]
-        self.evals.iter_mut().zip(elements.iter()).for_each(|(out, e)| eval_one(e.as_ref(), out));
-
         let mut rate = RowGradient::zeros();
         self.force_scale = 0.0;
-        for (k, e) in elements.iter().enumerate() {
-            let [i, j] = e.bodies();
-            let dofs = pair_dofs(i, j);
-            let ev = &self.evals[k];
-            self.force_scale = self.force_scale.max(ev.force.abs().max());
-            for (local, d) in dofs.iter().enumerate() {
-                if let Some(g) = d {
-                    self.applied[*g] += ev.force[local];
+        for start in (0..elements.len()).step_by(EVAL_CHUNK) {
+            let chunk = &elements[start..(start + EVAL_CHUNK).min(elements.len())];
+            let evals = &mut self.evals[..chunk.len()];
+            #[cfg(feature = "parallel")]
+            {
+                use rayon::prelude::*;
+                if chunk.len() >= PARALLEL_ELEMENTS {
+                    evals.par_iter_mut().zip(chunk.par_iter()).for_each(|(out, e)| eval_one(e.as_ref(), out));
+                } else {
+                    evals.iter_mut().zip(chunk.iter()).for_each(|(out, e)| eval_one(e.as_ref(), out));
                 }
             }
-            if e.role() == ElementRole::Load {
-                e.load_rate(&i.pose(poses), &j.pose(poses), t, &mut rate);
+            #[cfg(not(feature = "parallel"))]
+            evals.iter_mut().zip(chunk.iter()).for_each(|(out, e)| eval_one(e.as_ref(), out));
+
+            for (offset, e) in chunk.iter().enumerate() {
+                let k = start + offset;
+                let [i, j] = e.bodies();
+                let dofs = pair_dofs(i, j);
+                let ev = &self.evals[offset];
+                self.force_scale = self.force_scale.max(ev.force.abs().max());
                 for (local, d) in dofs.iter().enumerate() {
                     if let Some(g) = d {
-                        self.load_rate[*g] += rate[local];
+                        self.applied[*g] += ev.force[local];
                     }
                 }
-            }
-            let include = match tangent {
-                Some(Tangent::Full) | Some(Tangent::Paper) => true,
-                Some(Tangent::Elastic) => e.role() == ElementRole::Elastic,
-                None => false,
-            };
-            if include {
-                self.element_slots[k].scatter(&ev.stiffness, &mut self.k_values, &mut self.k_skew);
+                if e.role() == ElementRole::Load {
+                    e.load_rate(&i.pose(poses), &j.pose(poses), t, &mut rate);
+                    for (local, d) in dofs.iter().enumerate() {
+                        if let Some(g) = d {
+                            self.load_rate[*g] += rate[local];
+                        }
+                    }
+                }
+                let include = match tangent {
+                    Some(Tangent::Full) | Some(Tangent::Paper) => true,
+                    Some(Tangent::Elastic) => e.role() == ElementRole::Elastic,
+                    None => false,
+                };
+                if include {
+                    let block = self.element_blocks[k];
+                    scatter(&dofs, block, &self.k_col_ptr, &ev.stiffness, &mut self.k_values, &mut self.k_skew);
+                }
             }
         }
 
         // Constraint rows: Φ, J and (Full) the geometric stiffness Σ λ ∂(∇Φ)/∂q per joint.
         let mut geometric = PairMatrix::zeros();
         let mut current_joint = usize::MAX;
-        for (k, &(jidx, ridx)) in self.row_joint.iter().enumerate() {
+        for k in 0..self.row_joint.len() {
+            let (jidx, ridx) = self.row_joint[k];
             let jt = &model.joints()[jidx];
             let (pi, pj) = (jt.spec.body_i.pose(poses), jt.spec.body_j.pose(poses));
             let row = &jt.rows[ridx];
             let ev = row.evaluate(&pi, &pj, t);
             self.phi[k] = ev.value;
             self.phi_rate[k] = -row.driver_rate;
-            for local in 0..12 {
-                let s = self.row_slots[k][local];
-                if s != NO_SLOT {
-                    self.j_values[s as usize] = ev.gradient[local];
+            for (local, d) in pair_dofs(jt.spec.body_i, jt.spec.body_j).iter().enumerate() {
+                if let Some(c) = *d {
+                    let slot = self.j_col_ptr[c] + self.row_slots[k][local / BODY_DOFS] as usize;
+                    self.j_values[slot] = ev.gradient[local];
                 }
             }
             if tangent == Some(Tangent::Full) && lambda[k] != 0.0 {
                 if jidx != current_joint {
                     if current_joint != usize::MAX {
-                        self.joint_slots[current_joint].scatter(&geometric, &mut self.k_values, &mut self.k_skew);
+                        self.scatter_joint(model, current_joint, &geometric);
                     }
                     geometric.fill(0.0);
                     current_joint = jidx;
@@ -352,11 +387,18 @@ impl Assembly {
             }
         }
         if current_joint != usize::MAX {
-            self.joint_slots[current_joint].scatter(&geometric, &mut self.k_values, &mut self.k_skew);
+            self.scatter_joint(model, current_joint, &geometric);
         }
         if with_k {
             self.has_skew = self.k_skew.iter().any(|&v| v != 0.0);
         }
+    }
+
+    /// Adds a joint's geometric stiffness `block` to `K`.
+    fn scatter_joint(&mut self, model: &Model, joint: usize, block: &PairMatrix) {
+        let spec = &model.joints()[joint].spec;
+        let dofs = pair_dofs(spec.body_i, spec.body_j);
+        scatter(&dofs, self.joint_blocks[joint], &self.k_col_ptr, block, &mut self.k_values, &mut self.k_skew);
     }
 
     /// `y ← Jᵀ λ` over the body coordinates.
@@ -390,3 +432,85 @@ impl Assembly {
 
 /// Element count from which the `parallel` feature evaluates elements on the rayon pool.
 pub const PARALLEL_ELEMENTS: usize = 256;
+
+/// Elements evaluated before their results are added in: an evaluation is 1.2 KB (mostly the 12×12
+/// stiffness), so holding one per element of the model made it a third of the assembly's memory. One at a
+/// time serially; with the `parallel` feature, chunks large enough to spread over the pool.
+#[cfg(not(feature = "parallel"))]
+const EVAL_CHUNK: usize = 1;
+#[cfg(feature = "parallel")]
+const EVAL_CHUNK: usize = 4 * PARALLEL_ELEMENTS;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use elastokin_core::{JointSpec, Mat3, Vec3};
+    use elastokin_elements::{Bushing, CoilSpring};
+
+    /// Five bodies, each on a bushing to the ground, with springs and joints between bodies that are not
+    /// neighbours in either order, so that columns hold several off-diagonal blocks.
+    fn tangle() -> Model {
+        let mut m = Model::new();
+        let b: Vec<BodyRef> = (0..5)
+            .map(|i| m.add_body(&format!("b{i}"), Pose::at(Vec3::new(i as f64, 0.0, 0.0))).unwrap().into())
+            .collect();
+        let k = Vec3::new(1e5, 1e5, 1e5);
+        for (i, &body) in b.iter().enumerate() {
+            let at = Vec3::new(i as f64, 0.1, 0.0);
+            m.add_element(
+                Bushing::new(&format!("mount {i}"), BodyRef::Ground, body, at, Mat3::identity(), k, k).unwrap(),
+            )
+            .unwrap();
+        }
+        for (name, i, j) in [("s03", 0, 3), ("s41", 4, 1), ("s23", 2, 3)] {
+            let (pi, pj) = (Vec3::new(i as f64, 0.0, 0.2), Vec3::new(j as f64, 0.1, -0.2));
+            m.add_element(CoilSpring::with_design_force(name, b[i], pi, b[j], pj, 1e4, 10.0).unwrap()).unwrap();
+        }
+        m.add_joint(JointSpec::spherical("ball 3-0", b[3], b[0], Vec3::new(1.5, 0.0, 0.0))).unwrap();
+        let (p, q) = (Vec3::new(2.0, 0.3, 0.0), Vec3::new(4.0, 0.3, 0.1));
+        m.add_joint(JointSpec::distance("link 2-4", b[2], b[4], p, q)).unwrap();
+        m
+    }
+
+    /// Every slot an element or joint writes, worked out from the pattern's block layout, is where a search
+    /// of the stored pattern finds that entry.
+    #[test]
+    fn pair_slots_from_the_block_layout_are_the_searched_slots() {
+        let model = tangle();
+        let a = Assembly::new(&model, (0..model.constraint_rows()).collect());
+        let searched = |r: usize, c: usize| {
+            let range = a.k_col_ptr[c]..a.k_col_ptr[c + 1];
+            range.start + a.k_row_idx[range].binary_search(&r).expect("entry in the pattern")
+        };
+        let pairs = model.elements().iter().map(|e| e.bodies()).zip(&a.element_blocks);
+        let pairs = pairs.chain(model.joints().iter().map(|j| [j.spec.body_i, j.spec.body_j]).zip(&a.joint_blocks));
+        let mut checked = 0;
+        for ([i, j], &block) in pairs {
+            let dofs = pair_dofs(i, j);
+            for gp in dofs.iter().flatten() {
+                for gq in dofs.iter().flatten() {
+                    let (r, c) = (*gp.min(gq), *gp.max(gq));
+                    assert_eq!(k_slot(&a.k_col_ptr, block, r, c), searched(r, c), "({r}, {c})");
+                    checked += 1;
+                }
+            }
+        }
+        // 5 bushings to the ground (36 entries each), 3 springs and 2 joints between bodies (144 each).
+        assert_eq!(checked, 5 * 36 + 5 * 144);
+    }
+
+    /// Every row's position in its bodies' columns of `J` is where the pattern lists that row.
+    #[test]
+    fn row_slots_find_their_row_in_every_column() {
+        let model = tangle();
+        let a = Assembly::new(&model, (0..model.constraint_rows()).collect());
+        assert_eq!(a.m(), 4);
+        for (k, &(joint, _)) in a.row_joint.iter().enumerate() {
+            let spec = &model.joints()[joint].spec;
+            for (local, c) in pair_dofs(spec.body_i, spec.body_j).iter().enumerate() {
+                let c = c.expect("both bodies are bodies");
+                assert_eq!(a.j_row_idx[a.j_col_ptr[c] + a.row_slots[k][local / BODY_DOFS] as usize], k);
+            }
+        }
+    }
+}

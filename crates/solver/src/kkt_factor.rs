@@ -398,18 +398,18 @@ pub struct KktFactor {
     k_row_idx: Vec<usize>,
     j_col_ptr: Vec<usize>,
     j_row_idx: Vec<usize>,
-    // J by rows: position q → column, index into j_values, slot in factor input.
-    jr_ptr: Vec<usize>,
-    jr_col: Vec<usize>,
-    jr_src: Vec<usize>,
-    jr_slot: Vec<usize>,
-    // Body block of K + ρJᵀJ (upper, original numbering) and its slots.
-    pb_ptr: Vec<usize>,
-    pb_row: Vec<usize>,
+    // Slot in the factor input of every entry of J (CSC order). J's pattern is kept by columns only.
+    j_slot: Vec<usize>,
+    // Pattern of the body block of K + ρJᵀJ (upper, original numbering), `None` when it is K's own (J
+    // adds no entry to K's pattern, as in every assembly's, where each joint couples its two bodies in
+    // K), and the slots of its entries.
+    pb_pattern: Option<(Vec<usize>, Vec<usize>)>,
     pb_slot: Vec<usize>,
     cdiag_slot: Vec<usize>,
     // Permutation: perm[p] = original index eliminated at step p.
     perm: Vec<usize>,
+    // Signs for faer's signed regularization (+1 body, −1 constraint, factor order); empty unless
+    // `options.signed_regularization`.
     signs: Vec<i8>,
     // faer structures.
     a_pattern: Option<SymbolicSparseColMat<usize>>,
@@ -417,24 +417,22 @@ pub struct KktFactor {
     a_val: Vec<f64>,
     l_val: Vec<f64>,
     mem: MemBuffer,
-    // Numeric workspaces.
+    // Numeric workspaces. The scaled `K̂` is not kept: each of its entries is formed where it is used, by
+    // the same product. Row maxima of the scaling and the pivots are not kept either: the first use
+    // `tmp` (a solve workspace, free during a factorization), the second are read from the factor.
     scale: Vec<f64>,
-    row_max: Vec<f64>,
     /// Largest entry of each row of the true KKT, original units (for the backward error).
     row_norm: Vec<f64>,
     k_val: Vec<f64>,
     j_val: Vec<f64>,
-    k_hat: Vec<f64>,
+    // Ĵ in J's order, kept although the factor input holds it too: every solve reads it in sequence, and
+    // reading it from the input through `j_slot` made a 10 000-body chain's solve 1.45× slower.
     j_hat: Vec<f64>,
-    w: Vec<f64>,
-    al_diag: Vec<f64>,
-    pivots: Vec<f64>,
     rho: f64,
     // Solve workspaces.
     z: Vec<f64>,
     z_new: Vec<f64>,
     r: Vec<f64>,
-    r_new: Vec<f64>,
     rhs0: Vec<f64>,
     tmp: Vec<f64>,
     factorized: bool,
@@ -663,13 +661,13 @@ fn amd_order(dim: usize, col_ptr: &[usize], row_idx: &[usize]) -> Result<(Vec<us
     Ok((perm, perm_inv))
 }
 
-/// Reads the pivots `D` (factor order) out of faer's LDLᵀ storage.
-fn extract_pivots(symbolic: &SymbolicCholesky<usize>, l_val: &[f64], out: &mut [f64]) {
+/// Visits the pivots `D` in factor order, `(step, pivot)`, read out of faer's LDLᵀ storage.
+fn for_each_pivot(symbolic: &SymbolicCholesky<usize>, l_val: &[f64], mut visit: impl FnMut(usize, f64)) {
     match symbolic.raw() {
         SymbolicCholeskyRaw::Simplicial(s) => {
             let cp = s.col_ptr();
-            for (k, d) in out.iter_mut().enumerate() {
-                *d = l_val[cp[k]];
+            for k in 0..s.nrows() {
+                visit(k, l_val[cp[k]]);
             }
         }
         SymbolicCholeskyRaw::Supernodal(s) => {
@@ -679,7 +677,7 @@ fn extract_pivots(symbolic: &SymbolicCholesky<usize>, l_val: &[f64], out: &mut [
                 let start = sn.start();
                 let v = sn.val();
                 for j in 0..v.ncols() {
-                    out[start + j] = v[(j, j)];
+                    visit(start + j, v[(j, j)]);
                 }
             }
         }
@@ -704,7 +702,9 @@ impl KktFactor {
         let k_nnz = pattern.k_row_idx.len();
         let j_nnz = pattern.j_row_idx.len();
 
+        // J by rows, for the pattern of JᵀJ and the ordering only.
         let (jr_ptr, jr_col, jr_src) = transpose_pattern(m, n, &pattern.j_col_ptr, &pattern.j_row_idx);
+        drop(jr_src);
 
         // Upper pattern of K + JᵀJ, column by column.
         let mut pb_ptr = Vec::with_capacity(n + 1);
@@ -728,6 +728,7 @@ impl KktFactor {
             pb_row[start..].sort_unstable();
             pb_ptr.push(pb_row.len());
         }
+        drop(mark);
 
         // Ordering: AMD on the body block, constraints after their last dof.
         let (bperm, bperm_inv) = amd_order(n, &pb_ptr, &pb_row)?;
@@ -738,6 +739,7 @@ impl KktFactor {
                 *k = if *k == n { p } else { (*k).max(p) };
             }
         }
+        drop((jr_ptr, jr_col, bperm_inv));
         let mut bucket_ptr = vec![0usize; n + 2];
         for &k in &key {
             bucket_ptr[k + 1] += 1;
@@ -762,41 +764,48 @@ impl KktFactor {
                 perm.push(n + i);
             }
         }
+        drop((bperm, key, bucket_ptr, bucket));
         let mut perm_inv = vec![0usize; nn];
         for (p, &o) in perm.iter().enumerate() {
             perm_inv[o] = p;
         }
-        let signs: Vec<i8> = perm.iter().map(|&o| if o < n { 1 } else { -1 }).collect();
+        let signs: Vec<i8> = if options.signed_regularization {
+            perm.iter().map(|&o| if o < n { 1 } else { -1 }).collect()
+        } else {
+            Vec::new()
+        };
 
-        // Entries of the augmented matrix in original numbering (upper):
-        // body block, then J block by rows, then the constraint diagonal.
+        // Entries of the augmented matrix (upper), listed in original numbering: body block, then J block in
+        // J's CSC order, then the constraint diagonal; stored at once in permuted numbering.
         let pb_nnz = pb_row.len();
         let mut entries: Vec<(usize, usize)> = Vec::with_capacity(pb_nnz + j_nnz + m);
+        let mut push = |r: usize, c: usize| {
+            let (a, b) = (perm_inv[r], perm_inv[c]);
+            entries.push((a.min(b), a.max(b)));
+        };
         for c in 0..n {
             for &r in &pb_row[pb_ptr[c]..pb_ptr[c + 1]] {
-                entries.push((r, c));
+                push(r, c);
+            }
+        }
+        for c in 0..n {
+            for &i in &pattern.j_row_idx[pattern.j_col_ptr[c]..pattern.j_col_ptr[c + 1]] {
+                push(c, n + i);
             }
         }
         for i in 0..m {
-            for &c in &jr_col[jr_ptr[i]..jr_ptr[i + 1]] {
-                entries.push((c, n + i));
-            }
+            push(n + i, n + i);
         }
-        for i in 0..m {
-            entries.push((n + i, n + i));
-        }
-        let to_side = |entries: &mut [(usize, usize)], side: Side| {
-            for e in entries.iter_mut() {
-                let (a, b) = (perm_inv[e.0], perm_inv[e.1]);
-                *e = match side {
-                    Side::Upper => (a.min(b), a.max(b)),
-                    Side::Lower => (a.max(b), a.min(b)),
-                };
-            }
+        drop(perm_inv);
+        let a_nnz = entries.len();
+        // J adds nothing to K's pattern in every assembly's KKT: the body block is then read through K's.
+        let pb_pattern = if pb_ptr == pattern.k_col_ptr && pb_row == pattern.k_row_idx {
+            None
+        } else {
+            pb_row.shrink_to_fit();
+            Some((pb_ptr, pb_row))
         };
-        let mut permuted = entries.clone();
-        to_side(&mut permuted, Side::Upper);
-        let (mut a_ptr, mut a_row, mut slot) = build_csc(nn, &permuted);
+        let (mut a_ptr, mut a_row, mut slot) = build_csc(nn, &entries);
 
         let mut symbolic = None;
         let mut a_pattern = None;
@@ -826,9 +835,10 @@ impl KktFactor {
                         Spec::default(),
                     );
                     // The supernodal kernel reads the lower triangle.
-                    permuted.copy_from_slice(&entries);
-                    to_side(&mut permuted, Side::Lower);
-                    (a_ptr, a_row, slot) = build_csc(nn, &permuted);
+                    for e in entries.iter_mut() {
+                        *e = (e.1, e.0);
+                    }
+                    (a_ptr, a_row, slot) = build_csc(nn, &entries);
                     SymbolicSparseColMat::<usize>::new_checked(nn, nn, a_ptr, None, a_row)
                 }
             };
@@ -837,9 +847,11 @@ impl KktFactor {
             symbolic = Some(sym);
             a_pattern = Some(pat);
         }
-        let pb_slot = slot[..pb_nnz].to_vec();
-        let jr_slot = slot[pb_nnz..pb_nnz + j_nnz].to_vec();
-        let cdiag_slot = slot[pb_nnz + j_nnz..].to_vec();
+        drop(entries);
+        let cdiag_slot = slot.split_off(pb_nnz + j_nnz);
+        let j_slot = slot.split_off(pb_nnz);
+        let mut pb_slot = slot;
+        pb_slot.shrink_to_fit();
         let mem = MemBuffer::try_new(req).map_err(alloc_err)?;
 
         Ok(Self {
@@ -850,36 +862,26 @@ impl KktFactor {
             k_row_idx: pattern.k_row_idx.clone(),
             j_col_ptr: pattern.j_col_ptr.clone(),
             j_row_idx: pattern.j_row_idx.clone(),
-            jr_ptr,
-            jr_col,
-            jr_src,
-            jr_slot,
-            pb_ptr,
-            pb_row,
+            j_slot,
+            pb_pattern,
             pb_slot,
             cdiag_slot,
             perm,
             signs,
             a_pattern,
             symbolic,
-            a_val: vec![0.0; entries.len()],
+            a_val: vec![0.0; a_nnz],
             l_val: vec![0.0; l_len],
             mem,
             scale,
-            row_max: vec![0.0; nn],
             row_norm: vec![0.0; nn],
             k_val: vec![0.0; k_nnz],
             j_val: vec![0.0; j_nnz],
-            k_hat: vec![0.0; k_nnz],
             j_hat: vec![0.0; j_nnz],
-            w: vec![0.0; n],
-            al_diag: vec![0.0; n],
-            pivots: vec![0.0; nn],
             rho: 1.0,
             z: vec![0.0; nn],
             z_new: vec![0.0; nn],
             r: vec![0.0; nn],
-            r_new: vec![0.0; nn],
             rhs0: vec![0.0; nn],
             tmp: vec![0.0; nn],
             factorized: false,
@@ -934,7 +936,7 @@ impl KktFactor {
     fn compute_scaling(&mut self) {
         let n = self.n;
         let s = &mut self.scale;
-        let rm = &mut self.row_max;
+        let rm = &mut self.tmp;
         for _ in 0..self.options.scaling_iterations {
             rm.fill(0.0);
             for c in 0..n {
@@ -996,32 +998,28 @@ impl KktFactor {
         }
         self.compute_scaling();
 
-        // Scaled values and ρ.
+        // Scaled values and ρ. The squared norms of Ĵ's rows are summed in `tmp` column by column, which
+        // adds each row's terms in the order of its columns.
         let s = &self.scale;
+        let row_sq = &mut self.tmp[..m];
+        row_sq.fill(0.0);
         let mut kdiag_max = 0.0f64;
         for c in 0..n {
             for e in self.k_col_ptr[c]..self.k_col_ptr[c + 1] {
                 let r = self.k_row_idx[e];
-                let v = self.k_val[e] * s[r] * s[c];
-                self.k_hat[e] = v;
                 if r == c {
-                    kdiag_max = kdiag_max.max(v);
+                    kdiag_max = kdiag_max.max(self.k_val[e] * s[r] * s[c]);
                 }
             }
             for e in self.j_col_ptr[c]..self.j_col_ptr[c + 1] {
-                let i = n + self.j_row_idx[e];
-                self.j_hat[e] = self.j_val[e] * s[i] * s[c];
+                let i = self.j_row_idx[e];
+                let v = self.j_val[e] * s[n + i] * s[c];
+                self.j_hat[e] = v;
+                self.a_val[self.j_slot[e]] = v;
+                row_sq[i] += v * v;
             }
         }
-        let mut jrow_max = 0.0f64;
-        for i in 0..m {
-            let mut sq = 0.0;
-            for q in self.jr_ptr[i]..self.jr_ptr[i + 1] {
-                let v = self.j_hat[self.jr_src[q]];
-                sq += v * v;
-            }
-            jrow_max = jrow_max.max(sq);
-        }
+        let jrow_max = row_sq.iter().fold(0.0f64, |acc, &sq| acc.max(sq));
         let rho = match self.options.rho {
             Some(r) => r,
             None if jrow_max > 0.0 => {
@@ -1033,33 +1031,37 @@ impl KktFactor {
         self.rho = rho;
         let reg22 = -self.options.epsilon / rho;
 
-        // Assemble the augmented matrix into the permuted factor input.
+        // The body block K̂ + ρĴᵀĴ, entry by entry of its pattern: K̂'s entry, then ρ Ĵ_ic Ĵ_ir over the
+        // rows i that the columns c and r share, in increasing i (a merge of the two sorted columns of J).
+        let (pb_ptr, pb_row) = match &self.pb_pattern {
+            Some((ptr, row)) => (ptr, row),
+            None => (&self.k_col_ptr, &self.k_row_idx),
+        };
         for c in 0..n {
-            let prow = &self.pb_row[self.pb_ptr[c]..self.pb_ptr[c + 1]];
-            for &r in prow {
-                self.w[r] = 0.0;
-            }
-            for e in self.k_col_ptr[c]..self.k_col_ptr[c + 1] {
-                self.w[self.k_row_idx[e]] += self.k_hat[e];
-            }
-            for e in self.j_col_ptr[c]..self.j_col_ptr[c + 1] {
-                let i = self.j_row_idx[e];
-                let vc = rho * self.j_hat[e];
-                for q in self.jr_ptr[i]..self.jr_ptr[i + 1] {
-                    let r = self.jr_col[q];
-                    if r > c {
-                        break;
-                    }
-                    self.w[r] += vc * self.j_hat[self.jr_src[q]];
+            let (mut e, k_end) = (self.k_col_ptr[c], self.k_col_ptr[c + 1]);
+            let jc = self.j_col_ptr[c]..self.j_col_ptr[c + 1];
+            for t in pb_ptr[c]..pb_ptr[c + 1] {
+                let r = pb_row[t];
+                let mut acc = 0.0;
+                if e < k_end && self.k_row_idx[e] == r {
+                    acc += self.k_val[e] * s[r] * s[c];
+                    e += 1;
                 }
+                let (mut a, mut b, b_end) = (jc.start, self.j_col_ptr[r], self.j_col_ptr[r + 1]);
+                while a < jc.end && b < b_end {
+                    let (ia, ib) = (self.j_row_idx[a], self.j_row_idx[b]);
+                    if ia == ib {
+                        acc += rho * self.j_hat[a] * self.j_hat[b];
+                        a += 1;
+                        b += 1;
+                    } else if ia < ib {
+                        a += 1;
+                    } else {
+                        b += 1;
+                    }
+                }
+                self.a_val[self.pb_slot[t]] = acc;
             }
-            for (t, &r) in prow.iter().enumerate() {
-                self.a_val[self.pb_slot[self.pb_ptr[c] + t]] = self.w[r];
-            }
-            self.al_diag[c] = self.w[c];
-        }
-        for q in 0..self.jr_col.len() {
-            self.a_val[self.jr_slot[q]] = self.j_hat[self.jr_src[q]];
         }
         for &sl in &self.cdiag_slot {
             self.a_val[sl] = reg22;
@@ -1111,13 +1113,11 @@ impl KktFactor {
                 FactorError::Singular { kind: "constraint row", index: o - n }
             });
         }
-        extract_pivots(symbolic, &self.l_val, &mut self.pivots);
-
         // Pivot statistics and suspects.
         let tol = self.options.suspect_tol;
         let eps = self.options.epsilon;
         let (mut bmin, mut bmax, mut cmin, mut cmax) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
-        for (p, &d) in self.pivots.iter().enumerate() {
+        for_each_pivot(symbolic, &self.l_val, |p, d| {
             let o = self.perm[p];
             let regularized = delta > 0.0 && d.abs() == delta;
             if regularized {
@@ -1126,7 +1126,8 @@ impl KktFactor {
             if o < n {
                 bmin = bmin.min(d.abs());
                 bmax = bmax.max(d.abs());
-                let diag = self.al_diag[o];
+                // The diagonal of K̂ + ρĴᵀĴ, the last entry of its column.
+                let diag = self.a_val[self.pb_slot[pb_ptr[o + 1] - 1]];
                 let small = d.abs() <= tol * if diag > 0.0 { diag } else { 1.0 };
                 if regularized || small {
                     report.suspect_body_dofs.push(o);
@@ -1140,7 +1141,7 @@ impl KktFactor {
                     report.suspect_constraint_rows.push(o - n);
                 }
             }
-        }
+        });
         report.min_body_pivot = if n > 0 { bmin } else { 0.0 };
         report.max_body_pivot = bmax;
         report.min_constraint_pivot = if m > 0 { cmin } else { 0.0 };
@@ -1188,8 +1189,9 @@ impl KktFactor {
 
     /// `r = rhs0 − KKT z` with the original values (`den` receives
     /// `|KKT|·|z| + |rhs0|`); returns its backward error ([`crate::kkt_backend::backward_error`]:
-    /// componentwise, rows at rounding level normwise).
-    fn residual(&self, z: &[f64], r: &mut [f64], den: &mut [f64]) -> f64 {
+    /// componentwise, rows at rounding level normwise) and `‖r‖∞` over the body coordinates and over
+    /// the constraint rows.
+    fn residual(&self, z: &[f64], r: &mut [f64], den: &mut [f64]) -> (f64, f64, f64) {
         let n = self.n;
         r.copy_from_slice(&self.rhs0);
         for (d, b) in den.iter_mut().zip(&self.rhs0) {
@@ -1217,7 +1219,8 @@ impl KktFactor {
             }
         }
         let z_norm = z.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        crate::kkt_backend::backward_error(r, den, &self.row_norm, &self.rhs0, z_norm)
+        let omega = crate::kkt_backend::backward_error(r, den, &self.row_norm, &self.rhs0, z_norm);
+        (omega, max_abs(&r[..n]), max_abs(&r[n..]))
     }
 
     /// Solve for (x, y) in place: `rhs = [a; b]` (length n+m) becomes `[x; y]`;
@@ -1225,7 +1228,7 @@ impl KktFactor {
     /// stops improving or `options.max_refinement` steps. On error `rhs` is
     /// left unchanged.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<SolveReport, FactorError> {
-        let (n, nn) = (self.n, self.n + self.m);
+        let nn = self.n + self.m;
         if !self.factorized {
             return Err(FactorError::NotFactorized);
         }
@@ -1239,34 +1242,34 @@ impl KktFactor {
         }
         let mut r = std::mem::take(&mut self.r);
         let mut den = std::mem::take(&mut self.tmp);
-        let mut eta = self.residual(&self.z, &mut r, &mut den);
+        let (mut eta, mut residual_x, mut residual_y) = self.residual(&self.z, &mut r, &mut den);
         self.r = r;
         self.tmp = den;
         let mut steps = 0;
         while steps < self.options.max_refinement && eta > self.options.refinement_tol {
             steps += 1;
+            // The correction is made from `r`, which then takes the new residual: a step that is
+            // discarded leaves `z` and the norms of the residual it had.
             self.apply_inverse(false);
             for (zn, z) in self.z_new.iter_mut().zip(self.z.iter()) {
                 *zn += z;
             }
-            let mut r_new = std::mem::take(&mut self.r_new);
+            let mut r = std::mem::take(&mut self.r);
             let mut den = std::mem::take(&mut self.tmp);
-            let eta_new = self.residual(&self.z_new, &mut r_new, &mut den);
-            self.r_new = r_new;
+            let (eta_new, new_x, new_y) = self.residual(&self.z_new, &mut r, &mut den);
+            self.r = r;
             self.tmp = den;
             if eta_new.is_nan() || eta_new >= eta || self.z_new.iter().any(|v| !v.is_finite()) {
                 break;
             }
             std::mem::swap(&mut self.z, &mut self.z_new);
-            std::mem::swap(&mut self.r, &mut self.r_new);
+            (residual_x, residual_y) = (new_x, new_y);
             let ratio = eta_new / eta;
             eta = eta_new;
             if ratio > 0.5 {
                 break;
             }
         }
-        let residual_x = max_abs(&self.r[..n]);
-        let residual_y = max_abs(&self.r[n..]);
         rhs.copy_from_slice(&self.z);
         self.counters.solves += 1;
         self.counters.refinement_steps += steps as u64;

@@ -1207,6 +1207,9 @@ impl<'m> StaticSolver<'m> {
     /// Keeps the increment of a corrected step that converged — the predictor's, if `predicted`, plus
     /// what Newton moved — for the next step's predictor.
     fn remember_step(&mut self, predicted: bool, dt: f64, t_end: f64) {
+        if !self.options.reuse_factorization {
+            return;
+        }
         let size = self.work.moved.len();
         let h = self.work.history.get_or_insert_with(|| PathHistory {
             steps: std::array::from_fn(|_| vec![0.0; size]),

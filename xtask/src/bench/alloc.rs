@@ -83,6 +83,9 @@ unsafe impl GlobalAlloc for Counting {
 pub struct Usage {
     /// Peak of the live bytes during the section above the live bytes at its start.
     pub peak_bytes: usize,
+    /// Live bytes at its end above those at its start: what the section kept, e.g. the value it returns
+    /// (negative when it freed older memory).
+    pub balance_bytes: isize,
     /// Allocations (including reallocations) made during the section.
     pub allocations: u64,
 }
@@ -98,6 +101,7 @@ pub fn track<R>(f: impl FnOnce() -> R) -> (R, Usage) {
     ENABLED.store(false, Ordering::SeqCst);
     let usage = Usage {
         peak_bytes: PEAK.load(Ordering::Relaxed).max(0) as usize,
+        balance_bytes: BALANCE.load(Ordering::Relaxed),
         allocations: ALLOCATIONS.load(Ordering::Relaxed),
     };
     (out, usage)
@@ -117,8 +121,13 @@ mod tests {
             std::hint::black_box(&v);
         });
         assert!(usage.peak_bytes >= 4 << 20 && usage.peak_bytes < 8 << 20, "{usage:?}");
+        assert!(usage.balance_bytes.abs() < 1 << 20, "freed inside, nothing kept: {usage:?}");
         assert!(usage.allocations >= 1);
+        let (kept, keeping) = track(|| vec![2u8; 2 << 20]);
+        assert!((2 << 20..3 << 20).contains(&keeping.balance_bytes), "the returned vector is kept: {keeping:?}");
+        drop(kept);
         let ((), freeing) = track(|| drop(held));
         assert!(freeing.peak_bytes < 1 << 20, "freeing older memory is no peak: {freeing:?}");
+        assert!(freeing.balance_bytes <= -(7 << 20), "freeing older memory is a negative balance: {freeing:?}");
     }
 }

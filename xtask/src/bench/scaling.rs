@@ -1,8 +1,9 @@
 //! Scaling with the number of bodies: a synthetic chain of suspension-like cells (each body an arm on a
 //! bushing to the ground, tied to the previous body by a ball joint and a link, with a coil spring between
 //! them), grounded at one end through its first cell's joints and loaded at the other. Time per paper and
-//! corrected step, peak memory, symbolic analysis against numeric factorization (the gain from reusing the
-//! symbolic analysis), and the fitted exponent of time against N.
+//! corrected step, memory per body (kept by the solver and at the peak, and by part of its setup), symbolic
+//! analysis against numeric factorization (the gain from reusing the symbolic analysis), and the fitted
+//! exponent of time against N.
 
 use super::alloc;
 use super::report::{Cell, Judge, Kind, SectionOutput, Table, Target};
@@ -11,10 +12,17 @@ use super::Settings;
 use elastokin_core::{BodyRef, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
 use elastokin_elements::{Bushing, CoilSpring, PointForce};
 use elastokin_solver::assembly::{Assembly, Tangent};
-use elastokin_solver::kkt_factor::{KktFactor, KktOptions};
+use elastokin_solver::kkt_factor::{redundant_rows, KktFactor, KktOptions};
 use elastokin_solver::{LoadPath, Mode, SolverOptions, StaticSolver, Sweep};
 
 const MIB: f64 = 1024.0 * 1024.0;
+
+/// The issue's memory limits per body, in bytes (1 KB = 1000 B), from N = 1 000 to 10 000: kept by a
+/// `StaticSolver` once `StaticSolver::new` has returned, and at the peak of `new` and a corrected sweep.
+const KEPT_PER_BODY: f64 = 12_000.0;
+const PEAK_PER_BODY: f64 = 20_000.0;
+/// Smallest N the memory targets are judged from.
+const MEMORY_FROM: usize = 1000;
 
 /// Distance between cells along x (m).
 const PITCH: f64 = 0.4;
@@ -78,6 +86,22 @@ struct SizeResult {
     peak_bytes: usize,
     setup_peak_bytes: usize,
     sweep_peak_bytes: usize,
+    /// Live bytes a `StaticSolver` holds once `new` has returned.
+    kept_bytes: isize,
+    parts: Parts,
+}
+
+/// Memory of the parts of `StaticSolver::new`, measured one by one in the order `new` runs them.
+struct Parts {
+    /// Peak of the redundancy check: an assembly of every row at design and `redundant_rows` on its `J`.
+    redundancy_peak: usize,
+    /// Kept by `Assembly::new` of the active rows.
+    assembly_kept: isize,
+    /// Kept by `KktFactor::analyze` of that assembly's pattern (the pattern copy made for it included in
+    /// the peak, freed after).
+    factor_kept: isize,
+    /// Peak of that analysis.
+    factor_peak: usize,
 }
 
 /// Steps of every sweep, the same for every N: a per-step time compared across N must come from the same
@@ -101,6 +125,30 @@ fn measure(n: usize, s: &Settings) -> Result<SizeResult, String> {
     let corrected_iterations = measured?;
     let (solver, setup_usage) = alloc::track(|| StaticSolver::new(&model, SolverOptions::default()));
     let mut solver = solver.map_err(|e| err(&e))?;
+    let options = SolverOptions::default();
+    let ((), redundancy) = alloc::track(|| {
+        let poses = model.design_poses();
+        let mut full = Assembly::new(&model, (0..model.constraint_rows()).collect());
+        full.assemble(&model, &poses, 0.0, &[], None);
+        let dropped = redundant_rows(
+            full.m(),
+            full.n,
+            &full.j_col_ptr,
+            &full.j_row_idx,
+            &full.j_values,
+            options.redundancy_tolerance,
+        );
+        std::hint::black_box(dropped);
+    });
+    let (mut assembly, assembly_usage) = alloc::track(|| Assembly::new(&model, solver.active_rows().to_vec()));
+    let (factor, factor_usage) = alloc::track(|| KktFactor::analyze(&assembly.kkt_pattern(), options.kkt.clone()));
+    drop(factor.map_err(|e| err(&e))?);
+    let parts = Parts {
+        redundancy_peak: redundancy.peak_bytes,
+        assembly_kept: assembly_usage.balance_bytes,
+        factor_kept: factor_usage.balance_bytes,
+        factor_peak: factor_usage.peak_bytes,
+    };
     let (swept, sweep_usage) = alloc::track(|| solver.sweep(path, Mode::Corrected).map(drop));
     swept.map_err(|e| err(&e))?;
     let setup = budget.time(|| StaticSolver::new(&model, SolverOptions::default()).map(drop));
@@ -110,7 +158,6 @@ fn measure(n: usize, s: &Settings) -> Result<SizeResult, String> {
     let corrected = budget.time(|| solver.sweep_from(&mut start.clone(), path, Mode::Corrected).map(drop));
 
     // Symbolic analysis against numeric factorization of the same KKT.
-    let mut assembly = Assembly::new(&model, solver.active_rows().to_vec());
     assembly.assemble(&model, &start.poses, start.t, &start.lambda, Some(Tangent::Full));
     let pattern = assembly.kkt_pattern();
     let symbolic = budget.time(|| KktFactor::analyze(&pattern, KktOptions::default()).map(drop));
@@ -139,6 +186,8 @@ fn measure(n: usize, s: &Settings) -> Result<SizeResult, String> {
         peak_bytes: usage.peak_bytes,
         setup_peak_bytes: setup_usage.peak_bytes,
         sweep_peak_bytes: sweep_usage.peak_bytes,
+        kept_bytes: setup_usage.balance_bytes,
+        parts,
     })
 }
 
@@ -154,7 +203,7 @@ pub fn run(s: &Settings) -> SectionOutput {
              across; a tip load at the far end. Load parameter 0 → 1 in {STEPS} steps from the first \
              equilibrium (the same path for every N), time divided by the step count. Peak memory: live bytes \
              above the start during `StaticSolver::new` + a corrected sweep (results included), and each \
-             alone. Gain from \
+             alone; kept: live bytes the solver holds once `new` has returned. Gain from \
              symbolic reuse: (symbolic + numeric) / numeric. Exponents: least squares of ln time against ln N \
              for N ≥ {fit_from}."
         ),
@@ -177,7 +226,8 @@ pub fn run(s: &Settings) -> SectionOutput {
             "corrected step (ms)",
             "iterations per corrected step",
             "peak memory (MiB)",
-            "bytes per body",
+            "peak per body (B)",
+            "kept per body (B)",
             "of which StaticSolver::new (MiB)",
             "sweep alone (MiB)",
             "status",
@@ -203,6 +253,7 @@ pub fn run(s: &Settings) -> SectionOutput {
                     Cell::num(r.corrected_iterations),
                     Cell::num(r.peak_bytes as f64 / MIB),
                     Cell::num(r.peak_bytes as f64 / r.n as f64),
+                    Cell::num(r.kept_bytes as f64 / r.n as f64),
                     Cell::num(r.setup_peak_bytes as f64 / MIB),
                     Cell::num(r.sweep_peak_bytes as f64 / MIB),
                     Cell::text("ok"),
@@ -214,18 +265,49 @@ pub fn run(s: &Settings) -> SectionOutput {
                 out.figure(&format!("{key}.numeric_factorization_s"), r.numeric, "s", Kind::Time);
                 out.figure(&format!("{key}.setup_s"), r.setup, "s", Kind::Time);
                 out.figure(&format!("{key}.peak_bytes"), r.peak_bytes as f64, "B", Kind::Memory);
+                out.figure(&format!("{key}.kept_bytes"), r.kept_bytes as f64, "B", Kind::Memory);
                 out.figure(&format!("{key}.symbolic_reuse_gain"), gain, "", Kind::Other);
                 results.push(r);
             }
             Err(e) => {
                 let mut row = vec![Cell::count(n as u64)];
-                row.resize(16, Cell::Empty);
+                row.resize(17, Cell::Empty);
                 row.push(Cell::text(format!("failed: {e}")));
                 table.row(row);
             }
         }
     }
     out.tables.push(table);
+
+    let mut parts = Table::new(
+        "Memory per body by part of StaticSolver::new",
+        "scaling_memory.csv",
+        &[
+            "N bodies",
+            "redundancy check, peak (B)",
+            "Assembly::new, kept (B)",
+            "KktFactor::analyze, kept (B)",
+            "KktFactor::analyze, peak (B)",
+            "StaticSolver::new, kept (B)",
+            "StaticSolver::new, peak (B)",
+            "corrected sweep, peak above kept (B)",
+        ],
+    );
+    for r in &results {
+        let per = |bytes: f64| Cell::num(bytes / r.n as f64);
+        let p = &r.parts;
+        parts.row(vec![
+            Cell::count(r.n as u64),
+            per(p.redundancy_peak as f64),
+            per(p.assembly_kept as f64),
+            per(p.factor_kept as f64),
+            per(p.factor_peak as f64),
+            per(r.kept_bytes as f64),
+            per(r.setup_peak_bytes as f64),
+            per(r.sweep_peak_bytes as f64),
+        ]);
+    }
+    out.tables.push(parts);
 
     let fitted: Vec<&SizeResult> = results.iter().filter(|r| r.n >= fit_from).collect();
     let largest = fitted.iter().map(|r| r.n).max().unwrap_or(0);
@@ -265,6 +347,30 @@ pub fn run(s: &Settings) -> SectionOutput {
             detail: format!(
                 "least-squares fit over N = {fit_from}–{largest} ({count} sizes){}",
                 if s.quick { "; --quick stops at 1 000, the full run fits 1 000–10 000" } else { "" }
+            ),
+        });
+    }
+    let judged: Vec<&SizeResult> = results.iter().filter(|r| r.n >= MEMORY_FROM).collect();
+    let sizes_judged = judged.iter().map(|r| r.n.to_string()).collect::<Vec<_>>().join(", ");
+    for (what, limit, get) in [
+        (
+            "kept by a StaticSolver once StaticSolver::new has returned",
+            KEPT_PER_BODY,
+            (|r: &SizeResult| r.kept_bytes as f64) as fn(&SizeResult) -> f64,
+        ),
+        ("at the peak of StaticSolver::new and a corrected sweep", PEAK_PER_BODY, |r: &SizeResult| r.peak_bytes as f64),
+    ] {
+        let worst =
+            judged.iter().map(|r| get(r) / r.n as f64).fold(None, |m: Option<f64>, v| Some(m.map_or(v, |m| m.max(v))));
+        out.targets.push(Target {
+            goal: format!("memory {what} at most {} KB per body from 1 000 to 10 000 bodies", limit / 1000.0),
+            measured: worst.ok_or_else(|| format!("no size of {MEMORY_FROM} bodies or more measured")),
+            limit,
+            unit: "B per body".into(),
+            judge: Judge::AtMost,
+            detail: format!(
+                "the largest over N = {sizes_judged}{}",
+                if s.quick { "; --quick stops at 1 000, the full run measures 1 000–10 000" } else { "" }
             ),
         });
     }
