@@ -336,12 +336,17 @@ pub fn run(s: &Settings) -> SectionOutput {
         exponents.push((what, p, points.len()));
     }
     out.tables.push(fits);
-    for what in ["paper step", "corrected step"] {
+    // A step may grow somewhat faster than N (fill, cache); the setup is asked to stay linear.
+    for (what, goal, limit) in [
+        ("paper step", "time per paper step", 1.2),
+        ("corrected step", "time per corrected step", 1.2),
+        ("setup (StaticSolver::new)", "setup time (StaticSolver::new)", 1.05),
+    ] {
         let (_, p, count) = exponents.iter().find(|e| e.0 == what).copied().unwrap_or((what, None, 0));
         out.targets.push(Target {
-            goal: format!("time per {what} growing no faster than N^1.2 from 1 000 to 10 000 bodies"),
+            goal: format!("{goal} growing no faster than N^{limit} from 1 000 to 10 000 bodies"),
             measured: p.ok_or_else(|| "too few sizes measured for a fit".to_string()),
-            limit: 1.2,
+            limit,
             unit: "exponent".into(),
             judge: Judge::ExponentAtMost,
             detail: format!(
