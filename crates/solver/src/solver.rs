@@ -374,21 +374,7 @@ impl<'m> StaticSolver<'m> {
         options.validate()?;
         model.validate()?;
         let poses = model.design_poses();
-        // Redundancy: rank-revealing check of the full Jacobian at design. The all-rows assembly is
-        // dropped before the active one is made, so that the two are never held at once.
-        let dropped = {
-            let all_rows: Vec<usize> = (0..model.constraint_rows()).collect();
-            let mut full = Assembly::new(model, all_rows);
-            full.assemble(model, &poses, 0.0, &[], None);
-            redundant_rows(
-                full.m(),
-                full.n,
-                &full.j_col_ptr,
-                &full.j_row_idx,
-                &full.j_values,
-                options.redundancy_tolerance,
-            )
-        };
+        let dropped = redundant_rows_at_design(model, options.redundancy_tolerance);
         let mut is_dropped = vec![false; model.constraint_rows()];
         for &r in &dropped {
             is_dropped[r] = true;
@@ -1527,6 +1513,16 @@ impl<'m> StaticSolver<'m> {
         let (body, motion) = describe_free_motion(self.model, &self.work.rhs[..n], &report.suspect_body_dofs);
         Err(SolverError::Unrestrained { body, motion })
     }
+}
+
+/// The constraint rows of `model` that depend on earlier rows at the design pose (model row numbering,
+/// ascending): the rank-revealing check of the whole Jacobian that [`StaticSolver::new`] drops them by,
+/// at relative tolerance `tolerance`. Its all-rows assembly is dropped on return, before the solver makes
+/// the active one, so that the two are never held at once.
+pub fn redundant_rows_at_design(model: &Model, tolerance: f64) -> Vec<usize> {
+    let mut full = Assembly::new(model, (0..model.constraint_rows()).collect());
+    full.assemble(model, &model.design_poses(), 0.0, &[], None);
+    redundant_rows(full.m(), full.n, &full.j_col_ptr, &full.j_row_idx, &full.j_values, tolerance)
 }
 
 /// Names the body and motion of a (near-)null vector of the tangent.

@@ -12,7 +12,8 @@ use super::Settings;
 use elastokin_core::{BodyRef, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
 use elastokin_elements::{Bushing, CoilSpring, PointForce};
 use elastokin_solver::assembly::{Assembly, Tangent};
-use elastokin_solver::kkt_factor::{redundant_rows, KktFactor, KktOptions};
+use elastokin_solver::kkt_factor::{KktFactor, KktOptions};
+use elastokin_solver::solver::redundant_rows_at_design;
 use elastokin_solver::{LoadPath, Mode, SolverOptions, StaticSolver, Sweep};
 
 const MIB: f64 = 1024.0 * 1024.0;
@@ -127,18 +128,7 @@ fn measure(n: usize, s: &Settings) -> Result<SizeResult, String> {
     let mut solver = solver.map_err(|e| err(&e))?;
     let options = SolverOptions::default();
     let ((), redundancy) = alloc::track(|| {
-        let poses = model.design_poses();
-        let mut full = Assembly::new(&model, (0..model.constraint_rows()).collect());
-        full.assemble(&model, &poses, 0.0, &[], None);
-        let dropped = redundant_rows(
-            full.m(),
-            full.n,
-            &full.j_col_ptr,
-            &full.j_row_idx,
-            &full.j_values,
-            options.redundancy_tolerance,
-        );
-        std::hint::black_box(dropped);
+        std::hint::black_box(redundant_rows_at_design(&model, options.redundancy_tolerance));
     });
     let (mut assembly, assembly_usage) = alloc::track(|| Assembly::new(&model, solver.active_rows().to_vec()));
     let (factor, factor_usage) = alloc::track(|| KktFactor::analyze(&assembly.kkt_pattern(), options.kkt.clone()));
