@@ -227,8 +227,8 @@ struct PathHistory {
 
 /// How many past steps the predictor extrapolates from: the polynomial through the last
 /// `PREDICTOR_STEPS + 1` equilibria (cubic). Measured on the MacPherson's 161-point travel sweep: the
-/// residual a predicted state leaves is 0.05 N with the quadratic and 2e-4 N with the cubic, and the
-/// chord iterations per step fall from 3.7 to 1.6 (`cargo xtask bench --only error-vs-time`).
+/// residual a predicted state leaves is 0.05 N with the quadratic and 4e-4 N with the cubic, and the
+/// chord iterations per step fall from 3.7 to 2.1 (`cargo xtask bench --only error-vs-time`).
 const PREDICTOR_STEPS: usize = 3;
 
 /// How a Newton solve starts and what bounds it.
