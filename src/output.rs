@@ -2,7 +2,7 @@
 //! with numbers an engineer can read, an output directory that is replaced whole or not at all, standard
 //! output that a closed pipe cannot crash, and progress on standard error.
 
-pub use elastokin::provenance::{sha256_hex, Provenance};
+pub use elastokin::provenance::{sha256_hex, Part, Provenance};
 use elastokin::suspensions::kc::{Cell, Table};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::cell::Cell as Flag;

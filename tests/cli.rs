@@ -959,3 +959,27 @@ fn batch_varies_a_chrono_file_by_its_own_keys() {
     // Measured: 0.4 to the CSV's 12 digits.
     assert!((rate("soft") / rate("stiff") - 0.4).abs() < 1e-10, "{} {}", rate("soft"), rate("stiff"));
 }
+
+#[test]
+fn a_shard_that_is_not_i_of_n_is_refused_by_name() {
+    let dir = scratch("bad-shard");
+    let out = dir.join("out");
+    for bad in ["0/3", "4/3", "1/0", "abc"] {
+        let o = elastokin(&[
+            "batch",
+            "examples/macpherson.json",
+            "examples/macpherson_variants.txt",
+            "--shard",
+            bad,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{bad}: {err}");
+        assert!(err.contains("--shard") && err.contains(bad) && err.contains("I/N with 1 ≤ I ≤ N"), "{bad}: {err}");
+        assert!(!out.exists());
+    }
+    let o = elastokin(&["batch", "--help"]);
+    assert!(String::from_utf8_lossy(&o.stdout).contains("SLURM_ARRAY_TASK_ID"));
+    std::fs::remove_dir_all(&dir).ok();
+}
