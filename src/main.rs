@@ -5,6 +5,7 @@
 //!                     [--wheel held|free] [--through-limits [--arc-step VALUE]] [--out DIR]
 //! elastokin check MODEL
 //! elastokin batch MODEL VARIANTS [--shard I/N] [--out DIR]
+//! elastokin merge [--out DIR] SHARD...
 //! ```
 //!
 //! What the command depends on, and why: clap parses the arguments (help, `--version`, suggestions for
@@ -20,6 +21,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 mod batch;
+mod merge;
 mod output;
 use elastokin::plot;
 use elastokin::suspensions::kc::{self, Analysis, Settings, SuiteEvent, Tolerance};
@@ -67,6 +69,13 @@ pub enum Command {
     /// parallel wheel travel ±20 mm in 8 steps, corrected mode.
     #[command(after_help = EXIT_STATUS)]
     Batch(BatchArgs),
+    /// Join the batch.csv files of `batch --shard I/N` runs into the batch.csv one `batch` writes
+    ///
+    /// The shards must be of one model and one variants file (the same SHA-256 in their first lines) and
+    /// the same N, each of 1..N given once. The rows are those of a single `batch`, byte for byte; the
+    /// first line says the table was merged from N shards.
+    #[command(after_help = EXIT_STATUS)]
+    Merge(MergeArgs),
     /// Print the model in the general form (named bodies, joints, bushings, springs and the corner
     /// description): a template expanded, ready to edit into any other suspension
     #[command(after_help = EXIT_STATUS)]
@@ -171,6 +180,16 @@ pub struct BatchArgs {
     #[arg(long, value_name = "I/N", value_parser = batch::Shard::parse)]
     pub shard: Option<batch::Shard>,
     /// Where batch.csv goes; the directory is replaced as a whole when the batch succeeds
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+}
+
+#[derive(Debug, Args)]
+pub struct MergeArgs {
+    /// The shards: each a batch.csv that `batch --shard I/N` wrote, or the --out directory holding it
+    #[arg(required = true, value_name = "SHARD")]
+    pub shards: Vec<PathBuf>,
+    /// Where the merged batch.csv goes; the directory is replaced as a whole when the merge succeeds
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
 }
@@ -616,6 +635,7 @@ fn main() -> ExitCode {
         Command::Run(args) => run(args, &out, cli.quiet, cli.strict),
         Command::Check(args) => check(args, &out),
         Command::Batch(args) => run_batch(args, &out, cli.quiet),
+        Command::Merge(args) => merge::merge(args, &out),
         Command::Expand(args) => expand(args, &out),
         Command::Import(args) => import(args, &out),
     };
