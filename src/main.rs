@@ -4,7 +4,8 @@
 //! elastokin run MODEL [--analysis NAME] [--range FROM,TO] [--steps N] [--mode paper|corrected]
 //!                     [--wheel held|free] [--through-limits [--arc-step VALUE]] [--out DIR]
 //! elastokin check MODEL
-//! elastokin batch MODEL VARIANTS [--out DIR]
+//! elastokin batch MODEL VARIANTS [--shard I/N] [--out DIR]
+//! elastokin merge [--out DIR] SHARD...
 //! ```
 //!
 //! What the command depends on, and why: clap parses the arguments (help, `--version`, suggestions for
@@ -20,10 +21,11 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 mod batch;
+mod merge;
 mod output;
 use elastokin::plot;
 use elastokin::suspensions::kc::{self, Analysis, Settings, SuiteEvent, Tolerance};
-use output::{note, write_table, Failure, Progress, Provenance, Staging, Stdout};
+use output::{note, write_table, Failure, Part, Progress, Provenance, Staging, Stdout};
 
 /// The most load steps a sweep may take (the suite's limit, which its advice on steps respects).
 pub use kc::MAX_STEPS;
@@ -67,6 +69,13 @@ pub enum Command {
     /// parallel wheel travel ±20 mm in 8 steps, corrected mode.
     #[command(after_help = EXIT_STATUS)]
     Batch(BatchArgs),
+    /// Join the batch.csv files of `batch --shard I/N` runs into the batch.csv one `batch` writes
+    ///
+    /// The shards must be of one model and one variants file (the same SHA-256 in their first lines) and
+    /// the same N, each of 1..N given once. The rows are those of a single `batch`, byte for byte; the
+    /// first line says the table was merged from N shards.
+    #[command(after_help = EXIT_STATUS)]
+    Merge(MergeArgs),
     /// Print the model in the general form (named bodies, joints, bushings, springs and the corner
     /// description): a template expanded, ready to edit into any other suspension
     #[command(after_help = EXIT_STATUS)]
@@ -164,7 +173,23 @@ pub struct BatchArgs {
     pub model: PathBuf,
     #[arg(help = format!("The variants file, one variant per line (format in --help; at most {})", batch::MAX_VARIANTS))]
     pub variants: PathBuf,
+    /// Run only shard I of N (I from 1 to N, as SLURM_ARRAY_TASK_ID counts with --array=1-N): variant k
+    /// (counting from 0) of V belongs to shard floor(k*N/V)+1, contiguous blocks differing in size by at
+    /// most one (empty ones when N > V). Its batch.csv adds the column variant_number and says I/N in its
+    /// first line; `elastokin merge` joins the shards
+    #[arg(long, value_name = "I/N", value_parser = batch::Shard::parse)]
+    pub shard: Option<batch::Shard>,
     /// Where batch.csv goes; the directory is replaced as a whole when the batch succeeds
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+}
+
+#[derive(Debug, Args)]
+pub struct MergeArgs {
+    /// The shards: each a batch.csv that `batch --shard I/N` wrote, or the --out directory holding it
+    #[arg(required = true, value_name = "SHARD")]
+    pub shards: Vec<PathBuf>,
+    /// Where the merged batch.csv goes; the directory is replaced as a whole when the merge succeeds
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
 }
@@ -551,16 +576,20 @@ fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> 
     let mut provenance = Provenance::new(&args.model, &bytes, kc::mode_word(Mode::Corrected), batch::STEPS);
     provenance.range = Some((-batch::HALF_RANGE, batch::HALF_RANGE));
     provenance.variants = Some((args.variants.display().to_string(), output::sha256_hex(&variant_bytes)));
+    // Every shard reads and checks all variants above, so a mistake anywhere in the file stops each shard
+    // alike; each runs only its own block.
+    let range = args.shard.map_or(0..list.len(), |s| s.range(list.len()));
+    provenance.part = args.shard.map(|s| Part::Shard { index: s.index, count: s.count, variants: list.len() });
     let staging = Staging::new(&args.out)?;
-    let progress = Progress::new("variants", list.len(), quiet);
-    let results = batch::run_all(&list, &files, &progress);
+    let progress = Progress::new("variants", range.len(), quiet);
+    let results = batch::run_all(&list[range.clone()], &files[range.clone()], &progress);
     progress.finish();
     let result = (|| {
         out.line(format!("{:<28} {:>16} {:>16} {:>14}", "variant", "bump °/10 mm", "camber °/10 mm", "rate N/mm"))?;
         let mut rows = Vec::new();
-        for (v, r) in list.iter().zip(&results) {
+        for ((k, v), r) in list.iter().enumerate().skip(range.start).zip(&results) {
             let name = kc::Cell::Text(v.name.clone());
-            match r {
+            let mut row = match r {
                 Ok(o) => {
                     out.line(format!(
                         "{:<28} {:>16.4} {:>16.4} {:>14.2}",
@@ -569,28 +598,24 @@ fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> 
                         o.camber_gain * 0.01,
                         o.wheel_rate * 1e-3
                     ))?;
-                    rows.push(vec![
-                        name,
-                        o.bump_steer.into(),
-                        o.camber_gain.into(),
-                        o.wheel_rate.into(),
-                        kc::Cell::Empty,
-                    ]);
+                    vec![name, o.bump_steer.into(), o.camber_gain.into(), o.wheel_rate.into(), kc::Cell::Empty]
                 }
                 Err(e) => {
                     out.line(format!("{:<28} failed: {e}", v.name))?;
                     let empty = kc::Cell::Empty;
-                    rows.push(vec![name, empty.clone(), empty.clone(), empty, kc::Cell::Text(e.clone())]);
+                    vec![name, empty.clone(), empty.clone(), empty, kc::Cell::Text(e.clone())]
                 }
+            };
+            if args.shard.is_some() {
+                row.push(kc::Cell::Text((k + 1).to_string()));
             }
+            rows.push(row);
         }
-        let table = kc::Table {
-            name: "batch".into(),
-            columns: ["variant", "bump_steer_deg_per_m", "camber_gain_deg_per_m", "wheel_rate_n_per_m", "error"]
-                .map(String::from)
-                .to_vec(),
-            rows,
-        };
+        let mut columns = batch::COLUMNS.map(String::from).to_vec();
+        if args.shard.is_some() {
+            columns.push(batch::NUMBER_COLUMN.into());
+        }
+        let table = kc::Table { name: "batch".into(), columns, rows };
         staging.write(&format!("{}.csv", table.name), &write_table(&table, &provenance))
     })();
     let path = result.map_err(|e| Failure::Run(format!("{}\n{}", e.message(), staging.untouched())))?;
@@ -610,6 +635,7 @@ fn main() -> ExitCode {
         Command::Run(args) => run(args, &out, cli.quiet, cli.strict),
         Command::Check(args) => check(args, &out),
         Command::Batch(args) => run_batch(args, &out, cli.quiet),
+        Command::Merge(args) => merge::merge(args, &out),
         Command::Expand(args) => expand(args, &out),
         Command::Import(args) => import(args, &out),
     };

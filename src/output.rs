@@ -2,7 +2,7 @@
 //! with numbers an engineer can read, an output directory that is replaced whole or not at all, standard
 //! output that a closed pipe cannot crash, and progress on standard error.
 
-pub use elastokin::provenance::{sha256_hex, Provenance};
+pub use elastokin::provenance::{sha256_hex, Part, Provenance};
 use elastokin::suspensions::kc::{Cell, Table};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::cell::Cell as Flag;
@@ -61,7 +61,13 @@ pub fn number(v: f64) -> String {
 /// The CSV bytes of `table`: the provenance comment line, the header row, one row per table row. Text is
 /// quoted only where CSV needs it; a missing or non-finite number is an empty cell.
 pub fn write_table(table: &Table, provenance: &Provenance) -> Vec<u8> {
-    let mut bytes = provenance.comment_line().into_bytes();
+    write_table_after(&provenance.comment_line(), table)
+}
+
+/// The CSV bytes of `table` after the comment line `first` (without its line end): `merge` writes the
+/// shards' line, not one of its own making, and the rows as [`write_table`] does.
+pub fn write_table_after(first: &str, table: &Table) -> Vec<u8> {
+    let mut bytes = first.as_bytes().to_vec();
     bytes.push(b'\n');
     // Rows may differ in length only by a mistake in an analysis; writing them as they are beats losing
     // the file.

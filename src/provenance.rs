@@ -33,6 +33,28 @@ pub struct Provenance {
     pub date: String,
     /// The error tolerance the run was checked against, when it ran analyses.
     pub tolerance: Option<elastokin_suspensions::kc::Tolerance>,
+    /// `batch --shard`: which part of a batch this is; `merge`: how many shards it joined.
+    pub part: Option<Part>,
+}
+
+/// A result that is one part of a batch, or the shards of one joined.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Part {
+    /// Shard `index` of `count` (1-based) of a batch of `variants` variants.
+    Shard { index: usize, count: usize, variants: usize },
+    /// The `shards` shards of a batch, merged.
+    Merged { shards: usize },
+}
+
+impl Part {
+    /// What the comment line ends with: `, shard 2/3 of 6 variants` or `, merged from 3 shards`; the merge
+    /// reads the first back.
+    pub fn suffix(self) -> String {
+        match self {
+            Part::Shard { index, count, variants } => format!(", shard {index}/{count} of {variants} variants"),
+            Part::Merged { shards } => format!(", merged from {shards} shards"),
+        }
+    }
 }
 
 impl Provenance {
@@ -51,6 +73,7 @@ impl Provenance {
             command: std::env::args_os().map(|a| a.to_string_lossy().into_owned()).collect::<Vec<_>>().join(" "),
             date: humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string(),
             tolerance: None,
+            part: None,
         }
     }
 
@@ -79,6 +102,13 @@ impl Provenance {
             v["variants"] = path.as_str().into();
             v["variants_sha256"] = sha.as_str().into();
         }
+        match self.part {
+            Some(Part::Shard { index, count, variants }) => {
+                v["shard"] = serde_json::json!({ "index": index, "count": count, "variants": variants });
+            }
+            Some(Part::Merged { shards }) => v["merged_from_shards"] = shards.into(),
+            None => {}
+        }
         v
     }
 
@@ -95,6 +125,9 @@ impl Provenance {
         );
         if let Some((path, sha)) = &self.variants {
             line += &format!(", variants {path} (sha256 {})", &sha[..16.min(sha.len())]);
+        }
+        if let Some(part) = self.part {
+            line += &part.suffix();
         }
         // A line break in a path would end the comment early and leave a broken first row.
         line.chars().map(|c| if c.is_control() { '?' } else { c }).collect()

@@ -959,3 +959,170 @@ fn batch_varies_a_chrono_file_by_its_own_keys() {
     // Measured: 0.4 to the CSV's 12 digits.
     assert!((rate("soft") / rate("stiff") - 0.4).abs() < 1e-10, "{} {}", rate("soft"), rate("stiff"));
 }
+
+/// Runs `batch --shard I/N` of the MacPherson variants for every I into `dir/NAME-I`; returns the
+/// directories.
+fn run_shards(dir: &Path, name: &str, model: &str, variants: &str, n: usize) -> Vec<PathBuf> {
+    (1..=n)
+        .map(|i| {
+            let out = dir.join(format!("{name}-{i}"));
+            succeeds(&["batch", model, variants, "--shard", &format!("{i}/{n}"), "--out", out.to_str().unwrap()]);
+            out
+        })
+        .collect()
+}
+
+/// `batch --shard I/N` for every I and `merge` give the single batch's table: the same rows byte for byte,
+/// whichever order the shards are given in, and with more shards than variants too.
+#[test]
+fn shards_merge_into_the_single_batch() {
+    let dir = scratch("shards");
+    let (m, v) = ("examples/macpherson.json", "examples/macpherson_variants.txt");
+    let single = dir.join("single");
+    succeeds(&["batch", m, v, "--out", single.to_str().unwrap()]);
+    let single_text = std::fs::read_to_string(single.join("batch.csv")).unwrap();
+    let (single_first, single_rows) = single_text.split_once('\n').unwrap();
+    let single_records = read_csv(&single.join("batch.csv"));
+    let total = single_records.len();
+    assert!(total >= 3, "the example needs variants for three shards");
+    let three = run_shards(&dir, "three", m, v, 3);
+    // Each shard: the single batch's first line with its part, and its block of the single batch's rows,
+    // each with its place in the variants file.
+    let mut numbers = Vec::new();
+    for (i, shard) in three.iter().enumerate() {
+        let text = std::fs::read_to_string(shard.join("batch.csv")).unwrap();
+        assert_eq!(text.lines().next().unwrap(), format!("{single_first}, shard {}/3 of {total} variants", i + 1));
+        assert!(text.lines().nth(1).unwrap().ends_with(",error,variant_number"), "{text}");
+        for row in read_csv(&shard.join("batch.csv")) {
+            let k: usize = row[5].parse().unwrap();
+            // Variant k (counting from 1) belongs to shard ⌊(k−1)·N/V⌋ + 1, as --help says.
+            assert_eq!((k - 1) * 3 / total, i, "variant {k} in shard {}", i + 1);
+            assert_eq!(row.iter().take(5).collect::<Vec<_>>(), single_records[k - 1].iter().collect::<Vec<_>>());
+            numbers.push(k);
+        }
+    }
+    assert_eq!(numbers, (1..=total).collect::<Vec<_>>());
+    let expected = format!("{single_first}, merged from 3 shards\n{single_rows}");
+    let merge = |shards: Vec<PathBuf>, out: &Path| {
+        let mut args = vec!["merge".to_string(), "--out".into(), out.display().to_string()];
+        args.extend(shards.iter().map(|s| s.display().to_string()));
+        succeeds(&args.iter().map(String::as_str).collect::<Vec<_>>());
+        std::fs::read_to_string(out.join("batch.csv")).unwrap()
+    };
+    // In order, shuffled, as files or as their directories: the same bytes.
+    let file = |k: usize| three[k].join("batch.csv");
+    for (n, shards) in [
+        vec![file(0), file(1), file(2)],
+        vec![file(2), file(0), file(1)],
+        vec![three[1].clone(), file(2), three[0].clone()],
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        assert_eq!(merge(shards, &dir.join(format!("merged-{n}"))), expected);
+    }
+    // More shards than variants: the surplus shards are empty, and still merge into the same rows.
+    let n = total + 2;
+    let many = run_shards(&dir, "many", m, v, n);
+    let empty = many.iter().filter(|s| read_csv(&s.join("batch.csv")).is_empty()).count();
+    assert_eq!(empty, 2);
+    let mut shuffled = many.clone();
+    shuffled.reverse();
+    assert_eq!(
+        merge(shuffled, &dir.join("merged-many")),
+        format!("{single_first}, merged from {n} shards\n{single_rows}")
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_shard_that_is_not_i_of_n_is_refused_by_name() {
+    let dir = scratch("bad-shard");
+    let out = dir.join("out");
+    for bad in ["0/3", "4/3", "1/0", "abc"] {
+        let o = elastokin(&[
+            "batch",
+            "examples/macpherson.json",
+            "examples/macpherson_variants.txt",
+            "--shard",
+            bad,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{bad}: {err}");
+        assert!(err.contains("--shard") && err.contains(bad) && err.contains("I/N with 1 ≤ I ≤ N"), "{bad}: {err}");
+        assert!(!out.exists());
+    }
+    let o = elastokin(&["batch", "--help"]);
+    assert!(String::from_utf8_lossy(&o.stdout).contains("SLURM_ARRAY_TASK_ID"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Shards that do not make one whole batch are refused with exit status 2, naming the file and what to
+/// give instead, and the previous merge is left as it was.
+#[test]
+fn merge_refuses_shards_that_do_not_make_one_batch() {
+    let dir = scratch("merge-refusals");
+    let (m, v) = ("examples/macpherson.json", "examples/macpherson_variants.txt");
+    let shards = run_shards(&dir, "good", m, v, 3);
+    let file = |k: usize| shards[k].join("batch.csv").display().to_string();
+    // The same model and variants with one more byte each: other files by their hash.
+    let other_model = dir.join("other-model.json");
+    std::fs::write(&other_model, std::fs::read_to_string(m).unwrap() + "\n").unwrap();
+    let other_variants = dir.join("other-variants.txt");
+    std::fs::write(&other_variants, std::fs::read_to_string(v).unwrap() + "\n").unwrap();
+    let of_model = run_shards(&dir, "model", other_model.to_str().unwrap(), v, 3)[1].join("batch.csv");
+    let of_variants = run_shards(&dir, "variants", m, other_variants.to_str().unwrap(), 3)[1].join("batch.csv");
+    let of_two = run_shards(&dir, "two", m, v, 2)[1].join("batch.csv");
+    let single = dir.join("single");
+    succeeds(&["batch", m, v, "--out", single.to_str().unwrap()]);
+    // A shard with its last row lost.
+    let cut = dir.join("cut.csv");
+    let text = std::fs::read_to_string(file(1)).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    std::fs::write(&cut, lines[..lines.len() - 1].join("\n") + "\n").unwrap();
+    // A first line that claims a vast number of shards (its one row the one such a shard holds).
+    let vast = dir.join("vast.csv");
+    let first = std::fs::read_to_string(file(0)).unwrap();
+    let first: Vec<&str> = first.lines().collect();
+    let claim = first[0].replace("shard 1/3 of", "shard 1/1000000000000 of");
+    std::fs::write(&vast, [claim.as_str(), first[1], first[2]].join("\n") + "\n").unwrap();
+    let out = dir.join("merged");
+    succeeds(&["merge", "--out", out.to_str().unwrap(), &file(0), &file(1), &file(2)]);
+    let before = snapshot(&out);
+    let show = |p: &Path| p.display().to_string();
+    let missing = dir.join("no-such-shard.csv");
+    let cases: Vec<(Vec<String>, Vec<String>)> = vec![
+        (vec![file(0), file(2)], vec!["shard 2 of 3 missing".into(), "--shard 2/3".into()]),
+        (vec![file(0)], vec!["shards 2, 3 of 3 missing".into()]),
+        (vec![file(0), file(1), file(2), file(1)], vec!["shard 2/3 is given twice".into(), file(1)]),
+        (vec![file(0), show(&of_model), file(2)], vec!["a shard of model".into(), show(&of_model), show(&other_model)]),
+        (
+            vec![file(0), show(&of_variants), file(2)],
+            vec!["a shard of variants file".into(), show(&of_variants), show(&other_variants)],
+        ),
+        (vec![file(0), show(&of_two), file(2)], vec!["is shard 2/2".into(), show(&of_two)]),
+        (
+            vec![file(0), file(1), file(2), show(&single.join("batch.csv"))],
+            vec!["is not a shard of a batch".into(), show(&single.join("batch.csv")), "--shard I/N".into()],
+        ),
+        (vec![file(0), m.into(), file(2)], vec!["is not a shard of a batch".into(), m.into()]),
+        (vec![file(0), show(&cut), file(2)], vec!["run that shard again".into(), show(&cut)]),
+        (vec![show(&vast)], vec!["shards 2, 3, 4,".into(), "(999999999999 in all)".into()]),
+        (vec![file(0), file(1), show(&missing)], vec!["cannot open it".into(), show(&missing)]),
+        (vec![file(0), file(1), show(&dir)], vec!["cannot open it".into(), show(&dir.join("batch.csv"))]),
+    ];
+    for (shards, expected) in cases {
+        let mut args = vec!["merge", "--out", out.to_str().unwrap()];
+        args.extend(shards.iter().map(String::as_str));
+        let o = elastokin(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{shards:?}: {err}");
+        for e in &expected {
+            assert!(err.contains(e.as_str()), "{shards:?}: '{e}' not in {err}");
+        }
+        assert_eq!(snapshot(&out), before, "{shards:?}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
