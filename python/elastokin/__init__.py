@@ -77,7 +77,8 @@ class Result:
     """One analysis's result: its rows as columns, its report as a dict.
 
     ``columns`` maps each column of the analysis's CSV (``travel_m``, ``toe_deg``, …; the unit is the
-    name's suffix) to a numpy float array with one value per load step, NaN where a step has no value.
+    name's suffix) to a numpy float array with one value per load step, NaN where a step has no value; a
+    column of names (the static load's element names) is a list of its cells instead.
     ``summary`` is the analysis's entry of the command's summary.json: parameter, range, steps, headline
     figures (each with its value, unit and error estimate, or the reason it is missing), accuracy and
     warnings. ``compliance`` holds the wheel compliance at every step when the run asked for it.
