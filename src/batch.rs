@@ -1,31 +1,14 @@
-//! `elastokin batch MODEL VARIANTS`: design variants of one model, run in parallel.
-//!
-//! A variants file has one variant per line: an optional `name:` and then `pointer=value` edits separated
-//! by `;`, where `pointer` is a JSON pointer into the model file and `value` is JSON. Blank lines and lines
-//! starting with `#` are skipped.
-//!
-//! ```text
-//! # raise the inner tie-rod point by 10 mm
-//! tie rod up: /suspension/macpherson/hardpoints/tie_rod_inner/2=-0.049
-//! soft spring: /suspension/macpherson/spring/rate=20000
-//! ```
+//! `elastokin batch MODEL VARIANTS`: design variants of one model, run in parallel. The variants file's
+//! syntax, the edits and the figures of each variant are the library's ([`elastokin::suspensions::batch`]);
+//! this is the command's part: every variant on the rayon pool, with a progress bar.
 //!
 //! `--shard I/N` runs one of N contiguous, nearly equal blocks of the variants ([`Shard`]), so that a job
 //! array can spread one batch over machines; `elastokin merge` (src/merge.rs) joins the shards' tables.
 
 use crate::output::Progress;
-use elastokin::solver::Mode;
-use elastokin::suspensions::analysis::{parallel_wheel_travel, slope_at, TravelRow};
-use elastokin::suspensions::{Rig, Side, SuspensionFile};
+pub use elastokin::suspensions::batch::*;
+use elastokin::suspensions::SuspensionFile;
 use rayon::prelude::*;
-
-/// Each variant walks parallel wheel travel ±`HALF_RANGE` (m)…
-pub const HALF_RANGE: f64 = 0.02;
-/// …in `STEPS` steps (even, so design is a step).
-pub const STEPS: usize = 8;
-/// The most variants a file may hold: each is a sweep of its own, and all results are kept until the
-/// table is written.
-pub const MAX_VARIANTS: usize = 10_000;
 
 /// The columns of `batch.csv`.
 pub const COLUMNS: [&str; 5] =
@@ -69,94 +52,6 @@ impl Shard {
         let start = |i: usize| ((i as u128 * total as u128).div_ceil(self.count as u128)) as usize;
         start(self.index - 1)..start(self.index)
     }
-}
-
-/// One parsed variant: its name and its edits.
-pub struct Variant {
-    /// Name (the line's label, or `line N`).
-    pub name: String,
-    /// `(JSON pointer, value)` edits.
-    pub edits: Vec<(String, serde_json::Value)>,
-}
-
-/// Parses a variants file; errors name the line.
-pub fn parse_variants(text: &str, origin: &str) -> Result<Vec<Variant>, String> {
-    let mut out = Vec::new();
-    for (k, raw) in text.lines().enumerate() {
-        let line = raw.trim();
-        if line.is_empty() || line.starts_with('#') {
-            continue;
-        }
-        let (name, body) = match line.split_once(':') {
-            Some((n, b)) if !n.trim_start().starts_with('/') => (n.trim().to_string(), b),
-            _ => (format!("line {}", k + 1), line),
-        };
-        let mut edits = Vec::new();
-        for edit in body.split(';').map(str::trim).filter(|e| !e.is_empty()) {
-            let (pointer, value) =
-                edit.split_once('=').ok_or_else(|| format!("{origin}:{}: '{edit}' is not pointer=value", k + 1))?;
-            let value: serde_json::Value = serde_json::from_str(value.trim())
-                .map_err(|e| format!("{origin}:{}: value of '{}' is not JSON: {e}", k + 1, pointer.trim()))?;
-            edits.push((pointer.trim().to_string(), value));
-        }
-        if edits.is_empty() {
-            return Err(format!("{origin}:{}: no edits in '{line}'", k + 1));
-        }
-        if out.len() == MAX_VARIANTS {
-            return Err(format!(
-                "{origin}:{}: more than {MAX_VARIANTS} variants; split the file and run a batch for each part",
-                k + 1
-            ));
-        }
-        out.push(Variant { name, edits });
-    }
-    if out.is_empty() {
-        return Err(format!("{origin}: no variants (one per line: name: /json/pointer=value; …)"));
-    }
-    Ok(out)
-}
-
-/// The base model with a variant's edits applied; an edit to a pointer the model lacks is an error. A
-/// Project Chrono suspension file (the pointers then name its own keys: `/Spring/Spring Coefficient`) is read
-/// after the edits, as `run` reads it.
-pub fn apply(base: &serde_json::Value, v: &Variant) -> Result<SuspensionFile, String> {
-    let mut doc = base.clone();
-    for (pointer, value) in &v.edits {
-        let slot =
-            doc.pointer_mut(pointer).ok_or_else(|| format!("variant '{}': the model has no '{pointer}'", v.name))?;
-        *slot = value.clone();
-    }
-    let text = serde_json::to_string(&doc).map_err(|e| e.to_string())?;
-    let origin = format!("variant '{}'", v.name);
-    if elastokin::suspensions::chrono::is_chrono(&text) {
-        return elastokin::suspensions::chrono::import(&text, &origin, None).map(|i| i.file).map_err(|e| e.to_string());
-    }
-    SuspensionFile::from_json(&text, &origin).map_err(|e| e.to_string())
-}
-
-/// Headline figures of one variant.
-pub struct Outcome {
-    /// Bump steer at design, deg per metre of travel.
-    pub bump_steer: f64,
-    /// Camber gain at design, deg per metre.
-    pub camber_gain: f64,
-    /// Wheel rate at design, N/m.
-    pub wheel_rate: f64,
-}
-
-/// Runs one variant: parallel travel ±`half_range` in `steps` (even) steps.
-pub fn evaluate(file: &SuspensionFile, half_range: f64, steps: usize) -> Result<Outcome, String> {
-    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| e.to_string())?;
-    let rows =
-        parallel_wheel_travel(&corner, -half_range, half_range, steps, Mode::Corrected).map_err(|e| e.to_string())?;
-    let slope = |y: &dyn Fn(&TravelRow) -> f64| {
-        slope_at(&rows, 0.0, |r| r.travel, y).ok_or("too few steps for a slope at design")
-    };
-    Ok(Outcome {
-        bump_steer: slope(&|r| r.attitude.toe.to_degrees())?,
-        camber_gain: slope(&|r| r.attitude.camber.to_degrees())?,
-        wheel_rate: slope(&|r| r.wheel_load)?,
-    })
 }
 
 /// Runs every variant, `files[k]` being `variants[k]` applied, on the rayon pool, counting each one done on

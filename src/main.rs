@@ -16,7 +16,6 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use elastokin::solver::{Mode, SolverOptions, StaticSolver};
 use elastokin::suspensions::chrono::Imported;
 use elastokin::suspensions::{Rig, Side, SuspensionFile};
-use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -29,9 +28,6 @@ use output::{note, write_table, Failure, Part, Progress, Provenance, Staging, St
 
 /// The most load steps a sweep may take (the suite's limit, which its advice on steps respects).
 pub use kc::MAX_STEPS;
-
-/// The largest model or variants file read: far beyond any real one, small enough to read at once.
-const MAX_FILE_BYTES: u64 = 16 << 20;
 
 const EXIT_STATUS: &str = "\
 Exit status: 0 success; 1 a run that failed while solving or writing (previous results are left \
@@ -303,16 +299,7 @@ fn parse_range(text: &str) -> Result<(f64, f64), String> {
 
 /// Reads an input file whole; errors name the file and what it is for.
 fn read_input(path: &Path, what: &str) -> Result<(Vec<u8>, String), Failure> {
-    let shown = path.display();
-    let fail = |why: String| Failure::Input(format!("{what} '{shown}': {why}"));
-    let file = std::fs::File::open(path).map_err(|e| fail(format!("cannot open it: {e}")))?;
-    let mut bytes = Vec::new();
-    file.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes).map_err(|e| fail(format!("cannot read it: {e}")))?;
-    if bytes.len() as u64 > MAX_FILE_BYTES {
-        return Err(fail(format!("larger than {} MiB; is it the right file?", MAX_FILE_BYTES >> 20)));
-    }
-    let text = String::from_utf8(bytes.clone()).map_err(|_| fail("not UTF-8 text".into()))?;
-    Ok((bytes, text))
+    elastokin::suspensions::model_file::read_input(path, what).map_err(Failure::Input)
 }
 
 /// A model read from a file: its bytes (for the provenance hash), the model parsed from them and, for
@@ -340,14 +327,9 @@ impl ModelInput {
 /// `"Type": "Suspension"` and `"Template"`).
 fn read_model(path: &Path) -> Result<ModelInput, Failure> {
     let (bytes, text) = read_input(path, "MODEL")?;
-    let origin = path.display().to_string();
-    if elastokin::suspensions::chrono::is_chrono(&text) {
-        let imported = elastokin::suspensions::chrono::import(&text, &origin, None)
-            .map_err(|e| Failure::Input(format!("{e} (read as a Project Chrono suspension file)")))?;
-        return Ok(ModelInput { bytes, file: imported.file.clone(), imported: Some(imported) });
-    }
-    let file = SuspensionFile::from_json(&text, &origin).map_err(|e| Failure::Input(e.to_string()))?;
-    Ok(ModelInput { bytes, file, imported: None })
+    let (file, imported) =
+        elastokin::suspensions::model_file::parse_model(&text, &path.display().to_string()).map_err(Failure::Input)?;
+    Ok(ModelInput { bytes, file, imported })
 }
 
 fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Failure> {
@@ -565,8 +547,7 @@ fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> 
     let bytes = read.bytes;
     let origin = args.model.display().to_string();
     // The variants edit the file as written: a Chrono file's own keys (its comments removed).
-    let text = elastokin::suspensions::chrono::without_comments(&String::from_utf8_lossy(&bytes));
-    let base: serde_json::Value = serde_json::from_str(&text).map_err(|e| Failure::Input(format!("{origin}: {e}")))?;
+    let base = batch::base_document(&String::from_utf8_lossy(&bytes), &origin).map_err(Failure::Input)?;
     let (variant_bytes, variant_text) = read_input(&args.variants, "VARIANTS")?;
     let list = batch::parse_variants(&variant_text, &args.variants.display().to_string()).map_err(Failure::Input)?;
     // A variant that names a key the model lacks is a mistake in the file: say so before running anything.

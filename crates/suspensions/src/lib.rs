@@ -32,6 +32,7 @@
 pub mod analysis;
 pub mod anti_roll_bar;
 pub mod axle;
+pub mod batch;
 pub mod chrono;
 pub mod connection;
 pub mod corner;

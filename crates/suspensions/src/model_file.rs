@@ -678,3 +678,33 @@ impl SuspensionFile {
         std::fs::write(path, self.to_json()).map_err(|source| FileError::Io { path: path.to_path_buf(), source })
     }
 }
+
+/// The largest model or variants file read: far beyond any real one, small enough to read at once.
+pub const MAX_FILE_BYTES: u64 = 16 << 20;
+
+/// Reads an input file whole, as bytes and as text; errors name the file and `what` it is for (`MODEL`,
+/// `VARIANTS`), as the command says them.
+pub fn read_input(path: &Path, what: &str) -> Result<(Vec<u8>, String), String> {
+    use std::io::Read;
+    let shown = path.display();
+    let fail = |why: String| format!("{what} '{shown}': {why}");
+    let file = std::fs::File::open(path).map_err(|e| fail(format!("cannot open it: {e}")))?;
+    let mut bytes = Vec::new();
+    file.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes).map_err(|e| fail(format!("cannot read it: {e}")))?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(fail(format!("larger than {} MiB; is it the right file?", MAX_FILE_BYTES >> 20)));
+    }
+    let text = String::from_utf8(bytes.clone()).map_err(|_| fail("not UTF-8 text".into()))?;
+    Ok((bytes, text))
+}
+
+/// A model file's text as a model: an elastokin model file, or a Project Chrono suspension file (recognised
+/// by its `"Type": "Suspension"` and `"Template"`), then with how it was read.
+pub fn parse_model(text: &str, origin: &str) -> Result<(SuspensionFile, Option<crate::chrono::Imported>), String> {
+    if crate::chrono::is_chrono(text) {
+        let imported = crate::chrono::import(text, origin, None)
+            .map_err(|e| format!("{e} (read as a Project Chrono suspension file)"))?;
+        return Ok((imported.file.clone(), Some(imported)));
+    }
+    SuspensionFile::from_json(text, origin).map(|file| (file, None)).map_err(|e| e.to_string())
+}

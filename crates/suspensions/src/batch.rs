@@ -1,0 +1,129 @@
+//! Design variants of one model (`elastokin batch MODEL VARIANTS`): edits of the model file by JSON pointer,
+//! each variant judged by its bump steer, camber gain and wheel rate at design.
+//!
+//! A variants file has one variant per line: an optional `name:` and then `pointer=value` edits separated
+//! by `;`, where `pointer` is a JSON pointer into the model file and `value` is JSON. Blank lines and lines
+//! starting with `#` are skipped.
+//!
+//! ```text
+//! # raise the inner tie-rod point by 10 mm
+//! tie rod up: /suspension/macpherson/hardpoints/tie_rod_inner/2=-0.049
+//! soft spring: /suspension/macpherson/spring/rate=20000
+//! ```
+
+use crate::analysis::{parallel_wheel_travel, slope_at, TravelRow};
+use crate::{Rig, Side, SuspensionFile};
+use elastokin_solver::Mode;
+
+/// Each variant walks parallel wheel travel ±`HALF_RANGE` (m)…
+pub const HALF_RANGE: f64 = 0.02;
+/// …in `STEPS` steps (even, so design is a step).
+pub const STEPS: usize = 8;
+/// The most variants a file may hold: each is a sweep of its own, and all results are kept until the
+/// table is written.
+pub const MAX_VARIANTS: usize = 10_000;
+
+/// One parsed variant: its name and its edits.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Variant {
+    /// Name (the line's label, or `line N`).
+    pub name: String,
+    /// `(JSON pointer, value)` edits.
+    pub edits: Vec<(String, serde_json::Value)>,
+}
+
+/// Parses a variants file; errors name the line.
+pub fn parse_variants(text: &str, origin: &str) -> Result<Vec<Variant>, String> {
+    let mut out = Vec::new();
+    for (k, raw) in text.lines().enumerate() {
+        let place = format!("{origin}:{}", k + 1);
+        let Some(variant) = parse_variant(raw, &format!("line {}", k + 1), &place)? else {
+            continue;
+        };
+        if out.len() == MAX_VARIANTS {
+            return Err(format!(
+                "{place}: more than {MAX_VARIANTS} variants; split the file and run a batch for each part"
+            ));
+        }
+        out.push(variant);
+    }
+    if out.is_empty() {
+        return Err(format!("{origin}: no variants (one per line: name: /json/pointer=value; …)"));
+    }
+    Ok(out)
+}
+
+/// One line of a variants file: `None` for a blank line or a `#` comment. A line without a `name:` label is
+/// named `unnamed`; errors start with `place` (the file and line).
+pub fn parse_variant(line: &str, unnamed: &str, place: &str) -> Result<Option<Variant>, String> {
+    let line = line.trim();
+    if line.is_empty() || line.starts_with('#') {
+        return Ok(None);
+    }
+    let (name, body) = match line.split_once(':') {
+        Some((n, b)) if !n.trim_start().starts_with('/') => (n.trim().to_string(), b),
+        _ => (unnamed.to_string(), line),
+    };
+    let mut edits = Vec::new();
+    for edit in body.split(';').map(str::trim).filter(|e| !e.is_empty()) {
+        let (pointer, value) = edit.split_once('=').ok_or_else(|| format!("{place}: '{edit}' is not pointer=value"))?;
+        let value: serde_json::Value = serde_json::from_str(value.trim())
+            .map_err(|e| format!("{place}: value of '{}' is not JSON: {e}", pointer.trim()))?;
+        edits.push((pointer.trim().to_string(), value));
+    }
+    if edits.is_empty() {
+        return Err(format!("{place}: no edits in '{line}'"));
+    }
+    Ok(Some(Variant { name, edits }))
+}
+
+/// The model file's text as the document the variants edit: the file as written (a Project Chrono file's own
+/// keys, its comments removed).
+pub fn base_document(text: &str, origin: &str) -> Result<serde_json::Value, String> {
+    let text = crate::chrono::without_comments(text);
+    serde_json::from_str(&text).map_err(|e| format!("{origin}: {e}"))
+}
+
+/// The base model with a variant's edits applied; an edit to a pointer the model lacks is an error. A
+/// Project Chrono suspension file (the pointers then name its own keys: `/Spring/Spring Coefficient`) is read
+/// after the edits, as `run` reads it.
+pub fn apply(base: &serde_json::Value, v: &Variant) -> Result<SuspensionFile, String> {
+    let mut doc = base.clone();
+    for (pointer, value) in &v.edits {
+        let slot =
+            doc.pointer_mut(pointer).ok_or_else(|| format!("variant '{}': the model has no '{pointer}'", v.name))?;
+        *slot = value.clone();
+    }
+    let text = serde_json::to_string(&doc).map_err(|e| e.to_string())?;
+    let origin = format!("variant '{}'", v.name);
+    if crate::chrono::is_chrono(&text) {
+        return crate::chrono::import(&text, &origin, None).map(|i| i.file).map_err(|e| e.to_string());
+    }
+    SuspensionFile::from_json(&text, &origin).map_err(|e| e.to_string())
+}
+
+/// Headline figures of one variant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Outcome {
+    /// Bump steer at design, deg per metre of travel.
+    pub bump_steer: f64,
+    /// Camber gain at design, deg per metre.
+    pub camber_gain: f64,
+    /// Wheel rate at design, N/m.
+    pub wheel_rate: f64,
+}
+
+/// Runs one variant: parallel travel ±`half_range` in `steps` (even) steps.
+pub fn evaluate(file: &SuspensionFile, half_range: f64, steps: usize) -> Result<Outcome, String> {
+    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| e.to_string())?;
+    let rows =
+        parallel_wheel_travel(&corner, -half_range, half_range, steps, Mode::Corrected).map_err(|e| e.to_string())?;
+    let slope = |y: &dyn Fn(&TravelRow) -> f64| {
+        slope_at(&rows, 0.0, |r| r.travel, y).ok_or("too few steps for a slope at design")
+    };
+    Ok(Outcome {
+        bump_steer: slope(&|r| r.attitude.toe.to_degrees())?,
+        camber_gain: slope(&|r| r.attitude.camber.to_degrees())?,
+        wheel_rate: slope(&|r| r.wheel_load)?,
+    })
+}

@@ -1,0 +1,266 @@
+"""elastokin: quasi-static elastokinematics of suspensions, from Python.
+
+Read a suspension model (a model file or a dict in the model-file format), run its K&C analyses — bump
+steer, camber gain, wheel rate, roll centre, compliance steer and the rest — and get each analysis's rows
+as numpy arrays, its headline figures and accuracy as a dict, the wheel compliance at design as a 6×6
+array, and design variants judged as ``elastokin batch`` judges them.
+
+Every number comes from the Rust library the ``elastokin`` command runs; errors carry the command's
+messages. The solver runs without the GIL, so analyses in several threads run at once.
+
+>>> import elastokin
+>>> model = elastokin.load("examples/macpherson.json")
+>>> travel = model.run("parallel-travel")
+>>> travel.columns["toe_deg"]            # numpy array, one value per load step
+>>> travel.summary["figures"]            # headline figures with their error estimates
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Mapping
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy
+
+from . import _native
+from ._native import (
+    BATCH_HALF_RANGE,
+    BATCH_STEPS,
+    COMPLIANCE_COLUMNS,
+    COMPLIANCE_ROWS,
+    AnalysisError,
+    Error,
+    ModelError,
+)
+
+__all__ = [
+    "AnalysisError",
+    "BATCH_HALF_RANGE",
+    "BATCH_STEPS",
+    "COMPLIANCE_COLUMNS",
+    "COMPLIANCE_ROWS",
+    "Error",
+    "Model",
+    "ModelError",
+    "Result",
+    "analyses",
+    "batch",
+    "load",
+    "parameter",
+]
+
+
+def analyses() -> List[str]:
+    """The names of every K&C analysis, in the order the suite runs them (the command's ``--analysis``)."""
+    return list(_native.analyses())
+
+
+def parameter(name: str) -> str:
+    """What the load parameter of analysis ``name`` is, with its unit (the unit of ``range``)."""
+    return _native.parameter(name)
+
+
+def _table_to_pandas(columns: Mapping[str, Any]):
+    try:
+        import pandas
+    except ImportError as e:
+        raise ImportError(
+            "to_pandas() needs pandas, which elastokin does not require: pip install pandas "
+            "(the columns are numpy arrays without it)"
+        ) from e
+    return pandas.DataFrame(dict(columns))
+
+
+class Result:
+    """One analysis's result: its rows as columns, its report as a dict.
+
+    ``columns`` maps each column of the analysis's CSV (``travel_m``, ``toe_deg``, …; the unit is the
+    name's suffix) to a numpy float array with one value per load step, NaN where a step has no value; a
+    column of names (the static load's element names) is a list of its cells instead.
+    ``summary`` is the analysis's entry of the command's summary.json: parameter, range, steps, headline
+    figures (each with its value, unit and error estimate, or the reason it is missing), accuracy and
+    warnings. ``compliance`` holds the wheel compliance at every step when the run asked for it.
+    """
+
+    __slots__ = ("analysis", "columns", "summary", "compliance")
+
+    def __init__(
+        self,
+        analysis: str,
+        columns: Dict[str, Any],
+        summary: Dict[str, Any],
+        compliance: Optional[Dict[str, Any]],
+    ) -> None:
+        self.analysis = analysis
+        self.columns = columns
+        self.summary = summary
+        self.compliance = compliance
+
+    def figure(self, key: str) -> Optional[float]:
+        """The headline figure ``key`` (e.g. ``bump_steer``), in the unit its summary entry names; None
+        when the analysis could not compute it (its summary entry says why)."""
+        figures = self.summary["figures"]
+        if key not in figures:
+            raise KeyError(f"{self.analysis} has no figure '{key}' (it has {', '.join(figures)})")
+        return figures[key].get("value")
+
+    def to_pandas(self):
+        """The rows as a pandas DataFrame, one column per CSV column (needs pandas)."""
+        return _table_to_pandas(self.columns)
+
+    def __repr__(self) -> str:
+        rows = len(next(iter(self.columns.values()))) if self.columns else 0
+        return f"<elastokin.Result {self.analysis}: {rows} rows × {len(self.columns)} columns>"
+
+
+class Model:
+    """A suspension model, read once and analysed as often as wanted (from any thread)."""
+
+    __slots__ = ("_native",)
+
+    def __init__(self, native: "_native.Model") -> None:
+        self._native = native
+
+    @property
+    def name(self) -> str:
+        """The model's name (the file's ``name``)."""
+        return self._native.name
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The model as read, in the model-file format (SI units, ISO 8855 axes)."""
+        return json.loads(self._native.to_json())
+
+    def analyses(self) -> List[str]:
+        """The names of every K&C analysis (see :func:`elastokin.analyses`)."""
+        return analyses()
+
+    def run(
+        self,
+        name: str,
+        *,
+        range: Optional[Tuple[float, float]] = None,
+        steps: int = 32,
+        mode: str = "corrected",
+        wheel: str = "held",
+        load_point: str = "contact_patch",
+        compliance: bool = False,
+        through_limits: bool = False,
+        arc_step: Optional[float] = None,
+    ) -> Result:
+        """Runs one K&C analysis, as ``elastokin run MODEL --analysis NAME`` does.
+
+        ``range`` is the load parameter's (from, to) in the analysis's own units (see :func:`parameter`;
+        each analysis has its default); ``steps`` load steps; ``mode`` "corrected" (Newton iterations to
+        the exact equilibrium at every step) or "paper"; ``wheel`` "held" or "free" for the road loads;
+        ``load_point`` "contact_patch" or "wheel_centre"; ``compliance`` also gives the 6×6 wheel
+        compliance at every step; ``through_limits`` follows the path on through a limit point by arc
+        length, ``arc_step`` long.
+
+        Raises ValueError for an unknown analysis or option, AnalysisError when the analysis fails.
+        """
+        report, table, comp = self._native.run(
+            name,
+            range=None if range is None else (float(range[0]), float(range[1])),
+            steps=steps,
+            mode=mode,
+            wheel=wheel,
+            load_point=load_point,
+            compliance=compliance,
+            through_limits=through_limits,
+            arc_step=arc_step,
+        )
+        return Result(name, dict(table), json.loads(report), None if comp is None else dict(comp))
+
+    def suite(
+        self,
+        analyses: Optional[Sequence[str]] = None,
+        *,
+        range: Optional[Tuple[float, float]] = None,
+        steps: int = 32,
+        mode: str = "corrected",
+        wheel: str = "held",
+        load_point: str = "contact_patch",
+        compliance: bool = False,
+        through_limits: bool = False,
+        arc_step: Optional[float] = None,
+    ) -> Dict[str, Any]:
+        """Runs the K&C suite — every analysis that applies, or those named — as ``elastokin run`` does,
+        and gives its report as a dict: the content of the command's summary.json without its provenance
+        (model, settings, model_check, warnings, and per analysis its figures, table, accuracy and
+        warnings). Options as for :meth:`run`; ``range`` needs exactly one analysis named."""
+        return json.loads(
+            self._native.suite(
+                None if analyses is None else list(analyses),
+                range=None if range is None else (float(range[0]), float(range[1])),
+                steps=steps,
+                mode=mode,
+                wheel=wheel,
+                load_point=load_point,
+                compliance=compliance,
+                through_limits=through_limits,
+                arc_step=arc_step,
+            )
+        )
+
+    def compliance(self) -> numpy.ndarray:
+        """The 6×6 wheel compliance at design (the parallel-travel report's matrix).
+
+        Rows are the wheel-centre response (x, y, z in m; rotation about x, y, z in rad, global axes), columns
+        the unit load at the wheel centre (force along x, y, z in N; torque in N·m): see
+        :data:`COMPLIANCE_ROWS` and :data:`COMPLIANCE_COLUMNS`. The wheel-travel rig holds the wheel-centre
+        height, so the vertical row and column are zero."""
+        return self._native.compliance()
+
+    def batch(self, variants: Union[str, Sequence[Union[str, Mapping[str, Any]]]]) -> List[Dict[str, Any]]:
+        """Design variants of this model; see :func:`elastokin.batch`."""
+        return batch(self, variants)
+
+    def __repr__(self) -> str:
+        return f"<elastokin.Model {self.name!r}>"
+
+
+def load(source: Union[str, "os.PathLike[str]", Mapping[str, Any]], *, origin: str = "<dict>") -> Model:
+    """Reads a suspension model: a path to a model file (an elastokin model file or a Project Chrono
+    suspension file), or a dict in the model-file format (``origin`` then names it in error messages).
+
+    Raises ModelError, with the command's message, when the file cannot be read or is not a model."""
+    if isinstance(source, Mapping):
+        try:
+            text = json.dumps(source, allow_nan=False)
+        except (TypeError, ValueError) as e:
+            raise ModelError(f"{origin}: not a model in the model-file format: {e}") from e
+        return Model(_native.Model.from_json(text, origin))
+    return Model(_native.Model.read(os.fspath(source)))
+
+
+def batch(
+    model: Union[Model, str, "os.PathLike[str]", Mapping[str, Any]],
+    variants: Union[str, Sequence[Union[str, Mapping[str, Any]]]],
+) -> List[Dict[str, Any]]:
+    """Runs design variants of a model, as ``elastokin batch MODEL VARIANTS`` does: each variant walks
+    parallel wheel travel ±``BATCH_HALF_RANGE`` m in ``BATCH_STEPS`` steps (corrected mode), all on every
+    core, and is judged by its slopes at design.
+
+    ``variants`` is the text of a variants file, or a list whose items are each a variants-file line
+    (``"name: /json/pointer=value; …"``) or a dict ``{pointer: value}`` (a ``"name"`` key, if any, names
+    it; others are named ``variant N``). Pointers are JSON pointers into the model file.
+
+    Gives one dict per variant with the columns of batch.csv: ``variant``, ``bump_steer_deg_per_m``,
+    ``camber_gain_deg_per_m``, ``wheel_rate_n_per_m`` (None when the variant failed) and ``error`` (the
+    reason, else None). Raises ModelError when a variant cannot be read or edits a key the model lacks."""
+    if not isinstance(model, Model):
+        model = load(model)
+    if isinstance(variants, str):
+        items: Any = variants
+    else:
+        items = []
+        for v in variants:
+            if isinstance(v, Mapping):
+                edits = dict(v)
+                name = edits.pop("name", None)
+                items.append((name, [(p, json.dumps(value, allow_nan=False)) for p, value in edits.items()]))
+            else:
+                items.append(v)
+    return model._native.batch(items)

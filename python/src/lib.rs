@@ -1,0 +1,333 @@
+//! `elastokin._native`: the Python extension. A thin layer over the library: every number comes from
+//! `elastokin_suspensions` (the same calls the `elastokin` command makes); this only converts arguments and
+//! results, maps the library's errors to Python exceptions with the command's messages, and lets go of the
+//! GIL while the solver works so that Python threads run analyses side by side.
+
+use elastokin_solver::Mode;
+use elastokin_suspensions::analysis::wheel_compliance;
+use elastokin_suspensions::batch::{self, Variant};
+use elastokin_suspensions::kc::{self, Analysis, Cell, Settings, Table};
+use elastokin_suspensions::model_file::{parse_model, read_input};
+use elastokin_suspensions::{LoadPoint, Rig, Side, SuspensionFile};
+use numpy::{PyArray1, PyArray2};
+use pyo3::create_exception;
+use pyo3::exceptions::{PyException, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyFloat, PyList, PyString};
+use rayon::prelude::*;
+use std::path::Path;
+
+create_exception!(_native, Error, PyException, "Every error elastokin raises.");
+create_exception!(
+    _native,
+    ModelError,
+    Error,
+    "A model file, model dict or variant edit that cannot be read as a suspension model."
+);
+create_exception!(_native, AnalysisError, Error, "An analysis that failed on the model: the solver's reason.");
+
+/// What the rows of the wheel compliance matrix are: wheel-centre translation (m) and rotation (rad).
+const COMPLIANCE_ROWS: [&str; 6] = ["x_m", "y_m", "z_m", "rot_x_rad", "rot_y_rad", "rot_z_rad"];
+/// What its columns are: unit force (N) and unit torque (N·m) at the wheel centre, global axes.
+const COMPLIANCE_COLUMNS: [&str; 6] = ["fx_n", "fy_n", "fz_n", "mx_nm", "my_nm", "mz_nm"];
+
+/// A suspension model read from a model file or a dict, with the document that batch variants edit.
+#[pyclass(frozen, module = "elastokin._native")]
+struct Model {
+    file: SuspensionFile,
+    base: serde_json::Value,
+}
+
+/// An analysis by its command-line name; a name that is none is a `ValueError` listing the names.
+fn analysis(name: &str) -> PyResult<Analysis> {
+    Analysis::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = kc::ALL.iter().map(|a| a.name()).collect();
+        PyValueError::new_err(format!(
+            "invalid value '{name}' for '--analysis <NAME>'\n  [possible values: {}]",
+            names.join(", ")
+        ))
+    })
+}
+
+/// The command's options of `run` as the library's settings.
+fn settings(
+    range: Option<(f64, f64)>,
+    steps: usize,
+    mode: &str,
+    wheel: &str,
+    load_point: &str,
+    compliance: bool,
+    through_limits: bool,
+    arc_step: Option<f64>,
+) -> PyResult<Settings> {
+    let mode = match mode {
+        "corrected" => Mode::Corrected,
+        "paper" => Mode::Paper,
+        _ => return Err(PyValueError::new_err(format!("mode '{mode}': give 'corrected' or 'paper'"))),
+    };
+    let height_held = match wheel {
+        "held" => true,
+        "free" => false,
+        _ => return Err(PyValueError::new_err(format!("wheel '{wheel}': give 'held' or 'free'"))),
+    };
+    let load_point = match load_point {
+        "contact_patch" => LoadPoint::ContactPatch,
+        "wheel_centre" => LoadPoint::WheelCentre,
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "load_point '{load_point}': give 'contact_patch' or 'wheel_centre'"
+            )))
+        }
+    };
+    Ok(Settings {
+        range,
+        steps,
+        mode,
+        height_held,
+        load_point,
+        compliance,
+        through_limits,
+        arc_step,
+        ..Settings::default()
+    })
+}
+
+/// A table's columns for Python: `(column name, values)` pairs.
+type Columns<'py> = Vec<(String, Bound<'py, PyAny>)>;
+
+/// A table as `(column name, values)` pairs in the table's order: a column of numbers is a float array
+/// (NaN where a row has no value, as the CSV leaves the cell empty), a column of names a list of its cells
+/// (str, float, or None for an empty one).
+fn columns<'py>(py: Python<'py>, table: &Table) -> PyResult<Columns<'py>> {
+    let mut out = Vec::with_capacity(table.columns.len());
+    for (k, name) in table.columns.iter().enumerate() {
+        let cells: Vec<&Cell> = table.rows.iter().map(|row| row.get(k).unwrap_or(&Cell::Empty)).collect();
+        let values = if cells.iter().all(|c| !matches!(c, Cell::Text(_))) {
+            let numbers: Vec<f64> = cells.iter().map(|c| c.number().unwrap_or(f64::NAN)).collect();
+            PyArray1::from_vec(py, numbers).into_any()
+        } else {
+            let texts: Vec<Bound<'py, PyAny>> = cells
+                .iter()
+                .map(|c| match c {
+                    Cell::Number(v) => PyFloat::new(py, *v).into_any(),
+                    Cell::Text(t) => PyString::new(py, t).into_any(),
+                    Cell::Empty => py.None().into_bound(py),
+                })
+                .collect();
+            PyList::new(py, texts)?.into_any()
+        };
+        out.push((name.clone(), values));
+    }
+    Ok(out)
+}
+
+fn to_json<T: serde::Serialize>(value: &T) -> PyResult<String> {
+    serde_json::to_string(value).map_err(|e| AnalysisError::new_err(e.to_string()))
+}
+
+#[pymethods]
+impl Model {
+    /// Reads a model file (an elastokin model file or a Project Chrono suspension file), as `elastokin run`
+    /// reads it.
+    #[staticmethod]
+    fn read(py: Python<'_>, path: &str) -> PyResult<Model> {
+        py.detach(|| {
+            let (_, text) = read_input(Path::new(path), "MODEL")?;
+            let (file, _) = parse_model(&text, path)?;
+            let base = batch::base_document(&text, path)?;
+            Ok::<_, String>(Model { file, base })
+        })
+        .map_err(ModelError::new_err)
+    }
+
+    /// A model from the text of a model file; `origin` names it in error messages.
+    #[staticmethod]
+    fn from_json(py: Python<'_>, text: &str, origin: &str) -> PyResult<Model> {
+        py.detach(|| {
+            let (file, _) = parse_model(text, origin)?;
+            let base = batch::base_document(text, origin)?;
+            Ok::<_, String>(Model { file, base })
+        })
+        .map_err(ModelError::new_err)
+    }
+
+    /// The model's name.
+    #[getter]
+    fn name(&self) -> &str {
+        &self.file.name
+    }
+
+    /// The model in the model-file format (JSON text).
+    fn to_json(&self) -> String {
+        self.file.to_json()
+    }
+
+    /// One analysis: `(report as JSON text, table columns, compliance table columns or None)`.
+    #[pyo3(signature = (name, range=None, steps=32, mode="corrected", wheel="held", load_point="contact_patch",
+                        compliance=false, through_limits=false, arc_step=None))]
+    fn run<'py>(
+        &self,
+        py: Python<'py>,
+        name: &str,
+        range: Option<(f64, f64)>,
+        steps: usize,
+        mode: &str,
+        wheel: &str,
+        load_point: &str,
+        compliance: bool,
+        through_limits: bool,
+        arc_step: Option<f64>,
+    ) -> PyResult<(String, Columns<'py>, Option<Columns<'py>>)> {
+        let analysis = analysis(name)?;
+        let settings = settings(range, steps, mode, wheel, load_point, compliance, through_limits, arc_step)?;
+        let report = py
+            .detach(|| kc::run(analysis, &self.file, &settings))
+            .map_err(|e| AnalysisError::new_err(e.to_string()))?;
+        let table = columns(py, &report.table)?;
+        let compliance = report.compliance.as_ref().map(|c| columns(py, c)).transpose()?;
+        Ok((to_json(&report)?, table, compliance))
+    }
+
+    /// The K&C suite (every analysis that applies, or those named) as JSON text: the content of the
+    /// command's summary.json but its provenance.
+    #[pyo3(signature = (analyses=None, range=None, steps=32, mode="corrected", wheel="held",
+                        load_point="contact_patch", compliance=false, through_limits=false, arc_step=None))]
+    fn suite(
+        &self,
+        py: Python<'_>,
+        analyses: Option<Vec<String>>,
+        range: Option<(f64, f64)>,
+        steps: usize,
+        mode: &str,
+        wheel: &str,
+        load_point: &str,
+        compliance: bool,
+        through_limits: bool,
+        arc_step: Option<f64>,
+    ) -> PyResult<String> {
+        let which = analyses.unwrap_or_default().iter().map(|n| analysis(n)).collect::<PyResult<Vec<_>>>()?;
+        if range.is_some() && which.len() != 1 {
+            return Err(PyValueError::new_err(
+                "range needs one analysis: each analysis has its own load parameter and units",
+            ));
+        }
+        let settings = settings(range, steps, mode, wheel, load_point, compliance, through_limits, arc_step)?;
+        let report = py
+            .detach(|| kc::run_suite(&self.file, &which, &settings, |_| {}))
+            .map_err(|e| AnalysisError::new_err(e.to_string()))?;
+        to_json(&report)
+    }
+
+    /// The 6×6 wheel compliance at design of the left corner on the wheel-travel rig (the matrix of the
+    /// parallel-travel report): column k is the response to a unit force (k < 3) or torque at the wheel centre.
+    fn compliance<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let matrix = py
+            .detach(|| {
+                let corner = self.file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| e.to_string())?;
+                wheel_compliance(&corner, 0.0).map_err(|e| e.to_string())
+            })
+            .map_err(AnalysisError::new_err)?;
+        let rows: Vec<Vec<f64>> = matrix.iter().map(|r| r.to_vec()).collect();
+        PyArray2::from_vec2(py, &rows).map_err(|e| AnalysisError::new_err(e.to_string()))
+    }
+
+    /// Design variants, as `elastokin batch` runs them: one dict per variant with the columns of batch.csv.
+    /// `variants` is the text of a variants file, or a list whose items are a variants-file line or a
+    /// `(name, [(pointer, JSON text of the value)])` pair.
+    fn batch<'py>(&self, py: Python<'py>, variants: &Bound<'py, PyAny>) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        let list = parse_variants(variants)?;
+        // A variant that names a key the model lacks is a mistake in the list: said before running anything.
+        let files: Vec<SuspensionFile> = py
+            .detach(|| list.iter().map(|v| batch::apply(&self.base, v)).collect::<Result<_, _>>())
+            .map_err(ModelError::new_err)?;
+        let results: Vec<Result<batch::Outcome, String>> =
+            py.detach(|| files.par_iter().map(|file| batch::evaluate(file, batch::HALF_RANGE, batch::STEPS)).collect());
+        list.iter()
+            .zip(results)
+            .map(|(v, r)| {
+                let row = PyDict::new(py);
+                row.set_item("variant", &v.name)?;
+                let (outcome, error) = match r {
+                    Ok(o) => (Some(o), None),
+                    Err(e) => (None, Some(e)),
+                };
+                row.set_item("bump_steer_deg_per_m", outcome.map(|o| o.bump_steer))?;
+                row.set_item("camber_gain_deg_per_m", outcome.map(|o| o.camber_gain))?;
+                row.set_item("wheel_rate_n_per_m", outcome.map(|o| o.wheel_rate))?;
+                row.set_item("error", error)?;
+                Ok(row)
+            })
+            .collect()
+    }
+}
+
+/// The variants of `Model.batch`: a variants file's text, or a list of lines and `(name, edits)` pairs.
+fn parse_variants(variants: &Bound<'_, PyAny>) -> PyResult<Vec<Variant>> {
+    if let Ok(text) = variants.extract::<String>() {
+        return batch::parse_variants(&text, "variants").map_err(ModelError::new_err);
+    }
+    let items: Vec<Bound<'_, PyAny>> = variants.extract()?;
+    if items.is_empty() {
+        return Err(ModelError::new_err("variants: no variants (one per line: name: /json/pointer=value; …)"));
+    }
+    if items.len() > batch::MAX_VARIANTS {
+        return Err(ModelError::new_err(format!(
+            "variants: more than {} variants; split the list and run a batch for each part",
+            batch::MAX_VARIANTS
+        )));
+    }
+    let mut out = Vec::with_capacity(items.len());
+    for (k, item) in items.iter().enumerate() {
+        let unnamed = format!("variant {}", k + 1);
+        let place = format!("variants[{k}]");
+        if let Ok(line) = item.extract::<String>() {
+            let variant = batch::parse_variant(&line, &unnamed, &place)
+                .map_err(ModelError::new_err)?
+                .ok_or_else(|| ModelError::new_err(format!("{place}: no edits in '{}'", line.trim())))?;
+            out.push(variant);
+            continue;
+        }
+        let (name, edits): (Option<String>, Vec<(String, String)>) = item.extract()?;
+        if edits.is_empty() {
+            return Err(ModelError::new_err(format!("{place}: no edits")));
+        }
+        let edits = edits
+            .into_iter()
+            .map(|(pointer, value)| {
+                serde_json::from_str(&value)
+                    .map(|v| (pointer.clone(), v))
+                    .map_err(|e| ModelError::new_err(format!("{place}: value of '{pointer}' is not JSON: {e}")))
+            })
+            .collect::<PyResult<_>>()?;
+        out.push(Variant { name: name.unwrap_or(unnamed), edits });
+    }
+    Ok(out)
+}
+
+/// The names of every analysis, in the order the suite runs them (the command's `--analysis` names).
+#[pyfunction]
+fn analyses() -> Vec<&'static str> {
+    kc::ALL.iter().map(|a| a.name()).collect()
+}
+
+/// What each analysis's load parameter is, with its unit.
+#[pyfunction]
+fn parameter(name: &str) -> PyResult<&'static str> {
+    Ok(analysis(name)?.parameter())
+}
+
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add_class::<Model>()?;
+    m.add_function(wrap_pyfunction!(analyses, m)?)?;
+    m.add_function(wrap_pyfunction!(parameter, m)?)?;
+    m.add("Error", py.get_type::<Error>())?;
+    m.add("ModelError", py.get_type::<ModelError>())?;
+    m.add("AnalysisError", py.get_type::<AnalysisError>())?;
+    m.add("COMPLIANCE_ROWS", COMPLIANCE_ROWS.to_vec())?;
+    m.add("COMPLIANCE_COLUMNS", COMPLIANCE_COLUMNS.to_vec())?;
+    m.add("BATCH_HALF_RANGE", batch::HALF_RANGE)?;
+    m.add("BATCH_STEPS", batch::STEPS)?;
+    Ok(())
+}

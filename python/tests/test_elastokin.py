@@ -1,0 +1,294 @@
+"""The Python API against the `elastokin` command's own output files: the same model, the same numbers.
+
+The command is run once per session (`cargo run`, so the build the repository holds) and its CSV tables,
+summary.json and batch.csv are the independent record every result here is compared with.
+"""
+
+import csv
+import json
+import math
+import os
+import subprocess
+import threading
+from pathlib import Path
+
+import numpy
+import pytest
+
+import elastokin
+
+ROOT = Path(__file__).resolve().parents[2]
+MODEL = ROOT / "examples" / "macpherson.json"
+VARIANTS = ROOT / "examples" / "macpherson_variants.txt"
+
+
+def command(*args, check=True):
+    """Runs the `elastokin` command of this repository; gives the finished process."""
+    return subprocess.run(
+        ["cargo", "run", "-q", "--", *map(str, args)],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=check,
+    )
+
+
+def command_error(*args):
+    """The command's error message: its standard error's `error: ` line(s), the prefix taken off."""
+    done = command(*args, check=False)
+    assert done.returncode != 0
+    lines = done.stderr.splitlines()
+    start = next(k for k, line in enumerate(lines) if line.startswith("error: "))
+    return "\n".join([lines[start][len("error: "):]] + lines[start + 1:])
+
+
+def read_csv(path):
+    """A CSV the command wrote: (header, rows), the provenance comment line skipped."""
+    with open(path, newline="") as f:
+        lines = [line for line in f if not line.startswith("#")]
+    table = list(csv.reader(lines))
+    return table[0], table[1:]
+
+
+def _is_number(text):
+    try:
+        float(text)
+        return True
+    except ValueError:
+        return False
+
+
+def printed(v):
+    """A value as the command's CSV prints it: 12 significant digits (NaN for an empty cell)."""
+    return float(f"{v:.11e}") if math.isfinite(v) else math.nan
+
+
+def same_column(values, cells):
+    if isinstance(values, list):
+        # A column of names: each cell as printed.
+        assert [v if isinstance(v, str) else "" if v is None else repr(printed(v)) for v in values] == [
+            c if not _is_number(c) else repr(float(c)) for c in cells
+        ]
+        return
+    expected = [float(c) if c != "" else math.nan for c in cells]
+    got = [printed(v) for v in values]
+    assert len(got) == len(expected)
+    for g, e in zip(got, expected):
+        assert (math.isnan(g) and math.isnan(e)) or g == e, (g, e)
+
+
+@pytest.fixture(scope="session")
+def out(tmp_path_factory):
+    """The command's full K&C run of the MacPherson example, with the compliance tables."""
+    d = tmp_path_factory.mktemp("run") / "out"
+    command("run", MODEL, "--quiet", "--compliance", "--out", d)
+    return d
+
+
+@pytest.fixture(scope="session")
+def summary(out):
+    return json.loads((out / "summary.json").read_text())
+
+
+@pytest.fixture(scope="session")
+def model():
+    return elastokin.load(MODEL)
+
+
+def test_analyses_are_the_command_line_names():
+    names = elastokin.analyses()
+    assert names[0] == "parallel-travel" and "loads" in names and len(names) == 10
+    assert elastokin.parameter("parallel-travel") == "wheel travel, m, bump +"
+
+
+def test_load_from_a_path_and_from_a_dict_give_the_same_model(model):
+    as_dict = json.loads(MODEL.read_text())
+    from_dict = elastokin.load(as_dict)
+    assert from_dict.name == model.name == as_dict["name"]
+    assert from_dict.to_dict() == model.to_dict()
+    assert elastokin.load(os.fspath(MODEL)).name == model.name
+    assert model.analyses() == elastokin.analyses()
+
+
+def test_every_analysis_gives_the_command_s_rows_and_figures(model, out, summary):
+    ran = summary["analyses"]
+    assert len(ran) >= 8
+    for name, entry in ran.items():
+        result = model.run(name, compliance=True)
+        header, rows = read_csv(out / f"{name.replace('-', '_')}.csv")
+        assert list(result.columns) == header
+        for k, column in enumerate(header):
+            assert isinstance(result.columns[column], (numpy.ndarray, list))
+            same_column(result.columns[column], [row[k] for row in rows])
+        # The report is summary.json's entry, number for number (JSON keeps every digit).
+        assert result.summary == entry
+        compliance_csv = out / f"{name.replace('-', '_')}_compliance.csv"
+        if compliance_csv.exists():
+            header, rows = read_csv(compliance_csv)
+            assert list(result.compliance) == header
+            for k, column in enumerate(header):
+                same_column(result.compliance[column], [row[k] for row in rows])
+    travel = model.run("parallel-travel")
+    assert travel.figure("bump_steer") == ran["parallel-travel"]["figures"]["bump_steer"]["value"]
+    assert travel.compliance is None
+
+
+def test_range_and_steps_reach_the_analysis(model, tmp_path):
+    result = model.run("parallel-travel", range=(-0.02, 0.03), steps=10)
+    d = tmp_path / "out"
+    command("run", MODEL, "--quiet", "--analysis", "parallel-travel", "--range=-0.02,0.03", "--steps", 10, "--out", d)
+    header, rows = read_csv(d / "parallel_travel.csv")
+    assert len(rows) == 11
+    for k, column in enumerate(header):
+        same_column(result.columns[column], [row[k] for row in rows])
+    assert result.summary == json.loads((d / "summary.json").read_text())["analyses"]["parallel-travel"]
+
+
+def test_suite_is_the_summary_json_but_its_provenance(model, summary):
+    got = model.suite(compliance=True)
+    expected = {k: v for k, v in summary.items() if k != "provenance"}
+    # The command ran with --compliance too: the settings say so on both sides.
+    assert got == expected
+    one = model.suite(["roll"])
+    assert list(one["analyses"]) == ["roll"]
+    with pytest.raises(ValueError):
+        model.suite(range=(0.0, 0.01))
+
+
+def test_compliance_is_the_report_s_matrix(model, summary):
+    c = model.compliance()
+    assert isinstance(c, numpy.ndarray) and c.shape == (6, 6)
+    assert c.tolist() == summary["analyses"]["parallel-travel"]["wheel_compliance_at_design"]
+    assert len(elastokin.COMPLIANCE_ROWS) == len(elastokin.COMPLIANCE_COLUMNS) == 6
+
+
+def test_to_pandas_has_the_columns(model):
+    pandas = pytest.importorskip("pandas")
+    result = model.run("roll", steps=4)
+    frame = result.to_pandas()
+    assert isinstance(frame, pandas.DataFrame)
+    assert list(frame.columns) == list(result.columns)
+    assert frame[frame.columns[1]].tolist() == result.columns[frame.columns[1]].tolist()
+
+
+def test_to_pandas_without_pandas_says_what_to_install(model, monkeypatch):
+    import builtins
+
+    real_import = builtins.__import__
+
+    def no_pandas(name, *args, **kwargs):
+        if name == "pandas":
+            raise ImportError("No module named 'pandas'")
+        return real_import(name, *args, **kwargs)
+
+    monkeypatch.setattr(builtins, "__import__", no_pandas)
+    with pytest.raises(ImportError, match="pip install pandas"):
+        model.run("roll", steps=2).to_pandas()
+
+
+@pytest.fixture(scope="session")
+def batch_csv(tmp_path_factory):
+    d = tmp_path_factory.mktemp("batch") / "out"
+    command("batch", MODEL, VARIANTS, "--quiet", "--out", d)
+    return read_csv(d / "batch.csv")
+
+
+def same_batch(rows, batch_csv):
+    header, expected = batch_csv
+    assert len(rows) == len(expected)
+    for row, cells in zip(rows, expected):
+        assert list(row) == header
+        assert row["variant"] == cells[0]
+        for k, column in enumerate(header[1:4], start=1):
+            assert printed(row[column]) == float(cells[k])
+        assert (row["error"] or "") == cells[4]
+
+
+def test_batch_of_a_variants_file_is_the_command_s_table(model, batch_csv):
+    same_batch(elastokin.batch(model, VARIANTS.read_text()), batch_csv)
+    same_batch(elastokin.batch(MODEL, VARIANTS.read_text()), batch_csv)
+
+
+def test_batch_of_lines_and_dicts(model, batch_csv):
+    lines = [line for line in VARIANTS.read_text().splitlines() if line.strip() and not line.startswith("#")]
+    same_batch(model.batch(lines), batch_csv)
+    # The same edits as dicts: each line's pointer=value edits, its name under "name".
+    dicts = []
+    for line in lines:
+        name, body = line.split(":", 1)
+        edits = dict(e.strip().split("=", 1) for e in body.split(";"))
+        dicts.append({"name": name.strip(), **{p.strip(): json.loads(v) for p, v in edits.items()}})
+    same_batch(model.batch(dicts), batch_csv)
+    unnamed = model.batch([{"/suspension/macpherson/spring/rate": 30000.0}])
+    assert unnamed[0]["variant"] == "variant 1"
+    assert unnamed[0]["wheel_rate_n_per_m"] == same_rate(model)
+
+
+def same_rate(model):
+    return model.batch(["/suspension/macpherson/spring/rate=30000.0"])[0]["wheel_rate_n_per_m"]
+
+
+def test_a_missing_file_is_a_model_error_with_the_command_s_message(tmp_path):
+    missing = tmp_path / "no_such_model.json"
+    with pytest.raises(elastokin.ModelError) as raised:
+        elastokin.load(missing)
+    assert str(raised.value) == command_error("run", missing, "--out", tmp_path / "x")
+
+
+def test_a_bad_key_is_a_model_error_with_the_command_s_message(tmp_path):
+    doc = json.loads(MODEL.read_text())
+    doc["suspension"]["macpherson"]["spring"]["rat"] = doc["suspension"]["macpherson"]["spring"].pop("rate")
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps(doc, indent=2))
+    with pytest.raises(elastokin.ModelError) as raised:
+        elastokin.load(bad)
+    message = command_error("run", bad, "--out", tmp_path / "x")
+    assert str(raised.value) == message
+    assert "rat" in message
+    with pytest.raises(elastokin.ModelError):
+        elastokin.load(doc)
+
+
+def test_an_unknown_analysis_is_a_value_error_with_the_command_s_message(model, tmp_path):
+    with pytest.raises(ValueError) as raised:
+        model.run("bump-steer")
+    message = command_error("run", MODEL, "--analysis", "bump-steer", "--out", tmp_path / "x")
+    assert message.startswith(str(raised.value))
+
+
+def test_a_failed_analysis_is_an_analysis_error_with_the_command_s_message(model, tmp_path):
+    with pytest.raises(elastokin.AnalysisError) as raised:
+        model.run("parallel-travel", range=(0.0, 1e-12))
+    message = command_error(
+        "run", MODEL, "--analysis", "parallel-travel", "--range", "0,1e-12", "--out", tmp_path / "x"
+    )
+    assert message.splitlines()[0] == str(raised.value)
+    assert isinstance(raised.value, elastokin.Error)
+
+
+def test_a_variant_editing_a_missing_key_is_the_command_s_error(model, tmp_path):
+    variants = tmp_path / "variants.txt"
+    variants.write_text("x: /suspension/macpherson/nope=1\n")
+    with pytest.raises(elastokin.ModelError) as raised:
+        model.batch(variants.read_text())
+    assert str(raised.value) == command_error("batch", MODEL, variants, "--out", tmp_path / "x")
+    with pytest.raises(elastokin.ModelError, match="is not pointer=value"):
+        model.batch(["/suspension/macpherson/spring/rate"])
+
+
+def test_threads_give_the_sequential_results(model):
+    names = ["parallel-travel", "roll", "lateral-force", "braking-force"]
+    sequential = {name: model.run(name).columns for name in names}
+    threaded = {}
+
+    def work(name):
+        threaded[name] = model.run(name).columns
+
+    threads = [threading.Thread(target=work, args=(name,)) for name in names]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for name in names:
+        for column, values in sequential[name].items():
+            numpy.testing.assert_array_equal(threaded[name][column], values)
