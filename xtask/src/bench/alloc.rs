@@ -124,7 +124,10 @@ mod tests {
         assert!(usage.balance_bytes.abs() < 1 << 20, "freed inside, nothing kept: {usage:?}");
         assert!(usage.allocations >= 1);
         let (kept, keeping) = track(|| vec![2u8; 2 << 20]);
-        assert!((2 << 20..3 << 20).contains(&keeping.balance_bytes), "the returned vector is kept: {keeping:?}");
+        // The counters see every thread of the process, and tests run in parallel: another test's small
+        // allocations and frees during the section move the balance by bytes (94 fewer in one CI run), so
+        // the kept vector is judged to within 1 MiB, as the other balances here are.
+        assert!((keeping.balance_bytes - (2 << 20)).abs() < 1 << 20, "the returned vector is kept: {keeping:?}");
         drop(kept);
         let ((), freeing) = track(|| drop(held));
         assert!(freeing.peak_bytes < 1 << 20, "freeing older memory is no peak: {freeing:?}");
