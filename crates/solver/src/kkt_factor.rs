@@ -536,7 +536,25 @@ fn validate_j(m: usize, n: usize, col_ptr: &[usize], row_idx: &[usize]) -> Resul
     validate_rows("J", n, m, col_ptr, row_idx, false)
 }
 
-fn check_values(what: &'static str, values: &[f64], expected: usize) -> Result<(), FactorError> {
+/// Checks a pattern and options as every KKT backend needs them: CSC arrays well formed, `K` upper with
+/// every diagonal stored, options in range.
+pub(crate) fn validate(pattern: &KktPattern, options: &KktOptions) -> Result<(), FactorError> {
+    check_options(options)?;
+    let (n, m) = (pattern.n, pattern.m);
+    validate_col_ptr("K", n, &pattern.k_col_ptr, pattern.k_row_idx.len())?;
+    validate_rows("K", n, n, &pattern.k_col_ptr, &pattern.k_row_idx, true)?;
+    validate_j(m, n, &pattern.j_col_ptr, &pattern.j_row_idx)
+}
+
+/// Rounds an equilibration to the nearest powers of two, so that scaling by it is exact.
+pub(crate) fn round_to_powers_of_two(scale: &mut [f64]) {
+    for si in scale.iter_mut() {
+        let p = si.log2().round().clamp(-1000.0, 1000.0);
+        *si = if p.is_finite() { p.exp2() } else { 1.0 };
+    }
+}
+
+pub(crate) fn check_values(what: &'static str, values: &[f64], expected: usize) -> Result<(), FactorError> {
     if values.len() != expected {
         return Err(FactorError::PatternMismatch { what, expected, got: values.len() });
     }
@@ -692,11 +710,8 @@ impl KktFactor {
     /// Symbolic analysis once: pattern of K+ρJᵀJ, ordering, elimination tree,
     /// slot maps, all workspaces.
     pub fn analyze(pattern: &KktPattern, options: KktOptions) -> Result<Self, FactorError> {
-        check_options(&options)?;
+        validate(pattern, &options)?;
         let (n, m) = (pattern.n, pattern.m);
-        validate_col_ptr("K", n, &pattern.k_col_ptr, pattern.k_row_idx.len())?;
-        validate_rows("K", n, n, &pattern.k_col_ptr, &pattern.k_row_idx, true)?;
-        validate_j(m, n, &pattern.j_col_ptr, &pattern.j_row_idx)?;
         let nn = n.checked_add(m).ok_or(FactorError::OutOfMemory)?;
         let scale = try_vec(nn, 1.0f64)?;
         let k_nnz = pattern.k_row_idx.len();
@@ -966,10 +981,7 @@ impl KktFactor {
                 break;
             }
         }
-        for si in s.iter_mut() {
-            let p = si.log2().round().clamp(-1000.0, 1000.0);
-            *si = if p.is_finite() { p.exp2() } else { 1.0 };
-        }
+        round_to_powers_of_two(s);
     }
 
     /// Numeric factorization for new values (`k_values` aligned with

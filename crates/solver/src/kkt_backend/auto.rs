@@ -36,8 +36,6 @@ enum Active {
 /// The backend [`BackendChoice`] picked, with the sparse LDLᵀ behind a dense LU as its fallback.
 #[derive(Debug)]
 pub struct AutoKkt {
-    /// Kept while the sparse LDLᵀ may still have to be analysed (a dense LU's fallback).
-    pattern: Option<KktPattern>,
     options: KktOptions,
     dense: Option<DenseLu>,
     sparse: Option<KktFactor>,
@@ -55,7 +53,6 @@ impl AutoKkt {
         if dense {
             Ok(AutoKkt {
                 dense: Some(DenseLu::analyze(pattern, options.clone())?),
-                pattern: Some(pattern.clone()),
                 options,
                 sparse: None,
                 active: Active::Dense,
@@ -63,7 +60,6 @@ impl AutoKkt {
         } else {
             Ok(AutoKkt {
                 sparse: Some(KktFactor::analyze(pattern, options.clone())?),
-                pattern: None,
                 options,
                 dense: None,
                 active: Active::Sparse,
@@ -71,11 +67,11 @@ impl AutoKkt {
         }
     }
 
-    /// The sparse LDLᵀ, analysed on first need.
+    /// The sparse LDLᵀ, analysed on first need from the dense LU's pattern.
     fn sparse(&mut self) -> Result<&mut KktFactor, FactorError> {
         if self.sparse.is_none() {
-            let pattern = self.pattern.as_ref().ok_or(FactorError::NotFactorized)?;
-            self.sparse = Some(KktFactor::analyze(pattern, self.options.clone())?);
+            let pattern = self.dense.as_ref().ok_or(FactorError::NotFactorized)?.pattern();
+            self.sparse = Some(KktFactor::analyze(&pattern, self.options.clone())?);
         }
         self.sparse.as_mut().ok_or(FactorError::NotFactorized)
     }

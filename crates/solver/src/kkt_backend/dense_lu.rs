@@ -30,7 +30,10 @@
 //! of a sparse KKT column by column.
 
 use super::{Accuracy, KktBackend, KktValues};
-use crate::kkt_factor::{FactorCounters, FactorError, FactorReport, KktOptions, KktPattern, SolveReport};
+use crate::kkt_factor::{
+    check_values, round_to_powers_of_two, validate, FactorCounters, FactorError, FactorReport, KktOptions, KktPattern,
+    SolveReport,
+};
 
 /// A row's largest scaled entry may drift this far from 1 (either way) before the scaling is renewed.
 const SCALING_DRIFT: f64 = 16.0;
@@ -51,6 +54,8 @@ pub struct DenseLu {
     has_skew: bool,
     j_val: Vec<f64>,
     scale: Vec<f64>,
+    /// Whether `scale` was equilibrated for values of this pattern (not after `analyze` or `reset`).
+    scaled: bool,
     row_max: Vec<f64>,
     /// Largest entry of each row of the true matrix, original units (for the backward error).
     row_norm: Vec<f64>,
@@ -74,7 +79,7 @@ impl DenseLu {
     pub fn analyze(pattern: &KktPattern, options: KktOptions) -> Result<Self, FactorError> {
         let (n, m) = (pattern.n, pattern.m);
         let size = n + m;
-        check_pattern(pattern)?;
+        validate(pattern, &options)?;
         let dense =
             size.checked_mul(size).filter(|&d| d <= (isize::MAX as usize) / 64).ok_or(FactorError::OutOfMemory)?;
         let mut lu = Vec::new();
@@ -93,6 +98,7 @@ impl DenseLu {
             has_skew: false,
             j_val: vec![0.0; pattern.j_row_idx.len()],
             scale: vec![1.0; size],
+            scaled: false,
             row_max: vec![0.0; size],
             row_norm: vec![0.0; size],
             lu,
@@ -106,6 +112,18 @@ impl DenseLu {
             factorized: false,
             counters: FactorCounters { symbolic_analyses: 1, ..FactorCounters::default() },
         })
+    }
+
+    /// The pattern this factor was analysed for (the sparse fallback analyses it on first need).
+    pub fn pattern(&self) -> KktPattern {
+        KktPattern {
+            n: self.n,
+            m: self.m,
+            k_col_ptr: self.k_col_ptr.clone(),
+            k_row_idx: self.k_row_idx.clone(),
+            j_col_ptr: self.j_col_ptr.clone(),
+            j_row_idx: self.j_row_idx.clone(),
+        }
     }
 
     /// The symmetric scaling in use (powers of two).
@@ -164,20 +182,23 @@ impl DenseLu {
                 break;
             }
         }
-        for s in self.scale.iter_mut() {
-            let p = s.log2().round().clamp(-1000.0, 1000.0);
-            *s = if p.is_finite() { p.exp2() } else { 1.0 };
-        }
+        round_to_powers_of_two(&mut self.scale);
     }
 
-    /// Scatters the scaled values into the factor buffer.
+    /// Scatters the scaled values into the factor buffer, and each row's largest entry in original units
+    /// into `row_norm` (for the backward error) on the same pass.
     fn scatter(&mut self) {
         let size = self.n + self.m;
-        let mut lu = std::mem::take(&mut self.lu);
+        let (mut lu, mut row_norm) = (std::mem::take(&mut self.lu), std::mem::take(&mut self.row_norm));
         lu.fill(0.0);
+        row_norm.fill(0.0);
         let s = &self.scale;
-        self.for_each_entry(|r, c, v| lu[c * size + r] += v * s[r] * s[c]);
+        self.for_each_entry(|r, c, v| {
+            lu[c * size + r] += v * s[r] * s[c];
+            row_norm[r] = row_norm[r].max(v.abs());
+        });
         self.lu = lu;
+        self.row_norm = row_norm;
     }
 
     /// `P Â = L U` in place; returns the first column whose pivot is at or below `singular` in magnitude,
@@ -273,40 +294,9 @@ impl DenseLu {
     }
 }
 
-fn check_pattern(p: &KktPattern) -> Result<(), FactorError> {
-    let cols = |what: &'static str, ptr: &[usize], idx: &[usize], rows: usize| -> Result<(), FactorError> {
-        if ptr.len() != p.n + 1 || ptr.first() != Some(&0) || ptr.last() != Some(&idx.len()) {
-            return Err(FactorError::InvalidPattern {
-                matrix: what,
-                col: 0,
-                reason: "column pointer of the wrong length or ends".into(),
-            });
-        }
-        for c in 0..p.n {
-            if ptr[c] > ptr[c + 1] {
-                return Err(FactorError::InvalidPattern { matrix: what, col: c, reason: "decreasing pointer".into() });
-            }
-            if let Some(&r) = idx[ptr[c]..ptr[c + 1]].iter().find(|&&r| r >= rows) {
-                return Err(FactorError::InvalidPattern {
-                    matrix: what,
-                    col: c,
-                    reason: format!("row {r} out of range (< {rows})"),
-                });
-            }
-        }
-        Ok(())
-    };
-    cols("K", &p.k_col_ptr, &p.k_row_idx, p.n)?;
-    cols("J", &p.j_col_ptr, &p.j_row_idx, p.m)
-}
-
+/// `to ← from`, refused as the sparse factor refuses values of the wrong length or not finite.
 fn copy_checked(what: &'static str, from: &[f64], to: &mut [f64]) -> Result<(), FactorError> {
-    if from.len() != to.len() {
-        return Err(FactorError::PatternMismatch { what, expected: to.len(), got: from.len() });
-    }
-    if let Some(index) = from.iter().position(|v| !v.is_finite()) {
-        return Err(FactorError::NonFinite { what, index });
-    }
+    check_values(what, from, to.len())?;
     to.copy_from_slice(from);
     Ok(())
 }
@@ -328,13 +318,9 @@ impl KktBackend for DenseLu {
         if let Some(skew) = values.k_skew {
             copy_checked("k_skew", skew, &mut self.skew_val)?;
         }
-        let mut row_norm = std::mem::take(&mut self.row_norm);
-        row_norm.fill(0.0);
-        self.for_each_entry(|r, _, v| row_norm[r] = row_norm[r].max(v.abs()));
-        self.row_norm = row_norm;
-        let fresh = self.counters.numeric_factorizations == 0;
-        if fresh || !self.measure_rows(SCALING_DRIFT) {
+        if !self.scaled || !self.measure_rows(SCALING_DRIFT) {
             self.equilibrate();
+            self.scaled = true;
         }
         self.scatter();
         let n = self.n;
@@ -445,6 +431,7 @@ impl KktBackend for DenseLu {
 
     fn reset(&mut self) {
         self.scale.fill(1.0);
+        self.scaled = false;
         self.factorized = false;
         self.counters = FactorCounters::default();
     }
