@@ -686,8 +686,11 @@ impl<'m> StaticSolver<'m> {
             for k in 0..m {
                 state.lambda[k] += scale * self.work.rhs[n + k];
             }
-            for (moved, d) in self.work.moved.iter_mut().zip(&self.work.rhs) {
-                *moved += scale * d;
+            // Only the predictor reads what the iterations moved.
+            if reuse {
+                for (moved, d) in self.work.moved.iter_mut().zip(&self.work.rhs) {
+                    *moved += scale * d;
+                }
             }
             iter += 1;
         }
@@ -1208,9 +1211,13 @@ impl<'m> StaticSolver<'m> {
         h.count = if predicted { (h.count + 1).min(PREDICTOR_STEPS) } else { 1 };
         h.steps.rotate_right(1);
         h.dts.rotate_right(1);
-        let applied = if predicted { 1.0 } else { 0.0 };
-        for ((s, p), d) in h.steps[0].iter_mut().zip(&h.predicted).zip(&self.work.moved) {
-            *s = applied * p + d;
+        // Not `0 · predicted + moved`: a refused prediction may have left non-finite numbers there.
+        if predicted {
+            for ((s, p), d) in h.steps[0].iter_mut().zip(&h.predicted).zip(&self.work.moved) {
+                *s = p + d;
+            }
+        } else {
+            h.steps[0].copy_from_slice(&self.work.moved);
         }
         h.dts[0] = dt;
         h.t_end = t_end;
