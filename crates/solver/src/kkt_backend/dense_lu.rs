@@ -38,6 +38,12 @@ use crate::kkt_factor::{
 /// A row's largest scaled entry may drift this far from 1 (either way) before the scaling is renewed.
 const SCALING_DRIFT: f64 = 16.0;
 
+/// Whether every row's largest scaled entry is within a factor `drift` of 1 (empty rows are left to the
+/// factorization to report).
+fn within(row_max: &[f64], drift: f64) -> bool {
+    row_max.iter().all(|&x| x == 0.0 || (x >= 1.0 / drift && x <= drift))
+}
+
 /// Equilibrated dense LU with partial pivoting of a KKT system of fixed pattern.
 #[derive(Debug, Clone)]
 pub struct DenseLu {
@@ -163,7 +169,7 @@ impl DenseLu {
                 rm[r] = a;
             }
         });
-        let within = rm.iter().all(|&x| x == 0.0 || (x >= 1.0 / drift && x <= drift));
+        let within = within(&rm, drift);
         self.row_max = rm;
         within
     }
@@ -185,20 +191,27 @@ impl DenseLu {
         round_to_powers_of_two(&mut self.scale);
     }
 
-    /// Scatters the scaled values into the factor buffer, and each row's largest entry in original units
-    /// into `row_norm` (for the backward error) on the same pass.
-    fn scatter(&mut self) {
+    /// Scatters the scaled values into the factor buffer, on the same pass measuring each row's largest
+    /// entry, in original units into `row_norm` (for the backward error) and scaled into `row_max`;
+    /// returns whether the scaled ones are still within [`SCALING_DRIFT`] of 1.
+    fn scatter(&mut self) -> bool {
         let size = self.n + self.m;
-        let (mut lu, mut row_norm) = (std::mem::take(&mut self.lu), std::mem::take(&mut self.row_norm));
+        let mut lu = std::mem::take(&mut self.lu);
+        let mut row_norm = std::mem::take(&mut self.row_norm);
+        let mut row_max = std::mem::take(&mut self.row_max);
         lu.fill(0.0);
         row_norm.fill(0.0);
+        row_max.fill(0.0);
         let s = &self.scale;
         self.for_each_entry(|r, c, v| {
-            lu[c * size + r] += v * s[r] * s[c];
+            let scaled = v * s[r] * s[c];
+            lu[c * size + r] += scaled;
             row_norm[r] = row_norm[r].max(v.abs());
+            row_max[r] = row_max[r].max(scaled.abs());
         });
-        self.lu = lu;
-        self.row_norm = row_norm;
+        let drifted = !within(&row_max, SCALING_DRIFT);
+        (self.lu, self.row_norm, self.row_max) = (lu, row_norm, row_max);
+        !drifted
     }
 
     /// `P Â = L U` in place; returns the first column whose pivot is at or below `singular` in magnitude,
@@ -318,11 +331,16 @@ impl KktBackend for DenseLu {
         if let Some(skew) = values.k_skew {
             copy_checked("k_skew", skew, &mut self.skew_val)?;
         }
-        if !self.scaled || !self.measure_rows(SCALING_DRIFT) {
+        if !self.scaled {
             self.equilibrate();
             self.scaled = true;
         }
-        self.scatter();
+        // The scatter measures the drift; only values that moved an order of magnitude are equilibrated
+        // again and scattered anew.
+        if !self.scatter() {
+            self.equilibrate();
+            self.scatter();
+        }
         let n = self.n;
         if let Some(k) = self.factor_in_place(self.options.pivot_threshold) {
             return Err(if k < n {
