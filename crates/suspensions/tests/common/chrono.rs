@@ -8,6 +8,7 @@ use elastokin_solver::{LoadPath, Mode, StaticSolver};
 use elastokin_suspensions::analysis::{parallel_wheel_travel, TravelRow};
 use elastokin_suspensions::axle::axle_sweep;
 use elastokin_suspensions::chrono::{import, without_comments, Imported};
+use elastokin_suspensions::kc::{self, KcReport};
 use elastokin_suspensions::{Axle, AxleRig, AxleRow, Rig, Side, SuspensionFile, WheelAttitude};
 use nalgebra::{Rotation3, Vector3};
 use serde_json::Value;
@@ -104,6 +105,21 @@ impl Tube {
     pub fn moved(&self, x: &[f64], p: V) -> V {
         self.centre + V::new(x[0], x[1], x[2]) + self.rotation(x) * (p - self.centre)
     }
+}
+
+/// What a solid axle that its joints lock in roll says of itself: opposite travel is refused by name, a
+/// corner's travel drives the left wheel alone (the right follows), and the K&C suite skips roll with that
+/// reason. Returns the suite's report for what a test checks further.
+pub fn assert_roll_locked(file: &SuspensionFile) -> KcReport {
+    let e = Axle::build(&file.suspension, AxleRig::OppositeTravel).unwrap_err().to_string();
+    assert!(e.contains("its roll is locked"), "{e}");
+    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
+    assert!(corner.model.joint_id("wheel travel").is_some());
+    assert!(corner.model.joint_id("right wheel travel").is_none());
+    let report = kc::run_suite(file, &[], &kc::Settings { steps: 4, ..Default::default() }, |_| {}).unwrap();
+    let roll = report.skipped.iter().find(|s| s.analysis == kc::Analysis::Roll).unwrap();
+    assert!(roll.reason.contains("lock its roll"), "{}", roll.reason);
+    report
 }
 
 /// Toe and camber of a wheel on side `s` (+1 left) whose outward spin axis is `a`, from their definitions:
