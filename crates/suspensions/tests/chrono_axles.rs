@@ -7,7 +7,8 @@
 mod common;
 
 use common::chrono::{
-    against, assert_roll_locked, axle_rows, corner_rows, mirror, point, read, toe_camber, Travel, Tube, V,
+    against, assert_roll_locked, axle_rows, corner_rows, mirror, point, read, toe_camber, wheels_on_tube, Travel, Tube,
+    V,
 };
 use common::newton_fd;
 use elastokin_solver::Mode;
@@ -62,18 +63,7 @@ fn three_link_closure(chrono: &Value, travel: Travel) -> impl Fn(f64, &mut [f64;
     let tube = links.tube;
     let wc = point(chrono, "Spindle/COM");
     assert!(chrono.get("Camber Angle (deg)").is_none() && chrono.get("Toe Angle (deg)").is_none());
-    move |t, x| {
-        let residual = |x: &[f64; 6]| {
-            let mut f = links.residuals(x);
-            let (left, right, _) = travel.at(t);
-            f.push(tube.moved(x, wc).z - wc.z - left);
-            f.push(tube.moved(x, mirror(wc)).z - wc.z - right);
-            DVector::from_vec(f)
-        };
-        newton_fd(residual, x);
-        let r = tube.rotation(x);
-        [toe_camber(r * V::y(), 1.0), toe_camber(r * -V::y(), -1.0)]
-    }
+    wheels_on_tube(tube, wc, travel, move |x| links.residuals(x))
 }
 
 /// `ChSolidBellcrankThreeLinkAxle`: the three-link tube; the bell crank turns by φ about the tube's z at its

@@ -9,7 +9,7 @@ mod common;
 
 use common::chrono::{
     against, axle_rows, chrono_json, corner_rows, fixture, mirror, point, read_edited, toe_camber, uncross_stops,
-    Angles, Travel, Tube, V,
+    wheels_on_tube, Angles, Travel, Tube, V,
 };
 use common::newton_fd;
 use elastokin_suspensions::chrono::import;
@@ -47,18 +47,7 @@ fn push_pipe_closure(chrono: &Value, travel: Travel) -> impl Fn(f64, &mut [f64; 
     let held = push_pipe_and_panhard_rod(chrono, tube);
     let wc = point(chrono, "Spindle/COM");
     assert_eq!((chrono["Camber Angle (deg)"].as_f64(), chrono["Toe Angle (deg)"].as_f64()), (Some(0.0), Some(0.0)));
-    move |t, x| {
-        let residual = |x: &[f64; 6]| {
-            let mut f = held(x);
-            let (left, right, _) = travel.at(t);
-            f.push(tube.moved(x, wc).z - wc.z - left);
-            f.push(tube.moved(x, mirror(wc)).z - wc.z - right);
-            DVector::from_vec(f)
-        };
-        newton_fd(residual, x);
-        let r = tube.rotation(x);
-        [toe_camber(r * V::y(), 1.0), toe_camber(r * -V::y(), -1.0)]
-    }
+    wheels_on_tube(tube, wc, travel, held)
 }
 
 /// `ChToeBarPushPipeAxle`: the tube on its ball joint and Panhard rod; each knuckle turns by ψ about its

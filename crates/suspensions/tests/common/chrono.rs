@@ -1,7 +1,8 @@
 //! What the tests of Chrono's files share, most of it the axle tests': the fixtures as Chrono gives them,
 //! points of a Chrono file and their mirror images, the axle tube as a moved rigid body, toe and camber
 //! from a spin axis, the travels the rigs drive, the engine's rows over those travels, and the walk of a
-//! loop closure along them from the design row. The closures themselves, each template's linkage written
+//! loop closure along them from the design row, and the part every closure of a tube the wheels turn with
+//! shares (the wheel heights driven, toe and camber read). The linkages themselves, each template's written
 //! out from its own file, stay in the test files: each test checks one reading against its own equations.
 
 use elastokin_solver::{LoadPath, Mode, StaticSolver};
@@ -10,7 +11,7 @@ use elastokin_suspensions::axle::axle_sweep;
 use elastokin_suspensions::chrono::{import, without_comments, Imported};
 use elastokin_suspensions::kc::{self, KcReport};
 use elastokin_suspensions::{Axle, AxleRig, AxleRow, Rig, Side, SuspensionFile, WheelAttitude};
-use nalgebra::{Rotation3, Vector3};
+use nalgebra::{DVector, Rotation3, Vector3};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
@@ -104,6 +105,29 @@ impl Tube {
     /// Where the tube moved by `x` puts its design point `p`.
     pub fn moved(&self, x: &[f64], p: V) -> V {
         self.centre + V::new(x[0], x[1], x[2]) + self.rotation(x) * (p - self.centre)
+    }
+}
+
+/// A solid axle whose wheels turn with the tube, held by `held` (its joints' residuals for the tube moved
+/// by `x`): Newton on those and on both wheel-centre heights as `travel` drives them at `t`, then each
+/// wheel's toe and camber from the tube's turn. Unknowns: the tube's six.
+pub fn wheels_on_tube(
+    tube: Tube,
+    wc: V,
+    travel: Travel,
+    held: impl Fn(&[f64]) -> Vec<f64>,
+) -> impl Fn(f64, &mut [f64; 6]) -> [(f64, f64); 2] {
+    move |t, x| {
+        let residual = |x: &[f64; 6]| {
+            let mut f = held(x);
+            let (left, right, _) = travel.at(t);
+            f.push(tube.moved(x, wc).z - wc.z - left);
+            f.push(tube.moved(x, mirror(wc)).z - wc.z - right);
+            DVector::from_vec(f)
+        };
+        super::newton_fd(residual, x);
+        let r = tube.rotation(x);
+        [toe_camber(r * V::y(), 1.0), toe_camber(r * -V::y(), -1.0)]
     }
 }
 
