@@ -25,10 +25,12 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 import numpy
 
 from . import _native
+from ._study import BATCH_FIGURES, Study, read_variants, study
 from ._native import (
     BATCH_HALF_RANGE,
     BATCH_STEPS,
     COMPLIANCE_COLUMNS,
+    MAX_VARIANTS,
     COMPLIANCE_ROWS,
     AnalysisError,
     Error,
@@ -37,18 +39,23 @@ from ._native import (
 
 __all__ = [
     "AnalysisError",
+    "BATCH_FIGURES",
     "BATCH_HALF_RANGE",
     "BATCH_STEPS",
     "COMPLIANCE_COLUMNS",
     "COMPLIANCE_ROWS",
     "Error",
+    "MAX_VARIANTS",
     "Model",
     "ModelError",
     "Result",
+    "Study",
     "analyses",
     "batch",
     "load",
     "parameter",
+    "read_variants",
+    "study",
 ]
 
 
@@ -213,12 +220,21 @@ class Model:
         height, so the vertical row and column are zero."""
         return self._native.compliance()
 
-    def batch(self, variants: Union[str, Sequence[Union[str, Mapping[str, Any]]]]) -> List[Dict[str, Any]]:
+    def batch(self, variants: Any) -> List[Dict[str, Any]]:
         """Design variants of this model; see :func:`elastokin.batch`."""
         return batch(self, variants)
 
+    def __reduce__(self):
+        # Pickled as the document it was read from: a model sent to another process (a Ray or Dask worker,
+        # a multiprocessing pool) is read there again, to the same model.
+        return (_from_document, self._native.document())
+
     def __repr__(self) -> str:
         return f"<elastokin.Model {self.name!r}>"
+
+
+def _from_document(text: str, origin: str) -> Model:
+    return Model(_native.Model.from_json(text, origin))
 
 
 def load(source: Union[str, "os.PathLike[str]", Mapping[str, Any]], *, origin: str = "<dict>") -> Model:
@@ -237,30 +253,21 @@ def load(source: Union[str, "os.PathLike[str]", Mapping[str, Any]], *, origin: s
 
 def batch(
     model: Union[Model, str, "os.PathLike[str]", Mapping[str, Any]],
-    variants: Union[str, Sequence[Union[str, Mapping[str, Any]]]],
+    variants: Any,
 ) -> List[Dict[str, Any]]:
     """Runs design variants of a model, as ``elastokin batch MODEL VARIANTS`` does: each variant walks
     parallel wheel travel ±``BATCH_HALF_RANGE`` m in ``BATCH_STEPS`` steps (corrected mode), all on every
     core, and is judged by its slopes at design.
 
-    ``variants`` is the text of a variants file, or a list whose items are each a variants-file line
+    ``variants`` is the text of a variants file, a list whose items are each a variants-file line
     (``"name: /json/pointer=value; …"``) or a dict ``{pointer: value}`` (a ``"name"`` key, if any, names
-    it; others are named ``variant N``). Pointers are JSON pointers into the model file.
+    it; others are named ``variant N``), or a variant table (a pandas DataFrame or a dict of columns, one
+    column per pointer): see :func:`read_variants`. Pointers are JSON pointers into the model file. At most
+    ``MAX_VARIANTS`` variants; :func:`study` takes any number, on one machine or many.
 
     Gives one dict per variant with the columns of batch.csv: ``variant``, ``bump_steer_deg_per_m``,
     ``camber_gain_deg_per_m``, ``wheel_rate_n_per_m`` (None when the variant failed) and ``error`` (the
     reason, else None). Raises ModelError when a variant cannot be read or edits a key the model lacks."""
     if not isinstance(model, Model):
         model = load(model)
-    if isinstance(variants, str):
-        items: Any = variants
-    else:
-        items = []
-        for v in variants:
-            if isinstance(v, Mapping):
-                edits = dict(v)
-                name = edits.pop("name", None)
-                items.append((name, [(p, json.dumps(value, allow_nan=False)) for p, value in edits.items()]))
-            else:
-                items.append(v)
-    return model._native.batch(items)
+    return model._native.batch(read_variants(model, variants))

@@ -18,9 +18,12 @@ COMPLIANCE_ROWS: List[str]
 COMPLIANCE_COLUMNS: List[str]
 BATCH_HALF_RANGE: float
 BATCH_STEPS: int
+MAX_VARIANTS: int
+VERSION: str
 
 _Column = Union[numpy.typing.NDArray[numpy.float64], List[Union[str, float, None]]]
 _Columns = List[Tuple[str, _Column]]
+_VariantEdits = Tuple[str, List[Tuple[str, str]]]
 
 def analyses() -> List[str]: ...
 def parameter(name: str) -> str: ...
@@ -33,6 +36,8 @@ class Model:
     @property
     def name(self) -> str: ...
     def to_json(self) -> str: ...
+    def document(self) -> Tuple[str, str]: ...
+    def read_variants(self, variants: Union[str, Sequence[Union[str, _VariantEdits]]]) -> List[_VariantEdits]: ...
     def run(
         self,
         name: str,
@@ -59,5 +64,7 @@ class Model:
     ) -> str: ...
     def compliance(self) -> numpy.typing.NDArray[numpy.float64]: ...
     def batch(
-        self, variants: Union[str, Sequence[Union[str, Tuple[Optional[str], Sequence[Tuple[str, str]]]]]]
+        self,
+        variants: Union[str, Sequence[Union[str, Tuple[Optional[str], Sequence[Tuple[str, str]]]]]],
+        threads: Optional[int] = None,
     ) -> List[Dict[str, Any]]: ...

@@ -17,14 +17,19 @@ use pyo3::types::{PyDict, PyFloat, PyList, PyString};
 use rayon::prelude::*;
 use std::path::Path;
 
-create_exception!(_native, Error, PyException, "Every error elastokin raises.");
+create_exception!(elastokin._native, Error, PyException, "Every error elastokin raises.");
 create_exception!(
-    _native,
+    elastokin._native,
     ModelError,
     Error,
     "A model file, model dict or variant edit that cannot be read as a suspension model."
 );
-create_exception!(_native, AnalysisError, Error, "An analysis that failed on the model: the solver's reason.");
+create_exception!(
+    elastokin._native,
+    AnalysisError,
+    Error,
+    "An analysis that failed on the model: the solver's reason."
+);
 
 /// What the rows of the wheel compliance matrix are: wheel-centre translation (m) and rotation (rad).
 const COMPLIANCE_ROWS: [&str; 6] = ["x_m", "y_m", "z_m", "rot_x_rad", "rot_y_rad", "rot_z_rad"];
@@ -36,6 +41,8 @@ const COMPLIANCE_COLUMNS: [&str; 6] = ["fx_n", "fy_n", "fz_n", "mx_nm", "my_nm",
 struct Model {
     file: SuspensionFile,
     base: serde_json::Value,
+    /// Where it came from, for error messages (a path, or the origin given with a dict).
+    origin: String,
 }
 
 /// An analysis by its command-line name; a name that is none is a `ValueError` listing the names.
@@ -92,6 +99,9 @@ fn settings(
     })
 }
 
+/// A variant as a study sends it: its name and its `(JSON pointer, JSON text of the value)` edits.
+type VariantEdits = (String, Vec<(String, String)>);
+
 /// A table's columns for Python: `(column name, values)` pairs.
 type Columns<'py> = Vec<(String, Bound<'py, PyAny>)>;
 
@@ -135,7 +145,7 @@ impl Model {
             let (_, text) = read_input(Path::new(path), "MODEL")?;
             let (file, _) = parse_model(&text, path)?;
             let base = batch::base_document(&text, path)?;
-            Ok::<_, String>(Model { file, base })
+            Ok::<_, String>(Model { file, base, origin: path.to_string() })
         })
         .map_err(ModelError::new_err)
     }
@@ -146,7 +156,7 @@ impl Model {
         py.detach(|| {
             let (file, _) = parse_model(text, origin)?;
             let base = batch::base_document(text, origin)?;
-            Ok::<_, String>(Model { file, base })
+            Ok::<_, String>(Model { file, base, origin: origin.to_string() })
         })
         .map_err(ModelError::new_err)
     }
@@ -160,6 +170,27 @@ impl Model {
     /// The model in the model-file format (JSON text).
     fn to_json(&self) -> String {
         self.file.to_json()
+    }
+
+    /// Variants in any form `batch` takes, in any number, read and checked against this model as `batch`
+    /// checks them but without reading a model for each: `(name, [(pointer, JSON text of the value)])` for
+    /// each, the form a study sends to its workers.
+    fn read_variants(&self, variants: &Bound<'_, PyAny>) -> PyResult<Vec<VariantEdits>> {
+        let list = parse_variants(variants, None)?;
+        list.iter().try_for_each(|v| batch::check_keys(&self.base, v)).map_err(ModelError::new_err)?;
+        list.into_iter()
+            .map(|v| {
+                let edits =
+                    v.edits.iter().map(|(p, value)| Ok((p.clone(), to_json(value)?))).collect::<PyResult<_>>()?;
+                Ok((v.name, edits))
+            })
+            .collect()
+    }
+
+    /// The document as read — the text batch variants edit (a Project Chrono file's own keys) — and its
+    /// origin: what `from_json` takes to make this model again, in another process or on another machine.
+    fn document(&self) -> PyResult<(String, String)> {
+        Ok((to_json(&self.base)?, self.origin.clone()))
     }
 
     /// One analysis: `(report as JSON text, table columns, compliance table columns or None)`.
@@ -234,14 +265,32 @@ impl Model {
     /// Design variants, as `elastokin batch` runs them: one dict per variant with the columns of batch.csv.
     /// `variants` is the text of a variants file, or a list whose items are a variants-file line or a
     /// `(name, [(pointer, JSON text of the value)])` pair.
-    fn batch<'py>(&self, py: Python<'py>, variants: &Bound<'py, PyAny>) -> PyResult<Vec<Bound<'py, PyDict>>> {
-        let list = parse_variants(variants)?;
+    /// `threads`: how many threads run the variants (None: every core). A study's task takes one CPU of
+    /// its engine and runs its variants on one thread, so that tasks side by side do not oversubscribe.
+    #[pyo3(signature = (variants, threads=None))]
+    fn batch<'py>(
+        &self,
+        py: Python<'py>,
+        variants: &Bound<'py, PyAny>,
+        threads: Option<usize>,
+    ) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        let list = parse_variants(variants, Some(batch::MAX_VARIANTS))?;
+        if threads == Some(0) {
+            return Err(PyValueError::new_err("threads: give at least 1 (or None for every core)"));
+        }
         // A variant that names a key the model lacks is a mistake in the list: said before running anything.
         let files: Vec<SuspensionFile> = py
             .detach(|| list.iter().map(|v| batch::apply(&self.base, v)).collect::<Result<_, _>>())
             .map_err(ModelError::new_err)?;
-        let results: Vec<Result<batch::Outcome, String>> =
-            py.detach(|| files.par_iter().map(|file| batch::evaluate(file, batch::HALF_RANGE, batch::STEPS)).collect());
+        let evaluate = || -> Vec<Result<batch::Outcome, String>> {
+            files.par_iter().map(|file| batch::evaluate(file, batch::HALF_RANGE, batch::STEPS)).collect()
+        };
+        let results = py
+            .detach(|| match threads {
+                None => Ok(evaluate()),
+                Some(n) => rayon::ThreadPoolBuilder::new().num_threads(n).build().map(|pool| pool.install(evaluate)),
+            })
+            .map_err(|e| AnalysisError::new_err(format!("threads: {e}")))?;
         list.iter()
             .zip(results)
             .map(|(v, r)| {
@@ -261,16 +310,17 @@ impl Model {
     }
 }
 
-/// The variants of `Model.batch`: a variants file's text, or a list of lines and `(name, edits)` pairs.
-fn parse_variants(variants: &Bound<'_, PyAny>) -> PyResult<Vec<Variant>> {
+/// The variants of `Model.batch`: a variants file's text, or a list of lines and `(name, edits)` pairs; at
+/// most `most` of them.
+fn parse_variants(variants: &Bound<'_, PyAny>, most: Option<usize>) -> PyResult<Vec<Variant>> {
     if let Ok(text) = variants.extract::<String>() {
-        return batch::parse_variants(&text, "variants").map_err(ModelError::new_err);
+        return batch::parse_variants_at_most(&text, "variants", most).map_err(ModelError::new_err);
     }
     let items: Vec<Bound<'_, PyAny>> = variants.extract()?;
     if items.is_empty() {
         return Err(ModelError::new_err("variants: no variants (one per line: name: /json/pointer=value; …)"));
     }
-    if items.len() > batch::MAX_VARIANTS {
+    if most.is_some_and(|most| items.len() > most) {
         return Err(ModelError::new_err(format!(
             "variants: more than {} variants; split the list and run a batch for each part",
             batch::MAX_VARIANTS
@@ -322,6 +372,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Model>()?;
     m.add_function(wrap_pyfunction!(analyses, m)?)?;
     m.add_function(wrap_pyfunction!(parameter, m)?)?;
+    m.add("MAX_VARIANTS", batch::MAX_VARIANTS)?;
+    m.add("VERSION", env!("CARGO_PKG_VERSION"))?;
     m.add("Error", py.get_type::<Error>())?;
     m.add("ModelError", py.get_type::<ModelError>())?;
     m.add("AnalysisError", py.get_type::<AnalysisError>())?;

@@ -32,17 +32,24 @@ pub struct Variant {
     pub edits: Vec<(String, serde_json::Value)>,
 }
 
-/// Parses a variants file; errors name the line.
+/// Parses a variants file of at most [`MAX_VARIANTS`] variants; errors name the line.
 pub fn parse_variants(text: &str, origin: &str) -> Result<Vec<Variant>, String> {
+    parse_variants_at_most(text, origin, Some(MAX_VARIANTS))
+}
+
+/// Parses a variants file of at most `most` variants (`None`: any number, for a study that splits them into
+/// batches itself); errors name the line.
+pub fn parse_variants_at_most(text: &str, origin: &str, most: Option<usize>) -> Result<Vec<Variant>, String> {
     let mut out = Vec::new();
     for (k, raw) in text.lines().enumerate() {
         let place = format!("{origin}:{}", k + 1);
         let Some(variant) = parse_variant(raw, &format!("line {}", k + 1), &place)? else {
             continue;
         };
-        if out.len() == MAX_VARIANTS {
+        if Some(out.len()) == most {
             return Err(format!(
-                "{place}: more than {MAX_VARIANTS} variants; split the file and run a batch for each part"
+                "{place}: more than {MAX_VARIANTS} variants; split the file and run a batch for each part (or run them \
+                 as a study from Python, which splits them itself)"
             ));
         }
         out.push(variant);
@@ -90,9 +97,7 @@ pub fn base_document(text: &str, origin: &str) -> Result<serde_json::Value, Stri
 pub fn apply(base: &serde_json::Value, v: &Variant) -> Result<SuspensionFile, String> {
     let mut doc = base.clone();
     for (pointer, value) in &v.edits {
-        let slot =
-            doc.pointer_mut(pointer).ok_or_else(|| format!("variant '{}': the model has no '{pointer}'", v.name))?;
-        *slot = value.clone();
+        *doc.pointer_mut(pointer).ok_or_else(|| no_such_key(v, pointer))? = value.clone();
     }
     let text = serde_json::to_string(&doc).map_err(|e| e.to_string())?;
     let origin = format!("variant '{}'", v.name);
@@ -100,6 +105,19 @@ pub fn apply(base: &serde_json::Value, v: &Variant) -> Result<SuspensionFile, St
         return crate::chrono::import(&text, &origin, None).map(|i| i.file).map_err(|e| e.to_string());
     }
     SuspensionFile::from_json(&text, &origin).map_err(|e| e.to_string())
+}
+
+/// Refuses a variant that edits a key the base model lacks, as [`apply`] does, without reading the model: a
+/// study checks its whole table so before it sends any of it away.
+pub fn check_keys(base: &serde_json::Value, v: &Variant) -> Result<(), String> {
+    match v.edits.iter().find(|(pointer, _)| base.pointer(pointer).is_none()) {
+        Some((pointer, _)) => Err(no_such_key(v, pointer)),
+        None => Ok(()),
+    }
+}
+
+fn no_such_key(v: &Variant, pointer: &str) -> String {
+    format!("variant '{}': the model has no '{pointer}'", v.name)
 }
 
 /// Headline figures of one variant.
@@ -126,4 +144,36 @@ pub fn evaluate(file: &SuspensionFile, half_range: f64, steps: usize) -> Result<
         camber_gain: slope(&|r| r.attitude.camber.to_degrees())?,
         wheel_rate: slope(&|r| r.wheel_load)?,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MODEL: &str = include_str!("../../../examples/macpherson.json");
+    const VARIANTS: &str = include_str!("../../../examples/macpherson_variants.txt");
+
+    #[test]
+    fn checking_keys_refuses_what_applying_refuses_with_the_same_words() {
+        let base = base_document(MODEL, "macpherson.json").unwrap();
+        for v in parse_variants(VARIANTS, "variants").unwrap() {
+            assert_eq!(check_keys(&base, &v), Ok(()), "{}", v.name);
+            assert!(apply(&base, &v).is_ok(), "{}", v.name);
+        }
+        let lacking = parse_variant("soft: /suspension/macpherson/spring/rate=2e4; /suspension/nope/0=1", "x", "y")
+            .unwrap()
+            .unwrap();
+        let said = "variant 'soft': the model has no '/suspension/nope/0'";
+        assert_eq!(check_keys(&base, &lacking).unwrap_err(), said);
+        assert_eq!(apply(&base, &lacking).unwrap_err(), said);
+    }
+
+    #[test]
+    fn a_file_of_any_length_is_read_when_no_limit_is_set() {
+        let many: String = (0..MAX_VARIANTS + 1).map(|k| format!("/a/{k}=1\n")).collect();
+        let err = parse_variants(&many, "many").unwrap_err();
+        assert!(err.starts_with(&format!("many:{}: more than {MAX_VARIANTS} variants", MAX_VARIANTS + 1)), "{err}");
+        assert_eq!(parse_variants_at_most(&many, "many", None).unwrap().len(), MAX_VARIANTS + 1);
+        assert!(parse_variants_at_most(&many, "many", Some(3)).is_err());
+    }
 }

@@ -1,0 +1,320 @@
+"""Design studies: a table of variants run as batches on an engine the user already operates.
+
+A study splits its variants into contiguous chunks (variant k of V goes to chunk ⌊k·N/V⌋, the rule of
+``elastokin batch --shard``), runs each chunk as one task — one :meth:`Model.batch` on one thread — and
+gathers the rows in the variants' order. Every variant is solved on its own, so where a task runs changes no
+bit of its result: a study's rows are those of the single-process batch.
+
+Engines:
+
+- ``"local"``: this process, on ``workers`` threads (default every core): the single-process batch itself.
+- ``"ray"``: Ray tasks of one CPU each. A Ray that is already started (``ray.init(address=...)``) is used;
+  otherwise a local Ray is started with ``workers`` CPUs and left running, as Ray's own libraries do.
+- ``"dask"``: Dask futures on the default ``distributed`` client (the last ``Client`` made). Without one, a
+  ``LocalCluster`` of ``workers`` single-threaded processes is made for the study and closed after it.
+
+Every worker imports ``elastokin``: install the same version wherever the engine runs tasks.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+from collections.abc import Mapping
+from typing import Any, Dict, List, Optional, Tuple
+
+import numpy
+
+from . import _native
+
+ENGINES = ("local", "ray", "dask")
+
+#: The figures of a variant, as batch.csv names its columns.
+BATCH_FIGURES = ("bump_steer_deg_per_m", "camber_gain_deg_per_m", "wheel_rate_n_per_m")
+
+# A chunk is one task: big enough that an engine's cost per task (about a millisecond) is small against its
+# solves (about 0.35 ms a variant), small enough to spread over the workers several times for balance.
+_CHUNKS_PER_WORKER = 4
+
+_Edits = List[Tuple[str, str]]
+_Variant = Tuple[str, _Edits]
+
+
+def _json_value(value: Any, place: str) -> str:
+    """A variant's value as JSON text: numpy scalars as the Python numbers they hold; NaN and inf refused."""
+    if isinstance(value, numpy.generic):
+        value = value.item()
+    try:
+        return json.dumps(value, allow_nan=False)
+    except (TypeError, ValueError) as e:
+        raise _native.ModelError(f"{place}: {value!r} is not a model value ({e}); give a finite number, a string, "
+                                 "a list or a dict") from None
+
+
+def _records(variants: Any) -> Any:
+    """A variant table — a pandas DataFrame or a dict of columns, one column per JSON pointer and an optional
+    ``name`` column — as the list of dicts :func:`elastokin.batch` takes; other forms are passed on."""
+    if hasattr(variants, "to_dict") and hasattr(variants, "columns"):
+        return variants.to_dict(orient="records")
+    if isinstance(variants, Mapping):
+        lengths = {len(column) for column in variants.values()}
+        if len(lengths) != 1:
+            raise _native.ModelError(
+                "variants: the columns of a variant table differ in length "
+                f"({', '.join(f'{k}: {len(v)}' for k, v in variants.items())}); give one value per variant in each")
+        (rows,) = lengths
+        return [{key: column[k] for key, column in variants.items()} for k in range(rows)]
+    return variants
+
+
+def read_variants(model: Any, variants: Any) -> List[_Variant]:
+    """Every form of variants a study or :func:`elastokin.batch` takes, read and checked against ``model``
+    (a :class:`Model`): the text of a variants file; a list of variants-file lines or dicts
+    ``{pointer: value}`` (a ``"name"`` key names one); a variant table (a pandas DataFrame, or a dict of
+    equally long columns, keyed by pointer).
+
+    Gives ``(name, [(pointer, JSON text of the value)])`` per variant, in order; raises ModelError naming the
+    variant that cannot be read or edits a key the model lacks."""
+    variants = _records(variants)
+    if not isinstance(variants, str):
+        items: List[Any] = []
+        for k, v in enumerate(variants):
+            if isinstance(v, Mapping):
+                edits = dict(v)
+                name = edits.pop("name", None)
+                name = None if name is None else str(name)
+                place = f"variants[{k}]"
+                items.append((name, [(p, _json_value(value, f"{place} '{p}'")) for p, value in edits.items()]))
+            else:
+                items.append(v)
+        variants = items
+    return [(name, list(edits)) for name, edits in model._native.read_variants(variants)]
+
+
+def _split(count: int, chunks: int) -> List[Tuple[int, int]]:
+    """Contiguous blocks ``[start, end)``: variant k of ``count`` in block ⌊k·chunks/count⌋ (the shard rule)."""
+    bounds = [-(-j * count // chunks) for j in range(chunks + 1)]
+    return [(bounds[j], bounds[j + 1]) for j in range(chunks) if bounds[j] < bounds[j + 1]]
+
+
+def _run_chunk(document: Tuple[str, str], variants: List[_Variant], first: int) -> List[Dict[str, Any]]:
+    """One task: the chunk's variants of the model, on one thread, each row with its variant number (from 1).
+
+    Runs wherever the engine puts it; it needs only this module and the model's document."""
+    text, origin = document
+    model = _native.Model.from_json(text, origin)
+    rows = model.batch(variants, threads=1)
+    for k, row in enumerate(rows):
+        row["variant_number"] = first + k + 1
+    return rows
+
+
+class Study:
+    """A study's results: one row per variant, in the variants' order.
+
+    ``columns`` maps ``variant_number`` (from 1), ``variant`` (names), one column per JSON pointer the
+    variants edit (its values: a float array with NaN where a variant leaves the key alone, or a list when the
+    values are not all numbers), the figures of batch.csv (float arrays, NaN where the variant failed) and
+    ``error`` (the reason, else None)."""
+
+    __slots__ = ("columns", "metadata", "_rows")
+
+    def __init__(self, rows: List[Dict[str, Any]], variants: List[_Variant], metadata: Dict[str, str]) -> None:
+        self._rows = rows
+        self.metadata = metadata
+        columns: Dict[str, Any] = {
+            "variant_number": numpy.array([r["variant_number"] for r in rows], dtype=numpy.int64),
+            "variant": [r["variant"] for r in rows],
+        }
+        pointers: Dict[str, List[Any]] = {}
+        for k, (_, edits) in enumerate(variants):
+            for pointer, value in edits:
+                pointers.setdefault(pointer, [None] * len(variants))[k] = json.loads(value)
+        for pointer, values in pointers.items():
+            numbers = all(v is None or (isinstance(v, (int, float)) and not isinstance(v, bool)) for v in values)
+            if numbers:
+                columns[pointer] = numpy.array([math.nan if v is None else float(v) for v in values])
+            else:
+                columns[pointer] = [v if v is None or isinstance(v, str) else json.dumps(v) for v in values]
+        for figure in BATCH_FIGURES:
+            columns[figure] = numpy.array([math.nan if r[figure] is None else r[figure] for r in rows])
+        columns["error"] = [r["error"] for r in rows]
+        self.columns = columns
+
+    def __len__(self) -> int:
+        return len(self._rows)
+
+    def rows(self) -> List[Dict[str, Any]]:
+        """The rows as :func:`elastokin.batch` gives them (figures None where a variant failed), each with its
+        ``variant_number``."""
+        return [dict(r) for r in self._rows]
+
+    def to_pandas(self):
+        """The table as a pandas DataFrame (needs pandas)."""
+        from . import _table_to_pandas
+
+        return _table_to_pandas(self.columns)
+
+    def to_arrow(self):
+        """The table as a pyarrow Table, the study's provenance in its schema's metadata (needs pyarrow)."""
+        try:
+            import pyarrow
+        except ImportError as e:
+            raise ImportError("Parquet and Arrow output need pyarrow: pip install pyarrow") from e
+        # Names, errors and non-numeric edits are text even when a column holds no value at all.
+        arrays = {
+            k: pyarrow.array(v, type=pyarrow.string()) if isinstance(v, list) else pyarrow.array(v)
+            for k, v in self.columns.items()
+        }
+        table = pyarrow.table(arrays)
+        return table.replace_schema_metadata({f"elastokin.{k}": v for k, v in self.metadata.items()})
+
+    def to_parquet(self, path: "os.PathLike[str] | str") -> None:
+        """Writes the table to a Parquet file (needs pyarrow); the file is written whole or not at all."""
+        try:
+            import pyarrow.parquet
+        except ImportError as e:
+            raise ImportError("Parquet and Arrow output need pyarrow: pip install pyarrow") from e
+        path = os.fspath(path)
+        partial = f"{path}.partial"
+        pyarrow.parquet.write_table(self.to_arrow(), partial)
+        os.replace(partial, path)
+
+    def __repr__(self) -> str:
+        failed = sum(e is not None for e in self.columns["error"])
+        return f"<elastokin.Study {len(self)} variants, {failed} failed>"
+
+
+def _on_ray(document: Tuple[str, str], chunks: List[Tuple[int, List[_Variant]]], workers: Optional[int]):
+    try:
+        import ray
+    except ImportError as e:
+        raise ImportError("engine='ray' needs Ray: pip install ray") from e
+    if not ray.is_initialized():
+        ray.init(num_cpus=workers, include_dashboard=False, log_to_driver=False)
+    task = ray.remote(num_cpus=1)(_run_chunk)
+    shared = ray.put(document)
+    return ray.get([task.remote(shared, variants, first) for first, variants in chunks])
+
+
+def _on_dask(document: Tuple[str, str], chunks: List[Tuple[int, List[_Variant]]], workers: Optional[int]):
+    try:
+        from distributed import Client, LocalCluster
+    except ImportError as e:
+        raise ImportError("engine='dask' needs Dask's distributed scheduler: pip install 'dask[distributed]'") from e
+
+    def run(client):
+        shared = client.scatter(document, broadcast=True)
+        futures = [client.submit(_run_chunk, shared, variants, first, pure=False) for first, variants in chunks]
+        return client.gather(futures)
+
+    try:
+        from distributed import get_client
+
+        client = get_client()
+    except ValueError:
+        client = None
+    if client is not None:
+        return run(client)
+    with LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
+                      dashboard_address=None) as cluster, Client(cluster) as client:
+        return run(client)
+
+
+def _engine_slots(engine: str, workers: Optional[int]) -> int:
+    """How many tasks the engine runs at once, as far as the study can tell before it starts."""
+    if workers is not None:
+        return workers
+    if engine == "ray":
+        try:
+            import ray
+
+            if ray.is_initialized():
+                return max(1, int(ray.cluster_resources().get("CPU", 1)))
+        except ImportError:
+            pass
+    if engine == "dask":
+        try:
+            from distributed import get_client
+
+            return max(1, sum(get_client().nthreads().values()))
+        except (ImportError, ValueError):
+            pass
+    return os.cpu_count() or 1
+
+
+def study(
+    model: Any,
+    variants: Any,
+    *,
+    engine: str = "local",
+    workers: Optional[int] = None,
+    chunks: Optional[int] = None,
+    parquet: "Optional[os.PathLike[str] | str]" = None,
+) -> Study:
+    """Runs a design study: every variant of ``model`` judged as ``elastokin batch`` judges it (parallel
+    wheel travel ±``BATCH_HALF_RANGE`` m in ``BATCH_STEPS`` steps; bump steer, camber gain and wheel rate at
+    design), on ``engine`` ("local", "ray" or "dask"; see the module's documentation).
+
+    ``model``: a :class:`Model`, a model file's path, or a dict. ``variants``: any form
+    :func:`read_variants` takes — a variant table (DataFrame or dict of columns keyed by JSON pointer), a list
+    of dicts or variants-file lines, or a variants file's text — in any number (a batch takes at most
+    ``MAX_VARIANTS``). ``workers``: how many CPUs a local Ray or Dask cluster gets (default: every core).
+    ``chunks``: how many tasks (default: four per worker, each at most ``MAX_VARIANTS`` variants).
+    ``parquet``: a path to write the table to as well (needs pyarrow).
+
+    Raises ModelError before any task runs when a variant cannot be read or edits a key the model lacks, and
+    ModelError from the task that reads it when an edit makes the model invalid. The rows are bit for bit
+    those of the single-process batch, whatever the engine."""
+    from . import Model, load
+
+    if engine not in ENGINES:
+        raise ValueError(f"engine '{engine}': give one of {', '.join(ENGINES)}")
+    if workers is not None and workers < 1:
+        raise ValueError("workers: give at least 1 (or None for every core)")
+    if chunks is not None and chunks < 1:
+        raise ValueError("chunks: give at least 1 (or None for four per worker)")
+    if not isinstance(model, Model):
+        model = load(model)
+    document = model._native.document()
+    # Read and checked here, before any task is sent: a mistake in the table stops the study at once.
+    table = read_variants(model, variants)
+    count = len(table)
+    if chunks is not None:
+        wanted = chunks
+    elif engine == "local":
+        wanted = 1  # one batch on every core
+    else:
+        wanted = _CHUNKS_PER_WORKER * _engine_slots(engine, workers)
+    wanted = max(wanted, -(-count // _native.MAX_VARIANTS))
+    blocks = [(start, table[start:end]) for start, end in _split(count, min(wanted, count))]
+    if engine == "local":
+        results = [_run_local(model, variants, first, workers) for first, variants in blocks]
+    elif engine == "ray":
+        results = _on_ray(document, blocks, workers)
+    else:
+        results = _on_dask(document, blocks, workers)
+    rows = [row for block in results for row in block]
+    metadata = {
+        "version": _native.VERSION,
+        "model": model.name,
+        # Of the document as the study sent it to its workers (the model file re-written, not its bytes).
+        "document_sha256": hashlib.sha256(document[0].encode()).hexdigest(),
+        "variants": str(count),
+        "half_range_m": repr(_native.BATCH_HALF_RANGE),
+        "steps": str(_native.BATCH_STEPS),
+        "engine": engine,
+    }
+    result = Study(rows, table, metadata)
+    if parquet is not None:
+        result.to_parquet(parquet)
+    return result
+
+
+def _run_local(model: Any, variants: List[_Variant], first: int, threads: Optional[int]) -> List[Dict[str, Any]]:
+    rows = model._native.batch(variants, threads=threads)
+    for k, row in enumerate(rows):
+        row["variant_number"] = first + k + 1
+    return rows

@@ -1,0 +1,205 @@
+"""Design studies on Ray and on Dask's LocalCluster, two workers each, against the single-process batch and
+the command's batch.csv: the same rows, bit for bit (each variant is solved on its own, wherever it runs)."""
+
+import importlib
+import math
+import os
+import pickle
+
+import numpy
+import pytest
+from conftest import MODEL, VARIANTS, command, read_csv, same_batch
+
+import elastokin
+
+
+def engine(name):
+    """An engine's module; CI installs both engines, so there a missing one fails instead of skipping."""
+    if os.environ.get("CI"):
+        return importlib.import_module(name)
+    return pytest.importorskip(name)
+
+
+TIE_ROD = "/suspension/macpherson/hardpoints/tie_rod_inner/2"
+SPRING = "/suspension/macpherson/spring/rate"
+
+
+@pytest.fixture(scope="module")
+def table():
+    """A variant table of 6 tie-rod heights × 5 spring rates: 30 variants, one column per pointer."""
+    heights = [-0.069 + 0.004 * k for k in range(6)]
+    rates = [20000.0 + 5000.0 * k for k in range(5)]
+    rows = [(f"h{h:+.3f} k{k:.0f}", h, k) for h in heights for k in rates]
+    return {"name": [r[0] for r in rows], TIE_ROD: [r[1] for r in rows], SPRING: [r[2] for r in rows]}
+
+
+@pytest.fixture(scope="module")
+def table_csv(table, tmp_path_factory):
+    """The command's batch.csv of the same table, written as a variants file."""
+    d = tmp_path_factory.mktemp("study")
+    lines = [f"{n}: {TIE_ROD}={h!r}; {SPRING}={k!r}" for n, h, k in zip(*table.values())]
+    (d / "variants.txt").write_text("\n".join(lines) + "\n")
+    command("batch", MODEL, d / "variants.txt", "--quiet", "--out", d / "out")
+    return read_csv(d / "out" / "batch.csv")
+
+
+def same_study(study, reference):
+    """The study's rows are the reference batch's rows, bit for bit, numbered from 1 in order."""
+    rows = study.rows()
+    assert [r.pop("variant_number") for r in rows] == list(range(1, len(reference) + 1))
+    assert rows == reference
+
+
+@pytest.fixture(scope="module")
+def model():
+    return elastokin.load(MODEL)
+
+
+@pytest.fixture(scope="module")
+def reference(model, table):
+    return elastokin.batch(model, table)
+
+
+def test_a_local_study_is_the_batch_and_the_command_s_table(model, table, table_csv, reference):
+    same_batch(reference, table_csv)
+    study = elastokin.study(model, table)
+    same_study(study, reference)
+    # The table's own columns come back beside the figures, for queries by parameter.
+    assert list(study.columns) == ["variant_number", "variant", TIE_ROD, SPRING, *elastokin.BATCH_FIGURES, "error"]
+    assert study.columns[TIE_ROD].tolist() == table[TIE_ROD]
+    assert study.columns[SPRING].tolist() == table[SPRING]
+    for figure in elastokin.BATCH_FIGURES:
+        assert study.columns[figure].tolist() == [r[figure] for r in reference]
+    # However it is cut into tasks and threads.
+    same_study(elastokin.study(model, table, chunks=7, workers=1), reference)
+
+
+def test_a_study_on_ray_with_two_workers_is_the_batch(model, table, reference):
+    ray = engine("ray")
+    try:
+        assert not ray.is_initialized()
+        study = elastokin.study(model, table, engine="ray", workers=2)
+        # The study started a local Ray of two CPUs and left it for the next study.
+        assert ray.is_initialized() and ray.cluster_resources()["CPU"] == 2
+        same_study(study, reference)
+        same_study(elastokin.study(MODEL, VARIANTS.read_text(), engine="ray"), elastokin.batch(model, VARIANTS.read_text()))
+        # A model file's path, a Ray already running, and chunks of any size.
+        same_study(elastokin.study(MODEL, table, engine="ray", chunks=30), reference)
+    finally:
+        ray.shutdown()
+
+
+def test_a_study_on_dask_with_two_workers_is_the_batch(model, table, reference):
+    distributed = engine("distributed")
+    # Without a client the study makes its own LocalCluster of two processes and closes it.
+    same_study(elastokin.study(model, table, engine="dask", workers=2), reference)
+    with pytest.raises(ValueError):
+        distributed.get_client()
+    # With one, the study runs on it.
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        with distributed.Client(cluster) as client:
+            same_study(elastokin.study(model, table, engine="dask", chunks=3), reference)
+            assert len(client.nthreads()) == 2
+
+
+def test_the_variant_table_forms_are_one_table(model, table, reference):
+    pandas = engine("pandas")
+    frame = pandas.DataFrame(table)
+    same_study(elastokin.study(model, frame), reference)
+    records = [dict(zip(table, values)) for values in zip(*table.values())]
+    same_study(elastokin.study(model, records), reference)
+    # numpy columns as a table would hold them.
+    as_numpy = {"name": table["name"], TIE_ROD: numpy.array(table[TIE_ROD]), SPRING: numpy.array(table[SPRING])}
+    same_study(elastokin.study(model, as_numpy), reference)
+    assert elastokin.study(model, table).to_pandas().equals(pandas.DataFrame(elastokin.study(model, table).columns))
+
+
+def test_parquet_holds_the_table_and_its_provenance(model, table, reference, tmp_path):
+    parquet = engine("pyarrow.parquet")
+    path = tmp_path / "study.parquet"
+    study = elastokin.study(model, table, parquet=path)
+    read = parquet.read_table(path)
+    assert read.column_names == list(study.columns)
+    for name, values in study.columns.items():
+        got = read.column(name).to_pylist()
+        assert got == (values.tolist() if isinstance(values, numpy.ndarray) else values), name
+    meta = {k.decode(): v.decode() for k, v in read.schema.metadata.items()}
+    assert meta["elastokin.variants"] == "30" and meta["elastokin.steps"] == str(elastokin.BATCH_STEPS)
+    assert meta["elastokin.model"] == model.name and meta["elastokin.engine"] == "local"
+    assert str(read.schema.field("error").type) == "string"
+    assert not (tmp_path / "study.parquet.partial").exists()
+
+
+def test_edits_that_are_not_numbers_are_text_columns(model):
+    study = elastokin.study(model, VARIANTS.read_text())
+    mounts = study.columns["/suspension/macpherson/lower_arm_mounts"]
+    assert mounts == [None, None, None, None, None, "ideal"]
+    rates = study.columns["/suspension/macpherson/spring/rate"]
+    assert math.isnan(rates[1]) and rates[0] == 30000.0 and rates[3] == 20000.0
+
+
+def test_a_model_travels_to_another_process_as_its_document(model):
+    again = pickle.loads(pickle.dumps(model))
+    assert again.to_dict() == model.to_dict()
+    assert again.batch(VARIANTS.read_text()) == model.batch(VARIANTS.read_text())
+    # So do the errors a worker raises: as themselves, message and class.
+    for kind in [elastokin.Error, elastokin.ModelError, elastokin.AnalysisError]:
+        error = pickle.loads(pickle.dumps(kind("variant 'x': the model has no '/y'")))
+        assert type(error) is kind and str(error) == "variant 'x': the model has no '/y'"
+
+
+def test_mistakes_in_a_study_are_said_before_any_task_runs(model, table):
+    with pytest.raises(ValueError, match="engine 'spark': give one of local, ray, dask"):
+        elastokin.study(model, table, engine="spark")
+    with pytest.raises(ValueError, match="workers: give at least 1"):
+        elastokin.study(model, table, engine="dask", workers=0)
+    bad = dict(table)
+    bad["/suspension/macpherson/spring/rat"] = table[SPRING]
+    # Named as the batch names it, before a Ray is started.
+    message = "variant 'h-0.069 k20000': the model has no '/suspension/macpherson/spring/rat'"
+    with pytest.raises(elastokin.ModelError) as raised:
+        elastokin.study(model, bad, engine="ray", workers=2)
+    assert str(raised.value) == message
+    with pytest.raises(elastokin.ModelError) as from_batch:
+        elastokin.batch(model, bad)
+    assert str(from_batch.value) == message
+    if _has("ray"):
+        import ray
+
+        assert not ray.is_initialized()
+    with pytest.raises(elastokin.ModelError, match="columns of a variant table differ in length"):
+        elastokin.study(model, {TIE_ROD: [0.0, 0.1], SPRING: [1.0]})
+    with pytest.raises(elastokin.ModelError, match=r"variants\[0\] '/suspension/macpherson/spring/rate': nan"):
+        elastokin.study(model, [{SPRING: math.nan}])
+
+
+def test_an_edit_that_makes_the_model_invalid_fails_the_study_as_it_fails_the_batch(model):
+    variants = ["good: /suspension/macpherson/spring/rate=30000.0", "bad: /suspension/macpherson/spring/rate=-5"]
+    with pytest.raises(elastokin.ModelError) as from_batch:
+        elastokin.batch(model, variants)
+    distributed = engine("distributed")
+    assert distributed
+    with pytest.raises(elastokin.ModelError) as from_study:
+        elastokin.study(model, variants, engine="dask", workers=2)
+    assert str(from_study.value) == str(from_batch.value)
+    assert "spring.rate: -5 N/m is outside the accepted range" in str(from_batch.value)
+
+
+def _has(name):
+    try:
+        __import__(name)
+        return True
+    except ImportError:
+        return False
+
+
+def test_the_split_is_the_shard_rule():
+    # Variant k of V goes to chunk floor(k·N/V), as `elastokin batch --shard` assigns it (src/batch.rs).
+    from elastokin._study import _split
+
+    for count in [1, 2, 7, 30, 101]:
+        for chunks in [1, 2, 3, 8, count]:
+            blocks = _split(count, min(chunks, count))
+            owner = [j for j, (a, b) in enumerate(blocks) for _ in range(a, b)]
+            assert owner == [k * min(chunks, count) // count for k in range(count)]
+    assert _split(5, 2) == [(0, 3), (3, 5)]
