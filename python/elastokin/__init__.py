@@ -25,7 +25,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 import numpy
 
 from . import _native
-from ._study import BATCH_FIGURES, Study, read_variants, study
+from ._study import BATCH_FIGURES, ENGINES, Study, read_variants, study
 from ._native import (
     BATCH_HALF_RANGE,
     BATCH_STEPS,
@@ -40,6 +40,7 @@ from ._native import (
 __all__ = [
     "AnalysisError",
     "BATCH_FIGURES",
+    "ENGINES",
     "BATCH_HALF_RANGE",
     "BATCH_STEPS",
     "COMPLIANCE_COLUMNS",
