@@ -44,6 +44,10 @@ _Variant = Tuple[str, _Edits]
 
 def _json_value(value: Any, place: str) -> str:
     """A variant's value as JSON text: numpy scalars as the Python numbers they hold; NaN and inf refused."""
+    # The common case first, at a fifth of json.dumps's cost: a finite float's shortest repr is its JSON
+    # (float.__repr__, since numpy's own repr of a float64 adds its type's name).
+    if isinstance(value, float) and math.isfinite(value):
+        return float.__repr__(value)
     if isinstance(value, numpy.generic):
         value = value.item()
     try:
@@ -131,7 +135,10 @@ class Study:
         pointers: Dict[str, List[Any]] = {}
         for k, (_, edits) in enumerate(variants):
             for pointer, value in edits:
-                pointers.setdefault(pointer, [None] * len(variants))[k] = json.loads(value)
+                column = pointers.get(pointer)
+                if column is None:
+                    column = pointers[pointer] = [None] * len(variants)
+                column[k] = json.loads(value)
         for pointer, values in pointers.items():
             numbers = all(v is None or (isinstance(v, (int, float)) and not isinstance(v, bool)) for v in values)
             if numbers:

@@ -2,6 +2,7 @@
 the command's batch.csv: the same rows, bit for bit (each variant is solved on its own, wherever it runs)."""
 
 import importlib
+import json
 import math
 import os
 import pickle
@@ -203,3 +204,15 @@ def test_the_split_is_the_shard_rule():
             owner = [j for j, (a, b) in enumerate(blocks) for _ in range(a, b)]
             assert owner == [k * min(chunks, count) // count for k in range(count)]
     assert _split(5, 2) == [(0, 3), (3, 5)]
+
+
+def test_a_value_of_the_table_is_sent_as_the_json_it_is():
+    # The float fast path writes what json.dumps writes, for Python and numpy numbers alike.
+    from elastokin._study import _json_value
+
+    for value in [0.1, -0.069, 1e-300, 5e6, 1e22, 2.5e-7, numpy.float64(0.1), numpy.float32(0.1), 3,
+                  numpy.int64(4), "ideal", {"bushing": {"radial": 2e6}}, True, [1.0, 2.0]]:
+        plain = value.item() if isinstance(value, numpy.generic) else value
+        assert _json_value(value, "x") == json.dumps(plain), value
+    with pytest.raises(elastokin.ModelError, match="x: inf is not a model value"):
+        _json_value(math.inf, "x")
