@@ -7,7 +7,7 @@ use elastokin_solver::Mode;
 use elastokin_suspensions::analysis::wheel_compliance;
 use elastokin_suspensions::batch::{self, Variant};
 use elastokin_suspensions::kc::{self, Analysis, Cell, Settings, Table};
-use elastokin_suspensions::model_file::{parse_model, read_input};
+use elastokin_suspensions::model_file::{parse_document, parse_model, read_input};
 use elastokin_suspensions::{LoadPoint, Rig, Side, SuspensionFile};
 use numpy::{PyArray1, PyArray2};
 use pyo3::create_exception;
@@ -150,11 +150,13 @@ impl Model {
         .map_err(ModelError::new_err)
     }
 
-    /// A model from the text of a model file; `origin` names it in error messages.
+    /// A model from a document in the model-file format (a dict's JSON text); `origin` names it in error
+    /// messages, which name a mistake's place by its keys (`bodies[1].mass`), not a line and column of text
+    /// the user never saw.
     #[staticmethod]
     fn from_json(py: Python<'_>, text: &str, origin: &str) -> PyResult<Model> {
         py.detach(|| {
-            let (file, _) = parse_model(text, origin)?;
+            let (file, _) = parse_document(text, origin)?;
             let base = batch::base_document(text, origin)?;
             Ok::<_, String>(Model { file, base, origin: origin.to_string() })
         })

@@ -147,8 +147,12 @@ def test_a_bad_key_is_a_model_error_with_the_command_s_message(tmp_path):
     message = command_error("run", bad, "--out", tmp_path / "x")
     assert str(raised.value) == message
     assert "rat" in message
-    with pytest.raises(elastokin.ModelError):
-        elastokin.load(doc)
+    # A dict has no lines and columns the user wrote: its mistake is named by the keys that lead to it, in the
+    # command's words for the same mistake.
+    with pytest.raises(elastokin.ModelError) as raised:
+        elastokin.load(doc, origin="my corner")
+    said = message.split(": ", 1)[1]  # the command's message without its file:line:column
+    assert str(raised.value) == f"my corner: {said} (at suspension.macpherson.spring.rat)"
 
 
 def test_an_unknown_analysis_is_a_value_error_with_the_command_s_message(model, tmp_path):

@@ -104,7 +104,8 @@ pub fn apply(base: &serde_json::Value, v: &Variant) -> Result<SuspensionFile, St
     if crate::chrono::is_chrono(&text) {
         return crate::chrono::import(&text, &origin, None).map(|i| i.file).map_err(|e| e.to_string());
     }
-    SuspensionFile::from_json(&text, &origin).map_err(|e| e.to_string())
+    // The edited model is no file the user has: its errors name keys, not a line and column of it.
+    SuspensionFile::from_json(&text, &origin).map_err(|e| e.in_document(&text))
 }
 
 /// Refuses a variant that edits a key the base model lacks, as [`apply`] does, without reading the model: a

@@ -281,13 +281,73 @@ pub(crate) fn locate(text: &str, path: &[&str]) -> (usize, usize) {
     (line, column)
 }
 
+/// The byte offset of line `line`, column `column` (from 1, in characters, as serde_json counts them).
+fn offset_of(text: &str, line: usize, column: usize) -> usize {
+    let line_start: usize = text.split_inclusive('\n').take(line.saturating_sub(1)).map(str::len).sum();
+    let within: usize = text[line_start.min(text.len())..].chars().take(column).map(char::len_utf8).sum();
+    line_start + within
+}
+
 /// The last key before line `line`, column `column` (from 1) of `text`.
 fn key_before(text: &str, line: usize, column: usize) -> Option<String> {
-    let line_start: usize = text.split_inclusive('\n').take(line.saturating_sub(1)).map(str::len).sum();
-    let rest = &text[line_start..];
-    let within: usize = rest.chars().take(column).map(char::len_utf8).sum();
-    let offset = line_start + within;
+    let offset = offset_of(text, line, column);
     keys(text).into_iter().take_while(|(at, _)| *at < offset).last().map(|(_, k)| k)
+}
+
+/// The keys and indices that lead to line `line`, column `column` (from 1) of JSON text, as a reader of the
+/// document names a place in it: `suspension.general.bodies[0].mass`. For documents no one reads as text —
+/// a Python dict, a variant's edited model — where a line and column would name nothing the user wrote.
+pub fn key_path_at(text: &str, line: usize, column: usize) -> String {
+    enum Frame {
+        Object(Option<String>),
+        Array(usize),
+    }
+    let end = offset_of(text, line, column).min(text.len());
+    let bytes = text.as_bytes();
+    let mut stack: Vec<Frame> = Vec::new();
+    let mut i = 0;
+    while i < end {
+        match bytes[i] {
+            b'"' => {
+                let start = i + 1;
+                i += 1;
+                while i < bytes.len() && bytes[i] != b'"' {
+                    i += if bytes[i] == b'\\' { 2 } else { 1 };
+                }
+                let string = &text[start..i.min(text.len())];
+                // A string in an object is its key when a colon follows it.
+                let rest = text[(i + 1).min(text.len())..].trim_start();
+                if let (Some(Frame::Object(key)), true) = (stack.last_mut(), rest.starts_with(':')) {
+                    *key = Some(string.to_string());
+                }
+            }
+            b'{' => stack.push(Frame::Object(None)),
+            b'[' => stack.push(Frame::Array(0)),
+            b'}' | b']' => {
+                stack.pop();
+            }
+            b',' => match stack.last_mut() {
+                Some(Frame::Array(k)) => *k += 1,
+                Some(Frame::Object(key)) => *key = None,
+                None => {}
+            },
+            _ => {}
+        }
+        i += 1;
+    }
+    let mut path = String::new();
+    for frame in &stack {
+        match frame {
+            Frame::Object(Some(key)) if path.is_empty() => path.push_str(key),
+            Frame::Object(Some(key)) => {
+                path.push('.');
+                path.push_str(key);
+            }
+            Frame::Object(None) => {}
+            Frame::Array(k) => path.push_str(&format!("[{k}]")),
+        }
+    }
+    path
 }
 
 /// A model file that cannot be read.
@@ -322,6 +382,23 @@ pub enum FileError {
         /// The model error.
         source: ModelError,
     },
+}
+
+impl FileError {
+    /// The error of a document that is no file (a Python dict, a variant's edited model): the place named by
+    /// the keys that lead there (`key_path_at`), not by a line and column of text the user never saw. `text`
+    /// is the document's text the error is of.
+    pub fn in_document(&self, text: &str) -> String {
+        match self {
+            FileError::Invalid { origin, line, column, message } => {
+                match key_path_at(without_byte_order_mark(text), *line, *column) {
+                    path if path.is_empty() => format!("{origin}: {message}"),
+                    path => format!("{origin}: {message} (at {path})"),
+                }
+            }
+            other => other.to_string(),
+        }
+    }
 }
 
 impl SuspensionFile {
@@ -707,4 +784,13 @@ pub fn parse_model(text: &str, origin: &str) -> Result<(SuspensionFile, Option<c
         return Ok((imported.file.clone(), Some(imported)));
     }
     SuspensionFile::from_json(text, origin).map(|file| (file, None)).map_err(|e| e.to_string())
+}
+
+/// [`parse_model`] of a document that is no file (a Python dict, a variant's edited model): its errors name
+/// the place by its keys (`FileError::in_document`).
+pub fn parse_document(text: &str, origin: &str) -> Result<(SuspensionFile, Option<crate::chrono::Imported>), String> {
+    if crate::chrono::is_chrono(text) {
+        return parse_model(text, origin);
+    }
+    SuspensionFile::from_json(text, origin).map(|file| (file, None)).map_err(|e| e.in_document(text))
 }

@@ -1,6 +1,6 @@
 //! Model files: the shipped examples parse and round-trip; bad files name the key and position.
 
-use elastokin_suspensions::{FileError, SuspensionFile};
+use elastokin_suspensions::{FileError, SuspensionFile, Template};
 use std::path::Path;
 
 fn examples() -> Vec<std::path::PathBuf> {
@@ -304,4 +304,46 @@ fn a_bushing_law_is_chosen_in_the_file() {
         macpherson_edited(|v| v["suspension"]["macpherson"]["top_mount"]["bushing"]["law"] = "quaternion".into());
     let message = SuspensionFile::from_json(&text, "law.json").unwrap_err().to_string();
     assert!(message.contains("quaternion") && message.contains("tait_bryan_xyz"), "{message}");
+}
+
+/// The expanded MacPherson (general form) as a JSON value, to edit one mistake into.
+fn general_macpherson() -> serde_json::Value {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/macpherson.json");
+    let file = SuspensionFile::read(&path).unwrap();
+    let text = SuspensionFile { suspension: Template::General(Box::new(file.suspension.expand())), ..file }.to_json();
+    serde_json::from_str(&text).unwrap()
+}
+
+/// The error of a document given as one line of compact JSON (as a Python dict or an edited variant reaches
+/// the library), in the words of a document.
+fn document_error(doc: &serde_json::Value) -> String {
+    let text = serde_json::to_string(doc).unwrap();
+    assert_eq!(text.lines().count(), 1);
+    SuspensionFile::from_json(&text, "<dict>").unwrap_err().in_document(&text)
+}
+
+#[test]
+fn a_document_s_error_names_the_keys_that_lead_to_it_not_a_column_of_one_line() {
+    let mut doc = general_macpherson();
+    doc["suspension"]["general"]["bodies"][1]["mass"] = 3.0.into();
+    assert_eq!(
+        document_error(&doc),
+        "<dict>: unknown field `mass`, expected `name` or `at` (at suspension.general.bodies[1].mass)"
+    );
+
+    let mut doc = general_macpherson();
+    doc["suspension"]["general"]["bushings"][2]["radial"] = (-5.0).into();
+    let said = document_error(&doc);
+    assert!(said.starts_with("<dict>: "), "{said}");
+    assert!(said.contains("-5 N/m is outside the accepted range"), "{said}");
+    assert!(said.ends_with("(at suspension.general.bushings[2].radial)"), "{said}");
+
+    // Keys with quotes and brackets in them, and arrays of arrays before the mistake, are stepped over.
+    let mut doc = general_macpherson();
+    let hardpoints = doc["suspension"]["general"]["hardpoints"].as_object_mut().unwrap();
+    hardpoints.insert("odd \"name\" [1], {2}".into(), serde_json::json!([0.1, 0.2, 0.3]));
+    doc["suspension"]["general"]["joints"][1]["kind"] = "screw".into();
+    let said = document_error(&doc);
+    assert!(said.starts_with("<dict>: unknown variant `screw`"), "{said}");
+    assert!(said.ends_with("(at suspension.general.joints[1].kind)"), "{said}");
 }
