@@ -77,9 +77,10 @@ fn settings(
         "free" => false,
         _ => return Err(PyValueError::new_err(format!("wheel '{wheel}': give 'held' or 'free'"))),
     };
+    // The command's spelling (`--load-point wheel-centre`) is taken too.
     let load_point = match load_point {
-        "contact_patch" => LoadPoint::ContactPatch,
-        "wheel_centre" => LoadPoint::WheelCentre,
+        "contact_patch" | "contact-patch" => LoadPoint::ContactPatch,
+        "wheel_centre" | "wheel-centre" => LoadPoint::WheelCentre,
         _ => {
             return Err(PyValueError::new_err(format!(
                 "load_point '{load_point}': give 'contact_patch' or 'wheel_centre'"

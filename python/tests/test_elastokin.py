@@ -64,6 +64,22 @@ def test_range_and_steps_reach_the_analysis(model, tmp_path):
     assert result.summary == json.loads((d / "summary.json").read_text())["analyses"]["parallel-travel"]
 
 
+def test_the_options_of_a_road_load_reach_it_as_the_command_s_do(model, tmp_path):
+    # The wheel free on its spring, the load at the wheel centre: both change the rows, against the defaults.
+    d = tmp_path / "out"
+    command("run", MODEL, "--quiet", "--analysis", "lateral-force", "--steps", 4, "--wheel", "free",
+            "--load-point", "wheel-centre", "--out", d)
+    header, rows = read_csv(d / "lateral_force.csv")
+    for spelling in ["wheel_centre", "wheel-centre"]:
+        result = model.run("lateral-force", steps=4, wheel="free", load_point=spelling)
+        for k, column in enumerate(header):
+            same_column(result.columns[column], [row[k] for row in rows])
+    default = model.run("lateral-force", steps=4)
+    assert not numpy.array_equal(default.columns["toe_deg"], result.columns["toe_deg"])
+    with pytest.raises(ValueError, match="load_point 'hub': give 'contact_patch' or 'wheel_centre'"):
+        model.run("lateral-force", load_point="hub")
+
+
 def test_suite_is_the_summary_json_but_its_provenance(model, summary):
     got = model.suite(compliance=True)
     expected = {k: v for k, v in summary.items() if k != "provenance"}
