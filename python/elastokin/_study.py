@@ -213,7 +213,10 @@ def _on_dask(document: Tuple[str, str], chunks: List[Tuple[int, List[_Variant]]]
         raise ImportError("engine='dask' needs Dask's distributed scheduler: pip install 'dask[distributed]'") from e
 
     def run(client):
-        shared = client.scatter(document, broadcast=True)
+        # One future for the whole document (a tuple given alone would be scattered item by item), under a
+        # key of its own: keys by content would be shared with an earlier study whose futures are being
+        # released, and a worker could find the data gone.
+        (shared,) = client.scatter([document], broadcast=True, hash=False)
         futures = [client.submit(_run_chunk, shared, variants, first, pure=False) for first, variants in chunks]
         return client.gather(futures)
 
