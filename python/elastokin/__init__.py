@@ -34,6 +34,7 @@ from ._native import (
     Error,
     ModelError,
 )
+from .scene import Scene, SceneSweep
 
 __all__ = [
     "AnalysisError",
@@ -45,6 +46,8 @@ __all__ = [
     "Model",
     "ModelError",
     "Result",
+    "Scene",
+    "SceneSweep",
     "analyses",
     "batch",
     "load",

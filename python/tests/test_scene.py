@@ -1,0 +1,563 @@
+"""Scenes built in Python, body by body, against numbers from elsewhere: the Rust example that builds the
+same scene (run with `cargo run`, its printed table parsed), closed forms of mechanics (those of the
+repository's tests/closed_form.rs and tests/common.rs), and equilibrium itself (the forces and moments on
+a body sum to zero). Each tolerance carries, in a comment, the error the test measured.
+"""
+
+import math
+import subprocess
+import threading
+from pathlib import Path
+
+import numpy
+import pytest
+
+import elastokin
+
+ROOT = Path(__file__).resolve().parents[2]
+
+# Tolerances of the closed-form comparisons: the default relative force residual of 1e-9 would leave
+# ~1e-9 rad in an angle; these leave round-off only (as tests/common.rs's `tight`).
+TIGHT = dict(force_tolerance=1e-11, constraint_tolerance=1e-12)
+
+
+# --- The swing arm of examples/swing_arm.rs --------------------------------------------------------------
+
+PIVOT = [0.0, 0.55, 0.0]
+WHEEL_CENTRE = [-0.45, 0.80, -0.02]
+SEAT_ARM = [-0.30, 0.62, 0.0]
+SEAT_CHASSIS = [-0.30, 0.62, 0.30]
+
+
+def swing_arm():
+    """The scene of examples/swing_arm.rs, part for part and in its order (the order fixes the sums)."""
+    scene = elastokin.Scene()
+    scene.body("swing arm", at=[(p + w) / 2.0 for p, w in zip(PIVOT, WHEEL_CENTRE)])
+    # Local x along the pivot axis (lateral), y = z × x = −x global, z up: the example's frame.
+    scene.bushing(
+        "pivot bushing",
+        bodies=("chassis", "swing arm"),
+        at=PIVOT,
+        axis=[0, 1, 0],
+        y_axis=[-1, 0, 0],
+        radial=5e6,
+        axial=1e6,
+        torsion=math.degrees(10.0),
+        conical=math.degrees(100.0),
+    )
+    scene.spring(
+        "spring", bodies=("chassis", "swing arm"), from_=SEAT_CHASSIS, to=SEAT_ARM, rate=60e3, design_force=3000.0
+    )
+    scene.force("wheel force", body="swing arm", at=WHEEL_CENTRE, force=[0, 0, 1500.0], constant=[0, 0, 2000.0])
+    return scene
+
+
+@pytest.fixture(scope="module")
+def example_table():
+    """The rows the Rust example prints: (Fz, dz, paper dz, iterations, spring, bushing, pitch) as text."""
+    done = subprocess.run(
+        ["cargo", "run", "-q", "--example", "swing_arm"], cwd=ROOT, capture_output=True, text=True, check=True
+    )
+    rows = []
+    for line in done.stdout.splitlines():
+        cells = line.split()
+        if len(cells) == 7 and cells[0].lstrip("-").isdigit():
+            rows.append(cells)
+    assert len(rows) == 21, done.stdout
+    return rows
+
+
+def test_swing_arm_gives_the_rust_example_s_table(example_table):
+    scene = swing_arm()
+    corrected = scene.sweep(-1.0, 1.0, 20, mode="corrected")
+    paper = scene.sweep(-1.0, 1.0, 20, mode="paper")
+    assert corrected.complete and paper.complete and len(corrected) == len(paper) == 21
+    z = corrected.point("swing arm", WHEEL_CENTRE)[:, 2] - WHEEL_CENTRE[2]
+    zp = paper.point("swing arm", WHEEL_CENTRE)[:, 2] - WHEEL_CENTRE[2]
+    spring = corrected.element("spring")["force"]
+    bushing = corrected.element("pivot bushing")["force"]
+    pitch = numpy.degrees(corrected.rotation("swing arm")[:, 1])
+    for k, row in enumerate(example_table):
+        norm = lambda v: math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])  # noqa: E731 (nalgebra's order)
+        ours = [
+            f"{2000.0 + 1500.0 * corrected.t[k]:.0f}",
+            f"{z[k] * 1e3:.4f}",
+            f"{zp[k] * 1e3:.4f}",
+            f"{corrected.iterations[k]}",
+            f"{norm(spring[k]):.1f}",
+            f"{norm(bushing[k]):.1f}",
+            f"{pitch[k]:.4f}",
+        ]
+        # Every printed digit: the same library calls on the same scene give the same numbers.
+        assert ours == row, (k, ours, row)
+    # The paper's recurrence drifts from the exact path and the corrected walk does not: the table's two
+    # columns differ, so the comparison above tells the modes apart.
+    assert abs(z[-1] - zp[-1]) > 1e-5
+
+
+def test_forces_and_moments_on_the_swing_arm_balance():
+    """Conservation: on the arm, the bushing's and the spring's forces and the wheel force sum to zero, and
+    so do their moments about the origin, at every corrected step."""
+    sweep = swing_arm().sweep(-1.0, 1.0, 20)
+    t = sweep.t[:, None]
+    applied = numpy.array([0, 0, 2000.0]) + t * numpy.array([0, 0, 1500.0])
+    bushing, spring = sweep.element("pivot bushing"), sweep.element("spring")
+    at_bushing = sweep.point("swing arm", PIVOT)
+    at_seat = sweep.point("swing arm", SEAT_ARM)
+    at_wheel = sweep.point("swing arm", WHEEL_CENTRE)
+    force = bushing["force"] + spring["force"] + applied
+    moment = (
+        bushing["torque"]
+        + numpy.cross(at_bushing, bushing["force"])
+        + spring["torque"]
+        + numpy.cross(at_seat, spring["force"])
+        + numpy.cross(at_wheel, applied)
+    )
+    assert numpy.abs(force).max() < 1e-6  # measured 1.4e-7 N of 5e3 N (the solver's tolerance: 5e-6 N)
+    assert numpy.abs(moment).max() < 1e-6  # measured 7.7e-8 N·m
+    # The imbalance is the force residual the solver reports, to the digit.
+    assert (numpy.abs(force).max(axis=1) <= sweep.force_residual * (1 + 1e-9)).all()
+
+
+# --- Closed forms ---------------------------------------------------------------------------------------
+
+
+def test_slider_on_a_spring_moves_by_force_over_rate_and_its_guide_takes_the_rest():
+    """A slider on a translational guide along x, a spring along the guide: x = Fx / k exactly; the guide
+    carries the force across it and the moment of the offset force about its point."""
+    k, origin = 2.5e4, numpy.array([0.1, 0.2, 0.3])
+    offset = numpy.array([0.05, -0.04, 0.12])  # where the force acts, from the slider's point
+    f = numpy.array([400.0, -150.0, 900.0])
+    scene = elastokin.Scene()
+    scene.body("slider", at=origin)
+    scene.joint("guide", "translational", bodies=("chassis", "slider"), at=origin, axis=[1, 0, 0])
+    scene.spring(
+        "spring", bodies=("chassis", "slider"), from_=origin + [0.4, 0, 0], to=origin, rate=k, free_length=0.4
+    )
+    scene.force("push", body="slider", at=origin + offset, force=f)
+    sweep = scene.sweep(0.0, 1.0, 5, **TIGHT)
+    t = sweep.t[:, None]
+    expected = origin + t * numpy.array([f[0] / k, 0, 0])
+    assert numpy.abs(sweep.position("slider") - expected).max() < 1e-15  # measured 5.6e-17 m
+    assert numpy.abs(sweep.rotation("slider")).max() < 1e-15  # measured 0 rad
+    force, torque = sweep.reaction("guide")
+    assert numpy.abs(force - t * -f * [0, 1, 1]).max() < 1e-12  # measured 1.4e-14 N
+    assert numpy.abs(torque + t * numpy.cross(offset, f)).max() < 1e-12  # measured 1.6e-14 N·m
+    spring = sweep.element("spring")
+    assert numpy.abs(spring["deflection"][:, 0] + t[:, 0] * f[0] / k).max() < 1e-15  # measured 5.2e-17 m
+    # One equilibrium alone, from the design pose, is the sweep's last.
+    one = scene.solve(1.0, **TIGHT)
+    assert len(one) == 1 and one.t[0] == 1.0
+    assert numpy.abs(one.position("slider")[0] - expected[-1]).max() < 1e-15  # measured 0 m
+
+
+def test_bump_stop_takes_over_past_its_clearance():
+    """The slider of the test above, with a bump stop beside its spring: free over the clearance c, then
+    the stop's rate adds to the spring's, x = c + (F − k c) / (k + k_stop)."""
+    k, k_stop, c, f = 2e4, 1e5, 0.02, 1000.0
+    origin = numpy.array([0.0, 0.4, 0.2])
+    seat = origin + [0.3, 0, 0]
+    scene = elastokin.Scene()
+    scene.body("slider", at=origin)
+    scene.joint("guide", "translational", bodies=("chassis", "slider"), at=origin, axis=[1, 0, 0])
+    scene.spring("spring", bodies=("chassis", "slider"), from_=seat, to=origin, rate=k, free_length=0.3)
+    # A straight curve: the force past contact is k_stop times the travel past contact.
+    scene.stop("bump stop", "bump", bodies=("chassis", "slider"), from_=seat, to=origin, clearance=c,
+               curve=[[0, 0], [0.01, k_stop * 0.01]])
+    scene.force("push", body="slider", at=origin, force=[f, 0, 0])
+    sweep = scene.sweep(0.0, 1.0, 10, **TIGHT)
+    load = sweep.t * f
+    x = numpy.where(load <= k * c, load / k, c + (load - k * c) / (k + k_stop))
+    assert x[-1] - c > 0.004  # the stop is well in contact at the end
+    assert numpy.abs(sweep.position("slider")[:, 0] - origin[0] - x).max() < 1e-15  # measured 3.5e-17 m
+    stop = sweep.element("bump stop")
+    assert stop["kind"] == "stop"
+    # Its deflection is the travel past contact: minus the gap left before it.
+    assert numpy.abs(stop["deflection"][:, 0] - (x - c)).max() < 1e-15  # measured 5.6e-17 m
+    contact = k_stop * numpy.maximum(x - c, 0)
+    assert numpy.abs(stop["force"][:, 0] + contact).max() < 1e-10  # measured 3.8e-12 N of 500 N
+
+
+# The lever of tests/common.rs: pivot at the origin about +y, tip at (A, 0, 0), spring seat on the lever
+# at (B, 0, 0), chassis seat at (0, 0, H), free at design, a downward tip force F at t = 1.
+A, B, H, K_SPRING, F_TIP = 0.5, 0.3, 0.2, 20_000.0, 500.0
+
+
+def lever_angle(f):
+    """tests/common.rs: the moment balance a f cos φ = k (L − L₀) b h cos φ / L gives L = L₀ / (1 − a f /
+    (k b h)) and sin φ = (L² − b² − h²) / (2 b h)."""
+    l0 = math.hypot(B, H)
+    length = l0 / (1.0 - A * f / (K_SPRING * B * H))
+    return math.asin((length * length - B * B - H * H) / (2.0 * B * H))
+
+
+def pivot_reaction(phi, f):
+    """The pivot's reaction on the lever: minus the tip force and the spring's force on the lever."""
+    p = B * numpy.array([math.cos(phi), 0.0, -math.sin(phi)])
+    g = numpy.array([0.0, 0.0, H])
+    length = numpy.linalg.norm(p - g)
+    push = K_SPRING * (math.hypot(B, H) - length)
+    return -(numpy.array([0.0, 0.0, -f]) + push * (p - g) / length)
+
+
+def revolute(scene):
+    scene.joint("pivot", "revolute", bodies=("chassis", "lever"), at=[0, 0, 0], axis=[0, 1, 0])
+
+
+def ball_and_parallel_axes(scene):
+    scene.joint("pivot ball", "spherical", bodies=("chassis", "lever"), at=[0, 0, 0])
+    scene.joint("pivot axis", "parallel_axes", bodies=("chassis", "lever"), axis=[0, 1, 0])
+
+
+def cylinder_and_plane(scene):
+    scene.joint("pivot shaft", "cylindrical", bodies=("lever", "chassis"), at=[0, 0, 0], axis=[0, 1, 0])
+    scene.joint("pivot collar", "in_plane", bodies=("lever", "chassis"), at=[0, 0, 0], axis=[0, 1, 0])
+
+
+def line_plane_and_perpendiculars(scene):
+    scene.joint("pivot line", "in_line", bodies=("lever", "chassis"), at=[0, 0, 0], axis=[0, 1, 0])
+    scene.joint("pivot plane", "in_plane", bodies=("lever", "chassis"), at=[0, 0, 0], axis=[0, 1, 0])
+    scene.joint("keeps x", "perpendicular", bodies=("chassis", "lever"), axis=[0, 1, 0], axis_j=[1, 0, 0])
+    scene.joint("keeps z", "perpendicular", bodies=("chassis", "lever"), axis=[0, 1, 0], axis_j=[0, 0, 1])
+
+
+@pytest.mark.parametrize(
+    "pivot", [revolute, ball_and_parallel_axes, cylinder_and_plane, line_plane_and_perpendiculars]
+)
+def test_lever_reaches_the_closed_form_angle_and_pivot_reaction(pivot):
+    """Each pivot is a hinge about y built from other joint kinds; the tip load hangs on a second body welded
+    to the lever by a fixed joint."""
+    scene = elastokin.Scene()
+    scene.body("lever", at=[0.25, 0, 0])
+    scene.body("tip", at=[A, 0, 0])
+    pivot(scene)
+    scene.joint("weld", "fixed", bodies=("lever", "tip"), at=[A, 0, 0])
+    scene.spring("spring", bodies=("chassis", "lever"), from_=[0, 0, H], to=[B, 0, 0], rate=K_SPRING,
+                 free_length=math.hypot(B, H))
+    scene.force("tip load", body="tip", at=[A, 0, 0], force=[0, 0, -F_TIP])
+    sweep = scene.sweep(0.0, 1.0, 10, **TIGHT)
+    assert sweep.complete
+    phi = numpy.array([lever_angle(F_TIP * t) for t in sweep.t])
+    assert phi[-1] > math.radians(35)  # a large angle: the closed form's nonlinearity matters
+    rotation = sweep.rotation("lever")
+    assert numpy.abs(rotation[:, 1] - phi).max() < 1e-10  # measured 4.8e-12 rad (4.4e-16 for the revolute)
+    assert numpy.abs(rotation[:, [0, 2]]).max() < 1e-15  # measured 0 rad
+    assert numpy.abs(sweep.rotation("tip") - rotation).max() < 1e-15  # measured 5.6e-17 rad: welded
+    # The pivot's joints together carry the closed-form reaction (each joint's point is the origin). A
+    # joint written (lever, chassis) reports what acts on the chassis: minus what acts on the lever.
+    total = numpy.zeros((len(sweep), 3))
+    for joint in sweep.joints:
+        if joint == "weld":
+            continue
+        force, _ = sweep.reaction(joint)
+        total += -force if joint in ("pivot shaft", "pivot collar", "pivot line", "pivot plane") else force
+    expected = numpy.array([pivot_reaction(p, F_TIP * t) for p, t in zip(phi, sweep.t)])
+    assert numpy.abs(total - expected).max() < 1e-7  # measured 1.0e-8 N of ~1e3 N (1.1e-12 for the revolute)
+    # The weld carries the whole tip load.
+    weld, _ = sweep.reaction("weld")
+    assert numpy.abs(weld - sweep.t[:, None] * [0, 0, F_TIP]).max() < 1e-15  # measured 0 N
+
+
+def test_bushing_deflects_and_twists_in_the_frame_its_axes_give():
+    """tests/closed_form.rs: a force at the centre of a bushing deflects it by E K⁻¹ Eᵀ F, and a torque
+    about a principal axis twists it by M / K however large. The frame E is the model file's: x along
+    `axis`, y towards `y_axis` made perpendicular, z = x × y."""
+    axis, hint = numpy.array([0.3, 0.8, -0.2]), numpy.array([0.1, 0.2, 1.0])
+    x = axis / numpy.linalg.norm(axis)
+    y = hint - x * (x @ hint)
+    y /= numpy.linalg.norm(y)
+    frame = numpy.column_stack([x, y, numpy.cross(x, y)])
+    kt, kr = numpy.array([2e6, 5e5, 8e6]), numpy.array([500.0, 800.0, 1500.0])
+    centre = numpy.array([0.1, 0.7, -0.2])
+    f = numpy.array([300.0, -1200.0, 4000.0])
+    scene = elastokin.Scene()
+    scene.body("knuckle", at=centre)
+    scene.bushing("mount", bodies=("chassis", "knuckle"), at=centre, axis=axis, y_axis=hint,
+                  translation=list(kt), rotation=list(kr))
+    scene.force("force", body="knuckle", at=centre, force=f)
+    scene.torque("twist", body="knuckle", torque=0.9 * kr[0] * x)
+    sweep = scene.sweep(0.0, 1.0, 6, **TIGHT)
+    t = sweep.t[:, None]
+    deflection = frame @ ((frame.T @ f) / kt)
+    assert numpy.abs(sweep.position("knuckle") - centre - t * deflection).max() < 1e-15  # measured 5.6e-17 m
+    # 0.9 rad about the frame's x axis at t = 1.
+    assert numpy.abs(sweep.rotation("knuckle") - t * 0.9 * x).max() < 1e-14  # measured 3.9e-16 rad
+    mount = sweep.element("mount")
+    assert numpy.abs(mount["force"] + t * f).max() < 1e-8  # measured 1.4e-10 N of 4.2e3 N
+    assert numpy.abs(mount["deflection"] - t * (frame.T @ deflection)).max() < 1e-15  # measured 4.4e-17 m
+
+
+def test_bushing_preload_pushes_the_body_to_where_the_rates_balance_it():
+    """A bushing's preload acts on its second body at zero deflection: with nothing else on the body, it
+    comes to rest where the rates balance the preload, δ = P / K along each axis and θ = M / K about x
+    (a principal axis, so any rotation law gives it)."""
+    kt, kr = numpy.array([1e5, 2e5, 4e5]), numpy.array([100.0, 300.0, 300.0])
+    preload_force, preload_torque = numpy.array([100.0, -50.0, 200.0]), numpy.array([2.0, 0.0, 0.0])
+    centre = numpy.array([0.3, -0.2, 0.5])
+    for law in ("energy", "linear", "tait_bryan_xyz"):
+        scene = elastokin.Scene()
+        scene.body("hub", at=centre)
+        # The frame is the global axes: x by default, y given (without it, y is any direction across x).
+        scene.bushing("mount", bodies=("chassis", "hub"), at=centre, y_axis=[0, 1, 0], translation=kt,
+                      rotation=kr, law=law, preload_force=preload_force, preload_torque=preload_torque)
+        rest = scene.solve(0.0, **TIGHT)
+        assert numpy.abs(rest.position("hub")[0] - centre - preload_force / kt).max() < 1e-15  # measured 5.5e-17 m
+        assert numpy.abs(rest.rotation("hub")[0] - preload_torque / kr).max() < 1e-15  # measured 0 rad
+        # At rest the bushing applies no force: the preload and the rates cancel.
+        assert numpy.abs(rest.element("mount")["force"]).max() < 1e-9  # measured 2.2e-11 N of 200 N
+
+
+def test_torsion_bushing_on_a_hinge_twists_by_torque_over_rate():
+    """A lever on a revolute about y and a bushing whose axis is the hinge's: under a torque about y the
+    twist is M / K_torsion exactly, here 1.2 rad; the hinge carries no moment about its axis."""
+    torsion, torque = 250.0, 300.0
+    scene = elastokin.Scene()
+    scene.body("lever", at=[0.2, 0.1, 0.0])
+    scene.joint("hinge", "revolute", bodies=("chassis", "lever"), at=[0, 0.1, 0], axis=[0, 1, 0])
+    scene.bushing("torsion bar", bodies=("chassis", "lever"), at=[0, 0.1, 0], axis=[0, 1, 0], radial=1e7,
+                  axial=1e7, torsion=torsion, conical=1e4)
+    scene.torque("drive", body="lever", torque=[0, torque, 0])
+    sweep = scene.sweep(0.0, 1.0, 12, **TIGHT)
+    assert numpy.abs(sweep.rotation("lever")[:, 1] - sweep.t * torque / torsion).max() < 1e-12  # measured 1.4e-14 rad
+    _, moment = sweep.reaction("hinge")
+    assert numpy.abs(moment[:, 1]).max() < 1e-15  # measured 0 N·m
+
+
+def test_distance_link_carries_the_load_along_itself():
+    """A lever hinged at the origin about y and braced by a distance link from the chassis: no motion is
+    left, so statics at design gives the link's force — along the link (a two-force member), its size from
+    the moments about the hinge axis — and the hinge takes the rest of the load."""
+    tip, brace, anchor = numpy.array([0.5, 0, 0]), numpy.array([0.4, 0, 0]), numpy.array([0.1, 0, 0.3])
+    f = numpy.array([200.0, 50.0, -1000.0])
+    scene = elastokin.Scene()
+    scene.body("arm", at=[0.25, 0, 0])
+    scene.joint("hinge", "revolute", bodies=("chassis", "arm"), at=[0, 0, 0], axis=[0, 1, 0])
+    scene.joint("brace", "distance", bodies=("chassis", "arm"), at=anchor, to=brace)
+    scene.force("load", body="arm", at=tip, force=f)
+    sweep = scene.sweep(0.0, 1.0, 4, **TIGHT)
+    t = sweep.t[:, None]
+    e = (brace - anchor) / numpy.linalg.norm(brace - anchor)
+    size = -numpy.cross(tip, f)[1] / numpy.cross(brace, e)[1]
+    link, link_moment = sweep.reaction("brace")
+    assert numpy.abs(link - t * size * e).max() < 1e-11  # measured 4.5e-13 N of 1.9e3 N
+    assert numpy.abs(link_moment).max() < 1e-12  # measured 2.8e-14 N·m: ball joints at its ends carry none
+    hinge, hinge_moment = sweep.reaction("hinge")
+    assert numpy.abs(hinge + t * (f + size * e)).max() < 1e-11  # measured 4.0e-13 N
+    moment = t * (numpy.cross(tip, f) + numpy.cross(brace, size * e))
+    assert numpy.abs(hinge_moment + moment).max() < 1e-12  # measured 5.7e-14 N·m
+    assert numpy.abs(sweep.position("arm") - [0.25, 0, 0]).max() < 1e-15  # measured 1.4e-16 m: nothing moves
+
+
+def test_slider_crank_matches_virtual_work():
+    """tests/closed_form.rs's slider-crank: crank on a revolute, rod (spherical at the crank, universal at
+    the slider), slider on a translational guide against a spring, a torque on the crank; virtual work
+    gives the crank angle and the rod's force."""
+    r, l, k, m = 0.1, 0.3, 5e4, 150.0
+    x_of = lambda th: r * math.cos(th) + math.sqrt(l * l - (r * math.sin(th)) ** 2)  # noqa: E731
+    dx_of = lambda th: -r * math.sin(th) - r * r * math.sin(th) * math.cos(th) / math.sqrt(  # noqa: E731
+        l * l - (r * math.sin(th)) ** 2
+    )
+    theta0, xg = 0.6, 0.7
+    xb0 = x_of(theta0)
+    pin = r * numpy.array([math.cos(theta0), 0, -math.sin(theta0)])
+    b = numpy.array([xb0, 0, 0])
+    free = (xg - xb0) + 0.02
+    scene = elastokin.Scene()
+    scene.body("crank", at=pin / 2)
+    scene.body("rod", at=(pin + b) / 2)
+    scene.body("slider", at=b)
+    scene.joint("crank bearing", "revolute", bodies=("chassis", "crank"), at=[0, 0, 0], axis=[0, 1, 0])
+    scene.joint("crank pin", "spherical", bodies=("crank", "rod"), at=pin)
+    scene.joint("wrist pin", "universal", bodies=("rod", "slider"), at=b, axis=[0, 1, 0], axis_j=[0, 0, 1])
+    scene.joint("slideway", "translational", bodies=("chassis", "slider"), at=b, axis=[1, 0, 0])
+    scene.spring("return spring", bodies=("slider", "chassis"), from_=b, to=[xg, 0, 0], rate=k, free_length=free)
+    scene.torque("crank torque", body="crank", torque=[0, m, 0])
+    sweep = scene.sweep(0.0, 1.0, 8, **TIGHT)
+
+    def fx_of(th):
+        return -k * (free - (xg - x_of(th)))
+
+    def g(th):
+        return m + fx_of(th) * dx_of(th)
+
+    lo, hi = -0.9, 1.5
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if math.copysign(1, g(lo)) == math.copysign(1, g(mid)):
+            lo = mid
+        else:
+            hi = mid
+    theta = 0.5 * (lo + hi)
+    got = theta0 + sweep.rotation("crank")[-1, 1]
+    assert abs(got - theta) < 1e-14  # measured 6.7e-16 rad
+    assert abs(theta - theta0) > 0.3
+    assert abs(sweep.position("slider")[-1, 0] - x_of(theta)) < 1e-14  # measured 1.1e-16 m
+    a = r * numpy.array([math.cos(theta), 0, -math.sin(theta)])
+    e_ab = (numpy.array([x_of(theta), 0, 0]) - a) / l
+    expected = e_ab * (-fx_of(theta) / e_ab[0])
+    force, _ = sweep.reaction("crank bearing")
+    assert numpy.linalg.norm(force[-1] - expected) < 1e-13 * numpy.linalg.norm(expected)  # measured 3.1e-15 relative
+
+
+def test_a_snap_through_stops_at_its_limit_point_and_says_so():
+    """Two bars (springs) from the chassis to an apex on a vertical guide, pressed down: the load peaks at
+    the apex height z* with L(z*)³ = L₀ a² and F_max = 2 k z* (L₀ / L − 1). Ramped to F_max / 0.77 the
+    path folds at t = 0.77; the sweep stops there and says so."""
+    a, h, k = 0.3, 0.05, 1e5
+    l0 = math.hypot(a, h)
+    length = (l0 * a * a) ** (1 / 3)
+    z_star = math.sqrt(length * length - a * a)
+    f_max = 2 * k * z_star * (l0 / length - 1)
+    t_star = 0.77
+    scene = elastokin.Scene()
+    scene.body("apex", at=[0, 0, h])
+    scene.joint("guide", "translational", bodies=("chassis", "apex"), at=[0, 0, h], axis=[0, 0, 1])
+    for side in (-1, 1):
+        scene.spring(f"bar {side}", bodies=("chassis", "apex"), from_=[side * a, 0, 0], to=[0, 0, h], rate=k,
+                     design_force=0.0)
+    scene.force("press", body="apex", at=[0, 0, h], force=[0, 0, -f_max / t_star])
+    for mode in ("corrected", "paper"):
+        sweep = scene.sweep(0.0, 1.0, 20, mode=mode)
+        assert not sweep.complete and len(sweep) < 21 and sweep.t[-1] < t_star
+        # The fold lies between the last equilibrium found and the first load without one, 1e-6 of the
+        # range apart (the library's LIMIT_POINT_TOLERANCE).
+        assert sweep.limit <= t_star + 1e-12 <= sweep.beyond + 2e-12  # limit measured 3.1e-7 below t*
+        assert sweep.beyond - sweep.limit <= 1e-6 + 1e-15
+        at = sweep.at_limit()
+        assert len(at) == 1 and at.t[0] == sweep.limit
+        # Near a fold the height goes as the square root of the load left: 3e-7 of it leaves 1.5e-5 m.
+        assert abs(at.position("apex")[0, 2] - z_star) < 1e-4  # measured 1.5e-5 m
+        assert "limit point" in repr(sweep)
+    done = scene.sweep(0.0, 0.7, 7)
+    assert done.complete and done.limit is None and done.beyond is None and done.at_limit() is None
+
+
+def test_sweeps_in_threads_give_the_serial_numbers():
+    """The solver runs without the GIL: sweeps of one scene in several threads give what one thread gives."""
+    scene = swing_arm()
+    serial = scene.sweep(-1.0, 1.0, 20).position("swing arm")
+    results = [None] * 4
+
+    def run(k):
+        results[k] = scene.sweep(-1.0, 1.0, 20).position("swing arm")
+
+    threads = [threading.Thread(target=run, args=(k,)) for k in range(4)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    for r in results:
+        assert numpy.array_equal(r, serial)
+
+
+# --- Errors ---------------------------------------------------------------------------------------------
+
+
+def test_a_part_on_an_unknown_body_is_refused_naming_both():
+    scene = elastokin.Scene()
+    scene.body("upright", at=[0, 0.7, 0])
+    with pytest.raises(elastokin.ModelError, match=r"'ball joint': there is no body 'uprigth'.*'upright'"):
+        scene.joint("ball joint", "spherical", bodies=("chassis", "uprigth"), at=[0, 0.7, 0])
+    with pytest.raises(elastokin.ModelError, match="'load': there is no body 'hub'"):
+        scene.force("load", body="hub", at=[0, 0, 0], force=[0, 0, 1])
+    # Nothing was added by the refused calls.
+    assert scene.joints == [] and scene.elements == []
+
+
+def test_a_name_used_twice_is_refused():
+    scene = elastokin.Scene()
+    scene.body("arm", at=[0, 0, 0])
+    with pytest.raises(elastokin.ModelError, match="the name 'arm' is used twice"):
+        scene.body("arm", at=[1, 0, 0])
+    with pytest.raises(elastokin.ModelError, match="the name 'arm' is used twice"):
+        scene.joint("arm", "spherical", bodies=("chassis", "arm"), at=[0, 0, 0])
+    with pytest.raises(elastokin.ModelError, match="body 'chassis': .* name the fixed ground: give the body another"):
+        scene.body("chassis", at=[0, 0, 0])
+
+
+def test_a_kind_word_the_library_does_not_know_is_a_value_error_listing_the_words():
+    scene = elastokin.Scene()
+    scene.body("arm", at=[0, 0, 0])
+    with pytest.raises(ValueError, match="joint kind 'hinge': give one of 'spherical', 'revolute'.*'parallel_axes'"):
+        scene.joint("pivot", "hinge", bodies=("chassis", "arm"), at=[0, 0, 0], axis=[0, 1, 0])
+    with pytest.raises(ValueError, match="joint kind 'point_driver'"):
+        scene.joint("drive", "point_driver", bodies=("chassis", "arm"), at=[0, 0, 0], axis=[0, 0, 1])
+    with pytest.raises(ValueError, match="rotation law 'chrono': give one of 'energy', 'linear', 'tait_bryan_xyz'"):
+        scene.bushing("mount", bodies=("chassis", "arm"), at=[0, 0, 0], radial=1e6, axial=1e6, torsion=1e2,
+                      conical=1e3, law="chrono")
+    with pytest.raises(ValueError, match="stop kind 'jounce': give one of 'bump', 'rebound'"):
+        scene.stop("stop", "jounce", bodies=("chassis", "arm"), from_=[0, 0, 1], to=[0, 0, 0], clearance=0.01,
+                   curve=[[0, 0], [0.01, 100]])
+    scene.joint("pivot", "revolute", bodies=("chassis", "arm"), at=[0, 0, 0], axis=[0, 1, 0])
+    with pytest.raises(ValueError, match="mode 'exact': give 'corrected' or 'paper'"):
+        scene.sweep(0, 1, 4, mode="exact")
+    with pytest.raises(ValueError, match="steps must be a whole number of at least 1"):
+        scene.sweep(0, 1, 0)
+    with pytest.raises(ValueError, match="'pivot 2': at must be three numbers"):
+        scene.joint("pivot 2", "revolute", bodies=("chassis", "arm"), at=[0, 0], axis=[0, 1, 0])
+
+
+def test_not_finite_inputs_are_refused_by_name():
+    scene = elastokin.Scene()
+    with pytest.raises(elastokin.ModelError, match="'arm': reference point 'at' is not finite"):
+        scene.body("arm", at=[0, math.nan, 0])
+    scene.body("arm", at=[0, 0, 0])
+    with pytest.raises(elastokin.ModelError, match="'pivot': axis is not finite"):
+        scene.joint("pivot", "revolute", bodies=("chassis", "arm"), at=[0, 0, 0], axis=[0, math.inf, 0])
+    with pytest.raises(elastokin.ModelError, match="'push': force is not finite"):
+        scene.force("push", body="arm", at=[0, 0, 0], force=[math.nan, 0, 0])
+    with pytest.raises(elastokin.ModelError, match=r"spring \(spring\)\.rate must be a rate in N/m"):
+        scene.spring("spring", bodies=("chassis", "arm"), from_=[0, 0, 1], to=[0, 0, 0], rate=math.nan,
+                     design_force=0.0)
+    with pytest.raises(ValueError, match="start must be a finite load parameter"):
+        scene.sweep(math.nan, 1.0, 4)
+
+
+def test_bad_geometry_and_rates_are_refused_naming_the_part_and_the_fix():
+    scene = elastokin.Scene()
+    scene.body("arm", at=[0, 0, 0])
+    with pytest.raises(elastokin.ModelError, match="'pivot': axis has zero length: give a non-zero direction"):
+        scene.joint("pivot", "revolute", bodies=("chassis", "arm"), at=[0, 0, 0], axis=[0, 0, 0])
+    with pytest.raises(elastokin.ModelError, match="a revolute joint needs 'axis': add it"):
+        scene.joint("pivot", "revolute", bodies=("chassis", "arm"), at=[0, 0, 0])
+    with pytest.raises(elastokin.ModelError, match="'to' means nothing to a spherical joint: remove it"):
+        scene.joint("ball", "spherical", bodies=("chassis", "arm"), at=[0, 0, 0], to=[1, 0, 0])
+    with pytest.raises(elastokin.ModelError, match=r"bushing \(mount\).translation y must be a rate in N/m"):
+        scene.bushing("mount", bodies=("chassis", "arm"), at=[0, 0, 0], radial=0.0, axial=1e6, torsion=1e2,
+                      conical=1e3)
+    with pytest.raises(elastokin.ModelError, match="a cylindrical bushing needs all four rates"):
+        scene.bushing("mount", bodies=("chassis", "arm"), at=[0, 0, 0], radial=1e6, axial=1e6)
+    with pytest.raises(elastokin.ModelError, match="'mount': y_axis is parallel to the bushing's axis"):
+        scene.bushing("mount", bodies=("chassis", "arm"), at=[0, 0, 0], axis=[0, 1, 0], y_axis=[0, 2, 0],
+                      radial=1e6, axial=1e6, torsion=1e2, conical=1e3)
+    with pytest.raises(elastokin.ModelError, match="give either design_force"):
+        scene.spring("spring", bodies=("chassis", "arm"), from_=[0, 0, 1], to=[0, 0, 0], rate=1e4)
+    assert scene.joints == [] and scene.elements == []
+
+
+def test_a_scene_the_solver_cannot_hold_says_which_body_is_free():
+    scene = elastokin.Scene()
+    scene.body("loose", at=[0, 0, 0])
+    # Held by nothing at all: refused as built.
+    with pytest.raises(elastokin.ModelError, match="body 'loose' is held by nothing"):
+        scene.sweep(0, 1, 2)
+    # On a ball joint alone it is free to turn: the solver finds the motion and names the body.
+    scene.joint("ball", "spherical", bodies=("chassis", "loose"), at=[0, 0, 0])
+    with pytest.raises(elastokin.AnalysisError, match="'loose' is free to move \\(rotation"):
+        scene.sweep(0, 1, 2)
+    with pytest.raises(elastokin.AnalysisError, match="'loose' is free to move"):
+        scene.solve(0.5)
+
+
+def test_results_name_what_they_have():
+    sweep = swing_arm().sweep(0.0, 1.0, 2)
+    assert sweep.bodies == ["swing arm"] and sweep.joints == []
+    assert sweep.elements == {"pivot bushing": "bushing", "spring": "spring", "wheel force": "force"}
+    with pytest.raises(KeyError, match="there is no body 'arm': the scene's are 'swing arm'"):
+        sweep.position("arm")
+    with pytest.raises(KeyError, match="there is no joint 'pivot'"):
+        sweep.reaction("pivot")
+    with pytest.raises(KeyError, match="there is no element 'damper'.*'pivot bushing', 'spring' or 'wheel force'"):
+        sweep.element("damper")
+    # The ground does not move.
+    assert numpy.array_equal(sweep.point("chassis", [1, 2, 3]), numpy.tile([1.0, 2, 3], (3, 1)))
