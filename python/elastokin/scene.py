@@ -369,7 +369,8 @@ class Scene:
     ) -> "SceneSweep":
         """The equilibrium at load parameter ``t``, by Newton's method from the design pose, as a sweep of
         one step. A load far from design may need the path to it: use :meth:`sweep` then."""
-        _path(t, t, 1)
+        if isinstance(t, bool) or not isinstance(t, numbers.Real) or not numpy.isfinite(t):
+            raise ValueError(f"t must be a finite load parameter, got {t!r}")
         return SceneSweep(
             self._native.solve(
                 float(t), force_tolerance=float(force_tolerance), constraint_tolerance=float(constraint_tolerance)

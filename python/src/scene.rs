@@ -183,6 +183,16 @@ impl Scene {
         Ok(())
     }
 
+    /// The loaded body: a moving one (a load on the ground would do nothing).
+    fn loaded_body(&self, item: &str, name: &str) -> PyResult<BodyRef> {
+        match self.body_ref(item, name)? {
+            BodyRef::Ground => Err(ModelError::new_err(format!(
+                "'{item}': a load on the ground (\"{name}\") moves nothing: put it on one of the scene's bodies"
+            ))),
+            body => Ok(body),
+        }
+    }
+
     fn add(&mut self, kind: ElementKind, element: impl elastokin_core::ForceElement + 'static) -> PyResult<()> {
         self.model.add_element(element).map_err(model_error)?;
         self.kinds.push(kind);
@@ -391,7 +401,7 @@ impl Scene {
         force: [f64; 3],
         constant: Option<[f64; 3]>,
     ) -> PyResult<()> {
-        let body = self.body_ref(name, body)?;
+        let body = self.loaded_body(name, body)?;
         self.fresh(name)?;
         let at = finite(name, "point 'at'", at)?;
         let force = finite(name, "force", force)?;
@@ -404,7 +414,7 @@ impl Scene {
     /// Adds a moment on `body`, fixed in direction: `constant + t · torque` (N·m, global).
     #[pyo3(signature = (name, body, torque, constant=None))]
     fn torque(&mut self, name: &str, body: &str, torque: [f64; 3], constant: Option<[f64; 3]>) -> PyResult<()> {
-        let body = self.body_ref(name, body)?;
+        let body = self.loaded_body(name, body)?;
         self.fresh(name)?;
         let torque = finite(name, "torque", torque)?;
         let constant = constant.map(|c| finite(name, "constant", c)).transpose()?.unwrap_or_default();
