@@ -337,19 +337,26 @@ class Scene:
         steps: int,
         *,
         mode: str = "corrected",
+        through_limits: bool = False,
+        arc_step: Optional[float] = None,
         force_tolerance: float = 1e-9,
         constraint_tolerance: float = 1e-10,
     ) -> "SceneSweep":
         """Walks the load parameter ``t`` from ``start`` to ``end`` in ``steps`` equal steps, from the
-        equilibrium at ``start`` found from the design pose.
+        equilibrium at ``start`` found from the design pose, as the K&C analyses walk theirs.
 
         ``mode`` "corrected": a predictor and Newton iterations to the exact equilibrium at every step;
-        "paper": the paper's linear recurrence, no iterations. ``force_tolerance`` is relative to the
-        largest force in the scene, ``constraint_tolerance`` in m and rad. A path that meets a limit point
-        (a load the scene cannot carry) stops there: the result holds the steps before it and says where in
-        :attr:`SceneSweep.limit`. Raises ModelError for a scene the library refuses as built (a body held
-        by nothing), AnalysisError when the solver finds no equilibrium or a motion nothing resists (naming
-        the body)."""
+        "paper": the paper's linear recurrence, no iterations. A path that meets a limit point (a load the
+        scene cannot carry, where it snaps through or gives way) stops there, its last row the equilibrium
+        at the limit point, and says so: :attr:`SceneSweep.limit` is its load parameter and
+        :attr:`SceneSweep.complete` is False. With ``through_limits`` it goes on through the limit point by
+        arc length instead (exact equilibria, the load parameter falling and rising again as the path
+        turns), the first arc-length step changing the load by ``arc_step`` (default: one load step),
+        until it leaves the range. ``force_tolerance`` is relative to the largest force in the scene,
+        ``constraint_tolerance`` in m and rad.
+
+        Raises ModelError for a scene the library refuses as built (a body held by nothing),
+        AnalysisError when the solver finds no equilibrium or a motion nothing resists (naming the body)."""
         start, end, steps = _path(start, end, steps)
         if mode not in ("corrected", "paper"):
             raise ValueError(f"mode '{mode}': give 'corrected' or 'paper'")
@@ -359,6 +366,8 @@ class Scene:
                 end,
                 steps,
                 mode=mode,
+                through_limits=bool(through_limits),
+                arc_step=_number(arc_step, "arc_step", "sweep"),
                 force_tolerance=float(force_tolerance),
                 constraint_tolerance=float(constraint_tolerance),
             )
@@ -424,24 +433,21 @@ class SceneSweep:
 
     @property
     def limit(self) -> Optional[float]:
-        """The load parameter of the limit point where the path stopped, None when it reached its end."""
+        """The load parameter of the limit point the path met (to 1e-6 of the range), None when it met
+        none. Without ``through_limits`` the rows stop there, the last one the equilibrium at it."""
         return self._native.limit
 
     @property
-    def beyond(self) -> Optional[float]:
-        """The nearest load parameter past the limit point without an equilibrium (None without a limit
-        point): the fold lies between :attr:`limit` and this."""
-        return self._native.beyond
+    def arc_length_from(self) -> Optional[int]:
+        """With ``through_limits``, the index of the first row walked by arc length past the limit point
+        (the rows before it are the sweep's own steps); None when the path went through none."""
+        return self._native.arc_length_from
 
     @property
     def complete(self) -> bool:
-        """Whether the path was walked to its end (it met no limit point)."""
-        return self._native.limit is None
-
-    def at_limit(self) -> Optional["SceneSweep"]:
-        """The equilibrium at the limit point as a sweep of one step, None when the path reached its end."""
-        native = self._native.at_limit()
-        return None if native is None else SceneSweep(native)
+        """Whether the path covered its range: it met no limit point, or went on through it by arc length
+        until it left the range."""
+        return self._native.complete
 
     @property
     def bodies(self) -> List[str]:
@@ -489,5 +495,10 @@ class SceneSweep:
     def __repr__(self) -> str:
         t = self.t
         span = f"t {t[0]:g} to {t[-1]:g}" if len(t) else "no steps"
-        end = "" if self.limit is None else f", stopped at the limit point t = {self.limit:g}"
+        if self.limit is None:
+            end = ""
+        elif self.arc_length_from is None:
+            end = f", stopped at the limit point t = {self.limit:g}"
+        else:
+            end = f", through the limit point t = {self.limit:g}"
         return f"<elastokin.SceneSweep {self.mode}: {len(t)} steps, {span}{end}>"

@@ -9,9 +9,11 @@ use crate::{AnalysisError, ModelError};
 use elastokin_core::{BodyRef, ElementReport, JointKind, Model, Pose, Vec3};
 use elastokin_elements::{Bushing, BushingSpec, PointForce, PointTorque, RotationLaw};
 use elastokin_solver::{JointReaction, LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult};
+use elastokin_suspensions::analysis::{walk, SweepLimit};
 use elastokin_suspensions::general::{
     bushing_frame, joint_spec, Axis, BushingDef, JointGeometry, Place, SpringDef, Stiffness, StopDef, StopType, CHASSIS,
 };
+use elastokin_suspensions::kc::MAX_STEPS;
 use elastokin_suspensions::Side;
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::{PyKeyError, PyValueError};
@@ -441,8 +443,12 @@ impl Scene {
     }
 
     /// Walks the load parameter from `start` to `end` in `steps` equal steps, in `mode` ("corrected" or
-    /// "paper"), from the equilibrium at `start` found from the design pose.
-    #[pyo3(signature = (start, end, steps, mode="corrected", force_tolerance=1e-9, constraint_tolerance=1e-10))]
+    /// "paper"), from the equilibrium at `start` found from the design pose, as the K&C analyses walk
+    /// theirs: at a limit point the rows stop with the equilibrium there, or, `through_limits`, go on
+    /// through it by arc length, the first arc-length step changing the load by `arc_step` (default one
+    /// load step).
+    #[pyo3(signature = (start, end, steps, mode="corrected", through_limits=false, arc_step=None,
+                        force_tolerance=1e-9, constraint_tolerance=1e-10))]
     fn sweep(
         &self,
         py: Python<'_>,
@@ -450,6 +456,8 @@ impl Scene {
         end: f64,
         steps: usize,
         mode: &str,
+        through_limits: bool,
+        arc_step: Option<f64>,
         force_tolerance: f64,
         constraint_tolerance: f64,
     ) -> PyResult<SceneSweep> {
@@ -458,11 +466,23 @@ impl Scene {
             "paper" => Mode::Paper,
             _ => return Err(PyValueError::new_err(format!("mode '{mode}': give 'corrected' or 'paper'"))),
         };
+        if steps == 0 || steps > MAX_STEPS {
+            return Err(PyValueError::new_err(format!("steps must be from 1 to {MAX_STEPS}, got {steps}")));
+        }
+        if let Some(step) = arc_step.filter(|v| !(v.is_finite() && *v > 0.0)) {
+            return Err(PyValueError::new_err(format!(
+                "arc_step must be a positive change of the load parameter, got {step}"
+            )));
+        }
+        let through = through_limits.then(|| arc_step.unwrap_or((end - start).abs() / steps as f64));
         let options = Self::options(force_tolerance, constraint_tolerance)?;
         let model = &self.model;
-        let sweep =
-            solve_detached(py, || StaticSolver::new(model, options)?.sweep(LoadPath::new(start, end, steps), mode))?;
-        Ok(SceneSweep::new(self, sweep.mode, sweep.steps, sweep.limit.map(|l| (l.t, l.beyond, l.step))))
+        let walked = solve_detached(py, || {
+            let mut solver = StaticSolver::new(model, options)?;
+            let mut state = solver.design_state(start);
+            walk(&mut solver, &mut state, LoadPath::new(start, end, steps), mode, through)
+        })?;
+        Ok(SceneSweep::new(self, mode, walked.steps, walked.limit))
     }
 
     /// The equilibrium at load parameter `t`, found by Newton's method from the design pose.
@@ -495,19 +515,17 @@ pub struct SceneSweep {
     steps: Vec<StepResult>,
     reactions: Vec<Vec<JointReaction>>,
     reports: Vec<Vec<ElementReport>>,
-    /// Where the path stopped at a limit point: its load parameter, the nearest without equilibrium, and
-    /// the equilibrium there.
-    limit: Option<(f64, f64, StepResult)>,
-    /// The scene's model is not kept (the scene may grow); what the limit point's results need is.
-    limit_results: Option<(Vec<JointReaction>, Vec<ElementReport>)>,
+    /// Where the path met a limit point, and whether it went on through it.
+    limit: Option<SweepLimit>,
 }
 
 impl SceneSweep {
-    fn new(scene: &Scene, mode: Mode, steps: Vec<StepResult>, limit: Option<(f64, f64, StepResult)>) -> Self {
+    /// The results of `steps` of `scene`, read now: the sweep keeps no reference to the scene, which may
+    /// grow after it.
+    fn new(scene: &Scene, mode: Mode, steps: Vec<StepResult>, limit: Option<SweepLimit>) -> Self {
         let model = &scene.model;
         let reactions = steps.iter().map(|s| s.joint_reactions(model)).collect();
         let reports = steps.iter().map(|s| s.element_reports(model)).collect();
-        let limit_results = limit.as_ref().map(|(_, _, s)| (s.joint_reactions(model), s.element_reports(model)));
         SceneSweep {
             mode,
             bodies: model.bodies().iter().map(|b| (b.name.clone(), b.design_pose)).collect(),
@@ -517,7 +535,6 @@ impl SceneSweep {
             reactions,
             reports,
             limit,
-            limit_results,
         }
     }
 
@@ -581,33 +598,26 @@ impl SceneSweep {
         PyArray1::from_vec(py, self.steps.iter().map(|s| s.constraint_residual).collect())
     }
 
-    /// The load parameter of the limit point where the path stopped, or None when it reached its end.
+    /// The load parameter of the limit point the path met (located to `LIMIT_POINT_TOLERANCE` of the
+    /// range), or None when it met none. Without `through_limits` the rows stop there, the last one the
+    /// equilibrium at the limit point.
     #[getter]
     fn limit(&self) -> Option<f64> {
-        self.limit.as_ref().map(|l| l.0)
+        self.limit.map(|l| l.at)
     }
 
-    /// The nearest load parameter past the limit point at which no equilibrium was found, or None.
+    /// With `through_limits`, the index of the first row walked by arc length past the limit point;
+    /// None when the path went through none.
     #[getter]
-    fn beyond(&self) -> Option<f64> {
-        self.limit.as_ref().map(|l| l.1)
+    fn arc_length_from(&self) -> Option<usize> {
+        self.limit.and_then(|l| l.through).map(|r| r.first_row)
     }
 
-    /// The equilibrium at the limit point, as a one-step sweep; None when the path reached its end.
-    fn at_limit(&self) -> Option<SceneSweep> {
-        let (_, _, step) = self.limit.as_ref()?;
-        let (reactions, reports) = self.limit_results.clone()?;
-        Some(SceneSweep {
-            mode: self.mode,
-            bodies: self.bodies.clone(),
-            joints: self.joints.clone(),
-            elements: self.elements.clone(),
-            steps: vec![step.clone()],
-            reactions: vec![reactions],
-            reports: vec![reports],
-            limit: None,
-            limit_results: None,
-        })
+    /// Whether the path covered its range: it met no limit point, or went on through it by arc length
+    /// until it left the range (rather than after the most steps allowed).
+    #[getter]
+    fn complete(&self) -> bool {
+        self.limit.is_none_or(|l| l.through.is_some_and(|r| r.left_range))
     }
 
     /// The bodies' names.

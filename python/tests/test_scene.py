@@ -4,6 +4,7 @@ repository's tests/closed_form.rs and tests/common.rs), and equilibrium itself (
 a body sum to zero). Each tolerance carries, in a comment, the error the test measured.
 """
 
+import doctest
 import math
 import subprocess
 import threading
@@ -399,37 +400,70 @@ def test_slider_crank_matches_virtual_work():
     assert numpy.linalg.norm(force[-1] - expected) < 1e-13 * numpy.linalg.norm(expected)  # measured 3.1e-15 relative
 
 
-def test_a_snap_through_stops_at_its_limit_point_and_says_so():
-    """Two bars (springs) from the chassis to an apex on a vertical guide, pressed down: the load peaks at
-    the apex height z* with L(z*)³ = L₀ a² and F_max = 2 k z* (L₀ / L − 1). Ramped to F_max / 0.77 the
-    path folds at t = 0.77; the sweep stops there and says so."""
-    a, h, k = 0.3, 0.05, 1e5
-    l0 = math.hypot(a, h)
-    length = (l0 * a * a) ** (1 / 3)
-    z_star = math.sqrt(length * length - a * a)
-    f_max = 2 * k * z_star * (l0 / length - 1)
-    t_star = 0.77
+# Two bars (springs of rate K_BAR, free at design) from the chassis at (±A_BAR, 0, 0) to an apex on a
+# vertical guide at height H_BAR, pressed down: the von Mises truss. At apex height z each bar is
+# L(z) = √(a² + z²) long and pushes with k (L₀ − L), so the load that holds the apex there is
+# F(z) = 2 k z (L₀ / L − 1). It peaks where L³ = L₀ a², at z*, and F(z*) = F_max.
+A_BAR, H_BAR, K_BAR = 0.3, 0.05, 1e5
+
+
+def truss_load(z):
+    l0 = math.hypot(A_BAR, H_BAR)
+    return 2 * K_BAR * z * (l0 / numpy.hypot(A_BAR, z) - 1)
+
+
+def truss_peak():
+    """(z*, F_max)."""
+    length = (math.hypot(A_BAR, H_BAR) * A_BAR * A_BAR) ** (1 / 3)
+    z_star = math.sqrt(length * length - A_BAR * A_BAR)
+    return z_star, truss_load(z_star)
+
+
+def truss(press):
     scene = elastokin.Scene()
-    scene.body("apex", at=[0, 0, h])
-    scene.joint("guide", "translational", bodies=("chassis", "apex"), at=[0, 0, h], axis=[0, 0, 1])
+    scene.body("apex", at=[0, 0, H_BAR])
+    scene.joint("guide", "translational", bodies=("chassis", "apex"), at=[0, 0, H_BAR], axis=[0, 0, 1])
     for side in (-1, 1):
-        scene.spring(f"bar {side}", bodies=("chassis", "apex"), from_=[side * a, 0, 0], to=[0, 0, h], rate=k,
-                     design_force=0.0)
-    scene.force("press", body="apex", at=[0, 0, h], force=[0, 0, -f_max / t_star])
+        scene.spring(f"bar {side}", bodies=("chassis", "apex"), from_=[side * A_BAR, 0, 0], to=[0, 0, H_BAR],
+                     rate=K_BAR, design_force=0.0)
+    scene.force("press", body="apex", at=[0, 0, H_BAR], force=[0, 0, -press])
+    return scene
+
+
+def test_a_snap_through_stops_at_its_limit_point_and_says_so():
+    """Ramped to F_max / 0.77 the truss's path folds at t = 0.77: the sweep stops there and says so, its
+    last row the equilibrium at the limit point."""
+    z_star, f_max = truss_peak()
+    t_star = 0.77
+    scene = truss(f_max / t_star)
     for mode in ("corrected", "paper"):
         sweep = scene.sweep(0.0, 1.0, 20, mode=mode)
-        assert not sweep.complete and len(sweep) < 21 and sweep.t[-1] < t_star
-        # The fold lies between the last equilibrium found and the first load without one, 1e-6 of the
-        # range apart (the library's LIMIT_POINT_TOLERANCE).
-        assert sweep.limit <= t_star + 1e-12 <= sweep.beyond + 2e-12  # limit measured 3.1e-7 below t*
-        assert sweep.beyond - sweep.limit <= 1e-6 + 1e-15
-        at = sweep.at_limit()
-        assert len(at) == 1 and at.t[0] == sweep.limit
+        assert not sweep.complete and sweep.arc_length_from is None and len(sweep) < 21
+        # Located to 1e-6 of the range (the library's LIMIT_POINT_TOLERANCE), on the near side.
+        assert 0 <= t_star - sweep.limit < 1e-6  # measured 3.1e-7
+        assert sweep.t[-1] == sweep.limit and sweep.t[-2] < sweep.limit
         # Near a fold the height goes as the square root of the load left: 3e-7 of it leaves 1.5e-5 m.
-        assert abs(at.position("apex")[0, 2] - z_star) < 1e-4  # measured 1.5e-5 m
-        assert "limit point" in repr(sweep)
+        assert abs(sweep.position("apex")[-1, 2] - z_star) < 1e-4  # measured 1.5e-5 m
+        assert "stopped at the limit point" in repr(sweep)
     done = scene.sweep(0.0, 0.7, 7)
-    assert done.complete and done.limit is None and done.beyond is None and done.at_limit() is None
+    assert done.complete and done.limit is None and done.arc_length_from is None
+
+
+def test_a_snap_through_followed_by_arc_length_stays_on_the_closed_form_path():
+    """Through the fold by arc length: every row, before and past the limit point, is an equilibrium of the
+    closed form, F(z) = t · F_ramp, while the apex passes below z* and the load falls after the peak."""
+    z_star, f_max = truss_peak()
+    press = f_max / 0.77
+    sweep = truss(press).sweep(0.0, 1.0, 20, through_limits=True, **TIGHT)
+    first = sweep.arc_length_from
+    assert first is not None and 0 < first < len(sweep) and abs(sweep.limit - 0.77) < 1e-6
+    z = sweep.position("apex")[:, 2]
+    assert numpy.abs(truss_load(z) - sweep.t * press).max() < 1e-7  # measured 3.5e-9 N of 68 N
+    # Past the peak the apex goes below z* and the load it holds falls, through zero (the bars level) until
+    # the path leaves the range.
+    assert z[first:].min() < 0 < z_star < z[first - 1] and sweep.t[first:].max() < 0.77
+    assert sweep.complete and not 0.0 <= sweep.t[-1] <= 1.0
+    assert "through the limit point" in repr(sweep)
 
 
 def test_sweeps_in_threads_give_the_serial_numbers():
@@ -565,3 +599,11 @@ def test_results_name_what_they_have():
         sweep.element("damper")
     # The ground does not move.
     assert numpy.array_equal(sweep.point("chassis", [1, 2, 3]), numpy.tile([1.0, 2, 3], (3, 1)))
+
+
+def test_the_module_s_example_runs_as_written():
+    """elastokin.scene's docstring: a slider on a 20 kN/m spring pushed by 100 N moves 5 mm."""
+    import elastokin.scene
+
+    result = doctest.testmod(elastokin.scene)
+    assert result.attempted >= 8 and result.failed == 0
