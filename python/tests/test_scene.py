@@ -349,37 +349,56 @@ def test_distance_link_carries_the_load_along_itself():
     assert numpy.abs(sweep.position("arm") - [0.25, 0, 0]).max() < 1e-15  # measured 1.4e-16 m: nothing moves
 
 
-def test_slider_crank_matches_virtual_work():
-    """tests/closed_form.rs's slider-crank: crank on a revolute, rod (spherical at the crank, universal at
-    the slider), slider on a translational guide against a spring, a torque on the crank; virtual work
-    gives the crank angle and the rod's force."""
-    r, l, k, m = 0.1, 0.3, 5e4, 150.0
-    x_of = lambda th: r * math.cos(th) + math.sqrt(l * l - (r * math.sin(th)) ** 2)  # noqa: E731
-    dx_of = lambda th: -r * math.sin(th) - r * r * math.sin(th) * math.cos(th) / math.sqrt(  # noqa: E731
-        l * l - (r * math.sin(th)) ** 2
+# tests/closed_form.rs's slider-crank: a crank of radius R_CRANK on a revolute about +y at the origin, a
+# rod of length L_ROD (spherical at the crank pin, universal at the slider), a slider on a translational
+# guide along x against a return spring to a chassis seat at (XG, 0, 0), compressed 20 mm at design, and a
+# torque M_CRANK about +y on the crank. At crank angle θ the slider is at x(θ) = R cos θ + √(L² − R² sin² θ).
+R_CRANK, L_ROD, K_RETURN, M_CRANK, THETA0, XG = 0.1, 0.3, 5e4, 150.0, 0.6, 0.7
+
+
+def slider_x(th):
+    return R_CRANK * math.cos(th) + math.sqrt(L_ROD**2 - (R_CRANK * math.sin(th)) ** 2)
+
+
+def slider_dx(th):
+    return -R_CRANK * math.sin(th) - R_CRANK**2 * math.sin(th) * math.cos(th) / math.sqrt(
+        L_ROD**2 - (R_CRANK * math.sin(th)) ** 2
     )
-    theta0, xg = 0.6, 0.7
-    xb0 = x_of(theta0)
-    pin = r * numpy.array([math.cos(theta0), 0, -math.sin(theta0)])
-    b = numpy.array([xb0, 0, 0])
-    free = (xg - xb0) + 0.02
+
+
+SLIDER_FREE = (XG - slider_x(THETA0)) + 0.02
+CRANK_PIN = R_CRANK * numpy.array([math.cos(THETA0), 0, -math.sin(THETA0)])
+
+
+def spring_on_slider(th):
+    """The return spring's push on the slider along x at crank angle θ (it pushes the slider back)."""
+    return -K_RETURN * (SLIDER_FREE - (XG - slider_x(th)))
+
+
+def slider_crank():
+    b = numpy.array([slider_x(THETA0), 0, 0])
     scene = elastokin.Scene()
-    scene.body("crank", at=pin / 2)
-    scene.body("rod", at=(pin + b) / 2)
+    scene.body("crank", at=CRANK_PIN / 2)
+    scene.body("rod", at=(CRANK_PIN + b) / 2)
     scene.body("slider", at=b)
     scene.joint("crank bearing", "revolute", bodies=("chassis", "crank"), at=[0, 0, 0], axis=[0, 1, 0])
-    scene.joint("crank pin", "spherical", bodies=("crank", "rod"), at=pin)
+    scene.joint("crank pin", "spherical", bodies=("crank", "rod"), at=CRANK_PIN)
     scene.joint("wrist pin", "universal", bodies=("rod", "slider"), at=b, axis=[0, 1, 0], axis_j=[0, 0, 1])
     scene.joint("slideway", "translational", bodies=("chassis", "slider"), at=b, axis=[1, 0, 0])
-    scene.spring("return spring", bodies=("slider", "chassis"), from_=b, to=[xg, 0, 0], rate=k, free_length=free)
-    scene.torque("crank torque", body="crank", torque=[0, m, 0])
-    sweep = scene.sweep(0.0, 1.0, 8, **TIGHT)
+    scene.spring("return spring", bodies=("slider", "chassis"), from_=b, to=[XG, 0, 0], rate=K_RETURN,
+                 free_length=SLIDER_FREE)
+    scene.torque("crank torque", body="crank", torque=[0, M_CRANK, 0])
+    return scene
 
-    def fx_of(th):
-        return -k * (free - (xg - x_of(th)))
+
+def test_slider_crank_matches_virtual_work():
+    """Virtual work, M + F_x dx/dθ = 0, solved for θ by bisection, gives the crank angle; the rod is a
+    two-force member, so the bearing's reaction on the crank is along it, its size from the slider's
+    x-balance."""
+    sweep = slider_crank().sweep(0.0, 1.0, 8, **TIGHT)
 
     def g(th):
-        return m + fx_of(th) * dx_of(th)
+        return M_CRANK + spring_on_slider(th) * slider_dx(th)
 
     lo, hi = -0.9, 1.5
     for _ in range(200):
@@ -389,15 +408,36 @@ def test_slider_crank_matches_virtual_work():
         else:
             hi = mid
     theta = 0.5 * (lo + hi)
-    got = theta0 + sweep.rotation("crank")[-1, 1]
+    got = THETA0 + sweep.rotation("crank")[-1, 1]
     assert abs(got - theta) < 1e-14  # measured 6.7e-16 rad
-    assert abs(theta - theta0) > 0.3
-    assert abs(sweep.position("slider")[-1, 0] - x_of(theta)) < 1e-14  # measured 1.1e-16 m
-    a = r * numpy.array([math.cos(theta), 0, -math.sin(theta)])
-    e_ab = (numpy.array([x_of(theta), 0, 0]) - a) / l
-    expected = e_ab * (-fx_of(theta) / e_ab[0])
+    assert abs(theta - THETA0) > 0.3
+    assert abs(sweep.position("slider")[-1, 0] - slider_x(theta)) < 1e-14  # measured 1.1e-16 m
+    a = R_CRANK * numpy.array([math.cos(theta), 0, -math.sin(theta)])
+    e_ab = (numpy.array([slider_x(theta), 0, 0]) - a) / L_ROD
+    expected = e_ab * (-spring_on_slider(theta) / e_ab[0])
     force, _ = sweep.reaction("crank bearing")
-    assert numpy.linalg.norm(force[-1] - expected) < 1e-13 * numpy.linalg.norm(expected)  # measured 3.1e-15 relative
+    assert numpy.linalg.norm(force[-1] - expected) < 1e-13 * numpy.linalg.norm(expected)  # measured 3.1e-15 rel.
+
+
+def test_joint_reactions_and_element_forces_on_each_body_balance():
+    """Conservation on the slider-crank, body by body and step by step: the forces on each body sum to zero,
+    and the moments on the crank about the origin. A joint's reaction is reported on its second body; on its
+    first body it acts with the opposite sign (and the spring reports its force on the chassis)."""
+    sweep = slider_crank().sweep(0.0, 1.0, 8)
+    bearing, bearing_moment = sweep.reaction("crank bearing")
+    pin, pin_moment = sweep.reaction("crank pin")
+    wrist, _ = sweep.reaction("wrist pin")
+    slideway, _ = sweep.reaction("slideway")
+    spring = sweep.element("return spring")
+    assert numpy.abs(bearing - pin).max() < 1e-12  # the crank; measured 0 N
+    assert numpy.abs(pin - wrist).max() < 1e-12  # the rod; measured 0 N
+    assert numpy.abs(wrist + slideway - spring["force"]).max() < 1e-10  # the slider; measured 1.4e-12 N
+    torque = sweep.t[:, None] * [0, M_CRANK, 0]
+    at_pin = sweep.point("crank", CRANK_PIN)
+    crank = bearing_moment + torque - numpy.cross(at_pin, pin) - pin_moment
+    assert numpy.abs(crank).max() < 1e-7  # measured 2.2e-9 N·m of 150 N·m
+    # A ball joint carries no moment.
+    assert numpy.abs(pin_moment).max() < 1e-12  # measured 1.4e-14 N·m
 
 
 # Two bars (springs of rate K_BAR, free at design) from the chassis at (±A_BAR, 0, 0) to an apex on a
