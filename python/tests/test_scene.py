@@ -116,7 +116,7 @@ def test_forces_and_moments_on_the_swing_arm_balance():
     )
     assert numpy.abs(force).max() < 1e-6  # measured 1.4e-7 N of 5e3 N (the solver's tolerance: 5e-6 N)
     assert numpy.abs(moment).max() < 1e-6  # measured 7.7e-8 N·m
-    # The imbalance is the force residual the solver reports, to the digit.
+    # Step by step, the imbalance is within the force residual the solver reports.
     assert (numpy.abs(force).max(axis=1) <= sweep.force_residual * (1 + 1e-9)).all()
 
 
@@ -153,7 +153,7 @@ def test_slider_on_a_spring_moves_by_force_over_rate_and_its_guide_takes_the_res
 
 
 def test_bump_stop_takes_over_past_its_clearance():
-    """The slider of the test above, with a bump stop beside its spring: free over the clearance c, then
+    """A slider like the one above, with a bump stop beside its spring: free over the clearance c, then
     the stop's rate adds to the spring's, x = c + (F − k c) / (k + k_stop)."""
     k, k_stop, c, f = 2e4, 1e5, 0.02, 1000.0
     origin = numpy.array([0.0, 0.4, 0.2])
