@@ -36,6 +36,7 @@ from ._native import (
     Error,
     ModelError,
 )
+from .scene import Scene, SceneSweep
 
 __all__ = [
     "AnalysisError",
@@ -50,6 +51,8 @@ __all__ = [
     "Model",
     "ModelError",
     "Result",
+    "Scene",
+    "SceneSweep",
     "Study",
     "analyses",
     "batch",

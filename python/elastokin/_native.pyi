@@ -68,3 +68,112 @@ class Model:
         variants: Union[str, Sequence[Union[str, Tuple[Optional[str], Sequence[Tuple[str, str]]]]]],
         threads: Optional[int] = None,
     ) -> List[Dict[str, Any]]: ...
+
+_Vector3 = Tuple[float, float, float]
+_Stiffness = Union[float, List[Tuple[float, float]]]
+_Rows = numpy.typing.NDArray[numpy.float64]
+
+class Scene:
+    def __init__(self) -> None: ...
+    def body(self, name: str, at: _Vector3) -> str: ...
+    def joint(
+        self,
+        name: str,
+        kind: str,
+        bodies: Tuple[str, str],
+        at: Optional[_Vector3] = None,
+        to: Optional[_Vector3] = None,
+        axis: Optional[_Vector3] = None,
+        axis_j: Optional[_Vector3] = None,
+    ) -> None: ...
+    def bushing(
+        self,
+        name: str,
+        bodies: Tuple[str, str],
+        at: _Vector3,
+        axis: Optional[_Vector3] = None,
+        y_axis: Optional[_Vector3] = None,
+        radial: Optional[_Stiffness] = None,
+        axial: Optional[_Stiffness] = None,
+        torsion: Optional[_Stiffness] = None,
+        conical: Optional[_Stiffness] = None,
+        translation: Optional[Sequence[_Stiffness]] = None,
+        rotation: Optional[Sequence[_Stiffness]] = None,
+        law: str = "energy",
+        preload_force: Optional[_Vector3] = None,
+        preload_torque: Optional[_Vector3] = None,
+    ) -> None: ...
+    def spring(
+        self,
+        name: str,
+        bodies: Tuple[str, str],
+        from_: _Vector3,
+        to: _Vector3,
+        rate: Optional[float] = None,
+        curve: Optional[List[Tuple[float, float]]] = None,
+        design_force: Optional[float] = None,
+        free_length: Optional[float] = None,
+        preload: Optional[float] = None,
+    ) -> None: ...
+    def stop(
+        self,
+        name: str,
+        kind: str,
+        bodies: Tuple[str, str],
+        from_: _Vector3,
+        to: _Vector3,
+        clearance: float,
+        curve: List[Tuple[float, float]],
+    ) -> None: ...
+    def force(
+        self, name: str, body: str, at: _Vector3, force: _Vector3, constant: Optional[_Vector3] = None
+    ) -> None: ...
+    def torque(self, name: str, body: str, torque: _Vector3, constant: Optional[_Vector3] = None) -> None: ...
+    @property
+    def bodies(self) -> List[str]: ...
+    @property
+    def joints(self) -> List[str]: ...
+    @property
+    def elements(self) -> List[str]: ...
+    def sweep(
+        self,
+        start: float,
+        end: float,
+        steps: int,
+        mode: str = "corrected",
+        through_limits: bool = False,
+        arc_step: Optional[float] = None,
+        force_tolerance: float = 1e-9,
+        constraint_tolerance: float = 1e-10,
+    ) -> SceneSweep: ...
+    def solve(self, t: float, force_tolerance: float = 1e-9, constraint_tolerance: float = 1e-10) -> SceneSweep: ...
+
+class SceneSweep:
+    @property
+    def mode(self) -> str: ...
+    @property
+    def t(self) -> numpy.typing.NDArray[numpy.float64]: ...
+    @property
+    def iterations(self) -> numpy.typing.NDArray[numpy.int64]: ...
+    @property
+    def force_residual(self) -> numpy.typing.NDArray[numpy.float64]: ...
+    @property
+    def constraint_residual(self) -> numpy.typing.NDArray[numpy.float64]: ...
+    @property
+    def limit(self) -> Optional[float]: ...
+    @property
+    def arc_length_from(self) -> Optional[int]: ...
+    @property
+    def complete(self) -> bool: ...
+    @property
+    def bodies(self) -> List[str]: ...
+    @property
+    def joints(self) -> List[str]: ...
+    @property
+    def elements(self) -> List[Tuple[str, str]]: ...
+    def position(self, body: str) -> _Rows: ...
+    def rotation(self, body: str) -> _Rows: ...
+    def point(self, body: str, at: _Vector3) -> _Rows: ...
+    def reaction(self, joint: str) -> Tuple[_Rows, _Rows]: ...
+    def element(self, name: str) -> Dict[str, Any]: ...
+    def __len__(self) -> int: ...

@@ -17,6 +17,8 @@ use pyo3::types::{PyDict, PyFloat, PyList, PyString};
 use rayon::prelude::*;
 use std::path::Path;
 
+mod scene;
+
 create_exception!(elastokin._native, Error, PyException, "Every error elastokin raises.");
 create_exception!(
     elastokin._native,
@@ -373,6 +375,8 @@ fn parameter(name: &str) -> PyResult<&'static str> {
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_class::<Model>()?;
+    m.add_class::<scene::Scene>()?;
+    m.add_class::<scene::SceneSweep>()?;
     m.add_function(wrap_pyfunction!(analyses, m)?)?;
     m.add_function(wrap_pyfunction!(parameter, m)?)?;
     m.add("MAX_VARIANTS", batch::MAX_VARIANTS)?;

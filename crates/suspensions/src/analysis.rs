@@ -168,15 +168,19 @@ pub struct SweepOutput<R> {
 }
 
 /// The equilibria of a walked load path, and where it met a limit point.
-pub(crate) struct Walked {
-    steps: Vec<StepResult>,
-    limit: Option<SweepLimit>,
+#[derive(Debug, Clone, PartialEq)]
+pub struct Walked {
+    /// The equilibria in the order of the path: the start, then every step; at a limit point, the
+    /// equilibrium there last, or the path on through it (see [`SweepLimit`]).
+    pub steps: Vec<StepResult>,
+    /// Where the path met a limit point, if it did.
+    pub limit: Option<SweepLimit>,
 }
 
-/// Walks `path` from `state` in `mode`. At a limit point the rows stop with the equilibrium there, or,
-/// with `through` (see [`SweepExtras::through_limits`]), go on through it by arc length from the last
-/// step before it.
-pub(crate) fn walk(
+/// Walks `path` from `state` in `mode`, as every analysis walks its sweep. At a limit point the rows
+/// stop with the equilibrium there, or, with `through` (see [`SweepExtras::through_limits`]), go on
+/// through it by arc length from the last step before it.
+pub fn walk(
     solver: &mut StaticSolver,
     state: &mut State,
     path: LoadPath,

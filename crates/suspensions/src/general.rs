@@ -384,9 +384,11 @@ impl BushingDef {
         }
     }
 
-    /// `(translation, rotation)` characteristics along and about x, y, z, from whichever set is given;
-    /// the error names what is missing or out of range.
-    fn rates(&self, key: &str) -> Result<([Characteristic; 3], [Characteristic; 3]), ModelError> {
+    /// `(translation, rotation)` characteristics along and about x, y, z, from whichever set is given
+    /// (a cylindrical bushing's radial rate across x, axial along it, torsion about it, conical across it),
+    /// each rate checked against the model file's ranges; the error names what is missing or out of range,
+    /// as `{key} ({name})…` (`key` is where the entry is, `bushings[2]` in a model file).
+    pub fn rates(&self, key: &str) -> Result<([Characteristic; 3], [Characteristic; 3]), ModelError> {
         let cylindrical = [&self.radial, &self.axial, &self.torsion, &self.conical];
         let six = [&self.translation, &self.rotation];
         let refuse = |why: &str| {
@@ -466,6 +468,56 @@ pub struct SpringDef {
     pub preload: Option<f64>,
 }
 
+impl SpringDef {
+    /// The coil spring this entry describes, named `name`, between `bodies` from the seat `from` on the
+    /// first to `to` on the second (global, at design): either the rate or the curve, either the push at
+    /// design or the free length, the rate and the push checked against the model file's ranges. `key`
+    /// names the entry in errors (`springs[0] (spring)` in a model file).
+    pub fn spring(
+        &self,
+        key: &str,
+        name: &str,
+        bodies: [BodyRef; 2],
+        from: Vec3,
+        to: Vec3,
+    ) -> Result<CoilSpring, ModelError> {
+        let [bi, bj] = bodies;
+        let refuse = |why: &str| Err(ModelError::OutOfRange { item: key.to_string(), why: why.to_string() });
+        if self.preload.is_some() && self.design_force.is_some() {
+            return refuse("give a preload with free_length only: with design_force the push at design includes it");
+        }
+        let spring = match (self.rate, &self.curve, self.design_force, self.free_length) {
+            (Some(_), Some(_), _, _) | (None, None, _, _) => {
+                return refuse("give either rate (N/m) or curve (push force in N against compression in m)")
+            }
+            (_, _, Some(_), Some(_)) | (_, _, None, None) => {
+                return refuse("give either design_force (N, its push at design) or free_length (m)")
+            }
+            (Some(rate), None, Some(force), None) => {
+                check_rate(&format!("{key}.rate"), rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
+                crate::corner::check_spring_force(key, rate, force, (to - from).norm())?;
+                CoilSpring::with_design_force(name, bi, from, bj, to, rate, force)?
+            }
+            (Some(rate), None, None, Some(free)) => {
+                check_rate(&format!("{key}.rate"), rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
+                CoilSpring::new(name, bi, from, bj, to, rate, free)?
+            }
+            (None, Some(points), Some(force), None) => {
+                let curve = Curve::new(&format!("{key}.curve"), points.clone())?;
+                CoilSpring::with_curve_and_design_force(name, bi, from, bj, to, curve, force)?
+            }
+            (None, Some(points), None, Some(free)) => {
+                let curve = Curve::new(&format!("{key}.curve"), points.clone())?;
+                CoilSpring::with_curve(name, bi, from, bj, to, curve, free)?
+            }
+        };
+        match self.preload {
+            Some(preload) => spring.with_preload(preload),
+            None => Ok(spring),
+        }
+    }
+}
+
 /// Bump or rebound.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -495,6 +547,20 @@ pub struct StopDef {
     pub clearance: f64,
     /// Force (N) against travel past contact (m), from `[0, 0]`.
     pub curve: Vec<[f64; 2]>,
+}
+
+impl StopDef {
+    /// The stop this entry describes, named `name`, between `bodies` along the line from `from` on the
+    /// first to `to` on the second (global, at design). `key` names the entry in errors (`stops[0] (bump
+    /// stop)` in a model file).
+    pub fn stop(&self, key: &str, name: &str, bodies: [BodyRef; 2], from: Vec3, to: Vec3) -> Result<Stop, ModelError> {
+        let [bi, bj] = bodies;
+        let curve = Curve::new(&format!("{key}.curve"), self.curve.clone())?;
+        match self.kind {
+            StopType::Bump => Stop::bump(name, bi, from, bj, to, self.clearance, curve),
+            StopType::Rebound => Stop::rebound(name, bi, from, bj, to, self.clearance, curve),
+        }
+    }
 }
 
 /// A load on a body: a force at a point and/or a moment, world-fixed in direction, swept by the `loads`
@@ -799,6 +865,91 @@ impl Resolver<'_> {
     }
 }
 
+/// The places of a joint entry, resolved: its points and axes in global coordinates at design, each
+/// present when the entry gives its key (`at`, `to`, `axis`, `axis_j`; which kind uses which is in
+/// `docs/model-file.md`).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct JointGeometry {
+    /// The hardpoint; the first body's point of a distance link, in-plane or in-line joint.
+    pub at: Option<Vec3>,
+    /// The second body's point: the far end of a distance link; the point of the plane or line.
+    pub to: Option<Vec3>,
+    /// Hinge or slide axis, plane normal, line direction, or the first body's axis.
+    pub axis: Option<Vec3>,
+    /// The second body's axis (universal, perpendicular).
+    pub axis_j: Option<Vec3>,
+}
+
+/// A driver in a model: the rig drives the wheel and the rack, a model holds joints.
+fn driver_refusal(key: &str) -> ModelError {
+    ModelError::OutOfRange {
+        item: key.to_string(),
+        why: "a driver is the rig's (wheel travel, rack travel), not the model's: use a joint".into(),
+    }
+}
+
+/// Refuses a driver (the rig's, not a model's), a key `kind` needs and is not given, and a key `kind`
+/// does not use; `given` says which of `at`, `to`, `axis` and `axis_j` are, and `key` names the entry.
+fn check_joint_keys(key: &str, kind: JointKind, given: [bool; 4]) -> Result<(), ModelError> {
+    use JointKind as T;
+    let refuse = |why: String| Err(ModelError::OutOfRange { item: key.to_string(), why });
+    let uses = match kind {
+        T::Spherical | T::Fixed => ["at"].as_slice(),
+        T::Revolute | T::Cylindrical | T::Translational => &["at", "axis"],
+        T::Universal => &["at", "axis", "axis_j"],
+        T::Distance => &["at", "to"],
+        T::InPlane | T::InLine => &["at", "axis", "to?"],
+        T::Perpendicular => &["axis", "axis_j"],
+        T::ParallelAxes => &["axis"],
+        // Before the keys: a driver's keys are not the question.
+        T::PointDriver | T::TravelDriver => return Err(driver_refusal(key)),
+    };
+    for (what, given) in ["at", "to", "axis", "axis_j"].into_iter().zip(given) {
+        if uses.contains(&what) {
+            if !given {
+                return refuse(format!("a {} joint needs '{what}': add it", kind_name(kind)));
+            }
+        } else if !uses.contains(&format!("{what}?").as_str()) && given {
+            return refuse(format!("'{what}' means nothing to a {} joint: remove it", kind_name(kind)));
+        }
+    }
+    Ok(())
+}
+
+/// The joint a model file's joint entry describes: `name`, of `kind`, between `bodies` (reactions on the
+/// second), at the resolved `geometry`. `key` names the entry in errors: a driver (the rig's), a kind
+/// without a key it needs and a key the kind does not use are refused, as a model file's are. The
+/// geometry itself (a zero axis, axes not perpendicular) is checked when the joint is added to a model.
+pub fn joint_spec(
+    key: &str,
+    name: &str,
+    kind: JointKind,
+    bodies: [BodyRef; 2],
+    geometry: &JointGeometry,
+) -> Result<JointSpec, ModelError> {
+    let JointGeometry { at, to, axis, axis_j } = *geometry;
+    check_joint_keys(key, kind, [at.is_some(), to.is_some(), axis.is_some(), axis_j.is_some()])?;
+    use JointKind as T;
+    let [bi, bj] = bodies;
+    let p = at.unwrap_or_else(Vec3::zeros);
+    let axis = axis.unwrap_or_default();
+    let axis_j = axis_j.unwrap_or_default();
+    Ok(match kind {
+        T::Spherical => JointSpec::spherical(name, bi, bj, p),
+        T::Revolute => JointSpec::revolute(name, bi, bj, p, axis),
+        T::Cylindrical => JointSpec::cylindrical(name, bi, bj, p, axis),
+        T::Translational => JointSpec::translational(name, bi, bj, p, axis),
+        T::Universal => JointSpec::universal(name, bi, bj, p, axis, axis_j),
+        T::Fixed => JointSpec::fixed(name, bi, bj, p),
+        T::Distance => JointSpec::distance(name, bi, bj, p, to.unwrap_or_default()),
+        T::InPlane => JointSpec { point_j: to, ..JointSpec::in_plane(name, bi, bj, p, axis) },
+        T::InLine => JointSpec { point_j: to, ..JointSpec::in_line(name, bi, bj, p, axis) },
+        T::Perpendicular => JointSpec::perpendicular(name, bi, bj, axis, axis_j),
+        T::ParallelAxes => JointSpec::parallel_axes(name, bi, bj, axis),
+        T::PointDriver | T::TravelDriver => return Err(driver_refusal(key)),
+    })
+}
+
 /// `'a', 'b' or 'c'` for messages.
 fn list<'a>(names: impl Iterator<Item = &'a str>) -> String {
     let names: Vec<String> = names.map(|n| format!("'{n}'")).collect();
@@ -809,8 +960,11 @@ fn list<'a>(names: impl Iterator<Item = &'a str>) -> String {
     }
 }
 
-/// A mirrored bushing frame: the left frame's x and y mirrored, z completing a right-handed frame.
-fn bushing_frame(x_left: Vec3, y_hint_left: Option<Vec3>, side: Side) -> Result<Mat3, String> {
+/// A bushing frame as the model file gives it, placed on `side`: x along `x_left`, y towards `y_hint_left`
+/// made perpendicular (any perpendicular without it), both mirrored for the right corner, z completing a
+/// right-handed frame. The columns are the frame's x, y, z axes in global components. The error says why
+/// the hint gives no y axis (it is parallel to x). `x_left` must have a length.
+pub fn bushing_frame(x_left: Vec3, y_hint_left: Option<Vec3>, side: Side) -> Result<Mat3, String> {
     let x = x_left / x_left.norm();
     let y = match y_hint_left {
         None => orthonormal_complement(&x).0,
@@ -929,79 +1083,15 @@ impl GeneralCorner {
         let key = format!("joints[{k}] ({})", j.name);
         let bi = r.body(model, &format!("{key}.bodies"), &j.bodies[0])?;
         let bj = r.body(model, &format!("{key}.bodies"), &j.bodies[1])?;
-        let kind = j.kind;
-        let needs = |what: &str, given: bool| -> Result<(), ModelError> {
-            if given {
-                return Ok(());
-            }
-            Err(ModelError::OutOfRange {
-                item: key.clone(),
-                why: format!("a {} joint needs '{what}': add it", kind_name(kind)),
-            })
+        // The keys before the points: a key the kind does not use is the mistake to name first.
+        check_joint_keys(&key, j.kind, [j.at.is_some(), j.to.is_some(), j.axis.is_some(), j.axis_j.is_some()])?;
+        let geometry = JointGeometry {
+            at: j.at.as_ref().map(|p| r.point(&format!("{key}.at"), p)).transpose()?,
+            to: j.to.as_ref().map(|p| r.point(&format!("{key}.to"), p)).transpose()?,
+            axis: j.axis.as_ref().map(|a| r.direction(&format!("{key}.axis"), a)).transpose()?,
+            axis_j: j.axis_j.as_ref().map(|a| r.direction(&format!("{key}.axis_j"), a)).transpose()?,
         };
-        let unused = |what: &str, given: bool| -> Result<(), ModelError> {
-            if !given {
-                return Ok(());
-            }
-            Err(ModelError::OutOfRange {
-                item: key.clone(),
-                why: format!("'{what}' means nothing to a {} joint: remove it", kind_name(kind)),
-            })
-        };
-        use JointKind as T;
-        let uses = match kind {
-            T::Spherical | T::Fixed => ["at"].as_slice(),
-            T::Revolute | T::Cylindrical | T::Translational => &["at", "axis"],
-            T::Universal => &["at", "axis", "axis_j"],
-            T::Distance => &["at", "to"],
-            T::InPlane | T::InLine => &["at", "axis", "to?"],
-            T::Perpendicular => &["axis", "axis_j"],
-            T::ParallelAxes => &["axis"],
-            T::PointDriver | T::TravelDriver => &[],
-        };
-        // Before the keys: a driver's keys are not the question.
-        let driver = || ModelError::OutOfRange {
-            item: key.clone(),
-            why: "a driver is the rig's (wheel travel, rack travel), not the model's: use a joint".into(),
-        };
-        if matches!(kind, T::PointDriver | T::TravelDriver) {
-            return Err(driver());
-        }
-        for (what, given) in [("at", j.at.is_some()), ("to", j.to.is_some()), ("axis", j.axis.is_some())]
-            .into_iter()
-            .chain([("axis_j", j.axis_j.is_some())])
-        {
-            if uses.contains(&what) {
-                needs(what, given)?;
-            } else if !uses.contains(&format!("{what}?").as_str()) {
-                unused(what, given)?;
-            }
-        }
-        let at = j.at.as_ref().map(|p| r.point(&format!("{key}.at"), p)).transpose()?;
-        let to = j.to.as_ref().map(|p| r.point(&format!("{key}.to"), p)).transpose()?;
-        let axis = j.axis.as_ref().map(|a| r.direction(&format!("{key}.axis"), a)).transpose()?;
-        let axis_j = j.axis_j.as_ref().map(|a| r.direction(&format!("{key}.axis_j"), a)).transpose()?;
-        let name = part_name(r.prefix, &j.name);
-        let p = at.unwrap_or_else(Vec3::zeros);
-        let spec = match kind {
-            T::Spherical => JointSpec::spherical(&name, bi, bj, p),
-            T::Revolute => JointSpec::revolute(&name, bi, bj, p, axis.unwrap_or_default()),
-            T::Cylindrical => JointSpec::cylindrical(&name, bi, bj, p, axis.unwrap_or_default()),
-            T::Translational => JointSpec::translational(&name, bi, bj, p, axis.unwrap_or_default()),
-            T::Universal => {
-                JointSpec::universal(&name, bi, bj, p, axis.unwrap_or_default(), axis_j.unwrap_or_default())
-            }
-            T::Fixed => JointSpec::fixed(&name, bi, bj, p),
-            T::Distance => JointSpec::distance(&name, bi, bj, p, to.unwrap_or_default()),
-            T::InPlane => JointSpec { point_j: to, ..JointSpec::in_plane(&name, bi, bj, p, axis.unwrap_or_default()) },
-            T::InLine => JointSpec { point_j: to, ..JointSpec::in_line(&name, bi, bj, p, axis.unwrap_or_default()) },
-            T::Perpendicular => {
-                JointSpec::perpendicular(&name, bi, bj, axis.unwrap_or_default(), axis_j.unwrap_or_default())
-            }
-            T::ParallelAxes => JointSpec::parallel_axes(&name, bi, bj, axis.unwrap_or_default()),
-            T::PointDriver | T::TravelDriver => return Err(driver()),
-        };
-        model.add_joint(spec)?;
+        model.add_joint(joint_spec(&key, &part_name(r.prefix, &j.name), j.kind, [bi, bj], &geometry)?)?;
         Ok(())
     }
 
@@ -1042,41 +1132,7 @@ impl GeneralCorner {
         let bi = r.body(model, &format!("{key}.bodies"), &s.bodies[0])?;
         let bj = r.body(model, &format!("{key}.bodies"), &s.bodies[1])?;
         let (from, to) = (r.point(&format!("{key}.from"), &s.from)?, r.point(&format!("{key}.to"), &s.to)?);
-        let name = part_name(r.prefix, &s.name);
-        let refuse = |why: &str| Err(ModelError::OutOfRange { item: key.clone(), why: why.to_string() });
-        if s.preload.is_some() && s.design_force.is_some() {
-            return refuse("give a preload with free_length only: with design_force the push at design includes it");
-        }
-        let spring = match (s.rate, &s.curve, s.design_force, s.free_length) {
-            (Some(_), Some(_), _, _) | (None, None, _, _) => {
-                return refuse("give either rate (N/m) or curve (push force in N against compression in m)")
-            }
-            (_, _, Some(_), Some(_)) | (_, _, None, None) => {
-                return refuse("give either design_force (N, its push at design) or free_length (m)")
-            }
-            (Some(rate), None, Some(force), None) => {
-                check_rate(&format!("{key}.rate"), rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
-                crate::corner::check_spring_force(&key, rate, force, (to - from).norm())?;
-                CoilSpring::with_design_force(&name, bi, from, bj, to, rate, force)?
-            }
-            (Some(rate), None, None, Some(free)) => {
-                check_rate(&format!("{key}.rate"), rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
-                CoilSpring::new(&name, bi, from, bj, to, rate, free)?
-            }
-            (None, Some(points), Some(force), None) => {
-                let curve = Curve::new(&format!("{key}.curve"), points.clone())?;
-                CoilSpring::with_curve_and_design_force(&name, bi, from, bj, to, curve, force)?
-            }
-            (None, Some(points), None, Some(free)) => {
-                let curve = Curve::new(&format!("{key}.curve"), points.clone())?;
-                CoilSpring::with_curve(&name, bi, from, bj, to, curve, free)?
-            }
-        };
-        let spring = match s.preload {
-            Some(preload) => spring.with_preload(preload)?,
-            None => spring,
-        };
-        model.add_element(spring)
+        model.add_element(s.spring(&key, &part_name(r.prefix, &s.name), [bi, bj], from, to)?)
     }
 
     fn add_stop(&self, model: &mut Model, r: &Resolver, k: usize, s: &StopDef) -> Result<(), ModelError> {
@@ -1084,13 +1140,7 @@ impl GeneralCorner {
         let bi = r.body(model, &format!("{key}.bodies"), &s.bodies[0])?;
         let bj = r.body(model, &format!("{key}.bodies"), &s.bodies[1])?;
         let (from, to) = (r.point(&format!("{key}.from"), &s.from)?, r.point(&format!("{key}.to"), &s.to)?);
-        let curve = Curve::new(&format!("{key}.curve"), s.curve.clone())?;
-        let name = part_name(r.prefix, &s.name);
-        let stop = match s.kind {
-            StopType::Bump => Stop::bump(&name, bi, from, bj, to, s.clearance, curve)?,
-            StopType::Rebound => Stop::rebound(&name, bi, from, bj, to, s.clearance, curve)?,
-        };
-        model.add_element(stop)?;
+        model.add_element(s.stop(&key, &part_name(r.prefix, &s.name), [bi, bj], from, to)?)?;
         Ok(())
     }
 }
