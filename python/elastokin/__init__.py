@@ -25,7 +25,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 import numpy
 
 from . import _native
-from ._study import BATCH_FIGURES, ENGINES, Study, read_variants, study
+from ._study import BATCH_FIGURES, ENGINES, Grid, Parts, Study, read_variants, study, study_parts
 from ._native import (
     BATCH_HALF_RANGE,
     BATCH_STEPS,
@@ -47,9 +47,11 @@ __all__ = [
     "COMPLIANCE_COLUMNS",
     "COMPLIANCE_ROWS",
     "Error",
+    "Grid",
     "MAX_VARIANTS",
     "Model",
     "ModelError",
+    "Parts",
     "Result",
     "Scene",
     "SceneSweep",
@@ -60,6 +62,7 @@ __all__ = [
     "parameter",
     "read_variants",
     "study",
+    "study_parts",
 ]
 
 

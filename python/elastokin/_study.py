@@ -22,8 +22,9 @@ import hashlib
 import json
 import math
 import os
-from collections.abc import Mapping
-from typing import Any, Dict, List, Optional, Tuple
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
 import numpy
 
@@ -115,32 +116,48 @@ def _run_chunk(document: Tuple[str, str], variants: List[_Variant], first: int) 
     return rows
 
 
+def _edited_values(variants: List[_Variant]) -> Dict[str, List[Any]]:
+    """Each pointer the variants edit (in order of first edit) and its value in every variant (None where
+    a variant leaves it alone)."""
+    columns: Dict[str, List[Any]] = {}
+    for k, (_, edits) in enumerate(variants):
+        for pointer, value in edits:
+            column = columns.get(pointer)
+            if column is None:
+                column = columns[pointer] = [None] * len(variants)
+            column[k] = json.loads(value)
+    return columns
+
+
+def _all_numbers(values: Sequence[Any]) -> bool:
+    """Whether a pointer's column is numbers (float, NaN where absent) rather than text."""
+    return all(v is None or (isinstance(v, (int, float)) and not isinstance(v, bool)) for v in values)
+
+
 class Study:
     """A study's results: one row per variant, in the variants' order.
 
     ``columns`` maps ``variant_number`` (from 1), ``variant`` (names), one column per JSON pointer the
-    variants edit (its values: a float array with NaN where a variant leaves the key alone, or a list when the
-    values are not all numbers), the figures of batch.csv (float arrays, NaN where the variant failed) and
+    variants edit (its values: a float array with NaN where a variant leaves the key alone, or a list of JSON
+    texts when the values are not all numbers; ``pointers`` fixes which, for the parts of one study), the
+    figures of batch.csv (float arrays, NaN where the variant failed) and
     ``error`` (the reason, else None)."""
 
     __slots__ = ("columns", "metadata", "_rows")
 
-    def __init__(self, rows: List[Dict[str, Any]], variants: List[_Variant], metadata: Dict[str, str]) -> None:
+    def __init__(self, rows: List[Dict[str, Any]], variants: List[_Variant], metadata: Dict[str, str],
+                 pointers: Optional[Dict[str, bool]] = None) -> None:
         self._rows = rows
         self.metadata = metadata
         columns: Dict[str, Any] = {
             "variant_number": numpy.array([r["variant_number"] for r in rows], dtype=numpy.int64),
             "variant": [r["variant"] for r in rows],
         }
-        pointers: Dict[str, List[Any]] = {}
-        for k, (_, edits) in enumerate(variants):
-            for pointer, value in edits:
-                column = pointers.get(pointer)
-                if column is None:
-                    column = pointers[pointer] = [None] * len(variants)
-                column[k] = json.loads(value)
-        for pointer, values in pointers.items():
-            numbers = all(v is None or (isinstance(v, (int, float)) and not isinstance(v, bool)) for v in values)
+        values_of = _edited_values(variants)
+        if pointers is None:
+            pointers = {p: _all_numbers(values) for p, values in values_of.items()}
+        for pointer, numbers in pointers.items():
+            values = values_of.get(pointer, [None] * len(variants))
             if numbers:
                 columns[pointer] = numpy.array([math.nan if v is None else float(v) for v in values])
             else:
@@ -194,19 +211,21 @@ class Study:
         return f"<elastokin.Study {len(self)} variants, {failed} failed>"
 
 
-def _on_ray(document: Tuple[str, str], chunks: List[Tuple[int, List[_Variant]]], workers: Optional[int]):
+def _on_ray(function: Callable[..., Any], document: Tuple[str, str], jobs: List[tuple], workers: Optional[int]):
+    """``function(document, *job)`` for every job, as Ray tasks of one CPU; the results in the jobs' order."""
     try:
         import ray
     except ImportError as e:
         raise ImportError("engine='ray' needs Ray: pip install ray") from e
     if not ray.is_initialized():
         ray.init(num_cpus=workers, include_dashboard=False, log_to_driver=False)
-    task = ray.remote(num_cpus=1)(_run_chunk)
+    task = ray.remote(num_cpus=1)(function)
     shared = ray.put(document)
-    return ray.get([task.remote(shared, variants, first) for first, variants in chunks])
+    return ray.get([task.remote(shared, *job) for job in jobs])
 
 
-def _on_dask(document: Tuple[str, str], chunks: List[Tuple[int, List[_Variant]]], workers: Optional[int]):
+def _on_dask(function: Callable[..., Any], document: Tuple[str, str], jobs: List[tuple], workers: Optional[int]):
+    """``function(document, *job)`` for every job, as Dask futures; the results in the jobs' order."""
     try:
         from distributed import Client, LocalCluster
     except ImportError as e:
@@ -217,8 +236,7 @@ def _on_dask(document: Tuple[str, str], chunks: List[Tuple[int, List[_Variant]]]
         # key of its own: keys by content would be shared with an earlier study whose futures are being
         # released, and a worker could find the data gone.
         (shared,) = client.scatter([document], broadcast=True, hash=False)
-        futures = [client.submit(_run_chunk, shared, variants, first, pure=False) for first, variants in chunks]
-        return client.gather(futures)
+        return client.gather([client.submit(function, shared, *job, pure=False) for job in jobs])
 
     try:
         from distributed import get_client
@@ -231,6 +249,18 @@ def _on_dask(document: Tuple[str, str], chunks: List[Tuple[int, List[_Variant]]]
     with LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
                       dashboard_address=None) as cluster, Client(cluster) as client:
         return run(client)
+
+
+def _on_threads(function: Callable[..., Any], document: Tuple[str, str], jobs: List[tuple], workers: Optional[int]):
+    """``function(document, *job)`` for every job on ``workers`` threads of this process (the solver lets go
+    of the GIL, so they run side by side); the results in the jobs' order."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(max_workers=workers or os.cpu_count() or 1) as pool:
+        return list(pool.map(lambda job: function(document, *job), jobs))
+
+
+_RUNNERS = {"ray": _on_ray, "dask": _on_dask, "local": _on_threads}
 
 
 def _engine_slots(engine: str, workers: Optional[int]) -> int:
@@ -299,13 +329,11 @@ def study(
     else:
         wanted = _CHUNKS_PER_WORKER * _engine_slots(engine, workers)
     wanted = max(wanted, -(-count // _native.MAX_VARIANTS))
-    blocks = [(start, table[start:end]) for start, end in _split(count, min(wanted, count))]
+    blocks = [(table[start:end], start) for start, end in _split(count, min(wanted, count))]
     if engine == "local":
-        results = [_run_local(model, variants, first, workers) for first, variants in blocks]
-    elif engine == "ray":
-        results = _on_ray(document, blocks, workers)
+        results = [_run_local(model, variants, first, workers) for variants, first in blocks]
     else:
-        results = _on_dask(document, blocks, workers)
+        results = _RUNNERS[engine](_run_chunk, document, blocks, workers)
     rows = [row for block in results for row in block]
     metadata = {
         "version": _native.VERSION,
@@ -328,3 +356,208 @@ def _run_local(model: Any, variants: List[_Variant], first: int, threads: Option
     for k, row in enumerate(rows):
         row["variant_number"] = first + k + 1
     return rows
+
+
+class Grid:
+    """A full-factorial variant table: every combination of the values given for each JSON pointer, the last
+    pointer's values varying fastest (the order of ``itertools.product``), variant k named ``grid k+1``.
+
+    A variant is found from its number alone, so a grid of any size takes no memory, and a task of
+    :func:`study_parts` makes its own block of it: a study of 10⁸ variants sends each task the grid and two
+    numbers, not its variants. ``len(grid)``, ``grid[k]`` (a dict: ``name`` and one value per pointer),
+    ``grid[a:b]`` (a list of them) and iteration work as on a list."""
+
+    __slots__ = ("axes", "_sizes")
+
+    def __init__(self, axes: Mapping[str, Sequence[Any]]) -> None:
+        if not axes:
+            raise _native.ModelError("grid: give at least one JSON pointer and its values")
+        self.axes: List[Tuple[str, List[Any]]] = []
+        for pointer, values in axes.items():
+            if not isinstance(pointer, str) or not pointer.startswith("/"):
+                raise _native.ModelError(f"grid: '{pointer}' is not a JSON pointer (they start with '/')")
+            values = list(values)
+            if not values:
+                raise _native.ModelError(f"grid: '{pointer}' has no values; give at least one")
+            self.axes.append((pointer, values))
+        self._sizes = [len(values) for _, values in self.axes]
+
+    def __len__(self) -> int:
+        return math.prod(self._sizes)
+
+    def _variant(self, k: int) -> Dict[str, Any]:
+        variant: Dict[str, Any] = {"name": f"grid {k + 1}"}
+        picks = []
+        for size in reversed(self._sizes):
+            k, pick = divmod(k, size)
+            picks.append(pick)
+        for (pointer, values), pick in zip(self.axes, reversed(picks)):
+            variant[pointer] = values[pick]
+        return variant
+
+    def __getitem__(self, key: Any) -> Any:
+        count = len(self)
+        if isinstance(key, slice):
+            start, stop, step = key.indices(count)
+            return [self._variant(k) for k in range(start, stop, step)]
+        k = int(key) + (count if int(key) < 0 else 0)
+        if not 0 <= k < count:
+            raise IndexError(f"grid: variant {key} of {count}")
+        return self._variant(k)
+
+    def __iter__(self):
+        return (self._variant(k) for k in range(len(self)))
+
+    def __repr__(self) -> str:
+        sizes = " × ".join(f"{len(v)} {p}" for p, v in self.axes)
+        return f"<elastokin.Grid {len(self)} variants: {sizes}>"
+
+
+class Parts:
+    """What :func:`study_parts` leaves: a directory of Parquet files, one per part (``part-<first variant
+    number>.parquet``, each the table of :class:`Study` with the study's provenance in its metadata), that
+    together hold every variant once. ``dataset()`` opens them as one pyarrow dataset to query."""
+
+    __slots__ = ("path", "variants", "failed", "parts", "written")
+
+    def __init__(self, path: "os.PathLike[str] | str", variants: int, failed: int, parts: int, written: int) -> None:
+        self.path = os.fspath(path)
+        self.variants = variants  #: variants in the study
+        self.failed = failed  #: variants whose solve failed (their error column says why)
+        self.parts = parts  #: part files
+        self.written = written  #: part files written by this call (the others were there already)
+
+    def dataset(self):
+        """The parts as one pyarrow dataset (needs pyarrow): filter and project it without reading it all."""
+        import pyarrow.dataset
+
+        return pyarrow.dataset.dataset(self.path, format="parquet")
+
+    def __repr__(self) -> str:
+        return (f"<elastokin.Parts {self.path}: {self.variants} variants in {self.parts} parts, "
+                f"{self.failed} failed, {self.written} written now>")
+
+
+def _part_name(first: int) -> str:
+    return f"part-{first + 1:012d}.parquet"
+
+
+def _block_key(table: List[_Variant]) -> str:
+    """What identifies a part's variants: the SHA-256 of their names and edits as read."""
+    return hashlib.sha256(json.dumps(table).encode()).hexdigest()
+
+
+def _run_part(document: Tuple[str, str], source: Any, start: int, stop: int, first: int, path: str,
+              metadata: Dict[str, str], pointers: Dict[str, bool]) -> Tuple[int, int]:
+    """One part of :func:`study_parts`: variants ``start..stop`` of ``source`` (a grid cut here, on the
+    worker, or the block itself), numbered from ``first + 1``, solved on one thread and written whole to
+    ``path``. Gives (variants, failed)."""
+    from . import _from_document
+
+    model = _from_document(*document)
+    table = read_variants(model, source[start:stop])
+    rows = model._native.batch(table, threads=1)
+    for k, row in enumerate(rows):
+        row["variant_number"] = first + k + 1
+    failed = sum(row["error"] is not None for row in rows)
+    meta = dict(metadata, first_variant=str(first + 1), last_variant=str(first + len(rows)),
+                failed=str(failed), block_sha256=_block_key(table))
+    Study(rows, table, meta, pointers).to_parquet(path)
+    return len(rows), failed
+
+
+def _existing_part(path: Path, expected: Dict[str, str]) -> Optional[int]:
+    """The failed count of a part already written by this same study, None when there is none; a part of
+    another study is refused by name."""
+    if not path.exists():
+        return None
+    import pyarrow.parquet
+
+    try:
+        meta = {k.decode(): v.decode() for k, v in (pyarrow.parquet.read_schema(path).metadata or {}).items()}
+    except Exception as e:  # a file that is no Parquet (truncated, foreign): named, not trusted
+        raise _native.Error(f"{path}: not a part of a study ({e}); remove it or give an empty directory") from None
+    for key, value in expected.items():
+        if meta.get(f"elastokin.{key}") != value:
+            raise _native.Error(
+                f"{path}: a part of another study (its {key} is {meta.get(f'elastokin.{key}')!r}, this study's "
+                f"{value!r}); give an empty directory, or the model and variants that wrote it")
+    return int(meta["elastokin.failed"])
+
+
+def study_parts(
+    model: Any,
+    variants: Any,
+    out: "os.PathLike[str] | str",
+    *,
+    engine: str = "local",
+    workers: Optional[int] = None,
+    part_size: int = 1000,
+) -> Parts:
+    """Runs a study too big to gather in one process: each task solves ``part_size`` variants and writes them
+    as one Parquet part in the directory ``out``, and only counts come back. Judged as :func:`study`
+    judges, the same rows bit for bit, numbered alike; on ``engine`` "local" (threads of this process), "ray"
+    or "dask" as :func:`study` uses them.
+
+    ``variants``: a :class:`Grid` (each task makes its own block: nothing per variant is done or sent here),
+    a sequence of variants (a list of dicts or lines, a pandas DataFrame; each task is sent its slice), or any
+    other form :func:`read_variants` takes (read here first). A part already in ``out`` from the same model
+    and variants is kept, not solved again, so a study that stopped (a node lost, a job out of time) is run
+    again to finish it; a file there from another study is refused by name. Needs pyarrow on every worker."""
+    from . import Model, load
+
+    if engine not in ENGINES:
+        raise ValueError(f"engine '{engine}': give one of {', '.join(ENGINES)}")
+    if workers is not None and workers < 1:
+        raise ValueError("workers: give at least 1 (or None for every core)")
+    if part_size < 1:
+        raise ValueError("part_size: give at least 1 variant a part")
+    try:
+        import pyarrow  # noqa: F401  (said here, before any task, rather than by every worker)
+    except ImportError as e:
+        raise ImportError("study_parts writes Parquet, which needs pyarrow: pip install pyarrow") from e
+    if not isinstance(model, Model):
+        model = load(model)
+    if isinstance(variants, Grid):
+        pointers = {p: _all_numbers(values) for p, values in variants.axes}
+    else:
+        # Read here: every part then has the same columns, of the same types, whatever its own variants edit.
+        variants = read_variants(model, variants)
+        pointers = {p: _all_numbers(values) for p, values in _edited_values(variants).items()}
+    count = len(variants)
+    if count == 0:
+        raise _native.ModelError("variants: no variants")
+    document = model._native.document()
+    metadata = {
+        "version": _native.VERSION,
+        "model": model.name,
+        "document_sha256": hashlib.sha256(document[0].encode()).hexdigest(),
+        "variants": str(count),
+        "half_range_m": repr(_native.BATCH_HALF_RANGE),
+        "steps": str(_native.BATCH_STEPS),
+    }
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    blocks = _split(count, -(-count // part_size))
+    names = {_part_name(start) for start, _ in blocks}
+    strays = sorted(p.name for p in out.glob("part-*.parquet") if p.name not in names)
+    if strays:
+        raise _native.Error(f"{out}: {strays[0]} is no part of this study (parts of {part_size} variants); give "
+                            "an empty directory, or the part size that wrote it")
+    jobs, failed = [], 0
+    for start, stop in blocks:
+        path = out / _part_name(start)
+        block = variants if isinstance(variants, Grid) else variants[start:stop]
+        lo, hi = (start, stop) if isinstance(variants, Grid) else (0, stop - start)
+        expected = dict(metadata, first_variant=str(start + 1), last_variant=str(stop))
+        if path.exists():
+            expected["block_sha256"] = _block_key(read_variants(model, block[lo:hi]))
+        done = _existing_part(path, expected)
+        if done is None:
+            jobs.append((block, lo, hi, start, os.fspath(path), metadata, pointers))
+        else:
+            failed += done
+    if jobs:
+        results = _RUNNERS[engine](_run_part, document, jobs, workers)
+        failed += sum(f for _, f in results)
+    return Parts(out, count, failed, len(blocks), len(jobs))

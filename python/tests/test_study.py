@@ -2,6 +2,7 @@
 the command's batch.csv: the same rows, bit for bit (each variant is solved on its own, wherever it runs)."""
 
 import importlib
+import itertools
 import json
 import math
 import os
@@ -216,3 +217,116 @@ def test_a_value_of_the_table_is_sent_as_the_json_it_is():
         assert _json_value(value, "x") == json.dumps(plain), value
     with pytest.raises(elastokin.ModelError, match="x: inf is not a model value"):
         _json_value(math.inf, "x")
+
+
+ARM_RADIAL = "/suspension/macpherson/lower_arm_mounts/bushing/radial"
+
+
+@pytest.fixture(scope="module")
+def grid():
+    """4 tie-rod heights × 3 spring rates × 5 arm bushing rates: 60 variants."""
+    return elastokin.Grid({
+        TIE_ROD: [-0.069 + 0.005 * k for k in range(4)],
+        SPRING: [20000.0, 30000.0, 40000.0],
+        ARM_RADIAL: [1e6 * 2.0**k for k in range(5)],
+    })
+
+
+def test_a_grid_is_the_product_of_its_axes_in_order(grid):
+    product = list(itertools.product(*(values for _, values in grid.axes)))
+    assert len(grid) == len(product) == 60
+    listed = list(grid)
+    for k, values in enumerate(product):
+        assert listed[k] == grid[k] == {"name": f"grid {k + 1}", TIE_ROD: values[0], SPRING: values[1],
+                                        ARM_RADIAL: values[2]}
+    assert grid[-1] == listed[-1] and grid[7:19] == listed[7:19] and grid[58:100] == listed[58:]
+    with pytest.raises(IndexError):
+        grid[60]
+    with pytest.raises(elastokin.ModelError, match="'spring' is not a JSON pointer"):
+        elastokin.Grid({"spring": [1.0]})
+    with pytest.raises(elastokin.ModelError, match="'/a' has no values"):
+        elastokin.Grid({"/a": []})
+    assert pickle.loads(pickle.dumps(grid))[33] == grid[33]
+
+
+def comparable(values):
+    """A column as a list in which NaN (a cell with no value) equals NaN."""
+    return ["NaN" if isinstance(v, float) and math.isnan(v) else v for v in values]
+
+
+def read_parts(parts):
+    """The parts as one table, in variant order: column name → list."""
+    table = parts.dataset().to_table().sort_by("variant_number")
+    return {name: comparable(table.column(name).to_pylist()) for name in table.column_names}
+
+
+def as_lists(study):
+    return {k: comparable(v.tolist() if isinstance(v, numpy.ndarray) else v) for k, v in study.columns.items()}
+
+
+def test_parts_written_by_two_dask_workers_are_the_study(model, grid, tmp_path):
+    engine("distributed")
+    engine("pyarrow")
+    whole = elastokin.study(model, grid)
+    same_study(whole, elastokin.batch(model, list(grid)))
+    parts = elastokin.study_parts(model, grid, tmp_path / "parts", engine="dask", workers=2, part_size=7)
+    assert (parts.variants, parts.parts, parts.written, parts.failed) == (60, 9, 9, 0)
+    assert sorted(p.name for p in (tmp_path / "parts").iterdir())[:2] == ["part-000000000001.parquet",
+                                                                          "part-000000000008.parquet"]
+    assert read_parts(parts) == as_lists(whole)
+
+
+def test_a_study_in_parts_that_stopped_is_finished_by_running_it_again(model, grid, tmp_path):
+    ray = engine("ray")
+    engine("pyarrow")
+    out = tmp_path / "parts"
+    first = elastokin.study_parts(model, grid, out, part_size=10)  # local: threads of this process
+    assert (first.parts, first.written) == (6, 6)
+    kept = {p.name: p.stat().st_mtime_ns for p in out.iterdir()}
+    (out / "part-000000000031.parquet").unlink()  # as if the task writing it had been lost
+    try:
+        again = elastokin.study_parts(model, grid, out, engine="ray", workers=2, part_size=10)
+    finally:
+        ray.shutdown()
+    assert (again.parts, again.written, again.failed) == (6, 1, 0)
+    for name, mtime in kept.items():
+        if name != "part-000000000031.parquet":
+            assert (out / name).stat().st_mtime_ns == mtime, name
+    assert read_parts(again) == as_lists(elastokin.study(model, grid))
+    # Nothing left to do: nothing is written.
+    assert elastokin.study_parts(model, grid, out, part_size=10).written == 0
+
+
+def test_parts_of_a_list_and_of_a_frame_are_the_study(model, table, reference, tmp_path):
+    pandas = engine("pandas")
+    engine("pyarrow")
+    records = [dict(zip(table, values)) for values in zip(*table.values())]
+    whole = as_lists(elastokin.study(model, table))
+    for k, variants in enumerate([records, pandas.DataFrame(table), table, VARIANTS.read_text()]):
+        parts = elastokin.study_parts(model, variants, tmp_path / f"p{k}", part_size=4, workers=2)
+        if k < 3:
+            assert read_parts(parts) == whole
+        else:
+            assert read_parts(parts) == as_lists(elastokin.study(model, VARIANTS.read_text()))
+
+
+def test_a_directory_holding_another_study_is_refused_by_name(model, grid, tmp_path):
+    engine("pyarrow")
+    out = tmp_path / "parts"
+    elastokin.study_parts(model, grid, out, part_size=20)
+    stiffer = model.to_dict()
+    stiffer["suspension"]["macpherson"]["spring"]["design_force"] = 4600.0
+    with pytest.raises(elastokin.Error, match=r"part-000000000001.parquet: a part of another study \(its "
+                                              r"document_sha256 is"):
+        elastokin.study_parts(stiffer, grid, out, part_size=20)
+    other = elastokin.Grid({TIE_ROD: [-0.069 + 0.005 * k for k in range(4)], SPRING: [20000.0, 30000.0, 40000.0],
+                            ARM_RADIAL: [1e6 * 3.0**k for k in range(5)]})
+    with pytest.raises(elastokin.Error, match="a part of another study \\(its block_sha256 is"):
+        elastokin.study_parts(model, other, out, part_size=20)
+    with pytest.raises(elastokin.Error, match="part-000000000021.parquet is no part of this study"):
+        elastokin.study_parts(model, grid, out, part_size=30)
+    (out / "part-000000000021.parquet").write_text("not parquet")
+    with pytest.raises(elastokin.Error, match="part-000000000021.parquet: not a part of a study"):
+        elastokin.study_parts(model, grid, out, part_size=20)
+    with pytest.raises(ValueError, match="part_size: give at least 1"):
+        elastokin.study_parts(model, grid, out, part_size=0)
