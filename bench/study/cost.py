@@ -89,7 +89,17 @@ def main() -> None:
     elastokin.study(model, variants, engine="ray")  # workers warmed (each imports elastokin once)
     on_ray = median_time(lambda: elastokin.study(model, variants, engine="ray"), repeat) / v
     small_tasks = median_time(lambda: elastokin.study(model, variants, engine="ray", chunks=v // 10), repeat) / v
+    # The same number of variants as a grid written in parts by the tasks: nothing per variant on the driver.
+    grid = elastokin.Grid({TIE_ROD_Z: [-0.079 + 0.02 * k / (v // 5) for k in range(v // 5)],
+                           ARM_RADIAL: [1.0e6 * 2.0**k for k in range(5)]})
+
+    def in_parts(engine):
+        with tempfile.TemporaryDirectory() as d:
+            elastokin.study_parts(model, grid, d, engine=engine, workers=2, part_size=v // 8)
+
+    ray_parts = median_time(lambda: in_parts("ray"), repeat) / v
     ray.shutdown()
+    local_parts = median_time(lambda: in_parts("local"), repeat) / v
     start = time.perf_counter()
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
             Client(cluster):
@@ -103,6 +113,8 @@ def main() -> None:
     print(f"| study, Ray, 2 workers, tasks of 10 variants | {small_tasks * 1e6:.0f} µs |")
     print(f"| study, Dask, 2 workers, 8 tasks | {on_dask * 1e6:.0f} µs |")
     print(f"| study, Dask, 2 workers, tasks of 10 variants | {dask_small * 1e6:.0f} µs |")
+    print(f"| study_parts of a grid, local, 2 threads, 8 parts | {local_parts * 1e6:.0f} µs |")
+    print(f"| study_parts of a grid, Ray, 2 workers, 8 parts | {ray_parts * 1e6:.0f} µs |")
     print(f"\nStartup: local Ray {ray_start:.2f} s, Dask LocalCluster {dask_start:.2f} s.")
     per_task_ray = (small_tasks - on_ray) * v / (v // 10 - 8)
     per_task_dask = (dask_small - on_dask) * v / (v // 10 - 8)
