@@ -285,6 +285,26 @@ def _engine_slots(engine: str, workers: Optional[int]) -> int:
     return os.cpu_count() or 1
 
 
+def _check_engine(engine: str, workers: Optional[int]) -> None:
+    if engine not in ENGINES:
+        raise ValueError(f"engine '{engine}': give one of {', '.join(ENGINES)}")
+    if workers is not None and workers < 1:
+        raise ValueError("workers: give at least 1 (or None for every core)")
+
+
+def _provenance(model: Any, document: Tuple[str, str], count: int) -> Dict[str, str]:
+    """What a study's Parquet metadata says of it: version, model, the document's SHA-256 (of the model file
+    as re-written and sent to the workers, not of its bytes), the number of variants and how each is run."""
+    return {
+        "version": _native.VERSION,
+        "model": model.name,
+        "document_sha256": hashlib.sha256(document[0].encode()).hexdigest(),
+        "variants": str(count),
+        "half_range_m": repr(_native.BATCH_HALF_RANGE),
+        "steps": str(_native.BATCH_STEPS),
+    }
+
+
 def study(
     model: Any,
     variants: Any,
@@ -310,10 +330,7 @@ def study(
     those of the single-process batch, whatever the engine."""
     from . import Model, load
 
-    if engine not in ENGINES:
-        raise ValueError(f"engine '{engine}': give one of {', '.join(ENGINES)}")
-    if workers is not None and workers < 1:
-        raise ValueError("workers: give at least 1 (or None for every core)")
+    _check_engine(engine, workers)
     if chunks is not None and chunks < 1:
         raise ValueError("chunks: give at least 1 (or None for four per worker)")
     if not isinstance(model, Model):
@@ -335,17 +352,7 @@ def study(
     else:
         results = _RUNNERS[engine](_run_chunk, document, blocks, workers)
     rows = [row for block in results for row in block]
-    metadata = {
-        "version": _native.VERSION,
-        "model": model.name,
-        # Of the document as the study sent it to its workers (the model file re-written, not its bytes).
-        "document_sha256": hashlib.sha256(document[0].encode()).hexdigest(),
-        "variants": str(count),
-        "half_range_m": repr(_native.BATCH_HALF_RANGE),
-        "steps": str(_native.BATCH_STEPS),
-        "engine": engine,
-    }
-    result = Study(rows, table, metadata)
+    result = Study(rows, table, dict(_provenance(model, document, count), engine=engine))
     if parquet is not None:
         result.to_parquet(parquet)
     return result
@@ -506,10 +513,7 @@ def study_parts(
     again to finish it; a file there from another study is refused by name. Needs pyarrow on every worker."""
     from . import Model, load
 
-    if engine not in ENGINES:
-        raise ValueError(f"engine '{engine}': give one of {', '.join(ENGINES)}")
-    if workers is not None and workers < 1:
-        raise ValueError("workers: give at least 1 (or None for every core)")
+    _check_engine(engine, workers)
     if part_size < 1:
         raise ValueError("part_size: give at least 1 variant a part")
     try:
@@ -528,14 +532,7 @@ def study_parts(
     if count == 0:
         raise _native.ModelError("variants: no variants")
     document = model._native.document()
-    metadata = {
-        "version": _native.VERSION,
-        "model": model.name,
-        "document_sha256": hashlib.sha256(document[0].encode()).hexdigest(),
-        "variants": str(count),
-        "half_range_m": repr(_native.BATCH_HALF_RANGE),
-        "steps": str(_native.BATCH_STEPS),
-    }
+    metadata = _provenance(model, document, count)
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     blocks = _split(count, -(-count // part_size))
