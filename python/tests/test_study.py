@@ -330,3 +330,29 @@ def test_a_directory_holding_another_study_is_refused_by_name(model, grid, tmp_p
         elastokin.study_parts(model, grid, out, part_size=20)
     with pytest.raises(ValueError, match="part_size: give at least 1"):
         elastokin.study_parts(model, grid, out, part_size=0)
+
+
+def test_a_variant_the_solver_cannot_hold_is_a_row_with_its_reason_on_every_engine(tmp_path):
+    # An upper arm 3 mm long on ideal mounts cannot follow 20 mm of wheel travel: the solve fails, the study
+    # does not. The command's batch.csv of the same lines is the record.
+    dw = MODEL.parent / "double_wishbone.json"
+    base = "/suspension/double_wishbone"
+    short = (f"short arm: {base}/hardpoints/upper_arm_front=[-0.088,0.805,0.243]; "
+             f"{base}/hardpoints/upper_arm_rear=[-0.2,0.805,0.243]; {base}/upper_arm_mounts=\"ideal\"; "
+             f"{base}/lower_arm_mounts=\"ideal\"")
+    lines = [f"soft: {base}/spring/rate=20000.0", short, f"stiff: {base}/spring/rate=40000.0"]
+    (tmp_path / "variants.txt").write_text("\n".join(lines) + "\n")
+    done = command("batch", dw, tmp_path / "variants.txt", "--quiet", "--out", tmp_path / "out", check=False)
+    assert done.returncode == 0, done.stderr
+    header, expected = read_csv(tmp_path / "out" / "batch.csv")
+    assert expected[1][4].startswith("no equilibrium found at -0.02") and expected[0][4] == expected[2][4] == ""
+    rows = elastokin.batch(dw, lines)
+    same_batch(rows, (header, expected))
+    engine("distributed")
+    study = elastokin.study(dw, lines, engine="dask", workers=2, chunks=3)
+    same_study(study, rows)
+    assert math.isnan(study.columns["wheel_rate_n_per_m"][1]) and repr(study) == "<elastokin.Study 3 variants, 1 failed>"
+    engine("pyarrow")
+    parts = elastokin.study_parts(dw, lines, tmp_path / "parts", part_size=2)
+    assert (parts.failed, parts.parts) == (1, 2)
+    assert read_parts(parts) == as_lists(study)
