@@ -24,6 +24,7 @@ z up), axes are directions ``[x, y, z]``; ``"chassis"`` (or ``"ground"``) is the
 
 from __future__ import annotations
 
+import math
 import numbers
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
@@ -95,7 +96,7 @@ def _bodies(value: Any, item: str) -> Tuple[str, str]:
 
 def _path(start: Any, end: Any, steps: Any) -> Tuple[float, float, int]:
     for what, v in (("start", start), ("end", end)):
-        if isinstance(v, bool) or not isinstance(v, numbers.Real) or not numpy.isfinite(v):
+        if isinstance(v, bool) or not isinstance(v, numbers.Real) or not math.isfinite(float(v)):
             raise ValueError(f"{what} must be a finite load parameter, got {v!r}")
     if isinstance(steps, bool) or not isinstance(steps, numbers.Integral) or steps < 1:
         raise ValueError(f"steps must be a whole number of at least 1, got {steps!r}")
@@ -267,6 +268,7 @@ class Scene:
         if clearance is None:
             raise ValueError(f"'{name}': clearance must be a number (m), got None")
         clearance_value = _number(clearance, "clearance", name)
+        assert clearance_value is not None  # None was refused above
         self._native.stop(
             name,
             kind,
