@@ -33,11 +33,6 @@ create_exception!(
     "An analysis that failed on the model: the solver's reason."
 );
 
-/// What the rows of the wheel compliance matrix are: wheel-centre translation (m) and rotation (rad).
-const COMPLIANCE_ROWS: [&str; 6] = ["x_m", "y_m", "z_m", "rot_x_rad", "rot_y_rad", "rot_z_rad"];
-/// What its columns are: unit force (N) and unit torque (N·m) at the wheel centre, global axes.
-const COMPLIANCE_COLUMNS: [&str; 6] = ["fx_n", "fy_n", "fz_n", "mx_nm", "my_nm", "mz_nm"];
-
 /// A suspension model read from a model file or a dict, with the document that batch variants edit.
 #[pyclass(frozen, module = "elastokin._native")]
 struct Model {
@@ -58,6 +53,11 @@ fn analysis(name: &str) -> PyResult<Analysis> {
     })
 }
 
+/// The solver mode a word names ("corrected" or "paper"), or a `ValueError` saying which words there are.
+fn mode_from_word(word: &str) -> PyResult<Mode> {
+    kc::mode_from_word(word).ok_or_else(|| PyValueError::new_err(format!("mode '{word}': give 'corrected' or 'paper'")))
+}
+
 /// The command's options of `run` as the library's settings.
 fn settings(
     range: Option<(f64, f64)>,
@@ -69,11 +69,7 @@ fn settings(
     through_limits: bool,
     arc_step: Option<f64>,
 ) -> PyResult<Settings> {
-    let mode = match mode {
-        "corrected" => Mode::Corrected,
-        "paper" => Mode::Paper,
-        _ => return Err(PyValueError::new_err(format!("mode '{mode}': give 'corrected' or 'paper'"))),
-    };
+    let mode = mode_from_word(mode)?;
     let height_held = match wheel {
         "held" => true,
         "free" => false,
@@ -384,8 +380,9 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("Error", py.get_type::<Error>())?;
     m.add("ModelError", py.get_type::<ModelError>())?;
     m.add("AnalysisError", py.get_type::<AnalysisError>())?;
-    m.add("COMPLIANCE_ROWS", COMPLIANCE_ROWS.to_vec())?;
-    m.add("COMPLIANCE_COLUMNS", COMPLIANCE_COLUMNS.to_vec())?;
+    // The library's names, which the compliance tables' columns are made of.
+    m.add("COMPLIANCE_ROWS", kc::COMPLIANCE_RESPONSE.to_vec())?;
+    m.add("COMPLIANCE_COLUMNS", kc::COMPLIANCE_LOAD.to_vec())?;
     m.add("BATCH_HALF_RANGE", batch::HALF_RANGE)?;
     m.add("BATCH_STEPS", batch::STEPS)?;
     Ok(())

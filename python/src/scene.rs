@@ -13,7 +13,7 @@ use elastokin_suspensions::analysis::{walk, SweepLimit};
 use elastokin_suspensions::general::{
     bushing_frame, joint_spec, Axis, BushingDef, JointGeometry, Place, SpringDef, Stiffness, StopDef, StopType, CHASSIS,
 };
-use elastokin_suspensions::kc::MAX_STEPS;
+use elastokin_suspensions::kc::{mode_word, MAX_STEPS};
 use elastokin_suspensions::Side;
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::{PyKeyError, PyValueError};
@@ -461,11 +461,7 @@ impl Scene {
         force_tolerance: f64,
         constraint_tolerance: f64,
     ) -> PyResult<SceneSweep> {
-        let mode = match mode {
-            "corrected" => Mode::Corrected,
-            "paper" => Mode::Paper,
-            _ => return Err(PyValueError::new_err(format!("mode '{mode}': give 'corrected' or 'paper'"))),
-        };
+        let mode = crate::mode_from_word(mode)?;
         if steps == 0 || steps > MAX_STEPS {
             return Err(PyValueError::new_err(format!("steps must be from 1 to {MAX_STEPS}, got {steps}")));
         }
@@ -568,10 +564,7 @@ impl SceneSweep {
     /// "corrected" or "paper".
     #[getter]
     fn mode(&self) -> &'static str {
-        match self.mode {
-            Mode::Corrected => "corrected",
-            Mode::Paper => "paper",
-        }
+        mode_word(self.mode)
     }
 
     /// The load parameter at each step.

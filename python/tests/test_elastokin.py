@@ -91,11 +91,14 @@ def test_suite_is_the_summary_json_but_its_provenance(model, summary):
         model.suite(range=(0.0, 0.01))
 
 
-def test_compliance_is_the_report_s_matrix(model, summary):
+def test_compliance_is_the_report_s_matrix(model, summary, out):
     c = model.compliance()
     assert isinstance(c, numpy.ndarray) and c.shape == (6, 6)
     assert c.tolist() == summary["analyses"]["parallel-travel"]["wheel_compliance_at_design"]
     assert len(elastokin.COMPLIANCE_ROWS) == len(elastokin.COMPLIANCE_COLUMNS) == 6
+    # The names are those of the command's compliance table: entry (row, column) is `{row}_per_{column}`.
+    header, _ = read_csv(out / "parallel_travel_compliance.csv")
+    assert header[1:] == [f"{r}_per_{c}" for r in elastokin.COMPLIANCE_ROWS for c in elastokin.COMPLIANCE_COLUMNS]
 
 
 def test_to_pandas_has_the_columns(model):

@@ -207,6 +207,11 @@ pub fn mode_word(mode: Mode) -> &'static str {
     }
 }
 
+/// The mode a word of [`mode_word`] names, for front ends that take it as text.
+pub fn mode_from_word(word: &str) -> Option<Mode> {
+    [Mode::Corrected, Mode::Paper].into_iter().find(|&m| mode_word(m) == word)
+}
+
 impl Settings {
     /// What the sweeps over `range` take besides their rows.
     fn extras(&self, range: (f64, f64)) -> SweepExtras {
@@ -588,15 +593,19 @@ fn over_tolerance(f: &Figure, relative: f64) -> Option<String> {
     })
 }
 
+/// The rows of a 6×6 wheel compliance: the wheel centre's response, translation (m) and rotation (rad), global
+/// axes. Its entries are named `{row}_per_{column}` in the compliance tables.
+pub const COMPLIANCE_RESPONSE: [&str; 6] = ["x_m", "y_m", "z_m", "rx_rad", "ry_rad", "rz_rad"];
+/// The columns of a 6×6 wheel compliance: the unit load at the wheel centre, force (N) and torque (N·m).
+pub const COMPLIANCE_LOAD: [&str; 6] = ["fx_n", "fy_n", "fz_n", "mx_nm", "my_nm", "mz_nm"];
+
 /// The 6×6 wheel compliance at every row: the load parameter, then the 36 entries by row
 /// (wheel-centre x, y, z in m, rotation about x, y, z in rad) and column (force along x, y, z in N,
 /// torque about x, y, z in N·m) at the wheel centre.
 fn compliance_table(analysis: Analysis, rows: &Table, c: &[[[f64; 6]; 6]]) -> Table {
-    let response = ["x_m", "y_m", "z_m", "rx_rad", "ry_rad", "rz_rad"];
-    let load = ["fx_n", "fy_n", "fz_n", "mx_nm", "my_nm", "mz_nm"];
     let mut columns = vec![rows.columns[0].clone()];
-    for r in response {
-        for l in load {
+    for r in COMPLIANCE_RESPONSE {
+        for l in COMPLIANCE_LOAD {
             columns.push(format!("{r}_per_{l}"));
         }
     }
@@ -640,6 +649,19 @@ fn needs_vehicle(field: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_mode_word_reads_back_as_its_mode_and_no_other_word_does() {
+        for mode in [Mode::Corrected, Mode::Paper] {
+            assert_eq!(mode_from_word(mode_word(mode)), Some(mode));
+        }
+        // The summary.json's words, as the command's --mode takes them.
+        assert_eq!(mode_from_word("corrected"), Some(Mode::Corrected));
+        assert_eq!(mode_from_word("paper"), Some(Mode::Paper));
+        for other in ["Paper", "exact", ""] {
+            assert_eq!(mode_from_word(other), None, "{other}");
+        }
+    }
 
     #[test]
     fn figure_error_at_a_zero_figure_is_given_in_its_unit_not_as_infinite_percent() {
