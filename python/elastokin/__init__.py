@@ -25,7 +25,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 import numpy
 
 from . import _native
-from ._study import BATCH_FIGURES, ENGINES, Grid, Parts, Study, read_variants, study, study_parts
+from ._study import BATCH_FIGURES, ENGINES, Grid, Parts, Study, _items, read_variants, study, study_parts
 from ._native import (
     BATCH_HALF_RANGE,
     BATCH_STEPS,
@@ -277,4 +277,5 @@ def batch(
     reason, else None). Raises ModelError when a variant cannot be read or edits a key the model lacks."""
     if not isinstance(model, Model):
         model = load(model)
-    return model._native.batch(read_variants(model, variants))
+    # Read once, by the batch itself (a pointer the model lacks is said before anything runs).
+    return model._native.batch(_items(variants))

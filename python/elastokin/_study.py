@@ -7,7 +7,7 @@ bit of its result: a study's rows are those of the single-process batch.
 
 Engines:
 
-- ``"local"``: this process, on ``workers`` threads (default every core): the single-process batch itself.
+- ``"local"``: this process, on ``workers`` threads (default every core); the solver lets go of the GIL.
 - ``"ray"``: Ray tasks of one CPU each. A Ray that is already started (``ray.init(address=...)``) is used;
   otherwise a local Ray is started with ``workers`` CPUs and left running, as Ray's own libraries do.
 - ``"dask"``: Dask futures on the default ``distributed`` client (the last ``Client`` made). Without one, a
@@ -74,6 +74,26 @@ def _records(variants: Any) -> Any:
     return variants
 
 
+def _items(variants: Any) -> Any:
+    """Variants in any form, as the native reader takes them: a variants file's text as it is, anything else
+    as a list of variants-file lines and ``(name, [(pointer, JSON text)])`` pairs (a dict's values written
+    as JSON here)."""
+    variants = _records(variants)
+    if isinstance(variants, str):
+        return variants
+    items: List[Any] = []
+    for k, v in enumerate(variants):
+        if isinstance(v, Mapping):
+            edits = dict(v)
+            name = edits.pop("name", None)
+            name = None if name is None else str(name)
+            place = f"variants[{k}]"
+            items.append((name, [(p, _json_value(value, f"{place} '{p}'")) for p, value in edits.items()]))
+        else:
+            items.append(v)
+    return items
+
+
 def read_variants(model: Any, variants: Any) -> List[_Variant]:
     """Every form of variants a study or :func:`elastokin.batch` takes, read and checked against ``model``
     (a :class:`Model`): the text of a variants file; a list of variants-file lines or dicts
@@ -82,20 +102,14 @@ def read_variants(model: Any, variants: Any) -> List[_Variant]:
 
     Gives ``(name, [(pointer, JSON text of the value)])`` per variant, in order; raises ModelError naming the
     variant that cannot be read or edits a key the model lacks."""
-    variants = _records(variants)
-    if not isinstance(variants, str):
-        items: List[Any] = []
-        for k, v in enumerate(variants):
-            if isinstance(v, Mapping):
-                edits = dict(v)
-                name = edits.pop("name", None)
-                name = None if name is None else str(name)
-                place = f"variants[{k}]"
-                items.append((name, [(p, _json_value(value, f"{place} '{p}'")) for p, value in edits.items()]))
-            else:
-                items.append(v)
-        variants = items
-    return [(name, list(edits)) for name, edits in model._native.read_variants(variants)]
+    return [(name, list(edits)) for name, edits in model._native.read_variants(_items(variants))]
+
+
+def _numbered(rows: List[Dict[str, Any]], first: int) -> List[Dict[str, Any]]:
+    """The rows of the variants numbered from ``first + 1`` on, each given its ``variant_number``."""
+    for k, row in enumerate(rows):
+        row["variant_number"] = first + k + 1
+    return rows
 
 
 def _split(count: int, chunks: int) -> List[Tuple[int, int]]:
@@ -108,12 +122,9 @@ def _run_chunk(document: Tuple[str, str], variants: List[_Variant], first: int) 
     """One task: the chunk's variants of the model, on one thread, each row with its variant number (from 1).
 
     Runs wherever the engine puts it; it needs only this module and the model's document."""
-    text, origin = document
-    model = _native.Model.from_json(text, origin)
-    rows = model.batch(variants, threads=1)
-    for k, row in enumerate(rows):
-        row["variant_number"] = first + k + 1
-    return rows
+    from . import _from_document
+
+    return _numbered(_from_document(*document)._native.batch(variants, threads=1), first)
 
 
 def _edited_values(variants: List[_Variant]) -> Dict[str, List[Any]]:
@@ -339,30 +350,15 @@ def study(
     # Read and checked here, before any task is sent: a mistake in the table stops the study at once.
     table = read_variants(model, variants)
     count = len(table)
-    if chunks is not None:
-        wanted = chunks
-    elif engine == "local":
-        wanted = 1  # one batch on every core
-    else:
-        wanted = _CHUNKS_PER_WORKER * _engine_slots(engine, workers)
+    wanted = chunks if chunks is not None else _CHUNKS_PER_WORKER * _engine_slots(engine, workers)
     wanted = max(wanted, -(-count // _native.MAX_VARIANTS))
     blocks = [(table[start:end], start) for start, end in _split(count, min(wanted, count))]
-    if engine == "local":
-        results = [_run_local(model, variants, first, workers) for variants, first in blocks]
-    else:
-        results = _RUNNERS[engine](_run_chunk, document, blocks, workers)
+    results = _RUNNERS[engine](_run_chunk, document, blocks, workers)
     rows = [row for block in results for row in block]
     result = Study(rows, table, dict(_provenance(model, document, count), engine=engine))
     if parquet is not None:
         result.to_parquet(parquet)
     return result
-
-
-def _run_local(model: Any, variants: List[_Variant], first: int, threads: Optional[int]) -> List[Dict[str, Any]]:
-    rows = model._native.batch(variants, threads=threads)
-    for k, row in enumerate(rows):
-        row["variant_number"] = first + k + 1
-    return rows
 
 
 class Grid:
@@ -463,9 +459,7 @@ def _run_part(document: Tuple[str, str], source: Any, start: int, stop: int, fir
 
     model = _from_document(*document)
     table = read_variants(model, source[start:stop])
-    rows = model._native.batch(table, threads=1)
-    for k, row in enumerate(rows):
-        row["variant_number"] = first + k + 1
+    rows = _numbered(model._native.batch(table, threads=1), first)
     failed = sum(row["error"] is not None for row in rows)
     meta = dict(metadata, first_variant=str(first + 1), last_variant=str(first + len(rows)),
                 failed=str(failed), block_sha256=_block_key(table))
