@@ -46,9 +46,9 @@ pub fn parse_variants_at_most(text: &str, origin: &str, most: Option<usize>) -> 
         let Some(variant) = parse_variant(raw, &format!("line {}", k + 1), &place)? else {
             continue;
         };
-        if Some(out.len()) == most {
+        if let Some(most) = most.filter(|&most| out.len() == most) {
             return Err(format!(
-                "{place}: more than {MAX_VARIANTS} variants; split the file and run a batch for each part (or run them \
+                "{place}: more than {most} variants; split the file and run a batch for each part (or run them \
                  as a study from Python, which splits them itself)"
             ));
         }
@@ -187,5 +187,7 @@ mod tests {
         assert!(err.starts_with(&format!("many:{}: more than {MAX_VARIANTS} variants", MAX_VARIANTS + 1)), "{err}");
         assert_eq!(parse_variants_at_most(&many, "many", None).unwrap().len(), MAX_VARIANTS + 1);
         assert!(parse_variants_at_most(&many, "many", Some(3)).is_err());
+        let err = parse_variants_at_most(&many, "many", Some(3)).unwrap_err();
+        assert!(err.starts_with("many:4: more than 3 variants; split the file"), "{err}");
     }
 }
