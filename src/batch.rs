@@ -18,6 +18,12 @@ pub const COLUMNS: [&str; 5] =
 /// so that the merge can check that the shards cover every variant once and in order.
 pub const NUMBER_COLUMN: &str = "variant_number";
 
+/// The header of `batch.csv`: [`COLUMNS`], and [`NUMBER_COLUMN`] after them in a shard's.
+pub fn columns(shard: bool) -> Vec<String> {
+    let number = shard.then_some(NUMBER_COLUMN);
+    COLUMNS.into_iter().chain(number).map(String::from).collect()
+}
+
 /// Shard `index` of `count` (1-based, as a job array numbers its tasks).
 ///
 /// The split is contiguous and nearly equal: variant k (counting from 0) of V belongs to shard

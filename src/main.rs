@@ -592,11 +592,7 @@ fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> 
             }
             rows.push(row);
         }
-        let mut columns = batch::COLUMNS.map(String::from).to_vec();
-        if args.shard.is_some() {
-            columns.push(batch::NUMBER_COLUMN.into());
-        }
-        let table = kc::Table { name: "batch".into(), columns, rows };
+        let table = kc::Table { name: "batch".into(), columns: batch::columns(args.shard.is_some()), rows };
         staging.write(&format!("{}.csv", table.name), &write_table(&table, &provenance))
     })();
     let path = result.map_err(|e| Failure::Run(format!("{}\n{}", e.message(), staging.untouched())))?;

@@ -95,8 +95,7 @@ fn read_shard(given: &Path) -> Result<ShardFile, Failure> {
         )
     })?;
     let mut reader = csv::ReaderBuilder::new().flexible(true).from_reader(body.as_bytes());
-    let mut columns: Vec<String> = batch::COLUMNS.map(String::from).to_vec();
-    columns.push(batch::NUMBER_COLUMN.into());
+    let columns = batch::columns(true);
     let header = reader.headers().map_err(|e| not_a_shard(&format!("its header row is not CSV: {e}")))?;
     if header.iter().ne(columns.iter().map(String::as_str)) {
         return Err(not_a_shard(&format!("its columns are not {}", columns.join(","))));
@@ -191,7 +190,7 @@ pub fn merge(args: MergeArgs, out: &Stdout) -> Result<(), Failure> {
     let ordered: Vec<&ShardFile> = by_index.into_values().collect();
     let table = Table {
         name: "batch".into(),
-        columns: batch::COLUMNS.map(String::from).to_vec(),
+        columns: batch::columns(false),
         rows: ordered.iter().flat_map(|s| &s.rows).map(|r| r.iter().cloned().map(Cell::Text).collect()).collect(),
     };
     let first = format!("{}{}", ordered[0].head, Part::Merged { shards: count }.suffix());

@@ -46,9 +46,9 @@ pub fn parse_variants_at_most(text: &str, origin: &str, most: Option<usize>) -> 
         let Some(variant) = parse_variant(raw, &format!("line {}", k + 1), &place)? else {
             continue;
         };
-        if Some(out.len()) == most {
+        if let Some(most) = most.filter(|&most| out.len() == most) {
             return Err(format!(
-                "{place}: more than {MAX_VARIANTS} variants; split the file and run a batch for each part (or run them \
+                "{place}: more than {most} variants; split the file and run a batch for each part (or run them \
                  as a study from Python, which splits them itself)"
             ));
         }
@@ -100,12 +100,8 @@ pub fn apply(base: &serde_json::Value, v: &Variant) -> Result<SuspensionFile, St
         *doc.pointer_mut(pointer).ok_or_else(|| no_such_key(v, pointer))? = value.clone();
     }
     let text = serde_json::to_string(&doc).map_err(|e| e.to_string())?;
-    let origin = format!("variant '{}'", v.name);
-    if crate::chrono::is_chrono(&text) {
-        return crate::chrono::import(&text, &origin, None).map(|i| i.file).map_err(|e| e.to_string());
-    }
     // The edited model is no file the user has: its errors name keys, not a line and column of it.
-    SuspensionFile::from_json(&text, &origin).map_err(|e| e.in_document(&text))
+    crate::model_file::parse_document(&text, &format!("variant '{}'", v.name)).map(|(file, _)| file)
 }
 
 /// Refuses a variant that edits a key the base model lacks, as [`apply`] does, without reading the model: a
@@ -170,11 +166,28 @@ mod tests {
     }
 
     #[test]
+    fn a_chrono_variant_is_read_as_run_reads_its_file_and_says_so_when_it_cannot_be() {
+        const CHRONO: &str = include_str!("../../../tests/data/chrono/SemiTrailingArm.json");
+        let base = base_document(CHRONO, "SemiTrailingArm.json").unwrap();
+        let stiff = parse_variant("stiff: /Spring/Spring Coefficient=400000", "x", "y").unwrap().unwrap();
+        let file = apply(&base, &stiff).unwrap();
+        let (run, _) =
+            crate::model_file::parse_model(&CHRONO.replace("350000.000", "400000"), "variant 'stiff'").unwrap();
+        assert_eq!(file.suspension, run.suspension);
+        let broken = parse_variant("broken: /Spring/Spring Coefficient=\"stiff\"", "x", "y").unwrap().unwrap();
+        let said = apply(&base, &broken).unwrap_err();
+        assert!(said.starts_with("variant 'broken'"), "{said}");
+        assert!(said.ends_with(" (read as a Project Chrono suspension file)"), "{said}");
+    }
+
+    #[test]
     fn a_file_of_any_length_is_read_when_no_limit_is_set() {
         let many: String = (0..MAX_VARIANTS + 1).map(|k| format!("/a/{k}=1\n")).collect();
         let err = parse_variants(&many, "many").unwrap_err();
         assert!(err.starts_with(&format!("many:{}: more than {MAX_VARIANTS} variants", MAX_VARIANTS + 1)), "{err}");
         assert_eq!(parse_variants_at_most(&many, "many", None).unwrap().len(), MAX_VARIANTS + 1);
         assert!(parse_variants_at_most(&many, "many", Some(3)).is_err());
+        let err = parse_variants_at_most(&many, "many", Some(3)).unwrap_err();
+        assert!(err.starts_with("many:4: more than 3 variants; split the file"), "{err}");
     }
 }

@@ -230,30 +230,34 @@ pub(crate) fn without_byte_order_mark(text: &str) -> &str {
     text.strip_prefix('\u{feff}').unwrap_or(text)
 }
 
+/// The byte offset of the quote that closes the JSON string whose opening quote is at `open` (the end of
+/// `text` when it is unclosed): escapes are stepped over.
+fn string_end(text: &str, open: usize) -> usize {
+    let bytes = text.as_bytes();
+    let mut i = open + 1;
+    while i < bytes.len() && bytes[i] != b'"' {
+        i += if bytes[i] == b'\\' { 2 } else { 1 };
+    }
+    i.min(bytes.len())
+}
+
+/// Whether the string that closes at `close` is an object key: a colon follows it.
+fn is_key(text: &str, close: usize) -> bool {
+    text.get(close + 1..)
+        .is_some_and(|rest| rest.trim_start_matches(|c: char| c.is_ascii_whitespace()).starts_with(':'))
+}
+
 /// Every object key in `text` with its byte offset, in order.
 fn keys(text: &str) -> Vec<(usize, String)> {
-    let bytes = text.as_bytes();
     let mut out = Vec::new();
     let mut i = 0;
-    while i < bytes.len() {
-        if bytes[i] != b'"' {
-            i += 1;
-            continue;
+    while let Some(found) = text.get(i..).and_then(|rest| rest.find('"')) {
+        let open = i + found;
+        let close = string_end(text, open);
+        if is_key(text, close) {
+            out.push((open, text[open + 1..close].to_string()));
         }
-        let start = i;
-        i += 1;
-        while i < bytes.len() && bytes[i] != b'"' {
-            i += if bytes[i] == b'\\' { 2 } else { 1 };
-        }
-        let end = i.min(bytes.len());
-        i += 1;
-        let mut j = i;
-        while j < bytes.len() && bytes[j].is_ascii_whitespace() {
-            j += 1;
-        }
-        if j < bytes.len() && bytes[j] == b':' {
-            out.push((start, text[start + 1..end].to_string()));
-        }
+        i = close + 1;
     }
     out
 }
@@ -309,17 +313,12 @@ pub fn key_path_at(text: &str, line: usize, column: usize) -> String {
     while i < end {
         match bytes[i] {
             b'"' => {
-                let start = i + 1;
-                i += 1;
-                while i < bytes.len() && bytes[i] != b'"' {
-                    i += if bytes[i] == b'\\' { 2 } else { 1 };
-                }
-                let string = &text[start..i.min(text.len())];
+                let close = string_end(text, i);
                 // A string in an object is its key when a colon follows it.
-                let rest = text[(i + 1).min(text.len())..].trim_start();
-                if let (Some(Frame::Object(key)), true) = (stack.last_mut(), rest.starts_with(':')) {
-                    *key = Some(string.to_string());
+                if let (Some(Frame::Object(key)), true) = (stack.last_mut(), is_key(text, close)) {
+                    *key = Some(text[i + 1..close].to_string());
                 }
+                i = close;
             }
             b'{' => stack.push(Frame::Object(None)),
             b'[' => stack.push(Frame::Array(0)),
