@@ -173,6 +173,13 @@ class Corner:
         body, at = self.body(name)
         return body, list(np.asarray(point, dtype=float) - at)
 
+    def between(self, first, at, second, to):
+        """A connector's bodies and positions: `at` on the first body, `to` on the second (global, at
+        design), as the `itemNumbers`, `localPosition0` and `localPosition1` of Exudyn's `Create…`."""
+        b0, p0 = self.local(first, at)
+        b1, p1 = self.local(second, to)
+        return {"itemNumbers": [b0, b1], "localPosition0": p0, "localPosition1": p1}
+
     def add_joint(self, j):
         kind = j["kind"]
         first, second = j["bodies"]
@@ -206,13 +213,9 @@ class Corner:
             raise Refused(f"joint '{j['name']}': kind '{kind}' is not mapped")
 
     def distance(self, name, first, at, second, to):
-        b0, p0 = self.local(first, at)
-        b1, p1 = self.local(second, to)
         self.mbs.CreateDistanceConstraint(
             name=name,
-            itemNumbers=[b0, b1],
-            localPosition0=p0,
-            localPosition1=p1,
+            **self.between(first, at, second, to),
             distance=float(np.linalg.norm(np.asarray(to) - np.asarray(at))),
         )
 
@@ -251,8 +254,6 @@ class Corner:
         if first != "chassis":
             raise Refused(f"bushing '{name}': only bushings whose first body is the chassis are mapped")
         at = self.model.point(b["at"])
-        b0, p0 = self.local(first, at)
-        b1, p1 = self.local(second, at)
         stiffness = np.diag(kt + kr)
         kwargs = {}
         if self.bushing_law == "energy":
@@ -262,9 +263,7 @@ class Corner:
         # both from the SE(3) logarithm, in the frame halfway between the markers, through the point halfway.
         self.mbs.CreateRigidBodySpringDamper(
             name=name,
-            itemNumbers=[b0, b1],
-            localPosition0=p0,
-            localPosition1=p1,
+            **self.between(first, at, second, at),
             stiffness=stiffness,
             damping=np.zeros((6, 6)),
             rotationMatrixJoint=frame,
@@ -289,13 +288,9 @@ class Corner:
         else:
             free_length = float(s["free_length"])
         first, second = s["bodies"]
-        b0, p0 = self.local(first, start)
-        b1, p1 = self.local(second, end)
         self.mbs.CreateSpringDamper(
             name=name,
-            itemNumbers=[b0, b1],
-            localPosition0=p0,
-            localPosition1=p1,
+            **self.between(first, start, second, end),
             referenceLength=free_length,
             stiffness=rate,
             damping=0.0,

@@ -9,42 +9,35 @@ use super::models;
 use super::report::{Cell, Judge, Kind, SectionOutput, Table, Target};
 use super::Settings;
 use elastokin_solver::{LoadPath, Mode, SolverOptions, SolverWorkspace, StaticSolver};
-use elastokin_suspensions::analysis::{parallel_wheel_travel, slope_at};
-use elastokin_suspensions::{Rig, Side, SuspensionFile};
+use elastokin_suspensions::batch::{self, Variant};
+use elastokin_suspensions::{Rig, Side};
 use rayon::prelude::*;
 use serde_json::Value;
 
 /// A grid of variants: inner tie-rod height, spring rate and lower-arm radial rate.
-fn variants(count: usize) -> Vec<Vec<(&'static str, f64)>> {
-    let mut out = Vec::with_capacity(count);
-    let mut k = 0usize;
-    while out.len() < count {
-        let dz = -0.010 + 0.020 * ((k % 5) as f64 / 4.0);
-        let rate = 20_000.0 + 5_000.0 * ((k / 5) % 4) as f64;
-        let radial = 2.0e6 * (1.0 + ((k / 20) % 5) as f64);
-        out.push(vec![
-            ("/suspension/macpherson/hardpoints/tie_rod_inner/2", -0.059 + dz),
-            ("/suspension/macpherson/spring/rate", rate),
-            ("/suspension/macpherson/lower_arm_mounts/bushing/radial", radial),
-        ]);
-        k += 1;
-    }
-    out
+fn variants(count: usize) -> Vec<Variant> {
+    (0..count)
+        .map(|k| {
+            let dz = -0.010 + 0.020 * ((k % 5) as f64 / 4.0);
+            let rate = 20_000.0 + 5_000.0 * ((k / 5) % 4) as f64;
+            let radial = 2.0e6 * (1.0 + ((k / 20) % 5) as f64);
+            let edits = [
+                ("/suspension/macpherson/hardpoints/tie_rod_inner/2", -0.059 + dz),
+                ("/suspension/macpherson/spring/rate", rate),
+                ("/suspension/macpherson/lower_arm_mounts/bushing/radial", radial),
+            ];
+            Variant {
+                name: format!("v{k}"),
+                edits: edits.into_iter().map(|(pointer, value)| (pointer.to_string(), Value::from(value))).collect(),
+            }
+        })
+        .collect()
 }
 
-/// One variant, start to finish: (bump steer deg/m, camber gain deg/m, wheel rate N/m).
-fn evaluate(base: &Value, edits: &[(&str, f64)]) -> Result<(f64, f64, f64), String> {
-    let mut doc = base.clone();
-    for (pointer, value) in edits {
-        *doc.pointer_mut(pointer).ok_or_else(|| format!("the model has no '{pointer}'"))? = Value::from(*value);
-    }
-    let file = SuspensionFile::from_json(&doc.to_string(), "variant").map_err(|e| e.to_string())?;
-    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| e.to_string())?;
-    let rows = parallel_wheel_travel(&corner, -0.02, 0.02, 8, Mode::Corrected).map_err(|e| e.to_string())?;
-    let slope = |y: fn(&elastokin_suspensions::analysis::TravelRow) -> f64| {
-        slope_at(&rows, 0.0, |r| r.travel, y).ok_or_else(|| "no slope at design".to_string())
-    };
-    Ok((slope(|r| r.attitude.toe.to_degrees())?, slope(|r| r.attitude.camber.to_degrees())?, slope(|r| r.wheel_load)?))
+/// One variant, start to finish, as `elastokin batch` runs it: edited and read by [`batch::apply`],
+/// judged by [`batch::evaluate`].
+fn evaluate(base: &Value, variant: &Variant) -> Result<batch::Outcome, String> {
+    batch::evaluate(&batch::apply(base, variant)?, batch::HALF_RANGE, batch::STEPS)
 }
 
 /// CPU time of every thread of this process (s), from `/proc/self/task/*/schedstat` (Linux); `None`
@@ -89,7 +82,7 @@ pub fn run(s: &Settings) -> SectionOutput {
     );
     let base = match std::fs::read_to_string(models::root().join("examples/macpherson.json"))
         .map_err(|e| e.to_string())
-        .and_then(|t| serde_json::from_str::<Value>(&t).map_err(|e| e.to_string()))
+        .and_then(|t| batch::base_document(&t, "examples/macpherson.json"))
     {
         Ok(v) => v,
         Err(e) => {
@@ -181,19 +174,11 @@ impl StudyPolicy {
 /// the largest |toe| over the sweep (rad), so that nothing is optimised away, and the workspace.
 fn study_variant(
     base: &Value,
-    edits: &[(&str, f64)],
+    variant: &Variant,
     policy: StudyPolicy,
     workspace: Option<SolverWorkspace>,
 ) -> (Result<f64, String>, Option<SolverWorkspace>) {
-    let mut doc = base.clone();
-    for (pointer, value) in edits {
-        match doc.pointer_mut(pointer) {
-            Some(v) => *v = Value::from(*value),
-            None => return (Err(format!("the model has no '{pointer}'")), workspace),
-        }
-    }
-    let corner = match SuspensionFile::from_json(&doc.to_string(), "variant")
-        .map_err(|e| e.to_string())
+    let corner = match batch::apply(base, variant)
         .and_then(|f| f.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| e.to_string()))
     {
         Ok(c) => c,

@@ -283,11 +283,21 @@ const FLOORS: [(&str, &str, &str); 3] = [
 
 /// One iteration of a full-Newton corrected step, as the parts are named in the table.
 const NEWTON_ITERATION: &str = "one Newton iteration";
-const NEWTON_GOAL: &str =
-    "MacPherson: one Newton iteration within 2× (full-tangent assembly + best dense factorization + solve) of the same KKT";
+const NEWTON_GOAL: (&str, f64) = (
+    "MacPherson: one Newton iteration within 2× (full-tangent assembly + best dense factorization + solve) of the same KKT",
+    2.0,
+);
 
-const KKT_FACTOR_GOAL: &str = "MacPherson: one paper-mode step within 3× one KktFactor numeric factorization + solve \
-                               (scaled and refined) of the same KKT";
+const KKT_FACTOR_GOAL: (&str, f64) = (
+    "MacPherson: one paper-mode step within 3× one KktFactor numeric factorization + solve (scaled and refined) of the \
+     same KKT",
+    3.0,
+);
+
+/// A target of a ratio of times, at most the goal's limit, measured or failed alike.
+fn ratio_target((goal, limit): (&str, f64), measured: Result<f64, String>, detail: String) -> Target {
+    Target { goal: goal.into(), measured, limit, unit: "×".into(), judge: Judge::AtMost, detail }
+}
 
 /// Runs the section.
 pub fn run(s: &Settings) -> SectionOutput {
@@ -351,33 +361,27 @@ pub fn run(s: &Settings) -> SectionOutput {
                 if model_name == "MacPherson" {
                     let iteration = seconds(NEWTON_ITERATION);
                     let floor = seconds("assembly, full tangent").zip(floors[2]).map(|(a, b)| a + b);
-                    out.targets.push(Target {
-                        goal: NEWTON_GOAL.into(),
-                        measured: iteration.zip(floor).map(|(i, f)| i / f).ok_or_else(|| "not measured".to_string()),
-                        limit: 2.0,
-                        unit: "×".into(),
-                        judge: Judge::AtMost,
-                        detail: format!(
+                    out.targets.push(ratio_target(
+                        NEWTON_GOAL,
+                        iteration.zip(floor).map(|(i, f)| i / f).ok_or_else(|| "not measured".to_string()),
+                        format!(
                             "vertical force sweep; Newton iteration {} µs, full-tangent assembly + best dense \
                              factorization + solve {} µs (medians)",
                             us(iteration),
                             us(floor)
                         ),
-                    });
+                    ));
                     let kkt = floors[0];
                     let paper = seconds("paper step");
-                    out.targets.push(Target {
-                        goal: KKT_FACTOR_GOAL.into(),
-                        measured: paper.zip(kkt).map(|(p, b)| p / b).ok_or_else(|| "not measured".to_string()),
-                        limit: 3.0,
-                        unit: "×".into(),
-                        judge: Judge::AtMost,
-                        detail: format!(
+                    out.targets.push(ratio_target(
+                        KKT_FACTOR_GOAL,
+                        paper.zip(kkt).map(|(p, b)| p / b).ok_or_else(|| "not measured".to_string()),
+                        format!(
                             "vertical force sweep; paper step {} µs, KktFactor factorization + solve {} µs (medians)",
                             us(paper),
                             us(kkt)
                         ),
-                    });
+                    ));
                 }
             }
             Err(e) => {
@@ -386,22 +390,9 @@ pub fn run(s: &Settings) -> SectionOutput {
                 row.push(Cell::text(format!("failed: {e}")));
                 table.row(row);
                 if model_name == "MacPherson" {
-                    out.targets.push(Target {
-                        goal: NEWTON_GOAL.into(),
-                        measured: Err(format!("failed: {e}")),
-                        limit: 2.0,
-                        unit: "×".into(),
-                        judge: Judge::AtMost,
-                        detail: String::new(),
-                    });
-                    out.targets.push(Target {
-                        goal: KKT_FACTOR_GOAL.into(),
-                        measured: Err(format!("failed: {e}")),
-                        limit: 3.0,
-                        unit: "×".into(),
-                        judge: Judge::AtMost,
-                        detail: String::new(),
-                    });
+                    for goal in [NEWTON_GOAL, KKT_FACTOR_GOAL] {
+                        out.targets.push(ratio_target(goal, Err(format!("failed: {e}")), String::new()));
+                    }
                 }
             }
         }
