@@ -10,18 +10,15 @@ pub use elastokin::suspensions::batch::*;
 use elastokin::suspensions::SuspensionFile;
 use rayon::prelude::*;
 
-/// The columns of `batch.csv`.
-pub const COLUMNS: [&str; 5] =
-    ["variant", "bump_steer_deg_per_m", "camber_gain_deg_per_m", "wheel_rate_n_per_m", "error"];
-
 /// The column a shard's `batch.csv` adds: the variant's place in the whole variants file, counting from 1,
 /// so that the merge can check that the shards cover every variant once and in order.
 pub const NUMBER_COLUMN: &str = "variant_number";
 
-/// The header of `batch.csv`: [`COLUMNS`], and [`NUMBER_COLUMN`] after them in a shard's.
+/// The header of `batch.csv`: `variant`, the library's [`FIGURES`], `error`, and [`NUMBER_COLUMN`] after them
+/// in a shard's.
 pub fn columns(shard: bool) -> Vec<String> {
     let number = shard.then_some(NUMBER_COLUMN);
-    COLUMNS.into_iter().chain(number).map(String::from).collect()
+    std::iter::once("variant").chain(FIGURES).chain(["error"]).chain(number).map(String::from).collect()
 }
 
 /// Shard `index` of `count` (1-based, as a job array numbers its tasks).

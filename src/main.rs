@@ -579,7 +579,8 @@ fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> 
                         o.camber_gain * 0.01,
                         o.wheel_rate * 1e-3
                     ))?;
-                    vec![name, o.bump_steer.into(), o.camber_gain.into(), o.wheel_rate.into(), kc::Cell::Empty]
+                    let figures = o.figures().map(kc::Cell::from);
+                    std::iter::once(name).chain(figures).chain([kc::Cell::Empty]).collect()
                 }
                 Err(e) => {
                     out.line(format!("{:<28} failed: {e}", v.name))?;

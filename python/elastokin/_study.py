@@ -32,8 +32,8 @@ from . import _native
 
 ENGINES = ("local", "ray", "dask")
 
-#: The figures of a variant, as batch.csv names its columns.
-BATCH_FIGURES = ("bump_steer_deg_per_m", "camber_gain_deg_per_m", "wheel_rate_n_per_m")
+#: The figures of a variant, as batch.csv names its columns (the library's names).
+BATCH_FIGURES = tuple(_native.BATCH_FIGURES)
 
 # A chunk is one task: big enough that an engine's cost per task (about a millisecond) is small against its
 # solves (about 0.35 ms a variant), small enough to spread over the workers several times for balance.

@@ -301,9 +301,9 @@ impl Model {
                     Ok(o) => (Some(o), None),
                     Err(e) => (None, Some(e)),
                 };
-                row.set_item("bump_steer_deg_per_m", outcome.map(|o| o.bump_steer))?;
-                row.set_item("camber_gain_deg_per_m", outcome.map(|o| o.camber_gain))?;
-                row.set_item("wheel_rate_n_per_m", outcome.map(|o| o.wheel_rate))?;
+                for (k, figure) in batch::FIGURES.into_iter().enumerate() {
+                    row.set_item(figure, outcome.map(|o| o.figures()[k]))?;
+                }
                 row.set_item("error", error)?;
                 Ok(row)
             })
@@ -385,5 +385,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("COMPLIANCE_COLUMNS", kc::COMPLIANCE_LOAD.to_vec())?;
     m.add("BATCH_HALF_RANGE", batch::HALF_RANGE)?;
     m.add("BATCH_STEPS", batch::STEPS)?;
+    m.add("BATCH_FIGURES", batch::FIGURES.to_vec())?;
     Ok(())
 }

@@ -128,6 +128,17 @@ pub struct Outcome {
     pub wheel_rate: f64,
 }
 
+/// The names of a variant's figures, in the order of [`Outcome::figures`]: batch.csv's columns, and the
+/// keys every front end gives them.
+pub const FIGURES: [&str; 3] = ["bump_steer_deg_per_m", "camber_gain_deg_per_m", "wheel_rate_n_per_m"];
+
+impl Outcome {
+    /// The figures in the order [`FIGURES`] names them.
+    pub fn figures(&self) -> [f64; 3] {
+        [self.bump_steer, self.camber_gain, self.wheel_rate]
+    }
+}
+
 /// Runs one variant: parallel travel ±`half_range` in `steps` (even) steps.
 pub fn evaluate(file: &SuspensionFile, half_range: f64, steps: usize) -> Result<Outcome, String> {
     let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| e.to_string())?;
