@@ -702,7 +702,8 @@ fn for_each_pivot(symbolic: &SymbolicCholesky<usize>, l_val: &[f64], mut visit: 
     }
 }
 
-fn max_abs(v: &[f64]) -> f64 {
+/// `‖v‖∞`, 0 for an empty slice.
+pub(crate) fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0f64, |acc, x| acc.max(x.abs()))
 }
 
@@ -1230,8 +1231,7 @@ impl KktFactor {
                 den[i] += (v * zc).abs();
             }
         }
-        let z_norm = z.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        let omega = crate::kkt_backend::backward_error(r, den, &self.row_norm, &self.rhs0, z_norm);
+        let omega = crate::kkt_backend::backward_error(r, den, &self.row_norm, &self.rhs0, z);
         (omega, max_abs(&r[..n]), max_abs(&r[n..]))
     }
 

@@ -191,6 +191,16 @@ pub struct SolverWorkspace {
     moved: Vec<f64>,
 }
 
+impl SolverWorkspace {
+    /// Forgets the steps the predictor extrapolates from, keeping their storage for the next path: the
+    /// next corrected step starts from the last equilibrium.
+    fn forget_path(&mut self) {
+        if let Some(h) = self.history.as_mut() {
+            h.count = 0;
+        }
+    }
+}
+
 /// What a model's KKT pattern is made from: its bodies, and the bodies each element and joint couples
 /// (with the joint's row count).
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -398,7 +408,7 @@ impl<'m> StaticSolver<'m> {
         let workspace = match reusable {
             Some(mut w) => {
                 w.factor.reset();
-                w.history = None;
+                w.forget_path();
                 w
             }
             None => {
@@ -941,7 +951,7 @@ impl<'m> StaticSolver<'m> {
             });
         }
         state.t = path.start;
-        self.work.history = None;
+        self.work.forget_path();
         let first = self.equilibrium(state)?;
         let mut steps = Vec::with_capacity(path.steps + 1);
         steps.push(first);
@@ -1065,7 +1075,7 @@ impl<'m> StaticSolver<'m> {
             self.initial_response = self.load_response(&first);
         }
         let mut saved = at.clone();
-        self.work.history = None;
+        self.work.forget_path();
         while (target - at.t) * dt.signum() > 0.0 {
             let next = if (target - at.t).abs() <= dt.abs() * (1.0 + 1e-12) { target } else { at.t + dt };
             if let StepOutcome::Stuck { attempted, iterations, force, constraint } =
@@ -1132,7 +1142,7 @@ impl<'m> StaticSolver<'m> {
                     state.clone_from(saved);
                     // The shorter step starts from the last equilibrium without extrapolating: a step
                     // that failed may have failed because the path turned.
-                    self.work.history = None;
+                    self.work.forget_path();
                     cuts += 1;
                     if cuts > self.options.max_step_cuts {
                         return Ok(StepOutcome::Stuck {

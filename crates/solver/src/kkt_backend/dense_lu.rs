@@ -31,8 +31,8 @@
 
 use super::{Accuracy, KktBackend, KktValues};
 use crate::kkt_factor::{
-    check_values, round_to_powers_of_two, validate, FactorCounters, FactorError, FactorReport, KktOptions, KktPattern,
-    SolveReport,
+    check_values, max_abs, round_to_powers_of_two, validate, FactorCounters, FactorError, FactorReport, KktOptions,
+    KktPattern, SolveReport,
 };
 
 /// A row's largest scaled entry may drift this far from 1 (either way) before the scaling is renewed.
@@ -302,8 +302,7 @@ impl DenseLu {
             r[row] -= v * z[col];
             den[row] += (v * z[col]).abs();
         });
-        let z_norm = z.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        super::backward_error(r, den, &self.row_norm, &self.rhs0, z_norm)
+        super::backward_error(r, den, &self.row_norm, &self.rhs0, z)
     }
 }
 
@@ -425,8 +424,8 @@ impl KktBackend for DenseLu {
             }
             report = SolveReport {
                 refinement_steps: steps,
-                residual_x: r[..self.n].iter().fold(0.0, |a: f64, v| a.max(v.abs())),
-                residual_y: r[self.n..].iter().fold(0.0, |a: f64, v| a.max(v.abs())),
+                residual_x: max_abs(&r[..self.n]),
+                residual_y: max_abs(&r[self.n..]),
                 backward_error: omega,
                 converged: omega <= self.options.refinement_tol,
                 measured: true,

@@ -31,7 +31,7 @@ pub mod sparse_ldlt;
 pub use auto::{AutoKkt, BackendChoice, DENSE_MAX_ORDER};
 pub use dense_lu::DenseLu;
 
-use crate::kkt_factor::{FactorCounters, FactorError, FactorReport, SolveReport};
+use crate::kkt_factor::{max_abs, FactorCounters, FactorError, FactorReport, SolveReport};
 
 /// The values of one KKT system, each aligned with its row-index array of the [`KktPattern`]
 /// (`k` and `k_skew` with `k_row_idx`, `j` with `j_row_idx`).
@@ -86,16 +86,17 @@ pub trait KktBackend: std::fmt::Debug + Send {
 }
 
 /// The componentwise (Oettli–Prager) backward error of a solution `z` of `A z = b`, from its residual
-/// `r = b − A z`, the row sums `den = |A|·|z| + |b|`, each row's largest entry `row_norm_i = ‖A_i‖∞` and
-/// `z_norm = ‖z‖∞`: `max_i |r_i| / den_i`.
+/// `r = b − A z`, the row sums `den = |A|·|z| + |b|` and each row's largest entry `row_norm_i = ‖A_i‖∞`:
+/// `max_i |r_i| / den_i`.
 ///
 /// A row whose terms are all at rounding level against the row's size — a constraint row satisfied by
 /// unknowns that came out `1e-20` where they are exactly 0, say — has `|r_i| ≈ den_i` whatever the
 /// solution's quality, and would make the measure 1. Such a row (`den_i` below `1000·size·ε` times
 /// `‖A_i‖∞‖z‖∞ + |b_i|`) is measured normwise instead, against `den_i + ‖A_i‖∞‖z‖∞` (Arioli, Demmel and
 /// Duff's two-category backward error).
-pub(crate) fn backward_error(r: &[f64], den: &[f64], row_norm: &[f64], rhs: &[f64], z_norm: f64) -> f64 {
+pub(crate) fn backward_error(r: &[f64], den: &[f64], row_norm: &[f64], rhs: &[f64], z: &[f64]) -> f64 {
     let size = r.len() as f64;
+    let z_norm = max_abs(z);
     let mut omega = 0.0f64;
     for i in 0..r.len() {
         if r[i] == 0.0 {
@@ -125,14 +126,14 @@ mod tests {
         let den = [a * z_k, 1.0];
         let row_norm = [a, 1.0];
         let rhs = [0.0, 0.5];
-        let z_norm = 1.0;
+        let z = [z_k, 1.0];
         // Componentwise alone: max(1, 1e-12) = 1.
         assert_eq!(r[0].abs() / den[0], 1.0);
-        let omega = backward_error(&r, &den, &row_norm, &rhs, z_norm);
+        let omega = backward_error(&r, &den, &row_norm, &rhs, &z);
         // Row 0 is measured normwise, 3e-20 / (3e-20 + 3) = 1e-20; row 1 stays componentwise, 1e-12.
         assert!((omega - 1e-12).abs() <= 1e-12 * f64::EPSILON * 4.0, "{omega:e}");
         // A row at rounding level with a real residual is not hidden: r = 1e-3 against |A|·|z| = 3e-20.
-        let omega = backward_error(&[1e-3, 0.0], &den, &row_norm, &rhs, z_norm);
+        let omega = backward_error(&[1e-3, 0.0], &den, &row_norm, &rhs, &z);
         assert!((omega - 1e-3 / (a * z_k + a)).abs() < 1e-18, "{omega:e}");
     }
 }
