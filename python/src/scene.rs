@@ -7,11 +7,11 @@
 
 use crate::{AnalysisError, ModelError};
 use elastokin_core::{BodyRef, ElementReport, JointKind, Model, Pose, Vec3};
-use elastokin_elements::{Bushing, BushingSpec, PointForce, PointTorque, RotationLaw};
+use elastokin_elements::{PointForce, PointTorque, RotationLaw};
 use elastokin_solver::{JointReaction, LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult};
 use elastokin_suspensions::analysis::{walk, SweepLimit};
 use elastokin_suspensions::general::{
-    bushing_frame, joint_spec, Axis, BushingDef, JointGeometry, Place, SpringDef, Stiffness, StopDef, StopType, CHASSIS,
+    joint_spec, Axis, BushingDef, JointGeometry, Place, SpringDef, Stiffness, StopDef, StopType, CHASSIS,
 };
 use elastokin_suspensions::kc::{mode_word, MAX_STEPS};
 use elastokin_suspensions::Side;
@@ -309,23 +309,8 @@ impl Scene {
             preload_force: preload_force.map(Into::into),
             preload_torque: preload_torque.map(Into::into),
         };
-        // The model file's reading of the rates and of the frame; the scene is not mirrored (left side).
-        let (translational, rotational) = def.rates("bushing").map_err(model_error)?;
-        let frame = bushing_frame(x, y, Side::Left)
-            .map_err(|why| model_error(elastokin_core::ModelError::OutOfRange { item: name.to_string(), why }))?;
-        let bushing = Bushing::from_spec(BushingSpec {
-            name: name.to_string(),
-            body_i,
-            body_j,
-            point,
-            frame,
-            translational,
-            rotational,
-            preload_force: preload_force.unwrap_or_default(),
-            preload_torque: preload_torque.unwrap_or_default(),
-            rotation_law: law,
-        })
-        .map_err(model_error)?;
+        // The model file's reading of the rates, the frame and the preload; the scene is not mirrored.
+        let bushing = def.bushing("bushing", name, [body_i, body_j], point, x, y, Side::Left).map_err(model_error)?;
         self.add(ElementKind::Bushing, bushing)
     }
 

@@ -384,11 +384,48 @@ impl BushingDef {
         }
     }
 
+    /// The bushing this entry describes, its geometry resolved: between `bodies`, centred at `point`, its
+    /// frame's x along `x_left` and y towards `y_hint_left` as given for the left corner and mirrored for
+    /// `side` (`bushing_frame`), its preload mirrored with the frame. `key` is where the entry is
+    /// (`bushings[2]`), for errors as the rates' checks word them.
+    pub fn bushing(
+        &self,
+        key: &str,
+        name: &str,
+        bodies: [BodyRef; 2],
+        point: Vec3,
+        x_left: Vec3,
+        y_hint_left: Option<Vec3>,
+        side: Side,
+    ) -> Result<Bushing, ModelError> {
+        let (translational, rotational) = self.rates(key)?;
+        let frame = bushing_frame(x_left, y_hint_left, side)
+            .map_err(|why| ModelError::OutOfRange { item: format!("{key} ({})", self.name), why })?;
+        // Mirroring turns the frame's z axis over (see `bushing_frame`): a preload's z force and x, y
+        // moments change sign in the right corner's frame, so that the right bushing pushes as the mirror
+        // image of the left.
+        let s = side.sign();
+        let force = self.preload_force.map_or(Vec3::zeros(), |f| Vec3::new(f[0], f[1], s * f[2]));
+        let torque = self.preload_torque.map_or(Vec3::zeros(), |m| Vec3::new(s * m[0], s * m[1], m[2]));
+        Bushing::from_spec(BushingSpec {
+            name: name.to_string(),
+            body_i: bodies[0],
+            body_j: bodies[1],
+            point,
+            frame,
+            translational,
+            rotational,
+            preload_force: force,
+            preload_torque: torque,
+            rotation_law: self.law,
+        })
+    }
+
     /// `(translation, rotation)` characteristics along and about x, y, z, from whichever set is given
     /// (a cylindrical bushing's radial rate across x, axial along it, torsion about it, conical across it),
     /// each rate checked against the model file's ranges; the error names what is missing or out of range,
     /// as `{key} ({name})…` (`key` is where the entry is, `bushings[2]` in a model file).
-    pub fn rates(&self, key: &str) -> Result<([Characteristic; 3], [Characteristic; 3]), ModelError> {
+    fn rates(&self, key: &str) -> Result<([Characteristic; 3], [Characteristic; 3]), ModelError> {
         let cylindrical = [&self.radial, &self.axial, &self.torsion, &self.conical];
         let six = [&self.translation, &self.rotation];
         let refuse = |why: &str| {
@@ -964,7 +1001,7 @@ fn list<'a>(names: impl Iterator<Item = &'a str>) -> String {
 /// made perpendicular (any perpendicular without it), both mirrored for the right corner, z completing a
 /// right-handed frame. The columns are the frame's x, y, z axes in global components. The error says why
 /// the hint gives no y axis (it is parallel to x). `x_left` must have a length.
-pub fn bushing_frame(x_left: Vec3, y_hint_left: Option<Vec3>, side: Side) -> Result<Mat3, String> {
+fn bushing_frame(x_left: Vec3, y_hint_left: Option<Vec3>, side: Side) -> Result<Mat3, String> {
     let x = x_left / x_left.norm();
     let y = match y_hint_left {
         None => orthonormal_complement(&x).0,
@@ -1096,34 +1133,15 @@ impl GeneralCorner {
     }
 
     fn add_bushing(&self, model: &mut Model, r: &Resolver, k: usize, b: &BushingDef) -> Result<(), ModelError> {
-        let key = format!("bushings[{k}]");
-        let (translational, rotational) = b.rates(&key)?;
-        let key = format!("{key} ({})", b.name);
+        let entry = format!("bushings[{k}]");
+        let key = format!("{entry} ({})", b.name);
         let bi = r.body(model, &format!("{key}.bodies"), &b.bodies[0])?;
         let bj = r.body(model, &format!("{key}.bodies"), &b.bodies[1])?;
         let left = Resolver { side: Side::Left, ..*r };
         let x = b.axis.as_ref().map(|a| left.direction(&format!("{key}.axis"), a)).transpose()?.unwrap_or(Vec3::x());
         let y = b.y_axis.as_ref().map(|a| left.direction(&format!("{key}.y_axis"), a)).transpose()?;
-        let frame = bushing_frame(x, y, r.side).map_err(|why| ModelError::OutOfRange { item: key.clone(), why })?;
-        // Mirroring turns the frame's z axis over (see `bushing_frame`): a preload's z force and x, y
-        // moments change sign in the right corner's frame, so that the right bushing pushes as the mirror
-        // image of the left.
-        let s = r.side.sign();
-        let force = b.preload_force.map_or(Vec3::zeros(), |f| Vec3::new(f[0], f[1], s * f[2]));
-        let torque = b.preload_torque.map_or(Vec3::zeros(), |m| Vec3::new(s * m[0], s * m[1], m[2]));
-        let bushing = Bushing::from_spec(BushingSpec {
-            name: part_name(r.prefix, &b.name),
-            body_i: bi,
-            body_j: bj,
-            point: r.point(&format!("{key}.at"), &b.at)?,
-            frame,
-            translational,
-            rotational,
-            preload_force: force,
-            preload_torque: torque,
-            rotation_law: b.law,
-        })?;
-        model.add_element(bushing)?;
+        let point = r.point(&format!("{key}.at"), &b.at)?;
+        model.add_element(b.bushing(&entry, &part_name(r.prefix, &b.name), [bi, bj], point, x, y, r.side)?)?;
         Ok(())
     }
 
