@@ -100,8 +100,10 @@ pub fn apply(base: &serde_json::Value, v: &Variant) -> Result<SuspensionFile, St
         *doc.pointer_mut(pointer).ok_or_else(|| no_such_key(v, pointer))? = value.clone();
     }
     let text = serde_json::to_string(&doc).map_err(|e| e.to_string())?;
-    // The edited model is no file the user has: its errors name keys, not a line and column of it.
-    crate::model_file::parse_document(&text, &format!("variant '{}'", v.name)).map(|(file, _)| file)
+    // The edited model is no file the user has: its errors name keys, not a line and column of it. Its kind
+    // is read off the document in hand (parsing its text again to tell cost a fifth of this function).
+    let chrono = crate::chrono::is_chrono_document(&doc);
+    crate::model_file::parse_document_of_kind(&text, chrono, &format!("variant '{}'", v.name)).map(|(file, _)| file)
 }
 
 /// Refuses a variant that edits a key the base model lacks, as [`apply`] does, without reading the model: a

@@ -788,7 +788,17 @@ pub fn parse_model(text: &str, origin: &str) -> Result<(SuspensionFile, Option<c
 /// [`parse_model`] of a document that is no file (a Python dict, a variant's edited model): its errors name
 /// the place by its keys (`FileError::in_document`).
 pub fn parse_document(text: &str, origin: &str) -> Result<(SuspensionFile, Option<crate::chrono::Imported>), String> {
-    if crate::chrono::is_chrono(text) {
+    parse_document_of_kind(text, crate::chrono::is_chrono(text), origin)
+}
+
+/// [`parse_document`] of a text whose kind is known already (from its parsed value, which a variant's edit
+/// has at hand), so that the text is not parsed once more to tell.
+pub(crate) fn parse_document_of_kind(
+    text: &str,
+    chrono: bool,
+    origin: &str,
+) -> Result<(SuspensionFile, Option<crate::chrono::Imported>), String> {
+    if chrono {
         return parse_model(text, origin);
     }
     SuspensionFile::from_json(text, origin).map(|file| (file, None)).map_err(|e| e.in_document(text))

@@ -111,8 +111,12 @@ pub const SUPPORTED: [&str; 22] = [
 /// Whether `text` is a Chrono suspension file: a JSON object (with `//` comments allowed) whose `"Type"` is
 /// `"Suspension"` and which names a `"Template"`.
 pub fn is_chrono(text: &str) -> bool {
-    serde_json::from_str::<Value>(&without_comments(text))
-        .is_ok_and(|v| v.get("Type").and_then(Value::as_str) == Some("Suspension") && v.get("Template").is_some())
+    serde_json::from_str::<Value>(&without_comments(text)).is_ok_and(|v| is_chrono_document(&v))
+}
+
+/// [`is_chrono`] of a document already parsed.
+pub fn is_chrono_document(document: &Value) -> bool {
+    document.get("Type").and_then(Value::as_str) == Some("Suspension") && document.get("Template").is_some()
 }
 
 /// Reads a Chrono suspension file; `origin` names it in errors, `loaded_radius` (m) is the tyre's (Chrono's
