@@ -1,12 +1,12 @@
 //! `elastokin batch MODEL VARIANTS`: design variants of one model, run in parallel. The variants file's
-//! syntax, the edits and the figures of each variant are the library's ([`elastokin::suspensions::batch`]);
+//! syntax, the edits and the figures of each variant are the library's ([`elastokin::suspensions::study::batch`]);
 //! this is the command's part: every variant on the rayon pool, with a progress bar.
 //!
 //! `--shard I/N` runs one of N contiguous, nearly equal blocks of the variants ([`Shard`]), so that a job
 //! array can spread one batch over machines; `elastokin merge` (src/merge.rs) joins the shards' tables.
 
 use crate::output::Progress;
-pub use elastokin::suspensions::batch::*;
+pub use elastokin::suspensions::study::batch::*;
 use elastokin::suspensions::SuspensionFile;
 use rayon::prelude::*;
 

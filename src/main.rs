@@ -14,7 +14,7 @@
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use elastokin::solver::{Mode, SolverOptions, StaticSolver};
-use elastokin::suspensions::chrono::Imported;
+use elastokin::suspensions::import::chrono::Imported;
 use elastokin::suspensions::{Rig, Side, SuspensionFile};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -299,7 +299,7 @@ fn parse_range(text: &str) -> Result<(f64, f64), String> {
 
 /// Reads an input file whole; errors name the file and what it is for.
 fn read_input(path: &Path, what: &str) -> Result<(Vec<u8>, String), Failure> {
-    elastokin::suspensions::model_file::read_input(path, what).map_err(Failure::Input)
+    elastokin::suspensions::file::read_input(path, what).map_err(Failure::Input)
 }
 
 /// A model read from a file: its bytes (for the provenance hash), the model parsed from them and, for
@@ -328,7 +328,7 @@ impl ModelInput {
 fn read_model(path: &Path) -> Result<ModelInput, Failure> {
     let (bytes, text) = read_input(path, "MODEL")?;
     let (file, imported) =
-        elastokin::suspensions::model_file::parse_model(&text, &path.display().to_string()).map_err(Failure::Input)?;
+        elastokin::suspensions::document::parse_model(&text, &path.display().to_string()).map_err(Failure::Input)?;
     Ok(ModelInput { bytes, file, imported })
 }
 
@@ -476,12 +476,12 @@ fn import(args: ImportArgs, out: &Stdout) -> Result<(), Failure> {
     let ImportFormat::Chrono = args.format;
     let (_, text) = read_input(&args.file, "FILE")?;
     let origin = args.file.display().to_string();
-    if !elastokin::suspensions::chrono::is_chrono(&text) {
+    if !elastokin::suspensions::import::chrono::is_chrono(&text) {
         return Err(Failure::Input(format!(
             "{origin}: not a Project Chrono suspension file (a JSON object with \"Type\": \"Suspension\" and a \"Template\")"
         )));
     }
-    let imported = elastokin::suspensions::chrono::import(&text, &origin, args.loaded_radius)
+    let imported = elastokin::suspensions::document::import_chrono(&text, &origin, args.loaded_radius)
         .map_err(|e| Failure::Input(e.to_string()))?;
     note(format!("read as a Project Chrono {} suspension", imported.template));
     for n in &imported.notes {

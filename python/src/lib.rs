@@ -5,9 +5,10 @@
 
 use elastokin_solver::Mode;
 use elastokin_suspensions::analysis::wheel_compliance;
-use elastokin_suspensions::batch::{self, Variant};
+use elastokin_suspensions::study::batch::{self, Variant};
 use elastokin_suspensions::kc::{self, Analysis, Cell, Settings, Table};
-use elastokin_suspensions::model_file::{parse_document, parse_model, read_input};
+use elastokin_suspensions::document::{parse_document, parse_model};
+use elastokin_suspensions::file::read_input;
 use elastokin_suspensions::{LoadPoint, Rig, Side, SuspensionFile};
 use numpy::{PyArray1, PyArray2};
 use pyo3::create_exception;

@@ -1,7 +1,7 @@
 //! `Scene` and `SceneSweep`: a multibody scene built in code, body by body, and its equilibria along a
 //! load path. The engine level under the model files: bodies, joints, bushings, springs, stops and loads
 //! are the library's (`elastokin_core`, `elastokin_elements`), an entry is turned into them by the same
-//! functions that read a model file's general form (`elastokin_suspensions::general`), and the solver is
+//! functions that read a model file's general form (`elastokin_suspensions::description::general`, built by `elastokin_suspensions::build::general`), and the solver is
 //! `elastokin_solver::StaticSolver`. This converts arguments and results, maps the library's errors to
 //! Python exceptions, and lets go of the GIL while the solver works.
 
@@ -10,7 +10,7 @@ use elastokin_core::{BodyRef, ElementReport, JointKind, Model, Pose, Vec3};
 use elastokin_elements::{PointForce, PointTorque, RotationLaw};
 use elastokin_solver::{JointReaction, LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult};
 use elastokin_suspensions::analysis::{walk, SweepLimit};
-use elastokin_suspensions::general::{
+use elastokin_suspensions::description::general::{
     joint_spec, Axis, BushingDef, JointGeometry, Place, SpringDef, Stiffness, StopDef, StopType, CHASSIS,
 };
 use elastokin_suspensions::kc::{mode_word, MAX_STEPS};

@@ -1,7 +1,8 @@
 //! # elastokin-suspensions
 //!
-//! Suspension templates built from named hardpoints, the kinematics-and-compliance analyses a K&C rig
-//! runs, and the wheel characteristics engineers read from them.
+//! Suspensions described by named hardpoints, built into multibody models, run through the
+//! kinematics-and-compliance analyses a K&C rig runs, and read into the wheel characteristics engineers
+//! use.
 //!
 //! ```
 //! use elastokin_suspensions::{DoubleWishbone, DoubleWishboneHardpoints, Connection, Rig, SpringSpec, Side};
@@ -23,36 +24,44 @@
 //! assert!(rows[8].attitude.toe.abs() < 1e-12 && rows[8].attitude.camber.abs() < 1e-12);
 //! ```
 //!
+//! ## Layers
+//! Each module imports only those below it (`ARCHITECTURE.md` draws them; `xtask/src/tidy.rs` holds the
+//! rule):
+//! - [`description`]: what a user writes — the general form, the templates that expand into it, the
+//!   vehicle, the limits;
+//! - [`wheel`]: toe, camber and steering geometry read from a built model's poses;
+//! - [`file`]: the model-file format — reading, key paths, line and column errors;
+//! - [`import`]: other programs' files (Project Chrono's) read into descriptions;
+//! - [`build`]: a description made into a model, with the rig that holds it;
+//! - [`document`]: one way in for every document, read and built;
+//! - [`analysis`]: the sweeps, solved;
+//! - [`check`]: the plausibility of a model and of its sweeps;
+//! - [`kc`]: the K&C suite, its figures and typed report;
+//! - [`study`]: design studies of many variants.
+//!
 //! Dependencies: serde and serde_json for the model files and the K&C reports ([`kc`]), nalgebra for
-//! vectors and the small symmetric eigenproblem of the plausibility check's condition estimate, thiserror
-//! for errors. faer, sprs and rayon are left out here: the solving is the solver crate's. The tests use
-//! rand and rand_chacha for the seeded model mutations of `tests/fuzz_models.rs` (a fixed seed: the same
-//! cases every run).
+//! the rank of the joints' Jacobian and the small symmetric eigenproblem of the plausibility check's
+//! condition estimate, thiserror for errors. faer, sprs and rayon are left out here: the solving is the
+//! solver crate's. The tests use rand and rand_chacha for the seeded model mutations of
+//! `tests/fuzz_models.rs` (a fixed seed: the same cases every run).
 
 pub mod analysis;
-pub mod anti_roll_bar;
-pub mod axle;
-pub mod batch;
-pub mod chrono;
-pub mod connection;
-pub mod corner;
-pub mod double_wishbone;
-pub mod general;
-pub mod hardpoint;
+pub mod build;
+pub mod check;
+pub mod description;
+pub mod document;
+pub mod file;
+pub mod import;
 pub mod kc;
-pub mod macpherson;
-pub mod model_file;
-pub mod plausibility;
+pub mod study;
+pub mod wheel;
 
-pub use anti_roll_bar::AntiRollBar;
-pub use axle::{Axle, AxleRig, AxleRow, RollCentre};
-pub use connection::{ArmMounts, BushingRates, Connection, SpringSpec, TieRodMounts};
-pub use corner::{
-    Corner, CornerParts, CornerTemplate, CrossAxle, LoadPoint, Rig, SteeringGeometry, TieRod, Wheel, WheelAttitude,
+pub use analysis::{AxleRow, RollCentre};
+pub use build::{Axle, AxleRig, Corner, CornerParts, CornerTemplate, CrossAxle, LoadPoint, Rig, TieRod};
+pub use check::{check_model, check_travel_rows, ModelCheck, Warning};
+pub use description::{
+    AntiRollBar, ArmMounts, AxleDef, BushingRates, Connection, DoubleWishbone, DoubleWishboneHardpoints, GeneralCorner,
+    MacPherson, MacPhersonHardpoints, Side, SpringSpec, SteeringLinkDef, Template, TieRodMounts,
 };
-pub use double_wishbone::{DoubleWishbone, DoubleWishboneHardpoints};
-pub use general::{AxleDef, GeneralCorner, SteeringLinkDef};
-pub use hardpoint::Side;
-pub use macpherson::{MacPherson, MacPhersonHardpoints};
-pub use model_file::{FileError, SuspensionFile, Template};
-pub use plausibility::{check_model, check_travel_rows, ModelCheck, Warning};
+pub use file::{FileError, SuspensionFile};
+pub use wheel::{SteeringGeometry, Wheel, WheelAttitude};

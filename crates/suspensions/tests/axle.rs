@@ -3,8 +3,8 @@
 //! against the distance constraint.
 
 use elastokin_solver::{Mode, SolverOptions, StaticSolver};
+use elastokin_suspensions::analysis::axle_sweep;
 use elastokin_suspensions::analysis::{parallel_wheel_travel, steering};
-use elastokin_suspensions::axle::axle_sweep;
 use elastokin_suspensions::{
     Axle, AxleRig, BushingRates, Connection, DoubleWishbone, DoubleWishboneHardpoints, MacPherson,
     MacPhersonHardpoints, Rig, Side, SpringSpec,

@@ -4,7 +4,8 @@
 use elastokin_core::Vec3;
 use elastokin_solver::Mode;
 use elastokin_suspensions::analysis::parallel_wheel_travel;
-use elastokin_suspensions::chrono::{import, Imported};
+use elastokin_suspensions::document::import_chrono;
+use elastokin_suspensions::import::chrono::Imported;
 use elastokin_suspensions::kc::{self, Settings};
 use elastokin_suspensions::{DoubleWishboneHardpoints, MacPhersonHardpoints, Rig, Side, Template};
 use serde_json::Value;
@@ -14,7 +15,7 @@ mod common;
 use common::chrono::{chrono_json, fixture, fixture_dir};
 
 fn read(name: &str) -> Imported {
-    import(&fixture(name), name, None).unwrap()
+    import_chrono(&fixture(name), name, None).unwrap()
 }
 
 /// A point of the Chrono file, read here from its JSON.
@@ -74,7 +75,7 @@ fn every_shipped_chrono_file_runs_or_is_refused_as_the_readme_says() {
             .lines()
             .find(|l| l.starts_with(&format!("| `{name}`")))
             .unwrap_or_else(|| panic!("{name} not in the README"));
-        match import(&fixture(name), name, None) {
+        match import_chrono(&fixture(name), name, None) {
             Ok(imported) => {
                 assert!(row.ends_with("| yes |"), "{name} reads, but the README says: {row}");
                 let settings = Settings { steps: 4, ..Settings::default() };
@@ -288,7 +289,7 @@ fn chrono_bushing_data_is_the_joints_bushing() {
     let b = g.bushings.iter().find(|b| b.name == "lower arm pivot").unwrap();
     let data = &v["Lower Control Arm"]["Bushing Data"];
     let (k_lin, k_rot) = (data["Stiffness Linear"].as_f64().unwrap(), data["Stiffness Rotational"].as_f64().unwrap());
-    let rates = |s: &Option<[elastokin_suspensions::general::Stiffness; 3]>| {
+    let rates = |s: &Option<[elastokin_suspensions::description::general::Stiffness; 3]>| {
         s.as_ref().unwrap().clone().map(|k| k.rate().unwrap())
     };
     assert_eq!(rates(&b.translation), [k_lin; 3]);
@@ -305,9 +306,9 @@ fn chrono_bushing_data_is_the_joints_bushing() {
     let u = vv.cross(&w);
     match (&b.axis, &b.y_axis, &b.at) {
         (
-            Some(elastokin_suspensions::general::Axis::Vector(x)),
-            Some(elastokin_suspensions::general::Axis::Vector(y)),
-            elastokin_suspensions::general::Place::At(p),
+            Some(elastokin_suspensions::description::general::Axis::Vector(x)),
+            Some(elastokin_suspensions::description::general::Axis::Vector(y)),
+            elastokin_suspensions::description::general::Place::At(p),
         ) => {
             assert!((x - w).norm() < 1e-15 && (y - u).norm() < 1e-15 && (p - (f + back) / 2.0).norm() < 1e-15);
         }
@@ -329,7 +330,7 @@ fn the_reduced_double_wishbone_matches_the_loop_closure() {
 /// On the full axle the right corner of each Chrono reading is the left one mirrored.
 #[test]
 fn chrono_readings_mirror_on_the_axle() {
-    use elastokin_suspensions::{axle::axle_sweep, Axle, AxleRig};
+    use elastokin_suspensions::{analysis::axle_sweep, Axle, AxleRig};
     for name in [
         "DoubleWishbone.json",
         "MacPhersonStrut.json",

@@ -12,8 +12,8 @@ use common::chrono::{
 };
 use common::newton_fd;
 use elastokin_solver::Mode;
+use elastokin_suspensions::analysis::axle_sweep;
 use elastokin_suspensions::analysis::{parallel_wheel_travel, vertical_force_sweep};
-use elastokin_suspensions::axle::axle_sweep;
 use elastokin_suspensions::{Axle, AxleRig, Rig, Side};
 use nalgebra::{DVector, Rotation3, Unit};
 use serde_json::Value;

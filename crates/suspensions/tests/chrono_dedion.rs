@@ -10,7 +10,7 @@ use common::chrono::{
     against, axle_rows, corner_rows, fixture, mirror, point, read_edited, toe_camber, uncross_stops, Travel, Tube, V,
 };
 use common::newton_fd;
-use elastokin_suspensions::chrono::import;
+use elastokin_suspensions::document::import_chrono;
 use elastokin_suspensions::{AxleRig, SuspensionFile, Template};
 use nalgebra::{DVector, Rotation3, Unit};
 use serde_json::Value;
@@ -170,7 +170,7 @@ fn the_watt_pivot_and_the_drag_link_are_where_chrono_builds_them() {
     let (chrono, file) = read("ToeBarDeDionAxle.json");
     let link = axle(&file).steering_link.unwrap();
     assert_eq!(link.body, "right upright");
-    assert_eq!(link.outer, elastokin_suspensions::general::Place::named("drag_link_knuckle"));
+    assert_eq!(link.outer, elastokin_suspensions::description::general::Place::named("drag_link_knuckle"));
     assert_eq!(axle(&file).hardpoints.get("drag_link_knuckle"), Some(point(&chrono, "Knuckle/Location Draglink")));
     // y positive: the left knuckle.
     let left =
@@ -184,7 +184,7 @@ fn the_watt_pivot_and_the_drag_link_are_where_chrono_builds_them() {
 #[test]
 fn crossed_stops_are_refused_by_name() {
     for path in ["DeDionAxle.json", "duro/duro_dedion_axle.json"] {
-        let e = import(&fixture(path), path, None).unwrap_err().to_string();
+        let e = import_chrono(&fixture(path), path, None).unwrap_err().to_string();
         assert!(
             e.contains("\"Spring\" / \"Minimum Length\" 0.28 m is not below \"Maximum Length\" 0.12 m")
                 && e.contains("(0.12 and 0.28, swapped)"),

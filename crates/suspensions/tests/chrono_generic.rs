@@ -10,9 +10,10 @@ mod common;
 use common::chrono::{chrono_json, fixture};
 use elastokin_core::Vec3;
 use elastokin_solver::Mode;
+use elastokin_suspensions::analysis::axle_sweep;
 use elastokin_suspensions::analysis::{parallel_wheel_travel, WheelLoad};
-use elastokin_suspensions::axle::axle_sweep;
-use elastokin_suspensions::chrono::{import, Imported};
+use elastokin_suspensions::document::import_chrono;
+use elastokin_suspensions::import::chrono::Imported;
 use elastokin_suspensions::kc::{self, Analysis, AnalysisReport, Settings};
 use elastokin_suspensions::{check_model, Axle, AxleRig, Rig, Side, SuspensionFile};
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion};
@@ -23,7 +24,7 @@ const TEMPLATE: &str = "hmmwv/HMMWV_DoubleWishboneFront.json";
 const UAZ: &str = "uaz/UAZBUS_FrontSAELeafspringAxle_replica.json";
 
 fn replica() -> Imported {
-    import(&fixture(REPLICA), REPLICA, None).unwrap()
+    import_chrono(&fixture(REPLICA), REPLICA, None).unwrap()
 }
 
 /// The replica as JSON, to edit.
@@ -101,7 +102,7 @@ fn differences(a: &SuspensionFile, b: &SuspensionFile) -> [f64; 7] {
 /// the axis through the two pivots. Given the exact frame instead, the two agree to rounding.
 #[test]
 fn the_replica_and_the_double_wishbone_file_read_the_same_suspension() {
-    let template = import(&fixture(TEMPLATE), TEMPLATE, None).unwrap().file;
+    let template = import_chrono(&fixture(TEMPLATE), TEMPLATE, None).unwrap().file;
     // The figures themselves, so that agreement is not agreement on nothing: bump steer and a lateral
     // compliance of the HMMWV's size.
     let rows = parallel_wheel_travel(
@@ -139,7 +140,7 @@ fn the_replica_and_the_double_wishbone_file_read_the_same_suspension() {
     let q_file = nalgebra::Quaternion::new(given[0], given[1], given[2], given[3]);
     assert!((q_file - *q.quaternion()).norm().min((q_file + *q.quaternion()).norm()) < 1e-6);
     joint["Rotation"] = json!([q.w, q.i, q.j, q.k]);
-    let exact = import(&exact.to_string(), "exact frame", None).unwrap().file;
+    let exact = import_chrono(&exact.to_string(), "exact frame", None).unwrap().file;
     let diff = differences(&exact, &template);
     let within = [1e-10, 1e-10, 1e-10, 2e-9, 2e-10, 2e-10, 2e-10];
     for (k, (d, tol)) in diff.iter().zip(within).enumerate() {
@@ -172,14 +173,14 @@ fn the_replica_axle_is_mirror_symmetric() {
 /// torsion bushings on their revolute joints; every analysis runs.
 #[test]
 fn the_uaz_replica_is_refused_for_its_stops_and_reads_as_an_axle_when_they_are_swapped() {
-    let e = import(&fixture(UAZ), UAZ, None).unwrap_err().to_string();
+    let e = import_chrono(&fixture(UAZ), UAZ, None).unwrap_err().to_string();
     for said in ["TSDAs", "\"Minimum Length\" 0.28", "\"Maximum Length\" 0.12", "swapped"] {
         assert!(e.contains(said), "no '{said}' in: {e}");
     }
     let mut v = chrono_json(UAZ);
     v["TSDAs"][0]["Minimum Length"] = json!(0.12);
     v["TSDAs"][0]["Maximum Length"] = json!(0.28);
-    let imported = import(&v.to_string(), "swapped", None).unwrap();
+    let imported = import_chrono(&v.to_string(), "swapped", None).unwrap();
     assert!(!imported.notes.iter().any(|n| n.contains("not understood")), "{:#?}", imported.notes);
     let elastokin_suspensions::Template::General(g) = &imported.file.suspension else { panic!("the general form") };
     let axle = g.axle.as_ref().expect("the shared bodies go in the axle");
@@ -212,7 +213,7 @@ fn an_rsda_is_a_torsion_spring_on_its_revolute_by_virtual_work() {
         "Position": v["Joints"][2]["Position"].clone(), "Axis": [axis.x, axis.y, axis.z],
         "Spring Coefficient": k, "Preload": preload, "Free Angle": 0.0 }]);
     let plain = replica().file;
-    let sprung = import(&v.to_string(), "rsda", None).unwrap().file;
+    let sprung = import_chrono(&v.to_string(), "rsda", None).unwrap().file;
     let walk = |file: &SuspensionFile| {
         let corner = file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
         let rows = parallel_wheel_travel(&corner, -0.05, 0.05, 20, Mode::Corrected).unwrap();
@@ -262,7 +263,7 @@ fn what_is_not_a_corner_and_its_mirror_image_is_refused_by_name() {
     for (edit, said) in cases {
         let mut v = replica_json();
         edit(&mut v);
-        let e = import(&v.to_string(), "edited", None).unwrap_err().to_string();
+        let e = import_chrono(&v.to_string(), "edited", None).unwrap_err().to_string();
         for s in said {
             assert!(e.contains(s), "no '{s}' in: {e}");
         }
@@ -279,7 +280,7 @@ fn a_joint_with_bushing_data_is_a_bushing_in_its_frame() {
         "Stiffness Linear": 7e6, "Damping Linear": 0, "Stiffness Rotational": 1e5, "Damping Rotational": 0,
         "DOF": { "Stiffness Linear": 0, "Damping Linear": 0, "Stiffness Rotational": 500, "Damping Rotational": 0 }
     });
-    let imported = import(&v.to_string(), "bushed", None).unwrap();
+    let imported = import_chrono(&v.to_string(), "bushed", None).unwrap();
     let elastokin_suspensions::Template::General(general) = &imported.file.suspension else {
         panic!("a Chrono file reads into the general form")
     };
@@ -324,7 +325,7 @@ fn a_rod_body_and_arms_of_links_read_as_the_same_corner() {
         "Body2": "Tierod", "Position": inner, "Rotation": [1, 0, 0, 0] }));
     joints.push(json!({ "Name": "TierodUpright", "Type": "Spherical", "Mirrored": true, "Body1": "Tierod",
         "Body2": "Upright", "Position": outer, "Rotation": [1, 0, 0, 0] }));
-    let rod = import(&v.to_string(), "rod", None).unwrap();
+    let rod = import_chrono(&v.to_string(), "rod", None).unwrap();
     assert_eq!(rod.file.suspension, replica().file.suspension);
     assert!(rod.notes.iter().any(|n| n.starts_with("the rod 'Tierod'")), "{:#?}", rod.notes);
 
@@ -338,13 +339,13 @@ fn a_rod_body_and_arms_of_links_read_as_the_same_corner() {
         json!({ "Name": "UCA back", "Mirrored": true, "Body1": "Chassis", "Body2": "Upright",
             "Point1": back, "Point2": ball }),
     ]);
-    let links = import(&v.to_string(), "links", None).unwrap();
+    let links = import_chrono(&v.to_string(), "links", None).unwrap();
     assert!(
         links.notes.iter().any(|n| n.starts_with("steering axis: from 'SphericalLCA' to 'UCA front point 2'")),
         "{:#?}",
         links.notes
     );
-    let template = import(&fixture(TEMPLATE), TEMPLATE, None).unwrap().file;
+    let template = import_chrono(&fixture(TEMPLATE), TEMPLATE, None).unwrap().file;
     // Measured: 9e-12 to 1.2e-10 (rad, relative load, relative figures, deg).
     let diff = differences(&links.file, &template);
     let within = [1e-10, 2e-10, 1e-9, 1e-9, 1e-10, 1e-10, 2e-10];

@@ -11,7 +11,7 @@ use common::chrono::{
     walk_out, Travel, V,
 };
 use common::newton_least_squares;
-use elastokin_suspensions::chrono::import;
+use elastokin_suspensions::document::import_chrono;
 use elastokin_suspensions::{AxleRig, Rig, Side, SuspensionFile};
 use nalgebra::{DVector, Rotation3, Unit};
 use serde_json::Value;
@@ -212,7 +212,7 @@ fn the_hendrickson_axle_cannot_roll_and_says_so() {
 #[test]
 fn every_key_is_read_or_noted() {
     let text = fixture(FILE);
-    let notes = import(&text, FILE, None).unwrap().notes;
+    let notes = import_chrono(&text, FILE, None).unwrap().notes;
     assert!(!notes.iter().any(|n| n.contains("not understood")), "{notes:?}");
     for expected in [
         "Transverse Beam: Mass, COM, Inertia, Radius — Chrono makes this body but joins it to nothing",

@@ -12,7 +12,7 @@ use common::chrono::{
 use common::newton_fd;
 use elastokin_core::JointSpec;
 use elastokin_solver::{LoadPath, Mode, StaticSolver};
-use elastokin_suspensions::chrono::import;
+use elastokin_suspensions::document::import_chrono;
 use elastokin_suspensions::kc::{self, Settings};
 use elastokin_suspensions::{Axle, AxleRig, SuspensionFile, WheelAttitude};
 use nalgebra::{DVector, Rotation3, Unit};
@@ -26,7 +26,7 @@ const TOE_BAR: &str = "mtv/FMTV_ToeBarLeafSpringAxle.json";
 /// The leaf-spring axle's file with its spring's `Minimum Length` and `Maximum Length` (0.5 and 0.3 m: both
 /// stops would press at every length) taken out, as the refusal asks.
 fn leaf() -> (Value, SuspensionFile) {
-    let e = import(&fixture(LEAF), LEAF, None).unwrap_err().to_string();
+    let e = import_chrono(&fixture(LEAF), LEAF, None).unwrap_err().to_string();
     assert!(e.contains("\"Minimum Length\" 0.5 m is not below \"Maximum Length\" 0.3 m"), "{e}");
     read_edited(LEAF, |v| {
         let spring = v["Spring"].as_object_mut().unwrap();

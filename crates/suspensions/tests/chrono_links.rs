@@ -8,16 +8,17 @@ mod common;
 
 use common::chrono::{chrono_json, edited, fixture, point, spread, toe_camber};
 use elastokin_solver::Mode;
+use elastokin_suspensions::analysis::axle_sweep;
 use elastokin_suspensions::analysis::parallel_wheel_travel;
-use elastokin_suspensions::axle::axle_sweep;
-use elastokin_suspensions::chrono::{import, Imported};
+use elastokin_suspensions::document::import_chrono;
+use elastokin_suspensions::import::chrono::Imported;
 use elastokin_suspensions::kc::{self, Analysis, Settings};
 use elastokin_suspensions::{check_model, Axle, AxleRig, Rig, Side, SuspensionFile, Template};
 use nalgebra::{DMatrix, DVector, Rotation3, Unit, Vector3};
 use serde_json::Value;
 
 fn imported(path: &str) -> Imported {
-    import(&fixture(path), path, None).unwrap_or_else(|e| panic!("{path}: {e}"))
+    import_chrono(&fixture(path), path, None).unwrap_or_else(|e| panic!("{path}: {e}"))
 }
 
 /// The wheel's outward spin axis at design from the file's camber and toe (Chrono: `Rz(−τ) Rx(−γ)` turns
@@ -387,7 +388,8 @@ fn bushing_data_becomes_chronos_bushings_and_stiff_ones_approach_the_closure() {
     for (path, places, bushed, closure) in cases {
         let mut errors = Vec::new();
         for k in [1e7, 1e9] {
-            let read = import(&with_bushings(path, places, k), path, None).unwrap_or_else(|e| panic!("{path}: {e}"));
+            let read =
+                import_chrono(&with_bushings(path, places, k), path, None).unwrap_or_else(|e| panic!("{path}: {e}"));
             let unread: Vec<&String> = read.notes.iter().filter(|n| n.contains("not understood")).collect();
             assert!(unread.is_empty(), "{path}: {unread:?}");
             let Template::General(ref g) = read.file.suspension else { panic!("{path}: the general form") };
@@ -412,7 +414,7 @@ fn bushing_data_becomes_chronos_bushings_and_stiff_ones_approach_the_closure() {
 fn a_bushed_tie_rod_is_a_rod_with_a_bushing_at_each_end() {
     use elastokin_suspensions::{Connection, TieRodMounts};
     for path in ["MultiLink.json", "gator/Gator_SingleWishboneFront.json"] {
-        let read = import(&with_bushings(path, &["Tierod/Bushing Data"], 1e8), path, None).unwrap();
+        let read = import_chrono(&with_bushings(path, &["Tierod/Bushing Data"], 1e8), path, None).unwrap();
         let unread: Vec<&String> = read.notes.iter().filter(|n| n.contains("not understood")).collect();
         assert!(unread.is_empty(), "{path}: {unread:?}");
         let Template::General(ref g) = read.file.suspension else { panic!("{path}: the general form") };
@@ -429,7 +431,8 @@ fn a_bushed_tie_rod_is_a_rod_with_a_bushing_at_each_end() {
     let errors: Vec<f64> = [1e7, 1e9]
         .map(|k| {
             let read =
-                import(&with_bushings("MultiLink.json", &["Tierod/Bushing Data"], k), "MultiLink.json", None).unwrap();
+                import_chrono(&with_bushings("MultiLink.json", &["Tierod/Bushing Data"], k), "MultiLink.json", None)
+                    .unwrap();
             against_closure(&read.file, &multi_link(&chrono_json("MultiLink.json"))).0
         })
         .to_vec();
@@ -511,7 +514,7 @@ fn mistakes_are_refused_by_name() {
 /// `Universal Joint Axis Link` in the chassis.
 #[test]
 fn steering_axes_and_crosses_are_where_chrono_puts_them() {
-    use elastokin_suspensions::general::{Axis, Place};
+    use elastokin_suspensions::description::general::{Axis, Place};
     let at = |g: &elastokin_suspensions::GeneralCorner, place: &Place| match place {
         Place::Named(n) => g.hardpoints.get(n).unwrap(),
         Place::At(p) => *p,

@@ -9,7 +9,7 @@ mod common;
 use common::chrono::{edited, mirror, point, spread, toe_camber, walk_out, Travel, Tube, V};
 use common::newton_fd;
 use elastokin_solver::{LoadPath, Mode, StaticSolver};
-use elastokin_suspensions::axle::axle_sweep;
+use elastokin_suspensions::analysis::axle_sweep;
 use elastokin_suspensions::{Axle, AxleRig, SuspensionFile, Template};
 use nalgebra::{DVector, Rotation3, Unit};
 use serde_json::Value;

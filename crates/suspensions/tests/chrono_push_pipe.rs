@@ -12,7 +12,7 @@ use common::chrono::{
     wheels_on_tube, Angles, Travel, Tube, V,
 };
 use common::newton_fd;
-use elastokin_suspensions::chrono::import;
+use elastokin_suspensions::document::import_chrono;
 use elastokin_suspensions::kc::{self, Analysis, Settings};
 use elastokin_suspensions::{AxleRig, Rig, Side, SuspensionFile, Template};
 use nalgebra::{DVector, Rotation3, Unit};
@@ -142,7 +142,7 @@ fn the_toe_bar_push_pipe_axle_travels_and_steers_as_its_loop_closure() {
 #[test]
 fn crossed_stops_are_refused_by_name_and_the_files_run_with_them_swapped() {
     for path in [REAR, FRONT] {
-        let e = import(&fixture(path), path, None).unwrap_err().to_string();
+        let e = import_chrono(&fixture(path), path, None).unwrap_err().to_string();
         assert!(
             e.contains("\"Spring\" / \"Minimum Length\" 0.28 m is not below \"Maximum Length\" 0.12 m")
                 && e.contains("(0.12 and 0.28, swapped)"),
@@ -172,11 +172,11 @@ fn a_rigid_pinned_axle_is_refused_by_name() {
     let mut keys: Vec<&str> = v.as_object().unwrap().keys().map(String::as_str).collect();
     keys.sort_unstable();
     assert_eq!(keys, ["Axle", "Name", "Spindle", "Template", "Tube", "Type"]);
-    let e = import(&fixture("RigidPinnedAxle.json"), "RigidPinnedAxle.json", None).unwrap_err().to_string();
+    let e = import_chrono(&fixture("RigidPinnedAxle.json"), "RigidPinnedAxle.json", None).unwrap_err().to_string();
     assert!(e.contains("\"Tube\" / \"Pin Location\"") && e.contains("turns freely about this pin"), "{e}");
     // A malformed point is reported by its key first.
     let mut bad = v.clone();
     bad["Tube"]["Pin Location"] = serde_json::json!([0.0, 0.15]);
-    let e = import(&bad.to_string(), "RigidPinnedAxle.json", None).unwrap_err().to_string();
+    let e = import_chrono(&bad.to_string(), "RigidPinnedAxle.json", None).unwrap_err().to_string();
     assert!(e.contains("must be a point [x, y, z]"), "{e}");
 }

@@ -15,7 +15,7 @@ mod common;
 use common::chrono::{
     axle_rows_of, chrono_json, fixture, mirror, number, point, spread, toe_camber, uncross_stops, Travel, V,
 };
-use elastokin_suspensions::chrono::import;
+use elastokin_suspensions::document::import_chrono;
 use elastokin_suspensions::SuspensionFile;
 use nalgebra::{DMatrix, DVector, Rotation3, Unit};
 use serde_json::{json, Value};
@@ -34,7 +34,7 @@ fn swapped(path: &str) -> Value {
 }
 
 fn read(v: &Value) -> SuspensionFile {
-    import(&v.to_string(), "swapped", None).unwrap_or_else(|e| panic!("{e}")).file
+    import_chrono(&v.to_string(), "swapped", None).unwrap_or_else(|e| panic!("{e}")).file
 }
 
 fn turn(axis: V, angle: f64) -> Rotation3<f64> {
@@ -350,11 +350,11 @@ fn against_equilibrium(leaves: &LeafAxle, rows: &[Row], travel: Travel) -> (f64,
 #[test]
 fn the_uaz_leaf_spring_axles_are_refused_for_their_stops_and_read_whole_when_swapped() {
     for path in [REAR, FRONT] {
-        let e = import(&fixture(path), path, None).unwrap_err().to_string();
+        let e = import_chrono(&fixture(path), path, None).unwrap_err().to_string();
         for said in ["\"Auxiliary Spring\"", "\"Minimum Length\" 0.28", "\"Maximum Length\" 0.12", "swapped"] {
             assert!(e.contains(said), "{path}: no '{said}' in: {e}");
         }
-        let imported = import(&swapped(path).to_string(), path, None).unwrap();
+        let imported = import_chrono(&swapped(path).to_string(), path, None).unwrap();
         assert!(!imported.notes.iter().any(|n| n.contains("not understood")), "{:#?}", imported.notes);
         let elastokin_suspensions::Template::General(g) = &imported.file.suspension else { panic!("general") };
         let bodies: Vec<&str> = g.bodies.iter().map(|b| b.name.as_str()).collect();
@@ -539,7 +539,7 @@ fn leaf_spring_bushings_and_rates_are_read_as_chrono_reads_them() {
     let mut v = swapped(REAR);
     v["Leafspring"]["Leafspring Bushing Data"] = bushing.clone();
     v["Leafspring"]["Shackle Bushing Data"] = bushing.clone();
-    let imported = import(&v.to_string(), "bushings", None).unwrap();
+    let imported = import_chrono(&v.to_string(), "bushings", None).unwrap();
     assert!(!imported.notes.iter().any(|n| n.contains("not understood")), "{:#?}", imported.notes);
     assert!(imported.notes.iter().any(|n| n.contains("replaced by Leafspring Bushing Data")), "{:#?}", imported.notes);
     let elastokin_suspensions::Template::General(g) = &imported.file.suspension else { panic!("general") };
@@ -551,13 +551,13 @@ fn leaf_spring_bushings_and_rates_are_read_as_chrono_reads_them() {
 
     let mut v = swapped(REAR);
     v["Leafspring"]["Clamp Bushing Data"] = bushing;
-    let e = import(&v.to_string(), "clamp", None).unwrap_err().to_string();
+    let e = import_chrono(&v.to_string(), "clamp", None).unwrap_err().to_string();
     assert!(e.contains("\"Clamp Bushing Data\"") && e.contains("remove"), "{e}");
 
     for (key, value) in [("Stiffness Bias", 0.0), ("Vertical Stiffness", -1.0), ("Lateral Stiffness", 0.0)] {
         let mut v = swapped(FRONT);
         v["Leafspring"][key] = json!(value);
-        let e = import(&v.to_string(), "rates", None).unwrap_err().to_string();
+        let e = import_chrono(&v.to_string(), "rates", None).unwrap_err().to_string();
         assert!(e.contains(&format!("\"{key}\" {value}")) && e.contains("give positive rates"), "{e}");
     }
 }

@@ -229,7 +229,7 @@ fn wheel_load_and_wheel_rate_match_virtual_work() {
 #[test]
 fn the_general_axle_example_matches_the_loop_closure() {
     use elastokin_core::JointKind;
-    use elastokin_suspensions::general::{Axis, JointDef, Place};
+    use elastokin_suspensions::description::general::{Axis, JointDef, Place};
     use elastokin_suspensions::{SuspensionFile, Template};
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/double_wishbone_axle.json");
     let mut file = SuspensionFile::read(&path).unwrap();

@@ -656,7 +656,7 @@ fn bushings_a_thousandth_as_stiff_that_let_the_macpherson_settle_at_15_deg_are_n
         }
     }
     let file = SuspensionFile::from_json(&model.to_string(), "model.json").unwrap();
-    let notices = elastokin_suspensions::plausibility::bushing_deflection_at_design(&file);
+    let notices = elastokin_suspensions::check::bushing_deflection_at_design(&file);
     assert!(notices.iter().any(|n| n.message.contains("'top mount' deflects")), "{notices:?}");
     // The suite says so, with whatever fails on such a model.
     let settings = Settings { steps: 4, ..Settings::default() };
@@ -666,9 +666,8 @@ fn bushings_a_thousandth_as_stiff_that_let_the_macpherson_settle_at_15_deg_are_n
     }
     // The examples' bushings hold the design position within a fraction of a millimetre.
     for (name, text) in EXAMPLES {
-        let notices = elastokin_suspensions::plausibility::bushing_deflection_at_design(
-            &SuspensionFile::from_json(text, name).unwrap(),
-        );
+        let notices =
+            elastokin_suspensions::check::bushing_deflection_at_design(&SuspensionFile::from_json(text, name).unwrap());
         assert!(notices.is_empty(), "{name}: {notices:?}");
     }
 }

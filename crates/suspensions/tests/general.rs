@@ -179,7 +179,7 @@ fn ideal_axle_with_bar() -> SuspensionFile {
 #[test]
 fn anti_roll_bar_adds_its_closed_form_wheel_rate_in_opposite_travel() {
     use elastokin_solver::Mode;
-    use elastokin_suspensions::{axle::axle_sweep, Axle, AxleRig};
+    use elastokin_suspensions::{analysis::axle_sweep, Axle, AxleRig};
     let file = ideal_axle_with_bar();
     let Template::General(ref g) = file.suspension else { panic!("general form") };
     let bar = &g.anti_roll_bars[0];
@@ -409,16 +409,18 @@ fn stops_add_their_push_times_their_motion_ratio_to_the_wheel_load() {
 #[test]
 fn the_right_corner_mirrors_the_left_with_preloaded_six_rate_bushings() {
     use elastokin_solver::Mode;
-    use elastokin_suspensions::general::{Axis, BushingDef, Place};
-    use elastokin_suspensions::{axle::axle_sweep, Axle, AxleRig};
+    use elastokin_suspensions::description::general::{Axis, BushingDef, Place};
+    use elastokin_suspensions::{analysis::axle_sweep, Axle, AxleRig};
     let mut file = example("five_link.json");
     let Template::General(ref mut g) = file.suspension else { panic!("general form") };
     // The toe link's inner end on a bushing instead of a ball joint on the chassis.
     let toe_link = g.joints.iter().position(|j| j.name == "toe link").unwrap();
     g.joints.remove(toe_link);
-    g.bodies
-        .push(elastokin_suspensions::general::BodyDef { name: "toe link".into(), at: Place::named("toe_link_inner") });
-    g.joints.push(elastokin_suspensions::general::JointDef {
+    g.bodies.push(elastokin_suspensions::description::general::BodyDef {
+        name: "toe link".into(),
+        at: Place::named("toe_link_inner"),
+    });
+    g.joints.push(elastokin_suspensions::description::general::JointDef {
         name: "toe link outer".into(),
         kind: elastokin_core::JointKind::Spherical,
         bodies: ["toe link".into(), "wheel carrier".into()],
@@ -477,7 +479,7 @@ fn the_right_corner_mirrors_the_left_with_preloaded_six_rate_bushings() {
 /// and a spring given a two-point data sheet build the same corner as their rates, to rounding.
 #[test]
 fn straight_curves_in_a_model_file_are_their_rates() {
-    use elastokin_suspensions::general::Stiffness;
+    use elastokin_suspensions::description::general::Stiffness;
     let file = example("double_wishbone_axle.json");
     let mut curved = file.clone();
     let Template::General(ref mut g) = curved.suspension else { panic!("general form") };
@@ -583,7 +585,7 @@ fn a_curve_spring_carries_the_wheel_by_virtual_work() {
 #[test]
 fn every_joint_kind_builds_what_the_core_builds() {
     use elastokin_core::{BodyRef, JointSpec, Model, Pose};
-    use elastokin_suspensions::corner::CornerTemplate;
+    use elastokin_suspensions::build::CornerTemplate;
     use elastokin_suspensions::Side;
     let text = r#"{ "general": {
         "hardpoints": { "wheel_centre": [0, 0.8, 0], "a": [0.1, 0.6, 0.05], "b": [0.1, 0.5, 0.3],
@@ -681,7 +683,7 @@ fn four_link_closure(
 #[test]
 fn four_link_axle_travel_and_roll_match_their_loop_closure() {
     use elastokin_solver::Mode;
-    use elastokin_suspensions::axle::axle_sweep;
+    use elastokin_suspensions::analysis::axle_sweep;
     use elastokin_suspensions::{Axle, AxleRig};
     let file = example("four_link_axle.json");
     let toe_camber = |a: nalgebra::Vector3<f64>, s: f64| (a.x.atan2(s * a.y), (-a.z).atan2(a.x.hypot(a.y)));

@@ -7,8 +7,9 @@ use elastokin_elements::PointForce;
 use elastokin_solver::{Mode, SolverError, SolverOptions, StaticSolver, StepResult};
 use elastokin_suspensions::analysis::{
     anti_pitch, parallel_wheel_travel, patch_compliance, static_load_case, vertical_force_sweep, wheel_compliance,
-    wheel_load_sweep, AxlePosition, ComponentForces, LoadRow, VehicleParameters, WheelLoad,
+    wheel_load_sweep, ComponentForces, LoadRow, WheelLoad,
 };
+use elastokin_suspensions::description::{AxlePosition, VehicleParameters};
 use elastokin_suspensions::{
     Connection, Corner, DoubleWishbone, DoubleWishboneHardpoints, MacPherson, Rig, Side, SpringSpec, SuspensionFile,
     Template,

@@ -126,7 +126,7 @@ fn rack_travel_steers_left_and_right_wheels_the_same_way() {
 fn a_cylindrical_strut_leaves_the_top_mount_out_of_the_steering() {
     use elastokin_core::math::rotation_log;
     use elastokin_solver::{LoadPath, SolverOptions, StaticSolver};
-    use elastokin_suspensions::macpherson::StrutJoint;
+    use elastokin_suspensions::description::macpherson::StrutJoint;
     let bushed = Connection::Bushing(BushingRates::new(2e6, 1e6, 115.0, 2865.0));
     let h = MacPhersonHardpoints::generic();
     let strut_axis = (h.top_mount - h.strut_lower).normalize();

@@ -9,7 +9,7 @@ use super::models;
 use super::report::{Cell, Judge, Kind, SectionOutput, Table, Target};
 use super::Settings;
 use elastokin_solver::{LoadPath, Mode, SolverOptions, SolverWorkspace, StaticSolver};
-use elastokin_suspensions::batch::{self, Variant};
+use elastokin_suspensions::study::batch::{self, Variant};
 use elastokin_suspensions::{Rig, Side};
 use rayon::prelude::*;
 use serde_json::Value;

@@ -9,8 +9,9 @@ use crate::analysis::{
     design_wheel_load, model_load_sweep_with, slope_at, static_load_case, vertical_force_sweep_with,
     wheel_load_sweep_with, ComponentForces, LoadRow, WheelLoad,
 };
-use crate::model_file::SuspensionFile;
-use crate::{Rig, Side};
+use crate::build::{LoadPoint, Rig};
+use crate::description::Side;
+use crate::file::SuspensionFile;
 
 /// Why the `loads` analysis cannot run.
 pub(super) const NO_LOADS: &str = "the model has no load case: give \"loads\" in the general form (a force at a point \
@@ -22,8 +23,8 @@ const UNLOADED_RANGE_TOP: f64 = 3000.0;
 /// Where the rig's forces act, in words.
 fn where_loaded(s: &Settings) -> &'static str {
     match s.load_point {
-        crate::LoadPoint::ContactPatch => "contact patch",
-        crate::LoadPoint::WheelCentre => "wheel centre",
+        LoadPoint::ContactPatch => "contact patch",
+        LoadPoint::WheelCentre => "wheel centre",
     }
 }
 
@@ -173,7 +174,7 @@ fn loaded(file: &SuspensionFile, analysis: Analysis, s: &Settings) -> Result<Ana
         }
         _ => {
             let general = match &file.suspension {
-                crate::Template::General(g) if !g.loads.is_empty() => g,
+                crate::description::Template::General(g) if !g.loads.is_empty() => g,
                 _ => return Err(NO_LOADS.into()),
             };
             general.add_loads(&mut corner.model, Side::Left, "").map_err(said)?;

@@ -19,7 +19,7 @@ pub use chart::{Chart, Scale, Series, YAxis};
 pub use report::{significant, Accuracy, AnalysisReport, Cell, Figure, KcReport, Skipped, Table, Warning};
 
 use crate::analysis::{SweepExtras, SweepLimit, SweepOutput, WheelLoad};
-use crate::model_file::SuspensionFile;
+use crate::file::SuspensionFile;
 use elastokin_solver::Mode;
 use serde::Serialize;
 
@@ -162,7 +162,7 @@ pub struct Settings {
     /// Road loads: the wheel-centre height held by the rig (`true`) or the wheel free on its spring.
     pub height_held: bool,
     /// Where the vertical, lateral and braking forces act (traction always acts at the wheel centre).
-    pub load_point: crate::LoadPoint,
+    pub load_point: crate::build::LoadPoint,
     /// The 6×6 wheel compliance at every step of the sweeps that have one wheel to read it at.
     pub compliance: bool,
     /// When the error estimate is worth a warning.
@@ -186,7 +186,7 @@ impl Default for Settings {
             steps: 32,
             mode: Mode::Corrected,
             height_held: true,
-            load_point: crate::LoadPoint::ContactPatch,
+            load_point: crate::build::LoadPoint::ContactPatch,
             compliance: false,
             tolerance: Tolerance::default(),
             through_limits: false,
@@ -330,14 +330,14 @@ pub fn run_suite(
     // The plausibility checks run first: a model that cannot be what its author meant is said to be so even
     // when an analysis then fails on it. A check that cannot run (the corner does not build) leaves the
     // analyses to report why.
-    run_suite_checked(file, crate::plausibility::check_model(file).ok(), which, settings, progress)
+    run_suite_checked(file, crate::check::check_model(file).ok(), which, settings, progress)
 }
 
 /// [`run_suite`] with the model's plausibility check already made (`None` when it could not run), for a
 /// caller that looked at it first (`run --strict` refuses a model it warns of before spending time on it).
 pub fn run_suite_checked(
     file: &SuspensionFile,
-    model_check: Option<crate::ModelCheck>,
+    model_check: Option<crate::check::ModelCheck>,
     which: &[Analysis],
     settings: &Settings,
     mut progress: impl FnMut(SuiteEvent),
@@ -352,15 +352,16 @@ pub fn run_suite_checked(
         model_check,
         warnings,
     };
-    report.warnings.extend(crate::plausibility::bushing_deflection_at_design(file));
+    report.warnings.extend(crate::check::bushing_deflection_at_design(file));
     let (steered, loaded) = match &file.suspension {
-        crate::Template::General(g) => (g.is_steered(), !g.loads.is_empty()),
+        crate::description::Template::General(g) => (g.is_steered(), !g.loads.is_empty()),
         _ => (true, false),
     };
     // The roll rig's own refusal decides: a solid axle whose joints lock its roll cannot travel opposite.
-    let roll_locked = |template: &crate::Template| {
-        crate::CornerTemplate::builds_on_axle_only(template)
-            && crate::Axle::build(template, crate::AxleRig::OppositeTravel).err() == Some(crate::axle::roll_locked())
+    let roll_locked = |template: &crate::description::Template| {
+        crate::build::CornerTemplate::builds_on_axle_only(template)
+            && crate::build::Axle::build(template, crate::build::AxleRig::OppositeTravel).err()
+                == Some(crate::build::rig::roll_locked())
     };
     for analysis in chosen {
         let skip = match analysis {

@@ -217,7 +217,7 @@ pub struct Accuracy {
 
 /// Something a user should know about a model or a result: the plausibility checks' warning type, also
 /// used for results (an error estimate over the tolerance), with no hardpoints named.
-pub use crate::plausibility::Warning;
+pub use crate::check::Warning;
 
 /// What one K&C analysis produced.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -307,7 +307,7 @@ pub struct KcReport {
     pub skipped: Vec<Skipped>,
     /// What the plausibility checks found in the model before it was solved (degrees of freedom,
     /// condition, warnings), when they could run.
-    pub model_check: Option<crate::plausibility::ModelCheck>,
+    pub model_check: Option<crate::check::ModelCheck>,
     /// Warnings about the model (plausibility) and the results.
     pub warnings: Vec<Warning>,
 }

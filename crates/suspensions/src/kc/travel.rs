@@ -8,9 +8,10 @@ use super::{Analysis, Cell};
 use crate::analysis::{
     anti_pitch, parallel_wheel_travel_with, patch_compliance, slope_at, wheel_compliance, TravelRow,
 };
-use crate::axle::{axle_sweep_with, AxleRow};
-use crate::model_file::SuspensionFile;
-use crate::{Axle, AxleRig, Rig, Side};
+use crate::analysis::{axle_sweep_with, AxleRow};
+use crate::build::{Axle, AxleRig, Rig};
+use crate::description::Side;
+use crate::file::SuspensionFile;
 
 /// A chart against the load parameter with one or two axes.
 pub(super) fn chart(
@@ -226,7 +227,7 @@ pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<Ana
         charts,
     );
     // Toe, camber and wheel rate no car has, inside the travel asked for.
-    report.warnings.extend(crate::plausibility::check_travel_rows(&out.rows));
+    report.warnings.extend(crate::check::check_travel_rows(&out.rows));
     // Figures of the design position itself, from the tangent there (not read off the rows).
     let pc = patch_compliance(&corner, 0.0).map_err(said)?;
     let per_kn = |rad_per_n: f64| deg(rad_per_n) * 1e3;
@@ -273,8 +274,8 @@ pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<Ana
         Some(vehicle) => {
             let a = anti_pitch(&corner, vehicle).map_err(said)?;
             let (braking, traction) = match vehicle.axle {
-                crate::analysis::AxlePosition::Front => ("anti-dive", "anti-lift (drive)"),
-                crate::analysis::AxlePosition::Rear => ("anti-lift (braking)", "anti-squat"),
+                crate::description::AxlePosition::Front => ("anti-dive", "anti-lift (drive)"),
+                crate::description::AxlePosition::Rear => ("anti-lift (braking)", "anti-squat"),
             };
             report.figures.extend([
                 Figure::new("braking_anti_pitch", braking, "%", 1, a.braking),

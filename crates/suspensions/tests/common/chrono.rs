@@ -6,9 +6,10 @@
 //! out from its own file, stay in the test files: each test checks one reading against its own equations.
 
 use elastokin_solver::{LoadPath, Mode, StaticSolver};
+use elastokin_suspensions::analysis::axle_sweep;
 use elastokin_suspensions::analysis::{parallel_wheel_travel, TravelRow};
-use elastokin_suspensions::axle::axle_sweep;
-use elastokin_suspensions::chrono::{import, without_comments, Imported};
+use elastokin_suspensions::document::import_chrono;
+use elastokin_suspensions::import::chrono::{without_comments, Imported};
 use elastokin_suspensions::kc::{self, KcReport};
 use elastokin_suspensions::{Axle, AxleRig, AxleRow, Rig, Side, SuspensionFile, WheelAttitude};
 use nalgebra::{DVector, Rotation3, Vector3};
@@ -39,7 +40,7 @@ pub fn chrono_json(path: &str) -> Value {
 pub fn read(path: &str) -> (Value, SuspensionFile) {
     let text = fixture(path);
     let chrono = serde_json::from_str(&without_comments(&text)).unwrap();
-    (chrono, import(&text, path, None).unwrap_or_else(|e| panic!("{path}: {e}")).file)
+    (chrono, import_chrono(&text, path, None).unwrap_or_else(|e| panic!("{path}: {e}")).file)
 }
 
 /// A fixture as JSON with `edit` applied, and the model imported from that (panics when it is refused):
@@ -47,7 +48,7 @@ pub fn read(path: &str) -> (Value, SuspensionFile) {
 pub fn read_edited(path: &str, edit: impl FnOnce(&mut Value)) -> (Value, SuspensionFile) {
     let mut chrono = chrono_json(path);
     edit(&mut chrono);
-    let file = import(&chrono.to_string(), path, None).unwrap_or_else(|e| panic!("{path}: {e}")).file;
+    let file = import_chrono(&chrono.to_string(), path, None).unwrap_or_else(|e| panic!("{path}: {e}")).file;
     (chrono, file)
 }
 
@@ -56,7 +57,7 @@ pub fn read_edited(path: &str, edit: impl FnOnce(&mut Value)) -> (Value, Suspens
 pub fn edited(path: &str, edit: impl FnOnce(&mut Value)) -> Result<Imported, String> {
     let mut chrono = chrono_json(path);
     edit(&mut chrono);
-    import(&chrono.to_string(), path, None).map_err(|e| e.to_string())
+    import_chrono(&chrono.to_string(), path, None).map_err(|e| e.to_string())
 }
 
 /// Swaps a spring's `Minimum Length` and `Maximum Length` where they are crossed (the minimum above the

@@ -1,0 +1,200 @@
+//! How every sweep walks its load path and reads its rows: the walk itself (steps, limit points, arc
+//! length through them), the extras a sweep may read at each step (error estimate, compliance), the rig
+//! an analysis needs, and the slope of a figure at a point of its rows.
+
+use crate::analysis::compliance::compliance_with;
+use crate::build::{Corner, Rig};
+use crate::wheel::Wheel;
+use elastokin_solver::{ArcStep, LoadPath, Mode, SolverError, State, StaticSolver, StepResult, Sweep};
+
+/// Refuses a corner held differently from what the analysis needs: `rigs` lists the rigs it accepts.
+pub(crate) fn require_rig(corner: &Corner, rigs: &[Rig]) -> Result<(), SolverError> {
+    if rigs.contains(&corner.rig) {
+        return Ok(());
+    }
+    let held = |rig: &Rig| match rig {
+        Rig::WheelTravel => "the wheel-centre height driven",
+        Rig::Steering => "the rack driven and the wheel-centre height held",
+        Rig::HeightHeld => "the wheel-centre height held",
+        Rig::Free => "the wheel free on its spring",
+    };
+    let accepted: Vec<&str> = rigs.iter().map(held).collect();
+    Err(SolverError::InvalidInput {
+        what: "corner",
+        why: format!(
+            "this analysis needs the corner on the rig with {}, but it is held with {}",
+            accepted.join(" or "),
+            held(&corner.rig)
+        ),
+    })
+}
+
+/// Slope of `y` against `x` at `x = at` over sweep rows (in either order): a central difference of the
+/// rows on either side when a row sits exactly at `at`, else the chord of the two rows that bracket it.
+/// `None` when `at` is outside the rows' range or there are fewer than two rows.
+pub fn slope_at<R>(rows: &[R], at: f64, x: impl Fn(&R) -> f64, y: impl Fn(&R) -> f64) -> Option<f64> {
+    let xs: Vec<f64> = rows.iter().map(&x).collect();
+    let (a, b) = match xs.iter().position(|&v| v == at) {
+        Some(k) if rows.len() >= 2 => (k.saturating_sub(1), (k + 1).min(rows.len() - 1)),
+        Some(_) => return None,
+        None => {
+            let i = xs.windows(2).position(|w| (w[0] - at) * (w[1] - at) < 0.0)?;
+            (i, i + 1)
+        }
+    };
+    Some((y(&rows[b]) - y(&rows[a])) / (xs[b] - xs[a]))
+}
+
+/// What a sweep can do besides walking its rows: read more at every step, at the cost of more
+/// factorizations, and go on through a limit point.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SweepExtras {
+    /// Every row read again one exact Newton iteration away ([`StaticSolver::newton_correction`]): the
+    /// difference is the row's error estimate. One factorization per row.
+    pub error_estimate: bool,
+    /// The 6×6 wheel compliance ([`wheel_compliance`]) at every step. One factorization and six
+    /// back-substitutions per row.
+    pub compliance: bool,
+    /// What to do at a limit point (a load the corner cannot carry, a travel its linkage cannot reach):
+    /// `None` stops there; `Some(step)` follows the path on through it by arc length
+    /// ([`StaticSolver::arc_length_sweep_from`]) from the last step before it, with steps of `step` in the
+    /// sweep's own unit (N, N·m or m): the change of load or travel of the first arc-length step
+    /// ([`ArcStep::Load`]). At most [`MAX_ARC_STEPS_PER_RANGE`] steps of that size per range are taken,
+    /// and at most [`crate::kc::MAX_STEPS`].
+    pub through_limits: Option<f64>,
+}
+
+/// How many arc-length steps of [`SweepExtras::through_limits`] a path through a limit point may take,
+/// per step that would span the sweep's range: room for the displacement the path makes where it
+/// carries no more load.
+pub const MAX_ARC_STEPS_PER_RANGE: f64 = 10.0;
+
+/// Where a sweep met a limit point, and what it did there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SweepLimit {
+    /// The load parameter of the limit point (N, N·m or m: the sweep's own unit), located to
+    /// [`elastokin_solver::LIMIT_POINT_TOLERANCE`] of the range.
+    pub at: f64,
+    /// How the rows go on past it: `None` when the sweep stopped there (its last row is then the
+    /// equilibrium at the limit point).
+    pub through: Option<ArcLengthRows>,
+}
+
+/// The rows of a sweep that followed its path through a limit point by arc length.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ArcLengthRows {
+    /// Index of the first row walked by arc length: the rows before it are the sweep's own steps, up to
+    /// the last one before the limit point.
+    pub first_row: usize,
+    /// The arc-length step asked for ([`SweepExtras::through_limits`]).
+    pub step: f64,
+    /// Whether the path left the range (its last row lies just beyond it); if not, it stopped after the
+    /// most steps allowed.
+    pub left_range: bool,
+}
+
+/// A sweep's rows, and what [`SweepExtras`] asked for, row by row.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepOutput<R> {
+    /// The rows: every step of the sweep; up to the limit point, or through it, if it met one.
+    pub rows: Vec<R>,
+    /// Where the sweep met a limit point, if it did.
+    pub limit: Option<SweepLimit>,
+    /// The rows read one Newton iteration closer to the exact equilibrium at their load parameter.
+    pub corrected: Option<Vec<R>>,
+    /// The force and constraint residuals of every step: `(‖Φ_qᵀλ − Q‖∞ / force scale, ‖Φ‖∞)`.
+    pub residuals: Vec<(f64, f64)>,
+    /// The 6×6 wheel compliance at every step (rows: wheel-centre translation, rotation; columns: unit
+    /// force, torque at the wheel centre).
+    pub compliance: Option<Vec<[[f64; 6]; 6]>>,
+}
+
+/// The equilibria of a walked load path, and where it met a limit point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Walked {
+    /// The equilibria in the order of the path: the start, then every step; at a limit point, the
+    /// equilibrium there last, or the path on through it (see [`SweepLimit`]).
+    pub steps: Vec<StepResult>,
+    /// Where the path met a limit point, if it did.
+    pub limit: Option<SweepLimit>,
+}
+
+/// Walks `path` from `state` in `mode`, as every analysis walks its sweep. At a limit point the rows
+/// stop with the equilibrium there, or, with `through` (see [`SweepExtras::through_limits`]), go on
+/// through it by arc length from the last step before it.
+pub fn walk(
+    solver: &mut StaticSolver,
+    state: &mut State,
+    path: LoadPath,
+    mode: Mode,
+    through: Option<f64>,
+) -> Result<Walked, SolverError> {
+    let Sweep { mut steps, limit, .. } = solver.sweep_from(state, path, mode)?;
+    let Some(limit) = limit else { return Ok(Walked { steps, limit: None }) };
+    let Some(step) = through else {
+        steps.push(limit.step);
+        return Ok(Walked { steps, limit: Some(SweepLimit { at: limit.t, through: None }) });
+    };
+    let range = (path.end - path.start).abs();
+    if !(step.is_finite() && step > 0.0) {
+        return Err(SolverError::InvalidInput {
+            what: "arc-length step",
+            why: format!("it must be a positive length in the sweep's own unit (N, N·m or m), got {step}"),
+        });
+    }
+    let most = (MAX_ARC_STEPS_PER_RANGE * range / step).ceil().clamp(1.0, crate::kc::MAX_STEPS as f64) as usize;
+    let first_row = steps.len();
+    let mut from = solver.state_of(&steps[first_row - 1]);
+    let arc =
+        solver.arc_length_sweep_from(&mut from, LoadPath::new(path.start, path.end, most), ArcStep::Load(step))?;
+    let (lo, hi) = (path.start.min(path.end), path.start.max(path.end));
+    let left_range = arc.steps.last().is_some_and(|s| !(lo..=hi).contains(&s.t));
+    // Its first equilibrium is the last step's.
+    steps.extend(arc.steps.into_iter().skip(1));
+    let through = Some(ArcLengthRows { first_row, step, left_range });
+    Ok(Walked { steps, limit: Some(SweepLimit { at: limit.t, through }) })
+}
+
+/// The rows of a sweep that must cover its whole range: a limit point is [`SolverError::LimitPoint`].
+pub(crate) fn whole<R>(out: SweepOutput<R>) -> Result<Vec<R>, SolverError> {
+    match out.limit {
+        Some(limit) => Err(SolverError::LimitPoint { reached: limit.at }),
+        None => Ok(out.rows),
+    }
+}
+
+/// Reads a sweep's rows, and what `extras` asks for, with the solver that walked it.
+pub(crate) fn read_sweep<R>(
+    solver: &mut StaticSolver,
+    wheel: &Wheel,
+    partner: Option<&Wheel>,
+    walked: Walked,
+    extras: SweepExtras,
+    mut read: impl FnMut(&mut StaticSolver, &StepResult) -> Result<R, SolverError>,
+) -> Result<SweepOutput<R>, SolverError> {
+    let Walked { steps, limit } = walked;
+    let steps = &steps[..];
+    let rows = steps.iter().map(|s| read(solver, s)).collect::<Result<Vec<R>, _>>()?;
+    let corrected = if extras.error_estimate {
+        let mut out = Vec::with_capacity(steps.len());
+        for s in steps {
+            let c = solver.newton_correction(s)?;
+            out.push(read(solver, &c)?);
+        }
+        Some(out)
+    } else {
+        None
+    };
+    let compliance = if extras.compliance {
+        Some(
+            steps
+                .iter()
+                .map(|s| compliance_with(solver, wheel, partner, &solver.state_of(s)))
+                .collect::<Result<_, _>>()?,
+        )
+    } else {
+        None
+    };
+    let residuals = steps.iter().map(|s| (s.force_residual / s.force_scale, s.constraint_residual)).collect();
+    Ok(SweepOutput { rows, limit, corrected, residuals, compliance })
+}

@@ -1,0 +1,45 @@
+//! A full axle: both corners of one template, mirrored, with one rack shared by the two tie rods — for
+//! the tests that need both wheels: opposite wheel travel (roll), parallel travel with track change and
+//! roll-centre migration, and steering of both wheels by one rack.
+
+use crate::build::rig::{add_both_corners, add_travel_drivers, AxleRig};
+use crate::build::template::CornerTemplate;
+use crate::wheel::Wheel;
+use elastokin_core::{ElementId, Model, ModelError};
+
+/// Both corners of an axle in one model. Part names start with `"left "` or `"right "` (`"left upright"`,
+/// `"right wheel travel"`, …); the rack, when there is one, is `"rack"`.
+#[derive(Debug)]
+pub struct Axle {
+    /// The multibody model.
+    pub model: Model,
+    /// How it is held.
+    pub rig: AxleRig,
+    /// The left wheel.
+    pub left: Wheel,
+    /// The right wheel (the left mirrored, y → −y).
+    pub right: Wheel,
+    /// The torsion element of each anti-roll bar.
+    pub anti_roll_bars: Vec<ElementId>,
+}
+
+impl Axle {
+    /// Builds both corners of `template`, the left as described and the right mirrored, their tie rods on
+    /// one rack (a body on a lateral slide when steering, else the chassis), held as `rig` says.
+    pub fn build(template: &impl CornerTemplate, rig: AxleRig) -> Result<Axle, ModelError> {
+        let mut model = Model::new();
+        let (left, right, cross) =
+            add_both_corners(&mut model, template, ["left ", "right "], rig == AxleRig::Steering)?;
+        let travel_rates = match rig {
+            AxleRig::ParallelTravel => Some((1.0, 1.0)),
+            AxleRig::OppositeTravel => Some((1.0, -1.0)),
+            AxleRig::Steering | AxleRig::HeightHeld => Some((0.0, 0.0)),
+            AxleRig::Free => None,
+        };
+        if let Some((l, r)) = travel_rates {
+            let axle_only = template.builds_on_axle_only();
+            add_travel_drivers(&mut model, axle_only, ("left ", &left.wheel, l), ("right ", &right.wheel, r))?;
+        }
+        Ok(Axle { model, rig, left: left.wheel, right: right.wheel, anti_roll_bars: cross.anti_roll_bars })
+    }
+}

@@ -1,0 +1,71 @@
+//! The vehicle around a corner, as a model file's `vehicle` section gives it: the corner's share of the
+//! weight, the wheelbase, the centre of gravity's height, the brake and drive splits, and the optional
+//! tyre rate and steering ratio.
+
+use serde::{Deserialize, Serialize};
+
+/// Which axle a corner is on: it decides which pitch the braking and drive forces resist.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AxlePosition {
+    /// Front axle: braking dives it, drive lifts it.
+    Front,
+    /// Rear axle: braking lifts it, drive squats it.
+    Rear,
+}
+
+/// What the vehicle-level analyses need from the vehicle (SI units): the static load case and the road
+/// loads carry `corner_load`, the anti-pitch percentages use the rest. A model file's `vehicle` section.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VehicleParameters {
+    /// The corner's share of the vehicle's weight, N: the vertical force at the contact patch at rest.
+    pub corner_load: f64,
+    /// Wheelbase `L` (m).
+    pub wheelbase: f64,
+    /// Height `h` of the centre of gravity above the ground (m).
+    pub cg_height: f64,
+    /// Share `p_f` of the braking force made by the front axle, 0 to 1.
+    pub brake_front_fraction: f64,
+    /// Share `d_f` of the drive force made by the front axle, 0 to 1 (0: rear drive, 1: front drive).
+    pub drive_front_fraction: f64,
+    /// The axle the corner is on.
+    pub axle: AxlePosition,
+    /// Vertical rate of the tyre (N/m), for the ride rate (wheel rate and tyre in series); optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tyre_rate: Option<f64>,
+    /// Rack travel per turn of the steering wheel (m/rev, the pinion's "c-factor"), for the overall
+    /// steering ratio; optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rack_travel_per_revolution: Option<f64>,
+}
+
+impl VehicleParameters {
+    /// Refuses values no vehicle has, naming the field; the error is why.
+    pub fn validate(&self) -> Result<(), String> {
+        let invalid = |why: String| Err(why);
+        // Upper bounds well beyond any road vehicle: past them the figures (anti-pitch = slope × L / h, the
+        // forces of the corner load) lose their meaning and then overflow.
+        for (field, value, what, limit) in [
+            ("wheelbase", Some(self.wheelbase), "a length in metres", 50.0),
+            ("cg_height", Some(self.cg_height), "a height in metres", 20.0),
+            ("corner_load", Some(self.corner_load), "a force in newtons", 1e7),
+            ("tyre_rate", self.tyre_rate, "a rate in N/m", 1e10),
+            ("rack_travel_per_revolution", self.rack_travel_per_revolution, "a rack travel in metres", 1.0),
+        ] {
+            if let Some(v) = value.filter(|v| !(*v > 0.0 && *v <= limit)) {
+                return invalid(format!("`{field}` must be {what}, above 0 and at most {limit:e}, got {v:e}"));
+            }
+        }
+        for (field, value) in
+            [("brake_front_fraction", self.brake_front_fraction), ("drive_front_fraction", self.drive_front_fraction)]
+        {
+            if !(0.0..=1.0).contains(&value) {
+                return invalid(format!(
+                    "`{field}` is the front axle's share of the force and must lie in [0, 1], got {value}"
+                ));
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,122 @@
+//! Places in a JSON text: the line and column of a key path (`locate`), and the key path at a line and
+//! column (`key_path_at`), so that an error names what the user wrote, in a file by line and column and in
+//! a document no one reads as text by its keys.
+
+/// The byte offset of the quote that closes the JSON string whose opening quote is at `open` (the end of
+/// `text` when it is unclosed): escapes are stepped over.
+fn string_end(text: &str, open: usize) -> usize {
+    let bytes = text.as_bytes();
+    let mut i = open + 1;
+    while i < bytes.len() && bytes[i] != b'"' {
+        i += if bytes[i] == b'\\' { 2 } else { 1 };
+    }
+    i.min(bytes.len())
+}
+
+/// Whether the string that closes at `close` is an object key: a colon follows it.
+fn is_key(text: &str, close: usize) -> bool {
+    text.get(close + 1..)
+        .is_some_and(|rest| rest.trim_start_matches(|c: char| c.is_ascii_whitespace()).starts_with(':'))
+}
+
+/// Every object key in `text` with its byte offset, in order.
+fn keys(text: &str) -> Vec<(usize, String)> {
+    let mut out = Vec::new();
+    let mut i = 0;
+    while let Some(found) = text.get(i..).and_then(|rest| rest.find('"')) {
+        let open = i + found;
+        let close = string_end(text, open);
+        if is_key(text, close) {
+            out.push((open, text[open + 1..close].to_string()));
+        }
+        i = close + 1;
+    }
+    out
+}
+
+/// Line and column (from 1) of the key path `path` in `text`: each key the first after the previous one
+/// (or, for a part's name in the general form, the string value itself); the last found when the rest are
+/// absent.
+pub(crate) fn locate(text: &str, path: &[&str]) -> (usize, usize) {
+    let all = keys(text);
+    let mut at = 0;
+    let mut from = 0;
+    for key in path {
+        if let Some(k) = all[from..].iter().position(|(_, k)| k == key) {
+            at = all[from + k].0;
+            from += k + 1;
+        } else if let Some(offset) = text[at..].find(&format!("\"{key}\"")) {
+            // A part's name (a string value, not a key): the keys after it are that part's.
+            at += offset;
+            from = all.iter().position(|(o, _)| *o > at).unwrap_or(all.len());
+        }
+    }
+    let before = &text[..at];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, column)
+}
+
+/// The byte offset of line `line`, column `column` (from 1, in characters, as serde_json counts them).
+fn offset_of(text: &str, line: usize, column: usize) -> usize {
+    let line_start: usize = text.split_inclusive('\n').take(line.saturating_sub(1)).map(str::len).sum();
+    let within: usize = text[line_start.min(text.len())..].chars().take(column).map(char::len_utf8).sum();
+    line_start + within
+}
+
+/// The last key before line `line`, column `column` (from 1) of `text`.
+pub(crate) fn key_before(text: &str, line: usize, column: usize) -> Option<String> {
+    let offset = offset_of(text, line, column);
+    keys(text).into_iter().take_while(|(at, _)| *at < offset).last().map(|(_, k)| k)
+}
+
+/// The keys and indices that lead to line `line`, column `column` (from 1) of JSON text, as a reader of the
+/// document names a place in it: `suspension.general.bodies[0].mass`. For documents no one reads as text —
+/// a Python dict, a variant's edited model — where a line and column would name nothing the user wrote.
+pub fn key_path_at(text: &str, line: usize, column: usize) -> String {
+    enum Frame {
+        Object(Option<String>),
+        Array(usize),
+    }
+    let end = offset_of(text, line, column).min(text.len());
+    let bytes = text.as_bytes();
+    let mut stack: Vec<Frame> = Vec::new();
+    let mut i = 0;
+    while i < end {
+        match bytes[i] {
+            b'"' => {
+                let close = string_end(text, i);
+                // A string in an object is its key when a colon follows it.
+                if let (Some(Frame::Object(key)), true) = (stack.last_mut(), is_key(text, close)) {
+                    *key = Some(text[i + 1..close].to_string());
+                }
+                i = close;
+            }
+            b'{' => stack.push(Frame::Object(None)),
+            b'[' => stack.push(Frame::Array(0)),
+            b'}' | b']' => {
+                stack.pop();
+            }
+            b',' => match stack.last_mut() {
+                Some(Frame::Array(k)) => *k += 1,
+                Some(Frame::Object(key)) => *key = None,
+                None => {}
+            },
+            _ => {}
+        }
+        i += 1;
+    }
+    let mut path = String::new();
+    for frame in &stack {
+        match frame {
+            Frame::Object(Some(key)) if path.is_empty() => path.push_str(key),
+            Frame::Object(Some(key)) => {
+                path.push('.');
+                path.push_str(key);
+            }
+            Frame::Object(None) => {}
+            Frame::Array(k) => path.push_str(&format!("[{k}]")),
+        }
+    }
+    path
+}

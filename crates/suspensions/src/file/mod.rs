@@ -1,0 +1,554 @@
+//! Model files: a suspension template in JSON, SI units, ISO 8855 axes (x forward, y left, z up), left
+//! corner (the right is mirrored).
+//!
+//! ```json
+//! { "name": "generic double wishbone",
+//!   "suspension": { "double_wishbone": {
+//!       "hardpoints": { "wheel_centre": [-0.04, 1.1, -0.026], … },
+//!       "upper_arm_mounts": "ideal",
+//!       "lower_arm_mounts": { "bushing": { "radial": 5e6, "axial": 1e6, "torsion": 573, "conical": 5730 } },
+//!       "spring": { "rate": 30000, "design_force": 4000 } } } }
+//! ```
+//!
+//! Unknown keys, missing hardpoints, points that are not three numbers, and values no suspension has (a
+//! coordinate beyond ±1000 m, a rate outside (0, 10¹²], a wheelbase outside 0.5–20 m, …) are errors that
+//! name the key, its line and column in the file and, for a value, the accepted range. A UTF-8 byte-order
+//! mark at the start is skipped.
+
+pub mod key_path;
+
+use crate::description::limits::{looks_like_millimetres, MAX_COORDINATE, MAX_FORCE, MAX_RATE};
+use crate::description::{ArmMounts, Connection, Stiffness, Template, VehicleParameters};
+use elastokin_core::ModelError;
+pub use key_path::key_path_at;
+use key_path::{key_before, locate};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// The content of a model file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SuspensionFile {
+    /// A name for reports.
+    pub name: String,
+    /// The suspension.
+    pub suspension: Template,
+    /// The vehicle around it, for the static load case, the road loads and the anti-pitch figures;
+    /// optional (those analyses are then skipped or take the design wheel load).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vehicle: Option<VehicleParameters>,
+}
+
+/// The templates a model file may name in `suspension`.
+const TEMPLATES: [&str; 3] = ["macpherson", "double_wishbone", "general"];
+
+/// How the point reader's error starts (see [`crate::description::side::point`]); the hardpoint's name is put before it.
+const POINT_ERROR: &str = "a point is 3 numbers";
+
+/// A value outside what any suspension has, with the keys leading to it in the file.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[error("{message}")]
+pub struct OutOfRange {
+    /// The keys from the template (or the file's top level, for `vehicle`) down to the value.
+    pub keys: Vec<String>,
+    /// What is wrong, the accepted range and why.
+    pub message: String,
+}
+
+impl OutOfRange {
+    /// As a file error at the value's key in `text`.
+    fn at(self, text: &str, origin: &str) -> FileError {
+        let keys: Vec<&str> = self.keys.iter().map(String::as_str).collect();
+        let (line, column) = locate(text, &keys);
+        FileError::Invalid { origin: origin.to_string(), line, column, message: self.message }
+    }
+}
+
+/// serde's words for what it expected, in the model file's words: the library's type names mean nothing
+/// to the file's author. Longer names first, so that a name is not replaced inside a longer one.
+const EXPECTED_IN_FILE_WORDS: [(&str, &str); 9] = [
+    ("struct MacPhersonHardpoints", "an object of named hardpoints"),
+    ("struct DoubleWishboneHardpoints", "an object of named hardpoints"),
+    ("struct MacPherson", "an object with the template's hardpoints, mounts, spring and loaded_radius"),
+    ("struct DoubleWishbone", "an object with the template's hardpoints, mounts, spring and loaded_radius"),
+    ("struct SpringSpec", "{\"rate\": N/m, \"design_force\": N}"),
+    ("struct BushingRates", "{\"radial\": N/m, \"axial\": N/m, \"torsion\": N·m/rad, \"conical\": N·m/rad}"),
+    (
+        "struct VehicleParameters",
+        "an object with corner_load, wheelbase, cg_height, brake_front_fraction, drive_front_fraction and axle",
+    ),
+    ("struct SuspensionFile", "an object with name, suspension and, optionally, vehicle"),
+    ("f64", "a number"),
+];
+
+fn in_file_words(message: &str) -> String {
+    EXPECTED_IN_FILE_WORDS.iter().fold(message.to_string(), |m, (code, words)| m.replace(code, words))
+}
+
+/// A value as people write it: `1e308`, not three hundred digits.
+fn number(v: f64) -> String {
+    if v != 0.0 && !(1e-3..1e6).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
+/// `value` as pretty JSON at `depth` (two spaces each), arrays of plain values on one line.
+fn write_json(value: &serde_json::Value, depth: usize, out: &mut String) {
+    use serde_json::Value;
+    let indent = |d: usize| "  ".repeat(d);
+    let plain = |v: &Value| !(v.is_array() || v.is_object());
+    let short = inline(value);
+    if value.is_object() && short.len() + 2 * depth <= 110 && !short[1..].contains('{') {
+        out.push_str(&short);
+        return;
+    }
+    match value {
+        Value::Object(map) if !map.is_empty() => {
+            out.push_str("{\n");
+            for (k, (key, v)) in map.iter().enumerate() {
+                out.push_str(&format!("{}{}: ", indent(depth + 1), Value::String(key.clone())));
+                write_json(v, depth + 1, out);
+                out.push_str(if k + 1 < map.len() { ",\n" } else { "\n" });
+            }
+            out.push_str(&format!("{}}}", indent(depth)));
+        }
+        Value::Array(items)
+            if !items.is_empty()
+                && !items.iter().all(|v| plain(v) || v.as_array().is_some_and(|a| a.iter().all(plain))) =>
+        {
+            out.push_str("[\n");
+            for (k, v) in items.iter().enumerate() {
+                out.push_str(&indent(depth + 1));
+                write_json(v, depth + 1, out);
+                out.push_str(if k + 1 < items.len() { ",\n" } else { "\n" });
+            }
+            out.push_str(&format!("{}]", indent(depth)));
+        }
+        other => out.push_str(&inline(other)),
+    }
+}
+
+/// A plain value, or an array of them, on one line.
+fn inline(value: &serde_json::Value) -> String {
+    match value {
+        serde_json::Value::Array(items) => format!("[{}]", items.iter().map(inline).collect::<Vec<_>>().join(", ")),
+        serde_json::Value::Object(map) if !map.is_empty() => {
+            let entries: Vec<String> =
+                map.iter().map(|(k, v)| format!("{}: {}", serde_json::Value::String(k.clone()), inline(v))).collect();
+            format!("{{ {} }}", entries.join(", "))
+        }
+        other => other.to_string(),
+    }
+}
+
+/// Text editors on some systems save UTF-8 with a byte-order mark; JSON has no use for it.
+pub(crate) fn without_byte_order_mark(text: &str) -> &str {
+    text.strip_prefix('\u{feff}').unwrap_or(text)
+}
+
+/// A model file that cannot be read.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum FileError {
+    /// The file could not be opened or written.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The file is not a valid model (bad JSON, unknown key, missing hardpoint, wrong type).
+    #[error("{origin}:{line}:{column}: {message}")]
+    Invalid {
+        /// The file (or the origin given to [`SuspensionFile::from_json`]).
+        origin: String,
+        /// Line, from 1.
+        line: usize,
+        /// Column, from 1.
+        column: usize,
+        /// What is wrong, naming the key.
+        message: String,
+    },
+    /// The file parses but describes an inconsistent model.
+    #[error("{origin}: {source}")]
+    Model {
+        /// The file.
+        origin: String,
+        /// The model error.
+        source: ModelError,
+    },
+}
+
+impl FileError {
+    /// The error of a document that is no file (a Python dict, a variant's edited model): the place named by
+    /// the keys that lead there (`key_path_at`), not by a line and column of text the user never saw. `text`
+    /// is the document's text the error is of.
+    pub fn in_document(&self, text: &str) -> String {
+        match self {
+            FileError::Invalid { origin, line, column, message } => {
+                match key_path_at(without_byte_order_mark(text), *line, *column) {
+                    path if path.is_empty() => format!("{origin}: {message}"),
+                    path => format!("{origin}: {message} (at {path})"),
+                }
+            }
+            other => other.to_string(),
+        }
+    }
+}
+
+impl SuspensionFile {
+    /// Parses JSON text into a description, `origin` naming the source in errors, and with `ranges` refuses
+    /// values no suspension has (see [`SuspensionFile::check_ranges`]) with the key, its line and column,
+    /// and the accepted range. Nothing is built: [`SuspensionFile::from_json`] builds it too.
+    pub(crate) fn parse_checked(text: &str, origin: &str, ranges: bool) -> Result<Self, FileError> {
+        let text = without_byte_order_mark(text);
+        let file = Self::parse(text, origin)?;
+        if ranges {
+            file.check_ranges().map_err(|e| e.at(text, origin))?;
+        }
+        Ok(file)
+    }
+
+    fn parse(text: &str, origin: &str) -> Result<Self, FileError> {
+        let invalid = |line: usize, column: usize, message: String| FileError::Invalid {
+            origin: origin.to_string(),
+            line,
+            column,
+            message,
+        };
+        let plain = |e: &serde_json::Error| e.to_string().split(" at line ").next().unwrap_or_default().to_string();
+        // Syntax first, then the one thing serde cannot say in the file's words: how many templates.
+        let value: serde_json::Value =
+            serde_json::from_str(text).map_err(|e| invalid(e.line(), e.column(), plain(&e)))?;
+        if let Some(suspension) = value.get("suspension").filter(|s| !s.is_object()) {
+            let (line, column) = locate(text, &["suspension"]);
+            return Err(invalid(
+                line,
+                column,
+                format!(
+                    "suspension: give one template as an object, {{\"macpherson\": {{…}}}}, \
+                     {{\"double_wishbone\": {{…}}}} or {{\"general\": {{…}}}}, got {suspension}"
+                ),
+            ));
+        }
+        if let Some(serde_json::Value::Object(templates)) = value.get("suspension") {
+            let found: Vec<&str> = templates.keys().map(String::as_str).collect();
+            let (line, column) = locate(text, &["suspension"]);
+            let known = "macpherson, double_wishbone or general";
+            match found.as_slice() {
+                [one] if !TEMPLATES.contains(one) => {
+                    return Err(invalid(
+                        line,
+                        column,
+                        format!("suspension: unknown template '{one}': give one of {known}"),
+                    ));
+                }
+                [_] => {}
+                [] => {
+                    return Err(invalid(line, column, format!("suspension: give one template ({known}), found none")))
+                }
+                _ => {
+                    return Err(invalid(
+                        line,
+                        column,
+                        format!("suspension: give one template ({known}), found {}: {}", found.len(), found.join(", ")),
+                    ));
+                }
+            }
+        }
+        serde_json::from_str(text).map_err(|e| {
+            let message = in_file_words(&plain(&e));
+            // A point's own error cannot know its name: the key just before the error in the text is it.
+            let message = match (message.starts_with(POINT_ERROR), key_before(text, e.line(), e.column())) {
+                (true, Some(key)) => format!("hardpoint '{key}': {message}"),
+                _ => message,
+            };
+            invalid(e.line(), e.column(), message)
+        })
+    }
+
+    /// Refuses values no suspension has: hardpoint coordinates beyond ±1000 m, rates outside
+    /// (0, 10¹²], a loaded radius outside 0.05–2 m, a design force beyond ±10⁶ N, and vehicle
+    /// parameters outside the ranges of road vehicles.
+    pub fn check_ranges(&self) -> Result<(), OutOfRange> {
+        let points = self.suspension.hardpoints();
+        for (name, p) in &points {
+            for (axis, c) in ["x", "y", "z"].into_iter().zip(p.iter()) {
+                if c.is_nan() || c.abs() > MAX_COORDINATE {
+                    let wc = points.iter().find(|(n, _)| n == self.suspension.wheel_centre_name()).map(|(_, p)| *p);
+                    let hint = if wc.is_some_and(|wc| looks_like_millimetres(&points, wc)) {
+                        "; the hardpoints look like millimetres: divide every coordinate by 1000"
+                    } else {
+                        ""
+                    };
+                    return Err(OutOfRange {
+                        keys: vec!["hardpoints".into(), name.clone()],
+                        message: format!(
+                            "hardpoint '{name}': {axis} = {} m is beyond ±{MAX_COORDINATE} m; hardpoints are in \
+                             metres from the car's reference point (ISO 8855: x forward, y left, z up){hint}",
+                            number(*c)
+                        ),
+                    });
+                }
+            }
+        }
+        let typical_t = "a suspension bushing is 1e5–1e8 N/m";
+        let typical_r = "a suspension bushing is 10–1e5 N·m/rad";
+        let typical_spring = "a car's coil spring is 1e4–3e5 N/m";
+        // Every rate with its keys, unit and typical range; every spring force with its keys.
+        let mut rates: Vec<(Vec<String>, &str, f64, &str)> = Vec::new();
+        let mut forces: Vec<(Vec<String>, f64)> = Vec::new();
+        let keys = |k: &[&str]| k.iter().map(|k| k.to_string()).collect::<Vec<_>>();
+        let connection = |rates: &mut Vec<_>, key: Vec<String>, c: &Connection| {
+            if let Connection::Bushing(r) = c {
+                for (what, unit, value, typical) in [
+                    ("radial", "N/m", r.radial, typical_t),
+                    ("axial", "N/m", r.axial, typical_t),
+                    ("torsion", "N·m/rad", r.torsion, typical_r),
+                    ("conical", "N·m/rad", r.conical, typical_r),
+                ] {
+                    let mut k = key.clone();
+                    k.extend(["bushing".to_string(), what.to_string()]);
+                    rates.push((k, unit, value, typical));
+                }
+            }
+        };
+        let arm = |rates: &mut Vec<_>, key: &str, m: &ArmMounts| {
+            if m.front == m.rear {
+                connection(rates, keys(&[key]), &m.front);
+            } else {
+                connection(rates, keys(&[key, "front"]), &m.front);
+                connection(rates, keys(&[key, "rear"]), &m.rear);
+            }
+        };
+        let (loaded_radius, radius_keys) = match &self.suspension {
+            Template::DoubleWishbone(t) => {
+                arm(&mut rates, "upper_arm_mounts", &t.upper_arm_mounts);
+                arm(&mut rates, "lower_arm_mounts", &t.lower_arm_mounts);
+                connection(&mut rates, keys(&["tie_rod"]), &t.tie_rod);
+                rates.push((keys(&["spring", "rate"]), "N/m", t.spring.rate, typical_spring));
+                forces.push((keys(&["spring", "design_force"]), t.spring.design_force));
+                (t.loaded_radius, keys(&["loaded_radius"]))
+            }
+            Template::MacPherson(t) => {
+                arm(&mut rates, "lower_arm_mounts", &t.lower_arm_mounts);
+                connection(&mut rates, keys(&["top_mount"]), &t.top_mount);
+                connection(&mut rates, keys(&["tie_rod"]), &t.tie_rod);
+                rates.push((keys(&["spring", "rate"]), "N/m", t.spring.rate, typical_spring));
+                forces.push((keys(&["spring", "design_force"]), t.spring.design_force));
+                (t.loaded_radius, keys(&["loaded_radius"]))
+            }
+            Template::General(g) => {
+                for b in &g.bushings {
+                    let key = |what: &str| vec!["bushings".to_string(), b.name.clone(), what.to_string()];
+                    let given = [
+                        ("radial", "N/m", &b.radial, typical_t),
+                        ("axial", "N/m", &b.axial, typical_t),
+                        ("torsion", "N·m/rad", &b.torsion, typical_r),
+                        ("conical", "N·m/rad", &b.conical, typical_r),
+                    ];
+                    // Rates here; a curve's points are checked by the curve, naming the point.
+                    for (what, unit, value, typical) in given {
+                        if let Some(v) = value.as_ref().and_then(Stiffness::rate) {
+                            rates.push((key(what), unit, v, typical));
+                        }
+                    }
+                    for (what, unit, values, typical) in [
+                        ("translation", "N/m", &b.translation, typical_t),
+                        ("rotation", "N·m/rad", &b.rotation, typical_r),
+                    ] {
+                        for v in values.iter().flatten().filter_map(Stiffness::rate) {
+                            rates.push((key(what), unit, v, typical));
+                        }
+                    }
+                }
+                for s in &g.springs {
+                    if let Some(rate) = s.rate {
+                        rates.push((
+                            vec!["springs".into(), s.name.clone(), "rate".into()],
+                            "N/m",
+                            rate,
+                            typical_spring,
+                        ));
+                    }
+                    if let Some(f) = s.design_force {
+                        forces.push((vec!["springs".into(), s.name.clone(), "design_force".into()], f));
+                    }
+                }
+                for bar in &g.anti_roll_bars {
+                    let typical = "a car's anti-roll bar is 1e3–1e5 N·m/rad";
+                    rates.push((
+                        vec!["anti_roll_bars".into(), bar.name.clone(), "rate".into()],
+                        "N·m/rad",
+                        bar.rate,
+                        typical,
+                    ));
+                }
+                if let Some(t) = &g.corner.tie_rod {
+                    let m = &t.connection;
+                    if m.inner == m.outer {
+                        connection(&mut rates, keys(&["corner", "tie_rod", "connection"]), &m.inner);
+                    } else {
+                        connection(&mut rates, keys(&["corner", "tie_rod", "connection", "inner"]), &m.inner);
+                        connection(&mut rates, keys(&["corner", "tie_rod", "connection", "outer"]), &m.outer);
+                    }
+                }
+                for load in &g.loads {
+                    for (what, values) in [("force", load.force), ("torque", load.torque)] {
+                        let largest = values.map_or(0.0, |v| {
+                            v.iter().fold(0.0_f64, |m, c| if c.is_nan() { f64::NAN } else { m.max(c.abs()) })
+                        });
+                        if largest.is_nan() || largest > MAX_FORCE {
+                            return Err(OutOfRange {
+                                keys: vec!["loads".into(), load.name.clone(), what.into()],
+                                message: format!(
+                                    "loads.{}.{what}: a component of {} is beyond ±{MAX_FORCE:e} (N or N·m): give \
+                                     a load a suspension carries",
+                                    load.name,
+                                    number(largest)
+                                ),
+                            });
+                        }
+                    }
+                }
+                (g.corner.loaded_radius, keys(&["corner", "loaded_radius"]))
+            }
+        };
+        let rate = |keys: &[String], unit: &str, value: f64, typical: &str| {
+            if value > 0.0 && value <= MAX_RATE {
+                return Ok(());
+            }
+            Err(OutOfRange {
+                keys: keys.to_vec(),
+                message: format!(
+                    "{}: {} {unit} is outside the accepted range (0, 1e12] {unit} ({typical})",
+                    keys.join("."),
+                    number(value)
+                ),
+            })
+        };
+        // A spring's rate before its force, as the file reads.
+        for (keys, unit, value, typical) in &rates {
+            if keys.last().is_some_and(|k| k == "rate") {
+                rate(keys, unit, *value, typical)?;
+            }
+        }
+        for (keys, force) in &forces {
+            if force.is_nan() || force.abs() > MAX_FORCE {
+                return Err(OutOfRange {
+                    keys: keys.clone(),
+                    message: format!(
+                        "{}: {} N is beyond ±{MAX_FORCE:e} N (a car's spring carries 2e3–2e4 N)",
+                        keys.join("."),
+                        number(*force)
+                    ),
+                });
+            }
+        }
+        if !(0.05..=2.0).contains(&loaded_radius) {
+            return Err(OutOfRange {
+                keys: radius_keys.clone(),
+                message: format!(
+                    "{}: {} m is outside 0.05–2 m (a car's tyre is 0.25–0.40 m, in metres)",
+                    radius_keys.join("."),
+                    number(loaded_radius)
+                ),
+            });
+        }
+        for (keys, unit, value, typical) in &rates {
+            rate(keys, unit, *value, typical)?;
+        }
+        if let Some(v) = &self.vehicle {
+            let fields = [
+                ("wheelbase", v.wheelbase, 0.5, 20.0, "m", "from a kart's to a long bus's"),
+                ("cg_height", v.cg_height, 0.05, 5.0, "m", "the centre of gravity's height above the ground"),
+                ("corner_load", v.corner_load, 1.0, 1e6, "N", "the corner's share of the weight, in newtons"),
+                (
+                    "brake_front_fraction",
+                    v.brake_front_fraction,
+                    0.0,
+                    1.0,
+                    "",
+                    "the front axle's share of the braking force",
+                ),
+                (
+                    "drive_front_fraction",
+                    v.drive_front_fraction,
+                    0.0,
+                    1.0,
+                    "",
+                    "the front axle's share of the drive force",
+                ),
+            ];
+            // The optional ones, checked when given.
+            let optional = [
+                ("tyre_rate", v.tyre_rate, 1e4, 1e7, "N/m", "a car's tyre is 2e5–3e5 N/m"),
+                (
+                    "rack_travel_per_revolution",
+                    v.rack_travel_per_revolution,
+                    0.01,
+                    0.2,
+                    "m",
+                    "rack travel per turn of the hand wheel: a car's is 0.04–0.06 m",
+                ),
+            ];
+            let fields = fields.into_iter().chain(
+                optional
+                    .into_iter()
+                    .filter_map(|(key, value, lo, hi, unit, why)| value.map(|value| (key, value, lo, hi, unit, why))),
+            );
+            for (key, value, lo, hi, unit, why) in fields {
+                if !(lo..=hi).contains(&value) {
+                    return Err(OutOfRange {
+                        keys: vec!["vehicle".into(), key.into()],
+                        message: format!(
+                            "vehicle.{key}: {} {unit} is outside {}–{} {unit} ({why})",
+                            number(value),
+                            number(lo),
+                            number(hi)
+                        )
+                        .replace("  ", " ")
+                        .replace(" )", ")"),
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The file as pretty JSON, as people write it: one key per line, a point or a pair of names on one.
+    pub fn to_json(&self) -> String {
+        let value = serde_json::to_value(self).expect("a model of plain numbers and strings always serialises");
+        let mut out = String::new();
+        write_json(&value, 0, &mut out);
+        out
+    }
+
+    /// Writes the file.
+    pub fn write(&self, path: &Path) -> Result<(), FileError> {
+        std::fs::write(path, self.to_json()).map_err(|source| FileError::Io { path: path.to_path_buf(), source })
+    }
+}
+
+/// The largest model or variants file read: far beyond any real one, small enough to read at once.
+pub const MAX_FILE_BYTES: u64 = 16 << 20;
+
+/// Reads an input file whole, as bytes and as text; errors name the file and `what` it is for (`MODEL`,
+/// `VARIANTS`), as the command says them.
+pub fn read_input(path: &Path, what: &str) -> Result<(Vec<u8>, String), String> {
+    use std::io::Read;
+    let shown = path.display();
+    let fail = |why: String| format!("{what} '{shown}': {why}");
+    let file = std::fs::File::open(path).map_err(|e| fail(format!("cannot open it: {e}")))?;
+    let mut bytes = Vec::new();
+    file.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes).map_err(|e| fail(format!("cannot read it: {e}")))?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(fail(format!("larger than {} MiB; is it the right file?", MAX_FILE_BYTES >> 20)));
+    }
+    let text = String::from_utf8(bytes.clone()).map_err(|_| fail("not UTF-8 text".into()))?;
+    Ok((bytes, text))
+}

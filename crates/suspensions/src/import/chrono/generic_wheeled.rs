@@ -1,0 +1,789 @@
+//! Chrono's `GenericWheeledSuspension` (`ChGenericWheeledSuspension`): Chrono's own general form, a list of
+//! `Bodies`, `Joints`, `Distance Constraints`, `TSDAs` and `RSDAs`, each `Mirrored` (one per side, the
+//! right the left's mirror image) or not (one, shared), and the `Spindle` with the body it turns on.
+//!
+//! Read onto the general model: each side's parts (mirrored) as the left corner, and the parts shared by
+//! both sides (not mirrored: an axle tube, a tie rod or a drag link across) in the model's `axle`
+//! ([`crate::description::general::AxleDef`]), so that a beam axle reads whole.
+//! - A mirrored body is a body of the corner, by its Chrono name, its reference point at its `Position`;
+//!   the spindle's `Attachment Body` is the corner's `upright` (the spindle turns on it: for statics they
+//!   are one body). A shared body is an axle body; when the spindle turns on one, each side's upright is
+//!   welded to it at the wheel centre. `Chassis` is the ground.
+//! - A mirrored element names a body alone (each side's own, or a shared one); an element that is not
+//!   mirrored names a shared body alone and one side's copy of a mirrored body as `[name, "Left" |
+//!   "Right"]`, which is how Chrono's `FindBody` finds them.
+//! - A joint is the joint of its `Type` in its frame (`Position`, `Rotation`; z is the axis of a
+//!   revolute, x the line of a point-line, z the normal of a point-plane, x on `Body1` and y on `Body2` the
+//!   axes of a universal) between `Body1` and `Body2`: `Lock` is fixed, `Point Line` in-line and
+//!   `Point Plane` in-plane (the point of `Body1` on the line or plane of `Body2`). With `Bushing Data` it is
+//!   Chrono's bushing in that frame ([`Builder::joint`]).
+//! - A distance constraint is a distance link from `Point1` on `Body1` to `Point2` on `Body2`.
+//! - `Steering` is Chrono's steering link (the rack): a mirrored distance constraint from it to the upright
+//!   is the corner's tie rod, as is a rod body on ideal ball or universal joints from it to the upright; a
+//!   shared one (a drag link) to any body is the axle's steering link, moved along its own line when
+//!   steering. The rig attaches either to the rack when steering and to the chassis otherwise.
+//! - A TSDA with a spring (`Spring Coefficient` or `Spring Curve Data`) is a spring between its points
+//!   ([`Builder::spring`], with its stops); a damper is left out (statics: no velocity), said in the notes.
+//! - An RSDA (`ChLinkRSDA`: `P − k (θ − θ₀)` about its axis on `Body2`) between two bodies that turn on a
+//!   revolute joint about its axis is a torsion bushing of rate `k` on that joint ([`Builder::torsion_spring`];
+//!   the joint holds the other directions), pushing `P + k θ₀` at design. A mirrored RSDA's right side is the
+//!   left's mirror image; Chrono turns a right-side preload the other way, said in the notes.
+//! - The steering axis is the upright's revolute axis when it turns on one (a kingpin), else the line
+//!   through its lowest and highest ball joints (a ball or universal joint, or two or more distance links
+//!   meeting at one point of the upright); the wheel's vertical when the upright is welded to a shared body.
+//!
+//! Refused by name: a mirrored element joined to one named side of a body, a shared element naming a body
+//! of each side without its side, the subchassis, an RSDA on no revolute joint about its axis or given by a
+//! torque curve, a joint type Chrono does not read.
+
+use super::{Builder, Doc, CHASSIS};
+use crate::description::general::{Place, SteeringLinkDef, TieRodDef};
+use crate::description::Connection;
+use crate::description::Side;
+use elastokin_core::{JointKind, Vec3};
+use nalgebra::{Quaternion, UnitQuaternion};
+use serde_json::Value;
+use std::collections::{BTreeMap, BTreeSet};
+
+/// What an element of the file joins.
+#[derive(Debug, Clone, PartialEq)]
+enum Part {
+    /// The chassis (`"Chassis"`).
+    Chassis,
+    /// Chrono's steering link, the rack (`"Steering"`).
+    Steering,
+    /// A body of `Bodies`, by its Chrono name: a mirrored body (each side's own) or a shared one.
+    Body(String),
+    /// One side's copy of a mirrored body (`[name, "Left" | "Right"]`), from an element that is not mirrored.
+    Sided(String, Side),
+}
+
+/// A joint of `Joints`.
+struct Joint {
+    /// Its path in the document (`Joints/2`).
+    path: String,
+    name: String,
+    kind: JointKind,
+    parts: [Part; 2],
+    /// Chrono's frame as `(u, w)`: its x and z axes.
+    frame: (Vec3, Vec3),
+    bushing: bool,
+    /// One per side (the left's, mirrored), or one shared by both.
+    mirrored: bool,
+}
+
+/// A distance constraint of `Distance Constraints`.
+struct Link {
+    path: String,
+    name: String,
+    parts: [Part; 2],
+    points: [Vec3; 2],
+    mirrored: bool,
+}
+
+pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+    let steerable = flag(doc, "Steerable")?;
+    let independent = flag(doc, "Independent")?;
+    b.wheel(doc)?;
+    if doc.has("Output") {
+        doc.expect("Output");
+        b.notes.push("Output: Chrono's output switch, not part of the suspension".into());
+    }
+
+    // Bodies: one per side (mirrored), or one shared by both sides (an axle tube, a tie rod across), which
+    // goes in the model's axle.
+    let bodies = list(doc, "Bodies");
+    let mut positions: BTreeMap<String, (String, Vec3)> = BTreeMap::new();
+    let mut order = Vec::new();
+    let mut shared = BTreeSet::new();
+    for path in &bodies {
+        let name = text(doc, &format!("{path}/Name"))?;
+        if !flag(doc, &format!("{path}/Mirrored"))? {
+            shared.insert(name.clone());
+        }
+        let at = doc.point(&format!("{path}/Position"))?;
+        order.push(name.clone());
+        if positions.insert(name.clone(), (path.clone(), at)).is_some() {
+            return Err(format!(
+                "{}: a second body named '{name}' (Chrono keeps the first): give each body its own name",
+                doc.shown(path)
+            ));
+        }
+    }
+    let known = Bodies { positions: &positions, shared: &shared };
+
+    // The upright: the body the spindle turns on; when that is shared (an axle tube carrying both spindles),
+    // each side's upright is welded to it at the wheel centre.
+    let upright = match part(doc, "Spindle/Attachment Body", &known, true)? {
+        Part::Body(name) => name,
+        Part::Chassis => {
+            return Err("\"Spindle\" / \"Attachment Body\" is the chassis: the wheel has no suspension motion to \
+                        analyse; name the body the spindle turns on"
+                .into())
+        }
+        Part::Steering | Part::Sided(..) => {
+            return Err("\"Spindle\" / \"Attachment Body\" is the steering link: name the body the spindle turns on \
+                        (the upright)"
+                .into())
+        }
+    };
+    let welded = shared.contains(&upright);
+    let general_name = |n: &str| if n == upright && !welded { "upright".to_string() } else { n.to_string() };
+    for name in positions.keys() {
+        if (name != &upright || welded) && (name.eq_ignore_ascii_case(CHASSIS) || name == "upright") {
+            return Err(format!(
+                "body '{name}': the general model names the ground 'chassis' and the spindle's body 'upright'; \
+                 rename this body"
+            ));
+        }
+    }
+
+    // Joints and distance constraints: each side's (mirrored) or one shared.
+    let mut joints = Vec::new();
+    for path in list(doc, "Joints") {
+        let name = text(doc, &format!("{path}/Name"))?;
+        let mirrored = flag(doc, &format!("{path}/Mirrored"))?;
+        let chrono_type = text(doc, &format!("{path}/Type"))?;
+        let kind = match chrono_type.as_str() {
+            "Spherical" => JointKind::Spherical,
+            "Revolute" => JointKind::Revolute,
+            "Universal" => JointKind::Universal,
+            "Lock" => JointKind::Fixed,
+            "Point Line" => JointKind::InLine,
+            "Point Plane" => JointKind::InPlane,
+            other => {
+                return Err(format!(
+                    "{}: \"Type\" '{other}' is not one Chrono reads (it would take it as \"Lock\"); give \
+                     \"Spherical\", \"Revolute\", \"Universal\", \"Lock\", \"Point Line\" or \"Point Plane\"",
+                    doc.shown(&path)
+                ));
+            }
+        };
+        let parts = [
+            part(doc, &format!("{path}/Body1"), &known, mirrored)?,
+            part(doc, &format!("{path}/Body2"), &known, mirrored)?,
+        ];
+        let frame = rotation(doc, &format!("{path}/Rotation"))?;
+        doc.expect(&format!("{path}/Position"));
+        let bushing = doc.at(&format!("{path}/Bushing Data")).is_some_and(Value::is_object);
+        if bushing && matches!(kind, JointKind::InLine | JointKind::InPlane) {
+            return Err(format!(
+                "{}: Chrono builds no joint at all for a \"{chrono_type}\" with \"Bushing Data\"; remove the \
+                 \"Bushing Data\" for the joint, or the joint",
+                doc.shown(&path)
+            ));
+        }
+        let frame = (frame * Vec3::x(), frame * Vec3::z());
+        joints.push(Joint { path, name, kind, parts, frame, bushing, mirrored });
+    }
+    let mut links = Vec::new();
+    for path in list(doc, "Distance Constraints") {
+        let name = text(doc, &format!("{path}/Name"))?;
+        let mirrored = flag(doc, &format!("{path}/Mirrored"))?;
+        let parts = [
+            part(doc, &format!("{path}/Body1"), &known, mirrored)?,
+            part(doc, &format!("{path}/Body2"), &known, mirrored)?,
+        ];
+        let points = [doc.point(&format!("{path}/Point1"))?, doc.point(&format!("{path}/Point2"))?];
+        links.push(Link { path, name, parts, points, mirrored });
+    }
+    let tsdas = list(doc, "TSDAs");
+    let mut tsda_parts = Vec::new();
+    for path in &tsdas {
+        let mirrored = flag(doc, &format!("{path}/Mirrored"))?;
+        let parts = [
+            part(doc, &format!("{path}/Body1"), &known, mirrored)?,
+            part(doc, &format!("{path}/Body2"), &known, mirrored)?,
+        ];
+        if parts.contains(&Part::Steering) {
+            return Err(format!(
+                "{}: a spring or damper on the steering link; the general model reaches the rack only through the \
+                 tie rod: attach it to the chassis or a body of the corner",
+                doc.shown(path)
+            ));
+        }
+        tsda_parts.push((parts, mirrored));
+    }
+    let rsdas = rsdas(doc, &known, &joints)?;
+
+    // The steering inputs: a distance constraint from the steering link, or a rod body on ideal ball or
+    // universal joints from it to another body. Mirrored, it is the corner's tie rod (to the upright); shared,
+    // the axle's steering link (a drag link) to whatever it pushes.
+    struct Input {
+        inner: Vec3,
+        outer: Vec3,
+        target: Part,
+        mirrored: bool,
+        what: String,
+    }
+    let mut inputs = Vec::new();
+    let mut rods = BTreeSet::new();
+    let mut steering_joints = BTreeSet::new();
+    for link in links.iter().filter(|l| l.parts.contains(&Part::Steering)) {
+        let k = usize::from(link.parts[0] != Part::Steering);
+        inputs.push(Input {
+            inner: link.points[k],
+            outer: link.points[1 - k],
+            target: link.parts[1 - k].clone(),
+            mirrored: link.mirrored,
+            what: doc.shown(&link.path),
+        });
+    }
+    for (i, j) in joints.iter().enumerate().filter(|(_, j)| j.parts.contains(&Part::Steering)) {
+        let k = usize::from(j.parts[0] != Part::Steering);
+        let refuse = |why: &str| {
+            format!(
+                "{}: a joint to the steering link ({why}); the general model reaches the rack only through a rod: a \
+                 distance constraint from \"Steering\" (to the upright, or for one shared by both sides to any \
+                 body), or a rod body on ball or universal joints (without \"Bushing Data\") from it to one body",
+                doc.shown(&j.path)
+            )
+        };
+        let Part::Body(rod) = &j.parts[1 - k] else {
+            return Err(refuse(&format!("to {}", describe(&j.parts[1 - k]))));
+        };
+        if rod == &upright {
+            return Err(refuse("to the upright itself"));
+        }
+        if j.bushing {
+            return Err(refuse("with \"Bushing Data\""));
+        }
+        if !matches!(j.kind, JointKind::Spherical | JointKind::Universal) {
+            return Err(refuse(&format!("a {:?} joint, where a rod has a ball or universal joint", j.kind)));
+        }
+        if shared.contains(rod) == j.mirrored {
+            return Err(refuse(&format!("'{rod}' and the joint are not both mirrored or both shared")));
+        }
+        let on_rod = |parts: &[Part; 2]| parts.contains(&Part::Body(rod.clone()));
+        let others: Vec<usize> = (0..joints.len()).filter(|&m| m != i && on_rod(&joints[m].parts)).collect();
+        let outer = match others.as_slice() {
+            [m] if !joints[*m].bushing
+                && !joints[*m].parts.contains(&Part::Steering)
+                && matches!(joints[*m].kind, JointKind::Spherical | JointKind::Universal)
+                && !links.iter().any(|l| on_rod(&l.parts))
+                && !tsda_parts.iter().any(|(p, _)| on_rod(p))
+                && !rsdas.iter().any(|r| on_rod(&r.parts)) =>
+            {
+                *m
+            }
+            _ => return Err(refuse(&format!("'{rod}' is not a rod to one body alone"))),
+        };
+        let o = &joints[outer].parts;
+        let target = if o[0] == Part::Body(rod.clone()) { o[1].clone() } else { o[0].clone() };
+        let at = |m: usize| doc.point(&format!("{}/Position", joints[m].path));
+        inputs.push(Input {
+            inner: at(i)?,
+            outer: at(outer)?,
+            target,
+            mirrored: j.mirrored,
+            what: format!("the rod '{rod}' ({} and {})", doc.shown(&j.path), doc.shown(&joints[outer].path)),
+        });
+        rods.insert(rod.clone());
+        steering_joints.extend([i, outer]);
+    }
+    let mut tie_rod: Option<&Input> = None;
+    let mut steering_link: Option<&Input> = None;
+    for input in &inputs {
+        let slot = if input.mirrored { &mut tie_rod } else { &mut steering_link };
+        if let Some(first) = slot {
+            return Err(format!(
+                "{}: a second steering input of its kind (the first is {}); the general model steers by one tie rod \
+                 per corner and one steering link across",
+                input.what, first.what
+            ));
+        }
+        if input.mirrored && (input.target != Part::Body(upright.clone()) || welded) {
+            return Err(format!(
+                "{}: a link from the steering link to {}, not to the upright '{upright}'; the general model's tie rod \
+                 runs from the rack to the upright",
+                input.what,
+                describe(&input.target)
+            ));
+        }
+        *slot = Some(input);
+    }
+    if !steerable && !inputs.is_empty() {
+        return Err("\"Steerable\" is false, yet an element joins \"Steering\": Chrono gives an unsteered suspension \
+                    no steering link; join the toe link to the chassis, or make the suspension steerable"
+            .into());
+    }
+
+    // Bodies: each side's in the corner, the shared ones on the axle.
+    let name_of = |p: &Part| body_name(p, &general_name);
+    for name in &order {
+        let (path, at) = &positions[name];
+        doc.dynamics(path, &["Mass", "Rotation", "Moments of Inertia", "Products of Inertia"], &mut b.notes);
+        shapes(doc, path, &mut b.notes);
+        if rods.contains(name) {
+            continue;
+        }
+        if name == &upright && !welded {
+            b.notes.push(format!(
+                "{}: the spindle's attachment body, the corner's upright (the spindle turns on it: for statics one \
+                 body), its reference point the wheel centre",
+                doc.shown(path)
+            ));
+            continue;
+        }
+        b.on_axle(shared.contains(name));
+        b.body_at(name, Place::At(*at));
+        b.on_axle(false);
+    }
+    if welded {
+        // Each spindle turns on the shared body: the corner's upright is that body's end, welded to it.
+        b.joint(
+            doc,
+            "spindle housing",
+            JointKind::Fixed,
+            [&upright, "upright"],
+            Place::named("wheel_centre"),
+            None,
+            None,
+        )?;
+        b.notes.push(format!(
+            "\"Spindle\" / \"Attachment Body\" '{upright}' is shared by both sides: each side's upright is welded to \
+             it at the wheel centre"
+        ));
+    }
+    // Joints (by their hardpoints, named after them); a shared one on the axle.
+    let mut names = BTreeSet::new();
+    let mut upright_joints = Vec::new();
+    for (i, j) in joints.iter().enumerate() {
+        if steering_joints.contains(&i) {
+            continue;
+        }
+        b.on_axle(!j.mirrored);
+        let at = fresh_point(b, doc, &j.name, &format!("{}/Position", j.path))?;
+        let bodies = j.parts.clone().map(|p| name_of(&p));
+        let name = fresh(&mut names, &j.name);
+        let bushing = j.bushing.then(|| format!("{}/Bushing Data", j.path));
+        b.joint(doc, &name, j.kind, [&bodies[0], &bodies[1]], Place::named(&at), Some(j.frame), bushing.as_deref())?;
+        b.on_axle(false);
+        if j.mirrored && !welded && j.parts.contains(&Part::Body(upright.clone())) {
+            upright_joints.push((j, at));
+        }
+    }
+    let mut link_ends: Vec<(Vec3, String)> = Vec::new();
+    for link in &links {
+        if link.parts.contains(&Part::Steering) {
+            continue;
+        }
+        b.on_axle(!link.mirrored);
+        let from = fresh_point(b, doc, &format!("{} point 1", link.name), &format!("{}/Point1", link.path))?;
+        let to = fresh_point(b, doc, &format!("{} point 2", link.name), &format!("{}/Point2", link.path))?;
+        let bodies = link.parts.clone().map(|p| name_of(&p));
+        b.link(&fresh(&mut names, &link.name), [&bodies[0], &bodies[1]], &from, &to);
+        b.on_axle(false);
+        for (k, end) in [from, to].into_iter().enumerate() {
+            if link.mirrored && !welded && link.parts[k] == Part::Body(upright.clone()) {
+                link_ends.push((link.points[k], end));
+            }
+        }
+    }
+    // The steering inputs.
+    if let Some(input) = tie_rod {
+        b.general.hardpoints.0.push(("tie_rod_inner".into(), input.inner));
+        b.general.hardpoints.0.push(("tie_rod_outer".into(), input.outer));
+        b.general.corner.tie_rod = Some(TieRodDef {
+            inner: Place::named("tie_rod_inner"),
+            outer: Place::named("tie_rod_outer"),
+            connection: Connection::Ideal.into(),
+        });
+        b.notes.push(format!(
+            "{}: the corner's tie rod, from the rack (steering) or the chassis to the upright",
+            input.what
+        ));
+    }
+    if let Some(input) = steering_link {
+        let along = input.outer - input.inner;
+        if along.norm() < 1e-6 {
+            return Err(format!("{}: its two ends coincide; give the rod its length", input.what));
+        }
+        let axis = along.normalize();
+        b.on_axle(true);
+        b.axle().steering_link = Some(SteeringLinkDef {
+            body: name_of(&input.target),
+            inner: Place::At(input.inner),
+            outer: Place::At(input.outer),
+            connection: Connection::Ideal.into(),
+            rack_axis: [axis.x, axis.y, axis.z],
+        });
+        b.on_axle(false);
+        b.notes.push(format!(
+            "{}: the axle's steering link, from the steering box to {}; the steering analysis moves its steering-box \
+             end along the rod",
+            input.what,
+            describe(&input.target)
+        ));
+    }
+    if steerable && inputs.is_empty() {
+        b.notes.push(
+            "\"Steerable\" is true but nothing joins \"Steering\": no tie rod, the steering analysis does not apply"
+                .into(),
+        );
+    }
+    // Springs and dampers.
+    for (path, (parts, mirrored)) in tsdas.iter().zip(tsda_parts) {
+        let name = text(doc, &format!("{path}/Name"))?;
+        shapes(doc, path, &mut b.notes);
+        let key = |k: &str| format!("{path}/{k}");
+        if doc.has(&key("Spring Coefficient")) || doc.has(&key("Spring Curve Data")) {
+            b.on_axle(!mirrored);
+            let mut seats = [
+                fresh_point(b, doc, &format!("{name} point 1"), &key("Point1"))?,
+                fresh_point(b, doc, &format!("{name} point 2"), &key("Point2"))?,
+            ];
+            let mut bodies = parts.map(|p| name_of(&p));
+            // The chassis first, as the general model's checks read a spring.
+            if bodies[1] == CHASSIS {
+                bodies.swap(0, 1);
+                seats.swap(0, 1);
+            }
+            let name = fresh(&mut names, &name);
+            b.spring(doc, path, &name, [&bodies[0], &bodies[1]], [&seats[0], &seats[1]])?;
+            b.on_axle(false);
+        } else if doc.has(&key("Map Data")) {
+            return Err(format!(
+                "{}: \"Map Data\", a force against length and speed; give the spring as \"Spring Coefficient\" or \
+                 \"Spring Curve Data\" and \"Free Length\"",
+                doc.shown(path)
+            ));
+        } else if doc.has(&key("Damping Coefficient")) || doc.has(&key("Damping Curve Data")) {
+            for k in [
+                "Point1",
+                "Point2",
+                "Damping Coefficient",
+                "Damping Curve Data",
+                "Degressivity Compression",
+                "Degressivity Expansion",
+                "Preload",
+                "Free Length",
+                "Minimum Length",
+                "Maximum Length",
+            ] {
+                doc.expect(&key(k));
+            }
+            b.notes.push(format!("{}: a damper, left out (statics: no velocity)", doc.shown(path)));
+        } else {
+            return Err(format!(
+                "{}: neither a spring (\"Spring Coefficient\", \"Spring Curve Data\") nor a damper (\"Damping \
+                 Coefficient\", \"Damping Curve Data\"); Chrono builds nothing from it: give one or remove it",
+                doc.shown(path)
+            ));
+        }
+    }
+    // Rotational springs: torsion bushings on the revolute joints they sit on.
+    for r in &rsdas {
+        if r.mirrored && r.preload != 0.0 {
+            b.notes.push(format!(
+                "{}: Chrono turns the right side's preload the other way (it mirrors the axis as a direction, not as \
+                 a moment's axis); elastokin makes the right side the left's mirror image",
+                doc.shown(&r.path)
+            ));
+        }
+        b.on_axle(!r.mirrored);
+        let at = fresh_point(b, doc, &r.name, &r.at)?;
+        let bodies = r.parts.clone().map(|p| name_of(&p));
+        b.torsion_spring(
+            &fresh(&mut names, &r.name),
+            [&bodies[0], &bodies[1]],
+            Place::named(&at),
+            r.axis,
+            r.rate,
+            r.preload,
+        );
+        b.on_axle(false);
+    }
+    if welded {
+        b.wheel_vertical_steering_axis()?;
+        b.notes.push("steering axis: the wheel's vertical (the wheel turns on a shared body, no kingpin)".into());
+    } else {
+        steering_axis(doc, b, &upright, &upright_joints, &link_ends)?;
+    }
+    if doc.has("Antiroll Body") {
+        doc.expect("Antiroll Body");
+        b.notes.push(
+            "Antiroll Body: where Chrono attaches an anti-roll bar subsystem (its own file); no bar is read".into(),
+        );
+    }
+    if !independent {
+        b.notes.push("\"Independent\" is false: read as the independent corners its bodies describe".into());
+    }
+    Ok(())
+}
+
+/// The steering axis: the upright's kingpin (a revolute joint on it), or the line through its lowest and
+/// highest ball joints (ball or universal joints, or two or more links meeting at a point of it).
+fn steering_axis(
+    doc: &Doc,
+    b: &mut Builder,
+    upright: &str,
+    upright_joints: &[(&Joint, String)],
+    link_ends: &[(Vec3, String)],
+) -> Result<(), String> {
+    if let Some((j, at)) = upright_joints.iter().find(|(j, _)| j.kind == JointKind::Revolute) {
+        let (_, w) = j.frame;
+        let up = if w.z < 0.0 { -w } else { w };
+        let p = b.general.hardpoints.get(at).ok_or("the joint's hardpoint was added above")?;
+        let top = fresh_name(b, &format!("{} axis", j.name));
+        b.general.hardpoints.0.push((top.clone(), p + 0.1 * up));
+        b.steering_axis(("upright", at), ("upright", &top));
+        b.notes.push(format!("steering axis: the axis of {}, the upright's kingpin", doc.shown(&j.path)));
+    } else {
+        let mut balls: Vec<(Vec3, String)> = upright_joints
+            .iter()
+            .filter(|(j, _)| matches!(j.kind, JointKind::Spherical | JointKind::Universal))
+            .map(|(_, at)| b.general.hardpoints.get(at).map(|p| (p, at.clone())).ok_or("added above"))
+            .collect::<Result<_, _>>()?;
+        for (k, (p, end)) in link_ends.iter().enumerate() {
+            let meets = link_ends.iter().skip(k + 1).any(|(q, _)| (p - q).norm() < 1e-9);
+            if meets && !balls.iter().any(|(q, _)| (p - q).norm() < 1e-9) {
+                balls.push((*p, end.clone()));
+            }
+        }
+        balls.sort_by(|a, b| a.0.z.total_cmp(&b.0.z));
+        match (balls.first(), balls.last()) {
+            (Some(lower), Some(upper)) if balls.len() >= 2 => {
+                b.steering_axis(("upright", &lower.1), ("upright", &upper.1));
+                b.notes.push(format!(
+                    "steering axis: from '{}' to '{}', the upright's lowest and highest ball joints",
+                    lower.1, upper.1
+                ));
+            }
+            _ => {
+                return Err(format!(
+                    "the upright '{upright}' turns neither on a revolute joint (a kingpin) nor on two ball \
+                     joints (ball or universal joints, or distance constraints meeting at a point): elastokin \
+                     takes the steering axis (caster, kingpin inclination, scrub, trail) from one of those and \
+                     does not yet find a virtual axis from links; join the upright to its arms by one of them"
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The paths of the elements of the list `key` (`Bodies/0`, …); an empty or absent list has none.
+fn list(doc: &Doc, key: &str) -> Vec<String> {
+    let n = doc.at(key).and_then(Value::as_array).map_or(0, Vec::len);
+    if n == 0 {
+        // A list with elements is read element by element: whatever is left in them is reported.
+        doc.expect(key);
+    }
+    (0..n).map(|i| format!("{key}/{i}")).collect()
+}
+
+/// A string at `path`.
+fn text(doc: &Doc, path: &str) -> Result<String, String> {
+    doc.expect(path);
+    doc.at(path)
+        .and_then(Value::as_str)
+        .map(str::to_string)
+        .ok_or_else(|| format!("{} must be a name (a string)", doc.quoted(path)))
+}
+
+/// A flag at `path` (Chrono requires it).
+fn flag(doc: &Doc, path: &str) -> Result<bool, String> {
+    doc.expect(path);
+    doc.at(path).and_then(Value::as_bool).ok_or_else(|| format!("{} must be true or false", doc.quoted(path)))
+}
+
+/// The file's bodies: where each is, and which are shared by both sides (not mirrored).
+struct Bodies<'a> {
+    positions: &'a BTreeMap<String, (String, Vec3)>,
+    shared: &'a BTreeSet<String>,
+}
+
+/// The body an element names at `path`: a name, or `[name, side]` (Chrono's `ReadBodyIdentifierJSON`).
+/// A mirrored element (one per side) names a body alone: each side's own, or a shared one. An element that
+/// is not mirrored names a shared body alone, or one side's copy of a mirrored body by `[name, side]`
+/// (Chrono's `FindBody` finds nothing else for it).
+fn part(doc: &Doc, path: &str, bodies: &Bodies, element_mirrored: bool) -> Result<Part, String> {
+    doc.expect(path);
+    let v = doc.at(path).ok_or_else(|| format!("{} is missing", doc.quoted(path)))?;
+    let (name, side) = match v {
+        Value::String(s) => (s.as_str(), None),
+        Value::Array(a) if a.len() == 2 && a.iter().all(Value::is_string) => {
+            let side = match a[1].as_str() {
+                Some("Left") => Some(Side::Left),
+                Some("Right") => Some(Side::Right),
+                _ => None,
+            };
+            (a[0].as_str().unwrap_or_default(), side)
+        }
+        _ => {
+            return Err(format!("{} must be a body's name or [name, \"Left\" | \"Right\"], got {v}", doc.quoted(path)))
+        }
+    };
+    let shared = bodies.shared.contains(name);
+    match name {
+        "Chassis" => Ok(Part::Chassis),
+        "Steering" => Ok(Part::Steering),
+        "Subchassis" => Err(format!(
+            "{}: the subchassis, a separate Chrono subsystem (a walking beam) that the general model does not have; \
+             join the element to the chassis or a body of the suspension",
+            doc.shown(path)
+        )),
+        _ if !bodies.positions.contains_key(name) => {
+            Err(format!("{}: there is no body '{name}' in \"Bodies\"; name one of them", doc.shown(path)))
+        }
+        _ => match (side, element_mirrored, shared) {
+            (Some(side), true, _) => Err(format!(
+                "{}: [\"{name}\", \"{side:?}\"] names one side's body, so the element joins both sides' elements to \
+                 the {side:?} one: not a corner and its mirror image; name the body alone (\"{name}\") to join each \
+                 side's own",
+                doc.shown(path)
+            )),
+            (Some(_), false, true) => Err(format!(
+                "{}: '{name}' is one body shared by both sides (\"Mirrored\": false): it has no sides; name it alone",
+                doc.shown(path)
+            )),
+            (Some(side), false, false) => Ok(Part::Sided(name.to_string(), side)),
+            (None, false, false) => Err(format!(
+                "{}: '{name}' is a body of each side, named by an element shared by both sides (\"Mirrored\": \
+                 false), which cannot tell which side's; name it [\"{name}\", \"Left\"] or [\"{name}\", \"Right\"]",
+                doc.shown(path)
+            )),
+            (None, _, _) => Ok(Part::Body(name.to_string())),
+        },
+    }
+}
+
+/// A rotational spring of `RSDAs`, read as the torsion bushing it is on its revolute joint.
+struct Rsda {
+    path: String,
+    name: String,
+    parts: [Part; 2],
+    /// Where its bushing goes: the position of the revolute joint it is on (a path of the file).
+    at: String,
+    /// Its axis (Chrono's `Axis`, the left side's when mirrored).
+    axis: Vec3,
+    /// `Spring Coefficient`, N·m/rad.
+    rate: f64,
+    /// The moment on `Body2` about the axis at the design angle: `Preload` + rate × `Free Angle` (N·m).
+    preload: f64,
+    mirrored: bool,
+}
+
+/// The rotational springs. Chrono's `ChLinkRSDA` applies `P − k (θ − θ₀)` about its axis to `Body2` (and the
+/// opposite to `Body1`), θ the turn of `Body2` about the axis from the design position. Where the two bodies
+/// turn on a revolute joint about that axis, that is a bushing with the rate `k` about the axis, whose other
+/// directions the joint holds (their rates, the least the engine takes, meet no deflection). An RSDA without
+/// such a joint, or given by a curve, is refused by name; a damper-only RSDA is left out with a note.
+fn rsdas(doc: &Doc, bodies: &Bodies, joints: &[Joint]) -> Result<Vec<Rsda>, String> {
+    let mut out = Vec::new();
+    for path in list(doc, "RSDAs") {
+        let name = text(doc, &format!("{path}/Name"))?;
+        let mirrored = flag(doc, &format!("{path}/Mirrored"))?;
+        let parts = [
+            part(doc, &format!("{path}/Body1"), bodies, mirrored)?,
+            part(doc, &format!("{path}/Body2"), bodies, mirrored)?,
+        ];
+        let key = |k: &str| format!("{path}/{k}");
+        doc.expect(&key("Position"));
+        let axis = super::direction(doc, &key("Axis"))?.normalize();
+        for damping in ["Damping Coefficient", "Damping Curve Data"] {
+            doc.expect(&key(damping));
+        }
+        if doc.has(&key("Spring Curve Data")) {
+            return Err(format!(
+                "{}: a torque curve (\"Spring Curve Data\"); elastokin reads a rotational spring by its \
+                 \"Spring Coefficient\": give that instead",
+                doc.shown(&path)
+            ));
+        }
+        if !doc.has(&key("Spring Coefficient")) {
+            for k in ["Preload", "Free Angle"] {
+                doc.expect(&key(k));
+            }
+            continue;
+        }
+        let rate = doc.number(&key("Spring Coefficient"))?;
+        let preload = doc.optional_number(&key("Preload"))?.unwrap_or(0.0);
+        let free_angle = doc.number(&key("Free Angle"))?;
+        let revolute = joints.iter().find(|j| {
+            j.kind == JointKind::Revolute
+                && !j.bushing
+                && j.mirrored == mirrored
+                && (j.parts == parts || j.parts == [parts[1].clone(), parts[0].clone()])
+                && j.frame.1.cross(&axis).norm() < 1e-6
+        });
+        let Some(revolute) = revolute else {
+            return Err(format!(
+                "{}: a rotational spring between {} and {} that turn on no revolute joint about its axis; \
+                 elastokin reads an RSDA as a torsion bushing on such a joint (the joint holds the other five \
+                 directions): join the two bodies by a revolute joint about the RSDA's axis",
+                doc.shown(&path),
+                describe(&parts[0]),
+                describe(&parts[1])
+            ));
+        };
+        // A moment acts the same wherever it is applied: at the joint's point the bushing's other directions
+        // meet no deflection at all.
+        let at = format!("{}/Position", revolute.path);
+        out.push(Rsda { path, name, parts, at, axis, rate, preload: preload + rate * free_angle, mirrored });
+    }
+    Ok(out)
+}
+
+/// A Chrono quaternion `[e0, e1, e2, e3]` at `path` (normalized, as Chrono does) as a rotation.
+fn rotation(doc: &Doc, path: &str) -> Result<UnitQuaternion<f64>, String> {
+    doc.expect(path);
+    let v = doc.at(path).ok_or_else(|| format!("{} is missing", doc.quoted(path)))?;
+    match v.as_array().map(|a| a.iter().map(Value::as_f64).collect::<Option<Vec<f64>>>()) {
+        Some(Some(e)) if e.len() == 4 && e.iter().map(|x| x * x).sum::<f64>() > 1e-20 => {
+            Ok(UnitQuaternion::from_quaternion(Quaternion::new(e[0], e[1], e[2], e[3])))
+        }
+        _ => Err(format!("{} must be a rotation, a quaternion [e0, e1, e2, e3] not zero; got {v}", doc.quoted(path))),
+    }
+}
+
+/// The general model's name of `part`.
+fn body_name(part: &Part, general_name: &impl Fn(&str) -> String) -> String {
+    match part {
+        Part::Body(n) => general_name(n),
+        Part::Sided(n, Side::Left) => format!("left {}", general_name(n)),
+        Part::Sided(n, Side::Right) => format!("right {}", general_name(n)),
+        // The steering link has been taken as the tie rod's rack before any element is written.
+        Part::Chassis | Part::Steering => CHASSIS.to_string(),
+    }
+}
+
+fn describe(part: &Part) -> String {
+    match part {
+        Part::Chassis => "the chassis".into(),
+        Part::Steering => "the steering link".into(),
+        Part::Body(n) => format!("'{n}'"),
+        Part::Sided(n, side) => format!("the {side:?} '{n}'"),
+    }
+}
+
+/// Marks a body's or element's drawing and contact shapes as read, with a note.
+fn shapes(doc: &Doc, path: &str, notes: &mut Vec<String>) {
+    doc.left_out(path, &["Visualization", "Contact"], "shapes to draw and collide, left out", notes);
+}
+
+/// `name`, or `name 2`, `name 3`, … when taken.
+fn fresh(names: &mut BTreeSet<String>, name: &str) -> String {
+    let mut out = name.to_string();
+    let mut k = 1;
+    while !names.insert(out.clone()) {
+        k += 1;
+        out = format!("{name} {k}");
+    }
+    out
+}
+
+/// A hardpoint name not yet taken (in the corner or on the axle), from `name`.
+fn fresh_name(b: &Builder, name: &str) -> String {
+    let axle = b.general.axle.iter().flat_map(|a| a.hardpoints.0.iter());
+    let mut taken: BTreeSet<String> = b.general.hardpoints.0.iter().chain(axle).map(|(n, _)| n.clone()).collect();
+    taken.extend(["tie_rod_inner".to_string(), "tie_rod_outer".to_string()]);
+    fresh(&mut taken, name)
+}
+
+/// Adds the point at `path` as a hardpoint named from `name`; returns its name.
+fn fresh_point(b: &mut Builder, doc: &Doc, name: &str, path: &str) -> Result<String, String> {
+    let name = fresh_name(b, name);
+    b.hardpoint(doc, &name, path)
+}

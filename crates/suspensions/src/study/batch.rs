@@ -1,0 +1,208 @@
+//! Design variants of one model (`elastokin batch MODEL VARIANTS`): edits of the model file by JSON pointer,
+//! each variant judged by its bump steer, camber gain and wheel rate at design.
+//!
+//! A variants file has one variant per line: an optional `name:` and then `pointer=value` edits separated
+//! by `;`, where `pointer` is a JSON pointer into the model file and `value` is JSON. Blank lines and lines
+//! starting with `#` are skipped.
+//!
+//! ```text
+//! # raise the inner tie-rod point by 10 mm
+//! tie rod up: /suspension/macpherson/hardpoints/tie_rod_inner/2=-0.049
+//! soft spring: /suspension/macpherson/spring/rate=20000
+//! ```
+
+use crate::analysis::{parallel_wheel_travel, slope_at, TravelRow};
+use crate::build::Rig;
+use crate::description::Side;
+use crate::file::SuspensionFile;
+use elastokin_solver::Mode;
+
+/// Each variant walks parallel wheel travel ±`HALF_RANGE` (m)…
+pub const HALF_RANGE: f64 = 0.02;
+/// …in `STEPS` steps (even, so design is a step).
+pub const STEPS: usize = 8;
+/// The most variants a file may hold: each is a sweep of its own, and all results are kept until the
+/// table is written.
+pub const MAX_VARIANTS: usize = 10_000;
+
+/// One parsed variant: its name and its edits.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Variant {
+    /// Name (the line's label, or `line N`).
+    pub name: String,
+    /// `(JSON pointer, value)` edits.
+    pub edits: Vec<(String, serde_json::Value)>,
+}
+
+/// Parses a variants file of at most [`MAX_VARIANTS`] variants; errors name the line.
+pub fn parse_variants(text: &str, origin: &str) -> Result<Vec<Variant>, String> {
+    parse_variants_at_most(text, origin, Some(MAX_VARIANTS))
+}
+
+/// Parses a variants file of at most `most` variants (`None`: any number, for a study that splits them into
+/// batches itself); errors name the line.
+pub fn parse_variants_at_most(text: &str, origin: &str, most: Option<usize>) -> Result<Vec<Variant>, String> {
+    let mut out = Vec::new();
+    for (k, raw) in text.lines().enumerate() {
+        let place = format!("{origin}:{}", k + 1);
+        let Some(variant) = parse_variant(raw, &format!("line {}", k + 1), &place)? else {
+            continue;
+        };
+        if let Some(most) = most.filter(|&most| out.len() == most) {
+            return Err(format!(
+                "{place}: more than {most} variants; split the file and run a batch for each part (or run them \
+                 as a study from Python, which splits them itself)"
+            ));
+        }
+        out.push(variant);
+    }
+    if out.is_empty() {
+        return Err(format!("{origin}: no variants (one per line: name: /json/pointer=value; …)"));
+    }
+    Ok(out)
+}
+
+/// One line of a variants file: `None` for a blank line or a `#` comment. A line without a `name:` label is
+/// named `unnamed`; errors start with `place` (the file and line).
+pub fn parse_variant(line: &str, unnamed: &str, place: &str) -> Result<Option<Variant>, String> {
+    let line = line.trim();
+    if line.is_empty() || line.starts_with('#') {
+        return Ok(None);
+    }
+    let (name, body) = match line.split_once(':') {
+        Some((n, b)) if !n.trim_start().starts_with('/') => (n.trim().to_string(), b),
+        _ => (unnamed.to_string(), line),
+    };
+    let mut edits = Vec::new();
+    for edit in body.split(';').map(str::trim).filter(|e| !e.is_empty()) {
+        let (pointer, value) = edit.split_once('=').ok_or_else(|| format!("{place}: '{edit}' is not pointer=value"))?;
+        let value: serde_json::Value = serde_json::from_str(value.trim())
+            .map_err(|e| format!("{place}: value of '{}' is not JSON: {e}", pointer.trim()))?;
+        edits.push((pointer.trim().to_string(), value));
+    }
+    if edits.is_empty() {
+        return Err(format!("{place}: no edits in '{line}'"));
+    }
+    Ok(Some(Variant { name, edits }))
+}
+
+/// The model file's text as the document the variants edit: the file as written (a Project Chrono file's own
+/// keys, its comments removed).
+pub fn base_document(text: &str, origin: &str) -> Result<serde_json::Value, String> {
+    let text = crate::import::chrono::without_comments(text);
+    serde_json::from_str(&text).map_err(|e| format!("{origin}: {e}"))
+}
+
+/// The base model with a variant's edits applied; an edit to a pointer the model lacks is an error. A
+/// Project Chrono suspension file (the pointers then name its own keys: `/Spring/Spring Coefficient`) is read
+/// after the edits, as `run` reads it.
+pub fn apply(base: &serde_json::Value, v: &Variant) -> Result<SuspensionFile, String> {
+    let mut doc = base.clone();
+    for (pointer, value) in &v.edits {
+        *doc.pointer_mut(pointer).ok_or_else(|| no_such_key(v, pointer))? = value.clone();
+    }
+    let text = serde_json::to_string(&doc).map_err(|e| e.to_string())?;
+    // The edited model is no file the user has: its errors name keys, not a line and column of it. Its kind
+    // is read off the document in hand (parsing its text again to tell cost a fifth of this function).
+    let chrono = crate::import::chrono::is_chrono_document(&doc);
+    crate::document::parse_document_of_kind(&text, chrono, &format!("variant '{}'", v.name)).map(|(file, _)| file)
+}
+
+/// Refuses a variant that edits a key the base model lacks, as [`apply`] does, without reading the model: a
+/// study checks its whole table so before it sends any of it away.
+pub fn check_keys(base: &serde_json::Value, v: &Variant) -> Result<(), String> {
+    match v.edits.iter().find(|(pointer, _)| base.pointer(pointer).is_none()) {
+        Some((pointer, _)) => Err(no_such_key(v, pointer)),
+        None => Ok(()),
+    }
+}
+
+fn no_such_key(v: &Variant, pointer: &str) -> String {
+    format!("variant '{}': the model has no '{pointer}'", v.name)
+}
+
+/// Headline figures of one variant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Outcome {
+    /// Bump steer at design, deg per metre of travel.
+    pub bump_steer: f64,
+    /// Camber gain at design, deg per metre.
+    pub camber_gain: f64,
+    /// Wheel rate at design, N/m.
+    pub wheel_rate: f64,
+}
+
+/// The names of a variant's figures, in the order of [`Outcome::figures`]: batch.csv's columns, and the
+/// keys every front end gives them.
+pub const FIGURES: [&str; 3] = ["bump_steer_deg_per_m", "camber_gain_deg_per_m", "wheel_rate_n_per_m"];
+
+impl Outcome {
+    /// The figures in the order [`FIGURES`] names them.
+    pub fn figures(&self) -> [f64; 3] {
+        [self.bump_steer, self.camber_gain, self.wheel_rate]
+    }
+}
+
+/// Runs one variant: parallel travel ±`half_range` in `steps` (even) steps.
+pub fn evaluate(file: &SuspensionFile, half_range: f64, steps: usize) -> Result<Outcome, String> {
+    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| e.to_string())?;
+    let rows =
+        parallel_wheel_travel(&corner, -half_range, half_range, steps, Mode::Corrected).map_err(|e| e.to_string())?;
+    let slope = |y: &dyn Fn(&TravelRow) -> f64| {
+        slope_at(&rows, 0.0, |r| r.travel, y).ok_or("too few steps for a slope at design")
+    };
+    Ok(Outcome {
+        bump_steer: slope(&|r| r.attitude.toe.to_degrees())?,
+        camber_gain: slope(&|r| r.attitude.camber.to_degrees())?,
+        wheel_rate: slope(&|r| r.wheel_load)?,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MODEL: &str = include_str!("../../../../examples/macpherson.json");
+    const VARIANTS: &str = include_str!("../../../../examples/macpherson_variants.txt");
+
+    #[test]
+    fn checking_keys_refuses_what_applying_refuses_with_the_same_words() {
+        let base = base_document(MODEL, "macpherson.json").unwrap();
+        for v in parse_variants(VARIANTS, "variants").unwrap() {
+            assert_eq!(check_keys(&base, &v), Ok(()), "{}", v.name);
+            assert!(apply(&base, &v).is_ok(), "{}", v.name);
+        }
+        let lacking = parse_variant("soft: /suspension/macpherson/spring/rate=2e4; /suspension/nope/0=1", "x", "y")
+            .unwrap()
+            .unwrap();
+        let said = "variant 'soft': the model has no '/suspension/nope/0'";
+        assert_eq!(check_keys(&base, &lacking).unwrap_err(), said);
+        assert_eq!(apply(&base, &lacking).unwrap_err(), said);
+    }
+
+    #[test]
+    fn a_chrono_variant_is_read_as_run_reads_its_file_and_says_so_when_it_cannot_be() {
+        const CHRONO: &str = include_str!("../../../../tests/data/chrono/SemiTrailingArm.json");
+        let base = base_document(CHRONO, "SemiTrailingArm.json").unwrap();
+        let stiff = parse_variant("stiff: /Spring/Spring Coefficient=400000", "x", "y").unwrap().unwrap();
+        let file = apply(&base, &stiff).unwrap();
+        let (run, _) =
+            crate::document::parse_model(&CHRONO.replace("350000.000", "400000"), "variant 'stiff'").unwrap();
+        assert_eq!(file.suspension, run.suspension);
+        let broken = parse_variant("broken: /Spring/Spring Coefficient=\"stiff\"", "x", "y").unwrap().unwrap();
+        let said = apply(&base, &broken).unwrap_err();
+        assert!(said.starts_with("variant 'broken'"), "{said}");
+        assert!(said.ends_with(" (read as a Project Chrono suspension file)"), "{said}");
+    }
+
+    #[test]
+    fn a_file_of_any_length_is_read_when_no_limit_is_set() {
+        let many: String = (0..MAX_VARIANTS + 1).map(|k| format!("/a/{k}=1\n")).collect();
+        let err = parse_variants(&many, "many").unwrap_err();
+        assert!(err.starts_with(&format!("many:{}: more than {MAX_VARIANTS} variants", MAX_VARIANTS + 1)), "{err}");
+        assert_eq!(parse_variants_at_most(&many, "many", None).unwrap().len(), MAX_VARIANTS + 1);
+        assert!(parse_variants_at_most(&many, "many", Some(3)).is_err());
+        let err = parse_variants_at_most(&many, "many", Some(3)).unwrap_err();
+        assert!(err.starts_with("many:4: more than 3 variants; split the file"), "{err}");
+    }
+}
