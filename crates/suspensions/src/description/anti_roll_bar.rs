@@ -10,7 +10,7 @@
 //! analysis moves the two wheels alike (parallel travel, the same force on both), where a bar does not
 //! twist.
 
-use crate::description::general::{part_name, Place};
+use crate::description::place::{part_name, Place};
 use serde::{Deserialize, Serialize};
 
 /// Least distance of the bar's bearing from the centre line (m): the two bearings define its axis.

@@ -18,6 +18,7 @@ pub mod general;
 pub(crate) mod layout;
 pub mod limits;
 pub mod macpherson;
+pub mod place;
 pub mod side;
 pub mod template;
 pub mod vehicle;

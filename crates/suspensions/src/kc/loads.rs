@@ -1,10 +1,5 @@
 //! The force-driven K&C tests: vertical force with the wheel free, the road loads, the static load case.
 
-use super::travel::{axis, chart};
-use super::{
-    deg, finish, mode_word, outside, said, Accuracy, Analysis, AnalysisReport, Cell, Figure, Reduction, Settings,
-    Table, Warning,
-};
 use crate::analysis::{
     design_wheel_load, model_load_sweep_with, slope_at, static_load_case, vertical_force_sweep_with,
     wheel_load_sweep_with, ComponentForces, LoadRow, WheelLoad,
@@ -12,6 +7,9 @@ use crate::analysis::{
 use crate::build::{LoadPoint, Rig};
 use crate::description::Side;
 use crate::file::SuspensionFile;
+use crate::kc::reduce::{axis, chart, deg, finish, outside, said, Reduction};
+use crate::kc::report::{Accuracy, AnalysisReport, Cell, Figure, Table, Warning};
+use crate::kc::settings::{mode_word, Analysis, Settings};
 
 /// Why the `loads` analysis cannot run.
 pub(super) const NO_LOADS: &str = "the model has no load case: give \"loads\" in the general form (a force at a point \

@@ -2,8 +2,8 @@
 //! reason it is missing), its plots and the accuracy of the whole run. Every number in a report is finite:
 //! a figure that cannot be computed carries a reason instead of a value, a table cell is left empty.
 
-use super::chart::Chart;
-use super::Analysis;
+use crate::kc::chart::Chart;
+use crate::kc::settings::Analysis;
 use serde::ser::SerializeStruct;
 use serde::{Serialize, Serializer};
 

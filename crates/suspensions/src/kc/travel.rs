@@ -1,10 +1,5 @@
 //! The driven K&C tests: parallel wheel travel on a corner, roll and steering on the full axle.
 
-use super::{
-    deg, finish, needs_vehicle, outside, said, short_name, AnalysisReport, Chart, Figure, Reduction, Scale, Series,
-    Settings, Table, Warning, YAxis,
-};
-use super::{Analysis, Cell};
 use crate::analysis::{
     anti_pitch, parallel_wheel_travel_with, patch_compliance, slope_at, wheel_compliance, TravelRow,
 };
@@ -12,46 +7,9 @@ use crate::analysis::{axle_sweep_with, AxleRow};
 use crate::build::{Axle, AxleRig, Rig};
 use crate::description::Side;
 use crate::file::SuspensionFile;
-
-/// A chart against the load parameter with one or two axes.
-pub(super) fn chart(
-    file: &SuspensionFile,
-    name: &str,
-    title: &str,
-    x_label: &str,
-    left: YAxis,
-    right: Option<YAxis>,
-    design_x: Option<f64>,
-) -> Chart {
-    Chart {
-        name: name.into(),
-        title: title.into(),
-        subtitle: short_name(file),
-        x_label: x_label.into(),
-        x_scale: Scale::Linear,
-        left,
-        right,
-        design_x,
-    }
-}
-
-/// A curve of an axis: its legend, and its y read off a row (`None` where the row has none).
-pub(super) type Curve<'a, R> = (&'a str, &'a dyn Fn(&R) -> Option<f64>);
-
-/// An axis of curves read off rows.
-pub(super) fn axis<R>(label: &str, rows: &[R], x: impl Fn(&R) -> f64, curves: &[Curve<R>]) -> YAxis {
-    YAxis {
-        label: label.into(),
-        scale: Scale::Linear,
-        series: curves
-            .iter()
-            .map(|(name, y)| Series {
-                name: (*name).into(),
-                points: rows.iter().filter_map(|r| y(r).map(|v| (x(r), v))).collect(),
-            })
-            .collect(),
-    }
-}
+use crate::kc::reduce::{axis, chart, deg, finish, needs_vehicle, outside, said, Reduction};
+use crate::kc::report::{AnalysisReport, Cell, Figure, Table, Warning};
+use crate::kc::settings::{Analysis, Settings};
 
 pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
     let range = s.range.unwrap_or((-0.08, 0.08));

@@ -31,9 +31,11 @@
 //! Chrono reads `Axle Tube / Location Stabilizer` not at all (it puts the anti-roll bar's connector at the
 //! origin, and the bar is another subsystem's file): it is listed in the notes as left out.
 
+use super::builder::Builder;
+use super::doc::Doc;
 use super::solid_axle::{axle_tube, knuckle, knuckle_drag_link, toe_bar, wheel_on_tube, AXLE_TUBE};
-use super::{Builder, Doc, CHASSIS};
 use crate::description::general::Place;
+use crate::description::general::CHASSIS;
 use elastokin_core::{JointKind, Vec3};
 
 /// Where the Watt centre link turns on the tube.

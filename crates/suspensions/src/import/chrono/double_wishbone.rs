@@ -6,7 +6,9 @@
 //! distance links from its pivots to its ball joint on the upright, and its `Shock` is the spring-damper
 //! from the chassis to the upright.
 
-use super::{Builder, Doc, CHASSIS};
+use super::builder::Builder;
+use super::doc::Doc;
+use crate::description::general::CHASSIS;
 
 pub(super) fn read(doc: &Doc, b: &mut Builder, reduced: bool) -> Result<(), String> {
     b.wheel(doc)?;

@@ -36,7 +36,9 @@
 //! of each side without its side, the subchassis, an RSDA on no revolute joint about its axis or given by a
 //! torque curve, a joint type Chrono does not read.
 
-use super::{Builder, Doc, CHASSIS};
+use super::builder::Builder;
+use super::doc::Doc;
+use crate::description::general::CHASSIS;
 use crate::description::general::{Place, SteeringLinkDef, TieRodDef};
 use crate::description::Connection;
 use crate::description::Side;
@@ -681,7 +683,7 @@ fn rsdas(doc: &Doc, bodies: &Bodies, joints: &[Joint]) -> Result<Vec<Rsda>, Stri
         ];
         let key = |k: &str| format!("{path}/{k}");
         doc.expect(&key("Position"));
-        let axis = super::direction(doc, &key("Axis"))?.normalize();
+        let axis = super::builder::direction(doc, &key("Axis"))?.normalize();
         for damping in ["Damping Coefficient", "Damping Curve Data"] {
             doc.expect(&key(damping));
         }

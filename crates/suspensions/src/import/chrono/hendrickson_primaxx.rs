@@ -42,9 +42,11 @@
 //!
 //! Masses, inertias, radii and the bodies' centres of mass are read and left out (statics).
 
+use super::builder::Builder;
+use super::doc::Doc;
 use super::solid_axle::kingpin;
-use super::{Builder, Doc, CHASSIS};
 use crate::description::general::Place;
+use crate::description::general::CHASSIS;
 use elastokin_core::{JointKind, Vec3};
 
 /// The name of the axle housing.

@@ -31,8 +31,10 @@
 //! Springs (and stops from `Minimum Length` / `Maximum Length`) run from the chassis to the tube on each
 //! side; the shocks are dampers, left out.
 
+use super::builder::Builder;
+use super::doc::Doc;
 use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, wheel_on_tube, AXLE_TUBE};
-use super::{Builder, Doc, CHASSIS};
+use crate::description::general::CHASSIS;
 use crate::description::general::{Axis, JointDef, Place};
 use elastokin_core::{JointKind, Vec3};
 

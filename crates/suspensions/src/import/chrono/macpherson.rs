@@ -4,8 +4,10 @@
 //! on it (cylindrical joint along the spring axis), so the upright steers about the strut; the tie rod; the
 //! spring from the chassis to the upright.
 
-use super::{Builder, Doc, CHASSIS};
+use super::builder::Builder;
+use super::doc::Doc;
 use crate::description::general::Place;
+use crate::description::general::CHASSIS;
 use elastokin_core::JointKind;
 
 pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {

@@ -13,8 +13,10 @@
 //! the midpoint of the lateral and trailing links' ball joints on the upright (`steering_axis_lower`), the
 //! two lower links standing in for one lower ball joint.
 
-use super::{cross_frame, direction, Builder, Doc, CHASSIS};
+use super::builder::{cross_frame, direction, Builder};
+use super::doc::Doc;
 use crate::description::general::Place;
+use crate::description::general::CHASSIS;
 use elastokin_core::JointKind;
 
 pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {

@@ -38,9 +38,11 @@
 //! (Read as Chrono builds it, the vertical-force sweep could not even start: from design, its first Newton
 //! iterate at half the design load lands 11 mm into a stop that has flattened from 11 MN/m to 0.5 MN/m.)
 
+use super::builder::Builder;
+use super::doc::Doc;
 use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, wheel_on_tube, AXLE_TUBE};
-use super::{Builder, Doc, CHASSIS};
 use crate::description::general::Place;
+use crate::description::general::CHASSIS;
 use elastokin_core::JointKind;
 
 /// The axle tube (`Axle Tube / COM`) on its push pipe's ball joint to the chassis, and the Panhard rod:

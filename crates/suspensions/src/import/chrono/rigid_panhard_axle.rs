@@ -46,8 +46,10 @@
 //! (Chrono hangs `RigidPanhardAxle`'s on a subchassis when the vehicle has one; a suspension alone has the
 //! chassis); the shocks are dampers.
 
+use super::builder::Builder;
+use super::doc::Doc;
 use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, wheel_on_tube, AXLE_TUBE};
-use super::{Builder, Doc, CHASSIS};
+use crate::description::general::CHASSIS;
 use crate::description::general::{Axis, BushingDef, JointDef, Place};
 use crate::description::limits::{ROTATIONAL_RATE_RANGE, TRANSLATIONAL_RATE_RANGE};
 use crate::description::Side;

@@ -12,7 +12,7 @@
 //! an equilibrium to find. The reader reads the file's points (a malformed one is reported by its key) and
 //! then refuses the file with that reason, rather than leaving the solver to fail on it.
 
-use super::Doc;
+use super::doc::Doc;
 
 /// `RigidPinnedAxle`: its points read, then refused.
 pub(super) fn read(doc: &Doc) -> Result<(), String> {

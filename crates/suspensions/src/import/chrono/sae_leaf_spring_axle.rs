@@ -49,9 +49,11 @@
 //!   Chrono builds them. `Clamp Bushing Data` would make the clamps' joints bushings under the lateral RSDAs:
 //!   a rotational spring on a bushing is not a torsion bushing on a revolute joint, and is refused by name.
 
+use super::builder::Builder;
+use super::doc::Doc;
 use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, wheel_on_tube, AXLE_TUBE};
-use super::{Builder, Doc, CHASSIS};
 use crate::description::general::Place;
+use crate::description::general::CHASSIS;
 use crate::description::limits::ROTATIONAL_RATE_RANGE;
 use elastokin_core::{JointKind, Vec3};
 

@@ -8,7 +8,9 @@
 //! Steering axis: the arm has no kingpin; the axis is the wheel's own vertical through its centre (see
 //! [`super::Builder::wheel_vertical_steering_axis`]).
 
-use super::{checked_frame, midpoint, Builder, Doc, CHASSIS};
+use super::builder::{checked_frame, midpoint, Builder};
+use super::doc::Doc;
+use crate::description::general::CHASSIS;
 use elastokin_core::JointKind;
 
 pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {

@@ -8,8 +8,10 @@
 //! Steering axis: that kingpin, from the arm's upright joint (`arm_upright`) to `steering_axis_upper`
 //! 0.1 m above it, both on the upright.
 
-use super::{Builder, Doc, CHASSIS};
+use super::builder::Builder;
+use super::doc::Doc;
 use crate::description::general::Place;
+use crate::description::general::CHASSIS;
 use elastokin_core::{JointKind, Vec3};
 
 pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {

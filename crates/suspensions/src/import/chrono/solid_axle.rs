@@ -27,7 +27,9 @@
 //! Springs (and stops from `Minimum Length` / `Maximum Length`) run from the chassis to the tube on each side.
 //! Steering axis: the kingpin where there is one, else the wheel's vertical (as for a trailing arm).
 
-use super::{midpoint, Builder, Doc, CHASSIS};
+use super::builder::{midpoint, Builder};
+use super::doc::Doc;
+use crate::description::general::CHASSIS;
 use crate::description::general::{Place, SteeringLinkDef};
 use crate::description::Side;
 use elastokin_core::{JointKind, Vec3};

@@ -10,8 +10,10 @@
 //! Steering axis: the arm has no kingpin; the axis is the wheel's own vertical through its centre (see
 //! [`super::Builder::wheel_vertical_steering_axis`]), as for the semi-trailing arm.
 
-use super::{cross_frame, direction, Builder, Doc, CHASSIS};
+use super::builder::{cross_frame, direction, Builder};
+use super::doc::Doc;
 use crate::description::general::Place;
+use crate::description::general::CHASSIS;
 use elastokin_core::{JointKind, Vec3};
 
 pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {

@@ -1,0 +1,319 @@
+//! How a sweep's rows become a report: the table and its error estimate, the headline figures and their
+//! accuracy, the warnings of a limit point or of an error over tolerance, compliance tables, charts, and
+//! the wording every analysis shares.
+
+use crate::analysis::{SweepLimit, SweepOutput};
+use crate::file::SuspensionFile;
+use crate::kc::chart::{Chart, Scale, Series, YAxis};
+use crate::kc::report::{significant, Accuracy, AnalysisReport, Cell, Figure, Table, Warning};
+use crate::kc::settings::{mode_word, Analysis, Settings, MAX_STEPS};
+use elastokin_solver::Mode;
+
+/// Short model name for plot subtitles (the part before any parenthesis).
+pub(super) fn short_name(file: &SuspensionFile) -> String {
+    file.name.split(" (").next().unwrap_or(&file.name).to_string()
+}
+
+pub(super) fn deg(rad: f64) -> f64 {
+    rad.to_degrees()
+}
+
+/// An engine error (model or solver) as the analysis's message: the errors already speak the user's
+/// words, so this only takes their text.
+pub(super) fn said(e: impl std::fmt::Display) -> String {
+    e.to_string()
+}
+
+/// What every analysis does with its sweep: the table, figures and charts from the rows, and the error
+/// estimate from the same read of the corrected rows.
+pub(super) struct Reduction<'a, R> {
+    pub(super) table: &'a dyn Fn(&[R]) -> Table,
+    pub(super) figures: &'a dyn Fn(&[R]) -> Vec<Figure>,
+}
+
+/// Builds the report of a sweep: reads `table` and `figures` off the rows and off the corrected rows,
+/// and takes the differences as the error estimate.
+pub(super) fn finish<R>(
+    analysis: Analysis,
+    mut description: String,
+    range: (f64, f64),
+    settings: &Settings,
+    out: &SweepOutput<R>,
+    reduce: Reduction<R>,
+    charts: Vec<Chart>,
+) -> AnalysisReport {
+    let table = (reduce.table)(&out.rows);
+    let mut figures = (reduce.figures)(&out.rows);
+    let (columns, method) = match &out.corrected {
+        Some(corrected) => {
+            let other = (reduce.table)(corrected);
+            for (f, g) in figures.iter_mut().zip((reduce.figures)(corrected)) {
+                if let (Some(a), Some(b)) = (f.value, g.value) {
+                    f.error = Some((a - b).abs());
+                }
+            }
+            (
+                table.column_differences(&other),
+                format!("every row against one exact Newton iteration from it ({} mode)", mode_word(settings.mode)),
+            )
+        }
+        None => (vec![None; table.columns.len()], "not estimated".to_string()),
+    };
+    let largest = |suffix: &str| {
+        table
+            .columns
+            .iter()
+            .zip(&columns)
+            .filter(|(name, _)| name.ends_with(suffix))
+            .filter_map(|(_, e)| *e)
+            .fold(0.0f64, f64::max)
+    };
+    let (angle_error_deg, length_error_m) = (largest("_deg"), largest("_m"));
+    let force_residual = out.residuals.iter().map(|r| r.0).fold(0.0f64, f64::max);
+    let constraint_residual = out.residuals.iter().map(|r| r.1).fold(0.0f64, f64::max);
+    let tol = settings.tolerance;
+    let mut warnings = Vec::new();
+    if let Some(limit) = &out.limit {
+        description.push_str(&limit_description(analysis, limit));
+        // The table's first column is the load parameter.
+        let last = table.rows.last().and_then(|r| r.first()).and_then(Cell::number).unwrap_or(limit.at);
+        warnings.push(limit_warning(analysis, limit, last));
+    }
+    let over_figures: Vec<String> = figures.iter().filter_map(|f| over_tolerance(f, tol.relative)).collect();
+    let within = angle_error_deg <= tol.angle_deg && length_error_m <= tol.length_m && over_figures.is_empty();
+    if !within {
+        // Paper mode's error falls in proportion to the step: the steps that would bring the worst of the
+        // errors to its tolerance, with a tenth more for the second-order part of the error (on the
+        // MacPherson's parallel travel the first-order count alone leaves it 1 % over).
+        let worst = figures
+            .iter()
+            .filter_map(|f| Some(f.error? / (tol.relative * f.value?.abs())))
+            .filter(|r| r.is_finite())
+            .fold((angle_error_deg / tol.angle_deg).max(length_error_m / tol.length_m), f64::max);
+        let needed = (1.1 * settings.steps as f64 * worst).ceil();
+        let fix = match settings.mode {
+            Mode::Paper if needed <= MAX_STEPS as f64 => format!(
+                "paper mode's error falls in proportion to the step: about --steps {needed:.0} would meet the \
+                 tolerance, or --mode corrected"
+            ),
+            Mode::Paper => format!(
+                "paper mode's error falls in proportion to the step, and more than {MAX_STEPS} steps would be \
+                 needed: use --mode corrected"
+            ),
+            Mode::Corrected => "the model is near-singular here; run `elastokin check` on it".to_string(),
+        };
+        let mut what = Vec::new();
+        if angle_error_deg > tol.angle_deg {
+            what.push(format!("angles up to {angle_error_deg:.2e} deg (tolerance {:.0e})", tol.angle_deg));
+        }
+        if length_error_m > tol.length_m {
+            what.push(format!("lengths up to {:.2e} mm (tolerance {:.0e})", length_error_m * 1e3, tol.length_m * 1e3));
+        }
+        if !over_figures.is_empty() {
+            what.push(format!("figures {} (tolerance {:.1} %)", over_figures.join(", "), tol.relative * 100.0));
+        }
+        warnings.push(Warning {
+            code: "error-over-tolerance",
+            hardpoints: Vec::new(),
+            message: format!("{}: estimated error {}; {fix}", analysis.name(), what.join(", ")),
+        });
+    }
+    let compliance = out.compliance.as_ref().map(|c| compliance_table(analysis, &table, c));
+    AnalysisReport {
+        analysis,
+        parameter: analysis.parameter().into(),
+        description,
+        range,
+        steps: settings.steps,
+        figures,
+        accuracy: Accuracy {
+            method,
+            angle_error_deg,
+            length_error_m,
+            force_residual,
+            constraint_residual,
+            columns: table.columns.iter().cloned().zip(columns).collect(),
+            within_tolerance: within,
+        },
+        table,
+        compliance,
+        wheel_compliance_at_design: None,
+        charts,
+        warnings,
+    }
+}
+
+/// A load or travel in the analysis's unit, as the descriptions and warnings give it.
+pub(super) fn amount(analysis: Analysis, v: f64) -> String {
+    format!("{} {}", significant(v, 6), analysis.unit())
+}
+
+/// The end of the description line of a sweep that met a limit point.
+pub(super) fn limit_description(analysis: Analysis, limit: &SweepLimit) -> String {
+    match limit.through {
+        None => format!(", stopped at the limit point at {}", amount(analysis, limit.at)),
+        Some(_) => format!(", through the limit point at {} by arc length", amount(analysis, limit.at)),
+    }
+}
+
+/// The warning of a sweep that met a limit point: where the suspension gives way (or its linkage reaches
+/// the end of its travel), what the table holds, and how to see beyond. `last` is the last row's load.
+pub(super) fn limit_warning(analysis: Analysis, limit: &SweepLimit, last: f64) -> Warning {
+    let at = amount(analysis, limit.at);
+    let what = if analysis.is_travel() {
+        format!(
+            "the linkage cannot go beyond {at}: an arm or the tie rod reaches the end of its travel there, and \
+             beyond it the mechanism would have to fold over"
+        )
+    } else {
+        format!(
+            "the suspension gives way at {at}: it carries no more load there, and under a load that keeps rising \
+             the wheel would snap through"
+        )
+    };
+    let then = match limit.through {
+        None => "the table and plots stop there, their last row at the limit point; run the analysis with \
+                 --through-limits to follow the path through it by arc length"
+            .to_string(),
+        Some(arc) if arc.left_range => format!(
+            "the table and plots follow the path through it by arc length (steps of {} at first) until it leaves \
+             the range at {}",
+            amount(analysis, arc.step),
+            amount(analysis, last)
+        ),
+        Some(arc) => format!(
+            "the table and plots follow the path through it by arc length (steps of {} at first), but the path \
+             stopped after the most steps allowed at {}, inside the range; give a larger --arc-step",
+            amount(analysis, arc.step),
+            amount(analysis, last)
+        ),
+    };
+    Warning { code: "limit-point", hardpoints: Vec::new(), message: format!("{}: {what}; {then}", analysis.name()) }
+}
+
+/// A figure whose estimated error is over `relative` of its value (and shows in its printed decimals), as
+/// the warning names it: `label ±x %`, or `label ±e unit` where a percentage means nothing (a figure at or
+/// near zero).
+pub(super) fn over_tolerance(f: &Figure, relative: f64) -> Option<String> {
+    let (v, e) = (f.value?, f.error?);
+    let ratio = e / v.abs();
+    (e > relative * v.abs() && f.shows(e)).then(|| {
+        if ratio < 10.0 {
+            format!("{} ±{:.1} %", f.label, 100.0 * ratio)
+        } else {
+            format!("{} ±{e:.2e} {}", f.label, f.unit)
+        }
+    })
+}
+
+/// The rows of a 6×6 wheel compliance: the wheel centre's response, translation (m) and rotation (rad), global
+/// axes. Its entries are named `{row}_per_{column}` in the compliance tables.
+pub const COMPLIANCE_RESPONSE: [&str; 6] = ["x_m", "y_m", "z_m", "rx_rad", "ry_rad", "rz_rad"];
+/// The columns of a 6×6 wheel compliance: the unit load at the wheel centre, force (N) and torque (N·m).
+pub const COMPLIANCE_LOAD: [&str; 6] = ["fx_n", "fy_n", "fz_n", "mx_nm", "my_nm", "mz_nm"];
+
+/// The 6×6 wheel compliance at every row: the load parameter, then the 36 entries by row
+/// (wheel-centre x, y, z in m, rotation about x, y, z in rad) and column (force along x, y, z in N,
+/// torque about x, y, z in N·m) at the wheel centre.
+pub(super) fn compliance_table(analysis: Analysis, rows: &Table, c: &[[[f64; 6]; 6]]) -> Table {
+    let mut columns = vec![rows.columns[0].clone()];
+    for r in COMPLIANCE_RESPONSE {
+        for l in COMPLIANCE_LOAD {
+            columns.push(format!("{r}_per_{l}"));
+        }
+    }
+    Table {
+        name: format!("{}_compliance", analysis.name().replace('-', "_")),
+        columns,
+        rows: rows
+            .rows
+            .iter()
+            .zip(c)
+            .map(|(row, m)| {
+                let mut out = vec![row[0].clone()];
+                out.extend(m.iter().flat_map(|r| r.iter().map(|&v| Cell::from(v))));
+                out
+            })
+            .collect(),
+    }
+}
+
+/// A figure missing because no row sits at the design position: the range does not reach it, or no
+/// step lands on it (an odd number of steps over a symmetric range).
+pub(super) fn outside(range: (f64, f64), at: f64, unit: &str) -> String {
+    if (range.0 - at) * (range.1 - at) <= 0.0 {
+        return format!(
+            "no step of the range {}..{} {unit} lands on the design position ({at} {unit}): give an even --steps \
+             over a range symmetric about it",
+            range.0, range.1
+        );
+    }
+    format!(
+        "the range {}..{} {unit} does not contain the design position ({at} {unit}); give a --range that spans it",
+        range.0, range.1
+    )
+}
+
+/// The reason a figure needs a vehicle-section entry the file lacks.
+pub(super) fn needs_vehicle(field: &str) -> String {
+    format!("needs vehicle.{field} in the model file")
+}
+
+/// A chart against the load parameter with one or two axes.
+pub(super) fn chart(
+    file: &SuspensionFile,
+    name: &str,
+    title: &str,
+    x_label: &str,
+    left: YAxis,
+    right: Option<YAxis>,
+    design_x: Option<f64>,
+) -> Chart {
+    Chart {
+        name: name.into(),
+        title: title.into(),
+        subtitle: short_name(file),
+        x_label: x_label.into(),
+        x_scale: Scale::Linear,
+        left,
+        right,
+        design_x,
+    }
+}
+
+/// A curve of an axis: its legend, and its y read off a row (`None` where the row has none).
+pub(super) type Curve<'a, R> = (&'a str, &'a dyn Fn(&R) -> Option<f64>);
+/// An axis of curves read off rows.
+pub(super) fn axis<R>(label: &str, rows: &[R], x: impl Fn(&R) -> f64, curves: &[Curve<R>]) -> YAxis {
+    YAxis {
+        label: label.into(),
+        scale: Scale::Linear,
+        series: curves
+            .iter()
+            .map(|(name, y)| Series {
+                name: (*name).into(),
+                points: rows.iter().filter_map(|r| y(r).map(|v| (x(r), v))).collect(),
+            })
+            .collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn figure_error_at_a_zero_figure_is_given_in_its_unit_not_as_infinite_percent() {
+        let mut f = Figure::new("roll_centre_lateral", "roll centre lateral offset", "mm", 1, 0.0);
+        f.error = Some(3.0);
+        let line = over_tolerance(&f, 5e-3).unwrap();
+        assert_eq!(line, "roll centre lateral offset ±3.00e0 mm");
+        // A huge relative error is no percentage either (it printed 300 digits).
+        f.value = Some(1e-300);
+        assert!(!over_tolerance(&f, 5e-3).unwrap().contains('%'));
+        f.value = Some(20.0);
+        assert_eq!(over_tolerance(&f, 5e-3).unwrap(), "roll centre lateral offset ±15.0 %");
+        f.error = Some(0.01);
+        assert_eq!(over_tolerance(&f, 5e-3), None);
+    }
+}

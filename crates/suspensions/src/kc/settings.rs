@@ -1,0 +1,244 @@
+//! What a K&C suite is asked: the analyses a rig runs ([`Analysis`]), how they are run ([`Settings`]:
+//! ranges, steps, mode, tolerances, load point) and the limits a request is held to.
+
+use crate::analysis::{SweepExtras, WheelLoad};
+use elastokin_solver::Mode;
+use serde::Serialize;
+
+/// One K&C test.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(into = "&'static str")]
+pub enum Analysis {
+    /// Both wheel-centre heights driven together.
+    ParallelTravel,
+    /// Opposite wheel travel on the full axle: the body rolls relative to the wheels.
+    Roll,
+    /// Rack travel on the full axle, wheel-centre heights held.
+    Steering,
+    /// Vertical force at the contact patch, wheel free (the paper's case).
+    VerticalForce,
+    /// A road load at the wheel: lateral or braking force at the contact patch, traction force at the
+    /// wheel centre, aligning torque.
+    Road(WheelLoad),
+    /// The corner at rest under the vehicle's corner load, from the design position.
+    StaticLoad,
+    /// The model file's own load case (`loads` of the general form), from zero to its full value.
+    ModelLoads,
+}
+
+impl From<Analysis> for &'static str {
+    fn from(a: Analysis) -> &'static str {
+        a.name()
+    }
+}
+
+/// Every analysis, in the order the suite runs them.
+pub const ALL: [Analysis; 10] = [
+    Analysis::ParallelTravel,
+    Analysis::Roll,
+    Analysis::Steering,
+    Analysis::VerticalForce,
+    Analysis::Road(WheelLoad::Lateral),
+    Analysis::Road(WheelLoad::Braking),
+    Analysis::Road(WheelLoad::Traction),
+    Analysis::Road(WheelLoad::AligningTorque),
+    Analysis::StaticLoad,
+    Analysis::ModelLoads,
+];
+
+impl Analysis {
+    /// The name used on the command line and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Analysis::ParallelTravel => "parallel-travel",
+            Analysis::Roll => "roll",
+            Analysis::Steering => "steering",
+            Analysis::VerticalForce => "vertical-force",
+            Analysis::Road(WheelLoad::Lateral) => "lateral-force",
+            Analysis::Road(WheelLoad::Braking) => "braking-force",
+            Analysis::Road(WheelLoad::Traction) => "traction-force",
+            Analysis::Road(WheelLoad::AligningTorque) => "aligning-torque",
+            Analysis::StaticLoad => "static-load",
+            Analysis::ModelLoads => "loads",
+        }
+    }
+
+    /// The analysis of a name.
+    pub fn from_name(name: &str) -> Option<Analysis> {
+        ALL.into_iter().find(|a| a.name() == name)
+    }
+
+    /// What the load parameter is, with its unit.
+    pub fn parameter(self) -> &'static str {
+        match self {
+            Analysis::ParallelTravel => "wheel travel, m, bump +",
+            Analysis::Roll => "left wheel travel, m (right opposite)",
+            Analysis::Steering => "rack travel, m, towards +y (left)",
+            Analysis::VerticalForce => "vertical force at the contact patch, N, up +",
+            Analysis::Road(WheelLoad::Lateral) => "lateral force at the contact patch, N, inboard +",
+            Analysis::Road(WheelLoad::Braking) => "braking force at the contact patch, N, rearward +",
+            Analysis::Road(WheelLoad::Traction) => "traction force at the wheel centre, N, forward +",
+            Analysis::Road(WheelLoad::AligningTorque) => "aligning torque, N·m, about +z",
+            Analysis::StaticLoad => "the model file's vehicle.corner_load, N, applied at once",
+            Analysis::ModelLoads => "fraction of the model file's loads applied, 0 to 1",
+        }
+    }
+
+    /// The unit of the load parameter (and of `--range` and `--arc-step`).
+    pub fn unit(self) -> &'static str {
+        match self {
+            Analysis::ParallelTravel | Analysis::Roll | Analysis::Steering => "m",
+            Analysis::Road(WheelLoad::AligningTorque) => "N·m",
+            Analysis::VerticalForce | Analysis::Road(_) | Analysis::StaticLoad => "N",
+            Analysis::ModelLoads => "of the load case",
+        }
+    }
+
+    /// Whether the load parameter drives a travel (else it is a force or torque).
+    pub(super) fn is_travel(self) -> bool {
+        self.unit() == "m"
+    }
+
+    /// Where the design position sits on the load parameter (the vertical force sweep's is the design
+    /// wheel load, known only once the model is solved, so `None` there).
+    pub fn design_parameter(self) -> Option<f64> {
+        match self {
+            Analysis::VerticalForce | Analysis::StaticLoad => None,
+            _ => Some(0.0),
+        }
+    }
+}
+
+/// The most load steps a sweep may take: every step keeps its solved state in memory and costs solver time.
+pub const MAX_STEPS: usize = 20_000;
+
+/// The largest estimated error a run accepts before it warns.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Tolerance {
+    /// Angles (toe, camber, steer, caster, …), degrees.
+    pub angle_deg: f64,
+    /// Lengths (wheel-centre position, patch displacement, scrub radius, …), metres.
+    pub length_m: f64,
+    /// Headline figures (slopes, rates, ratios), relative to their value.
+    pub relative: f64,
+}
+
+impl Default for Tolerance {
+    /// 0.001° and 0.001 mm: a tenth of the finest figure engineers read (toe to 0.01°, hardpoints to
+    /// 0.01 mm); 0.5 % on derived figures such as the wheel rate.
+    fn default() -> Self {
+        Tolerance { angle_deg: 1e-3, length_m: 1e-6, relative: 5e-3 }
+    }
+}
+
+/// How the suite walks its paths.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Settings {
+    /// `(from, to)` in the analysis's own parameter, or its default. Only for a run of one analysis.
+    pub range: Option<(f64, f64)>,
+    /// Load steps.
+    pub steps: usize,
+    /// Paper or corrected stepping.
+    #[serde(serialize_with = "mode_name")]
+    pub mode: Mode,
+    /// Road loads: the wheel-centre height held by the rig (`true`) or the wheel free on its spring.
+    pub height_held: bool,
+    /// Where the vertical, lateral and braking forces act (traction always acts at the wheel centre).
+    pub load_point: crate::build::LoadPoint,
+    /// The 6×6 wheel compliance at every step of the sweeps that have one wheel to read it at.
+    pub compliance: bool,
+    /// When the error estimate is worth a warning.
+    pub tolerance: Tolerance,
+    /// At a limit point (a load the suspension cannot carry, a travel its linkage cannot reach): `false`
+    /// stops the sweep there, with a warning (`limit-point`); `true` follows the path on through it by
+    /// arc length, from the last step before it (see [`SweepExtras::through_limits`]; those rows are exact
+    /// equilibria in either mode).
+    pub through_limits: bool,
+    /// The arc-length step with `through_limits`, in the analysis's own unit ([`Analysis::unit`]: m, N or
+    /// N·m): the change of load or travel of the first arc-length step (later steps have the same length
+    /// in the scaled space of load and displacement, so they change the load less where the suspension
+    /// gives way). `None`: one load step, `|to − from| / steps`. Only for a run of one analysis.
+    pub arc_step: Option<f64>,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            range: None,
+            steps: 32,
+            mode: Mode::Corrected,
+            height_held: true,
+            load_point: crate::build::LoadPoint::ContactPatch,
+            compliance: false,
+            tolerance: Tolerance::default(),
+            through_limits: false,
+            arc_step: None,
+        }
+    }
+}
+
+fn mode_name<S: serde::Serializer>(mode: &Mode, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(mode_word(*mode))
+}
+
+/// `paper` or `corrected`.
+pub fn mode_word(mode: Mode) -> &'static str {
+    match mode {
+        Mode::Paper => "paper",
+        Mode::Corrected => "corrected",
+    }
+}
+
+/// The mode a word of [`mode_word`] names, for front ends that take it as text.
+pub fn mode_from_word(word: &str) -> Option<Mode> {
+    [Mode::Corrected, Mode::Paper].into_iter().find(|&m| mode_word(m) == word)
+}
+
+impl Settings {
+    /// What the sweeps over `range` take besides their rows.
+    pub(super) fn extras(&self, range: (f64, f64)) -> SweepExtras {
+        let one_step = (range.1 - range.0).abs() / self.steps as f64;
+        SweepExtras {
+            error_estimate: true,
+            compliance: self.compliance,
+            through_limits: self.through_limits.then(|| self.arc_step.unwrap_or(one_step)),
+        }
+    }
+}
+
+/// Why an analysis failed: which one, and the engine's reason.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{analysis}: {message}")]
+pub struct AnalysisError {
+    /// The analysis's name.
+    pub analysis: &'static str,
+    /// What went wrong, and what to change.
+    pub message: String,
+}
+
+/// Narrowest range an analysis walks, in its own parameter's unit (m, N, N·m).
+pub const MIN_RANGE: f64 = 1e-9;
+/// The largest travel a range may reach (m).
+pub const MAX_RANGE_TRAVEL: f64 = 1e3;
+/// The largest force or torque a range may reach (N, N·m).
+pub const MAX_RANGE_LOAD: f64 = 1e8;
+/// The largest multiple of the model's own load case a range may reach.
+pub const MAX_RANGE_FRACTION: f64 = 1e6;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_mode_word_reads_back_as_its_mode_and_no_other_word_does() {
+        for mode in [Mode::Corrected, Mode::Paper] {
+            assert_eq!(mode_from_word(mode_word(mode)), Some(mode));
+        }
+        // The summary.json's words, as the command's --mode takes them.
+        assert_eq!(mode_from_word("corrected"), Some(Mode::Corrected));
+        assert_eq!(mode_from_word("paper"), Some(Mode::Paper));
+        for other in ["Paper", "exact", ""] {
+            assert_eq!(mode_from_word(other), None, "{other}");
+        }
+    }
+}
