@@ -57,7 +57,9 @@ pub mod study;
 pub mod wheel;
 
 pub use analysis::{AxleRow, RollCentre};
-pub use build::{Axle, AxleRig, Corner, CornerParts, CornerTemplate, CrossAxle, LoadPoint, Rig, TieRod};
+pub use build::{
+    Axle, AxleRig, BuildMap, Built, Corner, CornerParts, CornerTemplate, CrossAxle, LoadPoint, Rig, TieRod,
+};
 pub use check::{check_model, check_travel_rows, ModelCheck, Warning};
 pub use description::{
     AntiRollBar, ArmMounts, AxleDef, BushingRates, Connection, DoubleWishbone, DoubleWishboneHardpoints, GeneralCorner,

@@ -3,6 +3,7 @@
 //! the path's exact tangent.
 
 use crate::analysis::sweep::{read_sweep, walk, whole, SweepExtras, SweepOutput};
+use crate::build::rig::WHEEL_TRAVEL;
 use crate::build::{Axle, AxleRig};
 use crate::wheel::{Wheel, WheelAttitude};
 use elastokin_core::Pose;
@@ -120,7 +121,7 @@ pub fn axle_sweep_with(
     let mut solver = StaticSolver::new(model, SolverOptions::default())?;
     let mut start = solver.design_state(from);
     let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, extras.through_limits)?;
-    let drivers = (model.joint_id("left wheel travel"), model.joint_id("right wheel travel"));
+    let drivers = (model.joint_id(&format!("left {WHEEL_TRAVEL}")), model.joint_id(&format!("right {WHEEL_TRAVEL}")));
     read_sweep(&mut solver, &axle.left, None, walked, extras, |solver, step| {
         let reactions = step.joint_reactions(model);
         let load = |d: Option<elastokin_core::JointId>| d.map_or(0.0, |d| reactions[d.0].force.z);

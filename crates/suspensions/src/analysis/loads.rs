@@ -3,6 +3,7 @@
 //! load case; every row with the forces each joint and element carries.
 
 use crate::analysis::sweep::{read_sweep, require_rig, walk, whole, SweepExtras, SweepOutput, Walked};
+use crate::build::rig::WHEEL_TRAVEL;
 use crate::build::{Corner, Rig};
 use crate::wheel::WheelAttitude;
 use elastokin_core::{Model, Vec3};
@@ -13,7 +14,7 @@ use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, State, Static
 /// ([`Rig::WheelTravel`] at `t = 0`, or [`Rig::HeightHeld`]).
 pub fn design_wheel_load(corner: &Corner) -> Result<f64, SolverError> {
     require_rig(corner, &[Rig::WheelTravel, Rig::HeightHeld])?;
-    let Some(driver) = corner.model.joint_id("wheel travel") else {
+    let Some(driver) = corner.model.joint_id(WHEEL_TRAVEL) else {
         return Err(SolverError::InvalidInput { what: "corner", why: "it has no \"wheel travel\" driver".into() });
     };
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
@@ -133,7 +134,7 @@ fn load_rows(
     let model = &corner.model;
     let upright = corner.wheel.upright.0;
     let patch_at_design = model.bodies()[upright].design_pose.point(&patch_local);
-    let driver = model.joint_id("wheel travel");
+    let driver = model.joint_id(WHEEL_TRAVEL);
     read_sweep(solver, &corner.wheel, corner.partner.as_ref(), walked, extras, |_, s| {
         let forces = ComponentForces::at(model, s);
         let contact_patch = s.poses[upright].point(&patch_local);

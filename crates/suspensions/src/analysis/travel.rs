@@ -2,6 +2,7 @@
 //! position, steering geometry and wheel load at every step.
 
 use crate::analysis::sweep::{read_sweep, require_rig, walk, whole, SweepExtras, SweepOutput};
+use crate::build::rig::WHEEL_TRAVEL;
 use crate::build::{Corner, Rig};
 use crate::wheel::{SteeringGeometry, WheelAttitude};
 use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, StaticSolver};
@@ -77,7 +78,7 @@ fn driven_sweep_with(
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let mut start = solver.design_state(from);
     let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, extras.through_limits)?;
-    let driver = corner.model.joint_id("wheel travel");
+    let driver = corner.model.joint_id(WHEEL_TRAVEL);
     let spring = corner.spring;
     read_sweep(&mut solver, &corner.wheel, corner.partner.as_ref(), walked, extras, |_, s| {
         Ok(TravelRow {

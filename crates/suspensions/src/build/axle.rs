@@ -2,8 +2,10 @@
 //! the tests that need both wheels: opposite wheel travel (roll), parallel travel with track change and
 //! roll-centre migration, and steering of both wheels by one rack.
 
+use crate::build::map::BuildMap;
 use crate::build::rig::{add_both_corners, add_travel_drivers, AxleRig};
 use crate::build::template::CornerTemplate;
+use crate::description::{GeneralCorner, Side};
 use crate::wheel::Wheel;
 use elastokin_core::{ElementId, Model, ModelError};
 
@@ -41,5 +43,11 @@ impl Axle {
             add_travel_drivers(&mut model, axle_only, ("left ", &left.wheel, l), ("right ", &right.wheel, r))?;
         }
         Ok(Axle { model, rig, left: left.wheel, right: right.wheel, anti_roll_bars: cross.anti_roll_bars })
+    }
+
+    /// What each item of `general` (the description it was built from, a template's expansion) became in
+    /// the axle's model, on both sides.
+    pub fn build_map(&self, general: &GeneralCorner) -> BuildMap {
+        BuildMap::of(general, &self.model, &[(Side::Left, "left "), (Side::Right, "right ")])
     }
 }

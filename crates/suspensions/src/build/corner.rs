@@ -1,10 +1,12 @@
 //! A suspension corner ready to solve: its model, the rig that holds it, and where its wheel is.
 
+use crate::build::map::BuildMap;
 use crate::build::rig::{
     add_both_corners, add_rack, add_travel_drivers, add_wheel_travel_driver, mount_tie_rod, no_steering_input, Rig,
 };
 use crate::build::template::CornerTemplate;
 use crate::description::general::part_name;
+use crate::description::GeneralCorner;
 use crate::description::Side;
 use crate::wheel::Wheel;
 use elastokin_core::{BodyId, BodyRef, ElementId, Model, ModelError, Vec3};
@@ -99,6 +101,22 @@ impl Corner {
         }
         let spring = parts.spring;
         Ok(Corner { model, rig, wheel: parts.wheel, spring, partner: None, load_point: LoadPoint::default() })
+    }
+
+    /// The corners built, each with its parts' name prefix: the own corner's (`""`), and the partner's on
+    /// a solid axle.
+    pub fn sides(&self) -> Vec<(Side, &'static str)> {
+        let own = (self.wheel.side, "");
+        match self.partner_prefix() {
+            Some(prefix) => vec![own, (self.wheel.side.other(), prefix)],
+            None => vec![own],
+        }
+    }
+
+    /// What each item of `general` (the description it was built from, a template's expansion) became in
+    /// this corner's model.
+    pub fn build_map(&self, general: &GeneralCorner) -> BuildMap {
+        BuildMap::of(general, &self.model, &self.sides())
     }
 
     /// The prefix of the partner wheel's part names, when the corner has one.

@@ -4,6 +4,7 @@
 //! [`BushingDef::bushing`], [`SpringDef::spring`] and [`StopDef::stop`] are where a described item becomes
 //! an element, with its model-file key in every error.
 
+use crate::build::map::load_labels;
 use crate::build::template::{CornerParts, CornerTemplate, CrossAxle, SteeringLink, TieRod};
 use crate::description::general::{
     part_name, Axis, BodyDef, BushingDef, GeneralCorner, JointDef, Place, SpringDef, Stiffness, StopDef, StopType,
@@ -528,18 +529,16 @@ impl GeneralCorner {
             if load.force.is_some_and(|f| !finite(&f)) || load.torque.is_some_and(|t| !finite(&t)) {
                 return refuse("the force and torque must be finite numbers");
             }
-            let name = part_name(prefix, &load.name);
             let s = side.sign();
-            if let (Some(f), Some(at)) = (load.force, &load.at) {
+            let (force_label, torque_label) = load_labels(load, prefix);
+            if let (Some(f), Some(at), Some(label)) = (load.force, &load.at, force_label) {
                 let point = r.point(&format!("{key}.at"), at)?;
                 let force = Vec3::new(f[0], s * f[1], f[2]);
-                let label = if load.torque.is_some() { format!("{name} force") } else { name.clone() };
                 model.add_element(PointForce::new(&label, body, point, force)?)?;
             }
-            if let Some(t) = load.torque {
+            if let (Some(t), Some(label)) = (load.torque, torque_label) {
                 // A moment is a pseudo-vector: its mirror image keeps y and turns x and z over.
                 let torque = Vec3::new(s * t[0], t[1], s * t[2]);
-                let label = if load.force.is_some() { format!("{name} torque") } else { name.clone() };
                 model.add_element(PointTorque::new(&label, body, torque)?)?;
             }
         }

@@ -12,6 +12,19 @@ use elastokin_core::joint::orthonormal_complement;
 use elastokin_core::{BodyRef, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
 use elastokin_elements::Bushing;
 
+/// The rack's body, named once: the steering rig's.
+pub const RACK: &str = "rack";
+/// The rack's slide on the chassis.
+pub const RACK_SLIDE: &str = "rack slide";
+/// The driver of the rack's travel.
+pub const RACK_TRAVEL: &str = "rack travel";
+/// A corner's tie rod (after its part-name prefix).
+pub const TIE_ROD: &str = "tie rod";
+/// A solid axle's steering link.
+pub const STEERING_LINK: &str = "steering link";
+/// The driver of a wheel centre's height (after its part-name prefix).
+pub const WHEEL_TRAVEL: &str = "wheel travel";
+
 /// How the corner is held on the K&C rig, and what the load parameter `t` drives.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Rig {
@@ -61,7 +74,7 @@ pub(crate) fn mount_tie_rod(
     wheel: &Wheel,
     tie_rod: TieRod,
 ) -> Result<(), ModelError> {
-    mount_rod(model, &part_name(prefix, "tie rod"), inner_body, wheel.upright.into(), wheel.side, tie_rod)
+    mount_rod(model, &part_name(prefix, TIE_ROD), inner_body, wheel.upright.into(), wheel.side, tie_rod)
 }
 
 /// Attaches a rod named `name` from `inner_body` at `rod.inner` to `outer_body` at `rod.outer`: a distance
@@ -119,9 +132,9 @@ pub(crate) fn no_steering_input() -> ModelError {
 /// Adds a rack: a body on a slide along the unit `axis` at `at`, driven by `t` (m along `axis`), named
 /// "rack".
 pub(crate) fn add_rack(model: &mut Model, at: Vec3, axis: Vec3) -> Result<BodyRef, ModelError> {
-    let rack = model.add_body("rack", Pose::at(at))?;
-    model.add_joint(JointSpec::translational("rack slide", BodyRef::Ground, rack, at, axis))?;
-    model.add_joint(JointSpec::travel_driver("rack travel", BodyRef::Ground, rack, at, axis, 1.0))?;
+    let rack = model.add_body(RACK, Pose::at(at))?;
+    model.add_joint(JointSpec::translational(RACK_SLIDE, BodyRef::Ground, rack, at, axis))?;
+    model.add_joint(JointSpec::travel_driver(RACK_TRAVEL, BodyRef::Ground, rack, at, axis, 1.0))?;
     Ok(rack.into())
 }
 
@@ -133,7 +146,7 @@ pub(crate) fn add_wheel_travel_driver(
     travel_rate: f64,
 ) -> Result<(), ModelError> {
     model.add_joint(JointSpec::point_driver(
-        &part_name(prefix, "wheel travel"),
+        &part_name(prefix, WHEEL_TRAVEL),
         wheel.upright,
         wheel.wheel_centre,
         Vec3::z(),
@@ -184,7 +197,7 @@ pub(crate) fn add_both_corners(
         }
     }
     if let Some(link) = cross.steering_link {
-        mount_rod(model, "steering link", inner, link.body, Side::Left, link.rod)?;
+        mount_rod(model, STEERING_LINK, inner, link.body, Side::Left, link.rod)?;
     }
     Ok((left, right, cross))
 }

@@ -23,6 +23,14 @@ impl Side {
         }
     }
 
+    /// The side across the axle.
+    pub fn other(self) -> Side {
+        match self {
+            Side::Left => Side::Right,
+            Side::Right => Side::Left,
+        }
+    }
+
     /// A left-side hardpoint placed on this side.
     pub fn place(self, left: Vec3) -> Vec3 {
         Vec3::new(left.x, self.sign() * left.y, left.z)
