@@ -7,6 +7,7 @@
 
 use crate::output::Progress;
 pub use elastokin::suspensions::study::batch::*;
+pub use elastokin::suspensions::study::shard::Shard;
 use elastokin::suspensions::SuspensionFile;
 use rayon::prelude::*;
 
@@ -21,42 +22,6 @@ pub fn columns(shard: bool) -> Vec<String> {
     std::iter::once("variant").chain(FIGURES).chain(["error"]).chain(number).map(String::from).collect()
 }
 
-/// Shard `index` of `count` (1-based, as a job array numbers its tasks).
-///
-/// The split is contiguous and nearly equal: variant k (counting from 0) of V belongs to shard
-/// ⌊k·N/V⌋ + 1, so shard I holds variants ⌈(I−1)·V/N⌉ up to, not including, ⌈I·V/N⌉; shard sizes differ
-/// by at most one, and with more shards than variants some shards are empty.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Shard {
-    /// I, from 1 to `count`.
-    pub index: usize,
-    /// N, at least 1.
-    pub count: usize,
-}
-
-impl Shard {
-    /// Reads `I/N` with 1 ≤ I ≤ N.
-    pub fn parse(text: &str) -> Result<Shard, String> {
-        let form = "give the shard as I/N with 1 ≤ I ≤ N, e.g. --shard 3/16 for the third of 16 \
-                    (I counts from 1, as SLURM_ARRAY_TASK_ID does with --array=1-16)";
-        let (i, n) = text.split_once('/').ok_or_else(|| format!("'{text}' is not I/N: {form}"))?;
-        let whole = |s: &str| s.trim().parse::<usize>().ok();
-        match (whole(i), whole(n)) {
-            (Some(index), Some(count)) if 1 <= index && index <= count => Ok(Shard { index, count }),
-            (Some(_), Some(0)) => Err(format!("'{text}': N must be at least 1; {form}")),
-            (Some(_), Some(_)) => Err(format!("'{text}': I must be from 1 to N; {form}")),
-            _ => Err(format!("'{text}' is not two whole numbers I/N: {form}")),
-        }
-    }
-
-    /// The variants (0-based positions) of this shard among `total`.
-    pub fn range(self, total: usize) -> std::ops::Range<usize> {
-        // u128: I·V cannot overflow however large a shard count is given.
-        let start = |i: usize| ((i as u128 * total as u128).div_ceil(self.count as u128)) as usize;
-        start(self.index - 1)..start(self.index)
-    }
-}
-
 /// Runs every variant, `files[k]` being `variants[k]` applied, on the rayon pool, counting each one done on
 /// `progress`.
 pub fn run_all(variants: &[Variant], files: &[SuspensionFile], progress: &Progress) -> Vec<Result<Outcome, String>> {
@@ -69,42 +34,4 @@ pub fn run_all(variants: &[Variant], files: &[SuspensionFile], progress: &Progre
             r
         })
         .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn shards_split_the_variants_contiguously_and_nearly_equally() {
-        for total in [1, 2, 5, 6, 7, 16, 100] {
-            for count in [1, 2, 3, 4, 7, 8, 16, 150] {
-                let ranges: Vec<_> = (1..=count).map(|index| Shard { index, count }.range(total)).collect();
-                // Back to back from 0 to V: every variant in exactly one shard.
-                assert_eq!(ranges[0].start, 0);
-                assert_eq!(ranges[count - 1].end, total);
-                for pair in ranges.windows(2) {
-                    assert_eq!(pair[0].end, pair[1].start);
-                }
-                let sizes: Vec<usize> = ranges.iter().map(|r| r.len()).collect();
-                assert!(sizes.iter().max().unwrap() - sizes.iter().min().unwrap() <= 1, "{total}/{count}: {sizes:?}");
-                // The documented rule: variant k is in shard ⌊k·N/V⌋ + 1.
-                for (i, r) in ranges.iter().enumerate() {
-                    for k in r.clone() {
-                        assert_eq!(k * count / total, i, "variant {k} of {total} in {count} shards");
-                    }
-                }
-            }
-        }
-    }
-
-    #[test]
-    fn a_shard_is_i_of_n_with_i_from_1_to_n() {
-        assert_eq!(Shard::parse("1/3"), Ok(Shard { index: 1, count: 3 }));
-        assert_eq!(Shard::parse("16/16"), Ok(Shard { index: 16, count: 16 }));
-        for bad in ["0/3", "4/3", "1/0", "abc", "1/", "/3", "-1/3", "1.5/3", "1/3/4"] {
-            let e = Shard::parse(bad).unwrap_err();
-            assert!(e.contains("I/N with 1 ≤ I ≤ N") && e.contains(bad), "{bad}: {e}");
-        }
-    }
 }

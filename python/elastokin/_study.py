@@ -113,9 +113,9 @@ def _numbered(rows: List[Dict[str, Any]], first: int) -> List[Dict[str, Any]]:
 
 
 def _split(count: int, chunks: int) -> List[Tuple[int, int]]:
-    """Contiguous blocks ``[start, end)``: variant k of ``count`` in block ⌊k·chunks/count⌋ (the shard rule)."""
-    bounds = [-(-j * count // chunks) for j in range(chunks + 1)]
-    return [(bounds[j], bounds[j + 1]) for j in range(chunks) if bounds[j] < bounds[j + 1]]
+    """Contiguous blocks ``[start, end)``: variant k of ``count`` in block ⌊k·chunks/count⌋, the library's
+    shard rule (``elastokin batch --shard``), empty blocks left out."""
+    return _native.shard_blocks(count, chunks)
 
 
 def _run_chunk(document: Tuple[str, str], variants: List[_Variant], first: int) -> List[Dict[str, Any]]:

@@ -5,10 +5,11 @@
 
 use elastokin_solver::Mode;
 use elastokin_suspensions::analysis::wheel_compliance;
-use elastokin_suspensions::study::batch::{self, Variant};
-use elastokin_suspensions::kc::{self, Analysis, Cell, Settings, Table};
 use elastokin_suspensions::document::{parse_document, parse_model};
 use elastokin_suspensions::file::read_input;
+use elastokin_suspensions::kc::{self, Analysis, Cell, Settings, Table};
+use elastokin_suspensions::study::batch::{self, Variant};
+use elastokin_suspensions::study::shard::Shard;
 use elastokin_suspensions::{LoadPoint, Rig, Side, SuspensionFile};
 use numpy::{PyArray1, PyArray2};
 use pyo3::create_exception;
@@ -368,6 +369,20 @@ fn parameter(name: &str) -> PyResult<&'static str> {
     Ok(analysis(name)?.parameter())
 }
 
+/// The contiguous blocks `[start, end)` of `count` variants in `chunks` shards, empty ones left out: the
+/// shard rule of `elastokin batch --shard I/N`, so that a study's tasks take the command's blocks.
+#[pyfunction]
+fn shard_blocks(count: usize, chunks: usize) -> PyResult<Vec<(usize, usize)>> {
+    if chunks == 0 {
+        return Err(PyValueError::new_err("chunks must be at least 1"));
+    }
+    Ok((1..=chunks)
+        .map(|index| Shard { index, count: chunks }.range(count))
+        .filter(|r| !r.is_empty())
+        .map(|r| (r.start, r.end))
+        .collect())
+}
+
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
@@ -376,6 +391,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<scene::SceneSweep>()?;
     m.add_function(wrap_pyfunction!(analyses, m)?)?;
     m.add_function(wrap_pyfunction!(parameter, m)?)?;
+    m.add_function(wrap_pyfunction!(shard_blocks, m)?)?;
     m.add("MAX_VARIANTS", batch::MAX_VARIANTS)?;
     m.add("VERSION", env!("CARGO_PKG_VERSION"))?;
     m.add("Error", py.get_type::<Error>())?;

@@ -10,8 +10,9 @@ use elastokin_core::{BodyRef, ElementReport, JointKind, Model, Pose, Vec3};
 use elastokin_elements::{PointForce, PointTorque, RotationLaw};
 use elastokin_solver::{JointReaction, LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult};
 use elastokin_suspensions::analysis::{walk, SweepLimit};
+use elastokin_suspensions::build::{joint_spec, JointGeometry};
 use elastokin_suspensions::description::general::{
-    joint_spec, Axis, BushingDef, JointGeometry, Place, SpringDef, Stiffness, StopDef, StopType, CHASSIS,
+    Axis, BushingDef, Place, SpringDef, Stiffness, StopDef, StopType, CHASSIS,
 };
 use elastokin_suspensions::kc::{mode_word, MAX_STEPS};
 use elastokin_suspensions::Side;

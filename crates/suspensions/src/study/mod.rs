@@ -1,4 +1,6 @@
 //! Design studies: many variants of one model, each a model file edited at JSON pointers, run and judged
-//! alike ([`batch`]); the command splits them into shards and Python spreads them over workers.
+//! alike ([`batch`]), cut into contiguous shards ([`shard`]) that the command's job arrays and Python's
+//! workers each take one of.
 
 pub mod batch;
+pub mod shard;
