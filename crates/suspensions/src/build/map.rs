@@ -9,7 +9,7 @@
 //! through the builder. A template's items are those of its expansion into the general form.
 
 use crate::build::rig::{RACK, RACK_SLIDE, RACK_TRAVEL, STEERING_LINK, TIE_ROD, WHEEL_TRAVEL};
-use crate::description::general::{GeneralCorner, LoadDef};
+use crate::description::general::{BushingDef, GeneralCorner, JointDef, LoadDef, SpringDef, StopDef};
 use crate::description::place::part_name;
 use crate::description::Side;
 use elastokin_core::{BodyId, ElementId, JointId, Model};
@@ -51,6 +51,36 @@ pub(crate) fn load_labels(load: &LoadDef, prefix: &str) -> (Option<String>, Opti
     (force, torque)
 }
 
+/// The names of joints, bushings, springs and stops, in that order.
+fn parts<'a>(
+    joints: &'a [JointDef],
+    bushings: &'a [BushingDef],
+    springs: &'a [SpringDef],
+    stops: &'a [StopDef],
+) -> [Vec<&'a str>; 4] {
+    [
+        joints.iter().map(|j| j.name.as_str()).collect(),
+        bushings.iter().map(|b| b.name.as_str()).collect(),
+        springs.iter().map(|sp| sp.name.as_str()).collect(),
+        stops.iter().map(|st| st.name.as_str()).collect(),
+    ]
+}
+
+/// Each entry's key under `under` (`""` or `"axle."`) with its name: the bodies, then `parts` (joints,
+/// bushings, springs, stops).
+fn entries<'a>(
+    under: &str,
+    bodies: impl Iterator<Item = &'a String>,
+    parts: &[Vec<&'a str>; 4],
+) -> Vec<(String, &'a str)> {
+    let mut out: Vec<(String, &str)> =
+        bodies.enumerate().map(|(k, name)| (format!("{under}bodies[{k}]"), name.as_str())).collect();
+    for (list, names) in ["joints", "bushings", "springs", "stops"].into_iter().zip(parts) {
+        out.extend(names.iter().enumerate().map(|(k, name)| (format!("{under}{list}[{k}]"), *name)));
+    }
+    out
+}
+
 impl BuildMap {
     /// The map of `model`, built from `general` with its corners on `sides` (each side with its parts'
     /// name prefix: `[(Left, "")]` for a lone corner, `[(Left, "left "), (Right, "right ")]` for an axle).
@@ -77,20 +107,12 @@ impl BuildMap {
         for &(side, prefix) in sides {
             let named = |n: &str| vec![part_name(prefix, n)];
             let s = Some(side);
-            for (k, b) in general.bodies.iter().enumerate() {
-                item(format!("bodies[{k}]"), &b.name, s, &named(&b.name));
-            }
-            for (k, j) in general.joints.iter().enumerate() {
-                item(format!("joints[{k}]"), &j.name, s, &named(&j.name));
-            }
-            for (k, b) in general.bushings.iter().enumerate() {
-                item(format!("bushings[{k}]"), &b.name, s, &named(&b.name));
-            }
-            for (k, sp) in general.springs.iter().enumerate() {
-                item(format!("springs[{k}]"), &sp.name, s, &named(&sp.name));
-            }
-            for (k, st) in general.stops.iter().enumerate() {
-                item(format!("stops[{k}]"), &st.name, s, &named(&st.name));
+            for (key, name) in entries(
+                "",
+                general.bodies.iter().map(|b| &b.name),
+                &parts(&general.joints, &general.bushings, &general.springs, &general.stops),
+            ) {
+                item(key, name, s, &named(name));
             }
             for (k, bar) in general.anti_roll_bars.iter().enumerate() {
                 item(format!("anti_roll_bars[{k}]"), &bar.name, s, &bar.part_names(prefix));
@@ -108,21 +130,9 @@ impl BuildMap {
             item(format!("anti_roll_bars[{k}]"), &bar.name, None, std::slice::from_ref(&bar.name));
         }
         if let Some(axle) = &general.axle {
-            let own = |n: &str| vec![n.to_string()];
-            for (k, b) in axle.bodies.iter().enumerate() {
-                item(format!("axle.bodies[{k}]"), &b.name, None, &own(&b.name));
-            }
-            for (k, j) in axle.joints.iter().enumerate() {
-                item(format!("axle.joints[{k}]"), &j.name, None, &own(&j.name));
-            }
-            for (k, b) in axle.bushings.iter().enumerate() {
-                item(format!("axle.bushings[{k}]"), &b.name, None, &own(&b.name));
-            }
-            for (k, sp) in axle.springs.iter().enumerate() {
-                item(format!("axle.springs[{k}]"), &sp.name, None, &own(&sp.name));
-            }
-            for (k, st) in axle.stops.iter().enumerate() {
-                item(format!("axle.stops[{k}]"), &st.name, None, &own(&st.name));
+            let shared = parts(&axle.joints, &axle.bushings, &axle.springs, &axle.stops);
+            for (key, name) in entries("axle.", axle.bodies.iter().map(|b| &b.name), &shared) {
+                item(key, name, None, &[name.to_string()]);
             }
             if axle.steering_link.is_some() {
                 item("axle.steering_link".into(), STEERING_LINK, None, &rod(STEERING_LINK));
