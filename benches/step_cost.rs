@@ -7,7 +7,7 @@
 
 use elastokin::elements::{Bushing, CoilSpring, PointForce};
 use elastokin::prelude::*;
-use elastokin::solver::kkt_factor::KktFactor;
+use elastokin::solver::kkt::KktFactor;
 use std::hint::black_box;
 use std::time::Instant;
 

@@ -13,7 +13,7 @@
 //! each result the model file's SHA-256; indicatif draws progress bars on a terminal.
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
-use elastokin::solver::{Mode, SolverOptions, StaticSolver};
+use elastokin::solver::{LoadPath, Mode, SolverOptions, StaticSolver};
 use elastokin::suspensions::import::chrono::Imported;
 use elastokin::suspensions::{Rig, Side, SuspensionFile};
 use std::path::{Path, PathBuf};
@@ -27,7 +27,7 @@ use elastokin::suspensions::kc::{self, Analysis, Settings, SuiteEvent, Tolerance
 use output::{note, write_table, Failure, Part, Progress, Provenance, Staging, Stdout};
 
 /// The most load steps a sweep may take (the suite's limit, which its advice on steps respects).
-pub use kc::MAX_STEPS;
+pub use elastokin::solver::MAX_STEPS;
 
 const EXIT_STATUS: &str = "\
 Exit status: 0 success; 1 a run that failed while solving or writing (previous results are left \
@@ -245,14 +245,8 @@ pub enum WheelName {
 
 fn parse_steps(text: &str) -> Result<usize, String> {
     let n: u64 = text.trim().parse().map_err(|_| format!("'{text}' is not a whole number of steps"))?;
-    match usize::try_from(n) {
-        Ok(n @ 1..=MAX_STEPS) => Ok(n),
-        Ok(0) => Err("a sweep needs at least 1 step".into()),
-        _ => Err(format!(
-            "at most {MAX_STEPS} steps: every step keeps the solved model in memory and costs solver time; \
-             for a finer look, narrow the sweep with --range"
-        )),
-    }
+    let n = usize::try_from(n).unwrap_or(usize::MAX);
+    LoadPath::check_steps(n).map(|()| n)
 }
 
 fn parse_arc_step(text: &str) -> Result<f64, String> {

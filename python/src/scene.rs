@@ -14,7 +14,7 @@ use elastokin_suspensions::build::{joint_spec, JointGeometry};
 use elastokin_suspensions::description::general::{
     Axis, BushingDef, Place, SpringDef, Stiffness, StopDef, StopType, CHASSIS,
 };
-use elastokin_suspensions::kc::{mode_word, MAX_STEPS};
+use elastokin_suspensions::kc::mode_word;
 use elastokin_suspensions::Side;
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::{PyKeyError, PyValueError};
@@ -448,9 +448,7 @@ impl Scene {
         constraint_tolerance: f64,
     ) -> PyResult<SceneSweep> {
         let mode = crate::mode_from_word(mode)?;
-        if steps == 0 || steps > MAX_STEPS {
-            return Err(PyValueError::new_err(format!("steps must be from 1 to {MAX_STEPS}, got {steps}")));
-        }
+        LoadPath::check_steps(steps).map_err(PyValueError::new_err)?;
         if let Some(step) = arc_step.filter(|v| !(v.is_finite() && *v > 0.0)) {
             return Err(PyValueError::new_err(format!(
                 "arc_step must be a positive change of the load parameter, got {step}"

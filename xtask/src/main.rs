@@ -15,6 +15,8 @@ use std::process::{Command, ExitCode};
 
 mod bench;
 mod screenshot;
+#[cfg(test)]
+mod tidy;
 
 /// Every allocation is counted, so the benchmark can report peak memory of a measured section.
 #[global_allocator]

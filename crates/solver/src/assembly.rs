@@ -280,9 +280,9 @@ impl Assembly {
 
     /// The sparsity pattern of the KKT system this assembly fills, for [`KktFactor::analyze`].
     ///
-    /// [`KktFactor::analyze`]: crate::kkt_factor::KktFactor::analyze
-    pub fn kkt_pattern(&self) -> crate::kkt_factor::KktPattern {
-        crate::kkt_factor::KktPattern {
+    /// [`KktFactor::analyze`]: crate::kkt::KktFactor::analyze
+    pub fn kkt_pattern(&self) -> crate::kkt::KktPattern {
+        crate::kkt::KktPattern {
             n: self.n,
             m: self.m(),
             k_col_ptr: self.k_col_ptr.clone(),

@@ -6,7 +6,7 @@
 //! ```
 //!
 //! Built on nalgebra only (no faer), for tests and benchmarks of
-//! [`crate::kkt_factor`]. [`solve_dense_pivoted`] uses a full-pivoting LU of the
+//! [`crate::kkt`]. [`solve_dense_pivoted`] uses a full-pivoting LU of the
 //! true KKT matrix plus two steps of iterative refinement, and returns `None`
 //! (never NaN) when the matrix is numerically singular.
 //! [`solve_dense_least_squares`] gives the minimum-norm least-squares solution

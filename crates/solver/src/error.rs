@@ -1,6 +1,6 @@
 //! Typed errors of the solver. Each names what failed and says what to change.
 
-use crate::kkt_factor::FactorError;
+use crate::kkt::FactorError;
 use elastokin_core::ModelError;
 use thiserror::Error;
 

@@ -29,15 +29,23 @@
 //! ```
 //!
 //! ## Layers
-//! - [`kkt_factor`]: the low-level tier — [`KktFactor`](kkt_factor::KktFactor) with explicit workspaces,
-//!   `analyze` once, `factorize` and `solve_in_place` per step. It factorizes the quasi-definite
-//!   augmented-Lagrangian form `[K + ρJᵀJ, Jᵀ; J, −(ε/ρ)I]` after symmetric scaling and refines against
-//!   the true KKT, because plain, Bunch–Kaufman and dynamically regularised LDLᵀ on the saddle-point
-//!   matrix either fail or lose the multipliers (joint forces) on stiff models (DESIGN §5; module docs).
-//! - [`assembly`]: the pattern and slot maps of one model; values written in place.
-//! - [`solver`]: [`StaticSolver`] — equilibrium, sweeps in both modes, arc length, diagnostics.
-//! - [`dense_reference`]: a pivoted dense solve of the true KKT, the independent reference of tests and
-//!   benchmarks.
+//! Lowest first; each module imports only those before it (`xtask/src/tidy.rs` keeps the rule,
+//! `ARCHITECTURE.md` draws it).
+//! - [`kkt`]: the KKT system and its factorizations behind one interface ([`KktBackend`]), one module a
+//!   stage: the pattern, the scaling, the refinement written once for every backend, the quasi-definite
+//!   sparse LDLᵀ ([`KktFactor`](kkt::KktFactor): `analyze` once, `factorize` and `solve_in_place` per
+//!   step, explicit workspaces), the dense LU, and the automatic choice. The sparse path factorizes the
+//!   augmented-Lagrangian form `[K + ρJᵀJ, Jᵀ; J, −(ε/ρ)I]` after symmetric scaling and refines against the
+//!   true KKT, because plain, Bunch–Kaufman and dynamically regularised LDLᵀ on the saddle-point matrix
+//!   either fail or lose the multipliers (joint forces) on stiff models (see [`kkt::sparse_ldlt`]).
+//!   [`dense_reference`] beside it: a pivoted dense solve of the true KKT, the independent reference of
+//!   tests and benchmarks.
+//! - [`error`] and [`redundancy`] (which constraint rows repeat others, by a rank test of `J` alone).
+//! - [`assembly`]: the pattern and slot maps of one model; values written in place. [`options`]: the mode,
+//!   the load path and its step limit, the state, the solver's options.
+//! - [`results`]: what a solve returns.
+//! - [`solver`]: [`StaticSolver`] — equilibrium, sweeps in both modes, the predictor, limit points, arc
+//!   length, diagnostics.
 //!
 //! ## Dependencies
 //! faer for the sparse LDLᵀ; nalgebra for the small fixed-size algebra and the dense reference;
@@ -49,15 +57,14 @@
 pub mod assembly;
 pub mod dense_reference;
 pub mod error;
-pub mod kkt_backend;
-pub mod kkt_factor;
+pub mod kkt;
+pub mod options;
+pub mod redundancy;
 pub mod results;
 pub mod solver;
 
 pub use error::SolverError;
-pub use kkt_backend::{Accuracy, BackendChoice, KktBackend};
-pub use kkt_factor::{FactorCounters, KktOptions};
+pub use kkt::{Accuracy, BackendChoice, FactorCounters, KktBackend, KktOptions};
+pub use options::{ArcStep, LoadPath, Mode, SolverOptions, State, MAX_STEPS};
 pub use results::{Diagnostics, JointReaction, LimitPoint, RedundantRow, StepResult, Sweep};
-pub use solver::{
-    ArcStep, Counters, LoadPath, Mode, SolverOptions, SolverWorkspace, State, StaticSolver, LIMIT_POINT_TOLERANCE,
-};
+pub use solver::{Counters, SolverWorkspace, StaticSolver, LIMIT_POINT_TOLERANCE};

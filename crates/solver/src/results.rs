@@ -1,7 +1,7 @@
 //! What a solve returns: per-step states, joint reactions, element forces, diagnostics.
 
 use crate::error::SolverError;
-use crate::solver::Mode;
+use crate::options::Mode;
 use elastokin_core::{ElementReport, Model, Pose, Vec3};
 
 /// A constraint row dropped because it repeats what other rows already constrain.

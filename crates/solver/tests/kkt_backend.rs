@@ -5,10 +5,8 @@
 //! Sign convention: `[K + S, Jᵀ; J, 0] [x; y] = [a; b]`, `S` skew.
 
 use elastokin_solver::dense_reference::solve_dense_pivoted;
-use elastokin_solver::kkt_backend::{
-    Accuracy, AutoKkt, BackendChoice, DenseLu, KktBackend, KktValues, DENSE_MAX_ORDER,
-};
-use elastokin_solver::kkt_factor::{FactorError, KktOptions, KktPattern};
+use elastokin_solver::kkt::{Accuracy, AutoKkt, BackendChoice, DenseLu, KktBackend, KktValues, DENSE_MAX_ORDER};
+use elastokin_solver::kkt::{FactorError, KktOptions, KktPattern};
 use nalgebra::DMatrix;
 
 mod common;

@@ -6,9 +6,8 @@
 //! Sign convention of the KKT system: `[K Jᵀ; J 0] [x; y] = [a; b]`.
 
 use elastokin_solver::dense_reference::{solve_dense_least_squares, solve_dense_pivoted};
-use elastokin_solver::kkt_factor::{
-    redundant_rows, try_redundant_rows, FactorError, FactorKind, KktFactor, KktOptions, KktPattern,
-};
+use elastokin_solver::kkt::{FactorError, FactorKind, KktFactor, KktOptions, KktPattern};
+use elastokin_solver::redundancy::{redundant_rows, try_redundant_rows};
 use nalgebra::{DMatrix, DVector};
 
 mod common;

@@ -98,7 +98,7 @@ fn an_analysis_on_the_wrong_rig_says_how_the_wheel_must_be_held() {
 
 #[test]
 fn every_solver_failure_reads_without_the_librarys_words() {
-    use elastokin_solver::kkt_factor::FactorError;
+    use elastokin_solver::kkt::FactorError;
     use elastokin_solver::SolverError;
     let failures = [
         SolverError::LimitPoint { reached: 0.0065 },

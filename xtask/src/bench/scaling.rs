@@ -12,7 +12,7 @@ use super::Settings;
 use elastokin_core::{BodyRef, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
 use elastokin_elements::{Bushing, CoilSpring, PointForce};
 use elastokin_solver::assembly::{Assembly, Tangent};
-use elastokin_solver::kkt_factor::{KktFactor, KktOptions};
+use elastokin_solver::kkt::{KktFactor, KktOptions};
 use elastokin_solver::solver::redundant_rows_at_design;
 use elastokin_solver::{LoadPath, Mode, SolverOptions, StaticSolver, Sweep};
 

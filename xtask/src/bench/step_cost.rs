@@ -12,8 +12,8 @@ use super::Settings;
 use elastokin_core::ElementEval;
 use elastokin_solver::assembly::{Assembly, Tangent};
 use elastokin_solver::dense_reference::solve_dense_pivoted;
-use elastokin_solver::kkt_backend::{Accuracy, AutoKkt, BackendChoice, KktBackend, KktValues};
-use elastokin_solver::kkt_factor::{KktFactor, KktOptions, KktPattern};
+use elastokin_solver::kkt::{Accuracy, AutoKkt, BackendChoice, KktBackend, KktValues};
+use elastokin_solver::kkt::{KktFactor, KktOptions, KktPattern};
 use elastokin_solver::{LoadPath, Mode, SolverOptions, StaticSolver};
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
@@ -407,7 +407,7 @@ pub fn run(s: &Settings) -> SectionOutput {
 const CROSSOVER_CELLS: [usize; 9] = [2, 3, 4, 6, 8, 9, 10, 12, 24];
 
 /// The dense LU against the sparse LDLᵀ by KKT order, on the full tangent of the scaling section's chain
-/// of suspension-like cells: where [`elastokin_solver::kkt_backend::DENSE_MAX_ORDER`] comes from. The
+/// of suspension-like cells: where [`elastokin_solver::kkt::DENSE_MAX_ORDER`] comes from. The
 /// sparse LDLᵀ is timed on the symmetric part alone (the skew part would cost it GMRES iterations on
 /// top), so the crossover it gives is the conservative one for the dense LU.
 fn crossover(s: &Settings, notes: &mut Vec<String>) -> Table {

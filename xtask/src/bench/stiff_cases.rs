@@ -15,7 +15,8 @@ use super::Settings;
 use elastokin_core::{BodyId, BodyRef, JointSpec, Model, Pose, Vec3, BODY_DOFS};
 use elastokin_solver::assembly::{Assembly, Tangent};
 use elastokin_solver::dense_reference::{equilibrate, solve_dense_pivoted};
-use elastokin_solver::kkt_factor::{redundant_rows, KktFactor, KktOptions};
+use elastokin_solver::kkt::{KktFactor, KktOptions};
+use elastokin_solver::redundancy::redundant_rows;
 use elastokin_solver::{LoadPath, Mode, SolverOptions, StaticSolver, StepResult};
 use elastokin_suspensions::{Corner, Rig, Side, SuspensionFile, Wheel};
 use nalgebra::DMatrix;
@@ -374,7 +375,7 @@ struct SymmetricCheck {
     backward_error: f64,
     /// What the factorization's own solve report says: refinement steps, its componentwise backward
     /// error, whether it counted itself converged.
-    report: elastokin_solver::kkt_factor::SolveReport,
+    report: elastokin_solver::kkt::SolveReport,
 }
 
 /// The symmetric part of the tangent at `state`, solved by a `KktFactor` of its own and by the dense

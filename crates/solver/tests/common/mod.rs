@@ -1,7 +1,7 @@
 //! Random KKT systems and error measures shared by the factorization tests.
 #![allow(dead_code)]
 
-use elastokin_solver::kkt_factor::KktPattern;
+use elastokin_solver::kkt::KktPattern;
 use nalgebra::DMatrix;
 
 /// xorshift64* — deterministic, dependency-free.

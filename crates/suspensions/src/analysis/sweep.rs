@@ -5,7 +5,7 @@
 use crate::analysis::compliance::compliance_with;
 use crate::build::{Corner, Rig};
 use crate::wheel::Wheel;
-use elastokin_solver::{ArcStep, LoadPath, Mode, SolverError, State, StaticSolver, StepResult, Sweep};
+use elastokin_solver::{ArcStep, LoadPath, Mode, SolverError, State, StaticSolver, StepResult, Sweep, MAX_STEPS};
 
 /// Refuses a corner held differently from what the analysis needs: `rigs` lists the rigs it accepts.
 pub(crate) fn require_rig(corner: &Corner, rigs: &[Rig]) -> Result<(), SolverError> {
@@ -60,7 +60,7 @@ pub struct SweepExtras {
     /// ([`StaticSolver::arc_length_sweep_from`]) from the last step before it, with steps of `step` in the
     /// sweep's own unit (N, N·m or m): the change of load or travel of the first arc-length step
     /// ([`ArcStep::Load`]). At most [`MAX_ARC_STEPS_PER_RANGE`] steps of that size per range are taken,
-    /// and at most [`crate::kc::MAX_STEPS`].
+    /// and at most [`MAX_STEPS`].
     pub through_limits: Option<f64>,
 }
 
@@ -142,7 +142,7 @@ pub fn walk(
             why: format!("it must be a positive length in the sweep's own unit (N, N·m or m), got {step}"),
         });
     }
-    let most = (MAX_ARC_STEPS_PER_RANGE * range / step).ceil().clamp(1.0, crate::kc::MAX_STEPS as f64) as usize;
+    let most = (MAX_ARC_STEPS_PER_RANGE * range / step).ceil().clamp(1.0, MAX_STEPS as f64) as usize;
     let first_row = steps.len();
     let mut from = solver.state_of(&steps[first_row - 1]);
     let arc =

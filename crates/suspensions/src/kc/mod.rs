@@ -20,19 +20,17 @@ pub use reduce::{COMPLIANCE_LOAD, COMPLIANCE_RESPONSE};
 pub use report::{significant, Accuracy, AnalysisReport, Cell, Figure, KcReport, Skipped, Table, Warning};
 pub use settings::{
     mode_from_word, mode_word, Analysis, AnalysisError, Settings, Tolerance, ALL, MAX_RANGE_FRACTION, MAX_RANGE_LOAD,
-    MAX_RANGE_TRAVEL, MAX_STEPS, MIN_RANGE,
+    MAX_RANGE_TRAVEL, MIN_RANGE,
 };
 pub use travel::ideal_outer_steer;
 
 use crate::file::SuspensionFile;
+use elastokin_solver::LoadPath;
 
 /// Runs one analysis on the model in `file`.
 pub fn run(analysis: Analysis, file: &SuspensionFile, settings: &Settings) -> Result<AnalysisReport, AnalysisError> {
-    if settings.steps == 0 || settings.steps > MAX_STEPS {
-        return Err(AnalysisError {
-            analysis: analysis.name(),
-            message: format!("--steps must be from 1 to {MAX_STEPS}, got {}", settings.steps),
-        });
+    if let Err(message) = LoadPath::check_steps(settings.steps) {
+        return Err(AnalysisError { analysis: analysis.name(), message });
     }
     if let Some(step) = settings.arc_step.filter(|v| !(v.is_finite() && *v > 0.0)) {
         let got = if step.is_finite() { format!("{step:e}") } else { "a value that is not a finite number".into() };

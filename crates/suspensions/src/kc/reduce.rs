@@ -6,8 +6,8 @@ use crate::analysis::{SweepLimit, SweepOutput};
 use crate::file::SuspensionFile;
 use crate::kc::chart::{Chart, Scale, Series, YAxis};
 use crate::kc::report::{significant, Accuracy, AnalysisReport, Cell, Figure, Table, Warning};
-use crate::kc::settings::{mode_word, Analysis, Settings, MAX_STEPS};
-use elastokin_solver::Mode;
+use crate::kc::settings::{mode_word, Analysis, Settings};
+use elastokin_solver::{Mode, MAX_STEPS};
 
 /// Short model name for plot subtitles (the part before any parenthesis).
 pub(super) fn short_name(file: &SuspensionFile) -> String {

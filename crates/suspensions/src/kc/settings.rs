@@ -109,9 +109,6 @@ impl Analysis {
     }
 }
 
-/// The most load steps a sweep may take: every step keeps its solved state in memory and costs solver time.
-pub const MAX_STEPS: usize = 20_000;
-
 /// The largest estimated error a run accepts before it warns.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Tolerance {

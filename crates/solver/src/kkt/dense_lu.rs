@@ -29,10 +29,12 @@
 //! --only step-cost`). This kernel reuses one buffer, reads its pivots, and skips the zero multipliers
 //! of a sparse KKT column by column.
 
-use super::{Accuracy, KktBackend, KktValues};
-use crate::kkt_factor::{
-    check_values, max_abs, round_to_powers_of_two, validate, FactorCounters, FactorError, FactorReport, KktOptions,
-    KktPattern, SolveReport,
+use crate::kkt::pattern::{validate, KktPattern};
+use crate::kkt::refinement::backward_error;
+use crate::kkt::scaling::round_to_powers_of_two;
+use crate::kkt::{
+    check_values, max_abs, Accuracy, FactorCounters, FactorError, FactorReport, KktBackend, KktOptions, KktValues,
+    SolveReport,
 };
 
 /// A row's largest scaled entry may drift this far from 1 (either way) before the scaling is renewed.
@@ -302,7 +304,7 @@ impl DenseLu {
             r[row] -= v * z[col];
             den[row] += (v * z[col]).abs();
         });
-        super::backward_error(r, den, &self.row_norm, &self.rhs0, z)
+        backward_error(r, den, &self.row_norm, &self.rhs0, z)
     }
 }
 

@@ -130,263 +130,24 @@
 //!   set of duplicated rows share the load) while `x` and `Jx = b` stay exact.
 //!
 //! Both lists are in the ORIGINAL numbering. Which member of a dependent set is
-//! flagged depends on the elimination order; [`redundant_rows`] gives the
+//! flagged depends on the elimination order; [`redundant_rows`](crate::redundancy::redundant_rows) gives the
 //! order-independent answer "rows dependent on earlier rows".
 
+use crate::kkt::pattern::{amd_order, build_csc, transpose_pattern, validate, KktPattern};
+use crate::kkt::scaling::round_to_powers_of_two;
+use crate::kkt::{
+    alloc_err, check_values, max_abs, try_vec, Accuracy, FactorCounters, FactorError, FactorKind, FactorReport,
+    KktBackend, KktOptions, KktValues, SolveReport,
+};
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, simplicial, supernodal, CholeskySymbolicParams, LdltRef, SymbolicCholesky,
     SymbolicCholeskyRaw, SymmetricOrdering,
 };
-use faer::sparse::linalg::{amd, SupernodalThreshold};
+use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side, Spec};
-
-/// Fixed sparsity of one KKT system: K's upper triangle (incl. diagonal) and J,
-/// both column-compressed (CSC).
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct KktPattern {
-    /// Number of body coordinates (rows/columns of `K`, columns of `J`).
-    pub n: usize,
-    /// Number of constraint rows (rows of `J`).
-    pub m: usize,
-    /// Column pointers of the upper triangle of `K` (length `n + 1`).
-    pub k_col_ptr: Vec<usize>,
-    /// Row indices of the upper triangle of `K`, sorted strictly increasing per
-    /// column, all `≤` the column index; every diagonal entry must be present
-    /// (store an explicit zero for a structurally zero diagonal).
-    pub k_row_idx: Vec<usize>,
-    /// Column pointers of `J` (m×n, length `n + 1`).
-    pub j_col_ptr: Vec<usize>,
-    /// Row indices of `J`, sorted strictly increasing per column, `< m`.
-    pub j_row_idx: Vec<usize>,
-}
-
-/// Which faer LDLᵀ kernel to use.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum FactorKind {
-    /// faer decides from the flop count per factor entry (default).
-    #[default]
-    Auto,
-    /// Column-by-column (cheaper for very sparse factors, e.g. one corner).
-    Simplicial,
-    /// Dense supernodes (faster when the factor has dense blocks).
-    Supernodal,
-}
-
-/// Tuning parameters of [`KktFactor`]. All thresholds are dimensionless: they
-/// apply to the Ruiz-scaled system, where the largest entry of every row is 1.
-#[derive(Clone, Debug, PartialEq)]
-pub struct KktOptions {
-    /// Augmented-Lagrangian penalty ρ in scaled units. `None` (default):
-    /// automatic, `max_k K̂_kk / max_i ‖Ĵ_i‖²` clamped to [1e-8, 1e8] (≈ 0.1…1
-    /// after scaling); `1/max_i ‖Ĵ_i‖²` when `K̂ = 0`.
-    pub rho: Option<f64>,
-    /// Quasi-definite regularization ε: the (2,2) block is `−(ε/ρ)I` in scaled
-    /// units. Default 1e-10 (see the module docs for the measurement).
-    pub epsilon: f64,
-    /// Maximum number of iterative-refinement steps per solve (default 3;
-    /// 1–2 are used on well-posed systems).
-    pub max_refinement: usize,
-    /// Refinement stops once the componentwise backward error is at or below
-    /// this (default `2·ε_mach`).
-    pub refinement_tol: f64,
-    /// Maximum number of Ruiz equilibration sweeps (default 20, stops early
-    /// once every row maximum is within [0.5, 2]; 0 disables scaling).
-    pub scaling_iterations: usize,
-    /// Dynamic regularization threshold: a pivot with `|d| ≤ pivot_threshold`
-    /// (with signed regularization: on the wrong side of `±pivot_threshold`) is
-    /// replaced. Must stay below `ε/ρ` so that redundant constraint rows keep
-    /// their `≈ −2ε/ρ` pivot. Default 1e-13.
-    pub pivot_threshold: f64,
-    /// Replacement magnitude of a regularized pivot (default 1e-8). Dynamic
-    /// regularization is off when this or `pivot_threshold` is 0; an exactly
-    /// zero pivot is then reported as [`FactorError::Singular`].
-    pub pivot_delta: f64,
-    /// Relative pivot size below which a body dof / constraint row is reported
-    /// as suspect in [`FactorReport`] (default 1e-8; for constraint rows this is
-    /// a relative orthogonal component of ≈ 1e-4).
-    pub suspect_tol: f64,
-    /// faer kernel selection (default [`FactorKind::Auto`]).
-    pub kind: FactorKind,
-    /// Pass `dynamic_regularization_signs` (+1 body, −1 constraint) to faer.
-    /// Default `false`: it overwrites legitimate negative body pivots (K
-    /// indefinite on the constraint manifold) by `+pivot_delta`, see the
-    /// module docs.
-    pub signed_regularization: bool,
-}
-
-impl Default for KktOptions {
-    fn default() -> Self {
-        Self {
-            rho: None,
-            epsilon: 1e-10,
-            max_refinement: 3,
-            refinement_tol: 2.0 * f64::EPSILON,
-            scaling_iterations: 20,
-            pivot_threshold: 1e-13,
-            pivot_delta: 1e-8,
-            suspect_tol: 1e-8,
-            kind: FactorKind::Auto,
-            signed_regularization: false,
-        }
-    }
-}
-
-/// Outcome of one numeric factorization. Pivot magnitudes are in scaled units.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct FactorReport {
-    /// Pivots replaced by dynamic regularization (both blocks).
-    pub regularized_pivots: usize,
-    /// Penalty ρ actually used (scaled units).
-    pub rho: f64,
-    /// Number of negative body pivots (not regularized). In exact arithmetic
-    /// this is the number of negative eigenvalues of `K` on the constraint
-    /// manifold `{Jx = 0}`: 0 for a stable equilibrium, > 0 past a limit or
-    /// bifurcation point.
-    pub negative_body_pivots: usize,
-    /// Smallest |pivot| among body coordinates (0 if `n = 0`).
-    pub min_body_pivot: f64,
-    /// Largest |pivot| among body coordinates (0 if `n = 0`).
-    pub max_body_pivot: f64,
-    /// Smallest |pivot| among constraint rows (0 if `m = 0`).
-    pub min_constraint_pivot: f64,
-    /// Largest |pivot| among constraint rows (0 if `m = 0`).
-    pub max_constraint_pivot: f64,
-    /// Body coordinates (original numbering, ascending) whose pivot was tiny
-    /// relative to their scale: directions nothing restrains (or unstable ones).
-    pub suspect_body_dofs: Vec<usize>,
-    /// Constraint rows (original numbering, ascending) whose pivot was ≈ −ε/ρ:
-    /// redundant constraints.
-    pub suspect_constraint_rows: Vec<usize>,
-}
-
-/// Outcome of one solve (residuals of the TRUE KKT system, original units).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct SolveReport {
-    /// Refinement steps performed (a final step that was discarded because it
-    /// did not improve the residual is included).
-    pub refinement_steps: usize,
-    /// `‖K x + Jᵀ y − a‖∞`.
-    pub residual_x: f64,
-    /// `‖J x − b‖∞`.
-    pub residual_y: f64,
-    /// Componentwise (Oettli–Prager) backward error of the final `[x; y]`,
-    /// `max_i |r_i| / (|KKT|·|[x; y]| + |[a; b]|)_i`, invariant under scaling; a row whose terms are
-    /// all at rounding level is measured normwise (see `kkt_backend::backward_error`).
-    pub backward_error: f64,
-    /// Whether `backward_error ≤ refinement_tol`.
-    pub converged: bool,
-    /// Whether the residuals and the backward error were measured. A solve for a Newton increment
-    /// (`Accuracy::Increment` of a dense backend) skips the measurement; its report then reads 0 and
-    /// `converged: false`.
-    pub measured: bool,
-}
-
-/// Work counters, cumulative over the lifetime of a [`KktFactor`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct FactorCounters {
-    /// Symbolic analyses (one per [`KktFactor::analyze`]).
-    pub symbolic_analyses: u64,
-    /// Successful numeric factorizations.
-    pub numeric_factorizations: u64,
-    /// Successful solves.
-    pub solves: u64,
-    /// Iterative-refinement steps over all solves.
-    pub refinement_steps: u64,
-}
-
-/// Errors of the KKT factorization. Every variant names the offending index.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum FactorError {
-    /// A CSC array is malformed.
-    #[error(
-        "invalid {matrix} pattern at column {col}: {reason}; pass CSC arrays with a column pointer \
-         of length n + 1 starting at 0, non-decreasing, ending at the number of stored entries, and \
-         strictly increasing in-range row indices within each column"
-    )]
-    InvalidPattern {
-        /// `"K"` or `"J"`.
-        matrix: &'static str,
-        /// Offending column (or the pointer index for pointer errors).
-        col: usize,
-        /// What is wrong.
-        reason: String,
-    },
-    /// The diagonal entry of `K` in column `col` is not stored.
-    #[error(
-        "K has no stored diagonal entry in column {col}; store every diagonal entry of K \
-         (an explicit 0.0 for a structurally zero one) in the upper-triangle pattern"
-    )]
-    MissingDiagonal {
-        /// Column of `K` lacking its diagonal.
-        col: usize,
-    },
-    /// An array has the wrong length.
-    #[error(
-        "{what} has length {got} but {expected} was expected; values must be aligned with the row \
-         index arrays given to analyze(), and the right-hand side must have length n + m"
-    )]
-    PatternMismatch {
-        /// Name of the array.
-        what: &'static str,
-        /// Required length.
-        expected: usize,
-        /// Length received.
-        got: usize,
-    },
-    /// A value is NaN or infinite.
-    #[error(
-        "{what}[{index}] is not finite; every stiffness, Jacobian and right-hand-side value must \
-         be finite (check the element that produced this entry)"
-    )]
-    NonFinite {
-        /// Name of the array.
-        what: &'static str,
-        /// Index into that array.
-        index: usize,
-    },
-    /// An option is out of range.
-    #[error("option {name} is invalid: {reason}")]
-    InvalidOption {
-        /// Option name.
-        name: &'static str,
-        /// Why.
-        reason: &'static str,
-    },
-    /// The factorization met a zero or non-finite pivot it could not regularize.
-    #[error(
-        "the equations are singular at {kind} {index}: a part is free to move where nothing holds it, or a \
-         joint repeats another; check the model's degrees of freedom and redundant joints, and add the \
-         missing mount or remove the repeated joint"
-    )]
-    Singular {
-        /// `"body coordinate"` or `"constraint row"`.
-        kind: &'static str,
-        /// Index within that block, original numbering.
-        index: usize,
-    },
-    /// [`KktFactor::solve_in_place`] was called without a valid factorization.
-    #[error("a solve was asked for before the equations were factorized for the current values")]
-    NotFactorized,
-    /// The computed solution is not finite (the right-hand side was left unchanged).
-    #[error(
-        "the solution is not finite (unknown {index}): the equations are numerically singular — a part \
-         is held by next to nothing or a joint nearly repeats another; check the model's degrees of \
-         freedom and redundant joints"
-    )]
-    NonFiniteSolution {
-        /// First non-finite index in `[x; y]`.
-        index: usize,
-    },
-    /// faer's symbolic analysis failed (index overflow / allocation).
-    #[error("symbolic analysis failed in faer: {0}")]
-    Analysis(String),
-    /// A workspace could not be allocated.
-    #[error("out of memory while allocating factorization workspace")]
-    OutOfMemory,
-}
 
 /// Reusable KKT factorization (see the module docs for the method).
 pub struct KktFactor {
@@ -459,226 +220,6 @@ impl std::fmt::Debug for KktFactor {
     }
 }
 
-// ---------------------------------------------------------------------------
-// Validation helpers
-// ---------------------------------------------------------------------------
-
-fn validate_col_ptr(matrix: &'static str, ncols: usize, col_ptr: &[usize], nnz: usize) -> Result<(), FactorError> {
-    if col_ptr.len() != ncols + 1 {
-        return Err(FactorError::InvalidPattern {
-            matrix,
-            col: col_ptr.len(),
-            reason: format!("column pointer has length {}, expected {}", col_ptr.len(), ncols + 1),
-        });
-    }
-    if col_ptr[0] != 0 {
-        return Err(FactorError::InvalidPattern {
-            matrix,
-            col: 0,
-            reason: format!("column pointer starts at {} instead of 0", col_ptr[0]),
-        });
-    }
-    for c in 0..ncols {
-        if col_ptr[c + 1] < col_ptr[c] {
-            return Err(FactorError::InvalidPattern { matrix, col: c, reason: "column pointer decreases".into() });
-        }
-    }
-    if col_ptr[ncols] != nnz {
-        return Err(FactorError::InvalidPattern {
-            matrix,
-            col: ncols,
-            reason: format!("column pointer ends at {} but {} row indices were given", col_ptr[ncols], nnz),
-        });
-    }
-    Ok(())
-}
-
-fn validate_rows(
-    matrix: &'static str,
-    ncols: usize,
-    nrows: usize,
-    col_ptr: &[usize],
-    row_idx: &[usize],
-    upper: bool,
-) -> Result<(), FactorError> {
-    for c in 0..ncols {
-        let rows = &row_idx[col_ptr[c]..col_ptr[c + 1]];
-        for (t, &r) in rows.iter().enumerate() {
-            let limit = if upper { c + 1 } else { nrows };
-            if r >= limit {
-                return Err(FactorError::InvalidPattern {
-                    matrix,
-                    col: c,
-                    reason: if upper {
-                        format!("row index {r} is below the diagonal (only the upper triangle may be stored)")
-                    } else {
-                        format!("row index {r} is out of range (number of rows is {nrows})")
-                    },
-                });
-            }
-            if t > 0 && rows[t - 1] >= r {
-                return Err(FactorError::InvalidPattern {
-                    matrix,
-                    col: c,
-                    reason: format!("row indices not strictly increasing ({} then {r})", rows[t - 1]),
-                });
-            }
-        }
-        if upper && rows.last() != Some(&c) {
-            return Err(FactorError::MissingDiagonal { col: c });
-        }
-    }
-    Ok(())
-}
-
-fn validate_j(m: usize, n: usize, col_ptr: &[usize], row_idx: &[usize]) -> Result<(), FactorError> {
-    validate_col_ptr("J", n, col_ptr, row_idx.len())?;
-    validate_rows("J", n, m, col_ptr, row_idx, false)
-}
-
-/// Checks a pattern and options as every KKT backend needs them: CSC arrays well formed, `K` upper with
-/// every diagonal stored, options in range.
-pub(crate) fn validate(pattern: &KktPattern, options: &KktOptions) -> Result<(), FactorError> {
-    check_options(options)?;
-    let (n, m) = (pattern.n, pattern.m);
-    validate_col_ptr("K", n, &pattern.k_col_ptr, pattern.k_row_idx.len())?;
-    validate_rows("K", n, n, &pattern.k_col_ptr, &pattern.k_row_idx, true)?;
-    validate_j(m, n, &pattern.j_col_ptr, &pattern.j_row_idx)
-}
-
-/// Rounds an equilibration to the nearest powers of two, so that scaling by it is exact.
-pub(crate) fn round_to_powers_of_two(scale: &mut [f64]) {
-    for si in scale.iter_mut() {
-        let p = si.log2().round().clamp(-1000.0, 1000.0);
-        *si = if p.is_finite() { p.exp2() } else { 1.0 };
-    }
-}
-
-pub(crate) fn check_values(what: &'static str, values: &[f64], expected: usize) -> Result<(), FactorError> {
-    if values.len() != expected {
-        return Err(FactorError::PatternMismatch { what, expected, got: values.len() });
-    }
-    if let Some(index) = values.iter().position(|v| !v.is_finite()) {
-        return Err(FactorError::NonFinite { what, index });
-    }
-    Ok(())
-}
-
-fn check_options(o: &KktOptions) -> Result<(), FactorError> {
-    let bad = |name, reason| Err(FactorError::InvalidOption { name, reason });
-    if let Some(rho) = o.rho {
-        if !(rho.is_finite() && rho > 0.0) {
-            return bad("rho", "must be finite and > 0");
-        }
-    }
-    if !(o.epsilon.is_finite() && o.epsilon > 0.0) {
-        return bad("epsilon", "must be finite and > 0");
-    }
-    if !(o.refinement_tol.is_finite() && o.refinement_tol >= 0.0) {
-        return bad("refinement_tol", "must be finite and >= 0");
-    }
-    if !(o.pivot_threshold.is_finite() && o.pivot_threshold >= 0.0) {
-        return bad("pivot_threshold", "must be finite and >= 0");
-    }
-    if !(o.pivot_delta.is_finite() && o.pivot_delta >= 0.0) {
-        return bad("pivot_delta", "must be finite and >= 0");
-    }
-    if !(o.suspect_tol.is_finite() && o.suspect_tol >= 0.0) {
-        return bad("suspect_tol", "must be finite and >= 0");
-    }
-    Ok(())
-}
-
-fn alloc_err(_: impl std::fmt::Debug) -> FactorError {
-    FactorError::OutOfMemory
-}
-
-/// Fallible `vec![value; len]`: huge dimensions (e.g. a large `m` with an
-/// empty Jacobian pattern) give [`FactorError::OutOfMemory`] instead of an
-/// abort. Every dimension-sized buffer is first probed with this.
-fn try_vec<T: Clone>(len: usize, value: T) -> Result<Vec<T>, FactorError> {
-    // Leave head-room for the several buffers of this size that follow.
-    if len > (isize::MAX as usize) / 64 {
-        return Err(FactorError::OutOfMemory);
-    }
-    let mut v = Vec::new();
-    v.try_reserve_exact(len).map_err(alloc_err)?;
-    v.resize(len, value);
-    Ok(v)
-}
-
-/// Row-wise copy of a CSC pattern: (row_ptr, col, source position).
-fn transpose_pattern(
-    nrows: usize,
-    ncols: usize,
-    col_ptr: &[usize],
-    row_idx: &[usize],
-) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
-    let nnz = row_idx.len();
-    let mut ptr = vec![0usize; nrows + 1];
-    for &r in row_idx {
-        ptr[r + 1] += 1;
-    }
-    for i in 0..nrows {
-        ptr[i + 1] += ptr[i];
-    }
-    let mut next = ptr.clone();
-    let mut col = vec![0usize; nnz];
-    let mut src = vec![0usize; nnz];
-    for c in 0..ncols {
-        for e in col_ptr[c]..col_ptr[c + 1] {
-            let r = row_idx[e];
-            let q = next[r];
-            next[r] += 1;
-            col[q] = c;
-            src[q] = e;
-        }
-    }
-    (ptr, col, src)
-}
-
-/// Builds a CSC pattern (dimension `dim`) from `(row, col)` entries already in
-/// the desired triangle; returns (col_ptr, row_idx, slot of every entry).
-fn build_csc(dim: usize, entries: &[(usize, usize)]) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
-    let mut ptr = vec![0usize; dim + 1];
-    for &(_, c) in entries {
-        ptr[c + 1] += 1;
-    }
-    for c in 0..dim {
-        ptr[c + 1] += ptr[c];
-    }
-    let mut next = ptr.clone();
-    let mut tagged = vec![(0usize, 0usize); entries.len()];
-    for (id, &(r, c)) in entries.iter().enumerate() {
-        tagged[next[c]] = (r, id);
-        next[c] += 1;
-    }
-    for c in 0..dim {
-        tagged[ptr[c]..ptr[c + 1]].sort_unstable();
-    }
-    let mut row_idx = vec![0usize; entries.len()];
-    let mut slot = vec![0usize; entries.len()];
-    for (q, &(r, id)) in tagged.iter().enumerate() {
-        row_idx[q] = r;
-        slot[id] = q;
-    }
-    (ptr, row_idx, slot)
-}
-
-/// AMD ordering of a sorted upper-triangular pattern. Returns (perm, perm_inv).
-fn amd_order(dim: usize, col_ptr: &[usize], row_idx: &[usize]) -> Result<(Vec<usize>, Vec<usize>), FactorError> {
-    let mut perm = vec![0usize; dim];
-    let mut perm_inv = vec![0usize; dim];
-    if dim == 0 {
-        return Ok((perm, perm_inv));
-    }
-    let sym = SymbolicSparseColMat::<usize>::new_checked(dim, dim, col_ptr.to_vec(), None, row_idx.to_vec());
-    let mut mem = MemBuffer::try_new(amd::order_scratch::<usize>(dim, row_idx.len())).map_err(alloc_err)?;
-    amd::order(&mut perm, &mut perm_inv, sym.as_ref(), amd::Control::default(), MemStack::new(&mut mem))
-        .map_err(|e| FactorError::Analysis(format!("{e:?}")))?;
-    Ok((perm, perm_inv))
-}
-
 /// Visits the pivots `D` in factor order, `(step, pivot)`, read out of faer's LDLᵀ storage.
 fn for_each_pivot(symbolic: &SymbolicCholesky<usize>, l_val: &[f64], mut visit: impl FnMut(usize, f64)) {
     match symbolic.raw() {
@@ -700,11 +241,6 @@ fn for_each_pivot(symbolic: &SymbolicCholesky<usize>, l_val: &[f64], mut visit: 
             }
         }
     }
-}
-
-/// `‖v‖∞`, 0 for an empty slice.
-pub(crate) fn max_abs(v: &[f64]) -> f64 {
-    v.iter().fold(0.0f64, |acc, x| acc.max(x.abs()))
 }
 
 impl KktFactor {
@@ -1201,7 +737,7 @@ impl KktFactor {
     }
 
     /// `r = rhs0 − KKT z` with the original values (`den` receives
-    /// `|KKT|·|z| + |rhs0|`); returns its backward error ([`crate::kkt_backend::backward_error`]:
+    /// `|KKT|·|z| + |rhs0|`); returns its backward error ([`crate::kkt::refinement::backward_error`]:
     /// componentwise, rows at rounding level normwise) and `‖r‖∞` over the body coordinates and over
     /// the constraint rows.
     fn residual(&self, z: &[f64], r: &mut [f64], den: &mut [f64]) -> (f64, f64, f64) {
@@ -1231,7 +767,7 @@ impl KktFactor {
                 den[i] += (v * zc).abs();
             }
         }
-        let omega = crate::kkt_backend::backward_error(r, den, &self.row_norm, &self.rhs0, z);
+        let omega = crate::kkt::refinement::backward_error(r, den, &self.row_norm, &self.rhs0, z);
         (omega, max_abs(&r[..n]), max_abs(&r[n..]))
     }
 
@@ -1296,299 +832,30 @@ impl KktFactor {
     }
 }
 
-// ---------------------------------------------------------------------------
-// Redundant constraint rows
-// ---------------------------------------------------------------------------
-
-/// Pivot value used to *drop* a dependent row of the Gram matrix: its factor
-/// column becomes `col / BIG ≈ 0`, i.e. the row is removed from the basis.
-const DROP_PIVOT: f64 = 1e100;
-
-/// Smallest Gram pivot distinguishable from rounding: measured noise of the
-/// pivots of exactly dependent rows is 1e-16…1e-15; this keeps a ~100× margin.
-/// It corresponds to an angle (relative orthogonal component) of ≈ 3.4e-7.
-const GRAM_PIVOT_FLOOR: f64 = 512.0 * f64::EPSILON;
-
-/// Rank-revealing check of J alone: indices of rows that are linearly dependent
-/// on earlier rows (tolerance relative to row norms), ascending, in original
-/// row numbering. Of two duplicated rows the later one is reported; an all-zero
-/// row is always reported.
-///
-/// Row `i` counts as dependent when the part of `J_i` orthogonal to the
-/// independent rows before it has norm `≤ tol·‖J_i‖`. Because the method works
-/// on the Gram matrix, tolerances below ~1e-7 are not resolvable; 1e-6…1e-8
-/// is the useful range.
-///
-/// Method: rows are normalized, the Gram matrix `G = ĴĴᵀ` is factorized by a
-/// sparse simplicial LDLᵀ in AMD order, a pivot `≤ tol²` drops the row (faer's
-/// dynamic regularization with a huge replacement pivot, which zeroes the row's
-/// factor column). For every dropped row the null vector `ĴᵀW = 0` is recovered
-/// from the factor (a triangular solve restricted to its elimination subtree),
-/// and the null-space basis is brought to echelon form with respect to the
-/// largest original row index; those leading indices are exactly the rows
-/// dependent on earlier rows, independent of the AMD order.
-///
-/// Malformed input (bad CSC arrays, non-finite values, negative `tol`) yields
-/// an empty list; use [`try_redundant_rows`] to get the typed error instead.
-pub fn redundant_rows(
-    m: usize,
-    n: usize,
-    j_col_ptr: &[usize],
-    j_row_idx: &[usize],
-    j_values: &[f64],
-    tol: f64,
-) -> Vec<usize> {
-    try_redundant_rows(m, n, j_col_ptr, j_row_idx, j_values, tol).unwrap_or_default()
-}
-
-/// [`redundant_rows`] with typed errors for malformed input.
-pub fn try_redundant_rows(
-    m: usize,
-    n: usize,
-    j_col_ptr: &[usize],
-    j_row_idx: &[usize],
-    j_values: &[f64],
-    tol: f64,
-) -> Result<Vec<usize>, FactorError> {
-    validate_j(m, n, j_col_ptr, j_row_idx)?;
-    check_values("j_values", j_values, j_row_idx.len())?;
-    if !(tol.is_finite() && tol >= 0.0) {
-        return Err(FactorError::InvalidOption { name: "tol", reason: "must be finite and >= 0" });
-    }
-    if m == 0 {
-        return Ok(Vec::new());
-    }
-    let mut rmax = try_vec(m, 0.0f64)?;
-    // Row scaling by powers of two first (overflow-safe norms), then exact norms.
-    for (e, &i) in j_row_idx.iter().enumerate() {
-        rmax[i] = rmax[i].max(j_values[e].abs());
-    }
-    let mut sq = vec![0.0f64; m];
-    for (e, &i) in j_row_idx.iter().enumerate() {
-        if rmax[i] > 0.0 {
-            let v = j_values[e] / rmax[i];
-            sq[i] += v * v;
-        }
-    }
-    // Normalized rows: Ĵ_i = J_i / ‖J_i‖ (zero rows stay zero).
-    let jn: Vec<f64> = j_row_idx
-        .iter()
-        .zip(j_values)
-        .map(|(&i, &v)| if rmax[i] > 0.0 { (v / rmax[i]) / sq[i].sqrt() } else { 0.0 })
-        .collect();
-    let (jr_ptr, jr_col, jr_src) = transpose_pattern(m, n, j_col_ptr, j_row_idx);
-
-    // Upper pattern and values of G, column by column.
-    let mut g_ptr = vec![0usize];
-    let mut g_row: Vec<usize> = Vec::new();
-    let mut g_val: Vec<f64> = Vec::new();
-    let mut mark = vec![usize::MAX; m];
-    let mut acc = vec![0.0f64; m];
-    let mut list: Vec<usize> = Vec::new();
-    for i in 0..m {
-        list.clear();
-        mark[i] = i;
-        acc[i] = 0.0;
-        list.push(i);
-        for q in jr_ptr[i]..jr_ptr[i + 1] {
-            let c = jr_col[q];
-            let vic = jn[jr_src[q]];
-            for e in j_col_ptr[c]..j_col_ptr[c + 1] {
-                let r = j_row_idx[e];
-                if r > i {
-                    break;
-                }
-                if mark[r] != i {
-                    mark[r] = i;
-                    acc[r] = 0.0;
-                    list.push(r);
-                }
-                acc[r] += jn[e] * vic;
-            }
-        }
-        list.sort_unstable();
-        for &r in &list {
-            g_row.push(r);
-            g_val.push(acc[r]);
-        }
-        g_ptr.push(g_row.len());
+impl KktBackend for KktFactor {
+    fn name(&self) -> &'static str {
+        "sparse LDLᵀ"
     }
 
-    let (perm, perm_inv) = amd_order(m, &g_ptr, &g_row)?;
-    let mut entries = Vec::with_capacity(g_row.len());
-    for i in 0..m {
-        for &r in &g_row[g_ptr[i]..g_ptr[i + 1]] {
-            let (a, b) = (perm_inv[r], perm_inv[i]);
-            entries.push((a.min(b), a.max(b)));
-        }
-    }
-    let (p_ptr, p_row, slot) = build_csc(m, &entries);
-    let mut p_val = vec![0.0f64; g_val.len()];
-    for (e, &v) in g_val.iter().enumerate() {
-        p_val[slot[e]] = v;
-    }
-    let gp = SymbolicSparseColMat::<usize>::new_checked(m, m, p_ptr, None, p_row);
-
-    let mut etree = vec![0isize; m];
-    let mut col_counts = vec![0usize; m];
-    let mut mem = MemBuffer::try_new(StackReq::any_of(&[
-        simplicial::prefactorize_symbolic_cholesky_scratch::<usize>(m, g_val.len()),
-        simplicial::factorize_simplicial_symbolic_cholesky_scratch::<usize>(m),
-        simplicial::factorize_simplicial_numeric_ldlt_scratch::<usize, f64>(m),
-    ]))
-    .map_err(alloc_err)?;
-    let stack = MemStack::new(&mut mem);
-    let et = simplicial::prefactorize_symbolic_cholesky::<usize>(&mut etree, &mut col_counts, gp.as_ref(), stack);
-    let sym = simplicial::factorize_simplicial_symbolic_cholesky(gp.as_ref(), et, &col_counts, stack)
-        .map_err(|e| FactorError::Analysis(format!("{e:?}")))?;
-    let mut l_val = vec![0.0f64; sym.len_val()];
-    let signs = vec![1i8; m];
-    let reg = LdltRegularization {
-        dynamic_regularization_signs: Some(&signs),
-        dynamic_regularization_delta: DROP_PIVOT,
-        dynamic_regularization_epsilon: (tol * tol).max(GRAM_PIVOT_FLOOR),
-    };
-    simplicial::factorize_simplicial_numeric_ldlt(
-        &mut l_val,
-        SparseColMatRef::new(gp.as_ref(), &p_val),
-        reg,
-        &sym,
-        stack,
-    )
-    .map_err(|_| FactorError::Singular { kind: "constraint row", index: 0 })?;
-    let lcp = sym.col_ptr();
-    let lri = sym.row_idx();
-    let dropped: Vec<usize> = (0..m).filter(|&k| l_val[lcp[k]] == DROP_PIVOT).collect();
-    if dropped.is_empty() {
-        return Ok(Vec::new());
+    fn solves_skew(&self) -> bool {
+        false
     }
 
-    // Row access to L and children lists of the elimination tree.
-    let (lr_ptr, lr_col, lr_src) = transpose_pattern(m, m, lcp, lri);
-    let mut child_ptr = vec![0usize; m + 1];
-    for &p in &etree {
-        if p >= 0 {
-            child_ptr[p as usize + 1] += 1;
-        }
-    }
-    for k in 0..m {
-        child_ptr[k + 1] += child_ptr[k];
-    }
-    let mut child = vec![0usize; child_ptr[m]];
-    {
-        let mut next = child_ptr.clone();
-        for (k, &p) in etree.iter().enumerate() {
-            if p >= 0 {
-                child[next[p as usize]] = k;
-                next[p as usize] += 1;
-            }
-        }
+    fn factorize(&mut self, values: KktValues<'_>) -> Result<FactorReport, FactorError> {
+        KktFactor::factorize(self, values.k, values.j)
     }
 
-    // Null vector of every dropped row, in original numbering.
-    let mut u = vec![0.0f64; m];
-    let mut desc: Vec<usize> = Vec::new();
-    let mut dfs: Vec<usize> = Vec::new();
-    let mut basis: Vec<Vec<(usize, f64)>> = Vec::with_capacity(dropped.len());
-    for &j in &dropped {
-        desc.clear();
-        dfs.clear();
-        dfs.extend_from_slice(&child[child_ptr[j]..child_ptr[j + 1]]);
-        while let Some(k) = dfs.pop() {
-            desc.push(k);
-            dfs.extend_from_slice(&child[child_ptr[k]..child_ptr[k + 1]]);
-        }
-        desc.sort_unstable_by(|a, b| b.cmp(a));
-        for q in lr_ptr[j]..lr_ptr[j + 1] {
-            let k = lr_col[q];
-            if k < j {
-                u[k] = l_val[lr_src[q]];
-            }
-        }
-        for &k in &desc {
-            let mut s = u[k];
-            for e in lcp[k] + 1..lcp[k + 1] {
-                let i = lri[e];
-                if i >= j {
-                    break;
-                }
-                s -= l_val[e] * u[i];
-            }
-            u[k] = s;
-        }
-        let mut v: Vec<(usize, f64)> = Vec::with_capacity(desc.len() + 1);
-        v.push((perm[j], 1.0));
-        for &k in &desc {
-            if u[k] != 0.0 && u[k].is_finite() {
-                v.push((perm[k], -u[k]));
-            }
-            u[k] = 0.0;
-        }
-        v.sort_unstable_by_key(|e| e.0);
-        prune(&mut v);
-        basis.push(v);
+    /// Both accuracies refine: the solution of the regularized form is `O(ε)` off the true one until
+    /// refined, and on stiff models that costs Newton more iterations than refinement costs solves.
+    fn solve_in_place(&mut self, rhs: &mut [f64], _accuracy: Accuracy) -> Result<SolveReport, FactorError> {
+        KktFactor::solve_in_place(self, rhs)
     }
 
-    // Echelon form with respect to the largest original index.
-    let mut result = Vec::with_capacity(basis.len());
-    let mut live: Vec<Vec<(usize, f64)>> = basis.into_iter().filter(|v| !v.is_empty()).collect();
-    while !live.is_empty() {
-        let top = live.iter().filter_map(|v| v.last().map(|e| e.0)).max().unwrap_or(0);
-        let mut piv = usize::MAX;
-        let mut best = -1.0f64;
-        for (t, v) in live.iter().enumerate() {
-            if let Some(&(i, c)) = v.last() {
-                if i == top && c.abs() > best {
-                    best = c.abs();
-                    piv = t;
-                }
-            }
-        }
-        if piv == usize::MAX {
-            break;
-        }
-        let p = live.swap_remove(piv);
-        let pc = p.last().map(|e| e.1).unwrap_or(1.0);
-        result.push(top);
-        for v in live.iter_mut() {
-            if let Some(&(i, c)) = v.last() {
-                if i == top {
-                    let f = c / pc;
-                    *v = axpy_sparse(v, -f, &p);
-                    v.retain(|e| e.0 != top);
-                    prune(v);
-                }
-            }
-        }
-        live.retain(|v| !v.is_empty());
+    fn counters(&self) -> FactorCounters {
+        KktFactor::counters(self)
     }
-    result.sort_unstable();
-    Ok(result)
-}
 
-/// Drops entries below `1e-9 ×` the largest magnitude (rounding noise of the
-/// null-vector computation).
-fn prune(v: &mut Vec<(usize, f64)>) {
-    let mx = v.iter().fold(0.0f64, |a, e| a.max(e.1.abs()));
-    v.retain(|e| e.1.abs() > 1e-9 * mx);
-}
-
-/// `a + f·b` for index-sorted sparse vectors.
-fn axpy_sparse(a: &[(usize, f64)], f: f64, b: &[(usize, f64)]) -> Vec<(usize, f64)> {
-    let mut out = Vec::with_capacity(a.len() + b.len());
-    let (mut p, mut q) = (0, 0);
-    while p < a.len() || q < b.len() {
-        if q == b.len() || (p < a.len() && a[p].0 < b[q].0) {
-            out.push(a[p]);
-            p += 1;
-        } else if p == a.len() || b[q].0 < a[p].0 {
-            out.push((b[q].0, f * b[q].1));
-            q += 1;
-        } else {
-            out.push((a[p].0, a[p].1 + f * b[q].1));
-            p += 1;
-            q += 1;
-        }
+    fn reset(&mut self) {
+        KktFactor::reset(self)
     }
-    out
 }

@@ -1,8 +1,10 @@
 //! Picks the backend for a pattern by its order, and falls back to the sparse LDLᵀ where the dense LU
 //! meets a singular matrix.
 
-use super::{Accuracy, DenseLu, KktBackend, KktValues};
-use crate::kkt_factor::{FactorCounters, FactorError, FactorReport, KktFactor, KktOptions, KktPattern, SolveReport};
+use crate::kkt::dense_lu::DenseLu;
+use crate::kkt::pattern::KktPattern;
+use crate::kkt::sparse_ldlt::KktFactor;
+use crate::kkt::{Accuracy, FactorCounters, FactorError, FactorReport, KktBackend, KktOptions, KktValues, SolveReport};
 
 /// Largest KKT order `n + m` that [`BackendChoice::Auto`] gives to the dense LU.
 ///

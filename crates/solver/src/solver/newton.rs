@@ -1,0 +1,279 @@
+//! Newton's method on the exact residual, and the solve of a non-symmetric tangent (GMRES on the
+//! symmetric factorization for the skew part of world-fixed loads and turning preloads).
+
+use super::*;
+
+impl<'m> StaticSolver<'m> {
+    /// Newton on the true residual at the state's load parameter. Returns iterations used.
+    ///
+    /// With [`SolverOptions::reuse_factorization`] it is a chord method: iterations solve with the
+    /// factorization kept from an earlier full tangent — of this call, or of an earlier step when
+    /// nothing else has been factorized since — and assemble the residual alone; a fresh tangent is
+    /// assembled and factorized only when an iteration's residual (each part over its tolerance) falls by
+    /// less than [`CHORD_CONTRACTION`]. Convergence is judged on the true residual either way.
+    ///
+    /// With `start.guard`, the corrector may not travel further than the first increment plus any
+    /// predictor applied before the call: a longer walk means Newton left the path — across a limit
+    /// point to another branch, typically — and the step is refused so that the caller cuts it.
+    pub(super) fn newton(&mut self, state: &mut State, start: NewtonStart) -> Result<(usize, Residual), SolverError> {
+        let n = self.work.assembly.n;
+        let m = self.work.assembly.m();
+        let reuse = self.options.reuse_factorization;
+        // Whether the factorization in hand may serve this iteration.
+        let mut factored = reuse && !start.fresh && self.factored == Some(Tangent::Full);
+        let mut first_norm = 0.0;
+        let mut corrector_travel = 0.0;
+        let mut last_merit = f64::INFINITY;
+        let mut iter = 0;
+        self.work.moved.fill(0.0);
+        loop {
+            let refactor = !factored;
+            self.assemble(state, if refactor { Some(Tangent::Full) } else { None });
+            if refactor {
+                self.update_roundoff_floor(&state.poses);
+            }
+            let r = self.residual(&state.lambda);
+            if !(r.force.is_finite() && r.constraint.is_finite()) {
+                return Err(SolverError::NonFinite { what: "residual" });
+            }
+            if self.converged(&r) {
+                return Ok((iter, r));
+            }
+            if iter == self.options.max_iterations {
+                return Err(SolverError::NoConvergence {
+                    t: state.t,
+                    last_converged: None,
+                    iterations: iter,
+                    force_residual: r.force,
+                    constraint_residual: r.constraint,
+                });
+            }
+            let merit = self.merit(&r);
+            // A chord iteration that stops contracting gets a fresh tangent.
+            if factored && merit > CHORD_CONTRACTION * last_merit {
+                self.assemble(state, Some(Tangent::Full));
+                self.update_roundoff_floor(&state.poses);
+                self.factorize()?;
+            } else if refactor {
+                self.factorize()?;
+                factored = reuse;
+            }
+            last_merit = merit;
+            self.newton_increment()?;
+            let step_norm = self.work.rhs[..n].iter().map(|v| v * v).sum::<f64>().sqrt();
+            if iter == 0 {
+                first_norm = step_norm;
+            } else {
+                corrector_travel += step_norm;
+                // The allowance is what closing the joints to their tolerance may take: a predictor of
+                // nothing (an ideal linkage held by its rig does not move under a load) still leaves the
+                // start's converged joint gaps, up to the tolerance, to close.
+                let allowance = 100.0 * self.options.constraint_tolerance;
+                if start.guard && corrector_travel > start.predicted + first_norm + allowance {
+                    return Err(SolverError::NoConvergence {
+                        t: state.t,
+                        last_converged: None,
+                        iterations: iter,
+                        force_residual: r.force,
+                        constraint_residual: r.constraint,
+                    });
+                }
+            }
+            let max_rot = (0..n).filter(|c| c % BODY_DOFS >= 3).fold(0.0f64, |a, c| a.max(self.work.rhs[c].abs()));
+            let scale =
+                if max_rot > self.options.max_rotation_step { self.options.max_rotation_step / max_rot } else { 1.0 };
+            Self::apply(&mut state.poses, &self.work.rhs[..n], scale);
+            for k in 0..m {
+                state.lambda[k] += scale * self.work.rhs[n + k];
+            }
+            // Only the predictor reads what the iterations moved.
+            if reuse {
+                for (moved, d) in self.work.moved.iter_mut().zip(&self.work.rhs) {
+                    *moved += scale * d;
+                }
+            }
+            iter += 1;
+        }
+    }
+
+    /// The residual against its tolerance, the worse of its two parts: at most 1 when converged.
+    pub(super) fn merit(&self, r: &Residual) -> f64 {
+        let force = (self.options.force_tolerance * r.force_scale).max(self.roundoff_floor);
+        (r.force / force).max(r.constraint / self.options.constraint_tolerance)
+    }
+
+    /// Solves `[K_sym + S, Jᵀ; J, 0] z = rhs` in place with the factorization of the symmetric part `P`.
+    /// Without a skew part `S` this is one solve. With one, it runs GMRES on the preconditioned system
+    /// `(I + P⁻¹[S; 0]) z = P⁻¹ rhs` from `z₀ = P⁻¹ rhs`: each iteration is one more back-substitution, and
+    /// the count does not depend on how large `S` is against `K` (a fixed-point sweep would stall once
+    /// `‖P⁻¹S‖` nears 1, e.g. a bushing twisted ~1 rad by a world-fixed torque).
+    ///
+    /// A backend that factorizes the skew part with the rest (the dense LU) solves the whole system at
+    /// once, and GMRES is left out.
+    pub(super) fn solve_with_skew(&mut self, accuracy: Accuracy) -> Result<(), SolverError> {
+        let size = self.work.rhs.len();
+        self.work.factor.solve_in_place(&mut self.work.rhs, accuracy)?;
+        if !self.work.assembly.has_skew || self.work.factor.solves_skew() {
+            return Ok(());
+        }
+        let b_norm = norm2(&self.work.rhs);
+        if b_norm == 0.0 {
+            return Ok(());
+        }
+        self.work.krylov.ensure(size);
+        self.work.krylov.b[..size].copy_from_slice(&self.work.rhs);
+        for _restart in 0..KRYLOV_RESTARTS {
+            // r = b − A x = −P⁻¹[S x; 0] (b = x₀ = z₀ on entry, and x holds the current iterate).
+            self.preconditioned_skew(KrylovSlot::Iterate)?;
+            let k = &mut self.work.krylov;
+            for c in 0..size {
+                k.basis[0][c] = -k.work[c];
+            }
+            // On restarts, b − A x needs the original b: add (b − x) back.
+            for c in 0..size {
+                k.basis[0][c] += k.b[c] - self.work.rhs[c];
+            }
+            let beta = norm2(&k.basis[0][..size]);
+            if beta <= KRYLOV_TOL * b_norm {
+                return Ok(());
+            }
+            for v in k.basis[0][..size].iter_mut() {
+                *v /= beta;
+            }
+            k.g.fill(0.0);
+            k.g[0] = beta;
+            let mut used = 0;
+            for j in 0..KRYLOV_DIM {
+                // w = A v_j = v_j + P⁻¹[S v_j; 0]
+                self.preconditioned_skew(KrylovSlot::Basis(j))?;
+                let k = &mut self.work.krylov;
+                for c in 0..size {
+                    k.work[c] += k.basis[j][c];
+                }
+                // Modified Gram–Schmidt.
+                for i in 0..=j {
+                    let h: f64 = k.work[..size].iter().zip(&k.basis[i][..size]).map(|(a, b)| a * b).sum();
+                    k.h[i][j] = h;
+                    for c in 0..size {
+                        k.work[c] -= h * k.basis[i][c];
+                    }
+                }
+                let h_next = norm2(&k.work[..size]);
+                k.h[j + 1][j] = h_next;
+                // Apply the previous Givens rotations, then make a new one for row j+1.
+                for i in 0..j {
+                    let (c, s) = (k.cs[i], k.sn[i]);
+                    let (a, b) = (k.h[i][j], k.h[i + 1][j]);
+                    k.h[i][j] = c * a + s * b;
+                    k.h[i + 1][j] = -s * a + c * b;
+                }
+                let (a, b) = (k.h[j][j], k.h[j + 1][j]);
+                let r = a.hypot(b);
+                let (c, s) = if r == 0.0 { (1.0, 0.0) } else { (a / r, b / r) };
+                k.cs[j] = c;
+                k.sn[j] = s;
+                k.h[j][j] = r;
+                k.h[j + 1][j] = 0.0;
+                k.g[j + 1] = -s * k.g[j];
+                k.g[j] *= c;
+                used = j + 1;
+                if k.g[j + 1].abs() <= KRYLOV_TOL * b_norm || h_next == 0.0 {
+                    break;
+                }
+                if j + 1 < KRYLOV_DIM {
+                    for c in 0..size {
+                        k.basis[j + 1][c] = k.work[c] / h_next;
+                    }
+                }
+            }
+            // x += V y with H y = g (upper triangular).
+            let k = &mut self.work.krylov;
+            for i in (0..used).rev() {
+                let mut v = k.g[i];
+                for l in i + 1..used {
+                    v -= k.h[i][l] * k.y[l];
+                }
+                k.y[i] = if k.h[i][i] != 0.0 { v / k.h[i][i] } else { 0.0 };
+            }
+            for i in 0..used {
+                let yi = k.y[i];
+                for c in 0..size {
+                    self.work.rhs[c] += yi * k.basis[i][c];
+                }
+            }
+            if k.g[used].abs() <= KRYLOV_TOL * b_norm {
+                return Ok(());
+            }
+        }
+        Ok(())
+    }
+
+    /// `work ← P⁻¹ [S v; 0]` for `v` the current iterate (`self.work.rhs`) or a Krylov basis vector.
+    pub(super) fn preconditioned_skew(&mut self, which: KrylovSlot) -> Result<(), SolverError> {
+        let n = self.work.assembly.n;
+        let size = self.work.rhs.len();
+        let k = &mut self.work.krylov;
+        let v: &[f64] = match which {
+            KrylovSlot::Iterate => &self.work.rhs[..n],
+            KrylovSlot::Basis(j) => &k.basis[j][..n],
+        };
+        self.work.assembly.skew_times(v, &mut k.work[..n]);
+        k.work[n..size].fill(0.0);
+        self.work.factor.solve_in_place(&mut k.work[..size], Accuracy::Refined)?;
+        Ok(())
+    }
+
+    /// Static equilibrium at `state.t`, by Newton from `state`.
+    pub fn equilibrium(&mut self, state: &mut State) -> Result<StepResult, SolverError> {
+        let (iterations, r) = self.newton(state, NewtonStart { guard: false, predicted: 0.0, fresh: false })?;
+        Ok(self.step_result(state, iterations, &r))
+    }
+
+    /// One full Newton iteration on the exact equilibrium at `step.t`, from `step`: the step moved by
+    /// `−T⁻¹R` with `T` the exact tangent and `R` its force and constraint residual. How far it moves
+    /// estimates how far `step` is from the equilibrium at its load parameter: the drift of a paper-mode
+    /// step (first order, so the corrected step is that equilibrium to second order in the drift), or
+    /// what remains after a corrected step converged (Newton's next increment). Costs one factorization.
+    /// The returned step reports the residual at the corrected state and `iterations = 1`.
+    pub fn newton_correction(&mut self, step: &StepResult) -> Result<StepResult, SolverError> {
+        let n = self.work.assembly.n;
+        let m = self.work.assembly.m();
+        let mut state = self.state_of(step);
+        self.assemble(&state, Some(Tangent::Full));
+        let r = self.residual(&state.lambda);
+        if !(r.force.is_finite() && r.constraint.is_finite()) {
+            return Err(SolverError::NonFinite { what: "residual" });
+        }
+        self.factorize()?;
+        self.newton_increment()?;
+        Self::apply(&mut state.poses, &self.work.rhs[..n], 1.0);
+        for k in 0..m {
+            state.lambda[k] += self.work.rhs[n + k];
+        }
+        self.assemble(&state, None);
+        let after = self.residual(&state.lambda);
+        Ok(self.step_result(&state, 1, &after))
+    }
+
+    /// The Newton increment `[Δq; Δλ]` into `rhs`, from `rhs = [Q − Jᵀλ ; −Φ]` at the assembled state and
+    /// the factorized tangent (`scratch` holds `Jᵀλ` from [`Self::residual`]).
+    pub(super) fn newton_increment(&mut self) -> Result<(), SolverError> {
+        Self::residual_rhs(&self.work.assembly, &self.work.scratch, &mut self.work.rhs);
+        self.solve_with_skew(Accuracy::Increment)?;
+        if self.work.rhs.iter().any(|v| !v.is_finite()) {
+            return Err(SolverError::NonFinite { what: "Newton increment" });
+        }
+        Ok(())
+    }
+
+    /// `out = [Q − Jᵀλ ; −Φ]` at the assembled state, `jt_lambda` holding `Jᵀλ` (from [`Self::residual`]).
+    pub(super) fn residual_rhs(assembly: &Assembly, jt_lambda: &[f64], out: &mut [f64]) {
+        let n = assembly.n;
+        for c in 0..n {
+            out[c] = assembly.applied[c] - jt_lambda[c];
+        }
+        for k in 0..assembly.m() {
+            out[n + k] = -assembly.phi[k];
+        }
+    }
+}

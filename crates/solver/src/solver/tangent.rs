@@ -1,0 +1,86 @@
+//! The tangent of the equilibrium equations at a state, and solves with it: the KKT system as
+//! triplets or Matrix Market, a tangent solve, the path's tangent `dq/dt`, a kept factorization.
+
+use super::*;
+
+impl<'m> StaticSolver<'m> {
+    /// The tangent KKT matrix `[K, Jᵀ; J, 0]` at `state` (with `K` the exact, possibly non-symmetric
+    /// tangent) as `(row, col, value)` triplets, of order `n + m`: for inspection, dumps and dense
+    /// reference solves.
+    pub fn kkt_triplets(&mut self, state: &State) -> (usize, Vec<(usize, usize, f64)>) {
+        self.assemble(state, Some(Tangent::Full));
+        let n = self.work.assembly.n;
+        let a = &self.work.assembly;
+        let mut out = Vec::with_capacity(2 * (a.k_values.len() + a.j_values.len()));
+        for c in 0..n {
+            for p in a.k_col_ptr[c]..a.k_col_ptr[c + 1] {
+                let (r, v, s) = (a.k_row_idx[p], a.k_values[p], a.k_skew[p]);
+                out.push((r, c, v + s));
+                if r != c {
+                    out.push((c, r, v - s));
+                }
+            }
+            for p in a.j_col_ptr[c]..a.j_col_ptr[c + 1] {
+                let (r, v) = (n + a.j_row_idx[p], a.j_values[p]);
+                out.push((r, c, v));
+                out.push((c, r, v));
+            }
+        }
+        (n + a.m(), out)
+    }
+
+    /// Solves the tangent system `[K, Jᵀ; J, 0] z = rhs` at `state` in place (`rhs` of length `n + m`):
+    /// the response of the equilibrium to a load or constraint perturbation. For several right-hand sides
+    /// at one state, call [`StaticSolver::factorize_tangent`] once and [`StaticSolver::solve_factored`] for
+    /// each: a compliance matrix is a handful of back-substitutions.
+    pub fn tangent_solve(&mut self, state: &State, rhs: &mut [f64]) -> Result<(), SolverError> {
+        self.factorize_tangent(state)?;
+        self.solve_factored(rhs)
+    }
+
+    /// The rate of the equilibrium along the load path at `state` (an equilibrium): `dq/dt`, `BODY_DOFS`
+    /// per body (translation of the reference point, then rotation as in Δπ), from
+    /// `[K Jᵀ; J 0] [q_t; λ_t] = [∂Q/∂t; −∂Φ/∂t]` with the exact tangent. Under a travel driver it gives the
+    /// velocity of every point per unit travel: instant centres, roll centres and anti-dive lines.
+    pub fn path_tangent(&mut self, state: &State) -> Result<Vec<f64>, SolverError> {
+        let n = self.work.assembly.n;
+        self.factorize_tangent(state)?;
+        self.load_direction_rhs();
+        self.solve_with_skew(Accuracy::Refined)?;
+        Ok(self.work.rhs[..n].to_vec())
+    }
+
+    /// Assembles and factorizes the tangent at `state` for [`StaticSolver::solve_factored`].
+    pub fn factorize_tangent(&mut self, state: &State) -> Result<(), SolverError> {
+        self.assemble(state, Some(Tangent::Full));
+        self.factorize()?;
+        Ok(())
+    }
+
+    /// Solves with the tangent last factorized (by [`StaticSolver::factorize_tangent`] or any solve).
+    pub fn solve_factored(&mut self, rhs: &mut [f64]) -> Result<(), SolverError> {
+        let size = self.work.assembly.n + self.work.assembly.m();
+        if rhs.len() != size {
+            return Err(SolverError::InvalidInput {
+                what: "right-hand side",
+                why: format!("length {} but the system has {size} unknowns", rhs.len()),
+            });
+        }
+        self.work.rhs.copy_from_slice(rhs);
+        self.solve_with_skew(Accuracy::Refined)?;
+        rhs.copy_from_slice(&self.work.rhs);
+        Ok(())
+    }
+
+    /// Writes the KKT matrix at `state` in Matrix Market format (feature `matrix-market`).
+    #[cfg(feature = "matrix-market")]
+    pub fn write_kkt_matrix_market(&mut self, state: &State, path: &std::path::Path) -> std::io::Result<()> {
+        let (size, triplets) = self.kkt_triplets(state);
+        let mut tri = sprs::TriMat::new((size, size));
+        for (r, c, v) in triplets {
+            tri.add_triplet(r, c, v);
+        }
+        let csc: sprs::CsMat<f64> = tri.to_csc();
+        sprs::io::write_matrix_market(path, &csc)
+    }
+}
