@@ -30,8 +30,8 @@
 //! of a sparse KKT column by column.
 
 use crate::kkt::pattern::{validate, KktPattern};
-use crate::kkt::refinement::backward_error;
-use crate::kkt::scaling::round_to_powers_of_two;
+use crate::kkt::refinement::{backward_error, Factored, Refinement};
+use crate::kkt::scaling::equilibrate;
 use crate::kkt::{
     check_values, max_abs, Accuracy, FactorCounters, FactorError, FactorReport, KktBackend, KktOptions, KktValues,
     SolveReport,
@@ -73,10 +73,7 @@ pub struct DenseLu {
     swap: Vec<usize>,
     // Solve workspaces.
     z: Vec<f64>,
-    z_new: Vec<f64>,
-    r: Vec<f64>,
-    r_new: Vec<f64>,
-    den: Vec<f64>,
+    refinement: Refinement,
     rhs0: Vec<f64>,
     factorized: bool,
     counters: FactorCounters,
@@ -112,10 +109,7 @@ impl DenseLu {
             lu,
             swap: vec![0; size],
             z: vec![0.0; size],
-            z_new: vec![0.0; size],
-            r: vec![0.0; size],
-            r_new: vec![0.0; size],
-            den: vec![0.0; size],
+            refinement: Refinement::new(size),
             rhs0: vec![0.0; size],
             factorized: false,
             counters: FactorCounters { symbolic_analyses: 1, ..FactorCounters::default() },
@@ -159,38 +153,20 @@ impl DenseLu {
         }
     }
 
-    /// Largest scaled entry of every row into `row_max`; whether each is within `[1/drift, drift]` (rows
-    /// with no entry at all are left to the factorization to report).
-    fn measure_rows(&mut self, drift: f64) -> bool {
-        let mut rm = std::mem::take(&mut self.row_max);
-        rm.fill(0.0);
-        let s = &self.scale;
-        self.for_each_entry(|r, c, v| {
-            let a = v.abs() * s[r] * s[c];
-            if a > rm[r] {
-                rm[r] = a;
-            }
-        });
-        let within = within(&rm, drift);
-        self.row_max = rm;
-        within
-    }
-
-    /// Ruiz sweeps from the current scaling until every row's largest entry is within a factor 2 of 1,
-    /// then rounded to powers of two.
+    /// Ruiz sweeps from the current scaling (see [`equilibrate`]) on the whole matrix, skew part included.
     fn equilibrate(&mut self) {
-        for _ in 0..self.options.scaling_iterations.max(1) {
-            let done = self.measure_rows(2.0);
-            for (s, &x) in self.scale.iter_mut().zip(&self.row_max) {
-                if x > 0.0 && x.is_finite() {
-                    *s /= x.sqrt();
+        let mut row_max = std::mem::take(&mut self.row_max);
+        let mut scale = std::mem::take(&mut self.scale);
+        equilibrate(&mut scale, &mut row_max, self.options.scaling_iterations.max(1), |s, rm| {
+            self.for_each_entry(|r, c, v| {
+                let a = v.abs() * s[r] * s[c];
+                if a > rm[r] {
+                    rm[r] = a;
                 }
-            }
-            if done {
-                break;
-            }
-        }
-        round_to_powers_of_two(&mut self.scale);
+            });
+        });
+        self.scale = scale;
+        self.row_max = row_max;
     }
 
     /// Scatters the scaled values into the factor buffer, on the same pass measuring each row's largest
@@ -282,9 +258,18 @@ impl DenseLu {
             }
         }
     }
+}
 
+/// `to ← from`, refused as the sparse factor refuses values of the wrong length or not finite.
+fn copy_checked(what: &'static str, from: &[f64], to: &mut [f64]) -> Result<(), FactorError> {
+    check_values(what, from, to.len())?;
+    to.copy_from_slice(from);
+    Ok(())
+}
+
+impl Factored for DenseLu {
     /// `out = A⁻¹ src` in original units: `S Â⁻¹ S src`.
-    fn apply_inverse(&self, src: &[f64], out: &mut [f64]) {
+    fn apply_inverse(&mut self, src: &[f64], out: &mut [f64]) {
         for ((o, s), v) in out.iter_mut().zip(&self.scale).zip(src) {
             *o = s * v;
         }
@@ -306,13 +291,6 @@ impl DenseLu {
         });
         backward_error(r, den, &self.row_norm, &self.rhs0, z)
     }
-}
-
-/// `to ← from`, refused as the sparse factor refuses values of the wrong length or not finite.
-fn copy_checked(what: &'static str, from: &[f64], to: &mut [f64]) -> Result<(), FactorError> {
-    check_values(what, from, to.len())?;
-    to.copy_from_slice(from);
-    Ok(())
 }
 
 impl KktBackend for DenseLu {
@@ -399,31 +377,10 @@ impl KktBackend for DenseLu {
         }
         let mut report = SolveReport::default();
         if accuracy == Accuracy::Refined {
-            let mut r = std::mem::take(&mut self.r);
-            let mut r_new = std::mem::take(&mut self.r_new);
-            let mut den = std::mem::take(&mut self.den);
-            let mut z_new = std::mem::take(&mut self.z_new);
-            let mut omega = self.residual(&z, &mut r, &mut den);
-            let mut steps = 0;
-            while steps < self.options.max_refinement && omega > self.options.refinement_tol {
-                steps += 1;
-                self.apply_inverse(&r, &mut z_new);
-                for (a, b) in z_new.iter_mut().zip(&z) {
-                    *a += b;
-                }
-                let omega_new = self.residual(&z_new, &mut r_new, &mut den);
-                // A step that does not lower the backward error is discarded.
-                if omega_new >= omega || z_new.iter().any(|v| !v.is_finite()) {
-                    break;
-                }
-                std::mem::swap(&mut z, &mut z_new);
-                std::mem::swap(&mut r, &mut r_new);
-                let ratio = omega_new / omega;
-                omega = omega_new;
-                if ratio > 0.5 {
-                    break;
-                }
-            }
+            let mut refinement = std::mem::take(&mut self.refinement);
+            let (steps, omega) =
+                refinement.refine(self, &mut z, self.options.max_refinement, self.options.refinement_tol);
+            let r = refinement.residual();
             report = SolveReport {
                 refinement_steps: steps,
                 residual_x: max_abs(&r[..self.n]),
@@ -432,11 +389,8 @@ impl KktBackend for DenseLu {
                 converged: omega <= self.options.refinement_tol,
                 measured: true,
             };
+            self.refinement = refinement;
             self.counters.refinement_steps += steps as u64;
-            self.r = r;
-            self.r_new = r_new;
-            self.den = den;
-            self.z_new = z_new;
         }
         rhs.copy_from_slice(&z);
         self.z = z;

@@ -3,6 +3,73 @@
 
 use crate::kkt::max_abs;
 
+/// What refinement needs of a factorization of `A`.
+pub(crate) trait Factored {
+    /// `out ← A⁻¹ src`, by the factorization (with whatever scaling and regularization it carries).
+    fn apply_inverse(&mut self, src: &[f64], out: &mut [f64]);
+
+    /// `r ← b − A z` with the true `A` and the right-hand side `b` of the solve, `den ← |A|·|z| + |b|`;
+    /// returns the backward error ([`backward_error`]).
+    fn residual(&self, z: &[f64], r: &mut [f64], den: &mut [f64]) -> f64;
+}
+
+/// The buffers of iterative refinement, sized once with the system; the loop itself is
+/// [`Refinement::refine`], the same for every backend.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Refinement {
+    z_new: Vec<f64>,
+    r: Vec<f64>,
+    r_new: Vec<f64>,
+    den: Vec<f64>,
+}
+
+impl Refinement {
+    /// Buffers for systems of order `size`.
+    pub(crate) fn new(size: usize) -> Refinement {
+        Refinement { z_new: vec![0.0; size], r: vec![0.0; size], r_new: vec![0.0; size], den: vec![0.0; size] }
+    }
+
+    /// Refines `z`, a first solution of `A z = b`, in place: each step solves for a correction from the
+    /// residual of the true system and keeps it when it lowers the backward error; the loop stops when the
+    /// error is at most `tolerance`, after `max_steps`, when a step does not lower it (that step is
+    /// discarded), or when it falls by less than half. Returns the steps made and the backward error of
+    /// `z`, whose residual is then [`Refinement::residual`].
+    pub(crate) fn refine(
+        &mut self,
+        system: &mut impl Factored,
+        z: &mut Vec<f64>,
+        max_steps: usize,
+        tolerance: f64,
+    ) -> (usize, f64) {
+        let mut omega = system.residual(z, &mut self.r, &mut self.den);
+        let mut steps = 0;
+        while steps < max_steps && omega > tolerance {
+            steps += 1;
+            system.apply_inverse(&self.r, &mut self.z_new);
+            for (a, b) in self.z_new.iter_mut().zip(z.iter()) {
+                *a += b;
+            }
+            let omega_new = system.residual(&self.z_new, &mut self.r_new, &mut self.den);
+            if omega_new.is_nan() || omega_new >= omega || self.z_new.iter().any(|v| !v.is_finite()) {
+                break;
+            }
+            std::mem::swap(z, &mut self.z_new);
+            std::mem::swap(&mut self.r, &mut self.r_new);
+            let ratio = omega_new / omega;
+            omega = omega_new;
+            if ratio > 0.5 {
+                break;
+            }
+        }
+        (steps, omega)
+    }
+
+    /// The residual `b − A z` of the last refined `z`.
+    pub(crate) fn residual(&self) -> &[f64] {
+        &self.r
+    }
+}
+
 /// The componentwise (Oettli–Prager) backward error of a solution `z` of `A z = b`, from its residual
 /// `r = b − A z`, the row sums `den = |A|·|z| + |b|` and each row's largest entry `row_norm_i = ‖A_i‖∞`:
 /// `max_i |r_i| / den_i`.

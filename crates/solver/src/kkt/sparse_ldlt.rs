@@ -134,7 +134,8 @@
 //! order-independent answer "rows dependent on earlier rows".
 
 use crate::kkt::pattern::{amd_order, build_csc, transpose_pattern, validate, KktPattern};
-use crate::kkt::scaling::round_to_powers_of_two;
+use crate::kkt::refinement::{backward_error, Factored, Refinement};
+use crate::kkt::scaling::equilibrate;
 use crate::kkt::{
     alloc_err, check_values, max_abs, try_vec, Accuracy, FactorCounters, FactorError, FactorKind, FactorReport,
     KktBackend, KktOptions, KktValues, SolveReport,
@@ -192,10 +193,9 @@ pub struct KktFactor {
     rho: f64,
     // Solve workspaces.
     z: Vec<f64>,
-    z_new: Vec<f64>,
-    r: Vec<f64>,
     rhs0: Vec<f64>,
     tmp: Vec<f64>,
+    refinement: Refinement,
     factorized: bool,
     counters: FactorCounters,
 }
@@ -432,10 +432,9 @@ impl KktFactor {
             j_hat: vec![0.0; j_nnz],
             rho: 1.0,
             z: vec![0.0; nn],
-            z_new: vec![0.0; nn],
-            r: vec![0.0; nn],
             rhs0: vec![0.0; nn],
             tmp: vec![0.0; nn],
+            refinement: Refinement::new(nn),
             factorized: false,
             counters: FactorCounters { symbolic_analyses: 1, ..FactorCounters::default() },
         })
@@ -487,38 +486,23 @@ impl KktFactor {
     /// are equilibrated from there, sweep by sweep, to the same criterion.
     fn compute_scaling(&mut self) {
         let n = self.n;
-        let s = &mut self.scale;
-        let rm = &mut self.tmp;
-        for _ in 0..self.options.scaling_iterations {
-            rm.fill(0.0);
+        let (k, j) = ((&self.k_col_ptr, &self.k_row_idx, &self.k_val), (&self.j_col_ptr, &self.j_row_idx, &self.j_val));
+        equilibrate(&mut self.scale, &mut self.tmp, self.options.scaling_iterations, |s, rm| {
             for c in 0..n {
-                for e in self.k_col_ptr[c]..self.k_col_ptr[c + 1] {
-                    let r = self.k_row_idx[e];
-                    let v = self.k_val[e].abs() * s[r] * s[c];
+                for e in k.0[c]..k.0[c + 1] {
+                    let r = k.1[e];
+                    let v = k.2[e].abs() * s[r] * s[c];
                     rm[r] = rm[r].max(v);
                     rm[c] = rm[c].max(v);
                 }
-                for e in self.j_col_ptr[c]..self.j_col_ptr[c + 1] {
-                    let i = n + self.j_row_idx[e];
-                    let v = self.j_val[e].abs() * s[i] * s[c];
+                for e in j.0[c]..j.0[c + 1] {
+                    let i = n + j.1[e];
+                    let v = j.2[e].abs() * s[i] * s[c];
                     rm[i] = rm[i].max(v);
                     rm[c] = rm[c].max(v);
                 }
             }
-            let mut done = true;
-            for (si, &ri) in s.iter_mut().zip(rm.iter()) {
-                if ri > 0.0 && ri.is_finite() {
-                    if !(0.5..=2.0).contains(&ri) {
-                        done = false;
-                    }
-                    *si /= ri.sqrt();
-                }
-            }
-            if done {
-                break;
-            }
-        }
-        round_to_powers_of_two(s);
+        });
     }
 
     /// Numeric factorization for new values (`k_values` aligned with
@@ -702,12 +686,47 @@ impl KktFactor {
         Ok(report)
     }
 
+    /// Solve for (x, y) in place: `rhs = [a; b]` (length n+m) becomes `[x; y]`; iterative refinement
+    /// against the true KKT ([`Refinement::refine`]) until the backward error stops improving or
+    /// `options.max_refinement` steps. On error `rhs` is left unchanged.
+    pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<SolveReport, FactorError> {
+        let nn = self.n + self.m;
+        if !self.factorized {
+            return Err(FactorError::NotFactorized);
+        }
+        check_values("rhs", rhs, nn)?;
+        self.rhs0.copy_from_slice(rhs);
+        let mut z = std::mem::take(&mut self.z);
+        self.apply_inverse(rhs, &mut z);
+        if let Some(index) = z.iter().position(|v| !v.is_finite()) {
+            self.z = z;
+            return Err(FactorError::NonFiniteSolution { index });
+        }
+        let mut refinement = std::mem::take(&mut self.refinement);
+        let (steps, eta) = refinement.refine(self, &mut z, self.options.max_refinement, self.options.refinement_tol);
+        let r = refinement.residual();
+        let (residual_x, residual_y) = (max_abs(&r[..self.n]), max_abs(&r[self.n..]));
+        self.refinement = refinement;
+        rhs.copy_from_slice(&z);
+        self.z = z;
+        self.counters.solves += 1;
+        self.counters.refinement_steps += steps as u64;
+        Ok(SolveReport {
+            refinement_steps: steps,
+            residual_x,
+            residual_y,
+            backward_error: eta,
+            converged: eta <= self.options.refinement_tol,
+            measured: true,
+        })
+    }
+}
+
+impl Factored for KktFactor {
     /// `out = M⁻¹ T S r` mapped back by `S` (one application of the
     /// regularized inverse to a residual in original units).
-    fn apply_inverse(&mut self, from_rhs0: bool) {
+    fn apply_inverse(&mut self, src: &[f64], t: &mut [f64]) {
         let (n, nn) = (self.n, self.n + self.m);
-        let src = if from_rhs0 { &self.rhs0 } else { &self.r };
-        let t = &mut self.z_new;
         for i in 0..nn {
             t[i] = self.scale[i] * src[i];
         }
@@ -736,11 +755,9 @@ impl KktFactor {
         }
     }
 
-    /// `r = rhs0 − KKT z` with the original values (`den` receives
-    /// `|KKT|·|z| + |rhs0|`); returns its backward error ([`crate::kkt::refinement::backward_error`]:
-    /// componentwise, rows at rounding level normwise) and `‖r‖∞` over the body coordinates and over
-    /// the constraint rows.
-    fn residual(&self, z: &[f64], r: &mut [f64], den: &mut [f64]) -> (f64, f64, f64) {
+    /// `r = rhs0 − KKT z` with the original values (`den` receives `|KKT|·|z| + |rhs0|`); returns its
+    /// backward error ([`backward_error`]: componentwise, rows at rounding level normwise).
+    fn residual(&self, z: &[f64], r: &mut [f64], den: &mut [f64]) -> f64 {
         let n = self.n;
         r.copy_from_slice(&self.rhs0);
         for (d, b) in den.iter_mut().zip(&self.rhs0) {
@@ -767,68 +784,7 @@ impl KktFactor {
                 den[i] += (v * zc).abs();
             }
         }
-        let omega = crate::kkt::refinement::backward_error(r, den, &self.row_norm, &self.rhs0, z);
-        (omega, max_abs(&r[..n]), max_abs(&r[n..]))
-    }
-
-    /// Solve for (x, y) in place: `rhs = [a; b]` (length n+m) becomes `[x; y]`;
-    /// iterative refinement against the true KKT until the scaled residual
-    /// stops improving or `options.max_refinement` steps. On error `rhs` is
-    /// left unchanged.
-    pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<SolveReport, FactorError> {
-        let nn = self.n + self.m;
-        if !self.factorized {
-            return Err(FactorError::NotFactorized);
-        }
-        check_values("rhs", rhs, nn)?;
-        self.rhs0.copy_from_slice(rhs);
-
-        self.apply_inverse(true);
-        std::mem::swap(&mut self.z, &mut self.z_new);
-        if let Some(index) = self.z.iter().position(|v| !v.is_finite()) {
-            return Err(FactorError::NonFiniteSolution { index });
-        }
-        let mut r = std::mem::take(&mut self.r);
-        let mut den = std::mem::take(&mut self.tmp);
-        let (mut eta, mut residual_x, mut residual_y) = self.residual(&self.z, &mut r, &mut den);
-        self.r = r;
-        self.tmp = den;
-        let mut steps = 0;
-        while steps < self.options.max_refinement && eta > self.options.refinement_tol {
-            steps += 1;
-            // The correction is made from `r`, which then takes the new residual: a step that is
-            // discarded leaves `z` and the norms of the residual it had.
-            self.apply_inverse(false);
-            for (zn, z) in self.z_new.iter_mut().zip(self.z.iter()) {
-                *zn += z;
-            }
-            let mut r = std::mem::take(&mut self.r);
-            let mut den = std::mem::take(&mut self.tmp);
-            let (eta_new, new_x, new_y) = self.residual(&self.z_new, &mut r, &mut den);
-            self.r = r;
-            self.tmp = den;
-            if eta_new.is_nan() || eta_new >= eta || self.z_new.iter().any(|v| !v.is_finite()) {
-                break;
-            }
-            std::mem::swap(&mut self.z, &mut self.z_new);
-            (residual_x, residual_y) = (new_x, new_y);
-            let ratio = eta_new / eta;
-            eta = eta_new;
-            if ratio > 0.5 {
-                break;
-            }
-        }
-        rhs.copy_from_slice(&self.z);
-        self.counters.solves += 1;
-        self.counters.refinement_steps += steps as u64;
-        Ok(SolveReport {
-            refinement_steps: steps,
-            residual_x,
-            residual_y,
-            backward_error: eta,
-            converged: eta <= self.options.refinement_tol,
-            measured: true,
-        })
+        backward_error(r, den, &self.row_norm, &self.rhs0, z)
     }
 }
 
