@@ -733,29 +733,3 @@ fn random_garbage_never_panics_and_never_yields_nan() {
         }
     }
 }
-
-/// Allocation probe (not run by default): `factorize` + `solve_in_place` repeated `KKT_LOOPS` times after one
-/// `analyze`. Run under valgrind with 1 and with 50 loops; the total allocation count must not change:
-/// `KKT_LOOPS=50 valgrind <test binary> --ignored --exact allocation_probe --test-threads=1`
-#[test]
-#[ignore]
-fn allocation_probe() {
-    let loops: usize = std::env::var("KKT_LOOPS").ok().and_then(|s| s.parse().ok()).unwrap_or(1);
-    let kind = match std::env::var("KKT_KIND").as_deref() {
-        Ok("supernodal") => FactorKind::Supernodal,
-        _ => FactorKind::Simplicial,
-    };
-    let mut rng = Rng(0xa110c);
-    let (n, m) = (60usize, 25usize);
-    let k = random_spd(&mut rng, n, 0.1);
-    let j = random_j(&mut rng, m, n, 4);
-    let (p, kv, jv) = to_sparse(&k, &j);
-    let mut f = KktFactor::analyze(&p, opts(kind)).unwrap();
-    let mut z = random_vec(&mut rng, n + m);
-    for step in 0..loops {
-        let kvs: Vec<f64> = kv.iter().map(|v| v * (1.0 + step as f64)).collect();
-        let rep = f.factorize(&kvs, &jv).unwrap();
-        assert!(rep.suspect_body_dofs.is_empty());
-        f.solve_in_place(&mut z).unwrap();
-    }
-}
