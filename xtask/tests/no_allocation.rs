@@ -4,7 +4,6 @@
 //! with this one test, so nothing else allocates while it counts).
 
 #[path = "../../crates/solver/tests/common/mod.rs"]
-#[allow(dead_code)]
 mod common;
 
 use common::{random_j, random_spd, random_vec, to_sparse, Rng};
