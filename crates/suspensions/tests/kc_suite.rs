@@ -2,9 +2,11 @@
 //! closed forms and the engine's own independent paths.
 
 use elastokin_solver::Mode;
-use elastokin_suspensions::analysis::{vertical_force_sweep_with, wheel_compliance, SweepExtras};
+use elastokin_suspensions::analysis::{
+    design_wheel_load, vertical_force_sweep, vertical_force_sweep_with, wheel_compliance, SweepExtras,
+};
 use elastokin_suspensions::kc::{self, Analysis, Settings};
-use elastokin_suspensions::{Rig, Side, SuspensionFile};
+use elastokin_suspensions::{LoadPoint, Rig, Side, SuspensionFile};
 use std::path::Path;
 
 fn example(name: &str) -> SuspensionFile {
@@ -13,11 +15,11 @@ fn example(name: &str) -> SuspensionFile {
 
 const EXAMPLES: [&str; 2] = ["macpherson.json", "double_wishbone.json"];
 
-/// Paper mode's error estimate (each row against one exact Newton iteration from it) is within 3× of its
+/// Paper mode's error estimate (each row against one exact Newton iteration from it) is 0.75–1.1× its
 /// error against a converged corrected run, column by column and figure by figure, on every analysis of
-/// every shipped example.
+/// the shipped templates: what the README says of it.
 #[test]
-fn paper_mode_error_estimate_is_within_3x_of_the_error_against_a_converged_run() {
+fn paper_mode_error_estimate_is_0_75_to_1_1_times_the_error_against_a_converged_run() {
     let mut ratios = Vec::new();
     for name in EXAMPLES {
         let file = example(name);
@@ -44,11 +46,11 @@ fn paper_mode_error_estimate_is_within_3x_of_the_error_against_a_converged_run()
         }
     }
     ratios.sort_by(|a, b| a.0.total_cmp(&b.0));
-    // Measured: 0.85 (the vertical force sweep's wheel rate, a slope at a load between rows) to 1.03, over
-    // ~500 columns and figures.
-    assert!(ratios.len() > 300, "{}", ratios.len());
+    // Measured over 491 columns and figures: 0.79 (the double wishbone's camber in the vertical force
+    // sweep) to 1.03 (its roll steer).
+    assert_eq!(ratios.len(), 491);
     let (low, high) = (&ratios[0], &ratios[ratios.len() - 1]);
-    assert!(low.0 > 1.0 / 3.0 && high.0 < 3.0, "lowest {low:?}, highest {high:?}");
+    assert!(low.0 >= 0.75 && high.0 <= 1.1, "lowest {low:?}, highest {high:?}");
 }
 
 /// Corrected mode's estimate sits at the Newton tolerance's scale, and no warning is raised; paper mode
@@ -100,9 +102,12 @@ fn ideal_outer_steer_puts_the_turn_centre_on_the_rear_axle_line() {
     }
 }
 
-/// Ride rate is the wheel rate in series with the tyre; the overall steering ratio is the hand wheel's
-/// 360° per rack travel per revolution over the road wheel's angle per rack travel; the Ackermann
-/// percentage at full rack is (δi − δo)/(δi − δo,ideal) from the steer columns.
+/// Ride rate is the wheel rate in series with the tyre, the wheel rate here measured a second way: as the
+/// slope of force against wheel-centre height of the free corner under a vertical force at the wheel
+/// centre (a central difference of ±10 N about the design load), where the suite reads it off the travel
+/// rig's driver. The overall steering ratio is the hand wheel's 360° per rack travel per revolution over
+/// the road wheel's angle per rack travel; the Ackermann percentage at full rack is
+/// (δi − δo)/(δi − δo,ideal) from the steer columns, δo,ideal = atan(L / (L / tan δi + t)) written here.
 #[test]
 fn ride_rate_steering_ratio_and_ackermann_follow_from_their_definitions() {
     for name in EXAMPLES {
@@ -113,9 +118,19 @@ fn ride_rate_steering_ratio_and_ackermann_follow_from_their_definitions() {
                 .unwrap();
         let travel = report.analysis(Analysis::ParallelTravel).unwrap();
         let value = |r: &kc::AnalysisReport, key: &str| r.figure(key).unwrap().value.unwrap();
-        let (kw, kt) = (value(travel, "wheel_rate") * 1e3, vehicle.tyre_rate.unwrap());
+        let kt = vehicle.tyre_rate.unwrap();
+        let held = file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
+        let design_load = design_wheel_load(&held).unwrap();
+        let mut free = file.suspension.build(Side::Left, Rig::Free).unwrap();
+        free.load_point = LoadPoint::WheelCentre;
+        let df = 10.0;
+        let rows = vertical_force_sweep(free, design_load - df, design_load + df, 2, Mode::Corrected).unwrap();
+        let kw = 2.0 * df / (rows[2].attitude.wheel_centre.z - rows[0].attitude.wheel_centre.z);
         let ride = value(travel, "ride_rate") * 1e3;
-        assert!((1.0 / ride - (1.0 / kw + 1.0 / kt)).abs() < 1e-12 / ride, "{ride} {kw} {kt}");
+        let expected = kw * kt / (kw + kt);
+        // Measured 8.0e-5 (MacPherson) and 1.0e-4 (double wishbone) relative: the suite's wheel rate is a
+        // slope of the 32-step travel rows, this one a ±10 N central difference at design.
+        assert!((ride - expected).abs() < 5e-4 * expected, "{name}: ride rate {ride} against {expected}");
         let steering = report.analysis(Analysis::Steering).unwrap();
         let per_rack = value(steering, "steer_per_rack_travel"); // deg/mm
         let ratio = value(steering, "steering_ratio");
@@ -128,11 +143,12 @@ fn ride_rate_steering_ratio_and_ackermann_follow_from_their_definitions() {
         let (left, right) = (last[l].number().unwrap(), last[r].number().unwrap());
         let (inner, outer) = if left + right > 0.0 { (left, right) } else { (-right, -left) };
         let track = 2.0 * file_track_half(&file);
-        let ideal = kc::ideal_outer_steer(inner.to_radians(), track, vehicle.wheelbase).to_degrees();
+        let wheelbase = vehicle.wheelbase;
+        let ideal = (wheelbase / (wheelbase / inner.to_radians().tan() + track)).atan().to_degrees();
         let percent = 100.0 * (inner - outer) / (inner - ideal);
         let reported = value(steering, "ackermann");
-        assert!((reported - percent).abs() < 1e-6, "{name}: {reported} vs {percent}");
-        assert!(reported.is_finite() && (0.0..200.0).contains(&reported.abs()), "{reported}");
+        // Measured 7.8e-14 and 2.1e-14 percentage points.
+        assert!((reported - percent).abs() < 5e-12, "{name}: {reported} vs {percent}");
     }
 }
 
