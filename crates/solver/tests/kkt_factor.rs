@@ -733,3 +733,53 @@ fn random_garbage_never_panics_and_never_yields_nan() {
         }
     }
 }
+
+/// Threads of a batch share one symbolic analysis: two numeric factors made from one `Arc<KktSymbolic>`
+/// and used on two threads at once give, value set for value set, the results of factors analysed each
+/// on their own, to the bit; the shared analysis is counted once, by whoever made it.
+#[test]
+fn factors_sharing_one_symbolic_analysis_give_separately_analysed_results_to_the_bit() {
+    use elastokin_solver::kkt::KktSymbolic;
+    use std::sync::Arc;
+    let mut rng = Rng(0x5a4ed);
+    let (n, m) = (48usize, 18usize);
+    let k = random_spd(&mut rng, n, 0.2);
+    let j = random_j(&mut rng, m, n, 3);
+    let (p, kv, jv) = to_sparse(&k, &j);
+    let rhs = random_vec(&mut rng, n + m);
+    for kind in [FactorKind::Simplicial, FactorKind::Supernodal] {
+        // Two value sets along a path: the second stiffer.
+        let sets: Vec<Vec<f64>> = (0..2).map(|s| kv.iter().map(|v| v * (1.0 + s as f64)).collect()).collect();
+        let alone: Vec<Vec<f64>> = sets
+            .iter()
+            .map(|values| {
+                let mut f = KktFactor::analyze(&p, opts(kind)).unwrap();
+                f.factorize(values, &jv).unwrap();
+                let mut z = rhs.clone();
+                f.solve_in_place(&mut z).unwrap();
+                z
+            })
+            .collect();
+        let shared = KktSymbolic::analyze(&p, opts(kind)).unwrap();
+        let together: Vec<Vec<f64>> = std::thread::scope(|scope| {
+            let tasks: Vec<_> = sets
+                .iter()
+                .map(|values| {
+                    let sym = Arc::clone(&shared);
+                    let (jv, rhs) = (&jv, &rhs);
+                    scope.spawn(move || {
+                        let mut f = KktFactor::from_symbolic(sym).unwrap();
+                        assert_eq!(f.counters().symbolic_analyses, 0);
+                        f.factorize(values, jv).unwrap();
+                        let mut z = rhs.clone();
+                        f.solve_in_place(&mut z).unwrap();
+                        z
+                    })
+                })
+                .collect();
+            tasks.into_iter().map(|t| t.join().unwrap()).collect()
+        });
+        assert_eq!(together, alone, "{kind:?}");
+        assert_eq!(Arc::strong_count(&shared), 1, "the threads' factors are gone, their shares with them");
+    }
+}

@@ -40,7 +40,7 @@ pub mod sparse_ldlt;
 pub use auto::{AutoKkt, BackendChoice, DENSE_MAX_ORDER};
 pub use dense_lu::DenseLu;
 pub use pattern::KktPattern;
-pub use sparse_ldlt::KktFactor;
+pub use sparse_ldlt::{KktFactor, KktSymbolic};
 
 /// Which faer LDLᵀ kernel to use.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -149,9 +149,14 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side, Spec};
+use std::sync::Arc;
 
-/// Reusable KKT factorization (see the module docs for the method).
-pub struct KktFactor {
+/// The symbolic analysis of one KKT pattern (see the module docs for the method): the pattern of
+/// `K + ρJᵀJ`, the ordering, the elimination tree, the slot maps of every value, the workspace sizes. It
+/// depends on the pattern and the options only, never on values, and does not change once made: one
+/// `Arc<KktSymbolic>` serves any number of numeric factors ([`KktFactor::from_symbolic`]), as the
+/// threads of a batch over one model's variants need.
+pub struct KktSymbolic {
     n: usize,
     m: usize,
     options: KktOptions,
@@ -176,6 +181,30 @@ pub struct KktFactor {
     // faer structures.
     a_pattern: Option<SymbolicSparseColMat<usize>>,
     symbolic: Option<SymbolicCholesky<usize>>,
+    // What a numeric factor allocates: its kernels' scratch, the factor input's and the factor's entries.
+    req: StackReq,
+    a_nnz: usize,
+    l_len: usize,
+}
+
+impl std::fmt::Debug for KktSymbolic {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("KktSymbolic")
+            .field("n", &self.n)
+            .field("m", &self.m)
+            .field("factor_input_nnz", &self.a_nnz)
+            .field("factor_nnz", &self.l_len)
+            .finish_non_exhaustive()
+    }
+}
+
+/// Reusable KKT factorization (see the module docs for the method): the numeric factor of a shared
+/// symbolic analysis ([`KktSymbolic`]) with its own values, scaling and workspaces.
+pub struct KktFactor {
+    sym: Arc<KktSymbolic>,
+    n: usize,
+    m: usize,
+    options: KktOptions,
     a_val: Vec<f64>,
     l_val: Vec<f64>,
     mem: MemBuffer,
@@ -202,7 +231,7 @@ pub struct KktFactor {
 
 impl std::fmt::Debug for KktFactor {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let (kind, l_nnz) = match self.symbolic.as_ref().map(|s| s.raw()) {
+        let (kind, l_nnz) = match self.sym.symbolic.as_ref().map(|s| s.raw()) {
             Some(SymbolicCholeskyRaw::Simplicial(s)) => ("simplicial", s.len_val()),
             Some(SymbolicCholeskyRaw::Supernodal(s)) => ("supernodal", s.len_val()),
             None => ("empty", 0),
@@ -243,14 +272,15 @@ fn for_each_pivot(symbolic: &SymbolicCholesky<usize>, l_val: &[f64], mut visit: 
     }
 }
 
-impl KktFactor {
-    /// Symbolic analysis once: pattern of K+ρJᵀJ, ordering, elimination tree,
-    /// slot maps, all workspaces.
-    pub fn analyze(pattern: &KktPattern, options: KktOptions) -> Result<Self, FactorError> {
+impl KktSymbolic {
+    /// Symbolic analysis once: pattern of K+ρJᵀJ, ordering, elimination tree, slot maps, and the sizes
+    /// of every workspace a numeric factor needs.
+    pub fn analyze(pattern: &KktPattern, options: KktOptions) -> Result<Arc<Self>, FactorError> {
         validate(pattern, &options)?;
         let (n, m) = (pattern.n, pattern.m);
         let nn = n.checked_add(m).ok_or(FactorError::OutOfMemory)?;
-        let scale = try_vec(nn, 1.0f64)?;
+        // Probed as every factor will be, so that a size too large is refused here.
+        drop(try_vec(nn, 1.0f64)?);
         let k_nnz = pattern.k_row_idx.len();
         let j_nnz = pattern.j_row_idx.len();
 
@@ -404,9 +434,8 @@ impl KktFactor {
         let j_slot = slot.split_off(pb_nnz);
         let mut pb_slot = slot;
         pb_slot.shrink_to_fit();
-        let mem = MemBuffer::try_new(req).map_err(alloc_err)?;
 
-        Ok(Self {
+        Ok(Arc::new(KktSymbolic {
             n,
             m,
             options,
@@ -422,22 +451,55 @@ impl KktFactor {
             signs,
             a_pattern,
             symbolic,
-            a_val: vec![0.0; a_nnz],
-            l_val: vec![0.0; l_len],
+            req,
+            a_nnz,
+            l_len,
+        }))
+    }
+}
+
+impl KktFactor {
+    /// Symbolic analysis once ([`KktSymbolic::analyze`]) and a numeric factor of it
+    /// ([`KktFactor::from_symbolic`]).
+    pub fn analyze(pattern: &KktPattern, options: KktOptions) -> Result<Self, FactorError> {
+        let mut factor = Self::from_symbolic(KktSymbolic::analyze(pattern, options)?)?;
+        factor.counters.symbolic_analyses = 1;
+        Ok(factor)
+    }
+
+    /// A numeric factor of a symbolic analysis, which it shares: every workspace sized and allocated here,
+    /// none later. Its counters start at zero (the analysis was counted by whoever made it).
+    pub fn from_symbolic(sym: Arc<KktSymbolic>) -> Result<Self, FactorError> {
+        let (n, m) = (sym.n, sym.m);
+        let nn = n + m;
+        let scale = try_vec(nn, 1.0f64)?;
+        let mem = MemBuffer::try_new(sym.req).map_err(alloc_err)?;
+        Ok(Self {
+            n,
+            m,
+            options: sym.options.clone(),
+            a_val: vec![0.0; sym.a_nnz],
+            l_val: vec![0.0; sym.l_len],
             mem,
             scale,
             row_norm: vec![0.0; nn],
-            k_val: vec![0.0; k_nnz],
-            j_val: vec![0.0; j_nnz],
-            j_hat: vec![0.0; j_nnz],
+            k_val: vec![0.0; sym.k_row_idx.len()],
+            j_val: vec![0.0; sym.j_row_idx.len()],
+            j_hat: vec![0.0; sym.j_row_idx.len()],
             rho: 1.0,
             z: vec![0.0; nn],
             rhs0: vec![0.0; nn],
             tmp: vec![0.0; nn],
             refinement: Refinement::new(nn),
             factorized: false,
-            counters: FactorCounters { symbolic_analyses: 1, ..FactorCounters::default() },
+            counters: FactorCounters::default(),
+            sym,
         })
+    }
+
+    /// The symbolic analysis this factor is of, to share with more factors.
+    pub fn symbolic(&self) -> &Arc<KktSymbolic> {
+        &self.sym
     }
 
     /// Number of body coordinates `n`.
@@ -486,7 +548,10 @@ impl KktFactor {
     /// are equilibrated from there, sweep by sweep, to the same criterion.
     fn compute_scaling(&mut self) {
         let n = self.n;
-        let (k, j) = ((&self.k_col_ptr, &self.k_row_idx, &self.k_val), (&self.j_col_ptr, &self.j_row_idx, &self.j_val));
+        let (k, j) = (
+            (&self.sym.k_col_ptr, &self.sym.k_row_idx, &self.k_val),
+            (&self.sym.j_col_ptr, &self.sym.j_row_idx, &self.j_val),
+        );
         equilibrate(&mut self.scale, &mut self.tmp, self.options.scaling_iterations, |s, rm| {
             for c in 0..n {
                 for e in k.0[c]..k.0[c + 1] {
@@ -510,21 +575,21 @@ impl KktFactor {
     /// suspect lists of the report when there are suspects.
     pub fn factorize(&mut self, k_values: &[f64], j_values: &[f64]) -> Result<FactorReport, FactorError> {
         self.factorized = false;
-        check_values("k_values", k_values, self.k_row_idx.len())?;
-        check_values("j_values", j_values, self.j_row_idx.len())?;
+        check_values("k_values", k_values, self.sym.k_row_idx.len())?;
+        check_values("j_values", j_values, self.sym.j_row_idx.len())?;
         let (n, m) = (self.n, self.m);
         let nn = n + m;
         self.k_val.copy_from_slice(k_values);
         self.j_val.copy_from_slice(j_values);
         self.row_norm.fill(0.0);
         for c in 0..n {
-            for e in self.k_col_ptr[c]..self.k_col_ptr[c + 1] {
-                let (r, v) = (self.k_row_idx[e], self.k_val[e].abs());
+            for e in self.sym.k_col_ptr[c]..self.sym.k_col_ptr[c + 1] {
+                let (r, v) = (self.sym.k_row_idx[e], self.k_val[e].abs());
                 self.row_norm[r] = self.row_norm[r].max(v);
                 self.row_norm[c] = self.row_norm[c].max(v);
             }
-            for e in self.j_col_ptr[c]..self.j_col_ptr[c + 1] {
-                let (i, v) = (n + self.j_row_idx[e], self.j_val[e].abs());
+            for e in self.sym.j_col_ptr[c]..self.sym.j_col_ptr[c + 1] {
+                let (i, v) = (n + self.sym.j_row_idx[e], self.j_val[e].abs());
                 self.row_norm[i] = self.row_norm[i].max(v);
                 self.row_norm[c] = self.row_norm[c].max(v);
             }
@@ -538,17 +603,17 @@ impl KktFactor {
         row_sq.fill(0.0);
         let mut kdiag_max = 0.0f64;
         for c in 0..n {
-            for e in self.k_col_ptr[c]..self.k_col_ptr[c + 1] {
-                let r = self.k_row_idx[e];
+            for e in self.sym.k_col_ptr[c]..self.sym.k_col_ptr[c + 1] {
+                let r = self.sym.k_row_idx[e];
                 if r == c {
                     kdiag_max = kdiag_max.max(self.k_val[e] * s[r] * s[c]);
                 }
             }
-            for e in self.j_col_ptr[c]..self.j_col_ptr[c + 1] {
-                let i = self.j_row_idx[e];
+            for e in self.sym.j_col_ptr[c]..self.sym.j_col_ptr[c + 1] {
+                let i = self.sym.j_row_idx[e];
                 let v = self.j_val[e] * s[n + i] * s[c];
                 self.j_hat[e] = v;
-                self.a_val[self.j_slot[e]] = v;
+                self.a_val[self.sym.j_slot[e]] = v;
                 row_sq[i] += v * v;
             }
         }
@@ -566,23 +631,23 @@ impl KktFactor {
 
         // The body block K̂ + ρĴᵀĴ, entry by entry of its pattern: K̂'s entry, then ρ Ĵ_ic Ĵ_ir over the
         // rows i that the columns c and r share, in increasing i (a merge of the two sorted columns of J).
-        let (pb_ptr, pb_row) = match &self.pb_pattern {
+        let (pb_ptr, pb_row) = match &self.sym.pb_pattern {
             Some((ptr, row)) => (ptr, row),
-            None => (&self.k_col_ptr, &self.k_row_idx),
+            None => (&self.sym.k_col_ptr, &self.sym.k_row_idx),
         };
         for c in 0..n {
-            let (mut e, k_end) = (self.k_col_ptr[c], self.k_col_ptr[c + 1]);
-            let jc = self.j_col_ptr[c]..self.j_col_ptr[c + 1];
+            let (mut e, k_end) = (self.sym.k_col_ptr[c], self.sym.k_col_ptr[c + 1]);
+            let jc = self.sym.j_col_ptr[c]..self.sym.j_col_ptr[c + 1];
             for t in pb_ptr[c]..pb_ptr[c + 1] {
                 let r = pb_row[t];
                 let mut acc = 0.0;
-                if e < k_end && self.k_row_idx[e] == r {
+                if e < k_end && self.sym.k_row_idx[e] == r {
                     acc += self.k_val[e] * s[r] * s[c];
                     e += 1;
                 }
-                let (mut a, mut b, b_end) = (jc.start, self.j_col_ptr[r], self.j_col_ptr[r + 1]);
+                let (mut a, mut b, b_end) = (jc.start, self.sym.j_col_ptr[r], self.sym.j_col_ptr[r + 1]);
                 while a < jc.end && b < b_end {
-                    let (ia, ib) = (self.j_row_idx[a], self.j_row_idx[b]);
+                    let (ia, ib) = (self.sym.j_row_idx[a], self.sym.j_row_idx[b]);
                     if ia == ib {
                         acc += rho * self.j_hat[a] * self.j_hat[b];
                         a += 1;
@@ -593,15 +658,15 @@ impl KktFactor {
                         b += 1;
                     }
                 }
-                self.a_val[self.pb_slot[t]] = acc;
+                self.a_val[self.sym.pb_slot[t]] = acc;
             }
         }
-        for &sl in &self.cdiag_slot {
+        for &sl in &self.sym.cdiag_slot {
             self.a_val[sl] = reg22;
         }
 
         let mut report = FactorReport { rho, ..FactorReport::default() };
-        let (Some(symbolic), Some(a_pattern)) = (self.symbolic.as_ref(), self.a_pattern.as_ref()) else {
+        let (Some(symbolic), Some(a_pattern)) = (self.sym.symbolic.as_ref(), self.sym.a_pattern.as_ref()) else {
             self.factorized = true;
             self.counters.numeric_factorizations += 1;
             return Ok(report);
@@ -612,7 +677,7 @@ impl KktFactor {
             (0.0, 0.0)
         };
         let reg = LdltRegularization {
-            dynamic_regularization_signs: if self.options.signed_regularization { Some(&self.signs) } else { None },
+            dynamic_regularization_signs: if self.options.signed_regularization { Some(&self.sym.signs) } else { None },
             dynamic_regularization_delta: delta,
             dynamic_regularization_epsilon: threshold,
         };
@@ -639,7 +704,7 @@ impl KktFactor {
                 SymbolicCholeskyRaw::Supernodal(_) => index,
             }
             .min(nn - 1);
-            let o = self.perm[p];
+            let o = self.sym.perm[p];
             return Err(if o < n {
                 FactorError::Singular { kind: "body coordinate", index: o }
             } else {
@@ -651,7 +716,7 @@ impl KktFactor {
         let eps = self.options.epsilon;
         let (mut bmin, mut bmax, mut cmin, mut cmax) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
         for_each_pivot(symbolic, &self.l_val, |p, d| {
-            let o = self.perm[p];
+            let o = self.sym.perm[p];
             let regularized = delta > 0.0 && d.abs() == delta;
             if regularized {
                 report.regularized_pivots += 1;
@@ -660,7 +725,7 @@ impl KktFactor {
                 bmin = bmin.min(d.abs());
                 bmax = bmax.max(d.abs());
                 // The diagonal of K̂ + ρĴᵀĴ, the last entry of its column.
-                let diag = self.a_val[self.pb_slot[pb_ptr[o + 1] - 1]];
+                let diag = self.a_val[self.sym.pb_slot[pb_ptr[o + 1] - 1]];
                 let small = d.abs() <= tol * if diag > 0.0 { diag } else { 1.0 };
                 if regularized || small {
                     report.suspect_body_dofs.push(o);
@@ -732,15 +797,15 @@ impl Factored for KktFactor {
         }
         for c in 0..n {
             let mut acc = 0.0;
-            for e in self.j_col_ptr[c]..self.j_col_ptr[c + 1] {
-                acc += self.j_hat[e] * t[n + self.j_row_idx[e]];
+            for e in self.sym.j_col_ptr[c]..self.sym.j_col_ptr[c + 1] {
+                acc += self.j_hat[e] * t[n + self.sym.j_row_idx[e]];
             }
             t[c] += self.rho * acc;
         }
-        for (p, &o) in self.perm.iter().enumerate() {
+        for (p, &o) in self.sym.perm.iter().enumerate() {
             self.tmp[p] = t[o];
         }
-        if let Some(symbolic) = self.symbolic.as_ref() {
+        if let Some(symbolic) = self.sym.symbolic.as_ref() {
             let f = LdltRef::new(symbolic, &self.l_val);
             let stack = MemStack::new(&mut self.mem);
             f.solve_in_place_with_conj(
@@ -750,7 +815,7 @@ impl Factored for KktFactor {
                 stack,
             );
         }
-        for (p, &o) in self.perm.iter().enumerate() {
+        for (p, &o) in self.sym.perm.iter().enumerate() {
             t[o] = self.tmp[p] * self.scale[o];
         }
     }
@@ -765,8 +830,8 @@ impl Factored for KktFactor {
         }
         for c in 0..n {
             let zc = z[c];
-            for e in self.k_col_ptr[c]..self.k_col_ptr[c + 1] {
-                let row = self.k_row_idx[e];
+            for e in self.sym.k_col_ptr[c]..self.sym.k_col_ptr[c + 1] {
+                let row = self.sym.k_row_idx[e];
                 let v = self.k_val[e];
                 r[row] -= v * zc;
                 den[row] += (v * zc).abs();
@@ -775,8 +840,8 @@ impl Factored for KktFactor {
                     den[c] += (v * z[row]).abs();
                 }
             }
-            for e in self.j_col_ptr[c]..self.j_col_ptr[c + 1] {
-                let i = n + self.j_row_idx[e];
+            for e in self.sym.j_col_ptr[c]..self.sym.j_col_ptr[c + 1] {
+                let i = n + self.sym.j_row_idx[e];
                 let v = self.j_val[e];
                 r[c] -= v * z[i];
                 den[c] += (v * z[i]).abs();
