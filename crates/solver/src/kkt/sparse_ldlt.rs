@@ -547,11 +547,15 @@ impl KktFactor {
     /// within a factor 2 of 1, where sweeps from ones took several each time. Values that changed by more
     /// are equilibrated from there, sweep by sweep, to the same criterion.
     fn compute_scaling(&mut self) {
+        // The analysis's arrays as slices: held in registers across the loops that write this factor's
+        // buffers.
+        let sym = Arc::clone(&self.sym);
+        let k_col_ptr: &[usize] = &sym.k_col_ptr;
+        let k_row_idx: &[usize] = &sym.k_row_idx;
+        let j_col_ptr: &[usize] = &sym.j_col_ptr;
+        let j_row_idx: &[usize] = &sym.j_row_idx;
         let n = self.n;
-        let (k, j) = (
-            (&self.sym.k_col_ptr, &self.sym.k_row_idx, &self.k_val),
-            (&self.sym.j_col_ptr, &self.sym.j_row_idx, &self.j_val),
-        );
+        let (k, j) = ((&k_col_ptr, &k_row_idx, &self.k_val), (&j_col_ptr, &j_row_idx, &self.j_val));
         equilibrate(&mut self.scale, &mut self.tmp, self.options.scaling_iterations, |s, rm| {
             for c in 0..n {
                 for e in k.0[c]..k.0[c + 1] {
@@ -574,22 +578,34 @@ impl KktFactor {
     /// `k_row_idx`, `j_values` with `j_row_idx`). No allocation, except for the
     /// suspect lists of the report when there are suspects.
     pub fn factorize(&mut self, k_values: &[f64], j_values: &[f64]) -> Result<FactorReport, FactorError> {
+        // The analysis's arrays as slices: held in registers across the loops that write this factor's
+        // buffers.
+        let sym = Arc::clone(&self.sym);
+        let k_col_ptr: &[usize] = &sym.k_col_ptr;
+        let k_row_idx: &[usize] = &sym.k_row_idx;
+        let j_col_ptr: &[usize] = &sym.j_col_ptr;
+        let j_row_idx: &[usize] = &sym.j_row_idx;
+        let j_slot: &[usize] = &sym.j_slot;
+        let pb_slot: &[usize] = &sym.pb_slot;
+        let cdiag_slot: &[usize] = &sym.cdiag_slot;
+        let perm: &[usize] = &sym.perm;
+        let signs: &[i8] = &sym.signs;
         self.factorized = false;
-        check_values("k_values", k_values, self.sym.k_row_idx.len())?;
-        check_values("j_values", j_values, self.sym.j_row_idx.len())?;
+        check_values("k_values", k_values, k_row_idx.len())?;
+        check_values("j_values", j_values, j_row_idx.len())?;
         let (n, m) = (self.n, self.m);
         let nn = n + m;
         self.k_val.copy_from_slice(k_values);
         self.j_val.copy_from_slice(j_values);
         self.row_norm.fill(0.0);
         for c in 0..n {
-            for e in self.sym.k_col_ptr[c]..self.sym.k_col_ptr[c + 1] {
-                let (r, v) = (self.sym.k_row_idx[e], self.k_val[e].abs());
+            for e in k_col_ptr[c]..k_col_ptr[c + 1] {
+                let (r, v) = (k_row_idx[e], self.k_val[e].abs());
                 self.row_norm[r] = self.row_norm[r].max(v);
                 self.row_norm[c] = self.row_norm[c].max(v);
             }
-            for e in self.sym.j_col_ptr[c]..self.sym.j_col_ptr[c + 1] {
-                let (i, v) = (n + self.sym.j_row_idx[e], self.j_val[e].abs());
+            for e in j_col_ptr[c]..j_col_ptr[c + 1] {
+                let (i, v) = (n + j_row_idx[e], self.j_val[e].abs());
                 self.row_norm[i] = self.row_norm[i].max(v);
                 self.row_norm[c] = self.row_norm[c].max(v);
             }
@@ -603,17 +619,17 @@ impl KktFactor {
         row_sq.fill(0.0);
         let mut kdiag_max = 0.0f64;
         for c in 0..n {
-            for e in self.sym.k_col_ptr[c]..self.sym.k_col_ptr[c + 1] {
-                let r = self.sym.k_row_idx[e];
+            for e in k_col_ptr[c]..k_col_ptr[c + 1] {
+                let r = k_row_idx[e];
                 if r == c {
                     kdiag_max = kdiag_max.max(self.k_val[e] * s[r] * s[c]);
                 }
             }
-            for e in self.sym.j_col_ptr[c]..self.sym.j_col_ptr[c + 1] {
-                let i = self.sym.j_row_idx[e];
+            for e in j_col_ptr[c]..j_col_ptr[c + 1] {
+                let i = j_row_idx[e];
                 let v = self.j_val[e] * s[n + i] * s[c];
                 self.j_hat[e] = v;
-                self.a_val[self.sym.j_slot[e]] = v;
+                self.a_val[j_slot[e]] = v;
                 row_sq[i] += v * v;
             }
         }
@@ -631,23 +647,23 @@ impl KktFactor {
 
         // The body block K̂ + ρĴᵀĴ, entry by entry of its pattern: K̂'s entry, then ρ Ĵ_ic Ĵ_ir over the
         // rows i that the columns c and r share, in increasing i (a merge of the two sorted columns of J).
-        let (pb_ptr, pb_row) = match &self.sym.pb_pattern {
+        let (pb_ptr, pb_row): (&[usize], &[usize]) = match &sym.pb_pattern {
             Some((ptr, row)) => (ptr, row),
-            None => (&self.sym.k_col_ptr, &self.sym.k_row_idx),
+            None => (k_col_ptr, k_row_idx),
         };
         for c in 0..n {
-            let (mut e, k_end) = (self.sym.k_col_ptr[c], self.sym.k_col_ptr[c + 1]);
-            let jc = self.sym.j_col_ptr[c]..self.sym.j_col_ptr[c + 1];
+            let (mut e, k_end) = (k_col_ptr[c], k_col_ptr[c + 1]);
+            let jc = j_col_ptr[c]..j_col_ptr[c + 1];
             for t in pb_ptr[c]..pb_ptr[c + 1] {
                 let r = pb_row[t];
                 let mut acc = 0.0;
-                if e < k_end && self.sym.k_row_idx[e] == r {
+                if e < k_end && k_row_idx[e] == r {
                     acc += self.k_val[e] * s[r] * s[c];
                     e += 1;
                 }
-                let (mut a, mut b, b_end) = (jc.start, self.sym.j_col_ptr[r], self.sym.j_col_ptr[r + 1]);
+                let (mut a, mut b, b_end) = (jc.start, j_col_ptr[r], j_col_ptr[r + 1]);
                 while a < jc.end && b < b_end {
-                    let (ia, ib) = (self.sym.j_row_idx[a], self.sym.j_row_idx[b]);
+                    let (ia, ib) = (j_row_idx[a], j_row_idx[b]);
                     if ia == ib {
                         acc += rho * self.j_hat[a] * self.j_hat[b];
                         a += 1;
@@ -658,10 +674,10 @@ impl KktFactor {
                         b += 1;
                     }
                 }
-                self.a_val[self.sym.pb_slot[t]] = acc;
+                self.a_val[pb_slot[t]] = acc;
             }
         }
-        for &sl in &self.sym.cdiag_slot {
+        for &sl in cdiag_slot {
             self.a_val[sl] = reg22;
         }
 
@@ -677,7 +693,7 @@ impl KktFactor {
             (0.0, 0.0)
         };
         let reg = LdltRegularization {
-            dynamic_regularization_signs: if self.options.signed_regularization { Some(&self.sym.signs) } else { None },
+            dynamic_regularization_signs: if self.options.signed_regularization { Some(&signs) } else { None },
             dynamic_regularization_delta: delta,
             dynamic_regularization_epsilon: threshold,
         };
@@ -704,7 +720,7 @@ impl KktFactor {
                 SymbolicCholeskyRaw::Supernodal(_) => index,
             }
             .min(nn - 1);
-            let o = self.sym.perm[p];
+            let o = perm[p];
             return Err(if o < n {
                 FactorError::Singular { kind: "body coordinate", index: o }
             } else {
@@ -716,7 +732,7 @@ impl KktFactor {
         let eps = self.options.epsilon;
         let (mut bmin, mut bmax, mut cmin, mut cmax) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
         for_each_pivot(symbolic, &self.l_val, |p, d| {
-            let o = self.sym.perm[p];
+            let o = perm[p];
             let regularized = delta > 0.0 && d.abs() == delta;
             if regularized {
                 report.regularized_pivots += 1;
@@ -725,7 +741,7 @@ impl KktFactor {
                 bmin = bmin.min(d.abs());
                 bmax = bmax.max(d.abs());
                 // The diagonal of K̂ + ρĴᵀĴ, the last entry of its column.
-                let diag = self.a_val[self.sym.pb_slot[pb_ptr[o + 1] - 1]];
+                let diag = self.a_val[pb_slot[pb_ptr[o + 1] - 1]];
                 let small = d.abs() <= tol * if diag > 0.0 { diag } else { 1.0 };
                 if regularized || small {
                     report.suspect_body_dofs.push(o);
@@ -791,18 +807,24 @@ impl Factored for KktFactor {
     /// `out = M⁻¹ T S r` mapped back by `S` (one application of the
     /// regularized inverse to a residual in original units).
     fn apply_inverse(&mut self, src: &[f64], t: &mut [f64]) {
+        // The analysis's arrays as slices: held in registers across the loops that write this factor's
+        // buffers.
+        let sym = Arc::clone(&self.sym);
+        let j_col_ptr: &[usize] = &sym.j_col_ptr;
+        let j_row_idx: &[usize] = &sym.j_row_idx;
+        let perm: &[usize] = &sym.perm;
         let (n, nn) = (self.n, self.n + self.m);
         for i in 0..nn {
             t[i] = self.scale[i] * src[i];
         }
         for c in 0..n {
             let mut acc = 0.0;
-            for e in self.sym.j_col_ptr[c]..self.sym.j_col_ptr[c + 1] {
-                acc += self.j_hat[e] * t[n + self.sym.j_row_idx[e]];
+            for e in j_col_ptr[c]..j_col_ptr[c + 1] {
+                acc += self.j_hat[e] * t[n + j_row_idx[e]];
             }
             t[c] += self.rho * acc;
         }
-        for (p, &o) in self.sym.perm.iter().enumerate() {
+        for (p, &o) in perm.iter().enumerate() {
             self.tmp[p] = t[o];
         }
         if let Some(symbolic) = self.sym.symbolic.as_ref() {
@@ -815,7 +837,7 @@ impl Factored for KktFactor {
                 stack,
             );
         }
-        for (p, &o) in self.sym.perm.iter().enumerate() {
+        for (p, &o) in perm.iter().enumerate() {
             t[o] = self.tmp[p] * self.scale[o];
         }
     }
@@ -823,6 +845,13 @@ impl Factored for KktFactor {
     /// `r = rhs0 − KKT z` with the original values (`den` receives `|KKT|·|z| + |rhs0|`); returns its
     /// backward error ([`backward_error`]: componentwise, rows at rounding level normwise).
     fn residual(&self, z: &[f64], r: &mut [f64], den: &mut [f64]) -> f64 {
+        // The analysis's arrays as slices: held in registers across the loops that write this factor's
+        // buffers.
+        let sym = Arc::clone(&self.sym);
+        let k_col_ptr: &[usize] = &sym.k_col_ptr;
+        let k_row_idx: &[usize] = &sym.k_row_idx;
+        let j_col_ptr: &[usize] = &sym.j_col_ptr;
+        let j_row_idx: &[usize] = &sym.j_row_idx;
         let n = self.n;
         r.copy_from_slice(&self.rhs0);
         for (d, b) in den.iter_mut().zip(&self.rhs0) {
@@ -830,8 +859,8 @@ impl Factored for KktFactor {
         }
         for c in 0..n {
             let zc = z[c];
-            for e in self.sym.k_col_ptr[c]..self.sym.k_col_ptr[c + 1] {
-                let row = self.sym.k_row_idx[e];
+            for e in k_col_ptr[c]..k_col_ptr[c + 1] {
+                let row = k_row_idx[e];
                 let v = self.k_val[e];
                 r[row] -= v * zc;
                 den[row] += (v * zc).abs();
@@ -840,8 +869,8 @@ impl Factored for KktFactor {
                     den[c] += (v * z[row]).abs();
                 }
             }
-            for e in self.sym.j_col_ptr[c]..self.sym.j_col_ptr[c + 1] {
-                let i = n + self.sym.j_row_idx[e];
+            for e in j_col_ptr[c]..j_col_ptr[c + 1] {
+                let i = n + j_row_idx[e];
                 let v = self.j_val[e];
                 r[c] -= v * z[i];
                 den[c] += (v * z[i]).abs();
