@@ -693,7 +693,7 @@ impl KktFactor {
             (0.0, 0.0)
         };
         let reg = LdltRegularization {
-            dynamic_regularization_signs: if self.options.signed_regularization { Some(&signs) } else { None },
+            dynamic_regularization_signs: if self.options.signed_regularization { Some(signs) } else { None },
             dynamic_regularization_delta: delta,
             dynamic_regularization_epsilon: threshold,
         };
