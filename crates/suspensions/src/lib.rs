@@ -30,7 +30,7 @@
 //! - [`description`]: what a user writes — the general form, the templates that expand into it, the
 //!   vehicle, the limits;
 //! - [`wheel`]: toe, camber and steering geometry read from a built model's poses;
-//! - [`file`]: the model-file format — reading, key paths, line and column errors;
+//! - [`file`](mod@file): the model-file format — reading, key paths, line and column errors;
 //! - [`import`]: other programs' files (Project Chrono's) read into descriptions;
 //! - [`build`]: a description made into a model, with the rig that holds it;
 //! - [`document`]: one way in for every document, read and built;

@@ -768,7 +768,7 @@ impl KktFactor {
     }
 
     /// Solve for (x, y) in place: `rhs = [a; b]` (length n+m) becomes `[x; y]`; iterative refinement
-    /// against the true KKT ([`Refinement::refine`]) until the backward error stops improving or
+    /// against the true KKT (`refinement.rs`, written once for every backend) until the backward error stops improving or
     /// `options.max_refinement` steps. On error `rhs` is left unchanged.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<SolveReport, FactorError> {
         let nn = self.n + self.m;

@@ -182,7 +182,7 @@ pub fn vertical_force_sweep_with(
     load_rows(&mut solver, &corner, walked, local_patch, extras)
 }
 
-/// A force or torque a K&C rig applies to the wheel (signs as in [`PatchCompliance`]).
+/// A force or torque a K&C rig applies to the wheel (signs as in [`PatchCompliance`](crate::analysis::PatchCompliance)).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum WheelLoad {
     /// Lateral force at the contact patch, N, positive inboard: the cornering force on the outer wheel
@@ -211,7 +211,7 @@ pub enum WheelLoad {
 ///
 /// The patch loads act at the upright's material point at the contact patch of the equilibrium without
 /// the swept load (the lowest point of the wheel there; the rows' `contact_patch`), so that their slope at
-/// zero load is the compliance [`patch_compliance`] takes from the tangent at that equilibrium; the
+/// zero load is the compliance [`patch_compliance`](crate::analysis::patch_compliance) takes from the tangent at that equilibrium; the
 /// traction force acts at the wheel centre. With [`Corner::load_point`] at the wheel centre, the lateral
 /// and braking forces act there too. Loads keep their global direction as the wheel moves.
 pub fn wheel_load_sweep(

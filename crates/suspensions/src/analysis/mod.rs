@@ -1,7 +1,7 @@
 //! The K&C analyses of the engine: load paths walked on a built corner or axle and read into wheel
 //! characteristics, row by row. One module per kind of sweep: [`travel`] (wheel travel, steering),
 //! [`loads`] (vertical force, road loads, the model's loads, the static load case), [`compliance`] (the
-//! wheel's 6×6 compliance and the contact patch's), [`anti_pitch`], and [`axle`] (both wheels: roll,
+//! wheel's 6×6 compliance and the contact patch's), [`anti_pitch`](mod@anti_pitch), and [`axle`] (both wheels: roll,
 //! parallel travel, steering, the roll centre). [`sweep`] is how each of them walks and reads.
 //!
 //! Invariant: an analysis takes a built model and solves it; it reads no file and builds no description.

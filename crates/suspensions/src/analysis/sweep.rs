@@ -52,7 +52,7 @@ pub struct SweepExtras {
     /// Every row read again one exact Newton iteration away ([`StaticSolver::newton_correction`]): the
     /// difference is the row's error estimate. One factorization per row.
     pub error_estimate: bool,
-    /// The 6×6 wheel compliance ([`wheel_compliance`]) at every step. One factorization and six
+    /// The 6×6 wheel compliance ([`wheel_compliance`](crate::analysis::wheel_compliance)) at every step. One factorization and six
     /// back-substitutions per row.
     pub compliance: bool,
     /// What to do at a limit point (a load the corner cannot carry, a travel its linkage cannot reach):

@@ -21,7 +21,7 @@ pub struct Corner {
     pub rig: Rig,
     /// The wheel.
     pub wheel: Wheel,
-    /// The corner's own spring (see [`CornerParts::spring`]).
+    /// The corner's own spring (see [`CornerParts::spring`](crate::build::CornerParts::spring)).
     pub spring: Option<ElementId>,
     /// The wheel across the axle when the corner cannot stand alone (a solid axle; see [`Corner::build`]):
     /// held by the same rig and loaded as `wheel` is, in phase.

@@ -4,7 +4,7 @@
 //! under that key, a hardpoint of `joints[0]` places the joints listed under it.
 //!
 //! The builder names every part it adds after its entry (`part_name(prefix, name)`, the anti-roll bar's
-//! [`AntiRollBar::part_names`], the load labels of [`load_labels`]), and the rig names its own parts by the
+//! [`AntiRollBar::part_names`](crate::description::AntiRollBar::part_names), the load labels of `load_labels`), and the rig names its own parts by the
 //! constants of [`crate::build::rig`]; the map is read back by those names, so it needs nothing threaded
 //! through the builder. A template's items are those of its expansion into the general form.
 

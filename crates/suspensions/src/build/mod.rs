@@ -4,7 +4,7 @@
 //! Every description builds through one builder, the general form's ([`general`]); a template checks what
 //! only it says and builds its expansion ([`templates`]). The rig's rack, tie-rod mounts and drivers are
 //! added in [`rig`] alone, and the mobility at design, which the rig asks of a solid axle, is
-//! [`mobility`].
+//! [`mobility`](mod@mobility).
 //!
 //! Each described item can be found in what it became ([`BuildMap`]): the bodies, joints and elements of
 //! every entry, on each side.

@@ -6,7 +6,7 @@
 //! expand into it (`From<&MacPherson> for GeneralCorner`), and [`Template`] says which a model holds.
 //! Beside them: how parts meet ([`connection`]), the vehicle around the corner ([`vehicle`]), the limits
 //! of what a description may say and the checks that hold it to them ([`limits`]), and where a
-//! template's parts are by hardpoint name ([`layout`], for the plausibility check).
+//! template's parts are by hardpoint name (`layout`, for the plausibility check).
 //!
 //! Invariant: nothing here builds a model or solves one. This layer imports no other layer of the crate,
 //! and no solver type.

@@ -2,7 +2,7 @@
 //!
 //! Project Chrono (BSD-3-Clause, `projectchrono/chrono`) describes each suspension subsystem of its wheeled
 //! vehicles in a JSON file under `data/vehicle/*/suspension/`: a `"Template"` (the subsystem's class) and
-//! its hardpoints, bodies, joints and spring-damper elements, for the left side. [`import`] reads one into
+//! its hardpoints, bodies, joints and spring-damper elements, for the left side. [`read`] reads one into
 //! a [`SuspensionFile`] in the general form, so every analysis runs on it, and lists what it read and what
 //! it left out ([`Imported::notes`]).
 //!
@@ -25,13 +25,13 @@
 //! - A joint with `Bushing Data` is, in Chrono, a six-way bushing in the joint's frame (z along its axis):
 //!   `Stiffness Linear` along the three axes, `Stiffness Rotational` about the axes the joint holds and the
 //!   `DOF` rates about the ones it leaves free, the moment `M = Kθ` (`ChLoadBodyBodyBushingGeneric`). It
-//!   is read as that bushing: the same frame, the six rates, [`RotationLaw::Linear`]. A zero rate (Chrono
+//!   is read as that bushing: the same frame, the six rates, [`RotationLaw::Linear`](elastokin_elements::RotationLaw::Linear). A zero rate (Chrono
 //!   files give 0 for the free directions) is taken as the least rate the engine accepts
-//!   ([`ROTATIONAL_RATE_RANGE`]`.0`, 10⁻³ N·m/rad), said in the notes.
+//!   ([`ROTATIONAL_RATE_RANGE`](crate::description::limits::ROTATIONAL_RATE_RANGE)`.0`, 10⁻³ N·m/rad), said in the notes.
 //! - Masses, inertias, radii and widths are read and left out (statics); shocks and dampers too (no
 //!   velocity); each is listed in the notes. A key the importer does not know is a note too: nothing is
 //!   dropped unsaid.
-//! - Chrono's suspension files give no tyre: the loaded radius is [`default_loaded_radius`]
+//! - Chrono's suspension files give no tyre: the loaded radius is [`default_loaded_radius`](crate::description::limits::default_loaded_radius)
 //!   unless the caller gives one.
 //! - An axle whose wheels share a body (a solid axle, a De Dion tube, a beam on leaf springs) is read whole:
 //!   what Chrono builds once (the tube, a tie rod or toe bar across, a Panhard rod, a drag link) goes in the
@@ -78,7 +78,7 @@ pub struct Imported {
     pub notes: Vec<String>,
 }
 
-/// The Chrono templates [`import`] reads.
+/// The Chrono templates [`read`] reads.
 pub const SUPPORTED: [&str; 22] = [
     "DoubleWishbone",
     "DoubleWishboneReduced",
