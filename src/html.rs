@@ -19,6 +19,9 @@ use std::fmt::Write;
 /// the report holds every row), so a fine sweep does not make a file too large to mail.
 pub const TABLE_ROW_LIMIT: usize = 400;
 
+/// The most characters of the model's name shown in the page's title and heading.
+pub const NAME_SHOWN: usize = 120;
+
 /// The K&C report `report` of the model `model`, as one self-contained HTML page.
 ///
 /// `provenance` says how the run was made (elastokin version, model file and its sha256, mode, steps,
@@ -56,13 +59,15 @@ fn write_page(
     writeln!(out, r#"<meta charset="utf-8"/>"#)?;
     writeln!(out, r#"<meta name="viewport" content="width=device-width, initial-scale=1"/>"#)?;
     writeln!(out, r#"<meta name="generator" content="elastokin {}"/>"#, attr(env!("CARGO_PKG_VERSION")))?;
-    writeln!(out, "<title>K&amp;C report: {}</title>", text(&report.model))?;
+    // The name is shown shortened; it is whole in the model below and in summary.json.
+    let name = crate::plot::shown(&report.model, NAME_SHOWN);
+    writeln!(out, "<title>K&amp;C report: {}</title>", text(&name))?;
     writeln!(out, "<style>{STYLE}</style>")?;
     writeln!(out, "</head>")?;
     writeln!(out, "<body>")?;
 
     writeln!(out, "<header>")?;
-    writeln!(out, "<h1>K&amp;C report: {}</h1>", text(&report.model))?;
+    writeln!(out, "<h1>K&amp;C report: {}</h1>", text(&name))?;
     writeln!(
         out,
         "<p class=\"lede\">{} analyses run, {} skipped; written by elastokin {}.</p>",

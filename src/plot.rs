@@ -121,19 +121,47 @@ fn text_size(text: &str, size: f64) -> Result<(u32, u32), PlotError> {
     (FAMILY, size).into_font().box_size(text).map_err(|_| PlotError::Font)
 }
 
-/// `text`, shortened with an ellipsis until it is at most `width` pixels wide.
+/// Bidirectional-text controls (embeddings, overrides, isolates and marks): pasted with a name from
+/// elsewhere, an unterminated override turns every later character of a line around. A drawn text goes
+/// without them.
+const BIDI_CONTROLS: [char; 12] = [
+    '\u{061C}', '\u{200E}', '\u{200F}', '\u{202A}', '\u{202B}', '\u{202C}', '\u{202D}', '\u{202E}', '\u{2066}',
+    '\u{2067}', '\u{2068}', '\u{2069}',
+];
+
+/// `text` as it is drawn or shown in a heading: without bidirectional-text controls, and at most `most`
+/// characters, the rest an ellipsis. Linear in the length of `text`, however long.
+pub fn shown(text: &str, most: usize) -> String {
+    let mut kept = text.chars().filter(|c| !BIDI_CONTROLS.contains(c));
+    let mut out: String = kept.by_ref().take(most).collect();
+    if kept.next().is_some() {
+        out.truncate(out.trim_end().len());
+        out.push('…');
+    }
+    out
+}
+
+/// `text`, shortened with an ellipsis until it is at most `width` pixels wide, in time linear in its
+/// length: no glyph is narrower than a pixel, so at most `width` characters are measured, and the longest
+/// prefix that fits is found by bisection (a longer prefix is never narrower).
 fn fit(text: &str, size: f64, width: u32) -> Result<String, PlotError> {
-    if text_size(text, size)?.0 <= width {
+    let most = width as usize;
+    if text.chars().nth(most).is_none() && text_size(text, size)?.0 <= width {
         return Ok(text.to_string());
     }
-    let chars: Vec<char> = text.chars().collect();
-    for n in (1..chars.len()).rev() {
-        let candidate = format!("{}…", chars[..n].iter().collect::<String>().trim_end());
-        if text_size(&candidate, size)?.0 <= width {
-            return Ok(candidate);
+    let chars: Vec<char> = text.chars().take(most).collect();
+    let candidate = |n: usize| format!("{}…", chars[..n].iter().collect::<String>().trim_end());
+    // The longest prefix whose candidate fits: `lo` fits (or is 0), `hi` does not.
+    let (mut lo, mut hi) = (0, chars.len().min(text.chars().count() - 1) + 1);
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        if text_size(&candidate(mid), size)?.0 <= width {
+            lo = mid;
+        } else {
+            hi = mid;
         }
     }
-    Ok("…".to_string())
+    Ok(if lo == 0 { "…".to_string() } else { candidate(lo) })
 }
 
 /// One axis as drawn: its range and ticks in drawn units (log10 of the value on a log scale).
@@ -441,7 +469,7 @@ impl Layout {
 
         let text_width = WIDTH - 2 * OUTER_MARGIN;
         let title = fit(&chart.title, TITLE_SIZE, text_width)?;
-        let subtitle = fit(&chart.subtitle, SUBTITLE_SIZE, text_width)?;
+        let subtitle = fit(&shown(&chart.subtitle, text_width as usize), SUBTITLE_SIZE, text_width)?;
         let title_band = 16 + text_size("Mg", TITLE_SIZE)?.1 + if subtitle.is_empty() { 0 } else { 24 };
 
         // Legend entries flow left to right under the frame, wrapping to new rows.

@@ -1131,3 +1131,48 @@ fn merge_refuses_shards_that_do_not_make_one_batch() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A model name of 21 000 characters, markup and an unterminated right-to-left override among them (as
+/// pasted from elsewhere), hung the run: the plots' subtitle was shortened one character at a time, each
+/// candidate measured whole. It is now shown shortened (the plots' subtitles, the page's title and
+/// heading), without bidirectional controls, in valid SVG and HTML, and kept whole where it is data (the
+/// model as run in the page, `summary.json`).
+#[test]
+fn a_long_model_name_with_markup_and_bidi_controls_is_shown_shortened_and_kept_whole() {
+    let out = scratch("long-name");
+    let mut model: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string("examples/macpherson.json").unwrap()).unwrap();
+    let name = "<&>\u{202e}xxxxxxxxxx".repeat(1500);
+    model["name"] = name.clone().into();
+    let file = out.join("long_name.json");
+    std::fs::write(&file, model.to_string()).unwrap();
+    let results = out.join("results");
+    let args = ["run", file.to_str().unwrap(), "--analysis", "parallel-travel", "--out", results.to_str().unwrap()];
+    let o = elastokin_within(&args, Duration::from_secs(120));
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    // Every drawn text: valid SVG, short, no bidirectional control.
+    for svg in ["parallel_travel_toe_camber.svg", "parallel_travel_wheel_centre.svg"] {
+        let text = std::fs::read_to_string(results.join(svg)).unwrap();
+        let doc = roxmltree::Document::parse(&text).unwrap_or_else(|e| panic!("{svg}: {e}"));
+        for t in doc.descendants().filter_map(|n| n.text()) {
+            assert!(t.chars().count() <= 200 && !t.contains('\u{202e}'), "{svg}: {} characters", t.chars().count());
+        }
+    }
+    // The page: well formed; its title and heading shortened to 120 characters and an ellipsis; the name
+    // whole once, in the model as run.
+    let html = std::fs::read_to_string(results.join("report.html")).unwrap();
+    let body = html.strip_prefix("<!DOCTYPE html>").unwrap();
+    let doc = roxmltree::Document::parse(body).unwrap_or_else(|e| panic!("report.html: {e}"));
+    let shown = format!("K&C report: {}…", "<&>xxxxxxxxxx".repeat(10).chars().take(120).collect::<String>());
+    for tag in ["title", "h1"] {
+        let node = doc.descendants().find(|n| n.has_tag_name(tag)).unwrap();
+        let text: String = node.descendants().filter(|n| n.is_text()).filter_map(|n| n.text()).collect();
+        assert_eq!(text, shown, "{tag}");
+    }
+    assert_eq!(html.matches(&*html_escape::encode_text(&name)).count(), 1);
+    // summary.json: whole.
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(results.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["model"], name.as_str());
+    std::fs::remove_dir_all(&out).ok();
+}
