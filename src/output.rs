@@ -171,6 +171,7 @@ impl Staging {
         std::fs::create_dir_all(parent)
             .map_err(|e| Failure::Input(format!("--out DIR: cannot make '{}': {e}", parent.display())))?;
         let (name, pid) = (name.to_string_lossy(), std::process::id());
+        remove_stale_staging(parent, &name);
         let tmp = parent.join(format!(".{name}.tmp-{pid}"));
         let old = parent.join(format!(".{name}.old-{pid}"));
         std::fs::create_dir(&tmp)
@@ -222,6 +223,39 @@ impl Drop for Staging {
     fn drop(&mut self) {
         if !self.committed {
             let _ = std::fs::remove_dir_all(&self.tmp);
+        }
+    }
+}
+
+/// Removes what an interrupted run of the same `--out` left beside it (Ctrl-C, SIGTERM or a kill between
+/// making its staging directory and renaming it in): `.NAME.tmp-PID` and `.NAME.old-PID` of a process that
+/// is gone, holding nothing but what the command writes. A directory of a process still running (another
+/// run), one holding anything else (somebody's), or any directory where it cannot be told whether its
+/// process is gone (a system without `/proc`) is left alone.
+fn remove_stale_staging(parent: &Path, name: &str) {
+    let proc = Path::new("/proc");
+    if !proc.join("self").exists() {
+        return;
+    }
+    let Ok(entries) = std::fs::read_dir(parent) else { return };
+    for entry in entries.flatten() {
+        let file_name = entry.file_name().to_string_lossy().into_owned();
+        let pid = [".tmp-", ".old-"]
+            .iter()
+            .find_map(|kind| file_name.strip_prefix(&format!(".{name}{kind}")))
+            .filter(|pid| !pid.is_empty() && pid.bytes().all(|b| b.is_ascii_digit()));
+        let Some(pid) = pid else { continue };
+        let ours = || {
+            std::fs::read_dir(entry.path()).is_ok_and(|files| {
+                files.flatten().all(|f| {
+                    let is_file = f.file_type().is_ok_and(|t| t.is_file());
+                    matches!(classify(&f.path(), is_file), Ok(Found::Stamped | Found::Plot))
+                })
+            })
+        };
+        let is_dir = entry.file_type().is_ok_and(|t| t.is_dir());
+        if is_dir && !proc.join(pid).exists() && ours() {
+            let _ = std::fs::remove_dir_all(entry.path());
         }
     }
 }

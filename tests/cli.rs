@@ -1176,3 +1176,45 @@ fn a_long_model_name_with_markup_and_bidi_controls_is_shown_shortened_and_kept_w
     assert_eq!(summary["model"], name.as_str());
     std::fs::remove_dir_all(&out).ok();
 }
+
+/// A run stopped by Ctrl-C or SIGTERM left `.<out>.tmp-PID` beside the results, and every later run left
+/// it there. The next run of the same `--out` now removes such a directory when its process is gone and it
+/// holds only what the command writes; another run's (its process alive) and somebody's (anything else in
+/// it) are kept.
+#[test]
+fn an_interrupted_run_s_staging_directory_is_removed_by_the_next_run_and_no_one_else_s() {
+    if !Path::new("/proc/self").exists() {
+        return; // Whether a process is gone is read from /proc.
+    }
+    let dir = scratch("stale");
+    // Process ids that no process has: above the kernel's limit.
+    let limit: u64 = std::fs::read_to_string("/proc/sys/kernel/pid_max").unwrap().trim().parse().unwrap();
+    let (gone, also_gone) = (limit + 1, limit + 2);
+    let stale = dir.join(format!(".out.tmp-{gone}"));
+    let stale_old = dir.join(format!(".out.old-{also_gone}"));
+    let alive = dir.join(format!(".out.tmp-{}", std::process::id()));
+    let somebody = dir.join(format!(".out.tmp-{}", limit + 3));
+    let other_out = dir.join(format!(".other.tmp-{}", limit + 4));
+    for d in [&stale, &stale_old, &alive, &somebody, &other_out] {
+        std::fs::create_dir_all(d).unwrap();
+        std::fs::write(d.join("parallel_travel.csv"), "# elastokin 0.1.0, model m.json\ntravel_m\n0\n").unwrap();
+        std::fs::write(d.join("parallel_travel.svg"), "<svg/>").unwrap();
+    }
+    std::fs::write(somebody.join("notes.txt"), "mine").unwrap();
+    let out = dir.join("out");
+    succeeds(&[
+        "run",
+        "examples/macpherson.json",
+        "--analysis",
+        "parallel-travel",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(out.join("summary.json").exists());
+    assert!(!stale.exists() && !stale_old.exists(), "an interrupted run's staging is left");
+    assert!(alive.exists(), "a running process's staging was removed");
+    assert!(somebody.join("notes.txt").exists(), "a directory holding something else was removed");
+    assert!(other_out.exists(), "another --out's staging was removed");
+    std::fs::remove_dir_all(&dir).ok();
+}
