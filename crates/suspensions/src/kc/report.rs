@@ -153,7 +153,12 @@ impl Figure {
                     _ => String::new(),
                 };
                 let unit = if self.unit == "-" { "" } else { &self.unit };
-                format!("  {:<58} {:>10.*} {unit}{err}", self.label, self.decimals, v)
+                // A value that rounds to zero at the digits shown is zero, not "-0.0".
+                let mut shown = format!("{:.*}", self.decimals, v);
+                if shown.starts_with('-') && shown[1..].bytes().all(|b| b == b'0' || b == b'.') {
+                    shown.remove(0);
+                }
+                format!("  {:<58} {:>10} {unit}{err}", self.label, shown)
             }
             None => format!("  {:<58} {:>10} — {}", self.label, "n/a", self.reason.as_deref().unwrap_or("")),
         }
@@ -352,6 +357,17 @@ mod tests {
         let a = Table::numbers("t", ["x_m", "y_deg"], [[0.0, 1.0], [1.0, 2.0]].into_iter());
         let b = Table::numbers("t", ["x_m", "y_deg"], [[0.0, 1.5], [1.0, 1.75]].into_iter());
         assert_eq!(a.column_differences(&b), vec![Some(0.0), Some(0.5)]);
+    }
+
+    /// The headline printed `-0.0 N` for the design wheel load of a corner that carries nothing.
+    #[test]
+    fn a_figure_of_nothing_prints_zero_without_a_sign() {
+        for v in [-0.0, -0.04, -1e-300] {
+            let line = Figure::new("design_wheel_load", "design wheel load", "N", 1, v).line();
+            assert!(line.ends_with(" 0.0 N") && !line.contains('-'), "{v:e}: {line}");
+        }
+        let line = Figure::new("design_wheel_load", "design wheel load", "N", 1, -0.05).line();
+        assert!(line.ends_with(" -0.1 N"), "{line}");
     }
 
     #[test]
