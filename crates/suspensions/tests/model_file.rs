@@ -347,3 +347,33 @@ fn a_document_s_error_names_the_keys_that_lead_to_it_not_a_column_of_one_line() 
     assert!(said.starts_with("<dict>: unknown variant `screw`"), "{said}");
     assert!(said.ends_with("(at suspension.general.joints[1].kind)"), "{said}");
 }
+
+/// Bushing rates given as a list, `{"bushing": [5e6, 1e6, 573, 5730]}`, were read in field order where
+/// every other value of a model file is named: a list says nothing of which rate is which. It is refused
+/// at its line, with the named form in the message; the named form still reads as before.
+#[test]
+fn bushing_rates_given_as_a_list_are_refused_with_the_named_form() {
+    let text =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/macpherson.json")).unwrap();
+    let named = r#"{"radial": 5000000.0, "axial": 1000000.0, "torsion": 573.0, "conical": 5730.0}"#;
+    let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let mounts = &mut value["suspension"]["macpherson"]["lower_arm_mounts"];
+    assert_eq!(mounts["bushing"], serde_json::from_str::<serde_json::Value>(named).unwrap());
+    mounts["bushing"] = serde_json::json!([5e6, 1e6, 573.0, 5730.0]);
+    let listed = serde_json::to_string_pretty(&value).unwrap();
+    let line = listed.lines().position(|l| l.contains("\"bushing\": [")).unwrap() + 1;
+    match SuspensionFile::from_json(&listed, "listed.json").unwrap_err() {
+        FileError::Invalid { line: l, message, .. } => {
+            assert!(
+                message.starts_with("a list of numbers; give the rates by name, {\"radial\": N/m, \"axial\": N/m, ")
+                    && !message.contains("sequence"),
+                "{message}"
+            );
+            // At the list: serde places the error just past its closing bracket (measured: the list on lines
+            // 48–53 of the pretty-printed file, the error on 54).
+            assert!((line..=line + 6).contains(&l), "line {l}, the list starts at {line}: {message}");
+        }
+        other => panic!("{other}"),
+    }
+    assert!(SuspensionFile::from_json(&text, "macpherson.json").is_ok());
+}

@@ -4,9 +4,9 @@ use elastokin_elements::RotationLaw;
 use serde::{Deserialize, Serialize};
 
 /// Rates of a cylindrical rubber bushing (SI: N/m and N·m/rad), in its own frame whose x axis is the
-/// bushing's axis.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// bushing's axis. Read only by name, as every other value of a model file: four numbers in a list would
+/// say nothing of which rate is which, so a list is refused with the named form.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct BushingRates {
     /// Radial rate (both directions across the axis), N/m.
     pub radial: f64,
@@ -25,6 +25,41 @@ pub struct BushingRates {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub axis: Option<[f64; 3]>,
 }
+
+/// The named form of [`BushingRates`], as serde derives it (which would take a list too).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct NamedRates {
+    radial: f64,
+    axial: f64,
+    torsion: f64,
+    conical: f64,
+    #[serde(default)]
+    law: RotationLaw,
+    #[serde(default)]
+    axis: Option<[f64; 3]>,
+}
+
+impl<'de> Deserialize<'de> for BushingRates {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Named;
+        impl<'de> serde::de::Visitor<'de> for Named {
+            type Value = BushingRates;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str(BUSHING_RATES_NAMED)
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(self, map: A) -> Result<BushingRates, A::Error> {
+                let NamedRates { radial, axial, torsion, conical, law, axis } =
+                    NamedRates::deserialize(serde::de::value::MapAccessDeserializer::new(map))?;
+                Ok(BushingRates { radial, axial, torsion, conical, law, axis })
+            }
+        }
+        d.deserialize_map(Named)
+    }
+}
+
+/// How bushing rates are written, for the refusal of any other form.
+pub const BUSHING_RATES_NAMED: &str = "{\"radial\": N/m, \"axial\": N/m, \"torsion\": N·m/rad, \"conical\": N·m/rad}";
 
 fn is_default_law(law: &RotationLaw) -> bool {
     *law == RotationLaw::default()

@@ -68,12 +68,12 @@ impl OutOfRange {
 /// serde's words for what it expected, in the model file's words: the library's type names mean nothing
 /// to the file's author. Longer names first, so that a name is not replaced inside a longer one.
 const EXPECTED_IN_FILE_WORDS: [(&str, &str); 9] = [
+    ("invalid type: sequence, expected {\"radial\"", "a list of numbers; give the rates by name, {\"radial\""),
     ("struct MacPhersonHardpoints", "an object of named hardpoints"),
     ("struct DoubleWishboneHardpoints", "an object of named hardpoints"),
     ("struct MacPherson", "an object with the template's hardpoints, mounts, spring and loaded_radius"),
     ("struct DoubleWishbone", "an object with the template's hardpoints, mounts, spring and loaded_radius"),
     ("struct SpringSpec", "{\"rate\": N/m, \"design_force\": N}"),
-    ("struct BushingRates", "{\"radial\": N/m, \"axial\": N/m, \"torsion\": N·m/rad, \"conical\": N·m/rad}"),
     (
         "struct VehicleParameters",
         "an object with corner_load, wheelbase, cg_height, brake_front_fraction, drive_front_fraction and axle",
