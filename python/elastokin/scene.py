@@ -24,9 +24,10 @@ z up), axes are directions ``[x, y, z]``; ``"chassis"`` (or ``"ground"``) is the
 
 from __future__ import annotations
 
+import contextlib
 import math
 import numbers
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Iterator, List, Optional, Sequence, Tuple, Union
 
 import numpy
 
@@ -103,6 +104,35 @@ def _path(start: Any, end: Any, steps: Any) -> Tuple[float, float, int]:
     return float(start), float(end), int(steps)
 
 
+@contextlib.contextmanager
+def _not_while_swept(name: str) -> Iterator[None]:
+    """Says in the scene's words what PyO3 says as "Already borrowed": another thread is sweeping this scene
+    (a sweep holds it, the GIL released, until its last row), so a part cannot be added to it now."""
+    try:
+        yield
+    except RuntimeError as e:
+        if "already borrowed" not in str(e).lower() or "mutably" in str(e).lower():
+            raise
+        raise RuntimeError(
+            f"'{name}' cannot be added while the scene is being swept on another thread: add parts before the "
+            "sweep starts or after it ends"
+        ) from None
+
+
+@contextlib.contextmanager
+def _not_while_built() -> Iterator[None]:
+    """Says in the scene's words what PyO3 says as "Already mutably borrowed": another thread is adding a
+    part to this scene, so it cannot be swept at that instant."""
+    try:
+        yield
+    except RuntimeError as e:
+        if "already mutably borrowed" not in str(e).lower():
+            raise
+        raise RuntimeError(
+            "the scene is having a part added on another thread: sweep it once its parts are added"
+        ) from None
+
+
 class Scene:
     """A multibody scene: bodies, joints, bushings, springs, stops and loads, added one at a time.
 
@@ -110,7 +140,8 @@ class Scene:
     Raises ModelError for a part the library refuses (an unknown body, a name used twice, a zero axis, a
     rate out of range, a NaN coordinate: the message names the part and says what to give), ValueError for
     an argument that is not what the method takes (a kind word it does not know, a point that is not three
-    numbers). A scene is used from one thread at a time while it is being built; its sweeps release the GIL.
+    numbers). Its sweeps release the GIL, so other threads run while one sweeps; a part added to a scene
+    that another thread is sweeping is refused with a RuntimeError saying so (add parts before or after).
     """
 
     __slots__ = ("_native",)
@@ -122,7 +153,8 @@ class Scene:
         """Adds a rigid body whose reference point is ``at`` at design (its axes are global at design);
         results give its motion there. ``"chassis"`` and ``"ground"`` are the ground's names, not a body's."""
         name = _name(name, "body")
-        return self._native.body(name, _vector(at, "at", name))
+        with _not_while_swept(name):
+            return self._native.body(name, _vector(at, "at", name))
 
     def joint(
         self,
@@ -146,15 +178,16 @@ class Scene:
         name = _name(name, "joint")
         if not isinstance(kind, str):
             raise ValueError(f"'{name}': kind must be a joint kind's name, got {kind!r}")
-        self._native.joint(
-            name,
-            kind,
-            _bodies(bodies, name),
-            at=_optional_vector(at, "at", name),
-            to=_optional_vector(to, "to", name),
-            axis=_optional_vector(axis, "axis", name),
-            axis_j=_optional_vector(axis_j, "axis_j", name),
-        )
+        with _not_while_swept(name):
+            self._native.joint(
+                name,
+                kind,
+                _bodies(bodies, name),
+                at=_optional_vector(at, "at", name),
+                to=_optional_vector(to, "to", name),
+                axis=_optional_vector(axis, "axis", name),
+                axis_j=_optional_vector(axis_j, "axis_j", name),
+            )
         return name
 
     def bushing(
@@ -196,22 +229,23 @@ class Scene:
 
         if not isinstance(law, str):
             raise ValueError(f"'{name}': law must be a rotation law's name, got {law!r}")
-        self._native.bushing(
-            name,
-            _bodies(bodies, name),
-            _vector(at, "at", name),
-            axis=_optional_vector(axis, "axis", name),
-            y_axis=_optional_vector(y_axis, "y_axis", name),
-            radial=_stiffness(radial, "radial", name),
-            axial=_stiffness(axial, "axial", name),
-            torsion=_stiffness(torsion, "torsion", name),
-            conical=_stiffness(conical, "conical", name),
-            translation=three(translation, "translation"),
-            rotation=three(rotation, "rotation"),
-            law=law,
-            preload_force=_optional_vector(preload_force, "preload_force", name),
-            preload_torque=_optional_vector(preload_torque, "preload_torque", name),
-        )
+        with _not_while_swept(name):
+            self._native.bushing(
+                name,
+                _bodies(bodies, name),
+                _vector(at, "at", name),
+                axis=_optional_vector(axis, "axis", name),
+                y_axis=_optional_vector(y_axis, "y_axis", name),
+                radial=_stiffness(radial, "radial", name),
+                axial=_stiffness(axial, "axial", name),
+                torsion=_stiffness(torsion, "torsion", name),
+                conical=_stiffness(conical, "conical", name),
+                translation=three(translation, "translation"),
+                rotation=three(rotation, "rotation"),
+                law=law,
+                preload_force=_optional_vector(preload_force, "preload_force", name),
+                preload_torque=_optional_vector(preload_torque, "preload_torque", name),
+            )
         return name
 
     def spring(
@@ -233,17 +267,18 @@ class Scene:
         ``design_force`` (N), or its ``free_length`` (m), with an optional constant ``preload`` (N) added
         then. Reports give the force on the second body and the deflection (length − free length, 0, 0)."""
         name = _name(name, "spring")
-        self._native.spring(
-            name,
-            _bodies(bodies, name),
-            _vector(from_, "from_", name),
-            _vector(to, "to", name),
-            rate=_number(rate, "rate", name),
-            curve=None if curve is None else _curve(curve, "curve", name),
-            design_force=_number(design_force, "design_force", name),
-            free_length=_number(free_length, "free_length", name),
-            preload=_number(preload, "preload", name),
-        )
+        with _not_while_swept(name):
+            self._native.spring(
+                name,
+                _bodies(bodies, name),
+                _vector(from_, "from_", name),
+                _vector(to, "to", name),
+                rate=_number(rate, "rate", name),
+                curve=None if curve is None else _curve(curve, "curve", name),
+                design_force=_number(design_force, "design_force", name),
+                free_length=_number(free_length, "free_length", name),
+                preload=_number(preload, "preload", name),
+            )
         return name
 
     def stop(
@@ -269,15 +304,16 @@ class Scene:
             raise ValueError(f"'{name}': clearance must be a number (m), got None")
         clearance_value = _number(clearance, "clearance", name)
         assert clearance_value is not None  # None was refused above
-        self._native.stop(
-            name,
-            kind,
-            _bodies(bodies, name),
-            _vector(from_, "from_", name),
-            _vector(to, "to", name),
-            clearance_value,
-            _curve(curve, "curve", name),
-        )
+        with _not_while_swept(name):
+            self._native.stop(
+                name,
+                kind,
+                _bodies(bodies, name),
+                _vector(from_, "from_", name),
+                _vector(to, "to", name),
+                clearance_value,
+                _curve(curve, "curve", name),
+            )
         return name
 
     def force(
@@ -294,13 +330,14 @@ class Scene:
         name = _name(name, "force")
         if not isinstance(body, str):
             raise ValueError(f"'{name}': body must be a body name, got {body!r}")
-        self._native.force(
-            name,
-            body,
-            _vector(at, "at", name),
-            _vector(force, "force", name),
-            constant=_optional_vector(constant, "constant", name),
-        )
+        with _not_while_swept(name):
+            self._native.force(
+                name,
+                body,
+                _vector(at, "at", name),
+                _vector(force, "force", name),
+                constant=_optional_vector(constant, "constant", name),
+            )
         return name
 
     def torque(self, name: str, *, body: str, torque: _Vector, constant: Optional[_Vector] = None) -> str:
@@ -309,12 +346,13 @@ class Scene:
         name = _name(name, "torque")
         if not isinstance(body, str):
             raise ValueError(f"'{name}': body must be a body name, got {body!r}")
-        self._native.torque(
-            name,
-            body,
-            _vector(torque, "torque", name),
-            constant=_optional_vector(constant, "constant", name),
-        )
+        with _not_while_swept(name):
+            self._native.torque(
+                name,
+                body,
+                _vector(torque, "torque", name),
+                constant=_optional_vector(constant, "constant", name),
+            )
         return name
 
     @property
@@ -362,8 +400,8 @@ class Scene:
         start, end, steps = _path(start, end, steps)
         if mode not in ("corrected", "paper"):
             raise ValueError(f"mode '{mode}': give 'corrected' or 'paper'")
-        return SceneSweep(
-            self._native.sweep(
+        with _not_while_built():
+            native = self._native.sweep(
                 start,
                 end,
                 steps,
@@ -373,7 +411,7 @@ class Scene:
                 force_tolerance=float(force_tolerance),
                 constraint_tolerance=float(constraint_tolerance),
             )
-        )
+        return SceneSweep(native)
 
     def solve(
         self, t: float, *, force_tolerance: float = 1e-9, constraint_tolerance: float = 1e-10
@@ -382,11 +420,11 @@ class Scene:
         one step. A load far from design may need the path to it: use :meth:`sweep` then."""
         if isinstance(t, bool) or not isinstance(t, numbers.Real) or not numpy.isfinite(t):
             raise ValueError(f"t must be a finite load parameter, got {t!r}")
-        return SceneSweep(
-            self._native.solve(
+        with _not_while_built():
+            native = self._native.solve(
                 float(t), force_tolerance=float(force_tolerance), constraint_tolerance=float(constraint_tolerance)
             )
-        )
+        return SceneSweep(native)
 
     def __repr__(self) -> str:
         return (

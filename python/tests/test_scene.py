@@ -648,3 +648,45 @@ def test_the_module_s_example_runs_as_written():
 
     result = doctest.testmod(elastokin.scene)
     assert result.attempted >= 8 and result.failed == 0
+
+
+def test_adding_a_part_while_another_thread_sweeps_says_the_scene_is_being_swept():
+    """Adding a part to a scene that another thread was sweeping raised PyO3's "Already borrowed". It now
+    says, in the scene's words, that the scene is being swept. The part tried names a body the scene does
+    not have, so that when it is not refused for the sweep it is refused for that (a ModelError) and the
+    scene being swept never changes."""
+    scene = elastokin.Scene()
+    scene.body("slider", at=[0, 0, 0])
+    scene.joint("guide", "translational", bodies=("chassis", "slider"), at=[0, 0, 0], axis=[1, 0, 0])
+    scene.spring("spring", bodies=("chassis", "slider"), from_=[0.4, 0, 0], to=[0, 0, 0], rate=2.5e4,
+                 free_length=0.4)
+    scene.force("push", body="slider", at=[0, 0, 0], force=[400, 0, 0])
+    done = threading.Event()
+    swept = []
+
+    def sweep():
+        try:
+            swept.append(scene.sweep(0.0, 1.0, 20000))
+        finally:
+            done.set()
+
+    worker = threading.Thread(target=sweep)
+    worker.start()
+    refusals, unknown_body, other = [], 0, []
+    while not done.is_set():
+        try:
+            scene.joint("probe", "spherical", bodies=("chassis", "nobody"), at=[0, 0, 0])
+        except RuntimeError as e:
+            refusals.append(str(e))
+        except elastokin.ModelError:
+            unknown_body += 1
+        except Exception as e:  # noqa: BLE001 — any other failure is the bug this test is about
+            other.append(repr(e))
+    worker.join()
+    assert not other, other[:3]
+    assert refusals, f"no part was tried while the sweep held the scene ({unknown_body} tried outside it)"
+    expected = "'probe' cannot be added while the scene is being swept on another thread"
+    assert all(r.startswith(expected) for r in refusals), refusals[:3]
+    assert len(swept) == 1 and len(swept[0].t) == 20001
+    scene.body("after", at=[2, 0, 0])
+    assert "after" in scene.bodies
