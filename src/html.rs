@@ -68,9 +68,10 @@ fn write_page(
 
     writeln!(out, "<header>")?;
     writeln!(out, "<h1>K&amp;C report: {}</h1>", text(&name))?;
+    let failed = if report.failed.is_empty() { String::new() } else { format!(", {} failed", report.failed.len()) };
     writeln!(
         out,
-        "<p class=\"lede\">{} analyses run, {} skipped; written by elastokin {}.</p>",
+        "<p class=\"lede\">{} analyses run, {} skipped{failed}; written by elastokin {}.</p>",
         report.analyses.len(),
         report.skipped.len(),
         text(env!("CARGO_PKG_VERSION"))
@@ -79,6 +80,7 @@ fn write_page(
 
     // Warnings first: what the colleague must know before reading any figure.
     write_warnings(out, report)?;
+    write_failed(out, report)?;
     writeln!(out, "<div class=\"columns\">")?;
     write_provenance(out, provenance)?;
     write_hardpoints(out, model)?;
@@ -199,6 +201,22 @@ fn write_warnings(out: Out, report: &KcReport) -> std::fmt::Result {
         }
         writeln!(out, "</tbody></table>")?;
     }
+    writeln!(out, "</section>")
+}
+
+/// Analyses that failed, with the engine's reason, at the top beside the warnings: the figures below are
+/// of the others only.
+fn write_failed(out: Out, report: &KcReport) -> std::fmt::Result {
+    if report.failed.is_empty() {
+        return Ok(());
+    }
+    writeln!(out, "<section id=\"failed\">")?;
+    writeln!(out, "<h2>Analyses that failed</h2>")?;
+    writeln!(out, "<ul class=\"failed\">")?;
+    for f in &report.failed {
+        writeln!(out, "<li><strong>{}</strong>: {}</li>", text(f.analysis.name()), text(&f.reason))?;
+    }
+    writeln!(out, "</ul>")?;
     writeln!(out, "</section>")
 }
 
@@ -518,6 +536,7 @@ table.warnings td:nth-child(2) { white-space: nowrap; }
 code { font-family: "DejaVu Sans Mono", Menlo, Consolas, monospace; font-size: 0.9em;
   background: #f6f8fa; padding: 0 3px; border-radius: 3px; }
 ul.warnings { color: #9a6700; padding-left: 20px; }
+ul.failed { color: #cf222e; padding-left: 20px; }
 .ok { color: #1a7f37; font-weight: 600; }
 .bad { color: #cf222e; font-weight: 600; }
 .error { color: #cf222e; border-left: 3px solid #cf222e; padding: 4px 10px; background: #fff5f5; }

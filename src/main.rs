@@ -30,8 +30,9 @@ use output::{note, write_table, Failure, Part, Progress, Provenance, Staging, St
 pub use elastokin::solver::MAX_STEPS;
 
 const EXIT_STATUS: &str = "\
-Exit status: 0 success; 1 a run that failed while solving or writing (previous results are left \
-untouched); 2 bad arguments or input files.";
+Exit status: 0 success; 1 a run that failed while solving or writing (the analyses that ran are written \
+beside the failed one's reason; when none ran, or writing failed, previous results are left untouched); 2 bad \
+arguments or input files.";
 
 /// elastokin — quasi-static elastokinematics of suspensions.
 ///
@@ -385,10 +386,13 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
     provenance.range = args.range;
     provenance.tolerance = Some(settings.tolerance);
     let which: Vec<Analysis> = args.analysis.map(|a| vec![a.analysis()]).unwrap_or_default();
+    for &a in if which.is_empty() { &kc::ALL[..] } else { &which[..] } {
+        kc::check_settings(a, &settings).map_err(|e| Failure::Input(e.to_string()))?;
+    }
     let staging = Staging::new(&args.out)?;
     let count = if which.is_empty() { kc::ALL.len() } else { which.len() };
     let progress = Progress::new("analyses", count, quiet);
-    let result = (|| -> Result<Vec<PathBuf>, Failure> {
+    let result = (|| -> Result<(Vec<PathBuf>, Vec<kc::Failed>), Failure> {
         out.line(format!("{} — {} mode", file.name, kc::mode_word(mode)))?;
         // The terminal hears of each analysis as it ends; a closed pipe stops the printing, not the run.
         let mut printed: Result<(), Failure> = Ok(());
@@ -409,13 +413,22 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
                     progress.end(None);
                     progress.suspend(|| out.line(format!("\n{}: skipped — {}", s.analysis.name(), s.reason)))
                 }
+                SuiteEvent::Failed(f) => {
+                    progress.end(None);
+                    progress.suspend(|| out.line(format!("\n{}: failed — {}", f.analysis.name(), f.reason)))
+                }
             };
             if printed.is_ok() {
                 printed = said;
             }
-        })
-        .map_err(|e| Failure::Run(e.to_string()))?;
+        });
         printed?;
+        // Nothing ran: there is nothing to report but the reasons, and the previous results stay.
+        if report.analyses.is_empty() && !report.failed.is_empty() {
+            let lines: Vec<String> =
+                report.failed.iter().map(|f| format!("{}: {}", f.analysis.name(), f.reason)).collect();
+            return Err(Failure::Run(lines.join("\n")));
+        }
         if !report.warnings.is_empty() {
             out.line("")?;
             for w in &report.warnings {
@@ -456,13 +469,24 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
         summary["provenance"] = provenance.to_json();
         let text = serde_json::to_string_pretty(&summary).map_err(|e| Failure::Run(e.to_string()))?;
         written.push(staging.write("summary.json", text.as_bytes())?);
-        Ok(written)
+        Ok((written, report.failed))
     })();
     progress.finish();
-    let written = result.map_err(|e| Failure::Run(format!("{}\n{}", e.message(), staging.untouched())))?;
+    let (written, failed) = result.map_err(|e| Failure::Run(format!("{}\n{}", e.message(), staging.untouched())))?;
     staging.commit()?;
     out.line("")?;
-    out.line(format!("wrote {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))
+    out.line(format!("wrote {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))?;
+    // The others' results are written whole; the run still failed.
+    if failed.is_empty() {
+        return Ok(());
+    }
+    let lines: Vec<String> = failed.iter().map(|f| format!("{}: {}", f.analysis.name(), f.reason)).collect();
+    Err(Failure::Run(format!(
+        "{} of the analyses failed (the others' results are in {}):\n{}",
+        failed.len(),
+        args.out.display(),
+        lines.join("\n")
+    )))
 }
 
 /// `import`: another tool's file as an elastokin model file on standard output, the notes on standard error.

@@ -470,25 +470,27 @@ fn a_failed_run_leaves_the_previous_results_untouched() {
     succeeds(&["run", "examples/macpherson.json", "--steps", "8", "--out", out.to_str().unwrap()]);
     let before = snapshot(&out);
     assert!(before.contains_key("summary.json") && before.contains_key("roll.csv"));
-    // A corner load no spring holds: every sweep before the static load case solves (and would have written
-    // its files), then the static load case fails.
+    // A corner load no spring holds: the static load case fails, and with nothing else asked for nothing ran
+    // (a suite in which others ran writes theirs: see
+    // `one_failing_analysis_costs_only_itself_the_others_are_written_and_the_run_exits_1`).
     let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/macpherson.json")).unwrap();
     let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();
     value["vehicle"]["corner_load"] = 1.0e6.into();
     let heavy = dir.join("heavy.json");
     std::fs::write(&heavy, value.to_string()).unwrap();
-    let o = elastokin(&["run", heavy.to_str().unwrap(), "--steps", "8", "--out", out.to_str().unwrap()]);
+    let heavy_run = |out: &Path| {
+        elastokin(&["run", heavy.to_str().unwrap(), "--analysis", "static-load", "--out", out.to_str().unwrap()])
+    };
+    let o = heavy_run(&out);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{err}");
     assert!(err.contains("static-load:"), "{err}");
     assert!(err.contains(&format!("previous results in {} left untouched", out.display())), "{err}");
-    // The lateral force sweep ran before the failure: its headline reached standard output, its file did not.
-    assert!(String::from_utf8_lossy(&o.stdout).contains("lateral force"), "{}", String::from_utf8_lossy(&o.stdout));
     assert_eq!(snapshot(&out), before);
     assert_eq!(names(&dir), ["heavy.json", "results"]);
     // Into a new directory the same failure leaves nothing at all.
     let fresh = dir.join("fresh");
-    let o = elastokin(&["run", heavy.to_str().unwrap(), "--steps", "8", "--out", fresh.to_str().unwrap()]);
+    let o = heavy_run(&fresh);
     assert!(String::from_utf8_lossy(&o.stderr).contains(&format!("nothing written to {}", fresh.display())));
     assert_eq!(names(&dir), ["heavy.json", "results"]);
     // A successful run replaces the directory whole: no file of the earlier run survives beside the new ones.
@@ -864,6 +866,59 @@ fn a_limit_point_is_named_and_through_limits_writes_the_path_past_it() {
     assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(String::from_utf8_lossy(&o.stderr).contains("limit-point"));
     assert_eq!(snapshot(&out), before);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// One failing analysis discarded the whole suite: `run` stopped at the static load case a corner could not
+/// carry and wrote nothing of the eight analyses that had run. Now each analysis that ran is written, the
+/// failed one is reported with its reason (in summary.json, the report's page and on standard error) and
+/// the run exits 1.
+#[test]
+fn one_failing_analysis_costs_only_itself_the_others_are_written_and_the_run_exits_1() {
+    use elastokin::solver::SolverError;
+    use elastokin::suspensions::{analysis::static_load_case, Rig, Side, SuspensionFile};
+    let dir = scratch("one-fails");
+    let model = ideal_pivot_double_wishbone(&dir);
+    // A static load of 6 kN on a corner that gives way at about 3.3 kN.
+    let mut v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&model).unwrap()).unwrap();
+    v["vehicle"]["corner_load"] = 6000.0.into();
+    std::fs::write(&model, v.to_string()).unwrap();
+    let file = SuspensionFile::read(&model).unwrap();
+    let reached = match static_load_case(file.suspension.build(Side::Left, Rig::Free).unwrap(), 6000.0) {
+        Err(SolverError::LimitPoint { reached }) => reached,
+        other => panic!("{other:?}"),
+    };
+    let out = dir.join("out");
+    let o = elastokin(&["run", model.to_str().unwrap(), "--steps", "8", "--out", out.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{stderr}");
+    let said = format!("static-load: the suspension cannot go beyond {reached:.3}");
+    assert!(stderr.contains("1 of the analyses failed") && stderr.contains(&said), "{said}\n{stderr}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["failed"][0]["analysis"], "static-load", "{}", summary["failed"]);
+    assert!(summary["failed"][0]["reason"].as_str().unwrap().contains(&said[13..]));
+    assert_eq!(summary["failed"].as_array().unwrap().len(), 1);
+    let ran: Vec<&String> = summary["analyses"].as_object().unwrap().keys().collect();
+    assert_eq!(ran.len(), 8, "{ran:?}");
+    assert!(!out.join("static_load.csv").exists());
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(html.contains("8 analyses run, 1 skipped, 1 failed") && html.contains("Analyses that failed"));
+    // What was written is what each analysis gives run alone, byte for byte after the provenance line.
+    let alone = dir.join("alone");
+    for (analysis, csv) in [("parallel-travel", "parallel_travel.csv"), ("aligning-torque", "aligning_torque.csv")] {
+        let args = ["run", model.to_str().unwrap(), "--steps", "8", "--analysis", analysis];
+        succeeds(&[&args[..], &["--out", alone.to_str().unwrap()]].concat());
+        let body = |p: &Path| std::fs::read_to_string(p).unwrap().split_once('\n').unwrap().1.to_string();
+        assert_eq!(body(&out.join(csv)), body(&alone.join(csv)), "{csv}");
+    }
+    // The static load asked for alone fails as it did, and the previous results stay as they were.
+    let before = snapshot(&alone);
+    let o = elastokin(&["run", model.to_str().unwrap(), "--analysis", "static-load", "--out", alone.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains(&said) && stderr.contains("left untouched"), "{stderr}");
+    assert_eq!(snapshot(&alone), before);
     std::fs::remove_dir_all(&dir).ok();
 }
 

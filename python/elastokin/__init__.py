@@ -203,7 +203,9 @@ class Model:
         """Runs the K&C suite — every analysis that applies, or those named — as ``elastokin run`` does,
         and gives its report as a dict: the content of the command's summary.json without its provenance
         (model, settings, model_check, warnings, and per analysis its figures, table, accuracy and
-        warnings). Options as for :meth:`run`; ``range`` needs exactly one analysis named."""
+        warnings). Options as for :meth:`run`; ``range`` needs exactly one analysis named. Raises
+        AnalysisError, naming the analysis and its reason, when one fails (the command writes the others
+        and exits 1; run them by name to keep them)."""
         return json.loads(
             self._native.suite(
                 None if analyses is None else list(analyses),

@@ -247,7 +247,7 @@ impl Model {
         }
         let settings = settings(range, steps, mode, wheel, load_point, compliance, through_limits, arc_step)?;
         let report = py
-            .detach(|| kc::run_suite(&self.file, &which, &settings, |_| {}))
+            .detach(|| kc::run_suite(&self.file, &which, &settings, |_| {}).complete())
             .map_err(|e| AnalysisError::new_err(e.to_string()))?;
         to_json(&report)
     }

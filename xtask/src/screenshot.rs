@@ -58,6 +58,7 @@ fn run() -> Result<PathBuf, String> {
             eprintln!("running {}", a.name());
         }
     })
+    .complete()
     .map_err(|e| e.to_string())?;
     let mut provenance =
         Provenance::new(Path::new(MODEL), text.as_bytes(), kc::mode_word(settings.mode), settings.steps);

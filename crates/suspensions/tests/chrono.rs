@@ -12,7 +12,7 @@ use serde_json::Value;
 
 mod common;
 
-use common::chrono::{chrono_json, fixture, fixture_dir};
+use common::chrono::{chrono_json, every_file, fixture};
 
 fn read(name: &str) -> Imported {
     import_chrono(&fixture(name), name, None).unwrap()
@@ -55,19 +55,7 @@ fn double_wishbone_against_closure(name: &str, spring: (&str, &str)) -> f64 {
 #[test]
 fn every_shipped_chrono_file_runs_or_is_refused_as_the_readme_says() {
     let readme = fixture("README.md");
-    let mut files: Vec<String> = Vec::new();
-    let mut dirs = vec![fixture_dir()];
-    while let Some(dir) = dirs.pop() {
-        for e in std::fs::read_dir(&dir).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                dirs.push(p);
-            } else if p.extension().is_some_and(|x| x == "json") {
-                files.push(p.strip_prefix(fixture_dir()).unwrap().to_string_lossy().into_owned());
-            }
-        }
-    }
-    files.sort();
+    let files = every_file();
     assert!(files.len() >= 15, "{files:?}");
     let (mut ran, mut refused) = (0, 0);
     for name in &files {
@@ -79,8 +67,9 @@ fn every_shipped_chrono_file_runs_or_is_refused_as_the_readme_says() {
             Ok(imported) => {
                 assert!(row.ends_with("| yes |"), "{name} reads, but the README says: {row}");
                 let settings = Settings { steps: 4, ..Settings::default() };
-                let report =
-                    kc::run_suite(&imported.file, &[], &settings, |_| {}).unwrap_or_else(|e| panic!("{name}: {e}"));
+                let report = kc::run_suite(&imported.file, &[], &settings, |_| {})
+                    .complete()
+                    .unwrap_or_else(|e| panic!("{name}: {e}"));
                 // Every analysis ran or was left out with its reason (steering without a tie rod, the static load
                 // and the load case without their sections).
                 assert_eq!(report.analyses.len() + report.skipped.len(), kc::ALL.len(), "{name}");
@@ -393,4 +382,58 @@ fn a_chrono_curve_spring_carries_the_wheel_by_virtual_work() {
     }
     // Measured: 1.5e-13 relative.
     assert!(worst < 1e-11, "{worst:e}");
+}
+
+/// The lateral and longitudinal stiffness at the patch of a corner on ideal joints were the inverse of
+/// rounding: -5·10¹⁵ N/mm for the shipped double wishbone on ideal arm pivots, -3·10³¹ N/mm for the shipped
+/// five-link, and figures of 10¹¹ to 10³⁵ N/mm for the Chrono files. Where the joints alone hold the patch
+/// (the free motions of the joints' Jacobian do not move it that way) the figure is now missing, with
+/// "rigid" as its reason; every other corner keeps its number. Checked against the patch compliance
+/// itself, read a second way: rounding where rigid (at most 1.8e-15 m/N measured, over the Chrono files),
+/// at least 9.9e-8 m/N (a stiffness of at most 1.01·10⁴ N/mm) where not.
+#[test]
+fn a_corner_its_joints_hold_reported_a_patch_stiffness_of_rounding_and_now_says_rigid() {
+    use elastokin_suspensions::analysis::patch_compliance;
+    let examples = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples");
+    let mut files: Vec<(String, elastokin_suspensions::SuspensionFile)> =
+        ["macpherson", "double_wishbone", "five_link"]
+            .iter()
+            .map(|n| {
+                let path = format!("{examples}/{n}.json");
+                (path.clone(), elastokin_suspensions::SuspensionFile::read(path.as_ref()).unwrap())
+            })
+            .collect();
+    files.extend(
+        every_file().into_iter().filter_map(|n| import_chrono(&fixture(&n), &n, None).ok().map(|i| (n, i.file))),
+    );
+    let (mut rigid, mut yielding, mut noise, mut softest) = (0, 0, 0.0_f64, f64::INFINITY);
+    for (name, file) in &files {
+        let Ok(report) = kc::run(kc::Analysis::ParallelTravel, file, &Settings { steps: 2, ..Settings::default() })
+        else {
+            continue;
+        };
+        let corner = file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
+        let pc = patch_compliance(&corner, 0.0).unwrap();
+        for (key, k) in
+            [("lateral_stiffness", pc.lateral_stiffness), ("longitudinal_stiffness", pc.longitudinal_stiffness)]
+        {
+            let figure = report.figure(key).unwrap();
+            match figure.value {
+                None => {
+                    assert!(figure.reason.as_deref().unwrap().starts_with("rigid:"), "{name} {key}: {figure:?}");
+                    noise = noise.max((1.0 / k).abs());
+                    rigid += 1;
+                }
+                Some(v) => {
+                    assert!((v - k * 1e-3).abs() <= 1e-9 * v.abs(), "{name} {key}: {v} vs {k}");
+                    softest = softest.min(1.0 / k);
+                    yielding += 1;
+                }
+            }
+        }
+    }
+    println!("{rigid} rigid (compliance at most {noise:e} m/N), {yielding} yielding (at least {softest:e} m/N)");
+    assert!(rigid >= 40 && yielding >= 4, "{rigid} rigid, {yielding} yielding");
+    assert!(noise < 1e-13, "{noise:e}");
+    assert!(softest > 1e-8, "{softest:e}");
 }

@@ -286,8 +286,9 @@ fn every_analysis_that_applies_runs() {
             .filter(|a| vertical_range.is_none() || *a != VerticalForce)
             .collect();
         let which = if vertical_range.is_none() { Vec::new() } else { applies.clone() };
-        let report =
-            kc::run_suite(&file, &which, &Settings::default(), |_| {}).unwrap_or_else(|e| panic!("{path}: {e}"));
+        let report = kc::run_suite(&file, &which, &Settings::default(), |_| {})
+            .complete()
+            .unwrap_or_else(|e| panic!("{path}: {e}"));
         let ran: Vec<Analysis> = report.analyses.iter().map(|a| a.analysis).collect();
         assert_eq!(ran, applies, "{path}");
         if vertical_range.is_none() {

@@ -347,6 +347,7 @@ fn the_anti_roll_bars_roll_stiffness_is_its_closed_form() {
             &settings,
             |_| {},
         )
+        .complete()
         .unwrap();
         let reported = report.analyses[0].figure("anti_roll_bar_roll_stiffness").unwrap().value.unwrap();
         let error = (reported / expected.to_radians() - 1.0).abs();

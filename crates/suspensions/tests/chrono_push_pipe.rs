@@ -156,6 +156,7 @@ fn crossed_stops_are_refused_by_name_and_the_files_run_with_them_swapped() {
         // Measured: 4.2e-17 m (0.28 − 0.2 and 0.2 − 0.12 in floating point) and 2.8e-17 m (the design length).
         assert!(clearances.iter().all(|c| (c - 0.08).abs() < 1e-15) && (design - 0.2).abs() < 1e-15, "{clearances:?}");
         let report = kc::run_suite(&file, &[], &Settings { steps: 4, ..Default::default() }, |_| {})
+            .complete()
             .unwrap_or_else(|e| panic!("{path}: {e}"));
         assert_eq!(report.analyses.len() + report.skipped.len(), kc::ALL.len(), "{path}");
         let ran = |a: Analysis| report.analyses.iter().any(|r| r.analysis == a);

@@ -371,6 +371,7 @@ fn the_uaz_leaf_spring_axles_are_refused_for_their_stops_and_read_whole_when_swa
             &elastokin_suspensions::kc::Settings { steps: 4, ..Default::default() },
             |_| {},
         )
+        .complete()
         .unwrap();
         let steering = report.analyses.iter().any(|a| a.analysis == elastokin_suspensions::kc::Analysis::Steering);
         assert_eq!(steering, path == FRONT, "{path}: steered by its drag link only on the toe-bar axle");

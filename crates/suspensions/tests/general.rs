@@ -52,8 +52,8 @@ fn template_expand_run_equals_the_template_run() {
         let general = expanded(&file);
         assert!(matches!(general.suspension, Template::General(_)));
         let settings = Settings { steps: 8, ..Settings::default() };
-        let a = kc::run_suite(&file, &[], &settings, |_| {}).unwrap();
-        let b = kc::run_suite(&general, &[], &settings, |_| {}).unwrap();
+        let a = kc::run_suite(&file, &[], &settings, |_| {}).complete().unwrap();
+        let b = kc::run_suite(&general, &[], &settings, |_| {}).complete().unwrap();
         // Measured: 0 (the same model, number for number, through the one builder; the file's numbers
         // are read back exactly).
         let worst = largest_difference(&a, &b);
@@ -324,7 +324,7 @@ fn model_loads_balance_on_the_wheel_carrier() {
     // Without a load case the suite says why it leaves the analysis out.
     let template =
         kc::run_suite(&example("macpherson.json"), &[], &Settings { steps: 2, ..Settings::default() }, |_| {});
-    let skipped = template.unwrap().skipped;
+    let skipped = template.complete().unwrap().skipped;
     assert!(skipped.iter().any(|s| s.analysis == kc::Analysis::ModelLoads && s.reason.contains("no load case")));
 }
 
@@ -496,8 +496,8 @@ fn straight_curves_in_a_model_file_are_their_rates() {
     spring.curve = Some(vec![[0.0, 0.0], [0.1, 0.1 * rate]]);
     let settings = Settings { steps: 4, ..Settings::default() };
     let which = [kc::Analysis::ParallelTravel, kc::Analysis::Road(elastokin_suspensions::analysis::WheelLoad::Lateral)];
-    let a = kc::run_suite(&file, &which, &settings, |_| {}).unwrap();
-    let b = kc::run_suite(&curved, &which, &settings, |_| {}).unwrap();
+    let a = kc::run_suite(&file, &which, &settings, |_| {}).complete().unwrap();
+    let b = kc::run_suite(&curved, &which, &settings, |_| {}).complete().unwrap();
     // Measured: 1.1e-10 (a ball joint's moment of 1e-13 N·m against the 1e-3 floor; a curve's value is a
     // cubic of the same line, so rounding differs).
     let worst = largest_difference(&a, &b);
@@ -845,7 +845,7 @@ fn a_solid_axles_own_load_case_acts_on_both_sides() {
     assert_eq!(file.vehicle.as_ref().unwrap().corner_load, 4200.0);
     let z = |analysis: Analysis, range: (f64, f64)| {
         let settings = Settings { range: Some(range), steps: 4, height_held: false, ..Settings::default() };
-        let report = kc::run_suite(&file, &[analysis], &settings, |_| {}).unwrap();
+        let report = kc::run_suite(&file, &[analysis], &settings, |_| {}).complete().unwrap();
         let table = &report.analyses[0].table;
         let column = table.columns.iter().position(|c| c == "wheel_centre_z_m" || c == "wheel_travel_m").unwrap();
         table.rows.last().unwrap()[column].number().unwrap()

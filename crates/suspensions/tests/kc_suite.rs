@@ -115,6 +115,7 @@ fn ride_rate_steering_ratio_and_ackermann_follow_from_their_definitions() {
         let vehicle = file.vehicle.unwrap();
         let report =
             kc::run_suite(&file, &[Analysis::ParallelTravel, Analysis::Steering], &Settings::default(), |_| {})
+                .complete()
                 .unwrap();
         let travel = report.analysis(Analysis::ParallelTravel).unwrap();
         let value = |r: &kc::AnalysisReport, key: &str| r.figure(key).unwrap().value.unwrap();
@@ -211,14 +212,15 @@ fn the_suite_names_a_tie_rod_on_the_steering_axis_and_the_toe_it_gives() {
     points["tie_rod_inner"] =
         serde_json::json!([0, 1, 2].map(|k| a[k] + 0.4 * (b[k] - a[k]) + if k == 0 { 0.003 } else { 0.0 }));
     let file: SuspensionFile = serde_json::from_value(v).unwrap();
-    let report = kc::run_suite(&file, &[Analysis::ParallelTravel], &Settings::default(), |_| {}).unwrap();
+    let report = kc::run_suite(&file, &[Analysis::ParallelTravel], &Settings::default(), |_| {}).complete().unwrap();
     let codes: Vec<&str> = report.all_warnings().map(|w| w.code).collect();
     assert!(codes.contains(&"tie-rod-on-steering-axis"), "{codes:?}");
     assert!(codes.contains(&"toe-range"), "{codes:?}");
     assert!(report.model_check.as_ref().unwrap().degrees_of_freedom >= 1);
     // The shipped model has none.
-    let clean =
-        kc::run_suite(&example("macpherson.json"), &[Analysis::ParallelTravel], &Settings::default(), |_| {}).unwrap();
+    let clean = kc::run_suite(&example("macpherson.json"), &[Analysis::ParallelTravel], &Settings::default(), |_| {})
+        .complete()
+        .unwrap();
     assert_eq!(clean.all_warnings().count(), 0, "{:?}", clean.all_warnings().collect::<Vec<_>>());
 }
 

@@ -2,7 +2,7 @@
 //! its joint rows repeat others, from the rank of the joints' Jacobian. The rig asks it to tell a solid
 //! axle whose roll is locked; the plausibility check reports it and reads the allowed motions.
 
-use elastokin_core::Model;
+use elastokin_core::{BodyId, Model, Vec3};
 use elastokin_solver::assembly::{Assembly, Tangent};
 use nalgebra::DMatrix;
 
@@ -11,6 +11,28 @@ pub fn mobility(model: &Model) -> (usize, usize) {
     let (j, n) = jacobian(model);
     let rank = rank(&j);
     (n - rank, j.nrows() - rank)
+}
+
+/// For each of `directions`, whether the joints alone hold point `at` of `body` from moving that way at
+/// design: every motion the joints allow moves the point across it by nothing (to the rank's rounding). A
+/// load that way then meets no element: the corner is rigid in it, whatever its springs and bushings.
+pub fn holds_point(model: &Model, body: BodyId, at: Vec3, directions: &[Vec3]) -> Vec<bool> {
+    let (j, n) = jacobian(model);
+    let Some(free) = null_space(&j, n) else {
+        return vec![true; directions.len()];
+    };
+    let arm = at - model.design_poses()[body.0].position;
+    let base = body.0 * elastokin_core::BODY_DOFS;
+    // Each free motion is a unit vector of body coordinates (translations of body origins, rotations).
+    let moves: Vec<Vec3> = (0..free.ncols())
+        .map(|c| {
+            let v = free.column(c);
+            let translation = Vec3::new(v[base], v[base + 1], v[base + 2]);
+            let rotation = Vec3::new(v[base + 3], v[base + 4], v[base + 5]);
+            translation + rotation.cross(&arm)
+        })
+        .collect();
+    directions.iter().map(|d| moves.iter().all(|m| m.dot(&d.normalize()).abs() <= RANK_TOLERANCE)).collect()
 }
 
 /// The joints' Jacobian at design (all rows × body coordinates).

@@ -17,7 +17,7 @@ mod travel;
 
 pub use chart::{Chart, Scale, Series, YAxis};
 pub use reduce::{COMPLIANCE_LOAD, COMPLIANCE_RESPONSE};
-pub use report::{significant, Accuracy, AnalysisReport, Cell, Figure, KcReport, Skipped, Table, Warning};
+pub use report::{significant, Accuracy, AnalysisReport, Cell, Failed, Figure, KcReport, Skipped, Table, Warning};
 pub use settings::{
     mode_from_word, mode_word, Analysis, AnalysisError, Settings, Tolerance, ALL, MAX_RANGE_FRACTION, MAX_RANGE_LOAD,
     MAX_RANGE_TRAVEL, MIN_RANGE,
@@ -29,6 +29,22 @@ use elastokin_solver::LoadPath;
 
 /// Runs one analysis on the model in `file`.
 pub fn run(analysis: Analysis, file: &SuspensionFile, settings: &Settings) -> Result<AnalysisReport, AnalysisError> {
+    check_settings(analysis, settings)?;
+    let result = match analysis {
+        Analysis::ParallelTravel => travel::parallel_travel(file, settings),
+        Analysis::Roll => travel::roll(file, settings),
+        Analysis::Steering => travel::steering(file, settings),
+        Analysis::VerticalForce => loads::vertical_force(file, settings),
+        Analysis::Road(load) => loads::road_load(file, load, settings),
+        Analysis::StaticLoad => loads::static_load(file, settings),
+        Analysis::ModelLoads => loads::model_loads(file, settings),
+    };
+    result.map_err(|message| AnalysisError { analysis: analysis.name(), message })
+}
+
+/// Whether `settings` make sense for `analysis` (steps, arc step, range in its units), before any model is
+/// read: a front end refuses bad settings as bad input rather than as a failed run.
+pub fn check_settings(analysis: Analysis, settings: &Settings) -> Result<(), AnalysisError> {
     if let Err(message) = LoadPath::check_steps(settings.steps) {
         return Err(AnalysisError { analysis: analysis.name(), message });
     }
@@ -75,16 +91,7 @@ pub fn run(analysis: Analysis, file: &SuspensionFile, settings: &Settings) -> Re
             });
         }
     }
-    let result = match analysis {
-        Analysis::ParallelTravel => travel::parallel_travel(file, settings),
-        Analysis::Roll => travel::roll(file, settings),
-        Analysis::Steering => travel::steering(file, settings),
-        Analysis::VerticalForce => loads::vertical_force(file, settings),
-        Analysis::Road(load) => loads::road_load(file, load, settings),
-        Analysis::StaticLoad => loads::static_load(file, settings),
-        Analysis::ModelLoads => loads::model_loads(file, settings),
-    };
-    result.map_err(|message| AnalysisError { analysis: analysis.name(), message })
+    Ok(())
 }
 
 /// What [`run_suite`] tells its caller as it goes.
@@ -96,18 +103,22 @@ pub enum SuiteEvent<'a> {
     Done(&'a AnalysisReport),
     /// An analysis is left out.
     Skipped(&'a Skipped),
+    /// An analysis failed; the suite goes on.
+    Failed(&'a Failed),
 }
 
 /// Runs `which` (every analysis when empty) on the model in `file`: the K&C suite. The plausibility checks
 /// run first ([`KcReport::model_check`]). The static load case is skipped, with its reason, when the file
-/// has no vehicle section, and steering when the corner has no tie rod, unless asked for by name. `progress` hears of each analysis as it starts,
-/// ends or is skipped.
+/// has no vehicle section, and steering when the corner has no tie rod, unless asked for by name.
+/// An analysis that fails costs only itself: it is reported in [`KcReport::failed`] with its reason and
+/// the suite goes on ([`KcReport::complete`] turns a failure into an error). `progress` hears of each
+/// analysis as it starts, ends, fails or is skipped.
 pub fn run_suite(
     file: &SuspensionFile,
     which: &[Analysis],
     settings: &Settings,
     progress: impl FnMut(SuiteEvent),
-) -> Result<KcReport, AnalysisError> {
+) -> KcReport {
     // The plausibility checks run first: a model that cannot be what its author meant is said to be so even
     // when an analysis then fails on it. A check that cannot run (the corner does not build) leaves the
     // analyses to report why.
@@ -122,7 +133,7 @@ pub fn run_suite_checked(
     which: &[Analysis],
     settings: &Settings,
     mut progress: impl FnMut(SuiteEvent),
-) -> Result<KcReport, AnalysisError> {
+) -> KcReport {
     let chosen: Vec<Analysis> = if which.is_empty() { ALL.to_vec() } else { which.to_vec() };
     let warnings = model_check.as_ref().map_or_else(Vec::new, |c| c.warnings.clone());
     let mut report = KcReport {
@@ -130,6 +141,7 @@ pub fn run_suite_checked(
         settings: *settings,
         analyses: Vec::new(),
         skipped: Vec::new(),
+        failed: Vec::new(),
         model_check,
         warnings,
     };
@@ -165,15 +177,21 @@ pub fn run_suite_checked(
             continue;
         }
         progress(SuiteEvent::Starting(analysis));
-        // An analysis that fails on such a model fails because of it: say so with the failure.
-        let result = run(analysis, file, settings).map_err(|mut e| {
-            for w in &report.warnings {
-                e.message.push_str(&format!("; note: {}", w.message));
+        match run(analysis, file, settings) {
+            Ok(done) => {
+                report.analyses.push(done);
+                progress(SuiteEvent::Done(&report.analyses[report.analyses.len() - 1]));
             }
-            e
-        });
-        report.analyses.push(result?);
-        progress(SuiteEvent::Done(&report.analyses[report.analyses.len() - 1]));
+            Err(e) => {
+                // An analysis that fails on an implausible model fails because of it: say so with the failure.
+                let mut reason = e.message;
+                for w in &report.warnings {
+                    reason.push_str(&format!("; note: {}", w.message));
+                }
+                report.failed.push(Failed { analysis, reason });
+                progress(SuiteEvent::Failed(&report.failed[report.failed.len() - 1]));
+            }
+        }
     }
-    Ok(report)
+    report
 }

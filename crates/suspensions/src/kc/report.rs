@@ -298,6 +298,16 @@ pub struct Skipped {
     pub reason: String,
 }
 
+/// An analysis that was run and failed, and why: the suite goes on past it, and its report says so
+/// as it says what it skipped.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Failed {
+    /// The analysis.
+    pub analysis: Analysis,
+    /// The engine's reason, with what to change.
+    pub reason: String,
+}
+
 /// The whole K&C suite's report on one model.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct KcReport {
@@ -310,6 +320,8 @@ pub struct KcReport {
     pub analyses: Vec<AnalysisReport>,
     /// Analyses left out, with the reason.
     pub skipped: Vec<Skipped>,
+    /// Analyses that were run and failed, with the reason; the others' results stand.
+    pub failed: Vec<Failed>,
     /// What the plausibility checks found in the model before it was solved (degrees of freedom,
     /// condition, warnings), when they could run.
     pub model_check: Option<crate::check::ModelCheck>,
@@ -321,6 +333,15 @@ impl KcReport {
     /// The report of `analysis`, if it ran.
     pub fn analysis(&self, analysis: Analysis) -> Option<&AnalysisReport> {
         self.analyses.iter().find(|a| a.analysis == analysis)
+    }
+
+    /// The report whole, or the first analysis that failed as an error: for a caller that needs every
+    /// analysis asked for.
+    pub fn complete(self) -> Result<KcReport, super::AnalysisError> {
+        match self.failed.first() {
+            Some(f) => Err(super::AnalysisError { analysis: f.analysis.name(), message: f.reason.clone() }),
+            None => Ok(self),
+        }
     }
 
     /// Every warning: the model's and each analysis's.

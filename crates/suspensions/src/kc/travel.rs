@@ -188,7 +188,28 @@ pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<Ana
     report.warnings.extend(crate::check::check_travel_rows(&out.rows));
     // Figures of the design position itself, from the tangent there (not read off the rows).
     let pc = patch_compliance(&corner, 0.0).map_err(said)?;
+    let compliance = wheel_compliance(&corner, 0.0).map_err(said)?;
+    let finite = compliance.iter().flatten().all(|v| v.is_finite());
     let per_kn = |rad_per_n: f64| deg(rad_per_n) * 1e3;
+    // The joints alone may hold the patch that way (ideal joints, no bushing in the load path): the
+    // compliance is then rounding, and its inverse no stiffness.
+    let inboard = elastokin_core::Vec3::new(0.0, -corner.wheel.side.sign(), 0.0);
+    let rearward = elastokin_core::Vec3::new(-1.0, 0.0, 0.0);
+    let held = crate::build::mobility::holds_point(
+        &corner.model,
+        corner.wheel.upright,
+        corner.wheel.contact_patch,
+        &[inboard, rearward],
+    );
+    let stiffness = |key: &str, label: &str, n_per_m: f64, rigid: bool| {
+        let value = (finite && !rigid && n_per_m.is_finite()).then_some(n_per_m * 1e-3);
+        let reason = if rigid {
+            "rigid: the joints alone hold the patch this way (no bushing or spring yields to the force)"
+        } else {
+            "the wheel compliance at design is not finite: some motion of the wheel is held by nothing"
+        };
+        Figure::maybe(key, label, "N/mm", 0, value, reason)
+    };
     report.figures.extend([
         Figure::new(
             "lateral_steer",
@@ -206,18 +227,11 @@ pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<Ana
             4,
             per_kn(pc.aligning_torque_steer),
         ),
-        Figure::new("lateral_stiffness", "lateral stiffness at the patch", "N/mm", 0, pc.lateral_stiffness * 1e-3),
-        Figure::new(
-            "longitudinal_stiffness",
-            "longitudinal stiffness at the patch",
-            "N/mm",
-            0,
-            pc.longitudinal_stiffness * 1e-3,
-        ),
+        stiffness("lateral_stiffness", "lateral stiffness at the patch", pc.lateral_stiffness, held[0]),
+        stiffness("longitudinal_stiffness", "longitudinal stiffness at the patch", pc.longitudinal_stiffness, held[1]),
     ]);
     // JSON has no NaN: a matrix with a non-finite entry (a motion nothing holds) is left out, and said so.
-    let compliance = wheel_compliance(&corner, 0.0).map_err(said)?;
-    if compliance.iter().flatten().all(|v| v.is_finite()) {
+    if finite {
         report.wheel_compliance_at_design = Some(compliance);
     } else {
         report.warnings.push(Warning {
@@ -343,7 +357,17 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
         let rc = rc.flatten();
         let slope = |y: &dyn Fn(&AxleRow) -> f64| slope_at(rows, 0.0, |r| r.travel, y);
         let dphi = slope(&|r| r.roll_angle);
-        let per_roll = |d: Option<f64>| Some(d? / dphi?);
+        // Wheels that travel opposite without rolling the axle (its track folded to nothing): no figure is
+        // per degree of roll.
+        let rolls = dphi.is_some_and(|d| d.is_finite() && d != 0.0);
+        let roll_why = if dphi.is_some() && !rolls {
+            "the body does not roll as the wheels travel opposite (the roll angle does not change at design): \
+             check the track in the hardpoints"
+                .to_string()
+        } else {
+            why.clone()
+        };
+        let per_roll = |d: Option<f64>| Some(d? / dphi?).filter(|v| v.is_finite());
         // N·m/rad: the wheel loads' moment against the roll angle.
         let total = per_roll(slope(&|r| r.roll_moment)).map(|k| -k);
         // The bars' energy is U(φ) ≈ ½·K·φ² about design: K is its curvature, from the rows on either side.
@@ -372,7 +396,7 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
                 "deg/deg",
                 4,
                 per_roll(slope(&|r| r.left.toe)),
-                &why,
+                &roll_why,
             ),
             Figure::maybe(
                 "roll_camber",
@@ -380,7 +404,7 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
                 "deg/deg",
                 4,
                 per_roll(slope(&|r| ground_camber(r.left.camber, Side::Left, r.roll_angle))),
-                &why,
+                &roll_why,
             ),
             Figure::maybe(
                 "roll_stiffness",
@@ -388,7 +412,7 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
                 "N·m/deg",
                 0,
                 total.map(|k| k.to_radians()),
-                &why,
+                &roll_why,
             ),
             Figure::maybe(
                 "anti_roll_bar_roll_stiffness",
@@ -403,8 +427,8 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
                 "anti-roll bars' share of the roll stiffness",
                 "%",
                 1,
-                bars.zip(total).map(|(b, t)| 100.0 * b / t),
-                &bar_why,
+                bars.zip(total).map(|(b, t)| 100.0 * b / t).filter(|v| v.is_finite()),
+                if has_bars && total == Some(0.0) { "the roll stiffness is zero" } else { &bar_why },
             ),
         ]
     };

@@ -24,6 +24,24 @@ pub fn fixture_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/chrono")
 }
 
+/// Every shipped Chrono file, by its path under [`fixture_dir`], sorted.
+pub fn every_file() -> Vec<String> {
+    let mut files: Vec<String> = Vec::new();
+    let mut dirs = vec![fixture_dir()];
+    while let Some(dir) = dirs.pop() {
+        for e in std::fs::read_dir(&dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                dirs.push(p);
+            } else if p.extension().is_some_and(|x| x == "json") {
+                files.push(p.strip_prefix(fixture_dir()).unwrap().to_string_lossy().into_owned());
+            }
+        }
+    }
+    files.sort();
+    files
+}
+
 /// A fixture's text, `tests/data/chrono/<path>`; a missing one panics with its full path.
 pub fn fixture(path: &str) -> String {
     let full = fixture_dir().join(path);
@@ -141,7 +159,7 @@ pub fn assert_roll_locked(file: &SuspensionFile) -> KcReport {
     let corner = file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
     assert!(corner.model.joint_id("wheel travel").is_some());
     assert!(corner.model.joint_id("right wheel travel").is_none());
-    let report = kc::run_suite(file, &[], &kc::Settings { steps: 4, ..Default::default() }, |_| {}).unwrap();
+    let report = kc::run_suite(file, &[], &kc::Settings { steps: 4, ..Default::default() }, |_| {}).complete().unwrap();
     let roll = report.skipped.iter().find(|s| s.analysis == kc::Analysis::Roll).unwrap();
     assert!(roll.reason.contains("lock its roll"), "{}", roll.reason);
     report
