@@ -812,3 +812,42 @@ fn rack_travel_per_revolution_of_minus_zero_is_refused_not_an_infinite_steering_
         assert!(e.contains(&format!("vehicle.{key}")) && e.contains("is outside"), "{e}");
     }
 }
+
+/// Fuzz case 195 (seed 0xE1A570F022, stream 2): the four-link axle with its upper links' chassis ends on the
+/// lower links' axle ends rolled not at all as its wheels travelled opposite, and the roll steer, roll camber
+/// and roll stiffness, per degree of that roll, were 0 / 0.
+#[test]
+fn an_axle_that_does_not_roll_gives_no_per_degree_of_roll_figure_not_a_nan_roll_steer() {
+    let g = "/suspension/general/hardpoints";
+    let model: Value = serde_json::from_str(EXAMPLES[4].1).unwrap();
+    let lower_link_axle = model.pointer(&format!("{g}/lower_link_axle")).unwrap().clone();
+    let text = example_with(
+        "four_link_axle.json",
+        &[
+            (&format!("{g}/upper_link_chassis"), lower_link_axle),
+            (&format!("{g}/lower_link_chassis/0"), json!(1e-300)),
+            (&format!("{g}/spring_chassis"), json!([-0.08413918730219289, 0.45988175466563963, 0.6893378609942479])),
+        ],
+    );
+    let file = SuspensionFile::from_json(&text, "model.json").unwrap();
+    let settings = Settings { steps: 4, ..Settings::default() };
+    let report = kc::run(kc::Analysis::Roll, &file, &settings).unwrap();
+    let angle = report.table.columns.iter().position(|c| c == "roll_angle_deg").unwrap();
+    let rolled: Vec<f64> = report.table.rows.iter().map(|r| r[angle].number().unwrap()).collect();
+    // The roll angle does not change (measured: -0.2385° in every row, to the last bit).
+    assert!(rolled.iter().all(|a| (a - rolled[0]).abs() < 1e-12), "{rolled:?}");
+    for key in ["roll_steer", "roll_camber", "roll_stiffness"] {
+        let f = report.figure(key).unwrap();
+        assert!(f.value.is_none() && f.reason.as_deref().unwrap().contains("does not roll"), "{key}: {f:?}");
+    }
+    check_report(&KcReport {
+        model: file.name.clone(),
+        settings,
+        analyses: vec![report],
+        skipped: Vec::new(),
+        failed: Vec::new(),
+        model_check: None,
+        warnings: Vec::new(),
+    })
+    .unwrap();
+}
