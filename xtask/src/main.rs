@@ -7,6 +7,8 @@
 //!
 //! It depends on the facade package `elastokin` for `elastokin::plot`, so the benchmark's plots are drawn
 //! by the same renderer as the command's.
+//! - `fuzz`: the long fuzz campaign over every shipped model and Chrono file, its report written to
+//!   `bench/results/fuzz.md`; see `fuzz.rs`.
 //! - `screenshot`: the HTML K&C report of `examples/macpherson.json`, and its picture taken by headless
 //!   Chromium for the README; see `screenshot.rs`. It uses the `elastokin` facade (the suite, the plots,
 //!   the HTML report and the provenance), as the command does.
@@ -14,6 +16,7 @@
 use std::process::{Command, ExitCode};
 
 mod bench;
+mod fuzz;
 mod screenshot;
 #[cfg(test)]
 mod tidy;
@@ -28,13 +31,20 @@ fn main() -> ExitCode {
         Some("ci") => run_ci(),
         Some("bench") => bench::main(&args[1..]),
         Some("screenshot") => screenshot::main(&args[1..]),
+        Some("fuzz") => fuzz::main(&args[1..]),
         _ => {
             eprintln!(
-                "usage: cargo xtask <ci|bench|screenshot>   (cargo xtask bench --help for the benchmark's options)"
+                "usage: cargo xtask <ci|bench|screenshot|fuzz>   (cargo xtask bench --help for the benchmark's options)"
             );
             ExitCode::from(2)
         }
     }
+}
+
+/// The workspace root (where `examples/`, `bench/` and `tests/` are): the parent of this crate's directory.
+pub(crate) fn workspace_root() -> std::path::PathBuf {
+    let xtask = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    xtask.parent().expect("xtask sits in the workspace").to_path_buf()
 }
 
 fn cargo() -> String {

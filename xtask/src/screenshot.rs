@@ -40,9 +40,7 @@ pub fn main(args: &[String]) -> ExitCode {
     }
 }
 
-fn workspace_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("xtask sits in the workspace").to_path_buf()
-}
+use crate::workspace_root;
 
 fn run() -> Result<PathBuf, String> {
     // Look for Chromium first: without it the run would be wasted.

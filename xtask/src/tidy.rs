@@ -107,9 +107,7 @@ fn from_inline(mut path: Vec<String>) -> Vec<String> {
     path
 }
 
-fn repo_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("xtask sits in the repository").to_path_buf()
-}
+use crate::workspace_root as repo_root;
 
 fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     let Ok(entries) = std::fs::read_dir(dir) else { return };

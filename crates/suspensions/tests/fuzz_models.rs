@@ -1,14 +1,18 @@
-//! Seeded mutation testing of the model files: the shipped examples, each mutated in one to three places
+//! Seeded mutation testing of the model files: the shipped examples and every shipped Project Chrono
+//! suspension file (`tests/data/chrono/`), half the cases each, each mutated in one to three places
 //! (numbers scaled or replaced by extremes, hardpoints swapped or moved, keys deleted, duplicated or
-//! added, types changed, arrays truncated, connections changed), then read and, when they read, run
-//! through the whole K&C suite (or, in some cases, one analysis over a random `--range`), in corrected
-//! or paper mode, the wheel held or free. A model the engine cannot accept must be refused with a
-//! message; one it accepts must give a report with no panic, no non-finite number anywhere a user reads
-//! it, and no figure or cell left out because a NaN was computed on the way.
+//! added, types changed, arrays truncated, connections changed), then read as the command reads a model
+//! and, when they read, run through the whole K&C suite (or, in some cases, one analysis over a random
+//! `--range`), in corrected or paper mode, the wheel held or free. A model the engine cannot accept must be
+//! refused with a message; one it accepts must give a report with no panic, no non-finite number anywhere
+//! a user reads it, and no figure or cell left out because a NaN was computed on the way; an analysis that
+//! fails costs only itself and must say why in words.
 //!
-//! The case counts fit the CI budget: 4000 read-only and 1600 full-suite cases take 16–20 s in the dev
-//! profile on two shared cores. To run a longer campaign, set `ELASTOKIN_FUZZ_CASES` (full-suite cases;
-//! the read-only cases are scaled with it) and `ELASTOKIN_FUZZ_SEED`, preferably in release:
+//! The case counts fit the CI budget: 4000 read-only and 1600 full-suite cases take 2 s and 12 s in the
+//! test profile on two shared cores (the cases are spread over every core). The long campaign is
+//! `cargo xtask fuzz` (10⁵ full-suite cases, its report in `bench/results/fuzz.md`); by hand, set
+//! `ELASTOKIN_FUZZ_CASES` (full-suite cases; the read-only cases are scaled with it) and
+//! `ELASTOKIN_FUZZ_SEED`, preferably in release:
 //!
 //! ```sh
 //! ELASTOKIN_FUZZ_CASES=5000 ELASTOKIN_FUZZ_SEED=7 cargo test --release -p elastokin-suspensions --test fuzz_models
@@ -492,44 +496,103 @@ fn run_case(case: &Case, settings: Option<&Settings>) -> Result<&'static str, St
     }
 }
 
-/// Runs `count` cases of `stream`, and fails with every failing case (seed, index, mutations, JSON), the
-/// slowest case, and any case slower than [`SLOW_CASE`].
+/// What one case came to: its label and mutations, how long it took, and its outcome or why it failed.
+struct Ran {
+    index: usize,
+    label: String,
+    source: &'static str,
+    took: Duration,
+    result: Result<&'static str, String>,
+    case: String,
+}
+
+/// Draws and runs case `index` of `stream`.
+fn run_index(stream: u64, index: usize, suite: bool) -> Ran {
+    let mut rng = case_rng(stream, index);
+    // Suite cases mostly change numbers and geometry, which still read; structural changes are refused.
+    let structural = !suite || rng.random_bool(0.1);
+    let mut case = mutated(&mut rng, structural);
+    // Suite cases are drawn again (a few times) until one reads, so that most of them run the suite.
+    for _ in 0..8 {
+        if !suite || elastokin_suspensions::document::parse_model(&case.text, "model.json").is_ok() {
+            break;
+        }
+        case = mutated(&mut rng, structural);
+    }
+    let settings = suite.then(|| settings(&mut rng));
+    if std::env::var_os("ELASTOKIN_FUZZ_VERBOSE").is_some() {
+        eprintln!("CASE {index}: {} with {}", case.example, case.mutations.join("; "));
+    }
+    let t = Instant::now();
+    let result = run_case(&case, settings.as_ref());
+    let took = t.elapsed();
+    let label = format!("case {index} (seed {}, stream {stream}) {settings:?}", seed());
+    let result = match result {
+        Ok(_) if took > SLOW_CASE => Err(format!("took {took:.1?}")),
+        other => other,
+    };
+    let case_text =
+        if result.is_err() { case.to_string() } else { format!("{} with {}", case.example, case.mutations.join("; ")) };
+    Ran { index, label, source: case.example, took, result, case: case_text }
+}
+
+/// Runs `count` cases of `stream` on every core, and fails with every failing case (seed, index, mutations,
+/// JSON), the slowest case, and any case slower than [`SLOW_CASE`]. With `ELASTOKIN_FUZZ_REPORT=DIR` it
+/// also writes what it found to `DIR/fuzz_stream<stream>.json` (what `cargo xtask fuzz` reports).
 fn campaign(stream: u64, count: usize, suite: bool) {
     let only = env_number("ELASTOKIN_FUZZ_CASE").map(|n| n as usize);
-    let mut failures = Vec::new();
-    let mut outcomes = std::collections::BTreeMap::<&str, usize>::new();
-    let mut slowest = (Duration::ZERO, String::new());
+    let indices: Vec<usize> = (0..count).filter(|i| only.is_none_or(|o| o == *i)).collect();
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).min(indices.len().max(1));
     let start = Instant::now();
-    for index in (0..count).filter(|i| only.is_none_or(|o| o == *i)) {
-        let mut rng = case_rng(stream, index);
-        // Suite cases mostly change numbers and geometry, which still read; structural changes are refused.
-        let structural = !suite || rng.random_bool(0.1);
-        let mut case = mutated(&mut rng, structural);
-        // Suite cases are drawn again (a few times) until one reads, so that most of them run the suite.
-        for _ in 0..8 {
-            if !suite || SuspensionFile::from_json(&case.text, "model.json").is_ok() {
-                break;
-            }
-            case = mutated(&mut rng, structural);
-        }
-        let settings = suite.then(|| settings(&mut rng));
-        if std::env::var_os("ELASTOKIN_FUZZ_VERBOSE").is_some() {
-            eprintln!("CASE {index}: {}", case.mutations.join("; "));
-        }
-        let t = Instant::now();
-        let result = run_case(&case, settings.as_ref());
-        let took = t.elapsed();
-        let label = format!("case {index} (seed {}, stream {stream}) {settings:?}", seed());
-        if took > slowest.0 {
-            slowest = (took, format!("{label}: {}", case.mutations.join("; ")));
-        }
-        match result {
-            Ok(outcome) if took <= SLOW_CASE => *outcomes.entry(outcome).or_default() += 1,
-            Ok(_) => failures.push(format!("{label} took {took:.1?}: {case}")),
-            Err(why) => failures.push(format!("{label}: {why}\n{case}")),
+    // Cases are dealt round robin to the threads and put back in order: the report does not depend on
+    // how many threads ran it.
+    let mut ran: Vec<Ran> = std::thread::scope(|scope| {
+        let workers: Vec<_> = (0..threads)
+            .map(|k| {
+                let mine: Vec<usize> = indices.iter().copied().skip(k).step_by(threads).collect();
+                scope.spawn(move || mine.into_iter().map(|i| run_index(stream, i, suite)).collect::<Vec<Ran>>())
+            })
+            .collect();
+        workers.into_iter().flat_map(|w| w.join().expect("a fuzz worker panicked outside a case")).collect()
+    });
+    ran.sort_by_key(|r| r.index);
+    let wall = start.elapsed();
+    let mut outcomes = std::collections::BTreeMap::<&str, usize>::new();
+    let mut sources = std::collections::BTreeMap::<&str, usize>::new();
+    let mut failures = Vec::new();
+    for r in &ran {
+        *sources.entry(if r.source.starts_with("chrono/") { "chrono" } else { "examples" }).or_default() += 1;
+        match &r.result {
+            Ok(outcome) => *outcomes.entry(outcome).or_default() += 1,
+            Err(why) => failures.push(format!("{}: {why}\n{}", r.label, r.case)),
         }
     }
-    eprintln!("{count} cases in {:.1?}: {outcomes:?}; slowest {:.2?}, {}", start.elapsed(), slowest.0, slowest.1);
+    let slowest = ran.iter().max_by_key(|r| r.took);
+    let slowest_line = slowest.map_or(String::new(), |r| format!("{:.2?}, {}: {}", r.took, r.label, r.case));
+    let count_of =
+        |what: &dyn Fn(&str) -> bool| ran.iter().filter(|r| r.result.as_ref().is_err_and(|w| what(w))).count();
+    eprintln!("{} cases in {wall:.1?} on {threads} threads: {outcomes:?}; slowest {slowest_line}", ran.len());
+    if let Some(dir) = std::env::var_os("ELASTOKIN_FUZZ_REPORT") {
+        let report = json!({
+            "stream": stream,
+            "seed": seed(),
+            "suite": suite,
+            "cases": ran.len(),
+            "threads": threads,
+            "seconds": wall.as_secs_f64(),
+            "sources": sources,
+            "outcomes": outcomes,
+            "panics": count_of(&|w| w.starts_with("panicked")),
+            "hangs": count_of(&|w| w.starts_with("took")),
+            "non_finite": count_of(&|w| w.contains("non-finite") || w.contains(" = NaN") || w.contains(" = inf") || w.contains(" = -inf")),
+            "failures": failures,
+            "slowest_seconds": slowest.map_or(0.0, |r| r.took.as_secs_f64()),
+            "slowest": slowest_line,
+        });
+        let path = std::path::Path::new(&dir).join(format!("fuzz_stream{stream}.json"));
+        std::fs::write(&path, serde_json::to_string_pretty(&report).unwrap())
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    }
     assert!(failures.is_empty(), "{} failing cases:\n\n{}", failures.len(), failures.join("\n\n"));
 }
 

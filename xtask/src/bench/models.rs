@@ -4,13 +4,8 @@ use elastokin_core::Vec3;
 use elastokin_solver::SolverOptions;
 use elastokin_suspensions::analysis::design_wheel_load;
 use elastokin_suspensions::{Corner, Rig, Side, SuspensionFile};
-use std::path::{Path, PathBuf};
 
-/// The workspace root (where `examples/` is): the parent of this crate's directory.
-pub fn root() -> PathBuf {
-    let xtask = Path::new(env!("CARGO_MANIFEST_DIR"));
-    xtask.parent().unwrap_or(xtask).to_path_buf()
-}
+pub(crate) use crate::workspace_root as root;
 
 /// The shipped models: display name and file stem under `examples/`.
 pub const SHIPPED: [(&str, &str); 2] = [("MacPherson", "macpherson"), ("double wishbone", "double_wishbone")];
