@@ -14,6 +14,26 @@ pub enum SolverError {
     /// The linear algebra refused the system.
     #[error(transparent)]
     Factor(#[from] FactorError),
+    /// The factorization met a zero pivot it could not regularize, at the named body coordinate or joint
+    /// row (the model's names: `'upright', its rotation about x`; `joint 'ball' row 'x'`).
+    #[error(
+        "the equations are singular at {part}: a part is free to move where nothing holds it, or a joint \
+         repeats another; check the model's degrees of freedom and redundant joints, and add the missing mount \
+         or remove the repeated joint"
+    )]
+    Singular {
+        /// The body coordinate or joint row, in the model's names.
+        part: String,
+    },
+    /// A solve gave a non-finite number, first at the named body coordinate or joint row.
+    #[error(
+        "the solution is not finite at {part}: the equations are numerically singular — a part is held by next \
+         to nothing or a joint nearly repeats another; check the model's degrees of freedom and redundant joints"
+    )]
+    NonFiniteSolution {
+        /// The body coordinate or joint row, in the model's names.
+        part: String,
+    },
     /// A body can move in some direction that no joint, bushing or spring resists.
     #[error(
         "'{body}' is free to move ({motion}): no joint, bushing or spring holds it that way; check the hardpoints \

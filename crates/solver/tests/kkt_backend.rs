@@ -232,3 +232,35 @@ fn bad_values_are_typed_errors_naming_the_entry() {
     z[1] = f64::INFINITY;
     assert_eq!(lu.solve_in_place(&mut z, Accuracy::Refined), Err(FactorError::NonFinite { what: "rhs", index: 1 }));
 }
+
+/// A body nothing turns, on the dense backend: the dense LU's zero pivot is left to the sparse fallback,
+/// whose suspects the solver names as a motion of the body (never an index).
+#[test]
+fn a_free_lever_on_the_dense_backend_is_named_with_its_free_motion() {
+    use elastokin_core::{BodyRef, JointSpec, Model, Pose, Vec3};
+    use elastokin_elements::CoilSpring;
+    use elastokin_solver::{SolverOptions, StaticSolver};
+    // A lever on a ball joint, a spring from its tip on along its own line: nothing holds its rotation
+    // about that line.
+    let mut m = Model::new();
+    let lever = m.add_body("lever", Pose::at(Vec3::new(0.25, 0.0, 0.0))).unwrap();
+    m.add_joint(JointSpec::spherical("ball", BodyRef::Ground, lever, Vec3::zeros())).unwrap();
+    let spring = CoilSpring::new(
+        "spring",
+        BodyRef::Ground,
+        Vec3::new(1.0, 0.0, 0.0),
+        lever.into(),
+        Vec3::new(0.5, 0.0, 0.0),
+        1e4,
+        0.4,
+    );
+    m.add_element(spring.unwrap()).unwrap();
+    let options = SolverOptions { backend: BackendChoice::Dense, ..SolverOptions::default() };
+    let message = match StaticSolver::new(&m, options) {
+        Err(e) => e.to_string(),
+        Ok(_) => panic!("a free lever was accepted"),
+    };
+    let said =
+        "'lever' is free to move (rotation about the axis (1.000, 0.000, 0.000) through (0.2500, 0.0000, 0.0000) m)";
+    assert!(message.starts_with(said), "{message}");
+}

@@ -112,6 +112,8 @@ fn every_solver_failure_reads_without_the_librarys_words() {
         SolverError::Factor(FactorError::Singular { kind: "body coordinate", index: 7 }),
         SolverError::Factor(FactorError::NonFiniteSolution { index: 7 }),
         SolverError::Factor(FactorError::NotFactorized),
+        SolverError::Singular { part: "'upright', its rotation about x".into() },
+        SolverError::NonFiniteSolution { part: "joint 'ball' row 'x'".into() },
     ];
     for failure in failures {
         let message = failure.to_string();

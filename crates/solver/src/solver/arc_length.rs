@@ -149,9 +149,9 @@ impl<'m> StaticSolver<'m> {
             self.factorize()?;
             // Residual part: [Q − Jᵀλ; −Φ]
             Self::residual_rhs(&self.work.assembly, &self.work.scratch, r_dq);
-            self.work.factor.solve_in_place(r_dq, Accuracy::Refined)?;
+            self.work.factor.solve_in_place(r_dq, Accuracy::Refined).map_err(|e| self.named(e))?;
             self.load_direction_rhs();
-            self.work.factor.solve_in_place(&mut self.work.rhs, Accuracy::Refined)?;
+            self.work.factor.solve_in_place(&mut self.work.rhs, Accuracy::Refined).map_err(|e| self.named(e))?;
             let num: f64 = dq_total.iter().zip(&r_dq[..n]).map(|(a, b)| a * b).sum();
             let den: f64 = dq_total.iter().zip(&self.work.rhs[..n]).map(|(a, b)| a * b).sum::<f64>() + psi2 * dt_total;
             let dt = if den.abs() > 0.0 { -num / den } else { 0.0 };

@@ -2,6 +2,7 @@
 //! joints at design.
 
 use super::*;
+use crate::kkt::FactorError;
 
 impl<'m> StaticSolver<'m> {
     /// Checks at design that every body is restrained, by inverse iteration on the factorized tangent.
@@ -26,7 +27,7 @@ impl<'m> StaticSolver<'m> {
             self.work.rhs[c] = (seed % 1000) as f64 / 1000.0 - 0.5;
         }
         for _ in 0..2 {
-            self.work.factor.solve_in_place(&mut self.work.rhs, Accuracy::Refined)?;
+            self.work.factor.solve_in_place(&mut self.work.rhs, Accuracy::Refined).map_err(|e| self.named(e))?;
             let norm = self.work.rhs[..n].iter().map(|v| v * v).sum::<f64>().sqrt();
             if !(norm.is_finite() && norm > 0.0) {
                 break;
@@ -83,4 +84,72 @@ fn describe_free_motion(model: &Model, x: &[f64], suspects: &[usize]) -> (String
         format!("translation along ({:.3}, {:.3}, {:.3})", d.x, d.y, d.z)
     };
     (model.bodies()[b].name.clone(), motion)
+}
+
+impl StaticSolver<'_> {
+    /// A factorization's or solve's refusal in the model's words (see [`named`]).
+    pub(super) fn named(&self, e: FactorError) -> SolverError {
+        named(self.model, &self.work.assembly.active_rows, e)
+    }
+}
+
+/// A factorization's or solve's refusal in the model's words: the body coordinate or joint row its index
+/// stands for (`index` counts body coordinates first, then the active constraint rows).
+fn named(model: &Model, active_rows: &[usize], e: FactorError) -> SolverError {
+    let n = model.bodies().len() * BODY_DOFS;
+    let coordinate = |k: usize| {
+        let words = ["translation along x", "translation along y", "translation along z"];
+        let turns = ["rotation about x", "rotation about y", "rotation about z"];
+        let what = if k % BODY_DOFS < 3 { words[k % BODY_DOFS] } else { turns[k % BODY_DOFS - 3] };
+        match model.bodies().get(k / BODY_DOFS) {
+            Some(body) => format!("'{}', its {what}", body.name),
+            None => format!("body coordinate {k}"),
+        }
+    };
+    let row = |r: usize| active_rows.get(r).map_or_else(|| format!("constraint row {r}"), |&m| model.describe_row(m));
+    match e {
+        FactorError::Singular { kind: "body coordinate", index } => SolverError::Singular { part: coordinate(index) },
+        FactorError::Singular { index, .. } => SolverError::Singular { part: row(index) },
+        FactorError::NonFiniteSolution { index } if index < n => {
+            SolverError::NonFiniteSolution { part: coordinate(index) }
+        }
+        FactorError::NonFiniteSolution { index } => SolverError::NonFiniteSolution { part: row(index - n) },
+        other => SolverError::Factor(other),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use elastokin_core::{BodyRef, JointSpec, Vec3};
+
+    /// A singular factorization said "singular at body coordinate 3" or "at constraint row 1", an index
+    /// into the solver's matrix; it names the body's coordinate or the joint's row as the model calls them.
+    #[test]
+    fn a_singular_factorization_names_the_part_not_a_row_index() {
+        let mut m = Model::new();
+        m.add_body("upright", Pose::at(Vec3::new(0.0, 0.7, 0.3))).unwrap();
+        let lever = m.add_body("lever", Pose::at(Vec3::new(0.25, 0.0, 0.0))).unwrap();
+        m.add_joint(JointSpec::spherical("ball", BodyRef::Ground, lever, Vec3::zeros())).unwrap();
+        let active: Vec<usize> = (0..m.constraint_rows()).collect();
+        // Body coordinates are six per body, in the order bodies were added: translations, then rotations.
+        let cases = [
+            (FactorError::Singular { kind: "body coordinate", index: 9 }, "singular at 'lever', its rotation about x:"),
+            (
+                FactorError::Singular { kind: "body coordinate", index: 2 },
+                "singular at 'upright', its translation along z:",
+            ),
+            (FactorError::Singular { kind: "constraint row", index: 1 }, "singular at joint 'ball' row "),
+            (FactorError::NonFiniteSolution { index: 12 + 2 }, "not finite at joint 'ball' row "),
+            (FactorError::NonFiniteSolution { index: 4 }, "not finite at 'upright', its rotation about y:"),
+        ];
+        for (e, said) in cases {
+            let message = named(&m, &active, e.clone()).to_string();
+            assert!(message.contains(said), "{e:?}: {message}");
+            assert!(!message.contains("coordinate") && !message.contains("constraint row"), "{message}");
+        }
+        // The ball's rows are its three position rows, named by their labels.
+        let row = named(&m, &active, FactorError::Singular { kind: "constraint row", index: 1 }).to_string();
+        assert!(row.contains(&m.describe_row(1)), "{row}");
+    }
 }

@@ -376,7 +376,7 @@ impl<'m> StaticSolver<'m> {
         let a = &self.work.assembly;
         let values = KktValues { k: &a.k_values, k_skew: a.has_skew.then_some(&a.k_skew[..]), j: &a.j_values };
         self.factored = None;
-        let report = self.work.factor.factorize(values)?;
+        let report = self.work.factor.factorize(values).map_err(|e| self.named(e))?;
         self.factored = self.assembled;
         Ok(report)
     }

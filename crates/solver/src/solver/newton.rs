@@ -112,7 +112,7 @@ impl<'m> StaticSolver<'m> {
     /// once, and GMRES is left out.
     pub(super) fn solve_with_skew(&mut self, accuracy: Accuracy) -> Result<(), SolverError> {
         let size = self.work.rhs.len();
-        self.work.factor.solve_in_place(&mut self.work.rhs, accuracy)?;
+        self.work.factor.solve_in_place(&mut self.work.rhs, accuracy).map_err(|e| self.named(e))?;
         if !self.work.assembly.has_skew || self.work.factor.solves_skew() {
             return Ok(());
         }
@@ -219,7 +219,7 @@ impl<'m> StaticSolver<'m> {
         };
         self.work.assembly.skew_times(v, &mut k.work[..n]);
         k.work[n..size].fill(0.0);
-        self.work.factor.solve_in_place(&mut k.work[..size], Accuracy::Refined)?;
+        self.work.factor.solve_in_place(&mut k.work[..size], Accuracy::Refined).map_err(|e| self.named(e))?;
         Ok(())
     }
 
