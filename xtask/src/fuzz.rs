@@ -5,7 +5,7 @@
 //! panics, hangs (a case over 5 s), non-finite numbers, the slowest case, and every failing case whole.
 //!
 //! ```sh
-//! cargo xtask fuzz                     # 10⁵ full-suite cases (and 2.5·10⁵ read-only ones), seed 0xE1A570F022
+//! cargo xtask fuzz                     # 10⁵ full-suite cases (and 2·10⁵ read-only ones), seed 0xE1A570F022
 //! cargo xtask fuzz --cases 5000 --seed 7
 //! ```
 

@@ -914,3 +914,21 @@ fn an_axle_that_does_not_roll_gives_no_per_degree_of_roll_figure_not_a_nan_roll_
     })
     .unwrap();
 }
+
+/// Fuzz case 57510 of the long campaign (`cargo xtask fuzz`, seed 0xE1A570F022, stream 2): the four-link
+/// axle with a lower link of (nearly) no length locks the wheel's height, and the static load case refused
+/// it as "unstable (wheel rate inf N/m)". It now says the joints alone hold the wheel, without a non-finite
+/// number.
+#[test]
+fn a_locked_linkage_is_named_in_the_static_load_case_not_an_infinite_wheel_rate() {
+    let g = "/suspension/general/hardpoints";
+    let model: Value = serde_json::from_str(EXAMPLES[4].1).unwrap();
+    let mut moved = model.pointer(&format!("{g}/lower_link_axle")).unwrap().clone();
+    moved[2] = json!(moved[2].as_f64().unwrap() * 1.01);
+    let text = example_with("four_link_axle.json", &[(&format!("{g}/lower_link_chassis"), moved)]);
+    let file = SuspensionFile::from_json(&text, "model.json").unwrap();
+    let settings = Settings { steps: 2, ..Settings::default() };
+    let e = kc::run(kc::Analysis::StaticLoad, &file, &settings).unwrap_err().to_string();
+    check_refusal(&e).unwrap();
+    assert!(e.contains("the joints alone hold its height"), "{e}");
+}

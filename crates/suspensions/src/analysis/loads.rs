@@ -411,8 +411,20 @@ pub fn static_load_case(mut corner: Corner, corner_load: f64) -> Result<StaticLo
     // Stability: the rise of the loaded point per newton of corner load, from the path tangent.
     let rates = solver.path_tangent(&state)?;
     let contact_patch = step.poses[upright].point(&patch_local);
-    let wheel_rate = 1.0 / corner.wheel.point_velocity(&step.poses, &rates, contact_patch).z;
-    if !(wheel_rate.is_finite() && wheel_rate > 0.0) {
+    let rise = corner.wheel.point_velocity(&step.poses, &rates, contact_patch).z;
+    let wheel_rate = 1.0 / rise;
+    if !wheel_rate.is_finite() {
+        // The patch does not rise with the load at all: its height is held by the joints alone.
+        return Err(SolverError::InvalidInput {
+            what: "corner load",
+            why: format!(
+                "the wheel does not move under the corner load ({rise:.1e} m per N): the joints alone hold its \
+                 height (a locked linkage), so the spring carries nothing and the corner has no wheel rate; check \
+                 the hardpoints with `elastokin check`"
+            ),
+        });
+    }
+    if wheel_rate <= 0.0 {
         return Err(SolverError::InvalidInput {
             what: "corner load",
             why: format!(
