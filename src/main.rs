@@ -66,6 +66,16 @@ pub enum Command {
     /// parallel wheel travel ±20 mm in 8 steps, corrected mode.
     #[command(after_help = EXIT_STATUS)]
     Batch(BatchArgs),
+    /// Exact sensitivities of parallel travel to numbers of the model file: every row's toe, camber and
+    /// wheel centre and the bump steer and camber gain, derived through the equilibrium
+    ///
+    /// Each parameter is a JSON pointer into the model file, as batch variants name them
+    /// (/suspension/macpherson/hardpoints/tie_rod_inner/2, /suspension/macpherson/spring/rate); --hardpoints
+    /// takes every coordinate of every hardpoint. Writes sensitivity.csv (figure × parameter: derivative
+    /// and effect per mm or per %) and sensitivity_rows.csv, and prints each figure's parameters ranked by
+    /// effect. Corrected mode.
+    #[command(after_help = EXIT_STATUS)]
+    Sensitivity(SensitivityArgs),
     /// Join the batch.csv files of `batch --shard I/N` runs into the batch.csv one `batch` writes
     ///
     /// The shards must be of one model and one variants file (the same SHA-256 in their first lines) and
@@ -177,6 +187,33 @@ pub struct BatchArgs {
     #[arg(long, value_name = "I/N", value_parser = batch::Shard::parse)]
     pub shard: Option<batch::Shard>,
     /// Where batch.csv goes; the directory is replaced as a whole when the batch succeeds
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+}
+
+#[derive(Debug, Args)]
+pub struct SensitivityArgs {
+    /// The model file (JSON; see examples/*.json)
+    pub model: PathBuf,
+    /// A number of the model file by its JSON pointer; give it once per parameter
+    #[arg(long = "param", value_name = "POINTER")]
+    pub params: Vec<String>,
+    /// Every coordinate of every hardpoint (after those given by --param)
+    #[arg(long)]
+    pub hardpoints: bool,
+    /// The wheel travel walked (m, bump +)
+    #[arg(long, value_name = "FROM,TO", value_parser = parse_range, allow_hyphen_values = true, default_value = "-0.08,0.08")]
+    pub range: (f64, f64),
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 32,
+        value_parser = parse_steps,
+        allow_negative_numbers = true,
+        help = format!("Load steps of the sweep, 1 to {MAX_STEPS}")
+    )]
+    pub steps: usize,
+    /// Where sensitivity.csv and sensitivity_rows.csv go; the directory is replaced as a whole on success
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
 }
@@ -623,6 +660,79 @@ fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> 
     out.line(format!("wrote {}", path.display()))
 }
 
+/// `sensitivity`: the parallel-travel figures' derivatives with respect to numbers of the model file.
+fn sensitivity(args: SensitivityArgs, out: &Stdout) -> Result<(), Failure> {
+    use elastokin::suspensions::design::{self, Parameters};
+    let read = read_model(&args.model)?;
+    if let Some(line) = read.format_line() {
+        out.line(line)?;
+    }
+    let origin = args.model.display().to_string();
+    let base = batch::base_document(&String::from_utf8_lossy(&read.bytes), &origin).map_err(Failure::Input)?;
+    let mut pointers = args.params.clone();
+    if args.hardpoints {
+        let all = design::hardpoint_pointers(&base);
+        if all.is_empty() {
+            return Err(Failure::Input(format!(
+                "{origin}: --hardpoints found no hardpoints section (a template's or the general form's \
+                 suspension.<form>.hardpoints); name the numbers with --param POINTER"
+            )));
+        }
+        pointers.extend(all.into_iter().filter(|p| !args.params.contains(p)));
+    }
+    if pointers.is_empty() {
+        return Err(Failure::Input(
+            "no parameters: give --param POINTER (a JSON pointer into the model file) or --hardpoints".into(),
+        ));
+    }
+    let parameters = Parameters::new(&base, &pointers).map_err(|e| Failure::Input(format!("{origin}: {e}")))?;
+    let (from, to) = args.range;
+    if !(from < 0.0 && to > 0.0) {
+        return Err(Failure::Input(format!(
+            "--range {from},{to} must hold the design position (0): the figures are slopes at design"
+        )));
+    }
+    let s = design::parallel_travel_sensitivity(&parameters, from, to, args.steps).map_err(Failure::Run)?;
+    let mut provenance = Provenance::new(&args.model, &read.bytes, kc::mode_word(Mode::Corrected), args.steps);
+    provenance.range = Some(args.range);
+    let staging = Staging::new(&args.out)?;
+    let written = (|| -> Result<Vec<PathBuf>, Failure> {
+        let figures = s.figure_table(&parameters);
+        let rows = s.row_table();
+        Ok(vec![
+            staging.write("sensitivity.csv", &write_table(&figures, &provenance))?,
+            staging.write("sensitivity_rows.csv", &write_table(&rows, &provenance))?,
+        ])
+    })()
+    .map_err(|e| Failure::Run(format!("{}\n{}", e.message(), staging.untouched())))?;
+    staging.commit()?;
+    out.line(format!(
+        "{} — parallel travel {:+.0}..{:+.0} mm, {} steps, {} parameters",
+        read.file.name,
+        from * 1e3,
+        to * 1e3,
+        args.steps,
+        parameters.len()
+    ))?;
+    for (_, label, unit, value, derivatives) in s.figures() {
+        out.line("")?;
+        out.line(format!("{label}: {} {unit}; largest effects", kc::significant(value, 5)))?;
+        let mut ranked: Vec<(usize, f64)> = derivatives
+            .iter()
+            .enumerate()
+            .map(|(k, d)| (k, design::sensitivity::effect(&parameters.pointers[k], parameters.values[k], *d)))
+            .collect();
+        ranked.sort_by(|a, b| b.1.abs().total_cmp(&a.1.abs()));
+        for (k, e) in ranked.into_iter().take(5) {
+            let pointer = &parameters.pointers[k];
+            let per = design::sensitivity::effect_unit(pointer);
+            out.line(format!("  {:<56} {:>12} {unit} per {per}", pointer, kc::significant(e, 3)))?;
+        }
+    }
+    out.line("")?;
+    out.line(format!("wrote {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))
+}
+
 fn main() -> ExitCode {
     // Usage errors exit with status 2, help and --version with 0; clap prints them.
     let cli = Cli::parse();
@@ -631,6 +741,7 @@ fn main() -> ExitCode {
         Command::Run(args) => run(args, &out, cli.quiet, cli.strict),
         Command::Check(args) => check(args, &out),
         Command::Batch(args) => run_batch(args, &out, cli.quiet),
+        Command::Sensitivity(args) => sensitivity(args, &out),
         Command::Merge(args) => merge::merge(args, &out),
         Command::Expand(args) => expand(args, &out),
         Command::Import(args) => import(args, &out),

@@ -28,6 +28,7 @@ const LAYERED: [(&str, &[(&str, u32)]); 2] = [
             ("check", 5),
             ("kc", 6),
             ("study", 7),
+            ("design", 8),
         ],
     ),
     (

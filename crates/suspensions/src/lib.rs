@@ -37,7 +37,8 @@
 //! - [`analysis`]: the sweeps, solved;
 //! - [`check`]: the plausibility of a model and of its sweeps;
 //! - [`kc`]: the K&C suite, its figures and typed report;
-//! - [`study`]: design studies of many variants.
+//! - [`study`]: design studies of many variants;
+//! - [`design`]: parameters of a model file and the exact sensitivities of the figures to them.
 //!
 //! Dependencies: serde and serde_json for the model files and the K&C reports ([`kc`]), nalgebra for
 //! the rank of the joints' Jacobian and the small symmetric eigenproblem of the plausibility check's
@@ -49,6 +50,7 @@ pub mod analysis;
 pub mod build;
 pub mod check;
 pub mod description;
+pub mod design;
 pub mod document;
 pub mod file;
 pub mod import;

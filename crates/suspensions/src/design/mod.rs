@@ -1,0 +1,9 @@
+//! Design: how the figures move with the numbers of a model file. A parameter is any number of a model
+//! file, named by the JSON pointer `elastokin batch` edits ([`parameter`]); its sensitivities are the exact
+//! derivatives of an analysis's rows and figures through the equilibrium ([`sensitivity`]).
+
+pub mod parameter;
+pub mod sensitivity;
+
+pub use parameter::{hardpoint_pointers, Parameters};
+pub use sensitivity::{parallel_travel_sensitivity, TravelSensitivity};

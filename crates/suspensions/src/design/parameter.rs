@@ -1,0 +1,99 @@
+//! Parameters: numbers of a model file by JSON pointer (`/suspension/macpherson/hardpoints/tie_rod_inner/2`,
+//! `/suspension/general/bushings/0/rates/radial`, a Chrono file's own keys), the vocabulary batch variants,
+//! sensitivities, tuning and tolerances share. A parameter moved is the model file edited there and read
+//! again, so it means exactly what the number means in the file.
+
+use crate::file::SuspensionFile;
+use crate::study::batch::{apply, Variant};
+use serde_json::Value;
+
+/// Numbers of one model document, each named by its pointer, with the document they are read from.
+#[derive(Debug, Clone)]
+pub struct Parameters {
+    document: Value,
+    /// The pointers, in the order given.
+    pub pointers: Vec<String>,
+    /// Their values in the document.
+    pub values: Vec<f64>,
+}
+
+impl Parameters {
+    /// The numbers at `pointers` of `document` (a model file as [`crate::study::batch::base_document`]
+    /// reads it); a pointer that names nothing, or something that is not a number, is refused by name, with
+    /// what is there.
+    pub fn new(document: &Value, pointers: &[String]) -> Result<Parameters, String> {
+        let mut values = Vec::with_capacity(pointers.len());
+        for (k, pointer) in pointers.iter().enumerate() {
+            if pointers[..k].contains(pointer) {
+                return Err(format!("parameter '{pointer}' is given twice"));
+            }
+            let value = match document.pointer(pointer) {
+                None => {
+                    return Err(format!(
+                        "parameter '{pointer}' names nothing in the model: a JSON pointer into the model file \
+                         (keys and array indices from the top, e.g. /suspension/macpherson/hardpoints/tie_rod_inner/2)"
+                    ))
+                }
+                Some(Value::Number(n)) => n.as_f64().filter(|v| v.is_finite()),
+                Some(other) => {
+                    let what = match other {
+                        Value::Array(a) => format!("a list of {} values (name one of them: '{pointer}/0')", a.len()),
+                        Value::Object(_) => "a section of the model, not a number".to_string(),
+                        _ => format!("{other}, not a number"),
+                    };
+                    return Err(format!("parameter '{pointer}' names {what}"));
+                }
+            };
+            values.push(value.ok_or_else(|| format!("parameter '{pointer}' is not a finite number"))?);
+        }
+        Ok(Parameters { document: document.clone(), pointers: pointers.to_vec(), values })
+    }
+
+    /// How many parameters there are.
+    pub fn len(&self) -> usize {
+        self.pointers.len()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.pointers.is_empty()
+    }
+
+    /// The model with parameter `k` moved by `delta` (in the file's units), read as the command reads it.
+    pub fn file_moved(&self, k: usize, delta: f64) -> Result<SuspensionFile, String> {
+        let value = self.values[k] + delta;
+        let number = serde_json::Number::from_f64(value)
+            .ok_or_else(|| format!("parameter '{}' moved to {value:e}, which is no number", self.pointers[k]))?;
+        let variant = Variant {
+            name: format!("{} = {value}", self.pointers[k]),
+            edits: vec![(self.pointers[k].clone(), Value::Number(number))],
+        };
+        apply(&self.document, &variant)
+    }
+
+    /// The model as it is.
+    pub fn file(&self) -> Result<SuspensionFile, String> {
+        apply(&self.document, &Variant { name: "the model".into(), edits: Vec::new() })
+    }
+}
+
+/// Every coordinate of every named hardpoint of a model document (the templates' and the general form's
+/// `hardpoints` sections), as pointers: `--hardpoints`.
+pub fn hardpoint_pointers(document: &Value) -> Vec<String> {
+    let mut out = Vec::new();
+    let Some(suspension) = document.get("suspension").and_then(Value::as_object) else {
+        return out;
+    };
+    for (form, body) in suspension {
+        let Some(points) = body.get("hardpoints").and_then(Value::as_object) else {
+            continue;
+        };
+        for (name, xyz) in points {
+            if xyz.as_array().is_some_and(|a| a.len() == 3 && a.iter().all(Value::is_number)) {
+                let name = name.replace('~', "~0").replace('/', "~1");
+                out.extend((0..3).map(|k| format!("/suspension/{form}/hardpoints/{name}/{k}")));
+            }
+        }
+    }
+    out
+}
