@@ -233,6 +233,62 @@ class Model:
         """Design variants of this model; see :func:`elastokin.batch`."""
         return batch(self, variants)
 
+    def hardpoint_parameters(self) -> List[str]:
+        """Every coordinate of every hardpoint, as parameter pointers (the command's ``--hardpoints``)."""
+        return self._native.hardpoint_parameters()
+
+    def sensitivities(
+        self,
+        parameters: Optional[Sequence[str]] = None,
+        *,
+        range: Tuple[float, float] = (-0.08, 0.08),
+        steps: int = 32,
+    ) -> Dict[str, Any]:
+        """Exact sensitivities of parallel travel, as ``elastokin sensitivity`` gives them: derived through the
+        equilibrium, one back-substitution per parameter and row.
+
+        ``parameters`` are JSON pointers into the model file (as batch variants name them; every hardpoint
+        coordinate when None). Gives a dict: ``parameters``, their ``values``, the rows (``travel_m``,
+        ``toe_deg``, ``camber_deg``), their derivatives as (rows, parameters) arrays (``d_toe_deg``,
+        ``d_camber_deg``, ``d_wheel_centre_x_m``/``_y_m``/``_z_m``), and the figures
+        ``bump_steer_deg_per_m`` and ``camber_gain_deg_per_m`` with ``d_bump_steer_deg_per_m`` and
+        ``d_camber_gain_deg_per_m`` (one per parameter). Every derivative is per unit of the parameter as the
+        file gives it (per m of a hardpoint coordinate, per N/m of a rate).
+
+        Raises ModelError for a pointer that names nothing or no number, AnalysisError when the travel
+        cannot be walked (a limit point) or a parameter changes the model's parts."""
+        pointers = self.hardpoint_parameters() if parameters is None else [str(p) for p in parameters]
+        return self._native.sensitivities(pointers, range=(float(range[0]), float(range[1])), steps=steps)
+
+    def objective(
+        self,
+        figure: str,
+        parameters: Sequence[str],
+        *,
+        target: float = 0.0,
+        range: Tuple[float, float] = (-0.08, 0.08),
+        steps: int = 32,
+    ) -> Any:
+        """A function of the parameters' values ``x`` giving ``((figure − target)², gradient)`` with the exact
+        gradient, which ``scipy.optimize.minimize(f, x0, jac=True)`` takes as it is. ``figure`` is
+        ``"bump_steer"`` or ``"camber_gain"`` (deg/m); ``x0`` is ``sensitivities(parameters)["values"]``."""
+        if figure not in ("bump_steer", "camber_gain"):
+            raise ValueError(f"figure {figure!r}: give 'bump_steer' or 'camber_gain'")
+        pointers = [str(p) for p in parameters]
+        text, origin = self._native.document()
+        base = json.loads(text)
+
+        def f(x: Any) -> Tuple[float, numpy.ndarray]:
+            document = json.loads(json.dumps(base))
+            for pointer, value in zip(pointers, numpy.asarray(x, dtype=float)):
+                _set_pointer(document, pointer, float(value))
+            model = _native.Model.from_json(json.dumps(document), origin)
+            s = model.sensitivities(pointers, range=range, steps=steps)
+            miss = s[f"{figure}_deg_per_m"] - target
+            return miss * miss, 2.0 * miss * numpy.asarray(s[f"d_{figure}_deg_per_m"])
+
+        return f
+
     def __reduce__(self):
         # Pickled as the document it was read from: a model sent to another process (a Ray or Dask worker,
         # a multiprocessing pool) is read there again, to the same model.
@@ -240,6 +296,25 @@ class Model:
 
     def __repr__(self) -> str:
         return f"<elastokin.Model {self.name!r}>"
+
+
+def _set_pointer(document: Any, pointer: str, value: float) -> None:
+    """Sets the number at a JSON pointer (RFC 6901) of a parsed document; a pointer naming nothing raises
+    ModelError with the pointer."""
+    keys = [k.replace("~1", "/").replace("~0", "~") for k in pointer.split("/")[1:]]
+    node = document
+    try:
+        for key in keys[:-1]:
+            node = node[int(key)] if isinstance(node, list) else node[key]
+        last = keys[-1]
+        if isinstance(node, list):
+            node[int(last)] = value
+        elif last in node:
+            node[last] = value
+        else:
+            raise KeyError(last)
+    except (KeyError, IndexError, ValueError, TypeError):
+        raise ModelError(f"parameter '{pointer}' names nothing in the model") from None
 
 
 def _from_document(text: str, origin: str) -> Model:

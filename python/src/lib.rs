@@ -252,6 +252,57 @@ impl Model {
         to_json(&report)
     }
 
+    /// Every coordinate of every hardpoint, as parameter pointers (the command's `--hardpoints`).
+    fn hardpoint_parameters(&self) -> Vec<String> {
+        elastokin_suspensions::design::hardpoint_pointers(&self.base)
+    }
+
+    /// Exact sensitivities of parallel travel to the numbers at `parameters` (JSON pointers), as the
+    /// command's `sensitivity` gives them: a dict of the rows (`travel_m`, `toe_deg`, `camber_deg`), their
+    /// derivatives (row × parameter: `d_toe_deg`, `d_camber_deg`, `d_wheel_centre_x_m`, `_y_m`, `_z_m`) and
+    /// the figures (`bump_steer_deg_per_m`, `camber_gain_deg_per_m`) with theirs (`d_…`, one per parameter),
+    /// every derivative per unit of the parameter in the file.
+    #[pyo3(signature = (parameters, range=(-0.08, 0.08), steps=32))]
+    fn sensitivities<'py>(
+        &self,
+        py: Python<'py>,
+        parameters: Vec<String>,
+        range: (f64, f64),
+        steps: usize,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        use elastokin_suspensions::design::{parallel_travel_sensitivity, Parameters};
+        elastokin_solver::LoadPath::check_steps(steps).map_err(PyValueError::new_err)?;
+        if !(range.0 < 0.0 && range.1 > 0.0) {
+            return Err(PyValueError::new_err(format!(
+                "range {:?} must hold the design position (0): the figures are slopes at design",
+                range
+            )));
+        }
+        let p = Parameters::new(&self.base, &parameters).map_err(ModelError::new_err)?;
+        let s =
+            py.detach(|| parallel_travel_sensitivity(&p, range.0, range.1, steps)).map_err(AnalysisError::new_err)?;
+        let d = PyDict::new(py);
+        let deg = |v: &Vec<f64>| v.iter().map(|x| x.to_degrees()).collect::<Vec<f64>>();
+        let matrix =
+            |rows: Vec<Vec<f64>>| PyArray2::from_vec2(py, &rows).map_err(|e| AnalysisError::new_err(e.to_string()));
+        d.set_item("parameters", p.pointers.clone())?;
+        d.set_item("values", PyArray1::from_vec(py, p.values.clone()))?;
+        d.set_item("travel_m", PyArray1::from_vec(py, s.travel.clone()))?;
+        d.set_item("toe_deg", PyArray1::from_vec(py, deg(&s.toe)))?;
+        d.set_item("camber_deg", PyArray1::from_vec(py, deg(&s.camber)))?;
+        d.set_item("d_toe_deg", matrix(s.d_toe.iter().map(deg).collect())?)?;
+        d.set_item("d_camber_deg", matrix(s.d_camber.iter().map(deg).collect())?)?;
+        for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+            let rows = s.d_wheel_centre.iter().map(|r| r.iter().map(|c| c[k]).collect()).collect();
+            d.set_item(format!("d_wheel_centre_{axis}_m"), matrix(rows)?)?;
+        }
+        for (key, _, _, value, derivatives) in s.figures() {
+            d.set_item(format!("{key}_deg_per_m"), value)?;
+            d.set_item(format!("d_{key}_deg_per_m"), PyArray1::from_vec(py, derivatives))?;
+        }
+        Ok(d)
+    }
+
     /// The 6×6 wheel compliance at design of the left corner on the wheel-travel rig (the matrix of the
     /// parallel-travel report): column k is the response to a unit force (k < 3) or torque at the wheel centre.
     fn compliance<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
