@@ -6,7 +6,7 @@
 //!
 //! Sections (each a module named for what it measures): error against run time on the shipped models,
 //! the cost of one step against a bare factorization + solve, scaling with the number of bodies, stiff and
-//! extreme cases, batch throughput, and (when Python with Exudyn is installed) the same sweep in Exudyn,
+//! extreme cases, batch throughput, the cost of exact sensitivities, and (when Python with Exudyn is installed) the same sweep in Exudyn,
 //! side by side. Output in `bench/results/` (or `--out`): `latest.md`, one CSV per
 //! table, SVG plots; `--save NAME` writes `NAME.json` with the commit id and every figure, `--compare NAME`
 //! prints now/then per figure and flags what got slower than `--threshold` (default 1.25).
@@ -21,6 +21,7 @@ mod exudyn;
 mod models;
 pub mod report;
 mod scaling;
+mod sensitivity;
 pub mod stats;
 mod step_cost;
 mod stiff_cases;
@@ -70,12 +71,13 @@ impl Settings {
 type Section = (&'static str, fn(&Settings) -> SectionOutput);
 
 /// The sections, in the order they run and appear.
-const SECTIONS: [Section; 6] = [
+const SECTIONS: [Section; 7] = [
     ("error-vs-time", error_vs_time::run),
     ("step-cost", step_cost::run),
     ("scaling", scaling::run),
     ("stiff-cases", stiff_cases::run),
     ("batch", batch::run),
+    ("sensitivity", sensitivity::run),
     ("exudyn", exudyn::run),
 ];
 
@@ -86,7 +88,8 @@ usage: cargo xtask bench [--quick] [--out DIR] [--save NAME] [--compare NAME] [-
     --save NAME      also write DIR/NAME.json: the commit id and every figure
     --compare NAME   print now/then for every figure of DIR/NAME.json, flag the slower ones
     --threshold X    flag figures slower than X times then (default 1.25)
-    --only LIST      comma-separated sections: error-vs-time, step-cost, scaling, stiff-cases, batch, exudyn
+    --only LIST      comma-separated sections: error-vs-time, step-cost, scaling, stiff-cases, batch, sensitivity,
+                     exudyn
                      (exudyn needs Python with Exudyn, `pip install exudyn`; without it, it is skipped)";
 
 /// Parsed command line.
