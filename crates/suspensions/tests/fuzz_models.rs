@@ -321,6 +321,19 @@ const MAY_BE_EMPTY: [&str; 5] = [
     "roll_centre_height_m",
 ];
 
+/// A suite's report of one analysis alone, as [`check_report`] takes it.
+fn one_analysis(file: &SuspensionFile, settings: Settings, report: kc::AnalysisReport) -> KcReport {
+    KcReport {
+        model: file.name.clone(),
+        settings,
+        analyses: vec![report],
+        skipped: Vec::new(),
+        failed: Vec::new(),
+        model_check: None,
+        warnings: Vec::new(),
+    }
+}
+
 /// What is wrong with a report, if anything: every number a user reads must be finite.
 fn check_report(report: &KcReport) -> Result<(), String> {
     let finite = |what: String, v: f64| if v.is_finite() { Ok(()) } else { Err(format!("{what} = {v}")) };
@@ -443,15 +456,7 @@ fn run_case(case: &Case, settings: Option<&Settings>) -> Result<&'static str, St
             let analysis = kc::ALL[(settings.steps + case.text.len()) % kc::ALL.len()];
             return match kc::run(analysis, &file, settings) {
                 Ok(report) => {
-                    let suite = KcReport {
-                        model: file.name.clone(),
-                        settings: *settings,
-                        analyses: vec![report],
-                        skipped: Vec::new(),
-                        failed: Vec::new(),
-                        model_check: None,
-                        warnings: Vec::new(),
-                    };
+                    let suite = one_analysis(&file, *settings, report);
                     check_report(&suite).map(|()| "ran one analysis over a range")
                 }
                 Err(e) => {
@@ -642,16 +647,7 @@ fn zero_spring_design_force_gives_no_nan_wheel_rate() {
     // none, a range around nothing would have no width, so 0 to 3 kN is taken, and the wheel rate is there.
     let report = kc::run(kc::Analysis::VerticalForce, &file, &settings).unwrap();
     assert_eq!(report.range, (0.0, 3000.0));
-    check_report(&KcReport {
-        model: file.name.clone(),
-        settings,
-        analyses: vec![report],
-        skipped: Vec::new(),
-        failed: Vec::new(),
-        model_check: None,
-        warnings: Vec::new(),
-    })
-    .unwrap();
+    check_report(&one_analysis(&file, settings, report)).unwrap();
     // With a range the wheel rate is there.
     let ranged = Settings { range: Some((-1000.0, 1000.0)), ..settings };
     let report = kc::run(kc::Analysis::VerticalForce, &file, &ranged).unwrap();
@@ -903,16 +899,7 @@ fn an_axle_that_does_not_roll_gives_no_per_degree_of_roll_figure_not_a_nan_roll_
         let f = report.figure(key).unwrap();
         assert!(f.value.is_none() && f.reason.as_deref().unwrap().contains("does not roll"), "{key}: {f:?}");
     }
-    check_report(&KcReport {
-        model: file.name.clone(),
-        settings,
-        analyses: vec![report],
-        skipped: Vec::new(),
-        failed: Vec::new(),
-        model_check: None,
-        warnings: Vec::new(),
-    })
-    .unwrap();
+    check_report(&one_analysis(&file, settings, report)).unwrap();
 }
 
 /// Fuzz case 57510 of the long campaign (`cargo xtask fuzz`, seed 0xE1A570F022, stream 2): the four-link

@@ -80,10 +80,7 @@ pub fn run(s: &Settings) -> SectionOutput {
             "status",
         ],
     );
-    let base = match std::fs::read_to_string(models::root().join("examples/macpherson.json"))
-        .map_err(|e| e.to_string())
-        .and_then(|t| batch::base_document(&t, "examples/macpherson.json"))
-    {
+    let base = match models::shipped_document("macpherson") {
         Ok(v) => v,
         Err(e) => {
             table.failed_row(Vec::new(), e);

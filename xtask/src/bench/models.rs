@@ -77,3 +77,10 @@ pub fn tight_options() -> SolverOptions {
         ..SolverOptions::default()
     }
 }
+
+/// `examples/{stem}.json` as the document batch variants and parameters edit.
+pub fn shipped_document(stem: &str) -> Result<serde_json::Value, String> {
+    let path = format!("examples/{stem}.json");
+    let text = std::fs::read_to_string(root().join(&path)).map_err(|e| format!("{path}: {e}"))?;
+    elastokin_suspensions::study::batch::base_document(&text, &path)
+}

@@ -9,7 +9,6 @@ use super::Settings;
 use elastokin_solver::Mode;
 use elastokin_suspensions::analysis::parallel_wheel_travel;
 use elastokin_suspensions::design::{hardpoint_pointers, parallel_travel_sensitivity, Parameters};
-use elastokin_suspensions::study::batch;
 use elastokin_suspensions::{Rig, Side};
 
 const RANGE: (f64, f64) = (-0.08, 0.08);
@@ -35,10 +34,7 @@ pub fn run(s: &Settings) -> SectionOutput {
         "sensitivity.csv",
         &["what", "parameters", "median time (s)", "time / travel alone", "status"],
     );
-    let base = match std::fs::read_to_string(models::root().join("examples/macpherson.json"))
-        .map_err(|e| e.to_string())
-        .and_then(|t| batch::base_document(&t, "examples/macpherson.json"))
-    {
+    let base = match models::shipped_document("macpherson") {
         Ok(v) => v,
         Err(e) => {
             table.failed_row(Vec::new(), e);
