@@ -198,7 +198,7 @@ pub struct SensitivityArgs {
     /// A number of the model file by its JSON pointer; give it once per parameter
     #[arg(long = "param", value_name = "POINTER")]
     pub params: Vec<String>,
-    /// Every coordinate of every hardpoint (after those given by --param)
+    /// Every coordinate of every hardpoint (a Chrono file's Location points), after those given by --param
     #[arg(long)]
     pub hardpoints: bool,
     /// The wheel travel walked (m, bump +)
@@ -674,8 +674,8 @@ fn sensitivity(args: SensitivityArgs, out: &Stdout) -> Result<(), Failure> {
         let all = design::hardpoint_pointers(&base);
         if all.is_empty() {
             return Err(Failure::Input(format!(
-                "{origin}: --hardpoints found no hardpoints section (a template's or the general form's \
-                 suspension.<form>.hardpoints); name the numbers with --param POINTER"
+                "{origin}: --hardpoints found no hardpoints (a template's or the general form's \
+                 suspension.<form>.hardpoints, a Chrono file's Location points); name the numbers with --param POINTER"
             )));
         }
         pointers.extend(all.into_iter().filter(|p| !args.params.contains(p)));

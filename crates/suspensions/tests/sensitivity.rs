@@ -41,7 +41,11 @@ fn figures(p: &Parameters, k: usize, delta: f64) -> Vec<f64> {
 /// of the same kind (toe, camber, height, each slope) for that parameter, or 1e-9 absolute for a derivative
 /// near zero. Also the largest relative difference where the derivative is not near zero.
 fn worst_against_re_solves(name: &str, pointers: &[String]) -> (f64, f64) {
-    let p = Parameters::new(&document(name), pointers).unwrap();
+    worst_against_re_solves_of(document(name), pointers)
+}
+
+fn worst_against_re_solves_of(document: serde_json::Value, pointers: &[String]) -> (f64, f64) {
+    let p = Parameters::new(&document, pointers).unwrap();
     let s = parallel_travel_sensitivity(&p, FROM, TO, STEPS).unwrap();
     let (mut worst, mut relative): (f64, f64) = (0.0, 0.0);
     for k in 0..p.len() {
@@ -113,6 +117,21 @@ fn double_wishbone_and_five_link_hardpoint_sensitivities_match_re_solves() {
         println!("{name}: {worst:.3} of the allowed difference, relative {relative:e}, {} parameters", pointers.len());
         assert!(worst <= 1.0, "{name}: {worst:e}");
     }
+}
+
+/// A Chrono file's own points are parameters too, told per mm, and the sensitivity of its double wishbone
+/// matches re-solves as the elastokin models' do.
+#[test]
+fn chrono_double_wishbone_point_sensitivities_match_re_solves() {
+    let path = format!("{}/../../tests/data/chrono/DoubleWishbone.json", env!("CARGO_MANIFEST_DIR"));
+    let doc = base_document(&std::fs::read_to_string(&path).unwrap(), &path).unwrap();
+    let all = hardpoint_pointers(&doc);
+    assert!(all.contains(&"/Tierod/Location Chassis/2".to_string()) && all.len() >= 27, "{all:?}");
+    assert!(all.iter().all(|p| elastokin_suspensions::design::sensitivity::effect_unit(p) == "mm"));
+    let pointers: Vec<String> = all.iter().step_by(4).cloned().collect();
+    let (worst, relative) = worst_against_re_solves_of(doc, &pointers);
+    println!("Chrono double wishbone: {worst:.3} of the allowed difference, relative {relative:e}");
+    assert!(worst <= 1.0, "{worst:e}");
 }
 
 #[test]

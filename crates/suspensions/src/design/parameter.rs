@@ -77,11 +77,26 @@ impl Parameters {
     }
 }
 
-/// Every coordinate of every named hardpoint of a model document (the templates' and the general form's
-/// `hardpoints` sections), as pointers: `--hardpoints`.
+/// Whether the key names a point of a Project Chrono part (`Location Chassis`, `Location Upright`, …).
+pub fn is_chrono_point(key: &str) -> bool {
+    key.starts_with("Location")
+}
+
+/// Every coordinate of every named hardpoint of a model document, as pointers: `--hardpoints`. The
+/// templates' and the general form's `hardpoints` sections; in a Project Chrono file, every part's
+/// `Location …` points.
 pub fn hardpoint_pointers(document: &Value) -> Vec<String> {
     let mut out = Vec::new();
+    let escape = |name: &str| name.replace('~', "~0").replace('/', "~1");
+    let is_point = |v: &Value| v.as_array().is_some_and(|a| a.len() == 3 && a.iter().all(Value::is_number));
     let Some(suspension) = document.get("suspension").and_then(Value::as_object) else {
+        for (part, body) in document.as_object().into_iter().flatten() {
+            for (key, xyz) in body.as_object().into_iter().flatten() {
+                if is_chrono_point(key) && is_point(xyz) {
+                    out.extend((0..3).map(|k| format!("/{}/{}/{k}", escape(part), escape(key))));
+                }
+            }
+        }
         return out;
     };
     for (form, body) in suspension {
@@ -89,9 +104,8 @@ pub fn hardpoint_pointers(document: &Value) -> Vec<String> {
             continue;
         };
         for (name, xyz) in points {
-            if xyz.as_array().is_some_and(|a| a.len() == 3 && a.iter().all(Value::is_number)) {
-                let name = name.replace('~', "~0").replace('/', "~1");
-                out.extend((0..3).map(|k| format!("/suspension/{form}/hardpoints/{name}/{k}")));
+            if is_point(xyz) {
+                out.extend((0..3).map(|k| format!("/suspension/{form}/hardpoints/{}/{k}", escape(name))));
             }
         }
     }

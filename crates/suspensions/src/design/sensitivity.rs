@@ -204,10 +204,11 @@ pub fn parallel_travel_sensitivity(
     Ok(out)
 }
 
-/// How a parameter's effect is told: per millimetre of a length (a hardpoint coordinate, a loaded
-/// radius), per percent of anything else (a rate, a force).
+/// How a parameter's effect is told: per millimetre of a length (a hardpoint coordinate, a Chrono part's
+/// `Location …` point, a loaded radius), per percent of anything else (a rate, a force).
 pub fn effect_unit(pointer: &str) -> &'static str {
-    if pointer.contains("/hardpoints/") || pointer.ends_with("/loaded_radius") {
+    let chrono_point = pointer.split('/').any(super::parameter::is_chrono_point);
+    if pointer.contains("/hardpoints/") || chrono_point || pointer.ends_with("/loaded_radius") {
         "mm"
     } else {
         "%"
