@@ -714,9 +714,10 @@ fn sensitivity(args: SensitivityArgs, out: &Stdout) -> Result<(), Failure> {
         args.steps,
         parameters.len()
     ))?;
-    for (_, label, unit, value, derivatives) in s.figures() {
+    for (key, label, unit, value, derivatives) in s.figures() {
         out.line("")?;
-        out.line(format!("{label}: {} {unit}; largest effects", kc::significant(value, 5)))?;
+        // The figure as the K&C report prints it (its decimals; no sign on a zero).
+        out.line(kc::Figure::new(key, label, unit, 3, value).line())?;
         let mut ranked: Vec<(usize, f64)> = derivatives
             .iter()
             .enumerate()
@@ -726,7 +727,7 @@ fn sensitivity(args: SensitivityArgs, out: &Stdout) -> Result<(), Failure> {
         for (k, e) in ranked.into_iter().take(5) {
             let pointer = &parameters.pointers[k];
             let per = design::sensitivity::effect_unit(pointer);
-            out.line(format!("  {:<56} {:>12} {unit} per {per}", pointer, kc::significant(e, 3)))?;
+            out.line(format!("      {:<52} {:>12} {unit} per {per}", pointer, kc::significant(e, 3)))?;
         }
     }
     out.line("")?;
