@@ -714,20 +714,23 @@ fn sensitivity(args: SensitivityArgs, out: &Stdout) -> Result<(), Failure> {
         args.steps,
         parameters.len()
     ))?;
-    for (key, label, unit, value, derivatives) in s.figures() {
+    for (figure, derivatives) in &s.report_figures {
         out.line("")?;
-        // The figure as the K&C report prints it (its decimals; no sign on a zero).
-        out.line(kc::Figure::new(key, label, unit, 3, value).line())?;
+        out.line(figure.line())?;
         let mut ranked: Vec<(usize, f64)> = derivatives
             .iter()
             .enumerate()
-            .map(|(k, d)| (k, design::sensitivity::effect(&parameters.pointers[k], parameters.values[k], *d)))
+            .filter_map(|(k, d)| {
+                d.map(|d| (k, design::sensitivity::effect(&parameters.pointers[k], parameters.values[k], d)))
+            })
             .collect();
         ranked.sort_by(|a, b| b.1.abs().total_cmp(&a.1.abs()));
-        for (k, e) in ranked.into_iter().take(5) {
+        for (k, e) in ranked.into_iter().take(3) {
             let pointer = &parameters.pointers[k];
             let per = design::sensitivity::effect_unit(pointer);
-            out.line(format!("      {:<52} {:>12} {unit} per {per}", pointer, kc::significant(e, 3)))?;
+            // A figure without a unit (a ratio) changes by so much per mm or per %.
+            let unit = if figure.unit == "-" { String::new() } else { format!("{} ", figure.unit) };
+            out.line(format!("      {:<52} {:>12} {unit}per {per}", pointer, kc::significant(e, 3)))?;
         }
     }
     out.line("")?;

@@ -259,9 +259,10 @@ impl Model {
 
     /// Exact sensitivities of parallel travel to the numbers at `parameters` (JSON pointers), as the
     /// command's `sensitivity` gives them: a dict of the rows (`travel_m`, `toe_deg`, `camber_deg`), their
-    /// derivatives (row × parameter: `d_toe_deg`, `d_camber_deg`, `d_wheel_centre_x_m`, `_y_m`, `_z_m`) and
-    /// the figures (`bump_steer_deg_per_m`, `camber_gain_deg_per_m`) with theirs (`d_…`, one per parameter),
-    /// every derivative per unit of the parameter in the file.
+    /// derivatives (row × parameter: `d_toe_deg`, `d_camber_deg`, `d_wheel_centre_x_m`, `_y_m`, `_z_m`), the
+    /// figures (`bump_steer_deg_per_m`, `camber_gain_deg_per_m`) with theirs (`d_…`, one per parameter), and
+    /// `figures`: every figure of the report's parallel travel by key, its value, unit and derivatives (NaN
+    /// where it has none); every derivative per unit of the parameter in the file.
     #[pyo3(signature = (parameters, range=(-0.08, 0.08), steps=32))]
     fn sensitivities<'py>(
         &self,
@@ -296,10 +297,21 @@ impl Model {
             let rows = s.d_wheel_centre.iter().map(|r| r.iter().map(|c| c[k]).collect()).collect();
             d.set_item(format!("d_wheel_centre_{axis}_m"), matrix(rows)?)?;
         }
-        for (key, _, _, value, derivatives) in s.figures() {
-            d.set_item(format!("{key}_deg_per_m"), value)?;
-            d.set_item(format!("d_{key}_deg_per_m"), PyArray1::from_vec(py, derivatives))?;
+        d.set_item("bump_steer_deg_per_m", s.bump_steer.to_degrees())?;
+        d.set_item("camber_gain_deg_per_m", s.camber_gain.to_degrees())?;
+        d.set_item("d_bump_steer_deg_per_m", PyArray1::from_vec(py, deg(&s.d_bump_steer)))?;
+        d.set_item("d_camber_gain_deg_per_m", PyArray1::from_vec(py, deg(&s.d_camber_gain)))?;
+        // Every figure of the report's parallel travel: value, unit and derivatives (NaN where none).
+        let figures = PyDict::new(py);
+        for (f, derivatives) in &s.report_figures {
+            let entry = PyDict::new(py);
+            entry.set_item("value", f.value)?;
+            entry.set_item("unit", &f.unit)?;
+            let ds: Vec<f64> = derivatives.iter().map(|d| d.unwrap_or(f64::NAN)).collect();
+            entry.set_item("derivatives", PyArray1::from_vec(py, ds))?;
+            figures.set_item(&f.key, entry)?;
         }
+        d.set_item("figures", figures)?;
         Ok(d)
     }
 

@@ -5,7 +5,7 @@ use crate::analysis::sweep::{read_sweep, require_rig, walk, whole, SweepExtras, 
 use crate::build::rig::WHEEL_TRAVEL;
 use crate::build::{Corner, Rig};
 use crate::wheel::{SteeringGeometry, WheelAttitude};
-use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, StaticSolver};
+use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult};
 
 /// One row of a driven sweep (wheel travel or steering).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -78,15 +78,18 @@ fn driven_sweep_with(
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let mut start = solver.design_state(from);
     let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, extras.through_limits)?;
+    read_sweep(&mut solver, &corner.wheel, corner.partner.as_ref(), walked, extras, |_, s| Ok(travel_row(corner, s)))
+}
+
+/// One row of a driven sweep of `corner`, read from a state of its model: the wheel's attitude and steering
+/// geometry from the poses, the wheel load from the travel driver's multiplier, the spring's deflection.
+pub fn travel_row(corner: &Corner, s: &StepResult) -> TravelRow {
     let driver = corner.model.joint_id(WHEEL_TRAVEL);
-    let spring = corner.spring;
-    read_sweep(&mut solver, &corner.wheel, corner.partner.as_ref(), walked, extras, |_, s| {
-        Ok(TravelRow {
-            travel: s.t,
-            attitude: corner.wheel.attitude(&s.poses),
-            steering: corner.wheel.steering_geometry(&s.poses),
-            wheel_load: driver.map_or(0.0, |d| s.joint_reactions(&corner.model)[d.0].force.z),
-            spring_deflection: spring.map_or(0.0, |e| s.element_reports(&corner.model)[e.0].deflection.x),
-        })
-    })
+    TravelRow {
+        travel: s.t,
+        attitude: corner.wheel.attitude(&s.poses),
+        steering: corner.wheel.steering_geometry(&s.poses),
+        wheel_load: driver.map_or(0.0, |d| s.joint_reactions(&corner.model)[d.0].force.z),
+        spring_deflection: corner.spring.map_or(0.0, |e| s.element_reports(&corner.model)[e.0].deflection.x),
+    }
 }

@@ -10,12 +10,12 @@
 //! Only corrected-mode rows are equilibria: sensitivities are of the corrected path.
 
 use super::parameter::Parameters;
-use crate::analysis::slope_at;
+use crate::analysis::{slope_at, travel_row};
 use crate::build::{Corner, Rig};
 use crate::description::Side;
 use elastokin_core::{Pose, Vec3, BODY_DOFS};
 use elastokin_solver::assembly::Assembly;
-use elastokin_solver::{LoadPath, Mode, SolverOptions, StaticSolver};
+use elastokin_solver::{LoadPath, Mode, SolverOptions, StaticSolver, StepResult};
 
 /// A parameter is moved by this fraction of its size (at least of 0.1 in the file's units: 10 µm of a
 /// hardpoint near the origin) and twice that for the central differences of the residual, Richardson
@@ -52,12 +52,20 @@ pub struct TravelSensitivity {
     pub camber_gain: f64,
     /// Its derivative per parameter.
     pub d_camber_gain: Vec<f64>,
+    /// The columns of the K&C report's parallel-travel table.
+    pub columns: Vec<String>,
+    /// Their derivatives: parameter × row × column (`None` where a cell is empty).
+    pub d_columns: Vec<Vec<Vec<Option<f64>>>>,
+    /// Every headline figure of the K&C report's parallel travel read from its rows, with its derivative
+    /// per parameter (`None` where the figure is missing, or has no derivative), in the report's units.
+    pub report_figures: Vec<(crate::kc::Figure, Vec<Option<f64>>)>,
 }
 
 /// One parameter moved both ways by one and two steps: the corners built from the model read again
 /// (`+h, −h, +2h, −2h`), and their residuals' assemblies on the base model's active rows.
 struct Moved {
     step: f64,
+    files: [crate::file::SuspensionFile; 4],
     corners: [Corner; 4],
     assemblies: [Assembly; 4],
 }
@@ -126,8 +134,11 @@ pub fn parallel_travel_sensitivity(
     let mut moved = Vec::with_capacity(parameters.len());
     for (k, pointer) in parameters.pointers.iter().enumerate() {
         let step = RELATIVE_STEP * parameters.values[k].abs().max(0.1);
-        let corners = [step, -step, 2.0 * step, -2.0 * step]
-            .map(|d| build(parameters.file_moved(k, d)?).map_err(|e| format!("parameter '{pointer}' moved: {e}")));
+        let files = [step, -step, 2.0 * step, -2.0 * step].map(|d| parameters.file_moved(k, d));
+        let [a, b, c, d] = files;
+        let files = [a?, b?, c?, d?];
+        let corners =
+            [0, 1, 2, 3].map(|i| build(files[i].clone()).map_err(|e| format!("parameter '{pointer}' moved: {e}")));
         let [a, b, c, d] = corners;
         let corners = [a?, b?, c?, d?];
         if !corners.iter().all(same_parts) {
@@ -137,7 +148,7 @@ pub fn parallel_travel_sensitivity(
             ));
         }
         let assemblies = [0, 1, 2, 3].map(|i| Assembly::new(&corners[i].model, active.clone()));
-        moved.push(Moved { step, corners, assemblies });
+        moved.push(Moved { step, files, corners, assemblies });
     }
 
     let rows = sweep.steps.len();
@@ -154,7 +165,13 @@ pub fn parallel_travel_sensitivity(
         d_bump_steer: Vec::new(),
         camber_gain: 0.0,
         d_camber_gain: Vec::new(),
+        columns: Vec::new(),
+        d_columns: Vec::new(),
+        report_figures: Vec::new(),
     };
+    // dz/dp of every row, per parameter: the equilibria moved with each parameter, read below by the K&C
+    // reduction as every row is.
+    let mut rates: Vec<Vec<Vec<f64>>> = vec![Vec::with_capacity(rows); parameters.len()];
     for step in &sweep.steps {
         let state = solver.state_of(step);
         let attitude = corner.wheel.attitude(&state.poses);
@@ -164,7 +181,7 @@ pub fn parallel_travel_sensitivity(
         out.wheel_centre.push(attitude.wheel_centre);
         solver.factorize_tangent(&state).map_err(|e| e.to_string())?;
         let (mut d_toe, mut d_camber, mut d_centre) = (Vec::new(), Vec::new(), Vec::new());
-        for m in &mut moved {
+        for (k, m) in moved.iter_mut().enumerate() {
             let f: Vec<Vec<f64>> = (0..4)
                 .map(|i| residual(&mut m.assemblies[i], &m.corners[i], &state.poses, state.t, &state.lambda))
                 .collect();
@@ -181,6 +198,7 @@ pub fn parallel_travel_sensitivity(
             d_camber.push(richardson([0, 1, 2, 3].map(|i| read[i].camber), m.step));
             let centre = |k: usize| richardson([0, 1, 2, 3].map(|i| read[i].wheel_centre[k]), m.step);
             d_centre.push(Vec3::new(centre(0), centre(1), centre(2)));
+            rates[k].push(dz);
         }
         out.d_toe.push(d_toe);
         out.d_camber.push(d_camber);
@@ -201,7 +219,68 @@ pub fn parallel_travel_sensitivity(
     out.camber_gain = camber_gain;
     out.d_bump_steer = d_bump_steer;
     out.d_camber_gain = d_camber_gain;
+
+    // Every column and figure of the K&C report's parallel travel, differentiated as it is defined: the same
+    // reduction applied to the rows read at (z ± s·dz/dp, p ± s) and (z ± 2s·dz/dp, p ± 2s), each by its own
+    // model, Richardson extrapolated.
+    let file = parameters.file()?;
+    let base_rows: Vec<_> = sweep.steps.iter().map(|s| travel_row(&corner, s)).collect();
+    let table = crate::kc::parallel_travel_table(&corner, &base_rows);
+    out.report_figures = crate::kc::parallel_travel_figures(&file, &corner, (from, to), &base_rows)
+        .into_iter()
+        .map(|f| (f, Vec::with_capacity(parameters.len())))
+        .collect();
+    out.columns = table.columns.clone();
+    for (k, m) in moved.iter().enumerate() {
+        let mut tables = Vec::with_capacity(4);
+        let mut figures = Vec::with_capacity(4);
+        for (i, shift) in [1.0, -1.0, 2.0, -2.0].into_iter().enumerate() {
+            let rows: Vec<_> = sweep
+                .steps
+                .iter()
+                .zip(&rates[k])
+                .map(|(step, dz)| travel_row(&m.corners[i], &moved_step(step, dz, shift * m.step, n, &active)))
+                .collect();
+            tables.push(crate::kc::parallel_travel_table(&m.corners[i], &rows));
+            figures.push(crate::kc::parallel_travel_figures(&m.files[i], &m.corners[i], (from, to), &rows));
+        }
+        let number = |t: &crate::kc::Table, r: usize, c: usize| t.rows[r][c].number();
+        out.d_columns.push(
+            (0..table.rows.len())
+                .map(|r| {
+                    (0..table.columns.len())
+                        .map(|c| {
+                            let v = [0, 1, 2, 3].map(|i| number(&tables[i], r, c));
+                            let [Some(a), Some(b), Some(c), Some(d)] = v else { return None };
+                            Some(richardson([a, b, c, d], m.step)).filter(|x| x.is_finite())
+                        })
+                        .collect()
+                })
+                .collect(),
+        );
+        for (j, (_, derivatives)) in out.report_figures.iter_mut().enumerate() {
+            let v = [0, 1, 2, 3].map(|i| figures[i].get(j).and_then(|f| f.value));
+            let d = match v {
+                [Some(a), Some(b), Some(c), Some(d)] => {
+                    Some(richardson([a, b, c, d], m.step)).filter(|x| x.is_finite())
+                }
+                _ => None,
+            };
+            derivatives.push(d);
+        }
+    }
     Ok(out)
+}
+
+/// A step's equilibrium moved by `scale · dz` (`dz`: `n` body coordinates, then the active rows'
+/// multipliers).
+fn moved_step(step: &StepResult, dz: &[f64], scale: f64, n: usize, active: &[usize]) -> StepResult {
+    let mut moved = step.clone();
+    moved.poses = moved_poses(&step.poses, &dz[..n], scale);
+    for (k, &row) in active.iter().enumerate() {
+        moved.multipliers[row] += scale * dz[n + k];
+    }
+    moved
 }
 
 /// How a parameter's effect is told: per millimetre of a length (a hardpoint coordinate, a Chrono part's
@@ -223,51 +302,27 @@ pub fn effect(pointer: &str, value: f64, derivative: f64) -> f64 {
     }
 }
 
-/// One headline figure with its derivatives: `(key, label, unit, value, derivative per parameter)`, in the
-/// K&C report's units (deg/m).
-pub type FigureSensitivity = (&'static str, &'static str, &'static str, f64, Vec<f64>);
-
 impl TravelSensitivity {
-    /// The headline figures of parallel travel with their derivatives, in the report's units.
-    pub fn figures(&self) -> Vec<FigureSensitivity> {
-        let deg = f64::to_degrees;
-        vec![
-            (
-                "bump_steer",
-                "bump steer (toe-in +)",
-                "deg/m",
-                deg(self.bump_steer),
-                self.d_bump_steer.iter().map(|v| deg(*v)).collect(),
-            ),
-            (
-                "camber_gain",
-                "camber gain (top out +)",
-                "deg/m",
-                deg(self.camber_gain),
-                self.d_camber_gain.iter().map(|v| deg(*v)).collect(),
-            ),
-        ]
-    }
-
     /// `sensitivity.csv`: one row per figure and parameter — the figure, its unit and value, the parameter
     /// and its value, the derivative (figure unit per unit of the parameter in the file) and the effect per
-    /// millimetre or per percent.
+    /// millimetre or per percent. A figure the report leaves out, or one without a derivative, has empty
+    /// cells.
     pub fn figure_table(&self, parameters: &Parameters) -> crate::kc::Table {
         use crate::kc::Cell;
         let columns =
             ["figure", "figure_unit", "value", "parameter", "parameter_value", "derivative", "effect", "effect_per"];
         let mut rows = Vec::new();
-        for (key, _, unit, value, derivatives) in self.figures() {
+        for (figure, derivatives) in &self.report_figures {
             for (k, d) in derivatives.iter().enumerate() {
                 let pointer = &parameters.pointers[k];
                 rows.push(vec![
-                    Cell::Text(key.into()),
-                    Cell::Text(unit.into()),
-                    Cell::from(value),
+                    Cell::Text(figure.key.clone()),
+                    Cell::Text(figure.unit.clone()),
+                    figure.value.map_or(Cell::Empty, Cell::from),
                     Cell::Text(pointer.clone()),
                     Cell::from(parameters.values[k]),
-                    Cell::from(*d),
-                    Cell::from(effect(pointer, parameters.values[k], *d)),
+                    d.map_or(Cell::Empty, Cell::from),
+                    d.map_or(Cell::Empty, |d| Cell::from(effect(pointer, parameters.values[k], d))),
                     Cell::Text(effect_unit(pointer).into()),
                 ]);
             }
@@ -275,34 +330,20 @@ impl TravelSensitivity {
         crate::kc::Table { name: "sensitivity".into(), columns: columns.map(String::from).to_vec(), rows }
     }
 
-    /// `sensitivity_rows.csv`: per parameter and row, the derivatives of toe and camber (deg) and of the
-    /// wheel centre (m) per unit of the parameter in the file.
+    /// `sensitivity_rows.csv`: per parameter and row, the derivative of every column of the K&C report's
+    /// parallel-travel table (named `d_<column>`, per unit of the parameter in the file).
     pub fn row_table(&self) -> crate::kc::Table {
         use crate::kc::Cell;
-        let columns = [
-            "parameter",
-            "wheel_travel_m",
-            "d_toe_deg",
-            "d_camber_deg",
-            "d_wheel_centre_x_m",
-            "d_wheel_centre_y_m",
-            "d_wheel_centre_z_m",
-        ];
+        let mut columns = vec!["parameter".to_string(), "wheel_travel_m".to_string()];
+        columns.extend(self.columns.iter().skip(1).map(|c| format!("d_{c}")));
         let mut rows = Vec::new();
         for (k, pointer) in self.pointers.iter().enumerate() {
-            for r in 0..self.travel.len() {
-                let c = self.d_wheel_centre[r][k];
-                rows.push(vec![
-                    Cell::Text(pointer.clone()),
-                    Cell::from(self.travel[r]),
-                    Cell::from(self.d_toe[r][k].to_degrees()),
-                    Cell::from(self.d_camber[r][k].to_degrees()),
-                    Cell::from(c.x),
-                    Cell::from(c.y),
-                    Cell::from(c.z),
-                ]);
+            for (r, travel) in self.travel.iter().enumerate() {
+                let mut row = vec![Cell::Text(pointer.clone()), Cell::from(*travel)];
+                row.extend(self.d_columns[k][r].iter().skip(1).map(|d| d.map_or(Cell::Empty, Cell::from)));
+                rows.push(row);
             }
         }
-        crate::kc::Table { name: "sensitivity_rows".into(), columns: columns.map(String::from).to_vec(), rows }
+        crate::kc::Table { name: "sensitivity_rows".into(), columns, rows }
     }
 }

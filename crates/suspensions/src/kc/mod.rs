@@ -22,7 +22,7 @@ pub use settings::{
     mode_from_word, mode_word, Analysis, AnalysisError, Settings, Tolerance, ALL, MAX_RANGE_FRACTION, MAX_RANGE_LOAD,
     MAX_RANGE_TRAVEL, MIN_RANGE,
 };
-pub use travel::ideal_outer_steer;
+pub use travel::{ideal_outer_steer, parallel_travel_figures, parallel_travel_table};
 
 use crate::file::SuspensionFile;
 use elastokin_solver::LoadPath;

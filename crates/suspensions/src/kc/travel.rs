@@ -4,7 +4,7 @@ use crate::analysis::{
     anti_pitch, parallel_wheel_travel_with, patch_compliance, slope_at, wheel_compliance, TravelRow,
 };
 use crate::analysis::{axle_sweep_with, AxleRow};
-use crate::build::{Axle, AxleRig, Rig};
+use crate::build::{Axle, AxleRig, Corner, Rig};
 use crate::description::Side;
 use crate::file::SuspensionFile;
 use crate::kc::reduce::{axis, chart, deg, finish, needs_vehicle, outside, said, Reduction};
@@ -17,121 +17,8 @@ pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<Ana
     let out = parallel_wheel_travel_with(&corner, range.0, range.1, s.steps, s.mode, s.extras(range)).map_err(said)?;
     let wheel = &corner.wheel;
     let sign = wheel.side.sign();
-    let table = |rows: &[TravelRow]| {
-        Table::numbers(
-            "parallel_travel",
-            [
-                "travel_m",
-                "toe_deg",
-                "camber_deg",
-                "wheel_centre_x_m",
-                "wheel_centre_y_m",
-                "wheel_centre_z_m",
-                "half_track_change_m",
-                "wheelbase_change_m",
-                "caster_deg",
-                "kingpin_inclination_deg",
-                "scrub_radius_m",
-                "mechanical_trail_m",
-                "kingpin_offset_m",
-                "wheel_load_n",
-                "spring_deflection_m",
-            ],
-            rows.iter().map(|r| {
-                let (w, g) = (r.attitude.wheel_centre, r.steering);
-                [
-                    r.travel,
-                    deg(r.attitude.toe),
-                    deg(r.attitude.camber),
-                    w.x,
-                    w.y,
-                    w.z,
-                    sign * (g.contact_patch.y - wheel.contact_patch.y),
-                    w.x - wheel.wheel_centre.x,
-                    deg(g.caster),
-                    deg(g.kingpin_inclination),
-                    g.scrub_radius,
-                    g.mechanical_trail,
-                    g.kingpin_offset,
-                    r.wheel_load,
-                    r.spring_deflection,
-                ]
-            }),
-        )
-    };
-    let tyre_rate = file.vehicle.as_ref().and_then(|v| v.tyre_rate);
-    let figures = |rows: &[TravelRow]| {
-        let slope = |y: &dyn Fn(&TravelRow) -> f64| slope_at(rows, 0.0, |r| r.travel, y);
-        let why = outside(range, 0.0, "m");
-        let design = rows.iter().find(|r| r.travel == 0.0);
-        let at_design = |key: &str, label: &str, unit: &str, decimals: usize, y: &dyn Fn(&TravelRow) -> f64| {
-            Figure::maybe(key, label, unit, decimals, design.map(y), &why)
-        };
-        let rate = slope(&|r| r.wheel_load);
-        let mut f = vec![
-            Figure::maybe("bump_steer", "bump steer (toe-in +)", "deg/m", 3, slope(&|r| deg(r.attitude.toe)), &why),
-            Figure::maybe(
-                "camber_gain",
-                "camber gain (top out +)",
-                "deg/m",
-                3,
-                slope(&|r| deg(r.attitude.camber)),
-                &why,
-            ),
-            Figure::maybe("wheel_rate", "wheel rate", "N/mm", 2, rate.map(|k| k * 1e-3), &why),
-            match corner.spring {
-                Some(_) => Figure::maybe(
-                    "spring_motion_ratio",
-                    "spring motion ratio",
-                    "-",
-                    3,
-                    slope(&|r| r.spring_deflection).map(f64::abs),
-                    &why,
-                ),
-                None => Figure::maybe(
-                    "spring_motion_ratio",
-                    "spring motion ratio",
-                    "-",
-                    3,
-                    None,
-                    "the corner has no spring of its own (corner springs: none)",
-                ),
-            },
-        ];
-        f.push(match (rate, tyre_rate) {
-            (Some(k), Some(kt)) => Figure::new(
-                "ride_rate",
-                "ride rate (wheel rate and tyre in series)",
-                "N/mm",
-                2,
-                k * kt / (k + kt) * 1e-3,
-            ),
-            (None, _) => Figure::maybe("ride_rate", "ride rate (wheel rate and tyre in series)", "N/mm", 2, None, &why),
-            (_, None) => Figure::maybe(
-                "ride_rate",
-                "ride rate (wheel rate and tyre in series)",
-                "N/mm",
-                2,
-                None,
-                &needs_vehicle("tyre_rate"),
-            ),
-        });
-        f.extend([
-            at_design("wheel_load_at_design", "wheel load at design", "N", 1, &|r| r.wheel_load),
-            at_design("caster", "caster (top rearward +)", "deg", 2, &|r| deg(r.steering.caster)),
-            at_design("kingpin_inclination", "kingpin inclination (top inboard +)", "deg", 2, &|r| {
-                deg(r.steering.kingpin_inclination)
-            }),
-            at_design("scrub_radius", "scrub radius (axis inboard of patch +)", "mm", 1, &|r| {
-                r.steering.scrub_radius * 1e3
-            }),
-            at_design("mechanical_trail", "mechanical trail", "mm", 1, &|r| r.steering.mechanical_trail * 1e3),
-            at_design("kingpin_offset", "kingpin offset at wheel centre", "mm", 1, &|r| {
-                r.steering.kingpin_offset * 1e3
-            }),
-        ]);
-        f
-    };
+    let table = |rows: &[TravelRow]| parallel_travel_table(&corner, rows);
+    let figures = |rows: &[TravelRow]| parallel_travel_figures(file, &corner, range, rows);
     let x = |r: &TravelRow| r.travel * 1e3;
     let charts = vec![
         chart(
@@ -294,6 +181,120 @@ fn curvature_at(rows: &[AxleRow], x: impl Fn(&AxleRow) -> f64, y: impl Fn(&AxleR
     let (s0, s1) = ((y(b) - y(a)) / (x(b) - x(a)), (y(c) - y(b)) / (x(c) - x(b)));
     let value = 2.0 * (s1 - s0) / (x(c) - x(a));
     value.is_finite().then_some(value)
+}
+
+/// The parallel-travel table of `rows` of `corner` (half-track and wheelbase change from its design wheel).
+pub fn parallel_travel_table(corner: &Corner, rows: &[TravelRow]) -> Table {
+    let wheel = &corner.wheel;
+    let sign = wheel.side.sign();
+    Table::numbers(
+        "parallel_travel",
+        [
+            "travel_m",
+            "toe_deg",
+            "camber_deg",
+            "wheel_centre_x_m",
+            "wheel_centre_y_m",
+            "wheel_centre_z_m",
+            "half_track_change_m",
+            "wheelbase_change_m",
+            "caster_deg",
+            "kingpin_inclination_deg",
+            "scrub_radius_m",
+            "mechanical_trail_m",
+            "kingpin_offset_m",
+            "wheel_load_n",
+            "spring_deflection_m",
+        ],
+        rows.iter().map(|r| {
+            let (w, g) = (r.attitude.wheel_centre, r.steering);
+            [
+                r.travel,
+                deg(r.attitude.toe),
+                deg(r.attitude.camber),
+                w.x,
+                w.y,
+                w.z,
+                sign * (g.contact_patch.y - wheel.contact_patch.y),
+                w.x - wheel.wheel_centre.x,
+                deg(g.caster),
+                deg(g.kingpin_inclination),
+                g.scrub_radius,
+                g.mechanical_trail,
+                g.kingpin_offset,
+                r.wheel_load,
+                r.spring_deflection,
+            ]
+        }),
+    )
+}
+
+/// The parallel-travel headline figures of `rows` of `corner`, walked over `range` (m), of the model in
+/// `file` (its tyre rate): slopes and values at design.
+pub fn parallel_travel_figures(
+    file: &SuspensionFile,
+    corner: &Corner,
+    range: (f64, f64),
+    rows: &[TravelRow],
+) -> Vec<Figure> {
+    let tyre_rate = file.vehicle.as_ref().and_then(|v| v.tyre_rate);
+    let slope = |y: &dyn Fn(&TravelRow) -> f64| slope_at(rows, 0.0, |r| r.travel, y);
+    let why = outside(range, 0.0, "m");
+    let design = rows.iter().find(|r| r.travel == 0.0);
+    let at_design = |key: &str, label: &str, unit: &str, decimals: usize, y: &dyn Fn(&TravelRow) -> f64| {
+        Figure::maybe(key, label, unit, decimals, design.map(y), &why)
+    };
+    let rate = slope(&|r| r.wheel_load);
+    let mut f = vec![
+        Figure::maybe("bump_steer", "bump steer (toe-in +)", "deg/m", 3, slope(&|r| deg(r.attitude.toe)), &why),
+        Figure::maybe("camber_gain", "camber gain (top out +)", "deg/m", 3, slope(&|r| deg(r.attitude.camber)), &why),
+        Figure::maybe("wheel_rate", "wheel rate", "N/mm", 2, rate.map(|k| k * 1e-3), &why),
+        match corner.spring {
+            Some(_) => Figure::maybe(
+                "spring_motion_ratio",
+                "spring motion ratio",
+                "-",
+                3,
+                slope(&|r| r.spring_deflection).map(f64::abs),
+                &why,
+            ),
+            None => Figure::maybe(
+                "spring_motion_ratio",
+                "spring motion ratio",
+                "-",
+                3,
+                None,
+                "the corner has no spring of its own (corner springs: none)",
+            ),
+        },
+    ];
+    f.push(match (rate, tyre_rate) {
+        (Some(k), Some(kt)) => {
+            Figure::new("ride_rate", "ride rate (wheel rate and tyre in series)", "N/mm", 2, k * kt / (k + kt) * 1e-3)
+        }
+        (None, _) => Figure::maybe("ride_rate", "ride rate (wheel rate and tyre in series)", "N/mm", 2, None, &why),
+        (_, None) => Figure::maybe(
+            "ride_rate",
+            "ride rate (wheel rate and tyre in series)",
+            "N/mm",
+            2,
+            None,
+            &needs_vehicle("tyre_rate"),
+        ),
+    });
+    f.extend([
+        at_design("wheel_load_at_design", "wheel load at design", "N", 1, &|r| r.wheel_load),
+        at_design("caster", "caster (top rearward +)", "deg", 2, &|r| deg(r.steering.caster)),
+        at_design("kingpin_inclination", "kingpin inclination (top inboard +)", "deg", 2, &|r| {
+            deg(r.steering.kingpin_inclination)
+        }),
+        at_design("scrub_radius", "scrub radius (axis inboard of patch +)", "mm", 1, &|r| {
+            r.steering.scrub_radius * 1e3
+        }),
+        at_design("mechanical_trail", "mechanical trail", "mm", 1, &|r| r.steering.mechanical_trail * 1e3),
+        at_design("kingpin_offset", "kingpin offset at wheel centre", "mm", 1, &|r| r.steering.kingpin_offset * 1e3),
+    ]);
+    f
 }
 
 pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
