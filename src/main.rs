@@ -462,9 +462,7 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
         printed?;
         // Nothing ran: there is nothing to report but the reasons, and the previous results stay.
         if report.analyses.is_empty() && !report.failed.is_empty() {
-            let lines: Vec<String> =
-                report.failed.iter().map(|f| format!("{}: {}", f.analysis.name(), f.reason)).collect();
-            return Err(Failure::Run(lines.join("\n")));
+            return Err(Failure::Run(failed_lines(&report.failed)));
         }
         if !report.warnings.is_empty() {
             out.line("")?;
@@ -517,13 +515,17 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
     if failed.is_empty() {
         return Ok(());
     }
-    let lines: Vec<String> = failed.iter().map(|f| format!("{}: {}", f.analysis.name(), f.reason)).collect();
     Err(Failure::Run(format!(
         "{} of the analyses failed (the others' results are in {}):\n{}",
         failed.len(),
         args.out.display(),
-        lines.join("\n")
+        failed_lines(&failed)
     )))
+}
+
+/// The failed analyses, a line each: `name: reason`.
+fn failed_lines(failed: &[kc::Failed]) -> String {
+    failed.iter().map(|f| format!("{}: {}", f.analysis.name(), f.reason)).collect::<Vec<_>>().join("\n")
 }
 
 /// `import`: another tool's file as an elastokin model file on standard output, the notes on standard error.
@@ -687,11 +689,7 @@ fn sensitivity(args: SensitivityArgs, out: &Stdout) -> Result<(), Failure> {
     }
     let parameters = Parameters::new(&base, &pointers).map_err(|e| Failure::Input(format!("{origin}: {e}")))?;
     let (from, to) = args.range;
-    if !(from < 0.0 && to > 0.0) {
-        return Err(Failure::Input(format!(
-            "--range {from},{to} must hold the design position (0): the figures are slopes at design"
-        )));
-    }
+    design::sensitivity::check_range(from, to).map_err(|e| Failure::Input(format!("--range: {e}")))?;
     let s = design::parallel_travel_sensitivity(&parameters, from, to, args.steps).map_err(Failure::Run)?;
     let mut provenance = Provenance::new(&args.model, &read.bytes, kc::mode_word(Mode::Corrected), args.steps);
     provenance.range = Some(args.range);
@@ -714,22 +712,14 @@ fn sensitivity(args: SensitivityArgs, out: &Stdout) -> Result<(), Failure> {
         args.steps,
         parameters.len()
     ))?;
-    for (figure, derivatives) in &s.report_figures {
+    for (index, (figure, _)) in s.report_figures.iter().enumerate() {
         out.line("")?;
         out.line(figure.line())?;
-        let mut ranked: Vec<(usize, f64)> = derivatives
-            .iter()
-            .enumerate()
-            .filter_map(|(k, d)| {
-                d.map(|d| (k, design::sensitivity::effect(&parameters.pointers[k], parameters.values[k], d)))
-            })
-            .collect();
-        ranked.sort_by(|a, b| b.1.abs().total_cmp(&a.1.abs()));
-        for (k, e) in ranked.into_iter().take(3) {
+        // A figure without a unit (a ratio) changes by so much per mm or per %.
+        let unit = if figure.unit == "-" { String::new() } else { format!("{} ", figure.unit) };
+        for (k, e) in s.largest_effects(index, &parameters, 3) {
             let pointer = &parameters.pointers[k];
             let per = design::sensitivity::effect_unit(pointer);
-            // A figure without a unit (a ratio) changes by so much per mm or per %.
-            let unit = if figure.unit == "-" { String::new() } else { format!("{} ", figure.unit) };
             out.line(format!("      {:<52} {:>12} {unit}per {per}", pointer, kc::significant(e, 3)))?;
         }
     }

@@ -273,42 +273,45 @@ impl Model {
     ) -> PyResult<Bound<'py, PyDict>> {
         use elastokin_suspensions::design::{parallel_travel_sensitivity, Parameters};
         elastokin_solver::LoadPath::check_steps(steps).map_err(PyValueError::new_err)?;
-        if !(range.0 < 0.0 && range.1 > 0.0) {
-            return Err(PyValueError::new_err(format!(
-                "range {:?} must hold the design position (0): the figures are slopes at design",
-                range
-            )));
-        }
+        elastokin_suspensions::design::sensitivity::check_range(range.0, range.1).map_err(PyValueError::new_err)?;
         let p = Parameters::new(&self.base, &parameters).map_err(ModelError::new_err)?;
-        let s =
-            py.detach(|| parallel_travel_sensitivity(&p, range.0, range.1, steps)).map_err(AnalysisError::new_err)?;
+        let s = py
+            .detach(|| parallel_travel_sensitivity(&p, range.0, range.1, steps))
+            .map_err(AnalysisError::new_err)?;
         let d = PyDict::new(py);
-        let deg = |v: &Vec<f64>| v.iter().map(|x| x.to_degrees()).collect::<Vec<f64>>();
-        let matrix =
-            |rows: Vec<Vec<f64>>| PyArray2::from_vec2(py, &rows).map_err(|e| AnalysisError::new_err(e.to_string()));
+        // Empty cells and missing derivatives are NaN in numpy.
+        let numbers = |v: Vec<Option<f64>>| v.into_iter().map(|x| x.unwrap_or(f64::NAN)).collect::<Vec<f64>>();
+        // Row × parameter, the form numpy users index.
+        let by_row = |name: &str| {
+            let columns: Vec<Vec<f64>> = (0..p.len()).map(|k| numbers(s.d_column(name, k))).collect();
+            let rows: Vec<Vec<f64>> =
+                (0..s.table.rows.len()).map(|r| columns.iter().map(|c| c[r]).collect()).collect();
+            PyArray2::from_vec2(py, &rows).map_err(|e| AnalysisError::new_err(e.to_string()))
+        };
         d.set_item("parameters", p.pointers.clone())?;
         d.set_item("values", PyArray1::from_vec(py, p.values.clone()))?;
-        d.set_item("travel_m", PyArray1::from_vec(py, s.travel.clone()))?;
-        d.set_item("toe_deg", PyArray1::from_vec(py, deg(&s.toe)))?;
-        d.set_item("camber_deg", PyArray1::from_vec(py, deg(&s.camber)))?;
-        d.set_item("d_toe_deg", matrix(s.d_toe.iter().map(deg).collect())?)?;
-        d.set_item("d_camber_deg", matrix(s.d_camber.iter().map(deg).collect())?)?;
-        for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-            let rows = s.d_wheel_centre.iter().map(|r| r.iter().map(|c| c[k]).collect()).collect();
-            d.set_item(format!("d_wheel_centre_{axis}_m"), matrix(rows)?)?;
+        d.set_item("travel_m", PyArray1::from_vec(py, numbers(s.column("travel_m"))))?;
+        d.set_item("toe_deg", PyArray1::from_vec(py, numbers(s.column("toe_deg"))))?;
+        d.set_item("camber_deg", PyArray1::from_vec(py, numbers(s.column("camber_deg"))))?;
+        d.set_item("d_toe_deg", by_row("toe_deg")?)?;
+        d.set_item("d_camber_deg", by_row("camber_deg")?)?;
+        for axis in ["x", "y", "z"] {
+            let name = format!("wheel_centre_{axis}_m");
+            d.set_item(format!("d_{name}"), by_row(&name)?)?;
         }
-        d.set_item("bump_steer_deg_per_m", s.bump_steer.to_degrees())?;
-        d.set_item("camber_gain_deg_per_m", s.camber_gain.to_degrees())?;
-        d.set_item("d_bump_steer_deg_per_m", PyArray1::from_vec(py, deg(&s.d_bump_steer)))?;
-        d.set_item("d_camber_gain_deg_per_m", PyArray1::from_vec(py, deg(&s.d_camber_gain)))?;
+        for key in ["bump_steer", "camber_gain"] {
+            if let Some((f, derivatives)) = s.figure(key) {
+                d.set_item(format!("{key}_deg_per_m"), f.value.unwrap_or(f64::NAN))?;
+                d.set_item(format!("d_{key}_deg_per_m"), PyArray1::from_vec(py, numbers(derivatives.clone())))?;
+            }
+        }
         // Every figure of the report's parallel travel: value, unit and derivatives (NaN where none).
         let figures = PyDict::new(py);
         for (f, derivatives) in &s.report_figures {
             let entry = PyDict::new(py);
             entry.set_item("value", f.value)?;
             entry.set_item("unit", &f.unit)?;
-            let ds: Vec<f64> = derivatives.iter().map(|d| d.unwrap_or(f64::NAN)).collect();
-            entry.set_item("derivatives", PyArray1::from_vec(py, ds))?;
+            entry.set_item("derivatives", PyArray1::from_vec(py, numbers(derivatives.clone())))?;
             figures.set_item(&f.key, entry)?;
         }
         d.set_item("figures", figures)?;

@@ -563,9 +563,10 @@ fn foreign_references(text: &str, files: &[String]) -> Vec<(usize, String)> {
             let Some((stem, ext)) = token.rsplit_once('.') else { continue };
             let is_file = stem.contains('/')
                 && matches!(ext, "rs" | "md" | "json" | "txt" | "toml" | "py" | "csv" | "svg" | "html" | "sh" | "pyi");
-            // A placeholder (`DIR/batch.csv`) or a build output names no file of the repository by design.
-            let placeholder = stem.split('/').next().is_some_and(|d| d.chars().all(|c| c.is_ascii_uppercase()));
-            if !is_file || placeholder || token.starts_with("target/") {
+            // A path under a capitalised metavariable (`DIR/batch.csv`, as a command's usage writes `--out
+            // DIR`) or under the build output names no file of the repository by design.
+            let under_metavariable = stem.split('/').next().is_some_and(|d| d.chars().all(|c| c.is_ascii_uppercase()));
+            if !is_file || under_metavariable || token.starts_with("target/") {
                 continue;
             }
             if !files.iter().any(|f| f == token || f.ends_with(&format!("/{token}"))) {

@@ -21,7 +21,8 @@ const TO: f64 = 0.05;
 const STEPS: usize = 10;
 
 /// Toe, camber and wheel-centre z of every row, bump steer and camber gain (rad/m, by the rows' central
-/// difference at design, as the sensitivity reads them), of the model with parameter `k` moved by `delta`.
+/// difference at design, as the report reads them), of the model with parameter `k` moved by `delta`: read
+/// here from the engine's rows, not by the report's reduction.
 fn figures(p: &Parameters, k: usize, delta: f64) -> Vec<f64> {
     let corner = p.file_moved(k, delta).unwrap().suspension.build(Side::Left, Rig::WheelTravel).unwrap();
     let rows = parallel_wheel_travel(&corner, FROM, TO, STEPS, Mode::Corrected).unwrap();
@@ -52,13 +53,16 @@ fn worst_against_re_solves_of(document: serde_json::Value, pointers: &[String]) 
         let h = 1e-3 * p.values[k].abs().max(0.1);
         let [a, b, c, d] = [2.0, 1.0, -1.0, -2.0].map(|m| figures(&p, k, m * h));
         let fd: Vec<f64> = (0..a.len()).map(|i| (8.0 * (b[i] - c[i]) - (a[i] - d[i])) / (12.0 * h)).collect();
+        let (toe, camber, height) =
+            (s.d_column("toe_deg", k), s.d_column("camber_deg", k), s.d_column("wheel_centre_z_m", k));
+        // The report gives angles in degrees; compared here in radians, as the engine's rows are.
         let mut exact = Vec::new();
-        for r in 0..s.travel.len() {
-            exact.extend([s.d_toe[r][k], s.d_camber[r][k], s.d_wheel_centre[r][k].z]);
+        for r in 0..toe.len() {
+            exact.extend([toe[r].unwrap().to_radians(), camber[r].unwrap().to_radians(), height[r].unwrap()]);
         }
-        exact.extend([s.d_bump_steer[k], s.d_camber_gain[k]]);
+        exact.extend(["bump_steer", "camber_gain"].map(|f| s.figure(f).unwrap().1[k].unwrap().to_radians()));
         // Each kind against its own scale: toe, camber and height per row, then the two slopes.
-        let rows = s.travel.len();
+        let rows = toe.len();
         let kinds: [Vec<usize>; 5] = [
             (0..rows).map(|r| 3 * r).collect(),
             (0..rows).map(|r| 3 * r + 1).collect(),
@@ -81,7 +85,8 @@ fn worst_against_re_solves_of(document: serde_json::Value, pointers: &[String]) 
         }
         // The figures the sensitivity reads at design are the re-solve's own.
         let base = figures(&p, k, 0.0);
-        assert!((s.bump_steer - base[3 * rows]).abs() < 1e-12, "{} vs {}", s.bump_steer, base[3 * rows]);
+        let bump_steer = s.figure("bump_steer").unwrap().0.value.unwrap().to_radians();
+        assert!((bump_steer - base[3 * rows]).abs() < 1e-12, "{bump_steer} vs {}", base[3 * rows]);
     }
     (worst, relative)
 }
@@ -175,6 +180,7 @@ fn every_parallel_travel_figure_and_column_matches_the_report_re_run() {
     let p = Parameters::new(&document("macpherson.json"), &pointers).unwrap();
     let s = parallel_travel_sensitivity(&p, FROM, TO, STEPS).unwrap();
     assert_eq!(s.report_figures.len(), 11, "{:?}", s.report_figures.iter().map(|f| &f.0.key).collect::<Vec<_>>());
+    let rows = s.table.rows.len();
     let settings = Settings { range: Some((FROM, TO)), steps: STEPS, ..Settings::default() };
     let (mut worst, mut figures, mut cells) = (0.0_f64, 0, 0);
     for k in 0..p.len() {
@@ -200,10 +206,9 @@ fn every_parallel_travel_figure_and_column_matches_the_report_re_run() {
             judge(derivatives[k], values, None, &format!("{} {}", p.pointers[k], f.key));
             figures += 1;
         }
-        for (c, column) in s.columns.iter().enumerate() {
-            let column_scale =
-                (0..s.travel.len()).filter_map(|r| s.d_columns[k][r][c]).fold(0.0_f64, |m, v| m.max(v.abs()));
-            for r in 0..s.travel.len() {
+        for (c, column) in s.table.columns.iter().enumerate() {
+            let column_scale = (0..rows).filter_map(|r| s.d_columns[k][r][c]).fold(0.0_f64, |m, v| m.max(v.abs()));
+            for r in 0..rows {
                 let values = [0, 1, 2, 3].map(|i| runs[i].table.rows[r][c].number());
                 judge(s.d_columns[k][r][c], values, Some(column_scale), &format!("{} {column} row {r}", p.pointers[k]));
                 cells += 1;
