@@ -66,14 +66,15 @@ pub enum Command {
     /// parallel wheel travel ±20 mm in 8 steps, corrected mode.
     #[command(after_help = EXIT_STATUS)]
     Batch(BatchArgs),
-    /// Exact sensitivities of parallel travel to numbers of the model file: every row's toe, camber and
-    /// wheel centre and the bump steer and camber gain, derived through the equilibrium
+    /// Exact sensitivities of every figure and every table cell of the K&C suite (or one analysis) to
+    /// numbers of the model file, derived through the equilibrium
     ///
     /// Each parameter is a JSON pointer into the model file, as batch variants name them
     /// (/suspension/macpherson/hardpoints/tie_rod_inner/2, /suspension/macpherson/spring/rate); --hardpoints
-    /// takes every coordinate of every hardpoint. Writes sensitivity.csv (figure × parameter: derivative
-    /// and effect per mm or per %) and sensitivity_rows.csv, and prints each figure's parameters ranked by
-    /// effect. Corrected mode.
+    /// takes every coordinate of every hardpoint. Writes sensitivity.csv (analysis, figure × parameter:
+    /// derivative and effect per mm or per %, or why there is none) and sensitivity_<table>.csv per
+    /// analysis (every cell's derivative), and prints each figure's parameters ranked by effect. Corrected
+    /// mode.
     #[command(after_help = EXIT_STATUS)]
     Sensitivity(SensitivityArgs),
     /// Join the batch.csv files of `batch --shard I/N` runs into the batch.csv one `batch` writes
@@ -201,19 +202,23 @@ pub struct SensitivityArgs {
     /// Every coordinate of every hardpoint (a Chrono file's Location points), after those given by --param
     #[arg(long)]
     pub hardpoints: bool,
-    /// The wheel travel walked (m, bump +)
-    #[arg(long, value_name = "FROM,TO", value_parser = parse_range, allow_hyphen_values = true, default_value = "-0.08,0.08")]
-    pub range: (f64, f64),
+    /// One analysis instead of the whole suite (`run --help` lists each one's load parameter and units)
+    #[arg(long, value_enum, value_name = "NAME")]
+    pub analysis: Option<AnalysisName>,
+    /// The load parameter's range, in the analysis's own units (needs --analysis)
+    #[arg(long, value_name = "FROM,TO", value_parser = parse_range, allow_hyphen_values = true)]
+    pub range: Option<(f64, f64)>,
     #[arg(
         long,
         value_name = "N",
         default_value_t = 32,
         value_parser = parse_steps,
         allow_negative_numbers = true,
-        help = format!("Load steps of the sweep, 1 to {MAX_STEPS}")
+        help = format!("Load steps per sweep, 1 to {MAX_STEPS}")
     )]
     pub steps: usize,
-    /// Where sensitivity.csv and sensitivity_rows.csv go; the directory is replaced as a whole on success
+    /// Where sensitivity.csv and each analysis's sensitivity_<table>.csv go; the directory is replaced as
+    /// a whole on success
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
 }
@@ -392,6 +397,7 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
         tolerance: args.tolerance,
         through_limits: args.through_limits,
         arc_step: args.arc_step,
+        error_estimate: true,
     };
     let read = read_model(&args.model)?;
     if let Some(line) = read.format_line() {
@@ -662,9 +668,15 @@ fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> 
     out.line(format!("wrote {}", path.display()))
 }
 
-/// `sensitivity`: the parallel-travel figures' derivatives with respect to numbers of the model file.
+/// `sensitivity`: every figure's and cell's derivatives with respect to numbers of the model file, for the
+/// suite or one analysis.
 fn sensitivity(args: SensitivityArgs, out: &Stdout) -> Result<(), Failure> {
-    use elastokin::suspensions::design::{self, Parameters};
+    use elastokin::suspensions::design::{self, sensitivity::effect_unit, Parameters};
+    if args.range.is_some() && args.analysis.is_none() {
+        return Err(Failure::Input(
+            "--range needs --analysis NAME: each analysis has its own load parameter and units".into(),
+        ));
+    }
     let read = read_model(&args.model)?;
     if let Some(line) = read.format_line() {
         out.line(line)?;
@@ -688,43 +700,74 @@ fn sensitivity(args: SensitivityArgs, out: &Stdout) -> Result<(), Failure> {
         ));
     }
     let parameters = Parameters::new(&base, &pointers).map_err(|e| Failure::Input(format!("{origin}: {e}")))?;
-    let (from, to) = args.range;
-    design::sensitivity::check_range(from, to).map_err(|e| Failure::Input(format!("--range: {e}")))?;
-    let s = design::parallel_travel_sensitivity(&parameters, from, to, args.steps).map_err(Failure::Run)?;
+    let settings = Settings { range: args.range, steps: args.steps, ..Settings::default() };
+    let which: Vec<Analysis> = args.analysis.map(|a| vec![a.analysis()]).unwrap_or_default();
+    for &a in if which.is_empty() { &kc::ALL[..] } else { &which[..] } {
+        kc::check_settings(a, &settings).map_err(|e| Failure::Input(e.to_string()))?;
+    }
+    let suite = design::suite_sensitivity(&parameters, &which, &settings).map_err(Failure::Run)?;
+    if suite.analyses.is_empty() && !suite.failed.is_empty() {
+        return Err(Failure::Run(format!(
+            "no sensitivities: {}\n(nothing was written; {} is untouched)",
+            failed_lines(&suite.failed),
+            args.out.display()
+        )));
+    }
     let mut provenance = Provenance::new(&args.model, &read.bytes, kc::mode_word(Mode::Corrected), args.steps);
-    provenance.range = Some(args.range);
+    provenance.range = args.range;
     let staging = Staging::new(&args.out)?;
     let written = (|| -> Result<Vec<PathBuf>, Failure> {
-        let figures = s.figure_table(&parameters);
-        let rows = s.row_table();
-        Ok(vec![
-            staging.write("sensitivity.csv", &write_table(&figures, &provenance))?,
-            staging.write("sensitivity_rows.csv", &write_table(&rows, &provenance))?,
-        ])
+        let mut written =
+            vec![staging.write("sensitivity.csv", &write_table(&suite.figure_table(&parameters), &provenance))?];
+        for a in &suite.analyses {
+            let rows = a.row_table(&parameters);
+            written.push(staging.write(&format!("{}.csv", rows.name), &write_table(&rows, &provenance))?);
+        }
+        Ok(written)
     })()
     .map_err(|e| Failure::Run(format!("{}\n{}", e.message(), staging.untouched())))?;
     staging.commit()?;
     out.line(format!(
-        "{} — parallel travel {:+.0}..{:+.0} mm, {} steps, {} parameters",
+        "{} — {} parameters, {} steps per sweep, corrected mode",
         read.file.name,
-        from * 1e3,
-        to * 1e3,
-        args.steps,
-        parameters.len()
+        parameters.len(),
+        args.steps
     ))?;
-    for (index, (figure, _)) in s.report_figures.iter().enumerate() {
+    for a in &suite.analyses {
         out.line("")?;
-        out.line(figure.line())?;
-        // A figure without a unit (a ratio) changes by so much per mm or per %.
-        let unit = if figure.unit == "-" { String::new() } else { format!("{} ", figure.unit) };
-        for (k, e) in s.largest_effects(index, &parameters, 3) {
-            let pointer = &parameters.pointers[k];
-            let per = design::sensitivity::effect_unit(pointer);
-            out.line(format!("      {:<52} {:>12} {unit}per {per}", pointer, kc::significant(e, 3)))?;
+        out.line(&a.report.description)?;
+        for (j, figure) in a.report.figures.iter().enumerate() {
+            if figure.value.is_none() {
+                continue;
+            }
+            out.line(figure.line())?;
+            // A figure without a unit (a ratio) changes by so much per mm or per %.
+            let unit = if figure.unit == "-" { String::new() } else { format!("{} ", figure.unit) };
+            for (k, e) in a.largest_effects(j, &parameters, 3) {
+                let pointer = &parameters.pointers[k];
+                let per = effect_unit(pointer);
+                out.line(format!("      {:<52} {:>12} {unit}per {per}", pointer, kc::significant(e, 3)))?;
+            }
+            let missing = (0..parameters.len()).filter_map(|k| a.figures[k][j].err().map(|e| (k, e))).next();
+            if let Some((k, why)) = missing {
+                out.line(format!("      {:<52} {}", parameters.pointers[k], why.reason()))?;
+            }
         }
     }
+    for s in &suite.skipped {
+        out.line(format!("\n{}: skipped — {}", s.analysis.name(), s.reason))?;
+    }
     out.line("")?;
-    out.line(format!("wrote {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))
+    out.line(format!("wrote {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))?;
+    if suite.failed.is_empty() {
+        return Ok(());
+    }
+    Err(Failure::Run(format!(
+        "{} of the analyses' sensitivities failed (the others' are in {}):\n{}",
+        suite.failed.len(),
+        args.out.display(),
+        failed_lines(&suite.failed)
+    )))
 }
 
 fn main() -> ExitCode {

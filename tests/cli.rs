@@ -922,10 +922,11 @@ fn one_failing_analysis_costs_only_itself_the_others_are_written_and_the_run_exi
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// `sensitivity` gives the bump steer's and camber gain's derivatives as the command's own reruns give
-/// them: `run --analysis parallel-travel` on the model with the inner tie-rod point moved ±0.1 mm and
-/// ±0.2 mm, a central difference Richardson extrapolated (measured 5.6e-11 and 1.1e-10 relative apart, the
-/// CSV holding 12 significant digits; the figure's value is the run's own).
+/// `sensitivity` gives every analysis's figures' derivatives as the command's own reruns give them:
+/// `run --analysis NAME` on the model with the inner tie-rod point moved ±0.1 mm and ±0.2 mm, a central
+/// difference Richardson extrapolated, for the bump steer and camber gain of parallel travel and the
+/// compliance steer and camber of the lateral-force sweep (measured at most 3e-9 relative apart, the CSV
+/// holding 12 significant digits; the figure's value is the run's own).
 #[test]
 fn sensitivity_gives_the_derivatives_that_reruns_of_the_model_give() {
     let dir = scratch("sensitivity");
@@ -944,51 +945,63 @@ fn sensitivity_gives_the_derivatives_that_reruns_of_the_model_give() {
     let stdout = String::from_utf8_lossy(&o.stdout);
     let line = stdout.lines().find(|l| l.starts_with("  bump steer")).unwrap_or_default();
     assert!(line.ends_with(" -32.694 deg/m") && stdout.contains("deg/m per mm"), "{stdout}");
+    // Every analysis the suite runs on the model, its table's derivatives in a file of its own.
+    for table in ["parallel_travel", "roll", "steering", "vertical_force", "lateral_force", "static_load"] {
+        assert!(out.join(format!("sensitivity_{table}.csv")).exists(), "{table}");
+    }
     let rows = read_csv(&out.join("sensitivity.csv"));
-    let row = |figure: &str, parameter: &str| {
-        rows.iter().find(|r| &r[0] == figure && &r[3] == parameter).unwrap_or_else(|| panic!("{figure} {parameter}"))
+    let row = |analysis: &str, figure: &str, parameter: &str| {
+        rows.iter()
+            .find(|r| &r[0] == analysis && &r[1] == figure && &r[4] == parameter)
+            .unwrap_or_else(|| panic!("{analysis} {figure} {parameter}"))
     };
     let text = std::fs::read_to_string("examples/macpherson.json").unwrap();
     let model: serde_json::Value = serde_json::from_str(&text).unwrap();
     let z = model.pointer(pointer).unwrap().as_f64().unwrap();
-    let figure_at = |dz: f64, key: &str| {
+    let figure_at = |dz: f64, analysis: &str, key: &str| {
         let mut m = model.clone();
         *m.pointer_mut(pointer).unwrap() = (z + dz).into();
         let path = dir.join("moved.json");
         std::fs::write(&path, m.to_string()).unwrap();
         let run_out = dir.join("run");
-        succeeds(&["run", path.to_str().unwrap(), "--analysis", "parallel-travel", "--out", run_out.to_str().unwrap()]);
+        succeeds(&["run", path.to_str().unwrap(), "--analysis", analysis, "--out", run_out.to_str().unwrap()]);
         let summary: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(run_out.join("summary.json")).unwrap()).unwrap();
-        summary["analyses"]["parallel-travel"]["figures"][key]["value"].as_f64().unwrap()
+        summary["analyses"][analysis]["figures"][key]["value"].as_f64().unwrap()
     };
     let h = 1e-4;
-    for key in ["bump_steer", "camber_gain"] {
-        let [a, b, c, d] = [2.0, 1.0, -1.0, -2.0].map(|m| figure_at(m * h, key));
+    for (analysis, key, unit) in [
+        ("parallel-travel", "bump_steer", "deg/m"),
+        ("parallel-travel", "camber_gain", "deg/m"),
+        ("lateral-force", "steer", "deg/kN"),
+        ("lateral-force", "camber", "deg/kN"),
+    ] {
+        let [a, b, c, d] = [2.0, 1.0, -1.0, -2.0].map(|m| figure_at(m * h, analysis, key));
         let rerun = (8.0 * (b - c) - (a - d)) / (12.0 * h);
-        let r = row(key, pointer);
-        let derivative: f64 = r[5].parse().unwrap();
+        let r = row(analysis, key, pointer);
+        let derivative: f64 = r[6].parse().unwrap();
         println!(
-            "{key}: {derivative} against reruns {rerun} ({:e} relative)",
+            "{analysis} {key}: {derivative} against reruns {rerun} ({:e} relative)",
             (derivative - rerun).abs() / rerun.abs()
         );
         assert!((derivative - rerun).abs() < 1e-8 * rerun.abs(), "{key}: {derivative} vs {rerun}");
-        assert_eq!(r[1].to_string(), "deg/m");
-        assert_eq!(r[7].to_string(), "mm");
-        let effect: f64 = r[6].parse().unwrap();
+        assert_eq!(r[2].to_string(), unit);
+        assert_eq!(r[8].to_string(), "mm");
+        let effect: f64 = r[7].parse().unwrap();
         assert!((effect - derivative * 1e-3).abs() <= 1e-12 * derivative.abs());
         // The figure itself is the run's.
-        let value: f64 = r[2].parse().unwrap();
-        assert!((value - figure_at(0.0, key)).abs() < 1e-9, "{key}: {value}");
+        let value: f64 = r[3].parse().unwrap();
+        assert!((value - figure_at(0.0, analysis, key)).abs() < 1e-9, "{key}: {value}");
     }
     // A rate's effect is per percent.
-    assert_eq!(row("bump_steer", "/suspension/macpherson/spring/rate")[7].to_string(), "%");
-    // Bad parameters are refused by name, before anything is written.
+    assert_eq!(row("parallel-travel", "bump_steer", "/suspension/macpherson/spring/rate")[8].to_string(), "%");
+    // Bad parameters and settings are refused by name, before anything is written.
     for (args, says) in [
         (vec!["--param", "/suspension/macpherson/hardpoints/nowhere/0"], "names nothing in the model"),
         (vec!["--param", "/suspension/macpherson/spring"], "a section of the model, not a number"),
         (vec![], "no parameters"),
-        (vec!["--hardpoints", "--range", "0.01,0.05"], "must hold the design position"),
+        (vec!["--hardpoints", "--range", "0.01,0.05"], "--range needs --analysis NAME"),
+        (vec!["--hardpoints", "--analysis", "roll", "--range", "-1e4,1e4"], "no suspension meets that"),
     ] {
         let o = elastokin(
             &[

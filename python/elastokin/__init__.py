@@ -241,40 +241,47 @@ class Model:
         self,
         parameters: Optional[Sequence[str]] = None,
         *,
-        range: Tuple[float, float] = (-0.08, 0.08),
+        analysis: str = "parallel-travel",
+        range: Optional[Tuple[float, float]] = None,
         steps: int = 32,
     ) -> Dict[str, Any]:
-        """Exact sensitivities of parallel travel, as ``elastokin sensitivity`` gives them: derived through the
-        equilibrium, one back-substitution per parameter and row.
+        """Exact sensitivities of one analysis of the K&C suite (``analysis``, as ``run(analyses=...)``
+        names them), as ``elastokin sensitivity`` gives them: derived through the equilibrium, with no
+        equilibrium solved again.
 
         ``parameters`` are JSON pointers into the model file (as batch variants name them; every hardpoint
-        coordinate when None). Gives a dict: ``parameters``, their ``values``, the rows (``travel_m``,
-        ``toe_deg``, ``camber_deg``), their derivatives as (rows, parameters) arrays (``d_toe_deg``,
-        ``d_camber_deg``, ``d_wheel_centre_x_m``/``_y_m``/``_z_m``), and the figures
-        ``bump_steer_deg_per_m`` and ``camber_gain_deg_per_m`` with ``d_bump_steer_deg_per_m`` and
-        ``d_camber_gain_deg_per_m`` (one per parameter). Every derivative is per unit of the parameter as the
-        file gives it (per m of a hardpoint coordinate, per N/m of a rate).
+        coordinate when None). Gives a dict: ``analysis``, ``parameters``, their ``values``, the table's
+        ``columns``, every column by name (its rows, NaN where empty) with its derivatives ``d_<column>`` as a
+        (rows, parameters) array, and ``figures``: each headline figure by key with its ``value``, ``unit``,
+        ``derivatives`` (one per parameter, NaN where there is none) and ``no_derivative`` (why, or None).
+        Every derivative is per unit of the parameter as the file gives it (per m of a hardpoint coordinate,
+        per N/m of a rate).
 
-        Raises ModelError for a pointer that names nothing or no number, AnalysisError when the travel
-        cannot be walked (a limit point) or a parameter changes the model's parts."""
+        Raises ModelError for a pointer that names nothing or no number, ValueError for bad settings, and
+        AnalysisError when the analysis fails or meets a limit point (no derivative there) or a parameter
+        changes the model's parts."""
         pointers = self.hardpoint_parameters() if parameters is None else [str(p) for p in parameters]
-        return self._native.sensitivities(pointers, range=(float(range[0]), float(range[1])), steps=steps)
+        span = None if range is None else (float(range[0]), float(range[1]))
+        return self._native.sensitivities(pointers, analysis=analysis, range=span, steps=steps)
 
     def objective(
         self,
         figure: str,
         parameters: Sequence[str],
         *,
+        analysis: str = "parallel-travel",
         target: float = 0.0,
-        range: Tuple[float, float] = (-0.08, 0.08),
+        range: Optional[Tuple[float, float]] = None,
         steps: int = 32,
     ) -> Any:
         """A function of the parameters' values ``x`` giving ``((figure − target)², gradient)`` with the exact
-        gradient, which ``scipy.optimize.minimize(f, x0, jac=True)`` takes as it is. ``figure`` is
-        ``"bump_steer"`` or ``"camber_gain"`` (deg/m); ``x0`` is ``sensitivities(parameters)["values"]``."""
-        if figure not in ("bump_steer", "camber_gain"):
-            raise ValueError(f"figure {figure!r}: give 'bump_steer' or 'camber_gain'")
+        gradient, which ``scipy.optimize.minimize(f, x0, jac=True)`` takes as it is. ``figure`` is a headline
+        figure's key of ``analysis`` (as ``summary.json`` names it: ``"bump_steer"``, ``"wheel_rate"``, …) in
+        its unit; ``x0`` is ``sensitivities(parameters)["values"]``."""
         pointers = [str(p) for p in parameters]
+        known = self.sensitivities(pointers, analysis=analysis, range=range, steps=steps)["figures"]
+        if figure not in known:
+            raise ValueError(f"figure {figure!r}: {analysis} has {', '.join(sorted(known))}")
         text, origin = self._native.document()
         base = json.loads(text)
 
@@ -282,10 +289,12 @@ class Model:
             document = json.loads(json.dumps(base))
             for pointer, value in zip(pointers, numpy.asarray(x, dtype=float)):
                 _set_pointer(document, pointer, float(value))
-            model = _native.Model.from_json(json.dumps(document), origin)
-            s = model.sensitivities(pointers, range=range, steps=steps)
-            miss = s[f"{figure}_deg_per_m"] - target
-            return miss * miss, 2.0 * miss * numpy.asarray(s[f"d_{figure}_deg_per_m"])
+            model = Model(_native.Model.from_json(json.dumps(document), origin))
+            got = model.sensitivities(pointers, analysis=analysis, range=range, steps=steps)["figures"][figure]
+            if got["value"] is None:
+                raise AnalysisError(f"{figure} has no value at {list(x)}")
+            miss = got["value"] - target
+            return miss * miss, 2.0 * miss * numpy.asarray(got["derivatives"])
 
         return f
 

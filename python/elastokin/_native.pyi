@@ -67,7 +67,11 @@ class Model:
     def compliance(self) -> numpy.typing.NDArray[numpy.float64]: ...
     def hardpoint_parameters(self) -> List[str]: ...
     def sensitivities(
-        self, parameters: List[str], range: Tuple[float, float] = (-0.08, 0.08), steps: int = 32
+        self,
+        parameters: List[str],
+        analysis: str = "parallel-travel",
+        range: Optional[Tuple[float, float]] = None,
+        steps: int = 32,
     ) -> Dict[str, Any]: ...
     def batch(
         self,

@@ -257,61 +257,52 @@ impl Model {
         elastokin_suspensions::design::hardpoint_pointers(&self.base)
     }
 
-    /// Exact sensitivities of parallel travel to the numbers at `parameters` (JSON pointers), as the
-    /// command's `sensitivity` gives them: a dict of the rows (`travel_m`, `toe_deg`, `camber_deg`), their
-    /// derivatives (row × parameter: `d_toe_deg`, `d_camber_deg`, `d_wheel_centre_x_m`, `_y_m`, `_z_m`), the
-    /// figures (`bump_steer_deg_per_m`, `camber_gain_deg_per_m`) with theirs (`d_…`, one per parameter), and
-    /// `figures`: every figure of the report's parallel travel by key, its value, unit and derivatives (NaN
-    /// where it has none); every derivative per unit of the parameter in the file.
-    #[pyo3(signature = (parameters, range=(-0.08, 0.08), steps=32))]
+    /// Exact sensitivities of one analysis of the K&C suite to the numbers at `parameters` (JSON pointers),
+    /// as the command's `sensitivity` gives them: a dict of the analysis's name, the parameters and their
+    /// values, the table's `columns`, every column by name (its rows) and its derivatives as
+    /// `d_<column>` (rows × parameters), and `figures`: every figure of the report by key, its value, unit,
+    /// derivatives (NaN where it has none) and `no_derivative` (why, or None); every derivative per unit
+    /// of the parameter in the file.
+    #[pyo3(signature = (parameters, analysis="parallel-travel", range=None, steps=32))]
     fn sensitivities<'py>(
         &self,
         py: Python<'py>,
         parameters: Vec<String>,
-        range: (f64, f64),
+        analysis: &str,
+        range: Option<(f64, f64)>,
         steps: usize,
     ) -> PyResult<Bound<'py, PyDict>> {
-        use elastokin_suspensions::design::{parallel_travel_sensitivity, Parameters};
-        elastokin_solver::LoadPath::check_steps(steps).map_err(PyValueError::new_err)?;
-        elastokin_suspensions::design::sensitivity::check_range(range.0, range.1).map_err(PyValueError::new_err)?;
+        use elastokin_suspensions::design::{analysis_sensitivity, Parameters};
+        let which = self::analysis(analysis)?;
+        let settings = Settings { range, steps, ..Settings::default() };
+        kc::check_settings(which, &settings).map_err(|e| PyValueError::new_err(e.to_string()))?;
         let p = Parameters::new(&self.base, &parameters).map_err(ModelError::new_err)?;
-        let s = py
-            .detach(|| parallel_travel_sensitivity(&p, range.0, range.1, steps))
-            .map_err(AnalysisError::new_err)?;
+        let s = py.detach(|| analysis_sensitivity(which, &p, &settings)).map_err(AnalysisError::new_err)?;
         let d = PyDict::new(py);
         // Empty cells and missing derivatives are NaN in numpy.
         let numbers = |v: Vec<Option<f64>>| v.into_iter().map(|x| x.unwrap_or(f64::NAN)).collect::<Vec<f64>>();
-        // Row × parameter, the form numpy users index.
-        let by_row = |name: &str| {
-            let columns: Vec<Vec<f64>> = (0..p.len()).map(|k| numbers(s.d_column(name, k))).collect();
-            let rows: Vec<Vec<f64>> =
-                (0..s.table.rows.len()).map(|r| columns.iter().map(|c| c[r]).collect()).collect();
-            PyArray2::from_vec2(py, &rows).map_err(|e| AnalysisError::new_err(e.to_string()))
-        };
+        let rates = |v: Vec<elastokin_suspensions::design::Rate>| numbers(v.into_iter().map(|r| r.ok()).collect());
+        d.set_item("analysis", which.name())?;
         d.set_item("parameters", p.pointers.clone())?;
         d.set_item("values", PyArray1::from_vec(py, p.values.clone()))?;
-        d.set_item("travel_m", PyArray1::from_vec(py, numbers(s.column("travel_m"))))?;
-        d.set_item("toe_deg", PyArray1::from_vec(py, numbers(s.column("toe_deg"))))?;
-        d.set_item("camber_deg", PyArray1::from_vec(py, numbers(s.column("camber_deg"))))?;
-        d.set_item("d_toe_deg", by_row("toe_deg")?)?;
-        d.set_item("d_camber_deg", by_row("camber_deg")?)?;
-        for axis in ["x", "y", "z"] {
-            let name = format!("wheel_centre_{axis}_m");
-            d.set_item(format!("d_{name}"), by_row(&name)?)?;
+        d.set_item("columns", s.report.table.columns.clone())?;
+        for name in &s.report.table.columns {
+            d.set_item(name, PyArray1::from_vec(py, numbers(s.column(name))))?;
+            // Row × parameter, the form numpy users index.
+            let columns: Vec<Vec<f64>> = (0..p.len()).map(|k| rates(s.d_column(name, k))).collect();
+            let rows: Vec<Vec<f64>> =
+                (0..s.report.table.rows.len()).map(|r| columns.iter().map(|c| c[r]).collect()).collect();
+            let array = PyArray2::from_vec2(py, &rows).map_err(|e| AnalysisError::new_err(e.to_string()))?;
+            d.set_item(format!("d_{name}"), array)?;
         }
-        for key in ["bump_steer", "camber_gain"] {
-            if let Some((f, derivatives)) = s.figure(key) {
-                d.set_item(format!("{key}_deg_per_m"), f.value.unwrap_or(f64::NAN))?;
-                d.set_item(format!("d_{key}_deg_per_m"), PyArray1::from_vec(py, numbers(derivatives.clone())))?;
-            }
-        }
-        // Every figure of the report's parallel travel: value, unit and derivatives (NaN where none).
         let figures = PyDict::new(py);
-        for (f, derivatives) in &s.report_figures {
+        for f in &s.report.figures {
+            let (_, derivatives) = s.figure(&f.key).expect("the report's own figure");
             let entry = PyDict::new(py);
             entry.set_item("value", f.value)?;
             entry.set_item("unit", &f.unit)?;
-            entry.set_item("derivatives", PyArray1::from_vec(py, numbers(derivatives.clone())))?;
+            entry.set_item("no_derivative", derivatives.iter().map(|r| r.err().map(|e| e.reason())).collect::<Vec<_>>())?;
+            entry.set_item("derivatives", PyArray1::from_vec(py, rates(derivatives)))?;
             figures.set_item(&f.key, entry)?;
         }
         d.set_item("figures", figures)?;

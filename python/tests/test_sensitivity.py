@@ -16,42 +16,58 @@ RATE = "/suspension/macpherson/spring/rate"
 
 def test_sensitivities_are_the_commands(tmp_path):
     out = tmp_path / "out"
-    command("sensitivity", MODEL, "--param", TIE_ROD_Z, "--param", RATE, "--quiet", "--out", out)
+    command(
+        "sensitivity", MODEL, "--analysis", "parallel-travel", "--param", TIE_ROD_Z, "--param", RATE,
+        "--quiet", "--out", out,
+    )
     header, rows = read_csv(out / "sensitivity.csv")
     model = elastokin.load(MODEL)
     s = model.sensitivities([TIE_ROD_Z, RATE])
-    assert s["parameters"] == [TIE_ROD_Z, RATE]
-    assert len(rows) == 2 * len(s["figures"]) and len(s["figures"]) == 11
+    assert s["parameters"] == [TIE_ROD_Z, RATE] and s["analysis"] == "parallel-travel"
+    assert len(rows) == 2 * len(s["figures"]) and len(s["figures"]) == 21
     for row in rows:
-        figure, parameter = row[0], row[3]
+        analysis, figure, parameter = row[0], row[1], row[4]
+        assert analysis == "parallel-travel"
         got = s["figures"][figure]["derivatives"][s["parameters"].index(parameter)]
-        assert s["figures"][figure]["unit"] == row[1]
-        if row[5] == "":
+        assert s["figures"][figure]["unit"] == row[2]
+        if row[6] == "":
             assert numpy.isnan(got), (figure, parameter)
             continue
         # The CSV holds 12 significant digits of the same number.
-        assert got == pytest.approx(float(row[5]), rel=1e-11, abs=1e-300), (figure, parameter)
+        assert got == pytest.approx(float(row[6]), rel=1e-11, abs=1e-300), (figure, parameter)
+    # Every cell of the table, as sensitivity_parallel_travel.csv has it.
+    header, cells = read_csv(out / "sensitivity_parallel_travel.csv")
+    assert header[:3] == ["parameter", "travel_m", "d_toe_deg"] and len(cells) == 2 * 33
+    for r, row in enumerate(cells[:33]):
+        assert float(row[2]) == pytest.approx(s["d_toe_deg"][r, 0], rel=1e-11, abs=1e-300)
     assert s["d_toe_deg"].shape == (33, 2) and s["travel_m"].shape == (33,)
     # The figure's derivative is the central difference at design of the rows' derivatives (row 16 is
     # design), as the figure is the rows' central difference.
     d = s["d_toe_deg"][:, 0]
     slope = (d[17] - d[15]) / (s["travel_m"][17] - s["travel_m"][15])
-    assert slope == pytest.approx(s["d_bump_steer_deg_per_m"][0], rel=1e-12)
+    assert slope == pytest.approx(s["figures"]["bump_steer"]["derivatives"][0], rel=1e-9)
 
 
-def test_every_hardpoint_by_default():
+def test_every_hardpoint_by_default_and_any_analysis():
     model = elastokin.load(MODEL)
     assert len(model.hardpoint_parameters()) == 24
     s = model.sensitivities(steps=4)
     assert len(s["parameters"]) == 24 and s["d_camber_deg"].shape == (5, 24)
+    lateral = model.sensitivities([RATE], analysis="lateral-force", steps=4)
+    assert lateral["columns"][0] == "load_n" and lateral["d_toe_deg"].shape == (5, 1)
+    assert numpy.isfinite(lateral["figures"]["steer"]["derivatives"]).all()
 
 
 def test_a_parameter_that_names_nothing_is_refused_by_name():
     model = elastokin.load(MODEL)
     with pytest.raises(elastokin.ModelError, match="'/suspension/macpherson/nowhere' names nothing"):
         model.sensitivities(["/suspension/macpherson/nowhere"])
-    with pytest.raises(ValueError, match="must hold the design position"):
-        model.sensitivities([TIE_ROD_Z], range=(0.01, 0.05))
+    with pytest.raises(ValueError, match="invalid value 'bump' for '--analysis <NAME>'"):
+        model.sensitivities([TIE_ROD_Z], analysis="bump")
+    # Away from design, the slopes at design have no value, and so no derivative, and say why.
+    s = model.sensitivities([TIE_ROD_Z], range=(0.01, 0.05), steps=4)
+    assert s["figures"]["bump_steer"]["value"] is None
+    assert s["figures"]["bump_steer"]["no_derivative"] == ["the figure has no value"]
 
 
 def test_objective_gradient_is_the_derivative_of_its_value():
@@ -79,9 +95,9 @@ def test_scipy_tunes_the_bump_steer_with_the_exact_gradient():
     # The tuned model, read again, has no bump steer.
     document = json.loads(model._native.document()[0])
     elastokin._set_pointer(document, TIE_ROD_Z, float(result.x[0]))
-    tuned = elastokin.load(document).sensitivities(pointers, steps=8)
-    assert abs(tuned["bump_steer_deg_per_m"]) < 1e-6, (result, tuned["bump_steer_deg_per_m"])
+    tuned = elastokin.load(document).sensitivities(pointers, steps=8)["figures"]["bump_steer"]
+    assert abs(tuned["value"]) < 1e-6, (result, tuned["value"])
     # A Newton step from the start, the bump steer over its rate, lands near it (the rate changes on the way).
-    start = model.sensitivities(pointers, steps=8)
-    newton = -start["bump_steer_deg_per_m"] / start["d_bump_steer_deg_per_m"][0]
+    start = model.sensitivities(pointers, steps=8)["figures"]["bump_steer"]
+    newton = -start["value"] / start["derivatives"][0]
     assert result.x[0] - x0[0] == pytest.approx(newton, rel=0.2)

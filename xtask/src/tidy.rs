@@ -41,7 +41,8 @@ const LAYERED: [(&str, &[(&str, u32)]); 2] = [
             ("assembly", 2),
             ("options", 2),
             ("results", 3),
-            ("solver", 4),
+            ("replay", 4),
+            ("solver", 5),
         ],
     ),
 ];

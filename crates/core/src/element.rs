@@ -72,4 +72,11 @@ pub trait ForceElement: std::fmt::Debug + Send + Sync {
     }
     /// Force, moment and deflection, for reports.
     fn report(&self, pi: &Pose, pj: &Pose, t: f64) -> ElementReport;
+    /// Which piece of its force law the element is on at the poses, for a law whose rate jumps between
+    /// pieces (a stop whose force rises at once on contact: out of contact 0, in contact 1). Across such a
+    /// jump the equilibrium has a kink and no derivative. A law whose rate is continuous (every other
+    /// element, a progressive stop) is one piece: 0.
+    fn piece(&self, _pi: &Pose, _pj: &Pose, _t: f64) -> u8 {
+        0
+    }
 }

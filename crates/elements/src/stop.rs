@@ -227,6 +227,13 @@ impl ForceElement for Stop {
         push_along(&line, push, rate, out, with_stiffness);
     }
 
+    /// In contact or not, when the curve's rate at contact is not zero (the force's rate jumps there);
+    /// a progressive curve, starting with zero rate, is one piece.
+    fn piece(&self, pi: &Pose, pj: &Pose, _t: f64) -> u8 {
+        let jumps = self.spec.curve.value_and_slope(0.0).1 != 0.0;
+        u8::from(jumps && self.penetration(self.seats.line(pi, pj).length) > 0.0)
+    }
+
     /// Force on `j`; the deflection's x component is the penetration (positive in contact).
     fn report(&self, pi: &Pose, pj: &Pose, _t: f64) -> ElementReport {
         let line = self.seats.line(pi, pj);

@@ -44,6 +44,9 @@
 //! - [`assembly`]: the pattern and slot maps of one model; values written in place. [`options`]: the mode,
 //!   the load path and its step limit, the state, the solver's options.
 //! - [`results`]: what a solve returns.
+//! - [`replay`]: a run's solves recorded, and the run replayed on a moved model with each equilibrium
+//!   moved by one exact Newton iteration: the derivatives of whatever a run computes, through its
+//!   equilibria, with none solved again.
 //! - [`solver`]: [`StaticSolver`] — equilibrium, sweeps in both modes, the predictor, limit points, arc
 //!   length, diagnostics.
 //!
@@ -60,6 +63,7 @@ pub mod error;
 pub mod kkt;
 pub mod options;
 pub mod redundancy;
+pub mod replay;
 pub mod results;
 pub mod solver;
 

@@ -98,6 +98,20 @@ impl StepResult {
             .collect()
     }
 
+    /// Which piece of its force law every element is on at this step
+    /// ([`ForceElement::piece`](elastokin_core::ForceElement::piece)), in model order: where two steps
+    /// differ, a stop touched or left between them.
+    pub fn element_pieces(&self, model: &Model) -> Vec<u8> {
+        model
+            .elements()
+            .iter()
+            .map(|e| {
+                let [i, j] = e.bodies();
+                e.piece(&i.pose(&self.poses), &j.pose(&self.poses), self.t)
+            })
+            .collect()
+    }
+
     /// Force, moment and deflection of every element at this step.
     pub fn element_reports(&self, model: &Model) -> Vec<ElementReport> {
         model

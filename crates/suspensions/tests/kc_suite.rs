@@ -406,3 +406,37 @@ fn an_arc_step_of_no_length_is_refused_naming_it() {
         assert!(e.contains("--arc-step must be a positive length") && !e.contains("NaN"), "{e}");
     }
 }
+
+/// The vertical-force sweep's wheel rate is the central difference of its rows at the design wheel load,
+/// as `slope_at` defines it, on every shipped template: the design load is computed, and the row the sweep
+/// puts there was missed by a rounding of it, which switched the reading to a one-sided chord (34.68
+/// N/mm where the central difference gives 34.82 on the MacPherson).
+#[test]
+fn the_vertical_force_wheel_rate_is_the_central_difference_at_design_whatever_the_rounding_of_the_design_load() {
+    for name in EXAMPLES {
+        let report = kc::run(Analysis::VerticalForce, &example(name), &Settings::default()).unwrap();
+        let design = report.figure("design_wheel_load").unwrap().value.unwrap();
+        let column = |c: &str| -> Vec<f64> {
+            let i = report.table.columns.iter().position(|x| x == c).unwrap();
+            report.table.rows.iter().map(|r| r[i].number().unwrap()).collect()
+        };
+        let (force, travel) = (column("force_n"), column("wheel_travel_m"));
+        let k = force.iter().position(|f| (f - design).abs() < 1e-9 * design).expect("a row at the design load");
+        let central = 1e-3 * (force[k + 1] - force[k - 1]) / (travel[k + 1] - travel[k - 1]);
+        let rate = report.figure("wheel_rate").unwrap().value.unwrap();
+        // Measured: equal to rounding (1e-15 relative).
+        assert!((rate - central).abs() < 1e-12 * central, "{name}: {rate} against {central}");
+    }
+}
+
+/// Straight ahead, Ackermann's figures are ratios of differences of static toe with no meaning (1e8 % was
+/// printed at zero rack travel): the row leaves them empty, the steered rows have them.
+#[test]
+fn ackermann_cells_are_empty_straight_ahead_not_a_ratio_of_rounding() {
+    let report = kc::run(Analysis::Steering, &example("macpherson.json"), &Settings::default()).unwrap();
+    let c = report.table.columns.iter().position(|x| x == "ackermann_percent").unwrap();
+    let straight = report.table.rows.iter().find(|r| r[0].number() == Some(0.0)).unwrap();
+    assert_eq!(straight[c], kc::Cell::Empty);
+    let steered = report.table.rows.iter().filter(|r| r[c].number().is_some()).count();
+    assert_eq!(steered, report.table.rows.len() - 1);
+}

@@ -1,49 +1,36 @@
-//! The cost of exact sensitivities: the parallel travel of the shipped MacPherson (±80 mm, 32 corrected
-//! steps) with the derivatives of every row and of the bump steer and camber gain with respect to all 24
-//! hardpoint coordinates (`design::parallel_travel_sensitivity`), against the same travel alone and against
-//! the 48 re-solved travels a central-difference gradient takes.
+//! The cost of exact sensitivities: the K&C suite of the shipped MacPherson with the derivatives of every
+//! figure and every table cell with respect to all 24 hardpoint coordinates (`design::suite_sensitivity`),
+//! against the suite alone and against the 48 re-run suites a central-difference gradient takes; and the
+//! same for parallel travel alone.
 
 use super::models;
 use super::report::{Cell, Judge, Kind, SectionOutput, Table, Target};
 use super::Settings;
-use elastokin_solver::Mode;
-use elastokin_suspensions::analysis::parallel_wheel_travel;
-use elastokin_suspensions::design::{hardpoint_pointers, parallel_travel_sensitivity, Parameters};
-use elastokin_suspensions::{Rig, Side};
-
-const RANGE: (f64, f64) = (-0.08, 0.08);
-const STEPS: usize = 32;
+use elastokin_suspensions::design::{hardpoint_pointers, suite_sensitivity, Parameters};
+use elastokin_suspensions::kc::{self, Analysis};
 
 /// Runs the section.
 pub fn run(s: &Settings) -> SectionOutput {
     let mut out = SectionOutput {
         title: "Sensitivities".into(),
-        intro: format!(
-            "Parallel travel of the shipped MacPherson, {:+.0}..{:+.0} mm in {STEPS} corrected steps: alone (the \
-             model read and built, the travel walked), with the exact derivatives of every row and of the bump \
-             steer and camber gain with respect to its 24 hardpoint coordinates (one back-substitution per \
-             parameter and row, each parameter's model read four times for the residual's differences), and the \
-             48 re-solved travels of a central-difference gradient. Medians of repeated runs, one thread.",
-            RANGE.0 * 1e3,
-            RANGE.1 * 1e3
-        ),
+        intro: "The K&C suite of the shipped MacPherson (every analysis it runs, default ranges, 32 corrected \
+                steps): alone (the model read, every analysis walked with its error estimate), with the exact \
+                derivatives of every figure and cell with respect to its 24 hardpoint coordinates (the suite's \
+                solves recorded, then replayed on each moved model: one Newton iteration per equilibrium and \
+                move, four moves per parameter), and the 48 re-run suites of a central-difference gradient; \
+                then parallel travel alone the same three ways. Medians of repeated runs, one thread (the \
+                parameters' replays also run in parallel: the last rows, on every core)."
+            .into(),
         ..SectionOutput::default()
     };
     let mut table = Table::new(
         "Sensitivities",
         "sensitivity.csv",
-        &["what", "parameters", "median time (s)", "time / travel alone", "status"],
+        &["analyses", "what", "parameters", "median time (s)", "time / analyses alone", "status"],
     );
-    let base = match models::shipped_document("macpherson") {
-        Ok(v) => v,
-        Err(e) => {
-            table.failed_row(Vec::new(), e);
-            out.tables.push(table);
-            return out;
-        }
-    };
-    let pointers = hardpoint_pointers(&base);
-    let parameters = match Parameters::new(&base, &pointers) {
+    let parameters = match models::shipped_document("macpherson")
+        .and_then(|base| Parameters::new(&base, &hardpoint_pointers(&base)))
+    {
         Ok(p) => p,
         Err(e) => {
             table.failed_row(Vec::new(), e);
@@ -51,59 +38,88 @@ pub fn run(s: &Settings) -> SectionOutput {
             return out;
         }
     };
-    let travel = |p: &Parameters, k: Option<(usize, f64)>| -> Result<f64, String> {
-        let file = match k {
-            Some((k, d)) => p.file_moved(k, d)?,
-            None => p.file()?,
-        };
-        let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| e.to_string())?;
-        let rows =
-            parallel_wheel_travel(&corner, RANGE.0, RANGE.1, STEPS, Mode::Corrected).map_err(|e| e.to_string())?;
-        Ok(rows[STEPS / 2].attitude.toe)
+    let file = match parameters.file() {
+        Ok(f) => f,
+        Err(e) => {
+            table.failed_row(Vec::new(), e);
+            out.tables.push(table);
+            return out;
+        }
     };
-    let alone = s.budget().time(|| travel(&parameters, None));
-    let exact = s.budget().time(|| parallel_travel_sensitivity(&parameters, RANGE.0, RANGE.1, STEPS));
-    let differences = s.batch_budget().time(|| {
-        (0..parameters.len())
-            .flat_map(|k| [1.0, -1.0].map(|d| travel(&parameters, Some((k, d * 1e-5)))))
-            .collect::<Vec<_>>()
-    });
-    if let Err(e) = parallel_travel_sensitivity(&parameters, RANGE.0, RANGE.1, STEPS) {
-        table.failed_row(vec![Cell::text("exact sensitivities")], e);
+    let settings = kc::Settings::default();
+    let suite: Vec<Analysis> = kc::ALL.into_iter().filter(|a| kc::left_out(&file, *a).is_none()).collect();
+    let one_thread = rayon::ThreadPoolBuilder::new().num_threads(1).build();
+    let n = parameters.len();
+    for (name, which) in [("suite", suite.clone()), ("parallel travel", vec![Analysis::ParallelTravel])] {
+        let run = |p: &Parameters, k: Option<(usize, f64)>| -> Result<usize, String> {
+            let file = match k {
+                Some((k, d)) => p.file_moved(k, d)?,
+                None => p.file()?,
+            };
+            let mut figures = 0;
+            for &a in &which {
+                figures += kc::run(a, &file, &settings).map_err(|e| e.to_string())?.figures.len();
+            }
+            Ok(figures)
+        };
+        let exact = || suite_sensitivity(&parameters, &which, &settings);
+        let alone = s.budget().time(|| run(&parameters, None));
+        let serial = match &one_thread {
+            Ok(pool) => s.batch_budget().time(|| pool.install(exact)),
+            Err(e) => {
+                table.failed_row(vec![Cell::text(name)], e.to_string());
+                continue;
+            }
+        };
+        let parallel = s.batch_budget().time(exact);
+        let differences = s.batch_budget().time(|| {
+            (0..n).flat_map(|k| [1.0, -1.0].map(|d| run(&parameters, Some((k, d * 1e-4))))).collect::<Vec<_>>()
+        });
+        match exact() {
+            Err(e) => table.failed_row(vec![Cell::text(name)], e),
+            Ok(r) if !r.failed.is_empty() => table.failed_row(vec![Cell::text(name)], format!("{:?}", r.failed)),
+            Ok(_) => {}
+        }
+        let threads = rayon::current_num_threads();
+        for (what, count, median) in [
+            ("alone".to_string(), 0, alone.median),
+            ("with exact sensitivities, one thread".to_string(), n, serial.median),
+            (format!("with exact sensitivities, {threads} threads"), n, parallel.median),
+            (format!("{} re-run (central differences)", 2 * n), n, differences.median),
+        ] {
+            table.row(vec![
+                Cell::text(name),
+                Cell::text(&what),
+                Cell::count(count as u64),
+                Cell::num(median),
+                Cell::num(median / alone.median),
+                Cell::text("ok"),
+            ]);
+        }
+        let key = name.replace(' ', "_");
+        out.figure(&format!("sensitivity.{key}_alone_s"), alone.median, "s", Kind::Time);
+        out.figure(&format!("sensitivity.{key}_exact_24_s"), serial.median, "s", Kind::Time);
+        out.figure(&format!("sensitivity.{key}_differences_48_s"), differences.median, "s", Kind::Time);
+        out.targets.push(Target {
+            goal: format!(
+                "all derivatives of the {name}'s figures and cells to 24 hardpoint coordinates, one thread, time \
+                 over the {name} alone"
+            ),
+            measured: Ok(serial.median / alone.median),
+            limit: 3.0,
+            unit: "×".into(),
+            judge: Judge::AtMost,
+            detail: format!(
+                "exact {:.1} ms ({:.1} ms on {threads} threads), alone {:.1} ms, central differences {:.1} ms \
+                 ({:.1}× the exact)",
+                serial.median * 1e3,
+                parallel.median * 1e3,
+                alone.median * 1e3,
+                differences.median * 1e3,
+                differences.median / serial.median
+            ),
+        });
     }
-    let n = parameters.len() as u64;
-    for (what, count, median) in [
-        ("travel alone", 0, alone.median),
-        ("travel with exact sensitivities", n, exact.median),
-        ("48 re-solved travels (central differences)", n, differences.median),
-    ] {
-        table.row(vec![
-            Cell::text(what),
-            Cell::count(count),
-            Cell::num(median),
-            Cell::num(median / alone.median),
-            Cell::text("ok"),
-        ]);
-    }
-    out.figure("sensitivity.travel_alone_s", alone.median, "s", Kind::Time);
-    out.figure("sensitivity.exact_24_s", exact.median, "s", Kind::Time);
-    out.figure("sensitivity.differences_48_s", differences.median, "s", Kind::Time);
-    out.targets.push(Target {
-        goal: "all derivatives of parallel travel's rows and headline figures to 24 hardpoint coordinates, time \
-               over the travel alone"
-            .into(),
-        measured: Ok(exact.median / alone.median),
-        limit: 3.0,
-        unit: "×".into(),
-        judge: Judge::AtMost,
-        detail: format!(
-            "exact {:.2} ms, travel alone {:.2} ms, central differences {:.2} ms ({:.1}× the exact)",
-            exact.median * 1e3,
-            alone.median * 1e3,
-            differences.median * 1e3,
-            differences.median / exact.median
-        ),
-    });
     out.tables.push(table);
     out
 }

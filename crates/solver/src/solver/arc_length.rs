@@ -32,6 +32,18 @@ impl<'m> StaticSolver<'m> {
         path: LoadPath,
         step: ArcStep,
     ) -> Result<Sweep, SolverError> {
+        match replay::next_sweep(self.taped)? {
+            replay::Replayed::Solve => self.follow_arc(state, path, step),
+            replay::Replayed::Record(taped) => {
+                let result = self.follow_arc(state, path, step);
+                replay::keep_sweep(taped, self.model, path, &result);
+                result
+            }
+            replay::Replayed::Call(recorded) => self.replay_sweep(recorded, path, state),
+        }
+    }
+
+    fn follow_arc(&mut self, state: &mut State, path: LoadPath, step: ArcStep) -> Result<Sweep, SolverError> {
         let length = match step {
             ArcStep::Load(v) | ArcStep::Scaled(v) => v,
         };
@@ -54,7 +66,7 @@ impl<'m> StaticSolver<'m> {
         }
         let n = self.work.assembly.n;
         let m = self.work.assembly.m();
-        let first = self.equilibrium(state)?;
+        let first = self.solve_equilibrium(state)?;
         let mut steps = vec![first];
         let direction = (path.end - path.start).signum();
         let q_t0 = self.load_response(state).ok_or(SolverError::LimitPoint { reached: state.t })?;

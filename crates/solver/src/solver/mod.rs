@@ -30,6 +30,7 @@ mod limit;
 mod newton;
 mod paper;
 mod predictor;
+mod replayed;
 mod tangent;
 
 pub use diagnostics::redundant_rows_at_design;
@@ -40,6 +41,7 @@ use crate::kkt::{Accuracy, AutoKkt, BackendChoice, KktBackend, KktValues};
 use crate::kkt::{FactorCounters, KktOptions};
 use crate::options::{ArcStep, LoadPath, Mode, SolverOptions, State};
 use crate::redundancy::redundant_rows;
+use crate::replay;
 use crate::results::{Diagnostics, LimitPoint, RedundantRow, StepResult, Sweep};
 use elastokin_core::{Model, Pose, BODY_DOFS};
 
@@ -69,6 +71,8 @@ pub struct StaticSolver<'m> {
     /// from a kept factorization only when it is of the full tangent.
     assembled: Option<Tangent>,
     factored: Option<Tangent>,
+    /// Its rank in the thread's recording or replay ([`replay`]), if one is under way.
+    taped: Option<replay::Taped>,
 }
 
 /// What a [`StaticSolver`] allocates for one topology of model: the KKT pattern and slot maps, the
@@ -318,6 +322,7 @@ impl<'m> StaticSolver<'m> {
                 }
             }
         };
+        let taped = replay::register(workspace.assembly.n, &workspace.assembly.active_rows)?;
         let mut solver = StaticSolver {
             model,
             options,
@@ -328,6 +333,7 @@ impl<'m> StaticSolver<'m> {
             roundoff_floor: 0.0,
             assembled: None,
             factored: None,
+            taped,
         };
         solver.check_restrained(&poses)?;
         Ok(solver)
@@ -476,6 +482,18 @@ impl<'m> StaticSolver<'m> {
     /// from the last equilibrium found, its corrector kept within the reach of its predictor so that it
     /// cannot jump to another branch of the path.
     pub fn sweep_from(&mut self, state: &mut State, path: LoadPath, mode: Mode) -> Result<Sweep, SolverError> {
+        match replay::next_sweep(self.taped)? {
+            replay::Replayed::Solve => self.walk_path(state, path, mode),
+            replay::Replayed::Record(taped) => {
+                let result = self.walk_path(state, path, mode);
+                replay::keep_sweep(taped, self.model, path, &result);
+                result
+            }
+            replay::Replayed::Call(recorded) => self.replay_sweep(recorded, path, state),
+        }
+    }
+
+    fn walk_path(&mut self, state: &mut State, path: LoadPath, mode: Mode) -> Result<Sweep, SolverError> {
         LoadPath::check_steps(path.steps).map_err(|why| SolverError::InvalidInput { what: "load path", why })?;
         if !path.start.is_finite() || !path.end.is_finite() {
             return Err(SolverError::InvalidInput {
@@ -485,7 +503,7 @@ impl<'m> StaticSolver<'m> {
         }
         state.t = path.start;
         self.work.forget_path();
-        let first = self.equilibrium(state)?;
+        let first = self.solve_equilibrium(state)?;
         let mut steps = Vec::with_capacity(path.steps + 1);
         steps.push(first);
         let dt = (path.end - path.start) / path.steps as f64;

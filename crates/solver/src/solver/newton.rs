@@ -225,6 +225,19 @@ impl<'m> StaticSolver<'m> {
 
     /// Static equilibrium at `state.t`, by Newton from `state`.
     pub fn equilibrium(&mut self, state: &mut State) -> Result<StepResult, SolverError> {
+        use super::replay::{next_equilibrium, Replayed};
+        match next_equilibrium(self.taped)? {
+            Replayed::Solve => self.solve_equilibrium(state),
+            Replayed::Record(taped) => {
+                let result = self.solve_equilibrium(state);
+                super::replay::keep_equilibrium(taped, self.model, &result);
+                result
+            }
+            Replayed::Call(recorded) => self.replay_equilibrium(recorded, state),
+        }
+    }
+
+    pub(super) fn solve_equilibrium(&mut self, state: &mut State) -> Result<StepResult, SolverError> {
         let (iterations, r) = self.newton(state, NewtonStart { guard: false, predicted: 0.0, fresh: false })?;
         Ok(self.step_result(state, iterations, &r))
     }

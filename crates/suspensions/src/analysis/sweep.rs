@@ -30,11 +30,14 @@ pub(crate) fn require_rig(corner: &Corner, rigs: &[Rig]) -> Result<(), SolverErr
 }
 
 /// Slope of `y` against `x` at `x = at` over sweep rows (in either order): a central difference of the
-/// rows on either side when a row sits exactly at `at`, else the chord of the two rows that bracket it.
-/// `None` when `at` is outside the rows' range or there are fewer than two rows.
+/// rows on either side when a row sits at `at` (to [`AT_ROW`] of the rows' span, so that the rounding of
+/// a computed `at`, such as a design wheel load, does not switch the reading to a chord), else the chord
+/// of the two rows that bracket it. `None` when `at` is outside the rows' range or there are fewer than
+/// two rows.
 pub fn slope_at<R>(rows: &[R], at: f64, x: impl Fn(&R) -> f64, y: impl Fn(&R) -> f64) -> Option<f64> {
     let xs: Vec<f64> = rows.iter().map(&x).collect();
-    let (a, b) = match xs.iter().position(|&v| v == at) {
+    let span = xs.iter().fold(0.0f64, |m, &v| m.max((v - xs[0]).abs()));
+    let (a, b) = match xs.iter().position(|&v| (v - at).abs() <= AT_ROW * span) {
         Some(k) if rows.len() >= 2 => (k.saturating_sub(1), (k + 1).min(rows.len() - 1)),
         Some(_) => return None,
         None => {
@@ -44,6 +47,11 @@ pub fn slope_at<R>(rows: &[R], at: f64, x: impl Fn(&R) -> f64, y: impl Fn(&R) ->
     };
     Some((y(&rows[b]) - y(&rows[a])) / (xs[b] - xs[a]))
 }
+
+/// How near a row's load parameter must be to a point, relative to the rows' span, for [`slope_at`] to
+/// take the row as at the point: far below any step (a sweep has at most `MAX_STEPS` of them), far above
+/// rounding.
+pub const AT_ROW: f64 = 1e-9;
 
 /// What a sweep can do besides walking its rows: read more at every step, at the cost of more
 /// factorizations, and go on through a limit point.

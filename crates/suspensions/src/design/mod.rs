@@ -6,4 +6,6 @@ pub mod parameter;
 pub mod sensitivity;
 
 pub use parameter::{hardpoint_pointers, Parameters};
-pub use sensitivity::{parallel_travel_sensitivity, TravelSensitivity};
+pub use sensitivity::{
+    analysis_sensitivity, suite_sensitivity, AnalysisSensitivity, NoDerivative, Rate, SuiteSensitivity,
+};

@@ -1,275 +1,355 @@
-//! Sensitivities through the equilibrium. At an equilibrium `F(z, p) = 0` of the corner (`z` the body
-//! poses and joint multipliers, `F = [Jᵀλ − Q; Φ]`, `p` the parameters), the implicit function theorem
-//! gives the rates of every pose and joint force at once: `A · dz/dp = −∂F/∂p` with `A = [K Jᵀ; J 0]`, the
-//! tangent the step is solved with, so each parameter costs one back-substitution. `∂F/∂p` is the change of
-//! the residual at the fixed state when the model is read again with `p` moved (a central difference of
-//! the residual alone, which is smooth in `p`: no equilibrium is solved again). Every column and figure of
-//! the K&C report is then differentiated as it is defined: the report's own reduction applied to the rows
-//! read at the equilibria moved along `(dz/dp, 1)`, each by its own moved model.
+//! Sensitivities through the equilibrium: the exact derivatives of every figure and every table cell of a
+//! K&C analysis with respect to numbers of the model file, for any analysis of the suite and any model
+//! it runs on, with no equilibrium solved again.
+//!
+//! The analysis is run once as it is, its solves recorded
+//! ([`replay::record`](elastokin_solver::replay::record)), then once per parameter and move
+//! `δ ∈ {+h, −h, +2h, −2h}` on the model read with the parameter moved, replaying the recording
+//! ([`replay::replay`](elastokin_solver::replay::replay)): each equilibrium the analysis asks for is the
+//! recorded one moved by one exact Newton iteration of the moved model. At an equilibrium `F(z, p) = 0`
+//! that iteration lands at `z − A⁻¹F(z, p+δ)`, whose rate at `δ = 0` is `−A⁻¹ ∂F/∂p = dz/dp`, the implicit
+//! function theorem's (`A = [K Jᵀ; J 0]`, the tangent the steps are solved with). Everything the analysis
+//! reads off its equilibria (rows, slopes and fits of rows, compliances from the tangent, reactions) is
+//! read by its own code on the moved model at the moved equilibria, so each figure is differentiated as it
+//! is defined; the four replays' central differences over `h` and `2h`, Richardson extrapolated, give the
+//! derivative with an error of order `h⁴`, none of the solver's tolerance in it.
+//!
+//! A derivative that does not exist is said to: an analysis whose path meets a limit point is refused;
+//! where a stop whose force rises at once on contact touches or leaves between the moves (the replay
+//! tells), the model itself is replayed too, and a figure whose slopes either side of it disagree as no
+//! smooth figure's do is [`NoDerivative::Kink`].
 //!
 //! Only corrected-mode rows are equilibria: sensitivities are of the corrected path.
 
 use super::parameter::Parameters;
-use crate::analysis::travel_row;
-use crate::build::{Corner, Rig};
-use crate::description::Side;
 use crate::file::SuspensionFile;
-use crate::kc::{Cell, Figure, Table};
-use elastokin_core::{Pose, BODY_DOFS};
-use elastokin_solver::assembly::Assembly;
-use elastokin_solver::{LoadPath, Mode, SolverOptions, StaticSolver, StepResult};
+use crate::kc::{self, Analysis, AnalysisReport, Cell, Failed, Figure, Settings, Skipped, Table};
+use elastokin_solver::replay::{record, replay, Replay, Tape};
+use elastokin_solver::Mode;
+use rayon::prelude::*;
+use std::sync::Arc;
 
 /// A parameter is moved by this fraction of its size (at least of 0.1 in the file's units: 10 µm of a
-/// hardpoint near the origin) and twice that for the central differences of the residual, Richardson
-/// extrapolated. The residual is smooth in every parameter: the error is of order `step⁴`, the rounding of
-/// order `ε / step` (a step of 1e-6 left 2e-4 of a small toe rate to rounding; 1e-4 leaves 1e-6 and less).
-pub const RELATIVE_STEP: f64 = 1e-4;
+/// hardpoint near the origin), and by twice that. What the replays read is smooth in the move: the
+/// error of the extrapolated difference is of order `step⁴`, its rounding of order `ε / step` (1e-6 left
+/// 2e-4 of a small toe rate to rounding; 1e-4 leaves 1e-6 and less).
+pub const RELATIVE_STEP: f64 = 1e-3;
 
 /// The moves of a parameter the differences take, in steps: `+h, −h, +2h, −2h`.
 const SHIFTS: [f64; 4] = [1.0, -1.0, 2.0, -2.0];
 
-/// Parallel wheel travel as the K&C report gives it, and the derivatives of its table and row-read
-/// figures with respect to each parameter, per unit of the parameter as the file gives it.
-#[derive(Debug, Clone, PartialEq)]
-pub struct TravelSensitivity {
-    /// The parameters' pointers.
-    pub pointers: Vec<String>,
-    /// The K&C report's parallel-travel table of the model as it is (its first column the wheel travel).
-    pub table: Table,
-    /// The table's derivatives: parameter × row × column (`None` where a cell is empty).
-    pub d_columns: Vec<Vec<Vec<Option<f64>>>>,
-    /// Every headline figure of the K&C report's parallel travel read from its rows, with its derivative
-    /// per parameter (`None` where the figure is missing, or has no derivative), in the report's units.
-    pub report_figures: Vec<(Figure, Vec<Option<f64>>)>,
+/// Where a stop touched or left between the moves, the largest relative disagreement of a figure's slopes
+/// either side of the model as it is (one-sided second-order differences) for it to have a derivative. A
+/// smooth figure's differ by `h³ f⁗ / 2`, far less; a kink between the moves (a stop whose force rises at
+/// once on contact) makes them differ by a share of the jump of slope of order one (all of it when the
+/// stop touches at the model itself, where central differences see only the mean of the two slopes).
+const KINK: f64 = 1e-2;
+
+/// Why a figure or table cell has no derivative.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NoDerivative {
+    /// It has no value: the report leaves it out, or the cell holds text.
+    Missing,
+    /// It has a value, but not at every moved model (it exists on one side of the model as it is).
+    MissingWhenMoved,
+    /// It is not smooth in the parameter here: its slopes over one and two steps disagree (a stop touching,
+    /// a switch of what is read, between the moves).
+    Kink,
 }
 
-impl TravelSensitivity {
+impl NoDerivative {
+    /// Why, in the user's words.
+    pub fn reason(self) -> &'static str {
+        match self {
+            NoDerivative::Missing => "the figure has no value",
+            NoDerivative::MissingWhenMoved => "the figure has no value once the parameter is moved",
+            NoDerivative::Kink => {
+                "not smooth in the parameter here (a stop touching or a reading switching as it moves): no derivative"
+            }
+        }
+    }
+}
+
+/// A derivative, or why there is none.
+pub type Rate = Result<f64, NoDerivative>;
+
+/// One K&C analysis as the report gives it, and the derivatives of its figures and table with respect to
+/// each parameter, per unit of the parameter as the file gives it, in the report's units.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AnalysisSensitivity {
+    /// The analysis as [`kc::run`] reports it on the model as it is.
+    pub report: AnalysisReport,
+    /// The figures' derivatives: parameter × figure (in the order of [`AnalysisReport::figures`]).
+    pub figures: Vec<Vec<Rate>>,
+    /// The table's derivatives: parameter × row × column.
+    pub table: Vec<Vec<Vec<Rate>>>,
+}
+
+impl AnalysisSensitivity {
     /// The values of the table's column `name` (`None` where a cell is empty, or there is no such column).
     pub fn column(&self, name: &str) -> Vec<Option<f64>> {
-        let c = self.table.columns.iter().position(|x| x == name);
-        self.table.rows.iter().map(|r| c.and_then(|c| r[c].number())).collect()
+        let table = &self.report.table;
+        let c = table.columns.iter().position(|x| x == name);
+        table.rows.iter().map(|r| c.and_then(|c| r[c].number())).collect()
     }
 
     /// The derivatives of column `name` with respect to parameter `k`, row by row.
-    pub fn d_column(&self, name: &str, k: usize) -> Vec<Option<f64>> {
-        let c = self.table.columns.iter().position(|x| x == name);
-        self.d_columns[k].iter().map(|r| c.and_then(|c| r[c])).collect()
+    pub fn d_column(&self, name: &str, k: usize) -> Vec<Rate> {
+        let c = self.report.table.columns.iter().position(|x| x == name);
+        self.table[k].iter().map(|r| c.map_or(Err(NoDerivative::Missing), |c| r[c])).collect()
     }
 
-    /// The figure `key` and its derivatives.
-    pub fn figure(&self, key: &str) -> Option<&(Figure, Vec<Option<f64>>)> {
-        self.report_figures.iter().find(|(f, _)| f.key == key)
+    /// The figure `key` and its derivatives, one per parameter.
+    pub fn figure(&self, key: &str) -> Option<(&Figure, Vec<Rate>)> {
+        let j = self.report.figures.iter().position(|f| f.key == key)?;
+        Some((&self.report.figures[j], self.figures.iter().map(|d| d[j]).collect()))
     }
 
-    /// The parameters with the largest effects on figure `index` of [`TravelSensitivity::report_figures`]
-    /// (per mm or per %, see [`effect`]), largest first, at most `count`: `(parameter, effect)`.
-    pub fn largest_effects(&self, index: usize, parameters: &Parameters, count: usize) -> Vec<(usize, f64)> {
-        let mut ranked: Vec<(usize, f64)> = self.report_figures[index]
-            .1
-            .iter()
-            .enumerate()
-            .filter_map(|(k, d)| d.map(|d| (k, effect(&parameters.pointers[k], parameters.values[k], d))))
+    /// The parameters with the largest effects on figure `j` (per mm or per %, see [`effect`]), largest
+    /// first, at most `count`: `(parameter, effect)`.
+    pub fn largest_effects(&self, j: usize, parameters: &Parameters, count: usize) -> Vec<(usize, f64)> {
+        let mut ranked: Vec<(usize, f64)> = (0..parameters.len())
+            .filter_map(|k| {
+                let d = self.figures[k][j].ok()?;
+                Some((k, effect(&parameters.pointers[k], parameters.values[k], d)))
+            })
             .collect();
         ranked.sort_by(|a, b| b.1.abs().total_cmp(&a.1.abs()));
         ranked.truncate(count);
         ranked
     }
 
-    /// `sensitivity.csv`: one row per figure and parameter — the figure, its unit and value, the parameter
-    /// and its value, the derivative (figure unit per unit of the parameter in the file) and the effect per
-    /// millimetre or per percent. A figure the report leaves out, or one without a derivative, has empty
-    /// cells.
-    pub fn figure_table(&self, parameters: &Parameters) -> Table {
-        let columns =
-            ["figure", "figure_unit", "value", "parameter", "parameter_value", "derivative", "effect", "effect_per"];
+    /// The table's derivatives as a table of their own (`sensitivity_<analysis>.csv`): per parameter and
+    /// row, the load parameter and the derivative of every other column (named `d_<column>`, per unit of
+    /// the parameter in the file; empty where there is none).
+    pub fn row_table(&self, parameters: &Parameters) -> Table {
+        let table = &self.report.table;
+        let mut columns = vec!["parameter".to_string(), table.columns[0].clone()];
+        columns.extend(table.columns.iter().skip(1).map(|c| format!("d_{c}")));
         let mut rows = Vec::new();
-        for (figure, derivatives) in &self.report_figures {
-            for (k, d) in derivatives.iter().enumerate() {
-                let pointer = &parameters.pointers[k];
-                rows.push(vec![
-                    Cell::Text(figure.key.clone()),
-                    Cell::Text(figure.unit.clone()),
-                    figure.value.map_or(Cell::Empty, Cell::from),
-                    Cell::Text(pointer.clone()),
-                    Cell::from(parameters.values[k]),
-                    d.map_or(Cell::Empty, Cell::from),
-                    d.map_or(Cell::Empty, |d| Cell::from(effect(pointer, parameters.values[k], d))),
-                    Cell::Text(effect_unit(pointer).into()),
-                ]);
+        for (k, pointer) in parameters.pointers.iter().enumerate() {
+            for (r, base) in table.rows.iter().enumerate() {
+                let mut row = vec![Cell::Text(pointer.clone()), base[0].clone()];
+                row.extend(self.table[k][r].iter().skip(1).map(|d| Cell::from(d.ok())));
+                rows.push(row);
+            }
+        }
+        Table { name: format!("sensitivity_{}", table.name), columns, rows }
+    }
+}
+
+/// Sensitivities of a K&C suite: each analysis that ran, and those left out or failed, with why.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SuiteSensitivity {
+    /// The analyses, in the suite's order.
+    pub analyses: Vec<AnalysisSensitivity>,
+    /// Analyses the suite leaves out for this model (as [`kc::run_suite`] does).
+    pub skipped: Vec<Skipped>,
+    /// Analyses whose sensitivities could not be had, with the reason.
+    pub failed: Vec<Failed>,
+}
+
+impl SuiteSensitivity {
+    /// `sensitivity.csv`: one row per figure of every analysis and parameter — the analysis, the figure,
+    /// its unit and value, the parameter and its value, the derivative (figure unit per unit of the
+    /// parameter in the file), the effect per millimetre or per percent, and why a derivative is missing.
+    pub fn figure_table(&self, parameters: &Parameters) -> Table {
+        let columns = [
+            "analysis",
+            "figure",
+            "figure_unit",
+            "value",
+            "parameter",
+            "parameter_value",
+            "derivative",
+            "effect",
+            "effect_per",
+            "no_derivative",
+        ];
+        let mut rows = Vec::new();
+        for a in &self.analyses {
+            for (j, figure) in a.report.figures.iter().enumerate() {
+                for (k, pointer) in parameters.pointers.iter().enumerate() {
+                    let d = a.figures[k][j];
+                    rows.push(vec![
+                        Cell::Text(a.report.analysis.name().into()),
+                        Cell::Text(figure.key.clone()),
+                        Cell::Text(figure.unit.clone()),
+                        Cell::from(figure.value),
+                        Cell::Text(pointer.clone()),
+                        Cell::from(parameters.values[k]),
+                        Cell::from(d.ok()),
+                        Cell::from(d.ok().map(|d| effect(pointer, parameters.values[k], d))),
+                        Cell::Text(effect_unit(pointer).into()),
+                        d.err().map_or(Cell::Empty, |e| Cell::Text(e.reason().into())),
+                    ]);
+                }
             }
         }
         Table { name: "sensitivity".into(), columns: columns.map(String::from).to_vec(), rows }
     }
+}
 
-    /// `sensitivity_rows.csv`: per parameter and row, the derivative of every column of the K&C report's
-    /// parallel-travel table (named `d_<column>`, per unit of the parameter in the file).
-    pub fn row_table(&self) -> Table {
-        let mut columns = vec!["parameter".to_string(), "wheel_travel_m".to_string()];
-        columns.extend(self.table.columns.iter().skip(1).map(|c| format!("d_{c}")));
-        let mut rows = Vec::new();
-        for (k, pointer) in self.pointers.iter().enumerate() {
-            for (r, base) in self.table.rows.iter().enumerate() {
-                let mut row = vec![Cell::Text(pointer.clone()), base[0].clone()];
-                row.extend(self.d_columns[k][r].iter().skip(1).map(|d| d.map_or(Cell::Empty, Cell::from)));
-                rows.push(row);
-            }
+/// The settings sensitivities are taken with: `settings` walked in corrected mode (only its rows are
+/// equilibria), stopping at a limit point (past one the path has no derivative).
+pub fn sensitivity_settings(settings: &Settings) -> Settings {
+    Settings { mode: Mode::Corrected, through_limits: false, ..*settings }
+}
+
+/// The derivative from the values at the [`SHIFTS`] of `h`: central differences over one and two steps,
+/// Richardson extrapolated. Where a stop touched or left between the moves, `at_model` is the value at
+/// the model itself (replayed as the others), and a figure whose slopes either side of it disagree as no
+/// smooth figure's do has no derivative.
+fn rate(values: [Option<f64>; 4], at_model: Option<Option<f64>>, h: f64) -> Rate {
+    let [Some(a), Some(b), Some(c), Some(d)] = values else { return Err(NoDerivative::MissingWhenMoved) };
+    if let Some(at) = at_model {
+        let f0 = at.ok_or(NoDerivative::MissingWhenMoved)?;
+        let (right, left) = ((-3.0 * f0 + 4.0 * a - c) / (2.0 * h), (3.0 * f0 - 4.0 * b + d) / (2.0 * h));
+        // Rounding of the values read: ten thousand ulps of the largest, or of a thousand in the report's
+        // unit (a figure near zero, such as a symmetric axle's lateral roll-centre offset in mm, is the
+        // difference of numbers of that order and carries their rounding, not its own), over the step.
+        let noise = 1e4 * f64::EPSILON * [f0, a, b, c, d].iter().fold(1e3f64, |m, v| m.max(v.abs())) / h;
+        if (right - left).abs() > KINK * right.abs().max(left.abs()) + noise {
+            return Err(NoDerivative::Kink);
         }
-        Table { name: "sensitivity_rows".into(), columns, rows }
     }
-}
-
-/// Whether a travel range can have sensitivities of figures at design: it must hold the design position.
-pub fn check_range(from: f64, to: f64) -> Result<(), String> {
-    if from < 0.0 && to > 0.0 {
-        Ok(())
+    let r = (8.0 * (a - b) - (c - d)) / (12.0 * h);
+    if r.is_finite() {
+        Ok(r)
     } else {
-        Err(format!("the range {from},{to} must hold the design position (0): the figures are slopes at design"))
+        Err(NoDerivative::MissingWhenMoved)
     }
 }
 
-/// One parameter moved by the [`SHIFTS`]: the model read again and built, and its residual's assembly on
-/// the base model's active rows.
-struct Moved {
-    step: f64,
-    files: [SuspensionFile; 4],
-    corners: [Corner; 4],
-    assemblies: [Assembly; 4],
-}
-
-/// The derivative from central differences over one and two steps, Richardson extrapolated: `values` at
-/// the [`SHIFTS`] of `h`.
-fn richardson(values: [f64; 4], h: f64) -> f64 {
-    (8.0 * (values[0] - values[1]) - (values[2] - values[3])) / (12.0 * h)
-}
-
-/// `[Jᵀλ − Q; Φ]` of `corner`'s model at the state, assembled on `assembly`.
-fn residual(assembly: &mut Assembly, corner: &Corner, poses: &[Pose], t: f64, lambda: &[f64]) -> Vec<f64> {
-    assembly.assemble(&corner.model, poses, t, lambda, None);
-    let n = assembly.n;
-    let mut out = vec![0.0; n + assembly.m()];
-    assembly.jt_times(lambda, &mut out[..n]);
-    for (o, q) in out[..n].iter_mut().zip(&assembly.applied) {
-        *o -= q;
-    }
-    out[n..].copy_from_slice(&assembly.phi);
-    out
-}
-
-/// A step's equilibrium moved by `scale · dz` (`dz`: `n` body coordinates, `BODY_DOFS` per body, then the
-/// active rows' multipliers).
-fn moved_step(step: &StepResult, dz: &[f64], scale: f64, n: usize, active: &[usize]) -> StepResult {
-    let mut moved = step.clone();
-    for (b, pose) in moved.poses.iter_mut().enumerate() {
-        let d: [f64; BODY_DOFS] = std::array::from_fn(|i| scale * dz[b * BODY_DOFS + i]);
-        pose.apply_increment6(&d);
-    }
-    for (k, &row) in active.iter().enumerate() {
-        moved.multipliers[row] += scale * dz[n + k];
-    }
-    moved
-}
-
-/// Parallel wheel travel from `from` to `to` (m, `steps` steps, corrected mode) of the left corner, and
-/// its derivatives with respect to `parameters`. A parameter whose move changes the model's parts (a
-/// connection's kind) has no derivative and is refused by name, as is a path that meets a limit point.
-pub fn parallel_travel_sensitivity(
+/// One analysis of the K&C suite on the model of `parameters`, and the derivatives of its figures and table
+/// with respect to each parameter (see the module's documentation). Refused, with the reason: an analysis
+/// that fails or meets a limit point; a parameter whose move changes the model's parts or what the
+/// analysis does (it has no derivative), or leaves the model unreadable.
+pub fn analysis_sensitivity(
+    analysis: Analysis,
     parameters: &Parameters,
-    from: f64,
-    to: f64,
-    steps: usize,
-) -> Result<TravelSensitivity, String> {
-    check_range(from, to)?;
-    let build = |file: &SuspensionFile| file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| e.to_string());
+    settings: &Settings,
+) -> Result<AnalysisSensitivity, String> {
     let file = parameters.file()?;
-    let corner = build(&file)?;
-    let mut solver = StaticSolver::new(&corner.model, SolverOptions::default()).map_err(|e| e.to_string())?;
-    let sweep = solver.sweep(LoadPath::new(from, to, steps), Mode::Corrected).map_err(|e| e.to_string())?;
-    if let Some(limit) = sweep.limit {
+    analysis_sensitivity_of(analysis, parameters, &file, &sensitivity_settings(settings))
+}
+
+fn analysis_sensitivity_of(
+    analysis: Analysis,
+    parameters: &Parameters,
+    file: &SuspensionFile,
+    settings: &Settings,
+) -> Result<AnalysisSensitivity, String> {
+    let (report, tape) = record(|| kc::run(analysis, file, settings));
+    let report = report.map_err(|e| e.message)?;
+    if let Some(at) = tape.limit_point() {
         return Err(format!(
-            "the travel meets a limit point at {:.6} m, where the corner's motion has no derivative; narrow the range",
-            limit.t
+            "the path meets a limit point at {at:.6} {}, where it has no derivative: narrow the range to end before it",
+            analysis.unit()
         ));
     }
-    let active = solver.active_rows().to_vec();
-    let n = corner.model.dofs();
-    let same_parts = |c: &Corner| {
-        c.model.dofs() == n
-            && c.model.constraint_rows() == corner.model.constraint_rows()
-            && c.model.elements().len() == corner.model.elements().len()
-    };
-    let mut moved = Vec::with_capacity(parameters.len());
-    for (k, pointer) in parameters.pointers.iter().enumerate() {
-        let step = RELATIVE_STEP * parameters.values[k].abs().max(0.1);
-        let [a, b, c, d] = SHIFTS.map(|s| parameters.file_moved(k, s * step));
-        let files = [a?, b?, c?, d?];
-        let [a, b, c, d] = files.each_ref().map(|f| build(f).map_err(|e| format!("parameter '{pointer}' moved: {e}")));
-        let corners = [a?, b?, c?, d?];
-        if !corners.iter().all(same_parts) {
+    let tape: Arc<Tape> = Arc::new(tape);
+    // The replays read the rows only: no error estimate (a Newton iteration more per row, for a figure
+    // the derivatives do not use).
+    let replayed = Settings { error_estimate: false, ..*settings };
+    let derivatives = (0..parameters.len())
+        .into_par_iter()
+        .map(|k| parameter_rates(analysis, parameters, k, &tape, &replayed, &report))
+        .collect::<Result<Vec<_>, String>>()?;
+    let (figures, table) = derivatives.into_iter().unzip();
+    Ok(AnalysisSensitivity { report, figures, table })
+}
+
+/// The rates of `report`'s figures and cells with respect to parameter `k`, from replays of `tape`.
+fn parameter_rates(
+    analysis: Analysis,
+    parameters: &Parameters,
+    k: usize,
+    tape: &Arc<Tape>,
+    settings: &Settings,
+    report: &AnalysisReport,
+) -> Result<(Vec<Rate>, Vec<Vec<Rate>>), String> {
+    let pointer = &parameters.pointers[k];
+    let h = RELATIVE_STEP * parameters.values[k].abs().max(0.1);
+    let replayed = |shift: f64| -> Result<Replay<AnalysisReport>, String> {
+        let file = parameters.file_moved(k, shift * h)?;
+        let run = replay(tape, || kc::run(analysis, &file, settings)).map_err(|e| {
+            format!(
+                "parameter '{pointer}' changes what the analysis does when moved ({e}): it has no derivative; give \
+                 a number that moves a part, not one that chooses what the parts are"
+            )
+        })?;
+        let value = run.value.map_err(|e| format!("parameter '{pointer}' moved by {:e}: {}", shift * h, e.message))?;
+        let shape = |t: &Table| (t.columns.clone(), t.rows.len());
+        if shape(&value.table) != shape(&report.table) {
             return Err(format!(
-                "parameter '{pointer}' changes the model's parts when moved (its joints or elements): it has no \
-                 derivative; give a number that moves a part, not one that chooses what the parts are"
+                "parameter '{pointer}' changes the rows or columns of the analysis's table when moved: it has no \
+                 derivative"
             ));
         }
-        let assemblies = corners.each_ref().map(|c| Assembly::new(&c.model, active.clone()));
-        moved.push(Moved { step, files, corners, assemblies });
+        Ok(Replay { value, kinked: run.kinked })
+    };
+    let mut moved = Vec::with_capacity(SHIFTS.len());
+    let mut kinked = false;
+    for shift in SHIFTS {
+        let run = replayed(shift)?;
+        kinked |= run.kinked;
+        moved.push(run.value);
     }
-
-    // dz/dp of every row, per parameter: one back-substitution with the row's tangent each.
-    let mut rates: Vec<Vec<Vec<f64>>> = vec![Vec::with_capacity(sweep.steps.len()); parameters.len()];
-    for step in &sweep.steps {
-        let state = solver.state_of(step);
-        solver.factorize_tangent(&state).map_err(|e| e.to_string())?;
-        for (k, m) in moved.iter_mut().enumerate() {
-            let f: Vec<Vec<f64>> = (0..4)
-                .map(|i| residual(&mut m.assemblies[i], &m.corners[i], &state.poses, state.t, &state.lambda))
-                .collect();
-            let mut dz: Vec<f64> =
-                (0..f[0].len()).map(|r| -richardson([f[0][r], f[1][r], f[2][r], f[3][r]], m.step)).collect();
-            solver.solve_factored(&mut dz).map_err(|e| e.to_string())?;
-            rates[k].push(dz);
-        }
-    }
-
-    // Every column and figure, differentiated as it is defined: the report's reduction applied to the rows
-    // read at (z + s·dz/dp, p + s) for each shift s, each by its own model, Richardson extrapolated.
-    let base_rows: Vec<_> = sweep.steps.iter().map(|s| travel_row(&corner, s)).collect();
-    let table = crate::kc::parallel_travel_table(&corner, &base_rows);
-    let mut report_figures: Vec<(Figure, Vec<Option<f64>>)> =
-        crate::kc::parallel_travel_figures(&file, &corner, (from, to), &base_rows)
-            .into_iter()
-            .map(|f| (f, Vec::with_capacity(parameters.len())))
-            .collect();
-    let mut d_columns = Vec::with_capacity(parameters.len());
-    for (m, rates) in moved.iter().zip(&rates) {
-        let (mut tables, mut figures) = (Vec::with_capacity(4), Vec::with_capacity(4));
-        for (i, shift) in SHIFTS.into_iter().enumerate() {
-            let rows: Vec<_> = sweep
-                .steps
-                .iter()
-                .zip(rates)
-                .map(|(step, dz)| travel_row(&m.corners[i], &moved_step(step, dz, shift * m.step, n, &active)))
-                .collect();
-            tables.push(crate::kc::parallel_travel_table(&m.corners[i], &rows));
-            figures.push(crate::kc::parallel_travel_figures(&m.files[i], &m.corners[i], (from, to), &rows));
-        }
-        let derivative = |v: [Option<f64>; 4]| match v {
-            [Some(a), Some(b), Some(c), Some(d)] => Some(richardson([a, b, c, d], m.step)).filter(|x| x.is_finite()),
-            _ => None,
-        };
-        d_columns.push(
-            (0..table.rows.len())
-                .map(|r| {
-                    (0..table.columns.len())
-                        .map(|c| derivative([0, 1, 2, 3].map(|i| tables[i].rows[r][c].number())))
-                        .collect()
+    // A stop touched or left between the moves: the model itself replayed too, to tell a kink.
+    let at_model = if kinked { Some(replayed(0.0)?.value) } else { None };
+    let value = |run: &AnalysisReport, key: &str| run.figure(key).and_then(|f| f.value);
+    let figures = report
+        .figures
+        .iter()
+        .map(|f| match f.value {
+            None => Err(NoDerivative::Missing),
+            Some(_) => {
+                rate([0, 1, 2, 3].map(|i| value(&moved[i], &f.key)), at_model.as_ref().map(|m| value(m, &f.key)), h)
+            }
+        })
+        .collect();
+    let table = (0..report.table.rows.len())
+        .map(|r| {
+            (0..report.table.columns.len())
+                .map(|c| match report.table.rows[r][c] {
+                    Cell::Number(_) => rate(
+                        [0, 1, 2, 3].map(|i| moved[i].table.rows[r][c].number()),
+                        at_model.as_ref().map(|m| m.table.rows[r][c].number()),
+                        h,
+                    ),
+                    _ => Err(NoDerivative::Missing),
                 })
-                .collect(),
-        );
-        for (j, (_, derivatives)) in report_figures.iter_mut().enumerate() {
-            derivatives.push(derivative([0, 1, 2, 3].map(|i| figures[i].get(j).and_then(|f| f.value))));
+                .collect()
+        })
+        .collect();
+    Ok((figures, table))
+}
+
+/// The K&C suite's analyses `which` (every one the model has when empty, as [`kc::run_suite`] chooses
+/// them) on the model of `parameters`, each with its derivatives ([`analysis_sensitivity`]). An analysis
+/// whose sensitivities cannot be had costs only itself: it is in [`SuiteSensitivity::failed`] with why.
+/// A parameter the model does not read right is refused for all.
+pub fn suite_sensitivity(
+    parameters: &Parameters,
+    which: &[Analysis],
+    settings: &Settings,
+) -> Result<SuiteSensitivity, String> {
+    let file = parameters.file()?;
+    let settings = sensitivity_settings(settings);
+    let chosen: Vec<Analysis> = if which.is_empty() { kc::ALL.to_vec() } else { which.to_vec() };
+    let mut out = SuiteSensitivity { analyses: Vec::new(), skipped: Vec::new(), failed: Vec::new() };
+    for analysis in chosen {
+        if let (Some(reason), true) = (kc::left_out(&file, analysis), which.is_empty()) {
+            out.skipped.push(Skipped { analysis, reason: reason.into() });
+            continue;
+        }
+        match analysis_sensitivity_of(analysis, parameters, &file, &settings) {
+            Ok(a) => out.analyses.push(a),
+            Err(reason) => out.failed.push(Failed { analysis, reason }),
         }
     }
-    Ok(TravelSensitivity { pointers: parameters.pointers.clone(), table, d_columns, report_figures })
+    Ok(out)
 }
 
 /// How a parameter's effect is told: per millimetre of a length (a hardpoint coordinate, a Chrono part's

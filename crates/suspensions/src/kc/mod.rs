@@ -22,7 +22,7 @@ pub use settings::{
     mode_from_word, mode_word, Analysis, AnalysisError, Settings, Tolerance, ALL, MAX_RANGE_FRACTION, MAX_RANGE_LOAD,
     MAX_RANGE_TRAVEL, MIN_RANGE,
 };
-pub use travel::{ideal_outer_steer, parallel_travel_figures, parallel_travel_table};
+pub use travel::ideal_outer_steer;
 
 use crate::file::SuspensionFile;
 use elastokin_solver::LoadPath;
@@ -94,6 +94,36 @@ pub fn check_settings(analysis: Analysis, settings: &Settings) -> Result<(), Ana
     Ok(())
 }
 
+/// Why the suite leaves `analysis` out for the model in `file`, when it does: the static load case without
+/// a vehicle section, steering of a corner without a steering input, the model's own loads when it has
+/// none, roll of an axle whose joints lock it. Asked for by name, an analysis runs anyway.
+pub fn left_out(file: &SuspensionFile, analysis: Analysis) -> Option<&'static str> {
+    let (steered, loaded) = match &file.suspension {
+        crate::description::Template::General(g) => (g.is_steered(), !g.loads.is_empty()),
+        _ => (true, false),
+    };
+    // The roll rig's own refusal decides: a solid axle whose joints lock its roll cannot travel opposite.
+    let roll_locked = |template: &crate::description::Template| {
+        crate::build::CornerTemplate::builds_on_axle_only(template)
+            && crate::build::Axle::build(template, crate::build::AxleRig::OppositeTravel).err()
+                == Some(crate::build::rig::roll_locked())
+    };
+    match analysis {
+        Analysis::StaticLoad if file.vehicle.is_none() => {
+            Some("the model file has no \"vehicle\" section with the corner_load to carry")
+        }
+        Analysis::Steering if !steered => {
+            Some("the corner has no steering input (corner.tie_rod, or axle.steering_link): its toe is held by its own links")
+        }
+        Analysis::ModelLoads if !loaded => Some("the model file has no load case (\"loads\" of the general form)"),
+        Analysis::Roll if roll_locked(&file.suspension) => Some(
+            "the axle's joints lock its roll (with the wheels free it has one way to move, in travel): its \
+             wheels cannot travel opposite",
+        ),
+        _ => None,
+    }
+}
+
 /// What [`run_suite`] tells its caller as it goes.
 #[derive(Debug, Clone, Copy)]
 pub enum SuiteEvent<'a> {
@@ -146,32 +176,8 @@ pub fn run_suite_checked(
         warnings,
     };
     report.warnings.extend(crate::check::bushing_deflection_at_design(file));
-    let (steered, loaded) = match &file.suspension {
-        crate::description::Template::General(g) => (g.is_steered(), !g.loads.is_empty()),
-        _ => (true, false),
-    };
-    // The roll rig's own refusal decides: a solid axle whose joints lock its roll cannot travel opposite.
-    let roll_locked = |template: &crate::description::Template| {
-        crate::build::CornerTemplate::builds_on_axle_only(template)
-            && crate::build::Axle::build(template, crate::build::AxleRig::OppositeTravel).err()
-                == Some(crate::build::rig::roll_locked())
-    };
     for analysis in chosen {
-        let skip = match analysis {
-            Analysis::StaticLoad if file.vehicle.is_none() => {
-                Some("the model file has no \"vehicle\" section with the corner_load to carry")
-            }
-            Analysis::Steering if !steered => {
-                Some("the corner has no steering input (corner.tie_rod, or axle.steering_link): its toe is held by its own links")
-            }
-            Analysis::ModelLoads if !loaded => Some("the model file has no load case (\"loads\" of the general form)"),
-            Analysis::Roll if roll_locked(&file.suspension) => Some(
-                "the axle's joints lock its roll (with the wheels free it has one way to move, in travel): its \
-                 wheels cannot travel opposite",
-            ),
-            _ => None,
-        };
-        if let (Some(reason), true) = (skip, which.is_empty()) {
+        if let (Some(reason), true) = (left_out(file, analysis), which.is_empty()) {
             report.skipped.push(Skipped { analysis, reason: reason.into() });
             progress(SuiteEvent::Skipped(&report.skipped[report.skipped.len() - 1]));
             continue;

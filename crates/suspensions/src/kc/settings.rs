@@ -156,6 +156,11 @@ pub struct Settings {
     /// in the scaled space of load and displacement, so they change the load less where the suspension
     /// gives way). `None`: one load step, `|to − from| / steps`. Only for a run of one analysis.
     pub arc_step: Option<f64>,
+    /// Every row read again one exact Newton iteration away, for the error estimate (one factorization
+    /// more per row). Off only where the estimate is not wanted (a sensitivity's replays, which read the
+    /// rows alone); a report without it says "not estimated".
+    #[serde(skip)]
+    pub error_estimate: bool,
 }
 
 impl Default for Settings {
@@ -170,6 +175,7 @@ impl Default for Settings {
             tolerance: Tolerance::default(),
             through_limits: false,
             arc_step: None,
+            error_estimate: true,
         }
     }
 }
@@ -196,7 +202,7 @@ impl Settings {
     pub(super) fn extras(&self, range: (f64, f64)) -> SweepExtras {
         let one_step = (range.1 - range.0).abs() / self.steps as f64;
         SweepExtras {
-            error_estimate: true,
+            error_estimate: self.error_estimate,
             compliance: self.compliance,
             through_limits: self.through_limits.then(|| self.arc_step.unwrap_or(one_step)),
         }

@@ -184,7 +184,7 @@ fn curvature_at(rows: &[AxleRow], x: impl Fn(&AxleRow) -> f64, y: impl Fn(&AxleR
 }
 
 /// The parallel-travel table of `rows` of `corner` (half-track and wheelbase change from its design wheel).
-pub fn parallel_travel_table(corner: &Corner, rows: &[TravelRow]) -> Table {
+fn parallel_travel_table(corner: &Corner, rows: &[TravelRow]) -> Table {
     let wheel = &corner.wheel;
     let sign = wheel.side.sign();
     Table::numbers(
@@ -231,7 +231,7 @@ pub fn parallel_travel_table(corner: &Corner, rows: &[TravelRow]) -> Table {
 
 /// The parallel-travel headline figures of `rows` of `corner`, walked over `range` (m), of the model in
 /// `file` (its tyre rate): slopes and values at design.
-pub fn parallel_travel_figures(
+fn parallel_travel_figures(
     file: &SuspensionFile,
     corner: &Corner,
     range: (f64, f64),
@@ -498,12 +498,19 @@ pub fn ideal_outer_steer(inner: f64, track: f64, wheelbase: f64) -> f64 {
     (1.0 / (1.0 / inner.tan() + track / wheelbase)).atan()
 }
 
-/// Ackermann figures of one steering row: `(inner, outer, ideal outer)` steer angles (rad, positive).
+/// The mean steer angle below which a row counts as straight ahead (rad, 0.01°): there Ackermann's
+/// figures are ratios of differences of static toe, noise with no meaning (1e8 % was printed at zero rack
+/// travel).
+const STRAIGHT_AHEAD: f64 = 1.75e-4;
+
+/// Ackermann figures of one steering row: `(inner, outer, ideal outer)` steer angles (rad, positive);
+/// `None` straight ahead.
 fn ackermann(r: &AxleRow, track: f64, wheelbase: f64) -> Option<(f64, f64, f64)> {
     let (left, right) = (steer_angle(r.left.toe, Side::Left), steer_angle(r.right.toe, Side::Right));
     // Turning left, the left wheel is the inner one.
     let (inner, outer) = if left + right > 0.0 { (left, right) } else { (-right, -left) };
-    (inner > 1e-9).then(|| (inner, outer, ideal_outer_steer(inner, track, wheelbase)))
+    (0.5 * (left + right).abs() > STRAIGHT_AHEAD && inner > 0.0)
+        .then(|| (inner, outer, ideal_outer_steer(inner, track, wheelbase)))
 }
 
 pub(super) fn steering(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {

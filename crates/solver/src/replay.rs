@@ -1,0 +1,330 @@
+//! A run recorded and replayed with a moved model: how a derivative of anything a run computes is taken
+//! through its equilibria without solving them again.
+//!
+//! [`record`] runs a computation as it is and keeps, for every [`StaticSolver`](crate::StaticSolver) the computation creates
+//! on this thread (in the order they are created), what each of its solves returned: each
+//! [`StaticSolver::equilibrium`](crate::StaticSolver::equilibrium), [`StaticSolver::sweep_from`](crate::StaticSolver::sweep_from) and
+//! [`StaticSolver::arc_length_sweep_from`](crate::StaticSolver::arc_length_sweep_from) (and the calls built on them). [`replay`] runs the same computation again, typically on a model read
+//! with one number moved by `δ`: each solver it creates takes the place of the recorded one of the same
+//! rank, and each of its solves, instead of solving, returns the recorded equilibria each moved by one
+//! exact Newton iteration of the moved model ([`StaticSolver::newton_correction`](crate::StaticSolver::newton_correction)), at the load parameter
+//! the replayed call asks for. Everything the computation then reads off the equilibria (rows, slopes,
+//! compliances, reactions) is read as usual.
+//!
+//! Why this gives exact derivatives: at a recorded equilibrium `z` of the model `p`, one Newton iteration
+//! of the model `p + δ` lands on `z − A(z, p+δ)⁻¹ F(z, p+δ)`, a smooth function of `δ` whose derivative at
+//! `δ = 0` is `−A⁻¹ ∂F/∂p = dz/dp`, the implicit function theorem's rate of the equilibrium (its error
+//! against the moved equilibrium is of order `δ²`). So what the replayed run returns, as a function of
+//! `δ`, has at `δ = 0` the derivative of what the run computes; a difference quotient of replays,
+//! Richardson extrapolated, gives it to the order of the quotient, with no equilibrium solved again and
+//! none of the solver's tolerance in it.
+//!
+//! A replay that takes another path than the recording (a solver of other parts, another sequence of
+//! solves) is reported, never papered over: [`replay`] returns [`Diverged`].
+
+use crate::error::SolverError;
+use crate::options::LoadPath;
+use crate::results::{StepResult, Sweep};
+use elastokin_core::Model;
+use std::cell::RefCell;
+use std::sync::Arc;
+
+/// What one solve of a recorded solver returned.
+#[derive(Debug, Clone)]
+enum Call {
+    /// An equilibrium at one load parameter, and the pieces of its elements' laws there.
+    Equilibrium(Result<StepResult, SolverError>, Pieces),
+    /// A sweep along `path` (by load steps or by arc length), and the pieces at each of its steps.
+    Sweep { path: LoadPath, result: Result<Sweep, SolverError>, pieces: Vec<Pieces> },
+}
+
+/// One recorded solver: its model's size and kept constraint rows, and its solves in order.
+#[derive(Debug, Clone)]
+struct Recorded {
+    dofs: usize,
+    active: Vec<usize>,
+    calls: Vec<Call>,
+}
+
+/// The solves of a recorded run ([`record`]), to [`replay`] it.
+#[derive(Debug, Clone, Default)]
+pub struct Tape {
+    solvers: Vec<Recorded>,
+}
+
+impl Tape {
+    /// How many solvers the run created.
+    pub fn solvers(&self) -> usize {
+        self.solvers.len()
+    }
+
+    /// How many equilibria the run's solves returned.
+    pub fn equilibria(&self) -> usize {
+        let count = |c: &Call| match c {
+            Call::Equilibrium(r, _) => usize::from(r.is_ok()),
+            Call::Sweep { result, .. } => result.as_ref().map_or(0, |s| s.steps.len()),
+        };
+        self.solvers.iter().flat_map(|s| &s.calls).map(count).sum()
+    }
+
+    /// The load parameter of the first limit point a recorded sweep met, if any: where the path has no
+    /// derivative with respect to the model.
+    pub fn limit_point(&self) -> Option<f64> {
+        self.solvers.iter().flat_map(|s| &s.calls).find_map(|c| match c {
+            Call::Sweep { result: Ok(sweep), .. } => sweep.limit.as_ref().map(|l| l.t),
+            _ => None,
+        })
+    }
+}
+
+/// A replay that took another path than its recording: the replayed computation created a solver of
+/// other parts, or asked for other solves.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("the moved model's run took another path than the model's own: {0}")]
+pub struct Diverged(pub String);
+
+/// What this thread is doing with its solvers.
+enum Active {
+    Recording(Tape),
+    Replaying { tape: Arc<Tape>, next_solver: usize, used: Vec<usize>, diverged: Option<String>, kinked: bool },
+}
+
+thread_local! {
+    static ACTIVE: RefCell<Option<Active>> = const { RefCell::new(None) };
+}
+
+/// Restores what the thread was doing before a [`record`] or [`replay`], also when the computation
+/// panics.
+struct Restore(Option<Option<Active>>);
+
+impl Drop for Restore {
+    fn drop(&mut self) {
+        if let Some(previous) = self.0.take() {
+            ACTIVE.with(|a| *a.borrow_mut() = previous);
+        }
+    }
+}
+
+impl Restore {
+    /// What the thread did while the guard held, the earlier state put back.
+    fn finish(mut self) -> Option<Active> {
+        let previous = self.0.take().expect("taken once");
+        ACTIVE.with(|a| std::mem::replace(&mut *a.borrow_mut(), previous))
+    }
+}
+
+fn begin(active: Active) -> Restore {
+    Restore(Some(ACTIVE.with(|a| a.borrow_mut().replace(active))))
+}
+
+/// Runs `run`, recording the solves of every [`StaticSolver`](crate::StaticSolver) it creates on this thread.
+pub fn record<R>(run: impl FnOnce() -> R) -> (R, Tape) {
+    let guard = begin(Active::Recording(Tape::default()));
+    let out = run();
+    match guard.finish() {
+        Some(Active::Recording(tape)) => (out, tape),
+        _ => unreachable!("the recording is this call's"),
+    }
+}
+
+/// What a replay returned: the computation's result, and whether an element changed the piece of its force
+/// law between a recorded equilibrium and its move ([`ForceElement::piece`](elastokin_core::ForceElement::piece):
+/// a stop touched or left), so that what the replay read has a kink between the model and the moved one.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Replay<R> {
+    /// What the computation returned.
+    pub value: R,
+    /// Whether a stop touched or left at some equilibrium as the model moved.
+    pub kinked: bool,
+}
+
+/// Runs `run` with its solvers replaying `tape` (see the module's documentation). [`Diverged`] when the
+/// run created solvers of other parts or in another number, or asked for other solves than were recorded.
+pub fn replay<R>(tape: &Arc<Tape>, run: impl FnOnce() -> R) -> Result<Replay<R>, Diverged> {
+    let used = vec![0; tape.solvers.len()];
+    let guard = begin(Active::Replaying { tape: tape.clone(), next_solver: 0, used, diverged: None, kinked: false });
+    let out = run();
+    let Some(Active::Replaying { next_solver, used, diverged, kinked, .. }) = guard.finish() else {
+        unreachable!("the replay is this call's")
+    };
+    if let Some(why) = diverged {
+        return Err(Diverged(why));
+    }
+    if next_solver != tape.solvers.len() {
+        return Err(Diverged(format!("it created {next_solver} solvers where {} were recorded", tape.solvers.len())));
+    }
+    if let Some(k) = (0..used.len()).find(|&k| used[k] != tape.solvers[k].calls.len()) {
+        return Err(Diverged(format!(
+            "solver {k} asked for {} solves where {} were recorded",
+            used[k],
+            tape.solvers[k].calls.len()
+        )));
+    }
+    Ok(Replay { value: out, kinked })
+}
+
+/// Notes in the thread's replay that a stop touched or left as the model moved.
+pub(crate) fn note_kink() {
+    ACTIVE.with(|a| {
+        if let Some(Active::Replaying { kinked, .. }) = a.borrow_mut().as_mut() {
+            *kinked = true;
+        }
+    });
+}
+
+/// A solver's part in a recording or replay: its rank among the run's solvers.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Taped {
+    solver: usize,
+}
+
+/// What a taped solver's solve is to do.
+pub(crate) enum Replayed<T> {
+    /// No recording or replay on this thread: solve.
+    Solve,
+    /// Recording: solve, and keep what it returned.
+    Record(Taped),
+    /// Replaying: move what was recorded.
+    Call(T),
+}
+
+/// Which piece of its force law each element of a model is on at an equilibrium
+/// ([`StepResult::element_pieces`]).
+pub(crate) type Pieces = Vec<u8>;
+
+/// A recorded equilibrium, and the pieces of the recorded model's elements there.
+pub(crate) type RecordedEquilibrium = (Result<StepResult, SolverError>, Pieces);
+
+/// A recorded sweep: its path, what it returned, and the pieces at each of its steps.
+pub(crate) type RecordedSweep = (LoadPath, Result<Sweep, SolverError>, Vec<Pieces>);
+
+/// Registers a new solver of `dofs` body coordinates and kept rows `active` with the thread's recording
+/// or replay. In a replay, a solver unlike the recorded one of its rank is refused.
+pub(crate) fn register(dofs: usize, active: &[usize]) -> Result<Option<Taped>, SolverError> {
+    ACTIVE.with(|a| {
+        let mut a = a.borrow_mut();
+        match a.as_mut() {
+            None => Ok(None),
+            Some(Active::Recording(tape)) => {
+                tape.solvers.push(Recorded { dofs, active: active.to_vec(), calls: Vec::new() });
+                Ok(Some(Taped { solver: tape.solvers.len() - 1 }))
+            }
+            Some(Active::Replaying { tape, next_solver, diverged, .. }) => {
+                let k = *next_solver;
+                *next_solver += 1;
+                let why = match tape.solvers.get(k) {
+                    None => Some(format!("it created more solvers than the {} recorded", tape.solvers.len())),
+                    Some(r) if r.dofs != dofs || r.active != active => Some(format!(
+                        "solver {k} has {dofs} body coordinates and {} kept constraint rows where the recorded one \
+                         had {} and {}: the parts or the redundant joints differ",
+                        active.len(),
+                        r.dofs,
+                        r.active.len()
+                    )),
+                    Some(_) => None,
+                };
+                match why {
+                    Some(why) => Err(diverge(diverged, why)),
+                    None => Ok(Some(Taped { solver: k })),
+                }
+            }
+        }
+    })
+}
+
+fn diverge(diverged: &mut Option<String>, why: String) -> SolverError {
+    diverged.get_or_insert(why.clone());
+    SolverError::InvalidInput { what: "replay", why }
+}
+
+/// What a taped solver's next single equilibrium is to do.
+pub(crate) fn next_equilibrium(taped: Option<Taped>) -> Result<Replayed<RecordedEquilibrium>, SolverError> {
+    next(taped, false, |call| match call {
+        Call::Equilibrium(r, pieces) => Some((r.clone(), pieces.clone())),
+        Call::Sweep { .. } => None,
+    })
+}
+
+/// What a taped solver's next sweep is to do.
+pub(crate) fn next_sweep(taped: Option<Taped>) -> Result<Replayed<RecordedSweep>, SolverError> {
+    next(taped, true, |call| match call {
+        Call::Sweep { path, result, pieces } => Some((*path, result.clone(), pieces.clone())),
+        Call::Equilibrium(..) => None,
+    })
+}
+
+fn next<T>(taped: Option<Taped>, sweep: bool, take: impl Fn(&Call) -> Option<T>) -> Result<Replayed<T>, SolverError> {
+    let Some(taped) = taped else { return Ok(Replayed::Solve) };
+    ACTIVE.with(|a| {
+        let mut a = a.borrow_mut();
+        match a.as_mut() {
+            Some(Active::Replaying { tape, used, diverged, .. }) => {
+                let k = taped.solver;
+                let Some(call) = tape.solvers[k].calls.get(used[k]) else {
+                    return Err(diverge(diverged, format!("solver {k} asked for more solves than were recorded")));
+                };
+                used[k] += 1;
+                match take(call) {
+                    Some(t) => Ok(Replayed::Call(t)),
+                    None => Err(diverge(
+                        diverged,
+                        format!("solver {k} asked for a {} where a {} was recorded", kind(sweep), kind(!sweep)),
+                    )),
+                }
+            }
+            // A solver registered with a recording that has since ended solves as usual.
+            Some(Active::Recording(_)) => Ok(Replayed::Record(taped)),
+            None => Ok(Replayed::Solve),
+        }
+    })
+}
+
+fn kind(sweep: bool) -> &'static str {
+    if sweep {
+        "sweep"
+    } else {
+        "single equilibrium"
+    }
+}
+
+/// Keeps what a recorded solver of `model` returned for an equilibrium.
+pub(crate) fn keep_equilibrium(taped: Taped, model: &Model, result: &Result<StepResult, SolverError>) {
+    let pieces = result.as_ref().map_or_else(|_| Vec::new(), |s| s.element_pieces(model));
+    keep(taped, Call::Equilibrium(result.clone(), pieces));
+}
+
+/// Keeps what a recorded solver of `model` returned for a sweep along `path`.
+pub(crate) fn keep_sweep(taped: Taped, model: &Model, path: LoadPath, result: &Result<Sweep, SolverError>) {
+    let pieces =
+        result.as_ref().map_or_else(|_| Vec::new(), |s| s.steps.iter().map(|s| s.element_pieces(model)).collect());
+    keep(taped, Call::Sweep { path, result: result.clone(), pieces });
+}
+
+fn keep(taped: Taped, call: Call) {
+    ACTIVE.with(|a| {
+        if let Some(Active::Recording(tape)) = a.borrow_mut().as_mut() {
+            if let Some(r) = tape.solvers.get_mut(taped.solver) {
+                r.calls.push(call);
+            }
+        }
+    });
+}
+
+/// Where the load parameter of a recorded sweep's `index`-th equilibrium (`None`: a limit point) lies on the replayed path: the
+/// same step of it, computed as the sweep computes its steps, when the recorded one sat on a step (a
+/// replayed run may sweep from another start, a load that depends on the model, and a reading that looks
+/// for the row at a point must find it as the sweep itself would); else the same fraction of the way.
+pub(crate) fn moved_t(t: f64, index: Option<usize>, recorded: &LoadPath, path: &LoadPath) -> f64 {
+    if let Some(i) = index.filter(|_| recorded.steps == path.steps) {
+        let on_step = |p: &LoadPath| p.start + (p.end - p.start) / p.steps as f64 * i as f64;
+        if t == on_step(recorded) {
+            return on_step(path);
+        }
+    }
+    let span = recorded.end - recorded.start;
+    if span == 0.0 {
+        t - recorded.start + path.start
+    } else {
+        path.start + (t - recorded.start) / span * (path.end - path.start)
+    }
+}

@@ -1,0 +1,56 @@
+//! The solves of a replayed run (see [`crate::replay`]): each a recorded equilibrium moved by one exact
+//! Newton iteration of the solver's model.
+
+use super::StaticSolver;
+use crate::error::SolverError;
+use crate::options::{LoadPath, State};
+use crate::replay::{moved_t, note_kink, RecordedEquilibrium, RecordedSweep};
+use crate::results::{StepResult, Sweep};
+
+impl StaticSolver<'_> {
+    /// A recorded equilibrium moved to this solver's model at load `t`: one exact Newton iteration.
+    /// A stop touching or leaving between the recorded model there (`pieces`) and the moved is noted.
+    fn moved(&mut self, recorded: &StepResult, pieces: &[u8], t: f64) -> Result<StepResult, SolverError> {
+        let mut at = recorded.clone();
+        at.t = t;
+        let moved = self.newton_correction(&at)?;
+        if moved.element_pieces(self.model) != pieces {
+            note_kink();
+        }
+        Ok(moved)
+    }
+
+    /// The replay of a single equilibrium, `state` left at it.
+    pub(super) fn replay_equilibrium(
+        &mut self,
+        recorded: RecordedEquilibrium,
+        state: &mut State,
+    ) -> Result<StepResult, SolverError> {
+        let step = self.moved(&recorded.0?, &recorded.1, state.t)?;
+        *state = self.state_of(&step);
+        Ok(step)
+    }
+
+    /// The replay of a sweep along `path`, `state` left at its last equilibrium.
+    pub(super) fn replay_sweep(
+        &mut self,
+        recorded: RecordedSweep,
+        path: LoadPath,
+        state: &mut State,
+    ) -> Result<Sweep, SolverError> {
+        let (from, sweep, pieces) = (recorded.0, recorded.1?, recorded.2);
+        let mut steps = Vec::with_capacity(sweep.steps.len());
+        for (i, (s, pieces)) in sweep.steps.iter().zip(&pieces).enumerate() {
+            steps.push(self.moved(s, pieces, moved_t(s.t, Some(i), &from, &path))?);
+        }
+        if let Some(last) = steps.last() {
+            *state = self.state_of(last);
+        }
+        let limit = sweep.limit.map(|mut l| {
+            l.t = moved_t(l.t, None, &from, &path);
+            l.beyond = moved_t(l.beyond, None, &from, &path);
+            l
+        });
+        Ok(Sweep { mode: sweep.mode, steps, limit })
+    }
+}

@@ -1,0 +1,126 @@
+//! A run recorded and replayed with a moved model (`elastokin_solver::replay`): what the replay
+//! returns moves with the model at the rate of its equilibrium, against the lever's moment balance
+//! written out here, and a replay that takes another path says so.
+
+use elastokin_core::{BodyRef, JointSpec, Model, Pose, Vec3};
+use elastokin_elements::{CoilSpring, PointForce};
+use elastokin_solver::replay::{record, replay, Diverged};
+use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult};
+use std::sync::Arc;
+
+const TIP_LOAD: f64 = 500.0;
+const TOP: [f64; 3] = [0.0, 0.0, 0.2];
+const SEAT: f64 = 0.3;
+const TIP: f64 = 0.5;
+
+/// A lever hinged at the origin about y, held by a spring of rate `k` (N/m) from `TOP` to its seat, its tip
+/// loaded downward by `TIP_LOAD` times the load parameter.
+fn lever(k: f64) -> Model {
+    let mut model = Model::new();
+    let lever = model.add_body("lever", Pose::at(Vec3::new(0.25, 0.0, 0.0))).unwrap();
+    model.add_joint(JointSpec::revolute("pivot", BodyRef::Ground, lever, Vec3::zeros(), Vec3::y())).unwrap();
+    let seat = Vec3::new(SEAT, 0.0, 0.0);
+    let top = Vec3::from(TOP);
+    let spring = CoilSpring::new("spring", BodyRef::Ground, top, lever.into(), seat, k, (seat - top).norm()).unwrap();
+    model.add_element(spring).unwrap();
+    let tip = PointForce::new("tip", lever.into(), Vec3::new(TIP, 0.0, 0.0), Vec3::new(0.0, 0.0, -TIP_LOAD)).unwrap();
+    model.add_element(tip).unwrap();
+    model
+}
+
+/// The lever's rotation about y (tip down +) at a step.
+fn angle(step: &StepResult) -> f64 {
+    let p = step.poses[0].position;
+    (-p.z).atan2(p.x)
+}
+
+/// The moment about the hinge (y) of the spring and the tip load on the lever turned by `theta`.
+fn moment(theta: f64, k: f64, load: f64) -> f64 {
+    let (c, s) = (theta.cos(), theta.sin());
+    let seat = Vec3::new(SEAT * c, 0.0, -SEAT * s);
+    let top = Vec3::from(TOP);
+    let free = (Vec3::new(SEAT, 0.0, 0.0) - top).norm();
+    let d = seat - top;
+    let spring = -k * (d.norm() - free) * d / d.norm();
+    let tip = Vec3::new(TIP * c, 0.0, -TIP * s);
+    seat.cross(&spring).y + tip.cross(&Vec3::new(0.0, 0.0, -load * TIP_LOAD)).y
+}
+
+/// The angle at equilibrium and its rate with respect to `k`, from the moment balance alone: bisection,
+/// then the implicit function theorem `dθ/dk = −(∂M/∂k)/(∂M/∂θ)` by central differences of `M`.
+fn balance(k: f64, load: f64) -> (f64, f64) {
+    let (mut lo, mut hi) = (-0.5, 1.0);
+    assert!(moment(lo, k, load) * moment(hi, k, load) < 0.0);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if moment(lo, k, load) * moment(mid, k, load) <= 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    let theta = 0.5 * (lo + hi);
+    let (ht, hk) = (1e-6, 1e-3 * k);
+    let m_theta = (moment(theta + ht, k, load) - moment(theta - ht, k, load)) / (2.0 * ht);
+    let m_k = (moment(theta, k + hk, load) - moment(theta, k - hk, load)) / (2.0 * hk);
+    (theta, -m_k / m_theta)
+}
+
+/// The sweep's angles: a sweep of the lever of rate `k` from no load to the full tip load.
+fn angles(k: f64) -> Result<Vec<f64>, SolverError> {
+    let model = lever(k);
+    let mut solver = StaticSolver::new(&model, SolverOptions::default())?;
+    Ok(solver.sweep(LoadPath::new(0.0, 1.0, 8), Mode::Corrected)?.steps.iter().map(angle).collect())
+}
+
+#[test]
+fn a_replay_moves_every_equilibrium_at_the_rate_the_moment_balance_gives() {
+    let k = 2e4;
+    let (base, tape) = record(|| angles(k));
+    let base = base.unwrap();
+    assert_eq!((tape.solvers(), tape.equilibria(), tape.limit_point()), (1, 9, None));
+    let tape = Arc::new(tape);
+    // The replay of the model itself is the recording, one Newton iteration on: the same to the solver's
+    // tolerance (measured 2.5e-10 rad at the full load: what the sweep's chord iterations left).
+    let again = replay(&tape, || angles(k)).unwrap().value.unwrap();
+    for (a, b) in base.iter().zip(&again) {
+        assert!((a - b).abs() < 1e-8, "{a} {b}");
+    }
+    // The rate of every angle with k: replays at k ± h, ± 2h, Richardson extrapolated, against the balance.
+    let h = 1e-4 * k;
+    let replayed: Vec<Vec<f64>> =
+        [h, -h, 2.0 * h, -2.0 * h].iter().map(|d| replay(&tape, || angles(k + d)).unwrap().value.unwrap()).collect();
+    for (i, theta) in base.iter().enumerate() {
+        let load = i as f64 / 8.0;
+        let (exact, rate) = balance(k, load);
+        assert!((theta - exact).abs() < 1e-9, "step {i}: angle {theta} against the balance's {exact}");
+        let d = (8.0 * (replayed[0][i] - replayed[1][i]) - (replayed[2][i] - replayed[3][i])) / (12.0 * h);
+        // Measured: within 7e-10 of the rate, relative (the balance's own differences set that floor).
+        assert!((d - rate).abs() <= 1e-8 * rate.abs().max(1e-6), "step {i}: dθ/dk {d:e} against {rate:e}");
+    }
+}
+
+#[test]
+fn a_replay_that_creates_other_solvers_or_asks_other_solves_says_so() {
+    let (_, tape) = record(|| angles(2e4));
+    let tape = Arc::new(tape);
+    // One solver more.
+    let more = replay(&tape, || {
+        let first = angles(2e4);
+        (first, angles(2e4))
+    });
+    assert!(matches!(&more, Err(Diverged(why)) if why.contains("more solvers")), "{more:?}");
+    // A single equilibrium where a sweep was recorded.
+    let other = replay(&tape, || {
+        let model = lever(2e4);
+        let mut solver = StaticSolver::new(&model, SolverOptions::default()).unwrap();
+        let mut state = solver.design_state(0.0);
+        solver.equilibrium(&mut state).map(|s| angle(&s))
+    });
+    assert!(matches!(&other, Err(Diverged(why)) if why.contains("single equilibrium where a sweep")), "{other:?}");
+    // No solve at all.
+    let fewer = replay(&tape, || ());
+    assert!(matches!(&fewer, Err(Diverged(why)) if why.contains("created 0 solvers")), "{fewer:?}");
+    // Outside a recording or replay, a solver solves as always.
+    assert_eq!(angles(2e4), record(|| angles(2e4)).0);
+}
