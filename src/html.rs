@@ -96,6 +96,111 @@ fn write_page(
     writeln!(out, "</html>")
 }
 
+/// The tune's report as one self-contained HTML page: whether every target is met and why one is not,
+/// the free numbers before and after, each curve target's column before and after with its points, every
+/// residual and every iteration, and how the run was made. `render_chart` as for [`report_html`].
+pub fn tune_html<E: std::fmt::Display>(
+    tuned: &crate::suspensions::design::tune::Tuned,
+    targets: &crate::suspensions::design::targets::Targets,
+    model_name: &str,
+    provenance: &Value,
+    render_chart: impl Fn(&Chart) -> Result<String, E>,
+) -> String {
+    let render = |chart: &Chart| render_chart(chart).map_err(|e| e.to_string());
+    let mut page = String::new();
+    // Writing into a String cannot fail.
+    let _ = write_tune_page(&mut page, tuned, targets, model_name, provenance, &render);
+    page
+}
+
+fn write_tune_page(
+    out: Out,
+    tuned: &crate::suspensions::design::tune::Tuned,
+    targets: &crate::suspensions::design::targets::Targets,
+    model_name: &str,
+    provenance: &Value,
+    render_chart: &dyn Fn(&Chart) -> Result<String, String>,
+) -> std::fmt::Result {
+    let name = crate::plot::shown(model_name, NAME_SHOWN);
+    writeln!(out, "<!DOCTYPE html>")?;
+    writeln!(out, r#"<html xmlns="http://www.w3.org/1999/xhtml" lang="en">"#)?;
+    writeln!(out, "<head>")?;
+    writeln!(out, r#"<meta charset="utf-8"/>"#)?;
+    writeln!(out, r#"<meta name="viewport" content="width=device-width, initial-scale=1"/>"#)?;
+    writeln!(out, r#"<meta name="generator" content="elastokin {}"/>"#, attr(env!("CARGO_PKG_VERSION")))?;
+    writeln!(out, "<title>Tune: {}</title>", text(&name))?;
+    writeln!(out, "<style>{STYLE}</style>")?;
+    writeln!(out, "</head>")?;
+    writeln!(out, "<body>")?;
+    writeln!(out, "<header>")?;
+    writeln!(out, "<h1>Tune: {}</h1>", text(&name))?;
+    let met = tuned.verdicts.iter().filter(|v| v.met).count();
+    let last = tuned.iterations.last().map_or(0, |i| i.evaluations);
+    writeln!(
+        out,
+        "<p class=\"lede\">{met} of {} targets met; {} iterations, {last} K&amp;C evaluations; {}.</p>",
+        tuned.verdicts.len(),
+        tuned.iterations.len().saturating_sub(1),
+        text(&tuned.stopped)
+    )?;
+    writeln!(out, "</header>")?;
+    writeln!(out, "<section id=\"targets\">")?;
+    writeln!(out, "<h2>Targets</h2>")?;
+    writeln!(out, "<table class=\"figures\"><thead><tr><th>target</th><th>largest miss / tolerance</th><th>met</th><th>why not</th></tr></thead><tbody>")?;
+    for v in &tuned.verdicts {
+        let (class, said) = if v.met { ("ok", "yes") } else { ("bad", "no") };
+        writeln!(
+            out,
+            "<tr><td>{}</td><td class=\"value\">{}</td><td class=\"{class}\">{said}</td><td>{}</td></tr>",
+            text(&v.target),
+            text(&significant(v.worst, 3)),
+            text(v.why.as_deref().unwrap_or(""))
+        )?;
+    }
+    writeln!(out, "</tbody></table>")?;
+    writeln!(out, "</section>")?;
+    writeln!(out, "<section id=\"parameters\">")?;
+    writeln!(out, "<h2>The free numbers</h2>")?;
+    write_open_table(out, &tuned.moved_table(targets))?;
+    writeln!(out, "</section>")?;
+    writeln!(out, "<section id=\"curves\">")?;
+    writeln!(out, "<h2>Before and after</h2>")?;
+    let charts = tuned.charts(targets, model_name);
+    if charts.is_empty() {
+        writeln!(out, "<p class=\"none\">no curve targets: the figures are in the table of targets</p>")?;
+    }
+    for chart in &charts {
+        write_chart(out, chart, render_chart)?;
+    }
+    writeln!(out, "</section>")?;
+    writeln!(out, "<section id=\"residuals\">")?;
+    writeln!(out, "<h2>Every residual</h2>")?;
+    write_table(out, &tuned.residual_table(targets), "each figure and curve point, before and after")?;
+    write_table(out, &tuned.iteration_table(), "each iteration")?;
+    writeln!(out, "</section>")?;
+    write_provenance(out, provenance)?;
+    writeln!(out, "</body>")?;
+    writeln!(out, "</html>")
+}
+
+/// A table shown open (not folded), every row.
+fn write_open_table(out: Out, table: &Table) -> std::fmt::Result {
+    writeln!(out, "<div class=\"scroll\"><table class=\"numbers\">")?;
+    write!(out, "<thead><tr>")?;
+    for c in &table.columns {
+        write!(out, "<th>{}</th>", text(c))?;
+    }
+    writeln!(out, "</tr></thead><tbody>")?;
+    for row in &table.rows {
+        write!(out, "<tr>")?;
+        for c in row {
+            write!(out, "<td>{}</td>", cell(c, 6))?;
+        }
+        writeln!(out, "</tr>")?;
+    }
+    writeln!(out, "</tbody></table></div>")
+}
+
 fn write_provenance(out: Out, provenance: &Value) -> std::fmt::Result {
     writeln!(out, "<section id=\"provenance\">")?;
     writeln!(out, "<h2>How this run was made</h2>")?;

@@ -77,6 +77,18 @@ pub enum Command {
     /// mode.
     #[command(after_help = EXIT_STATUS)]
     Sensitivity(SensitivityArgs),
+    /// Move the free numbers of a model within their bounds until its figures and curves meet targets
+    ///
+    /// TARGETS is JSON: "free" (each number's JSON pointer and [min, max]), "targets" (a headline figure
+    /// "analysis/key" with its "value", a table column's "curve" "analysis/column" through [load parameter,
+    /// value] "points", or a "measured" K&C rig CSV of an analysis, each with its "tolerance" and an
+    /// optional "range"), optional "constraints" (a "distance" between two hardpoints within min and max,
+    /// a hardpoint kept "outside_sphere" or "outside_box") and "steps". Bound-constrained Gauss-Newton with
+    /// the exact sensitivities. Writes tuned.json (the model file with the numbers moved, every other key
+    /// and the order of keys kept), tune.csv (each iteration), tune_targets.csv (each residual before and
+    /// after) and report.html; exits 1 when a target is not met, saying why.
+    #[command(after_help = EXIT_STATUS)]
+    Tune(TuneArgs),
     /// Join the batch.csv files of `batch --shard I/N` runs into the batch.csv one `batch` writes
     ///
     /// The shards must be of one model and one variants file (the same SHA-256 in their first lines) and
@@ -219,6 +231,18 @@ pub struct SensitivityArgs {
     pub steps: usize,
     /// Where sensitivity.csv and each analysis's sensitivity_<table>.csv go; the directory is replaced as
     /// a whole on success
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+}
+
+#[derive(Debug, Args)]
+pub struct TuneArgs {
+    /// The model file (JSON; see examples/*.json)
+    pub model: PathBuf,
+    /// The targets file (JSON; see examples/targets/bump_steer.json)
+    pub targets: PathBuf,
+    /// Where tuned.json, tune.csv, tune_targets.csv and report.html go; the directory is replaced as a
+    /// whole on success
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
 }
@@ -770,6 +794,95 @@ fn sensitivity(args: SensitivityArgs, out: &Stdout) -> Result<(), Failure> {
     )))
 }
 
+/// `tune`: the model's free numbers moved to meet the targets.
+fn tune(args: TuneArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> {
+    use elastokin::suspensions::design::{targets::read_targets, tune, Parameters};
+    let read = read_model(&args.model)?;
+    if let Some(line) = read.format_line() {
+        out.line(line)?;
+    }
+    let origin = args.model.display().to_string();
+    let base = batch::base_document(&String::from_utf8_lossy(&read.bytes), &origin).map_err(Failure::Input)?;
+    let (targets_bytes, targets_text) = read_input(&args.targets, "TARGETS")?;
+    // A measured file is named relative to the targets file.
+    let beside = args.targets.parent().map(Path::to_path_buf).unwrap_or_default();
+    let read_file = |name: &str| {
+        std::fs::read_to_string(beside.join(name))
+            .map_err(|e| format!("cannot read {}: {e}", beside.join(name).display()))
+    };
+    let targets =
+        read_targets(&targets_text, &args.targets.display().to_string(), &base, read_file).map_err(Failure::Input)?;
+    let pointers: Vec<String> = targets.free.iter().map(|f| f.pointer.clone()).collect();
+    let parameters = Parameters::new(&base, &pointers).map_err(|e| Failure::Input(format!("{origin}: {e}")))?;
+    let progress = Progress::new("iterations", tune::MAX_ITERATIONS, quiet);
+    let tuned = tune::tune(&parameters, &targets, |i| {
+        progress.end(None);
+        if i.iteration > 0 {
+            progress
+                .suspend(|| {
+                    out.line(format!(
+                        "iteration {:>2}: objective {:<10} step {:<10} {}",
+                        i.iteration,
+                        kc::significant(i.objective, 4),
+                        kc::significant(i.step, 3),
+                        i.outcome
+                    ))
+                })
+                .ok();
+        }
+    })
+    .map_err(|e| Failure::Run(format!("{origin}: {e}")))?;
+    progress.finish();
+    let mut provenance = Provenance::new(&args.model, &read.bytes, kc::mode_word(Mode::Corrected), targets.steps);
+    provenance.targets = Some((args.targets.display().to_string(), elastokin::provenance::sha256_hex(&targets_bytes)));
+    let staging = Staging::new(&args.out)?;
+    let written = (|| -> Result<Vec<PathBuf>, Failure> {
+        let mut json = serde_json::to_string_pretty(&tuned.document).map_err(|e| Failure::Run(e.to_string()))?;
+        json.push('\n');
+        let html = elastokin::html::tune_html(&tuned, &targets, &read.file.name, &provenance.to_json(), plot::svg);
+        Ok(vec![
+            staging.write("tuned.json", json.as_bytes())?,
+            staging.write("tune.csv", &write_table(&tuned.iteration_table(), &provenance))?,
+            staging.write("tune_targets.csv", &write_table(&tuned.residual_table(&targets), &provenance))?,
+            staging.write("report.html", html.as_bytes())?,
+        ])
+    })()
+    .map_err(|e| Failure::Run(format!("{}\n{}", e.message(), staging.untouched())))?;
+    staging.commit()?;
+    out.line("")?;
+    out.line(format!("{}: {}", read.file.name, tuned.stopped))?;
+    for (f, k) in targets.free.iter().zip(0..) {
+        out.line(format!(
+            "  {:<56} {:>12} -> {:<12}",
+            f.pointer,
+            kc::significant(tuned.start.x[k], 6),
+            kc::significant(tuned.end.x[k], 6)
+        ))?;
+    }
+    for v in &tuned.verdicts {
+        let state = if v.met { "met" } else { "NOT met" };
+        out.line(format!("  {state}: {} (largest miss {} of its tolerance)", v.target, kc::significant(v.worst, 3)))?;
+    }
+    out.line("")?;
+    out.line(format!("wrote {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))?;
+    let unmet: Vec<String> = tuned
+        .verdicts
+        .iter()
+        .filter(|v| !v.met)
+        .map(|v| format!("{}: {}", v.target, v.why.as_deref().unwrap_or("")))
+        .collect();
+    if unmet.is_empty() {
+        return Ok(());
+    }
+    Err(Failure::Run(format!(
+        "{} of {} targets not met (the tune's results are in {}):\n{}",
+        unmet.len(),
+        tuned.verdicts.len(),
+        args.out.display(),
+        unmet.join("\n")
+    )))
+}
+
 fn main() -> ExitCode {
     // Usage errors exit with status 2, help and --version with 0; clap prints them.
     let cli = Cli::parse();
@@ -779,6 +892,7 @@ fn main() -> ExitCode {
         Command::Check(args) => check(args, &out),
         Command::Batch(args) => run_batch(args, &out, cli.quiet),
         Command::Sensitivity(args) => sensitivity(args, &out),
+        Command::Tune(args) => tune(args, &out, cli.quiet),
         Command::Merge(args) => merge::merge(args, &out),
         Command::Expand(args) => expand(args, &out),
         Command::Import(args) => import(args, &out),

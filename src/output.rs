@@ -307,7 +307,7 @@ enum Found {
     EarlierVersion,
     /// A CSV without the provenance line.
     UnstampedCsv,
-    /// A plot or report.
+    /// A plot, report or tuned model file (`tune`'s `tuned.json`): written beside stamped CSVs.
     Plot,
     /// Anything else.
     Foreign,
@@ -324,6 +324,7 @@ fn classify(path: &Path, is_file: bool) -> std::io::Result<Found> {
     let extension = path.extension().and_then(|e| e.to_str()).unwrap_or_default();
     Ok(match extension {
         _ if !is_file => Found::Foreign,
+        "json" if name == "tuned.json" => Found::Plot,
         "json" if name == "summary.json" => match serde_json::from_slice::<serde_json::Value>(&head(16 << 20)?) {
             Ok(v) if v.get("provenance").is_some() => Found::Stamped,
             Ok(v) if v.get("analyses").is_some_and(serde_json::Value::is_object) => Found::EarlierVersion,

@@ -17,6 +17,8 @@ pub struct Provenance {
     pub model_sha256: String,
     /// `batch`: the variants file's path and SHA-256.
     pub variants: Option<(String, String)>,
+    /// `tune`: the targets file's path and SHA-256.
+    pub targets: Option<(String, String)>,
     /// `corrected` or `paper`.
     pub mode: &'static str,
     /// Load steps per sweep.
@@ -65,6 +67,7 @@ impl Provenance {
             model: model.display().to_string(),
             model_sha256: sha256_hex(model_bytes),
             variants: None,
+            targets: None,
             mode,
             steps,
             wheel: None,
@@ -101,6 +104,10 @@ impl Provenance {
         if let Some((path, sha)) = &self.variants {
             v["variants"] = path.as_str().into();
             v["variants_sha256"] = sha.as_str().into();
+        }
+        if let Some((path, sha)) = &self.targets {
+            v["targets"] = path.as_str().into();
+            v["targets_sha256"] = sha.as_str().into();
         }
         match self.part {
             Some(Part::Shard { index, count, variants }) => {

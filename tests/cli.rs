@@ -1370,3 +1370,92 @@ fn an_interrupted_run_s_staging_directory_is_removed_by_the_next_run_and_no_one_
     assert!(other_out.exists(), "another --out's staging was removed");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `tune` on the shipped targets example meets them: tuned.json is the model with the free numbers moved
+/// (every other key as it was, in its order) and gives the tuned figures when run; tune.csv lists the
+/// iterations; report.html is well formed. Bad targets are refused by key with exit 2, nothing written;
+/// targets not met exit 1 with their reasons, the results written.
+#[test]
+fn tune_meets_the_shipped_targets_and_says_why_when_it_cannot() {
+    let dir = scratch("tune");
+    let out = dir.join("out");
+    let o = succeeds(&[
+        "tune",
+        "examples/macpherson.json",
+        "examples/targets/bump_steer.json",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("met: targets[0] (parallel-travel/bump_steer)") && !stdout.contains("NOT met"), "{stdout}");
+    let tuned: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("tuned.json")).unwrap()).unwrap();
+    let base: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string("examples/macpherson.json").unwrap()).unwrap();
+    let targets: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string("examples/targets/bump_steer.json").unwrap()).unwrap();
+    // Only the free numbers moved, each within its bounds; the keys in the model file's order.
+    let mut back = tuned.clone();
+    for (pointer, bounds) in targets["free"].as_object().unwrap() {
+        let v = tuned.pointer(pointer).unwrap().as_f64().unwrap();
+        assert!(v >= bounds[0].as_f64().unwrap() && v <= bounds[1].as_f64().unwrap(), "{pointer}: {v}");
+        *back.pointer_mut(pointer).unwrap() = base.pointer(pointer).unwrap().clone();
+    }
+    assert_eq!(back, base);
+    let order =
+        |v: &serde_json::Value| v["suspension"]["macpherson"].as_object().unwrap().keys().cloned().collect::<Vec<_>>();
+    assert_eq!(order(&tuned), order(&base));
+    // The tuned model, run, has the bump steer the tune reached.
+    let run_out = dir.join("run");
+    succeeds(&[
+        "run",
+        out.join("tuned.json").to_str().unwrap(),
+        "--analysis",
+        "parallel-travel",
+        "--out",
+        run_out.to_str().unwrap(),
+    ]);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(run_out.join("summary.json")).unwrap()).unwrap();
+    let bump_steer = summary["analyses"]["parallel-travel"]["figures"]["bump_steer"]["value"].as_f64().unwrap();
+    let residuals = read_csv(&out.join("tune_targets.csv"));
+    let reached: f64 = residuals.iter().find(|r| r[0].contains("bump_steer")).unwrap()[4].parse().unwrap();
+    assert!((bump_steer - reached).abs() < 1e-9 && (bump_steer + 2.0).abs() < 0.25, "{bump_steer} {reached}");
+    let iterations = read_csv(&out.join("tune.csv"));
+    assert_eq!(&iterations[0][6], "start");
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    roxmltree::Document::parse(html.strip_prefix("<!DOCTYPE html>").unwrap()).unwrap();
+    assert!(html.contains("Before and after") && html.contains("tie_rod_inner/2"));
+    // Bad targets: refused by key, nothing written.
+    let bad = dir.join("bad.json");
+    std::fs::write(&bad, r#"{"free": {"/suspension/macpherson/hardpoints/nowhere/0": [0, 1]}, "targets": []}"#)
+        .unwrap();
+    let o = elastokin(&[
+        "tune",
+        "examples/macpherson.json",
+        bad.to_str().unwrap(),
+        "--out",
+        dir.join("x").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("names nothing in the model"));
+    assert!(!dir.join("x").exists());
+    // Targets that cannot be met: exit 1, why, and the results written.
+    let hard = dir.join("hard.json");
+    let text = std::fs::read_to_string("examples/targets/bump_steer.json")
+        .unwrap()
+        .replace("\"value\": -2.0", "\"value\": 40.0");
+    std::fs::write(&hard, text).unwrap();
+    let o = elastokin(&[
+        "tune",
+        "examples/macpherson.json",
+        hard.to_str().unwrap(),
+        "--out",
+        dir.join("y").to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("targets not met") && err.contains("bump_steer"), "{err}");
+    assert!(dir.join("y").join("tuned.json").exists());
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -4,6 +4,8 @@
 
 pub mod parameter;
 pub mod sensitivity;
+pub mod targets;
+pub mod tune;
 
 pub use parameter::{hardpoint_pointers, Parameters};
 pub use sensitivity::{

@@ -71,6 +71,24 @@ impl Parameters {
         apply(&self.document, &variant)
     }
 
+    /// The model's document with the parameters at `values` (in order; the file's units): every other key,
+    /// and the order of keys, as they were.
+    pub fn document_at(&self, values: &[f64]) -> Result<Value, String> {
+        let mut document = self.document.clone();
+        for (pointer, &value) in self.pointers.iter().zip(values) {
+            let number = serde_json::Number::from_f64(value)
+                .ok_or_else(|| format!("parameter '{pointer}' at {value:e}, which is no number"))?;
+            *document.pointer_mut(pointer).ok_or_else(|| format!("parameter '{pointer}' names nothing"))? =
+                Value::Number(number);
+        }
+        Ok(document)
+    }
+
+    /// The same parameters of the model with them at `values`.
+    pub fn at(&self, values: &[f64]) -> Result<Parameters, String> {
+        Ok(Parameters { document: self.document_at(values)?, pointers: self.pointers.clone(), values: values.to_vec() })
+    }
+
     /// The model as it is.
     pub fn file(&self) -> Result<SuspensionFile, String> {
         apply(&self.document, &Variant { name: "the model".into(), edits: Vec::new() })

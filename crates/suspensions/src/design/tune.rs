@@ -1,0 +1,729 @@
+//! Tuning to targets: the free numbers of a model moved within their bounds, and within its packaging,
+//! until its figures and curves meet the targets ([`super::targets`]) as nearly as they can, by
+//! bound-constrained Gauss–Newton with Levenberg–Marquardt damping. Every iteration takes the exact
+//! Jacobian of the residuals from the sensitivities ([`super::sensitivity`]) and solves one convex
+//! quadratic program for the step — the Gauss–Newton model, damped, inside the bounds and the linearised
+//! packaging — with Clarabel's interior-point solver.
+//!
+//! Why this method: a tune is a nonlinear least-squares problem whose every evaluation costs a K&C run
+//! with its sensitivities, so the method must spend few. Gauss–Newton converges quadratically where the
+//! targets can be met (the common case: a curve reachable by moving two points) and takes the damping
+//! only where the model bends. Measured against a first-order method for box-constrained problems
+//! (`optimization_engine`'s PANOC with L-BFGS) on the MacPherson's toe curve with both tie-rod points free
+//! (`cargo xtask bench`, section `tuning`).
+//!
+//! A residual is a target's miss over its tolerance: a target is met when its residual is at most one.
+//! What is not met is said, and why: a bound or the packaging holds a number that would otherwise
+//! move, or the targets fight one another (the least-squares optimum leaves the miss).
+
+use super::parameter::Parameters;
+use super::sensitivity::{analysis_sensitivity, AnalysisSensitivity};
+use super::targets::{hardpoint_pointer, Aim, Constraint, Targets};
+use crate::kc::{AnalysisReport, Cell, Chart, Scale, Series, Settings, Table, YAxis};
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::{
+    DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus, SupportedConeT,
+};
+use serde_json::Value;
+
+/// The most iterations a tune takes.
+pub const MAX_ITERATIONS: usize = 60;
+
+/// A tune stops when every residual (miss over tolerance) is this small: the targets are met, to far
+/// below anything a tolerance means.
+pub const MET_EXACTLY: f64 = 1e-6;
+
+/// A run's residuals and their Jacobian at one point of the free numbers.
+#[derive(Debug, Clone)]
+pub struct Evaluation {
+    /// The free numbers.
+    pub x: Vec<f64>,
+    /// Each residual: the miss over its tolerance, one per figure target and per curve point.
+    pub residuals: Vec<f64>,
+    /// Their rates with respect to the free numbers: residual × free number.
+    pub jacobian: Vec<Vec<f64>>,
+    /// For each residual: its target (index into [`Targets::targets`]), the value reached and the value aimed
+    /// at, in the target's unit.
+    pub rows: Vec<Row>,
+    /// Each packaging constraint's value, rates and allowed range.
+    pub packaging: Vec<Linearised>,
+    /// The analyses run, one per analysis and range the targets name.
+    pub reports: Vec<AnalysisReport>,
+}
+
+/// One residual's provenance.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row {
+    /// The target it belongs to.
+    pub target: usize,
+    /// The load parameter of a curve point (`None` for a figure).
+    pub at: Option<f64>,
+    /// The value reached.
+    pub value: f64,
+    /// The value aimed at.
+    pub aim: f64,
+}
+
+/// A packaging constraint at a point: `min ≤ value + rates · d ≤ max` to first order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Linearised {
+    /// Its value (m).
+    pub value: f64,
+    /// Its rates with respect to the free numbers.
+    pub rates: Vec<f64>,
+    /// Allowed range.
+    pub min: f64,
+    /// Allowed range.
+    pub max: f64,
+}
+
+impl Evaluation {
+    /// `½ Σ r²`.
+    pub fn objective(&self) -> f64 {
+        0.5 * self.residuals.iter().map(|r| r * r).sum::<f64>()
+    }
+
+    /// `Jᵀ r`.
+    pub fn gradient(&self) -> Vec<f64> {
+        let n = self.x.len();
+        (0..n).map(|k| self.residuals.iter().zip(&self.jacobian).map(|(r, row)| r * row[k]).sum()).collect()
+    }
+}
+
+/// The value of `column` at `at` from the table's rows by the cubic through the four nearest rows (fewer
+/// when the table has fewer): its weights on the rows, which also carry the rows' derivatives. `None`
+/// outside the rows' range.
+fn interpolation(t: &[f64], at: f64) -> Option<Vec<(usize, f64)>> {
+    let n = t.len();
+    let (lo, hi) = t.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+    if n == 0 || !(lo..=hi).contains(&at) {
+        return None;
+    }
+    if let Some(k) = t.iter().position(|&v| v == at) {
+        return Some(vec![(k, 1.0)]);
+    }
+    let i = t.windows(2).position(|w| (w[0] - at) * (w[1] - at) < 0.0)?;
+    let first = i.saturating_sub(1).min(n.saturating_sub(4));
+    let near: Vec<usize> = (first..(first + 4).min(n)).collect();
+    Some(
+        near.iter()
+            .map(|&j| {
+                let w = near.iter().filter(|&&m| m != j).map(|&m| (at - t[m]) / (t[j] - t[m])).product();
+                (j, w)
+            })
+            .collect(),
+    )
+}
+
+/// An analysis run for the targets: which, over what range, and its sensitivities.
+type Run = (crate::kc::Analysis, Option<(f64, f64)>, AnalysisSensitivity);
+
+/// The targets' residuals and Jacobian with the free numbers of `parameters` at `x`.
+pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result<Evaluation, String> {
+    let p = parameters.at(x)?;
+    let n = x.len();
+    // One run per analysis and range.
+    let mut runs: Vec<Run> = Vec::new();
+    for t in &targets.targets {
+        if runs.iter().any(|(a, r, _)| *a == t.analysis && *r == t.range) {
+            continue;
+        }
+        let settings = Settings { range: t.range, steps: targets.steps, ..Settings::default() };
+        let s = analysis_sensitivity(t.analysis, &p, &settings).map_err(|e| format!("{}: {e}", t.analysis.name()))?;
+        runs.push((t.analysis, t.range, s));
+    }
+    let (mut residuals, mut jacobian, mut rows) = (Vec::new(), Vec::new(), Vec::new());
+    for (k, t) in targets.targets.iter().enumerate() {
+        let s = &runs.iter().find(|(a, r, _)| *a == t.analysis && *r == t.range).expect("run above").2;
+        match &t.aim {
+            Aim::Figure { key, value } => {
+                let (figure, rates) = s.figure(key).ok_or_else(|| {
+                    let keys: Vec<&str> = s.report.figures.iter().map(|f| f.key.as_str()).collect();
+                    format!("{}: {} has no figure '{key}' (it has: {})", t.label, t.analysis.name(), keys.join(", "))
+                })?;
+                let reached = figure.value.ok_or_else(|| {
+                    format!("{}: the figure has no value here: {}", t.label, figure.reason.as_deref().unwrap_or(""))
+                })?;
+                let gradient = rates
+                    .iter()
+                    .map(|r| r.map_err(|e| format!("{}: {}", t.label, e.reason())))
+                    .collect::<Result<Vec<f64>, _>>()?;
+                residuals.push((reached - value) / t.tolerance);
+                jacobian.push(gradient.iter().map(|g| g / t.tolerance).collect());
+                rows.push(Row { target: k, at: None, value: reached, aim: *value });
+            }
+            Aim::Curve { column, points } => {
+                let table = &s.report.table;
+                if !table.columns.contains(column) {
+                    return Err(format!(
+                        "{}: {}'s table has no column '{column}' (it has: {})",
+                        t.label,
+                        t.analysis.name(),
+                        table.columns.join(", ")
+                    ));
+                }
+                let along = s.column(&table.columns[0]);
+                let along: Vec<f64> = along.iter().map(|v| v.unwrap_or(f64::NAN)).collect();
+                // The rows must sit where they sit for every model: a range that moves with the model
+                // (the vertical-force sweep's, around its design load) moves the curve under its points.
+                let span = along.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                for q in 0..n {
+                    let moved = s
+                        .d_column(&table.columns[0], q)
+                        .iter()
+                        .filter_map(|d| d.ok())
+                        .fold(0.0f64, |m, d| m.max(d.abs()));
+                    if moved * x[q].abs().max(0.1) > 1e-9 * span {
+                        return Err(format!(
+                            "{}: the analysis's rows move with '{}' (its default range follows the model); give \
+                             the target a \"range\"",
+                            t.label, p.pointers[q]
+                        ));
+                    }
+                }
+                let values = s.column(column);
+                let rates: Vec<Vec<super::sensitivity::Rate>> = (0..n).map(|q| s.d_column(column, q)).collect();
+                for &(at, aim) in points {
+                    let weights = interpolation(&along, at).ok_or_else(|| {
+                        let (lo, hi) =
+                            along.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+                        format!(
+                            "{}: the point at {at} lies outside the range {lo}..{hi} the analysis walks ({}); give \
+                             the target a \"range\" that holds it",
+                            t.label,
+                            t.analysis.parameter()
+                        )
+                    })?;
+                    let mut reached = 0.0;
+                    let mut gradient = vec![0.0; n];
+                    for &(j, w) in &weights {
+                        let v =
+                            values[j].ok_or_else(|| format!("{}: the row at {} has no {column}", t.label, along[j]))?;
+                        reached += w * v;
+                        for q in 0..n {
+                            let d = rates[q][j].map_err(|e| format!("{}: at {}: {}", t.label, along[j], e.reason()))?;
+                            gradient[q] += w * d;
+                        }
+                    }
+                    residuals.push((reached - aim) / t.tolerance);
+                    jacobian.push(gradient.iter().map(|g| g / t.tolerance).collect());
+                    rows.push(Row { target: k, at: Some(at), value: reached, aim });
+                }
+            }
+        }
+    }
+    let document = p.document_at(x)?;
+    let packaging =
+        targets.constraints.iter().map(|c| linearise(c, &document, &p.pointers)).collect::<Result<_, _>>()?;
+    Ok(Evaluation {
+        x: x.to_vec(),
+        residuals,
+        jacobian,
+        rows,
+        packaging,
+        reports: runs.into_iter().map(|(_, _, s)| s.report).collect(),
+    })
+}
+
+/// A hardpoint's position in `document`, and for each free pointer, which of its coordinates it is.
+fn point(document: &Value, name: &str, pointers: &[String]) -> Result<([f64; 3], Vec<Option<usize>>), String> {
+    let at = hardpoint_pointer(document, name).ok_or_else(|| format!("the model has no hardpoint '{name}'"))?;
+    let xyz = document.pointer(&at).and_then(Value::as_array).ok_or_else(|| format!("hardpoint '{name}'"))?;
+    let c = |i: usize| xyz.get(i).and_then(Value::as_f64).unwrap_or(f64::NAN);
+    let which = pointers.iter().map(|p| (0..3).find(|i| *p == format!("{at}/{i}"))).collect();
+    Ok(([c(0), c(1), c(2)], which))
+}
+
+fn linearise(c: &Constraint, document: &Value, pointers: &[String]) -> Result<Linearised, String> {
+    let n = pointers.len();
+    let rates_of = |which: &[Option<usize>], along: [f64; 3]| -> Vec<f64> {
+        which.iter().map(|w| w.map_or(0.0, |i| along[i])).collect()
+    };
+    Ok(match c {
+        Constraint::Distance { points, min, max } => {
+            let (a, wa) = point(document, &points[0], pointers)?;
+            let (b, wb) = point(document, &points[1], pointers)?;
+            let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+            let value = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            let u = d.map(|v| v / value.max(1e-300));
+            let (ra, rb) = (rates_of(&wa, u), rates_of(&wb, u.map(|v| -v)));
+            Linearised { value, rates: (0..n).map(|k| ra[k] + rb[k]).collect(), min: *min, max: *max }
+        }
+        Constraint::OutsideSphere { point: name, centre, radius } => {
+            let (p, w) = point(document, name, pointers)?;
+            let d = [p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]];
+            let value = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            let u = d.map(|v| v / value.max(1e-300));
+            Linearised { value, rates: rates_of(&w, u), min: *radius, max: f64::INFINITY }
+        }
+        Constraint::OutsideBox { point: name, min, max } => {
+            // Outside along the axis where it is furthest out (or, inside, least deep): that face's plane,
+            // a half-space the point is kept in.
+            let (p, w) = point(document, name, pointers)?;
+            // (axis, side: +1 beyond max, −1 below min, how far out)
+            let (axis, side, _) = (0..3)
+                .flat_map(|i| [(i, 1.0, p[i] - max[i]), (i, -1.0, min[i] - p[i])])
+                .max_by(|a, b| a.2.total_cmp(&b.2))
+                .expect("three axes");
+            let mut along = [0.0; 3];
+            along[axis] = side;
+            let face = if side > 0.0 { max[axis] } else { -min[axis] };
+            Linearised { value: side * p[axis], rates: rates_of(&w, along), min: face, max: f64::INFINITY }
+        }
+    })
+}
+
+/// One iteration of a tune, as `tune.csv` lists it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Iteration {
+    /// Its number (0: the start).
+    pub iteration: usize,
+    /// `½ Σ r²` after it.
+    pub objective: f64,
+    /// The largest rate of the objective along a free number that may still move (at a bound, only
+    /// inward), per unit of the number.
+    pub gradient_norm: f64,
+    /// The largest move of a free number in the step taken, relative to its bounds' span.
+    pub step: f64,
+    /// The damping the step was taken with.
+    pub damping: f64,
+    /// K&C evaluations (each a run with its sensitivities) so far.
+    pub evaluations: usize,
+    /// What became of the step: `start`, `taken`, or why it was not.
+    pub outcome: String,
+}
+
+/// A target's outcome.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Verdict {
+    /// The target's label.
+    pub target: String,
+    /// The largest residual of it (miss over tolerance).
+    pub worst: f64,
+    /// Whether every residual of it is within one.
+    pub met: bool,
+    /// Why not, when not.
+    pub why: Option<String>,
+}
+
+/// What a tune found.
+#[derive(Debug, Clone)]
+pub struct Tuned {
+    /// The model at the start.
+    pub start: Evaluation,
+    /// The model at the end.
+    pub end: Evaluation,
+    /// Every iteration.
+    pub iterations: Vec<Iteration>,
+    /// Each target's outcome.
+    pub verdicts: Vec<Verdict>,
+    /// Why the iterations stopped.
+    pub stopped: String,
+    /// The model file with the free numbers at the end, every other key and the order of keys as given.
+    pub document: Value,
+}
+
+impl Tuned {
+    /// Whether every target is met.
+    pub fn all_met(&self) -> bool {
+        self.verdicts.iter().all(|v| v.met)
+    }
+
+    /// `tune.csv`: every iteration — its objective, projected gradient, step, damping, evaluations so far
+    /// and what became of the step.
+    pub fn iteration_table(&self) -> Table {
+        let columns = ["iteration", "objective", "gradient_norm", "step", "damping", "evaluations", "outcome"];
+        let rows = self
+            .iterations
+            .iter()
+            .map(|i| {
+                vec![
+                    Cell::from(i.iteration as f64),
+                    Cell::from(i.objective),
+                    Cell::from(i.gradient_norm),
+                    Cell::from(i.step),
+                    Cell::from(i.damping),
+                    Cell::from(i.evaluations as f64),
+                    Cell::Text(i.outcome.clone()),
+                ]
+            })
+            .collect();
+        Table { name: "tune".into(), columns: columns.map(String::from).to_vec(), rows }
+    }
+
+    /// `tune_targets.csv`: every residual at the start and the end — its target, the load parameter of a
+    /// curve point, the value aimed at, the values reached, and the miss over the tolerance.
+    pub fn residual_table(&self, targets: &Targets) -> Table {
+        let columns =
+            ["target", "at", "aim", "before", "after", "miss_over_tolerance_before", "miss_over_tolerance_after"];
+        let rows = self
+            .end
+            .rows
+            .iter()
+            .zip(&self.start.rows)
+            .zip(self.end.residuals.iter().zip(&self.start.residuals))
+            .map(|((end, start), (r_end, r_start))| {
+                vec![
+                    Cell::Text(targets.targets[end.target].label.clone()),
+                    Cell::from(end.at),
+                    Cell::from(end.aim),
+                    Cell::from(start.value),
+                    Cell::from(end.value),
+                    Cell::from(*r_start),
+                    Cell::from(*r_end),
+                ]
+            })
+            .collect();
+        Table { name: "tune_targets".into(), columns: columns.map(String::from).to_vec(), rows }
+    }
+
+    /// The free numbers: each before and after the tune, its move and its bounds.
+    pub fn moved_table(&self, targets: &Targets) -> Table {
+        let columns = ["parameter", "before", "after", "move", "min", "max"];
+        let rows = targets
+            .free
+            .iter()
+            .enumerate()
+            .map(|(k, f)| {
+                vec![
+                    Cell::Text(f.pointer.clone()),
+                    Cell::from(self.start.x[k]),
+                    Cell::from(self.end.x[k]),
+                    Cell::from(self.end.x[k] - self.start.x[k]),
+                    Cell::from(f.min),
+                    Cell::from(f.max),
+                ]
+            })
+            .collect();
+        Table { name: "tune_parameters".into(), columns: columns.map(String::from).to_vec(), rows }
+    }
+
+    /// Before-and-after plots: each curve target's column against its load parameter at the start and
+    /// the end, with the target's points.
+    pub fn charts(&self, targets: &Targets, model: &str) -> Vec<Chart> {
+        let mut charts = Vec::new();
+        for (k, t) in targets.targets.iter().enumerate() {
+            let Aim::Curve { column, points } = &t.aim else { continue };
+            let curve = |e: &Evaluation, name: &str| -> Option<Series> {
+                let report = e.reports.iter().find(|r| r.analysis == t.analysis)?;
+                let c = report.table.columns.iter().position(|x| x == column)?;
+                let pts = report.table.rows.iter().filter_map(|r| Some((r[0].number()?, r[c].number()?))).collect();
+                Some(Series { name: name.into(), points: pts })
+            };
+            let series: Vec<Series> = [curve(&self.start, "before"), curve(&self.end, "after")]
+                .into_iter()
+                .flatten()
+                .chain([Series { name: "target".into(), points: points.clone() }])
+                .collect();
+            let report = self.end.reports.iter().find(|r| r.analysis == t.analysis);
+            charts.push(Chart {
+                name: format!("tune_target_{k}"),
+                title: format!("{}: before and after the tune", t.label),
+                subtitle: model.into(),
+                x_label: report.map_or_else(|| t.analysis.parameter().to_string(), |r| r.table.columns[0].clone()),
+                x_scale: Scale::Linear,
+                left: YAxis { label: column.clone(), scale: Scale::Linear, series },
+                right: None,
+                design_x: None,
+            });
+        }
+        charts
+    }
+}
+
+/// The largest rate of `½ Σ r²` along a free number that may still move: at a bound only inward.
+fn projected_gradient(e: &Evaluation, free: &[(f64, f64)]) -> f64 {
+    e.gradient()
+        .iter()
+        .zip(&e.x)
+        .zip(free)
+        .map(|((g, x), (lo, hi))| {
+            let blocked = (*x <= *lo && *g > 0.0) || (*x >= *hi && *g < 0.0);
+            if blocked {
+                0.0
+            } else {
+                g.abs()
+            }
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The damped Gauss–Newton step within the bounds and the linearised packaging:
+/// `min ½‖J d + r‖² + ½ μ Σ Dₖ dₖ²` over `lo − x ≤ d ≤ hi − x`, `min ≤ g + G d ≤ max`. In the numbers scaled
+/// by `√Dₖ` (so that each moves its residuals alike); first as the least-squares solution of
+/// `[J; √μ I] d = [−r; 0]` by a singular-value decomposition, which stays accurate where the targets leave a
+/// combination of the numbers free (rank-deficient `J`); where that step leaves the bounds or the packaging,
+/// as the quadratic program it is, by Clarabel.
+fn step(e: &Evaluation, free: &[(f64, f64)], damping: f64, scale: &[f64], margins: &[f64]) -> Result<Vec<f64>, String> {
+    let n = e.x.len();
+    let m = e.residuals.len();
+    let unscale: Vec<f64> = scale.iter().map(|d| 1.0 / d.sqrt()).collect();
+    // The scaled Jacobian J S, stacked over √μ I.
+    let mut a = nalgebra::DMatrix::<f64>::zeros(m + n, n);
+    let mut b = nalgebra::DVector::<f64>::zeros(m + n);
+    for (i, row) in e.jacobian.iter().enumerate() {
+        for k in 0..n {
+            a[(i, k)] = row[k] * unscale[k];
+        }
+        b[i] = -e.residuals[i];
+    }
+    for k in 0..n {
+        a[(m + k, k)] = damping.sqrt();
+    }
+    // A combination of the numbers the targets barely see (a singular value a billionth of the largest)
+    // is left where it is: a step along it would follow rounding, not the targets.
+    let svd = a.clone().svd(true, true);
+    let floor = 1e-9 * svd.singular_values.max();
+    let free_step = svd.solve(&b, floor).map_err(|e| format!("the step's least squares: {e}"))?;
+    let d: Vec<f64> = (0..n).map(|k| free_step[k] * unscale[k]).collect();
+    let inside = d.iter().zip(&e.x).zip(free).all(|((d, x), (lo, hi))| (*lo..=*hi).contains(&(x + d)));
+    let packed = e.packaging.iter().zip(margins).all(|(c, m)| {
+        let v = c.value + c.rates.iter().zip(&d).map(|(r, d)| r * d).sum::<f64>();
+        v >= c.min + m && v <= c.max - m
+    });
+    if inside && packed {
+        return Ok(d);
+    }
+    // The quadratic program in the scaled numbers: P = (JS)ᵀ(JS) + μI, q = (JS)ᵀ r.
+    let js = a.rows(0, m);
+    let p_full = js.transpose() * js + nalgebra::DMatrix::<f64>::identity(n, n) * damping;
+    let q: Vec<f64> =
+        (js.transpose() * nalgebra::DVector::from_iterator(m, e.residuals.iter().copied())).iter().copied().collect();
+    // Rows of `A d ≤ b` (Clarabel's `A d + s = b`, `s ≥ 0`).
+    let (mut rows, mut bound): (Vec<Vec<f64>>, Vec<f64>) = (Vec::new(), Vec::new());
+    for (k, &(lo, hi)) in free.iter().enumerate() {
+        let mut up = vec![0.0; n];
+        up[k] = unscale[k];
+        rows.push(up.clone());
+        bound.push(hi - e.x[k]);
+        rows.push(up.iter().map(|v| -v).collect());
+        bound.push(e.x[k] - lo);
+    }
+    for (c, m) in e.packaging.iter().zip(margins) {
+        if c.rates.iter().all(|r| *r == 0.0) {
+            continue;
+        }
+        let scaled: Vec<f64> = c.rates.iter().zip(&unscale).map(|(r, u)| r * u).collect();
+        if c.max.is_finite() {
+            rows.push(scaled.clone());
+            bound.push((c.max - m - c.value).max(0.0));
+        }
+        if c.min.is_finite() {
+            rows.push(scaled.iter().map(|r| -r).collect());
+            bound.push((c.value - c.min - m).max(0.0));
+        }
+    }
+    let upper: Vec<Vec<f64>> =
+        (0..n).map(|i| (0..n).map(|j| if j >= i { p_full[(i, j)] } else { 0.0 }).collect()).collect();
+    let p = CscMatrix::from(&upper);
+    let a_matrix = CscMatrix::from(&rows);
+    let cones: [SupportedConeT<f64>; 1] = [NonnegativeConeT(bound.len())];
+    let settings = DefaultSettingsBuilder::default().verbose(false).build().map_err(|e| e.to_string())?;
+    let mut solver =
+        DefaultSolver::new(&p, &q, &a_matrix, &bound, &cones, settings).map_err(|e| format!("the step's QP: {e:?}"))?;
+    solver.solve();
+    match solver.solution.status {
+        SolverStatus::Solved | SolverStatus::AlmostSolved => {
+            Ok(solver.solution.x.iter().zip(&unscale).map(|(v, u)| v * u).collect())
+        }
+        other => Err(format!("the step's QP ended {other:?}")),
+    }
+}
+
+/// Whether the packaging holds at `e`, to 1e-9 m.
+fn packaged(e: &Evaluation) -> bool {
+    e.packaging.iter().all(|c| c.value >= c.min - 1e-9 && c.value <= c.max + 1e-9)
+}
+
+/// Tunes the model of `parameters` (its free numbers, in the order of `targets.free`) to `targets`.
+/// `progress` hears of each iteration. Fails only when the model as it is cannot be evaluated; a step
+/// whose model cannot be built or run is stepped back from.
+pub fn tune(parameters: &Parameters, targets: &Targets, mut progress: impl FnMut(&Iteration)) -> Result<Tuned, String> {
+    let free: Vec<(f64, f64)> = targets.free.iter().map(|f| (f.min, f.max)).collect();
+    let mut evaluations = 1;
+    let start = evaluate(parameters, targets, &parameters.values)?;
+    let mut here = start.clone();
+    let mut iterations = vec![Iteration {
+        iteration: 0,
+        objective: here.objective(),
+        gradient_norm: projected_gradient(&here, &free),
+        step: 0.0,
+        damping: 0.0,
+        evaluations,
+        outcome: "start".into(),
+    }];
+    progress(&iterations[0]);
+    // Each number measured by the span of its bounds: the damping, and the step where the targets leave
+    // a combination of the numbers free, then prefer the smallest moves relative to what each may move
+    // (a millimetre of a hardpoint free over ±20 mm weighs as much as 10 N/mm of a rate free over ±200 N/mm).
+    // (Marquardt's scaling by each number's own curvature instead sends an insensitive number, such as a
+    // tie-rod point along the rod, far in every step: the MacPherson's toe curve then crept for 60 steps.)
+    let scale: Vec<f64> = free.iter().map(|(lo, hi)| 1.0 / ((hi - lo) * (hi - lo))).collect();
+    let mut damping = 1e-3;
+    // How far inside its linearised bounds each packaging constraint is kept: a distance bends away from
+    // its linearisation (it is convex), so a step to its bound overshoots by the bend; a step that broke
+    // it is retried with the overshoot held back.
+    let mut margins = vec![0.0; targets.constraints.len()];
+    let mut stopped = format!("the iteration limit ({MAX_ITERATIONS}) was reached");
+    let mut rejected = 0;
+    for iteration in 1..=MAX_ITERATIONS {
+        let f = here.objective();
+        if here.residuals.iter().all(|r| r.abs() <= MET_EXACTLY) {
+            stopped = format!("every target is met to {MET_EXACTLY:e} of its tolerance");
+            break;
+        }
+        let (outcome, step_size) = match step(&here, &free, damping, &scale, &margins) {
+            Err(e) => {
+                damping *= 10.0;
+                (e, 0.0)
+            }
+            Ok(d) => {
+                let x: Vec<f64> =
+                    here.x.iter().zip(&d).zip(&free).map(|((x, d), (lo, hi))| (x + d).clamp(*lo, *hi)).collect();
+                let size = d.iter().zip(&free).map(|(d, (lo, hi))| d.abs() / (hi - lo)).fold(0.0, f64::max);
+                // What the Gauss–Newton model predicts the step gains.
+                let model: f64 = here
+                    .residuals
+                    .iter()
+                    .zip(&here.jacobian)
+                    .map(|(r, row)| {
+                        let m = r + row.iter().zip(&d).map(|(j, d)| j * d).sum::<f64>();
+                        m * m
+                    })
+                    .sum::<f64>()
+                    * 0.5;
+                let predicted = f - model;
+                evaluations += 1;
+                match evaluate(parameters, targets, &x) {
+                    Err(e) => {
+                        damping *= 4.0;
+                        (format!("stepped back: {e}"), size)
+                    }
+                    Ok(next) if next.objective() < f && packaged(&next) => {
+                        margins.iter_mut().for_each(|m| *m *= 0.5);
+                        let ratio = (f - next.objective()) / predicted.max(f64::MIN_POSITIVE);
+                        damping = if ratio > 0.75 {
+                            damping / 3.0
+                        } else if ratio < 0.25 {
+                            damping * 2.0
+                        } else {
+                            damping
+                        };
+                        damping = damping.max(1e-12);
+                        let gain = f - next.objective();
+                        here = next;
+                        rejected = 0;
+                        if gain <= 1e-9 * f || size < 1e-9 {
+                            stopped = "the steps no longer gain: the targets are met as nearly as they can be".into();
+                            iterations.push(record(iteration, &here, &free, size, damping, evaluations, "taken"));
+                            progress(&iterations[iterations.len() - 1]);
+                            break;
+                        }
+                        ("taken".into(), size)
+                    }
+                    Ok(next) if !packaged(&next) => {
+                        for ((m, c), was) in margins.iter_mut().zip(&next.packaging).zip(&here.packaging) {
+                            let over = (c.min - c.value).max(c.value - c.max).max(0.0);
+                            // The bend of the constraint over the step, held back next time.
+                            *m += 2.0 * over + 1e-12 * was.value.abs();
+                        }
+                        ("stepped back: it broke the packaging".to_string(), size)
+                    }
+                    Ok(_) => {
+                        damping *= 4.0;
+                        ("stepped back: it gained nothing".to_string(), size)
+                    }
+                }
+            }
+        };
+        if outcome != "taken" {
+            rejected += 1;
+        }
+        iterations.push(record(iteration, &here, &free, step_size, damping, evaluations, &outcome));
+        progress(&iterations[iterations.len() - 1]);
+        if projected_gradient(&here, &free) <= 1e-13 * (1.0 + here.objective()) * here.x.len() as f64 {
+            stopped = "the gradient vanishes within the bounds: the targets are met as nearly as they can be".into();
+            break;
+        }
+        if rejected >= 12 || damping > 1e12 {
+            stopped = "no step gains any more: the targets are met as nearly as they can be".into();
+            break;
+        }
+    }
+    let verdicts = verdicts(&here, targets, &free);
+    let document = parameters.document_at(&here.x)?;
+    Ok(Tuned { start, end: here, iterations, verdicts, stopped, document })
+}
+
+fn record(
+    iteration: usize,
+    e: &Evaluation,
+    free: &[(f64, f64)],
+    step: f64,
+    damping: f64,
+    evaluations: usize,
+    outcome: &str,
+) -> Iteration {
+    Iteration {
+        iteration,
+        objective: e.objective(),
+        gradient_norm: projected_gradient(e, free),
+        step,
+        damping,
+        evaluations,
+        outcome: outcome.into(),
+    }
+}
+
+/// Each target's outcome at the end, and why one is not met: the bounds or packaging that hold, or the
+/// targets that fight it.
+fn verdicts(e: &Evaluation, targets: &Targets, free: &[(f64, f64)]) -> Vec<Verdict> {
+    let at_bound: Vec<String> =
+        e.x.iter()
+            .zip(free)
+            .zip(&targets.free)
+            .filter_map(|((x, (lo, hi)), f)| {
+                let span = hi - lo;
+                if (x - lo).abs() <= 1e-9 * span {
+                    Some(format!("'{}' at its lower bound {lo}", f.pointer))
+                } else if (hi - x).abs() <= 1e-9 * span {
+                    Some(format!("'{}' at its upper bound {hi}", f.pointer))
+                } else {
+                    None
+                }
+            })
+            .collect();
+    let packed: Vec<String> = e
+        .packaging
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| (c.value - c.min).abs() <= 1e-7 || (c.max - c.value).abs() <= 1e-7)
+        .map(|(k, _)| format!("constraints[{k}] holding"))
+        .collect();
+    targets
+        .targets
+        .iter()
+        .enumerate()
+        .map(|(k, t)| {
+            let worst = e
+                .rows
+                .iter()
+                .zip(&e.residuals)
+                .filter(|(r, _)| r.target == k)
+                .map(|(_, r)| r.abs())
+                .fold(0.0, f64::max);
+            let met = worst <= 1.0;
+            let why = (!met).then(|| {
+                let held: Vec<String> = at_bound.iter().chain(&packed).cloned().collect();
+                if held.is_empty() {
+                    "the targets fight one another: with every free number inside its bounds, the best compromise \
+                     of their tolerances leaves this miss; loosen a tolerance or free another number"
+                        .to_string()
+                } else {
+                    format!("held by {}: widen the bounds or the packaging, or free another number", held.join(", "))
+                }
+            });
+            Verdict { target: t.label.clone(), worst, met, why }
+        })
+        .collect()
+}
