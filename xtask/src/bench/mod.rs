@@ -26,6 +26,7 @@ pub mod stats;
 mod step_cost;
 mod stiff_cases;
 pub mod track;
+mod tuning;
 
 use report::{significant, SectionOutput, Table, Target};
 use stats::Budget;
@@ -71,13 +72,14 @@ impl Settings {
 type Section = (&'static str, fn(&Settings) -> SectionOutput);
 
 /// The sections, in the order they run and appear.
-const SECTIONS: [Section; 7] = [
+const SECTIONS: [Section; 8] = [
     ("error-vs-time", error_vs_time::run),
     ("step-cost", step_cost::run),
     ("scaling", scaling::run),
     ("stiff-cases", stiff_cases::run),
     ("batch", batch::run),
     ("sensitivity", sensitivity::run),
+    ("tuning", tuning::run),
     ("exudyn", exudyn::run),
 ];
 
@@ -89,7 +91,7 @@ usage: cargo xtask bench [--quick] [--out DIR] [--save NAME] [--compare NAME] [-
     --compare NAME   print now/then for every figure of DIR/NAME.json, flag the slower ones
     --threshold X    flag figures slower than X times then (default 1.25)
     --only LIST      comma-separated sections: error-vs-time, step-cost, scaling, stiff-cases, batch, sensitivity,
-                     exudyn
+                     tuning, exudyn
                      (exudyn needs Python with Exudyn, `pip install exudyn`; without it, it is skipped)";
 
 /// Parsed command line.
