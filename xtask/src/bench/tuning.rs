@@ -63,10 +63,13 @@ fn gauss_newton(p: &Parameters, targets: &Targets) -> Result<Outcome, String> {
     Ok(Outcome { miss, evaluations: tuned.iterations.last().map_or(0, |i| i.evaluations) })
 }
 
+/// A point, the cost there and its gradient.
+type Evaluated = (Vec<f64>, f64, Vec<f64>);
+
 fn panoc(p: &Parameters, targets: &Targets) -> Result<Outcome, String> {
     use optimization_engine::{constraints::Rectangle, panoc::PANOCCache, panoc::PANOCOptimizer, Problem, SolverError};
     // PANOC asks for the cost and the gradient apart; one evaluation gives both, kept for the next call.
-    let last: RefCell<Option<(Vec<f64>, f64, Vec<f64>)>> = RefCell::new(None);
+    let last: RefCell<Option<Evaluated>> = RefCell::new(None);
     let evaluations = RefCell::new(0usize);
     let at = |u: &[f64]| -> Result<(f64, Vec<f64>), SolverError> {
         if let Some((x, f, g)) = last.borrow().as_ref() {
