@@ -53,18 +53,9 @@ fn write_page(
     provenance: &Value,
     render_chart: &dyn Fn(&Chart) -> Result<String, String>,
 ) -> std::fmt::Result {
-    writeln!(out, "<!DOCTYPE html>")?;
-    writeln!(out, r#"<html xmlns="http://www.w3.org/1999/xhtml" lang="en">"#)?;
-    writeln!(out, "<head>")?;
-    writeln!(out, r#"<meta charset="utf-8"/>"#)?;
-    writeln!(out, r#"<meta name="viewport" content="width=device-width, initial-scale=1"/>"#)?;
-    writeln!(out, r#"<meta name="generator" content="elastokin {}"/>"#, attr(env!("CARGO_PKG_VERSION")))?;
     // The name is shown shortened; it is whole in the model below and in summary.json.
     let name = crate::plot::shown(&report.model, NAME_SHOWN);
-    writeln!(out, "<title>K&amp;C report: {}</title>", text(&name))?;
-    writeln!(out, "<style>{STYLE}</style>")?;
-    writeln!(out, "</head>")?;
-    writeln!(out, "<body>")?;
+    write_head(out, &format!("K&C report: {name}"))?;
 
     writeln!(out, "<header>")?;
     writeln!(out, "<h1>K&amp;C report: {}</h1>", text(&name))?;
@@ -96,6 +87,140 @@ fn write_page(
     writeln!(out, "</html>")
 }
 
+/// The page's opening: the document type, the head (its `title` as given, the style inline) and `<body>`.
+fn write_head(out: Out, title: &str) -> std::fmt::Result {
+    writeln!(out, "<!DOCTYPE html>")?;
+    writeln!(out, r#"<html xmlns="http://www.w3.org/1999/xhtml" lang="en">"#)?;
+    writeln!(out, "<head>")?;
+    writeln!(out, r#"<meta charset="utf-8"/>"#)?;
+    writeln!(out, r#"<meta name="viewport" content="width=device-width, initial-scale=1"/>"#)?;
+    writeln!(out, r#"<meta name="generator" content="elastokin {}"/>"#, attr(env!("CARGO_PKG_VERSION")))?;
+    writeln!(out, "<title>{}</title>", text(title))?;
+    writeln!(out, "<style>{STYLE}</style>")?;
+    writeln!(out, "</head>")?;
+    writeln!(out, "<body>")
+}
+
+/// A horizontal bar chart as inline SVG: one bar per `(label, value)`, drawn from a centre line (negative
+/// to the left), the largest magnitude the full width, each value printed with `unit`.
+fn write_bars(out: Out, bars: &[(String, f64)], unit: &str) -> std::fmt::Result {
+    let (width, label_width, row) = (760.0, 330.0, 20.0);
+    let half = (width - label_width - 120.0) / 2.0;
+    let centre = label_width + half;
+    let largest = bars.iter().fold(0.0f64, |m, (_, v)| m.max(v.abs())).max(f64::MIN_POSITIVE);
+    let height = row * bars.len() as f64 + 8.0;
+    writeln!(
+        out,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" role="img">"#
+    )?;
+    writeln!(out, r##"<line x1="{centre}" y1="0" x2="{centre}" y2="{height}" stroke="#8c959f"/>"##)?;
+    for (k, (label, v)) in bars.iter().enumerate() {
+        let y = 4.0 + row * k as f64;
+        let w = half * v.abs() / largest;
+        let x = if *v < 0.0 { centre - w } else { centre };
+        let fill = if *v < 0.0 { "#cf222e" } else { "#0969da" };
+        let shown = crate::plot::shown(label, 52);
+        writeln!(
+            out,
+            r#"<text x="{}" y="{}" font-size="11" text-anchor="end" font-family="sans-serif">{}</text>"#,
+            label_width - 6.0,
+            y + 13.0,
+            text(&shown)
+        )?;
+        writeln!(out, r#"<rect x="{x:.1}" y="{y:.1}" width="{w:.1}" height="{:.1}" fill="{fill}"/>"#, row - 6.0)?;
+        writeln!(
+            out,
+            r#"<text x="{}" y="{}" font-size="11" font-family="sans-serif">{} {}</text>"#,
+            centre + half + 6.0,
+            y + 13.0,
+            text(&significant(*v, 3)),
+            text(unit)
+        )?;
+    }
+    writeln!(out, "</svg>")
+}
+
+/// The stack-up's report as one self-contained HTML page: per figure, its value, first-order worst case
+/// and standard deviation beside the Monte Carlo's when run, and its largest contributors as a bar chart;
+/// the figures left out and the samples that failed, with why; how the run was made.
+pub fn tolerance_html(
+    stack: &crate::suspensions::design::tolerance::StackUp,
+    model_name: &str,
+    provenance: &Value,
+) -> String {
+    let mut page = String::new();
+    // Writing into a String cannot fail.
+    let _ = write_tolerance_page(&mut page, stack, model_name, provenance);
+    page
+}
+
+fn write_tolerance_page(
+    out: Out,
+    stack: &crate::suspensions::design::tolerance::StackUp,
+    model_name: &str,
+    provenance: &Value,
+) -> std::fmt::Result {
+    let name = crate::plot::shown(model_name, NAME_SHOWN);
+    write_head(out, &format!("Tolerance stack-up: {name}"))?;
+    writeln!(out, "<header>")?;
+    writeln!(out, "<h1>Tolerance stack-up: {}</h1>", text(&name))?;
+    writeln!(
+        out,
+        "<p class=\"lede\">{} numbers within their tolerances, {} figures; first order from the exact \
+         sensitivities (worst case: every number at the end of its band that moves the figure the same way; σ: \
+         the numbers independent and uniform over their bands){}.</p>",
+        stack.bands.len(),
+        stack.spreads.len(),
+        match stack.spreads.iter().find_map(|s| s.sampled) {
+            Some(m) => format!(", checked by a Monte Carlo of {} sampled models", m.count),
+            None => String::new(),
+        }
+    )?;
+    writeln!(out, "</header>")?;
+    if !stack.failed.is_empty() || !stack.failed_samples.is_empty() || !stack.left_out.is_empty() {
+        writeln!(out, "<section id=\"left-out\">")?;
+        writeln!(out, "<h2>Left out</h2><ul>")?;
+        for f in &stack.failed {
+            writeln!(out, "<li class=\"error\">{}: {}</li>", text(f.analysis.name()), text(&f.reason))?;
+        }
+        for (a, f, why) in &stack.left_out {
+            writeln!(out, "<li>{} {}: {}</li>", text(a), text(f), text(why))?;
+        }
+        for why in &stack.failed_samples {
+            writeln!(out, "<li class=\"error\">{}</li>", text(why))?;
+        }
+        writeln!(out, "</ul></section>")?;
+    }
+    writeln!(out, "<section id=\"spreads\">")?;
+    writeln!(out, "<h2>Spreads</h2>")?;
+    write_open_table(out, &stack.table())?;
+    writeln!(out, "</section>")?;
+    writeln!(out, "<section id=\"contributors\">")?;
+    writeln!(out, "<h2>The largest contributors</h2>")?;
+    for s in &stack.spreads {
+        writeln!(out, "<figure>")?;
+        writeln!(
+            out,
+            "<figcaption>{} {}: {} {unit}, ±{} worst case, σ {}{}</figcaption>",
+            text(s.analysis),
+            text(&s.figure),
+            text(&significant(s.value, 4)),
+            text(&significant(s.worst_case, 3)),
+            text(&significant(s.sigma, 3)),
+            s.sampled.map_or(String::new(), |m| format!(" (sampled σ {})", significant(m.sigma, 3))),
+            unit = text(&s.unit),
+        )?;
+        let bars: Vec<(String, f64)> =
+            s.contributions.iter().take(8).map(|(p, c)| (stack.parameters.pointers[*p].clone(), *c)).collect();
+        write_bars(out, &bars, &s.unit)?;
+        writeln!(out, "</figure>")?;
+    }
+    writeln!(out, "</section>")?;
+    write_provenance(out, provenance)?;
+    writeln!(out, "</body>")?;
+    writeln!(out, "</html>")
+}
+
 /// The tune's report as one self-contained HTML page: whether every target is met and why one is not,
 /// the free numbers before and after, each curve target's column before and after with its points, every
 /// residual and every iteration, and how the run was made. `render_chart` as for [`report_html`].
@@ -122,16 +247,7 @@ fn write_tune_page(
     render_chart: &dyn Fn(&Chart) -> Result<String, String>,
 ) -> std::fmt::Result {
     let name = crate::plot::shown(model_name, NAME_SHOWN);
-    writeln!(out, "<!DOCTYPE html>")?;
-    writeln!(out, r#"<html xmlns="http://www.w3.org/1999/xhtml" lang="en">"#)?;
-    writeln!(out, "<head>")?;
-    writeln!(out, r#"<meta charset="utf-8"/>"#)?;
-    writeln!(out, r#"<meta name="viewport" content="width=device-width, initial-scale=1"/>"#)?;
-    writeln!(out, r#"<meta name="generator" content="elastokin {}"/>"#, attr(env!("CARGO_PKG_VERSION")))?;
-    writeln!(out, "<title>Tune: {}</title>", text(&name))?;
-    writeln!(out, "<style>{STYLE}</style>")?;
-    writeln!(out, "</head>")?;
-    writeln!(out, "<body>")?;
+    write_head(out, &format!("Tune: {name}"))?;
     writeln!(out, "<header>")?;
     writeln!(out, "<h1>Tune: {}</h1>", text(&name))?;
     let met = tuned.verdicts.iter().filter(|v| v.met).count();

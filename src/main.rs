@@ -89,6 +89,16 @@ pub enum Command {
     /// after) and report.html; exits 1 when a target is not met, saying why.
     #[command(after_help = EXIT_STATUS)]
     Tune(TuneArgs),
+    /// Stack up tolerances: how far each figure spreads when the model's numbers are made within their
+    /// tolerances
+    ///
+    /// TOLERANCES is JSON: "tolerances" (each number's JSON pointer and its ± band in the file's units, or
+    /// "15%"), "hardpoints" (± for every hardpoint coordinate), "analyses" (default: the suite) and
+    /// "steps". First order from the exact sensitivities: each figure's worst case and standard deviation
+    /// (the numbers independent and uniform over their bands), its contributors ranked; --monte-carlo N
+    /// checks it on N sampled models. Writes tolerance.csv, tolerance_contributions.csv and report.html.
+    #[command(after_help = EXIT_STATUS)]
+    Tolerance(ToleranceArgs),
     /// Join the batch.csv files of `batch --shard I/N` runs into the batch.csv one `batch` writes
     ///
     /// The shards must be of one model and one variants file (the same SHA-256 in their first lines) and
@@ -242,6 +252,25 @@ pub struct TuneArgs {
     /// The targets file (JSON; see examples/targets/bump_steer.json)
     pub targets: PathBuf,
     /// Where tuned.json, tune.csv, tune_targets.csv and report.html go; the directory is replaced as a
+    /// whole on success
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+}
+
+#[derive(Debug, Args)]
+pub struct ToleranceArgs {
+    /// The model file (JSON; see examples/*.json)
+    pub model: PathBuf,
+    /// The tolerances file (JSON; see examples/targets/tolerances.json)
+    pub tolerances: PathBuf,
+    /// Also sample N models within the tolerances and run each: the spread they give beside the first
+    /// order's
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(2..=100_000))]
+    pub monte_carlo: Option<u32>,
+    /// The seed of the Monte Carlo's samples (the same seed, the same samples)
+    #[arg(long, value_name = "S", default_value_t = 1)]
+    pub seed: u64,
+    /// Where tolerance.csv, tolerance_contributions.csv and report.html go; the directory is replaced as a
     /// whole on success
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
@@ -883,6 +912,75 @@ fn tune(args: TuneArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> {
     )))
 }
 
+/// `tolerance`: the figures' spread under the model's tolerances.
+fn tolerance(args: ToleranceArgs, out: &Stdout) -> Result<(), Failure> {
+    use elastokin::suspensions::design::tolerance::{read_tolerances, stack_up};
+    let read = read_model(&args.model)?;
+    if let Some(line) = read.format_line() {
+        out.line(line)?;
+    }
+    let origin = args.model.display().to_string();
+    let base = batch::base_document(&String::from_utf8_lossy(&read.bytes), &origin).map_err(Failure::Input)?;
+    let (bytes, text) = read_input(&args.tolerances, "TOLERANCES")?;
+    let tolerances = read_tolerances(&text, &args.tolerances.display().to_string(), &base).map_err(Failure::Input)?;
+    let mut stack = stack_up(&base, &tolerances).map_err(|e| Failure::Run(format!("{origin}: {e}")))?;
+    if stack.spreads.is_empty() && !stack.failed.is_empty() {
+        return Err(Failure::Run(format!(
+            "no spreads: {}\n(nothing was written; {} is untouched)",
+            failed_lines(&stack.failed),
+            args.out.display()
+        )));
+    }
+    if let Some(n) = args.monte_carlo {
+        stack.monte_carlo(n as usize, args.seed, &tolerances.analyses, tolerances.steps);
+    }
+    let mut provenance = Provenance::new(&args.model, &read.bytes, kc::mode_word(Mode::Corrected), tolerances.steps);
+    provenance.targets = Some((args.tolerances.display().to_string(), elastokin::provenance::sha256_hex(&bytes)));
+    let staging = Staging::new(&args.out)?;
+    let written = (|| -> Result<Vec<PathBuf>, Failure> {
+        let html = elastokin::html::tolerance_html(&stack, &read.file.name, &provenance.to_json());
+        Ok(vec![
+            staging.write("tolerance.csv", &write_table(&stack.table(), &provenance))?,
+            staging.write("tolerance_contributions.csv", &write_table(&stack.contribution_table(), &provenance))?,
+            staging.write("report.html", html.as_bytes())?,
+        ])
+    })()
+    .map_err(|e| Failure::Run(format!("{}\n{}", e.message(), staging.untouched())))?;
+    staging.commit()?;
+    out.line(format!("{} — {} numbers within their tolerances", read.file.name, stack.bands.len()))?;
+    for s in &stack.spreads {
+        let sampled = s.sampled.map_or(String::new(), |m| format!(", sampled σ {}", kc::significant(m.sigma, 3)));
+        out.line(format!(
+            "  {:<44} {:>12} ±{} worst, σ {}{sampled} {}",
+            format!("{} {}", s.analysis, s.figure),
+            kc::significant(s.value, 5),
+            kc::significant(s.worst_case, 3),
+            kc::significant(s.sigma, 3),
+            s.unit
+        ))?;
+        for (p, c) in s.contributions.iter().take(3) {
+            out.line(format!("      {:<56} {:>12} {}", stack.parameters.pointers[*p], kc::significant(*c, 3), s.unit))?;
+        }
+    }
+    out.line("")?;
+    out.line(format!("wrote {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))?;
+    let failed: Vec<String> = stack
+        .failed
+        .iter()
+        .map(|f| format!("{}: {}", f.analysis.name(), f.reason))
+        .chain(stack.failed_samples.iter().cloned())
+        .collect();
+    if failed.is_empty() {
+        return Ok(());
+    }
+    Err(Failure::Run(format!(
+        "{} analyses or samples failed (the others' results are in {}):\n{}",
+        failed.len(),
+        args.out.display(),
+        failed.join("\n")
+    )))
+}
+
 fn main() -> ExitCode {
     // Usage errors exit with status 2, help and --version with 0; clap prints them.
     let cli = Cli::parse();
@@ -893,6 +991,7 @@ fn main() -> ExitCode {
         Command::Batch(args) => run_batch(args, &out, cli.quiet),
         Command::Sensitivity(args) => sensitivity(args, &out),
         Command::Tune(args) => tune(args, &out, cli.quiet),
+        Command::Tolerance(args) => tolerance(args, &out),
         Command::Merge(args) => merge::merge(args, &out),
         Command::Expand(args) => expand(args, &out),
         Command::Import(args) => import(args, &out),

@@ -1459,3 +1459,51 @@ fn tune_meets_the_shipped_targets_and_says_why_when_it_cannot() {
     assert!(dir.join("y").join("tuned.json").exists());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `tolerance` on the shipped tolerances example: tolerance.csv holds each figure's first-order worst case
+/// and σ with the Monte Carlo's beside them (the same seed, the same samples: the file again byte for
+/// byte after the provenance line), the contributions sum to the worst case, report.html is well formed;
+/// a bad file is refused by key with exit 2.
+#[test]
+fn tolerance_stacks_up_the_shipped_example_and_checks_it_by_sampling() {
+    let dir = scratch("tolerance");
+    let run = |out: &str| {
+        let out = dir.join(out);
+        let args = ["tolerance", "examples/macpherson.json", "examples/targets/tolerances.json", "--monte-carlo", "60"];
+        succeeds(&[&args[..], &["--seed", "3", "--out", out.to_str().unwrap()]].concat());
+        out
+    };
+    let (a, b) = (run("a"), run("b"));
+    let body = |p: &Path| std::fs::read_to_string(p).unwrap().lines().skip(1).collect::<Vec<_>>().join("\n");
+    assert_eq!(body(&a.join("tolerance.csv")), body(&b.join("tolerance.csv")));
+    let rows = read_csv(&a.join("tolerance.csv"));
+    let bump = rows.iter().find(|r| &r[1] == "bump_steer").unwrap();
+    let (worst, sigma, sampled): (f64, f64, f64) =
+        (bump[4].parse().unwrap(), bump[5].parse().unwrap(), bump[6].parse().unwrap());
+    // 60 samples know a σ to 1/√118, 9 %: allowed five of those (the accuracy itself is
+    // crates/suspensions/tests/tolerance.rs's).
+    assert!(worst > sigma && sigma > 0.0 && (sampled / sigma - 1.0).abs() < 0.46, "{worst} {sigma} {sampled}");
+    let contributions = read_csv(&a.join("tolerance_contributions.csv"));
+    let sum: f64 = contributions
+        .iter()
+        .filter(|r| &r[1] == "bump_steer" && &r[0] == "parallel-travel")
+        .map(|r| r[4].parse::<f64>().unwrap().abs())
+        .sum();
+    assert!((sum - worst).abs() <= 1e-9 * worst, "{sum} {worst}");
+    let html = std::fs::read_to_string(a.join("report.html")).unwrap();
+    roxmltree::Document::parse(html.strip_prefix("<!DOCTYPE html>").unwrap()).unwrap();
+    assert!(html.contains("The largest contributors") && html.contains("<rect"));
+    let bad = dir.join("bad.json");
+    std::fs::write(&bad, r#"{"tolerances": {"/suspension/macpherson/spring/rate": "lots"}}"#).unwrap();
+    let o = elastokin(&[
+        "tolerance",
+        "examples/macpherson.json",
+        bad.to_str().unwrap(),
+        "--out",
+        dir.join("x").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("tolerances[\"/suspension/macpherson/spring/rate\"]"));
+    assert!(!dir.join("x").exists());
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -264,6 +264,31 @@ class Model:
         span = None if range is None else (float(range[0]), float(range[1]))
         return self._native.sensitivities(pointers, analysis=analysis, range=span, steps=steps)
 
+    def tune(self, targets: Union[str, Dict[str, Any]], directory: str = ".") -> Dict[str, Any]:
+        """Tunes the model to ``targets`` (a TARGETS file's path, or its content as a dict), as ``elastokin
+        tune`` does: a dict of ``stopped``, ``all_met``, ``verdicts`` (each target's largest miss over its
+        tolerance, whether met and why not), ``parameters`` with their values ``before`` and ``after``,
+        ``iterations`` (tune.csv's columns) and ``tuned``, the model file's text with the numbers moved.
+        Measured files named in a dict are read from ``directory``; in a file, beside it."""
+        if isinstance(targets, dict):
+            return self._native.tune(json.dumps(targets), directory)
+        path = str(targets)
+        with open(path, encoding="utf-8") as f:
+            return self._native.tune(f.read(), os.path.dirname(path) or ".")
+
+    def tolerance(
+        self, tolerances: Union[str, Dict[str, Any]], *, monte_carlo: Optional[int] = None, seed: int = 1
+    ) -> Dict[str, Any]:
+        """The tolerance stack-up of ``tolerances`` (a TOLERANCES file's path, or its content as a dict), as
+        ``elastokin tolerance`` gives it: tolerance.csv's columns by name (each figure's first-order
+        ``worst_case`` and ``sigma``, and with ``monte_carlo`` samples the sampled spread beside them)."""
+        if isinstance(tolerances, dict):
+            text = json.dumps(tolerances)
+        else:
+            with open(str(tolerances), encoding="utf-8") as f:
+                text = f.read()
+        return self._native.tolerance(text, monte_carlo=monte_carlo, seed=seed)
+
     def objective(
         self,
         figure: str,

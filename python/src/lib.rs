@@ -132,6 +132,15 @@ fn columns<'py>(py: Python<'py>, table: &Table) -> PyResult<Columns<'py>> {
     Ok(out)
 }
 
+/// A table as a dict of its columns (see [`columns`]).
+fn column_dict<'py>(py: Python<'py>, table: &Table) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    for (name, values) in columns(py, table)? {
+        d.set_item(name, values)?;
+    }
+    Ok(d)
+}
+
 fn to_json<T: serde::Serialize>(value: &T) -> PyResult<String> {
     serde_json::to_string(value).map_err(|e| AnalysisError::new_err(e.to_string()))
 }
@@ -257,6 +266,69 @@ impl Model {
         elastokin_suspensions::design::hardpoint_pointers(&self.base)
     }
 
+    /// Tunes the model to the TARGETS file's text `targets` (measured files named in it are read from
+    /// `directory`), as the command's `tune`: a dict of `stopped` (why the iterations ended), `all_met`,
+    /// `verdicts` (each target's label, largest miss over its tolerance, whether met and why not),
+    /// `parameters`, their values `before` and `after`, `iterations` (`tune.csv`'s columns by name) and
+    /// `tuned` (the model file's text with the numbers moved).
+    #[pyo3(signature = (targets, directory="."))]
+    fn tune<'py>(&self, py: Python<'py>, targets: &str, directory: &str) -> PyResult<Bound<'py, PyDict>> {
+        use elastokin_suspensions::design::{targets::read_targets, tune::tune, Parameters};
+        let read_file = |name: &str| {
+            let path = Path::new(directory).join(name);
+            std::fs::read_to_string(&path).map_err(|e| format!("cannot read {}: {e}", path.display()))
+        };
+        let t = read_targets(targets, "targets", &self.base, read_file).map_err(PyValueError::new_err)?;
+        let pointers: Vec<String> = t.free.iter().map(|f| f.pointer.clone()).collect();
+        let p = Parameters::new(&self.base, &pointers).map_err(ModelError::new_err)?;
+        let tuned = py.detach(|| tune(&p, &t, |_| {})).map_err(AnalysisError::new_err)?;
+        let d = PyDict::new(py);
+        d.set_item("stopped", &tuned.stopped)?;
+        d.set_item("all_met", tuned.all_met())?;
+        let verdicts = PyList::empty(py);
+        for v in &tuned.verdicts {
+            let e = PyDict::new(py);
+            e.set_item("target", &v.target)?;
+            e.set_item("worst", v.worst)?;
+            e.set_item("met", v.met)?;
+            e.set_item("why", v.why.as_deref())?;
+            verdicts.append(e)?;
+        }
+        d.set_item("verdicts", verdicts)?;
+        d.set_item("parameters", pointers)?;
+        d.set_item("before", PyArray1::from_vec(py, tuned.start.x.clone()))?;
+        d.set_item("after", PyArray1::from_vec(py, tuned.end.x.clone()))?;
+        d.set_item("iterations", column_dict(py, &tuned.iteration_table())?)?;
+        let text = serde_json::to_string_pretty(&tuned.document).map_err(|e| AnalysisError::new_err(e.to_string()))?;
+        d.set_item("tuned", text)?;
+        Ok(d)
+    }
+
+    /// The tolerance stack-up of the TOLERANCES file's text `tolerances`, as the command's `tolerance`:
+    /// `tolerance.csv`'s columns by name (each figure's value, first-order `worst_case` and `sigma`, and
+    /// with `monte_carlo` samples the sampled spread beside them), the same seed giving the same samples.
+    #[pyo3(signature = (tolerances, monte_carlo=None, seed=1))]
+    fn tolerance<'py>(
+        &self,
+        py: Python<'py>,
+        tolerances: &str,
+        monte_carlo: Option<usize>,
+        seed: u64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        use elastokin_suspensions::design::tolerance::{read_tolerances, stack_up};
+        let t = read_tolerances(tolerances, "tolerances", &self.base).map_err(PyValueError::new_err)?;
+        let stack = py
+            .detach(|| {
+                let mut stack = stack_up(&self.base, &t)?;
+                if let Some(n) = monte_carlo {
+                    stack.monte_carlo(n, seed, &t.analyses, t.steps);
+                }
+                Ok::<_, String>(stack)
+            })
+            .map_err(AnalysisError::new_err)?;
+        column_dict(py, &stack.table())
+    }
+
     /// Exact sensitivities of one analysis of the K&C suite to the numbers at `parameters` (JSON pointers),
     /// as the command's `sensitivity` gives them: a dict of the analysis's name, the parameters and their
     /// values, the table's `columns`, every column by name (its rows) and its derivatives as
@@ -301,7 +373,10 @@ impl Model {
             let entry = PyDict::new(py);
             entry.set_item("value", f.value)?;
             entry.set_item("unit", &f.unit)?;
-            entry.set_item("no_derivative", derivatives.iter().map(|r| r.err().map(|e| e.reason())).collect::<Vec<_>>())?;
+            entry.set_item(
+                "no_derivative",
+                derivatives.iter().map(|r| r.err().map(|e| e.reason())).collect::<Vec<_>>(),
+            )?;
             entry.set_item("derivatives", PyArray1::from_vec(py, rates(derivatives)))?;
             figures.set_item(&f.key, entry)?;
         }

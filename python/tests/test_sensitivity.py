@@ -101,3 +101,37 @@ def test_scipy_tunes_the_bump_steer_with_the_exact_gradient():
     start = model.sensitivities(pointers, steps=8)["figures"]["bump_steer"]
     newton = -start["value"] / start["derivatives"][0]
     assert result.x[0] - x0[0] == pytest.approx(newton, rel=0.2)
+
+
+def test_tune_gives_the_commands_numbers(tmp_path):
+    out = tmp_path / "out"
+    targets = "examples/targets/bump_steer.json"
+    command("tune", MODEL, targets, "--quiet", "--out", out)
+    model = elastokin.load(MODEL)
+    t = model.tune(targets)
+    assert t["all_met"] and all(v["met"] for v in t["verdicts"])
+    tuned = json.loads((out / "tuned.json").read_text())
+    for k, pointer in enumerate(t["parameters"]):
+        value = tuned
+        for key in pointer.strip("/").split("/"):
+            value = value[int(key)] if isinstance(value, list) else value[key]
+        # The same tune, to the last digit the file holds.
+        assert t["after"][k] == pytest.approx(value, rel=1e-15, abs=1e-18)
+    assert json.loads(t["tuned"]) == tuned
+    header, rows = read_csv(out / "tune.csv")
+    assert len(rows) == len(t["iterations"]["iteration"])
+
+
+def test_tolerance_gives_the_commands_numbers(tmp_path):
+    out = tmp_path / "out"
+    tolerances = "examples/targets/tolerances.json"
+    command("tolerance", MODEL, tolerances, "--monte-carlo", "20", "--seed", "5", "--quiet", "--out", out)
+    header, rows = read_csv(out / "tolerance.csv")
+    s = elastokin.load(MODEL).tolerance(tolerances, monte_carlo=20, seed=5)
+    assert list(s["figure"]) == [r[1] for r in rows]
+    for k, row in enumerate(rows):
+        for column in ("worst_case", "sigma", "sampled_sigma"):
+            got = s[column][k]
+            assert got == pytest.approx(float(row[header.index(column)]), rel=1e-11), (row[1], column)
+    with pytest.raises(ValueError, match="unknown key 'hardpoint'"):
+        elastokin.load(MODEL).tolerance({"hardpoint": 0.001})

@@ -1,0 +1,346 @@
+//! Tolerance stack-up: how far the figures of a suspension spread when its numbers are made within their
+//! tolerances (a hardpoint's ±1 mm each axis, a bushing rate's ±15 %). First order, from the exact
+//! sensitivities: each figure's worst case (every number at the end of its band that moves the figure the
+//! same way) and its standard deviation (the numbers independent, each uniform over its band: `σ = t/√3`),
+//! with the numbers that contribute most ranked. Checked by Monte Carlo: the model sampled within the
+//! bands, every sample run, the spread measured.
+//!
+//! The TOLERANCES file:
+//!
+//! ```json
+//! { "tolerances": { "/suspension/macpherson/hardpoints/tie_rod_inner/2": 0.001,
+//!                   "/suspension/macpherson/lower_arm_mounts/bushing/radial": "15%" },
+//!   "hardpoints": 0.001,
+//!   "analyses": ["parallel-travel"],
+//!   "steps": 32 }
+//! ```
+//!
+//! `hardpoints` gives every coordinate of every hardpoint that tolerance (a number named in
+//! `tolerances` keeps its own); `analyses` defaults to the whole suite.
+
+use super::parameter::{hardpoint_pointers, Parameters};
+use super::sensitivity::{suite_sensitivity, SuiteSensitivity};
+use crate::kc::{self, Analysis, Cell, Failed, Settings, Table};
+use rand::{Rng, SeedableRng};
+use rayon::prelude::*;
+use serde_json::Value;
+
+/// The stack-up asked for: each number's tolerance (±, in the file's units), the analyses, the steps.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tolerances {
+    /// `(pointer, ±tolerance)`, in the order given.
+    pub bands: Vec<(String, f64)>,
+    /// The analyses (every one the suite runs when empty).
+    pub analyses: Vec<Analysis>,
+    /// Load steps per sweep.
+    pub steps: usize,
+}
+
+/// Reads a TOLERANCES file against the model `document`; errors name the key and the fix.
+pub fn read_tolerances(text: &str, origin: &str, document: &Value) -> Result<Tolerances, String> {
+    let at = |key: &str| format!("{origin}: {key}");
+    let root: Value = serde_json::from_str(text).map_err(|e| format!("{origin}: {e}"))?;
+    let object = root.as_object().ok_or_else(|| at("the file must be a JSON object with \"tolerances\""))?;
+    let allowed = ["tolerances", "hardpoints", "analyses", "steps"];
+    if let Some(k) = object.keys().find(|k| !allowed.contains(&k.as_str())) {
+        return Err(at(&format!("unknown key '{k}' (the keys are: {})", allowed.join(", "))));
+    }
+    let band = |pointer: &str, v: &Value, key: &str| -> Result<f64, String> {
+        let value = match document.pointer(pointer) {
+            Some(Value::Number(n)) => n.as_f64().unwrap_or(f64::NAN),
+            Some(_) => return Err(at(&format!("{key}: the model has no number at '{pointer}'"))),
+            None => return Err(at(&format!("{key}: '{pointer}' names nothing in the model"))),
+        };
+        let t = match v {
+            Value::Number(n) => n.as_f64().unwrap_or(f64::NAN),
+            Value::String(s) => match s.trim().strip_suffix('%').map(|p| p.trim().parse::<f64>()) {
+                Some(Ok(p)) => p * 1e-2 * value.abs(),
+                _ => {
+                    return Err(at(&format!(
+                        "{key}: give ± in the file's units (0.001) or a percent (\"15%\"), got \"{s}\""
+                    )))
+                }
+            },
+            other => {
+                return Err(at(&format!(
+                    "{key}: give ± in the file's units (0.001) or a percent (\"15%\"), got {other}"
+                )))
+            }
+        };
+        if t.is_finite() && t > 0.0 {
+            Ok(t)
+        } else {
+            Err(at(&format!("{key}: a tolerance must be a positive band, got {v}")))
+        }
+    };
+    let mut bands: Vec<(String, f64)> = Vec::new();
+    if let Some(h) = object.get("hardpoints") {
+        for pointer in hardpoint_pointers(document) {
+            bands.push((pointer.clone(), band(&pointer, h, "hardpoints")?));
+        }
+        if bands.is_empty() {
+            return Err(at("hardpoints: the model has no hardpoints (a template's or the general form's)"));
+        }
+    }
+    for (pointer, v) in object.get("tolerances").and_then(Value::as_object).into_iter().flatten() {
+        let t = band(pointer, v, &format!("tolerances[\"{pointer}\"]"))?;
+        match bands.iter_mut().find(|(p, _)| p == pointer) {
+            Some(b) => b.1 = t,
+            None => bands.push((pointer.clone(), t)),
+        }
+    }
+    if bands.is_empty() {
+        return Err(at("no tolerances: give \"tolerances\" {\"/json/pointer\": ±band, …} or \"hardpoints\": ±band"));
+    }
+    let analyses = match object.get("analyses") {
+        None => Vec::new(),
+        Some(list) => list
+            .as_array()
+            .ok_or_else(|| at("analyses: give a list of analysis names"))?
+            .iter()
+            .map(|v| {
+                let name = v.as_str().unwrap_or_default();
+                Analysis::from_name(name).ok_or_else(|| {
+                    let names: Vec<&str> = kc::ALL.iter().map(|a| a.name()).collect();
+                    at(&format!("analyses: no analysis {v} (the suite's are: {})", names.join(", ")))
+                })
+            })
+            .collect::<Result<_, _>>()?,
+    };
+    let steps = match object.get("steps") {
+        None => 32,
+        Some(v) => {
+            let s = v
+                .as_u64()
+                .and_then(|s| usize::try_from(s).ok())
+                .ok_or_else(|| at(&format!("steps: give a whole number, got {v}")))?;
+            elastokin_solver::LoadPath::check_steps(s).map_err(|e| at(&format!("steps: {e}")))?;
+            s
+        }
+    };
+    Ok(Tolerances { bands, analyses, steps })
+}
+
+/// One figure's spread.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Spread {
+    /// The analysis's name.
+    pub analysis: &'static str,
+    /// The figure's key.
+    pub figure: String,
+    /// Its unit.
+    pub unit: String,
+    /// Its value at nominal.
+    pub value: f64,
+    /// First order, every number at the end of its band that moves the figure the same way: ±.
+    pub worst_case: f64,
+    /// First order, the numbers independent and uniform over their bands: the standard deviation.
+    pub sigma: f64,
+    /// Each number's share: `(parameter, derivative × tolerance)`, largest first.
+    pub contributions: Vec<(usize, f64)>,
+    /// By Monte Carlo, when run: the standard deviation, lowest and highest of the samples.
+    pub sampled: Option<Sampled>,
+}
+
+/// What the samples of a Monte Carlo run gave for a figure.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sampled {
+    /// Standard deviation.
+    pub sigma: f64,
+    /// Mean.
+    pub mean: f64,
+    /// Lowest.
+    pub min: f64,
+    /// Highest.
+    pub max: f64,
+    /// Samples with a value.
+    pub count: usize,
+}
+
+/// A stack-up's result.
+#[derive(Debug, Clone)]
+pub struct StackUp {
+    /// The numbers and their tolerances.
+    pub parameters: Parameters,
+    /// The bands, as read.
+    pub bands: Vec<f64>,
+    /// The figures' spreads (those with a value and a derivative for every number).
+    pub spreads: Vec<Spread>,
+    /// Figures left out, with why: `(analysis, figure, why)`.
+    pub left_out: Vec<(String, String, String)>,
+    /// Analyses that failed.
+    pub failed: Vec<Failed>,
+    /// Samples of the Monte Carlo run that failed (a model that would not build or solve), with why.
+    pub failed_samples: Vec<String>,
+}
+
+/// The first-order stack-up of `tolerances` on the model `document`.
+pub fn stack_up(document: &Value, tolerances: &Tolerances) -> Result<StackUp, String> {
+    let pointers: Vec<String> = tolerances.bands.iter().map(|(p, _)| p.clone()).collect();
+    let bands: Vec<f64> = tolerances.bands.iter().map(|(_, t)| *t).collect();
+    let parameters = Parameters::new(document, &pointers)?;
+    let settings = Settings { steps: tolerances.steps, ..Settings::default() };
+    let suite: SuiteSensitivity = suite_sensitivity(&parameters, &tolerances.analyses, &settings)?;
+    let (mut spreads, mut left_out) = (Vec::new(), Vec::new());
+    for a in &suite.analyses {
+        for (j, figure) in a.report.figures.iter().enumerate() {
+            let name = a.report.analysis.name();
+            let Some(value) = figure.value else { continue };
+            let rates: Result<Vec<f64>, _> = a.figures.iter().map(|d| d[j]).collect();
+            let rates = match rates {
+                Ok(r) => r,
+                Err(e) => {
+                    left_out.push((name.to_string(), figure.key.clone(), e.reason().to_string()));
+                    continue;
+                }
+            };
+            let mut contributions: Vec<(usize, f64)> =
+                rates.iter().zip(&bands).map(|(d, t)| d * t).enumerate().collect();
+            let worst_case = contributions.iter().map(|(_, c)| c.abs()).sum();
+            let sigma = (contributions.iter().map(|(_, c)| c * c).sum::<f64>() / 3.0).sqrt();
+            contributions.sort_by(|a, b| b.1.abs().total_cmp(&a.1.abs()));
+            spreads.push(Spread {
+                analysis: name,
+                figure: figure.key.clone(),
+                unit: figure.unit.clone(),
+                value,
+                worst_case,
+                sigma,
+                contributions,
+                sampled: None,
+            });
+        }
+    }
+    Ok(StackUp { parameters, bands, spreads, left_out, failed: suite.failed, failed_samples: Vec::new() })
+}
+
+impl StackUp {
+    /// Checks the first-order spreads by Monte Carlo: `samples` models, each number drawn uniformly within
+    /// its band (seeded by `seed`, so a run is repeated exactly), each run on rayon's threads; the samples'
+    /// spread of every figure is kept beside the first-order one.
+    pub fn monte_carlo(&mut self, samples: usize, seed: u64, analyses: &[Analysis], steps: usize) {
+        let settings = Settings { steps, ..Settings::default() };
+        let which: Vec<Analysis> = {
+            let mut w: Vec<Analysis> = Vec::new();
+            for s in &self.spreads {
+                let a = Analysis::from_name(s.analysis).expect("a report's own analysis");
+                if !w.contains(&a) {
+                    w.push(a);
+                }
+            }
+            if w.is_empty() {
+                analyses.to_vec()
+            } else {
+                w
+            }
+        };
+        let runs: Vec<Result<Vec<Option<f64>>, String>> = (0..samples)
+            .into_par_iter()
+            .map(|i| {
+                let mut rng =
+                    rand_chacha::ChaCha8Rng::seed_from_u64(seed ^ (i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15));
+                let x: Vec<f64> = self
+                    .parameters
+                    .values
+                    .iter()
+                    .zip(&self.bands)
+                    .map(|(v, t)| v + t * (2.0 * rng.random::<f64>() - 1.0))
+                    .collect();
+                let file = self.parameters.at(&x)?.file()?;
+                let mut reports = Vec::new();
+                for &a in &which {
+                    reports.push(kc::run(a, &file, &settings).map_err(|e| format!("sample {i}: {e}"))?);
+                }
+                Ok(self
+                    .spreads
+                    .iter()
+                    .map(|s| {
+                        let r = reports.iter().find(|r| r.analysis.name() == s.analysis)?;
+                        r.figure(&s.figure)?.value
+                    })
+                    .collect())
+            })
+            .collect();
+        self.failed_samples = runs.iter().filter_map(|r| r.as_ref().err().cloned()).collect();
+        let values: Vec<&Vec<Option<f64>>> = runs.iter().filter_map(|r| r.as_ref().ok()).collect();
+        for (j, s) in self.spreads.iter_mut().enumerate() {
+            let v: Vec<f64> = values.iter().filter_map(|r| r[j]).collect();
+            if v.len() < 2 {
+                continue;
+            }
+            let mean = v.iter().sum::<f64>() / v.len() as f64;
+            let var = v.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (v.len() - 1) as f64;
+            let (min, max) = v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(*x), b.max(*x)));
+            s.sampled = Some(Sampled { sigma: var.sqrt(), mean, min, max, count: v.len() });
+        }
+    }
+
+    /// `tolerance.csv`: one row per figure — its value, first-order worst case and standard deviation,
+    /// the Monte Carlo's when run, and its three largest contributors.
+    pub fn table(&self) -> Table {
+        let columns = [
+            "analysis",
+            "figure",
+            "unit",
+            "value",
+            "worst_case",
+            "sigma",
+            "sampled_sigma",
+            "sampled_mean",
+            "sampled_min",
+            "sampled_max",
+            "samples",
+            "first_contributor",
+            "second_contributor",
+            "third_contributor",
+        ];
+        let rows = self
+            .spreads
+            .iter()
+            .map(|s| {
+                let m = s.sampled;
+                let mut row = vec![
+                    Cell::Text(s.analysis.into()),
+                    Cell::Text(s.figure.clone()),
+                    Cell::Text(s.unit.clone()),
+                    Cell::from(s.value),
+                    Cell::from(s.worst_case),
+                    Cell::from(s.sigma),
+                    Cell::from(m.map(|m| m.sigma)),
+                    Cell::from(m.map(|m| m.mean)),
+                    Cell::from(m.map(|m| m.min)),
+                    Cell::from(m.map(|m| m.max)),
+                    Cell::from(m.map(|m| m.count as f64)),
+                ];
+                for k in 0..3 {
+                    row.push(s.contributions.get(k).map_or(Cell::Empty, |(p, c)| {
+                        Cell::Text(format!("{} ({})", self.parameters.pointers[*p], kc::significant(*c, 3)))
+                    }));
+                }
+                row
+            })
+            .collect();
+        Table { name: "tolerance".into(), columns: columns.map(String::from).to_vec(), rows }
+    }
+
+    /// `tolerance_contributions.csv`: every figure and number — the number's tolerance, the figure's
+    /// derivative times it (its first-order share, signed).
+    pub fn contribution_table(&self) -> Table {
+        let columns = ["analysis", "figure", "parameter", "tolerance", "contribution"];
+        let mut rows = Vec::new();
+        for s in &self.spreads {
+            let mut by_parameter = s.contributions.clone();
+            by_parameter.sort_by_key(|(p, _)| *p);
+            for (p, c) in by_parameter {
+                rows.push(vec![
+                    Cell::Text(s.analysis.into()),
+                    Cell::Text(s.figure.clone()),
+                    Cell::Text(self.parameters.pointers[p].clone()),
+                    Cell::from(self.bands[p]),
+                    Cell::from(c),
+                ]);
+            }
+        }
+        Table { name: "tolerance_contributions".into(), columns: columns.map(String::from).to_vec(), rows }
+    }
+}
