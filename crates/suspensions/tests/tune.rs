@@ -297,3 +297,22 @@ fn bushing_rates_are_fitted_to_a_measured_lateral_force_test() {
     let found = [tuned.end.x[0] / value(&rig, arm) - 1.0, tuned.end.x[1] / value(&rig, top) - 1.0];
     assert!(tuned.all_met() && found.iter().all(|f| f.abs() < 1e-8), "{found:?} {:?}", tuned.verdicts);
 }
+
+/// A target that asks for a negative wheel rate, the spring rate free down to negative numbers: every step
+/// past where the model can be built is stepped back from, the tune ends at the edge of what the model
+/// accepts (a positive rate), and the verdict says the model stopped it, with the model's own reason.
+#[test]
+fn a_tune_whose_steps_leave_what_the_model_accepts_steps_back_and_says_so() {
+    let base = document("macpherson.json");
+    let text = json!({
+        "free": { "/suspension/macpherson/spring/rate": [-1e5, 1e5] },
+        "targets": [ { "figure": "parallel-travel/wheel_rate", "value": -5.0, "tolerance": 0.01 } ],
+        "steps": 8,
+    })
+    .to_string();
+    let (_, tuned) = run(&base, &text);
+    assert!(tuned.iterations.iter().any(|i| i.outcome.starts_with("stepped back: parallel-travel")));
+    assert!(tuned.end.x[0] > 0.0 && tuned.end.x[0] < tuned.start.x[0], "{}", tuned.end.x[0]);
+    let why = tuned.verdicts[0].why.as_deref().unwrap();
+    assert!(why.contains("held where the model stops") && why.contains("spring.rate"), "{why}");
+}

@@ -564,6 +564,13 @@ pub fn tune(parameters: &Parameters, targets: &Targets, mut progress: impl FnMut
     // its linearisation (it is convex), so a step to its bound overshoots by the bend; a step that broke
     // it is retried with the overshoot held back.
     let mut margins = vec![0.0; targets.constraints.len()];
+    // How far a step may reach (relative to the bounds' span): unlimited until a step is stepped back
+    // from, then half of that step's, so that a model that cannot be built or run beyond some point is
+    // approached, not stepped over again and again (damping alone shortens a step slowly where the
+    // targets see the number strongly).
+    let mut reach = f64::INFINITY;
+    // Why the model could not be evaluated at the last step stepped back from, if that was why.
+    let mut unbuildable: Option<String> = None;
     let mut stopped = format!("the iteration limit ({MAX_ITERATIONS}) was reached");
     let mut rejected = 0;
     for iteration in 1..=MAX_ITERATIONS {
@@ -578,9 +585,13 @@ pub fn tune(parameters: &Parameters, targets: &Targets, mut progress: impl FnMut
                 (e, 0.0)
             }
             Ok(d) => {
+                // Within the reach a step back left (the largest move relative to the bounds' span).
+                let wanted = d.iter().zip(&free).map(|(d, (lo, hi))| d.abs() / (hi - lo)).fold(0.0, f64::max);
+                let shrink = if wanted > reach { reach / wanted } else { 1.0 };
+                let d: Vec<f64> = d.iter().map(|v| v * shrink).collect();
                 let x: Vec<f64> =
                     here.x.iter().zip(&d).zip(&free).map(|((x, d), (lo, hi))| (x + d).clamp(*lo, *hi)).collect();
-                let size = d.iter().zip(&free).map(|(d, (lo, hi))| d.abs() / (hi - lo)).fold(0.0, f64::max);
+                let size = wanted * shrink;
                 // What the Gauss–Newton model predicts the step gains.
                 let model: f64 = here
                     .residuals
@@ -597,6 +608,8 @@ pub fn tune(parameters: &Parameters, targets: &Targets, mut progress: impl FnMut
                 match evaluate(parameters, targets, &x) {
                     Err(e) => {
                         damping *= 4.0;
+                        reach = 0.5 * size;
+                        unbuildable = Some(e.clone());
                         (format!("stepped back: {e}"), size)
                     }
                     Ok(next) if next.objective() < f && packaged(&next) => {
@@ -611,6 +624,8 @@ pub fn tune(parameters: &Parameters, targets: &Targets, mut progress: impl FnMut
                         };
                         damping = damping.max(1e-12);
                         let gain = f - next.objective();
+                        reach *= 2.0;
+                        unbuildable = None;
                         here = next;
                         rejected = 0;
                         if gain <= 1e-9 * f || size < 1e-9 {
@@ -622,6 +637,7 @@ pub fn tune(parameters: &Parameters, targets: &Targets, mut progress: impl FnMut
                         ("taken".into(), size)
                     }
                     Ok(next) if !packaged(&next) => {
+                        reach = 0.5 * size;
                         for ((m, c), was) in margins.iter_mut().zip(&next.packaging).zip(&here.packaging) {
                             let over = (c.min - c.value).max(c.value - c.max).max(0.0);
                             // The bend of the constraint over the step, held back next time.
@@ -631,6 +647,7 @@ pub fn tune(parameters: &Parameters, targets: &Targets, mut progress: impl FnMut
                     }
                     Ok(_) => {
                         damping *= 4.0;
+                        reach = 0.5 * size;
                         ("stepped back: it gained nothing".to_string(), size)
                     }
                 }
@@ -650,7 +667,7 @@ pub fn tune(parameters: &Parameters, targets: &Targets, mut progress: impl FnMut
             break;
         }
     }
-    let verdicts = verdicts(&here, targets, &free);
+    let verdicts = verdicts(&here, targets, &free, unbuildable.as_deref());
     let document = parameters.document_at(&here.x)?;
     Ok(Tuned { start, end: here, iterations, verdicts, stopped, document })
 }
@@ -675,9 +692,9 @@ fn record(
     }
 }
 
-/// Each target's outcome at the end, and why one is not met: the bounds or packaging that hold, or the
-/// targets that fight it.
-fn verdicts(e: &Evaluation, targets: &Targets, free: &[(f64, f64)]) -> Vec<Verdict> {
+/// Each target's outcome at the end, and why one is not met: the model that could not be evaluated a step
+/// further (`unbuildable`), the bounds or packaging that hold, or the targets that fight it.
+fn verdicts(e: &Evaluation, targets: &Targets, free: &[(f64, f64)], unbuildable: Option<&str>) -> Vec<Verdict> {
     let at_bound: Vec<String> =
         e.x.iter()
             .zip(free)
@@ -715,7 +732,12 @@ fn verdicts(e: &Evaluation, targets: &Targets, free: &[(f64, f64)]) -> Vec<Verdi
             let met = worst <= 1.0;
             let why = (!met).then(|| {
                 let held: Vec<String> = at_bound.iter().chain(&packed).cloned().collect();
-                if held.is_empty() {
+                if let Some(why) = unbuildable {
+                    format!(
+                        "held where the model stops: a step further could not be evaluated ({why}); narrow the \
+                         bounds to the numbers the model accepts, or free another number"
+                    )
+                } else if held.is_empty() {
                     "the targets fight one another: with every free number inside its bounds, the best compromise \
                      of their tolerances leaves this miss; loosen a tolerance or free another number"
                         .to_string()
