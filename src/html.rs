@@ -140,6 +140,76 @@ fn write_bars(out: Out, bars: &[(String, f64)], unit: &str) -> std::fmt::Result 
     writeln!(out, "</svg>")
 }
 
+/// The sensitivities' report as one self-contained HTML page: per analysis and headline figure, its value
+/// and the parameters with the largest effects on it (per mm of a length, per % of anything else) as a bar
+/// chart; how the run was made.
+pub fn sensitivity_html(
+    suite: &crate::suspensions::design::SuiteSensitivity,
+    parameters: &crate::suspensions::design::Parameters,
+    model_name: &str,
+    provenance: &Value,
+) -> String {
+    let mut page = String::new();
+    // Writing into a String cannot fail.
+    let _ = write_sensitivity_page(&mut page, suite, parameters, model_name, provenance);
+    page
+}
+
+fn write_sensitivity_page(
+    out: Out,
+    suite: &crate::suspensions::design::SuiteSensitivity,
+    parameters: &crate::suspensions::design::Parameters,
+    model_name: &str,
+    provenance: &Value,
+) -> std::fmt::Result {
+    use crate::suspensions::design::sensitivity::effect_unit;
+    let name = crate::plot::shown(model_name, NAME_SHOWN);
+    write_head(out, &format!("Sensitivities: {name}"))?;
+    writeln!(out, "<header>")?;
+    writeln!(out, "<h1>Sensitivities: {}</h1>", text(&name))?;
+    writeln!(
+        out,
+        "<p class=\"lede\">{} analyses, {} parameters; exact derivatives through the equilibrium, each effect \
+         per mm of a length or per % of anything else; every derivative is in sensitivity.csv.</p>",
+        suite.analyses.len(),
+        parameters.len()
+    )?;
+    writeln!(out, "</header>")?;
+    for f in &suite.failed {
+        writeln!(out, "<p class=\"error\">{}: {}</p>", text(f.analysis.name()), text(&f.reason))?;
+    }
+    for a in &suite.analyses {
+        writeln!(out, "<section id=\"{}\">", attr(a.report.analysis.name()))?;
+        writeln!(out, "<h2>{}</h2>", text(&a.report.description))?;
+        for (j, figure) in a.report.figures.iter().enumerate() {
+            let Some(value) = figure.value else { continue };
+            let bars: Vec<(String, f64)> = a
+                .largest_effects(j, parameters, 8)
+                .into_iter()
+                .map(|(k, e)| (format!("{} (per {})", parameters.pointers[k], effect_unit(&parameters.pointers[k])), e))
+                .collect();
+            writeln!(out, "<figure>")?;
+            writeln!(
+                out,
+                "<figcaption>{}: {} {}</figcaption>",
+                text(&figure.label),
+                text(&significant(value, 5)),
+                text(&figure.unit)
+            )?;
+            if bars.is_empty() {
+                writeln!(out, "<p class=\"none\">no parameter moves it</p>")?;
+            } else {
+                write_bars(out, &bars, &figure.unit)?;
+            }
+            writeln!(out, "</figure>")?;
+        }
+        writeln!(out, "</section>")?;
+    }
+    write_provenance(out, provenance)?;
+    writeln!(out, "</body>")?;
+    writeln!(out, "</html>")
+}
+
 /// The stack-up's report as one self-contained HTML page: per figure, its value, first-order worst case
 /// and standard deviation beside the Monte Carlo's when run, and its largest contributors as a bar chart;
 /// the figures left out and the samples that failed, with why; how the run was made.

@@ -239,8 +239,8 @@ pub struct SensitivityArgs {
         help = format!("Load steps per sweep, 1 to {MAX_STEPS}")
     )]
     pub steps: usize,
-    /// Where sensitivity.csv and each analysis's sensitivity_<table>.csv go; the directory is replaced as
-    /// a whole on success
+    /// Where sensitivity.csv, each analysis's sensitivity_<table>.csv and report.html go; the directory is
+    /// replaced as a whole on success
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
 }
@@ -772,6 +772,8 @@ fn sensitivity(args: SensitivityArgs, out: &Stdout) -> Result<(), Failure> {
     let written = (|| -> Result<Vec<PathBuf>, Failure> {
         let mut written =
             vec![staging.write("sensitivity.csv", &write_table(&suite.figure_table(&parameters), &provenance))?];
+        let html = elastokin::html::sensitivity_html(&suite, &parameters, &read.file.name, &provenance.to_json());
+        written.push(staging.write("report.html", html.as_bytes())?);
         for a in &suite.analyses {
             let rows = a.row_table(&parameters);
             written.push(staging.write(&format!("{}.csv", rows.name), &write_table(&rows, &provenance))?);
