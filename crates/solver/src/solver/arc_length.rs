@@ -32,15 +32,7 @@ impl<'m> StaticSolver<'m> {
         path: LoadPath,
         step: ArcStep,
     ) -> Result<Sweep, SolverError> {
-        match replay::next_sweep(self.taped)? {
-            replay::Replayed::Solve => self.follow_arc(state, path, step),
-            replay::Replayed::Record(taped) => {
-                let result = self.follow_arc(state, path, step);
-                replay::keep_sweep(taped, self.model, path, &result);
-                result
-            }
-            replay::Replayed::Call(recorded) => self.replay_sweep(recorded, path, state),
-        }
+        self.taped_sweep(state, path, |solver, state| solver.follow_arc(state, path, step))
     }
 
     fn follow_arc(&mut self, state: &mut State, path: LoadPath, step: ArcStep) -> Result<Sweep, SolverError> {

@@ -482,15 +482,7 @@ impl<'m> StaticSolver<'m> {
     /// from the last equilibrium found, its corrector kept within the reach of its predictor so that it
     /// cannot jump to another branch of the path.
     pub fn sweep_from(&mut self, state: &mut State, path: LoadPath, mode: Mode) -> Result<Sweep, SolverError> {
-        match replay::next_sweep(self.taped)? {
-            replay::Replayed::Solve => self.walk_path(state, path, mode),
-            replay::Replayed::Record(taped) => {
-                let result = self.walk_path(state, path, mode);
-                replay::keep_sweep(taped, self.model, path, &result);
-                result
-            }
-            replay::Replayed::Call(recorded) => self.replay_sweep(recorded, path, state),
-        }
+        self.taped_sweep(state, path, |solver, state| solver.walk_path(state, path, mode))
     }
 
     fn walk_path(&mut self, state: &mut State, path: LoadPath, mode: Mode) -> Result<Sweep, SolverError> {

@@ -4,10 +4,29 @@
 use super::StaticSolver;
 use crate::error::SolverError;
 use crate::options::{LoadPath, State};
-use crate::replay::{moved_t, note_kink, RecordedEquilibrium, RecordedSweep};
+use crate::replay::{keep_sweep, moved_t, next_sweep, note_kink, RecordedEquilibrium, RecordedSweep, Replayed};
 use crate::results::{StepResult, Sweep};
 
 impl StaticSolver<'_> {
+    /// A sweep along `path` as the thread's recording or replay has it: `solve` it (and keep what it
+    /// returned when recording), or move the recorded one when replaying.
+    pub(super) fn taped_sweep(
+        &mut self,
+        state: &mut State,
+        path: LoadPath,
+        solve: impl FnOnce(&mut Self, &mut State) -> Result<Sweep, SolverError>,
+    ) -> Result<Sweep, SolverError> {
+        match next_sweep(self.taped)? {
+            Replayed::Solve => solve(self, state),
+            Replayed::Record(taped) => {
+                let result = solve(self, state);
+                keep_sweep(taped, self.model, path, &result);
+                result
+            }
+            Replayed::Call(recorded) => self.replay_sweep(recorded, path, state),
+        }
+    }
+
     /// A recorded equilibrium moved to this solver's model at load `t`: one exact Newton iteration.
     /// A stop touching or leaving between the recorded model there (`pieces`) and the moved is noted.
     fn moved(&mut self, recorded: &StepResult, pieces: &[u8], t: f64) -> Result<StepResult, SolverError> {
