@@ -4,7 +4,6 @@
 //! again, so it means exactly what the number means in the file.
 
 use crate::file::SuspensionFile;
-use crate::study::batch::{apply, Variant};
 use serde_json::Value;
 
 /// Numbers of one model document, each named by its pointer, with the document they are read from.
@@ -61,14 +60,9 @@ impl Parameters {
 
     /// The model with parameter `k` moved by `delta` (in the file's units), read as the command reads it.
     pub fn file_moved(&self, k: usize, delta: f64) -> Result<SuspensionFile, String> {
-        let value = self.values[k] + delta;
-        let number = serde_json::Number::from_f64(value)
-            .ok_or_else(|| format!("parameter '{}' moved to {value:e}, which is no number", self.pointers[k]))?;
-        let variant = Variant {
-            name: format!("{} = {value}", self.pointers[k]),
-            edits: vec![(self.pointers[k].clone(), Value::Number(number))],
-        };
-        apply(&self.document, &variant)
+        let mut values = self.values.clone();
+        values[k] += delta;
+        read(&self.document_at(&values)?, &format!("the model with '{}' at {}", self.pointers[k], values[k]))
     }
 
     /// The model's document with the parameters at `values` (in order; the file's units): every other key,
@@ -89,10 +83,18 @@ impl Parameters {
         Ok(Parameters { document: self.document_at(values)?, pointers: self.pointers.clone(), values: values.to_vec() })
     }
 
-    /// The model as it is.
+    /// The model as it is (its parameters at their values).
     pub fn file(&self) -> Result<SuspensionFile, String> {
-        apply(&self.document, &Variant { name: "the model".into(), edits: Vec::new() })
+        read(&self.document, "the model")
     }
+}
+
+/// A model document read as the command reads its file; `origin` names it in errors (a moved model is no
+/// file the user has: its errors name keys).
+fn read(document: &Value, origin: &str) -> Result<SuspensionFile, String> {
+    let text = serde_json::to_string(document).map_err(|e| e.to_string())?;
+    let chrono = crate::import::chrono::is_chrono_document(document);
+    crate::document::parse_document_of_kind(&text, chrono, origin).map(|(file, _)| file)
 }
 
 /// Whether the key names a point of a Project Chrono part (`Location Chassis`, `Location Upright`, …).
