@@ -289,6 +289,19 @@ class Model:
                 text = f.read()
         return self._native.tolerance(text, monte_carlo=monte_carlo, seed=seed)
 
+    def tolerance_samples(
+        self, tolerances: Union[str, Dict[str, Any]], n: int, *, seed: int = 1
+    ) -> Dict[str, numpy.ndarray]:
+        """The ``n`` models ``tolerance(monte_carlo=n, seed=seed)`` samples, as a variant table (each number's
+        JSON pointer and its sampled values): ``elastokin.study(model, samples, engine="ray")`` (or "dask")
+        runs the Monte Carlo on a cluster, each sample the same as the command draws."""
+        if isinstance(tolerances, dict):
+            text = json.dumps(tolerances)
+        else:
+            with open(str(tolerances), encoding="utf-8") as f:
+                text = f.read()
+        return self._native.tolerance_samples(text, n, seed=seed)
+
     def objective(
         self,
         figure: str,

@@ -329,6 +329,24 @@ impl Model {
         column_dict(py, &stack.table())
     }
 
+    /// The Monte Carlo samples of the TOLERANCES file's text `tolerances` that `tolerance(monte_carlo=n,
+    /// seed=seed)` draws, as a variant table: each number's pointer and its `n` sampled values.
+    #[pyo3(signature = (tolerances, n, seed=1))]
+    fn tolerance_samples<'py>(&self, py: Python<'py>, tolerances: &str, n: usize, seed: u64) -> PyResult<Bound<'py, PyDict>> {
+        use elastokin_suspensions::design::tolerance::{read_tolerances, sample};
+        use elastokin_suspensions::design::Parameters;
+        let t = read_tolerances(tolerances, "tolerances", &self.base).map_err(PyValueError::new_err)?;
+        let pointers: Vec<String> = t.bands.iter().map(|(p, _)| p.clone()).collect();
+        let bands: Vec<f64> = t.bands.iter().map(|(_, b)| *b).collect();
+        let p = Parameters::new(&self.base, &pointers).map_err(ModelError::new_err)?;
+        let samples: Vec<Vec<f64>> = (0..n).map(|i| sample(&p.values, &bands, seed, i)).collect();
+        let d = PyDict::new(py);
+        for (k, pointer) in pointers.iter().enumerate() {
+            d.set_item(pointer, PyArray1::from_vec(py, samples.iter().map(|x| x[k]).collect()))?;
+        }
+        Ok(d)
+    }
+
     /// Exact sensitivities of one analysis of the K&C suite to the numbers at `parameters` (JSON pointers),
     /// as the command's `sensitivity` gives them: a dict of the analysis's name, the parameters and their
     /// values, the table's `columns`, every column by name (its rows) and its derivatives as

@@ -121,6 +121,14 @@ pub fn read_tolerances(text: &str, origin: &str, document: &Value) -> Result<Tol
     Ok(Tolerances { bands, analyses, steps })
 }
 
+/// Sample `i` of a Monte Carlo seeded by `seed`: each number drawn uniformly within its band about its
+/// value. Each sample has its own stream, so a sample is the same whichever thread, process or machine
+/// draws it (a study on Ray or Dask from Python draws the command's samples).
+pub fn sample(values: &[f64], bands: &[f64], seed: u64, i: usize) -> Vec<f64> {
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed ^ (i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15));
+    values.iter().zip(bands).map(|(v, t)| v + t * (2.0 * rng.random::<f64>() - 1.0)).collect()
+}
+
 /// One figure's spread.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Spread {
@@ -237,15 +245,7 @@ impl StackUp {
         let runs: Vec<Result<Vec<Option<f64>>, String>> = (0..samples)
             .into_par_iter()
             .map(|i| {
-                let mut rng =
-                    rand_chacha::ChaCha8Rng::seed_from_u64(seed ^ (i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15));
-                let x: Vec<f64> = self
-                    .parameters
-                    .values
-                    .iter()
-                    .zip(&self.bands)
-                    .map(|(v, t)| v + t * (2.0 * rng.random::<f64>() - 1.0))
-                    .collect();
+                let x = sample(&self.parameters.values, &self.bands, seed, i);
                 let file = self.parameters.at(&x)?.file()?;
                 let mut reports = Vec::new();
                 for &a in &which {
