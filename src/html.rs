@@ -37,10 +37,26 @@ pub fn report_html<E: std::fmt::Display>(
     provenance: &Value,
     render_chart: impl Fn(&Chart) -> Result<String, E>,
 ) -> String {
+    report_html_with(report, model, provenance, render_chart, None)
+}
+
+/// Sensitivities of a suite and the parameters they are taken to, for a page's sensitivity section.
+pub type Sensitivities<'a> =
+    (&'a crate::suspensions::design::SuiteSensitivity, &'a crate::suspensions::design::Parameters);
+
+/// [`report_html`] with a section of the `sensitivities` (`run --sensitivity`): per analysis and headline
+/// figure, the parameters with the largest effects as a bar chart.
+pub fn report_html_with<E: std::fmt::Display>(
+    report: &KcReport,
+    model: &SuspensionFile,
+    provenance: &Value,
+    render_chart: impl Fn(&Chart) -> Result<String, E>,
+    sensitivities: Option<Sensitivities>,
+) -> String {
     let render = |chart: &Chart| render_chart(chart).map_err(|e| e.to_string());
     let mut page = String::new();
     // Writing into a String cannot fail.
-    let _ = write_page(&mut page, report, model, provenance, &render);
+    let _ = write_page(&mut page, report, model, provenance, &render, sensitivities);
     page
 }
 
@@ -52,6 +68,7 @@ fn write_page(
     model: &SuspensionFile,
     provenance: &Value,
     render_chart: &dyn Fn(&Chart) -> Result<String, String>,
+    sensitivities: Option<Sensitivities>,
 ) -> std::fmt::Result {
     // The name is shown shortened; it is whole in the model below and in summary.json.
     let name = crate::plot::shown(&report.model, NAME_SHOWN);
@@ -80,6 +97,18 @@ fn write_page(
     for analysis in &report.analyses {
         write_analysis(out, analysis, report, render_chart)?;
     }
+    if let Some((suite, parameters)) = sensitivities {
+        writeln!(out, "<section id=\"sensitivities\">")?;
+        writeln!(out, "<h2>Sensitivities</h2>")?;
+        writeln!(
+            out,
+            "<p class=\"note\">exact derivatives through the equilibrium (of the corrected path), to {} parameters; \
+             each effect per mm of a length or per % of anything else; every derivative is in sensitivity.csv</p>",
+            parameters.len()
+        )?;
+        write_sensitivity_sections(out, suite, parameters, "h3")?;
+        writeln!(out, "</section>")?;
+    }
     write_skipped(out, report)?;
     write_model(out, model)?;
 
@@ -104,7 +133,7 @@ fn write_head(out: Out, title: &str) -> std::fmt::Result {
 /// A horizontal bar chart as inline SVG: one bar per `(label, value)`, drawn from a centre line (negative
 /// to the left), the largest magnitude the full width, each value printed with `unit`.
 fn write_bars(out: Out, bars: &[(String, f64)], unit: &str) -> std::fmt::Result {
-    let (width, label_width, row) = (760.0, 330.0, 20.0);
+    let (width, label_width, row) = (900.0, 430.0, 20.0);
     let half = (width - label_width - 120.0) / 2.0;
     let centre = label_width + half;
     let largest = bars.iter().fold(0.0f64, |m, (_, v)| m.max(v.abs())).max(f64::MIN_POSITIVE);
@@ -119,7 +148,7 @@ fn write_bars(out: Out, bars: &[(String, f64)], unit: &str) -> std::fmt::Result 
         let w = half * v.abs() / largest;
         let x = if *v < 0.0 { centre - w } else { centre };
         let fill = if *v < 0.0 { "#cf222e" } else { "#0969da" };
-        let shown = crate::plot::shown(label, 52);
+        let shown = crate::plot::shown(label, 72);
         writeln!(
             out,
             r#"<text x="{}" y="{}" font-size="11" text-anchor="end" font-family="sans-serif">{}</text>"#,
@@ -162,7 +191,6 @@ fn write_sensitivity_page(
     model_name: &str,
     provenance: &Value,
 ) -> std::fmt::Result {
-    use crate::suspensions::design::sensitivity::effect_unit;
     let name = crate::plot::shown(model_name, NAME_SHOWN);
     write_head(out, &format!("Sensitivities: {name}"))?;
     writeln!(out, "<header>")?;
@@ -175,12 +203,28 @@ fn write_sensitivity_page(
         parameters.len()
     )?;
     writeln!(out, "</header>")?;
+    write_sensitivity_sections(out, suite, parameters, "h2")?;
+    write_provenance(out, provenance)?;
+    writeln!(out, "</body>")?;
+    writeln!(out, "</html>")
+}
+
+/// Each analysis of `suite` as a section headed by `heading` (`h2`, `h3`): per headline figure, its value
+/// and the parameters with the largest effects (per mm or per %) as a bar chart; an analysis whose
+/// sensitivities failed, with why.
+fn write_sensitivity_sections(
+    out: Out,
+    suite: &crate::suspensions::design::SuiteSensitivity,
+    parameters: &crate::suspensions::design::Parameters,
+    heading: &str,
+) -> std::fmt::Result {
+    use crate::suspensions::design::sensitivity::effect_unit;
     for f in &suite.failed {
         writeln!(out, "<p class=\"error\">{}: {}</p>", text(f.analysis.name()), text(&f.reason))?;
     }
     for a in &suite.analyses {
-        writeln!(out, "<section id=\"{}\">", attr(a.report.analysis.name()))?;
-        writeln!(out, "<h2>{}</h2>", text(&a.report.description))?;
+        writeln!(out, "<section id=\"sensitivity-{}\">", attr(a.report.analysis.name()))?;
+        writeln!(out, "<{heading}>{}</{heading}>", text(&a.report.description))?;
         for (j, figure) in a.report.figures.iter().enumerate() {
             let Some(value) = figure.value else { continue };
             let bars: Vec<(String, f64)> = a
@@ -205,9 +249,7 @@ fn write_sensitivity_page(
         }
         writeln!(out, "</section>")?;
     }
-    write_provenance(out, provenance)?;
-    writeln!(out, "</body>")?;
-    writeln!(out, "</html>")
+    Ok(())
 }
 
 /// The stack-up's report as one self-contained HTML page: per figure, its value, first-order worst case

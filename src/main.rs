@@ -183,6 +183,11 @@ pub struct RunArgs {
     /// warning (limit-point) names the load
     #[arg(long)]
     pub through_limits: bool,
+    /// Also the exact sensitivities of every figure and cell to every hardpoint coordinate (of the
+    /// corrected path, whatever --mode): sensitivity.csv and sensitivity_<table>.csv, and a section of
+    /// report.html with each figure's largest effects (as `sensitivity --hardpoints` gives them)
+    #[arg(long)]
+    pub sensitivity: bool,
     /// The arc-length step of --through-limits, in the analysis's own units like --range (m, N or N m):
     /// the change of travel or load of the first arc-length step, from the last load step before the
     /// limit point; later steps change the load less where the suspension gives way. Default: one load
@@ -485,6 +490,23 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
     for &a in if which.is_empty() { &kc::ALL[..] } else { &which[..] } {
         kc::check_settings(a, &settings).map_err(|e| Failure::Input(e.to_string()))?;
     }
+    // The sensitivities' parameters, refused before anything runs when the model has none.
+    let hardpoints = if args.sensitivity {
+        let origin = args.model.display().to_string();
+        let base = batch::base_document(&String::from_utf8_lossy(&bytes), &origin).map_err(Failure::Input)?;
+        let pointers = elastokin::suspensions::design::hardpoint_pointers(&base);
+        if pointers.is_empty() {
+            return Err(Failure::Input(format!(
+                "{origin}: --sensitivity found no hardpoints (a template's or the general form's, a Chrono file's \
+                 Location points); use `elastokin sensitivity --param POINTER` for other numbers"
+            )));
+        }
+        let parameters = elastokin::suspensions::design::Parameters::new(&base, &pointers)
+            .map_err(|e| Failure::Input(format!("{origin}: {e}")))?;
+        Some(parameters)
+    } else {
+        None
+    };
     let staging = Staging::new(&args.out)?;
     let count = if which.is_empty() { kc::ALL.len() } else { which.len() };
     let progress = Progress::new("analyses", count, quiet);
@@ -557,7 +579,22 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
         }
         let drawn =
             |chart: &kc::Chart| svgs.get(chart.name.as_str()).map_or_else(|| plot::svg(chart), |svg| Ok(svg.clone()));
-        let html = elastokin::html::report_html(&report, &file, &provenance.to_json(), drawn);
+        let sensitivities = match &hardpoints {
+            Some(parameters) => {
+                let suite = elastokin::suspensions::design::suite_sensitivity(parameters, &which, &settings)
+                    .map_err(Failure::Run)?;
+                let figures = suite.figure_table(parameters);
+                written.push(staging.write("sensitivity.csv", &write_table(&figures, &provenance))?);
+                for a in &suite.analyses {
+                    let rows = a.row_table(parameters);
+                    written.push(staging.write(&format!("{}.csv", rows.name), &write_table(&rows, &provenance))?);
+                }
+                Some(suite)
+            }
+            None => None,
+        };
+        let with = sensitivities.as_ref().zip(hardpoints.as_ref());
+        let html = elastokin::html::report_html_with(&report, &file, &provenance.to_json(), drawn, with);
         written.push(staging.write("report.html", html.as_bytes())?);
         let mut summary = serde_json::to_value(&report).map_err(|e| Failure::Run(e.to_string()))?;
         summary["provenance"] = provenance.to_json();

@@ -1511,3 +1511,31 @@ fn tolerance_stacks_up_the_shipped_example_and_checks_it_by_sampling() {
     assert!(!dir.join("x").exists());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `run --sensitivity`: the report gains a section of each figure's largest effects, and the run writes
+/// the same sensitivity.csv as `sensitivity --hardpoints` for the same analysis, byte for byte after the
+/// provenance line.
+#[test]
+fn run_with_sensitivity_adds_the_sensitivity_command_s_numbers_to_the_report() {
+    let dir = scratch("run-sensitivity");
+    let (run, alone) = (dir.join("run"), dir.join("alone"));
+    let model = "examples/macpherson.json";
+    succeeds(&["run", model, "--analysis", "parallel-travel", "--sensitivity", "--out", run.to_str().unwrap()]);
+    succeeds(&[
+        "sensitivity",
+        model,
+        "--hardpoints",
+        "--analysis",
+        "parallel-travel",
+        "--out",
+        alone.to_str().unwrap(),
+    ]);
+    let body = |p: &Path| std::fs::read_to_string(p).unwrap().lines().skip(1).collect::<Vec<_>>().join("\n");
+    for file in ["sensitivity.csv", "sensitivity_parallel_travel.csv"] {
+        assert_eq!(body(&run.join(file)), body(&alone.join(file)), "{file}");
+    }
+    let html = std::fs::read_to_string(run.join("report.html")).unwrap();
+    roxmltree::Document::parse(html.strip_prefix("<!DOCTYPE html>").unwrap()).unwrap();
+    assert!(html.contains("<h2>Sensitivities</h2>") && html.contains("tie_rod_inner/2 (per mm)"));
+    std::fs::remove_dir_all(&dir).ok();
+}
