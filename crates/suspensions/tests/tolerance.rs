@@ -67,7 +67,7 @@ fn bad_tolerances_are_refused_by_key() {
             json!({ "tolerances": { "/suspension/macpherson/spring/rate": -1.0 } }),
             "a tolerance must be a positive band",
         ),
-        (json!({ "hardpoints": 0.001, "analyses": ["rol"] }), "analyses: no analysis \"rol\""),
+        (json!({ "hardpoints": 0.001, "analyses": ["rol"] }), "analyses: no analysis 'rol'"),
         (json!({ "hardpoint": 0.001 }), "unknown key 'hardpoint'"),
         (json!({}), "no tolerances"),
     ] {

@@ -26,24 +26,7 @@ impl Parameters {
             if pointers[..k].contains(pointer) {
                 return Err(format!("parameter '{pointer}' is given twice"));
             }
-            let value = match document.pointer(pointer) {
-                None => {
-                    return Err(format!(
-                        "parameter '{pointer}' names nothing in the model: a JSON pointer into the model file \
-                         (keys and array indices from the top, e.g. /suspension/macpherson/hardpoints/tie_rod_inner/2)"
-                    ))
-                }
-                Some(Value::Number(n)) => n.as_f64().filter(|v| v.is_finite()),
-                Some(other) => {
-                    let what = match other {
-                        Value::Array(a) => format!("a list of {} values (name one of them: '{pointer}/0')", a.len()),
-                        Value::Object(_) => "a section of the model, not a number".to_string(),
-                        _ => format!("{other}, not a number"),
-                    };
-                    return Err(format!("parameter '{pointer}' names {what}"));
-                }
-            };
-            values.push(value.ok_or_else(|| format!("parameter '{pointer}' is not a finite number"))?);
+            values.push(number_at(document, pointer).map_err(|why| format!("parameter '{pointer}' {why}"))?);
         }
         Ok(Parameters { document: document.clone(), pointers: pointers.to_vec(), values })
     }
@@ -97,6 +80,47 @@ fn read(document: &Value, origin: &str) -> Result<SuspensionFile, String> {
     crate::document::parse_document_of_kind(&text, chrono, origin).map(|(file, _)| file)
 }
 
+/// The number at `pointer` of `document`, or what is there instead, in words that follow the pointer
+/// ("names nothing in the model …", "names a list of 3 values …"): a caller says whose pointer it is.
+pub fn number_at(document: &Value, pointer: &str) -> Result<f64, String> {
+    match document.pointer(pointer) {
+        None => Err("names nothing in the model: a JSON pointer into the model file (keys and array indices \
+                     from the top, e.g. /suspension/macpherson/hardpoints/tie_rod_inner/2)"
+            .into()),
+        Some(Value::Number(n)) => n.as_f64().filter(|v| v.is_finite()).ok_or_else(|| "is not a finite number".into()),
+        Some(Value::Array(a)) => Err(format!("names a list of {} values (name one of them: '{pointer}/0')", a.len())),
+        Some(Value::Object(_)) => Err("names a section of the model, not a number".into()),
+        Some(other) => Err(format!("names {other}, not a number")),
+    }
+}
+
+/// A key as a JSON pointer token (RFC 6901: `~` and `/` escaped).
+fn token(key: &str) -> String {
+    key.replace('~', "~0").replace('/', "~1")
+}
+
+/// Whether a value is a point: three numbers.
+fn is_point(v: &Value) -> bool {
+    v.as_array().is_some_and(|a| a.len() == 3 && a.iter().all(Value::is_number))
+}
+
+/// The named hardpoints of a template's or the general form's `hardpoints` section: each name and its
+/// pointer (`/suspension/<form>/hardpoints/<name>`).
+fn named_hardpoints(document: &Value) -> impl Iterator<Item = (&String, String)> {
+    let forms = document.get("suspension").and_then(Value::as_object).into_iter().flatten();
+    forms.flat_map(|(form, body)| {
+        let points = body.get("hardpoints").and_then(Value::as_object).into_iter().flatten();
+        points
+            .filter(|(_, xyz)| is_point(xyz))
+            .map(move |(name, _)| (name, format!("/suspension/{form}/hardpoints/{}", token(name))))
+    })
+}
+
+/// The pointer of hardpoint `name` of a template or the general form, if the model has it.
+pub fn hardpoint_pointer(document: &Value, name: &str) -> Option<String> {
+    named_hardpoints(document).find(|(n, _)| *n == name).map(|(_, pointer)| pointer)
+}
+
 /// Whether the key names a point of a Project Chrono part (`Location Chassis`, `Location Upright`, …).
 pub fn is_chrono_point(key: &str) -> bool {
     key.starts_with("Location")
@@ -106,28 +130,16 @@ pub fn is_chrono_point(key: &str) -> bool {
 /// templates' and the general form's `hardpoints` sections; in a Project Chrono file, every part's
 /// `Location …` points.
 pub fn hardpoint_pointers(document: &Value) -> Vec<String> {
-    let mut out = Vec::new();
-    let escape = |name: &str| name.replace('~', "~0").replace('/', "~1");
-    let is_point = |v: &Value| v.as_array().is_some_and(|a| a.len() == 3 && a.iter().all(Value::is_number));
-    let Some(suspension) = document.get("suspension").and_then(Value::as_object) else {
-        for (part, body) in document.as_object().into_iter().flatten() {
-            for (key, xyz) in body.as_object().into_iter().flatten() {
-                if is_chrono_point(key) && is_point(xyz) {
-                    out.extend((0..3).map(|k| format!("/{}/{}/{k}", escape(part), escape(key))));
-                }
-            }
-        }
-        return out;
-    };
-    for (form, body) in suspension {
-        let Some(points) = body.get("hardpoints").and_then(Value::as_object) else {
-            continue;
-        };
-        for (name, xyz) in points {
-            if is_point(xyz) {
-                out.extend((0..3).map(|k| format!("/suspension/{form}/hardpoints/{}/{k}", escape(name))));
-            }
-        }
+    let coordinates = |point: String| (0..3).map(move |k| format!("{point}/{k}"));
+    if document.get("suspension").is_some() {
+        return named_hardpoints(document).flat_map(|(_, point)| coordinates(point)).collect();
     }
-    out
+    let parts = document.as_object().into_iter().flatten();
+    parts
+        .flat_map(|(part, body)| {
+            let keys = body.as_object().into_iter().flatten();
+            keys.filter(|(key, xyz)| is_chrono_point(key) && is_point(xyz))
+                .flat_map(move |(key, _)| coordinates(format!("/{}/{}", token(part), token(key))))
+        })
+        .collect()
 }

@@ -16,7 +16,9 @@
 //!   "steps": 32 }
 //! ```
 
-use crate::kc::{self, Analysis};
+use super::keys::{analysis_named, name_in, number, only, pair, steps, triple};
+use super::parameter::{hardpoint_pointer, number_at};
+use crate::kc::Analysis;
 use serde_json::Value;
 
 /// A number of the model free to move, within `[min, max]` (the file's units).
@@ -136,43 +138,6 @@ pub fn read_measured(text: &str, origin: &str) -> Result<Measured, String> {
     Ok(Measured { analysis, columns, rows })
 }
 
-fn number(v: &Value, key: &str) -> Result<f64, String> {
-    v.as_f64().filter(|x| x.is_finite()).ok_or_else(|| format!("{key}: give a finite number, got {v}"))
-}
-
-fn pair(v: &Value, key: &str) -> Result<(f64, f64), String> {
-    match v.as_array().map(Vec::as_slice) {
-        Some([a, b]) => Ok((number(a, key)?, number(b, key)?)),
-        _ => Err(format!("{key}: give two numbers [a, b], got {v}")),
-    }
-}
-
-fn triple(v: &Value, key: &str) -> Result<[f64; 3], String> {
-    match v.as_array().map(Vec::as_slice) {
-        Some([a, b, c]) => Ok([number(a, key)?, number(b, key)?, number(c, key)?]),
-        _ => Err(format!("{key}: give three numbers [x, y, z] in m, got {v}")),
-    }
-}
-
-fn name_in<'a>(v: &'a Value, key: &str) -> Result<&'a str, String> {
-    v.as_str().ok_or_else(|| format!("{key}: give a name as a string, got {v}"))
-}
-
-/// Only `allowed` keys in `object` at `key`.
-fn only(object: &serde_json::Map<String, Value>, allowed: &[&str], key: &str) -> Result<(), String> {
-    match object.keys().find(|k| !allowed.contains(&k.as_str())) {
-        Some(k) => Err(format!("{key}: unknown key '{k}' (the keys are: {})", allowed.join(", "))),
-        None => Ok(()),
-    }
-}
-
-fn analysis_named(name: &str, key: &str) -> Result<Analysis, String> {
-    Analysis::from_name(name).ok_or_else(|| {
-        let names: Vec<&str> = kc::ALL.iter().map(|a| a.name()).collect();
-        format!("{key}: no analysis '{name}' (the suite's are: {})", names.join(", "))
-    })
-}
-
 fn tolerance(object: &serde_json::Map<String, Value>, key: &str) -> Result<f64, String> {
     let t =
         object.get("tolerance").ok_or_else(|| format!("{key}: give its \"tolerance\": the miss that counts as met"))?;
@@ -196,15 +161,7 @@ pub fn read_targets(
     let at = |key: &str| format!("{origin}: {key}");
     let object = root.as_object().ok_or_else(|| at("the file must be a JSON object with \"free\" and \"targets\""))?;
     only(object, &["free", "targets", "constraints", "steps"], &at("the top level"))?;
-    let steps = match object.get("steps") {
-        None => 32,
-        Some(v) => {
-            let s = v.as_u64().ok_or_else(|| at(&format!("steps: give a whole number of load steps, got {v}")))?;
-            let s = usize::try_from(s).unwrap_or(usize::MAX);
-            elastokin_solver::LoadPath::check_steps(s).map_err(|e| at(&format!("steps: {e}")))?;
-            s
-        }
-    };
+    let steps = steps(object, at)?;
     let free_object = object
         .get("free")
         .and_then(Value::as_object)
@@ -216,16 +173,7 @@ pub fn read_targets(
     for (pointer, bounds) in free_object {
         let key = format!("free[\"{pointer}\"]");
         let (min, max) = pair(bounds, &at(&key))?;
-        let value = match document.pointer(pointer) {
-            Some(Value::Number(n)) => n.as_f64().unwrap_or(f64::NAN),
-            Some(_) => return Err(at(&format!("{key}: the model has no number there"))),
-            None => {
-                return Err(at(&format!(
-                    "{key}: names nothing in the model (a JSON pointer into the model file, e.g. \
-                     /suspension/macpherson/hardpoints/tie_rod_inner/2)"
-                )))
-            }
-        };
+        let value = number_at(document, pointer).map_err(|why| at(&format!("{key}: {why}")))?;
         // Both finite (`pair` checks).
         if min >= max {
             return Err(at(&format!("{key}: the bounds [{min}, {max}] hold nothing; give [min, max] with min < max")));
@@ -378,16 +326,4 @@ pub fn read_targets(
         }
     }
     Ok(Targets { free, targets, constraints, steps })
-}
-
-/// The pointer of hardpoint `name` of a template or the general form (`/suspension/<form>/hardpoints/<name>`),
-/// if the model has it.
-pub fn hardpoint_pointer(document: &Value, name: &str) -> Option<String> {
-    let suspension = document.get("suspension")?.as_object()?;
-    suspension.iter().find_map(|(form, body)| {
-        let point = body.get("hardpoints")?.get(name)?;
-        let is_point = point.as_array().is_some_and(|a| a.len() == 3 && a.iter().all(Value::is_number));
-        let escaped = name.replace('~', "~0").replace('/', "~1");
-        is_point.then(|| format!("/suspension/{form}/hardpoints/{escaped}"))
-    })
 }

@@ -18,7 +18,8 @@
 //! `hardpoints` gives every coordinate of every hardpoint that tolerance (a number named in
 //! `tolerances` keeps its own); `analyses` defaults to the whole suite.
 
-use super::parameter::{hardpoint_pointers, Parameters};
+use super::keys::{analysis_named, name_in, only, steps};
+use super::parameter::{hardpoint_pointers, number_at, Parameters};
 use super::sensitivity::{suite_sensitivity, SuiteSensitivity};
 use crate::kc::{self, Analysis, Cell, Failed, Settings, Table};
 use rand::{Rng, SeedableRng};
@@ -41,16 +42,9 @@ pub fn read_tolerances(text: &str, origin: &str, document: &Value) -> Result<Tol
     let at = |key: &str| format!("{origin}: {key}");
     let root: Value = serde_json::from_str(text).map_err(|e| format!("{origin}: {e}"))?;
     let object = root.as_object().ok_or_else(|| at("the file must be a JSON object with \"tolerances\""))?;
-    let allowed = ["tolerances", "hardpoints", "analyses", "steps"];
-    if let Some(k) = object.keys().find(|k| !allowed.contains(&k.as_str())) {
-        return Err(at(&format!("unknown key '{k}' (the keys are: {})", allowed.join(", "))));
-    }
+    only(object, &["tolerances", "hardpoints", "analyses", "steps"], &at("the top level"))?;
     let band = |pointer: &str, v: &Value, key: &str| -> Result<f64, String> {
-        let value = match document.pointer(pointer) {
-            Some(Value::Number(n)) => n.as_f64().unwrap_or(f64::NAN),
-            Some(_) => return Err(at(&format!("{key}: the model has no number at '{pointer}'"))),
-            None => return Err(at(&format!("{key}: '{pointer}' names nothing in the model"))),
-        };
+        let value = number_at(document, pointer).map_err(|why| at(&format!("{key}: '{pointer}' {why}")))?;
         let t = match v {
             Value::Number(n) => n.as_f64().unwrap_or(f64::NAN),
             Value::String(s) => match s.trim().strip_suffix('%').map(|p| p.trim().parse::<f64>()) {
@@ -98,26 +92,10 @@ pub fn read_tolerances(text: &str, origin: &str, document: &Value) -> Result<Tol
             .as_array()
             .ok_or_else(|| at("analyses: give a list of analysis names"))?
             .iter()
-            .map(|v| {
-                let name = v.as_str().unwrap_or_default();
-                Analysis::from_name(name).ok_or_else(|| {
-                    let names: Vec<&str> = kc::ALL.iter().map(|a| a.name()).collect();
-                    at(&format!("analyses: no analysis {v} (the suite's are: {})", names.join(", ")))
-                })
-            })
+            .map(|v| analysis_named(name_in(v, &at("analyses"))?, &at("analyses")))
             .collect::<Result<_, _>>()?,
     };
-    let steps = match object.get("steps") {
-        None => 32,
-        Some(v) => {
-            let s = v
-                .as_u64()
-                .and_then(|s| usize::try_from(s).ok())
-                .ok_or_else(|| at(&format!("steps: give a whole number, got {v}")))?;
-            elastokin_solver::LoadPath::check_steps(s).map_err(|e| at(&format!("steps: {e}")))?;
-            s
-        }
-    };
+    let steps = steps(object, at)?;
     Ok(Tolerances { bands, analyses, steps })
 }
 

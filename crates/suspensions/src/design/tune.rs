@@ -16,9 +16,10 @@
 //! What is not met is said, and why: a bound or the packaging holds a number that would otherwise
 //! move, or the targets fight one another (the least-squares optimum leaves the miss).
 
+use super::parameter::hardpoint_pointer;
 use super::parameter::Parameters;
 use super::sensitivity::{analysis_sensitivity, AnalysisSensitivity};
-use super::targets::{hardpoint_pointer, Aim, Constraint, Targets};
+use super::targets::{Aim, Constraint, Targets};
 use crate::kc::{AnalysisReport, Cell, Chart, Scale, Series, Settings, Table, YAxis};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
