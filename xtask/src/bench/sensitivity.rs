@@ -47,7 +47,7 @@ pub fn run(s: &Settings) -> SectionOutput {
         }
     };
     let settings = kc::Settings::default();
-    let suite: Vec<Analysis> = kc::ALL.into_iter().filter(|a| kc::left_out(&file, *a).is_none()).collect();
+    let suite: Vec<Analysis> = kc::planned(&file, &[]).into_iter().flatten().collect();
     let one_thread = rayon::ThreadPoolBuilder::new().num_threads(1).build();
     let n = parameters.len();
     for (name, which) in [("suite", suite.clone()), ("parallel travel", vec![Analysis::ParallelTravel])] {

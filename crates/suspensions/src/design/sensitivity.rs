@@ -337,13 +337,15 @@ pub fn suite_sensitivity(
 ) -> Result<SuiteSensitivity, String> {
     let file = parameters.file()?;
     let settings = sensitivity_settings(settings);
-    let chosen: Vec<Analysis> = if which.is_empty() { kc::ALL.to_vec() } else { which.to_vec() };
     let mut out = SuiteSensitivity { analyses: Vec::new(), skipped: Vec::new(), failed: Vec::new() };
-    for analysis in chosen {
-        if let (Some(reason), true) = (kc::left_out(&file, analysis), which.is_empty()) {
-            out.skipped.push(Skipped { analysis, reason: reason.into() });
-            continue;
-        }
+    for planned in kc::planned(&file, which) {
+        let analysis = match planned {
+            Ok(analysis) => analysis,
+            Err(skipped) => {
+                out.skipped.push(skipped);
+                continue;
+            }
+        };
         match analysis_sensitivity_of(analysis, parameters, &file, &settings) {
             Ok(a) => out.analyses.push(a),
             Err(reason) => out.failed.push(Failed { analysis, reason }),

@@ -124,6 +124,20 @@ pub fn left_out(file: &SuspensionFile, analysis: Analysis) -> Option<&'static st
     }
 }
 
+/// The analyses a suite of `which` runs on the model in `file`, in order: every analysis when `which` is
+/// empty, each either to run or left out with why ([`left_out`]); asked for by name, every one runs.
+pub fn planned(file: &SuspensionFile, which: &[Analysis]) -> Vec<Result<Analysis, Skipped>> {
+    if !which.is_empty() {
+        return which.iter().map(|&a| Ok(a)).collect();
+    }
+    ALL.iter()
+        .map(|&analysis| match left_out(file, analysis) {
+            Some(reason) => Err(Skipped { analysis, reason: reason.into() }),
+            None => Ok(analysis),
+        })
+        .collect()
+}
+
 /// What [`run_suite`] tells its caller as it goes.
 #[derive(Debug, Clone, Copy)]
 pub enum SuiteEvent<'a> {
@@ -164,7 +178,6 @@ pub fn run_suite_checked(
     settings: &Settings,
     mut progress: impl FnMut(SuiteEvent),
 ) -> KcReport {
-    let chosen: Vec<Analysis> = if which.is_empty() { ALL.to_vec() } else { which.to_vec() };
     let warnings = model_check.as_ref().map_or_else(Vec::new, |c| c.warnings.clone());
     let mut report = KcReport {
         model: file.name.clone(),
@@ -176,12 +189,15 @@ pub fn run_suite_checked(
         warnings,
     };
     report.warnings.extend(crate::check::bushing_deflection_at_design(file));
-    for analysis in chosen {
-        if let (Some(reason), true) = (left_out(file, analysis), which.is_empty()) {
-            report.skipped.push(Skipped { analysis, reason: reason.into() });
-            progress(SuiteEvent::Skipped(&report.skipped[report.skipped.len() - 1]));
-            continue;
-        }
+    for planned in planned(file, which) {
+        let analysis = match planned {
+            Ok(analysis) => analysis,
+            Err(skipped) => {
+                report.skipped.push(skipped);
+                progress(SuiteEvent::Skipped(&report.skipped[report.skipped.len() - 1]));
+                continue;
+            }
+        };
         progress(SuiteEvent::Starting(analysis));
         match run(analysis, file, settings) {
             Ok(done) => {
