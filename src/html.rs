@@ -314,7 +314,7 @@ fn write_tolerance_page(
         writeln!(
             out,
             "<figcaption>{} {}: {} {unit}, ±{} worst case, σ {}{}</figcaption>",
-            text(s.analysis),
+            text(s.analysis.name()),
             text(&s.figure),
             text(&significant(s.value, 4)),
             text(&significant(s.worst_case, 3)),

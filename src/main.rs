@@ -971,7 +971,7 @@ fn tolerance(args: ToleranceArgs, out: &Stdout) -> Result<(), Failure> {
         )));
     }
     if let Some(n) = args.monte_carlo {
-        stack.monte_carlo(n as usize, args.seed, &tolerances.analyses, tolerances.steps);
+        stack.monte_carlo(n as usize, args.seed);
     }
     let mut provenance = Provenance::new(&args.model, &read.bytes, kc::mode_word(Mode::Corrected), tolerances.steps);
     provenance.targets = Some((args.tolerances.display().to_string(), elastokin::provenance::sha256_hex(&bytes)));
@@ -991,7 +991,7 @@ fn tolerance(args: ToleranceArgs, out: &Stdout) -> Result<(), Failure> {
         let sampled = s.sampled.map_or(String::new(), |m| format!(", sampled σ {}", kc::significant(m.sigma, 3)));
         out.line(format!(
             "  {:<44} {:>12} ±{} worst, σ {}{sampled} {}",
-            format!("{} {}", s.analysis, s.figure),
+            format!("{} {}", s.analysis.name(), s.figure),
             kc::significant(s.value, 5),
             kc::significant(s.worst_case, 3),
             kc::significant(s.sigma, 3),

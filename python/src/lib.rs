@@ -321,7 +321,7 @@ impl Model {
             .detach(|| {
                 let mut stack = stack_up(&self.base, &t)?;
                 if let Some(n) = monte_carlo {
-                    stack.monte_carlo(n, seed, &t.analyses, t.steps);
+                    stack.monte_carlo(n, seed);
                 }
                 Ok::<_, String>(stack)
             })

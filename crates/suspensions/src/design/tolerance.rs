@@ -20,7 +20,7 @@
 
 use super::keys::{analysis_named, name_in, only, steps};
 use super::parameter::{hardpoint_pointers, number_at, Parameters};
-use super::sensitivity::{suite_sensitivity, SuiteSensitivity};
+use super::sensitivity::{sensitivity_settings, suite_sensitivity, SuiteSensitivity};
 use crate::kc::{self, Analysis, Cell, Failed, Settings, Table};
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
@@ -110,8 +110,8 @@ pub fn sample(values: &[f64], bands: &[f64], seed: u64, i: usize) -> Vec<f64> {
 /// One figure's spread.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Spread {
-    /// The analysis's name.
-    pub analysis: &'static str,
+    /// The analysis.
+    pub analysis: Analysis,
     /// The figure's key.
     pub figure: String,
     /// Its unit.
@@ -158,6 +158,8 @@ pub struct StackUp {
     pub failed: Vec<Failed>,
     /// Samples of the Monte Carlo run that failed (a model that would not build or solve), with why.
     pub failed_samples: Vec<String>,
+    /// How the analyses were run (their load steps): the Monte Carlo's samples are run alike.
+    pub settings: Settings,
 }
 
 /// The first-order stack-up of `tolerances` on the model `document`.
@@ -165,18 +167,18 @@ pub fn stack_up(document: &Value, tolerances: &Tolerances) -> Result<StackUp, St
     let pointers: Vec<String> = tolerances.bands.iter().map(|(p, _)| p.clone()).collect();
     let bands: Vec<f64> = tolerances.bands.iter().map(|(_, t)| *t).collect();
     let parameters = Parameters::new(document, &pointers)?;
-    let settings = Settings { steps: tolerances.steps, ..Settings::default() };
+    let settings = sensitivity_settings(&Settings { steps: tolerances.steps, ..Settings::default() });
     let suite: SuiteSensitivity = suite_sensitivity(&parameters, &tolerances.analyses, &settings)?;
     let (mut spreads, mut left_out) = (Vec::new(), Vec::new());
     for a in &suite.analyses {
         for (j, figure) in a.report.figures.iter().enumerate() {
-            let name = a.report.analysis.name();
+            let analysis = a.report.analysis;
             let Some(value) = figure.value else { continue };
             let rates: Result<Vec<f64>, _> = a.figures.iter().map(|d| d[j]).collect();
             let rates = match rates {
                 Ok(r) => r,
                 Err(e) => {
-                    left_out.push((name.to_string(), figure.key.clone(), e.reason().to_string()));
+                    left_out.push((analysis.name().to_string(), figure.key.clone(), e.reason().to_string()));
                     continue;
                 }
             };
@@ -186,7 +188,7 @@ pub fn stack_up(document: &Value, tolerances: &Tolerances) -> Result<StackUp, St
             let sigma = (contributions.iter().map(|(_, c)| c * c).sum::<f64>() / 3.0).sqrt();
             contributions.sort_by(|a, b| b.1.abs().total_cmp(&a.1.abs()));
             spreads.push(Spread {
-                analysis: name,
+                analysis,
                 figure: figure.key.clone(),
                 unit: figure.unit.clone(),
                 value,
@@ -197,29 +199,26 @@ pub fn stack_up(document: &Value, tolerances: &Tolerances) -> Result<StackUp, St
             });
         }
     }
-    Ok(StackUp { parameters, bands, spreads, left_out, failed: suite.failed, failed_samples: Vec::new() })
+    Ok(StackUp { parameters, bands, spreads, left_out, failed: suite.failed, failed_samples: Vec::new(), settings })
 }
 
 impl StackUp {
     /// Checks the first-order spreads by Monte Carlo: `samples` models, each number drawn uniformly within
-    /// its band (seeded by `seed`, so a run is repeated exactly), each run on rayon's threads; the samples'
-    /// spread of every figure is kept beside the first-order one.
-    pub fn monte_carlo(&mut self, samples: usize, seed: u64, analyses: &[Analysis], steps: usize) {
-        let settings = Settings { steps, ..Settings::default() };
-        let which: Vec<Analysis> = {
-            let mut w: Vec<Analysis> = Vec::new();
-            for s in &self.spreads {
-                let a = Analysis::from_name(s.analysis).expect("a report's own analysis");
-                if !w.contains(&a) {
-                    w.push(a);
-                }
+    /// its band (seeded by `seed`, so a run is repeated exactly), each run on rayon's threads as the
+    /// first order's analyses were; the samples' spread of every figure is kept beside the first-order one.
+    pub fn monte_carlo(&mut self, samples: usize, seed: u64) {
+        // The analyses the spreads are of, each once; the samples read their figures alone, so no error
+        // estimate (a Newton iteration more per row).
+        let mut which: Vec<Analysis> = Vec::new();
+        for s in &self.spreads {
+            if !which.contains(&s.analysis) {
+                which.push(s.analysis);
             }
-            if w.is_empty() {
-                analyses.to_vec()
-            } else {
-                w
-            }
-        };
+        }
+        if which.is_empty() {
+            return;
+        }
+        let settings = Settings { error_estimate: false, ..self.settings };
         let runs: Vec<Result<Vec<Option<f64>>, String>> = (0..samples)
             .into_par_iter()
             .map(|i| {
@@ -233,7 +232,7 @@ impl StackUp {
                     .spreads
                     .iter()
                     .map(|s| {
-                        let r = reports.iter().find(|r| r.analysis.name() == s.analysis)?;
+                        let r = reports.iter().find(|r| r.analysis == s.analysis)?;
                         r.figure(&s.figure)?.value
                     })
                     .collect())
@@ -278,7 +277,7 @@ impl StackUp {
             .map(|s| {
                 let m = s.sampled;
                 let mut row = vec![
-                    Cell::Text(s.analysis.into()),
+                    Cell::Text(s.analysis.name().into()),
                     Cell::Text(s.figure.clone()),
                     Cell::Text(s.unit.clone()),
                     Cell::from(s.value),
@@ -311,7 +310,7 @@ impl StackUp {
             by_parameter.sort_by_key(|(p, _)| *p);
             for (p, c) in by_parameter {
                 rows.push(vec![
-                    Cell::Text(s.analysis.into()),
+                    Cell::Text(s.analysis.name().into()),
                     Cell::Text(s.figure.clone()),
                     Cell::Text(self.parameters.pointers[p].clone()),
                     Cell::from(self.bands[p]),
