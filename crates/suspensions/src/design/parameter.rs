@@ -61,6 +61,11 @@ impl Parameters {
         Ok(document)
     }
 
+    /// The model's document, the parameters at their values.
+    pub fn document(&self) -> &Value {
+        &self.document
+    }
+
     /// The same parameters of the model with them at `values`.
     pub fn at(&self, values: &[f64]) -> Result<Parameters, String> {
         Ok(Parameters { document: self.document_at(values)?, pointers: self.pointers.clone(), values: values.to_vec() })

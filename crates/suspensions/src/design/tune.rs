@@ -213,9 +213,8 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
             }
         }
     }
-    let document = p.document_at(x)?;
     let packaging =
-        targets.constraints.iter().map(|c| linearise(c, &document, &p.pointers)).collect::<Result<_, _>>()?;
+        targets.constraints.iter().map(|c| linearise(c, p.document(), &p.pointers)).collect::<Result<_, _>>()?;
     Ok(Evaluation {
         x: x.to_vec(),
         residuals,
@@ -544,15 +543,7 @@ pub fn tune(parameters: &Parameters, targets: &Targets, mut progress: impl FnMut
     let mut evaluations = 1;
     let start = evaluate(parameters, targets, &parameters.values)?;
     let mut here = start.clone();
-    let mut iterations = vec![Iteration {
-        iteration: 0,
-        objective: here.objective(),
-        gradient_norm: projected_gradient(&here, &free),
-        step: 0.0,
-        damping: 0.0,
-        evaluations,
-        outcome: "start".into(),
-    }];
+    let mut iterations = vec![record(0, &here, &free, 0.0, 0.0, evaluations, "start")];
     progress(&iterations[0]);
     // Each number measured by the span of its bounds: the damping, and the step where the targets leave
     // a combination of the numbers free, then prefer the smallest moves relative to what each may move
@@ -574,6 +565,8 @@ pub fn tune(parameters: &Parameters, targets: &Targets, mut progress: impl FnMut
     let mut unbuildable: Option<String> = None;
     let mut stopped = format!("the iteration limit ({MAX_ITERATIONS}) was reached");
     let mut rejected = 0;
+    // A step taken that gained next to nothing, or moved next to nothing: the last.
+    let mut converged = false;
     for iteration in 1..=MAX_ITERATIONS {
         let f = here.objective();
         if here.residuals.iter().all(|r| r.abs() <= MET_EXACTLY) {
@@ -630,10 +623,7 @@ pub fn tune(parameters: &Parameters, targets: &Targets, mut progress: impl FnMut
                         here = next;
                         rejected = 0;
                         if gain <= 1e-9 * f || size < 1e-9 {
-                            stopped = "the steps no longer gain: the targets are met as nearly as they can be".into();
-                            iterations.push(record(iteration, &here, &free, size, damping, evaluations, "taken"));
-                            progress(&iterations[iterations.len() - 1]);
-                            break;
+                            converged = true;
                         }
                         ("taken".into(), size)
                     }
@@ -659,6 +649,10 @@ pub fn tune(parameters: &Parameters, targets: &Targets, mut progress: impl FnMut
         }
         iterations.push(record(iteration, &here, &free, step_size, damping, evaluations, &outcome));
         progress(&iterations[iterations.len() - 1]);
+        if converged {
+            stopped = "the steps no longer gain: the targets are met as nearly as they can be".into();
+            break;
+        }
         if projected_gradient(&here, &free) <= 1e-13 * (1.0 + here.objective()) * here.x.len() as f64 {
             stopped = "the gradient vanishes within the bounds: the targets are met as nearly as they can be".into();
             break;
