@@ -72,19 +72,14 @@ fn write_page(
 ) -> std::fmt::Result {
     // The name is shown shortened; it is whole in the model below and in summary.json.
     let name = crate::plot::shown(&report.model, NAME_SHOWN);
-    write_head(out, &format!("K&C report: {name}"))?;
-
-    writeln!(out, "<header>")?;
-    writeln!(out, "<h1>K&amp;C report: {}</h1>", text(&name))?;
     let failed = if report.failed.is_empty() { String::new() } else { format!(", {} failed", report.failed.len()) };
-    writeln!(
-        out,
-        "<p class=\"lede\">{} analyses run, {} skipped{failed}; written by elastokin {}.</p>",
+    let lede = format!(
+        "{} analyses run, {} skipped{failed}; written by elastokin {}.",
         report.analyses.len(),
         report.skipped.len(),
-        text(env!("CARGO_PKG_VERSION"))
-    )?;
-    writeln!(out, "</header>")?;
+        env!("CARGO_PKG_VERSION")
+    );
+    write_head(out, &format!("K&C report: {name}"), &lede)?;
 
     // Warnings first: what the colleague must know before reading any figure.
     write_warnings(out, report)?;
@@ -116,8 +111,9 @@ fn write_page(
     writeln!(out, "</html>")
 }
 
-/// The page's opening: the document type, the head (its `title` as given, the style inline) and `<body>`.
-fn write_head(out: Out, title: &str) -> std::fmt::Result {
+/// The page's opening: the document type, the head (its `title` as given, the style inline), `<body>`, and
+/// the page's header: `title` again as its heading, and the `lede` beneath it.
+fn write_head(out: Out, title: &str, lede: &str) -> std::fmt::Result {
     writeln!(out, "<!DOCTYPE html>")?;
     writeln!(out, r#"<html xmlns="http://www.w3.org/1999/xhtml" lang="en">"#)?;
     writeln!(out, "<head>")?;
@@ -127,7 +123,18 @@ fn write_head(out: Out, title: &str) -> std::fmt::Result {
     writeln!(out, "<title>{}</title>", text(title))?;
     writeln!(out, "<style>{STYLE}</style>")?;
     writeln!(out, "</head>")?;
-    writeln!(out, "<body>")
+    writeln!(out, "<body>")?;
+    writeln!(out, "<header>")?;
+    writeln!(out, "<h1>{}</h1>", text(title))?;
+    writeln!(out, "<p class=\"lede\">{}</p>", text(lede))?;
+    writeln!(out, "</header>")
+}
+
+/// The page's end: how the run was made, and the closing tags.
+fn write_foot(out: Out, provenance: &Value) -> std::fmt::Result {
+    write_provenance(out, provenance)?;
+    writeln!(out, "</body>")?;
+    writeln!(out, "</html>")
 }
 
 /// A horizontal bar chart as inline SVG: one bar per `(label, value)`, drawn from a centre line (negative
@@ -192,21 +199,15 @@ fn write_sensitivity_page(
     provenance: &Value,
 ) -> std::fmt::Result {
     let name = crate::plot::shown(model_name, NAME_SHOWN);
-    write_head(out, &format!("Sensitivities: {name}"))?;
-    writeln!(out, "<header>")?;
-    writeln!(out, "<h1>Sensitivities: {}</h1>", text(&name))?;
-    writeln!(
-        out,
-        "<p class=\"lede\">{} analyses, {} parameters; exact derivatives through the equilibrium, each effect \
-         per mm of a length or per % of anything else; every derivative is in sensitivity.csv.</p>",
+    let lede = format!(
+        "{} analyses, {} parameters; exact derivatives through the equilibrium, each effect per mm of a length \
+         or per % of anything else; every derivative is in sensitivity.csv.",
         suite.analyses.len(),
         parameters.len()
-    )?;
-    writeln!(out, "</header>")?;
+    );
+    write_head(out, &format!("Sensitivities: {name}"), &lede)?;
     write_sensitivity_sections(out, suite, parameters, "h2")?;
-    write_provenance(out, provenance)?;
-    writeln!(out, "</body>")?;
-    writeln!(out, "</html>")
+    write_foot(out, provenance)
 }
 
 /// Each analysis of `suite` as a section headed by `heading` (`h2`, `h3`): per headline figure, its value
@@ -273,22 +274,18 @@ fn write_tolerance_page(
     provenance: &Value,
 ) -> std::fmt::Result {
     let name = crate::plot::shown(model_name, NAME_SHOWN);
-    write_head(out, &format!("Tolerance stack-up: {name}"))?;
-    writeln!(out, "<header>")?;
-    writeln!(out, "<h1>Tolerance stack-up: {}</h1>", text(&name))?;
-    writeln!(
-        out,
-        "<p class=\"lede\">{} numbers within their tolerances, {} figures; first order from the exact \
-         sensitivities (worst case: every number at the end of its band that moves the figure the same way; σ: \
-         the numbers independent and uniform over their bands){}.</p>",
+    let lede = format!(
+        "{} numbers within their tolerances, {} figures; first order from the exact sensitivities (worst case: \
+         every number at the end of its band that moves the figure the same way; σ: the numbers independent and \
+         uniform over their bands){}.",
         stack.bands.len(),
         stack.spreads.len(),
         match stack.spreads.iter().find_map(|s| s.sampled) {
             Some(m) => format!(", checked by a Monte Carlo of {} sampled models", m.count),
             None => String::new(),
         }
-    )?;
-    writeln!(out, "</header>")?;
+    );
+    write_head(out, &format!("Tolerance stack-up: {name}"), &lede)?;
     if !stack.failed.is_empty() || !stack.failed_samples.is_empty() || !stack.left_out.is_empty() {
         writeln!(out, "<section id=\"left-out\">")?;
         writeln!(out, "<h2>Left out</h2><ul>")?;
@@ -328,9 +325,7 @@ fn write_tolerance_page(
         writeln!(out, "</figure>")?;
     }
     writeln!(out, "</section>")?;
-    write_provenance(out, provenance)?;
-    writeln!(out, "</body>")?;
-    writeln!(out, "</html>")
+    write_foot(out, provenance)
 }
 
 /// The tune's report as one self-contained HTML page: whether every target is met and why one is not,
@@ -359,19 +354,15 @@ fn write_tune_page(
     render_chart: &dyn Fn(&Chart) -> Result<String, String>,
 ) -> std::fmt::Result {
     let name = crate::plot::shown(model_name, NAME_SHOWN);
-    write_head(out, &format!("Tune: {name}"))?;
-    writeln!(out, "<header>")?;
-    writeln!(out, "<h1>Tune: {}</h1>", text(&name))?;
     let met = tuned.verdicts.iter().filter(|v| v.met).count();
     let last = tuned.iterations.last().map_or(0, |i| i.evaluations);
-    writeln!(
-        out,
-        "<p class=\"lede\">{met} of {} targets met; {} iterations, {last} K&amp;C evaluations; {}.</p>",
+    let lede = format!(
+        "{met} of {} targets met; {} iterations, {last} K&C evaluations; {}.",
         tuned.verdicts.len(),
         tuned.iterations.len().saturating_sub(1),
-        text(&tuned.stopped)
-    )?;
-    writeln!(out, "</header>")?;
+        tuned.stopped
+    );
+    write_head(out, &format!("Tune: {name}"), &lede)?;
     writeln!(out, "<section id=\"targets\">")?;
     writeln!(out, "<h2>Targets</h2>")?;
     writeln!(out, "<table class=\"figures\"><thead><tr><th>target</th><th>largest miss / tolerance</th><th>met</th><th>why not</th></tr></thead><tbody>")?;
@@ -406,9 +397,7 @@ fn write_tune_page(
     write_table(out, &tuned.residual_table(targets), "each figure and curve point, before and after")?;
     write_table(out, &tuned.iteration_table(), "each iteration")?;
     writeln!(out, "</section>")?;
-    write_provenance(out, provenance)?;
-    writeln!(out, "</body>")?;
-    writeln!(out, "</html>")
+    write_foot(out, provenance)
 }
 
 /// A table shown open (not folded), every row.
