@@ -138,21 +138,8 @@ pub enum ImportFormat {
 pub struct RunArgs {
     /// The model file (JSON; see examples/*.json)
     pub model: PathBuf,
-    /// One analysis instead of all of them (--help lists each one's load parameter, units and default range)
-    #[arg(long, value_enum, value_name = "NAME")]
-    pub analysis: Option<AnalysisName>,
-    /// The load parameter's range, in the analysis's own units (needs --analysis)
-    #[arg(long, value_name = "FROM,TO", value_parser = parse_range, allow_hyphen_values = true)]
-    pub range: Option<(f64, f64)>,
-    #[arg(
-        long,
-        value_name = "N",
-        default_value_t = 32,
-        value_parser = parse_steps,
-        allow_negative_numbers = true,
-        help = format!("Load steps per sweep, 1 to {MAX_STEPS}")
-    )]
-    pub steps: usize,
+    #[command(flatten)]
+    pub sweeps: SweepArgs,
     /// Corrected: Newton iterations to the exact equilibrium at every step; paper: the paper's linear steps
     #[arg(long, value_enum, default_value_t = ModeName::Corrected)]
     pub mode: ModeName,
@@ -219,17 +206,10 @@ pub struct BatchArgs {
     pub out: PathBuf,
 }
 
+/// Which analyses a command walks, over what range, in how many steps: `run`'s and `sensitivity`'s.
 #[derive(Debug, Args)]
-pub struct SensitivityArgs {
-    /// The model file (JSON; see examples/*.json)
-    pub model: PathBuf,
-    /// A number of the model file by its JSON pointer; give it once per parameter
-    #[arg(long = "param", value_name = "POINTER")]
-    pub params: Vec<String>,
-    /// Every coordinate of every hardpoint (a Chrono file's Location points), after those given by --param
-    #[arg(long)]
-    pub hardpoints: bool,
-    /// One analysis instead of the whole suite (`run --help` lists each one's load parameter and units)
+pub struct SweepArgs {
+    /// One analysis instead of all of them (--help lists each one's load parameter, units and default range)
     #[arg(long, value_enum, value_name = "NAME")]
     pub analysis: Option<AnalysisName>,
     /// The load parameter's range, in the analysis's own units (needs --analysis)
@@ -244,6 +224,42 @@ pub struct SensitivityArgs {
         help = format!("Load steps per sweep, 1 to {MAX_STEPS}")
     )]
     pub steps: usize,
+}
+
+impl SweepArgs {
+    /// The analyses asked for by name (none: the suite).
+    fn which(&self) -> Vec<Analysis> {
+        self.analysis.map(|a| vec![a.analysis()]).unwrap_or_default()
+    }
+
+    /// Refuses a range without an analysis to give it units, and settings an analysis cannot take, as bad
+    /// input before anything runs.
+    fn check(&self, settings: &Settings) -> Result<(), Failure> {
+        if self.range.is_some() && self.analysis.is_none() {
+            return Err(Failure::Input(
+                "--range needs --analysis NAME: each analysis has its own load parameter and units".into(),
+            ));
+        }
+        let which = self.which();
+        for &a in if which.is_empty() { &kc::ALL[..] } else { &which[..] } {
+            kc::check_settings(a, settings).map_err(|e| Failure::Input(e.to_string()))?;
+        }
+        Ok(())
+    }
+}
+
+#[derive(Debug, Args)]
+pub struct SensitivityArgs {
+    /// The model file (JSON; see examples/*.json)
+    pub model: PathBuf,
+    /// A number of the model file by its JSON pointer; give it once per parameter
+    #[arg(long = "param", value_name = "POINTER")]
+    pub params: Vec<String>,
+    /// Every coordinate of every hardpoint (a Chrono file's Location points), after those given by --param
+    #[arg(long)]
+    pub hardpoints: bool,
+    #[command(flatten)]
+    pub sweeps: SweepArgs,
     /// Where sensitivity.csv, each analysis's sensitivity_<table>.csv and report.html go; the directory is
     /// replaced as a whole on success
     #[arg(long, value_name = "DIR", default_value = "out")]
@@ -428,12 +444,7 @@ fn read_model(path: &Path) -> Result<ModelInput, Failure> {
 }
 
 fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Failure> {
-    if args.range.is_some() && args.analysis.is_none() {
-        return Err(Failure::Input(
-            "--range needs --analysis NAME: each analysis has its own load parameter and units".into(),
-        ));
-    }
-    if args.arc_step.is_some() && args.analysis.is_none() {
+    if args.arc_step.is_some() && args.sweeps.analysis.is_none() {
         return Err(Failure::Input(
             "--arc-step needs --analysis NAME: each analysis has its own load parameter and units".into(),
         ));
@@ -443,8 +454,8 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
         ModeName::Paper => Mode::Paper,
     };
     let settings = Settings {
-        range: args.range,
-        steps: args.steps,
+        range: args.sweeps.range,
+        steps: args.sweeps.steps,
         mode,
         height_held: args.wheel == WheelName::Held,
         load_point: match args.load_point {
@@ -457,6 +468,7 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
         arc_step: args.arc_step,
         error_estimate: true,
     };
+    args.sweeps.check(&settings)?;
     let read = read_model(&args.model)?;
     if let Some(line) = read.format_line() {
         out.line(line)?;
@@ -478,34 +490,21 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
             }
         }
     }
-    let mut provenance = Provenance::new(&args.model, &bytes, kc::mode_word(mode), args.steps);
+    let mut provenance = Provenance::new(&args.model, &bytes, kc::mode_word(mode), args.sweeps.steps);
     provenance.wheel = Some(if settings.height_held { "held" } else { "free" });
     provenance.load_point = Some(match settings.load_point {
         elastokin::suspensions::LoadPoint::ContactPatch => "contact_patch",
         elastokin::suspensions::LoadPoint::WheelCentre => "wheel_centre",
     });
-    provenance.range = args.range;
+    provenance.range = args.sweeps.range;
     provenance.tolerance = Some(settings.tolerance);
-    let which: Vec<Analysis> = args.analysis.map(|a| vec![a.analysis()]).unwrap_or_default();
-    for &a in if which.is_empty() { &kc::ALL[..] } else { &which[..] } {
-        kc::check_settings(a, &settings).map_err(|e| Failure::Input(e.to_string()))?;
-    }
+    let which = args.sweeps.which();
     // The sensitivities' parameters, refused before anything runs when the model has none.
-    let hardpoints = if args.sensitivity {
-        let origin = args.model.display().to_string();
-        let base = batch::base_document(&String::from_utf8_lossy(&bytes), &origin).map_err(Failure::Input)?;
-        let pointers = elastokin::suspensions::design::hardpoint_pointers(&base);
-        if pointers.is_empty() {
-            return Err(Failure::Input(format!(
-                "{origin}: --sensitivity found no hardpoints (a template's or the general form's, a Chrono file's \
-                 Location points); use `elastokin sensitivity --param POINTER` for other numbers"
-            )));
+    let hardpoints = match args.sensitivity {
+        true => {
+            Some(parameters_of(&args.model, &bytes, &[], "--sensitivity", "`elastokin sensitivity --param POINTER`")?)
         }
-        let parameters = elastokin::suspensions::design::Parameters::new(&base, &pointers)
-            .map_err(|e| Failure::Input(format!("{origin}: {e}")))?;
-        Some(parameters)
-    } else {
-        None
+        false => None,
     };
     let staging = Staging::new(&args.out)?;
     let count = if which.is_empty() { kc::ALL.len() } else { which.len() };
@@ -583,12 +582,7 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
             Some(parameters) => {
                 let suite = elastokin::suspensions::design::suite_sensitivity(parameters, &which, &settings)
                     .map_err(Failure::Run)?;
-                let figures = suite.figure_table(parameters);
-                written.push(staging.write("sensitivity.csv", &write_table(&figures, &provenance))?);
-                for a in &suite.analyses {
-                    let rows = a.row_table(parameters);
-                    written.push(staging.write(&format!("{}.csv", rows.name), &write_table(&rows, &provenance))?);
-                }
+                written.extend(write_sensitivities(&staging, &suite, parameters, &provenance)?);
                 Some(suite)
             }
             None => None,
@@ -758,43 +752,69 @@ fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> 
     out.line(format!("wrote {}", path.display()))
 }
 
+/// The parameters `params` of the model file `model` (its `bytes`), then every coordinate of every
+/// hardpoint; a model without hardpoints is refused, naming the `flag` that asked for them and the
+/// `other` way to name numbers.
+fn parameters_of(
+    model: &Path,
+    bytes: &[u8],
+    params: &[String],
+    flag: &str,
+    other: &str,
+) -> Result<elastokin::suspensions::design::Parameters, Failure> {
+    use elastokin::suspensions::design::{hardpoint_pointers, Parameters};
+    let origin = model.display().to_string();
+    let base = batch::base_document(&String::from_utf8_lossy(bytes), &origin).map_err(Failure::Input)?;
+    let all = hardpoint_pointers(&base);
+    if all.is_empty() {
+        return Err(Failure::Input(format!(
+            "{origin}: {flag} found no hardpoints (a template's or the general form's suspension.<form>.hardpoints, \
+             a Chrono file's Location points); name the numbers with {other}"
+        )));
+    }
+    let mut pointers = params.to_vec();
+    pointers.extend(all.into_iter().filter(|p| !params.contains(p)));
+    Parameters::new(&base, &pointers).map_err(|e| Failure::Input(format!("{origin}: {e}")))
+}
+
+/// `sensitivity.csv` and each analysis's `sensitivity_<table>.csv`, staged.
+fn write_sensitivities(
+    staging: &Staging,
+    suite: &elastokin::suspensions::design::SuiteSensitivity,
+    parameters: &elastokin::suspensions::design::Parameters,
+    provenance: &Provenance,
+) -> Result<Vec<PathBuf>, Failure> {
+    let mut written =
+        vec![staging.write("sensitivity.csv", &write_table(&suite.figure_table(parameters), provenance))?];
+    for a in &suite.analyses {
+        let rows = a.row_table(parameters);
+        written.push(staging.write(&format!("{}.csv", rows.name), &write_table(&rows, provenance))?);
+    }
+    Ok(written)
+}
+
 /// `sensitivity`: every figure's and cell's derivatives with respect to numbers of the model file, for the
 /// suite or one analysis.
 fn sensitivity(args: SensitivityArgs, out: &Stdout) -> Result<(), Failure> {
-    use elastokin::suspensions::design::{self, sensitivity::effect_unit, Parameters};
-    if args.range.is_some() && args.analysis.is_none() {
-        return Err(Failure::Input(
-            "--range needs --analysis NAME: each analysis has its own load parameter and units".into(),
-        ));
-    }
+    use elastokin::suspensions::design::{self, sensitivity::effect_unit};
+    let settings = Settings { range: args.sweeps.range, steps: args.sweeps.steps, ..Settings::default() };
+    args.sweeps.check(&settings)?;
     let read = read_model(&args.model)?;
     if let Some(line) = read.format_line() {
         out.line(line)?;
     }
-    let origin = args.model.display().to_string();
-    let base = batch::base_document(&String::from_utf8_lossy(&read.bytes), &origin).map_err(Failure::Input)?;
-    let mut pointers = args.params.clone();
-    if args.hardpoints {
-        let all = design::hardpoint_pointers(&base);
-        if all.is_empty() {
-            return Err(Failure::Input(format!(
-                "{origin}: --hardpoints found no hardpoints (a template's or the general form's \
-                 suspension.<form>.hardpoints, a Chrono file's Location points); name the numbers with --param POINTER"
-            )));
-        }
-        pointers.extend(all.into_iter().filter(|p| !args.params.contains(p)));
-    }
-    if pointers.is_empty() {
+    let parameters = if args.hardpoints {
+        parameters_of(&args.model, &read.bytes, &args.params, "--hardpoints", "--param POINTER")?
+    } else if args.params.is_empty() {
         return Err(Failure::Input(
             "no parameters: give --param POINTER (a JSON pointer into the model file) or --hardpoints".into(),
         ));
-    }
-    let parameters = Parameters::new(&base, &pointers).map_err(|e| Failure::Input(format!("{origin}: {e}")))?;
-    let settings = Settings { range: args.range, steps: args.steps, ..Settings::default() };
-    let which: Vec<Analysis> = args.analysis.map(|a| vec![a.analysis()]).unwrap_or_default();
-    for &a in if which.is_empty() { &kc::ALL[..] } else { &which[..] } {
-        kc::check_settings(a, &settings).map_err(|e| Failure::Input(e.to_string()))?;
-    }
+    } else {
+        let origin = args.model.display().to_string();
+        let base = batch::base_document(&String::from_utf8_lossy(&read.bytes), &origin).map_err(Failure::Input)?;
+        design::Parameters::new(&base, &args.params).map_err(|e| Failure::Input(format!("{origin}: {e}")))?
+    };
+    let which = args.sweeps.which();
     let suite = design::suite_sensitivity(&parameters, &which, &settings).map_err(Failure::Run)?;
     if suite.analyses.is_empty() && !suite.failed.is_empty() {
         return Err(Failure::Run(format!(
@@ -803,18 +823,13 @@ fn sensitivity(args: SensitivityArgs, out: &Stdout) -> Result<(), Failure> {
             args.out.display()
         )));
     }
-    let mut provenance = Provenance::new(&args.model, &read.bytes, kc::mode_word(Mode::Corrected), args.steps);
-    provenance.range = args.range;
+    let mut provenance = Provenance::new(&args.model, &read.bytes, kc::mode_word(Mode::Corrected), args.sweeps.steps);
+    provenance.range = args.sweeps.range;
     let staging = Staging::new(&args.out)?;
     let written = (|| -> Result<Vec<PathBuf>, Failure> {
-        let mut written =
-            vec![staging.write("sensitivity.csv", &write_table(&suite.figure_table(&parameters), &provenance))?];
+        let mut written = write_sensitivities(&staging, &suite, &parameters, &provenance)?;
         let html = elastokin::html::sensitivity_html(&suite, &parameters, &read.file.name, &provenance.to_json());
         written.push(staging.write("report.html", html.as_bytes())?);
-        for a in &suite.analyses {
-            let rows = a.row_table(&parameters);
-            written.push(staging.write(&format!("{}.csv", rows.name), &write_table(&rows, &provenance))?);
-        }
         Ok(written)
     })()
     .map_err(|e| Failure::Run(format!("{}\n{}", e.message(), staging.untouched())))?;
@@ -823,7 +838,7 @@ fn sensitivity(args: SensitivityArgs, out: &Stdout) -> Result<(), Failure> {
         "{} — {} parameters, {} steps per sweep, corrected mode",
         read.file.name,
         parameters.len(),
-        args.steps
+        args.sweeps.steps
     ))?;
     for a in &suite.analyses {
         out.line("")?;
@@ -1003,20 +1018,15 @@ fn tolerance(args: ToleranceArgs, out: &Stdout) -> Result<(), Failure> {
     }
     out.line("")?;
     out.line(format!("wrote {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))?;
-    let failed: Vec<String> = stack
-        .failed
-        .iter()
-        .map(|f| format!("{}: {}", f.analysis.name(), f.reason))
-        .chain(stack.failed_samples.iter().cloned())
-        .collect();
-    if failed.is_empty() {
+    let failed = stack.failed.len() + stack.failed_samples.len();
+    if failed == 0 {
         return Ok(());
     }
+    let lines = [failed_lines(&stack.failed), stack.failed_samples.join("\n")];
     Err(Failure::Run(format!(
-        "{} analyses or samples failed (the others' results are in {}):\n{}",
-        failed.len(),
+        "{failed} analyses or samples failed (the others' results are in {}):\n{}",
         args.out.display(),
-        failed.join("\n")
+        lines.iter().filter(|l| !l.is_empty()).cloned().collect::<Vec<_>>().join("\n")
     )))
 }
 

@@ -270,11 +270,8 @@ class Model:
         tolerance, whether met and why not), ``parameters`` with their values ``before`` and ``after``,
         ``iterations`` (tune.csv's columns) and ``tuned``, the model file's text with the numbers moved.
         Measured files named in a dict are read from ``directory``; in a file, beside it."""
-        if isinstance(targets, dict):
-            return self._native.tune(json.dumps(targets), directory)
-        path = str(targets)
-        with open(path, encoding="utf-8") as f:
-            return self._native.tune(f.read(), os.path.dirname(path) or ".")
+        text, beside = _design_file(targets)
+        return self._native.tune(text, directory if beside is None else beside)
 
     def tolerance(
         self, tolerances: Union[str, Dict[str, Any]], *, monte_carlo: Optional[int] = None, seed: int = 1
@@ -282,12 +279,7 @@ class Model:
         """The tolerance stack-up of ``tolerances`` (a TOLERANCES file's path, or its content as a dict), as
         ``elastokin tolerance`` gives it: tolerance.csv's columns by name (each figure's first-order
         ``worst_case`` and ``sigma``, and with ``monte_carlo`` samples the sampled spread beside them)."""
-        if isinstance(tolerances, dict):
-            text = json.dumps(tolerances)
-        else:
-            with open(str(tolerances), encoding="utf-8") as f:
-                text = f.read()
-        return self._native.tolerance(text, monte_carlo=monte_carlo, seed=seed)
+        return self._native.tolerance(_design_file(tolerances)[0], monte_carlo=monte_carlo, seed=seed)
 
     def tolerance_samples(
         self, tolerances: Union[str, Dict[str, Any]], n: int, *, seed: int = 1
@@ -295,12 +287,7 @@ class Model:
         """The ``n`` models ``tolerance(monte_carlo=n, seed=seed)`` samples, as a variant table (each number's
         JSON pointer and its sampled values): ``elastokin.study(model, samples, engine="ray")`` (or "dask")
         runs the Monte Carlo on a cluster, each sample the same as the command draws."""
-        if isinstance(tolerances, dict):
-            text = json.dumps(tolerances)
-        else:
-            with open(str(tolerances), encoding="utf-8") as f:
-                text = f.read()
-        return self._native.tolerance_samples(text, n, seed=seed)
+        return self._native.tolerance_samples(_design_file(tolerances)[0], n, seed=seed)
 
     def objective(
         self,
@@ -317,7 +304,8 @@ class Model:
         figure's key of ``analysis`` (as ``summary.json`` names it: ``"bump_steer"``, ``"wheel_rate"``, …) in
         its unit; ``x0`` is ``sensitivities(parameters)["values"]``."""
         pointers = [str(p) for p in parameters]
-        known = self.sensitivities(pointers, analysis=analysis, range=range, steps=steps)["figures"]
+        # The figure named checked by one run of the analysis, before any sensitivity is taken.
+        known = self.run(analysis, range=range, steps=steps).summary["figures"]
         if figure not in known:
             raise ValueError(f"figure {figure!r}: {analysis} has {', '.join(sorted(known))}")
         text, origin = self._native.document()
@@ -343,6 +331,16 @@ class Model:
 
     def __repr__(self) -> str:
         return f"<elastokin.Model {self.name!r}>"
+
+
+def _design_file(source: Union[str, "os.PathLike[str]", Dict[str, Any]]) -> Tuple[str, Optional[str]]:
+    """A design file (TARGETS, TOLERANCES) given as its path or its content as a dict: its text, and the
+    directory files it names are read from (None for a dict)."""
+    if isinstance(source, dict):
+        return json.dumps(source), None
+    path = str(source)
+    with open(path, encoding="utf-8") as f:
+        return f.read(), os.path.dirname(path) or "."
 
 
 def _set_pointer(document: Any, pointer: str, value: float) -> None:
