@@ -2,7 +2,7 @@
 
 use crate::error::SolverError;
 use crate::options::Mode;
-use elastokin_core::{ElementReport, Model, Pose, Vec3};
+use elastokin_core::{ElementReport, ForceElement, Model, Pose, Vec3};
 
 /// A constraint row dropped because it repeats what other rows already constrain.
 #[derive(Debug, Clone, PartialEq)]
@@ -99,27 +99,25 @@ impl StepResult {
     }
 
     /// Which piece of its force law every element is on at this step
-    /// ([`ForceElement::piece`](elastokin_core::ForceElement::piece)), in model order: where two steps
-    /// differ, a stop touched or left between them.
+    /// ([`ForceElement::piece`]), in model order: where two steps differ, a stop touched or left between
+    /// them.
     pub fn element_pieces(&self, model: &Model) -> Vec<u8> {
-        model
-            .elements()
-            .iter()
-            .map(|e| {
-                let [i, j] = e.bodies();
-                e.piece(&i.pose(&self.poses), &j.pose(&self.poses), self.t)
-            })
-            .collect()
+        self.per_element(model, |e, pi, pj, t| e.piece(pi, pj, t))
     }
 
     /// Force, moment and deflection of every element at this step.
     pub fn element_reports(&self, model: &Model) -> Vec<ElementReport> {
+        self.per_element(model, |e, pi, pj, t| e.report(pi, pj, t))
+    }
+
+    /// `read` of every element at this step's poses of its two bodies, in model order.
+    fn per_element<T>(&self, model: &Model, read: impl Fn(&dyn ForceElement, &Pose, &Pose, f64) -> T) -> Vec<T> {
         model
             .elements()
             .iter()
             .map(|e| {
                 let [i, j] = e.bodies();
-                e.report(&i.pose(&self.poses), &j.pose(&self.poses), self.t)
+                read(e.as_ref(), &i.pose(&self.poses), &j.pose(&self.poses), self.t)
             })
             .collect()
     }

@@ -41,10 +41,12 @@
 //! - [`design`]: parameters of a model file and the exact sensitivities of the figures to them.
 //!
 //! Dependencies: serde and serde_json for the model files and the K&C reports ([`kc`]), nalgebra for
-//! the rank of the joints' Jacobian and the small symmetric eigenproblem of the plausibility check's
-//! condition estimate, thiserror for errors. faer, sprs and rayon are left out here: the solving is the
-//! solver crate's. The tests use rand and rand_chacha for the seeded model mutations of
-//! `tests/fuzz_models.rs` (a fixed seed: the same cases every run).
+//! the rank of the joints' Jacobian, the small symmetric eigenproblem of the plausibility check's
+//! condition estimate and a tune's least-squares step, thiserror for errors; for [`design`], rayon to
+//! take the parameters' sensitivities and a Monte Carlo's samples in parallel, clarabel for a tune's step
+//! where bounds or packaging bind, rand and rand_chacha for the Monte Carlo's seeded samples (also the
+//! seeded model mutations of `tests/fuzz_models.rs`). faer and sprs are left out here: the solving is the
+//! solver crate's.
 
 pub mod analysis;
 pub mod build;

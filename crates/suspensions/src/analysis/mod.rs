@@ -21,4 +21,4 @@ pub use loads::{
     wheel_load_sweep, wheel_load_sweep_with, ComponentForce, ComponentForces, LoadRow, StaticLoad, WheelLoad,
 };
 pub use sweep::{slope_at, walk, ArcLengthRows, SweepExtras, SweepLimit, SweepOutput, Walked, MAX_ARC_STEPS_PER_RANGE};
-pub use travel::{parallel_wheel_travel, parallel_wheel_travel_with, steering, travel_row, TravelRow};
+pub use travel::{parallel_wheel_travel, parallel_wheel_travel_with, steering, TravelRow};

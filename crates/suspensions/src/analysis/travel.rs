@@ -83,7 +83,7 @@ fn driven_sweep_with(
 
 /// One row of a driven sweep of `corner`, read from a state of its model: the wheel's attitude and steering
 /// geometry from the poses, the wheel load from the travel driver's multiplier, the spring's deflection.
-pub fn travel_row(corner: &Corner, s: &StepResult) -> TravelRow {
+fn travel_row(corner: &Corner, s: &StepResult) -> TravelRow {
     let driver = corner.model.joint_id(WHEEL_TRAVEL);
     TravelRow {
         travel: s.t,
