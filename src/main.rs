@@ -467,6 +467,8 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
         through_limits: args.through_limits,
         arc_step: args.arc_step,
         error_estimate: true,
+        // The report draws the model moving through each analysis.
+        motion: true,
     };
     args.sweeps.check(&settings)?;
     let read = read_model(&args.model)?;

@@ -23,6 +23,7 @@ const LAYERED: [(&str, &[(&str, u32)]); 2] = [
             ("file", 1),
             ("import", 2),
             ("build", 2),
+            ("drawing", 2),
             ("document", 3),
             ("analysis", 4),
             ("check", 5),

@@ -52,6 +52,35 @@ pub struct ElementReport {
     pub rotation: Vec3,
 }
 
+/// What kind of thing an element is, for a drawing of the model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SketchKind {
+    /// A bushing or any element with a frame of its own: drawn at its point, with its axes.
+    Bushing,
+    /// A spring between two seats.
+    Spring,
+    /// A stop between two points on its axis.
+    Stop,
+    /// An applied load at a point of one body.
+    Load,
+}
+
+/// Where an element sits, for a drawing of the model: its point on each of its two bodies in that body's
+/// own frame (on the ground, globally), as [`ForceElement::bind`] fixed them, so that the poses of any
+/// configuration place it. A bushing's two points coincide at design; their distance apart elsewhere is
+/// its deflection.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sketch {
+    /// What it is.
+    pub kind: SketchKind,
+    /// Its point on body `i`, in `i`'s frame.
+    pub on_i: Vec3,
+    /// Its point on body `j`, in `j`'s frame.
+    pub on_j: Vec3,
+    /// Its own axes (columns: local x, y, z) in body `i`'s frame, for an element that has them.
+    pub axes_i: Option<crate::math::Mat3>,
+}
+
 /// A bushing, spring, load or any other source of generalized force on one or two bodies.
 pub trait ForceElement: std::fmt::Debug + Send + Sync {
     /// Unique name.
@@ -78,5 +107,10 @@ pub trait ForceElement: std::fmt::Debug + Send + Sync {
     /// element, a progressive stop) is one piece: 0.
     fn piece(&self, _pi: &Pose, _pj: &Pose, _t: f64) -> u8 {
         0
+    }
+    /// Where the element sits, for drawings ([`Sketch`]); `None` for an element that has no place to
+    /// draw (a pure moment).
+    fn sketch(&self) -> Option<Sketch> {
+        None
     }
 }

@@ -69,7 +69,8 @@ use elastokin_core::math::{
     left_jacobian_inv, quat_log, rotation_vector_moment, skew, tait_bryan_xyz, tait_bryan_xyz_axes,
 };
 use elastokin_core::{
-    BodyRef, ElementEval, ElementReport, ElementRole, ForceElement, Mat3, ModelError, PairMatrix, Pose, Vec3,
+    BodyRef, ElementEval, ElementReport, ElementRole, ForceElement, Mat3, ModelError, PairMatrix, Pose, Sketch,
+    SketchKind, Vec3,
 };
 use nalgebra::{Rotation3, UnitQuaternion};
 
@@ -389,6 +390,15 @@ impl ForceElement for Bushing {
     fn report(&self, pi: &Pose, pj: &Pose, _t: f64) -> ElementReport {
         let st = self.state(pi, pj);
         ElementReport { force: -st.f, torque: -(st.e * st.g), deflection: st.delta, rotation: st.theta }
+    }
+
+    fn sketch(&self) -> Option<Sketch> {
+        Some(Sketch {
+            kind: SketchKind::Bushing,
+            on_i: self.on_i,
+            on_j: self.on_j,
+            axes_i: Some(self.frame_i.to_rotation_matrix().into_inner()),
+        })
     }
 }
 

@@ -51,7 +51,9 @@
 
 use crate::curve::{Anchor, Characteristic, Curve};
 use crate::geometry::{check_distinct, check_finite, check_finite_scalar, check_positive, push_along, Seats};
-use elastokin_core::{BodyRef, ElementEval, ElementReport, ElementRole, ForceElement, ModelError, Pose, Vec3};
+use elastokin_core::{
+    BodyRef, ElementEval, ElementReport, ElementRole, ForceElement, ModelError, Pose, Sketch, SketchKind, Vec3,
+};
 
 /// Smallest design length of a spring or stop (m); shorter is [`ModelError::CoincidentPoints`].
 pub const MIN_SPRING_LENGTH: f64 = 1e-9;
@@ -275,6 +277,10 @@ impl ForceElement for CoilSpring {
     fn bind(&mut self, pi: &Pose, pj: &Pose) -> Result<(), ModelError> {
         self.spec.validate()?;
         self.seats.bind(&self.spec.name, pi, pj, &self.spec.point_i, &self.spec.point_j)
+    }
+
+    fn sketch(&self) -> Option<Sketch> {
+        Some(self.seats.sketch(SketchKind::Spring))
     }
 
     fn evaluate(&self, pi: &Pose, pj: &Pose, _t: f64, out: &mut ElementEval, with_stiffness: bool) {

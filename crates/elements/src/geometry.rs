@@ -2,7 +2,7 @@
 //! share.
 
 use elastokin_core::math::skew;
-use elastokin_core::{BodyRef, ElementEval, Mat3, ModelError, PairMatrix, Pose, Vec3};
+use elastokin_core::{BodyRef, ElementEval, Mat3, ModelError, PairMatrix, Pose, Sketch, SketchKind, Vec3};
 use nalgebra::SMatrix;
 
 /// A 3×12 Jacobian of a 3-vector over the coordinates `(Δrᵢ, Δπᵢ, Δrⱼ, Δπⱼ)`.
@@ -114,6 +114,11 @@ impl Seats {
         let d = point_j - point_i;
         self.axis_i = pi.to_local_direction(&(d / d.norm()));
         Ok(())
+    }
+
+    /// The seats as a drawing places them.
+    pub fn sketch(&self, kind: SketchKind) -> Sketch {
+        Sketch { kind, on_i: self.on_i, on_j: self.on_j, axes_i: None }
     }
 
     /// The line at the poses.

@@ -13,7 +13,8 @@
 use crate::geometry::{add_block, check_finite};
 use elastokin_core::math::skew;
 use elastokin_core::{
-    BodyRef, ElementEval, ElementReport, ElementRole, ForceElement, ModelError, Pose, RowGradient, Vec3,
+    BodyRef, ElementEval, ElementReport, ElementRole, ForceElement, ModelError, Pose, RowGradient, Sketch, SketchKind,
+    Vec3,
 };
 
 /// A load on the ground does nothing; it is refused as [`ModelError::SelfJoint`] (its two bodies, ground
@@ -133,6 +134,10 @@ impl ForceElement for PointForce {
 
     fn report(&self, _pi: &Pose, _pj: &Pose, t: f64) -> ElementReport {
         ElementReport { force: self.force_at(t), ..ElementReport::default() }
+    }
+
+    fn sketch(&self) -> Option<Sketch> {
+        Some(Sketch { kind: SketchKind::Load, on_i: self.spec.point, on_j: self.on_body, axes_i: None })
     }
 }
 

@@ -39,7 +39,9 @@
 use crate::coil_spring::{check_seats, MIN_SPRING_LENGTH};
 use crate::curve::{Anchor, Curve};
 use crate::geometry::{check_distinct, check_finite, push_along, Seats};
-use elastokin_core::{BodyRef, ElementEval, ElementReport, ElementRole, ForceElement, ModelError, Pose, Vec3};
+use elastokin_core::{
+    BodyRef, ElementEval, ElementReport, ElementRole, ForceElement, ModelError, Pose, Sketch, SketchKind, Vec3,
+};
 
 /// Which way a stop limits the travel.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -219,6 +221,10 @@ impl ForceElement for Stop {
     fn bind(&mut self, pi: &Pose, pj: &Pose) -> Result<(), ModelError> {
         self.spec.validate()?;
         self.seats.bind(&self.spec.name, pi, pj, &self.spec.point_i, &self.spec.point_j)
+    }
+
+    fn sketch(&self) -> Option<Sketch> {
+        Some(self.seats.sketch(SketchKind::Stop))
     }
 
     fn evaluate(&self, pi: &Pose, pj: &Pose, _t: f64, out: &mut ElementEval, with_stiffness: bool) {

@@ -31,6 +31,7 @@
 //!   vehicle, the limits;
 //! - [`wheel`]: toe, camber and steering geometry read from a built model's poses;
 //! - [`file`](mod@file): the model-file format — reading, key paths, line and column errors;
+//! - [`drawing`]: what a view of a built model draws, each point on the body that carries it;
 //! - [`import`]: other programs' files (Project Chrono's) read into descriptions;
 //! - [`build`]: a description made into a model, with the rig that holds it;
 //! - [`document`]: one way in for every document, read and built;
@@ -54,6 +55,7 @@ pub mod check;
 pub mod description;
 pub mod design;
 pub mod document;
+pub mod drawing;
 pub mod file;
 pub mod import;
 pub mod kc;

@@ -5,6 +5,7 @@
 use crate::analysis::compliance::compliance_with;
 use crate::build::{Corner, Rig};
 use crate::wheel::Wheel;
+use elastokin_core::Pose;
 use elastokin_solver::{ArcStep, LoadPath, Mode, SolverError, State, StaticSolver, StepResult, Sweep, MAX_STEPS};
 
 /// Refuses a corner held differently from what the analysis needs: `rigs` lists the rigs it accepts.
@@ -70,6 +71,8 @@ pub struct SweepExtras {
     /// ([`ArcStep::Load`]). At most [`MAX_ARC_STEPS_PER_RANGE`] steps of that size per range are taken,
     /// and at most [`MAX_STEPS`].
     pub through_limits: Option<f64>,
+    /// The bodies' poses at every step, for a view that moves the parts as solved.
+    pub poses: bool,
 }
 
 /// How many arc-length steps of [`SweepExtras::through_limits`] a path through a limit point may take,
@@ -115,6 +118,8 @@ pub struct SweepOutput<R> {
     /// The 6×6 wheel compliance at every step (rows: wheel-centre translation, rotation; columns: unit
     /// force, torque at the wheel centre).
     pub compliance: Option<Vec<[[f64; 6]; 6]>>,
+    /// The bodies' poses at every step (in the model's order of bodies).
+    pub poses: Option<Vec<Vec<Pose>>>,
 }
 
 /// The equilibria of a walked load path, and where it met a limit point.
@@ -204,5 +209,6 @@ pub(crate) fn read_sweep<R>(
         None
     };
     let residuals = steps.iter().map(|s| (s.force_residual / s.force_scale, s.constraint_residual)).collect();
-    Ok(SweepOutput { rows, limit, corrected, residuals, compliance })
+    let poses = extras.poses.then(|| steps.iter().map(|s| s.poses.clone()).collect());
+    Ok(SweepOutput { rows, limit, corrected, residuals, compliance, poses })
 }

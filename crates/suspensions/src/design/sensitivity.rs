@@ -191,9 +191,10 @@ impl SuiteSensitivity {
 }
 
 /// The settings sensitivities are taken with: `settings` walked in corrected mode (only its rows are
-/// equilibria), stopping at a limit point (past one the path has no derivative).
+/// equilibria), stopping at a limit point (past one the path has no derivative), with no views' motion
+/// (the replays would draw what nobody looks at).
 pub fn sensitivity_settings(settings: &Settings) -> Settings {
-    Settings { mode: Mode::Corrected, through_limits: false, ..*settings }
+    Settings { mode: Mode::Corrected, through_limits: false, motion: false, ..*settings }
 }
 
 /// The derivative from the values at the [`SHIFTS`] of `h`: central differences over one and two steps,

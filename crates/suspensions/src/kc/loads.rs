@@ -7,7 +7,7 @@ use crate::analysis::{
 use crate::build::{LoadPoint, Rig};
 use crate::description::Side;
 use crate::file::SuspensionFile;
-use crate::kc::reduce::{axis, chart, deg, finish, outside, said, Reduction};
+use crate::kc::reduce::{axis, chart, corner_drawing, deg, finish, outside, said, Reduction};
 use crate::kc::report::{Accuracy, AnalysisReport, Cell, Figure, Table, Warning};
 use crate::kc::settings::{mode_word, Analysis, Settings};
 
@@ -40,6 +40,7 @@ pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<Anal
     let mut corner = file.suspension.build(Side::Left, Rig::Free).map_err(said)?;
     corner.load_point = s.load_point;
     let z0 = corner.wheel.wheel_centre.z;
+    let drawing = corner_drawing(&corner, s);
     let out = vertical_force_sweep_with(corner, range.0, range.1, s.steps, s.mode, s.extras(range)).map_err(said)?;
     let table = |rows: &[LoadRow]| {
         Table::numbers(
@@ -112,7 +113,7 @@ pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<Anal
         range,
         s,
         &out,
-        Reduction { table: &table, figures: &figures },
+        Reduction { table: &table, figures: &figures, drawing },
         charts,
     ))
 }
@@ -166,8 +167,11 @@ fn loaded(file: &SuspensionFile, analysis: Analysis, s: &Settings) -> Result<Ana
     let rig = if s.height_held { Rig::HeightHeld } else { Rig::Free };
     let mut corner = file.suspension.build(Side::Left, rig).map_err(said)?;
     corner.load_point = s.load_point;
+    // Drawn as walked: with the model's own loads, once they are added.
+    let drawing;
     let out = match analysis {
         Analysis::Road(load) => {
+            drawing = corner_drawing(&corner, s);
             wheel_load_sweep_with(corner, load, corner_load, range.0, range.1, s.steps, s.mode, s.extras(range))
         }
         _ => {
@@ -180,6 +184,7 @@ fn loaded(file: &SuspensionFile, analysis: Analysis, s: &Settings) -> Result<Ana
                 // A solid axle: the load case on both sides, as the mirror image.
                 general.add_loads(&mut corner.model, Side::Right, prefix).map_err(said)?;
             }
+            drawing = corner_drawing(&corner, s);
             model_load_sweep_with(corner, corner_load, range.0, range.1, s.steps, s.mode, s.extras(range))
         }
     }
@@ -313,7 +318,7 @@ fn loaded(file: &SuspensionFile, analysis: Analysis, s: &Settings) -> Result<Ana
         range.1,
         s.steps
     );
-    Ok(finish(analysis, description, range, s, &out, Reduction { table: &table, figures: &figures }, charts))
+    Ok(finish(analysis, description, range, s, &out, Reduction { table: &table, figures: &figures, drawing }, charts))
 }
 
 pub(super) fn static_load(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
@@ -385,6 +390,7 @@ pub(super) fn static_load(file: &SuspensionFile, s: &Settings) -> Result<Analysi
         compliance: None,
         wheel_compliance_at_design: None,
         charts: Vec::new(),
+        motion: None,
         accuracy: Accuracy {
             method: format!(
                 "converged residuals of the rest position (Newton on the exact equilibrium; {} mode does not \

@@ -3,6 +3,9 @@
 //! the wording every analysis shares.
 
 use crate::analysis::{SweepLimit, SweepOutput};
+use crate::build::{Axle, Corner};
+use crate::drawing::{Drawing, Motion};
+use crate::wheel::Wheel;
 use crate::file::SuspensionFile;
 use crate::kc::chart::{Chart, Scale, Series, YAxis};
 use crate::kc::report::{significant, Accuracy, AnalysisReport, Cell, Figure, Table, Warning};
@@ -29,6 +32,19 @@ pub(super) fn said(e: impl std::fmt::Display) -> String {
 pub(super) struct Reduction<'a, R> {
     pub(super) table: &'a dyn Fn(&[R]) -> Table,
     pub(super) figures: &'a dyn Fn(&[R]) -> Vec<Figure>,
+    /// The drawing of the model walked, made only when the settings ask for the motion.
+    pub(super) drawing: Option<Drawing>,
+}
+
+/// The drawing of a corner (both wheels of a solid axle's), when `settings` ask for the motion.
+pub(super) fn corner_drawing(corner: &Corner, settings: &Settings) -> Option<Drawing> {
+    let wheels: Vec<&Wheel> = std::iter::once(&corner.wheel).chain(corner.partner.as_ref()).collect();
+    settings.motion.then(|| Drawing::of(&corner.model, &wheels))
+}
+
+/// The drawing of an axle, when `settings` ask for the motion.
+pub(super) fn axle_drawing(axle: &Axle, settings: &Settings) -> Option<Drawing> {
+    settings.motion.then(|| Drawing::of(&axle.model, &[&axle.left, &axle.right]))
 }
 
 /// Builds the report of a sweep: reads `table` and `figures` off the rows and off the corrected rows,
@@ -140,6 +156,7 @@ pub(super) fn finish<R>(
         wheel_compliance_at_design: None,
         charts,
         warnings,
+        motion: out.poses.clone().zip(reduce.drawing).map(|(frames, drawing)| Motion { drawing, frames }),
     }
 }
 

@@ -2,6 +2,7 @@
 //! reason it is missing), its plots and the accuracy of the whole run. Every number in a report is finite:
 //! a figure that cannot be computed carries a reason instead of a value, a table cell is left empty.
 
+use crate::drawing::Motion;
 use crate::kc::chart::Chart;
 use crate::kc::settings::Analysis;
 use serde::ser::SerializeStruct;
@@ -257,6 +258,10 @@ pub struct AnalysisReport {
     pub accuracy: Accuracy,
     /// Warnings about the result.
     pub warnings: Vec<Warning>,
+    /// The model drawn and its parts' poses at every row, when the settings ask for them
+    /// ([`Settings::motion`](crate::kc::Settings::motion)).
+    #[serde(skip)]
+    pub motion: Option<Motion>,
 }
 
 impl AnalysisReport {

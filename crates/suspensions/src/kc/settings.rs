@@ -161,6 +161,10 @@ pub struct Settings {
     /// rows alone); a report without it says "not estimated".
     #[serde(skip)]
     pub error_estimate: bool,
+    /// The parts' poses at every row and a drawing of the model, for the report's views
+    /// ([`AnalysisReport::motion`](crate::kc::AnalysisReport::motion)). Off unless a view is to be drawn.
+    #[serde(skip)]
+    pub motion: bool,
 }
 
 impl Default for Settings {
@@ -176,6 +180,7 @@ impl Default for Settings {
             through_limits: false,
             arc_step: None,
             error_estimate: true,
+            motion: false,
         }
     }
 }
@@ -205,6 +210,7 @@ impl Settings {
             error_estimate: self.error_estimate,
             compliance: self.compliance,
             through_limits: self.through_limits.then(|| self.arc_step.unwrap_or(one_step)),
+            poses: self.motion,
         }
     }
 }

@@ -7,7 +7,7 @@ use crate::analysis::{axle_sweep_with, AxleRow};
 use crate::build::{Axle, AxleRig, Corner, Rig};
 use crate::description::Side;
 use crate::file::SuspensionFile;
-use crate::kc::reduce::{axis, chart, deg, finish, needs_vehicle, outside, said, Reduction};
+use crate::kc::reduce::{axis, axle_drawing, chart, corner_drawing, deg, finish, needs_vehicle, outside, said, Reduction};
 use crate::kc::report::{AnalysisReport, Cell, Figure, Table, Warning};
 use crate::kc::settings::{Analysis, Settings};
 
@@ -68,7 +68,7 @@ pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<Ana
         range,
         s,
         &out,
-        Reduction { table: &table, figures: &figures },
+        Reduction { table: &table, figures: &figures, drawing: corner_drawing(&corner, s) },
         charts,
     );
     // Toe, camber and wheel rate no car has, inside the travel asked for.
@@ -484,7 +484,8 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
         range.1 * 1e3,
         s.steps
     );
-    Ok(finish(Analysis::Roll, description, range, s, &out, Reduction { table: &table, figures: &figures }, charts))
+    let reduce = Reduction { table: &table, figures: &figures, drawing: axle_drawing(&axle, s) };
+    Ok(finish(Analysis::Roll, description, range, s, &out, reduce, charts))
 }
 
 /// Steer angle of a wheel (positive turning left, about +z) from its toe (toe-in positive).
@@ -664,5 +665,6 @@ pub(super) fn steering(file: &SuspensionFile, s: &Settings) -> Result<AnalysisRe
     )];
     let description =
         format!("steering (rack {:+.0}..{:+.0} mm, heights held), {} steps", range.0 * 1e3, range.1 * 1e3, s.steps);
-    Ok(finish(Analysis::Steering, description, range, s, &out, Reduction { table: &table, figures: &figures }, charts))
+    let reduce = Reduction { table: &table, figures: &figures, drawing: axle_drawing(&axle, s) };
+    Ok(finish(Analysis::Steering, description, range, s, &out, reduce, charts))
 }
