@@ -2,9 +2,11 @@
 //! headline figures with their error estimates, the plots inline, the accuracy of every analysis, the
 //! warnings, the hardpoints and the model itself, under a block saying how the run was made.
 //!
-//! The page needs nothing but itself: CSS inline, no script, no font, no link out of the file. It is
-//! written as XHTML-compatible HTML (every element closed, only the five XML entities) so an XML parser
-//! can check that it is well-formed, and it prints on paper as it shows on screen.
+//! The page needs nothing but itself: CSS inline, no font, no link out of the file, and one script, inline:
+//! the 3D view's ([`crate::view`]); everything else, the geometry's projections included, is SVG and
+//! shows with scripts off. It is written as XHTML-compatible HTML (every element closed, only the five
+//! XML entities, the script in a CDATA section) so an XML parser can check that it is well-formed, and it
+//! prints on paper as it shows on screen.
 //!
 //! Every number on the page comes from the report or the model file: a figure without a value shows
 //! its reason, an empty table cell stays empty, and nothing non-finite is printed.
@@ -89,6 +91,7 @@ fn write_page(
     write_hardpoints(out, model)?;
     writeln!(out, "</div>")?;
     write_contents(out, report)?;
+    crate::view::write_geometry(out, report)?;
     for analysis in &report.analyses {
         write_analysis(out, analysis, report, render_chart)?;
     }
@@ -875,6 +878,15 @@ summary { cursor: pointer; color: #0b5394; }
 .scroll table { font-size: 0.85em; }
 pre { background: #f6f8fa; padding: 10px; overflow-x: auto; font-size: 0.85em; }
 nav ol { columns: 2; margin: 0; }
+.views { display: flex; flex-wrap: wrap; gap: 12px; }
+.views figure.view { flex: 1 1 300px; margin: 0; }
+.views figure.view svg { border: 1px solid #e5e8eb; }
+ul.view-legend { list-style: none; padding: 0; display: flex; flex-wrap: wrap; gap: 4px 18px; font-size: 0.85em; }
+ul.view-legend svg { vertical-align: middle; }
+figure.view3d { margin: 12px 0; }
+figure.view3d canvas { width: 100%; height: 560px; display: block; border: 1px solid #e5e8eb; touch-action: none; }
+.view3d-controls { display: flex; flex-wrap: wrap; gap: 8px; align-items: center; margin-bottom: 6px; }
+.view3d-controls input[type=range] { flex: 1 1 200px; }
 @media print {
   body { max-width: none; padding: 0; font-size: 10pt; }
   section.analysis { break-before: page; }

@@ -31,6 +31,7 @@ pub use elastokin_suspensions as suspensions;
 pub mod html;
 pub mod plot;
 pub mod provenance;
+pub mod view;
 
 /// The names most programs use.
 pub mod prelude {

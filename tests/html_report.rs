@@ -323,3 +323,72 @@ fn non_finite_numbers_put_in_the_report_never_reach_the_page() {
         html.contains("force residual not estimated (relative to the force scale), constraint residual not estimated")
     );
 }
+
+/// The suite of [`suite`] with the parts' motion, for the geometry views.
+fn suite_with_motion() -> &'static KcReport {
+    static REPORT: OnceLock<KcReport> = OnceLock::new();
+    REPORT.get_or_init(|| {
+        let settings = Settings { steps: 8, motion: true, ..Default::default() };
+        kc::run_suite(&model(), &[], &settings, |_| {}).complete().unwrap()
+    })
+}
+
+#[test]
+fn geometry_views_are_inline_svg_and_the_3d_view_is_one_script_that_no_name_can_break() {
+    let mut report = suite_with_motion().clone();
+    // A part name that would close the script element, the CDATA section and open markup if written raw,
+    // and a pose that is no number.
+    let hostile = "</script>]]><b>&amp;\"";
+    for a in &mut report.analyses {
+        if let Some(m) = &mut a.motion {
+            m.drawing.parts[0].name = hostile.into();
+            m.frames[1][0].position.x = f64::NAN;
+        }
+    }
+    let html = report_html(&report, &model(), &provenance(), title_svg);
+    let body = html.strip_prefix("<!DOCTYPE html>").unwrap();
+    let doc = roxmltree::Document::parse(body).unwrap_or_else(|e| panic!("not well-formed: {e}"));
+    assert_eq!(non_finite_words(&html), Vec::<String>::new());
+    assert!(!html.contains("<b>"));
+    // The three projections, each an inline SVG: the design position's strokes, and the two extremes'
+    // (every stroke but the bushings' deflections) ghosted.
+    let travel = report.analyses.iter().find(|a| a.analysis == kc::Analysis::ParallelTravel).unwrap();
+    let drawing = &travel.motion.as_ref().unwrap().drawing;
+    let strokes = drawing.strokes();
+    let deflections = strokes.iter().filter(|s| s.pen == elastokin::suspensions::drawing::Pen::Deflection).count();
+    for view in ["front", "side", "plan"] {
+        let figure = doc.descendants().find(|n| n.attribute("id") == Some(&*format!("view-{view}"))).unwrap();
+        let paths = figure.descendants().filter(|n| n.has_tag_name("path")).count();
+        assert_eq!(paths, 3 * strokes.len() - 2 * deflections, "{view} view");
+        let text: String = figure.descendants().filter_map(|n| n.text()).collect();
+        assert!(text.contains("[mm]"), "{view} view is dimensioned in mm");
+    }
+    // One script of code, inline, and its data: nothing loaded from anywhere.
+    let scripts: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("script")).collect();
+    assert_eq!(scripts.len(), 2);
+    assert!(scripts.iter().all(|s| s.attribute("src").is_none()));
+    for outside in ["src=\"http", "href=\"http", "<link", "url(", "@import", "import("] {
+        assert!(!html.contains(outside), "the page reaches outside itself: {outside}");
+    }
+    let data: serde_json::Value = serde_json::from_str(scripts[0].text().unwrap()).unwrap();
+    let analyses = data["analyses"].as_array().unwrap();
+    let with_motion: Vec<_> = report.analyses.iter().filter(|a| a.motion.is_some()).collect();
+    assert_eq!(analyses.len(), with_motion.len());
+    for (shown, a) in analyses.iter().zip(&with_motion) {
+        assert_eq!(shown["name"], a.analysis.name());
+        assert_eq!(shown["frames"].as_array().unwrap().len(), a.table.rows.len());
+        let d = &data["drawings"][shown["drawing"].as_u64().unwrap() as usize];
+        let m = a.motion.as_ref().unwrap();
+        assert_eq!(d["strokes"].as_array().unwrap().len(), m.drawing.strokes().len());
+        assert_eq!(d["dots"].as_array().unwrap().len(), m.drawing.dots().len());
+    }
+    // The name came through whole, as data.
+    let names: Vec<&str> = data["drawings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|d| d["strokes"].as_array().unwrap())
+        .filter_map(|s| s["name"].as_str())
+        .collect();
+    assert!(names.contains(&hostile), "{names:?}");
+}

@@ -9,13 +9,15 @@
 //! by the same renderer as the command's.
 //! - `fuzz`: the long fuzz campaign over every shipped model and Chrono file, its report written to
 //!   `bench/results/fuzz.md`; see `fuzz.rs`.
-//! - `screenshot`: the HTML K&C report of `examples/macpherson.json`, and its picture taken by headless
-//!   Chromium for the README; see `screenshot.rs`. It uses the `elastokin` facade (the suite, the plots,
-//!   the HTML report and the provenance), as the command does.
+//! - `screenshot`: the HTML K&C report of `examples/macpherson.json`, and pictures of it and of its
+//!   geometry views taken by headless Chromium for the README; see `screenshot.rs` (and `browser.rs`, the
+//!   Chromium it runs, also loading every example's report in the browser test). It uses the `elastokin`
+//!   facade (the suite, the plots, the HTML report and the provenance), as the command does.
 
 use std::process::{Command, ExitCode};
 
 mod bench;
+mod browser;
 mod fuzz;
 mod screenshot;
 #[cfg(test)]

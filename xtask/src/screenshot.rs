@@ -1,36 +1,55 @@
-//! `cargo xtask screenshot`: the K&C report of `examples/macpherson.json` as a picture, for the README.
+//! `cargo xtask screenshot`: the K&C report of `examples/macpherson.json` and its views as pictures, for
+//! the README.
 //!
-//! Runs the K&C suite through the library (`elastokin::suspensions::kc::run_suite`), writes the HTML report
-//! (`elastokin::html::report_html`) to `target/screenshot/report.html`, and has headless Chromium (Debian's
-//! `chromium` package) take a 1200 × 3000 px screenshot of it into `docs/images/report.png`: the top of the
-//! report, as a person opening the mailed file sees it.
-//! The page is the one `elastokin run` writes: the same suite, the same plots (`elastokin::plot::svg`),
-//! the same provenance.
+//! Writes the report as `elastokin run` writes it (`browser::report_page`: the suite through the library,
+//! the plots by `elastokin::plot::svg`, the geometry views, the provenance) to
+//! `target/screenshot/report.html`, and has headless Chromium (Debian's `chromium` package) take
+//! - `docs/images/report.png`: the top of the report, 1200 × 3000 px, as a person opening the mailed
+//!   file sees it;
+//! - `docs/images/view-front.png`, `view-side.png`, `view-plan.png`: each projection of the geometry, and
+//!   `docs/images/view-3d.png`: the 3D view as it first shows — each a page of that part of the report
+//!   alone (the report's own head and markup, its script for the 3D view), so the picture is what the
+//!   browser draws there.
 
-use elastokin::provenance::Provenance;
-use elastokin::suspensions::kc::{self, Settings, SuiteEvent};
-use elastokin::suspensions::SuspensionFile;
-use std::path::{Path, PathBuf};
-use std::process::{Command, ExitCode, Stdio};
-use std::time::{Duration, Instant};
+use crate::browser::{find_chromium, part_of_page, report_page, screenshot};
+use std::path::PathBuf;
+use std::process::ExitCode;
 
 /// The model shown, relative to the workspace root.
 const MODEL: &str = "examples/macpherson.json";
-/// The picture, relative to the workspace root (committed; the README shows it).
+/// The report's picture, relative to the workspace root (committed; the README shows it).
 const PICTURE: &str = "docs/images/report.png";
 /// Chromium's window: the width of a laptop screen, tall enough for the summary and the first analyses.
 const WINDOW: (u32, u32) = (1200, 3000);
-/// A screenshot that takes longer than this has hung (a first start of Chromium takes a few seconds).
-const CHROMIUM_TIME_LIMIT: Duration = Duration::from_secs(120);
+/// A view's picture: the figure it is (its id, and the text that ends it), the picture, the window.
+struct View {
+    id: &'static str,
+    close: &'static str,
+    picture: &'static str,
+    window: (u32, u32),
+}
+
+/// The views, each a figure of the report: the projections end with their figure, the 3D view with its
+/// script.
+const VIEWS: [View; 4] = [
+    View { id: "view-front", close: "</figure>", picture: "docs/images/view-front.png", window: (460, 660) },
+    View { id: "view-side", close: "</figure>", picture: "docs/images/view-side.png", window: (460, 660) },
+    View { id: "view-plan", close: "</figure>", picture: "docs/images/view-plan.png", window: (460, 660) },
+    View { id: "view-3d", close: "//]]></script>", picture: "docs/images/view-3d.png", window: (980, 700) },
+];
 
 pub fn main(args: &[String]) -> ExitCode {
     if !args.is_empty() {
-        eprintln!("usage: cargo xtask screenshot   (writes target/screenshot/report.html and {PICTURE})");
+        eprintln!(
+            "usage: cargo xtask screenshot   (writes target/screenshot/report.html, {PICTURE} and the views' pictures)"
+        );
         return ExitCode::from(2);
     }
     match run() {
-        Ok(picture) => {
-            println!("wrote {}", picture.display());
+        Ok(pictures) => {
+            for p in pictures {
+                println!("wrote {}", p.display());
+            }
             ExitCode::SUCCESS
         }
         Err(e) => {
@@ -40,95 +59,32 @@ pub fn main(args: &[String]) -> ExitCode {
     }
 }
 
-use crate::workspace_root;
-
-fn run() -> Result<PathBuf, String> {
+fn run() -> Result<Vec<PathBuf>, String> {
     // Look for Chromium first: without it the run would be wasted.
     let chromium = find_chromium()?;
-    let root = workspace_root();
-    let model_path = root.join(MODEL);
-    // Read once: the bytes hashed for the provenance are the ones parsed.
-    let text = std::fs::read_to_string(&model_path).map_err(|e| format!("{}: {e}", model_path.display()))?;
-    let file = SuspensionFile::from_json(&text, &model_path.display().to_string()).map_err(|e| e.to_string())?;
-    let settings = Settings::default();
-    let report = kc::run_suite(&file, &[], &settings, |event| {
-        if let SuiteEvent::Starting(a) = event {
-            eprintln!("running {}", a.name());
-        }
-    })
-    .complete()
-    .map_err(|e| e.to_string())?;
-    let mut provenance =
-        Provenance::new(Path::new(MODEL), text.as_bytes(), kc::mode_word(settings.mode), settings.steps);
-    provenance.tolerance = Some(settings.tolerance);
-    let html = elastokin::html::report_html(&report, &file, &provenance.to_json(), elastokin::plot::svg);
-
+    let root = crate::workspace_root();
+    eprintln!("running the K&C suite on {MODEL}");
+    let html = report_page(&root, MODEL)?;
     let dir = root.join("target/screenshot");
     std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let page = dir.join("report.html");
-    std::fs::write(&page, html).map_err(|e| format!("{}: {e}", page.display()))?;
+    std::fs::write(&page, &html).map_err(|e| format!("{}: {e}", page.display()))?;
     eprintln!("wrote {}", page.display());
-
+    let profile = dir.join("chromium-profile");
     let picture = root.join(PICTURE);
     if let Some(parent) = picture.parent() {
         std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
     }
-    screenshot(&chromium, &page, &picture, &dir.join("chromium-profile"))?;
-    Ok(picture)
-}
-
-fn find_chromium() -> Result<PathBuf, String> {
-    let path = std::env::var_os("PATH").unwrap_or_default();
-    std::env::split_paths(&path)
-        .map(|dir| dir.join("chromium"))
-        .find(|p| p.is_file())
-        .ok_or_else(|| "chromium is not on PATH: install Debian's chromium package: apt-get install chromium".into())
-}
-
-/// Has headless Chromium load `page` and save the window as `picture`. Its profile is made fresh in
-/// `profile` and removed after, so no earlier state (cache, settings) changes the picture; everything
-/// that would reach the network is off, since the page needs nothing outside itself.
-fn screenshot(chromium: &Path, page: &Path, picture: &Path, profile: &Path) -> Result<(), String> {
-    let _ = std::fs::remove_dir_all(profile);
-    std::fs::create_dir_all(profile).map_err(|e| format!("{}: {e}", profile.display()))?;
-    let _ = std::fs::remove_file(picture);
-    let page = page.canonicalize().map_err(|e| format!("{}: {e}", page.display()))?;
-    let mut cmd = Command::new(chromium);
-    cmd.args([
-        "--headless",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-quic",
-        "--no-first-run",
-        "--disable-background-networking",
-        "--disable-component-update",
-        "--disable-sync",
-        "--hide-scrollbars",
-    ])
-    .arg(format!("--user-data-dir={}", profile.display()))
-    .arg(format!("--screenshot={}", picture.display()))
-    .arg(format!("--window-size={},{}", WINDOW.0, WINDOW.1))
-    .arg(format!("file://{}", page.display()))
-    .stdout(Stdio::null())
-    .stderr(Stdio::piped());
-    let mut child = cmd.spawn().map_err(|e| format!("could not start {}: {e}", chromium.display()))?;
-    let started = Instant::now();
-    let status = loop {
-        match child.try_wait().map_err(|e| e.to_string())? {
-            Some(status) => break status,
-            None if started.elapsed() > CHROMIUM_TIME_LIMIT => {
-                let _ = child.kill();
-                let _ = child.wait();
-                let _ = std::fs::remove_dir_all(profile);
-                return Err(format!("chromium took longer than {} s; stopped", CHROMIUM_TIME_LIMIT.as_secs()));
-            }
-            None => std::thread::sleep(Duration::from_millis(100)),
-        }
-    };
-    let stderr = child.stderr.take().map(std::io::read_to_string).transpose().ok().flatten().unwrap_or_default();
-    let _ = std::fs::remove_dir_all(profile);
-    if !status.success() || !picture.is_file() {
-        return Err(format!("chromium failed ({status}), no {}:\n{stderr}", picture.display()));
+    screenshot(&chromium, &page, "", &picture, WINDOW, &profile)?;
+    let mut pictures = vec![picture];
+    for view in VIEWS {
+        let part = part_of_page(&html, "<figure", view.id, view.close)
+            .ok_or_else(|| format!("the report has no {}", view.id))?;
+        let part_page = dir.join(format!("{}.html", view.id));
+        std::fs::write(&part_page, part).map_err(|e| format!("{}: {e}", part_page.display()))?;
+        let picture = root.join(view.picture);
+        screenshot(&chromium, &part_page, "", &picture, view.window, &profile)?;
+        pictures.push(picture);
     }
-    Ok(())
+    Ok(pictures)
 }

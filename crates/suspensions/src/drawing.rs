@@ -108,16 +108,14 @@ impl Drawing {
         let mut joints = Vec::new();
         for joint in model.joints() {
             let spec = &joint.spec;
-            let has_place = !joint.is_driver()
-                && !matches!(spec.kind, JointKind::Perpendicular | JointKind::ParallelAxes);
+            let has_place =
+                !joint.is_driver() && !matches!(spec.kind, JointKind::Perpendicular | JointKind::ParallelAxes);
             if !has_place {
                 continue;
             }
             let on_j = spec.point_j.unwrap_or(spec.point);
-            let ends = [
-                Anchor::at_design(model, spec.body_i, &spec.point),
-                Anchor::at_design(model, spec.body_j, &on_j),
-            ];
+            let ends =
+                [Anchor::at_design(model, spec.body_i, &spec.point), Anchor::at_design(model, spec.body_j, &on_j)];
             let guided = matches!(
                 spec.kind,
                 JointKind::Revolute | JointKind::Cylindrical | JointKind::Translational | JointKind::Universal
@@ -180,4 +178,191 @@ pub struct Motion {
     pub drawing: Drawing,
     /// The bodies' poses at each row (in the model's order of bodies).
     pub frames: Vec<Vec<Pose>>,
+}
+
+/// What a stroke of a view is: each is drawn in its own colour and weight.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Pen {
+    /// A part's outline: a link's line, an arm's triangle, or spokes from a larger part's centre.
+    Part,
+    /// A link that is a constraint, not a body (an ideal tie rod, a drop link).
+    Link,
+    /// A spring between its seats.
+    Spring,
+    /// A stop between its points.
+    Stop,
+    /// A bushing's axis, through its point.
+    Bushing,
+    /// A bushing's deflection, [`DEFLECTION_SCALE`] times its length, from its point on body `j`.
+    Deflection,
+    /// A wheel: the circle of its loaded radius.
+    Wheel,
+    /// A steering axis, from its lower point through its upper.
+    SteeringAxis,
+}
+
+impl Pen {
+    /// The pen's name in a view's data and its style sheet.
+    pub fn name(self) -> &'static str {
+        match self {
+            Pen::Part => "part",
+            Pen::Link => "link",
+            Pen::Spring => "spring",
+            Pen::Stop => "stop",
+            Pen::Bushing => "bushing",
+            Pen::Deflection => "deflection",
+            Pen::Wheel => "wheel",
+            Pen::SteeringAxis => "steering-axis",
+        }
+    }
+}
+
+/// How many times its length a bushing's deflection is drawn: a tenth of a millimetre shows as 2 mm.
+pub const DEFLECTION_SCALE: f64 = 20.0;
+
+/// Half the length of a bushing's axis as drawn (m).
+const BUSHING_MARK: f64 = 0.03;
+
+/// Points on a wheel's circle as drawn.
+const WHEEL_POINTS: usize = 48;
+
+/// A line through anchored points (closed back to the first when `closed`): the one thing a view draws
+/// besides dots, so that every view (the report's projections, its 3D view) draws the same lines.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stroke {
+    /// How it is drawn.
+    pub pen: Pen,
+    /// What it belongs to (a part's, joint's, element's or wheel's name).
+    pub name: String,
+    /// Its points.
+    pub anchors: Vec<Anchor>,
+    /// Whether it closes back to its first point.
+    pub closed: bool,
+}
+
+/// What a dot of a view marks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Spot {
+    /// A joint's point.
+    Joint,
+    /// A bushing's point.
+    Bushing,
+    /// A point fixed to the chassis (a mount of a joint or an element on the ground).
+    Mount,
+    /// A wheel centre.
+    WheelCentre,
+}
+
+impl Spot {
+    /// The spot's name in a view's data and its style sheet.
+    pub fn name(self) -> &'static str {
+        match self {
+            Spot::Joint => "joint",
+            Spot::Bushing => "bushing",
+            Spot::Mount => "mount",
+            Spot::WheelCentre => "wheel-centre",
+        }
+    }
+}
+
+/// A dot of a view.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Dot {
+    /// What it marks.
+    pub spot: Spot,
+    /// What it belongs to.
+    pub name: String,
+    /// Where.
+    pub at: Anchor,
+}
+
+impl Drawing {
+    /// The lines a view draws: parts, links, springs, stops, bushings (their axes and deflections),
+    /// wheels and steering axes, in that order (later ones over earlier ones).
+    pub fn strokes(&self) -> Vec<Stroke> {
+        let mut out = Vec::new();
+        for (b, part) in self.parts.iter().enumerate() {
+            let on = |point: Vec3| Anchor { body: BodyRef::Body(elastokin_core::BodyId(b)), point };
+            let stroke = |anchors: Vec<Anchor>, closed: bool| Stroke {
+                pen: Pen::Part,
+                name: part.name.clone(),
+                anchors,
+                closed,
+            };
+            match part.points.len() {
+                0 | 1 => {}
+                2 | 3 => out.push(stroke(part.points.iter().map(|&p| on(p)).collect(), part.points.len() == 3)),
+                n => {
+                    let centre = part.points.iter().sum::<Vec3>() / n as f64;
+                    out.extend(part.points.iter().map(|&p| stroke(vec![on(centre), on(p)], false)));
+                }
+            }
+        }
+        for j in self.joints.iter().filter(|j| j.kind == JointKind::Distance) {
+            out.push(Stroke { pen: Pen::Link, name: j.name.clone(), anchors: j.ends.to_vec(), closed: false });
+        }
+        for e in &self.elements {
+            let pen = match e.kind {
+                SketchKind::Spring => Pen::Spring,
+                SketchKind::Stop => Pen::Stop,
+                SketchKind::Bushing => {
+                    if let Some(axes) = e.axes {
+                        let x = axes.column(0) * BUSHING_MARK;
+                        let anchors =
+                            [-1.0, 1.0].map(|s| Anchor { body: e.ends[0].body, point: e.ends[0].point + x * s });
+                        out.push(Stroke {
+                            pen: Pen::Bushing,
+                            name: e.name.clone(),
+                            anchors: anchors.to_vec(),
+                            closed: false,
+                        });
+                    }
+                    Pen::Deflection
+                }
+                SketchKind::Load => continue,
+            };
+            out.push(Stroke { pen, name: e.name.clone(), anchors: e.ends.to_vec(), closed: false });
+        }
+        for w in &self.wheels {
+            let (u, v) = elastokin_core::joint::orthonormal_complement(&w.spin_axis);
+            let anchors = (0..WHEEL_POINTS)
+                .map(|k| {
+                    let a = std::f64::consts::TAU * k as f64 / WHEEL_POINTS as f64;
+                    Anchor { body: w.upright, point: w.centre + (u * a.cos() + v * a.sin()) * w.radius }
+                })
+                .collect();
+            out.push(Stroke { pen: Pen::Wheel, name: "wheel".into(), anchors, closed: true });
+            out.push(Stroke {
+                pen: Pen::SteeringAxis,
+                name: "steering axis".into(),
+                anchors: w.steering_axis.to_vec(),
+                closed: false,
+            });
+        }
+        out
+    }
+
+    /// The dots a view draws: joints, bushings, chassis mounts and wheel centres.
+    pub fn dots(&self) -> Vec<Dot> {
+        let mut out = Vec::new();
+        let mut mark = |spot: Spot, name: &str, at: Anchor| {
+            let spot = if at.body == BodyRef::Ground { Spot::Mount } else { spot };
+            out.push(Dot { spot, name: name.to_string(), at });
+        };
+        for j in &self.joints {
+            for end in &j.ends {
+                mark(Spot::Joint, &j.name, *end);
+            }
+        }
+        for e in self.elements.iter().filter(|e| e.kind != SketchKind::Load) {
+            let spot = if e.kind == SketchKind::Bushing { Spot::Bushing } else { Spot::Joint };
+            for end in &e.ends {
+                mark(spot, &e.name, *end);
+            }
+        }
+        for w in &self.wheels {
+            mark(Spot::WheelCentre, "wheel centre", Anchor { body: w.upright, point: w.centre });
+        }
+        out
+    }
 }

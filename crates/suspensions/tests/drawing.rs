@@ -18,11 +18,16 @@ fn example(name: &str) -> SuspensionFile {
 }
 
 fn models() -> Vec<(String, SuspensionFile)> {
-    let mut out: Vec<(String, SuspensionFile)> =
-        ["macpherson.json", "double_wishbone.json", "five_link.json", "double_wishbone_axle.json", "four_link_axle.json"]
-            .iter()
-            .map(|n| (n.to_string(), example(n)))
-            .collect();
+    let mut out: Vec<(String, SuspensionFile)> = [
+        "macpherson.json",
+        "double_wishbone.json",
+        "five_link.json",
+        "double_wishbone_axle.json",
+        "four_link_axle.json",
+    ]
+    .iter()
+    .map(|n| (n.to_string(), example(n)))
+    .collect();
     for name in ["DoubleWishbone.json", "MultiLink.json"] {
         out.push((name.to_string(), chrono::read(name).1));
     }

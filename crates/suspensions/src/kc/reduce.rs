@@ -5,11 +5,11 @@
 use crate::analysis::{SweepLimit, SweepOutput};
 use crate::build::{Axle, Corner};
 use crate::drawing::{Drawing, Motion};
-use crate::wheel::Wheel;
 use crate::file::SuspensionFile;
 use crate::kc::chart::{Chart, Scale, Series, YAxis};
 use crate::kc::report::{significant, Accuracy, AnalysisReport, Cell, Figure, Table, Warning};
 use crate::kc::settings::{mode_word, Analysis, Settings};
+use crate::wheel::Wheel;
 use elastokin_solver::{Mode, MAX_STEPS};
 
 /// Short model name for plot subtitles (the part before any parenthesis).

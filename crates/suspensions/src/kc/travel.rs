@@ -7,7 +7,9 @@ use crate::analysis::{axle_sweep_with, AxleRow};
 use crate::build::{Axle, AxleRig, Corner, Rig};
 use crate::description::Side;
 use crate::file::SuspensionFile;
-use crate::kc::reduce::{axis, axle_drawing, chart, corner_drawing, deg, finish, needs_vehicle, outside, said, Reduction};
+use crate::kc::reduce::{
+    axis, axle_drawing, chart, corner_drawing, deg, finish, needs_vehicle, outside, said, Reduction,
+};
 use crate::kc::report::{AnalysisReport, Cell, Figure, Table, Warning};
 use crate::kc::settings::{Analysis, Settings};
 

@@ -1,0 +1,485 @@
+//! The report's views of the model: its geometry in three projections as inline SVG (front y–z, side
+//! x–z, plan x–y, in mm, the design position drawn and the sweep's extremes ghosted), and a 3D view
+//! that moves the parts through each analysis as solved (a canvas, orbit, zoom, a slider and play).
+//!
+//! Both draw the same [`Stroke`]s and [`Dot`]s of the library's [`Drawing`], placed by the poses of a
+//! row of [`Motion`]: a stroke's points are anchored on the bodies that carry them, so a view only
+//! places and projects. The 3D view is a small hand-written script (`src/view3d.js`, about 9 kB):
+//! the scene is a few dozen lines and dots, which a 2D canvas draws in well under a frame; a 3D library
+//! inlined would add half a megabyte or more to every report for triangles it never draws. The page
+//! still opens with no network, and everything but the 3D view works with scripts off.
+
+use crate::suspensions::drawing::{Anchor, Dot, Motion, Pen, Spot, Stroke, DEFLECTION_SCALE};
+use crate::suspensions::kc::{AnalysisReport, KcReport};
+use elastokin_core::{BodyRef, Pose, Vec3};
+use html_escape::encode_text as text;
+use serde_json::{json, Value};
+use std::fmt::Write;
+
+/// A projection of the model onto the page.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Projection {
+    /// Seen from the front: y to the right, z up.
+    Front,
+    /// Seen from the left: x to the left (the front of the car on the left), z up.
+    Side,
+    /// Seen from above: x up (the front at the top), y to the left.
+    Plan,
+}
+
+impl Projection {
+    /// All three, in the order the report shows them.
+    pub const ALL: [Projection; 3] = [Projection::Front, Projection::Side, Projection::Plan];
+
+    /// Its name, for ids and captions.
+    pub fn name(self) -> &'static str {
+        match self {
+            Projection::Front => "front",
+            Projection::Side => "side",
+            Projection::Plan => "plan",
+        }
+    }
+
+    /// The page's horizontal and upward coordinates of a global point: each a global coordinate, its
+    /// sign, and the axis's name (so the grid labels the global coordinate itself).
+    fn axes(self) -> [(usize, f64, &'static str); 2] {
+        match self {
+            Projection::Front => [(1, 1.0, "y"), (2, 1.0, "z")],
+            Projection::Side => [(0, -1.0, "x"), (2, 1.0, "z")],
+            Projection::Plan => [(1, -1.0, "y"), (0, 1.0, "x")],
+        }
+    }
+
+    fn caption(self) -> &'static str {
+        match self {
+            Projection::Front => "front view (y–z), seen from the front",
+            Projection::Side => "side view (x–z), seen from the left, the front to the left",
+            Projection::Plan => "plan view (x–y), seen from above, the front at the top",
+        }
+    }
+
+    fn project(self, p: &Vec3) -> (f64, f64) {
+        let [(a, sa, _), (b, sb, _)] = self.axes();
+        (sa * p[a], sb * p[b])
+    }
+}
+
+/// Where an anchored point is at `poses`.
+fn placed(anchor: &Anchor, poses: &[Pose]) -> Vec3 {
+    anchor.placed(poses)
+}
+
+/// The points of a stroke as drawn at `poses`: a deflection scaled about its point on body `j`.
+pub fn stroke_points(stroke: &Stroke, poses: &[Pose]) -> Vec<Vec3> {
+    let points: Vec<Vec3> = stroke.anchors.iter().map(|a| placed(a, poses)).collect();
+    match (stroke.pen, points.as_slice()) {
+        (Pen::Deflection, [i, j]) => vec![*j, j + (j - i) * DEFLECTION_SCALE],
+        _ => points,
+    }
+}
+
+/// A pen's colour, width and dash pattern (SVG and the 3D view's style alike).
+fn pen_style(pen: Pen) -> (&'static str, f64, &'static str) {
+    match pen {
+        Pen::Part => ("#1f77b4", 3.0, ""),
+        Pen::Link => ("#555555", 2.0, ""),
+        Pen::Spring => ("#2ca02c", 3.0, "6 3"),
+        Pen::Stop => ("#8c564b", 4.0, ""),
+        Pen::Bushing => ("#9467bd", 2.0, ""),
+        Pen::Deflection => ("#d62728", 2.0, ""),
+        Pen::Wheel => ("#333333", 1.5, ""),
+        Pen::SteeringAxis => ("#ff7f0e", 1.5, "8 3 2 3"),
+    }
+}
+
+/// A spot's colour and radius (px).
+fn spot_style(spot: Spot) -> (&'static str, f64) {
+    match spot {
+        Spot::Joint => ("#222222", 3.5),
+        Spot::Bushing => ("#9467bd", 4.5),
+        Spot::Mount => ("#444444", 4.0),
+        Spot::WheelCentre => ("#333333", 3.0),
+    }
+}
+
+/// The row of `a` shown as its design position: the one nearest zero of the load parameter when the
+/// range spans zero (travel, roll, steering, lateral force), else the middle row.
+pub fn design_row(a: &AnalysisReport) -> usize {
+    let t: Vec<f64> = a.table.rows.iter().map(|r| r.first().and_then(|c| c.number()).unwrap_or(f64::NAN)).collect();
+    let spans_zero = t.iter().any(|v| *v <= 0.0) && t.iter().any(|v| *v >= 0.0);
+    if spans_zero {
+        (0..t.len()).min_by(|&i, &j| t[i].abs().total_cmp(&t[j].abs())).unwrap_or(0)
+    } else {
+        t.len() / 2
+    }
+}
+
+/// The analysis the projections show: parallel travel when the report has its motion, else the first
+/// analysis that has one.
+fn shown_analysis(report: &KcReport) -> Option<(&AnalysisReport, &Motion)> {
+    let with_motion = || report.analyses.iter().filter_map(|a| Some((a, a.motion.as_ref()?)));
+    with_motion().find(|(a, _)| a.analysis.name() == "parallel-travel").or_else(|| with_motion().next())
+}
+
+/// The load parameter of row `r` of `a` as a person reads it: the table's first column in its unit
+/// (`travel_m` shown in mm).
+pub fn row_label(a: &AnalysisReport, r: usize) -> String {
+    let column = a.table.columns.first().map_or("", String::as_str);
+    let v = a.table.rows.get(r).and_then(|row| row.first()).and_then(|c| c.number()).unwrap_or(f64::NAN);
+    let (name, value, unit) = if let Some(name) = column.strip_suffix("_m") {
+        (name, v * 1e3, "mm")
+    } else if let Some(name) = column.strip_suffix("_deg") {
+        (name, v, "deg")
+    } else if let Some(name) = column.strip_suffix("_nm") {
+        (name, v, "N·m")
+    } else if let Some(name) = column.strip_suffix("_n") {
+        (name, v, "N")
+    } else {
+        (column, v, "")
+    };
+    let value = if value.is_finite() { format!("{value:.1}") } else { "—".into() };
+    format!("{} {value} {unit}", name.replace('_', " ")).trim_end().to_string()
+}
+
+/// A grid line's coordinate in whole millimetres, a rounded zero without a sign.
+fn mm(metres: f64) -> f64 {
+    (metres * 1e3).round() + 0.0
+}
+
+/// Page size of a projection's drawing area (px), its margin for the grid's labels.
+const VIEW_WIDTH: f64 = 380.0;
+const VIEW_MAX_HEIGHT: f64 = 420.0;
+const LABEL_ROOM: f64 = 44.0;
+const PAD_M: f64 = 0.03;
+
+/// A grid step (m) giving four to ten lines over `span` (m).
+fn grid_step(span: f64) -> f64 {
+    [0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0].into_iter().find(|s| span / s <= 10.0).unwrap_or(10.0)
+}
+
+/// One projection of the model at its design row, its extremes ghosted, as an inline SVG.
+fn projection_svg(out: &mut String, motion: &Motion, rows: [usize; 3], projection: Projection) -> std::fmt::Result {
+    let strokes = motion.drawing.strokes();
+    let dots = motion.drawing.dots();
+    let [design, first, last] = rows;
+    // Extents over every row drawn.
+    let (mut lo, mut hi) = ((f64::INFINITY, f64::INFINITY), (f64::NEG_INFINITY, f64::NEG_INFINITY));
+    let mut grow = |p: &Vec3| {
+        let (u, v) = projection.project(p);
+        if u.is_finite() && v.is_finite() {
+            lo = (lo.0.min(u), lo.1.min(v));
+            hi = (hi.0.max(u), hi.1.max(v));
+        }
+    };
+    for &r in &[design, first, last] {
+        for s in &strokes {
+            stroke_points(s, &motion.frames[r]).iter().for_each(&mut grow);
+        }
+    }
+    if !(lo.0.is_finite() && hi.0.is_finite()) {
+        return Ok(());
+    }
+    let (lo, hi) = ((lo.0 - PAD_M, lo.1 - PAD_M), (hi.0 + PAD_M, hi.1 + PAD_M));
+    let scale = ((VIEW_WIDTH - LABEL_ROOM) / (hi.0 - lo.0)).min((VIEW_MAX_HEIGHT - LABEL_ROOM) / (hi.1 - lo.1));
+    let (w, h) = ((hi.0 - lo.0) * scale + LABEL_ROOM, (hi.1 - lo.1) * scale + LABEL_ROOM);
+    let x = |u: f64| LABEL_ROOM + (u - lo.0) * scale;
+    let y = |v: f64| (hi.1 - v) * scale;
+    let [(_, su, nu), (_, sv, nv)] = projection.axes();
+    writeln!(out, "<figure class=\"view\" id=\"view-{}\">", projection.name())?;
+    writeln!(
+        out,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{h:.0}" viewBox="0 0 {w:.1} {h:.1}" role="img" aria-label="{}">"#,
+        projection.caption()
+    )?;
+    // The grid, labelled with the global coordinate in mm.
+    let step = grid_step((hi.0 - lo.0).max(hi.1 - lo.1));
+    writeln!(out, r##"<g stroke="#e4e4e4" stroke-width="1" font-size="10" fill="#666">"##)?;
+    let mut k = (lo.0 / step).ceil() as i64;
+    while (k as f64) * step <= hi.0 {
+        let u = k as f64 * step;
+        writeln!(out, r#"<line x1="{0:.1}" y1="0" x2="{0:.1}" y2="{1:.1}"/>"#, x(u), h - LABEL_ROOM)?;
+        writeln!(
+            out,
+            r#"<text x="{:.1}" y="{:.1}" text-anchor="middle" stroke="none">{:.0}</text>"#,
+            x(u),
+            h - LABEL_ROOM + 13.0,
+            mm(su * u)
+        )?;
+        k += 1;
+    }
+    let mut k = (lo.1 / step).ceil() as i64;
+    while (k as f64) * step <= hi.1 {
+        let v = k as f64 * step;
+        writeln!(out, r#"<line x1="{:.1}" y1="{1:.1}" x2="{2:.1}" y2="{1:.1}"/>"#, LABEL_ROOM, y(v), w)?;
+        writeln!(
+            out,
+            r#"<text x="{:.1}" y="{:.1}" text-anchor="end" stroke="none">{:.0}</text>"#,
+            LABEL_ROOM - 4.0,
+            y(v) + 3.5,
+            mm(sv * v)
+        )?;
+        k += 1;
+    }
+    writeln!(
+        out,
+        r#"<text x="{:.1}" y="{:.1}" text-anchor="middle" stroke="none">{nu} [mm]</text>"#,
+        LABEL_ROOM + (w - LABEL_ROOM) / 2.0,
+        h - 8.0
+    )?;
+    writeln!(
+        out,
+        r#"<text x="10" y="{:.1}" text-anchor="middle" stroke="none" transform="rotate(-90 10 {0:.1})">{nv} [mm]</text>"#,
+        (h - LABEL_ROOM) / 2.0
+    )?;
+    writeln!(out, "</g>")?;
+    let path = |points: &[Vec3], closed: bool| -> String {
+        let mut d = String::new();
+        for (i, p) in points.iter().enumerate() {
+            let (u, v) = projection.project(p);
+            let _ = write!(d, "{}{:.1} {:.1}", if i == 0 { "M" } else { " L" }, x(u), y(v));
+        }
+        if closed {
+            d.push_str(" Z");
+        }
+        d
+    };
+    for (r, ghost) in [(first, true), (last, true), (design, false)] {
+        let opacity = if ghost { " opacity=\"0.25\"" } else { "" };
+        writeln!(out, "<g fill=\"none\" stroke-linecap=\"round\"{opacity}>")?;
+        for s in &strokes {
+            if ghost && s.pen == Pen::Deflection {
+                continue;
+            }
+            let points = stroke_points(s, &motion.frames[r]);
+            if points.len() < 2 || points.iter().any(|p| !p.iter().all(|c| c.is_finite())) {
+                continue;
+            }
+            let (colour, width, dash) = pen_style(s.pen);
+            let dash = if dash.is_empty() { String::new() } else { format!(" stroke-dasharray=\"{dash}\"") };
+            writeln!(
+                out,
+                r#"<path d="{}" stroke="{colour}" stroke-width="{width}"{dash}><title>{}</title></path>"#,
+                path(&points, s.closed),
+                text(&s.name)
+            )?;
+        }
+        if !ghost {
+            for d in &dots {
+                write_dot(out, d, &motion.frames[r], &|p| {
+                    let (u, v) = projection.project(p);
+                    (x(u), y(v))
+                })?;
+            }
+        }
+        writeln!(out, "</g>")?;
+    }
+    writeln!(out, "</svg>")?;
+    writeln!(out, "<figcaption>{}; grid {:.0} mm</figcaption>", projection.caption(), step * 1e3)?;
+    writeln!(out, "</figure>")
+}
+
+fn write_dot(out: &mut String, d: &Dot, poses: &[Pose], at: &dyn Fn(&Vec3) -> (f64, f64)) -> std::fmt::Result {
+    let p = placed(&d.at, poses);
+    if !p.iter().all(|c| c.is_finite()) {
+        return Ok(());
+    }
+    let (cx, cy) = at(&p);
+    let (colour, r) = spot_style(d.spot);
+    let title = text(&d.name);
+    match d.spot {
+        Spot::Mount => writeln!(
+            out,
+            r#"<rect x="{:.1}" y="{:.1}" width="{:.1}" height="{2:.1}" fill="{colour}" stroke="none"><title>{title}</title></rect>"#,
+            cx - r,
+            cy - r,
+            2.0 * r
+        ),
+        Spot::Joint => writeln!(
+            out,
+            r##"<circle cx="{cx:.1}" cy="{cy:.1}" r="{r}" fill="#ffffff" stroke="{colour}" stroke-width="1.5"><title>{title}</title></circle>"##
+        ),
+        _ => writeln!(
+            out,
+            r#"<circle cx="{cx:.1}" cy="{cy:.1}" r="{r}" fill="{colour}" stroke="none"><title>{title}</title></circle>"#
+        ),
+    }
+}
+
+/// The legend of the views: a swatch per pen and spot, and the deflections' scale.
+fn write_legend(out: &mut String) -> std::fmt::Result {
+    writeln!(out, "<ul class=\"view-legend\">")?;
+    for (pen, label) in [
+        (Pen::Part, "part"),
+        (Pen::Link, "link (tie rod, drop link)"),
+        (Pen::Spring, "spring"),
+        (Pen::Stop, "stop"),
+        (Pen::Bushing, "bushing axis"),
+        (Pen::Deflection, "bushing deflection ×20"),
+        (Pen::Wheel, "wheel (loaded radius)"),
+        (Pen::SteeringAxis, "steering axis"),
+    ] {
+        let (colour, width, dash) = pen_style(pen);
+        let dash = if dash.is_empty() { String::new() } else { format!(" stroke-dasharray=\"{dash}\"") };
+        writeln!(
+            out,
+            r#"<li><svg xmlns="http://www.w3.org/2000/svg" width="28" height="10"><line x1="2" y1="5" x2="26" y2="5" stroke="{colour}" stroke-width="{width}"{dash}/></svg> {}</li>"#,
+            text(label)
+        )?;
+    }
+    writeln!(out, "</ul>")
+}
+
+/// The geometry section of the report: the three projections of the analysis shown (parallel travel
+/// where there is one) and the 3D view of every analysis with a motion. Nothing when no analysis has
+/// one (a report run without [`Settings::motion`](crate::suspensions::kc::Settings::motion)).
+pub fn write_geometry(out: &mut String, report: &KcReport) -> std::fmt::Result {
+    let Some((a, motion)) = shown_analysis(report) else { return Ok(()) };
+    if motion.frames.is_empty() {
+        return Ok(());
+    }
+    let rows = [design_row(a), 0, motion.frames.len() - 1];
+    writeln!(out, "<section id=\"geometry\">")?;
+    writeln!(out, "<h2>Geometry</h2>")?;
+    writeln!(
+        out,
+        "<p class=\"note\">{}: {} drawn, {} and {} ghosted</p>",
+        text(a.analysis.name()),
+        text(&row_label(a, rows[0])),
+        text(&row_label(a, rows[1])),
+        text(&row_label(a, rows[2]))
+    )?;
+    writeln!(out, "<div class=\"views\">")?;
+    for projection in Projection::ALL {
+        projection_svg(out, motion, rows, projection)?;
+    }
+    writeln!(out, "</div>")?;
+    write_legend(out)?;
+    write_viewer(out, report)?;
+    writeln!(out, "</section>")
+}
+
+/// A global or body-fixed point as the 3D view reads it: `[body, x, y, z]`, body −1 for the ground.
+fn anchor_json(a: &Anchor) -> Value {
+    let body = match a.body {
+        BodyRef::Ground => -1,
+        BodyRef::Body(b) => b.0 as i64,
+    };
+    json!([body, round(a.point.x), round(a.point.y), round(a.point.z)])
+}
+
+/// A coordinate to the tenth of a micrometre, a quaternion component to 1e-7: what a view can show.
+fn round(v: f64) -> f64 {
+    if v.is_finite() {
+        (v * 1e7).round() / 1e7
+    } else {
+        0.0
+    }
+}
+
+/// The 3D view's data: each distinct drawing once (its strokes, with their pens' styles, and dots), and
+/// each analysis with a motion: its name, the drawing it moves, the label and the poses of every row.
+pub fn viewer_data(report: &KcReport) -> Value {
+    let mut drawings: Vec<Value> = Vec::new();
+    let mut analyses = Vec::new();
+    for a in &report.analyses {
+        let Some(motion) = &a.motion else { continue };
+        let strokes: Vec<Value> = motion
+            .drawing
+            .strokes()
+            .iter()
+            .map(|s| {
+                json!({ "pen": s.pen.name(), "name": s.name, "closed": s.closed,
+                        "points": s.anchors.iter().map(anchor_json).collect::<Vec<_>>() })
+            })
+            .collect();
+        let dots: Vec<Value> = motion
+            .drawing
+            .dots()
+            .iter()
+            .map(|d| json!({ "spot": d.spot.name(), "name": d.name, "at": anchor_json(&d.at) }))
+            .collect();
+        let drawing = json!({ "strokes": strokes, "dots": dots });
+        let index = drawings.iter().position(|d| *d == drawing).unwrap_or_else(|| {
+            drawings.push(drawing);
+            drawings.len() - 1
+        });
+        let frames: Vec<Value> = motion
+            .frames
+            .iter()
+            .map(|poses| {
+                Value::Array(
+                    poses
+                        .iter()
+                        .map(|p| {
+                            let q = p.orientation.quaternion();
+                            json!([
+                                round(p.position.x),
+                                round(p.position.y),
+                                round(p.position.z),
+                                round(q.w),
+                                round(q.i),
+                                round(q.j),
+                                round(q.k)
+                            ])
+                        })
+                        .collect(),
+                )
+            })
+            .collect();
+        let labels: Vec<String> = (0..motion.frames.len()).map(|r| row_label(a, r)).collect();
+        analyses.push(json!({ "name": a.analysis.name(), "drawing": index, "design": design_row(a),
+                              "labels": labels, "frames": frames }));
+    }
+    let pens: serde_json::Map<String, Value> =
+        [Pen::Part, Pen::Link, Pen::Spring, Pen::Stop, Pen::Bushing, Pen::Deflection, Pen::Wheel, Pen::SteeringAxis]
+            .into_iter()
+            .map(|p| {
+                let (colour, width, dash) = pen_style(p);
+                let dash: Vec<f64> = dash.split(' ').filter_map(|d| d.parse().ok()).collect();
+                (p.name().to_string(), json!({ "colour": colour, "width": width, "dash": dash }))
+            })
+            .collect();
+    let spots: serde_json::Map<String, Value> = [Spot::Joint, Spot::Bushing, Spot::Mount, Spot::WheelCentre]
+        .into_iter()
+        .map(|s| {
+            let (colour, r) = spot_style(s);
+            (s.name().to_string(), json!({ "colour": colour, "radius": r }))
+        })
+        .collect();
+    json!({ "drawings": drawings, "analyses": analyses, "pens": pens, "spots": spots,
+            "deflection_scale": DEFLECTION_SCALE })
+}
+
+/// The viewer's script.
+const VIEWER_SCRIPT: &str = include_str!("view3d.js");
+
+/// JSON put inside a script element: every `<`, `>` and `&` written as a `\u` escape, so that no text of
+/// the data (a part's name) can close the element or the page's CDATA section.
+fn script_safe(json: &str) -> String {
+    json.replace('<', "\\u003c").replace('>', "\\u003e").replace('&', "\\u0026")
+}
+
+/// The 3D view: its canvas and controls, its data, and its script.
+fn write_viewer(out: &mut String, report: &KcReport) -> std::fmt::Result {
+    let data = viewer_data(report);
+    writeln!(out, "<figure class=\"view3d\" id=\"view-3d\">")?;
+    writeln!(out, "<div class=\"view3d-controls\">")?;
+    writeln!(out, "<label>analysis <select id=\"view3d-analysis\"></select></label>")?;
+    writeln!(out, "<button type=\"button\" id=\"view3d-play\">play</button>")?;
+    writeln!(out, "<input type=\"range\" id=\"view3d-row\" min=\"0\" max=\"0\" value=\"0\"/>")?;
+    writeln!(out, "<output id=\"view3d-label\"></output>")?;
+    for (view, label) in [("3d", "3D"), ("front", "front"), ("side", "side"), ("plan", "plan")] {
+        writeln!(out, "<button type=\"button\" data-view=\"{view}\">{label}</button>")?;
+    }
+    writeln!(out, "</div>")?;
+    writeln!(out, "<canvas id=\"view3d-canvas\" width=\"900\" height=\"560\"></canvas>")?;
+    writeln!(
+        out,
+        "<figcaption>3D view: drag to turn, wheel to zoom; the slider moves the parts through the analysis as \
+         solved (scripts off, the projections above still show the geometry)</figcaption>"
+    )?;
+    writeln!(out, "<output id=\"view3d-state\" hidden=\"hidden\"></output>")?;
+    writeln!(out, "</figure>")?;
+    writeln!(out, "<script type=\"application/json\" id=\"view3d-data\">{}</script>", script_safe(&data.to_string()))?;
+    writeln!(out, "<script>//<![CDATA[\n{VIEWER_SCRIPT}\n//]]></script>")
+}

@@ -1,0 +1,265 @@
+// The report's 3D view (see src/view.rs): places each stroke's and dot's anchored points by the poses of
+// the row shown, projects them orthographically and draws them on a 2D canvas. Drag turns the view,
+// the wheel zooms, the slider and play move through the analysis's rows.
+(function () {
+  'use strict';
+  var state = document.getElementById('view3d-state');
+  var errors = [];
+  var summary = {};
+  function report() {
+    summary.errors = errors;
+    state.textContent = JSON.stringify(summary);
+  }
+  window.addEventListener('error', function (e) {
+    errors.push(String(e.message));
+    report();
+  });
+
+  var data = JSON.parse(document.getElementById('view3d-data').textContent);
+  var canvas = document.getElementById('view3d-canvas');
+  var ctx = canvas.getContext('2d');
+  var select = document.getElementById('view3d-analysis');
+  var slider = document.getElementById('view3d-row');
+  var label = document.getElementById('view3d-label');
+  var play = document.getElementById('view3d-play');
+  var VIEWS = {
+    '3d': [0.75, 0.35],
+    front: [0, 0],
+    side: [Math.PI / 2, 0],
+    plan: [Math.PI, Math.PI / 2]
+  };
+  var camera = { yaw: VIEWS['3d'][0], pitch: VIEWS['3d'][1], zoom: 1 };
+  var shown = 0;
+  var row = 0;
+  var timer = null;
+  var direction = 1;
+
+  // A body-fixed point [body, x, y, z] placed by the poses [x, y, z, w, i, j, k] of its body.
+  function placed(a, poses) {
+    var x = a[1], y = a[2], z = a[3];
+    if (a[0] < 0) {
+      return [x, y, z];
+    }
+    var p = poses[a[0]];
+    var w = p[3], qi = p[4], qj = p[5], qk = p[6];
+    // v + 2w (q × v) + 2 q × (q × v), q the vector part.
+    var tx = 2 * (qj * z - qk * y), ty = 2 * (qk * x - qi * z), tz = 2 * (qi * y - qj * x);
+    return [
+      x + w * tx + (qj * tz - qk * ty) + p[0],
+      y + w * ty + (qk * tx - qi * tz) + p[1],
+      z + w * tz + (qi * ty - qj * tx) + p[2]
+    ];
+  }
+
+  function strokePoints(s, poses) {
+    var pts = s.points.map(function (a) { return placed(a, poses); });
+    if (s.pen === 'deflection' && pts.length === 2) {
+      var k = data.deflection_scale, i = pts[0], j = pts[1];
+      return [j, [j[0] + k * (j[0] - i[0]), j[1] + k * (j[1] - i[1]), j[2] + k * (j[2] - i[2])]];
+    }
+    return pts;
+  }
+
+  // The camera looks at the centre from the direction c = (cos p cos y, cos p sin y, sin p); the page's
+  // right is z × c, its up c × right (yaw 0, pitch 0: seen from the front, y to the right).
+  function basis() {
+    var cy = Math.cos(camera.yaw), sy = Math.sin(camera.yaw);
+    var cp = Math.cos(camera.pitch), sp = Math.sin(camera.pitch);
+    var right = [-sy, cy, 0];
+    var c = [cp * cy, cp * sy, sp];
+    var up = [c[1] * right[2] - c[2] * right[1], c[2] * right[0] - c[0] * right[2], c[0] * right[1] - c[1] * right[0]];
+    return { right: right, up: up };
+  }
+
+  var fit = null;
+  function fitTo(a) {
+    var d = data.drawings[a.drawing];
+    var lo = [1e300, 1e300, 1e300], hi = [-1e300, -1e300, -1e300];
+    a.frames.forEach(function (poses) {
+      d.strokes.forEach(function (s) {
+        strokePoints(s, poses).forEach(function (p) {
+          for (var k = 0; k < 3; k++) {
+            if (isFinite(p[k])) {
+              lo[k] = Math.min(lo[k], p[k]);
+              hi[k] = Math.max(hi[k], p[k]);
+            }
+          }
+        });
+      });
+    });
+    var centre = [0, 1, 2].map(function (k) { return (lo[k] + hi[k]) / 2; });
+    var radius = Math.max(1e-3, Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) / 2);
+    fit = { centre: centre, radius: radius };
+  }
+
+  function draw() {
+    var a = data.analyses[shown];
+    var d = data.drawings[a.drawing];
+    var poses = a.frames[row];
+    var ratio = window.devicePixelRatio || 1;
+    var width = canvas.clientWidth || canvas.width, height = canvas.clientHeight || canvas.height;
+    if (canvas.width !== Math.round(width * ratio)) {
+      canvas.width = Math.round(width * ratio);
+      canvas.height = Math.round(height * ratio);
+    }
+    ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
+    ctx.fillStyle = '#ffffff';
+    ctx.fillRect(0, 0, width, height);
+    var b = basis();
+    var scale = camera.zoom * 0.45 * Math.min(width, height) / fit.radius;
+    function screen(p) {
+      var dx = p[0] - fit.centre[0], dy = p[1] - fit.centre[1], dz = p[2] - fit.centre[2];
+      return [
+        width / 2 + scale * (dx * b.right[0] + dy * b.right[1] + dz * b.right[2]),
+        height / 2 - scale * (dx * b.up[0] + dy * b.up[1] + dz * b.up[2])
+      ];
+    }
+    var drawn = 0;
+    ctx.lineCap = 'round';
+    ctx.lineJoin = 'round';
+    d.strokes.forEach(function (s) {
+      var pts = strokePoints(s, poses).map(screen);
+      if (pts.length < 2 || !pts.every(function (p) { return isFinite(p[0]) && isFinite(p[1]); })) {
+        return;
+      }
+      var pen = data.pens[s.pen];
+      ctx.strokeStyle = pen.colour;
+      ctx.lineWidth = pen.width;
+      ctx.setLineDash(pen.dash);
+      ctx.beginPath();
+      ctx.moveTo(pts[0][0], pts[0][1]);
+      for (var k = 1; k < pts.length; k++) {
+        ctx.lineTo(pts[k][0], pts[k][1]);
+      }
+      if (s.closed) {
+        ctx.closePath();
+      }
+      ctx.stroke();
+      drawn++;
+    });
+    ctx.setLineDash([]);
+    d.dots.forEach(function (dot) {
+      var p = screen(placed(dot.at, poses));
+      var spot = data.spots[dot.spot];
+      ctx.beginPath();
+      if (dot.spot === 'mount') {
+        ctx.fillStyle = spot.colour;
+        ctx.fillRect(p[0] - spot.radius, p[1] - spot.radius, 2 * spot.radius, 2 * spot.radius);
+        return;
+      }
+      ctx.arc(p[0], p[1], spot.radius, 0, 2 * Math.PI);
+      if (dot.spot === 'joint') {
+        ctx.fillStyle = '#ffffff';
+        ctx.fill();
+        ctx.strokeStyle = spot.colour;
+        ctx.lineWidth = 1.5;
+        ctx.stroke();
+      } else {
+        ctx.fillStyle = spot.colour;
+        ctx.fill();
+      }
+    });
+    label.textContent = a.labels[row];
+    summary = {
+      analyses: data.analyses.length,
+      analysis: a.name,
+      row: row,
+      rows: a.frames.length,
+      strokes: d.strokes.length,
+      dots: d.dots.length,
+      drawn: drawn,
+      view: camera.view || 'custom'
+    };
+    report();
+  }
+
+  function choose(k) {
+    shown = k;
+    var a = data.analyses[k];
+    slider.max = String(a.frames.length - 1);
+    row = a.design;
+    slider.value = String(row);
+    fitTo(a);
+    draw();
+  }
+
+  function setView(name) {
+    var v = VIEWS[name];
+    if (!v) {
+      return;
+    }
+    camera.yaw = v[0];
+    camera.pitch = v[1];
+    camera.view = name;
+    draw();
+  }
+
+  if (!data.analyses.length) {
+    summary = { analyses: 0 };
+    report();
+    return;
+  }
+  data.analyses.forEach(function (a, k) {
+    var option = document.createElement('option');
+    option.value = String(k);
+    option.textContent = a.name;
+    select.appendChild(option);
+  });
+  select.addEventListener('change', function () { choose(Number(select.value)); });
+  slider.addEventListener('input', function () {
+    row = Number(slider.value);
+    draw();
+  });
+  play.addEventListener('click', function () {
+    if (timer) {
+      clearInterval(timer);
+      timer = null;
+      play.textContent = 'play';
+      return;
+    }
+    play.textContent = 'pause';
+    timer = setInterval(function () {
+      var last = data.analyses[shown].frames.length - 1;
+      if (row + direction > last || row + direction < 0) {
+        direction = -direction;
+      }
+      row = Math.max(0, Math.min(last, row + direction));
+      slider.value = String(row);
+      draw();
+    }, 80);
+  });
+  Array.prototype.forEach.call(document.querySelectorAll('#view-3d button[data-view]'), function (button) {
+    button.addEventListener('click', function () { setView(button.getAttribute('data-view')); });
+  });
+  var dragging = null;
+  canvas.addEventListener('pointerdown', function (e) {
+    dragging = [e.clientX, e.clientY];
+    canvas.setPointerCapture(e.pointerId);
+  });
+  canvas.addEventListener('pointermove', function (e) {
+    if (!dragging) {
+      return;
+    }
+    camera.yaw -= (e.clientX - dragging[0]) * 0.01;
+    camera.pitch = Math.max(-Math.PI / 2, Math.min(Math.PI / 2, camera.pitch + (e.clientY - dragging[1]) * 0.01));
+    camera.view = null;
+    dragging = [e.clientX, e.clientY];
+    draw();
+  });
+  canvas.addEventListener('pointerup', function () { dragging = null; });
+  canvas.addEventListener('wheel', function (e) {
+    e.preventDefault();
+    camera.zoom = Math.max(0.1, Math.min(50, camera.zoom * Math.exp(-e.deltaY * 0.001)));
+    draw();
+  }, { passive: false });
+  window.addEventListener('resize', draw);
+  // A view asked for in the address (report.html?view=side) is the one shown first.
+  var asked = /[?&]view=([a-z0-9]+)/.exec(window.location.search);
+  choose(0);
+  if (asked) {
+    setView(asked[1]);
+  } else {
+    camera.view = '3d';
+    draw();
+  }
+})();
