@@ -21,6 +21,7 @@ mod exudyn;
 mod models;
 pub mod report;
 mod scaling;
+mod report_page;
 mod sensitivity;
 pub mod stats;
 mod step_cost;
@@ -72,7 +73,7 @@ impl Settings {
 type Section = (&'static str, fn(&Settings) -> SectionOutput);
 
 /// The sections, in the order they run and appear.
-const SECTIONS: [Section; 8] = [
+const SECTIONS: [Section; 9] = [
     ("error-vs-time", error_vs_time::run),
     ("step-cost", step_cost::run),
     ("scaling", scaling::run),
@@ -80,6 +81,7 @@ const SECTIONS: [Section; 8] = [
     ("batch", batch::run),
     ("sensitivity", sensitivity::run),
     ("tuning", tuning::run),
+    ("report-page", report_page::run),
     ("exudyn", exudyn::run),
 ];
 
@@ -91,7 +93,7 @@ usage: cargo xtask bench [--quick] [--out DIR] [--save NAME] [--compare NAME] [-
     --compare NAME   print now/then for every figure of DIR/NAME.json, flag the slower ones
     --threshold X    flag figures slower than X times then (default 1.25)
     --only LIST      comma-separated sections: error-vs-time, step-cost, scaling, stiff-cases, batch, sensitivity,
-                     tuning, exudyn
+                     tuning, report-page, exudyn
                      (exudyn needs Python with Exudyn, `pip install exudyn`; without it, it is skipped)";
 
 /// Parsed command line.

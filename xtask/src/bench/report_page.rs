@@ -1,0 +1,85 @@
+//! The report with its geometry views: the time to write `report.html` as `elastokin run` does (the model
+//! read, every analysis of the suite with the parts' motion, the plots, the projections and the 3D view's
+//! data) and the size of the page, for every shipped example.
+
+use super::report::{Cell, Judge, Kind, SectionOutput, Table, Target};
+use super::Settings;
+use crate::browser::report_page;
+
+/// The report of the MacPherson with its 3D view is written in at most this (s).
+const MACPHERSON_LIMIT_S: f64 = 0.5;
+/// No report with its 3D view is larger than this (bytes).
+const SIZE_LIMIT: f64 = 2e6;
+
+/// Runs the section.
+pub fn run(s: &Settings) -> SectionOutput {
+    let mut out = SectionOutput {
+        title: "Report with the geometry views".into(),
+        intro: "Each shipped example's `report.html` as `elastokin run` writes it: the model read, every analysis \
+                of the suite with the parts' poses at every row, the plots, the three projections and the 3D \
+                view's data and script, the page written to disk. Median wall time of repeated runs, and the \
+                page's size."
+            .into(),
+        ..SectionOutput::default()
+    };
+    let mut table = Table::new(
+        "Report pages",
+        "report_page.csv",
+        &["model", "median time (s)", "size (kB)", "status"],
+    );
+    let root = crate::workspace_root();
+    let dir = root.join("target/bench-report-page");
+    let _ = std::fs::create_dir_all(&dir);
+    let mut largest: Result<f64, String> = Ok(0.0);
+    let mut macpherson: Result<f64, String> = Err("not run".into());
+    for stem in ["macpherson", "double_wishbone", "five_link", "double_wishbone_axle", "four_link_axle"] {
+        let path = format!("examples/{stem}.json");
+        let page = dir.join(format!("{stem}.html"));
+        let write = || -> Result<usize, String> {
+            let html = report_page(&root, &path)?;
+            std::fs::write(&page, &html).map_err(|e| format!("{}: {e}", page.display()))?;
+            Ok(html.len())
+        };
+        let size = match write() {
+            Ok(size) => size,
+            Err(e) => {
+                table.failed_row(vec![Cell::text(stem)], e.clone());
+                largest = Err(e);
+                continue;
+            }
+        };
+        let timing = s.batch_budget().time(write);
+        table.row(vec![
+            Cell::text(stem),
+            Cell::num(timing.median),
+            Cell::num(size as f64 / 1e3),
+            Cell::text("ok"),
+        ]);
+        out.figure(&format!("report_page.{stem}_s"), timing.median, "s", Kind::Time);
+        out.figure(&format!("report_page.{stem}_bytes"), size as f64, "bytes", Kind::Memory);
+        if let Ok(l) = &mut largest {
+            *l = l.max(size as f64);
+        }
+        if stem == "macpherson" {
+            macpherson = Ok(timing.median);
+        }
+    }
+    out.targets.push(Target {
+        goal: "the MacPherson's report with every analysis and the 3D view written".into(),
+        measured: macpherson,
+        limit: MACPHERSON_LIMIT_S,
+        unit: "s".into(),
+        judge: Judge::AtMost,
+        detail: "model read, suite with motion, plots, views, page written".into(),
+    });
+    out.targets.push(Target {
+        goal: "the largest shipped example's report with the 3D view".into(),
+        measured: largest.map(|b| b / 1e6),
+        limit: SIZE_LIMIT / 1e6,
+        unit: "MB".into(),
+        judge: Judge::AtMost,
+        detail: "of the five shipped examples".into(),
+    });
+    out.tables.push(table);
+    out
+}
