@@ -99,6 +99,15 @@ pub enum Command {
     /// checks it on N sampled models. Writes tolerance.csv, tolerance_contributions.csv and report.html.
     #[command(after_help = EXIT_STATUS)]
     Tolerance(ToleranceArgs),
+    /// Compare designs: two or more models' K&C suites (and measured K&C files) overlaid
+    ///
+    /// Each DESIGN is a model file (JSON) or a measured K&C file (CSV, its first column the load parameter
+    /// and a comment line `# analysis: NAME`, as docs/kc-rig-data.md says). Every curve of every analysis
+    /// the models share is overlaid, a colour and a legend entry per design; the figures side by side with
+    /// their error estimates and each model's difference to the first; the geometry overlaid. Writes
+    /// compare.csv and report.html.
+    #[command(after_help = EXIT_STATUS)]
+    Compare(CompareArgs),
     /// Join the batch.csv files of `batch --shard I/N` runs into the batch.csv one `batch` writes
     ///
     /// The shards must be of one model and one variants file (the same SHA-256 in their first lines) and
@@ -293,6 +302,18 @@ pub struct ToleranceArgs {
     pub seed: u64,
     /// Where tolerance.csv, tolerance_contributions.csv and report.html go; the directory is replaced as a
     /// whole on success
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+}
+
+#[derive(Debug, Args)]
+pub struct CompareArgs {
+    /// The designs: model files (JSON) or measured K&C files (CSV); two at least
+    #[arg(required = true, num_args = 2.., value_name = "DESIGN")]
+    pub designs: Vec<PathBuf>,
+    #[command(flatten)]
+    pub sweeps: SweepArgs,
+    /// Where compare.csv and report.html go; the directory is replaced as a whole on success
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
 }
@@ -969,6 +990,80 @@ fn tune(args: TuneArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> {
 }
 
 /// `tolerance`: the figures' spread under the model's tolerances.
+fn compare(args: CompareArgs, out: &Stdout) -> Result<(), Failure> {
+    use elastokin::suspensions::compare::{compare, Design};
+    use elastokin::suspensions::design::targets::read_measured;
+    let settings = Settings { range: args.sweeps.range, steps: args.sweeps.steps, motion: true, ..Settings::default() };
+    args.sweeps.check(&settings)?;
+    let mut designs = Vec::new();
+    let mut files = Vec::new();
+    for path in &args.designs {
+        let measured = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("csv"));
+        let (bytes, design) = if measured {
+            let (bytes, text) = read_input(path, "DESIGN")?;
+            let origin = path.display().to_string();
+            let measured = read_measured(&text, &origin).map_err(Failure::Input)?;
+            let name = path.file_name().map_or(origin.clone(), |n| n.to_string_lossy().into_owned());
+            (bytes, Design::Measured { name, measured })
+        } else {
+            let read = read_model(path)?;
+            if let Some(line) = read.format_line() {
+                out.line(line)?;
+            }
+            let report = kc::run_suite(&read.file, &args.sweeps.which(), &settings, |_| {});
+            let design = Design::model(&read.file, report);
+            (read.bytes, design)
+        };
+        files.push((path.display().to_string(), elastokin::provenance::sha256_hex(&bytes)));
+        designs.push(design);
+    }
+    let comparison = compare(&designs).map_err(Failure::Input)?;
+    let mut provenance = Provenance::new(&args.designs[0], &[], kc::mode_word(settings.mode), settings.steps);
+    provenance.model_sha256 = files[0].1.clone();
+    provenance.compared = files[1..].to_vec();
+    provenance.tolerance = Some(settings.tolerance);
+    provenance.range = settings.range;
+    let models: Vec<(&str, &kc::KcReport)> = designs
+        .iter()
+        .zip(&comparison.names)
+        .filter_map(|(d, name)| match d {
+            Design::Model { report, .. } => Some((name.as_str(), report)),
+            Design::Measured { .. } => None,
+        })
+        .collect();
+    let staging = Staging::new(&args.out)?;
+    let written = (|| -> Result<Vec<PathBuf>, Failure> {
+        let html = elastokin::html::compare_html(&comparison, &models, &provenance.to_json(), plot::svg);
+        Ok(vec![
+            staging.write("compare.csv", &write_table(&comparison.figures, &provenance))?,
+            staging.write("report.html", html.as_bytes())?,
+        ])
+    })()
+    .map_err(|e| Failure::Run(format!("{}\n{}", e.message(), staging.untouched())))?;
+    staging.commit()?;
+    out.line(format!("compared {}", comparison.names.join(", ")))?;
+    out.line(format!(
+        "wrote {} ({} figures, {} curves overlaid)",
+        written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "),
+        comparison.figures.rows.len(),
+        comparison.charts.len()
+    ))?;
+    let failed: Vec<String> = models
+        .iter()
+        .flat_map(|(name, r)| r.failed.iter().map(move |f| format!("{name}: {}: {}", f.analysis.name(), f.reason)))
+        .collect();
+    if failed.is_empty() {
+        Ok(())
+    } else {
+        Err(Failure::Run(format!(
+            "{} analyses failed (the rest is compared in {}):\n{}",
+            failed.len(),
+            args.out.display(),
+            failed.join("\n")
+        )))
+    }
+}
+
 fn tolerance(args: ToleranceArgs, out: &Stdout) -> Result<(), Failure> {
     use elastokin::suspensions::design::tolerance::{read_tolerances, stack_up};
     let read = read_model(&args.model)?;
@@ -1043,6 +1138,7 @@ fn main() -> ExitCode {
         Command::Sensitivity(args) => sensitivity(args, &out),
         Command::Tune(args) => tune(args, &out, cli.quiet),
         Command::Tolerance(args) => tolerance(args, &out),
+        Command::Compare(args) => compare(args, &out),
         Command::Merge(args) => merge::merge(args, &out),
         Command::Expand(args) => expand(args, &out),
         Command::Import(args) => import(args, &out),

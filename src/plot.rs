@@ -106,6 +106,18 @@ const COLOURS: [RGBColor; 8] = [
     RGBColor(227, 119, 194),
 ];
 
+/// The colour of the `k`-th curve of a chart (counted over both axes), also a design's colour wherever
+/// designs are compared (its curves and its geometry).
+pub fn series_colour(k: usize) -> RGBColor {
+    COLOURS[k % COLOURS.len()]
+}
+
+/// The same as `#rrggbb`, for SVG and CSS.
+pub fn series_colour_hex(k: usize) -> String {
+    let RGBColor(r, g, b) = series_colour(k);
+    format!("#{r:02x}{g:02x}{b:02x}")
+}
+
 /// Registers the shipped font once per process; plotters looks fonts up by family name.
 fn font_ready() -> Result<(), PlotError> {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
@@ -428,7 +440,7 @@ impl Layout {
                     (true, false) => format!("{} (left axis)", series.name),
                     (true, true) => format!("{} (right axis)", series.name),
                 };
-                let colour = COLOURS[curves.len() % COLOURS.len()];
+                let colour = series_colour(curves.len());
                 curves.push(Curve { legend, colour, on_right, runs, marked: count <= MARKED_POINTS });
             }
         }

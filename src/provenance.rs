@@ -37,6 +37,8 @@ pub struct Provenance {
     pub tolerance: Option<elastokin_suspensions::kc::Tolerance>,
     /// `batch --shard`: which part of a batch this is; `merge`: how many shards it joined.
     pub part: Option<Part>,
+    /// `compare`: the designs after the first (`model`), each file's path and SHA-256.
+    pub compared: Vec<(String, String)>,
 }
 
 /// A result that is one part of a batch, or the shards of one joined.
@@ -77,6 +79,7 @@ impl Provenance {
             date: humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string(),
             tolerance: None,
             part: None,
+            compared: Vec::new(),
         }
     }
 
@@ -109,6 +112,14 @@ impl Provenance {
             v["targets"] = path.as_str().into();
             v["targets_sha256"] = sha.as_str().into();
         }
+        if !self.compared.is_empty() {
+            v["compared"] = self
+                .compared
+                .iter()
+                .map(|(path, sha)| serde_json::json!({ "file": path, "sha256": sha }))
+                .collect::<Vec<_>>()
+                .into();
+        }
         match self.part {
             Some(Part::Shard { index, count, variants }) => {
                 v["shard"] = serde_json::json!({ "index": index, "count": count, "variants": variants });
@@ -132,6 +143,9 @@ impl Provenance {
         );
         if let Some((path, sha)) = &self.variants {
             line += &format!(", variants {path} (sha256 {})", &sha[..16.min(sha.len())]);
+        }
+        for (path, sha) in &self.compared {
+            line += &format!(", compared with {path} (sha256 {})", &sha[..16.min(sha.len())]);
         }
         if let Some(part) = self.part {
             line += &part.suffix();

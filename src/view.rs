@@ -157,11 +157,25 @@ fn grid_step(span: f64) -> f64 {
     [0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0].into_iter().find(|s| span / s <= 10.0).unwrap_or(10.0)
 }
 
+/// One layer of a projection: a motion's row drawn, ghosted or not, in its pens' colours or in one.
+struct Layer<'a> {
+    motion: &'a Motion,
+    row: usize,
+    ghost: bool,
+    /// One colour for every stroke (a design among designs compared), or each pen's own.
+    colour: Option<String>,
+}
+
 /// One projection of the model at its design row, its extremes ghosted, as an inline SVG.
 fn projection_svg(out: &mut String, motion: &Motion, rows: [usize; 3], projection: Projection) -> std::fmt::Result {
-    let strokes = motion.drawing.strokes();
-    let dots = motion.drawing.dots();
     let [design, first, last] = rows;
+    let layer = |row, ghost| Layer { motion, row, ghost, colour: None };
+    let layers = [layer(first, true), layer(last, true), layer(design, false)];
+    layers_svg(out, &layers, projection, &format!("view-{}", projection.name()))
+}
+
+/// `layers` in one projection, as an inline SVG in a figure of id `id`, the grid over all of them.
+fn layers_svg(out: &mut String, layers: &[Layer], projection: Projection, id: &str) -> std::fmt::Result {
     // Extents over every row drawn.
     let (mut lo, mut hi) = ((f64::INFINITY, f64::INFINITY), (f64::NEG_INFINITY, f64::NEG_INFINITY));
     let mut grow = |p: &Vec3| {
@@ -171,9 +185,9 @@ fn projection_svg(out: &mut String, motion: &Motion, rows: [usize; 3], projectio
             hi = (hi.0.max(u), hi.1.max(v));
         }
     };
-    for &r in &[design, first, last] {
-        for s in &strokes {
-            stroke_points(s, &motion.frames[r]).iter().for_each(&mut grow);
+    for layer in layers {
+        for s in &layer.motion.drawing.strokes() {
+            stroke_points(s, &layer.motion.frames[layer.row]).iter().for_each(&mut grow);
         }
     }
     if !(lo.0.is_finite() && hi.0.is_finite()) {
@@ -185,7 +199,7 @@ fn projection_svg(out: &mut String, motion: &Motion, rows: [usize; 3], projectio
     let x = |u: f64| LABEL_ROOM + (u - lo.0) * scale;
     let y = |v: f64| (hi.1 - v) * scale;
     let [(_, su, nu), (_, sv, nv)] = projection.axes();
-    writeln!(out, "<figure class=\"view\" id=\"view-{}\">", projection.name())?;
+    writeln!(out, "<figure class=\"view\" id=\"{}\">", html_escape::encode_double_quoted_attribute(id))?;
     writeln!(
         out,
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{h:.0}" viewBox="0 0 {w:.1} {h:.1}" role="img" aria-label="{}">"#,
@@ -243,18 +257,20 @@ fn projection_svg(out: &mut String, motion: &Motion, rows: [usize; 3], projectio
         }
         d
     };
-    for (r, ghost) in [(first, true), (last, true), (design, false)] {
+    for layer in layers {
+        let (ghost, poses) = (layer.ghost, &layer.motion.frames[layer.row]);
         let opacity = if ghost { " opacity=\"0.25\"" } else { "" };
         writeln!(out, "<g fill=\"none\" stroke-linecap=\"round\"{opacity}>")?;
-        for s in &strokes {
+        for s in &layer.motion.drawing.strokes() {
             if ghost && s.pen == Pen::Deflection {
                 continue;
             }
-            let points = stroke_points(s, &motion.frames[r]);
+            let points = stroke_points(s, poses);
             if points.len() < 2 || points.iter().any(|p| !p.iter().all(|c| c.is_finite())) {
                 continue;
             }
-            let (colour, width, dash) = pen_style(s.pen);
+            let (own, width, dash) = pen_style(s.pen);
+            let colour = layer.colour.as_deref().unwrap_or(own);
             let dash = if dash.is_empty() { String::new() } else { format!(" stroke-dasharray=\"{dash}\"") };
             writeln!(
                 out,
@@ -263,9 +279,9 @@ fn projection_svg(out: &mut String, motion: &Motion, rows: [usize; 3], projectio
                 text(&s.name)
             )?;
         }
-        if !ghost {
-            for d in &dots {
-                write_dot(out, d, &motion.frames[r], &|p| {
+        if !ghost && layer.colour.is_none() {
+            for d in &layer.motion.drawing.dots() {
+                write_dot(out, d, poses, &|p| {
                     let (u, v) = projection.project(p);
                     (x(u), y(v))
                 })?;
@@ -482,4 +498,48 @@ fn write_viewer(out: &mut String, report: &KcReport) -> std::fmt::Result {
     writeln!(out, "</figure>")?;
     writeln!(out, "<script type=\"application/json\" id=\"view3d-data\">{}</script>", script_safe(&data.to_string()))?;
     writeln!(out, "<script>//<![CDATA[\n{VIEWER_SCRIPT}\n//]]></script>")
+}
+
+/// The geometry of designs compared, overlaid in each projection: each model at its design row, in its
+/// colour (its curves' colour in the charts), with a legend of names. Nothing when no model has a motion.
+pub fn write_overlay(out: &mut String, models: &[(&str, &KcReport)]) -> std::fmt::Result {
+    let shown: Vec<(usize, &str, &AnalysisReport, &Motion)> = models
+        .iter()
+        .enumerate()
+        .filter_map(|(k, (name, report))| {
+            let (a, m) = shown_analysis(report)?;
+            (!m.frames.is_empty()).then_some((k, *name, a, m))
+        })
+        .collect();
+    if shown.is_empty() {
+        return Ok(());
+    }
+    writeln!(out, "<section id=\"geometry\">")?;
+    writeln!(out, "<h2>Geometry</h2>")?;
+    writeln!(out, "<p class=\"note\">each design at its design position ({})</p>", text(shown[0].2.analysis.name()))?;
+    writeln!(out, "<div class=\"views\">")?;
+    let layers: Vec<Layer> = shown
+        .iter()
+        .map(|&(k, _, a, motion)| Layer {
+            motion,
+            row: design_row(a),
+            ghost: false,
+            colour: Some(crate::plot::series_colour_hex(k)),
+        })
+        .collect();
+    for projection in Projection::ALL {
+        layers_svg(out, &layers, projection, &format!("overlay-{}", projection.name()))?;
+    }
+    writeln!(out, "</div>")?;
+    writeln!(out, "<ul class=\"view-legend\">")?;
+    for &(k, name, _, _) in &shown {
+        writeln!(
+            out,
+            r#"<li><svg xmlns="http://www.w3.org/2000/svg" width="28" height="10"><line x1="2" y1="5" x2="26" y2="5" stroke="{}" stroke-width="3"/></svg> {}</li>"#,
+            crate::plot::series_colour_hex(k),
+            text(&crate::plot::shown(name, 120))
+        )?;
+    }
+    writeln!(out, "</ul>")?;
+    writeln!(out, "</section>")
 }

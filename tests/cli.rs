@@ -1545,3 +1545,47 @@ fn run_with_sensitivity_adds_the_sensitivity_command_s_numbers_to_the_report() {
     assert!(html.contains("<h2>Sensitivities</h2>") && html.contains("tie_rod_inner/2 (per mm)"));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `compare`: two models and a measured file written from one of them; the figures' differences are the
+/// models' own `run` figures subtracted; what cannot be compared exits 2 naming it, writing nothing.
+#[test]
+fn compare_overlays_two_models_and_a_measured_file_and_refuses_a_mixed_pair() {
+    let dir = scratch("compare");
+    let rig = dir.join("rig.csv");
+    std::fs::write(&rig, "# analysis: parallel-travel\ntravel_m,toe_deg\n-0.05,1.1\n0,0\n0.05,-1.3\n").unwrap();
+    let out = dir.join("out");
+    let models = ["examples/macpherson.json", "examples/double_wishbone.json"];
+    succeeds(&["compare", models[0], models[1], rig.to_str().unwrap(), "--steps", "8", "--out", out.to_str().unwrap()]);
+    let rows = read_csv(&out.join("compare.csv"));
+    // Each model's own figures, from `run`.
+    let run_figure = |model: &str, key: &str| -> f64 {
+        let o = dir.join(format!("run-{}", model.replace('/', "_")));
+        if !o.exists() {
+            succeeds(&["run", model, "--steps", "8", "--quiet", "--out", o.to_str().unwrap()]);
+        }
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(o.join("summary.json")).unwrap()).unwrap();
+        summary["analyses"]["parallel-travel"]["figures"][key]["value"].as_f64().unwrap()
+    };
+    for key in ["bump_steer", "camber_gain", "wheel_rate"] {
+        let row = rows.iter().find(|r| &r[0] == "parallel-travel" && &r[1] == key).unwrap();
+        let (a, b, d): (f64, f64, f64) = (row[3].parse().unwrap(), row[5].parse().unwrap(), row[7].parse().unwrap());
+        // The CSV holds 12 significant digits, summary.json all of them: 1e-11 relative (measured 8e-14).
+        let close = |x: f64, y: f64| (x - y).abs() <= 1e-11 * x.abs().max(y.abs());
+        assert!(close(a, run_figure(models[0], key)), "{key}");
+        assert!(close(b, run_figure(models[1], key)), "{key}");
+        assert!((d - (b - a)).abs() <= 2e-11 * a.abs().max(b.abs()), "{key}: {d} against {b} − {a}");
+    }
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    roxmltree::Document::parse(html.strip_prefix("<!DOCTYPE html>").unwrap()).unwrap();
+    assert!(html.contains("rig.csv") && html.contains("id=\"overlay-front\""));
+
+    let o =
+        elastokin(&["compare", models[0], "examples/four_link_axle.json", "--out", dir.join("x").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("solid axle"), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(!dir.join("x").exists());
+    let o = elastokin(&["compare", models[0], "--out", dir.join("x").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    std::fs::remove_dir_all(&dir).ok();
+}

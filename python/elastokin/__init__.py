@@ -58,6 +58,7 @@ __all__ = [
     "Study",
     "analyses",
     "batch",
+    "compare",
     "load",
     "parameter",
     "read_variants",
@@ -401,3 +402,29 @@ def batch(
         model = load(model)
     # Read once, by the batch itself (a pointer the model lacks is said before anything runs).
     return model._native.batch(_items(variants))
+
+
+def compare(
+    *designs: Union[Model, str, "os.PathLike[str]", Mapping[str, Any]],
+    analysis: Optional[str] = None,
+    range: Optional[Tuple[float, float]] = None,
+    steps: int = 32,
+) -> Dict[str, Any]:
+    """Compares designs as ``elastokin compare`` does: each a :class:`Model`, a model file's path or a dict,
+    or the path of a measured K&C file (``.csv``, its first column the load parameter and a comment line
+    ``# analysis: NAME``). Runs each model's suite (or ``analysis`` alone) and gives ``names`` (made
+    distinct), ``figures`` (compare.csv's columns by name: each model's value and error estimate, each later
+    model's difference to the first) and ``charts`` (each overlaid curve by its design's name, as
+    ``(x, y)`` arrays). Raises ValueError, with the command's message, for designs that cannot be
+    compared."""
+    items: List[Any] = []
+    for d in designs:
+        if isinstance(d, Model):
+            items.append(d._native)
+        elif isinstance(d, (str, os.PathLike)) and os.fspath(d).lower().endswith(".csv"):
+            path = os.fspath(d)
+            with open(path, encoding="utf-8") as f:
+                items.append((os.path.basename(path), f.read()))
+        else:
+            items.append(load(d)._native)
+    return _native.compare(items, analysis=analysis, range=range, steps=steps)

@@ -332,7 +332,13 @@ impl Model {
     /// The Monte Carlo samples of the TOLERANCES file's text `tolerances` that `tolerance(monte_carlo=n,
     /// seed=seed)` draws, as a variant table: each number's pointer and its `n` sampled values.
     #[pyo3(signature = (tolerances, n, seed=1))]
-    fn tolerance_samples<'py>(&self, py: Python<'py>, tolerances: &str, n: usize, seed: u64) -> PyResult<Bound<'py, PyDict>> {
+    fn tolerance_samples<'py>(
+        &self,
+        py: Python<'py>,
+        tolerances: &str,
+        n: usize,
+        seed: u64,
+    ) -> PyResult<Bound<'py, PyDict>> {
         use elastokin_suspensions::design::tolerance::{read_tolerances, sample};
         use elastokin_suspensions::design::Parameters;
         let t = read_tolerances(tolerances, "tolerances", &self.base).map_err(PyValueError::new_err)?;
@@ -507,6 +513,68 @@ fn parse_variants(variants: &Bound<'_, PyAny>, most: Option<usize>) -> PyResult<
     Ok(out)
 }
 
+/// Designs compared, as `elastokin compare` compares them: each item a `Model` (its suite run, every
+/// analysis or `analysis` alone) or a measured K&C file as `(name, text)`. Gives the designs' names,
+/// `compare.csv`'s columns by name, and the overlaid charts (each curve's name and its points).
+#[pyfunction]
+#[pyo3(signature = (designs, analysis=None, range=None, steps=32))]
+fn compare<'py>(
+    py: Python<'py>,
+    designs: Vec<Bound<'py, PyAny>>,
+    analysis: Option<&str>,
+    range: Option<(f64, f64)>,
+    steps: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    use elastokin_suspensions::compare::{compare, Design};
+    use elastokin_suspensions::design::targets::read_measured;
+    let which: Vec<Analysis> = analysis.map(self::analysis).transpose()?.into_iter().collect();
+    let settings = Settings { range, steps, motion: false, ..Settings::default() };
+    for &a in if which.is_empty() { &kc::ALL[..] } else { &which[..] } {
+        kc::check_settings(a, &settings).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    }
+    let mut read = Vec::with_capacity(designs.len());
+    for d in &designs {
+        if let Ok(model) = d.cast::<Model>() {
+            read.push(Err(model.get().file.clone()));
+        } else {
+            let (name, text): (String, String) = d
+                .extract()
+                .map_err(|_| PyValueError::new_err("each design is a Model or a measured file as (name, text)"))?;
+            let measured = read_measured(&text, &name).map_err(PyValueError::new_err)?;
+            read.push(Ok(Design::Measured { name, measured }));
+        }
+    }
+    let comparison = py
+        .detach(|| {
+            let designs: Vec<Design> = read
+                .into_iter()
+                .map(|d| d.unwrap_or_else(|file| Design::model(&file, kc::run_suite(&file, &which, &settings, |_| {}))))
+                .collect();
+            compare(&designs)
+        })
+        .map_err(PyValueError::new_err)?;
+    let d = PyDict::new(py);
+    d.set_item("names", comparison.names.clone())?;
+    d.set_item("figures", column_dict(py, &comparison.figures)?)?;
+    let charts = PyList::empty(py);
+    for chart in &comparison.charts {
+        let c = PyDict::new(py);
+        c.set_item("name", &chart.name)?;
+        c.set_item("title", &chart.title)?;
+        c.set_item("x_label", &chart.x_label)?;
+        c.set_item("y_label", &chart.left.label)?;
+        let curves = PyDict::new(py);
+        for s in &chart.left.series {
+            let (x, y): (Vec<f64>, Vec<f64>) = s.points.iter().copied().unzip();
+            curves.set_item(&s.name, (PyArray1::from_vec(py, x), PyArray1::from_vec(py, y)))?;
+        }
+        c.set_item("curves", curves)?;
+        charts.append(c)?;
+    }
+    d.set_item("charts", charts)?;
+    Ok(d)
+}
+
 /// The names of every analysis, in the order the suite runs them (the command's `--analysis` names).
 #[pyfunction]
 fn analyses() -> Vec<&'static str> {
@@ -542,6 +610,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(analyses, m)?)?;
     m.add_function(wrap_pyfunction!(parameter, m)?)?;
     m.add_function(wrap_pyfunction!(shard_blocks, m)?)?;
+    m.add_function(wrap_pyfunction!(compare, m)?)?;
     m.add("MAX_VARIANTS", batch::MAX_VARIANTS)?;
     m.add("VERSION", env!("CARGO_PKG_VERSION"))?;
     m.add("Error", py.get_type::<Error>())?;

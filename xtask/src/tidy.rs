@@ -30,6 +30,7 @@ const LAYERED: [(&str, &[(&str, u32)]); 2] = [
             ("kc", 6),
             ("study", 7),
             ("design", 8),
+            ("compare", 9),
         ],
     ),
     (

@@ -39,7 +39,8 @@
 //! - [`check`]: the plausibility of a model and of its sweeps;
 //! - [`kc`]: the K&C suite, its figures and typed report;
 //! - [`study`]: design studies of many variants;
-//! - [`design`]: parameters of a model file and the exact sensitivities of the figures to them.
+//! - [`design`]: parameters of a model file and the exact sensitivities of the figures to them;
+//! - [`compare`]: designs side by side, curves overlaid, figures and their differences.
 //!
 //! Dependencies: serde and serde_json for the model files and the K&C reports ([`kc`]), nalgebra for
 //! the rank of the joints' Jacobian, the small symmetric eigenproblem of the plausibility check's
@@ -52,6 +53,7 @@
 pub mod analysis;
 pub mod build;
 pub mod check;
+pub mod compare;
 pub mod description;
 pub mod design;
 pub mod document;

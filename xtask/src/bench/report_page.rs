@@ -22,11 +22,7 @@ pub fn run(s: &Settings) -> SectionOutput {
             .into(),
         ..SectionOutput::default()
     };
-    let mut table = Table::new(
-        "Report pages",
-        "report_page.csv",
-        &["model", "median time (s)", "size (kB)", "status"],
-    );
+    let mut table = Table::new("Report pages", "report_page.csv", &["model", "median time (s)", "size (kB)", "status"]);
     let root = crate::workspace_root();
     let dir = root.join("target/bench-report-page");
     let _ = std::fs::create_dir_all(&dir);
@@ -49,12 +45,7 @@ pub fn run(s: &Settings) -> SectionOutput {
             }
         };
         let timing = s.batch_budget().time(write);
-        table.row(vec![
-            Cell::text(stem),
-            Cell::num(timing.median),
-            Cell::num(size as f64 / 1e3),
-            Cell::text("ok"),
-        ]);
+        table.row(vec![Cell::text(stem), Cell::num(timing.median), Cell::num(size as f64 / 1e3), Cell::text("ok")]);
         out.figure(&format!("report_page.{stem}_s"), timing.median, "s", Kind::Time);
         out.figure(&format!("report_page.{stem}_bytes"), size as f64, "bytes", Kind::Memory);
         if let Ok(l) = &mut largest {

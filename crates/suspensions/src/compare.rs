@@ -1,0 +1,291 @@
+//! Designs side by side: the K&C suites of several models (and measured K&C files standing in for a
+//! model) overlaid curve by curve, their figures tabulated with the differences to the first and each
+//! one's error estimate. What `elastokin compare` writes and `elastokin.compare` returns.
+//!
+//! Every curve of every analysis the models share is overlaid: each chart of an analysis is split into one
+//! chart per curve (toe, camber, …), in which each model is one curve in its own colour, named by the
+//! model's name. A measured file (a load-parameter column and any of an analysis's table columns, as
+//! `docs/kc-rig-data.md` says) adds, per column it has, a chart of that column against the load parameter
+//! with each model's rows and its points.
+
+use crate::design::targets::Measured;
+use crate::file::SuspensionFile;
+use crate::kc::{Analysis, AnalysisReport, Cell, Chart, KcReport, Series, Table, YAxis};
+
+/// One design in a comparison: a model's K&C suite, or a measured file of one analysis.
+#[derive(Debug, Clone)]
+pub enum Design {
+    /// A model and its suite.
+    Model {
+        /// Its name in legends and columns.
+        name: String,
+        /// Whether it is a solid axle (its corners share parts), for the refusal of a mixed comparison.
+        solid_axle: bool,
+        /// Its suite.
+        report: KcReport,
+    },
+    /// A measured K&C file.
+    Measured {
+        /// Its name in legends (the file's).
+        name: String,
+        /// The file read.
+        measured: Measured,
+    },
+}
+
+impl Design {
+    /// A model's suite as a design, named by the model.
+    pub fn model(file: &SuspensionFile, report: KcReport) -> Design {
+        let solid_axle = file.suspension.expand().axle.is_some();
+        Design::Model { name: file.name.clone(), solid_axle, report }
+    }
+
+    /// Its name.
+    pub fn name(&self) -> &str {
+        match self {
+            Design::Model { name, .. } | Design::Measured { name, .. } => name,
+        }
+    }
+}
+
+/// Designs compared: the figures side by side, the overlaid charts.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Comparison {
+    /// The designs' names, made distinct (a repeated name gets ` (2)`, …), in the order given.
+    pub names: Vec<String>,
+    /// `compare.csv`: per analysis and figure, its unit, each model's value and error estimate, and each
+    /// later model's difference to the first.
+    pub figures: Table,
+    /// The overlaid charts.
+    pub charts: Vec<Chart>,
+}
+
+/// Compares `designs` (at least two, at least one a model). Refused, by name: fewer than two, no model, a
+/// solid axle with an independent corner, models with no analysis in common, a measured file naming no
+/// analysis a model ran, or with a load parameter or no column in common with that analysis's table.
+pub fn compare(designs: &[Design]) -> Result<Comparison, String> {
+    if designs.len() < 2 {
+        return Err("compare needs two designs at least: give two or more model files (or a model and a measured \
+                    K&C file)"
+            .into());
+    }
+    let names = distinct_names(designs);
+    let models: Vec<(usize, &KcReport, bool)> = designs
+        .iter()
+        .enumerate()
+        .filter_map(|(k, d)| match d {
+            Design::Model { report, solid_axle, .. } => Some((k, report, *solid_axle)),
+            Design::Measured { .. } => None,
+        })
+        .collect();
+    let Some(&(first, _, first_solid)) = models.first() else {
+        return Err("compare needs a model among the designs: measured files are compared with a model's curves".into());
+    };
+    if let Some(&(other, _, _)) = models.iter().find(|m| m.2 != first_solid) {
+        let kind = |solid: bool| if solid { "a solid axle" } else { "an independent corner" };
+        return Err(format!(
+            "'{}' is {} and '{}' {}: their K&C curves do not mean the same motions (a solid axle's wheels move \
+             together); compare models of one kind",
+            names[first],
+            kind(first_solid),
+            names[other],
+            kind(!first_solid)
+        ));
+    }
+    let analyses: Vec<Analysis> = models[0]
+        .1
+        .analyses
+        .iter()
+        .map(|a| a.analysis)
+        .filter(|&a| models.iter().all(|(_, r, _)| r.analyses.iter().any(|b| b.analysis == a)))
+        .collect();
+    if analyses.is_empty() {
+        return Err(format!(
+            "'{}' and the other models ran no analysis in common: there is nothing to overlay",
+            names[first]
+        ));
+    }
+    let of = |r: &KcReport, a: Analysis| r.analyses.iter().find(|b| b.analysis == a).cloned();
+    let mut charts = Vec::new();
+    for &analysis in &analyses {
+        let reports: Vec<(usize, AnalysisReport)> =
+            models.iter().filter_map(|(k, r, _)| Some((*k, of(r, analysis)?))).collect();
+        charts.extend(overlaid(&reports, &names));
+    }
+    for (k, d) in designs.iter().enumerate() {
+        if let Design::Measured { measured, .. } = d {
+            charts.extend(measured_charts(k, measured, &models, &names)?);
+        }
+    }
+    let figures = figure_table(&analyses, &models, &names);
+    Ok(Comparison { names, figures, charts })
+}
+
+/// The designs' names, a repeated one numbered.
+fn distinct_names(designs: &[Design]) -> Vec<String> {
+    let mut names: Vec<String> = Vec::new();
+    for d in designs {
+        let base = d.name().to_string();
+        let mut name = base.clone();
+        let mut n = 2;
+        while names.contains(&name) {
+            name = format!("{base} ({n})");
+            n += 1;
+        }
+        names.push(name);
+    }
+    names
+}
+
+/// Each curve of each chart of one analysis, as a chart of its own with one curve per model.
+fn overlaid(reports: &[(usize, AnalysisReport)], names: &[String]) -> Vec<Chart> {
+    let Some((_, first)) = reports.first() else { return Vec::new() };
+    let mut out = Vec::new();
+    for chart in &first.charts {
+        let axes = std::iter::once((&chart.left, false)).chain(chart.right.as_ref().map(|r| (r, true)));
+        for (axis, right) in axes {
+            for (s, series) in axis.series.iter().enumerate() {
+                let curves = reports
+                    .iter()
+                    .filter_map(|(k, r)| {
+                        let theirs = r.charts.iter().find(|c| c.name == chart.name)?;
+                        let axis = if right { theirs.right.as_ref()? } else { &theirs.left };
+                        let curve = axis.series.iter().find(|c| c.name == series.name).or(axis.series.get(s))?;
+                        Some(Series { name: names[*k].clone(), points: curve.points.clone() })
+                    })
+                    .collect();
+                out.push(Chart {
+                    name: format!("compare_{}_{}", chart.name, slug(&series.name)),
+                    title: format!("{}: {}", series.name, chart.title),
+                    subtitle: String::new(),
+                    x_label: chart.x_label.clone(),
+                    x_scale: chart.x_scale,
+                    left: YAxis { label: axis.label.clone(), scale: axis.scale, series: curves },
+                    right: None,
+                    design_x: chart.design_x,
+                });
+            }
+        }
+    }
+    out
+}
+
+/// A curve's name as part of a file name: its letters and digits, the rest one underscore.
+fn slug(name: &str) -> String {
+    let mut out = String::new();
+    for c in name.chars() {
+        if c.is_ascii_alphanumeric() {
+            out.push(c.to_ascii_lowercase());
+        } else if !out.ends_with('_') {
+            out.push('_');
+        }
+    }
+    out.trim_matches('_').to_string()
+}
+
+/// The charts of a measured file: per column it shares with its analysis's table, that column against
+/// the load parameter, each model's rows and the measured points.
+fn measured_charts(
+    k: usize,
+    measured: &Measured,
+    models: &[(usize, &KcReport, bool)],
+    names: &[String],
+) -> Result<Vec<Chart>, String> {
+    let name = &names[k];
+    let Some(analysis_name) = &measured.analysis else {
+        return Err(format!(
+            "'{name}' does not say which analysis it measured: add a comment line `# analysis: NAME` (as \
+             docs/kc-rig-data.md shows)"
+        ));
+    };
+    let tables: Vec<(usize, &Table)> = models
+        .iter()
+        .filter_map(|(j, r, _)| {
+            Some((*j, &r.analyses.iter().find(|a| a.analysis.name() == analysis_name.as_str())?.table))
+        })
+        .collect();
+    let Some(&(_, table)) = tables.first() else {
+        return Err(format!(
+            "'{name}' measured {analysis_name}, which no model ran: run it on the models or leave the file out"
+        ));
+    };
+    let parameter = &table.columns[0];
+    if measured.columns.first() != Some(parameter) {
+        return Err(format!(
+            "'{name}': its first column is '{}', but {analysis_name}'s load parameter is '{parameter}': give the \
+             load parameter first, in the table's units",
+            measured.columns.first().map_or("", String::as_str)
+        ));
+    }
+    let shared: Vec<(usize, &String)> =
+        measured.columns.iter().enumerate().skip(1).filter(|(_, c)| table.columns.contains(c)).collect();
+    if shared.is_empty() {
+        return Err(format!(
+            "'{name}' has no column in common with {analysis_name}'s table ({}): name its columns as the table does",
+            table.columns[1..].join(", ")
+        ));
+    }
+    let mut out = Vec::new();
+    for (m, column) in shared {
+        let mut series: Vec<Series> = tables
+            .iter()
+            .map(|(j, t)| {
+                let c = t.columns.iter().position(|x| x == column).unwrap_or(0);
+                let points = t.rows.iter().filter_map(|r| Some((r[0].number()?, r[c].number()?))).collect();
+                Series { name: names[*j].clone(), points }
+            })
+            .collect();
+        series.push(Series { name: name.clone(), points: measured.rows.iter().map(|r| (r[0], r[m])).collect() });
+        out.push(Chart {
+            name: format!("compare_measured_{}_{}", k + 1, slug(column)),
+            title: format!("{column} in {analysis_name}: the models and {name}"),
+            subtitle: String::new(),
+            x_label: parameter.clone(),
+            x_scale: Default::default(),
+            left: YAxis { label: column.clone(), scale: Default::default(), series },
+            right: None,
+            design_x: None,
+        });
+    }
+    Ok(out)
+}
+
+/// `compare.csv`: every figure of the analyses compared, each model's value and error estimate, and each
+/// later model's difference to the first (empty where either has no value).
+fn figure_table(analyses: &[Analysis], models: &[(usize, &KcReport, bool)], names: &[String]) -> Table {
+    let mut columns: Vec<String> = ["analysis", "figure", "unit"].map(String::from).to_vec();
+    for (k, _, _) in models {
+        columns.push(names[*k].clone());
+        columns.push(format!("{} error", names[*k]));
+    }
+    let first = models[0].0;
+    for (k, _, _) in &models[1..] {
+        columns.push(format!("{} − {}", names[*k], names[first]));
+    }
+    let mut rows = Vec::new();
+    for &analysis in analyses {
+        let reports: Vec<Option<&AnalysisReport>> =
+            models.iter().map(|(_, r, _)| r.analyses.iter().find(|a| a.analysis == analysis)).collect();
+        let Some(Some(base)) = reports.first() else { continue };
+        for figure in &base.figures {
+            let values: Vec<(Option<f64>, Option<f64>)> = reports
+                .iter()
+                .map(|r| r.and_then(|r| r.figure(&figure.key)).map_or((None, None), |f| (f.value, f.error)))
+                .collect();
+            let mut row = vec![
+                Cell::Text(analysis.name().into()),
+                Cell::Text(figure.key.clone()),
+                Cell::Text(figure.unit.clone()),
+            ];
+            for (v, e) in &values {
+                row.push(Cell::from(*v));
+                row.push(Cell::from(*e));
+            }
+            for (v, _) in &values[1..] {
+                row.push(Cell::from(v.zip(values[0].0).map(|(v, b)| v - b)));
+            }
+            rows.push(row);
+        }
+    }
+    Table { name: "compare".into(), columns, rows }
+}

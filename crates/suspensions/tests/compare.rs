@@ -1,0 +1,126 @@
+//! Designs compared: the figures side by side are each model's own figures and their differences, each
+//! overlaid curve is the model's own curve, a measured file's points are drawn as given, and what cannot
+//! be compared is refused by name.
+
+use elastokin_suspensions::compare::{compare, Design};
+use elastokin_suspensions::design::targets::read_measured;
+use elastokin_suspensions::kc::{self, Analysis, Cell, KcReport, Settings};
+use elastokin_suspensions::SuspensionFile;
+use std::path::Path;
+
+fn example(name: &str) -> SuspensionFile {
+    SuspensionFile::read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples").join(name)).unwrap()
+}
+
+fn suite(file: &SuspensionFile, which: &[Analysis]) -> KcReport {
+    kc::run_suite(file, which, &Settings { steps: 8, ..Settings::default() }, |_| {})
+}
+
+fn number(c: &Cell) -> Option<f64> {
+    c.number()
+}
+
+#[test]
+fn figures_side_by_side_are_each_models_own_and_their_differences() {
+    let (a, b) = (example("macpherson.json"), example("double_wishbone.json"));
+    let (ra, rb) = (suite(&a, &[]), suite(&b, &[]));
+    let c = compare(&[Design::model(&a, ra.clone()), Design::model(&b, rb.clone())]).unwrap();
+    assert_eq!(c.names, [a.name.clone(), b.name.clone()]);
+    let col = |name: &str| c.figures.columns.iter().position(|x| x == name).unwrap();
+    let (va, vb) = (col(&a.name), col(&b.name));
+    let diff = col(&format!("{} − {}", b.name, a.name));
+    let mut checked = 0;
+    for row in &c.figures.rows {
+        let (Cell::Text(analysis), Cell::Text(key)) = (&row[0], &row[1]) else { panic!("{row:?}") };
+        let of = |r: &KcReport| {
+            r.analyses.iter().find(|x| x.analysis.name() == analysis.as_str()).and_then(|x| x.figure(key)?.value)
+        };
+        assert_eq!(number(&row[va]), of(&ra), "{analysis} {key}");
+        assert_eq!(number(&row[vb]), of(&rb), "{analysis} {key}");
+        if let (Some(x), Some(y)) = (of(&ra), of(&rb)) {
+            assert_eq!(number(&row[diff]), Some(y - x), "{analysis} {key}");
+            checked += 1;
+        }
+    }
+    assert!(checked > 40, "{checked} differences");
+    // Every curve of every chart is overlaid: one chart per curve, one curve per model, each the model's.
+    let curves: usize = ra
+        .analyses
+        .iter()
+        .flat_map(|x| &x.charts)
+        .map(|ch| ch.left.series.len() + ch.right.as_ref().map_or(0, |r| r.series.len()))
+        .sum();
+    assert_eq!(c.charts.len(), curves);
+    let toe = c.charts.iter().find(|ch| ch.name == "compare_parallel_travel_toe_camber_toe_in").unwrap();
+    let own = |r: &KcReport| {
+        r.analyses[0].charts.iter().find(|ch| ch.name == "parallel_travel_toe_camber").unwrap().left.series[0].clone()
+    };
+    assert_eq!(toe.left.series.len(), 2);
+    assert_eq!(toe.left.series[0].points, own(&ra).points);
+    assert_eq!(toe.left.series[1].points, own(&rb).points);
+    assert_eq!(toe.left.series[1].name, b.name);
+}
+
+#[test]
+fn a_model_against_itself_differs_by_nothing_and_its_repeated_name_is_numbered() {
+    let a = example("macpherson.json");
+    let r = suite(&a, &[Analysis::ParallelTravel]);
+    let c = compare(&[Design::model(&a, r.clone()), Design::model(&a, r)]).unwrap();
+    assert_eq!(c.names[1], format!("{} (2)", a.name));
+    let diff = c.figures.columns.len() - 1;
+    let zeros = c.figures.rows.iter().filter_map(|row| number(&row[diff])).filter(|d| *d == 0.0).count();
+    let values = c.figures.rows.iter().filter(|row| number(&row[3]).is_some()).count();
+    assert_eq!(zeros, values);
+}
+
+#[test]
+fn a_measured_file_is_drawn_as_given_beside_the_models_rows() {
+    let a = example("macpherson.json");
+    let r = suite(&a, &[Analysis::ParallelTravel]);
+    let text = "# analysis: parallel-travel\n# a rig's wheel held by the hub\ntravel_m,toe_deg,not_a_column\n\
+                -0.05,0.8,1\n0.0,0.0,2\n0.05,-0.9,3\n";
+    let measured = read_measured(text, "rig.csv").unwrap();
+    let designs = [Design::model(&a, r.clone()), Design::Measured { name: "rig.csv".into(), measured }];
+    let c = compare(&designs).unwrap();
+    let chart = c.charts.iter().find(|ch| ch.name.starts_with("compare_measured_")).unwrap();
+    assert_eq!(chart.left.series.len(), 2);
+    assert_eq!(chart.left.series[1].points, vec![(-0.05, 0.8), (0.0, 0.0), (0.05, -0.9)]);
+    let table = &r.analyses[0].table;
+    assert_eq!(chart.left.series[0].points.len(), table.rows.len());
+    // Only the column it shares: toe.
+    assert_eq!(c.charts.iter().filter(|ch| ch.name.starts_with("compare_measured_")).count(), 1);
+
+    let refused = |text: &str| {
+        let measured = read_measured(text, "rig.csv").unwrap();
+        compare(&[Design::model(&a, r.clone()), Design::Measured { name: "rig.csv".into(), measured }]).unwrap_err()
+    };
+    let e = refused("# analysis: parallel-travel\ntravel_m,spring_rate\n0,1\n");
+    assert!(e.contains("no column in common") && e.contains("toe_deg"), "{e}");
+    let e = refused("# analysis: parallel-travel\nload_n,toe_deg\n0,1\n");
+    assert!(e.contains("'load_n'") && e.contains("'travel_m'"), "{e}");
+    let e = refused("# analysis: roll\nleft_travel_m,roll_angle_deg\n0,1\n");
+    assert!(e.contains("roll, which no model ran"), "{e}");
+    let e = refused("travel_m,toe_deg\n0,1\n");
+    assert!(e.contains("# analysis: NAME"), "{e}");
+}
+
+#[test]
+fn what_cannot_be_compared_is_refused_by_name() {
+    let (a, axle) = (example("macpherson.json"), example("four_link_axle.json"));
+    let ra = suite(&a, &[Analysis::ParallelTravel]);
+    let e = compare(&[Design::model(&a, ra.clone())]).unwrap_err();
+    assert!(e.contains("two designs at least"), "{e}");
+    let e = compare(&[Design::model(&a, ra.clone()), Design::model(&axle, suite(&axle, &[Analysis::ParallelTravel]))])
+        .unwrap_err();
+    assert!(e.contains(&a.name) && e.contains(&axle.name) && e.contains("solid axle"), "{e}");
+    let m = || read_measured("# analysis: parallel-travel\ntravel_m,toe_deg\n0,1\n", "rig.csv").unwrap();
+    let e = compare(&[
+        Design::Measured { name: "one.csv".into(), measured: m() },
+        Design::Measured { name: "two.csv".into(), measured: m() },
+    ])
+    .unwrap_err();
+    assert!(e.contains("a model among the designs"), "{e}");
+    let rb = suite(&example("double_wishbone.json"), &[Analysis::Roll]);
+    let e = compare(&[Design::model(&a, ra), Design::model(&example("double_wishbone.json"), rb)]).unwrap_err();
+    assert!(e.contains("no analysis in common"), "{e}");
+}
