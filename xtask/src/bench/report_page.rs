@@ -20,7 +20,7 @@ pub fn run(s: &Settings) -> SectionOutput {
         intro: "Each shipped example's `report.html` as `elastokin run` writes it: the model read, every analysis \
                 of the suite with the parts' poses at every row, the plots, the three projections and the 3D \
                 view's data and script, the page written to disk. Median wall time of repeated runs, and the \
-                page's size."
+                page's size. Then five models compared as `elastokin compare` compares them."
             .into(),
         ..SectionOutput::default()
     };
@@ -91,8 +91,8 @@ pub fn run(s: &Settings) -> SectionOutput {
 }
 
 /// The median time to compare the shipped MacPherson's first five variants (`examples/macpherson_variants.txt`)
-/// as `elastokin compare` does: each model's suite with the parts' motion, the comparison, its report and
-/// compare.csv written.
+/// as `elastokin compare` does: each model's suite with the parts' motion, the comparison and its report
+/// written.
 fn compare_five(s: &Settings, dir: &std::path::Path) -> Result<f64, String> {
     use elastokin::suspensions::compare::{compare, Design};
     use elastokin::suspensions::kc;
