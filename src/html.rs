@@ -491,6 +491,91 @@ fn write_compare_page(
     write_foot(out, provenance)
 }
 
+/// The whole car's page: the understeer budget as a bar chart (each term per axle, understeer to the
+/// right), the roll and load-transfer figures, each axle's characteristics read off its K&C runs, and
+/// how it was made.
+pub fn vehicle_html(report: &crate::suspensions::full_vehicle::VehicleReport, provenance: &Value) -> String {
+    let mut page = String::new();
+    // Writing into a String cannot fail.
+    let _ = write_vehicle_page(&mut page, report, provenance);
+    page
+}
+
+fn write_vehicle_page(
+    out: Out,
+    report: &crate::suspensions::full_vehicle::VehicleReport,
+    provenance: &Value,
+) -> std::fmt::Result {
+    let b = &report.budget;
+    let name = crate::plot::shown(&report.name, NAME_SHOWN);
+    let character = if b.understeer_gradient > crate::suspensions::full_vehicle::NEUTRAL {
+        "understeers"
+    } else if b.understeer_gradient < -crate::suspensions::full_vehicle::NEUTRAL {
+        "oversteers"
+    } else {
+        "is neutral"
+    };
+    let lede = format!(
+        "The car {character}: {} deg/g of road-wheel steer ({} deg/g at the steering wheel); the body rolls {} deg/g.",
+        significant(b.understeer_gradient, 3),
+        significant(b.steering_wheel_gradient, 3),
+        significant(b.roll_gradient, 3)
+    );
+    write_head(out, &format!("Vehicle: {name}"), &lede)?;
+    if !report.warnings.is_empty() {
+        writeln!(out, "<ul class=\"warnings\">")?;
+        for w in &report.warnings {
+            writeln!(out, "<li>{}</li>", text(w))?;
+        }
+        writeln!(out, "</ul>")?;
+    }
+    writeln!(out, "<section id=\"budget\">")?;
+    writeln!(out, "<h2>Understeer budget</h2>")?;
+    writeln!(
+        out,
+        "<p class=\"note\">each term's share of the understeer gradient, deg/g of road-wheel steer: understeer \
+         to the right, oversteer to the left; docs/vehicle.md gives every formula</p>"
+    )?;
+    let mut bars: Vec<(String, f64)> =
+        b.contributions.iter().map(|c| (format!("{}, {}", c.effect, c.axle.name()), c.value)).collect();
+    bars.push(("understeer gradient (the sum)".into(), b.understeer_gradient));
+    write_bars(out, &bars, "deg/g")?;
+    writeln!(out, "</section>")?;
+    writeln!(out, "<section id=\"figures\">")?;
+    writeln!(out, "<h2>Roll and load transfer</h2>")?;
+    write_open_table(out, &report.table())?;
+    writeln!(out, "</section>")?;
+    writeln!(out, "<section id=\"axles\">")?;
+    writeln!(out, "<h2>The axles, from their K&amp;C runs</h2>")?;
+    writeln!(
+        out,
+        "<table class=\"numbers\"><thead><tr><th>figure</th><th>unit</th><th>front</th><th>rear</th></tr></thead><tbody>"
+    )?;
+    let [f, r] = &report.axles;
+    for (what, unit, x, y) in [
+        ("roll stiffness (suspension)", "N·m/deg", f.roll_stiffness.to_radians(), r.roll_stiffness.to_radians()),
+        ("roll centre height", "mm", f.roll_centre_height * 1e3, r.roll_centre_height * 1e3),
+        ("track", "mm", f.track * 1e3, r.track * 1e3),
+        ("roll steer, left wheel (toe-in +)", "deg/deg", f.roll_steer, r.roll_steer),
+        ("roll camber to ground, left wheel", "deg/deg", f.roll_camber, r.roll_camber),
+        ("lateral-force compliance steer (toe-in +)", "deg/kN", f.lateral_steer * 1e3, r.lateral_steer * 1e3),
+        ("lateral-force compliance camber", "deg/kN", f.lateral_camber * 1e3, r.lateral_camber * 1e3),
+        ("aligning-torque compliance steer", "deg/kN·m", f.aligning_torque_steer * 1e3, r.aligning_torque_steer * 1e3),
+    ] {
+        writeln!(
+            out,
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            text(what),
+            text(unit),
+            text(&significant(x, 4)),
+            text(&significant(y, 4))
+        )?;
+    }
+    writeln!(out, "</tbody></table>")?;
+    writeln!(out, "</section>")?;
+    write_foot(out, provenance)
+}
+
 /// A table shown open (not folded), every row.
 fn write_open_table(out: Out, table: &Table) -> std::fmt::Result {
     writeln!(out, "<div class=\"scroll\"><table class=\"numbers\">")?;

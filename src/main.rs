@@ -108,6 +108,15 @@ pub enum Command {
     /// compare.csv and report.html.
     #[command(after_help = EXIT_STATUS)]
     Compare(CompareArgs),
+    /// The whole car from a front and a rear model: roll stiffness and its distribution, roll gradient,
+    /// lateral load-transfer distribution, and the understeer budget (deg/g) term by term
+    ///
+    /// VEHICLE is JSON: "name", "front" and "rear" (model files, paths relative to VEHICLE), "car" (mass
+    /// kg, cg_height m, wheelbase m, front_weight_share, steering_ratio) and "tyres" (cornering_stiffness
+    /// and camber_stiffness N/deg per tyre, vertical_rate N/m, pneumatic_trail m), "rear_tyres" if they
+    /// differ; docs/vehicle.md gives every formula. Writes vehicle.csv and report.html.
+    #[command(after_help = EXIT_STATUS)]
+    Vehicle(VehicleArgs),
     /// Join the batch.csv files of `batch --shard I/N` runs into the batch.csv one `batch` writes
     ///
     /// The shards must be of one model and one variants file (the same SHA-256 in their first lines) and
@@ -314,6 +323,24 @@ pub struct CompareArgs {
     #[command(flatten)]
     pub sweeps: SweepArgs,
     /// Where compare.csv and report.html go; the directory is replaced as a whole on success
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+}
+
+#[derive(Debug, Args)]
+pub struct VehicleArgs {
+    /// The vehicle file (JSON; see examples/vehicle/compact_car.json)
+    pub vehicle: PathBuf,
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 32,
+        value_parser = parse_steps,
+        allow_negative_numbers = true,
+        help = format!("Load steps of each axle's roll and parallel travel, 1 to {MAX_STEPS}")
+    )]
+    pub steps: usize,
+    /// Where vehicle.csv and report.html go; the directory is replaced as a whole on success
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
 }
@@ -1020,7 +1047,7 @@ fn compare(args: CompareArgs, out: &Stdout) -> Result<(), Failure> {
     let comparison = compare(&designs).map_err(Failure::Input)?;
     let mut provenance = Provenance::new(&args.designs[0], &[], kc::mode_word(settings.mode), settings.steps);
     provenance.model_sha256 = files[0].1.clone();
-    provenance.compared = files[1..].to_vec();
+    provenance.other_files = files[1..].to_vec();
     provenance.tolerance = Some(settings.tolerance);
     provenance.range = settings.range;
     let models: Vec<(&str, &kc::KcReport)> = designs
@@ -1062,6 +1089,56 @@ fn compare(args: CompareArgs, out: &Stdout) -> Result<(), Failure> {
             failed.join("\n")
         )))
     }
+}
+
+fn vehicle(args: VehicleArgs, out: &Stdout) -> Result<(), Failure> {
+    use elastokin::suspensions::full_vehicle::{check_axles, run_vehicle, VehicleFile};
+    let (bytes, text) = read_input(&args.vehicle, "VEHICLE")?;
+    let origin = args.vehicle.display().to_string();
+    let file = VehicleFile::from_json(&text, &origin).map_err(Failure::Input)?;
+    let dir = args.vehicle.parent().unwrap_or(Path::new("."));
+    let (front_path, rear_path) = (dir.join(&file.front), dir.join(&file.rear));
+    let (front, rear) = (read_model(&front_path)?, read_model(&rear_path)?);
+    check_axles(&file, &front.file, &rear.file).map_err(|e| Failure::Input(format!("{origin}: {e}")))?;
+    let settings = Settings { steps: args.steps, ..Settings::default() };
+    let report =
+        run_vehicle(&file, &front.file, &rear.file, &settings).map_err(|e| Failure::Run(format!("{origin}: {e}")))?;
+    let mut provenance = Provenance::new(&args.vehicle, &bytes, kc::mode_word(settings.mode), settings.steps);
+    provenance.tolerance = Some(settings.tolerance);
+    provenance.other_files = vec![
+        (front_path.display().to_string(), elastokin::provenance::sha256_hex(&front.bytes)),
+        (rear_path.display().to_string(), elastokin::provenance::sha256_hex(&rear.bytes)),
+    ];
+    let staging = Staging::new(&args.out)?;
+    let written = (|| -> Result<Vec<PathBuf>, Failure> {
+        let html = elastokin::html::vehicle_html(&report, &provenance.to_json());
+        Ok(vec![
+            staging.write("vehicle.csv", &write_table(&report.table(), &provenance))?,
+            staging.write("report.html", html.as_bytes())?,
+        ])
+    })()
+    .map_err(|e| Failure::Run(format!("{}\n{}", e.message(), staging.untouched())))?;
+    staging.commit()?;
+    let b = &report.budget;
+    out.line(format!("{} — front {}, rear {}", report.name, front.file.name, rear.file.name))?;
+    out.line(format!(
+        "  understeer gradient {} deg/g ({} deg/g at the steering wheel), roll gradient {} deg/g",
+        kc::significant(b.understeer_gradient, 4),
+        kc::significant(b.steering_wheel_gradient, 4),
+        kc::significant(b.roll_gradient, 4)
+    ))?;
+    out.line(format!(
+        "  roll stiffness front share {:.1} %, lateral load transfer front share {:.1} %",
+        100.0 * b.roll_stiffness_front_share,
+        100.0 * b.load_transfer_front_share
+    ))?;
+    for c in &b.contributions {
+        out.line(format!("    {:<36} {:<5} {:>9} deg/g", c.effect, c.axle.name(), kc::significant(c.value, 3)))?;
+    }
+    for w in &report.warnings {
+        out.line(format!("  warning: {w}"))?;
+    }
+    out.line(format!("wrote {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))
 }
 
 fn tolerance(args: ToleranceArgs, out: &Stdout) -> Result<(), Failure> {
@@ -1139,6 +1216,7 @@ fn main() -> ExitCode {
         Command::Tune(args) => tune(args, &out, cli.quiet),
         Command::Tolerance(args) => tolerance(args, &out),
         Command::Compare(args) => compare(args, &out),
+        Command::Vehicle(args) => vehicle(args, &out),
         Command::Merge(args) => merge::merge(args, &out),
         Command::Expand(args) => expand(args, &out),
         Command::Import(args) => import(args, &out),

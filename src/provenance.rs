@@ -37,8 +37,9 @@ pub struct Provenance {
     pub tolerance: Option<elastokin_suspensions::kc::Tolerance>,
     /// `batch --shard`: which part of a batch this is; `merge`: how many shards it joined.
     pub part: Option<Part>,
-    /// `compare`: the designs after the first (`model`), each file's path and SHA-256.
-    pub compared: Vec<(String, String)>,
+    /// The other files the result was read from, each path and SHA-256: `compare`'s designs after the
+    /// first (`model`), `vehicle`'s front and rear models (`model` the vehicle file).
+    pub other_files: Vec<(String, String)>,
 }
 
 /// A result that is one part of a batch, or the shards of one joined.
@@ -79,7 +80,7 @@ impl Provenance {
             date: humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string(),
             tolerance: None,
             part: None,
-            compared: Vec::new(),
+            other_files: Vec::new(),
         }
     }
 
@@ -112,9 +113,9 @@ impl Provenance {
             v["targets"] = path.as_str().into();
             v["targets_sha256"] = sha.as_str().into();
         }
-        if !self.compared.is_empty() {
-            v["compared"] = self
-                .compared
+        if !self.other_files.is_empty() {
+            v["other_files"] = self
+                .other_files
                 .iter()
                 .map(|(path, sha)| serde_json::json!({ "file": path, "sha256": sha }))
                 .collect::<Vec<_>>()
@@ -144,8 +145,8 @@ impl Provenance {
         if let Some((path, sha)) = &self.variants {
             line += &format!(", variants {path} (sha256 {})", &sha[..16.min(sha.len())]);
         }
-        for (path, sha) in &self.compared {
-            line += &format!(", compared with {path} (sha256 {})", &sha[..16.min(sha.len())]);
+        for (path, sha) in &self.other_files {
+            line += &format!(", with {path} (sha256 {})", &sha[..16.min(sha.len())]);
         }
         if let Some(part) = self.part {
             line += &part.suffix();

@@ -102,18 +102,6 @@ fn spot_style(spot: Spot) -> (&'static str, f64) {
     }
 }
 
-/// The row of `a` shown as its design position: the one nearest zero of the load parameter when the
-/// range spans zero (travel, roll, steering, lateral force), else the middle row.
-pub fn design_row(a: &AnalysisReport) -> usize {
-    let t: Vec<f64> = a.table.rows.iter().map(|r| r.first().and_then(|c| c.number()).unwrap_or(f64::NAN)).collect();
-    let spans_zero = t.iter().any(|v| *v <= 0.0) && t.iter().any(|v| *v >= 0.0);
-    if spans_zero {
-        (0..t.len()).min_by(|&i, &j| t[i].abs().total_cmp(&t[j].abs())).unwrap_or(0)
-    } else {
-        t.len() / 2
-    }
-}
-
 /// The analysis the projections show: parallel travel when the report has its motion, else the first
 /// analysis that has one.
 fn shown_analysis(report: &KcReport) -> Option<(&AnalysisReport, &Motion)> {
@@ -353,7 +341,7 @@ pub fn write_geometry(out: &mut String, report: &KcReport) -> std::fmt::Result {
     if motion.frames.is_empty() {
         return Ok(());
     }
-    let rows = [design_row(a), 0, motion.frames.len() - 1];
+    let rows = [a.design_row(), 0, motion.frames.len() - 1];
     writeln!(out, "<section id=\"geometry\">")?;
     writeln!(out, "<h2>Geometry</h2>")?;
     writeln!(
@@ -443,7 +431,7 @@ pub fn viewer_data(report: &KcReport) -> Value {
             })
             .collect();
         let labels: Vec<String> = (0..motion.frames.len()).map(|r| row_label(a, r)).collect();
-        analyses.push(json!({ "name": a.analysis.name(), "drawing": index, "design": design_row(a),
+        analyses.push(json!({ "name": a.analysis.name(), "drawing": index, "design": a.design_row(),
                               "labels": labels, "frames": frames }));
     }
     let pens: serde_json::Map<String, Value> =
@@ -522,7 +510,7 @@ pub fn write_overlay(out: &mut String, models: &[(&str, &KcReport)]) -> std::fmt
         .iter()
         .map(|&(k, _, a, motion)| Layer {
             motion,
-            row: design_row(a),
+            row: a.design_row(),
             ghost: false,
             colour: Some(crate::plot::series_colour_hex(k)),
         })

@@ -1589,3 +1589,46 @@ fn compare_overlays_two_models_and_a_measured_file_and_refuses_a_mixed_pair() {
     assert_eq!(o.status.code(), Some(2));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `vehicle` on the shipped car: vehicle.csv holds the library's budget, its terms summing to the
+/// gradient; a vehicle file with a value out of range, or front and rear swapped, exits 2 naming the key.
+#[test]
+fn vehicle_gives_the_shipped_cars_budget_and_refuses_a_car_that_cannot_be_by_key() {
+    let dir = scratch("vehicle");
+    let out = dir.join("out");
+    succeeds(&["vehicle", "examples/vehicle/compact_car.json", "--steps", "8", "--out", out.to_str().unwrap()]);
+    let rows = read_csv(&out.join("vehicle.csv"));
+    let value = |what: &str, axle: &str| -> f64 {
+        rows.iter().find(|r| &r[0] == what && &r[1] == axle).unwrap_or_else(|| panic!("{what}"))[2].parse().unwrap()
+    };
+    let terms: f64 = rows.iter().filter(|r| &r[1] != "car").map(|r| r[2].parse::<f64>().unwrap()).sum();
+    let gradient = value("understeer gradient", "car");
+    // Twelve terms, each written to 12 significant digits: measured 2e-12 deg/g apart.
+    assert!((terms - gradient).abs() < 1e-10, "{terms} against {gradient}");
+    assert!((value("at the steering wheel", "car") - 15.5 * gradient).abs() < 1e-9);
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    roxmltree::Document::parse(html.strip_prefix("<!DOCTYPE html>").unwrap()).unwrap();
+    assert!(html.contains("Understeer budget") && html.contains("<rect"));
+
+    let car = std::fs::read_to_string("examples/vehicle/compact_car.json").unwrap();
+    for (edit, said) in [
+        (car.replace("\"mass\": 1535", "\"mass\": 0"), "car.mass"),
+        (
+            car.replace("../macpherson.json", "../five_link.JSON")
+                .replace("../five_link.json", "../macpherson.json")
+                .replace("../five_link.JSON", "../five_link.json"),
+            "vehicle.axle",
+        ),
+    ] {
+        let bad = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("examples/vehicle")
+            .join(format!("bad-{}.json", std::process::id()));
+        std::fs::write(&bad, edit).unwrap();
+        let o = elastokin(&["vehicle", bad.to_str().unwrap(), "--out", dir.join("x").to_str().unwrap()]);
+        std::fs::remove_file(&bad).ok();
+        assert_eq!(o.status.code(), Some(2), "{said}");
+        assert!(String::from_utf8_lossy(&o.stderr).contains(said), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(!dir.join("x").exists());
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -29,6 +29,7 @@ const LAYERED: [(&str, &[(&str, u32)]); 2] = [
             ("check", 5),
             ("kc", 6),
             ("study", 7),
+            ("full_vehicle", 7),
             ("design", 8),
             ("compare", 9),
         ],

@@ -39,6 +39,7 @@
 //! - [`check`]: the plausibility of a model and of its sweeps;
 //! - [`kc`]: the K&C suite, its figures and typed report;
 //! - [`study`]: design studies of many variants;
+//! - [`full_vehicle`]: the whole car from its two axles — roll, load transfer, the understeer budget;
 //! - [`design`]: parameters of a model file and the exact sensitivities of the figures to them;
 //! - [`compare`]: designs side by side, curves overlaid, figures and their differences.
 //!
@@ -59,6 +60,7 @@ pub mod design;
 pub mod document;
 pub mod drawing;
 pub mod file;
+pub mod full_vehicle;
 pub mod import;
 pub mod kc;
 pub mod study;

@@ -270,6 +270,19 @@ impl AnalysisReport {
         self.figures.iter().find(|f| f.key == key)
     }
 
+    /// The row of the design position: the one whose load parameter (the table's first column) is nearest
+    /// zero when the range spans zero (travel, roll, steering, lateral force), else the middle row.
+    pub fn design_row(&self) -> usize {
+        let t: Vec<f64> =
+            self.table.rows.iter().map(|r| r.first().and_then(Cell::number).unwrap_or(f64::NAN)).collect();
+        let spans_zero = t.iter().any(|v| *v <= 0.0) && t.iter().any(|v| *v >= 0.0);
+        if spans_zero {
+            (0..t.len()).min_by(|&i, &j| t[i].abs().total_cmp(&t[j].abs())).unwrap_or(0)
+        } else {
+            t.len() / 2
+        }
+    }
+
     /// The lines the terminal shows: what was run, the figures, the accuracy, the warnings.
     pub fn headline(&self) -> Vec<String> {
         let mut out = vec![self.description.clone()];

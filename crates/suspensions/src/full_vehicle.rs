@@ -1,0 +1,424 @@
+//! The whole car from its two axles' K&C results: roll stiffness of each axle and its distribution, roll
+//! gradient, lateral load-transfer distribution, and the understeer budget — how many degrees of steer per
+//! g of lateral acceleration each effect asks for (the tyres, roll steer, roll camber, lateral-force
+//! compliance steer and camber, aligning-torque compliance steer), per axle. `docs/vehicle.md` derives
+//! every formula; [`budget`] is them, from an [`AxleCharacteristics`] of each axle read off its K&C
+//! report ([`AxleCharacteristics::from_reports`]).
+//!
+//! Signs: ISO 8855. A left turn has `a_y > 0`; the body rolls out of it (`φ > 0`, left side up); an
+//! axle's steer `δ` is positive to the left. The understeer gradient `K` is the steer the driver adds per g
+//! beyond the kinematic `L/R` (`δ = L/R + K·a_y`): a positive contribution is understeer.
+
+use crate::kc::{Analysis, AnalysisReport};
+use serde::{Deserialize, Serialize};
+
+/// Standard gravity (m/s²): lateral acceleration is counted in g.
+pub const G: f64 = 9.80665;
+
+/// A tyre as the budget needs it (per tyre, SI but the stiffnesses per degree, as tyre data sheets give
+/// them).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Tyre {
+    /// Cornering stiffness `C_α` (N/deg): lateral force per degree of slip at the axle's load.
+    pub cornering_stiffness: f64,
+    /// Camber stiffness `C_γ` (N/deg): lateral force per degree of inclination toward the force.
+    pub camber_stiffness: f64,
+    /// Vertical rate (N/m), in series with the suspension's roll stiffness.
+    pub vertical_rate: f64,
+    /// Pneumatic trail (m): the lateral force acts this far behind the contact patch, making the aligning
+    /// torque.
+    pub pneumatic_trail: f64,
+}
+
+/// The car around the two axles (SI units).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Car {
+    /// Mass (kg).
+    pub mass: f64,
+    /// Height of the centre of gravity above the ground (m).
+    pub cg_height: f64,
+    /// Wheelbase (m).
+    pub wheelbase: f64,
+    /// Share of the weight on the front axle, 0 to 1.
+    pub front_weight_share: f64,
+    /// Steering ratio: hand-wheel angle per road-wheel angle.
+    pub steering_ratio: f64,
+}
+
+/// A vehicle file: the two axles' model files (paths relative to the vehicle file), the car and its
+/// tyres (the same front and rear unless `rear_tyres` is given).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VehicleFile {
+    /// What the car is.
+    pub name: String,
+    /// The front axle's model file.
+    pub front: String,
+    /// The rear axle's model file.
+    pub rear: String,
+    /// The car.
+    pub car: Car,
+    /// The tyres (front, and rear unless `rear_tyres` says otherwise).
+    pub tyres: Tyre,
+    /// Other tyres on the rear axle.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rear_tyres: Option<Tyre>,
+}
+
+impl VehicleFile {
+    /// Reads a vehicle file's text; `origin` names it in errors. Every value out of range is refused by
+    /// its key with the range.
+    pub fn from_json(text: &str, origin: &str) -> Result<VehicleFile, String> {
+        let file: VehicleFile = serde_json::from_str(text).map_err(|e| format!("{origin}: {e}"))?;
+        let c = &file.car;
+        let mut checks: Vec<(String, f64, f64, f64, &str)> = vec![
+            ("car.mass".into(), c.mass, 1.0, 1e6, "kg"),
+            ("car.cg_height".into(), c.cg_height, 1e-3, 20.0, "m"),
+            ("car.wheelbase".into(), c.wheelbase, 0.1, 50.0, "m"),
+            ("car.front_weight_share".into(), c.front_weight_share, 0.0, 1.0, "(a share)"),
+            ("car.steering_ratio".into(), c.steering_ratio, 1.0, 100.0, "(hand wheel : road wheel)"),
+        ];
+        for (key, t) in [("tyres", Some(file.tyres)), ("rear_tyres", file.rear_tyres)] {
+            let Some(t) = t else { continue };
+            checks.extend([
+                (format!("{key}.cornering_stiffness"), t.cornering_stiffness, 1.0, 1e6, "N/deg"),
+                (format!("{key}.camber_stiffness"), t.camber_stiffness, 0.0, 1e6, "N/deg"),
+                (format!("{key}.vertical_rate"), t.vertical_rate, 1e3, 1e10, "N/m"),
+                (format!("{key}.pneumatic_trail"), t.pneumatic_trail, 0.0, 0.5, "m"),
+            ]);
+        }
+        for (key, v, lo, hi, unit) in checks {
+            let open_low = key.ends_with("front_weight_share");
+            let inside = if open_low { v > lo && v < hi } else { v >= lo && v <= hi };
+            if !(v.is_finite() && inside) {
+                let (a, b) = if open_low { ("between", "and") } else { ("from", "to") };
+                return Err(format!("{origin}: `{key}` must lie {a} {lo:e} {b} {hi:e} {unit}, got {v:e}"));
+            }
+        }
+        Ok(file)
+    }
+
+    /// The rear tyres.
+    pub fn rear_tyres(&self) -> Tyre {
+        self.rear_tyres.unwrap_or(self.tyres)
+    }
+}
+
+/// What the budget needs of one axle, read off its K&C figures (in the units the budget works in).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AxleCharacteristics {
+    /// Roll stiffness of the suspension (springs, bushings, bars), tyres not included (N·m/rad).
+    pub roll_stiffness: f64,
+    /// Roll centre height at design (m).
+    pub roll_centre_height: f64,
+    /// Track at design (m).
+    pub track: f64,
+    /// Roll steer: the left wheel's toe-in per roll angle (deg/deg).
+    pub roll_steer: f64,
+    /// Roll camber: the left wheel's camber to the ground per roll angle (deg/deg).
+    pub roll_camber: f64,
+    /// Lateral-force compliance steer: toe-in per inboard force at the patch (deg/N).
+    pub lateral_steer: f64,
+    /// Lateral-force compliance camber: camber per inboard force at the patch (deg/N).
+    pub lateral_camber: f64,
+    /// Aligning-torque compliance steer: toe-in per torque about the vertical (deg/(N·m)).
+    pub aligning_torque_steer: f64,
+}
+
+impl AxleCharacteristics {
+    /// An axle's characteristics from its roll and parallel-travel reports; `axle` names it in errors
+    /// (a figure the reports do not have is refused by its key, with the report's reason).
+    pub fn from_reports(axle: &str, roll: &AnalysisReport, travel: &AnalysisReport) -> Result<Self, String> {
+        let figure = |r: &AnalysisReport, key: &str| -> Result<f64, String> {
+            let f = r.figure(key).ok_or_else(|| format!("{axle}: {} gives no `{key}`", r.analysis.name()))?;
+            f.value.ok_or_else(|| {
+                format!("{axle}: {} has no `{key}`: {}", r.analysis.name(), f.reason.as_deref().unwrap_or("no value"))
+            })
+        };
+        let track = roll
+            .table
+            .columns
+            .iter()
+            .position(|c| c == "track_m")
+            .and_then(|c| roll.table.rows.get(roll.design_row()).and_then(|r| r[c].number()))
+            .ok_or_else(|| format!("{axle}: the roll table has no track at design"))?;
+        let a = AxleCharacteristics {
+            roll_stiffness: figure(roll, "roll_stiffness")?.to_degrees(),
+            roll_centre_height: figure(roll, "roll_centre_height")? * 1e-3,
+            track,
+            roll_steer: figure(roll, "roll_steer")?,
+            roll_camber: figure(roll, "roll_camber")?,
+            lateral_steer: figure(travel, "lateral_steer")? * 1e-3,
+            lateral_camber: figure(travel, "lateral_camber")? * 1e-3,
+            aligning_torque_steer: figure(travel, "aligning_torque_steer")? * 1e-3,
+        };
+        if !(a.track.is_finite() && a.track > 0.0) {
+            return Err(format!("{axle}: its track at design is {:.4} m: an axle's wheels stand apart", a.track));
+        }
+        if !(a.roll_stiffness.is_finite() && a.roll_stiffness > 0.0) {
+            return Err(format!(
+                "{axle}: its roll stiffness is {:e} N·m/rad: the axle does not resist roll",
+                a.roll_stiffness
+            ));
+        }
+        Ok(a)
+    }
+
+    /// The analyses whose figures these are.
+    pub const ANALYSES: [Analysis; 2] = [Analysis::Roll, Analysis::ParallelTravel];
+}
+
+/// Front or rear.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AxleName {
+    /// The front axle.
+    Front,
+    /// The rear axle.
+    Rear,
+}
+
+impl AxleName {
+    /// Its name.
+    pub fn name(self) -> &'static str {
+        match self {
+            AxleName::Front => "front",
+            AxleName::Rear => "rear",
+        }
+    }
+}
+
+/// One term of the understeer budget.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Contribution {
+    /// Which effect (`tyre`, `roll steer`, …).
+    pub effect: &'static str,
+    /// Which axle.
+    pub axle: AxleName,
+    /// Its share of the understeer gradient (deg/g; positive: understeer).
+    pub value: f64,
+}
+
+/// The whole car's static characteristics.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Budget {
+    /// Each axle's roll stiffness with its tyres in series (N·m/deg): front, rear.
+    pub roll_stiffness: [f64; 2],
+    /// The front axle's share of the roll stiffness (0 to 1).
+    pub roll_stiffness_front_share: f64,
+    /// Height of the CG above the roll axis (m).
+    pub cg_above_roll_axis: f64,
+    /// Roll gradient (deg/g; the body rolls out of the turn).
+    pub roll_gradient: f64,
+    /// Lateral load transfer of each axle per g (N): front, rear.
+    pub load_transfer: [f64; 2],
+    /// The front axle's share of the lateral load transfer (0 to 1).
+    pub load_transfer_front_share: f64,
+    /// The understeer budget, term by term.
+    pub contributions: Vec<Contribution>,
+    /// The understeer gradient: the sum (deg/g of road-wheel steer).
+    pub understeer_gradient: f64,
+    /// The same at the steering wheel (deg/g).
+    pub steering_wheel_gradient: f64,
+    /// The characteristic speed (km/h) of an understeering car, `√(L g / K)`; `None` for a neutral or
+    /// oversteering one (`K` at most [`NEUTRAL`]).
+    pub characteristic_speed: Option<f64>,
+}
+
+/// The budget of `car` on `tyres` (front, rear) with its axles `front` and `rear` (see the module's
+/// documentation and `docs/vehicle.md`).
+pub fn budget(car: &Car, tyres: [Tyre; 2], front: &AxleCharacteristics, rear: &AxleCharacteristics) -> Budget {
+    let weight = car.mass * G;
+    let axle_load = [weight * car.front_weight_share, weight * (1.0 - car.front_weight_share)];
+    let axles = [front, rear];
+    // Each axle's roll stiffness with its two tyres in series: a tyre's rate k at half the track t gives
+    // k t²/2 per radian of roll.
+    let k = [0, 1].map(|i| {
+        let tyre = tyres[i].vertical_rate * axles[i].track.powi(2) / 2.0;
+        axles[i].roll_stiffness * tyre / (axles[i].roll_stiffness + tyre)
+    });
+    let b = car.wheelbase * car.front_weight_share; // CG to the rear axle
+    let a = car.wheelbase - b; // CG to the front axle
+    let roll_axis = front.roll_centre_height + (rear.roll_centre_height - front.roll_centre_height) * a / car.wheelbase;
+    let h1 = car.cg_height - roll_axis;
+    // rad per g: the sprung weight's moment about the roll axis, and its own lever as the body rolls.
+    let phi = weight * h1 / (k[0] + k[1] - weight * h1);
+    let roll_gradient = phi.to_degrees();
+    // N per g: each axle's share of the rolling moment through its springs, and its roll centre's share of
+    // the lateral force.
+    let transfer = [
+        weight / front.track * (h1 * k[0] / (k[0] + k[1] - weight * h1) + b / car.wheelbase * front.roll_centre_height),
+        weight / rear.track * (h1 * k[1] / (k[0] + k[1] - weight * h1) + a / car.wheelbase * rear.roll_centre_height),
+    ];
+    let mut contributions = Vec::new();
+    for (i, axle) in [AxleName::Front, AxleName::Rear].into_iter().enumerate() {
+        let (x, t) = (axles[i], tyres[i]);
+        // A front term counts as it is, a rear one with its sign turned: the front's slip adds to the
+        // steer asked for, the rear's takes from it.
+        let sign = if i == 0 { 1.0 } else { -1.0 };
+        let c_alpha = 2.0 * t.cornering_stiffness; // N/deg, the axle's two tyres
+        let per_wheel = axle_load[i] / 2.0; // N per g on each tyre
+        let camber_ratio = t.camber_stiffness / t.cornering_stiffness;
+        let terms = [
+            ("tyre", axle_load[i] / c_alpha),
+            ("roll steer", x.roll_steer * roll_gradient),
+            ("roll camber", -camber_ratio * x.roll_camber * roll_gradient),
+            ("lateral-force compliance steer", -x.lateral_steer * per_wheel),
+            ("lateral-force compliance camber", camber_ratio * x.lateral_camber * per_wheel),
+            ("aligning-torque compliance steer", -x.aligning_torque_steer * t.pneumatic_trail * per_wheel),
+        ];
+        contributions.extend(terms.map(|(effect, v)| Contribution { effect, axle, value: sign * v }));
+    }
+    let understeer_gradient: f64 = contributions.iter().map(|c| c.value).sum();
+    let characteristic_speed =
+        (understeer_gradient > NEUTRAL).then(|| (car.wheelbase * G / understeer_gradient.to_radians()).sqrt() * 3.6);
+    Budget {
+        roll_stiffness: k.map(f64::to_radians),
+        roll_stiffness_front_share: k[0] / (k[0] + k[1]),
+        cg_above_roll_axis: h1,
+        roll_gradient,
+        load_transfer: transfer,
+        load_transfer_front_share: transfer[0] / (transfer[0] + transfer[1]),
+        understeer_gradient,
+        steering_wheel_gradient: understeer_gradient * car.steering_ratio,
+        characteristic_speed,
+        contributions,
+    }
+}
+
+/// An understeer gradient at most this (deg/g) is neutral: the sum of terms that cancel leaves rounding.
+pub const NEUTRAL: f64 = 1e-9;
+
+/// A vehicle's budget and what it was made from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VehicleReport {
+    /// The vehicle file's name.
+    pub name: String,
+    /// The axles' characteristics: front, rear.
+    pub axles: [AxleCharacteristics; 2],
+    /// The budget.
+    pub budget: Budget,
+    /// What a reader should know (a model's design wheel load far from the car's).
+    pub warnings: Vec<String>,
+}
+
+/// How far (a share) a model's design wheel load may be from the car's axle load over two before it is
+/// said: the K&C figures were taken at the model's own load.
+const LOAD_MISMATCH: f64 = 0.1;
+
+/// The budget of the vehicle `file` with its `front` and `rear` models: each axle's roll and parallel
+/// travel run with `settings`. Refused by key: a front that does not steer, a rear with a steering gear,
+/// a model whose own `vehicle.axle` says the other end, one model for both ends, a track of zero, an
+/// analysis that fails.
+pub fn run_vehicle(
+    file: &VehicleFile,
+    front: &crate::file::SuspensionFile,
+    rear: &crate::file::SuspensionFile,
+    settings: &crate::kc::Settings,
+) -> Result<VehicleReport, String> {
+    check_axles(file, front, rear)?;
+    let mut axles = Vec::with_capacity(2);
+    let mut warnings = Vec::new();
+    let weight = file.car.mass * G;
+    for (key, model, share) in
+        [("front", front, file.car.front_weight_share), ("rear", rear, 1.0 - file.car.front_weight_share)]
+    {
+        let run =
+            |a: Analysis| crate::kc::run(a, model, settings).map_err(|e| format!("`{key}` ({}): {e}", model.name));
+        let (roll, travel) = (run(Analysis::Roll)?, run(Analysis::ParallelTravel)?);
+        axles.push(AxleCharacteristics::from_reports(&format!("`{key}` ({})", model.name), &roll, &travel)?);
+        let own = travel.figure("wheel_load_at_design").and_then(|f| f.value);
+        let car = weight * share / 2.0;
+        if let Some(own) = own.filter(|own| ((own - car) / car).abs() > LOAD_MISMATCH) {
+            warnings.push(format!(
+                "{key}: the model carries {own:.0} N per wheel at design, the car {car:.0} N: its K&C figures are \
+                 taken at its own load"
+            ));
+        }
+    }
+    let axles = [axles[0], axles[1]];
+    let budget = budget(&file.car, [file.tyres, file.rear_tyres()], &axles[0], &axles[1]);
+    Ok(VehicleReport { name: file.name.clone(), axles, budget, warnings })
+}
+
+/// What [`run_vehicle`] refuses before anything runs: `front` and `rear` must be able to be the car's
+/// front and rear.
+pub fn check_axles(
+    file: &VehicleFile,
+    front: &crate::file::SuspensionFile,
+    rear: &crate::file::SuspensionFile,
+) -> Result<(), String> {
+    use crate::description::vehicle::AxlePosition;
+    if file.front == file.rear {
+        return Err(format!("`front` and `rear` are both {}: give each axle its own model file", file.front));
+    }
+    for (key, model, other) in [("front", front, AxlePosition::Rear), ("rear", rear, AxlePosition::Front)] {
+        if model.vehicle.as_ref().is_some_and(|v| v.axle == other) {
+            let said = if other == AxlePosition::Rear { "rear" } else { "front" };
+            return Err(format!(
+                "`{key}` ({}): its own `vehicle.axle` says {said}: swap `front` and `rear`, or correct the model",
+                model.name
+            ));
+        }
+    }
+    if !front.suspension.expand().is_steered() {
+        return Err(format!(
+            "`front` ({}): it has no tie rod or steering link, so it does not steer: the front axle steers",
+            front.name
+        ));
+    }
+    if rear.vehicle.as_ref().is_some_and(|v| v.rack_travel_per_revolution.is_some()) {
+        return Err(format!(
+            "`rear` ({}): it has a steering gear (`vehicle.rack_travel_per_revolution`): the rear axle does not \
+             steer here; remove it from the rear model",
+            rear.name
+        ));
+    }
+    Ok(())
+}
+
+impl VehicleReport {
+    /// `vehicle.csv`: the understeer budget term by term, then the totals and the roll figures, each with
+    /// its unit.
+    pub fn table(&self) -> crate::kc::Table {
+        use crate::kc::Cell;
+        let b = &self.budget;
+        let mut rows: Vec<Vec<Cell>> = b
+            .contributions
+            .iter()
+            .map(|c| {
+                vec![
+                    Cell::Text(c.effect.into()),
+                    Cell::Text(c.axle.name().into()),
+                    Cell::from(Some(c.value)),
+                    Cell::Text("deg/g".into()),
+                ]
+            })
+            .collect();
+        let total = |what: &str, v: f64, unit: &str| {
+            vec![Cell::Text(what.into()), Cell::Text("car".into()), Cell::from(Some(v)), Cell::Text(unit.into())]
+        };
+        rows.extend([
+            total("understeer gradient", b.understeer_gradient, "deg/g"),
+            total("at the steering wheel", b.steering_wheel_gradient, "deg/g"),
+            total("roll gradient", b.roll_gradient, "deg/g"),
+            total("front roll stiffness", b.roll_stiffness[0], "N·m/deg"),
+            total("rear roll stiffness", b.roll_stiffness[1], "N·m/deg"),
+            total("roll stiffness, front share", 100.0 * b.roll_stiffness_front_share, "%"),
+            total("lateral load transfer, front", b.load_transfer[0], "N/g"),
+            total("lateral load transfer, rear", b.load_transfer[1], "N/g"),
+            total("lateral load transfer, front share", 100.0 * b.load_transfer_front_share, "%"),
+            total("CG above the roll axis", b.cg_above_roll_axis * 1e3, "mm"),
+        ]);
+        if let Some(v) = b.characteristic_speed {
+            rows.push(total("characteristic speed", v, "km/h"));
+        }
+        crate::kc::Table {
+            name: "vehicle".into(),
+            columns: ["what", "axle", "value", "unit"].map(String::from).to_vec(),
+            rows,
+        }
+    }
+}
