@@ -119,7 +119,7 @@ fn run_and_check_every_example() {
 #[test]
 fn run_figures_agree_with_each_other_by_closed_form() {
     let out = std::env::temp_dir().join(format!("elastokin-figures-{}", std::process::id()));
-    succeeds(&["run", "examples/double_wishbone.json", "--out", out.to_str().unwrap()]);
+    succeeds(&["run", "examples/generic/double_wishbone.json", "--out", out.to_str().unwrap()]);
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     let a = &summary["analyses"];
@@ -206,8 +206,8 @@ fn batch_runs_variants_in_parallel_and_agrees_with_run() {
     let out = std::env::temp_dir().join(format!("elastokin-batch-{}", std::process::id()));
     succeeds(&[
         "batch",
-        "examples/macpherson.json",
-        "examples/macpherson_variants.txt",
+        "examples/generic/macpherson.json",
+        "examples/generic/macpherson_variants.txt",
         "--out",
         out.to_str().unwrap(),
     ]);
@@ -217,7 +217,7 @@ fn batch_runs_variants_in_parallel_and_agrees_with_run() {
         record[col].parse().unwrap()
     };
     // The baseline variant is the model itself: same figures as `run` (same ±5 mm points around design).
-    let r = elastokin(&["run", "examples/macpherson.json", "--out", out.to_str().unwrap()]);
+    let r = elastokin(&["run", "examples/generic/macpherson.json", "--out", out.to_str().unwrap()]);
     assert!(r.status.success());
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
@@ -247,7 +247,7 @@ fn bad_variants_are_named_before_anything_runs() {
     for (k, (line, expected)) in cases.iter().enumerate() {
         let path = dir.join(format!("v{k}.txt"));
         std::fs::write(&path, line).unwrap();
-        let o = elastokin(&["batch", "examples/macpherson.json", path.to_str().unwrap()]);
+        let o = elastokin(&["batch", "examples/generic/macpherson.json", path.to_str().unwrap()]);
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(!o.status.success() && err.contains(expected), "{line}: {err}");
     }
@@ -319,8 +319,8 @@ fn version_help_and_argument_mistakes_are_answered_by_name() {
     ] {
         assert!(help.contains(text), "{text}: {help}");
     }
-    let m = "examples/macpherson.json";
-    let v = "examples/macpherson_variants.txt";
+    let m = "examples/generic/macpherson.json";
+    let v = "examples/generic/macpherson_variants.txt";
     let cases: [(&[&str], &str); 7] = [
         (&["run", m, "extra"], "unexpected argument 'extra' found"),
         (&["batch", m, v, "extra"], "unexpected argument 'extra' found"),
@@ -346,7 +346,7 @@ fn version_help_and_argument_mistakes_are_answered_by_name() {
 #[test]
 fn steps_and_ranges_are_bounded_with_a_reason() {
     let out = scratch("bounds");
-    let m = "examples/macpherson.json";
+    let m = "examples/generic/macpherson.json";
     let limit = Duration::from_secs(60);
     let too_many = |n: &str| {
         format!("a sweep takes at most 20000 steps, got {n}: every step keeps the solved model in memory and costs solver time")
@@ -395,7 +395,7 @@ fn too_many_variants_are_refused_before_running() {
     std::fs::write(&path, text).unwrap();
     let o = elastokin(&[
         "batch",
-        "examples/macpherson.json",
+        "examples/generic/macpherson.json",
         path.to_str().unwrap(),
         "--out",
         dir.join("o").to_str().unwrap(),
@@ -433,12 +433,12 @@ fn with_closed_output(args: &[&str], close_stderr: bool) -> (Option<i32>, String
 fn a_closed_pipe_is_no_crash_and_the_work_still_gets_done() {
     let out = scratch("pipe");
     let (run_out, batch_out) = (out.join("run"), out.join("batch"));
-    let m = "examples/macpherson.json";
+    let m = "examples/generic/macpherson.json";
     let runs: [(&[&str], Option<PathBuf>); 5] = [
         (&["check", m], None),
         (&["run", m, "--steps", "8", "--out", run_out.to_str().unwrap()], Some(run_out.join("summary.json"))),
         (
-            &["batch", m, "examples/macpherson_variants.txt", "--out", batch_out.to_str().unwrap()],
+            &["batch", m, "examples/generic/macpherson_variants.txt", "--out", batch_out.to_str().unwrap()],
             Some(batch_out.join("batch.csv")),
         ),
         (&["--help"], None),
@@ -467,13 +467,14 @@ fn a_closed_pipe_is_no_crash_and_the_work_still_gets_done() {
 fn a_failed_run_leaves_the_previous_results_untouched() {
     let dir = scratch("whole");
     let out = dir.join("results");
-    succeeds(&["run", "examples/macpherson.json", "--steps", "8", "--out", out.to_str().unwrap()]);
+    succeeds(&["run", "examples/generic/macpherson.json", "--steps", "8", "--out", out.to_str().unwrap()]);
     let before = snapshot(&out);
     assert!(before.contains_key("summary.json") && before.contains_key("roll.csv"));
     // A corner load no spring holds: the static load case fails, and with nothing else asked for nothing ran
     // (a suite in which others ran writes theirs: see
     // `one_failing_analysis_costs_only_itself_the_others_are_written_and_the_run_exits_1`).
-    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/macpherson.json")).unwrap();
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/generic/macpherson.json"))
+        .unwrap();
     let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();
     value["vehicle"]["corner_load"] = 1.0e6.into();
     let heavy = dir.join("heavy.json");
@@ -494,7 +495,7 @@ fn a_failed_run_leaves_the_previous_results_untouched() {
     assert!(String::from_utf8_lossy(&o.stderr).contains(&format!("nothing written to {}", fresh.display())));
     assert_eq!(names(&dir), ["heavy.json", "results"]);
     // A successful run replaces the directory whole: no file of the earlier run survives beside the new ones.
-    succeeds(&["run", "examples/macpherson.json", "--analysis", "roll", "--out", out.to_str().unwrap()]);
+    succeeds(&["run", "examples/generic/macpherson.json", "--analysis", "roll", "--out", out.to_str().unwrap()]);
     assert_eq!(names(&out), ["report.html", "roll.csv", "roll_centre.svg", "roll_toe_camber.svg", "summary.json"]);
     assert_eq!(names(&dir), ["heavy.json", "results"]);
     std::fs::remove_dir_all(&dir).ok();
@@ -503,7 +504,7 @@ fn a_failed_run_leaves_the_previous_results_untouched() {
 #[test]
 fn an_out_that_is_not_a_results_directory_is_refused_and_kept() {
     let dir = scratch("outkinds");
-    let m = "examples/macpherson.json";
+    let m = "examples/generic/macpherson.json";
     let file = dir.join("x");
     std::fs::write(&file, "mine").unwrap();
     let mine = dir.join("mine");
@@ -560,7 +561,7 @@ fn significant_digits(cell: &str) -> usize {
 #[test]
 fn every_result_says_what_produced_it() {
     let out = scratch("provenance");
-    let m = "examples/macpherson.json";
+    let m = "examples/generic/macpherson.json";
     let sha: String = Sha256::digest(std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join(m)).unwrap())
         .iter()
         .map(|b| format!("{b:02x}"))
@@ -609,24 +610,24 @@ fn every_result_says_what_produced_it() {
     // Twelve digits, not fewer: the old fixed 9 decimals wrote a 0.2 mm roll centre height as 0.000200000.
     assert!(rows.iter().flat_map(|r| r.iter()).any(|c| significant_digits(c) == 12));
     // batch.csv names the variants file too.
-    succeeds(&["batch", m, "examples/macpherson_variants.txt", "--out", out.to_str().unwrap()]);
+    succeeds(&["batch", m, "examples/generic/macpherson_variants.txt", "--out", out.to_str().unwrap()]);
     let text = std::fs::read_to_string(out.join("batch.csv")).unwrap();
     let first = text.lines().next().unwrap();
-    assert!(first.starts_with(&format!("# elastokin {version}, model {m} (sha256 {}), corrected mode, 8 steps, variants examples/macpherson_variants.txt (sha256 ", &sha[..16])), "{first}");
+    assert!(first.starts_with(&format!("# elastokin {version}, model {m} (sha256 {}), corrected mode, 8 steps, variants examples/generic/macpherson_variants.txt (sha256 ", &sha[..16])), "{first}");
     std::fs::remove_dir_all(&out).ok();
 }
 
 #[test]
 fn progress_goes_to_standard_error_and_quiet_silences_all_but_errors() {
     let out = scratch("quiet");
-    let m = "examples/macpherson.json";
+    let m = "examples/generic/macpherson.json";
     let target = out.join("o");
     let o = elastokin(&["run", m, "--analysis", "roll", "--steps", "8", "--out", target.to_str().unwrap()]);
     assert!(o.status.success());
     // Not a terminal here: one plain line per analysis.
     assert_eq!(String::from_utf8_lossy(&o.stderr), "analyses 1/1: roll\n");
     assert!(String::from_utf8_lossy(&o.stdout).contains("roll centre"));
-    let o = elastokin(&["batch", m, "examples/macpherson_variants.txt", "--out", target.to_str().unwrap()]);
+    let o = elastokin(&["batch", m, "examples/generic/macpherson_variants.txt", "--out", target.to_str().unwrap()]);
     let err = String::from_utf8_lossy(&o.stderr);
     let variants = read_csv(&target.join("batch.csv")).len();
     assert_eq!(err.lines().filter(|l| l.starts_with("variants ") && l.contains(" done: ")).count(), variants, "{err}");
@@ -634,7 +635,7 @@ fn progress_goes_to_standard_error_and_quiet_silences_all_but_errors() {
     for args in [
         &["--quiet", "run", m, "--analysis", "roll", "--steps", "8", "--out", target.to_str().unwrap()][..],
         &["run", m, "-q", "--steps", "8", "--out", target.to_str().unwrap()],
-        &["batch", m, "examples/macpherson_variants.txt", "--quiet", "--out", target.to_str().unwrap()],
+        &["batch", m, "examples/generic/macpherson_variants.txt", "--quiet", "--out", target.to_str().unwrap()],
         &["check", "--quiet", m],
     ] {
         let o = elastokin(args);
@@ -657,9 +658,15 @@ fn progress_on_a_terminal_is_a_bar() {
     let out = scratch("terminal");
     let bin = env!("CARGO_BIN_EXE_elastokin");
     for (args, bar) in [
-        (format!("run examples/macpherson.json --analysis roll --steps 8 --out '{}'", out.display()), "analyses ["),
         (
-            format!("batch examples/macpherson.json examples/macpherson_variants.txt --out '{}'", out.display()),
+            format!("run examples/generic/macpherson.json --analysis roll --steps 8 --out '{}'", out.display()),
+            "analyses [",
+        ),
+        (
+            format!(
+                "batch examples/generic/macpherson.json examples/generic/macpherson_variants.txt --out '{}'",
+                out.display()
+            ),
             "variants [",
         ),
     ] {
@@ -684,7 +691,8 @@ fn paper_mode_error_is_shown_warned_about_and_refused_under_strict() {
     let dir = scratch("paper-error");
     let out = dir.join("out");
     let run = |extra: &[&str]| {
-        let mut args = vec!["run", "examples/macpherson.json", "--analysis", "parallel-travel", "--mode", "paper"];
+        let mut args =
+            vec!["run", "examples/generic/macpherson.json", "--analysis", "parallel-travel", "--mode", "paper"];
         args.extend_from_slice(extra);
         args.extend_from_slice(&["--out", out.to_str().unwrap()]);
         elastokin(&args)
@@ -725,7 +733,8 @@ fn paper_mode_error_is_shown_warned_about_and_refused_under_strict() {
 #[test]
 fn an_implausible_model_is_named_and_refused_under_strict() {
     let dir = scratch("implausible");
-    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/macpherson.json")).unwrap();
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/generic/macpherson.json"))
+        .unwrap();
     let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
     let points = &mut v["suspension"]["macpherson"]["hardpoints"];
     let point = |p: &serde_json::Value| -> [f64; 3] { [0, 1, 2].map(|k| p[k].as_f64().unwrap()) };
@@ -761,7 +770,7 @@ fn an_implausible_model_is_named_and_refused_under_strict() {
 fn compliance_png_and_report_on_request() {
     let dir = scratch("extras");
     let out = dir.join("out");
-    let args = ["run", "examples/double_wishbone.json", "--analysis", "parallel-travel", "--steps", "4"];
+    let args = ["run", "examples/generic/double_wishbone.json", "--analysis", "parallel-travel", "--steps", "4"];
     succeeds(&[&args[..], &["--compliance", "--png", "--out", out.to_str().unwrap()]].concat());
     let rows = read_csv(&out.join("parallel_travel_compliance.csv"));
     // One row per step (header and provenance line read off), the load parameter and 36 entries.
@@ -775,7 +784,10 @@ fn compliance_png_and_report_on_request() {
     assert!(html.starts_with("<!DOCTYPE html>") && html.contains("bump steer") && html.contains("<svg"));
     // A plot found alone says what made it.
     let svg = std::fs::read_to_string(out.join("parallel_travel_toe_camber.svg")).unwrap();
-    assert!(svg.contains("<!-- elastokin ") && svg.contains("model examples/double_wishbone.json (sha256 "), "{svg}");
+    assert!(
+        svg.contains("<!-- elastokin ") && svg.contains("model examples/generic/double_wishbone.json (sha256 "),
+        "{svg}"
+    );
     // A range that leaves the design position out says why the design figures are missing.
     let o = elastokin(&[&args[..], &["--range", "0.01,0.05", "--out", out.to_str().unwrap()]].concat());
     let stdout = String::from_utf8_lossy(&o.stdout);
@@ -788,7 +800,8 @@ fn compliance_png_and_report_on_request() {
 /// the contact patch, so a vertical force to 6 kN meets a limit point. Returns the model file's path.
 fn ideal_pivot_double_wishbone(dir: &Path) -> PathBuf {
     let text =
-        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/double_wishbone.json")).unwrap();
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/generic/double_wishbone.json"))
+            .unwrap();
     let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
     v["suspension"]["double_wishbone"]["upper_arm_mounts"] = "ideal".into();
     v["suspension"]["double_wishbone"]["lower_arm_mounts"] = "ideal".into();
@@ -934,7 +947,7 @@ fn sensitivity_gives_the_derivatives_that_reruns_of_the_model_give() {
     let out = dir.join("out");
     let o = succeeds(&[
         "sensitivity",
-        "examples/macpherson.json",
+        "examples/generic/macpherson.json",
         "--param",
         pointer,
         "--param",
@@ -959,7 +972,7 @@ fn sensitivity_gives_the_derivatives_that_reruns_of_the_model_give() {
             .find(|r| &r[0] == analysis && &r[1] == figure && &r[4] == parameter)
             .unwrap_or_else(|| panic!("{analysis} {figure} {parameter}"))
     };
-    let text = std::fs::read_to_string("examples/macpherson.json").unwrap();
+    let text = std::fs::read_to_string("examples/generic/macpherson.json").unwrap();
     let model: serde_json::Value = serde_json::from_str(&text).unwrap();
     let z = model.pointer(pointer).unwrap().as_f64().unwrap();
     let figure_at = |dz: f64, analysis: &str, key: &str| {
@@ -1009,7 +1022,7 @@ fn sensitivity_gives_the_derivatives_that_reruns_of_the_model_give() {
     ] {
         let o = elastokin(
             &[
-                &["sensitivity", "examples/macpherson.json"][..],
+                &["sensitivity", "examples/generic/macpherson.json"][..],
                 &args[..],
                 &["--out", dir.join("bad").to_str().unwrap()],
             ]
@@ -1025,7 +1038,7 @@ fn sensitivity_gives_the_derivatives_that_reruns_of_the_model_give() {
 
 #[test]
 fn an_arc_step_without_its_flag_analysis_or_length_is_refused_by_name() {
-    let m = "examples/double_wishbone.json";
+    let m = "examples/generic/double_wishbone.json";
     let one = ["run", m, "--analysis", "vertical-force"];
     for (args, says) in [
         (vec!["--arc-step", "100"], "--through-limits"),
@@ -1049,7 +1062,7 @@ fn an_arc_step_without_its_flag_analysis_or_length_is_refused_by_name() {
 #[test]
 fn expand_prints_a_general_model_that_runs_the_same() {
     let dir = scratch("expand");
-    for model in ["examples/macpherson.json", "examples/double_wishbone.json"] {
+    for model in ["examples/generic/macpherson.json", "examples/generic/double_wishbone.json"] {
         let o = succeeds(&["expand", model]);
         let text = String::from_utf8(o.stdout).unwrap();
         assert!(text.contains("\"general\"") && text.contains("\"corner\""), "{text}");
@@ -1138,7 +1151,7 @@ fn run_shards(dir: &Path, name: &str, model: &str, variants: &str, n: usize) -> 
 #[test]
 fn shards_merge_into_the_single_batch() {
     let dir = scratch("shards");
-    let (m, v) = ("examples/macpherson.json", "examples/macpherson_variants.txt");
+    let (m, v) = ("examples/generic/macpherson.json", "examples/generic/macpherson_variants.txt");
     let single = dir.join("single");
     succeeds(&["batch", m, v, "--out", single.to_str().unwrap()]);
     let single_text = std::fs::read_to_string(single.join("batch.csv")).unwrap();
@@ -1203,8 +1216,8 @@ fn a_shard_that_is_not_i_of_n_is_refused_by_name() {
     for bad in ["0/3", "4/3", "1/0", "abc"] {
         let o = elastokin(&[
             "batch",
-            "examples/macpherson.json",
-            "examples/macpherson_variants.txt",
+            "examples/generic/macpherson.json",
+            "examples/generic/macpherson_variants.txt",
             "--shard",
             bad,
             "--out",
@@ -1225,7 +1238,7 @@ fn a_shard_that_is_not_i_of_n_is_refused_by_name() {
 #[test]
 fn merge_refuses_shards_that_do_not_make_one_batch() {
     let dir = scratch("merge-refusals");
-    let (m, v) = ("examples/macpherson.json", "examples/macpherson_variants.txt");
+    let (m, v) = ("examples/generic/macpherson.json", "examples/generic/macpherson_variants.txt");
     let shards = run_shards(&dir, "good", m, v, 3);
     let file = |k: usize| shards[k].join("batch.csv").display().to_string();
     // The same model and variants with one more byte each: other files by their hash.
@@ -1297,7 +1310,7 @@ fn merge_refuses_shards_that_do_not_make_one_batch() {
 fn a_long_model_name_with_markup_and_bidi_controls_is_shown_shortened_and_kept_whole() {
     let out = scratch("long-name");
     let mut model: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string("examples/macpherson.json").unwrap()).unwrap();
+        serde_json::from_str(&std::fs::read_to_string("examples/generic/macpherson.json").unwrap()).unwrap();
     let name = "<&>\u{202e}xxxxxxxxxx".repeat(1500);
     model["name"] = name.clone().into();
     let file = out.join("long_name.json");
@@ -1360,7 +1373,7 @@ fn an_interrupted_run_s_staging_directory_is_removed_by_the_next_run_and_no_one_
     let out = dir.join("out");
     succeeds(&[
         "run",
-        "examples/macpherson.json",
+        "examples/generic/macpherson.json",
         "--analysis",
         "parallel-travel",
         "--quiet",
@@ -1385,7 +1398,7 @@ fn tune_meets_the_shipped_targets_and_says_why_when_it_cannot() {
     let out = dir.join("out");
     let o = succeeds(&[
         "tune",
-        "examples/macpherson.json",
+        "examples/generic/macpherson.json",
         "examples/targets/bump_steer.json",
         "--out",
         out.to_str().unwrap(),
@@ -1395,7 +1408,7 @@ fn tune_meets_the_shipped_targets_and_says_why_when_it_cannot() {
     let tuned: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("tuned.json")).unwrap()).unwrap();
     let base: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string("examples/macpherson.json").unwrap()).unwrap();
+        serde_json::from_str(&std::fs::read_to_string("examples/generic/macpherson.json").unwrap()).unwrap();
     let targets: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string("examples/targets/bump_steer.json").unwrap()).unwrap();
     // Only the free numbers moved, each within its bounds; the keys in the model file's order.
@@ -1436,7 +1449,7 @@ fn tune_meets_the_shipped_targets_and_says_why_when_it_cannot() {
         .unwrap();
     let o = elastokin(&[
         "tune",
-        "examples/macpherson.json",
+        "examples/generic/macpherson.json",
         bad.to_str().unwrap(),
         "--out",
         dir.join("x").to_str().unwrap(),
@@ -1452,7 +1465,7 @@ fn tune_meets_the_shipped_targets_and_says_why_when_it_cannot() {
     std::fs::write(&hard, text).unwrap();
     let o = elastokin(&[
         "tune",
-        "examples/macpherson.json",
+        "examples/generic/macpherson.json",
         hard.to_str().unwrap(),
         "--out",
         dir.join("y").to_str().unwrap(),
@@ -1473,7 +1486,13 @@ fn tolerance_stacks_up_the_shipped_example_and_checks_it_by_sampling() {
     let dir = scratch("tolerance");
     let run = |out: &str| {
         let out = dir.join(out);
-        let args = ["tolerance", "examples/macpherson.json", "examples/targets/tolerances.json", "--monte-carlo", "60"];
+        let args = [
+            "tolerance",
+            "examples/generic/macpherson.json",
+            "examples/targets/tolerances.json",
+            "--monte-carlo",
+            "60",
+        ];
         succeeds(&[&args[..], &["--seed", "3", "--out", out.to_str().unwrap()]].concat());
         out
     };
@@ -1507,7 +1526,7 @@ fn tolerance_stacks_up_the_shipped_example_and_checks_it_by_sampling() {
     std::fs::write(&bad, r#"{"tolerances": {"/suspension/macpherson/spring/rate": "lots"}}"#).unwrap();
     let o = elastokin(&[
         "tolerance",
-        "examples/macpherson.json",
+        "examples/generic/macpherson.json",
         bad.to_str().unwrap(),
         "--out",
         dir.join("x").to_str().unwrap(),
@@ -1525,7 +1544,7 @@ fn tolerance_stacks_up_the_shipped_example_and_checks_it_by_sampling() {
 fn run_with_sensitivity_adds_the_sensitivity_command_s_numbers_to_the_report() {
     let dir = scratch("run-sensitivity");
     let (run, alone) = (dir.join("run"), dir.join("alone"));
-    let model = "examples/macpherson.json";
+    let model = "examples/generic/macpherson.json";
     succeeds(&["run", model, "--analysis", "parallel-travel", "--sensitivity", "--out", run.to_str().unwrap()]);
     succeeds(&[
         "sensitivity",
@@ -1554,7 +1573,7 @@ fn compare_overlays_two_models_and_a_measured_file_and_refuses_a_mixed_pair() {
     let rig = dir.join("rig.csv");
     std::fs::write(&rig, "# analysis: parallel-travel\ntravel_m,toe_deg\n-0.05,1.1\n0,0\n0.05,-1.3\n").unwrap();
     let out = dir.join("out");
-    let models = ["examples/macpherson.json", "examples/double_wishbone.json"];
+    let models = ["examples/generic/macpherson.json", "examples/generic/double_wishbone.json"];
     succeeds(&["compare", models[0], models[1], rig.to_str().unwrap(), "--steps", "8", "--out", out.to_str().unwrap()]);
     let rows = read_csv(&out.join("compare.csv"));
     // Each model's own figures, from `run`.

@@ -43,7 +43,8 @@ fn exudyn_curve(name: &str) -> Vec<Row> {
 /// The corner with the force at its contact patch, the first and last loads, and elastokin's sweep of
 /// `steps` corrected steps between them (as the bench's `models::case` and the `elastokin run` default).
 fn elastokin_sweep(steps: usize) -> (Corner, f64, f64, Sweep) {
-    let file = SuspensionFile::read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/macpherson.json")).unwrap();
+    let file =
+        SuspensionFile::read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/generic/macpherson.json")).unwrap();
     let held = file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
     let load = design_wheel_load(&held).unwrap();
     let mut corner = file.suspension.build(Side::Left, Rig::Free).unwrap();

@@ -9,7 +9,7 @@ use std::path::Path;
 use std::sync::OnceLock;
 
 fn model() -> SuspensionFile {
-    SuspensionFile::read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/macpherson.json")).unwrap()
+    SuspensionFile::read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/generic/macpherson.json")).unwrap()
 }
 
 /// The whole suite on the MacPherson example, in few steps: run once, shared by the tests.
@@ -23,7 +23,7 @@ fn suite() -> &'static KcReport {
 fn provenance() -> serde_json::Value {
     json!({
         "elastokin_version": "0.1.0",
-        "model_file": "examples/macpherson.json",
+        "model_file": "examples/generic/macpherson.json",
         "model_sha256": "0123abcd",
         "mode": "corrected",
         "steps": 8,
@@ -116,7 +116,8 @@ fn report_is_well_formed_self_contained_and_shows_every_analysis() {
         assert!(html.contains(&format!("<code>{}.csv</code>, {} rows", a.table.name, a.table.rows.len())));
     }
     let json: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/macpherson.json")).unwrap(),
+        &std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/generic/macpherson.json"))
+            .unwrap(),
     )
     .unwrap();
     let hardpoints = json["suspension"]["macpherson"]["hardpoints"].as_object().unwrap();
@@ -275,7 +276,7 @@ fn skipped_analyses_are_listed_with_their_reason() {
 
 #[test]
 fn hardpoints_of_a_double_wishbone_are_listed_in_mm() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/double_wishbone.json");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/generic/double_wishbone.json");
     let file = SuspensionFile::read(&path).unwrap();
     let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
     let hardpoints = json["suspension"]["double_wishbone"]["hardpoints"].as_object().unwrap();

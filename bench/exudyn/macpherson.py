@@ -9,7 +9,7 @@ the wheel centre, toe and camber (as elastokin's `Wheel::attitude` defines them)
 took for the whole sweep (the median of `--repeat` runs). See `bench/exudyn/README.md` for how each part maps
 and where the two codes' laws differ.
 
-    cargo run -q -- expand examples/macpherson.json | python3 bench/exudyn/macpherson.py - \
+    cargo run -q -- expand examples/generic/macpherson.json | python3 bench/exudyn/macpherson.py - \
         --contact-patch -0.04 1.1 -0.326 --load-range 2071.4316122700156 6214.294836810047 --steps 100
 
 Only what the sweep needs is mapped; anything else in the model (a curve, a stop, another joint kind, a

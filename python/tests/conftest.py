@@ -13,8 +13,8 @@ import pytest
 import elastokin
 
 ROOT = Path(__file__).resolve().parents[2]
-MODEL = ROOT / "examples" / "macpherson.json"
-VARIANTS = ROOT / "examples" / "macpherson_variants.txt"
+MODEL = ROOT / "examples" / "generic" / "macpherson.json"
+VARIANTS = ROOT / "examples" / "generic" / "macpherson_variants.txt"
 
 
 def command(*args, check=True):

@@ -7,7 +7,7 @@ use elastokin_suspensions::analysis::wheel_compliance;
 use elastokin_suspensions::{MacPherson, Rig, Side, SuspensionFile, Template};
 
 fn bushed_macpherson() -> MacPherson {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/macpherson.json");
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/generic/macpherson.json");
     match SuspensionFile::read(path.as_ref()).unwrap().suspension {
         Template::MacPherson(mp) => mp,
         other => panic!("{other:?}"),

@@ -45,8 +45,8 @@ const SUITE_CASES: usize = 1600;
 const SLOW_CASE: Duration = Duration::from_secs(5);
 
 const EXAMPLES: [(&str, &str); 5] = [
-    ("macpherson.json", include_str!("../../../examples/macpherson.json")),
-    ("double_wishbone.json", include_str!("../../../examples/double_wishbone.json")),
+    ("macpherson.json", include_str!("../../../examples/generic/macpherson.json")),
+    ("double_wishbone.json", include_str!("../../../examples/generic/double_wishbone.json")),
     ("double_wishbone_axle.json", include_str!("../../../examples/double_wishbone_axle.json")),
     ("five_link.json", include_str!("../../../examples/five_link.json")),
     ("four_link_axle.json", include_str!("../../../examples/four_link_axle.json")),

@@ -47,7 +47,7 @@ fn largest_difference(a: &kc::KcReport, b: &kc::KcReport) -> f64 {
 
 #[test]
 fn template_expand_run_equals_the_template_run() {
-    for name in ["macpherson.json", "double_wishbone.json"] {
+    for name in ["generic/macpherson.json", "generic/double_wishbone.json"] {
         let file = example(name);
         let general = expanded(&file);
         assert!(matches!(general.suspension, Template::General(_)));
@@ -159,7 +159,7 @@ fn motion_ratio_at_design(file: &SuspensionFile, body: &str, point: &str) -> f64
 /// describe a rigid linkage).
 fn ideal_axle_with_bar() -> SuspensionFile {
     use elastokin_suspensions::Connection;
-    let mut file = example("double_wishbone.json");
+    let mut file = example("generic/double_wishbone.json");
     let Template::DoubleWishbone(ref mut dw) = file.suspension else { panic!("double wishbone") };
     dw.upper_arm_mounts = Connection::Ideal.into();
     dw.lower_arm_mounts = Connection::Ideal.into();
@@ -323,7 +323,7 @@ fn model_loads_balance_on_the_wheel_carrier() {
     assert!((last[column("cornering force force_y_n")].number().unwrap() + 4000.0).abs() < 1e-9);
     // Without a load case the suite says why it leaves the analysis out.
     let template =
-        kc::run_suite(&example("macpherson.json"), &[], &Settings { steps: 2, ..Settings::default() }, |_| {});
+        kc::run_suite(&example("generic/macpherson.json"), &[], &Settings { steps: 2, ..Settings::default() }, |_| {});
     let skipped = template.complete().unwrap().skipped;
     assert!(skipped.iter().any(|s| s.analysis == kc::Analysis::ModelLoads && s.reason.contains("no load case")));
 }

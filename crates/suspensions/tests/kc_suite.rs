@@ -13,7 +13,7 @@ fn example(name: &str) -> SuspensionFile {
     SuspensionFile::read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples").join(name)).unwrap()
 }
 
-const EXAMPLES: [&str; 2] = ["macpherson.json", "double_wishbone.json"];
+const EXAMPLES: [&str; 2] = ["generic/macpherson.json", "generic/double_wishbone.json"];
 
 /// Paper mode's error estimate (each row against one exact Newton iteration from it) is 0.75–1.1× its
 /// error against a converged corrected run, column by column and figure by figure, on every analysis of
@@ -57,7 +57,7 @@ fn paper_mode_error_estimate_is_0_75_to_1_1_times_the_error_against_a_converged_
 /// at the default 32 steps is off by more than the default tolerance, and says so.
 #[test]
 fn paper_mode_warns_when_its_error_exceeds_the_tolerance_and_corrected_mode_does_not() {
-    let file = example("macpherson.json");
+    let file = example("generic/macpherson.json");
     let corrected = kc::run(Analysis::ParallelTravel, &file, &Settings::default()).unwrap();
     // Measured 6e-14 deg and 2e-14 m.
     assert!(corrected.accuracy.angle_error_deg < 1e-11, "{:?}", corrected.accuracy);
@@ -162,7 +162,7 @@ fn file_track_half(file: &SuspensionFile) -> f64 {
 /// gives (`wheel_compliance`, its own solver and equilibrium).
 #[test]
 fn compliance_at_every_step_matches_a_fresh_solve_at_design() {
-    let file = example("double_wishbone.json");
+    let file = example("generic/double_wishbone.json");
     let settings = Settings { compliance: true, steps: 8, ..Settings::default() };
     let report = kc::run(Analysis::ParallelTravel, &file, &settings).unwrap();
     let table = report.compliance.as_ref().unwrap();
@@ -186,7 +186,7 @@ fn compliance_at_every_step_matches_a_fresh_solve_at_design() {
 /// A range that leaves out the design position leaves the design figures out with that reason.
 #[test]
 fn a_range_without_the_design_position_says_why_figures_are_missing() {
-    let file = example("macpherson.json");
+    let file = example("generic/macpherson.json");
     let settings = Settings { range: Some((0.01, 0.05)), steps: 8, ..Settings::default() };
     let report = kc::run(Analysis::ParallelTravel, &file, &settings).unwrap();
     let f = report.figure("bump_steer").unwrap();
@@ -202,7 +202,8 @@ fn a_range_without_the_design_position_says_why_figures_are_missing() {
 #[test]
 fn the_suite_names_a_tie_rod_on_the_steering_axis_and_the_toe_it_gives() {
     let mut v: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/macpherson.json")).unwrap(),
+        &std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/generic/macpherson.json"))
+            .unwrap(),
     )
     .unwrap();
     let points = &mut v["suspension"]["macpherson"]["hardpoints"];
@@ -218,9 +219,10 @@ fn the_suite_names_a_tie_rod_on_the_steering_axis_and_the_toe_it_gives() {
     assert!(codes.contains(&"toe-range"), "{codes:?}");
     assert!(report.model_check.as_ref().unwrap().degrees_of_freedom >= 1);
     // The shipped model has none.
-    let clean = kc::run_suite(&example("macpherson.json"), &[Analysis::ParallelTravel], &Settings::default(), |_| {})
-        .complete()
-        .unwrap();
+    let clean =
+        kc::run_suite(&example("generic/macpherson.json"), &[Analysis::ParallelTravel], &Settings::default(), |_| {})
+            .complete()
+            .unwrap();
     assert_eq!(clean.all_warnings().count(), 0, "{:?}", clean.all_warnings().collect::<Vec<_>>());
 }
 
@@ -230,7 +232,7 @@ fn the_suite_names_a_tie_rod_on_the_steering_axis_and_the_toe_it_gives() {
 #[test]
 fn lateral_force_at_the_wheel_centre_is_the_wheel_centre_compliance() {
     use elastokin_suspensions::LoadPoint;
-    let file = example("macpherson.json");
+    let file = example("generic/macpherson.json");
     let h = 5.0;
     let settings =
         |load_point| Settings { range: Some((-h, h)), steps: 2, compliance: true, load_point, ..Settings::default() };
@@ -281,7 +283,7 @@ fn lateral_force_at_the_wheel_centre_is_the_wheel_centre_compliance() {
 /// only about 3.3 kN upward at the contact patch (the arms' motion ratio falls faster than the spring
 /// stiffens), so a vertical force sweep to 6 kN meets a limit point.
 fn ideal_pivot_double_wishbone() -> SuspensionFile {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/double_wishbone.json");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/generic/double_wishbone.json");
     let mut v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
     let template = &mut v["suspension"]["double_wishbone"];
     template["upper_arm_mounts"] = "ideal".into();
@@ -433,7 +435,7 @@ fn the_vertical_force_wheel_rate_is_the_central_difference_at_design_whatever_th
 /// printed at zero rack travel): the row leaves them empty, the steered rows have them.
 #[test]
 fn ackermann_cells_are_empty_straight_ahead_not_a_ratio_of_rounding() {
-    let report = kc::run(Analysis::Steering, &example("macpherson.json"), &Settings::default()).unwrap();
+    let report = kc::run(Analysis::Steering, &example("generic/macpherson.json"), &Settings::default()).unwrap();
     let c = report.table.columns.iter().position(|x| x == "ackermann_percent").unwrap();
     let straight = report.table.rows.iter().find(|r| r[0].number() == Some(0.0)).unwrap();
     assert_eq!(straight[c], kc::Cell::Empty);

@@ -17,7 +17,7 @@ use elastokin_suspensions::{
 
 /// The shipped bushed MacPherson (also the one of `tests/compliance.rs`).
 fn bushed_macpherson() -> MacPherson {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/macpherson.json");
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/generic/macpherson.json");
     match SuspensionFile::read(path.as_ref()).unwrap().suspension {
         Template::MacPherson(mp) => mp,
         other => panic!("{other:?}"),

@@ -10,7 +10,7 @@ use std::path::Path;
 
 /// The shipped MacPherson with ideal mounts, edited by `edit`, built on `rig`.
 fn ideal_macpherson(rig: Rig, edit: impl FnOnce(&mut Value)) -> (SuspensionFile, Corner) {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/macpherson.json");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/generic/macpherson.json");
     let mut v: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
     let t = &mut v["suspension"]["macpherson"];
     t["lower_arm_mounts"] = "ideal".into();
@@ -58,7 +58,7 @@ fn a_travel_the_mechanism_cannot_reach_says_to_narrow_the_range() {
 /// built, naming the hardpoints and what to move.
 #[test]
 fn a_tie_rod_through_the_steering_axis_is_refused_by_name() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/macpherson.json");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/generic/macpherson.json");
     let mut v: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
     let t = &mut v["suspension"]["macpherson"];
     let (a, b) = (point(t, "lower_ball_joint"), point(t, "top_mount"));

@@ -88,7 +88,7 @@ fn a_bushed_tie_rod_round_trips_and_builds_a_rod() {
 
 /// The shipped MacPherson as a JSON value, edited by `edit`, as text.
 fn macpherson_edited(edit: impl FnOnce(&mut serde_json::Value)) -> String {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/macpherson.json");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/generic/macpherson.json");
     let mut v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
     edit(&mut v);
     serde_json::to_string_pretty(&v).unwrap()
@@ -308,7 +308,7 @@ fn a_bushing_law_is_chosen_in_the_file() {
 
 /// The expanded MacPherson (general form) as a JSON value, to edit one mistake into.
 fn general_macpherson() -> serde_json::Value {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/macpherson.json");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/generic/macpherson.json");
     let file = SuspensionFile::read(&path).unwrap();
     let text = SuspensionFile { suspension: Template::General(Box::new(file.suspension.expand())), ..file }.to_json();
     serde_json::from_str(&text).unwrap()
@@ -354,7 +354,8 @@ fn a_document_s_error_names_the_keys_that_lead_to_it_not_a_column_of_one_line() 
 #[test]
 fn bushing_rates_given_as_a_list_are_refused_with_the_named_form() {
     let text =
-        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/macpherson.json")).unwrap();
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/generic/macpherson.json"))
+            .unwrap();
     let named = r#"{"radial": 5000000.0, "axial": 1000000.0, "torsion": 573.0, "conical": 5730.0}"#;
     let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();
     let mounts = &mut value["suspension"]["macpherson"]["lower_arm_mounts"];

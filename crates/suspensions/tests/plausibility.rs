@@ -65,7 +65,7 @@ fn near_axis(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [p[0] + 0.003, p[1], p[2]]
 }
 
-const EXAMPLES: [&str; 2] = ["macpherson.json", "double_wishbone.json"];
+const EXAMPLES: [&str; 2] = ["generic/macpherson.json", "generic/double_wishbone.json"];
 
 #[test]
 fn shipped_examples_give_no_warnings() {
@@ -75,7 +75,7 @@ fn shipped_examples_give_no_warnings() {
             assert!(c.warnings.is_empty(), "{name}: {:#?}", c.warnings);
             // Measured: 79 (MacPherson), 300 (double wishbone); all-ideal corners have no motion left on
             // the rig, hence no estimate.
-            let measured = if name == "macpherson.json" { 79.0 } else { 300.0 };
+            let measured = if name == "generic/macpherson.json" { 79.0 } else { 300.0 };
             match c.condition_estimate {
                 Some(k) => assert!(k < 100.0 * measured && k > measured / 100.0, "{name}: {k}"),
                 None => assert_eq!(c.degrees_of_freedom_on_rig, 0),
@@ -97,9 +97,9 @@ fn degrees_of_freedom_match_the_hand_count() {
     // Bushed arms: the bushings hold motions but remove none. Double wishbone: 18 − (2 ball joints × 3 + tie
     // rod 1) = 11. MacPherson with a bushed lower arm and top mount: 18 − (ball joint 3 + strut slide 5 + tie
     // rod 1) = 9.
-    let dw = check(&example("double_wishbone.json"));
+    let dw = check(&example("generic/double_wishbone.json"));
     assert_eq!((dw.degrees_of_freedom, dw.degrees_of_freedom_on_rig), (11, 10));
-    let mp = check(&example("macpherson.json"));
+    let mp = check(&example("generic/macpherson.json"));
     assert_eq!((mp.degrees_of_freedom, mp.degrees_of_freedom_on_rig), (9, 8));
 }
 
@@ -107,7 +107,7 @@ fn degrees_of_freedom_match_the_hand_count() {
 fn a_repeated_joint_is_counted_once() {
     use elastokin_core::{BodyRef, JointSpec};
     use elastokin_suspensions::{build::mobility, Rig, Side};
-    let file: SuspensionFile = serde_json::from_value(ideal(example("double_wishbone.json"))).unwrap();
+    let file: SuspensionFile = serde_json::from_value(ideal(example("generic/double_wishbone.json"))).unwrap();
     let mut corner = file.suspension.build(Side::Left, Rig::Free).unwrap();
     assert_eq!(mobility(&corner.model), (1, 0));
     // A second tie rod along the first repeats its row: still one way to move, one redundant row.
@@ -122,7 +122,9 @@ fn a_repeated_joint_is_counted_once() {
 
 #[test]
 fn tie_rod_on_the_steering_axis_is_named() {
-    for (name, upper) in [("macpherson.json", "top_mount"), ("double_wishbone.json", "upper_ball_joint")] {
+    for (name, upper) in
+        [("generic/macpherson.json", "top_mount"), ("generic/double_wishbone.json", "upper_ball_joint")]
+    {
         for mut v in [example(name), ideal(example(name))] {
             let (a, b) = (hardpoint(&mut v, "lower_ball_joint"), hardpoint(&mut v, upper));
             set_hardpoint(&mut v, "tie_rod_inner", near_axis(a, b));
@@ -186,10 +188,18 @@ fn an_arm_pivoting_through_its_ball_joint_is_named() {
     // condition estimate measured 1.5e33); on the double wishbone the spring seat on the arm does, but the
     // arm cannot compress the spring (motion ratio 0). Bushings hold the spin (estimates 8.7e3, 7.2e3).
     let cases: [(&str, Value, &[&str]); 4] = [
-        ("macpherson.json", example("macpherson.json"), &["pivot-through-ball-joint"]),
-        ("macpherson.json", ideal(example("macpherson.json")), &["pivot-through-ball-joint", "near-singular"]),
-        ("double_wishbone.json", example("double_wishbone.json"), &["pivot-through-ball-joint"]),
-        ("double_wishbone.json", ideal(example("double_wishbone.json")), &["pivot-through-ball-joint", "motion-ratio"]),
+        ("generic/macpherson.json", example("generic/macpherson.json"), &["pivot-through-ball-joint"]),
+        (
+            "generic/macpherson.json",
+            ideal(example("generic/macpherson.json")),
+            &["pivot-through-ball-joint", "near-singular"],
+        ),
+        ("generic/double_wishbone.json", example("generic/double_wishbone.json"), &["pivot-through-ball-joint"]),
+        (
+            "generic/double_wishbone.json",
+            ideal(example("generic/double_wishbone.json")),
+            &["pivot-through-ball-joint", "motion-ratio"],
+        ),
     ];
     for (name, mut v, expected) in cases {
         {
@@ -227,7 +237,7 @@ fn travel_rows_beyond_plausible_toe_and_a_falling_wheel_rate_are_named() {
     // A tie rod whose line meets the steering axis: driving the wheel height turns the wheel instead
     // (measured on the bushed MacPherson within ±80 mm: toe −119.7°, camber 23.3° at −80 mm, and the wheel
     // rate −45.8 N/mm between 60 and 70 mm).
-    let mut v = example("macpherson.json");
+    let mut v = example("generic/macpherson.json");
     let (a, b) = (hardpoint(&mut v, "lower_ball_joint"), hardpoint(&mut v, "top_mount"));
     set_hardpoint(&mut v, "tie_rod_inner", near_axis(a, b));
     let rows = travel(&v);
@@ -241,15 +251,15 @@ fn travel_rows_beyond_plausible_toe_and_a_falling_wheel_rate_are_named() {
 
 #[test]
 fn the_report_gives_the_counts_the_condition_and_each_warning_with_its_code() {
-    let clean = check(&example("macpherson.json")).report();
+    let clean = check(&example("generic/macpherson.json")).report();
     assert_eq!(clean.len(), 2, "{clean:#?}");
     assert!(clean[0].starts_with("degrees of freedom: 9 with the wheel free"), "{}", clean[0]);
     assert!(clean[0].contains("8 with the rig's wheel-travel driver"), "{}", clean[0]);
     // Measured 79.
     assert!(clean[1].starts_with("condition at design: 7.9e1"), "{}", clean[1]);
-    let all_ideal = check(&ideal(example("macpherson.json"))).report();
+    let all_ideal = check(&ideal(example("generic/macpherson.json"))).report();
     assert!(all_ideal[1].contains("the joints leave no motion"), "{}", all_ideal[1]);
-    let mut v = example("macpherson.json");
+    let mut v = example("generic/macpherson.json");
     let (a, b) = (hardpoint(&mut v, "lower_ball_joint"), hardpoint(&mut v, "top_mount"));
     set_hardpoint(&mut v, "tie_rod_inner", near_axis(a, b));
     let lines = check(&v).report();

@@ -316,3 +316,51 @@ fn a_tune_whose_steps_leave_what_the_model_accepts_steps_back_and_says_so() {
     let why = tuned.verdicts[0].why.as_deref().unwrap();
     assert!(why.contains("held where the model stops") && why.contains("spring.rate"), "{why}");
 }
+
+/// The shipped front MacPherson and double wishbone are tuned by `elastokin tune` to the targets kept
+/// beside them (`examples/targets/macpherson.json`, `examples/targets/double_wishbone.json`): tuned again
+/// from themselves they meet every target as they are, and their figures are a passenger car's — each in
+/// the range a production car's lies in.
+#[test]
+fn the_shipped_fronts_meet_their_tuning_targets_and_a_passenger_cars_ranges() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    for (model, ranges) in [
+        (
+            "macpherson",
+            &[
+                ("parallel-travel", "bump_steer", -5.0, 1.0),
+                ("parallel-travel", "scrub_radius", -10.0, 30.0),
+                ("parallel-travel", "kingpin_inclination", 10.0, 15.0),
+                ("parallel-travel", "caster", 3.0, 7.0),
+                ("parallel-travel", "mechanical_trail", 10.0, 35.0),
+                ("roll", "roll_centre_height", 30.0, 120.0),
+                ("parallel-travel", "wheel_rate", 20.0, 35.0),
+            ][..],
+        ),
+        (
+            "double_wishbone",
+            &[
+                ("parallel-travel", "bump_steer", -5.0, 1.0),
+                ("parallel-travel", "camber_gain", -30.0, -10.0),
+                ("parallel-travel", "scrub_radius", -10.0, 30.0),
+                ("parallel-travel", "kingpin_inclination", 7.0, 13.0),
+                ("parallel-travel", "caster", 3.0, 7.0),
+                ("parallel-travel", "mechanical_trail", 10.0, 35.0),
+                ("roll", "roll_centre_height", 30.0, 120.0),
+                ("parallel-travel", "wheel_rate", 20.0, 35.0),
+            ][..],
+        ),
+    ] {
+        let read = |p: &str| std::fs::read_to_string(root.join(p)).unwrap();
+        let base = base_document(&read(&format!("{model}.json")), model).unwrap();
+        let (_, tuned) = run(&base, &read(&format!("targets/{model}.json")));
+        assert!(tuned.all_met(), "{model}: {:?}", tuned.verdicts);
+        assert_eq!(tuned.start.x, tuned.end.x, "{model}: already where the tune left it");
+        let file = Parameters::new(&base, &[]).unwrap().file().unwrap();
+        for (analysis, key, lo, hi) in ranges {
+            let a = kc::run(Analysis::from_name(analysis).unwrap(), &file, &Settings::default()).unwrap();
+            let v = a.figure(key).and_then(|f| f.value).unwrap();
+            assert!((*lo..=*hi).contains(&v), "{model}: {analysis} {key} {v} outside {lo}..{hi}");
+        }
+    }
+}

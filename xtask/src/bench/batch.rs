@@ -80,7 +80,7 @@ pub fn run(s: &Settings) -> SectionOutput {
             "status",
         ],
     );
-    let base = match models::shipped_document("macpherson") {
+    let base = match models::shipped_document("generic/macpherson") {
         Ok(v) => v,
         Err(e) => {
             table.failed_row(Vec::new(), e);

@@ -135,7 +135,7 @@ fn compare(
     out: &mut SectionOutput,
 ) -> Result<Option<(f64, String)>, String> {
     let err = |e: &dyn std::fmt::Display| e.to_string();
-    let file = models::shipped("macpherson")?;
+    let file = models::shipped("generic/macpherson")?;
     let case = models::case(&file, Sweep::VerticalForce)?;
     let dir = std::env::temp_dir().join(format!("elastokin-bench-exudyn-{}", std::process::id()));
     std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
@@ -223,7 +223,7 @@ fn compare(
         out.notes.push(format!(
             "The Exudyn curve at {TARGET_STEPS} steps is `tests/data/exudyn/macpherson_vertical_force.csv`, made by \
              `{PYTHON} {SCRIPT} MODEL --contact-patch {} {} {} --load-range {} {} --steps {TARGET_STEPS}` with MODEL \
-             the output of `elastokin expand examples/macpherson.json`.",
+             the output of `elastokin expand examples/generic/macpherson.json`.",
             case.corner.wheel.contact_patch.x,
             case.corner.wheel.contact_patch.y,
             case.corner.wheel.contact_patch.z,

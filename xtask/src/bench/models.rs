@@ -8,7 +8,8 @@ use elastokin_suspensions::{Corner, Rig, Side, SuspensionFile};
 pub(crate) use crate::workspace_root as root;
 
 /// The shipped models: display name and file stem under `examples/`.
-pub const SHIPPED: [(&str, &str); 2] = [("MacPherson", "macpherson"), ("double wishbone", "double_wishbone")];
+pub const SHIPPED: [(&str, &str); 2] =
+    [("MacPherson", "generic/macpherson"), ("double wishbone", "generic/double_wishbone")];
 
 /// Reads `examples/{stem}.json`.
 pub fn shipped(stem: &str) -> Result<SuspensionFile, String> {

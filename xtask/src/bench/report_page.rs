@@ -68,7 +68,8 @@ pub fn run(s: &Settings) -> SectionOutput {
         limit: COMPARE_LIMIT_S,
         unit: "s".into(),
         judge: Judge::AtMost,
-        detail: "the MacPherson's first five variants of examples/macpherson_variants.txt, every analysis".into(),
+        detail: "the MacPherson's first five variants of examples/generic/macpherson_variants.txt, every analysis"
+            .into(),
     });
     out.targets.push(Target {
         goal: "the MacPherson's report with every analysis and the 3D view written".into(),
@@ -90,7 +91,7 @@ pub fn run(s: &Settings) -> SectionOutput {
     out
 }
 
-/// The median time to compare the shipped MacPherson's first five variants (`examples/macpherson_variants.txt`)
+/// The median time to compare the shipped MacPherson's first five variants (`examples/generic/macpherson_variants.txt`)
 /// as `elastokin compare` does: each model's suite with the parts' motion, the comparison and its report
 /// written.
 fn compare_five(s: &Settings, dir: &std::path::Path) -> Result<f64, String> {
@@ -99,8 +100,9 @@ fn compare_five(s: &Settings, dir: &std::path::Path) -> Result<f64, String> {
     use elastokin::suspensions::study::batch::{apply, base_document, parse_variants};
     let root = crate::workspace_root();
     let read = |p: &str| std::fs::read_to_string(root.join(p)).map_err(|e| format!("{p}: {e}"));
-    let base = base_document(&read("examples/macpherson.json")?, "examples/macpherson.json")?;
-    let variants = parse_variants(&read("examples/macpherson_variants.txt")?, "examples/macpherson_variants.txt")?;
+    let base = base_document(&read("examples/generic/macpherson.json")?, "examples/generic/macpherson.json")?;
+    let variants =
+        parse_variants(&read("examples/generic/macpherson_variants.txt")?, "examples/generic/macpherson_variants.txt")?;
     let files = variants.iter().take(5).map(|v| apply(&base, v)).collect::<Result<Vec<_>, _>>()?;
     if files.len() < 5 {
         return Err("fewer than five variants".into());

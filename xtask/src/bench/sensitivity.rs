@@ -28,7 +28,7 @@ pub fn run(s: &Settings) -> SectionOutput {
         "sensitivity.csv",
         &["analyses", "what", "parameters", "median time (s)", "time / analyses alone", "status"],
     );
-    let parameters = match models::shipped_document("macpherson")
+    let parameters = match models::shipped_document("generic/macpherson")
         .and_then(|base| Parameters::new(&base, &hardpoint_pointers(&base)))
     {
         Ok(p) => p,

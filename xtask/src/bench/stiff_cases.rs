@@ -566,7 +566,7 @@ pub fn run(s: &Settings) -> SectionOutput {
             "difference from the metre model: toe, camber (deg), wheel centre (mm)",
         ],
     );
-    let base = match std::fs::read_to_string(models::root().join("examples/macpherson.json"))
+    let base = match std::fs::read_to_string(models::root().join("examples/generic/macpherson.json"))
         .map_err(|e| e.to_string())
         .and_then(|t| serde_json::from_str::<Value>(&t).map_err(|e| e.to_string()))
     {

@@ -20,7 +20,7 @@ const H: &str = "/suspension/macpherson/hardpoints";
 
 /// The problem: the model, its targets, the free numbers.
 fn problem() -> Result<(Parameters, Targets), String> {
-    let base = models::shipped_document("macpherson")?;
+    let base = models::shipped_document("generic/macpherson")?;
     let mut hidden = base.clone();
     for (pointer, by) in [(format!("{H}/tie_rod_inner/2"), 0.004), (format!("{H}/tie_rod_outer/0"), -0.003)] {
         let v = hidden.pointer(&pointer).and_then(Value::as_f64).ok_or("no tie rod")? + by;

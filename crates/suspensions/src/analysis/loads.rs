@@ -13,6 +13,12 @@ use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, State, Static
 /// corner load the design position carries. The corner must hold its wheel-centre height
 /// ([`Rig::WheelTravel`] at `t = 0`, or [`Rig::HeightHeld`]).
 pub fn design_wheel_load(corner: &Corner) -> Result<f64, SolverError> {
+    Ok(design_wheel_load_estimated(corner, false)?.0)
+}
+
+/// [`design_wheel_load`] and, when `estimate`, its error estimate: the change of the load over one exact
+/// Newton iteration from the equilibrium (the rows' estimate, [`SweepExtras::error_estimate`]).
+pub fn design_wheel_load_estimated(corner: &Corner, estimate: bool) -> Result<(f64, Option<f64>), SolverError> {
     require_rig(corner, &[Rig::WheelTravel, Rig::HeightHeld])?;
     let Some(driver) = corner.model.joint_id(WHEEL_TRAVEL) else {
         return Err(SolverError::InvalidInput { what: "corner", why: "it has no \"wheel travel\" driver".into() });
@@ -20,7 +26,9 @@ pub fn design_wheel_load(corner: &Corner) -> Result<f64, SolverError> {
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let mut state = solver.design_state(0.0);
     let step = solver.equilibrium(&mut state)?;
-    Ok(step.joint_reactions(&corner.model)[driver.0].force.z)
+    let load = |s: &elastokin_solver::StepResult| s.joint_reactions(&corner.model)[driver.0].force.z;
+    let error = if estimate { Some((load(&solver.newton_correction(&step)?) - load(&step)).abs()) } else { None };
+    Ok((load(&step), error))
 }
 
 /// Force and moment that one joint or element applies at an equilibrium (global axes, N and N·m).

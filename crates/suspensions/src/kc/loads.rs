@@ -1,8 +1,8 @@
 //! The force-driven K&C tests: vertical force with the wheel free, the road loads, the static load case.
 
 use crate::analysis::{
-    design_wheel_load, model_load_sweep_with, slope_at, static_load_case, vertical_force_sweep_with,
-    wheel_load_sweep_with, ComponentForces, LoadRow, WheelLoad,
+    design_wheel_load, design_wheel_load_estimated, model_load_sweep_with, slope_at, static_load_case,
+    vertical_force_sweep_with, wheel_load_sweep_with, ComponentForces, LoadRow, WheelLoad,
 };
 use crate::build::{LoadPoint, Rig};
 use crate::description::Side;
@@ -28,7 +28,7 @@ fn where_loaded(s: &Settings) -> &'static str {
 
 pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
     let held = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(said)?;
-    let design_load = design_wheel_load(&held).map_err(said)?;
+    let (design_load, design_load_error) = design_wheel_load_estimated(&held, s.error_estimate).map_err(said)?;
     // The default range is 0.5 to 1.5 times the design wheel load. A corner that carries next to nothing at
     // design (its spring at its free length, as some imported data have it) gets 0 to 3 kN instead: a
     // range around nothing would have no width.
@@ -107,7 +107,7 @@ pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<Anal
         where_loaded(s),
         s.steps
     );
-    Ok(finish(
+    let mut report = finish(
         Analysis::VerticalForce,
         description,
         range,
@@ -115,7 +115,12 @@ pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<Anal
         &out,
         Reduction { table: &table, figures: &figures, drawing },
         charts,
-    ))
+    );
+    // The design load is not read off the rows, so the rows' estimate says nothing of it: its own.
+    if let Some(f) = report.figures.iter_mut().find(|f| f.key == "design_wheel_load") {
+        f.error = design_load_error;
+    }
+    Ok(report)
 }
 
 /// Columns of the force in every joint and element: `name force_x_n`, … for each.

@@ -162,8 +162,8 @@ pub fn evaluate(file: &SuspensionFile, half_range: f64, steps: usize) -> Result<
 mod tests {
     use super::*;
 
-    const MODEL: &str = include_str!("../../../../examples/macpherson.json");
-    const VARIANTS: &str = include_str!("../../../../examples/macpherson_variants.txt");
+    const MODEL: &str = include_str!("../../../../examples/generic/macpherson.json");
+    const VARIANTS: &str = include_str!("../../../../examples/generic/macpherson_variants.txt");
 
     #[test]
     fn checking_keys_refuses_what_applying_refuses_with_the_same_words() {
