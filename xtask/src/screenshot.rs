@@ -9,7 +9,10 @@
 //! - `docs/images/view-front.png`, `view-side.png`, `view-plan.png`: each projection of the geometry, and
 //!   `docs/images/view-3d.png`: the 3D view as it first shows — each a page of that part of the report
 //!   alone (the report's own head and markup, its script for the 3D view), so the picture is what the
-//!   browser draws there.
+//!   browser draws there;
+//! - `docs/images/compare.png`: the top of the comparison of `examples/macpherson.json` with the generic
+//!   MacPherson it was tuned from, as `elastokin compare` writes it, and `docs/images/vehicle.png`: the top
+//!   of the page `elastokin vehicle examples/vehicle/compact_car.json` writes.
 
 use crate::browser::{find_chromium, part_of_page, report_page, screenshot};
 use std::path::PathBuf;
@@ -32,9 +35,9 @@ struct View {
 /// The views, each a figure of the report: the projections end with their figure, the 3D view with its
 /// script.
 const VIEWS: [View; 4] = [
-    View { id: "view-front", close: "</figure>", picture: "docs/images/view-front.png", window: (460, 660) },
-    View { id: "view-side", close: "</figure>", picture: "docs/images/view-side.png", window: (460, 660) },
-    View { id: "view-plan", close: "</figure>", picture: "docs/images/view-plan.png", window: (460, 660) },
+    View { id: "view-front", close: "</figure>", picture: "docs/images/view-front.png", window: (460, 780) },
+    View { id: "view-side", close: "</figure>", picture: "docs/images/view-side.png", window: (460, 780) },
+    View { id: "view-plan", close: "</figure>", picture: "docs/images/view-plan.png", window: (460, 780) },
     View { id: "view-3d", close: "//]]></script>", picture: "docs/images/view-3d.png", window: (980, 700) },
 ];
 
@@ -86,5 +89,55 @@ fn run() -> Result<Vec<PathBuf>, String> {
         screenshot(&chromium, &part_page, "", &picture, view.window, &profile)?;
         pictures.push(picture);
     }
+    for (name, page, picture) in [
+        ("compare", compare_page(&root)?, "docs/images/compare.png"),
+        ("vehicle", vehicle_page(&root)?, "docs/images/vehicle.png"),
+    ] {
+        let path = dir.join(format!("{name}.html"));
+        std::fs::write(&path, page).map_err(|e| format!("{}: {e}", path.display()))?;
+        let picture = root.join(picture);
+        screenshot(&chromium, &path, "", &picture, (1200, 1500), &profile)?;
+        pictures.push(picture);
+    }
     Ok(pictures)
+}
+
+/// The model of the workspace's file `path`, read as the command reads it.
+fn model(root: &std::path::Path, path: &str) -> Result<elastokin::suspensions::SuspensionFile, String> {
+    elastokin::suspensions::SuspensionFile::read(&root.join(path)).map_err(|e| e.to_string())
+}
+
+/// The page `elastokin compare examples/macpherson.json examples/generic/macpherson.json` writes.
+fn compare_page(root: &std::path::Path) -> Result<String, String> {
+    use elastokin::suspensions::compare::{compare, Design};
+    use elastokin::suspensions::kc;
+    let settings = kc::Settings { motion: true, ..kc::Settings::default() };
+    let designs: Vec<Design> = ["examples/macpherson.json", "examples/generic/macpherson.json"]
+        .iter()
+        .map(|p| model(root, p).map(|f| Design::model(&f, kc::run_suite(&f, &[], &settings, |_| {}))))
+        .collect::<Result<_, _>>()?;
+    let comparison = compare(&designs)?;
+    let models: Vec<(&str, &kc::KcReport)> = designs
+        .iter()
+        .zip(&comparison.names)
+        .filter_map(|(d, n)| match d {
+            Design::Model { report, .. } => Some((n.as_str(), report)),
+            Design::Measured { .. } => None,
+        })
+        .collect();
+    Ok(elastokin::html::compare_html(&comparison, &models, &serde_json::json!({}), elastokin::plot::svg))
+}
+
+/// The page `elastokin vehicle examples/vehicle/compact_car.json` writes.
+fn vehicle_page(root: &std::path::Path) -> Result<String, String> {
+    use elastokin::suspensions::full_vehicle::{run_vehicle, VehicleFile};
+    let path = root.join("examples/vehicle/compact_car.json");
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let file = VehicleFile::from_json(&text, "examples/vehicle/compact_car.json")?;
+    let (front, rear) = (
+        model(root, &format!("examples/vehicle/{}", file.front))?,
+        model(root, &format!("examples/vehicle/{}", file.rear))?,
+    );
+    let report = run_vehicle(&file, &front, &rear, &elastokin::suspensions::kc::Settings::default())?;
+    Ok(elastokin::html::vehicle_html(&report, &serde_json::json!({})))
 }
