@@ -169,6 +169,11 @@ pub struct RunArgs {
     /// or the wheel centre, as a rig loading the hub does (traction acts at the wheel centre either way)
     #[arg(long, value_enum, default_value_t = LoadPointName::ContactPatch)]
     pub load_point: LoadPointName,
+    /// The units of bump steer and camber gain (deg/m, deg/10 mm or arc minutes per mm) and of the
+    /// aligning-torque compliances (deg/kN·m, or deg/100 N·m with either rig unit); summary.json's figure
+    /// units and its settings say which
+    #[arg(long, value_enum, default_value_t = UnitsName::DegPerM)]
+    pub units: UnitsName,
     /// Where the files go; the directory is replaced as a whole when the run succeeds
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
@@ -395,6 +400,29 @@ pub enum ModeName {
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum UnitsName {
+    /// deg/m and deg/kN·m
+    #[value(name = "deg-per-m")]
+    DegPerM,
+    /// deg/10 mm and deg/100 N·m, as K&C rigs print them
+    #[value(name = "deg-per-10mm")]
+    DegPer10Mm,
+    /// arc minutes per mm and deg/100 N·m
+    #[value(name = "arcmin-per-mm")]
+    ArcminPerMm,
+}
+
+impl UnitsName {
+    fn units(self) -> kc::Units {
+        match self {
+            UnitsName::DegPerM => kc::Units::DegPerM,
+            UnitsName::DegPer10Mm => kc::Units::DegPer10Mm,
+            UnitsName::ArcminPerMm => kc::Units::ArcminPerMm,
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum LoadPointName {
     /// At the contact patch.
     ContactPatch,
@@ -517,6 +545,7 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
         error_estimate: true,
         // The report draws the model moving through each analysis.
         motion: true,
+        units: args.units.units(),
     };
     args.sweeps.check(&settings)?;
     let read = read_model(&args.model)?;

@@ -1651,3 +1651,37 @@ fn vehicle_gives_the_shipped_cars_budget_and_refuses_a_car_that_cannot_be_by_key
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `run --units`: the rig's units in summary.json's figures and settings and on the terminal, the same
+/// numbers as the default's times the factor.
+#[test]
+fn run_writes_bump_steer_in_the_units_asked_for() {
+    let dir = scratch("units");
+    let figure = |units: &str| -> (serde_json::Value, String) {
+        let out = dir.join(units);
+        let o = elastokin(&[
+            "run",
+            "examples/macpherson.json",
+            "--analysis",
+            "parallel-travel",
+            "--units",
+            units,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+        assert_eq!(summary["settings"]["units"], units);
+        (
+            summary["analyses"]["parallel-travel"]["figures"]["bump_steer"].clone(),
+            String::from_utf8_lossy(&o.stdout).into(),
+        )
+    };
+    let (si, _) = figure("deg-per-m");
+    let (rig, printed) = figure("deg-per-10mm");
+    assert_eq!((si["unit"].as_str(), rig["unit"].as_str()), (Some("deg/m"), Some("deg/10 mm")));
+    assert_eq!(rig["value"].as_f64().unwrap(), si["value"].as_f64().unwrap() * 1e-2);
+    assert!(printed.contains("deg/10 mm"), "{printed}");
+    std::fs::remove_dir_all(&dir).ok();
+}

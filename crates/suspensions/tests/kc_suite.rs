@@ -442,3 +442,37 @@ fn ackermann_cells_are_empty_straight_ahead_not_a_ratio_of_rounding() {
     let steered = report.table.rows.iter().filter(|r| r[c].number().is_some()).count();
     assert_eq!(steered, report.table.rows.len() - 1);
 }
+
+/// `Settings::units`: bump steer and camber gain in deg/10 mm or arc minutes per mm, the aligning-torque
+/// compliances in deg/100 N·m — each the SI figure times its factor, its error estimate too — and every
+/// other figure, table and chart as it was; the choice named in the settings a summary serializes.
+#[test]
+fn rig_units_are_the_si_figures_scaled_and_nothing_else_moves() {
+    let file = example("macpherson.json");
+    for analysis in
+        [Analysis::ParallelTravel, Analysis::Road(elastokin_suspensions::analysis::WheelLoad::AligningTorque)]
+    {
+        let si = kc::run(analysis, &file, &Settings::default()).unwrap();
+        for (units, name, per_m, unit) in [
+            (kc::Units::DegPer10Mm, "deg-per-10mm", 1e-2, "deg/10 mm"),
+            (kc::Units::ArcminPerMm, "arcmin-per-mm", 0.06, "arcmin/mm"),
+        ] {
+            let settings = Settings { units, ..Settings::default() };
+            assert_eq!(serde_json::to_value(settings).unwrap()["units"], name);
+            let r = kc::run(analysis, &file, &settings).unwrap();
+            assert_eq!((&r.table, &r.charts), (&si.table, &si.charts));
+            for (a, b) in si.figures.iter().zip(&r.figures) {
+                let (factor, expected_unit) = match a.unit.as_str() {
+                    "deg/m" => (per_m, unit),
+                    "deg/kN·m" => (0.1, "deg/100 N·m"),
+                    other => (1.0, other),
+                };
+                assert_eq!(b.unit, expected_unit, "{}", a.key);
+                assert_eq!(b.value, a.value.map(|v| v * factor), "{}", a.key);
+                assert_eq!(b.error, a.error.map(|v| v * factor), "{}", a.key);
+            }
+            let changed = r.figures.iter().filter(|f| f.unit != "deg/m" && f.unit != "deg/kN·m").count();
+            assert_eq!(changed, r.figures.len());
+        }
+    }
+}

@@ -19,8 +19,8 @@ pub use chart::{Chart, Scale, Series, YAxis};
 pub use reduce::{COMPLIANCE_LOAD, COMPLIANCE_RESPONSE};
 pub use report::{significant, Accuracy, AnalysisReport, Cell, Failed, Figure, KcReport, Skipped, Table, Warning};
 pub use settings::{
-    mode_from_word, mode_word, Analysis, AnalysisError, Settings, Tolerance, ALL, MAX_RANGE_FRACTION, MAX_RANGE_LOAD,
-    MAX_RANGE_TRAVEL, MIN_RANGE,
+    mode_from_word, mode_word, Analysis, AnalysisError, Settings, Tolerance, Units, ALL, MAX_RANGE_FRACTION,
+    MAX_RANGE_LOAD, MAX_RANGE_TRAVEL, MIN_RANGE,
 };
 pub use travel::ideal_outer_steer;
 
@@ -39,7 +39,16 @@ pub fn run(analysis: Analysis, file: &SuspensionFile, settings: &Settings) -> Re
         Analysis::StaticLoad => loads::static_load(file, settings),
         Analysis::ModelLoads => loads::model_loads(file, settings),
     };
-    result.map_err(|message| AnalysisError { analysis: analysis.name(), message })
+    let mut report = result.map_err(|message| AnalysisError { analysis: analysis.name(), message })?;
+    for f in &mut report.figures {
+        if let Some((unit, factor, decimals)) = settings.units.of(&f.unit) {
+            f.unit = unit.into();
+            f.value = f.value.map(|v| v * factor);
+            f.error = f.error.map(|e| e * factor);
+            f.decimals += decimals;
+        }
+    }
+    Ok(report)
 }
 
 /// Whether `settings` make sense for `analysis` (steps, arc step, range in its units), before any model is

@@ -128,6 +128,40 @@ impl Default for Tolerance {
     }
 }
 
+/// How the figures that are slopes against wheel travel (bump steer, camber gain) and the aligning-torque
+/// compliances are written: in SI multiples, or as K&C rigs print them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub enum Units {
+    /// deg/m and deg/kN·m.
+    #[default]
+    #[serde(rename = "deg-per-m")]
+    DegPerM,
+    /// deg/10 mm and deg/100 N·m.
+    #[serde(rename = "deg-per-10mm")]
+    DegPer10Mm,
+    /// arc minutes per mm (′/mm) and deg/100 N·m.
+    #[serde(rename = "arcmin-per-mm")]
+    ArcminPerMm,
+}
+
+impl Units {
+    /// Every choice, with its name on the command line.
+    pub const ALL: [(Units, &'static str); 3] =
+        [(Units::DegPerM, "deg-per-m"), (Units::DegPer10Mm, "deg-per-10mm"), (Units::ArcminPerMm, "arcmin-per-mm")];
+
+    /// A figure's unit as the report writes it in SI multiples, in these units: the new unit, the factor
+    /// its values are multiplied by, and the decimals shown more. `None`: the unit stays.
+    pub fn of(self, unit: &str) -> Option<(&'static str, f64, usize)> {
+        match (self, unit) {
+            (Units::DegPerM, _) => None,
+            (Units::DegPer10Mm, "deg/m") => Some(("deg/10 mm", 1e-2, 2)),
+            (Units::ArcminPerMm, "deg/m") => Some(("arcmin/mm", 60.0 * 1e-3, 1)),
+            (_, "deg/kN·m") => Some(("deg/100 N·m", 0.1, 1)),
+            _ => None,
+        }
+    }
+}
+
 /// How the suite walks its paths.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Settings {
@@ -165,6 +199,8 @@ pub struct Settings {
     /// ([`AnalysisReport::motion`](crate::kc::AnalysisReport::motion)). Off unless a view is to be drawn.
     #[serde(skip)]
     pub motion: bool,
+    /// The units of the slopes against wheel travel and of the aligning-torque compliances.
+    pub units: Units,
 }
 
 impl Default for Settings {
@@ -181,6 +217,7 @@ impl Default for Settings {
             arc_step: None,
             error_estimate: true,
             motion: false,
+            units: Units::DegPerM,
         }
     }
 }
