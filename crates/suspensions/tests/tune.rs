@@ -320,7 +320,7 @@ fn a_tune_whose_steps_leave_what_the_model_accepts_steps_back_and_says_so() {
 /// The shipped front MacPherson and double wishbone are tuned by `elastokin tune` to the targets kept
 /// beside them (`examples/targets/macpherson.json`, `examples/targets/double_wishbone.json`): tuned again
 /// from themselves they meet every target as they are, and their figures are a passenger car's — each in
-/// the range a production car's lies in.
+/// the range a production car's lies in; the five-link rear's too.
 #[test]
 fn the_shipped_fronts_meet_their_tuning_targets_and_a_passenger_cars_ranges() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
@@ -357,10 +357,27 @@ fn the_shipped_fronts_meet_their_tuning_targets_and_a_passenger_cars_ranges() {
         assert!(tuned.all_met(), "{model}: {:?}", tuned.verdicts);
         assert_eq!(tuned.start.x, tuned.end.x, "{model}: already where the tune left it");
         let file = Parameters::new(&base, &[]).unwrap().file().unwrap();
-        for (analysis, key, lo, hi) in ranges {
-            let a = kc::run(Analysis::from_name(analysis).unwrap(), &file, &Settings::default()).unwrap();
-            let v = a.figure(key).and_then(|f| f.value).unwrap();
-            assert!((*lo..=*hi).contains(&v), "{model}: {analysis} {key} {v} outside {lo}..{hi}");
-        }
+        in_ranges(model, &file, ranges);
+    }
+    let rear = base_document(&std::fs::read_to_string(root.join("five_link.json")).unwrap(), "five_link").unwrap();
+    let rear = Parameters::new(&rear, &[]).unwrap().file().unwrap();
+    in_ranges(
+        "five_link",
+        &rear,
+        &[
+            ("parallel-travel", "bump_steer", -5.0, 5.0),
+            ("parallel-travel", "camber_gain", -35.0, -10.0),
+            ("roll", "roll_centre_height", 30.0, 150.0),
+            ("parallel-travel", "wheel_rate", 15.0, 40.0),
+        ],
+    );
+}
+
+/// Each figure of `file` named in `ranges` lies in its range.
+fn in_ranges(model: &str, file: &elastokin_suspensions::SuspensionFile, ranges: &[(&str, &str, f64, f64)]) {
+    for (analysis, key, lo, hi) in ranges {
+        let a = kc::run(Analysis::from_name(analysis).unwrap(), file, &Settings::default()).unwrap();
+        let v = a.figure(key).and_then(|f| f.value).unwrap();
+        assert!((*lo..=*hi).contains(&v), "{model}: {analysis} {key} {v} outside {lo}..{hi}");
     }
 }
