@@ -1079,14 +1079,7 @@ fn compare(args: CompareArgs, out: &Stdout) -> Result<(), Failure> {
     provenance.other_files = files[1..].to_vec();
     provenance.tolerance = Some(settings.tolerance);
     provenance.range = settings.range;
-    let models: Vec<(&str, &kc::KcReport)> = designs
-        .iter()
-        .zip(&comparison.names)
-        .filter_map(|(d, name)| match d {
-            Design::Model { report, .. } => Some((name.as_str(), report)),
-            Design::Measured { .. } => None,
-        })
-        .collect();
+    let models = comparison.models(&designs);
     let staging = Staging::new(&args.out)?;
     let written = (|| -> Result<Vec<PathBuf>, Failure> {
         let html = elastokin::html::compare_html(&comparison, &models, &provenance.to_json(), plot::svg);

@@ -117,14 +117,7 @@ fn compare_page(root: &std::path::Path) -> Result<String, String> {
         .map(|p| model(root, p).map(|f| Design::model(&f, kc::run_suite(&f, &[], &settings, |_| {}))))
         .collect::<Result<_, _>>()?;
     let comparison = compare(&designs)?;
-    let models: Vec<(&str, &kc::KcReport)> = designs
-        .iter()
-        .zip(&comparison.names)
-        .filter_map(|(d, n)| match d {
-            Design::Model { report, .. } => Some((n.as_str(), report)),
-            Design::Measured { .. } => None,
-        })
-        .collect();
+    let models = comparison.models(&designs);
     Ok(elastokin::html::compare_html(&comparison, &models, &serde_json::json!({}), elastokin::plot::svg))
 }
 

@@ -60,6 +60,21 @@ pub struct Comparison {
     pub charts: Vec<Chart>,
 }
 
+impl Comparison {
+    /// The models among `designs` (the designs compared, in their order), each by its name here, with its
+    /// suite: what the pages draw the geometry and the failures of.
+    pub fn models<'a>(&'a self, designs: &'a [Design]) -> Vec<(&'a str, &'a KcReport)> {
+        designs
+            .iter()
+            .zip(&self.names)
+            .filter_map(|(d, name)| match d {
+                Design::Model { report, .. } => Some((name.as_str(), report)),
+                Design::Measured { .. } => None,
+            })
+            .collect()
+    }
+}
+
 /// Compares `designs` (at least two, at least one a model). Refused, by name: fewer than two, no model, a
 /// solid axle with an independent corner, models with no analysis in common, a measured file naming no
 /// analysis a model ran, or with a load parameter or no column in common with that analysis's table.

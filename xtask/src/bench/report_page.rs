@@ -112,14 +112,7 @@ fn compare_five(s: &Settings, dir: &std::path::Path) -> Result<f64, String> {
         let designs: Vec<Design> =
             files.iter().map(|f| Design::model(f, kc::run_suite(f, &[], &settings, |_| {}))).collect();
         let comparison = compare(&designs)?;
-        let models: Vec<(&str, &kc::KcReport)> = designs
-            .iter()
-            .zip(&comparison.names)
-            .filter_map(|(d, n)| match d {
-                Design::Model { report, .. } => Some((n.as_str(), report)),
-                Design::Measured { .. } => None,
-            })
-            .collect();
+        let models = comparison.models(&designs);
         let html = elastokin::html::compare_html(&comparison, &models, &serde_json::json!({}), elastokin::plot::svg);
         std::fs::write(dir.join("compare.html"), &html).map_err(|e| e.to_string())?;
         Ok(html.len())
