@@ -64,7 +64,7 @@
 //! rubber bushing's range.
 
 use crate::curve::{Anchor, Characteristic};
-use crate::geometry::{add_block, add_rows, check_distinct, check_finite, set_jac_block, Jac3};
+use crate::geometry::{add_block, add_rows, check_distinct, check_finite, frame_rotation, set_jac_block, Jac3};
 use elastokin_core::math::{
     left_jacobian_inv, quat_log, rotation_vector_moment, skew, tait_bryan_xyz, tait_bryan_xyz_axes,
 };
@@ -72,7 +72,7 @@ use elastokin_core::{
     BodyRef, ElementEval, ElementReport, ElementRole, ForceElement, Mat3, ModelError, PairMatrix, Pose, Sketch,
     SketchKind, Vec3,
 };
-use nalgebra::{Rotation3, UnitQuaternion};
+use nalgebra::UnitQuaternion;
 
 /// How a bushing's moment follows the relative rotation `R = Eᵀ Eⱼ` of its two frames (rotation vector
 /// `θ`, local components). All three give `M = K θ` for a rotation about one of the bushing's axes; they
@@ -202,9 +202,6 @@ impl BushingSpec {
         let name = self.name.as_str();
         check_distinct(name, self.body_i, self.body_j)?;
         check_finite(name, "hardpoint", &self.point)?;
-        if !self.frame.iter().all(|c| c.is_finite()) {
-            return Err(ModelError::NonFinite { item: name.to_string(), what: "frame" });
-        }
         let what_t = ["translational stiffness Kx", "translational stiffness Ky", "translational stiffness Kz"];
         let what_r = ["rotational stiffness Ku", "rotational stiffness Kv", "rotational stiffness Kw"];
         for a in 0..3 {
@@ -213,16 +210,7 @@ impl BushingSpec {
         }
         check_finite(name, "preload force", &self.preload_force)?;
         check_finite(name, "preload torque", &self.preload_torque)?;
-        let e = &self.frame;
-        let ortho = (e.transpose() * e - Mat3::identity()).amax();
-        let det = e.determinant();
-        if ortho > FRAME_TOLERANCE || det < 0.0 {
-            let error = if det < 0.0 { ortho.max((det - 1.0).abs()) } else { ortho };
-            return Err(ModelError::NotOrthonormal { item: name.to_string(), error });
-        }
-        // Snap to the nearest unit quaternion (Shepperd's formula does not normalise).
-        let q = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(*e));
-        Ok(UnitQuaternion::new_normalize(q.into_inner()))
+        frame_rotation(name, &self.frame)
     }
 }
 

@@ -1,9 +1,10 @@
 //! Validation of design data, small block helpers, and the line between two seats that springs and stops
 //! share.
 
+use crate::bushing::FRAME_TOLERANCE;
 use elastokin_core::math::skew;
 use elastokin_core::{BodyRef, ElementEval, Mat3, ModelError, PairMatrix, Pose, Sketch, SketchKind, Vec3};
-use nalgebra::SMatrix;
+use nalgebra::{Rotation3, SMatrix, UnitQuaternion};
 
 /// A 3×12 Jacobian of a 3-vector over the coordinates `(Δrᵢ, Δπᵢ, Δrⱼ, Δπⱼ)`.
 pub(crate) type Jac3 = SMatrix<f64, 3, 12>;
@@ -38,6 +39,24 @@ pub(crate) fn check_finite_scalar(item: &str, what: &'static str, value: f64) ->
 }
 
 /// The two bodies of a two-body element must differ ([`ModelError::SelfJoint`] names the element).
+/// An element's frame (columns: its axes, global components) as a rotation: a frame with a non-finite
+/// entry, or that is not orthonormal and right-handed to [`FRAME_TOLERANCE`], is refused by the element's
+/// name.
+pub(crate) fn frame_rotation(name: &str, e: &Mat3) -> Result<UnitQuaternion<f64>, ModelError> {
+    if !e.iter().all(|c| c.is_finite()) {
+        return Err(ModelError::NonFinite { item: name.to_string(), what: "frame" });
+    }
+    let ortho = (e.transpose() * e - Mat3::identity()).amax();
+    let det = e.determinant();
+    if ortho > FRAME_TOLERANCE || det < 0.0 {
+        let error = if det < 0.0 { ortho.max((det - 1.0).abs()) } else { ortho };
+        return Err(ModelError::NotOrthonormal { item: name.to_string(), error });
+    }
+    // Snap to the nearest unit quaternion (Shepperd's formula does not normalise).
+    let q = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(*e));
+    Ok(UnitQuaternion::new_normalize(q.into_inner()))
+}
+
 pub(crate) fn check_distinct(item: &str, i: BodyRef, j: BodyRef) -> Result<(), ModelError> {
     if i == j {
         Err(ModelError::SelfJoint { joint: item.to_string() })

@@ -76,6 +76,7 @@
 pub mod bushing;
 pub mod coil_spring;
 pub mod curve;
+pub mod field;
 mod geometry;
 pub mod point_load;
 pub mod stop;
@@ -83,5 +84,6 @@ pub mod stop;
 pub use bushing::{Bushing, BushingSpec, RotationLaw};
 pub use coil_spring::{CoilSpring, CoilSpringSpec};
 pub use curve::{Characteristic, Curve};
+pub use field::{Field, FieldSpec};
 pub use point_load::{PointForce, PointForceSpec, PointTorque, PointTorqueSpec};
 pub use stop::{Stop, StopKind, StopSpec};
