@@ -2,7 +2,7 @@
 //! x–z, plan x–y, in mm, the design position drawn and the sweep's extremes ghosted), and a 3D view
 //! that moves the parts through each analysis as solved (a canvas, orbit, zoom, a slider and play).
 //!
-//! Both draw the same [`Stroke`]s and [`Dot`]s of the library's [`Drawing`], placed by the poses of a
+//! Both draw the same [`Stroke`]s and [`Dot`]s of the library's [`Drawing`](crate::suspensions::drawing::Drawing), placed by the poses of a
 //! row of [`Motion`]: a stroke's points are anchored on the bodies that carry them, so a view only
 //! places and projects. The 3D view is a small hand-written script (`src/view3d.js`, 8.8 kB): the scene
 //! is a few dozen lines and dots, which a 2D canvas draws in well under a frame. three.js inlined instead

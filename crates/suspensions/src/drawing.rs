@@ -1,7 +1,7 @@
 //! A drawing of a built model: what a geometry view or a 3D view shows of it, and where each thing sits
 //! on its body, so that the poses of any solved configuration place the whole drawing.
 //!
-//! Everything is read off the built [`Model`] (its joints and its elements' [`Sketch`]es) and its wheels,
+//! Everything is read off the built [`Model`] (its joints and its elements' [`Sketch`](elastokin_core::Sketch)es) and its wheels,
 //! so a template, the general form, an axle and a Chrono file are drawn alike. Each point is kept on the
 //! body that carries it, in that body's frame (the ground's points are global): a joint's point on each
 //! of its two bodies, which coincide at design and stay together wherever the joint holds them; a
