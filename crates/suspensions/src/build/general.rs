@@ -7,8 +7,8 @@
 use crate::build::map::load_labels;
 use crate::build::template::{CornerParts, CornerTemplate, CrossAxle, SteeringLink, TieRod};
 use crate::description::general::{
-    part_name, Axis, BodyDef, BushingDef, GeneralCorner, JointDef, Place, SpringDef, Stiffness, StopDef, StopType,
-    CHASSIS,
+    part_name, Axis, BodyDef, BushingDef, FieldDef, GeneralCorner, JointDef, Place, SpringDef, Stiffness, StopDef,
+    StopType, CHASSIS,
 };
 use crate::description::limits::{
     check_hardpoints, check_rate, check_spring_force, check_steering_arm, check_steering_axis, check_tie_rod_mounts,
@@ -18,7 +18,9 @@ use crate::description::Side;
 use crate::wheel::Wheel;
 use elastokin_core::joint::orthonormal_complement;
 use elastokin_core::{BodyRef, ElementId, JointKind, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
-use elastokin_elements::{Bushing, BushingSpec, Characteristic, CoilSpring, Curve, PointForce, PointTorque, Stop};
+use elastokin_elements::{
+    Bushing, BushingSpec, Characteristic, CoilSpring, Curve, Field, FieldSpec, PointForce, PointTorque, Stop,
+};
 
 impl Stiffness {
     /// The element's characteristic; `item` names it in errors (a rate is checked by the element).
@@ -489,6 +491,36 @@ impl GeneralCorner {
         Ok(())
     }
 
+    fn add_field(&self, model: &mut Model, r: &Resolver, k: usize, f: &FieldDef) -> Result<(), ModelError> {
+        let key = format!("fields[{k}] ({})", f.name);
+        let bi = r.body(model, &format!("{key}.bodies"), &f.bodies[0])?;
+        let bj = r.body(model, &format!("{key}.bodies"), &f.bodies[1])?;
+        let left = Resolver { side: Side::Left, ..*r };
+        let x = f.axis.as_ref().map(|a| left.direction(&format!("{key}.axis"), a)).transpose()?.unwrap_or(Vec3::x());
+        let y = f.y_axis.as_ref().map(|a| left.direction(&format!("{key}.y_axis"), a)).transpose()?;
+        let point = r.point(&format!("{key}.at"), &f.at)?;
+        let frame = bushing_frame(x, y, r.side).map_err(|why| ModelError::OutOfRange { item: key.clone(), why })?;
+        // The mirror image turns the frame's z axis over (see `bushing_frame`): in the right corner's frame
+        // the deflection along z and the rotation about x and y change sign, so the matrix is T K T with
+        // T = diag(1, 1, −1, −1, −1, 1), and the preload as a bushing's.
+        let s = r.side.sign();
+        let t = nalgebra::Vector6::new(1.0, 1.0, s, s, s, 1.0);
+        let stiffness = nalgebra::Matrix6::from_fn(|a, b| t[a] * f.stiffness[a][b] * t[b]);
+        let force = f.preload_force.map_or(Vec3::zeros(), |v| Vec3::new(v[0], v[1], s * v[2]));
+        let torque = f.preload_torque.map_or(Vec3::zeros(), |m| Vec3::new(s * m[0], s * m[1], m[2]));
+        model.add_element(Field::from_spec(FieldSpec {
+            name: part_name(r.prefix, &f.name),
+            body_i: bi,
+            body_j: bj,
+            point,
+            frame,
+            stiffness,
+            preload_force: force,
+            preload_torque: torque,
+        })?)?;
+        Ok(())
+    }
+
     fn add_spring(&self, model: &mut Model, r: &Resolver, k: usize, s: &SpringDef) -> Result<ElementId, ModelError> {
         let key = format!("springs[{k}] ({})", s.name);
         let bi = r.body(model, &format!("{key}.bodies"), &s.bodies[0])?;
@@ -599,6 +631,9 @@ impl CornerTemplate for GeneralCorner {
         }
         for (k, b) in self.bushings.iter().enumerate() {
             self.add_bushing(model, &r, k, b)?;
+        }
+        for (k, f) in self.fields.iter().enumerate() {
+            self.add_field(model, &r, k, f)?;
         }
         let mut springs = Vec::with_capacity(self.springs.len());
         for (k, s) in self.springs.iter().enumerate() {

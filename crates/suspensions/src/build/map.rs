@@ -9,7 +9,7 @@
 //! through the builder. A template's items are those of its expansion into the general form.
 
 use crate::build::rig::{RACK, RACK_SLIDE, RACK_TRAVEL, STEERING_LINK, TIE_ROD, WHEEL_TRAVEL};
-use crate::description::general::{BushingDef, GeneralCorner, JointDef, LoadDef, SpringDef, StopDef};
+use crate::description::general::{BushingDef, FieldDef, GeneralCorner, JointDef, LoadDef, SpringDef, StopDef};
 use crate::description::place::part_name;
 use crate::description::Side;
 use elastokin_core::{BodyId, ElementId, JointId, Model};
@@ -51,31 +51,33 @@ pub(crate) fn load_labels(load: &LoadDef, prefix: &str) -> (Option<String>, Opti
     (force, torque)
 }
 
-/// The names of joints, bushings, springs and stops, in that order.
+/// The names of joints, bushings, fields, springs and stops, in that order.
 fn parts<'a>(
     joints: &'a [JointDef],
     bushings: &'a [BushingDef],
+    fields: &'a [FieldDef],
     springs: &'a [SpringDef],
     stops: &'a [StopDef],
-) -> [Vec<&'a str>; 4] {
+) -> [Vec<&'a str>; 5] {
     [
         joints.iter().map(|j| j.name.as_str()).collect(),
         bushings.iter().map(|b| b.name.as_str()).collect(),
+        fields.iter().map(|f| f.name.as_str()).collect(),
         springs.iter().map(|sp| sp.name.as_str()).collect(),
         stops.iter().map(|st| st.name.as_str()).collect(),
     ]
 }
 
 /// Each entry's key under `under` (`""` or `"axle."`) with its name: the bodies, then `parts` (joints,
-/// bushings, springs, stops).
+/// bushings, fields, springs, stops).
 fn entries<'a>(
     under: &str,
     bodies: impl Iterator<Item = &'a String>,
-    parts: &[Vec<&'a str>; 4],
+    parts: &[Vec<&'a str>; 5],
 ) -> Vec<(String, &'a str)> {
     let mut out: Vec<(String, &str)> =
         bodies.enumerate().map(|(k, name)| (format!("{under}bodies[{k}]"), name.as_str())).collect();
-    for (list, names) in ["joints", "bushings", "springs", "stops"].into_iter().zip(parts) {
+    for (list, names) in ["joints", "bushings", "fields", "springs", "stops"].into_iter().zip(parts) {
         out.extend(names.iter().enumerate().map(|(k, name)| (format!("{under}{list}[{k}]"), *name)));
     }
     out
@@ -110,7 +112,7 @@ impl BuildMap {
             for (key, name) in entries(
                 "",
                 general.bodies.iter().map(|b| &b.name),
-                &parts(&general.joints, &general.bushings, &general.springs, &general.stops),
+                &parts(&general.joints, &general.bushings, &general.fields, &general.springs, &general.stops),
             ) {
                 item(key, name, s, &named(name));
             }
@@ -130,7 +132,7 @@ impl BuildMap {
             item(format!("anti_roll_bars[{k}]"), &bar.name, None, std::slice::from_ref(&bar.name));
         }
         if let Some(axle) = &general.axle {
-            let shared = parts(&axle.joints, &axle.bushings, &axle.springs, &axle.stops);
+            let shared = parts(&axle.joints, &axle.bushings, &[], &axle.springs, &axle.stops);
             for (key, name) in entries("axle.", axle.bodies.iter().map(|b| &b.name), &shared) {
                 item(key, name, None, &[name.to_string()]);
             }

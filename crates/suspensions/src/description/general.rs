@@ -209,6 +209,34 @@ impl BushingDef {
     }
 }
 
+/// A field element between two bodies: a general 6×6 stiffness in a frame at a point, the coupled terms of
+/// a data sheet allowed (a bushing is its diagonal case; see `elastokin_elements::Field`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FieldDef {
+    /// Name; forces and deflections are reported under it.
+    pub name: String,
+    /// The two bodies: the frame moves with the first; forces are those on the second.
+    pub bodies: [String; 2],
+    /// Its point at design.
+    pub at: Place,
+    /// The frame's x axis (default: global x).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub axis: Option<Axis>,
+    /// A direction the frame's y axis leans towards (default: any perpendicular to x).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub y_axis: Option<Axis>,
+    /// The stiffness over the deflection along x, y, z and the rotation about them, in the frame: six rows
+    /// of six (N/m, N/rad, N·m/m, N·m/rad), symmetric and positive semi-definite.
+    pub stiffness: [[f64; 6]; 6],
+    /// Force on the second body at zero deflection, in the frame (N).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub preload_force: Option<[f64; 3]>,
+    /// Moment on the second body at zero rotation, in the frame (N·m).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub preload_torque: Option<[f64; 3]>,
+}
+
 /// A coil spring between two bodies: a rate or a measured curve, with its push at design or its free
 /// length.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -415,6 +443,9 @@ pub struct GeneralCorner {
     /// Rubber bushings.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub bushings: Vec<BushingDef>,
+    /// Field elements: coupled 6×6 stiffnesses.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub fields: Vec<FieldDef>,
     /// Coil springs.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub springs: Vec<SpringDef>,
@@ -443,6 +474,7 @@ impl GeneralCorner {
             bodies: Vec::new(),
             joints: Vec::new(),
             bushings: Vec::new(),
+            fields: Vec::new(),
             springs: Vec::new(),
             stops: Vec::new(),
             anti_roll_bars: Vec::new(),
