@@ -105,6 +105,17 @@ class Scene:
         axis: Optional[_Vector3] = None,
         axis_j: Optional[_Vector3] = None,
     ) -> None: ...
+    def field(
+        self,
+        name: str,
+        bodies: Tuple[str, str],
+        at: _Vector3,
+        stiffness: List[List[float]],
+        axis: Optional[_Vector3] = None,
+        y_axis: Optional[_Vector3] = None,
+        preload_force: Optional[_Vector3] = None,
+        preload_torque: Optional[_Vector3] = None,
+    ) -> None: ...
     def bushing(
         self,
         name: str,

@@ -248,6 +248,41 @@ class Scene:
             )
         return name
 
+    def field(
+        self,
+        name: str,
+        *,
+        bodies: Tuple[str, str],
+        at: _Vector,
+        stiffness: Any,
+        axis: Optional[_Vector] = None,
+        y_axis: Optional[_Vector] = None,
+        preload_force: Optional[_Vector] = None,
+        preload_torque: Optional[_Vector] = None,
+    ) -> str:
+        """Adds a field element between ``bodies`` at ``at``, as a model file's field entry: ``stiffness`` is a
+        6×6 matrix (six rows of six, or a numpy array) over the deflection along x, y, z (m) and the rotation
+        about them (rad) in its frame — N/m, N/rad, N·m/m, N·m/rad — symmetric and positive semi-definite, the
+        coupled terms of a data sheet allowed (a diagonal one is the bushing of those rates). Its frame is a
+        bushing's: x along ``axis``, y towards ``y_axis``, moving with the first body. ``preload_force`` (N)
+        and ``preload_torque`` (N·m), in its frame, act on the second body at zero deflection."""
+        name = _name(name, "field")
+        matrix = numpy.asarray(stiffness, dtype=float)
+        if matrix.shape != (6, 6):
+            raise ValueError(f"'{name}': stiffness must be 6×6 (six rows of six), got shape {matrix.shape}")
+        with _not_while_swept(name):
+            self._native.field(
+                name,
+                _bodies(bodies, name),
+                _vector(at, "at", name),
+                [[float(v) for v in row] for row in matrix],
+                axis=_optional_vector(axis, "axis", name),
+                y_axis=_optional_vector(y_axis, "y_axis", name),
+                preload_force=_optional_vector(preload_force, "preload_force", name),
+                preload_torque=_optional_vector(preload_torque, "preload_torque", name),
+            )
+        return name
+
     def spring(
         self,
         name: str,

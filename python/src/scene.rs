@@ -12,7 +12,7 @@ use elastokin_solver::{JointReaction, LoadPath, Mode, SolverError, SolverOptions
 use elastokin_suspensions::analysis::{walk, SweepLimit};
 use elastokin_suspensions::build::{joint_spec, JointGeometry};
 use elastokin_suspensions::description::general::{
-    Axis, BushingDef, Place, SpringDef, Stiffness, StopDef, StopType, CHASSIS,
+    Axis, BushingDef, FieldDef, Place, SpringDef, Stiffness, StopDef, StopType, CHASSIS,
 };
 use elastokin_suspensions::kc::mode_word;
 use elastokin_suspensions::Side;
@@ -125,6 +125,7 @@ fn three(item: &str, what: &str, rates: Option<Vec<StiffnessArg>>) -> PyResult<O
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum ElementKind {
     Bushing,
+    Field,
     Spring,
     Stop,
     Force,
@@ -135,6 +136,7 @@ impl ElementKind {
     fn name(self) -> &'static str {
         match self {
             ElementKind::Bushing => "bushing",
+            ElementKind::Field => "field",
             ElementKind::Spring => "spring",
             ElementKind::Stop => "stop",
             ElementKind::Force => "force",
@@ -313,6 +315,43 @@ impl Scene {
         // The model file's reading of the rates, the frame and the preload; the scene is not mirrored.
         let bushing = def.bushing("bushing", name, [body_i, body_j], point, x, y, Side::Left).map_err(model_error)?;
         self.add(ElementKind::Bushing, bushing)
+    }
+
+    /// Adds a field element between `bodies` at `at`, as a model file's field entry: a 6×6 stiffness
+    /// (six rows of six over the deflection along x, y, z and the rotation about them, in its frame),
+    /// symmetric and positive semi-definite, coupled terms allowed; the frame as a bushing's.
+    #[pyo3(signature = (name, bodies, at, stiffness, axis=None, y_axis=None, preload_force=None, preload_torque=None))]
+    fn field(
+        &mut self,
+        name: &str,
+        bodies: (String, String),
+        at: [f64; 3],
+        stiffness: [[f64; 6]; 6],
+        axis: Option<[f64; 3]>,
+        y_axis: Option<[f64; 3]>,
+        preload_force: Option<[f64; 3]>,
+        preload_torque: Option<[f64; 3]>,
+    ) -> PyResult<()> {
+        let [body_i, body_j] = self.pair(name, bodies.clone())?;
+        self.fresh(name)?;
+        let point = finite(name, "point 'at'", at)?;
+        let x = axis.map(|a| direction(name, "axis", a)).transpose()?.unwrap_or(Vec3::x());
+        let y = y_axis.map(|a| direction(name, "y_axis", a)).transpose()?;
+        let preload_force = preload_force.map(|f| finite(name, "preload_force", f)).transpose()?;
+        let preload_torque = preload_torque.map(|m| finite(name, "preload_torque", m)).transpose()?;
+        let def = FieldDef {
+            name: name.to_string(),
+            bodies: [bodies.0, bodies.1],
+            at: Place::At(point),
+            axis: Some(Axis::Vector(x)),
+            y_axis: y.map(Axis::Vector),
+            stiffness,
+            preload_force: preload_force.map(Into::into),
+            preload_torque: preload_torque.map(Into::into),
+        };
+        // The model file's reading of the matrix, the frame and the preload; the scene is not mirrored.
+        let field = def.field("field", name, [body_i, body_j], point, x, y, Side::Left).map_err(model_error)?;
+        self.add(ElementKind::Field, field)
     }
 
     /// Adds a coil spring pushing its seats apart, from `from_` on the first body to `to` on the second,

@@ -690,3 +690,38 @@ def test_adding_a_part_while_another_thread_sweeps_says_the_scene_is_being_swept
     assert len(swept) == 1 and len(swept[0].t) == 20001
     scene.body("after", at=[2, 0, 0])
     assert "after" in scene.bodies
+
+
+# --- Field elements -----------------------------------------------------------------------------------------
+
+
+def test_a_field_of_the_bushing_s_rates_gives_the_bushing_s_sweep():
+    """The swing arm's pivot bushing written as a field: its frame's diagonal (axial along x, radial across;
+    torsion about x, conical across) gives the same sweep, and a coupled term moves it."""
+
+    def with_field(couple):
+        scene = elastokin.Scene()
+        scene.body("swing arm", at=[(p + w) / 2.0 for p, w in zip(PIVOT, WHEEL_CENTRE)])
+        k = numpy.diag([1e6, 5e6, 5e6, math.degrees(10.0), math.degrees(100.0), math.degrees(100.0)])
+        k[1, 5] = k[5, 1] = couple * math.sqrt(k[1, 1] * k[5, 5])
+        scene.field("pivot bushing", bodies=("chassis", "swing arm"), at=PIVOT, axis=[0, 1, 0], y_axis=[-1, 0, 0],
+                    stiffness=k)
+        scene.spring(
+            "spring", bodies=("chassis", "swing arm"), from_=SEAT_CHASSIS, to=SEAT_ARM, rate=60e3, design_force=3000.0
+        )
+        scene.force("wheel force", body="swing arm", at=WHEEL_CENTRE, force=[0, 0, 1500.0], constant=[0, 0, 2000.0])
+        return scene.sweep(-1.0, 1.0, 20)
+
+    bushing = swing_arm().sweep(-1.0, 1.0, 20)
+    field = with_field(0.0)
+    z = lambda s: s.point("swing arm", WHEEL_CENTRE)[:, 2]
+    # The same elements in the same order: measured 0.
+    assert numpy.abs(z(field) - z(bushing)).max() <= 1e-15
+    coupled = with_field(0.3)
+    assert numpy.abs(z(coupled) - z(bushing)).max() > 1e-6
+    with pytest.raises(elastokin.ModelError, match="not symmetric"):
+        scene = elastokin.Scene()
+        scene.body("b", at=[0, 0, 0])
+        k = numpy.eye(6)
+        k[0, 1] = 1.0
+        scene.field("f", bodies=("chassis", "b"), at=[0, 0, 0], stiffness=k)

@@ -442,6 +442,43 @@ fn bushing_frame(x_left: Vec3, y_hint_left: Option<Vec3>, side: Side) -> Result<
     Ok(Mat3::from_columns(&[x, y, x.cross(&y)]))
 }
 
+impl FieldDef {
+    /// The field element of this entry (`key` names it in errors) between `bodies`, at `point`, its frame
+    /// from the left corner's `x_left` and `y_hint_left` mirrored to `side`. The mirror image turns the
+    /// frame's z axis over (see [`bushing_frame`]): in the right corner's frame the deflection along z and
+    /// the rotation about x and y change sign, so the matrix is `T K T` with `T = diag(1, 1, −1, −1, −1, 1)`,
+    /// and the preload changes as a bushing's.
+    #[allow(clippy::too_many_arguments)]
+    pub fn field(
+        &self,
+        key: &str,
+        name: &str,
+        bodies: [BodyRef; 2],
+        point: Vec3,
+        x_left: Vec3,
+        y_hint_left: Option<Vec3>,
+        side: Side,
+    ) -> Result<Field, ModelError> {
+        let frame = bushing_frame(x_left, y_hint_left, side)
+            .map_err(|why| ModelError::OutOfRange { item: key.to_string(), why })?;
+        let s = side.sign();
+        let t = nalgebra::Vector6::new(1.0, 1.0, s, s, s, 1.0);
+        let stiffness = nalgebra::Matrix6::from_fn(|a, b| t[a] * self.stiffness[a][b] * t[b]);
+        let force = self.preload_force.map_or(Vec3::zeros(), |v| Vec3::new(v[0], v[1], s * v[2]));
+        let torque = self.preload_torque.map_or(Vec3::zeros(), |m| Vec3::new(s * m[0], s * m[1], m[2]));
+        Field::from_spec(FieldSpec {
+            name: name.to_string(),
+            body_i: bodies[0],
+            body_j: bodies[1],
+            point,
+            frame,
+            stiffness,
+            preload_force: force,
+            preload_torque: torque,
+        })
+    }
+}
+
 impl GeneralCorner {
     fn resolver<'a>(&'a self, side: Side, prefix: &'a str) -> Resolver<'a> {
         Resolver { general: self, side, prefix, shared: None }
@@ -499,25 +536,7 @@ impl GeneralCorner {
         let x = f.axis.as_ref().map(|a| left.direction(&format!("{key}.axis"), a)).transpose()?.unwrap_or(Vec3::x());
         let y = f.y_axis.as_ref().map(|a| left.direction(&format!("{key}.y_axis"), a)).transpose()?;
         let point = r.point(&format!("{key}.at"), &f.at)?;
-        let frame = bushing_frame(x, y, r.side).map_err(|why| ModelError::OutOfRange { item: key.clone(), why })?;
-        // The mirror image turns the frame's z axis over (see `bushing_frame`): in the right corner's frame
-        // the deflection along z and the rotation about x and y change sign, so the matrix is T K T with
-        // T = diag(1, 1, −1, −1, −1, 1), and the preload as a bushing's.
-        let s = r.side.sign();
-        let t = nalgebra::Vector6::new(1.0, 1.0, s, s, s, 1.0);
-        let stiffness = nalgebra::Matrix6::from_fn(|a, b| t[a] * f.stiffness[a][b] * t[b]);
-        let force = f.preload_force.map_or(Vec3::zeros(), |v| Vec3::new(v[0], v[1], s * v[2]));
-        let torque = f.preload_torque.map_or(Vec3::zeros(), |m| Vec3::new(s * m[0], s * m[1], m[2]));
-        model.add_element(Field::from_spec(FieldSpec {
-            name: part_name(r.prefix, &f.name),
-            body_i: bi,
-            body_j: bj,
-            point,
-            frame,
-            stiffness,
-            preload_force: force,
-            preload_torque: torque,
-        })?)?;
+        model.add_element(f.field(&key, &part_name(r.prefix, &f.name), [bi, bj], point, x, y, r.side)?)?;
         Ok(())
     }
 
