@@ -190,3 +190,14 @@ fn a_field_is_its_own_item_of_the_build_map() {
     assert_eq!(corner.model.elements()[item.elements[0].0].name(), "lower arm front bushing");
     assert!(map.find("bushings[0]").all(|b| b.name != "lower arm front bushing"));
 }
+
+#[test]
+fn a_field_matrix_no_elastic_element_has_is_refused_by_its_key() {
+    let mut file = macpherson_general();
+    as_field(&mut file, 0.0);
+    general(&mut file).fields[0].stiffness[0][4] = 1.0;
+    let e =
+        file.suspension.build(elastokin_suspensions::Side::Left, elastokin_suspensions::Rig::WheelTravel).unwrap_err();
+    let said = e.to_string();
+    assert!(said.contains("fields[0] (lower arm front bushing).stiffness") && said.contains("not symmetric"), "{said}");
+}

@@ -476,6 +476,11 @@ impl FieldDef {
             preload_force: force,
             preload_torque: torque,
         })
+        // The matrix as the file gives it, named by its key.
+        .map_err(|e| match e {
+            ModelError::OutOfRange { why, .. } => ModelError::OutOfRange { item: format!("{key}.stiffness"), why },
+            other => other,
+        })
     }
 }
 
