@@ -73,6 +73,7 @@
 //! there is no sparse or parallel work here — assembly, factorization and any parallel evaluation are
 //! the solver's. Model files (and with them serde as a default) live in the suspensions crate.
 
+pub mod beam;
 pub mod bushing;
 pub mod coil_spring;
 pub mod curve;
@@ -81,6 +82,7 @@ mod geometry;
 pub mod point_load;
 pub mod stop;
 
+pub use beam::{beam, BeamSpec, Section};
 pub use bushing::{Bushing, BushingSpec, RotationLaw};
 pub use coil_spring::{CoilSpring, CoilSpringSpec};
 pub use curve::{Characteristic, Curve};
