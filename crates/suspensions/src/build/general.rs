@@ -7,8 +7,8 @@
 use crate::build::map::load_labels;
 use crate::build::template::{CornerParts, CornerTemplate, CrossAxle, SteeringLink, TieRod};
 use crate::description::general::{
-    part_name, Axis, BodyDef, BushingDef, FieldDef, GeneralCorner, JointDef, Place, SpringDef, Stiffness, StopDef,
-    StopType, CHASSIS,
+    part_name, Axis, BeamDef, BodyDef, BushingDef, FieldDef, GeneralCorner, JointDef, Place, SpringDef, Stiffness,
+    StopDef, StopType, CHASSIS,
 };
 use crate::description::limits::{
     check_hardpoints, check_rate, check_spring_force, check_steering_arm, check_steering_axis, check_tie_rod_mounts,
@@ -19,7 +19,8 @@ use crate::wheel::Wheel;
 use elastokin_core::joint::orthonormal_complement;
 use elastokin_core::{BodyRef, ElementId, JointKind, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
 use elastokin_elements::{
-    Bushing, BushingSpec, Characteristic, CoilSpring, Curve, Field, FieldSpec, PointForce, PointTorque, Stop,
+    beam, BeamSpec, Bushing, BushingSpec, Characteristic, CoilSpring, Curve, Field, FieldSpec, PointForce, PointTorque,
+    Section, Stop,
 };
 
 impl Stiffness {
@@ -545,6 +546,57 @@ impl GeneralCorner {
         Ok(())
     }
 
+    /// A beam, in its segments with a body at each joint between them. Mirrored, its section's z axis turns
+    /// over (the frame is made from the mirrored x and y), so the shear centre's z offset changes sign.
+    fn add_beam(&self, model: &mut Model, r: &Resolver, k: usize, b: &BeamDef) -> Result<(), ModelError> {
+        let key = format!("beams[{k}] ({})", b.name);
+        let rekey = |e: ModelError| match e {
+            ModelError::OutOfRange { why, .. } => ModelError::OutOfRange { item: key.clone(), why },
+            other => other,
+        };
+        let bi = r.body(model, &format!("{key}.bodies"), &b.bodies[0])?;
+        let bj = r.body(model, &format!("{key}.bodies"), &b.bodies[1])?;
+        let (from, to) = (r.point(&format!("{key}.from"), &b.from)?, r.point(&format!("{key}.to"), &b.to)?);
+        let y = r.direction(&format!("{key}.y_axis"), &b.y_axis)?;
+        let n = b.segments.unwrap_or(1);
+        if !(1..=BeamDef::MOST_SEGMENTS).contains(&n) {
+            return Err(ModelError::OutOfRange {
+                item: format!("{key}.segments"),
+                why: format!("give 1 to {} segments, got {n}", BeamDef::MOST_SEGMENTS),
+            });
+        }
+        let d = &b.section;
+        let (ey, ez) = d.shear_centre.map_or((0.0, 0.0), |[y, z]| (y, z));
+        let section = Section {
+            youngs_modulus: d.youngs_modulus,
+            shear_modulus: d.shear_modulus,
+            area: d.area,
+            iy: d.iy,
+            iz: d.iz,
+            j: d.j,
+            shear_areas: d.shear_areas.map(|[y, z]| (y, z)),
+            shear_centre: (ey, r.side.sign() * ez),
+        };
+        let names = b.part_names(r.prefix);
+        let at = |s: usize| from + (to - from) * (s as f64 / n as f64);
+        let mut previous = bi;
+        for s in 1..=n {
+            let body_j = if s == n { bj } else { BodyRef::Body(model.add_body(&names[n + s - 1], Pose::at(at(s)))?) };
+            let spec = BeamSpec {
+                name: names[s - 1].clone(),
+                body_i: previous,
+                body_j,
+                from: at(s - 1),
+                to: at(s),
+                y_axis: y,
+                section,
+            };
+            model.add_element(beam(&spec).map_err(rekey)?)?;
+            previous = body_j;
+        }
+        Ok(())
+    }
+
     fn add_spring(&self, model: &mut Model, r: &Resolver, k: usize, s: &SpringDef) -> Result<ElementId, ModelError> {
         let key = format!("springs[{k}] ({})", s.name);
         let bi = r.body(model, &format!("{key}.bodies"), &s.bodies[0])?;
@@ -658,6 +710,9 @@ impl CornerTemplate for GeneralCorner {
         }
         for (k, f) in self.fields.iter().enumerate() {
             self.add_field(model, &r, k, f)?;
+        }
+        for (k, b) in self.beams.iter().enumerate() {
+            self.add_beam(model, &r, k, b)?;
         }
         let mut springs = Vec::with_capacity(self.springs.len());
         for (k, s) in self.springs.iter().enumerate() {

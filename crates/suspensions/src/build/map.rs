@@ -119,6 +119,9 @@ impl BuildMap {
             for (k, bar) in general.anti_roll_bars.iter().enumerate() {
                 item(format!("anti_roll_bars[{k}]"), &bar.name, s, &bar.part_names(prefix));
             }
+            for (k, b) in general.beams.iter().enumerate() {
+                item(format!("beams[{k}]"), &b.name, s, &b.part_names(prefix));
+            }
             for (k, load) in general.loads.iter().enumerate() {
                 let (force, torque) = load_labels(load, prefix);
                 item(format!("loads[{k}]"), &load.name, s, &force.into_iter().chain(torque).collect::<Vec<_>>());

@@ -237,6 +237,69 @@ pub struct FieldDef {
     pub preload_torque: Option<[f64; 3]>,
 }
 
+/// A beam's section and material, as a model file gives them (SI units; see `elastokin_elements::Section`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SectionDef {
+    /// Young's modulus `E` (Pa).
+    pub youngs_modulus: f64,
+    /// Shear modulus `G` (Pa).
+    pub shear_modulus: f64,
+    /// Area (m²).
+    pub area: f64,
+    /// Second moment about the section's y axis (m⁴).
+    pub iy: f64,
+    /// Second moment about the section's z axis (m⁴).
+    pub iz: f64,
+    /// Torsion constant (m⁴).
+    pub j: f64,
+    /// Shear areas `[A_y, A_z]` (m²); without them no shear deformation.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shear_areas: Option<[f64; 2]>,
+    /// Shear centre `[e_y, e_z]` from the centroid in the section's axes (m); default the centroid.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shear_centre: Option<[f64; 2]>,
+}
+
+/// A straight elastic beam from a point of its first body to a point of its second, by its section; split
+/// into `segments` with bodies between them for a member that bends far (see `docs/model-file.md`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BeamDef {
+    /// Name; with segments, each is named `<name> segment k` and the bodies between `<name> node k`.
+    pub name: String,
+    /// The body at its start and the body at its end.
+    pub bodies: [String; 2],
+    /// Its start.
+    pub from: Place,
+    /// Its end.
+    pub to: Place,
+    /// A direction the section's y axis leans towards (made perpendicular to the beam).
+    pub y_axis: Axis,
+    /// The section.
+    pub section: SectionDef,
+    /// How many straight segments it is made of (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub segments: Option<usize>,
+}
+
+impl BeamDef {
+    /// The most segments a beam may be split into.
+    pub const MOST_SEGMENTS: usize = 200;
+
+    /// The names of its parts on the corner whose names start with `prefix`: its elements and the bodies
+    /// between its segments.
+    pub fn part_names(&self, prefix: &str) -> Vec<String> {
+        let n = self.segments.unwrap_or(1);
+        if n <= 1 {
+            return vec![part_name(prefix, &self.name)];
+        }
+        let segments = (1..=n).map(|k| part_name(prefix, &format!("{} segment {k}", self.name)));
+        let nodes = (1..n).map(|k| part_name(prefix, &format!("{} node {k}", self.name)));
+        segments.chain(nodes).collect()
+    }
+}
+
 /// A coil spring between two bodies: a rate or a measured curve, with its push at design or its free
 /// length.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -446,6 +509,9 @@ pub struct GeneralCorner {
     /// Field elements: coupled 6×6 stiffnesses.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub fields: Vec<FieldDef>,
+    /// Elastic beams.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub beams: Vec<BeamDef>,
     /// Coil springs.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub springs: Vec<SpringDef>,
@@ -475,6 +541,7 @@ impl GeneralCorner {
             joints: Vec::new(),
             bushings: Vec::new(),
             fields: Vec::new(),
+            beams: Vec::new(),
             springs: Vec::new(),
             stops: Vec::new(),
             anti_roll_bars: Vec::new(),
