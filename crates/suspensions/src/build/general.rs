@@ -446,7 +446,7 @@ fn bushing_frame(x_left: Vec3, y_hint_left: Option<Vec3>, side: Side) -> Result<
 impl FieldDef {
     /// The field element of this entry (`key` names it in errors) between `bodies`, at `point`, its frame
     /// from the left corner's `x_left` and `y_hint_left` mirrored to `side`. The mirror image turns the
-    /// frame's z axis over (see [`bushing_frame`]): in the right corner's frame the deflection along z and
+    /// frame's z axis over (as a bushing's frame does): in the right corner's frame the deflection along z and
     /// the rotation about x and y change sign, so the matrix is `T K T` with `T = diag(1, 1, −1, −1, −1, 1)`,
     /// and the preload changes as a bushing's.
     #[allow(clippy::too_many_arguments)]
