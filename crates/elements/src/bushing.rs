@@ -64,13 +64,13 @@
 //! rubber bushing's range.
 
 use crate::curve::{Anchor, Characteristic};
-use crate::geometry::{add_block, add_rows, check_distinct, check_finite, frame_rotation, set_jac_block, Jac3};
-use elastokin_core::math::{
-    left_jacobian_inv, quat_log, rotation_vector_moment, skew, tait_bryan_xyz, tait_bryan_xyz_axes,
+use crate::geometry::{
+    check_distinct, check_finite, frame_rotation, framed_force, framed_stiffness, set_jac_block, Framed, FramedPoint,
+    Jac3,
 };
+use elastokin_core::math::{left_jacobian_inv, rotation_vector_moment, skew, tait_bryan_xyz, tait_bryan_xyz_axes};
 use elastokin_core::{
-    BodyRef, ElementEval, ElementReport, ElementRole, ForceElement, Mat3, ModelError, PairMatrix, Pose, Sketch,
-    SketchKind, Vec3,
+    BodyRef, ElementEval, ElementReport, ElementRole, ForceElement, Mat3, ModelError, PairMatrix, Pose, Sketch, Vec3,
 };
 use nalgebra::UnitQuaternion;
 
@@ -218,22 +218,14 @@ impl BushingSpec {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Bushing {
     spec: BushingSpec,
-    /// Hardpoint on `i` and on `j` (local offsets).
-    on_i: Vec3,
-    on_j: Vec3,
-    /// The bushing frame relative to each body: `E = Aᵢ E'ᵢ`, `Eⱼ = Aⱼ E'ⱼ`.
-    frame_i: UnitQuaternion<f64>,
-    frame_j: UnitQuaternion<f64>,
+    /// The hardpoint and the bushing frame on each body.
+    framed: FramedPoint,
 }
 
 /// Everything the force, stiffness and report share at one configuration.
 struct State {
-    e: Mat3,
-    s_j: Vec3,
-    /// `w = Pⱼ − rᵢ`, the lever of the force on `i`.
-    w: Vec3,
-    delta: Vec3,
-    theta: Vec3,
+    /// The frame, the deflection and rotation, the levers.
+    at: Framed,
     /// `∂f/∂δ` in local components: the diagonal of `K_T`, or of the curves' slopes at `δ`.
     kt: Vec3,
     /// `f = E (K_T δ − F_pre)` = ∂U/∂d (the force applied to `i`).
@@ -311,7 +303,7 @@ impl Bushing {
     pub fn from_spec(spec: BushingSpec) -> Result<Self, ModelError> {
         let frame = spec.validate()?;
         // Until bound, both bodies are taken at the identity pose (as the ground).
-        Ok(Bushing { on_i: spec.point, on_j: spec.point, frame_i: frame, frame_j: frame, spec })
+        Ok(Bushing { framed: FramedPoint::unbound(spec.point, frame), spec })
     }
 
     /// The design data.
@@ -320,20 +312,12 @@ impl Bushing {
     }
 
     fn state(&self, pi: &Pose, pj: &Pose) -> State {
-        let q_e = pi.orientation * self.frame_i;
-        let q_ej = pj.orientation * self.frame_j;
-        let e = q_e.to_rotation_matrix().into_inner();
-        let relative = q_e.inverse() * q_ej;
-        let theta = quat_log(&relative);
-        let s_i = pi.direction(&self.on_i);
-        let s_j = pj.direction(&self.on_j);
-        let d = (pj.position + s_j) - (pi.position + s_i);
-        let delta = e.transpose() * d;
-        let (force, kt) = along_axes(&self.spec.translational, &delta);
-        let f = e * (force - self.spec.preload_force);
+        let at = self.framed.at(pi, pj);
+        let (force, kt) = along_axes(&self.spec.translational, &at.delta);
+        let f = at.e * (force - self.spec.preload_force);
         let (g, dg) =
-            self.spec.rotation_law.moment(&theta, &relative, &self.spec.rotational, &self.spec.preload_torque);
-        State { e, s_j, w: s_i + d, delta, theta, kt, f, g, dg }
+            self.spec.rotation_law.moment(&at.theta, &at.relative, &self.spec.rotational, &self.spec.preload_torque);
+        State { at, kt, f, g, dg }
     }
 }
 
@@ -352,24 +336,13 @@ impl ForceElement for Bushing {
 
     fn bind(&mut self, pi: &Pose, pj: &Pose) -> Result<(), ModelError> {
         let frame = self.spec.validate()?;
-        if !pi.is_finite() || !pj.is_finite() {
-            return Err(ModelError::NonFinite { item: self.spec.name.clone(), what: "design pose" });
-        }
-        self.on_i = pi.to_local_point(&self.spec.point);
-        self.on_j = pj.to_local_point(&self.spec.point);
-        self.frame_i = pi.orientation.inverse() * frame;
-        self.frame_j = pj.orientation.inverse() * frame;
-        Ok(())
+        self.framed.bind(&self.spec.name, pi, pj, &self.spec.point, frame)
     }
 
     fn evaluate(&self, pi: &Pose, pj: &Pose, _t: f64, out: &mut ElementEval, with_stiffness: bool) {
         let st = self.state(pi, pj);
-        let big_g = st.e * st.g;
-        let q = &mut out.force;
-        q.fixed_rows_mut::<3>(0).copy_from(&st.f);
-        q.fixed_rows_mut::<3>(3).copy_from(&(st.w.cross(&st.f) + big_g));
-        q.fixed_rows_mut::<3>(6).copy_from(&(-st.f));
-        q.fixed_rows_mut::<3>(9).copy_from(&(-st.s_j.cross(&st.f) - big_g));
+        let big_g = st.at.e * st.g;
+        framed_force(&st.at, &st.f, &big_g, &mut out.force);
         if with_stiffness {
             stiffness(&st, &big_g, &mut out.stiffness);
         }
@@ -377,16 +350,11 @@ impl ForceElement for Bushing {
 
     fn report(&self, pi: &Pose, pj: &Pose, _t: f64) -> ElementReport {
         let st = self.state(pi, pj);
-        ElementReport { force: -st.f, torque: -(st.e * st.g), deflection: st.delta, rotation: st.theta }
+        ElementReport { force: -st.f, torque: -(st.at.e * st.g), deflection: st.at.delta, rotation: st.at.theta }
     }
 
     fn sketch(&self) -> Option<Sketch> {
-        Some(Sketch {
-            kind: SketchKind::Bushing,
-            on_i: self.on_i,
-            on_j: self.on_j,
-            axes_i: Some(self.frame_i.to_rotation_matrix().into_inner()),
-        })
+        Some(self.framed.sketch())
     }
 }
 
@@ -398,12 +366,12 @@ impl ForceElement for Bushing {
 /// * `δG = −G̃ δπᵢ + H (δπⱼ − δπᵢ)`, `H = E (∂g/∂θ) J_l⁻¹ Eᵀ`, so `DG = [0, −G̃ − H, 0, H]`;
 /// * `δw = δrⱼ − s̃ⱼ δπⱼ − δrᵢ`.
 fn stiffness(st: &State, big_g: &Vec3, out: &mut PairMatrix) {
-    let e = &st.e;
+    let e = &st.at.e;
     let kg = e * Mat3::from_diagonal(&st.kt) * e.transpose();
     let f_t = skew(&st.f);
-    let w_t = skew(&st.w);
-    let sj_t = skew(&st.s_j);
-    let h = e * st.dg * left_jacobian_inv(&st.theta) * e.transpose();
+    let w_t = skew(&st.at.w);
+    let sj_t = skew(&st.at.s_j);
+    let h = e * st.dg * left_jacobian_inv(&st.at.theta) * e.transpose();
 
     let mut df = Jac3::zeros();
     set_jac_block(&mut df, 0, &(-kg));
@@ -413,20 +381,7 @@ fn stiffness(st: &State, big_g: &Vec3, out: &mut PairMatrix) {
     let mut dgg = Jac3::zeros();
     set_jac_block(&mut dgg, 1, &(-skew(big_g) - h));
     set_jac_block(&mut dgg, 3, &h);
-
-    out.fill(0.0);
-    // r_i: −f
-    add_rows(out, 0, &(-df));
-    // π_i: f × w − G = −w̃ f − G
-    add_rows(out, 1, &(-(w_t * df) - dgg));
-    add_block(out, 1, 0, &(-f_t));
-    add_block(out, 1, 2, &f_t);
-    add_block(out, 1, 3, &(-f_t * sj_t));
-    // r_j: f
-    add_rows(out, 2, &df);
-    // π_j: s_j × f + G
-    add_rows(out, 3, &(sj_t * df + dgg));
-    add_block(out, 3, 3, &(f_t * sj_t));
+    framed_stiffness(&st.at, &st.f, &df, &dgg, out);
 }
 
 #[cfg(test)]

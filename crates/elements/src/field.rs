@@ -22,11 +22,13 @@
 //! `δf = … + E K_tr J_l⁻¹ Eᵀ (δπⱼ − δπᵢ)`, and the moment the deflection, `δG = … + E J_l⁻ᵀ K_rt Eᵀ (δd +
 //! d̃ δπᵢ)`. Checked against finite differences in `crates/elements/tests/field.rs`.
 
-use crate::geometry::{add_block, add_rows, check_distinct, check_finite, frame_rotation, set_jac_block, Jac3};
-use elastokin_core::math::{left_jacobian_inv, quat_log, rotation_vector_moment, skew};
+use crate::geometry::{
+    check_distinct, check_finite, frame_rotation, framed_force, framed_stiffness, set_jac_block, Framed, FramedPoint,
+    Jac3,
+};
+use elastokin_core::math::{left_jacobian_inv, rotation_vector_moment, skew};
 use elastokin_core::{
-    BodyRef, ElementEval, ElementReport, ElementRole, ForceElement, Mat3, ModelError, PairMatrix, Pose, Sketch,
-    SketchKind, Vec3,
+    BodyRef, ElementEval, ElementReport, ElementRole, ForceElement, Mat3, ModelError, PairMatrix, Pose, Sketch, Vec3,
 };
 use nalgebra::{Matrix6, UnitQuaternion, Vector6};
 
@@ -102,20 +104,14 @@ impl FieldSpec {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Field {
     spec: FieldSpec,
-    on_i: Vec3,
-    on_j: Vec3,
-    frame_i: UnitQuaternion<f64>,
-    frame_j: UnitQuaternion<f64>,
+    /// The point and the frame on each body.
+    framed: FramedPoint,
 }
 
 /// Everything the force, stiffness and report share at one configuration.
 struct State {
-    e: Mat3,
-    s_j: Vec3,
-    /// `w = Pⱼ − rᵢ`, the lever of the force on `i`.
-    w: Vec3,
-    delta: Vec3,
-    theta: Vec3,
+    /// The frame, the deflection and rotation, the levers.
+    at: Framed,
     /// `J_l(θ)⁻¹`.
     jl_inv: Mat3,
     /// The force on `i`, `f = E (K_tt δ + K_tr θ − F_pre)`.
@@ -129,7 +125,7 @@ impl Field {
     /// A field element from its design data (see [`FieldSpec`]).
     pub fn from_spec(spec: FieldSpec) -> Result<Self, ModelError> {
         let frame = spec.validate()?;
-        Ok(Field { on_i: spec.point, on_j: spec.point, frame_i: frame, frame_j: frame, spec })
+        Ok(Field { framed: FramedPoint::unbound(spec.point, frame), spec })
     }
 
     /// The design data.
@@ -142,27 +138,21 @@ impl Field {
     }
 
     fn state(&self, pi: &Pose, pj: &Pose) -> State {
-        let q_e = pi.orientation * self.frame_i;
-        let q_ej = pj.orientation * self.frame_j;
-        let e = q_e.to_rotation_matrix().into_inner();
-        let theta = quat_log(&(q_e.inverse() * q_ej));
-        let s_i = pi.direction(&self.on_i);
-        let s_j = pj.direction(&self.on_j);
-        let d = (pj.position + s_j) - (pi.position + s_i);
-        let delta = e.transpose() * d;
+        let at = self.framed.at(pi, pj);
+        let (delta, theta) = (at.delta, at.theta);
         let (ktt, ktr, krt, krr) = (self.block(0, 0), self.block(0, 1), self.block(1, 0), self.block(1, 1));
-        let f = e * (ktt * delta + ktr * theta - self.spec.preload_force);
+        let f = at.e * (ktt * delta + ktr * theta - self.spec.preload_force);
         let m = krt * delta + krr * theta - self.spec.preload_torque;
         let (g, dg) = rotation_vector_moment(&theta, &m, &krr);
-        State { e, s_j, w: s_i + d, delta, theta, jl_inv: left_jacobian_inv(&theta), f, g, dg }
+        State { jl_inv: left_jacobian_inv(&theta), at, f, g, dg }
     }
 
     /// The generalized deflection `q = (δ, θ)` at the poses (local components).
     pub fn deflection(&self, pi: &Pose, pj: &Pose) -> Vector6<f64> {
-        let st = self.state(pi, pj);
+        let at = self.framed.at(pi, pj);
         let mut q = Vector6::zeros();
-        q.fixed_rows_mut::<3>(0).copy_from(&st.delta);
-        q.fixed_rows_mut::<3>(3).copy_from(&st.theta);
+        q.fixed_rows_mut::<3>(0).copy_from(&at.delta);
+        q.fixed_rows_mut::<3>(3).copy_from(&at.theta);
         q
     }
 
@@ -175,13 +165,13 @@ impl Field {
     }
 
     fn stiffness(&self, st: &State, big_g: &Vec3, out: &mut PairMatrix) {
-        let e = &st.e;
+        let e = &st.at.e;
         let kg = e * self.block(0, 0) * e.transpose();
         let ctr = e * self.block(0, 1) * st.jl_inv * e.transpose();
         let crt = e * st.jl_inv.transpose() * self.block(1, 0) * e.transpose();
         let f_t = skew(&st.f);
-        let w_t = skew(&st.w);
-        let sj_t = skew(&st.s_j);
+        let w_t = skew(&st.at.w);
+        let sj_t = skew(&st.at.s_j);
         let h = e * st.dg * st.jl_inv * e.transpose();
 
         let mut df = Jac3::zeros();
@@ -194,16 +184,7 @@ impl Field {
         set_jac_block(&mut dgg, 1, &(-skew(big_g) - h + crt * w_t));
         set_jac_block(&mut dgg, 2, &crt);
         set_jac_block(&mut dgg, 3, &(h - crt * sj_t));
-
-        out.fill(0.0);
-        add_rows(out, 0, &(-df));
-        add_rows(out, 1, &(-(w_t * df) - dgg));
-        add_block(out, 1, 0, &(-f_t));
-        add_block(out, 1, 2, &f_t);
-        add_block(out, 1, 3, &(-f_t * sj_t));
-        add_rows(out, 2, &df);
-        add_rows(out, 3, &(sj_t * df + dgg));
-        add_block(out, 3, 3, &(f_t * sj_t));
+        framed_stiffness(&st.at, &st.f, &df, &dgg, out);
     }
 }
 
@@ -222,24 +203,13 @@ impl ForceElement for Field {
 
     fn bind(&mut self, pi: &Pose, pj: &Pose) -> Result<(), ModelError> {
         let frame = self.spec.validate()?;
-        if !pi.is_finite() || !pj.is_finite() {
-            return Err(ModelError::NonFinite { item: self.spec.name.clone(), what: "design pose" });
-        }
-        self.on_i = pi.to_local_point(&self.spec.point);
-        self.on_j = pj.to_local_point(&self.spec.point);
-        self.frame_i = pi.orientation.inverse() * frame;
-        self.frame_j = pj.orientation.inverse() * frame;
-        Ok(())
+        self.framed.bind(&self.spec.name, pi, pj, &self.spec.point, frame)
     }
 
     fn evaluate(&self, pi: &Pose, pj: &Pose, _t: f64, out: &mut ElementEval, with_stiffness: bool) {
         let st = self.state(pi, pj);
-        let big_g = st.e * st.g;
-        let q = &mut out.force;
-        q.fixed_rows_mut::<3>(0).copy_from(&st.f);
-        q.fixed_rows_mut::<3>(3).copy_from(&(st.w.cross(&st.f) + big_g));
-        q.fixed_rows_mut::<3>(6).copy_from(&(-st.f));
-        q.fixed_rows_mut::<3>(9).copy_from(&(-st.s_j.cross(&st.f) - big_g));
+        let big_g = st.at.e * st.g;
+        framed_force(&st.at, &st.f, &big_g, &mut out.force);
         if with_stiffness {
             self.stiffness(&st, &big_g, &mut out.stiffness);
         }
@@ -247,15 +217,10 @@ impl ForceElement for Field {
 
     fn report(&self, pi: &Pose, pj: &Pose, _t: f64) -> ElementReport {
         let st = self.state(pi, pj);
-        ElementReport { force: -st.f, torque: -(st.e * st.g), deflection: st.delta, rotation: st.theta }
+        ElementReport { force: -st.f, torque: -(st.at.e * st.g), deflection: st.at.delta, rotation: st.at.theta }
     }
 
     fn sketch(&self) -> Option<Sketch> {
-        Some(Sketch {
-            kind: SketchKind::Bushing,
-            on_i: self.on_i,
-            on_j: self.on_j,
-            axes_i: Some(self.frame_i.to_rotation_matrix().into_inner()),
-        })
+        Some(self.framed.sketch())
     }
 }

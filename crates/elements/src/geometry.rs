@@ -2,8 +2,8 @@
 //! share.
 
 use crate::bushing::FRAME_TOLERANCE;
-use elastokin_core::math::skew;
-use elastokin_core::{BodyRef, ElementEval, Mat3, ModelError, PairMatrix, Pose, Sketch, SketchKind, Vec3};
+use elastokin_core::math::{quat_log, skew};
+use elastokin_core::{BodyRef, ElementEval, Mat3, ModelError, PairMatrix, Pose, RowGradient, Sketch, SketchKind, Vec3};
 use nalgebra::{Rotation3, SMatrix, UnitQuaternion};
 
 /// A 3×12 Jacobian of a 3-vector over the coordinates `(Δrᵢ, Δπᵢ, Δrⱼ, Δπⱼ)`.
@@ -39,6 +39,111 @@ pub(crate) fn check_finite_scalar(item: &str, what: &'static str, value: f64) ->
 }
 
 /// The two bodies of a two-body element must differ ([`ModelError::SelfJoint`] names the element).
+/// A point and a frame carried by body `i`, and their copies carried by `j`, coincident at design: what a
+/// bushing and a field element measure their deflection and rotation between.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct FramedPoint {
+    on_i: Vec3,
+    on_j: Vec3,
+    /// The frame relative to each body: `E = Aᵢ E'ᵢ`, `Eⱼ = Aⱼ E'ⱼ`.
+    frame_i: UnitQuaternion<f64>,
+    frame_j: UnitQuaternion<f64>,
+}
+
+/// A framed point at one configuration.
+pub(crate) struct Framed {
+    /// The frame carried by `i`, as a matrix.
+    pub e: Mat3,
+    /// `j`'s copy relative to it, and its rotation vector `θ` (local).
+    pub relative: UnitQuaternion<f64>,
+    pub theta: Vec3,
+    /// `sⱼ = Aⱼ s'ⱼ`.
+    pub s_j: Vec3,
+    /// `w = Pⱼ − rᵢ`, the lever of the force on `i`.
+    pub w: Vec3,
+    /// The deflection `δ = Eᵀ (Pⱼ − Pᵢ)` (local).
+    pub delta: Vec3,
+}
+
+impl FramedPoint {
+    /// The point and frame (global) with both bodies at the identity pose, until bound.
+    pub fn unbound(point: Vec3, frame: UnitQuaternion<f64>) -> Self {
+        FramedPoint { on_i: point, on_j: point, frame_i: frame, frame_j: frame }
+    }
+
+    /// Fixes the point and frame on each body from the design poses.
+    pub fn bind(
+        &mut self,
+        name: &str,
+        pi: &Pose,
+        pj: &Pose,
+        point: &Vec3,
+        frame: UnitQuaternion<f64>,
+    ) -> Result<(), ModelError> {
+        if !pi.is_finite() || !pj.is_finite() {
+            return Err(ModelError::NonFinite { item: name.to_string(), what: "design pose" });
+        }
+        self.on_i = pi.to_local_point(point);
+        self.on_j = pj.to_local_point(point);
+        self.frame_i = pi.orientation.inverse() * frame;
+        self.frame_j = pj.orientation.inverse() * frame;
+        Ok(())
+    }
+
+    /// Where things are at the poses.
+    pub fn at(&self, pi: &Pose, pj: &Pose) -> Framed {
+        let q_e = pi.orientation * self.frame_i;
+        let q_ej = pj.orientation * self.frame_j;
+        let e = q_e.to_rotation_matrix().into_inner();
+        let relative = q_e.inverse() * q_ej;
+        let theta = quat_log(&relative);
+        let s_i = pi.direction(&self.on_i);
+        let s_j = pj.direction(&self.on_j);
+        let d = (pj.position + s_j) - (pi.position + s_i);
+        Framed { e, relative, theta, s_j, w: s_i + d, delta: e.transpose() * d }
+    }
+
+    /// How a drawing places it: its point on each body, its axes in `i`'s frame.
+    pub fn sketch(&self) -> Sketch {
+        Sketch {
+            kind: SketchKind::Bushing,
+            on_i: self.on_i,
+            on_j: self.on_j,
+            axes_i: Some(self.frame_i.to_rotation_matrix().into_inner()),
+        }
+    }
+}
+
+/// The generalized force of a framed element applying the force `f` and moment `G` to `i` (its line of
+/// action through `Pⱼ`) and their opposites to `j`.
+pub(crate) fn framed_force(st: &Framed, f: &Vec3, big_g: &Vec3, q: &mut RowGradient) {
+    q.fixed_rows_mut::<3>(0).copy_from(f);
+    q.fixed_rows_mut::<3>(3).copy_from(&(st.w.cross(f) + big_g));
+    q.fixed_rows_mut::<3>(6).copy_from(&(-f));
+    q.fixed_rows_mut::<3>(9).copy_from(&(-st.s_j.cross(f) - big_g));
+}
+
+/// `K = −∂Q/∂Δq` of [`framed_force`] from the Jacobians `df` of `f` and `dgg` of `G` over `(Δrᵢ, Δπᵢ,
+/// Δrⱼ, Δπⱼ)`, with the terms the levers and the frame's turning add.
+pub(crate) fn framed_stiffness(st: &Framed, f: &Vec3, df: &Jac3, dgg: &Jac3, out: &mut PairMatrix) {
+    let f_t = skew(f);
+    let w_t = skew(&st.w);
+    let sj_t = skew(&st.s_j);
+    out.fill(0.0);
+    // r_i: −f
+    add_rows(out, 0, &(-df));
+    // π_i: f × w − G = −w̃ f − G
+    add_rows(out, 1, &(-(w_t * df) - dgg));
+    add_block(out, 1, 0, &(-f_t));
+    add_block(out, 1, 2, &f_t);
+    add_block(out, 1, 3, &(-f_t * sj_t));
+    // r_j: f
+    add_rows(out, 2, df);
+    // π_j: s_j × f + G
+    add_rows(out, 3, &(sj_t * df + dgg));
+    add_block(out, 3, 3, &(f_t * sj_t));
+}
+
 /// An element's frame (columns: its axes, global components) as a rotation: a frame with a non-finite
 /// entry, or that is not orthonormal and right-handed to [`FRAME_TOLERANCE`], is refused by the element's
 /// name.

@@ -426,6 +426,32 @@ fn list<'a>(names: impl Iterator<Item = &'a str>) -> String {
 /// made perpendicular (any perpendicular without it), both mirrored for the right corner, z completing a
 /// right-handed frame. The columns are the frame's x, y, z axes in global components. The error says why
 /// the hint gives no y axis (it is parallel to x). `x_left` must have a length.
+/// What a bushing or a field entry names, resolved: its bodies, its point (on the side built), and its
+/// frame's x axis and y hint as the left corner gives them (the frame is mirrored as a whole).
+struct FramedEntry {
+    bodies: [BodyRef; 2],
+    point: Vec3,
+    x: Vec3,
+    y: Option<Vec3>,
+}
+
+fn framed_entry(
+    model: &Model,
+    r: &Resolver,
+    key: &str,
+    bodies: &[String; 2],
+    axis: Option<&Axis>,
+    y_axis: Option<&Axis>,
+    at: &Place,
+) -> Result<FramedEntry, ModelError> {
+    let bi = r.body(model, &format!("{key}.bodies"), &bodies[0])?;
+    let bj = r.body(model, &format!("{key}.bodies"), &bodies[1])?;
+    let left = Resolver { side: Side::Left, ..*r };
+    let x = axis.map(|a| left.direction(&format!("{key}.axis"), a)).transpose()?.unwrap_or(Vec3::x());
+    let y = y_axis.map(|a| left.direction(&format!("{key}.y_axis"), a)).transpose()?;
+    Ok(FramedEntry { bodies: [bi, bj], point: r.point(&format!("{key}.at"), at)?, x, y })
+}
+
 fn bushing_frame(x_left: Vec3, y_hint_left: Option<Vec3>, side: Side) -> Result<Mat3, String> {
     let x = x_left / x_left.norm();
     let y = match y_hint_left {
@@ -524,25 +550,15 @@ impl GeneralCorner {
     fn add_bushing(&self, model: &mut Model, r: &Resolver, k: usize, b: &BushingDef) -> Result<(), ModelError> {
         let entry = format!("bushings[{k}]");
         let key = format!("{entry} ({})", b.name);
-        let bi = r.body(model, &format!("{key}.bodies"), &b.bodies[0])?;
-        let bj = r.body(model, &format!("{key}.bodies"), &b.bodies[1])?;
-        let left = Resolver { side: Side::Left, ..*r };
-        let x = b.axis.as_ref().map(|a| left.direction(&format!("{key}.axis"), a)).transpose()?.unwrap_or(Vec3::x());
-        let y = b.y_axis.as_ref().map(|a| left.direction(&format!("{key}.y_axis"), a)).transpose()?;
-        let point = r.point(&format!("{key}.at"), &b.at)?;
-        model.add_element(b.bushing(&entry, &part_name(r.prefix, &b.name), [bi, bj], point, x, y, r.side)?)?;
+        let e = framed_entry(model, r, &key, &b.bodies, b.axis.as_ref(), b.y_axis.as_ref(), &b.at)?;
+        model.add_element(b.bushing(&entry, &part_name(r.prefix, &b.name), e.bodies, e.point, e.x, e.y, r.side)?)?;
         Ok(())
     }
 
     fn add_field(&self, model: &mut Model, r: &Resolver, k: usize, f: &FieldDef) -> Result<(), ModelError> {
         let key = format!("fields[{k}] ({})", f.name);
-        let bi = r.body(model, &format!("{key}.bodies"), &f.bodies[0])?;
-        let bj = r.body(model, &format!("{key}.bodies"), &f.bodies[1])?;
-        let left = Resolver { side: Side::Left, ..*r };
-        let x = f.axis.as_ref().map(|a| left.direction(&format!("{key}.axis"), a)).transpose()?.unwrap_or(Vec3::x());
-        let y = f.y_axis.as_ref().map(|a| left.direction(&format!("{key}.y_axis"), a)).transpose()?;
-        let point = r.point(&format!("{key}.at"), &f.at)?;
-        model.add_element(f.field(&key, &part_name(r.prefix, &f.name), [bi, bj], point, x, y, r.side)?)?;
+        let e = framed_entry(model, r, &key, &f.bodies, f.axis.as_ref(), f.y_axis.as_ref(), &f.at)?;
+        model.add_element(f.field(&key, &part_name(r.prefix, &f.name), e.bodies, e.point, e.x, e.y, r.side)?)?;
         Ok(())
     }
 
