@@ -65,14 +65,9 @@ impl Projection {
     }
 }
 
-/// Where an anchored point is at `poses`.
-fn placed(anchor: &Anchor, poses: &[Pose]) -> Vec3 {
-    anchor.placed(poses)
-}
-
 /// The points of a stroke as drawn at `poses`: a deflection scaled about its point on body `j`.
 pub fn stroke_points(stroke: &Stroke, poses: &[Pose]) -> Vec<Vec3> {
-    let points: Vec<Vec3> = stroke.anchors.iter().map(|a| placed(a, poses)).collect();
+    let points: Vec<Vec3> = stroke.anchors.iter().map(|a| a.placed(poses)).collect();
     match (stroke.pen, points.as_slice()) {
         (Pen::Deflection, [i, j]) => vec![*j, j + (j - i) * DEFLECTION_SCALE],
         _ => points,
@@ -165,6 +160,8 @@ fn projection_svg(out: &mut String, motion: &Motion, rows: [usize; 3], projectio
 
 /// `layers` in one projection, as an inline SVG in a figure of id `id`, the grid over all of them.
 fn layers_svg(out: &mut String, layers: &[Layer], projection: Projection, id: &str) -> std::fmt::Result {
+    // Each layer's strokes, made once for the extents and the drawing.
+    let strokes: Vec<Vec<Stroke>> = layers.iter().map(|l| l.motion.drawing.strokes()).collect();
     // Extents over every row drawn.
     let (mut lo, mut hi) = ((f64::INFINITY, f64::INFINITY), (f64::NEG_INFINITY, f64::NEG_INFINITY));
     let mut grow = |p: &Vec3| {
@@ -174,8 +171,8 @@ fn layers_svg(out: &mut String, layers: &[Layer], projection: Projection, id: &s
             hi = (hi.0.max(u), hi.1.max(v));
         }
     };
-    for layer in layers {
-        for s in &layer.motion.drawing.strokes() {
+    for (layer, strokes) in layers.iter().zip(&strokes) {
+        for s in strokes {
             stroke_points(s, &layer.motion.frames[layer.row]).iter().for_each(&mut grow);
         }
     }
@@ -246,11 +243,11 @@ fn layers_svg(out: &mut String, layers: &[Layer], projection: Projection, id: &s
         }
         d
     };
-    for layer in layers {
+    for (layer, strokes) in layers.iter().zip(&strokes) {
         let (ghost, poses) = (layer.ghost, &layer.motion.frames[layer.row]);
         let opacity = if ghost { " opacity=\"0.25\"" } else { "" };
         writeln!(out, "<g fill=\"none\" stroke-linecap=\"round\"{opacity}>")?;
-        for s in &layer.motion.drawing.strokes() {
+        for s in strokes {
             if ghost && s.pen == Pen::Deflection {
                 continue;
             }
@@ -284,7 +281,7 @@ fn layers_svg(out: &mut String, layers: &[Layer], projection: Projection, id: &s
 }
 
 fn write_dot(out: &mut String, d: &Dot, poses: &[Pose], at: &dyn Fn(&Vec3) -> (f64, f64)) -> std::fmt::Result {
-    let p = placed(&d.at, poses);
+    let p = d.at.placed(poses);
     if !p.iter().all(|c| c.is_finite()) {
         return Ok(());
     }

@@ -165,9 +165,6 @@ impl AxleCharacteristics {
         }
         Ok(a)
     }
-
-    /// The analyses whose figures these are.
-    pub const ANALYSES: [Analysis; 2] = [Analysis::Roll, Analysis::ParallelTravel];
 }
 
 /// Front or rear.

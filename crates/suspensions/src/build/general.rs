@@ -51,12 +51,7 @@ impl BushingDef {
         let (translational, rotational) = self.rates(key)?;
         let frame = bushing_frame(x_left, y_hint_left, side)
             .map_err(|why| ModelError::OutOfRange { item: format!("{key} ({})", self.name), why })?;
-        // Mirroring turns the frame's z axis over (see `bushing_frame`): a preload's z force and x, y
-        // moments change sign in the right corner's frame, so that the right bushing pushes as the mirror
-        // image of the left.
-        let s = side.sign();
-        let force = self.preload_force.map_or(Vec3::zeros(), |f| Vec3::new(f[0], f[1], s * f[2]));
-        let torque = self.preload_torque.map_or(Vec3::zeros(), |m| Vec3::new(s * m[0], s * m[1], m[2]));
+        let (force, torque) = mirrored_preload(self.preload_force, self.preload_torque, side);
         Bushing::from_spec(BushingSpec {
             name: name.to_string(),
             body_i: bodies[0],
@@ -452,6 +447,17 @@ fn framed_entry(
     Ok(FramedEntry { bodies: [bi, bj], point: r.point(&format!("{key}.at"), at)?, x, y })
 }
 
+/// A preload force and moment given in a left corner's frame, in `side`'s. Mirroring turns the frame's z
+/// axis over (see [`bushing_frame`]): a preload's z force and x, y moments change sign in the right
+/// corner's frame, so that the right element pushes as the mirror image of the left.
+fn mirrored_preload(force: Option<[f64; 3]>, torque: Option<[f64; 3]>, side: Side) -> (Vec3, Vec3) {
+    let s = side.sign();
+    (
+        force.map_or(Vec3::zeros(), |f| Vec3::new(f[0], f[1], s * f[2])),
+        torque.map_or(Vec3::zeros(), |m| Vec3::new(s * m[0], s * m[1], m[2])),
+    )
+}
+
 fn bushing_frame(x_left: Vec3, y_hint_left: Option<Vec3>, side: Side) -> Result<Mat3, String> {
     let x = x_left / x_left.norm();
     let y = match y_hint_left {
@@ -491,8 +497,7 @@ impl FieldDef {
         let s = side.sign();
         let t = nalgebra::Vector6::new(1.0, 1.0, s, s, s, 1.0);
         let stiffness = nalgebra::Matrix6::from_fn(|a, b| t[a] * self.stiffness[a][b] * t[b]);
-        let force = self.preload_force.map_or(Vec3::zeros(), |v| Vec3::new(v[0], v[1], s * v[2]));
-        let torque = self.preload_torque.map_or(Vec3::zeros(), |m| Vec3::new(s * m[0], s * m[1], m[2]));
+        let (force, torque) = mirrored_preload(self.preload_force, self.preload_torque, side);
         Field::from_spec(FieldSpec {
             name: name.to_string(),
             body_i: bodies[0],
