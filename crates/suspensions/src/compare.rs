@@ -10,6 +10,7 @@
 
 use crate::design::targets::Measured;
 use crate::file::SuspensionFile;
+use crate::kc::report::slug;
 use crate::kc::{Analysis, AnalysisReport, Cell, Chart, KcReport, Series, Table, YAxis};
 
 /// One design in a comparison: a model's K&C suite, or a measured file of one analysis.
@@ -183,19 +184,6 @@ fn overlaid(reports: &[(usize, AnalysisReport)], names: &[String]) -> Vec<Chart>
         }
     }
     out
-}
-
-/// A curve's name as part of a file name: its letters and digits, the rest one underscore.
-fn slug(name: &str) -> String {
-    let mut out = String::new();
-    for c in name.chars() {
-        if c.is_ascii_alphanumeric() {
-            out.push(c.to_ascii_lowercase());
-        } else if !out.ends_with('_') {
-            out.push('_');
-        }
-    }
-    out.trim_matches('_').to_string()
 }
 
 /// The charts of a measured file: per column it shares with its analysis's table, that column against

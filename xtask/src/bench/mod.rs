@@ -16,6 +16,7 @@
 
 pub mod alloc;
 mod batch;
+mod elastic_members;
 mod error_vs_time;
 mod exudyn;
 mod models;
@@ -73,7 +74,7 @@ impl Settings {
 type Section = (&'static str, fn(&Settings) -> SectionOutput);
 
 /// The sections, in the order they run and appear.
-const SECTIONS: [Section; 9] = [
+const SECTIONS: [Section; 10] = [
     ("error-vs-time", error_vs_time::run),
     ("step-cost", step_cost::run),
     ("scaling", scaling::run),
@@ -82,6 +83,7 @@ const SECTIONS: [Section; 9] = [
     ("sensitivity", sensitivity::run),
     ("tuning", tuning::run),
     ("report-page", report_page::run),
+    ("elastic-members", elastic_members::run),
     ("exudyn", exudyn::run),
 ];
 
@@ -93,7 +95,7 @@ usage: cargo xtask bench [--quick] [--out DIR] [--save NAME] [--compare NAME] [-
     --compare NAME   print now/then for every figure of DIR/NAME.json, flag the slower ones
     --threshold X    flag figures slower than X times then (default 1.25)
     --only LIST      comma-separated sections: error-vs-time, step-cost, scaling, stiff-cases, batch, sensitivity,
-                     tuning, report-page, exudyn
+                     tuning, report-page, elastic-members, exudyn
                      (exudyn needs Python with Exudyn, `pip install exudyn`; without it, it is skipped)";
 
 /// Parsed command line.

@@ -19,7 +19,7 @@ pub struct RollCentre {
 }
 
 /// One row of a driven axle sweep.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct AxleRow {
     /// The driven parameter: wheel travel (m; the left wheel's in opposite travel) or rack travel (m).
     pub travel: f64,
@@ -39,6 +39,10 @@ pub struct AxleRow {
     /// Strain energy in the anti-roll bars (J): ½·rate·twist² summed over the bars. Its second derivative
     /// against the roll angle is the bars' roll stiffness.
     pub anti_roll_bar_energy: f64,
+    /// Twist of each of the axle's shared beams ([`Axle::members`], in order), rad: the sum of its
+    /// segments' relative rotations about their own axes, positive by the right hand about the beam's
+    /// direction from its first end to its last.
+    pub member_twists: Vec<f64>,
     /// Moment of the two wheel loads about the x axis, Σ yᵢ·Fᵢ at the wheel centres (N·m). The roll
     /// stiffness is −dM/dφ.
     pub roll_moment: f64,
@@ -134,7 +138,16 @@ pub fn axle_sweep_with(
             let rates = solver.path_tangent(&solver.state_of(step))?;
             axle.roll_centre(&step.poses, &rates)
         };
+        let reports =
+            (!(axle.anti_roll_bars.is_empty() && axle.members.is_empty())).then(|| step.element_reports(model));
+        let member_twists = match &reports {
+            None => Vec::new(),
+            Some(reports) => {
+                axle.members.iter().map(|m| m.segments.iter().map(|e| reports[e.0].rotation.x).sum()).collect()
+            }
+        };
         Ok(AxleRow {
+            member_twists,
             travel: step.t,
             left,
             right,
@@ -146,7 +159,7 @@ pub fn axle_sweep_with(
             anti_roll_bar_energy: if axle.anti_roll_bars.is_empty() {
                 0.0
             } else {
-                let reports = step.element_reports(model);
+                let reports = reports.as_ref().expect("read when the axle has bars");
                 // A bar's torsion element twists about its own x axis only (its two halves turn on one
                 // axis): the energy is half the moment times the twist.
                 axle.anti_roll_bars

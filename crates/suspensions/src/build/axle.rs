@@ -4,7 +4,7 @@
 
 use crate::build::map::BuildMap;
 use crate::build::rig::{add_both_corners, add_travel_drivers, AxleRig};
-use crate::build::template::CornerTemplate;
+use crate::build::template::{CornerTemplate, ElasticMember};
 use crate::description::{GeneralCorner, Side};
 use crate::wheel::Wheel;
 use elastokin_core::{ElementId, Model, ModelError};
@@ -23,6 +23,8 @@ pub struct Axle {
     pub right: Wheel,
     /// The torsion element of each anti-roll bar.
     pub anti_roll_bars: Vec<ElementId>,
+    /// The shared elastic beams (a twist-beam axle's cross member).
+    pub members: Vec<ElasticMember>,
 }
 
 impl Axle {
@@ -42,7 +44,8 @@ impl Axle {
             let axle_only = template.builds_on_axle_only();
             add_travel_drivers(&mut model, axle_only, ("left ", &left.wheel, l), ("right ", &right.wheel, r))?;
         }
-        Ok(Axle { model, rig, left: left.wheel, right: right.wheel, anti_roll_bars: cross.anti_roll_bars })
+        let (anti_roll_bars, members) = (cross.anti_roll_bars, cross.members);
+        Ok(Axle { model, rig, left: left.wheel, right: right.wheel, anti_roll_bars, members })
     }
 
     /// What each item of `general` (the description it was built from, a template's expansion) became in

@@ -5,7 +5,7 @@
 //! an element, with its model-file key in every error.
 
 use crate::build::map::load_labels;
-use crate::build::template::{CornerParts, CornerTemplate, CrossAxle, SteeringLink, TieRod};
+use crate::build::template::{CornerParts, CornerTemplate, CrossAxle, ElasticMember, SteeringLink, TieRod};
 use crate::description::general::{
     part_name, Axis, BeamDef, BodyDef, BushingDef, FieldDef, GeneralCorner, JointDef, Place, SpringDef, Stiffness,
     StopDef, StopType, CHASSIS,
@@ -603,14 +603,23 @@ impl GeneralCorner {
         let mut previous = bi;
         for s in 1..=n {
             let body_j = if s == n { bj } else { BodyRef::Body(model.add_body(&names[n + s - 1], Pose::at(at(s)))?) };
+            // Each segment is carried by the body nearer the beam's end (the middle one of an odd number by
+            // its start), so a beam between mirror-image points, a twist beam's cross member, bends as the
+            // mirror image of itself: a segment's own finite rotation makes it differ from its ends
+            // exchanged at second order. Turned end for end, its section's z axis turns over.
+            let turned = 2 * s > n + 1;
             let spec = BeamSpec {
                 name: names[s - 1].clone(),
-                body_i: previous,
-                body_j,
-                from: at(s - 1),
-                to: at(s),
+                body_i: if turned { body_j } else { previous },
+                body_j: if turned { previous } else { body_j },
+                from: at(if turned { s } else { s - 1 }),
+                to: at(if turned { s - 1 } else { s }),
                 y_axis: y,
-                section,
+                section: if turned {
+                    Section { shear_centre: (ey, -section.shear_centre.1), ..section }
+                } else {
+                    section
+                },
             };
             model.add_element(beam(&spec).map_err(rekey)?)?;
             previous = body_j;
@@ -826,7 +835,9 @@ impl CornerTemplate for GeneralCorner {
             .enumerate()
             .map(|(k, bar)| bar.add(model, k, sides()))
             .collect::<Result<_, _>>()?;
-        let Some(axle) = &self.axle else { return Ok(CrossAxle { anti_roll_bars, steering_link: None }) };
+        let Some(axle) = &self.axle else {
+            return Ok(CrossAxle { anti_roll_bars, steering_link: None, members: Vec::new() });
+        };
         let r = self.shared_resolver(left.0, right.0);
         // The shared parts' messages name them under `axle.`.
         let under_axle = |e: ModelError| match e {
@@ -840,6 +851,16 @@ impl CornerTemplate for GeneralCorner {
         }
         for (k, b) in axle.bushings.iter().enumerate() {
             self.add_bushing(model, &r, k, b).map_err(under_axle)?;
+        }
+        for (k, f) in axle.fields.iter().enumerate() {
+            self.add_field(model, &r, k, f).map_err(under_axle)?;
+        }
+        let mut members = Vec::with_capacity(axle.beams.len());
+        for (k, b) in axle.beams.iter().enumerate() {
+            self.add_beam(model, &r, k, b).map_err(under_axle)?;
+            // The segments' names come first in `part_names`, in order along the beam.
+            let segments = b.part_names("").iter().filter_map(|n| model.element_id(n)).collect();
+            members.push(ElasticMember { name: b.name.clone(), segments });
         }
         for (k, sp) in axle.springs.iter().enumerate() {
             self.add_spring(model, &r, k, sp).map_err(under_axle)?;
@@ -878,6 +899,6 @@ impl CornerTemplate for GeneralCorner {
                 Some(SteeringLink { body, rod, rack_axis: axis.normalize() })
             }
         };
-        Ok(CrossAxle { anti_roll_bars, steering_link })
+        Ok(CrossAxle { anti_roll_bars, steering_link, members })
     }
 }

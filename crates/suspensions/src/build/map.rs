@@ -135,9 +135,12 @@ impl BuildMap {
             item(format!("anti_roll_bars[{k}]"), &bar.name, None, std::slice::from_ref(&bar.name));
         }
         if let Some(axle) = &general.axle {
-            let shared = parts(&axle.joints, &axle.bushings, &[], &axle.springs, &axle.stops);
+            let shared = parts(&axle.joints, &axle.bushings, &axle.fields, &axle.springs, &axle.stops);
             for (key, name) in entries("axle.", axle.bodies.iter().map(|b| &b.name), &shared) {
                 item(key, name, None, &[name.to_string()]);
+            }
+            for (k, b) in axle.beams.iter().enumerate() {
+                item(format!("axle.beams[{k}]"), &b.name, None, &b.part_names(""));
             }
             if axle.steering_link.is_some() {
                 item("axle.steering_link".into(), STEERING_LINK, None, &rod(STEERING_LINK));

@@ -28,4 +28,4 @@ pub use general::{joint_spec, JointGeometry};
 pub use map::{BuildMap, Built};
 pub use mobility::mobility;
 pub use rig::{AxleRig, Rig};
-pub use template::{CornerParts, CornerTemplate, CrossAxle, SteeringLink, TieRod};
+pub use template::{CornerParts, CornerTemplate, CrossAxle, ElasticMember, SteeringLink, TieRod};

@@ -47,6 +47,17 @@ pub struct CrossAxle {
     /// The axle's steering input, still to be attached to the rack or the chassis, when its corners have
     /// no tie rods of their own.
     pub steering_link: Option<SteeringLink>,
+    /// The shared elastic beams (a twist-beam axle's cross member), whose twist the roll analysis reads.
+    pub members: Vec<ElasticMember>,
+}
+
+/// A shared elastic beam of an axle, in its segments from the first end to the last.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ElasticMember {
+    /// The beam's name in the description.
+    pub name: String,
+    /// Its segments' elements, in order along it.
+    pub segments: Vec<ElementId>,
 }
 
 /// A solid axle's steering input: a rod from the steering box (the rack, or the chassis when the rack is

@@ -477,6 +477,12 @@ pub struct AxleDef {
     /// Bushings of the shared parts.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub bushings: Vec<BushingDef>,
+    /// Field elements of the shared parts.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub fields: Vec<FieldDef>,
+    /// Elastic beams of the shared parts: a twist-beam axle's cross member, from `"left …"` to `"right …"`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub beams: Vec<BeamDef>,
     /// Springs between shared parts (each corner's own springs go in the corner).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub springs: Vec<SpringDef>,

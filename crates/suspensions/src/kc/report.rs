@@ -368,6 +368,19 @@ impl KcReport {
     }
 }
 
+/// A name as part of a key or a file name: its letters and digits in lower case, the rest one underscore.
+pub(crate) fn slug(name: &str) -> String {
+    let mut out = String::new();
+    for c in name.chars() {
+        if c.is_ascii_alphanumeric() {
+            out.push(c.to_ascii_lowercase());
+        } else if !out.ends_with('_') {
+            out.push('_');
+        }
+    }
+    out.trim_matches('_').to_string()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

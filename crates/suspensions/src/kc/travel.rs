@@ -10,7 +10,7 @@ use crate::file::SuspensionFile;
 use crate::kc::reduce::{
     axis, axle_drawing, chart, corner_drawing, deg, finish, needs_vehicle, outside, said, Reduction,
 };
-use crate::kc::report::{AnalysisReport, Cell, Figure, Table, Warning};
+use crate::kc::report::{slug, AnalysisReport, Cell, Figure, Table, Warning};
 use crate::kc::settings::{Analysis, Settings};
 
 pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
@@ -303,6 +303,9 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
     let range = s.range.unwrap_or((-0.05, 0.05));
     let axle = Axle::build(&file.suspension, AxleRig::OppositeTravel).map_err(said)?;
     let has_bars = !axle.anti_roll_bars.is_empty();
+    // The shared beams' names as keys and columns: a twist-beam axle's cross member is read in roll.
+    let members: Vec<String> = axle.members.iter().map(|m| slug(&m.name)).collect();
+    let member_names: Vec<String> = axle.members.iter().map(|m| m.name.clone()).collect();
     let out = axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras(range)).map_err(said)?;
     let table = |rows: &[AxleRow]| Table {
         name: "roll".into(),
@@ -324,12 +327,15 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
             "anti_roll_bar_energy_j",
         ]
         .map(String::from)
-        .to_vec(),
+        .into_iter()
+        .chain(members.iter().map(|m| format!("{m}_twist_deg")))
+        .collect(),
         rows: rows
             .iter()
             .map(|r| {
                 let rc = r.roll_centre;
-                vec![
+                let twists = r.member_twists.iter().map(|&t| Cell::from(deg(t)));
+                let mut row = vec![
                     r.travel.into(),
                     deg(r.roll_angle).into(),
                     deg(r.left.toe).into(),
@@ -345,7 +351,9 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
                     r.right_load.into(),
                     r.roll_moment.into(),
                     r.anti_roll_bar_energy.into(),
-                ]
+                ];
+                row.extend(twists);
+                row
             })
             .collect(),
     };
@@ -376,7 +384,17 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
         // The bars' energy is U(φ) ≈ ½·K·φ² about design: K is its curvature, from the rows on either side.
         let bars = if has_bars { curvature_at(rows, |r| r.roll_angle, |r| r.anti_roll_bar_energy) } else { None };
         let bar_why = if has_bars { why.clone() } else { "the model has no anti-roll bar".to_string() };
-        vec![
+        let twists = member_names.iter().zip(&members).enumerate().map(|(k, (name, key))| {
+            Figure::maybe(
+                &format!("{key}_twist_per_roll"),
+                &format!("{name}: twist per degree of roll"),
+                "deg/deg",
+                3,
+                per_roll(slope(&|r| r.member_twists[k])),
+                &roll_why,
+            )
+        });
+        let mut figures = vec![
             Figure::maybe(
                 "roll_centre_height",
                 "roll centre height at design",
@@ -433,7 +451,9 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
                 bars.zip(total).map(|(b, t)| 100.0 * b / t).filter(|v| v.is_finite()),
                 if has_bars && total == Some(0.0) { "the roll stiffness is zero" } else { &bar_why },
             ),
-        ]
+        ];
+        figures.extend(twists);
+        figures
     };
     let x = |r: &AxleRow| deg(r.roll_angle);
     let charts = vec![
