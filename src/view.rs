@@ -81,6 +81,7 @@ fn pen_style(pen: Pen) -> (&'static str, f64, &'static str) {
         Pen::Link => ("#555555", 2.0, ""),
         Pen::Spring => ("#2ca02c", 3.0, "6 3"),
         Pen::Stop => ("#8c564b", 4.0, ""),
+        Pen::Beam => ("#17becf", 4.0, ""),
         Pen::Bushing => ("#9467bd", 2.0, ""),
         Pen::Deflection => ("#d62728", 2.0, ""),
         Pen::Wheel => ("#333333", 1.5, ""),
@@ -315,6 +316,7 @@ fn write_legend(out: &mut String) -> std::fmt::Result {
         (Pen::Link, "link (tie rod, drop link)"),
         (Pen::Spring, "spring"),
         (Pen::Stop, "stop"),
+        (Pen::Beam, "elastic beam"),
         (Pen::Bushing, "bushing axis"),
         (Pen::Deflection, "bushing deflection ×20"),
         (Pen::Wheel, "wheel (loaded radius)"),
@@ -432,15 +434,24 @@ pub fn viewer_data(report: &KcReport) -> Value {
         analyses.push(json!({ "name": a.analysis.name(), "drawing": index, "design": a.design_row(),
                               "labels": labels, "frames": frames }));
     }
-    let pens: serde_json::Map<String, Value> =
-        [Pen::Part, Pen::Link, Pen::Spring, Pen::Stop, Pen::Bushing, Pen::Deflection, Pen::Wheel, Pen::SteeringAxis]
-            .into_iter()
-            .map(|p| {
-                let (colour, width, dash) = pen_style(p);
-                let dash: Vec<f64> = dash.split(' ').filter_map(|d| d.parse().ok()).collect();
-                (p.name().to_string(), json!({ "colour": colour, "width": width, "dash": dash }))
-            })
-            .collect();
+    let pens: serde_json::Map<String, Value> = [
+        Pen::Part,
+        Pen::Link,
+        Pen::Spring,
+        Pen::Stop,
+        Pen::Beam,
+        Pen::Bushing,
+        Pen::Deflection,
+        Pen::Wheel,
+        Pen::SteeringAxis,
+    ]
+    .into_iter()
+    .map(|p| {
+        let (colour, width, dash) = pen_style(p);
+        let dash: Vec<f64> = dash.split(' ').filter_map(|d| d.parse().ok()).collect();
+        (p.name().to_string(), json!({ "colour": colour, "width": width, "dash": dash }))
+    })
+    .collect();
     let spots: serde_json::Map<String, Value> = [Spot::Joint, Spot::Bushing, Spot::Mount, Spot::WheelCentre]
         .into_iter()
         .map(|s| {

@@ -63,6 +63,8 @@ pub enum SketchKind {
     Stop,
     /// An applied load at a point of one body.
     Load,
+    /// An elastic beam, drawn as the line from its start on body `i` to its end on body `j`.
+    Beam,
 }
 
 /// Where an element sits, for a drawing of the model: its point on each of its two bodies in that body's

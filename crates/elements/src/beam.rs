@@ -23,7 +23,9 @@
 //! by reciprocity the twist moves the centroid by `δy += e_z θx`, `δz −= e_y θx`.
 
 use crate::field::{Field, FieldSpec};
-use elastokin_core::{BodyRef, Mat3, ModelError, Vec3};
+use elastokin_core::{
+    BodyRef, ElementEval, ElementReport, ElementRole, ForceElement, Mat3, ModelError, Pose, Sketch, SketchKind, Vec3,
+};
 use nalgebra::{Matrix6, Vector6};
 
 /// A beam's section and material (SI units).
@@ -132,10 +134,58 @@ pub struct BeamSpec {
     pub section: Section,
 }
 
-/// The beam of `spec` as the field it is (see the module docs). Refused by name: a length of zero, a
-/// section value that is not positive, a shear centre outside any plausible section, a `y_axis` along the
-/// beam.
-pub fn beam(spec: &BeamSpec) -> Result<Field, ModelError> {
+/// A beam as a model holds it: the field of its cantilever (see the module docs), which is all its
+/// mechanics, and its start on body `i`, where a drawing begins the line it draws to the end on `j`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Beam {
+    field: Field,
+    /// The start: global until bound, then in body `i`'s frame.
+    start: Vec3,
+}
+
+impl Beam {
+    /// The field it is.
+    pub fn field(&self) -> &Field {
+        &self.field
+    }
+}
+
+impl ForceElement for Beam {
+    fn name(&self) -> &str {
+        self.field.name()
+    }
+
+    fn bodies(&self) -> [BodyRef; 2] {
+        self.field.bodies()
+    }
+
+    fn role(&self) -> ElementRole {
+        self.field.role()
+    }
+
+    fn bind(&mut self, pi: &Pose, pj: &Pose) -> Result<(), ModelError> {
+        self.field.bind(pi, pj)?;
+        self.start = pi.to_local_point(&self.start);
+        Ok(())
+    }
+
+    fn evaluate(&self, pi: &Pose, pj: &Pose, t: f64, out: &mut ElementEval, with_stiffness: bool) {
+        self.field.evaluate(pi, pj, t, out, with_stiffness);
+    }
+
+    fn report(&self, pi: &Pose, pj: &Pose, t: f64) -> ElementReport {
+        self.field.report(pi, pj, t)
+    }
+
+    fn sketch(&self) -> Option<Sketch> {
+        let end = self.field.sketch()?;
+        Some(Sketch { kind: SketchKind::Beam, on_i: self.start, on_j: end.on_j, axes_i: end.axes_i })
+    }
+}
+
+/// The beam of `spec` (see the module docs). Refused by name: a length of zero, a section value that is
+/// not positive, a shear centre outside any plausible section, a `y_axis` along the beam.
+pub fn beam(spec: &BeamSpec) -> Result<Beam, ModelError> {
     let refuse = |why: String| Err(ModelError::OutOfRange { item: spec.name.clone(), why });
     for (what, v) in [("start", spec.from), ("end", spec.to), ("y_axis", spec.y_axis)] {
         if !v.iter().all(|c| c.is_finite()) {
@@ -154,7 +204,7 @@ pub fn beam(spec: &BeamSpec) -> Result<Field, ModelError> {
         return refuse("its y_axis lies along the beam: give a direction across it".into());
     }
     let y = y.normalize();
-    Field::from_spec(FieldSpec {
+    let field = Field::from_spec(FieldSpec {
         name: spec.name.clone(),
         body_i: spec.body_i,
         body_j: spec.body_j,
@@ -163,5 +213,6 @@ pub fn beam(spec: &BeamSpec) -> Result<Field, ModelError> {
         stiffness: spec.section.cantilever_stiffness(length),
         preload_force: Vec3::zeros(),
         preload_torque: Vec3::zeros(),
-    })
+    })?;
+    Ok(Beam { field, start: spec.from })
 }

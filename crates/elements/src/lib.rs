@@ -82,7 +82,7 @@ mod geometry;
 pub mod point_load;
 pub mod stop;
 
-pub use beam::{beam, BeamSpec, Section};
+pub use beam::{beam, Beam, BeamSpec, Section};
 pub use bushing::{Bushing, BushingSpec, RotationLaw};
 pub use coil_spring::{CoilSpring, CoilSpringSpec};
 pub use curve::{Characteristic, Curve};

@@ -2,13 +2,14 @@
 //! are the points the element's own law measures, so what a drawing shows is what the element feels.
 //! Checked against each element's report at random poses: a spring's drawn length less its deflection is
 //! its free length at every pose, a stop's drawn length tells its contact as its report does, a bushing's
-//! two drawn points apart, in its drawn axes, are its deflection, and a load sits on its body.
+//! two drawn points apart, in its drawn axes, are its deflection, a beam's line less its length is its
+//! deflection, and a load sits on its body.
 
 mod common;
 
 use common::*;
 use elastokin_core::{BodyId, BodyRef, ForceElement, Pose, SketchKind, Vec3};
-use elastokin_elements::{Bushing, CoilSpring, Curve, PointForce, Stop};
+use elastokin_elements::{beam, BeamSpec, Bushing, CoilSpring, Curve, PointForce, Section, Stop};
 
 /// A point of body `b` (its local coordinates; global on the ground) at `pose`.
 fn placed(body: BodyRef, pose: &Pose, local: &Vec3) -> Vec3 {
@@ -95,6 +96,42 @@ fn a_bushings_drawn_points_apart_in_its_drawn_axes_are_its_deflection() {
     }
     // Measured: 1e-16 m.
     assert!(worst < 1e-14, "drawn separation in the drawn axes against the deflection: {worst:e} m");
+}
+
+#[test]
+fn a_beams_drawn_line_less_its_length_along_its_drawn_axis_is_its_deflection() {
+    let mut rng = Rng::new(17);
+    let (from, to) = (rng.vec(0.3), rng.vec(0.3) + Vec3::new(0.0, 0.6, 0.0));
+    let section = Section {
+        youngs_modulus: 210e9,
+        shear_modulus: 80e9,
+        area: 1e-3,
+        iy: 1e-6,
+        iz: 2e-6,
+        j: 3e-8,
+        shear_areas: None,
+        shear_centre: (0.0, 0.02),
+    };
+    let (a, b) = (BodyRef::Body(BodyId(0)), BodyRef::Body(BodyId(1)));
+    let spec = BeamSpec { name: "beam".into(), body_i: a, body_j: b, from, to, y_axis: Vec3::x(), section };
+    let mut beam = beam(&spec).unwrap();
+    let (di, dj) = (rng.pose(0.3), rng.pose(0.3));
+    beam.bind(&di, &dj).unwrap();
+    let sketch = beam.sketch().unwrap();
+    assert_eq!(sketch.kind, SketchKind::Beam);
+    let axes = sketch.axes_i.expect("a beam has axes");
+    let (s0, e0) = drawn(&beam, &di, &dj);
+    assert!((s0 - from).norm() < 1e-15 && (e0 - to).norm() < 1e-15, "at design, from its start to its end");
+    let length = (to - from).norm();
+    let mut worst = 0.0f64;
+    for _ in 0..20 {
+        let (pi, pj) = (rng.pose(0.3), rng.pose(0.3));
+        let (start, end) = drawn(&beam, &pi, &pj);
+        let in_axes = (pi.rotation() * axes).transpose() * (end - start) - Vec3::new(length, 0.0, 0.0);
+        worst = worst.max((in_axes - beam.report(&pi, &pj, 0.0).deflection).norm());
+    }
+    // Measured: 2e-16 m.
+    assert!(worst < 1e-14, "drawn line in the drawn axes against the deflection: {worst:e} m");
 }
 
 #[test]

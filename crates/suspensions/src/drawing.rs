@@ -191,6 +191,8 @@ pub enum Pen {
     Spring,
     /// A stop between its points.
     Stop,
+    /// An elastic beam, from its start to its end.
+    Beam,
     /// A bushing's axis, through its point.
     Bushing,
     /// A bushing's deflection, [`DEFLECTION_SCALE`] times its length, from its point on body `j`.
@@ -209,6 +211,7 @@ impl Pen {
             Pen::Link => "link",
             Pen::Spring => "spring",
             Pen::Stop => "stop",
+            Pen::Beam => "beam",
             Pen::Bushing => "bushing",
             Pen::Deflection => "deflection",
             Pen::Wheel => "wheel",
@@ -305,6 +308,7 @@ impl Drawing {
             let pen = match e.kind {
                 SketchKind::Spring => Pen::Spring,
                 SketchKind::Stop => Pen::Stop,
+                SketchKind::Beam => Pen::Beam,
                 SketchKind::Bushing => {
                     if let Some(axes) = e.axes {
                         let x = axes.column(0) * BUSHING_MARK;
@@ -354,7 +358,8 @@ impl Drawing {
                 mark(Spot::Joint, &j.name, *end);
             }
         }
-        for e in self.elements.iter().filter(|e| e.kind != SketchKind::Load) {
+        // A beam's ends are points of the bodies it joins, not joints: its line says where it is.
+        for e in self.elements.iter().filter(|e| !matches!(e.kind, SketchKind::Load | SketchKind::Beam)) {
             let spot = if e.kind == SketchKind::Bushing { Spot::Bushing } else { Spot::Joint };
             for end in &e.ends {
                 mark(spot, &e.name, *end);

@@ -63,12 +63,7 @@ pub fn run(s: &Settings) -> SectionOutput {
         });
         let ratio = match (&measured, &macpherson) {
             (Ok((bodies, t)), Ok(m)) => {
-                table.row(vec![
-                    Cell::text(name),
-                    Cell::text(bodies.to_string()),
-                    Cell::num(t * 1e6),
-                    Cell::num(t / m),
-                ]);
+                table.row(vec![Cell::text(name), Cell::text(bodies.to_string()), Cell::num(t * 1e6), Cell::num(t / m)]);
                 out.figure(&format!("elastic_members.twist_beam_{segments}_per_row_s"), *t, "s", Kind::Time);
                 Ok(t / m)
             }
