@@ -49,6 +49,9 @@ pub struct Section {
     pub shear_centre: (f64, f64),
 }
 
+/// The largest Young's or shear modulus a section may have (Pa): ten times diamond's.
+pub const MOST_MODULUS: f64 = 1e13;
+
 /// How far from the centroid a shear centre may lie, in multiples of `√A`: an open channel's lies about
 /// one section depth out; ten is no section.
 pub const SHEAR_CENTRE_REACH: f64 = 10.0;
@@ -71,6 +74,14 @@ impl Section {
         for (what, v) in values {
             if !(v.is_finite() && v > 0.0) {
                 return refuse(format!("the {what} must be a positive number, got {v:e}"));
+            }
+            // Beyond these the cantilever's flexibility rounds to nothing against its stiffness and the
+            // stiffness overflows: no section is made of such numbers.
+            let (most, unit) = if what.contains("modulus") { (MOST_MODULUS, "Pa") } else { (1.0, "in SI units") };
+            if v > most {
+                return refuse(format!(
+                    "the {what} is {v:e} {unit}, beyond {most:e}: no section has it; give SI units (Pa, m², m⁴)"
+                ));
             }
         }
         let (ey, ez) = self.shear_centre;
@@ -204,13 +215,20 @@ pub fn beam(spec: &BeamSpec) -> Result<Beam, ModelError> {
         return refuse("its y_axis lies along the beam: give a direction across it".into());
     }
     let y = y.normalize();
+    let stiffness = spec.section.cantilever_stiffness(length);
+    if !stiffness.iter().all(|k| k.is_finite()) {
+        return refuse(format!(
+            "its section is too soft or too stiff for its length of {length:e} m to give a stiffness in double \
+             precision: give the section in SI units (Pa, m², m⁴)"
+        ));
+    }
     let field = Field::from_spec(FieldSpec {
         name: spec.name.clone(),
         body_i: spec.body_i,
         body_j: spec.body_j,
         point: spec.to,
         frame: Mat3::from_columns(&[x, y, x.cross(&y)]),
-        stiffness: spec.section.cantilever_stiffness(length),
+        stiffness,
         preload_force: Vec3::zeros(),
         preload_torque: Vec3::zeros(),
     })?;

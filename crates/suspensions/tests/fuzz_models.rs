@@ -44,12 +44,15 @@ const SUITE_CASES: usize = 1600;
 /// A case slower than this hangs or allocates without bound.
 const SLOW_CASE: Duration = Duration::from_secs(5);
 
-const EXAMPLES: [(&str, &str); 5] = [
+const EXAMPLES: [(&str, &str); 8] = [
     ("macpherson.json", include_str!("../../../examples/generic/macpherson.json")),
     ("double_wishbone.json", include_str!("../../../examples/generic/double_wishbone.json")),
     ("double_wishbone_axle.json", include_str!("../../../examples/double_wishbone_axle.json")),
     ("five_link.json", include_str!("../../../examples/five_link.json")),
     ("four_link_axle.json", include_str!("../../../examples/four_link_axle.json")),
+    ("twist_beam.json", include_str!("../../../examples/twist_beam.json")),
+    ("twist_beam_template.json", include_str!("../../../examples/twist_beam_template.json")),
+    ("pushrod_rocker.json", include_str!("../../../examples/pushrod_rocker.json")),
 ];
 
 /// A model a case starts from: its name and text.
@@ -710,6 +713,20 @@ fn loaded_radius_1e308_is_refused_not_an_infinite_path_tangent() {
     let text = example_with("double_wishbone.json", &[("/suspension/double_wishbone/loaded_radius", json!(1e308))]);
     let e = refusal(&text);
     assert!(e.contains("loaded_radius") && e.contains("is outside 0.05–2 m"), "{e}");
+}
+
+#[test]
+fn a_twist_beams_arm_of_no_length_is_refused_not_a_nan_junction() {
+    let at = "/suspension/twist_beam/hardpoints/arm_end";
+    let e = refusal(&example_with("twist_beam_template.json", &[(at, json!([0.46, 0.6, 0.33]))]));
+    assert!(e.contains("hardpoints.arm_end") && e.contains("0.0 mm long") && !e.contains("NaN"), "{e}");
+}
+
+#[test]
+fn a_cross_members_second_moment_of_1e294_is_refused_not_a_nan_stiffness() {
+    let at = "/suspension/twist_beam/cross_member/section/iy";
+    let e = refusal(&example_with("twist_beam_template.json", &[(at, json!(1.28e294))]));
+    assert!(e.contains("second moment Iy") && e.contains("beyond") && !e.contains("NaN"), "{e}");
 }
 
 #[test]

@@ -130,7 +130,7 @@ fn two_templates_or_an_unknown_one_are_named() {
     let (message, line, expected) = invalid(&text, "suspension");
     assert_eq!(
         message,
-        "suspension: give one template (macpherson, double_wishbone or general), found 2: macpherson, double_wishbone"
+        "suspension: give one template (macpherson, double_wishbone, twist_beam or general), found 2: macpherson, double_wishbone"
     );
     assert_eq!(line, expected);
     let text = macpherson_edited(|v| {
@@ -140,7 +140,7 @@ fn two_templates_or_an_unknown_one_are_named() {
     let (message, _, _) = invalid(&text, "suspension");
     assert_eq!(
         message,
-        "suspension: unknown template 'trailing_arm': give one of macpherson, double_wishbone or general"
+        "suspension: unknown template 'trailing_arm': give one of macpherson, double_wishbone, twist_beam or general"
     );
 }
 
@@ -252,7 +252,7 @@ fn wrong_shapes_are_said_in_the_files_words() {
         (
             |v| v["suspension"] = serde_json::json!({}),
             "suspension",
-            "suspension: give one template (macpherson, double_wishbone or general), found none",
+            "suspension: give one template (macpherson, double_wishbone, twist_beam or general), found none",
         ),
     ];
     for (edit, key, words) in cases {

@@ -3,7 +3,7 @@
 //! analysis, its right side the mirror of its left.
 
 use elastokin_suspensions::kc::{self, Analysis, Settings};
-use elastokin_suspensions::SuspensionFile;
+use elastokin_suspensions::{Rig, Side, SuspensionFile};
 use serde_json::json;
 
 /// The simple geometry of `docs/twist-beam.md`: each arm pivots on an ideal hinge across the car at
@@ -131,4 +131,76 @@ fn the_shipped_twist_beam_runs_every_analysis_and_its_right_side_mirrors_its_lef
     // The cross member carries the roll: it twists more than the body rolls (the arms are shorter than
     // the half track), the other way.
     assert!(figure(roll, "cross_member_twist_per_roll") < -1.0);
+}
+
+fn template() -> SuspensionFile {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/twist_beam_template.json");
+    SuspensionFile::read(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn the_template_builds_the_axle_the_general_example_describes() {
+    // examples/twist_beam_template.json is examples/twist_beam.json's axle as the template; the general
+    // file gives the wheel's spin axis of 0.1° toe-in and 1° negative camber to ten digits.
+    let (t, g) = (template(), example());
+    let settings = Settings::default();
+    let (a, b) = (kc::run_suite(&t, &[], &settings, |_| {}), kc::run_suite(&g, &[], &settings, |_| {}));
+    assert_eq!(a.analyses.len(), b.analyses.len());
+    let mut worst = 0.0f64;
+    for (x, y) in a.analyses.iter().zip(&b.analyses) {
+        assert_eq!(x.analysis, y.analysis);
+        for (f, h) in x.figures.iter().zip(&y.figures) {
+            assert_eq!((&f.key, f.value.is_some()), (&h.key, h.value.is_some()), "{}", x.analysis.name());
+            if let (Some(u), Some(v)) = (f.value, h.value) {
+                worst = worst.max((u - v).abs() / (1.0 + v.abs()));
+            }
+        }
+    }
+    println!("template against general form: {worst:e}");
+    // Measured 2.9e-9: the spin axis's tenth digit.
+    assert!(worst < 1e-8, "{worst:e}");
+    // The static toe and camber are the template's: the built wheel's at the design poses.
+    let built = t.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
+    let at = built.wheel.attitude(&built.model.design_poses());
+    let (toe, camber) = (at.toe.to_degrees(), at.camber.to_degrees());
+    println!("toe {toe} deg, camber {camber} deg as built");
+    // Measured 1.4e-15 and 2.2e-16 deg.
+    assert!((toe - 0.1).abs() < 1e-13 && (camber + 1.0).abs() < 1e-13, "{toe} {camber}");
+}
+
+/// Why a twist-beam template edited at `edits` (JSON pointer, value) is refused: by the reading, which
+/// builds the model, or else by an analysis.
+fn refusal(edits: &[(String, serde_json::Value)]) -> String {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/twist_beam_template.json");
+    let mut doc: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    for (pointer, value) in edits {
+        *doc.pointer_mut(pointer).unwrap() = value.clone();
+    }
+    match SuspensionFile::from_json(&doc.to_string(), "edited") {
+        Err(e) => e.to_string(),
+        Ok(file) => kc::run(Analysis::ParallelTravel, &file, &Settings::default()).expect_err("refused").to_string(),
+    }
+}
+
+#[test]
+fn a_twist_beam_whose_cross_member_misses_its_arms_is_refused_by_key() {
+    let h = "/suspension/twist_beam/hardpoints";
+    let junction = format!("{h}/junction");
+    let cases = [
+        // Ahead of the pivot, and 150 mm inboard of the arm.
+        (vec![(junction.clone(), json!([0.60, 0.60, 0.31]))], "hardpoints.junction", "does not meet the arm"),
+        (vec![(junction.clone(), json!([0.20, 0.45, 0.31]))], "hardpoints.junction", "does not meet the arm"),
+        // The left side drawn across the centre plane.
+        (
+            ["pivot", "junction", "arm_end"].map(|k| (format!("{h}/{k}/1"), json!(0.02))).to_vec(),
+            "hardpoints.junction",
+            "centre plane",
+        ),
+        (vec![("/suspension/twist_beam/toe".to_string(), json!(15.0))], "toe", "within ±10"),
+    ];
+    for (edits, key, says) in cases {
+        let message = refusal(&edits);
+        println!("{message}");
+        assert!(message.contains(key) && message.contains(says), "{message}");
+    }
 }

@@ -2,7 +2,7 @@
 //!
 //! The general form ([`general`]: named hardpoints, bodies, joints, bushings, springs, stops, anti-roll
 //! bars, loads, the parts a solid axle's corners share, and the corner description) is what every
-//! suspension is written in; the templates ([`macpherson`], [`double_wishbone`]) are descriptions that
+//! suspension is written in; the templates ([`macpherson`], [`double_wishbone`], [`twist_beam`]) are descriptions that
 //! expand into it (`From<&MacPherson> for GeneralCorner`), and [`Template`] says which a model holds.
 //! Beside them: how parts meet ([`connection`]), the vehicle around the corner ([`vehicle`]), the limits
 //! of what a description may say and the checks that hold it to them ([`limits`]), and where a
@@ -21,6 +21,7 @@ pub mod macpherson;
 pub mod place;
 pub mod side;
 pub mod template;
+pub mod twist_beam;
 pub mod vehicle;
 
 pub use anti_roll_bar::AntiRollBar;
@@ -33,4 +34,5 @@ pub use general::{
 pub use macpherson::{MacPherson, MacPhersonHardpoints, StrutJoint};
 pub use side::Side;
 pub use template::Template;
+pub use twist_beam::{CrossMember, TwistBeam, TwistBeamHardpoints};
 pub use vehicle::{AxlePosition, VehicleParameters};

@@ -5,6 +5,7 @@ use crate::description::double_wishbone::DoubleWishbone;
 use crate::description::general::GeneralCorner;
 use crate::description::layout::Layout;
 use crate::description::macpherson::MacPherson;
+use crate::description::twist_beam::TwistBeam;
 use elastokin_core::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -17,17 +18,20 @@ pub enum Template {
     /// A MacPherson strut corner.
     #[serde(rename = "macpherson")]
     MacPherson(MacPherson),
+    /// A twist-beam axle, built whole.
+    TwistBeam(TwistBeam),
     /// Any corner: bodies, joints, bushings, springs and the corner description (see
     /// [`crate::description::general`]).
     General(Box<GeneralCorner>),
 }
 
 impl Template {
-    /// The key naming it in a model file: `macpherson`, `double_wishbone` or `general`.
+    /// The key naming it in a model file: `macpherson`, `double_wishbone`, `twist_beam` or `general`.
     pub fn kind(&self) -> &'static str {
         match self {
             Template::DoubleWishbone(_) => "double_wishbone",
             Template::MacPherson(_) => "macpherson",
+            Template::TwistBeam(_) => "twist_beam",
             Template::General(_) => "general",
         }
     }
@@ -38,6 +42,7 @@ impl Template {
         match self {
             Template::DoubleWishbone(t) => t.expand(),
             Template::MacPherson(t) => t.expand(),
+            Template::TwistBeam(t) => t.expand(),
             Template::General(g) => (**g).clone(),
         }
     }
@@ -47,6 +52,7 @@ impl Template {
         let mut named: Vec<(String, Vec3)> = match self {
             Template::DoubleWishbone(t) => t.hardpoints.named().into_iter().map(|(n, p)| (n.to_string(), p)).collect(),
             Template::MacPherson(t) => t.hardpoints.named().into_iter().map(|(n, p)| (n.to_string(), p)).collect(),
+            Template::TwistBeam(t) => t.hardpoints.named().into_iter().map(|(n, p)| (n.to_string(), p)).collect(),
             Template::General(g) => g.hardpoints.0.clone(),
         };
         named.sort_by(|a, b| a.0.cmp(&b.0));
@@ -66,6 +72,7 @@ impl Template {
         match self {
             Template::DoubleWishbone(t) => t.layout(),
             Template::MacPherson(t) => t.layout(),
+            Template::TwistBeam(t) => t.layout(),
             Template::General(g) => g.layout(),
         }
     }

@@ -41,7 +41,7 @@ pub struct SuspensionFile {
 }
 
 /// The templates a model file may name in `suspension`.
-const TEMPLATES: [&str; 3] = ["macpherson", "double_wishbone", "general"];
+const TEMPLATES: [&str; 4] = ["macpherson", "double_wishbone", "twist_beam", "general"];
 
 /// How the point reader's error starts (see [`crate::description::side::point`]); the hardpoint's name is put before it.
 const POINT_ERROR: &str = "a point is 3 numbers";
@@ -231,14 +231,15 @@ impl SuspensionFile {
                 column,
                 format!(
                     "suspension: give one template as an object, {{\"macpherson\": {{…}}}}, \
-                     {{\"double_wishbone\": {{…}}}} or {{\"general\": {{…}}}}, got {suspension}"
+                     {{\"double_wishbone\": {{…}}}}, {{\"twist_beam\": {{…}}}} or {{\"general\": {{…}}}}, got \
+                     {suspension}"
                 ),
             ));
         }
         if let Some(serde_json::Value::Object(templates)) = value.get("suspension") {
             let found: Vec<&str> = templates.keys().map(String::as_str).collect();
             let (line, column) = locate(text, &["suspension"]);
-            let known = "macpherson, double_wishbone or general";
+            let known = "macpherson, double_wishbone, twist_beam or general";
             match found.as_slice() {
                 [one] if !TEMPLATES.contains(one) => {
                     return Err(invalid(
@@ -330,6 +331,12 @@ impl SuspensionFile {
                 arm(&mut rates, "upper_arm_mounts", &t.upper_arm_mounts);
                 arm(&mut rates, "lower_arm_mounts", &t.lower_arm_mounts);
                 connection(&mut rates, keys(&["tie_rod"]), &t.tie_rod);
+                rates.push((keys(&["spring", "rate"]), "N/m", t.spring.rate, typical_spring));
+                forces.push((keys(&["spring", "design_force"]), t.spring.design_force));
+                (t.loaded_radius, keys(&["loaded_radius"]))
+            }
+            Template::TwistBeam(t) => {
+                connection(&mut rates, keys(&["pivots"]), &t.pivots);
                 rates.push((keys(&["spring", "rate"]), "N/m", t.spring.rate, typical_spring));
                 forces.push((keys(&["spring", "design_force"]), t.spring.design_force));
                 (t.loaded_radius, keys(&["loaded_radius"]))

@@ -107,10 +107,8 @@ pub fn check_settings(analysis: Analysis, settings: &Settings) -> Result<(), Ana
 /// a vehicle section, steering of a corner without a steering input, the model's own loads when it has
 /// none, roll of an axle whose joints lock it. Asked for by name, an analysis runs anyway.
 pub fn left_out(file: &SuspensionFile, analysis: Analysis) -> Option<&'static str> {
-    let (steered, loaded) = match &file.suspension {
-        crate::description::Template::General(g) => (g.is_steered(), !g.loads.is_empty()),
-        _ => (true, false),
-    };
+    let general = file.suspension.expand();
+    let (steered, loaded) = (general.is_steered(), !general.loads.is_empty());
     // The roll rig's own refusal decides: a solid axle whose joints lock its roll cannot travel opposite.
     let roll_locked = |template: &crate::description::Template| {
         crate::build::CornerTemplate::builds_on_axle_only(template)
