@@ -103,6 +103,11 @@ pub trait ForceElement: std::fmt::Debug + Send + Sync {
     }
     /// Force, moment and deflection, for reports.
     fn report(&self, pi: &Pose, pj: &Pose, t: f64) -> ElementReport;
+    /// The strain energy it stores at the poses (J), for an element whose law keeps one in closed form (a
+    /// field, a beam); `None` for the others.
+    fn energy(&self, _pi: &Pose, _pj: &Pose) -> Option<f64> {
+        None
+    }
     /// Which piece of its force law the element is on at the poses, for a law whose rate jumps between
     /// pieces (a stop whose force rises at once on contact: out of contact 0, in contact 1). Across such a
     /// jump the equilibrium has a kink and no derivative. A law whose rate is continuous (every other

@@ -188,6 +188,10 @@ impl ForceElement for Beam {
         self.field.report(pi, pj, t)
     }
 
+    fn energy(&self, pi: &Pose, pj: &Pose) -> Option<f64> {
+        Some(self.field.energy(pi, pj))
+    }
+
     fn sketch(&self) -> Option<Sketch> {
         let end = self.field.sketch()?;
         Some(Sketch { kind: SketchKind::Beam, on_i: self.start, on_j: end.on_j, axes_i: end.axes_i })

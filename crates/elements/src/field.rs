@@ -215,6 +215,10 @@ impl ForceElement for Field {
         }
     }
 
+    fn energy(&self, pi: &Pose, pj: &Pose) -> Option<f64> {
+        Some(Field::energy(self, pi, pj))
+    }
+
     fn report(&self, pi: &Pose, pj: &Pose, _t: f64) -> ElementReport {
         let st = self.state(pi, pj);
         ElementReport { force: -st.f, torque: -(st.at.e * st.g), deflection: st.at.delta, rotation: st.at.theta }

@@ -160,11 +160,17 @@ pub fn axle_sweep_with(
                 0.0
             } else {
                 let reports = reports.as_ref().expect("read when the axle has bars");
-                // A bar's torsion element twists about its own x axis only (its two halves turn on one
-                // axis): the energy is half the moment times the twist.
+                // A bar's beams keep their energy in closed form; a bar's torsion element twists about its
+                // own x axis only (its two halves turn on one axis): half the moment times the twist.
                 axle.anti_roll_bars
                     .iter()
-                    .map(|e| 0.5 * reports[e.0].torque.norm() * reports[e.0].rotation.x.abs())
+                    .map(|e| {
+                        let element = &model.elements()[e.0];
+                        let [i, j] = element.bodies().map(|b| b.pose(&step.poses));
+                        element
+                            .energy(&i, &j)
+                            .unwrap_or_else(|| 0.5 * reports[e.0].torque.norm() * reports[e.0].rotation.x.abs())
+                    })
                     .sum()
             },
             roll_centre,

@@ -7,8 +7,8 @@
 use crate::build::map::load_labels;
 use crate::build::template::{CornerParts, CornerTemplate, CrossAxle, ElasticMember, SteeringLink, TieRod};
 use crate::description::general::{
-    part_name, Axis, BeamDef, BodyDef, BushingDef, FieldDef, GeneralCorner, JointDef, Place, SpringDef, Stiffness,
-    StopDef, StopType, CHASSIS,
+    part_name, Axis, BeamDef, BodyDef, BushingDef, FieldDef, GeneralCorner, JointDef, Place, SectionDef, SpringDef,
+    Stiffness, StopDef, StopType, CHASSIS,
 };
 use crate::description::limits::{
     check_hardpoints, check_rate, check_spring_force, check_steering_arm, check_steering_axis, check_tie_rod_mounts,
@@ -196,6 +196,11 @@ impl Resolver<'_> {
     /// The prefix of the corner's part names.
     pub(crate) fn prefix(&self) -> &str {
         self.prefix
+    }
+
+    /// The side it places points on.
+    pub(crate) fn side(&self) -> Side {
+        self.side
     }
 
     /// The axle's bodies, none without one.
@@ -586,18 +591,8 @@ impl GeneralCorner {
                 why: format!("give 1 to {} segments, got {n}", BeamDef::MOST_SEGMENTS),
             });
         }
-        let d = &b.section;
-        let (ey, ez) = d.shear_centre.map_or((0.0, 0.0), |[y, z]| (y, z));
-        let section = Section {
-            youngs_modulus: d.youngs_modulus,
-            shear_modulus: d.shear_modulus,
-            area: d.area,
-            iy: d.iy,
-            iz: d.iz,
-            j: d.j,
-            shear_areas: d.shear_areas.map(|[y, z]| (y, z)),
-            shear_centre: (ey, r.side.sign() * ez),
-        };
+        let section = b.section.section(r.side);
+        let ey = section.shear_centre.0;
         let names = b.part_names(r.prefix);
         let at = |s: usize| from + (to - from) * (s as f64 / n as f64);
         let mut previous = bi;
@@ -642,6 +637,24 @@ impl GeneralCorner {
         let (from, to) = (r.point(&format!("{key}.from"), &s.from)?, r.point(&format!("{key}.to"), &s.to)?);
         model.add_element(s.stop(&key, &part_name(r.prefix, &s.name), [bi, bj], from, to)?)?;
         Ok(())
+    }
+}
+
+impl SectionDef {
+    /// The section of a beam built on `side`: the mirror image turns the section's z axis over, so the
+    /// shear centre's z offset changes sign on the right.
+    pub(crate) fn section(&self, side: Side) -> Section {
+        let (ey, ez) = self.shear_centre.map_or((0.0, 0.0), |[y, z]| (y, z));
+        Section {
+            youngs_modulus: self.youngs_modulus,
+            shear_modulus: self.shear_modulus,
+            area: self.area,
+            iy: self.iy,
+            iz: self.iz,
+            j: self.j,
+            shear_areas: self.shear_areas.map(|[y, z]| (y, z)),
+            shear_centre: (ey, side.sign() * ez),
+        }
     }
 }
 
@@ -834,7 +847,8 @@ impl CornerTemplate for GeneralCorner {
             .iter()
             .enumerate()
             .map(|(k, bar)| bar.add(model, k, sides()))
-            .collect::<Result<_, _>>()?;
+            .collect::<Result<Vec<_>, _>>()?
+            .concat();
         let Some(axle) = &self.axle else {
             return Ok(CrossAxle { anti_roll_bars, steering_link: None, members: Vec::new() });
         };

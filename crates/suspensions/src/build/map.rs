@@ -117,7 +117,8 @@ impl BuildMap {
                 item(key, name, s, &named(name));
             }
             for (k, bar) in general.anti_roll_bars.iter().enumerate() {
-                item(format!("anti_roll_bars[{k}]"), &bar.name, s, &bar.part_names(prefix));
+                let names: Vec<String> = bar.part_names(prefix).into_iter().chain(bar.arm_names(prefix)).collect();
+                item(format!("anti_roll_bars[{k}]"), &bar.name, s, &names);
             }
             for (k, b) in general.beams.iter().enumerate() {
                 item(format!("beams[{k}]"), &b.name, s, &b.part_names(prefix));

@@ -8,9 +8,12 @@
 //! bearings already hold, so they carry no load); each drop link is a distance constraint from the arm's
 //! end to its point on the corner (ball joints at both ends). Only an axle builds it: every corner
 //! analysis moves the two wheels alike (parallel travel, the same force on both), where a bar does not
-//! twist.
+//! twist. Given by its section instead of a rate, the middle is an elastic beam between the halves and
+//! each arm a beam from its bearing to a body at its end, where the drop link meets it: the bar's rate
+//! is then its own torsion and its arms' bending.
 
 use crate::description::place::{part_name, Place};
+use crate::description::section::SectionDef;
 use serde::{Deserialize, Serialize};
 
 /// Least distance of the bar's bearing from the centre line (m): the two bearings define its axis.
@@ -23,8 +26,13 @@ pub struct AntiRollBar {
     /// Name: the torsion element's; the halves, bearings and links are named after it per side.
     pub name: String,
     /// Torsional rate of the bar, N·m/rad: the moment per radian of twist of one arm relative to the
-    /// other.
-    pub rate: f64,
+    /// other (give this or `section`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rate: Option<f64>,
+    /// The bar as the steel it is, by its section (give this or `rate`): its middle, from bearing to
+    /// bearing, an elastic beam that twists, and each arm, from its bearing to its end, a beam that bends.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub section: Option<SectionDef>,
     /// The left bearing on the chassis, on the bar's axis.
     pub pivot: Place,
     /// The end of the left arm, where the drop link meets it.
@@ -45,5 +53,10 @@ impl AntiRollBar {
             part_name(prefix, &format!("{} bearing", self.name)),
             part_name(prefix, &format!("{} drop link", self.name)),
         ]
+    }
+
+    /// Names of a bar given by its section: the body at the arm's end and the arm's beam, per side.
+    pub fn arm_names(&self, prefix: &str) -> [String; 2] {
+        [part_name(prefix, &format!("{} arm end", self.name)), part_name(prefix, &format!("{} arm", self.name))]
     }
 }

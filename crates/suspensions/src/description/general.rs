@@ -33,6 +33,7 @@ use crate::description::layout::Layout;
 use crate::description::limits::default_loaded_radius;
 pub(crate) use crate::description::place::{part_name, short};
 pub use crate::description::place::{Axis, Hardpoints, Place};
+pub use crate::description::section::SectionDef;
 use elastokin_core::{JointKind, Vec3};
 use elastokin_elements::RotationLaw;
 use serde::de::Error as _;
@@ -235,30 +236,6 @@ pub struct FieldDef {
     /// Moment on the second body at zero rotation, in the frame (N·m).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub preload_torque: Option<[f64; 3]>,
-}
-
-/// A beam's section and material, as a model file gives them (SI units; see `elastokin_elements::Section`).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SectionDef {
-    /// Young's modulus `E` (Pa).
-    pub youngs_modulus: f64,
-    /// Shear modulus `G` (Pa).
-    pub shear_modulus: f64,
-    /// Area (m²).
-    pub area: f64,
-    /// Second moment about the section's y axis (m⁴).
-    pub iy: f64,
-    /// Second moment about the section's z axis (m⁴).
-    pub iz: f64,
-    /// Torsion constant (m⁴).
-    pub j: f64,
-    /// Shear areas `[A_y, A_z]` (m²); without them no shear deformation.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub shear_areas: Option<[f64; 2]>,
-    /// Shear centre `[e_y, e_z]` from the centroid in the section's axes (m); default the centroid.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub shear_centre: Option<[f64; 2]>,
 }
 
 /// A straight elastic beam from a point of its first body to a point of its second, by its section; split

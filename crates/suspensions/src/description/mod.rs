@@ -19,6 +19,7 @@ pub(crate) mod layout;
 pub mod limits;
 pub mod macpherson;
 pub mod place;
+pub mod section;
 pub mod side;
 pub mod template;
 pub mod twist_beam;

@@ -4,10 +4,11 @@
 
 use crate::description::connection::{Connection, SpringSpec};
 use crate::description::general::{
-    Axis, AxleDef, BeamDef, BodyPoint, BushingDef, GeneralCorner, Place, SectionDef, SpringDef, CHASSIS,
+    Axis, AxleDef, BeamDef, BodyPoint, BushingDef, GeneralCorner, Place, SpringDef, CHASSIS,
 };
 use crate::description::layout::Layout;
 use crate::description::limits::default_loaded_radius;
+use crate::description::section::SectionDef;
 use elastokin_core::{JointKind, Vec3};
 use serde::{Deserialize, Serialize};
 

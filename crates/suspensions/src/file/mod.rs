@@ -388,12 +388,10 @@ impl SuspensionFile {
                 }
                 for bar in &g.anti_roll_bars {
                     let typical = "a car's anti-roll bar is 1e3–1e5 N·m/rad";
-                    rates.push((
-                        vec!["anti_roll_bars".into(), bar.name.clone(), "rate".into()],
-                        "N·m/rad",
-                        bar.rate,
-                        typical,
-                    ));
+                    if let Some(rate) = bar.rate {
+                        let key = vec!["anti_roll_bars".into(), bar.name.clone(), "rate".into()];
+                        rates.push((key, "N·m/rad", rate, typical));
+                    }
                 }
                 if let Some(t) = &g.corner.tie_rod {
                     let m = &t.connection;
