@@ -116,6 +116,22 @@ class Scene:
         preload_force: Optional[_Vector3] = None,
         preload_torque: Optional[_Vector3] = None,
     ) -> None: ...
+    def beam(
+        self,
+        name: str,
+        bodies: Tuple[str, str],
+        from_: _Vector3,
+        to: _Vector3,
+        y_axis: _Vector3,
+        youngs_modulus: float,
+        shear_modulus: float,
+        area: float,
+        iy: float,
+        iz: float,
+        j: float,
+        shear_areas: Optional[Tuple[float, float]] = None,
+        shear_centre: Optional[Tuple[float, float]] = None,
+    ) -> None: ...
     def bushing(
         self,
         name: str,

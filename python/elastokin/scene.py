@@ -283,6 +283,57 @@ class Scene:
             )
         return name
 
+    def beam(
+        self,
+        name: str,
+        *,
+        bodies: Tuple[str, str],
+        from_: _Vector,
+        to: _Vector,
+        y_axis: _Vector,
+        section: Dict[str, Any],
+    ) -> str:
+        """Adds a straight elastic beam from ``from_`` on the first body to ``to`` on the second, as a model
+        file's beam entry of one segment: ``section`` is a model file's section (``youngs_modulus``,
+        ``shear_modulus`` in Pa, ``area`` in m², ``iy``, ``iz``, ``j`` in m⁴, and optionally ``shear_areas``
+        ``[A_y, A_z]`` and ``shear_centre`` ``[e_y, e_z]``), its y axis leaning towards ``y_axis``. Large rigid
+        motion, small strain: split a member that bends far into beams with bodies between them."""
+        name = _name(name, "beam")
+        known = {"youngs_modulus", "shear_modulus", "area", "iy", "iz", "j", "shear_areas", "shear_centre"}
+        unknown = sorted(set(section) - known)
+        if unknown:
+            raise ValueError(f"'{name}': section has no {', '.join(unknown)}: give {', '.join(sorted(known))}")
+        missing = sorted({"youngs_modulus", "shear_modulus", "area", "iy", "iz", "j"} - set(section))
+        if missing:
+            raise ValueError(f"'{name}': section needs {', '.join(missing)} (SI: Pa, m², m⁴)")
+
+        def pair(key: str) -> Optional[Tuple[float, float]]:
+            value = section.get(key)
+            if value is None:
+                return None
+            values = [float(v) for v in value]
+            if len(values) != 2:
+                raise ValueError(f"'{name}': section {key} must be two numbers, got {value!r}")
+            return (values[0], values[1])
+
+        with _not_while_swept(name):
+            self._native.beam(
+                name,
+                _bodies(bodies, name),
+                _vector(from_, "from_", name),
+                _vector(to, "to", name),
+                _vector(y_axis, "y_axis", name),
+                youngs_modulus=float(section["youngs_modulus"]),
+                shear_modulus=float(section["shear_modulus"]),
+                area=float(section["area"]),
+                iy=float(section["iy"]),
+                iz=float(section["iz"]),
+                j=float(section["j"]),
+                shear_areas=pair("shear_areas"),
+                shear_centre=pair("shear_centre"),
+            )
+        return name
+
     def spring(
         self,
         name: str,

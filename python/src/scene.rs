@@ -7,7 +7,7 @@
 
 use crate::{AnalysisError, ModelError};
 use elastokin_core::{BodyRef, ElementReport, JointKind, Model, Pose, Vec3};
-use elastokin_elements::{PointForce, PointTorque, RotationLaw};
+use elastokin_elements::{beam, BeamSpec, PointForce, PointTorque, RotationLaw, Section};
 use elastokin_solver::{JointReaction, LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult};
 use elastokin_suspensions::analysis::{walk, SweepLimit};
 use elastokin_suspensions::build::{joint_spec, JointGeometry};
@@ -126,6 +126,7 @@ fn three(item: &str, what: &str, rates: Option<Vec<StiffnessArg>>) -> PyResult<O
 enum ElementKind {
     Bushing,
     Field,
+    Beam,
     Spring,
     Stop,
     Force,
@@ -137,6 +138,7 @@ impl ElementKind {
         match self {
             ElementKind::Bushing => "bushing",
             ElementKind::Field => "field",
+            ElementKind::Beam => "beam",
             ElementKind::Spring => "spring",
             ElementKind::Stop => "stop",
             ElementKind::Force => "force",
@@ -352,6 +354,45 @@ impl Scene {
         // The model file's reading of the matrix, the frame and the preload; the scene is not mirrored.
         let field = def.field("field", name, [body_i, body_j], point, x, y, Side::Left).map_err(model_error)?;
         self.add(ElementKind::Field, field)
+    }
+
+    /// Adds a straight elastic beam from `from_` on the first body to `to` on the second, by its section (SI:
+    /// Pa, m², m⁴), the section's y axis leaning towards `y_axis`: one segment, large rigid motion and small
+    /// strain (a member that bends far is split by adding bodies between beams).
+    #[pyo3(signature = (name, bodies, from_, to, y_axis, youngs_modulus, shear_modulus, area, iy, iz, j,
+                        shear_areas=None, shear_centre=None))]
+    fn beam(
+        &mut self,
+        name: &str,
+        bodies: (String, String),
+        from_: [f64; 3],
+        to: [f64; 3],
+        y_axis: [f64; 3],
+        youngs_modulus: f64,
+        shear_modulus: f64,
+        area: f64,
+        iy: f64,
+        iz: f64,
+        j: f64,
+        shear_areas: Option<(f64, f64)>,
+        shear_centre: Option<(f64, f64)>,
+    ) -> PyResult<()> {
+        let [body_i, body_j] = self.pair(name, bodies)?;
+        self.fresh(name)?;
+        let (from, to) = (finite(name, "start 'from_'", from_)?, finite(name, "end 'to'", to)?);
+        let section = Section {
+            youngs_modulus,
+            shear_modulus,
+            area,
+            iy,
+            iz,
+            j,
+            shear_areas,
+            shear_centre: shear_centre.unwrap_or((0.0, 0.0)),
+        };
+        let y_axis = direction(name, "y_axis", y_axis)?;
+        let spec = BeamSpec { name: name.to_string(), body_i, body_j, from, to, y_axis, section };
+        self.add(ElementKind::Beam, beam(&spec).map_err(model_error)?)
     }
 
     /// Adds a coil spring pushing its seats apart, from `from_` on the first body to `to` on the second,
