@@ -264,9 +264,10 @@ fn every_analysis_of_the_twist_beam_is_within_its_error_estimate_and_converges_w
 /// The shipped twist beam without its springs, by a second method written here: a linear frame analysis
 /// (the textbook 12×12 Euler–Bernoulli element, its bending taken on the shear-centre line; each pivot
 /// bushing a 6×6 spring to the ground; each part a rigid node at its reference point), the wheel centres
-/// driven ±h. Returns the roll stiffness (N·m/deg), the cross member's twist per roll (deg/deg) and the left
-/// wheel's roll steer (deg/deg).
-fn linear_frame(file: &SuspensionFile) -> (f64, f64, f64) {
+/// driven ±h; with `rigid_bushings`, each arm eye held still instead of on its bushing. Returns the roll
+/// stiffness (N·m/deg), the cross member's twist per roll (deg/deg) and the left wheel's roll steer
+/// (deg/deg).
+fn linear_frame(file: &SuspensionFile, rigid_bushings: bool) -> (f64, f64, f64) {
     use nalgebra::{DMatrix, DVector, Matrix3, SMatrix, Vector3};
     type Mat12 = SMatrix<f64, 12, 12>;
     let elastokin_suspensions::description::Template::General(g) = &file.suspension else { panic!("general") };
@@ -397,7 +398,12 @@ fn linear_frame(file: &SuspensionFile) -> (f64, f64, f64) {
     // The rig: left wheel centre up h, right down h; everything else free.
     let h = 1.0;
     let driven = [6 * side_body(0, 2) + 2, 6 * side_body(1, 2) + 2];
-    let free: Vec<usize> = (0..n).filter(|d| !driven.contains(d)).collect();
+    let held: Vec<usize> = if rigid_bushings {
+        (0..2).flat_map(|s| (0..6).map(move |c| 6 * side_body(s, 0) + c)).collect()
+    } else {
+        vec![]
+    };
+    let free: Vec<usize> = (0..n).filter(|d| !driven.contains(d) && !held.contains(d)).collect();
     let kff = DMatrix::from_fn(free.len(), free.len(), |a, b| big_k[(free[a], free[b])]);
     let rhs = DVector::from_fn(free.len(), |a, _| -(big_k[(free[a], driven[0])] * h - big_k[(free[a], driven[1])] * h));
     let uf = kff.lu().solve(&rhs).expect("the frame is held");
@@ -442,7 +448,7 @@ fn the_shipped_twist_beam_without_springs_is_the_linear_frame_of_its_beams_and_b
     if let elastokin_suspensions::description::Template::General(g) = &mut file.suspension {
         g.springs.clear();
     }
-    let (stiffness, twist, steer) = linear_frame(&file);
+    let (stiffness, twist, steer) = linear_frame(&file, false);
     let settings = Settings { range: Some((-1e-4, 1e-4)), steps: 32, ..Settings::default() };
     let report = kc::run(Analysis::Roll, &file, &settings).unwrap_or_else(|e| panic!("{e}"));
     let got = [
@@ -454,4 +460,14 @@ fn the_shipped_twist_beam_without_springs_is_the_linear_frame_of_its_beams_and_b
     println!("roll stiffness {} against {stiffness} N·m/deg, twist {} against {twist}, roll steer {} against {steer}: {errors:?}", got[0], got[1], got[2]);
     // Measured 1.4e-10, 3.0e-11, 1.4e-10: the rows' central difference at ±0.1 mm.
     assert!(errors.iter().all(|e| *e < 1e-8), "{errors:?}");
+    // With the pivot bushings rigid, the arm eyes held: the roll steer the bushings' share is taken against.
+    let (_, _, rigid) = linear_frame(&file, true);
+    let got = figure(&report, "roll_steer_rigid_bushings");
+    let share = figure(&report, "bushing_share_of_roll_steer");
+    let error = (got / rigid - 1.0).abs();
+    println!("roll steer with the bushings rigid {got} against {rigid}: {error:e}; their share {share} %");
+    // Measured 1.5e-10.
+    assert!(error < 1e-8, "{error:e}");
+    let expected = 100.0 * (1.0 - rigid / steer);
+    assert!((share - expected).abs() < 1e-6 * expected.abs(), "{share} against {expected}");
 }

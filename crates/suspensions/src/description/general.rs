@@ -626,6 +626,40 @@ impl GeneralCorner {
 }
 
 impl GeneralCorner {
+    /// The same suspension with every bushing rigid — a fixed joint between its two bodies at its centre —
+    /// for a model whose elastic beams still leave it a structure then (a twist beam): what its figures
+    /// owe to the bushings' give is the difference. `None` without beams (a bushed linkage with its
+    /// bushings rigid locks) or without bushings.
+    pub fn with_rigid_bushings(&self) -> Option<GeneralCorner> {
+        let axle = self.axle.as_ref();
+        let beams = !self.beams.is_empty() || axle.is_some_and(|a| !a.beams.is_empty());
+        let bushings = !self.bushings.is_empty() || axle.is_some_and(|a| !a.bushings.is_empty());
+        if !(beams && bushings) {
+            return None;
+        }
+        let rigid = |bushings: &mut Vec<BushingDef>, joints: &mut Vec<JointDef>| {
+            joints.extend(bushings.drain(..).map(|b| JointDef {
+                name: b.name,
+                kind: JointKind::Fixed,
+                bodies: b.bodies,
+                at: Some(b.at),
+                to: None,
+                axis: None,
+                axis_j: None,
+            }));
+        };
+        let mut g = self.clone();
+        rigid(&mut g.bushings, &mut g.joints);
+        if let Some(a) = g.axle.as_mut() {
+            rigid(&mut a.bushings, &mut a.joints);
+            // A bar's torsion spring among the axle's bushings is rigid now: the bar is part of the axle.
+            a.anti_roll_bar_springs.clear();
+        }
+        Some(g)
+    }
+}
+
+impl GeneralCorner {
     /// Where its parts are, by hardpoint name (see [`Layout`]): the wheel centre, the steering axis and
     /// the tie rod when their points are hardpoints, and the first spring from the chassis when its seats
     /// are. A general corner names no arms.

@@ -7,7 +7,9 @@ use crate::analysis::{
 use crate::build::{LoadPoint, Rig};
 use crate::description::Side;
 use crate::file::SuspensionFile;
-use crate::kc::reduce::{axis, chart, corner_drawing, deg, finish, outside, said, Reduction};
+use crate::kc::reduce::{
+    axis, bushings_share, chart, corner_drawing, deg, finish, outside, said, with_rigid_bushings, Reduction,
+};
 use crate::kc::report::{Accuracy, AnalysisReport, Cell, Figure, Table, Warning};
 use crate::kc::settings::{mode_word, Analysis, Settings};
 
@@ -323,7 +325,13 @@ fn loaded(file: &SuspensionFile, analysis: Analysis, s: &Settings) -> Result<Ana
         range.1,
         s.steps
     );
-    Ok(finish(analysis, description, range, s, &out, Reduction { table: &table, figures: &figures, drawing }, charts))
+    let mut report =
+        finish(analysis, description, range, s, &out, Reduction { table: &table, figures: &figures, drawing }, charts);
+    if let (Analysis::Road(WheelLoad::Lateral), Some(rigid)) = (analysis, with_rigid_bushings(file)) {
+        let rigid = loaded(&rigid, analysis, &Settings { motion: false, ..*s });
+        bushings_share(&mut report, "steer", "lateral-force compliance steer", rigid);
+    }
+    Ok(report)
 }
 
 pub(super) fn static_load(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {

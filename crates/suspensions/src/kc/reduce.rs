@@ -315,6 +315,57 @@ pub(super) fn axis<R>(label: &str, rows: &[R], x: impl Fn(&R) -> f64, curves: &[
     }
 }
 
+/// The model with its bushings rigid, for a model with elastic beams and bushings
+/// ([`GeneralCorner::with_rigid_bushings`](crate::description::GeneralCorner::with_rigid_bushings)).
+pub(super) fn with_rigid_bushings(file: &SuspensionFile) -> Option<SuspensionFile> {
+    let general = file.suspension.expand().with_rigid_bushings()?;
+    Some(SuspensionFile { suspension: crate::description::Template::General(Box::new(general)), ..file.clone() })
+}
+
+/// Adds to `report` its figure `key` of the model with the bushings rigid (`rigid`: that analysis) and the
+/// bushings' share of it, `1 − rigid/figure`: how much of the `what` the bushings' give makes. The share's
+/// error estimate follows from the two figures' own.
+pub(super) fn bushings_share(
+    report: &mut AnalysisReport,
+    key: &str,
+    what: &str,
+    rigid: Result<AnalysisReport, String>,
+) {
+    let Some(own) = report.figures.iter().find(|f| f.key == key).cloned() else { return };
+    let stiff = rigid.as_ref().map_err(|e| e.clone()).and_then(|r| {
+        r.figures.iter().find(|f| f.key == key).cloned().ok_or_else(|| format!("no {what} with the bushings rigid"))
+    });
+    let why = |e: &str| format!("with the bushings rigid the analysis gives none: {e}");
+    let mut rigid_figure = match &stiff {
+        Ok(f) => Figure::maybe(
+            &format!("{key}_rigid_bushings"),
+            &format!("{} with the bushings rigid", own.label),
+            &own.unit,
+            own.decimals,
+            f.value,
+            f.reason.as_deref().unwrap_or(""),
+        ),
+        Err(e) => Figure::maybe(&format!("{key}_rigid_bushings"), &own.label, &own.unit, own.decimals, None, &why(e)),
+    };
+    let pair = stiff.as_ref().ok().and_then(|f| Some((own.value?, f.value?, own.error, f.error)));
+    rigid_figure.error = stiff.as_ref().ok().and_then(|f| f.error);
+    let mut share = Figure::maybe(
+        &format!("bushing_share_of_{key}"),
+        &format!("the bushings' share of the {what}"),
+        "%",
+        1,
+        pair.map(|(f, r, _, _)| 100.0 * (1.0 - r / f)).filter(|v| v.is_finite()),
+        &match (&stiff, own.value) {
+            (Err(e), _) => why(e),
+            (_, Some(0.0)) => "the figure is zero".to_string(),
+            _ => "the figure or its rigid counterpart has no value".to_string(),
+        },
+    );
+    share.error = pair.and_then(|(f, r, ef, er)| Some(100.0 * (er? / f.abs() + r.abs() * ef? / (f * f))));
+    report.figures.push(rigid_figure);
+    report.figures.push(share);
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

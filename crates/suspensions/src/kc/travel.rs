@@ -8,7 +8,8 @@ use crate::build::{Axle, AxleRig, Corner, Rig};
 use crate::description::Side;
 use crate::file::SuspensionFile;
 use crate::kc::reduce::{
-    axis, axle_drawing, chart, corner_drawing, deg, finish, needs_vehicle, outside, said, Reduction,
+    axis, axle_drawing, bushings_share, chart, corner_drawing, deg, finish, needs_vehicle, outside, said,
+    with_rigid_bushings, Reduction,
 };
 use crate::kc::report::{slug, AnalysisReport, Cell, Figure, Table, Warning};
 use crate::kc::settings::{Analysis, Settings};
@@ -507,7 +508,11 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
         s.steps
     );
     let reduce = Reduction { table: &table, figures: &figures, drawing: axle_drawing(&axle, s) };
-    Ok(finish(Analysis::Roll, description, range, s, &out, reduce, charts))
+    let mut report = finish(Analysis::Roll, description, range, s, &out, reduce, charts);
+    if let Some(rigid) = with_rigid_bushings(file) {
+        bushings_share(&mut report, "roll_steer", "roll steer", roll(&rigid, &Settings { motion: false, ..*s }));
+    }
+    Ok(report)
 }
 
 /// Steer angle of a wheel (positive turning left, about +z) from its toe (toe-in positive).
