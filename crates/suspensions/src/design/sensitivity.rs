@@ -29,8 +29,9 @@ use elastokin_solver::Mode;
 use rayon::prelude::*;
 use std::sync::Arc;
 
-/// A parameter is moved by this fraction of its size (at least of 0.1 in the file's units: 10 µm of a
-/// hardpoint near the origin), and by twice that. What the replays read is smooth in the move: the
+/// A parameter is moved by this fraction of its size, and by twice that: of a length at least of 0.1 m
+/// (10 µm of a hardpoint near the origin), of anything else its own size (a torsion constant of 3e-8 m⁴
+/// moves by 3e-11), or of 0.1 where it is zero. What the replays read is smooth in the move: the
 /// error of the extrapolated difference is of order `step⁴`, its rounding of order `ε / step` (1e-6 left
 /// 2e-4 of a small toe rate to rounding; 1e-4 leaves 1e-6 and less).
 pub const RELATIVE_STEP: f64 = 1e-3;
@@ -271,7 +272,9 @@ fn parameter_rates(
     report: &AnalysisReport,
 ) -> Result<(Vec<Rate>, Vec<Vec<Rate>>), String> {
     let pointer = &parameters.pointers[k];
-    let h = RELATIVE_STEP * parameters.values[k].abs().max(0.1);
+    let size = parameters.values[k].abs();
+    let size = if effect_unit(pointer) == "mm" || size == 0.0 { size.max(0.1) } else { size };
+    let h = RELATIVE_STEP * size;
     let replayed = |shift: f64| -> Result<Replay<AnalysisReport>, String> {
         let file = parameters.file_moved(k, shift * h)?;
         let run = replay(tape, || kc::run(analysis, &file, settings)).map_err(|e| {
@@ -356,10 +359,12 @@ pub fn suite_sensitivity(
 }
 
 /// How a parameter's effect is told: per millimetre of a length (a hardpoint coordinate, a Chrono part's
-/// `Location …` point, a loaded radius), per percent of anything else (a rate, a force).
+/// `Location …` point, a loaded radius, a stop's clearance, a spring's free length), per percent of
+/// anything else (a rate, a force, a section's property).
 pub fn effect_unit(pointer: &str) -> &'static str {
     let chrono_point = pointer.split('/').any(super::parameter::is_chrono_point);
-    if pointer.contains("/hardpoints/") || chrono_point || pointer.ends_with("/loaded_radius") {
+    let length = ["/loaded_radius", "/clearance", "/free_length"].iter().any(|end| pointer.ends_with(end));
+    if pointer.contains("/hardpoints/") || chrono_point || length {
         "mm"
     } else {
         "%"
