@@ -102,3 +102,14 @@ pub enum ModelError {
         error: f64,
     },
 }
+
+impl ModelError {
+    /// A value out of range, named as `item` instead (the key a file gives the value where the element's
+    /// own name would not find it); any other error as it is.
+    pub fn out_of_range_as(self, item: String) -> ModelError {
+        match self {
+            ModelError::OutOfRange { why, .. } => ModelError::OutOfRange { item, why },
+            other => other,
+        }
+    }
+}

@@ -154,13 +154,6 @@ pub struct Beam {
     start: Vec3,
 }
 
-impl Beam {
-    /// The field it is.
-    pub fn field(&self) -> &Field {
-        &self.field
-    }
-}
-
 impl ForceElement for Beam {
     fn name(&self) -> &str {
         self.field.name()

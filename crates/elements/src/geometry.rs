@@ -38,7 +38,6 @@ pub(crate) fn check_finite_scalar(item: &str, what: &'static str, value: f64) ->
     }
 }
 
-/// The two bodies of a two-body element must differ ([`ModelError::SelfJoint`] names the element).
 /// A point and a frame carried by body `i`, and their copies carried by `j`, coincident at design: what a
 /// bushing and a field element measure their deflection and rotation between.
 #[derive(Debug, Clone, PartialEq)]
@@ -162,6 +161,7 @@ pub(crate) fn frame_rotation(name: &str, e: &Mat3) -> Result<UnitQuaternion<f64>
     Ok(UnitQuaternion::new_normalize(q.into_inner()))
 }
 
+/// The two bodies of a two-body element must differ ([`ModelError::SelfJoint`] names the element).
 pub(crate) fn check_distinct(item: &str, i: BodyRef, j: BodyRef) -> Result<(), ModelError> {
     if i == j {
         Err(ModelError::SelfJoint { joint: item.to_string() })

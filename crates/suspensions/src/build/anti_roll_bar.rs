@@ -40,10 +40,7 @@ impl AntiRollBar {
             });
         }
         // A beam's refusal names the bar's section.
-        let rekey = |e: ModelError| match e {
-            ModelError::OutOfRange { why, .. } => ModelError::OutOfRange { item: format!("{key}.section"), why },
-            other => other,
-        };
+        let rekey = |e: ModelError| e.out_of_range_as(format!("{key}.section"));
         let axis = Vec3::y();
         let mut halves = [BodyRef::Ground; 2];
         let mut elements = Vec::new();

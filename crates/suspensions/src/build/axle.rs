@@ -21,7 +21,8 @@ pub struct Axle {
     pub left: Wheel,
     /// The right wheel (the left mirrored, y → −y).
     pub right: Wheel,
-    /// The torsion element of each anti-roll bar.
+    /// The anti-roll bars' elastic elements: a bar's torsion element, or the beams of a bar given by its
+    /// section (its middle and its arms).
     pub anti_roll_bars: Vec<ElementId>,
     /// The shared elastic beams (a twist-beam axle's cross member).
     pub members: Vec<ElasticMember>,

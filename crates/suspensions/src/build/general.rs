@@ -422,10 +422,6 @@ fn list<'a>(names: impl Iterator<Item = &'a str>) -> String {
     }
 }
 
-/// A bushing frame as the model file gives it, placed on `side`: x along `x_left`, y towards `y_hint_left`
-/// made perpendicular (any perpendicular without it), both mirrored for the right corner, z completing a
-/// right-handed frame. The columns are the frame's x, y, z axes in global components. The error says why
-/// the hint gives no y axis (it is parallel to x). `x_left` must have a length.
 /// What a bushing or a field entry names, resolved: its bodies, its point (on the side built), and its
 /// frame's x axis and y hint as the left corner gives them (the frame is mirrored as a whole).
 struct FramedEntry {
@@ -463,6 +459,10 @@ fn mirrored_preload(force: Option<[f64; 3]>, torque: Option<[f64; 3]>, side: Sid
     )
 }
 
+/// A bushing frame as the model file gives it, placed on `side`: x along `x_left`, y towards `y_hint_left`
+/// made perpendicular (any perpendicular without it), both mirrored for the right corner, z completing a
+/// right-handed frame. The columns are the frame's x, y, z axes in global components. The error says why
+/// the hint gives no y axis (it is parallel to x). `x_left` must have a length.
 fn bushing_frame(x_left: Vec3, y_hint_left: Option<Vec3>, side: Side) -> Result<Mat3, String> {
     let x = x_left / x_left.norm();
     let y = match y_hint_left {
@@ -514,10 +514,7 @@ impl FieldDef {
             preload_torque: torque,
         })
         // The matrix as the file gives it, named by its key.
-        .map_err(|e| match e {
-            ModelError::OutOfRange { why, .. } => ModelError::OutOfRange { item: format!("{key}.stiffness"), why },
-            other => other,
-        })
+        .map_err(|e| e.out_of_range_as(format!("{key}.stiffness")))
     }
 }
 
@@ -572,14 +569,11 @@ impl GeneralCorner {
         Ok(())
     }
 
-    /// A beam, in its segments with a body at each joint between them. Mirrored, its section's z axis turns
-    /// over (the frame is made from the mirrored x and y), so the shear centre's z offset changes sign.
-    fn add_beam(&self, model: &mut Model, r: &Resolver, k: usize, b: &BeamDef) -> Result<(), ModelError> {
+    /// A beam, in its segments with a body at each joint between them; returns the segments' elements in
+    /// order along it. Mirrored, its section's z axis turns over (the frame is made from the mirrored x and
+    /// y), so the shear centre's z offset changes sign.
+    fn add_beam(&self, model: &mut Model, r: &Resolver, k: usize, b: &BeamDef) -> Result<Vec<ElementId>, ModelError> {
         let key = format!("beams[{k}] ({})", b.name);
-        let rekey = |e: ModelError| match e {
-            ModelError::OutOfRange { why, .. } => ModelError::OutOfRange { item: key.clone(), why },
-            other => other,
-        };
         let bi = r.body(model, &format!("{key}.bodies"), &b.bodies[0])?;
         let bj = r.body(model, &format!("{key}.bodies"), &b.bodies[1])?;
         let (from, to) = (r.point(&format!("{key}.from"), &b.from)?, r.point(&format!("{key}.to"), &b.to)?);
@@ -592,8 +586,10 @@ impl GeneralCorner {
             });
         }
         let section = b.section.section(r.side);
-        let ey = section.shear_centre.0;
+        let (ey, ez) = section.shear_centre;
+        let turned_section = Section { shear_centre: (ey, -ez), ..section };
         let names = b.part_names(r.prefix);
+        let mut segments = Vec::with_capacity(n);
         let at = |s: usize| from + (to - from) * (s as f64 / n as f64);
         let mut previous = bi;
         for s in 1..=n {
@@ -610,16 +606,12 @@ impl GeneralCorner {
                 from: at(if turned { s } else { s - 1 }),
                 to: at(if turned { s - 1 } else { s }),
                 y_axis: y,
-                section: if turned {
-                    Section { shear_centre: (ey, -section.shear_centre.1), ..section }
-                } else {
-                    section
-                },
+                section: if turned { turned_section } else { section },
             };
-            model.add_element(beam(&spec).map_err(rekey)?)?;
+            segments.push(model.add_element(beam(&spec).map_err(|e| e.out_of_range_as(key.clone()))?)?);
             previous = body_j;
         }
-        Ok(())
+        Ok(segments)
     }
 
     fn add_spring(&self, model: &mut Model, r: &Resolver, k: usize, s: &SpringDef) -> Result<ElementId, ModelError> {
@@ -871,9 +863,7 @@ impl CornerTemplate for GeneralCorner {
         }
         let mut members = Vec::with_capacity(axle.beams.len());
         for (k, b) in axle.beams.iter().enumerate() {
-            self.add_beam(model, &r, k, b).map_err(under_axle)?;
-            // The segments' names come first in `part_names`, in order along the beam.
-            let segments = b.part_names("").iter().filter_map(|n| model.element_id(n)).collect();
+            let segments = self.add_beam(model, &r, k, b).map_err(under_axle)?;
             members.push(ElasticMember { name: b.name.clone(), segments });
         }
         for (k, sp) in axle.springs.iter().enumerate() {

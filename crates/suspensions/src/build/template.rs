@@ -42,7 +42,8 @@ pub trait CornerTemplate {
 /// What a template added across the two corners of an axle.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct CrossAxle {
-    /// The torsion element of each anti-roll bar.
+    /// The anti-roll bars' elastic elements: a bar's torsion element, or the beams of a bar given by its
+    /// section (its middle and its arms).
     pub anti_roll_bars: Vec<ElementId>,
     /// The axle's steering input, still to be attached to the rack or the chassis, when its corners have
     /// no tie rods of their own.

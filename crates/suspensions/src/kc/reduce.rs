@@ -336,17 +336,13 @@ pub(super) fn bushings_share(
         r.figures.iter().find(|f| f.key == key).cloned().ok_or_else(|| format!("no {what} with the bushings rigid"))
     });
     let why = |e: &str| format!("with the bushings rigid the analysis gives none: {e}");
-    let mut rigid_figure = match &stiff {
-        Ok(f) => Figure::maybe(
-            &format!("{key}_rigid_bushings"),
-            &format!("{} with the bushings rigid", own.label),
-            &own.unit,
-            own.decimals,
-            f.value,
-            f.reason.as_deref().unwrap_or(""),
-        ),
-        Err(e) => Figure::maybe(&format!("{key}_rigid_bushings"), &own.label, &own.unit, own.decimals, None, &why(e)),
+    let (value, reason) = match &stiff {
+        Ok(f) => (f.value, f.reason.clone().unwrap_or_default()),
+        Err(e) => (None, why(e)),
     };
+    let label = format!("{} with the bushings rigid", own.label);
+    let mut rigid_figure =
+        Figure::maybe(&format!("{key}_rigid_bushings"), &label, &own.unit, own.decimals, value, &reason);
     let pair = stiff.as_ref().ok().and_then(|f| Some((own.value?, f.value?, own.error, f.error)));
     rigid_figure.error = stiff.as_ref().ok().and_then(|f| f.error);
     let mut share = Figure::maybe(

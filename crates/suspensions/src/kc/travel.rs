@@ -305,8 +305,7 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
     let axle = Axle::build(&file.suspension, AxleRig::OppositeTravel).map_err(said)?;
     let has_bars = !axle.anti_roll_bars.is_empty();
     // The shared beams' names as keys and columns: a twist-beam axle's cross member is read in roll.
-    let members: Vec<String> = axle.members.iter().map(|m| slug(&m.name)).collect();
-    let member_names: Vec<String> = axle.members.iter().map(|m| m.name.clone()).collect();
+    let members: Vec<(&str, String)> = axle.members.iter().map(|m| (m.name.as_str(), slug(&m.name))).collect();
     let out = axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras(range)).map_err(said)?;
     let table = |rows: &[AxleRow]| Table {
         name: "roll".into(),
@@ -329,7 +328,7 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
         ]
         .map(String::from)
         .into_iter()
-        .chain(members.iter().map(|m| format!("{m}_twist_deg")))
+        .chain(members.iter().map(|(_, key)| format!("{key}_twist_deg")))
         .collect(),
         rows: rows
             .iter()
@@ -385,7 +384,7 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
         // The bars' energy is U(φ) ≈ ½·K·φ² about design: K is its curvature, from the rows on either side.
         let bars = if has_bars { curvature_at(rows, |r| r.roll_angle, |r| r.anti_roll_bar_energy) } else { None };
         let bar_why = if has_bars { why.clone() } else { "the model has no anti-roll bar".to_string() };
-        let twists = member_names.iter().zip(&members).enumerate().map(|(k, (name, key))| {
+        let twists = members.iter().enumerate().map(|(k, (name, key))| {
             Figure::maybe(
                 &format!("{key}_twist_per_roll"),
                 &format!("{name}: twist per degree of roll"),
