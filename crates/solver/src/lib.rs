@@ -45,8 +45,8 @@
 //!   the load path and its step limit, the state, the solver's options.
 //! - [`results`]: what a solve returns.
 //! - [`replay`]: a run's solves recorded, and the run replayed on a moved model with each equilibrium
-//!   moved by one exact Newton iteration: the derivatives of whatever a run computes, through its
-//!   equilibria, with none solved again.
+//!   moved by one Newton iteration, solved with the recorded tangent's factors: the derivatives of
+//!   whatever a run computes, through its equilibria, with none solved again.
 //! - [`solver`]: [`StaticSolver`] — equilibrium, sweeps in both modes, the predictor, limit points, arc
 //!   length, diagnostics.
 //!

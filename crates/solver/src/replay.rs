@@ -7,22 +7,31 @@
 //! [`StaticSolver::arc_length_sweep_from`](crate::StaticSolver::arc_length_sweep_from) (and the calls built on them). [`replay`] runs the same computation again, typically on a model read
 //! with one number moved by `δ`: each solver it creates takes the place of the recorded one of the same
 //! rank, and each of its solves, instead of solving, returns the recorded equilibria each moved by one
-//! exact Newton iteration of the moved model ([`StaticSolver::newton_correction`](crate::StaticSolver::newton_correction)), at the load parameter
-//! the replayed call asks for. Everything the computation then reads off the equilibria (rows, slopes,
-//! compliances, reactions) is read as usual.
+//! Newton iteration of the moved model, at the load parameter the replayed call asks for. Everything the
+//! computation then reads off the equilibria (rows, slopes, compliances, reactions) is read as usual.
 //!
 //! Why this gives exact derivatives: at a recorded equilibrium `z` of the model `p`, one Newton iteration
-//! of the model `p + δ` lands on `z − A(z, p+δ)⁻¹ F(z, p+δ)`, a smooth function of `δ` whose derivative at
-//! `δ = 0` is `−A⁻¹ ∂F/∂p = dz/dp`, the implicit function theorem's rate of the equilibrium (its error
-//! against the moved equilibrium is of order `δ²`). So what the replayed run returns, as a function of
-//! `δ`, has at `δ = 0` the derivative of what the run computes; a difference quotient of replays,
-//! Richardson extrapolated, gives it to the order of the quotient, with no equilibrium solved again and
-//! none of the solver's tolerance in it.
+//! of the model `p + δ` solved with the recorded tangent `A₀ = A(z, p)` lands on `z − A₀⁻¹ F(z, p+δ)`, a
+//! smooth function of `δ` whose derivative at `δ = 0` is `−A₀⁻¹ ∂F/∂p = dz/dp`, the implicit function
+//! theorem's rate of the equilibrium (its error against the moved equilibrium is of order `δ²`, as the
+//! exact tangent's would be). So what the replayed run returns, as a function of `δ`, has at `δ = 0` the
+//! derivative of what the run computes; a difference quotient of replays, Richardson extrapolated, gives it
+//! to the order of the quotient, with no equilibrium solved again and none of the solver's tolerance in it.
+//!
+//! What a replay costs: the recording factorizes the exact tangent at each equilibrium it keeps (when the
+//! solver's backend is the dense LU) and keeps the factors; every replay's iteration there assembles the
+//! moved model's residual and solves with them
+//! ([`StaticSolver::chord_correction`](crate::StaticSolver::chord_correction)), and a path tangent read
+//! there solves with them and one refinement step against the moved tangent
+//! ([`StaticSolver::path_tangent`](crate::StaticSolver::path_tangent)). No replay factorizes a tangent
+//! for its equilibria. Where no factors were kept (the sparse backend), the iteration is the exact one
+//! ([`StaticSolver::newton_correction`](crate::StaticSolver::newton_correction)).
 //!
 //! A replay that takes another path than the recording (a solver of other parts, another sequence of
 //! solves) is reported, never papered over: [`replay`] returns [`Diverged`].
 
 use crate::error::SolverError;
+use crate::kkt::LuFactors;
 use crate::options::LoadPath;
 use crate::results::{StepResult, Sweep};
 use elastokin_core::Model;
@@ -32,10 +41,12 @@ use std::sync::Arc;
 /// What one solve of a recorded solver returned.
 #[derive(Debug, Clone)]
 enum Call {
-    /// An equilibrium at one load parameter, and the pieces of its elements' laws there.
-    Equilibrium(Result<StepResult, SolverError>, Pieces),
-    /// A sweep along `path` (by load steps or by arc length), and the pieces at each of its steps.
-    Sweep { path: LoadPath, result: Result<Sweep, SolverError>, pieces: Vec<Pieces> },
+    /// An equilibrium at one load parameter, and the pieces of its elements' laws and the factors of its
+    /// tangent there.
+    Equilibrium(Result<StepResult, SolverError>, Pieces, Option<Factors>),
+    /// A sweep along `path` (by load steps or by arc length), and the pieces and factors at each of its
+    /// steps.
+    Sweep { path: LoadPath, result: Result<Sweep, SolverError>, pieces: Vec<Pieces>, factors: Vec<Option<Factors>> },
 }
 
 /// One recorded solver: its model's size and kept constraint rows, and its solves in order.
@@ -61,7 +72,7 @@ impl Tape {
     /// How many equilibria the run's solves returned.
     pub fn equilibria(&self) -> usize {
         let count = |c: &Call| match c {
-            Call::Equilibrium(r, _) => usize::from(r.is_ok()),
+            Call::Equilibrium(r, ..) => usize::from(r.is_ok()),
             Call::Sweep { result, .. } => result.as_ref().map_or(0, |s| s.steps.len()),
         };
         self.solvers.iter().flat_map(|s| &s.calls).map(count).sum()
@@ -192,11 +203,16 @@ pub(crate) enum Replayed<T> {
 /// ([`StepResult::element_pieces`]).
 pub(crate) type Pieces = Vec<u8>;
 
-/// A recorded equilibrium, and the pieces of the recorded model's elements there.
-pub(crate) type RecordedEquilibrium = (Result<StepResult, SolverError>, Pieces);
+/// The factors of the exact tangent of the recorded model at a recorded equilibrium, when its solver's
+/// backend is the dense LU: every replay's iteration there solves with them instead of factorizing the
+/// moved model's tangent. Shared by the replays, which may run on other threads.
+pub(crate) type Factors = Arc<LuFactors>;
 
-/// A recorded sweep: its path, what it returned, and the pieces at each of its steps.
-pub(crate) type RecordedSweep = (LoadPath, Result<Sweep, SolverError>, Vec<Pieces>);
+/// A recorded equilibrium, the pieces of the recorded model's elements there and its tangent's factors.
+pub(crate) type RecordedEquilibrium = (Result<StepResult, SolverError>, Pieces, Option<Factors>);
+
+/// A recorded sweep: its path, what it returned, and the pieces and tangent's factors at each of its steps.
+pub(crate) type RecordedSweep = (LoadPath, Result<Sweep, SolverError>, Vec<Pieces>, Vec<Option<Factors>>);
 
 /// Registers a new solver of `dofs` body coordinates and kept rows `active` with the thread's recording
 /// or replay. In a replay, a solver unlike the recorded one of its rank is refused.
@@ -240,7 +256,7 @@ fn diverge(diverged: &mut Option<String>, why: String) -> SolverError {
 /// What a taped solver's next single equilibrium is to do.
 pub(crate) fn next_equilibrium(taped: Option<Taped>) -> Result<Replayed<RecordedEquilibrium>, SolverError> {
     next(taped, false, |call| match call {
-        Call::Equilibrium(r, pieces) => Some((r.clone(), pieces.clone())),
+        Call::Equilibrium(r, pieces, factors) => Some((r.clone(), pieces.clone(), factors.clone())),
         Call::Sweep { .. } => None,
     })
 }
@@ -248,7 +264,7 @@ pub(crate) fn next_equilibrium(taped: Option<Taped>) -> Result<Replayed<Recorded
 /// What a taped solver's next sweep is to do.
 pub(crate) fn next_sweep(taped: Option<Taped>) -> Result<Replayed<RecordedSweep>, SolverError> {
     next(taped, true, |call| match call {
-        Call::Sweep { path, result, pieces } => Some((*path, result.clone(), pieces.clone())),
+        Call::Sweep { path, result, pieces, factors } => Some((*path, result.clone(), pieces.clone(), factors.clone())),
         Call::Equilibrium(..) => None,
     })
 }
@@ -287,17 +303,29 @@ fn kind(sweep: bool) -> &'static str {
     }
 }
 
-/// Keeps what a recorded solver of `model` returned for an equilibrium.
-pub(crate) fn keep_equilibrium(taped: Taped, model: &Model, result: &Result<StepResult, SolverError>) {
+/// Keeps what a recorded solver of `model` returned for an equilibrium, with its tangent's factors.
+pub(crate) fn keep_equilibrium(
+    taped: Taped,
+    model: &Model,
+    result: &Result<StepResult, SolverError>,
+    factors: Option<Factors>,
+) {
     let pieces = result.as_ref().map_or_else(|_| Vec::new(), |s| s.element_pieces(model));
-    keep(taped, Call::Equilibrium(result.clone(), pieces));
+    keep(taped, Call::Equilibrium(result.clone(), pieces, factors));
 }
 
-/// Keeps what a recorded solver of `model` returned for a sweep along `path`.
-pub(crate) fn keep_sweep(taped: Taped, model: &Model, path: LoadPath, result: &Result<Sweep, SolverError>) {
+/// Keeps what a recorded solver of `model` returned for a sweep along `path`, with the tangent's factors
+/// at each step.
+pub(crate) fn keep_sweep(
+    taped: Taped,
+    model: &Model,
+    path: LoadPath,
+    result: &Result<Sweep, SolverError>,
+    factors: Vec<Option<Factors>>,
+) {
     let pieces =
         result.as_ref().map_or_else(|_| Vec::new(), |s| s.steps.iter().map(|s| s.element_pieces(model)).collect());
-    keep(taped, Call::Sweep { path, result: result.clone(), pieces });
+    keep(taped, Call::Sweep { path, result: result.clone(), pieces, factors });
 }
 
 fn keep(taped: Taped, call: Call) {

@@ -16,8 +16,9 @@ pub fn run(s: &Settings) -> SectionOutput {
         intro: "The K&C suite of the shipped MacPherson (every analysis it runs, default ranges, 32 corrected \
                 steps): alone (the model read, every analysis walked with its error estimate), with the exact \
                 derivatives of every figure and cell with respect to its 24 hardpoint coordinates (the suite's \
-                solves recorded, then replayed on each moved model: one Newton iteration per equilibrium and \
-                move, four moves per parameter), and the 48 re-run suites of a central-difference gradient; \
+                solves recorded with the factors of the tangent at each equilibrium, then replayed on each moved \
+                model: one Newton iteration per equilibrium and move solved with those factors, four moves \
+                per parameter), and the 48 re-run suites of a central-difference gradient; \
                 then parallel travel alone the same three ways. Medians of repeated runs, one thread (the \
                 parameters' replays also run in parallel: the last rows, on every core)."
             .into(),

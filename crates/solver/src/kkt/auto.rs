@@ -69,6 +69,15 @@ impl AutoKkt {
         }
     }
 
+    /// A dense LU of the same pattern, unfactorized, when this backend has one: a second factorization
+    /// beside the solver's own (a recording's, [`crate::replay`]), which leaves the solver's as it was.
+    pub fn dense_twin(&self) -> Option<DenseLu> {
+        self.dense.clone().map(|mut d| {
+            d.reset();
+            d
+        })
+    }
+
     /// The sparse LDLᵀ, analysed on first need from the dense LU's pattern.
     fn sparse(&mut self) -> Result<&mut KktFactor, FactorError> {
         if self.sparse.is_none() {

@@ -234,6 +234,11 @@ impl DenseLu {
         None
     }
 
+    /// The factors of the last factorization, apart from this workspace (`None` before one succeeded).
+    pub fn factors(&self) -> Option<LuFactors> {
+        self.factorized.then(|| LuFactors { lu: self.lu.clone(), swap: self.swap.clone(), scale: self.scale.clone() })
+    }
+
     /// `t ← Â⁻¹ t` with the factors (scaled units).
     fn apply_factors(lu: &[f64], swap: &[usize], t: &mut [f64]) {
         let size = t.len();
@@ -267,16 +272,44 @@ fn copy_checked(what: &'static str, from: &[f64], to: &mut [f64]) -> Result<(), 
     Ok(())
 }
 
+/// `t ← A⁻¹ t` in original units from the factors of `Â = S A S`: `S Â⁻¹ S t`.
+fn apply_inverse_scaled(lu: &[f64], swap: &[usize], scale: &[f64], t: &mut [f64]) {
+    for (v, s) in t.iter_mut().zip(scale) {
+        *v *= s;
+    }
+    DenseLu::apply_factors(lu, swap, t);
+    for (v, s) in t.iter_mut().zip(scale) {
+        *v *= s;
+    }
+}
+
+/// The factors of one factorization of a [`DenseLu`], kept apart from its workspace: solves with them
+/// need no workspace and no `&mut`, so one factorization serves any number of later solves from any
+/// thread (a recorded equilibrium's tangent, solved with by every replay of a run, [`crate::replay`]).
+#[derive(Debug, Clone)]
+pub struct LuFactors {
+    lu: Vec<f64>,
+    swap: Vec<usize>,
+    scale: Vec<f64>,
+}
+
+impl LuFactors {
+    /// `rhs ← A⁻¹ rhs` (one application of the factors, no refinement: a Newton increment's accuracy).
+    pub fn solve_in_place(&self, rhs: &mut [f64]) {
+        apply_inverse_scaled(&self.lu, &self.swap, &self.scale, rhs);
+    }
+
+    /// The order `n + m` of the system.
+    pub fn order(&self) -> usize {
+        self.swap.len()
+    }
+}
+
 impl Factored for DenseLu {
     /// `out = A⁻¹ src` in original units: `S Â⁻¹ S src`.
     fn apply_inverse(&mut self, src: &[f64], out: &mut [f64]) {
-        for ((o, s), v) in out.iter_mut().zip(&self.scale).zip(src) {
-            *o = s * v;
-        }
-        Self::apply_factors(&self.lu, &self.swap, out);
-        for (o, s) in out.iter_mut().zip(&self.scale) {
-            *o *= s;
-        }
+        out.copy_from_slice(src);
+        apply_inverse_scaled(&self.lu, &self.swap, &self.scale, out);
     }
 
     /// `r = rhs0 − A z` in original units; returns its backward error ([`super::backward_error`]).

@@ -38,7 +38,7 @@ pub mod scaling;
 pub mod sparse_ldlt;
 
 pub use auto::{AutoKkt, BackendChoice, DENSE_MAX_ORDER};
-pub use dense_lu::DenseLu;
+pub use dense_lu::{DenseLu, LuFactors};
 pub use pattern::KktPattern;
 pub use sparse_ldlt::{KktFactor, KktSymbolic};
 

@@ -73,6 +73,12 @@ pub struct StaticSolver<'m> {
     factored: Option<Tangent>,
     /// Its rank in the thread's recording or replay ([`replay`]), if one is under way.
     taped: Option<replay::Taped>,
+    /// A recording's second dense LU, which factorizes the tangent at each recorded equilibrium for the
+    /// replays and leaves the solver's own factorization as the run left it.
+    recorded_lu: Option<crate::kkt::DenseLu>,
+    /// A replay's moved equilibria with the factors of the recorded tangent there: a path tangent asked
+    /// for at one of them solves with those factors ([`StaticSolver::path_tangent`]).
+    replayed: Vec<(StepResult, replay::Factors)>,
 }
 
 /// What a [`StaticSolver`] allocates for one topology of model: the KKT pattern and slot maps, the
@@ -334,6 +340,8 @@ impl<'m> StaticSolver<'m> {
             assembled: None,
             factored: None,
             taped,
+            recorded_lu: None,
+            replayed: Vec::new(),
         };
         solver.check_restrained(&poses)?;
         Ok(solver)

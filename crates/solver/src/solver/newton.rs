@@ -230,7 +230,8 @@ impl<'m> StaticSolver<'m> {
             Replayed::Solve => self.solve_equilibrium(state),
             Replayed::Record(taped) => {
                 let result = self.solve_equilibrium(state);
-                super::replay::keep_equilibrium(taped, self.model, &result);
+                let factors = result.as_ref().ok().and_then(|step| self.recorded_factors(step));
+                super::replay::keep_equilibrium(taped, self.model, &result, factors);
                 result
             }
             Replayed::Call(recorded) => self.replay_equilibrium(recorded, state),
@@ -266,6 +267,62 @@ impl<'m> StaticSolver<'m> {
         self.assemble(&state, None);
         let after = self.residual(&state.lambda);
         Ok(self.step_result(&state, 1, &after))
+    }
+
+    /// One Newton iteration on the exact equilibrium at `step.t` from `step`, as
+    /// [`StaticSolver::newton_correction`], but solved with `factors`, a factorization of the tangent made
+    /// elsewhere (a recorded model's at a recorded equilibrium, [`crate::replay`]): the step moved by
+    /// `−T₀⁻¹R`, with `R` this model's residual at `step`. Assembles the residual alone and factorizes
+    /// nothing. Where `T₀` is the tangent at `step` of a model this one is a move of, the result's rate
+    /// with respect to the move is the exact one's: both are `−T₀⁻¹ ∂R/∂p` there.
+    pub fn chord_correction(
+        &mut self,
+        step: &StepResult,
+        factors: &crate::kkt::LuFactors,
+    ) -> Result<StepResult, SolverError> {
+        let n = self.work.assembly.n;
+        let m = self.work.assembly.m();
+        if factors.order() != n + m {
+            return Err(SolverError::InvalidInput {
+                what: "tangent factors",
+                why: format!("of order {} for a system of {} unknowns", factors.order(), n + m),
+            });
+        }
+        let mut state = self.state_of(step);
+        self.assemble(&state, None);
+        let r = self.residual(&state.lambda);
+        if !(r.force.is_finite() && r.constraint.is_finite()) {
+            return Err(SolverError::NonFinite { what: "residual" });
+        }
+        Self::residual_rhs(&self.work.assembly, &self.work.scratch, &mut self.work.rhs);
+        factors.solve_in_place(&mut self.work.rhs);
+        if self.work.rhs.iter().any(|v| !v.is_finite()) {
+            return Err(SolverError::NonFinite { what: "Newton increment" });
+        }
+        Self::apply(&mut state.poses, &self.work.rhs[..n], 1.0);
+        for k in 0..m {
+            state.lambda[k] += self.work.rhs[n + k];
+        }
+        self.assemble(&state, None);
+        let after = self.residual(&state.lambda);
+        Ok(self.step_result(&state, 1, &after))
+    }
+
+    /// The factors of the exact tangent at `step` (an equilibrium this solver found), for a recording's
+    /// replays ([`crate::replay`]); `None` when the solver's backend is not the dense LU or the dense LU
+    /// finds the tangent singular there (the replays then factorize their own). The solver's own
+    /// factorization, which the next step may keep, is left as it was.
+    pub(super) fn recorded_factors(&mut self, step: &StepResult) -> Option<super::replay::Factors> {
+        if self.recorded_lu.is_none() {
+            self.recorded_lu = Some(self.work.factor.dense_twin()?);
+        }
+        let state = self.state_of(step);
+        self.assemble(&state, Some(Tangent::Full));
+        let a = &self.work.assembly;
+        let values = KktValues { k: &a.k_values, k_skew: a.has_skew.then_some(&a.k_skew[..]), j: &a.j_values };
+        let lu = self.recorded_lu.as_mut()?;
+        lu.factorize(values).ok()?;
+        lu.factors().map(std::sync::Arc::new)
     }
 
     /// The Newton increment `[Δq; Δλ]` into `rhs`, from `rhs = [Q − Jᵀλ ; −Φ]` at the assembled state and

@@ -4,7 +4,9 @@
 use super::StaticSolver;
 use crate::error::SolverError;
 use crate::options::{LoadPath, State};
-use crate::replay::{keep_sweep, moved_t, next_sweep, note_kink, RecordedEquilibrium, RecordedSweep, Replayed};
+use crate::replay::{
+    keep_sweep, moved_t, next_sweep, note_kink, Factors, RecordedEquilibrium, RecordedSweep, Replayed,
+};
 use crate::results::{StepResult, Sweep};
 
 impl StaticSolver<'_> {
@@ -20,19 +22,37 @@ impl StaticSolver<'_> {
             Replayed::Solve => solve(self, state),
             Replayed::Record(taped) => {
                 let result = solve(self, state);
-                keep_sweep(taped, self.model, path, &result);
+                let factors = match &result {
+                    Ok(sweep) => sweep.steps.iter().map(|step| self.recorded_factors(step)).collect(),
+                    Err(_) => Vec::new(),
+                };
+                keep_sweep(taped, self.model, path, &result, factors);
                 result
             }
             Replayed::Call(recorded) => self.replay_sweep(recorded, path, state),
         }
     }
 
-    /// A recorded equilibrium moved to this solver's model at load `t`: one exact Newton iteration.
+    /// A recorded equilibrium moved to this solver's model at load `t`: one Newton iteration, solved with
+    /// the recorded tangent's `factors` where they were kept, else with this model's exact tangent.
     /// A stop touching or leaving between the recorded model there (`pieces`) and the moved is noted.
-    fn moved(&mut self, recorded: &StepResult, pieces: &[u8], t: f64) -> Result<StepResult, SolverError> {
+    fn moved(
+        &mut self,
+        recorded: &StepResult,
+        pieces: &[u8],
+        factors: Option<&Factors>,
+        t: f64,
+    ) -> Result<StepResult, SolverError> {
         let mut at = recorded.clone();
         at.t = t;
-        let moved = self.newton_correction(&at)?;
+        let moved = match factors {
+            Some(factors) => {
+                let moved = self.chord_correction(&at, factors)?;
+                self.replayed.push((moved.clone(), factors.clone()));
+                moved
+            }
+            None => self.newton_correction(&at)?,
+        };
         if moved.element_pieces(self.model) != pieces {
             note_kink();
         }
@@ -45,7 +65,7 @@ impl StaticSolver<'_> {
         recorded: RecordedEquilibrium,
         state: &mut State,
     ) -> Result<StepResult, SolverError> {
-        let step = self.moved(&recorded.0?, &recorded.1, state.t)?;
+        let step = self.moved(&recorded.0?, &recorded.1, recorded.2.as_ref(), state.t)?;
         *state = self.state_of(&step);
         Ok(step)
     }
@@ -57,10 +77,11 @@ impl StaticSolver<'_> {
         path: LoadPath,
         state: &mut State,
     ) -> Result<Sweep, SolverError> {
-        let (from, sweep, pieces) = (recorded.0, recorded.1?, recorded.2);
+        let (from, sweep, pieces, factors) = (recorded.0, recorded.1?, recorded.2, recorded.3);
         let mut steps = Vec::with_capacity(sweep.steps.len());
         for (i, (s, pieces)) in sweep.steps.iter().zip(&pieces).enumerate() {
-            steps.push(self.moved(s, pieces, moved_t(s.t, Some(i), &from, &path))?);
+            let factors = factors.get(i).and_then(Option::as_ref);
+            steps.push(self.moved(s, pieces, factors, moved_t(s.t, Some(i), &from, &path))?);
         }
         if let Some(last) = steps.last() {
             *state = self.state_of(last);
@@ -71,5 +92,14 @@ impl StaticSolver<'_> {
             l
         });
         Ok(Sweep { mode: sweep.mode, steps, limit })
+    }
+
+    /// The recorded tangent's factors at `state` when it is one of this replay's moved equilibria.
+    pub(super) fn replayed_factors(&self, state: &State) -> Option<Factors> {
+        self.replayed
+            .iter()
+            .rev()
+            .find(|(step, _)| step.t == state.t && step.poses == state.poses)
+            .map(|(_, factors)| factors.clone())
     }
 }

@@ -42,12 +42,43 @@ impl<'m> StaticSolver<'m> {
     /// per body (translation of the reference point, then rotation as in Δπ), from
     /// `[K Jᵀ; J 0] [q_t; λ_t] = [∂Q/∂t; −∂Φ/∂t]` with the exact tangent. Under a travel driver it gives the
     /// velocity of every point per unit travel: instant centres, roll centres and anti-dive lines.
+    ///
+    /// In a replay ([`crate::replay`]), at one of its moved equilibria, the system is solved with the
+    /// recorded tangent's factors there and one step of refinement against this model's tangent: the
+    /// result differs from the exact solve by the square of the move (`(I − T₀⁻¹T)²` of it), so its rate
+    /// with respect to the move is the exact one's, and no factorization is made.
     pub fn path_tangent(&mut self, state: &State) -> Result<Vec<f64>, SolverError> {
         let n = self.work.assembly.n;
+        if let Some(factors) = self.replayed_factors(state) {
+            self.assemble(state, Some(Tangent::Full));
+            self.load_direction_rhs();
+            self.refine_with(&factors)?;
+            return Ok(self.work.rhs[..n].to_vec());
+        }
         self.factorize_tangent(state)?;
         self.load_direction_rhs();
         self.solve_with_skew(Accuracy::Refined)?;
         Ok(self.work.rhs[..n].to_vec())
+    }
+
+    /// `rhs ← z₁ + T₀⁻¹(rhs − T z₁)`, `z₁ = T₀⁻¹ rhs`: the assembled tangent `T`'s system solved with the
+    /// factors of another, `T₀`, and one refinement step.
+    fn refine_with(&mut self, factors: &crate::kkt::LuFactors) -> Result<(), SolverError> {
+        let b = self.work.rhs.clone();
+        let mut z = b.clone();
+        factors.solve_in_place(&mut z);
+        self.work.assembly.kkt_times(&z, &mut self.work.rhs);
+        for (r, b) in self.work.rhs.iter_mut().zip(&b) {
+            *r = b - *r;
+        }
+        factors.solve_in_place(&mut self.work.rhs);
+        for (r, z) in self.work.rhs.iter_mut().zip(&z) {
+            *r += z;
+        }
+        if self.work.rhs.iter().any(|v| !v.is_finite()) {
+            return Err(SolverError::NonFinite { what: "path tangent" });
+        }
+        Ok(())
     }
 
     /// Assembles and factorizes the tangent at `state` for [`StaticSolver::solve_factored`].

@@ -6,9 +6,10 @@
 //! ([`replay::record`](elastokin_solver::replay::record)), then once per parameter and move
 //! `δ ∈ {+h, −h, +2h, −2h}` on the model read with the parameter moved, replaying the recording
 //! ([`replay::replay`](elastokin_solver::replay::replay)): each equilibrium the analysis asks for is the
-//! recorded one moved by one exact Newton iteration of the moved model. At an equilibrium `F(z, p) = 0`
-//! that iteration lands at `z − A⁻¹F(z, p+δ)`, whose rate at `δ = 0` is `−A⁻¹ ∂F/∂p = dz/dp`, the implicit
-//! function theorem's (`A = [K Jᵀ; J 0]`, the tangent the steps are solved with). Everything the analysis
+//! recorded one moved by one Newton iteration of the moved model, solved with the recorded model's tangent
+//! there. At an equilibrium `F(z, p) = 0` that iteration lands at `z − A⁻¹F(z, p+δ)`, whose rate at
+//! `δ = 0` is `−A⁻¹ ∂F/∂p = dz/dp`, the implicit function theorem's (`A = [K Jᵀ; J 0]`, the exact tangent
+//! at `z`, factorized once by the recording for all the replays). Everything the analysis
 //! reads off its equilibria (rows, slopes and fits of rows, compliances from the tangent, reactions) is
 //! read by its own code on the moved model at the moved equilibria, so each figure is differentiated as it
 //! is defined; the four replays' central differences over `h` and `2h`, Richardson extrapolated, give the
