@@ -250,23 +250,7 @@ impl<'m> StaticSolver<'m> {
     /// what remains after a corrected step converged (Newton's next increment). Costs one factorization.
     /// The returned step reports the residual at the corrected state and `iterations = 1`.
     pub fn newton_correction(&mut self, step: &StepResult) -> Result<StepResult, SolverError> {
-        let n = self.work.assembly.n;
-        let m = self.work.assembly.m();
-        let mut state = self.state_of(step);
-        self.assemble(&state, Some(Tangent::Full));
-        let r = self.residual(&state.lambda);
-        if !(r.force.is_finite() && r.constraint.is_finite()) {
-            return Err(SolverError::NonFinite { what: "residual" });
-        }
-        self.factorize()?;
-        self.newton_increment()?;
-        Self::apply(&mut state.poses, &self.work.rhs[..n], 1.0);
-        for k in 0..m {
-            state.lambda[k] += self.work.rhs[n + k];
-        }
-        self.assemble(&state, None);
-        let after = self.residual(&state.lambda);
-        Ok(self.step_result(&state, 1, &after))
+        self.one_iteration(step, None)
     }
 
     /// One Newton iteration on the exact equilibrium at `step.t` from `step`, as
@@ -280,24 +264,42 @@ impl<'m> StaticSolver<'m> {
         step: &StepResult,
         factors: &crate::kkt::LuFactors,
     ) -> Result<StepResult, SolverError> {
-        let n = self.work.assembly.n;
-        let m = self.work.assembly.m();
-        if factors.order() != n + m {
+        let size = self.work.assembly.n + self.work.assembly.m();
+        if factors.order() != size {
             return Err(SolverError::InvalidInput {
                 what: "tangent factors",
-                why: format!("of order {} for a system of {} unknowns", factors.order(), n + m),
+                why: format!("of order {} for a system of {size} unknowns", factors.order()),
             });
         }
+        self.one_iteration(step, Some(factors))
+    }
+
+    /// One Newton iteration from `step`, solved with the exact tangent factorized here or with `factors`.
+    fn one_iteration(
+        &mut self,
+        step: &StepResult,
+        factors: Option<&crate::kkt::LuFactors>,
+    ) -> Result<StepResult, SolverError> {
+        let n = self.work.assembly.n;
+        let m = self.work.assembly.m();
         let mut state = self.state_of(step);
-        self.assemble(&state, None);
+        self.assemble(&state, factors.is_none().then_some(Tangent::Full));
         let r = self.residual(&state.lambda);
         if !(r.force.is_finite() && r.constraint.is_finite()) {
             return Err(SolverError::NonFinite { what: "residual" });
         }
-        Self::residual_rhs(&self.work.assembly, &self.work.scratch, &mut self.work.rhs);
-        factors.solve_in_place(&mut self.work.rhs);
-        if self.work.rhs.iter().any(|v| !v.is_finite()) {
-            return Err(SolverError::NonFinite { what: "Newton increment" });
+        match factors {
+            None => {
+                self.factorize()?;
+                self.newton_increment()?;
+            }
+            Some(factors) => {
+                Self::residual_rhs(&self.work.assembly, &self.work.scratch, &mut self.work.rhs);
+                factors.solve_in_place(&mut self.work.rhs);
+                if self.work.rhs.iter().any(|v| !v.is_finite()) {
+                    return Err(SolverError::NonFinite { what: "Newton increment" });
+                }
+            }
         }
         Self::apply(&mut state.poses, &self.work.rhs[..n], 1.0);
         for k in 0..m {
