@@ -16,7 +16,9 @@
 //! theorem's rate of the equilibrium (its error against the moved equilibrium is of order `δ²`, as the
 //! exact tangent's would be). So what the replayed run returns, as a function of `δ`, has at `δ = 0` the
 //! derivative of what the run computes; a difference quotient of replays, Richardson extrapolated, gives it
-//! to the order of the quotient, with no equilibrium solved again and none of the solver's tolerance in it.
+//! to the order of the quotient, with no equilibrium solved again. The solver's tolerance enters only as the
+//! recorded equilibria's distance from the exact ones, a relative error of that size (1e-9), not divided by
+//! the step as in differences of re-solves.
 //!
 //! What a replay costs: the recording factorizes the exact tangent at each equilibrium it keeps (when the
 //! solver's backend is the dense LU) and keeps the factors; every replay's iteration there assembles the
