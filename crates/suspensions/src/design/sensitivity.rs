@@ -29,7 +29,7 @@ use crate::kc::{self, Analysis, AnalysisReport, Cell, Failed, Figure, Settings, 
 use elastokin_solver::replay::{record, replay, Replay, Tape};
 use elastokin_solver::Mode;
 use rayon::prelude::*;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 /// A parameter is moved by this fraction of its size, and by twice that: of a length at least of 0.1 m
 /// (10 µm of a hardpoint near the origin), of anything else its own size (a torsion constant of 3e-8 m⁴
@@ -40,6 +40,38 @@ pub const RELATIVE_STEP: f64 = 1e-3;
 
 /// The moves of a parameter the differences take, in steps: `+h, −h, +2h, −2h`.
 const SHIFTS: [f64; 4] = [1.0, -1.0, 2.0, -2.0];
+
+/// The moves a replay may ask for, in steps: [`SHIFTS`], and none (the model itself, read again where a
+/// stop touched between the moves).
+const MOVES: [f64; 5] = [SHIFTS[0], SHIFTS[1], SHIFTS[2], SHIFTS[3], 0.0];
+
+/// The step of parameter `k`: [`RELATIVE_STEP`] of its size (see there).
+fn step(parameters: &Parameters, k: usize) -> f64 {
+    let pointer = &parameters.pointers[k];
+    let size = parameters.values[k].abs();
+    let size = if effect_unit(pointer) == "mm" || size == 0.0 { size.max(0.1) } else { size };
+    RELATIVE_STEP * size
+}
+
+/// The model read with each parameter moved by each of [`MOVES`], each read once, when first asked for,
+/// for every analysis that replays it.
+struct MovedModels<'p> {
+    parameters: &'p Parameters,
+    files: Vec<[OnceLock<Result<SuspensionFile, String>>; MOVES.len()]>,
+}
+
+impl<'p> MovedModels<'p> {
+    fn new(parameters: &'p Parameters) -> Self {
+        MovedModels { parameters, files: (0..parameters.len()).map(|_| Default::default()).collect() }
+    }
+
+    /// The model with parameter `k` moved by `shift` steps (one of [`MOVES`]).
+    fn file(&self, k: usize, shift: f64) -> Result<&SuspensionFile, String> {
+        let m = MOVES.iter().position(|&s| s == shift).expect("a shift of MOVES");
+        let read = || self.parameters.file_moved(k, shift * step(self.parameters, k));
+        self.files[k][m].get_or_init(read).as_ref().map_err(Clone::clone)
+    }
+}
 
 /// Where a stop touched or left between the moves, the largest relative disagreement of a figure's slopes
 /// either side of the model as it is (one-sided second-order differences) for it to have a derivative. A
@@ -235,15 +267,16 @@ pub fn analysis_sensitivity(
     settings: &Settings,
 ) -> Result<AnalysisSensitivity, String> {
     let file = parameters.file()?;
-    analysis_sensitivity_of(analysis, parameters, &file, &sensitivity_settings(settings))
+    analysis_sensitivity_of(analysis, &MovedModels::new(parameters), &file, &sensitivity_settings(settings))
 }
 
 fn analysis_sensitivity_of(
     analysis: Analysis,
-    parameters: &Parameters,
+    moved: &MovedModels,
     file: &SuspensionFile,
     settings: &Settings,
 ) -> Result<AnalysisSensitivity, String> {
+    let parameters = moved.parameters;
     let (report, tape) = record(|| kc::run(analysis, file, settings));
     let report = report.map_err(|e| e.message)?;
     if let Some(at) = tape.limit_point() {
@@ -258,7 +291,7 @@ fn analysis_sensitivity_of(
     let replayed = Settings { error_estimate: false, ..*settings };
     let derivatives = (0..parameters.len())
         .into_par_iter()
-        .map(|k| parameter_rates(analysis, parameters, k, &tape, &replayed, &report))
+        .map(|k| parameter_rates(analysis, moved, k, &tape, &replayed, &report))
         .collect::<Result<Vec<_>, String>>()?;
     let (figures, table) = derivatives.into_iter().unzip();
     Ok(AnalysisSensitivity { report, figures, table })
@@ -267,19 +300,17 @@ fn analysis_sensitivity_of(
 /// The rates of `report`'s figures and cells with respect to parameter `k`, from replays of `tape`.
 fn parameter_rates(
     analysis: Analysis,
-    parameters: &Parameters,
+    moved: &MovedModels,
     k: usize,
     tape: &Arc<Tape>,
     settings: &Settings,
     report: &AnalysisReport,
 ) -> Result<(Vec<Rate>, Vec<Vec<Rate>>), String> {
-    let pointer = &parameters.pointers[k];
-    let size = parameters.values[k].abs();
-    let size = if effect_unit(pointer) == "mm" || size == 0.0 { size.max(0.1) } else { size };
-    let h = RELATIVE_STEP * size;
+    let pointer = &moved.parameters.pointers[k];
+    let h = step(moved.parameters, k);
     let replayed = |shift: f64| -> Result<Replay<AnalysisReport>, String> {
-        let file = parameters.file_moved(k, shift * h)?;
-        let run = replay(tape, || kc::run(analysis, &file, settings)).map_err(|e| {
+        let file = moved.file(k, shift)?;
+        let run = replay(tape, || kc::run(analysis, file, settings)).map_err(|e| {
             format!(
                 "parameter '{pointer}' changes what the analysis does when moved ({e}): it has no derivative; give \
                  a number that moves a part, not one that chooses what the parts are"
@@ -343,6 +374,7 @@ pub fn suite_sensitivity(
 ) -> Result<SuiteSensitivity, String> {
     let file = parameters.file()?;
     let settings = sensitivity_settings(settings);
+    let moved = MovedModels::new(parameters);
     let mut out = SuiteSensitivity { analyses: Vec::new(), skipped: Vec::new(), failed: Vec::new() };
     for planned in kc::planned(&file, which) {
         let analysis = match planned {
@@ -352,7 +384,7 @@ pub fn suite_sensitivity(
                 continue;
             }
         };
-        match analysis_sensitivity_of(analysis, parameters, &file, &settings) {
+        match analysis_sensitivity_of(analysis, &moved, &file, &settings) {
             Ok(a) => out.analyses.push(a),
             Err(reason) => out.failed.push(Failed { analysis, reason }),
         }
