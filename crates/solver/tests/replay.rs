@@ -141,6 +141,34 @@ fn a_replay_that_creates_other_solvers_or_asks_other_solves_says_so() {
     assert_eq!(angles(2e4), record(|| angles(2e4)).0);
 }
 
+/// Equilibria one after another on one solver that keeps its factorization, each from the last (at loads
+/// 0.3, 0.6, 1.0, 0.8, 0.5), then a sweep from where they ended: each solve's chord iterations start from
+/// the factorization the one before left.
+fn solves_on(k: f64) -> Result<Vec<f64>, SolverError> {
+    let model = lever(k);
+    let mut solver = StaticSolver::new(&model, SolverOptions { reuse_factorization: true, ..Default::default() })?;
+    let mut state = solver.design_state(0.0);
+    let mut angles = Vec::new();
+    for t in [0.3, 0.6, 1.0, 0.8, 0.5] {
+        state.t = t;
+        angles.push(angle(&solver.equilibrium(&mut state)?));
+    }
+    let sweep = solver.sweep_from(&mut state, LoadPath::new(0.5, 1.0, 8), Mode::Corrected)?;
+    angles.extend(sweep.steps.iter().map(angle));
+    Ok(angles)
+}
+
+/// The tangents' factors a recording keeps for its replays are a second LU's: the solver's own
+/// factorization, which its next steps keep, is the one an unrecorded run leaves, and the recorded run's
+/// results are the unrecorded one's to the bit.
+#[test]
+fn a_recorded_run_returns_what_it_returns_unrecorded_to_the_bit() {
+    let plain = solves_on(2e4).unwrap();
+    let (recorded, tape) = record(|| solves_on(2e4));
+    assert_eq!(tape.equilibria(), 5 + 9);
+    assert_eq!(plain, recorded.unwrap());
+}
+
 /// The lever's path tangents `dq/dt` at every step of a sweep of the lever of rate `k`, and the steps.
 fn path_tangents(k: f64) -> Result<(Vec<StepResult>, Vec<Vec<f64>>), SolverError> {
     let model = lever(k);
