@@ -78,7 +78,7 @@ pub struct StaticSolver<'m> {
     recorded_lu: Option<crate::kkt::DenseLu>,
     /// A replay's moved equilibria with the factors of the recorded tangent there: a path tangent asked
     /// for at one of them solves with those factors ([`StaticSolver::path_tangent`]).
-    replayed: Vec<(StepResult, replay::Factors)>,
+    replayed: Vec<(f64, Vec<Pose>, replay::Factors)>,
 }
 
 /// What a [`StaticSolver`] allocates for one topology of model: the KKT pattern and slot maps, the
@@ -92,6 +92,7 @@ pub struct SolverWorkspace {
     assembly: Assembly,
     factor: AutoKkt,
     rhs: Vec<f64>,
+    /// `Jᵀλ` of the last residual, and a solve's working vector after it.
     scratch: Vec<f64>,
     krylov: Krylov,
     /// The last corrected steps' increments, for the next step's predictor.

@@ -48,7 +48,7 @@ impl StaticSolver<'_> {
         let moved = match factors {
             Some(factors) => {
                 let moved = self.chord_correction(&at, factors)?;
-                self.replayed.push((moved.clone(), factors.clone()));
+                self.replayed.push((moved.t, moved.poses.clone(), factors.clone()));
                 moved
             }
             None => self.newton_correction(&at)?,
@@ -99,7 +99,7 @@ impl StaticSolver<'_> {
         self.replayed
             .iter()
             .rev()
-            .find(|(step, _)| step.t == state.t && step.poses == state.poses)
-            .map(|(_, factors)| factors.clone())
+            .find(|(t, poses, _)| *t == state.t && *poses == state.poses)
+            .map(|(.., factors)| factors.clone())
     }
 }

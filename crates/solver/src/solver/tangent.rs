@@ -62,17 +62,14 @@ impl<'m> StaticSolver<'m> {
     }
 
     /// `rhs ← z₁ + T₀⁻¹(rhs − T z₁)`, `z₁ = T₀⁻¹ rhs`: the assembled tangent `T`'s system solved with the
-    /// factors of another, `T₀`, and one refinement step.
+    /// factors of another, `T₀`, and one refinement step (`z₁` in `scratch`: nothing allocated).
     fn refine_with(&mut self, factors: &crate::kkt::LuFactors) -> Result<(), SolverError> {
-        let b = self.work.rhs.clone();
-        let mut z = b.clone();
-        factors.solve_in_place(&mut z);
-        self.work.assembly.kkt_times(&z, &mut self.work.rhs);
-        for (r, b) in self.work.rhs.iter_mut().zip(&b) {
-            *r = b - *r;
-        }
-        factors.solve_in_place(&mut self.work.rhs);
-        for (r, z) in self.work.rhs.iter_mut().zip(&z) {
+        let (rhs, z) = (&mut self.work.rhs, &mut self.work.scratch);
+        z.copy_from_slice(rhs);
+        factors.solve_in_place(z);
+        self.work.assembly.subtract_kkt_times(z, rhs);
+        factors.solve_in_place(rhs);
+        for (r, z) in rhs.iter_mut().zip(z.iter()) {
             *r += z;
         }
         if self.work.rhs.iter().any(|v| !v.is_finite()) {
