@@ -42,8 +42,11 @@ pub const RELATIVE_STEP: f64 = 1e-3;
 const SHIFTS: [f64; 4] = [1.0, -1.0, 2.0, -2.0];
 
 /// The moves a replay may ask for, in steps: [`SHIFTS`], and none (the model itself, read again where a
-/// stop touched between the moves).
+/// stop touched between the moves: [`AT_MODEL`]).
 const MOVES: [f64; 5] = [SHIFTS[0], SHIFTS[1], SHIFTS[2], SHIFTS[3], 0.0];
+
+/// The index in [`MOVES`] of the model itself.
+const AT_MODEL: usize = 4;
 
 /// The step of parameter `k`: [`RELATIVE_STEP`] of its size (see there).
 fn step(parameters: &Parameters, k: usize) -> f64 {
@@ -65,10 +68,9 @@ impl<'p> MovedModels<'p> {
         MovedModels { parameters, files: (0..parameters.len()).map(|_| Default::default()).collect() }
     }
 
-    /// The model with parameter `k` moved by `shift` steps (one of [`MOVES`]).
-    fn file(&self, k: usize, shift: f64) -> Result<&SuspensionFile, String> {
-        let m = MOVES.iter().position(|&s| s == shift).expect("a shift of MOVES");
-        let read = || self.parameters.file_moved(k, shift * step(self.parameters, k));
+    /// The model with parameter `k` moved by `MOVES[m]` steps.
+    fn file(&self, k: usize, m: usize) -> Result<&SuspensionFile, String> {
+        let read = || self.parameters.file_moved(k, MOVES[m] * step(self.parameters, k));
         self.files[k][m].get_or_init(read).as_ref().map_err(Clone::clone)
     }
 }
@@ -272,11 +274,11 @@ pub fn analysis_sensitivity(
 
 fn analysis_sensitivity_of(
     analysis: Analysis,
-    moved: &MovedModels,
+    models: &MovedModels,
     file: &SuspensionFile,
     settings: &Settings,
 ) -> Result<AnalysisSensitivity, String> {
-    let parameters = moved.parameters;
+    let parameters = models.parameters;
     let (report, tape) = record(|| kc::run(analysis, file, settings));
     let report = report.map_err(|e| e.message)?;
     if let Some(at) = tape.limit_point() {
@@ -291,7 +293,7 @@ fn analysis_sensitivity_of(
     let replayed = Settings { error_estimate: false, ..*settings };
     let derivatives = (0..parameters.len())
         .into_par_iter()
-        .map(|k| parameter_rates(analysis, moved, k, &tape, &replayed, &report))
+        .map(|k| parameter_rates(analysis, models, k, &tape, &replayed, &report))
         .collect::<Result<Vec<_>, String>>()?;
     let (figures, table) = derivatives.into_iter().unzip();
     Ok(AnalysisSensitivity { report, figures, table })
@@ -300,16 +302,16 @@ fn analysis_sensitivity_of(
 /// The rates of `report`'s figures and cells with respect to parameter `k`, from replays of `tape`.
 fn parameter_rates(
     analysis: Analysis,
-    moved: &MovedModels,
+    models: &MovedModels,
     k: usize,
     tape: &Arc<Tape>,
     settings: &Settings,
     report: &AnalysisReport,
 ) -> Result<(Vec<Rate>, Vec<Vec<Rate>>), String> {
-    let pointer = &moved.parameters.pointers[k];
-    let h = step(moved.parameters, k);
-    let replayed = |shift: f64| -> Result<Replay<AnalysisReport>, String> {
-        let file = moved.file(k, shift)?;
+    let pointer = &models.parameters.pointers[k];
+    let h = step(models.parameters, k);
+    let replayed = |m: usize| -> Result<Replay<AnalysisReport>, String> {
+        let (file, shift) = (models.file(k, m)?, MOVES[m]);
         let run = replay(tape, || kc::run(analysis, file, settings)).map_err(|e| {
             format!(
                 "parameter '{pointer}' changes what the analysis does when moved ({e}): it has no derivative; give \
@@ -328,13 +330,13 @@ fn parameter_rates(
     };
     let mut moved = Vec::with_capacity(SHIFTS.len());
     let mut kinked = false;
-    for shift in SHIFTS {
-        let run = replayed(shift)?;
+    for m in 0..SHIFTS.len() {
+        let run = replayed(m)?;
         kinked |= run.kinked;
         moved.push(run.value);
     }
     // A stop touched or left between the moves: the model itself replayed too, to tell a kink.
-    let at_model = if kinked { Some(replayed(0.0)?.value) } else { None };
+    let at_model = if kinked { Some(replayed(AT_MODEL)?.value) } else { None };
     let value = |run: &AnalysisReport, key: &str| run.figure(key).and_then(|f| f.value);
     let figures = report
         .figures
@@ -374,7 +376,7 @@ pub fn suite_sensitivity(
 ) -> Result<SuiteSensitivity, String> {
     let file = parameters.file()?;
     let settings = sensitivity_settings(settings);
-    let moved = MovedModels::new(parameters);
+    let models = MovedModels::new(parameters);
     let mut out = SuiteSensitivity { analyses: Vec::new(), skipped: Vec::new(), failed: Vec::new() };
     for planned in kc::planned(&file, which) {
         let analysis = match planned {
@@ -384,7 +386,7 @@ pub fn suite_sensitivity(
                 continue;
             }
         };
-        match analysis_sensitivity_of(analysis, &moved, &file, &settings) {
+        match analysis_sensitivity_of(analysis, &models, &file, &settings) {
             Ok(a) => out.analyses.push(a),
             Err(reason) => out.failed.push(Failed { analysis, reason }),
         }
