@@ -27,7 +27,7 @@ from __future__ import annotations
 import contextlib
 import math
 import numbers
-from typing import Any, Dict, Iterator, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Iterator, List, Optional, Sequence, Tuple, Union, cast
 
 import numpy
 
@@ -307,14 +307,19 @@ class Scene:
         if missing:
             raise ValueError(f"'{name}': section needs {', '.join(missing)} (SI: Pa, m², m⁴)")
 
+        def number(key: str, value: Any) -> float:
+            # A value present (None is no number here): `_number` refuses it by name, or gives a float.
+            if value is None:
+                raise ValueError(f"'{name}': section {key} must be a number, got None")
+            return cast(float, _number(value, f"section {key}", name))
+
         def pair(key: str) -> Optional[Tuple[float, float]]:
             value = section.get(key)
             if value is None:
                 return None
-            values = [float(v) for v in value]
-            if len(values) != 2:
+            if isinstance(value, (str, bytes)) or not isinstance(value, Sequence) or len(value) != 2:
                 raise ValueError(f"'{name}': section {key} must be two numbers, got {value!r}")
-            return (values[0], values[1])
+            return (number(key, value[0]), number(key, value[1]))
 
         with _not_while_swept(name):
             self._native.beam(
@@ -323,12 +328,12 @@ class Scene:
                 _vector(from_, "from_", name),
                 _vector(to, "to", name),
                 _vector(y_axis, "y_axis", name),
-                youngs_modulus=float(section["youngs_modulus"]),
-                shear_modulus=float(section["shear_modulus"]),
-                area=float(section["area"]),
-                iy=float(section["iy"]),
-                iz=float(section["iz"]),
-                j=float(section["j"]),
+                youngs_modulus=number("youngs_modulus", section["youngs_modulus"]),
+                shear_modulus=number("shear_modulus", section["shear_modulus"]),
+                area=number("area", section["area"]),
+                iy=number("iy", section["iy"]),
+                iz=number("iz", section["iz"]),
+                j=number("j", section["j"]),
                 shear_areas=pair("shear_areas"),
                 shear_centre=pair("shear_centre"),
             )

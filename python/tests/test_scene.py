@@ -749,6 +749,12 @@ def test_a_beam_bends_as_a_cantilever_and_a_bad_section_is_refused_by_name():
         scene.body("tip", at=[length, 0.0, 0.0])
         scene.beam("bar", bodies=("chassis", "tip"), from_=[0, 0, 0], to=[length, 0, 0], y_axis=[0, 1, 0],
                    section=bad)
+    with pytest.raises(ValueError, match="section area must be a number, got '1e-4'"):
+        elastokin.Scene().beam("bar", bodies=("chassis", "tip"), from_=[0, 0, 0], to=[1, 0, 0], y_axis=[0, 1, 0],
+                               section=dict(section, area="1e-4"))
+    with pytest.raises(ValueError, match="section shear_centre must be two numbers"):
+        elastokin.Scene().beam("bar", bodies=("chassis", "tip"), from_=[0, 0, 0], to=[1, 0, 0], y_axis=[0, 1, 0],
+                               section=dict(section, shear_centre=0.01))
     with pytest.raises(ValueError, match="section needs iy"):
         elastokin.Scene().beam("bar", bodies=("chassis", "tip"), from_=[0, 0, 0], to=[1, 0, 0], y_axis=[0, 1, 0],
                                section={k: v for k, v in section.items() if k != "iy"})
