@@ -26,7 +26,10 @@
 //! ([`StaticSolver::chord_correction`](crate::StaticSolver::chord_correction)), and a path tangent read
 //! there solves with them and one refinement step against the moved tangent
 //! ([`StaticSolver::path_tangent`](crate::StaticSolver::path_tangent)). No replay factorizes a tangent
-//! for its equilibria. Where no factors were kept (the sparse backend), the iteration is the exact one
+//! for its equilibria, nor assembles the residual at the moved ones (a moved equilibrium reports the
+//! recorded one's residuals: its own are of the second order in the move), and a replayed solver whose
+//! recorded one kept every constraint row checks neither redundancy nor restraint again
+//! (`replays_independent_rows`). Where no factors were kept (the sparse backend), the iteration is the exact one
 //! ([`StaticSolver::newton_correction`](crate::StaticSolver::newton_correction)).
 //!
 //! A replay that takes another path than the recording (a solver of other parts, another sequence of
@@ -51,10 +54,11 @@ enum Call {
     Sweep { path: LoadPath, result: Result<Sweep, SolverError>, pieces: Vec<Pieces>, factors: Vec<Option<Factors>> },
 }
 
-/// One recorded solver: its model's size and kept constraint rows, and its solves in order.
+/// One recorded solver: its model's size, constraint rows and those kept, and its solves in order.
 #[derive(Debug, Clone)]
 struct Recorded {
     dofs: usize,
+    rows: usize,
     active: Vec<usize>,
     calls: Vec<Call>,
 }
@@ -216,15 +220,32 @@ pub(crate) type RecordedEquilibrium = (Result<StepResult, SolverError>, Pieces, 
 /// A recorded sweep: its path, what it returned, and the pieces and tangent's factors at each of its steps.
 pub(crate) type RecordedSweep = (LoadPath, Result<Sweep, SolverError>, Vec<Pieces>, Vec<Option<Factors>>);
 
-/// Registers a new solver of `dofs` body coordinates and kept rows `active` with the thread's recording
-/// or replay. In a replay, a solver unlike the recorded one of its rank is refused.
-pub(crate) fn register(dofs: usize, active: &[usize]) -> Result<Option<Taped>, SolverError> {
+/// Whether a new solver of a model with `rows` constraint rows replays a recorded solver of as many rows
+/// that kept every one of them. Its model is then known without looking again to have no redundant rows
+/// and every body restrained: both hold with a margin on the recorded model (rows independent to the
+/// redundancy check's tolerance, a tangent the restraint check found regular), and a margin is not lost
+/// in a move small enough for a derivative. Where the recorded solver dropped rows, the moved model is
+/// checked again, since a move can make a dropped row independent (a second hinge turned off the
+/// first's axis locks what it duplicated): [`register`] then refuses a replay whose rows differ.
+pub(crate) fn replays_independent_rows(rows: usize) -> bool {
+    ACTIVE.with(|a| match a.borrow().as_ref() {
+        Some(Active::Replaying { tape, next_solver, .. }) => {
+            tape.solvers.get(*next_solver).is_some_and(|r| r.rows == rows && r.active.len() == rows)
+        }
+        _ => false,
+    })
+}
+
+/// Registers a new solver of `dofs` body coordinates, `rows` constraint rows and kept rows `active` with
+/// the thread's recording or replay. In a replay, a solver unlike the recorded one of its rank is
+/// refused.
+pub(crate) fn register(dofs: usize, rows: usize, active: &[usize]) -> Result<Option<Taped>, SolverError> {
     ACTIVE.with(|a| {
         let mut a = a.borrow_mut();
         match a.as_mut() {
             None => Ok(None),
             Some(Active::Recording(tape)) => {
-                tape.solvers.push(Recorded { dofs, active: active.to_vec(), calls: Vec::new() });
+                tape.solvers.push(Recorded { dofs, rows, active: active.to_vec(), calls: Vec::new() });
                 Ok(Some(Taped { solver: tape.solvers.len() - 1 }))
             }
             Some(Active::Replaying { tape, next_solver, diverged, .. }) => {
@@ -232,7 +253,7 @@ pub(crate) fn register(dofs: usize, active: &[usize]) -> Result<Option<Taped>, S
                 *next_solver += 1;
                 let why = match tape.solvers.get(k) {
                     None => Some(format!("it created more solvers than the {} recorded", tape.solvers.len())),
-                    Some(r) if r.dofs != dofs || r.active != active => Some(format!(
+                    Some(r) if r.dofs != dofs || r.rows != rows || r.active != active => Some(format!(
                         "solver {k} has {dofs} body coordinates and {} kept constraint rows where the recorded one \
                          had {} and {}: the parts or the redundant joints differ",
                         active.len(),

@@ -283,7 +283,10 @@ impl<'m> StaticSolver<'m> {
         options.validate()?;
         model.validate()?;
         let poses = model.design_poses();
-        let dropped = redundant_rows_at_design(model, options.redundancy_tolerance);
+        // A replay of a solver that kept every row needs neither check again (see
+        // `replay::replays_independent_rows`).
+        let checked = replay::replays_independent_rows(model.constraint_rows());
+        let dropped = if checked { Vec::new() } else { redundant_rows_at_design(model, options.redundancy_tolerance) };
         let mut is_dropped = vec![false; model.constraint_rows()];
         for &r in &dropped {
             is_dropped[r] = true;
@@ -329,7 +332,7 @@ impl<'m> StaticSolver<'m> {
                 }
             }
         };
-        let taped = replay::register(workspace.assembly.n, &workspace.assembly.active_rows)?;
+        let taped = replay::register(workspace.assembly.n, model.constraint_rows(), &workspace.assembly.active_rows)?;
         let mut solver = StaticSolver {
             model,
             options,
@@ -344,7 +347,9 @@ impl<'m> StaticSolver<'m> {
             recorded_lu: None,
             replayed: Vec::new(),
         };
-        solver.check_restrained(&poses)?;
+        if !checked {
+            solver.check_restrained(&poses)?;
+        }
         Ok(solver)
     }
 

@@ -256,9 +256,14 @@ impl<'m> StaticSolver<'m> {
     /// One Newton iteration on the exact equilibrium at `step.t` from `step`, as
     /// [`StaticSolver::newton_correction`], but solved with `factors`, a factorization of the tangent made
     /// elsewhere (a recorded model's at a recorded equilibrium, [`crate::replay`]): the step moved by
-    /// `−T₀⁻¹R`, with `R` this model's residual at `step`. Assembles the residual alone and factorizes
-    /// nothing. Where `T₀` is the tangent at `step` of a model this one is a move of, the result's rate
-    /// with respect to the move is the exact one's: both are `−T₀⁻¹ ∂R/∂p` there.
+    /// `−T₀⁻¹R`, with `R` this model's residual at `step`. Assembles the residual once, at `step`, and
+    /// factorizes nothing. Where `T₀` is the tangent at `step` of a model this one is a move of, the
+    /// result's rate with respect to the move is the exact one's: both are `−T₀⁻¹ ∂R/∂p` there.
+    ///
+    /// The returned step reports `step`'s residuals, not its own: it is a move of an equilibrium by a
+    /// first-order step, whose residual is of the second order in the move, and what a replay reads off it
+    /// are its poses and multipliers (assembling the residual once more there cost a replay a fifth of its
+    /// time).
     pub fn chord_correction(
         &mut self,
         step: &StepResult,
@@ -305,8 +310,17 @@ impl<'m> StaticSolver<'m> {
         for k in 0..m {
             state.lambda[k] += self.work.rhs[n + k];
         }
-        self.assemble(&state, None);
-        let after = self.residual(&state.lambda);
+        let after = match factors {
+            None => {
+                self.assemble(&state, None);
+                self.residual(&state.lambda)
+            }
+            Some(_) => Residual {
+                force: step.force_residual,
+                constraint: step.constraint_residual,
+                force_scale: step.force_scale,
+            },
+        };
         Ok(self.step_result(&state, 1, &after))
     }
 
