@@ -2,7 +2,7 @@
 
 use crate::error::SolverError;
 use crate::options::Mode;
-use elastokin_core::{ElementReport, ForceElement, Model, Pose, Vec3};
+use elastokin_core::{ElementId, ElementReport, ForceElement, Joint, JointId, Model, Pose, Vec3};
 
 /// A constraint row dropped because it repeats what other rows already constrain.
 #[derive(Debug, Clone, PartialEq)]
@@ -77,25 +77,38 @@ impl StepResult {
             .joints()
             .iter()
             .map(|jt| {
-                let (pi, pj) = (jt.spec.body_i.pose(&self.poses), jt.spec.body_j.pose(&self.poses));
-                let mut g = elastokin_core::RowGradient::zeros();
-                for r in &jt.rows {
-                    g += r.evaluate(&pi, &pj, self.t).gradient * self.multipliers[row];
-                    row += 1;
-                }
-                // The constraint force applied to the bodies is −Φ_qᵀλ.
-                let anchor = pj.point(&jt.anchor_on_j);
-                if jt.spec.body_j.id().is_some() {
-                    let f = -Vec3::new(g[6], g[7], g[8]);
-                    let m_ref = -Vec3::new(g[9], g[10], g[11]);
-                    JointReaction { force: f, torque: m_ref - (anchor - pj.position).cross(&f) }
-                } else {
-                    let f = -Vec3::new(g[0], g[1], g[2]);
-                    let m_ref = -Vec3::new(g[3], g[4], g[5]);
-                    JointReaction { force: -f, torque: -(m_ref - (anchor - pi.position).cross(&f)) }
-                }
+                let reaction = self.reaction_of(jt, row);
+                row += jt.rows.len();
+                reaction
             })
             .collect()
+    }
+
+    /// The reaction of joint `id` alone, as [`StepResult::joint_reactions`] gives it: a row read without
+    /// every other joint's.
+    pub fn joint_reaction(&self, model: &Model, id: JointId) -> JointReaction {
+        let first_row = model.joints()[..id.0].iter().map(|jt| jt.rows.len()).sum();
+        self.reaction_of(&model.joints()[id.0], first_row)
+    }
+
+    /// The reaction of `jt`, whose rows start at model row `first_row`.
+    fn reaction_of(&self, jt: &Joint, first_row: usize) -> JointReaction {
+        let (pi, pj) = (jt.spec.body_i.pose(&self.poses), jt.spec.body_j.pose(&self.poses));
+        let mut g = elastokin_core::RowGradient::zeros();
+        for (k, r) in jt.rows.iter().enumerate() {
+            g += r.evaluate(&pi, &pj, self.t).gradient * self.multipliers[first_row + k];
+        }
+        // The constraint force applied to the bodies is −Φ_qᵀλ.
+        let anchor = pj.point(&jt.anchor_on_j);
+        if jt.spec.body_j.id().is_some() {
+            let f = -Vec3::new(g[6], g[7], g[8]);
+            let m_ref = -Vec3::new(g[9], g[10], g[11]);
+            JointReaction { force: f, torque: m_ref - (anchor - pj.position).cross(&f) }
+        } else {
+            let f = -Vec3::new(g[0], g[1], g[2]);
+            let m_ref = -Vec3::new(g[3], g[4], g[5]);
+            JointReaction { force: -f, torque: -(m_ref - (anchor - pi.position).cross(&f)) }
+        }
     }
 
     /// Which piece of its force law every element is on at this step
@@ -108,6 +121,13 @@ impl StepResult {
     /// Force, moment and deflection of every element at this step.
     pub fn element_reports(&self, model: &Model) -> Vec<ElementReport> {
         self.per_element(model, |e, pi, pj, t| e.report(pi, pj, t))
+    }
+
+    /// Force, moment and deflection of element `id` alone, as [`StepResult::element_reports`] gives it.
+    pub fn element_report(&self, model: &Model, id: ElementId) -> ElementReport {
+        let e = &model.elements()[id.0];
+        let [i, j] = e.bodies();
+        e.report(&i.pose(&self.poses), &j.pose(&self.poses), self.t)
     }
 
     /// `read` of every element at this step's poses of its two bodies, in model order.

@@ -607,3 +607,21 @@ fn vehicle_parameters_are_checked_by_field() {
     let e = serde_json::from_str::<VehicleParameters>(&typo).unwrap_err().to_string();
     assert!(e.contains("cog_height"), "{e}");
 }
+
+/// A joint's reaction and an element's report read alone (what a row that needs one of them reads) are
+/// those read with every other joint's and element's, to the bit: the rows of a joint are found by its
+/// place among the joints, as the full read finds them.
+#[test]
+fn a_reaction_or_element_report_read_alone_is_the_one_read_with_all_the_others() {
+    let corner = bushed_macpherson().build(Side::Left, Rig::WheelTravel).unwrap();
+    let step = equilibrium(&corner, 0.03);
+    let model = &corner.model;
+    let all = step.joint_reactions(model);
+    assert!(all.len() > 3 && all.iter().any(|r| r.force.norm() > 1.0));
+    for (k, reaction) in all.iter().enumerate() {
+        assert_eq!(step.joint_reaction(model, elastokin_core::JointId(k)), *reaction, "joint {k}");
+    }
+    for (k, report) in step.element_reports(model).iter().enumerate() {
+        assert_eq!(step.element_report(model, elastokin_core::ElementId(k)), *report, "element {k}");
+    }
+}

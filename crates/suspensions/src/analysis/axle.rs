@@ -127,8 +127,7 @@ pub fn axle_sweep_with(
     let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, extras.through_limits)?;
     let drivers = (model.joint_id(&format!("left {WHEEL_TRAVEL}")), model.joint_id(&format!("right {WHEEL_TRAVEL}")));
     read_sweep(&mut solver, &axle.left, None, walked, extras, |solver, step| {
-        let reactions = step.joint_reactions(model);
-        let load = |d: Option<elastokin_core::JointId>| d.map_or(0.0, |d| reactions[d.0].force.z);
+        let load = |d: Option<elastokin_core::JointId>| d.map_or(0.0, |d| step.joint_reaction(model, d).force.z);
         let (left, right) = (axle.left.attitude(&step.poses), axle.right.attitude(&step.poses));
         let (left_load, right_load) = (load(drivers.0), load(drivers.1));
         let (track, roll_angle) = axle.track_and_roll(&step.poses);

@@ -26,7 +26,7 @@ pub fn design_wheel_load_estimated(corner: &Corner, estimate: bool) -> Result<(f
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let mut state = solver.design_state(0.0);
     let step = solver.equilibrium(&mut state)?;
-    let load = |s: &elastokin_solver::StepResult| s.joint_reactions(&corner.model)[driver.0].force.z;
+    let load = |s: &elastokin_solver::StepResult| s.joint_reaction(&corner.model, driver).force.z;
     let error = if estimate { Some((load(&solver.newton_correction(&step)?) - load(&step)).abs()) } else { None };
     Ok((load(&step), error))
 }
@@ -445,7 +445,7 @@ pub fn static_load_case(mut corner: Corner, corner_load: f64) -> Result<StaticLo
     }
     let forces = ComponentForces::at(model, &step);
     let attitude = corner.wheel.attitude(&step.poses);
-    let spring = corner.spring.map(|e| step.element_reports(model)[e.0]);
+    let spring = corner.spring.map(|e| step.element_report(model, e));
     let spring_deflection = spring.map_or(0.0, |r| r.deflection.x);
     // The templates' springs carry no preload beside k·(L₀ − L) (the free length is set from the design
     // force), so the push has the sign of the shortening; its size is the force the report gives.

@@ -89,7 +89,7 @@ fn travel_row(corner: &Corner, s: &StepResult) -> TravelRow {
         travel: s.t,
         attitude: corner.wheel.attitude(&s.poses),
         steering: corner.wheel.steering_geometry(&s.poses),
-        wheel_load: driver.map_or(0.0, |d| s.joint_reactions(&corner.model)[d.0].force.z),
-        spring_deflection: corner.spring.map_or(0.0, |e| s.element_reports(&corner.model)[e.0].deflection.x),
+        wheel_load: driver.map_or(0.0, |d| s.joint_reaction(&corner.model, d).force.z),
+        spring_deflection: corner.spring.map_or(0.0, |e| s.element_report(&corner.model, e).deflection.x),
     }
 }
