@@ -106,9 +106,9 @@ fn forces_from_ground(forces: &ComponentForces) -> (Vec3, f64) {
     let mut largest: f64 = 0.0;
     for c in forces.joints.iter().chain(&forces.elements) {
         largest = largest.max(c.force.norm());
-        if c.other_body == "ground" {
+        if &*c.other_body == "ground" {
             sum += c.force;
-        } else if c.body == "ground" {
+        } else if &*c.body == "ground" {
             sum -= c.force;
         }
     }
@@ -363,8 +363,8 @@ fn static_load_case_forces_and_moments_balance() {
     };
     let (mut force, mut moment, mut largest) = (Vec3::zeros(), Vec3::zeros(), 0.0f64);
     for c in rest.forces.joints.iter().chain(&rest.forces.elements) {
-        if c.other_body != "ground" {
-            assert_ne!(c.body, "ground");
+        if &*c.other_body != "ground" {
+            assert_ne!(&*c.body, "ground");
             continue;
         }
         let body = design.body_id(&c.body).unwrap();

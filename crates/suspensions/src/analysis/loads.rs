@@ -6,8 +6,9 @@ use crate::analysis::sweep::{read_sweep, require_rig, walk, whole, SweepExtras, 
 use crate::build::rig::WHEEL_TRAVEL;
 use crate::build::{Corner, Rig};
 use crate::wheel::WheelAttitude;
-use elastokin_core::{Model, Vec3};
+use elastokin_core::{BodyRef, Model, Vec3};
 use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, State, StaticSolver, StepResult, Sweep};
+use std::sync::Arc;
 
 /// The vertical force the rig applies at the wheel centre to hold the corner at design (N, up +): the
 /// corner load the design position carries. The corner must hold its wheel-centre height
@@ -35,13 +36,13 @@ pub fn design_wheel_load_estimated(corner: &Corner, estimate: bool) -> Result<(f
 #[derive(Debug, Clone, PartialEq)]
 pub struct ComponentForce {
     /// The joint's or element's name.
-    pub name: String,
+    pub name: Arc<str>,
     /// The body the force is applied to: the component's body `j` ("ground" for a joint whose `j` is the
     /// ground, whose reaction on the ground is then given).
-    pub body: String,
+    pub body: Arc<str>,
     /// The body on the other side, which receives the opposite force and moment ("ground" for a part
     /// mounted on the chassis).
-    pub other_body: String,
+    pub other_body: Arc<str>,
     /// Force applied to `body` (N).
     pub force: Vec3,
     /// Moment applied to `body` (N·m), about the joint's hardpoint or the element's point on `body` as the
@@ -60,51 +61,73 @@ pub struct ComponentForces {
     pub elements: Vec<ComponentForce>,
 }
 
+/// The names of a model's joints and elements and of the bodies either side of each, as
+/// [`ComponentForces`] gives them: made once per sweep and shared by its rows (a row names its
+/// components without allocating).
+#[derive(Debug, Clone)]
+pub struct ComponentNames {
+    joints: Vec<[Arc<str>; 3]>,
+    elements: Vec<[Arc<str>; 3]>,
+}
+
+impl ComponentNames {
+    /// The names of `model`'s components: each one's own, its body `j`'s, its body `i`'s.
+    pub fn of(model: &Model) -> Self {
+        let names =
+            |name: &str, i: BodyRef, j: BodyRef| [name.into(), model.body_name(j).into(), model.body_name(i).into()];
+        ComponentNames {
+            joints: model.joints().iter().map(|jt| names(jt.name(), jt.spec.body_i, jt.spec.body_j)).collect(),
+            elements: model
+                .elements()
+                .iter()
+                .map(|e| {
+                    let [i, j] = e.bodies();
+                    names(e.name(), i, j)
+                })
+                .collect(),
+        }
+    }
+}
+
 impl ComponentForces {
     /// Reads every joint reaction and element force of `step`, a solution of `model`.
     pub fn at(model: &Model, step: &StepResult) -> Self {
-        let joints = model
-            .joints()
+        Self::named(model, step, &ComponentNames::of(model))
+    }
+
+    /// [`ComponentForces::at`] with the names of `model`'s components made beforehand.
+    pub fn named(model: &Model, step: &StepResult, names: &ComponentNames) -> Self {
+        let component = |[name, body, other_body]: &[Arc<str>; 3], force, torque| ComponentForce {
+            name: name.clone(),
+            body: body.clone(),
+            other_body: other_body.clone(),
+            force,
+            torque,
+        };
+        // For a joint on the ground as `j`, the reaction reported is the one on the ground.
+        let joints = names
+            .joints
             .iter()
             .zip(step.joint_reactions(model))
-            .map(|(joint, reaction)| {
-                let (i, j) = (joint.spec.body_i, joint.spec.body_j);
-                // For a joint on the ground as `j`, the reaction reported is the one on the ground.
-                ComponentForce {
-                    name: joint.name().to_string(),
-                    body: model.body_name(j).to_string(),
-                    other_body: model.body_name(i).to_string(),
-                    force: reaction.force,
-                    torque: reaction.torque,
-                }
-            })
+            .map(|(n, r)| component(n, r.force, r.torque))
             .collect();
-        let elements = model
-            .elements()
+        let elements = names
+            .elements
             .iter()
             .zip(step.element_reports(model))
-            .map(|(element, report)| {
-                let [i, j] = element.bodies();
-                ComponentForce {
-                    name: element.name().to_string(),
-                    body: model.body_name(j).to_string(),
-                    other_body: model.body_name(i).to_string(),
-                    force: report.force,
-                    torque: report.torque,
-                }
-            })
+            .map(|(n, r)| component(n, r.force, r.torque))
             .collect();
         ComponentForces { joints, elements }
     }
 
     /// The joint named `name`.
     pub fn joint(&self, name: &str) -> Option<&ComponentForce> {
-        self.joints.iter().find(|c| c.name == name)
+        self.joints.iter().find(|c| &*c.name == name)
     }
 
     /// The element named `name`.
     pub fn element(&self, name: &str) -> Option<&ComponentForce> {
-        self.elements.iter().find(|c| c.name == name)
+        self.elements.iter().find(|c| &*c.name == name)
     }
 }
 
@@ -143,8 +166,9 @@ fn load_rows(
     let upright = corner.wheel.upright.0;
     let patch_at_design = model.bodies()[upright].design_pose.point(&patch_local);
     let driver = model.joint_id(WHEEL_TRAVEL);
+    let names = ComponentNames::of(model);
     read_sweep(solver, &corner.wheel, corner.partner.as_ref(), walked, extras, |_, s| {
-        let forces = ComponentForces::at(model, s);
+        let forces = ComponentForces::named(model, s, &names);
         let contact_patch = s.poses[upright].point(&patch_local);
         Ok(LoadRow {
             load: s.t,

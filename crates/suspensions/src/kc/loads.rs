@@ -361,8 +361,7 @@ pub(super) fn static_load(file: &SuspensionFile, s: &Settings) -> Result<Analysi
             .iter()
             .chain(&rest.forces.elements)
             .map(|c| {
-                let mut row =
-                    vec![Cell::Text(c.name.clone()), Cell::Text(c.body.clone()), Cell::Text(c.other_body.clone())];
+                let mut row = [&c.name, &c.body, &c.other_body].map(|n| Cell::Text(n.to_string())).to_vec();
                 row.extend([c.force.x, c.force.y, c.force.z, c.torque.x, c.torque.y, c.torque.z].map(Cell::from));
                 row
             })
