@@ -319,8 +319,8 @@ fn parameter_rates(
             )
         })?;
         let value = run.value.map_err(|e| format!("parameter '{pointer}' moved by {:e}: {}", shift * h, e.message))?;
-        let shape = |t: &Table| (t.columns.clone(), t.rows.len());
-        if shape(&value.table) != shape(&report.table) {
+        let (moved, own) = (&value.table, &report.table);
+        if moved.columns != own.columns || moved.rows.len() != own.rows.len() {
             return Err(format!(
                 "parameter '{pointer}' changes the rows or columns of the analysis's table when moved: it has no \
                  derivative"
