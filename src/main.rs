@@ -281,6 +281,11 @@ pub struct SensitivityArgs {
     /// Every coordinate of every hardpoint (a Chrono file's Location points), after those given by --param
     #[arg(long)]
     pub hardpoints: bool,
+    /// The derivatives of the figures, and of the rows only as far as the figures read them: no force in
+    /// every joint and element of the load sweeps, the roll centre at design only (the same figures and
+    /// derivatives, in about two thirds of the time)
+    #[arg(long)]
+    pub figures_only: bool,
     #[command(flatten)]
     pub sweeps: SweepArgs,
     /// Where sensitivity.csv, each analysis's sensitivity_<table>.csv and report.html go; the directory is
@@ -545,6 +550,7 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
         error_estimate: true,
         // The report draws the model moving through each analysis.
         motion: true,
+        figures_only: false,
         units: args.units.units(),
     };
     args.sweeps.check(&settings)?;
@@ -876,7 +882,12 @@ fn write_sensitivities(
 /// suite or one analysis.
 fn sensitivity(args: SensitivityArgs, out: &Stdout) -> Result<(), Failure> {
     use elastokin::suspensions::design::{self, sensitivity::effect_unit};
-    let settings = Settings { range: args.sweeps.range, steps: args.sweeps.steps, ..Settings::default() };
+    let settings = Settings {
+        range: args.sweeps.range,
+        steps: args.sweeps.steps,
+        figures_only: args.figures_only,
+        ..Settings::default()
+    };
     args.sweeps.check(&settings)?;
     let read = read_model(&args.model)?;
     if let Some(line) = read.format_line() {

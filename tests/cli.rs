@@ -935,6 +935,42 @@ fn one_failing_analysis_costs_only_itself_the_others_are_written_and_the_run_exi
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// `sensitivity --figures-only` writes the figures' derivatives `sensitivity` writes, to the digit, and
+/// tables of the rows' derivatives without the columns it left out (the load sweeps' component forces).
+#[test]
+fn sensitivity_of_the_figures_alone_writes_the_same_figures() {
+    let dir = scratch("sensitivity_figures");
+    let run = |name: &str, extra: &[&str]| {
+        let out = dir.join(name);
+        let mut args = vec![
+            "sensitivity",
+            "examples/generic/macpherson.json",
+            "--param",
+            "/suspension/macpherson/hardpoints/top_mount/1",
+            "--steps",
+            "8",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend(extra);
+        succeeds(&args);
+        out
+    };
+    let (whole, alone) = (run("whole", &[]), run("alone", &["--figures-only"]));
+    let figures = read_csv(&whole.join("sensitivity.csv"));
+    assert!(figures.len() > 50);
+    assert_eq!(figures, read_csv(&alone.join("sensitivity.csv")));
+    let columns = |dir: &std::path::Path| {
+        let path = dir.join("sensitivity_lateral_force.csv");
+        let mut reader = csv::ReaderBuilder::new().comment(Some(b'#')).from_path(path).unwrap();
+        reader.headers().unwrap().iter().map(String::from).collect::<Vec<_>>()
+    };
+    let (w, a) = (columns(&whole), columns(&alone));
+    assert!(w.iter().any(|c| c.ends_with("force_x_n")) && !a.iter().any(|c| c.ends_with("force_x_n")), "{a:?}");
+    assert!(a.iter().all(|c| w.contains(c)));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// `sensitivity` gives every analysis's figures' derivatives as the command's own reruns give them:
 /// `run --analysis NAME` on the model with the inner tie-rod point moved ±0.1 mm and ±0.2 mm, a central
 /// difference Richardson extrapolated, for the bump steer and camber gain of parallel travel and the

@@ -23,7 +23,7 @@ pub enum Design {
         /// Whether it is a solid axle (its corners share parts), for the refusal of a mixed comparison.
         solid_axle: bool,
         /// Its suite.
-        report: KcReport,
+        report: Box<KcReport>,
     },
     /// A measured K&C file.
     Measured {
@@ -38,7 +38,7 @@ impl Design {
     /// A model's suite as a design, named by the model.
     pub fn model(file: &SuspensionFile, report: KcReport) -> Design {
         let solid_axle = file.suspension.expand().axle.is_some();
-        Design::Model { name: file.name.clone(), solid_axle, report }
+        Design::Model { name: file.name.clone(), solid_axle, report: Box::new(report) }
     }
 
     /// Its name.
@@ -69,7 +69,7 @@ impl Comparison {
             .iter()
             .zip(&self.names)
             .filter_map(|(d, name)| match d {
-                Design::Model { report, .. } => Some((name.as_str(), report)),
+                Design::Model { report, .. } => Some((name.as_str(), &**report)),
                 Design::Measured { .. } => None,
             })
             .collect()
@@ -90,7 +90,7 @@ pub fn compare(designs: &[Design]) -> Result<Comparison, String> {
         .iter()
         .enumerate()
         .filter_map(|(k, d)| match d {
-            Design::Model { report, solid_axle, .. } => Some((k, report, *solid_axle)),
+            Design::Model { report, solid_axle, .. } => Some((k, &**report, *solid_axle)),
             Design::Measured { .. } => None,
         })
         .collect();

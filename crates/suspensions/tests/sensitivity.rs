@@ -380,3 +380,41 @@ fn an_analysis_whose_path_meets_a_limit_point_is_refused_with_where() {
     let suite = suite_sensitivity(&p, &[Analysis::ParallelTravel], &settings).unwrap();
     assert!(suite.analyses.is_empty() && suite.failed[0].reason == e);
 }
+
+/// Read for the figures alone (`Settings::figures_only`: no component forces in the load sweeps' rows, the
+/// roll centre only at design), every analysis of the MacPherson's suite gives the same figures and the
+/// same derivatives of them as read whole, to the bit (the same solves; what is left out feeds no
+/// figure), and its tables lack what was left out.
+#[test]
+fn the_figures_read_alone_and_their_derivatives_are_those_of_the_whole_report() {
+    let doc = document("macpherson.json");
+    let h = "/suspension/macpherson/hardpoints";
+    let pointers: Vec<String> =
+        [format!("{h}/top_mount/1"), format!("{h}/lower_ball_joint/2"), format!("{h}/tie_rod_inner/0")].into();
+    let p = Parameters::new(&doc, &pointers).unwrap();
+    let settings = Settings { steps: STEPS, ..Settings::default() };
+    let whole = suite_sensitivity(&p, &[], &settings).unwrap();
+    let alone = suite_sensitivity(&p, &[], &Settings { figures_only: true, ..settings }).unwrap();
+    assert!(whole.failed.is_empty() && alone.failed.is_empty());
+    assert_eq!(whole.analyses.len(), alone.analyses.len());
+    let mut left_out = 0;
+    for (w, a) in whole.analyses.iter().zip(&alone.analyses) {
+        let name = w.report.analysis.name();
+        assert_eq!(w.report.figures, a.report.figures, "{name}");
+        assert_eq!(w.figures, a.figures, "{name}");
+        let (wc, ac) = (&w.report.table.columns, &a.report.table.columns);
+        assert!(ac.iter().all(|c| wc.contains(c)), "{name}: a column read alone that the whole report lacks");
+        left_out += wc.len() - ac.len();
+        if name == "lateral-force" {
+            assert!(wc.iter().any(|c| c.ends_with("force_x_n")) && !ac.iter().any(|c| c.ends_with("force_x_n")));
+        }
+        if name == "roll" {
+            let height = |s: &elastokin_suspensions::design::AnalysisSensitivity| s.column("roll_centre_height_m");
+            let (wh, ah) = (height(w), height(a));
+            assert!(wh.iter().all(Option::is_some), "every row's roll centre, read whole");
+            assert_eq!(ah.iter().filter(|v| v.is_some()).count(), 1, "the design row's alone");
+            assert_eq!(wh[STEPS / 2], ah[STEPS / 2]);
+        }
+    }
+    assert!(left_out > 0);
+}

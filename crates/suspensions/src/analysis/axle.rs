@@ -131,7 +131,8 @@ pub fn axle_sweep_with(
         let (left, right) = (axle.left.attitude(&step.poses), axle.right.attitude(&step.poses));
         let (left_load, right_load) = (load(drivers.0), load(drivers.1));
         let (track, roll_angle) = axle.track_and_roll(&step.poses);
-        let roll_centre = if axle.rig == AxleRig::Steering {
+        // Read for the figures alone, the roll centre at design only: the figure's.
+        let roll_centre = if axle.rig == AxleRig::Steering || (extras.figures_only && step.t != 0.0) {
             None
         } else {
             let rates = solver.path_tangent(&solver.state_of(step))?;

@@ -147,7 +147,8 @@ pub struct LoadRow {
     /// Vertical force the rig applies at the wheel centre to hold its height (N, up +); zero when the
     /// wheel is free on its spring.
     pub wheel_load: f64,
-    /// Force in every joint and element.
+    /// Force in every joint and element (none where the sweep read its rows for the figures alone,
+    /// [`SweepExtras::figures_only`]).
     pub forces: ComponentForces,
 }
 
@@ -168,14 +169,15 @@ fn load_rows(
     let driver = model.joint_id(WHEEL_TRAVEL);
     let names = ComponentNames::of(model);
     read_sweep(solver, &corner.wheel, corner.partner.as_ref(), walked, extras, |_, s| {
-        let forces = ComponentForces::named(model, s, &names);
+        let forces =
+            if extras.figures_only { ComponentForces::default() } else { ComponentForces::named(model, s, &names) };
         let contact_patch = s.poses[upright].point(&patch_local);
         Ok(LoadRow {
             load: s.t,
             attitude: corner.wheel.attitude(&s.poses),
             contact_patch,
             patch_displacement: contact_patch - patch_at_design,
-            wheel_load: driver.map_or(0.0, |d| forces.joints[d.0].force.z),
+            wheel_load: driver.map_or(0.0, |d| s.joint_reaction(model, d).force.z),
             forces,
         })
     })

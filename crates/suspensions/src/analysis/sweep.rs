@@ -73,6 +73,12 @@ pub struct SweepExtras {
     pub through_limits: Option<f64>,
     /// The bodies' poses at every step, for a view that moves the parts as solved.
     pub poses: bool,
+    /// Each row read for the K&C figures alone ([`crate::kc::Settings::figures_only`]): a load sweep's
+    /// rows without the force in every joint and element ([`LoadRow::forces`] empty), an axle sweep's
+    /// roll centre only at design (load parameter 0).
+    ///
+    /// [`LoadRow::forces`]: crate::analysis::LoadRow::forces
+    pub figures_only: bool,
 }
 
 /// How many arc-length steps of [`SweepExtras::through_limits`] a path through a limit point may take,

@@ -167,7 +167,9 @@ pub fn stack_up(document: &Value, tolerances: &Tolerances) -> Result<StackUp, St
     let pointers: Vec<String> = tolerances.bands.iter().map(|(p, _)| p.clone()).collect();
     let bands: Vec<f64> = tolerances.bands.iter().map(|(_, t)| *t).collect();
     let parameters = Parameters::new(document, &pointers)?;
-    let settings = sensitivity_settings(&Settings { steps: tolerances.steps, ..Settings::default() });
+    // Spreads are of figures: the rows are read as far as the figures read them.
+    let settings =
+        sensitivity_settings(&Settings { steps: tolerances.steps, figures_only: true, ..Settings::default() });
     let suite: SuiteSensitivity = suite_sensitivity(&parameters, &tolerances.analyses, &settings)?;
     let (mut spreads, mut left_out) = (Vec::new(), Vec::new());
     for a in &suite.analyses {

@@ -129,7 +129,13 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
         if runs.iter().any(|(a, r, _)| *a == t.analysis && *r == t.range) {
             continue;
         }
-        let settings = Settings { range: t.range, steps: targets.steps, ..Settings::default() };
+        // Where only figures are aimed at, the rows are read as far as the figures read them.
+        let figures_only = targets
+            .targets
+            .iter()
+            .filter(|u| u.analysis == t.analysis && u.range == t.range)
+            .all(|u| matches!(u.aim, Aim::Figure { .. }));
+        let settings = Settings { range: t.range, steps: targets.steps, figures_only, ..Settings::default() };
         let s = analysis_sensitivity(t.analysis, &p, &settings).map_err(|e| format!("{}: {e}", t.analysis.name()))?;
         runs.push((t.analysis, t.range, s));
     }

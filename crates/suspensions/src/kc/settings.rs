@@ -199,6 +199,12 @@ pub struct Settings {
     /// ([`AnalysisReport::motion`](crate::kc::AnalysisReport::motion)). Off unless a view is to be drawn.
     #[serde(skip)]
     pub motion: bool,
+    /// Each row read for the figures alone: a load sweep's rows without the force in every joint and
+    /// element, an axle's roll centre only at design. The figures are those read with the whole rows, to
+    /// the bit; the table lacks those columns and cells. For the sensitivities of the figures alone,
+    /// which then replay no more than the figures read.
+    #[serde(skip)]
+    pub figures_only: bool,
     /// The units of the slopes against wheel travel and of the aligning-torque compliances.
     pub units: Units,
 }
@@ -217,6 +223,7 @@ impl Default for Settings {
             arc_step: None,
             error_estimate: true,
             motion: false,
+            figures_only: false,
             units: Units::DegPerM,
         }
     }
@@ -248,6 +255,7 @@ impl Settings {
             compliance: self.compliance,
             through_limits: self.through_limits.then(|| self.arc_step.unwrap_or(one_step)),
             poses: self.motion,
+            figures_only: self.figures_only,
         }
     }
 }
