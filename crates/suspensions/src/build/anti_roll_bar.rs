@@ -28,7 +28,7 @@ impl AntiRollBar {
             (Some(_), Some(_)) => return refuse("give the bar's rate (N·m/rad) or its section, not both"),
             (None, None) => return refuse("give the bar's rate (N·m/rad) or its section (a beam's section)"),
         }
-        let pivot = sides.0.point(&format!("{key}.pivot"), &self.pivot)?;
+        let pivot = sides.0.point(format_args!("{key}.pivot"), &self.pivot)?;
         if pivot.y < MIN_BEARING_OFFSET {
             return Err(ModelError::OutOfRange {
                 item: key.clone(),
@@ -46,10 +46,12 @@ impl AntiRollBar {
         let mut elements = Vec::new();
         for (half, r) in halves.iter_mut().zip([&sides.0, &sides.1]) {
             let [body, bearing, link] = self.part_names(r.prefix());
-            let (pivot, arm_end) =
-                (r.point(&format!("{key}.pivot"), &self.pivot)?, r.point(&format!("{key}.arm_end"), &self.arm_end)?);
-            let link_end = r.point(&format!("{key}.link_end"), &self.link_end)?;
-            let on = r.body(model, &format!("{key}.link_body"), &self.link_body)?;
+            let (pivot, arm_end) = (
+                r.point(format_args!("{key}.pivot"), &self.pivot)?,
+                r.point(format_args!("{key}.arm_end"), &self.arm_end)?,
+            );
+            let link_end = r.point(format_args!("{key}.link_end"), &self.link_end)?;
+            let on = r.body(model, format_args!("{key}.link_body"), &self.link_body)?;
             let bar = model.add_body(&body, Pose::at(pivot))?;
             model.add_joint(JointSpec::revolute(&bearing, BodyRef::Ground, bar, pivot, axis))?;
             // With a section, the arm bends: the drop link meets a body at its end, on the arm's beam.

@@ -218,7 +218,7 @@ impl Resolver<'_> {
     }
 
     /// A point placed on the side; `key` names where it is used, for the error.
-    pub(crate) fn point(&self, key: &str, place: &Place) -> Result<Vec3, ModelError> {
+    pub(crate) fn point(&self, key: impl std::fmt::Display + Copy, place: &Place) -> Result<Vec3, ModelError> {
         let missing = |name: &str| {
             let why = match self.shared {
                 None => format!(
@@ -272,7 +272,7 @@ impl Resolver<'_> {
     }
 
     /// A direction placed on the side.
-    pub(crate) fn direction(&self, key: &str, axis: &Axis) -> Result<Vec3, ModelError> {
+    pub(crate) fn direction(&self, key: impl std::fmt::Display + Copy, axis: &Axis) -> Result<Vec3, ModelError> {
         let v = match axis {
             Axis::Vector(v) => self.side.place(*v),
             Axis::Through(a, b) => self.point(key, b)? - self.point(key, a)?,
@@ -294,13 +294,20 @@ impl Resolver<'_> {
 
     /// A body by its file name (`"chassis"` is the ground): a corner's own, else an axle body; on the
     /// shared parts, an axle body or a corner's as `"left …"` / `"right …"`.
-    pub(crate) fn body(&self, model: &Model, key: &str, name: &str) -> Result<BodyRef, ModelError> {
+    pub(crate) fn body(
+        &self,
+        model: &Model,
+        key: impl std::fmt::Display + Copy,
+        name: &str,
+    ) -> Result<BodyRef, ModelError> {
         if name == CHASSIS {
             return Ok(BodyRef::Ground);
         }
+        // The body named `part_name(prefix, name)`, found without making the name.
         let corner_body = |prefix: &str, name: &str| {
             let known = self.general.bodies.iter().any(|b| b.name == name);
-            model.body_id(&part_name(prefix, name)).filter(|_| known)
+            let id = model.bodies().iter().position(|b| b.name.strip_prefix(prefix) == Some(name));
+            id.map(elastokin_core::BodyId).filter(|_| known)
         };
         let axle_body = || model.body_id(name).filter(|_| self.axle_bodies().iter().any(|b| b.name == name));
         let found = match self.shared {
@@ -440,12 +447,12 @@ fn framed_entry(
     y_axis: Option<&Axis>,
     at: &Place,
 ) -> Result<FramedEntry, ModelError> {
-    let bi = r.body(model, &format!("{key}.bodies"), &bodies[0])?;
-    let bj = r.body(model, &format!("{key}.bodies"), &bodies[1])?;
+    let bi = r.body(model, format_args!("{key}.bodies"), &bodies[0])?;
+    let bj = r.body(model, format_args!("{key}.bodies"), &bodies[1])?;
     let left = Resolver { side: Side::Left, ..*r };
-    let x = axis.map(|a| left.direction(&format!("{key}.axis"), a)).transpose()?.unwrap_or(Vec3::x());
-    let y = y_axis.map(|a| left.direction(&format!("{key}.y_axis"), a)).transpose()?;
-    Ok(FramedEntry { bodies: [bi, bj], point: r.point(&format!("{key}.at"), at)?, x, y })
+    let x = axis.map(|a| left.direction(format_args!("{key}.axis"), a)).transpose()?.unwrap_or(Vec3::x());
+    let y = y_axis.map(|a| left.direction(format_args!("{key}.y_axis"), a)).transpose()?;
+    Ok(FramedEntry { bodies: [bi, bj], point: r.point(format_args!("{key}.at"), at)?, x, y })
 }
 
 /// A preload force and moment given in a left corner's frame, in `side`'s. Mirroring turns the frame's z
@@ -540,15 +547,15 @@ impl GeneralCorner {
 
     fn add_joint(&self, model: &mut Model, r: &Resolver, k: usize, j: &JointDef) -> Result<(), ModelError> {
         let key = format!("joints[{k}] ({})", j.name);
-        let bi = r.body(model, &format!("{key}.bodies"), &j.bodies[0])?;
-        let bj = r.body(model, &format!("{key}.bodies"), &j.bodies[1])?;
+        let bi = r.body(model, format_args!("{key}.bodies"), &j.bodies[0])?;
+        let bj = r.body(model, format_args!("{key}.bodies"), &j.bodies[1])?;
         // The keys before the points: a key the kind does not use is the mistake to name first.
         check_joint_keys(&key, j.kind, [j.at.is_some(), j.to.is_some(), j.axis.is_some(), j.axis_j.is_some()])?;
         let geometry = JointGeometry {
-            at: j.at.as_ref().map(|p| r.point(&format!("{key}.at"), p)).transpose()?,
-            to: j.to.as_ref().map(|p| r.point(&format!("{key}.to"), p)).transpose()?,
-            axis: j.axis.as_ref().map(|a| r.direction(&format!("{key}.axis"), a)).transpose()?,
-            axis_j: j.axis_j.as_ref().map(|a| r.direction(&format!("{key}.axis_j"), a)).transpose()?,
+            at: j.at.as_ref().map(|p| r.point(format_args!("{key}.at"), p)).transpose()?,
+            to: j.to.as_ref().map(|p| r.point(format_args!("{key}.to"), p)).transpose()?,
+            axis: j.axis.as_ref().map(|a| r.direction(format_args!("{key}.axis"), a)).transpose()?,
+            axis_j: j.axis_j.as_ref().map(|a| r.direction(format_args!("{key}.axis_j"), a)).transpose()?,
         };
         model.add_joint(joint_spec(&key, &part_name(r.prefix, &j.name), j.kind, [bi, bj], &geometry)?)?;
         Ok(())
@@ -574,10 +581,10 @@ impl GeneralCorner {
     /// y), so the shear centre's z offset changes sign.
     fn add_beam(&self, model: &mut Model, r: &Resolver, k: usize, b: &BeamDef) -> Result<Vec<ElementId>, ModelError> {
         let key = format!("beams[{k}] ({})", b.name);
-        let bi = r.body(model, &format!("{key}.bodies"), &b.bodies[0])?;
-        let bj = r.body(model, &format!("{key}.bodies"), &b.bodies[1])?;
-        let (from, to) = (r.point(&format!("{key}.from"), &b.from)?, r.point(&format!("{key}.to"), &b.to)?);
-        let y = r.direction(&format!("{key}.y_axis"), &b.y_axis)?;
+        let bi = r.body(model, format_args!("{key}.bodies"), &b.bodies[0])?;
+        let bj = r.body(model, format_args!("{key}.bodies"), &b.bodies[1])?;
+        let (from, to) = (r.point(format_args!("{key}.from"), &b.from)?, r.point(format_args!("{key}.to"), &b.to)?);
+        let y = r.direction(format_args!("{key}.y_axis"), &b.y_axis)?;
         let n = b.segments.unwrap_or(1);
         if !(1..=BeamDef::MOST_SEGMENTS).contains(&n) {
             return Err(ModelError::OutOfRange {
@@ -616,17 +623,17 @@ impl GeneralCorner {
 
     fn add_spring(&self, model: &mut Model, r: &Resolver, k: usize, s: &SpringDef) -> Result<ElementId, ModelError> {
         let key = format!("springs[{k}] ({})", s.name);
-        let bi = r.body(model, &format!("{key}.bodies"), &s.bodies[0])?;
-        let bj = r.body(model, &format!("{key}.bodies"), &s.bodies[1])?;
-        let (from, to) = (r.point(&format!("{key}.from"), &s.from)?, r.point(&format!("{key}.to"), &s.to)?);
+        let bi = r.body(model, format_args!("{key}.bodies"), &s.bodies[0])?;
+        let bj = r.body(model, format_args!("{key}.bodies"), &s.bodies[1])?;
+        let (from, to) = (r.point(format_args!("{key}.from"), &s.from)?, r.point(format_args!("{key}.to"), &s.to)?);
         model.add_element(s.spring(&key, &part_name(r.prefix, &s.name), [bi, bj], from, to)?)
     }
 
     fn add_stop(&self, model: &mut Model, r: &Resolver, k: usize, s: &StopDef) -> Result<(), ModelError> {
         let key = format!("stops[{k}] ({})", s.name);
-        let bi = r.body(model, &format!("{key}.bodies"), &s.bodies[0])?;
-        let bj = r.body(model, &format!("{key}.bodies"), &s.bodies[1])?;
-        let (from, to) = (r.point(&format!("{key}.from"), &s.from)?, r.point(&format!("{key}.to"), &s.to)?);
+        let bi = r.body(model, format_args!("{key}.bodies"), &s.bodies[0])?;
+        let bj = r.body(model, format_args!("{key}.bodies"), &s.bodies[1])?;
+        let (from, to) = (r.point(format_args!("{key}.from"), &s.from)?, r.point(format_args!("{key}.to"), &s.to)?);
         model.add_element(s.stop(&key, &part_name(r.prefix, &s.name), [bi, bj], from, to)?)?;
         Ok(())
     }
@@ -659,7 +666,7 @@ impl GeneralCorner {
         for (k, load) in self.loads.iter().enumerate() {
             let key = format!("loads[{k}] ({})", load.name);
             let refuse = |why: &str| Err(ModelError::OutOfRange { item: key.clone(), why: why.to_string() });
-            let body = r.body(model, &format!("{key}.body"), &load.body)?;
+            let body = r.body(model, format_args!("{key}.body"), &load.body)?;
             let finite = |v: &[f64; 3]| v.iter().all(|c| c.is_finite());
             match (load.force, load.torque, &load.at) {
                 (None, None, _) => {
@@ -675,7 +682,7 @@ impl GeneralCorner {
             let s = side.sign();
             let (force_label, torque_label) = load_labels(load, prefix);
             if let (Some(f), Some(at), Some(label)) = (load.force, &load.at, force_label) {
-                let point = r.point(&format!("{key}.at"), at)?;
+                let point = r.point(format_args!("{key}.at"), at)?;
                 let force = Vec3::new(f[0], s * f[1], f[2]);
                 model.add_element(PointForce::new(&label, body, point, force)?)?;
             }
@@ -734,7 +741,7 @@ impl CornerTemplate for GeneralCorner {
             check_steering_arm(axis_left, (&axis_names.0, &axis_names.1), inner, outer)?;
         }
         for (k, body) in self.bodies.iter().enumerate() {
-            let at = r.point(&format!("bodies[{k}] ({}).at", body.name), &body.at)?;
+            let at = r.point(format_args!("bodies[{k}] ({}).at", body.name), &body.at)?;
             model.add_body(&part_name(prefix, &body.name), Pose::at(at))?;
         }
         for (k, j) in self.joints.iter().enumerate() {
@@ -821,7 +828,7 @@ impl CornerTemplate for GeneralCorner {
                            axle's body another name";
                 return refuse(key, why.into());
             }
-            let at = r.point(&format!("{key}.at"), &body.at)?;
+            let at = r.point(format_args!("{key}.at"), &body.at)?;
             model.add_body(&body.name, Pose::at(at))?;
         }
         Ok(())
@@ -893,13 +900,13 @@ impl CornerTemplate for GeneralCorner {
             Some(link) => {
                 let key = "axle.steering_link";
                 let rod = TieRod {
-                    inner: r.point(&format!("{key}.inner"), &link.inner)?,
-                    outer: r.point(&format!("{key}.outer"), &link.outer)?,
+                    inner: r.point(format_args!("{key}.inner"), &link.inner)?,
+                    outer: r.point(format_args!("{key}.outer"), &link.outer)?,
                     connection: link.connection,
                 };
                 check_tie_rod_mounts(&format!("{key}.connection"), &link.connection)?;
-                let axis = r.direction(&format!("{key}.rack_axis"), &Axis::Vector(Vec3::from(link.rack_axis)))?;
-                let body = r.body(model, &format!("{key}.body"), &link.body)?;
+                let axis = r.direction(format_args!("{key}.rack_axis"), &Axis::Vector(Vec3::from(link.rack_axis)))?;
+                let body = r.body(model, format_args!("{key}.body"), &link.body)?;
                 Some(SteeringLink { body, rod, rack_axis: axis.normalize() })
             }
         };
