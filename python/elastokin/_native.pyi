@@ -81,6 +81,7 @@ class Model:
         analysis: str = "parallel-travel",
         range: Optional[Tuple[float, float]] = None,
         steps: int = 32,
+        figures_only: bool = False,
     ) -> Dict[str, Any]: ...
     def batch(
         self,

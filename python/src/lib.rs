@@ -358,8 +358,9 @@ impl Model {
     /// values, the table's `columns`, every column by name (its rows) and its derivatives as
     /// `d_<column>` (rows × parameters), and `figures`: every figure of the report by key, its value, unit,
     /// derivatives (NaN where it has none) and `no_derivative` (why, or None); every derivative per unit
-    /// of the parameter in the file.
-    #[pyo3(signature = (parameters, analysis="parallel-travel", range=None, steps=32))]
+    /// of the parameter in the file. With `figures_only`, the rows are read as far as the figures read them
+    /// (`kc::Settings::figures_only`): the same figures, a table without the columns left out.
+    #[pyo3(signature = (parameters, analysis="parallel-travel", range=None, steps=32, figures_only=false))]
     fn sensitivities<'py>(
         &self,
         py: Python<'py>,
@@ -367,10 +368,11 @@ impl Model {
         analysis: &str,
         range: Option<(f64, f64)>,
         steps: usize,
+        figures_only: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         use elastokin_suspensions::design::{analysis_sensitivity, Parameters};
         let which = self::analysis(analysis)?;
-        let settings = Settings { range, steps, ..Settings::default() };
+        let settings = Settings { range, steps, figures_only, ..Settings::default() };
         kc::check_settings(which, &settings).map_err(|e| PyValueError::new_err(e.to_string()))?;
         let p = Parameters::new(&self.base, &parameters).map_err(ModelError::new_err)?;
         let s = py.detach(|| analysis_sensitivity(which, &p, &settings)).map_err(AnalysisError::new_err)?;

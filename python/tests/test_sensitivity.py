@@ -58,6 +58,20 @@ def test_every_hardpoint_by_default_and_any_analysis():
     assert numpy.isfinite(lateral["figures"]["steer"]["derivatives"]).all()
 
 
+def test_the_figures_read_alone_are_the_figures_read_whole():
+    model = elastokin.load(MODEL)
+    whole = model.sensitivities([TIE_ROD_Z], analysis="lateral-force", steps=4)
+    alone = model.sensitivities([TIE_ROD_Z], analysis="lateral-force", steps=4, figures_only=True)
+    assert whole["figures"].keys() == alone["figures"].keys()
+    for key, figure in whole["figures"].items():
+        assert figure["value"] == alone["figures"][key]["value"], key
+        numpy.testing.assert_array_equal(figure["derivatives"], alone["figures"][key]["derivatives"])
+    # The component forces are left out, toe and camber kept.
+    assert any(c.endswith("force_x_n") for c in whole["columns"])
+    assert not any(c.endswith("force_x_n") for c in alone["columns"])
+    numpy.testing.assert_array_equal(whole["d_toe_deg"], alone["d_toe_deg"])
+
+
 def test_a_parameter_that_names_nothing_is_refused_by_name():
     model = elastokin.load(MODEL)
     with pytest.raises(elastokin.ModelError, match="'/suspension/macpherson/nowhere' names nothing"):
