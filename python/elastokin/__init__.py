@@ -323,7 +323,9 @@ class Model:
             for pointer, value in zip(pointers, numpy.asarray(x, dtype=float)):
                 _set_pointer(document, pointer, float(value))
             model = Model(_native.Model.from_json(json.dumps(document), origin))
-            got = model.sensitivities(pointers, analysis=analysis, range=range, steps=steps)["figures"][figure]
+            # A figure's objective reads the rows as far as the figures read them.
+            s = model.sensitivities(pointers, analysis=analysis, range=range, steps=steps, figures_only=True)
+            got = s["figures"][figure]
             if got["value"] is None:
                 raise AnalysisError(f"{figure} has no value at {list(x)}")
             miss = got["value"] - target
