@@ -6,7 +6,7 @@ use crate::analysis::sweep::{read_sweep, require_rig, walk, whole, SweepExtras, 
 use crate::build::rig::WHEEL_TRAVEL;
 use crate::build::{Corner, Rig};
 use crate::wheel::WheelAttitude;
-use elastokin_core::{BodyRef, Model, Vec3};
+use elastokin_core::{BodyRef, JointId, Model, Vec3};
 use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, State, StaticSolver, StepResult, Sweep};
 use std::sync::Arc;
 
@@ -167,17 +167,20 @@ fn load_rows(
     let upright = corner.wheel.upright.0;
     let patch_at_design = model.bodies()[upright].design_pose.point(&patch_local);
     let driver = model.joint_id(WHEEL_TRAVEL);
-    let names = ComponentNames::of(model);
+    // Named once per sweep, and only when the rows read the forces.
+    let names = (!extras.figures_only).then(|| ComponentNames::of(model));
     read_sweep(solver, &corner.wheel, corner.partner.as_ref(), walked, extras, |_, s| {
-        let forces =
-            if extras.figures_only { ComponentForces::default() } else { ComponentForces::named(model, s, &names) };
+        let forces = names.as_ref().map_or_else(ComponentForces::default, |n| ComponentForces::named(model, s, n));
         let contact_patch = s.poses[upright].point(&patch_local);
+        // The driver's force from the forces read, else read alone.
+        let driver_force =
+            |d: JointId| forces.joints.get(d.0).map_or_else(|| s.joint_reaction(model, d).force, |c| c.force);
         Ok(LoadRow {
             load: s.t,
             attitude: corner.wheel.attitude(&s.poses),
             contact_patch,
             patch_displacement: contact_patch - patch_at_design,
-            wheel_load: driver.map_or(0.0, |d| s.joint_reaction(model, d).force.z),
+            wheel_load: driver.map_or(0.0, |d| driver_force(d).z),
             forces,
         })
     })

@@ -7,8 +7,8 @@
 use crate::build::map::load_labels;
 use crate::build::template::{CornerParts, CornerTemplate, CrossAxle, ElasticMember, SteeringLink, TieRod};
 use crate::description::general::{
-    part_name, Axis, BeamDef, BodyDef, BushingDef, FieldDef, GeneralCorner, JointDef, Place, SectionDef, SpringDef,
-    Stiffness, StopDef, StopType, CHASSIS,
+    is_part_name, part_name, Axis, BeamDef, BodyDef, BushingDef, FieldDef, GeneralCorner, JointDef, Place, SectionDef,
+    SpringDef, Stiffness, StopDef, StopType, CHASSIS,
 };
 use crate::description::limits::{
     check_hardpoints, check_rate, check_spring_force, check_steering_arm, check_steering_axis, check_tie_rod_mounts,
@@ -303,10 +303,9 @@ impl Resolver<'_> {
         if name == CHASSIS {
             return Ok(BodyRef::Ground);
         }
-        // The body named `part_name(prefix, name)`, found without making the name.
         let corner_body = |prefix: &str, name: &str| {
             let known = self.general.bodies.iter().any(|b| b.name == name);
-            let id = model.bodies().iter().position(|b| b.name.strip_prefix(prefix) == Some(name));
+            let id = model.bodies().iter().position(|b| is_part_name(&b.name, prefix, name));
             id.map(elastokin_core::BodyId).filter(|_| known)
         };
         let axle_body = || model.body_id(name).filter(|_| self.axle_bodies().iter().any(|b| b.name == name));

@@ -173,3 +173,8 @@ impl<'de> Deserialize<'de> for Axis {
 pub(crate) fn part_name(prefix: &str, name: &str) -> String {
     format!("{prefix}{name}")
 }
+
+/// Whether `full` is [`part_name`]`(prefix, name)`, told without making it.
+pub(crate) fn is_part_name(full: &str, prefix: &str, name: &str) -> bool {
+    full.strip_prefix(prefix) == Some(name)
+}
