@@ -935,8 +935,8 @@ fn one_failing_analysis_costs_only_itself_the_others_are_written_and_the_run_exi
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// `sensitivity --figures-only` writes the figures' derivatives `sensitivity` writes, to the digit, and
-/// tables of the rows' derivatives without the columns it left out (the load sweeps' component forces).
+/// `sensitivity --figures-only` writes the figures' derivatives `sensitivity` writes, to the digit, and no
+/// tables of the rows' derivatives (its replays move only the rows the figures read).
 #[test]
 fn sensitivity_of_the_figures_alone_writes_the_same_figures() {
     let dir = scratch("sensitivity_figures");
@@ -960,14 +960,8 @@ fn sensitivity_of_the_figures_alone_writes_the_same_figures() {
     let figures = read_csv(&whole.join("sensitivity.csv"));
     assert!(figures.len() > 50);
     assert_eq!(figures, read_csv(&alone.join("sensitivity.csv")));
-    let columns = |dir: &std::path::Path| {
-        let path = dir.join("sensitivity_lateral_force.csv");
-        let mut reader = csv::ReaderBuilder::new().comment(Some(b'#')).from_path(path).unwrap();
-        reader.headers().unwrap().iter().map(String::from).collect::<Vec<_>>()
-    };
-    let (w, a) = (columns(&whole), columns(&alone));
-    assert!(w.iter().any(|c| c.ends_with("force_x_n")) && !a.iter().any(|c| c.ends_with("force_x_n")), "{a:?}");
-    assert!(a.iter().all(|c| w.contains(c)));
+    assert!(whole.join("sensitivity_lateral_force.csv").exists());
+    assert!(!alone.join("sensitivity_lateral_force.csv").exists());
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -9,7 +9,7 @@ use crate::{AnalysisError, ModelError};
 use elastokin_core::{BodyRef, ElementReport, JointKind, Model, Pose, Vec3};
 use elastokin_elements::{beam, BeamSpec, PointForce, PointTorque, RotationLaw, Section};
 use elastokin_solver::{JointReaction, LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult};
-use elastokin_suspensions::analysis::{walk, SweepLimit};
+use elastokin_suspensions::analysis::{walk, SweepExtras, SweepLimit};
 use elastokin_suspensions::build::{joint_spec, JointGeometry};
 use elastokin_suspensions::description::general::{
     Axis, BushingDef, FieldDef, Place, SpringDef, Stiffness, StopDef, StopType, CHASSIS,
@@ -540,7 +540,8 @@ impl Scene {
         let walked = solve_detached(py, || {
             let mut solver = StaticSolver::new(model, options)?;
             let mut state = solver.design_state(start);
-            walk(&mut solver, &mut state, LoadPath::new(start, end, steps), mode, through)
+            let extras = SweepExtras { through_limits: through, ..SweepExtras::default() };
+            walk(&mut solver, &mut state, LoadPath::new(start, end, steps), mode, &extras)
         })?;
         Ok(SceneSweep::new(self, mode, walked.steps, walked.limit))
     }

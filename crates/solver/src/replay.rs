@@ -32,6 +32,9 @@
 //! (`replays_independent_rows`). Where no factors were kept (the sparse backend), the iteration is the exact one
 //! ([`StaticSolver::newton_correction`](crate::StaticSolver::newton_correction)).
 //!
+//! A run that reads only some rows of a sweep (a slope at one load parameter, the last row) may ask its
+//! solver to move only those ([`ReplayRows`]): the others are returned as recorded.
+//!
 //! A replay that takes another path than the recording (a solver of other parts, another sequence of
 //! solves) is reported, never papered over: [`replay`] returns [`Diverged`].
 
@@ -42,6 +45,29 @@ use crate::results::{StepResult, Sweep};
 use elastokin_core::Model;
 use std::cell::RefCell;
 use std::sync::Arc;
+
+/// Which steps of a sweep a replay moves, for a run that reads only some of a sweep's rows (a slope or
+/// curvature at one load parameter, the last row): the steps whose load parameter lies within one step of
+/// `near`, and the last step if `last`. Every other step the replay returns as recorded, unmoved (at the
+/// replayed load parameter), so that nothing is spent on rows nobody reads; what is read off them is not the
+/// moved model's, and a caller that sets this reads none of it. Set on a solver with
+/// [`StaticSolver::replay_rows`](crate::StaticSolver::replay_rows); outside a replay it changes nothing.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReplayRows {
+    /// The load parameter whose neighbouring steps are moved.
+    pub near: f64,
+    /// Whether the last step is moved too.
+    pub last: bool,
+}
+
+impl ReplayRows {
+    /// Whether the step at load parameter `t`, the `index`-th of `count`, of a sweep along `path` is moved.
+    pub(crate) fn moves(&self, t: f64, index: usize, count: usize, path: &LoadPath) -> bool {
+        let step = (path.end - path.start).abs() / path.steps.max(1) as f64;
+        // A step's own rounding aside: a row one step away is a neighbour.
+        (t - self.near).abs() <= step * (1.0 + 1e-9) || (self.last && index + 1 == count)
+    }
+}
 
 /// What one solve of a recorded solver returned.
 #[derive(Debug, Clone)]

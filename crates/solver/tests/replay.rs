@@ -4,7 +4,7 @@
 
 use elastokin_core::{BodyRef, JointSpec, Model, Pose, Vec3};
 use elastokin_elements::{CoilSpring, PointForce};
-use elastokin_solver::replay::{record, replay, Diverged};
+use elastokin_solver::replay::{record, replay, Diverged, ReplayRows};
 use elastokin_solver::{BackendChoice, LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult};
 use std::sync::Arc;
 
@@ -308,4 +308,34 @@ fn a_replayed_equilibrium_is_the_moved_models_to_the_square_of_the_move() {
     for (b, m) in base.iter().zip(&moved) {
         assert_eq!((b.force_residual, b.constraint_residual), (m.force_residual, m.constraint_residual));
     }
+}
+
+/// The sweep's angles with a replay moving only `rows` of it.
+fn angles_moving(k: f64, rows: Option<ReplayRows>) -> Result<Vec<f64>, SolverError> {
+    let model = lever(k);
+    let mut solver = StaticSolver::new(&model, SolverOptions::default())?;
+    solver.replay_rows(rows);
+    Ok(solver.sweep(LoadPath::new(0.0, 1.0, 8), Mode::Corrected)?.steps.iter().map(angle).collect())
+}
+
+#[test]
+fn a_replay_asked_for_some_rows_moves_those_alone_as_a_whole_replay_does() {
+    let k = 2e4;
+    let (base, tape) = record(|| angles_moving(k, None));
+    let (base, tape) = (base.unwrap(), Arc::new(tape));
+    let moved = k * 1.01;
+    let all = replay(&tape, || angles_moving(moved, None)).unwrap().value.unwrap();
+    // Rows within one step (1/8) of load 0.5, and the last: steps 3, 4, 5 and 8.
+    let rows = ReplayRows { near: 0.5, last: true };
+    let some = replay(&tape, || angles_moving(moved, Some(rows))).unwrap().value.unwrap();
+    for i in 0..base.len() {
+        if [3, 4, 5, 8].contains(&i) {
+            assert_eq!(some[i], all[i], "step {i}: moved as the whole replay moves it");
+            assert_ne!(some[i], base[i], "step {i}");
+        } else {
+            assert_eq!(some[i], base[i], "step {i}: returned as recorded");
+        }
+    }
+    // Outside a replay the rows asked for change nothing.
+    assert_eq!(angles_moving(k, Some(rows)).unwrap(), angles_moving(k, None).unwrap());
 }

@@ -382,9 +382,10 @@ fn an_analysis_whose_path_meets_a_limit_point_is_refused_with_where() {
 }
 
 /// Read for the figures alone (`Settings::figures_only`: no component forces in the load sweeps' rows, the
-/// roll centre only at design), every analysis of the MacPherson's suite gives the same figures and the
-/// same derivatives of them as read whole, to the bit (the same solves; what is left out feeds no
-/// figure), and its tables lack what was left out.
+/// roll centre only at design, the replays moving only the rows the figures read), every analysis of the
+/// MacPherson's suite gives the same figures and the same derivatives of them as read whole, to the bit
+/// (the same solves and the same moved rows under every figure; what is left out feeds no figure), its
+/// tables lack what was left out, and no cell of them has a derivative, saying why.
 #[test]
 fn the_figures_read_alone_and_their_derivatives_are_those_of_the_whole_report() {
     let doc = document("macpherson.json");
@@ -405,6 +406,14 @@ fn the_figures_read_alone_and_their_derivatives_are_those_of_the_whole_report() 
         let (wc, ac) = (&w.report.table.columns, &a.report.table.columns);
         assert!(ac.iter().all(|c| wc.contains(c)), "{name}: a column read alone that the whole report lacks");
         left_out += wc.len() - ac.len();
+        assert!(
+            a.table
+                .iter()
+                .flatten()
+                .flatten()
+                .all(|d| *d == Err(NoDerivative::FiguresOnly) || *d == Err(NoDerivative::Missing)),
+            "{name}"
+        );
         if name == "lateral-force" {
             assert!(wc.iter().any(|c| c.ends_with("force_x_n")) && !ac.iter().any(|c| c.ends_with("force_x_n")));
         }
@@ -417,4 +426,28 @@ fn the_figures_read_alone_and_their_derivatives_are_those_of_the_whole_report() 
         }
     }
     assert!(left_out > 0);
+}
+
+/// The rows the replays move for the figures alone are those the figures read on the other shipped forms
+/// too: the double wishbone axle (its roll with an anti-roll bar's curvature, its steering), the
+/// five-link with its own load case, the double wishbone with its design load range: the figures'
+/// derivatives equal those read whole, to the bit.
+#[test]
+fn the_figures_read_alone_on_the_other_forms_have_the_derivatives_read_whole() {
+    for name in ["double_wishbone_axle.json", "five_link.json", "double_wishbone.json"] {
+        let doc = document(name);
+        let pointers: Vec<String> = hardpoint_pointers(&doc).into_iter().step_by(13).take(3).collect();
+        let p = Parameters::new(&doc, &pointers).unwrap();
+        let settings = Settings { steps: STEPS, ..Settings::default() };
+        let whole = suite_sensitivity(&p, &[], &settings).unwrap();
+        let alone = suite_sensitivity(&p, &[], &Settings { figures_only: true, ..settings }).unwrap();
+        assert!(whole.failed.is_empty() && alone.failed.is_empty(), "{name}");
+        assert_eq!(whole.analyses.len(), alone.analyses.len(), "{name}");
+        for (w, a) in whole.analyses.iter().zip(&alone.analyses) {
+            let analysis = w.report.analysis.name();
+            assert_eq!(w.report.figures, a.report.figures, "{name} {analysis}");
+            assert_eq!(w.figures, a.figures, "{name} {analysis}");
+            assert!(w.figures.iter().flatten().any(Result::is_ok), "{name} {analysis}: no derivative to compare");
+        }
+    }
 }

@@ -79,6 +79,8 @@ pub struct StaticSolver<'m> {
     /// A replay's moved equilibria with the factors of the recorded tangent there: a path tangent asked
     /// for at one of them solves with those factors ([`StaticSolver::path_tangent`]).
     replayed: Vec<(f64, Vec<Pose>, replay::Factors)>,
+    /// Which steps of a sweep a replay moves (all when `None`).
+    replay_rows: Option<replay::ReplayRows>,
 }
 
 /// What a [`StaticSolver`] allocates for one topology of model: the KKT pattern and slot maps, the
@@ -346,11 +348,18 @@ impl<'m> StaticSolver<'m> {
             taped,
             recorded_lu: None,
             replayed: Vec::new(),
+            replay_rows: None,
         };
         if !checked {
             solver.check_restrained(&poses)?;
         }
         Ok(solver)
+    }
+
+    /// Which steps of the sweeps a replay of this solver moves ([`replay::ReplayRows`]; every step when
+    /// `None`, as without). Outside a replay it changes nothing.
+    pub fn replay_rows(&mut self, rows: Option<replay::ReplayRows>) {
+        self.replay_rows = rows;
     }
 
     /// The solver's allocations, to solve another model of the same topology with

@@ -79,9 +79,15 @@ impl StaticSolver<'_> {
     ) -> Result<Sweep, SolverError> {
         let (from, sweep, pieces, factors) = (recorded.0, recorded.1?, recorded.2, recorded.3);
         let mut steps = Vec::with_capacity(sweep.steps.len());
+        let count = sweep.steps.len();
         for (i, (s, pieces)) in sweep.steps.iter().zip(&pieces).enumerate() {
             let factors = factors.get(i).and_then(Option::as_ref);
-            steps.push(self.moved(s, pieces, factors, moved_t(s.t, Some(i), &from, &path))?);
+            let t = moved_t(s.t, Some(i), &from, &path);
+            if self.replay_rows.is_some_and(|rows| !rows.moves(t, i, count, &path)) {
+                steps.push(StepResult { t, ..s.clone() });
+                continue;
+            }
+            steps.push(self.moved(s, pieces, factors, t)?);
         }
         if let Some(last) = steps.last() {
             *state = self.state_of(last);

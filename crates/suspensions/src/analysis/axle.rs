@@ -124,7 +124,7 @@ pub fn axle_sweep_with(
     let model = &axle.model;
     let mut solver = StaticSolver::new(model, SolverOptions::default())?;
     let mut start = solver.design_state(from);
-    let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, extras.through_limits)?;
+    let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, &extras)?;
     let drivers = (model.joint_id(&format!("left {WHEEL_TRAVEL}")), model.joint_id(&format!("right {WHEEL_TRAVEL}")));
     read_sweep(&mut solver, &axle.left, None, walked, extras, |solver, step| {
         let load = |d: Option<elastokin_core::JointId>| d.map_or(0.0, |d| step.joint_reaction(model, d).force.z);

@@ -214,7 +214,7 @@ pub fn vertical_force_sweep_with(
     corner.add_wheel_force("vertical force", corner.load_point_at(patch), Vec3::z())?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let mut start = solver.design_state(from);
-    let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, extras.through_limits)?;
+    let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, &extras)?;
     let local_patch = corner.model.bodies()[corner.wheel.upright.0].design_pose.to_local_point(&patch);
     load_rows(&mut solver, &corner, walked, local_patch, extras)
 }
@@ -307,7 +307,7 @@ fn loaded_sweep(
     let patch_at_design = corner.model.bodies()[corner.wheel.upright.0].design_pose.point(&patch_local);
     add(&mut corner, patch_at_design)?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
-    let walked = walk(&mut solver, &mut start, path, mode, extras.through_limits)?;
+    let walked = walk(&mut solver, &mut start, path, mode, &extras)?;
     load_rows(&mut solver, &corner, walked, patch_local, extras)
 }
 

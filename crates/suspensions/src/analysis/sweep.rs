@@ -6,6 +6,7 @@ use crate::analysis::compliance::compliance_with;
 use crate::build::{Corner, Rig};
 use crate::wheel::Wheel;
 use elastokin_core::Pose;
+use elastokin_solver::replay::ReplayRows;
 use elastokin_solver::{ArcStep, LoadPath, Mode, SolverError, State, StaticSolver, StepResult, Sweep, MAX_STEPS};
 
 /// Refuses a corner held differently from what the analysis needs: `rigs` lists the rigs it accepts.
@@ -79,6 +80,9 @@ pub struct SweepExtras {
     ///
     /// [`LoadRow::forces`]: crate::analysis::LoadRow::forces
     pub figures_only: bool,
+    /// The rows the K&C figures read, when the rows are read for the figures alone: a replay
+    /// ([`elastokin_solver::replay`]) moves only those, the others are returned as recorded.
+    pub figure_rows: Option<ReplayRows>,
 }
 
 /// How many arc-length steps of [`SweepExtras::through_limits`] a path through a limit point may take,
@@ -139,15 +143,17 @@ pub struct Walked {
 }
 
 /// Walks `path` from `state` in `mode`, as every analysis walks its sweep. At a limit point the rows
-/// stop with the equilibrium there, or, with `through` (see [`SweepExtras::through_limits`]), go on
-/// through it by arc length from the last step before it.
+/// stop with the equilibrium there, or, with [`SweepExtras::through_limits`], go on through it by arc
+/// length from the last step before it. A replay moves only the steps of [`SweepExtras::figure_rows`].
 pub fn walk(
     solver: &mut StaticSolver,
     state: &mut State,
     path: LoadPath,
     mode: Mode,
-    through: Option<f64>,
+    extras: &SweepExtras,
 ) -> Result<Walked, SolverError> {
+    let through = extras.through_limits;
+    solver.replay_rows(extras.figure_rows);
     let Sweep { mut steps, limit, .. } = solver.sweep_from(state, path, mode)?;
     let Some(limit) = limit else { return Ok(Walked { steps, limit: None }) };
     let Some(step) = through else {

@@ -77,7 +77,7 @@ fn driven_sweep_with(
     require_rig(corner, &[rig])?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let mut start = solver.design_state(from);
-    let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, extras.through_limits)?;
+    let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, &extras)?;
     read_sweep(&mut solver, &corner.wheel, corner.partner.as_ref(), walked, extras, |_, s| Ok(travel_row(corner, s)))
 }
 

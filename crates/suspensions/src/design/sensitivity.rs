@@ -92,6 +92,9 @@ pub enum NoDerivative {
     /// It is not smooth in the parameter here: its slopes over one and two steps disagree (a stop touching,
     /// a switch of what is read, between the moves).
     Kink,
+    /// A table cell when the figures alone were asked for ([`Settings::figures_only`]): the replays move
+    /// only the rows the figures read.
+    FiguresOnly,
 }
 
 impl NoDerivative {
@@ -103,6 +106,7 @@ impl NoDerivative {
             NoDerivative::Kink => {
                 "not smooth in the parameter here (a stop touching or a reading switching as it moves): no derivative"
             }
+            NoDerivative::FiguresOnly => "the figures alone were asked for: no derivative of the table",
         }
     }
 }
@@ -352,6 +356,8 @@ fn parameter_rates(
         .map(|r| {
             (0..report.table.columns.len())
                 .map(|c| match report.table.rows[r][c] {
+                    // The replays moved only the rows the figures read (`SweepExtras::figure_rows`).
+                    Cell::Number(_) if settings.figures_only => Err(NoDerivative::FiguresOnly),
                     Cell::Number(_) => rate(
                         [0, 1, 2, 3].map(|i| moved[i].table.rows[r][c].number()),
                         at_model.as_ref().map(|m| m.table.rows[r][c].number()),

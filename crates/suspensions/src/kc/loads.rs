@@ -12,6 +12,7 @@ use crate::kc::reduce::{
 };
 use crate::kc::report::{Accuracy, AnalysisReport, Cell, Figure, Table, Warning};
 use crate::kc::settings::{mode_word, Analysis, Settings};
+use elastokin_solver::replay::ReplayRows;
 
 /// Why the `loads` analysis cannot run.
 pub(super) const NO_LOADS: &str = "the model has no load case: give \"loads\" in the general form (a force at a point \
@@ -43,7 +44,15 @@ pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<Anal
     corner.load_point = s.load_point;
     let z0 = corner.wheel.wheel_centre.z;
     let drawing = corner_drawing(&corner, s);
-    let out = vertical_force_sweep_with(corner, range.0, range.1, s.steps, s.mode, s.extras(range)).map_err(said)?;
+    let out = vertical_force_sweep_with(
+        corner,
+        range.0,
+        range.1,
+        s.steps,
+        s.mode,
+        s.extras_reading(range, ReplayRows { near: design_load, last: false }),
+    )
+    .map_err(said)?;
     let table = |rows: &[LoadRow]| {
         Table::numbers(
             "vertical_force",
@@ -176,10 +185,12 @@ fn loaded(file: &SuspensionFile, analysis: Analysis, s: &Settings) -> Result<Ana
     corner.load_point = s.load_point;
     // Drawn as walked: with the model's own loads, once they are added.
     let drawing;
+    // The figures read the slopes at zero load and the last row.
+    let extras = s.extras_reading(range, ReplayRows { near: 0.0, last: true });
     let out = match analysis {
         Analysis::Road(load) => {
             drawing = corner_drawing(&corner, s);
-            wheel_load_sweep_with(corner, load, corner_load, range.0, range.1, s.steps, s.mode, s.extras(range))
+            wheel_load_sweep_with(corner, load, corner_load, range.0, range.1, s.steps, s.mode, extras)
         }
         _ => {
             let general = match &file.suspension {
@@ -192,7 +203,7 @@ fn loaded(file: &SuspensionFile, analysis: Analysis, s: &Settings) -> Result<Ana
                 general.add_loads(&mut corner.model, Side::Right, prefix).map_err(said)?;
             }
             drawing = corner_drawing(&corner, s);
-            model_load_sweep_with(corner, corner_load, range.0, range.1, s.steps, s.mode, s.extras(range))
+            model_load_sweep_with(corner, corner_load, range.0, range.1, s.steps, s.mode, extras)
         }
     }
     .map_err(said)?;

@@ -2,6 +2,7 @@
 //! ranges, steps, mode, tolerances, load point) and the limits a request is held to.
 
 use crate::analysis::{SweepExtras, WheelLoad};
+use elastokin_solver::replay::ReplayRows;
 use elastokin_solver::Mode;
 use serde::Serialize;
 
@@ -202,7 +203,9 @@ pub struct Settings {
     /// Each row read for the figures alone: a load sweep's rows without the force in every joint and
     /// element, an axle's roll centre only at design. The figures are those read with the whole rows, to
     /// the bit; the table lacks those columns and cells. For the sensitivities of the figures alone,
-    /// which then replay no more than the figures read.
+    /// which then replay no more than the figures read: a sweep's replays move only the rows its figures
+    /// read ([`SweepExtras::figure_rows`](crate::analysis::SweepExtras::figure_rows)), and the table has no
+    /// derivatives.
     #[serde(skip)]
     pub figures_only: bool,
     /// The units of the slopes against wheel travel and of the aligning-torque compliances.
@@ -256,7 +259,15 @@ impl Settings {
             through_limits: self.through_limits.then(|| self.arc_step.unwrap_or(one_step)),
             poses: self.motion,
             figures_only: self.figures_only,
+            figure_rows: None,
         }
+    }
+
+    /// [`Settings::extras`] of a sweep whose figures read only `rows` of it (a slope, a curvature or a value
+    /// at one load parameter, the last row): when reading for the figures alone, a replay moves only
+    /// those ([`SweepExtras::figure_rows`]).
+    pub(super) fn extras_reading(&self, range: (f64, f64), rows: ReplayRows) -> SweepExtras {
+        SweepExtras { figure_rows: self.figures_only.then_some(rows), ..self.extras(range) }
     }
 }
 

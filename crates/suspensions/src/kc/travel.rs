@@ -13,11 +13,17 @@ use crate::kc::reduce::{
 };
 use crate::kc::report::{slug, AnalysisReport, Cell, Figure, Table, Warning};
 use crate::kc::settings::{Analysis, Settings};
+use elastokin_solver::replay::ReplayRows;
+
+/// The rows the figures of a travel sweep read: values, slopes and curvatures at design (travel 0).
+const AT_DESIGN: ReplayRows = ReplayRows { near: 0.0, last: false };
 
 pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
     let range = s.range.unwrap_or((-0.08, 0.08));
     let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(said)?;
-    let out = parallel_wheel_travel_with(&corner, range.0, range.1, s.steps, s.mode, s.extras(range)).map_err(said)?;
+    let out =
+        parallel_wheel_travel_with(&corner, range.0, range.1, s.steps, s.mode, s.extras_reading(range, AT_DESIGN))
+            .map_err(said)?;
     let wheel = &corner.wheel;
     let sign = wheel.side.sign();
     let table = |rows: &[TravelRow]| parallel_travel_table(&corner, rows);
@@ -306,7 +312,8 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
     let has_bars = !axle.anti_roll_bars.is_empty();
     // The shared beams' names as keys and columns: a twist-beam axle's cross member is read in roll.
     let members: Vec<(&str, String)> = axle.members.iter().map(|m| (m.name.as_str(), slug(&m.name))).collect();
-    let out = axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras(range)).map_err(said)?;
+    let out =
+        axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras_reading(range, AT_DESIGN)).map_err(said)?;
     let table = |rows: &[AxleRow]| Table {
         name: "roll".into(),
         columns: [
