@@ -259,8 +259,9 @@ class Model:
         Every derivative is per unit of the parameter as the file gives it (per m of a hardpoint coordinate,
         per N/m of a rate). With ``figures_only``, the rows are read as far as the figures read them (as
         ``elastokin sensitivity --figures-only``: no force in every joint and element of a load sweep, the
-        roll centre at design only): the same figures and derivatives, sooner, and no columns for what was
-        left out.
+        roll centre at design only) and moved only where the figures read them: the same figures and
+        derivatives, sooner, no columns for what was left out, and every ``d_<column>`` NaN (the table has
+        no derivatives then).
 
         Raises ModelError for a pointer that names nothing or no number, ValueError for bad settings, and
         AnalysisError when the analysis fails or meets a limit point (no derivative there) or a parameter

@@ -359,7 +359,8 @@ impl Model {
     /// `d_<column>` (rows × parameters), and `figures`: every figure of the report by key, its value, unit,
     /// derivatives (NaN where it has none) and `no_derivative` (why, or None); every derivative per unit
     /// of the parameter in the file. With `figures_only`, the rows are read as far as the figures read them
-    /// (`kc::Settings::figures_only`): the same figures, a table without the columns left out.
+    /// and moved only where the figures read them (`kc::Settings::figures_only`): the same figures, a table
+    /// without the columns left out and without derivatives (NaN).
     #[pyo3(signature = (parameters, analysis="parallel-travel", range=None, steps=32, figures_only=false))]
     fn sensitivities<'py>(
         &self,
