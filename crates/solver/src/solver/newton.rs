@@ -337,6 +337,9 @@ impl<'m> StaticSolver<'m> {
         let a = &self.work.assembly;
         let values = KktValues { k: &a.k_values, k_skew: a.has_skew.then_some(&a.k_skew[..]), j: &a.j_values };
         let lu = self.recorded_lu.as_mut()?;
+        // Scaled afresh: the factors at a step are then the same whichever steps were factorized before
+        // it (a recording may keep them at only the steps its replays move, `replay::ReplayRows`).
+        lu.reset();
         lu.factorize(values).ok()?;
         lu.factors().map(std::sync::Arc::new)
     }

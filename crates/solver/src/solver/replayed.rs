@@ -22,8 +22,16 @@ impl StaticSolver<'_> {
             Replayed::Solve => solve(self, state),
             Replayed::Record(taped) => {
                 let result = solve(self, state);
+                // The factors where the replays will move the step: every step, or those of `replay_rows`
+                // (a replayed step without them, should its load parameter move across the edge of the
+                // rows asked for, takes the exact Newton iteration instead).
                 let factors = match &result {
-                    Ok(sweep) => sweep.steps.iter().map(|step| self.recorded_factors(step)).collect(),
+                    Ok(sweep) => {
+                        let (rows, count) = (self.replay_rows, sweep.steps.len());
+                        let moved = |i: usize, t: f64| rows.is_none_or(|r| r.moves(t, i, count, &path));
+                        let steps = sweep.steps.iter().enumerate();
+                        steps.map(|(i, s)| if moved(i, s.t) { self.recorded_factors(s) } else { None }).collect()
+                    }
                     Err(_) => Vec::new(),
                 };
                 keep_sweep(taped, self.model, path, &result, factors);
