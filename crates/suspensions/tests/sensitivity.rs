@@ -165,6 +165,57 @@ fn a_parameter_that_names_nothing_or_no_number_is_refused_by_name() {
     assert_eq!(hardpoint_pointers(&doc).len(), 24);
 }
 
+/// A moved model is read from its edited document without writing it as text: the same file as the text
+/// of that document gives, for every shipped model in the general form or a template and every hardpoint
+/// coordinate moved; and a move the model refuses (a hardpoint onto its neighbour, a rate out of range)
+/// is refused with the text's message, which names the key.
+#[test]
+fn a_moved_model_read_from_its_document_is_the_one_its_text_gives() {
+    use elastokin_suspensions::SuspensionFile;
+    let dir = format!("{}/../../examples", env!("CARGO_MANIFEST_DIR"));
+    let mut read = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "json") {
+            continue;
+        }
+        let doc = base_document(&std::fs::read_to_string(&path).unwrap(), &path.display().to_string()).unwrap();
+        let p = Parameters::new(&doc, &hardpoint_pointers(&doc)).unwrap();
+        for k in 0..p.len() {
+            let mut values = p.values.clone();
+            values[k] += 1.234e-4;
+            let text = serde_json::to_string(&p.document_at(&values).unwrap()).unwrap();
+            assert_eq!(p.file_moved(k, 1.234e-4).unwrap(), SuspensionFile::from_json(&text, "t").unwrap());
+            read += 1;
+        }
+    }
+    assert!(read > 100, "{read}");
+    let doc = document("macpherson.json");
+    let h = "/suspension/macpherson/hardpoints";
+    for (pointer, to, says) in [
+        (format!("{h}/tie_rod_inner/0"), None, "'tie rod': its two points"),
+        ("/suspension/macpherson/spring/rate".to_string(), Some(-1.0), "rate"),
+    ] {
+        let p = Parameters::new(&doc, std::slice::from_ref(&pointer)).unwrap();
+        // Onto the outer tie-rod point (the same x, y and z), or to the value given.
+        let outer = |i: usize| doc.pointer(&format!("{h}/tie_rod_outer/{i}")).unwrap().as_f64().unwrap();
+        let mut moved = p.clone();
+        if to.is_none() {
+            let values = [outer(0), outer(1), outer(2)];
+            let pointers: Vec<String> = (0..3).map(|i| format!("{h}/tie_rod_inner/{i}")).collect();
+            moved = Parameters::new(&doc, &pointers).unwrap().at(&values).unwrap();
+        }
+        let (e, text) = match to {
+            Some(v) => (p.file_moved(0, v - p.values[0]).unwrap_err(), p.document_at(&[v]).unwrap()),
+            None => (moved.file().unwrap_err(), moved.document().clone()),
+        };
+        let from_text =
+            elastokin_suspensions::document::parse_document(&serde_json::to_string(&text).unwrap(), "x").unwrap_err();
+        assert!(e.contains(says), "{pointer}: {e}");
+        assert_eq!(e.split_once(':').map(|x| x.1), from_text.split_once(':').map(|x| x.1), "{pointer}");
+    }
+}
+
 /// How far the sensitivities of `analysis` are from Richardson differences of the K&C report itself run on
 /// the moved model, as a fraction of the allowed difference (1e-6 of the figure's derivative, or of the
 /// largest derivative of a column over its rows, or 1e-9 absolute; derivatives times the parameter's

@@ -80,9 +80,11 @@ impl Parameters {
 /// A model document read as the command reads its file; `origin` names it in errors (a moved model is no
 /// file the user has: its errors name keys).
 fn read(document: &Value, origin: &str) -> Result<SuspensionFile, String> {
-    let text = serde_json::to_string(document).map_err(|e| e.to_string())?;
-    let chrono = crate::import::chrono::is_chrono_document(document);
-    crate::document::parse_document_of_kind(&text, chrono, origin).map(|(file, _)| file)
+    if crate::import::chrono::is_chrono_document(document) {
+        let text = serde_json::to_string(document).map_err(|e| e.to_string())?;
+        return crate::document::parse_document_of_kind(&text, true, origin).map(|(file, _)| file);
+    }
+    crate::document::parse_value(document, origin)
 }
 
 /// The number at `pointer` of `document`, or what is there instead, in words that follow the pointer
