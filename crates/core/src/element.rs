@@ -83,8 +83,27 @@ pub struct Sketch {
     pub axes_i: Option<crate::math::Mat3>,
 }
 
+/// A force element copied behind its box: what lets a [`Model`](crate::Model) be cloned (a model built once
+/// and loaded two ways). Every `Clone` element has it.
+pub trait CloneElement {
+    /// A boxed copy of the element.
+    fn clone_box(&self) -> Box<dyn ForceElement>;
+}
+
+impl<T: ForceElement + Clone + 'static> CloneElement for T {
+    fn clone_box(&self) -> Box<dyn ForceElement> {
+        Box::new(self.clone())
+    }
+}
+
+impl Clone for Box<dyn ForceElement> {
+    fn clone(&self) -> Self {
+        self.clone_box()
+    }
+}
+
 /// A bushing, spring, load or any other source of generalized force on one or two bodies.
-pub trait ForceElement: std::fmt::Debug + Send + Sync {
+pub trait ForceElement: std::fmt::Debug + Send + Sync + CloneElement {
     /// Unique name.
     fn name(&self) -> &str;
     /// The two bodies (`j` may be the ground; a load uses `i = Ground`).

@@ -38,7 +38,7 @@ pub mod pose;
 
 pub use body::{Body, BodyId, BodyRef};
 pub use constraint::{ConstraintRow, KinVec, PairMatrix, RowGradient, Side};
-pub use element::{ElementEval, ElementReport, ElementRole, ForceElement, Sketch, SketchKind};
+pub use element::{CloneElement, ElementEval, ElementReport, ElementRole, ForceElement, Sketch, SketchKind};
 pub use error::ModelError;
 pub use joint::{Joint, JointKind, JointSpec};
 pub use math::{skew, Mat3, Vec3};

@@ -28,7 +28,7 @@ pub struct RowOrigin {
 /// The model owns exactly what the scene contains; the solver sizes and assembles only that. Bodies get
 /// six coordinates each, in the order they were added; joint rows are numbered in the order the joints
 /// were added (see [`Model::row_origin`]).
-#[derive(Debug, Default)]
+#[derive(Debug, Default, Clone)]
 pub struct Model {
     bodies: Vec<Body>,
     joints: Vec<Joint>,

@@ -322,8 +322,9 @@ pub fn run_vehicle(
     for (key, model, share) in
         [("front", front, file.car.front_weight_share), ("rear", rear, 1.0 - file.car.front_weight_share)]
     {
+        let models = crate::kc::Models::new(model);
         let run =
-            |a: Analysis| crate::kc::run(a, model, settings).map_err(|e| format!("`{key}` ({}): {e}", model.name));
+            |a: Analysis| crate::kc::run_on(a, &models, settings).map_err(|e| format!("`{key}` ({}): {e}", model.name));
         let (roll, travel) = (run(Analysis::Roll)?, run(Analysis::ParallelTravel)?);
         axles.push(AxleCharacteristics::from_reports(&format!("`{key}` ({})", model.name), &roll, &travel)?);
         let own = travel.figure("wheel_load_at_design").and_then(|f| f.value);

@@ -476,3 +476,20 @@ fn rig_units_are_the_si_figures_scaled_and_nothing_else_moves() {
         }
     }
 }
+
+/// The suite builds each corner and axle once for all its analyses (`kc::Models`): every analysis's report
+/// is the one it gives run alone on the file, which builds its own, to the bit — a built model shared and
+/// copied is the model a build gives, and an analysis that loads its copy leaves the next one's alone.
+#[test]
+fn the_suite_on_models_built_once_reports_what_each_analysis_reports_alone() {
+    for name in ["macpherson.json", "double_wishbone_axle.json", "five_link.json", "twist_beam.json"] {
+        let file = example(name);
+        let settings = Settings { steps: 8, ..Settings::default() };
+        let suite = kc::run_suite(&file, &[], &settings, |_| {});
+        assert!(suite.failed.is_empty() && suite.analyses.len() >= 5, "{name}: {:?}", suite.failed);
+        for shared in &suite.analyses {
+            let alone = kc::run(shared.analysis, &file, &settings).unwrap();
+            assert_eq!(*shared, alone, "{name} {}", shared.analysis.name());
+        }
+    }
+}

@@ -59,9 +59,11 @@ pub fn run(s: &Settings) -> SectionOutput {
                 Some((k, d)) => p.file_moved(k, d)?,
                 None => p.file()?,
             };
+            // Built once for all the analyses, as the suite builds them.
+            let models = kc::Models::new(&file);
             let mut figures = 0;
             for &a in &which {
-                figures += kc::run(a, &file, &settings).map_err(|e| e.to_string())?.figures.len();
+                figures += kc::run_on(a, &models, &settings).map_err(|e| e.to_string())?.figures.len();
             }
             Ok(figures)
         };

@@ -11,7 +11,7 @@ use elastokin_core::{ElementId, Model, ModelError};
 
 /// Both corners of an axle in one model. Part names start with `"left "` or `"right "` (`"left upright"`,
 /// `"right wheel travel"`, …); the rack, when there is one, is `"rack"`.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct Axle {
     /// The multibody model.
     pub model: Model,

@@ -13,7 +13,7 @@ use elastokin_core::{BodyId, BodyRef, ElementId, Model, ModelError, Vec3};
 use elastokin_elements::{PointForce, PointTorque};
 
 /// A suspension corner ready to solve: its model, how it is held and where its wheel is.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct Corner {
     /// The multibody model.
     pub model: Model,

@@ -24,8 +24,7 @@
 //! Only corrected-mode rows are equilibria: sensitivities are of the corrected path.
 
 use super::parameter::Parameters;
-use crate::file::SuspensionFile;
-use crate::kc::{self, Analysis, AnalysisReport, Cell, Failed, Figure, Settings, Skipped, Table};
+use crate::kc::{self, Analysis, AnalysisReport, Cell, Failed, Figure, Models, Settings, Skipped, Table};
 use elastokin_solver::replay::{record, replay, Replay, Tape};
 use elastokin_solver::Mode;
 use rayon::prelude::*;
@@ -57,10 +56,10 @@ fn step(parameters: &Parameters, k: usize) -> f64 {
 }
 
 /// The model read with each parameter moved by each of [`MOVES`], each read once, when first asked for,
-/// for every analysis that replays it.
+/// and built once per rig, for every analysis that replays it.
 struct MovedModels<'p> {
     parameters: &'p Parameters,
-    files: Vec<[OnceLock<Result<SuspensionFile, String>>; MOVES.len()]>,
+    files: Vec<[OnceLock<Result<Models<'static>, String>>; MOVES.len()]>,
 }
 
 impl<'p> MovedModels<'p> {
@@ -69,8 +68,8 @@ impl<'p> MovedModels<'p> {
     }
 
     /// The model with parameter `k` moved by `MOVES[m]` steps.
-    fn file(&self, k: usize, m: usize) -> Result<&SuspensionFile, String> {
-        let read = || self.parameters.file_moved(k, MOVES[m] * step(self.parameters, k));
+    fn models(&self, k: usize, m: usize) -> Result<&Models<'static>, String> {
+        let read = || self.parameters.file_moved(k, MOVES[m] * step(self.parameters, k)).map(Models::owning);
         self.files[k][m].get_or_init(read).as_ref().map_err(Clone::clone)
     }
 }
@@ -273,17 +272,18 @@ pub fn analysis_sensitivity(
     settings: &Settings,
 ) -> Result<AnalysisSensitivity, String> {
     let file = parameters.file()?;
-    analysis_sensitivity_of(analysis, &MovedModels::new(parameters), &file, &sensitivity_settings(settings))
+    let base = Models::new(&file);
+    analysis_sensitivity_of(analysis, &MovedModels::new(parameters), &base, &sensitivity_settings(settings))
 }
 
 fn analysis_sensitivity_of(
     analysis: Analysis,
     models: &MovedModels,
-    file: &SuspensionFile,
+    base: &Models,
     settings: &Settings,
 ) -> Result<AnalysisSensitivity, String> {
     let parameters = models.parameters;
-    let (report, tape) = record(|| kc::run(analysis, file, settings));
+    let (report, tape) = record(|| kc::run_on(analysis, base, settings));
     let report = report.map_err(|e| e.message)?;
     if let Some(at) = tape.limit_point() {
         return Err(format!(
@@ -315,8 +315,8 @@ fn parameter_rates(
     let pointer = &models.parameters.pointers[k];
     let h = step(models.parameters, k);
     let replayed = |m: usize| -> Result<Replay<AnalysisReport>, String> {
-        let (file, shift) = (models.file(k, m)?, MOVES[m]);
-        let run = replay(tape, || kc::run(analysis, file, settings)).map_err(|e| {
+        let (moved, shift) = (models.models(k, m)?, MOVES[m]);
+        let run = replay(tape, || kc::run_on(analysis, moved, settings)).map_err(|e| {
             format!(
                 "parameter '{pointer}' changes what the analysis does when moved ({e}): it has no derivative; give \
                  a number that moves a part, not one that chooses what the parts are"
@@ -383,6 +383,7 @@ pub fn suite_sensitivity(
     let file = parameters.file()?;
     let settings = sensitivity_settings(settings);
     let models = MovedModels::new(parameters);
+    let base = Models::new(&file);
     let mut out = SuiteSensitivity { analyses: Vec::new(), skipped: Vec::new(), failed: Vec::new() };
     for planned in kc::planned(&file, which) {
         let analysis = match planned {
@@ -392,7 +393,7 @@ pub fn suite_sensitivity(
                 continue;
             }
         };
-        match analysis_sensitivity_of(analysis, &models, &file, &settings) {
+        match analysis_sensitivity_of(analysis, &models, &base, &settings) {
             Ok(a) => out.analyses.push(a),
             Err(reason) => out.failed.push(Failed { analysis, reason }),
         }

@@ -225,10 +225,10 @@ impl StackUp {
             .into_par_iter()
             .map(|i| {
                 let x = sample(&self.parameters.values, &self.bands, seed, i);
-                let file = self.parameters.at(&x)?.file()?;
+                let models = kc::Models::owning(self.parameters.at(&x)?.file()?);
                 let mut reports = Vec::new();
                 for &a in &which {
-                    reports.push(kc::run(a, &file, &settings).map_err(|e| format!("sample {i}: {e}"))?);
+                    reports.push(kc::run_on(a, &models, &settings).map_err(|e| format!("sample {i}: {e}"))?);
                 }
                 Ok(self
                     .spreads

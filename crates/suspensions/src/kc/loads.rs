@@ -6,10 +6,8 @@ use crate::analysis::{
 };
 use crate::build::{LoadPoint, Rig};
 use crate::description::Side;
-use crate::file::SuspensionFile;
-use crate::kc::reduce::{
-    axis, bushings_share, chart, corner_drawing, deg, finish, outside, said, with_rigid_bushings, Reduction,
-};
+use crate::kc::models::Models;
+use crate::kc::reduce::{axis, bushings_share, chart, corner_drawing, deg, finish, outside, said, Reduction};
 use crate::kc::report::{Accuracy, AnalysisReport, Cell, Figure, Table, Warning};
 use crate::kc::settings::{mode_word, Analysis, Settings};
 use elastokin_solver::replay::ReplayRows;
@@ -29,8 +27,9 @@ fn where_loaded(s: &Settings) -> &'static str {
     }
 }
 
-pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
-    let held = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(said)?;
+pub(super) fn vertical_force(models: &Models, s: &Settings) -> Result<AnalysisReport, String> {
+    let file = models.file();
+    let held = models.corner(Rig::WheelTravel)?;
     let (design_load, design_load_error) = design_wheel_load_estimated(&held, s.error_estimate).map_err(said)?;
     // The default range is 0.5 to 1.5 times the design wheel load. A corner that carries next to nothing at
     // design (its spring at its free length, as some imported data have it) gets 0 to 3 kN instead: a
@@ -40,7 +39,7 @@ pub(super) fn vertical_force(file: &SuspensionFile, s: &Settings) -> Result<Anal
         None if design_load.abs() < 1.0 => (0.0, UNLOADED_RANGE_TOP),
         None => (0.5 * design_load, 1.5 * design_load),
     };
-    let mut corner = file.suspension.build(Side::Left, Rig::Free).map_err(said)?;
+    let mut corner = models.corner(Rig::Free)?;
     corner.load_point = s.load_point;
     let z0 = corner.wheel.wheel_centre.z;
     let drawing = corner_drawing(&corner, s);
@@ -158,17 +157,18 @@ fn component_values(forces: &ComponentForces) -> Vec<Cell> {
         .collect()
 }
 
-pub(super) fn road_load(file: &SuspensionFile, load: WheelLoad, s: &Settings) -> Result<AnalysisReport, String> {
-    loaded(file, Analysis::Road(load), s)
+pub(super) fn road_load(models: &Models, load: WheelLoad, s: &Settings) -> Result<AnalysisReport, String> {
+    loaded(models, Analysis::Road(load), s)
 }
 
 /// The model file's own load case (`loads` of the general form), applied from zero to its full value.
-pub(super) fn model_loads(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
-    loaded(file, Analysis::ModelLoads, s)
+pub(super) fn model_loads(models: &Models, s: &Settings) -> Result<AnalysisReport, String> {
+    loaded(models, Analysis::ModelLoads, s)
 }
 
 /// A road load or the model's own loads, swept with the corner load carried.
-fn loaded(file: &SuspensionFile, analysis: Analysis, s: &Settings) -> Result<AnalysisReport, String> {
+fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Result<AnalysisReport, String> {
+    let file = models.file();
     let (unit, column, default_range) = match analysis {
         Analysis::Road(WheelLoad::Lateral) => ("N", "load_n", (-3000.0, 3000.0)),
         Analysis::Road(WheelLoad::Braking | WheelLoad::Traction) => ("N", "load_n", (0.0, 3000.0)),
@@ -178,10 +178,10 @@ fn loaded(file: &SuspensionFile, analysis: Analysis, s: &Settings) -> Result<Ana
     let range = s.range.unwrap_or(default_range);
     let corner_load = match &file.vehicle {
         Some(v) => v.corner_load,
-        None => design_wheel_load(&file.suspension.build(Side::Left, Rig::WheelTravel).map_err(said)?).map_err(said)?,
+        None => design_wheel_load(&models.corner(Rig::WheelTravel)?).map_err(said)?,
     };
     let rig = if s.height_held { Rig::HeightHeld } else { Rig::Free };
-    let mut corner = file.suspension.build(Side::Left, rig).map_err(said)?;
+    let mut corner = models.corner(rig)?;
     corner.load_point = s.load_point;
     // Drawn as walked: with the model's own loads, once they are added.
     let drawing;
@@ -338,18 +338,19 @@ fn loaded(file: &SuspensionFile, analysis: Analysis, s: &Settings) -> Result<Ana
     );
     let mut report =
         finish(analysis, description, range, s, &out, Reduction { table: &table, figures: &figures, drawing }, charts);
-    if let (Analysis::Road(WheelLoad::Lateral), Some(rigid)) = (analysis, with_rigid_bushings(file)) {
-        let rigid = loaded(&rigid, analysis, &Settings { motion: false, ..*s });
+    if let (Analysis::Road(WheelLoad::Lateral), Some(rigid)) = (analysis, models.rigid()) {
+        let rigid = loaded(rigid, analysis, &Settings { motion: false, ..*s });
         bushings_share(&mut report, "steer", "lateral-force compliance steer", rigid);
     }
     Ok(report)
 }
 
-pub(super) fn static_load(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
+pub(super) fn static_load(models: &Models, s: &Settings) -> Result<AnalysisReport, String> {
+    let file = models.file();
     let vehicle = file.vehicle.as_ref().ok_or(
         "the model file has no \"vehicle\" section with the corner_load to carry (see examples/macpherson.json)",
     )?;
-    let corner = file.suspension.build(Side::Left, Rig::Free).map_err(said)?;
+    let corner = models.corner(Rig::Free)?;
     let rest = static_load_case(corner, vehicle.corner_load).map_err(said)?;
     let table = Table {
         name: "static_load".into(),

@@ -10,12 +10,14 @@
 
 pub mod chart;
 mod loads;
+pub mod models;
 mod reduce;
 pub mod report;
 pub mod settings;
 mod travel;
 
 pub use chart::{Chart, Scale, Series, YAxis};
+pub use models::Models;
 pub use reduce::{COMPLIANCE_LOAD, COMPLIANCE_RESPONSE};
 pub use report::{significant, Accuracy, AnalysisReport, Cell, Failed, Figure, KcReport, Skipped, Table, Warning};
 pub use settings::{
@@ -29,15 +31,20 @@ use elastokin_solver::LoadPath;
 
 /// Runs one analysis on the model in `file`.
 pub fn run(analysis: Analysis, file: &SuspensionFile, settings: &Settings) -> Result<AnalysisReport, AnalysisError> {
+    run_on(analysis, &Models::new(file), settings)
+}
+
+/// Runs one analysis on the model of `models`, building only what no analysis run on them built before.
+pub fn run_on(analysis: Analysis, models: &Models, settings: &Settings) -> Result<AnalysisReport, AnalysisError> {
     check_settings(analysis, settings)?;
     let result = match analysis {
-        Analysis::ParallelTravel => travel::parallel_travel(file, settings),
-        Analysis::Roll => travel::roll(file, settings),
-        Analysis::Steering => travel::steering(file, settings),
-        Analysis::VerticalForce => loads::vertical_force(file, settings),
-        Analysis::Road(load) => loads::road_load(file, load, settings),
-        Analysis::StaticLoad => loads::static_load(file, settings),
-        Analysis::ModelLoads => loads::model_loads(file, settings),
+        Analysis::ParallelTravel => travel::parallel_travel(models, settings),
+        Analysis::Roll => travel::roll(models, settings),
+        Analysis::Steering => travel::steering(models, settings),
+        Analysis::VerticalForce => loads::vertical_force(models, settings),
+        Analysis::Road(load) => loads::road_load(models, load, settings),
+        Analysis::StaticLoad => loads::static_load(models, settings),
+        Analysis::ModelLoads => loads::model_loads(models, settings),
     };
     let mut report = result.map_err(|message| AnalysisError { analysis: analysis.name(), message })?;
     for f in &mut report.figures {
@@ -196,6 +203,7 @@ pub fn run_suite_checked(
         warnings,
     };
     report.warnings.extend(crate::check::bushing_deflection_at_design(file));
+    let models = Models::new(file);
     for planned in planned(file, which) {
         let analysis = match planned {
             Ok(analysis) => analysis,
@@ -206,7 +214,7 @@ pub fn run_suite_checked(
             }
         };
         progress(SuiteEvent::Starting(analysis));
-        match run(analysis, file, settings) {
+        match run_on(analysis, &models, settings) {
             Ok(done) => {
                 report.analyses.push(done);
                 progress(SuiteEvent::Done(&report.analyses[report.analyses.len() - 1]));

@@ -4,12 +4,12 @@ use crate::analysis::{
     anti_pitch, parallel_wheel_travel_with, patch_compliance, slope_at, wheel_compliance, TravelRow,
 };
 use crate::analysis::{axle_sweep_with, AxleRow};
-use crate::build::{Axle, AxleRig, Corner, Rig};
+use crate::build::{AxleRig, Corner, Rig};
 use crate::description::Side;
 use crate::file::SuspensionFile;
+use crate::kc::models::Models;
 use crate::kc::reduce::{
-    axis, axle_drawing, bushings_share, chart, corner_drawing, deg, finish, needs_vehicle, outside, said,
-    with_rigid_bushings, Reduction,
+    axis, axle_drawing, bushings_share, chart, corner_drawing, deg, finish, needs_vehicle, outside, said, Reduction,
 };
 use crate::kc::report::{slug, AnalysisReport, Cell, Figure, Table, Warning};
 use crate::kc::settings::{Analysis, Settings};
@@ -18,9 +18,10 @@ use elastokin_solver::replay::ReplayRows;
 /// The rows the figures of a travel sweep read: values, slopes and curvatures at design (travel 0).
 const AT_DESIGN: ReplayRows = ReplayRows { near: 0.0, last: false };
 
-pub(super) fn parallel_travel(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
+pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisReport, String> {
+    let file = models.file();
     let range = s.range.unwrap_or((-0.08, 0.08));
-    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(said)?;
+    let corner = models.corner(Rig::WheelTravel)?;
     let out =
         parallel_wheel_travel_with(&corner, range.0, range.1, s.steps, s.mode, s.extras_reading(range, AT_DESIGN))
             .map_err(said)?;
@@ -306,9 +307,10 @@ fn parallel_travel_figures(
     f
 }
 
-pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
+pub(super) fn roll(models: &Models, s: &Settings) -> Result<AnalysisReport, String> {
+    let file = models.file();
     let range = s.range.unwrap_or((-0.05, 0.05));
-    let axle = Axle::build(&file.suspension, AxleRig::OppositeTravel).map_err(said)?;
+    let axle = models.axle(AxleRig::OppositeTravel)?;
     let has_bars = !axle.anti_roll_bars.is_empty();
     // The shared beams' names as keys and columns: a twist-beam axle's cross member is read in roll.
     let members: Vec<(&str, String)> = axle.members.iter().map(|m| (m.name.as_str(), slug(&m.name))).collect();
@@ -515,8 +517,8 @@ pub(super) fn roll(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport
     );
     let reduce = Reduction { table: &table, figures: &figures, drawing: axle_drawing(&axle, s) };
     let mut report = finish(Analysis::Roll, description, range, s, &out, reduce, charts);
-    if let Some(rigid) = with_rigid_bushings(file) {
-        bushings_share(&mut report, "roll_steer", "roll steer", roll(&rigid, &Settings { motion: false, ..*s }));
+    if let Some(rigid) = models.rigid() {
+        bushings_share(&mut report, "roll_steer", "roll steer", roll(rigid, &Settings { motion: false, ..*s }));
     }
     Ok(report)
 }
@@ -547,9 +549,10 @@ fn ackermann(r: &AxleRow, track: f64, wheelbase: f64) -> Option<(f64, f64, f64)>
         .then(|| (inner, outer, ideal_outer_steer(inner, track, wheelbase)))
 }
 
-pub(super) fn steering(file: &SuspensionFile, s: &Settings) -> Result<AnalysisReport, String> {
+pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, String> {
+    let file = models.file();
     let range = s.range.unwrap_or((-0.04, 0.04));
-    let axle = Axle::build(&file.suspension, AxleRig::Steering).map_err(said)?;
+    let axle = models.axle(AxleRig::Steering)?;
     let out = axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras(range)).map_err(said)?;
     let wheelbase = file.vehicle.as_ref().map(|v| v.wheelbase);
     // Track between the contact patches at design: the lateral distance Ackermann's rule uses.
