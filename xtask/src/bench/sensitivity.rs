@@ -19,8 +19,9 @@ pub fn run(s: &Settings) -> SectionOutput {
                 solves recorded with the factors of the tangent at each equilibrium, then replayed on each moved \
                 model: one Newton iteration per equilibrium and move solved with those factors, four moves \
                 per parameter); the same for the figures alone, the target's measure (each row read for the \
-                figures: no component forces in the load sweeps, the roll centre at design only); and the 48 \
-                re-run suites of a central-difference gradient. Then parallel travel alone the same ways. \
+                figures: no component forces in the load sweeps, the roll centre at design only; and moved \
+                only where the figures read it: next to design, a load sweep's last row); and the 48 re-run \
+                suites of a central-difference gradient. Then parallel travel alone the same ways. \
                 Medians of repeated runs, one thread (the parameters' replays also run in parallel: the \
                 2-thread rows)."
             .into(),
