@@ -83,16 +83,29 @@ pub struct Sketch {
     pub axes_i: Option<crate::math::Mat3>,
 }
 
-/// A force element copied behind its box: what lets a [`Model`](crate::Model) be cloned (a model built once
-/// and loaded two ways). Every `Clone` element has it.
+/// A force element copied and compared behind its box: what lets a [`Model`](crate::Model) be cloned (a
+/// model built once and loaded two ways) and two models be told apart element by element (a replay's
+/// moved model, whose move touched a few). Every element that is `Clone` and `PartialEq` has it.
 pub trait CloneElement {
     /// A boxed copy of the element.
     fn clone_box(&self) -> Box<dyn ForceElement>;
+    /// Whether `other` is an element of the same kind with the same numbers.
+    fn same_as(&self, other: &dyn ForceElement) -> bool;
+    /// The element as `Any`, for [`CloneElement::same_as`].
+    fn as_any(&self) -> &dyn std::any::Any;
 }
 
-impl<T: ForceElement + Clone + 'static> CloneElement for T {
+impl<T: ForceElement + Clone + PartialEq + 'static> CloneElement for T {
     fn clone_box(&self) -> Box<dyn ForceElement> {
         Box::new(self.clone())
+    }
+
+    fn same_as(&self, other: &dyn ForceElement) -> bool {
+        other.as_any().downcast_ref::<T>() == Some(self)
+    }
+
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
     }
 }
 

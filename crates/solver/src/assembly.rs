@@ -29,7 +29,7 @@ pub enum Tangent {
 }
 
 /// Global dof of each of the 12 local coordinates of a body pair (`None` for the ground).
-fn pair_dofs(i: BodyRef, j: BodyRef) -> [Option<usize>; 12] {
+pub(crate) fn pair_dofs(i: BodyRef, j: BodyRef) -> [Option<usize>; 12] {
     let mut out = [None; 12];
     for (side, b) in [i, j].into_iter().enumerate() {
         if let Some(id) = b.id() {
@@ -113,7 +113,7 @@ pub struct Assembly {
     /// the same in all six, as every row that touches a body touches all six of its coordinates.
     row_slots: Vec<[u32; 2]>,
     /// Which joint and row within it each active row is.
-    row_joint: Vec<(usize, usize)>,
+    pub(crate) row_joint: Vec<(usize, usize)>,
     /// Values of `K` (upper, symmetrised).
     pub k_values: Vec<f64>,
     /// Skew part of `K` above the diagonal: `S = ½(K − Kᵀ)`, entry `(r, c)` with `r < c`.

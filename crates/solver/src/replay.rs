@@ -21,9 +21,12 @@
 //! the step as in differences of re-solves.
 //!
 //! What a replay costs: the recording factorizes the exact tangent at each equilibrium it keeps (when the
-//! solver's backend is the dense LU) and keeps the factors; every replay's iteration there assembles the
-//! moved model's residual and solves with them
-//! ([`StaticSolver::chord_correction`](crate::StaticSolver::chord_correction)), and a path tangent read
+//! solver's backend is the dense LU) and keeps the factors, with the recorded model's Newton right-hand
+//! side there and a copy of each solver's model; every replay's iteration there solves with them
+//! ([`StaticSolver::chord_correction`](crate::StaticSolver::chord_correction)) a right-hand side that is
+//! the recorded one corrected by the few elements and joints the move touched (the moved model's
+//! differing from the recorded one's, found once per solver), or, at another load parameter, the moved
+//! model's assembled whole; and a path tangent read
 //! there solves with them and one refinement step against the moved tangent
 //! ([`StaticSolver::path_tangent`](crate::StaticSolver::path_tangent)). No replay factorizes a tangent
 //! for its equilibria, nor assembles the residual at the moved ones (a moved equilibrium reports the
@@ -83,6 +86,7 @@ enum Call {
 /// One recorded solver: its model's size, constraint rows and those kept, and its solves in order.
 #[derive(Debug, Clone)]
 struct Recorded {
+    model: Arc<Model>,
     dofs: usize,
     rows: usize,
     active: Vec<usize>,
@@ -215,6 +219,9 @@ pub(crate) fn note_kink() {
     });
 }
 
+/// A new solver's part in the thread's recording or replay, if any, and in a replay the recorded model.
+pub(crate) type Registered = Option<(Taped, Option<Arc<Model>>)>;
+
 /// A solver's part in a recording or replay: its rank among the run's solvers.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Taped {
@@ -235,10 +242,50 @@ pub(crate) enum Replayed<T> {
 /// ([`StepResult::element_pieces`]).
 pub(crate) type Pieces = Vec<u8>;
 
-/// The factors of the exact tangent of the recorded model at a recorded equilibrium, when its solver's
-/// backend is the dense LU: every replay's iteration there solves with them instead of factorizing the
-/// moved model's tangent. Shared by the replays, which may run on other threads.
-pub(crate) type Factors = Arc<LuFactors>;
+/// What a recording keeps at an equilibrium for the replays there, when its solver's backend is the dense
+/// LU: the factors of the recorded model's exact tangent (every replay's iteration there solves with them
+/// instead of factorizing the moved model's tangent), and the load parameter and Newton right-hand side
+/// (`Q − Jᵀλ`, `−Φ`) of the recorded model there, which a replay's iteration at the same load parameter
+/// corrects by the elements and joints its move touched instead of assembling the moved model whole.
+/// Shared by the replays, which may run on other threads.
+#[derive(Debug)]
+pub(crate) struct Kept {
+    pub(crate) lu: LuFactors,
+    pub(crate) t: f64,
+    pub(crate) rhs: Vec<f64>,
+}
+
+/// [`Kept`], shared.
+pub(crate) type Factors = Arc<Kept>;
+
+/// What a replay's model differs from its recorded one in: the elements and joints (by index) whose numbers
+/// its move changed. A replay's iteration at a recorded equilibrium, at the recorded load parameter, then
+/// corrects the recorded right-hand side by these alone (`StaticSolver::touched_rhs`): every other
+/// element and row gives what it gave the recording, to the bit.
+#[derive(Debug)]
+pub(crate) struct Touched {
+    pub(crate) recorded: Arc<Model>,
+    pub(crate) elements: Vec<usize>,
+    pub(crate) joints: Vec<bool>,
+}
+
+impl Touched {
+    /// What `moved` differs from `recorded` in; `None` when its parts differ (then nothing is corrected:
+    /// the replay assembles its model whole).
+    pub(crate) fn between(recorded: Arc<Model>, moved: &Model) -> Option<Touched> {
+        let (old, new) = (&recorded, moved);
+        if old.bodies().len() != new.bodies().len()
+            || old.elements().len() != new.elements().len()
+            || old.joints().len() != new.joints().len()
+        {
+            return None;
+        }
+        let elements =
+            (0..new.elements().len()).filter(|&e| !new.elements()[e].same_as(old.elements()[e].as_ref())).collect();
+        let joints = new.joints().iter().zip(old.joints()).map(|(a, b)| a != b).collect();
+        Some(Touched { recorded, elements, joints })
+    }
+}
 
 /// A recorded equilibrium, the pieces of the recorded model's elements there and its tangent's factors.
 pub(crate) type RecordedEquilibrium = (Result<StepResult, SolverError>, Pieces, Option<Factors>);
@@ -265,14 +312,16 @@ pub(crate) fn replays_independent_rows(rows: usize) -> bool {
 /// Registers a new solver of `dofs` body coordinates, `rows` constraint rows and kept rows `active` with
 /// the thread's recording or replay. In a replay, a solver unlike the recorded one of its rank is
 /// refused.
-pub(crate) fn register(dofs: usize, rows: usize, active: &[usize]) -> Result<Option<Taped>, SolverError> {
+/// In a replay, the solver's model as recorded comes with it, to tell what the move touched.
+pub(crate) fn register(model: &Model, dofs: usize, rows: usize, active: &[usize]) -> Result<Registered, SolverError> {
     ACTIVE.with(|a| {
         let mut a = a.borrow_mut();
         match a.as_mut() {
             None => Ok(None),
             Some(Active::Recording(tape)) => {
-                tape.solvers.push(Recorded { dofs, rows, active: active.to_vec(), calls: Vec::new() });
-                Ok(Some(Taped { solver: tape.solvers.len() - 1 }))
+                let model = Arc::new(model.clone());
+                tape.solvers.push(Recorded { model, dofs, rows, active: active.to_vec(), calls: Vec::new() });
+                Ok(Some((Taped { solver: tape.solvers.len() - 1 }, None)))
             }
             Some(Active::Replaying { tape, next_solver, diverged, .. }) => {
                 let k = *next_solver;
@@ -290,7 +339,7 @@ pub(crate) fn register(dofs: usize, rows: usize, active: &[usize]) -> Result<Opt
                 };
                 match why {
                     Some(why) => Err(diverge(diverged, why)),
-                    None => Ok(Some(Taped { solver: k })),
+                    None => Ok(Some((Taped { solver: k }, tape.solvers.get(k).map(|r| r.model.clone())))),
                 }
             }
         }

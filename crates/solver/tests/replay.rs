@@ -339,3 +339,81 @@ fn a_replay_asked_for_some_rows_moves_those_alone_as_a_whole_replay_does() {
     // Outside a replay the rows asked for change nothing.
     assert_eq!(angles_moving(k, Some(rows)).unwrap(), angles_moving(k, None).unwrap());
 }
+
+/// The lever with its spring's top `top_z` higher and its hinge `pivot_x` along x: moves that touch one
+/// element (the spring) and one joint (the hinge), of which a replay corrects the recorded right-hand side
+/// alone.
+fn lever_moved(top_z: f64, pivot_x: f64) -> Model {
+    let mut model = Model::new();
+    let lever = model.add_body("lever", Pose::at(Vec3::new(0.25, 0.0, 0.0))).unwrap();
+    let pivot = Vec3::new(pivot_x, 0.0, 0.0);
+    model.add_joint(JointSpec::revolute("pivot", BodyRef::Ground, lever, pivot, Vec3::y())).unwrap();
+    let seat = Vec3::new(SEAT, 0.0, 0.0);
+    let top = Vec3::new(TOP[0], TOP[1], TOP[2] + top_z);
+    let free = (Vec3::new(SEAT, 0.0, 0.0) - Vec3::from(TOP)).norm();
+    let spring = CoilSpring::new("spring", BodyRef::Ground, top, lever.into(), seat, 2e4, free).unwrap();
+    model.add_element(spring).unwrap();
+    let tip = PointForce::new("tip", lever.into(), Vec3::new(TIP, 0.0, 0.0), Vec3::new(0.0, 0.0, -TIP_LOAD)).unwrap();
+    model.add_element(tip).unwrap();
+    model
+}
+
+/// The moment about the hinge of the lever of [`lever_moved`] turned by `theta` about it.
+fn moment_moved(theta: f64, load: f64, top_z: f64, pivot_x: f64) -> f64 {
+    let (c, s) = (theta.cos(), theta.sin());
+    let pivot = Vec3::new(pivot_x, 0.0, 0.0);
+    let turned = |x: f64| pivot + Vec3::new((x - pivot_x) * c, 0.0, -(x - pivot_x) * s);
+    let (seat, tip) = (turned(SEAT), turned(TIP));
+    let top = Vec3::new(TOP[0], TOP[1], TOP[2] + top_z);
+    let free = (Vec3::new(SEAT, 0.0, 0.0) - Vec3::from(TOP)).norm();
+    let d = seat - top;
+    let spring = -2e4 * (d.norm() - free) * d / d.norm();
+    (seat - pivot).cross(&spring).y + (tip - pivot).cross(&Vec3::new(0.0, 0.0, -load * TIP_LOAD)).y
+}
+
+/// The lever's turn about its hinge at equilibrium, by bisection of the moment balance.
+fn turn_moved(load: f64, top_z: f64, pivot_x: f64) -> f64 {
+    let m = |theta| moment_moved(theta, load, top_z, pivot_x);
+    let (mut lo, mut hi) = (-0.5, 1.0);
+    assert!(m(lo) * m(hi) < 0.0);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if m(lo) * m(mid) <= 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+#[test]
+fn a_replay_moving_a_spring_end_or_a_hinge_moves_at_the_balances_rate() {
+    let turns = |top_z: f64, pivot_x: f64| -> Vec<f64> {
+        let model = lever_moved(top_z, pivot_x);
+        let mut solver = StaticSolver::new(&model, SolverOptions::default()).unwrap();
+        let steps = solver.sweep(LoadPath::new(0.0, 1.0, 8), Mode::Corrected).unwrap().steps;
+        // The body's reference is 0.25 m along the lever from the origin: its turn about the hinge.
+        steps.iter().map(|s| (-s.poses[0].position.z).atan2(s.poses[0].position.x - pivot_x)).collect()
+    };
+    let (_, tape) = record(|| turns(0.0, 0.0));
+    let tape = Arc::new(tape);
+    let h = 1e-4;
+    for (name, at) in [("spring top z", [1.0, 0.0]), ("hinge x", [0.0, 1.0])] {
+        let replayed: Vec<Vec<f64>> = [h, -h, 2.0 * h, -2.0 * h]
+            .iter()
+            .map(|d| replay(&tape, || turns(d * at[0], d * at[1])).unwrap().value)
+            .collect();
+        for i in 0..9 {
+            let load = i as f64 / 8.0;
+            let d = (8.0 * (replayed[0][i] - replayed[1][i]) - (replayed[2][i] - replayed[3][i])) / (12.0 * h);
+            let balance = |x: f64| turn_moved(load, x * at[0], x * at[1]);
+            let e = 1e-4;
+            let exact = (8.0 * (balance(e) - balance(-e)) - (balance(2.0 * e) - balance(-2.0 * e))) / (12.0 * e);
+            // Measured: within 3.1e-9 of the balance's rate, relative (the hinge, step 6): the balance's own
+            // differences and the recorded equilibria's distance from the exact ones.
+            println!("{name}, step {i}: replays {d:e}, balance {exact:e}");
+            assert!((d - exact).abs() <= 1e-7 * exact.abs().max(1e-3), "{name}, step {i}: {d:e} against {exact:e}");
+        }
+    }
+}

@@ -81,6 +81,8 @@ pub struct StaticSolver<'m> {
     replayed: Vec<(f64, Vec<Pose>, replay::Factors)>,
     /// Which steps of a sweep a replay moves (all when `None`).
     replay_rows: Option<replay::ReplayRows>,
+    /// In a replay, the recorded model and what this one differs from it in.
+    touched: Option<replay::Touched>,
 }
 
 /// What a [`StaticSolver`] allocates for one topology of model: the KKT pattern and slot maps, the
@@ -334,7 +336,12 @@ impl<'m> StaticSolver<'m> {
                 }
             }
         };
-        let taped = replay::register(workspace.assembly.n, model.constraint_rows(), &workspace.assembly.active_rows)?;
+        let registered =
+            replay::register(model, workspace.assembly.n, model.constraint_rows(), &workspace.assembly.active_rows)?;
+        let (taped, touched) = match registered {
+            Some((taped, recorded)) => (Some(taped), recorded.and_then(|r| replay::Touched::between(r, model))),
+            None => (None, None),
+        };
         let mut solver = StaticSolver {
             model,
             options,
@@ -349,6 +356,7 @@ impl<'m> StaticSolver<'m> {
             recorded_lu: None,
             replayed: Vec::new(),
             replay_rows: None,
+            touched,
         };
         if !checked {
             solver.check_restrained(&poses)?;

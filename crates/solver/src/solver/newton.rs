@@ -250,7 +250,7 @@ impl<'m> StaticSolver<'m> {
     /// what remains after a corrected step converged (Newton's next increment). Costs one factorization.
     /// The returned step reports the residual at the corrected state and `iterations = 1`.
     pub fn newton_correction(&mut self, step: &StepResult) -> Result<StepResult, SolverError> {
-        self.one_iteration(step, None)
+        self.one_iteration(step, None, None)
     }
 
     /// One Newton iteration on the exact equilibrium at `step.t` from `step`, as
@@ -276,7 +276,19 @@ impl<'m> StaticSolver<'m> {
                 why: format!("of order {} for a system of {size} unknowns", factors.order()),
             });
         }
-        self.one_iteration(step, Some(factors))
+        self.one_iteration(step, Some(factors), None)
+    }
+
+    /// [`StaticSolver::chord_correction`] with what a recording kept at `step` (`kept`): where the replay's
+    /// move touched only some elements and joints and `step` is at the recorded load parameter, the
+    /// right-hand side is the recorded one corrected by those ([`StaticSolver::touched_rhs`]), not
+    /// assembled whole; the same iteration to rounding.
+    pub(super) fn kept_chord_correction(
+        &mut self,
+        step: &StepResult,
+        kept: &super::replay::Kept,
+    ) -> Result<StepResult, SolverError> {
+        self.one_iteration(step, Some(&kept.lu), Some(kept))
     }
 
     /// One Newton iteration from `step`, solved with the exact tangent factorized here or with `factors`.
@@ -284,14 +296,24 @@ impl<'m> StaticSolver<'m> {
         &mut self,
         step: &StepResult,
         factors: Option<&crate::kkt::LuFactors>,
+        kept: Option<&super::replay::Kept>,
     ) -> Result<StepResult, SolverError> {
         let n = self.work.assembly.n;
         let m = self.work.assembly.m();
         let mut state = self.state_of(step);
-        self.assemble(&state, factors.is_none().then_some(Tangent::Full));
-        let r = self.residual(&state.lambda);
-        if !(r.force.is_finite() && r.constraint.is_finite()) {
-            return Err(SolverError::NonFinite { what: "residual" });
+        let mut rhs = std::mem::take(&mut self.work.rhs);
+        let touched = kept.is_some_and(|kept| self.touched_rhs(&state, kept, &mut rhs));
+        self.work.rhs = rhs;
+        if touched {
+            if self.work.rhs.iter().any(|v| !v.is_finite()) {
+                return Err(SolverError::NonFinite { what: "residual" });
+            }
+        } else {
+            self.assemble(&state, factors.is_none().then_some(Tangent::Full));
+            let r = self.residual(&state.lambda);
+            if !(r.force.is_finite() && r.constraint.is_finite()) {
+                return Err(SolverError::NonFinite { what: "residual" });
+            }
         }
         match factors {
             None => {
@@ -299,7 +321,9 @@ impl<'m> StaticSolver<'m> {
                 self.newton_increment()?;
             }
             Some(factors) => {
-                Self::residual_rhs(&self.work.assembly, &self.work.scratch, &mut self.work.rhs);
+                if !touched {
+                    Self::residual_rhs(&self.work.assembly, &self.work.scratch, &mut self.work.rhs);
+                }
                 factors.solve_in_place(&mut self.work.rhs);
                 if self.work.rhs.iter().any(|v| !v.is_finite()) {
                     return Err(SolverError::NonFinite { what: "Newton increment" });
@@ -341,7 +365,12 @@ impl<'m> StaticSolver<'m> {
         // it (a recording may keep them at only the steps its replays move, `replay::ReplayRows`).
         lu.reset();
         lu.factorize(values).ok()?;
-        lu.factors().map(std::sync::Arc::new)
+        let lu = lu.factors()?;
+        let (n, m) = (self.work.assembly.n, self.work.assembly.m());
+        self.residual(&state.lambda);
+        let mut rhs = vec![0.0; n + m];
+        Self::residual_rhs(&self.work.assembly, &self.work.scratch, &mut rhs);
+        Some(std::sync::Arc::new(super::replay::Kept { lu, t: state.t, rhs }))
     }
 
     /// The Newton increment `[Δq; Δλ]` into `rhs`, from `rhs = [Q − Jᵀλ ; −Φ]` at the assembled state and

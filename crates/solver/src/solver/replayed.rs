@@ -2,12 +2,14 @@
 //! Newton iteration of the solver's model.
 
 use super::StaticSolver;
+use crate::assembly::pair_dofs;
 use crate::error::SolverError;
 use crate::options::{LoadPath, State};
 use crate::replay::{
-    keep_sweep, moved_t, next_sweep, note_kink, Factors, RecordedEquilibrium, RecordedSweep, Replayed,
+    keep_sweep, moved_t, next_sweep, note_kink, Factors, Kept, RecordedEquilibrium, RecordedSweep, Replayed,
 };
 use crate::results::{StepResult, Sweep};
+use elastokin_core::ElementEval;
 
 impl StaticSolver<'_> {
     /// A sweep along `path` as the thread's recording or replay has it: `solve` it (and keep what it
@@ -55,7 +57,7 @@ impl StaticSolver<'_> {
         at.t = t;
         let moved = match factors {
             Some(factors) => {
-                let moved = self.chord_correction(&at, factors)?;
+                let moved = self.kept_chord_correction(&at, factors)?;
                 self.replayed.push((moved.t, moved.poses.clone(), factors.clone()));
                 moved
             }
@@ -115,5 +117,57 @@ impl StaticSolver<'_> {
             .rev()
             .find(|(t, poses, _)| *t == state.t && *poses == state.poses)
             .map(|(.., factors)| factors.clone())
+    }
+}
+
+impl StaticSolver<'_> {
+    /// The Newton right-hand side (`Q − Jᵀλ`, `−Φ`) of this model at `state` into `out`, as the recorded one
+    /// `kept` there corrected by the touched elements and joints, when `state` is at the recorded load
+    /// parameter; `false` (nothing written) when it cannot be: not a replay, another load parameter (the
+    /// loads and drivers moved too), or other parts.
+    pub(super) fn touched_rhs(&self, state: &State, kept: &Kept, out: &mut [f64]) -> bool {
+        let Some(touched) = &self.touched else { return false };
+        if state.t != kept.t || out.len() != kept.rhs.len() {
+            return false;
+        }
+        let (moved, recorded) = (self.model, touched.recorded.as_ref());
+        let (poses, t, n) = (&state.poses, state.t, self.work.assembly.n);
+        out.copy_from_slice(&kept.rhs);
+        let (mut new, mut old) = (ElementEval::default(), ElementEval::default());
+        for &e in &touched.elements {
+            let (a, b) = (&moved.elements()[e], &recorded.elements()[e]);
+            let [i, j] = a.bodies();
+            a.evaluate(&i.pose(poses), &j.pose(poses), t, &mut new, false);
+            let [bi, bj] = b.bodies();
+            b.evaluate(&bi.pose(poses), &bj.pose(poses), t, &mut old, false);
+            // Each force to its own element's bodies.
+            for (local, d) in pair_dofs(i, j).iter().enumerate() {
+                if let Some(g) = d {
+                    out[*g] += new.force[local];
+                }
+            }
+            for (local, d) in pair_dofs(bi, bj).iter().enumerate() {
+                if let Some(g) = d {
+                    out[*g] -= old.force[local];
+                }
+            }
+        }
+        for (k, &(joint, row)) in self.work.assembly.row_joint.iter().enumerate() {
+            if !touched.joints[joint] {
+                continue;
+            }
+            let lambda = state.lambda[k];
+            for (jt, sign) in [(&moved.joints()[joint], 1.0), (&recorded.joints()[joint], -1.0)] {
+                let (bi, bj) = (jt.spec.body_i, jt.spec.body_j);
+                let ev = jt.rows[row].evaluate(&bi.pose(poses), &bj.pose(poses), t);
+                out[n + k] -= sign * ev.value;
+                for (local, d) in pair_dofs(bi, bj).iter().enumerate() {
+                    if let Some(g) = d {
+                        out[*g] -= sign * ev.gradient[local] * lambda;
+                    }
+                }
+            }
+        }
+        true
     }
 }

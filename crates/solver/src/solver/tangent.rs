@@ -52,7 +52,7 @@ impl<'m> StaticSolver<'m> {
         if let Some(factors) = self.replayed_factors(state) {
             self.assemble(state, Some(Tangent::Full));
             self.load_direction_rhs();
-            self.refine_with(&factors)?;
+            self.refine_with(&factors.lu)?;
             return Ok(self.work.rhs[..n].to_vec());
         }
         self.factorize_tangent(state)?;
