@@ -46,20 +46,25 @@ fn moment(theta: f64, k: f64, load: f64) -> f64 {
     seat.cross(&spring).y + tip.cross(&Vec3::new(0.0, 0.0, -load * TIP_LOAD)).y
 }
 
-/// The angle at equilibrium and its rate with respect to `k`, from the moment balance alone: bisection,
-/// then the implicit function theorem `dθ/dk = −(∂M/∂k)/(∂M/∂θ)` by central differences of `M`.
-fn balance(k: f64, load: f64) -> (f64, f64) {
+/// The turn (rad) between −0.5 and 1 where the moment `m` about the hinge vanishes, by bisection.
+fn turn_where_balanced(m: impl Fn(f64) -> f64) -> f64 {
     let (mut lo, mut hi) = (-0.5, 1.0);
-    assert!(moment(lo, k, load) * moment(hi, k, load) < 0.0);
+    assert!(m(lo) * m(hi) < 0.0);
     for _ in 0..200 {
         let mid = 0.5 * (lo + hi);
-        if moment(lo, k, load) * moment(mid, k, load) <= 0.0 {
+        if m(lo) * m(mid) <= 0.0 {
             hi = mid;
         } else {
             lo = mid;
         }
     }
-    let theta = 0.5 * (lo + hi);
+    0.5 * (lo + hi)
+}
+
+/// The angle at equilibrium and its rate with respect to `k`, from the moment balance alone: bisection,
+/// then the implicit function theorem `dθ/dk = −(∂M/∂k)/(∂M/∂θ)` by central differences of `M`.
+fn balance(k: f64, load: f64) -> (f64, f64) {
+    let theta = turn_where_balanced(|theta| moment(theta, k, load));
     let (ht, hk) = (1e-6, 1e-3 * k);
     let m_theta = (moment(theta + ht, k, load) - moment(theta - ht, k, load)) / (2.0 * ht);
     let m_k = (moment(theta, k + hk, load) - moment(theta, k - hk, load)) / (2.0 * hk);
@@ -373,18 +378,7 @@ fn moment_moved(theta: f64, load: f64, top_z: f64, pivot_x: f64) -> f64 {
 
 /// The lever's turn about its hinge at equilibrium, by bisection of the moment balance.
 fn turn_moved(load: f64, top_z: f64, pivot_x: f64) -> f64 {
-    let m = |theta| moment_moved(theta, load, top_z, pivot_x);
-    let (mut lo, mut hi) = (-0.5, 1.0);
-    assert!(m(lo) * m(hi) < 0.0);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if m(lo) * m(mid) <= 0.0 {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    0.5 * (lo + hi)
+    turn_where_balanced(|theta| moment_moved(theta, load, top_z, pivot_x))
 }
 
 #[test]
