@@ -83,6 +83,9 @@ pub struct StaticSolver<'m> {
     replay_rows: Option<replay::ReplayRows>,
     /// In a replay, the recorded model and what this one differs from it in.
     touched: Option<replay::Touched>,
+    /// In a replay, the recorded factors [`StaticSolver::factorize_tangent`] left for the solves at a moved
+    /// equilibrium, and the count of assemblies then (the tangent they refine against).
+    tangent_by: Option<(replay::Factors, u64)>,
 }
 
 /// What a [`StaticSolver`] allocates for one topology of model: the KKT pattern and slot maps, the
@@ -357,6 +360,7 @@ impl<'m> StaticSolver<'m> {
             replayed: Vec::new(),
             replay_rows: None,
             touched,
+            tangent_by: None,
         };
         if !checked {
             solver.check_restrained(&poses)?;
@@ -410,6 +414,7 @@ impl<'m> StaticSolver<'m> {
     }
 
     fn factorize(&mut self) -> Result<crate::kkt::FactorReport, SolverError> {
+        self.tangent_by = None;
         let a = &self.work.assembly;
         let values = KktValues { k: &a.k_values, k_skew: a.has_skew.then_some(&a.k_skew[..]), j: &a.j_values };
         self.factored = None;

@@ -73,15 +73,22 @@ impl<'m> StaticSolver<'m> {
             *r += z;
         }
         if self.work.rhs.iter().any(|v| !v.is_finite()) {
-            return Err(SolverError::NonFinite { what: "path tangent" });
+            return Err(SolverError::NonFinite { what: "tangent solve" });
         }
         Ok(())
     }
 
     /// Assembles and factorizes the tangent at `state` for [`StaticSolver::solve_factored`].
+    ///
+    /// In a replay ([`crate::replay`]), at one of its moved equilibria, nothing is factorized: the solves
+    /// that follow use the recorded tangent's factors there and one step of refinement against this
+    /// model's tangent, as [`StaticSolver::path_tangent`] does (the same to the square of the move).
     pub fn factorize_tangent(&mut self, state: &State) -> Result<(), SolverError> {
         self.assemble(state, Some(Tangent::Full));
-        self.factorize()?;
+        self.tangent_by = self.replayed_factors(state).map(|factors| (factors, self.assemblies));
+        if self.tangent_by.is_none() {
+            self.factorize()?;
+        }
         Ok(())
     }
 
@@ -95,7 +102,11 @@ impl<'m> StaticSolver<'m> {
             });
         }
         self.work.rhs.copy_from_slice(rhs);
-        self.solve_with_skew(Accuracy::Refined)?;
+        // The recorded factors, while the tangent assembled with them is still the one assembled.
+        match self.tangent_by.clone().filter(|(_, at)| *at == self.assemblies) {
+            Some((factors, _)) => self.refine_with(&factors.lu)?,
+            None => self.solve_with_skew(Accuracy::Refined)?,
+        }
         rhs.copy_from_slice(&self.work.rhs);
         Ok(())
     }
