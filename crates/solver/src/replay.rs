@@ -84,12 +84,11 @@ enum Call {
     Sweep { path: LoadPath, result: Result<Sweep, SolverError>, pieces: Vec<Pieces>, factors: Vec<Option<Factors>> },
 }
 
-/// One recorded solver: its model's size, constraint rows and those kept, and its solves in order.
+/// One recorded solver: its model (a copy, for a replay to tell what its move touched), the constraint rows
+/// it kept, and its solves in order.
 #[derive(Debug, Clone)]
 struct Recorded {
     model: Arc<Model>,
-    dofs: usize,
-    rows: usize,
     active: Vec<usize>,
     calls: Vec<Call>,
 }
@@ -304,44 +303,43 @@ pub(crate) type RecordedSweep = (LoadPath, Result<Sweep, SolverError>, Vec<Piece
 pub(crate) fn replays_independent_rows(rows: usize) -> bool {
     ACTIVE.with(|a| match a.borrow().as_ref() {
         Some(Active::Replaying { tape, next_solver, .. }) => {
-            tape.solvers.get(*next_solver).is_some_and(|r| r.rows == rows && r.active.len() == rows)
+            tape.solvers.get(*next_solver).is_some_and(|r| r.model.constraint_rows() == rows && r.active.len() == rows)
         }
         _ => false,
     })
 }
 
-/// Registers a new solver of `dofs` body coordinates, `rows` constraint rows and kept rows `active` with
-/// the thread's recording or replay. In a replay, a solver unlike the recorded one of its rank is
-/// refused.
-/// In a replay, the solver's model as recorded comes with it, to tell what the move touched.
-pub(crate) fn register(model: &Model, dofs: usize, rows: usize, active: &[usize]) -> Result<Registered, SolverError> {
+/// Registers a new solver of `model` with kept constraint rows `active` with the thread's recording or
+/// replay. In a replay, a solver unlike the recorded one of its rank is refused, and the recorded model
+/// comes with it, to tell what the move touched.
+pub(crate) fn register(model: &Model, active: &[usize]) -> Result<Registered, SolverError> {
     ACTIVE.with(|a| {
         let mut a = a.borrow_mut();
         match a.as_mut() {
             None => Ok(None),
             Some(Active::Recording(tape)) => {
                 let model = Arc::new(model.clone());
-                tape.solvers.push(Recorded { model, dofs, rows, active: active.to_vec(), calls: Vec::new() });
+                tape.solvers.push(Recorded { model, active: active.to_vec(), calls: Vec::new() });
                 Ok(Some((Taped { solver: tape.solvers.len() - 1 }, None)))
             }
             Some(Active::Replaying { tape, next_solver, diverged, .. }) => {
                 let k = *next_solver;
                 *next_solver += 1;
-                let why = match tape.solvers.get(k) {
-                    None => Some(format!("it created more solvers than the {} recorded", tape.solvers.len())),
-                    Some(r) if r.dofs != dofs || r.rows != rows || r.active != active => Some(format!(
-                        "solver {k} has {dofs} body coordinates and {} kept constraint rows where the recorded one \
-                         had {} and {}: the parts or the redundant joints differ",
-                        active.len(),
-                        r.dofs,
-                        r.active.len()
-                    )),
-                    Some(_) => None,
+                let Some(r) = tape.solvers.get(k) else {
+                    let why = format!("it created more solvers than the {} recorded", tape.solvers.len());
+                    return Err(diverge(diverged, why));
                 };
-                match why {
-                    Some(why) => Err(diverge(diverged, why)),
-                    None => Ok(Some((Taped { solver: k }, tape.solvers.get(k).map(|r| r.model.clone())))),
+                let (dofs, recorded_dofs) = (model.dofs(), r.model.dofs());
+                if dofs != recorded_dofs || model.constraint_rows() != r.model.constraint_rows() || r.active != active {
+                    let why = format!(
+                        "solver {k} has {dofs} body coordinates and {} kept constraint rows where the recorded one \
+                         had {recorded_dofs} and {}: the parts or the redundant joints differ",
+                        active.len(),
+                        r.active.len()
+                    );
+                    return Err(diverge(diverged, why));
                 }
+                Ok(Some((Taped { solver: k }, Some(r.model.clone()))))
             }
         }
     })

@@ -4,8 +4,8 @@
 
 use elastokin_core::{BodyRef, JointSpec, Model, Pose, Vec3};
 use elastokin_elements::{CoilSpring, PointForce};
-use elastokin_solver::replay::{record, replay, Diverged, ReplayRows};
-use elastokin_solver::{BackendChoice, LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult};
+use elastokin_solver::replay::{record, replay, Diverged, ReplayRows, Tape};
+use elastokin_solver::{BackendChoice, LoadPath, Mode, SolverError, SolverOptions, State, StaticSolver, StepResult};
 use std::sync::Arc;
 
 const TIP_LOAD: f64 = 500.0;
@@ -174,13 +174,61 @@ fn a_recorded_run_returns_what_it_returns_unrecorded_to_the_bit() {
     assert_eq!(plain, recorded.unwrap());
 }
 
-/// The lever's path tangents `dq/dt` at every step of a sweep of the lever of rate `k`, and the steps.
-fn path_tangents(k: f64) -> Result<(Vec<StepResult>, Vec<Vec<f64>>), SolverError> {
+/// What the solver reads off the tangent at a state.
+type TangentReading = fn(&mut StaticSolver, &State) -> Result<Vec<f64>, SolverError>;
+
+/// The lever's path tangent `dq/dt` at `state`.
+fn path_tangent(solver: &mut StaticSolver, state: &State) -> Result<Vec<f64>, SolverError> {
+    solver.path_tangent(state)
+}
+
+/// The lever's compliance at `state`: the tangent solved for a unit moment about the hinge axis on the
+/// lever ([`StaticSolver::factorize_tangent`], [`StaticSolver::solve_factored`]).
+fn moment_compliance(solver: &mut StaticSolver, state: &State) -> Result<Vec<f64>, SolverError> {
+    solver.factorize_tangent(state)?;
+    let mut rhs = vec![0.0; solver.model().dofs() + solver.active_rows().len()];
+    rhs[4] = 1.0;
+    solver.solve_factored(&mut rhs)?;
+    Ok(rhs)
+}
+
+/// `read` at every step of a sweep of the lever of rate `k`, and the steps.
+fn read_at_steps(k: f64, read: TangentReading) -> Result<(Vec<StepResult>, Vec<Vec<f64>>), SolverError> {
     let model = lever(k);
     let mut solver = StaticSolver::new(&model, SolverOptions::default())?;
     let steps = solver.sweep(LoadPath::new(0.0, 1.0, 8), Mode::Corrected)?.steps;
-    let rates = steps.iter().map(|s| solver.path_tangent(&solver.state_of(s))).collect::<Result<_, _>>()?;
-    Ok((steps, rates))
+    let read = read_each(&mut solver, &steps, read)?;
+    Ok((steps, read))
+}
+
+/// `read` by `solver` at each of `steps`.
+fn read_each(
+    solver: &mut StaticSolver,
+    steps: &[StepResult],
+    read: TangentReading,
+) -> Result<Vec<Vec<f64>>, SolverError> {
+    steps
+        .iter()
+        .map(|s| {
+            let state = solver.state_of(s);
+            read(solver, &state)
+        })
+        .collect()
+}
+
+/// The lever's path tangents at every step of a sweep of the lever of rate `k`, and the steps.
+fn path_tangents(k: f64) -> Result<(Vec<StepResult>, Vec<Vec<f64>>), SolverError> {
+    read_at_steps(k, path_tangent)
+}
+
+/// The largest gap between what `read` reads in a replay of `tape` (recorded at rate `k`) on the lever of
+/// rate `k + delta`, at its moved steps, and what it reads at the same states on that lever solved outright.
+fn replayed_reading_gap(tape: &Arc<Tape>, k: f64, delta: f64, read: TangentReading) -> f64 {
+    let (steps, replayed) = replay(tape, || read_at_steps(k + delta, read)).unwrap().value.unwrap();
+    let model = lever(k + delta);
+    let mut solver = StaticSolver::new(&model, SolverOptions::default()).unwrap();
+    let exact = read_each(&mut solver, &steps, read).unwrap();
+    replayed.iter().flatten().zip(exact.iter().flatten()).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
 }
 
 /// A path tangent asked for in a replay, at a moved equilibrium, is solved with the recorded tangent's
@@ -193,16 +241,7 @@ fn a_replayed_path_tangent_is_the_exact_one_to_the_square_of_the_move() {
     let (base, tape) = record(|| path_tangents(k));
     let (_, base_rates) = base.unwrap();
     let tape = Arc::new(tape);
-    let exact_at = |k: f64, steps: &[StepResult]| -> Vec<Vec<f64>> {
-        let model = lever(k);
-        let mut solver = StaticSolver::new(&model, SolverOptions::default()).unwrap();
-        steps.iter().map(|s| solver.path_tangent(&solver.state_of(s)).unwrap()).collect()
-    };
-    let gap = |delta: f64| -> f64 {
-        let (steps, replayed) = replay(&tape, || path_tangents(k + delta)).unwrap().value.unwrap();
-        let exact = exact_at(k + delta, &steps);
-        replayed.iter().flatten().zip(exact.iter().flatten()).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
-    };
+    let gap = |delta: f64| replayed_reading_gap(&tape, k, delta, path_tangent);
     let size = base_rates.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
     let (wide, narrow) = (gap(1e-3 * k), gap(5e-4 * k));
     // Measured: 1.5e-6 and 3.7e-7 of the largest rate, a ratio of 3.96 (3.996 at a tenth of the moves;
@@ -412,47 +451,16 @@ fn a_replay_moving_a_spring_end_or_a_hinge_moves_at_the_balances_rate() {
     }
 }
 
-/// The lever's compliance at each step of its sweep: the tangent solved for a unit moment about the hinge
-/// axis on the lever ([`StaticSolver::factorize_tangent`], [`StaticSolver::solve_factored`]).
-fn compliances(k: f64) -> Result<(Vec<StepResult>, Vec<Vec<f64>>), SolverError> {
-    let model = lever(k);
-    let mut solver = StaticSolver::new(&model, SolverOptions::default())?;
-    let steps = solver.sweep(LoadPath::new(0.0, 1.0, 8), Mode::Corrected)?.steps;
-    let size = model.dofs() + solver.active_rows().len();
-    let mut out = Vec::new();
-    for s in &steps {
-        solver.factorize_tangent(&solver.state_of(s))?;
-        let mut rhs = vec![0.0; size];
-        rhs[4] = 1.0;
-        solver.solve_factored(&mut rhs)?;
-        out.push(rhs);
-    }
-    Ok((steps, out))
-}
-
 /// Tangent solves asked for in a replay, at its moved equilibria, use the recorded tangent's factors and
 /// one refinement step, as the path tangent does: they differ from the moved model's own exact solves
 /// there by the square of the move (halving the move quarters it).
 #[test]
 fn a_replayed_tangent_solve_is_the_exact_one_to_the_square_of_the_move() {
     let k = 2e4;
-    let (base, tape) = record(|| compliances(k));
+    let (base, tape) = record(|| read_at_steps(k, moment_compliance));
     let (_, base_solves) = base.unwrap();
     let tape = Arc::new(tape);
-    let gap = |delta: f64| -> f64 {
-        let (steps, replayed) = replay(&tape, || compliances(k + delta)).unwrap().value.unwrap();
-        let model = lever(k + delta);
-        let mut solver = StaticSolver::new(&model, SolverOptions::default()).unwrap();
-        let mut worst = 0.0f64;
-        for (s, r) in steps.iter().zip(&replayed) {
-            solver.factorize_tangent(&solver.state_of(s)).unwrap();
-            let mut exact = vec![0.0; r.len()];
-            exact[4] = 1.0;
-            solver.solve_factored(&mut exact).unwrap();
-            worst = r.iter().zip(&exact).fold(worst, |m, (a, b)| m.max((a - b).abs()));
-        }
-        worst
-    };
+    let gap = |delta: f64| replayed_reading_gap(&tape, k, delta, moment_compliance);
     let size = base_solves.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
     let (wide, narrow) = (gap(1e-3 * k), gap(5e-4 * k));
     // Measured: 4.1e-6 and 1.0e-6 of the largest solve, a ratio of 3.991.

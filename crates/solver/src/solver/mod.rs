@@ -84,8 +84,8 @@ pub struct StaticSolver<'m> {
     /// In a replay, the recorded model and what this one differs from it in.
     touched: Option<replay::Touched>,
     /// In a replay, the recorded factors [`StaticSolver::factorize_tangent`] left for the solves at a moved
-    /// equilibrium, and the count of assemblies then (the tangent they refine against).
-    tangent_by: Option<(replay::Factors, u64)>,
+    /// equilibrium (until the next factorization).
+    tangent_by: Option<replay::Factors>,
 }
 
 /// What a [`StaticSolver`] allocates for one topology of model: the KKT pattern and slot maps, the
@@ -339,9 +339,7 @@ impl<'m> StaticSolver<'m> {
                 }
             }
         };
-        let registered =
-            replay::register(model, workspace.assembly.n, model.constraint_rows(), &workspace.assembly.active_rows)?;
-        let (taped, touched) = match registered {
+        let (taped, touched) = match replay::register(model, &workspace.assembly.active_rows)? {
             Some((taped, recorded)) => (Some(taped), recorded.and_then(|r| replay::Touched::between(r, model))),
             None => (None, None),
         };

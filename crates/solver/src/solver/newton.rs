@@ -3,6 +3,19 @@
 
 use super::*;
 
+/// What one Newton iteration ([`StaticSolver::newton_correction`] and the chord iterations) solves its
+/// increment with.
+#[derive(Clone, Copy)]
+enum SolvedWith<'a> {
+    /// The exact tangent, assembled and factorized here.
+    Exact,
+    /// The factors of a tangent made elsewhere; the residual assembled here.
+    Factors(&'a crate::kkt::LuFactors),
+    /// What a recording kept at the step: its factors, and its right-hand side, corrected by what the
+    /// replay's move touched where it can be ([`StaticSolver::touched_rhs`]).
+    Kept(&'a super::replay::Kept),
+}
+
 impl<'m> StaticSolver<'m> {
     /// Newton on the true residual at the state's load parameter. Returns iterations used.
     ///
@@ -250,7 +263,7 @@ impl<'m> StaticSolver<'m> {
     /// what remains after a corrected step converged (Newton's next increment). Costs one factorization.
     /// The returned step reports the residual at the corrected state and `iterations = 1`.
     pub fn newton_correction(&mut self, step: &StepResult) -> Result<StepResult, SolverError> {
-        self.one_iteration(step, None, None)
+        self.one_iteration(step, SolvedWith::Exact)
     }
 
     /// One Newton iteration on the exact equilibrium at `step.t` from `step`, as
@@ -276,7 +289,7 @@ impl<'m> StaticSolver<'m> {
                 why: format!("of order {} for a system of {size} unknowns", factors.order()),
             });
         }
-        self.one_iteration(step, Some(factors), None)
+        self.one_iteration(step, SolvedWith::Factors(factors))
     }
 
     /// [`StaticSolver::chord_correction`] with what a recording kept at `step` (`kept`): where the replay's
@@ -288,23 +301,22 @@ impl<'m> StaticSolver<'m> {
         step: &StepResult,
         kept: &super::replay::Kept,
     ) -> Result<StepResult, SolverError> {
-        self.one_iteration(step, Some(&kept.lu), Some(kept))
+        self.one_iteration(step, SolvedWith::Kept(kept))
     }
 
-    /// One Newton iteration from `step`, solved with the exact tangent factorized here or with `factors`.
-    fn one_iteration(
-        &mut self,
-        step: &StepResult,
-        factors: Option<&crate::kkt::LuFactors>,
-        kept: Option<&super::replay::Kept>,
-    ) -> Result<StepResult, SolverError> {
+    /// One Newton iteration from `step`, its increment solved as `with` says.
+    fn one_iteration(&mut self, step: &StepResult, with: SolvedWith) -> Result<StepResult, SolverError> {
         let n = self.work.assembly.n;
         let m = self.work.assembly.m();
         let mut state = self.state_of(step);
-        let mut rhs = std::mem::take(&mut self.work.rhs);
-        let touched = kept.is_some_and(|kept| self.touched_rhs(&state, kept, &mut rhs));
-        self.work.rhs = rhs;
-        if touched {
+        let factors = match with {
+            SolvedWith::Exact => None,
+            SolvedWith::Factors(factors) => Some(factors),
+            SolvedWith::Kept(kept) => Some(&kept.lu),
+        };
+        // The right-hand side from what the recording kept, corrected by what the move touched; else
+        // assembled here.
+        if matches!(with, SolvedWith::Kept(kept) if self.touched_rhs(&state, kept)) {
             if self.work.rhs.iter().any(|v| !v.is_finite()) {
                 return Err(SolverError::NonFinite { what: "residual" });
             }
@@ -314,6 +326,9 @@ impl<'m> StaticSolver<'m> {
             if !(r.force.is_finite() && r.constraint.is_finite()) {
                 return Err(SolverError::NonFinite { what: "residual" });
             }
+            if factors.is_some() {
+                Self::residual_rhs(&self.work.assembly, &self.work.scratch, &mut self.work.rhs);
+            }
         }
         match factors {
             None => {
@@ -321,9 +336,6 @@ impl<'m> StaticSolver<'m> {
                 self.newton_increment()?;
             }
             Some(factors) => {
-                if !touched {
-                    Self::residual_rhs(&self.work.assembly, &self.work.scratch, &mut self.work.rhs);
-                }
                 factors.solve_in_place(&mut self.work.rhs);
                 if self.work.rhs.iter().any(|v| !v.is_finite()) {
                     return Err(SolverError::NonFinite { what: "Newton increment" });
@@ -367,7 +379,7 @@ impl<'m> StaticSolver<'m> {
         lu.factorize(values).ok()?;
         let lu = lu.factors()?;
         let (n, m) = (self.work.assembly.n, self.work.assembly.m());
-        self.residual(&state.lambda);
+        self.work.assembly.jt_times(&state.lambda, &mut self.work.scratch[..n]);
         let mut rhs = vec![0.0; n + m];
         Self::residual_rhs(&self.work.assembly, &self.work.scratch, &mut rhs);
         Some(std::sync::Arc::new(super::replay::Kept { lu, t: state.t, rhs }))

@@ -48,13 +48,12 @@ impl StaticSolver<'_> {
     /// A stop touching or leaving between the recorded model there (`pieces`) and the moved is noted.
     fn moved(
         &mut self,
-        recorded: &StepResult,
+        recorded: StepResult,
         pieces: &[u8],
         factors: Option<&Factors>,
         t: f64,
     ) -> Result<StepResult, SolverError> {
-        let mut at = recorded.clone();
-        at.t = t;
+        let at = StepResult { t, ..recorded };
         let moved = match factors {
             Some(factors) => {
                 let moved = self.kept_chord_correction(&at, factors)?;
@@ -75,7 +74,7 @@ impl StaticSolver<'_> {
         recorded: RecordedEquilibrium,
         state: &mut State,
     ) -> Result<StepResult, SolverError> {
-        let step = self.moved(&recorded.0?, &recorded.1, recorded.2.as_ref(), state.t)?;
+        let step = self.moved(recorded.0?, &recorded.1, recorded.2.as_ref(), state.t)?;
         *state = self.state_of(&step);
         Ok(step)
     }
@@ -88,13 +87,14 @@ impl StaticSolver<'_> {
         state: &mut State,
     ) -> Result<Sweep, SolverError> {
         let (from, sweep, pieces, factors) = (recorded.0, recorded.1?, recorded.2, recorded.3);
-        let mut steps = Vec::with_capacity(sweep.steps.len());
         let count = sweep.steps.len();
-        for (i, (s, pieces)) in sweep.steps.iter().zip(&pieces).enumerate() {
+        let mut steps = Vec::with_capacity(count);
+        // The recorded steps are this replay's own copies: each is moved, or returned, as it is.
+        for (i, (s, pieces)) in sweep.steps.into_iter().zip(&pieces).enumerate() {
             let factors = factors.get(i).and_then(Option::as_ref);
             let t = moved_t(s.t, Some(i), &from, &path);
             if self.replay_rows.is_some_and(|rows| !rows.moves(t, i, count, &path)) {
-                steps.push(StepResult { t, ..s.clone() });
+                steps.push(StepResult { t, ..s });
                 continue;
             }
             steps.push(self.moved(s, pieces, factors, t)?);
@@ -121,38 +121,33 @@ impl StaticSolver<'_> {
 }
 
 impl StaticSolver<'_> {
-    /// The Newton right-hand side (`Q − Jᵀλ`, `−Φ`) of this model at `state` into `out`, as the recorded one
-    /// `kept` there corrected by the touched elements and joints, when `state` is at the recorded load
-    /// parameter; `false` (nothing written) when it cannot be: not a replay, another load parameter (the
-    /// loads and drivers moved too), or other parts.
-    pub(super) fn touched_rhs(&self, state: &State, kept: &Kept, out: &mut [f64]) -> bool {
+    /// The Newton right-hand side (`Q − Jᵀλ`, `−Φ`) of this model at `state` into the workspace's, as the
+    /// recorded one `kept` there corrected by the touched elements and joints, when `state` is at the
+    /// recorded load parameter; `false` (nothing written) when it cannot be: not a replay, another load
+    /// parameter (the loads and drivers moved too), or other parts.
+    pub(super) fn touched_rhs(&mut self, state: &State, kept: &Kept) -> bool {
         let Some(touched) = &self.touched else { return false };
+        let (out, row_joint, n) = (&mut self.work.rhs, &self.work.assembly.row_joint, self.work.assembly.n);
         if state.t != kept.t || out.len() != kept.rhs.len() {
             return false;
         }
         let (moved, recorded) = (self.model, touched.recorded.as_ref());
-        let (poses, t, n) = (&state.poses, state.t, self.work.assembly.n);
+        let (poses, t) = (&state.poses, state.t);
         out.copy_from_slice(&kept.rhs);
-        let (mut new, mut old) = (ElementEval::default(), ElementEval::default());
+        // The moved model's part added, the recorded one's taken away, each on its own bodies.
+        let mut eval = ElementEval::default();
         for &e in &touched.elements {
-            let (a, b) = (&moved.elements()[e], &recorded.elements()[e]);
-            let [i, j] = a.bodies();
-            a.evaluate(&i.pose(poses), &j.pose(poses), t, &mut new, false);
-            let [bi, bj] = b.bodies();
-            b.evaluate(&bi.pose(poses), &bj.pose(poses), t, &mut old, false);
-            // Each force to its own element's bodies.
-            for (local, d) in pair_dofs(i, j).iter().enumerate() {
-                if let Some(g) = d {
-                    out[*g] += new.force[local];
-                }
-            }
-            for (local, d) in pair_dofs(bi, bj).iter().enumerate() {
-                if let Some(g) = d {
-                    out[*g] -= old.force[local];
+            for (element, sign) in [(&moved.elements()[e], 1.0), (&recorded.elements()[e], -1.0)] {
+                let [i, j] = element.bodies();
+                element.evaluate(&i.pose(poses), &j.pose(poses), t, &mut eval, false);
+                for (local, d) in pair_dofs(i, j).iter().enumerate() {
+                    if let Some(g) = d {
+                        out[*g] += sign * eval.force[local];
+                    }
                 }
             }
         }
-        for (k, &(joint, row)) in self.work.assembly.row_joint.iter().enumerate() {
+        for (k, &(joint, row)) in row_joint.iter().enumerate() {
             if !touched.joints[joint] {
                 continue;
             }

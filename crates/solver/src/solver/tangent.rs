@@ -49,15 +49,9 @@ impl<'m> StaticSolver<'m> {
     /// with respect to the move is the exact one's, and no factorization is made.
     pub fn path_tangent(&mut self, state: &State) -> Result<Vec<f64>, SolverError> {
         let n = self.work.assembly.n;
-        if let Some(factors) = self.replayed_factors(state) {
-            self.assemble(state, Some(Tangent::Full));
-            self.load_direction_rhs();
-            self.refine_with(&factors.lu)?;
-            return Ok(self.work.rhs[..n].to_vec());
-        }
         self.factorize_tangent(state)?;
         self.load_direction_rhs();
-        self.solve_with_skew(Accuracy::Refined)?;
+        self.solve_tangent()?;
         Ok(self.work.rhs[..n].to_vec())
     }
 
@@ -82,14 +76,25 @@ impl<'m> StaticSolver<'m> {
     ///
     /// In a replay ([`crate::replay`]), at one of its moved equilibria, nothing is factorized: the solves
     /// that follow use the recorded tangent's factors there and one step of refinement against this
-    /// model's tangent, as [`StaticSolver::path_tangent`] does (the same to the square of the move).
+    /// model's tangent, the same to the square of the move (see [`StaticSolver::path_tangent`]).
     pub fn factorize_tangent(&mut self, state: &State) -> Result<(), SolverError> {
         self.assemble(state, Some(Tangent::Full));
-        self.tangent_by = self.replayed_factors(state).map(|factors| (factors, self.assemblies));
-        if self.tangent_by.is_none() {
-            self.factorize()?;
+        match self.replayed_factors(state) {
+            Some(factors) => self.tangent_by = Some(factors),
+            None => {
+                self.factorize()?;
+            }
         }
         Ok(())
+    }
+
+    /// `rhs` solved with the tangent [`StaticSolver::factorize_tangent`] left: the recorded factors and one
+    /// refinement step against the assembled tangent in a replay, else the last factorization, refined.
+    fn solve_tangent(&mut self) -> Result<(), SolverError> {
+        match self.tangent_by.clone() {
+            Some(factors) => self.refine_with(&factors.lu),
+            None => self.solve_with_skew(Accuracy::Refined),
+        }
     }
 
     /// Solves with the tangent last factorized (by [`StaticSolver::factorize_tangent`] or any solve).
@@ -102,11 +107,7 @@ impl<'m> StaticSolver<'m> {
             });
         }
         self.work.rhs.copy_from_slice(rhs);
-        // The recorded factors, while the tangent assembled with them is still the one assembled.
-        match self.tangent_by.clone().filter(|(_, at)| *at == self.assemblies) {
-            Some((factors, _)) => self.refine_with(&factors.lu)?,
-            None => self.solve_with_skew(Accuracy::Refined)?,
-        }
+        self.solve_tangent()?;
         rhs.copy_from_slice(&self.work.rhs);
         Ok(())
     }
