@@ -73,15 +73,13 @@ pub fn parse_document(text: &str, origin: &str) -> Result<(SuspensionFile, Optio
 /// text, without writing it as text first: the same file, checked and built the same way. What it refuses
 /// is read from the text after all, for the message that places the key.
 pub(crate) fn parse_value(document: &serde_json::Value, origin: &str) -> Result<SuspensionFile, String> {
-    let text = |document: &serde_json::Value| serde_json::to_string(document).map_err(|e| e.to_string());
-    let refused = |document: &serde_json::Value| -> Result<SuspensionFile, String> {
-        parse_document_of_kind(&text(document)?, false, origin).map(|(file, _)| file)
-    };
-    let Ok(file) = <SuspensionFile as serde::Deserialize>::deserialize(document) else { return refused(document) };
-    if file.check_ranges().is_err() || build_check(&file, origin).is_err() {
-        return refused(document);
+    if let Ok(file) = <SuspensionFile as serde::Deserialize>::deserialize(document) {
+        if file.check_ranges().is_ok() && build_check(&file, origin).is_ok() {
+            return Ok(file);
+        }
     }
-    Ok(file)
+    let text = serde_json::to_string(document).map_err(|e| e.to_string())?;
+    parse_document_of_kind(&text, false, origin).map(|(file, _)| file)
 }
 
 /// [`parse_document`] of a text whose kind is known already (from its parsed value, which a variant's edit
