@@ -4,8 +4,10 @@ use crate::body::{Body, BodyId, BodyRef};
 use crate::element::ForceElement;
 use crate::error::ModelError;
 use crate::joint::{build_joint, Joint, JointSpec};
+use crate::math::Vec3;
 use crate::pose::{Pose, BODY_DOFS};
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
+use std::sync::Arc;
 
 /// Index of a joint in a [`Model`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -23,6 +25,9 @@ pub struct RowOrigin {
     pub row: usize,
 }
 
+/// Where bodies' reference points are to be, by body name ([`Model::with_body_origins`]).
+pub type BodyOrigins = HashMap<String, Vec3>;
+
 /// A scene of rigid bodies held by joints and force elements and loaded by loads and drivers.
 ///
 /// The model owns exactly what the scene contains; the solver sizes and assembles only that. Bodies get
@@ -38,12 +43,32 @@ pub struct Model {
     row_end: Vec<usize>,
     elements: Vec<Box<dyn ForceElement>>,
     names: HashSet<String>,
+    /// Where the bodies named here get their reference point, whatever their builder asks.
+    origins: Option<Arc<BodyOrigins>>,
 }
 
 impl Model {
     /// An empty model.
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// An empty model whose bodies named in `origins` get their reference point there instead of where
+    /// [`Model::add_body`] is asked to put it: what is built on them (joints, elements, loads, given in
+    /// global design coordinates) is the same scene, in coordinates about those points. For a model built
+    /// again with some of its numbers moved, kept in the coordinates of the model it was built from
+    /// ([`Model::body_origins`]): a hardpoint that is also a body's reference point (an upright's at its
+    /// wheel centre) then moves that point alone, not the body's coordinates, and a pose of the first model
+    /// is the same placement of every material point in the second. (A replay's Newton iteration from a
+    /// recorded equilibrium is then of the order of what the move changes, not of the move: its curvature
+    /// in the move fell ten thousandfold on a steered MacPherson's toe.)
+    pub fn with_body_origins(origins: Arc<BodyOrigins>) -> Self {
+        Model { origins: Some(origins), ..Self::default() }
+    }
+
+    /// Each body's reference point at design, by name.
+    pub fn body_origins(&self) -> BodyOrigins {
+        self.bodies.iter().map(|b| (b.name.clone(), b.design_pose.position)).collect()
     }
 
     fn claim_name(&mut self, name: &str) -> Result<(), ModelError> {
@@ -75,6 +100,10 @@ impl Model {
             return Err(ModelError::NonFinite { item: name.to_string(), what: "design pose" });
         }
         self.claim_name(name)?;
+        let mut design_pose = design_pose;
+        if let Some(at) = self.origins.as_ref().and_then(|o| o.get(name)) {
+            design_pose.position = *at;
+        }
         self.bodies.push(Body { name: name.to_string(), design_pose });
         Ok(BodyId(self.bodies.len() - 1))
     }

@@ -220,8 +220,13 @@ fn a_moved_model_read_from_its_document_is_the_one_its_text_gives() {
 /// the moved model, as a fraction of the allowed difference (1e-6 of the figure's derivative, or of the
 /// largest derivative of a column over its rows, or 1e-9 absolute; derivatives times the parameter's
 /// size). Also how many figures and cells were compared. Every figure with a value and every number in
-/// the table must have a derivative.
-fn against_report_re_runs(doc: &serde_json::Value, pointers: &[String], analysis: Analysis) -> (f64, usize, usize) {
+/// the table must have a derivative. The cells are judged when `cells_too`.
+fn against_report_re_runs(
+    doc: &serde_json::Value,
+    pointers: &[String],
+    analysis: Analysis,
+    cells_too: bool,
+) -> (f64, usize, usize) {
     let p = Parameters::new(doc, pointers).unwrap();
     let settings = Settings { steps: STEPS, ..Settings::default() };
     let s = analysis_sensitivity(analysis, &p, &settings).unwrap_or_else(|e| panic!("{}: {e}", analysis.name()));
@@ -273,7 +278,7 @@ fn against_report_re_runs(doc: &serde_json::Value, pointers: &[String], analysis
         // so its column carries the design load's own estimate, times 1.5 at most.
         let design_load = runs.iter().filter_map(|r| r.figure("design_wheel_load")?.error).fold(0.0, f64::max) * 1.5;
         let moves_with_design_load = analysis == Analysis::VerticalForce && settings.range.is_none();
-        for (c, column) in s.report.table.columns.iter().enumerate() {
+        for (c, column) in s.report.table.columns.iter().enumerate().filter(|_| cells_too) {
             let column_scale = (0..rows).filter_map(|r| s.table[k][r][c].ok()).fold(0.0_f64, |m, v| m.max(v.abs()));
             let estimate = runs.iter().filter_map(|r| r.accuracy.columns.get(c)?.1).fold(0.0, f64::max);
             for r in 0..rows {
@@ -317,11 +322,33 @@ fn every_figure_and_cell_of_the_macpherson_suite_matches_the_report_re_run() {
     let doc = document("macpherson.json");
     let (mut worst, mut figures, mut cells) = (0.0_f64, 0, 0);
     for analysis in kc::planned(&Parameters::new(&doc, &[]).unwrap().file().unwrap(), &[]).into_iter().flatten() {
-        let (w, f, c) = against_report_re_runs(&doc, &pointers, analysis);
+        let (w, f, c) = against_report_re_runs(&doc, &pointers, analysis, true);
         println!("{}: {w:.3} of the allowed difference over {f} figures and {c} cells", analysis.name());
         (worst, figures, cells) = (worst.max(w), figures + f, cells + c);
     }
     println!("MacPherson suite: {figures} figures and {cells} cells, {worst:.3} of the allowed difference");
+    assert!(worst <= 1.0, "{worst:e}");
+}
+
+/// Every figure of every analysis of the MacPherson's suite against the report re-run, for every
+/// hardpoint coordinate: among them those that are also a body's reference point (the wheel centre the
+/// upright's, the lower ball joint the lower arm's, the strut's ends the rod's). Replayed on moved models
+/// built with their bodies where the move put them, one Newton iteration from a recorded pose moved each
+/// such body by the move itself, and the figures were 25 times the allowed off (the static load's wheel
+/// rate against the lower ball joint's y, 2.5e-5 of its rate; a steered row's Ackermann against the wheel
+/// centre's y, 3.2e-5); the moved models are now built in the recorded ones' coordinates
+/// (`kc::Models::moved`): 0.644 of the allowed. Measured: see the line printed.
+#[test]
+fn every_figure_of_the_macpherson_suite_matches_the_re_run_for_hardpoints_that_place_a_body() {
+    let doc = document("macpherson.json");
+    let pointers = hardpoint_pointers(&doc);
+    let file = Parameters::new(&doc, &[]).unwrap().file().unwrap();
+    let (mut worst, mut figures) = (0.0_f64, 0);
+    for analysis in kc::planned(&file, &[]).into_iter().flatten() {
+        let (w, f, _) = against_report_re_runs(&doc, &pointers, analysis, false);
+        (worst, figures) = (worst.max(w), figures + f);
+    }
+    println!("MacPherson suite, every hardpoint coordinate: {figures} figures, {worst:.3} of the allowed difference");
     assert!(worst <= 1.0, "{worst:e}");
 }
 
@@ -337,7 +364,7 @@ fn suite_against_re_runs(doc: &serde_json::Value, pointers: &[String]) -> (f64, 
     assert_eq!(suite.skipped, report.skipped);
     let (mut worst, mut figures, mut cells) = (0.0_f64, 0, 0);
     for a in &suite.analyses {
-        let (w, f, c) = against_report_re_runs(doc, pointers, a.report.analysis);
+        let (w, f, c) = against_report_re_runs(doc, pointers, a.report.analysis, true);
         println!("{}: {w:.3} of the allowed difference over {f} figures and {c} cells", a.report.analysis.name());
         (worst, figures, cells) = (worst.max(w), figures + f, cells + c);
     }

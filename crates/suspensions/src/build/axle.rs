@@ -32,7 +32,13 @@ impl Axle {
     /// Builds both corners of `template`, the left as described and the right mirrored, their tie rods on
     /// one rack (a body on a lateral slide when steering, else the chassis), held as `rig` says.
     pub fn build(template: &impl CornerTemplate, rig: AxleRig) -> Result<Axle, ModelError> {
-        let mut model = Model::new();
+        Axle::build_in(Model::new(), template, rig)
+    }
+
+    /// [`Axle::build`] into `model`, an empty model (one that places its bodies' reference points where
+    /// another build of the template put them: [`Model::with_body_origins`]).
+    pub fn build_in(model: Model, template: &impl CornerTemplate, rig: AxleRig) -> Result<Axle, ModelError> {
+        let mut model = model;
         let (left, right, cross) =
             add_both_corners(&mut model, template, ["left ", "right "], rig == AxleRig::Steering)?;
         let travel_rates = match rig {

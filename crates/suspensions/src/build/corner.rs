@@ -62,7 +62,13 @@ impl Corner {
     /// moves both wheels alike; the loads of [`Corner::add_wheel_force`] and [`Corner::add_wheel_torque`]
     /// act on both, in phase (see there).
     pub fn build(template: &impl CornerTemplate, side: Side, rig: Rig) -> Result<Corner, ModelError> {
-        let mut model = Model::new();
+        Corner::build_in(Model::new(), template, side, rig)
+    }
+
+    /// [`Corner::build`] into `model`, an empty model (one that places its bodies' reference points
+    /// where another build of the template put them: [`Model::with_body_origins`]).
+    pub fn build_in(model: Model, template: &impl CornerTemplate, side: Side, rig: Rig) -> Result<Corner, ModelError> {
+        let mut model = model;
         let travel_rate = match rig {
             Rig::WheelTravel => Some(1.0),
             Rig::Steering | Rig::HeightHeld => Some(0.0),

@@ -4,20 +4,24 @@ use crate::build::{Axle, AxleRig, Corner, Rig};
 use crate::description::Side;
 use crate::file::SuspensionFile;
 use crate::kc::reduce::{said, with_rigid_bushings};
+use elastokin_core::Model;
 use std::borrow::Cow;
-use std::sync::OnceLock;
+use std::sync::{Arc, OnceLock};
 
 /// A model file and what the K&C analyses build of it — its left corner on each rig, its axle on each
 /// axle rig, the file with its bushings made rigid — each built when an analysis first asks for it and
 /// kept for every other analysis run on the same `Models` (a suite, the replays of sensitivities on one
 /// moved model). An analysis takes its own copy of a corner or axle to load and solve: what it gets is
-/// the model a build of the file gives, number for number.
+/// the model a build of the file gives, number for number (in the coordinates of another file's
+/// models for [`Models::moved`]).
 #[derive(Debug)]
 pub struct Models<'f> {
     file: Cow<'f, SuspensionFile>,
     corners: [OnceLock<Result<Corner, String>>; 4],
     axles: [OnceLock<Result<Axle, String>>; 5],
-    rigid: OnceLock<Option<Box<Models<'static>>>>,
+    rigid: OnceLock<Option<Arc<Models<'static>>>>,
+    /// The models whose bodies' reference points these are built with ([`Models::moved`]).
+    from: Option<Arc<Models<'static>>>,
 }
 
 impl<'f> Models<'f> {
@@ -31,8 +35,27 @@ impl<'f> Models<'f> {
         Models::of(Cow::Owned(file))
     }
 
+    /// Nothing built yet of `file`, a move of the file of `from` (a number of it changed), whose models
+    /// are each built with the bodies' reference points of the same model of `from`
+    /// ([`Model::with_body_origins`]): the same scenes as [`Models::owning`] builds, in `from`'s
+    /// coordinates, so that a pose of one of `from`'s models places every material point of the moved
+    /// one as it placed it in `from`'s (a replay of a recorded run on them moves by what the move
+    /// changes, not by a shift of coordinates; `crate::design::sensitivity`).
+    pub fn moved(file: SuspensionFile, from: Arc<Models<'static>>) -> Models<'static> {
+        Models { from: Some(from), ..Models::owning(file) }
+    }
+
     fn of(file: Cow<'f, SuspensionFile>) -> Self {
-        Models { file, corners: Default::default(), axles: Default::default(), rigid: OnceLock::new() }
+        Models { file, corners: Default::default(), axles: Default::default(), rigid: OnceLock::new(), from: None }
+    }
+
+    /// An empty model for a build of this file, in the coordinates of `model` of [`Models::moved`]'s
+    /// `from` (where it has that model: else a build's own).
+    fn empty(&self, model: impl FnOnce(&Models<'static>) -> Option<Model>) -> Model {
+        match self.from.as_deref().and_then(model) {
+            Some(m) => Model::with_body_origins(Arc::new(m.body_origins())),
+            None => Model::new(),
+        }
     }
 
     /// The model file.
@@ -49,7 +72,11 @@ impl<'f> Models<'f> {
             Rig::HeightHeld => 2,
             Rig::Free => 3,
         };
-        self.corners[index].get_or_init(|| self.file.suspension.build(Side::Left, rig).map_err(said)).clone()
+        let build = || {
+            let model = self.empty(|from| from.corner(rig).ok().map(|c| c.model));
+            Corner::build_in(model, &self.file.suspension, Side::Left, rig).map_err(said)
+        };
+        self.corners[index].get_or_init(build).clone()
     }
 
     /// The axle on `rig`, as [`Axle::build`] builds it (its error in the user's words).
@@ -61,11 +88,24 @@ impl<'f> Models<'f> {
             AxleRig::HeightHeld => 3,
             AxleRig::Free => 4,
         };
-        self.axles[index].get_or_init(|| Axle::build(&self.file.suspension, rig).map_err(said)).clone()
+        let build = || {
+            let model = self.empty(|from| from.axle(rig).ok().map(|a| a.model));
+            Axle::build_in(model, &self.file.suspension, rig).map_err(said)
+        };
+        self.axles[index].get_or_init(build).clone()
     }
 
     /// The model with every bushing rigid ([`with_rigid_bushings`]), if it has bushings to make rigid.
     pub(super) fn rigid(&self) -> Option<&Models<'static>> {
-        self.rigid.get_or_init(|| with_rigid_bushings(&self.file).map(|f| Box::new(Models::owning(f)))).as_deref()
+        let build = |f| match self.from.as_deref().and_then(Models::rigid_shared) {
+            Some(from) => Arc::new(Models::moved(f, from)),
+            None => Arc::new(Models::owning(f)),
+        };
+        self.rigid.get_or_init(|| with_rigid_bushings(&self.file).map(build)).as_deref()
+    }
+
+    fn rigid_shared(&self) -> Option<Arc<Models<'static>>> {
+        self.rigid();
+        self.rigid.get().cloned().flatten()
     }
 }
