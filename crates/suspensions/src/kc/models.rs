@@ -51,7 +51,7 @@ impl<'f> Models<'f> {
 
     /// An empty model for a build of this file, in the coordinates of `model` of [`Models::moved`]'s
     /// `from` (where it has that model: else a build's own).
-    fn empty(&self, model: impl FnOnce(&Models<'static>) -> Option<Model>) -> Model {
+    fn empty(&self, model: impl for<'m> FnOnce(&'m Models<'static>) -> Option<&'m Model>) -> Model {
         match self.from.as_deref().and_then(model) {
             Some(m) => Model::with_body_origins(Arc::new(m.body_origins())),
             None => Model::new(),
@@ -66,6 +66,11 @@ impl<'f> Models<'f> {
     /// The left corner on `rig`, as [`crate::description::Template::build`] builds it (its error in the
     /// user's words).
     pub fn corner(&self, rig: Rig) -> Result<Corner, String> {
+        self.built_corner(rig).clone()
+    }
+
+    /// The left corner on `rig`, built once.
+    fn built_corner(&self, rig: Rig) -> &Result<Corner, String> {
         let index = match rig {
             Rig::WheelTravel => 0,
             Rig::Steering => 1,
@@ -73,14 +78,19 @@ impl<'f> Models<'f> {
             Rig::Free => 3,
         };
         let build = || {
-            let model = self.empty(|from| from.corner(rig).ok().map(|c| c.model));
+            let model = self.empty(|from| from.built_corner(rig).as_ref().ok().map(|c| &c.model));
             Corner::build_in(model, &self.file.suspension, Side::Left, rig).map_err(said)
         };
-        self.corners[index].get_or_init(build).clone()
+        self.corners[index].get_or_init(build)
     }
 
     /// The axle on `rig`, as [`Axle::build`] builds it (its error in the user's words).
     pub fn axle(&self, rig: AxleRig) -> Result<Axle, String> {
+        self.built_axle(rig).clone()
+    }
+
+    /// The axle on `rig`, built once.
+    fn built_axle(&self, rig: AxleRig) -> &Result<Axle, String> {
         let index = match rig {
             AxleRig::ParallelTravel => 0,
             AxleRig::OppositeTravel => 1,
@@ -89,10 +99,10 @@ impl<'f> Models<'f> {
             AxleRig::Free => 4,
         };
         let build = || {
-            let model = self.empty(|from| from.axle(rig).ok().map(|a| a.model));
+            let model = self.empty(|from| from.built_axle(rig).as_ref().ok().map(|a| &a.model));
             Axle::build_in(model, &self.file.suspension, rig).map_err(said)
         };
-        self.axles[index].get_or_init(build).clone()
+        self.axles[index].get_or_init(build)
     }
 
     /// The model with every bushing rigid ([`with_rigid_bushings`]), if it has bushings to make rigid.
