@@ -412,26 +412,6 @@ impl Assembly {
         }
     }
 
-    /// `y ← y − T x` with the assembled tangent `T = [K + S, Jᵀ; J, 0]` (`x` and `y` of length `n + m`): the
-    /// residual of `T x = y`, in place.
-    pub fn subtract_kkt_times(&self, x: &[f64], y: &mut [f64]) {
-        let n = self.n;
-        for c in 0..n {
-            for p in self.k_col_ptr[c]..self.k_col_ptr[c + 1] {
-                let (r, v, s) = (self.k_row_idx[p], self.k_values[p], self.k_skew[p]);
-                y[r] -= (v + s) * x[c];
-                if r != c {
-                    y[c] -= (v - s) * x[r];
-                }
-            }
-            for p in self.j_col_ptr[c]..self.j_col_ptr[c + 1] {
-                let i = n + self.j_row_idx[p];
-                y[i] -= self.j_values[p] * x[c];
-                y[c] -= self.j_values[p] * x[i];
-            }
-        }
-    }
-
     /// `y ← S x` with the skew part of `K`; returns `max |S|` (0 when `K` is symmetric).
     pub fn skew_times(&self, x: &[f64], y: &mut [f64]) -> f64 {
         y.fill(0.0);
@@ -517,46 +497,6 @@ mod tests {
         }
         // 5 bushings to the ground (36 entries each), 3 springs and 2 joints between bodies (144 each).
         assert_eq!(checked, 5 * 36 + 5 * 144);
-    }
-
-    /// `subtract_kkt_times` is the product with the matrix the dense LU factorizes from the same values (its
-    /// own reading of the pattern): at a turned state with joint forces and a world-fixed load (a skew
-    /// part), `b − T z` vanishes for the LU's refined solution `z` of `T z = b`.
-    #[test]
-    fn the_tangent_product_inverts_the_dense_lu_solve() {
-        use crate::kkt::{Accuracy, DenseLu, KktBackend, KktOptions, KktValues};
-        let mut model = tangle();
-        let tip = elastokin_elements::PointForce::new(
-            "tip",
-            model.body_id("b4").unwrap().into(),
-            Vec3::new(4.2, 0.3, 0.1),
-            Vec3::new(300.0, -200.0, 800.0),
-        )
-        .unwrap();
-        model.add_element(tip).unwrap();
-        let mut a = Assembly::new(&model, (0..model.constraint_rows()).collect());
-        let poses: Vec<Pose> = (0..5)
-            .map(|i| {
-                let mut p = Pose::at(Vec3::new(i as f64 + 0.01, 0.002 * i as f64, -0.003));
-                p.apply_increment6(&[0.0, 0.0, 0.0, 0.02, -0.01 * i as f64, 0.03]);
-                p
-            })
-            .collect();
-        let lambda = [120.0, -80.0, 45.0, 300.0];
-        a.assemble(&model, &poses, 1.0, &lambda, Some(Tangent::Full));
-        assert!(a.has_skew && a.k_skew.iter().any(|s| *s != 0.0));
-        let mut lu = DenseLu::analyze(&a.kkt_pattern(), KktOptions::default()).unwrap();
-        lu.factorize(KktValues { k: &a.k_values, k_skew: Some(&a.k_skew), j: &a.j_values }).unwrap();
-        let size = a.n + a.m();
-        let b: Vec<f64> = (0..size).map(|i| ((i * 7 % 11) as f64 - 5.0) * 10f64.powi(i as i32 % 3)).collect();
-        let mut z = b.clone();
-        lu.solve_in_place(&mut z, Accuracy::Refined).unwrap();
-        let mut residual = b.clone();
-        a.subtract_kkt_times(&z, &mut residual);
-        let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let worst = residual.iter().fold(0.0f64, |m, r| m.max(r.abs()));
-        // Measured: 4.7e-13 of the right-hand side's largest entry (500).
-        assert!(worst <= 1e-12 * scale, "{worst:e}");
     }
 
     /// Every row's position in its bodies' columns of `J` is where the pattern lists that row.

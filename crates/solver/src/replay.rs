@@ -26,11 +26,11 @@
 //! ([`StaticSolver::chord_correction`](crate::StaticSolver::chord_correction)) a right-hand side that is
 //! the recorded one corrected by the few elements and joints the move touched (the moved model's
 //! differing from the recorded one's, found once per solver), or, at another load parameter, the moved
-//! model's assembled whole; and a path tangent or a compliance read
-//! there solves with them and one refinement step against the moved tangent
-//! ([`StaticSolver::path_tangent`](crate::StaticSolver::path_tangent),
-//! [`StaticSolver::factorize_tangent`](crate::StaticSolver::factorize_tangent)). No replay factorizes a
-//! tangent at its moved equilibria, nor assembles the residual at the moved ones (a moved equilibrium reports the
+//! model's assembled whole. A path tangent or a compliance read at a moved equilibrium is the moved
+//! model's own, its tangent there factorized ([`StaticSolver::path_tangent`](crate::StaticSolver::path_tangent),
+//! [`StaticSolver::factorize_tangent`](crate::StaticSolver::factorize_tangent): the recorded factors
+//! refined against it are off by as much as the move changes the tangent's softest modes). No replay
+//! assembles the residual at its moved equilibria (a moved equilibrium reports the
 //! recorded one's residuals: its own are of the second order in the move), and a replayed solver whose
 //! recorded one kept every constraint row checks neither redundancy nor restraint again
 //! (`replays_independent_rows`). Where no factors were kept (the sparse backend), the iteration is the exact one

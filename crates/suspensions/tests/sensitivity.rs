@@ -232,6 +232,15 @@ fn against_report_re_runs(
     let s = analysis_sensitivity(analysis, &p, &settings).unwrap_or_else(|e| panic!("{}: {e}", analysis.name()));
 
     let rows = s.report.table.rows.len();
+    // Each figure's largest effect over the parameters (derivative times the parameter's size): a
+    // derivative is judged against 1e-6 of it, as a cell is against its column's largest.
+    let effects: Vec<f64> = (0..s.report.figures.len())
+        .map(|j| {
+            (0..p.len())
+                .filter_map(|k| Some(s.figures[k][j].ok()?.abs() * p.values[k].abs().max(0.1)))
+                .fold(0.0, f64::max)
+        })
+        .collect();
     let (mut worst, mut figures, mut cells) = (0.0_f64, 0, 0);
     let mut worst_what = String::new();
     for k in 0..p.len() {
@@ -254,9 +263,14 @@ fn against_report_re_runs(
                 };
                 let fd = (8.0 * (b - c) - (a - e)) / (12.0 * d);
                 let exact = exact.unwrap_or_else(|| panic!("{what}: no derivative, re-runs give {fd}"));
-                // And the re-runs' rounding: a hundred ulps of the values differenced (a force of 3 kN whose
-                // derivative is next to zero leaves 1e-8 N/m of rounding over the step of 1e-4 m).
-                let rounding = 100.0 * f64::EPSILON * [a, b, c, e].iter().fold(0.0_f64, |m, v| m.max(v.abs())) / d;
+                // And rounding: a hundred ulps of the values differenced (a force of 3 kN whose derivative is
+                // next to zero leaves 1e-8 N/m of rounding over the step of 1e-4 m), and at least ten of a
+                // thousand in the report's unit (a figure near zero in millimetres, such as a symmetric
+                // axle's lateral roll-centre offset, is the difference of coordinates of that order: its
+                // derivatives, zero by symmetry, read 5e-9 mm per unit in the re-runs and 1.6e-9 in the
+                // replays of Chrono's double wishbone, 1.07 times the allowed without this).
+                let largest = [a, b, c, e].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+                let rounding = (100.0 * largest).max(10.0 * 1e3) * f64::EPSILON / d;
                 let allowed = (1e-6 * scale.unwrap_or(fd.abs()) * size)
                     .max(1e-9)
                     .max(1.5 * estimate / d * size)
@@ -271,7 +285,8 @@ fn against_report_re_runs(
         for (j, f) in s.report.figures.iter().enumerate() {
             let values = [0, 1, 2, 3].map(|i| runs[i].figure(&f.key).and_then(|g| g.value));
             let estimate = runs.iter().filter_map(|r| r.figure(&f.key)?.error).fold(0.0, f64::max);
-            judge(s.figures[k][j].ok(), values, estimate, None, &format!("{name} {} {}", p.pointers[k], f.key));
+            let scale = Some(effects[j] / size);
+            judge(s.figures[k][j].ok(), values, estimate, scale, &format!("{name} {} {}", p.pointers[k], f.key));
             figures += 1;
         }
         // The vertical force's load parameter is its range over the design wheel load (0.5 to 1.5 times it),
@@ -349,6 +364,27 @@ fn every_figure_of_the_macpherson_suite_matches_the_re_run_for_hardpoints_that_p
         (worst, figures) = (worst.max(w), figures + f);
     }
     println!("MacPherson suite, every hardpoint coordinate: {figures} figures, {worst:.3} of the allowed difference");
+    assert!(worst <= 1.0, "{worst:e}");
+}
+
+/// The double wishbone's static load and vertical-force sweep, every figure (the wheel rates among them)
+/// against the report re-run, for every hardpoint coordinate. Its tangent on the free rig has a mode that
+/// a move of a mount changes much. With the replays' steps of 1e-3, the recorded tangent's factors
+/// refined once against the moved tangent left the static load's wheel rate against the spring's arm
+/// mount's y 11.8 times the allowed off, and even with the moved tangent factorized the vertical force's
+/// wheel rate against the upper arm's front mount's y was 1.65 times off (the step's fourth power). At
+/// the step of 5e-4: 0.73 refined, 0.103 factorized (`RELATIVE_STEP`,
+/// `StaticSolver::factorize_tangent`). Measured: see the line printed.
+#[test]
+fn the_double_wishbones_wheel_rates_match_the_re_run_for_every_hardpoint() {
+    let doc = document("double_wishbone.json");
+    let pointers = hardpoint_pointers(&doc);
+    let (mut worst, mut figures) = (0.0_f64, 0);
+    for analysis in [Analysis::StaticLoad, Analysis::VerticalForce] {
+        let (w, f, _) = against_report_re_runs(&doc, &pointers, analysis, false);
+        (worst, figures) = (worst.max(w), figures + f);
+    }
+    println!("double wishbone, every hardpoint coordinate: {figures} figures, {worst:.3} of the allowed difference");
     assert!(worst <= 1.0, "{worst:e}");
 }
 

@@ -76,16 +76,13 @@ pub struct StaticSolver<'m> {
     /// A recording's second dense LU, which factorizes the tangent at each recorded equilibrium for the
     /// replays and leaves the solver's own factorization as the run left it.
     recorded_lu: Option<crate::kkt::DenseLu>,
-    /// A replay's moved equilibria with the factors of the recorded tangent there: a path tangent asked
-    /// for at one of them solves with those factors ([`StaticSolver::path_tangent`]).
-    replayed: Vec<(f64, Vec<Pose>, replay::Factors)>,
+    /// A replay's moved equilibria (load parameter and poses): a tangent factorized at one of them is
+    /// scaled afresh ([`StaticSolver::factorize_tangent`]).
+    replayed: Vec<(f64, Vec<Pose>)>,
     /// Which steps of a sweep a replay moves (all when `None`).
     replay_rows: Option<replay::ReplayRows>,
     /// In a replay, the recorded model and what this one differs from it in.
     touched: Option<replay::Touched>,
-    /// In a replay, the recorded factors [`StaticSolver::factorize_tangent`] left for the solves at a moved
-    /// equilibrium (until the next factorization).
-    tangent_by: Option<replay::Factors>,
 }
 
 /// What a [`StaticSolver`] allocates for one topology of model: the KKT pattern and slot maps, the
@@ -358,7 +355,6 @@ impl<'m> StaticSolver<'m> {
             replayed: Vec::new(),
             replay_rows: None,
             touched,
-            tangent_by: None,
         };
         if !checked {
             solver.check_restrained(&poses)?;
@@ -412,7 +408,6 @@ impl<'m> StaticSolver<'m> {
     }
 
     fn factorize(&mut self) -> Result<crate::kkt::FactorReport, SolverError> {
-        self.tangent_by = None;
         let a = &self.work.assembly;
         let values = KktValues { k: &a.k_values, k_skew: a.has_skew.then_some(&a.k_skew[..]), j: &a.j_values };
         self.factored = None;

@@ -57,7 +57,7 @@ impl StaticSolver<'_> {
         let moved = match factors {
             Some(factors) => {
                 let moved = self.kept_chord_correction(&at, factors)?;
-                self.replayed.push((moved.t, moved.poses.clone(), factors.clone()));
+                self.replayed.push((moved.t, moved.poses.clone()));
                 moved
             }
             None => self.newton_correction(&at)?,
@@ -110,13 +110,9 @@ impl StaticSolver<'_> {
         Ok(Sweep { mode: sweep.mode, steps, limit })
     }
 
-    /// The recorded tangent's factors at `state` when it is one of this replay's moved equilibria.
-    pub(super) fn replayed_factors(&self, state: &State) -> Option<Factors> {
-        self.replayed
-            .iter()
-            .rev()
-            .find(|(t, poses, _)| *t == state.t && *poses == state.poses)
-            .map(|(.., factors)| factors.clone())
+    /// Whether `state` is one of this replay's moved equilibria.
+    pub(super) fn at_replayed(&self, state: &State) -> bool {
+        self.replayed.iter().rev().any(|(t, poses)| *t == state.t && *poses == state.poses)
     }
 }
 

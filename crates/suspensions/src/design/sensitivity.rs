@@ -38,11 +38,13 @@ use rayon::prelude::*;
 use std::sync::{Arc, OnceLock};
 
 /// A parameter is moved by this fraction of its size, and by twice that: of a length at least of 0.1 m
-/// (10 µm of a hardpoint near the origin), of anything else its own size (a torsion constant of 3e-8 m⁴
-/// moves by 3e-11), or of 0.1 where it is zero. What the replays read is smooth in the move: the
+/// (50 µm of a hardpoint near the origin), of anything else its own size (a torsion constant of 3e-8 m⁴
+/// moves by 1.5e-11), or of 0.1 where it is zero. What the replays read is smooth in the move: the
 /// error of the extrapolated difference is of order `step⁴`, its rounding of order `ε / step` (1e-6 left
-/// 2e-4 of a small toe rate to rounding; 1e-4 leaves 1e-6 and less).
-pub const RELATIVE_STEP: f64 = 1e-3;
+/// 2e-4 of a small toe rate to rounding; 1e-3 left 5e-6 of a double wishbone's wheel rate against its
+/// upper arm's front mount to the `step⁴` term, whose one Newton iteration from the recorded equilibrium
+/// meets a mode of the tangent the move changes much).
+pub const RELATIVE_STEP: f64 = 5e-4;
 
 /// The moves of a parameter the differences take, in steps: `+h, −h, +2h, −2h`.
 const SHIFTS: [f64; 4] = [1.0, -1.0, 2.0, -2.0];
