@@ -217,9 +217,9 @@ fn a_moved_model_read_from_its_document_is_the_one_its_text_gives() {
 }
 
 /// How far the sensitivities of `analysis` are from Richardson differences of the K&C report itself run on
-/// the moved model, as a fraction of the allowed difference (1e-6 of the figure's derivative, or of the
-/// largest derivative of a column over its rows, or 1e-9 absolute; derivatives times the parameter's
-/// size). Also how many figures and cells were compared. Every figure with a value and every number in
+/// the moved model, as a fraction of the allowed difference (1e-6 of the figure's largest effect over
+/// the parameters, or of the largest derivative of a column over its rows, or 1e-9
+/// absolute; derivatives times the parameter's size). Also how many figures and cells were compared. Every figure with a value and every number in
 /// the table must have a derivative. The cells are judged when `cells_too`.
 fn against_report_re_runs(
     doc: &serde_json::Value,
