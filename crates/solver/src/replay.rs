@@ -23,7 +23,7 @@
 //! What a replay costs: the recording factorizes the exact tangent at each equilibrium it keeps (when the
 //! solver's backend is the dense LU) and keeps the factors, with the recorded model's Newton right-hand
 //! side there and a copy of each solver's model; every replay's iteration there solves with them
-//! ([`StaticSolver::chord_correction`](crate::StaticSolver::chord_correction)) a right-hand side that is
+//! (`StaticSolver::kept_chord_correction`) a right-hand side that is
 //! the recorded one corrected by the few elements and joints the move touched (the moved model's
 //! differing from the recorded one's, found once per solver), or, at another load parameter, the moved
 //! model's assembled whole. A path tangent or a compliance read at a moved equilibrium is the moved
@@ -292,6 +292,11 @@ pub(crate) type RecordedEquilibrium = (Result<StepResult, SolverError>, Pieces, 
 
 /// A recorded sweep: its path, what it returned, and the pieces and tangent's factors at each of its steps.
 pub(crate) type RecordedSweep = (LoadPath, Result<Sweep, SolverError>, Vec<Pieces>, Vec<Option<Factors>>);
+
+/// Whether this thread is replaying a recording: every solve a solver makes is then a recorded one moved.
+pub(crate) fn replaying() -> bool {
+    ACTIVE.with(|a| matches!(a.borrow().as_ref(), Some(Active::Replaying { .. })))
+}
 
 /// Whether a new solver of a model with `rows` constraint rows replays a recorded solver of as many rows
 /// that kept every one of them. Its model is then known without looking again to have no redundant rows

@@ -76,9 +76,6 @@ pub struct StaticSolver<'m> {
     /// A recording's second dense LU, which factorizes the tangent at each recorded equilibrium for the
     /// replays and leaves the solver's own factorization as the run left it.
     recorded_lu: Option<crate::kkt::DenseLu>,
-    /// A replay's moved equilibria (load parameter and poses): a tangent factorized at one of them is
-    /// scaled afresh ([`StaticSolver::factorize_tangent`]).
-    replayed: Vec<(f64, Vec<Pose>)>,
     /// Which steps of a sweep a replay moves (all when `None`).
     replay_rows: Option<replay::ReplayRows>,
     /// In a replay, the recorded model and what this one differs from it in.
@@ -352,7 +349,6 @@ impl<'m> StaticSolver<'m> {
             factored: None,
             taped,
             recorded_lu: None,
-            replayed: Vec::new(),
             replay_rows: None,
             touched,
         };

@@ -3,14 +3,12 @@
 
 use super::*;
 
-/// What one Newton iteration ([`StaticSolver::newton_correction`] and the chord iterations) solves its
+/// What one Newton iteration ([`StaticSolver::newton_correction`], a replay's chord iteration) solves its
 /// increment with.
 #[derive(Clone, Copy)]
 enum SolvedWith<'a> {
     /// The exact tangent, assembled and factorized here.
     Exact,
-    /// The factors of a tangent made elsewhere; the residual assembled here.
-    Factors(&'a crate::kkt::LuFactors),
     /// What a recording kept at the step: its factors, and its right-hand side, corrected by what the
     /// replay's move touched where it can be ([`StaticSolver::touched_rhs`]).
     Kept(&'a super::replay::Kept),
@@ -267,35 +265,18 @@ impl<'m> StaticSolver<'m> {
     }
 
     /// One Newton iteration on the exact equilibrium at `step.t` from `step`, as
-    /// [`StaticSolver::newton_correction`], but solved with `factors`, a factorization of the tangent made
-    /// elsewhere (a recorded model's at a recorded equilibrium, [`crate::replay`]): the step moved by
-    /// `−T₀⁻¹R`, with `R` this model's residual at `step`. Assembles the residual once, at `step`, and
-    /// factorizes nothing. Where `T₀` is the tangent at `step` of a model this one is a move of, the
-    /// result's rate with respect to the move is the exact one's: both are `−T₀⁻¹ ∂R/∂p` there.
+    /// [`StaticSolver::newton_correction`], but solved with what a recording kept at `step` (`kept`,
+    /// [`crate::replay`]): the factors of the recorded model's tangent there, `T₀`, so that the step moves
+    /// by `−T₀⁻¹R`, with `R` this model's residual at `step`, and nothing is factorized. This model being a
+    /// move of the recorded one, the result's rate with respect to the move is the exact one's: both are
+    /// `−T₀⁻¹ ∂R/∂p` there. Where the move touched only some elements and joints and `step` is at the
+    /// recorded load parameter, `R` is the recorded right-hand side corrected by those
+    /// ([`StaticSolver::touched_rhs`]), not assembled whole; the same to rounding.
     ///
     /// The returned step reports `step`'s residuals, not its own: it is a move of an equilibrium by a
     /// first-order step, whose residual is of the second order in the move, and what a replay reads off it
     /// are its poses and multipliers (assembling the residual once more there cost a replay a fifth of its
     /// time).
-    pub fn chord_correction(
-        &mut self,
-        step: &StepResult,
-        factors: &crate::kkt::LuFactors,
-    ) -> Result<StepResult, SolverError> {
-        let size = self.work.assembly.n + self.work.assembly.m();
-        if factors.order() != size {
-            return Err(SolverError::InvalidInput {
-                what: "tangent factors",
-                why: format!("of order {} for a system of {size} unknowns", factors.order()),
-            });
-        }
-        self.one_iteration(step, SolvedWith::Factors(factors))
-    }
-
-    /// [`StaticSolver::chord_correction`] with what a recording kept at `step` (`kept`): where the replay's
-    /// move touched only some elements and joints and `step` is at the recorded load parameter, the
-    /// right-hand side is the recorded one corrected by those ([`StaticSolver::touched_rhs`]), not
-    /// assembled whole; the same iteration to rounding.
     pub(super) fn kept_chord_correction(
         &mut self,
         step: &StepResult,
@@ -311,7 +292,6 @@ impl<'m> StaticSolver<'m> {
         let mut state = self.state_of(step);
         let factors = match with {
             SolvedWith::Exact => None,
-            SolvedWith::Factors(factors) => Some(factors),
             SolvedWith::Kept(kept) => Some(&kept.lu),
         };
         // The right-hand side from what the recording kept, corrected by what the move touched; else

@@ -55,11 +55,7 @@ impl StaticSolver<'_> {
     ) -> Result<StepResult, SolverError> {
         let at = StepResult { t, ..recorded };
         let moved = match factors {
-            Some(factors) => {
-                let moved = self.kept_chord_correction(&at, factors)?;
-                self.replayed.push((moved.t, moved.poses.clone()));
-                moved
-            }
+            Some(factors) => self.kept_chord_correction(&at, factors)?,
             None => self.newton_correction(&at)?,
         };
         if moved.element_pieces(self.model) != pieces {
@@ -110,23 +106,17 @@ impl StaticSolver<'_> {
         Ok(Sweep { mode: sweep.mode, steps, limit })
     }
 
-    /// Whether `state` is one of this replay's moved equilibria.
-    pub(super) fn at_replayed(&self, state: &State) -> bool {
-        self.replayed.iter().rev().any(|(t, poses)| *t == state.t && *poses == state.poses)
-    }
-}
-
-impl StaticSolver<'_> {
     /// The Newton right-hand side (`Q − Jᵀλ`, `−Φ`) of this model at `state` into the workspace's, as the
     /// recorded one `kept` there corrected by the touched elements and joints, when `state` is at the
     /// recorded load parameter; `false` (nothing written) when it cannot be: not a replay, another load
-    /// parameter (the loads and drivers moved too), or other parts.
+    /// parameter (the loads and drivers moved too), or other parts. (The system is the recorded one's
+    /// size: a replayed solver of other coordinates or kept rows is refused at its creation.)
     pub(super) fn touched_rhs(&mut self, state: &State, kept: &Kept) -> bool {
         let Some(touched) = &self.touched else { return false };
-        let (out, row_joint, n) = (&mut self.work.rhs, &self.work.assembly.row_joint, self.work.assembly.n);
-        if state.t != kept.t || out.len() != kept.rhs.len() {
+        if state.t != kept.t {
             return false;
         }
+        let (out, row_joint, n) = (&mut self.work.rhs, &self.work.assembly.row_joint, self.work.assembly.n);
         let (moved, recorded) = (self.model, touched.recorded.as_ref());
         let (poses, t) = (&state.poses, state.t);
         out.copy_from_slice(&kept.rhs);

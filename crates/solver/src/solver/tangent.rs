@@ -52,17 +52,17 @@ impl<'m> StaticSolver<'m> {
 
     /// Assembles and factorizes the tangent at `state` for [`StaticSolver::solve_factored`].
     ///
-    /// In a replay ([`crate::replay`]), at one of its moved equilibria, the factorization is scaled
-    /// afresh, so that it is the same whichever steps the replay factorized before (a replay that moves
-    /// only some rows, `replay::ReplayRows`, reads there what a whole replay reads, to the bit). It is
-    /// the moved model's own tangent there, not the recorded one's refined: a solve with the recorded
+    /// In a replay ([`crate::replay`]), whose equilibria are the recorded ones moved, the factorization
+    /// is scaled afresh, so that it is the same whichever steps the replay factorized before (a replay
+    /// that moves only some rows, `replay::ReplayRows`, reads there what a whole replay reads, to the
+    /// bit). It is the moved model's own tangent there, not the recorded one's refined: a solve with the recorded
     /// factors `T₀` refined against the moved tangent `T` is off by `(I − T₀⁻¹T)²` of it, of the square
     /// of the move but as large as `T₀⁻¹T` is far from the identity; on a double wishbone's free rig,
     /// where each further refinement step gained only a factor of about 0.8 at a move of 0.1 % of an
     /// arm's mount, that left 5.5e-5 of its wheel rate's derivative.
     pub fn factorize_tangent(&mut self, state: &State) -> Result<(), SolverError> {
         self.assemble(state, Some(Tangent::Full));
-        if self.at_replayed(state) {
+        if replay::replaying() {
             self.work.factor.reset();
         }
         self.factorize()?;
