@@ -107,15 +107,15 @@ impl<'f> Models<'f> {
 
     /// The model with every bushing rigid ([`with_rigid_bushings`]), if it has bushings to make rigid.
     pub(super) fn rigid(&self) -> Option<&Models<'static>> {
-        let build = |f| match self.from.as_deref().and_then(Models::rigid_shared) {
-            Some(from) => Arc::new(Models::moved(f, from)),
-            None => Arc::new(Models::owning(f)),
-        };
-        self.rigid.get_or_init(|| with_rigid_bushings(&self.file).map(build)).as_deref()
+        self.built_rigid().map(Arc::as_ref)
     }
 
-    fn rigid_shared(&self) -> Option<Arc<Models<'static>>> {
-        self.rigid();
-        self.rigid.get().cloned().flatten()
+    /// [`Models::rigid`], built once (in the coordinates of `from`'s own, for [`Models::moved`]).
+    fn built_rigid(&self) -> Option<&Arc<Models<'static>>> {
+        let build = |f| match self.from.as_deref().and_then(Models::built_rigid) {
+            Some(from) => Arc::new(Models::moved(f, from.clone())),
+            None => Arc::new(Models::owning(f)),
+        };
+        self.rigid.get_or_init(|| with_rigid_bushings(&self.file).map(build)).as_ref()
     }
 }
