@@ -221,14 +221,22 @@ fn path_tangents(k: f64) -> Result<(Vec<StepResult>, Vec<Vec<f64>>), SolverError
     read_at_steps(k, path_tangent)
 }
 
-/// The largest gap between what `read` reads in a replay of `tape` (recorded at rate `k`) on the lever of
-/// rate `k + delta`, at its moved steps, and what it reads at the same states on that lever solved outright.
-fn replayed_reading_gap(tape: &Arc<Tape>, k: f64, delta: f64, read: TangentReading) -> f64 {
-    let (steps, replayed) = replay(tape, || read_at_steps(k + delta, read)).unwrap().value.unwrap();
-    let model = lever(k + delta);
+/// `read` recorded at every step of the lever of rate `k`, then replayed on the lever of rate `1.001 k`:
+/// the tape, the recorded readings, and the largest gap between what the replay reads at its moved steps
+/// and what `read` reads at the same states on that lever solved outright, as a fraction of the largest
+/// recorded reading.
+fn replayed_reading_gap(k: f64, read: TangentReading) -> (Arc<Tape>, Vec<Vec<f64>>, f64) {
+    let (base, tape) = record(|| read_at_steps(k, read));
+    let (_, readings) = base.unwrap();
+    let largest = readings.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    let tape = Arc::new(tape);
+    let moved = 1.001 * k;
+    let (steps, replayed) = replay(&tape, || read_at_steps(moved, read)).unwrap().value.unwrap();
+    let model = lever(moved);
     let mut solver = StaticSolver::new(&model, SolverOptions::default()).unwrap();
     let exact = read_each(&mut solver, &steps, read).unwrap();
-    replayed.iter().flatten().zip(exact.iter().flatten()).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+    let gap = replayed.iter().flatten().zip(exact.iter().flatten()).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    (tape, readings, gap / largest)
 }
 
 /// A path tangent asked for in a replay, at a moved equilibrium, is the moved model's own there (its
@@ -237,14 +245,10 @@ fn replayed_reading_gap(tape: &Arc<Tape>, k: f64, delta: f64, read: TangentReadi
 #[test]
 fn a_replayed_path_tangent_is_the_moved_models_own() {
     let k = 2e4;
-    let (base, tape) = record(|| path_tangents(k));
-    let (_, base_rates) = base.unwrap();
-    let tape = Arc::new(tape);
-    let size = base_rates.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
-    let gap = replayed_reading_gap(&tape, k, 1e-3 * k, path_tangent);
-    // Measured: 7.5e-16 of the largest rate (the recorded factors refined once were 1.5e-6 off).
-    println!("gap {:.2e} of the largest rate", gap / size);
-    assert!(gap <= 5e-14 * size, "{gap:e} of {size:e}");
+    let (tape, base_rates, gap) = replayed_reading_gap(k, path_tangent);
+    println!("gap {gap:.2e}");
+    // Measured: 6.5e-16 of the largest rate (the recorded factors refined once were 1.5e-6 off).
+    assert!(gap <= 5e-14, "{gap:e} of the largest rate");
 
     // The rate with k: replays at k ± h, ± 2h against re-solved moved models' exact path tangents, each
     // Richardson extrapolated.
@@ -452,13 +456,8 @@ fn a_replay_moving_a_spring_end_or_a_hinge_moves_at_the_balances_rate() {
 /// the path tangent is.
 #[test]
 fn a_replayed_tangent_solve_is_the_moved_models_own() {
-    let k = 2e4;
-    let (base, tape) = record(|| read_at_steps(k, moment_compliance));
-    let (_, base_solves) = base.unwrap();
-    let tape = Arc::new(tape);
-    let size = base_solves.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
-    let gap = replayed_reading_gap(&tape, k, 1e-3 * k, moment_compliance);
-    // Measured: 2.4e-16 of the largest solve (the recorded factors refined once were 4.1e-6 off).
-    println!("gap {:.2e} of the largest solve", gap / size);
-    assert!(gap <= 2e-14 * size, "{gap:e} of {size:e}");
+    let (_, _, gap) = replayed_reading_gap(2e4, moment_compliance);
+    println!("gap {gap:.2e}");
+    // Measured: 3.7e-16 of the largest solve (the recorded factors refined once were 4.1e-6 off).
+    assert!(gap <= 2e-14, "{gap:e} of the largest solve");
 }

@@ -218,8 +218,8 @@ fn a_moved_model_read_from_its_document_is_the_one_its_text_gives() {
 
 /// How far the sensitivities of `analysis` are from Richardson differences of the K&C report itself run on
 /// the moved model, as a fraction of the allowed difference (1e-6 of the figure's largest effect over
-/// the parameters, or of the largest derivative of a column over its rows, or 1e-9
-/// absolute; derivatives times the parameter's size). Also how many figures and cells were compared. Every figure with a value and every number in
+/// the parameters, or of the largest derivative of a column over its rows, both as the re-runs give
+/// them, or 1e-9 absolute; derivatives times the parameter's size). Also how many figures and cells were compared. Every figure with a value and every number in
 /// the table must have a derivative. The cells are judged when `cells_too`.
 fn against_report_re_runs(
     doc: &serde_json::Value,
@@ -232,25 +232,35 @@ fn against_report_re_runs(
     let s = analysis_sensitivity(analysis, &p, &settings).unwrap_or_else(|e| panic!("{}: {e}", analysis.name()));
 
     let rows = s.report.table.rows.len();
-    // Each figure's largest effect over the parameters (derivative times the parameter's size): a
-    // derivative is judged against 1e-6 of it, as a cell is against its column's largest.
+    let size = |k: usize| p.values[k].abs().max(0.1);
+    // The report re-run at each parameter moved by 2d, d, −d, −2d.
+    let re_runs: Vec<Vec<kc::AnalysisReport>> = (0..p.len())
+        .map(|k| {
+            [2.0, 1.0, -1.0, -2.0]
+                .map(|m| kc::run(analysis, &p.file_moved(k, m * 1e-3 * size(k)).unwrap(), &settings).unwrap())
+                .into()
+        })
+        .collect();
+    // Their Richardson difference of what `read` reads, for parameter `k`.
+    let re_run_rate = |k: usize, read: &dyn Fn(&kc::AnalysisReport) -> Option<f64>| -> Option<f64> {
+        let [a, b, c, e] = [0, 1, 2, 3].map(|i| read(&re_runs[k][i]));
+        Some((8.0 * (b? - c?) - (a? - e?)) / (12.0 * 1e-3 * size(k)))
+    };
+    // Each figure's largest effect over the parameters (the re-runs' derivative times the parameter's
+    // size): a derivative is judged against 1e-6 of it, as a cell is against its column's largest.
     let effects: Vec<f64> = (0..s.report.figures.len())
         .map(|j| {
-            (0..p.len())
-                .filter_map(|k| Some(s.figures[k][j].ok()?.abs() * p.values[k].abs().max(0.1)))
-                .fold(0.0, f64::max)
+            let key = &s.report.figures[j].key;
+            let value = |r: &kc::AnalysisReport| r.figure(key).and_then(|f| f.value);
+            (0..p.len()).filter_map(|k| Some(re_run_rate(k, &value)?.abs() * size(k))).fold(0.0, f64::max)
         })
         .collect();
     let (mut worst, mut figures, mut cells) = (0.0_f64, 0, 0);
     let mut worst_what = String::new();
     for k in 0..p.len() {
-        let d = 1e-3 * p.values[k].abs().max(0.1);
-        let runs: Vec<_> = [2.0, 1.0, -1.0, -2.0]
-            .map(|m| kc::run(analysis, &p.file_moved(k, m * d).unwrap(), &settings).unwrap())
-            .into_iter()
-            .collect();
-        let size = p.values[k].abs().max(0.1);
-        // `scale`: the largest derivative of the kind (a column's over its rows); `None`: the figure's own.
+        let (d, size, runs) = (1e-3 * size(k), size(k), &re_runs[k]);
+        // `scale`: the largest derivative of the kind (the re-runs' of a figure over the parameters, times
+        // their size over this one's; of a column over its rows); `None`: the figure's own.
         // `estimate`: the re-runs' own error estimate of the values (the report's, from one Newton iteration
         // on): the re-runs are exact only to the solver's convergence, and their differences carry
         // `1.5 · estimate / d` of it, which is allowed too (a spring rate moves a bushing's force by 1e-6 N
@@ -294,7 +304,8 @@ fn against_report_re_runs(
         let design_load = runs.iter().filter_map(|r| r.figure("design_wheel_load")?.error).fold(0.0, f64::max) * 1.5;
         let moves_with_design_load = analysis == Analysis::VerticalForce && settings.range.is_none();
         for (c, column) in s.report.table.columns.iter().enumerate().filter(|_| cells_too) {
-            let column_scale = (0..rows).filter_map(|r| s.table[k][r][c].ok()).fold(0.0_f64, |m, v| m.max(v.abs()));
+            let cell = |r: usize| move |report: &kc::AnalysisReport| report.table.rows[r][c].number();
+            let column_scale = (0..rows).filter_map(|r| re_run_rate(k, &cell(r))).fold(0.0_f64, |m, v| m.max(v.abs()));
             let estimate = runs.iter().filter_map(|r| r.accuracy.columns.get(c)?.1).fold(0.0, f64::max);
             for r in 0..rows {
                 let values = [0, 1, 2, 3].map(|i| runs[i].table.rows[r][c].number());
