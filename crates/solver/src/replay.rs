@@ -56,12 +56,18 @@ use std::sync::Arc;
 /// replayed load parameter), so that nothing is spent on rows nobody reads; what is read off them is not the
 /// moved model's, and a caller that sets this reads none of it. Set on a solver with
 /// [`StaticSolver::replay_rows`](crate::StaticSolver::replay_rows); outside a replay it changes nothing.
+///
+/// A run that also reads a row it finds by its value (where a reading is largest over the sweep) sets
+/// `extremes` and names those rows after reading them ([`rows_read`]): the recording keeps every step's
+/// factors, and the replays move the rows named too.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ReplayRows {
     /// The load parameter whose neighbouring steps are moved.
     pub near: f64,
     /// Whether the last step is moved too.
     pub last: bool,
+    /// Whether the run names further rows it read once it has read the recorded sweep ([`rows_read`]).
+    pub extremes: bool,
 }
 
 impl ReplayRows {
@@ -81,7 +87,14 @@ enum Call {
     Equilibrium(Result<StepResult, SolverError>, Pieces, Option<Factors>),
     /// A sweep along `path` (by load steps or by arc length), and the pieces and factors at each of its
     /// steps.
-    Sweep { path: LoadPath, result: Result<Sweep, SolverError>, pieces: Vec<Pieces>, factors: Vec<Option<Factors>> },
+    Sweep {
+        path: LoadPath,
+        result: Result<Sweep, SolverError>,
+        pieces: Vec<Pieces>,
+        factors: Vec<Option<Factors>>,
+        /// The steps the run named as read once it had read the sweep ([`rows_read`]).
+        read: Vec<usize>,
+    },
 }
 
 /// One recorded solver: its model (a copy, for a replay to tell what its move touched), the constraint rows
@@ -97,6 +110,8 @@ struct Recorded {
 #[derive(Debug, Clone, Default)]
 pub struct Tape {
     solvers: Vec<Recorded>,
+    /// The last sweep kept: its solver and call, for [`rows_read`].
+    last_sweep: Option<(usize, usize)>,
 }
 
 impl Tape {
@@ -210,6 +225,24 @@ pub fn replay<R>(tape: &Arc<Tape>, run: impl FnOnce() -> R) -> Result<Replay<R>,
     Ok(Replay { value: out, kinked })
 }
 
+/// Names rows of the thread's last recorded sweep that a run read besides those of its solver's
+/// [`ReplayRows`] (set with `extremes`): rows it found by their values, such as where a reading is largest.
+/// The replays move them too. Outside a recording it does nothing: a replay moves what its recording named.
+pub fn rows_read(rows: &[usize]) {
+    ACTIVE.with(|a| {
+        if let Some(Active::Recording(tape)) = a.borrow_mut().as_mut() {
+            let Some((solver, call)) = tape.last_sweep else { return };
+            if let Some(Call::Sweep { read, .. }) = tape.solvers[solver].calls.get_mut(call) {
+                for &r in rows {
+                    if !read.contains(&r) {
+                        read.push(r);
+                    }
+                }
+            }
+        }
+    });
+}
+
 /// Notes in the thread's replay that a stop touched or left as the model moved.
 pub(crate) fn note_kink() {
     ACTIVE.with(|a| {
@@ -290,8 +323,9 @@ impl Touched {
 /// A recorded equilibrium, the pieces of the recorded model's elements there and its tangent's factors.
 pub(crate) type RecordedEquilibrium = (Result<StepResult, SolverError>, Pieces, Option<Factors>);
 
-/// A recorded sweep: its path, what it returned, and the pieces and tangent's factors at each of its steps.
-pub(crate) type RecordedSweep = (LoadPath, Result<Sweep, SolverError>, Vec<Pieces>, Vec<Option<Factors>>);
+/// A recorded sweep: its path, what it returned, the pieces and tangent's factors at each of its steps, and
+/// the steps the run named as read ([`rows_read`]).
+pub(crate) type RecordedSweep = (LoadPath, Result<Sweep, SolverError>, Vec<Pieces>, Vec<Option<Factors>>, Vec<usize>);
 
 /// Whether this thread is replaying a recording: every solve a solver makes is then a recorded one moved.
 pub(crate) fn replaying() -> bool {
@@ -366,7 +400,9 @@ pub(crate) fn next_equilibrium(taped: Option<Taped>) -> Result<Replayed<Recorded
 /// What a taped solver's next sweep is to do.
 pub(crate) fn next_sweep(taped: Option<Taped>) -> Result<Replayed<RecordedSweep>, SolverError> {
     next(taped, true, |call| match call {
-        Call::Sweep { path, result, pieces, factors } => Some((*path, result.clone(), pieces.clone(), factors.clone())),
+        Call::Sweep { path, result, pieces, factors, read } => {
+            Some((*path, result.clone(), pieces.clone(), factors.clone(), read.clone()))
+        }
         Call::Equilibrium(..) => None,
     })
 }
@@ -427,13 +463,16 @@ pub(crate) fn keep_sweep(
 ) {
     let pieces =
         result.as_ref().map_or_else(|_| Vec::new(), |s| s.steps.iter().map(|s| s.element_pieces(model)).collect());
-    keep(taped, Call::Sweep { path, result: result.clone(), pieces, factors });
+    keep(taped, Call::Sweep { path, result: result.clone(), pieces, factors, read: Vec::new() });
 }
 
 fn keep(taped: Taped, call: Call) {
     ACTIVE.with(|a| {
         if let Some(Active::Recording(tape)) = a.borrow_mut().as_mut() {
             if let Some(r) = tape.solvers.get_mut(taped.solver) {
+                if matches!(call, Call::Sweep { .. }) {
+                    tape.last_sweep = Some((taped.solver, r.calls.len()));
+                }
                 r.calls.push(call);
             }
         }

@@ -4,7 +4,7 @@
 
 use elastokin_core::{BodyRef, JointSpec, Model, Pose, Vec3};
 use elastokin_elements::{CoilSpring, PointForce};
-use elastokin_solver::replay::{record, replay, Diverged, ReplayRows, Tape};
+use elastokin_solver::replay::{self, record, replay, Diverged, ReplayRows, Tape};
 use elastokin_solver::{BackendChoice, LoadPath, Mode, SolverError, SolverOptions, State, StaticSolver, StepResult};
 use std::sync::Arc;
 
@@ -371,7 +371,7 @@ fn a_replay_asked_for_some_rows_moves_those_alone_as_a_whole_replay_does() {
     let moved = k * 1.01;
     let all = replay(&tape, || angles_moving(moved, None)).unwrap().value.unwrap();
     // Rows within one step (1/8) of load 0.5, and the last: steps 3, 4, 5 and 8.
-    let rows = ReplayRows { near: 0.5, last: true };
+    let rows = ReplayRows { near: 0.5, last: true, extremes: false };
     let some = replay(&tape, || angles_moving(moved, Some(rows))).unwrap().value.unwrap();
     for i in 0..base.len() {
         if [3, 4, 5, 8].contains(&i) {
@@ -383,6 +383,40 @@ fn a_replay_asked_for_some_rows_moves_those_alone_as_a_whole_replay_does() {
     }
     // Outside a replay the rows asked for change nothing.
     assert_eq!(angles_moving(k, Some(rows)).unwrap(), angles_moving(k, None).unwrap());
+}
+
+/// The sweep's angles with a replay moving the rows within one step of load 0.5 and the row the run finds
+/// its largest angle at, named once read ([`replay::rows_read`]).
+fn angles_moving_the_largest(k: f64) -> Result<Vec<f64>, SolverError> {
+    let model = lever(k);
+    let mut solver = StaticSolver::new(&model, SolverOptions::default())?;
+    solver.replay_rows(Some(ReplayRows { near: 0.5, last: false, extremes: true }));
+    let angles: Vec<f64> = solver.sweep(LoadPath::new(0.0, 1.0, 8), Mode::Corrected)?.steps.iter().map(angle).collect();
+    let largest = (0..angles.len()).max_by(|&a, &b| angles[a].abs().total_cmp(&angles[b].abs())).unwrap();
+    replay::rows_read(&[largest]);
+    Ok(angles)
+}
+
+#[test]
+fn a_row_a_run_names_once_read_is_moved_by_the_replays_as_a_whole_replay_moves_it() {
+    let k = 2e4;
+    let (base, tape) = record(|| angles_moving_the_largest(k));
+    let (base, tape) = (base.unwrap(), Arc::new(tape));
+    let largest = (0..base.len()).max_by(|&a, &b| base[a].abs().total_cmp(&base[b].abs())).unwrap();
+    assert!(![3, 4, 5].contains(&largest), "the largest angle is at step {largest}, among the rows near 0.5");
+    let moved = k * 1.01;
+    let all = replay(&tape, || angles_moving(moved, None)).unwrap().value.unwrap();
+    let some = replay(&tape, || angles_moving_the_largest(moved)).unwrap().value.unwrap();
+    for i in 0..base.len() {
+        if [3, 4, 5, largest].contains(&i) {
+            assert_eq!(some[i], all[i], "step {i}: moved as the whole replay moves it");
+            assert_ne!(some[i], base[i], "step {i}");
+        } else {
+            assert_eq!(some[i], base[i], "step {i}: returned as recorded");
+        }
+    }
+    // Outside a recording, naming rows changes nothing.
+    assert_eq!(angles_moving_the_largest(k).unwrap(), angles_moving(k, None).unwrap());
 }
 
 /// The lever with its spring's top `top_z` higher and its hinge `pivot_x` along x: moves that touch one

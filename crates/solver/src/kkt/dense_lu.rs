@@ -80,16 +80,15 @@ pub struct DenseLu {
 }
 
 impl DenseLu {
-    /// Allocates every buffer for the pattern (its order `n + m` squared for the factor).
+    /// Allocates the buffers for the pattern, all but the factor (its order `n + m` squared), which the first
+    /// factorization allocates.
     pub fn analyze(pattern: &KktPattern, options: KktOptions) -> Result<Self, FactorError> {
         let (n, m) = (pattern.n, pattern.m);
         let size = n + m;
         validate(pattern, &options)?;
-        let dense =
-            size.checked_mul(size).filter(|&d| d <= (isize::MAX as usize) / 64).ok_or(FactorError::OutOfMemory)?;
-        let mut lu = Vec::new();
-        lu.try_reserve_exact(dense).map_err(|_| FactorError::OutOfMemory)?;
-        lu.resize(dense, 0.0);
+        // The factor itself is allocated at the first factorization: many solvers never factorize (a
+        // replay's solves with recorded factors), and its order squared dominates what a solver holds.
+        size.checked_mul(size).filter(|&d| d <= (isize::MAX as usize) / 64).ok_or(FactorError::OutOfMemory)?;
         Ok(DenseLu {
             n,
             m,
@@ -106,7 +105,7 @@ impl DenseLu {
             scaled: false,
             row_max: vec![0.0; size],
             row_norm: vec![0.0; size],
-            lu,
+            lu: Vec::new(),
             swap: vec![0; size],
             z: vec![0.0; size],
             refinement: Refinement::new(size),
@@ -342,6 +341,11 @@ impl KktBackend for DenseLu {
         self.has_skew = values.k_skew.is_some();
         if let Some(skew) = values.k_skew {
             copy_checked("k_skew", skew, &mut self.skew_val)?;
+        }
+        let dense = (self.n + self.m).pow(2);
+        if self.lu.len() != dense {
+            self.lu.try_reserve_exact(dense).map_err(|_| FactorError::OutOfMemory)?;
+            self.lu.resize(dense, 0.0);
         }
         if !self.scaled {
             self.equilibrate();

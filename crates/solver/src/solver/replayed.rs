@@ -25,12 +25,13 @@ impl StaticSolver<'_> {
             Replayed::Record(taped) => {
                 let result = solve(self, state);
                 // The factors where the replays will move the step: every step, or those of `replay_rows`
+                // (every step where the run names rows it read afterwards, `replay::rows_read`)
                 // (a replayed step without them, should its load parameter move across the edge of the
                 // rows asked for, takes the exact Newton iteration instead).
                 let factors = match &result {
                     Ok(sweep) => {
                         let (rows, count) = (self.replay_rows, sweep.steps.len());
-                        let moved = |i: usize, t: f64| rows.is_none_or(|r| r.moves(t, i, count, &path));
+                        let moved = |i: usize, t: f64| rows.is_none_or(|r| r.extremes || r.moves(t, i, count, &path));
                         let steps = sweep.steps.iter().enumerate();
                         steps.map(|(i, s)| if moved(i, s.t) { self.recorded_factors(s) } else { None }).collect()
                     }
@@ -82,14 +83,14 @@ impl StaticSolver<'_> {
         path: LoadPath,
         state: &mut State,
     ) -> Result<Sweep, SolverError> {
-        let (from, sweep, pieces, factors) = (recorded.0, recorded.1?, recorded.2, recorded.3);
+        let (from, sweep, pieces, factors, read) = (recorded.0, recorded.1?, recorded.2, recorded.3, recorded.4);
         let count = sweep.steps.len();
         let mut steps = Vec::with_capacity(count);
         // The recorded steps are this replay's own copies: each is moved, or returned, as it is.
         for (i, (s, pieces)) in sweep.steps.into_iter().zip(&pieces).enumerate() {
             let factors = factors.get(i).and_then(Option::as_ref);
             let t = moved_t(s.t, Some(i), &from, &path);
-            if self.replay_rows.is_some_and(|rows| !rows.moves(t, i, count, &path)) {
+            if self.replay_rows.is_some_and(|rows| !rows.moves(t, i, count, &path)) && !read.contains(&i) {
                 steps.push(StepResult { t, ..s });
                 continue;
             }

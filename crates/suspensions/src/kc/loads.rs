@@ -49,7 +49,7 @@ pub(super) fn vertical_force(models: &Models, s: &Settings) -> Result<AnalysisRe
         range.1,
         s.steps,
         s.mode,
-        s.extras_reading(range, ReplayRows { near: design_load, last: false }),
+        s.extras_reading(range, ReplayRows { near: design_load, last: false, extremes: false }),
     )
     .map_err(said)?;
     let table = |rows: &[LoadRow]| {
@@ -186,7 +186,7 @@ fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Result<AnalysisR
     // Drawn as walked: with the model's own loads, once they are added.
     let drawing;
     // The figures read the slopes at zero load and the last row.
-    let extras = s.extras_reading(range, ReplayRows { near: 0.0, last: true });
+    let extras = s.extras_reading(range, ReplayRows { near: 0.0, last: true, extremes: false });
     let out = match analysis {
         Analysis::Road(load) => {
             drawing = corner_drawing(&corner, s);

@@ -16,7 +16,7 @@ use crate::kc::settings::{Analysis, Settings};
 use elastokin_solver::replay::ReplayRows;
 
 /// The rows the figures of a travel sweep read: values, slopes and curvatures at design (travel 0).
-const AT_DESIGN: ReplayRows = ReplayRows { near: 0.0, last: false };
+const AT_DESIGN: ReplayRows = ReplayRows { near: 0.0, last: false, extremes: false };
 
 pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisReport, String> {
     let file = models.file();
@@ -553,7 +553,10 @@ pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, 
     let file = models.file();
     let range = s.range.unwrap_or((-0.04, 0.04));
     let axle = models.axle(AxleRig::Steering)?;
-    let out = axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras(range)).map_err(said)?;
+    // The figures read the rows next to rack centre, the row of full steer and that of the largest
+    // Ackermann error: the last two found by their values (named below).
+    let rows = ReplayRows { near: 0.0, last: false, extremes: true };
+    let out = axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras_reading(range, rows)).map_err(said)?;
     let wheelbase = file.vehicle.as_ref().map(|v| v.wheelbase);
     // Track between the contact patches at design: the lateral distance Ackermann's rule uses.
     let track = axle.left.contact_patch.y - axle.right.contact_patch.y;
@@ -637,12 +640,15 @@ pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, 
         match wheelbase {
             Some(l) => {
                 // At the end of the rack travel that steers most: where Ackermann is read on a rig.
-                let end = rows.iter().filter_map(|r| ackermann(r, track, l)).max_by(|a, b| a.0.total_cmp(&b.0));
-                let worst = rows
-                    .iter()
-                    .filter_map(|r| ackermann(r, track, l))
-                    .map(|(_, outer, ideal)| deg(outer - ideal))
-                    .max_by(|a, b| a.abs().total_cmp(&b.abs()));
+                let angles = || rows.iter().enumerate().filter_map(|(i, r)| Some((i, ackermann(r, track, l)?)));
+                let end = angles().max_by(|a, b| a.1 .0.total_cmp(&b.1 .0));
+                let worst = angles()
+                    .map(|(i, (_, outer, ideal))| (i, deg(outer - ideal)))
+                    .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()));
+                // A recording's replays move these rows too (they are found by their values).
+                let named: Vec<usize> = [end.map(|r| r.0), worst.map(|r| r.0)].into_iter().flatten().collect();
+                elastokin_solver::replay::rows_read(&named);
+                let (end, worst) = (end.map(|r| r.1), worst.map(|r| r.1));
                 // Steer angles are read from the design's straight ahead: wheels toed in or out at rack
                 // centre by more than the rack turns them never both turn one way.
                 let turned = rows.iter().any(|r| r.left.toe.abs() > 1e-9 || r.right.toe.abs() > 1e-9);
