@@ -37,7 +37,7 @@
 //! ([`StaticSolver::newton_correction`](crate::StaticSolver::newton_correction)).
 //!
 //! A run that reads only some rows of a sweep (a slope at one load parameter, the last row) may ask its
-//! solver to move only those ([`ReplayRows`]): the others are returned as recorded.
+//! solver to move only those ([`ReplayRows`]): the replayed sweep has those steps alone.
 //!
 //! A replay that takes another path than the recording (a solver of other parts, another sequence of
 //! solves) is reported, never papered over: [`replay`] returns [`Diverged`].
@@ -52,9 +52,10 @@ use std::sync::Arc;
 
 /// Which steps of a sweep a replay moves, for a run that reads only some of a sweep's rows (a slope or
 /// curvature at one load parameter, the last row): the steps whose load parameter lies within one step of
-/// `near`, and the last step if `last`. Every other step the replay returns as recorded, unmoved (at the
-/// replayed load parameter), so that nothing is spent on rows nobody reads; what is read off them is not the
-/// moved model's, and a caller that sets this reads none of it. Set on a solver with
+/// `near`, and the last step if `last`. The replayed sweep has those steps alone, in order: nothing is
+/// spent on rows nobody reads, neither moving nor copying nor reading them (a caller that sets this finds
+/// the rows it reads by their load parameters or as the last, not by their place in the whole sweep). Set
+/// on a solver with
 /// [`StaticSolver::replay_rows`](crate::StaticSolver::replay_rows); outside a replay it changes nothing.
 ///
 /// A run that also reads a row it finds by its value (where a reading is largest over the sweep) sets

@@ -76,7 +76,8 @@ impl StaticSolver<'_> {
         Ok(step)
     }
 
-    /// The replay of a sweep along `path`, `state` left at its last equilibrium.
+    /// The replay of a sweep along `path`, `state` left at its last equilibrium (of the steps moved, with
+    /// [`ReplayRows`](crate::replay::ReplayRows): the others are left out).
     pub(super) fn replay_sweep(
         &mut self,
         recorded: RecordedSweep,
@@ -86,12 +87,11 @@ impl StaticSolver<'_> {
         let (from, sweep, pieces, factors, read) = (recorded.0, recorded.1?, recorded.2, recorded.3, recorded.4);
         let count = sweep.steps.len();
         let mut steps = Vec::with_capacity(count);
-        // The recorded steps are this replay's own copies: each is moved, or returned, as it is.
+        // The recorded steps are this replay's own copies: each is moved, or left out.
         for (i, (s, pieces)) in sweep.steps.into_iter().zip(&pieces).enumerate() {
             let factors = factors.get(i).and_then(Option::as_ref);
             let t = moved_t(s.t, Some(i), &from, &path);
             if self.replay_rows.is_some_and(|rows| !rows.moves(t, i, count, &path)) && !read.contains(&i) {
-                steps.push(StepResult { t, ..s });
                 continue;
             }
             steps.push(self.moved(s, pieces, factors, t)?);

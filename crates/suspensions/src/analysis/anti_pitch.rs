@@ -5,7 +5,7 @@ use crate::analysis::sweep::require_rig;
 use crate::build::{Corner, Rig};
 use crate::description::{AxlePosition, VehicleParameters};
 use elastokin_core::Vec3;
-use elastokin_solver::{SolverError, SolverOptions, StaticSolver};
+use elastokin_solver::{SolverError, SolverOptions, State, StaticSolver};
 
 /// Side-view geometry of the wheel's motion in bump and the anti-pitch it gives: see [`anti_pitch`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -57,12 +57,29 @@ pub struct AntiPitch {
 /// So the same geometry serves both ends of a car: a front wheel moving forward in bump resists dive and
 /// lift, a rear wheel moving rearward in bump resists lift and squat.
 pub fn anti_pitch(corner: &Corner, vehicle: &VehicleParameters) -> Result<AntiPitch, SolverError> {
-    require_rig(corner, &[Rig::WheelTravel])?;
-    vehicle.validate().map_err(|why| SolverError::InvalidInput { what: "vehicle parameters", why })?;
+    check(corner, vehicle)?;
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let mut state = solver.design_state(0.0);
     solver.equilibrium(&mut state)?;
-    let rates = solver.path_tangent(&state)?;
+    anti_pitch_at(corner, vehicle, &mut solver, &state)
+}
+
+/// The rig and vehicle [`anti_pitch`] takes.
+fn check(corner: &Corner, vehicle: &VehicleParameters) -> Result<(), SolverError> {
+    require_rig(corner, &[Rig::WheelTravel])?;
+    vehicle.validate().map_err(|why| SolverError::InvalidInput { what: "vehicle parameters", why })
+}
+
+/// [`anti_pitch`] at `state`, the design equilibrium `solver` (of the corner's model) found: for a caller
+/// that reads more off the tangent there with the same solver.
+pub(crate) fn anti_pitch_at(
+    corner: &Corner,
+    vehicle: &VehicleParameters,
+    solver: &mut StaticSolver,
+    state: &State,
+) -> Result<AntiPitch, SolverError> {
+    check(corner, vehicle)?;
+    let rates = solver.path_tangent(state)?;
     let wheel = &corner.wheel;
     let patch = wheel.steering_geometry(&state.poses).contact_patch;
     let wheel_centre = wheel.attitude(&state.poses).wheel_centre;

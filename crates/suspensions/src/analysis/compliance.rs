@@ -5,7 +5,7 @@
 use crate::build::Corner;
 use crate::wheel::Wheel;
 use elastokin_core::Vec3;
-use elastokin_solver::{SolverError, SolverOptions, StaticSolver};
+use elastokin_solver::{SolverError, SolverOptions, State, StaticSolver};
 
 /// The 6×6 compliance of the wheel at the equilibrium of load parameter `t`: column `k` is the response
 /// `(Δ wheel centre, Δ rotation)` to a unit force (k < 3, N, global axes) or unit torque (k ≥ 3, N·m) at
@@ -15,15 +15,29 @@ use elastokin_solver::{SolverError, SolverOptions, StaticSolver};
 /// height). With a partner wheel (a solid axle) each unit load acts on both wheels alike, in phase, as the
 /// load sweeps apply them; the response is the corner's own wheel's.
 pub fn wheel_compliance(corner: &Corner, t: f64) -> Result<[[f64; 6]; 6], SolverError> {
-    Ok(compliance_at(corner, t)?.0)
+    Ok(compliance_at(corner, t)?.wheel)
 }
 
-/// The wheel compliance and the equilibrium poses it was taken at.
-fn compliance_at(corner: &Corner, t: f64) -> Result<([[f64; 6]; 6], Vec<elastokin_core::Pose>), SolverError> {
+/// The wheel compliance at an equilibrium, with the solver that found it and factorized its tangent there:
+/// what else is read off that tangent (the patch compliance, a path tangent) takes no solver, equilibrium
+/// or factorization of its own.
+pub(crate) struct ComplianceAt<'m> {
+    /// The wheel compliance ([`wheel_compliance`]).
+    pub wheel: [[f64; 6]; 6],
+    /// The solver of the corner's model, its tangent at `state` factorized.
+    pub solver: StaticSolver<'m>,
+    /// The equilibrium.
+    pub state: State,
+}
+
+/// The wheel compliance at the equilibrium of load parameter `t`, and the solver and equilibrium it was
+/// taken at.
+pub(crate) fn compliance_at(corner: &Corner, t: f64) -> Result<ComplianceAt<'_>, SolverError> {
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let mut state = solver.design_state(t);
     solver.equilibrium(&mut state)?;
-    Ok((compliance_with(&mut solver, &corner.wheel, corner.partner.as_ref(), &state)?, state.poses))
+    let wheel = compliance_with(&mut solver, &corner.wheel, corner.partner.as_ref(), &state)?;
+    Ok(ComplianceAt { wheel, solver, state })
 }
 
 /// The wheel compliance at `state` (an equilibrium of `solver`'s model): see [`wheel_compliance`].
@@ -116,11 +130,20 @@ fn attitude_change(a: &Vec3, s: f64, dpi: &Vec3) -> (f64, f64) {
 
 /// [`PatchCompliance`] at the equilibrium of load parameter `t` (see [`wheel_compliance`]).
 pub fn patch_compliance(corner: &Corner, t: f64) -> Result<PatchCompliance, SolverError> {
-    let (c, poses) = compliance_at(corner, t)?;
+    let at = compliance_at(corner, t)?;
+    Ok(patch_compliance_from(corner, &at.wheel, &at.state.poses))
+}
+
+/// [`PatchCompliance`] from the wheel compliance `c` at the equilibrium `poses`.
+pub(crate) fn patch_compliance_from(
+    corner: &Corner,
+    c: &[[f64; 6]; 6],
+    poses: &[elastokin_core::Pose],
+) -> PatchCompliance {
     let pose = poses[corner.wheel.upright.0];
     let a = pose.direction(&corner.wheel.spin_axis_local);
     let w = pose.point(&corner.wheel.wheel_centre_local);
-    let patch = corner.wheel.steering_geometry(&poses).contact_patch;
+    let patch = corner.wheel.steering_geometry(poses).contact_patch;
     let arm = patch - w;
     let s = corner.wheel.side.sign();
     // Response (Δ patch, Δπ) to a unit force `f` at the patch or a unit torque `m`.
@@ -141,12 +164,12 @@ pub fn patch_compliance(corner: &Corner, t: f64) -> Result<PatchCompliance, Solv
     let (dp_long, dpi_long) = respond(rearward, zero);
     let (_, dpi_mz) = respond(zero, Vec3::z());
     let (lateral_steer, lateral_camber) = attitude_change(&a, s, &dpi_lat);
-    Ok(PatchCompliance {
+    PatchCompliance {
         lateral_steer,
         lateral_camber,
         lateral_stiffness: 1.0 / dp_lat.dot(&inboard),
         braking_steer: attitude_change(&a, s, &dpi_long).0,
         longitudinal_stiffness: 1.0 / dp_long.dot(&rearward),
         aligning_torque_steer: attitude_change(&a, s, &dpi_mz).0,
-    })
+    }
 }

@@ -81,7 +81,8 @@ pub struct SweepExtras {
     /// [`LoadRow::forces`]: crate::analysis::LoadRow::forces
     pub figures_only: bool,
     /// The rows the K&C figures read, when the rows are read for the figures alone: a replay
-    /// ([`elastokin_solver::replay`]) moves only those, the others are returned as recorded.
+    /// ([`elastokin_solver::replay`]) moves those alone, and its rows are those alone (found by their load
+    /// parameters, as the figures find them).
     pub figure_rows: Option<ReplayRows>,
 }
 

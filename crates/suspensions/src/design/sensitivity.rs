@@ -335,7 +335,9 @@ fn parameter_rates(
         })?;
         let value = run.value.map_err(|e| format!("parameter '{pointer}' moved by {:e}: {}", shift * h, e.message))?;
         let (moved, own) = (&value.table, &report.table);
-        if moved.columns != own.columns || moved.rows.len() != own.rows.len() {
+        // Read for the figures alone, a replay's table has the rows the figures read alone
+        // (`SweepExtras::figure_rows`).
+        if moved.columns != own.columns || (moved.rows.len() != own.rows.len() && !settings.figures_only) {
             return Err(format!(
                 "parameter '{pointer}' changes the rows or columns of the analysis's table when moved: it has no \
                  derivative"
@@ -367,7 +369,7 @@ fn parameter_rates(
         .map(|r| {
             (0..report.table.columns.len())
                 .map(|c| match report.table.rows[r][c] {
-                    // The replays moved only the rows the figures read (`SweepExtras::figure_rows`).
+                    // The replays read only the rows the figures read (`SweepExtras::figure_rows`).
                     Cell::Number(_) if settings.figures_only => Err(NoDerivative::FiguresOnly),
                     Cell::Number(_) => rate(
                         [0, 1, 2, 3].map(|i| moved[i].table.rows[r][c].number()),

@@ -1,9 +1,9 @@
 //! The driven K&C tests: parallel wheel travel on a corner, roll and steering on the full axle.
 
-use crate::analysis::{
-    anti_pitch, parallel_wheel_travel_with, patch_compliance, slope_at, wheel_compliance, TravelRow,
-};
+use crate::analysis::anti_pitch::anti_pitch_at;
+use crate::analysis::compliance::{compliance_at, patch_compliance_from};
 use crate::analysis::{axle_sweep_with, AxleRow};
+use crate::analysis::{parallel_wheel_travel_with, slope_at, TravelRow};
 use crate::build::{AxleRig, Corner, Rig};
 use crate::description::Side;
 use crate::file::SuspensionFile;
@@ -84,8 +84,11 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
     // Toe, camber and wheel rate no car has, inside the travel asked for.
     report.warnings.extend(crate::check::check_travel_rows(&out.rows));
     // Figures of the design position itself, from the tangent there (not read off the rows).
-    let pc = patch_compliance(&corner, 0.0).map_err(said)?;
-    let compliance = wheel_compliance(&corner, 0.0).map_err(said)?;
+    // One solver at design for all of them: the wheel and patch compliances and the anti-pitch's path
+    // tangent are read off the one tangent there.
+    let mut design = compliance_at(&corner, 0.0).map_err(said)?;
+    let compliance = design.wheel;
+    let pc = patch_compliance_from(&corner, &compliance, &design.state.poses);
     let finite = compliance.iter().flatten().all(|v| v.is_finite());
     let per_kn = |rad_per_n: f64| deg(rad_per_n) * 1e3;
     // The joints alone may hold the patch that way (ideal joints, no bushing in the load path): the
@@ -141,7 +144,7 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
     }
     match &file.vehicle {
         Some(vehicle) => {
-            let a = anti_pitch(&corner, vehicle).map_err(said)?;
+            let a = anti_pitch_at(&corner, vehicle, &mut design.solver, &design.state).map_err(said)?;
             let (braking, traction) = match vehicle.axle {
                 crate::description::AxlePosition::Front => ("anti-dive", "anti-lift (drive)"),
                 crate::description::AxlePosition::Rear => ("anti-lift (braking)", "anti-squat"),
