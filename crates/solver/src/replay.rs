@@ -324,9 +324,28 @@ impl Touched {
 /// A recorded equilibrium, the pieces of the recorded model's elements there and its tangent's factors.
 pub(crate) type RecordedEquilibrium = (Result<StepResult, SolverError>, Pieces, Option<Factors>);
 
-/// A recorded sweep: its path, what it returned, the pieces and tangent's factors at each of its steps, and
-/// the steps the run named as read ([`rows_read`]).
-pub(crate) type RecordedSweep = (LoadPath, Result<Sweep, SolverError>, Vec<Pieces>, Vec<Option<Factors>>, Vec<usize>);
+/// A recorded sweep, read in place on the tape its replays share (a replay copies the steps it moves
+/// alone): its path, what it returned, the pieces and tangent's factors at each of its steps, and the steps
+/// the run named as read ([`rows_read`]).
+pub(crate) struct RecordedSweep {
+    tape: Arc<Tape>,
+    solver: usize,
+    call: usize,
+}
+
+/// The parts of a [`RecordedSweep`].
+pub(crate) type SweepParts<'t> =
+    (&'t LoadPath, &'t Result<Sweep, SolverError>, &'t [Pieces], &'t [Option<Factors>], &'t [usize]);
+
+impl RecordedSweep {
+    /// Its parts; `None` if the call is no sweep (never: [`next_sweep`] hands out sweeps alone).
+    pub(crate) fn parts(&self) -> Option<SweepParts<'_>> {
+        match self.tape.solvers.get(self.solver)?.calls.get(self.call)? {
+            Call::Sweep { path, result, pieces, factors, read } => Some((path, result, pieces, factors, read)),
+            Call::Equilibrium(..) => None,
+        }
+    }
+}
 
 /// Whether this thread is replaying a recording: every solve a solver makes is then a recorded one moved.
 pub(crate) fn replaying() -> bool {
@@ -392,7 +411,7 @@ fn diverge(diverged: &mut Option<String>, why: String) -> SolverError {
 
 /// What a taped solver's next single equilibrium is to do.
 pub(crate) fn next_equilibrium(taped: Option<Taped>) -> Result<Replayed<RecordedEquilibrium>, SolverError> {
-    next(taped, false, |call| match call {
+    next(taped, false, |call, _| match call {
         Call::Equilibrium(r, pieces, factors) => Some((r.clone(), pieces.clone(), factors.clone())),
         Call::Sweep { .. } => None,
     })
@@ -400,15 +419,19 @@ pub(crate) fn next_equilibrium(taped: Option<Taped>) -> Result<Replayed<Recorded
 
 /// What a taped solver's next sweep is to do.
 pub(crate) fn next_sweep(taped: Option<Taped>) -> Result<Replayed<RecordedSweep>, SolverError> {
-    next(taped, true, |call| match call {
-        Call::Sweep { path, result, pieces, factors, read } => {
-            Some((*path, result.clone(), pieces.clone(), factors.clone(), read.clone()))
-        }
+    next(taped, true, |call, (tape, solver, call_index)| match call {
+        Call::Sweep { .. } => Some(RecordedSweep { tape: tape.clone(), solver, call: call_index }),
         Call::Equilibrium(..) => None,
     })
 }
 
-fn next<T>(taped: Option<Taped>, sweep: bool, take: impl Fn(&Call) -> Option<T>) -> Result<Replayed<T>, SolverError> {
+/// What a taped solver's next solve is to do; in a replay, `take` reads the recorded call (given with
+/// where it lies on the tape: the tape, the solver's rank, the call's).
+fn next<T>(
+    taped: Option<Taped>,
+    sweep: bool,
+    take: impl Fn(&Call, (&Arc<Tape>, usize, usize)) -> Option<T>,
+) -> Result<Replayed<T>, SolverError> {
     let Some(taped) = taped else { return Ok(Replayed::Solve) };
     ACTIVE.with(|a| {
         let mut a = a.borrow_mut();
@@ -419,7 +442,7 @@ fn next<T>(taped: Option<Taped>, sweep: bool, take: impl Fn(&Call) -> Option<T>)
                     return Err(diverge(diverged, format!("solver {k} asked for more solves than were recorded")));
                 };
                 used[k] += 1;
-                match take(call) {
+                match take(call, (tape, k, used[k] - 1)) {
                     Some(t) => Ok(Replayed::Call(t)),
                     None => Err(diverge(
                         diverged,

@@ -84,24 +84,27 @@ impl StaticSolver<'_> {
         path: LoadPath,
         state: &mut State,
     ) -> Result<Sweep, SolverError> {
-        let (from, sweep, pieces, factors, read) = (recorded.0, recorded.1?, recorded.2, recorded.3, recorded.4);
+        let Some((from, sweep, pieces, factors, read)) = recorded.parts() else {
+            return Err(SolverError::InvalidInput { what: "replay", why: "the recorded call is no sweep".into() });
+        };
+        let sweep = sweep.as_ref().map_err(Clone::clone)?;
         let count = sweep.steps.len();
         let mut steps = Vec::with_capacity(count);
-        // The recorded steps are this replay's own copies: each is moved, or left out.
-        for (i, (s, pieces)) in sweep.steps.into_iter().zip(&pieces).enumerate() {
-            let factors = factors.get(i).and_then(Option::as_ref);
-            let t = moved_t(s.t, Some(i), &from, &path);
+        // Each recorded step is copied only where it is moved; the others are left out.
+        for (i, (s, pieces)) in sweep.steps.iter().zip(pieces).enumerate() {
+            let t = moved_t(s.t, Some(i), from, &path);
             if self.replay_rows.is_some_and(|rows| !rows.moves(t, i, count, &path)) && !read.contains(&i) {
                 continue;
             }
-            steps.push(self.moved(s, pieces, factors, t)?);
+            let factors = factors.get(i).and_then(Option::as_ref);
+            steps.push(self.moved(s.clone(), pieces, factors, t)?);
         }
         if let Some(last) = steps.last() {
             *state = self.state_of(last);
         }
-        let limit = sweep.limit.map(|mut l| {
-            l.t = moved_t(l.t, None, &from, &path);
-            l.beyond = moved_t(l.beyond, None, &from, &path);
+        let limit = sweep.limit.clone().map(|mut l| {
+            l.t = moved_t(l.t, None, from, &path);
+            l.beyond = moved_t(l.beyond, None, from, &path);
             l
         });
         Ok(Sweep { mode: sweep.mode, steps, limit })
