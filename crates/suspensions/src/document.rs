@@ -82,6 +82,17 @@ pub(crate) fn parse_value(document: &serde_json::Value, origin: &str) -> Result<
     parse_document_of_kind(&text, false, origin).map(|(file, _)| file)
 }
 
+/// [`parse_value`] of an elastokin document without building it, for a caller that builds the model at
+/// once and says why a build fails in the builder's words (a sensitivity's moved models, each built for
+/// the analyses that replay it: a build to check it first would double the builds). A document that does
+/// not read is refused as [`parse_value`] refuses it.
+pub(crate) fn parse_value_to_build(document: &serde_json::Value, origin: &str) -> Result<SuspensionFile, String> {
+    match <SuspensionFile as serde::Deserialize>::deserialize(document) {
+        Ok(file) if file.check_ranges().is_ok() => Ok(file),
+        _ => parse_value(document, origin),
+    }
+}
+
 /// [`parse_document`] of a text whose kind is known already (from its parsed value, which a variant's edit
 /// has at hand), so that the text is not parsed once more to tell.
 pub(crate) fn parse_document_of_kind(

@@ -48,6 +48,20 @@ impl Parameters {
         read(&self.document_at(&values)?, &format!("the model with '{}' at {}", self.pointers[k], values[k]))
     }
 
+    /// [`Parameters::file_moved`] not built to check it, for a caller that builds it at once and says why a
+    /// build fails (an elastokin document; a Project Chrono file is read, and so built, as the command reads
+    /// it).
+    pub(crate) fn file_moved_to_build(&self, k: usize, delta: f64) -> Result<SuspensionFile, String> {
+        let mut values = self.values.clone();
+        values[k] += delta;
+        let document = self.document_at(&values)?;
+        let origin = format!("the model with '{}' at {}", self.pointers[k], values[k]);
+        if crate::import::chrono::is_chrono_document(&document) {
+            return read(&document, &origin);
+        }
+        crate::document::parse_value_to_build(&document, &origin)
+    }
+
     /// The model's document with the parameters at `values` (in order; the file's units): every other key,
     /// and the order of keys, as they were.
     pub fn document_at(&self, values: &[f64]) -> Result<Value, String> {

@@ -82,7 +82,8 @@ impl<'p> MovedModels<'p> {
     /// The model with parameter `k` moved by `MOVES[m]` steps.
     fn models(&self, k: usize, m: usize) -> Result<&Models<'static>, String> {
         let moved = |file| Models::moved(file, self.base.clone());
-        let read = || self.parameters.file_moved(k, MOVES[m] * step(self.parameters, k)).map(moved);
+        // Built at once for the analyses that replay it, each of which says why a build fails.
+        let read = || self.parameters.file_moved_to_build(k, MOVES[m] * step(self.parameters, k)).map(moved);
         self.files[k][m].get_or_init(read).as_ref().map_err(Clone::clone)
     }
 }
