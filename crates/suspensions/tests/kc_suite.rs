@@ -183,6 +183,46 @@ fn compliance_at_every_step_matches_a_fresh_solve_at_design() {
     }
 }
 
+/// Parallel travel reads its wheel and patch compliances and its anti-pitch off one solver at design (one
+/// equilibrium, one factorization): the figures are those of the library's separate readings, each with a
+/// solver of its own (`wheel_compliance`, `patch_compliance`, `anti_pitch`). Measured: see the line printed.
+#[test]
+fn the_design_figures_read_off_one_solver_are_those_of_the_separate_readings() {
+    use elastokin_suspensions::analysis::{anti_pitch, patch_compliance};
+    for name in EXAMPLES {
+        let file = example(name);
+        let report = kc::run(Analysis::ParallelTravel, &file, &Settings::default()).unwrap();
+        let corner = file.suspension.build(Side::Left, Rig::WheelTravel).unwrap();
+        let wheel = wheel_compliance(&corner, 0.0).unwrap();
+        let patch = patch_compliance(&corner, 0.0).unwrap();
+        let anti = anti_pitch(&corner, file.vehicle.as_ref().unwrap()).unwrap();
+        let figure = |key: &str| report.figure(key).and_then(|f| f.value).unwrap();
+        let mut worst = 0.0_f64;
+        let mut compare = |got: f64, separate: f64, scale: f64| worst = worst.max((got - separate).abs() / scale);
+        let read = report.wheel_compliance_at_design.unwrap();
+        let largest = wheel.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
+        for (r, row) in wheel.iter().enumerate() {
+            for (c, v) in row.iter().enumerate() {
+                compare(read[r][c], *v, largest);
+            }
+        }
+        let per_kn = |rad_per_n: f64| rad_per_n.to_degrees() * 1e3;
+        for (key, separate) in [
+            ("lateral_steer", per_kn(patch.lateral_steer)),
+            ("lateral_camber", per_kn(patch.lateral_camber)),
+            ("braking_steer", per_kn(patch.braking_steer)),
+            ("lateral_stiffness", patch.lateral_stiffness * 1e-3),
+            ("braking_anti_pitch", anti.braking),
+            ("traction_anti_pitch", anti.traction),
+        ] {
+            compare(figure(key), separate, separate.abs());
+        }
+        println!("{name}: {worst:e} of the largest or own size");
+        // Measured: 0 (the same solves, to the bit).
+        assert!(worst <= 1e-12, "{name}: {worst:e}");
+    }
+}
+
 /// A range that leaves out the design position leaves the design figures out with that reason.
 #[test]
 fn a_range_without_the_design_position_says_why_figures_are_missing() {

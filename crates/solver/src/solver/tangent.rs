@@ -43,8 +43,16 @@ impl<'m> StaticSolver<'m> {
     /// `[K Jᵀ; J 0] [q_t; λ_t] = [∂Q/∂t; −∂Φ/∂t]` with the exact tangent. Under a travel driver it gives the
     /// velocity of every point per unit travel: instant centres, roll centres and anti-dive lines.
     pub fn path_tangent(&mut self, state: &State) -> Result<Vec<f64>, SolverError> {
-        let n = self.work.assembly.n;
         self.factorize_tangent(state)?;
+        self.path_tangent_factored()
+    }
+
+    /// [`StaticSolver::path_tangent`] at the state the tangent was last factorized at
+    /// ([`StaticSolver::factorize_tangent`]), solved with that factorization: for a caller that reads more
+    /// off the one tangent (a compliance and a path tangent at design), with no solve between that assembles
+    /// another state.
+    pub fn path_tangent_factored(&mut self) -> Result<Vec<f64>, SolverError> {
+        let n = self.work.assembly.n;
         self.load_direction_rhs();
         self.solve_with_skew(Accuracy::Refined)?;
         Ok(self.work.rhs[..n].to_vec())

@@ -4,8 +4,8 @@
 use crate::analysis::sweep::require_rig;
 use crate::build::{Corner, Rig};
 use crate::description::{AxlePosition, VehicleParameters};
-use elastokin_core::Vec3;
-use elastokin_solver::{SolverError, SolverOptions, State, StaticSolver};
+use elastokin_core::{Pose, Vec3};
+use elastokin_solver::{SolverError, SolverOptions, StaticSolver};
 
 /// Side-view geometry of the wheel's motion in bump and the anti-pitch it gives: see [`anti_pitch`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -61,7 +61,8 @@ pub fn anti_pitch(corner: &Corner, vehicle: &VehicleParameters) -> Result<AntiPi
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let mut state = solver.design_state(0.0);
     solver.equilibrium(&mut state)?;
-    anti_pitch_at(corner, vehicle, &mut solver, &state)
+    let rates = solver.path_tangent(&state)?;
+    anti_pitch_at(corner, vehicle, &state.poses, &rates)
 }
 
 /// The rig and vehicle [`anti_pitch`] takes.
@@ -70,21 +71,20 @@ fn check(corner: &Corner, vehicle: &VehicleParameters) -> Result<(), SolverError
     vehicle.validate().map_err(|why| SolverError::InvalidInput { what: "vehicle parameters", why })
 }
 
-/// [`anti_pitch`] at `state`, the design equilibrium `solver` (of the corner's model) found: for a caller
-/// that reads more off the tangent there with the same solver.
+/// [`anti_pitch`] from the design equilibrium's `poses` and the path tangent there (`rates`,
+/// [`StaticSolver::path_tangent`]): for a caller that reads more off the tangent there with one solver.
 pub(crate) fn anti_pitch_at(
     corner: &Corner,
     vehicle: &VehicleParameters,
-    solver: &mut StaticSolver,
-    state: &State,
+    poses: &[Pose],
+    rates: &[f64],
 ) -> Result<AntiPitch, SolverError> {
     check(corner, vehicle)?;
-    let rates = solver.path_tangent(state)?;
     let wheel = &corner.wheel;
-    let patch = wheel.steering_geometry(&state.poses).contact_patch;
-    let wheel_centre = wheel.attitude(&state.poses).wheel_centre;
-    let patch_velocity = wheel.point_velocity(&state.poses, &rates, patch);
-    let wheel_centre_velocity = wheel.point_velocity(&state.poses, &rates, wheel_centre);
+    let patch = wheel.steering_geometry(poses).contact_patch;
+    let wheel_centre = wheel.attitude(poses).wheel_centre;
+    let patch_velocity = wheel.point_velocity(poses, rates, patch);
+    let wheel_centre_velocity = wheel.point_velocity(poses, rates, wheel_centre);
     if !patch_velocity.iter().all(|v| v.is_finite()) {
         return Err(SolverError::InvalidInput {
             what: "corner",

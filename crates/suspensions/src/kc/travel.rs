@@ -144,7 +144,8 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
     }
     match &file.vehicle {
         Some(vehicle) => {
-            let a = anti_pitch_at(&corner, vehicle, &mut design.solver, &design.state).map_err(said)?;
+            let rates = design.solver.path_tangent_factored().map_err(said)?;
+            let a = anti_pitch_at(&corner, vehicle, &design.state.poses, &rates).map_err(said)?;
             let (braking, traction) = match vehicle.axle {
                 crate::description::AxlePosition::Front => ("anti-dive", "anti-lift (drive)"),
                 crate::description::AxlePosition::Rear => ("anti-lift (braking)", "anti-squat"),
