@@ -91,7 +91,7 @@ fn scatter(
 }
 
 /// Sparsity pattern, slot maps and value arrays of one model's KKT system.
-#[derive(Debug)]
+#[derive(Debug, Default)]
 pub struct Assembly {
     /// Number of body coordinates.
     pub n: usize,

@@ -47,6 +47,7 @@ use crate::kkt::LuFactors;
 use crate::options::LoadPath;
 use crate::results::{StepResult, Sweep};
 use elastokin_core::Model;
+use std::any::Any;
 use std::cell::RefCell;
 use std::sync::Arc;
 
@@ -111,6 +112,9 @@ struct Recorded {
 #[derive(Debug, Clone, Default)]
 pub struct Tape {
     solvers: Vec<Recorded>,
+    /// The workspaces of its replays' spent solvers, for the next replays' (no two replays need a
+    /// workspace each of the same solver at once on one thread, but replays run on many threads).
+    spare: Spare,
     /// The last sweep kept: its solver and call, for [`rows_read`].
     last_sweep: Option<(usize, usize)>,
 }
@@ -138,6 +142,55 @@ impl Tape {
             _ => None,
         })
     }
+}
+
+/// Workspaces of spent solvers (`SolverWorkspace`, kept by type here, below the solver): a replay's solver
+/// takes one of its topology instead of allocating and analysing its own (`StaticSolver::with_workspace`),
+/// and leaves its own when dropped. A copy of a tape has none.
+#[derive(Default)]
+struct Spare(std::sync::Mutex<Vec<Box<dyn Any + Send>>>);
+
+impl Clone for Spare {
+    fn clone(&self) -> Self {
+        Spare::default()
+    }
+}
+
+impl std::fmt::Debug for Spare {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let count = self.0.lock().map_or(0, |s| s.len());
+        write!(f, "Spare({count} workspaces)")
+    }
+}
+
+/// The most workspaces a tape keeps: a few per recorded solver, for replays on several threads.
+const MOST_SPARE: usize = 64;
+
+/// A spare workspace of type `W` that `fits`, from the thread's replay's tape, if any.
+pub(crate) fn spare_workspace<W: Any>(fits: impl Fn(&W) -> bool) -> Option<W> {
+    ACTIVE.with(|a| match a.try_borrow().ok()?.as_ref() {
+        Some(Active::Replaying { tape, .. }) => {
+            let mut spare = tape.spare.0.lock().ok()?;
+            let k = spare.iter().position(|w| w.downcast_ref::<W>().is_some_and(&fits))?;
+            spare.swap_remove(k).downcast::<W>().ok().map(|w| *w)
+        }
+        _ => None,
+    })
+}
+
+/// Leaves a spent replaying solver's workspace to the thread's replay's tape; returns it when the tape
+/// keeps no more (or the thread replays none), for the caller to drop.
+pub(crate) fn leave_workspace<W: Any + Send>(workspace: W) -> Option<W> {
+    ACTIVE.with(|a| {
+        let Ok(active) = a.try_borrow() else { return Some(workspace) };
+        let Some(Active::Replaying { tape, .. }) = active.as_ref() else { return Some(workspace) };
+        let Ok(mut spare) = tape.spare.0.lock() else { return Some(workspace) };
+        if spare.len() >= MOST_SPARE {
+            return Some(workspace);
+        }
+        spare.push(Box::new(workspace));
+        None
+    })
 }
 
 /// A replay that took another path than its recording: the replayed computation created a solver of
@@ -349,7 +402,11 @@ impl RecordedSweep {
 
 /// Whether this thread is replaying a recording: every solve a solver makes is then a recorded one moved.
 pub(crate) fn replaying() -> bool {
-    ACTIVE.with(|a| matches!(a.borrow().as_ref(), Some(Active::Replaying { .. })))
+    // Asked also where a workspace is dropped: as the thread ends, or as what it records or replays is put
+    // away; then it is not replaying.
+    ACTIVE
+        .try_with(|a| a.try_borrow().is_ok_and(|a| matches!(a.as_ref(), Some(Active::Replaying { .. }))))
+        .unwrap_or(false)
 }
 
 /// Whether a new solver of a model with `rows` constraint rows replays a recorded solver of as many rows

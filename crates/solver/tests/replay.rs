@@ -411,6 +411,33 @@ fn a_row_a_run_names_once_read_is_moved_by_the_replays_as_a_whole_replay_moves_i
     assert_eq!(angles_moving_the_largest(k).unwrap(), angles_moving(k, None).unwrap());
 }
 
+/// The lever's sweep angles, and whether its solver analysed the KKT pattern itself (not reusing a
+/// workspace).
+fn angles_analysed(k: f64) -> Result<(Vec<f64>, bool), SolverError> {
+    let model = lever(k);
+    let mut solver = StaticSolver::new(&model, SolverOptions::default())?;
+    let analysed = solver.counters().factor.symbolic_analyses > 0;
+    Ok((solver.sweep(LoadPath::new(0.0, 1.0, 8), Mode::Corrected)?.steps.iter().map(angle).collect(), analysed))
+}
+
+#[test]
+fn a_replays_solver_takes_the_workspace_an_earlier_replay_left_and_reads_what_a_fresh_one_reads() {
+    let k = 2e4;
+    let (_, tape) = record(|| angles_analysed(k));
+    let tape = Arc::new(tape);
+    let moved = k * 1.01;
+    let (first, analysed) = replay(&tape, || angles_analysed(moved)).unwrap().value.unwrap();
+    assert!(analysed, "the first replay's solver has no workspace to take");
+    let (second, analysed) = replay(&tape, || angles_analysed(moved)).unwrap().value.unwrap();
+    assert!(!analysed, "the second replay's solver takes the first's workspace");
+    assert_eq!(second, first);
+    // A copy of the recording keeps no workspaces: its replay analyses afresh, and reads the same.
+    let copy = Arc::new((*tape).clone());
+    let (third, analysed) = replay(&copy, || angles_analysed(moved)).unwrap().value.unwrap();
+    assert!(analysed);
+    assert_eq!(third, first);
+}
+
 /// The lever with its spring's top `top_z` higher and its hinge `pivot_x` along x: moves that touch one
 /// element (the spring) and one joint (the hinge), of which a replay corrects the recorded right-hand side
 /// alone.

@@ -29,14 +29,16 @@ pub enum BackendChoice {
     Sparse,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 enum Active {
+    #[default]
     Dense,
     Sparse,
 }
 
-/// The backend [`BackendChoice`] picked, with the sparse LDLᵀ behind a dense LU as its fallback.
-#[derive(Debug)]
+/// The backend [`BackendChoice`] picked, with the sparse LDLᵀ behind a dense LU as its fallback. (Its
+/// default has neither: what a spent solver's workspace holds, see `SolverWorkspace`.)
+#[derive(Debug, Default)]
 pub struct AutoKkt {
     options: KktOptions,
     dense: Option<DenseLu>,

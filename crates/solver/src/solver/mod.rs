@@ -84,8 +84,10 @@ pub struct StaticSolver<'m> {
 
 /// What a [`StaticSolver`] allocates for one topology of model: the KKT pattern and slot maps, the
 /// factorization's analysis and every buffer. A design study keeps it from one variant to the next
-/// ([`StaticSolver::into_workspace`], [`StaticSolver::with_workspace`]).
-#[derive(Debug)]
+/// ([`StaticSolver::into_workspace`], [`StaticSolver::with_workspace`]); a replay's solvers leave theirs
+/// to the next replays of the same recording ([`crate::replay`]). Its default holds nothing: what a solver
+/// that gave its workspace away keeps.
+#[derive(Debug, Default)]
 pub struct SolverWorkspace {
     topology: Topology,
     backend: BackendChoice,
@@ -102,7 +104,25 @@ pub struct SolverWorkspace {
     moved: Vec<f64>,
 }
 
+/// A replay's solver leaves its workspace to the next replays of the recording: dropped in a replay, a
+/// workspace's allocations go to the replay's tape (the default left in their place holds none).
+impl Drop for SolverWorkspace {
+    fn drop(&mut self) {
+        if self.holds() && replay::replaying() {
+            if let Some(mut refused) = replay::leave_workspace(std::mem::take(self)) {
+                // Emptied, so that dropping it here does not offer it again.
+                (refused.assembly, refused.rhs) = (Assembly::default(), Vec::new());
+            }
+        }
+    }
+}
+
 impl SolverWorkspace {
+    /// Whether it holds a solver's allocations (not the default a solver that gave them away keeps).
+    pub(crate) fn holds(&self) -> bool {
+        self.assembly.n > 0 || !self.rhs.is_empty()
+    }
+
     /// Forgets the steps the predictor extrapolates from, keeping their storage for the next path: the
     /// next corrected step starts from the last equilibrium.
     fn forget_path(&mut self) {
@@ -114,7 +134,7 @@ impl SolverWorkspace {
 
 /// What a model's KKT pattern is made from: its bodies, and the bodies each element and joint couples
 /// (with the joint's row count).
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
 struct Topology {
     bodies: usize,
     elements: Vec<[Option<usize>; 2]>,
@@ -302,12 +322,14 @@ impl<'m> StaticSolver<'m> {
             })
             .collect();
         let topology = Topology::of(model);
-        let reusable = workspace.filter(|w| {
+        let fits = |w: &SolverWorkspace| {
             w.topology == topology
                 && w.assembly.active_rows == active
                 && w.backend == options.backend
                 && w.kkt == options.kkt
-        });
+        };
+        // A replay's solver takes the workspace a solver of an earlier replay of the recording left.
+        let reusable = workspace.filter(fits).or_else(|| replay::spare_workspace(fits));
         let workspace = match reusable {
             Some(mut w) => {
                 w.factor.reset();
