@@ -11,8 +11,9 @@ use crate::description::general::{
     SpringDef, Stiffness, StopDef, StopType, CHASSIS,
 };
 use crate::description::limits::{
-    check_hardpoints, check_rate, check_spring_force, check_steering_arm, check_steering_axis, check_tie_rod_mounts,
-    MAX_HARDPOINT_REACH, MAX_WHEEL_CENTRE_DISTANCE, ROTATIONAL_RATE_RANGE, TRANSLATIONAL_RATE_RANGE,
+    check_hardpoints, check_rate, check_rate_of, check_spring_force, check_steering_arm, check_steering_axis,
+    check_tie_rod_mounts, MAX_HARDPOINT_REACH, MAX_WHEEL_CENTRE_DISTANCE, ROTATIONAL_RATE_RANGE,
+    TRANSLATIONAL_RATE_RANGE,
 };
 use crate::description::Side;
 use crate::wheel::Wheel;
@@ -25,10 +26,10 @@ use elastokin_elements::{
 
 impl Stiffness {
     /// The element's characteristic; `item` names it in errors (a rate is checked by the element).
-    fn characteristic(&self, item: &str) -> Result<Characteristic, ModelError> {
+    fn characteristic(&self, item: impl FnOnce() -> String) -> Result<Characteristic, ModelError> {
         match self {
             Stiffness::Rate(k) => Ok(Characteristic::Rate(*k)),
-            Stiffness::Curve(points) => Ok(Characteristic::Curve(Curve::new(item, points.clone())?)),
+            Stiffness::Curve(points) => Ok(Characteristic::Curve(Curve::new(&item(), points.clone())?)),
         }
     }
 }
@@ -106,11 +107,11 @@ impl BushingDef {
             .into_iter()
             .enumerate()
             {
-                let item = format!("{key} ({}).{name} {what}", self.name);
+                let item = || format!("{key} ({}).{name} {what}", self.name);
                 if let Some(rate) = stiffness.rate() {
-                    check_rate(&item, rate, range, unit)?;
+                    check_rate_of(item, rate, range, unit)?;
                 }
-                out[set].push(stiffness.characteristic(&item)?);
+                out[set].push(stiffness.characteristic(item)?);
             }
         }
         let [t, r] = out.map(|v| <[Characteristic; 3]>::try_from(v).expect("three directions"));
