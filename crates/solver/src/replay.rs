@@ -117,6 +117,8 @@ pub struct Tape {
     spare: Spare,
     /// The last sweep kept: its solver and call, for [`rows_read`].
     last_sweep: Option<(usize, usize)>,
+    /// What the run decided of its model's form, in order ([`decided`]).
+    decisions: Vec<Decision>,
 }
 
 impl Tape {
@@ -202,7 +204,14 @@ pub struct Diverged(pub String);
 /// What this thread is doing with its solvers.
 enum Active {
     Recording(Tape),
-    Replaying { tape: Arc<Tape>, next_solver: usize, used: Vec<usize>, diverged: Option<String>, kinked: bool },
+    Replaying {
+        tape: Arc<Tape>,
+        next_solver: usize,
+        used: Vec<usize>,
+        diverged: Option<String>,
+        kinked: bool,
+        next_decision: usize,
+    },
 }
 
 thread_local! {
@@ -258,7 +267,14 @@ pub struct Replay<R> {
 /// run created solvers of other parts or in another number, or asked for other solves than were recorded.
 pub fn replay<R>(tape: &Arc<Tape>, run: impl FnOnce() -> R) -> Result<Replay<R>, Diverged> {
     let used = vec![0; tape.solvers.len()];
-    let guard = begin(Active::Replaying { tape: tape.clone(), next_solver: 0, used, diverged: None, kinked: false });
+    let guard = begin(Active::Replaying {
+        tape: tape.clone(),
+        next_solver: 0,
+        used,
+        diverged: None,
+        kinked: false,
+        next_decision: 0,
+    });
     let out = run();
     let Some(Active::Replaying { next_solver, used, diverged, kinked, .. }) = guard.finish() else {
         unreachable!("the replay is this call's")
@@ -295,6 +311,42 @@ pub fn rows_read(rows: &[usize]) {
             }
         }
     });
+}
+
+/// One decision of [`decided`], kept by type.
+#[derive(Clone)]
+struct Decision(Arc<dyn Any + Send + Sync>);
+
+impl std::fmt::Debug for Decision {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Decision")
+    }
+}
+
+/// What `decide` decides of a run's model: decided and kept when recording; the recording's when
+/// replaying, not decided again; decided otherwise. For a property of the model's form that a move small
+/// enough for a derivative keeps, as it keeps its rows' independence ([`replays_independent_rows`]): which
+/// ways its joints alone hold a point, read from the rank of their Jacobian with a margin. A replay that
+/// asks for more decisions than were recorded, or of another kind, decides them.
+pub fn decided<T: Clone + Send + Sync + 'static>(decide: impl FnOnce() -> T) -> T {
+    let kept = ACTIVE.with(|a| match a.borrow_mut().as_mut() {
+        Some(Active::Replaying { tape, next_decision, .. }) => {
+            let kept = tape.decisions.get(*next_decision).and_then(|d| d.0.downcast_ref::<T>().cloned());
+            *next_decision += 1;
+            kept
+        }
+        _ => None,
+    });
+    if let Some(kept) = kept {
+        return kept;
+    }
+    let value = decide();
+    ACTIVE.with(|a| {
+        if let Some(Active::Recording(tape)) = a.borrow_mut().as_mut() {
+            tape.decisions.push(Decision(Arc::new(value.clone())));
+        }
+    });
+    value
 }
 
 /// Notes in the thread's replay that a stop touched or left as the model moved.

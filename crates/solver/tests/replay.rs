@@ -438,6 +438,25 @@ fn a_replays_solver_takes_the_workspace_an_earlier_replay_left_and_reads_what_a_
     assert_eq!(third, first);
 }
 
+#[test]
+fn a_decision_a_recording_took_is_its_replays_without_deciding_again() {
+    // The run decides twice, then sweeps: the decisions are `k`'s, as a model's form is its own.
+    let run = |k: f64| -> (u32, Vec<bool>, Result<Vec<f64>, SolverError>) {
+        let first = replay::decided(|| (k / 1e4) as u32);
+        let second = replay::decided(|| vec![k > 1e4, k > 3e4]);
+        (first, second, angles_moving(k, None))
+    };
+    let ((first, second, _), tape) = record(|| run(2e4));
+    assert_eq!((first, second.as_slice()), (2, [true, false].as_slice()));
+    let tape = Arc::new(tape);
+    // Replayed on a model whose own decisions would differ: the recording's, not decided again.
+    let (first, second, angles) = replay(&tape, || run(4e4)).unwrap().value;
+    assert_eq!((first, second.as_slice()), (2, [true, false].as_slice()));
+    assert!(angles.is_ok());
+    // Outside a recording or replay, decided.
+    assert_eq!(replay::decided(|| 7_u32), 7);
+}
+
 /// The lever with its spring's top `top_z` higher and its hinge `pivot_x` along x: moves that touch one
 /// element (the spring) and one joint (the hinge), of which a replay corrects the recorded right-hand side
 /// alone.

@@ -29,8 +29,8 @@ fn where_loaded(s: &Settings) -> &'static str {
 
 pub(super) fn vertical_force(models: &Models, s: &Settings) -> Result<AnalysisReport, String> {
     let file = models.file();
-    let held = models.corner(Rig::WheelTravel)?;
-    let (design_load, design_load_error) = design_wheel_load_estimated(&held, s.error_estimate).map_err(said)?;
+    let held = models.corner_ref(Rig::WheelTravel)?;
+    let (design_load, design_load_error) = design_wheel_load_estimated(held, s.error_estimate).map_err(said)?;
     // The default range is 0.5 to 1.5 times the design wheel load. A corner that carries next to nothing at
     // design (its spring at its free length, as some imported data have it) gets 0 to 3 kN instead: a
     // range around nothing would have no width.
@@ -178,7 +178,7 @@ fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Result<AnalysisR
     let range = s.range.unwrap_or(default_range);
     let corner_load = match &file.vehicle {
         Some(v) => v.corner_load,
-        None => design_wheel_load(&models.corner(Rig::WheelTravel)?).map_err(said)?,
+        None => design_wheel_load(models.corner_ref(Rig::WheelTravel)?).map_err(said)?,
     };
     let rig = if s.height_held { Rig::HeightHeld } else { Rig::Free };
     let mut corner = models.corner(rig)?;

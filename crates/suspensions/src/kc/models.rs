@@ -69,6 +69,11 @@ impl<'f> Models<'f> {
         self.built_corner(rig).clone()
     }
 
+    /// [`Models::corner`] as built, for an analysis that changes nothing of it (no copy).
+    pub fn corner_ref(&self, rig: Rig) -> Result<&Corner, String> {
+        self.built_corner(rig).as_ref().map_err(Clone::clone)
+    }
+
     /// The left corner on `rig`, built once.
     fn built_corner(&self, rig: Rig) -> &Result<Corner, String> {
         let index = match rig {
@@ -87,6 +92,11 @@ impl<'f> Models<'f> {
     /// The axle on `rig`, as [`Axle::build`] builds it (its error in the user's words).
     pub fn axle(&self, rig: AxleRig) -> Result<Axle, String> {
         self.built_axle(rig).clone()
+    }
+
+    /// [`Models::axle`] as built, for an analysis that changes nothing of it (no copy).
+    pub fn axle_ref(&self, rig: AxleRig) -> Result<&Axle, String> {
+        self.built_axle(rig).as_ref().map_err(Clone::clone)
     }
 
     /// The axle on `rig`, built once.

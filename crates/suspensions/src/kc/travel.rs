@@ -21,14 +21,13 @@ const AT_DESIGN: ReplayRows = ReplayRows { near: 0.0, last: false, extremes: fal
 pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisReport, String> {
     let file = models.file();
     let range = s.range.unwrap_or((-0.08, 0.08));
-    let corner = models.corner(Rig::WheelTravel)?;
-    let out =
-        parallel_wheel_travel_with(&corner, range.0, range.1, s.steps, s.mode, s.extras_reading(range, AT_DESIGN))
-            .map_err(said)?;
+    let corner = models.corner_ref(Rig::WheelTravel)?;
+    let out = parallel_wheel_travel_with(corner, range.0, range.1, s.steps, s.mode, s.extras_reading(range, AT_DESIGN))
+        .map_err(said)?;
     let wheel = &corner.wheel;
     let sign = wheel.side.sign();
-    let table = |rows: &[TravelRow]| parallel_travel_table(&corner, rows);
-    let figures = |rows: &[TravelRow]| parallel_travel_figures(file, &corner, range, rows);
+    let table = |rows: &[TravelRow]| parallel_travel_table(corner, rows);
+    let figures = |rows: &[TravelRow]| parallel_travel_figures(file, corner, range, rows);
     let x = |r: &TravelRow| r.travel * 1e3;
     let charts = vec![
         chart(
@@ -78,7 +77,7 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
         range,
         s,
         &out,
-        Reduction { table: &table, figures: &figures, drawing: corner_drawing(&corner, s) },
+        Reduction { table: &table, figures: &figures, drawing: corner_drawing(corner, s) },
         charts,
     );
     // Toe, camber and wheel rate no car has, inside the travel asked for.
@@ -86,21 +85,24 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
     // Figures of the design position itself, from the tangent there (not read off the rows).
     // One solver at design for all of them: the wheel and patch compliances and the anti-pitch's path
     // tangent are read off the one tangent there.
-    let mut design = compliance_at(&corner, 0.0).map_err(said)?;
+    let mut design = compliance_at(corner, 0.0).map_err(said)?;
     let compliance = design.wheel;
-    let pc = patch_compliance_from(&corner, &compliance, &design.state.poses);
+    let pc = patch_compliance_from(corner, &compliance, &design.state.poses);
     let finite = compliance.iter().flatten().all(|v| v.is_finite());
     let per_kn = |rad_per_n: f64| deg(rad_per_n) * 1e3;
     // The joints alone may hold the patch that way (ideal joints, no bushing in the load path): the
     // compliance is then rounding, and its inverse no stiffness.
     let inboard = elastokin_core::Vec3::new(0.0, -corner.wheel.side.sign(), 0.0);
     let rearward = elastokin_core::Vec3::new(-1.0, 0.0, 0.0);
-    let held = crate::build::mobility::holds_point(
-        &corner.model,
-        corner.wheel.upright,
-        corner.wheel.contact_patch,
-        &[inboard, rearward],
-    );
+    // Decided once by a recording, for its replays (a property of the joints' form).
+    let held = elastokin_solver::replay::decided(|| {
+        crate::build::mobility::holds_point(
+            &corner.model,
+            corner.wheel.upright,
+            corner.wheel.contact_patch,
+            &[inboard, rearward],
+        )
+    });
     let stiffness = |key: &str, label: &str, n_per_m: f64, rigid: bool| {
         let value = (finite && !rigid && n_per_m.is_finite()).then_some(n_per_m * 1e-3);
         let reason = if rigid {
@@ -145,7 +147,7 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
     match &file.vehicle {
         Some(vehicle) => {
             let rates = design.solver.path_tangent_factored().map_err(said)?;
-            let a = anti_pitch_at(&corner, vehicle, &design.state.poses, &rates).map_err(said)?;
+            let a = anti_pitch_at(corner, vehicle, &design.state.poses, &rates).map_err(said)?;
             let (braking, traction) = match vehicle.axle {
                 crate::description::AxlePosition::Front => ("anti-dive", "anti-lift (drive)"),
                 crate::description::AxlePosition::Rear => ("anti-lift (braking)", "anti-squat"),
@@ -314,12 +316,12 @@ fn parallel_travel_figures(
 pub(super) fn roll(models: &Models, s: &Settings) -> Result<AnalysisReport, String> {
     let file = models.file();
     let range = s.range.unwrap_or((-0.05, 0.05));
-    let axle = models.axle(AxleRig::OppositeTravel)?;
+    let axle = models.axle_ref(AxleRig::OppositeTravel)?;
     let has_bars = !axle.anti_roll_bars.is_empty();
     // The shared beams' names as keys and columns: a twist-beam axle's cross member is read in roll.
     let members: Vec<(&str, String)> = axle.members.iter().map(|m| (m.name.as_str(), slug(&m.name))).collect();
     let out =
-        axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras_reading(range, AT_DESIGN)).map_err(said)?;
+        axle_sweep_with(axle, range.0, range.1, s.steps, s.mode, s.extras_reading(range, AT_DESIGN)).map_err(said)?;
     let table = |rows: &[AxleRow]| Table {
         name: "roll".into(),
         columns: [
@@ -519,7 +521,7 @@ pub(super) fn roll(models: &Models, s: &Settings) -> Result<AnalysisReport, Stri
         range.1 * 1e3,
         s.steps
     );
-    let reduce = Reduction { table: &table, figures: &figures, drawing: axle_drawing(&axle, s) };
+    let reduce = Reduction { table: &table, figures: &figures, drawing: axle_drawing(axle, s) };
     let mut report = finish(Analysis::Roll, description, range, s, &out, reduce, charts);
     if let Some(rigid) = models.rigid() {
         bushings_share(&mut report, "roll_steer", "roll steer", roll(rigid, &Settings { motion: false, ..*s }));
@@ -556,11 +558,11 @@ fn ackermann(r: &AxleRow, track: f64, wheelbase: f64) -> Option<(f64, f64, f64)>
 pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, String> {
     let file = models.file();
     let range = s.range.unwrap_or((-0.04, 0.04));
-    let axle = models.axle(AxleRig::Steering)?;
+    let axle = models.axle_ref(AxleRig::Steering)?;
     // The figures read the rows next to rack centre, the row of full steer and that of the largest
     // Ackermann error: the last two found by their values (named below).
     let rows = ReplayRows { near: 0.0, last: false, extremes: true };
-    let out = axle_sweep_with(&axle, range.0, range.1, s.steps, s.mode, s.extras_reading(range, rows)).map_err(said)?;
+    let out = axle_sweep_with(axle, range.0, range.1, s.steps, s.mode, s.extras_reading(range, rows)).map_err(said)?;
     let wheelbase = file.vehicle.as_ref().map(|v| v.wheelbase);
     // Track between the contact patches at design: the lateral distance Ackermann's rule uses.
     let track = axle.left.contact_patch.y - axle.right.contact_patch.y;
@@ -711,6 +713,6 @@ pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, 
     )];
     let description =
         format!("steering (rack {:+.0}..{:+.0} mm, heights held), {} steps", range.0 * 1e3, range.1 * 1e3, s.steps);
-    let reduce = Reduction { table: &table, figures: &figures, drawing: axle_drawing(&axle, s) };
+    let reduce = Reduction { table: &table, figures: &figures, drawing: axle_drawing(axle, s) };
     Ok(finish(Analysis::Steering, description, range, s, &out, reduce, charts))
 }
