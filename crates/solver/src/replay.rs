@@ -37,7 +37,10 @@
 //! ([`StaticSolver::newton_correction`](crate::StaticSolver::newton_correction)).
 //!
 //! A run that reads only some rows of a sweep (a slope at one load parameter, the last row) may ask its
-//! solver to move only those ([`ReplayRows`]): the replayed sweep has those steps alone.
+//! solver to move only those ([`ReplayRows`]): the replayed sweep has those steps alone. A replay's solver
+//! takes the workspace (KKT pattern, analysis, buffers) a solver of an earlier replay of the recording left
+//! on the tape, and what a run decided of its model's form ([`decided`]) is its replays' without deciding
+//! again.
 //!
 //! A replay that takes another path than the recording (a solver of other parts, another sequence of
 //! solves) is reported, never papered over: [`replay`] returns [`Diverged`].
@@ -325,7 +328,7 @@ impl std::fmt::Debug for Decision {
 
 /// What `decide` decides of a run's model: decided and kept when recording; the recording's when
 /// replaying, not decided again; decided otherwise. For a property of the model's form that a move small
-/// enough for a derivative keeps, as it keeps its rows' independence ([`replays_independent_rows`]): which
+/// enough for a derivative keeps, as it keeps its rows' independence (`replays_independent_rows`): which
 /// ways its joints alone hold a point, read from the rank of their Jacobian with a margin. A replay that
 /// asks for more decisions than were recorded, or of another kind, decides them.
 pub fn decided<T: Clone + Send + Sync + 'static>(decide: impl FnOnce() -> T) -> T {
