@@ -223,6 +223,31 @@ fn the_design_figures_read_off_one_solver_are_those_of_the_separate_readings() {
     }
 }
 
+/// The static load's figures and component forces carry an error estimate, as every sweep's rows do: each
+/// the change one exact Newton iteration on from the rest position, of the size the converged equilibrium
+/// leaves (measured: see the lines printed); without the estimate asked for, none.
+#[test]
+fn the_static_loads_figures_carry_their_error_estimate() {
+    for name in EXAMPLES {
+        let file = example(name);
+        let report = kc::run(Analysis::StaticLoad, &file, &Settings::default()).unwrap();
+        let mut worst = 0.0_f64;
+        for f in &report.figures {
+            let (value, error) = (f.value.unwrap(), f.error.unwrap_or_else(|| panic!("{name} {}: no estimate", f.key)));
+            assert!(error.is_finite(), "{name} {}", f.key);
+            worst = worst.max(error / value.abs().max(1.0));
+        }
+        let columns = report.accuracy.columns.iter().filter_map(|c| c.1).count();
+        println!("{name}: largest estimate {worst:e} of its figure (or of 1 in its unit); {columns} columns estimated");
+        // Measured: 2.5e-11 (MacPherson) and 6.4e-11 (double wishbone).
+        assert!(worst < 5e-9, "{name}: {worst:e}");
+        assert_eq!(columns, 6, "{name}: the force and torque columns");
+        let unestimated =
+            kc::run(Analysis::StaticLoad, &file, &Settings { error_estimate: false, ..Settings::default() });
+        assert!(unestimated.unwrap().figures.iter().all(|f| f.error.is_none()));
+    }
+}
+
 /// A range that leaves out the design position leaves the design figures out with that reason.
 #[test]
 fn a_range_without_the_design_position_says_why_figures_are_missing() {

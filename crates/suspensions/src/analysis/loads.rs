@@ -401,7 +401,18 @@ const STATIC_LOAD_STEPS: usize = 20;
 /// load) or
 /// [`SolverError::InvalidInput`] on the corner load when no rest position is found or the one found is
 /// unstable; model and factorization failures pass through.
-pub fn static_load_case(mut corner: Corner, corner_load: f64) -> Result<StaticLoad, SolverError> {
+pub fn static_load_case(corner: Corner, corner_load: f64) -> Result<StaticLoad, SolverError> {
+    Ok(static_load_case_estimated(corner, corner_load, false)?.0)
+}
+
+/// [`static_load_case`], and with `estimate` the rest position read again one exact Newton iteration on:
+/// what it reads differs from the first by the error estimate of each (as every sweep's rows are read again,
+/// [`SweepExtras::error_estimate`]).
+pub fn static_load_case_estimated(
+    mut corner: Corner,
+    corner_load: f64,
+    estimate: bool,
+) -> Result<(StaticLoad, Option<StaticLoad>), SolverError> {
     require_rig(&corner, &[Rig::Free])?;
     if !corner_load.is_finite() {
         return Err(SolverError::InvalidInput {
@@ -445,9 +456,33 @@ pub fn static_load_case(mut corner: Corner, corner_load: f64) -> Result<StaticLo
         }
         Err(e) => return Err(e),
     };
+    let rest = read_rest(&corner, &mut solver, &state, &step, corner_load, &patch_local)?;
+    let corrected = if estimate {
+        let moved = solver.newton_correction(&step)?;
+        let at = solver.state_of(&moved);
+        Some(read_rest(&corner, &mut solver, &at, &moved, corner_load, &patch_local)?)
+    } else {
+        None
+    };
+    Ok((rest, corrected))
+}
+
+/// What [`static_load_case`] reads of the rest position `step` (at `state`) that `solver` found for the
+/// corner under `corner_load`, applied at `patch_local` of the upright: refused where the corner has no
+/// wheel rate there or is unstable.
+fn read_rest(
+    corner: &Corner,
+    solver: &mut StaticSolver,
+    state: &State,
+    step: &StepResult,
+    corner_load: f64,
+    patch_local: &Vec3,
+) -> Result<StaticLoad, SolverError> {
+    let model = &corner.model;
+    let upright = corner.wheel.upright.0;
     // Stability: the rise of the loaded point per newton of corner load, from the path tangent.
-    let rates = solver.path_tangent(&state)?;
-    let contact_patch = step.poses[upright].point(&patch_local);
+    let rates = solver.path_tangent(state)?;
+    let contact_patch = step.poses[upright].point(patch_local);
     let rise = corner.wheel.point_velocity(&step.poses, &rates, contact_patch).z;
     let wheel_rate = 1.0 / rise;
     if !wheel_rate.is_finite() {
@@ -472,7 +507,7 @@ pub fn static_load_case(mut corner: Corner, corner_load: f64) -> Result<StaticLo
             ),
         });
     }
-    let forces = ComponentForces::at(model, &step);
+    let forces = ComponentForces::at(model, step);
     let attitude = corner.wheel.attitude(&step.poses);
     let spring = corner.spring.map(|e| step.element_report(model, e));
     let spring_deflection = spring.map_or(0.0, |r| r.deflection.x);
@@ -489,6 +524,6 @@ pub fn static_load_case(mut corner: Corner, corner_load: f64) -> Result<StaticLo
         spring_deflection,
         forces,
         residuals: (step.force_residual / step.force_scale, step.constraint_residual),
-        poses: step.poses,
+        poses: step.poses.clone(),
     })
 }

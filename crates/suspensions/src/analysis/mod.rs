@@ -17,9 +17,9 @@ pub use anti_pitch::{anti_pitch, AntiPitch};
 pub use axle::{axle_sweep, axle_sweep_with, AxleRow, RollCentre};
 pub use compliance::{patch_compliance, wheel_compliance, PatchCompliance};
 pub use loads::{
-    design_wheel_load, design_wheel_load_estimated, model_load_sweep_with, static_load_case, vertical_force_sweep,
-    vertical_force_sweep_with, wheel_load_sweep, wheel_load_sweep_with, ComponentForce, ComponentForces,
-    ComponentNames, LoadRow, StaticLoad, WheelLoad,
+    design_wheel_load, design_wheel_load_estimated, model_load_sweep_with, static_load_case,
+    static_load_case_estimated, vertical_force_sweep, vertical_force_sweep_with, wheel_load_sweep,
+    wheel_load_sweep_with, ComponentForce, ComponentForces, ComponentNames, LoadRow, StaticLoad, WheelLoad,
 };
 pub use sweep::{slope_at, walk, ArcLengthRows, SweepExtras, SweepLimit, SweepOutput, Walked, MAX_ARC_STEPS_PER_RANGE};
 pub use travel::{parallel_wheel_travel, parallel_wheel_travel_with, steering, TravelRow};

@@ -1,8 +1,8 @@
 //! The force-driven K&C tests: vertical force with the wheel free, the road loads, the static load case.
 
 use crate::analysis::{
-    design_wheel_load, design_wheel_load_estimated, model_load_sweep_with, slope_at, static_load_case,
-    vertical_force_sweep_with, wheel_load_sweep_with, ComponentForces, LoadRow, WheelLoad,
+    design_wheel_load, design_wheel_load_estimated, model_load_sweep_with, slope_at, static_load_case_estimated,
+    vertical_force_sweep_with, wheel_load_sweep_with, ComponentForces, LoadRow, StaticLoad, WheelLoad,
 };
 use crate::build::{LoadPoint, Rig};
 use crate::description::Side;
@@ -351,7 +351,7 @@ pub(super) fn static_load(models: &Models, s: &Settings) -> Result<AnalysisRepor
         "the model file has no \"vehicle\" section with the corner_load to carry (see examples/macpherson.json)",
     )?;
     let corner = models.corner(Rig::Free)?;
-    let rest = static_load_case(corner, vehicle.corner_load).map_err(said)?;
+    let (rest, corrected) = static_load_case_estimated(corner, vehicle.corner_load, s.error_estimate).map_err(said)?;
     let table = Table {
         name: "static_load".into(),
         columns: [
@@ -379,16 +379,46 @@ pub(super) fn static_load(models: &Models, s: &Settings) -> Result<AnalysisRepor
             })
             .collect(),
     };
-    let d = rest.wheel_centre_displacement;
-    let figures = vec![
-        Figure::new("corner_load", "corner load", "N", 0, rest.corner_load),
-        Figure::new("ride_height_change", "ride height change at the wheel centre (bump +)", "mm", 2, d.z * 1e3),
-        Figure::new("toe", "toe at rest", "deg", 4, deg(rest.attitude.toe)),
-        Figure::new("camber", "camber at rest", "deg", 4, deg(rest.attitude.camber)),
-        Figure::new("wheel_rate", "wheel rate at rest", "N/mm", 2, rest.wheel_rate * 1e-3),
-        Figure::new("spring_force", "spring force (compression +)", "N", 0, rest.spring_force),
-        Figure::new("spring_deflection", "spring deflection (compression -)", "mm", 2, rest.spring_deflection * 1e3),
-    ];
+    let figures = |rest: &StaticLoad| {
+        let d = rest.wheel_centre_displacement;
+        vec![
+            Figure::new("corner_load", "corner load", "N", 0, rest.corner_load),
+            Figure::new("ride_height_change", "ride height change at the wheel centre (bump +)", "mm", 2, d.z * 1e3),
+            Figure::new("toe", "toe at rest", "deg", 4, deg(rest.attitude.toe)),
+            Figure::new("camber", "camber at rest", "deg", 4, deg(rest.attitude.camber)),
+            Figure::new("wheel_rate", "wheel rate at rest", "N/mm", 2, rest.wheel_rate * 1e-3),
+            Figure::new("spring_force", "spring force (compression +)", "N", 0, rest.spring_force),
+            Figure::new(
+                "spring_deflection",
+                "spring deflection (compression -)",
+                "mm",
+                2,
+                rest.spring_deflection * 1e3,
+            ),
+        ]
+    };
+    let mut figures_at_rest = figures(&rest);
+    // Each figure's error estimate: its change one exact Newton iteration on (as a sweep's rows are read
+    // again); the component forces' likewise, column by column.
+    let mut columns = Vec::new();
+    if let Some(corrected) = &corrected {
+        for (f, g) in figures_at_rest.iter_mut().zip(figures(corrected)) {
+            f.error = f.value.zip(g.value).map(|(a, b)| (a - b).abs());
+        }
+        let components = |r: &StaticLoad| -> Vec<[f64; 6]> {
+            let all = r.forces.joints.iter().chain(&r.forces.elements);
+            all.map(|c| [c.force.x, c.force.y, c.force.z, c.torque.x, c.torque.y, c.torque.z]).collect()
+        };
+        let (at, on) = (components(&rest), components(corrected));
+        columns = table.columns.iter().map(|c| (c.clone(), None)).collect();
+        for k in 0..6 {
+            let largest = at.iter().zip(&on).map(|(a, b)| (a[k] - b[k]).abs()).fold(0.0, f64::max);
+            columns[3 + k].1 = Some(largest);
+        }
+    }
+    let figures = figures_at_rest;
+    let angle_error =
+        ["toe", "camber"].iter().filter_map(|key| figures.iter().find(|f| f.key == *key)?.error).fold(0.0, f64::max);
     let (force_residual, constraint_residual) = rest.residuals;
     let within = constraint_residual <= s.tolerance.length_m;
     let mut warnings = Vec::new();
@@ -418,15 +448,21 @@ pub(super) fn static_load(models: &Models, s: &Settings) -> Result<AnalysisRepor
         accuracy: Accuracy {
             method: format!(
                 "converged residuals of the rest position (Newton on the exact equilibrium; {} mode does not \
-                 apply)",
-                mode_word(s.mode)
+                 apply){}",
+                mode_word(s.mode),
+                if corrected.is_some() {
+                    "; each figure and column read again one exact Newton iteration on"
+                } else {
+                    ""
+                }
             ),
-            // Newton converged: what is left is the residual's scale, far below any figure printed.
-            angle_error_deg: 0.0,
+            // Newton converged: what is left is the residual's scale, far below any figure printed; the
+            // angles' estimate says how far.
+            angle_error_deg: angle_error,
             length_error_m: constraint_residual,
             force_residual,
             constraint_residual,
-            columns: Vec::new(),
+            columns,
             within_tolerance: within,
         },
         warnings,
