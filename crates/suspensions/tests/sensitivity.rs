@@ -134,8 +134,7 @@ fn double_wishbone_and_five_link_hardpoint_sensitivities_match_re_solves() {
 /// matches re-solves as the elastokin models' do.
 #[test]
 fn chrono_double_wishbone_point_sensitivities_match_re_solves() {
-    let path = format!("{}/../../tests/data/chrono/DoubleWishbone.json", env!("CARGO_MANIFEST_DIR"));
-    let doc = base_document(&std::fs::read_to_string(&path).unwrap(), &path).unwrap();
+    let doc = chrono("DoubleWishbone.json");
     let all = hardpoint_pointers(&doc);
     assert!(all.contains(&"/Tierod/Location Chassis/2".to_string()) && all.len() >= 27, "{all:?}");
     assert!(all.iter().all(|p| elastokin_suspensions::design::sensitivity::effect_unit(p) == "mm"));
@@ -374,25 +373,35 @@ fn every_figure_and_cell_of_the_macpherson_suite_matches_the_report_re_run() {
 #[test]
 fn every_figure_of_the_macpherson_suite_matches_the_re_run_for_hardpoints_that_place_a_body() {
     let doc = document("macpherson.json");
-    let file = Parameters::new(&doc, &[]).unwrap().file().unwrap();
-    let worst = figures_against_re_runs_for_every_hardpoint(&doc, kc::planned(&file, &[]).into_iter().flatten());
+    let worst = figures_against_re_runs(&doc, &hardpoint_pointers(&doc), every_analysis(&doc));
     assert!(worst <= 1.0, "{worst:e}");
 }
 
-/// How far the sensitivities of the figures of `analyses` to every hardpoint coordinate of `doc` are from
-/// the report re-run ([`against_report_re_runs`]), at worst, as a fraction of the allowed difference.
-fn figures_against_re_runs_for_every_hardpoint(
+/// Every analysis the suite runs on the model of `doc`.
+fn every_analysis(doc: &serde_json::Value) -> Vec<Analysis> {
+    kc::planned(&Parameters::new(doc, &[]).unwrap().file().unwrap(), &[]).into_iter().flatten().collect()
+}
+
+/// How far the sensitivities of the figures of `analyses` to `pointers` of `doc` are from the report re-run
+/// ([`against_report_re_runs`]), at worst, as a fraction of the allowed difference.
+fn figures_against_re_runs(
     doc: &serde_json::Value,
+    pointers: &[String],
     analyses: impl IntoIterator<Item = Analysis>,
 ) -> f64 {
-    let pointers = hardpoint_pointers(doc);
     let (mut worst, mut figures) = (0.0_f64, 0);
     for analysis in analyses {
-        let (w, f, _) = against_report_re_runs(doc, &pointers, analysis, false);
+        let (w, f, _) = against_report_re_runs(doc, pointers, analysis, false);
         (worst, figures) = (worst.max(w), figures + f);
     }
-    println!("every hardpoint coordinate: {figures} figures, {worst:.3} of the allowed difference");
+    println!("{} parameters: {figures} figures, {worst:.3} of the allowed difference", pointers.len());
     worst
+}
+
+/// Project Chrono's suspension file `name` (of `tests/data/chrono`), as the command reads it.
+fn chrono(name: &str) -> serde_json::Value {
+    let path = format!("{}/../../tests/data/chrono/{name}", env!("CARGO_MANIFEST_DIR"));
+    base_document(&std::fs::read_to_string(&path).unwrap(), &path).unwrap()
 }
 
 /// The double wishbone's static load and vertical-force sweep, every figure (the wheel rates among them)
@@ -406,7 +415,8 @@ fn figures_against_re_runs_for_every_hardpoint(
 #[test]
 fn the_double_wishbones_wheel_rates_match_the_re_run_for_every_hardpoint() {
     let doc = document("double_wishbone.json");
-    let worst = figures_against_re_runs_for_every_hardpoint(&doc, [Analysis::StaticLoad, Analysis::VerticalForce]);
+    let worst =
+        figures_against_re_runs(&doc, &hardpoint_pointers(&doc), [Analysis::StaticLoad, Analysis::VerticalForce]);
     assert!(worst <= 1.0, "{worst:e}");
 }
 
@@ -434,13 +444,11 @@ fn suite_against_re_runs(doc: &serde_json::Value, pointers: &[String]) -> (f64, 
 /// every figure and cell, against the report re-run. Measured: see the lines printed.
 #[test]
 fn every_figure_and_cell_of_the_other_shipped_models_and_a_chrono_file_matches_the_report_re_run() {
-    let chrono = format!("{}/../../tests/data/chrono/DoubleWishbone.json", env!("CARGO_MANIFEST_DIR"));
-    let chrono = base_document(&std::fs::read_to_string(&chrono).unwrap(), &chrono).unwrap();
     for (name, doc, every) in [
         ("double_wishbone.json", document("double_wishbone.json"), 9),
         ("five_link.json", document("five_link.json"), 11),
         ("double_wishbone_axle.json", document("double_wishbone_axle.json"), 9),
-        ("Chrono DoubleWishbone.json", chrono, 10),
+        ("Chrono DoubleWishbone.json", chrono("DoubleWishbone.json"), 10),
     ] {
         let pointers: Vec<String> = hardpoint_pointers(&doc).into_iter().step_by(every).collect();
         assert!(pointers.len() >= 3, "{name}: {pointers:?}");
@@ -457,21 +465,14 @@ fn every_figure_and_cell_of_the_other_shipped_models_and_a_chrono_file_matches_t
 /// each (release build), 0.171, 0.676 and 0.608 of the allowed difference.
 #[test]
 fn every_figure_of_the_four_link_axle_the_pushrod_corner_and_chrono_s_macpherson_matches_the_report_re_run() {
-    let chrono = format!("{}/../../tests/data/chrono/MacPhersonStrut.json", env!("CARGO_MANIFEST_DIR"));
-    let chrono = base_document(&std::fs::read_to_string(&chrono).unwrap(), &chrono).unwrap();
     for (name, doc, every) in [
         ("four_link_axle.json", document("four_link_axle.json"), 3),
         ("pushrod_rocker.json", document("pushrod_rocker.json"), 5),
-        ("Chrono MacPhersonStrut.json", chrono, 5),
+        ("Chrono MacPhersonStrut.json", chrono("MacPhersonStrut.json"), 5),
     ] {
+        println!("{name}:");
         let pointers: Vec<String> = hardpoint_pointers(&doc).into_iter().step_by(every).collect();
-        let file = Parameters::new(&doc, &[]).unwrap().file().unwrap();
-        let (mut worst, mut figures) = (0.0_f64, 0);
-        for analysis in kc::planned(&file, &[]).into_iter().flatten() {
-            let (w, f, _) = against_report_re_runs(&doc, &pointers, analysis, false);
-            (worst, figures) = (worst.max(w), figures + f);
-        }
-        println!("{name}: {} parameters, {figures} figures, {worst:.3} of the allowed difference", pointers.len());
+        let worst = figures_against_re_runs(&doc, &pointers, every_analysis(&doc));
         assert!(worst <= 1.0, "{name}: {worst:e}");
     }
 }
