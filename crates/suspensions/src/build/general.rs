@@ -11,9 +11,8 @@ use crate::description::general::{
     SpringDef, Stiffness, StopDef, StopType, CHASSIS,
 };
 use crate::description::limits::{
-    check_hardpoints, check_rate, check_rate_of, check_spring_force, check_steering_arm, check_steering_axis,
-    check_tie_rod_mounts, MAX_HARDPOINT_REACH, MAX_WHEEL_CENTRE_DISTANCE, ROTATIONAL_RATE_RANGE,
-    TRANSLATIONAL_RATE_RANGE,
+    check_hardpoints, check_rate_of, check_spring_force, check_steering_arm, check_steering_axis, check_tie_rod_mounts,
+    MAX_HARDPOINT_REACH, MAX_WHEEL_CENTRE_DISTANCE, ROTATIONAL_RATE_RANGE, TRANSLATIONAL_RATE_RANGE,
 };
 use crate::description::Side;
 use crate::wheel::Wheel;
@@ -41,7 +40,7 @@ impl BushingDef {
     /// (`bushings[2]`), for errors as the rates' checks word them.
     pub fn bushing(
         &self,
-        key: &str,
+        key: impl std::fmt::Display + Copy,
         name: &str,
         bodies: [BodyRef; 2],
         point: Vec3,
@@ -71,7 +70,10 @@ impl BushingDef {
     /// (a cylindrical bushing's radial rate across x, axial along it, torsion about it, conical across it),
     /// each rate checked against the model file's ranges; the error names what is missing or out of range,
     /// as `{key} ({name})…` (`key` is where the entry is, `bushings[2]` in a model file).
-    fn rates(&self, key: &str) -> Result<([Characteristic; 3], [Characteristic; 3]), ModelError> {
+    fn rates(
+        &self,
+        key: impl std::fmt::Display + Copy,
+    ) -> Result<([Characteristic; 3], [Characteristic; 3]), ModelError> {
         let cylindrical = [&self.radial, &self.axial, &self.torsion, &self.conical];
         let six = [&self.translation, &self.rotation];
         let refuse = |why: &str| {
@@ -126,7 +128,7 @@ impl SpringDef {
     /// names the entry in errors (`springs[0] (spring)` in a model file).
     pub fn spring(
         &self,
-        key: &str,
+        key: impl std::fmt::Display + Copy,
         name: &str,
         bodies: [BodyRef; 2],
         from: Vec3,
@@ -145,12 +147,12 @@ impl SpringDef {
                 return refuse("give either design_force (N, its push at design) or free_length (m)")
             }
             (Some(rate), None, Some(force), None) => {
-                check_rate(&format!("{key}.rate"), rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
+                check_rate_of(|| format!("{key}.rate"), rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
                 check_spring_force(key, rate, force, (to - from).norm())?;
                 CoilSpring::with_design_force(name, bi, from, bj, to, rate, force)?
             }
             (Some(rate), None, None, Some(free)) => {
-                check_rate(&format!("{key}.rate"), rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
+                check_rate_of(|| format!("{key}.rate"), rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
                 CoilSpring::new(name, bi, from, bj, to, rate, free)?
             }
             (None, Some(points), Some(force), None) => {
@@ -173,7 +175,14 @@ impl StopDef {
     /// The stop this entry describes, named `name`, between `bodies` along the line from `from` on the
     /// first to `to` on the second (global, at design). `key` names the entry in errors (`stops[0] (bump
     /// stop)` in a model file).
-    pub fn stop(&self, key: &str, name: &str, bodies: [BodyRef; 2], from: Vec3, to: Vec3) -> Result<Stop, ModelError> {
+    pub fn stop(
+        &self,
+        key: impl std::fmt::Display + Copy,
+        name: &str,
+        bodies: [BodyRef; 2],
+        from: Vec3,
+        to: Vec3,
+    ) -> Result<Stop, ModelError> {
         let [bi, bj] = bodies;
         let curve = Curve::new(&format!("{key}.curve"), self.curve.clone())?;
         match self.kind {
@@ -350,7 +359,7 @@ pub struct JointGeometry {
 }
 
 /// A driver in a model: the rig drives the wheel and the rack, a model holds joints.
-fn driver_refusal(key: &str) -> ModelError {
+fn driver_refusal(key: impl std::fmt::Display) -> ModelError {
     ModelError::OutOfRange {
         item: key.to_string(),
         why: "a driver is the rig's (wheel travel, rack travel), not the model's: use a joint".into(),
@@ -359,7 +368,7 @@ fn driver_refusal(key: &str) -> ModelError {
 
 /// Refuses a driver (the rig's, not a model's), a key `kind` needs and is not given, and a key `kind`
 /// does not use; `given` says which of `at`, `to`, `axis` and `axis_j` are, and `key` names the entry.
-fn check_joint_keys(key: &str, kind: JointKind, given: [bool; 4]) -> Result<(), ModelError> {
+fn check_joint_keys(key: impl std::fmt::Display + Copy, kind: JointKind, given: [bool; 4]) -> Result<(), ModelError> {
     use JointKind as T;
     let refuse = |why: String| Err(ModelError::OutOfRange { item: key.to_string(), why });
     let uses = match kind {
@@ -390,7 +399,7 @@ fn check_joint_keys(key: &str, kind: JointKind, given: [bool; 4]) -> Result<(), 
 /// without a key it needs and a key the kind does not use are refused, as a model file's are. The
 /// geometry itself (a zero axis, axes not perpendicular) is checked when the joint is added to a model.
 pub fn joint_spec(
-    key: &str,
+    key: impl std::fmt::Display + Copy,
     name: &str,
     kind: JointKind,
     bodies: [BodyRef; 2],
@@ -429,6 +438,25 @@ fn list<'a>(names: impl Iterator<Item = &'a str>) -> String {
     }
 }
 
+/// The model-file key of entry `k` of the list `list`, with its name (`bushings[2] (lower arm front)`):
+/// written only into an error, not for every entry of every build.
+#[derive(Clone, Copy)]
+struct EntryKey<'a> {
+    list: &'static str,
+    k: usize,
+    name: Option<&'a str>,
+}
+
+impl std::fmt::Display for EntryKey<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}[{}]", self.list, self.k)?;
+        match self.name {
+            Some(name) => write!(f, " ({name})"),
+            None => Ok(()),
+        }
+    }
+}
+
 /// What a bushing or a field entry names, resolved: its bodies, its point (on the side built), and its
 /// frame's x axis and y hint as the left corner gives them (the frame is mirrored as a whole).
 struct FramedEntry {
@@ -441,7 +469,7 @@ struct FramedEntry {
 fn framed_entry(
     model: &Model,
     r: &Resolver,
-    key: &str,
+    key: impl std::fmt::Display + Copy,
     bodies: &[String; 2],
     axis: Option<&Axis>,
     y_axis: Option<&Axis>,
@@ -496,7 +524,7 @@ impl FieldDef {
     #[allow(clippy::too_many_arguments)]
     pub fn field(
         &self,
-        key: &str,
+        key: impl std::fmt::Display + Copy,
         name: &str,
         bodies: [BodyRef; 2],
         point: Vec3,
@@ -546,33 +574,33 @@ impl GeneralCorner {
     }
 
     fn add_joint(&self, model: &mut Model, r: &Resolver, k: usize, j: &JointDef) -> Result<(), ModelError> {
-        let key = format!("joints[{k}] ({})", j.name);
+        let key = EntryKey { list: "joints", k, name: Some(&j.name) };
         let bi = r.body(model, format_args!("{key}.bodies"), &j.bodies[0])?;
         let bj = r.body(model, format_args!("{key}.bodies"), &j.bodies[1])?;
         // The keys before the points: a key the kind does not use is the mistake to name first.
-        check_joint_keys(&key, j.kind, [j.at.is_some(), j.to.is_some(), j.axis.is_some(), j.axis_j.is_some()])?;
+        check_joint_keys(key, j.kind, [j.at.is_some(), j.to.is_some(), j.axis.is_some(), j.axis_j.is_some()])?;
         let geometry = JointGeometry {
             at: j.at.as_ref().map(|p| r.point(format_args!("{key}.at"), p)).transpose()?,
             to: j.to.as_ref().map(|p| r.point(format_args!("{key}.to"), p)).transpose()?,
             axis: j.axis.as_ref().map(|a| r.direction(format_args!("{key}.axis"), a)).transpose()?,
             axis_j: j.axis_j.as_ref().map(|a| r.direction(format_args!("{key}.axis_j"), a)).transpose()?,
         };
-        model.add_joint(joint_spec(&key, &part_name(r.prefix, &j.name), j.kind, [bi, bj], &geometry)?)?;
+        model.add_joint(joint_spec(key, &part_name(r.prefix, &j.name), j.kind, [bi, bj], &geometry)?)?;
         Ok(())
     }
 
     fn add_bushing(&self, model: &mut Model, r: &Resolver, k: usize, b: &BushingDef) -> Result<(), ModelError> {
-        let entry = format!("bushings[{k}]");
-        let key = format!("{entry} ({})", b.name);
-        let e = framed_entry(model, r, &key, &b.bodies, b.axis.as_ref(), b.y_axis.as_ref(), &b.at)?;
-        model.add_element(b.bushing(&entry, &part_name(r.prefix, &b.name), e.bodies, e.point, e.x, e.y, r.side)?)?;
+        let entry = EntryKey { list: "bushings", k, name: None };
+        let key = EntryKey { name: Some(&b.name), ..entry };
+        let e = framed_entry(model, r, key, &b.bodies, b.axis.as_ref(), b.y_axis.as_ref(), &b.at)?;
+        model.add_element(b.bushing(entry, &part_name(r.prefix, &b.name), e.bodies, e.point, e.x, e.y, r.side)?)?;
         Ok(())
     }
 
     fn add_field(&self, model: &mut Model, r: &Resolver, k: usize, f: &FieldDef) -> Result<(), ModelError> {
-        let key = format!("fields[{k}] ({})", f.name);
-        let e = framed_entry(model, r, &key, &f.bodies, f.axis.as_ref(), f.y_axis.as_ref(), &f.at)?;
-        model.add_element(f.field(&key, &part_name(r.prefix, &f.name), e.bodies, e.point, e.x, e.y, r.side)?)?;
+        let key = EntryKey { list: "fields", k, name: Some(&f.name) };
+        let e = framed_entry(model, r, key, &f.bodies, f.axis.as_ref(), f.y_axis.as_ref(), &f.at)?;
+        model.add_element(f.field(key, &part_name(r.prefix, &f.name), e.bodies, e.point, e.x, e.y, r.side)?)?;
         Ok(())
     }
 
@@ -622,19 +650,19 @@ impl GeneralCorner {
     }
 
     fn add_spring(&self, model: &mut Model, r: &Resolver, k: usize, s: &SpringDef) -> Result<ElementId, ModelError> {
-        let key = format!("springs[{k}] ({})", s.name);
+        let key = EntryKey { list: "springs", k, name: Some(&s.name) };
         let bi = r.body(model, format_args!("{key}.bodies"), &s.bodies[0])?;
         let bj = r.body(model, format_args!("{key}.bodies"), &s.bodies[1])?;
         let (from, to) = (r.point(format_args!("{key}.from"), &s.from)?, r.point(format_args!("{key}.to"), &s.to)?);
-        model.add_element(s.spring(&key, &part_name(r.prefix, &s.name), [bi, bj], from, to)?)
+        model.add_element(s.spring(key, &part_name(r.prefix, &s.name), [bi, bj], from, to)?)
     }
 
     fn add_stop(&self, model: &mut Model, r: &Resolver, k: usize, s: &StopDef) -> Result<(), ModelError> {
-        let key = format!("stops[{k}] ({})", s.name);
+        let key = EntryKey { list: "stops", k, name: Some(&s.name) };
         let bi = r.body(model, format_args!("{key}.bodies"), &s.bodies[0])?;
         let bj = r.body(model, format_args!("{key}.bodies"), &s.bodies[1])?;
         let (from, to) = (r.point(format_args!("{key}.from"), &s.from)?, r.point(format_args!("{key}.to"), &s.to)?);
-        model.add_element(s.stop(&key, &part_name(r.prefix, &s.name), [bi, bj], from, to)?)?;
+        model.add_element(s.stop(key, &part_name(r.prefix, &s.name), [bi, bj], from, to)?)?;
         Ok(())
     }
 }

@@ -134,7 +134,7 @@ pub(crate) fn check_spring(spring: &SpringSpec, design_length: f64) -> Result<()
 
 /// [`check_spring`]'s design-force part for the spring at model-file key `key`, whose rate was checked.
 pub(crate) fn check_spring_force(
-    key: &str,
+    key: impl std::fmt::Display + Copy,
     rate: f64,
     design_force: f64,
     design_length: f64,
@@ -142,7 +142,7 @@ pub(crate) fn check_spring_force(
     if design_force.is_nan() || design_force.abs() > MAX_SPRING_FORCE {
         let got = if design_force.is_finite() { format!("{design_force:e}") } else { "not a finite number".into() };
         return Err(ModelError::OutOfRange {
-            item: key.into(),
+            item: key.to_string(),
             why: format!(
                 "{key}.design_force must be a force in N from {:e} to {MAX_SPRING_FORCE:e}, got {got}",
                 -MAX_SPRING_FORCE
@@ -168,7 +168,7 @@ pub(crate) fn check_spring_force(
     } else {
         return Ok(());
     };
-    Err(ModelError::OutOfRange { item: key.into(), why })
+    Err(ModelError::OutOfRange { item: key.to_string(), why })
 }
 
 /// Refuses a steering axis (from `axis.0` up to `axis.1`, named by `axis_names`) that is too short to
