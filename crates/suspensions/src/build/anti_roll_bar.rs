@@ -23,7 +23,7 @@ impl AntiRollBar {
         let key = format!("anti_roll_bars[{k}] ({})", self.name);
         let refuse = |why: &str| Err(ModelError::OutOfRange { item: key.clone(), why: why.to_string() });
         match (self.rate, &self.section) {
-            (Some(rate), None) => check_rate(&format!("{key}.rate"), rate, ROTATIONAL_RATE_RANGE, "N·m/rad")?,
+            (Some(rate), None) => check_rate(format_args!("{key}.rate"), rate, ROTATIONAL_RATE_RANGE, "N·m/rad")?,
             (None, Some(_)) => {}
             (Some(_), Some(_)) => return refuse("give the bar's rate (N·m/rad) or its section, not both"),
             (None, None) => return refuse("give the bar's rate (N·m/rad) or its section (a beam's section)"),

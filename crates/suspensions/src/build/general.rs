@@ -11,7 +11,7 @@ use crate::description::general::{
     SpringDef, Stiffness, StopDef, StopType, CHASSIS,
 };
 use crate::description::limits::{
-    check_hardpoints, check_rate_of, check_spring_force, check_steering_arm, check_steering_axis, check_tie_rod_mounts,
+    check_hardpoints, check_rate, check_spring_force, check_steering_arm, check_steering_axis, check_tie_rod_mounts,
     MAX_HARDPOINT_REACH, MAX_WHEEL_CENTRE_DISTANCE, ROTATIONAL_RATE_RANGE, TRANSLATIONAL_RATE_RANGE,
 };
 use crate::description::Side;
@@ -25,10 +25,10 @@ use elastokin_elements::{
 
 impl Stiffness {
     /// The element's characteristic; `item` names it in errors (a rate is checked by the element).
-    fn characteristic(&self, item: impl FnOnce() -> String) -> Result<Characteristic, ModelError> {
+    fn characteristic(&self, item: impl std::fmt::Display) -> Result<Characteristic, ModelError> {
         match self {
             Stiffness::Rate(k) => Ok(Characteristic::Rate(*k)),
-            Stiffness::Curve(points) => Ok(Characteristic::Curve(Curve::new(&item(), points.clone())?)),
+            Stiffness::Curve(points) => Ok(Characteristic::Curve(Curve::new(&item.to_string(), points.clone())?)),
         }
     }
 }
@@ -109,9 +109,9 @@ impl BushingDef {
             .into_iter()
             .enumerate()
             {
-                let item = || format!("{key} ({}).{name} {what}", self.name);
+                let item = format_args!("{key} ({}).{name} {what}", self.name);
                 if let Some(rate) = stiffness.rate() {
-                    check_rate_of(item, rate, range, unit)?;
+                    check_rate(item, rate, range, unit)?;
                 }
                 out[set].push(stiffness.characteristic(item)?);
             }
@@ -147,12 +147,12 @@ impl SpringDef {
                 return refuse("give either design_force (N, its push at design) or free_length (m)")
             }
             (Some(rate), None, Some(force), None) => {
-                check_rate_of(|| format!("{key}.rate"), rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
+                check_rate(format_args!("{key}.rate"), rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
                 check_spring_force(key, rate, force, (to - from).norm())?;
                 CoilSpring::with_design_force(name, bi, from, bj, to, rate, force)?
             }
             (Some(rate), None, None, Some(free)) => {
-                check_rate_of(|| format!("{key}.rate"), rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
+                check_rate(format_args!("{key}.rate"), rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
                 CoilSpring::new(name, bi, from, bj, to, rate, free)?
             }
             (None, Some(points), Some(force), None) => {

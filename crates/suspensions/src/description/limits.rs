@@ -68,15 +68,11 @@ pub const TRANSLATIONAL_RATE_RANGE: (f64, f64) = (1.0, 1e15);
 /// See [`TRANSLATIONAL_RATE_RANGE`].
 pub const ROTATIONAL_RATE_RANGE: (f64, f64) = (1e-3, 1e15);
 
-/// Refuses a rate outside its range, naming its model-file key.
-pub(crate) fn check_rate(key: &str, value: f64, range: (f64, f64), unit: &str) -> Result<(), ModelError> {
-    check_rate_of(|| key.to_string(), value, range, unit)
-}
-
-/// [`check_rate`] with the key made only for the error (a build checks every rate of every bushing, and
-/// its keys are words for errors alone).
-pub(crate) fn check_rate_of(
-    key: impl FnOnce() -> String,
+/// Refuses a rate outside its range, naming its model-file key. The key is written only into the error
+/// (a build checks every rate of every bushing, and its keys are words for errors alone): give it as
+/// `format_args!`.
+pub(crate) fn check_rate(
+    key: impl std::fmt::Display,
     value: f64,
     (least, most): (f64, f64),
     unit: &str,
@@ -84,7 +80,7 @@ pub(crate) fn check_rate_of(
     if value >= least && value <= most {
         return Ok(());
     }
-    let key = key();
+    let key = key.to_string();
     let got = if value.is_finite() { format!("{value:e}") } else { "not a finite number".into() };
     let why = format!("{key} must be a rate in {unit} from {least:e} to {most:e}, got {got}");
     Err(ModelError::OutOfRange { item: key, why })
@@ -95,10 +91,10 @@ pub(crate) fn check_rate_of(
 pub(crate) fn check_connection(key: &str, connection: &Connection) -> Result<(), ModelError> {
     let Connection::Bushing(r) = connection else { return Ok(()) };
     for (what, value) in [("radial", r.radial), ("axial", r.axial)] {
-        check_rate_of(|| format!("{key}.bushing.{what}"), value, TRANSLATIONAL_RATE_RANGE, "N/m")?;
+        check_rate(format_args!("{key}.bushing.{what}"), value, TRANSLATIONAL_RATE_RANGE, "N/m")?;
     }
     for (what, value) in [("torsion", r.torsion), ("conical", r.conical)] {
-        check_rate_of(|| format!("{key}.bushing.{what}"), value, ROTATIONAL_RATE_RANGE, "N·m/rad")?;
+        check_rate(format_args!("{key}.bushing.{what}"), value, ROTATIONAL_RATE_RANGE, "N·m/rad")?;
     }
     Ok(())
 }
