@@ -70,27 +70,19 @@ pub fn parse_document(text: &str, origin: &str) -> Result<(SuspensionFile, Optio
 }
 
 /// An elastokin model document already parsed (not Project Chrono's), read as [`parse_document`] reads its
-/// text, without writing it as text first: the same file, checked and built the same way. What it refuses
-/// is read from the text after all, for the message that places the key.
-pub(crate) fn parse_value(document: &serde_json::Value, origin: &str) -> Result<SuspensionFile, String> {
+/// text, without writing it as text first: the same file, checked the same way, and built unless `built`
+/// is false (a caller that builds the model at once and says why a build fails in the builder's words: a
+/// sensitivity's moved models, each built for the analyses that replay it, where a build to check it first
+/// would double the builds). What it refuses is read from the text after all, for the message that places
+/// the key.
+pub(crate) fn parse_value(document: &serde_json::Value, origin: &str, built: bool) -> Result<SuspensionFile, String> {
     if let Ok(file) = <SuspensionFile as serde::Deserialize>::deserialize(document) {
-        if file.check_ranges().is_ok() && build_check(&file, origin).is_ok() {
+        if file.check_ranges().is_ok() && (!built || build_check(&file, origin).is_ok()) {
             return Ok(file);
         }
     }
     let text = serde_json::to_string(document).map_err(|e| e.to_string())?;
     parse_document_of_kind(&text, false, origin).map(|(file, _)| file)
-}
-
-/// [`parse_value`] of an elastokin document without building it, for a caller that builds the model at
-/// once and says why a build fails in the builder's words (a sensitivity's moved models, each built for
-/// the analyses that replay it: a build to check it first would double the builds). A document that does
-/// not read is refused as [`parse_value`] refuses it.
-pub(crate) fn parse_value_to_build(document: &serde_json::Value, origin: &str) -> Result<SuspensionFile, String> {
-    match <SuspensionFile as serde::Deserialize>::deserialize(document) {
-        Ok(file) if file.check_ranges().is_ok() => Ok(file),
-        _ => parse_value(document, origin),
-    }
 }
 
 /// [`parse_document`] of a text whose kind is known already (from its parsed value, which a variant's edit

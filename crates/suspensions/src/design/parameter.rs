@@ -43,23 +43,21 @@ impl Parameters {
 
     /// The model with parameter `k` moved by `delta` (in the file's units), read as the command reads it.
     pub fn file_moved(&self, k: usize, delta: f64) -> Result<SuspensionFile, String> {
-        let mut values = self.values.clone();
-        values[k] += delta;
-        read(&self.document_at(&values)?, &format!("the model with '{}' at {}", self.pointers[k], values[k]))
+        self.moved(k, delta, true)
     }
 
     /// [`Parameters::file_moved`] not built to check it, for a caller that builds it at once and says why a
-    /// build fails (an elastokin document; a Project Chrono file is read, and so built, as the command reads
-    /// it).
+    /// build fails.
     pub(crate) fn file_moved_to_build(&self, k: usize, delta: f64) -> Result<SuspensionFile, String> {
+        self.moved(k, delta, false)
+    }
+
+    /// The model with parameter `k` moved by `delta`, built to check it if `built` ([`read`]).
+    fn moved(&self, k: usize, delta: f64, built: bool) -> Result<SuspensionFile, String> {
         let mut values = self.values.clone();
         values[k] += delta;
-        let document = self.document_at(&values)?;
         let origin = format!("the model with '{}' at {}", self.pointers[k], values[k]);
-        if crate::import::chrono::is_chrono_document(&document) {
-            return read(&document, &origin);
-        }
-        crate::document::parse_value_to_build(&document, &origin)
+        read(&self.document_at(&values)?, &origin, built)
     }
 
     /// The model's document with the parameters at `values` (in order; the file's units): every other key,
@@ -87,18 +85,19 @@ impl Parameters {
 
     /// The model as it is (its parameters at their values).
     pub fn file(&self) -> Result<SuspensionFile, String> {
-        read(&self.document, "the model")
+        read(&self.document, "the model", true)
     }
 }
 
-/// A model document read as the command reads its file; `origin` names it in errors (a moved model is no
-/// file the user has: its errors name keys).
-fn read(document: &Value, origin: &str) -> Result<SuspensionFile, String> {
+/// A model document read as the command reads its file, built to check it unless not `built` (see
+/// [`crate::document::parse_value`]; a Project Chrono file is read, and so built, as the command reads it);
+/// `origin` names it in errors (a moved model is no file the user has: its errors name keys).
+fn read(document: &Value, origin: &str, built: bool) -> Result<SuspensionFile, String> {
     if crate::import::chrono::is_chrono_document(document) {
         let text = serde_json::to_string(document).map_err(|e| e.to_string())?;
         return crate::document::parse_document_of_kind(&text, true, origin).map(|(file, _)| file);
     }
-    crate::document::parse_value(document, origin)
+    crate::document::parse_value(document, origin, built)
 }
 
 /// The number at `pointer` of `document`, or what is there instead, in words that follow the pointer
