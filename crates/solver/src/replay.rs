@@ -90,16 +90,8 @@ enum Call {
     /// An equilibrium at one load parameter, and the pieces of its elements' laws and the factors of its
     /// tangent there.
     Equilibrium(Result<StepResult, SolverError>, Pieces, Option<Factors>),
-    /// A sweep along `path` (by load steps or by arc length), and the pieces and factors at each of its
-    /// steps.
-    Sweep {
-        path: LoadPath,
-        result: Result<Sweep, SolverError>,
-        pieces: Vec<Pieces>,
-        factors: Vec<Option<Factors>>,
-        /// The steps the run named as read once it had read the sweep ([`rows_read`]).
-        read: Vec<usize>,
-    },
+    /// A sweep, shared with the replays, which read it in place.
+    Sweep(Arc<RecordedSweep>),
 }
 
 /// One recorded solver: its model (a copy, for a replay to tell what its move touched), the constraint rows
@@ -134,7 +126,7 @@ impl Tape {
     pub fn equilibria(&self) -> usize {
         let count = |c: &Call| match c {
             Call::Equilibrium(r, ..) => usize::from(r.is_ok()),
-            Call::Sweep { result, .. } => result.as_ref().map_or(0, |s| s.steps.len()),
+            Call::Sweep(s) => s.result.as_ref().map_or(0, |s| s.steps.len()),
         };
         self.solvers.iter().flat_map(|s| &s.calls).map(count).sum()
     }
@@ -143,8 +135,8 @@ impl Tape {
     /// derivative with respect to the model.
     pub fn limit_point(&self) -> Option<f64> {
         self.solvers.iter().flat_map(|s| &s.calls).find_map(|c| match c {
-            Call::Sweep { result: Ok(sweep), .. } => sweep.limit.as_ref().map(|l| l.t),
-            _ => None,
+            Call::Sweep(s) => s.result.as_ref().ok()?.limit.as_ref().map(|l| l.t),
+            Call::Equilibrium(..) => None,
         })
     }
 }
@@ -305,10 +297,13 @@ pub fn rows_read(rows: &[usize]) {
     ACTIVE.with(|a| {
         if let Some(Active::Recording(tape)) = a.borrow_mut().as_mut() {
             let Some((solver, call)) = tape.last_sweep else { return };
-            if let Some(Call::Sweep { read, .. }) = tape.solvers[solver].calls.get_mut(call) {
-                for &r in rows {
-                    if !read.contains(&r) {
-                        read.push(r);
+            // The recording holds its sweeps alone until it ends.
+            if let Some(Call::Sweep(sweep)) = tape.solvers[solver].calls.get_mut(call) {
+                if let Some(sweep) = Arc::get_mut(sweep) {
+                    for &r in rows {
+                        if !sweep.read.contains(&r) {
+                            sweep.read.push(r);
+                        }
                     }
                 }
             }
@@ -432,27 +427,20 @@ impl Touched {
 /// A recorded equilibrium, the pieces of the recorded model's elements there and its tangent's factors.
 pub(crate) type RecordedEquilibrium = (Result<StepResult, SolverError>, Pieces, Option<Factors>);
 
-/// A recorded sweep, read in place on the tape its replays share (a replay copies the steps it moves
-/// alone): its path, what it returned, the pieces and tangent's factors at each of its steps, and the steps
-/// the run named as read ([`rows_read`]).
+/// A recorded sweep (by load steps or by arc length), which its replays read in place (a replay copies the
+/// steps it moves alone).
+#[derive(Debug)]
 pub(crate) struct RecordedSweep {
-    tape: Arc<Tape>,
-    solver: usize,
-    call: usize,
-}
-
-/// The parts of a [`RecordedSweep`].
-pub(crate) type SweepParts<'t> =
-    (&'t LoadPath, &'t Result<Sweep, SolverError>, &'t [Pieces], &'t [Option<Factors>], &'t [usize]);
-
-impl RecordedSweep {
-    /// Its parts; `None` if the call is no sweep (never: [`next_sweep`] hands out sweeps alone).
-    pub(crate) fn parts(&self) -> Option<SweepParts<'_>> {
-        match self.tape.solvers.get(self.solver)?.calls.get(self.call)? {
-            Call::Sweep { path, result, pieces, factors, read } => Some((path, result, pieces, factors, read)),
-            Call::Equilibrium(..) => None,
-        }
-    }
+    /// Its path.
+    pub(crate) path: LoadPath,
+    /// What it returned.
+    pub(crate) result: Result<Sweep, SolverError>,
+    /// The pieces of the recorded model's elements at each of its steps.
+    pub(crate) pieces: Vec<Pieces>,
+    /// The recorded tangent's factors at each of its steps, where kept.
+    pub(crate) factors: Vec<Option<Factors>>,
+    /// The steps the run named as read once it had read the sweep ([`rows_read`]).
+    pub(crate) read: Vec<usize>,
 }
 
 /// Whether this thread is replaying a recording: every solve a solver makes is then a recorded one moved.
@@ -523,27 +511,22 @@ fn diverge(diverged: &mut Option<String>, why: String) -> SolverError {
 
 /// What a taped solver's next single equilibrium is to do.
 pub(crate) fn next_equilibrium(taped: Option<Taped>) -> Result<Replayed<RecordedEquilibrium>, SolverError> {
-    next(taped, false, |call, _| match call {
+    next(taped, false, |call| match call {
         Call::Equilibrium(r, pieces, factors) => Some((r.clone(), pieces.clone(), factors.clone())),
         Call::Sweep { .. } => None,
     })
 }
 
 /// What a taped solver's next sweep is to do.
-pub(crate) fn next_sweep(taped: Option<Taped>) -> Result<Replayed<RecordedSweep>, SolverError> {
-    next(taped, true, |call, (tape, solver, call_index)| match call {
-        Call::Sweep { .. } => Some(RecordedSweep { tape: tape.clone(), solver, call: call_index }),
+pub(crate) fn next_sweep(taped: Option<Taped>) -> Result<Replayed<Arc<RecordedSweep>>, SolverError> {
+    next(taped, true, |call| match call {
+        Call::Sweep(sweep) => Some(sweep.clone()),
         Call::Equilibrium(..) => None,
     })
 }
 
-/// What a taped solver's next solve is to do; in a replay, `take` reads the recorded call (given with
-/// where it lies on the tape: the tape, the solver's rank, the call's).
-fn next<T>(
-    taped: Option<Taped>,
-    sweep: bool,
-    take: impl Fn(&Call, (&Arc<Tape>, usize, usize)) -> Option<T>,
-) -> Result<Replayed<T>, SolverError> {
+/// What a taped solver's next solve is to do; in a replay, `take` reads the recorded call.
+fn next<T>(taped: Option<Taped>, sweep: bool, take: impl Fn(&Call) -> Option<T>) -> Result<Replayed<T>, SolverError> {
     let Some(taped) = taped else { return Ok(Replayed::Solve) };
     ACTIVE.with(|a| {
         let mut a = a.borrow_mut();
@@ -554,7 +537,7 @@ fn next<T>(
                     return Err(diverge(diverged, format!("solver {k} asked for more solves than were recorded")));
                 };
                 used[k] += 1;
-                match take(call, (tape, k, used[k] - 1)) {
+                match take(call) {
                     Some(t) => Ok(Replayed::Call(t)),
                     None => Err(diverge(
                         diverged,
@@ -599,7 +582,8 @@ pub(crate) fn keep_sweep(
 ) {
     let pieces =
         result.as_ref().map_or_else(|_| Vec::new(), |s| s.steps.iter().map(|s| s.element_pieces(model)).collect());
-    keep(taped, Call::Sweep { path, result: result.clone(), pieces, factors, read: Vec::new() });
+    let sweep = RecordedSweep { path, result: result.clone(), pieces, factors, read: Vec::new() };
+    keep(taped, Call::Sweep(Arc::new(sweep)));
 }
 
 fn keep(taped: Taped, call: Call) {

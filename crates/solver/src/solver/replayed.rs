@@ -10,6 +10,7 @@ use crate::replay::{
 };
 use crate::results::{StepResult, Sweep};
 use elastokin_core::ElementEval;
+use std::sync::Arc;
 
 impl StaticSolver<'_> {
     /// A sweep along `path` as the thread's recording or replay has it: `solve` it (and keep what it
@@ -80,14 +81,12 @@ impl StaticSolver<'_> {
     /// [`ReplayRows`](crate::replay::ReplayRows): the others are left out).
     pub(super) fn replay_sweep(
         &mut self,
-        recorded: RecordedSweep,
+        recorded: Arc<RecordedSweep>,
         path: LoadPath,
         state: &mut State,
     ) -> Result<Sweep, SolverError> {
-        let Some((from, sweep, pieces, factors, read)) = recorded.parts() else {
-            return Err(SolverError::InvalidInput { what: "replay", why: "the recorded call is no sweep".into() });
-        };
-        let sweep = sweep.as_ref().map_err(Clone::clone)?;
+        let RecordedSweep { path: from, result, pieces, factors, read } = &*recorded;
+        let sweep = result.as_ref().map_err(Clone::clone)?;
         let count = sweep.steps.len();
         let mut steps = Vec::with_capacity(count);
         // Each recorded step is copied only where it is moved; the others are left out.
