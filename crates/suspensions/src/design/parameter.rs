@@ -53,11 +53,12 @@ impl Parameters {
     }
 
     /// The model with parameter `k` moved by `delta`, built to check it if `built` ([`read`]).
+    /// Only parameter `k` is written: the document holds the others' values already.
     fn moved(&self, k: usize, delta: f64, built: bool) -> Result<SuspensionFile, String> {
-        let mut values = self.values.clone();
-        values[k] += delta;
-        let origin = format!("the model with '{}' at {}", self.pointers[k], values[k]);
-        read(&self.document_at(&values)?, &origin, built)
+        let (pointer, value) = (&self.pointers[k], self.values[k] + delta);
+        let mut document = self.document.clone();
+        set(&mut document, pointer, value)?;
+        read(&document, &format!("the model with '{pointer}' at {value}"), built)
     }
 
     /// The model's document with the parameters at `values` (in order; the file's units): every other key,
@@ -65,10 +66,7 @@ impl Parameters {
     pub fn document_at(&self, values: &[f64]) -> Result<Value, String> {
         let mut document = self.document.clone();
         for (pointer, &value) in self.pointers.iter().zip(values) {
-            let number = serde_json::Number::from_f64(value)
-                .ok_or_else(|| format!("parameter '{pointer}' at {value:e}, which is no number"))?;
-            *document.pointer_mut(pointer).ok_or_else(|| format!("parameter '{pointer}' names nothing"))? =
-                Value::Number(number);
+            set(&mut document, pointer, value)?;
         }
         Ok(document)
     }
@@ -87,6 +85,15 @@ impl Parameters {
     pub fn file(&self) -> Result<SuspensionFile, String> {
         read(&self.document, "the model", true)
     }
+}
+
+/// Writes `value` at `pointer` of `document`.
+fn set(document: &mut Value, pointer: &str, value: f64) -> Result<(), String> {
+    let number = serde_json::Number::from_f64(value)
+        .ok_or_else(|| format!("parameter '{pointer}' at {value:e}, which is no number"))?;
+    *document.pointer_mut(pointer).ok_or_else(|| format!("parameter '{pointer}' names nothing"))? =
+        Value::Number(number);
+    Ok(())
 }
 
 /// A model document read as the command reads its file, built to check it unless not `built` (see
