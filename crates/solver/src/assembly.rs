@@ -331,7 +331,13 @@ impl Assembly {
                 let [i, j] = e.bodies();
                 let dofs = pair_dofs(i, j);
                 let ev = &self.evals[offset];
-                self.force_scale = self.force_scale.max(ev.force.abs().max());
+                // A plain comparison, not `f64::max`, whose NaN handling, twelve times in a chain, cost 5 to
+                // 7 % of a corrected sweep; a NaN is passed over either way.
+                for v in ev.force.iter() {
+                    if v.abs() > self.force_scale {
+                        self.force_scale = v.abs();
+                    }
+                }
                 for (local, d) in dofs.iter().enumerate() {
                     if let Some(g) = d {
                         self.applied[*g] += ev.force[local];
