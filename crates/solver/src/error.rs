@@ -84,6 +84,18 @@ pub enum SolverError {
         /// Where.
         what: &'static str,
     },
+    /// An element's force came out NaN or infinite: its data, or its geometry degenerating at that state.
+    #[error(
+        "the force of '{element}' is no finite number at {t} (in the analysis's own unit: travel in m, force in \
+         N): check its numbers in the model, and whether its geometry degenerates there (a spring whose seats \
+         meet, a bushing turned half a turn)"
+    )]
+    NonFiniteForce {
+        /// The element's name.
+        element: String,
+        /// Where on the path (the analysis's own unit: travel in m, force in N).
+        t: f64,
+    },
     /// A load path or option that makes no sense.
     #[error("invalid {what}: {why}")]
     InvalidInput {

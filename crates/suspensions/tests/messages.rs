@@ -114,6 +114,7 @@ fn every_solver_failure_reads_without_the_librarys_words() {
         SolverError::Factor(FactorError::NotFactorized),
         SolverError::Singular { part: "'upright', its rotation about x".into() },
         SolverError::NonFiniteSolution { part: "joint 'ball' row 'x'".into() },
+        SolverError::NonFiniteForce { element: "front spring".into(), t: 0.03 },
     ];
     for failure in failures {
         let message = failure.to_string();

@@ -86,7 +86,11 @@ impl<'m> StaticSolver<'m> {
                     (&mut q_t, &mut r_dq, &mut dq_total),
                 ) {
                     Ok(done) => break done,
-                    Err(mut e @ (SolverError::NoConvergence { .. } | SolverError::NonFinite { .. })) => {
+                    Err(
+                        mut e @ (SolverError::NoConvergence { .. }
+                        | SolverError::NonFinite { .. }
+                        | SolverError::NonFiniteForce { .. }),
+                    ) => {
                         state.clone_from(&start);
                         cuts += 1;
                         if cuts as usize > self.options.max_step_cuts {
@@ -146,6 +150,9 @@ impl<'m> StaticSolver<'m> {
             self.assemble(state, Some(Tangent::Full));
             self.update_roundoff_floor(&state.poses);
             let r = self.residual(&state.lambda);
+            if !(r.force.is_finite() && r.constraint.is_finite()) {
+                return Err(self.non_finite("arc-length corrector", state.t));
+            }
             last = (r.force, r.constraint);
             if self.converged(&r) {
                 return Ok((iter, r, dt_total));

@@ -272,6 +272,18 @@ enum StepOutcome {
     Stuck { attempted: f64, iterations: usize, force: f64, constraint: f64 },
 }
 
+/// The larger of `a` and `b`, NaN if either is: a residual with a NaN in it is no residual (`f64::max`
+/// would pass the NaN over, and call a state with a NaN force an equilibrium).
+fn largest(a: f64, b: f64) -> f64 {
+    if a.is_nan() {
+        a
+    } else if b > a || b.is_nan() {
+        b
+    } else {
+        a
+    }
+}
+
 struct Residual {
     force: f64,
     constraint: f64,
@@ -454,11 +466,20 @@ impl<'m> StaticSolver<'m> {
         for c in 0..n {
             let jl = self.work.scratch[c];
             let q = self.work.assembly.applied[c];
-            force = force.max((jl - q).abs());
+            force = largest(force, (jl - q).abs());
             force_scale = force_scale.max(jl.abs()).max(q.abs());
         }
-        let constraint = self.work.assembly.phi.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let constraint = self.work.assembly.phi.iter().fold(0.0f64, |a, v| largest(a, v.abs()));
         Residual { force, constraint, force_scale }
+    }
+
+    /// The error of a residual that is no finite number: the element whose force was none, by name, or
+    /// else `what`.
+    fn non_finite(&self, what: &'static str, t: f64) -> SolverError {
+        match self.work.assembly.non_finite_element {
+            Some(k) => SolverError::NonFiniteForce { element: self.model.elements()[k].name().to_string(), t },
+            None => SolverError::NonFinite { what },
+        }
     }
 
     fn converged(&self, r: &Residual) -> bool {

@@ -45,7 +45,7 @@ impl<'m> StaticSolver<'m> {
             }
             let r = self.residual(&state.lambda);
             if !(r.force.is_finite() && r.constraint.is_finite()) {
-                return Err(SolverError::NonFinite { what: "residual" });
+                return Err(self.non_finite("residual", state.t));
             }
             if self.converged(&r) {
                 return Ok((iter, r));
@@ -304,7 +304,7 @@ impl<'m> StaticSolver<'m> {
             self.assemble(&state, factors.is_none().then_some(Tangent::Full));
             let r = self.residual(&state.lambda);
             if !(r.force.is_finite() && r.constraint.is_finite()) {
-                return Err(SolverError::NonFinite { what: "residual" });
+                return Err(self.non_finite("residual", state.t));
             }
             if factors.is_some() {
                 Self::residual_rhs(&self.work.assembly, &self.work.scratch, &mut self.work.rhs);
@@ -329,7 +329,11 @@ impl<'m> StaticSolver<'m> {
         let after = match factors {
             None => {
                 self.assemble(&state, None);
-                self.residual(&state.lambda)
+                let r = self.residual(&state.lambda);
+                if !(r.force.is_finite() && r.constraint.is_finite()) {
+                    return Err(self.non_finite("residual", state.t));
+                }
+                r
             }
             Some(_) => Residual {
                 force: step.force_residual,

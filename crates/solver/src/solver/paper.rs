@@ -56,7 +56,7 @@ impl<'m> StaticSolver<'m> {
         for step in 1..=path.steps {
             let paper = self.paper_increment(state, dt, &carried)?;
             if self.work.rhs.iter().any(|v| !v.is_finite()) {
-                return Err(SolverError::NonFinite { what: "paper-mode step" });
+                return Err(self.non_finite("paper-mode step", state.t + dt));
             }
             let response = *reference.get_or_insert(paper.response);
             let before = &steps[steps.len() - 1];
@@ -68,6 +68,9 @@ impl<'m> StaticSolver<'m> {
             // Report the true residual of the paper solution (drift), without correcting it.
             self.assemble(state, None);
             let r = self.residual(&state.lambda);
+            if !(r.force.is_finite() && r.constraint.is_finite()) {
+                return Err(self.non_finite("paper-mode step", state.t));
+            }
             // A fold ahead or behind: the response grew tenfold, or the step left its linearisation (its drift
             // grew by more than the change of load or travel it made: a step that jumped across a fold to
             // another branch). (The paper tangent's negative pivots tell nothing: it lacks the joint
