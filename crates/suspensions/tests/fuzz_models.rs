@@ -936,3 +936,24 @@ fn a_locked_linkage_is_named_in_the_static_load_case_not_an_infinite_wheel_rate(
     check_refusal(&e).unwrap();
     assert!(e.contains("the joints alone hold its height"), "{e}");
 }
+
+/// Fuzz case 1859 (seed 33, stream 2): the twist-beam template with its spring seat moved a kilometre and
+/// its wheel centre onto it steers not at all under a lateral force, so the bushings' share of that steer
+/// has no value ("the figure is zero"), but its error estimate was written as 0/0, a NaN. It now has none.
+#[test]
+fn the_bushings_share_of_a_steer_that_is_zero_has_no_nan_error_estimate() {
+    let h = "/suspension/twist_beam/hardpoints";
+    let far = json!([417.6112427037673, 183.67176287895893, -706.281653053493]);
+    let text = example_with(
+        "twist_beam_template.json",
+        &[(&format!("{h}/spring_seat"), far.clone()), (&format!("{h}/wheel_centre"), far)],
+    );
+    let file = SuspensionFile::from_json(&text, "model.json").unwrap();
+    let settings = Settings { steps: 4, ..Settings::default() };
+    let lateral = kc::Analysis::Road(elastokin_suspensions::analysis::WheelLoad::Lateral);
+    let report = kc::run(lateral, &file, &settings).unwrap();
+    let share = report.figure("bushing_share_of_steer").unwrap();
+    assert!(share.value.is_none() && share.error.is_none(), "{share:?}");
+    assert_eq!(share.reason.as_deref(), Some("the figure is zero"));
+    check_report(&one_analysis(&file, settings, report)).unwrap();
+}

@@ -357,7 +357,12 @@ pub(super) fn bushings_share(
             _ => "the figure or its rigid counterpart has no value".to_string(),
         },
     );
-    share.error = pair.and_then(|(f, r, ef, er)| Some(100.0 * (er? / f.abs() + r.abs() * ef? / (f * f))));
+    // Only a share that has a value has an estimate: of a figure that is zero it would be 0/0.
+    share.error = share
+        .value
+        .and(pair)
+        .and_then(|(f, r, ef, er)| Some(100.0 * (er? / f.abs() + r.abs() * ef? / (f * f))))
+        .filter(|e| e.is_finite());
     report.figures.push(rigid_figure);
     report.figures.push(share);
 }
