@@ -1007,7 +1007,11 @@ fn tune(args: TuneArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> {
                 .ok();
         }
     })
-    .map_err(|e| Failure::Run(format!("{origin}: {e}")))?;
+    .map_err(|e| match e {
+        // The targets ask what the model's analyses do not give: bad input, as a bad TARGETS file is.
+        tune::TuneError::Targets(why) => Failure::Input(format!("{origin}: {why}")),
+        tune::TuneError::Model(why) => Failure::Run(format!("{origin}: {why}")),
+    })?;
     progress.finish();
     let mut provenance = Provenance::new(&args.model, &read.bytes, kc::mode_word(Mode::Corrected), targets.steps);
     provenance.targets = Some((args.targets.display().to_string(), elastokin::provenance::sha256_hex(&targets_bytes)));

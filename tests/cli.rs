@@ -1422,7 +1422,8 @@ fn an_interrupted_run_s_staging_directory_is_removed_by_the_next_run_and_no_one_
 
 /// `tune` on the shipped targets example meets them: tuned.json is the model with the free numbers moved
 /// (every other key as it was, in its order) and gives the tuned figures when run; tune.csv lists the
-/// iterations; report.html is well formed. Bad targets are refused by key with exit 2, nothing written;
+/// iterations; report.html is well formed. Bad targets (a pointer that names nothing, a figure the
+/// analysis has not) are refused by key with exit 2, nothing written;
 /// targets not met exit 1 with their reasons, the results written.
 #[test]
 fn tune_meets_the_shipped_targets_and_says_why_when_it_cannot() {
@@ -1489,6 +1490,22 @@ fn tune_meets_the_shipped_targets_and_says_why_when_it_cannot() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("names nothing in the model"));
     assert!(!dir.join("x").exists());
+    // A figure the analysis has not, known only once it runs: bad input too (it exited 1 as a failed run).
+    let unknown = dir.join("unknown.json");
+    let text =
+        std::fs::read_to_string("examples/targets/bump_steer.json").unwrap().replace("/bump_steer", "/bump_stear");
+    std::fs::write(&unknown, text).unwrap();
+    let o = elastokin(&[
+        "tune",
+        "examples/generic/macpherson.json",
+        unknown.to_str().unwrap(),
+        "--out",
+        dir.join("u").to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("has no figure 'bump_stear'"), "{err}");
+    assert!(!dir.join("u").exists());
     // Targets that cannot be met: exit 1, why, and the results written.
     let hard = dir.join("hard.json");
     let text = std::fs::read_to_string("examples/targets/bump_steer.json")

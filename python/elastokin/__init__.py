@@ -277,7 +277,9 @@ class Model:
         tune`` does: a dict of ``stopped``, ``all_met``, ``verdicts`` (each target's largest miss over its
         tolerance, whether met and why not), ``parameters`` with their values ``before`` and ``after``,
         ``iterations`` (tune.csv's columns) and ``tuned``, the model file's text with the numbers moved.
-        Measured files named in a dict are read from ``directory``; in a file, beside it."""
+        Measured files named in a dict are read from ``directory``; in a file, beside it. Targets the
+        model's analyses do not give (a figure or column they have not, a point outside the range walked)
+        raise ``ValueError``, as a bad file does; a model that cannot be analysed, ``AnalysisError``."""
         text, beside = _design_file(targets)
         return self._native.tune(text, directory if beside is None else beside)
 

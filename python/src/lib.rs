@@ -273,7 +273,7 @@ impl Model {
     /// `tuned` (the model file's text with the numbers moved).
     #[pyo3(signature = (targets, directory="."))]
     fn tune<'py>(&self, py: Python<'py>, targets: &str, directory: &str) -> PyResult<Bound<'py, PyDict>> {
-        use elastokin_suspensions::design::{targets::read_targets, tune::tune, Parameters};
+        use elastokin_suspensions::design::{targets::read_targets, tune::tune, tune::TuneError, Parameters};
         let read_file = |name: &str| {
             let path = Path::new(directory).join(name);
             std::fs::read_to_string(&path).map_err(|e| format!("cannot read {}: {e}", path.display()))
@@ -281,7 +281,11 @@ impl Model {
         let t = read_targets(targets, "targets", &self.base, read_file).map_err(PyValueError::new_err)?;
         let pointers: Vec<String> = t.free.iter().map(|f| f.pointer.clone()).collect();
         let p = Parameters::new(&self.base, &pointers).map_err(ModelError::new_err)?;
-        let tuned = py.detach(|| tune(&p, &t, |_| {})).map_err(AnalysisError::new_err)?;
+        let tuned = py.detach(|| tune(&p, &t, |_| {})).map_err(|e| match e {
+            // The targets ask what the model's analyses do not give: a bad TARGETS text, as above.
+            TuneError::Targets(why) => PyValueError::new_err(why),
+            TuneError::Model(why) => AnalysisError::new_err(why),
+        })?;
         let d = PyDict::new(py);
         d.set_item("stopped", &tuned.stopped)?;
         d.set_item("all_met", tuned.all_met())?;

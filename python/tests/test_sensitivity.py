@@ -137,6 +137,14 @@ def test_tune_gives_the_commands_numbers(tmp_path):
     assert len(rows) == len(t["iterations"]["iteration"])
 
 
+def test_a_target_the_model_has_not_is_a_bad_file_not_a_failed_analysis():
+    # Known only once the analysis runs, as the command's exit 2 says: a ValueError, as a bad file is.
+    targets = json.loads(open("examples/targets/bump_steer.json").read())
+    targets["targets"][0]["figure"] = "parallel-travel/bump_stear"
+    with pytest.raises(ValueError, match="has no figure 'bump_stear'"):
+        elastokin.load(MODEL).tune(targets)
+
+
 def test_tolerance_gives_the_commands_numbers(tmp_path):
     out = tmp_path / "out"
     tolerances = "examples/targets/tolerances.json"

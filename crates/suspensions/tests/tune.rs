@@ -3,7 +3,7 @@
 //! hold a tune and are named for it, targets that fight, and bad TARGETS files refused by key.
 
 use elastokin_suspensions::design::targets::{read_targets, Targets};
-use elastokin_suspensions::design::tune::{evaluate, tune, Tuned};
+use elastokin_suspensions::design::tune::{evaluate, tune, TuneError, Tuned};
 use elastokin_suspensions::design::Parameters;
 use elastokin_suspensions::kc::{self, Analysis, Settings};
 use elastokin_suspensions::study::batch::base_document;
@@ -130,6 +130,48 @@ fn a_bound_that_holds_a_number_is_named_when_the_target_is_not_met() {
     assert!((tuned.end.x[0] - (z + 0.001)).abs() < 1e-12, "{}", tuned.end.x[0]);
 }
 
+/// A bound of −1e308 m on a hardpoint coordinate: the tune's step, in the numbers scaled by their bounds'
+/// span, was a decomposition of numbers that are not finite, which panicked. The tune now stops before
+/// the step and says which bounds are too wide; the model stays where it was.
+#[test]
+fn bounds_too_wide_for_a_step_stop_the_tune_with_why_not_a_panic() {
+    let base = document("generic/macpherson.json");
+    let inner = format!("{H}/tie_rod_inner/2");
+    let text = json!({
+        "free": { &inner: [-1e308, -0.02] },
+        "targets": [{ "figure": "parallel-travel/bump_steer", "value": -2.0, "tolerance": 0.25 }],
+    })
+    .to_string();
+    let (_, tuned) = run(&base, &text);
+    assert!(!tuned.all_met());
+    assert!(
+        tuned.stopped.starts_with(&format!("the bounds of '{inner}' (-1e308 to -2e-2) are too wide")),
+        "{}",
+        tuned.stopped
+    );
+    assert_eq!(tuned.end.x, tuned.start.x);
+}
+
+/// An aim of −1e308 deg/m for the bump steer: its miss over the tolerance, squared in the objective, was
+/// infinite, and the tune's step was taken from it. It is refused, naming the target.
+#[test]
+fn an_aim_too_far_to_be_squared_is_refused_naming_the_target() {
+    let base = document("generic/macpherson.json");
+    let inner = format!("{H}/tie_rod_inner/2");
+    for (value, tolerance) in [(-1e308, 0.25), (-2.0, 1e-300)] {
+        let text = json!({
+            "free": { &inner: [-0.1, -0.02] },
+            "targets": [{ "figure": "parallel-travel/bump_steer", "value": value, "tolerance": tolerance }],
+        })
+        .to_string();
+        let targets = read_targets(&text, "targets.json", &base, |f| Err(format!("no file {f}"))).unwrap();
+        let parameters = Parameters::new(&base, std::slice::from_ref(&inner)).unwrap();
+        let e = tune(&parameters, &targets, |_| {}).map(|_| ()).unwrap_err();
+        let TuneError::Targets(e) = e else { panic!("{e:?}") };
+        assert!(e.starts_with("targets[0]") && e.contains("is too large to be worked with"), "{e}");
+    }
+}
+
 /// A bump steer of −10 deg/m asked with a tight tolerance beside the hidden model's toe curve (whose bump
 /// steer is some −30 deg/m), one number free with room for either: they fight, and the verdict says so.
 #[test]
@@ -231,7 +273,8 @@ fn bad_targets_are_refused_by_key() {
         let e = read_targets(&text.to_string(), "targets.json", &base, |f| Err(format!("no file {f}"))).unwrap_err();
         assert!(e.starts_with("targets.json: ") && e.contains(says), "{says}: {e}");
     }
-    // What is known only when run: a figure or column the analysis lacks, a point outside its range.
+    // What is known only when run: a figure or column the analysis lacks, a point outside its range, rows
+    // that move with the model.
     let p = Parameters::new(&base, std::slice::from_ref(&inner)).unwrap();
     for (target, says) in [
         (
@@ -253,7 +296,8 @@ fn bad_targets_are_refused_by_key() {
     ] {
         let text = json!({ "free": { inner.clone(): [z - 0.01, z + 0.02] }, "targets": [target] }).to_string();
         let targets = read_targets(&text, "t", &base, |_| Err(String::new())).unwrap();
-        let e = evaluate(&p, &targets, &p.values).unwrap_err();
+        // Bad input (the command exits 2), not a model that cannot be analysed.
+        let TuneError::Targets(e) = evaluate(&p, &targets, &p.values).unwrap_err() else { panic!("{says}") };
         assert!(e.contains(says), "{says}: {e}");
     }
 }

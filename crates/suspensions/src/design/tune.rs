@@ -19,7 +19,7 @@
 use super::parameter::hardpoint_pointer;
 use super::parameter::Parameters;
 use super::sensitivity::{analysis_sensitivity, AnalysisSensitivity};
-use super::targets::{Aim, Constraint, Targets};
+use super::targets::{Aim, Constraint, Target, Targets};
 use crate::kc::{AnalysisReport, Cell, Chart, Scale, Series, Settings, Table, YAxis};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
@@ -116,12 +116,40 @@ fn interpolation(t: &[f64], at: f64) -> Option<Vec<(usize, f64)>> {
     )
 }
 
+/// Why the targets could not be evaluated on a model: they ask what its analyses do not give (a figure or
+/// column it has not, a point outside the range walked, an aim too far to be worked with, a constraint on a
+/// hardpoint it has not), or the model could not be analysed. At the start of a tune the first is bad
+/// input; a step that meets either is stepped back from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum TuneError {
+    /// The targets ask what the model's analyses do not give.
+    Targets(String),
+    /// The model could not be analysed.
+    Model(String),
+}
+
+impl std::fmt::Display for TuneError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            TuneError::Targets(why) | TuneError::Model(why) => f.write_str(why),
+        }
+    }
+}
+
+/// Its words, for a caller that does not tell the two apart.
+impl From<TuneError> for String {
+    fn from(e: TuneError) -> String {
+        e.to_string()
+    }
+}
+
 /// An analysis run for the targets: which, over what range, and its sensitivities.
 type Run = (crate::kc::Analysis, Option<(f64, f64)>, AnalysisSensitivity);
 
 /// The targets' residuals and Jacobian with the free numbers of `parameters` at `x`.
-pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result<Evaluation, String> {
-    let p = parameters.at(x)?;
+pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result<Evaluation, TuneError> {
+    let (asked, model) = (TuneError::Targets, TuneError::Model);
+    let p = parameters.at(x).map_err(model)?;
     let n = x.len();
     // One run per analysis and range.
     let mut runs: Vec<Run> = Vec::new();
@@ -136,7 +164,8 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
             .filter(|u| u.analysis == t.analysis && u.range == t.range)
             .all(|u| matches!(u.aim, Aim::Figure { .. }));
         let settings = Settings { range: t.range, steps: targets.steps, figures_only, ..Settings::default() };
-        let s = analysis_sensitivity(t.analysis, &p, &settings).map_err(|e| format!("{}: {e}", t.analysis.name()))?;
+        let s = analysis_sensitivity(t.analysis, &p, &settings)
+            .map_err(|e| model(format!("{}: {e}", t.analysis.name())))?;
         runs.push((t.analysis, t.range, s));
     }
     let (mut residuals, mut jacobian, mut rows) = (Vec::new(), Vec::new(), Vec::new());
@@ -146,28 +175,34 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
             Aim::Figure { key, value } => {
                 let (figure, rates) = s.figure(key).ok_or_else(|| {
                     let keys: Vec<&str> = s.report.figures.iter().map(|f| f.key.as_str()).collect();
-                    format!("{}: {} has no figure '{key}' (it has: {})", t.label, t.analysis.name(), keys.join(", "))
+                    let has = keys.join(", ");
+                    asked(format!("{}: {} has no figure '{key}' (it has: {has})", t.label, t.analysis.name()))
                 })?;
                 let reached = figure.value.ok_or_else(|| {
-                    format!("{}: the figure has no value here: {}", t.label, figure.reason.as_deref().unwrap_or(""))
+                    asked(format!(
+                        "{}: the figure has no value here: {}",
+                        t.label,
+                        figure.reason.as_deref().unwrap_or("")
+                    ))
                 })?;
                 let gradient = rates
                     .iter()
-                    .map(|r| r.map_err(|e| format!("{}: {}", t.label, e.reason())))
+                    .map(|r| r.map_err(|e| model(format!("{}: {}", t.label, e.reason()))))
                     .collect::<Result<Vec<f64>, _>>()?;
-                residuals.push((reached - value) / t.tolerance);
-                jacobian.push(gradient.iter().map(|g| g / t.tolerance).collect());
+                let (residual, rates) = scaled_miss(t, reached, *value, &gradient).map_err(asked)?;
+                residuals.push(residual);
+                jacobian.push(rates);
                 rows.push(Row { target: k, at: None, value: reached, aim: *value });
             }
             Aim::Curve { column, points } => {
                 let table = &s.report.table;
                 if !table.columns.contains(column) {
-                    return Err(format!(
+                    return Err(asked(format!(
                         "{}: {}'s table has no column '{column}' (it has: {})",
                         t.label,
                         t.analysis.name(),
                         table.columns.join(", ")
-                    ));
+                    )));
                 }
                 let along = s.column(&table.columns[0]);
                 let along: Vec<f64> = along.iter().map(|v| v.unwrap_or(f64::NAN)).collect();
@@ -181,11 +216,11 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
                         .filter_map(|d| d.ok())
                         .fold(0.0f64, |m, d| m.max(d.abs()));
                     if moved * x[q].abs().max(0.1) > 1e-9 * span {
-                        return Err(format!(
+                        return Err(asked(format!(
                             "{}: the analysis's rows move with '{}' (its default range follows the model); give \
                              the target a \"range\"",
                             t.label, p.pointers[q]
-                        ));
+                        )));
                     }
                 }
                 let values = s.column(column);
@@ -194,33 +229,39 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
                     let weights = interpolation(&along, at).ok_or_else(|| {
                         let (lo, hi) =
                             along.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
-                        format!(
+                        asked(format!(
                             "{}: the point at {at} lies outside the range {lo}..{hi} the analysis walks ({}); give \
                              the target a \"range\" that holds it",
                             t.label,
                             t.analysis.parameter()
-                        )
+                        ))
                     })?;
                     let mut reached = 0.0;
                     let mut gradient = vec![0.0; n];
                     for &(j, w) in &weights {
-                        let v =
-                            values[j].ok_or_else(|| format!("{}: the row at {} has no {column}", t.label, along[j]))?;
+                        let v = values[j]
+                            .ok_or_else(|| model(format!("{}: the row at {} has no {column}", t.label, along[j])))?;
                         reached += w * v;
                         for q in 0..n {
-                            let d = rates[q][j].map_err(|e| format!("{}: at {}: {}", t.label, along[j], e.reason()))?;
+                            let d = rates[q][j]
+                                .map_err(|e| model(format!("{}: at {}: {}", t.label, along[j], e.reason())))?;
                             gradient[q] += w * d;
                         }
                     }
-                    residuals.push((reached - aim) / t.tolerance);
-                    jacobian.push(gradient.iter().map(|g| g / t.tolerance).collect());
+                    let (residual, rates) = scaled_miss(t, reached, aim, &gradient).map_err(asked)?;
+                    residuals.push(residual);
+                    jacobian.push(rates);
                     rows.push(Row { target: k, at: Some(at), value: reached, aim });
                 }
             }
         }
     }
-    let packaging =
-        targets.constraints.iter().map(|c| linearise(c, p.document(), &p.pointers)).collect::<Result<_, _>>()?;
+    let packaging = targets
+        .constraints
+        .iter()
+        .map(|c| linearise(c, p.document(), &p.pointers))
+        .collect::<Result<_, _>>()
+        .map_err(asked)?;
     Ok(Evaluation {
         x: x.to_vec(),
         residuals,
@@ -229,6 +270,23 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
         packaging,
         reports: runs.into_iter().map(|(_, _, s)| s.report).collect(),
     })
+}
+
+/// The miss of `reached` from `aim` over the target's tolerance, and its rates from the figure's `gradient`:
+/// refused, naming the target, where they are too large to be squared (an aim of 1e308, a tolerance of
+/// 1e-300), which the objective `½ Σ r²` is.
+fn scaled_miss(t: &Target, reached: f64, aim: f64, gradient: &[f64]) -> Result<(f64, Vec<f64>), String> {
+    let residual = (reached - aim) / t.tolerance;
+    let rates: Vec<f64> = gradient.iter().map(|g| g / t.tolerance).collect();
+    if (residual * residual).is_finite() && rates.iter().all(|r| (r * r).is_finite()) {
+        Ok((residual, rates))
+    } else {
+        Err(format!(
+            "{}: the miss of {reached} from the aim {aim}, over the tolerance {}, is too large to be worked with; \
+             give the aim and the tolerance in the unit of what is aimed at",
+            t.label, t.tolerance
+        ))
+    }
 }
 
 /// A hardpoint's position in `document`, and for each free pointer, which of its coordinates it is.
@@ -437,6 +495,16 @@ impl Tuned {
     }
 }
 
+/// The first free number whose bounds' span, times the targets' rates against it (the Jacobian in the
+/// numbers scaled by their spans, which [`step`] solves with), is no finite number: bounds such as
+/// `[-1e308, 0]` on a hardpoint coordinate.
+fn too_wide(e: &Evaluation, free: &[(f64, f64)]) -> Option<usize> {
+    (0..free.len()).find(|&k| {
+        let span = free[k].1 - free[k].0;
+        !(span * span).is_finite() || e.jacobian.iter().any(|row| !(row[k] * span).is_finite())
+    })
+}
+
 /// The largest rate of `½ Σ r²` along a free number that may still move: at a bound only inward.
 fn projected_gradient(e: &Evaluation, free: &[(f64, f64)]) -> f64 {
     e.gradient()
@@ -475,6 +543,10 @@ fn step(e: &Evaluation, free: &[(f64, f64)], damping: f64, scale: &[f64], margin
     }
     for k in 0..n {
         a[(m + k, k)] = damping.sqrt();
+    }
+    // The decomposition panics on a number that is not finite ([`too_wide`] stops the tune before).
+    if !(a.iter().all(|v| v.is_finite()) && b.iter().all(|v| v.is_finite())) {
+        return Err("the step's least squares: its rates or residuals are no finite numbers".into());
     }
     // A combination of the numbers the targets barely see (a singular value a billionth of the largest)
     // is left where it is: a step along it would follow rounding, not the targets.
@@ -542,9 +614,14 @@ fn packaged(e: &Evaluation) -> bool {
 }
 
 /// Tunes the model of `parameters` (its free numbers, in the order of `targets.free`) to `targets`.
-/// `progress` hears of each iteration. Fails only when the model as it is cannot be evaluated; a step
-/// whose model cannot be built or run is stepped back from.
-pub fn tune(parameters: &Parameters, targets: &Targets, mut progress: impl FnMut(&Iteration)) -> Result<Tuned, String> {
+/// `progress` hears of each iteration. Fails only when the model as it is cannot be evaluated: because the
+/// targets ask what its analyses do not give ([`TuneError::Targets`]) or it cannot be analysed
+/// ([`TuneError::Model`]); a step whose model cannot be built or run is stepped back from.
+pub fn tune(
+    parameters: &Parameters,
+    targets: &Targets,
+    mut progress: impl FnMut(&Iteration),
+) -> Result<Tuned, TuneError> {
     let free: Vec<(f64, f64)> = targets.free.iter().map(|f| (f.min, f.max)).collect();
     let mut evaluations = 1;
     let start = evaluate(parameters, targets, &parameters.values)?;
@@ -579,6 +656,15 @@ pub fn tune(parameters: &Parameters, targets: &Targets, mut progress: impl FnMut
             stopped = format!("every target is met to {MET_EXACTLY:e} of its tolerance");
             break;
         }
+        if let Some(k) = too_wide(&here, &free) {
+            let (lo, hi) = free[k];
+            stopped = format!(
+                "the bounds of '{}' ({lo:e} to {hi:e}) are too wide for a step to be computed (the targets' rates \
+                 times their span are no finite numbers): give it bounds of the size it may move",
+                targets.free[k].pointer
+            );
+            break;
+        }
         let (outcome, step_size) = match step(&here, &free, damping, &scale, &margins) {
             Err(e) => {
                 damping *= 10.0;
@@ -609,7 +695,7 @@ pub fn tune(parameters: &Parameters, targets: &Targets, mut progress: impl FnMut
                     Err(e) => {
                         damping *= 4.0;
                         reach = 0.5 * size;
-                        unbuildable = Some(e.clone());
+                        unbuildable = Some(e.to_string());
                         (format!("stepped back: {e}"), size)
                     }
                     Ok(next) if next.objective() < f && packaged(&next) => {
@@ -669,7 +755,7 @@ pub fn tune(parameters: &Parameters, targets: &Targets, mut progress: impl FnMut
         }
     }
     let verdicts = verdicts(&here, targets, &free, unbuildable.as_deref());
-    let document = parameters.document_at(&here.x)?;
+    let document = parameters.document_at(&here.x).map_err(TuneError::Model)?;
     Ok(Tuned { start, end: here, iterations, verdicts, stopped, document })
 }
 
