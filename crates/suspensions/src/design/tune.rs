@@ -495,14 +495,20 @@ impl Tuned {
     }
 }
 
-/// The first free number whose bounds' span, times the targets' rates against it (the Jacobian in the
-/// numbers scaled by their spans, which [`step`] solves with), is no finite number: bounds such as
-/// `[-1e308, 0]` on a hardpoint coordinate.
-fn too_wide(e: &Evaluation, free: &[(f64, f64)]) -> Option<usize> {
-    (0..free.len()).find(|&k| {
+/// Why no step can be computed at `e`, if a free number's bounds' span, times the targets' rates against
+/// it (the Jacobian in the numbers scaled by their spans, which [`step`] solves with), is no finite number:
+/// bounds such as `[-1e308, 0]` on a hardpoint coordinate.
+fn too_wide(e: &Evaluation, targets: &Targets, free: &[(f64, f64)]) -> Option<String> {
+    let k = (0..free.len()).find(|&k| {
         let span = free[k].1 - free[k].0;
         !(span * span).is_finite() || e.jacobian.iter().any(|row| !(row[k] * span).is_finite())
-    })
+    })?;
+    let (lo, hi) = free[k];
+    Some(format!(
+        "free[\"{}\"]: the bounds {lo:e} to {hi:e} are too wide for a step to be computed (the targets' rates \
+         times their span are no finite numbers): give it bounds of the size it may move",
+        targets.free[k].pointer
+    ))
 }
 
 /// The largest rate of `½ Σ r²` along a free number that may still move: at a bound only inward.
@@ -625,6 +631,9 @@ pub fn tune(
     let free: Vec<(f64, f64)> = targets.free.iter().map(|f| (f.min, f.max)).collect();
     let mut evaluations = 1;
     let start = evaluate(parameters, targets, &parameters.values)?;
+    if let Some(why) = too_wide(&start, targets, &free) {
+        return Err(TuneError::Targets(why));
+    }
     let mut here = start.clone();
     let mut iterations = vec![record(0, &here, &free, 0.0, 0.0, evaluations, "start")];
     progress(&iterations[0]);
@@ -646,6 +655,8 @@ pub fn tune(
     let mut reach = f64::INFINITY;
     // Why the model could not be evaluated at the last step stepped back from, if that was why.
     let mut unbuildable: Option<String> = None;
+    // Why no step could be computed at all, if the tune stopped for that.
+    let mut no_step: Option<String> = None;
     let mut stopped = format!("the iteration limit ({MAX_ITERATIONS}) was reached");
     let mut rejected = 0;
     // A step taken that gained next to nothing, or moved next to nothing: the last.
@@ -656,13 +667,10 @@ pub fn tune(
             stopped = format!("every target is met to {MET_EXACTLY:e} of its tolerance");
             break;
         }
-        if let Some(k) = too_wide(&here, &free) {
-            let (lo, hi) = free[k];
-            stopped = format!(
-                "the bounds of '{}' ({lo:e} to {hi:e}) are too wide for a step to be computed (the targets' rates \
-                 times their span are no finite numbers): give it bounds of the size it may move",
-                targets.free[k].pointer
-            );
+        // Bounds that are too wide where the tune starts are refused above; the rates may grow on the way.
+        if let Some(why) = too_wide(&here, targets, &free) {
+            stopped = why.clone();
+            no_step = Some(why);
             break;
         }
         let (outcome, step_size) = match step(&here, &free, damping, &scale, &margins) {
@@ -754,7 +762,7 @@ pub fn tune(
             break;
         }
     }
-    let verdicts = verdicts(&here, targets, &free, unbuildable.as_deref());
+    let verdicts = verdicts(&here, targets, &free, unbuildable.as_deref(), no_step.as_deref());
     let document = parameters.document_at(&here.x).map_err(TuneError::Model)?;
     Ok(Tuned { start, end: here, iterations, verdicts, stopped, document })
 }
@@ -779,9 +787,16 @@ fn record(
     }
 }
 
-/// Each target's outcome at the end, and why one is not met: the model that could not be evaluated a step
-/// further (`unbuildable`), the bounds or packaging that hold, or the targets that fight it.
-fn verdicts(e: &Evaluation, targets: &Targets, free: &[(f64, f64)], unbuildable: Option<&str>) -> Vec<Verdict> {
+/// Each target's outcome at the end, and why one is not met: no step that could be computed (`no_step`),
+/// the model that could not be evaluated a step further (`unbuildable`), the bounds or packaging that
+/// hold, or the targets that fight it.
+fn verdicts(
+    e: &Evaluation,
+    targets: &Targets,
+    free: &[(f64, f64)],
+    unbuildable: Option<&str>,
+    no_step: Option<&str>,
+) -> Vec<Verdict> {
     let at_bound: Vec<String> =
         e.x.iter()
             .zip(free)
@@ -819,7 +834,9 @@ fn verdicts(e: &Evaluation, targets: &Targets, free: &[(f64, f64)], unbuildable:
             let met = worst <= 1.0;
             let why = (!met).then(|| {
                 let held: Vec<String> = at_bound.iter().chain(&packed).cloned().collect();
-                if let Some(why) = unbuildable {
+                if let Some(why) = no_step {
+                    format!("no step could be taken: {why}")
+                } else if let Some(why) = unbuildable {
                     format!(
                         "held where the model stops: a step further could not be evaluated ({why}); narrow the \
                          bounds to the numbers the model accepts, or free another number"
