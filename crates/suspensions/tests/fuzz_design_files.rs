@@ -122,6 +122,24 @@ fn check_message(message: &str, case: usize, text: &str) {
     assert!(!message.trim().is_empty() && !non_finite, "case {case}: {message}\n{text}");
 }
 
+/// What `read` reads of case `case`'s `text`, or `None` when it refuses it (counted in `refused`) with a
+/// message a user can read; it must not panic.
+fn read_or_refused<T>(
+    case: usize,
+    text: &str,
+    refused: &mut usize,
+    read: impl FnOnce() -> Result<T, String> + std::panic::UnwindSafe,
+) -> Option<T> {
+    match catch_unwind(read).unwrap_or_else(|_| panic!("case {case} panicked when read:\n{text}")) {
+        Err(message) => {
+            check_message(&message, case, text);
+            *refused += 1;
+            None
+        }
+        Ok(t) => Some(t),
+    }
+}
+
 #[test]
 fn mutated_targets_files_are_refused_with_a_message_or_tuned_without_panic() {
     for (stream, (targets, model_path)) in [
@@ -134,15 +152,8 @@ fn mutated_targets_files_are_refused_with_a_message_or_tuned_without_panic() {
         let base = model(model_path);
         let (mut refused, mut evaluated, mut tuned) = (0, 0, 0);
         for (case, text) in cases(targets, stream as u64) {
-            let read = catch_unwind(|| read_targets(&text, "targets.json", &base, |f| Err(format!("no file {f}"))));
-            let t = match read.unwrap_or_else(|_| panic!("case {case} panicked when read:\n{text}")) {
-                Err(message) => {
-                    check_message(&message, case, &text);
-                    refused += 1;
-                    continue;
-                }
-                Ok(t) => t,
-            };
+            let read = || read_targets(&text, "targets.json", &base, |f| Err(format!("no file {f}")));
+            let Some(t) = read_or_refused(case, &text, &mut refused, read) else { continue };
             let pointers: Vec<String> = t.free.iter().map(|f| f.pointer.clone()).collect();
             let p = Parameters::new(&base, &pointers).unwrap();
             let ran = catch_unwind(AssertUnwindSafe(|| {
@@ -173,15 +184,8 @@ fn mutated_tolerance_files_are_refused_with_a_message_or_stacked_up_without_pani
     let base = model("examples/generic/macpherson.json");
     let (mut refused, mut stacked) = (0, 0);
     for (case, text) in cases("examples/targets/tolerances.json", 7) {
-        let read = catch_unwind(|| read_tolerances(&text, "tolerances.json", &base));
-        let t = match read.unwrap_or_else(|_| panic!("case {case} panicked when read:\n{text}")) {
-            Err(message) => {
-                check_message(&message, case, &text);
-                refused += 1;
-                continue;
-            }
-            Ok(t) => t,
-        };
+        let read = || read_tolerances(&text, "tolerances.json", &base);
+        let Some(t) = read_or_refused(case, &text, &mut refused, read) else { continue };
         if case % 50 != 0 {
             continue;
         }
