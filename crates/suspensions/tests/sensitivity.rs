@@ -159,6 +159,17 @@ fn a_parameter_that_names_nothing_or_no_number_is_refused_by_name() {
         let e = Parameters::new(&doc, &[pointer.to_string()]).unwrap_err();
         assert!(e.contains(pointer) && e.contains(says), "{pointer}: {e}");
     }
+    // A count has no derivative: it was refused when moved, in the words of the file's reader ("invalid
+    // type: floating point `6.003`, expected usize").
+    for (name, pointer) in [
+        ("twist_beam_template.json", "/suspension/twist_beam/cross_member/segments"),
+        ("twist_beam.json", "/suspension/general/axle/beams/0/segments"),
+    ] {
+        let e = Parameters::new(&document(name), &[pointer.to_string()]).unwrap_err();
+        assert!(e.starts_with(&format!("parameter '{pointer}' is a count")) && !e.contains("usize"), "{e}");
+    }
+    // A whole number that is no count is a parameter (a spring rate of 17000 N/m).
+    assert!(Parameters::new(&document("twist_beam.json"), &["/suspension/general/springs/0/rate".into()]).is_ok());
     let twice = vec!["/suspension/macpherson/loaded_radius".to_string(); 2];
     assert!(Parameters::new(&doc, &twice).unwrap_err().contains("given twice"));
     // Every coordinate of the MacPherson's 8 hardpoints.

@@ -26,7 +26,14 @@ impl Parameters {
             if pointers[..k].contains(pointer) {
                 return Err(format!("parameter '{pointer}' is given twice"));
             }
-            values.push(number_at(document, pointer).map_err(|why| format!("parameter '{pointer}' {why}"))?);
+            let value = number_at(document, pointer).map_err(|why| format!("parameter '{pointer}' {why}"))?;
+            if value.fract() == 0.0 && is_count(document, pointer, value) {
+                return Err(format!(
+                    "parameter '{pointer}' is a count (a whole number of things), which does not move by parts and \
+                     has no derivative: give a number that places a part or sets a rate, a force or a size"
+                ));
+            }
+            values.push(value);
         }
         Ok(Parameters { document: document.clone(), pointers: pointers.to_vec(), values })
     }
@@ -85,6 +92,14 @@ impl Parameters {
     pub fn file(&self) -> Result<SuspensionFile, String> {
         read(&self.document, "the model", true)
     }
+}
+
+/// Whether the number at `pointer` (whole, `value`) is a count the model reads only whole (a beam's
+/// segments): the model with half a count more is refused as the wrong type, not as out of range.
+fn is_count(document: &Value, pointer: &str, value: f64) -> bool {
+    let mut moved = document.clone();
+    set(&mut moved, pointer, value + 0.5).is_ok()
+        && read(&moved, "", false).is_err_and(|e| e.contains("invalid type: floating point"))
 }
 
 /// Writes `value` at `pointer` of `document`.
