@@ -149,10 +149,7 @@ impl<'m> StaticSolver<'m> {
         for iter in 0..self.options.max_iterations {
             self.assemble(state, Some(Tangent::Full));
             self.update_roundoff_floor(&state.poses);
-            let r = self.residual(&state.lambda);
-            if !(r.force.is_finite() && r.constraint.is_finite()) {
-                return Err(self.non_finite("arc-length corrector", state.t));
-            }
+            let r = self.finite_residual(state, "arc-length corrector")?;
             last = (r.force, r.constraint);
             if self.converged(&r) {
                 return Ok((iter, r, dt_total));

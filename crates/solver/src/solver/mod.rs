@@ -473,6 +473,16 @@ impl<'m> StaticSolver<'m> {
         Residual { force, constraint, force_scale }
     }
 
+    /// [`StaticSolver::residual`] at `state`, refused where it is no finite number ([`Self::non_finite`]).
+    fn finite_residual(&mut self, state: &State, what: &'static str) -> Result<Residual, SolverError> {
+        let r = self.residual(&state.lambda);
+        if r.force.is_finite() && r.constraint.is_finite() {
+            Ok(r)
+        } else {
+            Err(self.non_finite(what, state.t))
+        }
+    }
+
     /// The error of a residual that is no finite number: the element whose force was none, by name, or
     /// else `what`.
     fn non_finite(&self, what: &'static str, t: f64) -> SolverError {

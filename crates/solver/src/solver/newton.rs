@@ -43,10 +43,7 @@ impl<'m> StaticSolver<'m> {
             if refactor {
                 self.update_roundoff_floor(&state.poses);
             }
-            let r = self.residual(&state.lambda);
-            if !(r.force.is_finite() && r.constraint.is_finite()) {
-                return Err(self.non_finite("residual", state.t));
-            }
+            let r = self.finite_residual(state, "residual")?;
             if self.converged(&r) {
                 return Ok((iter, r));
             }
@@ -302,10 +299,7 @@ impl<'m> StaticSolver<'m> {
             }
         } else {
             self.assemble(&state, factors.is_none().then_some(Tangent::Full));
-            let r = self.residual(&state.lambda);
-            if !(r.force.is_finite() && r.constraint.is_finite()) {
-                return Err(self.non_finite("residual", state.t));
-            }
+            self.finite_residual(&state, "residual")?;
             if factors.is_some() {
                 Self::residual_rhs(&self.work.assembly, &self.work.scratch, &mut self.work.rhs);
             }
@@ -329,11 +323,7 @@ impl<'m> StaticSolver<'m> {
         let after = match factors {
             None => {
                 self.assemble(&state, None);
-                let r = self.residual(&state.lambda);
-                if !(r.force.is_finite() && r.constraint.is_finite()) {
-                    return Err(self.non_finite("residual", state.t));
-                }
-                r
+                self.finite_residual(&state, "residual")?
             }
             Some(_) => Residual {
                 force: step.force_residual,

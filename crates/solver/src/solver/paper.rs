@@ -67,10 +67,7 @@ impl<'m> StaticSolver<'m> {
             state.t = path.start + dt * step as f64;
             // Report the true residual of the paper solution (drift), without correcting it.
             self.assemble(state, None);
-            let r = self.residual(&state.lambda);
-            if !(r.force.is_finite() && r.constraint.is_finite()) {
-                return Err(self.non_finite("paper-mode step", state.t));
-            }
+            let r = self.finite_residual(state, "paper-mode step")?;
             // A fold ahead or behind: the response grew tenfold, or the step left its linearisation (its drift
             // grew by more than the change of load or travel it made: a step that jumped across a fold to
             // another branch). (The paper tangent's negative pivots tell nothing: it lacks the joint
