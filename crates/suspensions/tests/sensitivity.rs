@@ -3,8 +3,8 @@
 //! (toe, camber and wheel-centre height of every row, bump steer and camber gain), then every figure and
 //! every cell of every analysis of the K&C suite against the report itself run again on moved models, for
 //! hardpoints, rates and a design force of every shipped suspension model and of Chrono's double wishbone
-//! and MacPherson strut. Allowed: 1e-6 of the largest derivative of its kind, or 1e-9 absolute near zero (derivatives
-//! times the parameter's size); the measured fractions are given at each test.
+//! and MacPherson strut. Allowed: 1e-6 of the largest derivative of its kind, or 1e-9 absolute near zero
+//! (derivatives times the parameter's size); the measured fractions are given at each test.
 
 use elastokin_solver::Mode;
 use elastokin_suspensions::analysis::parallel_wheel_travel;
@@ -317,9 +317,9 @@ fn against_report_re_runs(
                 // departure from the re-runs' line over moves too small to change it otherwise, carried over
                 // both methods' steps. The twist beam's lateral roll-centre offset, zero by symmetry, departs
                 // by 6.6e-11 mm, eight times its one-iteration estimate: the path tangent it is read off
-                // carries the rounding of the stiff beams' forces into the soft
-                // roll mode, and its derivative against the spring seat's y reads -1.1e-7 mm/m in the
-                // replays and 2.0e-8 in the re-runs, 2.3 times the allowed without this, 0.37 with it.
+                // carries the rounding of the stiff beams' forces into the soft roll mode, and its
+                // derivative against the spring seat's y reads -1.1e-7 mm/m in the replays and 2.0e-8 in
+                // the re-runs, 2.3 times the allowed without this, 0.37 with it.
                 let tiny = tiny.get_or_init(|| {
                     tiny_moves.map(|m| kc::run(analysis, &p.file_moved(k, m).unwrap(), &settings).unwrap()).into()
                 });
