@@ -59,6 +59,17 @@ pub struct StepResult {
     pub iterations: usize,
 }
 
+/// The rates of an equilibrium along its load path ([`StaticSolver::path_rates_factored`]).
+///
+/// [`StaticSolver::path_rates_factored`]: crate::StaticSolver::path_rates_factored
+#[derive(Debug, Clone, PartialEq)]
+pub struct PathRates {
+    /// `dq/dt`, `BODY_DOFS` per body (translation of the reference point, then rotation as in Δπ).
+    pub dq: Vec<f64>,
+    /// `dλ/dt` of each active constraint row, in the order of the solver's active rows.
+    pub dlambda: Vec<f64>,
+}
+
 /// Reaction of one joint.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct JointReaction {

@@ -42,7 +42,7 @@ use crate::kkt::{FactorCounters, KktOptions};
 use crate::options::{ArcStep, LoadPath, Mode, SolverOptions, State};
 use crate::redundancy::redundant_rows;
 use crate::replay;
-use crate::results::{Diagnostics, LimitPoint, RedundantRow, StepResult, Sweep};
+use crate::results::{Diagnostics, LimitPoint, PathRates, RedundantRow, StepResult, Sweep};
 use elastokin_core::{Model, Pose, BODY_DOFS};
 
 /// Counters that prove reuse: how often each costly operation ran.

@@ -52,10 +52,35 @@ impl<'m> StaticSolver<'m> {
     /// off the one tangent (a compliance and a path tangent at design), with no solve between that assembles
     /// another state.
     pub fn path_tangent_factored(&mut self) -> Result<Vec<f64>, SolverError> {
+        Ok(self.path_rates_factored()?.dq)
+    }
+
+    /// The rates of the equilibrium along the load path at the state the tangent was last factorized at:
+    /// `dq/dt` and `dλ/dt` of the active rows, the one solve of [`StaticSolver::path_tangent_factored`]
+    /// read whole. What a rig measures as a rate at that state (a wheel rate is `dλ/dt` of the travel
+    /// driver's row) is a reading of the state differentiated along them ([`StaticSolver::moved_along`]).
+    pub fn path_rates_factored(&mut self) -> Result<PathRates, SolverError> {
         let n = self.work.assembly.n;
         self.load_direction_rhs();
         self.solve_with_skew(Accuracy::Refined)?;
-        Ok(self.work.rhs[..n].to_vec())
+        let rhs = &self.work.rhs;
+        if !rhs.iter().all(|v| v.is_finite()) {
+            return Err(SolverError::NonFinite { what: "path tangent" });
+        }
+        Ok(PathRates { dq: rhs[..n].to_vec(), dlambda: rhs[n..].to_vec() })
+    }
+
+    /// The point at distance `h` along the tangent line of the path through `state` (an equilibrium whose
+    /// `rates` these are): poses moved by `h·dq/dt` (each body's rotation by the exact update), multipliers
+    /// by `h·dλ/dt`, load parameter `t + h`. It is no equilibrium (it leaves the path by `O(h²)`), and its
+    /// residuals read zero: it exists to be read, since a reading `g` of it has `dg/dh = dg/dt` along the
+    /// path at `h = 0`, so differences of readings on the line are the path rates of any reading.
+    pub fn moved_along(&self, state: &State, rates: &PathRates, h: f64) -> StepResult {
+        let mut poses = state.poses.clone();
+        Self::apply(&mut poses, &rates.dq, h);
+        let lambda = state.lambda.iter().zip(&rates.dlambda).map(|(l, d)| l + h * d).collect();
+        let moved = State { poses, lambda, t: state.t + h };
+        self.step_result(&moved, 0, &Residual { force: 0.0, constraint: 0.0, force_scale: 1.0 })
     }
 
     /// Assembles and factorizes the tangent at `state` for [`StaticSolver::solve_factored`].

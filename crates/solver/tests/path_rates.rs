@@ -1,0 +1,105 @@
+//! The rates of an equilibrium along its load path (`StaticSolver::path_rates_factored`) and the tangent
+//! line they span (`StaticSolver::moved_along`): the lever's turn rate against the implicit function
+//! theorem on its moment balance written here, the multipliers' rates against differences of equilibria
+//! solved apart.
+
+use elastokin_core::{BodyRef, JointSpec, Model, Pose, Vec3};
+use elastokin_elements::{CoilSpring, PointForce};
+use elastokin_solver::{SolverOptions, StaticSolver, StepResult};
+
+const TIP_LOAD: f64 = 500.0;
+const TOP: [f64; 3] = [0.0, 0.0, 0.2];
+const SEAT: f64 = 0.3;
+const TIP: f64 = 0.5;
+const RATE: f64 = 2e4;
+
+/// A lever hinged at the origin about y, held by a spring from `TOP` to its seat, its tip loaded downward
+/// by `TIP_LOAD` times the load parameter.
+fn lever() -> Model {
+    let mut model = Model::new();
+    let lever = model.add_body("lever", Pose::at(Vec3::new(0.25, 0.0, 0.0))).unwrap();
+    model.add_joint(JointSpec::revolute("pivot", BodyRef::Ground, lever, Vec3::zeros(), Vec3::y())).unwrap();
+    let seat = Vec3::new(SEAT, 0.0, 0.0);
+    let top = Vec3::from(TOP);
+    let spring = CoilSpring::new("spring", BodyRef::Ground, top, lever.into(), seat, RATE, (seat - top).norm()).unwrap();
+    model.add_element(spring).unwrap();
+    let tip = PointForce::new("tip", lever.into(), Vec3::new(TIP, 0.0, 0.0), Vec3::new(0.0, 0.0, -TIP_LOAD)).unwrap();
+    model.add_element(tip).unwrap();
+    model
+}
+
+/// The lever's turn about y (tip down +).
+fn angle(step: &StepResult) -> f64 {
+    let p = step.poses[0].position;
+    (-p.z).atan2(p.x)
+}
+
+/// The moment about the hinge of the spring and the tip load on the lever turned by `theta` at load `t`.
+fn moment(theta: f64, t: f64) -> f64 {
+    let (c, s) = (theta.cos(), theta.sin());
+    let seat = Vec3::new(SEAT * c, 0.0, -SEAT * s);
+    let top = Vec3::from(TOP);
+    let free = (Vec3::new(SEAT, 0.0, 0.0) - top).norm();
+    let d = seat - top;
+    let spring = -RATE * (d.norm() - free) * d / d.norm();
+    let tip = Vec3::new(TIP * c, 0.0, -TIP * s);
+    seat.cross(&spring).y + tip.cross(&Vec3::new(0.0, 0.0, -t * TIP_LOAD)).y
+}
+
+#[test]
+fn the_tangent_line_turns_the_lever_at_the_rate_its_moment_balance_gives() {
+    let model = lever();
+    let mut solver = StaticSolver::new(&model, SolverOptions::default()).unwrap();
+    let t = 0.6;
+    let mut state = solver.design_state(t);
+    let at = solver.equilibrium(&mut state).unwrap();
+    solver.factorize_tangent(&state).unwrap();
+    let rates = solver.path_rates_factored().unwrap();
+    assert_eq!(rates.dq, solver.path_tangent_factored().unwrap());
+    // The implicit function theorem on M(θ, t) = 0: dθ/dt = −M_t / M_θ, M's partials by central differences.
+    let theta = angle(&at);
+    let (ht, hl) = (1e-6, 1e-6);
+    let m_theta = (moment(theta + ht, t) - moment(theta - ht, t)) / (2.0 * ht);
+    let m_t = (moment(theta, t + hl) - moment(theta, t - hl)) / (2.0 * hl);
+    let exact = -m_t / m_theta;
+    // The turn read on the tangent line, differenced (Richardson over ±h, ±2h).
+    let h = 1e-4;
+    let read = |k: f64| angle(&solver.moved_along(&state, &rates, k * h));
+    let line = (8.0 * (read(1.0) - read(-1.0)) - (read(2.0) - read(-2.0))) / (12.0 * h);
+    // Measured 2.7e-10 relative: the balance's own differences and the solver's tolerance.
+    assert!((line - exact).abs() <= 1e-8 * exact.abs(), "dθ/dt {line:e} against the balance's {exact:e}");
+    assert!(exact.abs() > 0.1, "the lever turns under the tip load: {exact}");
+    // The point on the line at h = 0 is the equilibrium itself, at its load parameter.
+    let zero = solver.moved_along(&state, &rates, 0.0);
+    assert_eq!((zero.poses.clone(), zero.multipliers.clone(), zero.t), (at.poses.clone(), at.multipliers.clone(), t));
+    assert_eq!(solver.moved_along(&state, &rates, h).t, t + h);
+}
+
+#[test]
+fn the_multipliers_rates_are_those_of_equilibria_solved_apart() {
+    let model = lever();
+    let mut solver = StaticSolver::new(&model, SolverOptions::default()).unwrap();
+    let t = 0.6;
+    let mut state = solver.design_state(t);
+    let at = solver.equilibrium(&mut state).unwrap();
+    solver.factorize_tangent(&state).unwrap();
+    let rates = solver.path_rates_factored().unwrap();
+    let mut solved = |s: f64| {
+        let mut st = solver.design_state(s);
+        solver.equilibrium(&mut st).unwrap()
+    };
+    let h = 1e-3;
+    let (p1, m1, p2, m2) = (solved(t + h), solved(t - h), solved(t + 2.0 * h), solved(t - 2.0 * h));
+    let active = solver.active_rows().to_vec();
+    assert_eq!(active.len(), rates.dlambda.len());
+    let mut largest = 0.0f64;
+    for (k, &row) in active.iter().enumerate() {
+        let d = |a: &StepResult, b: &StepResult| a.multipliers[row] - b.multipliers[row];
+        let apart = (8.0 * d(&p1, &m1) - d(&p2, &m2)) / (12.0 * h);
+        let scale = at.multipliers.iter().fold(1.0f64, |a, v| a.max(v.abs()));
+        // Measured 3.7e-9 of the multipliers' scale: the equilibria's tolerance over the step.
+        assert!((rates.dlambda[k] - apart).abs() <= 1e-7 * scale, "row {row}: {} against {apart}", rates.dlambda[k]);
+        largest = largest.max(apart.abs());
+    }
+    assert!(largest > 10.0, "the hinge's reaction grows with the tip load: {largest}");
+}
