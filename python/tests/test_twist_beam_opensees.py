@@ -188,7 +188,7 @@ def test_the_shipped_twist_beam_without_springs_is_what_opensees_makes_of_its_be
     general = document["suspension"]["general"]
     general["springs"] = []
     stiffness, twist, steer = opensees_roll(general)
-    result = elastokin.load(document).run("roll", range=(-1e-4, 1e-4), steps=32)
+    result = elastokin.load(document).run("roll")
     got = [result.figure("roll_stiffness"), result.figure("cross_member_twist_per_roll"),
            result.figure("roll_steer")]
     errors = [abs(g / f - 1.0) for g, f in zip(got, [stiffness, twist, steer])]

@@ -54,9 +54,9 @@ use std::any::Any;
 use std::cell::RefCell;
 use std::sync::Arc;
 
-/// Which steps of a sweep a replay moves, for a run that reads only some of a sweep's rows (a slope or
-/// curvature at one load parameter, the last row): the steps whose load parameter lies within one step of
-/// `near`, and the last step if `last`. The replayed sweep has those steps alone, in order: nothing is
+/// Which steps of a sweep a replay moves, for a run that reads only some of a sweep's rows (those about one
+/// load parameter, the last row): the steps whose load parameter lies within one step of `near`, and the
+/// last step if `last`. The replayed sweep has those steps alone, in order: nothing is
 /// spent on rows nobody reads, neither moving nor copying nor reading them (a caller that sets this finds
 /// the rows it reads by their load parameters or as the last, not by their place in the whole sweep). Set
 /// on a solver with
@@ -67,8 +67,8 @@ use std::sync::Arc;
 /// factors, and the replays move the rows named too.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ReplayRows {
-    /// The load parameter whose neighbouring steps are moved.
-    pub near: f64,
+    /// The load parameter whose neighbouring steps are moved, if any.
+    pub near: Option<f64>,
     /// Whether the last step is moved too.
     pub last: bool,
     /// Whether the run names further rows it read once it has read the recorded sweep ([`rows_read`]).
@@ -80,7 +80,7 @@ impl ReplayRows {
     pub(crate) fn moves(&self, t: f64, index: usize, count: usize, path: &LoadPath) -> bool {
         let step = (path.end - path.start).abs() / path.steps.max(1) as f64;
         // A step's own rounding aside: a row one step away is a neighbour.
-        (t - self.near).abs() <= step * (1.0 + 1e-9) || (self.last && index + 1 == count)
+        self.near.is_some_and(|near| (t - near).abs() <= step * (1.0 + 1e-9)) || (self.last && index + 1 == count)
     }
 }
 

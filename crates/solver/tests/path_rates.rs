@@ -1,5 +1,5 @@
 //! The rates of an equilibrium along its load path (`StaticSolver::path_rates_factored`) and the tangent
-//! line they span (`StaticSolver::moved_along`): the lever's turn rate against the implicit function
+//! line they span (`StaticSolver::along_path`): the lever's turn rate against the implicit function
 //! theorem on its moment balance written here, the multipliers' rates against differences of equilibria
 //! solved apart.
 
@@ -21,7 +21,8 @@ fn lever() -> Model {
     model.add_joint(JointSpec::revolute("pivot", BodyRef::Ground, lever, Vec3::zeros(), Vec3::y())).unwrap();
     let seat = Vec3::new(SEAT, 0.0, 0.0);
     let top = Vec3::from(TOP);
-    let spring = CoilSpring::new("spring", BodyRef::Ground, top, lever.into(), seat, RATE, (seat - top).norm()).unwrap();
+    let spring =
+        CoilSpring::new("spring", BodyRef::Ground, top, lever.into(), seat, RATE, (seat - top).norm()).unwrap();
     model.add_element(spring).unwrap();
     let tip = PointForce::new("tip", lever.into(), Vec3::new(TIP, 0.0, 0.0), Vec3::new(0.0, 0.0, -TIP_LOAD)).unwrap();
     model.add_element(tip).unwrap();
@@ -64,15 +65,15 @@ fn the_tangent_line_turns_the_lever_at_the_rate_its_moment_balance_gives() {
     let exact = -m_t / m_theta;
     // The turn read on the tangent line, differenced (Richardson over ±h, ±2h).
     let h = 1e-4;
-    let read = |k: f64| angle(&solver.moved_along(&state, &rates, k * h));
+    let read = |k: f64| angle(&solver.along_path(&state, &rates, None, k * h));
     let line = (8.0 * (read(1.0) - read(-1.0)) - (read(2.0) - read(-2.0))) / (12.0 * h);
     // Measured 2.7e-10 relative: the balance's own differences and the solver's tolerance.
     assert!((line - exact).abs() <= 1e-8 * exact.abs(), "dθ/dt {line:e} against the balance's {exact:e}");
     assert!(exact.abs() > 0.1, "the lever turns under the tip load: {exact}");
     // The point on the line at h = 0 is the equilibrium itself, at its load parameter.
-    let zero = solver.moved_along(&state, &rates, 0.0);
+    let zero = solver.along_path(&state, &rates, None, 0.0);
     assert_eq!((zero.poses.clone(), zero.multipliers.clone(), zero.t), (at.poses.clone(), at.multipliers.clone(), t));
-    assert_eq!(solver.moved_along(&state, &rates, h).t, t + h);
+    assert_eq!(solver.along_path(&state, &rates, None, h).t, t + h);
 }
 
 #[test]
@@ -102,4 +103,37 @@ fn the_multipliers_rates_are_those_of_equilibria_solved_apart() {
         largest = largest.max(apart.abs());
     }
     assert!(largest > 10.0, "the hinge's reaction grows with the tip load: {largest}");
+}
+
+#[test]
+fn the_second_rates_are_the_curvature_of_equilibria_solved_apart() {
+    let model = lever();
+    let mut solver = StaticSolver::new(&model, SolverOptions::default()).unwrap();
+    let t = 0.6;
+    let mut state = solver.design_state(t);
+    let at = solver.equilibrium(&mut state).unwrap();
+    solver.factorize_tangent(&state).unwrap();
+    let rates = solver.path_rates_factored().unwrap();
+    let second = solver.path_second_rates(&state, &rates, 1e-4).unwrap();
+    // The turn's second derivative read on the path's second-order expansion, against the second
+    // differences of equilibria solved apart (Richardson over ±h, ±2h).
+    let h = 1e-3;
+    let on_path = |k: f64| angle(&solver.along_path(&state, &rates, Some(&second), k * h));
+    let expanded =
+        (16.0 * (on_path(1.0) + on_path(-1.0)) - (on_path(2.0) + on_path(-2.0)) - 30.0 * angle(&at)) / (12.0 * h * h);
+    let mut solved = |s: f64| {
+        let mut st = solver.design_state(t + s);
+        angle(&solver.equilibrium(&mut st).unwrap())
+    };
+    let apart =
+        (16.0 * (solved(h) + solved(-h)) - (solved(2.0 * h) + solved(-2.0 * h)) - 30.0 * angle(&at)) / (12.0 * h * h);
+    assert!(apart.abs() > 1e-3, "the lever's turn bends with the load: {apart}");
+    // Measured 7.1e-8 relative: the equilibria's tolerance over h², and the residual's rounding over the
+    // second rates' step.
+    assert!((expanded - apart).abs() <= 1e-6 * apart.abs(), "d²θ/dt² {expanded:e} against {apart:e}");
+    // On the tangent line alone the turn's second difference misses the path's curvature (the lever turns
+    // about a fixed hinge: its turn is linear on the line, and the whole of it is missed).
+    let line = |k: f64| angle(&solver.along_path(&state, &rates, None, k * h));
+    let straight = (line(1.0) + line(-1.0) - 2.0 * angle(&at)) / (h * h);
+    assert!((straight - apart).abs() > 0.5 * apart.abs(), "{straight:e} against {apart:e}");
 }

@@ -371,7 +371,7 @@ fn a_replay_asked_for_some_rows_moves_those_alone_as_a_whole_replay_does() {
     let moved = k * 1.01;
     let all = replay(&tape, || angles_moving(moved, None)).unwrap().value.unwrap();
     // Rows within one step (1/8) of load 0.5, and the last: steps 3, 4, 5 and 8.
-    let rows = ReplayRows { near: 0.5, last: true, extremes: false };
+    let rows = ReplayRows { near: Some(0.5), last: true, extremes: false };
     let some = replay(&tape, || angles_moving(moved, Some(rows))).unwrap().value.unwrap();
     // Those steps alone, in order, each as the whole replay moves it.
     assert_eq!(some, [3, 4, 5, 8].map(|i| all[i]));
@@ -385,7 +385,7 @@ fn a_replay_asked_for_some_rows_moves_those_alone_as_a_whole_replay_does() {
 fn angles_moving_the_largest(k: f64) -> Result<Vec<f64>, SolverError> {
     let model = lever(k);
     let mut solver = StaticSolver::new(&model, SolverOptions::default())?;
-    solver.replay_rows(Some(ReplayRows { near: 0.5, last: false, extremes: true }));
+    solver.replay_rows(Some(ReplayRows { near: Some(0.5), last: false, extremes: true }));
     let angles: Vec<f64> = solver.sweep(LoadPath::new(0.0, 1.0, 8), Mode::Corrected)?.steps.iter().map(angle).collect();
     let largest = (0..angles.len()).max_by(|&a, &b| angles[a].abs().total_cmp(&angles[b].abs())).unwrap();
     replay::rows_read(&[largest]);

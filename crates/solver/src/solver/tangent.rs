@@ -58,7 +58,7 @@ impl<'m> StaticSolver<'m> {
     /// The rates of the equilibrium along the load path at the state the tangent was last factorized at:
     /// `dq/dt` and `dλ/dt` of the active rows, the one solve of [`StaticSolver::path_tangent_factored`]
     /// read whole. What a rig measures as a rate at that state (a wheel rate is `dλ/dt` of the travel
-    /// driver's row) is a reading of the state differentiated along them ([`StaticSolver::moved_along`]).
+    /// driver's row) is a reading of the state differentiated along them ([`StaticSolver::along_path`]).
     pub fn path_rates_factored(&mut self) -> Result<PathRates, SolverError> {
         let n = self.work.assembly.n;
         self.load_direction_rhs();
@@ -70,17 +70,60 @@ impl<'m> StaticSolver<'m> {
         Ok(PathRates { dq: rhs[..n].to_vec(), dlambda: rhs[n..].to_vec() })
     }
 
-    /// The point at distance `h` along the tangent line of the path through `state` (an equilibrium whose
-    /// `rates` these are): poses moved by `h·dq/dt` (each body's rotation by the exact update), multipliers
-    /// by `h·dλ/dt`, load parameter `t + h`. It is no equilibrium (it leaves the path by `O(h²)`), and its
-    /// residuals read zero: it exists to be read, since a reading `g` of it has `dg/dh = dg/dt` along the
-    /// path at `h = 0`, so differences of readings on the line are the path rates of any reading.
-    pub fn moved_along(&self, state: &State, rates: &PathRates, h: f64) -> StepResult {
-        let mut poses = state.poses.clone();
-        Self::apply(&mut poses, &rates.dq, h);
-        let lambda = state.lambda.iter().zip(&rates.dlambda).map(|(l, d)| l + h * d).collect();
-        let moved = State { poses, lambda, t: state.t + h };
+    /// The path's second rates at `state` (an equilibrium whose first `rates` these are, its tangent the
+    /// one last factorized): `d²q/dt²` and `d²λ/dt²`, from `A w = −G''`, with `A` the tangent and `G''` the
+    /// second difference of the residual `G = (Φ_qᵀλ − Q, Φ)` over the points `±h` on the tangent line
+    /// (of error `O(h²)`; the residual vanishes on the path, so its second difference along the line is
+    /// what the path's curvature must undo). Three residual assemblies and one solve; the tangent's
+    /// factorization is kept.
+    pub fn path_second_rates(&mut self, state: &State, rates: &PathRates, h: f64) -> Result<PathRates, SolverError> {
+        let n = self.work.assembly.n;
+        let size = n + self.work.assembly.m();
+        let mut second = vec![0.0; size];
+        for (at, weight) in [(h, 1.0), (-h, 1.0), (0.0, -2.0)] {
+            let point = self.state_along(state, rates, None, at);
+            self.assemble(&point, None);
+            self.finite_residual(&point, "residual")?;
+            // −G at the point.
+            Self::residual_rhs(&self.work.assembly, &self.work.scratch, &mut self.work.rhs);
+            for (s, r) in second.iter_mut().zip(&self.work.rhs) {
+                *s += weight * r / (h * h);
+            }
+        }
+        // The design's own assembly again (its constraint rows), for the refinement of the solve.
+        self.assemble(state, None);
+        self.work.rhs.copy_from_slice(&second);
+        self.solve_with_skew(Accuracy::Refined)?;
+        let rhs = &self.work.rhs;
+        if !rhs.iter().all(|v| v.is_finite()) {
+            return Err(SolverError::NonFinite { what: "path curvature" });
+        }
+        Ok(PathRates { dq: rhs[..n].to_vec(), dlambda: rhs[n..].to_vec() })
+    }
+
+    /// The point at `t + h` of the path through `state` (an equilibrium whose `rates` these are) expanded
+    /// to first order (on its tangent line), or to second with its `second` rates
+    /// ([`StaticSolver::path_second_rates`]): poses moved by `h·dq/dt + ½h²·d²q/dt²` (each body's rotation
+    /// by the exact update), multipliers likewise, load parameter `t + h`. It is no equilibrium (it leaves
+    /// the path by `O(h²)` or `O(h³)`), and its residuals read zero: it exists to be read, since a reading
+    /// `g` of it has `dg/dh = dg/dt` at `h = 0` on either, and `d²g/dh² = d²g/dt²` on the second, so
+    /// differences of readings there are the path rates of any reading.
+    pub fn along_path(&self, state: &State, rates: &PathRates, second: Option<&PathRates>, h: f64) -> StepResult {
+        let moved = self.state_along(state, rates, second, h);
         self.step_result(&moved, 0, &Residual { force: 0.0, constraint: 0.0, force_scale: 1.0 })
+    }
+
+    fn state_along(&self, state: &State, rates: &PathRates, second: Option<&PathRates>, h: f64) -> State {
+        let half = 0.5 * h * h;
+        let moved = |first: &[f64], second: Option<&[f64]>| -> Vec<f64> {
+            let curve = |k: usize| second.map_or(0.0, |s| half * s[k]);
+            first.iter().enumerate().map(|(k, v)| h * v + curve(k)).collect()
+        };
+        let mut poses = state.poses.clone();
+        Self::apply(&mut poses, &moved(&rates.dq, second.map(|s| &s.dq[..])), 1.0);
+        let dlambda = moved(&rates.dlambda, second.map(|s| &s.dlambda[..]));
+        let lambda = state.lambda.iter().zip(dlambda).map(|(l, d)| l + d).collect();
+        State { poses, lambda, t: state.t + h }
     }
 
     /// Assembles and factorizes the tangent at `state` for [`StaticSolver::solve_factored`].

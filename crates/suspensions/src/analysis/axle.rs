@@ -2,7 +2,7 @@
 //! with track, roll angle, wheel loads, roll moment, the anti-roll bars' energy and the roll centre from
 //! the path's exact tangent.
 
-use crate::analysis::sweep::{read_sweep, walk, whole, SweepExtras, SweepOutput};
+use crate::analysis::sweep::{read_sweep, walk, whole, Reading, SweepExtras, SweepOutput};
 use crate::build::rig::WHEEL_TRAVEL;
 use crate::build::{Axle, AxleRig};
 use crate::wheel::{Wheel, WheelAttitude};
@@ -126,13 +126,16 @@ pub fn axle_sweep_with(
     let mut start = solver.design_state(from);
     let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, &extras)?;
     let drivers = (model.joint_id(&format!("left {WHEEL_TRAVEL}")), model.joint_id(&format!("right {WHEEL_TRAVEL}")));
-    read_sweep(&mut solver, &axle.left, None, walked, extras, |solver, step| {
+    read_sweep(&mut solver, &axle.left, None, walked, extras, |solver, step, reading| {
         let load = |d: Option<elastokin_core::JointId>| d.map_or(0.0, |d| step.joint_reaction(model, d).force.z);
         let (left, right) = (axle.left.attitude(&step.poses), axle.right.attitude(&step.poses));
         let (left_load, right_load) = (load(drivers.0), load(drivers.1));
         let (track, roll_angle) = axle.track_and_roll(&step.poses);
         // Read for the figures alone, the roll centre at design only: the figure's.
-        let roll_centre = if axle.rig == AxleRig::Steering || (extras.figures_only && step.t != 0.0) {
+        let roll_centre = if axle.rig == AxleRig::Steering
+            || reading == Reading::Expansion
+            || (extras.figures_only && reading == Reading::Row)
+        {
             None
         } else {
             let rates = solver.path_tangent(&solver.state_of(step))?;

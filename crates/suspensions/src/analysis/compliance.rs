@@ -28,6 +28,8 @@ pub(crate) struct ComplianceAt<'m> {
     pub solver: StaticSolver<'m>,
     /// The equilibrium.
     pub state: State,
+    /// The equilibrium as the solve returned it (to take a Newton iteration on from it).
+    pub at: elastokin_solver::StepResult,
 }
 
 /// The wheel compliance at the equilibrium of load parameter `t`, and the solver and equilibrium it was
@@ -35,9 +37,9 @@ pub(crate) struct ComplianceAt<'m> {
 pub(crate) fn compliance_at(corner: &Corner, t: f64) -> Result<ComplianceAt<'_>, SolverError> {
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let mut state = solver.design_state(t);
-    solver.equilibrium(&mut state)?;
+    let at = solver.equilibrium(&mut state)?;
     let wheel = compliance_with(&mut solver, &corner.wheel, corner.partner.as_ref(), &state)?;
-    Ok(ComplianceAt { wheel, solver, state })
+    Ok(ComplianceAt { wheel, solver, state, at })
 }
 
 /// The wheel compliance at `state` (an equilibrium of `solver`'s model): see [`wheel_compliance`].

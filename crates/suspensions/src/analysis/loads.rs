@@ -2,7 +2,7 @@
 //! at the contact patch with the wheel under its corner load, the model's own load case, and the static
 //! load case; every row with the forces each joint and element carries.
 
-use crate::analysis::sweep::{read_sweep, require_rig, walk, whole, SweepExtras, SweepOutput, Walked};
+use crate::analysis::sweep::{read_sweep, require_rig, walk, whole, Reading, SweepExtras, SweepOutput, Walked};
 use crate::build::rig::WHEEL_TRAVEL;
 use crate::build::{Corner, Rig};
 use crate::wheel::WheelAttitude;
@@ -169,8 +169,11 @@ fn load_rows(
     let driver = model.joint_id(WHEEL_TRAVEL);
     // Named once per sweep, and only when the rows read the forces.
     let names = (!extras.figures_only).then(|| ComponentNames::of(model));
-    read_sweep(solver, &corner.wheel, corner.partner.as_ref(), walked, extras, |_, s| {
-        let forces = names.as_ref().map_or_else(ComponentForces::default, |n| ComponentForces::named(model, s, n));
+    read_sweep(solver, &corner.wheel, corner.partner.as_ref(), walked, extras, |_, s, reading| {
+        let forces = match (&names, reading) {
+            (Some(n), Reading::Row | Reading::Design) => ComponentForces::named(model, s, n),
+            _ => ComponentForces::default(),
+        };
         let contact_patch = s.poses[upright].point(&patch_local);
         // The driver's force from the forces read, else read alone.
         let driver_force =

@@ -21,5 +21,8 @@ pub use loads::{
     static_load_case_estimated, vertical_force_sweep, vertical_force_sweep_with, wheel_load_sweep,
     wheel_load_sweep_with, ComponentForce, ComponentForces, ComponentNames, LoadRow, StaticLoad, WheelLoad,
 };
-pub use sweep::{slope_at, walk, ArcLengthRows, SweepExtras, SweepLimit, SweepOutput, Walked, MAX_ARC_STEPS_PER_RANGE};
+pub use sweep::{
+    slope_at, walk, ArcLengthRows, AtDesign, Reading, SweepExtras, SweepLimit, SweepOutput, Walked, LINE_REACH,
+    MAX_ARC_STEPS_PER_RANGE,
+};
 pub use travel::{parallel_wheel_travel, parallel_wheel_travel_with, steering, TravelRow};

@@ -76,7 +76,7 @@ pub struct SweepExtras {
     pub poses: bool,
     /// Each row read for the K&C figures alone ([`crate::kc::Settings::figures_only`]): a load sweep's
     /// rows without the force in every joint and element ([`LoadRow::forces`] empty), an axle sweep's
-    /// roll centre only at design (load parameter 0).
+    /// roll centre only in its reading at design.
     ///
     /// [`LoadRow::forces`]: crate::analysis::LoadRow::forces
     pub figures_only: bool,
@@ -84,6 +84,10 @@ pub struct SweepExtras {
     /// ([`elastokin_solver::replay`]) moves those alone, and its rows are those alone (found by their load
     /// parameters, as the figures find them).
     pub figure_rows: Option<ReplayRows>,
+    /// The design load parameter (m, N, N·m or a fraction: the sweep's own unit), where the sweep reads
+    /// [`AtDesign`] besides its rows: the exact equilibrium there and the path's expansion to second order through
+    /// it. One equilibrium and one factorization more (two of each with the error estimate).
+    pub at_design: Option<f64>,
 }
 
 /// How many arc-length steps of [`SweepExtras::through_limits`] a path through a limit point may take,
@@ -131,6 +135,137 @@ pub struct SweepOutput<R> {
     pub compliance: Option<Vec<[[f64; 6]; 6]>>,
     /// The bodies' poses at every step (in the model's order of bodies).
     pub poses: Option<Vec<Vec<Pose>>>,
+    /// What [`SweepExtras::at_design`] asked for: the readings at design, or why the equilibrium there
+    /// or its tangent could not be had.
+    pub design: Option<Result<AtDesign<R>, SolverError>>,
+    /// The same one exact Newton iteration on from the design equilibrium, with the error estimate: the
+    /// difference of what is read off the two is the design readings' error estimate.
+    pub design_corrected: Option<AtDesign<R>>,
+}
+
+/// Where a sweep's reader reads a state: a row, the design equilibrium, or a point of the path's expansion
+/// through the design equilibrium ([`AtDesign`]), read only to be differenced: there a reader may leave out
+/// what no rate is taken of (a roll centre's own tangent, the force in every component), and a row read
+/// for the figures alone ([`SweepExtras::figures_only`]) what only the design's reading gives them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Reading {
+    /// A row of the sweep.
+    Row,
+    /// The equilibrium at design.
+    Design,
+    /// A point of the path's expansion through the design equilibrium.
+    Expansion,
+}
+
+/// A sweep's readings at its design load parameter, which no step count or range moves: the row of the
+/// exact equilibrium there, and rows read at points of the path's expansion to second order through it
+/// ([`StaticSolver::along_path`], with [`StaticSolver::path_second_rates`]). A reading `y` of a row has
+/// the path's `dy/dt` and `d²y/dt²` as its derivatives along the expansion, which [`AtDesign::rate`] and
+/// [`AtDesign::curvature`] take by differences of those rows, Richardson extrapolated: exact but for `y`'s
+/// own higher derivatives, to `O(h⁴)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AtDesign<R> {
+    /// The design load parameter.
+    pub t: f64,
+    /// The row of the equilibrium at `t`.
+    pub row: R,
+    /// Rows at `t − 2h`, `t − h`, `t + h`, `t + 2h` on the path's expansion.
+    line: [R; 4],
+    /// The expansion's step, in the load parameter's unit: [`LINE_REACH`] over the largest motion per unit
+    /// `t`.
+    h: f64,
+    /// Read as the plain central difference over ±h, for the estimate of the extrapolated one's error.
+    unextrapolated: bool,
+}
+
+/// How far the expansion's nearest points move the model (m, and rad at a metre's lever): far enough
+/// that a reading's rounding (1e-16 of a metre's pose) is 1e-12 of its difference, near enough that its
+/// curvature over the step leaves 1e-8 in the plain central difference and nothing in the extrapolated one.
+pub const LINE_REACH: f64 = 1e-4;
+
+impl<R> AtDesign<R> {
+    /// `dy/dt` at design, Richardson extrapolated from the central differences over ±h and ±2h (the plain
+    /// central difference over ±h in [`AtDesign::unextrapolated`]).
+    pub fn rate(&self, y: impl Fn(&R) -> f64) -> f64 {
+        let [m2, m1, p1, p2] = self.line.each_ref().map(&y);
+        let near = (p1 - m1) / (2.0 * self.h);
+        if self.unextrapolated {
+            return near;
+        }
+        let far = (p2 - m2) / (4.0 * self.h);
+        (4.0 * near - far) / 3.0
+    }
+
+    /// `d²y/dt²` at design, extrapolated as [`AtDesign::rate`] is.
+    pub fn curvature(&self, y: impl Fn(&R) -> f64) -> f64 {
+        let [m2, m1, p1, p2] = self.line.each_ref().map(&y);
+        let y0 = y(&self.row);
+        let h2 = self.h * self.h;
+        let near = (p1 - 2.0 * y0 + m1) / h2;
+        if self.unextrapolated {
+            return near;
+        }
+        let far = (p2 - 2.0 * y0 + m2) / (4.0 * h2);
+        (16.0 * near - far) / 15.0
+    }
+
+    /// The same readings, differenced without extrapolation: how far that moves a figure bounds the
+    /// extrapolated figure's truncation (by the factor the extrapolation gains, `h²` and more).
+    pub fn unextrapolated(&self) -> AtDesign<R>
+    where
+        R: Clone,
+    {
+        AtDesign { unextrapolated: true, ..self.clone() }
+    }
+}
+
+/// Reads [`AtDesign`] at load parameter `t` with `solver`: the equilibrium there by Newton from the
+/// design pose, its tangent factorized, the path's rates, and `read` at the points of the path's
+/// expansion; with `estimate`, the same one exact Newton iteration on as well.
+fn read_at_design<R>(
+    solver: &mut StaticSolver,
+    t: f64,
+    estimate: bool,
+    read: &mut impl FnMut(&mut StaticSolver, &StepResult, Reading) -> Result<R, SolverError>,
+) -> Result<(AtDesign<R>, Option<AtDesign<R>>), SolverError> {
+    let mut state = solver.design_state(t);
+    let at = solver.equilibrium(&mut state)?;
+    let design = read_line(solver, &at, read)?;
+    let corrected = match estimate {
+        true => {
+            let next = solver.newton_correction(&at)?;
+            Some(read_line(solver, &next, read)?)
+        }
+        false => None,
+    };
+    Ok((design, corrected))
+}
+
+/// [`AtDesign`] through the state of `at`.
+fn read_line<R>(
+    solver: &mut StaticSolver,
+    at: &StepResult,
+    read: &mut impl FnMut(&mut StaticSolver, &StepResult, Reading) -> Result<R, SolverError>,
+) -> Result<AtDesign<R>, SolverError> {
+    let row = read(solver, at, Reading::Design)?;
+    let state = solver.state_of(at);
+    solver.factorize_tangent(&state)?;
+    let rates = solver.path_rates_factored()?;
+    // The largest motion per unit load parameter: translations, and rotations at a metre's lever.
+    let reach = rates.dq.iter().fold(0.0f64, |m, v| if v.abs() > m { v.abs() } else { m });
+    // Nothing moves along the path (a load the joints carry alone), or next to nothing: the multipliers are
+    // linear there, and a unit step reads their rate.
+    let h = match LINE_REACH / reach {
+        h if h.is_finite() => h,
+        _ => 1.0,
+    };
+    let second = solver.path_second_rates(&state, &rates, h)?;
+    let mut line = Vec::with_capacity(4);
+    for k in [-2.0, -1.0, 1.0, 2.0] {
+        line.push(read(solver, &solver.along_path(&state, &rates, Some(&second), k * h), Reading::Expansion)?);
+    }
+    let line: [R; 4] = line.try_into().unwrap_or_else(|_| unreachable!("four points are read"));
+    Ok(AtDesign { t: at.t, row, line, h, unextrapolated: false })
 }
 
 /// The equilibria of a walked load path, and where it met a limit point.
@@ -196,16 +331,16 @@ pub(crate) fn read_sweep<R>(
     partner: Option<&Wheel>,
     walked: Walked,
     extras: SweepExtras,
-    mut read: impl FnMut(&mut StaticSolver, &StepResult) -> Result<R, SolverError>,
+    mut read: impl FnMut(&mut StaticSolver, &StepResult, Reading) -> Result<R, SolverError>,
 ) -> Result<SweepOutput<R>, SolverError> {
     let Walked { steps, limit } = walked;
     let steps = &steps[..];
-    let rows = steps.iter().map(|s| read(solver, s)).collect::<Result<Vec<R>, _>>()?;
+    let rows = steps.iter().map(|s| read(solver, s, Reading::Row)).collect::<Result<Vec<R>, _>>()?;
     let corrected = if extras.error_estimate {
         let mut out = Vec::with_capacity(steps.len());
         for s in steps {
             let c = solver.newton_correction(s)?;
-            out.push(read(solver, &c)?);
+            out.push(read(solver, &c, Reading::Row)?);
         }
         Some(out)
     } else {
@@ -223,5 +358,12 @@ pub(crate) fn read_sweep<R>(
     };
     let residuals = steps.iter().map(|s| (s.force_residual / s.force_scale, s.constraint_residual)).collect();
     let poses = extras.poses.then(|| steps.iter().map(|s| s.poses.clone()).collect());
-    Ok(SweepOutput { rows, limit, corrected, residuals, compliance, poses })
+    let (design, design_corrected) = match extras.at_design {
+        Some(t) => match read_at_design(solver, t, extras.error_estimate, &mut read) {
+            Ok((design, corrected)) => (Some(Ok(design)), corrected),
+            Err(e) => (Some(Err(e)), None),
+        },
+        None => (None, None),
+    };
+    Ok(SweepOutput { rows, limit, corrected, residuals, compliance, poses, design, design_corrected })
 }

@@ -78,7 +78,7 @@ fn driven_sweep_with(
     let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
     let mut start = solver.design_state(from);
     let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, &extras)?;
-    read_sweep(&mut solver, &corner.wheel, corner.partner.as_ref(), walked, extras, |_, s| Ok(travel_row(corner, s)))
+    read_sweep(&mut solver, &corner.wheel, corner.partner.as_ref(), walked, extras, |_, s, _| Ok(travel_row(corner, s)))
 }
 
 /// One row of a driven sweep of `corner`, read from a state of its model: the wheel's attitude and steering

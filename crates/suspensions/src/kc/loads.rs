@@ -1,15 +1,15 @@
 //! The force-driven K&C tests: vertical force with the wheel free, the road loads, the static load case.
 
 use crate::analysis::{
-    design_wheel_load, design_wheel_load_estimated, model_load_sweep_with, slope_at, static_load_case_estimated,
+    design_wheel_load, design_wheel_load_estimated, model_load_sweep_with, static_load_case_estimated,
     vertical_force_sweep_with, wheel_load_sweep_with, ComponentForces, LoadRow, StaticLoad, WheelLoad,
 };
 use crate::build::{LoadPoint, Rig};
 use crate::description::Side;
 use crate::kc::models::Models;
-use crate::kc::reduce::{axis, bushings_share, chart, corner_drawing, deg, finish, outside, said, Reduction};
+use crate::kc::reduce::{axis, bushings_share, chart, corner_drawing, deg, finish, said, Design, Reduction};
 use crate::kc::report::{Accuracy, AnalysisReport, Cell, Figure, Table, Warning};
-use crate::kc::settings::{mode_word, Analysis, Settings};
+use crate::kc::settings::{mode_word, Analysis, Settings, NO_ROWS};
 use elastokin_solver::replay::ReplayRows;
 
 /// Why the `loads` analysis cannot run.
@@ -49,7 +49,7 @@ pub(super) fn vertical_force(models: &Models, s: &Settings) -> Result<AnalysisRe
         range.1,
         s.steps,
         s.mode,
-        s.extras_reading(range, ReplayRows { near: design_load, last: false, extremes: false }),
+        s.extras_reading(range, design_load, NO_ROWS),
     )
     .map_err(said)?;
     let table = |rows: &[LoadRow]| {
@@ -61,13 +61,9 @@ pub(super) fn vertical_force(models: &Models, s: &Settings) -> Result<AnalysisRe
             }),
         )
     };
-    let figures = |rows: &[LoadRow]| {
-        let why = format!(
-            "the force range {:.0}..{:.0} N does not contain the design wheel load ({design_load:.0} N); give a \
-             --range that spans it",
-            range.0, range.1
-        );
-        let compliance = slope_at(rows, design_load, |r| r.load, |r| r.attitude.wheel_centre.z);
+    let figures = |_: &[LoadRow], design: Design<LoadRow>| {
+        let why = design.err().unwrap_or_default().to_string();
+        let compliance = design.ok().map(|d| d.rate(|r| r.attitude.wheel_centre.z));
         // A wheel the joints hold at its height does not rise under the force: no rate, and that is why.
         let held = "the wheel centre does not rise under the vertical force: the joints hold its height (a link \
                     through the wheel centre, or an axle locked in travel); check the model with `elastokin check`";
@@ -185,8 +181,8 @@ fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Result<AnalysisR
     corner.load_point = s.load_point;
     // Drawn as walked: with the model's own loads, once they are added.
     let drawing;
-    // The figures read the slopes at zero load and the last row.
-    let extras = s.extras_reading(range, ReplayRows { near: 0.0, last: true, extremes: false });
+    // The figures read the rates at zero load (at design) and the last row.
+    let extras = s.extras_reading(range, 0.0, ReplayRows { near: None, last: true, extremes: false });
     let out = match analysis {
         Analysis::Road(load) => {
             drawing = corner_drawing(&corner, s);
@@ -259,9 +255,9 @@ fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Result<AnalysisR
         "N·m" => ("deg/kN·m", 1e3),
         _ => ("deg per load case", 1.0),
     };
-    let figures = |rows: &[LoadRow]| {
-        let why = outside(range, 0.0, unit);
-        let slope = |y: &dyn Fn(&LoadRow) -> f64| slope_at(rows, 0.0, |r| r.load, y);
+    let figures = |rows: &[LoadRow], design: Design<LoadRow>| {
+        let why = design.err().unwrap_or_default();
+        let slope = |y: &dyn Fn(&LoadRow) -> f64| design.ok().map(|d| d.rate(y));
         let mut f = vec![
             Figure::maybe(
                 "steer",
@@ -269,7 +265,7 @@ fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Result<AnalysisR
                 per_unit,
                 4,
                 slope(&|r| deg(r.attitude.toe)).map(|v| v * per_scale),
-                &why,
+                why,
             ),
             Figure::maybe(
                 "camber",
@@ -277,7 +273,7 @@ fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Result<AnalysisR
                 per_unit,
                 4,
                 slope(&|r| deg(r.attitude.camber)).map(|v| v * per_scale),
-                &why,
+                why,
             ),
         ];
         if let Some(last) = rows.last() {

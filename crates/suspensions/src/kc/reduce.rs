@@ -2,7 +2,7 @@
 //! accuracy, the warnings of a limit point or of an error over tolerance, compliance tables, charts, and
 //! the wording every analysis shares.
 
-use crate::analysis::{SweepLimit, SweepOutput};
+use crate::analysis::{AtDesign, SweepLimit, SweepOutput};
 use crate::build::{Axle, Corner};
 use crate::drawing::{Drawing, Motion};
 use crate::file::SuspensionFile;
@@ -27,11 +27,21 @@ pub(super) fn said(e: impl std::fmt::Display) -> String {
     e.to_string()
 }
 
-/// What every analysis does with its sweep: the table, figures and charts from the rows, and the error
-/// estimate from the same read of the corrected rows.
+/// What an analysis's figures read at design ([`AtDesign`]), or why there is nothing to read there, in
+/// words.
+pub(super) type Design<'a, R> = Result<&'a AtDesign<R>, &'a str>;
+
+/// An analysis's figures from its rows and its readings at design.
+pub(super) type Figures<'a, R> = dyn Fn(&[R], Design<R>) -> Vec<Figure> + 'a;
+
+/// What every analysis does with its sweep: the table and charts from the rows, the figures from the
+/// readings at design (and from rows where a figure is defined over the range: at its end, its largest),
+/// and the error estimate from the same reading of the corrected rows and design.
 pub(super) struct Reduction<'a, R> {
     pub(super) table: &'a dyn Fn(&[R]) -> Table,
-    pub(super) figures: &'a dyn Fn(&[R]) -> Vec<Figure>,
+    /// The figures; any error estimate one sets is its own (a discretization's), to which the readings'
+    /// is added.
+    pub(super) figures: &'a Figures<'a, R>,
     /// The drawing of the model walked, made only when the settings ask for the motion.
     pub(super) drawing: Option<Drawing>,
 }
@@ -47,9 +57,11 @@ pub(super) fn axle_drawing(axle: &Axle, settings: &Settings) -> Option<Drawing> 
     settings.motion.then(|| Drawing::of(&axle.model, &[&axle.left, &axle.right]))
 }
 
-/// Builds the report of a sweep: reads `table` and `figures` off the rows and off the corrected rows,
-/// and takes the differences as the error estimate.
-pub(super) fn finish<R>(
+/// Builds the report of a sweep: reads `table` and `figures` off the rows and the readings at design,
+/// and again off the corrected rows and design; a figure's error estimate is its own (if it set one), the
+/// difference of the two readings (the solve's error), and how far the design's rates move unextrapolated
+/// (their differencing's).
+pub(super) fn finish<R: Clone>(
     analysis: Analysis,
     mut description: String,
     range: (f64, f64),
@@ -59,13 +71,26 @@ pub(super) fn finish<R>(
     charts: Vec<Chart>,
 ) -> AnalysisReport {
     let table = (reduce.table)(&out.rows);
-    let mut figures = (reduce.figures)(&out.rows);
+    let reason = match &out.design {
+        Some(Err(e)) => format!("the equilibrium at design or its tangent could not be had: {}", said(e)),
+        _ => "the analysis reads nothing at design".to_string(),
+    };
+    let design: Design<R> = match &out.design {
+        Some(Ok(d)) => Ok(d),
+        _ => Err(&reason),
+    };
+    let mut figures = (reduce.figures)(&out.rows, design);
     let (columns, method) = match &out.corrected {
         Some(corrected) => {
             let other = (reduce.table)(corrected);
-            for (f, g) in figures.iter_mut().zip((reduce.figures)(corrected)) {
-                if let (Some(a), Some(b)) = (f.value, g.value) {
-                    f.error = Some((a - b).abs());
+            let corrected_design = out.design_corrected.as_ref().map_or(design, Ok);
+            let unextrapolated = design.ok().map(AtDesign::unextrapolated);
+            let unextrapolated = unextrapolated.as_ref().map_or(design, Ok);
+            let again = (reduce.figures)(corrected, corrected_design);
+            let differenced = (reduce.figures)(&out.rows, unextrapolated);
+            for ((f, g), u) in figures.iter_mut().zip(again).zip(differenced) {
+                if let (Some(a), Some(b), Some(c)) = (f.value, g.value, u.value) {
+                    f.error = Some(f.error.unwrap_or(0.0) + (a - b).abs() + (a - c).abs());
                 }
             }
             (
@@ -255,22 +280,6 @@ pub(super) fn compliance_table(analysis: Analysis, rows: &Table, c: &[[[f64; 6];
     }
 }
 
-/// A figure missing because no row sits at the design position: the range does not reach it, or no
-/// step lands on it (an odd number of steps over a symmetric range).
-pub(super) fn outside(range: (f64, f64), at: f64, unit: &str) -> String {
-    if (range.0 - at) * (range.1 - at) <= 0.0 {
-        return format!(
-            "no step of the range {}..{} {unit} lands on the design position ({at} {unit}): give an even --steps \
-             over a range symmetric about it",
-            range.0, range.1
-        );
-    }
-    format!(
-        "the range {}..{} {unit} does not contain the design position ({at} {unit}); give a --range that spans it",
-        range.0, range.1
-    )
-}
-
 /// The reason a figure needs a vehicle-section entry the file lacks.
 pub(super) fn needs_vehicle(field: &str) -> String {
     format!("needs vehicle.{field} in the model file")
@@ -343,7 +352,9 @@ pub(super) fn bushings_share(
     let label = format!("{} with the bushings rigid", own.label);
     let mut rigid_figure =
         Figure::maybe(&format!("{key}_rigid_bushings"), &label, &own.unit, own.decimals, value, &reason);
-    let pair = stiff.as_ref().ok().and_then(|f| Some((own.value?, f.value?, own.error, f.error)));
+    // A figure its own error estimate does not tell from zero has no share of anything.
+    let nil = own.value.zip(own.error).is_some_and(|(v, e)| v.abs() <= e);
+    let pair = stiff.as_ref().ok().filter(|_| !nil).and_then(|f| Some((own.value?, f.value?, own.error, f.error)));
     rigid_figure.error = stiff.as_ref().ok().and_then(|f| f.error);
     let mut share = Figure::maybe(
         &format!("bushing_share_of_{key}"),
@@ -354,6 +365,7 @@ pub(super) fn bushings_share(
         &match (&stiff, own.value) {
             (Err(e), _) => why(e),
             (_, Some(0.0)) => "the figure is zero".to_string(),
+            _ if nil => "the figure is zero within its error estimate".to_string(),
             _ => "the figure or its rigid counterpart has no value".to_string(),
         },
     );

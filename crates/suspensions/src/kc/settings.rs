@@ -201,7 +201,7 @@ pub struct Settings {
     #[serde(skip)]
     pub motion: bool,
     /// Each row read for the figures alone: a load sweep's rows without the force in every joint and
-    /// element, an axle's roll centre only at design. The figures are those read with the whole rows, to
+    /// element, an axle's roll centre only in its reading at design. The figures are those read with the whole rows, to
     /// the bit; the table lacks those columns and cells. For the sensitivities of the figures alone,
     /// which then replay no more than the figures read: a sweep's replays move only the rows its figures
     /// read ([`SweepExtras::figure_rows`](crate::analysis::SweepExtras::figure_rows)), and the table has no
@@ -249,6 +249,9 @@ pub fn mode_from_word(word: &str) -> Option<Mode> {
     [Mode::Corrected, Mode::Paper].into_iter().find(|&m| mode_word(m) == word)
 }
 
+/// The rows of a sweep a replay moves for figures that read none of them, only the readings at design.
+pub(super) const NO_ROWS: ReplayRows = ReplayRows { near: None, last: false, extremes: false };
+
 impl Settings {
     /// What the sweeps over `range` take besides their rows.
     pub(super) fn extras(&self, range: (f64, f64)) -> SweepExtras {
@@ -260,14 +263,15 @@ impl Settings {
             poses: self.motion,
             figures_only: self.figures_only,
             figure_rows: None,
+            at_design: None,
         }
     }
 
-    /// [`Settings::extras`] of a sweep whose figures read only `rows` of it (a slope, a curvature or a value
-    /// at one load parameter, the last row): when reading for the figures alone, a replay moves only
-    /// those ([`SweepExtras::figure_rows`]).
-    pub(super) fn extras_reading(&self, range: (f64, f64), rows: ReplayRows) -> SweepExtras {
-        SweepExtras { figure_rows: self.figures_only.then_some(rows), ..self.extras(range) }
+    /// [`Settings::extras`] of a sweep whose figures read its readings at the design load parameter
+    /// `design` ([`SweepExtras::at_design`]) and only `rows` of it (a value at one load parameter, the last
+    /// row): when reading for the figures alone, a replay moves only those ([`SweepExtras::figure_rows`]).
+    pub(super) fn extras_reading(&self, range: (f64, f64), design: f64, rows: ReplayRows) -> SweepExtras {
+        SweepExtras { figure_rows: self.figures_only.then_some(rows), at_design: Some(design), ..self.extras(range) }
     }
 }
 

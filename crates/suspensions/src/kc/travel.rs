@@ -1,33 +1,31 @@
 //! The driven K&C tests: parallel wheel travel on a corner, roll and steering on the full axle.
 
 use crate::analysis::anti_pitch::anti_pitch_at;
-use crate::analysis::compliance::{compliance_at, patch_compliance_from};
+use crate::analysis::compliance::{compliance_at, compliance_with, patch_compliance_from};
 use crate::analysis::{axle_sweep_with, AxleRow};
-use crate::analysis::{parallel_wheel_travel_with, slope_at, TravelRow};
+use crate::analysis::{parallel_wheel_travel_with, TravelRow};
 use crate::build::{AxleRig, Corner, Rig};
 use crate::description::Side;
 use crate::file::SuspensionFile;
 use crate::kc::models::Models;
 use crate::kc::reduce::{
-    axis, axle_drawing, bushings_share, chart, corner_drawing, deg, finish, needs_vehicle, outside, said, Reduction,
+    axis, axle_drawing, bushings_share, chart, corner_drawing, deg, finish, needs_vehicle, said, Design, Reduction,
 };
 use crate::kc::report::{slug, AnalysisReport, Cell, Figure, Table, Warning};
-use crate::kc::settings::{Analysis, Settings};
+use crate::kc::settings::{Analysis, Settings, NO_ROWS};
 use elastokin_solver::replay::ReplayRows;
-
-/// The rows the figures of a travel sweep read: values, slopes and curvatures at design (travel 0).
-const AT_DESIGN: ReplayRows = ReplayRows { near: 0.0, last: false, extremes: false };
 
 pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisReport, String> {
     let file = models.file();
     let range = s.range.unwrap_or((-0.08, 0.08));
     let corner = models.corner_ref(Rig::WheelTravel)?;
-    let out = parallel_wheel_travel_with(corner, range.0, range.1, s.steps, s.mode, s.extras_reading(range, AT_DESIGN))
-        .map_err(said)?;
+    let out =
+        parallel_wheel_travel_with(corner, range.0, range.1, s.steps, s.mode, s.extras_reading(range, 0.0, NO_ROWS))
+            .map_err(said)?;
     let wheel = &corner.wheel;
     let sign = wheel.side.sign();
     let table = |rows: &[TravelRow]| parallel_travel_table(corner, rows);
-    let figures = |rows: &[TravelRow]| parallel_travel_figures(file, corner, range, rows);
+    let figures = |_: &[TravelRow], design: Design<TravelRow>| parallel_travel_figures(file, corner, design);
     let x = |r: &TravelRow| r.travel * 1e3;
     let charts = vec![
         chart(
@@ -82,19 +80,15 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
     );
     // Toe, camber and wheel rate no car has, inside the travel asked for.
     report.warnings.extend(crate::check::check_travel_rows(&out.rows));
-    // Figures of the design position itself, from the tangent there (not read off the rows).
-    // One solver at design for all of them: the wheel and patch compliances and the anti-pitch's path
-    // tangent are read off the one tangent there.
+    // Figures of the design position itself, from the tangent there (not read off the rows): at the
+    // equilibrium, and one exact Newton iteration on for their error estimate.
     let mut design = compliance_at(corner, 0.0).map_err(said)?;
     let compliance = design.wheel;
-    let pc = patch_compliance_from(corner, &compliance, &design.state.poses);
-    let finite = compliance.iter().flatten().all(|v| v.is_finite());
-    let per_kn = |rad_per_n: f64| deg(rad_per_n) * 1e3;
-    // The joints alone may hold the patch that way (ideal joints, no bushing in the load path): the
-    // compliance is then rounding, and its inverse no stiffness.
+    // The joints alone may hold the patch inboard or rearward (ideal joints, no bushing in the load path):
+    // the compliance that way is then rounding, and its inverse no stiffness. Decided once by a recording,
+    // for its replays (a property of the joints' form).
     let inboard = elastokin_core::Vec3::new(0.0, -corner.wheel.side.sign(), 0.0);
     let rearward = elastokin_core::Vec3::new(-1.0, 0.0, 0.0);
-    // Decided once by a recording, for its replays (a property of the joints' form).
     let held = elastokin_solver::replay::decided(|| {
         crate::build::mobility::holds_point(
             &corner.model,
@@ -103,6 +97,50 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
             &[inboard, rearward],
         )
     });
+    let read =
+        |solver: &mut _, state: &_, compliance: &_| compliance_figures(corner, file, &held, solver, state, compliance);
+    let mut figures = read(&mut design.solver, &design.state, &compliance).map_err(said)?;
+    if s.error_estimate {
+        let next = design.solver.newton_correction(&design.at).map_err(said)?;
+        let state = design.solver.state_of(&next);
+        let wheel =
+            compliance_with(&mut design.solver, &corner.wheel, corner.partner.as_ref(), &state).map_err(said)?;
+        let again = read(&mut design.solver, &state, &wheel).map_err(said)?;
+        for (f, g) in figures.iter_mut().zip(again) {
+            f.error = f.value.zip(g.value).map(|(a, b)| (a - b).abs());
+        }
+    }
+    report.figures.extend(figures);
+    // JSON has no NaN: a matrix with a non-finite entry (a motion nothing holds) is left out, and said so.
+    if compliance.iter().flatten().all(|v| v.is_finite()) {
+        report.wheel_compliance_at_design = Some(compliance);
+    } else {
+        report.warnings.push(Warning {
+            code: "compliance-not-finite",
+            hardpoints: Vec::new(),
+            message: "the wheel compliance at design is not finite: some motion of the wheel is held by \
+                      nothing; run `elastokin check` on the model"
+                .into(),
+        });
+    }
+    Ok(report)
+}
+
+/// The parallel-travel figures read off the tangent at an equilibrium `state` of `corner` (`solver` has
+/// its tangent factorized there, and `compliance` is the wheel's): the compliances at the patch, its
+/// stiffnesses (none the way the joints alone hold it, `held` inboard and rearward), and with a vehicle
+/// section the anti-pitch and swing-arm angles from the path's tangent.
+fn compliance_figures(
+    corner: &Corner,
+    file: &SuspensionFile,
+    held: &[bool],
+    solver: &mut elastokin_solver::StaticSolver,
+    state: &elastokin_solver::State,
+    compliance: &[[f64; 6]; 6],
+) -> Result<Vec<Figure>, elastokin_solver::SolverError> {
+    let pc = patch_compliance_from(corner, compliance, &state.poses);
+    let finite = compliance.iter().flatten().all(|v| v.is_finite());
+    let per_kn = |rad_per_n: f64| deg(rad_per_n) * 1e3;
     let stiffness = |key: &str, label: &str, n_per_m: f64, rigid: bool| {
         let value = (finite && !rigid && n_per_m.is_finite()).then_some(n_per_m * 1e-3);
         let reason = if rigid {
@@ -112,7 +150,7 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
         };
         Figure::maybe(key, label, "N/mm", 0, value, reason)
     };
-    report.figures.extend([
+    let mut figures = vec![
         Figure::new(
             "lateral_steer",
             "compliance steer, lateral force (inboard +)",
@@ -131,28 +169,16 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
         ),
         stiffness("lateral_stiffness", "lateral stiffness at the patch", pc.lateral_stiffness, held[0]),
         stiffness("longitudinal_stiffness", "longitudinal stiffness at the patch", pc.longitudinal_stiffness, held[1]),
-    ]);
-    // JSON has no NaN: a matrix with a non-finite entry (a motion nothing holds) is left out, and said so.
-    if finite {
-        report.wheel_compliance_at_design = Some(compliance);
-    } else {
-        report.warnings.push(Warning {
-            code: "compliance-not-finite",
-            hardpoints: Vec::new(),
-            message: "the wheel compliance at design is not finite: some motion of the wheel is held by \
-                      nothing; run `elastokin check` on the model"
-                .into(),
-        });
-    }
+    ];
     match &file.vehicle {
         Some(vehicle) => {
-            let rates = design.solver.path_tangent_factored().map_err(said)?;
-            let a = anti_pitch_at(corner, vehicle, &design.state.poses, &rates).map_err(said)?;
+            let rates = solver.path_tangent_factored()?;
+            let a = anti_pitch_at(corner, vehicle, &state.poses, &rates)?;
             let (braking, traction) = match vehicle.axle {
                 crate::description::AxlePosition::Front => ("anti-dive", "anti-lift (drive)"),
                 crate::description::AxlePosition::Rear => ("anti-lift (braking)", "anti-squat"),
             };
-            report.figures.extend([
+            figures.extend([
                 Figure::new("braking_anti_pitch", braking, "%", 1, a.braking),
                 Figure::new("traction_anti_pitch", traction, "%", 1, a.traction),
                 Figure::new(
@@ -171,7 +197,7 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
                 ),
             ]);
         }
-        None => report.figures.push(Figure::maybe(
+        None => figures.push(Figure::maybe(
             "braking_anti_pitch",
             "anti-dive / anti-lift",
             "%",
@@ -180,23 +206,13 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
             &needs_vehicle("wheelbase and cg_height (a vehicle section)"),
         )),
     }
-    Ok(report)
+    Ok(figures)
 }
 
 /// Camber of a wheel relative to the ground when the body rolls by `roll` (about +x) relative to it:
 /// the roll tips the top of the left wheel inboard (−y) and the right wheel's outboard.
 fn ground_camber(camber_to_body: f64, side: Side, roll: f64) -> f64 {
     camber_to_body - side.sign() * roll
-}
-
-/// The second derivative of `y` against `x` at the row where the travel is zero, from it and its two
-/// neighbours (a parabola through the three points); `None` when there is no such row inside the range.
-fn curvature_at(rows: &[AxleRow], x: impl Fn(&AxleRow) -> f64, y: impl Fn(&AxleRow) -> f64) -> Option<f64> {
-    let k = rows.iter().position(|r| r.travel == 0.0)?;
-    let (a, b, c) = (rows.get(k.checked_sub(1)?)?, &rows[k], rows.get(k + 1)?);
-    let (s0, s1) = ((y(b) - y(a)) / (x(b) - x(a)), (y(c) - y(b)) / (x(c) - x(b)));
-    let value = 2.0 * (s1 - s0) / (x(c) - x(a));
-    value.is_finite().then_some(value)
 }
 
 /// The parallel-travel table of `rows` of `corner` (half-track and wheelbase change from its design wheel).
@@ -245,26 +261,20 @@ fn parallel_travel_table(corner: &Corner, rows: &[TravelRow]) -> Table {
     )
 }
 
-/// The parallel-travel headline figures of `rows` of `corner`, walked over `range` (m), of the model in
-/// `file` (its tyre rate): slopes and values at design.
-fn parallel_travel_figures(
-    file: &SuspensionFile,
-    corner: &Corner,
-    range: (f64, f64),
-    rows: &[TravelRow],
-) -> Vec<Figure> {
+/// The parallel-travel headline figures of `corner` read at design, of the model in `file` (its tyre rate):
+/// rates and values at design.
+fn parallel_travel_figures(file: &SuspensionFile, corner: &Corner, design: Design<TravelRow>) -> Vec<Figure> {
     let tyre_rate = file.vehicle.as_ref().and_then(|v| v.tyre_rate);
-    let slope = |y: &dyn Fn(&TravelRow) -> f64| slope_at(rows, 0.0, |r| r.travel, y);
-    let why = outside(range, 0.0, "m");
-    let design = rows.iter().find(|r| r.travel == 0.0);
+    let why = design.err().unwrap_or_default();
+    let slope = |y: &dyn Fn(&TravelRow) -> f64| design.ok().map(|d| d.rate(y));
     let at_design = |key: &str, label: &str, unit: &str, decimals: usize, y: &dyn Fn(&TravelRow) -> f64| {
-        Figure::maybe(key, label, unit, decimals, design.map(y), &why)
+        Figure::maybe(key, label, unit, decimals, design.ok().map(|d| y(&d.row)), why)
     };
     let rate = slope(&|r| r.wheel_load);
     let mut f = vec![
-        Figure::maybe("bump_steer", "bump steer (toe-in +)", "deg/m", 3, slope(&|r| deg(r.attitude.toe)), &why),
-        Figure::maybe("camber_gain", "camber gain (top out +)", "deg/m", 3, slope(&|r| deg(r.attitude.camber)), &why),
-        Figure::maybe("wheel_rate", "wheel rate", "N/mm", 2, rate.map(|k| k * 1e-3), &why),
+        Figure::maybe("bump_steer", "bump steer (toe-in +)", "deg/m", 3, slope(&|r| deg(r.attitude.toe)), why),
+        Figure::maybe("camber_gain", "camber gain (top out +)", "deg/m", 3, slope(&|r| deg(r.attitude.camber)), why),
+        Figure::maybe("wheel_rate", "wheel rate", "N/mm", 2, rate.map(|k| k * 1e-3), why),
         match corner.spring {
             Some(_) => Figure::maybe(
                 "spring_motion_ratio",
@@ -272,7 +282,7 @@ fn parallel_travel_figures(
                 "-",
                 3,
                 slope(&|r| r.spring_deflection).map(f64::abs),
-                &why,
+                why,
             ),
             None => Figure::maybe(
                 "spring_motion_ratio",
@@ -288,7 +298,7 @@ fn parallel_travel_figures(
         (Some(k), Some(kt)) => {
             Figure::new("ride_rate", "ride rate (wheel rate and tyre in series)", "N/mm", 2, k * kt / (k + kt) * 1e-3)
         }
-        (None, _) => Figure::maybe("ride_rate", "ride rate (wheel rate and tyre in series)", "N/mm", 2, None, &why),
+        (None, _) => Figure::maybe("ride_rate", "ride rate (wheel rate and tyre in series)", "N/mm", 2, None, why),
         (_, None) => Figure::maybe(
             "ride_rate",
             "ride rate (wheel rate and tyre in series)",
@@ -320,8 +330,8 @@ pub(super) fn roll(models: &Models, s: &Settings) -> Result<AnalysisReport, Stri
     let has_bars = !axle.anti_roll_bars.is_empty();
     // The shared beams' names as keys and columns: a twist-beam axle's cross member is read in roll.
     let members: Vec<(&str, String)> = axle.members.iter().map(|m| (m.name.as_str(), slug(&m.name))).collect();
-    let out =
-        axle_sweep_with(axle, range.0, range.1, s.steps, s.mode, s.extras_reading(range, AT_DESIGN)).map_err(said)?;
+    let out = axle_sweep_with(axle, range.0, range.1, s.steps, s.mode, s.extras_reading(range, 0.0, NO_ROWS))
+        .map_err(said)?;
     let table = |rows: &[AxleRow]| Table {
         name: "roll".into(),
         columns: [
@@ -372,16 +382,16 @@ pub(super) fn roll(models: &Models, s: &Settings) -> Result<AnalysisReport, Stri
             })
             .collect(),
     };
-    let figures = |rows: &[AxleRow]| {
-        let why = outside(range, 0.0, "m");
-        let rc = rows.iter().find(|r| r.travel == 0.0).map(|r| r.roll_centre);
+    let figures = |_: &[AxleRow], design: Design<AxleRow>| {
+        let why = design.err().unwrap_or_default().to_string();
+        let rc = design.ok().map(|d| d.row.roll_centre);
         let rc_why = if rc.is_some() {
             "the front-view lines through the contact patches are parallel: no roll centre".to_string()
         } else {
             why.clone()
         };
         let rc = rc.flatten();
-        let slope = |y: &dyn Fn(&AxleRow) -> f64| slope_at(rows, 0.0, |r| r.travel, y);
+        let slope = |y: &dyn Fn(&AxleRow) -> f64| design.ok().map(|d| d.rate(y));
         let dphi = slope(&|r| r.roll_angle);
         // Wheels that travel opposite without rolling the axle (its track folded to nothing): no figure is
         // per degree of roll.
@@ -396,9 +406,23 @@ pub(super) fn roll(models: &Models, s: &Settings) -> Result<AnalysisReport, Stri
         let per_roll = |d: Option<f64>| Some(d? / dphi?).filter(|v| v.is_finite());
         // N·m/rad: the wheel loads' moment against the roll angle.
         let total = per_roll(slope(&|r| r.roll_moment)).map(|k| -k);
-        // The bars' energy is U(φ) ≈ ½·K·φ² about design: K is its curvature, from the rows on either side.
-        let bars = if has_bars { curvature_at(rows, |r| r.roll_angle, |r| r.anti_roll_bar_energy) } else { None };
-        let bar_why = if has_bars { why.clone() } else { "the model has no anti-roll bar".to_string() };
+        // The bars' roll stiffness is their energy's second derivative against the roll angle along the
+        // path: d²U/dφ² = (U_tt − U_t φ_tt / φ_t) / φ_t².
+        let bars = design.ok().filter(|_| has_bars).and_then(|d| {
+            let (u, phi) = (|r: &AxleRow| r.anti_roll_bar_energy, |r: &AxleRow| r.roll_angle);
+            let (du, dphi) = (d.rate(u), d.rate(phi));
+            let k = (d.curvature(u) - du * d.curvature(phi) / dphi) / (dphi * dphi);
+            k.is_finite().then_some(k)
+        });
+        let bar_why = if !has_bars {
+            "the model has no anti-roll bar".to_string()
+        } else if design.is_ok() && !rolls {
+            roll_why.clone()
+        } else if design.is_ok() {
+            "the anti-roll bars' energy has no finite second derivative against the roll at design".to_string()
+        } else {
+            why.clone()
+        };
         let twists = members.iter().enumerate().map(|(k, (name, key))| {
             Figure::maybe(
                 &format!("{key}_twist_per_roll"),
@@ -559,10 +583,11 @@ pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, 
     let file = models.file();
     let range = s.range.unwrap_or((-0.04, 0.04));
     let axle = models.axle_ref(AxleRig::Steering)?;
-    // The figures read the rows next to rack centre, the row of full steer and that of the largest
-    // Ackermann error: the last two found by their values (named below).
-    let rows = ReplayRows { near: 0.0, last: false, extremes: true };
-    let out = axle_sweep_with(axle, range.0, range.1, s.steps, s.mode, s.extras_reading(range, rows)).map_err(said)?;
+    // Besides the readings at design, the figures read the row of full steer and that of the largest
+    // Ackermann error, found by their values (named below).
+    let rows = ReplayRows { near: None, last: false, extremes: true };
+    let out =
+        axle_sweep_with(axle, range.0, range.1, s.steps, s.mode, s.extras_reading(range, 0.0, rows)).map_err(said)?;
     let wheelbase = file.vehicle.as_ref().map(|v| v.wheelbase);
     // Track between the contact patches at design: the lateral distance Ackermann's rule uses.
     let track = axle.left.contact_patch.y - axle.right.contact_patch.y;
@@ -602,18 +627,18 @@ pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, 
             .collect(),
     };
     let c_factor = file.vehicle.as_ref().and_then(|v| v.rack_travel_per_revolution);
-    let figures = |rows: &[AxleRow]| {
-        let why = outside(range, 0.0, "m");
+    let figures = |rows: &[AxleRow], design: Design<AxleRow>| {
+        let why = design.err().unwrap_or_default();
         let mean_steer =
             |r: &AxleRow| 0.5 * (steer_angle(r.left.toe, Side::Left) + steer_angle(r.right.toe, Side::Right));
-        let per_rack = slope_at(rows, 0.0, |r| r.travel, |r| deg(mean_steer(r)));
+        let per_rack = design.ok().map(|d| d.rate(|r| deg(mean_steer(r))));
         let mut f = vec![Figure::maybe(
             "steer_per_rack_travel",
             "steer per rack travel at design (mean of both wheels)",
             "deg/mm",
             4,
             per_rack.map(|d| d * 1e-3),
-            &why,
+            why,
         )];
         f.push(match (per_rack, c_factor) {
             // A rack that does not steer the wheels at design has no ratio (a hand wheel turning forever).
@@ -633,7 +658,7 @@ pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, 
                 2,
                 360.0 / (c * d.abs()),
             ),
-            (None, _) => Figure::maybe("steering_ratio", "overall steering ratio at design", ":1", 2, None, &why),
+            (None, _) => Figure::maybe("steering_ratio", "overall steering ratio at design", ":1", 2, None, why),
             (_, None) => Figure::maybe(
                 "steering_ratio",
                 "overall steering ratio at design",
@@ -645,16 +670,32 @@ pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, 
         });
         match wheelbase {
             Some(l) => {
-                // At the end of the rack travel that steers most: where Ackermann is read on a rig.
-                let angles = || rows.iter().enumerate().filter_map(|(i, r)| Some((i, ackermann(r, track, l)?)));
-                let end = angles().max_by(|a, b| a.1 .0.total_cmp(&b.1 .0));
-                let worst = angles()
-                    .map(|(i, (_, outer, ideal))| (i, deg(outer - ideal)))
-                    .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()));
+                // At the end of the rack travel that steers most: where Ackermann is read on a rig; and the
+                // largest error, the row where it is largest. Both are read off the rows (`every` k-th, the
+                // last among them), so they are as fine as the steps: every other row reads them again, and
+                // the difference is their discretization's estimate.
+                let read = |every: usize| {
+                    let angles = || {
+                        let first = (rows.len() + every - 1) % every;
+                        rows.iter()
+                            .enumerate()
+                            .skip(first)
+                            .step_by(every)
+                            .filter_map(|(i, r)| Some((i, ackermann(r, track, l)?)))
+                    };
+                    let end = angles().max_by(|a, b| a.1 .0.total_cmp(&b.1 .0));
+                    let worst = angles()
+                        .map(|(i, (_, outer, ideal))| (i, deg(outer - ideal)))
+                        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()));
+                    (end, worst)
+                };
+                let (end, worst) = read(1);
                 // A recording's replays move these rows too (they are found by their values).
                 let named: Vec<usize> = [end.map(|r| r.0), worst.map(|r| r.0)].into_iter().flatten().collect();
                 elastokin_solver::replay::rows_read(&named);
                 let (end, worst) = (end.map(|r| r.1), worst.map(|r| r.1));
+                let (coarse_end, coarse_worst) = read(2);
+                let (coarse_end, coarse_worst) = (coarse_end.map(|r| r.1), coarse_worst.map(|r| r.1));
                 // Steer angles are read from the design's straight ahead: wheels toed in or out at rack
                 // centre by more than the rack turns them never both turn one way.
                 let turned = rows.iter().any(|r| r.left.toe.abs() > 1e-9 || r.right.toe.abs() > 1e-9);
@@ -664,29 +705,44 @@ pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, 
                 } else {
                     "the rack travel steers neither wheel"
                 };
-                f.push(Figure::maybe(
-                    "ackermann",
-                    "Ackermann at full steer (100 % = ideal)",
-                    "%",
-                    1,
-                    end.map(|(i, o, ideal)| 100.0 * (i - o) / (i - ideal)),
-                    none,
+                let percent = |(i, o, ideal): (f64, f64, f64)| 100.0 * (i - o) / (i - ideal);
+                let inner = |(i, _, _): (f64, f64, f64)| deg(i);
+                let discretized = |mut f: Figure, coarse: Option<f64>| {
+                    f.error = f.value.zip(coarse).map(|(a, b)| (a - b).abs()).filter(|e| e.is_finite());
+                    f
+                };
+                f.push(discretized(
+                    Figure::maybe(
+                        "ackermann",
+                        "Ackermann at full steer (100 % = ideal)",
+                        "%",
+                        1,
+                        end.map(percent),
+                        none,
+                    ),
+                    coarse_end.map(percent),
                 ));
-                f.push(Figure::maybe(
-                    "inner_steer_at_full_rack",
-                    "inner wheel steer at full rack travel",
-                    "deg",
-                    2,
-                    end.map(|(i, _, _)| deg(i)),
-                    none,
+                f.push(discretized(
+                    Figure::maybe(
+                        "inner_steer_at_full_rack",
+                        "inner wheel steer at full rack travel",
+                        "deg",
+                        2,
+                        end.map(inner),
+                        none,
+                    ),
+                    coarse_end.map(inner),
                 ));
-                f.push(Figure::maybe(
-                    "ackermann_error",
-                    "largest outer-wheel error against ideal Ackermann",
-                    "deg",
-                    3,
-                    worst,
-                    none,
+                f.push(discretized(
+                    Figure::maybe(
+                        "ackermann_error",
+                        "largest outer-wheel error against ideal Ackermann",
+                        "deg",
+                        3,
+                        worst,
+                        none,
+                    ),
+                    coarse_worst,
                 ));
             }
             None => f.push(Figure::maybe("ackermann", "Ackermann", "%", 1, None, &needs_vehicle("wheelbase"))),

@@ -11,7 +11,7 @@
 //! soft spring: /suspension/macpherson/spring/rate=20000
 //! ```
 
-use crate::analysis::{parallel_wheel_travel, slope_at, TravelRow};
+use crate::analysis::{parallel_wheel_travel_with, SweepExtras};
 use crate::build::Rig;
 use crate::description::Side;
 use crate::file::SuspensionFile;
@@ -143,18 +143,22 @@ impl Outcome {
     }
 }
 
-/// Runs one variant: parallel travel ±`half_range` in `steps` (even) steps.
+/// Runs one variant: parallel travel ±`half_range` in `steps` (even) steps, its figures the rates at design
+/// read off the path there, as the K&C suite reads them.
 pub fn evaluate(file: &SuspensionFile, half_range: f64, steps: usize) -> Result<Outcome, String> {
     let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| e.to_string())?;
-    let rows =
-        parallel_wheel_travel(&corner, -half_range, half_range, steps, Mode::Corrected).map_err(|e| e.to_string())?;
-    let slope = |y: &dyn Fn(&TravelRow) -> f64| {
-        slope_at(&rows, 0.0, |r| r.travel, y).ok_or("too few steps for a slope at design")
+    let extras = SweepExtras { at_design: Some(0.0), ..SweepExtras::default() };
+    let out = parallel_wheel_travel_with(&corner, -half_range, half_range, steps, Mode::Corrected, extras)
+        .map_err(|e| e.to_string())?;
+    let design = match out.design {
+        Some(Ok(design)) => design,
+        Some(Err(e)) => return Err(e.to_string()),
+        None => unreachable!("the design is asked for"),
     };
     Ok(Outcome {
-        bump_steer: slope(&|r| r.attitude.toe.to_degrees())?,
-        camber_gain: slope(&|r| r.attitude.camber.to_degrees())?,
-        wheel_rate: slope(&|r| r.wheel_load)?,
+        bump_steer: design.rate(|r| r.attitude.toe.to_degrees()),
+        camber_gain: design.rate(|r| r.attitude.camber.to_degrees()),
+        wheel_rate: design.rate(|r| r.wheel_load),
     })
 }
 
