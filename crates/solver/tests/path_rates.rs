@@ -3,65 +3,35 @@
 //! theorem on its moment balance written here, the multipliers' rates against differences of equilibria
 //! solved apart.
 
-use elastokin_core::{BodyRef, JointSpec, Model, Pose, Vec3};
-use elastokin_elements::{CoilSpring, PointForce};
-use elastokin_solver::{SolverOptions, StaticSolver, StepResult};
+mod lever;
 
-const TIP_LOAD: f64 = 500.0;
-const TOP: [f64; 3] = [0.0, 0.0, 0.2];
-const SEAT: f64 = 0.3;
-const TIP: f64 = 0.5;
+use elastokin_solver::{PathRates, SolverOptions, State, StaticSolver, StepResult};
+use lever::{angle, lever, moment};
+
+/// The lever's rate (N/m).
 const RATE: f64 = 2e4;
 
-/// A lever hinged at the origin about y, held by a spring from `TOP` to its seat, its tip loaded downward
-/// by `TIP_LOAD` times the load parameter.
-fn lever() -> Model {
-    let mut model = Model::new();
-    let lever = model.add_body("lever", Pose::at(Vec3::new(0.25, 0.0, 0.0))).unwrap();
-    model.add_joint(JointSpec::revolute("pivot", BodyRef::Ground, lever, Vec3::zeros(), Vec3::y())).unwrap();
-    let seat = Vec3::new(SEAT, 0.0, 0.0);
-    let top = Vec3::from(TOP);
-    let spring =
-        CoilSpring::new("spring", BodyRef::Ground, top, lever.into(), seat, RATE, (seat - top).norm()).unwrap();
-    model.add_element(spring).unwrap();
-    let tip = PointForce::new("tip", lever.into(), Vec3::new(TIP, 0.0, 0.0), Vec3::new(0.0, 0.0, -TIP_LOAD)).unwrap();
-    model.add_element(tip).unwrap();
-    model
-}
-
-/// The lever's turn about y (tip down +).
-fn angle(step: &StepResult) -> f64 {
-    let p = step.poses[0].position;
-    (-p.z).atan2(p.x)
-}
-
-/// The moment about the hinge of the spring and the tip load on the lever turned by `theta` at load `t`.
-fn moment(theta: f64, t: f64) -> f64 {
-    let (c, s) = (theta.cos(), theta.sin());
-    let seat = Vec3::new(SEAT * c, 0.0, -SEAT * s);
-    let top = Vec3::from(TOP);
-    let free = (Vec3::new(SEAT, 0.0, 0.0) - top).norm();
-    let d = seat - top;
-    let spring = -RATE * (d.norm() - free) * d / d.norm();
-    let tip = Vec3::new(TIP * c, 0.0, -TIP * s);
-    seat.cross(&spring).y + tip.cross(&Vec3::new(0.0, 0.0, -t * TIP_LOAD)).y
-}
-
-#[test]
-fn the_tangent_line_turns_the_lever_at_the_rate_its_moment_balance_gives() {
-    let model = lever();
-    let mut solver = StaticSolver::new(&model, SolverOptions::default()).unwrap();
-    let t = 0.6;
+/// The lever's equilibrium at load `t`, its tangent factorized there, and the path's rates.
+fn equilibrium_and_rates(solver: &mut StaticSolver, t: f64) -> (State, StepResult, PathRates) {
     let mut state = solver.design_state(t);
     let at = solver.equilibrium(&mut state).unwrap();
     solver.factorize_tangent(&state).unwrap();
     let rates = solver.path_rates_factored().unwrap();
+    (state, at, rates)
+}
+
+#[test]
+fn the_tangent_line_turns_the_lever_at_the_rate_its_moment_balance_gives() {
+    let model = lever(RATE);
+    let mut solver = StaticSolver::new(&model, SolverOptions::default()).unwrap();
+    let t = 0.6;
+    let (state, at, rates) = equilibrium_and_rates(&mut solver, t);
     assert_eq!(rates.dq, solver.path_tangent_factored().unwrap());
     // The implicit function theorem on M(θ, t) = 0: dθ/dt = −M_t / M_θ, M's partials by central differences.
     let theta = angle(&at);
     let (ht, hl) = (1e-6, 1e-6);
-    let m_theta = (moment(theta + ht, t) - moment(theta - ht, t)) / (2.0 * ht);
-    let m_t = (moment(theta, t + hl) - moment(theta, t - hl)) / (2.0 * hl);
+    let m_theta = (moment(theta + ht, RATE, t) - moment(theta - ht, RATE, t)) / (2.0 * ht);
+    let m_t = (moment(theta, RATE, t + hl) - moment(theta, RATE, t - hl)) / (2.0 * hl);
     let exact = -m_t / m_theta;
     // The turn read on the tangent line, differenced (Richardson over ±h, ±2h).
     let h = 1e-4;
@@ -78,13 +48,10 @@ fn the_tangent_line_turns_the_lever_at_the_rate_its_moment_balance_gives() {
 
 #[test]
 fn the_multipliers_rates_are_those_of_equilibria_solved_apart() {
-    let model = lever();
+    let model = lever(RATE);
     let mut solver = StaticSolver::new(&model, SolverOptions::default()).unwrap();
     let t = 0.6;
-    let mut state = solver.design_state(t);
-    let at = solver.equilibrium(&mut state).unwrap();
-    solver.factorize_tangent(&state).unwrap();
-    let rates = solver.path_rates_factored().unwrap();
+    let (_, at, rates) = equilibrium_and_rates(&mut solver, t);
     let mut solved = |s: f64| {
         let mut st = solver.design_state(s);
         solver.equilibrium(&mut st).unwrap()
@@ -107,13 +74,10 @@ fn the_multipliers_rates_are_those_of_equilibria_solved_apart() {
 
 #[test]
 fn the_second_rates_are_the_curvature_of_equilibria_solved_apart() {
-    let model = lever();
+    let model = lever(RATE);
     let mut solver = StaticSolver::new(&model, SolverOptions::default()).unwrap();
     let t = 0.6;
-    let mut state = solver.design_state(t);
-    let at = solver.equilibrium(&mut state).unwrap();
-    solver.factorize_tangent(&state).unwrap();
-    let rates = solver.path_rates_factored().unwrap();
+    let (state, at, rates) = equilibrium_and_rates(&mut solver, t);
     let second = solver.path_second_rates(&state, &rates, 1e-4).unwrap();
     // The turn's second derivative read on the path's second-order expansion, against the second
     // differences of equilibria solved apart (Richardson over ±h, ±2h).
