@@ -20,8 +20,8 @@ pub fn run(s: &Settings) -> SectionOutput {
                 model: one Newton iteration per equilibrium and move solved with those factors, four moves \
                 per parameter); the same for the figures alone, the target's measure (each row read for the \
                 figures: no component forces in the load sweeps, the roll centre at design only; and moved \
-                only where the figures read it: next to design, a load sweep's last row, the steering's rows \
-                of full steer and of the largest Ackermann error); and the 48 re-run \
+                only where the figures read it: the design equilibrium, a load sweep's last row, the \
+                steering's rows of full steer and of the largest Ackermann error); and the 48 re-run \
                 suites of a central-difference gradient. Then parallel travel alone the same ways. \
                 Medians of repeated runs, one thread (the parameters' replays also run in parallel: the \
                 2-thread rows)."
