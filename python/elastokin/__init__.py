@@ -398,7 +398,7 @@ def batch(
 ) -> List[Dict[str, Any]]:
     """Runs design variants of a model, as ``elastokin batch MODEL VARIANTS`` does: each variant walks
     parallel wheel travel ±``BATCH_HALF_RANGE`` m in ``BATCH_STEPS`` steps (corrected mode), all on every
-    core, and is judged by its slopes at design.
+    core, and is judged by its rates at design (read off the equilibrium there, as ``run`` reads them).
 
     ``variants`` is the text of a variants file, a list whose items are each a variants-file line
     (``"name: /json/pointer=value; …"``) or a dict ``{pointer: value}`` (a ``"name"`` key, if any, names

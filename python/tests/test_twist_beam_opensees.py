@@ -195,14 +195,14 @@ def test_the_shipped_twist_beam_without_springs_is_what_opensees_makes_of_its_be
     print(f"elastokin {got}, OpenSees {[stiffness, twist, steer]}: {errors}")
     # The figures are the axle's own, not a degenerate zero.
     assert stiffness > 100.0 and abs(twist) > 0.1 and abs(steer) > 1e-3, (stiffness, twist, steer)
-    # Measured: 1.3e-10, 3.0e-11, 1.4e-10 (the roll analysis's central difference of its rows at ±0.1 mm).
-    assert max(errors) < 1e-8, errors
+    # Measured: 6.0e-12, 8.1e-13, 9.2e-13.
+    assert max(errors) < 1e-10, errors
     # With the pivot bushings rigid: the roll steer the bushings' share is taken against.
     _, _, rigid = opensees_roll(general, rigid_bushings=True)
     got = result.figure("roll_steer_rigid_bushings")
     print(f"roll steer with the bushings rigid: elastokin {got}, OpenSees {rigid}: {abs(got / rigid - 1.0)}")
     assert abs(rigid) > 1e-3 and abs(rigid - steer) > 1e-3 * abs(steer), (rigid, steer)
-    # Measured: 1.6e-10.
-    assert abs(got / rigid - 1.0) < 1e-8
+    # Measured: 7.1e-13.
+    assert abs(got / rigid - 1.0) < 1e-10
     share = result.figure("bushing_share_of_roll_steer")
     assert share == pytest.approx(100.0 * (1.0 - rigid / steer), rel=1e-6)
