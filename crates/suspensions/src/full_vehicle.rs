@@ -319,6 +319,9 @@ pub fn run_vehicle(
     let mut axles = Vec::with_capacity(2);
     let mut warnings = Vec::new();
     let weight = file.car.mass * G;
+    // The figures are read in the units `AxleCharacteristics::from_reports` converts from, whichever the
+    // caller shows its own reports in.
+    let settings = &crate::kc::Settings { units: crate::kc::Units::DegPerM, ..*settings };
     for (key, model, share) in
         [("front", front, file.car.front_weight_share), ("rear", rear, 1.0 - file.car.front_weight_share)]
     {

@@ -158,3 +158,16 @@ fn a_car_of_the_shipped_axles_runs_and_what_is_no_car_is_refused_by_key() {
         assert!(e.contains(&format!("{name}`")), "{e}");
     }
 }
+
+/// The budget is the car's, whatever units the caller shows its K&C reports in: under every `Units`
+/// choice the same to the bit (`DegPer10Mm` scaled the aligning-torque compliance steer it read by 0.1).
+#[test]
+fn the_budget_is_the_same_to_the_bit_under_every_units_choice() {
+    let (mac, five) = (example("macpherson.json"), example("five_link.json"));
+    let car = vehicle_file("macpherson.json", "five_link.json");
+    let run = |units| run_vehicle(&car, &mac, &five, &Settings { steps: 8, units, ..Settings::default() }).unwrap();
+    let base = run(elastokin_suspensions::kc::Units::DegPerM);
+    for (units, name) in elastokin_suspensions::kc::Units::ALL {
+        assert_eq!(run(units), base, "{name}");
+    }
+}
