@@ -60,12 +60,17 @@ impl<'m> StaticSolver<'m> {
     /// read whole. What a rig measures as a rate at that state (a wheel rate is `dλ/dt` of the travel
     /// driver's row) is a reading of the state differentiated along them ([`StaticSolver::along_path`]).
     pub fn path_rates_factored(&mut self) -> Result<PathRates, SolverError> {
-        let n = self.work.assembly.n;
         self.load_direction_rhs();
         self.solve_with_skew(Accuracy::Refined)?;
-        let rhs = &self.work.rhs;
+        self.rates_in_rhs("path tangent")
+    }
+
+    /// The solution in hand split into the rates of the poses and of the active multipliers; `what` names
+    /// it where it is no finite number.
+    fn rates_in_rhs(&self, what: &'static str) -> Result<PathRates, SolverError> {
+        let (n, rhs) = (self.work.assembly.n, &self.work.rhs);
         if !rhs.iter().all(|v| v.is_finite()) {
-            return Err(SolverError::NonFinite { what: "path tangent" });
+            return Err(SolverError::NonFinite { what });
         }
         Ok(PathRates { dq: rhs[..n].to_vec(), dlambda: rhs[n..].to_vec() })
     }
@@ -94,11 +99,7 @@ impl<'m> StaticSolver<'m> {
         self.assemble(state, None);
         self.work.rhs.copy_from_slice(&second);
         self.solve_with_skew(Accuracy::Refined)?;
-        let rhs = &self.work.rhs;
-        if !rhs.iter().all(|v| v.is_finite()) {
-            return Err(SolverError::NonFinite { what: "path curvature" });
-        }
-        Ok(PathRates { dq: rhs[..n].to_vec(), dlambda: rhs[n..].to_vec() })
+        self.rates_in_rhs("path curvature")
     }
 
     /// The point at `t + h` of the path through `state` (an equilibrium whose `rates` these are) expanded

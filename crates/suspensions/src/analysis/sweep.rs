@@ -165,14 +165,12 @@ pub enum Reading {
 /// own higher derivatives, to `O(h⁴)`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AtDesign<R> {
-    /// The design load parameter.
-    pub t: f64,
-    /// The row of the equilibrium at `t`.
+    /// The row of the equilibrium at the design load parameter `t`.
     pub row: R,
     /// Rows at `t − 2h`, `t − h`, `t + h`, `t + 2h` on the path's expansion.
-    line: [R; 4],
-    /// The expansion's step, in the load parameter's unit: [`LINE_REACH`] over the largest motion per unit
-    /// `t`.
+    expansion: [R; 4],
+    /// The expansion's step, in the load parameter's unit: [`EXPANSION_REACH`] over the largest motion per
+    /// unit `t`.
     h: f64,
     /// Read as the plain central difference over ±h, for the estimate of the extrapolated one's error.
     unextrapolated: bool,
@@ -181,13 +179,13 @@ pub struct AtDesign<R> {
 /// How far the expansion's nearest points move the model (m, and rad at a metre's lever): far enough
 /// that a reading's rounding (1e-16 of a metre's pose) is 1e-12 of its difference, near enough that its
 /// curvature over the step leaves 1e-8 in the plain central difference and nothing in the extrapolated one.
-pub const LINE_REACH: f64 = 1e-4;
+pub const EXPANSION_REACH: f64 = 1e-4;
 
 impl<R> AtDesign<R> {
     /// `dy/dt` at design, Richardson extrapolated from the central differences over ±h and ±2h (the plain
     /// central difference over ±h in [`AtDesign::unextrapolated`]).
     pub fn rate(&self, y: impl Fn(&R) -> f64) -> f64 {
-        let [m2, m1, p1, p2] = self.line.each_ref().map(&y);
+        let [m2, m1, p1, p2] = self.expansion.each_ref().map(&y);
         let near = (p1 - m1) / (2.0 * self.h);
         if self.unextrapolated {
             return near;
@@ -198,7 +196,7 @@ impl<R> AtDesign<R> {
 
     /// `d²y/dt²` at design, extrapolated as [`AtDesign::rate`] is.
     pub fn curvature(&self, y: impl Fn(&R) -> f64) -> f64 {
-        let [m2, m1, p1, p2] = self.line.each_ref().map(&y);
+        let [m2, m1, p1, p2] = self.expansion.each_ref().map(&y);
         let y0 = y(&self.row);
         let h2 = self.h * self.h;
         let near = (p1 - 2.0 * y0 + m1) / h2;
@@ -230,11 +228,11 @@ fn read_at_design<R>(
 ) -> Result<(AtDesign<R>, Option<AtDesign<R>>), SolverError> {
     let mut state = solver.design_state(t);
     let at = solver.equilibrium(&mut state)?;
-    let design = read_line(solver, &at, read)?;
+    let design = read_expansion(solver, &at, read)?;
     let corrected = match estimate {
         true => {
             let next = solver.newton_correction(&at)?;
-            Some(read_line(solver, &next, read)?)
+            Some(read_expansion(solver, &next, read)?)
         }
         false => None,
     };
@@ -242,7 +240,7 @@ fn read_at_design<R>(
 }
 
 /// [`AtDesign`] through the state of `at`.
-fn read_line<R>(
+fn read_expansion<R>(
     solver: &mut StaticSolver,
     at: &StepResult,
     read: &mut impl FnMut(&mut StaticSolver, &StepResult, Reading) -> Result<R, SolverError>,
@@ -255,17 +253,15 @@ fn read_line<R>(
     let reach = rates.dq.iter().fold(0.0f64, |m, v| if v.abs() > m { v.abs() } else { m });
     // Nothing moves along the path (a load the joints carry alone), or next to nothing: the multipliers are
     // linear there, and a unit step reads their rate.
-    let h = match LINE_REACH / reach {
+    let h = match EXPANSION_REACH / reach {
         h if h.is_finite() => h,
         _ => 1.0,
     };
     let second = solver.path_second_rates(&state, &rates, h)?;
-    let mut line = Vec::with_capacity(4);
-    for k in [-2.0, -1.0, 1.0, 2.0] {
-        line.push(read(solver, &solver.along_path(&state, &rates, Some(&second), k * h), Reading::Expansion)?);
-    }
-    let line: [R; 4] = line.try_into().unwrap_or_else(|_| unreachable!("four points are read"));
-    Ok(AtDesign { t: at.t, row, line, h, unextrapolated: false })
+    let mut at_step =
+        |k: f64| read(solver, &solver.along_path(&state, &rates, Some(&second), k * h), Reading::Expansion);
+    let expansion = [at_step(-2.0)?, at_step(-1.0)?, at_step(1.0)?, at_step(2.0)?];
+    Ok(AtDesign { row, expansion, h, unextrapolated: false })
 }
 
 /// The equilibria of a walked load path, and where it met a limit point.
