@@ -11,7 +11,9 @@
 //! Every number on the page comes from the report or the model file: a figure without a value shows
 //! its reason, an empty table cell stays empty, and nothing non-finite is printed.
 
-use crate::suspensions::kc::{significant, AnalysisReport, Cell, Chart, Figure, KcReport, Table, Warning};
+use crate::suspensions::kc::{
+    figures, significant, AnalysisReport, Cell, Chart, Figure, KcReport, Table, Units, Warning,
+};
 use crate::suspensions::SuspensionFile;
 use html_escape::{encode_double_quoted_attribute as attr, encode_text as text};
 use serde_json::Value;
@@ -230,11 +232,15 @@ fn write_sensitivity_sections(
         writeln!(out, "<section id=\"sensitivity-{}\">", attr(a.report.analysis.name()))?;
         writeln!(out, "<{heading}>{}</{heading}>", text(&a.report.description))?;
         for (j, figure) in a.report.figures.iter().enumerate() {
-            let Some(value) = figure.value else { continue };
+            let written = figure.written(a.report.units);
+            let Some(value) = written.value else { continue };
+            let factor = figure.unit.shown_in(a.report.units).factor;
             let bars: Vec<(String, f64)> = a
                 .largest_effects(j, parameters, 8)
                 .into_iter()
-                .map(|(k, e)| (format!("{} (per {})", parameters.pointers[k], effect_unit(&parameters.pointers[k])), e))
+                .map(|(k, e)| {
+                    (format!("{} (per {})", parameters.pointers[k], effect_unit(&parameters.pointers[k])), e * factor)
+                })
                 .collect();
             writeln!(out, "<figure>")?;
             writeln!(
@@ -242,12 +248,12 @@ fn write_sensitivity_sections(
                 "<figcaption>{}: {} {}</figcaption>",
                 text(&figure.label),
                 text(&significant(value, 5)),
-                text(&figure.unit)
+                text(written.unit)
             )?;
             if bars.is_empty() {
                 writeln!(out, "<p class=\"none\">no parameter moves it</p>")?;
             } else {
-                write_bars(out, &bars, &figure.unit)?;
+                write_bars(out, &bars, written.unit)?;
             }
             writeln!(out, "</figure>")?;
         }
@@ -310,21 +316,26 @@ fn write_tolerance_page(
     writeln!(out, "<section id=\"contributors\">")?;
     writeln!(out, "<h2>The largest contributors</h2>")?;
     for s in &stack.spreads {
+        let unit = s.unit.shown();
         writeln!(out, "<figure>")?;
         writeln!(
             out,
-            "<figcaption>{} {}: {} {unit}, ±{} worst case, σ {}{}</figcaption>",
+            "<figcaption>{} {}: {} {symbol}, ±{} worst case, σ {}{}</figcaption>",
             text(s.analysis.name()),
             text(&s.figure),
-            text(&significant(s.value, 4)),
-            text(&significant(s.worst_case, 3)),
-            text(&significant(s.sigma, 3)),
-            s.sampled.map_or(String::new(), |m| format!(" (sampled σ {})", significant(m.sigma, 3))),
-            unit = text(&s.unit),
+            text(&significant(s.value * unit.factor, 4)),
+            text(&significant(s.worst_case * unit.factor, 3)),
+            text(&significant(s.sigma * unit.factor, 3)),
+            s.sampled.map_or(String::new(), |m| format!(" (sampled σ {})", significant(m.sigma * unit.factor, 3))),
+            symbol = text(unit.symbol),
         )?;
-        let bars: Vec<(String, f64)> =
-            s.contributions.iter().take(8).map(|(p, c)| (stack.parameters.pointers[*p].clone(), *c)).collect();
-        write_bars(out, &bars, &s.unit)?;
+        let bars: Vec<(String, f64)> = s
+            .contributions
+            .iter()
+            .take(8)
+            .map(|(p, c)| (stack.parameters.pointers[*p].clone(), *c * unit.factor))
+            .collect();
+        write_bars(out, &bars, unit.symbol)?;
         writeln!(out, "</figure>")?;
     }
     writeln!(out, "</section>")?;
@@ -552,23 +563,24 @@ fn write_vehicle_page(
         "<table class=\"numbers\"><thead><tr><th>figure</th><th>unit</th><th>front</th><th>rear</th></tr></thead><tbody>"
     )?;
     let [f, r] = &report.axles;
-    for (what, unit, x, y) in [
-        ("roll stiffness (suspension)", "N·m/deg", f.roll_stiffness.to_radians(), r.roll_stiffness.to_radians()),
-        ("roll centre height", "mm", f.roll_centre_height * 1e3, r.roll_centre_height * 1e3),
-        ("track", "mm", f.track * 1e3, r.track * 1e3),
-        ("roll steer, left wheel (toe-in +)", "deg/deg", f.roll_steer, r.roll_steer),
-        ("roll camber to ground, left wheel", "deg/deg", f.roll_camber, r.roll_camber),
-        ("lateral-force compliance steer (toe-in +)", "deg/kN", f.lateral_steer * 1e3, r.lateral_steer * 1e3),
-        ("lateral-force compliance camber", "deg/kN", f.lateral_camber * 1e3, r.lateral_camber * 1e3),
-        ("aligning-torque compliance steer", "deg/kN·m", f.aligning_torque_steer * 1e3, r.aligning_torque_steer * 1e3),
+    for (kind, x, y) in [
+        (&figures::ROLL_STIFFNESS, f.roll_stiffness, r.roll_stiffness),
+        (&figures::ROLL_CENTRE_HEIGHT, f.roll_centre_height, r.roll_centre_height),
+        (&figures::TRACK, f.track, r.track),
+        (&figures::ROLL_STEER, f.roll_steer, r.roll_steer),
+        (&figures::ROLL_CAMBER, f.roll_camber, r.roll_camber),
+        (&figures::LATERAL_STEER, f.lateral_steer, r.lateral_steer),
+        (&figures::LATERAL_CAMBER, f.lateral_camber, r.lateral_camber),
+        (&figures::ALIGNING_TORQUE_STEER, f.aligning_torque_steer, r.aligning_torque_steer),
     ] {
+        let unit = kind.unit.shown();
         writeln!(
             out,
             "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-            text(what),
-            text(unit),
-            text(&significant(x, 4)),
-            text(&significant(y, 4))
+            text(kind.label),
+            text(unit.symbol),
+            text(&significant(x * unit.factor, 4)),
+            text(&significant(y * unit.factor, 4))
         )?;
     }
     writeln!(out, "</tbody></table>")?;
@@ -756,7 +768,7 @@ fn write_analysis(
         a.steps
     )?;
 
-    write_figures(out, &a.figures)?;
+    write_figures(out, &a.figures, a.units)?;
     write_accuracy(out, a, report)?;
     if !a.warnings.is_empty() {
         writeln!(out, "<ul class=\"warnings\">")?;
@@ -784,7 +796,7 @@ fn write_analysis(
     writeln!(out, "</section>")
 }
 
-fn write_figures(out: Out, figures: &[Figure]) -> std::fmt::Result {
+fn write_figures(out: Out, figures: &[Figure], units: Units) -> std::fmt::Result {
     if figures.is_empty() {
         return writeln!(out, "<p class=\"none\">no headline figures</p>");
     }
@@ -792,18 +804,19 @@ fn write_figures(out: Out, figures: &[Figure]) -> std::fmt::Result {
     writeln!(out, "<thead><tr><th>figure</th><th>value</th><th>unit</th><th>error estimate</th></tr></thead>")?;
     writeln!(out, "<tbody>")?;
     for f in figures {
+        let w = f.written(units);
         write!(out, "<tr><td>{}</td>", text(&f.label))?;
-        match f.value.filter(|v| v.is_finite()) {
+        match w.value.filter(|v| v.is_finite()) {
             Some(v) => {
-                let error = match f.error.filter(|e| e.is_finite()) {
+                let error = match w.error.filter(|e| e.is_finite()) {
                     Some(e) => format!("± {}", significant(e, 2)),
                     None => "not estimated".into(),
                 };
                 writeln!(
                     out,
                     "<td class=\"value\">{}</td><td>{}</td><td class=\"error-estimate\">{}</td></tr>",
-                    number(v, f.decimals),
-                    text(&f.unit),
+                    number(v, w.decimals),
+                    text(w.unit),
                     text(&error)
                 )?;
             }
@@ -812,7 +825,7 @@ fn write_figures(out: Out, figures: &[Figure]) -> std::fmt::Result {
                 writeln!(
                     out,
                     "<td class=\"value\">n/a</td><td>{}</td><td class=\"reason\">n/a — {}</td></tr>",
-                    text(&f.unit),
+                    text(w.unit),
                     text(reason)
                 )?;
             }

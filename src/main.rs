@@ -940,13 +940,15 @@ fn sensitivity(args: SensitivityArgs, out: &Stdout) -> Result<(), Failure> {
             if figure.value.is_none() {
                 continue;
             }
-            out.line(figure.line())?;
+            out.line(figure.line(a.report.units))?;
             // A figure without a unit (a ratio) changes by so much per mm or per %.
-            let unit = if figure.unit == "-" { String::new() } else { format!("{} ", figure.unit) };
+            let shown = figure.unit.shown_in(a.report.units);
+            let unit = if shown.symbol == "-" { String::new() } else { format!("{} ", shown.symbol) };
             for (k, e) in a.largest_effects(j, &parameters, 3) {
                 let pointer = &parameters.pointers[k];
                 let per = effect_unit(pointer);
-                out.line(format!("      {:<52} {:>12} {unit}per {per}", pointer, kc::significant(e, 3)))?;
+                let e = kc::significant(e * shown.factor, 3);
+                out.line(format!("      {:<52} {:>12} {unit}per {per}", pointer, e))?;
             }
             let missing = (0..parameters.len()).filter_map(|k| a.figures[k][j].err().map(|e| (k, e))).next();
             if let Some((k, why)) = missing {
@@ -1217,17 +1219,19 @@ fn tolerance(args: ToleranceArgs, out: &Stdout) -> Result<(), Failure> {
     staging.commit()?;
     out.line(format!("{} — {} numbers within their tolerances", read.file.name, stack.bands.len()))?;
     for s in &stack.spreads {
-        let sampled = s.sampled.map_or(String::new(), |m| format!(", sampled σ {}", kc::significant(m.sigma, 3)));
+        let unit = s.unit.shown();
+        let shown = |v: f64, digits: usize| kc::significant(v * unit.factor, digits);
+        let sampled = s.sampled.map_or(String::new(), |m| format!(", sampled σ {}", shown(m.sigma, 3)));
         out.line(format!(
             "  {:<44} {:>12} ±{} worst, σ {}{sampled} {}",
             format!("{} {}", s.analysis.name(), s.figure),
-            kc::significant(s.value, 5),
-            kc::significant(s.worst_case, 3),
-            kc::significant(s.sigma, 3),
-            s.unit
+            shown(s.value, 5),
+            shown(s.worst_case, 3),
+            shown(s.sigma, 3),
+            unit.symbol
         ))?;
         for (p, c) in s.contributions.iter().take(3) {
-            out.line(format!("      {:<56} {:>12} {}", stack.parameters.pointers[*p], kc::significant(*c, 3), s.unit))?;
+            out.line(format!("      {:<56} {:>12} {}", stack.parameters.pointers[*p], shown(*c, 3), unit.symbol))?;
         }
     }
     out.line("")?;

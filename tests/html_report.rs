@@ -94,10 +94,11 @@ fn report_is_well_formed_self_contained_and_shows_every_analysis() {
         }
         for f in &a.figures {
             // Each figure's row: value to its decimals, unit, and its error estimate or its reason.
-            let unit = html_escape::encode_text(&f.unit);
-            match f.value {
+            let w = f.written(a.units);
+            let unit = html_escape::encode_text(w.unit);
+            match w.value {
                 Some(v) => {
-                    let mut value = format!("{:.*}", f.decimals, v);
+                    let mut value = format!("{:.*}", w.decimals, v);
                     if value.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
                         value = value.trim_start_matches('-').to_string(); // a rounded zero has no sign
                     }
@@ -208,8 +209,14 @@ fn a_chart_that_cannot_be_drawn_shows_why_and_the_report_goes_on() {
 fn a_figure_without_a_value_shows_its_reason() {
     let mut report = suite().clone();
     let reason = "needs vehicle.wheelbase in the model file";
-    report.analyses[0].figures.push(Figure::maybe("anti_dive", "anti-dive", "%", 1, None, reason));
-    report.analyses[0].figures.push(Figure::new("wheel_rate_x", "wheel rate at the stop", "N/mm", 2, f64::NAN));
+    report.analyses[0].figures.push(Figure::maybe("anti_dive", "anti-dive", kc::Unit::Percent, 1, None, reason));
+    report.analyses[0].figures.push(Figure::new(
+        "wheel_rate_x",
+        "wheel rate at the stop",
+        kc::Unit::NewtonPerMillimetre,
+        2,
+        f64::NAN,
+    ));
     let html = report_html(&report, &model(), &provenance(), title_svg);
     element_names(&html);
     assert!(html.contains(&format!("<td class=\"reason\">n/a — {reason}</td>")), "missing reason");

@@ -113,13 +113,14 @@ class Result:
         self.summary = summary
         self.compliance = compliance
 
-    def figure(self, key: str) -> Optional[float]:
-        """The headline figure ``key`` (e.g. ``bump_steer``), in the unit its summary entry names; None
-        when the analysis could not compute it (its summary entry says why)."""
+    def figure(self, key: str, si: bool = False) -> Optional[float]:
+        """The headline figure ``key`` (e.g. ``bump_steer``), in the unit its summary entry names (``unit``),
+        or with ``si=True`` in SI (``si_unit``: rad/m, N/m, rad/N); None when the analysis could not compute
+        it (its summary entry says why)."""
         figures = self.summary["figures"]
         if key not in figures:
             raise KeyError(f"{self.analysis} has no figure '{key}' (it has {', '.join(figures)})")
-        return figures[key].get("value")
+        return figures[key].get("si_value" if si else "value")
 
     def to_pandas(self):
         """The rows as a pandas DataFrame, one column per CSV column (needs pandas)."""

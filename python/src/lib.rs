@@ -360,9 +360,10 @@ impl Model {
     /// Exact sensitivities of one analysis of the K&C suite to the numbers at `parameters` (JSON pointers),
     /// as the command's `sensitivity` gives them: a dict of the analysis's name, the parameters and their
     /// values, the table's `columns`, every column by name (its rows) and its derivatives as
-    /// `d_<column>` (rows × parameters), and `figures`: every figure of the report by key, its value, unit,
-    /// derivatives (NaN where it has none) and `no_derivative` (why, or None); every derivative per unit
-    /// of the parameter in the file. With `figures_only`, the rows are read as far as the figures read them
+    /// `d_<column>` (rows × parameters), and `figures`: every figure of the report by key, its value, unit
+    /// and derivatives as `sensitivity.csv` writes them (NaN where it has none), the same in SI
+    /// (`si_value`, `si_unit`, `si_derivatives`), and `no_derivative` (why, or None); every derivative per
+    /// unit of the parameter in the file. With `figures_only`, the rows are read as far as the figures read them
     /// and moved only where the figures read them (`kc::Settings::figures_only`): the same figures, a table
     /// without the columns left out and without derivatives (NaN).
     #[pyo3(signature = (parameters, analysis="parallel-travel", range=None, steps=32, figures_only=false))]
@@ -401,14 +402,20 @@ impl Model {
         let figures = PyDict::new(py);
         for f in &s.report.figures {
             let (_, derivatives) = s.figure(&f.key).expect("the report's own figure");
+            let written = f.written(s.report.units);
+            let factor = f.unit.shown_in(s.report.units).factor;
+            let si = rates(derivatives.clone());
             let entry = PyDict::new(py);
-            entry.set_item("value", f.value)?;
-            entry.set_item("unit", &f.unit)?;
+            entry.set_item("value", written.value)?;
+            entry.set_item("unit", written.unit)?;
+            entry.set_item("si_value", f.value)?;
+            entry.set_item("si_unit", f.unit.si())?;
             entry.set_item(
                 "no_derivative",
                 derivatives.iter().map(|r| r.err().map(|e| e.reason())).collect::<Vec<_>>(),
             )?;
-            entry.set_item("derivatives", PyArray1::from_vec(py, rates(derivatives)))?;
+            entry.set_item("derivatives", PyArray1::from_vec(py, si.iter().map(|d| d * factor).collect()))?;
+            entry.set_item("si_derivatives", PyArray1::from_vec(py, si))?;
             figures.set_item(&f.key, entry)?;
         }
         d.set_item("figures", figures)?;

@@ -5,6 +5,7 @@ summary.json and batch.csv are the independent record every result here is compa
 """
 
 import json
+import math
 import os
 import threading
 
@@ -50,6 +51,10 @@ def test_every_analysis_gives_the_command_s_rows_and_figures(model, out, summary
                 same_column(result.compliance[column], [row[k] for row in rows])
     travel = model.run("parallel-travel")
     assert travel.figure("bump_steer") == ran["parallel-travel"]["figures"]["bump_steer"]["value"]
+    # The same figure in SI: deg/m is π/180 rad/m, the wheel rate's N/mm a thousand N/m.
+    assert travel.figure("bump_steer", si=True) == pytest.approx(travel.figure("bump_steer") * math.pi / 180, rel=1e-15)
+    assert travel.figure("wheel_rate", si=True) == pytest.approx(travel.figure("wheel_rate") * 1e3, rel=1e-15)
+    assert travel.summary["figures"]["wheel_rate"]["si_unit"] == "N/m"
     assert travel.compliance is None
 
 

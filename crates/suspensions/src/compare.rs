@@ -254,7 +254,7 @@ fn measured_charts(
 }
 
 /// `compare.csv`: every figure of the analyses compared, each model's value and error estimate, and each
-/// later model's difference to the first (empty where either has no value).
+/// later model's difference to the first (empty where either has no value), in the first model's units.
 fn figure_table(analyses: &[Analysis], models: &[(usize, &KcReport, bool)], names: &[String]) -> Table {
     let mut columns: Vec<String> = ["analysis", "figure", "unit"].map(String::from).to_vec();
     for (k, _, _) in models {
@@ -273,12 +273,15 @@ fn figure_table(analyses: &[Analysis], models: &[(usize, &KcReport, bool)], name
         for figure in &base.figures {
             let values: Vec<(Option<f64>, Option<f64>)> = reports
                 .iter()
-                .map(|r| r.and_then(|r| r.figure(&figure.key)).map_or((None, None), |f| (f.value, f.error)))
+                .map(|r| {
+                    let written = r.and_then(|r| r.figure(&figure.key)).map(|f| f.written(base.units));
+                    written.map_or((None, None), |w| (w.value, w.error))
+                })
                 .collect();
             let mut row = vec![
                 Cell::Text(analysis.name().into()),
                 Cell::Text(figure.key.clone()),
-                Cell::Text(figure.unit.clone()),
+                Cell::Text(figure.written(base.units).unit.into()),
             ];
             for (v, e) in &values {
                 row.push(Cell::from(*v));

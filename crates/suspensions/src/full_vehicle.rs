@@ -9,7 +9,7 @@
 //! axle's steer `δ` is positive to the left. The understeer gradient `K` is the steer the driver adds per g
 //! beyond the kinematic `L/R` (`δ = L/R + K·a_y`): a positive contribution is understeer.
 
-use crate::kc::{Analysis, AnalysisReport};
+use crate::kc::{figures, Analysis, AnalysisReport, FigureKind};
 use serde::{Deserialize, Serialize};
 
 /// Standard gravity (m/s²): lateral acceleration is counted in g.
@@ -106,7 +106,7 @@ impl VehicleFile {
     }
 }
 
-/// What the budget needs of one axle, read off its K&C figures (in the units the budget works in).
+/// What the budget needs of one axle, read off its K&C figures (SI).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AxleCharacteristics {
     /// Roll stiffness of the suspension (springs, bushings, bars), tyres not included (N·m/rad).
@@ -115,15 +115,15 @@ pub struct AxleCharacteristics {
     pub roll_centre_height: f64,
     /// Track at design (m).
     pub track: f64,
-    /// Roll steer: the left wheel's toe-in per roll angle (deg/deg).
+    /// Roll steer: the left wheel's toe-in per roll angle (rad/rad).
     pub roll_steer: f64,
-    /// Roll camber: the left wheel's camber to the ground per roll angle (deg/deg).
+    /// Roll camber: the left wheel's camber to the ground per roll angle (rad/rad).
     pub roll_camber: f64,
-    /// Lateral-force compliance steer: toe-in per inboard force at the patch (deg/N).
+    /// Lateral-force compliance steer: toe-in per inboard force at the patch (rad/N).
     pub lateral_steer: f64,
-    /// Lateral-force compliance camber: camber per inboard force at the patch (deg/N).
+    /// Lateral-force compliance camber: camber per inboard force at the patch (rad/N).
     pub lateral_camber: f64,
-    /// Aligning-torque compliance steer: toe-in per torque about the vertical (deg/(N·m)).
+    /// Aligning-torque compliance steer: toe-in per torque about the vertical (rad/(N·m)).
     pub aligning_torque_steer: f64,
 }
 
@@ -131,28 +131,16 @@ impl AxleCharacteristics {
     /// An axle's characteristics from its roll and parallel-travel reports; `axle` names it in errors
     /// (a figure the reports do not have is refused by its key, with the report's reason).
     pub fn from_reports(axle: &str, roll: &AnalysisReport, travel: &AnalysisReport) -> Result<Self, String> {
-        let figure = |r: &AnalysisReport, key: &str| -> Result<f64, String> {
-            let f = r.figure(key).ok_or_else(|| format!("{axle}: {} gives no `{key}`", r.analysis.name()))?;
-            f.value.ok_or_else(|| {
-                format!("{axle}: {} has no `{key}`: {}", r.analysis.name(), f.reason.as_deref().unwrap_or("no value"))
-            })
-        };
-        let track = roll
-            .table
-            .columns
-            .iter()
-            .position(|c| c == "track_m")
-            .and_then(|c| roll.table.rows.get(roll.design_row()).and_then(|r| r[c].number()))
-            .ok_or_else(|| format!("{axle}: the roll table has no track at design"))?;
+        let value = |r: &AnalysisReport, kind: &FigureKind| r.value_of(kind).map_err(|e| format!("{axle}: {e}"));
         let a = AxleCharacteristics {
-            roll_stiffness: figure(roll, "roll_stiffness")?.to_degrees(),
-            roll_centre_height: figure(roll, "roll_centre_height")? * 1e-3,
-            track,
-            roll_steer: figure(roll, "roll_steer")?,
-            roll_camber: figure(roll, "roll_camber")?,
-            lateral_steer: figure(travel, "lateral_steer")? * 1e-3,
-            lateral_camber: figure(travel, "lateral_camber")? * 1e-3,
-            aligning_torque_steer: figure(travel, "aligning_torque_steer")? * 1e-3,
+            roll_stiffness: value(roll, &figures::ROLL_STIFFNESS)?,
+            roll_centre_height: value(roll, &figures::ROLL_CENTRE_HEIGHT)?,
+            track: value(roll, &figures::TRACK)?,
+            roll_steer: value(roll, &figures::ROLL_STEER)?,
+            roll_camber: value(roll, &figures::ROLL_CAMBER)?,
+            lateral_steer: value(travel, &figures::LATERAL_STEER)?,
+            lateral_camber: value(travel, &figures::LATERAL_CAMBER)?,
+            aligning_torque_steer: value(travel, &figures::ALIGNING_TORQUE_STEER)?,
         };
         if !(a.track.is_finite() && a.track > 0.0) {
             return Err(format!("{axle}: its track at design is {:.4} m: an axle's wheels stand apart", a.track));
@@ -262,9 +250,9 @@ pub fn budget(car: &Car, tyres: [Tyre; 2], front: &AxleCharacteristics, rear: &A
             ("tyre", axle_load[i] / c_alpha),
             ("roll steer", x.roll_steer * roll_gradient),
             ("roll camber", -camber_ratio * x.roll_camber * roll_gradient),
-            ("lateral-force compliance steer", -x.lateral_steer * per_wheel),
-            ("lateral-force compliance camber", camber_ratio * x.lateral_camber * per_wheel),
-            ("aligning-torque compliance steer", -x.aligning_torque_steer * t.pneumatic_trail * per_wheel),
+            ("lateral-force compliance steer", -x.lateral_steer.to_degrees() * per_wheel),
+            ("lateral-force compliance camber", camber_ratio * x.lateral_camber.to_degrees() * per_wheel),
+            ("aligning-torque compliance steer", -x.aligning_torque_steer.to_degrees() * t.pneumatic_trail * per_wheel),
         ];
         contributions.extend(terms.map(|(effect, v)| Contribution { effect, axle, value: sign * v }));
     }
@@ -319,9 +307,6 @@ pub fn run_vehicle(
     let mut axles = Vec::with_capacity(2);
     let mut warnings = Vec::new();
     let weight = file.car.mass * G;
-    // The figures are read in the units `AxleCharacteristics::from_reports` converts from, whichever the
-    // caller shows its own reports in.
-    let settings = &crate::kc::Settings { units: crate::kc::Units::DegPerM, ..*settings };
     for (key, model, share) in
         [("front", front, file.car.front_weight_share), ("rear", rear, 1.0 - file.car.front_weight_share)]
     {
@@ -330,7 +315,7 @@ pub fn run_vehicle(
             |a: Analysis| crate::kc::run_on(a, &models, settings).map_err(|e| format!("`{key}` ({}): {e}", model.name));
         let (roll, travel) = (run(Analysis::Roll)?, run(Analysis::ParallelTravel)?);
         axles.push(AxleCharacteristics::from_reports(&format!("`{key}` ({})", model.name), &roll, &travel)?);
-        let own = travel.figure("wheel_load_at_design").and_then(|f| f.value);
+        let own = travel.figure_of(&figures::WHEEL_LOAD_AT_DESIGN).and_then(|f| f.value);
         let car = weight * share / 2.0;
         if let Some(own) = own.filter(|own| ((own - car) / car).abs() > LOAD_MISMATCH) {
             warnings.push(format!(

@@ -62,12 +62,13 @@ fn suite(file: &SuspensionFile, settings: &Settings) -> KcReport {
 
 /// `a` and `b` agree within their printed estimates and `relative` of their size, plus the rounding of
 /// their last bits; a figure that is zero (a five-link's camber under a traction force) is rounding in both,
-/// and 1e-12 of its unit is allowed.
+/// and 1e-12 of its printed unit is allowed.
 fn agree(a: &Figure, b: &Figure, relative: f64) -> Result<(), String> {
     match (a.value, b.value) {
         (Some(x), Some(y)) => {
             let (ex, ey) = (a.error.unwrap_or(0.0), b.error.unwrap_or(0.0));
-            let allowed = ex + ey + relative * x.abs().max(y.abs()) + 8.0 * f64::EPSILON * x.abs().max(y.abs()) + 1e-12;
+            let zero = 1e-12 / a.unit.shown().factor;
+            let allowed = ex + ey + relative * x.abs().max(y.abs()) + 8.0 * f64::EPSILON * x.abs().max(y.abs()) + zero;
             if (x - y).abs() <= allowed {
                 Ok(())
             } else {
@@ -92,6 +93,7 @@ fn every_figure_is_the_same_from_4_to_160_steps_and_its_estimate_bounds_its_dist
                 assert_eq!(a.analysis, r.analysis);
                 for (f, g) in a.figures.iter().zip(&r.figures) {
                     assert_eq!(f.key, g.key, "{name} {}", a.analysis.name());
+                    assert!(declared(f), "{name} {}: `{}` is not in kc::figures", a.analysis.name(), f.key);
                     // Every figure with a value has an estimate.
                     assert!(
                         f.value.is_none() || f.error.is_some(),
@@ -148,8 +150,8 @@ fn slope_of(report: &AnalysisReport, x: &str, ys: &[&str]) -> (f64, f64) {
 }
 
 /// A rate at design and how the rows give it: the analysis, its narrow range's step (in its unit), the
-/// figure, the table's columns it is the slope of (their mean against `x`), the figure's unit per the
-/// table's, and its size on a passenger car.
+/// figure, the table's columns it is the slope of (their mean against `x`), the figure's printed unit per
+/// the table's, and its size on a passenger car (printed unit).
 struct Case {
     analysis: Analysis,
     step: f64,
@@ -188,7 +190,8 @@ fn the_rates_at_design_are_the_slopes_of_a_narrow_sweep_s_rows() {
     for (name, file) in models() {
         for &Case { analysis, step, key, x, ys, scale, size } in &cases {
             let Ok(report) = kc::run(analysis, &file, &Settings::default()) else { continue };
-            let figure = report.figures.iter().find(|f| f.key == key).unwrap().clone();
+            // Compared in the unit the figure is printed in, `scale` of the table's.
+            let figure = report.figures.iter().find(|f| f.key == key).unwrap().written(kc::Units::DegPerM);
             let Some(value) = figure.value else { continue };
             let narrow = Settings { range: Some((-2.0 * step, 2.0 * step)), steps: 4, ..Settings::default() };
             let rows = kc::run(analysis, &file, &narrow).unwrap();
@@ -213,4 +216,55 @@ fn the_rates_at_design_are_the_slopes_of_a_narrow_sweep_s_rows() {
     }
     eprintln!("{compared} rates compared; the largest miss {:.3} of what is allowed ({})", worst.0, worst.1);
     assert!(compared > 40, "{compared}");
+}
+
+/// Whether `f` is one of `kc::figures`, or one whose key names a part of the model or another figure (a
+/// shared beam's twist per roll, a figure with the bushings rigid and their share of it).
+fn declared(f: &Figure) -> bool {
+    let named = f.key.ends_with("_twist_per_roll") || f.key.ends_with("_rigid_bushings");
+    named || f.key.starts_with("bushing_share_of_") || kc::figures::ALL.iter().any(|k| k.key == f.key)
+}
+
+/// `crates/suspensions/src/kc/figures.rs` lists every figure it declares in `ALL`, once.
+#[test]
+fn the_list_of_figures_is_every_figure_declared() {
+    let source = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("src/kc/figures.rs")).unwrap();
+    let declared: Vec<&str> = source
+        .lines()
+        .filter_map(|l| l.strip_prefix("pub const ")?.split_once(": FigureKind").map(|(name, _)| name))
+        .collect();
+    let listed: Vec<&str> = source.lines().filter_map(|l| l.trim().strip_prefix('&')?.strip_suffix(',')).collect();
+    assert_eq!(declared, listed);
+    assert_eq!(declared.len(), kc::figures::ALL.len());
+}
+
+/// `docs/figures.md` has a row for every declared figure, with the unit it is printed in and its SI unit as
+/// the code has them; and every key it lists is declared (or names a part of the model).
+#[test]
+fn the_figure_table_in_docs_is_the_declared_figures_with_their_units() {
+    let docs = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/figures.md")).unwrap();
+    // (keys, printed, SI) of every table row.
+    let rows: Vec<(Vec<String>, String, String)> = docs
+        .lines()
+        .filter(|l| l.starts_with("| `"))
+        .map(|l| {
+            let cells: Vec<&str> = l.split(" | ").collect();
+            let keys = cells[0].split('`').skip(1).step_by(2).map(String::from).collect();
+            (keys, cells[1].to_string(), cells[2].to_string())
+        })
+        .collect();
+    for kind in kc::figures::ALL {
+        let (symbol, si) = (kind.unit.shown().symbol, kind.unit.si());
+        let found = rows.iter().any(|(keys, printed, s)| {
+            keys.iter().any(|k| k == kind.key) && printed.starts_with(symbol) && s.starts_with(si)
+        });
+        assert!(found, "docs/figures.md has no row `{}` | {symbol} | {si}", kind.key);
+    }
+    for (keys, _, _) in &rows {
+        for key in keys {
+            let named =
+                key.starts_with('<') || key.ends_with("_rigid_bushings") || key.starts_with("bushing_share_of_");
+            assert!(named || kc::figures::ALL.iter().any(|k| k.key == key), "docs/figures.md lists `{key}`");
+        }
+    }
 }

@@ -24,9 +24,10 @@ fn axle(rc: f64, roll_steer: f64, roll_camber: f64) -> AxleCharacteristics {
         track: 1.5,
         roll_steer,
         roll_camber,
-        lateral_steer: 0.2e-3,
-        lateral_camber: 0.1e-3,
-        aligning_torque_steer: -0.3e-3,
+        // 0.2 and 0.1 deg/kN, −0.3 deg/kN·m, held in SI.
+        lateral_steer: 0.2e-3_f64.to_radians(),
+        lateral_camber: 0.1e-3_f64.to_radians(),
+        aligning_torque_steer: -0.3e-3_f64.to_radians(),
     }
 }
 

@@ -220,9 +220,9 @@ fn anti_roll_bar_share_of_roll_stiffness_is_what_it_adds() {
     let bar = figure(&file, "anti_roll_bar_roll_stiffness").unwrap();
     let added = total - figure(&bare, "roll_stiffness").unwrap();
     // Measured: 2.4e-13 relative.
-    assert!((bar - added).abs() < 1e-11 * added, "bar {bar}, added {added} N·m/deg");
+    assert!((bar - added).abs() < 1e-11 * added, "bar {bar}, added {added} N·m/rad");
     let share = figure(&file, "anti_roll_bar_share").unwrap();
-    assert!((share - 100.0 * bar / total).abs() < 1e-9, "{share}");
+    assert!((share - bar / total).abs() < 1e-11, "{share}");
     assert_eq!(figure(&bare, "anti_roll_bar_roll_stiffness"), None);
 }
 

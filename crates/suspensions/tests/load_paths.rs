@@ -522,8 +522,8 @@ fn path_tangent_equals_finite_differences_of_driven_equilibria() {
             geometry.patch_swing_arm_angle.to_degrees(),
             geometry.wheel_centre_slope,
             geometry.wheel_centre_swing_arm_angle.to_degrees(),
-            geometry.braking,
-            geometry.traction
+            100.0 * geometry.braking,
+            100.0 * geometry.traction
         );
     }
 }
@@ -560,14 +560,9 @@ fn parallel_pivot_axes_give_the_closed_form_swing_arm() {
                 AxlePosition::Front => (0.65 * slope * lever, 0.4 * slope * lever),
                 AxlePosition::Rear => (0.35 * -slope * lever, 0.6 * -slope * lever),
             };
-            let percent = 100.0 * tolerance * lever;
-            assert!(
-                (geometry.braking - 100.0 * braking).abs() < percent,
-                "{} vs {}",
-                geometry.braking,
-                100.0 * braking
-            );
-            assert!((geometry.traction - 100.0 * traction).abs() < percent);
+            let share = tolerance * lever;
+            assert!((geometry.braking - braking).abs() < share, "{} vs {braking}", geometry.braking);
+            assert!((geometry.traction - traction).abs() < share);
         }
     }
 }

@@ -61,12 +61,13 @@ fn worst_against_re_solves_of(document: serde_json::Value, pointers: &[String]) 
         let fd: Vec<f64> = (0..a.len()).map(|i| (8.0 * (b[i] - c[i]) - (a[i] - d[i])) / (12.0 * h)).collect();
         let (toe, camber, height) =
             (s.d_column("toe_deg", k), s.d_column("camber_deg", k), s.d_column("wheel_centre_z_m", k));
-        // The report gives angles in degrees; compared here in radians, as the engine's rows are.
+        // The table gives angles in degrees; compared here in radians, as the engine's rows and the figures
+        // are.
         let mut exact = Vec::new();
         for r in 0..toe.len() {
             exact.extend([toe[r].unwrap().to_radians(), camber[r].unwrap().to_radians(), height[r].unwrap()]);
         }
-        exact.extend(["bump_steer", "camber_gain"].map(|f| s.figure(f).unwrap().1[k].unwrap().to_radians()));
+        exact.extend(["bump_steer", "camber_gain"].map(|f| s.figure(f).unwrap().1[k].unwrap()));
         // Each kind against its own scale: toe, camber and height per row, then the two slopes.
         let rows = toe.len();
         let kinds: [Vec<usize>; 5] = [
@@ -91,7 +92,7 @@ fn worst_against_re_solves_of(document: serde_json::Value, pointers: &[String]) 
         }
         // The figures the sensitivity reads at design are the re-solve's own.
         let base = figures(&p, k, 0.0);
-        let bump_steer = s.figure("bump_steer").unwrap().0.value.unwrap().to_radians();
+        let bump_steer = s.figure("bump_steer").unwrap().0.value.unwrap();
         assert!((bump_steer - base[3 * rows]).abs() < 1e-12, "{bump_steer} vs {}", base[3 * rows]);
     }
     (worst, relative)
@@ -263,8 +264,8 @@ fn against_report_re_runs(
     // size): a derivative is judged against 1e-6 of it, as a cell is against its column's largest.
     let effects: Vec<f64> = (0..s.report.figures.len())
         .map(|j| {
-            let key = &s.report.figures[j].key;
-            let value = |r: &kc::AnalysisReport| r.figure(key).and_then(|f| f.value);
+            let (key, factor) = (&s.report.figures[j].key, s.report.figures[j].unit.shown().factor);
+            let value = |r: &kc::AnalysisReport| r.figure(key).and_then(|f| f.value).map(|v| v * factor);
             (0..p.len()).filter_map(|k| Some(re_run_rate(k, &value)?.abs() * size(k))).fold(0.0, f64::max)
         })
         .collect();
@@ -341,10 +342,13 @@ fn against_report_re_runs(
         };
         let name = analysis.name();
         for (j, f) in s.report.figures.iter().enumerate() {
-            let read = |r: &kc::AnalysisReport| r.figure(&f.key).and_then(|g| g.value);
-            let estimate = runs.iter().filter_map(|r| r.figure(&f.key)?.error).fold(0.0, f64::max);
+            // Judged in the unit the figure is printed in, which the floors above are written in.
+            let factor = f.unit.shown().factor;
+            let read = |r: &kc::AnalysisReport| r.figure(&f.key).and_then(|g| g.value).map(|v| v * factor);
+            let estimate = runs.iter().filter_map(|r| r.figure(&f.key)?.error).fold(0.0, f64::max) * factor;
             let scale = Some(effects[j] / size);
-            judge(s.figures[k][j].ok(), &read, estimate, scale, &format!("{name} {} {}", p.pointers[k], f.key));
+            let exact = s.figures[k][j].ok().map(|d| d * factor);
+            judge(exact, &read, estimate, scale, &format!("{name} {} {}", p.pointers[k], f.key));
             figures += 1;
         }
         // The vertical force's load parameter is its range over the design wheel load (0.5 to 1.5 times it),
@@ -678,5 +682,35 @@ fn every_figure_of_the_twist_beams_the_generic_templates_and_the_vehicle_s_front
         let doc = document(name);
         let worst = figures_against_re_runs(&doc, &hardpoint_pointers(&doc), every_analysis(&doc));
         assert!(worst <= 1.0, "{name}: {worst:e}");
+    }
+}
+
+/// `Settings::units` is the writers' choice alone: every figure and every derivative of the suite's
+/// sensitivities the same to the bit under each choice (the design commands and the bindings read them in
+/// SI; `crates/suspensions/tests/full_vehicle.rs` holds the vehicle budget to the same).
+#[test]
+fn the_sensitivities_are_the_same_to_the_bit_under_every_units_choice() {
+    let doc = document("macpherson.json");
+    let pointers = ["/suspension/macpherson/hardpoints/tie_rod_inner/2", "/suspension/macpherson/spring/rate"];
+    let p = Parameters::new(&doc, &pointers.map(String::from)).unwrap();
+    let run = |units| suite_sensitivity(&p, &[], &Settings { steps: 8, units, ..Settings::default() }).unwrap();
+    let base = run(kc::Units::DegPerM);
+    let bits = |s: &elastokin_suspensions::design::SuiteSensitivity| -> Vec<(String, Option<u64>, Vec<Option<u64>>)> {
+        s.analyses
+            .iter()
+            .flat_map(|a| {
+                a.report.figures.iter().map(|f| {
+                    let (_, rates) = a.figure(&f.key).unwrap();
+                    let rates = rates.iter().map(|r| r.as_ref().ok().map(|d| d.to_bits())).collect();
+                    (f.key.clone(), f.value.map(f64::to_bits), rates)
+                })
+            })
+            .collect()
+    };
+    let expected = bits(&base);
+    // A rig's units move bump steer and the aligning-torque compliance: both are among what is compared.
+    assert!(expected.iter().filter(|(key, v, _)| v.is_some() && (key == "bump_steer" || key == "steer")).count() >= 2);
+    for (units, name) in kc::Units::ALL {
+        assert_eq!(bits(&run(units)), expected, "{name}");
     }
 }

@@ -413,11 +413,11 @@ fn the_shipped_fronts_meet_their_tuning_targets_and_a_passenger_cars_ranges() {
     );
 }
 
-/// Each figure of `file` named in `ranges` lies in its range.
+/// Each figure of `file` named in `ranges` lies in its range (in the figure's printed unit).
 fn in_ranges(model: &str, file: &elastokin_suspensions::SuspensionFile, ranges: &[(&str, &str, f64, f64)]) {
     for (analysis, key, lo, hi) in ranges {
         let a = kc::run(Analysis::from_name(analysis).unwrap(), file, &Settings::default()).unwrap();
-        let v = a.figure(key).and_then(|f| f.value).unwrap();
+        let v = a.figure(key).and_then(|f| f.written(kc::Units::DegPerM).value).unwrap();
         assert!((*lo..=*hi).contains(&v), "{model}: {analysis} {key} {v} outside {lo}..{hi}");
     }
 }

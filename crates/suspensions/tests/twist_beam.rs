@@ -84,7 +84,7 @@ fn roll_stiffness_and_twist_of_a_simple_twist_beam_equal_the_closed_form() {
         let y_w = s.y_p + s.dy;
         // Opposite forces ±F at ±y_w: the moment 2·y_w·F rolls the axle by F·c / y_w.
         let roll_stiffness = 2.0 * y_w * y_w / c; // N·m/rad
-        let got = figure(&report, "roll_stiffness").to_degrees();
+        let got = figure(&report, "roll_stiffness");
         // The cross member twists by 2θ, θ = F·a·L / (2 G J), while the axle rolls by F·c / y_w; its twist
         // (about its direction, left to right) is positive as the left wheel rises, when the roll is negative.
         let twist_per_roll = -s.a * 2.0 * s.y_p * y_w / (cross_j * c);
@@ -264,8 +264,8 @@ fn every_analysis_of_the_twist_beam_is_within_its_error_estimate_and_converges_w
 /// (the textbook 12×12 Euler–Bernoulli element, its bending taken on the shear-centre line; each pivot
 /// bushing a 6×6 spring to the ground; each part a rigid node at its reference point), the wheel centres
 /// driven ±h; with `rigid_bushings`, each arm eye held still instead of on its bushing. Returns the roll
-/// stiffness (N·m/deg), the cross member's twist per roll (deg/deg) and the left wheel's roll steer
-/// (deg/deg).
+/// stiffness (N·m/rad), the cross member's twist per roll (rad/rad) and the left wheel's roll steer
+/// (rad/rad).
 fn linear_frame(file: &SuspensionFile, rigid_bushings: bool) -> (f64, f64, f64) {
     use nalgebra::{DMatrix, DVector, Matrix3, SMatrix, Vector3};
     type Mat12 = SMatrix<f64, 12, 12>;
@@ -438,7 +438,7 @@ fn linear_frame(file: &SuspensionFile, rigid_bushings: bool) -> (f64, f64, f64) 
     // Toe-in of the left wheel from its spin axis, turned by the carrier's rotation.
     let (s, ds) = (spin(1.0), rotation(side_body(0, 2)).cross(&spin(1.0)));
     let toe = (s.y * ds.x - s.x * ds.y) / (s.x * s.x + s.y * s.y);
-    (stiffness.to_radians(), twist / roll, toe / roll)
+    (stiffness, twist / roll, toe / roll)
 }
 
 #[test]
@@ -455,7 +455,7 @@ fn the_shipped_twist_beam_without_springs_is_the_linear_frame_of_its_beams_and_b
         figure(&report, "roll_steer"),
     ];
     let errors: Vec<f64> = got.iter().zip([stiffness, twist, steer]).map(|(g, f)| (g / f - 1.0).abs()).collect();
-    println!("roll stiffness {} against {stiffness} N·m/deg, twist {} against {twist}, roll steer {} against {steer}: {errors:?}", got[0], got[1], got[2]);
+    println!("roll stiffness {} against {stiffness} N·m/rad, twist {} against {twist}, roll steer {} against {steer}: {errors:?}", got[0], got[1], got[2]);
     // Measured 1.2e-12, 9.6e-13, 1.8e-12.
     assert!(errors.iter().all(|e| *e < 1e-10), "{errors:?}");
     // With the pivot bushings rigid, the arm eyes held: the roll steer the bushings' share is taken against.
@@ -463,10 +463,10 @@ fn the_shipped_twist_beam_without_springs_is_the_linear_frame_of_its_beams_and_b
     let got = figure(&report, "roll_steer_rigid_bushings");
     let share = figure(&report, "bushing_share_of_roll_steer");
     let error = (got / rigid - 1.0).abs();
-    println!("roll steer with the bushings rigid {got} against {rigid}: {error:e}; their share {share} %");
+    println!("roll steer with the bushings rigid {got} against {rigid}: {error:e}; their share {share}");
     // Measured 3.0e-13.
     assert!(error < 1e-11, "{error:e}");
-    let expected = 100.0 * (1.0 - rigid / steer);
+    let expected = 1.0 - rigid / steer;
     assert!((share - expected).abs() < 1e-6 * expected.abs(), "{share} against {expected}");
 }
 

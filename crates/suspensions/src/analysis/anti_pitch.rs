@@ -23,11 +23,11 @@ pub struct AntiPitch {
     pub patch_swing_arm_angle: f64,
     /// `θ_W = atan(tan θ_W)` (rad).
     pub wheel_centre_swing_arm_angle: f64,
-    /// Under braking: anti-dive on a front axle, anti-lift on a rear axle (%): the share of the load
-    /// transfer onto (front) or off (rear) the axle that the braking forces carry through the linkage
-    /// instead of the springs. 100 % leaves the springs unchanged; negative adds to the pitch.
+    /// Under braking: anti-dive on a front axle, anti-lift on a rear axle, as a fraction: the share of the
+    /// load transfer onto (front) or off (rear) the axle that the braking forces carry through the linkage
+    /// instead of the springs. 1 (100 %) leaves the springs unchanged; negative adds to the pitch.
     pub braking: f64,
-    /// Under drive: anti-lift on a front axle, anti-squat on a rear axle (%), likewise.
+    /// Under drive: anti-lift on a front axle, anti-squat on a rear axle, a fraction likewise.
     pub traction: f64,
 }
 
@@ -43,7 +43,7 @@ pub struct AntiPitch {
 /// equivalent to `−B tan θ_P` upward. Deceleration `a` of a car of mass `m` moves `m a h / L` of load from
 /// the rear axle to the front one, and the front wheels brake with `p_f m a` in all:
 /// * front: the springs see `ΔF − B tan θ_P` per wheel with `ΔF = m a h / (2L)` and `B = p_f m a / 2`,
-///   so the linkage carries the share `anti-dive = p_f tan θ_P L / h` (×100 %);
+///   so the linkage carries the share `anti-dive = p_f tan θ_P L / h`;
 /// * rear: the wheel loses `ΔF` and brakes with `B = (1 − p_f) m a / 2`, so `anti-lift = (1 − p_f)
 ///   (−tan θ_P) L / h`.
 ///
@@ -118,7 +118,7 @@ pub(crate) fn anti_pitch_at(
         wheel_centre_slope,
         patch_swing_arm_angle: patch_slope.atan(),
         wheel_centre_swing_arm_angle: wheel_centre_slope.atan(),
-        braking: 100.0 * braking,
-        traction: 100.0 * traction,
+        braking,
+        traction,
     })
 }

@@ -128,7 +128,8 @@ impl NoDerivative {
 pub type Rate = Result<f64, NoDerivative>;
 
 /// One K&C analysis as the report gives it, and the derivatives of its figures and table with respect to
-/// each parameter, per unit of the parameter as the file gives it, in the report's units.
+/// each parameter, per unit of the parameter as the file gives it: of a figure in SI, as the figure is
+/// held; of a cell in its column's unit.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AnalysisSensitivity {
     /// The analysis as [`kc::run`] reports it on the model as it is.
@@ -223,13 +224,15 @@ impl SuiteSensitivity {
         let mut rows = Vec::new();
         for a in &self.analyses {
             for (j, figure) in a.report.figures.iter().enumerate() {
+                let written = figure.written(a.report.units);
+                let factor = figure.unit.shown_in(a.report.units).factor;
                 for (k, pointer) in parameters.pointers.iter().enumerate() {
-                    let d = a.figures[k][j];
+                    let d = a.figures[k][j].map(|d| d * factor);
                     rows.push(vec![
                         Cell::Text(a.report.analysis.name().into()),
                         Cell::Text(figure.key.clone()),
-                        Cell::Text(figure.unit.clone()),
-                        Cell::from(figure.value),
+                        Cell::Text(written.unit.into()),
+                        Cell::from(written.value),
                         Cell::Text(pointer.clone()),
                         Cell::from(parameters.values[k]),
                         Cell::from(d.ok()),
@@ -254,8 +257,9 @@ pub fn sensitivity_settings(settings: &Settings) -> Settings {
 /// The derivative from the values at the [`SHIFTS`] of `h`: central differences over one and two steps,
 /// Richardson extrapolated. Where a stop touched or left between the moves, `at_model` is the value at
 /// the model itself (replayed as the others), and a figure whose slopes either side of it disagree as no
-/// smooth figure's do has no derivative.
-fn rate(values: [Option<f64>; 4], at_model: Option<Option<f64>>, h: f64) -> Rate {
+/// smooth figure's do has no derivative. `unit` is the size of a unit of what is printed, in the values'
+/// (a millimetre of a length held in metres: 1e-3).
+fn rate(values: [Option<f64>; 4], at_model: Option<Option<f64>>, h: f64, unit: f64) -> Rate {
     let [Some(a), Some(b), Some(c), Some(d)] = values else { return Err(NoDerivative::MissingWhenMoved) };
     if let Some(at) = at_model {
         let f0 = at.ok_or(NoDerivative::MissingWhenMoved)?;
@@ -263,7 +267,7 @@ fn rate(values: [Option<f64>; 4], at_model: Option<Option<f64>>, h: f64) -> Rate
         // Rounding of the values read: ten thousand ulps of the largest, or of a thousand in the report's
         // unit (a figure near zero, such as a symmetric axle's lateral roll-centre offset in mm, is the
         // difference of numbers of that order and carries their rounding, not its own), over the step.
-        let noise = 1e4 * f64::EPSILON * [f0, a, b, c, d].iter().fold(1e3f64, |m, v| m.max(v.abs())) / h;
+        let noise = 1e4 * f64::EPSILON * [f0, a, b, c, d].iter().fold(1e3 * unit, |m, v| m.max(v.abs())) / h;
         if (right - left).abs() > KINK * right.abs().max(left.abs()) + noise {
             return Err(NoDerivative::Kink);
         }
@@ -362,7 +366,9 @@ fn parameter_rates(
         .map(|f| match f.value {
             None => Err(NoDerivative::Missing),
             Some(_) => {
-                rate([0, 1, 2, 3].map(|i| value(&moved[i], &f.key)), at_model.as_ref().map(|m| value(m, &f.key)), h)
+                let unit = 1.0 / f.unit.shown().factor;
+                let at = at_model.as_ref().map(|m| value(m, &f.key));
+                rate([0, 1, 2, 3].map(|i| value(&moved[i], &f.key)), at, h, unit)
             }
         })
         .collect();
@@ -376,6 +382,7 @@ fn parameter_rates(
                         [0, 1, 2, 3].map(|i| moved[i].table.rows[r][c].number()),
                         at_model.as_ref().map(|m| m.table.rows[r][c].number()),
                         h,
+                        1.0,
                     ),
                     _ => Err(NoDerivative::Missing),
                 })

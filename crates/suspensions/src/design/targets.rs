@@ -35,7 +35,8 @@ pub struct Free {
 /// What one target asks of an analysis.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Aim {
-    /// A headline figure (by its key in `summary.json`) to equal `value`, in the figure's unit.
+    /// A headline figure (by its key in `summary.json`) to equal `value`, in the unit the figure is written
+    /// in with the default units (`deg/m`, `N/mm`, `%`: `docs/figures.md`, "printed").
     Figure { key: String, value: f64 },
     /// A column of the analysis's table (by its name in the CSV) to pass through `(load parameter, value)`
     /// points, the table interpolated between its rows.

@@ -21,7 +21,7 @@
 use super::keys::{analysis_named, name_in, only, steps};
 use super::parameter::{hardpoint_pointers, number_at, Parameters};
 use super::sensitivity::{sensitivity_settings, suite_sensitivity, SuiteSensitivity};
-use crate::kc::{self, Analysis, Cell, Failed, Settings, Table};
+use crate::kc::{self, Analysis, Cell, Failed, Settings, Table, Unit};
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
 use serde_json::Value;
@@ -114,8 +114,8 @@ pub struct Spread {
     pub analysis: Analysis,
     /// The figure's key.
     pub figure: String,
-    /// Its unit.
-    pub unit: String,
+    /// The unit it is written in; every number below is in its SI unit.
+    pub unit: Unit,
     /// Its value at nominal.
     pub value: f64,
     /// First order, every number at the end of its band that moves the figure the same way: ±.
@@ -192,7 +192,7 @@ pub fn stack_up(document: &Value, tolerances: &Tolerances) -> Result<StackUp, St
             spreads.push(Spread {
                 analysis,
                 figure: figure.key.clone(),
-                unit: figure.unit.clone(),
+                unit: figure.unit,
                 value,
                 worst_case,
                 sigma,
@@ -255,7 +255,7 @@ impl StackUp {
     }
 
     /// `tolerance.csv`: one row per figure — its value, first-order worst case and standard deviation,
-    /// the Monte Carlo's when run, and its three largest contributors.
+    /// the Monte Carlo's when run, and its three largest contributors, in the figure's written unit.
     pub fn table(&self) -> Table {
         let columns = [
             "analysis",
@@ -278,22 +278,25 @@ impl StackUp {
             .iter()
             .map(|s| {
                 let m = s.sampled;
+                let unit = s.unit.shown();
+                let shown = |v: f64| Cell::from(v * unit.factor);
                 let mut row = vec![
                     Cell::Text(s.analysis.name().into()),
                     Cell::Text(s.figure.clone()),
-                    Cell::Text(s.unit.clone()),
-                    Cell::from(s.value),
-                    Cell::from(s.worst_case),
-                    Cell::from(s.sigma),
-                    Cell::from(m.map(|m| m.sigma)),
-                    Cell::from(m.map(|m| m.mean)),
-                    Cell::from(m.map(|m| m.min)),
-                    Cell::from(m.map(|m| m.max)),
+                    Cell::Text(unit.symbol.into()),
+                    shown(s.value),
+                    shown(s.worst_case),
+                    shown(s.sigma),
+                    Cell::from(m.map(|m| m.sigma * unit.factor)),
+                    Cell::from(m.map(|m| m.mean * unit.factor)),
+                    Cell::from(m.map(|m| m.min * unit.factor)),
+                    Cell::from(m.map(|m| m.max * unit.factor)),
                     Cell::from(m.map(|m| m.count as f64)),
                 ];
                 for k in 0..3 {
                     row.push(s.contributions.get(k).map_or(Cell::Empty, |(p, c)| {
-                        Cell::Text(format!("{} ({})", self.parameters.pointers[*p], kc::significant(*c, 3)))
+                        let c = kc::significant(*c * unit.factor, 3);
+                        Cell::Text(format!("{} ({c})", self.parameters.pointers[*p]))
                     }));
                 }
                 row
@@ -303,20 +306,22 @@ impl StackUp {
     }
 
     /// `tolerance_contributions.csv`: every figure and number — the number's tolerance, the figure's
-    /// derivative times it (its first-order share, signed).
+    /// derivative times it (its first-order share, signed, in the figure's written unit).
     pub fn contribution_table(&self) -> Table {
-        let columns = ["analysis", "figure", "parameter", "tolerance", "contribution"];
+        let columns = ["analysis", "figure", "unit", "parameter", "tolerance", "contribution"];
         let mut rows = Vec::new();
         for s in &self.spreads {
+            let unit = s.unit.shown();
             let mut by_parameter = s.contributions.clone();
             by_parameter.sort_by_key(|(p, _)| *p);
             for (p, c) in by_parameter {
                 rows.push(vec![
                     Cell::Text(s.analysis.name().into()),
                     Cell::Text(s.figure.clone()),
+                    Cell::Text(unit.symbol.into()),
                     Cell::Text(self.parameters.pointers[p].clone()),
                     Cell::from(self.bands[p]),
-                    Cell::from(c),
+                    Cell::from(c * unit.factor),
                 ]);
             }
         }

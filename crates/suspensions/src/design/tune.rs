@@ -185,9 +185,12 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
                         figure.reason.as_deref().unwrap_or("")
                     ))
                 })?;
+                // The target is in the unit the figure is written in; the figure and its rates are in SI.
+                let factor = figure.unit.shown().factor;
+                let reached = reached * factor;
                 let gradient = rates
                     .iter()
-                    .map(|r| r.map_err(|e| model(format!("{}: {}", t.label, e.reason()))))
+                    .map(|r| r.map(|r| r * factor).map_err(|e| model(format!("{}: {}", t.label, e.reason()))))
                     .collect::<Result<Vec<f64>, _>>()?;
                 let (residual, rates) = scaled_miss(t, reached, *value, &gradient).map_err(asked)?;
                 residuals.push(residual);

@@ -6,10 +6,12 @@ use crate::analysis::{
 };
 use crate::build::{LoadPoint, Rig};
 use crate::description::Side;
+use crate::kc::figures;
 use crate::kc::models::Models;
 use crate::kc::reduce::{axis, bushings_share, chart, corner_drawing, deg, finish, said, Design, Reduction};
-use crate::kc::report::{Accuracy, AnalysisReport, Cell, Figure, Table, Warning};
+use crate::kc::report::{Accuracy, AnalysisReport, Cell, Figure, FigureKind, Table, Warning};
 use crate::kc::settings::{mode_word, Analysis, Settings, NO_ROWS};
+use crate::kc::unit::Unit;
 use elastokin_solver::replay::ReplayRows;
 
 /// Why the `loads` analysis cannot run.
@@ -68,20 +70,13 @@ pub(super) fn vertical_force(models: &Models, s: &Settings) -> Result<AnalysisRe
         let held = "the wheel centre does not rise under the vertical force: the joints hold its height (a link \
                     through the wheel centre, or an axle locked in travel); check the model with `elastokin check`";
         let (rate, why) = match compliance {
-            Some(d) if d.abs() > 0.0 => (Some(1e-3 / d), why),
+            Some(d) if d.abs() > 0.0 => (Some(1.0 / d), why),
             Some(_) => (None, held.to_string()),
             None => (None, why),
         };
         vec![
-            Figure::new("design_wheel_load", "design wheel load (rig force at design height)", "N", 1, design_load),
-            Figure::maybe(
-                "wheel_rate",
-                "wheel rate at the design load (force over wheel-centre travel)",
-                "N/mm",
-                2,
-                rate,
-                &why,
-            ),
+            Figure::of(&figures::DESIGN_WHEEL_LOAD, Some(design_load), ""),
+            Figure::of(&figures::VERTICAL_FORCE_WHEEL_RATE, rate, &why),
         ]
     };
     let charts = vec![chart(
@@ -123,7 +118,7 @@ pub(super) fn vertical_force(models: &Models, s: &Settings) -> Result<AnalysisRe
         charts,
     );
     // The design load is not read off the rows, so the rows' estimate says nothing of it: its own.
-    if let Some(f) = report.figures.iter_mut().find(|f| f.key == "design_wheel_load") {
+    if let Some(f) = report.figures.iter_mut().find(|f| f.key == figures::DESIGN_WHEEL_LOAD.key) {
         f.error = design_load_error;
     }
     Ok(report)
@@ -250,47 +245,24 @@ fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Result<AnalysisR
                 .collect(),
         }
     };
-    let (per_unit, per_scale) = match unit {
-        "N" => ("deg/kN", 1e3),
-        "N·m" => ("deg/kN·m", 1e3),
-        _ => ("deg per load case", 1.0),
+    // Per kN of a force, per kN·m of a torque, per load case of the model's own.
+    let per_unit = match unit {
+        "N" => Unit::DegreePerKilonewton,
+        "N·m" => Unit::DegreePerKilonewtonMetre,
+        _ => Unit::DegreePerLoadCase,
     };
     let figures = |rows: &[LoadRow], design: Design<LoadRow>| {
         let why = design.err().unwrap_or_default();
         let slope = |y: &dyn Fn(&LoadRow) -> f64| design.ok().map(|d| d.rate(y));
+        let per_load = |kind: &FigureKind| FigureKind { unit: per_unit, ..*kind };
         let mut f = vec![
-            Figure::maybe(
-                "steer",
-                "compliance steer at zero load (toe-in +)",
-                per_unit,
-                4,
-                slope(&|r| deg(r.attitude.toe)).map(|v| v * per_scale),
-                why,
-            ),
-            Figure::maybe(
-                "camber",
-                "compliance camber at zero load",
-                per_unit,
-                4,
-                slope(&|r| deg(r.attitude.camber)).map(|v| v * per_scale),
-                why,
-            ),
+            Figure::of(&per_load(&figures::COMPLIANCE_STEER), slope(&|r| r.attitude.toe), why),
+            Figure::of(&per_load(&figures::COMPLIANCE_CAMBER), slope(&|r| r.attitude.camber), why),
         ];
         if let Some(last) = rows.last() {
-            f.push(Figure::new(
-                "toe_at_end",
-                &format!("toe at {:.0} {unit}", last.load),
-                "deg",
-                4,
-                deg(last.attitude.toe),
-            ));
-            f.push(Figure::new(
-                "camber_at_end",
-                &format!("camber at {:.0} {unit}", last.load),
-                "deg",
-                4,
-                deg(last.attitude.camber),
-            ));
+            let at = |what: &str| format!("{what} at {:.0} {unit}", last.load);
+            f.push(Figure::of(&figures::TOE_AT_END, Some(last.attitude.toe), "").labelled(at("toe")));
+            f.push(Figure::of(&figures::CAMBER_AT_END, Some(last.attitude.camber), "").labelled(at("camber")));
         }
         f
     };
@@ -378,19 +350,13 @@ pub(super) fn static_load(models: &Models, s: &Settings) -> Result<AnalysisRepor
     let figures = |rest: &StaticLoad| {
         let d = rest.wheel_centre_displacement;
         vec![
-            Figure::new("corner_load", "corner load", "N", 0, rest.corner_load),
-            Figure::new("ride_height_change", "ride height change at the wheel centre (bump +)", "mm", 2, d.z * 1e3),
-            Figure::new("toe", "toe at rest", "deg", 4, deg(rest.attitude.toe)),
-            Figure::new("camber", "camber at rest", "deg", 4, deg(rest.attitude.camber)),
-            Figure::new("wheel_rate", "wheel rate at rest", "N/mm", 2, rest.wheel_rate * 1e-3),
-            Figure::new("spring_force", "spring force (compression +)", "N", 0, rest.spring_force),
-            Figure::new(
-                "spring_deflection",
-                "spring deflection (compression -)",
-                "mm",
-                2,
-                rest.spring_deflection * 1e3,
-            ),
+            Figure::of(&figures::CORNER_LOAD, Some(rest.corner_load), ""),
+            Figure::of(&figures::RIDE_HEIGHT_CHANGE, Some(d.z), ""),
+            Figure::of(&figures::TOE_AT_REST, Some(rest.attitude.toe), ""),
+            Figure::of(&figures::CAMBER_AT_REST, Some(rest.attitude.camber), ""),
+            Figure::of(&figures::WHEEL_RATE_AT_REST, Some(rest.wheel_rate), ""),
+            Figure::of(&figures::SPRING_FORCE, Some(rest.spring_force), ""),
+            Figure::of(&figures::SPRING_DEFLECTION, Some(rest.spring_deflection), ""),
         ]
     };
     let mut figures_at_rest = figures(&rest);
@@ -413,8 +379,11 @@ pub(super) fn static_load(models: &Models, s: &Settings) -> Result<AnalysisRepor
         }
     }
     let figures = figures_at_rest;
-    let angle_error =
-        ["toe", "camber"].iter().filter_map(|key| figures.iter().find(|f| f.key == *key)?.error).fold(0.0, f64::max);
+    let angle_error = [&figures::TOE_AT_REST, &figures::CAMBER_AT_REST]
+        .iter()
+        .filter_map(|kind| figures.iter().find(|f| f.key == kind.key)?.error)
+        .fold(0.0, f64::max)
+        .to_degrees();
     let (force_residual, constraint_residual) = rest.residuals;
     let within = constraint_residual <= s.tolerance.length_m;
     let mut warnings = Vec::new();
@@ -436,6 +405,7 @@ pub(super) fn static_load(models: &Models, s: &Settings) -> Result<AnalysisRepor
         range: (rest.corner_load, rest.corner_load),
         steps: 1,
         figures,
+        units: s.units,
         table,
         compliance: None,
         wheel_compliance_at_design: None,

@@ -9,22 +9,27 @@
 //! or what remains after a corrected step converged. It costs one factorization per row.
 
 pub mod chart;
+pub mod figures;
 mod loads;
 pub mod models;
 mod reduce;
 pub mod report;
 pub mod settings;
 mod travel;
+pub mod unit;
 
 pub use chart::{Chart, Scale, Series, YAxis};
 pub use models::Models;
 pub use reduce::{COMPLIANCE_LOAD, COMPLIANCE_RESPONSE};
-pub use report::{significant, Accuracy, AnalysisReport, Cell, Failed, Figure, KcReport, Skipped, Table, Warning};
+pub use report::{
+    significant, Accuracy, AnalysisReport, Cell, Failed, Figure, FigureKind, KcReport, Skipped, Table, Warning, Written,
+};
 pub use settings::{
-    mode_from_word, mode_word, Analysis, AnalysisError, Settings, Tolerance, Units, ALL, MAX_RANGE_FRACTION,
-    MAX_RANGE_LOAD, MAX_RANGE_TRAVEL, MIN_RANGE,
+    mode_from_word, mode_word, Analysis, AnalysisError, Settings, Tolerance, ALL, MAX_RANGE_FRACTION, MAX_RANGE_LOAD,
+    MAX_RANGE_TRAVEL, MIN_RANGE,
 };
 pub use travel::ideal_outer_steer;
+pub use unit::{Shown, Unit, Units};
 
 use crate::file::SuspensionFile;
 use elastokin_solver::LoadPath;
@@ -46,16 +51,7 @@ pub fn run_on(analysis: Analysis, models: &Models, settings: &Settings) -> Resul
         Analysis::StaticLoad => loads::static_load(models, settings),
         Analysis::ModelLoads => loads::model_loads(models, settings),
     };
-    let mut report = result.map_err(|message| AnalysisError { analysis: analysis.name(), message })?;
-    for f in &mut report.figures {
-        if let Some((unit, factor, decimals)) = settings.units.of(&f.unit) {
-            f.unit = unit.into();
-            f.value = f.value.map(|v| v * factor);
-            f.error = f.error.map(|e| e * factor);
-            f.decimals += decimals;
-        }
-    }
-    Ok(report)
+    result.map_err(|message| AnalysisError { analysis: analysis.name(), message })
 }
 
 /// Whether `settings` make sense for `analysis` (steps, arc step, range in its units), before any model is

@@ -9,6 +9,7 @@ use crate::file::SuspensionFile;
 use crate::kc::chart::{Chart, Scale, Series, YAxis};
 use crate::kc::report::{significant, Accuracy, AnalysisReport, Cell, Figure, Table, Warning};
 use crate::kc::settings::{mode_word, Analysis, Settings};
+use crate::kc::unit::Unit;
 use crate::wheel::Wheel;
 use elastokin_solver::{Mode, MAX_STEPS};
 
@@ -167,6 +168,7 @@ pub(super) fn finish<R: Clone>(
         range,
         steps: settings.steps,
         figures,
+        units: settings.units,
         accuracy: Accuracy {
             method,
             angle_error_deg,
@@ -243,7 +245,8 @@ pub(super) fn over_tolerance(f: &Figure, relative: f64) -> Option<String> {
         if ratio < 10.0 {
             format!("{} ±{:.1} %", f.label, 100.0 * ratio)
         } else {
-            format!("{} ±{e:.2e} {}", f.label, f.unit)
+            let unit = f.unit.shown();
+            format!("{} ±{:.2e} {}", f.label, e * unit.factor, unit.symbol)
         }
     })
 }
@@ -351,7 +354,7 @@ pub(super) fn bushings_share(
     };
     let label = format!("{} with the bushings rigid", own.label);
     let mut rigid_figure =
-        Figure::maybe(&format!("{key}_rigid_bushings"), &label, &own.unit, own.decimals, value, &reason);
+        Figure::maybe(&format!("{key}_rigid_bushings"), &label, own.unit, own.decimals, value, &reason);
     // A figure its own error estimate does not tell from zero has no share of anything.
     let nil = own.value.zip(own.error).is_some_and(|(v, e)| v.abs() <= e);
     let pair = stiff.as_ref().ok().filter(|_| !nil).and_then(|f| Some((own.value?, f.value?, own.error, f.error)));
@@ -359,9 +362,9 @@ pub(super) fn bushings_share(
     let mut share = Figure::maybe(
         &format!("bushing_share_of_{key}"),
         &format!("the bushings' share of the {what}"),
-        "%",
+        Unit::Percent,
         1,
-        pair.map(|(f, r, _, _)| 100.0 * (1.0 - r / f)).filter(|v| v.is_finite()),
+        pair.map(|(f, r, _, _)| 1.0 - r / f).filter(|v| v.is_finite()),
         &match (&stiff, own.value) {
             (Err(e), _) => why(e),
             (_, Some(0.0)) => "the figure is zero".to_string(),
@@ -373,7 +376,7 @@ pub(super) fn bushings_share(
     share.error = share
         .value
         .and(pair)
-        .and_then(|(f, r, ef, er)| Some(100.0 * (er? / f.abs() + r.abs() * ef? / (f * f))))
+        .and_then(|(f, r, ef, er)| Some(er? / f.abs() + r.abs() * ef? / (f * f)))
         .filter(|e| e.is_finite());
     report.figures.push(rigid_figure);
     report.figures.push(share);
@@ -385,16 +388,16 @@ mod tests {
 
     #[test]
     fn figure_error_at_a_zero_figure_is_given_in_its_unit_not_as_infinite_percent() {
-        let mut f = Figure::new("roll_centre_lateral", "roll centre lateral offset", "mm", 1, 0.0);
-        f.error = Some(3.0);
+        let mut f = Figure::new("roll_centre_lateral", "roll centre lateral offset", Unit::Millimetre, 1, 0.0);
+        f.error = Some(3e-3);
         let line = over_tolerance(&f, 5e-3).unwrap();
         assert_eq!(line, "roll centre lateral offset ±3.00e0 mm");
         // A huge relative error is no percentage either (it printed 300 digits).
         f.value = Some(1e-300);
         assert!(!over_tolerance(&f, 5e-3).unwrap().contains('%'));
-        f.value = Some(20.0);
+        f.value = Some(20e-3);
         assert_eq!(over_tolerance(&f, 5e-3).unwrap(), "roll centre lateral offset ±15.0 %");
-        f.error = Some(0.01);
+        f.error = Some(0.01e-3);
         assert_eq!(over_tolerance(&f, 5e-3), None);
     }
 }

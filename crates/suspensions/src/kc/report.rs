@@ -5,6 +5,7 @@
 use crate::drawing::Motion;
 use crate::kc::chart::Chart;
 use crate::kc::settings::Analysis;
+use crate::kc::unit::{Unit, Units};
 use serde::ser::SerializeStruct;
 use serde::{Serialize, Serializer};
 
@@ -93,35 +94,51 @@ impl Table {
     }
 }
 
-/// One headline figure: a value in `unit`, its error estimate, or the reason it could not be computed.
-/// Serialised as `{"value": …, "unit": …, "error": …}` or `{"value": null, "unit": …, "reason": …}`.
+/// One headline figure: its value in SI, the unit it is written in, its error estimate, or the reason it
+/// could not be computed. Written (terminal, JSON, HTML) in its unit under the report's [`Units`]; in JSON
+/// as `{"value": …, "unit": …, "error": …, "si_value": …, "si_unit": …, "si_error": …}`, or with `"value":
+/// null` and the `"reason"`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Figure {
     /// Key in the JSON summary, e.g. `bump_steer`.
     pub key: String,
     /// What it is, in words, e.g. `bump steer (toe-in +)`.
     pub label: String,
-    /// Unit of `value`, e.g. `deg/m`.
-    pub unit: String,
-    /// Decimals to print it with.
+    /// The unit it is written in (which fixes the SI unit `value` is held in).
+    pub unit: Unit,
+    /// Decimals to write it with, in `unit` under the default units.
     pub decimals: usize,
-    /// The value (always finite), or `None` with `reason`.
+    /// The value in SI (always finite), or `None` with `reason`.
     pub value: Option<f64>,
     /// Why there is no value.
     pub reason: Option<String>,
-    /// Estimated error of the value (same unit): how far it is from the figure of the exact equilibria.
+    /// Estimated error of the value (SI): how far it is from the figure of the exact equilibria.
     pub error: Option<f64>,
 }
 
+/// A figure as an analysis declares it, once: its key, its words, the unit it is written in and the
+/// decimals it is written with ([`crate::kc::figures`] lists them all).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FigureKind {
+    /// Key in the JSON summary.
+    pub key: &'static str,
+    /// What it is, in words.
+    pub label: &'static str,
+    /// The unit it is written in.
+    pub unit: Unit,
+    /// Decimals it is written with.
+    pub decimals: usize,
+}
+
 impl Figure {
-    /// A figure from a computed value: a non-finite value becomes a missing one, with the reason.
-    pub fn new(key: &str, label: &str, unit: &str, decimals: usize, value: f64) -> Figure {
+    /// A figure from a computed value in SI: a non-finite value becomes a missing one, with the reason.
+    pub fn new(key: &str, label: &str, unit: Unit, decimals: usize, value: f64) -> Figure {
         Figure::maybe(key, label, unit, decimals, Some(value), "")
     }
 
     /// A figure that may be missing: `None` or a non-finite value gives no value and `reason` (or, for a
     /// non-finite value, a reason saying so).
-    pub fn maybe(key: &str, label: &str, unit: &str, decimals: usize, value: Option<f64>, reason: &str) -> Figure {
+    pub fn maybe(key: &str, label: &str, unit: Unit, decimals: usize, value: Option<f64>, reason: &str) -> Figure {
         let (value, reason) = match value {
             Some(v) if v.is_finite() => (Some(v), None),
             Some(_) => (
@@ -134,35 +151,107 @@ impl Figure {
             ),
             None => (None, Some(reason.to_string())),
         };
-        Figure { key: key.into(), label: label.into(), unit: unit.into(), decimals, value, reason, error: None }
+        Figure { key: key.into(), label: label.into(), unit, decimals, value, reason, error: None }
     }
 
-    /// Whether an error of `e` shows in the decimals the figure is printed with (more than half its last
-    /// digit).
+    /// The figure `kind` of a value in SI, or missing with `reason`.
+    pub fn of(kind: &FigureKind, value: Option<f64>, reason: &str) -> Figure {
+        Figure::maybe(kind.key, kind.label, kind.unit, kind.decimals, value, reason)
+    }
+
+    /// The same figure under another label (one that names what this model's figure is, e.g. anti-dive
+    /// on a front axle).
+    pub fn labelled(mut self, label: impl Into<String>) -> Figure {
+        self.label = label.into();
+        self
+    }
+
+    /// Whether an error of `e` (SI) shows in the decimals the figure is written with under the default
+    /// units (more than half its last digit).
     pub fn shows(&self, e: f64) -> bool {
-        e > 0.5 * 10f64.powi(-(self.decimals as i32))
+        e * self.unit.shown().factor > 0.5 * 10f64.powi(-(self.decimals as i32))
     }
 
-    /// The figure as the terminal shows it: `label  value unit  (± error)` or `label  — reason`.
-    pub fn line(&self) -> String {
-        match self.value {
+    /// The figure as written under `units`: its unit, value, error estimate and decimals.
+    pub fn written(&self, units: Units) -> Written<'_> {
+        let shown = self.unit.shown_in(units);
+        Written {
+            figure: self,
+            unit: shown.symbol,
+            value: self.value.map(|v| v * shown.factor),
+            error: self.error.map(|e| e * shown.factor),
+            decimals: self.decimals + shown.more_decimals,
+        }
+    }
+
+    /// The figure as the terminal shows it under `units`: `label  value unit  (± error)` or
+    /// `label  — reason`.
+    pub fn line(&self, units: Units) -> String {
+        let w = self.written(units);
+        match w.value {
             Some(v) => {
-                let err = match self.error {
-                    Some(e) if self.shows(e) => {
+                let err = match w.error {
+                    Some(e) if self.shows(self.error.unwrap_or(0.0)) => {
                         format!("  (± {})", significant(e, 2))
                     }
                     _ => String::new(),
                 };
-                let unit = if self.unit == "-" { "" } else { &self.unit };
-                // A value that rounds to zero at the digits shown is zero, not "-0.0".
-                let mut shown = format!("{:.*}", self.decimals, v);
-                if shown.starts_with('-') && shown[1..].bytes().all(|b| b == b'0' || b == b'.') {
-                    shown.remove(0);
-                }
-                format!("  {:<58} {:>10} {unit}{err}", self.label, shown)
+                let unit = if w.unit == "-" { "" } else { w.unit };
+                format!("  {:<58} {:>10} {unit}{err}", self.label, w.number(v))
             }
             None => format!("  {:<58} {:>10} — {}", self.label, "n/a", self.reason.as_deref().unwrap_or("")),
         }
+    }
+}
+
+/// A figure as written: in its unit under the chosen units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Written<'a> {
+    /// The figure.
+    pub figure: &'a Figure,
+    /// The unit written.
+    pub unit: &'static str,
+    /// The value in that unit.
+    pub value: Option<f64>,
+    /// The error estimate in that unit.
+    pub error: Option<f64>,
+    /// Decimals.
+    pub decimals: usize,
+}
+
+impl Written<'_> {
+    /// `v` (in the written unit) at the figure's decimals; a value that rounds to zero is zero, not `-0.0`.
+    pub fn number(&self, v: f64) -> String {
+        let mut shown = format!("{:.*}", self.decimals, v);
+        if shown.starts_with('-') && shown[1..].bytes().all(|b| b == b'0' || b == b'.') {
+            shown.remove(0);
+        }
+        shown
+    }
+}
+
+impl Serialize for Written<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let f = self.figure;
+        let mut st = s.serialize_struct("Figure", 8)?;
+        st.serialize_field("label", &f.label)?;
+        st.serialize_field("value", &self.value)?;
+        st.serialize_field("unit", self.unit)?;
+        match &f.reason {
+            Some(r) => st.serialize_field("reason", r)?,
+            None => st.skip_field("reason")?,
+        }
+        match self.error {
+            Some(e) => st.serialize_field("error", &e)?,
+            None => st.skip_field("error")?,
+        }
+        st.serialize_field("si_value", &f.value)?;
+        st.serialize_field("si_unit", f.unit.si())?;
+        match f.error {
+            Some(e) => st.serialize_field("si_error", &e)?,
+            None => st.skip_field("si_error")?,
+        }
+        st.end()
     }
 }
 
@@ -181,24 +270,6 @@ pub fn significant(v: f64, digits: usize) -> String {
         format!("{v:.decimals$}")
     } else {
         format!("{v:.*e}", digits.saturating_sub(1))
-    }
-}
-
-impl Serialize for Figure {
-    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        let mut st = s.serialize_struct("Figure", 5)?;
-        st.serialize_field("label", &self.label)?;
-        st.serialize_field("value", &self.value)?;
-        st.serialize_field("unit", &self.unit)?;
-        match &self.reason {
-            Some(r) => st.serialize_field("reason", r)?,
-            None => st.skip_field("reason")?,
-        }
-        match self.error {
-            Some(e) => st.serialize_field("error", &e)?,
-            None => st.skip_field("error")?,
-        }
-        st.end()
     }
 }
 
@@ -226,7 +297,7 @@ pub struct Accuracy {
 pub use crate::check::Warning;
 
 /// What one K&C analysis produced.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct AnalysisReport {
     /// The analysis.
     pub analysis: Analysis,
@@ -238,21 +309,18 @@ pub struct AnalysisReport {
     pub range: (f64, f64),
     /// Load steps.
     pub steps: usize,
-    /// Headline figures (in JSON an object keyed by each figure's key).
-    #[serde(serialize_with = "figures_by_key")]
+    /// Headline figures, in SI (in JSON an object keyed by each figure's key, written in `units`).
     pub figures: Vec<Figure>,
+    /// The units the figures are written in (the settings' choice: only the writers read it).
+    pub units: Units,
     /// The rows (written as CSV; left out of the JSON summary, which would only repeat them).
-    #[serde(skip)]
     pub table: Table,
     /// The 6×6 wheel compliance at every row, when asked for (CSV too).
-    #[serde(skip)]
     pub compliance: Option<Table>,
     /// The 6×6 wheel compliance at design (rows: wheel-centre x, y, z in m and rotation in rad; columns:
     /// unit force in N and torque in N·m at the wheel centre), where the analysis takes it.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub wheel_compliance_at_design: Option<[[f64; 6]; 6]>,
     /// Plots.
-    #[serde(skip)]
     pub charts: Vec<Chart>,
     /// The rows' accuracy.
     pub accuracy: Accuracy,
@@ -260,14 +328,59 @@ pub struct AnalysisReport {
     pub warnings: Vec<Warning>,
     /// The model drawn and its parts' poses at every row, when the settings ask for them
     /// ([`Settings::motion`](crate::kc::Settings::motion)).
-    #[serde(skip)]
     pub motion: Option<Motion>,
 }
 
+/// The JSON summary of an analysis: what was run, the figures written in the report's units, the wheel
+/// compliance at design where there is one, the accuracy and the warnings (the rows, compliance tables,
+/// plots and motion are written as their own files).
+impl Serialize for AnalysisReport {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut st = s.serialize_struct("AnalysisReport", 9)?;
+        st.serialize_field("analysis", &self.analysis)?;
+        st.serialize_field("parameter", &self.parameter)?;
+        st.serialize_field("description", &self.description)?;
+        st.serialize_field("range", &self.range)?;
+        st.serialize_field("steps", &self.steps)?;
+        let written: Vec<(&str, Written)> =
+            self.figures.iter().map(|f| (f.key.as_str(), f.written(self.units))).collect();
+        st.serialize_field("figures", &ByKey(&written))?;
+        match &self.wheel_compliance_at_design {
+            Some(c) => st.serialize_field("wheel_compliance_at_design", c)?,
+            None => st.skip_field("wheel_compliance_at_design")?,
+        }
+        st.serialize_field("accuracy", &self.accuracy)?;
+        st.serialize_field("warnings", &self.warnings)?;
+        st.end()
+    }
+}
+
+/// Pairs serialised as a JSON object.
+struct ByKey<'a, K, V>(&'a [(K, V)]);
+
+impl<K: Serialize, V: Serialize> Serialize for ByKey<'_, K, V> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_map(self.0.iter().map(|(k, v)| (k, v)))
+    }
+}
+
 impl AnalysisReport {
-    /// The figure with `key`.
+    /// The figure with `key` (a key the user gave: a target's, a tolerance's).
     pub fn figure(&self, key: &str) -> Option<&Figure> {
         self.figures.iter().find(|f| f.key == key)
+    }
+
+    /// The figure `kind` (one of [`crate::kc::figures`]), if the analysis reports it.
+    pub fn figure_of(&self, kind: &FigureKind) -> Option<&Figure> {
+        self.figure(kind.key)
+    }
+
+    /// The value of figure `kind` in SI, or why there is none, in words that name the analysis and the
+    /// figure.
+    pub fn value_of(&self, kind: &FigureKind) -> Result<f64, String> {
+        let name = self.analysis.name();
+        let f = self.figure_of(kind).ok_or_else(|| format!("{name} gives no `{}`", kind.key))?;
+        f.value.ok_or_else(|| format!("{name} has no `{}`: {}", kind.key, f.reason.as_deref().unwrap_or("no value")))
     }
 
     /// The row of the design position: the one whose load parameter (the table's first column) is nearest
@@ -286,7 +399,7 @@ impl AnalysisReport {
     /// The lines the terminal shows: what was run, the figures, the accuracy, the warnings.
     pub fn headline(&self) -> Vec<String> {
         let mut out = vec![self.description.clone()];
-        out.extend(self.figures.iter().map(Figure::line));
+        out.extend(self.figures.iter().map(|f| f.line(self.units)));
         let a = &self.accuracy;
         out.push(format!(
             "  error estimate: angles {} deg, lengths {} mm ({})",
@@ -297,10 +410,6 @@ impl AnalysisReport {
         out.extend(self.warnings.iter().map(|w| format!("  warning [{}]: {}", w.code, w.message)));
         out
     }
-}
-
-fn figures_by_key<S: Serializer>(figures: &[Figure], s: S) -> Result<S::Ok, S::Error> {
-    s.collect_map(figures.iter().map(|f| (&f.key, f)))
 }
 
 fn analyses_by_name<S: Serializer>(analyses: &[AnalysisReport], s: S) -> Result<S::Ok, S::Error> {
@@ -387,13 +496,16 @@ mod tests {
 
     #[test]
     fn a_non_finite_figure_has_a_reason_and_serialises_as_null() {
-        let f = Figure::new("wheel_rate", "wheel rate", "N/mm", 2, f64::NAN);
+        let f = Figure::new("wheel_rate", "wheel rate", Unit::NewtonPerMillimetre, 2, f64::NAN);
         assert_eq!(f.value, None);
-        let json = serde_json::to_value(&f).unwrap();
+        let json = serde_json::to_value(f.written(Units::DegPerM)).unwrap();
         assert!(json["value"].is_null() && json["reason"].as_str().unwrap().contains("not a finite"), "{json}");
-        assert!(!f.line().contains("NaN"), "{}", f.line());
-        let g = Figure::new("wheel_rate", "wheel rate", "N/mm", 2, 35.0);
-        assert_eq!(serde_json::to_value(&g).unwrap()["value"], 35.0);
+        assert!(!f.line(Units::DegPerM).contains("NaN"), "{}", f.line(Units::DegPerM));
+        // Held in SI, written in its unit: 35 000 N/m is 35 N/mm.
+        let g = Figure::new("wheel_rate", "wheel rate", Unit::NewtonPerMillimetre, 2, 35e3);
+        let json = serde_json::to_value(g.written(Units::DegPerM)).unwrap();
+        assert_eq!((json["value"].as_f64(), json["unit"].as_str()), (Some(35.0), Some("N/mm")));
+        assert_eq!((json["si_value"].as_f64(), json["si_unit"].as_str()), (Some(35e3), Some("N/m")));
     }
 
     #[test]
@@ -415,10 +527,10 @@ mod tests {
     #[test]
     fn a_figure_of_nothing_prints_zero_without_a_sign() {
         for v in [-0.0, -0.04, -1e-300] {
-            let line = Figure::new("design_wheel_load", "design wheel load", "N", 1, v).line();
+            let line = Figure::new("design_wheel_load", "design wheel load", Unit::Newton, 1, v).line(Units::DegPerM);
             assert!(line.ends_with(" 0.0 N") && !line.contains('-'), "{v:e}: {line}");
         }
-        let line = Figure::new("design_wheel_load", "design wheel load", "N", 1, -0.05).line();
+        let line = Figure::new("design_wheel_load", "design wheel load", Unit::Newton, 1, -0.05).line(Units::DegPerM);
         assert!(line.ends_with(" -0.1 N"), "{line}");
     }
 

@@ -2,6 +2,7 @@
 //! ranges, steps, mode, tolerances, load point) and the limits a request is held to.
 
 use crate::analysis::{SweepExtras, WheelLoad};
+use crate::kc::unit::Units;
 use elastokin_solver::replay::ReplayRows;
 use elastokin_solver::Mode;
 use serde::Serialize;
@@ -126,40 +127,6 @@ impl Default for Tolerance {
     /// 0.01 mm); 0.5 % on derived figures such as the wheel rate.
     fn default() -> Self {
         Tolerance { angle_deg: 1e-3, length_m: 1e-6, relative: 5e-3 }
-    }
-}
-
-/// How the figures that are slopes against wheel travel (bump steer, camber gain) and the aligning-torque
-/// compliances are written: in SI multiples, or as K&C rigs print them.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
-pub enum Units {
-    /// deg/m and deg/kN·m.
-    #[default]
-    #[serde(rename = "deg-per-m")]
-    DegPerM,
-    /// deg/10 mm and deg/100 N·m.
-    #[serde(rename = "deg-per-10mm")]
-    DegPer10Mm,
-    /// arc minutes per mm (′/mm) and deg/100 N·m.
-    #[serde(rename = "arcmin-per-mm")]
-    ArcminPerMm,
-}
-
-impl Units {
-    /// Every choice, with its name on the command line.
-    pub const ALL: [(Units, &'static str); 3] =
-        [(Units::DegPerM, "deg-per-m"), (Units::DegPer10Mm, "deg-per-10mm"), (Units::ArcminPerMm, "arcmin-per-mm")];
-
-    /// A figure's unit as the report writes it in SI multiples, in these units: the new unit, the factor
-    /// its values are multiplied by, and the decimals shown more. `None`: the unit stays.
-    pub fn of(self, unit: &str) -> Option<(&'static str, f64, usize)> {
-        match (self, unit) {
-            (Units::DegPerM, _) => None,
-            (Units::DegPer10Mm, "deg/m") => Some(("deg/10 mm", 1e-2, 2)),
-            (Units::ArcminPerMm, "deg/m") => Some(("arcmin/mm", 60.0 * 1e-3, 1)),
-            (_, "deg/kN·m") => Some(("deg/100 N·m", 0.1, 1)),
-            _ => None,
-        }
     }
 }
 

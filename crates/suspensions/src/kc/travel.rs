@@ -7,12 +7,14 @@ use crate::analysis::{parallel_wheel_travel_with, TravelRow};
 use crate::build::{AxleRig, Corner, Rig};
 use crate::description::Side;
 use crate::file::SuspensionFile;
+use crate::kc::figures;
 use crate::kc::models::Models;
 use crate::kc::reduce::{
     axis, axle_drawing, bushings_share, chart, corner_drawing, deg, finish, needs_vehicle, said, Design, Reduction,
 };
-use crate::kc::report::{slug, AnalysisReport, Cell, Figure, Table, Warning};
+use crate::kc::report::{slug, AnalysisReport, Cell, Figure, FigureKind, Table, Warning};
 use crate::kc::settings::{Analysis, Settings, NO_ROWS};
+use crate::kc::unit::Unit;
 use elastokin_solver::replay::ReplayRows;
 
 pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisReport, String> {
@@ -140,35 +142,22 @@ fn compliance_figures(
 ) -> Result<Vec<Figure>, elastokin_solver::SolverError> {
     let pc = patch_compliance_from(corner, compliance, &state.poses);
     let finite = compliance.iter().flatten().all(|v| v.is_finite());
-    let per_kn = |rad_per_n: f64| deg(rad_per_n) * 1e3;
-    let stiffness = |key: &str, label: &str, n_per_m: f64, rigid: bool| {
-        let value = (finite && !rigid && n_per_m.is_finite()).then_some(n_per_m * 1e-3);
+    let stiffness = |kind: &FigureKind, n_per_m: f64, rigid: bool| {
+        let value = (finite && !rigid && n_per_m.is_finite()).then_some(n_per_m);
         let reason = if rigid {
             "rigid: the joints alone hold the patch this way (no bushing or spring yields to the force)"
         } else {
             "the wheel compliance at design is not finite: some motion of the wheel is held by nothing"
         };
-        Figure::maybe(key, label, "N/mm", 0, value, reason)
+        Figure::of(kind, value, reason)
     };
     let mut figures = vec![
-        Figure::new(
-            "lateral_steer",
-            "compliance steer, lateral force (inboard +)",
-            "deg/kN",
-            4,
-            per_kn(pc.lateral_steer),
-        ),
-        Figure::new("lateral_camber", "compliance camber, lateral force", "deg/kN", 4, per_kn(pc.lateral_camber)),
-        Figure::new("braking_steer", "compliance steer, braking force", "deg/kN", 4, per_kn(pc.braking_steer)),
-        Figure::new(
-            "aligning_torque_steer",
-            "compliance steer, aligning torque",
-            "deg/kN·m",
-            4,
-            per_kn(pc.aligning_torque_steer),
-        ),
-        stiffness("lateral_stiffness", "lateral stiffness at the patch", pc.lateral_stiffness, held[0]),
-        stiffness("longitudinal_stiffness", "longitudinal stiffness at the patch", pc.longitudinal_stiffness, held[1]),
+        Figure::of(&figures::LATERAL_STEER, Some(pc.lateral_steer), ""),
+        Figure::of(&figures::LATERAL_CAMBER, Some(pc.lateral_camber), ""),
+        Figure::of(&figures::BRAKING_STEER, Some(pc.braking_steer), ""),
+        Figure::of(&figures::ALIGNING_TORQUE_STEER, Some(pc.aligning_torque_steer), ""),
+        stiffness(&figures::LATERAL_STIFFNESS, pc.lateral_stiffness, held[0]),
+        stiffness(&figures::LONGITUDINAL_STIFFNESS, pc.longitudinal_stiffness, held[1]),
     ];
     match &file.vehicle {
         Some(vehicle) => {
@@ -179,29 +168,14 @@ fn compliance_figures(
                 crate::description::AxlePosition::Rear => ("anti-lift (braking)", "anti-squat"),
             };
             figures.extend([
-                Figure::new("braking_anti_pitch", braking, "%", 1, a.braking),
-                Figure::new("traction_anti_pitch", traction, "%", 1, a.traction),
-                Figure::new(
-                    "side_view_swing_arm_angle_at_patch",
-                    "side-view swing arm angle at the patch",
-                    "deg",
-                    2,
-                    deg(a.patch_swing_arm_angle),
-                ),
-                Figure::new(
-                    "side_view_swing_arm_angle_at_wheel_centre",
-                    "side-view swing arm angle at the wheel centre",
-                    "deg",
-                    2,
-                    deg(a.wheel_centre_swing_arm_angle),
-                ),
+                Figure::of(&figures::BRAKING_ANTI_PITCH, Some(a.braking), "").labelled(braking),
+                Figure::of(&figures::TRACTION_ANTI_PITCH, Some(a.traction), "").labelled(traction),
+                Figure::of(&figures::SWING_ARM_ANGLE_AT_PATCH, Some(a.patch_swing_arm_angle), ""),
+                Figure::of(&figures::SWING_ARM_ANGLE_AT_WHEEL_CENTRE, Some(a.wheel_centre_swing_arm_angle), ""),
             ]);
         }
-        None => figures.push(Figure::maybe(
-            "braking_anti_pitch",
-            "anti-dive / anti-lift",
-            "%",
-            1,
+        None => figures.push(Figure::of(
+            &figures::BRAKING_ANTI_PITCH,
             None,
             &needs_vehicle("wheelbase and cg_height (a vehicle section)"),
         )),
@@ -267,58 +241,34 @@ fn parallel_travel_figures(file: &SuspensionFile, corner: &Corner, design: Desig
     let tyre_rate = file.vehicle.as_ref().and_then(|v| v.tyre_rate);
     let why = design.err().unwrap_or_default();
     let slope = |y: &dyn Fn(&TravelRow) -> f64| design.ok().map(|d| d.rate(y));
-    let at_design = |key: &str, label: &str, unit: &str, decimals: usize, y: &dyn Fn(&TravelRow) -> f64| {
-        Figure::maybe(key, label, unit, decimals, design.ok().map(|d| y(&d.row)), why)
-    };
+    let at_design =
+        |kind: &FigureKind, y: &dyn Fn(&TravelRow) -> f64| Figure::of(kind, design.ok().map(|d| y(&d.row)), why);
     let rate = slope(&|r| r.wheel_load);
     let mut f = vec![
-        Figure::maybe("bump_steer", "bump steer (toe-in +)", "deg/m", 3, slope(&|r| deg(r.attitude.toe)), why),
-        Figure::maybe("camber_gain", "camber gain (top out +)", "deg/m", 3, slope(&|r| deg(r.attitude.camber)), why),
-        Figure::maybe("wheel_rate", "wheel rate", "N/mm", 2, rate.map(|k| k * 1e-3), why),
+        Figure::of(&figures::BUMP_STEER, slope(&|r| r.attitude.toe), why),
+        Figure::of(&figures::CAMBER_GAIN, slope(&|r| r.attitude.camber), why),
+        Figure::of(&figures::WHEEL_RATE, rate, why),
         match corner.spring {
-            Some(_) => Figure::maybe(
-                "spring_motion_ratio",
-                "spring motion ratio",
-                "-",
-                3,
-                slope(&|r| r.spring_deflection).map(f64::abs),
-                why,
-            ),
-            None => Figure::maybe(
-                "spring_motion_ratio",
-                "spring motion ratio",
-                "-",
-                3,
+            Some(_) => Figure::of(&figures::SPRING_MOTION_RATIO, slope(&|r| r.spring_deflection).map(f64::abs), why),
+            None => Figure::of(
+                &figures::SPRING_MOTION_RATIO,
                 None,
                 "the corner has no spring of its own (corner springs: none)",
             ),
         },
     ];
     f.push(match (rate, tyre_rate) {
-        (Some(k), Some(kt)) => {
-            Figure::new("ride_rate", "ride rate (wheel rate and tyre in series)", "N/mm", 2, k * kt / (k + kt) * 1e-3)
-        }
-        (None, _) => Figure::maybe("ride_rate", "ride rate (wheel rate and tyre in series)", "N/mm", 2, None, why),
-        (_, None) => Figure::maybe(
-            "ride_rate",
-            "ride rate (wheel rate and tyre in series)",
-            "N/mm",
-            2,
-            None,
-            &needs_vehicle("tyre_rate"),
-        ),
+        (Some(k), Some(kt)) => Figure::of(&figures::RIDE_RATE, Some(k * kt / (k + kt)), ""),
+        (None, _) => Figure::of(&figures::RIDE_RATE, None, why),
+        (_, None) => Figure::of(&figures::RIDE_RATE, None, &needs_vehicle("tyre_rate")),
     });
     f.extend([
-        at_design("wheel_load_at_design", "wheel load at design", "N", 1, &|r| r.wheel_load),
-        at_design("caster", "caster (top rearward +)", "deg", 2, &|r| deg(r.steering.caster)),
-        at_design("kingpin_inclination", "kingpin inclination (top inboard +)", "deg", 2, &|r| {
-            deg(r.steering.kingpin_inclination)
-        }),
-        at_design("scrub_radius", "scrub radius (axis inboard of patch +)", "mm", 1, &|r| {
-            r.steering.scrub_radius * 1e3
-        }),
-        at_design("mechanical_trail", "mechanical trail", "mm", 1, &|r| r.steering.mechanical_trail * 1e3),
-        at_design("kingpin_offset", "kingpin offset at wheel centre", "mm", 1, &|r| r.steering.kingpin_offset * 1e3),
+        at_design(&figures::WHEEL_LOAD_AT_DESIGN, &|r| r.wheel_load),
+        at_design(&figures::CASTER, &|r| r.steering.caster),
+        at_design(&figures::KINGPIN_INCLINATION, &|r| r.steering.kingpin_inclination),
+        at_design(&figures::SCRUB_RADIUS, &|r| r.steering.scrub_radius),
+        at_design(&figures::MECHANICAL_TRAIL, &|r| r.steering.mechanical_trail),
+        at_design(&figures::KINGPIN_OFFSET, &|r| r.steering.kingpin_offset),
     ]);
     f
 }
@@ -427,67 +377,27 @@ pub(super) fn roll(models: &Models, s: &Settings) -> Result<AnalysisReport, Stri
             Figure::maybe(
                 &format!("{key}_twist_per_roll"),
                 &format!("{name}: twist per degree of roll"),
-                "deg/deg",
+                Unit::DegreePerDegree,
                 3,
                 per_roll(slope(&|r| r.member_twists[k])),
                 &roll_why,
             )
         });
         let mut figures = vec![
-            Figure::maybe(
-                "roll_centre_height",
-                "roll centre height at design",
-                "mm",
-                1,
-                rc.map(|c| c.height * 1e3),
-                &rc_why,
-            ),
-            Figure::maybe(
-                "roll_centre_lateral",
-                "roll centre lateral offset at design (left +)",
-                "mm",
-                2,
-                rc.map(|c| c.lateral * 1e3),
-                &rc_why,
-            ),
-            Figure::maybe(
-                "roll_steer",
-                "roll steer, left wheel (toe-in +)",
-                "deg/deg",
-                4,
-                per_roll(slope(&|r| r.left.toe)),
-                &roll_why,
-            ),
-            Figure::maybe(
-                "roll_camber",
-                "roll camber to ground, left wheel",
-                "deg/deg",
-                4,
+            Figure::of(&figures::TRACK, design.ok().map(|d| d.row.track), &why),
+            Figure::of(&figures::ROLL_CENTRE_HEIGHT, rc.map(|c| c.height), &rc_why),
+            Figure::of(&figures::ROLL_CENTRE_LATERAL, rc.map(|c| c.lateral), &rc_why),
+            Figure::of(&figures::ROLL_STEER, per_roll(slope(&|r| r.left.toe)), &roll_why),
+            Figure::of(
+                &figures::ROLL_CAMBER,
                 per_roll(slope(&|r| ground_camber(r.left.camber, Side::Left, r.roll_angle))),
                 &roll_why,
             ),
-            Figure::maybe(
-                "roll_stiffness",
-                "roll stiffness (springs, bushings and bars)",
-                "N·m/deg",
-                0,
-                total.map(|k| k.to_radians()),
-                &roll_why,
-            ),
-            Figure::maybe(
-                "anti_roll_bar_roll_stiffness",
-                "roll stiffness of the anti-roll bars",
-                "N·m/deg",
-                0,
-                bars.map(|k| k.to_radians()),
-                &bar_why,
-            ),
-            Figure::maybe(
-                "anti_roll_bar_share",
-                "anti-roll bars' share of the roll stiffness",
-                "%",
-                1,
-                bars.zip(total).map(|(b, t)| 100.0 * b / t).filter(|v| v.is_finite()),
+            Figure::of(&figures::ROLL_STIFFNESS, total, &roll_why),
+            Figure::of(&figures::ANTI_ROLL_BAR_ROLL_STIFFNESS, bars, &bar_why),
+            Figure::of(
+                &figures::ANTI_ROLL_BAR_SHARE,
+                bars.zip(total).map(|(b, t)| b / t).filter(|v| v.is_finite()),
                 if has_bars && total == Some(0.0) { "the roll stiffness is zero" } else { &bar_why },
             ),
         ];
@@ -631,42 +541,20 @@ pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, 
         let why = design.err().unwrap_or_default();
         let mean_steer =
             |r: &AxleRow| 0.5 * (steer_angle(r.left.toe, Side::Left) + steer_angle(r.right.toe, Side::Right));
-        let per_rack = design.ok().map(|d| d.rate(|r| deg(mean_steer(r))));
-        let mut f = vec![Figure::maybe(
-            "steer_per_rack_travel",
-            "steer per rack travel at design (mean of both wheels)",
-            "deg/mm",
-            4,
-            per_rack.map(|d| d * 1e-3),
-            why,
-        )];
+        let per_rack = design.ok().map(|d| d.rate(mean_steer));
+        let mut f = vec![Figure::of(&figures::STEER_PER_RACK_TRAVEL, per_rack, why)];
         f.push(match (per_rack, c_factor) {
             // A rack that does not steer the wheels at design has no ratio (a hand wheel turning forever).
-            (Some(d), Some(_)) if d.abs() < 1e-9 => Figure::maybe(
-                "steering_ratio",
-                "overall steering ratio at design",
-                ":1",
-                2,
+            (Some(d), Some(_)) if d.abs() < 1e-11 => Figure::of(
+                &figures::STEERING_RATIO,
                 None,
                 "the rack travel does not steer the wheels at design: check the tie rods (tie_rod_inner, \
                  tie_rod_outer) and their bushings",
             ),
-            (Some(d), Some(c)) => Figure::new(
-                "steering_ratio",
-                "overall steering ratio at design (hand wheel : road wheel)",
-                ":1",
-                2,
-                360.0 / (c * d.abs()),
-            ),
-            (None, _) => Figure::maybe("steering_ratio", "overall steering ratio at design", ":1", 2, None, why),
-            (_, None) => Figure::maybe(
-                "steering_ratio",
-                "overall steering ratio at design",
-                ":1",
-                2,
-                None,
-                &needs_vehicle("rack_travel_per_revolution"),
-            ),
+            // A turn of the hand wheel moves the rack by c, which turns the wheels by c·d.
+            (Some(d), Some(c)) => Figure::of(&figures::STEERING_RATIO, Some(std::f64::consts::TAU / (c * d.abs())), ""),
+            (None, _) => Figure::of(&figures::STEERING_RATIO, None, why),
+            (_, None) => Figure::of(&figures::STEERING_RATIO, None, &needs_vehicle("rack_travel_per_revolution")),
         });
         match wheelbase {
             Some(l) => {
@@ -685,7 +573,7 @@ pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, 
                     };
                     let end = angles().max_by(|a, b| a.1 .0.total_cmp(&b.1 .0));
                     let worst = angles()
-                        .map(|(i, (_, outer, ideal))| (i, deg(outer - ideal)))
+                        .map(|(i, (_, outer, ideal))| (i, outer - ideal))
                         .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()));
                     (end, worst)
                 };
@@ -705,47 +593,20 @@ pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, 
                 } else {
                     "the rack travel steers neither wheel"
                 };
-                let percent = |(i, o, ideal): (f64, f64, f64)| 100.0 * (i - o) / (i - ideal);
-                let inner = |(i, _, _): (f64, f64, f64)| deg(i);
+                let fraction = |(i, o, ideal): (f64, f64, f64)| (i - o) / (i - ideal);
+                let inner = |(i, _, _): (f64, f64, f64)| i;
                 let discretized = |mut f: Figure, coarse: Option<f64>| {
                     f.error = f.value.zip(coarse).map(|(a, b)| (a - b).abs()).filter(|e| e.is_finite());
                     f
                 };
+                f.push(discretized(Figure::of(&figures::ACKERMANN, end.map(fraction), none), coarse_end.map(fraction)));
                 f.push(discretized(
-                    Figure::maybe(
-                        "ackermann",
-                        "Ackermann at full steer (100 % = ideal)",
-                        "%",
-                        1,
-                        end.map(percent),
-                        none,
-                    ),
-                    coarse_end.map(percent),
-                ));
-                f.push(discretized(
-                    Figure::maybe(
-                        "inner_steer_at_full_rack",
-                        "inner wheel steer at full rack travel",
-                        "deg",
-                        2,
-                        end.map(inner),
-                        none,
-                    ),
+                    Figure::of(&figures::INNER_STEER_AT_FULL_RACK, end.map(inner), none),
                     coarse_end.map(inner),
                 ));
-                f.push(discretized(
-                    Figure::maybe(
-                        "ackermann_error",
-                        "largest outer-wheel error against ideal Ackermann",
-                        "deg",
-                        3,
-                        worst,
-                        none,
-                    ),
-                    coarse_worst,
-                ));
+                f.push(discretized(Figure::of(&figures::ACKERMANN_ERROR, worst, none), coarse_worst));
             }
-            None => f.push(Figure::maybe("ackermann", "Ackermann", "%", 1, None, &needs_vehicle("wheelbase"))),
+            None => f.push(Figure::of(&figures::ACKERMANN, None, &needs_vehicle("wheelbase")).labelled("Ackermann")),
         }
         f
     };
