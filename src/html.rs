@@ -102,8 +102,9 @@ fn write_page(
         writeln!(out, "<h2>Sensitivities</h2>")?;
         writeln!(
             out,
-            "<p class=\"note\">exact derivatives through the equilibrium (of the corrected path), to {} parameters; \
-             each effect per mm of a length or per % of anything else; every derivative is in sensitivity.csv</p>",
+            "<p class=\"note\">derivatives through the equilibrium (of the corrected path), to {} parameters; \
+             each effect per mm of a length or per % of anything else; every derivative, with its error \
+             estimate, is in sensitivity.csv</p>",
             parameters.len()
         )?;
         write_sensitivity_sections(out, suite, parameters, "h3")?;
@@ -205,8 +206,8 @@ fn write_sensitivity_page(
 ) -> std::fmt::Result {
     let name = crate::plot::shown(model_name, NAME_SHOWN);
     let lede = format!(
-        "{} analyses, {} parameters; exact derivatives through the equilibrium, each effect per mm of a length \
-         or per % of anything else; every derivative is in sensitivity.csv.",
+        "{} analyses, {} parameters; derivatives through the equilibrium, each effect per mm of a length or per \
+         % of anything else; every derivative, with its error estimate, is in sensitivity.csv.",
         suite.analyses.len(),
         parameters.len()
     );
@@ -284,7 +285,7 @@ fn write_tolerance_page(
 ) -> std::fmt::Result {
     let name = crate::plot::shown(model_name, NAME_SHOWN);
     let lede = format!(
-        "{} numbers within their tolerances, {} figures; first order from the exact sensitivities (worst case: \
+        "{} numbers within their tolerances, {} figures; first order from the sensitivities (worst case: \
          every number at the end of its band that moves the figure the same way; σ: the numbers independent and \
          uniform over their bands){}.",
         stack.bands.len(),

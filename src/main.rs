@@ -66,15 +66,16 @@ pub enum Command {
     /// parallel wheel travel ±20 mm in 8 steps, corrected mode.
     #[command(after_help = EXIT_STATUS)]
     Batch(BatchArgs),
-    /// Exact sensitivities of every figure and every table cell of the K&C suite (or one analysis) to
-    /// numbers of the model file, derived through the equilibrium
+    /// Sensitivities of every figure and every table cell of the K&C suite (or one analysis) to numbers
+    /// of the model file, through the equilibrium, each with its error estimate
     ///
     /// Each parameter is a JSON pointer into the model file, as batch variants name them
     /// (/suspension/macpherson/hardpoints/tie_rod_inner/2, /suspension/macpherson/spring/rate); --hardpoints
-    /// takes every coordinate of every hardpoint. Writes sensitivity.csv (analysis, figure × parameter:
-    /// derivative and effect per mm or per %, or why there is none) and sensitivity_<table>.csv per
-    /// analysis (every cell's derivative), and prints each figure's parameters ranked by effect. Corrected
-    /// mode.
+    /// takes every coordinate of every hardpoint. Each derivative is a Richardson difference of the recorded
+    /// equilibria moved one Newton iteration by the moved model, with its error estimate. Writes
+    /// sensitivity.csv (analysis, figure × parameter: derivative, its error estimate and effect per mm or
+    /// per %, or why there is none) and sensitivity_<table>.csv per analysis (every cell's derivative and
+    /// its estimate), and prints each figure's parameters ranked by effect. Corrected mode.
     #[command(after_help = EXIT_STATUS)]
     Sensitivity(SensitivityArgs),
     /// Move the free numbers of a model within their bounds until its figures and curves meet targets
@@ -84,7 +85,7 @@ pub enum Command {
     /// value] "points", or a "measured" K&C rig CSV of an analysis, each with its "tolerance" and an
     /// optional "range"), optional "constraints" (a "distance" between two hardpoints within min and max,
     /// a hardpoint kept "outside_sphere" or "outside_box") and "steps". Bound-constrained Gauss-Newton with
-    /// the exact sensitivities. Writes tuned.json (the model file with the numbers moved, every other key
+    /// the sensitivities. Writes tuned.json (the model file with the numbers moved, every other key
     /// and the order of keys kept), tune.csv (each iteration), tune_targets.csv (each residual before and
     /// after) and report.html; exits 1 when a target is not met, saying why.
     #[command(after_help = EXIT_STATUS)]
@@ -94,7 +95,7 @@ pub enum Command {
     ///
     /// TOLERANCES is JSON: "tolerances" (each number's JSON pointer and its ± band in the file's units, or
     /// "15%"), "hardpoints" (± for every hardpoint coordinate), "analyses" (default: the suite) and
-    /// "steps". First order from the exact sensitivities: each figure's worst case and standard deviation
+    /// "steps". First order from the sensitivities: each figure's worst case and standard deviation
     /// (the numbers independent and uniform over their bands), its contributors ranked; --monte-carlo N
     /// checks it on N sampled models. Writes tolerance.csv, tolerance_contributions.csv and report.html.
     #[command(after_help = EXIT_STATUS)]
@@ -193,7 +194,7 @@ pub struct RunArgs {
     /// warning (limit-point) names the load
     #[arg(long)]
     pub through_limits: bool,
-    /// Also the exact sensitivities of every figure and cell to every hardpoint coordinate (of the
+    /// Also the sensitivities of every figure and cell to every hardpoint coordinate (of the
     /// corrected path, whatever --mode): sensitivity.csv and sensitivity_<table>.csv, and a section of
     /// report.html with each figure's largest effects (as `sensitivity --hardpoints` gives them)
     #[arg(long)]

@@ -1037,15 +1037,20 @@ fn sensitivity_gives_the_derivatives_that_reruns_of_the_model_give() {
         // their rounding over their steps).
         assert!((derivative - rerun).abs() < 1e-7 * rerun.abs(), "{key}: {derivative} vs {rerun}");
         assert_eq!(r[2].to_string(), unit);
-        assert_eq!(r[8].to_string(), "mm");
-        let effect: f64 = r[7].parse().unwrap();
+        // Its error estimate: the re-runs' difference lies within it and their own extrapolation's move.
+        let error: f64 = r[7].parse().unwrap();
+        let re_runs = (rerun - (b - c) / (2.0 * h)).abs();
+        println!("{analysis} {key}: ± {error:e}, the re-runs' ± {re_runs:e}");
+        assert!((derivative - rerun).abs() <= error + re_runs, "{key}: {derivative} ± {error} vs {rerun} ± {re_runs}");
+        assert_eq!(r[9].to_string(), "mm");
+        let effect: f64 = r[8].parse().unwrap();
         assert!((effect - derivative * 1e-3).abs() <= 1e-12 * derivative.abs());
         // The figure itself is the run's.
         let value: f64 = r[3].parse().unwrap();
         assert!((value - figure_at(0.0, analysis, key)).abs() < 1e-9, "{key}: {value}");
     }
     // A rate's effect is per percent.
-    assert_eq!(row("parallel-travel", "bump_steer", "/suspension/macpherson/spring/rate")[8].to_string(), "%");
+    assert_eq!(row("parallel-travel", "bump_steer", "/suspension/macpherson/spring/rate")[9].to_string(), "%");
     // Bad parameters and settings are refused by name, before anything is written.
     for (args, says) in [
         (vec!["--param", "/suspension/macpherson/hardpoints/nowhere/0"], "names nothing in the model"),

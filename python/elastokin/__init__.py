@@ -248,15 +248,19 @@ class Model:
         steps: int = 32,
         figures_only: bool = False,
     ) -> Dict[str, Any]:
-        """Exact sensitivities of one analysis of the K&C suite (``analysis``, as ``run(analyses=...)``
-        names them), as ``elastokin sensitivity`` gives them: derived through the equilibrium, with no
-        equilibrium solved again.
+        """Sensitivities of one analysis of the K&C suite (``analysis``, as ``run(analyses=...)``
+        names them), as ``elastokin sensitivity`` gives them: through the equilibrium, with no equilibrium
+        solved again (Richardson differences of the recorded equilibria moved one Newton iteration by the
+        moved model), each with its error estimate.
 
         ``parameters`` are JSON pointers into the model file (as batch variants name them; every hardpoint
         coordinate when None). Gives a dict: ``analysis``, ``parameters``, their ``values``, the table's
-        ``columns``, every column by name (its rows, NaN where empty) with its derivatives ``d_<column>`` as a
-        (rows, parameters) array, and ``figures``: each headline figure by key with its ``value``, ``unit``,
-        ``derivatives`` (one per parameter, NaN where there is none) and ``no_derivative`` (why, or None).
+        ``columns``, every column by name (its rows, NaN where empty) with its derivatives ``d_<column>`` and
+        their error estimates ``d_<column>_error`` as (rows, parameters) arrays, and ``figures``: each
+        headline figure by key with its ``value``, ``unit``, ``derivatives`` (one per parameter, NaN where
+        there is none) and ``derivative_errors`` as ``sensitivity.csv`` writes them, the same in SI
+        (``si_value``, ``si_unit``, ``si_derivatives``, ``si_derivative_errors``), and ``no_derivative``
+        (why, or None).
         Every derivative is per unit of the parameter as the file gives it (per m of a hardpoint coordinate,
         per N/m of a rate). With ``figures_only``, the rows are read as far as the figures read them (as
         ``elastokin sensitivity --figures-only``: no force in every joint and element of a load sweep, the
@@ -310,8 +314,8 @@ class Model:
         range: Optional[Tuple[float, float]] = None,
         steps: int = 32,
     ) -> Any:
-        """A function of the parameters' values ``x`` giving ``((figure − target)², gradient)`` with the exact
-        gradient, which ``scipy.optimize.minimize(f, x0, jac=True)`` takes as it is. ``figure`` is a headline
+        """A function of the parameters' values ``x`` giving ``((figure − target)², gradient)``, the gradient
+        from the sensitivities, which ``scipy.optimize.minimize(f, x0, jac=True)`` takes as it is. ``figure`` is a headline
         figure's key of ``analysis`` (as ``summary.json`` names it: ``"bump_steer"``, ``"wheel_rate"``, …) in
         its unit; ``x0`` is ``sensitivities(parameters)["values"]``."""
         pointers = [str(p) for p in parameters]

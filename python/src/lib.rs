@@ -357,7 +357,7 @@ impl Model {
         Ok(d)
     }
 
-    /// Exact sensitivities of one analysis of the K&C suite to the numbers at `parameters` (JSON pointers),
+    /// Sensitivities of one analysis of the K&C suite to the numbers at `parameters` (JSON pointers),
     /// as the command's `sensitivity` gives them: a dict of the analysis's name, the parameters and their
     /// values, the table's `columns`, every column by name (its rows) and its derivatives as
     /// `d_<column>` (rows × parameters), and `figures`: every figure of the report by key, its value, unit
@@ -385,26 +385,31 @@ impl Model {
         let d = PyDict::new(py);
         // Empty cells and missing derivatives are NaN in numpy.
         let numbers = |v: Vec<Option<f64>>| v.into_iter().map(|x| x.unwrap_or(f64::NAN)).collect::<Vec<f64>>();
-        let rates = |v: Vec<elastokin_suspensions::design::Rate>| numbers(v.into_iter().map(|r| r.ok()).collect());
+        let rates = |v: &[elastokin_suspensions::design::Rate]| numbers(v.iter().map(|r| r.ok().map(|d| d.value)).collect());
+        let errors = |v: &[elastokin_suspensions::design::Rate]| numbers(v.iter().map(|r| r.ok().map(|d| d.error)).collect());
         d.set_item("analysis", which.name())?;
         d.set_item("parameters", p.pointers.clone())?;
         d.set_item("values", PyArray1::from_vec(py, p.values.clone()))?;
         d.set_item("columns", s.report.table.columns.clone())?;
         for name in &s.report.table.columns {
             d.set_item(name, PyArray1::from_vec(py, numbers(s.column(name))))?;
-            // Row × parameter, the form numpy users index.
-            let columns: Vec<Vec<f64>> = (0..p.len()).map(|k| rates(s.d_column(name, k))).collect();
-            let rows: Vec<Vec<f64>> =
-                (0..s.report.table.rows.len()).map(|r| columns.iter().map(|c| c[r]).collect()).collect();
-            let array = PyArray2::from_vec2(py, &rows).map_err(|e| AnalysisError::new_err(e.to_string()))?;
-            d.set_item(format!("d_{name}"), array)?;
+            // Row × parameter, the form numpy users index; the derivatives and their error estimates.
+            let derivatives: Vec<Vec<elastokin_suspensions::design::Rate>> = (0..p.len()).map(|k| s.d_column(name, k)).collect();
+            type Read<'a> = &'a dyn Fn(&[elastokin_suspensions::design::Rate]) -> Vec<f64>;
+            for (key, read) in [(format!("d_{name}"), &rates as Read), (format!("d_{name}_error"), &errors)] {
+                let columns: Vec<Vec<f64>> = derivatives.iter().map(|d| read(d)).collect();
+                let rows: Vec<Vec<f64>> =
+                    (0..s.report.table.rows.len()).map(|r| columns.iter().map(|c| c[r]).collect()).collect();
+                let array = PyArray2::from_vec2(py, &rows).map_err(|e| AnalysisError::new_err(e.to_string()))?;
+                d.set_item(key, array)?;
+            }
         }
         let figures = PyDict::new(py);
         for f in &s.report.figures {
             let (_, derivatives) = s.figure(&f.key).expect("the report's own figure");
             let written = f.written(s.report.units);
             let factor = f.unit.shown_in(s.report.units).factor;
-            let si = rates(derivatives.clone());
+            let (si, si_errors) = (rates(&derivatives), errors(&derivatives));
             let entry = PyDict::new(py);
             entry.set_item("value", written.value)?;
             entry.set_item("unit", written.unit)?;
@@ -415,7 +420,9 @@ impl Model {
                 derivatives.iter().map(|r| r.err().map(|e| e.reason())).collect::<Vec<_>>(),
             )?;
             entry.set_item("derivatives", PyArray1::from_vec(py, si.iter().map(|d| d * factor).collect()))?;
+            entry.set_item("derivative_errors", PyArray1::from_vec(py, si_errors.iter().map(|e| e * factor).collect()))?;
             entry.set_item("si_derivatives", PyArray1::from_vec(py, si))?;
+            entry.set_item("si_derivative_errors", PyArray1::from_vec(py, si_errors))?;
             figures.set_item(&f.key, entry)?;
         }
         d.set_item("figures", figures)?;

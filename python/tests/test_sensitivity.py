@@ -33,14 +33,23 @@ def test_sensitivities_are_the_commands(tmp_path):
         if row[6] == "":
             assert numpy.isnan(got), (figure, parameter)
             continue
-        # The CSV holds 12 significant digits of the same number.
+        # The CSV holds 12 significant digits of the same number, and of its error estimate.
         assert got == pytest.approx(float(row[6]), rel=1e-11, abs=1e-300), (figure, parameter)
+        error = s["figures"][figure]["derivative_errors"][s["parameters"].index(parameter)]
+        assert header[7] == "derivative_error" and error == pytest.approx(float(row[7]), rel=1e-11)
+        # In SI: the derivative scaled as the value is.
+        si = s["figures"][figure]["si_derivatives"][s["parameters"].index(parameter)]
+        if s["figures"][figure]["si_value"]:
+            factor = s["figures"][figure]["value"] / s["figures"][figure]["si_value"]
+            assert si * factor == pytest.approx(got, rel=1e-12), (figure, parameter)
     # Every cell of the table, as sensitivity_parallel_travel.csv has it.
     header, cells = read_csv(out / "sensitivity_parallel_travel.csv")
     assert header[:3] == ["parameter", "travel_m", "d_toe_deg"] and len(cells) == 2 * 33
     for r, row in enumerate(cells[:33]):
         assert float(row[2]) == pytest.approx(s["d_toe_deg"][r, 0], rel=1e-11, abs=1e-300)
     assert s["d_toe_deg"].shape == (33, 2) and s["travel_m"].shape == (33,)
+    assert header[3] == "d_toe_deg_error" and s["d_toe_deg_error"].shape == (33, 2)
+    assert (s["d_toe_deg_error"] > 0).all()
     # The figure is the rate at design read off the path there: the rows' derivatives, differenced about
     # design (row 16) over one and two rows and Richardson extrapolated, give its derivative to the
     # extrapolation's fourth order in the 5 mm rows.

@@ -10,7 +10,7 @@
 //! Newton iteration of the moved model, at the load parameter the replayed call asks for. Everything the
 //! computation then reads off the equilibria (rows, slopes, compliances, reactions) is read as usual.
 //!
-//! Why this gives exact derivatives: at a recorded equilibrium `z` of the model `p`, one Newton iteration
+//! Why this gives the derivatives through the equilibrium: at a recorded equilibrium `z` of the model `p`, one Newton iteration
 //! of the model `p + δ` solved with the recorded tangent `A₀ = A(z, p)` lands on `z − A₀⁻¹ F(z, p+δ)`, a
 //! smooth function of `δ` whose derivative at `δ = 0` is `−A₀⁻¹ ∂F/∂p = dz/dp`, the implicit function
 //! theorem's rate of the equilibrium (its error against the moved equilibrium is of order `δ²`, as the

@@ -40,7 +40,7 @@
 //! - [`kc`]: the K&C suite, its figures and typed report;
 //! - [`study`]: design studies of many variants;
 //! - [`full_vehicle`]: the whole car from its two axles — roll, load transfer, the understeer budget;
-//! - [`design`]: parameters of a model file and the exact sensitivities of the figures to them;
+//! - [`design`]: parameters of a model file and the sensitivities of the figures to them (each with its error estimate);
 //! - [`compare`]: designs side by side, curves overlaid, figures and their differences.
 //!
 //! Dependencies: serde and serde_json for the model files and the K&C reports ([`kc`]), nalgebra for

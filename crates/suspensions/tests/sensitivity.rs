@@ -10,7 +10,7 @@ use elastokin_solver::Mode;
 use elastokin_suspensions::analysis::{parallel_wheel_travel_with, SweepExtras};
 use elastokin_suspensions::design::sensitivity::RELATIVE_STEP;
 use elastokin_suspensions::design::{
-    analysis_sensitivity, hardpoint_pointers, suite_sensitivity, NoDerivative, Parameters,
+    analysis_sensitivity, hardpoint_pointers, suite_sensitivity, Derivative, NoDerivative, Parameters,
 };
 use elastokin_suspensions::kc::{self, Analysis, Settings};
 use elastokin_suspensions::study::batch::base_document;
@@ -65,9 +65,13 @@ fn worst_against_re_solves_of(document: serde_json::Value, pointers: &[String]) 
         // are.
         let mut exact = Vec::new();
         for r in 0..toe.len() {
-            exact.extend([toe[r].unwrap().to_radians(), camber[r].unwrap().to_radians(), height[r].unwrap()]);
+            exact.extend([
+                toe[r].unwrap().value.to_radians(),
+                camber[r].unwrap().value.to_radians(),
+                height[r].unwrap().value,
+            ]);
         }
-        exact.extend(["bump_steer", "camber_gain"].map(|f| s.figure(f).unwrap().1[k].unwrap()));
+        exact.extend(["bump_steer", "camber_gain"].map(|f| s.figure(f).unwrap().1[k].unwrap().value));
         // Each kind against its own scale: toe, camber and height per row, then the two slopes.
         let rows = toe.len();
         let kinds: [Vec<usize>; 5] = [
@@ -271,6 +275,9 @@ fn against_report_re_runs(
         .collect();
     let (mut worst, mut figures, mut cells) = (0.0_f64, 0, 0);
     let mut worst_what = String::new();
+    // How far each derivative is from the re-runs' over what its own error estimate and the re-runs'
+    // uncertainty allow: at most 1 (the estimate bounds the error), and where it is largest.
+    let (mut bounded, mut bounded_what) = (0.0_f64, String::new());
     let unmoved = std::cell::OnceCell::new();
     for k in 0..p.len() {
         let (d, size, runs) = (1e-3 * size(k), size(k), &re_runs[k]);
@@ -285,7 +292,7 @@ fn against_report_re_runs(
         // and their differences carry `1.5 · estimate / d` of it, which is allowed too (a spring rate moves
         // a bushing's force by 1e-6 N per N/m: 5e-5 N over the re-runs' step, where the solver leaves 1e-9
         // N).
-        let mut judge = |exact: Option<f64>,
+        let mut judge = |exact: Option<Derivative>,
                          read: &dyn Fn(&kc::AnalysisReport) -> Option<f64>,
                          estimate: f64,
                          scale: Option<f64>,
@@ -295,7 +302,8 @@ fn against_report_re_runs(
                 return;
             };
             let fd = (8.0 * (b - c) - (a - e)) / (12.0 * d);
-            let exact = exact.unwrap_or_else(|| panic!("{what}: no derivative, re-runs give {fd}"));
+            let Derivative { value: exact, error: estimated } =
+                exact.unwrap_or_else(|| panic!("{what}: no derivative, re-runs give {fd}"));
             // And rounding: a hundred ulps of the values differenced (a force of 3 kN whose derivative is
             // next to zero leaves 1e-8 N/m of rounding over the step of 1e-4 m), and at least ten of a
             // thousand in the report's unit (a figure near zero in millimetres, such as a symmetric axle's
@@ -313,7 +321,14 @@ fn against_report_re_runs(
                 (1e-6 * scale.unwrap_or(fd.abs()) * size).max(1e-9).max(1.5 * estimate / d * size).max(rounding * size);
             let mut fraction = (exact - fd).abs() * size / allowed;
             let mut measured = String::new();
-            if fraction > 1.0 {
+            // The re-runs' own uncertainty: their extrapolation's move of the one-step difference, their
+            // solves' error over the step, their rounding (a hundred ulps, of ten thousand in the unit at
+            // least, over their step).
+            let re_runs = (fd - (b - c) / (2.0 * d)).abs()
+                + 1.5 * estimate / d
+                + (100.0 * largest).max(10.0 * 1e3) * f64::EPSILON / d;
+            let mut within = (exact - fd).abs() / (estimated + re_runs);
+            if fraction > 1.0 || within > 1.0 {
                 // Where that is not enough, the rounding of what is judged as measured: its largest
                 // departure from the re-runs' line over moves too small to change it otherwise, carried over
                 // both methods' steps (eight moves: four found a third of the spread). The twist beam's
@@ -333,7 +348,12 @@ fn against_report_re_runs(
                 });
                 let noise = scatter * over_steps * size;
                 fraction = (exact - fd).abs() * size / allowed.max(noise);
+                within = (exact - fd).abs() / (estimated + re_runs + scatter / d);
                 measured = format!(" (its rounding measured: {scatter:e}, allowing {:e})", noise / size);
+            }
+            if within > bounded {
+                bounded = within;
+                bounded_what = format!("{what}: {exact:e} ± {estimated:e} against the re-runs' {fd:e} ± {re_runs:e}");
             }
             if fraction > worst {
                 worst = fraction;
@@ -347,7 +367,7 @@ fn against_report_re_runs(
             let read = |r: &kc::AnalysisReport| r.figure(&f.key).and_then(|g| g.value).map(|v| v * factor);
             let estimate = runs.iter().filter_map(|r| r.figure(&f.key)?.error).fold(0.0, f64::max) * factor;
             let scale = Some(effects[j] / size);
-            let exact = s.figures[k][j].ok().map(|d| d * factor);
+            let exact = s.figures[k][j].ok().map(|d| Derivative { value: d.value * factor, error: d.error * factor });
             judge(exact, &read, estimate, scale, &format!("{name} {} {}", p.pointers[k], f.key));
             figures += 1;
         }
@@ -380,6 +400,8 @@ fn against_report_re_runs(
         }
     }
     println!("{}: worst {worst_what}", analysis.name());
+    println!("{}: the estimates bound the error, at worst {bounded:.3} of the bound: {bounded_what}", analysis.name());
+    assert!(bounded <= 1.0, "an error estimate does not bound its derivative's error: {bounded_what}");
     (worst, figures, cells)
 }
 
@@ -563,12 +585,12 @@ fn a_row_where_a_stop_touches_as_its_clearance_moves_has_no_derivative_and_says_
     assert_eq!(load[touch], Err(NoDerivative::Kink), "{load:?}");
     // Clear of the stop both ways: the clearance moves nothing.
     for (r, d) in load.iter().enumerate().take(touch) {
-        assert_eq!(*d, Ok(0.0), "row {r}");
+        assert_eq!(d.map(|d| d.value), Ok(0.0), "row {r}");
     }
     // In contact both ways: a derivative, as re-runs give it (the stop's rate through the linkage).
     let h = 1e-4;
     let fd = (load_at(&doc, hi + h, STEPS) - load_at(&doc, hi - h, STEPS)) / (2.0 * h);
-    let exact = load[STEPS].unwrap();
+    let exact = load[STEPS].unwrap().value;
     // Measured: 9e-12 relative (the stop's force is linear in the clearance).
     assert!(fd.abs() > 1e3 && (exact - fd).abs() < 1e-10 * fd.abs(), "{exact} against {fd}");
     for key in ["bump_steer", "wheel_rate"] {
@@ -701,7 +723,7 @@ fn the_sensitivities_are_the_same_to_the_bit_under_every_units_choice() {
             .flat_map(|a| {
                 a.report.figures.iter().map(|f| {
                     let (_, rates) = a.figure(&f.key).unwrap();
-                    let rates = rates.iter().map(|r| r.as_ref().ok().map(|d| d.to_bits())).collect();
+                    let rates = rates.iter().map(|r| r.as_ref().ok().map(|d| d.value.to_bits())).collect();
                     (f.key.clone(), f.value.map(f64::to_bits), rates)
                 })
             })

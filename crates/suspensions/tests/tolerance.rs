@@ -1,4 +1,4 @@
-//! Tolerance stack-up: the first-order spread of the figures from the exact sensitivities against a Monte
+//! Tolerance stack-up: the first-order spread of the figures from the sensitivities against a Monte
 //! Carlo of the model sampled within its tolerances, and bad TOLERANCES files refused by key.
 
 use elastokin_suspensions::design::tolerance::{read_tolerances, stack_up};

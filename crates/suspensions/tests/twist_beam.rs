@@ -495,7 +495,7 @@ fn the_twist_beams_figures_move_with_its_sections_as_re_runs_of_the_moved_model_
         let [up2, up, down, down2] = [1e-3, 5e-4, -5e-4, -1e-3].map(rerun);
         for key in ["roll_stiffness", "cross_member_twist_per_roll", "roll_steer", "bushing_share_of_roll_steer"] {
             let (_, rates) = s.figure(key).unwrap_or_else(|| panic!("no {key}"));
-            let exact = rates[k].unwrap_or_else(|e| panic!("{key}: {}", e.reason()));
+            let exact = rates[k].unwrap_or_else(|e| panic!("{key}: {}", e.reason())).value;
             let value = |r: &kc::AnalysisReport| figure(r, key);
             let differenced =
                 (8.0 * (value(&up) - value(&down)) - (value(&up2) - value(&down2))) / (12.0 * 5e-4 * p.values[k]);

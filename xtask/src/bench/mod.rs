@@ -6,7 +6,7 @@
 //!
 //! Sections (each a module named for what it measures): error against run time on the shipped models,
 //! the cost of one step against a bare factorization + solve, scaling with the number of bodies, stiff and
-//! extreme cases, batch throughput, the cost of exact sensitivities, and (when Python with Exudyn is installed) the same sweep in Exudyn,
+//! extreme cases, batch throughput, the cost of sensitivities, and (when Python with Exudyn is installed) the same sweep in Exudyn,
 //! side by side. Output in `bench/results/` (or `--out`): `latest.md`, one CSV per
 //! table, SVG plots; `--save NAME` writes `NAME.json` with the commit id and every figure, `--compare NAME`
 //! prints now/then per figure and flags what got slower than `--threshold` (default 1.25).

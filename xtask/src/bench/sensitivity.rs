@@ -1,4 +1,4 @@
-//! The cost of exact sensitivities: the K&C suite of the shipped MacPherson with the derivatives of every
+//! The cost of sensitivities: the K&C suite of the shipped MacPherson with the derivatives of every
 //! figure and every table cell with respect to all 24 hardpoint coordinates (`design::suite_sensitivity`),
 //! against the suite alone and against the 48 re-run suites a central-difference gradient takes; and the
 //! same for parallel travel alone.
@@ -96,9 +96,9 @@ pub fn run(s: &Settings) -> SectionOutput {
         let threads = rayon::current_num_threads();
         for (what, count, median) in [
             ("alone".to_string(), 0, alone.median),
-            ("with exact sensitivities, one thread".to_string(), n, serial.median),
-            ("with exact sensitivities of the figures alone, one thread".to_string(), n, serial_figures.median),
-            (format!("with exact sensitivities, {threads} threads"), n, parallel.median),
+            ("with sensitivities, one thread".to_string(), n, serial.median),
+            ("with sensitivities of the figures alone, one thread".to_string(), n, serial_figures.median),
+            (format!("with sensitivities, {threads} threads"), n, parallel.median),
             (format!("{} re-run (central differences)", 2 * n), n, differences.median),
         ] {
             table.row(vec![
@@ -112,8 +112,8 @@ pub fn run(s: &Settings) -> SectionOutput {
         }
         let key = name.replace(' ', "_");
         out.figure(&format!("sensitivity.{key}_alone_s"), alone.median, "s", Kind::Time);
-        out.figure(&format!("sensitivity.{key}_exact_24_s"), serial.median, "s", Kind::Time);
-        out.figure(&format!("sensitivity.{key}_figures_exact_24_s"), serial_figures.median, "s", Kind::Time);
+        out.figure(&format!("sensitivity.{key}_sensitivities_24_s"), serial.median, "s", Kind::Time);
+        out.figure(&format!("sensitivity.{key}_figures_sensitivities_24_s"), serial_figures.median, "s", Kind::Time);
         out.figure(&format!("sensitivity.{key}_differences_48_s"), differences.median, "s", Kind::Time);
         out.targets.push(Target {
             goal: format!(

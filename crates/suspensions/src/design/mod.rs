@@ -12,5 +12,5 @@ pub mod tune;
 
 pub use parameter::{hardpoint_pointers, Parameters};
 pub use sensitivity::{
-    analysis_sensitivity, suite_sensitivity, AnalysisSensitivity, NoDerivative, Rate, SuiteSensitivity,
+    analysis_sensitivity, suite_sensitivity, AnalysisSensitivity, Derivative, NoDerivative, Rate, SuiteSensitivity,
 };

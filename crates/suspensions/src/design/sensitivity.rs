@@ -1,6 +1,6 @@
-//! Sensitivities through the equilibrium: the exact derivatives of every figure and every table cell of a
-//! K&C analysis with respect to numbers of the model file, for any analysis of the suite and any model
-//! it runs on, with no equilibrium solved again.
+//! Sensitivities through the equilibrium: the derivatives of every figure and every table cell of a K&C
+//! analysis with respect to numbers of the model file, each with its error estimate, for any analysis of
+//! the suite and any model it runs on, with no equilibrium solved again.
 //!
 //! The analysis is run once as it is, its solves recorded
 //! ([`replay::record`](elastokin_solver::replay::record)), then once per parameter and move
@@ -14,7 +14,9 @@
 //! read by its own code on the moved model at the moved equilibria, so each figure is differentiated as it
 //! is defined; the four replays' central differences over `h` and `2h`, Richardson extrapolated, give the
 //! derivative with an error of order `h⁴`; the solver's tolerance enters only as the recorded equilibria's
-//! distance from the exact ones (a relative error of about 1e-9), not divided by the step.
+//! distance from the exact ones (a relative error of about 1e-9), not divided by the step. They are
+//! differences, not derivatives carried forward in closed form: each has its own error estimate ([`rate`]),
+//! which `crates/suspensions/tests/sensitivity.rs` holds against re-runs of the moved models.
 //!
 //! Each moved model is built in the coordinates of the model as it is, its bodies' reference points where
 //! the model's are ([`Models::moved`]): a hardpoint that also places a body (the wheel centre the
@@ -124,8 +126,18 @@ impl NoDerivative {
     }
 }
 
+/// A derivative and its error estimate (of the derivative, in its unit): how far it may be from the
+/// derivative of the exact equilibria (see [`rate`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Derivative {
+    /// The derivative.
+    pub value: f64,
+    /// Its estimated error.
+    pub error: f64,
+}
+
 /// A derivative, or why there is none.
-pub type Rate = Result<f64, NoDerivative>;
+pub type Rate = Result<Derivative, NoDerivative>;
 
 /// One K&C analysis as the report gives it, and the derivatives of its figures and table with respect to
 /// each parameter, per unit of the parameter as the file gives it: of a figure in SI, as the figure is
@@ -166,7 +178,7 @@ impl AnalysisSensitivity {
         let mut ranked: Vec<(usize, f64)> = (0..parameters.len())
             .filter_map(|k| {
                 let d = self.figures[k][j].ok()?;
-                Some((k, effect(&parameters.pointers[k], parameters.values[k], d)))
+                Some((k, effect(&parameters.pointers[k], parameters.values[k], d.value)))
             })
             .collect();
         ranked.sort_by(|a, b| b.1.abs().total_cmp(&a.1.abs()));
@@ -175,17 +187,21 @@ impl AnalysisSensitivity {
     }
 
     /// The table's derivatives as a table of their own (`sensitivity_<analysis>.csv`): per parameter and
-    /// row, the load parameter and the derivative of every other column (named `d_<column>`, per unit of
-    /// the parameter in the file; empty where there is none).
+    /// row, the load parameter and the derivative of every other column and its error estimate (named
+    /// `d_<column>` and `d_<column>_error`, per unit of the parameter in the file; empty where there is
+    /// none).
     pub fn row_table(&self, parameters: &Parameters) -> Table {
         let table = &self.report.table;
         let mut columns = vec!["parameter".to_string(), table.columns[0].clone()];
-        columns.extend(table.columns.iter().skip(1).map(|c| format!("d_{c}")));
+        columns.extend(table.columns.iter().skip(1).flat_map(|c| [format!("d_{c}"), format!("d_{c}_error")]));
         let mut rows = Vec::new();
         for (k, pointer) in parameters.pointers.iter().enumerate() {
             for (r, base) in table.rows.iter().enumerate() {
                 let mut row = vec![Cell::Text(pointer.clone()), base[0].clone()];
-                row.extend(self.table[k][r].iter().skip(1).map(|d| Cell::from(d.ok())));
+                row.extend(self.table[k][r].iter().skip(1).flat_map(|d| {
+                    let d = d.ok();
+                    [Cell::from(d.map(|d| d.value)), Cell::from(d.map(|d| d.error))]
+                }));
                 rows.push(row);
             }
         }
@@ -207,7 +223,8 @@ pub struct SuiteSensitivity {
 impl SuiteSensitivity {
     /// `sensitivity.csv`: one row per figure of every analysis and parameter — the analysis, the figure,
     /// its unit and value, the parameter and its value, the derivative (figure unit per unit of the
-    /// parameter in the file), the effect per millimetre or per percent, and why a derivative is missing.
+    /// parameter in the file) and its error estimate, the effect per millimetre or per percent, and why a
+    /// derivative is missing.
     pub fn figure_table(&self, parameters: &Parameters) -> Table {
         let columns = [
             "analysis",
@@ -217,6 +234,7 @@ impl SuiteSensitivity {
             "parameter",
             "parameter_value",
             "derivative",
+            "derivative_error",
             "effect",
             "effect_per",
             "no_derivative",
@@ -227,7 +245,7 @@ impl SuiteSensitivity {
                 let written = figure.written(a.report.units);
                 let factor = figure.unit.shown_in(a.report.units).factor;
                 for (k, pointer) in parameters.pointers.iter().enumerate() {
-                    let d = a.figures[k][j].map(|d| d * factor);
+                    let d = a.figures[k][j].map(|d| Derivative { value: d.value * factor, error: d.error * factor });
                     rows.push(vec![
                         Cell::Text(a.report.analysis.name().into()),
                         Cell::Text(figure.key.clone()),
@@ -235,8 +253,9 @@ impl SuiteSensitivity {
                         Cell::from(written.value),
                         Cell::Text(pointer.clone()),
                         Cell::from(parameters.values[k]),
-                        Cell::from(d.ok()),
-                        Cell::from(d.ok().map(|d| effect(pointer, parameters.values[k], d))),
+                        Cell::from(d.ok().map(|d| d.value)),
+                        Cell::from(d.ok().map(|d| d.error)),
+                        Cell::from(d.ok().map(|d| effect(pointer, parameters.values[k], d.value))),
                         Cell::Text(effect_unit(pointer).into()),
                         d.err().map_or(Cell::Empty, |e| Cell::Text(e.reason().into())),
                     ]);
@@ -254,27 +273,46 @@ pub fn sensitivity_settings(settings: &Settings) -> Settings {
     Settings { mode: Mode::Corrected, through_limits: false, motion: false, ..*settings }
 }
 
+/// The rounding a replayed value carries, in ulps of the largest value differenced, or of one unit of what
+/// is printed where the values are smaller (a figure near zero is the difference of larger numbers and
+/// carries their rounding, not its own). A rate at design is itself a difference along the path over a
+/// tenth of a millimetre, which carries a thousand ulps of the readings it differences (the
+/// vertical-force wheel rate's derivatives carry twice that many of the rate).
+const ROUNDING_ULPS: f64 = 1e4;
+
 /// The derivative from the values at the [`SHIFTS`] of `h`: central differences over one and two steps,
-/// Richardson extrapolated. Where a stop touched or left between the moves, `at_model` is the value at
-/// the model itself (replayed as the others), and a figure whose slopes either side of it disagree as no
-/// smooth figure's do has no derivative. `unit` is the size of a unit of what is printed, in the values'
-/// (a millimetre of a length held in metres: 1e-3).
-fn rate(values: [Option<f64>; 4], at_model: Option<Option<f64>>, h: f64, unit: f64) -> Rate {
+/// Richardson extrapolated, with its error estimate. Where a stop touched or left between the moves,
+/// `at_model` is the value at the model itself (replayed as the others), and a figure whose slopes either
+/// side of it disagree as no smooth figure's do has no derivative. `unit` is the size of a unit of what
+/// is printed, in the values' (a millimetre of a length held in metres: 1e-3); `relative`, the value's own
+/// error estimate relative to its size (the recorded equilibria's distance from the exact ones).
+///
+/// The estimate is the sum of the extrapolation's move of the one-step difference (which bounds the
+/// truncation of the extrapolated one, as a rate at design's is bounded), the values' rounding over the
+/// step, and what the recorded equilibria's own error leaves in it (the replays differentiate those, not
+/// the exact ones): `relative` of the derivative, or of the value per the parameter's size where the
+/// derivative is smaller (a derivative near zero carries the error of the value it is the rate of).
+fn rate(values: [Option<f64>; 4], at_model: Option<Option<f64>>, h: f64, unit: f64, relative: f64) -> Rate {
     let [Some(a), Some(b), Some(c), Some(d)] = values else { return Err(NoDerivative::MissingWhenMoved) };
+    let largest = |floor: f64, more: f64| [a, b, c, d, more].iter().fold(floor, |m, v| m.max(v.abs()));
     if let Some(at) = at_model {
         let f0 = at.ok_or(NoDerivative::MissingWhenMoved)?;
         let (right, left) = ((-3.0 * f0 + 4.0 * a - c) / (2.0 * h), (3.0 * f0 - 4.0 * b + d) / (2.0 * h));
-        // Rounding of the values read: ten thousand ulps of the largest, or of a thousand in the report's
-        // unit (a figure near zero, such as a symmetric axle's lateral roll-centre offset in mm, is the
-        // difference of numbers of that order and carries their rounding, not its own), over the step.
-        let noise = 1e4 * f64::EPSILON * [f0, a, b, c, d].iter().fold(1e3 * unit, |m, v| m.max(v.abs())) / h;
+        // The one-sided differences' rounding: ten thousand ulps of the largest value, or of a thousand
+        // printed units (a symmetric axle's lateral roll-centre offset in mm is the difference of
+        // coordinates of that order).
+        let noise = 1e4 * f64::EPSILON * largest(1e3 * unit, f0) / h;
         if (right - left).abs() > KINK * right.abs().max(left.abs()) + noise {
             return Err(NoDerivative::Kink);
         }
     }
-    let r = (8.0 * (a - b) - (c - d)) / (12.0 * h);
-    if r.is_finite() {
-        Ok(r)
+    let value = (8.0 * (a - b) - (c - d)) / (12.0 * h);
+    let one_step = (a - b) / (2.0 * h);
+    let rounding = ROUNDING_ULPS * f64::EPSILON * largest(unit, 0.0) / h;
+    let size = h / RELATIVE_STEP;
+    let error = (value - one_step).abs() + rounding + relative * value.abs().max(a.abs() / size);
+    if value.is_finite() && error.is_finite() {
+        Ok(Derivative { value, error })
     } else {
         Err(NoDerivative::MissingWhenMoved)
     }
@@ -365,10 +403,23 @@ fn parameter_rates(
         .iter()
         .map(|f| match f.value {
             None => Err(NoDerivative::Missing),
-            Some(_) => {
+            Some(v) => {
                 let unit = 1.0 / f.unit.shown().factor;
+                let relative = f.error.map_or(0.0, |e| e / v.abs()).min(1.0);
                 let at = at_model.as_ref().map(|m| value(m, &f.key));
-                rate([0, 1, 2, 3].map(|i| value(&moved[i], &f.key)), at, h, unit)
+                rate([0, 1, 2, 3].map(|i| value(&moved[i], &f.key)), at, h, unit, relative)
+            }
+        })
+        .collect();
+    // A cell's own error estimate relative to its column's largest value.
+    let column_relative: Vec<f64> = (0..report.table.columns.len())
+        .map(|c| {
+            let largest = report.table.rows.iter().filter_map(|r| r[c].number()).fold(0.0f64, |m, v| m.max(v.abs()));
+            let error = report.accuracy.columns.get(c).and_then(|(_, e)| *e).unwrap_or(0.0);
+            if largest > 0.0 {
+                (error / largest).min(1.0)
+            } else {
+                0.0
             }
         })
         .collect();
@@ -383,6 +434,7 @@ fn parameter_rates(
                         at_model.as_ref().map(|m| m.table.rows[r][c].number()),
                         h,
                         1.0,
+                        column_relative[c],
                     ),
                     _ => Err(NoDerivative::Missing),
                 })

@@ -176,7 +176,7 @@ pub fn stack_up(document: &Value, tolerances: &Tolerances) -> Result<StackUp, St
         for (j, figure) in a.report.figures.iter().enumerate() {
             let analysis = a.report.analysis;
             let Some(value) = figure.value else { continue };
-            let rates: Result<Vec<f64>, _> = a.figures.iter().map(|d| d[j]).collect();
+            let rates: Result<Vec<f64>, _> = a.figures.iter().map(|d| d[j].map(|d| d.value)).collect();
             let rates = match rates {
                 Ok(r) => r,
                 Err(e) => {

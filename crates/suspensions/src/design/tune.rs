@@ -190,7 +190,7 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
                 let reached = reached * factor;
                 let gradient = rates
                     .iter()
-                    .map(|r| r.map(|r| r * factor).map_err(|e| model(format!("{}: {}", t.label, e.reason()))))
+                    .map(|r| r.map(|r| r.value * factor).map_err(|e| model(format!("{}: {}", t.label, e.reason()))))
                     .collect::<Result<Vec<f64>, _>>()?;
                 let (residual, rates) = scaled_miss(t, reached, *value, &gradient).map_err(asked)?;
                 residuals.push(residual);
@@ -217,7 +217,7 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
                         .d_column(&table.columns[0], q)
                         .iter()
                         .filter_map(|d| d.ok())
-                        .fold(0.0f64, |m, d| m.max(d.abs()));
+                        .fold(0.0f64, |m, d| m.max(d.value.abs()));
                     if moved * x[q].abs().max(0.1) > 1e-9 * span {
                         return Err(asked(format!(
                             "{}: the analysis's rows move with '{}' (its default range follows the model); give \
@@ -248,7 +248,7 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
                         for q in 0..n {
                             let d = rates[q][j]
                                 .map_err(|e| model(format!("{}: at {}: {}", t.label, along[j], e.reason())))?;
-                            gradient[q] += w * d;
+                            gradient[q] += w * d.value;
                         }
                     }
                     let (residual, rates) = scaled_miss(t, reached, aim, &gradient).map_err(asked)?;
