@@ -74,3 +74,19 @@ fn bad_tolerances_are_refused_by_key() {
         assert!(e.starts_with("tolerances.json: ") && e.contains(says), "{says}: {e}");
     }
 }
+
+/// A band of 1e308 made every spread it touched infinite, written as blank figures and empty cells with
+/// exit 0: the stack-up is refused, naming the number whose band it is and what it spreads.
+#[test]
+fn a_band_that_spreads_a_figure_beyond_any_number_is_refused_by_its_number() {
+    let doc = document("macpherson.json");
+    let pointer = "/suspension/macpherson/hardpoints/tie_rod_inner/2";
+    let text = json!({ "tolerances": { pointer: 1e308 }, "analyses": ["parallel-travel"], "steps": 4 }).to_string();
+    let t = read_tolerances(&text, "tolerances.json", &doc).unwrap();
+    let e = stack_up(&doc, &t).unwrap_err();
+    assert!(e.contains(pointer) && e.contains("±1e308") && e.contains("parallel-travel"), "{e}");
+    // A band a part is made to is not.
+    let text = json!({ "tolerances": { pointer: 1e-3 }, "analyses": ["parallel-travel"], "steps": 4 }).to_string();
+    let spreads = stack_up(&doc, &read_tolerances(&text, "tolerances.json", &doc).unwrap()).unwrap().spreads;
+    assert!(!spreads.is_empty() && spreads.iter().all(|s| s.worst_case.is_finite() && s.sigma.is_finite()));
+}

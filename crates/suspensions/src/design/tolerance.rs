@@ -162,7 +162,8 @@ pub struct StackUp {
     pub settings: Settings,
 }
 
-/// The first-order stack-up of `tolerances` on the model `document`.
+/// The first-order stack-up of `tolerances` on the model `document`. Refused, naming the number: a band that
+/// spreads a figure beyond any finite number.
 pub fn stack_up(document: &Value, tolerances: &Tolerances) -> Result<StackUp, String> {
     let pointers: Vec<String> = tolerances.bands.iter().map(|(p, _)| p.clone()).collect();
     let bands: Vec<f64> = tolerances.bands.iter().map(|(_, t)| *t).collect();
@@ -186,9 +187,21 @@ pub fn stack_up(document: &Value, tolerances: &Tolerances) -> Result<StackUp, St
             };
             let mut contributions: Vec<(usize, f64)> =
                 rates.iter().zip(&bands).map(|(d, t)| d * t).enumerate().collect();
-            let worst_case = contributions.iter().map(|(_, c)| c.abs()).sum();
+            let worst_case: f64 = contributions.iter().map(|(_, c)| c.abs()).sum();
             let sigma = (contributions.iter().map(|(_, c)| c * c).sum::<f64>() / 3.0).sqrt();
             contributions.sort_by(|a, b| b.1.abs().total_cmp(&a.1.abs()));
+            // A band no part is made to spreads the figure past any number: refused by the number it is of.
+            if !(worst_case.is_finite() && sigma.is_finite()) {
+                let k = contributions[0].0;
+                return Err(format!(
+                    "the band ±{:e} of '{}' spreads {} {} beyond any number: give a band a part can be made to, \
+                     in the file's units",
+                    bands[k],
+                    pointers[k],
+                    analysis.name(),
+                    figure.key
+                ));
+            }
             spreads.push(Spread {
                 analysis,
                 figure: figure.key.clone(),
