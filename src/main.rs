@@ -526,6 +526,22 @@ fn read_model(path: &Path) -> Result<ModelInput, Failure> {
     Ok(ModelInput { bytes, file, imported })
 }
 
+/// Under `--strict`, a model its plausibility checks warn of (`check`) is refused before any time is spent
+/// on it, every command alike (exit 2); a model the checks cannot build is left to the command to refuse.
+fn refuse_implausible(path: &Path, check: Option<&elastokin::suspensions::check::ModelCheck>) -> Result<(), Failure> {
+    let Some(check) = check.filter(|c| !c.warnings.is_empty()) else { return Ok(()) };
+    let lines: Vec<String> = check.warnings.iter().map(|w| format!("warning [{}]: {}", w.code, w.message)).collect();
+    Err(Failure::Input(format!("{}: refused under --strict:\n{}", path.display(), lines.join("\n"))))
+}
+
+/// [`refuse_implausible`] of the model in `file` at `path`, when `strict`.
+fn strict_model(path: &Path, file: &SuspensionFile, strict: bool) -> Result<(), Failure> {
+    if strict {
+        refuse_implausible(path, elastokin::suspensions::check_model(file).ok().as_ref())?;
+    }
+    Ok(())
+}
+
 fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Failure> {
     if args.arc_step.is_some() && args.sweeps.analysis.is_none() {
         return Err(Failure::Input(
@@ -565,17 +581,7 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
     // reports the same check.
     let model_check = elastokin::suspensions::check_model(&file).ok();
     if strict {
-        if let Some(check) = &model_check {
-            if !check.warnings.is_empty() {
-                let lines: Vec<String> =
-                    check.warnings.iter().map(|w| format!("warning [{}]: {}", w.code, w.message)).collect();
-                return Err(Failure::Input(format!(
-                    "{}: refused under --strict:\n{}",
-                    args.model.display(),
-                    lines.join("\n")
-                )));
-            }
-        }
+        refuse_implausible(&args.model, model_check.as_ref())?;
     }
     let mut provenance = Provenance::new(&args.model, &bytes, kc::mode_word(mode), args.sweeps.steps);
     provenance.wheel = Some(if settings.height_held { "held" } else { "free" });
@@ -726,8 +732,9 @@ fn import(args: ImportArgs, out: &Stdout) -> Result<(), Failure> {
 }
 
 /// `expand`: the model file with its suspension in the general form, which builds the same model.
-fn expand(args: CheckArgs, out: &Stdout) -> Result<(), Failure> {
+fn expand(args: CheckArgs, out: &Stdout, strict: bool) -> Result<(), Failure> {
     let file = read_model(&args.model)?.file;
+    strict_model(&args.model, &file, strict)?;
     let general = SuspensionFile {
         suspension: elastokin::suspensions::Template::General(Box::new(file.suspension.expand())),
         ..file
@@ -736,7 +743,7 @@ fn expand(args: CheckArgs, out: &Stdout) -> Result<(), Failure> {
     Ok(())
 }
 
-fn check(args: CheckArgs, out: &Stdout) -> Result<(), Failure> {
+fn check(args: CheckArgs, out: &Stdout, strict: bool) -> Result<(), Failure> {
     let model = args.model.display();
     let read = read_model(&args.model)?;
     if let Some(line) = read.format_line() {
@@ -770,11 +777,20 @@ fn check(args: CheckArgs, out: &Stdout) -> Result<(), Failure> {
     for line in d.messages() {
         out.line(line)?;
     }
-    out.line("every body is restrained")
+    out.line("every body is restrained")?;
+    // The whole report first, then the refusal: `check` is where a user reads why.
+    if strict && !plausibility.warnings.is_empty() {
+        return Err(Failure::Input(format!(
+            "{model}: {} warning(s) under --strict (above)",
+            plausibility.warnings.len()
+        )));
+    }
+    Ok(())
 }
 
-fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> {
+fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Failure> {
     let read = read_model(&args.model)?;
+    strict_model(&args.model, &read.file, strict)?;
     if let Some(line) = read.format_line() {
         out.line(line)?;
     }
@@ -884,7 +900,7 @@ fn write_sensitivities(
 
 /// `sensitivity`: every figure's and cell's derivatives with respect to numbers of the model file, for the
 /// suite or one analysis.
-fn sensitivity(args: SensitivityArgs, out: &Stdout) -> Result<(), Failure> {
+fn sensitivity(args: SensitivityArgs, out: &Stdout, strict: bool) -> Result<(), Failure> {
     use elastokin::suspensions::design::{self, sensitivity::effect_unit};
     let settings = Settings {
         range: args.sweeps.range,
@@ -894,6 +910,7 @@ fn sensitivity(args: SensitivityArgs, out: &Stdout) -> Result<(), Failure> {
     };
     args.sweeps.check(&settings)?;
     let read = read_model(&args.model)?;
+    strict_model(&args.model, &read.file, strict)?;
     if let Some(line) = read.format_line() {
         out.line(line)?;
     }
@@ -974,9 +991,10 @@ fn sensitivity(args: SensitivityArgs, out: &Stdout) -> Result<(), Failure> {
 }
 
 /// `tune`: the model's free numbers moved to meet the targets.
-fn tune(args: TuneArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> {
+fn tune(args: TuneArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Failure> {
     use elastokin::suspensions::design::{targets::read_targets, tune, Parameters};
     let read = read_model(&args.model)?;
+    strict_model(&args.model, &read.file, strict)?;
     if let Some(line) = read.format_line() {
         out.line(line)?;
     }
@@ -1067,7 +1085,7 @@ fn tune(args: TuneArgs, out: &Stdout, quiet: bool) -> Result<(), Failure> {
 }
 
 /// `tolerance`: the figures' spread under the model's tolerances.
-fn compare(args: CompareArgs, out: &Stdout) -> Result<(), Failure> {
+fn compare(args: CompareArgs, out: &Stdout, strict: bool) -> Result<(), Failure> {
     use elastokin::suspensions::compare::{compare, Design};
     use elastokin::suspensions::design::targets::read_measured;
     let settings = Settings { range: args.sweeps.range, steps: args.sweeps.steps, motion: true, ..Settings::default() };
@@ -1084,6 +1102,7 @@ fn compare(args: CompareArgs, out: &Stdout) -> Result<(), Failure> {
             (bytes, Design::Measured { name, measured })
         } else {
             let read = read_model(path)?;
+            strict_model(path, &read.file, strict)?;
             if let Some(line) = read.format_line() {
                 out.line(line)?;
             }
@@ -1134,7 +1153,7 @@ fn compare(args: CompareArgs, out: &Stdout) -> Result<(), Failure> {
     }
 }
 
-fn vehicle(args: VehicleArgs, out: &Stdout) -> Result<(), Failure> {
+fn vehicle(args: VehicleArgs, out: &Stdout, strict: bool) -> Result<(), Failure> {
     use elastokin::suspensions::full_vehicle::{check_axles, run_vehicle, VehicleFile};
     let (bytes, text) = read_input(&args.vehicle, "VEHICLE")?;
     let origin = args.vehicle.display().to_string();
@@ -1142,6 +1161,8 @@ fn vehicle(args: VehicleArgs, out: &Stdout) -> Result<(), Failure> {
     let dir = args.vehicle.parent().unwrap_or(Path::new("."));
     let (front_path, rear_path) = (dir.join(&file.front), dir.join(&file.rear));
     let (front, rear) = (read_model(&front_path)?, read_model(&rear_path)?);
+    strict_model(&front_path, &front.file, strict)?;
+    strict_model(&rear_path, &rear.file, strict)?;
     check_axles(&file, &front.file, &rear.file).map_err(|e| Failure::Input(format!("{origin}: {e}")))?;
     let settings = Settings { steps: args.steps, ..Settings::default() };
     let report =
@@ -1184,9 +1205,10 @@ fn vehicle(args: VehicleArgs, out: &Stdout) -> Result<(), Failure> {
     out.line(format!("wrote {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))
 }
 
-fn tolerance(args: ToleranceArgs, out: &Stdout) -> Result<(), Failure> {
+fn tolerance(args: ToleranceArgs, out: &Stdout, strict: bool) -> Result<(), Failure> {
     use elastokin::suspensions::design::tolerance::{read_tolerances, stack_up};
     let read = read_model(&args.model)?;
+    strict_model(&args.model, &read.file, strict)?;
     if let Some(line) = read.format_line() {
         out.line(line)?;
     }
@@ -1255,15 +1277,15 @@ fn main() -> ExitCode {
     let out = Stdout::new(cli.quiet);
     let result = match cli.command {
         Command::Run(args) => run(args, &out, cli.quiet, cli.strict),
-        Command::Check(args) => check(args, &out),
-        Command::Batch(args) => run_batch(args, &out, cli.quiet),
-        Command::Sensitivity(args) => sensitivity(args, &out),
-        Command::Tune(args) => tune(args, &out, cli.quiet),
-        Command::Tolerance(args) => tolerance(args, &out),
-        Command::Compare(args) => compare(args, &out),
-        Command::Vehicle(args) => vehicle(args, &out),
+        Command::Check(args) => check(args, &out, cli.strict),
+        Command::Batch(args) => run_batch(args, &out, cli.quiet, cli.strict),
+        Command::Sensitivity(args) => sensitivity(args, &out, cli.strict),
+        Command::Tune(args) => tune(args, &out, cli.quiet, cli.strict),
+        Command::Tolerance(args) => tolerance(args, &out, cli.strict),
+        Command::Compare(args) => compare(args, &out, cli.strict),
+        Command::Vehicle(args) => vehicle(args, &out, cli.strict),
         Command::Merge(args) => merge::merge(args, &out),
-        Command::Expand(args) => expand(args, &out),
+        Command::Expand(args) => expand(args, &out, cli.strict),
         Command::Import(args) => import(args, &out),
     };
     match result {

@@ -730,22 +730,68 @@ fn paper_mode_error_is_shown_warned_about_and_refused_under_strict() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// A MacPherson tie rod whose inner point sits on the steering axis cannot steer the wheel: `check` and
-/// `run` name it; `run --strict` refuses it before solving.
-#[test]
-fn an_implausible_model_is_named_and_refused_under_strict() {
-    let dir = scratch("implausible");
+/// The generic MacPherson with its tie rod's inner point 3 mm ahead of the steering axis, written in `dir`:
+/// a model the plausibility checks warn of (on the axis exactly, it is refused as degenerate).
+fn tie_rod_on_axis(dir: &Path) -> PathBuf {
     let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/generic/macpherson.json"))
         .unwrap();
     let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
     let points = &mut v["suspension"]["macpherson"]["hardpoints"];
     let point = |p: &serde_json::Value| -> [f64; 3] { [0, 1, 2].map(|k| p[k].as_f64().unwrap()) };
     let (a, b) = (point(&points["lower_ball_joint"]), point(&points["top_mount"]));
-    // 3 mm ahead of the axis (on it exactly, the model is refused as degenerate).
     points["tie_rod_inner"] =
         serde_json::json!([0, 1, 2].map(|k| a[k] + 0.4 * (b[k] - a[k]) + if k == 0 { 0.003 } else { 0.0 }));
     let model = dir.join("tie_rod_on_axis.json");
     std::fs::write(&model, v.to_string()).unwrap();
+    model
+}
+
+/// `--strict` was honoured by `run` alone: `check --strict` on a model that warns exited 0, and every
+/// other command ignored it. Each refuses the model now, exit 2, writing nothing; `check` after its report.
+#[test]
+fn strict_is_honoured_by_every_command_that_reads_a_model() {
+    let dir = scratch("strict-every-command");
+    let model = tie_rod_on_axis(&dir);
+    let model = model.to_str().unwrap();
+    let vehicle = dir.join("car.json");
+    let mut car: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string("examples/vehicle/compact_car.json").unwrap()).unwrap();
+    car["front"] = model.into();
+    car["rear"] = std::fs::canonicalize("examples/five_link.json").unwrap().to_str().unwrap().into();
+    std::fs::write(&vehicle, car.to_string()).unwrap();
+    let out = dir.join("out");
+    let out = out.to_str().unwrap();
+    let rate = "/suspension/macpherson/spring/rate";
+    for args in [
+        vec!["check", model],
+        vec!["expand", model],
+        vec!["batch", model, "examples/macpherson_variants.txt", "--out", out],
+        vec!["sensitivity", model, "--param", rate, "--out", out],
+        vec!["tune", model, "examples/targets/bump_steer.json", "--out", out],
+        vec!["tolerance", model, "examples/targets/tolerances.json", "--out", out],
+        vec!["compare", "examples/generic/macpherson.json", model, "--out", out],
+        vec!["vehicle", vehicle.to_str().unwrap(), "--out", out],
+    ] {
+        let o = elastokin(&[&args[..], &["--strict"]].concat());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{}: {err}", args[0]);
+        assert!(err.contains("under --strict"), "{}: {err}", args[0]);
+        assert!(!Path::new(out).exists(), "{}", args[0]);
+        // Without it, `check` reports the model's warning and exits 0.
+        if args[0] == "check" {
+            let o = elastokin(&args);
+            assert!(o.status.success() && String::from_utf8_lossy(&o.stdout).contains("tie-rod-on-steering-axis"));
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A MacPherson tie rod whose inner point sits on the steering axis cannot steer the wheel: `check` and
+/// `run` name it; `run --strict` refuses it before solving.
+#[test]
+fn an_implausible_model_is_named_and_refused_under_strict() {
+    let dir = scratch("implausible");
+    let model = tie_rod_on_axis(&dir);
     let model = model.to_str().unwrap();
     let o = elastokin(&["check", model]);
     let stdout = String::from_utf8_lossy(&o.stdout);
