@@ -121,6 +121,12 @@ fn read_shard(given: &Path) -> Result<ShardFile, Failure> {
             let said = number.map_or("a row without its variant number".into(), |n| format!("variant {n}"));
             return Err(rerun(format!("row {} is {said}", k + 1)));
         }
+        // A figure is a finite number, or empty where the variant failed: `batch` writes nothing else.
+        for (figure, cell) in columns.iter().zip(record.iter()).skip(1).take(batch::FIGURES.len()) {
+            if !(cell.is_empty() || cell.parse::<f64>().is_ok_and(f64::is_finite)) {
+                return Err(rerun(format!("row {} has {cell:?} for {figure}, which is not a finite number", k + 1)));
+            }
+        }
         rows.push(record.iter().take(columns.len() - 1).map(String::from).collect());
     }
     if rows.len() != holds.len() {

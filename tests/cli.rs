@@ -1386,6 +1386,45 @@ fn merge_refuses_shards_that_do_not_make_one_batch() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// `merge` copied whatever a shard's figure cells held (`inf`, `NaN`, `abc`, `1e999`, `0x10`, a NUL) into
+/// the merged batch: a cell that is not a finite number (or empty, as a failed variant's) is refused now,
+/// naming the shard, the row and the column, and nothing is written.
+#[test]
+fn merge_refuses_a_shard_whose_figures_are_not_finite_numbers() {
+    let dir = scratch("merge-figures");
+    let (m, v) = ("examples/generic/macpherson.json", "examples/generic/macpherson_variants.txt");
+    let shards = run_shards(&dir, "good", m, v, 2);
+    let file = |k: usize| shards[k].join("batch.csv").display().to_string();
+    let text = std::fs::read_to_string(file(1)).unwrap();
+    let (first, body) = text.split_once('\n').unwrap();
+    let mut reader = csv::ReaderBuilder::new().from_reader(body.as_bytes());
+    let header = reader.headers().unwrap().clone();
+    let rows: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
+    let figure = header.get(1).unwrap().to_string();
+    let out = dir.join("merged");
+    for bad in ["inf", "NaN", "abc", "1e999", "0x10", "1\u{0}2"] {
+        let mut writer = csv::Writer::from_writer(Vec::new());
+        writer.write_record(&header).unwrap();
+        for (k, row) in rows.iter().enumerate() {
+            let cells: Vec<&str> =
+                row.iter().enumerate().map(|(c, x)| if k == 0 && c == 1 { bad } else { x }).collect();
+            writer.write_record(&cells).unwrap();
+        }
+        let shard = dir.join("bad.csv");
+        std::fs::write(&shard, format!("{first}\n{}", String::from_utf8(writer.into_inner().unwrap()).unwrap()))
+            .unwrap();
+        let o = elastokin(&["merge", "--out", out.to_str().unwrap(), &file(0), shard.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{bad:?}: {err}");
+        assert!(err.contains("bad.csv") && err.contains("row 1") && err.contains(&figure), "{bad:?}: {err}");
+        assert!(err.contains("not a finite number") && !err.contains('\0'), "{bad:?}: {err}");
+        assert!(!out.exists(), "{bad:?}");
+    }
+    // The shard as written merges.
+    succeeds(&["merge", "--out", out.to_str().unwrap(), &file(0), &file(1)]);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// A model name of 21 000 characters, markup and an unterminated right-to-left override among them (as
 /// pasted from elsewhere), hung the run: the plots' subtitle was shortened one character at a time, each
 /// candidate measured whole. It is now shown shortened (the plots' subtitles, the page's title and
