@@ -12,7 +12,7 @@
 //! its reason, an empty table cell stays empty, and nothing non-finite is printed.
 
 use crate::suspensions::kc::{
-    figures, significant, AnalysisReport, Cell, Chart, Figure, KcReport, Table, Units, Warning,
+    figures, fixed, significant, AnalysisReport, Cell, Chart, Figure, KcReport, Table, Units, Warning,
 };
 use crate::suspensions::SuspensionFile;
 use html_escape::{encode_double_quoted_attribute as attr, encode_text as text};
@@ -235,12 +235,14 @@ fn write_sensitivity_sections(
         for (j, figure) in a.report.figures.iter().enumerate() {
             let written = figure.written(a.report.units);
             let Some(value) = written.value else { continue };
-            let factor = figure.unit.shown_in(a.report.units).factor;
             let bars: Vec<(String, f64)> = a
                 .largest_effects(j, parameters, 8)
                 .into_iter()
                 .map(|(k, e)| {
-                    (format!("{} (per {})", parameters.pointers[k], effect_unit(&parameters.pointers[k])), e * factor)
+                    (
+                        format!("{} (per {})", parameters.pointers[k], effect_unit(&parameters.pointers[k])),
+                        e * written.factor,
+                    )
                 })
                 .collect();
             writeln!(out, "<figure>")?;
@@ -671,7 +673,7 @@ fn write_hardpoints(out: Out, model: &SuspensionFile) -> std::fmt::Result {
             for (name, p) in points {
                 write!(out, "<tr><td><code>{}</code></td>", text(&name))?;
                 for v in p {
-                    write!(out, "<td>{}</td>", number(v * 1e3, 2))?;
+                    write!(out, "<td>{}</td>", fixed(v * 1e3, 2))?;
                 }
                 writeln!(out, "</tr>")?;
             }
@@ -816,7 +818,7 @@ fn write_figures(out: Out, figures: &[Figure], units: Units) -> std::fmt::Result
                 writeln!(
                     out,
                     "<td class=\"value\">{}</td><td>{}</td><td class=\"error-estimate\">{}</td></tr>",
-                    number(v, w.decimals),
+                    w.number(v),
                     text(w.unit),
                     text(&error)
                 )?;
@@ -990,22 +992,6 @@ fn cell(c: &Cell, digits: usize) -> String {
     }
 }
 
-/// `v` with `decimals` decimals; the caller has checked that it is finite (an empty string otherwise, so
-/// that nothing non-finite is ever printed).
-fn number(v: f64, decimals: usize) -> String {
-    if v.is_finite() {
-        let s = format!("{v:.decimals$}");
-        // A tiny negative number rounds to "-0.00": print it as the zero it reads as.
-        if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
-            s.trim_start_matches('-').to_string()
-        } else {
-            s
-        }
-    } else {
-        String::new()
-    }
-}
-
 /// `v` to six significant digits without trailing zeros (`-0.08`, `3800`, `2071.43`): a parameter as
 /// a person would type it.
 fn plain(v: f64) -> String {
@@ -1096,10 +1082,10 @@ mod tests {
 
     #[test]
     fn numbers_never_print_non_finite_or_negative_zero() {
-        assert_eq!(number(f64::NAN, 2), "");
-        assert_eq!(number(f64::INFINITY, 2), "");
-        assert_eq!(number(-0.001, 2), "0.00");
-        assert_eq!(number(-1.234, 2), "-1.23");
+        assert_eq!(fixed(f64::NAN, 2), "");
+        assert_eq!(fixed(f64::INFINITY, 2), "");
+        assert_eq!(fixed(-0.001, 2), "0.00");
+        assert_eq!(fixed(-1.234, 2), "-1.23");
         assert_eq!(cell(&Cell::Number(f64::NAN), 6), "");
         assert_eq!(significant(0.000123456, 2), "0.00012");
         assert_eq!(significant(1.2e-9, 2), "1.2e-9");

@@ -960,12 +960,12 @@ fn sensitivity(args: SensitivityArgs, out: &Stdout, strict: bool) -> Result<(), 
             }
             out.line(figure.line(a.report.units))?;
             // A figure without a unit (a ratio) changes by so much per mm or per %.
-            let shown = figure.unit.shown_in(a.report.units);
-            let unit = if shown.symbol == "-" { String::new() } else { format!("{} ", shown.symbol) };
+            let written = figure.written(a.report.units);
+            let unit = if written.unit == "-" { String::new() } else { format!("{} ", written.unit) };
             for (k, e) in a.largest_effects(j, &parameters, 3) {
                 let pointer = &parameters.pointers[k];
                 let per = effect_unit(pointer);
-                let e = kc::significant(e * shown.factor, 3);
+                let e = kc::significant(e * written.factor, 3);
                 out.line(format!("      {:<52} {:>12} {unit}per {per}", pointer, e))?;
             }
             let missing = (0..parameters.len()).filter_map(|k| a.figures[k][j].err().map(|e| (k, e))).next();

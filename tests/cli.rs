@@ -1318,8 +1318,8 @@ fn a_shard_that_is_not_i_of_n_is_refused_by_name() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// Shards that do not make one whole batch are refused with exit status 2, naming the file and what to
-/// give instead, and the previous merge is left as it was.
+/// Shards that do not make one whole batch, or whose figures are not numbers, are refused with exit status
+/// 2, naming the file and what to give instead, and the previous merge is left as it was.
 #[test]
 fn merge_refuses_shards_that_do_not_make_one_batch() {
     let dir = scratch("merge-refusals");
@@ -1347,12 +1347,43 @@ fn merge_refuses_shards_that_do_not_make_one_batch() {
     let first: Vec<&str> = first.lines().collect();
     let claim = first[0].replace("shard 1/3 of", "shard 1/1000000000000 of");
     std::fs::write(&vast, [claim.as_str(), first[1], first[2]].join("\n") + "\n").unwrap();
+    // A shard whose first row's first figure holds what no batch writes (merge copied them before): each
+    // refused naming the shard, the row and the column.
+    let (head, body) = text.split_once('\n').unwrap();
+    let mut reader = csv::ReaderBuilder::new().from_reader(body.as_bytes());
+    let header = reader.headers().unwrap().clone();
+    let rows: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
+    let figure = header.get(1).unwrap().to_string();
+    let not_numbers: Vec<PathBuf> = ["inf", "NaN", "abc", "1e999", "0x10", "1\u{0}2"]
+        .iter()
+        .enumerate()
+        .map(|(n, bad)| {
+            let mut writer = csv::Writer::from_writer(Vec::new());
+            writer.write_record(&header).unwrap();
+            for (k, row) in rows.iter().enumerate() {
+                writer
+                    .write_record(row.iter().enumerate().map(|(c, x)| if k == 0 && c == 1 { *bad } else { x }))
+                    .unwrap();
+            }
+            let shard = dir.join(format!("not-a-number-{n}.csv"));
+            std::fs::write(&shard, format!("{head}\n{}", String::from_utf8(writer.into_inner().unwrap()).unwrap()))
+                .unwrap();
+            shard
+        })
+        .collect();
     let out = dir.join("merged");
     succeeds(&["merge", "--out", out.to_str().unwrap(), &file(0), &file(1), &file(2)]);
     let before = snapshot(&out);
     let show = |p: &Path| p.display().to_string();
     let missing = dir.join("no-such-shard.csv");
-    let cases: Vec<(Vec<String>, Vec<String>)> = vec![
+    let mut cases: Vec<(Vec<String>, Vec<String>)> = not_numbers
+        .iter()
+        .map(|bad| {
+            let says = ["row 1", figure.as_str(), "not a finite number"].map(String::from);
+            (vec![file(0), show(bad), file(2)], [vec![show(bad)], says.to_vec()].concat())
+        })
+        .collect();
+    cases.extend(vec![
         (vec![file(0), file(2)], vec!["shard 2 of 3 missing".into(), "--shard 2/3".into()]),
         (vec![file(0)], vec!["shards 2, 3 of 3 missing".into()]),
         (vec![file(0), file(1), file(2), file(1)], vec!["shard 2/3 is given twice".into(), file(1)]),
@@ -1371,57 +1402,20 @@ fn merge_refuses_shards_that_do_not_make_one_batch() {
         (vec![show(&vast)], vec!["shards 2, 3, 4,".into(), "(999999999999 in all)".into()]),
         (vec![file(0), file(1), show(&missing)], vec!["cannot open it".into(), show(&missing)]),
         (vec![file(0), file(1), show(&dir)], vec!["cannot open it".into(), show(&dir.join("batch.csv"))]),
-    ];
+    ]);
     for (shards, expected) in cases {
         let mut args = vec!["merge", "--out", out.to_str().unwrap()];
         args.extend(shards.iter().map(String::as_str));
         let o = elastokin(&args);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{shards:?}: {err}");
+        // What a shard held is shown escaped: no NUL reaches the terminal.
+        assert!(!err.contains('\0'), "{shards:?}: {err}");
         for e in &expected {
             assert!(err.contains(e.as_str()), "{shards:?}: '{e}' not in {err}");
         }
         assert_eq!(snapshot(&out), before, "{shards:?}");
     }
-    std::fs::remove_dir_all(&dir).ok();
-}
-
-/// `merge` copied whatever a shard's figure cells held (`inf`, `NaN`, `abc`, `1e999`, `0x10`, a NUL) into
-/// the merged batch: a cell that is not a finite number (or empty, as a failed variant's) is refused now,
-/// naming the shard, the row and the column, and nothing is written.
-#[test]
-fn merge_refuses_a_shard_whose_figures_are_not_finite_numbers() {
-    let dir = scratch("merge-figures");
-    let (m, v) = ("examples/generic/macpherson.json", "examples/generic/macpherson_variants.txt");
-    let shards = run_shards(&dir, "good", m, v, 2);
-    let file = |k: usize| shards[k].join("batch.csv").display().to_string();
-    let text = std::fs::read_to_string(file(1)).unwrap();
-    let (first, body) = text.split_once('\n').unwrap();
-    let mut reader = csv::ReaderBuilder::new().from_reader(body.as_bytes());
-    let header = reader.headers().unwrap().clone();
-    let rows: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
-    let figure = header.get(1).unwrap().to_string();
-    let out = dir.join("merged");
-    for bad in ["inf", "NaN", "abc", "1e999", "0x10", "1\u{0}2"] {
-        let mut writer = csv::Writer::from_writer(Vec::new());
-        writer.write_record(&header).unwrap();
-        for (k, row) in rows.iter().enumerate() {
-            let cells: Vec<&str> =
-                row.iter().enumerate().map(|(c, x)| if k == 0 && c == 1 { bad } else { x }).collect();
-            writer.write_record(&cells).unwrap();
-        }
-        let shard = dir.join("bad.csv");
-        std::fs::write(&shard, format!("{first}\n{}", String::from_utf8(writer.into_inner().unwrap()).unwrap()))
-            .unwrap();
-        let o = elastokin(&["merge", "--out", out.to_str().unwrap(), &file(0), shard.to_str().unwrap()]);
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(2), "{bad:?}: {err}");
-        assert!(err.contains("bad.csv") && err.contains("row 1") && err.contains(&figure), "{bad:?}: {err}");
-        assert!(err.contains("not a finite number") && !err.contains('\0'), "{bad:?}: {err}");
-        assert!(!out.exists(), "{bad:?}");
-    }
-    // The shard as written merges.
-    succeeds(&["merge", "--out", out.to_str().unwrap(), &file(0), &file(1)]);
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -376,7 +376,7 @@ impl Model {
         steps: usize,
         figures_only: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
-        use elastokin_suspensions::design::{analysis_sensitivity, Parameters};
+        use elastokin_suspensions::design::{analysis_sensitivity, Derivative, Parameters, Rate};
         let which = self::analysis(analysis)?;
         let settings = Settings { range, steps, figures_only, ..Settings::default() };
         kc::check_settings(which, &settings).map_err(|e| PyValueError::new_err(e.to_string()))?;
@@ -385,8 +385,10 @@ impl Model {
         let d = PyDict::new(py);
         // Empty cells and missing derivatives are NaN in numpy.
         let numbers = |v: Vec<Option<f64>>| v.into_iter().map(|x| x.unwrap_or(f64::NAN)).collect::<Vec<f64>>();
-        let rates = |v: &[elastokin_suspensions::design::Rate]| numbers(v.iter().map(|r| r.ok().map(|d| d.value)).collect());
-        let errors = |v: &[elastokin_suspensions::design::Rate]| numbers(v.iter().map(|r| r.ok().map(|d| d.error)).collect());
+        // A part of every derivative (its value or its error estimate), NaN where there is none.
+        type Part = fn(&Derivative) -> f64;
+        let (value, error): (Part, Part) = (|d| d.value, |d| d.error);
+        let read = |v: &[Rate], part: Part| numbers(v.iter().map(|r| r.as_ref().ok().map(part)).collect());
         d.set_item("analysis", which.name())?;
         d.set_item("parameters", p.pointers.clone())?;
         d.set_item("values", PyArray1::from_vec(py, p.values.clone()))?;
@@ -394,10 +396,9 @@ impl Model {
         for name in &s.report.table.columns {
             d.set_item(name, PyArray1::from_vec(py, numbers(s.column(name))))?;
             // Row × parameter, the form numpy users index; the derivatives and their error estimates.
-            let derivatives: Vec<Vec<elastokin_suspensions::design::Rate>> = (0..p.len()).map(|k| s.d_column(name, k)).collect();
-            type Read<'a> = &'a dyn Fn(&[elastokin_suspensions::design::Rate]) -> Vec<f64>;
-            for (key, read) in [(format!("d_{name}"), &rates as Read), (format!("d_{name}_error"), &errors)] {
-                let columns: Vec<Vec<f64>> = derivatives.iter().map(|d| read(d)).collect();
+            let derivatives: Vec<Vec<Rate>> = (0..p.len()).map(|k| s.d_column(name, k)).collect();
+            for (key, part) in [(format!("d_{name}"), value), (format!("d_{name}_error"), error)] {
+                let columns: Vec<Vec<f64>> = derivatives.iter().map(|d| read(d, part)).collect();
                 let rows: Vec<Vec<f64>> =
                     (0..s.report.table.rows.len()).map(|r| columns.iter().map(|c| c[r]).collect()).collect();
                 let array = PyArray2::from_vec2(py, &rows).map_err(|e| AnalysisError::new_err(e.to_string()))?;
@@ -408,8 +409,7 @@ impl Model {
         for f in &s.report.figures {
             let (_, derivatives) = s.figure(&f.key).expect("the report's own figure");
             let written = f.written(s.report.units);
-            let factor = f.unit.shown_in(s.report.units).factor;
-            let (si, si_errors) = (rates(&derivatives), errors(&derivatives));
+            let (si, si_errors) = (read(&derivatives, value), read(&derivatives, error));
             let entry = PyDict::new(py);
             entry.set_item("value", written.value)?;
             entry.set_item("unit", written.unit)?;
@@ -419,8 +419,8 @@ impl Model {
                 "no_derivative",
                 derivatives.iter().map(|r| r.err().map(|e| e.reason())).collect::<Vec<_>>(),
             )?;
-            entry.set_item("derivatives", PyArray1::from_vec(py, si.iter().map(|d| d * factor).collect()))?;
-            entry.set_item("derivative_errors", PyArray1::from_vec(py, si_errors.iter().map(|e| e * factor).collect()))?;
+            entry.set_item("derivatives", PyArray1::from_vec(py, si.iter().map(|d| d * written.factor).collect()))?;
+            entry.set_item("derivative_errors", PyArray1::from_vec(py, si_errors.iter().map(|e| e * written.factor).collect()))?;
             entry.set_item("si_derivatives", PyArray1::from_vec(py, si))?;
             entry.set_item("si_derivative_errors", PyArray1::from_vec(py, si_errors))?;
             figures.set_item(&f.key, entry)?;

@@ -1,7 +1,8 @@
 """Sensitivities from Python: the command's own numbers, a gradient that differences of the objective
-confirm, and a bump steer tuned by scipy with the exact gradient."""
+confirm, and a bump steer tuned by scipy with the gradient from the sensitivities."""
 
 import json
+import math
 
 import numpy
 import pytest
@@ -11,6 +12,10 @@ import elastokin
 from conftest import MODEL, command, read_csv
 
 TIE_ROD_Z = "/suspension/macpherson/hardpoints/tie_rod_inner/2"
+# Each unit parallel travel prints its figures in, per its SI unit, from the units' definitions.
+DEG = 180 / math.pi
+PRINTED_PER_SI = {"deg/m": DEG, "N/mm": 1e-3, "-": 1.0, "N": 1.0, "deg": DEG, "mm": 1e3, "deg/kN": DEG * 1e3,
+                  "deg/kN·m": DEG * 1e3, "%": 100.0}
 RATE = "/suspension/macpherson/spring/rate"
 
 
@@ -37,11 +42,11 @@ def test_sensitivities_are_the_commands(tmp_path):
         assert got == pytest.approx(float(row[6]), rel=1e-11, abs=1e-300), (figure, parameter)
         error = s["figures"][figure]["derivative_errors"][s["parameters"].index(parameter)]
         assert header[7] == "derivative_error" and error == pytest.approx(float(row[7]), rel=1e-11)
-        # In SI: the derivative scaled as the value is.
+        # In SI: the printed derivative over the printed unit's definition, as the value is.
         si = s["figures"][figure]["si_derivatives"][s["parameters"].index(parameter)]
-        if s["figures"][figure]["si_value"]:
-            factor = s["figures"][figure]["value"] / s["figures"][figure]["si_value"]
-            assert si * factor == pytest.approx(got, rel=1e-12), (figure, parameter)
+        factor = PRINTED_PER_SI[row[2]]
+        assert si * factor == pytest.approx(got, rel=1e-12), (figure, parameter)
+        assert s["figures"][figure]["si_value"] * factor == pytest.approx(s["figures"][figure]["value"], rel=1e-12)
     # Every cell of the table, as sensitivity_parallel_travel.csv has it.
     header, cells = read_csv(out / "sensitivity_parallel_travel.csv")
     assert header[:3] == ["parameter", "travel_m", "d_toe_deg"] and len(cells) == 2 * 33

@@ -243,9 +243,9 @@ impl SuiteSensitivity {
         for a in &self.analyses {
             for (j, figure) in a.report.figures.iter().enumerate() {
                 let written = figure.written(a.report.units);
-                let factor = figure.unit.shown_in(a.report.units).factor;
                 for (k, pointer) in parameters.pointers.iter().enumerate() {
-                    let d = a.figures[k][j].map(|d| Derivative { value: d.value * factor, error: d.error * factor });
+                    let d = a.figures[k][j];
+                    let value = d.ok().map(|d| d.value * written.factor);
                     rows.push(vec![
                         Cell::Text(a.report.analysis.name().into()),
                         Cell::Text(figure.key.clone()),
@@ -253,9 +253,9 @@ impl SuiteSensitivity {
                         Cell::from(written.value),
                         Cell::Text(pointer.clone()),
                         Cell::from(parameters.values[k]),
-                        Cell::from(d.ok().map(|d| d.value)),
-                        Cell::from(d.ok().map(|d| d.error)),
-                        Cell::from(d.ok().map(|d| effect(pointer, parameters.values[k], d.value))),
+                        Cell::from(value),
+                        Cell::from(d.ok().map(|d| d.error * written.factor)),
+                        Cell::from(value.map(|v| effect(pointer, parameters.values[k], v))),
                         Cell::Text(effect_unit(pointer).into()),
                         d.err().map_or(Cell::Empty, |e| Cell::Text(e.reason().into())),
                     ]);

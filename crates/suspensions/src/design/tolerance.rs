@@ -292,18 +292,18 @@ impl StackUp {
             .map(|s| {
                 let m = s.sampled;
                 let unit = s.unit.shown();
-                let shown = |v: f64| Cell::from(v * unit.factor);
+                let shown = |v: Option<f64>| Cell::from(v.map(|v| v * unit.factor));
                 let mut row = vec![
                     Cell::Text(s.analysis.name().into()),
                     Cell::Text(s.figure.clone()),
                     Cell::Text(unit.symbol.into()),
-                    shown(s.value),
-                    shown(s.worst_case),
-                    shown(s.sigma),
-                    Cell::from(m.map(|m| m.sigma * unit.factor)),
-                    Cell::from(m.map(|m| m.mean * unit.factor)),
-                    Cell::from(m.map(|m| m.min * unit.factor)),
-                    Cell::from(m.map(|m| m.max * unit.factor)),
+                    shown(Some(s.value)),
+                    shown(Some(s.worst_case)),
+                    shown(Some(s.sigma)),
+                    shown(m.map(|m| m.sigma)),
+                    shown(m.map(|m| m.mean)),
+                    shown(m.map(|m| m.min)),
+                    shown(m.map(|m| m.max)),
                     Cell::from(m.map(|m| m.count as f64)),
                 ];
                 for k in 0..3 {

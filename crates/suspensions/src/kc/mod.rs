@@ -22,7 +22,8 @@ pub use chart::{Chart, Scale, Series, YAxis};
 pub use models::Models;
 pub use reduce::{COMPLIANCE_LOAD, COMPLIANCE_RESPONSE};
 pub use report::{
-    significant, Accuracy, AnalysisReport, Cell, Failed, Figure, FigureKind, KcReport, Skipped, Table, Warning, Written,
+    fixed, significant, Accuracy, AnalysisReport, Cell, Failed, Figure, FigureKind, KcReport, Skipped, Table, Warning,
+    Written,
 };
 pub use settings::{
     mode_from_word, mode_word, Analysis, AnalysisError, Settings, Tolerance, ALL, MAX_RANGE_FRACTION, MAX_RANGE_LOAD,

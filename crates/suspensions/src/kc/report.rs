@@ -178,6 +178,7 @@ impl Figure {
         Written {
             figure: self,
             unit: shown.symbol,
+            factor: shown.factor,
             value: self.value.map(|v| v * shown.factor),
             error: self.error.map(|e| e * shown.factor),
             decimals: self.decimals + shown.more_decimals,
@@ -190,10 +191,8 @@ impl Figure {
         let w = self.written(units);
         match w.value {
             Some(v) => {
-                let err = match w.error {
-                    Some(e) if self.shows(self.error.unwrap_or(0.0)) => {
-                        format!("  (± {})", significant(e, 2))
-                    }
+                let err = match (self.error, w.error) {
+                    (Some(e), Some(written)) if self.shows(e) => format!("  (± {})", significant(written, 2)),
                     _ => String::new(),
                 };
                 let unit = if w.unit == "-" { "" } else { w.unit };
@@ -211,6 +210,9 @@ pub struct Written<'a> {
     pub figure: &'a Figure,
     /// The unit written.
     pub unit: &'static str,
+    /// Written value per SI value: what a derivative or a spread of the figure is scaled by to be written
+    /// beside it.
+    pub factor: f64,
     /// The value in that unit.
     pub value: Option<f64>,
     /// The error estimate in that unit.
@@ -220,13 +222,22 @@ pub struct Written<'a> {
 }
 
 impl Written<'_> {
-    /// `v` (in the written unit) at the figure's decimals; a value that rounds to zero is zero, not `-0.0`.
+    /// `v` (in the written unit) at the figure's decimals ([`fixed`]).
     pub fn number(&self, v: f64) -> String {
-        let mut shown = format!("{:.*}", self.decimals, v);
-        if shown.starts_with('-') && shown[1..].bytes().all(|b| b == b'0' || b == b'.') {
-            shown.remove(0);
-        }
-        shown
+        fixed(v, self.decimals)
+    }
+}
+
+/// `v` with `decimals` decimals (how figures and coordinates are written); a value that rounds to zero is
+/// zero, not `-0.00`; nothing for a non-finite `v`.
+pub fn fixed(v: f64, decimals: usize) -> String {
+    if !v.is_finite() {
+        return String::new();
+    }
+    let shown = format!("{v:.decimals$}");
+    match shown.strip_prefix('-') {
+        Some(rest) if rest.bytes().all(|b| b == b'0' || b == b'.') => rest.to_string(),
+        _ => shown,
     }
 }
 
