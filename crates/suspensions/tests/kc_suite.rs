@@ -418,6 +418,44 @@ fn a_vertical_force_sweep_past_what_the_corner_carries_keeps_its_rows_and_names_
     assert!(!json.contains("NaN") && !json.contains("inf"), "{json}");
 }
 
+/// The shipped five-link under a vertical force of ±10 MN in 32 steps of 625 kN: the first step up from
+/// design reaches far past the limit point at 6.16 kN, where a linear response turns the links by radians.
+/// It is refused and cut until the steps stay on the branch, so the sweep stops at the limit point a fine
+/// sweep finds, with the warning, rather than landing on the links' other branch (toe 7.2°, camber −10°
+/// at +625 kN) as if the suspension carried the load.
+#[test]
+fn a_sweep_stepping_over_the_five_links_limit_point_stops_at_it() {
+    let file = example("five_link.json");
+    let limit_at = |range: (f64, f64), steps: usize| {
+        let settings = Settings { range: Some(range), steps, ..Settings::default() };
+        let report = kc::run(Analysis::VerticalForce, &file, &settings).unwrap();
+        assert!(report.warnings.iter().any(|w| w.code == "limit-point"), "{range:?}: {:?}", report.warnings);
+        let loads: Vec<f64> = report.table.rows.iter().map(|r| r[0].number().unwrap()).collect();
+        *loads.last().unwrap()
+    };
+    // The second method: the largest load of the arc-length path through it, in steps of 5 N.
+    let through = Settings {
+        range: Some((0.0, 1e4)),
+        steps: 16,
+        through_limits: true,
+        arc_step: Some(5.0),
+        ..Settings::default()
+    };
+    let arc = kc::run(Analysis::VerticalForce, &file, &through).unwrap();
+    let turning = arc.table.rows.iter().map(|r| r[0].number().unwrap()).fold(f64::NEG_INFINITY, f64::max);
+    for (range, steps) in [((-1e7, 1e7), 32), ((0.0, 1e4), 64)] {
+        let fold = limit_at(range, steps);
+        let within = 1e-6 * (range.1 - range.0);
+        println!(
+            "{range:?} in {steps} steps: limit point {fold} N, {:.3e} N from the turning point {turning} N",
+            fold - turning
+        );
+        // Within 1e-6 of the range, where bisection brackets it (2e1 N and 1e-2 N), and the arc's largest
+        // row's distance below the fold: measured 1.8 N and 1.7e-3 N.
+        assert!((fold - turning).abs() <= within + 1e-2, "{range:?}: {fold} vs {turning}");
+    }
+}
+
 /// With `through_limits` the rows go on past the limit point by arc length: the load rises to the limit
 /// load and falls as the wheel keeps rising, until the path leaves the range below its start.
 #[test]

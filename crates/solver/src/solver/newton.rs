@@ -24,8 +24,11 @@ impl<'m> StaticSolver<'m> {
     /// less than [`CHORD_CONTRACTION`]. Convergence is judged on the true residual either way.
     ///
     /// With `start.guard`, the corrector may not travel further than the first increment plus any
-    /// predictor applied before the call: a longer walk means Newton left the path — across a limit
-    /// point to another branch, typically — and the step is refused so that the caller cuts it.
+    /// predictor applied before the call, nor take an increment that turns a body by more than
+    /// [`SolverOptions::max_rotation_step`] (which Newton elsewhere shortens): a longer walk, or a linear
+    /// response that large, means the step reaches beyond where the tangent tells where the path goes —
+    /// across a limit point to another branch, typically — and the step is refused so that the caller
+    /// cuts it.
     pub(super) fn newton(&mut self, state: &mut State, start: NewtonStart) -> Result<(usize, Residual), SolverError> {
         let n = self.work.assembly.n;
         let m = self.work.assembly.m();
@@ -69,25 +72,26 @@ impl<'m> StaticSolver<'m> {
             last_merit = merit;
             self.newton_increment()?;
             let step_norm = self.work.rhs[..n].iter().map(|v| v * v).sum::<f64>().sqrt();
+            let max_rot = (0..n).filter(|c| c % BODY_DOFS >= 3).fold(0.0f64, |a, c| a.max(self.work.rhs[c].abs()));
             if iter == 0 {
                 first_norm = step_norm;
             } else {
                 corrector_travel += step_norm;
-                // The allowance is what closing the joints to their tolerance may take: a predictor of
-                // nothing (an ideal linkage held by its rig does not move under a load) still leaves the
-                // start's converged joint gaps, up to the tolerance, to close.
-                let allowance = 100.0 * self.options.constraint_tolerance;
-                if start.guard && corrector_travel > start.predicted + first_norm + allowance {
-                    return Err(SolverError::NoConvergence {
-                        t: state.t,
-                        last_converged: None,
-                        iterations: iter,
-                        force_residual: r.force,
-                        constraint_residual: r.constraint,
-                    });
-                }
             }
-            let max_rot = (0..n).filter(|c| c % BODY_DOFS >= 3).fold(0.0f64, |a, c| a.max(self.work.rhs[c].abs()));
+            // The allowance is what closing the joints to their tolerance may take: a predictor of nothing
+            // (an ideal linkage held by its rig does not move under a load) still leaves the start's
+            // converged joint gaps, up to the tolerance, to close.
+            let allowance = 100.0 * self.options.constraint_tolerance;
+            let walked_off = corrector_travel > start.predicted + first_norm + allowance;
+            if start.guard && (walked_off || max_rot > self.options.max_rotation_step) {
+                return Err(SolverError::NoConvergence {
+                    t: state.t,
+                    last_converged: None,
+                    iterations: iter,
+                    force_residual: r.force,
+                    constraint_residual: r.constraint,
+                });
+            }
             let scale =
                 if max_rot > self.options.max_rotation_step { self.options.max_rotation_step / max_rot } else { 1.0 };
             Self::apply(&mut state.poses, &self.work.rhs[..n], scale);
