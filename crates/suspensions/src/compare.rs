@@ -220,16 +220,16 @@ fn measured_charts(
             measured.columns.first().map_or("", String::as_str)
         ));
     }
-    let shared: Vec<(usize, &String)> =
-        measured.columns.iter().enumerate().skip(1).filter(|(_, c)| table.columns.contains(c)).collect();
-    if shared.is_empty() {
+    // Every measured column is drawn: one the table lacks is refused, not left out unseen.
+    if let Some(unknown) = measured.columns[1..].iter().find(|c| !table.columns.contains(c)) {
         return Err(format!(
-            "'{name}' has no column in common with {analysis_name}'s table ({}): name its columns as the table does",
+            "'{name}': {analysis_name}'s table has no column '{unknown}' (it has {}): name the file's columns as \
+             the table does, or leave that column out",
             table.columns[1..].join(", ")
         ));
     }
     let mut out = Vec::new();
-    for (m, column) in shared {
+    for (m, column) in measured.columns.iter().enumerate().skip(1) {
         let mut series: Vec<Series> = tables
             .iter()
             .map(|(j, t)| {

@@ -95,7 +95,9 @@ pub struct Measured {
 }
 
 /// Reads a measured K&C file: `#` comment lines (one may say `analysis: NAME`), a header of column names,
-/// rows of numbers. `origin` names it in errors.
+/// rows of numbers. `origin` names it in errors. A header whose column has no name, a name with a
+/// control character in it, or the same name twice is refused: whichever column a reader then took would
+/// be a guess.
 pub fn read_measured(text: &str, origin: &str) -> Result<Measured, String> {
     let mut analysis = None;
     let mut columns: Option<Vec<String>> = None;
@@ -113,7 +115,7 @@ pub fn read_measured(text: &str, origin: &str) -> Result<Measured, String> {
         }
         let cells: Vec<&str> = line.split(',').map(str::trim).collect();
         match &columns {
-            None => columns = Some(cells.iter().map(|c| c.to_string()).collect()),
+            None => columns = Some(header(&cells, &format!("{origin}:{}", k + 1))?),
             Some(names) => {
                 if cells.len() != names.len() {
                     return Err(format!(
@@ -137,6 +139,26 @@ pub fn read_measured(text: &str, origin: &str) -> Result<Measured, String> {
         return Err(format!("{origin}: no rows of numbers under the header"));
     }
     Ok(Measured { analysis, columns, rows })
+}
+
+/// The column names of a measured file's header line `at`, each named once and in plain text.
+fn header(cells: &[&str], at: &str) -> Result<Vec<String>, String> {
+    for (k, name) in cells.iter().enumerate() {
+        if name.is_empty() {
+            return Err(format!("{at}: column {} has no name: name every column as the analysis's table does", k + 1));
+        }
+        if name.chars().any(char::is_control) {
+            return Err(format!(
+                "{at}: the name of column {} holds a control character ({}): name it in plain text",
+                k + 1,
+                name.escape_debug()
+            ));
+        }
+        if cells[..k].contains(name) {
+            return Err(format!("{at}: the column '{name}' is named twice: give each column once"));
+        }
+    }
+    Ok(cells.iter().map(|c| c.to_string()).collect())
 }
 
 fn tolerance(object: &serde_json::Map<String, Value>, key: &str) -> Result<f64, String> {
