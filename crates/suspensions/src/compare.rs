@@ -78,7 +78,7 @@ impl Comparison {
 
 /// Compares `designs` (at least two, at least one a model). Refused, by name: fewer than two, no model, a
 /// solid axle with an independent corner, models with no analysis in common, a measured file naming no
-/// analysis a model ran, or with a load parameter or no column in common with that analysis's table.
+/// analysis a model ran, or with a load parameter or a column that analysis's table lacks.
 pub fn compare(designs: &[Design]) -> Result<Comparison, String> {
     if designs.len() < 2 {
         return Err("compare needs two designs at least: give two or more model files (or a model and a measured \
@@ -186,7 +186,7 @@ fn overlaid(reports: &[(usize, AnalysisReport)], names: &[String]) -> Vec<Chart>
     out
 }
 
-/// The charts of a measured file: per column it shares with its analysis's table, that column against
+/// The charts of a measured file: per column (each one of its analysis's table), that column against
 /// the load parameter, each model's rows and the measured points.
 fn measured_charts(
     k: usize,
