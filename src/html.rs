@@ -373,8 +373,14 @@ fn write_tune_page(
     let name = crate::plot::shown(model_name, NAME_SHOWN);
     let met = tuned.verdicts.iter().filter(|v| v.met).count();
     let last = tuned.iterations.last().map_or(0, |i| i.evaluations);
+    let broken = tuned.packaging.iter().filter(|p| p.broken_by > 0.0).count();
+    let packaging = match (tuned.packaging.len(), broken) {
+        (0, _) => String::new(),
+        (_, 0) => "; the packaging holds".to_string(),
+        (all, broken) => format!("; {broken} of {all} packaging constraints broken"),
+    };
     let lede = format!(
-        "{met} of {} targets met; {} iterations, {last} K&C evaluations; {}.",
+        "{met} of {} targets met{packaging}; {} iterations, {last} K&C evaluations; {}.",
         tuned.verdicts.len(),
         tuned.iterations.len().saturating_sub(1),
         tuned.stopped
@@ -394,6 +400,20 @@ fn write_tune_page(
         )?;
     }
     writeln!(out, "</tbody></table>")?;
+    if !tuned.packaging.is_empty() {
+        writeln!(out, "<h3>Packaging</h3>")?;
+        writeln!(out, "<table class=\"figures\"><thead><tr><th>constraint</th><th>broken by (mm)</th><th>holds</th></tr></thead><tbody>")?;
+        for p in &tuned.packaging {
+            let (class, said) = if p.broken_by == 0.0 { ("ok", "yes") } else { ("bad", "no") };
+            writeln!(
+                out,
+                "<tr><td>{}</td><td class=\"value\">{}</td><td class=\"{class}\">{said}</td></tr>",
+                text(&p.constraint),
+                text(&significant(p.broken_by * 1e3, 3)),
+            )?;
+        }
+        writeln!(out, "</tbody></table>")?;
+    }
     writeln!(out, "</section>")?;
     writeln!(out, "<section id=\"parameters\">")?;
     writeln!(out, "<h2>The free numbers</h2>")?;

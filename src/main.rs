@@ -1064,21 +1064,35 @@ fn tune(args: TuneArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), F
         let state = if v.met { "met" } else { "NOT met" };
         out.line(format!("  {state}: {} (largest miss {} of its tolerance)", v.target, kc::significant(v.worst, 3)))?;
     }
+    for p in &tuned.packaging {
+        out.line(if p.broken_by == 0.0 {
+            format!("  holds: {}", p.constraint)
+        } else {
+            format!("  BROKEN: {} (by {} mm)", p.constraint, kc::significant(p.broken_by * 1e3, 3))
+        })?;
+    }
     out.line("")?;
     out.line(format!("wrote {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))?;
-    let unmet: Vec<String> = tuned
+    let mut unmet: Vec<String> = tuned
         .verdicts
         .iter()
         .filter(|v| !v.met)
         .map(|v| format!("{}: {}", v.target, v.why.as_deref().unwrap_or("")))
         .collect();
+    unmet.extend(tuned.packaging.iter().filter(|p| p.broken_by > 0.0).map(|p| {
+        format!(
+            "{}: broken by {} mm; free the numbers that move its points, or widen its range",
+            p.constraint,
+            kc::significant(p.broken_by * 1e3, 3)
+        )
+    }));
     if unmet.is_empty() {
         return Ok(());
     }
     Err(Failure::Run(format!(
-        "{} of {} targets not met (the tune's results are in {}):\n{}",
+        "{} of {} targets and packaging constraints not met (the tune's results are in {}):\n{}",
         unmet.len(),
-        tuned.verdicts.len(),
+        tuned.verdicts.len() + tuned.packaging.len(),
         args.out.display(),
         unmet.join("\n")
     )))

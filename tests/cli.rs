@@ -1607,7 +1607,7 @@ fn tune_meets_the_shipped_targets_and_says_why_when_it_cannot() {
     ]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{err}");
-    assert!(err.contains("targets not met") && err.contains("bump_steer"), "{err}");
+    assert!(err.contains("targets and packaging constraints not met") && err.contains("bump_steer"), "{err}");
     assert!(dir.join("y").join("tuned.json").exists());
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -280,7 +280,8 @@ class Model:
     def tune(self, targets: Union[str, Dict[str, Any]], directory: str = ".") -> Dict[str, Any]:
         """Tunes the model to ``targets`` (a TARGETS file's path, or its content as a dict), as ``elastokin
         tune`` does: a dict of ``stopped``, ``all_met``, ``verdicts`` (each target's largest miss over its
-        tolerance, whether met and why not), ``parameters`` with their values ``before`` and ``after``,
+        tolerance, whether met and why not), ``packaging`` (each packaging constraint and how far it is
+        broken, in m: 0 where it holds), ``parameters`` with their values ``before`` and ``after``,
         ``iterations`` (tune.csv's columns) and ``tuned``, the model file's text with the numbers moved.
         Measured files named in a dict are read from ``directory``; in a file, beside it. Targets the
         model's analyses do not give (a figure or column they have not, a point outside the range walked)

@@ -299,6 +299,14 @@ impl Model {
             verdicts.append(e)?;
         }
         d.set_item("verdicts", verdicts)?;
+        let packaging = PyList::empty(py);
+        for p in &tuned.packaging {
+            let e = PyDict::new(py);
+            e.set_item("constraint", &p.constraint)?;
+            e.set_item("broken_by", p.broken_by)?;
+            packaging.append(e)?;
+        }
+        d.set_item("packaging", packaging)?;
         d.set_item("parameters", pointers)?;
         d.set_item("before", PyArray1::from_vec(py, tuned.start.x.clone()))?;
         d.set_item("after", PyArray1::from_vec(py, tuned.end.x.clone()))?;

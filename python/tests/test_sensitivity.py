@@ -149,6 +149,7 @@ def test_tune_gives_the_commands_numbers(tmp_path):
     model = elastokin.load(MODEL)
     t = model.tune(targets)
     assert t["all_met"] and all(v["met"] for v in t["verdicts"])
+    assert [p["broken_by"] for p in t["packaging"]] == [0.0]
     tuned = json.loads((out / "tuned.json").read_text())
     for k, pointer in enumerate(t["parameters"]):
         value = tuned

@@ -421,3 +421,47 @@ fn in_ranges(model: &str, file: &elastokin_suspensions::SuspensionFile, ranges: 
         assert!((*lo..=*hi).contains(&v), "{model}: {analysis} {key} {v} outside {lo}..{hi}");
     }
 }
+
+/// The tie rod's length asked 2 mm longer than it is, and asked 5–6 m (it is 0.33 m): the tune said every
+/// target was met and kept the broken packaging. Now a constraint the start breaks is brought back where
+/// the free numbers can (the tie rod's length, measured from the tuned file's points, ends inside its
+/// range, with the curve met), and where they cannot it is a miss, named, by how far it is broken.
+#[test]
+fn a_packaging_constraint_the_start_breaks_is_restored_or_named_as_a_miss() {
+    let base = document("macpherson.json");
+    let free: Vec<String> =
+        ["tie_rod_inner", "tie_rod_outer"].iter().flat_map(|p| (0..3).map(move |i| format!("{H}/{p}/{i}"))).collect();
+    let length = |doc: &Value| {
+        let at = |p: &str| (0..3).map(|i| value(doc, &format!("{H}/{p}/{i}"))).collect::<Vec<f64>>();
+        let (a, b) = (at("tie_rod_inner"), at("tie_rod_outer"));
+        (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt()
+    };
+    let l0 = length(&base);
+    let (min, max) = (l0 + 2e-3, l0 + 3e-3);
+    let longer = json!({ "distance": ["tie_rod_inner", "tie_rod_outer"], "min": min, "max": max });
+    let (_, tuned) = run(&base, &targets_text(&base, &free, 0.02, &[], &[longer]));
+    let l = length(&tuned.document);
+    println!("restored: {l} m in [{min}, {max}], {:?}", tuned.verdicts);
+    assert!(l >= min - 1e-9 && l <= max + 1e-9, "{l} vs [{min}, {max}]");
+    assert_eq!(tuned.packaging[0].broken_by, 0.0);
+    assert!(tuned.all_met(), "{:?} {:?}", tuned.verdicts, tuned.packaging);
+
+    let far = json!({ "distance": ["tie_rod_inner", "tie_rod_outer"], "min": 5.0, "max": 6.0 });
+    let (_, tuned) = run(&base, &targets_text(&base, &free, 0.02, &[], &[far]));
+    let p = &tuned.packaging[0];
+    assert!(!tuned.all_met());
+    assert_eq!(p.constraint, "constraints[0]: distance tie_rod_inner–tie_rod_outer");
+    // Broken by what the tuned file's points leave of the 5 m asked.
+    let l = length(&tuned.document);
+    assert!((p.broken_by - (5.0 - l)).abs() < 1e-12, "{} vs {}", p.broken_by, 5.0 - l);
+    assert!(tuned.stopped.contains("the packaging is still broken"), "{}", tuned.stopped);
+    // Brought as near as the bounds let it: the longest tie rod with each coordinate within ±20 mm of its
+    // own, each end moved 20 mm along every axis away from the other (a convex length's largest value on
+    // the box of bounds is at a corner).
+    let at = |p: &str| (0..3).map(|i| value(&base, &format!("{H}/{p}/{i}"))).collect::<Vec<f64>>();
+    let (a, b) = (at("tie_rod_inner"), at("tie_rod_outer"));
+    let longest = (0..3).map(|i| ((a[i] - b[i]).abs() + 0.04).powi(2)).sum::<f64>().sqrt();
+    println!("unreachable: {l} m against the longest the bounds allow {longest} m, {}", tuned.stopped);
+    // Measured 3.7e-11 m apart.
+    assert!((l - longest).abs() < 1e-9, "{l} vs {longest}");
+}

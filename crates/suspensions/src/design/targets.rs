@@ -70,6 +70,17 @@ pub enum Constraint {
     OutsideBox { point: String, min: [f64; 3], max: [f64; 3] },
 }
 
+impl Constraint {
+    /// What it keeps, in the TARGETS file's words.
+    pub fn said(&self) -> String {
+        match self {
+            Constraint::Distance { points: [a, b], .. } => format!("distance {a}–{b}"),
+            Constraint::OutsideSphere { point, .. } => format!("{point} outside the sphere"),
+            Constraint::OutsideBox { point, .. } => format!("{point} outside the box"),
+        }
+    }
+}
+
 /// A TARGETS file, read and checked against the model.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Targets {

@@ -373,6 +373,15 @@ pub struct Verdict {
     pub why: Option<String>,
 }
 
+/// A packaging constraint at the end of a tune: a broken one is a miss, as a target not met is.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PackagingVerdict {
+    /// Which, in the TARGETS file's words (`constraints[0]: distance tie_rod_inner–tie_rod_outer`).
+    pub constraint: String,
+    /// How far outside its allowed range it is (m): zero where it holds.
+    pub broken_by: f64,
+}
+
 /// What a tune found.
 #[derive(Debug, Clone)]
 pub struct Tuned {
@@ -384,6 +393,8 @@ pub struct Tuned {
     pub iterations: Vec<Iteration>,
     /// Each target's outcome.
     pub verdicts: Vec<Verdict>,
+    /// Each packaging constraint's outcome, in the file's order.
+    pub packaging: Vec<PackagingVerdict>,
     /// Why the iterations stopped.
     pub stopped: String,
     /// The model file with the free numbers at the end, every other key and the order of keys as given.
@@ -391,9 +402,9 @@ pub struct Tuned {
 }
 
 impl Tuned {
-    /// Whether every target is met.
+    /// Whether every target is met and every packaging constraint holds.
     pub fn all_met(&self) -> bool {
-        self.verdicts.iter().all(|v| v.met)
+        self.verdicts.iter().all(|v| v.met) && self.packaging.iter().all(|p| p.broken_by == 0.0)
     }
 
     /// `tune.csv`: every iteration — its objective, projected gradient, step, damping, evaluations so far
@@ -591,13 +602,17 @@ fn step(e: &Evaluation, free: &[(f64, f64)], damping: f64, scale: &[f64], margin
             continue;
         }
         let scaled: Vec<f64> = c.rates.iter().zip(&unscale).map(|(r, u)| r * u).collect();
+        // A broken constraint is brought back inside by the step, to first order; one that holds stays
+        // inside, by its margin where it can.
+        let restore = broken_by(c) > 0.0;
+        let room = |room: f64| if restore { room } else { (room - m).max(0.0) };
         if c.max.is_finite() {
             rows.push(scaled.clone());
-            bound.push((c.max - m - c.value).max(0.0));
+            bound.push(room(c.max - c.value));
         }
         if c.min.is_finite() {
             rows.push(scaled.iter().map(|r| -r).collect());
-            bound.push((c.value - c.min - m).max(0.0));
+            bound.push(room(c.value - c.min));
         }
     }
     let upper: Vec<Vec<f64>> =
@@ -617,9 +632,43 @@ fn step(e: &Evaluation, free: &[(f64, f64)], damping: f64, scale: &[f64], margin
     }
 }
 
+/// How far a packaging constraint lies outside its allowed range (m), within 1e-9 m counting as inside.
+fn broken_by(c: &Linearised) -> f64 {
+    let out = (c.min - c.value).max(c.value - c.max).max(0.0);
+    if out <= 1e-9 {
+        0.0
+    } else {
+        out
+    }
+}
+
+/// How far the packaging at `e` is broken, all its constraints together (m).
+fn broken(e: &Evaluation) -> f64 {
+    e.packaging.iter().map(broken_by).sum()
+}
+
+/// Where the packaging at `e` is broken, what a step works on first: each broken constraint's signed
+/// distance outside its range as a residual (its rates the rows of the Jacobian), the constraints that hold
+/// kept as packaging; the targets wait until the packaging holds.
+fn restoration(e: &Evaluation) -> Option<Evaluation> {
+    if packaged(e) {
+        return None;
+    }
+    let (broken, holding): (Vec<&Linearised>, Vec<&Linearised>) = e.packaging.iter().partition(|c| broken_by(c) > 0.0);
+    let outside = |c: &Linearised| if c.value < c.min { c.value - c.min } else { c.value - c.max };
+    Some(Evaluation {
+        x: e.x.clone(),
+        residuals: broken.iter().map(|c| outside(c)).collect(),
+        jacobian: broken.iter().map(|c| c.rates.clone()).collect(),
+        rows: Vec::new(),
+        packaging: holding.into_iter().cloned().collect(),
+        reports: Vec::new(),
+    })
+}
+
 /// Whether the packaging holds at `e`, to 1e-9 m.
 fn packaged(e: &Evaluation) -> bool {
-    e.packaging.iter().all(|c| c.value >= c.min - 1e-9 && c.value <= c.max + 1e-9)
+    broken(e) == 0.0
 }
 
 /// Tunes the model of `parameters` (its free numbers, in the order of `targets.free`) to `targets`.
@@ -666,7 +715,7 @@ pub fn tune(
     let mut converged = false;
     for iteration in 1..=MAX_ITERATIONS {
         let f = here.objective();
-        if here.residuals.iter().all(|r| r.abs() <= MET_EXACTLY) {
+        if here.residuals.iter().all(|r| r.abs() <= MET_EXACTLY) && packaged(&here) {
             stopped = format!("every target is met to {MET_EXACTLY:e} of its tolerance");
             break;
         }
@@ -676,7 +725,15 @@ pub fn tune(
             no_step = Some(why);
             break;
         }
-        let (outcome, step_size) = match step(&here, &free, damping, &scale, &margins) {
+        let restoring = restoration(&here);
+        let basis = restoring.as_ref().unwrap_or(&here);
+        let basis_margins: Vec<f64> = match &restoring {
+            Some(_) => {
+                here.packaging.iter().zip(&margins).filter(|(c, _)| broken_by(c) == 0.0).map(|(_, m)| *m).collect()
+            }
+            None => margins.clone(),
+        };
+        let (outcome, step_size) = match step(basis, &free, damping, &scale, &basis_margins) {
             Err(e) => {
                 damping *= 10.0;
                 (e, 0.0)
@@ -709,10 +766,18 @@ pub fn tune(
                         unbuildable = Some(e.to_string());
                         (format!("stepped back: {e}"), size)
                     }
-                    Ok(next) if next.objective() < f && packaged(&next) => {
+                    // Where the packaging is broken a step is taken for bringing it back, whatever it does
+                    // to the targets; where it holds, for gaining on the targets and keeping it.
+                    Ok(next)
+                        if (!packaged(&here) && broken(&next) < broken(&here))
+                            || (packaged(&here) && next.objective() < f && packaged(&next)) =>
+                    {
+                        let restored = restoring.is_some();
                         margins.iter_mut().for_each(|m| *m *= 0.5);
                         let ratio = (f - next.objective()) / predicted.max(f64::MIN_POSITIVE);
-                        damping = if ratio > 0.75 {
+                        damping = if restored {
+                            damping
+                        } else if ratio > 0.75 {
                             damping / 3.0
                         } else if ratio < 0.25 {
                             damping * 2.0
@@ -725,12 +790,12 @@ pub fn tune(
                         unbuildable = None;
                         here = next;
                         rejected = 0;
-                        if gain <= 1e-9 * f || size < 1e-9 {
+                        if !restored && (gain <= 1e-9 * f || size < 1e-9) {
                             converged = true;
                         }
                         ("taken".into(), size)
                     }
-                    Ok(next) if !packaged(&next) => {
+                    Ok(next) if packaged(&here) && !packaged(&next) => {
                         reach = 0.5 * size;
                         for ((m, c), was) in margins.iter_mut().zip(&next.packaging).zip(&here.packaging) {
                             let over = (c.min - c.value).max(c.value - c.max).max(0.0);
@@ -765,9 +830,22 @@ pub fn tune(
             break;
         }
     }
+    if !packaged(&here) {
+        stopped = "the packaging is still broken, and no step within the bounds brings it back further".into();
+    }
     let verdicts = verdicts(&here, targets, &free, unbuildable.as_deref(), no_step.as_deref());
+    let packaging = targets
+        .constraints
+        .iter()
+        .zip(&here.packaging)
+        .enumerate()
+        .map(|(k, (c, at))| PackagingVerdict {
+            constraint: format!("constraints[{k}]: {}", c.said()),
+            broken_by: broken_by(at),
+        })
+        .collect();
     let document = parameters.document_at(&here.x).map_err(TuneError::Model)?;
-    Ok(Tuned { start, end: here, iterations, verdicts, stopped, document })
+    Ok(Tuned { start, end: here, iterations, verdicts, packaging, stopped, document })
 }
 
 fn record(
