@@ -3,6 +3,7 @@
 //! output that a closed pipe cannot crash, and progress on standard error.
 
 pub use elastokin::provenance::{sha256_hex, Part, Provenance};
+use elastokin::suspensions::file::key_path::printable;
 use elastokin::suspensions::kc::{Cell, Table};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::cell::Cell as Flag;
@@ -110,7 +111,7 @@ impl Stdout {
             return Ok(());
         }
         let mut out = std::io::stdout().lock();
-        match writeln!(out, "{text}").and_then(|()| out.flush()) {
+        match writeln!(out, "{}", printable(&text.to_string())).and_then(|()| out.flush()) {
             Ok(()) => Ok(()),
             Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {
                 self.closed.set(true);
@@ -123,7 +124,7 @@ impl Stdout {
 
 /// Prints a line on standard error; a closed standard error is no reason to stop the work.
 pub fn note(text: impl std::fmt::Display) {
-    let _ = writeln!(std::io::stderr().lock(), "{text}");
+    let _ = writeln!(std::io::stderr().lock(), "{}", printable(&text.to_string()));
 }
 
 /// An output directory written whole or not at all.

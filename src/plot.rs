@@ -141,9 +141,11 @@ const BIDI_CONTROLS: [char; 12] = [
     '\u{2067}', '\u{2068}', '\u{2069}',
 ];
 
-/// `text` as it is drawn or shown in a heading: without bidirectional-text controls, and at most `most`
+/// `text` as it is drawn or shown in a heading: without bidirectional-text controls, each character no
+/// text is written with as its escape (`printable`), and at most `most`
 /// characters, the rest an ellipsis. Linear in the length of `text`, however long.
 pub fn shown(text: &str, most: usize) -> String {
+    let text = crate::suspensions::file::key_path::printable(text);
     let mut kept = text.chars().filter(|c| !BIDI_CONTROLS.contains(c));
     let mut out: String = kept.by_ref().take(most).collect();
     if kept.next().is_some() {
@@ -155,8 +157,10 @@ pub fn shown(text: &str, most: usize) -> String {
 
 /// `text`, shortened with an ellipsis until it is at most `width` pixels wide, in time linear in its
 /// length: no glyph is narrower than a pixel, so at most `width` characters are measured, and the longest
-/// prefix that fits is found by bisection (a longer prefix is never narrower).
+/// prefix that fits is found by bisection (a longer prefix is never narrower). Each character no text is
+/// written with is drawn as its escape (an SVG with a control character in it is no XML).
 fn fit(text: &str, size: f64, width: u32) -> Result<String, PlotError> {
+    let text = &*crate::suspensions::file::key_path::printable(text);
     let most = width as usize;
     if text.chars().nth(most).is_none() && text_size(text, size)?.0 <= width {
         return Ok(text.to_string());

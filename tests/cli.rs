@@ -1822,3 +1822,56 @@ fn run_writes_bump_steer_in_the_units_asked_for() {
     assert!(printed.contains("deg/10 mm"), "{printed}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A model named with ESC, NUL, BEL, VT, DEL, U+FFFE or U+2028 made every SVG ill-formed XML and put raw
+/// ESC into report.html and the terminal (which it recoloured). Such a name is refused, naming the key
+/// and the character as its escape; a measured file whose own name holds one is compared, its name
+/// written as the escape in the terminal, the SVGs (well-formed) and the page.
+#[test]
+fn control_characters_in_names_never_reach_a_terminal_svg_or_page_raw() {
+    let dir = std::env::temp_dir().join(format!("elastokin-control-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let base: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string("examples/macpherson.json").unwrap()).unwrap();
+    let raw = |bytes: &[u8]| bytes.iter().any(|&b| b == 0x1b || b == 0 || b == 7 || b == 0x0b || b == 0x7f);
+    for c in ['\u{1b}', '\0', '\u{7}', '\u{b}', '\u{7f}', '\u{fffe}', '\u{2028}'] {
+        let mut doc = base.clone();
+        doc["name"] = format!("Mac{c}Pherson").into();
+        let model = dir.join("named.json");
+        std::fs::write(&model, serde_json::to_string_pretty(&doc).unwrap()).unwrap();
+        let o = elastokin(&["run", model.to_str().unwrap(), "--out", dir.join("o").to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{c:?}: {err}");
+        let escape = c.escape_unicode().to_string();
+        assert!(err.contains(&format!("name: \"Mac{escape}Pherson\" holds the character U+")), "{c:?}: {err}");
+        assert!(!raw(&o.stderr) && !err.contains(c), "{c:?}: {err}");
+        assert!(!dir.join("o").exists());
+    }
+    // A measured file's name is the user's text too.
+    let rig = dir.join("rig\u{1b}[31m.csv");
+    std::fs::write(&rig, "# analysis: parallel-travel\ntravel_m,toe_deg\n-0.05,0.8\n0,0\n0.05,-0.9\n").unwrap();
+    let out = dir.join("c");
+    let o = succeeds(&[
+        "compare",
+        "examples/macpherson.json",
+        rig.to_str().unwrap(),
+        "--analysis",
+        "parallel-travel",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!raw(&o.stdout) && !raw(&o.stderr), "{}", String::from_utf8_lossy(&o.stdout));
+    let mut shown = false;
+    for entry in std::fs::read_dir(&out).unwrap() {
+        let path = entry.unwrap().path();
+        let bytes = std::fs::read(&path).unwrap();
+        assert!(!raw(&bytes), "{}", path.display());
+        let text = String::from_utf8(bytes).unwrap();
+        shown |= text.contains("rig\\u{1b}[31m.csv");
+        if path.extension().is_some_and(|e| e == "svg") {
+            roxmltree::Document::parse(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        }
+    }
+    assert!(shown, "the measured file's name written as its escape");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -120,3 +120,50 @@ pub fn key_path_at(text: &str, line: usize, column: usize) -> String {
     }
     path
 }
+
+/// Whether `c` is a character no name is written with, and no terminal, SVG or HTML page shows as text: a
+/// control character (C0, DEL, C1: an escape sequence recolours a terminal, most make XML ill-formed), a
+/// line or paragraph separator, or a noncharacter (U+FFFE…).
+pub fn unprintable(c: char) -> bool {
+    let code = c as u32;
+    c.is_control()
+        || matches!(c, '\u{2028}' | '\u{2029}')
+        || (0xFDD0..=0xFDEF).contains(&code)
+        || code & 0xFFFE == 0xFFFE
+}
+
+/// `text` as it can be shown (on a terminal, in an SVG or HTML page): each [`unprintable`] character
+/// written as its escape, `\u{1b}`; line breaks kept.
+pub fn printable(text: &str) -> std::borrow::Cow<'_, str> {
+    let bad = |c: char| c != '\n' && unprintable(c);
+    if !text.chars().any(bad) {
+        return text.into();
+    }
+    text.chars().map(|c| if bad(c) { c.escape_unicode().to_string() } else { c.to_string() }).collect()
+}
+
+/// The first key or string value of `value`, depth first, that holds an [`unprintable`] character: the
+/// keys leading to it (a string in a list is named by its place) and the string.
+pub fn first_unprintable(value: &serde_json::Value) -> Option<(Vec<String>, String)> {
+    use serde_json::Value;
+    let bad = |s: &str| s.chars().any(unprintable);
+    match value {
+        Value::String(s) if bad(s) => Some((Vec::new(), s.clone())),
+        Value::Array(items) => items.iter().enumerate().find_map(|(k, v)| {
+            first_unprintable(v).map(|(mut path, s)| {
+                path.insert(0, k.to_string());
+                (path, s)
+            })
+        }),
+        Value::Object(map) => map.iter().find_map(|(key, v)| {
+            if bad(key) {
+                return Some((vec![key.clone()], key.clone()));
+            }
+            first_unprintable(v).map(|(mut path, s)| {
+                path.insert(0, key.clone());
+                (path, s)
+            })
+        }),
+        _ => None,
+    }
+}

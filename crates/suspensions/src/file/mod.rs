@@ -21,7 +21,7 @@ use crate::description::limits::{looks_like_millimetres, MAX_COORDINATE, MAX_FOR
 use crate::description::{ArmMounts, Connection, Stiffness, Template, VehicleParameters};
 use elastokin_core::ModelError;
 pub use key_path::key_path_at;
-use key_path::{key_before, locate};
+use key_path::{first_unprintable, key_before, locate};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -200,6 +200,19 @@ impl FileError {
     }
 }
 
+/// Why a text with an [`key_path::unprintable`] character in it is refused, naming where it is.
+pub(crate) fn unprintable_message(path: &[String], said: &str) -> String {
+    let c = said.chars().find(|c| key_path::unprintable(*c)).unwrap_or('\u{0}');
+    let shown = key_path::printable(&said.chars().take(60).collect::<String>()).into_owned();
+    let more = if said.chars().nth(60).is_some() { "…" } else { "" };
+    format!(
+        "{}: \"{shown}{more}\" holds the character U+{:04X}, which no name is written with and a terminal or \
+         report cannot show: write it in plain text",
+        path.join("."),
+        c as u32
+    )
+}
+
 impl SuspensionFile {
     /// Parses JSON text into a description, `origin` naming the source in errors, and with `ranges` refuses
     /// values no suspension has (see [`SuspensionFile::check_ranges`]) with the key, its line and column,
@@ -224,6 +237,11 @@ impl SuspensionFile {
         // Syntax first, then the one thing serde cannot say in the file's words: how many templates.
         let value: serde_json::Value =
             serde_json::from_str(text).map_err(|e| invalid(e.line(), e.column(), plain(&e)))?;
+        if let Some((path, said)) = first_unprintable(&value) {
+            let keys: Vec<&str> = path.iter().map(String::as_str).collect();
+            let (line, column) = locate(text, &keys);
+            return Err(invalid(line, column, unprintable_message(&path, &said)));
+        }
         if let Some(suspension) = value.get("suspension").filter(|s| !s.is_object()) {
             let (line, column) = locate(text, &["suspension"]);
             return Err(invalid(
