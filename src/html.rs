@@ -738,7 +738,7 @@ fn write_warnings(out: Out, report: &KcReport) -> std::fmt::Result {
                 out,
                 "<tr><td>{}</td><td><code>{}</code></td><td>{}</td></tr>",
                 text(about),
-                text(&w.code),
+                text(w.code),
                 text(&w.message)
             )?;
         }
@@ -806,7 +806,7 @@ fn write_analysis(
     if !a.warnings.is_empty() {
         writeln!(out, "<ul class=\"warnings\">")?;
         for w in &a.warnings {
-            writeln!(out, "<li><code>{}</code> {}</li>", text(&w.code), text(&w.message))?;
+            writeln!(out, "<li><code>{}</code> {}</li>", text(w.code), text(&w.message))?;
         }
         writeln!(out, "</ul>")?;
     }
