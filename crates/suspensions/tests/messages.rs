@@ -122,3 +122,36 @@ fn every_solver_failure_reads_without_the_librarys_words() {
         assert!(!message.contains("load parameter") && !message.contains("factorize()"), "{message}");
     }
 }
+
+/// `static-load` with a range walked nothing of it, and summary.json's settings claimed the range: the
+/// range is refused, saying why. Every analysis's load parameter reads after "in the" (the static load's
+/// said "in the the model file's").
+#[test]
+fn static_load_refuses_a_range_it_would_ignore_and_every_parameter_reads_in_a_sentence() {
+    use elastokin_suspensions::kc::{self, Analysis, Settings};
+    let settings = Settings { range: Some((0.0, 1000.0)), ..Settings::default() };
+    let e = kc::check_settings(Analysis::StaticLoad, &settings).unwrap_err().to_string();
+    assert!(e.contains("with no range to walk: leave the range out"), "{e}");
+    assert!(kc::check_settings(Analysis::StaticLoad, &Settings::default()).is_ok());
+    for a in kc::ALL {
+        assert!(!a.parameter().starts_with("the "), "{}: {}", a.name(), a.parameter());
+    }
+    let e = kc::check_settings(Analysis::ModelLoads, &Settings { range: Some((0.0, 0.0)), ..settings }).unwrap_err();
+    assert!(e.to_string().contains("apart in the fraction of the model file's loads"), "{e}");
+}
+
+/// An unrestrained corner's condition printed as "condition at design: inf": it says what that means.
+#[test]
+fn an_infinite_condition_is_said_in_words() {
+    use elastokin_suspensions::check::ModelCheck;
+    let check = ModelCheck {
+        degrees_of_freedom: 1,
+        degrees_of_freedom_on_rig: 0,
+        redundant_rows: 0,
+        condition_estimate: Some(f64::INFINITY),
+        warnings: Vec::new(),
+    };
+    let lines = check.report();
+    assert_eq!(lines[1], "condition at design: infinite: some motion is held by nothing (see the warnings)");
+    assert!(lines.iter().all(|l| !l.contains("inf ") && !l.ends_with("inf")), "{lines:?}");
+}

@@ -68,6 +68,8 @@ fn bad_tolerances_are_refused_by_key() {
         ),
         (json!({ "hardpoints": 0.001, "analyses": ["rol"] }), "analyses: no analysis 'rol'"),
         (json!({ "hardpoint": 0.001 }), "unknown key 'hardpoint'"),
+        // An empty list ran the whole suite.
+        (json!({ "hardpoints": 0.001, "analyses": [] }), "analyses: give one analysis name at least"),
         (json!({}), "no tolerances"),
     ] {
         let e = read_tolerances(&text.to_string(), "tolerances.json", &doc).unwrap_err();

@@ -60,6 +60,9 @@ impl ModelCheck {
             self.degrees_of_freedom, self.degrees_of_freedom_on_rig
         )];
         out.push(match self.condition_estimate {
+            Some(c) if !c.is_finite() => {
+                "condition at design: infinite: some motion is held by nothing (see the warnings)".into()
+            }
             Some(c) => format!(
                 "condition at design: {c:.1e} (stiffest mount over the softest motion, wheel-centre height held; \
                  above {NEAR_SINGULAR:.0e} the corner is near-singular)"

@@ -88,6 +88,10 @@ pub fn read_tolerances(text: &str, origin: &str, document: &Value) -> Result<Tol
     }
     let analyses = match object.get("analyses") {
         None => Vec::new(),
+        // An empty list would be read as no choice: the whole suite.
+        Some(list) if list.as_array().is_some_and(Vec::is_empty) => {
+            return Err(at("analyses: give one analysis name at least, or leave the key out for the whole suite"));
+        }
         Some(list) => list
             .as_array()
             .ok_or_else(|| at("analyses: give a list of analysis names"))?

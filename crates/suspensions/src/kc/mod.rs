@@ -72,6 +72,14 @@ pub fn check_settings(analysis: Analysis, settings: &Settings) -> Result<(), Ana
             ),
         });
     }
+    if analysis == Analysis::StaticLoad && settings.range.is_some() {
+        return Err(AnalysisError {
+            analysis: analysis.name(),
+            message: "static-load applies the vehicle section's corner load at once, with no range to walk: leave \
+                      the range out (vertical-force walks a range of loads)"
+                .into(),
+        });
+    }
     if let Some((from, to)) = settings.range {
         // An empty range walks one point: every slope at design would be 0 / 0; one narrower than
         // MIN_RANGE (a nanometre, a nanonewton) takes slopes of rounding noise, or overflows them.

@@ -81,7 +81,7 @@ impl Analysis {
             Analysis::Road(WheelLoad::Braking) => "braking force at the contact patch, N, rearward +",
             Analysis::Road(WheelLoad::Traction) => "traction force at the wheel centre, N, forward +",
             Analysis::Road(WheelLoad::AligningTorque) => "aligning torque, N·m, about +z",
-            Analysis::StaticLoad => "the model file's vehicle.corner_load, N, applied at once",
+            Analysis::StaticLoad => "corner load of the model file's vehicle section, N, applied at once",
             Analysis::ModelLoads => "fraction of the model file's loads applied, 0 to 1",
         }
     }
