@@ -465,3 +465,28 @@ fn a_packaging_constraint_the_start_breaks_is_restored_or_named_as_a_miss() {
     // Measured 3.7e-11 m apart.
     assert!((l - longest).abs() < 1e-9, "{l} vs {longest}");
 }
+
+/// A key given twice in a TARGETS file (two bounds for one free number), a TOLERANCES file or a model file
+/// was read as the last of the two, silently. Each is refused, naming the key's place.
+#[test]
+fn a_key_given_twice_in_a_design_or_model_file_is_refused_naming_it() {
+    use elastokin_suspensions::design::tolerance::read_tolerances;
+    use elastokin_suspensions::SuspensionFile;
+    let base = document("macpherson.json");
+    let inner = format!("{H}/tie_rod_inner/2");
+    let targets = format!(
+        r#"{{"free": {{"{inner}": [-0.1, -0.02], "{inner}": [-0.2, 0.0]}},
+            "targets": [{{"figure": "parallel-travel/bump_steer", "value": -2.0, "tolerance": 0.25}}]}}"#
+    );
+    let e = read_targets(&targets, "targets.json", &base, |f| Err(format!("no file {f}"))).unwrap_err();
+    assert_eq!(e, format!("targets.json: free.{inner}: the key is given twice: give each key once"));
+    let tolerances = r#"{"hardpoints": 0.001, "steps": 8, "steps": 16}"#;
+    let e = read_tolerances(tolerances, "tolerances.json", &base).unwrap_err();
+    assert_eq!(e, "tolerances.json: steps: the key is given twice: give each key once");
+    let path = format!("{}/../../examples/macpherson.json", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).unwrap().replacen("\"name\"", "\"name\": \"first\", \"name\"", 1);
+    let e = SuspensionFile::from_json(&text, "twice.json").unwrap_err().to_string();
+    assert!(e.contains("name: the key is given twice: give each key once"), "{e}");
+    let e = elastokin_suspensions::study::batch::base_document(&text, "twice.json").unwrap_err();
+    assert_eq!(e, "twice.json: name: the key is given twice: give each key once");
+}

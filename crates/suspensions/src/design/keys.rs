@@ -4,6 +4,16 @@
 use crate::kc::{self, Analysis};
 use serde_json::{Map, Value};
 
+/// The JSON `text` of a design file (`origin` names it in errors), refused where an object names a key
+/// twice: a JSON reader keeps the last silently, and which one the user meant is a guess.
+pub(super) fn read_json(text: &str, origin: &str) -> Result<Value, String> {
+    let root: Value = serde_json::from_str(text).map_err(|e| format!("{origin}: {e}"))?;
+    match crate::file::key_path::first_duplicate_key(text) {
+        Some(path) => Err(format!("{origin}: {}: the key is given twice: give each key once", path.join("."))),
+        None => Ok(root),
+    }
+}
+
 pub(super) fn number(v: &Value, key: &str) -> Result<f64, String> {
     v.as_f64().filter(|x| x.is_finite()).ok_or_else(|| format!("{key}: give a finite number, got {v}"))
 }

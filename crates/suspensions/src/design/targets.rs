@@ -191,7 +191,7 @@ pub fn read_targets(
     document: &Value,
     read_file: impl Fn(&str) -> Result<String, String>,
 ) -> Result<Targets, String> {
-    let root: Value = serde_json::from_str(text).map_err(|e| format!("{origin}: {e}"))?;
+    let root = super::keys::read_json(text, origin)?;
     let at = |key: &str| format!("{origin}: {key}");
     let object = root.as_object().ok_or_else(|| at("the file must be a JSON object with \"free\" and \"targets\""))?;
     only(object, &["free", "targets", "constraints", "steps"], &at("the top level"))?;

@@ -40,7 +40,7 @@ pub struct Tolerances {
 /// Reads a TOLERANCES file against the model `document`; errors name the key and the fix.
 pub fn read_tolerances(text: &str, origin: &str, document: &Value) -> Result<Tolerances, String> {
     let at = |key: &str| format!("{origin}: {key}");
-    let root: Value = serde_json::from_str(text).map_err(|e| format!("{origin}: {e}"))?;
+    let root = super::keys::read_json(text, origin)?;
     let object = root.as_object().ok_or_else(|| at("the file must be a JSON object with \"tolerances\""))?;
     only(object, &["tolerances", "hardpoints", "analyses", "steps"], &at("the top level"))?;
     let band = |pointer: &str, v: &Value, key: &str| -> Result<f64, String> {

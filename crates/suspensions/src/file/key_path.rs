@@ -167,3 +167,80 @@ pub fn first_unprintable(value: &serde_json::Value) -> Option<(Vec<String>, Stri
         _ => None,
     }
 }
+
+/// The keys leading to the first key that an object of the JSON `text` names twice (the last of them the
+/// key itself), if any: a JSON reader keeps one of the two silently. `None` too where `text` is no JSON
+/// (its reader says why).
+pub fn first_duplicate_key(text: &str) -> Option<Vec<String>> {
+    use serde::de::{DeserializeSeed, Deserializer, IgnoredAny, MapAccess, SeqAccess, Visitor};
+    use std::fmt;
+
+    /// Walks a value, keeping in `found` the path to the first key named twice.
+    struct Walk<'a> {
+        path: &'a mut Vec<String>,
+        found: &'a mut Option<Vec<String>>,
+    }
+    impl<'de> DeserializeSeed<'de> for Walk<'_> {
+        type Value = ();
+        fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<(), D::Error> {
+            d.deserialize_any(self)
+        }
+    }
+    impl<'de> Visitor<'de> for Walk<'_> {
+        type Value = ();
+        fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+            f.write_str("a JSON value")
+        }
+        fn visit_bool<E>(self, _: bool) -> Result<(), E> {
+            Ok(())
+        }
+        fn visit_i64<E>(self, _: i64) -> Result<(), E> {
+            Ok(())
+        }
+        fn visit_u64<E>(self, _: u64) -> Result<(), E> {
+            Ok(())
+        }
+        fn visit_f64<E>(self, _: f64) -> Result<(), E> {
+            Ok(())
+        }
+        fn visit_str<E>(self, _: &str) -> Result<(), E> {
+            Ok(())
+        }
+        fn visit_unit<E>(self) -> Result<(), E> {
+            Ok(())
+        }
+        fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<(), A::Error> {
+            let mut k = 0;
+            loop {
+                self.path.push(k.to_string());
+                let more = seq.next_element_seed(Walk { path: self.path, found: self.found })?.is_some();
+                self.path.pop();
+                if !more {
+                    return Ok(());
+                }
+                k += 1;
+            }
+        }
+        fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<(), A::Error> {
+            let mut seen = std::collections::HashSet::new();
+            while let Some(key) = map.next_key::<String>()? {
+                self.path.push(key.clone());
+                if self.found.is_none() && !seen.insert(key) {
+                    *self.found = Some(self.path.clone());
+                }
+                if self.found.is_some() {
+                    map.next_value::<IgnoredAny>()?;
+                } else {
+                    map.next_value_seed(Walk { path: self.path, found: self.found })?;
+                }
+                self.path.pop();
+            }
+            Ok(())
+        }
+    }
+
+    let mut found = None;
+    let mut d = serde_json::Deserializer::from_str(text);
+    Walk { path: &mut Vec::new(), found: &mut found }.deserialize(&mut d).ok()?;
+    found
+}

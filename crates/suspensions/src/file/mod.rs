@@ -237,6 +237,15 @@ impl SuspensionFile {
         // Syntax first, then the one thing serde cannot say in the file's words: how many templates.
         let value: serde_json::Value =
             serde_json::from_str(text).map_err(|e| invalid(e.line(), e.column(), plain(&e)))?;
+        if let Some(path) = key_path::first_duplicate_key(text) {
+            let keys: Vec<&str> = path.iter().map(String::as_str).collect();
+            let (line, column) = locate(text, &keys);
+            return Err(invalid(
+                line,
+                column,
+                format!("{}: the key is given twice: give each key once", path.join(".")),
+            ));
+        }
         if let Some((path, said)) = first_unprintable(&value) {
             let keys: Vec<&str> = path.iter().map(String::as_str).collect();
             let (line, column) = locate(text, &keys);

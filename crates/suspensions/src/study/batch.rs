@@ -90,7 +90,12 @@ pub fn parse_variant(line: &str, unnamed: &str, place: &str) -> Result<Option<Va
 /// keys, its comments removed).
 pub fn base_document(text: &str, origin: &str) -> Result<serde_json::Value, String> {
     let text = crate::import::chrono::without_comments(text);
-    serde_json::from_str(&text).map_err(|e| format!("{origin}: {e}"))
+    let document = serde_json::from_str(&text).map_err(|e| format!("{origin}: {e}"))?;
+    // Read as a value, a key given twice would be one of the two silently.
+    match crate::file::key_path::first_duplicate_key(&text) {
+        Some(path) => Err(format!("{origin}: {}: the key is given twice: give each key once", path.join("."))),
+        None => Ok(document),
+    }
 }
 
 /// The base model with a variant's edits applied; an edit to a pointer the model lacks is an error. A
