@@ -178,7 +178,7 @@ class Model:
         """
         report, table, comp = self._native.run(
             name,
-            range=None if range is None else (float(range[0]), float(range[1])),
+            range=_span(range),
             steps=steps,
             mode=mode,
             wheel=wheel,
@@ -191,7 +191,7 @@ class Model:
 
     def suite(
         self,
-        analyses: Optional[Sequence[str]] = None,
+        analyses: Optional[Union[str, Sequence[str]]] = None,
         *,
         range: Optional[Tuple[float, float]] = None,
         steps: int = 32,
@@ -205,13 +205,14 @@ class Model:
         """Runs the K&C suite — every analysis that applies, or those named — as ``elastokin run`` does,
         and gives its report as a dict: the content of the command's summary.json without its provenance
         (model, settings, model_check, warnings, and per analysis its figures, table, accuracy and
-        warnings). Options as for :meth:`run`; ``range`` needs exactly one analysis named. Raises
+        warnings). ``analyses`` is a list of names, or one name. Options as for :meth:`run`; ``range``
+        needs exactly one analysis named. Raises
         AnalysisError, naming the analysis and its reason, when one fails (the command writes the others
         and exits 1; run them by name to keep them)."""
         return json.loads(
             self._native.suite(
-                None if analyses is None else list(analyses),
-                range=None if range is None else (float(range[0]), float(range[1])),
+                _names(analyses),
+                range=_span(range),
                 steps=steps,
                 mode=mode,
                 wheel=wheel,
@@ -272,7 +273,7 @@ class Model:
         AnalysisError when the analysis fails or meets a limit point (no derivative there) or a parameter
         changes the model's parts."""
         pointers = self.hardpoint_parameters() if parameters is None else [str(p) for p in parameters]
-        span = None if range is None else (float(range[0]), float(range[1]))
+        span = _span(range)
         return self._native.sensitivities(
             pointers, analysis=analysis, range=span, steps=steps, figures_only=figures_only
         )
@@ -380,13 +381,36 @@ def _set_pointer(document: Any, pointer: str, value: float) -> None:
         raise ModelError(f"parameter '{pointer}' names nothing in the model") from None
 
 
+def _span(range: Optional[Sequence[float]]) -> Optional[Tuple[float, float]]:
+    """``range`` as the pair of numbers the analyses take, or ValueError saying what to give."""
+    if range is None:
+        return None
+    try:
+        start, end = range
+        return (float(start), float(end))
+    except (TypeError, ValueError):
+        raise ValueError(
+            f"range: give (from, to), two numbers in the analysis's own units, got {range!r}"
+        ) from None
+
+
+def _names(analyses: Optional[Union[str, Sequence[str]]]) -> Optional[List[str]]:
+    """Analysis names as a list: one name given alone is that one analysis, not its letters."""
+    if analyses is None:
+        return None
+    if isinstance(analyses, str):
+        return [analyses]
+    return list(analyses)
+
+
 def _from_document(text: str, origin: str) -> Model:
     return Model(_native.Model.from_json(text, origin))
 
 
 def load(source: Union[str, "os.PathLike[str]", Mapping[str, Any]], *, origin: str = "<dict>") -> Model:
     """Reads a suspension model: a path to a model file (an elastokin model file or a Project Chrono
-    suspension file), or a dict in the model-file format (``origin`` then names it in error messages).
+    suspension file), a model file's JSON text (a string that starts with ``{``), or a dict in the
+    model-file format (``origin`` then names the text or dict in error messages).
 
     Raises ModelError, with the command's message, when the file cannot be read or is not a model."""
     if isinstance(source, Mapping):
@@ -395,6 +419,8 @@ def load(source: Union[str, "os.PathLike[str]", Mapping[str, Any]], *, origin: s
         except (TypeError, ValueError) as e:
             raise ModelError(f"{origin}: not a model in the model-file format: {e}") from e
         return Model(_native.Model.from_json(text, origin))
+    if isinstance(source, str) and source.lstrip().startswith("{"):
+        return Model(_native.Model.from_json(source, "<text>" if origin == "<dict>" else origin))
     return Model(_native.Model.read(os.fspath(source)))
 
 
@@ -444,4 +470,4 @@ def compare(
                 items.append((os.path.basename(path), f.read()))
         else:
             items.append(load(d)._native)
-    return _native.compare(items, analysis=analysis, range=range, steps=steps)
+    return _native.compare(items, analysis=analysis, range=_span(range), steps=steps)

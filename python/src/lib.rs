@@ -49,7 +49,7 @@ fn analysis(name: &str) -> PyResult<Analysis> {
     Analysis::from_name(name).ok_or_else(|| {
         let names: Vec<&str> = kc::ALL.iter().map(|a| a.name()).collect();
         PyValueError::new_err(format!(
-            "invalid value '{name}' for '--analysis <NAME>'\n  [possible values: {}]",
+            "no analysis '{name}': give one of {}",
             names.join(", ")
         ))
     })

@@ -179,11 +179,25 @@ def test_a_bad_key_is_a_model_error_with_the_command_s_message(tmp_path):
     assert str(raised.value) == f"my corner: {said} (at suspension.macpherson.spring.rat)"
 
 
-def test_an_unknown_analysis_is_a_value_error_with_the_command_s_message(model, tmp_path):
+def test_an_unknown_analysis_is_a_value_error_naming_it_and_the_names(model):
+    # In Python's words: the command's flag (`--analysis <NAME>`) is not what a Python caller wrote.
     with pytest.raises(ValueError) as raised:
         model.run("bump-steer")
-    message = command_error("run", MODEL, "--analysis", "bump-steer", "--out", tmp_path / "x")
-    assert message.startswith(str(raised.value))
+    assert str(raised.value) == "no analysis 'bump-steer': give one of " + ", ".join(elastokin.analyses())
+    assert "--" not in str(raised.value)
+
+
+def test_a_name_a_short_range_and_model_text_are_taken_as_a_python_caller_means_them(model):
+    # suite("roll") ran the analyses 'r', 'o', 'l', 'l'; range=(0.05,) raised IndexError; load(text) took
+    # the JSON text for a path.
+    assert list(model.suite("roll")["analyses"]) == list(model.suite(["roll"])["analyses"]) == ["roll"]
+    for bad in [(0.05,), (0.0, 0.05, 1.0), "0,0.05", (0.0, "far")]:
+        with pytest.raises(ValueError, match=r"range: give \(from, to\), two numbers"):
+            model.run("parallel-travel", range=bad)
+    text = MODEL.read_text()
+    assert elastokin.load(text).to_dict() == model.to_dict()
+    with pytest.raises(elastokin.ModelError, match="<text>"):
+        elastokin.load('{"name": "no suspension"}')
 
 
 def test_a_failed_analysis_is_an_analysis_error_with_the_command_s_message(model, tmp_path):

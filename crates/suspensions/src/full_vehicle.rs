@@ -94,7 +94,8 @@ impl VehicleFile {
             let inside = if open_low { v > lo && v < hi } else { v >= lo && v <= hi };
             if !(v.is_finite() && inside) {
                 let (a, b) = if open_low { ("between", "and") } else { ("from", "to") };
-                return Err(format!("{origin}: `{key}` must lie {a} {lo:e} {b} {hi:e} {unit}, got {v:e}"));
+                let (lo, hi, v) = (crate::kc::plain(lo), crate::kc::plain(hi), crate::kc::plain(v));
+                return Err(format!("{origin}: `{key}` must lie {a} {lo} {b} {hi} {unit}, got {v}"));
             }
         }
         Ok(file)

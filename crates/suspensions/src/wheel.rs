@@ -74,7 +74,8 @@ impl Wheel {
             return Err(ModelError::OutOfRange {
                 item: "suspension".into(),
                 why: format!(
-                    "loaded_radius must be a tyre radius in metres, at most {MAX_LOADED_RADIUS}, got {loaded_radius:e}"
+                    "loaded_radius must be a tyre radius in metres, at most {MAX_LOADED_RADIUS}, got {}",
+                    crate::description::limits::plain(loaded_radius)
                 ),
             });
         }

@@ -70,7 +70,7 @@ fn paper_mode_warns_when_its_error_exceeds_the_tolerance_and_corrected_mode_does
     let warning = &paper.warnings[0];
     assert_eq!(warning.code, "error-over-tolerance");
     assert!(
-        warning.message.contains("angles up to") && warning.message.contains("--mode corrected"),
+        warning.message.contains("angles up to") && warning.message.contains("corrected mode (mode, --mode)"),
         "{}",
         warning.message
     );
@@ -83,7 +83,7 @@ fn paper_mode_warns_when_its_error_exceeds_the_tolerance_and_corrected_mode_does
     let tolerance = kc::Tolerance { angle_deg: 0.01, length_m: 1e-4, relative: 0.05 };
     let coarse = Settings { mode: Mode::Paper, tolerance, ..Settings::default() };
     let message = &kc::run(Analysis::ParallelTravel, &file, &coarse).unwrap().warnings[0].message;
-    let steps: usize = message.split("about --steps ").nth(1).unwrap().split(' ').next().unwrap().parse().unwrap();
+    let steps: usize = message.split("about ").nth(1).unwrap().split(' ').next().unwrap().parse().unwrap();
     let fine = kc::run(Analysis::ParallelTravel, &file, &Settings { steps, ..coarse }).unwrap();
     // Measured: 430 steps suggested for 32 (a half-track change error of 1.2 mm against 0.1 mm), after
     // which that error is 0.092 mm.
@@ -512,7 +512,10 @@ fn an_arc_step_of_no_length_is_refused_naming_it() {
     for bad in [0.0, -5.0, f64::NAN] {
         let settings = Settings { through_limits: true, arc_step: Some(bad), ..Settings::default() };
         let e = kc::run(Analysis::VerticalForce, &file, &settings).unwrap_err().to_string();
-        assert!(e.contains("--arc-step must be a positive length") && !e.contains("NaN"), "{e}");
+        assert!(
+            e.contains("arc-length step (arc_step, --arc-step) must be a positive length") && !e.contains("NaN"),
+            "{e}"
+        );
     }
 }
 

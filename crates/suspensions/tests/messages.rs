@@ -155,3 +155,33 @@ fn an_infinite_condition_is_said_in_words() {
     assert_eq!(lines[1], "condition at design: infinite: some motion is held by nothing (see the warnings)");
     assert!(lines.iter().all(|l| !l.contains("inf ") && !l.ends_with("inf")), "{lines:?}");
 }
+
+/// Numbers a user gave, written back in a message: 1e308 was written with 309 digits, 1e-300 with 300
+/// zeros, 1.5 as "1.5e0" and a range as "from 1e0 to 1e6 kg". They read as people write them.
+#[test]
+fn numbers_in_messages_are_written_as_people_write_them() {
+    use elastokin_suspensions::kc::{self, plain, Analysis, Settings};
+    for (v, written) in [
+        (1.5, "1.5"),
+        (0.02, "0.02"),
+        (40000.0, "40000"),
+        (0.0, "0"),
+        (1e6, "1e6"),
+        (1e308, "1e308"),
+        (-1e-300, "-1e-300"),
+        (2.5e-7, "2.5e-7"),
+        (f64::NAN, "not a finite number"),
+    ] {
+        assert_eq!(plain(v), written);
+    }
+    let e = kc::check_settings(Analysis::ParallelTravel, &Settings { arc_step: Some(-1.5), ..Settings::default() })
+        .unwrap_err()
+        .to_string();
+    assert!(e.ends_with("got -1.5"), "{e}");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/generic/macpherson.json");
+    let mut v: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    v["suspension"]["macpherson"]["spring"]["rate"] = 1e308.into();
+    let e = SuspensionFile::from_json(&v.to_string(), "m.json").unwrap_err().to_string();
+    assert!(e.contains("spring.rate: 1e308 N/m is outside"), "{e}");
+    assert!(!e.contains("00000") && !e.contains("e0,") && !e.ends_with("e0"), "{e}");
+}

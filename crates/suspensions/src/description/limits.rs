@@ -81,8 +81,8 @@ pub(crate) fn check_rate(
         return Ok(());
     }
     let key = key.to_string();
-    let got = if value.is_finite() { format!("{value:e}") } else { "not a finite number".into() };
-    let why = format!("{key} must be a rate in {unit} from {least:e} to {most:e}, got {got}");
+    let (least, most, got) = (plain(least), plain(most), plain(value));
+    let why = format!("{key} must be a rate in {unit} from {least} to {most}, got {got}");
     Err(ModelError::OutOfRange { item: key, why })
 }
 
@@ -136,12 +136,13 @@ pub(crate) fn check_spring_force(
     design_length: f64,
 ) -> Result<(), ModelError> {
     if design_force.is_nan() || design_force.abs() > MAX_SPRING_FORCE {
-        let got = if design_force.is_finite() { format!("{design_force:e}") } else { "not a finite number".into() };
         return Err(ModelError::OutOfRange {
             item: key.to_string(),
             why: format!(
-                "{key}.design_force must be a force in N from {:e} to {MAX_SPRING_FORCE:e}, got {got}",
-                -MAX_SPRING_FORCE
+                "{key}.design_force must be a force in N from {} to {}, got {}",
+                plain(-MAX_SPRING_FORCE),
+                plain(MAX_SPRING_FORCE),
+                plain(design_force)
             ),
         });
     }
@@ -258,4 +259,17 @@ pub(crate) fn looks_like_millimetres(points: &[(String, Vec3)], wc: Vec3) -> boo
     let spread = points.iter().map(|(_, p)| (p - wc).norm()).fold(0.0, f64::max);
     let scaled_fits = (200.0..=2000.0).contains(&wc.y.abs()) && spread <= 1e3 * FAR_FROM_WHEEL_CENTRE;
     wc.y.abs() > 10.0 || (spread > 20.0 && scaled_fits)
+}
+
+/// `v` as a message writes a number a user gave or may give: the shortest text that reads back as `v`,
+/// plain from 1e-3 to below 1e6 (`1.5`, `0.02`, `40000`), with an exponent beyond (`1e6`, `1e308`,
+/// `2.5e-7`) rather than hundreds of digits; `not a finite number` where it is none.
+pub fn plain(v: f64) -> String {
+    if !v.is_finite() {
+        "not a finite number".into()
+    } else if v != 0.0 && !(1e-3..1e6).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
 }

@@ -54,7 +54,8 @@ impl VehicleParameters {
             ("rack_travel_per_revolution", self.rack_travel_per_revolution, "a rack travel in metres", 1.0),
         ] {
             if let Some(v) = value.filter(|v| !(*v > 0.0 && *v <= limit)) {
-                return invalid(format!("`{field}` must be {what}, above 0 and at most {limit:e}, got {v:e}"));
+                let (limit, v) = (crate::description::limits::plain(limit), crate::description::limits::plain(v));
+                return invalid(format!("`{field}` must be {what}, above 0 and at most {limit}, got {v}"));
             }
         }
         for (field, value) in
@@ -62,7 +63,8 @@ impl VehicleParameters {
         {
             if !(0.0..=1.0).contains(&value) {
                 return invalid(format!(
-                    "`{field}` is the front axle's share of the force and must lie in [0, 1], got {value}"
+                    "`{field}` is the front axle's share of the force and must lie in [0, 1], got {}",
+                    crate::description::limits::plain(value)
                 ));
             }
         }

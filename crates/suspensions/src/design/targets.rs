@@ -179,7 +179,7 @@ fn tolerance(object: &serde_json::Map<String, Value>, key: &str) -> Result<f64, 
     if t > 0.0 {
         Ok(t)
     } else {
-        Err(format!("{key}.tolerance: give a positive miss in the target's unit, got {t}"))
+        Err(format!("{key}.tolerance: give a positive miss in the target's unit, got {}", crate::kc::plain(t)))
     }
 }
 
@@ -343,7 +343,10 @@ pub fn read_targets(
             let centre = triple(o.get("centre").unwrap_or(&Value::Null), &at(&format!("{key}.centre")))?;
             let radius = number(o.get("radius").unwrap_or(&Value::Null), &at(&format!("{key}.radius")))?;
             if radius <= 0.0 {
-                return Err(at(&format!("{key}.radius: give a positive radius in m, got {radius}")));
+                return Err(at(&format!(
+                    "{key}.radius: give a positive radius in m, got {}",
+                    crate::kc::plain(radius)
+                )));
             }
             constraints.push(Constraint::OutsideSphere { point, centre, radius });
         } else if let Some(point) = o.get("outside_box") {

@@ -519,9 +519,11 @@ fn too_wide(e: &Evaluation, targets: &Targets, free: &[(f64, f64)]) -> Option<St
     })?;
     let (lo, hi) = free[k];
     Some(format!(
-        "free[\"{}\"]: the bounds {lo:e} to {hi:e} are too wide for a step to be computed (the targets' rates \
+        "free[\"{}\"]: the bounds {} to {} are too wide for a step to be computed (the targets' rates \
          times their span are no finite numbers): give it bounds of the size it may move",
-        targets.free[k].pointer
+        targets.free[k].pointer,
+        crate::kc::plain(lo),
+        crate::kc::plain(hi)
     ))
 }
 

@@ -86,15 +86,6 @@ fn in_file_words(message: &str) -> String {
     EXPECTED_IN_FILE_WORDS.iter().fold(message.to_string(), |m, (code, words)| m.replace(code, words))
 }
 
-/// A value as people write it: `1e308`, not three hundred digits.
-fn number(v: f64) -> String {
-    if v != 0.0 && !(1e-3..1e6).contains(&v.abs()) {
-        format!("{v:e}")
-    } else {
-        format!("{v}")
-    }
-}
-
 /// `value` as pretty JSON at `depth` (two spaces each), arrays of plain values on one line.
 fn write_json(value: &serde_json::Value, depth: usize, out: &mut String) {
     use serde_json::Value;
@@ -318,7 +309,7 @@ impl SuspensionFile {
                         message: format!(
                             "hardpoint '{name}': {axis} = {} m is beyond ±{MAX_COORDINATE} m; hardpoints are in \
                              metres from the car's reference point (ISO 8855: x forward, y left, z up){hint}",
-                            number(*c)
+                            crate::description::limits::plain(*c)
                         ),
                     });
                 }
@@ -441,7 +432,7 @@ impl SuspensionFile {
                                     "loads.{}.{what}: a component of {} is beyond ±{MAX_FORCE:e} (N or N·m): give \
                                      a load a suspension carries",
                                     load.name,
-                                    number(largest)
+                                    crate::description::limits::plain(largest)
                                 ),
                             });
                         }
@@ -459,7 +450,7 @@ impl SuspensionFile {
                 message: format!(
                     "{}: {} {unit} is outside the accepted range (0, 1e12] {unit} ({typical})",
                     keys.join("."),
-                    number(value)
+                    crate::description::limits::plain(value)
                 ),
             })
         };
@@ -476,7 +467,7 @@ impl SuspensionFile {
                     message: format!(
                         "{}: {} N is beyond ±{MAX_FORCE:e} N (a car's spring carries 2e3–2e4 N)",
                         keys.join("."),
-                        number(*force)
+                        crate::description::limits::plain(*force)
                     ),
                 });
             }
@@ -487,7 +478,7 @@ impl SuspensionFile {
                 message: format!(
                     "{}: {} m is outside 0.05–2 m (a car's tyre is 0.25–0.40 m, in metres)",
                     radius_keys.join("."),
-                    number(loaded_radius)
+                    crate::description::limits::plain(loaded_radius)
                 ),
             });
         }
@@ -539,9 +530,9 @@ impl SuspensionFile {
                         keys: vec!["vehicle".into(), key.into()],
                         message: format!(
                             "vehicle.{key}: {} {unit} is outside {}–{} {unit} ({why})",
-                            number(value),
-                            number(lo),
-                            number(hi)
+                            crate::description::limits::plain(value),
+                            crate::description::limits::plain(lo),
+                            crate::description::limits::plain(hi)
                         )
                         .replace("  ", " ")
                         .replace(" )", ")"),

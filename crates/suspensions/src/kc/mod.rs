@@ -18,6 +18,7 @@ pub mod settings;
 mod travel;
 pub mod unit;
 
+pub use crate::description::limits::plain;
 pub use chart::{Chart, Scale, Series, YAxis};
 pub use models::Models;
 pub use reduce::{COMPLIANCE_LOAD, COMPLIANCE_RESPONSE};
@@ -62,12 +63,12 @@ pub fn check_settings(analysis: Analysis, settings: &Settings) -> Result<(), Ana
         return Err(AnalysisError { analysis: analysis.name(), message });
     }
     if let Some(step) = settings.arc_step.filter(|v| !(v.is_finite() && *v > 0.0)) {
-        let got = if step.is_finite() { format!("{step:e}") } else { "a value that is not a finite number".into() };
+        let got = plain(step);
         return Err(AnalysisError {
             analysis: analysis.name(),
             message: format!(
-                "--arc-step must be a positive length in the {} (the change of load or travel of an \
-                 arc-length step), got {got}",
+                "the arc-length step (arc_step, --arc-step) must be a positive length in the {} (the change of \
+                 load or travel of an arc-length step), got {got}",
                 analysis.parameter()
             ),
         });
@@ -84,8 +85,11 @@ pub fn check_settings(analysis: Analysis, settings: &Settings) -> Result<(), Ana
         // An empty range walks one point: every slope at design would be 0 / 0; one narrower than
         // MIN_RANGE (a nanometre, a nanonewton) takes slopes of rounding noise, or overflows them.
         if !(from.is_finite() && to.is_finite()) || (to - from).abs() < MIN_RANGE {
-            let got =
-                if from.is_finite() && to.is_finite() { format!(", got {from:e} to {to:e}") } else { String::new() };
+            let got = if from.is_finite() && to.is_finite() {
+                format!(", got {} to {}", plain(from), plain(to))
+            } else {
+                String::new()
+            };
             return Err(AnalysisError {
                 analysis: analysis.name(),
                 message: format!(
@@ -105,8 +109,11 @@ pub fn check_settings(analysis: Analysis, settings: &Settings) -> Result<(), Ana
             return Err(AnalysisError {
                 analysis: analysis.name(),
                 message: format!(
-                    "the range {from:e} to {to:e} reaches beyond {most:e} in the {}: no suspension meets that; \
+                    "the range {} to {} reaches beyond {} in the {}: no suspension meets that; \
                      give a range in the analysis's own units",
+                    plain(from),
+                    plain(to),
+                    plain(most),
                     analysis.parameter()
                 ),
             });

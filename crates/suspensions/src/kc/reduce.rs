@@ -135,12 +135,12 @@ pub(super) fn finish<R: Clone>(
         let needed = (1.1 * settings.steps as f64 * worst).ceil();
         let fix = match settings.mode {
             Mode::Paper if needed <= MAX_STEPS as f64 => format!(
-                "paper mode's error falls in proportion to the step: about --steps {needed:.0} would meet the \
-                 tolerance, or --mode corrected"
+                "paper mode's error falls in proportion to the step: about {needed:.0} steps would meet the \
+                 tolerance (steps, --steps), or corrected mode (mode, --mode)"
             ),
             Mode::Paper => format!(
                 "paper mode's error falls in proportion to the step, and more than {MAX_STEPS} steps would be \
-                 needed: use --mode corrected"
+                 needed: use corrected mode (mode, --mode)"
             ),
             Mode::Corrected => "the model is near-singular here; run `elastokin check` on it".to_string(),
         };
@@ -216,8 +216,8 @@ pub(super) fn limit_warning(analysis: Analysis, limit: &SweepLimit, last: f64) -
         )
     };
     let then = match limit.through {
-        None => "the table and plots stop there, their last row at the limit point; run the analysis with \
-                 --through-limits to follow the path through it by arc length"
+        None => "the table and plots stop there, their last row at the limit point; run the analysis \
+                 through limits (through_limits, --through-limits) to follow the path through it by arc length"
             .to_string(),
         Some(arc) if arc.left_range => format!(
             "the table and plots follow the path through it by arc length (steps of {} at first) until it leaves \
@@ -227,7 +227,7 @@ pub(super) fn limit_warning(analysis: Analysis, limit: &SweepLimit, last: f64) -
         ),
         Some(arc) => format!(
             "the table and plots follow the path through it by arc length (steps of {} at first), but the path \
-             stopped after the most steps allowed at {}, inside the range; give a larger --arc-step",
+             stopped after the most steps allowed at {}, inside the range; give a larger arc-length step (arc_step, --arc-step)",
             amount(analysis, arc.step),
             amount(analysis, last)
         ),
