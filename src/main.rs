@@ -799,11 +799,10 @@ fn run_batch(args: BatchArgs, out: &Stdout, quiet: bool, strict: bool) -> Result
     // The variants edit the file as written: a Chrono file's own keys (its comments removed).
     let base = batch::base_document(&String::from_utf8_lossy(&bytes), &origin).map_err(Failure::Input)?;
     let (variant_bytes, variant_text) = read_input(&args.variants, "VARIANTS")?;
-    let list = batch::parse_variants(&variant_text, &args.variants.display().to_string()).map_err(Failure::Input)?;
-    // A variant that names a key the model lacks is a mistake in the file: say so before running anything.
-    // The models read here are the ones run.
-    let files: Vec<SuspensionFile> =
-        list.iter().map(|v| batch::apply(&base, v)).collect::<Result<_, _>>().map_err(Failure::Input)?;
+    // Every wrong line of the file (a key the model lacks among them) is said before anything runs. The
+    // models read here are the ones run.
+    let (list, files) =
+        batch::read_and_apply(&base, &variant_text, &args.variants.display().to_string()).map_err(Failure::Input)?;
     let mut provenance = Provenance::new(&args.model, &bytes, kc::mode_word(Mode::Corrected), batch::STEPS);
     provenance.range = Some((-batch::HALF_RANGE, batch::HALF_RANGE));
     provenance.variants = Some((args.variants.display().to_string(), output::sha256_hex(&variant_bytes)));

@@ -251,6 +251,30 @@ fn bad_variants_are_named_before_anything_runs() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(!o.status.success() && err.contains(expected), "{line}: {err}");
     }
+    // A file with a wrong line here and there said one per try, with no line: every wrong line is said at
+    // once, each with its line, and the rest counted past twenty.
+    let mut lines: Vec<String> =
+        (0..40).map(|k| format!("ok {k}: /suspension/macpherson/spring/rate={}", 2e4 + k as f64)).collect();
+    lines[2] = cases[0].0.into();
+    lines[10] = cases[1].0.into();
+    lines[17] = cases[3].0.into();
+    let path = dir.join("many.txt");
+    std::fs::write(&path, lines.join("\n")).unwrap();
+    let o = elastokin(&["batch", "examples/generic/macpherson.json", path.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    for (line, (_, expected)) in [(3, cases[0]), (11, cases[1]), (18, cases[3])] {
+        let said = format!("{}:{line}: ", path.display());
+        assert!(err.lines().any(|l| l.contains(&said) && l.contains(expected)), "line {line}: {err}");
+    }
+    let wrong: Vec<String> = (0..25).map(|k| format!("w{k}: /suspension/nope={k}")).collect();
+    std::fs::write(&path, wrong.join("\n")).unwrap();
+    let err = String::from_utf8_lossy(
+        &elastokin(&["batch", "examples/generic/macpherson.json", path.to_str().unwrap()]).stderr,
+    )
+    .into_owned();
+    assert_eq!(err.matches("has no '/suspension/nope'").count(), 20, "{err}");
+    assert!(err.contains("… and 5 more wrong lines"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
 

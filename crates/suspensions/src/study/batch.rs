@@ -62,6 +62,57 @@ pub fn parse_variants_at_most(text: &str, origin: &str, most: Option<usize>) -> 
     Ok(out)
 }
 
+/// How many wrong lines of a variants file [`read_and_apply`] lists; it counts the rest.
+const WRONG_LINES_LISTED: usize = 20;
+
+/// Reads a variants file of at most [`MAX_VARIANTS`] variants and applies each to `base` ([`apply`]), as
+/// `elastokin batch` runs them: the variants and their models, or every wrong line (one that is no variant,
+/// or one whose variant edits a key the model lacks or makes no model), each with its line, the first
+/// [`WRONG_LINES_LISTED`] listed and the rest counted, so that one reading finds them all.
+pub fn read_and_apply(
+    base: &serde_json::Value,
+    text: &str,
+    origin: &str,
+) -> Result<(Vec<Variant>, Vec<SuspensionFile>), String> {
+    let (mut variants, mut files, mut wrong) = (Vec::new(), Vec::new(), Vec::new());
+    for (k, raw) in text.lines().enumerate() {
+        let place = format!("{origin}:{}", k + 1);
+        let variant = match parse_variant(raw, &format!("line {}", k + 1), &place) {
+            Ok(Some(variant)) => variant,
+            Ok(None) => continue,
+            Err(e) => {
+                wrong.push(e);
+                continue;
+            }
+        };
+        if variants.len() + wrong.len() == MAX_VARIANTS {
+            return Err(format!(
+                "{place}: more than {MAX_VARIANTS} variants; split the file and run a batch for each part (or run \
+                 them as a study from Python, which splits them itself)"
+            ));
+        }
+        match apply(base, &variant) {
+            Ok(file) => {
+                variants.push(variant);
+                files.push(file);
+            }
+            Err(e) => wrong.push(format!("{place}: {e}")),
+        }
+    }
+    if !wrong.is_empty() {
+        let more = wrong.len().saturating_sub(WRONG_LINES_LISTED);
+        wrong.truncate(WRONG_LINES_LISTED);
+        if more > 0 {
+            wrong.push(format!("… and {more} more wrong lines"));
+        }
+        return Err(wrong.join("\n"));
+    }
+    if variants.is_empty() {
+        return Err(format!("{origin}: no variants (one per line: name: /json/pointer=value; …)"));
+    }
+    Ok((variants, files))
+}
+
 /// One line of a variants file: `None` for a blank line or a `#` comment. A line without a `name:` label is
 /// named `unnamed`; errors start with `place` (the file and line).
 pub fn parse_variant(line: &str, unnamed: &str, place: &str) -> Result<Option<Variant>, String> {
