@@ -143,7 +143,7 @@ pub struct ImportArgs {
     /// The file
     pub file: PathBuf,
     /// The loaded tyre radius, m (a Chrono suspension file has no tyre; default 0.3)
-    #[arg(long, value_name = "M")]
+    #[arg(long, value_name = "M", value_parser = parse_loaded_radius, allow_negative_numbers = true)]
     pub loaded_radius: Option<f64>,
 }
 
@@ -447,6 +447,19 @@ fn parse_steps(text: &str) -> Result<usize, String> {
     let n: u64 = text.trim().parse().map_err(|_| format!("'{text}' is not a whole number of steps"))?;
     let n = usize::try_from(n).unwrap_or(usize::MAX);
     LoadPath::check_steps(n).map(|()| n)
+}
+
+fn parse_loaded_radius(text: &str) -> Result<f64, String> {
+    use elastokin::suspensions::description::limits::LOADED_RADIUS;
+    match text.trim().parse::<f64>() {
+        Ok(v) if LOADED_RADIUS.contains(&v) => Ok(v),
+        _ => Err(format!(
+            "'{text}' is not a loaded tyre radius: give metres from {} to {} (a car's tyre is 0.25–0.40 m), e.g. \
+             --loaded-radius 0.3",
+            LOADED_RADIUS.start(),
+            LOADED_RADIUS.end()
+        )),
+    }
 }
 
 fn parse_arc_step(text: &str) -> Result<f64, String> {

@@ -1899,3 +1899,37 @@ fn control_characters_in_names_never_reach_a_terminal_svg_or_page_raw() {
     assert!(shown, "the measured file's name written as its escape");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `--loaded-radius nan` on import was blamed on line 63 of the Chrono file; a `range` inside a TARGETS file
+/// that no analysis can walk exited 1 (a failed run) where the same `--range` exits 2. Each is refused as
+/// the bad input it is, naming the flag or the target.
+#[test]
+fn bad_numbers_given_beside_a_file_are_refused_as_what_the_user_gave() {
+    let chrono = "tests/data/chrono/DoubleWishbone.json";
+    for radius in ["nan", "-0.3", "50", "inf"] {
+        let o = elastokin(&["import", "chrono", chrono, "--loaded-radius", radius]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{radius}: {err}");
+        assert!(
+            err.contains(&format!("'{radius}' is not a loaded tyre radius: give metres from 0.05 to 2"))
+                && !err.contains(":63:"),
+            "{radius}: {err}"
+        );
+    }
+    let dir = scratch("bad-target-range");
+    let targets = dir.join("targets.json");
+    let text = r#"{"free": {"/suspension/macpherson/hardpoints/tie_rod_inner/2": [-0.1, -0.02]},
+        "targets": [{"figure": "parallel-travel/bump_steer", "value": -2.0, "tolerance": 0.25, "range": [0.01, 0.01]}]}"#;
+    std::fs::write(&targets, text).unwrap();
+    let o = elastokin(&[
+        "tune",
+        "examples/generic/macpherson.json",
+        targets.to_str().unwrap(),
+        "--out",
+        dir.join("o").to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("targets[0] (parallel-travel/bump_steer): range: the range needs two finite ends"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}

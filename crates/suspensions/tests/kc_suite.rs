@@ -456,6 +456,36 @@ fn a_sweep_stepping_over_the_five_links_limit_point_stops_at_it() {
     }
 }
 
+/// A range whose start lies beyond what the suspension reaches: a MacPherson's travel from −1 m said "no
+/// equilibrium found at −1: take more steps", the same at any number of steps; the five-link's vertical
+/// force from 100 kN started on the links' other branch and wrote its rows. The start is walked to from
+/// design, and where the path meets a limit point on the way the analysis says how far it goes: where a
+/// sweep from design towards the start stops.
+#[test]
+fn a_range_that_starts_beyond_reach_says_how_far_the_suspension_goes() {
+    for (name, analysis, range, towards) in [
+        ("generic/macpherson.json", Analysis::ParallelTravel, (-1.0, 1.0), (0.0, -1.0)),
+        ("five_link.json", Analysis::VerticalForce, (1e5, 2e5), (0.0, 1e5)),
+    ] {
+        let file = example(name);
+        for steps in [8, 400] {
+            let settings = Settings { range: Some(range), steps, ..Settings::default() };
+            let e = kc::run(analysis, &file, &settings).unwrap_err().to_string();
+            let reached: f64 = e.split("cannot go beyond ").nth(1).unwrap().split(' ').next().unwrap().parse().unwrap();
+            // A sweep from design towards the start, stopping at the limit point.
+            let settings = Settings { range: Some(towards), steps: 32, ..Settings::default() };
+            let report = kc::run(analysis, &file, &settings).unwrap();
+            assert!(report.warnings.iter().any(|w| w.code == "limit-point"), "{name}: {:?}", report.warnings);
+            let last = report.table.rows.last().unwrap()[0].number().unwrap();
+            let within = 1e-6 * (towards.1 - towards.0).abs();
+            println!("{name} at {steps} steps: cannot go beyond {reached}, a sweep from design stops at {last}");
+            // Within 1e-6 of its range, where bisection brackets the fold: measured 4e-8 m and 2.5e-7 N apart
+            // (the message's six decimals).
+            assert!((reached - last).abs() <= 2.0 * within, "{name}: {reached} vs {last}");
+        }
+    }
+}
+
 /// With `through_limits` the rows go on past the limit point by arc length: the load rises to the limit
 /// load and falls as the wheel keeps rising, until the path leaves the range below its start.
 #[test]

@@ -563,6 +563,24 @@ impl<'m> StaticSolver<'m> {
         self.taped_sweep(state, path, |solver, state| solver.walk_path(state, path, mode))
     }
 
+    /// Brings `state` (a pose at its own load parameter) to the equilibrium at `target` in corrected steps
+    /// from the equilibrium at its own. Fails with [`SolverError::LimitPoint`] where the path meets a limit
+    /// point short of `target`, and with `None` where it finds no equilibrium to start from or cannot go on.
+    fn walk_to(&mut self, state: &mut State, target: f64) -> Result<StepResult, Option<SolverError>> {
+        const STEPS: usize = 32;
+        self.solve_equilibrium(state).map_err(|_| None)?;
+        self.work.forget_path();
+        self.initial_response = self.load_response(state);
+        let path = LoadPath::new(state.t, target, STEPS);
+        let dt = (target - state.t) / STEPS as f64;
+        let mut steps = Vec::with_capacity(STEPS);
+        match self.corrected_steps(state, path, dt, &mut steps) {
+            Ok(None) => steps.pop().ok_or(None),
+            Ok(Some(limit)) => Err(Some(SolverError::LimitPoint { reached: limit.t })),
+            Err(_) => Err(None),
+        }
+    }
+
     fn walk_path(&mut self, state: &mut State, path: LoadPath, mode: Mode) -> Result<Sweep, SolverError> {
         LoadPath::check_steps(path.steps).map_err(|why| SolverError::InvalidInput { what: "load path", why })?;
         if !path.start.is_finite() || !path.end.is_finite() {
@@ -571,9 +589,39 @@ impl<'m> StaticSolver<'m> {
                 why: format!("need finite ends, got {} to {}", path.start, path.end),
             });
         }
+        let from = state.poses.clone();
         state.t = path.start;
         self.work.forget_path();
-        let first = self.solve_equilibrium(state)?;
+        // Newton from the given pose straight to the path's start, guarded as a step is. Where that reaches
+        // beyond what the tangent tells (past a limit point, onto another branch), or finds nothing, a start
+        // away from load parameter 0 is walked to from the pose's equilibrium there (no travel, no load,
+        // where every rig's path starts from its design pose): a limit point met on the way is said. Where
+        // the walk finds no way either, Newton goes on unguarded from the pose (a design pose the preloads
+        // do not balance settles far from it).
+        let guarded = self.newton(state, NewtonStart { guard: true, predicted: 0.0, fresh: false });
+        let first = match guarded.map(|(iterations, r)| self.step_result(state, iterations, &r)) {
+            Ok(first) => first,
+            Err(SolverError::NoConvergence { .. }) => {
+                let lambda = vec![0.0; state.lambda.len()];
+                let walked = match path.start != 0.0 {
+                    true => {
+                        *state = State { poses: from.clone(), lambda: lambda.clone(), t: 0.0 };
+                        self.walk_to(state, path.start)
+                    }
+                    false => Err(None),
+                };
+                match walked {
+                    Ok(first) => first,
+                    Err(Some(limit)) => return Err(limit),
+                    Err(None) => {
+                        *state = State { poses: from, lambda, t: path.start };
+                        self.work.forget_path();
+                        self.solve_equilibrium(state)?
+                    }
+                }
+            }
+            Err(e) => return Err(e),
+        };
         let mut steps = Vec::with_capacity(path.steps + 1);
         steps.push(first);
         let dt = (path.end - path.start) / path.steps as f64;

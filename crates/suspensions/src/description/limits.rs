@@ -236,6 +236,9 @@ pub(crate) fn check_steering_arm(
 /// model file is held to a tyre's range, 0.05–2 m, where it is read).
 pub const MAX_LOADED_RADIUS: f64 = 5e3;
 
+/// The loaded tyre radii a model file takes (m): a car's tyre is 0.25–0.40 m.
+pub const LOADED_RADIUS: std::ops::RangeInclusive<f64> = 0.05..=2.0;
+
 /// Loaded tyre radius when a model file does not give one (m): a passenger car's tyre, about 0.30.
 pub fn default_loaded_radius() -> f64 {
     0.30

@@ -314,6 +314,12 @@ pub fn read_targets(
             return Err(at(&format!("{key}: give \"figure\", \"curve\" or \"measured\"")));
         }
     }
+    // A range the analysis cannot walk is a mistake in the file, said as the command says it of --range.
+    for target in targets.iter().filter(|t| t.range.is_some()) {
+        let settings = crate::kc::Settings { range: target.range, steps, ..crate::kc::Settings::default() };
+        crate::kc::check_settings(target.analysis, &settings)
+            .map_err(|e| at(&format!("{}: range: {}", target.label, e.message)))?;
+    }
     let mut constraints = Vec::new();
     let hardpoint = |name: &str, key: &str| -> Result<String, String> {
         hardpoint_pointer(document, name).map(|_| name.to_string()).ok_or_else(|| {

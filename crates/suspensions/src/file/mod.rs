@@ -472,7 +472,7 @@ impl SuspensionFile {
                 });
             }
         }
-        if !(0.05..=2.0).contains(&loaded_radius) {
+        if !crate::description::limits::LOADED_RADIUS.contains(&loaded_radius) {
             return Err(OutOfRange {
                 keys: radius_keys.clone(),
                 message: format!(
