@@ -547,6 +547,16 @@ fn refuse_implausible(path: &Path, check: Option<&elastokin::suspensions::check:
     Err(Failure::Input(format!("{}: refused under --strict:\n{}", path.display(), lines.join("\n"))))
 }
 
+/// Under `--strict`, results any analysis warned of (an error estimate over the tolerance, a limit point)
+/// are refused, as `--help` promises for every command: nothing is written.
+fn refuse_warned<'a>(strict: bool, warnings: impl Iterator<Item = &'a kc::Warning>) -> Result<(), Failure> {
+    let codes: Vec<&str> = warnings.map(|w| w.code).collect();
+    match strict && !codes.is_empty() {
+        true => Err(Failure::Run(format!("{} warning(s) under --strict: {}", codes.len(), codes.join(", ")))),
+        false => Ok(()),
+    }
+}
+
 /// [`refuse_implausible`] of the model in `file` at `path`, when `strict`.
 fn strict_model(path: &Path, file: &SuspensionFile, strict: bool) -> Result<(), Failure> {
     if strict {
@@ -656,12 +666,7 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
                 out.line(format!("warning [{}]: {}", w.code, w.message))?;
             }
         }
-        if strict {
-            let codes: Vec<&str> = report.all_warnings().map(|w| w.code).collect();
-            if !codes.is_empty() {
-                return Err(Failure::Run(format!("{} warning(s) under --strict: {}", codes.len(), codes.join(", "))));
-            }
-        }
+        refuse_warned(strict, report.all_warnings())?;
         let mut written = Vec::new();
         // Each plot is drawn once: for its file and for the report's page.
         let mut svgs = std::collections::HashMap::new();
@@ -939,6 +944,7 @@ fn sensitivity(args: SensitivityArgs, out: &Stdout, strict: bool) -> Result<(), 
     };
     let which = args.sweeps.which();
     let suite = design::suite_sensitivity(&parameters, &which, &settings).map_err(Failure::Run)?;
+    refuse_warned(strict, suite.analyses.iter().flat_map(|a| &a.report.warnings))?;
     if suite.analyses.is_empty() && !suite.failed.is_empty() {
         return Err(Failure::Run(format!(
             "no sensitivities: {}\n(nothing was written; {} is untouched)",
@@ -1046,6 +1052,8 @@ fn tune(args: TuneArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), F
         tune::TuneError::Model(why) => Failure::Run(format!("{origin}: {why}")),
     })?;
     progress.finish();
+    // The analyses of the model as it was and as it is tuned.
+    refuse_warned(strict, [&tuned.start, &tuned.end].into_iter().flat_map(|e| &e.reports).flat_map(|r| &r.warnings))?;
     let mut provenance = Provenance::new(&args.model, &read.bytes, kc::mode_word(Mode::Corrected), targets.steps);
     provenance.targets = Some((args.targets.display().to_string(), elastokin::provenance::sha256_hex(&targets_bytes)));
     let staging = Staging::new(&args.out)?;
@@ -1133,6 +1141,7 @@ fn compare(args: CompareArgs, out: &Stdout, strict: bool) -> Result<(), Failure>
                 out.line(line)?;
             }
             let report = kc::run_suite(&read.file, &args.sweeps.which(), &settings, |_| {});
+            refuse_warned(strict, report.all_warnings())?;
             let design = Design::model(&read.file, report);
             (read.bytes, design)
         };
@@ -1193,6 +1202,10 @@ fn vehicle(args: VehicleArgs, out: &Stdout, strict: bool) -> Result<(), Failure>
     let settings = Settings { steps: args.steps, ..Settings::default() };
     let report =
         run_vehicle(&file, &front.file, &rear.file, &settings).map_err(|e| Failure::Run(format!("{origin}: {e}")))?;
+    if strict && !report.warnings.is_empty() {
+        let n = report.warnings.len();
+        return Err(Failure::Run(format!("{origin}: {n} warning(s) under --strict:\n{}", report.warnings.join("\n"))));
+    }
     let mut provenance = Provenance::new(&args.vehicle, &bytes, kc::mode_word(settings.mode), settings.steps);
     provenance.tolerance = Some(settings.tolerance);
     provenance.other_files = vec![

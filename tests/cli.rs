@@ -1933,3 +1933,42 @@ fn bad_numbers_given_beside_a_file_are_refused_as_what_the_user_gave() {
     assert!(err.contains("targets[0] (parallel-travel/bump_steer): range: the range needs two finite ends"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `--strict` promises that every warning is an error: a warning of the results (the toe beyond ±10° over
+/// ±200 mm of travel) refused `run` alone; `compare`, `sensitivity` and `tune` wrote their results. Each
+/// refuses them now, writing nothing, and writes them without `--strict`.
+#[test]
+fn strict_refuses_results_an_analysis_warned_of_in_every_command() {
+    let dir = scratch("strict-results");
+    let model = "examples/generic/macpherson.json";
+    let targets = dir.join("targets.json");
+    std::fs::write(
+        &targets,
+        r#"{"free": {"/suspension/macpherson/hardpoints/tie_rod_inner/2": [-0.1, -0.02]},
+            "targets": [{"figure": "parallel-travel/bump_steer", "value": -2.0, "tolerance": 0.25, "range": [-0.2, 0.2]}]}"#,
+    )
+    .unwrap();
+    let wide = ["--analysis", "parallel-travel", "--range=-0.2,0.2"];
+    let commands: [Vec<&str>; 4] = [
+        [&["run", model][..], &wide[..]].concat(),
+        [&["compare", model, model][..], &wide[..]].concat(),
+        [&["sensitivity", model, "--param", "/suspension/macpherson/spring/rate"][..], &wide[..]].concat(),
+        vec!["tune", model, targets.to_str().unwrap()],
+    ];
+    for (k, command) in commands.iter().enumerate() {
+        let out = dir.join(format!("o{k}"));
+        let mut args = command.clone();
+        args.extend(["--out", out.to_str().unwrap()]);
+        // Written whole (the tune, whose target the bound holds from, exits 1 having written).
+        let o = elastokin(&args);
+        assert!(out.join("report.html").exists(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+        std::fs::remove_dir_all(&out).unwrap();
+        let strict = [&["--strict"][..], &args[..]].concat();
+        let o = elastokin(&strict);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{strict:?}: {err}");
+        assert!(err.contains("warning(s) under --strict: toe-range"), "{strict:?}: {err}");
+        assert!(!out.exists(), "{strict:?} wrote {}", out.display());
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
