@@ -14,6 +14,17 @@ enum SolvedWith<'a> {
     Kept(&'a super::replay::Kept),
 }
 
+/// Newton's failure at load parameter `t` after `iterations`, with the residual `r` it left.
+fn unconverged(t: f64, iterations: usize, r: &Residual) -> SolverError {
+    SolverError::NoConvergence {
+        t,
+        last_converged: None,
+        iterations,
+        force_residual: r.force,
+        constraint_residual: r.constraint,
+    }
+}
+
 impl<'m> StaticSolver<'m> {
     /// Newton on the true residual at the state's load parameter. Returns iterations used.
     ///
@@ -51,13 +62,7 @@ impl<'m> StaticSolver<'m> {
                 return Ok((iter, r));
             }
             if iter == self.options.max_iterations {
-                return Err(SolverError::NoConvergence {
-                    t: state.t,
-                    last_converged: None,
-                    iterations: iter,
-                    force_residual: r.force,
-                    constraint_residual: r.constraint,
-                });
+                return Err(unconverged(state.t, iter, &r));
             }
             let merit = self.merit(&r);
             // A chord iteration that stops contracting gets a fresh tangent.
@@ -84,13 +89,7 @@ impl<'m> StaticSolver<'m> {
             let allowance = 100.0 * self.options.constraint_tolerance;
             let walked_off = corrector_travel > start.predicted + first_norm + allowance;
             if start.guard && (walked_off || max_rot > self.options.max_rotation_step) {
-                return Err(SolverError::NoConvergence {
-                    t: state.t,
-                    last_converged: None,
-                    iterations: iter,
-                    force_residual: r.force,
-                    constraint_residual: r.constraint,
-                });
+                return Err(unconverged(state.t, iter, &r));
             }
             let scale =
                 if max_rot > self.options.max_rotation_step { self.options.max_rotation_step / max_rot } else { 1.0 };
