@@ -1313,6 +1313,7 @@ fn tolerance(args: ToleranceArgs, out: &Stdout, strict: bool) -> Result<(), Fail
 fn main() -> ExitCode {
     // Usage errors exit with status 2, help and --version with 0; clap prints them.
     let cli = Cli::parse();
+    output::on_interrupt_remove_staging();
     let out = Stdout::new(cli.quiet);
     let result = match cli.command {
         Command::Run(args) => run(args, &out, cli.quiet, cli.strict),

@@ -134,6 +134,40 @@ pub fn note(text: impl std::fmt::Display) {
 /// one in and removes the old one: a reader sees the old results or the new ones, never a mix, except in
 /// the instant between the two renames when `--out` does not exist. Dropped without a commit (a failed
 /// run), the new directory is removed and the previous results are untouched.
+/// The staging directories of this process not yet committed or dropped: what an interrupt removes
+/// ([`on_interrupt_remove_staging`]).
+static STAGED: std::sync::Mutex<Vec<(PathBuf, PathBuf, PathBuf)>> = std::sync::Mutex::new(Vec::new());
+
+/// On Ctrl-C, SIGTERM or SIGHUP: every staging directory of this process removed (the previous results put
+/// back where an interrupt came between moving them aside and renaming the new ones in), a line on standard
+/// error, and exit status 130. An interrupted command leaves `--out` as it found it, and nothing beside it.
+pub fn on_interrupt_remove_staging() {
+    let handler = || {
+        let staged = STAGED.lock().map(|s| s.clone()).unwrap_or_default();
+        for (tmp, old, out) in &staged {
+            if old.exists() && !out.exists() {
+                let _ = std::fs::rename(old, out);
+            }
+            let _ = std::fs::remove_dir_all(tmp);
+        }
+        note("interrupted: nothing written");
+        std::process::exit(130);
+    };
+    if let Err(e) = ctrlc::set_handler(handler) {
+        note(format!("warning: an interrupt may leave a staging directory beside --out: {e}"));
+    }
+}
+
+/// Keeps (`true`) or forgets a staging directory for [`on_interrupt_remove_staging`].
+fn staged(tmp: &Path, old: &Path, out: &Path, keep: bool) {
+    if let Ok(mut s) = STAGED.lock() {
+        s.retain(|(t, ..)| t != tmp);
+        if keep {
+            s.push((tmp.to_path_buf(), old.to_path_buf(), out.to_path_buf()));
+        }
+    }
+}
+
 #[derive(Debug)]
 pub struct Staging {
     out: PathBuf,
@@ -177,6 +211,7 @@ impl Staging {
         let old = parent.join(format!(".{name}.old-{pid}"));
         std::fs::create_dir(&tmp)
             .map_err(|e| Failure::Input(format!("--out DIR: cannot make '{}': {e}", tmp.display())))?;
+        staged(&tmp, &old, out, true);
         Ok(Staging { out: out.to_path_buf(), tmp, old, had_previous, committed: false })
     }
 
@@ -196,16 +231,29 @@ impl Staging {
         }
     }
 
-    /// Replaces `--out` by the new directory.
+    /// Replaces `--out` by the new directory. Where another run made or replaced `--out` meanwhile, its
+    /// results stay and this run's go, said.
     pub fn commit(mut self) -> Result<(), Failure> {
-        let fail = |what: String, e: std::io::Error| Failure::Run(format!("{what}: {e}"));
+        let out = self.out.display().to_string();
+        let fail = |what: String, e: std::io::Error| match e.kind() {
+            std::io::ErrorKind::DirectoryNotEmpty
+            | std::io::ErrorKind::AlreadyExists
+            | std::io::ErrorKind::NotFound => Failure::Run(format!(
+                "another run wrote {out} while this one ran: its results are kept and this run's are not; \
+                     run again, or give each run its own --out"
+            )),
+            _ => Failure::Run(format!("{what}: {e}")),
+        };
         let rename_in = || format!("renaming {} to {}", self.tmp.display(), self.out.display());
         if self.had_previous {
             std::fs::rename(&self.out, &self.old)
                 .map_err(|e| fail(format!("moving {} aside", self.out.display()), e))?;
             if let Err(e) = std::fs::rename(&self.tmp, &self.out) {
-                // Put the previous results back; the new ones go with the drop.
-                let _ = std::fs::rename(&self.old, &self.out);
+                // Put the previous results back, unless another run's stand there now; the new ones go with
+                // the drop.
+                if std::fs::rename(&self.old, &self.out).is_err() {
+                    let _ = std::fs::remove_dir_all(&self.old);
+                }
                 return Err(fail(rename_in(), e));
             }
             self.committed = true;
@@ -225,6 +273,7 @@ impl Drop for Staging {
         if !self.committed {
             let _ = std::fs::remove_dir_all(&self.tmp);
         }
+        staged(&self.tmp, &self.old, &self.out, false);
     }
 }
 
@@ -409,6 +458,42 @@ impl Progress {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Two runs into one `--out` that did not exist: the loser said "renaming ./.c10.tmp-2538 to c10:
+    /// Directory not empty" and lost its results. It says another run wrote there and keeps that run's
+    /// results. Where `--out` held earlier results, the later commit's stand. Either way nothing is left
+    /// beside `--out`.
+    #[test]
+    fn a_run_whose_out_another_run_wrote_meanwhile_says_so_and_leaves_nothing_beside_it() {
+        let dir = std::env::temp_dir().join(format!("elastokin-race-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let out = dir.join("out");
+        for had_previous in [false, true] {
+            let _ = std::fs::remove_dir_all(&out);
+            if had_previous {
+                std::fs::create_dir(&out).unwrap();
+            }
+            let staging = Staging::new(&out).unwrap();
+            staging.write("mine.csv", b"mine").unwrap();
+            // The other run commits first.
+            let _ = std::fs::remove_dir_all(&out);
+            std::fs::create_dir(&out).unwrap();
+            std::fs::write(out.join("theirs.csv"), "theirs").unwrap();
+            match staging.commit() {
+                Err(e) if !had_previous => {
+                    let e = e.message().to_string();
+                    assert!(e.starts_with(&format!("another run wrote {} while this one ran", out.display())), "{e}");
+                    assert_eq!(std::fs::read_to_string(out.join("theirs.csv")).unwrap(), "theirs");
+                }
+                Ok(()) if had_previous => assert_eq!(std::fs::read_to_string(out.join("mine.csv")).unwrap(), "mine"),
+                other => panic!("had previous: {had_previous}: {other:?}"),
+            }
+            let beside: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+            assert_eq!(beside, vec![std::ffi::OsString::from("out")], "had previous: {had_previous}");
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 
     #[test]
     fn numbers_have_twelve_significant_digits_and_no_noise() {

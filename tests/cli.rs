@@ -1972,3 +1972,54 @@ fn strict_refuses_results_an_analysis_warned_of_in_every_command() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Ctrl-C or SIGTERM while a command ran left `.NAME.tmp-PID/` with partial files beside `--out` (the next
+/// run cleaned it up): an interrupted command removes it, leaves the previous results as they were, and
+/// exits 130 saying so.
+#[test]
+fn an_interrupted_command_leaves_nothing_beside_its_out() {
+    let dir = scratch("interrupted");
+    let out = dir.join("out");
+    let variants = dir.join("variants.txt");
+    // The previous results: a batch of two.
+    std::fs::write(&variants, "a: /suspension/macpherson/spring/rate=2e4\nb: /suspension/macpherson/spring/rate=3e4")
+        .unwrap();
+    succeeds(&[
+        "batch",
+        "examples/generic/macpherson.json",
+        variants.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let previous = std::fs::read_to_string(out.join("batch.csv")).unwrap();
+    let lines: Vec<String> =
+        (0..4000).map(|k| format!("v{k}: /suspension/macpherson/spring/rate={}", 2e4 + k as f64)).collect();
+    std::fs::write(&variants, lines.join("\n")).unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_elastokin"))
+        .args(["batch", "examples/generic/macpherson.json", variants.to_str().unwrap(), "--quiet"])
+        .args(["--out", out.to_str().unwrap()])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let staging = dir.join(format!(".out.tmp-{}", child.id()));
+    let started = std::time::Instant::now();
+    while !staging.exists() && started.elapsed() < Duration::from_secs(60) && child.try_wait().unwrap().is_none() {
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    assert!(staging.exists(), "the batch made no staging directory: {:?}", child.wait_with_output());
+    Command::new("kill").args(["-TERM", &child.id().to_string()]).status().unwrap();
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(130), "{err}");
+    assert!(err.contains("interrupted: nothing written"), "{err}");
+    let beside: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with(".out."))
+        .collect();
+    assert!(beside.is_empty(), "{beside:?}");
+    assert_eq!(std::fs::read_to_string(out.join("batch.csv")).unwrap(), previous);
+    std::fs::remove_dir_all(&dir).ok();
+}
