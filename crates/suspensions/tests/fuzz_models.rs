@@ -1,8 +1,8 @@
 //! Seeded mutation testing of the model files: the shipped examples and every shipped Project Chrono
 //! suspension file (`tests/data/chrono/`), half the cases each, each mutated in one to three places
 //! (numbers scaled or replaced by extremes, hardpoints swapped or moved, keys deleted, duplicated or
-//! added, types changed, arrays truncated, connections changed), then read as the command reads a model
-//! and, when they read, run through the whole K&C suite (or, in some cases, one analysis over a random
+//! added, types changed, arrays truncated, connections changed, a control character put into a text),
+//! then read as the command reads a model and, when they read, run through the whole K&C suite (or, in some cases, one analysis over a random
 //! `--range`), in corrected or paper mode, the wheel held or free. A model the engine cannot accept must be
 //! refused with a message; one it accepts must give a report with no panic, no non-finite number anywhere
 //! a user reads it, and no figure or cell left out because a NaN was computed on the way; an analysis that
@@ -148,7 +148,7 @@ fn is_connection(p: &str) -> bool {
 fn mutate_once(model: &mut Value, rng: &mut ChaCha8Rng, structural: bool) -> Option<String> {
     let numbers = pointers(model, |_, v| v.is_number());
     let hardpoints = pointers(model, is_hardpoint);
-    let kind = if structural { rng.random_range(0..11) } else { rng.random_range(0..5) };
+    let kind = if structural { rng.random_range(0..12) } else { rng.random_range(0..5) };
     match kind {
         0 => {
             let at = pick(rng, &numbers)?.clone();
@@ -259,6 +259,16 @@ fn mutate_once(model: &mut Value, rng: &mut ChaCha8Rng, structural: bool) -> Opt
             let keep = rng.random_range(0..items.len());
             items.truncate(keep);
             Some(format!("{at} truncated to {keep} items"))
+        }
+        11 => {
+            // A character no name is written with, put into a name or any other text of the file.
+            let texts = pointers(model, |_, v| v.is_string());
+            let at = pick(rng, &texts)?.clone();
+            let c = *pick(rng, &['\u{1b}', '\0', '\u{7}', '\u{b}', '\u{7f}', '\u{85}', '\u{fffe}', '\u{2028}'])?;
+            let v = model.pointer_mut(&at)?;
+            let text = format!("{}{c}[31m", v.as_str()?);
+            *v = json!(text);
+            Some(format!("{at} given the character U+{:04X}", c as u32))
         }
         _ => {
             let connections = pointers(model, |p, _| is_connection(p));
