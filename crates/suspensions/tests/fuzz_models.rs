@@ -2,8 +2,8 @@
 //! suspension file (`tests/data/chrono/`), half the cases each, each mutated in one to three places
 //! (numbers scaled or replaced by extremes, hardpoints swapped or moved, keys deleted, duplicated or
 //! added, types changed, arrays truncated, connections changed, a control character put into a text),
-//! then read as the command reads a model and, when they read, run through the whole K&C suite (or, in some cases, one analysis over a random
-//! `--range`), in corrected or paper mode, the wheel held or free. A model the engine cannot accept must be
+//! then read as the command reads a model and, when they read, run through the whole K&C suite (or, in
+//! some cases, one analysis over a random `--range`), in corrected or paper mode, the wheel held or free. A model the engine cannot accept must be
 //! refused with a message; one it accepts must give a report with no panic, no non-finite number anywhere
 //! a user reads it, and no figure or cell left out because a NaN was computed on the way; an analysis that
 //! fails costs only itself and must say why in words.
