@@ -1,12 +1,11 @@
-//! Seeded mutation testing of the model files: the shipped examples and every shipped Project Chrono
-//! suspension file (`tests/data/chrono/`), half the cases each, each mutated in one to three places
-//! (numbers scaled or replaced by extremes, hardpoints swapped or moved, keys deleted, duplicated or
-//! added, types changed, arrays truncated, connections changed, a control character put into a text),
-//! then read as the command reads a model and, when they read, run through the whole K&C suite (or, in
-//! some cases, one analysis over a random `--range`), in corrected or paper mode, the wheel held or free. A model the engine cannot accept must be
-//! refused with a message; one it accepts must give a report with no panic, no non-finite number anywhere
-//! a user reads it, and no figure or cell left out because a NaN was computed on the way; an analysis that
-//! fails costs only itself and must say why in words.
+//! Seeded mutation testing of the model files: the shipped examples and every shipped Project Chrono suspension file
+//! (`tests/data/chrono/`), half the cases each, each mutated in one to three places (numbers scaled or replaced by
+//! extremes, hardpoints swapped or moved, keys deleted, duplicated or added, types changed, arrays truncated,
+//! connections changed, a control character put into a text), then read as the command reads a model and, when they
+//! read, run through the whole K&C suite (or, in some cases, one analysis over a random `--range`), in corrected or
+//! paper mode, the wheel held or free. A model the engine cannot accept must be refused with a message; one it accepts
+//! must give a report with no panic, no non-finite number anywhere a user reads it, and no figure or cell left out
+//! because a NaN was computed on the way; an analysis that fails costs only itself and must say why in words.
 //!
 //! The case counts fit the CI budget: 4000 read-only and 1600 full-suite cases take 2 s and 12 s in the
 //! test profile on two shared cores (the cases are spread over every core). The long campaign is
