@@ -127,13 +127,6 @@ pub fn note(text: impl std::fmt::Display) {
     let _ = writeln!(std::io::stderr().lock(), "{}", printable(&text.to_string()));
 }
 
-/// An output directory written whole or not at all.
-///
-/// The files go into a new directory beside `--out` (`.NAME.tmp-PID` in the same parent, so renaming is
-/// atomic on one file system). [`Staging::commit`] then moves the previous `--out` aside, renames the new
-/// one in and removes the old one: a reader sees the old results or the new ones, never a mix, except in
-/// the instant between the two renames when `--out` does not exist. Dropped without a commit (a failed
-/// run), the new directory is removed and the previous results are untouched.
 /// The staging directories of this process not yet committed or dropped: what an interrupt removes
 /// ([`on_interrupt_remove_staging`]).
 static STAGED: std::sync::Mutex<Vec<(PathBuf, PathBuf, PathBuf)>> = std::sync::Mutex::new(Vec::new());
@@ -168,6 +161,13 @@ fn staged(tmp: &Path, old: &Path, out: &Path, keep: bool) {
     }
 }
 
+/// An output directory written whole or not at all.
+///
+/// The files go into a new directory beside `--out` (`.NAME.tmp-PID` in the same parent, so renaming is
+/// atomic on one file system). [`Staging::commit`] then moves the previous `--out` aside, renames the new
+/// one in and removes the old one: a reader sees the old results or the new ones, never a mix, except in
+/// the instant between the two renames when `--out` does not exist. Dropped without a commit (a failed
+/// run), the new directory is removed and the previous results are untouched.
 #[derive(Debug)]
 pub struct Staging {
     out: PathBuf,
