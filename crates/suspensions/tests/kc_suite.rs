@@ -463,11 +463,25 @@ fn a_sweep_stepping_over_the_five_links_limit_point_stops_at_it() {
 /// sweep from design towards the start stops.
 #[test]
 fn a_range_that_starts_beyond_reach_says_how_far_the_suspension_goes() {
-    for (name, analysis, range, towards) in [
-        ("generic/macpherson.json", Analysis::ParallelTravel, (-1.0, 1.0), (0.0, -1.0)),
-        ("five_link.json", Analysis::VerticalForce, (1e5, 2e5), (0.0, 1e5)),
+    for (name, analysis, range, towards, arc_step) in [
+        ("generic/macpherson.json", Analysis::ParallelTravel, (-1.0, 1.0), (0.0, -1.0), 5e-4),
+        ("five_link.json", Analysis::VerticalForce, (1e5, 2e5), (0.0, 1e5), 5.0),
     ] {
         let file = example(name);
+        // The second method: the turning point of the arc-length path from design towards the start, the
+        // row whose load parameter reaches furthest that way.
+        let through = Settings {
+            range: Some(towards),
+            steps: 16,
+            through_limits: true,
+            arc_step: Some(arc_step),
+            ..Settings::default()
+        };
+        let arc = kc::run(analysis, &file, &through).unwrap();
+        let sign = (towards.1 - towards.0).signum();
+        let turning =
+            arc.table.rows.iter().map(|r| r[0].number().unwrap()).max_by(|a, b| (sign * a).total_cmp(&(sign * b)));
+        let turning = turning.unwrap();
         for steps in [8, 400] {
             let settings = Settings { range: Some(range), steps, ..Settings::default() };
             let e = kc::run(analysis, &file, &settings).unwrap_err().to_string();
@@ -478,10 +492,16 @@ fn a_range_that_starts_beyond_reach_says_how_far_the_suspension_goes() {
             assert!(report.warnings.iter().any(|w| w.code == "limit-point"), "{name}: {:?}", report.warnings);
             let last = report.table.rows.last().unwrap()[0].number().unwrap();
             let within = 1e-6 * (towards.1 - towards.0).abs();
-            println!("{name} at {steps} steps: cannot go beyond {reached}, a sweep from design stops at {last}");
+            println!(
+                "{name} at {steps} steps: cannot go beyond {reached}, a sweep from design stops at {last}, the \
+                 arc-length path turns at {turning}"
+            );
             // Within 1e-6 of its range, where bisection brackets the fold: measured 4e-8 m and 2.5e-7 N apart
             // (the message's six decimals).
             assert!((reached - last).abs() <= 2.0 * within, "{name}: {reached} vs {last}");
+            // And the arc-length path's turning point, to bisection's bracket and the arc's largest row's
+            // distance short of the fold: measured 3.3e-7 m and 7.0e-2 N.
+            assert!((reached - turning).abs() <= 2.0 * within + 1e-2 * arc_step, "{name}: {reached} vs {turning}");
         }
     }
 }
