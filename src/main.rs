@@ -551,10 +551,10 @@ fn refuse_implausible(path: &Path, check: Option<&elastokin::suspensions::check:
 /// are refused, as `--help` promises for every command: nothing is written.
 fn refuse_warned<'a>(strict: bool, warnings: impl Iterator<Item = &'a kc::Warning>) -> Result<(), Failure> {
     let codes: Vec<&str> = warnings.map(|w| w.code).collect();
-    match strict && !codes.is_empty() {
-        true => Err(Failure::Run(format!("{} warning(s) under --strict: {}", codes.len(), codes.join(", ")))),
-        false => Ok(()),
+    if strict && !codes.is_empty() {
+        return Err(Failure::Run(format!("{} warning(s) under --strict: {}", codes.len(), codes.join(", "))));
     }
+    Ok(())
 }
 
 /// [`refuse_implausible`] of the model in `file` at `path`, when `strict`.

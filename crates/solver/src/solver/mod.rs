@@ -563,6 +563,19 @@ impl<'m> StaticSolver<'m> {
         self.taped_sweep(state, path, |solver, state| solver.walk_path(state, path, mode))
     }
 
+    /// Corrected steps along `path` from `state`, an equilibrium at its start, with the load response
+    /// there as the reference that tells a limit point.
+    fn corrected_path(
+        &mut self,
+        state: &mut State,
+        path: LoadPath,
+        steps: &mut Vec<StepResult>,
+    ) -> Result<Option<LimitPoint>, SolverError> {
+        self.initial_response = self.load_response(state);
+        let dt = (path.end - path.start) / path.steps as f64;
+        self.corrected_steps(state, path, dt, steps)
+    }
+
     /// Brings `state` (a pose at its own load parameter) to the equilibrium at `target` in corrected steps
     /// from the equilibrium at its own. Fails with [`SolverError::LimitPoint`] where the path meets a limit
     /// point short of `target`, and with `None` where it finds no equilibrium to start from or cannot go on.
@@ -570,11 +583,9 @@ impl<'m> StaticSolver<'m> {
         const STEPS: usize = 32;
         self.solve_equilibrium(state).map_err(|_| None)?;
         self.work.forget_path();
-        self.initial_response = self.load_response(state);
         let path = LoadPath::new(state.t, target, STEPS);
-        let dt = (target - state.t) / STEPS as f64;
         let mut steps = Vec::with_capacity(STEPS);
-        match self.corrected_steps(state, path, dt, &mut steps) {
+        match self.corrected_path(state, path, &mut steps) {
             Ok(None) => steps.pop().ok_or(None),
             Ok(Some(limit)) => Err(Some(SolverError::LimitPoint { reached: limit.t })),
             Err(_) => Err(None),
@@ -602,19 +613,19 @@ impl<'m> StaticSolver<'m> {
         let first = match guarded.map(|(iterations, r)| self.step_result(state, iterations, &r)) {
             Ok(first) => first,
             Err(SolverError::NoConvergence { .. }) => {
-                let lambda = vec![0.0; state.lambda.len()];
-                let walked = match path.start != 0.0 {
-                    true => {
-                        *state = State { poses: from.clone(), lambda: lambda.clone(), t: 0.0 };
-                        self.walk_to(state, path.start)
-                    }
-                    false => Err(None),
+                let m = state.lambda.len();
+                let at = |t| State { poses: from.clone(), lambda: vec![0.0; m], t };
+                let walked = if path.start != 0.0 {
+                    *state = at(0.0);
+                    self.walk_to(state, path.start)
+                } else {
+                    Err(None)
                 };
                 match walked {
                     Ok(first) => first,
                     Err(Some(limit)) => return Err(limit),
                     Err(None) => {
-                        *state = State { poses: from, lambda, t: path.start };
+                        *state = at(path.start);
                         self.work.forget_path();
                         self.solve_equilibrium(state)?
                     }
@@ -631,10 +642,7 @@ impl<'m> StaticSolver<'m> {
                 self.initial_response = None;
                 self.paper_steps(state, path, dt, &mut steps)?
             }
-            Mode::Corrected => {
-                self.initial_response = self.load_response(state);
-                self.corrected_steps(state, path, dt, &mut steps)?
-            }
+            Mode::Corrected => self.corrected_path(state, path, &mut steps)?,
         };
         if let Some(limit) = &limit {
             // The steps before the fold (paper steps may have gone past it; the last corrected step may be
