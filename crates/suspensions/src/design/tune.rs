@@ -651,21 +651,22 @@ fn broken(e: &Evaluation) -> f64 {
 
 /// Where the packaging at `e` is broken, what a step works on first: each broken constraint's signed
 /// distance outside its range as a residual (its rates the rows of the Jacobian), the constraints that hold
-/// kept as packaging; the targets wait until the packaging holds.
-fn restoration(e: &Evaluation) -> Option<Evaluation> {
+/// kept as packaging with their `margins`; the targets wait until the packaging holds.
+fn restoration(e: &Evaluation, margins: &[f64]) -> Option<(Evaluation, Vec<f64>)> {
     if packaged(e) {
         return None;
     }
-    let (broken, holding): (Vec<&Linearised>, Vec<&Linearised>) = e.packaging.iter().partition(|c| broken_by(c) > 0.0);
+    let (broken, holding): (Vec<_>, Vec<_>) = e.packaging.iter().zip(margins).partition(|(c, _)| broken_by(c) > 0.0);
     let outside = |c: &Linearised| if c.value < c.min { c.value - c.min } else { c.value - c.max };
-    Some(Evaluation {
+    let restoring = Evaluation {
         x: e.x.clone(),
-        residuals: broken.iter().map(|c| outside(c)).collect(),
-        jacobian: broken.iter().map(|c| c.rates.clone()).collect(),
+        residuals: broken.iter().map(|(c, _)| outside(c)).collect(),
+        jacobian: broken.iter().map(|(c, _)| c.rates.clone()).collect(),
         rows: Vec::new(),
-        packaging: holding.into_iter().cloned().collect(),
+        packaging: holding.iter().map(|(c, _)| (*c).clone()).collect(),
         reports: Vec::new(),
-    })
+    };
+    Some((restoring, holding.iter().map(|(_, m)| **m).collect()))
 }
 
 /// Whether the packaging holds at `e`, to 1e-9 m.
@@ -727,15 +728,9 @@ pub fn tune(
             no_step = Some(why);
             break;
         }
-        let restoring = restoration(&here);
-        let basis = restoring.as_ref().unwrap_or(&here);
-        let basis_margins: Vec<f64> = match &restoring {
-            Some(_) => {
-                here.packaging.iter().zip(&margins).filter(|(c, _)| broken_by(c) == 0.0).map(|(_, m)| *m).collect()
-            }
-            None => margins.clone(),
-        };
-        let (outcome, step_size) = match step(basis, &free, damping, &scale, &basis_margins) {
+        let restoring = restoration(&here, &margins);
+        let (basis, basis_margins) = restoring.as_ref().map_or((&here, &margins[..]), |(e, m)| (e, &m[..]));
+        let (outcome, step_size) = match step(basis, &free, damping, &scale, basis_margins) {
             Err(e) => {
                 damping *= 10.0;
                 (e, 0.0)
@@ -771,8 +766,8 @@ pub fn tune(
                     // Where the packaging is broken a step is taken for bringing it back, whatever it does
                     // to the targets; where it holds, for gaining on the targets and keeping it.
                     Ok(next)
-                        if (!packaged(&here) && broken(&next) < broken(&here))
-                            || (packaged(&here) && next.objective() < f && packaged(&next)) =>
+                        if (restoring.is_some() && broken(&next) < broken(&here))
+                            || (restoring.is_none() && next.objective() < f && packaged(&next)) =>
                     {
                         let restored = restoring.is_some();
                         margins.iter_mut().for_each(|m| *m *= 0.5);
@@ -797,10 +792,10 @@ pub fn tune(
                         }
                         ("taken".into(), size)
                     }
-                    Ok(next) if packaged(&here) && !packaged(&next) => {
+                    Ok(next) if restoring.is_none() && !packaged(&next) => {
                         reach = 0.5 * size;
                         for ((m, c), was) in margins.iter_mut().zip(&next.packaging).zip(&here.packaging) {
-                            let over = (c.min - c.value).max(c.value - c.max).max(0.0);
+                            let over = broken_by(c);
                             // The bend of the constraint over the step, held back next time.
                             *m += 2.0 * over + 1e-12 * was.value.abs();
                         }
