@@ -118,7 +118,7 @@ fn a_measured_column_that_is_unknown_duplicated_or_not_plain_text_is_refused_by_
     for (header, says) in [
         ("travel_m,toe_deg,toe_deg", "rig.csv:2: the column 'toe_deg' is named twice"),
         ("travel_m,,toe_deg", "rig.csv:2: column 2 has no name"),
-        ("travel_m,toe\0_deg", "rig.csv:2: the name of column 2 holds a control character (toe\\0_deg)"),
+        ("travel_m,toe\0_deg", "rig.csv:2: the name of column 2 holds a control character (toe\\u{0}_deg)"),
     ] {
         let e = read_measured(&format!("# analysis: parallel-travel\n{header}\n0,0,0\n"), "rig.csv").unwrap_err();
         assert!(e.contains(says), "{header:?}: {e}");

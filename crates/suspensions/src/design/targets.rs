@@ -158,11 +158,11 @@ fn header(cells: &[&str], at: &str) -> Result<Vec<String>, String> {
         if name.is_empty() {
             return Err(format!("{at}: column {} has no name: name every column as the analysis's table does", k + 1));
         }
-        if name.chars().any(char::is_control) {
+        if name.chars().any(crate::file::key_path::unprintable) {
             return Err(format!(
                 "{at}: the name of column {} holds a control character ({}): name it in plain text",
                 k + 1,
-                name.escape_debug()
+                crate::file::key_path::printable(name)
             ));
         }
         if cells[..k].contains(name) {

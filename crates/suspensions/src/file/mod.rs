@@ -191,8 +191,17 @@ impl FileError {
     }
 }
 
+/// The first key or text of `value` (read from `text`) holding an [`key_path::unprintable`] character,
+/// refused as [`FileError::Invalid`] at its line and column in `text`.
+pub(crate) fn refuse_unprintable(value: &serde_json::Value, text: &str, origin: &str) -> Result<(), FileError> {
+    let Some((path, said)) = first_unprintable(value) else { return Ok(()) };
+    let keys: Vec<&str> = path.iter().map(String::as_str).collect();
+    let (line, column) = locate(text, &keys);
+    Err(FileError::Invalid { origin: origin.to_string(), line, column, message: unprintable_message(&path, &said) })
+}
+
 /// Why a text with an [`key_path::unprintable`] character in it is refused, naming where it is.
-pub(crate) fn unprintable_message(path: &[String], said: &str) -> String {
+fn unprintable_message(path: &[String], said: &str) -> String {
     let c = said.chars().find(|c| key_path::unprintable(*c)).unwrap_or('\u{0}');
     let shown = key_path::printable(&said.chars().take(60).collect::<String>()).into_owned();
     let more = if said.chars().nth(60).is_some() { "…" } else { "" };
@@ -237,11 +246,7 @@ impl SuspensionFile {
                 format!("{}: the key is given twice: give each key once", path.join(".")),
             ));
         }
-        if let Some((path, said)) = first_unprintable(&value) {
-            let keys: Vec<&str> = path.iter().map(String::as_str).collect();
-            let (line, column) = locate(text, &keys);
-            return Err(invalid(line, column, unprintable_message(&path, &said)));
-        }
+        refuse_unprintable(&value, text, origin)?;
         if let Some(suspension) = value.get("suspension").filter(|s| !s.is_object()) {
             let (line, column) = locate(text, &["suspension"]);
             return Err(invalid(

@@ -134,12 +134,7 @@ pub fn read(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Impo
         column: e.column(),
         message: e.to_string().split(" at line ").next().unwrap_or_default().to_string(),
     })?;
-    if let Some((path, said)) = crate::file::key_path::first_unprintable(&value) {
-        let keys: Vec<&str> = path.iter().map(String::as_str).collect();
-        let (line, column) = locate(&clean, &keys);
-        let message = crate::file::unprintable_message(&path, &said);
-        return Err(FileError::Invalid { origin: origin.to_string(), line, column, message });
-    }
+    crate::file::refuse_unprintable(&value, &clean, origin)?;
     let doc = Doc::new(&value);
     let template = doc.str("Template").map_err(invalid)?;
     let name = doc.optional_str("Name").unwrap_or_else(|| template.clone());
