@@ -43,6 +43,7 @@ const LAYERED: [(&str, &[(&str, u32)]); 2] = [
             ("redundancy", 1),
             ("assembly", 2),
             ("options", 2),
+            ("mobility", 3),
             ("results", 3),
             ("replay", 4),
             ("solver", 5),

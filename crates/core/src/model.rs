@@ -6,7 +6,8 @@ use crate::error::ModelError;
 use crate::joint::{build_joint, Joint, JointSpec};
 use crate::math::Vec3;
 use crate::pose::{Pose, BODY_DOFS};
-use std::collections::{HashMap, HashSet};
+use std::collections::hash_map::Entry;
+use std::collections::HashMap;
 use std::sync::Arc;
 
 /// Index of a joint in a [`Model`].
@@ -28,6 +29,14 @@ pub struct RowOrigin {
 /// Where bodies' reference points are to be, by body name ([`Model::with_body_origins`]).
 pub type BodyOrigins = HashMap<String, Vec3>;
 
+/// What a name of a [`Model`] names: an index into its bodies, joints or elements.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Named {
+    Body(usize),
+    Joint(usize),
+    Element(usize),
+}
+
 /// A scene of rigid bodies held by joints and force elements and loaded by loads and drivers.
 ///
 /// The model owns exactly what the scene contains; the solver sizes and assembles only that. Bodies get
@@ -42,7 +51,9 @@ pub struct Model {
     /// (a scan of the joints for each row made setting up a model quadratic in its size).
     row_end: Vec<usize>,
     elements: Vec<Box<dyn ForceElement>>,
-    names: HashSet<String>,
+    /// Every name given, with what it names: unique across bodies, joints and elements, and found at once
+    /// (a scan per lookup made building a model of many bodies quadratic in their number).
+    names: HashMap<String, Named>,
     /// Where the bodies named here get their reference point, whatever their builder asks.
     origins: Option<Arc<BodyOrigins>>,
 }
@@ -71,11 +82,14 @@ impl Model {
         self.bodies.iter().map(|b| (b.name.clone(), b.design_pose.position)).collect()
     }
 
-    fn claim_name(&mut self, name: &str) -> Result<(), ModelError> {
-        if !self.names.insert(name.to_string()) {
-            return Err(ModelError::DuplicateName { name: name.to_string() });
+    fn claim_name(&mut self, name: &str, named: Named) -> Result<(), ModelError> {
+        match self.names.entry(name.to_string()) {
+            Entry::Occupied(_) => Err(ModelError::DuplicateName { name: name.to_string() }),
+            Entry::Vacant(v) => {
+                v.insert(named);
+                Ok(())
+            }
         }
-        Ok(())
     }
 
     fn check_ref(&self, item: &str, r: BodyRef) -> Result<(), ModelError> {
@@ -99,7 +113,7 @@ impl Model {
         if !design_pose.is_finite() {
             return Err(ModelError::NonFinite { item: name.to_string(), what: "design pose" });
         }
-        self.claim_name(name)?;
+        self.claim_name(name, Named::Body(self.bodies.len()))?;
         let mut design_pose = design_pose;
         if let Some(at) = self.origins.as_ref().and_then(|o| o.get(name)) {
             design_pose.position = *at;
@@ -112,12 +126,12 @@ impl Model {
     pub fn add_joint(&mut self, spec: JointSpec) -> Result<JointId, ModelError> {
         self.check_ref(&spec.name, spec.body_i)?;
         self.check_ref(&spec.name, spec.body_j)?;
-        if self.names.contains(&spec.name) {
+        if self.names.contains_key(&spec.name) {
             return Err(ModelError::DuplicateName { name: spec.name });
         }
         let (pi, pj) = (self.design_pose(spec.body_i), self.design_pose(spec.body_j));
         let joint = build_joint(spec, &pi, &pj)?;
-        self.claim_name(joint.name())?;
+        self.claim_name(joint.name(), Named::Joint(self.joints.len()))?;
         self.row_end.push(self.constraint_rows() + joint.rows.len());
         self.joints.push(joint);
         Ok(JointId(self.joints.len() - 1))
@@ -129,11 +143,11 @@ impl Model {
         let [i, j] = element.bodies();
         self.check_ref(&name, i)?;
         self.check_ref(&name, j)?;
-        if self.names.contains(&name) {
+        if self.names.contains_key(&name) {
             return Err(ModelError::DuplicateName { name });
         }
         element.bind(&self.design_pose(i), &self.design_pose(j))?;
-        self.claim_name(&name)?;
+        self.claim_name(&name, Named::Element(self.elements.len()))?;
         self.elements.push(Box::new(element));
         Ok(ElementId(self.elements.len() - 1))
     }
@@ -152,15 +166,24 @@ impl Model {
     }
     /// Looks up a body by name.
     pub fn body_id(&self, name: &str) -> Option<BodyId> {
-        self.bodies.iter().position(|b| b.name == name).map(BodyId)
+        match self.names.get(name) {
+            Some(Named::Body(i)) => Some(BodyId(*i)),
+            _ => None,
+        }
     }
     /// Looks up a joint by name.
     pub fn joint_id(&self, name: &str) -> Option<JointId> {
-        self.joints.iter().position(|j| j.name() == name).map(JointId)
+        match self.names.get(name) {
+            Some(Named::Joint(i)) => Some(JointId(*i)),
+            _ => None,
+        }
     }
     /// Looks up an element by name.
     pub fn element_id(&self, name: &str) -> Option<ElementId> {
-        self.elements.iter().position(|e| e.name() == name).map(ElementId)
+        match self.names.get(name) {
+            Some(Named::Element(i)) => Some(ElementId(*i)),
+            _ => None,
+        }
     }
     /// Name of a body reference ("ground" for the ground).
     pub fn body_name(&self, r: BodyRef) -> &str {

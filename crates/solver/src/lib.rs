@@ -43,6 +43,8 @@
 //! - [`error`] and [`redundancy`] (which constraint rows repeat others, by a rank test of `J` alone).
 //! - [`assembly`]: the pattern and slot maps of one model; values written in place. [`options`]: the mode,
 //!   the load path and its step limit, the state, the solver's options.
+//! - [`mobility`]: how a model can move at design counting only its joints, and how well its elements hold
+//!   those motions (the condition of the reduced stiffness), by the sparse factorizations.
 //! - [`results`]: what a solve returns.
 //! - [`replay`]: a run's solves recorded, and the run replayed on a moved model with each equilibrium
 //!   moved by one Newton iteration, solved with the recorded tangent's factors: the derivatives of
@@ -61,6 +63,7 @@ pub mod assembly;
 pub mod dense_reference;
 pub mod error;
 pub mod kkt;
+pub mod mobility;
 pub mod options;
 pub mod redundancy;
 pub mod replay;

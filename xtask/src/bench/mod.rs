@@ -16,6 +16,7 @@
 
 pub mod alloc;
 mod batch;
+mod big_models;
 mod elastic_members;
 mod error_vs_time;
 mod exudyn;
@@ -74,10 +75,11 @@ impl Settings {
 type Section = (&'static str, fn(&Settings) -> SectionOutput);
 
 /// The sections, in the order they run and appear.
-const SECTIONS: [Section; 10] = [
+const SECTIONS: [Section; 11] = [
     ("error-vs-time", error_vs_time::run),
     ("step-cost", step_cost::run),
     ("scaling", scaling::run),
+    ("big-models", big_models::run),
     ("stiff-cases", stiff_cases::run),
     ("batch", batch::run),
     ("sensitivity", sensitivity::run),
@@ -94,8 +96,8 @@ usage: cargo xtask bench [--quick] [--out DIR] [--save NAME] [--compare NAME] [-
     --save NAME      also write DIR/NAME.json: the commit id and every figure
     --compare NAME   print now/then for every figure of DIR/NAME.json, flag the slower ones
     --threshold X    flag figures slower than X times then (default 1.25)
-    --only LIST      comma-separated sections: error-vs-time, step-cost, scaling, stiff-cases, batch, sensitivity,
-                     tuning, report-page, elastic-members, exudyn
+    --only LIST      comma-separated sections: error-vs-time, step-cost, scaling, big-models, stiff-cases, batch,
+                     sensitivity, tuning, report-page, elastic-members, exudyn
                      (exudyn needs Python with Exudyn, `pip install exudyn`; without it, it is skipped)";
 
 /// Parsed command line.

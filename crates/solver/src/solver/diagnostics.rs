@@ -42,16 +42,6 @@ impl<'m> StaticSolver<'m> {
     }
 }
 
-/// The constraint rows of `model` that depend on earlier rows at the design pose (model row numbering,
-/// ascending): the rank-revealing check of the whole Jacobian that [`StaticSolver::new`] drops them by,
-/// at relative tolerance `tolerance`. Its all-rows assembly is dropped on return, before the solver makes
-/// the active one, so that the two are never held at once.
-pub fn redundant_rows_at_design(model: &Model, tolerance: f64) -> Vec<usize> {
-    let mut full = Assembly::new(model, (0..model.constraint_rows()).collect());
-    full.assemble(model, &model.design_poses(), 0.0, &[], None);
-    redundant_rows(full.m(), full.n, &full.j_col_ptr, &full.j_row_idx, &full.j_values, tolerance)
-}
-
 /// Names the body and motion of a (near-)null vector of the tangent.
 fn describe_free_motion(model: &Model, x: &[f64], suspects: &[usize]) -> (String, String) {
     let nb = model.bodies().len();

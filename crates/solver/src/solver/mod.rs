@@ -33,14 +33,13 @@ mod predictor;
 mod replayed;
 mod tangent;
 
-pub use diagnostics::redundant_rows_at_design;
+pub use crate::mobility::redundant_rows_at_design;
 
 use crate::assembly::{Assembly, Tangent};
 use crate::error::SolverError;
 use crate::kkt::{Accuracy, AutoKkt, BackendChoice, KktBackend, KktValues};
 use crate::kkt::{FactorCounters, KktOptions};
 use crate::options::{ArcStep, LoadPath, Mode, SolverOptions, State};
-use crate::redundancy::redundant_rows;
 use crate::replay;
 use crate::results::{Diagnostics, LimitPoint, PathRates, RedundantRow, StepResult, Sweep};
 use elastokin_core::{Model, Pose, BODY_DOFS};

@@ -7,7 +7,7 @@
 use crate::build::map::load_labels;
 use crate::build::template::{CornerParts, CornerTemplate, CrossAxle, ElasticMember, SteeringLink, TieRod};
 use crate::description::general::{
-    is_part_name, part_name, Axis, BeamDef, BodyDef, BushingDef, FieldDef, GeneralCorner, JointDef, Place, SectionDef,
+    part_name, Axis, BeamDef, BodyDef, BushingDef, FieldDef, GeneralCorner, Hardpoints, JointDef, Place, SectionDef,
     SpringDef, Stiffness, StopDef, StopType, CHASSIS,
 };
 use crate::description::limits::{
@@ -22,6 +22,8 @@ use elastokin_elements::{
     beam, BeamSpec, Bushing, BushingSpec, Characteristic, CoilSpring, Curve, Field, FieldSpec, PointForce, PointTorque,
     Section, Stop,
 };
+use std::collections::{HashMap, HashSet};
+use std::sync::Arc;
 
 impl Stiffness {
     /// The element's characteristic; `item` names it in errors (a rate is checked by the element).
@@ -194,8 +196,13 @@ impl StopDef {
 
 /// The bodies of one corner by their file names, and the places resolved on one side; or, for the parts
 /// two corners share ([`AxleDef`]), the axle's own names and each side's by `"left …"` / `"right …"`.
+#[derive(Clone)]
 pub(crate) struct Resolver<'a> {
     general: &'a GeneralCorner,
+    /// The corner's body names, as the file gives them.
+    corner_bodies: Arc<HashSet<&'a str>>,
+    /// The corner's hardpoints and the axle's, by name (the first of a name, as [`Hardpoints::get`]).
+    points: Arc<[HashMap<&'a str, Vec3>; 2]>,
     side: Side,
     prefix: &'a str,
     /// For the shared parts: the left and right corners' name prefixes.
@@ -249,11 +256,11 @@ impl Resolver<'_> {
         let (side, left) = match place {
             Place::At(p) => (self.side, *p),
             Place::Named(name) => match self.shared {
-                None => (self.side, self.general.hardpoints.get(name).ok_or_else(|| missing(name))?),
-                Some(_) => match (self.general.axle.as_ref().and_then(|a| a.hardpoints.get(name)), self.sided(name)) {
-                    (Some(p), _) => (Side::Left, p),
+                None => (self.side, *self.points[0].get(name.as_str()).ok_or_else(|| missing(name))?),
+                Some(_) => match (self.points[1].get(name.as_str()), self.sided(name)) {
+                    (Some(p), _) => (Side::Left, *p),
                     (None, Some((side, _, corner))) => {
-                        (side, self.general.hardpoints.get(corner).ok_or_else(|| missing(name))?)
+                        (side, *self.points[0].get(corner).ok_or_else(|| missing(name))?)
                     }
                     (None, None) => return Err(missing(name)),
                 },
@@ -314,9 +321,7 @@ impl Resolver<'_> {
             return Ok(BodyRef::Ground);
         }
         let corner_body = |prefix: &str, name: &str| {
-            let known = self.general.bodies.iter().any(|b| b.name == name);
-            let id = model.bodies().iter().position(|b| is_part_name(&b.name, prefix, name));
-            id.map(elastokin_core::BodyId).filter(|_| known)
+            model.body_id(&part_name(prefix, name)).filter(|_| self.corner_bodies.contains(name))
         };
         let axle_body = || model.body_id(name).filter(|_| self.axle_bodies().iter().any(|b| b.name == name));
         let found = match self.shared {
@@ -341,6 +346,11 @@ impl Resolver<'_> {
         };
         Err(ModelError::OutOfRange { item: key.to_string(), why })
     }
+}
+
+/// Hardpoints by name, the first of a name kept (as [`Hardpoints::get`]).
+fn by_name(hardpoints: &Hardpoints) -> HashMap<&str, Vec3> {
+    hardpoints.0.iter().rev().map(|(n, p)| (n.as_str(), *p)).collect()
 }
 
 /// The places of a joint entry, resolved: its points and axes in global coordinates at design, each
@@ -477,7 +487,7 @@ fn framed_entry(
 ) -> Result<FramedEntry, ModelError> {
     let bi = r.body(model, format_args!("{key}.bodies"), &bodies[0])?;
     let bj = r.body(model, format_args!("{key}.bodies"), &bodies[1])?;
-    let left = Resolver { side: Side::Left, ..*r };
+    let left = Resolver { side: Side::Left, ..r.clone() };
     let x = axis.map(|a| left.direction(format_args!("{key}.axis"), a)).transpose()?.unwrap_or(Vec3::x());
     let y = y_axis.map(|a| left.direction(format_args!("{key}.y_axis"), a)).transpose()?;
     Ok(FramedEntry { bodies: [bi, bj], point: r.point(format_args!("{key}.at"), at)?, x, y })
@@ -555,12 +565,28 @@ impl FieldDef {
 
 impl GeneralCorner {
     fn resolver<'a>(&'a self, side: Side, prefix: &'a str) -> Resolver<'a> {
-        Resolver { general: self, side, prefix, shared: None }
+        Resolver { general: self, corner_bodies: self.body_names(), points: self.points(), side, prefix, shared: None }
     }
 
     /// The resolver of the shared parts, between corners named with `left` and `right` prefixes.
     fn shared_resolver<'a>(&'a self, left: &'a str, right: &'a str) -> Resolver<'a> {
-        Resolver { general: self, side: Side::Left, prefix: "", shared: Some((left, right)) }
+        Resolver {
+            general: self,
+            corner_bodies: self.body_names(),
+            points: self.points(),
+            side: Side::Left,
+            prefix: "",
+            shared: Some((left, right)),
+        }
+    }
+
+    fn points(&self) -> Arc<[HashMap<&str, Vec3>; 2]> {
+        let axle = self.axle.as_ref().map(|a| by_name(&a.hardpoints)).unwrap_or_default();
+        Arc::new([by_name(&self.hardpoints), axle])
+    }
+
+    fn body_names(&self) -> Arc<HashSet<&str>> {
+        Arc::new(self.bodies.iter().map(|b| b.name.as_str()).collect())
     }
 
     /// Hardpoints with the wheel centre first, for the reach checks.

@@ -6,15 +6,13 @@
 //! Every warning names the hardpoints involved and says what to change, in the model file's words.
 
 use crate::analysis::TravelRow;
-use crate::build::mobility::{jacobian, mobility, null_space};
+use crate::build::mobility::{mobility, reduced_condition};
 use crate::build::{Corner, Rig};
 use crate::description::layout::Layout;
 use crate::description::limits::{looks_like_millimetres, FAR_FROM_WHEEL_CENTRE};
 use crate::description::{Connection, Side};
 use crate::file::SuspensionFile;
-use elastokin_core::{Model, ModelError, Vec3, BODY_DOFS};
-use elastokin_solver::assembly::{Assembly, Tangent};
-use nalgebra::{DMatrix, SymmetricEigen};
+use elastokin_core::{ModelError, Vec3, BODY_DOFS};
 use serde::Serialize;
 
 /// Something in a model that is probably not what its author meant.
@@ -126,7 +124,7 @@ pub fn check_model(file: &SuspensionFile) -> Result<ModelCheck, ModelError> {
 
     let (dof, redundant) = mobility(&free.model);
     let (dof_on_rig, _) = mobility(&on_rig.model);
-    let condition_estimate = condition_estimate(&on_rig.model);
+    let condition_estimate = reduced_condition(&on_rig.model);
     if let (false, Some(c)) = (in_millimetres, condition_estimate) {
         if c > NEAR_SINGULAR {
             warnings.push(Warning {
@@ -268,32 +266,6 @@ fn arm_pivots(points: &[(String, Vec3)], layout: &Layout) -> Vec<Warning> {
         });
     }
     out
-}
-
-/// Condition of the elastic stiffness reduced to the motions the joints allow, at design.
-fn condition_estimate(model: &Model) -> Option<f64> {
-    let n = model.dofs();
-    let rows: Vec<usize> = (0..model.constraint_rows()).collect();
-    let mut assembly = Assembly::new(model, rows);
-    let lambda = vec![0.0; assembly.m()];
-    assembly.assemble(model, &model.design_poses(), 0.0, &lambda, Some(Tangent::Elastic));
-    let mut k = DMatrix::zeros(n, n);
-    for c in 0..n {
-        for p in assembly.k_col_ptr[c]..assembly.k_col_ptr[c + 1] {
-            let r = assembly.k_row_idx[p];
-            k[(r, c)] = assembly.k_values[p];
-            k[(c, r)] = assembly.k_values[p];
-        }
-    }
-    let (j, _) = jacobian(model);
-    // The motions the joints allow: the right singular vectors of J with zero singular value.
-    let z = null_space(&j, n)?;
-    let reduced = z.transpose() * &k * &z;
-    let softest = SymmetricEigen::new(reduced).eigenvalues.iter().map(|v| v.abs()).fold(f64::INFINITY, f64::min);
-    // Against the stiffest single coordinate rather than the stiffest allowed motion: a corner left with
-    // one motion that nothing holds must not read as perfectly conditioned.
-    let stiffest = k.diagonal().amax();
-    (stiffest > 0.0 && stiffest.is_finite()).then(|| if softest > 0.0 { stiffest / softest } else { f64::INFINITY })
 }
 
 /// Spring length change per metre of wheel travel at design, from the rig's exact path tangent.

@@ -31,7 +31,7 @@ use crate::description::anti_roll_bar::AntiRollBar;
 use crate::description::connection::{ArmMounts, BushingRates, Connection, SpringSpec, TieRodMounts};
 use crate::description::layout::Layout;
 use crate::description::limits::default_loaded_radius;
-pub(crate) use crate::description::place::{is_part_name, part_name, short};
+pub(crate) use crate::description::place::{part_name, short};
 pub use crate::description::place::{Axis, Hardpoints, Place};
 pub use crate::description::section::SectionDef;
 use elastokin_core::{JointKind, Vec3};

@@ -47,9 +47,10 @@ impl<'de> Deserialize<'de> for Hardpoints {
             }
             fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Hardpoints, A::Error> {
                 let mut out: Vec<(String, Vec3)> = Vec::new();
+                let mut seen = std::collections::HashSet::new();
                 while let Some(name) = map.next_key::<String>()? {
                     let PointValue(p) = map.next_value()?;
-                    if out.iter().any(|(n, _)| *n == name) {
+                    if !seen.insert(name.clone()) {
                         return Err(A::Error::custom(format!("hardpoint '{name}' is given twice: keep one")));
                     }
                     out.push((name, p));
@@ -172,9 +173,4 @@ impl<'de> Deserialize<'de> for Axis {
 /// Name `name` of the part of the corner whose names start with `prefix`.
 pub(crate) fn part_name(prefix: &str, name: &str) -> String {
     format!("{prefix}{name}")
-}
-
-/// Whether `full` is [`part_name`]`(prefix, name)`, told without making it.
-pub(crate) fn is_part_name(full: &str, prefix: &str, name: &str) -> bool {
-    full.strip_prefix(prefix) == Some(name)
 }
