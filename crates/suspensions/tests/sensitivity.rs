@@ -736,3 +736,40 @@ fn the_sensitivities_are_the_same_to_the_bit_under_every_units_choice() {
         assert_eq!(bits(&run(units)), expected, "{name}");
     }
 }
+
+/// A fraction at the end of its range (a front-driven MacPherson's drive share at 1, a rear axle's at 0)
+/// has no model beyond it: its derivatives are one-sided, and exact where the figure is linear in it. The
+/// anti-pitch under traction is the drive share times the side-view geometry's, so its derivative to the
+/// front axle's share is the figure itself over the share, to the rear's minus the figure over one less
+/// the share; no other figure reads it.
+#[test]
+fn a_parameter_at_the_end_of_its_range_is_differenced_one_sided() {
+    for (name, share, sign) in [("macpherson.json", 1.0, 1.0), ("four_link_axle.json", 0.0, -1.0)] {
+        let doc = document(name);
+        let pointer = "/vehicle/drive_front_fraction".to_string();
+        let p = Parameters::new(&doc, std::slice::from_ref(&pointer)).unwrap();
+        assert_eq!(p.values[0], share, "{name}: the share sits at the end of its range");
+        assert!(p.file_moved(0, sign * 1e-3).is_err(), "{name}: beyond the range the model does not read");
+        let settings = Settings { steps: STEPS, ..Settings::default() };
+        let s = analysis_sensitivity(Analysis::ParallelTravel, &p, &settings).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let (figure, rates) = s.figure("traction_anti_pitch").unwrap();
+        let value = figure.value.unwrap();
+        let expected = if share == 1.0 { value / share } else { -value / (1.0 - share) };
+        let d = rates[0].unwrap();
+        // Measured: 9.0e-12 (MacPherson) and 6.3e-12 (axle) of the figure apart; estimates 3.2e-8 and 3.2e-7.
+        assert!((d.value - expected).abs() <= d.error, "{name}: {} against {expected} ± {}", d.value, d.error);
+        assert!(d.error <= 1e-6 * value.abs(), "{name}: estimate {} of {value}", d.error);
+        for (f, rate) in s.report.figures.iter().zip(&s.figures[0]) {
+            if f.key != "traction_anti_pitch" {
+                if let (Ok(d), Some(v)) = (rate, f.value) {
+                    assert!(d.value.abs() <= d.error.max(1e-12 * v.abs()), "{name}: {} moves by {}", f.key, d.value);
+                }
+            }
+        }
+        println!(
+            "{name}: {:.1e} of the figure apart, estimate {:.1e} of it",
+            (d.value - expected).abs() / value.abs(),
+            d.error / value.abs()
+        );
+    }
+}

@@ -13,7 +13,9 @@
 //! reads off its equilibria (rows, slopes and fits of rows, compliances from the tangent, reactions) is
 //! read by its own code on the moved model at the moved equilibria, so each figure is differentiated as it
 //! is defined; the four replays' central differences over `h` and `2h`, Richardson extrapolated, give the
-//! derivative with an error of order `h⁴`; the solver's tolerance enters only as the recorded equilibria's
+//! derivative with an error of order `h⁴` (a parameter at the end of its allowed range, a fraction at 1 or
+//! a rate at its largest, has no model beyond it: its differences are one-sided over one to four steps, of
+//! the fourth order too); the solver's tolerance enters only as the recorded equilibria's
 //! distance from the exact ones (a relative error of about 1e-9), not divided by the step. They are
 //! differences, not derivatives carried forward in closed form: each has its own error estimate ([`rate`]),
 //! which `crates/suspensions/tests/sensitivity.rs` holds against re-runs of the moved models.
@@ -51,12 +53,27 @@ pub const RELATIVE_STEP: f64 = 5e-4;
 /// The moves of a parameter the differences take, in steps: `+h, −h, +2h, −2h`.
 const SHIFTS: [f64; 4] = [1.0, -1.0, 2.0, -2.0];
 
-/// The moves a replay may ask for, in steps: [`SHIFTS`], and none (the model itself, read again where a
-/// stop touched between the moves: [`AT_MODEL`]).
-const MOVES: [f64; 5] = [SHIFTS[0], SHIFTS[1], SHIFTS[2], SHIFTS[3], 0.0];
+/// The moves a replay may ask for, in steps: [`SHIFTS`]; none (the model itself, read again where a stop
+/// touched between the moves, and for one-sided differences: [`AT_MODEL`]); and three and four steps, which
+/// one-sided differences take with one and two ([`ONE_SIDED`]).
+const MOVES: [f64; 9] = [SHIFTS[0], SHIFTS[1], SHIFTS[2], SHIFTS[3], 0.0, 3.0, -3.0, 4.0, -4.0];
 
 /// The index in [`MOVES`] of the model itself.
 const AT_MODEL: usize = 4;
+
+/// The indices in [`MOVES`] of one, two, three and four steps up, and down: the one-sided differences of a
+/// parameter at the end of its allowed range (a rate at its largest, a fraction at 1), which has no model
+/// on the other side.
+const ONE_SIDED: [[usize; 4]; 2] = [[0, 2, 5, 7], [1, 3, 6, 8]];
+
+/// How a parameter's derivatives are differenced: central where the model reads moved both ways, else
+/// one-sided, up or down, where it reads on that side alone.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Differences {
+    Central,
+    /// One-sided, the moves [`ONE_SIDED`]`[side]` (0 up, 1 down).
+    OneSided(usize),
+}
 
 /// The step of parameter `k`: [`RELATIVE_STEP`] of its size (see there).
 fn step(parameters: &Parameters, k: usize) -> f64 {
@@ -309,8 +326,34 @@ fn rate(values: [Option<f64>; 4], at_model: Option<Option<f64>>, h: f64, unit: f
     let value = (8.0 * (a - b) - (c - d)) / (12.0 * h);
     let one_step = (a - b) / (2.0 * h);
     let rounding = ROUNDING_ULPS * f64::EPSILON * largest(unit, 0.0) / h;
-    let size = h / RELATIVE_STEP;
-    let error = (value - one_step).abs() + rounding + relative * value.abs().max(a.abs() / size);
+    derivative(value, one_step, rounding, relative, a / (h / RELATIVE_STEP))
+}
+
+/// The derivative from the values `f0` at the model and `values` at one to four steps `h` one way (`h`
+/// negative for down), for a parameter at the end of its allowed range: the one-sided difference of
+/// fourth order, with the same estimate as [`rate`]'s, the second-order one-sided difference for the
+/// extrapolation's move. A stop that touched or left between the moves (`kinked`) leaves no way to tell a
+/// kink from a curve with one side alone: no derivative.
+fn one_sided_rate(f0: Option<f64>, values: [Option<f64>; 4], h: f64, unit: f64, relative: f64, kinked: bool) -> Rate {
+    let (Some(f0), [Some(a), Some(b), Some(c), Some(d)]) = (f0, values) else {
+        return Err(NoDerivative::MissingWhenMoved);
+    };
+    if kinked {
+        return Err(NoDerivative::Kink);
+    }
+    let value = (-25.0 * f0 + 48.0 * a - 36.0 * b + 16.0 * c - 3.0 * d) / (12.0 * h);
+    let second_order = (-3.0 * f0 + 4.0 * a - b) / (2.0 * h);
+    // The weights' sum, 128/12, against the central difference's 18/12: that much more rounding.
+    let largest = [f0, a, b, c, d].iter().fold(unit, |m, v| m.max(v.abs()));
+    let rounding = ROUNDING_ULPS * f64::EPSILON * largest * (128.0 / 18.0) / h.abs();
+    derivative(value, second_order, rounding, relative, f0 / (h.abs() / RELATIVE_STEP))
+}
+
+/// A difference `value` with its error estimate: its distance from the lower-order difference `coarser`,
+/// the rounding, and the recorded equilibria's `relative` error of it or, where it is smaller, of the
+/// value per the parameter's size (`per_size`).
+fn derivative(value: f64, coarser: f64, rounding: f64, relative: f64, per_size: f64) -> Rate {
+    let error = (value - coarser).abs() + rounding + relative * value.abs().max(per_size.abs());
     if value.is_finite() && error.is_finite() {
         Ok(Derivative { value, error })
     } else {
@@ -357,6 +400,17 @@ fn analysis_sensitivity_of(
     Ok(AnalysisSensitivity { report, figures, table })
 }
 
+/// How parameter `k`'s derivatives are differenced: central where the model reads at every central move;
+/// else one-sided to the side where it reads at one to four steps (a parameter at the end of its allowed
+/// range); else the first central move's reason it does not read.
+fn differences(models: &MovedModels, k: usize) -> Result<Differences, String> {
+    let reads = |moves: &[usize]| moves.iter().try_for_each(|&m| models.models(k, m).map(drop));
+    match reads(&[0, 1, 2, 3]) {
+        Ok(()) => Ok(Differences::Central),
+        Err(why) => (0..2).find(|&side| reads(&ONE_SIDED[side]).is_ok()).map(Differences::OneSided).ok_or(why),
+    }
+}
+
 /// The rates of `report`'s figures and cells with respect to parameter `k`, from replays of `tape`.
 fn parameter_rates(
     analysis: Analysis,
@@ -388,15 +442,32 @@ fn parameter_rates(
         }
         Ok(Replay { value, kinked: run.kinked })
     };
-    let mut moved = Vec::with_capacity(SHIFTS.len());
+    let differences = differences(models, k)?;
+    let shifts = match differences {
+        Differences::Central => [0, 1, 2, 3],
+        Differences::OneSided(side) => ONE_SIDED[side],
+    };
+    let mut moved = Vec::with_capacity(shifts.len());
     let mut kinked = false;
-    for m in 0..SHIFTS.len() {
+    for m in shifts {
         let run = replayed(m)?;
         kinked |= run.kinked;
         moved.push(run.value);
     }
-    // A stop touched or left between the moves: the model itself replayed too, to tell a kink.
-    let at_model = if kinked { Some(replayed(AT_MODEL)?.value) } else { None };
+    // A stop touched or left between the moves: the model itself replayed too, to tell a kink. One-sided
+    // differences take it always.
+    let at_model = if kinked || differences != Differences::Central { Some(replayed(AT_MODEL)?.value) } else { None };
+    // The derivative of what `read` reads: central, or one-sided with the step's sign.
+    let rate_of = |read: &dyn Fn(&AnalysisReport) -> Option<f64>, unit: f64, relative: f64| match differences {
+        Differences::Central => {
+            rate([0, 1, 2, 3].map(|i| read(&moved[i])), at_model.as_ref().map(read), h, unit, relative)
+        }
+        Differences::OneSided(side) => {
+            let f0 = at_model.as_ref().and_then(read);
+            let signed = if side == 0 { h } else { -h };
+            one_sided_rate(f0, [0, 1, 2, 3].map(|i| read(&moved[i])), signed, unit, relative, kinked)
+        }
+    };
     let value = |run: &AnalysisReport, key: &str| run.figure(key).and_then(|f| f.value);
     let figures = report
         .figures
@@ -406,8 +477,7 @@ fn parameter_rates(
             Some(v) => {
                 let unit = 1.0 / f.unit.shown().factor;
                 let relative = f.error.map_or(0.0, |e| e / v.abs()).min(1.0);
-                let at = at_model.as_ref().map(|m| value(m, &f.key));
-                rate([0, 1, 2, 3].map(|i| value(&moved[i], &f.key)), at, h, unit, relative)
+                rate_of(&|run| value(run, &f.key), unit, relative)
             }
         })
         .collect();
@@ -429,13 +499,7 @@ fn parameter_rates(
                 .map(|c| match report.table.rows[r][c] {
                     // The replays read only the rows the figures read (`SweepExtras::figure_rows`).
                     Cell::Number(_) if settings.figures_only => Err(NoDerivative::FiguresOnly),
-                    Cell::Number(_) => rate(
-                        [0, 1, 2, 3].map(|i| moved[i].table.rows[r][c].number()),
-                        at_model.as_ref().map(|m| m.table.rows[r][c].number()),
-                        h,
-                        1.0,
-                        column_relative[c],
-                    ),
+                    Cell::Number(_) => rate_of(&|run| run.table.rows[r][c].number(), 1.0, column_relative[c]),
                     _ => Err(NoDerivative::Missing),
                 })
                 .collect()
