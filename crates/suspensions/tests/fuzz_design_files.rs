@@ -1,6 +1,8 @@
 //! Seeded mutation testing of the design files: the shipped TARGETS files and TOLERANCES file, each
-//! mutated in one or two places (numbers replaced by extremes or scaled, values replaced by other types,
-//! keys and array items deleted, figure names changed), then read against their model as the commands
+//! mutated in one or two places (numbers replaced by extremes or scaled, or written as text — "inf", "NaN",
+//! "1e999", "0x10" —, values replaced by other types, keys and array items deleted, figure names changed, a
+//! control character put into a text or a key) or with a key given twice, then read against their model as
+//! the commands
 //! read them. A file that cannot be meant must be refused with a message in words; one that reads is, in
 //! some cases, evaluated or tuned (TARGETS) or stacked up with a few samples (TOLERANCES), which must end
 //! in a result with no non-finite number or in a message, never in a panic. Bounds of 1e308 (a panic in the
@@ -74,9 +76,28 @@ fn mutate(doc: &mut Value, rng: &mut ChaCha8Rng) {
         json!("1e400%"),
         json!("parallel-travel/toe_deg"),
         json!("roll/no_such_figure"),
+        json!("inf"),
+        json!("NaN"),
+        json!("1e999"),
+        json!("0x10"),
+        json!("nan%"),
     ];
     let (parent, key) = at.rsplit_once('/').unwrap();
-    match rng.random_range(0..4) {
+    let control = ['\u{1b}', '\0', '\u{7}', '\u{b}', '\u{7f}', '\u{fffe}', '\u{2028}'][rng.random_range(0..7)];
+    match rng.random_range(0..6) {
+        4 => {
+            if let Some(Value::String(text)) = doc.pointer_mut(&at) {
+                text.push(control);
+            }
+        }
+        5 => {
+            if let Some(map) = doc.pointer_mut(parent).and_then(Value::as_object_mut) {
+                let key = key.replace("~1", "/").replace("~0", "~");
+                if let Some(v) = map.remove(&key) {
+                    map.insert(format!("{key}{control}"), v);
+                }
+            }
+        }
         0 => match doc.pointer_mut(parent).unwrap() {
             Value::Object(map) => {
                 map.remove(&key.replace("~1", "/").replace("~0", "~"));
@@ -110,16 +131,25 @@ fn cases(path: &str, stream: u64) -> impl Iterator<Item = (usize, String)> {
         for _ in 0..rng.random_range(1..=2) {
             mutate(&mut doc, &mut rng);
         }
-        (case, doc.to_string())
+        let text = doc.to_string();
+        // One case in ten: the first key given twice (the last would silently win in a JSON reader).
+        if rng.random_range(0..10) == 0 {
+            if let Some((key, _)) = text.get(1..).and_then(|t| t.split_once(':')) {
+                return (case, text.replacen(&format!("{key}:"), &format!("{key}:1,{key}:"), 1));
+            }
+        }
+        (case, text)
     })
 }
 
-/// A message a user can read: not empty, no non-finite number shown.
+/// A message a user can read: not empty, no non-finite number shown (but for the user's own text, which a
+/// message may quote: a word the file holds), no raw control character.
 fn check_message(message: &str, case: usize, text: &str) {
     let non_finite = message
         .split(|c: char| !c.is_ascii_alphanumeric())
-        .any(|w| matches!(w, "NaN" | "inf" | "Infinity" | "infinity"));
-    assert!(!message.trim().is_empty() && !non_finite, "case {case}: {message}\n{text}");
+        .any(|w| matches!(w, "NaN" | "inf" | "Infinity" | "infinity") && !text.contains(w));
+    let raw = message.chars().any(|c| c.is_control() && c != '\n');
+    assert!(!message.trim().is_empty() && !non_finite && !raw, "case {case}: {message:?}\n{text}");
 }
 
 /// What `read` reads of case `case`'s `text`, or `None` when it refuses it (counted in `refused`) with a
@@ -145,6 +175,8 @@ fn mutated_targets_files_are_refused_with_a_message_or_tuned_without_panic() {
     for (stream, (targets, model_path)) in [
         ("examples/targets/bump_steer.json", "examples/generic/macpherson.json"),
         ("examples/targets/macpherson.json", "examples/macpherson.json"),
+        ("examples/targets/double_wishbone.json", "examples/double_wishbone.json"),
+        ("examples/targets/pushrod_rocker.json", "examples/pushrod_rocker.json"),
     ]
     .into_iter()
     .enumerate()
@@ -206,4 +238,21 @@ fn mutated_tolerance_files_are_refused_with_a_message_or_stacked_up_without_pani
         }
     }
     println!("tolerances: {refused} refused, {stacked} stacked up");
+}
+
+/// Found by the campaign: a design file's key with a control character in it was echoed raw in the
+/// message that refused it ("unknown key 'constraints␛'"), so the terminal read the escape.
+#[test]
+fn a_design_files_key_or_text_with_a_control_character_is_refused_with_it_shown_escaped() {
+    let base = model("examples/macpherson.json");
+    let targets = read("examples/targets/macpherson.json").replacen("\"targets\"", "\"targets\\u001b\"", 1);
+    let tolerances = read("examples/targets/tolerances.json").replacen("5%", "5%\\u0007", 1);
+    let messages = [
+        read_targets(&targets, "targets.json", &base, |f| Err(format!("no file {f}"))).map(drop).unwrap_err(),
+        read_tolerances(&tolerances, "tolerances.json", &base).map(drop).unwrap_err(),
+    ];
+    for (message, code) in messages.iter().zip(["U+001B", "U+0007"]) {
+        assert!(!message.chars().any(char::is_control), "{message:?}");
+        assert!(message.contains(code), "the character is named: {message}");
+    }
 }

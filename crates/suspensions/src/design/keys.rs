@@ -5,11 +5,18 @@ use crate::kc::{self, Analysis};
 use serde_json::{Map, Value};
 
 /// The JSON `text` of a design file (`origin` names it in errors), refused where an object names a key
-/// twice: a JSON reader keeps the last silently, and which one the user meant is a guess.
+/// twice (a JSON reader keeps the last silently, and which one the user meant is a guess) and where a key
+/// or text holds a character no name is written with, as a model file is.
 pub(super) fn read_json(text: &str, origin: &str) -> Result<Value, String> {
+    use crate::file::key_path::{first_duplicate_key, first_unprintable, printable};
     let root: Value = serde_json::from_str(text).map_err(|e| format!("{origin}: {e}"))?;
-    match crate::file::key_path::first_duplicate_key(text) {
-        Some(path) => Err(format!("{origin}: {}: the key is given twice: give each key once", path.join("."))),
+    if let Some((path, said)) = first_unprintable(&root) {
+        return Err(format!("{origin}: {}", crate::file::unprintable_message(&path, &said)));
+    }
+    match first_duplicate_key(text) {
+        Some(path) => {
+            Err(format!("{origin}: {}: the key is given twice: give each key once", printable(&path.join("."))))
+        }
         None => Ok(root),
     }
 }

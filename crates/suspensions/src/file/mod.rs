@@ -200,15 +200,16 @@ pub(crate) fn refuse_unprintable(value: &serde_json::Value, text: &str, origin: 
     Err(FileError::Invalid { origin: origin.to_string(), line, column, message: unprintable_message(&path, &said) })
 }
 
-/// Why a text with an [`key_path::unprintable`] character in it is refused, naming where it is.
-fn unprintable_message(path: &[String], said: &str) -> String {
+/// Why a text with an [`key_path::unprintable`] character in it is refused, naming where it is (the path
+/// shown printable too: the character may be in a key).
+pub(crate) fn unprintable_message(path: &[String], said: &str) -> String {
     let c = said.chars().find(|c| key_path::unprintable(*c)).unwrap_or('\u{0}');
     let shown = key_path::printable(&said.chars().take(60).collect::<String>()).into_owned();
     let more = if said.chars().nth(60).is_some() { "…" } else { "" };
     format!(
         "{}: \"{shown}{more}\" holds the character U+{:04X}, which no name is written with and a terminal or \
          report cannot show: write it in plain text",
-        path.join("."),
+        key_path::printable(&path.join(".")),
         c as u32
     )
 }
