@@ -12,6 +12,7 @@ use crate::batch::{self, Shard};
 use crate::output::{write_table_after, Failure, Part, Staging, Stdout};
 use crate::{read_input, MergeArgs};
 use elastokin::solver::Mode;
+use elastokin::suspensions::file::key_path::unprintable;
 use elastokin::suspensions::kc::{self, Cell, Table};
 use std::path::Path;
 
@@ -126,6 +127,11 @@ fn read_shard(given: &Path) -> Result<ShardFile, Failure> {
             if !(cell.is_empty() || cell.parse::<f64>().is_ok_and(f64::is_finite)) {
                 return Err(rerun(format!("row {} has {cell:?} for {figure}, which is not a finite number", k + 1)));
             }
+        }
+        // A text (the variant's label, its error) is written printable by `batch`: copied as is, a control
+        // character would reach the merged table and the terminal that shows it.
+        if let Some((column, cell)) = columns.iter().zip(record.iter()).find(|(_, c)| c.chars().any(unprintable)) {
+            return Err(rerun(format!("row {} has {cell:?} in {column}, a character no batch writes", k + 1)));
         }
         rows.push(record.iter().take(columns.len() - 1).map(String::from).collect());
     }
