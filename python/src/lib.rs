@@ -21,6 +21,9 @@ use std::path::Path;
 
 mod scene;
 
+/// The time one chunk of a batch's variants takes, between which Python hears its signals (s).
+const CHUNK_SECONDS: f64 = 0.1;
+
 create_exception!(elastokin._native, Error, PyException, "Every error elastokin raises.");
 create_exception!(
     elastokin._native,
@@ -48,10 +51,7 @@ struct Model {
 fn analysis(name: &str) -> PyResult<Analysis> {
     Analysis::from_name(name).ok_or_else(|| {
         let names: Vec<&str> = kc::ALL.iter().map(|a| a.name()).collect();
-        PyValueError::new_err(format!(
-            "no analysis '{name}': give one of {}",
-            names.join(", ")
-        ))
+        PyValueError::new_err(format!("no analysis '{name}': give one of {}", names.join(", ")))
     })
 }
 
@@ -428,7 +428,10 @@ impl Model {
                 derivatives.iter().map(|r| r.err().map(|e| e.reason())).collect::<Vec<_>>(),
             )?;
             entry.set_item("derivatives", PyArray1::from_vec(py, si.iter().map(|d| d * written.factor).collect()))?;
-            entry.set_item("derivative_errors", PyArray1::from_vec(py, si_errors.iter().map(|e| e * written.factor).collect()))?;
+            entry.set_item(
+                "derivative_errors",
+                PyArray1::from_vec(py, si_errors.iter().map(|e| e * written.factor).collect()),
+            )?;
             entry.set_item("si_derivatives", PyArray1::from_vec(py, si))?;
             entry.set_item("si_derivative_errors", PyArray1::from_vec(py, si_errors))?;
             figures.set_item(&f.key, entry)?;
@@ -450,7 +453,8 @@ impl Model {
         PyArray2::from_vec2(py, &rows).map_err(|e| AnalysisError::new_err(e.to_string()))
     }
 
-    /// Design variants, as `elastokin batch` runs them: one dict per variant with the columns of batch.csv.
+    /// Design variants, as `elastokin batch` runs them (interrupted by Ctrl-C within about
+    /// [`CHUNK_SECONDS`]): one dict per variant with the columns of batch.csv.
     /// `variants` is the text of a variants file, or a list whose items are a variants-file line or a
     /// `(name, [(pointer, JSON text of the value)])` pair.
     /// `threads`: how many threads run the variants (None: every core). A study's task takes one CPU of
@@ -470,15 +474,28 @@ impl Model {
         let files: Vec<SuspensionFile> = py
             .detach(|| list.iter().map(|v| batch::apply(&self.base, v)).collect::<Result<_, _>>())
             .map_err(ModelError::new_err)?;
-        let evaluate = || -> Vec<Result<batch::Outcome, String>> {
-            files.par_iter().map(|file| batch::evaluate(file, batch::HALF_RANGE, batch::STEPS)).collect()
-        };
-        let results = py
-            .detach(|| match threads {
-                None => Ok(evaluate()),
-                Some(n) => rayon::ThreadPoolBuilder::new().num_threads(n).build().map(|pool| pool.install(evaluate)),
-            })
+        let pool = threads
+            .map(|n| rayon::ThreadPoolBuilder::new().num_threads(n).build())
+            .transpose()
             .map_err(|e| AnalysisError::new_err(format!("threads: {e}")))?;
+        // The variants run in chunks of about a tenth of a second each, Python's signals heard between
+        // them: Ctrl-C stops a long batch at once rather than when the last variant is done.
+        let mut results = Vec::with_capacity(files.len());
+        let mut chunk = pool.as_ref().map_or_else(rayon::current_num_threads, |p| p.current_num_threads()).max(1);
+        while results.len() < files.len() {
+            let part = &files[results.len()..(results.len() + chunk).min(files.len())];
+            let started = std::time::Instant::now();
+            let evaluate = || -> Vec<Result<batch::Outcome, String>> {
+                part.par_iter().map(|file| batch::evaluate(file, batch::HALF_RANGE, batch::STEPS)).collect()
+            };
+            results.extend(py.detach(|| match &pool {
+                None => evaluate(),
+                Some(pool) => pool.install(evaluate),
+            }));
+            py.check_signals()?;
+            let took = started.elapsed().as_secs_f64().max(1e-6);
+            chunk = ((chunk as f64 * CHUNK_SECONDS / took) as usize).clamp(1, 2 * chunk);
+        }
         list.iter()
             .zip(results)
             .map(|(v, r)| {
