@@ -66,22 +66,26 @@ fn dense_condition(model: &Model) -> Option<f64> {
     Some(k.diagonal().max() / softest)
 }
 
-fn shipped(name: &str) -> SuspensionFile {
-    SuspensionFile::read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples").join(name)).unwrap()
+/// Every model file shipped under `examples/` (its `targets/` hold design files), by path, read.
+fn shipped() -> Vec<(String, SuspensionFile)> {
+    fn walk(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() && !path.ends_with("targets") {
+                walk(&path, out);
+            } else if path.extension().is_some_and(|e| e == "json") {
+                out.push(path);
+            }
+        }
+    }
+    let mut paths = Vec::new();
+    walk(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples"), &mut paths);
+    paths.sort();
+    let models: Vec<(String, SuspensionFile)> =
+        paths.iter().filter_map(|p| Some((p.display().to_string(), SuspensionFile::read(p).ok()?))).collect();
+    assert!(models.len() >= 10, "the shipped models: {paths:?}");
+    models
 }
-
-const SHIPPED: [&str; 10] = [
-    "macpherson.json",
-    "double_wishbone.json",
-    "double_wishbone_axle.json",
-    "five_link.json",
-    "four_link_axle.json",
-    "pushrod_rocker.json",
-    "twist_beam.json",
-    "twist_beam_template.json",
-    "generic/macpherson.json",
-    "generic/double_wishbone.json",
-];
 
 /// Relative agreement of the sparse condition with the dense one. Measured at most 3.6e-11 on the shipped
 /// models (the dense read-out of the reduced compliance) and 5.1e-15 on the chains (Lanczos, stopped when its
@@ -105,8 +109,7 @@ fn agree(name: &str, sparse: Option<f64>, dense: Option<f64>) -> f64 {
 #[test]
 fn mobility_and_condition_of_every_shipped_model_are_those_of_a_dense_svd() {
     let mut worst: f64 = 0.0;
-    for name in SHIPPED {
-        let file = shipped(name);
+    for (name, file) in shipped() {
         for rig in [Rig::Free, Rig::WheelTravel] {
             let Ok(corner) = file.suspension.build(Side::Left, rig) else { continue };
             let model = &corner.model;
@@ -117,7 +120,7 @@ fn mobility_and_condition_of_every_shipped_model_are_those_of_a_dense_svd() {
             assert_eq!(found.degrees_of_freedom, model.dofs() - rank, "{name} {rig:?}");
             assert_eq!(found.redundant_rows.len(), model.constraint_rows() - rank, "{name} {rig:?}");
             let sparse = mobility::reduced_condition(model, TOLERANCE).unwrap();
-            worst = worst.max(agree(name, sparse, dense_condition(model)));
+            worst = worst.max(agree(&name, sparse, dense_condition(model)));
         }
     }
     println!("worst relative difference of the shipped models' conditions: {worst:.1e}");
@@ -208,8 +211,7 @@ fn which_ways_the_joints_hold_a_point_are_those_of_the_dense_null_space() {
     let directions = [Vec3::x(), Vec3::y(), Vec3::z(), Vec3::new(1.0, -2.0, 0.5)];
     let mut compared = 0;
     let mut held = 0;
-    for name in SHIPPED {
-        let file = shipped(name);
+    for (name, file) in shipped() {
         let Ok(corner) = file.suspension.build(Side::Left, Rig::WheelTravel) else { continue };
         let model = &corner.model;
         let (j, _) = dense_at_design(model);
