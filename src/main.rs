@@ -1256,6 +1256,7 @@ fn tolerance(args: ToleranceArgs, out: &Stdout, strict: bool) -> Result<(), Fail
     let (bytes, text) = read_input(&args.tolerances, "TOLERANCES")?;
     let tolerances = read_tolerances(&text, &args.tolerances.display().to_string(), &base).map_err(Failure::Input)?;
     let mut stack = stack_up(&base, &tolerances).map_err(|e| Failure::Run(format!("{origin}: {e}")))?;
+    refuse_warned(strict, stack.warnings.iter())?;
     if stack.spreads.is_empty() && !stack.failed.is_empty() {
         return Err(Failure::Run(format!(
             "no spreads: {}\n(nothing was written; {} is untouched)",
@@ -1297,6 +1298,9 @@ fn tolerance(args: ToleranceArgs, out: &Stdout, strict: bool) -> Result<(), Fail
         }
     }
     out.line("")?;
+    for w in &stack.warnings {
+        out.line(format!("warning [{}]: {}", w.code, w.message))?;
+    }
     out.line(format!("wrote {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")))?;
     let failed = stack.failed.len() + stack.failed_samples.len();
     if failed == 0 {

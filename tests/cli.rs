@@ -1970,6 +1970,30 @@ fn strict_refuses_results_an_analysis_warned_of_in_every_command() {
         assert!(err.contains("warning(s) under --strict: toe-range"), "{strict:?}: {err}");
         assert!(!out.exists(), "{strict:?} wrote {}", out.display());
     }
+    // A stack-up of a model whose toe passes 10° over the default travel (its tie rod's inner point 120 mm
+    // low): said without --strict, refused with it.
+    let mut steer: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(model).unwrap()).unwrap();
+    let z = &mut steer["suspension"]["macpherson"]["hardpoints"]["tie_rod_inner"][2];
+    *z = serde_json::json!(z.as_f64().unwrap() - 0.12);
+    let steer_model = dir.join("steer.json");
+    std::fs::write(&steer_model, steer.to_string()).unwrap();
+    let tolerances = dir.join("tolerances.json");
+    std::fs::write(&tolerances, r#"{"hardpoints": 0.001, "analyses": ["parallel-travel"]}"#).unwrap();
+    let out = dir.join("stack");
+    let args =
+        ["tolerance", steer_model.to_str().unwrap(), tolerances.to_str().unwrap(), "--out", out.to_str().unwrap()];
+    let o = succeeds(&args);
+    assert!(
+        String::from_utf8_lossy(&o.stdout).contains("warning [toe-range]"),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    std::fs::remove_dir_all(&out).unwrap();
+    let o = elastokin(&[&["--strict"][..], &args[..]].concat());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("warning(s) under --strict: toe-range"), "{err}");
+    assert!(!out.exists(), "tolerance --strict wrote {}", out.display());
     std::fs::remove_dir_all(&dir).ok();
 }
 

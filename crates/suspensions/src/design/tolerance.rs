@@ -164,6 +164,9 @@ pub struct StackUp {
     pub failed_samples: Vec<String>,
     /// How the analyses were run (their load steps): the Monte Carlo's samples are run alike.
     pub settings: Settings,
+    /// What the analyses warned of on the model as it is (a toe beyond ±10° over the travel, an error
+    /// estimate over the tolerance): the spreads are of those results.
+    pub warnings: Vec<kc::Warning>,
 }
 
 /// The first-order stack-up of `tolerances` on the model `document`. Refused, naming the number: a band that
@@ -218,7 +221,17 @@ pub fn stack_up(document: &Value, tolerances: &Tolerances) -> Result<StackUp, St
             });
         }
     }
-    Ok(StackUp { parameters, bands, spreads, left_out, failed: suite.failed, failed_samples: Vec::new(), settings })
+    let warnings = suite.analyses.iter().flat_map(|a| a.report.warnings.iter().cloned()).collect();
+    Ok(StackUp {
+        parameters,
+        bands,
+        spreads,
+        left_out,
+        failed: suite.failed,
+        failed_samples: Vec::new(),
+        settings,
+        warnings,
+    })
 }
 
 impl StackUp {
