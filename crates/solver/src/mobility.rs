@@ -3,10 +3,12 @@
 //! much of a load direction the joints leave to the elements, and how well the elements' stiffness holds
 //! the motions the joints allow.
 //!
-//! Each is one factorization of a KKT matrix `[K Jᵀ; J 0]` of the independent rows at the design pose,
-//! whose solve with `[g; 0]` gives `Z(ZᵀKZ)⁻¹Zᵀg`, `Z` an orthonormal basis of the motions `J` allows: with
-//! `K = I` the part of `g` those motions see, with the elastic stiffness the compliance to `g`. Nothing is
-//! dense but what is as small as the number of bodies' coordinates below [`DENSE_CONDITION_MAX`].
+//! The rank is the redundancy test's (a sparse factorization of `JJᵀ`, [`crate::redundancy`]). The rest
+//! is one factorization of a KKT matrix `[K Jᵀ; J 0]` of the independent rows at the design pose, whose
+//! solve with `[g; 0]` gives `Z(ZᵀKZ)⁻¹Zᵀg`, `Z` an orthonormal basis of the motions `J` allows: with
+//! `K = I` the part of `g` those motions see; with the elastic stiffness the compliance to `g`, whose
+//! largest eigenvalue (by Lanczos, a solve a step) is the softest motion's. Nothing is dense but the reduced
+//! compliance of a model of at most [`DENSE_CONDITION_MAX`] coordinates.
 
 use crate::assembly::{Assembly, Tangent};
 use crate::error::SolverError;
