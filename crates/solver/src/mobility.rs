@@ -40,18 +40,16 @@ pub struct Mobility {
 /// (the solver's `redundancy_tolerance`).
 pub fn mobility(model: &Model, tolerance: f64) -> Mobility {
     let redundant_rows = redundant_rows_at_design(model, tolerance);
-    Mobility { degrees_of_freedom: degrees_of_freedom(model, &redundant_rows), redundant_rows }
-}
-
-fn degrees_of_freedom(model: &Model, redundant_rows: &[usize]) -> usize {
-    model.dofs().saturating_sub(model.constraint_rows() - redundant_rows.len())
+    let independent = model.constraint_rows() - redundant_rows.len();
+    Mobility { degrees_of_freedom: model.dofs().saturating_sub(independent), redundant_rows }
 }
 
 /// The KKT matrix of the independent rows of a model at its design pose, factorized with a chosen `K`.
 struct DesignKkt {
     factor: AutoKkt,
     n: usize,
-    m: usize,
+    /// The right-hand side `[x; 0]` and solution, kept for every solve.
+    rhs: Vec<f64>,
 }
 
 /// What stands in the `K` block of a [`DesignKkt`].
@@ -81,31 +79,31 @@ impl DesignKkt {
         let lambda = vec![0.0; assembly.m()];
         assembly.assemble(model, &model.design_poses(), 0.0, &lambda, Some(Tangent::Elastic));
         let n = assembly.n;
-        let mut k = assembly.k_values.clone();
         let mut stiffest: f64 = 0.0;
         for c in 0..n {
             for p in assembly.k_col_ptr[c]..assembly.k_col_ptr[c + 1] {
                 let diagonal = assembly.k_row_idx[p] == c;
                 if diagonal {
-                    stiffest = stiffest.max(k[p]);
+                    stiffest = stiffest.max(assembly.k_values[p]);
                 }
                 if block == Block::Identity {
-                    k[p] = if diagonal { 1.0 } else { 0.0 };
+                    assembly.k_values[p] = if diagonal { 1.0 } else { 0.0 };
                 }
             }
         }
         let mut factor = AutoKkt::analyze(&assembly.kkt_pattern(), KktOptions::default(), BackendChoice::Auto)?;
-        let report = factor.factorize(KktValues { k: &k, k_skew: None, j: &assembly.j_values })?;
+        let report = factor.factorize(KktValues { k: &assembly.k_values, k_skew: None, j: &assembly.j_values })?;
         let unrestrained = !report.suspect_body_dofs.is_empty();
-        Ok(Factorized { kkt: DesignKkt { factor, n, m: assembly.m() }, stiffest, unrestrained })
+        let rhs = vec![0.0; n + assembly.m()];
+        Ok(Factorized { kkt: DesignKkt { factor, n, rhs }, stiffest, unrestrained })
     }
 
     /// `x ← Z(ZᵀKZ)⁻¹Zᵀx`: the body coordinates of the solve with `[x; 0]`.
     fn solve(&mut self, x: &mut [f64]) -> Result<(), SolverError> {
-        let mut rhs = vec![0.0; self.n + self.m];
-        rhs[..self.n].copy_from_slice(x);
-        self.factor.solve_in_place(&mut rhs, Accuracy::Refined)?;
-        x.copy_from_slice(&rhs[..self.n]);
+        self.rhs.fill(0.0);
+        self.rhs[..self.n].copy_from_slice(x);
+        self.factor.solve_in_place(&mut self.rhs, Accuracy::Refined)?;
+        x.copy_from_slice(&self.rhs[..self.n]);
         Ok(())
     }
 }
@@ -126,6 +124,18 @@ pub fn free_parts(model: &Model, tolerance: f64, loads: &[Vec<f64>]) -> Result<V
         .collect()
 }
 
+/// Fills `x` with the fixed pseudo-random start of an iteration that seeks an extreme mode (xorshift, the
+/// same every run): Lanczos here, the inverse iteration that names an unrestrained motion.
+pub(crate) fn pseudo_random_start(x: &mut [f64]) {
+    let mut seed = 0x2545F4914F6CDD1Du64;
+    for v in x {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        *v = (seed % 1000) as f64 / 1000.0 - 0.5;
+    }
+}
+
 /// Up to this many body coordinates, [`reduced_condition`] reads the reduced compliance whole, one solve
 /// per coordinate, and takes its eigenvalues densely; above, by Lanczos iteration, a solve a step.
 pub const DENSE_CONDITION_MAX: usize = 128;
@@ -136,12 +146,13 @@ pub const DENSE_CONDITION_MAX: usize = 128;
 /// coordinate rather than the stiffest allowed motion, so that a model left with one motion that nothing
 /// holds does not read as perfectly conditioned: that motion makes it infinite. `None` when the joints
 /// allow no motion or the elements have no stiffness.
-pub fn reduced_condition(model: &Model, tolerance: f64) -> Result<Option<f64>, SolverError> {
-    let dropped = redundant_rows_at_design(model, tolerance);
-    if degrees_of_freedom(model, &dropped) == 0 {
+/// `mobility` is the model's ([`mobility`]), whose redundant rows are left out.
+pub fn reduced_condition(model: &Model, mobility: &Mobility) -> Result<Option<f64>, SolverError> {
+    if mobility.degrees_of_freedom == 0 {
         return Ok(None);
     }
-    let Factorized { kkt, stiffest, unrestrained } = DesignKkt::factorize(model, &dropped, Block::Elastic)?;
+    let found = DesignKkt::factorize(model, &mobility.redundant_rows, Block::Elastic)?;
+    let Factorized { kkt, stiffest, unrestrained } = found;
     if !(stiffest > 0.0 && stiffest.is_finite()) {
         return Ok(None);
     }
@@ -203,15 +214,8 @@ impl Compliance {
     fn largest_lanczos(&mut self) -> Result<f64, SolverError> {
         let n = self.kkt.n;
         let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
-        let mut seed = 0x2545F4914F6CDD1Du64;
-        let mut q: Vec<f64> = (0..n)
-            .map(|_| {
-                seed ^= seed << 13;
-                seed ^= seed >> 7;
-                seed ^= seed << 17;
-                (seed % 1000) as f64 / 1000.0 - 0.5
-            })
-            .collect();
+        let mut q = vec![0.0; n];
+        pseudo_random_start(&mut q);
         let size = dot(&q, &q).sqrt();
         q.iter_mut().for_each(|v| *v /= size);
         let (mut basis, mut alpha, mut beta): (Vec<Vec<f64>>, Vec<f64>, Vec<f64>) = Default::default();

@@ -12,7 +12,7 @@ use super::report::{Cell, Judge, Kind, SectionOutput, Table, Target};
 use super::stats::{power_law_exponent, Budget};
 use super::Settings;
 use elastokin_suspensions::kc::{self, Analysis};
-use elastokin_suspensions::{check_model, SuspensionFile};
+use elastokin_suspensions::{check_model, Rig, Side, SuspensionFile};
 use serde_json::{json, Value};
 
 const MIB: f64 = 1024.0 * 1024.0;
@@ -97,8 +97,9 @@ fn measure(n: usize, tie: Tie, budget: Budget) -> Result<Measured, String> {
     let file = SuspensionFile::from_json(&text, &name).map_err(|e| e.to_string())?;
     let check = budget.time(|| check_model(&file).map(drop));
     let (checked, check_usage) = alloc::track(|| check_model(&file));
-    let coordinates = 6 * (n + 1);
     checked.map_err(|e| e.to_string())?;
+    let corner = file.suspension.build(Side::Left, Rig::Free).map_err(|e| e.to_string())?;
+    let coordinates = corner.model.dofs();
     let run = || kc::run_suite(&file, &[Analysis::ParallelTravel], &kc::Settings::default(), |_| {});
     let (report, run_usage) = alloc::track(run);
     let report = report.complete().map_err(|e| e.to_string())?;

@@ -19,13 +19,7 @@ impl<'m> StaticSolver<'m> {
         }
         // Inverse iteration: the solution of K x = random is dominated by the free direction.
         self.work.rhs.fill(0.0);
-        let mut seed = 0x2545F4914F6CDD1Du64;
-        for c in 0..n {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            self.work.rhs[c] = (seed % 1000) as f64 / 1000.0 - 0.5;
-        }
+        crate::mobility::pseudo_random_start(&mut self.work.rhs[..n]);
         for _ in 0..2 {
             self.work.factor.solve_in_place(&mut self.work.rhs, Accuracy::Refined).map_err(|e| self.named(e))?;
             let norm = self.work.rhs[..n].iter().map(|v| v * v).sum::<f64>().sqrt();

@@ -4,7 +4,7 @@
 //! whether the joints hold the contact patch. By the solver's sparse factorizations
 //! ([`elastokin_solver::mobility`]), at the tolerance its solves drop redundant rows by.
 
-use elastokin_core::{BodyId, Model, Vec3};
+use elastokin_core::{BodyId, Model, Vec3, BODY_DOFS};
 use elastokin_solver::mobility;
 use elastokin_solver::SolverOptions;
 
@@ -15,15 +15,21 @@ fn tolerance() -> f64 {
 
 /// Body coordinates − independent joint rows at design, and the number of rows that repeat others.
 pub fn mobility(model: &Model) -> (usize, usize) {
-    let found = mobility::mobility(model, tolerance());
+    let found = joint_mobility(model);
     (found.degrees_of_freedom, found.redundant_rows.len())
 }
 
+/// [`mobility`] with the rows that repeat others named, for [`reduced_condition`].
+pub(crate) fn joint_mobility(model: &Model) -> mobility::Mobility {
+    mobility::mobility(model, tolerance())
+}
+
 /// The condition of the elements' stiffness over the motions the joints allow at design
-/// ([`mobility::reduced_condition`]): infinite when a motion is held by nothing, `None` when the joints
-/// allow none (or the solve fails, which the run itself then reports).
-pub fn reduced_condition(model: &Model) -> Option<f64> {
-    mobility::reduced_condition(model, tolerance()).ok().flatten()
+/// ([`mobility::reduced_condition`]; `found` is the model's [`joint_mobility`]): infinite when a motion is
+/// held by nothing, `None` when the joints allow none (or the solve fails, which the run itself then
+/// reports).
+pub(crate) fn reduced_condition(model: &Model, found: &mobility::Mobility) -> Option<f64> {
+    mobility::reduced_condition(model, found).ok().flatten()
 }
 
 /// For each of `directions`, whether the joints alone hold point `at` of `body` from moving that way at
@@ -31,7 +37,7 @@ pub fn reduced_condition(model: &Model) -> Option<f64> {
 /// load that way then meets no element: the corner is rigid in it, whatever its springs and bushings.
 pub fn holds_point(model: &Model, body: BodyId, at: Vec3, directions: &[Vec3]) -> Vec<bool> {
     let arm = at - model.design_poses()[body.0].position;
-    let base = body.0 * elastokin_core::BODY_DOFS;
+    let base = body.0 * BODY_DOFS;
     // The generalized direction of a unit displacement of the point: a motion moves the point across `d`
     // by its translation · d + its rotation · (arm × d).
     let loads: Vec<Vec<f64>> = directions
@@ -40,7 +46,7 @@ pub fn holds_point(model: &Model, body: BodyId, at: Vec3, directions: &[Vec3]) -
             let d = d.normalize();
             let turn = arm.cross(&d);
             let mut g = vec![0.0; model.dofs()];
-            g[base..base + 6].copy_from_slice(&[d.x, d.y, d.z, turn.x, turn.y, turn.z]);
+            g[base..base + BODY_DOFS].copy_from_slice(&[d.x, d.y, d.z, turn.x, turn.y, turn.z]);
             g
         })
         .collect();

@@ -6,7 +6,7 @@
 //! Every warning names the hardpoints involved and says what to change, in the model file's words.
 
 use crate::analysis::TravelRow;
-use crate::build::mobility::{mobility, reduced_condition};
+use crate::build::mobility::{joint_mobility, mobility, reduced_condition};
 use crate::build::{Corner, Rig};
 use crate::description::layout::Layout;
 use crate::description::limits::{looks_like_millimetres, FAR_FROM_WHEEL_CENTRE};
@@ -123,8 +123,9 @@ pub fn check_model(file: &SuspensionFile) -> Result<ModelCheck, ModelError> {
     }
 
     let (dof, redundant) = mobility(&free.model);
-    let (dof_on_rig, _) = mobility(&on_rig.model);
-    let condition_estimate = reduced_condition(&on_rig.model);
+    let on_rig_mobility = joint_mobility(&on_rig.model);
+    let dof_on_rig = on_rig_mobility.degrees_of_freedom;
+    let condition_estimate = reduced_condition(&on_rig.model, &on_rig_mobility);
     if let (false, Some(c)) = (in_millimetres, condition_estimate) {
         if c > NEAR_SINGULAR {
             warnings.push(Warning {
