@@ -11,23 +11,13 @@
 //! Every number on the page comes from the report or the model file: a figure without a value shows
 //! its reason, an empty table cell stays empty, and nothing non-finite is printed.
 
-use crate::suspensions::file::key_path::printable;
+use crate::markup::{attr, text};
 use crate::suspensions::kc::{
     figures, fixed, significant, AnalysisReport, Cell, Chart, Figure, KcReport, Table, Units, Warning,
 };
 use crate::suspensions::SuspensionFile;
 use serde_json::Value;
 use std::fmt::Write;
-
-/// `s` as HTML text: escaped, each character no text is written with shown as its escape.
-pub(crate) fn text(s: &str) -> String {
-    html_escape::encode_text(&printable(s)).into_owned()
-}
-
-/// `s` as a double-quoted HTML attribute value, as [`text`] is written.
-pub(crate) fn attr(s: &str) -> String {
-    html_escape::encode_double_quoted_attribute(&printable(s)).into_owned()
-}
 
 /// Rows of an analysis table shown in the page; a longer table is cut there with a note (the CSV beside
 /// the report holds every row), so a fine sweep does not make a file too large to mail.

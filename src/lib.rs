@@ -29,6 +29,7 @@ pub use elastokin_solver as solver;
 pub use elastokin_suspensions as suspensions;
 
 pub mod html;
+mod markup;
 pub mod plot;
 pub mod provenance;
 pub mod view;

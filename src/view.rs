@@ -10,7 +10,7 @@
 //! alone exceed the 2 MB a report may weigh, for triangles it never draws. The page still opens with no
 //! network, and everything but the 3D view works with scripts off.
 
-use crate::html::text;
+use crate::markup::{attr, text};
 use crate::suspensions::drawing::{Anchor, Dot, Motion, Pen, Spot, Stroke, DEFLECTION_SCALE};
 use crate::suspensions::kc::{AnalysisReport, KcReport};
 use elastokin_core::{BodyRef, Pose, Vec3};
@@ -186,7 +186,7 @@ fn layers_svg(out: &mut String, layers: &[Layer], projection: Projection, id: &s
     let x = |u: f64| LABEL_ROOM + (u - lo.0) * scale;
     let y = |v: f64| (hi.1 - v) * scale;
     let [(_, su, nu), (_, sv, nv)] = projection.axes();
-    writeln!(out, "<figure class=\"view\" id=\"{}\">", crate::html::attr(id))?;
+    writeln!(out, "<figure class=\"view\" id=\"{}\">", attr(id))?;
     writeln!(
         out,
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{h:.0}" viewBox="0 0 {w:.1} {h:.1}" role="img" aria-label="{}">"#,

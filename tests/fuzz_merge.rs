@@ -4,15 +4,13 @@
 //! variant number changed, a control character put in, a column added), then merged. Each case ends in one of
 //! two ways: the merge exits 0 and its `batch.csv` holds one row per variant, every figure a finite number
 //! or empty and no control character; or it exits 2 naming the shard, in printable words, and writes
-//! nothing. Never a panic, never longer than the limit.
+//! nothing. Never a panic.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::time::{Duration, Instant};
 
 const CASES: u64 = 400;
 const SEED: u64 = 0x5EED_3E26;
-const SLOW_CASE: Duration = Duration::from_secs(10);
 
 fn elastokin(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_elastokin")).args(args).current_dir(env!("CARGO_MANIFEST_DIR")).output().unwrap()
@@ -162,9 +160,7 @@ fn mutated_shards_are_merged_whole_or_refused_by_name() {
         let given: Vec<String> =
             (0..3).map(|i| if i == k { bad.display().to_string() } else { shards[i].display().to_string() }).collect();
         let out = dir.join(format!("merged-{case}"));
-        let start = Instant::now();
         let o = elastokin(&["merge", "--out", out.to_str().unwrap(), &given[0], &given[1], &given[2]]);
-        let took = start.elapsed();
         let err = String::from_utf8_lossy(&o.stderr);
         let verdict = match o.status.code() {
             Some(0) => {
@@ -187,9 +183,6 @@ fn mutated_shards_are_merged_whole_or_refused_by_name() {
         };
         if let Err(why) = verdict {
             failures.push(format!("case {case} (shard {}, {what}): {why}", k + 1));
-        }
-        if took > SLOW_CASE {
-            failures.push(format!("case {case} (shard {}, {what}) took {took:?}", k + 1));
         }
     }
     assert!(failures.is_empty(), "{} of {CASES} cases failed:\n{}", failures.len(), failures.join("\n"));

@@ -3,7 +3,6 @@
 //! results, maps the library's errors to Python exceptions with the command's messages, and lets go of the
 //! GIL while the solver works so that Python threads run analyses side by side.
 
-use elastokin_solver::Mode;
 use elastokin_suspensions::analysis::wheel_compliance;
 use elastokin_suspensions::document::{parse_document, parse_model};
 use elastokin_suspensions::file::read_input;
@@ -12,31 +11,21 @@ use elastokin_suspensions::study::batch::{self, Variant};
 use elastokin_suspensions::study::shard::Shard;
 use elastokin_suspensions::{LoadPoint, Rig, Side, SuspensionFile};
 use numpy::{PyArray1, PyArray2};
-use pyo3::create_exception;
-use pyo3::exceptions::{PyException, PyValueError};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyFloat, PyList, PyString};
 use rayon::prelude::*;
 use std::path::Path;
 
+mod errors;
 mod scene;
+mod words;
+
+use errors::{AnalysisError, Error, ModelError};
+use words::{analysis, mode_from_word};
 
 /// The time one chunk of a batch's variants takes, between which Python hears its signals (s).
 const CHUNK_SECONDS: f64 = 0.1;
-
-create_exception!(elastokin._native, Error, PyException, "Every error elastokin raises.");
-create_exception!(
-    elastokin._native,
-    ModelError,
-    Error,
-    "A model file, model dict or variant edit that cannot be read as a suspension model."
-);
-create_exception!(
-    elastokin._native,
-    AnalysisError,
-    Error,
-    "An analysis that failed on the model: the solver's reason."
-);
 
 /// A suspension model read from a model file or a dict, with the document that batch variants edit.
 #[pyclass(frozen, module = "elastokin._native")]
@@ -45,19 +34,6 @@ struct Model {
     base: serde_json::Value,
     /// Where it came from, for error messages (a path, or the origin given with a dict).
     origin: String,
-}
-
-/// An analysis by its command-line name; a name that is none is a `ValueError` listing the names.
-fn analysis(name: &str) -> PyResult<Analysis> {
-    Analysis::from_name(name).ok_or_else(|| {
-        let names: Vec<&str> = kc::ALL.iter().map(|a| a.name()).collect();
-        PyValueError::new_err(format!("no analysis '{name}': give one of {}", names.join(", ")))
-    })
-}
-
-/// The solver mode a word names ("corrected" or "paper"), or a `ValueError` saying which words there are.
-fn mode_from_word(word: &str) -> PyResult<Mode> {
-    kc::mode_from_word(word).ok_or_else(|| PyValueError::new_err(format!("mode '{word}': give 'corrected' or 'paper'")))
 }
 
 /// The command's options of `run` as the library's settings.

@@ -5,7 +5,7 @@
 //! `elastokin_solver::StaticSolver`. This converts arguments and results, maps the library's errors to
 //! Python exceptions, and lets go of the GIL while the solver works.
 
-use crate::{AnalysisError, ModelError};
+use crate::errors::{AnalysisError, ModelError};
 use elastokin_core::{BodyRef, ElementReport, JointKind, Model, Pose, Vec3};
 use elastokin_elements::{beam, BeamSpec, PointForce, PointTorque, RotationLaw, Section};
 use elastokin_solver::{JointReaction, LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult};
@@ -527,7 +527,7 @@ impl Scene {
         force_tolerance: f64,
         constraint_tolerance: f64,
     ) -> PyResult<SceneSweep> {
-        let mode = crate::mode_from_word(mode)?;
+        let mode = crate::words::mode_from_word(mode)?;
         LoadPath::check_steps(steps).map_err(PyValueError::new_err)?;
         if let Some(step) = arc_step.filter(|v| !(v.is_finite() && *v > 0.0)) {
             return Err(PyValueError::new_err(format!(

@@ -161,10 +161,6 @@ fn along_axes(k: &[Characteristic; 3], x: &Vec3) -> (Vec3, Vec3) {
     (values, slopes)
 }
 
-/// Largest deviation of `EᵀE` from `I` accepted for a bushing frame; a frame within it is replaced by
-/// the rotation it is closest to (round-off in typed-in axes is tolerated, a wrong frame is not).
-pub const FRAME_TOLERANCE: f64 = 1e-6;
-
 /// Global design data of a bushing: what a user writes. SI units throughout.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]

@@ -1,10 +1,13 @@
 //! Validation of design data, small block helpers, and the line between two seats that springs and stops
 //! share.
 
-use crate::bushing::FRAME_TOLERANCE;
 use elastokin_core::math::{quat_log, skew};
 use elastokin_core::{BodyRef, ElementEval, Mat3, ModelError, PairMatrix, Pose, RowGradient, Sketch, SketchKind, Vec3};
 use nalgebra::{Rotation3, SMatrix, UnitQuaternion};
+
+/// Largest deviation of `EᵀE` from `I` accepted for an element's frame; a frame within it is replaced
+/// by the rotation it is closest to (round-off in typed-in axes is tolerated, a wrong frame is not).
+pub const FRAME_TOLERANCE: f64 = 1e-6;
 
 /// A 3×12 Jacobian of a 3-vector over the coordinates `(Δrᵢ, Δπᵢ, Δrⱼ, Δπⱼ)`.
 pub(crate) type Jac3 = SMatrix<f64, 3, 12>;

@@ -431,13 +431,10 @@ fn every_figure_and_cell_of_the_macpherson_suite_matches_the_report_re_run() {
 
 /// Every figure of every analysis of the MacPherson's suite against the report re-run, for every
 /// hardpoint coordinate: among them those that are also a body's reference point (the wheel centre the
-/// upright's, the lower ball joint the lower arm's, the strut's ends the rod's). Replayed on moved models
-/// built with their bodies where the move put them, one Newton iteration from a recorded pose moved each
-/// such body by the move itself, and the figures were 25 times the allowed off (the static load's wheel
-/// rate against the lower ball joint's y, 2.5e-5 of its rate; a steered row's Ackermann against the wheel
-/// centre's y, 3.2e-5); the moved models are now built in the recorded ones' coordinates
-/// (`kc::Models::moved`): 0.15 of the allowed (0.43 allowing the re-runs' rounding alone). Measured: see the
-/// line printed.
+/// upright's, the lower ball joint the lower arm's, the strut's ends the rod's). The moved models are built
+/// in the recorded ones' coordinates (`kc::Models::moved`): built with their bodies where the move puts
+/// them, one Newton iteration from a recorded pose would carry each such body by the move itself, an error
+/// of the order of the rate sought. Measured: see the line printed.
 #[test]
 fn every_figure_of_the_macpherson_suite_matches_the_re_run_for_hardpoints_that_place_a_body() {
     let doc = document("macpherson.json");
@@ -474,12 +471,9 @@ fn chrono(name: &str) -> serde_json::Value {
 
 /// The double wishbone's static load and vertical-force sweep, every figure (the wheel rates among them)
 /// against the report re-run, for every hardpoint coordinate. Its tangent on the free rig has a mode that
-/// a move of a mount changes much. With the replays' steps of 1e-3, the recorded tangent's factors
-/// refined once against the moved tangent left the static load's wheel rate against the spring's arm
-/// mount's y 11.8 times the allowed off, and even with the moved tangent factorized the vertical force's
-/// wheel rate against the upper arm's front mount's y was 1.65 times off (the step's fourth power). At
-/// the step of 5e-4: 0.73 refined, 0.103 factorized (`RELATIVE_STEP`,
-/// `StaticSolver::factorize_tangent`). Measured: see the line printed.
+/// a move of a mount changes much: the replays' step (`RELATIVE_STEP`) keeps the difference's fourth-power
+/// term small, and the moved tangent is factorized, not the recorded one's factors refined against it
+/// (`StaticSolver::factorize_tangent`). Measured: see the line printed.
 #[test]
 fn the_double_wishbones_wheel_rates_match_the_re_run_for_every_hardpoint() {
     let doc = document("double_wishbone.json");

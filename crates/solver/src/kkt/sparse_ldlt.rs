@@ -99,19 +99,18 @@
 //!    it declared convergence after one step while the forward error was still
 //!    1e-10 at stiffness ratio 1e12; the componentwise one does not.)
 //!
-//! # Measurements (tests in `tests/kkt_factor.rs`)
+//! # What the tests hold (`tests/kkt_factor.rs`), and why ε is 1e-10
 //!
-//! * Stiffness ratio sweep 1…1e8 (constraints on the soft, the stiff, or both
-//!   kinds of coordinates): relative error of `x` and `y` against the dense
-//!   equilibrated full-pivot LU reference ≤ 1.6e-15, 1–2 refinement steps.
-//! * `ε` (default 1e-10): over ratios up to 1e12 the worst errors were 2e-4
-//!   (ε = 1e-6), 3e-12 (1e-8), 4e-15 (1e-10, ≤ 3 steps), 4e-15 (1e-12, ≤ 2
-//!   steps). Smaller ε saves a refinement step but (i) shrinks the gap between
-//!   the pivot of a redundant row (`≈ −2ε/ρ`) and rounding noise (~1e-16) and
-//!   (ii) makes the split of a duplicated row's multiplier noise-driven (at
-//!   1e-12 the two halves differ by ~1e-4 relative; at 1e-10 by < 1e-6).
-//! * 10 000-body chain (n = 60 000, m = 49 995, release build): analyze 0.11 s,
-//!   factorize 0.06 s, solve with refinement 0.02 s.
+//! * Stiffness ratios 1…1e8, constraints on the soft, the stiff or both kinds
+//!   of coordinates: `x` and `y` agree with the dense equilibrated full-pivot LU
+//!   reference to 1.6e-15 relative, in one or two refinement steps.
+//! * `ε` ([`KktOptions::epsilon`]) trades refinement against the redundancy
+//!   test: a larger `ε` leaves more for refinement to remove, a smaller one
+//!   shrinks the gap between the
+//!   pivot of a redundant row (`≈ −2ε/ρ`) and rounding noise and lets rounding
+//!   decide how a duplicated row's multiplier is split.
+//!
+//! Its times are `cargo xtask bench`'s (`--only scaling`).
 //!
 //! # Diagnostics
 //!

@@ -25,7 +25,7 @@
 //! upright) then moves that point alone, and the recorded pose is the moved model's to within what the
 //! move changes. Built with its bodies where the move puts them, the iteration would first carry each
 //! such body by the move itself, and its error, of the second order in that, is as large as the rate
-//! sought where the parameter changes little (25 times the allowed 1e-6 of a static load's wheel rate).
+//! sought where the parameter changes little.
 //!
 //! A derivative that does not exist is said to: an analysis whose path meets a limit point is refused;
 //! where a stop whose force rises at once on contact touches or leaves between the moves (the replay
