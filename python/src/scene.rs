@@ -9,7 +9,7 @@ use crate::errors::{AnalysisError, ModelError};
 use elastokin_core::{BodyRef, ElementReport, JointKind, Model, Pose, Vec3};
 use elastokin_elements::{beam, BeamSpec, PointForce, PointTorque, RotationLaw, Section};
 use elastokin_solver::{JointReaction, LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult};
-use elastokin_suspensions::analysis::{walk, SweepExtras, SweepLimit};
+use elastokin_suspensions::analysis::{walk, ArcEnd, SweepExtras, SweepLimit};
 use elastokin_suspensions::build::{joint_spec, JointGeometry};
 use elastokin_suspensions::description::general::{
     Axis, BushingDef, FieldDef, Place, SpringDef, Stiffness, StopDef, StopType, CHASSIS,
@@ -672,10 +672,10 @@ impl SceneSweep {
     }
 
     /// Whether the path covered its range: it met no limit point, or went on through it by arc length
-    /// until it left the range (rather than after the most steps allowed).
+    /// until it left the range (rather than after the most steps allowed, or where it could be followed no further).
     #[getter]
     fn complete(&self) -> bool {
-        self.limit.is_none_or(|l| l.through.is_some_and(|r| r.left_range))
+        self.limit.is_none_or(|l| l.through.is_some_and(|r| r.end == ArcEnd::LeftRange))
     }
 
     /// The bodies' names.

@@ -182,6 +182,11 @@ pub struct Sweep {
     /// The limit point where the path stopped, if it met one (always `None` for an arc-length path,
     /// which goes through them).
     pub limit: Option<LimitPoint>,
+    /// Where an arc-length path could be followed no further, if it stopped so: the load parameter of its
+    /// last equilibrium, from which no step, however short, stays within its predictor's reach (the path
+    /// branches there, or bends too sharply to follow). Always `None` for a sweep in load steps, which
+    /// stops at a limit point instead.
+    pub stuck: Option<f64>,
 }
 
 impl Sweep {

@@ -555,6 +555,39 @@ fn through_limits_follows_the_vertical_force_past_the_limit_point() {
     assert_eq!(report.charts[0].left.series[0].points.len(), loads.len());
 }
 
+/// The shipped double wishbone folds over at +0.361 m of travel; followed on through the fold by arc
+/// length, its path comes, at about −0.076 m, to a place where no step however short finds an equilibrium
+/// within its predictor's reach (it branches or bends sharply there). A corrector that went further would
+/// land on another branch, wherever the step size happens to put it: the path stops there, said, at the
+/// same place whatever the arc-length step.
+#[test]
+fn a_path_through_limits_stops_where_no_step_stays_on_it_whatever_the_arc_step() {
+    let file = example("double_wishbone.json");
+    let ends: Vec<(f64, f64)> = [0.002, 0.001]
+        .iter()
+        .map(|&step| {
+            let settings = Settings {
+                range: Some((-0.3, 0.4)),
+                steps: 70,
+                through_limits: true,
+                arc_step: Some(step),
+                ..Settings::default()
+            };
+            let report = kc::run(Analysis::ParallelTravel, &file, &settings).unwrap();
+            let warning = report.warnings.iter().find(|w| w.code == "limit-point").expect("a limit-point warning");
+            assert!(warning.message.contains("the rows stop there, inside the range"), "{step}: {}", warning.message);
+            let last = report.table.rows.last().unwrap();
+            let toe = report.table.columns.iter().position(|c| c == "toe_deg").unwrap();
+            (last[0].number().unwrap(), last[toe].number().unwrap())
+        })
+        .collect();
+    println!("the paths stop at {ends:?}");
+    // Inside the range, after the fold, and the same place: measured 8.2e-7 m and 6.1e-5 deg apart.
+    assert!(ends[0].0 > -0.3 && ends[0].0 < 0.0, "{ends:?}");
+    assert!((ends[0].0 - ends[1].0).abs() < 1e-5, "{ends:?}");
+    assert!((ends[0].1 - ends[1].1).abs() < 5e-3, "{ends:?}");
+}
+
 /// A step of no length is refused in words.
 #[test]
 fn an_arc_step_of_no_length_is_refused_naming_it() {

@@ -20,6 +20,11 @@ impl<'m> StaticSolver<'m> {
     /// lie between `path.start` and `path.end`), heading towards `path.end`; stops after `path.steps`
     /// steps or at the first step outside `[min(start, end), max(start, end)]` (that step is kept).
     ///
+    /// A step that finds no equilibrium within its predictor's reach even at its shortest (after
+    /// [`SolverOptions::max_step_cuts`] halvings) ends the path there, its rows kept and the place in
+    /// [`Sweep::stuck`]: where the path branches or bends too sharply, a corrector that went further would
+    /// land on another branch.
+    ///
     /// Every step has the same length in the scaled space `‖Δq‖² + ψ² Δt²`, with `ψ = ‖dq/dt‖` at the
     /// start so that both parts weigh the same there; `step` gives it in that space or, with
     /// [`ArcStep::Load`], as the change of the load parameter of the first step (`arc = |Δt₀| ·
@@ -87,17 +92,20 @@ impl<'m> StaticSolver<'m> {
                 ) {
                     Ok(done) => break done,
                     Err(
-                        mut e @ (SolverError::NoConvergence { .. }
+                        e @ (SolverError::NoConvergence { .. }
                         | SolverError::NonFinite { .. }
                         | SolverError::NonFiniteForce { .. }),
                     ) => {
                         state.clone_from(&start);
                         cuts += 1;
                         if cuts as usize > self.options.max_step_cuts {
-                            if let SolverError::NoConvergence { last_converged, .. } = &mut e {
-                                *last_converged = Some(start.t);
-                            }
-                            return Err(e);
+                            // No step stays on the path; a force that is no number is the model's to say.
+                            return match e {
+                                SolverError::NoConvergence { .. } => {
+                                    Ok(Sweep { mode: Mode::Corrected, steps, limit: None, stuck: Some(start.t) })
+                                }
+                                other => Err(other),
+                            };
                         }
                     }
                     Err(e) => return Err(e),
@@ -110,7 +118,7 @@ impl<'m> StaticSolver<'m> {
                 break;
             }
         }
-        Ok(Sweep { mode: Mode::Corrected, steps, limit: None })
+        Ok(Sweep { mode: Mode::Corrected, steps, limit: None, stuck: None })
     }
 
     /// One arc-length step of scaled length `arc` from the equilibrium `state`, oriented like the previous
@@ -145,6 +153,13 @@ impl<'m> StaticSolver<'m> {
         state.t += dt;
         let mut dt_total = dt;
         // Corrector: Newton on (R, Φ) with the normal-plane constraint (Δq_totalᵀ δq + ψ² Δt_total δt = 0).
+        // As a load step's corrector (`newton`), its later iterations may not travel further in the scaled
+        // space than the predictor and its first iteration did (plus what closing the joints to their
+        // tolerance takes), nor may one iteration turn a body by more than `max_rotation_step`: a corrector
+        // that does has left the branch the predictor was on (jumped across a fold or a crossing to another
+        // branch), and the step is cut.
+        let allowance = 100.0 * self.options.constraint_tolerance;
+        let (mut first_norm, mut corrector_travel) = (0.0, 0.0);
         let mut last = (f64::INFINITY, f64::INFINITY);
         for iter in 0..self.options.max_iterations {
             self.assemble(state, Some(Tangent::Full));
@@ -168,6 +183,22 @@ impl<'m> StaticSolver<'m> {
             }
             if r_dq.iter().any(|v| !v.is_finite()) {
                 return Err(SolverError::NonFinite { what: "arc-length corrector" });
+            }
+            let travel = (r_dq[..n].iter().map(|v| v * v).sum::<f64>() + psi2 * dt * dt).sqrt();
+            if iter == 0 {
+                first_norm = travel;
+            } else {
+                corrector_travel += travel;
+            }
+            let turn = (0..n).filter(|c| c % BODY_DOFS >= 3).fold(0.0f64, |a, c| a.max(r_dq[c].abs()));
+            if corrector_travel > arc + first_norm + allowance || turn > self.options.max_rotation_step {
+                return Err(SolverError::NoConvergence {
+                    t: state.t,
+                    last_converged: None,
+                    iterations: iter,
+                    force_residual: r.force,
+                    constraint_residual: r.constraint,
+                });
             }
             Self::apply(&mut state.poses, &r_dq[..n], 1.0);
             for k in 0..m {

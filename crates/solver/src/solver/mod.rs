@@ -649,6 +649,6 @@ impl<'m> StaticSolver<'m> {
             let before = steps[1..].iter().take_while(|s| (limit.t - s.t) * dt.signum() > 0.0).count();
             steps.truncate(1 + before);
         }
-        Ok(Sweep { mode, steps, limit })
+        Ok(Sweep { mode, steps, limit, stuck: None })
     }
 }

@@ -106,7 +106,8 @@ impl StaticSolver<'_> {
             l.beyond = moved_t(l.beyond, None, from, &path);
             l
         });
-        Ok(Sweep { mode: sweep.mode, steps, limit })
+        let stuck = sweep.stuck.map(|t| moved_t(t, None, from, &path));
+        Ok(Sweep { mode: sweep.mode, steps, limit, stuck })
     }
 
     /// The Newton right-hand side (`Q − Jᵀλ`, `−Φ`) of this model at `state` into the workspace's, as the

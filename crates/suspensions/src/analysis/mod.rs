@@ -22,7 +22,7 @@ pub use loads::{
     wheel_load_sweep_with, ComponentForce, ComponentForces, ComponentNames, LoadRow, StaticLoad, WheelLoad,
 };
 pub use sweep::{
-    slope_at, walk, ArcLengthRows, AtDesign, Reading, SweepExtras, SweepLimit, SweepOutput, Walked, EXPANSION_REACH,
-    MAX_ARC_STEPS_PER_RANGE,
+    slope_at, walk, ArcEnd, ArcLengthRows, AtDesign, Reading, SweepExtras, SweepLimit, SweepOutput, Walked,
+    EXPANSION_REACH, MAX_ARC_STEPS_PER_RANGE,
 };
 pub use travel::{parallel_wheel_travel, parallel_wheel_travel_with, steering, TravelRow};

@@ -114,9 +114,20 @@ pub struct ArcLengthRows {
     pub first_row: usize,
     /// The arc-length step asked for ([`SweepExtras::through_limits`]).
     pub step: f64,
-    /// Whether the path left the range (its last row lies just beyond it); if not, it stopped after the
-    /// most steps allowed.
-    pub left_range: bool,
+    /// How the path ended.
+    pub end: ArcEnd,
+}
+
+/// How a path followed by arc length ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ArcEnd {
+    /// It left the range: its last row lies just beyond it.
+    LeftRange,
+    /// It took the most steps allowed inside the range.
+    MostSteps,
+    /// It could be followed no further on its branch from its last row (it branches or bends too sharply
+    /// there: [`Sweep::stuck`](elastokin_solver::Sweep::stuck)).
+    Stuck,
 }
 
 /// A sweep's rows, and what [`SweepExtras`] asked for, row by row.
@@ -305,10 +316,16 @@ pub fn walk(
     let arc =
         solver.arc_length_sweep_from(&mut from, LoadPath::new(path.start, path.end, most), ArcStep::Load(step))?;
     let (lo, hi) = (path.start.min(path.end), path.start.max(path.end));
-    let left_range = arc.steps.last().is_some_and(|s| !(lo..=hi).contains(&s.t));
+    let end = if arc.stuck.is_some() {
+        ArcEnd::Stuck
+    } else if arc.steps.last().is_some_and(|s| !(lo..=hi).contains(&s.t)) {
+        ArcEnd::LeftRange
+    } else {
+        ArcEnd::MostSteps
+    };
     // Its first equilibrium is the last step's.
     steps.extend(arc.steps.into_iter().skip(1));
-    let through = Some(ArcLengthRows { first_row, step, left_range });
+    let through = Some(ArcLengthRows { first_row, step, end });
     Ok(Walked { steps, limit: Some(SweepLimit { at: limit.t, through }) })
 }
 

@@ -2,7 +2,7 @@
 //! accuracy, the warnings of a limit point or of an error over tolerance, compliance tables, charts, and
 //! the wording every analysis shares.
 
-use crate::analysis::{AtDesign, SweepLimit, SweepOutput};
+use crate::analysis::{ArcEnd, ArcLengthRows, AtDesign, SweepLimit, SweepOutput};
 use crate::build::{Axle, Corner};
 use crate::drawing::{Drawing, Motion};
 use crate::file::SuspensionFile;
@@ -219,10 +219,17 @@ pub(super) fn limit_warning(analysis: Analysis, limit: &SweepLimit, last: f64) -
         None => "the table and plots stop there, their last row at the limit point; run the analysis \
                  through limits (through_limits, --through-limits) to follow the path through it by arc length"
             .to_string(),
-        Some(arc) if arc.left_range => format!(
+        Some(ArcLengthRows { end: ArcEnd::LeftRange, step, .. }) => format!(
             "the table and plots follow the path through it by arc length (steps of {} at first) until it leaves \
              the range at {}",
-            amount(analysis, arc.step),
+            amount(analysis, step),
+            amount(analysis, last)
+        ),
+        Some(ArcLengthRows { end: ArcEnd::Stuck, step, .. }) => format!(
+            "the table and plots follow the path through it by arc length (steps of {} at first) as far as {}, \
+             where the path branches or bends too sharply to follow on (no step, however short, stays on it): \
+             the rows stop there, inside the range",
+            amount(analysis, step),
             amount(analysis, last)
         ),
         Some(arc) => format!(
