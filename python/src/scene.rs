@@ -25,21 +25,6 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 /// The other name of the ground, besides the model files' `"chassis"`.
 const GROUND: &str = "ground";
 
-/// The joint kinds a scene takes, in the order of the model-file documentation (the drivers are a rig's).
-const JOINT_KINDS: [JointKind; 11] = [
-    JointKind::Spherical,
-    JointKind::Revolute,
-    JointKind::Cylindrical,
-    JointKind::Translational,
-    JointKind::Universal,
-    JointKind::Fixed,
-    JointKind::Distance,
-    JointKind::InPlane,
-    JointKind::InLine,
-    JointKind::Perpendicular,
-    JointKind::ParallelAxes,
-];
-
 /// The rotation laws of a bushing, by their model-file words.
 const ROTATION_LAWS: [RotationLaw; 3] = [RotationLaw::Energy, RotationLaw::Linear, RotationLaw::TaitBryanXyz];
 
@@ -254,7 +239,9 @@ impl Scene {
         axis: Option<[f64; 3]>,
         axis_j: Option<[f64; 3]>,
     ) -> PyResult<()> {
-        let kind = by_word("joint kind", kind, &JOINT_KINDS)?;
+        // Every kind a model file takes: the drivers are a rig's.
+        let kinds: Vec<JointKind> = JointKind::all().filter(|k| !k.is_driver()).collect();
+        let kind = by_word("joint kind", kind, &kinds)?;
         let bodies = self.pair(name, bodies)?;
         self.fresh(name)?;
         let geometry = JointGeometry {

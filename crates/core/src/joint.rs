@@ -27,8 +27,10 @@ use crate::error::ModelError;
 use crate::math::Vec3;
 use crate::pose::Pose;
 
-/// What kind of joint a [`Joint`] is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+/// What kind of joint a [`Joint`] is. Each kind declares here, once, what it is: its constraint rows
+/// ([`build_joint`]), the geometry it takes ([`JointKind::geometry`]), whether it is a rig's driver and how
+/// it is drawn; the model file, Python and the drawing read these. [`JointKind::all`] lists every kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, strum::EnumIter)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum JointKind {
@@ -58,6 +60,98 @@ pub enum JointKind {
     PointDriver,
     /// Prescribed relative travel along a translational or cylindrical axis: 1 row.
     TravelDriver,
+}
+
+/// Whether a joint kind takes a piece of its geometry ([`JointKind::geometry`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Takes {
+    /// It needs it.
+    Needed,
+    /// It takes it if given (an in-plane or in-line joint's point on the second body, where it differs).
+    Optional,
+    /// It means nothing to the kind.
+    Unused,
+}
+
+/// Which pieces of a [`JointSpec`]'s geometry a joint kind takes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct JointGeometryTaken {
+    /// `point`, where the joint is.
+    pub point: Takes,
+    /// `point_j`, a second point (a distance joint's other end).
+    pub point_j: Takes,
+    /// `axis`.
+    pub axis: Takes,
+    /// `axis_j`, the second body's axis.
+    pub axis_j: Takes,
+}
+
+impl JointKind {
+    /// Every kind, in the order declared.
+    pub fn all() -> impl Iterator<Item = JointKind> {
+        <JointKind as strum::IntoEnumIterator>::iter()
+    }
+
+    /// Whether it prescribes a motion (the rig's wheel or rack travel) rather than joins two parts.
+    pub fn is_driver(self) -> bool {
+        use JointKind as K;
+        match self {
+            K::PointDriver | K::TravelDriver => true,
+            K::Spherical
+            | K::Revolute
+            | K::Cylindrical
+            | K::Translational
+            | K::Universal
+            | K::Fixed
+            | K::Distance
+            | K::InPlane
+            | K::InLine
+            | K::Perpendicular
+            | K::ParallelAxes => false,
+        }
+    }
+
+    /// The pieces of geometry the kind takes: what a model file's joint entry must give, may give, and
+    /// may not (a driver's are the rig's to set).
+    pub fn geometry(self) -> JointGeometryTaken {
+        use JointKind as K;
+        use Takes::{Needed as N, Optional as O, Unused as U};
+        let (point, point_j, axis, axis_j) = match self {
+            K::Spherical | K::Fixed => (N, U, U, U),
+            K::Revolute | K::Cylindrical | K::Translational => (N, U, N, U),
+            K::Universal => (N, U, N, N),
+            K::Distance => (N, N, U, U),
+            K::InPlane | K::InLine => (N, O, N, U),
+            K::Perpendicular => (U, U, N, N),
+            K::ParallelAxes => (U, U, N, U),
+            K::PointDriver | K::TravelDriver => (N, U, N, U),
+        };
+        JointGeometryTaken { point, point_j, axis, axis_j }
+    }
+
+    /// Whether the joint sits at a point a drawing marks: every kind but the drivers and those that hold
+    /// only directions (perpendicular, parallel axes).
+    pub fn has_place(self) -> bool {
+        !self.is_driver() && self.geometry().point == Takes::Needed
+    }
+
+    /// Whether the joint's motion follows an axis a drawing marks through its point (a hinge, a slider, a
+    /// cardan joint); an in-plane or in-line joint's axis is a plane's normal or a line, not drawn.
+    pub fn guided_by_axis(self) -> bool {
+        use JointKind as K;
+        match self {
+            K::Revolute | K::Cylindrical | K::Translational | K::Universal => true,
+            K::Spherical
+            | K::Fixed
+            | K::Distance
+            | K::InPlane
+            | K::InLine
+            | K::Perpendicular
+            | K::ParallelAxes
+            | K::PointDriver
+            | K::TravelDriver => false,
+        }
+    }
 }
 
 /// Global design geometry of a joint: what a user writes.
@@ -200,7 +294,7 @@ impl Joint {
     }
     /// True for a driver.
     pub fn is_driver(&self) -> bool {
-        matches!(self.spec.kind, JointKind::PointDriver | JointKind::TravelDriver)
+        self.spec.kind.is_driver()
     }
 }
 

@@ -40,7 +40,7 @@ pub use body::{Body, BodyId, BodyRef};
 pub use constraint::{ConstraintRow, KinVec, PairMatrix, RowGradient, Side};
 pub use element::{CloneElement, ElementEval, ElementReport, ElementRole, ForceElement, Sketch, SketchKind};
 pub use error::ModelError;
-pub use joint::{Joint, JointKind, JointSpec};
+pub use joint::{Joint, JointGeometryTaken, JointKind, JointSpec, Takes};
 pub use math::{skew, Mat3, Vec3};
 pub use model::{ElementId, JointId, Model, RowOrigin};
 pub use pose::{Pose, BODY_DOFS};

@@ -108,18 +108,13 @@ impl Drawing {
         let mut joints = Vec::new();
         for joint in model.joints() {
             let spec = &joint.spec;
-            let has_place =
-                !joint.is_driver() && !matches!(spec.kind, JointKind::Perpendicular | JointKind::ParallelAxes);
-            if !has_place {
+            if !spec.kind.has_place() {
                 continue;
             }
             let on_j = spec.point_j.unwrap_or(spec.point);
             let ends =
                 [Anchor::at_design(model, spec.body_i, &spec.point), Anchor::at_design(model, spec.body_j, &on_j)];
-            let guided = matches!(
-                spec.kind,
-                JointKind::Revolute | JointKind::Cylindrical | JointKind::Translational | JointKind::Universal
-            );
+            let guided = spec.kind.guided_by_axis();
             let axis = spec.axis.filter(|a| guided && a.norm() > 0.0).map(|a| {
                 let a = a.normalize() * AXIS_MARK;
                 [spec.point - a, spec.point + a].map(|p| Anchor::at_design(model, spec.body_i, &p))

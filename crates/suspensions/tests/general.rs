@@ -895,3 +895,62 @@ fn a_solid_axles_own_load_case_acts_on_both_sides() {
     // Measured: 1.2e-12 m of a 33.4 mm rise (the closure's central differences and bisection).
     assert!((by_loads - by_work).abs() < 1e-10, "{by_loads} m by the load case, {by_work} m by virtual work");
 }
+
+/// Every joint kind, as the core declares it once (`JointKind::all`, `JointKind::geometry`): a kind a model
+/// file takes builds from exactly the geometry it declares, is refused without a piece it needs or with
+/// one it does not use, joins two bodies of a model, and is drawn at its point when it has one; a driver
+/// (the rig's) is refused. A kind added to the core without its geometry, or with a geometry the builder
+/// does not read, fails here.
+#[test]
+fn every_joint_kind_builds_from_the_geometry_it_declares_and_is_drawn_as_it_says() {
+    use elastokin_core::{BodyRef, JointKind, Model, Pose, Takes, Vec3};
+    use elastokin_suspensions::build::general::{joint_spec, JointGeometry};
+    use elastokin_suspensions::drawing::Drawing;
+    let full = JointGeometry {
+        at: Some(Vec3::new(0.1, 0.2, 0.3)),
+        to: Some(Vec3::new(0.4, 0.2, 0.3)),
+        axis: Some(Vec3::x()),
+        axis_j: Some(Vec3::y()),
+    };
+    let mut kinds = 0;
+    for kind in JointKind::all() {
+        kinds += 1;
+        let taken = kind.geometry();
+        let pieces = [taken.point, taken.point_j, taken.axis, taken.axis_j];
+        let with = |keep: [bool; 4]| JointGeometry {
+            at: full.at.filter(|_| keep[0]),
+            to: full.to.filter(|_| keep[1]),
+            axis: full.axis.filter(|_| keep[2]),
+            axis_j: full.axis_j.filter(|_| keep[3]),
+        };
+        let mut model = Model::new();
+        let a = model.add_body("a", Pose::at(Vec3::new(0.1, 0.2, 0.3))).unwrap();
+        let b = model.add_body("b", Pose::at(Vec3::new(0.4, 0.2, 0.3))).unwrap();
+        let bodies = [BodyRef::from(a), BodyRef::from(b)];
+        let needed = pieces.map(|p| p == Takes::Needed);
+        let built = joint_spec("joints[0]", "j", kind, bodies, &with(needed));
+        if kind.is_driver() {
+            let e = built.unwrap_err().to_string();
+            assert!(e.contains("a driver is the rig's"), "{kind:?}: {e}");
+            continue;
+        }
+        let spec = built.unwrap_or_else(|e| panic!("{kind:?}: {e}"));
+        assert_eq!(spec.kind, kind);
+        model.add_joint(spec).unwrap_or_else(|e| panic!("{kind:?}: {e}"));
+        for (k, takes) in pieces.iter().enumerate() {
+            let mut keep = needed;
+            keep[k] = !keep[k];
+            let e = joint_spec("joints[0]", "j", kind, bodies, &with(keep)).err().map(|e| e.to_string());
+            match takes {
+                Takes::Needed => assert!(e.as_ref().is_some_and(|e| e.contains("needs")), "{kind:?} {k}: {e:?}"),
+                Takes::Unused => {
+                    assert!(e.as_ref().is_some_and(|e| e.contains("means nothing")), "{kind:?} {k}: {e:?}")
+                }
+                Takes::Optional => assert!(e.is_none(), "{kind:?} {k}: {e:?}"),
+            }
+        }
+        let drawn = Drawing::of(&model, &[]).joints.iter().any(|j| j.name == "j");
+        assert_eq!(drawn, kind.has_place(), "{kind:?}");
+    }
+    assert_eq!(kinds, 13);
+}

@@ -17,7 +17,7 @@ use crate::description::limits::{
 use crate::description::Side;
 use crate::wheel::Wheel;
 use elastokin_core::joint::orthonormal_complement;
-use elastokin_core::{BodyRef, ElementId, JointKind, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
+use elastokin_core::{BodyRef, ElementId, JointKind, JointSpec, Mat3, Model, ModelError, Pose, Takes, Vec3};
 use elastokin_elements::{
     beam, BeamSpec, Bushing, BushingSpec, Characteristic, CoilSpring, Curve, Field, FieldSpec, PointForce, PointTorque,
     Section, Stop,
@@ -379,26 +379,20 @@ fn driver_refusal(key: impl std::fmt::Display) -> ModelError {
 /// Refuses a driver (the rig's, not a model's), a key `kind` needs and is not given, and a key `kind`
 /// does not use; `given` says which of `at`, `to`, `axis` and `axis_j` are, and `key` names the entry.
 fn check_joint_keys(key: impl std::fmt::Display + Copy, kind: JointKind, given: [bool; 4]) -> Result<(), ModelError> {
-    use JointKind as T;
+    // Before the keys: a driver's keys are not the question.
+    if kind.is_driver() {
+        return Err(driver_refusal(key));
+    }
     let refuse = |why: String| Err(ModelError::OutOfRange { item: key.to_string(), why });
-    let uses = match kind {
-        T::Spherical | T::Fixed => ["at"].as_slice(),
-        T::Revolute | T::Cylindrical | T::Translational => &["at", "axis"],
-        T::Universal => &["at", "axis", "axis_j"],
-        T::Distance => &["at", "to"],
-        T::InPlane | T::InLine => &["at", "axis", "to?"],
-        T::Perpendicular => &["axis", "axis_j"],
-        T::ParallelAxes => &["axis"],
-        // Before the keys: a driver's keys are not the question.
-        T::PointDriver | T::TravelDriver => return Err(driver_refusal(key)),
-    };
-    for (what, given) in ["at", "to", "axis", "axis_j"].into_iter().zip(given) {
-        if uses.contains(&what) {
-            if !given {
-                return refuse(format!("a {} joint needs '{what}': add it", kind_name(kind)));
+    let taken = kind.geometry();
+    let keys = [("at", taken.point), ("to", taken.point_j), ("axis", taken.axis), ("axis_j", taken.axis_j)];
+    for ((what, takes), given) in keys.into_iter().zip(given) {
+        match takes {
+            Takes::Needed if !given => return refuse(format!("a {} joint needs '{what}': add it", kind_name(kind))),
+            Takes::Unused if given => {
+                return refuse(format!("'{what}' means nothing to a {} joint: remove it", kind_name(kind)))
             }
-        } else if !uses.contains(&format!("{what}?").as_str()) && given {
-            return refuse(format!("'{what}' means nothing to a {} joint: remove it", kind_name(kind)));
+            _ => {}
         }
     }
     Ok(())
