@@ -164,8 +164,7 @@ fn a_parameter_that_names_nothing_or_no_number_is_refused_by_name() {
         let e = Parameters::new(&doc, &[pointer.to_string()]).unwrap_err();
         assert!(e.contains(pointer) && e.contains(says), "{pointer}: {e}");
     }
-    // A count has no derivative: it was refused when moved, in the words of the file's reader ("invalid
-    // type: floating point `6.003`, expected usize").
+    // A count has no derivative: the model reads it with one more or one less, not with half a one more.
     for (name, pointer) in [
         ("twist_beam_template.json", "/suspension/twist_beam/cross_member/segments"),
         ("twist_beam.json", "/suspension/general/axle/beams/0/segments"),

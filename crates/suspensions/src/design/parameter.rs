@@ -95,11 +95,16 @@ impl Parameters {
 }
 
 /// Whether the number at `pointer` (whole, `value`) is a count the model reads only whole (a beam's
-/// segments): the model with half a count more is refused as the wrong type, not as out of range.
+/// segments): the model reads with one more or one less of it, but not with half a one more.
 fn is_count(document: &Value, pointer: &str, value: f64) -> bool {
-    let mut moved = document.clone();
-    set(&mut moved, pointer, value + 0.5).is_ok()
-        && read(&moved, "", false).is_err_and(|e| e.contains("invalid type: floating point"))
+    // A whole number written as a JSON integer, as a count is written (`7`, not `7.0`).
+    let reads = |v: Value| {
+        let mut moved = document.clone();
+        moved.pointer_mut(pointer).map(|slot| *slot = v).is_some() && read(&moved, "", false).is_ok()
+    };
+    let whole = |v: f64| Value::from(v as i64);
+    let half = serde_json::Number::from_f64(value + 0.5).map(Value::Number);
+    half.is_some_and(|h| !reads(h)) && (reads(whole(value + 1.0)) || reads(whole(value - 1.0)))
 }
 
 /// Writes `value` at `pointer` of `document`.
