@@ -37,6 +37,7 @@ struct Model {
 }
 
 /// The command's options of `run` as the library's settings.
+#[allow(clippy::too_many_arguments, reason = "run and suite pass on their Python keyword arguments")]
 fn settings(
     range: Option<(f64, f64)>,
     steps: usize,
@@ -184,6 +185,7 @@ impl Model {
     /// One analysis: `(report as JSON text, table columns, compliance table columns or None)`.
     #[pyo3(signature = (name, range=None, steps=32, mode="corrected", wheel="held", load_point="contact_patch",
                         compliance=false, through_limits=false, arc_step=None))]
+    #[allow(clippy::too_many_arguments, reason = "a Python method's keyword arguments, each named by its caller")]
     fn run<'py>(
         &self,
         py: Python<'py>,
@@ -211,6 +213,7 @@ impl Model {
     /// command's summary.json but its provenance.
     #[pyo3(signature = (analyses=None, range=None, steps=32, mode="corrected", wheel="held",
                         load_point="contact_patch", compliance=false, through_limits=false, arc_step=None))]
+    #[allow(clippy::too_many_arguments, reason = "a Python method's keyword arguments, each named by its caller")]
     fn suite(
         &self,
         py: Python<'_>,

@@ -10,6 +10,7 @@ use elastokin_core::{BodyRef, ElementReport, JointKind, Model, Pose, Vec3};
 use elastokin_elements::{beam, BeamSpec, PointForce, PointTorque, RotationLaw, Section};
 use elastokin_solver::{JointReaction, LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult};
 use elastokin_suspensions::analysis::{walk, ArcEnd, SweepExtras, SweepLimit};
+use elastokin_suspensions::build::general::FramedEntry;
 use elastokin_suspensions::build::{joint_spec, JointGeometry};
 use elastokin_suspensions::description::general::{
     Axis, BushingDef, FieldDef, Place, SpringDef, Stiffness, StopDef, StopType, CHASSIS,
@@ -229,6 +230,7 @@ impl Scene {
     /// Adds a kinematic joint of `kind` between `bodies` (reactions are those on the second), with the
     /// keys its kind uses, as a model file's joint entry.
     #[pyo3(signature = (name, kind, bodies, at=None, to=None, axis=None, axis_j=None))]
+    #[allow(clippy::too_many_arguments, reason = "a Python method's keyword arguments, each named by its caller")]
     fn joint(
         &mut self,
         name: &str,
@@ -260,6 +262,7 @@ impl Scene {
     #[pyo3(signature = (name, bodies, at, axis=None, y_axis=None, radial=None, axial=None, torsion=None,
                         conical=None, translation=None, rotation=None, law="energy", preload_force=None,
                         preload_torque=None))]
+    #[allow(clippy::too_many_arguments, reason = "a Python method's keyword arguments, each named by its caller")]
     fn bushing(
         &mut self,
         name: &str,
@@ -302,7 +305,9 @@ impl Scene {
             preload_torque: preload_torque.map(Into::into),
         };
         // The model file's reading of the rates, the frame and the preload; the scene is not mirrored.
-        let bushing = def.bushing("bushing", name, [body_i, body_j], point, x, y, Side::Left).map_err(model_error)?;
+        let bushing = def
+            .bushing("bushing", name, &FramedEntry { bodies: [body_i, body_j], point, x, y }, Side::Left)
+            .map_err(model_error)?;
         self.add(ElementKind::Bushing, bushing)
     }
 
@@ -310,6 +315,7 @@ impl Scene {
     /// (six rows of six over the deflection along x, y, z and the rotation about them, in its frame),
     /// symmetric and positive semi-definite, coupled terms allowed; the frame as a bushing's.
     #[pyo3(signature = (name, bodies, at, stiffness, axis=None, y_axis=None, preload_force=None, preload_torque=None))]
+    #[allow(clippy::too_many_arguments, reason = "a Python method's keyword arguments, each named by its caller")]
     fn field(
         &mut self,
         name: &str,
@@ -348,6 +354,7 @@ impl Scene {
     /// strain (a member that bends far is split by adding bodies between beams).
     #[pyo3(signature = (name, bodies, from_, to, y_axis, youngs_modulus, shear_modulus, area, iy, iz, j,
                         shear_areas=None, shear_centre=None))]
+    #[allow(clippy::too_many_arguments, reason = "a Python method's keyword arguments, each named by its caller")]
     fn beam(
         &mut self,
         name: &str,
@@ -386,6 +393,7 @@ impl Scene {
     /// as a model file's spring entry: a rate or a curve, its push at design or its free length.
     #[pyo3(signature = (name, bodies, from_, to, rate=None, curve=None, design_force=None, free_length=None,
                         preload=None))]
+    #[allow(clippy::too_many_arguments, reason = "a Python method's keyword arguments, each named by its caller")]
     fn spring(
         &mut self,
         name: &str,
@@ -419,6 +427,7 @@ impl Scene {
     /// Adds a bump or rebound stop along the line from `from_` on the first body to `to` on the second, as
     /// a model file's stop entry.
     #[pyo3(signature = (name, kind, bodies, from_, to, clearance, curve))]
+    #[allow(clippy::too_many_arguments, reason = "a Python method's keyword arguments, each named by its caller")]
     fn stop(
         &mut self,
         name: &str,
@@ -502,6 +511,7 @@ impl Scene {
     /// load step).
     #[pyo3(signature = (start, end, steps, mode="corrected", through_limits=false, arc_step=None,
                         force_tolerance=1e-9, constraint_tolerance=1e-10))]
+    #[allow(clippy::too_many_arguments, reason = "a Python method's keyword arguments, each named by its caller")]
     fn sweep(
         &self,
         py: Python<'_>,

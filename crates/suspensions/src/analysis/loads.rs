@@ -263,17 +263,22 @@ pub fn wheel_load_sweep(
     steps: usize,
     mode: Mode,
 ) -> Result<Vec<LoadRow>, SolverError> {
-    whole(wheel_load_sweep_with(corner, load, corner_load, from, to, steps, mode, SweepExtras::default())?)
+    whole(wheel_load_sweep_with(
+        corner,
+        load,
+        corner_load,
+        LoadPath::new(from, to, steps),
+        mode,
+        SweepExtras::default(),
+    )?)
 }
 
-/// [`wheel_load_sweep`] with [`SweepExtras`].
+/// [`wheel_load_sweep`] along `path` (the load from `path.start` to `path.end`), with [`SweepExtras`].
 pub fn wheel_load_sweep_with(
     corner: Corner,
     load: WheelLoad,
     corner_load: f64,
-    from: f64,
-    to: f64,
-    steps: usize,
+    path: LoadPath,
     mode: Mode,
     extras: SweepExtras,
 ) -> Result<SweepOutput<LoadRow>, SolverError> {
@@ -291,7 +296,7 @@ pub fn wheel_load_sweep_with(
         };
         Ok(())
     };
-    loaded_sweep(corner, corner_load, LoadPath::new(from, to, steps), mode, extras, add)
+    loaded_sweep(corner, corner_load, path, mode, extras, add)
 }
 
 /// The sweep of loads that `add` puts on the corner (given the contact patch as a design point of the

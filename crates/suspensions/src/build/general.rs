@@ -36,20 +36,18 @@ impl Stiffness {
 }
 
 impl BushingDef {
-    /// The bushing this entry describes, its geometry resolved: between `bodies`, centred at `point`, its
-    /// frame's x along `x_left` and y towards `y_hint_left` as given for the left corner and mirrored for
-    /// `side` (`bushing_frame`), its preload mirrored with the frame. `key` is where the entry is
-    /// (`bushings[2]`), for errors as the rates' checks word them.
+    /// The bushing this entry describes, its geometry resolved (`placed`): between its bodies, centred at
+    /// its point, its frame's x and y as given for the left corner and mirrored for `side`
+    /// (`bushing_frame`), its preload mirrored with the frame. `key` is where the entry is (`bushings[2]`),
+    /// for errors as the rates' checks word them.
     pub fn bushing(
         &self,
         key: impl std::fmt::Display + Copy,
         name: &str,
-        bodies: [BodyRef; 2],
-        point: Vec3,
-        x_left: Vec3,
-        y_hint_left: Option<Vec3>,
+        placed: &FramedEntry,
         side: Side,
     ) -> Result<Bushing, ModelError> {
+        let FramedEntry { bodies, point, x: x_left, y: y_hint_left } = *placed;
         let (translational, rotational) = self.rates(key)?;
         let frame = bushing_frame(x_left, y_hint_left, side)
             .map_err(|why| ModelError::OutOfRange { item: format!("{key} ({})", self.name), why })?;
@@ -463,11 +461,16 @@ impl std::fmt::Display for EntryKey<'_> {
 
 /// What a bushing or a field entry names, resolved: its bodies, its point (on the side built), and its
 /// frame's x axis and y hint as the left corner gives them (the frame is mirrored as a whole).
-struct FramedEntry {
-    bodies: [BodyRef; 2],
-    point: Vec3,
-    x: Vec3,
-    y: Option<Vec3>,
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FramedEntry {
+    /// Its two bodies.
+    pub bodies: [BodyRef; 2],
+    /// Its centre.
+    pub point: Vec3,
+    /// Its frame's x axis, as the left corner gives it.
+    pub x: Vec3,
+    /// Where its frame's y axis leans, as the left corner gives it (else chosen square to x).
+    pub y: Option<Vec3>,
 }
 
 fn framed_entry(
@@ -613,7 +616,7 @@ impl GeneralCorner {
         let entry = EntryKey { list: "bushings", k, name: None };
         let key = EntryKey { name: Some(&b.name), ..entry };
         let e = framed_entry(model, r, key, &b.bodies, b.axis.as_ref(), b.y_axis.as_ref(), &b.at)?;
-        model.add_element(b.bushing(entry, &part_name(r.prefix, &b.name), e.bodies, e.point, e.x, e.y, r.side)?)?;
+        model.add_element(b.bushing(entry, &part_name(r.prefix, &b.name), &e, r.side)?)?;
         Ok(())
     }
 

@@ -13,6 +13,7 @@ use crate::kc::report::{Accuracy, AnalysisReport, Cell, Figure, FigureKind, Tabl
 use crate::kc::settings::{mode_word, Analysis, Settings, NO_ROWS};
 use crate::kc::unit::Unit;
 use elastokin_solver::replay::ReplayRows;
+use elastokin_solver::LoadPath;
 
 /// Why the `loads` analysis cannot run.
 pub(super) const NO_LOADS: &str = "the model has no load case: give \"loads\" in the general form (a force at a point \
@@ -181,7 +182,7 @@ fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Result<AnalysisR
     let out = match analysis {
         Analysis::Road(load) => {
             drawing = corner_drawing(&corner, s);
-            wheel_load_sweep_with(corner, load, corner_load, range.0, range.1, s.steps, s.mode, extras)
+            wheel_load_sweep_with(corner, load, corner_load, LoadPath::new(range.0, range.1, s.steps), s.mode, extras)
         }
         _ => {
             let general = match &file.suspension {
