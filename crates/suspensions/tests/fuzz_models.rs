@@ -856,7 +856,7 @@ fn zero_steps_are_refused_in_words_not_a_load_path_dump() {
         let e = kc::run(kc::Analysis::ParallelTravel, &file, &Settings { steps, ..Settings::default() }).unwrap_err();
         // The library's one step limit, in the words every front end shows: no command flag, no type name.
         assert!(
-            e.message.starts_with(&expected) && !e.message.contains("LoadPath") && !e.message.contains("--"),
+            matches!(&e.cause, kc::Cause::Settings(m) if m.starts_with(&expected) && !m.contains("LoadPath") && !m.contains("--")),
             "{e}"
         );
     }

@@ -381,7 +381,7 @@ fn analysis_sensitivity_of(
 ) -> Result<AnalysisSensitivity, String> {
     let parameters = models.parameters;
     let (report, tape) = record(|| kc::run_on(analysis, &models.base, settings));
-    let report = report.map_err(|e| e.message)?;
+    let report = report.map_err(|e| e.cause.to_string())?;
     if let Some(at) = tape.limit_point() {
         return Err(format!(
             "the path meets a limit point at {at:.6} {}, where it has no derivative: narrow the range to end before it",
@@ -430,7 +430,7 @@ fn parameter_rates(
                  a number that moves a part, not one that chooses what the parts are"
             )
         })?;
-        let value = run.value.map_err(|e| format!("parameter '{pointer}' moved by {:e}: {}", shift * h, e.message))?;
+        let value = run.value.map_err(|e| format!("parameter '{pointer}' moved by {:e}: {}", shift * h, e.cause))?;
         let (moved, own) = (&value.table, &report.table);
         // Read for the figures alone, a replay's table has the rows the figures read alone
         // (`SweepExtras::figure_rows`).

@@ -318,7 +318,7 @@ pub fn read_targets(
     for target in targets.iter().filter(|t| t.range.is_some()) {
         let settings = crate::kc::Settings { range: target.range, steps, ..crate::kc::Settings::default() };
         crate::kc::check_settings(target.analysis, &settings)
-            .map_err(|e| at(&format!("{}: range: {}", target.label, e.message)))?;
+            .map_err(|e| at(&format!("{}: range: {}", target.label, e.cause)))?;
     }
     let mut constraints = Vec::new();
     let hardpoint = |name: &str, key: &str| -> Result<String, String> {

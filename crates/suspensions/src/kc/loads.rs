@@ -8,9 +8,9 @@ use crate::build::{LoadPoint, Rig};
 use crate::description::Side;
 use crate::kc::figures;
 use crate::kc::models::Models;
-use crate::kc::reduce::{axis, bushings_share, chart, corner_drawing, deg, finish, said, Design, Reduction};
+use crate::kc::reduce::{axis, bushings_share, chart, corner_drawing, deg, finish, Design, Reduction};
 use crate::kc::report::{Accuracy, AnalysisReport, Cell, Figure, FigureKind, Table, Warning};
-use crate::kc::settings::{mode_word, Analysis, Settings, NO_ROWS};
+use crate::kc::settings::{mode_word, Analysis, Cause, Settings, NO_ROWS};
 use crate::kc::unit::Unit;
 use elastokin_solver::replay::ReplayRows;
 use elastokin_solver::LoadPath;
@@ -30,10 +30,10 @@ fn where_loaded(s: &Settings) -> &'static str {
     }
 }
 
-pub(super) fn vertical_force(models: &Models, s: &Settings) -> Result<AnalysisReport, String> {
+pub(super) fn vertical_force(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
     let file = models.file();
     let held = models.corner_ref(Rig::WheelTravel)?;
-    let (design_load, design_load_error) = design_wheel_load_estimated(held, s.error_estimate).map_err(said)?;
+    let (design_load, design_load_error) = design_wheel_load_estimated(held, s.error_estimate)?;
     // The default range is 0.5 to 1.5 times the design wheel load. A corner that carries next to nothing at
     // design (its spring at its free length, as some imported data have it) gets 0 to 3 kN instead: a
     // range around nothing would have no width.
@@ -53,8 +53,7 @@ pub(super) fn vertical_force(models: &Models, s: &Settings) -> Result<AnalysisRe
         s.steps,
         s.mode,
         s.extras_reading(range, design_load, NO_ROWS),
-    )
-    .map_err(said)?;
+    )?;
     let table = |rows: &[LoadRow]| {
         Table::numbers(
             "vertical_force",
@@ -149,17 +148,17 @@ fn component_values(forces: &ComponentForces) -> Vec<Cell> {
         .collect()
 }
 
-pub(super) fn road_load(models: &Models, load: WheelLoad, s: &Settings) -> Result<AnalysisReport, String> {
+pub(super) fn road_load(models: &Models, load: WheelLoad, s: &Settings) -> Result<AnalysisReport, Cause> {
     loaded(models, Analysis::Road(load), s)
 }
 
 /// The model file's own load case (`loads` of the general form), applied from zero to its full value.
-pub(super) fn model_loads(models: &Models, s: &Settings) -> Result<AnalysisReport, String> {
+pub(super) fn model_loads(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
     loaded(models, Analysis::ModelLoads, s)
 }
 
 /// A road load or the model's own loads, swept with the corner load carried.
-fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Result<AnalysisReport, String> {
+fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Result<AnalysisReport, Cause> {
     let file = models.file();
     let (unit, column, default_range) = match analysis {
         Analysis::Road(WheelLoad::Lateral) => ("N", "load_n", (-3000.0, 3000.0)),
@@ -170,7 +169,7 @@ fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Result<AnalysisR
     let range = s.range.unwrap_or(default_range);
     let corner_load = match &file.vehicle {
         Some(v) => v.corner_load,
-        None => design_wheel_load(models.corner_ref(Rig::WheelTravel)?).map_err(said)?,
+        None => design_wheel_load(models.corner_ref(Rig::WheelTravel)?)?,
     };
     let rig = if s.height_held { Rig::HeightHeld } else { Rig::Free };
     let mut corner = models.corner(rig)?;
@@ -187,18 +186,17 @@ fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Result<AnalysisR
         _ => {
             let general = match &file.suspension {
                 crate::description::Template::General(g) if !g.loads.is_empty() => g,
-                _ => return Err(NO_LOADS.into()),
+                _ => return Err(Cause::Lacks(NO_LOADS.into())),
             };
-            general.add_loads(&mut corner.model, Side::Left, "").map_err(said)?;
+            general.add_loads(&mut corner.model, Side::Left, "")?;
             if let Some(prefix) = corner.partner_prefix() {
                 // A solid axle: the load case on both sides, as the mirror image.
-                general.add_loads(&mut corner.model, Side::Right, prefix).map_err(said)?;
+                general.add_loads(&mut corner.model, Side::Right, prefix)?;
             }
             drawing = corner_drawing(&corner, s);
             model_load_sweep_with(corner, corner_load, range.0, range.1, s.steps, s.mode, extras)
         }
-    }
-    .map_err(said)?;
+    }?;
     let name = analysis.name();
     let stem = name.replace('-', "_");
     let table = |rows: &[LoadRow]| {
@@ -314,13 +312,16 @@ fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Result<AnalysisR
     Ok(report)
 }
 
-pub(super) fn static_load(models: &Models, s: &Settings) -> Result<AnalysisReport, String> {
+pub(super) fn static_load(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
     let file = models.file();
-    let vehicle = file.vehicle.as_ref().ok_or(
-        "the model file has no \"vehicle\" section with the corner_load to carry (see examples/macpherson.json)",
-    )?;
+    let vehicle = file.vehicle.as_ref().ok_or_else(|| {
+        Cause::Lacks(
+            "the model file has no \"vehicle\" section with the corner_load to carry (see examples/macpherson.json)"
+                .into(),
+        )
+    })?;
     let corner = models.corner(Rig::Free)?;
-    let (rest, corrected) = static_load_case_estimated(corner, vehicle.corner_load, s.error_estimate).map_err(said)?;
+    let (rest, corrected) = static_load_case_estimated(corner, vehicle.corner_load, s.error_estimate)?;
     let table = Table {
         name: "static_load".into(),
         columns: [

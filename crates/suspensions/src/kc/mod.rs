@@ -27,8 +27,8 @@ pub use report::{
     Written,
 };
 pub use settings::{
-    mode_from_word, mode_word, Analysis, AnalysisError, Settings, Tolerance, ALL, MAX_RANGE_FRACTION, MAX_RANGE_LOAD,
-    MAX_RANGE_TRAVEL, MIN_RANGE,
+    mode_from_word, mode_word, Analysis, AnalysisError, Cause, Settings, Tolerance, ALL, MAX_RANGE_FRACTION,
+    MAX_RANGE_LOAD, MAX_RANGE_TRAVEL, MIN_RANGE,
 };
 pub use travel::ideal_outer_steer;
 pub use unit::{Shown, Unit, Units};
@@ -53,32 +53,34 @@ pub fn run_on(analysis: Analysis, models: &Models, settings: &Settings) -> Resul
         Analysis::StaticLoad => loads::static_load(models, settings),
         Analysis::ModelLoads => loads::model_loads(models, settings),
     };
-    result.map_err(|message| AnalysisError { analysis: analysis.name(), message })
+    result.map_err(|cause| AnalysisError { analysis: analysis.name(), cause })
 }
 
 /// Whether `settings` make sense for `analysis` (steps, arc step, range in its units), before any model is
 /// read: a front end refuses bad settings as bad input rather than as a failed run.
 pub fn check_settings(analysis: Analysis, settings: &Settings) -> Result<(), AnalysisError> {
     if let Err(message) = LoadPath::check_steps(settings.steps) {
-        return Err(AnalysisError { analysis: analysis.name(), message });
+        return Err(AnalysisError { analysis: analysis.name(), cause: Cause::Settings(message) });
     }
     if let Some(step) = settings.arc_step.filter(|v| !(v.is_finite() && *v > 0.0)) {
         let got = plain(step);
         return Err(AnalysisError {
             analysis: analysis.name(),
-            message: format!(
+            cause: Cause::Settings(format!(
                 "the arc-length step (arc_step, --arc-step) must be a positive length in the {} (the change of \
                  load or travel of an arc-length step), got {got}",
                 analysis.parameter()
-            ),
+            )),
         });
     }
     if analysis == Analysis::StaticLoad && settings.range.is_some() {
         return Err(AnalysisError {
             analysis: analysis.name(),
-            message: "static-load applies the vehicle section's corner load at once, with no range to walk: leave \
-                      the range out (vertical-force walks a range of loads)"
-                .into(),
+            cause: Cause::Settings(
+                "static-load applies the vehicle section's corner load at once, with no range to walk: leave the \
+                 range out (vertical-force walks a range of loads)"
+                    .into(),
+            ),
         });
     }
     if let Some((from, to)) = settings.range {
@@ -92,10 +94,10 @@ pub fn check_settings(analysis: Analysis, settings: &Settings) -> Result<(), Ana
             };
             return Err(AnalysisError {
                 analysis: analysis.name(),
-                message: format!(
+                cause: Cause::Settings(format!(
                     "the range needs two finite ends at least {MIN_RANGE:e} apart in the {}{got}",
                     analysis.parameter()
-                ),
+                )),
             });
         }
         // Far beyond what a suspension meets, the solver's numbers overflow before the linkage says
@@ -108,14 +110,14 @@ pub fn check_settings(analysis: Analysis, settings: &Settings) -> Result<(), Ana
         if from.abs().max(to.abs()) > most {
             return Err(AnalysisError {
                 analysis: analysis.name(),
-                message: format!(
+                cause: Cause::Settings(format!(
                     "the range {} to {} reaches beyond {} in the {}: no suspension meets that; \
                      give a range in the analysis's own units",
                     plain(from),
                     plain(to),
                     plain(most),
                     analysis.parameter()
-                ),
+                )),
             });
         }
     }
@@ -233,7 +235,7 @@ pub fn run_suite_checked(
             }
             Err(e) => {
                 // An analysis that fails on an implausible model fails because of it: say so with the failure.
-                let mut reason = e.message;
+                let mut reason = e.cause.to_string();
                 for w in &report.warnings {
                     reason.push_str(&format!("; note: {}", w.message));
                 }

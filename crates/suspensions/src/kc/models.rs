@@ -3,8 +3,8 @@
 use crate::build::{Axle, AxleRig, Corner, Rig};
 use crate::description::Side;
 use crate::file::SuspensionFile;
-use crate::kc::reduce::{said, with_rigid_bushings};
-use elastokin_core::Model;
+use crate::kc::reduce::with_rigid_bushings;
+use elastokin_core::{Model, ModelError};
 use std::borrow::Cow;
 use std::sync::{Arc, OnceLock};
 
@@ -17,8 +17,8 @@ use std::sync::{Arc, OnceLock};
 #[derive(Debug)]
 pub struct Models<'f> {
     file: Cow<'f, SuspensionFile>,
-    corners: [OnceLock<Result<Corner, String>>; 4],
-    axles: [OnceLock<Result<Axle, String>>; 5],
+    corners: [OnceLock<Result<Corner, ModelError>>; 4],
+    axles: [OnceLock<Result<Axle, ModelError>>; 5],
     rigid: OnceLock<Option<Arc<Models<'static>>>>,
     /// The models whose bodies' reference points these are built with ([`Models::moved`]).
     from: Option<Arc<Models<'static>>>,
@@ -65,17 +65,17 @@ impl<'f> Models<'f> {
 
     /// The left corner on `rig`, as [`crate::description::Template::build`] builds it (its error in the
     /// user's words).
-    pub fn corner(&self, rig: Rig) -> Result<Corner, String> {
+    pub fn corner(&self, rig: Rig) -> Result<Corner, ModelError> {
         self.built_corner(rig).clone()
     }
 
     /// [`Models::corner`] as built, for an analysis that changes nothing of it (no copy).
-    pub fn corner_ref(&self, rig: Rig) -> Result<&Corner, String> {
+    pub fn corner_ref(&self, rig: Rig) -> Result<&Corner, ModelError> {
         self.built_corner(rig).as_ref().map_err(Clone::clone)
     }
 
     /// The left corner on `rig`, built once.
-    fn built_corner(&self, rig: Rig) -> &Result<Corner, String> {
+    fn built_corner(&self, rig: Rig) -> &Result<Corner, ModelError> {
         let index = match rig {
             Rig::WheelTravel => 0,
             Rig::Steering => 1,
@@ -84,23 +84,23 @@ impl<'f> Models<'f> {
         };
         let build = || {
             let model = self.empty(|from| from.built_corner(rig).as_ref().ok().map(|c| &c.model));
-            Corner::build_in(model, &self.file.suspension, Side::Left, rig).map_err(said)
+            Corner::build_in(model, &self.file.suspension, Side::Left, rig)
         };
         self.corners[index].get_or_init(build)
     }
 
     /// The axle on `rig`, as [`Axle::build`] builds it (its error in the user's words).
-    pub fn axle(&self, rig: AxleRig) -> Result<Axle, String> {
+    pub fn axle(&self, rig: AxleRig) -> Result<Axle, ModelError> {
         self.built_axle(rig).clone()
     }
 
     /// [`Models::axle`] as built, for an analysis that changes nothing of it (no copy).
-    pub fn axle_ref(&self, rig: AxleRig) -> Result<&Axle, String> {
+    pub fn axle_ref(&self, rig: AxleRig) -> Result<&Axle, ModelError> {
         self.built_axle(rig).as_ref().map_err(Clone::clone)
     }
 
     /// The axle on `rig`, built once.
-    fn built_axle(&self, rig: AxleRig) -> &Result<Axle, String> {
+    fn built_axle(&self, rig: AxleRig) -> &Result<Axle, ModelError> {
         let index = match rig {
             AxleRig::ParallelTravel => 0,
             AxleRig::OppositeTravel => 1,
@@ -110,7 +110,7 @@ impl<'f> Models<'f> {
         };
         let build = || {
             let model = self.empty(|from| from.built_axle(rig).as_ref().ok().map(|a| &a.model));
-            Axle::build_in(model, &self.file.suspension, rig).map_err(said)
+            Axle::build_in(model, &self.file.suspension, rig)
         };
         self.axles[index].get_or_init(build)
     }

@@ -8,7 +8,7 @@ use crate::drawing::{Drawing, Motion};
 use crate::file::SuspensionFile;
 use crate::kc::chart::{Chart, Scale, Series, YAxis};
 use crate::kc::report::{significant, Accuracy, AnalysisReport, Cell, Figure, Table, Warning};
-use crate::kc::settings::{mode_word, Analysis, Settings};
+use crate::kc::settings::{mode_word, Analysis, Cause, Settings};
 use crate::kc::unit::Unit;
 use crate::wheel::Wheel;
 use elastokin_solver::{Mode, MAX_STEPS};
@@ -20,12 +20,6 @@ pub(super) fn short_name(file: &SuspensionFile) -> String {
 
 pub(super) fn deg(rad: f64) -> f64 {
     rad.to_degrees()
-}
-
-/// An engine error (model or solver) as the analysis's message: the errors already speak the user's
-/// words, so this only takes their text.
-pub(super) fn said(e: impl std::fmt::Display) -> String {
-    e.to_string()
 }
 
 /// What an analysis's figures read at design ([`AtDesign`]), or why there is nothing to read there, in
@@ -73,7 +67,7 @@ pub(super) fn finish<R: Clone>(
 ) -> AnalysisReport {
     let table = (reduce.table)(&out.rows);
     let reason = match &out.design {
-        Some(Err(e)) => format!("the equilibrium at design or its tangent could not be had: {}", said(e)),
+        Some(Err(e)) => format!("the equilibrium at design or its tangent could not be had: {e}"),
         _ => "the analysis reads nothing at design".to_string(),
     };
     let design: Design<R> = match &out.design {
@@ -344,14 +338,9 @@ pub(super) fn with_rigid_bushings(file: &SuspensionFile) -> Option<SuspensionFil
 /// Adds to `report` its figure `key` of the model with the bushings rigid (`rigid`: that analysis) and the
 /// bushings' share of it, `1 − rigid/figure`: how much of the `what` the bushings' give makes. The share's
 /// error estimate follows from the two figures' own.
-pub(super) fn bushings_share(
-    report: &mut AnalysisReport,
-    key: &str,
-    what: &str,
-    rigid: Result<AnalysisReport, String>,
-) {
+pub(super) fn bushings_share(report: &mut AnalysisReport, key: &str, what: &str, rigid: Result<AnalysisReport, Cause>) {
     let Some(own) = report.figures.iter().find(|f| f.key == key).cloned() else { return };
-    let stiff = rigid.as_ref().map_err(|e| e.clone()).and_then(|r| {
+    let stiff = rigid.as_ref().map_err(Cause::to_string).and_then(|r| {
         r.figures.iter().find(|f| f.key == key).cloned().ok_or_else(|| format!("no {what} with the bushings rigid"))
     });
     let why = |e: &str| format!("with the bushings rigid the analysis gives none: {e}");

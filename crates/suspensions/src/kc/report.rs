@@ -438,7 +438,8 @@ pub struct Skipped {
 
 /// An analysis that was run and failed, and why: the suite goes on past it, and its report says so
 /// as it says what it skipped.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, thiserror::Error)]
+#[error("{}: {reason}", analysis.name())]
 pub struct Failed {
     /// The analysis.
     pub analysis: Analysis,
@@ -475,9 +476,9 @@ impl KcReport {
 
     /// The report whole, or the first analysis that failed as an error: for a caller that needs every
     /// analysis asked for.
-    pub fn complete(self) -> Result<KcReport, super::AnalysisError> {
+    pub fn complete(self) -> Result<KcReport, Failed> {
         match self.failed.first() {
-            Some(f) => Err(super::AnalysisError { analysis: f.analysis.name(), message: f.reason.clone() }),
+            Some(f) => Err(f.clone()),
             None => Ok(self),
         }
     }

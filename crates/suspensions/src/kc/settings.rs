@@ -242,14 +242,32 @@ impl Settings {
     }
 }
 
-/// Why an analysis failed: which one, and the engine's reason.
+/// Why an analysis failed: which one, and what stopped it.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{analysis}: {message}")]
+#[error("{analysis}: {cause}")]
 pub struct AnalysisError {
     /// The analysis's name.
     pub analysis: &'static str,
-    /// What went wrong, and what to change.
-    pub message: String,
+    /// What stopped it; its text says what to change.
+    pub cause: Cause,
+}
+
+/// What stopped an analysis. Each says what went wrong and what to change when written.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Cause {
+    /// Settings that cannot work for the analysis (its steps, arc step or range), told before any model
+    /// is built: the caller's input, not the model's.
+    #[error("{0}")]
+    Settings(String),
+    /// The model lacks what the analysis needs (a vehicle section, a load case).
+    #[error("{0}")]
+    Lacks(String),
+    /// The model cannot be built on the analysis's rig.
+    #[error(transparent)]
+    Model(#[from] elastokin_core::ModelError),
+    /// The solver found no equilibrium the analysis needs, or the path ended short of it.
+    #[error(transparent)]
+    Solver(#[from] elastokin_solver::SolverError),
 }
 
 /// Narrowest range an analysis walks, in its own parameter's unit (m, N, N·m).

@@ -10,20 +10,19 @@ use crate::file::SuspensionFile;
 use crate::kc::figures;
 use crate::kc::models::Models;
 use crate::kc::reduce::{
-    axis, axle_drawing, bushings_share, chart, corner_drawing, deg, finish, needs_vehicle, said, Design, Reduction,
+    axis, axle_drawing, bushings_share, chart, corner_drawing, deg, finish, needs_vehicle, Design, Reduction,
 };
 use crate::kc::report::{slug, AnalysisReport, Cell, Figure, FigureKind, Table, Warning};
-use crate::kc::settings::{Analysis, Settings, NO_ROWS};
+use crate::kc::settings::{Analysis, Cause, Settings, NO_ROWS};
 use crate::kc::unit::Unit;
 use elastokin_solver::replay::ReplayRows;
 
-pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisReport, String> {
+pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
     let file = models.file();
     let range = s.range.unwrap_or((-0.08, 0.08));
     let corner = models.corner_ref(Rig::WheelTravel)?;
     let out =
-        parallel_wheel_travel_with(corner, range.0, range.1, s.steps, s.mode, s.extras_reading(range, 0.0, NO_ROWS))
-            .map_err(said)?;
+        parallel_wheel_travel_with(corner, range.0, range.1, s.steps, s.mode, s.extras_reading(range, 0.0, NO_ROWS))?;
     let wheel = &corner.wheel;
     let sign = wheel.side.sign();
     let table = |rows: &[TravelRow]| parallel_travel_table(corner, rows);
@@ -84,7 +83,7 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
     report.warnings.extend(crate::check::check_travel_rows(&out.rows));
     // Figures of the design position itself, from the tangent there (not read off the rows): at the
     // equilibrium, and one exact Newton iteration on for their error estimate.
-    let mut design = compliance_at(corner, 0.0).map_err(said)?;
+    let mut design = compliance_at(corner, 0.0)?;
     let compliance = design.wheel;
     // The joints alone may hold the patch inboard or rearward (ideal joints, no bushing in the load path):
     // the compliance that way is then rounding, and its inverse no stiffness. Decided once by a recording,
@@ -101,13 +100,12 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
     });
     let read =
         |solver: &mut _, state: &_, compliance: &_| compliance_figures(corner, file, &held, solver, state, compliance);
-    let mut figures = read(&mut design.solver, &design.state, &compliance).map_err(said)?;
+    let mut figures = read(&mut design.solver, &design.state, &compliance)?;
     if s.error_estimate {
-        let next = design.solver.newton_correction(&design.at).map_err(said)?;
+        let next = design.solver.newton_correction(&design.at)?;
         let state = design.solver.state_of(&next);
-        let wheel =
-            compliance_with(&mut design.solver, &corner.wheel, corner.partner.as_ref(), &state).map_err(said)?;
-        let again = read(&mut design.solver, &state, &wheel).map_err(said)?;
+        let wheel = compliance_with(&mut design.solver, &corner.wheel, corner.partner.as_ref(), &state)?;
+        let again = read(&mut design.solver, &state, &wheel)?;
         for (f, g) in figures.iter_mut().zip(again) {
             f.error = f.value.zip(g.value).map(|(a, b)| (a - b).abs());
         }
@@ -273,15 +271,14 @@ fn parallel_travel_figures(file: &SuspensionFile, corner: &Corner, design: Desig
     f
 }
 
-pub(super) fn roll(models: &Models, s: &Settings) -> Result<AnalysisReport, String> {
+pub(super) fn roll(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
     let file = models.file();
     let range = s.range.unwrap_or((-0.05, 0.05));
     let axle = models.axle_ref(AxleRig::OppositeTravel)?;
     let has_bars = !axle.anti_roll_bars.is_empty();
     // The shared beams' names as keys and columns: a twist-beam axle's cross member is read in roll.
     let members: Vec<(&str, String)> = axle.members.iter().map(|m| (m.name.as_str(), slug(&m.name))).collect();
-    let out = axle_sweep_with(axle, range.0, range.1, s.steps, s.mode, s.extras_reading(range, 0.0, NO_ROWS))
-        .map_err(said)?;
+    let out = axle_sweep_with(axle, range.0, range.1, s.steps, s.mode, s.extras_reading(range, 0.0, NO_ROWS))?;
     let table = |rows: &[AxleRow]| Table {
         name: "roll".into(),
         columns: [
@@ -489,15 +486,14 @@ fn ackermann(r: &AxleRow, track: f64, wheelbase: f64) -> Option<(f64, f64, f64)>
         .then(|| (inner, outer, ideal_outer_steer(inner, track, wheelbase)))
 }
 
-pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, String> {
+pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
     let file = models.file();
     let range = s.range.unwrap_or((-0.04, 0.04));
     let axle = models.axle_ref(AxleRig::Steering)?;
     // Besides the readings at design, the figures read the row of full steer and that of the largest
     // Ackermann error, found by their values (named below).
     let rows = ReplayRows { near: None, last: false, extremes: true };
-    let out =
-        axle_sweep_with(axle, range.0, range.1, s.steps, s.mode, s.extras_reading(range, 0.0, rows)).map_err(said)?;
+    let out = axle_sweep_with(axle, range.0, range.1, s.steps, s.mode, s.extras_reading(range, 0.0, rows))?;
     let wheelbase = file.vehicle.as_ref().map(|v| v.wheelbase);
     // Track between the contact patches at design: the lateral distance Ackermann's rule uses.
     let track = axle.left.contact_patch.y - axle.right.contact_patch.y;
