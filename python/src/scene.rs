@@ -1,7 +1,7 @@
 //! `Scene` and `SceneSweep`: a multibody scene built in code, body by body, and its equilibria along a
 //! load path. The engine level under the model files: bodies, joints, bushings, springs, stops and loads
 //! are the library's (`elastokin_core`, `elastokin_elements`), an entry is turned into them by the same
-//! functions that read a model file's general form (`elastokin_suspensions::description::general`, built by `elastokin_suspensions::build::general`), and the solver is
+//! functions that read a model file's general form (`elastokin_suspensions::description::general`, built by `elastokin_suspensions::assembly::general`), and the solver is
 //! `elastokin_solver::StaticSolver`. This converts arguments and results, maps the library's errors to
 //! Python exceptions, and lets go of the GIL while the solver works.
 
@@ -10,8 +10,8 @@ use elastokin_core::{BodyRef, ElementReport, JointKind, Model, Pose, Vec3};
 use elastokin_elements::{beam, BeamSpec, PointForce, PointTorque, RotationLaw, Section};
 use elastokin_solver::{JointReaction, LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult};
 use elastokin_suspensions::analysis::{walk, ArcEnd, SweepExtras, SweepLimit};
-use elastokin_suspensions::build::general::FramedEntry;
-use elastokin_suspensions::build::{joint_spec, JointGeometry};
+use elastokin_suspensions::assembly::general::FramedEntry;
+use elastokin_suspensions::assembly::{joint_spec, JointGeometry};
 use elastokin_suspensions::description::general::{
     Axis, BushingDef, FieldDef, Place, SpringDef, Stiffness, StopDef, StopType, CHASSIS,
 };

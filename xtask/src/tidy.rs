@@ -22,7 +22,7 @@ const LAYERED: [(&str, &[(&str, u32)]); 2] = [
             ("wheel", 1),
             ("file", 1),
             ("import", 2),
-            ("build", 2),
+            ("assembly", 2),
             ("drawing", 2),
             ("document", 3),
             ("analysis", 4),
@@ -51,7 +51,7 @@ const LAYERED: [(&str, &[(&str, u32)]); 2] = [
     ),
 ];
 
-/// One module file: its path from the crate root (`["build", "rig"]`; `[]` for `lib.rs`) and its text.
+/// One module file: its path from the crate root (`["assembly", "rig"]`; `[]` for `lib.rs`) and its text.
 #[derive(Debug)]
 struct Module {
     path: Vec<String>,
@@ -59,7 +59,7 @@ struct Module {
     text: String,
 }
 
-/// An import found in a module: the line it is on and the path as written (`crate::build::rig::Rig`).
+/// An import found in a module: the line it is on and the path as written (`crate::assembly::rig::Rig`).
 #[derive(Debug, Clone)]
 struct Import {
     line: usize,

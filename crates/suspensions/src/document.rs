@@ -3,7 +3,7 @@
 //! reads but cannot be built is refused with the builder's named error before anything is analysed.
 //! Above the file format ([`crate::file`]), the importers ([`crate::import`]) and the builder.
 
-use crate::build::rig::Rig;
+use crate::assembly::rig::Rig;
 use crate::description::Side;
 use crate::file::{FileError, SuspensionFile};
 use crate::import::chrono::{self, is_chrono, Imported};

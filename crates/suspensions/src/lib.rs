@@ -33,7 +33,7 @@
 //! - [`file`](mod@file): the model-file format — reading, key paths, line and column errors;
 //! - [`drawing`]: what a view of a built model draws, each point on the body that carries it;
 //! - [`import`]: other programs' files (Project Chrono's) read into descriptions;
-//! - [`build`]: a description made into a model, with the rig that holds it;
+//! - [`assembly`]: a description made into a model, with the rig that holds it;
 //! - [`document`]: one way in for every document, read and built;
 //! - [`analysis`]: the sweeps, solved;
 //! - [`check`]: the plausibility of a model and of its sweeps;
@@ -52,7 +52,7 @@
 //! solver crate's.
 
 pub mod analysis;
-pub mod build;
+pub mod assembly;
 pub mod check;
 pub mod compare;
 pub mod description;
@@ -67,7 +67,7 @@ pub mod study;
 pub mod wheel;
 
 pub use analysis::{AxleRow, RollCentre};
-pub use build::{
+pub use assembly::{
     Axle, AxleRig, BuildMap, Built, Corner, CornerParts, CornerTemplate, CrossAxle, LoadPoint, Rig, TieRod,
 };
 pub use check::{check_model, check_travel_rows, ModelCheck, Warning};

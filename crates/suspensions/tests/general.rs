@@ -584,7 +584,7 @@ fn a_curve_spring_carries_the_wheel_by_virtual_work() {
 #[test]
 fn every_joint_kind_builds_what_the_core_builds() {
     use elastokin_core::{BodyRef, JointSpec, Model, Pose};
-    use elastokin_suspensions::build::CornerTemplate;
+    use elastokin_suspensions::assembly::CornerTemplate;
     use elastokin_suspensions::Side;
     let text = r#"{ "general": {
         "hardpoints": { "wheel_centre": [0, 0.8, 0], "a": [0.1, 0.6, 0.05], "b": [0.1, 0.5, 0.3],
@@ -904,7 +904,7 @@ fn a_solid_axles_own_load_case_acts_on_both_sides() {
 #[test]
 fn every_joint_kind_builds_from_the_geometry_it_declares_and_is_drawn_as_it_says() {
     use elastokin_core::{BodyRef, JointKind, Model, Pose, Takes, Vec3};
-    use elastokin_suspensions::build::general::{joint_spec, JointGeometry};
+    use elastokin_suspensions::assembly::general::{joint_spec, JointGeometry};
     use elastokin_suspensions::drawing::Drawing;
     let full = JointGeometry {
         at: Some(Vec3::new(0.1, 0.2, 0.3)),

@@ -9,7 +9,7 @@ use elastokin_core::{BodyId, BodyRef, JointSpec, Mat3, Model, Pose, Vec3, BODY_D
 use elastokin_elements::{Bushing, CoilSpring};
 use elastokin_solver::assembly::{Assembly, Tangent};
 use elastokin_solver::mobility::{self, DENSE_CONDITION_MAX};
-use elastokin_suspensions::build::mobility::holds_point;
+use elastokin_suspensions::assembly::mobility::holds_point;
 use elastokin_suspensions::{Rig, Side, SuspensionFile};
 use nalgebra::{DMatrix, SymmetricEigen};
 use std::path::Path;

@@ -106,7 +106,7 @@ fn degrees_of_freedom_match_the_hand_count() {
 #[test]
 fn a_repeated_joint_is_counted_once() {
     use elastokin_core::{BodyRef, JointSpec};
-    use elastokin_suspensions::{build::mobility, Rig, Side};
+    use elastokin_suspensions::{assembly::mobility, Rig, Side};
     let file: SuspensionFile = serde_json::from_value(ideal(example("generic/double_wishbone.json"))).unwrap();
     let mut corner = file.suspension.build(Side::Left, Rig::Free).unwrap();
     assert_eq!(mobility(&corner.model), (1, 0));

@@ -2,7 +2,7 @@
 //! with the vehicle's brake and drive splits.
 
 use crate::analysis::sweep::require_rig;
-use crate::build::{Corner, Rig};
+use crate::assembly::{Corner, Rig};
 use crate::description::{AxlePosition, VehicleParameters};
 use elastokin_core::{Pose, Vec3};
 use elastokin_solver::{SolverError, SolverOptions, StaticSolver};

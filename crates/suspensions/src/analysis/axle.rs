@@ -3,8 +3,8 @@
 //! the path's exact tangent.
 
 use crate::analysis::sweep::{read_sweep, walk, whole, Reading, SweepExtras, SweepOutput};
-use crate::build::rig::WHEEL_TRAVEL;
-use crate::build::{Axle, AxleRig};
+use crate::assembly::rig::WHEEL_TRAVEL;
+use crate::assembly::{Axle, AxleRig};
 use crate::wheel::{Wheel, WheelAttitude};
 use elastokin_core::Pose;
 use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, StaticSolver};

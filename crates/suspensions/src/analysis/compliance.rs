@@ -2,7 +2,7 @@
 //! forces and torques there (one factorization, six back-substitutions), and the compliance steer,
 //! camber and stiffness at the contact patch read from it.
 
-use crate::build::Corner;
+use crate::assembly::Corner;
 use crate::wheel::Wheel;
 use elastokin_core::Vec3;
 use elastokin_solver::{SolverError, SolverOptions, State, StaticSolver};

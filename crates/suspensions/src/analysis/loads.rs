@@ -3,8 +3,8 @@
 //! load case; every row with the forces each joint and element carries.
 
 use crate::analysis::sweep::{read_sweep, require_rig, walk, whole, Reading, SweepExtras, SweepOutput, Walked};
-use crate::build::rig::WHEEL_TRAVEL;
-use crate::build::{Corner, Rig};
+use crate::assembly::rig::WHEEL_TRAVEL;
+use crate::assembly::{Corner, Rig};
 use crate::wheel::WheelAttitude;
 use elastokin_core::{BodyRef, JointId, Model, Vec3};
 use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, State, StaticSolver, StepResult, Sweep};

@@ -3,7 +3,7 @@
 //! an analysis needs, and the slope of a figure at a point of its rows.
 
 use crate::analysis::compliance::compliance_with;
-use crate::build::{Corner, Rig};
+use crate::assembly::{Corner, Rig};
 use crate::wheel::Wheel;
 use elastokin_core::Pose;
 use elastokin_solver::replay::ReplayRows;

@@ -2,8 +2,8 @@
 //! position, steering geometry and wheel load at every step.
 
 use crate::analysis::sweep::{read_sweep, require_rig, walk, whole, SweepExtras, SweepOutput};
-use crate::build::rig::WHEEL_TRAVEL;
-use crate::build::{Corner, Rig};
+use crate::assembly::rig::WHEEL_TRAVEL;
+use crate::assembly::{Corner, Rig};
 use crate::wheel::{SteeringGeometry, WheelAttitude};
 use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, StaticSolver, StepResult};
 

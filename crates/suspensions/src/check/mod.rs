@@ -6,8 +6,8 @@
 //! Every warning names the hardpoints involved and says what to change, in the model file's words.
 
 use crate::analysis::TravelRow;
-use crate::build::mobility::{joint_mobility, mobility, reduced_condition};
-use crate::build::{Corner, Rig};
+use crate::assembly::mobility::{joint_mobility, mobility, reduced_condition};
+use crate::assembly::{Corner, Rig};
 use crate::description::layout::Layout;
 use crate::description::limits::{looks_like_millimetres, FAR_FROM_WHEEL_CENTRE};
 use crate::description::{Connection, Side};

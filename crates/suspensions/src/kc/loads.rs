@@ -4,7 +4,7 @@ use crate::analysis::{
     design_wheel_load, design_wheel_load_estimated, model_load_sweep_with, static_load_case_estimated,
     vertical_force_sweep_with, wheel_load_sweep_with, ComponentForces, LoadRow, StaticLoad, WheelLoad,
 };
-use crate::build::{LoadPoint, Rig};
+use crate::assembly::{LoadPoint, Rig};
 use crate::description::Side;
 use crate::kc::figures;
 use crate::kc::models::Models;

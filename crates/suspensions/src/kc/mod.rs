@@ -132,9 +132,9 @@ pub fn left_out(file: &SuspensionFile, analysis: Analysis) -> Option<&'static st
     let (steered, loaded) = (general.is_steered(), !general.loads.is_empty());
     // The roll rig's own refusal decides: a solid axle whose joints lock its roll cannot travel opposite.
     let roll_locked = |template: &crate::description::Template| {
-        crate::build::CornerTemplate::builds_on_axle_only(template)
-            && crate::build::Axle::build(template, crate::build::AxleRig::OppositeTravel).err()
-                == Some(crate::build::rig::roll_locked())
+        crate::assembly::CornerTemplate::builds_on_axle_only(template)
+            && crate::assembly::Axle::build(template, crate::assembly::AxleRig::OppositeTravel).err()
+                == Some(crate::assembly::rig::roll_locked())
     };
     match analysis {
         Analysis::StaticLoad if file.vehicle.is_none() => {

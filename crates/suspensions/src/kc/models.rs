@@ -1,6 +1,6 @@
 //! What the analyses build of a model file ([`Models`]), built once for every analysis run on it.
 
-use crate::build::{Axle, AxleRig, Corner, Rig};
+use crate::assembly::{Axle, AxleRig, Corner, Rig};
 use crate::description::Side;
 use crate::file::SuspensionFile;
 use crate::kc::reduce::with_rigid_bushings;

@@ -3,7 +3,7 @@
 //! the wording every analysis shares.
 
 use crate::analysis::{ArcEnd, ArcLengthRows, AtDesign, SweepLimit, SweepOutput};
-use crate::build::{Axle, Corner};
+use crate::assembly::{Axle, Corner};
 use crate::drawing::{Drawing, Motion};
 use crate::file::SuspensionFile;
 use crate::kc::chart::{Chart, Scale, Series, YAxis};

@@ -143,7 +143,7 @@ pub struct Settings {
     /// Road loads: the wheel-centre height held by the rig (`true`) or the wheel free on its spring.
     pub height_held: bool,
     /// Where the vertical, lateral and braking forces act (traction always acts at the wheel centre).
-    pub load_point: crate::build::LoadPoint,
+    pub load_point: crate::assembly::LoadPoint,
     /// The 6×6 wheel compliance at every step of the sweeps that have one wheel to read it at.
     pub compliance: bool,
     /// When the error estimate is worth a warning.
@@ -186,7 +186,7 @@ impl Default for Settings {
             steps: 32,
             mode: Mode::Corrected,
             height_held: true,
-            load_point: crate::build::LoadPoint::ContactPatch,
+            load_point: crate::assembly::LoadPoint::ContactPatch,
             compliance: false,
             tolerance: Tolerance::default(),
             through_limits: false,

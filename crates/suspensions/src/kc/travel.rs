@@ -4,7 +4,7 @@ use crate::analysis::anti_pitch::anti_pitch_at;
 use crate::analysis::compliance::{compliance_at, compliance_with, patch_compliance_from};
 use crate::analysis::{axle_sweep_with, AxleRow};
 use crate::analysis::{parallel_wheel_travel_with, TravelRow};
-use crate::build::{AxleRig, Corner, Rig};
+use crate::assembly::{AxleRig, Corner, Rig};
 use crate::description::Side;
 use crate::file::SuspensionFile;
 use crate::kc::figures;
@@ -91,7 +91,7 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
     let inboard = elastokin_core::Vec3::new(0.0, -corner.wheel.side.sign(), 0.0);
     let rearward = elastokin_core::Vec3::new(-1.0, 0.0, 0.0);
     let held = elastokin_solver::replay::decided(|| {
-        crate::build::mobility::holds_point(
+        crate::assembly::mobility::holds_point(
             &corner.model,
             corner.wheel.upright,
             corner.wheel.contact_patch,

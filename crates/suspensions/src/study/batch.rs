@@ -12,7 +12,7 @@
 //! ```
 
 use crate::analysis::{parallel_wheel_travel_with, SweepExtras};
-use crate::build::Rig;
+use crate::assembly::Rig;
 use crate::description::Side;
 use crate::file::SuspensionFile;
 use elastokin_solver::Mode;

@@ -8,7 +8,7 @@ use elastokin_core::{BodyRef, ElementId, Model, ModelError, Vec3};
 
 /// A suspension template: something that adds one corner's parts to a model.
 ///
-/// The rig (rack, tie-rod inner attachment, drivers) is not the template's: [`Corner::build`](crate::build::Corner::build) and
+/// The rig (rack, tie-rod inner attachment, drivers) is not the template's: [`Corner::build`](crate::assembly::Corner::build) and
 /// [`crate::Axle::build`] add it, so one template serves a lone corner and both sides of an axle.
 pub trait CornerTemplate {
     /// Adds the corner on `side` to `model`, every body, joint and element name starting with `prefix`
@@ -17,7 +17,7 @@ pub trait CornerTemplate {
     fn add_corner(&self, model: &mut Model, side: Side, prefix: &str) -> Result<CornerParts, ModelError>;
 
     /// Whether the two corners share parts (a solid axle's tube): then the template builds only on a whole
-    /// axle, and [`Corner::build`](crate::build::Corner::build) builds both sides. False by default.
+    /// axle, and [`Corner::build`](crate::assembly::Corner::build) builds both sides. False by default.
     fn builds_on_axle_only(&self) -> bool {
         false
     }

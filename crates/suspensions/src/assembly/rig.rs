@@ -2,8 +2,8 @@
 //! solid axle's steering link mounted on it (or on the chassis when the rack is fixed), and the drivers of
 //! the wheel-centre heights. Every rig driver of the crate is added here.
 
-use crate::build::mobility::mobility;
-use crate::build::template::{CornerParts, CornerTemplate, CrossAxle, TieRod};
+use crate::assembly::mobility::mobility;
+use crate::assembly::template::{CornerParts, CornerTemplate, CrossAxle, TieRod};
 use crate::description::connection::{BushingRates, Connection, TieRodMounts};
 use crate::description::general::part_name;
 use crate::description::Side;

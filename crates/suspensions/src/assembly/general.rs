@@ -4,8 +4,8 @@
 //! [`BushingDef::bushing`], [`SpringDef::spring`] and [`StopDef::stop`] are where a described item becomes
 //! an element, with its model-file key in every error.
 
-use crate::build::map::load_labels;
-use crate::build::template::{CornerParts, CornerTemplate, CrossAxle, ElasticMember, SteeringLink, TieRod};
+use crate::assembly::map::load_labels;
+use crate::assembly::template::{CornerParts, CornerTemplate, CrossAxle, ElasticMember, SteeringLink, TieRod};
 use crate::description::general::{
     part_name, Axis, BeamDef, BodyDef, BushingDef, FieldDef, GeneralCorner, Hardpoints, JointDef, Place, SectionDef,
     SpringDef, Stiffness, StopDef, StopType, CHASSIS,

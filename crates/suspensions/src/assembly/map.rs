@@ -5,10 +5,10 @@
 //!
 //! The builder names every part it adds after its entry (`part_name(prefix, name)`, the anti-roll bar's
 //! [`AntiRollBar::part_names`](crate::description::AntiRollBar::part_names), the load labels of `load_labels`), and the rig names its own parts by the
-//! constants of [`crate::build::rig`]; the map is read back by those names, so it needs nothing threaded
+//! constants of [`crate::assembly::rig`]; the map is read back by those names, so it needs nothing threaded
 //! through the builder. A template's items are those of its expansion into the general form.
 
-use crate::build::rig::{RACK, RACK_SLIDE, RACK_TRAVEL, STEERING_LINK, TIE_ROD, WHEEL_TRAVEL};
+use crate::assembly::rig::{RACK, RACK_SLIDE, RACK_TRAVEL, STEERING_LINK, TIE_ROD, WHEEL_TRAVEL};
 use crate::description::general::{BushingDef, FieldDef, GeneralCorner, JointDef, LoadDef, SpringDef, StopDef};
 use crate::description::place::part_name;
 use crate::description::Side;

@@ -2,9 +2,9 @@
 //! the tests that need both wheels: opposite wheel travel (roll), parallel travel with track change and
 //! roll-centre migration, and steering of both wheels by one rack.
 
-use crate::build::map::BuildMap;
-use crate::build::rig::{add_both_corners, add_travel_drivers, AxleRig};
-use crate::build::template::{CornerTemplate, ElasticMember};
+use crate::assembly::map::BuildMap;
+use crate::assembly::rig::{add_both_corners, add_travel_drivers, AxleRig};
+use crate::assembly::template::{CornerTemplate, ElasticMember};
 use crate::description::{GeneralCorner, Side};
 use crate::wheel::Wheel;
 use elastokin_core::{ElementId, Model, ModelError};

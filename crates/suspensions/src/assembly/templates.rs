@@ -1,9 +1,9 @@
 //! The templates built: each checks what only it says (its spring, its mounts, a strut that cannot spin)
 //! and then builds its expansion into the general form, by the one builder.
 
-use crate::build::corner::Corner;
-use crate::build::rig::Rig;
-use crate::build::template::{CornerParts, CornerTemplate, CrossAxle};
+use crate::assembly::corner::Corner;
+use crate::assembly::rig::Rig;
+use crate::assembly::template::{CornerParts, CornerTemplate, CrossAxle};
 use crate::description::limits::{check_arm_mounts, check_connection, check_spring};
 use crate::description::{Connection, DoubleWishbone, MacPherson, Side, StrutJoint, Template, TwistBeam};
 use elastokin_core::{Model, ModelError};

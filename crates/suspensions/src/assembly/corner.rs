@@ -1,10 +1,10 @@
 //! A suspension corner ready to solve: its model, the rig that holds it, and where its wheel is.
 
-use crate::build::map::BuildMap;
-use crate::build::rig::{
+use crate::assembly::map::BuildMap;
+use crate::assembly::rig::{
     add_both_corners, add_rack, add_travel_drivers, add_wheel_travel_driver, mount_tie_rod, no_steering_input, Rig,
 };
-use crate::build::template::CornerTemplate;
+use crate::assembly::template::CornerTemplate;
 use crate::description::general::part_name;
 use crate::description::GeneralCorner;
 use crate::description::Side;
@@ -21,7 +21,7 @@ pub struct Corner {
     pub rig: Rig,
     /// The wheel.
     pub wheel: Wheel,
-    /// The corner's own spring (see [`CornerParts::spring`](crate::build::CornerParts::spring)).
+    /// The corner's own spring (see [`CornerParts::spring`](crate::assembly::CornerParts::spring)).
     pub spring: Option<ElementId>,
     /// The wheel across the axle when the corner cannot stand alone (a solid axle; see [`Corner::build`]):
     /// held by the same rig and loaded as `wheel` is, in phase.

@@ -2,7 +2,7 @@
 //! at the centre line by a torsion element of the bar's rate, each drop link a distance constraint from
 //! the arm's end to its point on the corner (see [`AntiRollBar`] for the description).
 
-use crate::build::general::Resolver;
+use crate::assembly::general::Resolver;
 use crate::description::anti_roll_bar::{AntiRollBar, MIN_BEARING_OFFSET};
 use crate::description::limits::{check_rate, ROTATIONAL_RATE_RANGE};
 use crate::description::Side;
