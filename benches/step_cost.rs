@@ -5,7 +5,7 @@
 //!
 //! Medians and ratios from one run; the machine may be shared, so read the ratios, not the absolutes.
 
-use elastokin::elements::{Bushing, CoilSpring, PointForce};
+use elastokin::elements::{Bushing, Characteristic, CoilSpring, PointForce, SpringLength};
 use elastokin::prelude::*;
 use elastokin::solver::kkt::KktFactor;
 use std::hint::black_box;
@@ -37,14 +37,11 @@ fn scene() -> Model {
     ))
     .unwrap();
     m.add_element(
-        CoilSpring::with_design_force(
+        CoilSpring::seated(
             "spring",
-            BodyRef::Ground,
-            Vec3::new(0.0, 0.6, 0.3),
-            lower.into(),
-            Vec3::new(0.0, 0.6, -0.2),
-            3e4,
-            3000.0,
+            [(BodyRef::Ground, Vec3::new(0.0, 0.6, 0.3)), (lower.into(), Vec3::new(0.0, 0.6, -0.2))],
+            Characteristic::Rate(3e4),
+            SpringLength::DesignForce(3000.0),
         )
         .unwrap(),
     )

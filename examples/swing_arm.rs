@@ -3,7 +3,7 @@
 //!
 //! Run with `cargo run --example swing_arm`.
 
-use elastokin::elements::{Bushing, CoilSpring, PointForce};
+use elastokin::elements::{Bushing, Characteristic, CoilSpring, PointForce, SpringLength};
 use elastokin::prelude::*;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -29,14 +29,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Vec3::new(10.0f64.to_degrees(), 100.0f64.to_degrees(), 100.0f64.to_degrees()),
     )?)?;
     // Coil spring 60 N/mm, 3 kN of preload at design.
-    model.add_element(CoilSpring::with_design_force(
+    model.add_element(CoilSpring::seated(
         "spring",
-        BodyRef::Ground,
-        seat_chassis,
-        arm.into(),
-        seat_arm,
-        60e3,
-        3000.0,
+        [(BodyRef::Ground, seat_chassis), (arm.into(), seat_arm)],
+        Characteristic::Rate(60e3),
+        SpringLength::DesignForce(3000.0),
     )?)?;
     // Vertical wheel force: 2 kN of corner load plus 1.5 kN per unit load parameter (t from −1 to 1),
     // the paper's vertical force sweep.

@@ -15,14 +15,14 @@
 //!
 //! * a rate: `F(c) = k c` (`k` > 0), the linear spring, energy `U = ½ k (L − L₀)² − P L`; or
 //! * a curve: the data sheet's table of **push force (N) against compression from the free length (m)**,
-//!   interpolated by the monotone cubic of [`Curve`] — continuous force and rate, no overshoot between the
+//!   interpolated by the monotone cubic of [`Curve`](crate::curve::Curve) — continuous force and rate, no overshoot between the
 //!   points — and continued **linearly past each end** with the end slope. A negative compression is an
 //!   extension beyond the free length, where the spring pulls as the linear one does (it is held in its
 //!   seats): below the table's first point the force follows the slope there. The push force must never
 //!   decrease with compression. A two-point table `(0, 0)`, `(c₁, k c₁)` is the linear spring.
 //!
 //! The free length is given, or found from the push force at the design length
-//! ([`CoilSpring::with_design_force`], [`CoilSpring::with_curve_and_design_force`]): the compression at
+//! ([`CoilSpring::seated`] with [`SpringLength::DesignForce`]): the compression at
 //! design is the least `c` with `F(c)` equal to it, and `L₀ = L_design + c`. Past an end where the table's
 //! slope is zero (a table that starts flat, as a progressive one can) the curve never leaves that end's
 //! force; a design force it never reaches is refused, naming the spring.
@@ -49,7 +49,7 @@
 //! term `(F_push/L)(I − nnᵀ)` from the tangent, so that it returns finite values; such a configuration
 //! (the two spring seats through each other) is not physical.
 
-use crate::curve::{Anchor, Characteristic, Curve};
+use crate::curve::{Anchor, Characteristic};
 use crate::geometry::{check_distinct, check_finite, check_finite_scalar, check_positive, push_along, Seats};
 use elastokin_core::{
     BodyRef, ElementEval, ElementReport, ElementRole, ForceElement, ModelError, Pose, Sketch, SketchKind, Vec3,
@@ -108,6 +108,16 @@ pub(crate) fn check_seats(name: &str, point_i: &Vec3, point_j: &Vec3) -> Result<
     Ok(())
 }
 
+/// How a spring's free length is given ([`CoilSpring::seated`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SpringLength {
+    /// The free length `L₀` itself (m).
+    Free(f64),
+    /// The push force at design (N), from which `L₀` follows: the design length plus the compression at
+    /// which the characteristic pushes so.
+    DesignForce(f64),
+}
+
 /// A coil spring between two body points (see the [module docs](self)).
 #[derive(Debug, Clone, PartialEq)]
 pub struct CoilSpring {
@@ -129,95 +139,50 @@ impl CoilSpring {
         rate: f64,
         free_length: f64,
     ) -> Result<Self, ModelError> {
-        Self::without_preload(name, body_i, point_i, body_j, point_j, Characteristic::Rate(rate), free_length)
+        Self::seated(
+            name,
+            [(body_i, point_i), (body_j, point_j)],
+            Characteristic::Rate(rate),
+            SpringLength::Free(free_length),
+        )
     }
 
-    /// A linear spring given the push force at design instead of the free length:
-    /// `L₀ = L_design + design_force / k` (no separate preload). A tensile design force larger than
-    /// `k · L_design` gives `L₀ ≤ 0`, refused as [`ModelError::NotPositive`] on the free length.
-    pub fn with_design_force(
+    /// A spring seated at `ends` (each end's body and seat, global at design), pushing by
+    /// `characteristic` (a rate or a data sheet's curve) against compression from its free length, which
+    /// `length` gives or has follow from the push at design; without preload. Errors as
+    /// [`CoilSpring::new`], and [`ModelError::OutOfRange`] for a curve whose force decreases somewhere or
+    /// is flat, or never reaches the design force (past an end with slope zero); a design force that
+    /// needs `L₀ ≤ 0` is [`ModelError::NotPositive`] on the free length.
+    pub fn seated(
         name: &str,
-        body_i: BodyRef,
-        point_i: Vec3,
-        body_j: BodyRef,
-        point_j: Vec3,
-        rate: f64,
-        design_force: f64,
-    ) -> Result<Self, ModelError> {
-        Self::at_design_force(name, body_i, point_i, body_j, point_j, Characteristic::Rate(rate), design_force)
-    }
-
-    /// A spring whose push force (N) against compression from the free length (m) is the data sheet's
-    /// `curve`, with free length `L₀` (m), without preload. Errors as [`CoilSpring::new`], and
-    /// [`ModelError::OutOfRange`] for a curve whose force decreases somewhere or is flat.
-    pub fn with_curve(
-        name: &str,
-        body_i: BodyRef,
-        point_i: Vec3,
-        body_j: BodyRef,
-        point_j: Vec3,
-        curve: Curve,
-        free_length: f64,
-    ) -> Result<Self, ModelError> {
-        Self::without_preload(name, body_i, point_i, body_j, point_j, Characteristic::Curve(curve), free_length)
-    }
-
-    /// A spring with the push force curve of [`CoilSpring::with_curve`], given the push force at design
-    /// instead of the free length: the compression at design is the least `c` with `curve(c) =
-    /// design_force` and `L₀ = L_design + c`. A force the curve never reaches (past an end with slope
-    /// zero) is [`ModelError::OutOfRange`]; one that needs `L₀ ≤ 0`, [`ModelError::NotPositive`].
-    pub fn with_curve_and_design_force(
-        name: &str,
-        body_i: BodyRef,
-        point_i: Vec3,
-        body_j: BodyRef,
-        point_j: Vec3,
-        curve: Curve,
-        design_force: f64,
-    ) -> Result<Self, ModelError> {
-        Self::at_design_force(name, body_i, point_i, body_j, point_j, Characteristic::Curve(curve), design_force)
-    }
-
-    fn at_design_force(
-        name: &str,
-        body_i: BodyRef,
-        point_i: Vec3,
-        body_j: BodyRef,
-        point_j: Vec3,
+        ends: [(BodyRef, Vec3); 2],
         characteristic: Characteristic,
-        design_force: f64,
+        length: SpringLength,
     ) -> Result<Self, ModelError> {
-        characteristic.check(name, "spring rate", Anchor::Free)?;
-        check_finite_scalar(name, "design force", design_force)?;
-        let Some(compression) = characteristic.inverse(design_force) else {
-            let (low, high) = match &characteristic {
-                Characteristic::Curve(c) => c.reach(),
-                Characteristic::Rate(_) => (f64::NEG_INFINITY, f64::INFINITY),
-            };
-            return Err(ModelError::OutOfRange {
-                item: name.to_string(),
-                why: format!(
-                    "its force curve never reaches the design force {design_force} N: past the table's ends it \
-                     continues along the end slopes and covers {low} N to {high} N only; extend the table to the \
-                     design force"
-                ),
-            });
+        let [(body_i, point_i), (body_j, point_j)] = ends;
+        let free_length = match length {
+            SpringLength::Free(free_length) => free_length,
+            SpringLength::DesignForce(design_force) => {
+                // The compression at design is the least `c` with `characteristic(c) = design_force`.
+                characteristic.check(name, "spring rate", Anchor::Free)?;
+                check_finite_scalar(name, "design force", design_force)?;
+                let Some(compression) = characteristic.inverse(design_force) else {
+                    let (low, high) = match &characteristic {
+                        Characteristic::Curve(c) => c.reach(),
+                        Characteristic::Rate(_) => (f64::NEG_INFINITY, f64::INFINITY),
+                    };
+                    return Err(ModelError::OutOfRange {
+                        item: name.to_string(),
+                        why: format!(
+                            "its force curve never reaches the design force {design_force} N: past the table's ends \
+                             it continues along the end slopes and covers {low} N to {high} N only; extend the \
+                             table to the design force"
+                        ),
+                    });
+                };
+                (point_j - point_i).norm() + compression
+            }
         };
-        let free_length = (point_j - point_i).norm() + compression;
-        Self::without_preload(name, body_i, point_i, body_j, point_j, characteristic, free_length)
-    }
-
-    /// A spring from its seats, characteristic and free length, without preload (validated by
-    /// [`CoilSpring::from_spec`]).
-    fn without_preload(
-        name: &str,
-        body_i: BodyRef,
-        point_i: Vec3,
-        body_j: BodyRef,
-        point_j: Vec3,
-        characteristic: Characteristic,
-        free_length: f64,
-    ) -> Result<Self, ModelError> {
         Self::from_spec(CoilSpringSpec {
             name: name.to_string(),
             body_i,
@@ -238,7 +203,7 @@ impl CoilSpring {
     }
 
     /// A spring from its full description (validated as in [`CoilSpring::new`] and
-    /// [`CoilSpring::with_curve`]).
+    /// [`CoilSpring::seated`]).
     pub fn from_spec(spec: CoilSpringSpec) -> Result<Self, ModelError> {
         spec.validate()?;
         Ok(CoilSpring { seats: Seats::new(&spec.point_i, &spec.point_j), spec })

@@ -41,7 +41,7 @@
 //!
 //! ```
 //! use elastokin_core::{BodyRef, Model, Pose, Vec3};
-//! use elastokin_elements::{CoilSpring, Curve, Stop};
+//! use elastokin_elements::{Characteristic, CoilSpring, Curve, SpringLength, Stop};
 //!
 //! let mut model = Model::new();
 //! let arm = model.add_body("lower arm", Pose::at(Vec3::new(0.0, 0.6, 0.0))).unwrap();
@@ -50,7 +50,7 @@
 //! let sheet = Curve::new("spring", [[0.0, 0.0], [0.03, 900.0], [0.06, 2000.0], [0.09, 3600.0]]).unwrap();
 //! // 2000 N at the design length (0.35 m): the free length is where the sheet's 0.06 m puts it.
 //! let spring =
-//!     CoilSpring::with_curve_and_design_force("spring", BodyRef::Ground, top, arm.into(), seat, sheet, 2000.0)
+//!     CoilSpring::seated("spring", [(BodyRef::Ground, top), (arm.into(), seat)], Characteristic::Curve(sheet), SpringLength::DesignForce(2000.0))
 //!         .unwrap();
 //! assert!((spring.spec().free_length - 0.41).abs() < 1e-12);
 //! model.add_element(spring).unwrap();

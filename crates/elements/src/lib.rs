@@ -84,7 +84,7 @@ pub mod stop;
 
 pub use beam::{beam, Beam, BeamSpec, Section};
 pub use bushing::{Bushing, BushingSpec, RotationLaw};
-pub use coil_spring::{CoilSpring, CoilSpringSpec};
+pub use coil_spring::{CoilSpring, CoilSpringSpec, SpringLength};
 pub use curve::{Characteristic, Curve};
 pub use field::{Field, FieldSpec};
 pub use point_load::{PointForce, PointForceSpec, PointTorque, PointTorqueSpec};

@@ -5,7 +5,7 @@ mod common;
 
 use common::*;
 use elastokin_core::{BodyId, BodyRef, ElementRole, ForceElement, Mat3, Pose, Vec3};
-use elastokin_elements::{CoilSpring, CoilSpringSpec};
+use elastokin_elements::{Characteristic, CoilSpring, CoilSpringSpec, SpringLength};
 
 struct Case {
     point_i: Vec3,
@@ -154,7 +154,13 @@ fn symmetric_when_the_seats_are_the_reference_points() {
 #[test]
 fn design_force_variant_and_role() {
     let (a, b) = (Vec3::new(0.0, 0.5, 0.1), Vec3::new(0.0, 0.55, 0.4));
-    let s = CoilSpring::with_design_force("s", BodyRef::Ground, a, BodyRef::Body(BodyId(0)), b, 4e4, 2500.0).unwrap();
+    let s = CoilSpring::seated(
+        "s",
+        [(BodyRef::Ground, a), (BodyRef::Body(BodyId(0)), b)],
+        Characteristic::Rate(4e4),
+        SpringLength::DesignForce(2500.0),
+    )
+    .unwrap();
     let l = (b - a).norm();
     assert!((s.push_force(l) - 2500.0).abs() < 1e-9);
     assert!((s.spec().free_length - (l + 2500.0 / 4e4)).abs() < 1e-15);

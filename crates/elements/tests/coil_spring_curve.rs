@@ -7,7 +7,7 @@ mod common;
 
 use common::*;
 use elastokin_core::{BodyId, BodyRef, ForceElement, Mat3, ModelError, Pose, Vec3};
-use elastokin_elements::{CoilSpring, Curve};
+use elastokin_elements::{Characteristic, CoilSpring, Curve, SpringLength};
 
 /// `y = a c² + b c`: a rising parabola (a progressive spring), which the curve reproduces exactly between
 /// the points of its table (tests/curve.rs).
@@ -81,7 +81,13 @@ impl Geometry {
     fn spring(&self, curve: Curve, c: f64) -> CoilSpring {
         let free_length = self.length(&self.pi, &self.pj) + c;
         let (bi, bj) = (body(self.gi, 0), body(self.gj, 1));
-        let mut s = CoilSpring::with_curve("spring", bi, self.point_i, bj, self.point_j, curve, free_length).unwrap();
+        let mut s = CoilSpring::seated(
+            "spring",
+            [(bi, self.point_i), (bj, self.point_j)],
+            Characteristic::Curve(curve),
+            SpringLength::Free(free_length),
+        )
+        .unwrap();
         s.bind(&self.design_i, &self.design_j).unwrap();
         s
     }
@@ -101,7 +107,13 @@ fn a_straight_two_point_table_is_the_linear_spring() {
             let (bi, bj) = (body(gi, 0), body(gj, 1));
             let line = Curve::new("spring", [[0.0, 0.0], [0.1, 0.1 * k]]).unwrap();
             let mut linear = CoilSpring::new("spring", bi, g.point_i, bj, g.point_j, k, free_length).unwrap();
-            let mut curved = CoilSpring::with_curve("spring", bi, g.point_i, bj, g.point_j, line, free_length).unwrap();
+            let mut curved = CoilSpring::seated(
+                "spring",
+                [(bi, g.point_i), (bj, g.point_j)],
+                Characteristic::Curve(line),
+                SpringLength::Free(free_length),
+            )
+            .unwrap();
             linear = linear.with_preload(preload).unwrap();
             curved = curved.with_preload(preload).unwrap();
             linear.bind(&g.design_i, &g.design_j).unwrap();
@@ -161,9 +173,13 @@ fn string_tangent_with_the_curve_slope() {
         let d = pj.position - point_i;
         let (l, n) = (d.norm(), d.normalize());
         let curve = parabola_table();
-        let mut s =
-            CoilSpring::with_curve("s", BodyRef::Ground, point_i, BodyRef::Body(BodyId(0)), point_j, curve, l + c)
-                .unwrap();
+        let mut s = CoilSpring::seated(
+            "s",
+            [(BodyRef::Ground, point_i), (BodyRef::Body(BodyId(0)), point_j)],
+            Characteristic::Curve(curve),
+            SpringLength::Free(l + c),
+        )
+        .unwrap();
         s.bind(&Pose::IDENTITY, &design_j).unwrap();
         // Past the table's end (c = 0.15), the line with the end slope.
         let (push, rate) = if c <= PARABOLA_END {
@@ -223,14 +239,11 @@ fn free_length_from_the_design_force_inverts_the_curve() {
         (-100.0, -100.0 / B),
     ];
     for (force, compression) in cases {
-        let s = CoilSpring::with_curve_and_design_force(
+        let s = CoilSpring::seated(
             "s",
-            BodyRef::Ground,
-            a,
-            BodyRef::Body(BodyId(0)),
-            b,
-            parabola_table(),
-            force,
+            [(BodyRef::Ground, a), (BodyRef::Body(BodyId(0)), b)],
+            Characteristic::Curve(parabola_table()),
+            SpringLength::DesignForce(force),
         )
         .unwrap();
         // Measured: exact (0) for the free length, allowed two units in the last place of it; 1.3e-15 of the
@@ -263,14 +276,11 @@ fn refused(result: Result<CoilSpring, ModelError>) -> String {
 fn curves_a_spring_cannot_use_are_refused_by_name() {
     let (a, b) = (Vec3::new(0.0, 0.5, 0.1), Vec3::new(0.0, 0.55, 0.4));
     let at = |curve: Curve, force: f64| {
-        CoilSpring::with_curve_and_design_force(
+        CoilSpring::seated(
             "front spring",
-            BodyRef::Ground,
-            a,
-            BodyRef::Body(BodyId(0)),
-            b,
-            curve,
-            force,
+            [(BodyRef::Ground, a), (BodyRef::Body(BodyId(0)), b)],
+            Characteristic::Curve(curve),
+            SpringLength::DesignForce(force),
         )
     };
     // A progressive table from (0, 0) starts with slope zero: below it the force stays 0 and never
@@ -282,8 +292,12 @@ fn curves_a_spring_cannot_use_are_refused_by_name() {
     assert!(at(progressive, 1e5).is_ok());
     // A force that drops as the spring is compressed, and a flat table.
     let drops = Curve::new("front spring", [[0.0, 0.0], [0.02, 400.0], [0.04, 390.0]]).unwrap();
-    let text =
-        refused(CoilSpring::with_curve("front spring", BodyRef::Ground, a, BodyRef::Body(BodyId(0)), b, drops, 0.35));
+    let text = refused(CoilSpring::seated(
+        "front spring",
+        [(BodyRef::Ground, a), (BodyRef::Body(BodyId(0)), b)],
+        Characteristic::Curve(drops),
+        SpringLength::Free(0.35),
+    ));
     assert!(text.contains("point 2") && text.contains("never decreases"), "{text}");
     let flat = Curve::new("front spring", [[0.0, 500.0], [0.02, 500.0]]).unwrap();
     let text = refused(at(flat, 500.0));

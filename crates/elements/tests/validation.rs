@@ -1,7 +1,7 @@
 //! Bad input is refused with the right `ModelError`, naming the element, without panicking.
 
 use elastokin_core::{BodyId, BodyRef, ElementEval, ForceElement, Mat3, Model, ModelError, Pose, Vec3};
-use elastokin_elements::{Bushing, BushingSpec, Characteristic, CoilSpring, PointForce, PointTorque};
+use elastokin_elements::{Bushing, BushingSpec, Characteristic, CoilSpring, PointForce, PointTorque, SpringLength};
 
 const A: BodyRef = BodyRef::Body(BodyId(0));
 const B: BodyRef = BodyRef::Body(BodyId(1));
@@ -120,11 +120,11 @@ fn spring_validation() {
     assert!(matches!(s.with_preload(f64::NAN), Err(ModelError::NonFinite { what: "preload", .. })));
     // A tensile design force longer than the spring would need L₀ ≤ 0.
     assert!(matches!(
-        CoilSpring::with_design_force("spring", A, p, B, q, 1e4, -1e4),
+        CoilSpring::seated("spring", [(A, p), (B, q)], Characteristic::Rate(1e4), SpringLength::DesignForce(-1e4)),
         Err(ModelError::NotPositive { what: "free length", .. })
     ));
     assert!(matches!(
-        CoilSpring::with_design_force("spring", A, p, B, q, 1e4, f64::NAN),
+        CoilSpring::seated("spring", [(A, p), (B, q)], Characteristic::Rate(1e4), SpringLength::DesignForce(f64::NAN)),
         Err(ModelError::NonFinite { .. })
     ));
 }

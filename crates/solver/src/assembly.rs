@@ -459,7 +459,7 @@ const EVAL_CHUNK: usize = 4 * PARALLEL_ELEMENTS;
 mod tests {
     use super::*;
     use elastokin_core::{JointSpec, Mat3, Vec3};
-    use elastokin_elements::{Bushing, CoilSpring};
+    use elastokin_elements::{Bushing, Characteristic, CoilSpring, SpringLength};
 
     /// Five bodies, each on a bushing to the ground, with springs and joints between bodies that are not
     /// neighbours in either order, so that columns hold several off-diagonal blocks.
@@ -478,7 +478,16 @@ mod tests {
         }
         for (name, i, j) in [("s03", 0, 3), ("s41", 4, 1), ("s23", 2, 3)] {
             let (pi, pj) = (Vec3::new(i as f64, 0.0, 0.2), Vec3::new(j as f64, 0.1, -0.2));
-            m.add_element(CoilSpring::with_design_force(name, b[i], pi, b[j], pj, 1e4, 10.0).unwrap()).unwrap();
+            m.add_element(
+                CoilSpring::seated(
+                    name,
+                    [(b[i], pi), (b[j], pj)],
+                    Characteristic::Rate(1e4),
+                    SpringLength::DesignForce(10.0),
+                )
+                .unwrap(),
+            )
+            .unwrap();
         }
         m.add_joint(JointSpec::spherical("ball 3-0", b[3], b[0], Vec3::new(1.5, 0.0, 0.0))).unwrap();
         let (p, q) = (Vec3::new(2.0, 0.3, 0.0), Vec3::new(4.0, 0.3, 0.1));

@@ -7,7 +7,7 @@
 //! and at contact.
 
 use elastokin_core::{BodyRef, JointSpec, Model, Pose, Vec3};
-use elastokin_elements::{CoilSpring, Curve, PointForce, Stop};
+use elastokin_elements::{Characteristic, CoilSpring, Curve, PointForce, SpringLength, Stop};
 use elastokin_solver::{LoadPath, Mode, SolverOptions, StaticSolver, StepResult};
 
 /// The spring's data sheet: push force (N) against compression (m), every 20 mm.
@@ -78,8 +78,16 @@ fn slider(stop_table: &[[f64; 2]]) -> Model {
     m.add_joint(JointSpec::translational("guide", BodyRef::Ground, slider, Vec3::zeros(), Vec3::z())).unwrap();
     let (seat, top) = (Vec3::new(0.0, 0.0, -LENGTH), Vec3::zeros());
     let spring = Curve::new("spring", SPRING).unwrap();
-    m.add_element(CoilSpring::with_curve("spring", BodyRef::Ground, seat, slider.into(), top, spring, LENGTH).unwrap())
-        .unwrap();
+    m.add_element(
+        CoilSpring::seated(
+            "spring",
+            [(BodyRef::Ground, seat), (slider.into(), top)],
+            Characteristic::Curve(spring),
+            SpringLength::Free(LENGTH),
+        )
+        .unwrap(),
+    )
+    .unwrap();
     let stop = Curve::new("bump stop", stop_table).unwrap();
     m.add_element(Stop::bump("bump stop", BodyRef::Ground, seat, slider.into(), top, CLEARANCE, stop).unwrap())
         .unwrap();

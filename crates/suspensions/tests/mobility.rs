@@ -6,7 +6,7 @@
 //! held by the bushings).
 
 use elastokin_core::{BodyId, BodyRef, JointSpec, Mat3, Model, Pose, Vec3, BODY_DOFS};
-use elastokin_elements::{Bushing, CoilSpring};
+use elastokin_elements::{Bushing, Characteristic, CoilSpring, SpringLength};
 use elastokin_solver::assembly::{Assembly, Tangent};
 use elastokin_solver::mobility::{self, DENSE_CONDITION_MAX};
 use elastokin_suspensions::assembly::mobility::holds_point;
@@ -159,8 +159,12 @@ fn chain(cells: usize, turning: f64, bushed: impl Fn(usize) -> bool) -> Model {
         let (a, b) = (Vec3::new(joint - 0.1, 0.15, 0.0), Vec3::new(joint + 0.1, 0.15, 0.08));
         m.add_joint(JointSpec::distance(&format!("link {i}"), previous, body, a, b)).unwrap();
         let (top, seat) = (Vec3::new(joint - 0.1, -0.1, 0.2), Vec3::new(x, -0.1, 0.0));
-        let spring =
-            CoilSpring::with_design_force(&format!("spring {i}"), previous, top, body.into(), seat, 3.0e4, 500.0);
+        let spring = CoilSpring::seated(
+            &format!("spring {i}"),
+            [(previous, top), (body.into(), seat)],
+            Characteristic::Rate(3.0e4),
+            SpringLength::DesignForce(500.0),
+        );
         m.add_element(spring.unwrap()).unwrap();
         previous = body.into();
     }

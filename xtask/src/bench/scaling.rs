@@ -10,7 +10,7 @@ use super::report::{Cell, Judge, Kind, SectionOutput, Table, Target};
 use super::stats::power_law_exponent;
 use super::Settings;
 use elastokin_core::{BodyRef, JointSpec, Mat3, Model, ModelError, Pose, Vec3};
-use elastokin_elements::{Bushing, CoilSpring, PointForce};
+use elastokin_elements::{Bushing, Characteristic, CoilSpring, PointForce, SpringLength};
 use elastokin_solver::assembly::{Assembly, Tangent};
 use elastokin_solver::kkt::{KktFactor, KktOptions};
 use elastokin_solver::solver::redundant_rows_at_design;
@@ -56,14 +56,11 @@ pub fn chain(n: usize) -> Result<Model, ModelError> {
             Vec3::new(joint - 0.1, 0.15, 0.0),
             Vec3::new(joint + 0.1, 0.15, 0.08),
         ))?;
-        m.add_element(CoilSpring::with_design_force(
+        m.add_element(CoilSpring::seated(
             &format!("spring {i}"),
-            prev,
-            Vec3::new(joint - 0.1, -0.1, 0.2),
-            body.into(),
-            Vec3::new(x, -0.1, 0.0),
-            3.0e4,
-            500.0,
+            [(prev, Vec3::new(joint - 0.1, -0.1, 0.2)), (body.into(), Vec3::new(x, -0.1, 0.0))],
+            Characteristic::Rate(3.0e4),
+            SpringLength::DesignForce(500.0),
         )?)?;
         prev = body.into();
     }

@@ -20,7 +20,7 @@ use elastokin_core::joint::orthonormal_complement;
 use elastokin_core::{BodyRef, ElementId, JointKind, JointSpec, Mat3, Model, ModelError, Pose, Takes, Vec3};
 use elastokin_elements::{
     beam, BeamSpec, Bushing, BushingSpec, Characteristic, CoilSpring, Curve, Field, FieldSpec, PointForce, PointTorque,
-    Section, Stop,
+    Section, SpringLength, Stop,
 };
 use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
@@ -139,31 +139,32 @@ impl SpringDef {
         if self.preload.is_some() && self.design_force.is_some() {
             return refuse("give a preload with free_length only: with design_force the push at design includes it");
         }
-        let spring = match (self.rate, &self.curve, self.design_force, self.free_length) {
-            (Some(_), Some(_), _, _) | (None, None, _, _) => {
-                return refuse("give either rate (N/m) or curve (push force in N against compression in m)")
-            }
-            (_, _, Some(_), Some(_)) | (_, _, None, None) => {
-                return refuse("give either design_force (N, its push at design) or free_length (m)")
-            }
-            (Some(rate), None, Some(force), None) => {
+        // What pushes, and how long it is free: one of each, both said before either is read.
+        if self.rate.is_some() == self.curve.is_some() {
+            return refuse("give either rate (N/m) or curve (push force in N against compression in m)");
+        }
+        if self.design_force.is_some() == self.free_length.is_some() {
+            return refuse("give either design_force (N, its push at design) or free_length (m)");
+        }
+        let characteristic = match (self.rate, &self.curve) {
+            (Some(rate), None) => {
                 check_rate(format_args!("{key}.rate"), rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
-                check_spring_force(key, rate, force, (to - from).norm())?;
-                CoilSpring::with_design_force(name, bi, from, bj, to, rate, force)?
+                Characteristic::Rate(rate)
             }
-            (Some(rate), None, None, Some(free)) => {
-                check_rate(format_args!("{key}.rate"), rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;
-                CoilSpring::new(name, bi, from, bj, to, rate, free)?
-            }
-            (None, Some(points), Some(force), None) => {
-                let curve = Curve::new(&format!("{key}.curve"), points.clone())?;
-                CoilSpring::with_curve_and_design_force(name, bi, from, bj, to, curve, force)?
-            }
-            (None, Some(points), None, Some(free)) => {
-                let curve = Curve::new(&format!("{key}.curve"), points.clone())?;
-                CoilSpring::with_curve(name, bi, from, bj, to, curve, free)?
-            }
+            (None, Some(points)) => Characteristic::Curve(Curve::new(&format!("{key}.curve"), points.clone())?),
+            _ => return refuse("give either rate (N/m) or curve (push force in N against compression in m)"),
         };
+        let length = match (self.design_force, self.free_length) {
+            (Some(force), None) => {
+                if let Some(rate) = self.rate {
+                    check_spring_force(key, rate, force, (to - from).norm())?;
+                }
+                SpringLength::DesignForce(force)
+            }
+            (None, Some(free)) => SpringLength::Free(free),
+            _ => return refuse("give either design_force (N, its push at design) or free_length (m)"),
+        };
+        let spring = CoilSpring::seated(name, [(bi, from), (bj, to)], characteristic, length)?;
         match self.preload {
             Some(preload) => spring.with_preload(preload),
             None => Ok(spring),
