@@ -367,36 +367,34 @@ pub struct MergeArgs {
     pub out: PathBuf,
 }
 
-/// The analyses by their command-line names, each with its load parameter.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum AnalysisName {
-    /// wheel travel, m, bump +; default -0.08,0.08
-    ParallelTravel,
-    /// left wheel travel, m, right opposite, full axle; default -0.05,0.05
-    Roll,
-    /// rack travel, m, towards +y, full axle, heights held; default -0.04,0.04
-    Steering,
-    /// force at the contact patch (or --load-point), N, up +, wheel free; default 0.5..1.5 x the design wheel load (0..3000 N when it is nothing)
-    VerticalForce,
-    /// force at the contact patch, N, inboard +; default -3000,3000
-    LateralForce,
-    /// force at the contact patch, N, rearward +; default 0,3000
-    BrakingForce,
-    /// force at the wheel centre, N, forward +; default 0,3000
-    TractionForce,
-    /// torque about +z, N m; default -200,200
-    AligningTorque,
-    /// the model's vehicle.corner_load at once, from the design position
-    StaticLoad,
-    /// the general model's own load case ("loads"), fraction applied; default 0,1
-    Loads,
+/// An analysis by its command-line name. Its help (what its load parameter is, and its default range) is
+/// the library's declaration of it (`Analysis::parameter`, `Analysis::default_range`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct AnalysisName(Analysis);
+
+/// Every analysis, as the command lists them.
+static ANALYSIS_NAMES: std::sync::LazyLock<Vec<AnalysisName>> =
+    std::sync::LazyLock::new(|| kc::ALL.iter().map(|&a| AnalysisName(a)).collect());
+
+impl ValueEnum for AnalysisName {
+    fn value_variants<'a>() -> &'a [Self] {
+        &ANALYSIS_NAMES
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        let a = self.0;
+        let help = match a.rig_words() {
+            Some(rig) => format!("{}, {rig}; {}", a.parameter(), a.default_range()),
+            None => format!("{}; {}", a.parameter(), a.default_range()),
+        };
+        Some(clap::builder::PossibleValue::new(self.0.name()).help(help))
+    }
 }
 
 impl AnalysisName {
-    /// The analysis of this name; the unit test below holds every name to one.
+    /// The analysis of this name.
     fn analysis(self) -> Analysis {
-        let value = self.to_possible_value().expect("no analysis name is hidden");
-        Analysis::from_name(value.get_name()).expect("every command-line name is an analysis")
+        self.0
     }
 }
 

@@ -335,8 +335,9 @@ fn version_help_and_argument_mistakes_are_answered_by_name() {
     let help = String::from_utf8_lossy(&o.stdout);
     for text in [
         "parallel-travel: wheel travel, m, bump +; default -0.08,0.08",
-        "lateral-force:   force at the contact patch, N, inboard +; default -3000,3000",
-        "static-load:     the model's vehicle.corner_load",
+        "lateral-force:   lateral force at the contact patch, N, inboard +; default -3000,3000",
+        "roll:            left wheel travel, m (right opposite), full axle; default -0.05,0.05",
+        "static-load:     corner load of the model file's vehicle section, N, applied at once",
         "[default: 32]",
         "--quiet",
         "Exit status: 0 success; 1 a run that failed while solving or writing",

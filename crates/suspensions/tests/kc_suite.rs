@@ -743,3 +743,22 @@ fn a_moved_file_built_in_the_coordinates_of_its_origin_reports_what_its_own_buil
     println!("worst relative gap of a figure: {worst:e}");
     assert!(worst < 1e-10, "{worst:e}");
 }
+
+/// Each analysis walks, by default, the range it declares (`Analysis::default_range`, which the command's
+/// help shows): its first and last rows at the declared ends.
+#[test]
+fn every_analysis_walks_the_default_range_it_declares() {
+    use elastokin_suspensions::kc::DefaultRange;
+    let file = example("generic/macpherson.json");
+    let report = kc::run_suite(&file, &[], &Settings { steps: 4, ..Settings::default() }, |_| {}).complete().unwrap();
+    let mut checked = 0;
+    for a in &report.analyses {
+        let DefaultRange::Ends(from, to) = a.analysis.default_range() else { continue };
+        let first = a.table.rows.first().unwrap()[0].number().unwrap();
+        let last = a.table.rows.last().unwrap()[0].number().unwrap();
+        assert_eq!((first, last), (from, to), "{}", a.analysis.name());
+        checked += 1;
+    }
+    // Parallel travel, roll, steering and the four road loads (the MacPherson has no load case of its own).
+    assert_eq!(checked, 7);
+}

@@ -10,7 +10,7 @@ use crate::kc::figures;
 use crate::kc::models::Models;
 use crate::kc::reduce::{axis, bushings_share, chart, corner_drawing, deg, finish, Design, Reduction};
 use crate::kc::report::{Accuracy, AnalysisReport, Cell, Figure, FigureKind, Table, Warning};
-use crate::kc::settings::{mode_word, Analysis, Cause, Settings, NO_ROWS};
+use crate::kc::settings::{mode_word, Analysis, Cause, Settings, NO_ROWS, UNLOADED_RANGE_TOP};
 use crate::kc::unit::Unit;
 use elastokin_solver::replay::ReplayRows;
 use elastokin_solver::LoadPath;
@@ -18,9 +18,6 @@ use elastokin_solver::LoadPath;
 /// Why the `loads` analysis cannot run.
 pub(super) const NO_LOADS: &str = "the model has no load case: give \"loads\" in the general form (a force at a point \
                                     of a body, or a moment), see docs/model-file.md";
-
-/// The top of the vertical-force range of a corner that carries nothing at design (N).
-const UNLOADED_RANGE_TOP: f64 = 3000.0;
 
 /// Where the rig's forces act, in words.
 fn where_loaded(s: &Settings) -> &'static str {
@@ -34,9 +31,7 @@ pub(super) fn vertical_force(models: &Models, s: &Settings) -> Result<AnalysisRe
     let file = models.file();
     let held = models.corner_ref(Rig::WheelTravel)?;
     let (design_load, design_load_error) = design_wheel_load_estimated(held, s.error_estimate)?;
-    // The default range is 0.5 to 1.5 times the design wheel load. A corner that carries next to nothing at
-    // design (its spring at its free length, as some imported data have it) gets 0 to 3 kN instead: a
-    // range around nothing would have no width.
+    // The default range (`DefaultRange::AroundDesignLoad`).
     let range = match s.range {
         Some(range) => range,
         None if design_load.abs() < 1.0 => (0.0, UNLOADED_RANGE_TOP),
@@ -160,13 +155,12 @@ pub(super) fn model_loads(models: &Models, s: &Settings) -> Result<AnalysisRepor
 /// A road load or the model's own loads, swept with the corner load carried.
 fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Result<AnalysisReport, Cause> {
     let file = models.file();
-    let (unit, column, default_range) = match analysis {
-        Analysis::Road(WheelLoad::Lateral) => ("N", "load_n", (-3000.0, 3000.0)),
-        Analysis::Road(WheelLoad::Braking | WheelLoad::Traction) => ("N", "load_n", (0.0, 3000.0)),
-        Analysis::Road(WheelLoad::AligningTorque) => ("N·m", "load_nm", (-200.0, 200.0)),
-        _ => ("of the load case", "fraction", (0.0, 1.0)),
+    let (unit, column) = match analysis {
+        Analysis::Road(WheelLoad::Lateral | WheelLoad::Braking | WheelLoad::Traction) => ("N", "load_n"),
+        Analysis::Road(WheelLoad::AligningTorque) => ("N·m", "load_nm"),
+        _ => ("of the load case", "fraction"),
     };
-    let range = s.range.unwrap_or(default_range);
+    let range = analysis.range_or_default(s.range)?;
     let corner_load = match &file.vehicle {
         Some(v) => v.corner_load,
         None => design_wheel_load(models.corner_ref(Rig::WheelTravel)?)?,

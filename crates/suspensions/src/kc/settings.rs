@@ -2,6 +2,7 @@
 //! ranges, steps, mode, tolerances, load point) and the limits a request is held to.
 
 use crate::analysis::{SweepExtras, WheelLoad};
+use crate::description::limits::plain;
 use crate::kc::unit::Units;
 use elastokin_solver::replay::ReplayRows;
 use elastokin_solver::Mode;
@@ -101,12 +102,80 @@ impl Analysis {
         self.unit() == "m"
     }
 
+    /// What the rig holds or leaves free, where it is more than one corner on its own rig: for the
+    /// command's help.
+    pub fn rig_words(self) -> Option<&'static str> {
+        match self {
+            Analysis::Roll => Some("full axle"),
+            Analysis::Steering => Some("full axle, wheel-centre heights held"),
+            Analysis::VerticalForce => Some("wheel free (or at --load-point)"),
+            Analysis::ParallelTravel | Analysis::Road(_) | Analysis::StaticLoad | Analysis::ModelLoads => None,
+        }
+    }
+
+    /// The range the analysis walks when none is given, in its own unit (see [`DefaultRange`]).
+    pub fn default_range(self) -> DefaultRange {
+        use DefaultRange::{AroundDesignLoad, Ends, NoRange};
+        match self {
+            Analysis::ParallelTravel => Ends(-0.08, 0.08),
+            Analysis::Roll => Ends(-0.05, 0.05),
+            Analysis::Steering => Ends(-0.04, 0.04),
+            Analysis::VerticalForce => AroundDesignLoad,
+            Analysis::Road(WheelLoad::Lateral) => Ends(-3000.0, 3000.0),
+            Analysis::Road(WheelLoad::Braking | WheelLoad::Traction) => Ends(0.0, 3000.0),
+            Analysis::Road(WheelLoad::AligningTorque) => Ends(-200.0, 200.0),
+            Analysis::StaticLoad => NoRange,
+            Analysis::ModelLoads => Ends(0.0, 1.0),
+        }
+    }
+
+    /// The range to walk: `given`, else the analysis's default ends. An analysis whose default depends on
+    /// the model (the vertical force) or that walks no range (the static load) finds its own.
+    pub(super) fn range_or_default(self, given: Option<(f64, f64)>) -> Result<(f64, f64), Cause> {
+        match (given, self.default_range()) {
+            (Some(range), _) => Ok(range),
+            (None, DefaultRange::Ends(from, to)) => Ok((from, to)),
+            (None, default) => Err(Cause::Settings(format!("{}: {default}: give the range", self.name()))),
+        }
+    }
+
     /// Where the design position sits on the load parameter (the vertical force sweep's is the design
     /// wheel load, known only once the model is solved, so `None` there).
     pub fn design_parameter(self) -> Option<f64> {
         match self {
             Analysis::VerticalForce | Analysis::StaticLoad => None,
             _ => Some(0.0),
+        }
+    }
+}
+
+/// The range an analysis walks when none is given ([`Analysis::default_range`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DefaultRange {
+    /// These ends, in the analysis's own unit.
+    Ends(f64, f64),
+    /// From half to one and a half times the design wheel load, or from 0 to [`UNLOADED_RANGE_TOP`] N
+    /// where that is next to nothing (a range around nothing would have no width).
+    AroundDesignLoad,
+    /// None: the analysis applies its load at once.
+    NoRange,
+}
+
+/// The top of the vertical force's default range for a corner that carries next to nothing at design (its
+/// spring at its free length, as some imported data have it), N.
+pub const UNLOADED_RANGE_TOP: f64 = 3000.0;
+
+impl std::fmt::Display for DefaultRange {
+    /// As the command's help says it: `default -0.08,0.08`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            DefaultRange::Ends(from, to) => write!(f, "default {},{}", plain(*from), plain(*to)),
+            DefaultRange::AroundDesignLoad => write!(
+                f,
+                "default 0.5..1.5 x the design wheel load (0..{} N when it is nothing)",
+                plain(UNLOADED_RANGE_TOP)
+            ),
+            DefaultRange::NoRange => write!(f, "no range"),
         }
     }
 }

@@ -19,7 +19,7 @@ use elastokin_solver::replay::ReplayRows;
 
 pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
     let file = models.file();
-    let range = s.range.unwrap_or((-0.08, 0.08));
+    let range = Analysis::ParallelTravel.range_or_default(s.range)?;
     let corner = models.corner_ref(Rig::WheelTravel)?;
     let out =
         parallel_wheel_travel_with(corner, range.0, range.1, s.steps, s.mode, s.extras_reading(range, 0.0, NO_ROWS))?;
@@ -273,7 +273,7 @@ fn parallel_travel_figures(file: &SuspensionFile, corner: &Corner, design: Desig
 
 pub(super) fn roll(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
     let file = models.file();
-    let range = s.range.unwrap_or((-0.05, 0.05));
+    let range = Analysis::Roll.range_or_default(s.range)?;
     let axle = models.axle_ref(AxleRig::OppositeTravel)?;
     let has_bars = !axle.anti_roll_bars.is_empty();
     // The shared beams' names as keys and columns: a twist-beam axle's cross member is read in roll.
@@ -488,7 +488,7 @@ fn ackermann(r: &AxleRow, track: f64, wheelbase: f64) -> Option<(f64, f64, f64)>
 
 pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
     let file = models.file();
-    let range = s.range.unwrap_or((-0.04, 0.04));
+    let range = Analysis::Steering.range_or_default(s.range)?;
     let axle = models.axle_ref(AxleRig::Steering)?;
     // Besides the readings at design, the figures read the row of full steer and that of the largest
     // Ackermann error, found by their values (named below).
