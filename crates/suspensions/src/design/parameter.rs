@@ -95,7 +95,8 @@ impl Parameters {
 }
 
 /// Whether the number at `pointer` (whole, `value`) is a count the model reads only whole (a beam's
-/// segments): the model reads with one more or one less of it, but not with half a one more.
+/// segments): the model reads it with one more but not half a one more, or with one less but not half a one
+/// less. (A fraction at the end of its range reads neither one nor half a one beyond it.)
 fn is_count(document: &Value, pointer: &str, value: f64) -> bool {
     // A whole number written as a JSON integer, as a count is written (`7`, not `7.0`).
     let reads = |v: Value| {
@@ -103,8 +104,10 @@ fn is_count(document: &Value, pointer: &str, value: f64) -> bool {
         moved.pointer_mut(pointer).map(|slot| *slot = v).is_some() && read(&moved, "", false).is_ok()
     };
     let whole = |v: f64| Value::from(v as i64);
-    let half = serde_json::Number::from_f64(value + 0.5).map(Value::Number);
-    half.is_some_and(|h| !reads(h)) && (reads(whole(value + 1.0)) || reads(whole(value - 1.0)))
+    let half = |v: f64| serde_json::Number::from_f64(v).map(Value::Number);
+    [1.0, -1.0]
+        .into_iter()
+        .any(|side| half(value + 0.5 * side).is_some_and(|h| !reads(h)) && reads(whole(value + side)))
 }
 
 /// Writes `value` at `pointer` of `document`.
