@@ -68,7 +68,30 @@ pub struct Table {
     pub rows: Vec<Vec<Cell>>,
 }
 
+/// A column of a table: its name and how a row gives its cell, side by side, so that the names and the
+/// values cannot drift apart.
+pub(crate) struct Column<'a, R> {
+    name: String,
+    cell: Box<dyn Fn(&R) -> Cell + 'a>,
+}
+
+impl<'a, R> Column<'a, R> {
+    /// The column `name` whose cell of a row is `cell(row)`.
+    pub(crate) fn new(name: impl Into<String>, cell: impl Fn(&R) -> Cell + 'a) -> Self {
+        Column { name: name.into(), cell: Box::new(cell) }
+    }
+}
+
 impl Table {
+    /// The table `name` of `rows`, one column per entry of `columns`.
+    pub(crate) fn of_columns<R>(name: &str, columns: &[Column<R>], rows: &[R]) -> Table {
+        Table {
+            name: name.into(),
+            columns: columns.iter().map(|c| c.name.clone()).collect(),
+            rows: rows.iter().map(|r| columns.iter().map(|c| (c.cell)(r)).collect()).collect(),
+        }
+    }
+
     /// A table of numbers.
     pub fn numbers<const N: usize>(name: &str, columns: [&str; N], rows: impl Iterator<Item = [f64; N]>) -> Table {
         Table {
