@@ -452,6 +452,111 @@ fn roll_charts(file: &SuspensionFile, rows: &[AxleRow]) -> Vec<Chart> {
     ]
 }
 
+/// The steering table of `rows`: steer angles, and Ackermann's ideal outer steer and the error from it
+/// where the `wheelbase` is known (with the contact patches' `track` at design).
+fn steering_table(rows: &[AxleRow], track: f64, wheelbase: Option<f64>) -> Table {
+    let a = move |r: &AxleRow| wheelbase.and_then(|l| ackermann(r, track, l));
+    let columns: Vec<Column<AxleRow>> = vec![
+        Column::new("rack_travel_m", |r: &AxleRow| r.travel.into()),
+        Column::new("left_steer_deg", |r: &AxleRow| deg(steer_angle(r.left.toe, Side::Left)).into()),
+        Column::new("right_steer_deg", |r: &AxleRow| deg(steer_angle(r.right.toe, Side::Right)).into()),
+        Column::new("left_toe_deg", |r: &AxleRow| deg(r.left.toe).into()),
+        Column::new("right_toe_deg", |r: &AxleRow| deg(r.right.toe).into()),
+        Column::new("left_camber_deg", |r: &AxleRow| deg(r.left.camber).into()),
+        Column::new("right_camber_deg", |r: &AxleRow| deg(r.right.camber).into()),
+        Column::new("ideal_outer_steer_deg", move |r: &AxleRow| Cell::from(a(r).map(|(_, _, ideal)| deg(ideal)))),
+        Column::new("ackermann_error_deg", move |r: &AxleRow| {
+            Cell::from(a(r).map(|(_, outer, ideal)| deg(outer - ideal)))
+        }),
+        Column::new("ackermann_percent", move |r: &AxleRow| {
+            Cell::from(a(r).map(|(inner, outer, ideal)| 100.0 * (inner - outer) / (inner - ideal)))
+        }),
+    ];
+    Table::of_columns("steering", &columns, rows)
+}
+
+/// The steering figures: the steer per rack travel at design, the steering ratio (with the rack's travel
+/// per turn of the hand wheel, `c_factor`), and Ackermann at full steer and its largest error, read off the
+/// rows, where the `wheelbase` is known.
+fn steering_figures(
+    rows: &[AxleRow],
+    design: Design<AxleRow>,
+    track: f64,
+    wheelbase: Option<f64>,
+    c_factor: Option<f64>,
+) -> Vec<Figure> {
+    let why = design.err().unwrap_or_default();
+    let mean_steer = |r: &AxleRow| 0.5 * (steer_angle(r.left.toe, Side::Left) + steer_angle(r.right.toe, Side::Right));
+    let per_rack = design.ok().map(|d| d.rate(mean_steer));
+    let mut f = vec![Figure::of(&figures::STEER_PER_RACK_TRAVEL, per_rack, why)];
+    f.push(match (per_rack, c_factor) {
+        // A rack that does not steer the wheels at design has no ratio (a hand wheel turning forever).
+        (Some(d), Some(_)) if d.abs() < 1e-11 => Figure::of(
+            &figures::STEERING_RATIO,
+            None,
+            "the rack travel does not steer the wheels at design: check the tie rods (tie_rod_inner, \
+             tie_rod_outer) and their bushings",
+        ),
+        // A turn of the hand wheel moves the rack by c, which turns the wheels by c·d.
+        (Some(d), Some(c)) => Figure::of(&figures::STEERING_RATIO, Some(std::f64::consts::TAU / (c * d.abs())), ""),
+        (None, _) => Figure::of(&figures::STEERING_RATIO, None, why),
+        (_, None) => Figure::of(&figures::STEERING_RATIO, None, &needs_vehicle("rack_travel_per_revolution")),
+    });
+    match wheelbase {
+        Some(l) => {
+            // At the end of the rack travel that steers most: where Ackermann is read on a rig; and the
+            // largest error, the row where it is largest. Both are read off the rows (`every` k-th, the
+            // last among them), so they are as fine as the steps: every other row reads them again, and
+            // the difference is their discretization's estimate.
+            let read = |every: usize| {
+                let angles = || {
+                    let first = (rows.len() + every - 1) % every;
+                    rows.iter()
+                        .enumerate()
+                        .skip(first)
+                        .step_by(every)
+                        .filter_map(|(i, r)| Some((i, ackermann(r, track, l)?)))
+                };
+                let end = angles().max_by(|a, b| a.1 .0.total_cmp(&b.1 .0));
+                let worst = angles()
+                    .map(|(i, (_, outer, ideal))| (i, outer - ideal))
+                    .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()));
+                (end, worst)
+            };
+            let (end, worst) = read(1);
+            // A recording's replays move these rows too (they are found by their values).
+            let named: Vec<usize> = [end.map(|r| r.0), worst.map(|r| r.0)].into_iter().flatten().collect();
+            elastokin_solver::replay::rows_read(&named);
+            let (end, worst) = (end.map(|r| r.1), worst.map(|r| r.1));
+            let (coarse_end, coarse_worst) = read(2);
+            let (coarse_end, coarse_worst) = (coarse_end.map(|r| r.1), coarse_worst.map(|r| r.1));
+            // Steer angles are read from the design's straight ahead: wheels toed in or out at rack
+            // centre by more than the rack turns them never both turn one way.
+            let turned = rows.iter().any(|r| r.left.toe.abs() > 1e-9 || r.right.toe.abs() > 1e-9);
+            let none = if turned {
+                "no rack position turns both wheels the same way: their toe at rack centre outweighs the steer \
+                 the rack gives (check the tie rods and their bushings)"
+            } else {
+                "the rack travel steers neither wheel"
+            };
+            let fraction = |(i, o, ideal): (f64, f64, f64)| (i - o) / (i - ideal);
+            let inner = |(i, _, _): (f64, f64, f64)| i;
+            let discretized = |mut f: Figure, coarse: Option<f64>| {
+                f.error = f.value.zip(coarse).map(|(a, b)| (a - b).abs()).filter(|e| e.is_finite());
+                f
+            };
+            f.push(discretized(Figure::of(&figures::ACKERMANN, end.map(fraction), none), coarse_end.map(fraction)));
+            f.push(discretized(
+                Figure::of(&figures::INNER_STEER_AT_FULL_RACK, end.map(inner), none),
+                coarse_end.map(inner),
+            ));
+            f.push(discretized(Figure::of(&figures::ACKERMANN_ERROR, worst, none), coarse_worst));
+        }
+        None => f.push(Figure::of(&figures::ACKERMANN, None, &needs_vehicle("wheelbase")).labelled("Ackermann")),
+    }
+    f
+}
+
 /// Steer angle of a wheel (positive turning left, about +z) from its toe (toe-in positive).
 fn steer_angle(toe: f64, side: Side) -> f64 {
     -side.sign() * toe
@@ -489,115 +594,10 @@ pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, 
     let wheelbase = file.vehicle.as_ref().map(|v| v.wheelbase);
     // Track between the contact patches at design: the lateral distance Ackermann's rule uses.
     let track = axle.left.contact_patch.y - axle.right.contact_patch.y;
-    let table = |rows: &[AxleRow]| Table {
-        name: "steering".into(),
-        columns: [
-            "rack_travel_m",
-            "left_steer_deg",
-            "right_steer_deg",
-            "left_toe_deg",
-            "right_toe_deg",
-            "left_camber_deg",
-            "right_camber_deg",
-            "ideal_outer_steer_deg",
-            "ackermann_error_deg",
-            "ackermann_percent",
-        ]
-        .map(String::from)
-        .to_vec(),
-        rows: rows
-            .iter()
-            .map(|r| {
-                let a = wheelbase.and_then(|l| ackermann(r, track, l));
-                vec![
-                    r.travel.into(),
-                    deg(steer_angle(r.left.toe, Side::Left)).into(),
-                    deg(steer_angle(r.right.toe, Side::Right)).into(),
-                    deg(r.left.toe).into(),
-                    deg(r.right.toe).into(),
-                    deg(r.left.camber).into(),
-                    deg(r.right.camber).into(),
-                    Cell::from(a.map(|(_, _, ideal)| deg(ideal))),
-                    Cell::from(a.map(|(_, outer, ideal)| deg(outer - ideal))),
-                    Cell::from(a.map(|(inner, outer, ideal)| 100.0 * (inner - outer) / (inner - ideal))),
-                ]
-            })
-            .collect(),
-    };
+    let table = |rows: &[AxleRow]| steering_table(rows, track, wheelbase);
     let c_factor = file.vehicle.as_ref().and_then(|v| v.rack_travel_per_revolution);
-    let figures = |rows: &[AxleRow], design: Design<AxleRow>| {
-        let why = design.err().unwrap_or_default();
-        let mean_steer =
-            |r: &AxleRow| 0.5 * (steer_angle(r.left.toe, Side::Left) + steer_angle(r.right.toe, Side::Right));
-        let per_rack = design.ok().map(|d| d.rate(mean_steer));
-        let mut f = vec![Figure::of(&figures::STEER_PER_RACK_TRAVEL, per_rack, why)];
-        f.push(match (per_rack, c_factor) {
-            // A rack that does not steer the wheels at design has no ratio (a hand wheel turning forever).
-            (Some(d), Some(_)) if d.abs() < 1e-11 => Figure::of(
-                &figures::STEERING_RATIO,
-                None,
-                "the rack travel does not steer the wheels at design: check the tie rods (tie_rod_inner, \
-                 tie_rod_outer) and their bushings",
-            ),
-            // A turn of the hand wheel moves the rack by c, which turns the wheels by c·d.
-            (Some(d), Some(c)) => Figure::of(&figures::STEERING_RATIO, Some(std::f64::consts::TAU / (c * d.abs())), ""),
-            (None, _) => Figure::of(&figures::STEERING_RATIO, None, why),
-            (_, None) => Figure::of(&figures::STEERING_RATIO, None, &needs_vehicle("rack_travel_per_revolution")),
-        });
-        match wheelbase {
-            Some(l) => {
-                // At the end of the rack travel that steers most: where Ackermann is read on a rig; and the
-                // largest error, the row where it is largest. Both are read off the rows (`every` k-th, the
-                // last among them), so they are as fine as the steps: every other row reads them again, and
-                // the difference is their discretization's estimate.
-                let read = |every: usize| {
-                    let angles = || {
-                        let first = (rows.len() + every - 1) % every;
-                        rows.iter()
-                            .enumerate()
-                            .skip(first)
-                            .step_by(every)
-                            .filter_map(|(i, r)| Some((i, ackermann(r, track, l)?)))
-                    };
-                    let end = angles().max_by(|a, b| a.1 .0.total_cmp(&b.1 .0));
-                    let worst = angles()
-                        .map(|(i, (_, outer, ideal))| (i, outer - ideal))
-                        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()));
-                    (end, worst)
-                };
-                let (end, worst) = read(1);
-                // A recording's replays move these rows too (they are found by their values).
-                let named: Vec<usize> = [end.map(|r| r.0), worst.map(|r| r.0)].into_iter().flatten().collect();
-                elastokin_solver::replay::rows_read(&named);
-                let (end, worst) = (end.map(|r| r.1), worst.map(|r| r.1));
-                let (coarse_end, coarse_worst) = read(2);
-                let (coarse_end, coarse_worst) = (coarse_end.map(|r| r.1), coarse_worst.map(|r| r.1));
-                // Steer angles are read from the design's straight ahead: wheels toed in or out at rack
-                // centre by more than the rack turns them never both turn one way.
-                let turned = rows.iter().any(|r| r.left.toe.abs() > 1e-9 || r.right.toe.abs() > 1e-9);
-                let none = if turned {
-                    "no rack position turns both wheels the same way: their toe at rack centre outweighs the steer \
-                     the rack gives (check the tie rods and their bushings)"
-                } else {
-                    "the rack travel steers neither wheel"
-                };
-                let fraction = |(i, o, ideal): (f64, f64, f64)| (i - o) / (i - ideal);
-                let inner = |(i, _, _): (f64, f64, f64)| i;
-                let discretized = |mut f: Figure, coarse: Option<f64>| {
-                    f.error = f.value.zip(coarse).map(|(a, b)| (a - b).abs()).filter(|e| e.is_finite());
-                    f
-                };
-                f.push(discretized(Figure::of(&figures::ACKERMANN, end.map(fraction), none), coarse_end.map(fraction)));
-                f.push(discretized(
-                    Figure::of(&figures::INNER_STEER_AT_FULL_RACK, end.map(inner), none),
-                    coarse_end.map(inner),
-                ));
-                f.push(discretized(Figure::of(&figures::ACKERMANN_ERROR, worst, none), coarse_worst));
-            }
-            None => f.push(Figure::of(&figures::ACKERMANN, None, &needs_vehicle("wheelbase")).labelled("Ackermann")),
-        }
-        f
-    };
+    let figures =
+        |rows: &[AxleRow], design: Design<AxleRow>| steering_figures(rows, design, track, wheelbase, c_factor);
     let x = |r: &AxleRow| r.travel * 1e3;
     let charts = vec![chart(
         file,
