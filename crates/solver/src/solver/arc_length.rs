@@ -1,6 +1,7 @@
 //! Arc-length continuation: the path followed through its limit points, each step of a fixed length
 //! in the scaled space of motions and load.
 
+use super::newton::{self, largest_turn, CorrectorReach};
 use super::*;
 
 impl<'m> StaticSolver<'m> {
@@ -153,13 +154,9 @@ impl<'m> StaticSolver<'m> {
         state.t += dt;
         let mut dt_total = dt;
         // Corrector: Newton on (R, Φ) with the normal-plane constraint (Δq_totalᵀ δq + ψ² Δt_total δt = 0).
-        // As a load step's corrector (`newton`), its later iterations may not travel further in the scaled
-        // space than the predictor and its first iteration did (plus what closing the joints to their
-        // tolerance takes), nor may one iteration turn a body by more than `max_rotation_step`: a corrector
-        // that does has left the branch the predictor was on (jumped across a fold or a crossing to another
-        // branch), and the step is cut.
-        let allowance = 100.0 * self.options.constraint_tolerance;
-        let (mut first_norm, mut corrector_travel) = (0.0, 0.0);
+        // It keeps to its reach in the scaled space, whose predictor went `arc`, and turns no body by more
+        // than `max_rotation_step` at once, as a load step's corrector does; a step that does not is cut.
+        let mut reach = CorrectorReach::new(arc, self.options.constraint_tolerance);
         let mut last = (f64::INFINITY, f64::INFINITY);
         for iter in 0..self.options.max_iterations {
             self.assemble(state, Some(Tangent::Full));
@@ -184,21 +181,9 @@ impl<'m> StaticSolver<'m> {
             if r_dq.iter().any(|v| !v.is_finite()) {
                 return Err(SolverError::NonFinite { what: "arc-length corrector" });
             }
-            let travel = (r_dq[..n].iter().map(|v| v * v).sum::<f64>() + psi2 * dt * dt).sqrt();
-            if iter == 0 {
-                first_norm = travel;
-            } else {
-                corrector_travel += travel;
-            }
-            let turn = (0..n).filter(|c| c % BODY_DOFS >= 3).fold(0.0f64, |a, c| a.max(r_dq[c].abs()));
-            if corrector_travel > arc + first_norm + allowance || turn > self.options.max_rotation_step {
-                return Err(SolverError::NoConvergence {
-                    t: state.t,
-                    last_converged: None,
-                    iterations: iter,
-                    force_residual: r.force,
-                    constraint_residual: r.constraint,
-                });
+            let length = (r_dq[..n].iter().map(|v| v * v).sum::<f64>() + psi2 * dt * dt).sqrt();
+            if reach.walked_off(iter, length) || largest_turn(&r_dq[..n]) > self.options.max_rotation_step {
+                return Err(newton::unconverged(state.t, iter, &r));
             }
             Self::apply(&mut state.poses, &r_dq[..n], 1.0);
             for k in 0..m {

@@ -15,7 +15,7 @@ enum SolvedWith<'a> {
 }
 
 /// Newton's failure at load parameter `t` after `iterations`, with the residual `r` it left.
-fn unconverged(t: f64, iterations: usize, r: &Residual) -> SolverError {
+pub(super) fn unconverged(t: f64, iterations: usize, r: &Residual) -> SolverError {
     SolverError::NoConvergence {
         t,
         last_converged: None,
@@ -23,6 +23,43 @@ fn unconverged(t: f64, iterations: usize, r: &Residual) -> SolverError {
         force_residual: r.force,
         constraint_residual: r.constraint,
     }
+}
+
+/// How far a corrector has walked from where its predictor put it. Its first iteration is its own; the
+/// later ones may not together go further than the predictor and that first iteration did, plus what
+/// closing the joints to their tolerance may take (a predictor of nothing, as an ideal linkage held by its
+/// rig under a load, still leaves the start's converged joint gaps to close). A corrector that goes further
+/// reaches beyond where the tangent tells the path goes: across a limit point or a crossing, onto another
+/// branch. Load steps ([`StaticSolver::newton`]) and arc-length steps keep to it alike.
+pub(super) struct CorrectorReach {
+    predicted: f64,
+    allowance: f64,
+    first: f64,
+    later: f64,
+}
+
+impl CorrectorReach {
+    /// The reach of a corrector whose predictor went `predicted` far, with joints closed to
+    /// `constraint_tolerance`.
+    pub(super) fn new(predicted: f64, constraint_tolerance: f64) -> Self {
+        CorrectorReach { predicted, allowance: 100.0 * constraint_tolerance, first: 0.0, later: 0.0 }
+    }
+
+    /// Takes iteration `iteration`'s length; whether the corrector has now walked beyond its reach.
+    pub(super) fn walked_off(&mut self, iteration: usize, length: f64) -> bool {
+        if iteration == 0 {
+            self.first = length;
+        } else {
+            self.later += length;
+        }
+        self.later > self.predicted + self.first + self.allowance
+    }
+}
+
+/// The largest turn of any body in the increment `dq` (its body coordinates: three translations, then three
+/// rotations per body), rad.
+pub(super) fn largest_turn(dq: &[f64]) -> f64 {
+    dq.chunks_exact(BODY_DOFS).flat_map(|b| &b[3..]).fold(0.0f64, |a, v| a.max(v.abs()))
 }
 
 impl<'m> StaticSolver<'m> {
@@ -46,8 +83,7 @@ impl<'m> StaticSolver<'m> {
         let reuse = self.options.reuse_factorization;
         // Whether the factorization in hand may serve this iteration.
         let mut factored = reuse && !start.fresh && self.factored == Some(Tangent::Full);
-        let mut first_norm = 0.0;
-        let mut corrector_travel = 0.0;
+        let mut reach = CorrectorReach::new(start.predicted, self.options.constraint_tolerance);
         let mut last_merit = f64::INFINITY;
         let mut iter = 0;
         self.work.moved.fill(0.0);
@@ -77,17 +113,8 @@ impl<'m> StaticSolver<'m> {
             last_merit = merit;
             self.newton_increment()?;
             let step_norm = self.work.rhs[..n].iter().map(|v| v * v).sum::<f64>().sqrt();
-            let max_rot = (0..n).filter(|c| c % BODY_DOFS >= 3).fold(0.0f64, |a, c| a.max(self.work.rhs[c].abs()));
-            if iter == 0 {
-                first_norm = step_norm;
-            } else {
-                corrector_travel += step_norm;
-            }
-            // The allowance is what closing the joints to their tolerance may take: a predictor of nothing
-            // (an ideal linkage held by its rig does not move under a load) still leaves the start's
-            // converged joint gaps, up to the tolerance, to close.
-            let allowance = 100.0 * self.options.constraint_tolerance;
-            let walked_off = corrector_travel > start.predicted + first_norm + allowance;
+            let max_rot = largest_turn(&self.work.rhs[..n]);
+            let walked_off = reach.walked_off(iter, step_norm);
             if start.guard && (walked_off || max_rot > self.options.max_rotation_step) {
                 return Err(unconverged(state.t, iter, &r));
             }
