@@ -954,3 +954,30 @@ fn every_joint_kind_builds_from_the_geometry_it_declares_and_is_drawn_as_it_says
     }
     assert_eq!(kinds, 13);
 }
+
+/// The geometry each joint kind declares (`JointKind::geometry`) is what the model file's documentation
+/// says it takes: `docs/model-file.md`'s joint table lists every kind a file may use with its keys, a key
+/// after "optional" taken if given.
+#[test]
+fn every_joint_kind_takes_the_keys_its_documentation_lists() {
+    use elastokin_core::{JointKind, Takes};
+    let docs = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/model-file.md")).unwrap();
+    let mut documented = 0;
+    for kind in JointKind::all().filter(|k| !k.is_driver()) {
+        let word = serde_json::to_value(kind).unwrap().as_str().unwrap().to_string();
+        let row = docs.lines().find(|l| l.starts_with(&format!("| `{word}` |"))).unwrap_or_else(|| panic!("{word}"));
+        let keys = row.split('|').nth(2).unwrap();
+        let takes = |key: &str| {
+            let at = keys.find(&format!("`{key}`"));
+            match at {
+                None => Takes::Unused,
+                Some(i) if keys[..i].trim_end().ends_with("optional") => Takes::Optional,
+                Some(_) => Takes::Needed,
+            }
+        };
+        let g = kind.geometry();
+        assert_eq!([g.point, g.point_j, g.axis, g.axis_j], ["at", "to", "axis", "axis_j"].map(takes), "{word}: {row}");
+        documented += 1;
+    }
+    assert_eq!(documented, 11);
+}

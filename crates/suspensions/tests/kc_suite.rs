@@ -745,20 +745,34 @@ fn a_moved_file_built_in_the_coordinates_of_its_origin_reports_what_its_own_buil
 }
 
 /// Each analysis walks, by default, the range it declares (`Analysis::default_range`, which the command's
-/// help shows): its first and last rows at the declared ends.
+/// help shows), and that is the range the README's table of analyses documents: its first and last rows at
+/// those ends.
 #[test]
 fn every_analysis_walks_the_default_range_it_declares() {
     use elastokin_suspensions::kc::DefaultRange;
+    // The README's defaults: ±80, ±50 and ±40 mm, ±3 kN, 0–3 kN twice, ±200 N·m.
+    let documented = [
+        ("parallel-travel", -0.08, 0.08),
+        ("roll", -0.05, 0.05),
+        ("steering", -0.04, 0.04),
+        ("lateral-force", -3000.0, 3000.0),
+        ("braking-force", 0.0, 3000.0),
+        ("traction-force", 0.0, 3000.0),
+        ("aligning-torque", -200.0, 200.0),
+    ];
     let file = example("generic/macpherson.json");
     let report = kc::run_suite(&file, &[], &Settings { steps: 4, ..Settings::default() }, |_| {}).complete().unwrap();
     let mut checked = 0;
     for a in &report.analyses {
         let DefaultRange::Ends(from, to) = a.analysis.default_range() else { continue };
+        let name = a.analysis.name();
+        let &(_, low, high) = documented.iter().find(|d| d.0 == name).unwrap_or_else(|| panic!("{name}"));
+        assert_eq!((from, to), (low, high), "{name}");
         let first = a.table.rows.first().unwrap()[0].number().unwrap();
         let last = a.table.rows.last().unwrap()[0].number().unwrap();
-        assert_eq!((first, last), (from, to), "{}", a.analysis.name());
+        assert_eq!((first, last), (low, high), "{name}");
         checked += 1;
     }
-    // Parallel travel, roll, steering and the four road loads (the MacPherson has no load case of its own).
-    assert_eq!(checked, 7);
+    // Every one the README lists (the MacPherson has no load case of its own).
+    assert_eq!(checked, documented.len());
 }

@@ -139,13 +139,7 @@ impl SpringDef {
         if self.preload.is_some() && self.design_force.is_some() {
             return refuse("give a preload with free_length only: with design_force the push at design includes it");
         }
-        // What pushes, and how long it is free: one of each, both said before either is read.
-        if self.rate.is_some() == self.curve.is_some() {
-            return refuse("give either rate (N/m) or curve (push force in N against compression in m)");
-        }
-        if self.design_force.is_some() == self.free_length.is_some() {
-            return refuse("give either design_force (N, its push at design) or free_length (m)");
-        }
+        // What pushes, and how long it is free: one of each.
         let characteristic = match (self.rate, &self.curve) {
             (Some(rate), None) => {
                 check_rate(format_args!("{key}.rate"), rate, TRANSLATIONAL_RATE_RANGE, "N/m")?;

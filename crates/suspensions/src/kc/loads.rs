@@ -10,7 +10,7 @@ use crate::kc::figures;
 use crate::kc::models::Models;
 use crate::kc::reduce::{axis, bushings_share, chart, corner_drawing, deg, finish, Design, Reduction};
 use crate::kc::report::{Accuracy, AnalysisReport, Cell, Figure, FigureKind, Table, Warning};
-use crate::kc::settings::{mode_word, Analysis, Cause, Settings, NO_ROWS, UNLOADED_RANGE_TOP};
+use crate::kc::settings::{mode_word, Analysis, Cause, DefaultRange, Settings, NO_ROWS};
 use crate::kc::unit::Unit;
 use elastokin_solver::replay::ReplayRows;
 use elastokin_solver::LoadPath;
@@ -31,12 +31,7 @@ pub(super) fn vertical_force(models: &Models, s: &Settings) -> Result<AnalysisRe
     let file = models.file();
     let held = models.corner_ref(Rig::WheelTravel)?;
     let (design_load, design_load_error) = design_wheel_load_estimated(held, s.error_estimate)?;
-    // The default range (`DefaultRange::AroundDesignLoad`).
-    let range = match s.range {
-        Some(range) => range,
-        None if design_load.abs() < 1.0 => (0.0, UNLOADED_RANGE_TOP),
-        None => (0.5 * design_load, 1.5 * design_load),
-    };
+    let range = s.range.unwrap_or_else(|| DefaultRange::around_design_load(design_load));
     let mut corner = models.corner(Rig::Free)?;
     corner.load_point = s.load_point;
     let z0 = corner.wheel.wheel_centre.z;

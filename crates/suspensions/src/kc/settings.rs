@@ -163,7 +163,18 @@ pub enum DefaultRange {
 
 /// The top of the vertical force's default range for a corner that carries next to nothing at design (its
 /// spring at its free length, as some imported data have it), N.
-pub const UNLOADED_RANGE_TOP: f64 = 3000.0;
+const UNLOADED_RANGE_TOP: f64 = 3000.0;
+
+impl DefaultRange {
+    /// The ends of [`DefaultRange::AroundDesignLoad`] for a corner carrying `design_load` (N).
+    pub(super) fn around_design_load(design_load: f64) -> (f64, f64) {
+        if design_load.abs() < 1.0 {
+            (0.0, UNLOADED_RANGE_TOP)
+        } else {
+            (0.5 * design_load, 1.5 * design_load)
+        }
+    }
+}
 
 impl std::fmt::Display for DefaultRange {
     /// As the command's help says it: `default -0.08,0.08`.
