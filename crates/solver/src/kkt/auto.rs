@@ -17,8 +17,9 @@ use crate::kkt::{Accuracy, FactorCounters, FactorError, FactorReport, KktBackend
 /// 27, a double wishbone 25, the shipped four-link axle 60.
 pub const DENSE_MAX_ORDER: usize = 80;
 
-/// Which backend a solver uses.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// Which backend a solver uses. Every choice is held against the dense pivoted reference
+/// (`crates/solver/tests/kkt_backend.rs` walks them all, by `strum::IntoEnumIterator`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, strum::EnumIter)]
 pub enum BackendChoice {
     /// The dense LU up to [`DENSE_MAX_ORDER`], the sparse LDLᵀ above.
     #[default]

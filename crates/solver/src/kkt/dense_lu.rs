@@ -30,12 +30,11 @@
 //! of a sparse KKT column by column.
 
 use crate::kkt::pattern::{validate, KktPattern};
-use crate::kkt::refinement::{backward_error, Factored, Refinement};
 use crate::kkt::scaling::equilibrate;
-use crate::kkt::{
-    check_values, max_abs, Accuracy, FactorCounters, FactorError, FactorReport, KktBackend, KktOptions, KktValues,
-    SolveReport,
-};
+use crate::kkt::solver::{KktEngine, KktSolver};
+use crate::kkt::system::KktSystem;
+use crate::kkt::{Accuracy, FactorError, FactorReport, KktOptions};
+use std::sync::Arc;
 
 /// A row's largest scaled entry may drift this far from 1 (either way) before the scaling is renewed.
 const SCALING_DRIFT: f64 = 16.0;
@@ -46,37 +45,24 @@ fn within(row_max: &[f64], drift: f64) -> bool {
     row_max.iter().all(|&x| x == 0.0 || (x >= 1.0 / drift && x <= drift))
 }
 
-/// Equilibrated dense LU with partial pivoting of a KKT system of fixed pattern.
+/// The equilibrated dense LU with partial pivoting of a KKT system of fixed pattern: the
+/// [`KktSolver`] of a [`PivotedLu`].
+pub type DenseLu = KktSolver<PivotedLu>;
+
+/// The engine of [`DenseLu`]: the scaling, the factors and the row exchanges of the last factorization.
 #[derive(Debug, Clone)]
-pub struct DenseLu {
+pub struct PivotedLu {
     n: usize,
     m: usize,
     options: KktOptions,
-    k_col_ptr: Vec<usize>,
-    k_row_idx: Vec<usize>,
-    j_col_ptr: Vec<usize>,
-    j_row_idx: Vec<usize>,
-    // Values of the last factorization, original units (for the refinement residual).
-    k_val: Vec<f64>,
-    skew_val: Vec<f64>,
-    has_skew: bool,
-    j_val: Vec<f64>,
     scale: Vec<f64>,
     /// Whether `scale` was equilibrated for values of this pattern (not after `analyze` or `reset`).
     scaled: bool,
     row_max: Vec<f64>,
-    /// Largest entry of each row of the true matrix, original units (for the backward error).
-    row_norm: Vec<f64>,
     /// `L` (unit, below the diagonal) and `U` of the scaled matrix, column-major, order `n + m`.
     lu: Vec<f64>,
     /// Row exchanged with row `k` at elimination step `k`.
     swap: Vec<usize>,
-    // Solve workspaces.
-    z: Vec<f64>,
-    refinement: Refinement,
-    rhs0: Vec<f64>,
-    factorized: bool,
-    counters: FactorCounters,
 }
 
 impl DenseLu {
@@ -89,108 +75,63 @@ impl DenseLu {
         // The factor itself is allocated at the first factorization: many solvers never factorize (a
         // replay's solves with recorded factors), and its order squared dominates what a solver holds.
         size.checked_mul(size).filter(|&d| d <= (isize::MAX as usize) / 64).ok_or(FactorError::OutOfMemory)?;
-        Ok(DenseLu {
+        let engine = PivotedLu {
             n,
             m,
-            options,
-            k_col_ptr: pattern.k_col_ptr.clone(),
-            k_row_idx: pattern.k_row_idx.clone(),
-            j_col_ptr: pattern.j_col_ptr.clone(),
-            j_row_idx: pattern.j_row_idx.clone(),
-            k_val: vec![0.0; pattern.k_row_idx.len()],
-            skew_val: vec![0.0; pattern.k_row_idx.len()],
-            has_skew: false,
-            j_val: vec![0.0; pattern.j_row_idx.len()],
+            options: options.clone(),
             scale: vec![1.0; size],
             scaled: false,
             row_max: vec![0.0; size],
-            row_norm: vec![0.0; size],
             lu: Vec::new(),
             swap: vec![0; size],
-            z: vec![0.0; size],
-            refinement: Refinement::new(size),
-            rhs0: vec![0.0; size],
-            factorized: false,
-            counters: FactorCounters { symbolic_analyses: 1, ..FactorCounters::default() },
-        })
+        };
+        Ok(KktSolver::new(engine, Arc::new(pattern.clone()), options, 1))
     }
 
     /// The pattern this factor was analysed for (the sparse fallback analyses it on first need).
     pub fn pattern(&self) -> KktPattern {
-        KktPattern {
-            n: self.n,
-            m: self.m,
-            k_col_ptr: self.k_col_ptr.clone(),
-            k_row_idx: self.k_row_idx.clone(),
-            j_col_ptr: self.j_col_ptr.clone(),
-            j_row_idx: self.j_row_idx.clone(),
-        }
+        self.system().pattern().clone()
     }
 
     /// The symmetric scaling in use (powers of two).
     pub fn scaling(&self) -> &[f64] {
-        &self.scale
+        &self.engine().scale
     }
 
-    /// Every stored entry of the true matrix in original units, `(row, col, value)`, both triangles.
-    fn for_each_entry(&self, mut f: impl FnMut(usize, usize, f64)) {
-        let n = self.n;
-        for c in 0..n {
-            for e in self.k_col_ptr[c]..self.k_col_ptr[c + 1] {
-                let r = self.k_row_idx[e];
-                let (v, s) = (self.k_val[e], if self.has_skew { self.skew_val[e] } else { 0.0 });
-                f(r, c, v + s);
-                if r != c {
-                    f(c, r, v - s);
-                }
-            }
-            for e in self.j_col_ptr[c]..self.j_col_ptr[c + 1] {
-                let i = n + self.j_row_idx[e];
-                f(i, c, self.j_val[e]);
-                f(c, i, self.j_val[e]);
-            }
-        }
+    /// The factors of the last factorization, apart from this workspace (`None` before one succeeded).
+    pub fn factors(&self) -> Option<LuFactors> {
+        let lu = self.engine();
+        self.factorized().then(|| LuFactors { lu: lu.lu.clone(), swap: lu.swap.clone(), scale: lu.scale.clone() })
     }
+}
 
+impl PivotedLu {
     /// Ruiz sweeps from the current scaling (see [`equilibrate`]) on the whole matrix, skew part included.
-    fn equilibrate(&mut self) {
-        let mut row_max = std::mem::take(&mut self.row_max);
-        let mut scale = std::mem::take(&mut self.scale);
-        equilibrate(&mut scale, &mut row_max, self.options.scaling_iterations.max(1), |s, rm| {
-            self.for_each_entry(|r, c, v| {
+    fn equilibrate(&mut self, system: &KktSystem) {
+        equilibrate(&mut self.scale, &mut self.row_max, self.options.scaling_iterations.max(1), |s, rm| {
+            system.for_each_entry(|r, c, v| {
                 let a = v.abs() * s[r] * s[c];
                 if a > rm[r] {
                     rm[r] = a;
                 }
             });
         });
-        self.scale = scale;
-        self.row_max = row_max;
     }
 
     /// Scatters the scaled values into the factor buffer, on the same pass measuring each row's largest
-    /// entry, in original units into `row_norm` (for the backward error) and scaled into `row_max`;
-    /// returns whether the scaled ones are still within [`SCALING_DRIFT`] of 1.
-    fn scatter(&mut self) -> bool {
+    /// scaled entry into `row_max`; returns whether they are still within [`SCALING_DRIFT`] of 1.
+    fn scatter(&mut self, system: &KktSystem) -> bool {
         let size = self.n + self.m;
-        let mut lu = std::mem::take(&mut self.lu);
-        let mut row_norm = std::mem::take(&mut self.row_norm);
-        let mut row_max = std::mem::take(&mut self.row_max);
+        let (lu, row_max, s) = (&mut self.lu, &mut self.row_max, &self.scale);
         lu.fill(0.0);
-        row_norm.fill(0.0);
         row_max.fill(0.0);
-        let s = &self.scale;
-        self.for_each_entry(|r, c, v| {
+        system.for_each_entry(|r, c, v| {
             let scaled = v * s[r] * s[c];
             lu[c * size + r] += scaled;
-            row_norm[r] = row_norm[r].max(v.abs());
             row_max[r] = row_max[r].max(scaled.abs());
         });
-        let drifted = !within(&row_max, SCALING_DRIFT);
-        (self.lu, self.row_norm, self.row_max) = (lu, row_norm, row_max);
-        !drifted
+        within(row_max, SCALING_DRIFT)
     }
-
     /// `P Â = L U` in place; returns the first column whose pivot is at or below `singular` in magnitude,
     /// if any (the factorization stops there).
     fn factor_in_place(&mut self, singular: f64) -> Option<usize> {
@@ -233,11 +174,6 @@ impl DenseLu {
         None
     }
 
-    /// The factors of the last factorization, apart from this workspace (`None` before one succeeded).
-    pub fn factors(&self) -> Option<LuFactors> {
-        self.factorized.then(|| LuFactors { lu: self.lu.clone(), swap: self.swap.clone(), scale: self.scale.clone() })
-    }
-
     /// `t ← Â⁻¹ t` with the factors (scaled units).
     fn apply_factors(lu: &[f64], swap: &[usize], t: &mut [f64]) {
         let size = t.len();
@@ -264,19 +200,12 @@ impl DenseLu {
     }
 }
 
-/// `to ← from`, refused as the sparse factor refuses values of the wrong length or not finite.
-fn copy_checked(what: &'static str, from: &[f64], to: &mut [f64]) -> Result<(), FactorError> {
-    check_values(what, from, to.len())?;
-    to.copy_from_slice(from);
-    Ok(())
-}
-
 /// `t ← A⁻¹ t` in original units from the factors of `Â = S A S`: `S Â⁻¹ S t`.
 fn apply_inverse_scaled(lu: &[f64], swap: &[usize], scale: &[f64], t: &mut [f64]) {
     for (v, s) in t.iter_mut().zip(scale) {
         *v *= s;
     }
-    DenseLu::apply_factors(lu, swap, t);
+    PivotedLu::apply_factors(lu, swap, t);
     for (v, s) in t.iter_mut().zip(scale) {
         *v *= s;
     }
@@ -304,28 +233,7 @@ impl LuFactors {
     }
 }
 
-impl Factored for DenseLu {
-    /// `out = A⁻¹ src` in original units: `S Â⁻¹ S src`.
-    fn apply_inverse(&mut self, src: &[f64], out: &mut [f64]) {
-        out.copy_from_slice(src);
-        apply_inverse_scaled(&self.lu, &self.swap, &self.scale, out);
-    }
-
-    /// `r = rhs0 − A z` in original units; returns its backward error ([`super::backward_error`]).
-    fn residual(&self, z: &[f64], r: &mut [f64], den: &mut [f64]) -> f64 {
-        r.copy_from_slice(&self.rhs0);
-        for (d, b) in den.iter_mut().zip(&self.rhs0) {
-            *d = b.abs();
-        }
-        self.for_each_entry(|row, col, v| {
-            r[row] -= v * z[col];
-            den[row] += (v * z[col]).abs();
-        });
-        backward_error(r, den, &self.row_norm, &self.rhs0, z)
-    }
-}
-
-impl KktBackend for DenseLu {
+impl KktEngine for PivotedLu {
     fn name(&self) -> &'static str {
         "dense LU"
     }
@@ -334,28 +242,21 @@ impl KktBackend for DenseLu {
         true
     }
 
-    fn factorize(&mut self, values: KktValues<'_>) -> Result<FactorReport, FactorError> {
-        self.factorized = false;
-        copy_checked("k_values", values.k, &mut self.k_val)?;
-        copy_checked("j_values", values.j, &mut self.j_val)?;
-        self.has_skew = values.k_skew.is_some();
-        if let Some(skew) = values.k_skew {
-            copy_checked("k_skew", skew, &mut self.skew_val)?;
-        }
+    fn factorize(&mut self, system: &KktSystem) -> Result<FactorReport, FactorError> {
         let dense = (self.n + self.m).pow(2);
         if self.lu.len() != dense {
             self.lu.try_reserve_exact(dense).map_err(|_| FactorError::OutOfMemory)?;
             self.lu.resize(dense, 0.0);
         }
         if !self.scaled {
-            self.equilibrate();
+            self.equilibrate(system);
             self.scaled = true;
         }
         // The scatter measures the drift; only values that moved an order of magnitude are equilibrated
         // again and scattered anew.
-        if !self.scatter() {
-            self.equilibrate();
-            self.scatter();
+        if !self.scatter(system) {
+            self.equilibrate(system);
+            self.scatter(system);
         }
         let n = self.n;
         if let Some(k) = self.factor_in_place(self.options.pivot_threshold) {
@@ -389,60 +290,23 @@ impl KktBackend for DenseLu {
         report.max_body_pivot = bmax;
         report.min_constraint_pivot = if self.m > 0 { cmin } else { 0.0 };
         report.max_constraint_pivot = cmax;
-        self.factorized = true;
-        self.counters.numeric_factorizations += 1;
         Ok(report)
     }
 
-    fn solve_in_place(&mut self, rhs: &mut [f64], accuracy: Accuracy) -> Result<SolveReport, FactorError> {
-        let size = self.n + self.m;
-        if !self.factorized {
-            return Err(FactorError::NotFactorized);
-        }
-        if rhs.len() != size {
-            return Err(FactorError::PatternMismatch { what: "rhs", expected: size, got: rhs.len() });
-        }
-        if let Some(index) = rhs.iter().position(|v| !v.is_finite()) {
-            return Err(FactorError::NonFinite { what: "rhs", index });
-        }
-        self.rhs0.copy_from_slice(rhs);
-        let mut z = std::mem::take(&mut self.z);
-        self.apply_inverse(rhs, &mut z);
-        if let Some(index) = z.iter().position(|v| !v.is_finite()) {
-            self.z = z;
-            return Err(FactorError::NonFiniteSolution { index });
-        }
-        let mut report = SolveReport::default();
-        if accuracy == Accuracy::Refined {
-            let mut refinement = std::mem::take(&mut self.refinement);
-            let (steps, omega) =
-                refinement.refine(self, &mut z, self.options.max_refinement, self.options.refinement_tol);
-            let r = refinement.residual();
-            report = SolveReport {
-                refinement_steps: steps,
-                residual_x: max_abs(&r[..self.n]),
-                residual_y: max_abs(&r[self.n..]),
-                backward_error: omega,
-                converged: omega <= self.options.refinement_tol,
-                measured: true,
-            };
-            self.refinement = refinement;
-            self.counters.refinement_steps += steps as u64;
-        }
-        rhs.copy_from_slice(&z);
-        self.z = z;
-        self.counters.solves += 1;
-        Ok(report)
+    /// `out = A⁻¹ src` in original units: `S Â⁻¹ S src`.
+    fn apply_inverse(&mut self, src: &[f64], out: &mut [f64]) {
+        out.copy_from_slice(src);
+        apply_inverse_scaled(&self.lu, &self.swap, &self.scale, out);
     }
 
-    fn counters(&self) -> FactorCounters {
-        self.counters
+    /// A partial-pivoting LU usually meets the refinement tolerance at once: only a solve asked to be
+    /// accurate measures it ([`Accuracy::Refined`]); a Newton increment is one application.
+    fn refines(&self, accuracy: Accuracy) -> bool {
+        accuracy == Accuracy::Refined
     }
 
     fn reset(&mut self) {
         self.scale.fill(1.0);
         self.scaled = false;
-        self.factorized = false;
-        self.counters = FactorCounters::default();
     }
 }

@@ -24,23 +24,33 @@
 //!
 //! Every backend's solution is checked against the dense pivoted reference in `tests/kkt_backend.rs`.
 //!
-//! One module per stage, every backend using the same ones: [`pattern`] (the fixed sparsity, checked and
-//! ordered), [`scaling`] (Ruiz equilibration rounded to powers of two), [`refinement`] (iterative
-//! refinement against the true KKT and its backward error, written once for both backends), then the
-//! factorizations [`sparse_ldlt`] and [`dense_lu`], and [`auto`], which picks one. This module holds the
-//! vocabulary they share: options, reports, counters, errors, the values of one system and the interface.
+//! One KKT solver over small engines, as a direct solver owns regularization and refinement over its
+//! factorizations: [`KktSolver`] ([`solver`]) keeps the true system of the last factorization
+//! ([`system`]: its values, row sizes and residual), checks what it is given, solves, refines against the
+//! true matrix ([`refinement`], with its backward error) and counts; an engine ([`KktEngine`]) only
+//! factorizes the values its own way and applies the inverse. The engines are [`QuasiDefiniteLdlt`]
+//! ([`sparse_ldlt`], by stage: symbolic, numeric, solve) and [`PivotedLu`] ([`dense_lu`]), both scaling by
+//! [`scaling`] (Ruiz equilibration rounded to powers of two) over [`pattern`] (the fixed sparsity,
+//! checked and ordered); [`KktFactor`] and [`DenseLu`] are the solvers of the two, and [`auto`] picks one.
+//! A third engine is one file: a type implementing [`KktEngine`], whose [`KktSolver`] is then a
+//! [`KktBackend`]. This module holds the vocabulary they share: options, reports, counters, errors, the
+//! values of one system and the interface.
 
 pub mod auto;
 pub mod dense_lu;
 pub mod pattern;
 pub mod refinement;
 pub mod scaling;
+pub mod solver;
 pub mod sparse_ldlt;
+pub mod system;
 
 pub use auto::{AutoKkt, BackendChoice, DENSE_MAX_ORDER};
-pub use dense_lu::{DenseLu, LuFactors};
+pub use dense_lu::{DenseLu, LuFactors, PivotedLu};
 pub use pattern::KktPattern;
-pub use sparse_ldlt::{KktFactor, KktSymbolic};
+pub use solver::{KktEngine, KktSolver};
+pub use sparse_ldlt::{KktFactor, KktSymbolic, QuasiDefiniteLdlt};
+pub use system::KktSystem;
 
 /// Which faer LDLᵀ kernel to use.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
