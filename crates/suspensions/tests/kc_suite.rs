@@ -776,3 +776,29 @@ fn every_analysis_walks_the_default_range_it_declares() {
     // Every one the README lists (the MacPherson has no load case of its own).
     assert_eq!(checked, documented.len());
 }
+
+/// One analysis, one declaration in its own file under `crates/suspensions/src/kc/`: the suite's list
+/// (`kc::ALL`) holds every declaration once, each name is read back to its analysis, and the files declare
+/// exactly as many as the list holds (a new analysis file's declaration left out of `ALL`, or a declaration
+/// two analyses share, fails here).
+#[test]
+fn every_analysis_is_declared_once_in_its_own_file_and_listed() {
+    let names: Vec<&str> = kc::ALL.iter().map(|a| a.name()).collect();
+    let mut unique = names.clone();
+    unique.sort_unstable();
+    unique.dedup();
+    assert_eq!(unique.len(), names.len(), "{names:?}");
+    for a in kc::ALL {
+        assert_eq!(Analysis::from_name(a.name()), Some(a));
+        let d = a.declaration();
+        assert_eq!((d.name, d.quantity.unit()), (a.name(), a.unit()));
+    }
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/kc");
+    let mut declared = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        let text = std::fs::read_to_string(&path).unwrap();
+        declared += text.matches(": Declaration = Declaration {").count();
+    }
+    assert_eq!(declared, kc::ALL.len(), "declarations in {}", dir.display());
+}

@@ -1,6 +1,7 @@
 //! The K&C suite: which analyses a K&C rig runs on a suspension, and the typed, serialisable report each
 //! produces (table, headline figures with error estimates, plots, warnings). Front ends (the `elastokin`
-//! command, the HTML report, bindings) only render it.
+//! command, the HTML report, bindings) only render it. One analysis is one file, which declares it
+//! ([`Declaration`]) and runs it; this module lists them ([`Analysis::declaration`], [`run_on`]).
 //!
 //! Every analysis estimates its own error. Each row is read twice: as walked, and one exact Newton
 //! iteration away ([`StaticSolver::newton_correction`](elastokin_solver::StaticSolver::newton_correction)),
@@ -10,13 +11,19 @@
 
 pub mod chart;
 pub mod figures;
-mod loads;
+mod load_sweep;
+mod model_loads;
 pub mod models;
+mod parallel_travel;
 mod reduce;
 pub mod report;
+mod road_load;
+mod roll;
 pub mod settings;
-mod travel;
+mod static_load;
+mod steering;
 pub mod unit;
+mod vertical_force;
 
 pub use crate::description::limits::plain;
 pub use chart::{Chart, Scale, Series, YAxis};
@@ -27,14 +34,33 @@ pub use report::{
     Written,
 };
 pub use settings::{
-    mode_from_word, mode_word, Analysis, AnalysisError, Cause, DefaultRange, Settings, Tolerance, ALL,
-    MAX_RANGE_FRACTION, MAX_RANGE_LOAD, MAX_RANGE_TRAVEL, MIN_RANGE,
+    mode_from_word, mode_word, Analysis, AnalysisError, Cause, Declaration, DefaultRange, Quantity, Settings,
+    Tolerance, ALL, MAX_RANGE_FRACTION, MAX_RANGE_LOAD, MAX_RANGE_TRAVEL, MIN_RANGE,
 };
-pub use travel::ideal_outer_steer;
+pub use steering::ideal_outer_steer;
 pub use unit::{Shown, Unit, Units};
 
+use crate::analysis::WheelLoad;
 use crate::file::SuspensionFile;
 use elastokin_solver::LoadPath;
+
+impl Analysis {
+    /// What the analysis declares of itself, in its own file: the one list of them.
+    pub fn declaration(self) -> &'static Declaration {
+        match self {
+            Analysis::ParallelTravel => &parallel_travel::DECLARATION,
+            Analysis::Roll => &roll::DECLARATION,
+            Analysis::Steering => &steering::DECLARATION,
+            Analysis::VerticalForce => &vertical_force::DECLARATION,
+            Analysis::Road(WheelLoad::Lateral) => &road_load::LATERAL,
+            Analysis::Road(WheelLoad::Braking) => &road_load::BRAKING,
+            Analysis::Road(WheelLoad::Traction) => &road_load::TRACTION,
+            Analysis::Road(WheelLoad::AligningTorque) => &road_load::ALIGNING_TORQUE,
+            Analysis::StaticLoad => &static_load::DECLARATION,
+            Analysis::ModelLoads => &model_loads::DECLARATION,
+        }
+    }
+}
 
 /// Runs one analysis on the model in `file`.
 pub fn run(analysis: Analysis, file: &SuspensionFile, settings: &Settings) -> Result<AnalysisReport, AnalysisError> {
@@ -45,13 +71,13 @@ pub fn run(analysis: Analysis, file: &SuspensionFile, settings: &Settings) -> Re
 pub fn run_on(analysis: Analysis, models: &Models, settings: &Settings) -> Result<AnalysisReport, AnalysisError> {
     check_settings(analysis, settings)?;
     let result = match analysis {
-        Analysis::ParallelTravel => travel::parallel_travel(models, settings),
-        Analysis::Roll => travel::roll(models, settings),
-        Analysis::Steering => travel::steering(models, settings),
-        Analysis::VerticalForce => loads::vertical_force(models, settings),
-        Analysis::Road(load) => loads::road_load(models, load, settings),
-        Analysis::StaticLoad => loads::static_load(models, settings),
-        Analysis::ModelLoads => loads::model_loads(models, settings),
+        Analysis::ParallelTravel => parallel_travel::parallel_travel(models, settings),
+        Analysis::Roll => roll::roll(models, settings),
+        Analysis::Steering => steering::steering(models, settings),
+        Analysis::VerticalForce => vertical_force::vertical_force(models, settings),
+        Analysis::Road(load) => road_load::road_load(models, load, settings),
+        Analysis::StaticLoad => static_load::static_load(models, settings),
+        Analysis::ModelLoads => model_loads::model_loads(models, settings),
     };
     result.map_err(|cause| AnalysisError { analysis: analysis.name(), cause })
 }
@@ -102,11 +128,7 @@ pub fn check_settings(analysis: Analysis, settings: &Settings) -> Result<(), Ana
         }
         // Far beyond what a suspension meets, the solver's numbers overflow before the linkage says
         // anything: a travel of kilometres, a force of a thousand tonnes.
-        let most = match analysis.unit() {
-            "m" => MAX_RANGE_TRAVEL,
-            "N" | "N·m" => MAX_RANGE_LOAD,
-            _ => MAX_RANGE_FRACTION,
-        };
+        let most = analysis.declaration().quantity.largest_range_end();
         if from.abs().max(to.abs()) > most {
             return Err(AnalysisError {
                 analysis: analysis.name(),

@@ -50,83 +50,40 @@ pub const ALL: [Analysis; 10] = [
 ];
 
 impl Analysis {
-    /// The name used on the command line and in reports.
-    pub fn name(self) -> &'static str {
-        match self {
-            Analysis::ParallelTravel => "parallel-travel",
-            Analysis::Roll => "roll",
-            Analysis::Steering => "steering",
-            Analysis::VerticalForce => "vertical-force",
-            Analysis::Road(WheelLoad::Lateral) => "lateral-force",
-            Analysis::Road(WheelLoad::Braking) => "braking-force",
-            Analysis::Road(WheelLoad::Traction) => "traction-force",
-            Analysis::Road(WheelLoad::AligningTorque) => "aligning-torque",
-            Analysis::StaticLoad => "static-load",
-            Analysis::ModelLoads => "loads",
-        }
-    }
-
     /// The analysis of a name.
     pub fn from_name(name: &str) -> Option<Analysis> {
         ALL.into_iter().find(|a| a.name() == name)
     }
 
+    /// The name used on the command line and in reports.
+    pub fn name(self) -> &'static str {
+        self.declaration().name
+    }
+
     /// What the load parameter is, with its unit.
     pub fn parameter(self) -> &'static str {
-        match self {
-            Analysis::ParallelTravel => "wheel travel, m, bump +",
-            Analysis::Roll => "left wheel travel, m (right opposite)",
-            Analysis::Steering => "rack travel, m, towards +y (left)",
-            Analysis::VerticalForce => "vertical force at the contact patch, N, up +",
-            Analysis::Road(WheelLoad::Lateral) => "lateral force at the contact patch, N, inboard +",
-            Analysis::Road(WheelLoad::Braking) => "braking force at the contact patch, N, rearward +",
-            Analysis::Road(WheelLoad::Traction) => "traction force at the wheel centre, N, forward +",
-            Analysis::Road(WheelLoad::AligningTorque) => "aligning torque, N·m, about +z",
-            Analysis::StaticLoad => "corner load of the model file's vehicle section, N, applied at once",
-            Analysis::ModelLoads => "fraction of the model file's loads applied, 0 to 1",
-        }
+        self.declaration().parameter
     }
 
     /// The unit of the load parameter (and of `--range` and `--arc-step`).
     pub fn unit(self) -> &'static str {
-        match self {
-            Analysis::ParallelTravel | Analysis::Roll | Analysis::Steering => "m",
-            Analysis::Road(WheelLoad::AligningTorque) => "N·m",
-            Analysis::VerticalForce | Analysis::Road(_) | Analysis::StaticLoad => "N",
-            Analysis::ModelLoads => "of the load case",
-        }
+        self.declaration().quantity.unit()
     }
 
-    /// Whether the load parameter drives a travel (else it is a force or torque).
+    /// Whether the load parameter drives a travel (else it is a force, a torque or a fraction of loads).
     pub(super) fn is_travel(self) -> bool {
-        self.unit() == "m"
+        self.declaration().quantity == Quantity::Travel
     }
 
     /// What the rig holds or leaves free, where it is more than one corner on its own rig: for the
     /// command's help.
     pub fn rig_words(self) -> Option<&'static str> {
-        match self {
-            Analysis::Roll => Some("full axle"),
-            Analysis::Steering => Some("full axle, wheel-centre heights held"),
-            Analysis::VerticalForce => Some("wheel free (or at --load-point)"),
-            Analysis::ParallelTravel | Analysis::Road(_) | Analysis::StaticLoad | Analysis::ModelLoads => None,
-        }
+        self.declaration().rig_words
     }
 
     /// The range the analysis walks when none is given, in its own unit (see [`DefaultRange`]).
     pub fn default_range(self) -> DefaultRange {
-        use DefaultRange::{AroundDesignLoad, Ends, NoRange};
-        match self {
-            Analysis::ParallelTravel => Ends(-0.08, 0.08),
-            Analysis::Roll => Ends(-0.05, 0.05),
-            Analysis::Steering => Ends(-0.04, 0.04),
-            Analysis::VerticalForce => AroundDesignLoad,
-            Analysis::Road(WheelLoad::Lateral) => Ends(-3000.0, 3000.0),
-            Analysis::Road(WheelLoad::Braking | WheelLoad::Traction) => Ends(0.0, 3000.0),
-            Analysis::Road(WheelLoad::AligningTorque) => Ends(-200.0, 200.0),
-            Analysis::StaticLoad => NoRange,
-            Analysis::ModelLoads => Ends(0.0, 1.0),
-        }
+        self.declaration().default_range
     }
 
     /// The range to walk: `given`, else the analysis's default ends. An analysis whose default depends on
@@ -142,9 +99,61 @@ impl Analysis {
     /// Where the design position sits on the load parameter (the vertical force sweep's is the design
     /// wheel load, known only once the model is solved, so `None` there).
     pub fn design_parameter(self) -> Option<f64> {
+        self.declaration().design_parameter
+    }
+}
+
+/// What an analysis declares of itself, in its own file (`kc/parallel_travel.rs`, `kc/roll.rs`, …): its
+/// name, its load parameter and the range it walks when none is given. The command's help, Python, the
+/// reports and the README's table read these ([`Analysis::declaration`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Declaration {
+    /// The name used on the command line and in reports.
+    pub name: &'static str,
+    /// What the load parameter is, with its unit and sign.
+    pub parameter: &'static str,
+    /// What the load parameter is a quantity of.
+    pub quantity: Quantity,
+    /// What the rig holds or leaves free, where it is more than one corner on its own rig.
+    pub rig_words: Option<&'static str>,
+    /// The range walked when none is given.
+    pub default_range: DefaultRange,
+    /// Where the design position sits on the load parameter; `None` where only the solved model knows it
+    /// (the design wheel load) or the analysis walks no range.
+    pub design_parameter: Option<f64>,
+}
+
+/// What an analysis's load parameter is a quantity of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// A travel, m: of a wheel or of the rack.
+    Travel,
+    /// A force, N.
+    Force,
+    /// A torque, N·m.
+    Torque,
+    /// A fraction of the model file's load case, 0 to 1.
+    Fraction,
+}
+
+impl Quantity {
+    /// Its unit, as the command and the reports write it.
+    pub fn unit(self) -> &'static str {
         match self {
-            Analysis::VerticalForce | Analysis::StaticLoad => None,
-            _ => Some(0.0),
+            Quantity::Travel => "m",
+            Quantity::Force => "N",
+            Quantity::Torque => "N·m",
+            Quantity::Fraction => "of the load case",
+        }
+    }
+
+    /// The largest end a range of it may have ([`MAX_RANGE_TRAVEL`], [`MAX_RANGE_LOAD`],
+    /// [`MAX_RANGE_FRACTION`]).
+    pub(super) fn largest_range_end(self) -> f64 {
+        match self {
+            Quantity::Travel => MAX_RANGE_TRAVEL,
+            Quantity::Force | Quantity::Torque => MAX_RANGE_LOAD,
+            Quantity::Fraction => MAX_RANGE_FRACTION,
         }
     }
 }

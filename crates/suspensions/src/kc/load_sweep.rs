@@ -1,0 +1,208 @@
+//! The sweep the load analyses share: a road load or the model file's own loads, swept with the corner
+//! load carried; its table, figures and charts.
+
+use crate::analysis::{
+    design_wheel_load, model_load_sweep_with, wheel_load_sweep_with, ComponentForces, LoadRow, WheelLoad,
+};
+use crate::assembly::{LoadPoint, Rig};
+use crate::description::Side;
+use crate::kc::figures;
+use crate::kc::models::Models;
+use crate::kc::reduce::{axis, bushings_share, chart, corner_drawing, deg, finish, Design, Reduction};
+use crate::kc::report::{AnalysisReport, Cell, Figure, FigureKind, Table};
+use crate::kc::settings::{Analysis, Cause, Quantity, Settings};
+use crate::kc::unit::Unit;
+use elastokin_solver::replay::ReplayRows;
+use elastokin_solver::LoadPath;
+
+/// Why the `loads` analysis cannot run.
+pub(super) const NO_LOADS: &str = "the model has no load case: give \"loads\" in the general form (a force at a point \
+                                    of a body, or a moment), see docs/model-file.md";
+
+/// Where the rig's forces act, in words.
+pub(super) fn where_loaded(s: &Settings) -> &'static str {
+    match s.load_point {
+        LoadPoint::ContactPatch => "contact patch",
+        LoadPoint::WheelCentre => "wheel centre",
+    }
+}
+
+/// Columns of the force in every joint and element: `name force_x_n`, … for each.
+fn component_columns(forces: &ComponentForces) -> Vec<String> {
+    let mut out = Vec::new();
+    for c in forces.joints.iter().chain(&forces.elements) {
+        for (what, unit) in [("force", "n"), ("torque", "nm")] {
+            for axis in ["x", "y", "z"] {
+                out.push(format!("{} {what}_{axis}_{unit}", c.name));
+            }
+        }
+    }
+    out
+}
+
+fn component_values(forces: &ComponentForces) -> Vec<Cell> {
+    forces
+        .joints
+        .iter()
+        .chain(&forces.elements)
+        .flat_map(|c| [c.force, c.torque])
+        .flat_map(|v| [v.x, v.y, v.z])
+        .map(Cell::from)
+        .collect()
+}
+
+/// A road load or the model's own loads, swept with the corner load carried.
+pub(super) fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Result<AnalysisReport, Cause> {
+    let file = models.file();
+    let quantity = analysis.declaration().quantity;
+    let unit = quantity.unit();
+    let column = match quantity {
+        Quantity::Force => "load_n",
+        Quantity::Torque => "load_nm",
+        Quantity::Travel | Quantity::Fraction => "fraction",
+    };
+    let range = analysis.range_or_default(s.range)?;
+    let corner_load = match &file.vehicle {
+        Some(v) => v.corner_load,
+        None => design_wheel_load(models.corner_ref(Rig::WheelTravel)?)?,
+    };
+    let rig = if s.height_held { Rig::HeightHeld } else { Rig::Free };
+    let mut corner = models.corner(rig)?;
+    corner.load_point = s.load_point;
+    // Drawn as walked: with the model's own loads, once they are added.
+    let drawing;
+    // The figures read the rates at zero load (at design) and the last row.
+    let extras = s.extras_reading(range, 0.0, ReplayRows { near: None, last: true, extremes: false });
+    let out = match analysis {
+        Analysis::Road(load) => {
+            drawing = corner_drawing(&corner, s);
+            wheel_load_sweep_with(corner, load, corner_load, LoadPath::new(range.0, range.1, s.steps), s.mode, extras)
+        }
+        _ => {
+            let general = match &file.suspension {
+                crate::description::Template::General(g) if !g.loads.is_empty() => g,
+                _ => return Err(Cause::Lacks(NO_LOADS.into())),
+            };
+            general.add_loads(&mut corner.model, Side::Left, "")?;
+            if let Some(prefix) = corner.partner_prefix() {
+                // A solid axle: the load case on both sides, as the mirror image.
+                general.add_loads(&mut corner.model, Side::Right, prefix)?;
+            }
+            drawing = corner_drawing(&corner, s);
+            model_load_sweep_with(corner, corner_load, range.0, range.1, s.steps, s.mode, extras)
+        }
+    }?;
+    let name = analysis.name();
+    let stem = name.replace('-', "_");
+    let table = |rows: &[LoadRow]| {
+        let mut columns: Vec<String> = [
+            column,
+            "toe_deg",
+            "camber_deg",
+            "wheel_centre_x_m",
+            "wheel_centre_y_m",
+            "wheel_centre_z_m",
+            "patch_dx_m",
+            "patch_dy_m",
+            "patch_dz_m",
+            "wheel_load_n",
+        ]
+        .map(String::from)
+        .to_vec();
+        if let Some(first) = rows.first() {
+            columns.extend(component_columns(&first.forces));
+        }
+        Table {
+            name: stem.clone(),
+            columns,
+            rows: rows
+                .iter()
+                .map(|r| {
+                    let (w, d) = (r.attitude.wheel_centre, r.patch_displacement);
+                    let mut row: Vec<Cell> = [
+                        r.load,
+                        deg(r.attitude.toe),
+                        deg(r.attitude.camber),
+                        w.x,
+                        w.y,
+                        w.z,
+                        d.x,
+                        d.y,
+                        d.z,
+                        r.wheel_load,
+                    ]
+                    .map(Cell::from)
+                    .to_vec();
+                    row.extend(component_values(&r.forces));
+                    row
+                })
+                .collect(),
+        }
+    };
+    // Per kN of a force, per kN·m of a torque, per load case of the model's own.
+    let per_unit = match quantity {
+        Quantity::Force => Unit::DegreePerKilonewton,
+        Quantity::Torque => Unit::DegreePerKilonewtonMetre,
+        Quantity::Travel | Quantity::Fraction => Unit::DegreePerLoadCase,
+    };
+    let figures = |rows: &[LoadRow], design: Design<LoadRow>| {
+        let why = design.err().unwrap_or_default();
+        let slope = |y: &dyn Fn(&LoadRow) -> f64| design.ok().map(|d| d.rate(y));
+        let per_load = |kind: &FigureKind| FigureKind { unit: per_unit, ..*kind };
+        let mut f = vec![
+            Figure::of(&per_load(&figures::COMPLIANCE_STEER), slope(&|r| r.attitude.toe), why),
+            Figure::of(&per_load(&figures::COMPLIANCE_CAMBER), slope(&|r| r.attitude.camber), why),
+        ];
+        if let Some(last) = rows.last() {
+            let at = |what: &str| format!("{what} at {:.0} {unit}", last.load);
+            f.push(Figure::of(&figures::TOE_AT_END, Some(last.attitude.toe), "").labelled(at("toe")));
+            f.push(Figure::of(&figures::CAMBER_AT_END, Some(last.attitude.camber), "").labelled(at("camber")));
+        }
+        f
+    };
+    let charts = vec![chart(
+        file,
+        &stem,
+        &format!("toe and camber under {}", name.replace('-', " ")),
+        &format!("{} [{unit}]", analysis.parameter().split(',').next().unwrap_or(name)),
+        axis(
+            "angle [deg]",
+            &out.rows,
+            |r| r.load,
+            &[
+                ("toe (in +)", &|r: &LoadRow| Some(deg(r.attitude.toe))),
+                ("camber (top out +)", &|r: &LoadRow| Some(deg(r.attitude.camber))),
+            ],
+        ),
+        Some(axis(
+            "contact patch displacement [mm]",
+            &out.rows,
+            |r| r.load,
+            &[
+                ("patch x", &|r: &LoadRow| Some(r.patch_displacement.x * 1e3)),
+                ("patch y", &|r: &LoadRow| Some(r.patch_displacement.y * 1e3)),
+            ],
+        )),
+        Some(0.0),
+    )];
+    let held = if s.height_held { "wheel-centre height held" } else { "wheel free on its spring" };
+    let at = match analysis {
+        Analysis::Road(WheelLoad::Lateral | WheelLoad::Braking) => format!(" at the {}", where_loaded(s)),
+        Analysis::Road(WheelLoad::Traction) => " at the wheel centre".into(),
+        _ => String::new(),
+    };
+    let description = format!(
+        "{} {:.0}..{:.0} {unit}{at} ({held}, corner load {corner_load:.0} N), {} steps",
+        name.replace('-', " "),
+        range.0,
+        range.1,
+        s.steps
+    );
+    let mut report =
+        finish(analysis, description, range, s, &out, Reduction { table: &table, figures: &figures, drawing }, charts);
+    if let (Analysis::Road(WheelLoad::Lateral), Some(rigid)) = (analysis, models.rigid()) {
+        let rigid = loaded(rigid, analysis, &Settings { motion: false, ..*s });
+        bushings_share(&mut report, "steer", "lateral-force compliance steer", rigid);
+    }
+    Ok(report)
+}

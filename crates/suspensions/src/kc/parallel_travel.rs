@@ -1,0 +1,271 @@
+//! Parallel wheel travel: both wheel-centre heights driven together on a corner; the rates at design
+//! (bump steer, camber gain, wheel rate), the steering axis and the compliances there.
+
+use crate::analysis::anti_pitch::anti_pitch_at;
+use crate::analysis::compliance::{compliance_at, compliance_with, patch_compliance_from};
+use crate::analysis::{parallel_wheel_travel_with, TravelRow};
+use crate::assembly::{Corner, Rig};
+use crate::file::SuspensionFile;
+use crate::kc::figures;
+use crate::kc::models::Models;
+use crate::kc::reduce::{axis, chart, corner_drawing, deg, finish, needs_vehicle, Design, Reduction};
+use crate::kc::report::{AnalysisReport, Figure, FigureKind, Table, Warning};
+use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, Quantity, Settings, NO_ROWS};
+
+/// Parallel travel, as the command and the reports name it.
+pub(super) const DECLARATION: Declaration = Declaration {
+    name: "parallel-travel",
+    parameter: "wheel travel, m, bump +",
+    quantity: Quantity::Travel,
+    rig_words: None,
+    default_range: DefaultRange::Ends(-0.08, 0.08),
+    design_parameter: Some(0.0),
+};
+
+pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
+    let file = models.file();
+    let range = Analysis::ParallelTravel.range_or_default(s.range)?;
+    let corner = models.corner_ref(Rig::WheelTravel)?;
+    let out =
+        parallel_wheel_travel_with(corner, range.0, range.1, s.steps, s.mode, s.extras_reading(range, 0.0, NO_ROWS))?;
+    let wheel = &corner.wheel;
+    let sign = wheel.side.sign();
+    let table = |rows: &[TravelRow]| parallel_travel_table(corner, rows);
+    let figures = |_: &[TravelRow], design: Design<TravelRow>| parallel_travel_figures(file, corner, design);
+    let x = |r: &TravelRow| r.travel * 1e3;
+    let charts = vec![
+        chart(
+            file,
+            "parallel_travel_toe_camber",
+            "toe and camber in parallel wheel travel",
+            "wheel travel [mm], bump +",
+            axis(
+                "angle [deg]",
+                &out.rows,
+                x,
+                &[
+                    ("toe (in +)", &|r: &TravelRow| Some(deg(r.attitude.toe))),
+                    ("camber (top out +)", &|r: &TravelRow| Some(deg(r.attitude.camber))),
+                ],
+            ),
+            None,
+            Some(0.0),
+        ),
+        chart(
+            file,
+            "parallel_travel_wheel_centre",
+            "wheel-centre motion in parallel wheel travel",
+            "wheel travel [mm], bump +",
+            axis(
+                "displacement [mm]",
+                &out.rows,
+                x,
+                &[
+                    ("half-track change (out +)", &|r: &TravelRow| {
+                        Some(sign * (r.steering.contact_patch.y - wheel.contact_patch.y) * 1e3)
+                    }),
+                    ("wheelbase change (forward +)", &|r: &TravelRow| {
+                        Some((r.attitude.wheel_centre.x - wheel.wheel_centre.x) * 1e3)
+                    }),
+                ],
+            ),
+            Some(axis("wheel load [N]", &out.rows, x, &[("wheel load", &|r: &TravelRow| Some(r.wheel_load))])),
+            Some(0.0),
+        ),
+    ];
+    let description =
+        format!("parallel wheel travel {:+.0}..{:+.0} mm, {} steps", range.0 * 1e3, range.1 * 1e3, s.steps);
+    let mut report = finish(
+        Analysis::ParallelTravel,
+        description,
+        range,
+        s,
+        &out,
+        Reduction { table: &table, figures: &figures, drawing: corner_drawing(corner, s) },
+        charts,
+    );
+    // Toe, camber and wheel rate no car has, inside the travel asked for.
+    report.warnings.extend(crate::check::check_travel_rows(&out.rows));
+    // Figures of the design position itself, from the tangent there (not read off the rows): at the
+    // equilibrium, and one exact Newton iteration on for their error estimate.
+    let mut design = compliance_at(corner, 0.0)?;
+    let compliance = design.wheel;
+    // The joints alone may hold the patch inboard or rearward (ideal joints, no bushing in the load path):
+    // the compliance that way is then rounding, and its inverse no stiffness. Decided once by a recording,
+    // for its replays (a property of the joints' form).
+    let inboard = elastokin_core::Vec3::new(0.0, -corner.wheel.side.sign(), 0.0);
+    let rearward = elastokin_core::Vec3::new(-1.0, 0.0, 0.0);
+    let held = elastokin_solver::replay::decided(|| {
+        crate::assembly::mobility::holds_point(
+            &corner.model,
+            corner.wheel.upright,
+            corner.wheel.contact_patch,
+            &[inboard, rearward],
+        )
+    });
+    let read =
+        |solver: &mut _, state: &_, compliance: &_| compliance_figures(corner, file, &held, solver, state, compliance);
+    let mut figures = read(&mut design.solver, &design.state, &compliance)?;
+    if s.error_estimate {
+        let next = design.solver.newton_correction(&design.at)?;
+        let state = design.solver.state_of(&next);
+        let wheel = compliance_with(&mut design.solver, &corner.wheel, corner.partner.as_ref(), &state)?;
+        let again = read(&mut design.solver, &state, &wheel)?;
+        for (f, g) in figures.iter_mut().zip(again) {
+            f.error = f.value.zip(g.value).map(|(a, b)| (a - b).abs());
+        }
+    }
+    report.figures.extend(figures);
+    // JSON has no NaN: a matrix with a non-finite entry (a motion nothing holds) is left out, and said so.
+    if compliance.iter().flatten().all(|v| v.is_finite()) {
+        report.wheel_compliance_at_design = Some(compliance);
+    } else {
+        report.warnings.push(Warning {
+            code: "compliance-not-finite",
+            hardpoints: Vec::new(),
+            message: "the wheel compliance at design is not finite: some motion of the wheel is held by \
+                      nothing; run `elastokin check` on the model"
+                .into(),
+        });
+    }
+    Ok(report)
+}
+
+/// The parallel-travel figures read off the tangent at an equilibrium `state` of `corner` (`solver` has
+/// its tangent factorized there, and `compliance` is the wheel's): the compliances at the patch, its
+/// stiffnesses (none the way the joints alone hold it, `held` inboard and rearward), and with a vehicle
+/// section the anti-pitch and swing-arm angles from the path's tangent.
+fn compliance_figures(
+    corner: &Corner,
+    file: &SuspensionFile,
+    held: &[bool],
+    solver: &mut elastokin_solver::StaticSolver,
+    state: &elastokin_solver::State,
+    compliance: &[[f64; 6]; 6],
+) -> Result<Vec<Figure>, elastokin_solver::SolverError> {
+    let pc = patch_compliance_from(corner, compliance, &state.poses);
+    let finite = compliance.iter().flatten().all(|v| v.is_finite());
+    let stiffness = |kind: &FigureKind, n_per_m: f64, rigid: bool| {
+        let value = (finite && !rigid && n_per_m.is_finite()).then_some(n_per_m);
+        let reason = if rigid {
+            "rigid: the joints alone hold the patch this way (no bushing or spring yields to the force)"
+        } else {
+            "the wheel compliance at design is not finite: some motion of the wheel is held by nothing"
+        };
+        Figure::of(kind, value, reason)
+    };
+    let mut figures = vec![
+        Figure::of(&figures::LATERAL_STEER, Some(pc.lateral_steer), ""),
+        Figure::of(&figures::LATERAL_CAMBER, Some(pc.lateral_camber), ""),
+        Figure::of(&figures::BRAKING_STEER, Some(pc.braking_steer), ""),
+        Figure::of(&figures::ALIGNING_TORQUE_STEER, Some(pc.aligning_torque_steer), ""),
+        stiffness(&figures::LATERAL_STIFFNESS, pc.lateral_stiffness, held[0]),
+        stiffness(&figures::LONGITUDINAL_STIFFNESS, pc.longitudinal_stiffness, held[1]),
+    ];
+    match &file.vehicle {
+        Some(vehicle) => {
+            let rates = solver.path_tangent_factored()?;
+            let a = anti_pitch_at(corner, vehicle, &state.poses, &rates)?;
+            let (braking, traction) = match vehicle.axle {
+                crate::description::AxlePosition::Front => ("anti-dive", "anti-lift (drive)"),
+                crate::description::AxlePosition::Rear => ("anti-lift (braking)", "anti-squat"),
+            };
+            figures.extend([
+                Figure::of(&figures::BRAKING_ANTI_PITCH, Some(a.braking), "").labelled(braking),
+                Figure::of(&figures::TRACTION_ANTI_PITCH, Some(a.traction), "").labelled(traction),
+                Figure::of(&figures::SWING_ARM_ANGLE_AT_PATCH, Some(a.patch_swing_arm_angle), ""),
+                Figure::of(&figures::SWING_ARM_ANGLE_AT_WHEEL_CENTRE, Some(a.wheel_centre_swing_arm_angle), ""),
+            ]);
+        }
+        None => figures.push(Figure::of(
+            &figures::BRAKING_ANTI_PITCH,
+            None,
+            &needs_vehicle("wheelbase and cg_height (a vehicle section)"),
+        )),
+    }
+    Ok(figures)
+}
+
+/// The parallel-travel table of `rows` of `corner` (half-track and wheelbase change from its design wheel).
+fn parallel_travel_table(corner: &Corner, rows: &[TravelRow]) -> Table {
+    let wheel = &corner.wheel;
+    let sign = wheel.side.sign();
+    Table::numbers(
+        "parallel_travel",
+        [
+            "travel_m",
+            "toe_deg",
+            "camber_deg",
+            "wheel_centre_x_m",
+            "wheel_centre_y_m",
+            "wheel_centre_z_m",
+            "half_track_change_m",
+            "wheelbase_change_m",
+            "caster_deg",
+            "kingpin_inclination_deg",
+            "scrub_radius_m",
+            "mechanical_trail_m",
+            "kingpin_offset_m",
+            "wheel_load_n",
+            "spring_deflection_m",
+        ],
+        rows.iter().map(|r| {
+            let (w, g) = (r.attitude.wheel_centre, r.steering);
+            [
+                r.travel,
+                deg(r.attitude.toe),
+                deg(r.attitude.camber),
+                w.x,
+                w.y,
+                w.z,
+                sign * (g.contact_patch.y - wheel.contact_patch.y),
+                w.x - wheel.wheel_centre.x,
+                deg(g.caster),
+                deg(g.kingpin_inclination),
+                g.scrub_radius,
+                g.mechanical_trail,
+                g.kingpin_offset,
+                r.wheel_load,
+                r.spring_deflection,
+            ]
+        }),
+    )
+}
+
+/// The parallel-travel headline figures of `corner` read at design, of the model in `file` (its tyre rate):
+/// rates and values at design.
+fn parallel_travel_figures(file: &SuspensionFile, corner: &Corner, design: Design<TravelRow>) -> Vec<Figure> {
+    let tyre_rate = file.vehicle.as_ref().and_then(|v| v.tyre_rate);
+    let why = design.err().unwrap_or_default();
+    let slope = |y: &dyn Fn(&TravelRow) -> f64| design.ok().map(|d| d.rate(y));
+    let at_design =
+        |kind: &FigureKind, y: &dyn Fn(&TravelRow) -> f64| Figure::of(kind, design.ok().map(|d| y(&d.row)), why);
+    let rate = slope(&|r| r.wheel_load);
+    let mut f = vec![
+        Figure::of(&figures::BUMP_STEER, slope(&|r| r.attitude.toe), why),
+        Figure::of(&figures::CAMBER_GAIN, slope(&|r| r.attitude.camber), why),
+        Figure::of(&figures::WHEEL_RATE, rate, why),
+        match corner.spring {
+            Some(_) => Figure::of(&figures::SPRING_MOTION_RATIO, slope(&|r| r.spring_deflection).map(f64::abs), why),
+            None => Figure::of(
+                &figures::SPRING_MOTION_RATIO,
+                None,
+                "the corner has no spring of its own (corner springs: none)",
+            ),
+        },
+    ];
+    f.push(match (rate, tyre_rate) {
+        (Some(k), Some(kt)) => Figure::of(&figures::RIDE_RATE, Some(k * kt / (k + kt)), ""),
+        (None, _) => Figure::of(&figures::RIDE_RATE, None, why),
+        (_, None) => Figure::of(&figures::RIDE_RATE, None, &needs_vehicle("tyre_rate")),
+    });
+    f.extend([
+        at_design(&figures::WHEEL_LOAD_AT_DESIGN, &|r| r.wheel_load),
+        at_design(&figures::CASTER, &|r| r.steering.caster),
+        at_design(&figures::KINGPIN_INCLINATION, &|r| r.steering.kingpin_inclination),
+        at_design(&figures::SCRUB_RADIUS, &|r| r.steering.scrub_radius),
+        at_design(&figures::MECHANICAL_TRAIL, &|r| r.steering.mechanical_trail),
+        at_design(&figures::KINGPIN_OFFSET, &|r| r.steering.kingpin_offset),
+    ]);
+    f
+}

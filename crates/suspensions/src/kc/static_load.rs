@@ -1,0 +1,144 @@
+//! The static load case: the corner at rest under the vehicle's corner load, applied at once from the
+//! design position.
+
+use crate::analysis::{static_load_case_estimated, StaticLoad};
+use crate::assembly::Rig;
+use crate::kc::figures;
+use crate::kc::models::Models;
+use crate::kc::report::{Accuracy, AnalysisReport, Cell, Figure, Table, Warning};
+use crate::kc::settings::{mode_word, Analysis, Cause, Declaration, DefaultRange, Quantity, Settings};
+
+/// The static load case: no range, the corner load applied at once.
+pub(super) const DECLARATION: Declaration = Declaration {
+    name: "static-load",
+    parameter: "corner load of the model file's vehicle section, N, applied at once",
+    quantity: Quantity::Force,
+    rig_words: None,
+    default_range: DefaultRange::NoRange,
+    design_parameter: None,
+};
+
+pub(super) fn static_load(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
+    let file = models.file();
+    let vehicle = file.vehicle.as_ref().ok_or_else(|| {
+        Cause::Lacks(
+            "the model file has no \"vehicle\" section with the corner_load to carry (see examples/macpherson.json)"
+                .into(),
+        )
+    })?;
+    let corner = models.corner(Rig::Free)?;
+    let (rest, corrected) = static_load_case_estimated(corner, vehicle.corner_load, s.error_estimate)?;
+    let table = Table {
+        name: "static_load".into(),
+        columns: [
+            "component",
+            "body",
+            "other_body",
+            "force_x_n",
+            "force_y_n",
+            "force_z_n",
+            "torque_x_nm",
+            "torque_y_nm",
+            "torque_z_nm",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows: rest
+            .forces
+            .joints
+            .iter()
+            .chain(&rest.forces.elements)
+            .map(|c| {
+                let mut row = [&c.name, &c.body, &c.other_body].map(|n| Cell::Text(n.to_string())).to_vec();
+                row.extend([c.force.x, c.force.y, c.force.z, c.torque.x, c.torque.y, c.torque.z].map(Cell::from));
+                row
+            })
+            .collect(),
+    };
+    let figures = |rest: &StaticLoad| {
+        let d = rest.wheel_centre_displacement;
+        vec![
+            Figure::of(&figures::CORNER_LOAD, Some(rest.corner_load), ""),
+            Figure::of(&figures::RIDE_HEIGHT_CHANGE, Some(d.z), ""),
+            Figure::of(&figures::TOE_AT_REST, Some(rest.attitude.toe), ""),
+            Figure::of(&figures::CAMBER_AT_REST, Some(rest.attitude.camber), ""),
+            Figure::of(&figures::WHEEL_RATE_AT_REST, Some(rest.wheel_rate), ""),
+            Figure::of(&figures::SPRING_FORCE, Some(rest.spring_force), ""),
+            Figure::of(&figures::SPRING_DEFLECTION, Some(rest.spring_deflection), ""),
+        ]
+    };
+    let mut figures_at_rest = figures(&rest);
+    // Each figure's error estimate: its change one exact Newton iteration on (as a sweep's rows are read
+    // again); the component forces' likewise, column by column.
+    let mut columns = Vec::new();
+    if let Some(corrected) = &corrected {
+        for (f, g) in figures_at_rest.iter_mut().zip(figures(corrected)) {
+            f.error = f.value.zip(g.value).map(|(a, b)| (a - b).abs());
+        }
+        let components = |r: &StaticLoad| -> Vec<[f64; 6]> {
+            let all = r.forces.joints.iter().chain(&r.forces.elements);
+            all.map(|c| [c.force.x, c.force.y, c.force.z, c.torque.x, c.torque.y, c.torque.z]).collect()
+        };
+        let (at, on) = (components(&rest), components(corrected));
+        columns = table.columns.iter().map(|c| (c.clone(), None)).collect();
+        for k in 0..6 {
+            let largest = at.iter().zip(&on).map(|(a, b)| (a[k] - b[k]).abs()).fold(0.0, f64::max);
+            columns[3 + k].1 = Some(largest);
+        }
+    }
+    let figures = figures_at_rest;
+    let angle_error = [&figures::TOE_AT_REST, &figures::CAMBER_AT_REST]
+        .iter()
+        .filter_map(|kind| figures.iter().find(|f| f.key == kind.key)?.error)
+        .fold(0.0, f64::max)
+        .to_degrees();
+    let (force_residual, constraint_residual) = rest.residuals;
+    let within = constraint_residual <= s.tolerance.length_m;
+    let mut warnings = Vec::new();
+    if !within {
+        warnings.push(Warning {
+            code: "error-over-tolerance",
+            hardpoints: Vec::new(),
+            message: format!(
+                "static-load: the rest position leaves the joints apart by {:.2e} mm; the model is near-singular \
+                 there, run `elastokin check` on it",
+                constraint_residual * 1e3
+            ),
+        });
+    }
+    Ok(AnalysisReport {
+        analysis: Analysis::StaticLoad,
+        parameter: Analysis::StaticLoad.parameter().into(),
+        description: format!("static load: {:.0} N at the contact patch, from the design position", rest.corner_load),
+        range: (rest.corner_load, rest.corner_load),
+        steps: 1,
+        figures,
+        units: s.units,
+        table,
+        compliance: None,
+        wheel_compliance_at_design: None,
+        charts: Vec::new(),
+        motion: None,
+        accuracy: Accuracy {
+            method: format!(
+                "converged residuals of the rest position (Newton on the exact equilibrium; {} mode does not \
+                 apply){}",
+                mode_word(s.mode),
+                if corrected.is_some() {
+                    "; each figure and column read again one exact Newton iteration on"
+                } else {
+                    ""
+                }
+            ),
+            // Newton converged: what is left is the residual's scale, far below any figure printed; the
+            // angles' estimate says how far.
+            angle_error_deg: angle_error,
+            length_error_m: constraint_residual,
+            force_residual,
+            constraint_residual,
+            columns,
+            within_tolerance: within,
+        },
+        warnings,
+    })
+}

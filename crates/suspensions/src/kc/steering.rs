@@ -1,0 +1,192 @@
+//! Steering: rack travel on the full axle, wheel-centre heights held; the steer angles, the steering
+//! ratio and the Ackermann error.
+
+use crate::analysis::{axle_sweep_with, AxleRow};
+use crate::assembly::AxleRig;
+use crate::description::Side;
+use crate::kc::figures;
+use crate::kc::models::Models;
+use crate::kc::reduce::{axis, axle_drawing, chart, deg, finish, needs_vehicle, Design, Reduction};
+use crate::kc::report::{AnalysisReport, Cell, Column, Figure, Table};
+use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, Quantity, Settings};
+use elastokin_solver::replay::ReplayRows;
+
+/// Steering, as the command and the reports name it.
+pub(super) const DECLARATION: Declaration = Declaration {
+    name: "steering",
+    parameter: "rack travel, m, towards +y (left)",
+    quantity: Quantity::Travel,
+    rig_words: Some("full axle, wheel-centre heights held"),
+    default_range: DefaultRange::Ends(-0.04, 0.04),
+    design_parameter: Some(0.0),
+};
+
+/// The steering table of `rows`: steer angles, and Ackermann's ideal outer steer and the error from it
+/// where the `wheelbase` is known (with the contact patches' `track` at design).
+fn steering_table(rows: &[AxleRow], track: f64, wheelbase: Option<f64>) -> Table {
+    let a = move |r: &AxleRow| wheelbase.and_then(|l| ackermann(r, track, l));
+    let columns: Vec<Column<AxleRow>> = vec![
+        Column::new("rack_travel_m", |r: &AxleRow| r.travel.into()),
+        Column::new("left_steer_deg", |r: &AxleRow| deg(steer_angle(r.left.toe, Side::Left)).into()),
+        Column::new("right_steer_deg", |r: &AxleRow| deg(steer_angle(r.right.toe, Side::Right)).into()),
+        Column::new("left_toe_deg", |r: &AxleRow| deg(r.left.toe).into()),
+        Column::new("right_toe_deg", |r: &AxleRow| deg(r.right.toe).into()),
+        Column::new("left_camber_deg", |r: &AxleRow| deg(r.left.camber).into()),
+        Column::new("right_camber_deg", |r: &AxleRow| deg(r.right.camber).into()),
+        Column::new("ideal_outer_steer_deg", move |r: &AxleRow| Cell::from(a(r).map(|(_, _, ideal)| deg(ideal)))),
+        Column::new("ackermann_error_deg", move |r: &AxleRow| {
+            Cell::from(a(r).map(|(_, outer, ideal)| deg(outer - ideal)))
+        }),
+        Column::new("ackermann_percent", move |r: &AxleRow| {
+            Cell::from(a(r).map(|(inner, outer, ideal)| 100.0 * (inner - outer) / (inner - ideal)))
+        }),
+    ];
+    Table::of_columns("steering", &columns, rows)
+}
+
+/// The steering figures: the steer per rack travel at design, the steering ratio (with the rack's travel
+/// per turn of the hand wheel, `c_factor`), and Ackermann at full steer and its largest error, read off the
+/// rows, where the `wheelbase` is known.
+fn steering_figures(
+    rows: &[AxleRow],
+    design: Design<AxleRow>,
+    track: f64,
+    wheelbase: Option<f64>,
+    c_factor: Option<f64>,
+) -> Vec<Figure> {
+    let why = design.err().unwrap_or_default();
+    let mean_steer = |r: &AxleRow| 0.5 * (steer_angle(r.left.toe, Side::Left) + steer_angle(r.right.toe, Side::Right));
+    let per_rack = design.ok().map(|d| d.rate(mean_steer));
+    let mut f = vec![Figure::of(&figures::STEER_PER_RACK_TRAVEL, per_rack, why)];
+    f.push(match (per_rack, c_factor) {
+        // A rack that does not steer the wheels at design has no ratio (a hand wheel turning forever).
+        (Some(d), Some(_)) if d.abs() < 1e-11 => Figure::of(
+            &figures::STEERING_RATIO,
+            None,
+            "the rack travel does not steer the wheels at design: check the tie rods (tie_rod_inner, \
+             tie_rod_outer) and their bushings",
+        ),
+        // A turn of the hand wheel moves the rack by c, which turns the wheels by c·d.
+        (Some(d), Some(c)) => Figure::of(&figures::STEERING_RATIO, Some(std::f64::consts::TAU / (c * d.abs())), ""),
+        (None, _) => Figure::of(&figures::STEERING_RATIO, None, why),
+        (_, None) => Figure::of(&figures::STEERING_RATIO, None, &needs_vehicle("rack_travel_per_revolution")),
+    });
+    match wheelbase {
+        Some(l) => {
+            // At the end of the rack travel that steers most: where Ackermann is read on a rig; and the
+            // largest error, the row where it is largest. Both are read off the rows (`every` k-th, the
+            // last among them), so they are as fine as the steps: every other row reads them again, and
+            // the difference is their discretization's estimate.
+            let read = |every: usize| {
+                let angles = || {
+                    let first = (rows.len() + every - 1) % every;
+                    rows.iter()
+                        .enumerate()
+                        .skip(first)
+                        .step_by(every)
+                        .filter_map(|(i, r)| Some((i, ackermann(r, track, l)?)))
+                };
+                let end = angles().max_by(|a, b| a.1 .0.total_cmp(&b.1 .0));
+                let worst = angles()
+                    .map(|(i, (_, outer, ideal))| (i, outer - ideal))
+                    .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()));
+                (end, worst)
+            };
+            let (end, worst) = read(1);
+            // A recording's replays move these rows too (they are found by their values).
+            let named: Vec<usize> = [end.map(|r| r.0), worst.map(|r| r.0)].into_iter().flatten().collect();
+            elastokin_solver::replay::rows_read(&named);
+            let (end, worst) = (end.map(|r| r.1), worst.map(|r| r.1));
+            let (coarse_end, coarse_worst) = read(2);
+            let (coarse_end, coarse_worst) = (coarse_end.map(|r| r.1), coarse_worst.map(|r| r.1));
+            // Steer angles are read from the design's straight ahead: wheels toed in or out at rack
+            // centre by more than the rack turns them never both turn one way.
+            let turned = rows.iter().any(|r| r.left.toe.abs() > 1e-9 || r.right.toe.abs() > 1e-9);
+            let none = if turned {
+                "no rack position turns both wheels the same way: their toe at rack centre outweighs the steer \
+                 the rack gives (check the tie rods and their bushings)"
+            } else {
+                "the rack travel steers neither wheel"
+            };
+            let fraction = |(i, o, ideal): (f64, f64, f64)| (i - o) / (i - ideal);
+            let inner = |(i, _, _): (f64, f64, f64)| i;
+            let discretized = |mut f: Figure, coarse: Option<f64>| {
+                f.error = f.value.zip(coarse).map(|(a, b)| (a - b).abs()).filter(|e| e.is_finite());
+                f
+            };
+            f.push(discretized(Figure::of(&figures::ACKERMANN, end.map(fraction), none), coarse_end.map(fraction)));
+            f.push(discretized(
+                Figure::of(&figures::INNER_STEER_AT_FULL_RACK, end.map(inner), none),
+                coarse_end.map(inner),
+            ));
+            f.push(discretized(Figure::of(&figures::ACKERMANN_ERROR, worst, none), coarse_worst));
+        }
+        None => f.push(Figure::of(&figures::ACKERMANN, None, &needs_vehicle("wheelbase")).labelled("Ackermann")),
+    }
+    f
+}
+
+/// Steer angle of a wheel (positive turning left, about +z) from its toe (toe-in positive).
+fn steer_angle(toe: f64, side: Side) -> f64 {
+    -side.sign() * toe
+}
+
+/// The outer wheel's steer angle that ideal (Ackermann) geometry gives for the inner wheel's `inner`
+/// (both positive, rad): the two wheels' axes meet on the rear axle line, `cot δo − cot δi = T / L`.
+pub fn ideal_outer_steer(inner: f64, track: f64, wheelbase: f64) -> f64 {
+    (1.0 / (1.0 / inner.tan() + track / wheelbase)).atan()
+}
+
+/// The mean steer angle below which a row counts as straight ahead (rad, 0.01°): there Ackermann's
+/// figures are ratios of differences of static toe, noise with no meaning (1e8 % was printed at zero rack
+/// travel).
+const STRAIGHT_AHEAD: f64 = 1.75e-4;
+
+/// Ackermann figures of one steering row: `(inner, outer, ideal outer)` steer angles (rad, positive);
+/// `None` straight ahead.
+fn ackermann(r: &AxleRow, track: f64, wheelbase: f64) -> Option<(f64, f64, f64)> {
+    let (left, right) = (steer_angle(r.left.toe, Side::Left), steer_angle(r.right.toe, Side::Right));
+    // Turning left, the left wheel is the inner one.
+    let (inner, outer) = if left + right > 0.0 { (left, right) } else { (-right, -left) };
+    (0.5 * (left + right).abs() > STRAIGHT_AHEAD && inner > 0.0)
+        .then(|| (inner, outer, ideal_outer_steer(inner, track, wheelbase)))
+}
+
+pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
+    let file = models.file();
+    let range = Analysis::Steering.range_or_default(s.range)?;
+    let axle = models.axle_ref(AxleRig::Steering)?;
+    // Besides the readings at design, the figures read the row of full steer and that of the largest
+    // Ackermann error, found by their values (named below).
+    let rows = ReplayRows { near: None, last: false, extremes: true };
+    let out = axle_sweep_with(axle, range.0, range.1, s.steps, s.mode, s.extras_reading(range, 0.0, rows))?;
+    let wheelbase = file.vehicle.as_ref().map(|v| v.wheelbase);
+    // Track between the contact patches at design: the lateral distance Ackermann's rule uses.
+    let track = axle.left.contact_patch.y - axle.right.contact_patch.y;
+    let table = |rows: &[AxleRow]| steering_table(rows, track, wheelbase);
+    let c_factor = file.vehicle.as_ref().and_then(|v| v.rack_travel_per_revolution);
+    let figures =
+        |rows: &[AxleRow], design: Design<AxleRow>| steering_figures(rows, design, track, wheelbase, c_factor);
+    let x = |r: &AxleRow| r.travel * 1e3;
+    let charts = vec![chart(
+        file,
+        "steering",
+        "steer angles",
+        "rack travel [mm], towards left +",
+        axis(
+            "steer angle [deg], left turn +",
+            &out.rows,
+            x,
+            &[
+                ("left wheel", &|r: &AxleRow| Some(deg(steer_angle(r.left.toe, Side::Left)))),
+                ("right wheel", &|r: &AxleRow| Some(deg(steer_angle(r.right.toe, Side::Right)))),
+            ],
+        ),
+        None,
+        Some(0.0),
+    )];
+    let description =
+        format!("steering (rack {:+.0}..{:+.0} mm, heights held), {} steps", range.0 * 1e3, range.1 * 1e3, s.steps);
+    let reduce = Reduction { table: &table, figures: &figures, drawing: axle_drawing(axle, s) };
+    Ok(finish(Analysis::Steering, description, range, s, &out, reduce, charts))
+}
