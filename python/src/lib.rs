@@ -370,7 +370,9 @@ impl Model {
         let settings = Settings { range, steps, figures_only, ..Settings::default() };
         kc::check_settings(which, &settings).map_err(|e| PyValueError::new_err(e.to_string()))?;
         let p = Parameters::new(&self.base, &parameters).map_err(|e| ModelError::new_err(e.to_string()))?;
-        let s = py.detach(|| analysis_sensitivity(which, &p, &settings)).map_err(|e| AnalysisError::new_err(e.to_string()))?;
+        let s = py
+            .detach(|| analysis_sensitivity(which, &p, &settings))
+            .map_err(|e| AnalysisError::new_err(e.to_string()))?;
         let d = PyDict::new(py);
         // Empty cells and missing derivatives are NaN in numpy.
         let numbers = |v: Vec<Option<f64>>| v.into_iter().map(|x| x.unwrap_or(f64::NAN)).collect::<Vec<f64>>();
