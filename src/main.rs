@@ -690,7 +690,7 @@ fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Fai
         let sensitivities = match &hardpoints {
             Some(parameters) => {
                 let suite = elastokin::suspensions::design::suite_sensitivity(parameters, &which, &settings)
-                    .map_err(Failure::Run)?;
+                    .map_err(|e| Failure::Run(e.to_string()))?;
                 written.extend(write_sensitivities(&staging, &suite, parameters, &provenance, settings.figures_only)?);
                 Some(suite)
             }
@@ -941,7 +941,7 @@ fn sensitivity(args: SensitivityArgs, out: &Stdout, strict: bool) -> Result<(), 
         design::Parameters::new(&base, &args.params).map_err(|e| Failure::Input(format!("{origin}: {e}")))?
     };
     let which = args.sweeps.which();
-    let suite = design::suite_sensitivity(&parameters, &which, &settings).map_err(Failure::Run)?;
+    let suite = design::suite_sensitivity(&parameters, &which, &settings).map_err(|e| Failure::Run(e.to_string()))?;
     refuse_warned(strict, suite.analyses.iter().flat_map(|a| &a.report.warnings))?;
     if suite.analyses.is_empty() && !suite.failed.is_empty() {
         return Err(Failure::Run(format!(
@@ -1047,7 +1047,9 @@ fn tune(args: TuneArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), F
     .map_err(|e| match e {
         // The targets ask what the model's analyses do not give: bad input, as a bad TARGETS file is.
         tune::TuneError::Targets(why) => Failure::Input(format!("{origin}: {why}")),
-        tune::TuneError::Model(why) => Failure::Run(format!("{origin}: {why}")),
+        e @ (tune::TuneError::Model(_) | tune::TuneError::Parameters(_) | tune::TuneError::Analysis { .. }) => {
+            Failure::Run(format!("{origin}: {e}"))
+        }
     })?;
     progress.finish();
     // The analyses of the model as it was and as it is tuned.

@@ -259,11 +259,13 @@ impl Model {
         };
         let t = read_targets(targets, "targets", &self.base, read_file).map_err(PyValueError::new_err)?;
         let pointers: Vec<String> = t.free.iter().map(|f| f.pointer.clone()).collect();
-        let p = Parameters::new(&self.base, &pointers).map_err(ModelError::new_err)?;
+        let p = Parameters::new(&self.base, &pointers).map_err(|e| ModelError::new_err(e.to_string()))?;
         let tuned = py.detach(|| tune(&p, &t, |_| {})).map_err(|e| match e {
             // The targets ask what the model's analyses do not give: a bad TARGETS text, as above.
             TuneError::Targets(why) => PyValueError::new_err(why),
-            TuneError::Model(why) => AnalysisError::new_err(why),
+            e @ (TuneError::Model(_) | TuneError::Parameters(_) | TuneError::Analysis { .. }) => {
+                AnalysisError::new_err(e.to_string())
+            }
         })?;
         let d = PyDict::new(py);
         d.set_item("stopped", &tuned.stopped)?;
@@ -306,7 +308,7 @@ impl Model {
         monte_carlo: Option<usize>,
         seed: u64,
     ) -> PyResult<Bound<'py, PyDict>> {
-        use elastokin_suspensions::design::tolerance::{read_tolerances, stack_up};
+        use elastokin_suspensions::design::tolerance::{read_tolerances, stack_up, StackUpError};
         let t = read_tolerances(tolerances, "tolerances", &self.base).map_err(PyValueError::new_err)?;
         let stack = py
             .detach(|| {
@@ -314,9 +316,9 @@ impl Model {
                 if let Some(n) = monte_carlo {
                     stack.monte_carlo(n, seed);
                 }
-                Ok::<_, String>(stack)
+                Ok(stack)
             })
-            .map_err(AnalysisError::new_err)?;
+            .map_err(|e: StackUpError| AnalysisError::new_err(e.to_string()))?;
         column_dict(py, &stack.table())
     }
 
@@ -335,7 +337,7 @@ impl Model {
         let t = read_tolerances(tolerances, "tolerances", &self.base).map_err(PyValueError::new_err)?;
         let pointers: Vec<String> = t.bands.iter().map(|(p, _)| p.clone()).collect();
         let bands: Vec<f64> = t.bands.iter().map(|(_, b)| *b).collect();
-        let p = Parameters::new(&self.base, &pointers).map_err(ModelError::new_err)?;
+        let p = Parameters::new(&self.base, &pointers).map_err(|e| ModelError::new_err(e.to_string()))?;
         let samples: Vec<Vec<f64>> = (0..n).map(|i| sample(&p.values, &bands, seed, i)).collect();
         let d = PyDict::new(py);
         for (k, pointer) in pointers.iter().enumerate() {
@@ -367,8 +369,10 @@ impl Model {
         let which = self::analysis(analysis)?;
         let settings = Settings { range, steps, figures_only, ..Settings::default() };
         kc::check_settings(which, &settings).map_err(|e| PyValueError::new_err(e.to_string()))?;
-        let p = Parameters::new(&self.base, &parameters).map_err(ModelError::new_err)?;
-        let s = py.detach(|| analysis_sensitivity(which, &p, &settings)).map_err(AnalysisError::new_err)?;
+        let p = Parameters::new(&self.base, &parameters).map_err(|e| ModelError::new_err(e.to_string()))?;
+        let s = py
+            .detach(|| analysis_sensitivity(which, &p, &settings))
+            .map_err(|e| AnalysisError::new_err(e.to_string()))?;
         let d = PyDict::new(py);
         // Empty cells and missing derivatives are NaN in numpy.
         let numbers = |v: Vec<Option<f64>>| v.into_iter().map(|x| x.unwrap_or(f64::NAN)).collect::<Vec<f64>>();

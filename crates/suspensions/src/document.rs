@@ -6,7 +6,7 @@
 use crate::assembly::rig::Rig;
 use crate::description::Side;
 use crate::file::{FileError, SuspensionFile};
-use crate::import::chrono::{self, is_chrono, Imported};
+use crate::import::chrono::{self, is_chrono, ImportError, Imported};
 use std::path::Path;
 
 impl SuspensionFile {
@@ -46,7 +46,7 @@ fn build_check(file: &SuspensionFile, origin: &str) -> Result<(), FileError> {
 /// Reads a Project Chrono suspension file into the general form ([`chrono::read`]) and builds it, as every
 /// model is: `origin` names it in errors, `loaded_radius` (m) is the tyre's (Chrono's suspension files have
 /// none).
-pub fn import_chrono(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Imported, FileError> {
+pub fn import_chrono(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Imported, ImportError> {
     let imported = chrono::read(text, origin, loaded_radius)?;
     build_check(&imported.file, origin)?;
     Ok(imported)

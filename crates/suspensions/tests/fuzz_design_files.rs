@@ -229,7 +229,7 @@ fn mutated_tolerance_files_are_refused_with_a_message_or_stacked_up_without_pani
             })
         }));
         match ran.unwrap_or_else(|_| panic!("case {case} panicked in the stack-up:\n{text}")) {
-            Err(message) => check_message(&message, case, &text),
+            Err(e) => check_message(&e.to_string(), case, &text),
             Ok(table) => {
                 for row in &table.rows {
                     assert!(row.iter().all(|c| c.number().is_none_or(f64::is_finite)), "case {case}:\n{text}");

@@ -10,7 +10,8 @@ use elastokin_solver::Mode;
 use elastokin_suspensions::analysis::{parallel_wheel_travel_with, SweepExtras};
 use elastokin_suspensions::design::sensitivity::RELATIVE_STEP;
 use elastokin_suspensions::design::{
-    analysis_sensitivity, hardpoint_pointers, suite_sensitivity, Derivative, NoDerivative, Parameters,
+    analysis_sensitivity, hardpoint_pointers, suite_sensitivity, Derivative, NoDerivative, ParameterError, Parameters,
+    SensitivityError,
 };
 use elastokin_suspensions::kc::{self, Analysis, Settings};
 use elastokin_suspensions::study::batch::base_document;
@@ -162,6 +163,8 @@ fn a_parameter_that_names_nothing_or_no_number_is_refused_by_name() {
         ("/name", "not a number"),
     ] {
         let e = Parameters::new(&doc, &[pointer.to_string()]).unwrap_err();
+        assert!(matches!(&e, ParameterError::NoNumber { pointer: p, .. } if p == pointer), "{pointer}: {e:?}");
+        let e = e.to_string();
         assert!(e.contains(pointer) && e.contains(says), "{pointer}: {e}");
     }
     // A count has no derivative: the model reads it with one more or one less, not with half a one more.
@@ -170,12 +173,15 @@ fn a_parameter_that_names_nothing_or_no_number_is_refused_by_name() {
         ("twist_beam.json", "/suspension/general/axle/beams/0/segments"),
     ] {
         let e = Parameters::new(&document(name), &[pointer.to_string()]).unwrap_err();
+        assert!(matches!(&e, ParameterError::Count { pointer: p } if p == pointer), "{e:?}");
+        let e = e.to_string();
         assert!(e.starts_with(&format!("parameter '{pointer}' is a count")) && !e.contains("usize"), "{e}");
     }
     // A whole number that is no count is a parameter (a spring rate of 17000 N/m).
     assert!(Parameters::new(&document("twist_beam.json"), &["/suspension/general/springs/0/rate".into()]).is_ok());
     let twice = vec!["/suspension/macpherson/loaded_radius".to_string(); 2];
-    assert!(Parameters::new(&doc, &twice).unwrap_err().contains("given twice"));
+    let e = Parameters::new(&doc, &twice).unwrap_err();
+    assert!(matches!(e, ParameterError::Twice { .. }) && e.to_string().contains("given twice"), "{e}");
     // Every coordinate of the MacPherson's 8 hardpoints.
     assert_eq!(hardpoint_pointers(&doc).len(), 24);
 }
@@ -221,8 +227,8 @@ fn a_moved_model_read_from_its_document_is_the_one_its_text_gives() {
             moved = Parameters::new(&doc, &pointers).unwrap().at(&values).unwrap();
         }
         let (e, text) = match to {
-            Some(v) => (p.file_moved(0, v - p.values[0]).unwrap_err(), p.document_at(&[v]).unwrap()),
-            None => (moved.file().unwrap_err(), moved.document().clone()),
+            Some(v) => (p.file_moved(0, v - p.values[0]).unwrap_err().to_string(), p.document_at(&[v]).unwrap()),
+            None => (moved.file().unwrap_err().to_string(), moved.document().clone()),
         };
         let from_text =
             elastokin_suspensions::document::parse_document(&serde_json::to_string(&text).unwrap(), "x").unwrap_err();
@@ -599,6 +605,8 @@ fn an_analysis_whose_path_meets_a_limit_point_is_refused_with_where() {
         Parameters::new(&document("generic/macpherson.json"), &["/suspension/macpherson/spring/rate".into()]).unwrap();
     let settings = Settings { range: Some((-0.05, 0.5)), steps: STEPS, ..Settings::default() };
     let e = analysis_sensitivity(Analysis::ParallelTravel, &p, &settings).unwrap_err();
+    assert!(matches!(e, SensitivityError::LimitPoint { .. }), "{e:?}");
+    let e = e.to_string();
     assert!(e.contains("meets a limit point at 0.375") && e.contains("narrow the range"), "{e}");
     // In a suite it is that analysis's failure, with the same reason.
     let suite = suite_sensitivity(&p, &[Analysis::ParallelTravel], &settings).unwrap();

@@ -1,7 +1,7 @@
 //! Tolerance stack-up: the first-order spread of the figures from the sensitivities against a Monte
 //! Carlo of the model sampled within its tolerances, and bad TOLERANCES files refused by key.
 
-use elastokin_suspensions::design::tolerance::{read_tolerances, stack_up};
+use elastokin_suspensions::design::tolerance::{read_tolerances, stack_up, StackUpError};
 use elastokin_suspensions::study::batch::base_document;
 use serde_json::{json, Value};
 
@@ -86,6 +86,11 @@ fn a_band_that_spreads_a_figure_beyond_any_number_is_refused_by_its_number() {
     let text = json!({ "tolerances": { pointer: 1e308 }, "analyses": ["parallel-travel"], "steps": 4 }).to_string();
     let t = read_tolerances(&text, "tolerances.json", &doc).unwrap();
     let e = stack_up(&doc, &t).unwrap_err();
+    assert!(
+        matches!(&e, StackUpError::Unbounded { pointer: p, analysis: "parallel-travel", .. } if p == pointer),
+        "{e:?}"
+    );
+    let e = e.to_string();
     assert!(e.contains(pointer) && e.contains("±1e308") && e.contains("parallel-travel"), "{e}");
     // A band a part is made to is not.
     let text = json!({ "tolerances": { pointer: 1e-3 }, "analyses": ["parallel-travel"], "steps": 4 }).to_string();

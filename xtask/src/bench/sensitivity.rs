@@ -34,7 +34,7 @@ pub fn run(s: &Settings) -> SectionOutput {
         &["analyses", "what", "parameters", "median time (s)", "time / analyses alone", "status"],
     );
     let parameters = match models::shipped_document("generic/macpherson")
-        .and_then(|base| Parameters::new(&base, &hardpoint_pointers(&base)))
+        .and_then(|base| Parameters::new(&base, &hardpoint_pointers(&base)).map_err(|e| e.to_string()))
     {
         Ok(p) => p,
         Err(e) => {
@@ -58,9 +58,10 @@ pub fn run(s: &Settings) -> SectionOutput {
     for (name, which) in [("suite", suite.clone()), ("parallel travel", vec![Analysis::ParallelTravel])] {
         let run = |p: &Parameters, k: Option<(usize, f64)>| -> Result<usize, String> {
             let file = match k {
-                Some((k, d)) => p.file_moved(k, d)?,
-                None => p.file()?,
-            };
+                Some((k, d)) => p.file_moved(k, d),
+                None => p.file(),
+            }
+            .map_err(|e| e.to_string())?;
             // Built once for all the analyses, as the suite builds them.
             let models = kc::Models::new(&file);
             let mut figures = 0;

@@ -26,7 +26,7 @@ fn problem() -> Result<(Parameters, Targets), String> {
         let v = hidden.pointer(&pointer).and_then(Value::as_f64).ok_or("no tie rod")? + by;
         *hidden.pointer_mut(&pointer).ok_or("no tie rod")? = json!(v);
     }
-    let file = Parameters::new(&hidden, &[])?.file()?;
+    let file = Parameters::new(&hidden, &[]).and_then(|p| p.file()).map_err(|e| e.to_string())?;
     let settings = kc::Settings { range: Some((-0.05, 0.05)), steps: 20, ..kc::Settings::default() };
     let r = kc::run(Analysis::ParallelTravel, &file, &settings).map_err(|e| e.to_string())?;
     let c = r.table.columns.iter().position(|x| x == "toe_deg").ok_or("no toe column")?;
@@ -48,7 +48,7 @@ fn problem() -> Result<(Parameters, Targets), String> {
     .to_string();
     let targets = read_targets(&text, "bench", &base, |_| Err("no files".into()))?;
     let pointers: Vec<String> = targets.free.iter().map(|f| f.pointer.clone()).collect();
-    Ok((Parameters::new(&base, &pointers)?, targets))
+    Ok((Parameters::new(&base, &pointers).map_err(|e| e.to_string())?, targets))
 }
 
 /// What one candidate reached: the largest miss of the curve (deg) and the evaluations it took.

@@ -10,7 +10,8 @@ pub mod targets;
 pub mod tolerance;
 pub mod tune;
 
-pub use parameter::{hardpoint_pointers, Parameters};
+pub use parameter::{hardpoint_pointers, NoNumber, ParameterError, Parameters};
 pub use sensitivity::{
-    analysis_sensitivity, suite_sensitivity, AnalysisSensitivity, Derivative, NoDerivative, Rate, SuiteSensitivity,
+    analysis_sensitivity, suite_sensitivity, AnalysisSensitivity, Derivative, NoDerivative, Rate, SensitivityError,
+    SuiteSensitivity,
 };

@@ -20,18 +20,17 @@ impl Parameters {
     /// The numbers at `pointers` of `document` (a model file as [`crate::study::batch::base_document`]
     /// reads it); a pointer that names nothing, or something that is not a number, is refused by name, with
     /// what is there.
-    pub fn new(document: &Value, pointers: &[String]) -> Result<Parameters, String> {
+    pub fn new(document: &Value, pointers: &[String]) -> Result<Parameters, ParameterError> {
         let mut values = Vec::with_capacity(pointers.len());
         for (k, pointer) in pointers.iter().enumerate() {
+            let named = || pointer.clone();
             if pointers[..k].contains(pointer) {
-                return Err(format!("parameter '{pointer}' is given twice"));
+                return Err(ParameterError::Twice { pointer: named() });
             }
-            let value = number_at(document, pointer).map_err(|why| format!("parameter '{pointer}' {why}"))?;
+            let value =
+                number_at(document, pointer).map_err(|why| ParameterError::NoNumber { pointer: named(), why })?;
             if value.fract() == 0.0 && is_count(document, pointer, value) {
-                return Err(format!(
-                    "parameter '{pointer}' is a count (a whole number of things), which does not move by parts and \
-                     has no derivative: give a number that places a part or sets a rate, a force or a size"
-                ));
+                return Err(ParameterError::Count { pointer: named() });
             }
             values.push(value);
         }
@@ -49,19 +48,19 @@ impl Parameters {
     }
 
     /// The model with parameter `k` moved by `delta` (in the file's units), read as the command reads it.
-    pub fn file_moved(&self, k: usize, delta: f64) -> Result<SuspensionFile, String> {
+    pub fn file_moved(&self, k: usize, delta: f64) -> Result<SuspensionFile, ParameterError> {
         self.moved(k, delta, true)
     }
 
     /// [`Parameters::file_moved`] not built to check it, for a caller that builds it at once and says why a
     /// build fails.
-    pub(crate) fn file_moved_to_build(&self, k: usize, delta: f64) -> Result<SuspensionFile, String> {
+    pub(crate) fn file_moved_to_build(&self, k: usize, delta: f64) -> Result<SuspensionFile, ParameterError> {
         self.moved(k, delta, false)
     }
 
     /// The model with parameter `k` moved by `delta`, built to check it if `built` ([`read`]).
     /// Only parameter `k` is written: the document holds the others' values already.
-    fn moved(&self, k: usize, delta: f64, built: bool) -> Result<SuspensionFile, String> {
+    fn moved(&self, k: usize, delta: f64, built: bool) -> Result<SuspensionFile, ParameterError> {
         let (pointer, value) = (&self.pointers[k], self.values[k] + delta);
         let mut document = self.document.clone();
         set(&mut document, pointer, value)?;
@@ -70,7 +69,7 @@ impl Parameters {
 
     /// The model's document with the parameters at `values` (in order; the file's units): every other key,
     /// and the order of keys, as they were.
-    pub fn document_at(&self, values: &[f64]) -> Result<Value, String> {
+    pub fn document_at(&self, values: &[f64]) -> Result<Value, ParameterError> {
         let mut document = self.document.clone();
         for (pointer, &value) in self.pointers.iter().zip(values) {
             set(&mut document, pointer, value)?;
@@ -84,12 +83,12 @@ impl Parameters {
     }
 
     /// The same parameters of the model with them at `values`.
-    pub fn at(&self, values: &[f64]) -> Result<Parameters, String> {
+    pub fn at(&self, values: &[f64]) -> Result<Parameters, ParameterError> {
         Ok(Parameters { document: self.document_at(values)?, pointers: self.pointers.clone(), values: values.to_vec() })
     }
 
     /// The model as it is (its parameters at their values).
-    pub fn file(&self) -> Result<SuspensionFile, String> {
+    pub fn file(&self) -> Result<SuspensionFile, ParameterError> {
         read(&self.document, "the model", true)
     }
 }
@@ -111,10 +110,10 @@ fn is_count(document: &Value, pointer: &str, value: f64) -> bool {
 }
 
 /// Writes `value` at `pointer` of `document`.
-fn set(document: &mut Value, pointer: &str, value: f64) -> Result<(), String> {
+fn set(document: &mut Value, pointer: &str, value: f64) -> Result<(), ParameterError> {
     let number = serde_json::Number::from_f64(value)
-        .ok_or_else(|| format!("parameter '{pointer}' at {value:e}, which is no number"))?;
-    *document.pointer_mut(pointer).ok_or_else(|| format!("parameter '{pointer}' names nothing"))? =
+        .ok_or_else(|| ParameterError::NotFinite { pointer: pointer.to_string(), value })?;
+    *document.pointer_mut(pointer).ok_or_else(|| ParameterError::Gone { pointer: pointer.to_string() })? =
         Value::Number(number);
     Ok(())
 }
@@ -122,26 +121,107 @@ fn set(document: &mut Value, pointer: &str, value: f64) -> Result<(), String> {
 /// A model document read as the command reads its file, built to check it unless not `built` (see
 /// [`crate::document::parse_value`]; a Project Chrono file is read, and so built, as the command reads it);
 /// `origin` names it in errors (a moved model is no file the user has: its errors name keys).
-fn read(document: &Value, origin: &str, built: bool) -> Result<SuspensionFile, String> {
+fn read(document: &Value, origin: &str, built: bool) -> Result<SuspensionFile, ParameterError> {
+    let refused = |why: String| ParameterError::Model { why };
     if crate::import::chrono::is_chrono_document(document) {
-        let text = serde_json::to_string(document).map_err(|e| e.to_string())?;
-        return crate::document::parse_document_of_kind(&text, true, origin).map(|(file, _)| file);
+        let text = serde_json::to_string(document).map_err(|e| refused(e.to_string()))?;
+        return crate::document::parse_document_of_kind(&text, true, origin).map(|(file, _)| file).map_err(refused);
     }
-    crate::document::parse_value(document, origin, built)
+    crate::document::parse_value(document, origin, built).map_err(refused)
 }
 
 /// The number at `pointer` of `document`, or what is there instead, in words that follow the pointer
 /// ("names nothing in the model …", "names a list of 3 values …"): a caller says whose pointer it is.
-pub fn number_at(document: &Value, pointer: &str) -> Result<f64, String> {
+pub fn number_at(document: &Value, pointer: &str) -> Result<f64, NoNumber> {
     match document.pointer(pointer) {
-        None => Err("names nothing in the model: a JSON pointer into the model file (keys and array indices \
-                     from the top, e.g. /suspension/macpherson/hardpoints/tie_rod_inner/2)"
-            .into()),
-        Some(Value::Number(n)) => n.as_f64().filter(|v| v.is_finite()).ok_or_else(|| "is not a finite number".into()),
-        Some(Value::Array(a)) => Err(format!("names a list of {} values (name one of them: '{pointer}/0')", a.len())),
-        Some(Value::Object(_)) => Err("names a section of the model, not a number".into()),
-        Some(other) => Err(format!("names {other}, not a number")),
+        None => Err(NoNumber::Nothing),
+        Some(Value::Number(n)) => n.as_f64().filter(|v| v.is_finite()).ok_or(NoNumber::NotFinite),
+        Some(Value::Array(a)) => Err(NoNumber::List { len: a.len(), pointer: pointer.to_string() }),
+        Some(Value::Object(_)) => Err(NoNumber::Section),
+        Some(other) => Err(NoNumber::Other { found: other.to_string() }),
     }
+}
+
+/// What a pointer names where a number is asked for, in words that follow the pointer: a caller says whose
+/// pointer it is.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum NoNumber {
+    /// Nothing in the document.
+    #[error(
+        "names nothing in the model: a JSON pointer into the model file (keys and array indices from the top, e.g. \
+         /suspension/macpherson/hardpoints/tie_rod_inner/2)"
+    )]
+    Nothing,
+    /// A number that is not finite.
+    #[error("is not a finite number")]
+    NotFinite,
+    /// A list of values.
+    #[error("names a list of {len} values (name one of them: '{pointer}/0')")]
+    List {
+        /// How many.
+        len: usize,
+        /// The pointer to the list.
+        pointer: String,
+    },
+    /// A section of the model (an object).
+    #[error("names a section of the model, not a number")]
+    Section,
+    /// A string, a flag or null, as written in JSON.
+    #[error("names {found}, not a number")]
+    Other {
+        /// The value, as JSON.
+        found: String,
+    },
+}
+
+/// Why a parameter is refused, or a model with parameters moved cannot be read. Each names the parameter by
+/// its pointer.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ParameterError {
+    /// A pointer given twice.
+    #[error("parameter '{pointer}' is given twice")]
+    Twice {
+        /// The pointer.
+        pointer: String,
+    },
+    /// A pointer that names no number of the model.
+    #[error("parameter '{pointer}' {why}")]
+    NoNumber {
+        /// The pointer.
+        pointer: String,
+        /// What it names instead.
+        why: NoNumber,
+    },
+    /// A count: a whole number of things, which does not move by parts.
+    #[error(
+        "parameter '{pointer}' is a count (a whole number of things), which does not move by parts and has no \
+         derivative: give a number that places a part or sets a rate, a force or a size"
+    )]
+    Count {
+        /// The pointer.
+        pointer: String,
+    },
+    /// A parameter moved to a value JSON cannot write.
+    #[error("parameter '{pointer}' at {value:e}, which is no number")]
+    NotFinite {
+        /// The pointer.
+        pointer: String,
+        /// The value.
+        value: f64,
+    },
+    /// A pointer that names nothing in the document it is written to.
+    #[error("parameter '{pointer}' names nothing")]
+    Gone {
+        /// The pointer.
+        pointer: String,
+    },
+    /// The model with the parameters moved is refused as a model document is, in the document reader's
+    /// words.
+    #[error("{why}")]
+    Model {
+        /// The reader's refusal.
+        why: String,
+    },
 }
 
 /// A key as a JSON pointer token (RFC 6901: `~` and `/` escaped).

@@ -34,7 +34,7 @@
 //!
 //! Only corrected-mode rows are equilibria: sensitivities are of the corrected path.
 
-use super::parameter::Parameters;
+use super::parameter::{ParameterError, Parameters};
 use crate::kc::{self, Analysis, AnalysisReport, Cell, Failed, Figure, Models, Settings, Skipped, Table};
 use elastokin_solver::replay::{record, replay, Replay, Tape};
 use elastokin_solver::Mode;
@@ -89,7 +89,7 @@ fn step(parameters: &Parameters, k: usize) -> f64 {
 struct MovedModels<'p> {
     parameters: &'p Parameters,
     base: Arc<Models<'static>>,
-    files: Vec<[OnceLock<Result<Models<'static>, String>>; MOVES.len()]>,
+    files: Vec<[OnceLock<Result<Models<'static>, ParameterError>>; MOVES.len()]>,
 }
 
 impl<'p> MovedModels<'p> {
@@ -99,7 +99,7 @@ impl<'p> MovedModels<'p> {
     }
 
     /// The model with parameter `k` moved by `MOVES[m]` steps.
-    fn models(&self, k: usize, m: usize) -> Result<&Models<'static>, String> {
+    fn models(&self, k: usize, m: usize) -> Result<&Models<'static>, ParameterError> {
         let moved = |file| Models::moved(file, self.base.clone());
         // Built at once for the analyses that replay it, each of which says why a build fails.
         let read = || self.parameters.file_moved_to_build(k, MOVES[m] * step(self.parameters, k)).map(moved);
@@ -369,7 +369,7 @@ pub fn analysis_sensitivity(
     analysis: Analysis,
     parameters: &Parameters,
     settings: &Settings,
-) -> Result<AnalysisSensitivity, String> {
+) -> Result<AnalysisSensitivity, SensitivityError> {
     let models = MovedModels::new(parameters, Arc::new(Models::owning(parameters.file()?)));
     analysis_sensitivity_of(analysis, &models, &sensitivity_settings(settings))
 }
@@ -378,15 +378,12 @@ fn analysis_sensitivity_of(
     analysis: Analysis,
     models: &MovedModels,
     settings: &Settings,
-) -> Result<AnalysisSensitivity, String> {
+) -> Result<AnalysisSensitivity, SensitivityError> {
     let parameters = models.parameters;
     let (report, tape) = record(|| kc::run_on(analysis, &models.base, settings));
-    let report = report.map_err(|e| e.cause.to_string())?;
+    let report = report.map_err(|e| SensitivityError::Analysis(e.cause))?;
     if let Some(at) = tape.limit_point() {
-        return Err(format!(
-            "the path meets a limit point at {at:.6} {}, where it has no derivative: narrow the range to end before it",
-            analysis.unit()
-        ));
+        return Err(SensitivityError::LimitPoint { at, unit: analysis.unit() });
     }
     let tape: Arc<Tape> = Arc::new(tape);
     // The replays read the rows only: no error estimate (a Newton iteration more per row, for a figure
@@ -395,15 +392,65 @@ fn analysis_sensitivity_of(
     let derivatives = (0..parameters.len())
         .into_par_iter()
         .map(|k| parameter_rates(analysis, models, k, &tape, &replayed, &report))
-        .collect::<Result<Vec<_>, String>>()?;
+        .collect::<Result<Vec<_>, SensitivityError>>()?;
     let (figures, table) = derivatives.into_iter().unzip();
     Ok(AnalysisSensitivity { report, figures, table })
+}
+
+/// Why an analysis's sensitivities cannot be had. Each names the parameter where one is to blame.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SensitivityError {
+    /// The model with a parameter moved cannot be read (or the model as it is).
+    #[error(transparent)]
+    Parameter(#[from] ParameterError),
+    /// The analysis fails on the model as it is.
+    #[error(transparent)]
+    Analysis(kc::Cause),
+    /// The analysis's path meets a limit point, where it has no derivative.
+    #[error(
+        "the path meets a limit point at {at:.6} {unit}, where it has no derivative: narrow the range to end before it"
+    )]
+    LimitPoint {
+        /// The load parameter there.
+        at: f64,
+        /// Its unit.
+        unit: &'static str,
+    },
+    /// A parameter whose move makes the analysis take another path than its recording.
+    #[error(
+        "parameter '{pointer}' changes what the analysis does when moved ({diverged}): it has no derivative; give a \
+         number that moves a part, not one that chooses what the parts are"
+    )]
+    ChangesAnalysis {
+        /// The parameter.
+        pointer: String,
+        /// Where the replay left its recording.
+        diverged: elastokin_solver::replay::Diverged,
+    },
+    /// The analysis fails on the model with a parameter moved.
+    #[error("parameter '{pointer}' moved by {by:e}: {cause}")]
+    MovedFails {
+        /// The parameter.
+        pointer: String,
+        /// How far it was moved, in the file's units.
+        by: f64,
+        /// What stopped the analysis.
+        cause: kc::Cause,
+    },
+    /// A parameter whose move changes the rows or columns of the analysis's table.
+    #[error(
+        "parameter '{pointer}' changes the rows or columns of the analysis's table when moved: it has no derivative"
+    )]
+    ChangesTable {
+        /// The parameter.
+        pointer: String,
+    },
 }
 
 /// How parameter `k`'s derivatives are differenced: central where the model reads at every central move;
 /// else one-sided to the side where it reads at one to four steps (a parameter at the end of its allowed
 /// range); else the first central move's reason it does not read.
-fn differences(models: &MovedModels, k: usize) -> Result<Differences, String> {
+fn differences(models: &MovedModels, k: usize) -> Result<Differences, ParameterError> {
     let reads = |moves: &[usize]| moves.iter().try_for_each(|&m| models.models(k, m).map(drop));
     match reads(&[0, 1, 2, 3]) {
         Ok(()) => Ok(Differences::Central),
@@ -419,26 +466,23 @@ fn parameter_rates(
     tape: &Arc<Tape>,
     settings: &Settings,
     report: &AnalysisReport,
-) -> Result<(Vec<Rate>, Vec<Vec<Rate>>), String> {
+) -> Result<(Vec<Rate>, Vec<Vec<Rate>>), SensitivityError> {
     let pointer = &models.parameters.pointers[k];
     let h = step(models.parameters, k);
-    let replayed = |m: usize| -> Result<Replay<AnalysisReport>, String> {
+    let replayed = |m: usize| -> Result<Replay<AnalysisReport>, SensitivityError> {
         let (moved, shift) = (models.models(k, m)?, MOVES[m]);
-        let run = replay(tape, || kc::run_on(analysis, moved, settings)).map_err(|e| {
-            format!(
-                "parameter '{pointer}' changes what the analysis does when moved ({e}): it has no derivative; give \
-                 a number that moves a part, not one that chooses what the parts are"
-            )
+        let run = replay(tape, || kc::run_on(analysis, moved, settings))
+            .map_err(|diverged| SensitivityError::ChangesAnalysis { pointer: pointer.clone(), diverged })?;
+        let value = run.value.map_err(|e| SensitivityError::MovedFails {
+            pointer: pointer.clone(),
+            by: shift * h,
+            cause: e.cause,
         })?;
-        let value = run.value.map_err(|e| format!("parameter '{pointer}' moved by {:e}: {}", shift * h, e.cause))?;
         let (moved, own) = (&value.table, &report.table);
         // Read for the figures alone, a replay's table has the rows the figures read alone
         // (`SweepExtras::figure_rows`).
         if moved.columns != own.columns || (moved.rows.len() != own.rows.len() && !settings.figures_only) {
-            return Err(format!(
-                "parameter '{pointer}' changes the rows or columns of the analysis's table when moved: it has no \
-                 derivative"
-            ));
+            return Err(SensitivityError::ChangesTable { pointer: pointer.clone() });
         }
         Ok(Replay { value, kinked: run.kinked })
     };
@@ -516,7 +560,7 @@ pub fn suite_sensitivity(
     parameters: &Parameters,
     which: &[Analysis],
     settings: &Settings,
-) -> Result<SuiteSensitivity, String> {
+) -> Result<SuiteSensitivity, ParameterError> {
     let settings = sensitivity_settings(settings);
     let models = MovedModels::new(parameters, Arc::new(Models::owning(parameters.file()?)));
     let mut out = SuiteSensitivity { analyses: Vec::new(), skipped: Vec::new(), failed: Vec::new() };
@@ -530,7 +574,8 @@ pub fn suite_sensitivity(
         };
         match analysis_sensitivity_of(analysis, &models, &settings) {
             Ok(a) => out.analyses.push(a),
-            Err(reason) => out.failed.push(Failed { analysis, reason }),
+            // Written in the report as its reason.
+            Err(e) => out.failed.push(Failed { analysis, reason: e.to_string() }),
         }
     }
     Ok(out)

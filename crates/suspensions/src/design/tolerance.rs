@@ -19,7 +19,7 @@
 //! `tolerances` keeps its own); `analyses` defaults to the whole suite.
 
 use super::keys::{analysis_named, name_in, only, steps};
-use super::parameter::{hardpoint_pointers, number_at, Parameters};
+use super::parameter::{hardpoint_pointers, number_at, ParameterError, Parameters};
 use super::sensitivity::{sensitivity_settings, suite_sensitivity, SuiteSensitivity};
 use crate::kc::{self, Analysis, Cell, Failed, Settings, Table, Unit};
 use rand::{Rng, SeedableRng};
@@ -169,9 +169,32 @@ pub struct StackUp {
     pub warnings: Vec<kc::Warning>,
 }
 
+/// Why a stack-up cannot be had.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum StackUpError {
+    /// A toleranced number the model does not read as a parameter.
+    #[error(transparent)]
+    Parameter(#[from] ParameterError),
+    /// A band that spreads a figure beyond any finite number.
+    #[error(
+        "the band ±{band:e} of '{pointer}' spreads {analysis} {figure} beyond any number: give a band a part can be \
+         made to, in the file's units"
+    )]
+    Unbounded {
+        /// The band.
+        band: f64,
+        /// The number it is of.
+        pointer: String,
+        /// The analysis of the figure.
+        analysis: &'static str,
+        /// The figure's key.
+        figure: String,
+    },
+}
+
 /// The first-order stack-up of `tolerances` on the model `document`. Refused, naming the number: a band that
 /// spreads a figure beyond any finite number.
-pub fn stack_up(document: &Value, tolerances: &Tolerances) -> Result<StackUp, String> {
+pub fn stack_up(document: &Value, tolerances: &Tolerances) -> Result<StackUp, StackUpError> {
     let pointers: Vec<String> = tolerances.bands.iter().map(|(p, _)| p.clone()).collect();
     let bands: Vec<f64> = tolerances.bands.iter().map(|(_, t)| *t).collect();
     let parameters = Parameters::new(document, &pointers)?;
@@ -200,14 +223,12 @@ pub fn stack_up(document: &Value, tolerances: &Tolerances) -> Result<StackUp, St
             // A band no part is made to spreads the figure past any number: refused by the number it is of.
             if !(worst_case.is_finite() && sigma.is_finite()) {
                 let k = contributions[0].0;
-                return Err(format!(
-                    "the band ±{:e} of '{}' spreads {} {} beyond any number: give a band a part can be made to, \
-                     in the file's units",
-                    bands[k],
-                    pointers[k],
-                    analysis.name(),
-                    figure.key
-                ));
+                return Err(StackUpError::Unbounded {
+                    band: bands[k],
+                    pointer: pointers[k].clone(),
+                    analysis: analysis.name(),
+                    figure: figure.key.clone(),
+                });
             }
             spreads.push(Spread {
                 analysis,
@@ -255,7 +276,9 @@ impl StackUp {
             .into_par_iter()
             .map(|i| {
                 let x = sample(&self.parameters.values, &self.bands, seed, i);
-                let models = kc::Models::owning(self.parameters.at(&x)?.file()?);
+                // Written in the stack-up as the sample's failure.
+                let file = self.parameters.at(&x).and_then(|p| p.file()).map_err(|e| e.to_string())?;
+                let models = kc::Models::owning(file);
                 let mut reports = Vec::new();
                 for &a in &which {
                     reports.push(kc::run_on(a, &models, &settings).map_err(|e| format!("sample {i}: {e}"))?);

@@ -17,8 +17,8 @@
 //! move, or the targets fight one another (the least-squares optimum leaves the miss).
 
 use super::parameter::hardpoint_pointer;
-use super::parameter::Parameters;
-use super::sensitivity::{analysis_sensitivity, AnalysisSensitivity};
+use super::parameter::{ParameterError, Parameters};
+use super::sensitivity::{analysis_sensitivity, AnalysisSensitivity, SensitivityError};
 use super::targets::{Aim, Constraint, Target, Targets};
 use crate::kc::{AnalysisReport, Cell, Chart, Scale, Series, Settings, Table, YAxis};
 use clarabel::algebra::CscMatrix;
@@ -120,20 +120,25 @@ fn interpolation(t: &[f64], at: f64) -> Option<Vec<(usize, f64)>> {
 /// column it has not, a point outside the range walked, an aim too far to be worked with, a constraint on a
 /// hardpoint it has not), or the model could not be analysed. At the start of a tune the first is bad
 /// input; a step that meets either is stepped back from.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TuneError {
     /// The targets ask what the model's analyses do not give.
+    #[error("{0}")]
     Targets(String),
     /// The model could not be analysed.
+    #[error("{0}")]
     Model(String),
-}
-
-impl std::fmt::Display for TuneError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            TuneError::Targets(why) | TuneError::Model(why) => f.write_str(why),
-        }
-    }
+    /// The model with the free numbers where they are cannot be read.
+    #[error(transparent)]
+    Parameters(#[from] ParameterError),
+    /// An analysis the targets run has no sensitivities on the model.
+    #[error("{analysis}: {error}")]
+    Analysis {
+        /// The analysis's name.
+        analysis: &'static str,
+        /// Why it has none.
+        error: SensitivityError,
+    },
 }
 
 /// Its words, for a caller that does not tell the two apart.
@@ -149,7 +154,7 @@ type Run = (crate::kc::Analysis, Option<(f64, f64)>, AnalysisSensitivity);
 /// The targets' residuals and Jacobian with the free numbers of `parameters` at `x`.
 pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result<Evaluation, TuneError> {
     let (asked, model) = (TuneError::Targets, TuneError::Model);
-    let p = parameters.at(x).map_err(model)?;
+    let p = parameters.at(x)?;
     let n = x.len();
     // One run per analysis and range.
     let mut runs: Vec<Run> = Vec::new();
@@ -165,7 +170,7 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
             .all(|u| matches!(u.aim, Aim::Figure { .. }));
         let settings = Settings { range: t.range, steps: targets.steps, figures_only, ..Settings::default() };
         let s = analysis_sensitivity(t.analysis, &p, &settings)
-            .map_err(|e| model(format!("{}: {e}", t.analysis.name())))?;
+            .map_err(|error| TuneError::Analysis { analysis: t.analysis.name(), error })?;
         runs.push((t.analysis, t.range, s));
     }
     let (mut residuals, mut jacobian, mut rows) = (Vec::new(), Vec::new(), Vec::new());
@@ -841,7 +846,7 @@ pub fn tune(
             broken_by: broken_by(at),
         })
         .collect();
-    let document = parameters.document_at(&here.x).map_err(TuneError::Model)?;
+    let document = parameters.document_at(&here.x)?;
     Ok(Tuned { start, end: here, iterations, verdicts, packaging, stopped, document })
 }
 

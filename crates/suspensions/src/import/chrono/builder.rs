@@ -2,6 +2,7 @@
 //! shocks added as Chrono's templates place them, with the frames Chrono gives its joints and what was
 //! noted on the way.
 
+use super::error::{Expected, KeyPath, Refusal};
 use crate::description::general::{
     Axis, AxleDef, BodyDef, BodyPoint, BushingDef, GeneralCorner, Hardpoints, JointDef, Place, SpringDef, StopDef,
     StopType, TieRodDef, CHASSIS,
@@ -103,7 +104,7 @@ impl Builder {
 
     /// The point of the hardpoint `name` where the parts go: the corner's (left side), or on the axle its
     /// own or a corner's as `"left …"` / `"right …"` placed on that side.
-    pub(crate) fn point_of(&self, name: &str) -> Result<Vec3, String> {
+    pub(crate) fn point_of(&self, name: &str) -> Result<Vec3, Refusal> {
         let corner = |n: &str| self.general.hardpoints.get(n);
         let found = match (&self.general.axle, self.shared) {
             (Some(axle), true) => axle.hardpoints.get(name).or_else(|| {
@@ -115,29 +116,29 @@ impl Builder {
             }),
             _ => corner(name),
         };
-        found.ok_or_else(|| format!("no hardpoint {name}"))
+        found.ok_or_else(|| Refusal::no_hardpoint(name))
     }
 
     /// Adds the hardpoint `name` at the point read from `path`; returns its name.
-    pub(crate) fn hardpoint(&mut self, doc: &Doc, name: &str, path: &str) -> Result<String, String> {
+    pub(crate) fn hardpoint(&mut self, doc: &Doc, name: &str, path: &str) -> Result<String, Refusal> {
         let p = doc.point(path)?;
         // Refused here, by the file's key, before a frame or a midpoint is taken from it.
         if p.amax() > MAX_COORDINATE {
-            return Err(format!(
+            return Err(Refusal::unusable(&path.split('/').collect::<Vec<_>>(), format!(
                 "\"{}\" [{:?}, {:?}, {:?}]: a coordinate beyond ±{MAX_COORDINATE} m; Chrono's points are in metres from the \
                  suspension's reference point",
                 path.replace('/', "\" / \""),
                 p.x,
                 p.y,
                 p.z
-            ));
+            )));
         }
         self.hardpoints_mut().0.push((name.to_string(), p));
         Ok(name.to_string())
     }
 
     /// The wheel: the spindle's centre, camber and toe, and the upright that carries it.
-    pub(crate) fn wheel(&mut self, doc: &Doc) -> Result<(), String> {
+    pub(crate) fn wheel(&mut self, doc: &Doc) -> Result<(), Refusal> {
         self.hardpoint(doc, "wheel_centre", "Spindle/COM")?;
         self.general.bodies.push(BodyDef { name: "upright".into(), at: Place::named("wheel_centre") });
         doc.dynamics("Spindle", &["Mass", "Inertia", "Radius", "Width"], &mut self.notes);
@@ -215,15 +216,19 @@ impl Builder {
     /// by the toe and camber — from the wheel centre to the hardpoint `steering_axis_upper` 0.1 m up it, both
     /// on the upright. With no camber it is the vertical through the wheel centre: caster, kingpin
     /// inclination and kingpin offset zero.
-    pub(crate) fn wheel_vertical_steering_axis(&mut self) -> Result<(), String> {
-        let centre = self.general.hardpoints.get("wheel_centre").ok_or("no hardpoint wheel_centre")?;
+    pub(crate) fn wheel_vertical_steering_axis(&mut self) -> Result<(), Refusal> {
+        let centre =
+            self.general.hardpoints.get("wheel_centre").ok_or_else(|| Refusal::no_hardpoint("wheel_centre"))?;
         let spin = Vec3::from(self.general.corner.spin_axis);
         let up = Vec3::z() - spin * spin.z;
         // Within the 60° of camber the general model takes, |up| = cos γ ≥ 0.5.
         if up.norm() <= 0.5 {
-            return Err(format!(
+            return Err(Refusal::unusable(
+                &["Camber Angle (deg)"],
+                format!(
                 "\"Camber Angle (deg)\" {:.1}: the wheel lies too flat to have a vertical; give a camber within ±60°",
                 (-spin.z).asin().to_degrees()
+            ),
             ));
         }
         self.general.hardpoints.0.push(("steering_axis_upper".into(), centre + 0.1 * up.normalize()));
@@ -250,7 +255,7 @@ impl Builder {
         at: Place,
         frame: Option<(Vec3, Vec3)>,
         bushing: Option<&str>,
-    ) -> Result<(), String> {
+    ) -> Result<(), Refusal> {
         let data = bushing.filter(|path| doc.has(path));
         let Some(path) = data else {
             // Chrono's universal joint crosses the frame's u (on the first body) and v (on the second).
@@ -344,7 +349,7 @@ impl Builder {
         name: &str,
         bodies: [&str; 2],
         seats: [&str; 2],
-    ) -> Result<(), String> {
+    ) -> Result<(), Refusal> {
         let key = |k: &str| format!("{object}/{k}");
         let free_length = doc.number(&key("Free Length"))?;
         let preload = doc.optional_number(&key("Preload"))?;
@@ -384,7 +389,9 @@ impl Builder {
                 // the two they cancel, and the spring meets a wall where either leaves that plateau.
                 let design = (self.point_of(seats[1])? - self.point_of(seats[0])?).norm();
                 let [.., [reach, most]] = CHRONO_STOP_CURVE;
-                return Err(format!(
+                return Err(Refusal::unusable(
+                    &[object, "Minimum Length", "Maximum Length"],
+                    format!(
                     "\"{object}\" / \"Minimum Length\" {min} m is not below \"Maximum Length\" {max} m: the stops are \
                      crossed (the bump stop acts below the minimum, the rebound stop above the maximum, so here both \
                      press at once: in Chrono {most} N each way, cancelling from {:.4} to {:.4} m and stopping the \
@@ -393,6 +400,7 @@ impl Builder {
                      without stops",
                     max + reach,
                     min - reach
+                ),
                 ));
             }
             let design = (self.point_of(seats[1])? - self.point_of(seats[0])?).norm();
@@ -429,7 +437,7 @@ impl Builder {
     /// A Chrono shock: a damper, left out in statics; a spring-damper's spring (`Spring Coefficient` or a
     /// curve) is a spring named `name` between `bodies`, at the shock's points `seats` (JSON keys under
     /// `Shock`).
-    pub(crate) fn shock(&mut self, doc: &Doc, name: &str, bodies: [&str; 2], seats: [&str; 2]) -> Result<(), String> {
+    pub(crate) fn shock(&mut self, doc: &Doc, name: &str, bodies: [&str; 2], seats: [&str; 2]) -> Result<(), Refusal> {
         if doc.has("Shock/Spring Coefficient") || doc.has("Shock/Spring Curve Data") {
             let from = self.hardpoint(doc, "shock_chassis", &format!("Shock/{}", seats[0]))?;
             let to = self.hardpoint(
@@ -463,7 +471,7 @@ impl Builder {
         key: &str,
         short: &str,
         dynamics: &[&str],
-    ) -> Result<[String; 3], String> {
+    ) -> Result<[String; 3], Refusal> {
         let front = self.hardpoint(doc, &format!("{short}_arm_front"), &format!("{key}/Location Chassis Front"))?;
         let back = self.hardpoint(doc, &format!("{short}_arm_back"), &format!("{key}/Location Chassis Back"))?;
         let ball = self.hardpoint(doc, &format!("{short}_ball_joint"), &format!("{key}/Location Upright"))?;
@@ -481,8 +489,8 @@ impl Builder {
         short: &str,
         [front, back, ball]: &[String; 3],
         bushing: Option<&str>,
-        degenerate: Option<&str>,
-    ) -> Result<(), String> {
+        degenerate: Option<Refusal>,
+    ) -> Result<(), Refusal> {
         let arm = format!("{short} arm");
         self.body(&arm, ball);
         let mut frame = arm_frame(self.point_of(front)?, self.point_of(back)?, self.point_of(ball)?);
@@ -505,7 +513,7 @@ impl Builder {
     /// The spring from `Spring / Location Chassis` to `Spring / Location <seat>` (hardpoints `spring_chassis`
     /// and `spring_<seat>`) and the shock between the same keys under `Shock`, both from the chassis to
     /// `body`.
-    pub(crate) fn spring_and_shock(&mut self, doc: &Doc, body: &str, seat: &str) -> Result<(), String> {
+    pub(crate) fn spring_and_shock(&mut self, doc: &Doc, body: &str, seat: &str) -> Result<(), Refusal> {
         let on_body = format!("Location {seat}");
         let c = self.hardpoint(doc, "spring_chassis", "Spring/Location Chassis")?;
         let s = self.hardpoint(doc, &format!("spring_{}", seat.to_lowercase()), &format!("Spring/{on_body}"))?;
@@ -516,7 +524,7 @@ impl Builder {
     /// The tie rod from `inner` to `outer`: a distance link, or Chrono's rod body (`Mass` given) with a
     /// universal joint at the rack and a ball joint at the upright, which with ideal joints is the same
     /// link. With `Bushing Data` on the rod both joints are Chrono's bushings.
-    pub(crate) fn tie_rod(&mut self, doc: &Doc, inner: &str, outer: &str) -> Result<(), String> {
+    pub(crate) fn tie_rod(&mut self, doc: &Doc, inner: &str, outer: &str) -> Result<(), Refusal> {
         doc.dynamics("Tierod", &["Mass", "Inertia", "Radius"], &mut self.notes);
         if doc.has("Tierod/Bushing Data") {
             let path = "Tierod/Bushing Data";
@@ -609,19 +617,18 @@ pub(crate) fn arm_frame(front: Vec3, back: Vec3, outer: Vec3) -> (Vec3, Vec3) {
 }
 
 /// The midpoint of two hardpoints of `b`.
-pub(crate) fn midpoint(b: &Builder, p: &str, q: &str) -> Result<Place, String> {
+pub(crate) fn midpoint(b: &Builder, p: &str, q: &str) -> Result<Place, Refusal> {
     Ok(Place::At((b.point_of(p)? + b.point_of(q)?) / 2.0))
 }
 
 /// A direction `[x, y, z]` at `path` (any length but zero).
-pub(crate) fn direction(doc: &Doc, path: &str) -> Result<Vec3, String> {
-    let shown = path.replace('/', "\" / \"");
-    let d =
-        doc.point(path).map_err(|_| format!("\"{shown}\" must be a direction [x, y, z], of any length but zero"))?;
+pub(crate) fn direction(doc: &Doc, path: &str) -> Result<Vec3, Refusal> {
+    let wrong = |expected| Refusal::WrongType { at: KeyPath::written(path), expected };
+    let d = doc.point(path).map_err(|_| wrong(Expected::Direction))?;
     // Scaled by its largest component, so that its length is finite however long it is given.
     let largest = d.amax();
     if largest == 0.0 {
-        return Err(format!("\"{shown}\" is [0, 0, 0]: give the direction [x, y, z], of any length but zero"));
+        return Err(wrong(Expected::NonZeroDirection));
     }
     Ok(d / largest)
 }
@@ -630,23 +637,23 @@ pub(crate) fn direction(doc: &Doc, path: &str) -> Result<Vec3, String> {
 /// perpendicular to it (on the second), as [`Builder::joint`] takes it: `(û, ŵ)` with ŵ = û × v
 /// normalised, so that the joint crosses û with ŵ × û. `parallel` is the refusal when the two are
 /// parallel.
-pub(crate) fn cross_frame(u: Vec3, v: Vec3, parallel: &str) -> Result<(Vec3, Vec3), String> {
+pub(crate) fn cross_frame(u: Vec3, v: Vec3, parallel: Refusal) -> Result<(Vec3, Vec3), Refusal> {
     let (u, v) = (u.normalize(), v.normalize());
     let w = u.cross(&v);
     // Finite: a zero direction is refused by `direction`, which also scales a long one.
     if w.norm() <= 1e-6 {
-        return Err(parallel.to_string());
+        return Err(parallel);
     }
     Ok((u, w.normalize()))
 }
 
 /// `frame` (a `(u, w)` of [`Builder::joint`]) when it is one: finite, of unit axes. `why` says what makes it
 /// fail, and how to fix that.
-pub(crate) fn checked_frame(frame: (Vec3, Vec3), why: &str) -> Result<(Vec3, Vec3), String> {
+pub(crate) fn checked_frame(frame: (Vec3, Vec3), why: Refusal) -> Result<(Vec3, Vec3), Refusal> {
     let unit = |a: Vec3| (a.norm() - 1.0).abs() < 1e-9;
     if unit(frame.0) && unit(frame.1) {
         Ok(frame)
     } else {
-        Err(why.to_string())
+        Err(why)
     }
 }

@@ -33,6 +33,7 @@
 
 use super::builder::Builder;
 use super::doc::Doc;
+use super::error::Refusal;
 use super::solid_axle::{axle_tube, knuckle, knuckle_drag_link, toe_bar, wheel_on_tube, AXLE_TUBE};
 use crate::description::general::Place;
 use crate::description::general::CHASSIS;
@@ -48,7 +49,7 @@ enum WattPivot {
 }
 
 /// The longitudinal guide (the tube's ball joint to the chassis) and the Watt linkage.
-fn guides(doc: &Doc, b: &mut Builder, pivot: WattPivot) -> Result<(), String> {
+fn guides(doc: &Doc, b: &mut Builder, pivot: WattPivot) -> Result<(), Refusal> {
     b.on_axle(true);
     let ball = b.hardpoint(doc, "axle_tube_chassis", "Axle Tube/Location Connector Chassis")?;
     b.joint(doc, "axle tube ball joint", JointKind::Spherical, [AXLE_TUBE, CHASSIS], Place::named(&ball), None, None)?;
@@ -72,16 +73,22 @@ fn guides(doc: &Doc, b: &mut Builder, pivot: WattPivot) -> Result<(), String> {
     );
     let (le, ri) = (b.point_of(&left_centre)?, b.point_of(&right_centre)?);
     if (le - ri).norm() < 1e-6 {
-        return Err(format!(
+        return Err(Refusal::unusable(
+            &[w, "Location Left Link to Center", "Location Right Link to Center"],
+            format!(
             "\"{w}\" / \"Location Left Link to Center\" and \"Location Right Link to Center\" coincide: they are the \
              centre link's two ends; give two distinct points"
+        ),
         ));
     }
     for (chassis, centre, which) in [(&left_chassis, le, "Left"), (&right_chassis, ri, "Right")] {
         if (b.point_of(chassis)? - centre).norm() < 1e-6 {
-            return Err(format!(
+            return Err(Refusal::unusable(
+                &[w, &format!("Location {which} Link to Chassis"), &format!("Location {which} Link to Center")],
+                format!(
                 "\"{w}\" / \"Location {which} Link to Chassis\" and \"Location {which} Link to Center\" coincide: they \
                  are the side link's two ends; give two distinct points"
+            ),
             ));
         }
     }
@@ -116,7 +123,7 @@ fn guides(doc: &Doc, b: &mut Builder, pivot: WattPivot) -> Result<(), String> {
 }
 
 /// `DeDionAxle`.
-pub(super) fn read_de_dion(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read_de_dion(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.wheel(doc)?;
     axle_tube(doc, b)?;
     wheel_on_tube(doc, b)?;
@@ -130,7 +137,7 @@ pub(super) fn read_de_dion(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 }
 
 /// `ToeBarDeDionAxle`.
-pub(super) fn read_toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read_toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.wheel(doc)?;
     axle_tube(doc, b)?;
     knuckle(doc, b, &[])?;

@@ -1,6 +1,7 @@
 //! A Chrono document being read: its values by key path, each key marked as read, so that every key
 //! left unread is reported in the notes.
 
+use super::error::{Expected, KeyPath, Refusal};
 use elastokin_core::Vec3;
 use serde_json::Value;
 use std::cell::RefCell;
@@ -60,6 +61,21 @@ impl<'a> Doc<'a> {
         self.segments(path).iter().map(|(k, element)| format!("\"{k}\"{element}")).collect::<Vec<_>>().join(" / ")
     }
 
+    /// `path` as a refusal names and places it.
+    pub(crate) fn key_path(&self, path: &str) -> KeyPath {
+        KeyPath { shown: self.quoted(path), keys: self.segments(path).into_iter().map(|(k, _)| k).collect() }
+    }
+
+    /// The refusal of `path` missing.
+    pub(crate) fn missing(&self, path: &str) -> Refusal {
+        Refusal::Missing { at: self.key_path(path) }
+    }
+
+    /// The refusal of the value at `path`, which is not what the key takes.
+    pub(crate) fn wrong(&self, path: &str, expected: Expected) -> Refusal {
+        Refusal::WrongType { at: self.key_path(path), expected }
+    }
+
     /// Marks `path` (keys joined by `/`) as read.
     pub(crate) fn expect(&self, path: &str) {
         self.read.borrow_mut().insert(path.to_string());
@@ -69,12 +85,10 @@ impl<'a> Doc<'a> {
         self.at(path).is_some()
     }
 
-    pub(crate) fn str(&self, path: &str) -> Result<String, String> {
-        self.expect(path);
-        self.at(path)
-            .and_then(Value::as_str)
-            .map(str::to_string)
-            .ok_or_else(|| format!("\"{path}\" is missing: a Chrono suspension file names its template"))
+    /// The template's name.
+    pub(crate) fn template(&self) -> Result<String, Refusal> {
+        self.expect("Template");
+        self.at("Template").and_then(Value::as_str).map(str::to_string).ok_or(Refusal::NoTemplate)
     }
 
     pub(crate) fn optional_str(&self, path: &str) -> Option<String> {
@@ -83,16 +97,16 @@ impl<'a> Doc<'a> {
     }
 
     /// A number at `path`.
-    pub(crate) fn number(&self, path: &str) -> Result<f64, String> {
+    pub(crate) fn number(&self, path: &str) -> Result<f64, Refusal> {
         self.expect(path);
         match self.at(path) {
-            Some(v) => v.as_f64().ok_or_else(|| format!("{} must be a number, got {v}", self.quoted(path))),
-            None => Err(format!("{} is missing", self.quoted(path))),
+            Some(v) => v.as_f64().ok_or_else(|| self.wrong(path, Expected::Number { got: v.to_string() })),
+            None => Err(self.missing(path)),
         }
     }
 
     /// A number at `path`, when given.
-    pub(crate) fn optional_number(&self, path: &str) -> Result<Option<f64>, String> {
+    pub(crate) fn optional_number(&self, path: &str) -> Result<Option<f64>, Refusal> {
         if self.has(path) {
             self.number(path).map(Some)
         } else {
@@ -101,24 +115,24 @@ impl<'a> Doc<'a> {
     }
 
     /// A point `[x, y, z]` at `path`.
-    pub(crate) fn point(&self, path: &str) -> Result<Vec3, String> {
+    pub(crate) fn point(&self, path: &str) -> Result<Vec3, Refusal> {
         self.expect(path);
-        let v = self.at(path).ok_or_else(|| format!("{} is missing", self.quoted(path)))?;
+        let v = self.at(path).ok_or_else(|| self.missing(path))?;
         match v.as_array().map(|a| a.iter().map(Value::as_f64).collect::<Option<Vec<f64>>>()) {
             Some(Some(c)) if c.len() == 3 => Ok(Vec3::new(c[0], c[1], c[2])),
-            _ => Err(format!("{} must be a point [x, y, z] in metres, got {v}", self.quoted(path))),
+            _ => Err(self.wrong(path, Expected::Point { got: v.to_string() })),
         }
     }
 
     /// A table `[[x, y], …]` at `path`.
-    pub(crate) fn table(&self, path: &str) -> Result<Vec<[f64; 2]>, String> {
+    pub(crate) fn table(&self, path: &str) -> Result<Vec<[f64; 2]>, Refusal> {
         self.expect(path);
-        let v = self.at(path).ok_or_else(|| format!("{} is missing", self.quoted(path)))?;
-        let rows = v.as_array().ok_or_else(|| format!("{} must be a table [[x, y], …]", self.quoted(path)))?;
+        let v = self.at(path).ok_or_else(|| self.missing(path))?;
+        let rows = v.as_array().ok_or_else(|| self.wrong(path, Expected::Table))?;
         rows.iter()
             .map(|r| match r.as_array().map(|a| a.iter().map(Value::as_f64).collect::<Option<Vec<f64>>>()) {
                 Some(Some(p)) if p.len() == 2 => Ok([p[0], p[1]]),
-                _ => Err(format!("{}: every row is [x, y], got {r}", self.quoted(path))),
+                _ => Err(self.wrong(path, Expected::TableRow { got: r.to_string() })),
             })
             .collect()
     }

@@ -8,9 +8,10 @@
 
 use super::builder::Builder;
 use super::doc::Doc;
+use super::error::Refusal;
 use crate::description::general::CHASSIS;
 
-pub(super) fn read(doc: &Doc, b: &mut Builder, reduced: bool) -> Result<(), String> {
+pub(super) fn read(doc: &Doc, b: &mut Builder, reduced: bool) -> Result<(), Refusal> {
     b.wheel(doc)?;
     for (arm, key, short) in [("upper arm", "Upper Control Arm", "upper"), ("lower arm", "Lower Control Arm", "lower")]
     {

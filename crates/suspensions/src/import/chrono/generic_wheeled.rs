@@ -38,6 +38,7 @@
 
 use super::builder::Builder;
 use super::doc::Doc;
+use super::error::{Expected, Refusal};
 use crate::description::general::CHASSIS;
 use crate::description::general::{Place, SteeringLinkDef, TieRodDef};
 use crate::description::Connection;
@@ -83,7 +84,7 @@ struct Link {
     mirrored: bool,
 }
 
-pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     let steerable = flag(doc, "Steerable")?;
     let independent = flag(doc, "Independent")?;
     b.wheel(doc)?;
@@ -106,9 +107,12 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
         let at = doc.point(&format!("{path}/Position"))?;
         order.push(name.clone());
         if positions.insert(name.clone(), (path.clone(), at)).is_some() {
-            return Err(format!(
-                "{}: a second body named '{name}' (Chrono keeps the first): give each body its own name",
-                doc.shown(path)
+            return Err(Refusal::unusable(
+                &[],
+                format!(
+                    "{}: a second body named '{name}' (Chrono keeps the first): give each body its own name",
+                    doc.shown(path)
+                ),
             ));
         }
     }
@@ -119,23 +123,30 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     let upright = match part(doc, "Spindle/Attachment Body", &known, true)? {
         Part::Body(name) => name,
         Part::Chassis => {
-            return Err("\"Spindle\" / \"Attachment Body\" is the chassis: the wheel has no suspension motion to \
-                        analyse; name the body the spindle turns on"
-                .into())
+            return Err(Refusal::unusable(
+                &["Spindle", "Attachment Body"],
+                "\"Spindle\" / \"Attachment Body\" is the chassis: the wheel has no suspension motion to \
+                        analyse; name the body the spindle turns on",
+            ))
         }
         Part::Steering | Part::Sided(..) => {
-            return Err("\"Spindle\" / \"Attachment Body\" is the steering link: name the body the spindle turns on \
-                        (the upright)"
-                .into())
+            return Err(Refusal::unusable(
+                &["Spindle", "Attachment Body"],
+                "\"Spindle\" / \"Attachment Body\" is the steering link: name the body the spindle turns on \
+                        (the upright)",
+            ))
         }
     };
     let welded = shared.contains(&upright);
     let general_name = |n: &str| if n == upright && !welded { "upright".to_string() } else { n.to_string() };
     for name in positions.keys() {
         if (name != &upright || welded) && (name.eq_ignore_ascii_case(CHASSIS) || name == "upright") {
-            return Err(format!(
-                "body '{name}': the general model names the ground 'chassis' and the spindle's body 'upright'; \
+            return Err(Refusal::unusable(
+                &[],
+                format!(
+                    "body '{name}': the general model names the ground 'chassis' and the spindle's body 'upright'; \
                  rename this body"
+                ),
             ));
         }
     }
@@ -154,10 +165,13 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
             "Point Line" => JointKind::InLine,
             "Point Plane" => JointKind::InPlane,
             other => {
-                return Err(format!(
-                    "{}: \"Type\" '{other}' is not one Chrono reads (it would take it as \"Lock\"); give \
+                return Err(Refusal::unusable(
+                    &[],
+                    format!(
+                        "{}: \"Type\" '{other}' is not one Chrono reads (it would take it as \"Lock\"); give \
                      \"Spherical\", \"Revolute\", \"Universal\", \"Lock\", \"Point Line\" or \"Point Plane\"",
-                    doc.shown(&path)
+                        doc.shown(&path)
+                    ),
                 ));
             }
         };
@@ -169,10 +183,13 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
         doc.expect(&format!("{path}/Position"));
         let bushing = doc.at(&format!("{path}/Bushing Data")).is_some_and(Value::is_object);
         if bushing && matches!(kind, JointKind::InLine | JointKind::InPlane) {
-            return Err(format!(
-                "{}: Chrono builds no joint at all for a \"{chrono_type}\" with \"Bushing Data\"; remove the \
+            return Err(Refusal::unusable(
+                &[],
+                format!(
+                    "{}: Chrono builds no joint at all for a \"{chrono_type}\" with \"Bushing Data\"; remove the \
                  \"Bushing Data\" for the joint, or the joint",
-                doc.shown(&path)
+                    doc.shown(&path)
+                ),
             ));
         }
         let frame = (frame * Vec3::x(), frame * Vec3::z());
@@ -198,10 +215,13 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
             part(doc, &format!("{path}/Body2"), &known, mirrored)?,
         ];
         if parts.contains(&Part::Steering) {
-            return Err(format!(
-                "{}: a spring or damper on the steering link; the general model reaches the rack only through the \
+            return Err(Refusal::unusable(
+                &[],
+                format!(
+                    "{}: a spring or damper on the steering link; the general model reaches the rack only through the \
                  tie rod: attach it to the chassis or a body of the corner",
-                doc.shown(path)
+                    doc.shown(path)
+                ),
             ));
         }
         tsda_parts.push((parts, mirrored));
@@ -234,11 +254,14 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     for (i, j) in joints.iter().enumerate().filter(|(_, j)| j.parts.contains(&Part::Steering)) {
         let k = usize::from(j.parts[0] != Part::Steering);
         let refuse = |why: &str| {
-            format!(
+            Refusal::unusable(
+                &[],
+                format!(
                 "{}: a joint to the steering link ({why}); the general model reaches the rack only through a rod: a \
                  distance constraint from \"Steering\" (to the upright, or for one shared by both sides to any \
                  body), or a rod body on ball or universal joints (without \"Bushing Data\") from it to one body",
                 doc.shown(&j.path)
+            ),
             )
         };
         let Part::Body(rod) = &j.parts[1 - k] else {
@@ -288,26 +311,34 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     for input in &inputs {
         let slot = if input.mirrored { &mut tie_rod } else { &mut steering_link };
         if let Some(first) = slot {
-            return Err(format!(
+            return Err(Refusal::unusable(
+                &[],
+                format!(
                 "{}: a second steering input of its kind (the first is {}); the general model steers by one tie rod \
                  per corner and one steering link across",
                 input.what, first.what
+            ),
             ));
         }
         if input.mirrored && (input.target != Part::Body(upright.clone()) || welded) {
-            return Err(format!(
+            return Err(Refusal::unusable(
+                &[],
+                format!(
                 "{}: a link from the steering link to {}, not to the upright '{upright}'; the general model's tie rod \
                  runs from the rack to the upright",
                 input.what,
                 describe(&input.target)
+            ),
             ));
         }
         *slot = Some(input);
     }
     if !steerable && !inputs.is_empty() {
-        return Err("\"Steerable\" is false, yet an element joins \"Steering\": Chrono gives an unsteered suspension \
-                    no steering link; join the toe link to the chassis, or make the suspension steerable"
-            .into());
+        return Err(Refusal::unusable(
+            &["Steerable", "Steering"],
+            "\"Steerable\" is false, yet an element joins \"Steering\": Chrono gives an unsteered suspension \
+                    no steering link; join the toe link to the chassis, or make the suspension steerable",
+        ));
     }
 
     // Bodies: each side's in the corner, the shared ones on the axle.
@@ -399,7 +430,10 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     if let Some(input) = steering_link {
         let along = input.outer - input.inner;
         if along.norm() < 1e-6 {
-            return Err(format!("{}: its two ends coincide; give the rod its length", input.what));
+            return Err(Refusal::unusable(
+                &[],
+                format!("{}: its two ends coincide; give the rod its length", input.what),
+            ));
         }
         let axis = along.normalize();
         b.on_axle(true);
@@ -445,10 +479,13 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
             b.spring(doc, path, &name, [&bodies[0], &bodies[1]], [&seats[0], &seats[1]])?;
             b.on_axle(false);
         } else if doc.has(&key("Map Data")) {
-            return Err(format!(
-                "{}: \"Map Data\", a force against length and speed; give the spring as \"Spring Coefficient\" or \
+            return Err(Refusal::unusable(
+                &[],
+                format!(
+                    "{}: \"Map Data\", a force against length and speed; give the spring as \"Spring Coefficient\" or \
                  \"Spring Curve Data\" and \"Free Length\"",
-                doc.shown(path)
+                    doc.shown(path)
+                ),
             ));
         } else if doc.has(&key("Damping Coefficient")) || doc.has(&key("Damping Curve Data")) {
             for k in [
@@ -467,10 +504,13 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
             }
             b.notes.push(format!("{}: a damper, left out (statics: no velocity)", doc.shown(path)));
         } else {
-            return Err(format!(
-                "{}: neither a spring (\"Spring Coefficient\", \"Spring Curve Data\") nor a damper (\"Damping \
+            return Err(Refusal::unusable(
+                &[],
+                format!(
+                    "{}: neither a spring (\"Spring Coefficient\", \"Spring Curve Data\") nor a damper (\"Damping \
                  Coefficient\", \"Damping Curve Data\"); Chrono builds nothing from it: give one or remove it",
-                doc.shown(path)
+                    doc.shown(path)
+                ),
             ));
         }
     }
@@ -522,11 +562,15 @@ fn steering_axis(
     upright: &str,
     upright_joints: &[(&Joint, String)],
     link_ends: &[(Vec3, String)],
-) -> Result<(), String> {
+) -> Result<(), Refusal> {
     if let Some((j, at)) = upright_joints.iter().find(|(j, _)| j.kind == JointKind::Revolute) {
         let (_, w) = j.frame;
         let up = if w.z < 0.0 { -w } else { w };
-        let p = b.general.hardpoints.get(at).ok_or("the joint's hardpoint was added above")?;
+        let p = b
+            .general
+            .hardpoints
+            .get(at)
+            .ok_or_else(|| Refusal::Unwritten { what: "the joint's hardpoint was added above".into() })?;
         let top = fresh_name(b, &format!("{} axis", j.name));
         b.general.hardpoints.0.push((top.clone(), p + 0.1 * up));
         b.steering_axis(("upright", at), ("upright", &top));
@@ -535,7 +579,13 @@ fn steering_axis(
         let mut balls: Vec<(Vec3, String)> = upright_joints
             .iter()
             .filter(|(j, _)| matches!(j.kind, JointKind::Spherical | JointKind::Universal))
-            .map(|(_, at)| b.general.hardpoints.get(at).map(|p| (p, at.clone())).ok_or("added above"))
+            .map(|(_, at)| {
+                b.general
+                    .hardpoints
+                    .get(at)
+                    .map(|p| (p, at.clone()))
+                    .ok_or_else(|| Refusal::Unwritten { what: "added above".into() })
+            })
             .collect::<Result<_, _>>()?;
         for (k, (p, end)) in link_ends.iter().enumerate() {
             let meets = link_ends.iter().skip(k + 1).any(|(q, _)| (p - q).norm() < 1e-9);
@@ -553,11 +603,14 @@ fn steering_axis(
                 ));
             }
             _ => {
-                return Err(format!(
-                    "the upright '{upright}' turns neither on a revolute joint (a kingpin) nor on two ball \
+                return Err(Refusal::unusable(
+                    &[],
+                    format!(
+                        "the upright '{upright}' turns neither on a revolute joint (a kingpin) nor on two ball \
                      joints (ball or universal joints, or distance constraints meeting at a point): elastokin \
                      takes the steering axis (caster, kingpin inclination, scrub, trail) from one of those and \
                      does not yet find a virtual axis from links; join the upright to its arms by one of them"
+                    ),
                 ));
             }
         }
@@ -576,18 +629,15 @@ fn list(doc: &Doc, key: &str) -> Vec<String> {
 }
 
 /// A string at `path`.
-fn text(doc: &Doc, path: &str) -> Result<String, String> {
+fn text(doc: &Doc, path: &str) -> Result<String, Refusal> {
     doc.expect(path);
-    doc.at(path)
-        .and_then(Value::as_str)
-        .map(str::to_string)
-        .ok_or_else(|| format!("{} must be a name (a string)", doc.quoted(path)))
+    doc.at(path).and_then(Value::as_str).map(str::to_string).ok_or_else(|| doc.wrong(path, Expected::Name))
 }
 
 /// A flag at `path` (Chrono requires it).
-fn flag(doc: &Doc, path: &str) -> Result<bool, String> {
+fn flag(doc: &Doc, path: &str) -> Result<bool, Refusal> {
     doc.expect(path);
-    doc.at(path).and_then(Value::as_bool).ok_or_else(|| format!("{} must be true or false", doc.quoted(path)))
+    doc.at(path).and_then(Value::as_bool).ok_or_else(|| doc.wrong(path, Expected::Flag))
 }
 
 /// The file's bodies: where each is, and which are shared by both sides (not mirrored).
@@ -600,9 +650,9 @@ struct Bodies<'a> {
 /// A mirrored element (one per side) names a body alone: each side's own, or a shared one. An element that
 /// is not mirrored names a shared body alone, or one side's copy of a mirrored body by `[name, side]`
 /// (Chrono's `FindBody` finds nothing else for it).
-fn part(doc: &Doc, path: &str, bodies: &Bodies, element_mirrored: bool) -> Result<Part, String> {
+fn part(doc: &Doc, path: &str, bodies: &Bodies, element_mirrored: bool) -> Result<Part, Refusal> {
     doc.expect(path);
-    let v = doc.at(path).ok_or_else(|| format!("{} is missing", doc.quoted(path)))?;
+    let v = doc.at(path).ok_or_else(|| doc.missing(path))?;
     let (name, side) = match v {
         Value::String(s) => (s.as_str(), None),
         Value::Array(a) if a.len() == 2 && a.iter().all(Value::is_string) => {
@@ -613,38 +663,49 @@ fn part(doc: &Doc, path: &str, bodies: &Bodies, element_mirrored: bool) -> Resul
             };
             (a[0].as_str().unwrap_or_default(), side)
         }
-        _ => {
-            return Err(format!("{} must be a body's name or [name, \"Left\" | \"Right\"], got {v}", doc.quoted(path)))
-        }
+        _ => return Err(doc.wrong(path, Expected::Body { got: v.to_string() })),
     };
     let shared = bodies.shared.contains(name);
     match name {
         "Chassis" => Ok(Part::Chassis),
         "Steering" => Ok(Part::Steering),
-        "Subchassis" => Err(format!(
+        "Subchassis" => Err(Refusal::unusable(
+            &[],
+            format!(
             "{}: the subchassis, a separate Chrono subsystem (a walking beam) that the general model does not have; \
              join the element to the chassis or a body of the suspension",
             doc.shown(path)
+        ),
         )),
-        _ if !bodies.positions.contains_key(name) => {
-            Err(format!("{}: there is no body '{name}' in \"Bodies\"; name one of them", doc.shown(path)))
-        }
+        _ if !bodies.positions.contains_key(name) => Err(Refusal::unusable(
+            &[],
+            format!("{}: there is no body '{name}' in \"Bodies\"; name one of them", doc.shown(path)),
+        )),
         _ => match (side, element_mirrored, shared) {
-            (Some(side), true, _) => Err(format!(
+            (Some(side), true, _) => Err(Refusal::unusable(
+                &[],
+                format!(
                 "{}: [\"{name}\", \"{side:?}\"] names one side's body, so the element joins both sides' elements to \
                  the {side:?} one: not a corner and its mirror image; name the body alone (\"{name}\") to join each \
                  side's own",
                 doc.shown(path)
+            ),
             )),
-            (Some(_), false, true) => Err(format!(
+            (Some(_), false, true) => Err(Refusal::unusable(
+                &[],
+                format!(
                 "{}: '{name}' is one body shared by both sides (\"Mirrored\": false): it has no sides; name it alone",
                 doc.shown(path)
+            ),
             )),
             (Some(side), false, false) => Ok(Part::Sided(name.to_string(), side)),
-            (None, false, false) => Err(format!(
-                "{}: '{name}' is a body of each side, named by an element shared by both sides (\"Mirrored\": \
+            (None, false, false) => Err(Refusal::unusable(
+                &[],
+                format!(
+                    "{}: '{name}' is a body of each side, named by an element shared by both sides (\"Mirrored\": \
                  false), which cannot tell which side's; name it [\"{name}\", \"Left\"] or [\"{name}\", \"Right\"]",
-                doc.shown(path)
+                    doc.shown(path)
+                ),
             )),
             (None, _, _) => Ok(Part::Body(name.to_string())),
         },
@@ -672,7 +733,7 @@ struct Rsda {
 /// turn on a revolute joint about that axis, that is a bushing with the rate `k` about the axis, whose other
 /// directions the joint holds (their rates, the least the engine takes, meet no deflection). An RSDA without
 /// such a joint, or given by a curve, is refused by name; a damper-only RSDA is left out with a note.
-fn rsdas(doc: &Doc, bodies: &Bodies, joints: &[Joint]) -> Result<Vec<Rsda>, String> {
+fn rsdas(doc: &Doc, bodies: &Bodies, joints: &[Joint]) -> Result<Vec<Rsda>, Refusal> {
     let mut out = Vec::new();
     for path in list(doc, "RSDAs") {
         let name = text(doc, &format!("{path}/Name"))?;
@@ -688,10 +749,13 @@ fn rsdas(doc: &Doc, bodies: &Bodies, joints: &[Joint]) -> Result<Vec<Rsda>, Stri
             doc.expect(&key(damping));
         }
         if doc.has(&key("Spring Curve Data")) {
-            return Err(format!(
-                "{}: a torque curve (\"Spring Curve Data\"); elastokin reads a rotational spring by its \
+            return Err(Refusal::unusable(
+                &[],
+                format!(
+                    "{}: a torque curve (\"Spring Curve Data\"); elastokin reads a rotational spring by its \
                  \"Spring Coefficient\": give that instead",
-                doc.shown(&path)
+                    doc.shown(&path)
+                ),
             ));
         }
         if !doc.has(&key("Spring Coefficient")) {
@@ -711,13 +775,16 @@ fn rsdas(doc: &Doc, bodies: &Bodies, joints: &[Joint]) -> Result<Vec<Rsda>, Stri
                 && j.frame.1.cross(&axis).norm() < 1e-6
         });
         let Some(revolute) = revolute else {
-            return Err(format!(
-                "{}: a rotational spring between {} and {} that turn on no revolute joint about its axis; \
+            return Err(Refusal::unusable(
+                &[],
+                format!(
+                    "{}: a rotational spring between {} and {} that turn on no revolute joint about its axis; \
                  elastokin reads an RSDA as a torsion bushing on such a joint (the joint holds the other five \
                  directions): join the two bodies by a revolute joint about the RSDA's axis",
-                doc.shown(&path),
-                describe(&parts[0]),
-                describe(&parts[1])
+                    doc.shown(&path),
+                    describe(&parts[0]),
+                    describe(&parts[1])
+                ),
             ));
         };
         // A moment acts the same wherever it is applied: at the joint's point the bushing's other directions
@@ -729,14 +796,14 @@ fn rsdas(doc: &Doc, bodies: &Bodies, joints: &[Joint]) -> Result<Vec<Rsda>, Stri
 }
 
 /// A Chrono quaternion `[e0, e1, e2, e3]` at `path` (normalized, as Chrono does) as a rotation.
-fn rotation(doc: &Doc, path: &str) -> Result<UnitQuaternion<f64>, String> {
+fn rotation(doc: &Doc, path: &str) -> Result<UnitQuaternion<f64>, Refusal> {
     doc.expect(path);
-    let v = doc.at(path).ok_or_else(|| format!("{} is missing", doc.quoted(path)))?;
+    let v = doc.at(path).ok_or_else(|| doc.missing(path))?;
     match v.as_array().map(|a| a.iter().map(Value::as_f64).collect::<Option<Vec<f64>>>()) {
         Some(Some(e)) if e.len() == 4 && e.iter().map(|x| x * x).sum::<f64>() > 1e-20 => {
             Ok(UnitQuaternion::from_quaternion(Quaternion::new(e[0], e[1], e[2], e[3])))
         }
-        _ => Err(format!("{} must be a rotation, a quaternion [e0, e1, e2, e3] not zero; got {v}", doc.quoted(path))),
+        _ => Err(doc.wrong(path, Expected::Rotation { got: v.to_string() })),
     }
 }
 
@@ -785,7 +852,7 @@ fn fresh_name(b: &Builder, name: &str) -> String {
 }
 
 /// Adds the point at `path` as a hardpoint named from `name`; returns its name.
-fn fresh_point(b: &mut Builder, doc: &Doc, name: &str, path: &str) -> Result<String, String> {
+fn fresh_point(b: &mut Builder, doc: &Doc, name: &str, path: &str) -> Result<String, Refusal> {
     let name = fresh_name(b, name);
     b.hardpoint(doc, &name, path)
 }

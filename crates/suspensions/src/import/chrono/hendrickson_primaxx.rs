@@ -44,6 +44,7 @@
 
 use super::builder::Builder;
 use super::doc::Doc;
+use super::error::Refusal;
 use super::solid_axle::kingpin;
 use crate::description::general::Place;
 use crate::description::general::CHASSIS;
@@ -53,7 +54,7 @@ use elastokin_core::{JointKind, Vec3};
 const AXLE_HOUSING: &str = "axle housing";
 
 /// `HendricksonPRIMAXX`.
-pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.wheel(doc)?;
     if doc.has("Camber Angle (deg)") || doc.has("Toe Angle (deg)") {
         // `Builder::wheel` read them; this template's spindle does not turn by them.
@@ -109,7 +110,7 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 /// A torque rod or a lower beam (`key`): the body `name` on a revolute joint across the car (y) to the
 /// chassis at `Chassis Attachment Point` and a ball joint to the housing at `Axle Housing Attachment Point`
 /// (hardpoints `<short>_chassis`, `<short>_axle_housing`).
-fn rod(doc: &Doc, b: &mut Builder, key: &str, name: &str, short: &str) -> Result<(), String> {
+fn rod(doc: &Doc, b: &mut Builder, key: &str, name: &str, short: &str) -> Result<(), Refusal> {
     let chassis = b.hardpoint(doc, &format!("{short}_chassis"), &format!("{key}/Chassis Attachment Point"))?;
     let housing =
         b.hardpoint(doc, &format!("{short}_axle_housing"), &format!("{key}/Axle Housing Attachment Point"))?;
@@ -117,9 +118,12 @@ fn rod(doc: &Doc, b: &mut Builder, key: &str, name: &str, short: &str) -> Result
     let (c, a) = (b.point_of(&chassis)?, b.point_of(&housing)?);
     // On the pivot's own axis the ball joint would hold nothing and the rod would turn freely about it.
     if (a.x - c.x).hypot(a.z - c.z) < 1e-6 {
-        return Err(format!(
+        return Err(Refusal::unusable(
+            &[key, "Chassis Attachment Point", "Axle Housing Attachment Point"],
+            format!(
             "\"{key}\" / \"Chassis Attachment Point\" and \"Axle Housing Attachment Point\" lie on one line across \
              the car: the {name} turns about that line and would hold nothing; give points apart in x or z"
+        ),
         ));
     }
     b.body(name, &housing);
@@ -153,13 +157,16 @@ fn spring_damper(
     (key, on_housing): (&str, &str),
     name: &str,
     seats: [&str; 2],
-) -> Result<(), String> {
+) -> Result<(), Refusal> {
     let from = b.hardpoint(doc, seats[0], &format!("{key}/Location Chassis"))?;
     let to = b.hardpoint(doc, seats[1], &format!("{key}/{on_housing}"))?;
     if doc.has(&format!("{key}/Map Data")) {
-        return Err(format!(
-            "\"{key}\" / \"Map Data\": a map of force against deformation and speed, which this importer does not \
+        return Err(Refusal::unusable(
+            &[key, "Map Data"],
+            format!(
+                "\"{key}\" / \"Map Data\": a map of force against deformation and speed, which this importer does not \
              read; give \"Spring Coefficient\" or \"Spring Curve Data\""
+            ),
         ));
     }
     if key == "Shock Lower Beam" {
@@ -180,10 +187,17 @@ fn spring_damper(
         let preload = doc.optional_number(&format!("{key}/Preload"))?.unwrap_or(0.0);
         let stops = has("Minimum Length") && has("Maximum Length");
         if preload != 0.0 || stops {
-            let what = if stops { "\"Minimum Length\" and \"Maximum Length\"" } else { "\"Preload\"" };
-            return Err(format!(
-                "\"{key}\" / {what} on a spring-damper of rate zero: a push at rest that elastokin's springs take \
-                 only with a rate; give \"Spring Coefficient\" of at least 1 N/m"
+            let (what, at) = if stops {
+                ("\"Minimum Length\" and \"Maximum Length\"", vec![key, "Minimum Length", "Maximum Length"])
+            } else {
+                ("\"Preload\"", vec![key, "Preload"])
+            };
+            return Err(Refusal::unusable(
+                &at,
+                format!(
+                    "\"{key}\" / {what} on a spring-damper of rate zero: a push at rest that elastokin's springs take \
+                     only with a rate; give \"Spring Coefficient\" of at least 1 N/m"
+                ),
             ));
         }
         let given: Vec<&str> = [

@@ -33,13 +33,14 @@
 
 use super::builder::Builder;
 use super::doc::Doc;
+use super::error::Refusal;
 use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, wheel_on_tube, AXLE_TUBE};
 use crate::description::general::CHASSIS;
 use crate::description::general::{Axis, JointDef, Place};
 use elastokin_core::{JointKind, Vec3};
 
 /// The axle tube (`Axle Tube / COM`) on Chrono's guide to the chassis, read onto the axle.
-fn axle_tube_on_guide(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+fn axle_tube_on_guide(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.on_axle(true);
     let at = b.hardpoint(doc, "axle_tube", "Axle Tube/COM")?;
     b.body(AXLE_TUBE, &at);
@@ -66,7 +67,7 @@ fn axle_tube_on_guide(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 }
 
 /// `LeafspringAxle`.
-pub(super) fn read_leaf_spring_axle(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read_leaf_spring_axle(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.wheel(doc)?;
     axle_tube_on_guide(doc, b)?;
     wheel_on_tube(doc, b)?;
@@ -74,7 +75,7 @@ pub(super) fn read_leaf_spring_axle(doc: &Doc, b: &mut Builder) -> Result<(), St
 }
 
 /// `ToeBarLeafspringAxle`.
-pub(super) fn read_toe_bar_leaf_spring_axle(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read_toe_bar_leaf_spring_axle(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.wheel(doc)?;
     axle_tube_on_guide(doc, b)?;
     knuckle(doc, b, &[])?;

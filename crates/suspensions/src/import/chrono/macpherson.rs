@@ -6,11 +6,12 @@
 
 use super::builder::Builder;
 use super::doc::Doc;
+use super::error::Refusal;
 use crate::description::general::Place;
 use crate::description::general::CHASSIS;
 use elastokin_core::JointKind;
 
-pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.wheel(doc)?;
     let points = b.arm_points(doc, "Control Arm", "lower", &["Mass", "COM", "Inertia", "Radius"])?;
     doc.dynamics("Strut", &["Mass", "Inertia", "Radius"], &mut b.notes);

@@ -45,6 +45,7 @@ mod builder;
 mod de_dion_axle;
 mod doc;
 mod double_wishbone;
+mod error;
 mod generic_wheeled;
 mod hendrickson_primaxx;
 mod leaf_spring_axle;
@@ -65,6 +66,7 @@ use crate::file::{without_byte_order_mark, FileError, SuspensionFile};
 use builder::Builder;
 pub use builder::CHRONO_STOP_CURVE;
 use doc::Doc;
+pub use error::{Expected, ImportError, KeyPath, Refusal};
 use serde_json::Value;
 
 /// A Chrono suspension read into the general form.
@@ -118,15 +120,14 @@ pub fn is_chrono_document(document: &Value) -> bool {
 /// Reads a Chrono suspension file into the general form, its values checked as a model file's are but not
 /// yet built (`document::import_chrono` reads and builds); `origin` names it in errors, `loaded_radius` (m)
 /// is the tyre's (Chrono's suspension files have none).
-pub fn read(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Imported, FileError> {
+pub fn read(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Imported, ImportError> {
     let clean = without_comments(without_byte_order_mark(text));
-    // An error names its keys in quotes ("Spring" / "Free Length" is missing); it is located at them, or at
-    // the template's name.
-    let invalid = |message: String| {
-        let keys: Vec<&str> = message.split(':').next().unwrap_or("").split('"').skip(1).step_by(2).collect();
+    // A refusal is placed at the keys it names, or at the template's name.
+    let at = |refusal: Refusal| {
+        let keys: Vec<&str> = refusal.keys().iter().map(String::as_str).collect();
         let keys = if keys.is_empty() { vec!["Template"] } else { keys };
         let (line, column) = locate(&clean, &keys);
-        FileError::Invalid { origin: origin.to_string(), line, column, message }
+        ImportError::At { origin: origin.to_string(), line, column, refusal }
     };
     let value: Value = serde_json::from_str(&clean).map_err(|e| FileError::Invalid {
         origin: origin.to_string(),
@@ -136,7 +137,7 @@ pub fn read(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Impo
     })?;
     crate::file::refuse_unprintable(&value, &clean, origin)?;
     let doc = Doc::new(&value);
-    let template = doc.str("Template").map_err(invalid)?;
+    let template = doc.template().map_err(at)?;
     let name = doc.optional_str("Name").unwrap_or_else(|| template.clone());
     doc.expect("Type");
     let mut b = Builder::new(&doc, loaded_radius);
@@ -164,9 +165,9 @@ pub fn read(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Impo
         "SAEToeBarLeafspringAxle" => sae_leaf_spring_axle::read_toe_bar(&doc, &mut b),
         "LeafspringAxle" => leaf_spring_axle::read_leaf_spring_axle(&doc, &mut b),
         "ToeBarLeafspringAxle" => leaf_spring_axle::read_toe_bar_leaf_spring_axle(&doc, &mut b),
-        other => Err(refused(other)),
+        other => Err(Refusal::Template { template: other.to_string() }),
     };
-    built.map_err(invalid)?;
+    built.map_err(at)?;
     let notes = b.finish(&doc);
     let file = SuspensionFile {
         name: format!("{name} (Project Chrono {template})"),
@@ -177,15 +178,6 @@ pub fn read(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Impo
     let text = file.to_json();
     let file = SuspensionFile::parse_checked(&text, origin, true)?;
     Ok(Imported { file, template, notes })
-}
-
-/// Why a Chrono template is not read.
-fn refused(template: &str) -> String {
-    let why = match template {
-        "RigidSuspension" => "it has no suspension motion to analyse",
-        _ => "not a template this importer reads",
-    };
-    format!("Project Chrono template '{template}': {why}; it reads {}", SUPPORTED.join(", "))
 }
 
 /// `text` without `//` and `/* */` comments outside strings (Chrono's files carry them; JSON does not).

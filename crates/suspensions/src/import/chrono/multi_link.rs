@@ -15,11 +15,12 @@
 
 use super::builder::{cross_frame, direction, Builder};
 use super::doc::Doc;
+use super::error::Refusal;
 use crate::description::general::Place;
 use crate::description::general::CHASSIS;
 use elastokin_core::JointKind;
 
-pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.wheel(doc)?;
     let points = b.arm_points(doc, "Upper Arm", "upper", &["Mass", "COM", "Inertia", "Radius"])?;
     b.arm_joints(
@@ -27,14 +28,15 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
         "upper",
         &points,
         None,
-        Some(
+        Some(Refusal::unusable(
+            &["Upper Arm"],
             "\"Upper Arm\": \"Location Upright\" lies on the line of \"Location Chassis Front\" and \"Location \
              Chassis Back\", or these two coincide: the arm has no plane to turn in; move the upright point off \
              the pivot axis",
-        ),
+        )),
     )?;
     let ball = &points[2];
-    let p = |b: &Builder, n: &str| b.general.hardpoints.get(n).ok_or_else(|| format!("no hardpoint {n}"));
+    let p = |b: &Builder, n: &str| b.general.hardpoints.get(n).ok_or_else(|| Refusal::no_hardpoint(n));
     let mut lower = Vec::new();
     for (link, key, short) in
         [("lateral link", "Lateral", "lateral"), ("trailing link", "Trailing Link", "trailing_link")]
@@ -48,13 +50,20 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
         // Chrono builds the joint's frame from the two as given: they must be the cross's perpendicular pins.
         let cosine = on_link.normalize().dot(&on_chassis.normalize());
         if cosine.abs() > 1e-2 {
-            return Err(format!(
-                "{pins} are {:.2}° from perpendicular: they are the two pins of a universal joint's cross; give \
+            return Err(Refusal::unusable(
+                &[key, "Universal Joint Axis Chassis", "Universal Joint Axis Link"],
+                format!(
+                    "{pins} are {:.2}° from perpendicular: they are the two pins of a universal joint's cross; give \
                  perpendicular directions",
-                90.0 - cosine.abs().acos().to_degrees()
+                    90.0 - cosine.abs().acos().to_degrees()
+                ),
             ));
         }
-        let frame = cross_frame(on_link, on_chassis, &format!("{pins} are parallel: give the cross's two pins"))?;
+        let parallel = Refusal::unusable(
+            &[key, "Universal Joint Axis Chassis", "Universal Joint Axis Link"],
+            format!("{pins} are parallel: give the cross's two pins"),
+        );
+        let frame = cross_frame(on_link, on_chassis, parallel)?;
         b.body(link, &outer);
         b.joint(
             doc,

@@ -40,6 +40,7 @@
 
 use super::builder::Builder;
 use super::doc::Doc;
+use super::error::Refusal;
 use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, wheel_on_tube, AXLE_TUBE};
 use crate::description::general::Place;
 use crate::description::general::CHASSIS;
@@ -47,7 +48,7 @@ use elastokin_core::JointKind;
 
 /// The axle tube (`Axle Tube / COM`) on its push pipe's ball joint to the chassis, and the Panhard rod:
 /// read onto the axle.
-fn tube_push_pipe_and_panhard_rod(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+fn tube_push_pipe_and_panhard_rod(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.on_axle(true);
     let at = b.hardpoint(doc, "axle_tube", "Axle Tube/COM")?;
     b.body(AXLE_TUBE, &at);
@@ -58,9 +59,11 @@ fn tube_push_pipe_and_panhard_rod(doc: &Doc, b: &mut Builder) -> Result<(), Stri
     let on_axle = b.hardpoint(doc, "panhard_rod_axle", "Panhard Rod/Location Connector Axle")?;
     let on_chassis = b.hardpoint(doc, "panhard_rod_chassis", "Panhard Rod/Location Connector Chassis")?;
     if (b.point_of(&on_axle)? - b.point_of(&on_chassis)?).norm() < 1e-6 {
-        return Err("\"Panhard Rod\" / \"Location Connector Axle\" and \"Location Connector Chassis\" coincide: \
-                    they are the rod's two ends; give two distinct points"
-            .into());
+        return Err(Refusal::unusable(
+            &["Panhard Rod", "Location Connector Axle", "Location Connector Chassis"],
+            "\"Panhard Rod\" / \"Location Connector Axle\" and \"Location Connector Chassis\" coincide: \
+                    they are the rod's two ends; give two distinct points",
+        ));
     }
     doc.dynamics("Panhard Rod", &["Mass", "Inertia", "Radius"], &mut b.notes);
     b.link("panhard rod", [AXLE_TUBE, CHASSIS], &on_axle, &on_chassis);
@@ -69,12 +72,12 @@ fn tube_push_pipe_and_panhard_rod(doc: &Doc, b: &mut Builder) -> Result<(), Stri
 }
 
 /// The spring and the shock of each side, from the chassis to the tube.
-fn spring_and_shock(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+fn spring_and_shock(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.spring_and_shock(doc, AXLE_TUBE, "Axle")
 }
 
 /// `PushPipeAxle`.
-pub(super) fn read_push_pipe(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read_push_pipe(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.wheel(doc)?;
     tube_push_pipe_and_panhard_rod(doc, b)?;
     wheel_on_tube(doc, b)?;
@@ -82,7 +85,7 @@ pub(super) fn read_push_pipe(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 }
 
 /// `ToeBarPushPipeAxle`.
-pub(super) fn read_toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read_toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.wheel(doc)?;
     tube_push_pipe_and_panhard_rod(doc, b)?;
     knuckle(doc, b, &[])?;

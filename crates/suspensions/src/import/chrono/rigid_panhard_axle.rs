@@ -48,6 +48,7 @@
 
 use super::builder::Builder;
 use super::doc::Doc;
+use super::error::Refusal;
 use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, wheel_on_tube, AXLE_TUBE};
 use crate::description::general::CHASSIS;
 use crate::description::general::{Axis, BushingDef, JointDef, Place};
@@ -63,7 +64,7 @@ const BAR_HALVES: [&str; 2] = ["anti-roll bar left half", "anti-roll bar right h
 const RIGHTWARD: Vec3 = Vec3::new(0.0, -1.0, 0.0);
 
 /// The axle tube (`Axle Tube / COM`) on its planar guide to the chassis, read onto the axle.
-fn axle_tube(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+fn axle_tube(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.on_axle(true);
     let at = b.hardpoint(doc, "axle_tube", "Axle Tube/COM")?;
     b.body(AXLE_TUBE, &at);
@@ -94,23 +95,28 @@ fn axle_tube(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 }
 
 /// The Panhard rod, its points as Chrono places them (not mirrored): a distance constraint.
-fn panhard_rod(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+fn panhard_rod(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.on_axle(true);
     let a = b.hardpoint(doc, "panhard_rod_axle", "Panhard Rod/Location Axle")?;
     let c = b.hardpoint(doc, "panhard_rod_chassis", "Panhard Rod/Location Chassis")?;
     doc.dynamics("Panhard Rod", &["Mass", "Inertia", "Radius"], &mut b.notes);
     let along = b.point_of(&c)? - b.point_of(&a)?;
     if along.norm() < 1e-6 {
-        return Err("\"Panhard Rod\" / \"Location Axle\" and \"Location Chassis\" coincide: they are the rod's two \
-                    ends, one on the axle tube and one on the chassis across the car; give two distinct points"
-            .into());
+        return Err(Refusal::unusable(
+            &["Panhard Rod", "Location Axle", "Location Chassis"],
+            "\"Panhard Rod\" / \"Location Axle\" and \"Location Chassis\" coincide: they are the rod's two \
+                    ends, one on the axle tube and one on the chassis across the car; give two distinct points",
+        ));
     }
     // A rod along the car does not hold the tube sideways: the tube would slide freely across.
     if along.y.abs() < 1e-6 {
-        return Err(format!(
+        return Err(Refusal::unusable(
+            &["Panhard Rod", "Location Axle", "Location Chassis"],
+            format!(
             "\"Panhard Rod\" / \"Location Axle\" and \"Location Chassis\" are at the same y ({:.4} m): the rod holds \
              the axle tube sideways, so it runs across the car, from the tube to the chassis on the other side",
             b.point_of(&a)?.y
+        ),
         ));
     }
     b.link("panhard rod", [AXLE_TUBE, CHASSIS], &a, &c);
@@ -121,15 +127,18 @@ fn panhard_rod(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 /// The anti-roll bar as Chrono builds it (see the module docs): two halves turning about the lateral axis
 /// through the midpoint of `Location Chassis` and its mirror image, a bushing of the bar's rate between
 /// them, each arm's end (`Location Axle`) kept on the tube's plane of normal z.
-fn anti_roll_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+fn anti_roll_bar(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     let chassis = b.hardpoint(doc, "anti_roll_bar_chassis", "Anti Roll Bar/Location Chassis")?;
     let arm_end = b.hardpoint(doc, "anti_roll_bar_axle", "Anti Roll Bar/Location Axle")?;
     doc.dynamics("Anti Roll Bar", &["Mass", "Inertia", "Radius"], &mut b.notes);
     let rate = doc.number("Anti Roll Bar/Rotational Stiffness")?;
     if !rate.is_finite() || rate < 0.0 {
-        return Err(format!(
-            "\"Anti Roll Bar\" / \"Rotational Stiffness\" {rate}: the bar's torsional rate (N·m/rad) is a number \
+        return Err(Refusal::unusable(
+            &["Anti Roll Bar", "Rotational Stiffness"],
+            format!(
+                "\"Anti Roll Bar\" / \"Rotational Stiffness\" {rate}: the bar's torsional rate (N·m/rad) is a number \
              of zero or more"
+            ),
         ));
     }
     if doc.has("Anti Roll Bar/Rotational Damping") {
@@ -149,11 +158,14 @@ fn anti_roll_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     let (c, a) = (b.point_of(&chassis)?, b.point_of(&arm_end)?);
     // The arm's end moves up and down as the bar turns only when it lies fore or aft of the bar's axis.
     if (a.x - c.x).abs() < 1e-6 {
-        return Err(format!(
+        return Err(Refusal::unusable(
+            &["Anti Roll Bar", "Location Axle", "Location Chassis"],
+            format!(
             "\"Anti Roll Bar\" / \"Location Axle\" and \"Location Chassis\" have the same x ({:.4} m): the arm's end \
              at \"Location Axle\" must lie fore or aft of the bar's axis (through \"Location Chassis\", across the \
              car) for the bar to turn as the axle moves; give the arm a length along x",
             a.x
+        ),
         ));
     }
     b.on_axle(true);
@@ -210,7 +222,7 @@ fn anti_roll_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 }
 
 /// `RigidPanhardAxle`.
-pub(super) fn read_rigid(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read_rigid(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.wheel(doc)?;
     axle_tube(doc, b)?;
     wheel_on_tube(doc, b)?;
@@ -220,7 +232,7 @@ pub(super) fn read_rigid(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 }
 
 /// `ToeBarRigidPanhardAxle`.
-pub(super) fn read_toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read_toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.wheel(doc)?;
     axle_tube(doc, b)?;
     knuckle(doc, b, &[])?;

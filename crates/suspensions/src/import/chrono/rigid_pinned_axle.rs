@@ -13,14 +13,17 @@
 //! then refuses the file with that reason, rather than leaving the solver to fail on it.
 
 use super::doc::Doc;
+use super::error::Refusal;
 
 /// `RigidPinnedAxle`: its points read, then refused.
-pub(super) fn read(doc: &Doc) -> Result<(), String> {
+pub(super) fn read(doc: &Doc) -> Result<(), Refusal> {
     for point in ["Spindle/COM", "Tube/COM", "Tube/Pin Location"] {
         doc.point(point)?;
     }
-    Err("\"Tube\" / \"Pin Location\": a RigidPinnedAxle turns freely about this pin and no spring holds it: on the \
+    Err(Refusal::unusable(
+        &["Tube", "Pin Location"],
+        "\"Tube\" / \"Pin Location\": a RigidPinnedAxle turns freely about this pin and no spring holds it: on the \
          K&C rig its wheels cannot travel together (the pin holds their height) and in roll nothing carries a wheel \
-         load; to analyse such an axle, give it springs in a template that has them (a PushPipeAxle, say)"
-        .into())
+         load; to analyse such an axle, give it springs in a template that has them (a PushPipeAxle, say)",
+    ))
 }

@@ -51,6 +51,7 @@
 
 use super::builder::Builder;
 use super::doc::Doc;
+use super::error::Refusal;
 use super::solid_axle::{knuckle, knuckle_drag_link, toe_bar, wheel_on_tube, AXLE_TUBE};
 use crate::description::general::Place;
 use crate::description::general::CHASSIS;
@@ -58,7 +59,7 @@ use crate::description::limits::ROTATIONAL_RATE_RANGE;
 use elastokin_core::{JointKind, Vec3};
 
 /// `SAELeafspringAxle`.
-pub(super) fn read_sae(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read_sae(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.wheel(doc)?;
     axle_tube(doc, b)?;
     wheel_on_tube(doc, b)?;
@@ -67,7 +68,7 @@ pub(super) fn read_sae(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 }
 
 /// `SAEToeBarLeafspringAxle`.
-pub(super) fn read_toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read_toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.wheel(doc)?;
     axle_tube(doc, b)?;
     knuckle(doc, b, &[])?;
@@ -78,7 +79,7 @@ pub(super) fn read_toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 }
 
 /// The axle tube (`Axle Tube / COM`), read onto the axle.
-fn axle_tube(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+fn axle_tube(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.on_axle(true);
     let at = b.hardpoint(doc, "axle_tube", "Axle Tube/COM")?;
     b.body(AXLE_TUBE, &at);
@@ -115,7 +116,7 @@ fn shackle_bushing(doc: &Doc, b: &mut Builder) -> Option<&'static str> {
 
 /// One side's leaf spring: the leaves, the half clamps and the shackle on their joints, and the four
 /// rotational springs on the clamps' and leaves' revolute joints.
-fn leaf_spring(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+fn leaf_spring(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     let hanger = b.hardpoint(doc, "front_hanger", "Leafspring/Location Front Hanger")?;
     let clamp_a = b.hardpoint(doc, "clamp_a", "Leafspring/Location Clamp A")?;
     let clamp_b = b.hardpoint(doc, "clamp_b", "Leafspring/Location Clamp B")?;
@@ -125,24 +126,28 @@ fn leaf_spring(doc: &Doc, b: &mut Builder) -> Result<(), String> {
         doc.dynamics(&format!("Leafspring/{part}"), &["Mass", "Inertia"], &mut b.notes);
     }
     if doc.has("Leafspring/Clamp Bushing Data") {
-        return Err("\"Leafspring\" / \"Clamp Bushing Data\": Chrono makes the half clamps' joints to the tube \
+        return Err(Refusal::unusable(
+            &["Leafspring", "Clamp Bushing Data"],
+            "\"Leafspring\" / \"Clamp Bushing Data\": Chrono makes the half clamps' joints to the tube \
                     bushings, and its lateral rotational springs act on them; elastokin reads a rotational spring \
                     as a torsion bushing on a revolute joint, which holds its other directions: remove the \
-                    \"Clamp Bushing Data\" to keep the clamps' revolute joints"
-            .into());
+                    \"Clamp Bushing Data\" to keep the clamps' revolute joints",
+        ));
     }
     let [h, a, c, s, r] = [&hanger, &clamp_a, &clamp_b, &shackle, &rear_hanger].map(|n| b.point_of(n));
     let (h, a, c, s, r) = (h?, a?, c?, s?, r?);
     let ra = a - h;
     let rb = c - s;
-    for (length, what) in [
-        (ra, "\"Location Clamp A\" and \"Location Front Hanger\""),
-        (rb, "\"Location Clamp B\" and \"Location Shackle\""),
-    ] {
+    for (length, [one, other]) in
+        [(ra, ["Location Clamp A", "Location Front Hanger"]), (rb, ["Location Clamp B", "Location Shackle"])]
+    {
         if length.norm() < 1e-6 {
-            return Err(format!(
-                "\"Leafspring\" / {what} coincide: they are the ends of a leaf, whose rates Chrono scales by its \
-                 squared length; give the leaf its length"
+            return Err(Refusal::unusable(
+                &["Leafspring", one, other],
+                format!(
+                    "\"Leafspring\" / \"{one}\" and \"{other}\" coincide: they are the ends of a leaf, whose rates Chrono \
+                     scales by its squared length; give the leaf its length"
+                ),
             ));
         }
     }
@@ -154,9 +159,12 @@ fn leaf_spring(doc: &Doc, b: &mut Builder) -> Result<(), String> {
     let force = doc.number("Leafspring/Vertical Preload Force")?;
     for (value, key) in [(vertical, "Vertical Stiffness"), (bias, "Stiffness Bias"), (lateral, "Lateral Stiffness")] {
         if !(value.is_finite() && value > 0.0) {
-            return Err(format!(
-                "\"Leafspring\" / \"{key}\" {value}: Chrono shares the leaf's rates between its front and rear \
+            return Err(Refusal::unusable(
+                &["Leafspring", key],
+                format!(
+                    "\"Leafspring\" / \"{key}\" {value}: Chrono shares the leaf's rates between its front and rear \
                  halves by \"Stiffness Bias\" (the rear's over the front's); give positive rates and bias"
+                ),
             ));
         }
     }
@@ -175,10 +183,13 @@ fn leaf_spring(doc: &Doc, b: &mut Builder) -> Result<(), String> {
         (vertical_b, "the rear leaf's vertical rate"),
     ] {
         if !(least..=most).contains(&rate) {
-            return Err(format!(
-                "\"Leafspring\" / \"Vertical Stiffness\", \"Lateral Stiffness\", \"Stiffness Bias\": {what} is \
+            return Err(Refusal::unusable(
+                &["Leafspring", "Vertical Stiffness", "Lateral Stiffness", "Stiffness Bias"],
+                format!(
+                    "\"Leafspring\" / \"Vertical Stiffness\", \"Lateral Stiffness\", \"Stiffness Bias\": {what} is \
                  {rate:e} N·m/rad (Chrono's rate times the leaf's squared length), outside the {least:e} to \
                  {most:e} the engine takes; give rates of a leaf spring"
+                ),
             ));
         }
     }
@@ -265,18 +276,18 @@ fn leaf_spring(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 }
 
 /// The auxiliary spring (and its stops) and the shock of each side, from the chassis to the tube.
-fn springs(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+fn springs(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     let c = b.hardpoint(doc, "spring_chassis", "Auxiliary Spring/Location Chassis")?;
     let a = b.hardpoint(doc, "spring_axle", "Auxiliary Spring/Location Axle")?;
     b.spring(doc, "Auxiliary Spring", "auxiliary spring", [CHASSIS, AXLE_TUBE], [&c, &a])?;
     let added = b.general.springs.last().filter(|s| s.name == "auxiliary spring" && s.rate == Some(0.0));
     if let Some(spring) = added {
         if spring.preload.is_some() {
-            return Err(
+            return Err(Refusal::unusable(
+                &["Auxiliary Spring", "Spring Coefficient", "Preload"],
                 "\"Auxiliary Spring\" / \"Spring Coefficient\" is 0 with a \"Preload\": a constant push, which \
-                        elastokin's springs do not take; give the spring a rate"
-                    .into(),
-            );
+                        elastokin's springs do not take; give the spring a rate",
+            ));
         }
         b.general.springs.pop();
         b.notes.push(

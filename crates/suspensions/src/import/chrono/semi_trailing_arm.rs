@@ -10,25 +10,29 @@
 
 use super::builder::{checked_frame, midpoint, Builder};
 use super::doc::Doc;
+use super::error::Refusal;
 use crate::description::general::CHASSIS;
 use elastokin_core::JointKind;
 
-pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.wheel(doc)?;
     let outer = b.hardpoint(doc, "arm_chassis_outer", "Trailing Arm/Location Chassis Outer")?;
     let inner = b.hardpoint(doc, "arm_chassis_inner", "Trailing Arm/Location Chassis Inner")?;
     let spindle = b.hardpoint(doc, "arm_spindle", "Trailing Arm/Location Spindle")?;
     doc.dynamics("Trailing Arm", &["Mass", "COM", "Inertia", "Radius"], &mut b.notes);
-    let p = |n: &str| b.general.hardpoints.get(n).ok_or_else(|| format!("no hardpoint {n}"));
+    let p = |n: &str| b.general.hardpoints.get(n).ok_or_else(|| Refusal::no_hardpoint(n));
     let (o, i, s) = (p(&outer)?, p(&inner)?, p(&spindle)?);
     // Chrono's pivot frame: w from the inner pivot to the outer, v normal to the arm's plane, u = v × w.
     let v = (o - s).cross(&(i - s)).normalize();
     let w = (o - i).normalize();
     let frame = checked_frame(
         (v.cross(&w), w),
-        "\"Trailing Arm\": \"Location Spindle\" lies on the line of \"Location Chassis Outer\" and \"Location \
+        Refusal::unusable(
+            &["Trailing Arm"],
+            "\"Trailing Arm\": \"Location Spindle\" lies on the line of \"Location Chassis Outer\" and \"Location \
          Chassis Inner\", or these two coincide: the arm has no plane for its pivot's frame; move the spindle \
          point off the pivot axis",
+        ),
     )?;
     let at = midpoint(b, &outer, &inner)?;
     b.joint(

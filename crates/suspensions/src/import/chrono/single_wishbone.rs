@@ -10,11 +10,12 @@
 
 use super::builder::Builder;
 use super::doc::Doc;
+use super::error::Refusal;
 use crate::description::general::Place;
 use crate::description::general::CHASSIS;
 use elastokin_core::{JointKind, Vec3};
 
-pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.wheel(doc)?;
     let pivot = b.hardpoint(doc, "arm_chassis", "Control Arm/Location Chassis")?;
     let kingpin = b.hardpoint(doc, "arm_upright", "Control Arm/Location Upright")?;
@@ -43,7 +44,7 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
         Some((Vec3::x(), Vec3::z())),
         None,
     )?;
-    let top = b.general.hardpoints.get(&kingpin).ok_or("no hardpoint arm_upright")? + 0.1 * Vec3::z();
+    let top = b.general.hardpoints.get(&kingpin).ok_or_else(|| Refusal::no_hardpoint("arm_upright"))? + 0.1 * Vec3::z();
     b.general.hardpoints.0.push(("steering_axis_upper".into(), top));
     b.steering_axis(("upright", &kingpin), ("upright", "steering_axis_upper"));
     let inner = b.hardpoint(doc, "tie_rod_inner", "Tierod/Location Chassis")?;

@@ -29,6 +29,7 @@
 
 use super::builder::{midpoint, Builder};
 use super::doc::Doc;
+use super::error::Refusal;
 use crate::description::general::CHASSIS;
 use crate::description::general::{Place, SteeringLinkDef};
 use crate::description::Side;
@@ -38,7 +39,7 @@ use elastokin_core::{JointKind, Vec3};
 pub(super) const AXLE_TUBE: &str = "axle tube";
 
 /// The axle tube (`Axle Tube / COM`), read onto the axle.
-pub(super) fn axle_tube(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn axle_tube(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.on_axle(true);
     let at = b.hardpoint(doc, "axle_tube", "Axle Tube/COM")?;
     b.body(AXLE_TUBE, &at);
@@ -49,7 +50,7 @@ pub(super) fn axle_tube(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 
 /// The wheel turning on the tube itself: the corner's upright welded to the tube at the wheel centre, its
 /// steering axis the wheel's vertical (nothing steers it).
-pub(super) fn wheel_on_tube(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn wheel_on_tube(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.joint(
         doc,
         "spindle housing",
@@ -64,7 +65,7 @@ pub(super) fn wheel_on_tube(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 
 /// The knuckle (the upright) on its kingpin to the tube from `Knuckle / Location Lower` to `Location Upper`,
 /// the kingpin its steering axis; `extra` are the knuckle's further keys that statics leaves out.
-pub(super) fn knuckle(doc: &Doc, b: &mut Builder, extra: &[&str]) -> Result<(), String> {
+pub(super) fn knuckle(doc: &Doc, b: &mut Builder, extra: &[&str]) -> Result<(), Refusal> {
     kingpin(doc, b, ["Location Lower", "Location Upper"], AXLE_TUBE, extra)
 }
 
@@ -72,7 +73,7 @@ pub(super) fn knuckle(doc: &Doc, b: &mut Builder, extra: &[&str]) -> Result<(), 
 /// <keys[1]>` (upper, hardpoints `knuckle_lower`, `knuckle_upper`), in Chrono's frame: w down the kingpin, u
 /// normal to the plane of the kingpin and the spindle (any normal to the kingpin when the spindle is on it:
 /// a revolute joint turns about w alone); the kingpin is the steering axis.
-pub(super) fn kingpin(doc: &Doc, b: &mut Builder, keys: [&str; 2], on: &str, extra: &[&str]) -> Result<(), String> {
+pub(super) fn kingpin(doc: &Doc, b: &mut Builder, keys: [&str; 2], on: &str, extra: &[&str]) -> Result<(), Refusal> {
     let lower = b.hardpoint(doc, "knuckle_lower", &format!("Knuckle/{}", keys[0]))?;
     let upper = b.hardpoint(doc, "knuckle_upper", &format!("Knuckle/{}", keys[1]))?;
     let mut dynamics = vec!["Mass", "COM", "Inertia", "Radius"];
@@ -81,9 +82,12 @@ pub(super) fn kingpin(doc: &Doc, b: &mut Builder, keys: [&str; 2], on: &str, ext
     let (l, u, s) = (b.point_of(&lower)?, b.point_of(&upper)?, b.point_of("wheel_centre")?);
     let w = l - u;
     if w.norm() < 1e-6 {
-        return Err(format!(
-            "\"Knuckle\" / \"{}\" and \"{}\" coincide: they are the kingpin's two ends; give two distinct points",
-            keys[0], keys[1]
+        return Err(Refusal::unusable(
+            &["Knuckle", keys[0], keys[1]],
+            format!(
+                "\"Knuckle\" / \"{}\" and \"{}\" coincide: they are the kingpin's two ends; give two distinct points",
+                keys[0], keys[1]
+            ),
         ));
     }
     let u_axis = (u - s).cross(&(l - s));
@@ -100,15 +104,18 @@ pub(super) fn kingpin(doc: &Doc, b: &mut Builder, keys: [&str; 2], on: &str, ext
 
 /// The toe bar across, from the left knuckle's `Tierod / Location Knuckle` to its mirror image on the right:
 /// Chrono's rod on a ball joint and a universal joint (which only stops its spin), a distance link.
-pub(super) fn toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     let end = b.hardpoint(doc, "tie_rod_knuckle", "Tierod/Location Knuckle")?;
     doc.dynamics("Tierod", &["Mass", "Inertia", "Radius"], &mut b.notes);
     let p = b.point_of(&end)?;
     if p.y.abs() < 1e-6 {
-        return Err(format!(
-            "\"Tierod\" / \"Location Knuckle\" [{:?}, {:?}, {:?}] is on the centre line: the toe bar runs from \
+        return Err(Refusal::unusable(
+            &["Tierod", "Location Knuckle"],
+            format!(
+                "\"Tierod\" / \"Location Knuckle\" [{:?}, {:?}, {:?}] is on the centre line: the toe bar runs from \
              the left knuckle's point to its mirror image on the right; give the left knuckle's point (y > 0)",
-            p.x, p.y, p.z
+                p.x, p.y, p.z
+            ),
         ));
     }
     b.on_axle(true);
@@ -120,7 +127,7 @@ pub(super) fn toe_bar(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 /// The drag link from the steering box (`Draglink / Location Chassis`) to a knuckle's arm (`Knuckle /
 /// Location Draglink`, on the left knuckle, or on the right one at the point as given when its y is negative,
 /// as Chrono reads it): the axle's steering input, moved along its own line.
-pub(super) fn knuckle_drag_link(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn knuckle_drag_link(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.on_axle(true);
     let inner = b.hardpoint(doc, "drag_link_steering", "Draglink/Location Chassis")?;
     let outer = b.hardpoint(doc, "drag_link_knuckle", "Knuckle/Location Draglink")?;
@@ -128,9 +135,11 @@ pub(super) fn knuckle_drag_link(doc: &Doc, b: &mut Builder) -> Result<(), String
     let (p, q) = (b.point_of(&inner)?, b.point_of(&outer)?);
     let along = q - p;
     if along.norm() < 1e-6 {
-        return Err("\"Draglink\" / \"Location Chassis\" and \"Knuckle\" / \"Location Draglink\" coincide: they are \
-                    the drag link's two ends; give two distinct points"
-            .into());
+        return Err(Refusal::unusable(
+            &["Draglink", "Location Chassis", "Knuckle", "Location Draglink"],
+            "\"Draglink\" / \"Location Chassis\" and \"Knuckle\" / \"Location Draglink\" coincide: they are \
+                    the drag link's two ends; give two distinct points",
+        ));
     }
     // Chrono: a negative y puts the drag link on the right knuckle, at the point as given.
     let side = if q.y < 0.0 { "right" } else { "left" };
@@ -151,7 +160,7 @@ pub(super) fn knuckle_drag_link(doc: &Doc, b: &mut Builder) -> Result<(), String
 }
 
 /// Chrono's `Triangular Link` and `Longitudinal Link`s of a three-link axle.
-fn three_links(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+fn three_links(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     let chassis = b.hardpoint(doc, "triangle_chassis", "Triangular Link/Location Chassis")?;
     let axle = b.hardpoint(doc, "triangle_axle", "Triangular Link/Location Axle")?;
     doc.dynamics("Triangular Link", &["Mass", "Inertia"], &mut b.notes);
@@ -191,16 +200,19 @@ fn three_links(doc: &Doc, b: &mut Builder) -> Result<(), String> {
 
 /// The drag link from `Draglink / <steering>` on the steering box to `Draglink / <crank>` on the crank body
 /// `crank`: the axle's steering input, moved along its own line.
-fn drag_link(doc: &Doc, b: &mut Builder, crank: &str, (steering, on_crank): (&str, &str)) -> Result<(), String> {
+fn drag_link(doc: &Doc, b: &mut Builder, crank: &str, (steering, on_crank): (&str, &str)) -> Result<(), Refusal> {
     b.on_axle(true);
     let inner = b.hardpoint(doc, "drag_link_steering", &format!("Draglink/{steering}"))?;
     let outer = b.hardpoint(doc, "drag_link_crank", &format!("Draglink/{on_crank}"))?;
     doc.dynamics("Draglink", &["Mass", "Inertia", "Radius"], &mut b.notes);
     let along = b.point_of(&outer)? - b.point_of(&inner)?;
     if along.norm() < 1e-6 {
-        return Err(format!(
+        return Err(Refusal::unusable(
+            &["Draglink", steering, on_crank],
+            format!(
             "\"Draglink\" / \"{steering}\" and \"{on_crank}\" coincide: they are the drag link's two ends; give two \
              distinct points"
+        ),
         ));
     }
     let axis = along.normalize();
@@ -219,12 +231,12 @@ fn drag_link(doc: &Doc, b: &mut Builder, crank: &str, (steering, on_crank): (&st
 }
 
 /// The spring (and its stops) and the shock of each side, from the chassis to the tube.
-fn spring_and_shock(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+fn spring_and_shock(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.spring_and_shock(doc, AXLE_TUBE, "Axle")
 }
 
 /// `SolidAxle`.
-pub(super) fn read_solid_axle(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read_solid_axle(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.wheel(doc)?;
     axle_tube(doc, b)?;
     knuckle(doc, b, &[])?;
@@ -303,7 +315,7 @@ pub(super) fn read_solid_axle(doc: &Doc, b: &mut Builder) -> Result<(), String> 
 }
 
 /// `SolidThreeLinkAxle`.
-pub(super) fn read_three_link(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read_three_link(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.wheel(doc)?;
     axle_tube(doc, b)?;
     wheel_on_tube(doc, b)?;
@@ -312,7 +324,7 @@ pub(super) fn read_three_link(doc: &Doc, b: &mut Builder) -> Result<(), String> 
 }
 
 /// `SolidBellcrankThreeLinkAxle`.
-pub(super) fn read_bellcrank_three_link(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read_bellcrank_three_link(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.wheel(doc)?;
     axle_tube(doc, b)?;
     knuckle(doc, b, &["Location Tierod"])?;

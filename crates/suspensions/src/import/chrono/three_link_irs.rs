@@ -12,11 +12,12 @@
 
 use super::builder::{cross_frame, direction, Builder};
 use super::doc::Doc;
+use super::error::Refusal;
 use crate::description::general::Place;
 use crate::description::general::CHASSIS;
 use elastokin_core::{JointKind, Vec3};
 
-pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
+pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
     b.wheel(doc)?;
     let pivot = b.hardpoint(doc, "arm_chassis", "Trailing Arm/Location Chassis")?;
     // The arm's shape only (Chrono orients the arm's body by it): kept as a hardpoint for reference.
@@ -39,9 +40,12 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), String> {
         let frame = cross_frame(
             pin,
             Vec3::z(),
-            &format!(
-                "\"{key}\" / \"Universal Joint Axis\" is vertical: Chrono crosses it with the vertical; give the \
-                 link's pin a horizontal direction"
+            Refusal::unusable(
+                &[key, "Universal Joint Axis"],
+                format!(
+                    "\"{key}\" / \"Universal Joint Axis\" is vertical: Chrono crosses it with the vertical; give \
+                     the link's pin a horizontal direction"
+                ),
             ),
         )?;
         b.body(link, &arm);
