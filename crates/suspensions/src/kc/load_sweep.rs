@@ -9,7 +9,7 @@ use crate::description::Side;
 use crate::kc::figures;
 use crate::kc::models::Models;
 use crate::kc::reduce::{axis, bushings_share, chart, corner_drawing, deg, finish, Design, Reduction};
-use crate::kc::report::{AnalysisReport, Cell, Figure, FigureKind, Table};
+use crate::kc::report::{AnalysisReport, Cell, Column, Figure, FigureKind, Table};
 use crate::kc::settings::{Analysis, Cause, Quantity, Settings};
 use crate::kc::unit::Unit;
 use elastokin_solver::replay::ReplayRows;
@@ -28,27 +28,22 @@ pub(super) fn where_loaded(s: &Settings) -> &'static str {
 }
 
 /// Columns of the force in every joint and element: `name force_x_n`, … for each.
-fn component_columns(forces: &ComponentForces) -> Vec<String> {
-    let mut out = Vec::new();
-    for c in forces.joints.iter().chain(&forces.elements) {
-        for (what, unit) in [("force", "n"), ("torque", "nm")] {
-            for axis in ["x", "y", "z"] {
-                out.push(format!("{} {what}_{axis}_{unit}", c.name));
+/// The columns of the force and torque each joint and element carries (by the components of `forces`, a
+/// row's, every row naming the same in the same order): `"<name> force_x_n"` … `"<name> torque_z_nm"`.
+fn component_columns<'a>(forces: &ComponentForces) -> Vec<Column<'a, LoadRow>> {
+    let mut columns = Vec::new();
+    for (k, c) in forces.joints.iter().chain(&forces.elements).enumerate() {
+        for (what, unit, torque) in [("force", "n", false), ("torque", "nm", true)] {
+            for (axis, name) in ["x", "y", "z"].into_iter().enumerate() {
+                columns.push(Column::new(format!("{} {what}_{name}_{unit}", c.name), move |r: &LoadRow| {
+                    let f = &r.forces;
+                    let c = f.joints.iter().chain(&f.elements).nth(k);
+                    Cell::from(c.map(|c| if torque { c.torque[axis] } else { c.force[axis] }))
+                }));
             }
         }
     }
-    out
-}
-
-fn component_values(forces: &ComponentForces) -> Vec<Cell> {
-    forces
-        .joints
-        .iter()
-        .chain(&forces.elements)
-        .flat_map(|c| [c.force, c.torque])
-        .flat_map(|v| [v.x, v.y, v.z])
-        .map(Cell::from)
-        .collect()
+    columns
 }
 
 /// A road load or the model's own loads, swept with the corner load carried.
@@ -95,49 +90,22 @@ pub(super) fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Resul
     let name = analysis.name();
     let stem = name.replace('-', "_");
     let table = |rows: &[LoadRow]| {
-        let mut columns: Vec<String> = [
-            column,
-            "toe_deg",
-            "camber_deg",
-            "wheel_centre_x_m",
-            "wheel_centre_y_m",
-            "wheel_centre_z_m",
-            "patch_dx_m",
-            "patch_dy_m",
-            "patch_dz_m",
-            "wheel_load_n",
-        ]
-        .map(String::from)
-        .to_vec();
+        let mut columns: Vec<Column<LoadRow>> = vec![
+            Column::new(column, |r: &LoadRow| r.load.into()),
+            Column::new("toe_deg", |r: &LoadRow| deg(r.attitude.toe).into()),
+            Column::new("camber_deg", |r: &LoadRow| deg(r.attitude.camber).into()),
+            Column::new("wheel_centre_x_m", |r: &LoadRow| r.attitude.wheel_centre.x.into()),
+            Column::new("wheel_centre_y_m", |r: &LoadRow| r.attitude.wheel_centre.y.into()),
+            Column::new("wheel_centre_z_m", |r: &LoadRow| r.attitude.wheel_centre.z.into()),
+            Column::new("patch_dx_m", |r: &LoadRow| r.patch_displacement.x.into()),
+            Column::new("patch_dy_m", |r: &LoadRow| r.patch_displacement.y.into()),
+            Column::new("patch_dz_m", |r: &LoadRow| r.patch_displacement.z.into()),
+            Column::new("wheel_load_n", |r: &LoadRow| r.wheel_load.into()),
+        ];
         if let Some(first) = rows.first() {
             columns.extend(component_columns(&first.forces));
         }
-        Table {
-            name: stem.clone(),
-            columns,
-            rows: rows
-                .iter()
-                .map(|r| {
-                    let (w, d) = (r.attitude.wheel_centre, r.patch_displacement);
-                    let mut row: Vec<Cell> = [
-                        r.load,
-                        deg(r.attitude.toe),
-                        deg(r.attitude.camber),
-                        w.x,
-                        w.y,
-                        w.z,
-                        d.x,
-                        d.y,
-                        d.z,
-                        r.wheel_load,
-                    ]
-                    .map(Cell::from)
-                    .to_vec();
-                    row.extend(component_values(&r.forces));
-                    row
-                })
-                .collect(),
-        }
+        Table::of_columns(&stem, &columns, rows)
     };
     // Per kN of a force, per kN·m of a torque, per load case of the model's own.
     let per_unit = match quantity {

@@ -9,7 +9,7 @@ use crate::file::SuspensionFile;
 use crate::kc::figures;
 use crate::kc::models::Models;
 use crate::kc::reduce::{axis, chart, corner_drawing, deg, finish, needs_vehicle, Design, Reduction};
-use crate::kc::report::{AnalysisReport, Figure, FigureKind, Table, Warning};
+use crate::kc::report::{AnalysisReport, Column, Figure, FigureKind, Table, Warning};
 use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, Quantity, Settings, NO_ROWS};
 
 /// Parallel travel, as the command and the reports name it.
@@ -190,46 +190,26 @@ fn compliance_figures(
 fn parallel_travel_table(corner: &Corner, rows: &[TravelRow]) -> Table {
     let wheel = &corner.wheel;
     let sign = wheel.side.sign();
-    Table::numbers(
-        "parallel_travel",
-        [
-            "travel_m",
-            "toe_deg",
-            "camber_deg",
-            "wheel_centre_x_m",
-            "wheel_centre_y_m",
-            "wheel_centre_z_m",
-            "half_track_change_m",
-            "wheelbase_change_m",
-            "caster_deg",
-            "kingpin_inclination_deg",
-            "scrub_radius_m",
-            "mechanical_trail_m",
-            "kingpin_offset_m",
-            "wheel_load_n",
-            "spring_deflection_m",
-        ],
-        rows.iter().map(|r| {
-            let (w, g) = (r.attitude.wheel_centre, r.steering);
-            [
-                r.travel,
-                deg(r.attitude.toe),
-                deg(r.attitude.camber),
-                w.x,
-                w.y,
-                w.z,
-                sign * (g.contact_patch.y - wheel.contact_patch.y),
-                w.x - wheel.wheel_centre.x,
-                deg(g.caster),
-                deg(g.kingpin_inclination),
-                g.scrub_radius,
-                g.mechanical_trail,
-                g.kingpin_offset,
-                r.wheel_load,
-                r.spring_deflection,
-            ]
+    let columns: [Column<TravelRow>; 15] = [
+        Column::new("travel_m", |r: &TravelRow| r.travel.into()),
+        Column::new("toe_deg", |r: &TravelRow| deg(r.attitude.toe).into()),
+        Column::new("camber_deg", |r: &TravelRow| deg(r.attitude.camber).into()),
+        Column::new("wheel_centre_x_m", |r: &TravelRow| r.attitude.wheel_centre.x.into()),
+        Column::new("wheel_centre_y_m", |r: &TravelRow| r.attitude.wheel_centre.y.into()),
+        Column::new("wheel_centre_z_m", |r: &TravelRow| r.attitude.wheel_centre.z.into()),
+        Column::new("half_track_change_m", move |r: &TravelRow| {
+            (sign * (r.steering.contact_patch.y - wheel.contact_patch.y)).into()
         }),
-    )
+        Column::new("wheelbase_change_m", |r: &TravelRow| (r.attitude.wheel_centre.x - wheel.wheel_centre.x).into()),
+        Column::new("caster_deg", |r: &TravelRow| deg(r.steering.caster).into()),
+        Column::new("kingpin_inclination_deg", |r: &TravelRow| deg(r.steering.kingpin_inclination).into()),
+        Column::new("scrub_radius_m", |r: &TravelRow| r.steering.scrub_radius.into()),
+        Column::new("mechanical_trail_m", |r: &TravelRow| r.steering.mechanical_trail.into()),
+        Column::new("kingpin_offset_m", |r: &TravelRow| r.steering.kingpin_offset.into()),
+        Column::new("wheel_load_n", |r: &TravelRow| r.wheel_load.into()),
+        Column::new("spring_deflection_m", |r: &TravelRow| r.spring_deflection.into()),
+    ];
+    Table::of_columns("parallel_travel", &columns, rows)
 }
 
 /// The parallel-travel headline figures of `corner` read at design, of the model in `file` (its tyre rate):

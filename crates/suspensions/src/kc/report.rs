@@ -92,15 +92,6 @@ impl Table {
         }
     }
 
-    /// A table of numbers.
-    pub fn numbers<const N: usize>(name: &str, columns: [&str; N], rows: impl Iterator<Item = [f64; N]>) -> Table {
-        Table {
-            name: name.into(),
-            columns: columns.map(String::from).to_vec(),
-            rows: rows.map(|r| r.map(Cell::from).to_vec()).collect(),
-        }
-    }
-
     /// Largest difference per column between this table and `other` (same shape), over the rows where both
     /// hold numbers; `None` for a column with no such row.
     pub fn column_differences(&self, other: &Table) -> Vec<Option<f64>> {
@@ -553,8 +544,10 @@ mod tests {
 
     #[test]
     fn column_differences_take_the_largest_over_rows() {
-        let a = Table::numbers("t", ["x_m", "y_deg"], [[0.0, 1.0], [1.0, 2.0]].into_iter());
-        let b = Table::numbers("t", ["x_m", "y_deg"], [[0.0, 1.5], [1.0, 1.75]].into_iter());
+        let columns =
+            [Column::new("x_m", |r: &[f64; 2]| r[0].into()), Column::new("y_deg", |r: &[f64; 2]| r[1].into())];
+        let a = Table::of_columns("t", &columns, &[[0.0, 1.0], [1.0, 2.0]]);
+        let b = Table::of_columns("t", &columns, &[[0.0, 1.5], [1.0, 1.75]]);
         assert_eq!(a.column_differences(&b), vec![Some(0.0), Some(0.5)]);
     }
 

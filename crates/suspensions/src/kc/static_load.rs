@@ -1,11 +1,11 @@
 //! The static load case: the corner at rest under the vehicle's corner load, applied at once from the
 //! design position.
 
-use crate::analysis::{static_load_case_estimated, StaticLoad};
+use crate::analysis::{static_load_case_estimated, ComponentForce, StaticLoad};
 use crate::assembly::Rig;
 use crate::kc::figures;
 use crate::kc::models::Models;
-use crate::kc::report::{Accuracy, AnalysisReport, Cell, Figure, Table, Warning};
+use crate::kc::report::{Accuracy, AnalysisReport, Cell, Column, Figure, Table, Warning};
 use crate::kc::settings::{mode_word, Analysis, Cause, Declaration, DefaultRange, Quantity, Settings};
 
 /// The static load case: no range, the corner load applied at once.
@@ -28,33 +28,20 @@ pub(super) fn static_load(models: &Models, s: &Settings) -> Result<AnalysisRepor
     })?;
     let corner = models.corner(Rig::Free)?;
     let (rest, corrected) = static_load_case_estimated(corner, vehicle.corner_load, s.error_estimate)?;
-    let table = Table {
-        name: "static_load".into(),
-        columns: [
-            "component",
-            "body",
-            "other_body",
-            "force_x_n",
-            "force_y_n",
-            "force_z_n",
-            "torque_x_nm",
-            "torque_y_nm",
-            "torque_z_nm",
-        ]
-        .map(String::from)
-        .to_vec(),
-        rows: rest
-            .forces
-            .joints
-            .iter()
-            .chain(&rest.forces.elements)
-            .map(|c| {
-                let mut row = [&c.name, &c.body, &c.other_body].map(|n| Cell::Text(n.to_string())).to_vec();
-                row.extend([c.force.x, c.force.y, c.force.z, c.torque.x, c.torque.y, c.torque.z].map(Cell::from));
-                row
-            })
-            .collect(),
-    };
+    let text = |name: &str| Cell::Text(name.to_string());
+    let columns: [Column<ComponentForce>; 9] = [
+        Column::new("component", |c: &ComponentForce| text(&c.name)),
+        Column::new("body", |c: &ComponentForce| text(&c.body)),
+        Column::new("other_body", |c: &ComponentForce| text(&c.other_body)),
+        Column::new("force_x_n", |c: &ComponentForce| c.force.x.into()),
+        Column::new("force_y_n", |c: &ComponentForce| c.force.y.into()),
+        Column::new("force_z_n", |c: &ComponentForce| c.force.z.into()),
+        Column::new("torque_x_nm", |c: &ComponentForce| c.torque.x.into()),
+        Column::new("torque_y_nm", |c: &ComponentForce| c.torque.y.into()),
+        Column::new("torque_z_nm", |c: &ComponentForce| c.torque.z.into()),
+    ];
+    let components: Vec<ComponentForce> = rest.forces.joints.iter().chain(&rest.forces.elements).cloned().collect();
+    let table = Table::of_columns("static_load", &columns, &components);
     let figures = |rest: &StaticLoad| {
         let d = rest.wheel_centre_displacement;
         vec![

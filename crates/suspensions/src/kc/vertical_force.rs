@@ -6,7 +6,7 @@ use crate::assembly::Rig;
 use crate::kc::figures;
 use crate::kc::models::Models;
 use crate::kc::reduce::{axis, chart, corner_drawing, deg, finish, Design, Reduction};
-use crate::kc::report::{AnalysisReport, Figure, Table};
+use crate::kc::report::{AnalysisReport, Column, Figure, Table};
 use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, Quantity, Settings, NO_ROWS};
 
 /// The vertical force sweep, as the command and the reports name it: its design position is the design
@@ -38,13 +38,14 @@ pub(super) fn vertical_force(models: &Models, s: &Settings) -> Result<AnalysisRe
         s.extras_reading(range, design_load, NO_ROWS),
     )?;
     let table = |rows: &[LoadRow]| {
-        Table::numbers(
-            "vertical_force",
-            ["force_n", "wheel_travel_m", "toe_deg", "camber_deg", "contact_patch_z_m"],
-            rows.iter().map(|r| {
-                [r.load, r.attitude.wheel_centre.z - z0, deg(r.attitude.toe), deg(r.attitude.camber), r.contact_patch.z]
-            }),
-        )
+        let columns: [Column<LoadRow>; 5] = [
+            Column::new("force_n", |r: &LoadRow| r.load.into()),
+            Column::new("wheel_travel_m", |r: &LoadRow| (r.attitude.wheel_centre.z - z0).into()),
+            Column::new("toe_deg", |r: &LoadRow| deg(r.attitude.toe).into()),
+            Column::new("camber_deg", |r: &LoadRow| deg(r.attitude.camber).into()),
+            Column::new("contact_patch_z_m", |r: &LoadRow| r.contact_patch.z.into()),
+        ];
+        Table::of_columns("vertical_force", &columns, rows)
     };
     let figures = |_: &[LoadRow], design: Design<LoadRow>| {
         let why = design.err().unwrap_or_default().to_string();
