@@ -4,7 +4,7 @@
 
 pub use elastokin::provenance::{sha256_hex, Part, Provenance};
 use elastokin::suspensions::file::key_path::printable;
-use elastokin::suspensions::kc::{Cell, Table};
+use elastokin::suspensions::kc::{Cell, Failed, Table};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::cell::Cell as Flag;
 use std::io::{IsTerminal, Read, Write};
@@ -37,6 +37,16 @@ impl Failure {
             Failure::Input(m) | Failure::Run(m) => m,
         }
     }
+}
+
+/// The failed analyses, a line each: `name: reason`.
+pub fn failed_lines(failed: &[Failed]) -> String {
+    failed.iter().map(|f| format!("{}: {}", f.analysis.name(), f.reason)).collect::<Vec<_>>().join("\n")
+}
+
+/// The line that names the files a command wrote: `wrote A, B`.
+pub fn wrote(paths: &[PathBuf]) -> String {
+    format!("wrote {}", paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "))
 }
 
 /// A number as a CSV cell: at most 12 significant digits, no trailing zeros, plain decimal notation for
@@ -229,6 +239,11 @@ impl Staging {
         } else {
             format!("nothing written to {}", self.out.display())
         }
+    }
+
+    /// A failure while the files were made, said with what it leaves behind: a run's failure (exit 1).
+    pub fn failed(&self, failure: Failure) -> Failure {
+        Failure::Run(format!("{}\n{}", failure.message(), self.untouched()))
     }
 
     /// Replaces `--out` by the new directory. Where another run made or replaced `--out` meanwhile, its

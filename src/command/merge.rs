@@ -8,13 +8,24 @@
 //! order without that column, after the first shard's line with `, merged from N shards` in place of its
 //! shard. The cells are copied as text, so the rows are the single batch's byte for byte.
 
-use crate::batch::{self, Shard};
+use super::batch::{self, Shard};
+use super::input::read_input;
 use crate::output::{write_table_after, Failure, Part, Staging, Stdout};
-use crate::{read_input, MergeArgs};
+use clap::Args;
 use elastokin::solver::Mode;
 use elastokin::suspensions::file::key_path::unprintable;
 use elastokin::suspensions::kc::{self, Cell, Table};
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, Args)]
+pub struct MergeArgs {
+    /// The shards: each a batch.csv that `batch --shard I/N` wrote, or the --out directory holding it
+    #[arg(required = true, value_name = "SHARD")]
+    pub shards: Vec<PathBuf>,
+    /// Where the merged batch.csv goes; the directory is replaced as a whole when the merge succeeds
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+}
 
 /// What to do with a file that is not a shard, for the messages.
 const GIVE_SHARDS: &str =
@@ -168,7 +179,7 @@ fn same_batch(a: &ShardFile, b: &ShardFile) -> Result<(), Failure> {
 }
 
 /// `merge`: reads and checks every shard, then writes the merged `batch.csv` (or nothing).
-pub fn merge(args: MergeArgs, out: &Stdout) -> Result<(), Failure> {
+pub fn run(args: MergeArgs, out: &Stdout) -> Result<(), Failure> {
     let shards: Vec<ShardFile> = args.shards.iter().map(|p| read_shard(p)).collect::<Result<_, _>>()?;
     let count = shards[0].shard.count;
     for b in &shards[1..] {
@@ -207,9 +218,7 @@ pub fn merge(args: MergeArgs, out: &Stdout) -> Result<(), Failure> {
     };
     let first = format!("{}{}", ordered[0].head, Part::Merged { shards: count }.suffix());
     let staging = Staging::new(&args.out)?;
-    let path = staging
-        .write("batch.csv", &write_table_after(&first, &table))
-        .map_err(|e| Failure::Run(format!("{}\n{}", e.message(), staging.untouched())))?;
+    let path = staging.write("batch.csv", &write_table_after(&first, &table)).map_err(|e| staging.failed(e))?;
     staging.commit()?;
     out.line(format!("merged {count} shards, {} variants: wrote {}", table.rows.len(), path.display()))
 }

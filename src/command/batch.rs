@@ -1,0 +1,137 @@
+//! `elastokin batch MODEL VARIANTS`: design variants of one model, run in parallel. The variants file's
+//! syntax, the edits and the figures of each variant are the library's ([`elastokin::suspensions::study::batch`]);
+//! this is the command's part: every variant on the rayon pool, with a progress bar, and its table.
+//!
+//! `--shard I/N` runs one of N contiguous, nearly equal blocks of the variants ([`Shard`]), so that a job
+//! array can spread one batch over machines; `elastokin merge` (src/command/merge.rs) joins the shards' tables.
+
+use super::input::{read_input, read_model};
+use super::strict::strict_model;
+use crate::output::{note, sha256_hex, write_table, Failure, Part, Progress, Provenance, Staging, Stdout};
+use clap::Args;
+use elastokin::solver::Mode;
+use elastokin::suspensions::kc::{self, Cell, Table};
+pub use elastokin::suspensions::study::batch::*;
+pub use elastokin::suspensions::study::shard::Shard;
+use elastokin::suspensions::SuspensionFile;
+use rayon::prelude::*;
+use std::ops::Range;
+use std::path::PathBuf;
+
+#[derive(Debug, Args)]
+pub struct BatchArgs {
+    /// The model file (JSON; see examples/*.json)
+    pub model: PathBuf,
+    #[arg(help = format!("The variants file, one variant per line (format in --help; at most {})", MAX_VARIANTS))]
+    pub variants: PathBuf,
+    /// Run only shard I of N (I from 1 to N, as SLURM_ARRAY_TASK_ID counts with --array=1-N): variant k
+    /// (counting from 0) of V belongs to shard floor(k*N/V)+1, contiguous blocks differing in size by at
+    /// most one (empty ones when N > V). Its batch.csv adds the column variant_number and says I/N in its
+    /// first line; `elastokin merge` joins the shards
+    #[arg(long, value_name = "I/N", value_parser = Shard::parse)]
+    pub shard: Option<Shard>,
+    /// Where batch.csv goes; the directory is replaced as a whole when the batch succeeds
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+}
+
+/// The column a shard's `batch.csv` adds: the variant's place in the whole variants file, counting from 1,
+/// so that the merge can check that the shards cover every variant once and in order.
+pub const NUMBER_COLUMN: &str = "variant_number";
+
+/// The header of `batch.csv`: `variant`, the library's [`FIGURES`], `error`, and [`NUMBER_COLUMN`] after them
+/// in a shard's.
+pub fn columns(shard: bool) -> Vec<String> {
+    let number = shard.then_some(NUMBER_COLUMN);
+    std::iter::once("variant").chain(FIGURES).chain(["error"]).chain(number).map(String::from).collect()
+}
+
+/// Runs every variant, `files[k]` being `variants[k]` applied, on the rayon pool, counting each one done on
+/// `progress`.
+pub fn run_all(variants: &[Variant], files: &[SuspensionFile], progress: &Progress) -> Vec<Result<Outcome, String>> {
+    variants
+        .par_iter()
+        .zip(files)
+        .map(|(v, file)| {
+            let r = evaluate(file, HALF_RANGE, STEPS);
+            progress.end(Some(&v.name));
+            r
+        })
+        .collect()
+}
+
+/// `batch`: every variant (of the shard) run, a line each printed, and `batch.csv` written.
+pub fn run(args: BatchArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Failure> {
+    let read = read_model(&args.model)?;
+    strict_model(&args.model, &read.file, strict)?;
+    if let Some(line) = read.format_line() {
+        out.line(line)?;
+    }
+    // The variants edit the file as written: a Chrono file's own keys (its comments removed).
+    let base = read.document(&args.model)?;
+    let (variant_bytes, variant_text) = read_input(&args.variants, "VARIANTS")?;
+    // Every wrong line of the file (a key the model lacks among them) is said before anything runs. The
+    // models read here are the ones run.
+    let (list, files) =
+        read_and_apply(&base, &variant_text, &args.variants.display().to_string()).map_err(Failure::Input)?;
+    let mut provenance = Provenance::new(&args.model, &read.bytes, kc::mode_word(Mode::Corrected), STEPS);
+    provenance.range = Some((-HALF_RANGE, HALF_RANGE));
+    provenance.variants = Some((args.variants.display().to_string(), sha256_hex(&variant_bytes)));
+    // Every shard reads and checks all variants above, so a mistake anywhere in the file stops each shard
+    // alike; each runs only its own block.
+    let range = args.shard.map_or(0..list.len(), |s| s.range(list.len()));
+    provenance.part = args.shard.map(|s| Part::Shard { index: s.index, count: s.count, variants: list.len() });
+    let staging = Staging::new(&args.out)?;
+    let progress = Progress::new("variants", range.len(), quiet);
+    let results = run_all(&list[range.clone()], &files[range.clone()], &progress);
+    progress.finish();
+    let table = variants_table(out, &list, range, &results, args.shard.is_some());
+    let path = table
+        .and_then(|table| staging.write(&format!("{}.csv", table.name), &write_table(&table, &provenance)))
+        .map_err(|e| staging.failed(e))?;
+    staging.commit()?;
+    let failed = results.iter().filter(|r| r.is_err()).count();
+    if failed > 0 && !quiet {
+        note(format!("{failed} of {} variants failed (their error is in the error column)", results.len()));
+    }
+    out.line(format!("wrote {}", path.display()))
+}
+
+/// The table of the variants `list[range]`, whose `results` are printed a line each as it is made; a
+/// shard's rows numbered in the whole list.
+fn variants_table(
+    out: &Stdout,
+    list: &[Variant],
+    range: Range<usize>,
+    results: &[Result<Outcome, String>],
+    shard: bool,
+) -> Result<Table, Failure> {
+    out.line(format!("{:<28} {:>16} {:>16} {:>14}", "variant", "bump °/10 mm", "camber °/10 mm", "rate N/mm"))?;
+    let mut rows = Vec::new();
+    for ((k, v), r) in list.iter().enumerate().skip(range.start).zip(results) {
+        let name = Cell::Text(v.name.clone());
+        let mut row = match r {
+            Ok(o) => {
+                out.line(format!(
+                    "{:<28} {:>16.4} {:>16.4} {:>14.2}",
+                    v.name,
+                    o.bump_steer * 0.01,
+                    o.camber_gain * 0.01,
+                    o.wheel_rate * 1e-3
+                ))?;
+                let figures = o.figures().map(Cell::from);
+                std::iter::once(name).chain(figures).chain([Cell::Empty]).collect()
+            }
+            Err(e) => {
+                out.line(format!("{:<28} failed: {e}", v.name))?;
+                let empty = Cell::Empty;
+                vec![name, empty.clone(), empty.clone(), empty, Cell::Text(e.clone())]
+            }
+        };
+        if shard {
+            row.push(Cell::Text((k + 1).to_string()));
+        }
+        rows.push(row);
+    }
+    Ok(Table { name: "batch".into(), columns: columns(shard), rows })
+}

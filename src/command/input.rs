@@ -1,0 +1,49 @@
+//! What the commands read: input files whole, a model file of either format, and the document its numbers
+//! are edited in.
+
+use crate::output::Failure;
+use elastokin::suspensions::import::chrono::Imported;
+use elastokin::suspensions::study::batch::base_document;
+use elastokin::suspensions::SuspensionFile;
+use std::path::Path;
+
+/// Reads an input file whole; errors name the file and what it is for.
+pub fn read_input(path: &Path, what: &str) -> Result<(Vec<u8>, String), Failure> {
+    elastokin::suspensions::file::read_input(path, what).map_err(Failure::Input)
+}
+
+/// A model read from a file: its bytes (for the provenance hash), the model parsed from them and, for
+/// another tool's file, how it was read.
+pub struct ModelInput {
+    pub bytes: Vec<u8>,
+    pub file: SuspensionFile,
+    pub imported: Option<Imported>,
+}
+
+impl ModelInput {
+    /// The line that says which format the file was read as (another tool's only), with the count of notes.
+    pub fn format_line(&self) -> Option<String> {
+        self.imported.as_ref().map(|i| {
+            format!(
+                "read as a Project Chrono {} suspension ({} notes: `elastokin import chrono FILE` lists them)",
+                i.template,
+                i.notes.len()
+            )
+        })
+    }
+
+    /// The model file at `path` as written, the document a parameter or variant edits: a Chrono file's own
+    /// keys (its comments removed).
+    pub fn document(&self, path: &Path) -> Result<serde_json::Value, Failure> {
+        base_document(&String::from_utf8_lossy(&self.bytes), &path.display().to_string()).map_err(Failure::Input)
+    }
+}
+
+/// The model file: an elastokin model file, or a Project Chrono suspension file (recognised by its
+/// `"Type": "Suspension"` and `"Template"`).
+pub fn read_model(path: &Path) -> Result<ModelInput, Failure> {
+    let (bytes, text) = read_input(path, "MODEL")?;
+    let (file, imported) =
+        elastokin::suspensions::document::parse_model(&text, &path.display().to_string()).map_err(Failure::Input)?;
+    Ok(ModelInput { bytes, file, imported })
+}

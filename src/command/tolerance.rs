@@ -1,0 +1,106 @@
+//! `elastokin tolerance MODEL TOLERANCES`: each figure's spread when the model's numbers are made within
+//! their tolerances.
+
+use super::input::{read_input, read_model};
+use super::strict::{refuse_warned, strict_model};
+use crate::output::{failed_lines, write_table, wrote, Failure, Provenance, Staging, Stdout};
+use clap::Args;
+use elastokin::solver::Mode;
+use elastokin::suspensions::design::tolerance::{read_tolerances, stack_up, StackUp};
+use elastokin::suspensions::kc;
+use std::path::PathBuf;
+
+#[derive(Debug, Args)]
+pub struct ToleranceArgs {
+    /// The model file (JSON; see examples/*.json)
+    pub model: PathBuf,
+    /// The tolerances file (JSON; see examples/targets/tolerances.json)
+    pub tolerances: PathBuf,
+    /// Also sample N models within the tolerances and run each: the spread they give beside the first
+    /// order's
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(2..=100_000))]
+    pub monte_carlo: Option<u32>,
+    /// The seed of the Monte Carlo's samples (the same seed, the same samples)
+    #[arg(long, value_name = "S", default_value_t = 1)]
+    pub seed: u64,
+    /// Where tolerance.csv, tolerance_contributions.csv and report.html go; the directory is replaced as a
+    /// whole on success
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+}
+
+/// `tolerance`: the figures' spread under the model's tolerances.
+pub fn run(args: ToleranceArgs, out: &Stdout, strict: bool) -> Result<(), Failure> {
+    let read = read_model(&args.model)?;
+    strict_model(&args.model, &read.file, strict)?;
+    if let Some(line) = read.format_line() {
+        out.line(line)?;
+    }
+    let origin = args.model.display().to_string();
+    let base = read.document(&args.model)?;
+    let (bytes, text) = read_input(&args.tolerances, "TOLERANCES")?;
+    let tolerances = read_tolerances(&text, &args.tolerances.display().to_string(), &base).map_err(Failure::Input)?;
+    let mut stack = stack_up(&base, &tolerances).map_err(|e| Failure::Run(format!("{origin}: {e}")))?;
+    refuse_warned(strict, stack.warnings.iter())?;
+    if stack.spreads.is_empty() && !stack.failed.is_empty() {
+        return Err(Failure::Run(format!(
+            "no spreads: {}\n(nothing was written; {} is untouched)",
+            failed_lines(&stack.failed),
+            args.out.display()
+        )));
+    }
+    if let Some(n) = args.monte_carlo {
+        stack.monte_carlo(n as usize, args.seed);
+    }
+    let mut provenance = Provenance::new(&args.model, &read.bytes, kc::mode_word(Mode::Corrected), tolerances.steps);
+    provenance.targets = Some((args.tolerances.display().to_string(), elastokin::provenance::sha256_hex(&bytes)));
+    let staging = Staging::new(&args.out)?;
+    let written = (|| -> Result<Vec<PathBuf>, Failure> {
+        let html = elastokin::html::tolerance_html(&stack, &read.file.name, &provenance.to_json());
+        Ok(vec![
+            staging.write("tolerance.csv", &write_table(&stack.table(), &provenance))?,
+            staging.write("tolerance_contributions.csv", &write_table(&stack.contribution_table(), &provenance))?,
+            staging.write("report.html", html.as_bytes())?,
+        ])
+    })()
+    .map_err(|e| staging.failed(e))?;
+    staging.commit()?;
+    out.line(format!("{} — {} numbers within their tolerances", read.file.name, stack.bands.len()))?;
+    print_spreads(out, &stack)?;
+    out.line("")?;
+    for w in &stack.warnings {
+        out.line(format!("warning [{}]: {}", w.code, w.message))?;
+    }
+    out.line(wrote(&written))?;
+    let failed = stack.failed.len() + stack.failed_samples.len();
+    if failed == 0 {
+        return Ok(());
+    }
+    let lines = [failed_lines(&stack.failed), stack.failed_samples.join("\n")];
+    Err(Failure::Run(format!(
+        "{failed} analyses or samples failed (the others' results are in {}):\n{}",
+        args.out.display(),
+        lines.iter().filter(|l| !l.is_empty()).cloned().collect::<Vec<_>>().join("\n")
+    )))
+}
+
+/// Each figure's value, worst case and σ (and the sampled σ), with its three largest contributors.
+fn print_spreads(out: &Stdout, stack: &StackUp) -> Result<(), Failure> {
+    for s in &stack.spreads {
+        let unit = s.unit.shown();
+        let shown = |v: f64, digits: usize| kc::significant(v * unit.factor, digits);
+        let sampled = s.sampled.map_or(String::new(), |m| format!(", sampled σ {}", shown(m.sigma, 3)));
+        out.line(format!(
+            "  {:<44} {:>12} ±{} worst, σ {}{sampled} {}",
+            format!("{} {}", s.analysis.name(), s.figure),
+            shown(s.value, 5),
+            shown(s.worst_case, 3),
+            shown(s.sigma, 3),
+            unit.symbol
+        ))?;
+        for (p, c) in s.contributions.iter().take(3) {
+            out.line(format!("      {:<56} {:>12} {}", stack.parameters.pointers[*p], shown(*c, 3), unit.symbol))?;
+        }
+    }
+    Ok(())
+}

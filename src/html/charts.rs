@@ -1,0 +1,87 @@
+//! Plots in a page: a chart drawn by the caller's renderer and put inline as SVG (or its error in its place),
+//! and the pages' own bar charts.
+
+use crate::markup::text;
+use crate::suspensions::kc::{significant, Chart};
+use std::fmt::Write;
+
+/// `chart` drawn by `render_chart`, inline in a figure; one that could not be drawn shows why.
+pub(super) fn write_chart(
+    out: &mut String,
+    chart: &Chart,
+    render_chart: &dyn Fn(&Chart) -> Result<String, String>,
+) -> std::fmt::Result {
+    // The plot carries its own title; one that could not be drawn is named in its error.
+    writeln!(out, "<figure>")?;
+    match render_chart(chart) {
+        Ok(svg) => writeln!(out, "{}", inline_svg(&svg))?,
+        Err(e) => {
+            writeln!(out, "<p class=\"error\">the plot “{}” could not be drawn: {}</p>", text(&chart.title), text(&e))?
+        }
+    }
+    writeln!(out, "</figure>")
+}
+
+/// An SVG document as an element of the page: without the XML declaration or doctype a standalone file
+/// starts with, which may not appear inside a document.
+fn inline_svg(svg: &str) -> &str {
+    let mut s = svg.trim_start();
+    loop {
+        let prolog = ["<?xml", "<!DOCTYPE", "<!doctype"].iter().any(|p| s.starts_with(p));
+        match s.find('>') {
+            Some(end) if prolog => s = s[end + 1..].trim_start(),
+            _ => return s.trim_end(),
+        }
+    }
+}
+
+/// A horizontal bar chart as inline SVG: one bar per `(label, value)`, drawn from a centre line (negative
+/// to the left), the largest magnitude the full width, each value printed with `unit`.
+pub(super) fn write_bars(out: &mut String, bars: &[(String, f64)], unit: &str) -> std::fmt::Result {
+    let (width, label_width, row) = (900.0, 430.0, 20.0);
+    let half = (width - label_width - 120.0) / 2.0;
+    let centre = label_width + half;
+    let largest = bars.iter().fold(0.0f64, |m, (_, v)| m.max(v.abs())).max(f64::MIN_POSITIVE);
+    let height = row * bars.len() as f64 + 8.0;
+    writeln!(
+        out,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" role="img">"#
+    )?;
+    writeln!(out, r##"<line x1="{centre}" y1="0" x2="{centre}" y2="{height}" stroke="#8c959f"/>"##)?;
+    for (k, (label, v)) in bars.iter().enumerate() {
+        let y = 4.0 + row * k as f64;
+        let w = half * v.abs() / largest;
+        let x = if *v < 0.0 { centre - w } else { centre };
+        let fill = if *v < 0.0 { "#cf222e" } else { "#0969da" };
+        let shown = crate::plot::shown(label, 72);
+        writeln!(
+            out,
+            r#"<text x="{}" y="{}" font-size="11" text-anchor="end" font-family="sans-serif">{}</text>"#,
+            label_width - 6.0,
+            y + 13.0,
+            text(&shown)
+        )?;
+        writeln!(out, r#"<rect x="{x:.1}" y="{y:.1}" width="{w:.1}" height="{:.1}" fill="{fill}"/>"#, row - 6.0)?;
+        writeln!(
+            out,
+            r#"<text x="{}" y="{}" font-size="11" font-family="sans-serif">{} {}</text>"#,
+            centre + half + 6.0,
+            y + 13.0,
+            text(&significant(*v, 3)),
+            text(unit)
+        )?;
+    }
+    writeln!(out, "</svg>")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn prolog_of_a_standalone_svg_is_dropped() {
+        let svg = "<?xml version=\"1.0\"?>\n<!DOCTYPE svg>\n<svg xmlns=\"http://www.w3.org/2000/svg\"></svg>\n";
+        assert_eq!(inline_svg(svg), "<svg xmlns=\"http://www.w3.org/2000/svg\"></svg>");
+        assert_eq!(inline_svg("<svg/>"), "<svg/>");
+    }
+}

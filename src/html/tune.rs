@@ -1,0 +1,108 @@
+//! The tune's page: the targets met or not and why, the free numbers before and after, each curve target
+//! before and after, every residual and iteration.
+
+use super::charts::write_chart;
+use super::tables::{write_open_table, write_table};
+use super::{write_foot, write_head, NAME_SHOWN};
+use crate::markup::text;
+use crate::suspensions::kc::{significant, Chart};
+use serde_json::Value;
+use std::fmt::Write;
+
+/// The tune's report as one self-contained HTML page: whether every target is met and why one is not,
+/// the free numbers before and after, each curve target's column before and after with its points, every
+/// residual and every iteration, and how the run was made. `render_chart` as for [`report_html`](super::report_html).
+pub fn tune_html<E: std::fmt::Display>(
+    tuned: &crate::suspensions::design::tune::Tuned,
+    targets: &crate::suspensions::design::targets::Targets,
+    model_name: &str,
+    provenance: &Value,
+    render_chart: impl Fn(&Chart) -> Result<String, E>,
+) -> String {
+    let render = |chart: &Chart| render_chart(chart).map_err(|e| e.to_string());
+    let mut page = String::new();
+    // Writing into a String cannot fail.
+    let _ = write_tune_page(&mut page, tuned, targets, model_name, provenance, &render);
+    page
+}
+
+fn write_tune_page(
+    out: &mut String,
+    tuned: &crate::suspensions::design::tune::Tuned,
+    targets: &crate::suspensions::design::targets::Targets,
+    model_name: &str,
+    provenance: &Value,
+    render_chart: &dyn Fn(&Chart) -> Result<String, String>,
+) -> std::fmt::Result {
+    let name = crate::plot::shown(model_name, NAME_SHOWN);
+    let met = tuned.verdicts.iter().filter(|v| v.met).count();
+    let last = tuned.iterations.last().map_or(0, |i| i.evaluations);
+    let broken = tuned.packaging.iter().filter(|p| p.broken_by > 0.0).count();
+    let packaging = match (tuned.packaging.len(), broken) {
+        (0, _) => String::new(),
+        (_, 0) => "; the packaging holds".to_string(),
+        (all, broken) => format!("; {broken} of {all} packaging constraints broken"),
+    };
+    let lede = format!(
+        "{met} of {} targets met{packaging}; {} iterations, {last} K&C evaluations; {}.",
+        tuned.verdicts.len(),
+        tuned.iterations.len().saturating_sub(1),
+        tuned.stopped
+    );
+    write_head(out, &format!("Tune: {name}"), &lede)?;
+    write_targets(out, tuned)?;
+    writeln!(out, "<section id=\"parameters\">")?;
+    writeln!(out, "<h2>The free numbers</h2>")?;
+    write_open_table(out, &tuned.moved_table(targets))?;
+    writeln!(out, "</section>")?;
+    writeln!(out, "<section id=\"curves\">")?;
+    writeln!(out, "<h2>Before and after</h2>")?;
+    let charts = tuned.charts(targets, model_name);
+    if charts.is_empty() {
+        writeln!(out, "<p class=\"none\">no curve targets: the figures are in the table of targets</p>")?;
+    }
+    for chart in &charts {
+        write_chart(out, chart, render_chart)?;
+    }
+    writeln!(out, "</section>")?;
+    writeln!(out, "<section id=\"residuals\">")?;
+    writeln!(out, "<h2>Every residual</h2>")?;
+    write_table(out, &tuned.residual_table(targets), "each figure and curve point, before and after")?;
+    write_table(out, &tuned.iteration_table(), "each iteration")?;
+    writeln!(out, "</section>")?;
+    write_foot(out, provenance)
+}
+
+/// The section "Targets": each target's largest miss against its tolerance, whether it is met and why not;
+/// each packaging constraint, whether it holds.
+fn write_targets(out: &mut String, tuned: &crate::suspensions::design::tune::Tuned) -> std::fmt::Result {
+    writeln!(out, "<section id=\"targets\">")?;
+    writeln!(out, "<h2>Targets</h2>")?;
+    writeln!(out, "<table class=\"figures\"><thead><tr><th>target</th><th>largest miss / tolerance</th><th>met</th><th>why not</th></tr></thead><tbody>")?;
+    for v in &tuned.verdicts {
+        let (class, said) = if v.met { ("ok", "yes") } else { ("bad", "no") };
+        writeln!(
+            out,
+            "<tr><td>{}</td><td class=\"value\">{}</td><td class=\"{class}\">{said}</td><td>{}</td></tr>",
+            text(&v.target),
+            text(&significant(v.worst, 3)),
+            text(v.why.as_deref().unwrap_or(""))
+        )?;
+    }
+    writeln!(out, "</tbody></table>")?;
+    if !tuned.packaging.is_empty() {
+        writeln!(out, "<h3>Packaging</h3>")?;
+        writeln!(out, "<table class=\"figures\"><thead><tr><th>constraint</th><th>broken by (mm)</th><th>holds</th></tr></thead><tbody>")?;
+        for p in &tuned.packaging {
+            let (class, said) = if p.broken_by == 0.0 { ("ok", "yes") } else { ("bad", "no") };
+            writeln!(
+                out,
+                "<tr><td>{}</td><td class=\"value\">{}</td><td class=\"{class}\">{said}</td></tr>",
+                text(&p.constraint),
+                text(&significant(p.broken_by * 1e3, 3)),
+            )?;
+        }
+        writeln!(out, "</tbody></table>")?;
+    }
+    writeln!(out, "</section>")
+}
