@@ -9,7 +9,7 @@ use crate::kkt::{FactorError, FactorReport};
 use faer::dyn_stack::MemStack;
 use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
 use faer::sparse::linalg::cholesky::{simplicial, supernodal, SymbolicCholesky, SymbolicCholeskyRaw};
-use faer::sparse::SparseColMatRef;
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Par, Spec};
 use std::sync::Arc;
 
@@ -72,24 +72,29 @@ impl QuasiDefiniteLdlt {
     /// the pivots' report. No allocation, except for the suspect lists of the report when there are
     /// suspects.
     pub(super) fn factorize(&mut self, system: &KktSystem) -> Result<FactorReport, FactorError> {
-        // The analysis's and the pattern's arrays as slices: held in registers across the loops that write
-        // this factor's buffers.
+        self.compute_scaling(system);
+        let rho = self.scale_constraints(system);
+        self.fill_augmented(system, rho);
+        let sym = Arc::clone(&self.sym);
+        let report = FactorReport { rho, ..FactorReport::default() };
+        let (Some(symbolic), Some(a_pattern)) = (sym.symbolic.as_ref(), sym.a_pattern.as_ref()) else {
+            return Ok(report);
+        };
+        let delta = self.factor_augmented(symbolic, a_pattern)?;
+        Ok(self.pivot_report(symbolic, delta, report))
+    }
+
+    /// Ĵ, the scaled constraint Jacobian, into `j_hat` and the factor's input; returns the penalty ρ (the
+    /// option's, else `max_k K̂_kk / max_i ‖Ĵ_i‖²` clamped to [1e-8, 1e8], see the module docs). The squared
+    /// norms of Ĵ's rows are summed in `tmp` column by column, which adds each row's terms in the order of
+    /// its columns.
+    fn scale_constraints(&mut self, system: &KktSystem) -> f64 {
         let sym = Arc::clone(&self.sym);
         let p = system.pattern();
         let (k_col_ptr, k_row_idx, j_col_ptr, j_row_idx) =
             (&p.k_col_ptr[..], &p.k_row_idx[..], &p.j_col_ptr[..], &p.j_row_idx[..]);
-        let (k_val, j_val) = (system.k(), system.j());
-        let j_slot: &[usize] = &sym.j_slot;
-        let pb_slot: &[usize] = &sym.pb_slot;
-        let cdiag_slot: &[usize] = &sym.cdiag_slot;
-        let perm: &[usize] = &sym.perm;
-        let signs: &[i8] = &sym.signs;
+        let (k_val, j_val, j_slot) = (system.k(), system.j(), &sym.j_slot[..]);
         let (n, m) = (self.n, self.m);
-        let nn = n + m;
-        self.compute_scaling(system);
-
-        // Scaled values and ρ. The squared norms of Ĵ's rows are summed in `tmp` column by column, which
-        // adds each row's terms in the order of its columns.
         let s = &self.scale;
         let row_sq = &mut self.tmp[..m];
         row_sq.fill(0.0);
@@ -119,15 +124,25 @@ impl QuasiDefiniteLdlt {
             None => 1.0,
         };
         self.rho = rho;
-        let reg22 = -sym.options.epsilon / rho;
+        rho
+    }
 
-        // The body block K̂ + ρĴᵀĴ, entry by entry of its pattern: K̂'s entry, then ρ Ĵ_ic Ĵ_ir over the
-        // rows i that the columns c and r share, in increasing i (a merge of the two sorted columns of J).
+    /// The rest of the factor's input: the body block `K̂ + ρĴᵀĴ`, entry by entry of its pattern (`K̂`'s
+    /// entry, then `ρ Ĵ_ic Ĵ_ir` over the rows `i` that the columns `c` and `r` share, in increasing `i`: a
+    /// merge of the two sorted columns of `J`), and the constraint block's diagonal `−ε/ρ`.
+    fn fill_augmented(&mut self, system: &KktSystem, rho: f64) {
+        let sym = Arc::clone(&self.sym);
+        let p = system.pattern();
+        let (k_col_ptr, k_row_idx, j_col_ptr, j_row_idx) =
+            (&p.k_col_ptr[..], &p.k_row_idx[..], &p.j_col_ptr[..], &p.j_row_idx[..]);
+        let k_val = system.k();
+        let pb_slot: &[usize] = &sym.pb_slot;
+        let s = &self.scale;
         let (pb_ptr, pb_row): (&[usize], &[usize]) = match &sym.pb_pattern {
             Some((ptr, row)) => (ptr, row),
             None => (k_col_ptr, k_row_idx),
         };
-        for c in 0..n {
+        for c in 0..self.n {
             let (mut e, k_end) = (k_col_ptr[c], k_col_ptr[c + 1]);
             let jc = j_col_ptr[c]..j_col_ptr[c + 1];
             for t in pb_ptr[c]..pb_ptr[c + 1] {
@@ -153,21 +168,29 @@ impl QuasiDefiniteLdlt {
                 self.a_val[pb_slot[t]] = acc;
             }
         }
-        for &sl in cdiag_slot {
+        let reg22 = -sym.options.epsilon / rho;
+        for &sl in &sym.cdiag_slot {
             self.a_val[sl] = reg22;
         }
+    }
 
-        let mut report = FactorReport { rho, ..FactorReport::default() };
-        let (Some(symbolic), Some(a_pattern)) = (sym.symbolic.as_ref(), sym.a_pattern.as_ref()) else {
-            return Ok(report);
-        };
+    /// faer's LDLᵀ of the factor's input with dynamic regularization; returns the magnitude a regularized
+    /// pivot is given (0 when regularization is off). A zero pivot it could not regularize is named as the
+    /// body coordinate or constraint row it eliminates.
+    fn factor_augmented(
+        &mut self,
+        symbolic: &SymbolicCholesky<usize>,
+        a_pattern: &SymbolicSparseColMat<usize>,
+    ) -> Result<f64, FactorError> {
+        let sym = Arc::clone(&self.sym);
+        let (n, nn) = (self.n, self.n + self.m);
         let (delta, threshold) = if sym.options.pivot_delta > 0.0 && sym.options.pivot_threshold > 0.0 {
             (sym.options.pivot_delta, sym.options.pivot_threshold)
         } else {
             (0.0, 0.0)
         };
         let reg = LdltRegularization {
-            dynamic_regularization_signs: if sym.options.signed_regularization { Some(signs) } else { None },
+            dynamic_regularization_signs: if sym.options.signed_regularization { Some(&sym.signs[..]) } else { None },
             dynamic_regularization_delta: delta,
             dynamic_regularization_epsilon: threshold,
         };
@@ -194,14 +217,27 @@ impl QuasiDefiniteLdlt {
                 SymbolicCholeskyRaw::Supernodal(_) => index,
             }
             .min(nn - 1);
-            let o = perm[p];
+            let o = sym.perm[p];
             return Err(if o < n {
                 FactorError::Singular { kind: "body coordinate", index: o }
             } else {
                 FactorError::Singular { kind: "constraint row", index: o - n }
             });
         }
-        // Pivot statistics and suspects.
+        Ok(delta)
+    }
+
+    /// The pivots' statistics and suspects (see the module docs' diagnostics), read from the factor into
+    /// `report`; `delta` is what a regularized pivot was given.
+    fn pivot_report(&self, symbolic: &SymbolicCholesky<usize>, delta: f64, mut report: FactorReport) -> FactorReport {
+        let sym = &self.sym;
+        let (n, m, rho) = (self.n, self.m, self.rho);
+        let perm: &[usize] = &sym.perm;
+        let pb_slot: &[usize] = &sym.pb_slot;
+        let pb_ptr: &[usize] = match &sym.pb_pattern {
+            Some((ptr, _)) => ptr,
+            None => &sym.pattern.k_col_ptr,
+        };
         let tol = sym.options.suspect_tol;
         let eps = sym.options.epsilon;
         let (mut bmin, mut bmax, mut cmin, mut cmax) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
@@ -236,6 +272,6 @@ impl QuasiDefiniteLdlt {
         report.max_constraint_pivot = cmax;
         report.suspect_body_dofs.sort_unstable();
         report.suspect_constraint_rows.sort_unstable();
-        Ok(report)
+        report
     }
 }
