@@ -6,6 +6,8 @@ use crate::analysis::{
 };
 use crate::assembly::{LoadPoint, Rig};
 use crate::description::Side;
+use crate::file::SuspensionFile;
+use crate::kc::chart::Chart;
 use crate::kc::figures;
 use crate::kc::models::Models;
 use crate::kc::reduce::{axis, bushings_share, chart, corner_drawing, deg, finish, Design, Reduction};
@@ -51,11 +53,6 @@ pub(super) fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Resul
     let file = models.file();
     let quantity = analysis.declaration().quantity;
     let unit = quantity.unit();
-    let column = match quantity {
-        Quantity::Force => "load_n",
-        Quantity::Torque => "load_nm",
-        Quantity::Travel | Quantity::Fraction => "fraction",
-    };
     let range = analysis.range_or_default(s.range)?;
     let corner_load = match &file.vehicle {
         Some(v) => v.corner_load,
@@ -89,70 +86,9 @@ pub(super) fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Resul
     }?;
     let name = analysis.name();
     let stem = name.replace('-', "_");
-    let table = |rows: &[LoadRow]| {
-        let mut columns: Vec<Column<LoadRow>> = vec![
-            Column::new(column, |r: &LoadRow| r.load.into()),
-            Column::new("toe_deg", |r: &LoadRow| deg(r.attitude.toe).into()),
-            Column::new("camber_deg", |r: &LoadRow| deg(r.attitude.camber).into()),
-            Column::new("wheel_centre_x_m", |r: &LoadRow| r.attitude.wheel_centre.x.into()),
-            Column::new("wheel_centre_y_m", |r: &LoadRow| r.attitude.wheel_centre.y.into()),
-            Column::new("wheel_centre_z_m", |r: &LoadRow| r.attitude.wheel_centre.z.into()),
-            Column::new("patch_dx_m", |r: &LoadRow| r.patch_displacement.x.into()),
-            Column::new("patch_dy_m", |r: &LoadRow| r.patch_displacement.y.into()),
-            Column::new("patch_dz_m", |r: &LoadRow| r.patch_displacement.z.into()),
-            Column::new("wheel_load_n", |r: &LoadRow| r.wheel_load.into()),
-        ];
-        if let Some(first) = rows.first() {
-            columns.extend(component_columns(&first.forces));
-        }
-        Table::of_columns(&stem, &columns, rows)
-    };
-    // Per kN of a force, per kN·m of a torque, per load case of the model's own.
-    let per_unit = match quantity {
-        Quantity::Force => Unit::DegreePerKilonewton,
-        Quantity::Torque => Unit::DegreePerKilonewtonMetre,
-        Quantity::Travel | Quantity::Fraction => Unit::DegreePerLoadCase,
-    };
-    let figures = |rows: &[LoadRow], design: Design<LoadRow>| {
-        let why = design.err().unwrap_or_default();
-        let slope = |y: &dyn Fn(&LoadRow) -> f64| design.ok().map(|d| d.rate(y));
-        let per_load = |kind: &FigureKind| FigureKind { unit: per_unit, ..*kind };
-        let mut f = vec![
-            Figure::of(&per_load(&figures::COMPLIANCE_STEER), slope(&|r| r.attitude.toe), why),
-            Figure::of(&per_load(&figures::COMPLIANCE_CAMBER), slope(&|r| r.attitude.camber), why),
-        ];
-        if let Some(last) = rows.last() {
-            let at = |what: &str| format!("{what} at {:.0} {unit}", last.load);
-            f.push(Figure::of(&figures::TOE_AT_END, Some(last.attitude.toe), "").labelled(at("toe")));
-            f.push(Figure::of(&figures::CAMBER_AT_END, Some(last.attitude.camber), "").labelled(at("camber")));
-        }
-        f
-    };
-    let charts = vec![chart(
-        file,
-        &stem,
-        &format!("toe and camber under {}", name.replace('-', " ")),
-        &format!("{} [{unit}]", analysis.parameter().split(',').next().unwrap_or(name)),
-        axis(
-            "angle [deg]",
-            &out.rows,
-            |r| r.load,
-            &[
-                ("toe (in +)", &|r: &LoadRow| Some(deg(r.attitude.toe))),
-                ("camber (top out +)", &|r: &LoadRow| Some(deg(r.attitude.camber))),
-            ],
-        ),
-        Some(axis(
-            "contact patch displacement [mm]",
-            &out.rows,
-            |r| r.load,
-            &[
-                ("patch x", &|r: &LoadRow| Some(r.patch_displacement.x * 1e3)),
-                ("patch y", &|r: &LoadRow| Some(r.patch_displacement.y * 1e3)),
-            ],
-        )),
-        Some(0.0),
-    )];
+    let table = |rows: &[LoadRow]| load_sweep_table(&stem, quantity, rows);
+    let figures = |rows: &[LoadRow], design: Design<LoadRow>| load_sweep_figures(quantity, rows, design);
+    let charts = load_sweep_charts(file, analysis, &stem, &out.rows);
     let held = if s.height_held { "wheel-centre height held" } else { "wheel free on its spring" };
     let at = match analysis {
         Analysis::Road(WheelLoad::Lateral | WheelLoad::Braking) => format!(" at the {}", where_loaded(s)),
@@ -173,4 +109,85 @@ pub(super) fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Resul
         bushings_share(&mut report, "steer", "lateral-force compliance steer", rigid);
     }
     Ok(report)
+}
+
+/// A load sweep's table `stem`: the load parameter (of `quantity`), the wheel's attitude and the patch's
+/// motion, the wheel load, and the force and torque of every joint and element.
+fn load_sweep_table(stem: &str, quantity: Quantity, rows: &[LoadRow]) -> Table {
+    let column = match quantity {
+        Quantity::Force => "load_n",
+        Quantity::Torque => "load_nm",
+        Quantity::Travel | Quantity::Fraction => "fraction",
+    };
+    let mut columns: Vec<Column<LoadRow>> = vec![
+        Column::new(column, |r: &LoadRow| r.load.into()),
+        Column::new("toe_deg", |r: &LoadRow| deg(r.attitude.toe).into()),
+        Column::new("camber_deg", |r: &LoadRow| deg(r.attitude.camber).into()),
+        Column::new("wheel_centre_x_m", |r: &LoadRow| r.attitude.wheel_centre.x.into()),
+        Column::new("wheel_centre_y_m", |r: &LoadRow| r.attitude.wheel_centre.y.into()),
+        Column::new("wheel_centre_z_m", |r: &LoadRow| r.attitude.wheel_centre.z.into()),
+        Column::new("patch_dx_m", |r: &LoadRow| r.patch_displacement.x.into()),
+        Column::new("patch_dy_m", |r: &LoadRow| r.patch_displacement.y.into()),
+        Column::new("patch_dz_m", |r: &LoadRow| r.patch_displacement.z.into()),
+        Column::new("wheel_load_n", |r: &LoadRow| r.wheel_load.into()),
+    ];
+    if let Some(first) = rows.first() {
+        columns.extend(component_columns(&first.forces));
+    }
+    Table::of_columns(stem, &columns, rows)
+}
+
+/// A load sweep's figures: the compliance steer and camber at design, per unit of the load of
+/// `quantity`, and toe and camber at the last row.
+fn load_sweep_figures(quantity: Quantity, rows: &[LoadRow], design: Design<LoadRow>) -> Vec<Figure> {
+    let unit = quantity.unit();
+    // Per kN of a force, per kN·m of a torque, per load case of the model's own.
+    let per_unit = match quantity {
+        Quantity::Force => Unit::DegreePerKilonewton,
+        Quantity::Torque => Unit::DegreePerKilonewtonMetre,
+        Quantity::Travel | Quantity::Fraction => Unit::DegreePerLoadCase,
+    };
+    let why = design.err().unwrap_or_default();
+    let slope = |y: &dyn Fn(&LoadRow) -> f64| design.ok().map(|d| d.rate(y));
+    let per_load = |kind: &FigureKind| FigureKind { unit: per_unit, ..*kind };
+    let mut f = vec![
+        Figure::of(&per_load(&figures::COMPLIANCE_STEER), slope(&|r| r.attitude.toe), why),
+        Figure::of(&per_load(&figures::COMPLIANCE_CAMBER), slope(&|r| r.attitude.camber), why),
+    ];
+    if let Some(last) = rows.last() {
+        let at = |what: &str| format!("{what} at {:.0} {unit}", last.load);
+        f.push(Figure::of(&figures::TOE_AT_END, Some(last.attitude.toe), "").labelled(at("toe")));
+        f.push(Figure::of(&figures::CAMBER_AT_END, Some(last.attitude.camber), "").labelled(at("camber")));
+    }
+    f
+}
+
+/// A load sweep's chart `stem`: toe and camber, and the contact patch's motion, over the load.
+fn load_sweep_charts(file: &SuspensionFile, analysis: Analysis, stem: &str, rows: &[LoadRow]) -> Vec<Chart> {
+    let (name, unit) = (analysis.name(), analysis.unit());
+    vec![chart(
+        file,
+        stem,
+        &format!("toe and camber under {}", name.replace('-', " ")),
+        &format!("{} [{unit}]", analysis.parameter().split(',').next().unwrap_or(name)),
+        axis(
+            "angle [deg]",
+            rows,
+            |r| r.load,
+            &[
+                ("toe (in +)", &|r: &LoadRow| Some(deg(r.attitude.toe))),
+                ("camber (top out +)", &|r: &LoadRow| Some(deg(r.attitude.camber))),
+            ],
+        ),
+        Some(axis(
+            "contact patch displacement [mm]",
+            rows,
+            |r| r.load,
+            &[
+                ("patch x", &|r: &LoadRow| Some(r.patch_displacement.x * 1e3)),
+                ("patch y", &|r: &LoadRow| Some(r.patch_displacement.y * 1e3)),
+            ],
+        )),
+        Some(0.0),
+    )]
 }

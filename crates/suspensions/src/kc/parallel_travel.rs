@@ -6,6 +6,7 @@ use crate::analysis::compliance::{compliance_at, compliance_with, patch_complian
 use crate::analysis::{parallel_wheel_travel_with, TravelRow};
 use crate::assembly::{Corner, Rig};
 use crate::file::SuspensionFile;
+use crate::kc::chart::Chart;
 use crate::kc::figures;
 use crate::kc::models::Models;
 use crate::kc::reduce::{axis, chart, corner_drawing, deg, finish, needs_vehicle, Design, Reduction};
@@ -28,12 +29,33 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
     let corner = models.corner_ref(Rig::WheelTravel)?;
     let out =
         parallel_wheel_travel_with(corner, range.0, range.1, s.steps, s.mode, s.extras_reading(range, 0.0, NO_ROWS))?;
-    let wheel = &corner.wheel;
-    let sign = wheel.side.sign();
     let table = |rows: &[TravelRow]| parallel_travel_table(corner, rows);
     let figures = |_: &[TravelRow], design: Design<TravelRow>| parallel_travel_figures(file, corner, design);
+    let charts = parallel_travel_charts(file, corner, &out.rows);
+    let description =
+        format!("parallel wheel travel {:+.0}..{:+.0} mm, {} steps", range.0 * 1e3, range.1 * 1e3, s.steps);
+    let mut report = finish(
+        Analysis::ParallelTravel,
+        description,
+        range,
+        s,
+        &out,
+        Reduction { table: &table, figures: &figures, drawing: corner_drawing(corner, s) },
+        charts,
+    );
+    // Toe, camber and wheel rate no car has, inside the travel asked for.
+    report.warnings.extend(crate::check::check_travel_rows(&out.rows));
+    design_compliance(file, corner, s, &mut report)?;
+    Ok(report)
+}
+
+/// The parallel-travel charts of `corner`'s `rows`: toe and camber, and the wheel centre's motion with the
+/// wheel load.
+fn parallel_travel_charts(file: &SuspensionFile, corner: &Corner, rows: &[TravelRow]) -> Vec<Chart> {
+    let wheel = &corner.wheel;
+    let sign = wheel.side.sign();
     let x = |r: &TravelRow| r.travel * 1e3;
-    let charts = vec![
+    vec![
         chart(
             file,
             "parallel_travel_toe_camber",
@@ -41,7 +63,7 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
             "wheel travel [mm], bump +",
             axis(
                 "angle [deg]",
-                &out.rows,
+                rows,
                 x,
                 &[
                     ("toe (in +)", &|r: &TravelRow| Some(deg(r.attitude.toe))),
@@ -58,7 +80,7 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
             "wheel travel [mm], bump +",
             axis(
                 "displacement [mm]",
-                &out.rows,
+                rows,
                 x,
                 &[
                     ("half-track change (out +)", &|r: &TravelRow| {
@@ -69,25 +91,21 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
                     }),
                 ],
             ),
-            Some(axis("wheel load [N]", &out.rows, x, &[("wheel load", &|r: &TravelRow| Some(r.wheel_load))])),
+            Some(axis("wheel load [N]", rows, x, &[("wheel load", &|r: &TravelRow| Some(r.wheel_load))])),
             Some(0.0),
         ),
-    ];
-    let description =
-        format!("parallel wheel travel {:+.0}..{:+.0} mm, {} steps", range.0 * 1e3, range.1 * 1e3, s.steps);
-    let mut report = finish(
-        Analysis::ParallelTravel,
-        description,
-        range,
-        s,
-        &out,
-        Reduction { table: &table, figures: &figures, drawing: corner_drawing(corner, s) },
-        charts,
-    );
-    // Toe, camber and wheel rate no car has, inside the travel asked for.
-    report.warnings.extend(crate::check::check_travel_rows(&out.rows));
-    // Figures of the design position itself, from the tangent there (not read off the rows): at the
-    // equilibrium, and one exact Newton iteration on for their error estimate.
+    ]
+}
+
+/// The figures of the design position itself, from the tangent there (not read off the rows): at the
+/// equilibrium, and one exact Newton iteration on for their error estimate; and the wheel's compliance
+/// matrix there, added to `report`.
+fn design_compliance(
+    file: &SuspensionFile,
+    corner: &Corner,
+    s: &Settings,
+    report: &mut AnalysisReport,
+) -> Result<(), Cause> {
     let mut design = compliance_at(corner, 0.0)?;
     let compliance = design.wheel;
     // The joints alone may hold the patch inboard or rearward (ideal joints, no bushing in the load path):
@@ -128,7 +146,7 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
                 .into(),
         });
     }
-    Ok(report)
+    Ok(())
 }
 
 /// The parallel-travel figures read off the tangent at an equilibrium `state` of `corner` (`solver` has
