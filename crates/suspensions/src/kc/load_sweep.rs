@@ -14,7 +14,6 @@ use crate::kc::reduce::{axis, bushings_share, chart, corner_drawing, deg, finish
 use crate::kc::report::{AnalysisReport, Cell, Column, Figure, FigureKind, Table};
 use crate::kc::settings::{Analysis, Cause, Quantity, Settings};
 use crate::kc::unit::Unit;
-use elastokin_solver::replay::ReplayRows;
 use elastokin_solver::LoadPath;
 
 /// Why the `loads` analysis cannot run.
@@ -64,7 +63,7 @@ pub(super) fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Resul
     // Drawn as walked: with the model's own loads, once they are added.
     let drawing;
     // The figures read the rates at zero load (at design) and the last row.
-    let extras = s.extras_reading(range, 0.0, ReplayRows { near: None, last: true, extremes: false });
+    let extras = s.extras_reading(range, 0.0, analysis.declaration().figure_rows);
     let out = match analysis {
         Analysis::Road(load) => {
             drawing = corner_drawing(&corner, s);

@@ -34,8 +34,8 @@ pub use report::{
     Written,
 };
 pub use settings::{
-    mode_from_word, mode_word, Analysis, AnalysisError, Cause, Declaration, DefaultRange, Quantity, Settings,
-    Tolerance, ALL, MAX_RANGE_FRACTION, MAX_RANGE_LOAD, MAX_RANGE_TRAVEL, MIN_RANGE,
+    mode_from_word, mode_word, Analysis, AnalysisError, Cause, Declaration, DefaultRange, FigureRows, Quantity,
+    Settings, Tolerance, ALL, MAX_RANGE_FRACTION, MAX_RANGE_LOAD, MAX_RANGE_TRAVEL, MIN_RANGE,
 };
 pub use steering::ideal_outer_steer;
 pub use unit::{Shown, Unit, Units};

@@ -3,7 +3,7 @@
 
 use crate::kc::models::Models;
 use crate::kc::report::AnalysisReport;
-use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, Quantity, Settings};
+use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, FigureRows, Quantity, Settings};
 
 /// The model file's own load case, as the command and the reports name it.
 pub(super) const DECLARATION: Declaration = Declaration {
@@ -13,6 +13,7 @@ pub(super) const DECLARATION: Declaration = Declaration {
     rig_words: None,
     default_range: DefaultRange::Ends(0.0, 1.0),
     design_parameter: Some(0.0),
+    figure_rows: FigureRows::LastRow,
 };
 
 /// The model file's own load case (`loads` of the general form), applied from zero to its full value.

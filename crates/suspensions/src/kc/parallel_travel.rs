@@ -11,7 +11,7 @@ use crate::kc::figures;
 use crate::kc::models::Models;
 use crate::kc::reduce::{axis, chart, corner_drawing, deg, finish, needs_vehicle, Design, Reduction};
 use crate::kc::report::{AnalysisReport, Column, Figure, FigureKind, Table, Warning};
-use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, Quantity, Settings, NO_ROWS};
+use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, FigureRows, Quantity, Settings};
 
 /// Parallel travel, as the command and the reports name it.
 pub(super) const DECLARATION: Declaration = Declaration {
@@ -21,14 +21,21 @@ pub(super) const DECLARATION: Declaration = Declaration {
     rig_words: None,
     default_range: DefaultRange::Ends(-0.08, 0.08),
     design_parameter: Some(0.0),
+    figure_rows: FigureRows::DesignOnly,
 };
 
 pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
     let file = models.file();
     let range = Analysis::ParallelTravel.range_or_default(s.range)?;
     let corner = models.corner_ref(Rig::WheelTravel)?;
-    let out =
-        parallel_wheel_travel_with(corner, range.0, range.1, s.steps, s.mode, s.extras_reading(range, 0.0, NO_ROWS))?;
+    let out = parallel_wheel_travel_with(
+        corner,
+        range.0,
+        range.1,
+        s.steps,
+        s.mode,
+        s.extras_reading(range, 0.0, DECLARATION.figure_rows),
+    )?;
     let table = |rows: &[TravelRow]| parallel_travel_table(corner, rows);
     let figures = |_: &[TravelRow], design: Design<TravelRow>| parallel_travel_figures(file, corner, design);
     let charts = parallel_travel_charts(file, corner, &out.rows);

@@ -4,7 +4,7 @@
 use crate::analysis::WheelLoad;
 use crate::kc::models::Models;
 use crate::kc::report::AnalysisReport;
-use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, Quantity, Settings};
+use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, FigureRows, Quantity, Settings};
 
 /// The lateral force sweep.
 pub(super) const LATERAL: Declaration = Declaration {
@@ -14,6 +14,7 @@ pub(super) const LATERAL: Declaration = Declaration {
     rig_words: None,
     default_range: DefaultRange::Ends(-3000.0, 3000.0),
     design_parameter: Some(0.0),
+    figure_rows: FigureRows::LastRow,
 };
 
 /// The braking force sweep.
@@ -24,6 +25,7 @@ pub(super) const BRAKING: Declaration = Declaration {
     rig_words: None,
     default_range: DefaultRange::Ends(0.0, 3000.0),
     design_parameter: Some(0.0),
+    figure_rows: FigureRows::LastRow,
 };
 
 /// The traction force sweep.
@@ -34,6 +36,7 @@ pub(super) const TRACTION: Declaration = Declaration {
     rig_words: None,
     default_range: DefaultRange::Ends(0.0, 3000.0),
     design_parameter: Some(0.0),
+    figure_rows: FigureRows::LastRow,
 };
 
 /// The aligning torque sweep.
@@ -44,6 +47,7 @@ pub(super) const ALIGNING_TORQUE: Declaration = Declaration {
     rig_words: None,
     default_range: DefaultRange::Ends(-200.0, 200.0),
     design_parameter: Some(0.0),
+    figure_rows: FigureRows::LastRow,
 };
 
 pub(super) fn road_load(models: &Models, load: WheelLoad, s: &Settings) -> Result<AnalysisReport, Cause> {

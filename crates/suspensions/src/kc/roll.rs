@@ -10,7 +10,7 @@ use crate::kc::figures;
 use crate::kc::models::Models;
 use crate::kc::reduce::{axis, axle_drawing, bushings_share, chart, deg, finish, Design, Reduction};
 use crate::kc::report::{slug, AnalysisReport, Cell, Column, Figure, Table};
-use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, Quantity, Settings, NO_ROWS};
+use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, FigureRows, Quantity, Settings};
 use crate::kc::unit::Unit;
 
 /// Roll, as the command and the reports name it.
@@ -21,6 +21,7 @@ pub(super) const DECLARATION: Declaration = Declaration {
     rig_words: Some("full axle"),
     default_range: DefaultRange::Ends(-0.05, 0.05),
     design_parameter: Some(0.0),
+    figure_rows: FigureRows::DesignOnly,
 };
 
 /// Camber of a wheel relative to the ground when the body rolls by `roll` (about +x) relative to it:
@@ -36,7 +37,14 @@ pub(super) fn roll(models: &Models, s: &Settings) -> Result<AnalysisReport, Caus
     let has_bars = !axle.anti_roll_bars.is_empty();
     // The shared beams' names as keys and columns: a twist-beam axle's cross member is read in roll.
     let members: Vec<(&str, String)> = axle.members.iter().map(|m| (m.name.as_str(), slug(&m.name))).collect();
-    let out = axle_sweep_with(axle, range.0, range.1, s.steps, s.mode, s.extras_reading(range, 0.0, NO_ROWS))?;
+    let out = axle_sweep_with(
+        axle,
+        range.0,
+        range.1,
+        s.steps,
+        s.mode,
+        s.extras_reading(range, 0.0, DECLARATION.figure_rows),
+    )?;
     let table = |rows: &[AxleRow]| roll_table(rows, &members);
     let figures = |_: &[AxleRow], design: Design<AxleRow>| roll_figures(design, &members, has_bars);
     let charts = roll_charts(file, &out.rows);

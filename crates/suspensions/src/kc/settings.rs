@@ -121,6 +121,8 @@ pub struct Declaration {
     /// Where the design position sits on the load parameter; `None` where only the solved model knows it
     /// (the design wheel load) or the analysis walks no range.
     pub design_parameter: Option<f64>,
+    /// The rows of its sweep its figures read besides the design position.
+    pub figure_rows: FigureRows,
 }
 
 /// What an analysis's load parameter is a quantity of.
@@ -305,8 +307,30 @@ pub fn mode_from_word(word: &str) -> Option<Mode> {
     [Mode::Corrected, Mode::Paper].into_iter().find(|&m| mode_word(m) == word)
 }
 
-/// The rows of a sweep a replay moves for figures that read none of them, only the readings at design.
-pub(super) const NO_ROWS: ReplayRows = ReplayRows { near: None, last: false, extremes: false };
+/// Which rows of its sweep an analysis's figures read besides the design position (every figure at design
+/// is read off the exact equilibrium there): a replay for the figures alone moves those and no other.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FigureRows {
+    /// None: the figures are read at design alone.
+    DesignOnly,
+    /// The last row too (a value at the end of the range).
+    LastRow,
+    /// Rows found by their values once the sweep is read (full steer, the largest Ackermann error), which
+    /// the analysis names as it reads them (`replay::rows_read`).
+    Extremes,
+}
+
+impl FigureRows {
+    /// The rows a replay moves for these.
+    fn replayed(self) -> ReplayRows {
+        let (last, extremes) = match self {
+            FigureRows::DesignOnly => (false, false),
+            FigureRows::LastRow => (true, false),
+            FigureRows::Extremes => (false, true),
+        };
+        ReplayRows { near: None, last, extremes }
+    }
+}
 
 impl Settings {
     /// What the sweeps over `range` take besides their rows.
@@ -324,10 +348,11 @@ impl Settings {
     }
 
     /// [`Settings::extras`] of a sweep whose figures read its readings at the design load parameter
-    /// `design` ([`SweepExtras::at_design`]) and only `rows` of it (a value at one load parameter, the last
-    /// row): when reading for the figures alone, a replay moves only those ([`SweepExtras::figure_rows`]).
-    pub(super) fn extras_reading(&self, range: (f64, f64), design: f64, rows: ReplayRows) -> SweepExtras {
-        SweepExtras { figure_rows: self.figures_only.then_some(rows), at_design: Some(design), ..self.extras(range) }
+    /// `design` ([`SweepExtras::at_design`]) and only `rows` of it: when reading for the figures alone, a
+    /// replay moves only those ([`SweepExtras::figure_rows`]).
+    pub(super) fn extras_reading(&self, range: (f64, f64), design: f64, rows: FigureRows) -> SweepExtras {
+        let figure_rows = self.figures_only.then_some(rows.replayed());
+        SweepExtras { figure_rows, at_design: Some(design), ..self.extras(range) }
     }
 }
 

@@ -6,7 +6,7 @@ use crate::assembly::Rig;
 use crate::kc::figures;
 use crate::kc::models::Models;
 use crate::kc::report::{Accuracy, AnalysisReport, Cell, Column, Figure, Table, Warning};
-use crate::kc::settings::{mode_word, Analysis, Cause, Declaration, DefaultRange, Quantity, Settings};
+use crate::kc::settings::{mode_word, Analysis, Cause, Declaration, DefaultRange, FigureRows, Quantity, Settings};
 
 /// The static load case: no range, the corner load applied at once.
 pub(super) const DECLARATION: Declaration = Declaration {
@@ -16,6 +16,7 @@ pub(super) const DECLARATION: Declaration = Declaration {
     rig_words: None,
     default_range: DefaultRange::NoRange,
     design_parameter: None,
+    figure_rows: FigureRows::DesignOnly,
 };
 
 pub(super) fn static_load(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {

@@ -8,8 +8,7 @@ use crate::kc::figures;
 use crate::kc::models::Models;
 use crate::kc::reduce::{axis, axle_drawing, chart, deg, finish, needs_vehicle, Design, Reduction};
 use crate::kc::report::{AnalysisReport, Cell, Column, Figure, Table};
-use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, Quantity, Settings};
-use elastokin_solver::replay::ReplayRows;
+use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, FigureRows, Quantity, Settings};
 
 /// Steering, as the command and the reports name it.
 pub(super) const DECLARATION: Declaration = Declaration {
@@ -19,6 +18,7 @@ pub(super) const DECLARATION: Declaration = Declaration {
     rig_words: Some("full axle, wheel-centre heights held"),
     default_range: DefaultRange::Ends(-0.04, 0.04),
     design_parameter: Some(0.0),
+    figure_rows: FigureRows::Extremes,
 };
 
 /// The steering table of `rows`: steer angles, and Ackermann's ideal outer steer and the error from it
@@ -158,8 +158,14 @@ pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, 
     let axle = models.axle_ref(AxleRig::Steering)?;
     // Besides the readings at design, the figures read the row of full steer and that of the largest
     // Ackermann error, found by their values (named below).
-    let rows = ReplayRows { near: None, last: false, extremes: true };
-    let out = axle_sweep_with(axle, range.0, range.1, s.steps, s.mode, s.extras_reading(range, 0.0, rows))?;
+    let out = axle_sweep_with(
+        axle,
+        range.0,
+        range.1,
+        s.steps,
+        s.mode,
+        s.extras_reading(range, 0.0, DECLARATION.figure_rows),
+    )?;
     let wheelbase = file.vehicle.as_ref().map(|v| v.wheelbase);
     // Track between the contact patches at design: the lateral distance Ackermann's rule uses.
     let track = axle.left.contact_patch.y - axle.right.contact_patch.y;

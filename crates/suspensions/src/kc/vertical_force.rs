@@ -7,7 +7,7 @@ use crate::kc::figures;
 use crate::kc::models::Models;
 use crate::kc::reduce::{axis, chart, corner_drawing, deg, finish, Design, Reduction};
 use crate::kc::report::{AnalysisReport, Column, Figure, Table};
-use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, Quantity, Settings, NO_ROWS};
+use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, FigureRows, Quantity, Settings};
 
 /// The vertical force sweep, as the command and the reports name it: its design position is the design
 /// wheel load, which only the solved model gives.
@@ -18,6 +18,7 @@ pub(super) const DECLARATION: Declaration = Declaration {
     rig_words: Some("wheel free (or at --load-point)"),
     default_range: DefaultRange::AroundDesignLoad,
     design_parameter: None,
+    figure_rows: FigureRows::DesignOnly,
 };
 
 pub(super) fn vertical_force(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
@@ -35,7 +36,7 @@ pub(super) fn vertical_force(models: &Models, s: &Settings) -> Result<AnalysisRe
         range.1,
         s.steps,
         s.mode,
-        s.extras_reading(range, design_load, NO_ROWS),
+        s.extras_reading(range, design_load, DECLARATION.figure_rows),
     )?;
     let table = |rows: &[LoadRow]| {
         let columns: [Column<LoadRow>; 5] = [
