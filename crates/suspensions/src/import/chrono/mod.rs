@@ -165,7 +165,7 @@ pub fn read(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Impo
         "SAEToeBarLeafspringAxle" => sae_leaf_spring_axle::read_toe_bar(&doc, &mut b),
         "LeafspringAxle" => leaf_spring_axle::read_leaf_spring_axle(&doc, &mut b),
         "ToeBarLeafspringAxle" => leaf_spring_axle::read_toe_bar_leaf_spring_axle(&doc, &mut b),
-        other => Err(Refusal::Template { template: other.to_string() }),
+        other => Err(Refusal::Template { template: other.to_string(), supported: &SUPPORTED }),
     };
     built.map_err(at)?;
     let notes = b.finish(&doc);
