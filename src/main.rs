@@ -532,8 +532,8 @@ impl ModelInput {
 /// `"Type": "Suspension"` and `"Template"`).
 fn read_model(path: &Path) -> Result<ModelInput, Failure> {
     let (bytes, text) = read_input(path, "MODEL")?;
-    let (file, imported) =
-        elastokin::suspensions::document::parse_model(&text, &path.display().to_string()).map_err(Failure::Input)?;
+    let (file, imported) = elastokin::suspensions::document::parse_model(&text, &path.display().to_string())
+        .map_err(|e| Failure::Input(e.to_string()))?;
     Ok(ModelInput { bytes, file, imported })
 }
 
@@ -1023,8 +1023,8 @@ fn tune(args: TuneArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), F
         std::fs::read_to_string(beside.join(name))
             .map_err(|e| format!("cannot read {}: {e}", beside.join(name).display()))
     };
-    let targets =
-        read_targets(&targets_text, &args.targets.display().to_string(), &base, read_file).map_err(Failure::Input)?;
+    let targets = read_targets(&targets_text, &args.targets.display().to_string(), &base, read_file)
+        .map_err(|e| Failure::Input(e.to_string()))?;
     let pointers: Vec<String> = targets.free.iter().map(|f| f.pointer.clone()).collect();
     let parameters = Parameters::new(&base, &pointers).map_err(|e| Failure::Input(format!("{origin}: {e}")))?;
     let progress = Progress::new("iterations", tune::MAX_ITERATIONS, quiet);
@@ -1131,7 +1131,7 @@ fn compare(args: CompareArgs, out: &Stdout, strict: bool) -> Result<(), Failure>
         let (bytes, design) = if measured {
             let (bytes, text) = read_input(path, "DESIGN")?;
             let origin = path.display().to_string();
-            let measured = read_measured(&text, &origin).map_err(Failure::Input)?;
+            let measured = read_measured(&text, &origin).map_err(|e| Failure::Input(e.to_string()))?;
             let name = path.file_name().map_or(origin.clone(), |n| n.to_string_lossy().into_owned());
             (bytes, Design::Measured { name, measured })
         } else {
@@ -1254,7 +1254,8 @@ fn tolerance(args: ToleranceArgs, out: &Stdout, strict: bool) -> Result<(), Fail
     let origin = args.model.display().to_string();
     let base = batch::base_document(&String::from_utf8_lossy(&read.bytes), &origin).map_err(Failure::Input)?;
     let (bytes, text) = read_input(&args.tolerances, "TOLERANCES")?;
-    let tolerances = read_tolerances(&text, &args.tolerances.display().to_string(), &base).map_err(Failure::Input)?;
+    let tolerances = read_tolerances(&text, &args.tolerances.display().to_string(), &base)
+        .map_err(|e| Failure::Input(e.to_string()))?;
     let mut stack = stack_up(&base, &tolerances).map_err(|e| Failure::Run(format!("{origin}: {e}")))?;
     refuse_warned(strict, stack.warnings.iter())?;
     if stack.spreads.is_empty() && !stack.failed.is_empty() {

@@ -161,7 +161,9 @@ pub fn apply(base: &serde_json::Value, v: &Variant) -> Result<SuspensionFile, St
     // The edited model is no file the user has: its errors name keys, not a line and column of it. Its kind
     // is read off the document in hand (parsing its text again to tell cost a fifth of this function).
     let chrono = crate::import::chrono::is_chrono_document(&doc);
-    crate::document::parse_document_of_kind(&text, chrono, &format!("variant '{}'", v.name)).map(|(file, _)| file)
+    crate::document::parse_document_of_kind(&text, chrono, &format!("variant '{}'", v.name))
+        .map(|(file, _)| file)
+        .map_err(|e| e.to_string())
 }
 
 /// Refuses a variant that edits a key the base model lacks, as [`apply`] does, without reading the model: a
