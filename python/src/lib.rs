@@ -166,7 +166,7 @@ impl Model {
     /// each, the form a study sends to its workers.
     fn read_variants(&self, variants: &Bound<'_, PyAny>) -> PyResult<Vec<VariantEdits>> {
         let list = parse_variants(variants, None)?;
-        list.iter().try_for_each(|v| batch::check_keys(&self.base, v)).map_err(ModelError::new_err)?;
+        list.iter().try_for_each(|v| batch::check_keys(&self.base, v)).map_err(|e| ModelError::new_err(e.to_string()))?;
         list.into_iter()
             .map(|v| {
                 let edits =
@@ -456,7 +456,7 @@ impl Model {
         // A variant that names a key the model lacks is a mistake in the list: said before running anything.
         let files: Vec<SuspensionFile> = py
             .detach(|| list.iter().map(|v| batch::apply(&self.base, v)).collect::<Result<_, _>>())
-            .map_err(ModelError::new_err)?;
+            .map_err(|e| ModelError::new_err(e.to_string()))?;
         let pool = threads
             .map(|n| rayon::ThreadPoolBuilder::new().num_threads(n).build())
             .transpose()
