@@ -130,7 +130,7 @@ impl Model {
     fn read(py: Python<'_>, path: &str) -> PyResult<Model> {
         py.detach(|| {
             let (_, text) = read_input(Path::new(path), "MODEL")?;
-            let (file, _) = parse_model(&text, path)?;
+            let (file, _) = parse_model(&text, path).map_err(|e| e.to_string())?;
             let base = batch::base_document(&text, path)?;
             Ok::<_, String>(Model { file, base, origin: path.to_string() })
         })
@@ -143,7 +143,7 @@ impl Model {
     #[staticmethod]
     fn from_json(py: Python<'_>, text: &str, origin: &str) -> PyResult<Model> {
         py.detach(|| {
-            let (file, _) = parse_document(text, origin)?;
+            let (file, _) = parse_document(text, origin).map_err(|e| e.to_string())?;
             let base = batch::base_document(text, origin)?;
             Ok::<_, String>(Model { file, base, origin: origin.to_string() })
         })
@@ -166,7 +166,7 @@ impl Model {
     /// each, the form a study sends to its workers.
     fn read_variants(&self, variants: &Bound<'_, PyAny>) -> PyResult<Vec<VariantEdits>> {
         let list = parse_variants(variants, None)?;
-        list.iter().try_for_each(|v| batch::check_keys(&self.base, v)).map_err(ModelError::new_err)?;
+        list.iter().try_for_each(|v| batch::check_keys(&self.base, v)).map_err(|e| ModelError::new_err(e.to_string()))?;
         list.into_iter()
             .map(|v| {
                 let edits =
@@ -257,12 +257,12 @@ impl Model {
             let path = Path::new(directory).join(name);
             std::fs::read_to_string(&path).map_err(|e| format!("cannot read {}: {e}", path.display()))
         };
-        let t = read_targets(targets, "targets", &self.base, read_file).map_err(PyValueError::new_err)?;
+        let t = read_targets(targets, "targets", &self.base, read_file).map_err(|e| PyValueError::new_err(e.to_string()))?;
         let pointers: Vec<String> = t.free.iter().map(|f| f.pointer.clone()).collect();
         let p = Parameters::new(&self.base, &pointers).map_err(|e| ModelError::new_err(e.to_string()))?;
         let tuned = py.detach(|| tune(&p, &t, |_| {})).map_err(|e| match e {
             // The targets ask what the model's analyses do not give: a bad TARGETS text, as above.
-            TuneError::Targets(why) => PyValueError::new_err(why),
+            TuneError::Targets(why) => PyValueError::new_err(why.to_string()),
             e @ (TuneError::Model(_) | TuneError::Parameters(_) | TuneError::Analysis { .. }) => {
                 AnalysisError::new_err(e.to_string())
             }
@@ -309,7 +309,7 @@ impl Model {
         seed: u64,
     ) -> PyResult<Bound<'py, PyDict>> {
         use elastokin_suspensions::design::tolerance::{read_tolerances, stack_up, StackUpError};
-        let t = read_tolerances(tolerances, "tolerances", &self.base).map_err(PyValueError::new_err)?;
+        let t = read_tolerances(tolerances, "tolerances", &self.base).map_err(|e| PyValueError::new_err(e.to_string()))?;
         let stack = py
             .detach(|| {
                 let mut stack = stack_up(&self.base, &t)?;
@@ -334,7 +334,7 @@ impl Model {
     ) -> PyResult<Bound<'py, PyDict>> {
         use elastokin_suspensions::design::tolerance::{read_tolerances, sample};
         use elastokin_suspensions::design::Parameters;
-        let t = read_tolerances(tolerances, "tolerances", &self.base).map_err(PyValueError::new_err)?;
+        let t = read_tolerances(tolerances, "tolerances", &self.base).map_err(|e| PyValueError::new_err(e.to_string()))?;
         let pointers: Vec<String> = t.bands.iter().map(|(p, _)| p.clone()).collect();
         let bands: Vec<f64> = t.bands.iter().map(|(_, b)| *b).collect();
         let p = Parameters::new(&self.base, &pointers).map_err(|e| ModelError::new_err(e.to_string()))?;
@@ -456,7 +456,7 @@ impl Model {
         // A variant that names a key the model lacks is a mistake in the list: said before running anything.
         let files: Vec<SuspensionFile> = py
             .detach(|| list.iter().map(|v| batch::apply(&self.base, v)).collect::<Result<_, _>>())
-            .map_err(ModelError::new_err)?;
+            .map_err(|e| ModelError::new_err(e.to_string()))?;
         let pool = threads
             .map(|n| rayon::ThreadPoolBuilder::new().num_threads(n).build())
             .transpose()
@@ -569,7 +569,7 @@ fn compare<'py>(
             let (name, text): (String, String) = d
                 .extract()
                 .map_err(|_| PyValueError::new_err("each design is a Model or a measured file as (name, text)"))?;
-            let measured = read_measured(&text, &name).map_err(PyValueError::new_err)?;
+            let measured = read_measured(&text, &name).map_err(|e| PyValueError::new_err(e.to_string()))?;
             read.push(Ok(Design::Measured { name, measured }));
         }
     }

@@ -88,7 +88,7 @@ fn read_design(
     if measured {
         let (bytes, text) = read_input(path, "DESIGN")?;
         let origin = path.display().to_string();
-        let measured = read_measured(&text, &origin).map_err(Failure::Input)?;
+        let measured = read_measured(&text, &origin).map_err(|e| Failure::Input(e.to_string()))?;
         let name = path.file_name().map_or(origin.clone(), |n| n.to_string_lossy().into_owned());
         return Ok((bytes, Design::Measured { name, measured }));
     }

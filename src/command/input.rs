@@ -43,7 +43,7 @@ impl ModelInput {
 /// `"Type": "Suspension"` and `"Template"`).
 pub fn read_model(path: &Path) -> Result<ModelInput, Failure> {
     let (bytes, text) = read_input(path, "MODEL")?;
-    let (file, imported) =
-        elastokin::suspensions::document::parse_model(&text, &path.display().to_string()).map_err(Failure::Input)?;
+    let (file, imported) = elastokin::suspensions::document::parse_model(&text, &path.display().to_string())
+        .map_err(|e| Failure::Input(e.to_string()))?;
     Ok(ModelInput { bytes, file, imported })
 }

@@ -39,7 +39,8 @@ pub fn run(args: ToleranceArgs, out: &Stdout, strict: bool) -> Result<(), Failur
     let origin = args.model.display().to_string();
     let base = read.document(&args.model)?;
     let (bytes, text) = read_input(&args.tolerances, "TOLERANCES")?;
-    let tolerances = read_tolerances(&text, &args.tolerances.display().to_string(), &base).map_err(Failure::Input)?;
+    let tolerances = read_tolerances(&text, &args.tolerances.display().to_string(), &base)
+        .map_err(|e| Failure::Input(e.to_string()))?;
     let mut stack = stack_up(&base, &tolerances).map_err(|e| Failure::Run(format!("{origin}: {e}")))?;
     refuse_warned(strict, stack.warnings.iter())?;
     if stack.spreads.is_empty() && !stack.failed.is_empty() {

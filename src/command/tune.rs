@@ -83,7 +83,8 @@ fn read_targets_file(path: &Path, base: &serde_json::Value) -> Result<(Vec<u8>, 
         std::fs::read_to_string(beside.join(name))
             .map_err(|e| format!("cannot read {}: {e}", beside.join(name).display()))
     };
-    let targets = read_targets(&text, &path.display().to_string(), base, read_file).map_err(Failure::Input)?;
+    let targets =
+        read_targets(&text, &path.display().to_string(), base, read_file).map_err(|e| Failure::Input(e.to_string()))?;
     Ok((bytes, targets))
 }
 

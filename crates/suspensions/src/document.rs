@@ -5,7 +5,7 @@
 
 use crate::assembly::rig::Rig;
 use crate::description::Side;
-use crate::file::{FileError, SuspensionFile};
+use crate::file::{FileError, InDocument, SuspensionFile};
 use crate::import::chrono::{self, is_chrono, ImportError, Imported};
 use std::path::Path;
 
@@ -52,20 +52,36 @@ pub fn import_chrono(text: &str, origin: &str, loaded_radius: Option<f64>) -> Re
     Ok(imported)
 }
 
+/// A model document refused, in its format's reader's words.
+#[derive(Debug, thiserror::Error)]
+pub enum DocumentError {
+    /// A Project Chrono suspension file refused by the importer or the builder.
+    #[error("{0} (read as a Project Chrono suspension file)")]
+    Chrono(ImportError),
+    /// An elastokin model file refused.
+    #[error(transparent)]
+    File(#[from] FileError),
+    /// An elastokin model document that is no file refused, placed by its keys.
+    #[error(transparent)]
+    Document(#[from] InDocument),
+    /// A parsed document that could not be written as text to be read, in the JSON writer's words.
+    #[error("{0}")]
+    Json(serde_json::Error),
+}
+
 /// A model file's text as a model: an elastokin model file, or a Project Chrono suspension file (recognised
 /// by its `"Type": "Suspension"` and `"Template"`), then with how it was read.
-pub fn parse_model(text: &str, origin: &str) -> Result<(SuspensionFile, Option<Imported>), String> {
+pub fn parse_model(text: &str, origin: &str) -> Result<(SuspensionFile, Option<Imported>), DocumentError> {
     if is_chrono(text) {
-        let imported =
-            import_chrono(text, origin, None).map_err(|e| format!("{e} (read as a Project Chrono suspension file)"))?;
+        let imported = import_chrono(text, origin, None).map_err(DocumentError::Chrono)?;
         return Ok((imported.file.clone(), Some(imported)));
     }
-    SuspensionFile::from_json(text, origin).map(|file| (file, None)).map_err(|e| e.to_string())
+    Ok((SuspensionFile::from_json(text, origin)?, None))
 }
 
 /// [`parse_model`] of a document that is no file (a Python dict, a variant's edited model): its errors name
-/// the place by its keys (`FileError::in_document`).
-pub fn parse_document(text: &str, origin: &str) -> Result<(SuspensionFile, Option<Imported>), String> {
+/// the place by its keys ([`FileError::in_document`]).
+pub fn parse_document(text: &str, origin: &str) -> Result<(SuspensionFile, Option<Imported>), DocumentError> {
     parse_document_of_kind(text, is_chrono(text), origin)
 }
 
@@ -75,13 +91,17 @@ pub fn parse_document(text: &str, origin: &str) -> Result<(SuspensionFile, Optio
 /// sensitivity's moved models, each built for the analyses that replay it, where a build to check it first
 /// would double the builds). What it refuses is read from the text after all, for the message that places
 /// the key.
-pub(crate) fn parse_value(document: &serde_json::Value, origin: &str, built: bool) -> Result<SuspensionFile, String> {
+pub(crate) fn parse_value(
+    document: &serde_json::Value,
+    origin: &str,
+    built: bool,
+) -> Result<SuspensionFile, DocumentError> {
     if let Ok(file) = <SuspensionFile as serde::Deserialize>::deserialize(document) {
         if file.check_ranges().is_ok() && (!built || build_check(&file, origin).is_ok()) {
             return Ok(file);
         }
     }
-    let text = serde_json::to_string(document).map_err(|e| e.to_string())?;
+    let text = serde_json::to_string(document).map_err(DocumentError::Json)?;
     parse_document_of_kind(&text, false, origin).map(|(file, _)| file)
 }
 
@@ -91,9 +111,9 @@ pub(crate) fn parse_document_of_kind(
     text: &str,
     chrono: bool,
     origin: &str,
-) -> Result<(SuspensionFile, Option<Imported>), String> {
+) -> Result<(SuspensionFile, Option<Imported>), DocumentError> {
     if chrono {
         return parse_model(text, origin);
     }
-    SuspensionFile::from_json(text, origin).map(|file| (file, None)).map_err(|e| e.in_document(text))
+    SuspensionFile::from_json(text, origin).map(|file| (file, None)).map_err(|e| e.in_document(text).into())
 }

@@ -120,7 +120,9 @@ fn a_measured_column_that_is_unknown_duplicated_or_not_plain_text_is_refused_by_
         ("travel_m,,toe_deg", "rig.csv:2: column 2 has no name"),
         ("travel_m,toe\0_deg", "rig.csv:2: the name of column 2 holds a control character (toe\\u{0}_deg)"),
     ] {
-        let e = read_measured(&format!("# analysis: parallel-travel\n{header}\n0,0,0\n"), "rig.csv").unwrap_err();
+        let e = read_measured(&format!("# analysis: parallel-travel\n{header}\n0,0,0\n"), "rig.csv")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains(says), "{header:?}: {e}");
     }
 }
@@ -144,4 +146,15 @@ fn what_cannot_be_compared_is_refused_by_name() {
     let rb = suite(&example("double_wishbone.json"), &[Analysis::Roll]);
     let e = compare(&[Design::model(&a, ra), Design::model(&example("double_wishbone.json"), rb)]).unwrap_err();
     assert!(e.contains("no analysis in common"), "{e}");
+}
+
+/// A measured row shorter than its header: `MeasuredError::RowLength`, naming the file, the line and both
+/// counts.
+#[test]
+fn a_measured_row_shorter_than_its_header_is_refused_by_its_line() {
+    use elastokin_suspensions::design::targets::MeasuredError;
+    let e = read_measured("# analysis: parallel-travel\ntravel_m,toe_deg,camber_deg\n0,0,0\n0.01,0.1\n", "rig.csv")
+        .unwrap_err();
+    assert!(matches!(e, MeasuredError::RowLength { line: 4, .. }), "{e:?}");
+    assert_eq!(e.to_string(), "rig.csv:4: 2 values where the header names 3 columns");
 }

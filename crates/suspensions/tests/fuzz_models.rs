@@ -454,7 +454,7 @@ fn run_case(case: &Case, settings: Option<&Settings>) -> Result<&'static str, St
         let file = match elastokin_suspensions::document::parse_model(&case.text, "model.json") {
             Ok((file, _)) => file,
             Err(e) => {
-                let message = e;
+                let message = e.to_string();
                 if std::env::var_os("ELASTOKIN_FUZZ_VERBOSE").is_some() {
                     eprintln!("UNREAD {message}");
                 }

@@ -319,7 +319,7 @@ fn general_macpherson() -> serde_json::Value {
 fn document_error(doc: &serde_json::Value) -> String {
     let text = serde_json::to_string(doc).unwrap();
     assert_eq!(text.lines().count(), 1);
-    SuspensionFile::from_json(&text, "<dict>").unwrap_err().in_document(&text)
+    SuspensionFile::from_json(&text, "<dict>").unwrap_err().in_document(&text).to_string()
 }
 
 #[test]
@@ -377,4 +377,17 @@ fn bushing_rates_given_as_a_list_are_refused_with_the_named_form() {
         other => panic!("{other}"),
     }
     assert!(SuspensionFile::from_json(&text, "macpherson.json").is_ok());
+}
+
+/// A document (no file) with a body's key misspelt: `DocumentError::Document`, placed by the keys.
+#[test]
+fn a_document_refused_by_its_reader_is_placed_by_its_keys() {
+    use elastokin_suspensions::document::{parse_document, DocumentError};
+    let mut doc = general_macpherson();
+    doc["suspension"]["general"]["bodies"][0]["masss"] = 3.0.into();
+    let e = parse_document(&serde_json::to_string(&doc).unwrap(), "my dict").unwrap_err();
+    assert!(matches!(e, DocumentError::Document(_)), "{e:?}");
+    let said = e.to_string();
+    assert!(said.starts_with("my dict: unknown field `masss`"), "{said}");
+    assert!(said.ends_with("(at suspension.general.bodies[0].masss)"), "{said}");
 }

@@ -72,7 +72,7 @@ fn bad_tolerances_are_refused_by_key() {
         (json!({ "hardpoints": 0.001, "analyses": [] }), "analyses: give one analysis name at least"),
         (json!({}), "no tolerances"),
     ] {
-        let e = read_tolerances(&text.to_string(), "tolerances.json", &doc).unwrap_err();
+        let e = read_tolerances(&text.to_string(), "tolerances.json", &doc).unwrap_err().to_string();
         assert!(e.starts_with("tolerances.json: ") && e.contains(says), "{says}: {e}");
     }
 }
@@ -96,4 +96,20 @@ fn a_band_that_spreads_a_figure_beyond_any_number_is_refused_by_its_number() {
     let text = json!({ "tolerances": { pointer: 1e-3 }, "analyses": ["parallel-travel"], "steps": 4 }).to_string();
     let spreads = stack_up(&doc, &read_tolerances(&text, "tolerances.json", &doc).unwrap()).unwrap().spreads;
     assert!(!spreads.is_empty() && spreads.iter().all(|s| s.worst_case.is_finite() && s.sigma.is_finite()));
+}
+
+/// A band written as a word: `TolerancesRefusal::NotBand`, naming the file, the key and what it holds as
+/// written.
+#[test]
+fn a_band_that_is_no_number_or_percent_is_refused_naming_its_key() {
+    use elastokin_suspensions::design::tolerance::TolerancesRefusal;
+    let doc = document("macpherson.json");
+    let pointer = "/suspension/macpherson/spring/rate";
+    let text = json!({ "tolerances": { pointer: "some" } }).to_string();
+    let e = read_tolerances(&text, "mine.json", &doc).unwrap_err();
+    assert!(matches!(*e.refusal, TolerancesRefusal::NotBand { .. }), "{e:?}");
+    assert_eq!(
+        e.to_string(),
+        format!("mine.json: tolerances[\"{pointer}\"]: give ± in the file's units (0.001) or a percent (\"15%\"), got \"some\"")
+    );
 }

@@ -2,8 +2,9 @@
 //! hidden moves of its tie-rod points, tuned back from the model without them), bounds and packaging that
 //! hold a tune and are named for it, targets that fight, and bad TARGETS files refused by key.
 
-use elastokin_suspensions::design::targets::{read_targets, Targets};
-use elastokin_suspensions::design::tune::{evaluate, tune, TuneError, Tuned};
+use elastokin_suspensions::design::targets::{read_targets, Targets, TargetsRefusal};
+use elastokin_suspensions::design::tune::{evaluate, tune, NotGiven, TuneError, Tuned};
+use elastokin_suspensions::design::KeyRefusal;
 use elastokin_suspensions::design::Parameters;
 use elastokin_suspensions::kc::{self, Analysis, Settings};
 use elastokin_suspensions::study::batch::base_document;
@@ -144,7 +145,9 @@ fn bounds_too_wide_for_a_step_are_refused_by_key_not_a_panic() {
     .to_string();
     let targets = read_targets(&text, "targets.json", &base, |f| Err(format!("no file {f}"))).unwrap();
     let parameters = Parameters::new(&base, std::slice::from_ref(&inner)).unwrap();
-    let TuneError::Targets(e) = tune(&parameters, &targets, |_| {}).map(|_| ()).unwrap_err() else { panic!() };
+    let e = tune(&parameters, &targets, |_| {}).map(|_| ()).unwrap_err();
+    let TuneError::Targets(e @ NotGiven::TooWide { .. }) = e else { panic!("{e:?}") };
+    let e = e.to_string();
     assert!(e.starts_with(&format!("free[\"{inner}\"]: the bounds -1e308 to -0.02 are too wide")), "{e}");
 }
 
@@ -163,7 +166,8 @@ fn an_aim_too_far_to_be_squared_is_refused_naming_the_target() {
         let targets = read_targets(&text, "targets.json", &base, |f| Err(format!("no file {f}"))).unwrap();
         let parameters = Parameters::new(&base, std::slice::from_ref(&inner)).unwrap();
         let e = tune(&parameters, &targets, |_| {}).map(|_| ()).unwrap_err();
-        let TuneError::Targets(e) = e else { panic!("{e:?}") };
+        let TuneError::Targets(e @ NotGiven::TooFar { .. }) = e else { panic!("{e:?}") };
+        let e = e.to_string();
         assert!(e.starts_with("targets[0]") && e.contains("is too large to be worked with"), "{e}");
     }
 }
@@ -266,7 +270,9 @@ fn bad_targets_are_refused_by_key() {
         ),
     ];
     for (text, says) in cases {
-        let e = read_targets(&text.to_string(), "targets.json", &base, |f| Err(format!("no file {f}"))).unwrap_err();
+        let e = read_targets(&text.to_string(), "targets.json", &base, |f| Err(format!("no file {f}")))
+            .unwrap_err()
+            .to_string();
         assert!(e.starts_with("targets.json: ") && e.contains(says), "{says}: {e}");
     }
     // What is known only when run: a figure or column the analysis lacks, a point outside its range, rows
@@ -294,6 +300,7 @@ fn bad_targets_are_refused_by_key() {
         let targets = read_targets(&text, "t", &base, |_| Err(String::new())).unwrap();
         // Bad input (the command exits 2), not a model that cannot be analysed.
         let TuneError::Targets(e) = evaluate(&p, &targets, &p.values).unwrap_err() else { panic!("{says}") };
+        let e = e.to_string();
         assert!(e.contains(says), "{says}: {e}");
     }
 }
@@ -479,9 +486,10 @@ fn a_key_given_twice_in_a_design_or_model_file_is_refused_naming_it() {
             "targets": [{{"figure": "parallel-travel/bump_steer", "value": -2.0, "tolerance": 0.25}}]}}"#
     );
     let e = read_targets(&targets, "targets.json", &base, |f| Err(format!("no file {f}"))).unwrap_err();
-    assert_eq!(e, format!("targets.json: free.{inner}: the key is given twice: give each key once"));
+    assert!(matches!(*e.refusal, TargetsRefusal::Key(KeyRefusal::Twice { .. })), "{e:?}");
+    assert_eq!(e.to_string(), format!("targets.json: free.{inner}: the key is given twice: give each key once"));
     let tolerances = r#"{"hardpoints": 0.001, "steps": 8, "steps": 16}"#;
-    let e = read_tolerances(tolerances, "tolerances.json", &base).unwrap_err();
+    let e = read_tolerances(tolerances, "tolerances.json", &base).unwrap_err().to_string();
     assert_eq!(e, "tolerances.json: steps: the key is given twice: give each key once");
     let path = format!("{}/../../examples/macpherson.json", env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(&path).unwrap().replacen("\"name\"", "\"name\": \"first\", \"name\"", 1);
@@ -489,4 +497,73 @@ fn a_key_given_twice_in_a_design_or_model_file_is_refused_naming_it() {
     assert!(e.contains("name: the key is given twice: give each key once"), "{e}");
     let e = elastokin_suspensions::study::batch::base_document(&text, "twice.json").unwrap_err();
     assert_eq!(e, "twice.json: name: the key is given twice: give each key once");
+}
+
+/// A bound given as one number: `TargetsError` names the file, and its `KeyRefusal` the key and what it
+/// holds.
+#[test]
+fn a_free_number_with_one_bound_is_refused_as_a_key_naming_it() {
+    let base = document("macpherson.json");
+    let inner = format!("{H}/tie_rod_inner/2");
+    let text = json!({
+        "free": { &inner: 0.5 },
+        "targets": [{ "figure": "parallel-travel/bump_steer", "value": -2.0, "tolerance": 0.25 }],
+    })
+    .to_string();
+    let e = read_targets(&text, "mine.json", &base, |f| Err(format!("no file {f}"))).unwrap_err();
+    assert!(matches!(*e.refusal, TargetsRefusal::Key(KeyRefusal::NotPair { .. })), "{e:?}");
+    assert_eq!(e.to_string(), format!("mine.json: free[\"{inner}\"]: give two numbers [a, b], got 0.5"));
+}
+
+/// A distance's bounds the wrong way round: `TargetsRefusal::MinNotBelowMax`, naming the constraint and both.
+#[test]
+fn a_distance_whose_min_is_above_its_max_is_refused_naming_the_constraint() {
+    let base = document("macpherson.json");
+    let inner = format!("{H}/tie_rod_inner/2");
+    let z = value(&base, &inner);
+    let text = json!({
+        "free": { &inner: [z - 0.01, z + 0.01] },
+        "targets": [{ "figure": "parallel-travel/bump_steer", "value": -2.0, "tolerance": 0.25 }],
+        "constraints": [{ "distance": ["tie_rod_inner", "tie_rod_outer"], "min": 0.4, "max": 0.3 }],
+    })
+    .to_string();
+    let e = read_targets(&text, "mine.json", &base, |f| Err(format!("no file {f}"))).unwrap_err();
+    assert!(matches!(*e.refusal, TargetsRefusal::MinNotBelowMax { .. }), "{e:?}");
+    assert_eq!(e.to_string(), "mine.json: constraints[0]: min 0.4 is not below max 0.3");
+}
+
+/// A figure the analysis does not report: `NotGiven::NoFigure`, naming the target, the analysis and the
+/// figure.
+#[test]
+fn a_figure_the_analysis_has_not_is_not_given_naming_the_target() {
+    let base = document("macpherson.json");
+    let inner = format!("{H}/tie_rod_inner/2");
+    let z = value(&base, &inner);
+    let text = json!({
+        "free": { &inner: [z - 0.01, z + 0.01] },
+        "targets": [{ "figure": "roll/bump_steer", "value": 0, "tolerance": 1 }],
+        "steps": 8,
+    })
+    .to_string();
+    let targets = read_targets(&text, "t", &base, |_| Err(String::new())).unwrap();
+    let p = Parameters::new(&base, std::slice::from_ref(&inner)).unwrap();
+    let e = evaluate(&p, &targets, &p.values).unwrap_err();
+    let TuneError::Targets(e @ NotGiven::NoFigure { .. }) = e else { panic!("{e:?}") };
+    assert!(
+        e.to_string().starts_with("targets[0] (roll/bump_steer): roll has no figure 'bump_steer' (it has: "),
+        "{e}"
+    );
+}
+
+/// What a target without a rate says: `NoReading` names the target, the row and why.
+#[test]
+fn a_target_without_a_rate_is_said_naming_the_target_and_the_row() {
+    use elastokin_suspensions::design::tune::NoReading;
+    use elastokin_suspensions::design::NoDerivative;
+    let e = NoReading::CellRate { label: "targets[1] (roll/toe_deg)".into(), at: 2.5, why: NoDerivative::Kink };
+    assert_eq!(
+        e.to_string(),
+        "targets[1] (roll/toe_deg): at 2.5: not smooth in the parameter here (a stop touching or a reading \
+         switching as it moves): no derivative"
+    );
 }

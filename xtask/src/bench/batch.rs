@@ -37,7 +37,7 @@ fn variants(count: usize) -> Vec<Variant> {
 /// One variant, start to finish, as `elastokin batch` runs it: edited and read by [`batch::apply`],
 /// judged by [`batch::evaluate`].
 fn evaluate(base: &Value, variant: &Variant) -> Result<batch::Outcome, String> {
-    batch::evaluate(&batch::apply(base, variant)?, batch::HALF_RANGE, batch::STEPS)
+    batch::evaluate(&batch::apply(base, variant).map_err(|e| e.to_string())?, batch::HALF_RANGE, batch::STEPS)
 }
 
 /// CPU time of every thread of this process (s), from `/proc/self/task/*/schedstat` (Linux); `None`
@@ -176,6 +176,7 @@ fn study_variant(
     workspace: Option<SolverWorkspace>,
 ) -> (Result<f64, String>, Option<SolverWorkspace>) {
     let corner = match batch::apply(base, variant)
+        .map_err(|e| e.to_string())
         .and_then(|f| f.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| e.to_string()))
     {
         Ok(c) => c,

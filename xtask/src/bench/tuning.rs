@@ -46,7 +46,7 @@ fn problem() -> Result<(Parameters, Targets), String> {
         "steps": 20,
     })
     .to_string();
-    let targets = read_targets(&text, "bench", &base, |_| Err("no files".into()))?;
+    let targets = read_targets(&text, "bench", &base, |_| Err("no files".into())).map_err(|e| e.to_string())?;
     let pointers: Vec<String> = targets.free.iter().map(|f| f.pointer.clone()).collect();
     Ok((Parameters::new(&base, &pointers).map_err(|e| e.to_string())?, targets))
 }
@@ -58,7 +58,7 @@ struct Outcome {
 }
 
 fn gauss_newton(p: &Parameters, targets: &Targets) -> Result<Outcome, String> {
-    let tuned = tune(p, targets, |_| {})?;
+    let tuned = tune(p, targets, |_| {}).map_err(|e| e.to_string())?;
     let miss = tuned.end.rows.iter().map(|r| (r.value - r.aim).abs()).fold(0.0, f64::max);
     Ok(Outcome { miss, evaluations: tuned.iterations.last().map_or(0, |i| i.evaluations) })
 }
@@ -99,7 +99,7 @@ fn panoc(p: &Parameters, targets: &Targets) -> Result<Outcome, String> {
     let mut optimizer = PANOCOptimizer::new(problem, &mut cache).with_max_iter(300);
     let mut u = p.values.clone();
     optimizer.solve(&mut u).map_err(|e| format!("{e:?}"))?;
-    let e = evaluate(p, targets, &u)?;
+    let e = evaluate(p, targets, &u).map_err(|e| e.to_string())?;
     let miss = e.rows.iter().map(|r| (r.value - r.aim).abs()).fold(0.0, f64::max);
     let evaluations = *evaluations.borrow();
     Ok(Outcome { miss, evaluations })

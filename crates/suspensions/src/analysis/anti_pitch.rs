@@ -68,7 +68,8 @@ pub fn anti_pitch(corner: &Corner, vehicle: &VehicleParameters) -> Result<AntiPi
 /// The rig and vehicle [`anti_pitch`] takes.
 fn check(corner: &Corner, vehicle: &VehicleParameters) -> Result<(), SolverError> {
     require_rig(corner, &[Rig::WheelTravel])?;
-    vehicle.validate().map_err(|why| SolverError::InvalidInput { what: "vehicle parameters", why })
+    // The solver's error holds the refusal in words.
+    vehicle.validate().map_err(|e| SolverError::InvalidInput { what: "vehicle parameters", why: e.to_string() })
 }
 
 /// [`anti_pitch`] from the design equilibrium's `poses` and the path tangent there (`rates`,

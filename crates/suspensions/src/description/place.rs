@@ -101,14 +101,22 @@ impl<'de> Deserialize<'de> for Place {
     }
 }
 
-fn place_of(value: &serde_json::Value) -> Result<Place, String> {
+fn place_of(value: &serde_json::Value) -> Result<Place, NotAPlace> {
     if let Some(name) = value.as_str() {
         return Ok(Place::named(name));
     }
     match numbers(value) {
         Some(n) if n.len() == 3 => Ok(Place::At(Vec3::new(n[0], n[1], n[2]))),
-        _ => Err(format!("a point is a hardpoint's name or 3 numbers in metres [x, y, z], got {}", short(value))),
+        _ => Err(NotAPlace { got: value.clone() }),
     }
+}
+
+/// A value written where a point is, that names none: neither a hardpoint's name nor three numbers.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("a point is a hardpoint's name or 3 numbers in metres [x, y, z], got {}", short(got))]
+struct NotAPlace {
+    /// The value, as read.
+    got: serde_json::Value,
 }
 
 fn numbers(value: &serde_json::Value) -> Option<Vec<f64>> {

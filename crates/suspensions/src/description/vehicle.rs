@@ -41,9 +41,8 @@ pub struct VehicleParameters {
 }
 
 impl VehicleParameters {
-    /// Refuses values no vehicle has, naming the field; the error is why.
-    pub fn validate(&self) -> Result<(), String> {
-        let invalid = |why: String| Err(why);
+    /// Refuses values no vehicle has, naming the field.
+    pub fn validate(&self) -> Result<(), VehicleError> {
         // Upper bounds well beyond any road vehicle: past them the figures (anti-pitch = slope × L / h, the
         // forces of the corner load) lose their meaning and then overflow.
         for (field, value, what, limit) in [
@@ -53,21 +52,72 @@ impl VehicleParameters {
             ("tyre_rate", self.tyre_rate, "a rate in N/m", 1e10),
             ("rack_travel_per_revolution", self.rack_travel_per_revolution, "a rack travel in metres", 1.0),
         ] {
-            if let Some(v) = value.filter(|v| !(*v > 0.0 && *v <= limit)) {
-                let (limit, v) = (crate::description::limits::plain(limit), crate::description::limits::plain(v));
-                return invalid(format!("`{field}` must be {what}, above 0 and at most {limit}, got {v}"));
+            if let Some(got) = value.filter(|v| !(*v > 0.0 && *v <= limit)) {
+                return Err(VehicleError::OutOfRange { field, what, limit, got });
             }
         }
-        for (field, value) in
+        for (field, got) in
             [("brake_front_fraction", self.brake_front_fraction), ("drive_front_fraction", self.drive_front_fraction)]
         {
-            if !(0.0..=1.0).contains(&value) {
-                return invalid(format!(
-                    "`{field}` is the front axle's share of the force and must lie in [0, 1], got {}",
-                    crate::description::limits::plain(value)
-                ));
+            if !(0.0..=1.0).contains(&got) {
+                return Err(VehicleError::NotShare { field, got });
             }
         }
         Ok(())
+    }
+}
+
+/// A value of the vehicle section no vehicle has, naming the field and what it must be.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+pub enum VehicleError {
+    /// A size, load or rate not above zero, or beyond any road vehicle's.
+    #[error(
+        "`{field}` must be {what}, above 0 and at most {}, got {}",
+        crate::description::limits::plain(*limit),
+        crate::description::limits::plain(*got)
+    )]
+    OutOfRange {
+        /// The field.
+        field: &'static str,
+        /// What it is, in its unit.
+        what: &'static str,
+        /// The largest it may be.
+        limit: f64,
+        /// What it is.
+        got: f64,
+    },
+    /// A front axle's share outside [0, 1].
+    #[error(
+        "`{field}` is the front axle's share of the force and must lie in [0, 1], got {}",
+        crate::description::limits::plain(*got)
+    )]
+    NotShare {
+        /// The field.
+        field: &'static str,
+        /// What it is.
+        got: f64,
+    },
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A wheelbase of zero is refused naming the field, what it must be and what it is.
+    #[test]
+    fn a_wheelbase_of_zero_is_refused_naming_it() {
+        let vehicle = VehicleParameters {
+            corner_load: 4000.0,
+            wheelbase: 0.0,
+            cg_height: 0.5,
+            brake_front_fraction: 0.6,
+            drive_front_fraction: 1.0,
+            axle: AxlePosition::Front,
+            tyre_rate: None,
+            rack_travel_per_revolution: None,
+        };
+        let e = vehicle.validate().unwrap_err();
+        assert!(matches!(e, VehicleError::OutOfRange { field: "wheelbase", .. }), "{e:?}");
+        assert_eq!(e.to_string(), "`wheelbase` must be a length in metres, above 0 and at most 50, got 0");
     }
 }

@@ -10,6 +10,7 @@ pub mod targets;
 pub mod tolerance;
 pub mod tune;
 
+pub use keys::KeyRefusal;
 pub use parameter::{hardpoint_pointers, NoNumber, ParameterError, Parameters};
 pub use sensitivity::{
     analysis_sensitivity, suite_sensitivity, AnalysisSensitivity, Derivative, NoDerivative, Rate, SensitivityError,

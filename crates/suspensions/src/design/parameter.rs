@@ -3,8 +3,10 @@
 //! sensitivities, tuning and tolerances share. A parameter moved is the model file edited there and read
 //! again, so it means exactly what the number means in the file.
 
+use crate::document::DocumentError;
 use crate::file::SuspensionFile;
 use serde_json::Value;
+use std::sync::Arc;
 
 /// Numbers of one model document, each named by its pointer, with the document they are read from.
 #[derive(Debug, Clone)]
@@ -122,9 +124,9 @@ fn set(document: &mut Value, pointer: &str, value: f64) -> Result<(), ParameterE
 /// [`crate::document::parse_value`]; a Project Chrono file is read, and so built, as the command reads it);
 /// `origin` names it in errors (a moved model is no file the user has: its errors name keys).
 fn read(document: &Value, origin: &str, built: bool) -> Result<SuspensionFile, ParameterError> {
-    let refused = |why: String| ParameterError::Model { why };
+    let refused = |why: DocumentError| ParameterError::Model(Arc::new(why));
     if crate::import::chrono::is_chrono_document(document) {
-        let text = serde_json::to_string(document).map_err(|e| refused(e.to_string()))?;
+        let text = serde_json::to_string(document).map_err(|e| refused(DocumentError::Json(e)))?;
         return crate::document::parse_document_of_kind(&text, true, origin).map(|(file, _)| file).map_err(refused);
     }
     crate::document::parse_value(document, origin, built).map_err(refused)
@@ -176,7 +178,7 @@ pub enum NoNumber {
 
 /// Why a parameter is refused, or a model with parameters moved cannot be read. Each names the parameter by
 /// its pointer.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, Clone, thiserror::Error)]
 pub enum ParameterError {
     /// A pointer given twice.
     #[error("parameter '{pointer}' is given twice")]
@@ -215,13 +217,9 @@ pub enum ParameterError {
         /// The pointer.
         pointer: String,
     },
-    /// The model with the parameters moved is refused as a model document is, in the document reader's
-    /// words.
-    #[error("{why}")]
-    Model {
-        /// The reader's refusal.
-        why: String,
-    },
+    /// The model with the parameters moved is refused as a model document is.
+    #[error(transparent)]
+    Model(Arc<DocumentError>),
 }
 
 /// A key as a JSON pointer token (RFC 6901: `~` and `/` escaped).

@@ -398,7 +398,7 @@ fn analysis_sensitivity_of(
 }
 
 /// Why an analysis's sensitivities cannot be had. Each names the parameter where one is to blame.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, Clone, thiserror::Error)]
 pub enum SensitivityError {
     /// The model with a parameter moved cannot be read (or the model as it is).
     #[error(transparent)]

@@ -16,9 +16,9 @@
 //!   "steps": 32 }
 //! ```
 
-use super::keys::{analysis_named, name_in, number, only, pair, steps, triple};
-use super::parameter::{hardpoint_pointer, number_at};
-use crate::kc::Analysis;
+use super::keys::{analysis_named, name_in, number, only, pair, steps, triple, KeyRefusal};
+use super::parameter::{hardpoint_pointer, number_at, NoNumber};
+use crate::kc::{self, Analysis};
 use serde_json::Value;
 
 /// A number of the model free to move, within `[min, max]` (the file's units).
@@ -105,11 +105,83 @@ pub struct Measured {
     pub rows: Vec<Vec<f64>>,
 }
 
+/// A measured K&C file refused, naming the file (`origin`) and, where there is one, its line.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MeasuredError {
+    /// A row with another count of values than the header has columns.
+    #[error("{origin}:{line}: {values} values where the header names {columns} columns")]
+    RowLength {
+        /// The file.
+        origin: String,
+        /// The line, from 1.
+        line: usize,
+        /// The row's values.
+        values: usize,
+        /// The header's columns.
+        columns: usize,
+    },
+    /// A row with a value that is not a finite number.
+    #[error("{origin}:{line}: a value that is not a finite number")]
+    NotNumber {
+        /// The file.
+        origin: String,
+        /// The line, from 1.
+        line: usize,
+    },
+    /// No header line.
+    #[error("{origin}: no header line naming the columns")]
+    NoHeader {
+        /// The file.
+        origin: String,
+    },
+    /// A header and no rows.
+    #[error("{origin}: no rows of numbers under the header")]
+    NoRows {
+        /// The file.
+        origin: String,
+    },
+    /// A column of the header without a name.
+    #[error("{origin}:{line}: column {column} has no name: name every column as the analysis's table does")]
+    Unnamed {
+        /// The file.
+        origin: String,
+        /// The header's line, from 1.
+        line: usize,
+        /// The column, from 1.
+        column: usize,
+    },
+    /// A column's name with a control character in it.
+    #[error(
+        "{origin}:{line}: the name of column {column} holds a control character ({}): name it in plain text",
+        crate::file::key_path::printable(name)
+    )]
+    Unprintable {
+        /// The file.
+        origin: String,
+        /// The header's line, from 1.
+        line: usize,
+        /// The column, from 1.
+        column: usize,
+        /// Its name, as written.
+        name: String,
+    },
+    /// A column named twice.
+    #[error("{origin}:{line}: the column '{name}' is named twice: give each column once")]
+    Twice {
+        /// The file.
+        origin: String,
+        /// The header's line, from 1.
+        line: usize,
+        /// The name.
+        name: String,
+    },
+}
+
 /// Reads a measured K&C file: `#` comment lines (one may say `analysis: NAME`), a header of column names,
 /// rows of numbers. `origin` names it in errors. A header whose column has no name, a name with a
 /// control character in it, or the same name twice is refused: whichever column a reader then took would
 /// be a guess.
-pub fn read_measured(text: &str, origin: &str) -> Result<Measured, String> {
+pub fn read_measured(text: &str, origin: &str) -> Result<Measured, MeasuredError> {
     let mut analysis = None;
     let mut columns: Option<Vec<String>> = None;
     let mut rows = Vec::new();
@@ -126,181 +198,384 @@ pub fn read_measured(text: &str, origin: &str) -> Result<Measured, String> {
         }
         let cells: Vec<&str> = line.split(',').map(str::trim).collect();
         match &columns {
-            None => columns = Some(header(&cells, &format!("{origin}:{}", k + 1))?),
+            None => columns = Some(header(&cells, origin, k + 1)?),
             Some(names) => {
                 if cells.len() != names.len() {
-                    return Err(format!(
-                        "{origin}:{}: {} values where the header names {} columns",
-                        k + 1,
-                        cells.len(),
-                        names.len()
-                    ));
+                    return Err(MeasuredError::RowLength {
+                        origin: origin.into(),
+                        line: k + 1,
+                        values: cells.len(),
+                        columns: names.len(),
+                    });
                 }
                 let row = cells
                     .iter()
                     .map(|c| c.parse::<f64>().ok().filter(|v| v.is_finite()))
                     .collect::<Option<Vec<f64>>>()
-                    .ok_or_else(|| format!("{origin}:{}: a value that is not a finite number", k + 1))?;
+                    .ok_or_else(|| MeasuredError::NotNumber { origin: origin.into(), line: k + 1 })?;
                 rows.push(row);
             }
         }
     }
-    let columns = columns.ok_or_else(|| format!("{origin}: no header line naming the columns"))?;
+    let columns = columns.ok_or_else(|| MeasuredError::NoHeader { origin: origin.into() })?;
     if rows.is_empty() {
-        return Err(format!("{origin}: no rows of numbers under the header"));
+        return Err(MeasuredError::NoRows { origin: origin.into() });
     }
     Ok(Measured { analysis, columns, rows })
 }
 
-/// The column names of a measured file's header line `at`, each named once and in plain text.
-fn header(cells: &[&str], at: &str) -> Result<Vec<String>, String> {
+/// The column names of a measured file's header, at `line` of `origin`, each named once and in plain text.
+fn header(cells: &[&str], origin: &str, line: usize) -> Result<Vec<String>, MeasuredError> {
     for (k, name) in cells.iter().enumerate() {
+        let (origin, column) = (origin.to_string(), k + 1);
         if name.is_empty() {
-            return Err(format!("{at}: column {} has no name: name every column as the analysis's table does", k + 1));
+            return Err(MeasuredError::Unnamed { origin, line, column });
         }
         if name.chars().any(crate::file::key_path::unprintable) {
-            return Err(format!(
-                "{at}: the name of column {} holds a control character ({}): name it in plain text",
-                k + 1,
-                crate::file::key_path::printable(name)
-            ));
+            return Err(MeasuredError::Unprintable { origin, line, column, name: name.to_string() });
         }
         if cells[..k].contains(name) {
-            return Err(format!("{at}: the column '{name}' is named twice: give each column once"));
+            return Err(MeasuredError::Twice { origin, line, name: name.to_string() });
         }
     }
     Ok(cells.iter().map(|c| c.to_string()).collect())
 }
 
-fn tolerance(object: &serde_json::Map<String, Value>, key: &str) -> Result<f64, String> {
-    let t =
-        object.get("tolerance").ok_or_else(|| format!("{key}: give its \"tolerance\": the miss that counts as met"))?;
+/// A TARGETS file refused: the file, and what is wrong where in it.
+#[derive(Debug, Clone, thiserror::Error)]
+#[error("{origin}: {refusal}")]
+pub struct TargetsError {
+    /// The file.
+    pub origin: String,
+    /// What is wrong, naming the key (boxed: a refusal carries the key, what it holds and what it may).
+    pub refusal: Box<TargetsRefusal>,
+}
+
+/// What is wrong in a TARGETS file, naming the key (`targets[2].tolerance`) and what to give instead.
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum TargetsRefusal {
+    /// A key that holds what no key of its name may.
+    #[error(transparent)]
+    Key(#[from] KeyRefusal),
+    /// The file is no JSON object.
+    #[error("the file must be a JSON object with \"free\" and \"targets\"")]
+    NotObject,
+    /// No `free` object.
+    #[error("free: give the numbers free to move, {{\"/json/pointer\": [min, max], …}}")]
+    NoFree,
+    /// An empty `free` object.
+    #[error("free: no numbers free to move; name at least one by its JSON pointer")]
+    NothingFree,
+    /// A free pointer that names no number of the model.
+    #[error("free[\"{pointer}\"]: {why}")]
+    FreeNoNumber {
+        /// The pointer.
+        pointer: String,
+        /// What it names instead.
+        why: NoNumber,
+    },
+    /// Bounds with nothing between them.
+    #[error("free[\"{pointer}\"]: the bounds [{min}, {max}] hold nothing; give [min, max] with min < max")]
+    EmptyBounds {
+        /// The free number's pointer.
+        pointer: String,
+        /// Lower bound.
+        min: f64,
+        /// Upper bound.
+        max: f64,
+    },
+    /// Bounds that leave out the model's own value.
+    #[error(
+        "free[\"{pointer}\"]: the bounds [{min}, {max}] exclude the model's own value {value}; widen them to hold it"
+    )]
+    BoundsExclude {
+        /// The free number's pointer.
+        pointer: String,
+        /// Lower bound.
+        min: f64,
+        /// Upper bound.
+        max: f64,
+        /// The model's value.
+        value: f64,
+    },
+    /// No `targets` list.
+    #[error("targets: give a list of targets ({{\"figure\": …}}, {{\"curve\": …}}, {{\"measured\": …}})")]
+    NoTargetList,
+    /// An empty `targets` list.
+    #[error("targets: no targets; give at least one")]
+    NoTargets,
+    /// A target or constraint that is not an object.
+    #[error("{key}: give an object")]
+    NotObjectAt {
+        /// The key.
+        key: String,
+    },
+    /// A figure or curve not named `analysis/name`.
+    #[error("{key}.{what}: give \"analysis/{what}\", e.g. \"parallel-travel/bump_steer\", got '{path}'")]
+    NotAnalysisPath {
+        /// The target's key.
+        key: String,
+        /// `figure` or `curve`.
+        what: &'static str,
+        /// What was given.
+        path: String,
+    },
+    /// A curve without points.
+    #[error("{key}.points: give [[load parameter, value], …]")]
+    NoPoints {
+        /// The target's key.
+        key: String,
+    },
+    /// A target without a tolerance.
+    #[error("{key}: give its \"tolerance\": the miss that counts as met")]
+    NoTolerance {
+        /// The target's key.
+        key: String,
+    },
+    /// A tolerance that is not positive.
+    #[error("{key}.tolerance: give a positive miss in the target's unit, got {}", kc::plain(*got))]
+    ToleranceNotPositive {
+        /// The target's key.
+        key: String,
+        /// The tolerance given.
+        got: f64,
+    },
+    /// A measured file that cannot be read, in the words of the caller that reads it.
+    #[error("{key}.measured: {why}")]
+    Unreadable {
+        /// The target's key.
+        key: String,
+        /// Why.
+        why: String,
+    },
+    /// A measured file that is refused.
+    #[error("{key}.measured: {error}")]
+    Measured {
+        /// The target's key.
+        key: String,
+        /// Why.
+        error: MeasuredError,
+    },
+    /// A measured file of another analysis than the target names.
+    #[error("{key}: {file} says it is of the analysis '{said}', but the target names '{name}'")]
+    OtherAnalysis {
+        /// The target's key.
+        key: String,
+        /// The measured file.
+        file: String,
+        /// The analysis it says it is of.
+        said: String,
+        /// The analysis the target names.
+        name: String,
+    },
+    /// `columns` that is not a list.
+    #[error("{key}.columns: give a list of column names")]
+    ColumnsNotList {
+        /// The target's key.
+        key: String,
+    },
+    /// A column the measured file has not.
+    #[error("{key}.columns: {file} has no column '{column}' (it has: {})", has.join(", "))]
+    NoColumn {
+        /// The target's key.
+        key: String,
+        /// The measured file.
+        file: String,
+        /// The column asked for.
+        column: String,
+        /// The columns it has.
+        has: Vec<String>,
+    },
+    /// A target that names no figure, curve or measured file.
+    #[error("{key}: give \"figure\", \"curve\" or \"measured\"")]
+    NoAim {
+        /// The target's key.
+        key: String,
+    },
+    /// A range the analysis cannot walk, said as the command says it of `--range`.
+    #[error("{label}: range: {cause}")]
+    Range {
+        /// The target's label.
+        label: String,
+        /// Why.
+        cause: kc::Cause,
+    },
+    /// A hardpoint the model has not.
+    #[error("{key}: the model has no hardpoint '{name}' (a template's or the general form's hardpoints)")]
+    NoHardpoint {
+        /// The constraint's key.
+        key: String,
+        /// The name given.
+        name: String,
+    },
+    /// A distance not between two hardpoints.
+    #[error("{key}.distance: give two hardpoint names [\"a\", \"b\"]")]
+    NotTwoNames {
+        /// The constraint's key.
+        key: String,
+    },
+    /// A distance's bounds with nothing between them.
+    #[error("{key}: min {min} is not below max {max}")]
+    MinNotBelowMax {
+        /// The constraint's key.
+        key: String,
+        /// Lower bound.
+        min: f64,
+        /// Upper bound.
+        max: f64,
+    },
+    /// A sphere's radius that is not positive.
+    #[error("{key}.radius: give a positive radius in m, got {}", kc::plain(*got))]
+    RadiusNotPositive {
+        /// The constraint's key.
+        key: String,
+        /// The radius given.
+        got: f64,
+    },
+    /// A box with a corner not below the other.
+    #[error("{key}: each of min's coordinates must be below max's")]
+    BoxInsideOut {
+        /// The constraint's key.
+        key: String,
+    },
+    /// A constraint that names no kind of packaging.
+    #[error("{key}: give \"distance\", \"outside_sphere\" or \"outside_box\"")]
+    NoPackaging {
+        /// The constraint's key.
+        key: String,
+    },
+}
+
+fn tolerance(object: &serde_json::Map<String, Value>, key: &str) -> Result<f64, TargetsRefusal> {
+    let t = object.get("tolerance").ok_or_else(|| TargetsRefusal::NoTolerance { key: key.into() })?;
     let t = number(t, &format!("{key}.tolerance"))?;
     if t > 0.0 {
         Ok(t)
     } else {
-        Err(format!("{key}.tolerance: give a positive miss in the target's unit, got {}", crate::kc::plain(t)))
+        Err(TargetsRefusal::ToleranceNotPositive { key: key.into(), got: t })
     }
 }
 
 /// Reads a TARGETS file against the model `document` (the model file as read). `origin` names the file;
-/// `read_file` reads a measured file named in it (its path as given, relative to the TARGETS file).
+/// `read_file` reads a measured file named in it (its path as given, relative to the TARGETS file), or says
+/// why it cannot.
 pub fn read_targets(
     text: &str,
     origin: &str,
     document: &Value,
     read_file: impl Fn(&str) -> Result<String, String>,
-) -> Result<Targets, String> {
-    let root = super::keys::read_json(text, origin)?;
-    let at = |key: &str| format!("{origin}: {key}");
-    let object = root.as_object().ok_or_else(|| at("the file must be a JSON object with \"free\" and \"targets\""))?;
-    only(object, &["free", "targets", "constraints", "steps"], &at("the top level"))?;
-    let steps = steps(object, at)?;
-    let free_object = object
-        .get("free")
-        .and_then(Value::as_object)
-        .ok_or_else(|| at("free: give the numbers free to move, {\"/json/pointer\": [min, max], …}"))?;
+) -> Result<Targets, TargetsError> {
+    targets_in(text, document, read_file)
+        .map_err(|refusal| TargetsError { origin: origin.into(), refusal: Box::new(refusal) })
+}
+
+fn targets_in(
+    text: &str,
+    document: &Value,
+    read_file: impl Fn(&str) -> Result<String, String>,
+) -> Result<Targets, TargetsRefusal> {
+    use TargetsRefusal as R;
+    let root = super::keys::read_json(text)?;
+    let object = root.as_object().ok_or(R::NotObject)?;
+    only(object, &["free", "targets", "constraints", "steps"], "the top level")?;
+    let steps = steps(object)?;
+    let free_object = object.get("free").and_then(Value::as_object).ok_or(R::NoFree)?;
     if free_object.is_empty() {
-        return Err(at("free: no numbers free to move; name at least one by its JSON pointer"));
+        return Err(R::NothingFree);
     }
     let mut free = Vec::new();
     for (pointer, bounds) in free_object {
         let key = format!("free[\"{pointer}\"]");
-        let (min, max) = pair(bounds, &at(&key))?;
-        let value = number_at(document, pointer).map_err(|why| at(&format!("{key}: {why}")))?;
+        let (min, max) = pair(bounds, &key)?;
+        let value = number_at(document, pointer).map_err(|why| R::FreeNoNumber { pointer: pointer.clone(), why })?;
         // Both finite (`pair` checks).
         if min >= max {
-            return Err(at(&format!("{key}: the bounds [{min}, {max}] hold nothing; give [min, max] with min < max")));
+            return Err(R::EmptyBounds { pointer: pointer.clone(), min, max });
         }
         if !(min..=max).contains(&value) {
-            return Err(at(&format!(
-                "{key}: the bounds [{min}, {max}] exclude the model's own value {value}; widen them to hold it"
-            )));
+            return Err(R::BoundsExclude { pointer: pointer.clone(), min, max, value });
         }
         free.push(Free { pointer: pointer.clone(), min, max });
     }
-    let listed = object
-        .get("targets")
-        .and_then(Value::as_array)
-        .ok_or_else(|| at("targets: give a list of targets ({\"figure\": …}, {\"curve\": …}, {\"measured\": …})"))?;
+    let listed = object.get("targets").and_then(Value::as_array).ok_or(R::NoTargetList)?;
     if listed.is_empty() {
-        return Err(at("targets: no targets; give at least one"));
+        return Err(R::NoTargets);
     }
     let mut targets = Vec::new();
     for (k, t) in listed.iter().enumerate() {
         let key = format!("targets[{k}]");
-        let o = t.as_object().ok_or_else(|| at(&format!("{key}: give an object")))?;
+        let o = t.as_object().ok_or_else(|| R::NotObjectAt { key: key.clone() })?;
         let range = match o.get("range") {
             None => None,
-            Some(r) => Some(pair(r, &at(&format!("{key}.range")))?),
+            Some(r) => Some(pair(r, &format!("{key}.range"))?),
         };
-        let split = |path: &str, what: &str| -> Result<(Analysis, String), String> {
-            let (analysis, name) = path.split_once('/').ok_or_else(|| {
-                at(&format!(
-                    "{key}.{what}: give \"analysis/{what}\", e.g. \"parallel-travel/bump_steer\", got '{path}'"
-                ))
+        let split = |path: &str, what: &'static str| -> Result<(Analysis, String), TargetsRefusal> {
+            let (analysis, name) = path.split_once('/').ok_or_else(|| R::NotAnalysisPath {
+                key: key.clone(),
+                what,
+                path: path.to_string(),
             })?;
-            Ok((analysis_named(analysis, &at(&format!("{key}.{what}")))?, name.to_string()))
+            Ok((analysis_named(analysis, &format!("{key}.{what}"))?, name.to_string()))
         };
         if let Some(path) = o.get("figure") {
-            only(o, &["figure", "value", "tolerance", "range"], &at(&key))?;
-            let (analysis, name) = split(name_in(path, &at(&format!("{key}.figure")))?, "figure")?;
-            let value = number(o.get("value").unwrap_or(&Value::Null), &at(&format!("{key}.value")))?;
+            only(o, &["figure", "value", "tolerance", "range"], &key)?;
+            let (analysis, name) = split(name_in(path, &format!("{key}.figure"))?, "figure")?;
+            let value = number(o.get("value").unwrap_or(&Value::Null), &format!("{key}.value"))?;
             targets.push(Target {
                 label: format!("{key} ({}/{name})", analysis.name()),
                 analysis,
                 range,
                 aim: Aim::Figure { key: name, value },
-                tolerance: tolerance(o, &at(&key))?,
+                tolerance: tolerance(o, &key)?,
             });
         } else if let Some(path) = o.get("curve") {
-            only(o, &["curve", "points", "tolerance", "range"], &at(&key))?;
-            let (analysis, column) = split(name_in(path, &at(&format!("{key}.curve")))?, "curve")?;
+            only(o, &["curve", "points", "tolerance", "range"], &key)?;
+            let (analysis, column) = split(name_in(path, &format!("{key}.curve"))?, "curve")?;
             let points = o
                 .get("points")
                 .and_then(Value::as_array)
                 .filter(|p| !p.is_empty())
-                .ok_or_else(|| at(&format!("{key}.points: give [[load parameter, value], …]")))?
+                .ok_or_else(|| R::NoPoints { key: key.clone() })?
                 .iter()
                 .enumerate()
-                .map(|(i, p)| pair(p, &at(&format!("{key}.points[{i}]"))))
+                .map(|(i, p)| pair(p, &format!("{key}.points[{i}]")))
                 .collect::<Result<Vec<_>, _>>()?;
             targets.push(Target {
                 label: format!("{key} ({}/{column})", analysis.name()),
                 analysis,
                 range,
                 aim: Aim::Curve { column, points },
-                tolerance: tolerance(o, &at(&key))?,
+                tolerance: tolerance(o, &key)?,
             });
         } else if let Some(file) = o.get("measured") {
-            only(o, &["measured", "analysis", "columns", "tolerance", "range"], &at(&key))?;
-            let file = name_in(file, &at(&format!("{key}.measured")))?;
-            let name = name_in(o.get("analysis").unwrap_or(&Value::Null), &at(&format!("{key}.analysis")))?;
-            let analysis = analysis_named(name, &at(&format!("{key}.analysis")))?;
-            let measured = read_measured(&read_file(file).map_err(|e| at(&format!("{key}.measured: {e}")))?, file)
-                .map_err(|e| at(&format!("{key}.measured: {e}")))?;
+            only(o, &["measured", "analysis", "columns", "tolerance", "range"], &key)?;
+            let file = name_in(file, &format!("{key}.measured"))?;
+            let name = name_in(o.get("analysis").unwrap_or(&Value::Null), &format!("{key}.analysis"))?;
+            let analysis = analysis_named(name, &format!("{key}.analysis"))?;
+            let text = read_file(file).map_err(|why| R::Unreadable { key: key.clone(), why })?;
+            let measured = read_measured(&text, file).map_err(|error| R::Measured { key: key.clone(), error })?;
             if let Some(said) = measured.analysis.as_deref().filter(|a| *a != name) {
-                return Err(at(&format!(
-                    "{key}: {file} says it is of the analysis '{said}', but the target names '{name}'"
-                )));
+                return Err(R::OtherAnalysis {
+                    key: key.clone(),
+                    file: file.into(),
+                    said: said.into(),
+                    name: name.into(),
+                });
             }
             let columns: Vec<String> = match o.get("columns") {
                 None => measured.columns[1..].to_vec(),
                 Some(c) => c
                     .as_array()
-                    .ok_or_else(|| at(&format!("{key}.columns: give a list of column names")))?
+                    .ok_or_else(|| R::ColumnsNotList { key: key.clone() })?
                     .iter()
-                    .map(|v| name_in(v, &at(&format!("{key}.columns"))).map(String::from))
+                    .map(|v| name_in(v, &format!("{key}.columns")).map(String::from))
                     .collect::<Result<_, _>>()?,
             };
-            let tolerance = tolerance(o, &at(&key))?;
+            let tolerance = tolerance(o, &key)?;
             for column in columns {
-                let c = measured.columns.iter().position(|x| *x == column).ok_or_else(|| {
-                    at(&format!(
-                        "{key}.columns: {file} has no column '{column}' (it has: {})",
-                        measured.columns.join(", ")
-                    ))
-                })?;
+                let Some(c) = measured.columns.iter().position(|x| *x == column) else {
+                    return Err(R::NoColumn { key, file: file.into(), column, has: measured.columns });
+                };
                 let points = measured.rows.iter().map(|r| (r[0], r[c])).collect();
                 targets.push(Target {
                     label: format!("{key} ({file}: {}/{column})", analysis.name()),
@@ -311,61 +586,56 @@ pub fn read_targets(
                 });
             }
         } else {
-            return Err(at(&format!("{key}: give \"figure\", \"curve\" or \"measured\"")));
+            return Err(R::NoAim { key });
         }
     }
     // A range the analysis cannot walk is a mistake in the file, said as the command says it of --range.
     for target in targets.iter().filter(|t| t.range.is_some()) {
-        let settings = crate::kc::Settings { range: target.range, steps, ..crate::kc::Settings::default() };
-        crate::kc::check_settings(target.analysis, &settings)
-            .map_err(|e| at(&format!("{}: range: {}", target.label, e.cause)))?;
+        let settings = kc::Settings { range: target.range, steps, ..kc::Settings::default() };
+        kc::check_settings(target.analysis, &settings)
+            .map_err(|e| R::Range { label: target.label.clone(), cause: e.cause })?;
     }
     let mut constraints = Vec::new();
-    let hardpoint = |name: &str, key: &str| -> Result<String, String> {
-        hardpoint_pointer(document, name).map(|_| name.to_string()).ok_or_else(|| {
-            at(&format!("{key}: the model has no hardpoint '{name}' (a template's or the general form's hardpoints)"))
-        })
+    let hardpoint = |name: &str, key: &str| -> Result<String, TargetsRefusal> {
+        hardpoint_pointer(document, name)
+            .map(|_| name.to_string())
+            .ok_or_else(|| R::NoHardpoint { key: key.into(), name: name.into() })
     };
     for (k, c) in object.get("constraints").and_then(Value::as_array).into_iter().flatten().enumerate() {
         let key = format!("constraints[{k}]");
-        let o = c.as_object().ok_or_else(|| at(&format!("{key}: give an object")))?;
+        let o = c.as_object().ok_or_else(|| R::NotObjectAt { key: key.clone() })?;
         if let Some(points) = o.get("distance") {
-            only(o, &["distance", "min", "max"], &at(&key))?;
-            let names = points
-                .as_array()
-                .filter(|p| p.len() == 2)
-                .ok_or_else(|| at(&format!("{key}.distance: give two hardpoint names [\"a\", \"b\"]")))?;
-            let a = hardpoint(name_in(&names[0], &at(&key))?, &format!("{key}.distance"))?;
-            let b = hardpoint(name_in(&names[1], &at(&key))?, &format!("{key}.distance"))?;
-            let min = o.get("min").map(|v| number(v, &at(&format!("{key}.min")))).transpose()?.unwrap_or(0.0);
-            let max = o.get("max").map(|v| number(v, &at(&format!("{key}.max")))).transpose()?.unwrap_or(f64::INFINITY);
+            only(o, &["distance", "min", "max"], &key)?;
+            let names =
+                points.as_array().filter(|p| p.len() == 2).ok_or_else(|| R::NotTwoNames { key: key.clone() })?;
+            let a = hardpoint(name_in(&names[0], &key)?, &format!("{key}.distance"))?;
+            let b = hardpoint(name_in(&names[1], &key)?, &format!("{key}.distance"))?;
+            let min = o.get("min").map(|v| number(v, &format!("{key}.min"))).transpose()?.unwrap_or(0.0);
+            let max = o.get("max").map(|v| number(v, &format!("{key}.max"))).transpose()?.unwrap_or(f64::INFINITY);
             if min >= max {
-                return Err(at(&format!("{key}: min {min} is not below max {max}")));
+                return Err(R::MinNotBelowMax { key, min, max });
             }
             constraints.push(Constraint::Distance { points: [a, b], min, max });
         } else if let Some(point) = o.get("outside_sphere") {
-            only(o, &["outside_sphere", "centre", "radius"], &at(&key))?;
-            let point = hardpoint(name_in(point, &at(&key))?, &format!("{key}.outside_sphere"))?;
-            let centre = triple(o.get("centre").unwrap_or(&Value::Null), &at(&format!("{key}.centre")))?;
-            let radius = number(o.get("radius").unwrap_or(&Value::Null), &at(&format!("{key}.radius")))?;
+            only(o, &["outside_sphere", "centre", "radius"], &key)?;
+            let point = hardpoint(name_in(point, &key)?, &format!("{key}.outside_sphere"))?;
+            let centre = triple(o.get("centre").unwrap_or(&Value::Null), &format!("{key}.centre"))?;
+            let radius = number(o.get("radius").unwrap_or(&Value::Null), &format!("{key}.radius"))?;
             if radius <= 0.0 {
-                return Err(at(&format!(
-                    "{key}.radius: give a positive radius in m, got {}",
-                    crate::kc::plain(radius)
-                )));
+                return Err(R::RadiusNotPositive { key, got: radius });
             }
             constraints.push(Constraint::OutsideSphere { point, centre, radius });
         } else if let Some(point) = o.get("outside_box") {
-            only(o, &["outside_box", "min", "max"], &at(&key))?;
-            let point = hardpoint(name_in(point, &at(&key))?, &format!("{key}.outside_box"))?;
-            let min = triple(o.get("min").unwrap_or(&Value::Null), &at(&format!("{key}.min")))?;
-            let max = triple(o.get("max").unwrap_or(&Value::Null), &at(&format!("{key}.max")))?;
+            only(o, &["outside_box", "min", "max"], &key)?;
+            let point = hardpoint(name_in(point, &key)?, &format!("{key}.outside_box"))?;
+            let min = triple(o.get("min").unwrap_or(&Value::Null), &format!("{key}.min"))?;
+            let max = triple(o.get("max").unwrap_or(&Value::Null), &format!("{key}.max"))?;
             if (0..3).any(|i| min[i] >= max[i]) {
-                return Err(at(&format!("{key}: each of min's coordinates must be below max's")));
+                return Err(R::BoxInsideOut { key });
             }
             constraints.push(Constraint::OutsideBox { point, min, max });
         } else {
-            return Err(at(&format!("{key}: give \"distance\", \"outside_sphere\" or \"outside_box\"")));
+            return Err(R::NoPackaging { key });
         }
     }
     Ok(Targets { free, targets, constraints, steps })

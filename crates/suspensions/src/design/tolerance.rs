@@ -18,8 +18,8 @@
 //! `hardpoints` gives every coordinate of every hardpoint that tolerance (a number named in
 //! `tolerances` keeps its own); `analyses` defaults to the whole suite.
 
-use super::keys::{analysis_named, name_in, only, steps};
-use super::parameter::{hardpoint_pointers, number_at, ParameterError, Parameters};
+use super::keys::{analysis_named, name_in, only, steps, KeyRefusal};
+use super::parameter::{hardpoint_pointers, number_at, NoNumber, ParameterError, Parameters};
 use super::sensitivity::{sensitivity_settings, suite_sensitivity, SuiteSensitivity};
 use crate::kc::{self, Analysis, Cell, Failed, Settings, Table, Unit};
 use rand::{Rng, SeedableRng};
@@ -37,34 +37,103 @@ pub struct Tolerances {
     pub steps: usize,
 }
 
+/// A TOLERANCES file refused: the file, and what is wrong where in it.
+#[derive(Debug, Clone, thiserror::Error)]
+#[error("{origin}: {refusal}")]
+pub struct TolerancesError {
+    /// The file.
+    pub origin: String,
+    /// What is wrong, naming the key (boxed: a refusal carries the key, what it holds and what it may).
+    pub refusal: Box<TolerancesRefusal>,
+}
+
+/// What is wrong in a TOLERANCES file, naming the key (`tolerances["/…/rate"]`) and what to give instead.
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum TolerancesRefusal {
+    /// A key that holds what no key of its name may.
+    #[error(transparent)]
+    Key(#[from] KeyRefusal),
+    /// The file is no JSON object.
+    #[error("the file must be a JSON object with \"tolerances\"")]
+    NotObject,
+    /// A toleranced pointer that names no number of the model.
+    #[error("{key}: '{pointer}' {why}")]
+    NoNumber {
+        /// The key the band is given at (`hardpoints` or `tolerances["…"]`).
+        key: String,
+        /// The pointer.
+        pointer: String,
+        /// What it names instead.
+        why: NoNumber,
+    },
+    /// A band that is neither a number nor a percent.
+    #[error("{key}: give ± in the file's units (0.001) or a percent (\"15%\"), got {}", as_written(got))]
+    NotBand {
+        /// The key.
+        key: String,
+        /// What it holds.
+        got: Value,
+    },
+    /// A band that is not positive (or not finite).
+    #[error("{key}: a tolerance must be a positive band, got {got}")]
+    NotPositive {
+        /// The key.
+        key: String,
+        /// What it holds.
+        got: Value,
+    },
+    /// A band for every hardpoint of a model that has none.
+    #[error("hardpoints: the model has no hardpoints (a template's or the general form's)")]
+    NoHardpoints,
+    /// No band at all.
+    #[error("no tolerances: give \"tolerances\" {{\"/json/pointer\": ±band, …}} or \"hardpoints\": ±band")]
+    NoTolerances,
+    /// An empty list of analyses (which would read as no choice: the whole suite).
+    #[error("analyses: give one analysis name at least, or leave the key out for the whole suite")]
+    NoAnalyses,
+    /// `analyses` that is not a list.
+    #[error("analyses: give a list of analysis names")]
+    AnalysesNotList,
+}
+
+/// A JSON value as the file's text has it: a string in its quotes, as it is.
+fn as_written(v: &Value) -> String {
+    match v {
+        Value::String(s) => format!("\"{s}\""),
+        other => other.to_string(),
+    }
+}
+
 /// Reads a TOLERANCES file against the model `document`; errors name the key and the fix.
-pub fn read_tolerances(text: &str, origin: &str, document: &Value) -> Result<Tolerances, String> {
-    let at = |key: &str| format!("{origin}: {key}");
-    let root = super::keys::read_json(text, origin)?;
-    let object = root.as_object().ok_or_else(|| at("the file must be a JSON object with \"tolerances\""))?;
-    only(object, &["tolerances", "hardpoints", "analyses", "steps"], &at("the top level"))?;
-    let band = |pointer: &str, v: &Value, key: &str| -> Result<f64, String> {
-        let value = number_at(document, pointer).map_err(|why| at(&format!("{key}: '{pointer}' {why}")))?;
+pub fn read_tolerances(text: &str, origin: &str, document: &Value) -> Result<Tolerances, TolerancesError> {
+    tolerances_in(text, document)
+        .map_err(|refusal| TolerancesError { origin: origin.into(), refusal: Box::new(refusal) })
+}
+
+fn tolerances_in(text: &str, document: &Value) -> Result<Tolerances, TolerancesRefusal> {
+    use TolerancesRefusal as R;
+    let root = super::keys::read_json(text)?;
+    let object = root.as_object().ok_or(R::NotObject)?;
+    only(object, &["tolerances", "hardpoints", "analyses", "steps"], "the top level")?;
+    let band = |pointer: &str, v: &Value, key: &str| -> Result<f64, TolerancesRefusal> {
+        let value = number_at(document, pointer).map_err(|why| R::NoNumber {
+            key: key.into(),
+            pointer: pointer.into(),
+            why,
+        })?;
+        let not_band = || R::NotBand { key: key.into(), got: v.clone() };
         let t = match v {
             Value::Number(n) => n.as_f64().unwrap_or(f64::NAN),
             Value::String(s) => match s.trim().strip_suffix('%').map(|p| p.trim().parse::<f64>()) {
                 Some(Ok(p)) => p * 1e-2 * value.abs(),
-                _ => {
-                    return Err(at(&format!(
-                        "{key}: give ± in the file's units (0.001) or a percent (\"15%\"), got \"{s}\""
-                    )))
-                }
+                _ => return Err(not_band()),
             },
-            other => {
-                return Err(at(&format!(
-                    "{key}: give ± in the file's units (0.001) or a percent (\"15%\"), got {other}"
-                )))
-            }
+            _ => return Err(not_band()),
         };
         if t.is_finite() && t > 0.0 {
             Ok(t)
         } else {
-            Err(at(&format!("{key}: a tolerance must be a positive band, got {v}")))
+            Err(R::NotPositive { key: key.into(), got: v.clone() })
         }
     };
     let mut bands: Vec<(String, f64)> = Vec::new();
@@ -73,7 +142,7 @@ pub fn read_tolerances(text: &str, origin: &str, document: &Value) -> Result<Tol
             bands.push((pointer.clone(), band(&pointer, h, "hardpoints")?));
         }
         if bands.is_empty() {
-            return Err(at("hardpoints: the model has no hardpoints (a template's or the general form's)"));
+            return Err(R::NoHardpoints);
         }
     }
     for (pointer, v) in object.get("tolerances").and_then(Value::as_object).into_iter().flatten() {
@@ -84,22 +153,20 @@ pub fn read_tolerances(text: &str, origin: &str, document: &Value) -> Result<Tol
         }
     }
     if bands.is_empty() {
-        return Err(at("no tolerances: give \"tolerances\" {\"/json/pointer\": ±band, …} or \"hardpoints\": ±band"));
+        return Err(R::NoTolerances);
     }
     let analyses = match object.get("analyses") {
         None => Vec::new(),
         // An empty list would be read as no choice: the whole suite.
-        Some(list) if list.as_array().is_some_and(Vec::is_empty) => {
-            return Err(at("analyses: give one analysis name at least, or leave the key out for the whole suite"));
-        }
+        Some(list) if list.as_array().is_some_and(Vec::is_empty) => return Err(R::NoAnalyses),
         Some(list) => list
             .as_array()
-            .ok_or_else(|| at("analyses: give a list of analysis names"))?
+            .ok_or(R::AnalysesNotList)?
             .iter()
-            .map(|v| analysis_named(name_in(v, &at("analyses"))?, &at("analyses")))
+            .map(|v| analysis_named(name_in(v, "analyses")?, "analyses"))
             .collect::<Result<_, _>>()?,
     };
-    let steps = steps(object, at)?;
+    let steps = steps(object)?;
     Ok(Tolerances { bands, analyses, steps })
 }
 
@@ -170,7 +237,7 @@ pub struct StackUp {
 }
 
 /// Why a stack-up cannot be had.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, Clone, thiserror::Error)]
 pub enum StackUpError {
     /// A toleranced number the model does not read as a parameter.
     #[error(transparent)]

@@ -18,7 +18,7 @@
 
 use super::parameter::hardpoint_pointer;
 use super::parameter::{ParameterError, Parameters};
-use super::sensitivity::{analysis_sensitivity, AnalysisSensitivity, SensitivityError};
+use super::sensitivity::{analysis_sensitivity, AnalysisSensitivity, NoDerivative, SensitivityError};
 use super::targets::{Aim, Constraint, Target, Targets};
 use crate::kc::{AnalysisReport, Cell, Chart, Scale, Series, Settings, Table, YAxis};
 use clarabel::algebra::CscMatrix;
@@ -120,14 +120,14 @@ fn interpolation(t: &[f64], at: f64) -> Option<Vec<(usize, f64)>> {
 /// column it has not, a point outside the range walked, an aim too far to be worked with, a constraint on a
 /// hardpoint it has not), or the model could not be analysed. At the start of a tune the first is bad
 /// input; a step that meets either is stepped back from.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, Clone, thiserror::Error)]
 pub enum TuneError {
     /// The targets ask what the model's analyses do not give.
-    #[error("{0}")]
-    Targets(String),
-    /// The model could not be analysed.
-    #[error("{0}")]
-    Model(String),
+    #[error(transparent)]
+    Targets(#[from] NotGiven),
+    /// A target cannot be read off the model's analyses.
+    #[error(transparent)]
+    Model(#[from] NoReading),
     /// The model with the free numbers where they are cannot be read.
     #[error(transparent)]
     Parameters(#[from] ParameterError),
@@ -141,11 +141,146 @@ pub enum TuneError {
     },
 }
 
-/// Its words, for a caller that does not tell the two apart.
-impl From<TuneError> for String {
-    fn from(e: TuneError) -> String {
-        e.to_string()
-    }
+/// What the targets ask that the model's analyses do not give, naming the target (its label) or the free
+/// number: bad input, as a bad TARGETS file is.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum NotGiven {
+    /// A figure the analysis does not report.
+    #[error("{label}: {analysis} has no figure '{key}' (it has: {})", has.join(", "))]
+    NoFigure {
+        /// The target's label.
+        label: String,
+        /// The analysis's name.
+        analysis: &'static str,
+        /// The figure asked for.
+        key: String,
+        /// The figures it reports.
+        has: Vec<String>,
+    },
+    /// A figure without a value on the model.
+    #[error("{label}: the figure has no value here: {reason}")]
+    NoValue {
+        /// The target's label.
+        label: String,
+        /// Why, as the report says it.
+        reason: String,
+    },
+    /// A column the analysis's table has not.
+    #[error("{label}: {analysis}'s table has no column '{column}' (it has: {})", has.join(", "))]
+    NoColumn {
+        /// The target's label.
+        label: String,
+        /// The analysis's name.
+        analysis: &'static str,
+        /// The column asked for.
+        column: String,
+        /// The table's columns.
+        has: Vec<String>,
+    },
+    /// A curve target on rows that move with a free number (a default range that follows the model).
+    #[error(
+        "{label}: the analysis's rows move with '{pointer}' (its default range follows the model); give the target a \
+         \"range\""
+    )]
+    RowsMove {
+        /// The target's label.
+        label: String,
+        /// The free number's pointer.
+        pointer: String,
+    },
+    /// A curve's point outside the range the analysis walks.
+    #[error(
+        "{label}: the point at {at} lies outside the range {lo}..{hi} the analysis walks ({parameter}); give the \
+         target a \"range\" that holds it"
+    )]
+    OutsideRange {
+        /// The target's label.
+        label: String,
+        /// The point's load parameter.
+        at: f64,
+        /// The lowest row's.
+        lo: f64,
+        /// The highest row's.
+        hi: f64,
+        /// The load parameter, in words.
+        parameter: &'static str,
+    },
+    /// A miss too large to be squared (an aim of 1e308, a tolerance of 1e-300), which the objective is.
+    #[error(
+        "{label}: the miss of {reached} from the aim {aim}, over the tolerance {tolerance}, is too large to be worked \
+         with; give the aim and the tolerance in the unit of what is aimed at"
+    )]
+    TooFar {
+        /// The target's label.
+        label: String,
+        /// The value reached.
+        reached: f64,
+        /// The aim.
+        aim: f64,
+        /// The target's tolerance.
+        tolerance: f64,
+    },
+    /// A constraint on a hardpoint the model has not.
+    #[error("the model has no hardpoint '{name}'")]
+    NoHardpoint {
+        /// The name.
+        name: String,
+    },
+    /// A constraint on a hardpoint that is no list of coordinates.
+    #[error("hardpoint '{name}'")]
+    NotPlaced {
+        /// The name.
+        name: String,
+    },
+    /// A free number's bounds so wide that the targets' rates times their span are no finite numbers.
+    #[error(
+        "free[\"{pointer}\"]: the bounds {} to {} are too wide for a step to be computed (the targets' rates times \
+         their span are no finite numbers): give it bounds of the size it may move",
+        crate::kc::plain(*lo),
+        crate::kc::plain(*hi)
+    )]
+    TooWide {
+        /// The free number's pointer.
+        pointer: String,
+        /// Lower bound.
+        lo: f64,
+        /// Upper bound.
+        hi: f64,
+    },
+}
+
+/// A target that cannot be read off the model's analyses: a figure or cell without a rate, a row without
+/// the column's value.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum NoReading {
+    /// A figure without a rate.
+    #[error("{label}: {}", why.reason())]
+    FigureRate {
+        /// The target's label.
+        label: String,
+        /// Why it has none.
+        why: NoDerivative,
+    },
+    /// A row without a value in the column.
+    #[error("{label}: the row at {at} has no {column}")]
+    NoCell {
+        /// The target's label.
+        label: String,
+        /// The row's load parameter.
+        at: f64,
+        /// The column.
+        column: String,
+    },
+    /// A cell without a rate.
+    #[error("{label}: at {at}: {}", why.reason())]
+    CellRate {
+        /// The target's label.
+        label: String,
+        /// The row's load parameter.
+        at: f64,
+        /// Why it has none.
+        why: NoDerivative,
+    },
 }
 
 /// An analysis run for the targets: which, over what range, and its sensitivities.
@@ -153,7 +288,6 @@ type Run = (crate::kc::Analysis, Option<(f64, f64)>, AnalysisSensitivity);
 
 /// The targets' residuals and Jacobian with the free numbers of `parameters` at `x`.
 pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result<Evaluation, TuneError> {
-    let (asked, model) = (TuneError::Targets, TuneError::Model);
     let p = parameters.at(x)?;
     let n = x.len();
     // One run per analysis and range.
@@ -178,26 +312,26 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
         let s = &runs.iter().find(|(a, r, _)| *a == t.analysis && *r == t.range).expect("run above").2;
         match &t.aim {
             Aim::Figure { key, value } => {
-                let (figure, rates) = s.figure(key).ok_or_else(|| {
-                    let keys: Vec<&str> = s.report.figures.iter().map(|f| f.key.as_str()).collect();
-                    let has = keys.join(", ");
-                    asked(format!("{}: {} has no figure '{key}' (it has: {has})", t.label, t.analysis.name()))
+                let (figure, rates) = s.figure(key).ok_or_else(|| NotGiven::NoFigure {
+                    label: t.label.clone(),
+                    analysis: t.analysis.name(),
+                    key: key.clone(),
+                    has: s.report.figures.iter().map(|f| f.key.clone()).collect(),
                 })?;
-                let reached = figure.value.ok_or_else(|| {
-                    asked(format!(
-                        "{}: the figure has no value here: {}",
-                        t.label,
-                        figure.reason.as_deref().unwrap_or("")
-                    ))
+                let reached = figure.value.ok_or_else(|| NotGiven::NoValue {
+                    label: t.label.clone(),
+                    reason: figure.reason.clone().unwrap_or_default(),
                 })?;
                 // The target is in the unit the figure is written in; the figure and its rates are in SI.
                 let factor = figure.unit.shown().factor;
                 let reached = reached * factor;
                 let gradient = rates
                     .iter()
-                    .map(|r| r.map(|r| r.value * factor).map_err(|e| model(format!("{}: {}", t.label, e.reason()))))
+                    .map(|r| {
+                        r.map(|r| r.value * factor).map_err(|why| NoReading::FigureRate { label: t.label.clone(), why })
+                    })
                     .collect::<Result<Vec<f64>, _>>()?;
-                let (residual, rates) = scaled_miss(t, reached, *value, &gradient).map_err(asked)?;
+                let (residual, rates) = scaled_miss(t, reached, *value, &gradient)?;
                 residuals.push(residual);
                 jacobian.push(rates);
                 rows.push(Row { target: k, at: None, value: reached, aim: *value });
@@ -205,12 +339,13 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
             Aim::Curve { column, points } => {
                 let table = &s.report.table;
                 if !table.columns.contains(column) {
-                    return Err(asked(format!(
-                        "{}: {}'s table has no column '{column}' (it has: {})",
-                        t.label,
-                        t.analysis.name(),
-                        table.columns.join(", ")
-                    )));
+                    return Err(NotGiven::NoColumn {
+                        label: t.label.clone(),
+                        analysis: t.analysis.name(),
+                        column: column.clone(),
+                        has: table.columns.clone(),
+                    }
+                    .into());
                 }
                 let along = s.column(&table.columns[0]);
                 let along: Vec<f64> = along.iter().map(|v| v.unwrap_or(f64::NAN)).collect();
@@ -224,11 +359,9 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
                         .filter_map(|d| d.ok())
                         .fold(0.0f64, |m, d| m.max(d.value.abs()));
                     if moved * x[q].abs().max(0.1) > 1e-9 * span {
-                        return Err(asked(format!(
-                            "{}: the analysis's rows move with '{}' (its default range follows the model); give \
-                             the target a \"range\"",
-                            t.label, p.pointers[q]
-                        )));
+                        return Err(
+                            NotGiven::RowsMove { label: t.label.clone(), pointer: p.pointers[q].clone() }.into()
+                        );
                     }
                 }
                 let values = s.column(column);
@@ -237,26 +370,27 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
                     let weights = interpolation(&along, at).ok_or_else(|| {
                         let (lo, hi) =
                             along.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
-                        asked(format!(
-                            "{}: the point at {at} lies outside the range {lo}..{hi} the analysis walks ({}); give \
-                             the target a \"range\" that holds it",
-                            t.label,
-                            t.analysis.parameter()
-                        ))
+                        NotGiven::OutsideRange { label: t.label.clone(), at, lo, hi, parameter: t.analysis.parameter() }
                     })?;
                     let mut reached = 0.0;
                     let mut gradient = vec![0.0; n];
                     for &(j, w) in &weights {
-                        let v = values[j]
-                            .ok_or_else(|| model(format!("{}: the row at {} has no {column}", t.label, along[j])))?;
+                        let v = values[j].ok_or_else(|| NoReading::NoCell {
+                            label: t.label.clone(),
+                            at: along[j],
+                            column: column.clone(),
+                        })?;
                         reached += w * v;
                         for q in 0..n {
-                            let d = rates[q][j]
-                                .map_err(|e| model(format!("{}: at {}: {}", t.label, along[j], e.reason())))?;
+                            let d = rates[q][j].map_err(|why| NoReading::CellRate {
+                                label: t.label.clone(),
+                                at: along[j],
+                                why,
+                            })?;
                             gradient[q] += w * d.value;
                         }
                     }
-                    let (residual, rates) = scaled_miss(t, reached, aim, &gradient).map_err(asked)?;
+                    let (residual, rates) = scaled_miss(t, reached, aim, &gradient)?;
                     residuals.push(residual);
                     jacobian.push(rates);
                     rows.push(Row { target: k, at: Some(at), value: reached, aim });
@@ -264,12 +398,8 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
             }
         }
     }
-    let packaging = targets
-        .constraints
-        .iter()
-        .map(|c| linearise(c, p.document(), &p.pointers))
-        .collect::<Result<_, _>>()
-        .map_err(asked)?;
+    let packaging =
+        targets.constraints.iter().map(|c| linearise(c, p.document(), &p.pointers)).collect::<Result<_, _>>()?;
     Ok(Evaluation {
         x: x.to_vec(),
         residuals,
@@ -283,30 +413,27 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
 /// The miss of `reached` from `aim` over the target's tolerance, and its rates from the figure's `gradient`:
 /// refused, naming the target, where they are too large to be squared (an aim of 1e308, a tolerance of
 /// 1e-300), which the objective `½ Σ r²` is.
-fn scaled_miss(t: &Target, reached: f64, aim: f64, gradient: &[f64]) -> Result<(f64, Vec<f64>), String> {
+fn scaled_miss(t: &Target, reached: f64, aim: f64, gradient: &[f64]) -> Result<(f64, Vec<f64>), NotGiven> {
     let residual = (reached - aim) / t.tolerance;
     let rates: Vec<f64> = gradient.iter().map(|g| g / t.tolerance).collect();
     if (residual * residual).is_finite() && rates.iter().all(|r| (r * r).is_finite()) {
         Ok((residual, rates))
     } else {
-        Err(format!(
-            "{}: the miss of {reached} from the aim {aim}, over the tolerance {}, is too large to be worked with; \
-             give the aim and the tolerance in the unit of what is aimed at",
-            t.label, t.tolerance
-        ))
+        Err(NotGiven::TooFar { label: t.label.clone(), reached, aim, tolerance: t.tolerance })
     }
 }
 
 /// A hardpoint's position in `document`, and for each free pointer, which of its coordinates it is.
-fn point(document: &Value, name: &str, pointers: &[String]) -> Result<([f64; 3], Vec<Option<usize>>), String> {
-    let at = hardpoint_pointer(document, name).ok_or_else(|| format!("the model has no hardpoint '{name}'"))?;
-    let xyz = document.pointer(&at).and_then(Value::as_array).ok_or_else(|| format!("hardpoint '{name}'"))?;
+fn point(document: &Value, name: &str, pointers: &[String]) -> Result<([f64; 3], Vec<Option<usize>>), NotGiven> {
+    let at = hardpoint_pointer(document, name).ok_or_else(|| NotGiven::NoHardpoint { name: name.into() })?;
+    let xyz =
+        document.pointer(&at).and_then(Value::as_array).ok_or_else(|| NotGiven::NotPlaced { name: name.into() })?;
     let c = |i: usize| xyz.get(i).and_then(Value::as_f64).unwrap_or(f64::NAN);
     let which = pointers.iter().map(|p| (0..3).find(|i| *p == format!("{at}/{i}"))).collect();
     Ok(([c(0), c(1), c(2)], which))
 }
 
-fn linearise(c: &Constraint, document: &Value, pointers: &[String]) -> Result<Linearised, String> {
+fn linearise(c: &Constraint, document: &Value, pointers: &[String]) -> Result<Linearised, NotGiven> {
     let n = pointers.len();
     let rates_of = |which: &[Option<usize>], along: [f64; 3]| -> Vec<f64> {
         which.iter().map(|w| w.map_or(0.0, |i| along[i])).collect()
@@ -517,19 +644,13 @@ impl Tuned {
 /// Why no step can be computed at `e`, if a free number's bounds' span, times the targets' rates against
 /// it (the Jacobian in the numbers scaled by their spans, which [`step`] solves with), is no finite number:
 /// bounds such as `[-1e308, 0]` on a hardpoint coordinate.
-fn too_wide(e: &Evaluation, targets: &Targets, free: &[(f64, f64)]) -> Option<String> {
+fn too_wide(e: &Evaluation, targets: &Targets, free: &[(f64, f64)]) -> Option<NotGiven> {
     let k = (0..free.len()).find(|&k| {
         let span = free[k].1 - free[k].0;
         !(span * span).is_finite() || e.jacobian.iter().any(|row| !(row[k] * span).is_finite())
     })?;
     let (lo, hi) = free[k];
-    Some(format!(
-        "free[\"{}\"]: the bounds {} to {} are too wide for a step to be computed (the targets' rates \
-         times their span are no finite numbers): give it bounds of the size it may move",
-        targets.free[k].pointer,
-        crate::kc::plain(lo),
-        crate::kc::plain(hi)
-    ))
+    Some(NotGiven::TooWide { pointer: targets.free[k].pointer.clone(), lo, hi })
 }
 
 /// The largest rate of `½ Σ r²` along a free number that may still move: at a bound only inward.
@@ -714,9 +835,9 @@ pub fn tune(
     // targets see the number strongly).
     let mut reach = f64::INFINITY;
     // Why the model could not be evaluated at the last step stepped back from, if that was why.
-    let mut unbuildable: Option<String> = None;
+    let mut unbuildable: Option<TuneError> = None;
     // Why no step could be computed at all, if the tune stopped for that.
-    let mut no_step: Option<String> = None;
+    let mut no_step: Option<NotGiven> = None;
     let mut stopped = format!("the iteration limit ({MAX_ITERATIONS}) was reached");
     let mut rejected = 0;
     // A step taken that gained next to nothing, or moved next to nothing: the last.
@@ -729,7 +850,7 @@ pub fn tune(
         }
         // Bounds that are too wide where the tune starts are refused above; the rates may grow on the way.
         if let Some(why) = too_wide(&here, targets, &free) {
-            stopped = why.clone();
+            stopped = why.to_string();
             no_step = Some(why);
             break;
         }
@@ -765,8 +886,9 @@ pub fn tune(
                     Err(e) => {
                         damping *= 4.0;
                         reach = 0.5 * size;
-                        unbuildable = Some(e.to_string());
-                        (format!("stepped back: {e}"), size)
+                        let outcome = format!("stepped back: {e}");
+                        unbuildable = Some(e);
+                        (outcome, size)
                     }
                     // Where the packaging is broken a step is taken for bringing it back, whatever it does
                     // to the targets; where it holds, for gaining on the targets and keeping it.
@@ -835,7 +957,7 @@ pub fn tune(
     if !packaged(&here) {
         stopped = "the packaging is still broken, and no step within the bounds brings it back further".into();
     }
-    let verdicts = verdicts(&here, targets, &free, unbuildable.as_deref(), no_step.as_deref());
+    let verdicts = verdicts(&here, targets, &free, unbuildable.as_ref(), no_step.as_ref());
     let packaging = targets
         .constraints
         .iter()
@@ -877,8 +999,8 @@ fn verdicts(
     e: &Evaluation,
     targets: &Targets,
     free: &[(f64, f64)],
-    unbuildable: Option<&str>,
-    no_step: Option<&str>,
+    unbuildable: Option<&TuneError>,
+    no_step: Option<&NotGiven>,
 ) -> Vec<Verdict> {
     let at_bound: Vec<String> =
         e.x.iter()

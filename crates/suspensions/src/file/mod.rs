@@ -175,18 +175,33 @@ pub enum FileError {
 }
 
 impl FileError {
-    /// The error of a document that is no file (a Python dict, a variant's edited model): the place named by
-    /// the keys that lead there (`key_path_at`), not by a line and column of text the user never saw. `text`
-    /// is the document's text the error is of.
-    pub fn in_document(&self, text: &str) -> String {
-        match self {
-            FileError::Invalid { origin, line, column, message } => {
-                match key_path_at(without_byte_order_mark(text), *line, *column) {
-                    path if path.is_empty() => format!("{origin}: {message}"),
-                    path => format!("{origin}: {message} (at {path})"),
-                }
-            }
-            other => other.to_string(),
+    /// The error of a document that is no file (a Python dict, a variant's edited model), placed by the keys
+    /// that lead there (`key_path_at`) in `text`, the document's text the error is of.
+    pub fn in_document(self, text: &str) -> InDocument {
+        let keys = match &self {
+            FileError::Invalid { line, column, .. } => key_path_at(without_byte_order_mark(text), *line, *column),
+            _ => String::new(),
+        };
+        InDocument { error: self, keys }
+    }
+}
+
+/// A [`FileError`] of a document that is no file: its place named by the keys that lead there, not by a
+/// line and column of text the user never saw.
+#[derive(Debug, Error)]
+pub struct InDocument {
+    /// The error, as a file's.
+    pub error: FileError,
+    /// The keys that lead to its place (`bodies[1].mass`); empty where it has none.
+    pub keys: String,
+}
+
+impl std::fmt::Display for InDocument {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match (&self.error, self.keys.as_str()) {
+            (FileError::Invalid { origin, message, .. }, "") => write!(f, "{origin}: {message}"),
+            (FileError::Invalid { origin, message, .. }, keys) => write!(f, "{origin}: {message} (at {keys})"),
+            (other, _) => other.fmt(f),
         }
     }
 }

@@ -14,8 +14,10 @@
 use crate::analysis::{parallel_wheel_travel_with, SweepExtras};
 use crate::assembly::Rig;
 use crate::description::Side;
+use crate::document::DocumentError;
 use crate::file::SuspensionFile;
 use elastokin_solver::Mode;
+use std::sync::Arc;
 
 /// Each variant walks parallel wheel travel ±`HALF_RANGE` (m)…
 pub const HALF_RANGE: f64 = 0.02;
@@ -152,29 +154,51 @@ pub fn base_document(text: &str, origin: &str) -> Result<serde_json::Value, Stri
 /// The base model with a variant's edits applied; an edit to a pointer the model lacks is an error. A
 /// Project Chrono suspension file (the pointers then name its own keys: `/Spring/Spring Coefficient`) is read
 /// after the edits, as `run` reads it.
-pub fn apply(base: &serde_json::Value, v: &Variant) -> Result<SuspensionFile, String> {
+pub fn apply(base: &serde_json::Value, v: &Variant) -> Result<SuspensionFile, VariantError> {
     let mut doc = base.clone();
     for (pointer, value) in &v.edits {
         *doc.pointer_mut(pointer).ok_or_else(|| no_such_key(v, pointer))? = value.clone();
     }
-    let text = serde_json::to_string(&doc).map_err(|e| e.to_string())?;
+    let text = serde_json::to_string(&doc).map_err(|e| VariantError::Json(Arc::new(e)))?;
     // The edited model is no file the user has: its errors name keys, not a line and column of it. Its kind
     // is read off the document in hand (parsing its text again to tell cost a fifth of this function).
     let chrono = crate::import::chrono::is_chrono_document(&doc);
-    crate::document::parse_document_of_kind(&text, chrono, &format!("variant '{}'", v.name)).map(|(file, _)| file)
+    crate::document::parse_document_of_kind(&text, chrono, &format!("variant '{}'", v.name))
+        .map(|(file, _)| file)
+        .map_err(|e| VariantError::Model(Arc::new(e)))
 }
 
 /// Refuses a variant that edits a key the base model lacks, as [`apply`] does, without reading the model: a
 /// study checks its whole table so before it sends any of it away.
-pub fn check_keys(base: &serde_json::Value, v: &Variant) -> Result<(), String> {
+pub fn check_keys(base: &serde_json::Value, v: &Variant) -> Result<(), VariantError> {
     match v.edits.iter().find(|(pointer, _)| base.pointer(pointer).is_none()) {
         Some((pointer, _)) => Err(no_such_key(v, pointer)),
         None => Ok(()),
     }
 }
 
-fn no_such_key(v: &Variant, pointer: &str) -> String {
-    format!("variant '{}': the model has no '{pointer}'", v.name)
+fn no_such_key(v: &Variant, pointer: &str) -> VariantError {
+    VariantError::NoKey { variant: v.name.clone(), pointer: pointer.to_string() }
+}
+
+/// Why a variant makes no model: an edit of a key the model lacks, or the edited model refused as a model
+/// document is (its errors naming the variant).
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum VariantError {
+    /// An edit of a key the base model lacks.
+    #[error("variant '{variant}': the model has no '{pointer}'")]
+    NoKey {
+        /// The variant's name.
+        variant: String,
+        /// The edit's pointer.
+        pointer: String,
+    },
+    /// The edited document could not be written as text to be read, in the JSON writer's words.
+    #[error("{0}")]
+    Json(Arc<serde_json::Error>),
+    /// The edited model refused by its reader.
+    #[error(transparent)]
+    Model(Arc<DocumentError>),
 }
 
 /// Headline figures of one variant.
@@ -229,15 +253,16 @@ mod tests {
     fn checking_keys_refuses_what_applying_refuses_with_the_same_words() {
         let base = base_document(MODEL, "macpherson.json").unwrap();
         for v in parse_variants(VARIANTS, "variants").unwrap() {
-            assert_eq!(check_keys(&base, &v), Ok(()), "{}", v.name);
+            assert!(check_keys(&base, &v).is_ok(), "{}", v.name);
             assert!(apply(&base, &v).is_ok(), "{}", v.name);
         }
         let lacking = parse_variant("soft: /suspension/macpherson/spring/rate=2e4; /suspension/nope/0=1", "x", "y")
             .unwrap()
             .unwrap();
         let said = "variant 'soft': the model has no '/suspension/nope/0'";
-        assert_eq!(check_keys(&base, &lacking).unwrap_err(), said);
-        assert_eq!(apply(&base, &lacking).unwrap_err(), said);
+        assert!(matches!(check_keys(&base, &lacking), Err(VariantError::NoKey { .. })));
+        assert_eq!(check_keys(&base, &lacking).unwrap_err().to_string(), said);
+        assert_eq!(apply(&base, &lacking).unwrap_err().to_string(), said);
     }
 
     #[test]
@@ -250,7 +275,7 @@ mod tests {
             crate::document::parse_model(&CHRONO.replace("350000.000", "400000"), "variant 'stiff'").unwrap();
         assert_eq!(file.suspension, run.suspension);
         let broken = parse_variant("broken: /Spring/Spring Coefficient=\"stiff\"", "x", "y").unwrap().unwrap();
-        let said = apply(&base, &broken).unwrap_err();
+        let said = apply(&base, &broken).unwrap_err().to_string();
         assert!(said.starts_with("variant 'broken'"), "{said}");
         assert!(said.ends_with(" (read as a Project Chrono suspension file)"), "{said}");
     }

@@ -17,16 +17,15 @@ pub struct Shard {
 
 impl Shard {
     /// Reads `I/N` with 1 ≤ I ≤ N.
-    pub fn parse(text: &str) -> Result<Shard, String> {
-        let form = "give the shard as I/N with 1 ≤ I ≤ N, e.g. --shard 3/16 for the third of 16 \
-                    (I counts from 1, as SLURM_ARRAY_TASK_ID does with --array=1-16)";
-        let (i, n) = text.split_once('/').ok_or_else(|| format!("'{text}' is not I/N: {form}"))?;
+    pub fn parse(text: &str) -> Result<Shard, NotAShard> {
+        let said = || text.to_string();
+        let (i, n) = text.split_once('/').ok_or_else(|| NotAShard::NoSlash { said: said() })?;
         let whole = |s: &str| s.trim().parse::<usize>().ok();
         match (whole(i), whole(n)) {
             (Some(index), Some(count)) if 1 <= index && index <= count => Ok(Shard { index, count }),
-            (Some(_), Some(0)) => Err(format!("'{text}': N must be at least 1; {form}")),
-            (Some(_), Some(_)) => Err(format!("'{text}': I must be from 1 to N; {form}")),
-            _ => Err(format!("'{text}' is not two whole numbers I/N: {form}")),
+            (Some(_), Some(0)) => Err(NotAShard::NoShards { said: said() }),
+            (Some(_), Some(_)) => Err(NotAShard::Beyond { said: said() }),
+            _ => Err(NotAShard::NotWhole { said: said() }),
         }
     }
 
@@ -36,6 +35,39 @@ impl Shard {
         let start = |i: usize| ((i as u128 * total as u128).div_ceil(self.count as u128)) as usize;
         start(self.index - 1)..start(self.index)
     }
+}
+
+/// How a shard is written, said with every refusal of one.
+const FORM: &str = "give the shard as I/N with 1 ≤ I ≤ N, e.g. --shard 3/16 for the third of 16 (I counts from 1, \
+                    as SLURM_ARRAY_TASK_ID does with --array=1-16)";
+
+/// A shard that is not `I/N` with 1 ≤ I ≤ N, naming what was given.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum NotAShard {
+    /// No `/`.
+    #[error("'{said}' is not I/N: {FORM}")]
+    NoSlash {
+        /// What was given.
+        said: String,
+    },
+    /// N of 0.
+    #[error("'{said}': N must be at least 1; {FORM}")]
+    NoShards {
+        /// What was given.
+        said: String,
+    },
+    /// I of 0 or beyond N.
+    #[error("'{said}': I must be from 1 to N; {FORM}")]
+    Beyond {
+        /// What was given.
+        said: String,
+    },
+    /// I or N not a whole number.
+    #[error("'{said}' is not two whole numbers I/N: {FORM}")]
+    NotWhole {
+        /// What was given.
+        said: String,
+    },
 }
 
 #[cfg(test)]
@@ -70,8 +102,16 @@ mod tests {
         assert_eq!(Shard::parse("1/3"), Ok(Shard { index: 1, count: 3 }));
         assert_eq!(Shard::parse("16/16"), Ok(Shard { index: 16, count: 16 }));
         for bad in ["0/3", "4/3", "1/0", "abc", "1/", "/3", "-1/3", "1.5/3", "1/3/4"] {
-            let e = Shard::parse(bad).unwrap_err();
+            let e = Shard::parse(bad).unwrap_err().to_string();
             assert!(e.contains("I/N with 1 ≤ I ≤ N") && e.contains(bad), "{bad}: {e}");
         }
+    }
+
+    /// A shard beyond its count: `NotAShard::Beyond`, naming what was given.
+    #[test]
+    fn a_shard_beyond_its_count_is_refused_naming_it() {
+        let e = Shard::parse("5/4").unwrap_err();
+        assert!(matches!(e, NotAShard::Beyond { .. }), "{e:?}");
+        assert!(e.to_string().starts_with("'5/4': I must be from 1 to N; give the shard as I/N"), "{e}");
     }
 }
