@@ -166,7 +166,9 @@ impl Model {
     /// each, the form a study sends to its workers.
     fn read_variants(&self, variants: &Bound<'_, PyAny>) -> PyResult<Vec<VariantEdits>> {
         let list = parse_variants(variants, None)?;
-        list.iter().try_for_each(|v| batch::check_keys(&self.base, v)).map_err(|e| ModelError::new_err(e.to_string()))?;
+        list.iter()
+            .try_for_each(|v| batch::check_keys(&self.base, v))
+            .map_err(|e| ModelError::new_err(e.to_string()))?;
         list.into_iter()
             .map(|v| {
                 let edits =
@@ -257,7 +259,8 @@ impl Model {
             let path = Path::new(directory).join(name);
             std::fs::read_to_string(&path).map_err(|e| format!("cannot read {}: {e}", path.display()))
         };
-        let t = read_targets(targets, "targets", &self.base, read_file).map_err(|e| PyValueError::new_err(e.to_string()))?;
+        let t = read_targets(targets, "targets", &self.base, read_file)
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
         let pointers: Vec<String> = t.free.iter().map(|f| f.pointer.clone()).collect();
         let p = Parameters::new(&self.base, &pointers).map_err(|e| ModelError::new_err(e.to_string()))?;
         let tuned = py.detach(|| tune(&p, &t, |_| {})).map_err(|e| match e {
@@ -309,7 +312,8 @@ impl Model {
         seed: u64,
     ) -> PyResult<Bound<'py, PyDict>> {
         use elastokin_suspensions::design::tolerance::{read_tolerances, stack_up, StackUpError};
-        let t = read_tolerances(tolerances, "tolerances", &self.base).map_err(|e| PyValueError::new_err(e.to_string()))?;
+        let t =
+            read_tolerances(tolerances, "tolerances", &self.base).map_err(|e| PyValueError::new_err(e.to_string()))?;
         let stack = py
             .detach(|| {
                 let mut stack = stack_up(&self.base, &t)?;
@@ -334,7 +338,8 @@ impl Model {
     ) -> PyResult<Bound<'py, PyDict>> {
         use elastokin_suspensions::design::tolerance::{read_tolerances, sample};
         use elastokin_suspensions::design::Parameters;
-        let t = read_tolerances(tolerances, "tolerances", &self.base).map_err(|e| PyValueError::new_err(e.to_string()))?;
+        let t =
+            read_tolerances(tolerances, "tolerances", &self.base).map_err(|e| PyValueError::new_err(e.to_string()))?;
         let pointers: Vec<String> = t.bands.iter().map(|(p, _)| p.clone()).collect();
         let bands: Vec<f64> = t.bands.iter().map(|(_, b)| *b).collect();
         let p = Parameters::new(&self.base, &pointers).map_err(|e| ModelError::new_err(e.to_string()))?;
