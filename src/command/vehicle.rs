@@ -32,7 +32,7 @@ pub struct VehicleArgs {
 pub fn run(args: VehicleArgs, out: &Stdout, strict: bool) -> Result<(), Failure> {
     let (bytes, text) = read_input(&args.vehicle, "VEHICLE")?;
     let origin = args.vehicle.display().to_string();
-    let file = VehicleFile::from_json(&text, &origin).map_err(Failure::Input)?;
+    let file = VehicleFile::from_json(&text, &origin).map_err(|e| Failure::Input(e.to_string()))?;
     let dir = args.vehicle.parent().unwrap_or(Path::new("."));
     let (front_path, rear_path) = (dir.join(&file.front), dir.join(&file.rear));
     let (front, rear) = (read_model(&front_path)?, read_model(&rear_path)?);

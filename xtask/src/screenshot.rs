@@ -126,11 +126,12 @@ fn vehicle_page(root: &std::path::Path) -> Result<String, String> {
     use elastokin::suspensions::full_vehicle::{run_vehicle, VehicleFile};
     let path = root.join("examples/vehicle/compact_car.json");
     let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let file = VehicleFile::from_json(&text, "examples/vehicle/compact_car.json")?;
+    let file = VehicleFile::from_json(&text, "examples/vehicle/compact_car.json").map_err(|e| e.to_string())?;
     let (front, rear) = (
         model(root, &format!("examples/vehicle/{}", file.front))?,
         model(root, &format!("examples/vehicle/{}", file.rear))?,
     );
-    let report = run_vehicle(&file, &front, &rear, &elastokin::suspensions::kc::Settings::default())?;
+    let report = run_vehicle(&file, &front, &rear, &elastokin::suspensions::kc::Settings::default())
+        .map_err(|e| e.to_string())?;
     Ok(elastokin::html::vehicle_html(&report, &serde_json::json!({})))
 }

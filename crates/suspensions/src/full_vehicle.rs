@@ -9,7 +9,7 @@
 //! axle's steer `δ` is positive to the left. The understeer gradient `K` is the steer the driver adds per g
 //! beyond the kinematic `L/R` (`δ = L/R + K·a_y`): a positive contribution is understeer.
 
-use crate::kc::{figures, Analysis, AnalysisReport, FigureKind};
+use crate::kc::{figures, plain, Analysis, AnalysisError, AnalysisReport, FigureKind, NoFigure};
 use serde::{Deserialize, Serialize};
 
 /// Standard gravity (m/s²): lateral acceleration is counted in g.
@@ -70,8 +70,9 @@ pub struct VehicleFile {
 impl VehicleFile {
     /// Reads a vehicle file's text; `origin` names it in errors. Every value out of range is refused by
     /// its key with the range.
-    pub fn from_json(text: &str, origin: &str) -> Result<VehicleFile, String> {
-        let file: VehicleFile = serde_json::from_str(text).map_err(|e| format!("{origin}: {e}"))?;
+    pub fn from_json(text: &str, origin: &str) -> Result<VehicleFile, VehicleFileError> {
+        let file: VehicleFile = serde_json::from_str(text)
+            .map_err(|error| VehicleFileError::Json { origin: origin.to_string(), error: error.to_string() })?;
         let c = &file.car;
         let mut checks: Vec<(String, f64, f64, f64, &str)> = vec![
             ("car.mass".into(), c.mass, 1.0, 1e6, "kg"),
@@ -93,9 +94,8 @@ impl VehicleFile {
             let open_low = key.ends_with("front_weight_share");
             let inside = if open_low { v > lo && v < hi } else { v >= lo && v <= hi };
             if !(v.is_finite() && inside) {
-                let (a, b) = if open_low { ("between", "and") } else { ("from", "to") };
-                let (lo, hi, v) = (crate::kc::plain(lo), crate::kc::plain(hi), crate::kc::plain(v));
-                return Err(format!("{origin}: `{key}` must lie {a} {lo} {b} {hi} {unit}, got {v}"));
+                let range = Range { low: lo, high: hi, open: open_low, unit };
+                return Err(VehicleFileError::OutOfRange { origin: origin.to_string(), key, range, got: v });
             }
         }
         Ok(file)
@@ -105,6 +105,130 @@ impl VehicleFile {
     pub fn rear_tyres(&self) -> Tyre {
         self.rear_tyres.unwrap_or(self.tyres)
     }
+}
+
+/// Why a vehicle file is not read ([`VehicleFile::from_json`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum VehicleFileError {
+    /// The text is no vehicle file: bad JSON, a key missing, unknown or of the wrong type.
+    #[error("{origin}: {error}")]
+    Json {
+        /// The file.
+        origin: String,
+        /// What the JSON reader says, with its line and column.
+        error: String,
+    },
+    /// A value outside its range.
+    #[error("{origin}: `{key}` must lie {range}, got {}", plain(*got))]
+    OutOfRange {
+        /// The file.
+        origin: String,
+        /// The key, as the file writes it (`car.mass`).
+        key: String,
+        /// Its range.
+        range: Range,
+        /// The value given.
+        got: f64,
+    },
+}
+
+/// The range a vehicle file's value must lie in.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Range {
+    /// Its low end.
+    pub low: f64,
+    /// Its high end.
+    pub high: f64,
+    /// Whether both ends are excluded (a share strictly between 0 and 1), else both are included.
+    pub open: bool,
+    /// The unit, or what the number is.
+    pub unit: &'static str,
+}
+
+impl std::fmt::Display for Range {
+    /// `from 1 to 1000000 kg`, `between 0 and 1 (a share)`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (a, b) = if self.open { ("between", "and") } else { ("from", "to") };
+        write!(f, "{a} {} {b} {} {}", plain(self.low), plain(self.high), self.unit)
+    }
+}
+
+/// Why an axle's K&C reports give no characteristics for the budget ([`AxleCharacteristics::from_reports`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum AxleError {
+    /// A figure the budget reads has no value.
+    #[error("{axle}: {figure}")]
+    Figure {
+        /// The axle, as the vehicle file names it and its model.
+        axle: String,
+        /// Which figure, and why.
+        figure: NoFigure,
+    },
+    /// The wheels stand nowhere apart.
+    #[error("{axle}: its track at design is {track:.4} m: an axle's wheels stand apart")]
+    NoTrack {
+        /// The axle.
+        axle: String,
+        /// Its track at design, m.
+        track: f64,
+    },
+    /// The axle does not resist roll.
+    #[error("{axle}: its roll stiffness is {stiffness:e} N·m/rad: the axle does not resist roll")]
+    NoRollStiffness {
+        /// The axle.
+        axle: String,
+        /// Its roll stiffness, N·m/rad.
+        stiffness: f64,
+    },
+}
+
+/// Why two models make no car ([`check_axles`], [`run_vehicle`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum CarError {
+    /// One model file for both ends.
+    #[error("`front` and `rear` are both {model}: give each axle its own model file")]
+    SameModel {
+        /// The model file named twice.
+        model: String,
+    },
+    /// A model whose own `vehicle.axle` names the other end.
+    #[error("`{key}` ({model}): its own `vehicle.axle` says {said}: swap `front` and `rear`, or correct the model")]
+    AxleSaysOther {
+        /// `front` or `rear`: where the vehicle file puts it.
+        key: &'static str,
+        /// The model's name.
+        model: String,
+        /// Where the model says it belongs.
+        said: &'static str,
+    },
+    /// A front axle that does not steer.
+    #[error("`front` ({model}): it has no tie rod or steering link, so it does not steer: the front axle steers")]
+    FrontDoesNotSteer {
+        /// The model's name.
+        model: String,
+    },
+    /// A rear axle with a steering gear.
+    #[error(
+        "`rear` ({model}): it has a steering gear (`vehicle.rack_travel_per_revolution`): the rear axle does not \
+         steer here; remove it from the rear model"
+    )]
+    RearSteers {
+        /// The model's name.
+        model: String,
+    },
+    /// An axle's analysis failed.
+    #[error("`{key}` ({model}): {error}")]
+    Analysis {
+        /// `front` or `rear`.
+        key: &'static str,
+        /// The model's name.
+        model: String,
+        /// What stopped it.
+        error: AnalysisError,
+    },
+    /// An axle's reports give no characteristics.
+    #[error(transparent)]
+    Axle(#[from] AxleError),
 }
 
 /// What the budget needs of one axle, read off its K&C figures (SI).
@@ -131,8 +255,10 @@ pub struct AxleCharacteristics {
 impl AxleCharacteristics {
     /// An axle's characteristics from its roll and parallel-travel reports; `axle` names it in errors
     /// (a figure the reports do not have is refused by its key, with the report's reason).
-    pub fn from_reports(axle: &str, roll: &AnalysisReport, travel: &AnalysisReport) -> Result<Self, String> {
-        let value = |r: &AnalysisReport, kind: &FigureKind| r.value_of(kind).map_err(|e| format!("{axle}: {e}"));
+    pub fn from_reports(axle: &str, roll: &AnalysisReport, travel: &AnalysisReport) -> Result<Self, AxleError> {
+        let value = |r: &AnalysisReport, kind: &FigureKind| {
+            r.value_of(kind).map_err(|figure| AxleError::Figure { axle: axle.to_string(), figure })
+        };
         let a = AxleCharacteristics {
             roll_stiffness: value(roll, &figures::ROLL_STIFFNESS)?,
             roll_centre_height: value(roll, &figures::ROLL_CENTRE_HEIGHT)?,
@@ -144,13 +270,10 @@ impl AxleCharacteristics {
             aligning_torque_steer: value(travel, &figures::ALIGNING_TORQUE_STEER)?,
         };
         if !(a.track.is_finite() && a.track > 0.0) {
-            return Err(format!("{axle}: its track at design is {:.4} m: an axle's wheels stand apart", a.track));
+            return Err(AxleError::NoTrack { axle: axle.to_string(), track: a.track });
         }
         if !(a.roll_stiffness.is_finite() && a.roll_stiffness > 0.0) {
-            return Err(format!(
-                "{axle}: its roll stiffness is {:e} N·m/rad: the axle does not resist roll",
-                a.roll_stiffness
-            ));
+            return Err(AxleError::NoRollStiffness { axle: axle.to_string(), stiffness: a.roll_stiffness });
         }
         Ok(a)
     }
@@ -303,7 +426,7 @@ pub fn run_vehicle(
     front: &crate::file::SuspensionFile,
     rear: &crate::file::SuspensionFile,
     settings: &crate::kc::Settings,
-) -> Result<VehicleReport, String> {
+) -> Result<VehicleReport, CarError> {
     check_axles(file, front, rear)?;
     let mut axles = Vec::with_capacity(2);
     let mut warnings = Vec::new();
@@ -312,8 +435,13 @@ pub fn run_vehicle(
         [("front", front, file.car.front_weight_share), ("rear", rear, 1.0 - file.car.front_weight_share)]
     {
         let models = crate::kc::Models::new(model);
-        let run =
-            |a: Analysis| crate::kc::run_on(a, &models, settings).map_err(|e| format!("`{key}` ({}): {e}", model.name));
+        let run = |a: Analysis| {
+            crate::kc::run_on(a, &models, settings).map_err(|error| CarError::Analysis {
+                key,
+                model: model.name.clone(),
+                error,
+            })
+        };
         let (roll, travel) = (run(Analysis::Roll)?, run(Analysis::ParallelTravel)?);
         axles.push(AxleCharacteristics::from_reports(&format!("`{key}` ({})", model.name), &roll, &travel)?);
         let own = travel.figure_of(&figures::WHEEL_LOAD_AT_DESIGN).and_then(|f| f.value);
@@ -336,32 +464,22 @@ pub fn check_axles(
     file: &VehicleFile,
     front: &crate::file::SuspensionFile,
     rear: &crate::file::SuspensionFile,
-) -> Result<(), String> {
+) -> Result<(), CarError> {
     use crate::description::vehicle::AxlePosition;
     if file.front == file.rear {
-        return Err(format!("`front` and `rear` are both {}: give each axle its own model file", file.front));
+        return Err(CarError::SameModel { model: file.front.clone() });
     }
     for (key, model, other) in [("front", front, AxlePosition::Rear), ("rear", rear, AxlePosition::Front)] {
         if model.vehicle.as_ref().is_some_and(|v| v.axle == other) {
             let said = if other == AxlePosition::Rear { "rear" } else { "front" };
-            return Err(format!(
-                "`{key}` ({}): its own `vehicle.axle` says {said}: swap `front` and `rear`, or correct the model",
-                model.name
-            ));
+            return Err(CarError::AxleSaysOther { key, model: model.name.clone(), said });
         }
     }
     if !front.suspension.expand().is_steered() {
-        return Err(format!(
-            "`front` ({}): it has no tie rod or steering link, so it does not steer: the front axle steers",
-            front.name
-        ));
+        return Err(CarError::FrontDoesNotSteer { model: front.name.clone() });
     }
     if rear.vehicle.as_ref().is_some_and(|v| v.rack_travel_per_revolution.is_some()) {
-        return Err(format!(
-            "`rear` ({}): it has a steering gear (`vehicle.rack_travel_per_revolution`): the rear axle does not \
-             steer here; remove it from the rear model",
-            rear.name
-        ));
+        return Err(CarError::RearSteers { model: rear.name.clone() });
     }
     Ok(())
 }

@@ -2,7 +2,9 @@
 //! docs/vehicle.md written out with its numbers), the roll moment balanced by the load transfer, a car
 //! whose axles are alike front and rear balanced to zero, and what cannot be a car refused by key.
 
-use elastokin_suspensions::full_vehicle::{budget, run_vehicle, AxleCharacteristics, AxleName, Car, Tyre, VehicleFile};
+use elastokin_suspensions::full_vehicle::{
+    budget, run_vehicle, AxleCharacteristics, AxleName, Car, CarError, Tyre, VehicleFile, VehicleFileError,
+};
 use elastokin_suspensions::kc::Settings;
 use elastokin_suspensions::SuspensionFile;
 use std::path::Path;
@@ -132,31 +134,37 @@ fn a_car_of_the_shipped_axles_runs_and_what_is_no_car_is_refused_by_key() {
     assert_eq!(r.table().rows.len(), 12 + 10 + usize::from(r.budget.characteristic_speed.is_some()));
     // The rear as the front: its model says rear, and it does not steer.
     let e = run_vehicle(&vehicle_file("five_link.json", "macpherson.json"), &five, &mac, &s).unwrap_err();
-    assert!(e.contains("`front`") && e.contains("vehicle.axle"), "{e}");
+    assert!(matches!(&e, CarError::AxleSaysOther { key: "front", said: "rear", .. }), "{e:?}");
+    assert!(e.to_string().contains("`front`") && e.to_string().contains("vehicle.axle"), "{e}");
     let e = run_vehicle(&vehicle_file("macpherson.json", "macpherson.json"), &mac, &mac, &s).unwrap_err();
-    assert!(e.contains("`front` and `rear` are both"), "{e}");
+    assert_eq!(e, CarError::SameModel { model: "macpherson.json".into() });
+    assert!(e.to_string().starts_with("`front` and `rear` are both macpherson.json"), "{e}");
     let (mut unsteered, mut rear) = (five.clone(), mac.clone());
     unsteered.vehicle = None;
     rear.vehicle = None;
     let e = run_vehicle(&vehicle_file("five_link.json", "macpherson.json"), &unsteered, &rear, &s).unwrap_err();
-    assert!(e.contains("does not steer"), "{e}");
+    assert!(matches!(&e, CarError::FrontDoesNotSteer { model } if *model == five.name), "{e:?}");
+    assert!(e.to_string().contains("does not steer"), "{e}");
     let mut steered_rear = five.clone();
     if let Some(v) = &mut steered_rear.vehicle {
         v.rack_travel_per_revolution = Some(0.05);
     }
     let e = run_vehicle(&vehicle_file("macpherson.json", "five_link.json"), &mac, &steered_rear, &s).unwrap_err();
-    assert!(e.contains("`rear`") && e.contains("rack_travel_per_revolution"), "{e}");
-    for (text, key) in [
-        (r#""mass": 1400"#, r#""mass": -1"#),
-        (r#""front_weight_share": 0.6"#, r#""front_weight_share": 1.0"#),
-        (r#""pneumatic_trail": 0.03"#, r#""pneumatic_trail": 2"#),
+    assert!(matches!(&e, CarError::RearSteers { .. }), "{e:?}");
+    assert!(e.to_string().contains("`rear`") && e.to_string().contains("rack_travel_per_revolution"), "{e}");
+    for (text, key, got) in [
+        (r#""mass": 1400"#, r#""mass": -1"#, -1.0),
+        (r#""front_weight_share": 0.6"#, r#""front_weight_share": 1.0"#, 1.0),
+        (r#""pneumatic_trail": 0.03"#, r#""pneumatic_trail": 2"#, 2.0),
     ] {
         let good = r#"{ "name": "c", "front": "a", "rear": "b",
              "car": { "mass": 1400, "cg_height": 0.55, "wheelbase": 2.6, "front_weight_share": 0.6, "steering_ratio": 15 },
              "tyres": { "cornering_stiffness": 1300, "camber_stiffness": 100, "vertical_rate": 250000, "pneumatic_trail": 0.03 } }"#;
         let e = VehicleFile::from_json(&good.replace(text, key), "car.json").unwrap_err();
         let name = key.split('"').nth(1).unwrap();
-        assert!(e.contains(&format!("{name}`")), "{e}");
+        let VehicleFileError::OutOfRange { key, got: given, .. } = &e else { panic!("{e:?}") };
+        assert!(key.ends_with(name) && *given == got, "{e:?}");
+        assert!(e.to_string().starts_with(&format!("car.json: `{key}` must lie ")), "{e}");
     }
 }
 

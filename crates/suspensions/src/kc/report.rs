@@ -400,12 +400,16 @@ impl AnalysisReport {
         self.figure(kind.key)
     }
 
-    /// The value of figure `kind` in SI, or why there is none, in words that name the analysis and the
-    /// figure.
-    pub fn value_of(&self, kind: &FigureKind) -> Result<f64, String> {
-        let name = self.analysis.name();
-        let f = self.figure_of(kind).ok_or_else(|| format!("{name} gives no `{}`", kind.key))?;
-        f.value.ok_or_else(|| format!("{name} has no `{}`: {}", kind.key, f.reason.as_deref().unwrap_or("no value")))
+    /// The value of figure `kind` in SI, or why there is none ([`NoFigure`], naming the analysis and the
+    /// figure).
+    pub fn value_of(&self, kind: &FigureKind) -> Result<f64, NoFigure> {
+        let (analysis, key) = (self.analysis.name(), kind.key);
+        let f = self.figure_of(kind).ok_or(NoFigure::NotReported { analysis, key })?;
+        f.value.ok_or_else(|| NoFigure::NoValue {
+            analysis,
+            key,
+            reason: f.reason.clone().unwrap_or_else(|| "no value".into()),
+        })
     }
 
     /// The row of the design position: the one whose load parameter (the table's first column) is nearest
@@ -514,6 +518,29 @@ pub(crate) fn slug(name: &str) -> String {
         }
     }
     out.trim_matches('_').to_string()
+}
+
+/// Why an analysis's report has no value of a figure ([`AnalysisReport::value_of`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum NoFigure {
+    /// The analysis does not report the figure at all.
+    #[error("{analysis} gives no `{key}`")]
+    NotReported {
+        /// The analysis's name.
+        analysis: &'static str,
+        /// The figure's key.
+        key: &'static str,
+    },
+    /// It reports the figure without a value, and why.
+    #[error("{analysis} has no `{key}`: {reason}")]
+    NoValue {
+        /// The analysis's name.
+        analysis: &'static str,
+        /// The figure's key.
+        key: &'static str,
+        /// Why it has no value, as the report says it.
+        reason: String,
+    },
 }
 
 #[cfg(test)]
