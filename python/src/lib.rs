@@ -586,7 +586,7 @@ fn compare<'py>(
                 .collect();
             compare(&designs)
         })
-        .map_err(PyValueError::new_err)?;
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
     let d = PyDict::new(py);
     d.set_item("names", comparison.names.clone())?;
     d.set_item("figures", column_dict(py, &comparison.figures)?)?;

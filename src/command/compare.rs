@@ -35,7 +35,7 @@ pub fn run(args: CompareArgs, out: &Stdout, strict: bool) -> Result<(), Failure>
         files.push((path.display().to_string(), elastokin::provenance::sha256_hex(&bytes)));
         designs.push(design);
     }
-    let comparison = compare(&designs).map_err(Failure::Input)?;
+    let comparison = compare(&designs).map_err(|e| Failure::Input(e.to_string()))?;
     let mut provenance = Provenance::new(&args.designs[0], &[], kc::mode_word(settings.mode), settings.steps);
     provenance.model_sha256 = files[0].1.clone();
     provenance.other_files = files[1..].to_vec();

@@ -116,7 +116,7 @@ fn compare_page(root: &std::path::Path) -> Result<String, String> {
         .iter()
         .map(|p| model(root, p).map(|f| Design::model(&f, kc::run_suite(&f, &[], &settings, |_| {}))))
         .collect::<Result<_, _>>()?;
-    let comparison = compare(&designs)?;
+    let comparison = compare(&designs).map_err(|e| e.to_string())?;
     let models = comparison.models(&designs);
     Ok(elastokin::html::compare_html(&comparison, &models, &serde_json::json!({}), elastokin::plot::svg))
 }

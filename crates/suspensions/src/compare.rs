@@ -76,14 +76,101 @@ impl Comparison {
     }
 }
 
+/// Why designs cannot be compared ([`compare`]), naming the design.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum CompareError {
+    /// Fewer than two designs.
+    #[error("compare needs two designs at least: give two or more model files (or a model and a measured K&C file)")]
+    TooFew,
+    /// Measured files alone.
+    #[error("compare needs a model among the designs: measured files are compared with a model's curves")]
+    NoModel,
+    /// A solid axle beside an independent corner.
+    #[error(
+        "'{first}' is {} and '{other}' {}: their K&C curves do not mean the same motions (a solid axle's wheels \
+         move together); compare models of one kind",
+        kind(*first_solid),
+        kind(!*first_solid)
+    )]
+    MixedKinds {
+        /// The first model's name.
+        first: String,
+        /// Whether the first model is a solid axle.
+        first_solid: bool,
+        /// The first model of the other kind.
+        other: String,
+    },
+    /// Models with no analysis in common.
+    #[error("'{first}' and the other models ran no analysis in common: there is nothing to overlay")]
+    NothingInCommon {
+        /// The first model's name.
+        first: String,
+    },
+    /// A measured file that names no analysis.
+    #[error(
+        "'{name}' does not say which analysis it measured: add a comment line `# analysis: NAME` (as \
+         docs/kc-rig-data.md shows)"
+    )]
+    NoAnalysisNamed {
+        /// The measured file's name.
+        name: String,
+    },
+    /// A measured file of an analysis no model ran.
+    #[error("'{name}' measured {analysis}, which no model ran: run it on the models or leave the file out")]
+    AnalysisNotRun {
+        /// The measured file's name.
+        name: String,
+        /// The analysis it names.
+        analysis: String,
+    },
+    /// A measured file whose first column is not the analysis's load parameter.
+    #[error(
+        "'{name}': its first column is '{first}', but {analysis}'s load parameter is '{parameter}': give the \
+         load parameter first, in the table's units"
+    )]
+    FirstColumn {
+        /// The measured file's name.
+        name: String,
+        /// Its first column.
+        first: String,
+        /// The analysis it names.
+        analysis: String,
+        /// That analysis's load parameter column.
+        parameter: String,
+    },
+    /// A measured column the analysis's table lacks.
+    #[error(
+        "'{name}': {analysis}'s table has no column '{column}' (it has {}): name the file's columns as the table \
+         does, or leave that column out",
+        columns.join(", ")
+    )]
+    UnknownColumn {
+        /// The measured file's name.
+        name: String,
+        /// The analysis it names.
+        analysis: String,
+        /// The column the table lacks.
+        column: String,
+        /// The table's columns after its load parameter.
+        columns: Vec<String>,
+    },
+}
+
+/// A model's kind in words.
+fn kind(solid: bool) -> &'static str {
+    if solid {
+        "a solid axle"
+    } else {
+        "an independent corner"
+    }
+}
+
 /// Compares `designs` (at least two, at least one a model). Refused, by name: fewer than two, no model, a
 /// solid axle with an independent corner, models with no analysis in common, a measured file naming no
 /// analysis a model ran, or with a load parameter or a column that analysis's table lacks.
-pub fn compare(designs: &[Design]) -> Result<Comparison, String> {
+pub fn compare(designs: &[Design]) -> Result<Comparison, CompareError> {
     if designs.len() < 2 {
-        return Err("compare needs two designs at least: give two or more model files (or a model and a measured \
-                    K&C file)"
-            .into());
+        return Err(CompareError::TooFew);
     }
     let names = distinct_names(designs);
     let models: Vec<(usize, &KcReport, bool)> = designs
@@ -95,18 +182,10 @@ pub fn compare(designs: &[Design]) -> Result<Comparison, String> {
         })
         .collect();
     let Some(&(first, _, first_solid)) = models.first() else {
-        return Err("compare needs a model among the designs: measured files are compared with a model's curves".into());
+        return Err(CompareError::NoModel);
     };
     if let Some(&(other, _, _)) = models.iter().find(|m| m.2 != first_solid) {
-        let kind = |solid: bool| if solid { "a solid axle" } else { "an independent corner" };
-        return Err(format!(
-            "'{}' is {} and '{}' {}: their K&C curves do not mean the same motions (a solid axle's wheels move \
-             together); compare models of one kind",
-            names[first],
-            kind(first_solid),
-            names[other],
-            kind(!first_solid)
-        ));
+        return Err(CompareError::MixedKinds { first: names[first].clone(), first_solid, other: names[other].clone() });
     }
     let analyses: Vec<Analysis> = models[0]
         .1
@@ -116,10 +195,7 @@ pub fn compare(designs: &[Design]) -> Result<Comparison, String> {
         .filter(|&a| models.iter().all(|(_, r, _)| r.analyses.iter().any(|b| b.analysis == a)))
         .collect();
     if analyses.is_empty() {
-        return Err(format!(
-            "'{}' and the other models ran no analysis in common: there is nothing to overlay",
-            names[first]
-        ));
+        return Err(CompareError::NothingInCommon { first: names[first].clone() });
     }
     let of = |r: &KcReport, a: Analysis| r.analyses.iter().find(|b| b.analysis == a).cloned();
     let mut charts = Vec::new();
@@ -193,13 +269,10 @@ fn measured_charts(
     measured: &Measured,
     models: &[(usize, &KcReport, bool)],
     names: &[String],
-) -> Result<Vec<Chart>, String> {
+) -> Result<Vec<Chart>, CompareError> {
     let name = &names[k];
     let Some(analysis_name) = &measured.analysis else {
-        return Err(format!(
-            "'{name}' does not say which analysis it measured: add a comment line `# analysis: NAME` (as \
-             docs/kc-rig-data.md shows)"
-        ));
+        return Err(CompareError::NoAnalysisNamed { name: name.clone() });
     };
     let tables: Vec<(usize, &Table)> = models
         .iter()
@@ -208,25 +281,25 @@ fn measured_charts(
         })
         .collect();
     let Some(&(_, table)) = tables.first() else {
-        return Err(format!(
-            "'{name}' measured {analysis_name}, which no model ran: run it on the models or leave the file out"
-        ));
+        return Err(CompareError::AnalysisNotRun { name: name.clone(), analysis: analysis_name.clone() });
     };
     let parameter = &table.columns[0];
     if measured.columns.first() != Some(parameter) {
-        return Err(format!(
-            "'{name}': its first column is '{}', but {analysis_name}'s load parameter is '{parameter}': give the \
-             load parameter first, in the table's units",
-            measured.columns.first().map_or("", String::as_str)
-        ));
+        return Err(CompareError::FirstColumn {
+            name: name.clone(),
+            first: measured.columns.first().cloned().unwrap_or_default(),
+            analysis: analysis_name.clone(),
+            parameter: parameter.clone(),
+        });
     }
     // Every measured column is drawn: one the table lacks is refused, not left out unseen.
     if let Some(unknown) = measured.columns[1..].iter().find(|c| !table.columns.contains(c)) {
-        return Err(format!(
-            "'{name}': {analysis_name}'s table has no column '{unknown}' (it has {}): name the file's columns as \
-             the table does, or leave that column out",
-            table.columns[1..].join(", ")
-        ));
+        return Err(CompareError::UnknownColumn {
+            name: name.clone(),
+            analysis: analysis_name.clone(),
+            column: unknown.clone(),
+            columns: table.columns[1..].to_vec(),
+        });
     }
     let mut out = Vec::new();
     for (m, column) in measured.columns.iter().enumerate().skip(1) {

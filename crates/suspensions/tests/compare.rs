@@ -2,7 +2,7 @@
 //! overlaid curve is the model's own curve, a measured file's points are drawn as given, and what cannot
 //! be compared is refused by name.
 
-use elastokin_suspensions::compare::{compare, Design};
+use elastokin_suspensions::compare::{compare, CompareError, Design};
 use elastokin_suspensions::design::targets::read_measured;
 use elastokin_suspensions::kc::{self, Analysis, Cell, KcReport, Settings};
 use elastokin_suspensions::SuspensionFile;
@@ -96,13 +96,21 @@ fn a_measured_file_is_drawn_as_given_beside_the_models_rows() {
         compare(&[Design::model(&a, r.clone()), Design::Measured { name: "rig.csv".into(), measured }]).unwrap_err()
     };
     let e = refused("# analysis: parallel-travel\ntravel_m,spring_rate\n0,1\n");
+    assert!(matches!(&e, CompareError::UnknownColumn { column, .. } if column == "spring_rate"), "{e:?}");
+    let e = e.to_string();
     assert!(e.contains("no column 'spring_rate'") && e.contains("toe_deg"), "{e}");
     let e = refused("# analysis: parallel-travel\nload_n,toe_deg\n0,1\n");
+    assert!(
+        matches!(&e, CompareError::FirstColumn { first, parameter, .. } if first == "load_n" && parameter == "travel_m")
+    );
+    let e = e.to_string();
     assert!(e.contains("'load_n'") && e.contains("'travel_m'"), "{e}");
     let e = refused("# analysis: roll\nleft_travel_m,roll_angle_deg\n0,1\n");
-    assert!(e.contains("roll, which no model ran"), "{e}");
+    assert!(matches!(&e, CompareError::AnalysisNotRun { analysis, .. } if analysis == "roll"), "{e:?}");
+    assert!(e.to_string().contains("roll, which no model ran"), "{e}");
     let e = refused("travel_m,toe_deg\n0,1\n");
-    assert!(e.contains("# analysis: NAME"), "{e}");
+    assert_eq!(e, CompareError::NoAnalysisNamed { name: "rig.csv".into() });
+    assert!(e.to_string().contains("# analysis: NAME"), "{e}");
 }
 
 /// A measured column the analysis's table lacks, beside one it has, was left out of the comparison
@@ -114,6 +122,8 @@ fn a_measured_column_that_is_unknown_duplicated_or_not_plain_text_is_refused_by_
     let r = suite(&a, &[Analysis::ParallelTravel]);
     let measured = read_measured("# analysis: parallel-travel\ntravel_m,toe_deg,toe_dge\n0,0,0\n", "rig.csv").unwrap();
     let e = compare(&[Design::model(&a, r), Design::Measured { name: "rig.csv".into(), measured }]).unwrap_err();
+    assert!(matches!(&e, CompareError::UnknownColumn { column, .. } if column == "toe_dge"), "{e:?}");
+    let e = e.to_string();
     assert!(e.contains("no column 'toe_dge'") && e.contains("camber_deg"), "{e}");
     for (header, says) in [
         ("travel_m,toe_deg,toe_deg", "rig.csv:2: the column 'toe_deg' is named twice"),
@@ -132,9 +142,12 @@ fn what_cannot_be_compared_is_refused_by_name() {
     let (a, axle) = (example("macpherson.json"), example("four_link_axle.json"));
     let ra = suite(&a, &[Analysis::ParallelTravel]);
     let e = compare(&[Design::model(&a, ra.clone())]).unwrap_err();
-    assert!(e.contains("two designs at least"), "{e}");
+    assert_eq!(e, CompareError::TooFew);
+    assert!(e.to_string().contains("two designs at least"), "{e}");
     let e = compare(&[Design::model(&a, ra.clone()), Design::model(&axle, suite(&axle, &[Analysis::ParallelTravel]))])
         .unwrap_err();
+    assert!(matches!(&e, CompareError::MixedKinds { first_solid: false, .. }), "{e:?}");
+    let e = e.to_string();
     assert!(e.contains(&a.name) && e.contains(&axle.name) && e.contains("solid axle"), "{e}");
     let m = || read_measured("# analysis: parallel-travel\ntravel_m,toe_deg\n0,1\n", "rig.csv").unwrap();
     let e = compare(&[
@@ -142,10 +155,12 @@ fn what_cannot_be_compared_is_refused_by_name() {
         Design::Measured { name: "two.csv".into(), measured: m() },
     ])
     .unwrap_err();
-    assert!(e.contains("a model among the designs"), "{e}");
+    assert_eq!(e, CompareError::NoModel);
+    assert!(e.to_string().contains("a model among the designs"), "{e}");
     let rb = suite(&example("double_wishbone.json"), &[Analysis::Roll]);
     let e = compare(&[Design::model(&a, ra), Design::model(&example("double_wishbone.json"), rb)]).unwrap_err();
-    assert!(e.contains("no analysis in common"), "{e}");
+    assert_eq!(e, CompareError::NothingInCommon { first: a.name.clone() });
+    assert!(e.to_string().contains("no analysis in common"), "{e}");
 }
 
 /// A measured row shorter than its header: `MeasuredError::RowLength`, naming the file, the line and both

@@ -120,7 +120,7 @@ fn compare_five(s: &Settings, dir: &std::path::Path) -> Result<f64, String> {
     let once = || -> Result<usize, String> {
         let designs: Vec<Design> =
             files.iter().map(|f| Design::model(f, kc::run_suite(f, &[], &settings, |_| {}))).collect();
-        let comparison = compare(&designs)?;
+        let comparison = compare(&designs).map_err(|e| e.to_string())?;
         let models = comparison.models(&designs);
         let html = elastokin::html::compare_html(&comparison, &models, &serde_json::json!({}), elastokin::plot::svg);
         std::fs::write(dir.join("compare.html"), &html).map_err(|e| e.to_string())?;
