@@ -131,7 +131,7 @@ impl Model {
         py.detach(|| {
             let (_, text) = read_input(Path::new(path), "MODEL")?;
             let (file, _) = parse_model(&text, path).map_err(|e| e.to_string())?;
-            let base = batch::base_document(&text, path)?;
+            let base = batch::base_document(&text, path).map_err(|e| e.to_string())?;
             Ok::<_, String>(Model { file, base, origin: path.to_string() })
         })
         .map_err(ModelError::new_err)
@@ -144,7 +144,7 @@ impl Model {
     fn from_json(py: Python<'_>, text: &str, origin: &str) -> PyResult<Model> {
         py.detach(|| {
             let (file, _) = parse_document(text, origin).map_err(|e| e.to_string())?;
-            let base = batch::base_document(text, origin)?;
+            let base = batch::base_document(text, origin).map_err(|e| e.to_string())?;
             Ok::<_, String>(Model { file, base, origin: origin.to_string() })
         })
         .map_err(ModelError::new_err)

@@ -35,7 +35,8 @@ impl ModelInput {
     /// The model file at `path` as written, the document a parameter or variant edits: a Chrono file's own
     /// keys (its comments removed).
     pub fn document(&self, path: &Path) -> Result<serde_json::Value, Failure> {
-        base_document(&String::from_utf8_lossy(&self.bytes), &path.display().to_string()).map_err(Failure::Input)
+        base_document(&String::from_utf8_lossy(&self.bytes), &path.display().to_string())
+            .map_err(|e| Failure::Input(e.to_string()))
     }
 }
 

@@ -496,7 +496,9 @@ fn a_key_given_twice_in_a_design_or_model_file_is_refused_naming_it() {
     let e = SuspensionFile::from_json(&text, "twice.json").unwrap_err().to_string();
     assert!(e.contains("name: the key is given twice: give each key once"), "{e}");
     let e = elastokin_suspensions::study::batch::base_document(&text, "twice.json").unwrap_err();
-    assert_eq!(e, "twice.json: name: the key is given twice: give each key once");
+    use elastokin_suspensions::study::batch::BaseDocumentError;
+    assert_eq!(e, BaseDocumentError::KeyTwice { origin: "twice.json".into(), keys: vec!["name".into()] });
+    assert_eq!(e.to_string(), "twice.json: name: the key is given twice: give each key once");
 }
 
 /// A bound given as one number: `TargetsError` names the file, and its `KeyRefusal` the key and what it

@@ -83,5 +83,5 @@ pub fn tight_options() -> SolverOptions {
 pub fn shipped_document(stem: &str) -> Result<serde_json::Value, String> {
     let path = format!("examples/{stem}.json");
     let text = std::fs::read_to_string(root().join(&path)).map_err(|e| format!("{path}: {e}"))?;
-    elastokin_suspensions::study::batch::base_document(&text, &path)
+    elastokin_suspensions::study::batch::base_document(&text, &path).map_err(|e| e.to_string())
 }

@@ -108,7 +108,8 @@ fn compare_five(s: &Settings, dir: &std::path::Path) -> Result<f64, String> {
     use elastokin::suspensions::study::batch::{apply, base_document, parse_variants};
     let root = crate::workspace_root();
     let read = |p: &str| std::fs::read_to_string(root.join(p)).map_err(|e| format!("{p}: {e}"));
-    let base = base_document(&read("examples/generic/macpherson.json")?, "examples/generic/macpherson.json")?;
+    let base = base_document(&read("examples/generic/macpherson.json")?, "examples/generic/macpherson.json")
+        .map_err(|e| e.to_string())?;
     let variants =
         parse_variants(&read("examples/generic/macpherson_variants.txt")?, "examples/generic/macpherson_variants.txt")?;
     let files =

@@ -141,14 +141,36 @@ pub fn parse_variant(line: &str, unnamed: &str, place: &str) -> Result<Option<Va
 
 /// The model file's text as the document the variants edit: the file as written (a Project Chrono file's own
 /// keys, its comments removed).
-pub fn base_document(text: &str, origin: &str) -> Result<serde_json::Value, String> {
+pub fn base_document(text: &str, origin: &str) -> Result<serde_json::Value, BaseDocumentError> {
     let text = crate::import::chrono::without_comments(text);
-    let document = serde_json::from_str(&text).map_err(|e| format!("{origin}: {e}"))?;
+    let document = serde_json::from_str(&text)
+        .map_err(|e| BaseDocumentError::Json { origin: origin.to_string(), error: e.to_string() })?;
     // Read as a value, a key given twice would be one of the two silently.
     match crate::file::key_path::first_duplicate_key(&text) {
-        Some(path) => Err(format!("{origin}: {}: the key is given twice: give each key once", path.join("."))),
+        Some(keys) => Err(BaseDocumentError::KeyTwice { origin: origin.to_string(), keys }),
         None => Ok(document),
     }
+}
+
+/// Why a model file's text is no document for variants to edit ([`base_document`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BaseDocumentError {
+    /// The text is no JSON.
+    #[error("{origin}: {error}")]
+    Json {
+        /// The file.
+        origin: String,
+        /// What the JSON reader says, with its line and column.
+        error: String,
+    },
+    /// A key given twice.
+    #[error("{origin}: {}: the key is given twice: give each key once", keys.join("."))]
+    KeyTwice {
+        /// The file.
+        origin: String,
+        /// The keys that lead to it, outermost first.
+        keys: Vec<String>,
+    },
 }
 
 /// The base model with a variant's edits applied; an edit to a pointer the model lacks is an error. A
