@@ -5,8 +5,7 @@
 //! `--shard I/N` runs one of N contiguous, nearly equal blocks of the variants ([`Shard`]), so that a job
 //! array can spread one batch over machines; `elastokin merge` (src/command/merge.rs) joins the shards' tables.
 
-use super::input::{read_input, read_model};
-use super::strict::strict_model;
+use super::input::{open_model, read_input};
 use crate::output::{note, sha256_hex, write_table, Failure, Part, Progress, Provenance, Staging, Stdout};
 use clap::Args;
 use elastokin::solver::Mode;
@@ -62,11 +61,7 @@ pub fn run_all(variants: &[Variant], files: &[SuspensionFile], progress: &Progre
 
 /// `batch`: every variant (of the shard) run, a line each printed, and `batch.csv` written.
 pub fn run(args: BatchArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Failure> {
-    let read = read_model(&args.model)?;
-    strict_model(&args.model, &read.file, strict)?;
-    if let Some(line) = read.format_line() {
-        out.line(line)?;
-    }
+    let read = open_model(&args.model, out, strict)?;
     // The variants edit the file as written: a Chrono file's own keys (its comments removed).
     let base = read.document(&args.model)?;
     let (variant_bytes, variant_text) = read_input(&args.variants, "VARIANTS")?;

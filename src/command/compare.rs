@@ -1,8 +1,8 @@
 //! `elastokin compare DESIGN DESIGN...`: models' K&C suites and measured K&C files side by side, every
 //! curve overlaid.
 
-use super::input::{read_input, read_model};
-use super::strict::{refuse_warned, strict_model};
+use super::input::{open_model, read_input};
+use super::strict::refuse_warned;
 use super::sweeps::SweepArgs;
 use crate::output::{write_table, wrote, Failure, Provenance, Staging, Stdout};
 use clap::Args;
@@ -92,11 +92,7 @@ fn read_design(
         let name = path.file_name().map_or(origin.clone(), |n| n.to_string_lossy().into_owned());
         return Ok((bytes, Design::Measured { name, measured }));
     }
-    let read = read_model(path)?;
-    strict_model(path, &read.file, strict)?;
-    if let Some(line) = read.format_line() {
-        out.line(line)?;
-    }
+    let read = open_model(path, out, strict)?;
     let report = kc::run_suite(&read.file, &sweeps.which(), settings, |_| {});
     refuse_warned(strict, report.all_warnings())?;
     let design = Design::model(&read.file, report);

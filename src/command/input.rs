@@ -1,11 +1,23 @@
 //! What the commands read: input files whole, a model file of either format, and the document its numbers
 //! are edited in.
 
-use crate::output::Failure;
+use super::strict::strict_model;
+use crate::output::{Failure, Stdout};
 use elastokin::suspensions::import::chrono::Imported;
 use elastokin::suspensions::study::batch::base_document;
 use elastokin::suspensions::SuspensionFile;
 use std::path::Path;
+
+/// Reads the model file at `path` for a command that runs it: refused under `--strict` (`strict`) when its
+/// checks warn, and, for another tool's file, the line saying how it was read printed to `out`.
+pub fn open_model(path: &Path, out: &Stdout, strict: bool) -> Result<ModelInput, Failure> {
+    let read = read_model(path)?;
+    strict_model(path, &read.file, strict)?;
+    if let Some(line) = read.format_line() {
+        out.line(line)?;
+    }
+    Ok(read)
+}
 
 /// Reads an input file whole; errors name the file and what it is for.
 pub fn read_input(path: &Path, what: &str) -> Result<(Vec<u8>, String), Failure> {

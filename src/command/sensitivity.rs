@@ -1,8 +1,8 @@
 //! `elastokin sensitivity MODEL`: every figure's and cell's derivatives with respect to numbers of the model
 //! file, for the suite or one analysis; and the parameters and files `run --sensitivity` shares with it.
 
-use super::input::{read_model, ModelInput};
-use super::strict::{refuse_warned, strict_model};
+use super::input::{open_model, ModelInput};
+use super::strict::refuse_warned;
 use super::sweeps::SweepArgs;
 use crate::output::{failed_lines, write_table, wrote, Failure, Provenance, Staging, Stdout};
 use clap::Args;
@@ -45,11 +45,7 @@ pub fn run(args: SensitivityArgs, out: &Stdout, strict: bool) -> Result<(), Fail
         ..Settings::default()
     };
     args.sweeps.check(&settings)?;
-    let read = read_model(&args.model)?;
-    strict_model(&args.model, &read.file, strict)?;
-    if let Some(line) = read.format_line() {
-        out.line(line)?;
-    }
+    let read = open_model(&args.model, out, strict)?;
     let parameters = parameters(&args, &read)?;
     let which = args.sweeps.which();
     let suite = design::suite_sensitivity(&parameters, &which, &settings).map_err(|e| Failure::Run(e.to_string()))?;

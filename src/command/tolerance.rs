@@ -1,8 +1,8 @@
 //! `elastokin tolerance MODEL TOLERANCES`: each figure's spread when the model's numbers are made within
 //! their tolerances.
 
-use super::input::{read_input, read_model};
-use super::strict::{refuse_warned, strict_model};
+use super::input::{open_model, read_input};
+use super::strict::refuse_warned;
 use crate::output::{failed_lines, write_table, wrote, Failure, Provenance, Staging, Stdout};
 use clap::Args;
 use elastokin::solver::Mode;
@@ -31,11 +31,7 @@ pub struct ToleranceArgs {
 
 /// `tolerance`: the figures' spread under the model's tolerances.
 pub fn run(args: ToleranceArgs, out: &Stdout, strict: bool) -> Result<(), Failure> {
-    let read = read_model(&args.model)?;
-    strict_model(&args.model, &read.file, strict)?;
-    if let Some(line) = read.format_line() {
-        out.line(line)?;
-    }
+    let read = open_model(&args.model, out, strict)?;
     let origin = args.model.display().to_string();
     let base = read.document(&args.model)?;
     let (bytes, text) = read_input(&args.tolerances, "TOLERANCES")?;

@@ -1,7 +1,7 @@
 //! `elastokin tune MODEL TARGETS`: the model's free numbers moved within their bounds to meet the targets.
 
-use super::input::{read_input, read_model};
-use super::strict::{refuse_warned, strict_model};
+use super::input::{open_model, read_input};
+use super::strict::refuse_warned;
 use crate::output::{write_table, wrote, Failure, Progress, Provenance, Staging, Stdout};
 use clap::Args;
 use elastokin::plot;
@@ -26,11 +26,7 @@ pub struct TuneArgs {
 
 /// `tune`: the model's free numbers moved to meet the targets.
 pub fn run(args: TuneArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(), Failure> {
-    let read = read_model(&args.model)?;
-    strict_model(&args.model, &read.file, strict)?;
-    if let Some(line) = read.format_line() {
-        out.line(line)?;
-    }
+    let read = open_model(&args.model, out, strict)?;
     let origin = args.model.display().to_string();
     let base = read.document(&args.model)?;
     let (targets_bytes, targets) = read_targets_file(&args.targets, &base)?;
