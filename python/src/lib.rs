@@ -474,7 +474,8 @@ impl Model {
             let part = &files[results.len()..(results.len() + chunk).min(files.len())];
             let started = std::time::Instant::now();
             let evaluate = || -> Vec<Result<batch::Outcome, String>> {
-                part.par_iter().map(|file| batch::evaluate(file, batch::HALF_RANGE, batch::STEPS)).collect()
+                let run = |file| batch::evaluate(file, batch::HALF_RANGE, batch::STEPS).map_err(|e| e.to_string());
+                part.par_iter().map(run).collect()
             };
             results.extend(py.detach(|| match &pool {
                 None => evaluate(),

@@ -47,7 +47,11 @@ pub fn columns(shard: bool) -> Vec<String> {
 
 /// Runs every variant, `files[k]` being `variants[k]` applied, on the rayon pool, counting each one done on
 /// `progress`.
-pub fn run_all(variants: &[Variant], files: &[SuspensionFile], progress: &Progress) -> Vec<Result<Outcome, String>> {
+pub fn run_all(
+    variants: &[Variant],
+    files: &[SuspensionFile],
+    progress: &Progress,
+) -> Vec<Result<Outcome, VariantFailed>> {
     variants
         .par_iter()
         .zip(files)
@@ -98,7 +102,7 @@ fn variants_table(
     out: &Stdout,
     list: &[Variant],
     range: Range<usize>,
-    results: &[Result<Outcome, String>],
+    results: &[Result<Outcome, VariantFailed>],
     shard: bool,
 ) -> Result<Table, Failure> {
     out.line(format!("{:<28} {:>16} {:>16} {:>14}", "variant", "bump °/10 mm", "camber °/10 mm", "rate N/mm"))?;
@@ -120,7 +124,7 @@ fn variants_table(
             Err(e) => {
                 out.line(format!("{:<28} failed: {e}", v.name))?;
                 let empty = Cell::Empty;
-                vec![name, empty.clone(), empty.clone(), empty, Cell::Text(e.clone())]
+                vec![name, empty.clone(), empty.clone(), empty, Cell::Text(e.to_string())]
             }
         };
         if shard {

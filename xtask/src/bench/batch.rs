@@ -37,7 +37,8 @@ fn variants(count: usize) -> Vec<Variant> {
 /// One variant, start to finish, as `elastokin batch` runs it: edited and read by [`batch::apply`],
 /// judged by [`batch::evaluate`].
 fn evaluate(base: &Value, variant: &Variant) -> Result<batch::Outcome, String> {
-    batch::evaluate(&batch::apply(base, variant).map_err(|e| e.to_string())?, batch::HALF_RANGE, batch::STEPS)
+    let file = batch::apply(base, variant).map_err(|e| e.to_string())?;
+    batch::evaluate(&file, batch::HALF_RANGE, batch::STEPS).map_err(|e| e.to_string())
 }
 
 /// CPU time of every thread of this process (s), from `/proc/self/task/*/schedstat` (Linux); `None`

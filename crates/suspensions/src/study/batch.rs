@@ -16,7 +16,8 @@ use crate::assembly::Rig;
 use crate::description::Side;
 use crate::document::DocumentError;
 use crate::file::SuspensionFile;
-use elastokin_solver::Mode;
+use elastokin_core::ModelError;
+use elastokin_solver::{Mode, SolverError};
 use std::sync::Arc;
 
 /// Each variant walks parallel wheel travel ±`HALF_RANGE` (m)…
@@ -223,6 +224,17 @@ pub enum VariantError {
     Model(Arc<DocumentError>),
 }
 
+/// Why a variant's model, read, did not run ([`evaluate`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum VariantFailed {
+    /// Its model could not be built.
+    #[error(transparent)]
+    Model(#[from] ModelError),
+    /// Its sweep or the reading at design failed.
+    #[error(transparent)]
+    Solver(#[from] SolverError),
+}
+
 /// Headline figures of one variant.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Outcome {
@@ -247,14 +259,13 @@ impl Outcome {
 
 /// Runs one variant: parallel travel ±`half_range` in `steps` (even) steps, its figures the rates at design
 /// read off the path there, as the K&C suite reads them.
-pub fn evaluate(file: &SuspensionFile, half_range: f64, steps: usize) -> Result<Outcome, String> {
-    let corner = file.suspension.build(Side::Left, Rig::WheelTravel).map_err(|e| e.to_string())?;
+pub fn evaluate(file: &SuspensionFile, half_range: f64, steps: usize) -> Result<Outcome, VariantFailed> {
+    let corner = file.suspension.build(Side::Left, Rig::WheelTravel)?;
     let extras = SweepExtras { at_design: Some(0.0), ..SweepExtras::default() };
-    let out = parallel_wheel_travel_with(&corner, -half_range, half_range, steps, Mode::Corrected, extras)
-        .map_err(|e| e.to_string())?;
+    let out = parallel_wheel_travel_with(&corner, -half_range, half_range, steps, Mode::Corrected, extras)?;
     let design = match out.design {
         Some(Ok(design)) => design,
-        Some(Err(e)) => return Err(e.to_string()),
+        Some(Err(e)) => return Err(e.into()),
         None => unreachable!("the design is asked for"),
     };
     Ok(Outcome {
