@@ -508,7 +508,7 @@ impl Model {
 /// most `most` of them.
 fn parse_variants(variants: &Bound<'_, PyAny>, most: Option<usize>) -> PyResult<Vec<Variant>> {
     if let Ok(text) = variants.extract::<String>() {
-        return batch::parse_variants_at_most(&text, "variants", most).map_err(ModelError::new_err);
+        return batch::parse_variants_at_most(&text, "variants", most).map_err(|e| ModelError::new_err(e.to_string()));
     }
     let items: Vec<Bound<'_, PyAny>> = variants.extract()?;
     if items.is_empty() {
@@ -526,7 +526,7 @@ fn parse_variants(variants: &Bound<'_, PyAny>, most: Option<usize>) -> PyResult<
         let place = format!("variants[{k}]");
         if let Ok(line) = item.extract::<String>() {
             let variant = batch::parse_variant(&line, &unnamed, &place)
-                .map_err(ModelError::new_err)?
+                .map_err(|e| ModelError::new_err(e.to_string()))?
                 .ok_or_else(|| ModelError::new_err(format!("{place}: no edits in '{}'", line.trim())))?;
             out.push(variant);
             continue;

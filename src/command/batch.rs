@@ -71,8 +71,8 @@ pub fn run(args: BatchArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(
     let (variant_bytes, variant_text) = read_input(&args.variants, "VARIANTS")?;
     // Every wrong line of the file (a key the model lacks among them) is said before anything runs. The
     // models read here are the ones run.
-    let (list, files) =
-        read_and_apply(&base, &variant_text, &args.variants.display().to_string()).map_err(Failure::Input)?;
+    let (list, files) = read_and_apply(&base, &variant_text, &args.variants.display().to_string())
+        .map_err(|e| Failure::Input(e.to_string()))?;
     let mut provenance = Provenance::new(&args.model, &read.bytes, kc::mode_word(Mode::Corrected), STEPS);
     provenance.range = Some((-HALF_RANGE, HALF_RANGE));
     provenance.variants = Some((args.variants.display().to_string(), sha256_hex(&variant_bytes)));

@@ -111,7 +111,8 @@ fn compare_five(s: &Settings, dir: &std::path::Path) -> Result<f64, String> {
     let base = base_document(&read("examples/generic/macpherson.json")?, "examples/generic/macpherson.json")
         .map_err(|e| e.to_string())?;
     let variants =
-        parse_variants(&read("examples/generic/macpherson_variants.txt")?, "examples/generic/macpherson_variants.txt")?;
+        parse_variants(&read("examples/generic/macpherson_variants.txt")?, "examples/generic/macpherson_variants.txt")
+            .map_err(|e| e.to_string())?;
     let files =
         variants.iter().take(5).map(|v| apply(&base, v)).collect::<Result<Vec<_>, _>>().map_err(|e| e.to_string())?;
     if files.len() < 5 {

@@ -28,6 +28,87 @@ pub const STEPS: usize = 8;
 /// table is written.
 pub const MAX_VARIANTS: usize = 10_000;
 
+/// Why a variants file is not read: a wrong line, too many variants, none.
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum VariantsError {
+    /// A line that is no variant ([`parse_variants`]).
+    #[error(transparent)]
+    Line(#[from] LineError),
+    /// Every wrong line of the file, the first [`WRONG_LINES_LISTED`] listed and the rest counted
+    /// ([`read_and_apply`]).
+    #[error("{}", wrong_lines(lines, *more))]
+    WrongLines {
+        /// The wrong lines listed.
+        lines: Vec<LineError>,
+        /// How many more there are.
+        more: usize,
+    },
+    /// More variants than a batch runs.
+    #[error(
+        "{place}: more than {most} variants; split the file and run a batch for each part (or run them as a \
+         study from Python, which splits them itself)"
+    )]
+    TooMany {
+        /// The file and line of the first variant too many.
+        place: String,
+        /// The most a batch runs.
+        most: usize,
+    },
+    /// No variant at all.
+    #[error("{origin}: no variants (one per line: name: /json/pointer=value; …)")]
+    NoVariants {
+        /// The file.
+        origin: String,
+    },
+}
+
+/// The wrong lines one per line, and how many more there are.
+fn wrong_lines(lines: &[LineError], more: usize) -> String {
+    let mut text: Vec<String> = lines.iter().map(ToString::to_string).collect();
+    if more > 0 {
+        text.push(format!("… and {more} more wrong lines"));
+    }
+    text.join("\n")
+}
+
+/// A line of a variants file that is no variant, at its place (the file and line).
+#[derive(Debug, Clone, thiserror::Error)]
+#[error("{place}: {refusal}")]
+pub struct LineError {
+    /// The file and line.
+    pub place: String,
+    /// What is wrong with it.
+    pub refusal: LineRefusal,
+}
+
+/// What is wrong with a line of a variants file.
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum LineRefusal {
+    /// An edit without `=`.
+    #[error("'{edit}' is not pointer=value")]
+    NotEdit {
+        /// The edit as written.
+        edit: String,
+    },
+    /// A value that is no JSON.
+    #[error("value of '{pointer}' is not JSON: {error}")]
+    NotJson {
+        /// The edit's pointer.
+        pointer: String,
+        /// What the JSON reader says.
+        error: String,
+    },
+    /// A labelled line with no edit.
+    #[error("no edits in '{line}'")]
+    NoEdits {
+        /// The line, trimmed.
+        line: String,
+    },
+    /// A variant that makes no model of the base.
+    #[error(transparent)]
+    Variant(VariantError),
+}
+
 /// One parsed variant: its name and its edits.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Variant {
@@ -38,13 +119,13 @@ pub struct Variant {
 }
 
 /// Parses a variants file of at most [`MAX_VARIANTS`] variants; errors name the line.
-pub fn parse_variants(text: &str, origin: &str) -> Result<Vec<Variant>, String> {
+pub fn parse_variants(text: &str, origin: &str) -> Result<Vec<Variant>, VariantsError> {
     parse_variants_at_most(text, origin, Some(MAX_VARIANTS))
 }
 
 /// Parses a variants file of at most `most` variants (`None`: any number, for a study that splits them into
 /// batches itself); errors name the line.
-pub fn parse_variants_at_most(text: &str, origin: &str, most: Option<usize>) -> Result<Vec<Variant>, String> {
+pub fn parse_variants_at_most(text: &str, origin: &str, most: Option<usize>) -> Result<Vec<Variant>, VariantsError> {
     let mut out = Vec::new();
     for (k, raw) in text.lines().enumerate() {
         let place = format!("{origin}:{}", k + 1);
@@ -52,15 +133,12 @@ pub fn parse_variants_at_most(text: &str, origin: &str, most: Option<usize>) -> 
             continue;
         };
         if let Some(most) = most.filter(|&most| out.len() == most) {
-            return Err(format!(
-                "{place}: more than {most} variants; split the file and run a batch for each part (or run them \
-                 as a study from Python, which splits them itself)"
-            ));
+            return Err(VariantsError::TooMany { place, most });
         }
         out.push(variant);
     }
     if out.is_empty() {
-        return Err(format!("{origin}: no variants (one per line: name: /json/pointer=value; …)"));
+        return Err(VariantsError::NoVariants { origin: origin.to_string() });
     }
     Ok(out)
 }
@@ -76,7 +154,7 @@ pub fn read_and_apply(
     base: &serde_json::Value,
     text: &str,
     origin: &str,
-) -> Result<(Vec<Variant>, Vec<SuspensionFile>), String> {
+) -> Result<(Vec<Variant>, Vec<SuspensionFile>), VariantsError> {
     let (mut variants, mut files, mut wrong) = (Vec::new(), Vec::new(), Vec::new());
     for (k, raw) in text.lines().enumerate() {
         let place = format!("{origin}:{}", k + 1);
@@ -89,36 +167,30 @@ pub fn read_and_apply(
             }
         };
         if variants.len() + wrong.len() == MAX_VARIANTS {
-            return Err(format!(
-                "{place}: more than {MAX_VARIANTS} variants; split the file and run a batch for each part (or run \
-                 them as a study from Python, which splits them itself)"
-            ));
+            return Err(VariantsError::TooMany { place, most: MAX_VARIANTS });
         }
         match apply(base, &variant) {
             Ok(file) => {
                 variants.push(variant);
                 files.push(file);
             }
-            Err(e) => wrong.push(format!("{place}: {e}")),
+            Err(e) => wrong.push(LineError { place, refusal: LineRefusal::Variant(e) }),
         }
     }
     if !wrong.is_empty() {
         let more = wrong.len().saturating_sub(WRONG_LINES_LISTED);
         wrong.truncate(WRONG_LINES_LISTED);
-        if more > 0 {
-            wrong.push(format!("… and {more} more wrong lines"));
-        }
-        return Err(wrong.join("\n"));
+        return Err(VariantsError::WrongLines { lines: wrong, more });
     }
     if variants.is_empty() {
-        return Err(format!("{origin}: no variants (one per line: name: /json/pointer=value; …)"));
+        return Err(VariantsError::NoVariants { origin: origin.to_string() });
     }
     Ok((variants, files))
 }
 
 /// One line of a variants file: `None` for a blank line or a `#` comment. A line without a `name:` label is
 /// named `unnamed`; errors start with `place` (the file and line).
-pub fn parse_variant(line: &str, unnamed: &str, place: &str) -> Result<Option<Variant>, String> {
+pub fn parse_variant(line: &str, unnamed: &str, place: &str) -> Result<Option<Variant>, LineError> {
     let line = line.trim();
     if line.is_empty() || line.starts_with('#') {
         return Ok(None);
@@ -129,13 +201,15 @@ pub fn parse_variant(line: &str, unnamed: &str, place: &str) -> Result<Option<Va
     };
     let mut edits = Vec::new();
     for edit in body.split(';').map(str::trim).filter(|e| !e.is_empty()) {
-        let (pointer, value) = edit.split_once('=').ok_or_else(|| format!("{place}: '{edit}' is not pointer=value"))?;
+        let refused = |refusal| LineError { place: place.to_string(), refusal };
+        let (pointer, value) =
+            edit.split_once('=').ok_or_else(|| refused(LineRefusal::NotEdit { edit: edit.to_string() }))?;
         let value: serde_json::Value = serde_json::from_str(value.trim())
-            .map_err(|e| format!("{place}: value of '{}' is not JSON: {e}", pointer.trim()))?;
+            .map_err(|e| refused(LineRefusal::NotJson { pointer: pointer.trim().to_string(), error: e.to_string() }))?;
         edits.push((pointer.trim().to_string(), value));
     }
     if edits.is_empty() {
-        return Err(format!("{place}: no edits in '{line}'"));
+        return Err(LineError { place: place.to_string(), refusal: LineRefusal::NoEdits { line: line.to_string() } });
     }
     Ok(Some(Variant { name, edits }))
 }
@@ -317,10 +391,12 @@ mod tests {
     fn a_file_of_any_length_is_read_when_no_limit_is_set() {
         let many: String = (0..MAX_VARIANTS + 1).map(|k| format!("/a/{k}=1\n")).collect();
         let err = parse_variants(&many, "many").unwrap_err();
+        assert!(matches!(&err, VariantsError::TooMany { most: MAX_VARIANTS, .. }), "{err:?}");
+        let err = err.to_string();
         assert!(err.starts_with(&format!("many:{}: more than {MAX_VARIANTS} variants", MAX_VARIANTS + 1)), "{err}");
         assert_eq!(parse_variants_at_most(&many, "many", None).unwrap().len(), MAX_VARIANTS + 1);
         assert!(parse_variants_at_most(&many, "many", Some(3)).is_err());
-        let err = parse_variants_at_most(&many, "many", Some(3)).unwrap_err();
+        let err = parse_variants_at_most(&many, "many", Some(3)).unwrap_err().to_string();
         assert!(err.starts_with("many:4: more than 3 variants; split the file"), "{err}");
     }
 }
