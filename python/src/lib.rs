@@ -129,7 +129,7 @@ impl Model {
     #[staticmethod]
     fn read(py: Python<'_>, path: &str) -> PyResult<Model> {
         py.detach(|| {
-            let (_, text) = read_input(Path::new(path), "MODEL")?;
+            let (_, text) = read_input(Path::new(path), "MODEL").map_err(|e| e.to_string())?;
             let (file, _) = parse_model(&text, path).map_err(|e| e.to_string())?;
             let base = batch::base_document(&text, path).map_err(|e| e.to_string())?;
             Ok::<_, String>(Model { file, base, origin: path.to_string() })

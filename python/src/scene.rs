@@ -525,7 +525,7 @@ impl Scene {
         constraint_tolerance: f64,
     ) -> PyResult<SceneSweep> {
         let mode = crate::words::mode_from_word(mode)?;
-        LoadPath::check_steps(steps).map_err(PyValueError::new_err)?;
+        LoadPath::check_steps(steps).map_err(|e| PyValueError::new_err(e.to_string()))?;
         if let Some(step) = arc_step.filter(|v| !(v.is_finite() && *v > 0.0)) {
             return Err(PyValueError::new_err(format!(
                 "arc_step must be a positive change of the load parameter, got {step}"

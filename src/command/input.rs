@@ -21,7 +21,7 @@ pub fn open_model(path: &Path, out: &Stdout, strict: bool) -> Result<ModelInput,
 
 /// Reads an input file whole; errors name the file and what it is for.
 pub fn read_input(path: &Path, what: &str) -> Result<(Vec<u8>, String), Failure> {
-    elastokin::suspensions::file::read_input(path, what).map_err(Failure::Input)
+    elastokin::suspensions::file::read_input(path, what).map_err(|e| Failure::Input(e.to_string()))
 }
 
 /// A model read from a file: its bytes (for the provenance hash), the model parsed from them and, for

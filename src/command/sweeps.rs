@@ -86,7 +86,7 @@ impl AnalysisName {
 pub fn parse_steps(text: &str) -> Result<usize, String> {
     let n: u64 = text.trim().parse().map_err(|_| format!("'{text}' is not a whole number of steps"))?;
     let n = usize::try_from(n).unwrap_or(usize::MAX);
-    LoadPath::check_steps(n).map(|()| n)
+    LoadPath::check_steps(n).map(|()| n).map_err(|e| e.to_string())
 }
 
 fn parse_range(text: &str) -> Result<(f64, f64), String> {

@@ -608,6 +608,46 @@ fn no_modules_form_a_cycle() {
     assert!(found.is_empty(), "modules import one another in a circle:\n{}", found.join("\n"));
 }
 
+/// The public functions of `text` whose error is text (`-> Result<_, String>`), by line: a library's
+/// errors are typed to the top, rendered where text is written.
+fn text_errors(text: &str) -> Vec<usize> {
+    let code = code_only(text);
+    let mut found = Vec::new();
+    for (at, _) in code.match_indices("pub fn ") {
+        let signature = &code[at..];
+        let end = signature.find(['{', ';']).unwrap_or(signature.len());
+        let signature: String = signature[..end].split_whitespace().collect::<Vec<_>>().join(" ");
+        if signature.contains("-> Result<") && signature.ends_with(", String>") {
+            found.push(code[..at].matches('\n').count() + 1);
+        }
+    }
+    found
+}
+
+#[test]
+fn no_library_function_gives_its_error_as_text() {
+    let root = repo_root();
+    let mut found = Vec::new();
+    for src in ["crates/core/src", "crates/elements/src", "crates/solver/src", "crates/suspensions/src"] {
+        let mut files = Vec::new();
+        rust_files(&root.join(src), &mut files);
+        for file in files {
+            let text = std::fs::read_to_string(&file).expect("a source file reads");
+            for line in text_errors(&text) {
+                found.push(format!("{}:{line}", file.strip_prefix(&root).unwrap_or(&file).display()));
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "public functions whose error is a String (give them a typed error):\n{}",
+        found.join("\n")
+    );
+    // The rule finds one, over lines, and leaves a typed error and text that is no error alone.
+    let planted = "pub fn read(\n    text: &str,\n) -> Result<Model,\n    String> {\n}\npub fn ok() -> Result<String, Error> {}\n";
+    assert_eq!(text_errors(planted), vec![1]);
+}
+
 #[test]
 fn comments_name_only_files_of_the_repository() {
     let root = repo_root();

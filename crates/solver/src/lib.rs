@@ -72,6 +72,6 @@ pub mod solver;
 
 pub use error::SolverError;
 pub use kkt::{Accuracy, BackendChoice, FactorCounters, KktBackend, KktOptions};
-pub use options::{ArcStep, LoadPath, Mode, SolverOptions, State, MAX_STEPS};
+pub use options::{ArcStep, LoadPath, Mode, SolverOptions, State, StepsError, MAX_STEPS};
 pub use results::{Diagnostics, JointReaction, LimitPoint, PathRates, RedundantRow, StepResult, Sweep};
 pub use solver::{Counters, SolverWorkspace, StaticSolver, LIMIT_POINT_TOLERANCE};

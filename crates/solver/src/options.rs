@@ -110,16 +110,30 @@ impl LoadPath {
     /// Refuses a step count no sweep takes: none, or more than [`MAX_STEPS`]. The error is why, in the
     /// words every front end shows (the command's `--steps`, a Python sweep's `steps`, a library call's
     /// [`LoadPath`]).
-    pub fn check_steps(steps: usize) -> Result<(), String> {
+    pub fn check_steps(steps: usize) -> Result<(), StepsError> {
         match steps {
-            0 => Err("a sweep needs at least 1 step, got 0".into()),
+            0 => Err(StepsError::NoSteps),
             1..=MAX_STEPS => Ok(()),
-            _ => Err(format!(
-                "a sweep takes at most {MAX_STEPS} steps, got {steps}: every step keeps the solved model in memory \
-                 and costs solver time; for a finer look, narrow its range"
-            )),
+            _ => Err(StepsError::TooMany { steps }),
         }
     }
+}
+
+/// A step count no sweep takes ([`LoadPath::check_steps`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum StepsError {
+    /// None.
+    #[error("a sweep needs at least 1 step, got 0")]
+    NoSteps,
+    /// More than [`MAX_STEPS`].
+    #[error(
+        "a sweep takes at most {MAX_STEPS} steps, got {steps}: every step keeps the solved model in memory and \
+         costs solver time; for a finer look, narrow its range"
+    )]
+    TooMany {
+        /// The steps asked for.
+        steps: usize,
+    },
 }
 
 /// The most load steps one sweep takes: every step keeps its solved state in memory and costs solver time,

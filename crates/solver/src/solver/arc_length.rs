@@ -46,7 +46,8 @@ impl<'m> StaticSolver<'m> {
             ArcStep::Load(v) | ArcStep::Scaled(v) => v,
         };
         let (lo, hi) = (path.start.min(path.end), path.start.max(path.end));
-        LoadPath::check_steps(path.steps).map_err(|why| SolverError::InvalidInput { what: "arc-length path", why })?;
+        LoadPath::check_steps(path.steps)
+            .map_err(|e| SolverError::InvalidInput { what: "arc-length path", why: e.to_string() })?;
         if !(length.is_finite() && length > 0.0 && lo.is_finite() && hi.is_finite()) {
             return Err(SolverError::InvalidInput {
                 what: "arc-length path",

@@ -592,7 +592,8 @@ impl<'m> StaticSolver<'m> {
     }
 
     fn walk_path(&mut self, state: &mut State, path: LoadPath, mode: Mode) -> Result<Sweep, SolverError> {
-        LoadPath::check_steps(path.steps).map_err(|why| SolverError::InvalidInput { what: "load path", why })?;
+        LoadPath::check_steps(path.steps)
+            .map_err(|e| SolverError::InvalidInput { what: "load path", why: e.to_string() })?;
         if !path.start.is_finite() || !path.end.is_finite() {
             return Err(SolverError::InvalidInput {
                 what: "load path",

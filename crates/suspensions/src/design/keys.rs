@@ -87,7 +87,7 @@ pub enum KeyRefusal {
     #[error("steps: {why}")]
     Steps {
         /// Why.
-        why: String,
+        why: elastokin_solver::StepsError,
     },
 }
 

@@ -583,16 +583,44 @@ pub const MAX_FILE_BYTES: u64 = 16 << 20;
 
 /// Reads an input file whole, as bytes and as text; errors name the file and `what` it is for (`MODEL`,
 /// `VARIANTS`), as the command says them.
-pub fn read_input(path: &Path, what: &str) -> Result<(Vec<u8>, String), String> {
+pub fn read_input(path: &Path, what: &str) -> Result<(Vec<u8>, String), InputError> {
     use std::io::Read;
-    let shown = path.display();
-    let fail = |why: String| format!("{what} '{shown}': {why}");
-    let file = std::fs::File::open(path).map_err(|e| fail(format!("cannot open it: {e}")))?;
+    let fail = |why| InputError { what: what.to_string(), path: path.display().to_string(), why };
+    let file = std::fs::File::open(path).map_err(|e| fail(InputRefusal::Open(e.to_string())))?;
     let mut bytes = Vec::new();
-    file.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes).map_err(|e| fail(format!("cannot read it: {e}")))?;
+    file.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes).map_err(|e| fail(InputRefusal::Read(e.to_string())))?;
     if bytes.len() as u64 > MAX_FILE_BYTES {
-        return Err(fail(format!("larger than {} MiB; is it the right file?", MAX_FILE_BYTES >> 20)));
+        return Err(fail(InputRefusal::TooLarge));
     }
-    let text = String::from_utf8(bytes.clone()).map_err(|_| fail("not UTF-8 text".into()))?;
+    let text = String::from_utf8(bytes.clone()).map_err(|_| fail(InputRefusal::NotText))?;
     Ok((bytes, text))
+}
+
+/// An input file not read ([`read_input`]): which, what it is for, and why.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{what} '{path}': {why}")]
+pub struct InputError {
+    /// What the file is for (`MODEL`, `VARIANTS`).
+    pub what: String,
+    /// The file as given.
+    pub path: String,
+    /// Why it is not read.
+    pub why: InputRefusal,
+}
+
+/// Why an input file is not read.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum InputRefusal {
+    /// It cannot be opened, in the system's words.
+    #[error("cannot open it: {0}")]
+    Open(String),
+    /// It cannot be read, in the system's words.
+    #[error("cannot read it: {0}")]
+    Read(String),
+    /// It is larger than [`MAX_FILE_BYTES`].
+    #[error("larger than {} MiB; is it the right file?", MAX_FILE_BYTES >> 20)]
+    TooLarge,
+    /// It is no UTF-8 text.
+    #[error("not UTF-8 text")]
+    NotText,
 }

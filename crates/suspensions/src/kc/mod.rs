@@ -85,8 +85,8 @@ pub fn run_on(analysis: Analysis, models: &Models, settings: &Settings) -> Resul
 /// Whether `settings` make sense for `analysis` (steps, arc step, range in its units), before any model is
 /// read: a front end refuses bad settings as bad input rather than as a failed run.
 pub fn check_settings(analysis: Analysis, settings: &Settings) -> Result<(), AnalysisError> {
-    if let Err(message) = LoadPath::check_steps(settings.steps) {
-        return Err(AnalysisError { analysis: analysis.name(), cause: Cause::Settings(message) });
+    if let Err(e) = LoadPath::check_steps(settings.steps) {
+        return Err(AnalysisError { analysis: analysis.name(), cause: Cause::Settings(e.to_string()) });
     }
     if let Some(step) = settings.arc_step.filter(|v| !(v.is_finite() && *v > 0.0)) {
         let got = plain(step);
