@@ -18,7 +18,9 @@
 pub mod key_path;
 
 use crate::description::limits::{looks_like_millimetres, MAX_COORDINATE, MAX_FORCE, MAX_RATE};
-use crate::description::{ArmMounts, Connection, Stiffness, Template, VehicleParameters};
+use crate::description::{
+    ArmMounts, BushingDef, Connection, GeneralCorner, LoadDef, SpringSpec, Stiffness, Template, VehicleParameters,
+};
 use elastokin_core::ModelError;
 pub use key_path::key_path_at;
 use key_path::{first_unprintable, key_before, locate};
@@ -313,8 +315,20 @@ impl SuspensionFile {
 
     /// Refuses values no suspension has: hardpoint coordinates beyond ±1000 m, rates outside
     /// (0, 10¹²], a loaded radius outside 0.05–2 m, a design force beyond ±10⁶ N, and vehicle
-    /// parameters outside the ranges of road vehicles.
+    /// parameters outside the ranges of road vehicles. The first refused is the first of: a hardpoint, a
+    /// general model's load, a spring's or bar's rate, a spring's design force, the loaded radius, any other
+    /// rate, the vehicle.
     pub fn check_ranges(&self) -> Result<(), OutOfRange> {
+        self.check_hardpoints()?;
+        if let Template::General(g) = &self.suspension {
+            check_loads(&g.loads)?;
+        }
+        RangedValues::of(&self.suspension).check()?;
+        self.vehicle.as_ref().map_or(Ok(()), check_vehicle)
+    }
+
+    /// Every hardpoint coordinate within ±[`MAX_COORDINATE`]; a file in millimetres is told so.
+    fn check_hardpoints(&self) -> Result<(), OutOfRange> {
         let points = self.suspension.hardpoints();
         for (name, p) in &points {
             for (axis, c) in ["x", "y", "z"].into_iter().zip(p.iter()) {
@@ -336,231 +350,6 @@ impl SuspensionFile {
                 }
             }
         }
-        let typical_t = "a suspension bushing is 1e5–1e8 N/m";
-        let typical_r = "a suspension bushing is 10–1e5 N·m/rad";
-        let typical_spring = "a car's coil spring is 1e4–3e5 N/m";
-        // Every rate with its keys, unit and typical range; every spring force with its keys.
-        let mut rates: Vec<(Vec<String>, &str, f64, &str)> = Vec::new();
-        let mut forces: Vec<(Vec<String>, f64)> = Vec::new();
-        let keys = |k: &[&str]| k.iter().map(|k| k.to_string()).collect::<Vec<_>>();
-        let connection = |rates: &mut Vec<_>, key: Vec<String>, c: &Connection| {
-            if let Connection::Bushing(r) = c {
-                for (what, unit, value, typical) in [
-                    ("radial", "N/m", r.radial, typical_t),
-                    ("axial", "N/m", r.axial, typical_t),
-                    ("torsion", "N·m/rad", r.torsion, typical_r),
-                    ("conical", "N·m/rad", r.conical, typical_r),
-                ] {
-                    let mut k = key.clone();
-                    k.extend(["bushing".to_string(), what.to_string()]);
-                    rates.push((k, unit, value, typical));
-                }
-            }
-        };
-        let arm = |rates: &mut Vec<_>, key: &str, m: &ArmMounts| {
-            if m.front == m.rear {
-                connection(rates, keys(&[key]), &m.front);
-            } else {
-                connection(rates, keys(&[key, "front"]), &m.front);
-                connection(rates, keys(&[key, "rear"]), &m.rear);
-            }
-        };
-        let (loaded_radius, radius_keys) = match &self.suspension {
-            Template::DoubleWishbone(t) => {
-                arm(&mut rates, "upper_arm_mounts", &t.upper_arm_mounts);
-                arm(&mut rates, "lower_arm_mounts", &t.lower_arm_mounts);
-                connection(&mut rates, keys(&["tie_rod"]), &t.tie_rod);
-                rates.push((keys(&["spring", "rate"]), "N/m", t.spring.rate, typical_spring));
-                forces.push((keys(&["spring", "design_force"]), t.spring.design_force));
-                (t.loaded_radius, keys(&["loaded_radius"]))
-            }
-            Template::TwistBeam(t) => {
-                connection(&mut rates, keys(&["pivots"]), &t.pivots);
-                rates.push((keys(&["spring", "rate"]), "N/m", t.spring.rate, typical_spring));
-                forces.push((keys(&["spring", "design_force"]), t.spring.design_force));
-                (t.loaded_radius, keys(&["loaded_radius"]))
-            }
-            Template::MacPherson(t) => {
-                arm(&mut rates, "lower_arm_mounts", &t.lower_arm_mounts);
-                connection(&mut rates, keys(&["top_mount"]), &t.top_mount);
-                connection(&mut rates, keys(&["tie_rod"]), &t.tie_rod);
-                rates.push((keys(&["spring", "rate"]), "N/m", t.spring.rate, typical_spring));
-                forces.push((keys(&["spring", "design_force"]), t.spring.design_force));
-                (t.loaded_radius, keys(&["loaded_radius"]))
-            }
-            Template::General(g) => {
-                for b in &g.bushings {
-                    let key = |what: &str| vec!["bushings".to_string(), b.name.clone(), what.to_string()];
-                    let given = [
-                        ("radial", "N/m", &b.radial, typical_t),
-                        ("axial", "N/m", &b.axial, typical_t),
-                        ("torsion", "N·m/rad", &b.torsion, typical_r),
-                        ("conical", "N·m/rad", &b.conical, typical_r),
-                    ];
-                    // Rates here; a curve's points are checked by the curve, naming the point.
-                    for (what, unit, value, typical) in given {
-                        if let Some(v) = value.as_ref().and_then(Stiffness::rate) {
-                            rates.push((key(what), unit, v, typical));
-                        }
-                    }
-                    for (what, unit, values, typical) in [
-                        ("translation", "N/m", &b.translation, typical_t),
-                        ("rotation", "N·m/rad", &b.rotation, typical_r),
-                    ] {
-                        for v in values.iter().flatten().filter_map(Stiffness::rate) {
-                            rates.push((key(what), unit, v, typical));
-                        }
-                    }
-                }
-                for s in &g.springs {
-                    if let Some(rate) = s.rate {
-                        rates.push((
-                            vec!["springs".into(), s.name.clone(), "rate".into()],
-                            "N/m",
-                            rate,
-                            typical_spring,
-                        ));
-                    }
-                    if let Some(f) = s.design_force {
-                        forces.push((vec!["springs".into(), s.name.clone(), "design_force".into()], f));
-                    }
-                }
-                for bar in &g.anti_roll_bars {
-                    let typical = "a car's anti-roll bar is 1e3–1e5 N·m/rad";
-                    if let Some(rate) = bar.rate {
-                        let key = vec!["anti_roll_bars".into(), bar.name.clone(), "rate".into()];
-                        rates.push((key, "N·m/rad", rate, typical));
-                    }
-                }
-                if let Some(t) = &g.corner.tie_rod {
-                    let m = &t.connection;
-                    if m.inner == m.outer {
-                        connection(&mut rates, keys(&["corner", "tie_rod", "connection"]), &m.inner);
-                    } else {
-                        connection(&mut rates, keys(&["corner", "tie_rod", "connection", "inner"]), &m.inner);
-                        connection(&mut rates, keys(&["corner", "tie_rod", "connection", "outer"]), &m.outer);
-                    }
-                }
-                for load in &g.loads {
-                    for (what, values) in [("force", load.force), ("torque", load.torque)] {
-                        let largest = values.map_or(0.0, |v| {
-                            v.iter().fold(0.0_f64, |m, c| if c.is_nan() { f64::NAN } else { m.max(c.abs()) })
-                        });
-                        if largest.is_nan() || largest > MAX_FORCE {
-                            return Err(OutOfRange {
-                                keys: vec!["loads".into(), load.name.clone(), what.into()],
-                                message: format!(
-                                    "loads.{}.{what}: a component of {} is beyond ±{MAX_FORCE:e} (N or N·m): give \
-                                     a load a suspension carries",
-                                    load.name,
-                                    crate::description::limits::plain(largest)
-                                ),
-                            });
-                        }
-                    }
-                }
-                (g.corner.loaded_radius, keys(&["corner", "loaded_radius"]))
-            }
-        };
-        let rate = |keys: &[String], unit: &str, value: f64, typical: &str| {
-            if value > 0.0 && value <= MAX_RATE {
-                return Ok(());
-            }
-            Err(OutOfRange {
-                keys: keys.to_vec(),
-                message: format!(
-                    "{}: {} {unit} is outside the accepted range (0, 1e12] {unit} ({typical})",
-                    keys.join("."),
-                    crate::description::limits::plain(value)
-                ),
-            })
-        };
-        // A spring's rate before its force, as the file reads.
-        for (keys, unit, value, typical) in &rates {
-            if keys.last().is_some_and(|k| k == "rate") {
-                rate(keys, unit, *value, typical)?;
-            }
-        }
-        for (keys, force) in &forces {
-            if force.is_nan() || force.abs() > MAX_FORCE {
-                return Err(OutOfRange {
-                    keys: keys.clone(),
-                    message: format!(
-                        "{}: {} N is beyond ±{MAX_FORCE:e} N (a car's spring carries 2e3–2e4 N)",
-                        keys.join("."),
-                        crate::description::limits::plain(*force)
-                    ),
-                });
-            }
-        }
-        if !crate::description::limits::LOADED_RADIUS.contains(&loaded_radius) {
-            return Err(OutOfRange {
-                keys: radius_keys.clone(),
-                message: format!(
-                    "{}: {} m is outside 0.05–2 m (a car's tyre is 0.25–0.40 m, in metres)",
-                    radius_keys.join("."),
-                    crate::description::limits::plain(loaded_radius)
-                ),
-            });
-        }
-        for (keys, unit, value, typical) in &rates {
-            rate(keys, unit, *value, typical)?;
-        }
-        if let Some(v) = &self.vehicle {
-            let fields = [
-                ("wheelbase", v.wheelbase, 0.5, 20.0, "m", "from a kart's to a long bus's"),
-                ("cg_height", v.cg_height, 0.05, 5.0, "m", "the centre of gravity's height above the ground"),
-                ("corner_load", v.corner_load, 1.0, 1e6, "N", "the corner's share of the weight, in newtons"),
-                (
-                    "brake_front_fraction",
-                    v.brake_front_fraction,
-                    0.0,
-                    1.0,
-                    "",
-                    "the front axle's share of the braking force",
-                ),
-                (
-                    "drive_front_fraction",
-                    v.drive_front_fraction,
-                    0.0,
-                    1.0,
-                    "",
-                    "the front axle's share of the drive force",
-                ),
-            ];
-            // The optional ones, checked when given.
-            let optional = [
-                ("tyre_rate", v.tyre_rate, 1e4, 1e7, "N/m", "a car's tyre is 2e5–3e5 N/m"),
-                (
-                    "rack_travel_per_revolution",
-                    v.rack_travel_per_revolution,
-                    0.01,
-                    0.2,
-                    "m",
-                    "rack travel per turn of the hand wheel: a car's is 0.04–0.06 m",
-                ),
-            ];
-            let fields = fields.into_iter().chain(
-                optional
-                    .into_iter()
-                    .filter_map(|(key, value, lo, hi, unit, why)| value.map(|value| (key, value, lo, hi, unit, why))),
-            );
-            for (key, value, lo, hi, unit, why) in fields {
-                if !(lo..=hi).contains(&value) {
-                    return Err(OutOfRange {
-                        keys: vec!["vehicle".into(), key.into()],
-                        message: format!(
-                            "vehicle.{key}: {} {unit} is outside {}–{} {unit} ({why})",
-                            crate::description::limits::plain(value),
-                            crate::description::limits::plain(lo),
-                            crate::description::limits::plain(hi)
-                        )
-                        .replace("  ", " ")
-                        .replace(" )", ")"),
-                    });
-                }
-            }
-        }
         Ok(())
     }
 
@@ -576,6 +365,272 @@ impl SuspensionFile {
     pub fn write(&self, path: &Path) -> Result<(), FileError> {
         std::fs::write(path, self.to_json()).map_err(|source| FileError::Io { path: path.to_path_buf(), source })
     }
+}
+
+/// A bushing's translational rates, as a rate out of range says.
+const TYPICAL_TRANSLATION: &str = "a suspension bushing is 1e5–1e8 N/m";
+/// A bushing's rotational rates.
+const TYPICAL_ROTATION: &str = "a suspension bushing is 10–1e5 N·m/rad";
+/// A coil spring's rate.
+const TYPICAL_SPRING: &str = "a car's coil spring is 1e4–3e5 N/m";
+/// An anti-roll bar's rate.
+const TYPICAL_ANTI_ROLL_BAR: &str = "a car's anti-roll bar is 1e3–1e5 N·m/rad";
+
+/// The keys `k` as owned strings.
+fn keys(k: &[&str]) -> Vec<String> {
+    k.iter().map(|k| k.to_string()).collect()
+}
+
+/// A general model's point loads: each component of a force or torque within ±[`MAX_FORCE`].
+fn check_loads(loads: &[LoadDef]) -> Result<(), OutOfRange> {
+    for load in loads {
+        for (what, values) in [("force", load.force), ("torque", load.torque)] {
+            let largest = values
+                .map_or(0.0, |v| v.iter().fold(0.0_f64, |m, c| if c.is_nan() { f64::NAN } else { m.max(c.abs()) }));
+            if largest.is_nan() || largest > MAX_FORCE {
+                return Err(OutOfRange {
+                    keys: vec!["loads".into(), load.name.clone(), what.into()],
+                    message: format!(
+                        "loads.{}.{what}: a component of {} is beyond ±{MAX_FORCE:e} (N or N·m): give a load a \
+                         suspension carries",
+                        load.name,
+                        crate::description::limits::plain(largest)
+                    ),
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A rate of the file: the keys leading to it, its unit, its value and what such a rate typically is.
+struct Rate {
+    keys: Vec<String>,
+    unit: &'static str,
+    value: f64,
+    typical: &'static str,
+}
+
+impl Rate {
+    /// Refused outside (0, [`MAX_RATE`]].
+    fn check(&self) -> Result<(), OutOfRange> {
+        let Rate { keys, unit, value, typical } = self;
+        if *value > 0.0 && *value <= MAX_RATE {
+            return Ok(());
+        }
+        Err(OutOfRange {
+            keys: keys.to_vec(),
+            message: format!(
+                "{}: {} {unit} is outside the accepted range (0, 1e12] {unit} ({typical})",
+                keys.join("."),
+                crate::description::limits::plain(*value)
+            ),
+        })
+    }
+}
+
+/// A suspension's values held to a range other than its hardpoints and loads: every rate (bushings,
+/// springs, bars), every spring's design force, and the loaded radius, each with its keys, in file order.
+struct RangedValues {
+    rates: Vec<Rate>,
+    forces: Vec<(Vec<String>, f64)>,
+    loaded_radius: f64,
+    radius_keys: Vec<String>,
+}
+
+impl RangedValues {
+    /// The values of `template`.
+    fn of(template: &Template) -> Self {
+        let mut values =
+            RangedValues { rates: Vec::new(), forces: Vec::new(), loaded_radius: 0.0, radius_keys: Vec::new() };
+        match template {
+            Template::DoubleWishbone(t) => {
+                values.arm("upper_arm_mounts", &t.upper_arm_mounts);
+                values.arm("lower_arm_mounts", &t.lower_arm_mounts);
+                values.connection(keys(&["tie_rod"]), &t.tie_rod);
+                values.template_spring(&t.spring, t.loaded_radius);
+            }
+            Template::TwistBeam(t) => {
+                values.connection(keys(&["pivots"]), &t.pivots);
+                values.template_spring(&t.spring, t.loaded_radius);
+            }
+            Template::MacPherson(t) => {
+                values.arm("lower_arm_mounts", &t.lower_arm_mounts);
+                values.connection(keys(&["top_mount"]), &t.top_mount);
+                values.connection(keys(&["tie_rod"]), &t.tie_rod);
+                values.template_spring(&t.spring, t.loaded_radius);
+            }
+            Template::General(g) => values.general(g),
+        }
+        values
+    }
+
+    /// A bushing connection's four rates, under `key`; an ideal joint has none.
+    fn connection(&mut self, key: Vec<String>, c: &Connection) {
+        if let Connection::Bushing(r) = c {
+            for (what, unit, value, typical) in [
+                ("radial", "N/m", r.radial, TYPICAL_TRANSLATION),
+                ("axial", "N/m", r.axial, TYPICAL_TRANSLATION),
+                ("torsion", "N·m/rad", r.torsion, TYPICAL_ROTATION),
+                ("conical", "N·m/rad", r.conical, TYPICAL_ROTATION),
+            ] {
+                let mut keys = key.clone();
+                keys.extend(["bushing".to_string(), what.to_string()]);
+                self.rates.push(Rate { keys, unit, value, typical });
+            }
+        }
+    }
+
+    /// An arm's mounts: one connection for both pivots, or the front's and the rear's.
+    fn arm(&mut self, key: &str, m: &ArmMounts) {
+        if m.front == m.rear {
+            self.connection(keys(&[key]), &m.front);
+        } else {
+            self.connection(keys(&[key, "front"]), &m.front);
+            self.connection(keys(&[key, "rear"]), &m.rear);
+        }
+    }
+
+    /// A template's coil spring and loaded radius.
+    fn template_spring(&mut self, spring: &SpringSpec, loaded_radius: f64) {
+        self.rates.push(Rate {
+            keys: keys(&["spring", "rate"]),
+            unit: "N/m",
+            value: spring.rate,
+            typical: TYPICAL_SPRING,
+        });
+        self.forces.push((keys(&["spring", "design_force"]), spring.design_force));
+        (self.loaded_radius, self.radius_keys) = (loaded_radius, keys(&["loaded_radius"]));
+    }
+
+    /// The general model's bushings, springs, anti-roll bars, tie rod and loaded radius.
+    fn general(&mut self, g: &GeneralCorner) {
+        for b in &g.bushings {
+            self.bushing(b);
+        }
+        for s in &g.springs {
+            if let Some(rate) = s.rate {
+                let keys = vec!["springs".into(), s.name.clone(), "rate".into()];
+                self.rates.push(Rate { keys, unit: "N/m", value: rate, typical: TYPICAL_SPRING });
+            }
+            if let Some(f) = s.design_force {
+                self.forces.push((vec!["springs".into(), s.name.clone(), "design_force".into()], f));
+            }
+        }
+        for bar in &g.anti_roll_bars {
+            if let Some(rate) = bar.rate {
+                let keys = vec!["anti_roll_bars".into(), bar.name.clone(), "rate".into()];
+                self.rates.push(Rate { keys, unit: "N·m/rad", value: rate, typical: TYPICAL_ANTI_ROLL_BAR });
+            }
+        }
+        if let Some(t) = &g.corner.tie_rod {
+            let m = &t.connection;
+            if m.inner == m.outer {
+                self.connection(keys(&["corner", "tie_rod", "connection"]), &m.inner);
+            } else {
+                self.connection(keys(&["corner", "tie_rod", "connection", "inner"]), &m.inner);
+                self.connection(keys(&["corner", "tie_rod", "connection", "outer"]), &m.outer);
+            }
+        }
+        (self.loaded_radius, self.radius_keys) = (g.corner.loaded_radius, keys(&["corner", "loaded_radius"]));
+    }
+
+    /// A general bushing's rates; a curve's points are checked by the curve, naming the point.
+    fn bushing(&mut self, b: &BushingDef) {
+        let key = |what: &str| vec!["bushings".to_string(), b.name.clone(), what.to_string()];
+        let given = [
+            ("radial", "N/m", &b.radial, TYPICAL_TRANSLATION),
+            ("axial", "N/m", &b.axial, TYPICAL_TRANSLATION),
+            ("torsion", "N·m/rad", &b.torsion, TYPICAL_ROTATION),
+            ("conical", "N·m/rad", &b.conical, TYPICAL_ROTATION),
+        ];
+        for (what, unit, value, typical) in given {
+            if let Some(value) = value.as_ref().and_then(Stiffness::rate) {
+                self.rates.push(Rate { keys: key(what), unit, value, typical });
+            }
+        }
+        for (what, unit, values, typical) in [
+            ("translation", "N/m", &b.translation, TYPICAL_TRANSLATION),
+            ("rotation", "N·m/rad", &b.rotation, TYPICAL_ROTATION),
+        ] {
+            for value in values.iter().flatten().filter_map(Stiffness::rate) {
+                self.rates.push(Rate { keys: key(what), unit, value, typical });
+            }
+        }
+    }
+
+    /// The springs' and bars' rates first and their design forces, as the file reads, then the loaded
+    /// radius, then every other rate.
+    fn check(&self) -> Result<(), OutOfRange> {
+        for rate in self.rates.iter().filter(|r| r.keys.last().is_some_and(|k| k == "rate")) {
+            rate.check()?;
+        }
+        for (keys, force) in &self.forces {
+            if force.is_nan() || force.abs() > MAX_FORCE {
+                return Err(OutOfRange {
+                    keys: keys.clone(),
+                    message: format!(
+                        "{}: {} N is beyond ±{MAX_FORCE:e} N (a car's spring carries 2e3–2e4 N)",
+                        keys.join("."),
+                        crate::description::limits::plain(*force)
+                    ),
+                });
+            }
+        }
+        if !crate::description::limits::LOADED_RADIUS.contains(&self.loaded_radius) {
+            return Err(OutOfRange {
+                keys: self.radius_keys.clone(),
+                message: format!(
+                    "{}: {} m is outside 0.05–2 m (a car's tyre is 0.25–0.40 m, in metres)",
+                    self.radius_keys.join("."),
+                    crate::description::limits::plain(self.loaded_radius)
+                ),
+            });
+        }
+        self.rates.iter().try_for_each(Rate::check)
+    }
+}
+
+/// The vehicle's parameters within the ranges of road vehicles: each as a rule of its key, value, range,
+/// unit and why; the optional ones when given.
+fn check_vehicle(v: &VehicleParameters) -> Result<(), OutOfRange> {
+    let fields = [
+        ("wheelbase", v.wheelbase, 0.5, 20.0, "m", "from a kart's to a long bus's"),
+        ("cg_height", v.cg_height, 0.05, 5.0, "m", "the centre of gravity's height above the ground"),
+        ("corner_load", v.corner_load, 1.0, 1e6, "N", "the corner's share of the weight, in newtons"),
+        ("brake_front_fraction", v.brake_front_fraction, 0.0, 1.0, "", "the front axle's share of the braking force"),
+        ("drive_front_fraction", v.drive_front_fraction, 0.0, 1.0, "", "the front axle's share of the drive force"),
+    ];
+    let optional = [
+        ("tyre_rate", v.tyre_rate, 1e4, 1e7, "N/m", "a car's tyre is 2e5–3e5 N/m"),
+        (
+            "rack_travel_per_revolution",
+            v.rack_travel_per_revolution,
+            0.01,
+            0.2,
+            "m",
+            "rack travel per turn of the hand wheel: a car's is 0.04–0.06 m",
+        ),
+    ];
+    let given = optional
+        .into_iter()
+        .filter_map(|(key, value, lo, hi, unit, why)| value.map(|value| (key, value, lo, hi, unit, why)));
+    for (key, value, lo, hi, unit, why) in fields.into_iter().chain(given) {
+        if !(lo..=hi).contains(&value) {
+            return Err(OutOfRange {
+                keys: vec!["vehicle".into(), key.into()],
+                message: format!(
+                    "vehicle.{key}: {} {unit} is outside {}–{} {unit} ({why})",
+                    crate::description::limits::plain(value),
+                    crate::description::limits::plain(lo),
+                    crate::description::limits::plain(hi)
+                )
+                .replace("  ", " ")
+                .replace(" )", ")"),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// The largest model or variants file read: far beyond any real one, small enough to read at once.
