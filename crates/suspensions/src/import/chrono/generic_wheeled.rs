@@ -92,35 +92,114 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
         doc.expect("Output");
         b.notes.push("Output: Chrono's output switch, not part of the suspension".into());
     }
+    let bodies = bodies(doc)?;
+    let upright = upright(doc, &bodies)?;
+    let elements = Elements::read(doc, &bodies)?;
+    let steering = Steering::read(doc, &elements, &bodies, &upright)?;
+    let (tie_rod, steering_link) = steering.tie_rod_and_link(&upright)?;
+    if !steerable && !steering.inputs.is_empty() {
+        return Err(Refusal::unusable(
+            &["Steerable", "Steering"],
+            "\"Steerable\" is false, yet an element joins \"Steering\": Chrono gives an unsteered suspension \
+                    no steering link; join the toe link to the chassis, or make the suspension steerable",
+        ));
+    }
 
-    // Bodies: one per side (mirrored), or one shared by both sides (an axle tube, a tie rod across), which
-    // goes in the model's axle.
-    let bodies = list(doc, "Bodies");
-    let mut positions: BTreeMap<String, (String, Vec3)> = BTreeMap::new();
-    let mut order = Vec::new();
-    let mut shared = BTreeSet::new();
-    for path in &bodies {
+    write_bodies(doc, b, &bodies, &upright, &steering.rods)?;
+    let mut names = BTreeSet::new();
+    let upright_joints = write_joints(doc, b, &elements.joints, &steering.joints, &upright, &mut names)?;
+    let link_ends = write_links(doc, b, &elements.links, &upright, &mut names)?;
+    if let Some(input) = tie_rod {
+        write_tie_rod(b, input);
+    }
+    if let Some(input) = steering_link {
+        write_steering_link(b, input, &upright)?;
+    }
+    if steerable && steering.inputs.is_empty() {
+        b.notes.push(
+            "\"Steerable\" is true but nothing joins \"Steering\": no tie rod, the steering analysis does not apply"
+                .into(),
+        );
+    }
+    write_springs(doc, b, &elements.tsdas, &upright, &mut names)?;
+    write_rsdas(doc, b, &elements.rsdas, &upright, &mut names)?;
+    if upright.welded {
+        b.wheel_vertical_steering_axis()?;
+        b.notes.push("steering axis: the wheel's vertical (the wheel turns on a shared body, no kingpin)".into());
+    } else {
+        steering_axis(doc, b, &upright.name, &upright_joints, &link_ends)?;
+    }
+    if doc.has("Antiroll Body") {
+        doc.expect("Antiroll Body");
+        b.notes.push(
+            "Antiroll Body: where Chrono attaches an anti-roll bar subsystem (its own file); no bar is read".into(),
+        );
+    }
+    if !independent {
+        b.notes.push("\"Independent\" is false: read as the independent corners its bodies describe".into());
+    }
+    Ok(())
+}
+
+/// The file's bodies: one per side (mirrored), or one shared by both sides (an axle tube, a tie rod across),
+/// which goes in the model's axle.
+fn bodies(doc: &Doc) -> Result<Bodies, Refusal> {
+    let mut bodies = Bodies { positions: BTreeMap::new(), order: Vec::new(), shared: BTreeSet::new() };
+    for path in list(doc, "Bodies") {
         let name = text(doc, &format!("{path}/Name"))?;
         if !flag(doc, &format!("{path}/Mirrored"))? {
-            shared.insert(name.clone());
+            bodies.shared.insert(name.clone());
         }
         let at = doc.point(&format!("{path}/Position"))?;
-        order.push(name.clone());
-        if positions.insert(name.clone(), (path.clone(), at)).is_some() {
+        bodies.order.push(name.clone());
+        if bodies.positions.insert(name.clone(), (path.clone(), at)).is_some() {
             return Err(Refusal::unusable(
                 &[],
                 format!(
                     "{}: a second body named '{name}' (Chrono keeps the first): give each body its own name",
-                    doc.shown(path)
+                    doc.shown(&path)
                 ),
             ));
         }
     }
-    let known = Bodies { positions: &positions, shared: &shared };
+    Ok(bodies)
+}
 
-    // The upright: the body the spindle turns on; when that is shared (an axle tube carrying both spindles),
-    // each side's upright is welded to it at the wheel centre.
-    let upright = match part(doc, "Spindle/Attachment Body", &known, true)? {
+/// The corner's upright as the file gives it.
+struct Upright {
+    /// The body the spindle turns on (`Spindle / Attachment Body`).
+    name: String,
+    /// Whether that body is shared by both sides (an axle tube carrying both spindles): each side's upright
+    /// is then welded to it at the wheel centre.
+    welded: bool,
+}
+
+impl Upright {
+    /// The general model's name of a body of the file: the upright's is `upright` unless it is welded.
+    fn general_name(&self, n: &str) -> String {
+        if n == self.name && !self.welded {
+            "upright".to_string()
+        } else {
+            n.to_string()
+        }
+    }
+
+    /// The general model's name of `part`.
+    fn name_of(&self, part: &Part) -> String {
+        match part {
+            Part::Body(n) => self.general_name(n),
+            Part::Sided(n, Side::Left) => format!("left {}", self.general_name(n)),
+            Part::Sided(n, Side::Right) => format!("right {}", self.general_name(n)),
+            // The steering link has been taken as the tie rod's rack before any element is written.
+            Part::Chassis | Part::Steering => CHASSIS.to_string(),
+        }
+    }
+}
+
+/// The upright: the body the spindle turns on. No other body may take the general model's names of the
+/// ground and the upright.
+fn upright(doc: &Doc, bodies: &Bodies) -> Result<Upright, Refusal> {
+    let name = match part(doc, "Spindle/Attachment Body", bodies, true)? {
         Part::Body(name) => name,
         Part::Chassis => {
             return Err(Refusal::unusable(
@@ -137,220 +216,284 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
             ))
         }
     };
-    let welded = shared.contains(&upright);
-    let general_name = |n: &str| if n == upright && !welded { "upright".to_string() } else { n.to_string() };
-    for name in positions.keys() {
-        if (name != &upright || welded) && (name.eq_ignore_ascii_case(CHASSIS) || name == "upright") {
+    let welded = bodies.shared.contains(&name);
+    for body in bodies.positions.keys() {
+        if (body != &name || welded) && (body.eq_ignore_ascii_case(CHASSIS) || body == "upright") {
             return Err(Refusal::unusable(
                 &[],
                 format!(
-                    "body '{name}': the general model names the ground 'chassis' and the spindle's body 'upright'; \
+                    "body '{body}': the general model names the ground 'chassis' and the spindle's body 'upright'; \
                  rename this body"
                 ),
             ));
         }
     }
+    Ok(Upright { name, welded })
+}
 
-    // Joints and distance constraints: each side's (mirrored) or one shared.
-    let mut joints = Vec::new();
-    for path in list(doc, "Joints") {
-        let name = text(doc, &format!("{path}/Name"))?;
-        let mirrored = flag(doc, &format!("{path}/Mirrored"))?;
-        let chrono_type = text(doc, &format!("{path}/Type"))?;
-        let kind = match chrono_type.as_str() {
-            "Spherical" => JointKind::Spherical,
-            "Revolute" => JointKind::Revolute,
-            "Universal" => JointKind::Universal,
-            "Lock" => JointKind::Fixed,
-            "Point Line" => JointKind::InLine,
-            "Point Plane" => JointKind::InPlane,
-            other => {
-                return Err(Refusal::unusable(
-                    &[],
-                    format!(
-                        "{}: \"Type\" '{other}' is not one Chrono reads (it would take it as \"Lock\"); give \
-                     \"Spherical\", \"Revolute\", \"Universal\", \"Lock\", \"Point Line\" or \"Point Plane\"",
-                        doc.shown(&path)
-                    ),
-                ));
-            }
-        };
-        let parts = [
-            part(doc, &format!("{path}/Body1"), &known, mirrored)?,
-            part(doc, &format!("{path}/Body2"), &known, mirrored)?,
-        ];
-        let frame = rotation(doc, &format!("{path}/Rotation"))?;
-        doc.expect(&format!("{path}/Position"));
-        let bushing = doc.at(&format!("{path}/Bushing Data")).is_some_and(Value::is_object);
-        if bushing && matches!(kind, JointKind::InLine | JointKind::InPlane) {
+/// A spring or damper of `TSDAs`: its path and what it joins, the rest read when it is written.
+struct Tsda {
+    path: String,
+    parts: [Part; 2],
+    mirrored: bool,
+}
+
+/// The file's elements, each side's (mirrored) or one shared, as read before any is written.
+struct Elements {
+    joints: Vec<Joint>,
+    links: Vec<Link>,
+    tsdas: Vec<Tsda>,
+    rsdas: Vec<Rsda>,
+}
+
+impl Elements {
+    /// `Joints`, `Distance Constraints`, `TSDAs` and `RSDAs`, in that order.
+    fn read(doc: &Doc, bodies: &Bodies) -> Result<Self, Refusal> {
+        let joints: Vec<Joint> =
+            list(doc, "Joints").into_iter().map(|path| joint(doc, path, bodies)).collect::<Result<_, _>>()?;
+        let mut links = Vec::new();
+        for path in list(doc, "Distance Constraints") {
+            let name = text(doc, &format!("{path}/Name"))?;
+            let mirrored = flag(doc, &format!("{path}/Mirrored"))?;
+            let parts = [
+                part(doc, &format!("{path}/Body1"), bodies, mirrored)?,
+                part(doc, &format!("{path}/Body2"), bodies, mirrored)?,
+            ];
+            let points = [doc.point(&format!("{path}/Point1"))?, doc.point(&format!("{path}/Point2"))?];
+            links.push(Link { path, name, parts, points, mirrored });
+        }
+        let tsdas = list(doc, "TSDAs").into_iter().map(|path| tsda(doc, path, bodies)).collect::<Result<_, _>>()?;
+        let rsdas = rsdas(doc, bodies, &joints)?;
+        Ok(Elements { joints, links, tsdas, rsdas })
+    }
+}
+
+/// The joint at `path` of `Joints`: the joint of its `Type` in its frame, or Chrono's bushing there.
+fn joint(doc: &Doc, path: String, bodies: &Bodies) -> Result<Joint, Refusal> {
+    let name = text(doc, &format!("{path}/Name"))?;
+    let mirrored = flag(doc, &format!("{path}/Mirrored"))?;
+    let chrono_type = text(doc, &format!("{path}/Type"))?;
+    let kind = match chrono_type.as_str() {
+        "Spherical" => JointKind::Spherical,
+        "Revolute" => JointKind::Revolute,
+        "Universal" => JointKind::Universal,
+        "Lock" => JointKind::Fixed,
+        "Point Line" => JointKind::InLine,
+        "Point Plane" => JointKind::InPlane,
+        other => {
             return Err(Refusal::unusable(
                 &[],
                 format!(
-                    "{}: Chrono builds no joint at all for a \"{chrono_type}\" with \"Bushing Data\"; remove the \
-                 \"Bushing Data\" for the joint, or the joint",
+                    "{}: \"Type\" '{other}' is not one Chrono reads (it would take it as \"Lock\"); give \
+                     \"Spherical\", \"Revolute\", \"Universal\", \"Lock\", \"Point Line\" or \"Point Plane\"",
                     doc.shown(&path)
                 ),
             ));
         }
-        let frame = (frame * Vec3::x(), frame * Vec3::z());
-        joints.push(Joint { path, name, kind, parts, frame, bushing, mirrored });
+    };
+    let parts = [
+        part(doc, &format!("{path}/Body1"), bodies, mirrored)?,
+        part(doc, &format!("{path}/Body2"), bodies, mirrored)?,
+    ];
+    let frame = rotation(doc, &format!("{path}/Rotation"))?;
+    doc.expect(&format!("{path}/Position"));
+    let bushing = doc.at(&format!("{path}/Bushing Data")).is_some_and(Value::is_object);
+    if bushing && matches!(kind, JointKind::InLine | JointKind::InPlane) {
+        return Err(Refusal::unusable(
+            &[],
+            format!(
+                "{}: Chrono builds no joint at all for a \"{chrono_type}\" with \"Bushing Data\"; remove the \
+                 \"Bushing Data\" for the joint, or the joint",
+                doc.shown(&path)
+            ),
+        ));
     }
-    let mut links = Vec::new();
-    for path in list(doc, "Distance Constraints") {
-        let name = text(doc, &format!("{path}/Name"))?;
-        let mirrored = flag(doc, &format!("{path}/Mirrored"))?;
-        let parts = [
-            part(doc, &format!("{path}/Body1"), &known, mirrored)?,
-            part(doc, &format!("{path}/Body2"), &known, mirrored)?,
-        ];
-        let points = [doc.point(&format!("{path}/Point1"))?, doc.point(&format!("{path}/Point2"))?];
-        links.push(Link { path, name, parts, points, mirrored });
-    }
-    let tsdas = list(doc, "TSDAs");
-    let mut tsda_parts = Vec::new();
-    for path in &tsdas {
-        let mirrored = flag(doc, &format!("{path}/Mirrored"))?;
-        let parts = [
-            part(doc, &format!("{path}/Body1"), &known, mirrored)?,
-            part(doc, &format!("{path}/Body2"), &known, mirrored)?,
-        ];
-        if parts.contains(&Part::Steering) {
-            return Err(Refusal::unusable(
-                &[],
-                format!(
-                    "{}: a spring or damper on the steering link; the general model reaches the rack only through the \
-                 tie rod: attach it to the chassis or a body of the corner",
-                    doc.shown(path)
-                ),
-            ));
-        }
-        tsda_parts.push((parts, mirrored));
-    }
-    let rsdas = rsdas(doc, &known, &joints)?;
+    let frame = (frame * Vec3::x(), frame * Vec3::z());
+    Ok(Joint { path, name, kind, parts, frame, bushing, mirrored })
+}
 
-    // The steering inputs: a distance constraint from the steering link, or a rod body on ideal ball or
-    // universal joints from it to another body. Mirrored, it is the corner's tie rod (to the upright); shared,
-    // the axle's steering link (a drag link) to whatever it pushes.
-    struct Input {
-        inner: Vec3,
-        outer: Vec3,
-        target: Part,
-        mirrored: bool,
-        what: String,
+/// The spring or damper at `path` of `TSDAs`: what it joins, which is never the steering link.
+fn tsda(doc: &Doc, path: String, bodies: &Bodies) -> Result<Tsda, Refusal> {
+    let mirrored = flag(doc, &format!("{path}/Mirrored"))?;
+    let parts = [
+        part(doc, &format!("{path}/Body1"), bodies, mirrored)?,
+        part(doc, &format!("{path}/Body2"), bodies, mirrored)?,
+    ];
+    if parts.contains(&Part::Steering) {
+        return Err(Refusal::unusable(
+            &[],
+            format!(
+                "{}: a spring or damper on the steering link; the general model reaches the rack only through the \
+                 tie rod: attach it to the chassis or a body of the corner",
+                doc.shown(&path)
+            ),
+        ));
     }
-    let mut inputs = Vec::new();
-    let mut rods = BTreeSet::new();
-    let mut steering_joints = BTreeSet::new();
-    for link in links.iter().filter(|l| l.parts.contains(&Part::Steering)) {
-        let k = usize::from(link.parts[0] != Part::Steering);
-        inputs.push(Input {
-            inner: link.points[k],
-            outer: link.points[1 - k],
-            target: link.parts[1 - k].clone(),
-            mirrored: link.mirrored,
-            what: doc.shown(&link.path),
-        });
+    Ok(Tsda { path, parts, mirrored })
+}
+
+/// A steering input: a rod from the steering link to the body it pushes.
+struct Input {
+    /// The rod's end at the steering link.
+    inner: Vec3,
+    outer: Vec3,
+    target: Part,
+    /// Each side's (the corner's tie rod) or one shared (the axle's steering link).
+    mirrored: bool,
+    /// What it is in the file, for notes and refusals.
+    what: String,
+}
+
+/// The steering inputs: a distance constraint from the steering link, or a rod body on ideal ball or
+/// universal joints from it to another body. Mirrored, it is the corner's tie rod (to the upright); shared,
+/// the axle's steering link (a drag link) to whatever it pushes.
+struct Steering {
+    inputs: Vec<Input>,
+    /// The rod bodies, written as the inputs they are rather than as bodies.
+    rods: BTreeSet<String>,
+    /// The joints of the rods (indices of `Joints`), written as the inputs they are rather than as joints.
+    joints: BTreeSet<usize>,
+}
+
+impl Steering {
+    /// The links from the steering link first, then the rods, in the file's order.
+    fn read(doc: &Doc, elements: &Elements, bodies: &Bodies, upright: &Upright) -> Result<Self, Refusal> {
+        let mut steering = Steering { inputs: Vec::new(), rods: BTreeSet::new(), joints: BTreeSet::new() };
+        for link in elements.links.iter().filter(|l| l.parts.contains(&Part::Steering)) {
+            let k = usize::from(link.parts[0] != Part::Steering);
+            steering.inputs.push(Input {
+                inner: link.points[k],
+                outer: link.points[1 - k],
+                target: link.parts[1 - k].clone(),
+                mirrored: link.mirrored,
+                what: doc.shown(&link.path),
+            });
+        }
+        let joints = &elements.joints;
+        for (i, j) in joints.iter().enumerate().filter(|(_, j)| j.parts.contains(&Part::Steering)) {
+            let (rod, outer) = rod(doc, i, elements, bodies, upright)?;
+            let o = &joints[outer].parts;
+            let target = if o[0] == Part::Body(rod.clone()) { o[1].clone() } else { o[0].clone() };
+            let at = |m: usize| doc.point(&format!("{}/Position", joints[m].path));
+            steering.inputs.push(Input {
+                inner: at(i)?,
+                outer: at(outer)?,
+                target,
+                mirrored: j.mirrored,
+                what: format!("the rod '{rod}' ({} and {})", doc.shown(&j.path), doc.shown(&joints[outer].path)),
+            });
+            steering.rods.insert(rod);
+            steering.joints.extend([i, outer]);
+        }
+        Ok(steering)
     }
-    for (i, j) in joints.iter().enumerate().filter(|(_, j)| j.parts.contains(&Part::Steering)) {
-        let k = usize::from(j.parts[0] != Part::Steering);
-        let refuse = |why: &str| {
-            Refusal::unusable(
-                &[],
-                format!(
+
+    /// The corner's tie rod (the mirrored input, to the upright) and the axle's steering link (the shared
+    /// one), at most one of each.
+    fn tie_rod_and_link(&self, upright: &Upright) -> Result<(Option<&Input>, Option<&Input>), Refusal> {
+        let mut tie_rod: Option<&Input> = None;
+        let mut steering_link: Option<&Input> = None;
+        for input in &self.inputs {
+            let slot = if input.mirrored { &mut tie_rod } else { &mut steering_link };
+            if let Some(first) = slot {
+                return Err(Refusal::unusable(
+                    &[],
+                    format!(
+                        "{}: a second steering input of its kind (the first is {}); the general model steers by one \
+                         tie rod per corner and one steering link across",
+                        input.what, first.what
+                    ),
+                ));
+            }
+            if input.mirrored && (input.target != Part::Body(upright.name.clone()) || upright.welded) {
+                let upright = &upright.name;
+                return Err(Refusal::unusable(
+                    &[],
+                    format!(
+                        "{}: a link from the steering link to {}, not to the upright '{upright}'; the general model's \
+                         tie rod runs from the rack to the upright",
+                        input.what,
+                        describe(&input.target)
+                    ),
+                ));
+            }
+            *slot = Some(input);
+        }
+        Ok((tie_rod, steering_link))
+    }
+}
+
+/// The rod that joint `i`, a joint to the steering link, holds: a body on ball or universal joints (without
+/// bushings) to the steering link and to one other body alone. Returns the rod and its other joint.
+fn rod(
+    doc: &Doc,
+    i: usize,
+    elements: &Elements,
+    bodies: &Bodies,
+    upright: &Upright,
+) -> Result<(String, usize), Refusal> {
+    let Elements { joints, links, tsdas, rsdas } = elements;
+    let j = &joints[i];
+    let k = usize::from(j.parts[0] != Part::Steering);
+    let refuse = |why: &str| {
+        Refusal::unusable(
+            &[],
+            format!(
                 "{}: a joint to the steering link ({why}); the general model reaches the rack only through a rod: a \
                  distance constraint from \"Steering\" (to the upright, or for one shared by both sides to any \
                  body), or a rod body on ball or universal joints (without \"Bushing Data\") from it to one body",
                 doc.shown(&j.path)
             ),
-            )
-        };
-        let Part::Body(rod) = &j.parts[1 - k] else {
-            return Err(refuse(&format!("to {}", describe(&j.parts[1 - k]))));
-        };
-        if rod == &upright {
-            return Err(refuse("to the upright itself"));
-        }
-        if j.bushing {
-            return Err(refuse("with \"Bushing Data\""));
-        }
-        if !matches!(j.kind, JointKind::Spherical | JointKind::Universal) {
-            return Err(refuse(&format!("a {:?} joint, where a rod has a ball or universal joint", j.kind)));
-        }
-        if shared.contains(rod) == j.mirrored {
-            return Err(refuse(&format!("'{rod}' and the joint are not both mirrored or both shared")));
-        }
-        let on_rod = |parts: &[Part; 2]| parts.contains(&Part::Body(rod.clone()));
-        let others: Vec<usize> = (0..joints.len()).filter(|&m| m != i && on_rod(&joints[m].parts)).collect();
-        let outer = match others.as_slice() {
-            [m] if !joints[*m].bushing
-                && !joints[*m].parts.contains(&Part::Steering)
-                && matches!(joints[*m].kind, JointKind::Spherical | JointKind::Universal)
-                && !links.iter().any(|l| on_rod(&l.parts))
-                && !tsda_parts.iter().any(|(p, _)| on_rod(p))
-                && !rsdas.iter().any(|r| on_rod(&r.parts)) =>
-            {
-                *m
-            }
-            _ => return Err(refuse(&format!("'{rod}' is not a rod to one body alone"))),
-        };
-        let o = &joints[outer].parts;
-        let target = if o[0] == Part::Body(rod.clone()) { o[1].clone() } else { o[0].clone() };
-        let at = |m: usize| doc.point(&format!("{}/Position", joints[m].path));
-        inputs.push(Input {
-            inner: at(i)?,
-            outer: at(outer)?,
-            target,
-            mirrored: j.mirrored,
-            what: format!("the rod '{rod}' ({} and {})", doc.shown(&j.path), doc.shown(&joints[outer].path)),
-        });
-        rods.insert(rod.clone());
-        steering_joints.extend([i, outer]);
+        )
+    };
+    let Part::Body(rod) = &j.parts[1 - k] else {
+        return Err(refuse(&format!("to {}", describe(&j.parts[1 - k]))));
+    };
+    if rod == &upright.name {
+        return Err(refuse("to the upright itself"));
     }
-    let mut tie_rod: Option<&Input> = None;
-    let mut steering_link: Option<&Input> = None;
-    for input in &inputs {
-        let slot = if input.mirrored { &mut tie_rod } else { &mut steering_link };
-        if let Some(first) = slot {
-            return Err(Refusal::unusable(
-                &[],
-                format!(
-                "{}: a second steering input of its kind (the first is {}); the general model steers by one tie rod \
-                 per corner and one steering link across",
-                input.what, first.what
-            ),
-            ));
-        }
-        if input.mirrored && (input.target != Part::Body(upright.clone()) || welded) {
-            return Err(Refusal::unusable(
-                &[],
-                format!(
-                "{}: a link from the steering link to {}, not to the upright '{upright}'; the general model's tie rod \
-                 runs from the rack to the upright",
-                input.what,
-                describe(&input.target)
-            ),
-            ));
-        }
-        *slot = Some(input);
+    if j.bushing {
+        return Err(refuse("with \"Bushing Data\""));
     }
-    if !steerable && !inputs.is_empty() {
-        return Err(Refusal::unusable(
-            &["Steerable", "Steering"],
-            "\"Steerable\" is false, yet an element joins \"Steering\": Chrono gives an unsteered suspension \
-                    no steering link; join the toe link to the chassis, or make the suspension steerable",
-        ));
+    if !matches!(j.kind, JointKind::Spherical | JointKind::Universal) {
+        return Err(refuse(&format!("a {:?} joint, where a rod has a ball or universal joint", j.kind)));
     }
+    if bodies.shared.contains(rod) == j.mirrored {
+        return Err(refuse(&format!("'{rod}' and the joint are not both mirrored or both shared")));
+    }
+    let on_rod = |parts: &[Part; 2]| parts.contains(&Part::Body(rod.clone()));
+    let others: Vec<usize> = (0..joints.len()).filter(|&m| m != i && on_rod(&joints[m].parts)).collect();
+    match others.as_slice() {
+        [m] if !joints[*m].bushing
+            && !joints[*m].parts.contains(&Part::Steering)
+            && matches!(joints[*m].kind, JointKind::Spherical | JointKind::Universal)
+            && !links.iter().any(|l| on_rod(&l.parts))
+            && !tsdas.iter().any(|t| on_rod(&t.parts))
+            && !rsdas.iter().any(|r| on_rod(&r.parts)) =>
+        {
+            Ok((rod.clone(), *m))
+        }
+        _ => Err(refuse(&format!("'{rod}' is not a rod to one body alone"))),
+    }
+}
 
-    // Bodies: each side's in the corner, the shared ones on the axle.
-    let name_of = |p: &Part| body_name(p, &general_name);
-    for name in &order {
-        let (path, at) = &positions[name];
+/// The bodies: each side's in the corner, the shared ones on the axle; the upright, when shared, welded to
+/// each side's.
+fn write_bodies(
+    doc: &Doc,
+    b: &mut Builder,
+    bodies: &Bodies,
+    upright: &Upright,
+    rods: &BTreeSet<String>,
+) -> Result<(), Refusal> {
+    for name in &bodies.order {
+        let (path, at) = &bodies.positions[name];
         doc.dynamics(path, &["Mass", "Rotation", "Moments of Inertia", "Products of Inertia"], &mut b.notes);
         shapes(doc, path, &mut b.notes);
         if rods.contains(name) {
             continue;
         }
-        if name == &upright && !welded {
+        if name == &upright.name && !upright.welded {
             b.notes.push(format!(
                 "{}: the spindle's attachment body, the corner's upright (the spindle turns on it: for statics one \
                  body), its reference point the wheel centre",
@@ -358,108 +501,127 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
             ));
             continue;
         }
-        b.on_axle(shared.contains(name));
+        b.on_axle(bodies.shared.contains(name));
         b.body_at(name, Place::At(*at));
         b.on_axle(false);
     }
-    if welded {
+    if upright.welded {
         // Each spindle turns on the shared body: the corner's upright is that body's end, welded to it.
-        b.joint(
-            doc,
-            "spindle housing",
-            JointKind::Fixed,
-            [&upright, "upright"],
-            Place::named("wheel_centre"),
-            None,
-            None,
-        )?;
+        let name = &upright.name;
+        b.joint(doc, "spindle housing", JointKind::Fixed, [name, "upright"], Place::named("wheel_centre"), None, None)?;
         b.notes.push(format!(
-            "\"Spindle\" / \"Attachment Body\" '{upright}' is shared by both sides: each side's upright is welded to \
+            "\"Spindle\" / \"Attachment Body\" '{name}' is shared by both sides: each side's upright is welded to \
              it at the wheel centre"
         ));
     }
-    // Joints (by their hardpoints, named after them); a shared one on the axle.
-    let mut names = BTreeSet::new();
+    Ok(())
+}
+
+/// The joints but the rods', by their hardpoints, named after them; a shared one on the axle. Returns each
+/// side's joints on the upright, with their hardpoints.
+fn write_joints<'a>(
+    doc: &Doc,
+    b: &mut Builder,
+    joints: &'a [Joint],
+    rods: &BTreeSet<usize>,
+    upright: &Upright,
+    names: &mut BTreeSet<String>,
+) -> Result<Vec<(&'a Joint, String)>, Refusal> {
     let mut upright_joints = Vec::new();
     for (i, j) in joints.iter().enumerate() {
-        if steering_joints.contains(&i) {
+        if rods.contains(&i) {
             continue;
         }
         b.on_axle(!j.mirrored);
         let at = fresh_point(b, doc, &j.name, &format!("{}/Position", j.path))?;
-        let bodies = j.parts.clone().map(|p| name_of(&p));
-        let name = fresh(&mut names, &j.name);
+        let bodies = j.parts.clone().map(|p| upright.name_of(&p));
+        let name = fresh(names, &j.name);
         let bushing = j.bushing.then(|| format!("{}/Bushing Data", j.path));
         b.joint(doc, &name, j.kind, [&bodies[0], &bodies[1]], Place::named(&at), Some(j.frame), bushing.as_deref())?;
         b.on_axle(false);
-        if j.mirrored && !welded && j.parts.contains(&Part::Body(upright.clone())) {
+        if j.mirrored && !upright.welded && j.parts.contains(&Part::Body(upright.name.clone())) {
             upright_joints.push((j, at));
         }
     }
-    let mut link_ends: Vec<(Vec3, String)> = Vec::new();
-    for link in &links {
+    Ok(upright_joints)
+}
+
+/// The distance links but those from the steering link; a shared one on the axle. Returns each side's
+/// links' ends on the upright: where they are and their hardpoints.
+fn write_links(
+    doc: &Doc,
+    b: &mut Builder,
+    links: &[Link],
+    upright: &Upright,
+    names: &mut BTreeSet<String>,
+) -> Result<Vec<(Vec3, String)>, Refusal> {
+    let mut link_ends = Vec::new();
+    for link in links {
         if link.parts.contains(&Part::Steering) {
             continue;
         }
         b.on_axle(!link.mirrored);
         let from = fresh_point(b, doc, &format!("{} point 1", link.name), &format!("{}/Point1", link.path))?;
         let to = fresh_point(b, doc, &format!("{} point 2", link.name), &format!("{}/Point2", link.path))?;
-        let bodies = link.parts.clone().map(|p| name_of(&p));
-        b.link(&fresh(&mut names, &link.name), [&bodies[0], &bodies[1]], &from, &to);
+        let bodies = link.parts.clone().map(|p| upright.name_of(&p));
+        b.link(&fresh(names, &link.name), [&bodies[0], &bodies[1]], &from, &to);
         b.on_axle(false);
         for (k, end) in [from, to].into_iter().enumerate() {
-            if link.mirrored && !welded && link.parts[k] == Part::Body(upright.clone()) {
+            if link.mirrored && !upright.welded && link.parts[k] == Part::Body(upright.name.clone()) {
                 link_ends.push((link.points[k], end));
             }
         }
     }
-    // The steering inputs.
-    if let Some(input) = tie_rod {
-        b.general.hardpoints.0.push(("tie_rod_inner".into(), input.inner));
-        b.general.hardpoints.0.push(("tie_rod_outer".into(), input.outer));
-        b.general.corner.tie_rod = Some(TieRodDef {
-            inner: Place::named("tie_rod_inner"),
-            outer: Place::named("tie_rod_outer"),
-            connection: Connection::Ideal.into(),
-        });
-        b.notes.push(format!(
-            "{}: the corner's tie rod, from the rack (steering) or the chassis to the upright",
-            input.what
-        ));
+    Ok(link_ends)
+}
+
+/// The corner's tie rod, from the rack (or the chassis) to the upright.
+fn write_tie_rod(b: &mut Builder, input: &Input) {
+    b.general.hardpoints.0.push(("tie_rod_inner".into(), input.inner));
+    b.general.hardpoints.0.push(("tie_rod_outer".into(), input.outer));
+    b.general.corner.tie_rod = Some(TieRodDef {
+        inner: Place::named("tie_rod_inner"),
+        outer: Place::named("tie_rod_outer"),
+        connection: Connection::Ideal.into(),
+    });
+    b.notes
+        .push(format!("{}: the corner's tie rod, from the rack (steering) or the chassis to the upright", input.what));
+}
+
+/// The axle's steering link (a drag link), moved along its own line when steering.
+fn write_steering_link(b: &mut Builder, input: &Input, upright: &Upright) -> Result<(), Refusal> {
+    let along = input.outer - input.inner;
+    if along.norm() < 1e-6 {
+        return Err(Refusal::unusable(&[], format!("{}: its two ends coincide; give the rod its length", input.what)));
     }
-    if let Some(input) = steering_link {
-        let along = input.outer - input.inner;
-        if along.norm() < 1e-6 {
-            return Err(Refusal::unusable(
-                &[],
-                format!("{}: its two ends coincide; give the rod its length", input.what),
-            ));
-        }
-        let axis = along.normalize();
-        b.on_axle(true);
-        b.axle().steering_link = Some(SteeringLinkDef {
-            body: name_of(&input.target),
-            inner: Place::At(input.inner),
-            outer: Place::At(input.outer),
-            connection: Connection::Ideal.into(),
-            rack_axis: [axis.x, axis.y, axis.z],
-        });
-        b.on_axle(false);
-        b.notes.push(format!(
-            "{}: the axle's steering link, from the steering box to {}; the steering analysis moves its steering-box \
-             end along the rod",
-            input.what,
-            describe(&input.target)
-        ));
-    }
-    if steerable && inputs.is_empty() {
-        b.notes.push(
-            "\"Steerable\" is true but nothing joins \"Steering\": no tie rod, the steering analysis does not apply"
-                .into(),
-        );
-    }
-    // Springs and dampers.
-    for (path, (parts, mirrored)) in tsdas.iter().zip(tsda_parts) {
+    let axis = along.normalize();
+    b.on_axle(true);
+    b.axle().steering_link = Some(SteeringLinkDef {
+        body: upright.name_of(&input.target),
+        inner: Place::At(input.inner),
+        outer: Place::At(input.outer),
+        connection: Connection::Ideal.into(),
+        rack_axis: [axis.x, axis.y, axis.z],
+    });
+    b.on_axle(false);
+    b.notes.push(format!(
+        "{}: the axle's steering link, from the steering box to {}; the steering analysis moves its steering-box \
+         end along the rod",
+        input.what,
+        describe(&input.target)
+    ));
+    Ok(())
+}
+
+/// The springs of `TSDAs` between their points; a damper is left out with a note, anything else refused.
+fn write_springs(
+    doc: &Doc,
+    b: &mut Builder,
+    tsdas: &[Tsda],
+    upright: &Upright,
+    names: &mut BTreeSet<String>,
+) -> Result<(), Refusal> {
+    for Tsda { path, parts, mirrored } in tsdas {
         let name = text(doc, &format!("{path}/Name"))?;
         shapes(doc, path, &mut b.notes);
         let key = |k: &str| format!("{path}/{k}");
@@ -469,13 +631,13 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
                 fresh_point(b, doc, &format!("{name} point 1"), &key("Point1"))?,
                 fresh_point(b, doc, &format!("{name} point 2"), &key("Point2"))?,
             ];
-            let mut bodies = parts.map(|p| name_of(&p));
+            let mut bodies = parts.clone().map(|p| upright.name_of(&p));
             // The chassis first, as the general model's checks read a spring.
             if bodies[1] == CHASSIS {
                 bodies.swap(0, 1);
                 seats.swap(0, 1);
             }
-            let name = fresh(&mut names, &name);
+            let name = fresh(names, &name);
             b.spring(doc, path, &name, [&bodies[0], &bodies[1]], [&seats[0], &seats[1]])?;
             b.on_axle(false);
         } else if doc.has(&key("Map Data")) {
@@ -488,21 +650,7 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
                 ),
             ));
         } else if doc.has(&key("Damping Coefficient")) || doc.has(&key("Damping Curve Data")) {
-            for k in [
-                "Point1",
-                "Point2",
-                "Damping Coefficient",
-                "Damping Curve Data",
-                "Degressivity Compression",
-                "Degressivity Expansion",
-                "Preload",
-                "Free Length",
-                "Minimum Length",
-                "Maximum Length",
-            ] {
-                doc.expect(&key(k));
-            }
-            b.notes.push(format!("{}: a damper, left out (statics: no velocity)", doc.shown(path)));
+            damper(doc, b, path);
         } else {
             return Err(Refusal::unusable(
                 &[],
@@ -514,8 +662,37 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
             ));
         }
     }
-    // Rotational springs: torsion bushings on the revolute joints they sit on.
-    for r in &rsdas {
+    Ok(())
+}
+
+/// A damper of `TSDAs` at `path`, left out (statics: no velocity): its keys read, with a note.
+fn damper(doc: &Doc, b: &mut Builder, path: &str) {
+    for k in [
+        "Point1",
+        "Point2",
+        "Damping Coefficient",
+        "Damping Curve Data",
+        "Degressivity Compression",
+        "Degressivity Expansion",
+        "Preload",
+        "Free Length",
+        "Minimum Length",
+        "Maximum Length",
+    ] {
+        doc.expect(&format!("{path}/{k}"));
+    }
+    b.notes.push(format!("{}: a damper, left out (statics: no velocity)", doc.shown(path)));
+}
+
+/// The rotational springs: torsion bushings on the revolute joints they sit on.
+fn write_rsdas(
+    doc: &Doc,
+    b: &mut Builder,
+    rsdas: &[Rsda],
+    upright: &Upright,
+    names: &mut BTreeSet<String>,
+) -> Result<(), Refusal> {
+    for r in rsdas {
         if r.mirrored && r.preload != 0.0 {
             b.notes.push(format!(
                 "{}: Chrono turns the right side's preload the other way (it mirrors the axis as a direction, not as \
@@ -525,9 +702,9 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
         }
         b.on_axle(!r.mirrored);
         let at = fresh_point(b, doc, &r.name, &r.at)?;
-        let bodies = r.parts.clone().map(|p| name_of(&p));
+        let bodies = r.parts.clone().map(|p| upright.name_of(&p));
         b.torsion_spring(
-            &fresh(&mut names, &r.name),
+            &fresh(names, &r.name),
             [&bodies[0], &bodies[1]],
             Place::named(&at),
             r.axis,
@@ -535,21 +712,6 @@ pub(super) fn read(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
             r.preload,
         );
         b.on_axle(false);
-    }
-    if welded {
-        b.wheel_vertical_steering_axis()?;
-        b.notes.push("steering axis: the wheel's vertical (the wheel turns on a shared body, no kingpin)".into());
-    } else {
-        steering_axis(doc, b, &upright, &upright_joints, &link_ends)?;
-    }
-    if doc.has("Antiroll Body") {
-        doc.expect("Antiroll Body");
-        b.notes.push(
-            "Antiroll Body: where Chrono attaches an anti-roll bar subsystem (its own file); no bar is read".into(),
-        );
-    }
-    if !independent {
-        b.notes.push("\"Independent\" is false: read as the independent corners its bodies describe".into());
     }
     Ok(())
 }
@@ -640,10 +802,12 @@ fn flag(doc: &Doc, path: &str) -> Result<bool, Refusal> {
     doc.at(path).and_then(Value::as_bool).ok_or_else(|| doc.wrong(path, Expected::Flag))
 }
 
-/// The file's bodies: where each is, and which are shared by both sides (not mirrored).
-struct Bodies<'a> {
-    positions: &'a BTreeMap<String, (String, Vec3)>,
-    shared: &'a BTreeSet<String>,
+/// The file's bodies: where each is (its path and `Position`, by name), their order in the file, and which
+/// are shared by both sides (not mirrored).
+struct Bodies {
+    positions: BTreeMap<String, (String, Vec3)>,
+    order: Vec<String>,
+    shared: BTreeSet<String>,
 }
 
 /// The body an element names at `path`: a name, or `[name, side]` (Chrono's `ReadBodyIdentifierJSON`).
@@ -804,17 +968,6 @@ fn rotation(doc: &Doc, path: &str) -> Result<UnitQuaternion<f64>, Refusal> {
             Ok(UnitQuaternion::from_quaternion(Quaternion::new(e[0], e[1], e[2], e[3])))
         }
         _ => Err(doc.wrong(path, Expected::Rotation { got: v.to_string() })),
-    }
-}
-
-/// The general model's name of `part`.
-fn body_name(part: &Part, general_name: &impl Fn(&str) -> String) -> String {
-    match part {
-        Part::Body(n) => general_name(n),
-        Part::Sided(n, Side::Left) => format!("left {}", general_name(n)),
-        Part::Sided(n, Side::Right) => format!("right {}", general_name(n)),
-        // The steering link has been taken as the tie rod's rack before any element is written.
-        Part::Chassis | Part::Steering => CHASSIS.to_string(),
     }
 }
 
