@@ -117,160 +117,204 @@ fn shackle_bushing(doc: &Doc, b: &mut Builder) -> Option<&'static str> {
 /// One side's leaf spring: the leaves, the half clamps and the shackle on their joints, and the four
 /// rotational springs on the clamps' and leaves' revolute joints.
 fn leaf_spring(doc: &Doc, b: &mut Builder) -> Result<(), Refusal> {
-    let hanger = b.hardpoint(doc, "front_hanger", "Leafspring/Location Front Hanger")?;
-    let clamp_a = b.hardpoint(doc, "clamp_a", "Leafspring/Location Clamp A")?;
-    let clamp_b = b.hardpoint(doc, "clamp_b", "Leafspring/Location Clamp B")?;
-    let shackle = b.hardpoint(doc, "shackle", "Leafspring/Location Shackle")?;
-    let rear_hanger = b.hardpoint(doc, "rear_hanger", "Leafspring/Location Rear Hanger")?;
-    for part in ["Frontleaf", "Rearleaf", "Half Clamp", "Shackle"] {
-        doc.dynamics(&format!("Leafspring/{part}"), &["Mass", "Inertia"], &mut b.notes);
+    let leaf = Leaf::read(doc, b)?;
+    let rates = LeafRates::read(doc, &leaf)?;
+    rates.note(b);
+    leaf_bodies(b, &leaf);
+    leaf_joints(doc, b, &leaf)?;
+    rates.torsion_springs(b, &leaf);
+    Ok(())
+}
+
+/// One side's leaf spring as the file places it: its hardpoints, by name and where they are.
+struct Leaf {
+    hanger: String,
+    clamp_a: String,
+    clamp_b: String,
+    shackle: String,
+    rear_hanger: String,
+    /// Where the front hanger, clamp A, clamp B, the shackle's end of the rear leaf and the rear hanger are.
+    at: [Vec3; 5],
+}
+
+impl Leaf {
+    /// The hardpoints of `Leafspring`, its parts' dynamics left out; refused when the clamps' joints are
+    /// bushings or a leaf has no length.
+    fn read(doc: &Doc, b: &mut Builder) -> Result<Self, Refusal> {
+        let hanger = b.hardpoint(doc, "front_hanger", "Leafspring/Location Front Hanger")?;
+        let clamp_a = b.hardpoint(doc, "clamp_a", "Leafspring/Location Clamp A")?;
+        let clamp_b = b.hardpoint(doc, "clamp_b", "Leafspring/Location Clamp B")?;
+        let shackle = b.hardpoint(doc, "shackle", "Leafspring/Location Shackle")?;
+        let rear_hanger = b.hardpoint(doc, "rear_hanger", "Leafspring/Location Rear Hanger")?;
+        for part in ["Frontleaf", "Rearleaf", "Half Clamp", "Shackle"] {
+            doc.dynamics(&format!("Leafspring/{part}"), &["Mass", "Inertia"], &mut b.notes);
+        }
+        if doc.has("Leafspring/Clamp Bushing Data") {
+            return Err(Refusal::unusable(
+                &["Leafspring", "Clamp Bushing Data"],
+                "\"Leafspring\" / \"Clamp Bushing Data\": Chrono makes the half clamps' joints to the tube \
+                        bushings, and its lateral rotational springs act on them; elastokin reads a rotational spring \
+                        as a torsion bushing on a revolute joint, which holds its other directions: remove the \
+                        \"Clamp Bushing Data\" to keep the clamps' revolute joints",
+            ));
+        }
+        let [h, a, c, s, r] = [&hanger, &clamp_a, &clamp_b, &shackle, &rear_hanger].map(|n| b.point_of(n));
+        let leaf = Leaf { hanger, clamp_a, clamp_b, shackle, rear_hanger, at: [h?, a?, c?, s?, r?] };
+        for (length, [one, other]) in [
+            (leaf.front(), ["Location Clamp A", "Location Front Hanger"]),
+            (leaf.rear(), ["Location Clamp B", "Location Shackle"]),
+        ] {
+            if length.norm() < 1e-6 {
+                return Err(Refusal::unusable(
+                    &["Leafspring", one, other],
+                    format!(
+                        "\"Leafspring\" / \"{one}\" and \"{other}\" coincide: they are the ends of a leaf, whose rates \
+                         Chrono scales by its squared length; give the leaf its length"
+                    ),
+                ));
+            }
+        }
+        Ok(leaf)
     }
-    if doc.has("Leafspring/Clamp Bushing Data") {
-        return Err(Refusal::unusable(
-            &["Leafspring", "Clamp Bushing Data"],
-            "\"Leafspring\" / \"Clamp Bushing Data\": Chrono makes the half clamps' joints to the tube \
-                    bushings, and its lateral rotational springs act on them; elastokin reads a rotational spring \
-                    as a torsion bushing on a revolute joint, which holds its other directions: remove the \
-                    \"Clamp Bushing Data\" to keep the clamps' revolute joints",
+
+    /// The front leaf, from the front hanger to clamp A (Chrono's `r_A`).
+    fn front(&self) -> Vec3 {
+        self.at[1] - self.at[0]
+    }
+
+    /// The rear leaf, from the shackle to clamp B (Chrono's `r_B`).
+    fn rear(&self) -> Vec3 {
+        self.at[2] - self.at[3]
+    }
+}
+
+/// The rates and preloads of a leaf's four rotational springs, as Chrono converts the leaf's translational
+/// ones (`SAELeafspringAxle::Create`): lateral about z and vertical about −y, of the front (A) and rear (B)
+/// leaf.
+struct LeafRates {
+    lateral_a: f64,
+    lateral_b: f64,
+    vertical_a: f64,
+    vertical_b: f64,
+    /// What Chrono builds: the torque functor's third argument, the preload P, is given M_y / k.
+    preload_a: f64,
+    preload_b: f64,
+}
+
+impl LeafRates {
+    /// The leaf's rates, bias and preload force, refused unless positive and within what the engine takes.
+    fn read(doc: &Doc, leaf: &Leaf) -> Result<Self, Refusal> {
+        let vertical = doc.number("Leafspring/Vertical Stiffness")?;
+        let bias = doc.number("Leafspring/Stiffness Bias")?;
+        let lateral = doc.number("Leafspring/Lateral Stiffness")?;
+        let force = doc.number("Leafspring/Vertical Preload Force")?;
+        for (value, key) in [(vertical, "Vertical Stiffness"), (bias, "Stiffness Bias"), (lateral, "Lateral Stiffness")]
+        {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(Refusal::unusable(
+                    &["Leafspring", key],
+                    format!(
+                        "\"Leafspring\" / \"{key}\" {value}: Chrono shares the leaf's rates between its front and \
+                         rear halves by \"Stiffness Bias\" (the rear's over the front's); give positive rates and bias"
+                    ),
+                ));
+            }
+        }
+        let (ra, rb) = (leaf.front(), leaf.rear());
+        let preload = Vec3::new(0.0, 0.0, force / 2.0);
+        let (ma, mb) = (preload.cross(&ra), preload.cross(&rb));
+        let (front_share, rear_share) = (1.0 / (1.0 + bias), bias / (1.0 + bias));
+        let lateral_a = lateral * front_share * ra.norm_squared();
+        let lateral_b = lateral * rear_share * rb.norm_squared();
+        let vertical_a = vertical * front_share * ra.norm_squared();
+        let vertical_b = vertical * rear_share * rb.norm_squared();
+        let (least, most) = ROTATIONAL_RATE_RANGE;
+        for (rate, what) in [
+            (lateral_a, "the front leaf's lateral rate"),
+            (lateral_b, "the rear leaf's lateral rate"),
+            (vertical_a, "the front leaf's vertical rate"),
+            (vertical_b, "the rear leaf's vertical rate"),
+        ] {
+            if !(least..=most).contains(&rate) {
+                return Err(Refusal::unusable(
+                    &["Leafspring", "Vertical Stiffness", "Lateral Stiffness", "Stiffness Bias"],
+                    format!(
+                        "\"Leafspring\" / \"Vertical Stiffness\", \"Lateral Stiffness\", \"Stiffness Bias\": {what} \
+                         is {rate:e} N·m/rad (Chrono's rate times the leaf's squared length), outside the {least:e} \
+                         to {most:e} the engine takes; give rates of a leaf spring"
+                    ),
+                ));
+            }
+        }
+        let (preload_a, preload_b) = (ma.y / vertical_a, mb.y / vertical_b);
+        Ok(LeafRates { lateral_a, lateral_b, vertical_a, vertical_b, preload_a, preload_b })
+    }
+
+    /// The notes saying the rates and preloads, as Chrono builds them.
+    fn note(&self, b: &mut Builder) {
+        let LeafRates { lateral_a, lateral_b, vertical_a, vertical_b, preload_a, preload_b } = self;
+        b.notes.push(format!(
+            "Leafspring: rotational springs on the clamps' and leaves' revolute joints, as Chrono converts the \
+             rates: lateral {lateral_a:.6e} (front) and {lateral_b:.6e} (rear) N·m/rad about z, vertical \
+             {vertical_a:.6e} and {vertical_b:.6e} N·m/rad about −y"
+        ));
+        b.notes.push(format!(
+            "Leafspring / Vertical Preload Force: Chrono passes M_y / k (meant as a rest angle) as the vertical \
+             springs' preload torque: {preload_a:.6e} and {preload_b:.6e} N·m, rest angle zero; read as Chrono \
+             builds it"
         ));
     }
-    let [h, a, c, s, r] = [&hanger, &clamp_a, &clamp_b, &shackle, &rear_hanger].map(|n| b.point_of(n));
-    let (h, a, c, s, r) = (h?, a?, c?, s?, r?);
-    let ra = a - h;
-    let rb = c - s;
-    for (length, [one, other]) in
-        [(ra, ["Location Clamp A", "Location Front Hanger"]), (rb, ["Location Clamp B", "Location Shackle"])]
-    {
-        if length.norm() < 1e-6 {
-            return Err(Refusal::unusable(
-                &["Leafspring", one, other],
-                format!(
-                    "\"Leafspring\" / \"{one}\" and \"{other}\" coincide: they are the ends of a leaf, whose rates Chrono \
-                     scales by its squared length; give the leaf its length"
-                ),
-            ));
-        }
-    }
 
-    // Chrono's conversion of the leaf's translational rates and preload (`SAELeafspringAxle::Create`).
-    let vertical = doc.number("Leafspring/Vertical Stiffness")?;
-    let bias = doc.number("Leafspring/Stiffness Bias")?;
-    let lateral = doc.number("Leafspring/Lateral Stiffness")?;
-    let force = doc.number("Leafspring/Vertical Preload Force")?;
-    for (value, key) in [(vertical, "Vertical Stiffness"), (bias, "Stiffness Bias"), (lateral, "Lateral Stiffness")] {
-        if !(value.is_finite() && value > 0.0) {
-            return Err(Refusal::unusable(
-                &["Leafspring", key],
-                format!(
-                    "\"Leafspring\" / \"{key}\" {value}: Chrono shares the leaf's rates between its front and rear \
-                 halves by \"Stiffness Bias\" (the rear's over the front's); give positive rates and bias"
-                ),
-            ));
+    /// The four rotational springs, each a torsion bushing on its revolute joint.
+    fn torsion_springs(&self, b: &mut Builder, leaf: &Leaf) {
+        let (clamp_a, clamp_b) = (&leaf.clamp_a, &leaf.clamp_b);
+        for (name, bodies, point, axis, rate, moment) in [
+            ("clamp A lateral spring", ["clamp A", AXLE_TUBE], clamp_a, about_z().1, self.lateral_a, 0.0),
+            ("clamp B lateral spring", ["clamp B", AXLE_TUBE], clamp_b, about_z().1, self.lateral_b, 0.0),
+            ("front leaf spring", ["clamp A", "front leaf"], clamp_a, about_y().1, self.vertical_a, self.preload_a),
+            ("rear leaf spring", ["clamp B", "rear leaf"], clamp_b, about_y().1, self.vertical_b, self.preload_b),
+        ] {
+            b.torsion_spring(name, bodies, Place::named(point), axis, rate, moment);
         }
     }
-    let preload = Vec3::new(0.0, 0.0, force / 2.0);
-    let (ma, mb) = (preload.cross(&ra), preload.cross(&rb));
-    let (front_share, rear_share) = (1.0 / (1.0 + bias), bias / (1.0 + bias));
-    let lateral_a = lateral * front_share * ra.norm_squared();
-    let lateral_b = lateral * rear_share * rb.norm_squared();
-    let vertical_a = vertical * front_share * ra.norm_squared();
-    let vertical_b = vertical * rear_share * rb.norm_squared();
-    let (least, most) = ROTATIONAL_RATE_RANGE;
-    for (rate, what) in [
-        (lateral_a, "the front leaf's lateral rate"),
-        (lateral_b, "the rear leaf's lateral rate"),
-        (vertical_a, "the front leaf's vertical rate"),
-        (vertical_b, "the rear leaf's vertical rate"),
-    ] {
-        if !(least..=most).contains(&rate) {
-            return Err(Refusal::unusable(
-                &["Leafspring", "Vertical Stiffness", "Lateral Stiffness", "Stiffness Bias"],
-                format!(
-                    "\"Leafspring\" / \"Vertical Stiffness\", \"Lateral Stiffness\", \"Stiffness Bias\": {what} is \
-                 {rate:e} N·m/rad (Chrono's rate times the leaf's squared length), outside the {least:e} to \
-                 {most:e} the engine takes; give rates of a leaf spring"
-                ),
-            ));
-        }
-    }
-    // What Chrono builds: the torque functor's third argument, the preload P, is given M_y / k.
-    let (preload_a, preload_b) = (ma.y / vertical_a, mb.y / vertical_b);
-    b.notes.push(format!(
-        "Leafspring: rotational springs on the clamps' and leaves' revolute joints, as Chrono converts the rates: \
-         lateral {lateral_a:.6e} (front) and {lateral_b:.6e} (rear) N·m/rad about z, vertical {vertical_a:.6e} and \
-         {vertical_b:.6e} N·m/rad about −y"
-    ));
-    b.notes.push(format!(
-        "Leafspring / Vertical Preload Force: Chrono passes M_y / k (meant as a rest angle) as the vertical \
-         springs' preload torque: {preload_a:.6e} and {preload_b:.6e} N·m, rest angle zero; read as Chrono builds it"
-    ));
+}
 
-    // The bodies, at Chrono's positions.
+/// Chrono's frame as `(u, w)` at the clamps' joints to the tube: the chassis's (z up).
+fn about_z() -> (Vec3, Vec3) {
+    (Vec3::x(), Vec3::z())
+}
+
+/// Chrono's frame as `(u, w)` at the shackle's and the leaves' joints: the chassis's turned a quarter about x
+/// (u = x, w = −y).
+fn about_y() -> (Vec3, Vec3) {
+    (Vec3::x(), -Vec3::y())
+}
+
+/// The leaf's bodies, at Chrono's positions.
+fn leaf_bodies(b: &mut Builder, leaf: &Leaf) {
+    let [h, a, c, s, r] = leaf.at;
     let mid = (a + c) / 2.0;
     b.body_at("front leaf", Place::At((h + a) / 2.0));
     b.body_at("rear leaf", Place::At((s + c) / 2.0));
     b.body_at("clamp A", Place::At((a + mid) / 2.0));
     b.body_at("clamp B", Place::At((c + mid) / 2.0));
     b.body_at("shackle", Place::At((r + s) / 2.0));
+}
 
-    // Chrono's frames: the chassis's (z up) at the clamps' joints to the tube; turned a quarter about x
-    // (u = x, w = −y) at the shackle's and the leaves' joints.
-    let (about_y, about_z) = ((Vec3::x(), -Vec3::y()), (Vec3::x(), Vec3::z()));
-    b.joint(
-        doc,
-        "front leaf ball joint",
-        JointKind::Spherical,
-        ["front leaf", CHASSIS],
-        Place::named(&hanger),
-        None,
-        None,
-    )?;
+/// The leaf's joints: the front leaf's ball joint to the chassis, the shackle's pivot (a bushing when the
+/// file gives one) and its ball joint to the rear leaf, and each half clamp's pivot on the tube and its leaf's
+/// pivot on it.
+fn leaf_joints(doc: &Doc, b: &mut Builder, leaf: &Leaf) -> Result<(), Refusal> {
+    let ball = JointKind::Spherical;
+    b.joint(doc, "front leaf ball joint", ball, ["front leaf", CHASSIS], Place::named(&leaf.hanger), None, None)?;
     let bushing = shackle_bushing(doc, b);
-    b.joint(
-        doc,
-        "shackle pivot",
-        JointKind::Revolute,
-        ["shackle", CHASSIS],
-        Place::named(&rear_hanger),
-        Some(about_y),
-        bushing,
-    )?;
-    b.joint(
-        doc,
-        "rear leaf ball joint",
-        JointKind::Spherical,
-        ["rear leaf", "shackle"],
-        Place::named(&shackle),
-        None,
-        None,
-    )?;
-    for (clamp, point, leaf) in [("clamp A", &clamp_a, "front leaf"), ("clamp B", &clamp_b, "rear leaf")] {
-        b.joint(
-            doc,
-            &format!("{clamp} pivot"),
-            JointKind::Revolute,
-            [clamp, AXLE_TUBE],
-            Place::named(point),
-            Some(about_z),
-            None,
-        )?;
-        b.joint(
-            doc,
-            &format!("{leaf} clamp"),
-            JointKind::Revolute,
-            [clamp, leaf],
-            Place::named(point),
-            Some(about_y),
-            None,
-        )?;
-    }
-    for (name, bodies, point, axis, rate, moment) in [
-        ("clamp A lateral spring", ["clamp A", AXLE_TUBE], &clamp_a, about_z.1, lateral_a, 0.0),
-        ("clamp B lateral spring", ["clamp B", AXLE_TUBE], &clamp_b, about_z.1, lateral_b, 0.0),
-        ("front leaf spring", ["clamp A", "front leaf"], &clamp_a, about_y.1, vertical_a, preload_a),
-        ("rear leaf spring", ["clamp B", "rear leaf"], &clamp_b, about_y.1, vertical_b, preload_b),
-    ] {
-        b.torsion_spring(name, bodies, Place::named(point), axis, rate, moment);
+    let (revolute, rear_hanger) = (JointKind::Revolute, Place::named(&leaf.rear_hanger));
+    b.joint(doc, "shackle pivot", revolute, ["shackle", CHASSIS], rear_hanger, Some(about_y()), bushing)?;
+    b.joint(doc, "rear leaf ball joint", ball, ["rear leaf", "shackle"], Place::named(&leaf.shackle), None, None)?;
+    for (clamp, point, part) in [("clamp A", &leaf.clamp_a, "front leaf"), ("clamp B", &leaf.clamp_b, "rear leaf")] {
+        let (pivot, on_leaf) = (format!("{clamp} pivot"), format!("{part} clamp"));
+        b.joint(doc, &pivot, revolute, [clamp, AXLE_TUBE], Place::named(point), Some(about_z()), None)?;
+        b.joint(doc, &on_leaf, revolute, [clamp, part], Place::named(point), Some(about_y()), None)?;
     }
     Ok(())
 }
