@@ -75,26 +75,7 @@ pub(super) fn finish<R: Clone>(
         _ => Err(&reason),
     };
     let mut figures = (reduce.figures)(&out.rows, design);
-    let (columns, method) = match &out.corrected {
-        Some(corrected) => {
-            let other = (reduce.table)(corrected);
-            let corrected_design = out.design_corrected.as_ref().map_or(design, Ok);
-            let unextrapolated = design.ok().map(AtDesign::unextrapolated);
-            let unextrapolated = unextrapolated.as_ref().map_or(design, Ok);
-            let again = (reduce.figures)(corrected, corrected_design);
-            let differenced = (reduce.figures)(&out.rows, unextrapolated);
-            for ((f, g), u) in figures.iter_mut().zip(again).zip(differenced) {
-                if let (Some(a), Some(b), Some(c)) = (f.value, g.value, u.value) {
-                    f.error = Some(f.error.unwrap_or(0.0) + (a - b).abs() + (a - c).abs());
-                }
-            }
-            (
-                table.column_differences(&other),
-                format!("every row against one exact Newton iteration from it ({} mode)", mode_word(settings.mode)),
-            )
-        }
-        None => (vec![None; table.columns.len()], "not estimated".to_string()),
-    };
+    let (columns, method) = estimate(&table, &mut figures, out, &reduce, design, settings);
     let largest = |suffix: &str| {
         table
             .columns
@@ -118,41 +99,7 @@ pub(super) fn finish<R: Clone>(
     let over_figures: Vec<String> = figures.iter().filter_map(|f| over_tolerance(f, tol.relative)).collect();
     let within = angle_error_deg <= tol.angle_deg && length_error_m <= tol.length_m && over_figures.is_empty();
     if !within {
-        // Paper mode's error falls in proportion to the step: the steps that would bring the worst of the
-        // errors to its tolerance, with a tenth more for the second-order part of the error (on the
-        // MacPherson's parallel travel the first-order count alone leaves it 1 % over).
-        let worst = figures
-            .iter()
-            .filter_map(|f| Some(f.error? / (tol.relative * f.value?.abs())))
-            .filter(|r| r.is_finite())
-            .fold((angle_error_deg / tol.angle_deg).max(length_error_m / tol.length_m), f64::max);
-        let needed = (1.1 * settings.steps as f64 * worst).ceil();
-        let fix = match settings.mode {
-            Mode::Paper if needed <= MAX_STEPS as f64 => format!(
-                "paper mode's error falls in proportion to the step: about {needed:.0} steps would meet the \
-                 tolerance (steps, --steps), or corrected mode (mode, --mode)"
-            ),
-            Mode::Paper => format!(
-                "paper mode's error falls in proportion to the step, and more than {MAX_STEPS} steps would be \
-                 needed: use corrected mode (mode, --mode)"
-            ),
-            Mode::Corrected => "the model is near-singular here; run `elastokin check` on it".to_string(),
-        };
-        let mut what = Vec::new();
-        if angle_error_deg > tol.angle_deg {
-            what.push(format!("angles up to {angle_error_deg:.2e} deg (tolerance {:.0e})", tol.angle_deg));
-        }
-        if length_error_m > tol.length_m {
-            what.push(format!("lengths up to {:.2e} mm (tolerance {:.0e})", length_error_m * 1e3, tol.length_m * 1e3));
-        }
-        if !over_figures.is_empty() {
-            what.push(format!("figures {} (tolerance {:.1} %)", over_figures.join(", "), tol.relative * 100.0));
-        }
-        warnings.push(Warning {
-            code: "error-over-tolerance",
-            hardpoints: Vec::new(),
-            message: format!("{}: estimated error {}; {fix}", analysis.name(), what.join(", ")),
-        });
+        warnings.push(error_warning(analysis, settings, &figures, (angle_error_deg, length_error_m), &over_figures));
     }
     let compliance = out.compliance.as_ref().map(|c| compliance_table(analysis, &table, c));
     AnalysisReport {
@@ -178,6 +125,86 @@ pub(super) fn finish<R: Clone>(
         charts,
         warnings,
         motion: out.poses.clone().zip(reduce.drawing).map(|(frames, drawing)| Motion { drawing, frames }),
+    }
+}
+
+/// Each figure's error estimate added to it (its change one exact Newton iteration on, and against the
+/// rows' own differences at design), and each column's largest change with how it was estimated; none
+/// where the sweep was not read again.
+fn estimate<R: Clone>(
+    table: &Table,
+    figures: &mut [Figure],
+    out: &SweepOutput<R>,
+    reduce: &Reduction<R>,
+    design: Design<R>,
+    settings: &Settings,
+) -> (Vec<Option<f64>>, String) {
+    match &out.corrected {
+        Some(corrected) => {
+            let other = (reduce.table)(corrected);
+            let corrected_design = out.design_corrected.as_ref().map_or(design, Ok);
+            let unextrapolated = design.ok().map(AtDesign::unextrapolated);
+            let unextrapolated = unextrapolated.as_ref().map_or(design, Ok);
+            let again = (reduce.figures)(corrected, corrected_design);
+            let differenced = (reduce.figures)(&out.rows, unextrapolated);
+            for ((f, g), u) in figures.iter_mut().zip(again).zip(differenced) {
+                if let (Some(a), Some(b), Some(c)) = (f.value, g.value, u.value) {
+                    f.error = Some(f.error.unwrap_or(0.0) + (a - b).abs() + (a - c).abs());
+                }
+            }
+            (
+                table.column_differences(&other),
+                format!("every row against one exact Newton iteration from it ({} mode)", mode_word(settings.mode)),
+            )
+        }
+        None => (vec![None; table.columns.len()], "not estimated".to_string()),
+    }
+}
+
+/// The warning of an analysis whose estimated error is over its tolerance: what is over (angles and
+/// lengths of the table, `errors`, and the figures `over`) and what would bring it within.
+fn error_warning(
+    analysis: Analysis,
+    settings: &Settings,
+    figures: &[Figure],
+    (angle_error_deg, length_error_m): (f64, f64),
+    over: &[String],
+) -> Warning {
+    let tol = settings.tolerance;
+    // Paper mode's error falls in proportion to the step: the steps that would bring the worst of the
+    // errors to its tolerance, with a tenth more for the second-order part of the error (on the
+    // MacPherson's parallel travel the first-order count alone leaves it 1 % over).
+    let worst = figures
+        .iter()
+        .filter_map(|f| Some(f.error? / (tol.relative * f.value?.abs())))
+        .filter(|r| r.is_finite())
+        .fold((angle_error_deg / tol.angle_deg).max(length_error_m / tol.length_m), f64::max);
+    let needed = (1.1 * settings.steps as f64 * worst).ceil();
+    let fix = match settings.mode {
+        Mode::Paper if needed <= MAX_STEPS as f64 => format!(
+            "paper mode's error falls in proportion to the step: about {needed:.0} steps would meet the \
+             tolerance (steps, --steps), or corrected mode (mode, --mode)"
+        ),
+        Mode::Paper => format!(
+            "paper mode's error falls in proportion to the step, and more than {MAX_STEPS} steps would be \
+             needed: use corrected mode (mode, --mode)"
+        ),
+        Mode::Corrected => "the model is near-singular here; run `elastokin check` on it".to_string(),
+    };
+    let mut what = Vec::new();
+    if angle_error_deg > tol.angle_deg {
+        what.push(format!("angles up to {angle_error_deg:.2e} deg (tolerance {:.0e})", tol.angle_deg));
+    }
+    if length_error_m > tol.length_m {
+        what.push(format!("lengths up to {:.2e} mm (tolerance {:.0e})", length_error_m * 1e3, tol.length_m * 1e3));
+    }
+    if !over.is_empty() {
+        what.push(format!("figures {} (tolerance {:.1} %)", over.join(", "), tol.relative * 100.0));
+    }
+    Warning {
+        code: "error-over-tolerance",
+        hardpoints: Vec::new(),
+        message: format!("{}: estimated error {}; {fix}", analysis.name(), what.join(", ")),
     }
 }
 
