@@ -29,55 +29,15 @@ pub(super) fn static_load(models: &Models, s: &Settings) -> Result<AnalysisRepor
     })?;
     let corner = models.corner(Rig::Free)?;
     let (rest, corrected) = static_load_case_estimated(corner, vehicle.corner_load, s.error_estimate)?;
-    let text = |name: &str| Cell::Text(name.to_string());
-    let columns: [Column<ComponentForce>; 9] = [
-        Column::new("component", |c: &ComponentForce| text(&c.name)),
-        Column::new("body", |c: &ComponentForce| text(&c.body)),
-        Column::new("other_body", |c: &ComponentForce| text(&c.other_body)),
-        Column::new("force_x_n", |c: &ComponentForce| c.force.x.into()),
-        Column::new("force_y_n", |c: &ComponentForce| c.force.y.into()),
-        Column::new("force_z_n", |c: &ComponentForce| c.force.z.into()),
-        Column::new("torque_x_nm", |c: &ComponentForce| c.torque.x.into()),
-        Column::new("torque_y_nm", |c: &ComponentForce| c.torque.y.into()),
-        Column::new("torque_z_nm", |c: &ComponentForce| c.torque.z.into()),
-    ];
-    let components: Vec<ComponentForce> = rest.forces.joints.iter().chain(&rest.forces.elements).cloned().collect();
-    let table = Table::of_columns("static_load", &columns, &components);
-    let figures = |rest: &StaticLoad| {
-        let d = rest.wheel_centre_displacement;
-        vec![
-            Figure::of(&figures::CORNER_LOAD, Some(rest.corner_load), ""),
-            Figure::of(&figures::RIDE_HEIGHT_CHANGE, Some(d.z), ""),
-            Figure::of(&figures::TOE_AT_REST, Some(rest.attitude.toe), ""),
-            Figure::of(&figures::CAMBER_AT_REST, Some(rest.attitude.camber), ""),
-            Figure::of(&figures::WHEEL_RATE_AT_REST, Some(rest.wheel_rate), ""),
-            Figure::of(&figures::SPRING_FORCE, Some(rest.spring_force), ""),
-            Figure::of(&figures::SPRING_DEFLECTION, Some(rest.spring_deflection), ""),
-        ]
+    let table = static_load_table(&rest);
+    let mut at_rest = rest_figures(&rest);
+    let columns = match &corrected {
+        Some(corrected) => estimate(&mut at_rest, &rest, corrected, &table),
+        None => Vec::new(),
     };
-    let mut figures_at_rest = figures(&rest);
-    // Each figure's error estimate: its change one exact Newton iteration on (as a sweep's rows are read
-    // again); the component forces' likewise, column by column.
-    let mut columns = Vec::new();
-    if let Some(corrected) = &corrected {
-        for (f, g) in figures_at_rest.iter_mut().zip(figures(corrected)) {
-            f.error = f.value.zip(g.value).map(|(a, b)| (a - b).abs());
-        }
-        let components = |r: &StaticLoad| -> Vec<[f64; 6]> {
-            let all = r.forces.joints.iter().chain(&r.forces.elements);
-            all.map(|c| [c.force.x, c.force.y, c.force.z, c.torque.x, c.torque.y, c.torque.z]).collect()
-        };
-        let (at, on) = (components(&rest), components(corrected));
-        columns = table.columns.iter().map(|c| (c.clone(), None)).collect();
-        for k in 0..6 {
-            let largest = at.iter().zip(&on).map(|(a, b)| (a[k] - b[k]).abs()).fold(0.0, f64::max);
-            columns[3 + k].1 = Some(largest);
-        }
-    }
-    let figures = figures_at_rest;
     let angle_error = [&figures::TOE_AT_REST, &figures::CAMBER_AT_REST]
         .iter()
-        .filter_map(|kind| figures.iter().find(|f| f.key == kind.key)?.error)
+        .filter_map(|kind| at_rest.iter().find(|f| f.key == kind.key)?.error)
         .fold(0.0, f64::max)
         .to_degrees();
     let (force_residual, constraint_residual) = rest.residuals;
@@ -100,7 +60,7 @@ pub(super) fn static_load(models: &Models, s: &Settings) -> Result<AnalysisRepor
         description: format!("static load: {:.0} N at the contact patch, from the design position", rest.corner_load),
         range: (rest.corner_load, rest.corner_load),
         steps: 1,
-        figures,
+        figures: at_rest,
         units: s.units,
         table,
         compliance: None,
@@ -129,4 +89,61 @@ pub(super) fn static_load(models: &Models, s: &Settings) -> Result<AnalysisRepor
         },
         warnings,
     })
+}
+
+/// The static load's table: the force and torque each joint and element carries at rest, by name and the
+/// bodies either side.
+fn static_load_table(rest: &StaticLoad) -> Table {
+    let text = |name: &str| Cell::Text(name.to_string());
+    let columns: [Column<ComponentForce>; 9] = [
+        Column::new("component", |c: &ComponentForce| text(&c.name)),
+        Column::new("body", |c: &ComponentForce| text(&c.body)),
+        Column::new("other_body", |c: &ComponentForce| text(&c.other_body)),
+        Column::new("force_x_n", |c: &ComponentForce| c.force.x.into()),
+        Column::new("force_y_n", |c: &ComponentForce| c.force.y.into()),
+        Column::new("force_z_n", |c: &ComponentForce| c.force.z.into()),
+        Column::new("torque_x_nm", |c: &ComponentForce| c.torque.x.into()),
+        Column::new("torque_y_nm", |c: &ComponentForce| c.torque.y.into()),
+        Column::new("torque_z_nm", |c: &ComponentForce| c.torque.z.into()),
+    ];
+    let components: Vec<ComponentForce> = rest.forces.joints.iter().chain(&rest.forces.elements).cloned().collect();
+    Table::of_columns("static_load", &columns, &components)
+}
+
+/// The static load's figures at `rest`.
+fn rest_figures(rest: &StaticLoad) -> Vec<Figure> {
+    let d = rest.wheel_centre_displacement;
+    vec![
+        Figure::of(&figures::CORNER_LOAD, Some(rest.corner_load), ""),
+        Figure::of(&figures::RIDE_HEIGHT_CHANGE, Some(d.z), ""),
+        Figure::of(&figures::TOE_AT_REST, Some(rest.attitude.toe), ""),
+        Figure::of(&figures::CAMBER_AT_REST, Some(rest.attitude.camber), ""),
+        Figure::of(&figures::WHEEL_RATE_AT_REST, Some(rest.wheel_rate), ""),
+        Figure::of(&figures::SPRING_FORCE, Some(rest.spring_force), ""),
+        Figure::of(&figures::SPRING_DEFLECTION, Some(rest.spring_deflection), ""),
+    ]
+}
+
+/// Each figure's error estimate: its change one exact Newton iteration on (`corrected`, as a sweep's rows
+/// are read again), added to `figures`; and the component forces' likewise, column by column of `table`.
+fn estimate(
+    figures: &mut [Figure],
+    rest: &StaticLoad,
+    corrected: &StaticLoad,
+    table: &Table,
+) -> Vec<(String, Option<f64>)> {
+    for (f, g) in figures.iter_mut().zip(rest_figures(corrected)) {
+        f.error = f.value.zip(g.value).map(|(a, b)| (a - b).abs());
+    }
+    let components = |r: &StaticLoad| -> Vec<[f64; 6]> {
+        let all = r.forces.joints.iter().chain(&r.forces.elements);
+        all.map(|c| [c.force.x, c.force.y, c.force.z, c.torque.x, c.torque.y, c.torque.z]).collect()
+    };
+    let (at, on) = (components(rest), components(corrected));
+    let mut columns: Vec<(String, Option<f64>)> = table.columns.iter().map(|c| (c.clone(), None)).collect();
+    for k in 0..6 {
+        let largest = at.iter().zip(&on).map(|(a, b)| (a[k] - b[k]).abs()).fold(0.0, f64::max);
+        columns[3 + k].1 = Some(largest);
+    }
+    columns
 }
