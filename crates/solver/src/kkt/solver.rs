@@ -148,6 +148,7 @@ impl<E: KktEngine> KktBackend for KktSolver<E> {
         }
         let mut report = SolveReport::default();
         if self.engine.refines(accuracy) {
+            self.system.measure_rows();
             let n = self.system.n();
             let mut refining = Refining { engine: &mut self.engine, system: &self.system, rhs: &self.rhs0 };
             let (steps, omega) =

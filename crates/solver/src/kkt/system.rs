@@ -8,7 +8,8 @@ use crate::kkt::{check_values, FactorError, KktValues};
 use std::sync::Arc;
 
 /// The values of one KKT system of a fixed pattern, as given (see [`KktValues`]), and the largest entry of
-/// each row of the whole matrix, both triangles and the skew part included.
+/// each row of the whole matrix, both triangles and the skew part included, measured when a refined solve
+/// first needs it (a Newton increment's solve, which is not refined, never does).
 #[derive(Debug, Clone)]
 pub struct KktSystem {
     pattern: Arc<KktPattern>,
@@ -17,6 +18,8 @@ pub struct KktSystem {
     has_skew: bool,
     j: Vec<f64>,
     row_norm: Vec<f64>,
+    /// Whether `row_norm` is of the values stored.
+    rows_measured: bool,
 }
 
 impl KktSystem {
@@ -29,13 +32,14 @@ impl KktSystem {
             has_skew: false,
             j: vec![0.0; j_nnz],
             row_norm: vec![0.0; size],
+            rows_measured: false,
             pattern,
         }
     }
 
     /// Takes `values` (the skew part only when `with_skew`: an engine that factorizes the symmetric part
     /// alone is refined against it alone), refusing an array of the wrong length or a value that is not
-    /// finite, and measures the rows.
+    /// finite.
     pub(crate) fn store(&mut self, values: KktValues<'_>, with_skew: bool) -> Result<(), FactorError> {
         copy_checked("k_values", values.k, &mut self.k)?;
         copy_checked("j_values", values.j, &mut self.j)?;
@@ -43,11 +47,21 @@ impl KktSystem {
         if let (true, Some(skew)) = (self.has_skew, values.k_skew) {
             copy_checked("k_skew", skew, &mut self.skew)?;
         }
+        self.rows_measured = false;
+        Ok(())
+    }
+
+    /// Measures each row's largest entry, for [`KktSystem::residual`]'s backward error, once per set of
+    /// values.
+    pub(crate) fn measure_rows(&mut self) {
+        if self.rows_measured {
+            return;
+        }
         let mut row_norm = std::mem::take(&mut self.row_norm);
         row_norm.fill(0.0);
         self.for_each_entry(|r, _, v| row_norm[r] = row_norm[r].max(v.abs()));
         self.row_norm = row_norm;
-        Ok(())
+        self.rows_measured = true;
     }
 
     /// The pattern.
@@ -98,7 +112,8 @@ impl KktSystem {
     }
 
     /// `r = rhs − A z` in original units, `den = |A|·|z| + |rhs|`; returns the backward error of `z`
-    /// ([`backward_error`]: componentwise, rows at rounding level normwise).
+    /// ([`backward_error`]: componentwise, rows at rounding level normwise), the rows measured first
+    /// ([`KktSystem::measure_rows`]).
     pub(crate) fn residual(&self, rhs: &[f64], z: &[f64], r: &mut [f64], den: &mut [f64]) -> f64 {
         r.copy_from_slice(rhs);
         for (d, b) in den.iter_mut().zip(rhs) {
@@ -108,6 +123,7 @@ impl KktSystem {
             r[row] -= v * z[col];
             den[row] += (v * z[col]).abs();
         });
+        debug_assert!(self.rows_measured, "the rows are measured before a residual is judged");
         backward_error(r, den, &self.row_norm, rhs, z)
     }
 }
