@@ -90,6 +90,19 @@ impl ComponentNames {
 }
 
 impl ComponentForces {
+    /// Every component, joints first, then elements: the order of a table's columns and rows.
+    pub fn all(&self) -> impl Iterator<Item = &ComponentForce> {
+        self.joints.iter().chain(&self.elements)
+    }
+
+    /// The `k`-th component of [`ComponentForces::all`], if there is one.
+    pub fn get(&self, k: usize) -> Option<&ComponentForce> {
+        match k.checked_sub(self.joints.len()) {
+            None => self.joints.get(k),
+            Some(e) => self.elements.get(e),
+        }
+    }
+
     /// Reads every joint reaction and element force of `step`, a solution of `model`.
     pub fn at(model: &Model, step: &StepResult) -> Self {
         Self::named(model, step, &ComponentNames::of(model))

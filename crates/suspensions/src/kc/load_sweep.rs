@@ -33,13 +33,11 @@ pub(super) fn where_loaded(s: &Settings) -> &'static str {
 /// row's, every row naming the same in the same order): `"<name> force_x_n"` … `"<name> torque_z_nm"`.
 fn component_columns<'a>(forces: &ComponentForces) -> Vec<Column<'a, LoadRow>> {
     let mut columns = Vec::new();
-    for (k, c) in forces.joints.iter().chain(&forces.elements).enumerate() {
+    for (k, c) in forces.all().enumerate() {
         for (what, unit, torque) in [("force", "n", false), ("torque", "nm", true)] {
             for (axis, name) in ["x", "y", "z"].into_iter().enumerate() {
                 columns.push(Column::new(format!("{} {what}_{name}_{unit}", c.name), move |r: &LoadRow| {
-                    let f = &r.forces;
-                    let c = f.joints.iter().chain(&f.elements).nth(k);
-                    Cell::from(c.map(|c| if torque { c.torque[axis] } else { c.force[axis] }))
+                    Cell::from(r.forces.get(k).map(|c| if torque { c.torque[axis] } else { c.force[axis] }))
                 }));
             }
         }

@@ -84,11 +84,15 @@ impl<'a, R> Column<'a, R> {
 
 impl Table {
     /// The table `name` of `rows`, one column per entry of `columns`.
-    pub(crate) fn of_columns<R>(name: &str, columns: &[Column<R>], rows: &[R]) -> Table {
+    pub(crate) fn of_columns<'r, R: 'r>(
+        name: &str,
+        columns: &[Column<R>],
+        rows: impl IntoIterator<Item = &'r R>,
+    ) -> Table {
         Table {
             name: name.into(),
             columns: columns.iter().map(|c| c.name.clone()).collect(),
-            rows: rows.iter().map(|r| columns.iter().map(|c| (c.cell)(r)).collect()).collect(),
+            rows: rows.into_iter().map(|r| columns.iter().map(|c| (c.cell)(r)).collect()).collect(),
         }
     }
 

@@ -106,8 +106,7 @@ fn static_load_table(rest: &StaticLoad) -> Table {
         Column::new("torque_y_nm", |c: &ComponentForce| c.torque.y.into()),
         Column::new("torque_z_nm", |c: &ComponentForce| c.torque.z.into()),
     ];
-    let components: Vec<ComponentForce> = rest.forces.joints.iter().chain(&rest.forces.elements).cloned().collect();
-    Table::of_columns("static_load", &columns, &components)
+    Table::of_columns("static_load", &columns, rest.forces.all())
 }
 
 /// The static load's figures at `rest`.
@@ -136,8 +135,7 @@ fn estimate(
         f.error = f.value.zip(g.value).map(|(a, b)| (a - b).abs());
     }
     let components = |r: &StaticLoad| -> Vec<[f64; 6]> {
-        let all = r.forces.joints.iter().chain(&r.forces.elements);
-        all.map(|c| [c.force.x, c.force.y, c.force.z, c.torque.x, c.torque.y, c.torque.z]).collect()
+        r.forces.all().map(|c| [c.force.x, c.force.y, c.force.z, c.torque.x, c.torque.y, c.torque.z]).collect()
     };
     let (at, on) = (components(rest), components(corrected));
     let mut columns: Vec<(String, Option<f64>)> = table.columns.iter().map(|c| (c.clone(), None)).collect();
