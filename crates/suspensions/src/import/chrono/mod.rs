@@ -58,6 +58,7 @@ mod sae_leaf_spring_axle;
 mod semi_trailing_arm;
 mod single_wishbone;
 mod solid_axle;
+mod templates;
 mod three_link_irs;
 
 use crate::description::Template;
@@ -68,6 +69,7 @@ pub use builder::CHRONO_STOP_CURVE;
 use doc::Doc;
 pub use error::{Expected, ImportError, KeyPath, Refusal};
 use serde_json::Value;
+pub use templates::SUPPORTED;
 
 /// A Chrono suspension read into the general form.
 #[derive(Debug, Clone)]
@@ -79,32 +81,6 @@ pub struct Imported {
     /// What was read and left out, and how values were taken, one line each.
     pub notes: Vec<String>,
 }
-
-/// The Chrono templates [`read`] reads.
-pub const SUPPORTED: [&str; 22] = [
-    "DoubleWishbone",
-    "DoubleWishboneReduced",
-    "MacPhersonStrut",
-    "MultiLink",
-    "SemiTrailingArm",
-    "SingleWishbone",
-    "ThreeLinkIRS",
-    "GenericWheeledSuspension",
-    "SolidAxle",
-    "SolidThreeLinkAxle",
-    "SolidBellcrankThreeLinkAxle",
-    "RigidPanhardAxle",
-    "ToeBarRigidPanhardAxle",
-    "HendricksonPRIMAXX",
-    "PushPipeAxle",
-    "ToeBarPushPipeAxle",
-    "DeDionAxle",
-    "ToeBarDeDionAxle",
-    "SAELeafspringAxle",
-    "SAEToeBarLeafspringAxle",
-    "LeafspringAxle",
-    "ToeBarLeafspringAxle",
-];
 
 /// Whether `text` is a Chrono suspension file: a JSON object (with `//` comments allowed) whose `"Type"` is
 /// `"Suspension"` and which names a `"Template"`.
@@ -165,7 +141,7 @@ pub fn read(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Impo
         "SAEToeBarLeafspringAxle" => sae_leaf_spring_axle::read_toe_bar(&doc, &mut b),
         "LeafspringAxle" => leaf_spring_axle::read_leaf_spring_axle(&doc, &mut b),
         "ToeBarLeafspringAxle" => leaf_spring_axle::read_toe_bar_leaf_spring_axle(&doc, &mut b),
-        other => Err(Refusal::Template { template: other.to_string(), supported: &SUPPORTED }),
+        other => Err(Refusal::Template { template: other.to_string() }),
     };
     built.map_err(at)?;
     let notes = b.finish(&doc);
