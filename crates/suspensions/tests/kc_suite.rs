@@ -780,9 +780,11 @@ fn every_analysis_walks_the_default_range_it_declares() {
 /// One analysis, one declaration in its own file under `crates/suspensions/src/kc/`: the suite's list
 /// (`kc::ALL`) holds every declaration once, each name is read back to its analysis, and the files declare
 /// exactly as many as the list holds (a new analysis file's declaration left out of `ALL`, or a declaration
-/// two analyses share, fails here).
+/// two analyses share, fails here); each declaration's words for its load parameter name the unit of the
+/// quantity it declares.
 #[test]
 fn every_analysis_is_declared_once_in_its_own_file_and_listed() {
+    use elastokin_suspensions::kc::Quantity;
     let names: Vec<&str> = kc::ALL.iter().map(|a| a.name()).collect();
     let mut unique = names.clone();
     unique.sort_unstable();
@@ -790,8 +792,16 @@ fn every_analysis_is_declared_once_in_its_own_file_and_listed() {
     assert_eq!(unique.len(), names.len(), "{names:?}");
     for a in kc::ALL {
         assert_eq!(Analysis::from_name(a.name()), Some(a));
+        // The load parameter's words, written by hand in each declaration, say the unit its quantity
+        // declares (the command's help shows both).
         let d = a.declaration();
-        assert_eq!((d.name, d.quantity.unit()), (a.name(), a.unit()));
+        let said = match d.quantity {
+            Quantity::Travel => d.parameter.contains(", m"),
+            Quantity::Force => d.parameter.contains(", N,") || d.parameter.ends_with(", N"),
+            Quantity::Torque => d.parameter.contains("N·m"),
+            Quantity::Fraction => d.parameter.starts_with("fraction"),
+        };
+        assert!(said, "{}: '{}' against {:?}", d.name, d.parameter, d.quantity);
     }
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/kc");
     let mut declared = 0;
