@@ -608,6 +608,52 @@ fn no_modules_form_a_cycle() {
     assert!(found.is_empty(), "modules import one another in a circle:\n{}", found.join("\n"));
 }
 
+/// The lines of `text` that create a solver taking part in no recording or replay
+/// (`StaticSolver::new`, `StaticSolver::with_workspace`) where it should take part in the one its caller
+/// was handed (`StaticSolver::taped`).
+fn solvers_outside_the_taping(text: &str) -> Vec<usize> {
+    let code = code_only(text);
+    let mut found: Vec<usize> = ["StaticSolver::new(", "StaticSolver::with_workspace("]
+        .iter()
+        .flat_map(|call| code.match_indices(call).map(|(at, _)| code[..at].matches('\n').count() + 1))
+        .collect();
+    found.sort_unstable();
+    found
+}
+
+/// Every solver of an analysis of the suite takes part in the recording or replay the analysis is
+/// handed (`kc::run_taped`), so that a replay moves every equilibrium the analysis solves (a solver
+/// outside it would solve the moved model outright: right, but as slow as a re-run, and its rate as noisy
+/// as a difference of re-solves). The analyses' public functions outside the suite that take no taping
+/// hand theirs `Taping::NONE`, except `anti_pitch`, which the suite does not call.
+#[test]
+fn every_solver_of_an_analysis_takes_part_in_its_taping() {
+    let root = repo_root();
+    let mut files = Vec::new();
+    rust_files(&root.join("crates/suspensions/src/analysis"), &mut files);
+    rust_files(&root.join("crates/suspensions/src/kc"), &mut files);
+    let mut found = Vec::new();
+    let mut taped = 0;
+    for file in files {
+        let text = std::fs::read_to_string(&file).expect("a source file reads");
+        taped += code_only(&text).matches("StaticSolver::taped(").count();
+        if file.ends_with("analysis/anti_pitch.rs") {
+            continue;
+        }
+        for line in solvers_outside_the_taping(&text) {
+            found.push(format!("{}:{line}", file.strip_prefix(&root).unwrap_or(&file).display()));
+        }
+    }
+    assert!(taped >= 8, "the analyses create {taped} taped solvers: the rule reads no code");
+    assert!(
+        found.is_empty(),
+        "solvers an analysis creates outside its taping (create them with StaticSolver::taped):\n{}",
+        found.join("\n")
+    );
+    let planted = "let a = StaticSolver::taped(&m, o, t)?;\nlet b = StaticSolver::new(\n &m,\n o,\n)?;\n";
+    assert_eq!(solvers_outside_the_taping(planted), vec![2]);
+}
+
 /// The public functions of `text` whose error is text (`-> Result<_, String>`), by line: a library's
 /// errors are typed to the top, rendered where text is written.
 fn text_errors(text: &str) -> Vec<usize> {

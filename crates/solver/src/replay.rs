@@ -1,11 +1,13 @@
 //! A run recorded and replayed with a moved model: how a derivative of anything a run computes is taken
 //! through its equilibria without solving them again.
 //!
-//! [`record`] runs a computation as it is and keeps, for every [`StaticSolver`](crate::StaticSolver) the computation creates
-//! on this thread (in the order they are created), what each of its solves returned: each
+//! [`record`] runs a computation as it is and hands it a [`Taping`], which the computation passes to its
+//! solvers ([`StaticSolver::taped`](crate::StaticSolver::taped)); for every
+//! [`StaticSolver`](crate::StaticSolver) created with it (in the order they are created) the recording
+//! keeps what each of its solves returned: each
 //! [`StaticSolver::equilibrium`](crate::StaticSolver::equilibrium), [`StaticSolver::sweep_from`](crate::StaticSolver::sweep_from) and
 //! [`StaticSolver::arc_length_sweep_from`](crate::StaticSolver::arc_length_sweep_from) (and the calls built on them). [`replay`] runs the same computation again, typically on a model read
-//! with one number moved by `δ`: each solver it creates takes the place of the recorded one of the same
+//! with one number moved by `δ`, handing it the replay's [`Taping`]: each solver it creates with it takes the place of the recorded one of the same
 //! rank, and each of its solves, instead of solving, returns the recorded equilibria each moved by one
 //! Newton iteration of the moved model, at the load parameter the replayed call asks for. Everything the
 //! computation then reads off the equilibria (rows, slopes, compliances, reactions) is read as usual.
@@ -39,7 +41,7 @@
 //! A run that reads only some rows of a sweep (a slope at one load parameter, the last row) may ask its
 //! solver to move only those ([`ReplayRows`]): the replayed sweep has those steps alone. A replay's solver
 //! takes the workspace (KKT pattern, analysis, buffers) a solver of an earlier replay of the recording left
-//! on the tape, and what a run decided of its model's form ([`decided`]) is its replays' without deciding
+//! on the tape, and what a run decided of its model's form ([`Taping::decided`]) is its replays' without deciding
 //! again.
 //!
 //! A replay that takes another path than the recording (a solver of other parts, another sequence of
@@ -51,8 +53,7 @@ use crate::options::LoadPath;
 use crate::results::{StepResult, Sweep};
 use elastokin_core::Model;
 use std::any::Any;
-use std::cell::RefCell;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 /// Which steps of a sweep a replay moves, for a run that reads only some of a sweep's rows (those about one
 /// load parameter, the last row): the steps whose load parameter lies within one step of `near`, and the
@@ -63,7 +64,7 @@ use std::sync::Arc;
 /// [`StaticSolver::replay_rows`](crate::StaticSolver::replay_rows); outside a replay it changes nothing.
 ///
 /// A run that also reads a row it finds by its value (where a reading is largest over the sweep) sets
-/// `extremes` and names those rows after reading them ([`rows_read`]): the recording keeps every step's
+/// `extremes` and names those rows after reading them ([`Taping::rows_read`]): the recording keeps every step's
 /// factors, and the replays move the rows named too.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ReplayRows {
@@ -71,7 +72,7 @@ pub struct ReplayRows {
     pub near: Option<f64>,
     /// Whether the last step is moved too.
     pub last: bool,
-    /// Whether the run names further rows it read once it has read the recorded sweep ([`rows_read`]).
+    /// Whether the run names further rows it read once it has read the recorded sweep ([`Taping::rows_read`]).
     pub extremes: bool,
 }
 
@@ -107,12 +108,11 @@ struct Recorded {
 #[derive(Debug, Clone, Default)]
 pub struct Tape {
     solvers: Vec<Recorded>,
-    /// The workspaces of its replays' spent solvers, for the next replays' (no two replays need a
-    /// workspace each of the same solver at once on one thread, but replays run on many threads).
+    /// The workspaces of its replays' spent solvers, for the next replays' (replays run on many threads).
     spare: Spare,
-    /// The last sweep kept: its solver and call, for [`rows_read`].
+    /// The last sweep kept: its solver and call, for [`Taping::rows_read`].
     last_sweep: Option<(usize, usize)>,
-    /// What the run decided of its model's form, in order ([`decided`]).
+    /// What the run decided of its model's form, in order ([`Taping::decided`]).
     decisions: Vec<Decision>,
 }
 
@@ -163,31 +163,33 @@ impl std::fmt::Debug for Spare {
 /// The most workspaces a tape keeps: a few per recorded solver, for replays on several threads.
 const MOST_SPARE: usize = 64;
 
-/// A spare workspace of type `W` that `fits`, from the thread's replay's tape, if any.
-pub(crate) fn spare_workspace<W: Any>(fits: impl Fn(&W) -> bool) -> Option<W> {
-    ACTIVE.with(|a| match a.try_borrow().ok()?.as_ref() {
-        Some(Active::Replaying { tape, .. }) => {
-            let mut spare = tape.spare.0.lock().ok()?;
-            let k = spare.iter().position(|w| w.downcast_ref::<W>().is_some_and(&fits))?;
-            spare.swap_remove(k).downcast::<W>().ok().map(|w| *w)
-        }
-        _ => None,
-    })
-}
+impl Taping {
+    /// A spare workspace of type `W` that `fits`, from the tape of the replay under way, if any.
+    pub(crate) fn spare_workspace<W: Any>(&self, fits: impl Fn(&W) -> bool) -> Option<W> {
+        self.with(|active| match active {
+            Active::Replaying { tape, .. } => {
+                let mut spare = tape.spare.0.lock().ok()?;
+                let k = spare.iter().position(|w| w.downcast_ref::<W>().is_some_and(&fits))?;
+                spare.swap_remove(k).downcast::<W>().ok().map(|w| *w)
+            }
+            Active::Recording(_) => None,
+        })
+        .flatten()
+    }
 
-/// Leaves a spent replaying solver's workspace to the thread's replay's tape; returns it when the tape
-/// keeps no more (or the thread replays none), for the caller to drop.
-pub(crate) fn leave_workspace<W: Any + Send>(workspace: W) -> Option<W> {
-    ACTIVE.with(|a| {
-        let Ok(active) = a.try_borrow() else { return Some(workspace) };
-        let Some(Active::Replaying { tape, .. }) = active.as_ref() else { return Some(workspace) };
-        let Ok(mut spare) = tape.spare.0.lock() else { return Some(workspace) };
-        if spare.len() >= MOST_SPARE {
-            return Some(workspace);
-        }
-        spare.push(Box::new(workspace));
-        None
-    })
+    /// Leaves a spent replaying solver's workspace to the replay's tape; returns it when the tape keeps no
+    /// more (or no replay is under way), for the caller to drop.
+    pub(crate) fn leave_workspace<W: Any + Send>(&self, workspace: W) -> Option<W> {
+        let mut workspace = Some(workspace);
+        self.with(|active| {
+            let Active::Replaying { tape, .. } = active else { return };
+            let Ok(mut spare) = tape.spare.0.lock() else { return };
+            if spare.len() < MOST_SPARE {
+                spare.extend(workspace.take().map(|w| Box::new(w) as Box<dyn Any + Send>));
+            }
+        });
+        workspace
+    }
 }
 
 /// A replay that took another path than its recording: the replayed computation created a solver of
@@ -196,7 +198,7 @@ pub(crate) fn leave_workspace<W: Any + Send>(workspace: W) -> Option<W> {
 #[error("the moved model's run took another path than the model's own: {0}")]
 pub struct Diverged(pub String);
 
-/// What this thread is doing with its solvers.
+/// What a recording or replay under way is doing with its solvers.
 enum Active {
     Recording(Tape),
     Replaying {
@@ -209,39 +211,68 @@ enum Active {
     },
 }
 
-thread_local! {
-    static ACTIVE: RefCell<Option<Active>> = const { RefCell::new(None) };
+/// A recording ([`record`]) or replay ([`replay`]) under way, handed to the computation it runs, which
+/// passes it to every solver that takes part ([`StaticSolver::taped`](crate::StaticSolver::taped)):
+/// a solver created with it records its solves, or replays the recorded solver of its rank. The default
+/// takes part in none: its solvers solve. Clones share the one recording or replay; once [`record`] or
+/// [`replay`] has returned, a solver that still holds one solves as if it held none.
+#[derive(Clone, Default)]
+pub struct Taping(Option<Arc<Mutex<Option<Active>>>>);
+
+impl std::fmt::Debug for Taping {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let what = self.with(|a| match a {
+            Active::Recording(_) => "recording",
+            Active::Replaying { .. } => "replaying",
+        });
+        write!(f, "Taping({})", what.unwrap_or("none"))
+    }
 }
 
-/// Restores what the thread was doing before a [`record`] or [`replay`], also when the computation
-/// panics.
-struct Restore(Option<Option<Active>>);
+/// A taping that takes part in nothing, for a `&'static` reference where none is given.
+pub static NO_TAPING: Taping = Taping::NONE;
 
-impl Drop for Restore {
-    fn drop(&mut self) {
-        if let Some(previous) = self.0.take() {
-            ACTIVE.with(|a| *a.borrow_mut() = previous);
+/// Two tapings are equal when they are the same recording or replay (or both none).
+impl PartialEq for Taping {
+    fn eq(&self, other: &Self) -> bool {
+        match (&self.0, &other.0) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            (None, None) => true,
+            _ => false,
         }
     }
 }
 
-impl Restore {
-    /// What the thread did while the guard held, the earlier state put back.
-    fn finish(mut self) -> Option<Active> {
-        let previous = self.0.take().expect("taken once");
-        ACTIVE.with(|a| std::mem::replace(&mut *a.borrow_mut(), previous))
+impl Taping {
+    /// None: its solvers solve.
+    pub const NONE: Taping = Taping(None);
+
+    fn of(active: Active) -> Taping {
+        Taping(Some(Arc::new(Mutex::new(Some(active)))))
+    }
+
+    /// `f` of the recording or replay under way, if any.
+    fn with<R>(&self, f: impl FnOnce(&mut Active) -> R) -> Option<R> {
+        let cell = self.0.as_ref()?;
+        // A computation that panicked while holding the lock left nothing half-done that matters here.
+        let mut active = cell.lock().unwrap_or_else(|e| e.into_inner());
+        active.as_mut().map(f)
+    }
+
+    /// What was recorded or replayed, the taping ended: its solvers solve from now on.
+    fn finish(&self) -> Option<Active> {
+        let cell = self.0.as_ref()?;
+        let mut active = cell.lock().unwrap_or_else(|e| e.into_inner());
+        active.take()
     }
 }
 
-fn begin(active: Active) -> Restore {
-    Restore(Some(ACTIVE.with(|a| a.borrow_mut().replace(active))))
-}
-
-/// Runs `run`, recording the solves of every [`StaticSolver`](crate::StaticSolver) it creates on this thread.
-pub fn record<R>(run: impl FnOnce() -> R) -> (R, Tape) {
-    let guard = begin(Active::Recording(Tape::default()));
-    let out = run();
-    match guard.finish() {
+/// Runs `run` with a new recording, which `run` passes to the solvers whose solves it keeps
+/// ([`StaticSolver::taped`](crate::StaticSolver::taped)).
+pub fn record<R>(run: impl FnOnce(&Taping) -> R) -> (R, Tape) {
+    let taping = Taping::of(Active::Recording(Tape::default()));
+    let out = run(&taping);
+    match taping.finish() {
         Some(Active::Recording(tape)) => (out, tape),
         _ => unreachable!("the recording is this call's"),
     }
@@ -258,11 +289,12 @@ pub struct Replay<R> {
     pub kinked: bool,
 }
 
-/// Runs `run` with its solvers replaying `tape` (see the module's documentation). [`Diverged`] when the
-/// run created solvers of other parts or in another number, or asked for other solves than were recorded.
-pub fn replay<R>(tape: &Arc<Tape>, run: impl FnOnce() -> R) -> Result<Replay<R>, Diverged> {
+/// Runs `run` with a replay of `tape`, which `run` passes to its solvers as the recorded run did (see the
+/// module's documentation). [`Diverged`] when the run created solvers of other parts or in another number,
+/// or asked for other solves than were recorded.
+pub fn replay<R>(tape: &Arc<Tape>, run: impl FnOnce(&Taping) -> R) -> Result<Replay<R>, Diverged> {
     let used = vec![0; tape.solvers.len()];
-    let guard = begin(Active::Replaying {
+    let taping = Taping::of(Active::Replaying {
         tape: tape.clone(),
         next_solver: 0,
         used,
@@ -270,8 +302,8 @@ pub fn replay<R>(tape: &Arc<Tape>, run: impl FnOnce() -> R) -> Result<Replay<R>,
         kinked: false,
         next_decision: 0,
     });
-    let out = run();
-    let Some(Active::Replaying { next_solver, used, diverged, kinked, .. }) = guard.finish() else {
+    let out = run(&taping);
+    let Some(Active::Replaying { next_solver, used, diverged, kinked, .. }) = taping.finish() else {
         unreachable!("the replay is this call's")
     };
     if let Some(why) = diverged {
@@ -290,12 +322,14 @@ pub fn replay<R>(tape: &Arc<Tape>, run: impl FnOnce() -> R) -> Result<Replay<R>,
     Ok(Replay { value: out, kinked })
 }
 
-/// Names rows of the thread's last recorded sweep that a run read besides those of its solver's
-/// [`ReplayRows`] (set with `extremes`): rows it found by their values, such as where a reading is largest.
-/// The replays move them too. Outside a recording it does nothing: a replay moves what its recording named.
-pub fn rows_read(rows: &[usize]) {
-    ACTIVE.with(|a| {
-        if let Some(Active::Recording(tape)) = a.borrow_mut().as_mut() {
+impl Taping {
+    /// Names rows of the recording's last sweep that a run read besides those of its solver's
+    /// [`ReplayRows`] (set with `extremes`): rows it found by their values, such as where a reading is
+    /// largest. The replays move them too. Outside a recording it does nothing: a replay moves what its
+    /// recording named.
+    pub fn rows_read(&self, rows: &[usize]) {
+        self.with(|active| {
+            let Active::Recording(tape) = active else { return };
             let Some((solver, call)) = tape.last_sweep else { return };
             // The recording holds its sweeps alone until it ends.
             if let Some(Call::Sweep(sweep)) = tape.solvers[solver].calls.get_mut(call) {
@@ -307,11 +341,11 @@ pub fn rows_read(rows: &[usize]) {
                     }
                 }
             }
-        }
-    });
+        });
+    }
 }
 
-/// One decision of [`decided`], kept by type.
+/// One decision of [`Taping::decided`], kept by type.
 #[derive(Clone)]
 struct Decision(Arc<dyn Any + Send + Sync>);
 
@@ -321,42 +355,45 @@ impl std::fmt::Debug for Decision {
     }
 }
 
-/// What `decide` decides of a run's model: decided and kept when recording; the recording's when
-/// replaying, not decided again; decided otherwise. For a property of the model's form that a move small
-/// enough for a derivative keeps, as it keeps its rows' independence (`replays_independent_rows`): which
-/// ways its joints alone hold a point, read from the rank of their Jacobian with a margin. A replay that
-/// asks for more decisions than were recorded, or of another kind, decides them.
-pub fn decided<T: Clone + Send + Sync + 'static>(decide: impl FnOnce() -> T) -> T {
-    let kept = ACTIVE.with(|a| match a.borrow_mut().as_mut() {
-        Some(Active::Replaying { tape, next_decision, .. }) => {
-            let kept = tape.decisions.get(*next_decision).and_then(|d| d.0.downcast_ref::<T>().cloned());
-            *next_decision += 1;
-            kept
+impl Taping {
+    /// What `decide` decides of a run's model: decided and kept when recording; the recording's when
+    /// replaying, not decided again; decided otherwise. For a property of the model's form that a move
+    /// small enough for a derivative keeps, as it keeps its rows' independence
+    /// (`replays_independent_rows`): which ways its joints alone hold a point, read from the rank of their
+    /// Jacobian with a margin. A replay that asks for more decisions than were recorded, or of another
+    /// kind, decides them.
+    pub fn decided<T: Clone + Send + Sync + 'static>(&self, decide: impl FnOnce() -> T) -> T {
+        let kept = self.with(|active| match active {
+            Active::Replaying { tape, next_decision, .. } => {
+                let kept = tape.decisions.get(*next_decision).and_then(|d| d.0.downcast_ref::<T>().cloned());
+                *next_decision += 1;
+                kept
+            }
+            Active::Recording(_) => None,
+        });
+        if let Some(kept) = kept.flatten() {
+            return kept;
         }
-        _ => None,
-    });
-    if let Some(kept) = kept {
-        return kept;
+        let value = decide();
+        self.with(|active| {
+            if let Active::Recording(tape) = active {
+                tape.decisions.push(Decision(Arc::new(value.clone())));
+            }
+        });
+        value
     }
-    let value = decide();
-    ACTIVE.with(|a| {
-        if let Some(Active::Recording(tape)) = a.borrow_mut().as_mut() {
-            tape.decisions.push(Decision(Arc::new(value.clone())));
-        }
-    });
-    value
+
+    /// Notes in the replay that a stop touched or left as the model moved.
+    pub(crate) fn note_kink(&self) {
+        self.with(|active| {
+            if let Active::Replaying { kinked, .. } = active {
+                *kinked = true;
+            }
+        });
+    }
 }
 
-/// Notes in the thread's replay that a stop touched or left as the model moved.
-pub(crate) fn note_kink() {
-    ACTIVE.with(|a| {
-        if let Some(Active::Replaying { kinked, .. }) = a.borrow_mut().as_mut() {
-            *kinked = true;
-        }
-    });
-}
-
-/// A new solver's part in the thread's recording or replay, if any, and in a replay the recorded model.
+/// A new solver's part in the recording or replay, if any, and in a replay the recorded model.
 pub(crate) type Registered = Option<(Taped, Option<Arc<Model>>)>;
 
 /// A solver's part in a recording or replay: its rank among the run's solvers.
@@ -367,7 +404,7 @@ pub(crate) struct Taped {
 
 /// What a taped solver's solve is to do.
 pub(crate) enum Replayed<T> {
-    /// No recording or replay on this thread: solve.
+    /// No recording or replay: solve.
     Solve,
     /// Recording: solve, and keep what it returned.
     Record(Taped),
@@ -439,49 +476,46 @@ pub(crate) struct RecordedSweep {
     pub(crate) pieces: Vec<Pieces>,
     /// The recorded tangent's factors at each of its steps, where kept.
     pub(crate) factors: Vec<Option<Factors>>,
-    /// The steps the run named as read once it had read the sweep ([`rows_read`]).
+    /// The steps the run named as read once it had read the sweep ([`Taping::rows_read`]).
     pub(crate) read: Vec<usize>,
 }
 
-/// Whether this thread is replaying a recording: every solve a solver makes is then a recorded one moved.
-pub(crate) fn replaying() -> bool {
-    // Asked also where a workspace is dropped: as the thread ends, or as what it records or replays is put
-    // away; then it is not replaying.
-    ACTIVE
-        .try_with(|a| a.try_borrow().is_ok_and(|a| matches!(a.as_ref(), Some(Active::Replaying { .. }))))
+impl Taping {
+    /// Whether a replay is under way: every solve a solver of it makes is then a recorded one moved.
+    pub(crate) fn replaying(&self) -> bool {
+        self.with(|active| matches!(active, Active::Replaying { .. })).unwrap_or(false)
+    }
+
+    /// Whether a new solver of a model with `rows` constraint rows replays a recorded solver of as many
+    /// rows that kept every one of them. Its model is then known without looking again to have no
+    /// redundant rows and every body restrained: both hold with a margin on the recorded model (rows
+    /// independent to the redundancy check's tolerance, a tangent the restraint check found regular), and a
+    /// margin is not lost in a move small enough for a derivative. Where the recorded solver dropped rows,
+    /// the moved model is checked again, since a move can make a dropped row independent (a second hinge
+    /// turned off the first's axis locks what it duplicated): [`Taping::register`] then refuses a replay
+    /// whose rows differ.
+    pub(crate) fn replays_independent_rows(&self, rows: usize) -> bool {
+        self.with(|active| match active {
+            Active::Replaying { tape, next_solver, .. } => tape
+                .solvers
+                .get(*next_solver)
+                .is_some_and(|r| r.model.constraint_rows() == rows && r.active.len() == rows),
+            Active::Recording(_) => false,
+        })
         .unwrap_or(false)
-}
+    }
 
-/// Whether a new solver of a model with `rows` constraint rows replays a recorded solver of as many rows
-/// that kept every one of them. Its model is then known without looking again to have no redundant rows
-/// and every body restrained: both hold with a margin on the recorded model (rows independent to the
-/// redundancy check's tolerance, a tangent the restraint check found regular), and a margin is not lost
-/// in a move small enough for a derivative. Where the recorded solver dropped rows, the moved model is
-/// checked again, since a move can make a dropped row independent (a second hinge turned off the
-/// first's axis locks what it duplicated): [`register`] then refuses a replay whose rows differ.
-pub(crate) fn replays_independent_rows(rows: usize) -> bool {
-    ACTIVE.with(|a| match a.borrow().as_ref() {
-        Some(Active::Replaying { tape, next_solver, .. }) => {
-            tape.solvers.get(*next_solver).is_some_and(|r| r.model.constraint_rows() == rows && r.active.len() == rows)
-        }
-        _ => false,
-    })
-}
-
-/// Registers a new solver of `model` with kept constraint rows `active` with the thread's recording or
-/// replay. In a replay, a solver unlike the recorded one of its rank is refused, and the recorded model
-/// comes with it, to tell what the move touched.
-pub(crate) fn register(model: &Model, active: &[usize]) -> Result<Registered, SolverError> {
-    ACTIVE.with(|a| {
-        let mut a = a.borrow_mut();
-        match a.as_mut() {
-            None => Ok(None),
-            Some(Active::Recording(tape)) => {
+    /// Registers a new solver of `model` with kept constraint rows `active` with the recording or replay.
+    /// In a replay, a solver unlike the recorded one of its rank is refused, and the recorded model comes
+    /// with it, to tell what the move touched.
+    pub(crate) fn register(&self, model: &Model, active: &[usize]) -> Result<Registered, SolverError> {
+        let registered = self.with(|taping| match taping {
+            Active::Recording(tape) => {
                 let model = Arc::new(model.clone());
                 tape.solvers.push(Recorded { model, active: active.to_vec(), calls: Vec::new() });
                 Ok(Some((Taped { solver: tape.solvers.len() - 1 }, None)))
             }
-            Some(Active::Replaying { tape, next_solver, diverged, .. }) => {
+            Active::Replaying { tape, next_solver, diverged, .. } => {
                 let k = *next_solver;
                 *next_solver += 1;
                 let Some(r) = tape.solvers.get(k) else {
@@ -500,38 +534,36 @@ pub(crate) fn register(model: &Model, active: &[usize]) -> Result<Registered, So
                 }
                 Ok(Some((Taped { solver: k }, Some(r.model.clone()))))
             }
-        }
-    })
-}
+        });
+        registered.unwrap_or(Ok(None))
+    }
 
-fn diverge(diverged: &mut Option<String>, why: String) -> SolverError {
-    diverged.get_or_insert(why.clone());
-    SolverError::InvalidInput { what: "replay", why }
-}
+    /// What a taped solver's next single equilibrium is to do.
+    pub(crate) fn next_equilibrium(&self, taped: Option<Taped>) -> Result<Replayed<RecordedEquilibrium>, SolverError> {
+        self.next(taped, false, |call| match call {
+            Call::Equilibrium(r, pieces, factors) => Some((r.clone(), pieces.clone(), factors.clone())),
+            Call::Sweep { .. } => None,
+        })
+    }
 
-/// What a taped solver's next single equilibrium is to do.
-pub(crate) fn next_equilibrium(taped: Option<Taped>) -> Result<Replayed<RecordedEquilibrium>, SolverError> {
-    next(taped, false, |call| match call {
-        Call::Equilibrium(r, pieces, factors) => Some((r.clone(), pieces.clone(), factors.clone())),
-        Call::Sweep { .. } => None,
-    })
-}
+    /// What a taped solver's next sweep is to do.
+    pub(crate) fn next_sweep(&self, taped: Option<Taped>) -> Result<Replayed<Arc<RecordedSweep>>, SolverError> {
+        self.next(taped, true, |call| match call {
+            Call::Sweep(sweep) => Some(sweep.clone()),
+            Call::Equilibrium(..) => None,
+        })
+    }
 
-/// What a taped solver's next sweep is to do.
-pub(crate) fn next_sweep(taped: Option<Taped>) -> Result<Replayed<Arc<RecordedSweep>>, SolverError> {
-    next(taped, true, |call| match call {
-        Call::Sweep(sweep) => Some(sweep.clone()),
-        Call::Equilibrium(..) => None,
-    })
-}
-
-/// What a taped solver's next solve is to do; in a replay, `take` reads the recorded call.
-fn next<T>(taped: Option<Taped>, sweep: bool, take: impl Fn(&Call) -> Option<T>) -> Result<Replayed<T>, SolverError> {
-    let Some(taped) = taped else { return Ok(Replayed::Solve) };
-    ACTIVE.with(|a| {
-        let mut a = a.borrow_mut();
-        match a.as_mut() {
-            Some(Active::Replaying { tape, used, diverged, .. }) => {
+    /// What a taped solver's next solve is to do; in a replay, `take` reads the recorded call.
+    fn next<T>(
+        &self,
+        taped: Option<Taped>,
+        sweep: bool,
+        take: impl Fn(&Call) -> Option<T>,
+    ) -> Result<Replayed<T>, SolverError> {
+        let Some(taped) = taped else { return Ok(Replayed::Solve) };
+        let next = self.with(|active| match active {
+            Active::Replaying { tape, used, diverged, .. } => {
                 let k = taped.solver;
                 let Some(call) = tape.solvers[k].calls.get(used[k]) else {
                     return Err(diverge(diverged, format!("solver {k} asked for more solves than were recorded")));
@@ -545,11 +577,57 @@ fn next<T>(taped: Option<Taped>, sweep: bool, take: impl Fn(&Call) -> Option<T>)
                     )),
                 }
             }
-            // A solver registered with a recording that has since ended solves as usual.
-            Some(Active::Recording(_)) => Ok(Replayed::Record(taped)),
-            None => Ok(Replayed::Solve),
-        }
-    })
+            Active::Recording(_) => Ok(Replayed::Record(taped)),
+        });
+        // A solver registered with a recording that has since ended solves as usual.
+        next.unwrap_or(Ok(Replayed::Solve))
+    }
+
+    /// Keeps what a recorded solver of `model` returned for an equilibrium, with its tangent's factors.
+    pub(crate) fn keep_equilibrium(
+        &self,
+        taped: Taped,
+        model: &Model,
+        result: &Result<StepResult, SolverError>,
+        factors: Option<Factors>,
+    ) {
+        let pieces = result.as_ref().map_or_else(|_| Vec::new(), |s| s.element_pieces(model));
+        self.keep(taped, Call::Equilibrium(result.clone(), pieces, factors));
+    }
+
+    /// Keeps what a recorded solver of `model` returned for a sweep along `path`, with the tangent's
+    /// factors at each step.
+    pub(crate) fn keep_sweep(
+        &self,
+        taped: Taped,
+        model: &Model,
+        path: LoadPath,
+        result: &Result<Sweep, SolverError>,
+        factors: Vec<Option<Factors>>,
+    ) {
+        let pieces =
+            result.as_ref().map_or_else(|_| Vec::new(), |s| s.steps.iter().map(|s| s.element_pieces(model)).collect());
+        let sweep = RecordedSweep { path, result: result.clone(), pieces, factors, read: Vec::new() };
+        self.keep(taped, Call::Sweep(Arc::new(sweep)));
+    }
+
+    fn keep(&self, taped: Taped, call: Call) {
+        self.with(|active| {
+            if let Active::Recording(tape) = active {
+                if let Some(r) = tape.solvers.get_mut(taped.solver) {
+                    if matches!(call, Call::Sweep { .. }) {
+                        tape.last_sweep = Some((taped.solver, r.calls.len()));
+                    }
+                    r.calls.push(call);
+                }
+            }
+        });
+    }
+}
+
+fn diverge(diverged: &mut Option<String>, why: String) -> SolverError {
+    diverged.get_or_insert(why.clone());
+    SolverError::InvalidInput { what: "replay", why }
 }
 
 fn kind(sweep: bool) -> &'static str {
@@ -558,45 +636,6 @@ fn kind(sweep: bool) -> &'static str {
     } else {
         "single equilibrium"
     }
-}
-
-/// Keeps what a recorded solver of `model` returned for an equilibrium, with its tangent's factors.
-pub(crate) fn keep_equilibrium(
-    taped: Taped,
-    model: &Model,
-    result: &Result<StepResult, SolverError>,
-    factors: Option<Factors>,
-) {
-    let pieces = result.as_ref().map_or_else(|_| Vec::new(), |s| s.element_pieces(model));
-    keep(taped, Call::Equilibrium(result.clone(), pieces, factors));
-}
-
-/// Keeps what a recorded solver of `model` returned for a sweep along `path`, with the tangent's factors
-/// at each step.
-pub(crate) fn keep_sweep(
-    taped: Taped,
-    model: &Model,
-    path: LoadPath,
-    result: &Result<Sweep, SolverError>,
-    factors: Vec<Option<Factors>>,
-) {
-    let pieces =
-        result.as_ref().map_or_else(|_| Vec::new(), |s| s.steps.iter().map(|s| s.element_pieces(model)).collect());
-    let sweep = RecordedSweep { path, result: result.clone(), pieces, factors, read: Vec::new() };
-    keep(taped, Call::Sweep(Arc::new(sweep)));
-}
-
-fn keep(taped: Taped, call: Call) {
-    ACTIVE.with(|a| {
-        if let Some(Active::Recording(tape)) = a.borrow_mut().as_mut() {
-            if let Some(r) = tape.solvers.get_mut(taped.solver) {
-                if matches!(call, Call::Sweep { .. }) {
-                    tape.last_sweep = Some((taped.solver, r.calls.len()));
-                }
-                r.calls.push(call);
-            }
-        }
-    });
 }
 
 /// Where the load parameter of a recorded sweep's `index`-th equilibrium (`None`: a limit point) lies on the replayed path: the

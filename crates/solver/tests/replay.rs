@@ -4,7 +4,7 @@
 
 use elastokin_core::{BodyRef, JointSpec, Model, Pose, Vec3};
 use elastokin_elements::{CoilSpring, PointForce};
-use elastokin_solver::replay::{self, record, replay, Diverged, ReplayRows, Tape};
+use elastokin_solver::replay::{record, replay, Diverged, ReplayRows, Tape, Taping};
 use elastokin_solver::{BackendChoice, LoadPath, Mode, SolverError, SolverOptions, State, StaticSolver, StepResult};
 use std::sync::Arc;
 
@@ -36,15 +36,16 @@ fn balance(k: f64, load: f64) -> (f64, f64) {
     (theta, -m_k / m_theta)
 }
 
-/// The sweep's angles: a sweep of the lever of rate `k` from no load to the full tip load.
-fn angles(k: f64) -> Result<Vec<f64>, SolverError> {
-    angles_by(k, BackendChoice::Auto)
+/// The sweep's angles: a sweep of the lever of rate `k` from no load to the full tip load, its solver
+/// taking part in `taping`.
+fn angles(k: f64, taping: &Taping) -> Result<Vec<f64>, SolverError> {
+    angles_by(k, BackendChoice::Auto, taping)
 }
 
 /// [`angles`] with the KKT backend `backend`.
-fn angles_by(k: f64, backend: BackendChoice) -> Result<Vec<f64>, SolverError> {
+fn angles_by(k: f64, backend: BackendChoice, taping: &Taping) -> Result<Vec<f64>, SolverError> {
     let model = lever(k);
-    let mut solver = StaticSolver::new(&model, SolverOptions { backend, ..Default::default() })?;
+    let mut solver = StaticSolver::taped(&model, SolverOptions { backend, ..Default::default() }, taping)?;
     Ok(solver.sweep(LoadPath::new(0.0, 1.0, 8), Mode::Corrected)?.steps.iter().map(angle).collect())
 }
 
@@ -58,22 +59,24 @@ fn a_replay_moves_every_equilibrium_at_the_rate_the_moment_balance_gives() {
 }
 
 fn replays_move_at_the_balances_rate(backend: BackendChoice) {
-    let angles = |k| angles_by(k, backend);
+    let angles = |k, taping: &Taping| angles_by(k, backend, taping);
     let k = 2e4;
-    let (base, tape) = record(|| angles(k));
+    let (base, tape) = record(|t| angles(k, t));
     let base = base.unwrap();
     assert_eq!((tape.solvers(), tape.equilibria(), tape.limit_point()), (1, 9, None));
     let tape = Arc::new(tape);
     // The replay of the model itself is the recording, one Newton iteration on: the same to the solver's
     // tolerance (measured 8.4e-10 rad at most: what the sweep's chord iterations left).
-    let again = replay(&tape, || angles(k)).unwrap().value.unwrap();
+    let again = replay(&tape, |t| angles(k, t)).unwrap().value.unwrap();
     for (a, b) in base.iter().zip(&again) {
         assert!((a - b).abs() < 1e-8, "{a} {b}");
     }
     // The rate of every angle with k: replays at k ± h, ± 2h, Richardson extrapolated, against the balance.
     let h = 1e-4 * k;
-    let replayed: Vec<Vec<f64>> =
-        [h, -h, 2.0 * h, -2.0 * h].iter().map(|d| replay(&tape, || angles(k + d)).unwrap().value.unwrap()).collect();
+    let replayed: Vec<Vec<f64>> = [h, -h, 2.0 * h, -2.0 * h]
+        .iter()
+        .map(|d| replay(&tape, |t| angles(k + d, t)).unwrap().value.unwrap())
+        .collect();
     for (i, theta) in base.iter().enumerate() {
         let load = i as f64 / 8.0;
         let (exact, rate) = balance(k, load);
@@ -88,35 +91,39 @@ fn replays_move_at_the_balances_rate(backend: BackendChoice) {
 
 #[test]
 fn a_replay_that_creates_other_solvers_or_asks_other_solves_says_so() {
-    let (_, tape) = record(|| angles(2e4));
+    let (_, tape) = record(|t| angles(2e4, t));
     let tape = Arc::new(tape);
     // One solver more.
-    let more = replay(&tape, || {
-        let first = angles(2e4);
-        (first, angles(2e4))
+    let more = replay(&tape, |t| {
+        let first = angles(2e4, t);
+        (first, angles(2e4, t))
     });
     assert!(matches!(&more, Err(Diverged(why)) if why.contains("more solvers")), "{more:?}");
     // A single equilibrium where a sweep was recorded.
-    let other = replay(&tape, || {
+    let other = replay(&tape, |t| {
         let model = lever(2e4);
-        let mut solver = StaticSolver::new(&model, SolverOptions::default()).unwrap();
+        let mut solver = StaticSolver::taped(&model, SolverOptions::default(), t).unwrap();
         let mut state = solver.design_state(0.0);
         solver.equilibrium(&mut state).map(|s| angle(&s))
     });
     assert!(matches!(&other, Err(Diverged(why)) if why.contains("single equilibrium where a sweep")), "{other:?}");
     // No solve at all.
-    let fewer = replay(&tape, || ());
+    let fewer = replay(&tape, |_| ());
     assert!(matches!(&fewer, Err(Diverged(why)) if why.contains("created 0 solvers")), "{fewer:?}");
-    // Outside a recording or replay, a solver solves as always.
-    assert_eq!(angles(2e4), record(|| angles(2e4)).0);
+    // A solver that takes part in no recording or replay solves as always.
+    assert_eq!(angles(2e4, &Taping::default()), record(|t| angles(2e4, t)).0);
+    // And one that holds a recording that has ended solves too.
+    let (kept, _) = record(Taping::clone);
+    assert_eq!(angles(2e4, &kept), angles(2e4, &Taping::default()));
 }
 
 /// Equilibria one after another on one solver that keeps its factorization, each from the last (at loads
 /// 0.3, 0.6, 1.0, 0.8, 0.5), then a sweep from where they ended: each solve's chord iterations start from
 /// the factorization the one before left.
-fn solves_on(k: f64) -> Result<Vec<f64>, SolverError> {
+fn solves_on(k: f64, taping: &Taping) -> Result<Vec<f64>, SolverError> {
     let model = lever(k);
-    let mut solver = StaticSolver::new(&model, SolverOptions { reuse_factorization: true, ..Default::default() })?;
+    let options = SolverOptions { reuse_factorization: true, ..Default::default() };
+    let mut solver = StaticSolver::taped(&model, options, taping)?;
     let mut state = solver.design_state(0.0);
     let mut angles = Vec::new();
     for t in [0.3, 0.6, 1.0, 0.8, 0.5] {
@@ -133,8 +140,8 @@ fn solves_on(k: f64) -> Result<Vec<f64>, SolverError> {
 /// results are the unrecorded one's to the bit.
 #[test]
 fn a_recorded_run_returns_what_it_returns_unrecorded_to_the_bit() {
-    let plain = solves_on(2e4).unwrap();
-    let (recorded, tape) = record(|| solves_on(2e4));
+    let plain = solves_on(2e4, &Taping::default()).unwrap();
+    let (recorded, tape) = record(|t| solves_on(2e4, t));
     assert_eq!(tape.equilibria(), 5 + 9);
     assert_eq!(plain, recorded.unwrap());
 }
@@ -158,9 +165,13 @@ fn moment_compliance(solver: &mut StaticSolver, state: &State) -> Result<Vec<f64
 }
 
 /// `read` at every step of a sweep of the lever of rate `k`, and the steps.
-fn read_at_steps(k: f64, read: TangentReading) -> Result<(Vec<StepResult>, Vec<Vec<f64>>), SolverError> {
+fn read_at_steps(
+    k: f64,
+    read: TangentReading,
+    taping: &Taping,
+) -> Result<(Vec<StepResult>, Vec<Vec<f64>>), SolverError> {
     let model = lever(k);
-    let mut solver = StaticSolver::new(&model, SolverOptions::default())?;
+    let mut solver = StaticSolver::taped(&model, SolverOptions::default(), taping)?;
     let steps = solver.sweep(LoadPath::new(0.0, 1.0, 8), Mode::Corrected)?.steps;
     let read = read_each(&mut solver, &steps, read)?;
     Ok((steps, read))
@@ -182,8 +193,8 @@ fn read_each(
 }
 
 /// The lever's path tangents at every step of a sweep of the lever of rate `k`, and the steps.
-fn path_tangents(k: f64) -> Result<(Vec<StepResult>, Vec<Vec<f64>>), SolverError> {
-    read_at_steps(k, path_tangent)
+fn path_tangents(k: f64, taping: &Taping) -> Result<(Vec<StepResult>, Vec<Vec<f64>>), SolverError> {
+    read_at_steps(k, path_tangent, taping)
 }
 
 /// `read` recorded at every step of the lever of rate `k`, then replayed on the lever of rate `1.001 k`:
@@ -191,12 +202,12 @@ fn path_tangents(k: f64) -> Result<(Vec<StepResult>, Vec<Vec<f64>>), SolverError
 /// and what `read` reads at the same states on that lever solved outright, as a fraction of the largest
 /// recorded reading.
 fn replayed_reading_gap(k: f64, read: TangentReading) -> (Arc<Tape>, Vec<Vec<f64>>, f64) {
-    let (base, tape) = record(|| read_at_steps(k, read));
+    let (base, tape) = record(|t| read_at_steps(k, read, t));
     let (_, readings) = base.unwrap();
     let largest = readings.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
     let tape = Arc::new(tape);
     let moved = 1.001 * k;
-    let (steps, replayed) = replay(&tape, || read_at_steps(moved, read)).unwrap().value.unwrap();
+    let (steps, replayed) = replay(&tape, |t| read_at_steps(moved, read, t)).unwrap().value.unwrap();
     let model = lever(moved);
     let mut solver = StaticSolver::new(&model, SolverOptions::default()).unwrap();
     let exact = read_each(&mut solver, &steps, read).unwrap();
@@ -220,7 +231,7 @@ fn a_replayed_path_tangent_is_the_moved_models_own() {
     let h = 1e-4 * k;
     let shifts = [h, -h, 2.0 * h, -2.0 * h];
     let replayed: Vec<Vec<Vec<f64>>> =
-        shifts.iter().map(|d| replay(&tape, || path_tangents(k + d)).unwrap().value.unwrap().1).collect();
+        shifts.iter().map(|d| replay(&tape, |t| path_tangents(k + d, t)).unwrap().value.unwrap().1).collect();
     let resolved: Vec<Vec<Vec<f64>>> = shifts
         .iter()
         .map(|d| {
@@ -267,24 +278,24 @@ fn lever_hinged_twice(tilt: f64) -> Model {
 /// survives a small move.)
 #[test]
 fn a_replay_whose_move_makes_a_dropped_row_independent_says_so() {
-    let sweep = |tilt: f64| -> Result<(Vec<f64>, usize), SolverError> {
+    let sweep = |tilt: f64, taping: &Taping| -> Result<(Vec<f64>, usize), SolverError> {
         let model = lever_hinged_twice(tilt);
-        let mut solver = StaticSolver::new(&model, SolverOptions::default())?;
+        let mut solver = StaticSolver::taped(&model, SolverOptions::default(), taping)?;
         let dropped = solver.diagnostics().redundant.len();
         Ok((solver.sweep(LoadPath::new(0.0, 1.0, 4), Mode::Corrected)?.steps.iter().map(angle).collect(), dropped))
     };
-    let (base, tape) = record(|| sweep(0.0));
+    let (base, tape) = record(|t| sweep(0.0, t));
     let (angles, dropped) = base.unwrap();
     assert!(dropped > 0, "the coaxial second hinge's rows are redundant");
     let tape = Arc::new(tape);
     // Coaxial still (a move of the load alone): the same rows, replayed.
-    let same = replay(&tape, || sweep(0.0)).unwrap().value.unwrap();
+    let same = replay(&tape, |t| sweep(0.0, t)).unwrap().value.unwrap();
     assert_eq!(same.1, dropped);
     for (a, b) in angles.iter().zip(&same.0) {
         assert!((a - b).abs() < 1e-8, "{a} {b}");
     }
     // Turned by a milliradian: every row independent, which the replay tells.
-    let turned = replay(&tape, || sweep(1e-3));
+    let turned = replay(&tape, |t| sweep(1e-3, t));
     assert!(matches!(&turned, Err(Diverged(why)) if why.contains("redundant joints differ")), "{turned:?}");
 }
 
@@ -294,17 +305,17 @@ fn a_replay_whose_move_makes_a_dropped_row_independent_says_so() {
 #[test]
 fn a_replayed_equilibrium_is_the_moved_models_to_the_square_of_the_move() {
     let k = 2e4;
-    let sweep = |k: f64| -> Result<Vec<StepResult>, SolverError> {
+    let sweep = |k: f64, taping: &Taping| -> Result<Vec<StepResult>, SolverError> {
         let model = lever(k);
-        let mut solver = StaticSolver::new(&model, SolverOptions::default())?;
+        let mut solver = StaticSolver::taped(&model, SolverOptions::default(), taping)?;
         Ok(solver.sweep(LoadPath::new(0.0, 1.0, 8), Mode::Corrected)?.steps)
     };
-    let (base, tape) = record(|| sweep(k));
+    let (base, tape) = record(|t| sweep(k, t));
     let base = base.unwrap();
     let tape = Arc::new(tape);
     // The gap between a replayed angle and the moved model's exact equilibrium (the moment balance).
     let gap = |d: f64| -> Vec<f64> {
-        let moved = replay(&tape, || sweep(k + d)).unwrap().value.unwrap();
+        let moved = replay(&tape, |t| sweep(k + d, t)).unwrap().value.unwrap();
         moved.iter().enumerate().map(|(i, s)| (angle(s) - balance(k + d, i as f64 / 8.0).0).abs()).collect()
     };
     let (large, small) = (gap(0.02 * k), gap(0.01 * k));
@@ -314,16 +325,16 @@ fn a_replayed_equilibrium_is_the_moved_models_to_the_square_of_the_move() {
         assert!((l / s - 4.0).abs() < 0.2, "step {i}: gaps {l:e} and {s:e}");
     }
     // And the replayed steps report the recorded residuals.
-    let moved = replay(&tape, || sweep(k * 1.01)).unwrap().value.unwrap();
+    let moved = replay(&tape, |t| sweep(k * 1.01, t)).unwrap().value.unwrap();
     for (b, m) in base.iter().zip(&moved) {
         assert_eq!((b.force_residual, b.constraint_residual), (m.force_residual, m.constraint_residual));
     }
 }
 
 /// The sweep's angles with a replay moving only `rows` of it.
-fn angles_moving(k: f64, rows: Option<ReplayRows>) -> Result<Vec<f64>, SolverError> {
+fn angles_moving(k: f64, rows: Option<ReplayRows>, taping: &Taping) -> Result<Vec<f64>, SolverError> {
     let model = lever(k);
-    let mut solver = StaticSolver::new(&model, SolverOptions::default())?;
+    let mut solver = StaticSolver::taped(&model, SolverOptions::default(), taping)?;
     solver.replay_rows(rows);
     Ok(solver.sweep(LoadPath::new(0.0, 1.0, 8), Mode::Corrected)?.steps.iter().map(angle).collect())
 }
@@ -331,56 +342,58 @@ fn angles_moving(k: f64, rows: Option<ReplayRows>) -> Result<Vec<f64>, SolverErr
 #[test]
 fn a_replay_asked_for_some_rows_moves_those_alone_as_a_whole_replay_does() {
     let k = 2e4;
-    let (base, tape) = record(|| angles_moving(k, None));
+    let (base, tape) = record(|t| angles_moving(k, None, t));
     let (base, tape) = (base.unwrap(), Arc::new(tape));
     let moved = k * 1.01;
-    let all = replay(&tape, || angles_moving(moved, None)).unwrap().value.unwrap();
+    let all = replay(&tape, |t| angles_moving(moved, None, t)).unwrap().value.unwrap();
     // Rows within one step (1/8) of load 0.5, and the last: steps 3, 4, 5 and 8.
     let rows = ReplayRows { near: Some(0.5), last: true, extremes: false };
-    let some = replay(&tape, || angles_moving(moved, Some(rows))).unwrap().value.unwrap();
+    let some = replay(&tape, |t| angles_moving(moved, Some(rows), t)).unwrap().value.unwrap();
     // Those steps alone, in order, each as the whole replay moves it.
     assert_eq!(some, [3, 4, 5, 8].map(|i| all[i]));
     assert!([3, 4, 5, 8].iter().all(|&i| all[i] != base[i]));
     // Outside a replay the rows asked for change nothing.
-    assert_eq!(angles_moving(k, Some(rows)).unwrap(), angles_moving(k, None).unwrap());
+    let none = Taping::default();
+    assert_eq!(angles_moving(k, Some(rows), &none).unwrap(), angles_moving(k, None, &none).unwrap());
 }
 
 /// The sweep's angles with a replay moving the rows within one step of load 0.5 and the row the run finds
-/// its largest angle at, named once read ([`replay::rows_read`]).
-fn angles_moving_the_largest(k: f64) -> Result<Vec<f64>, SolverError> {
+/// its largest angle at, named once read ([`Taping::rows_read`]).
+fn angles_moving_the_largest(k: f64, taping: &Taping) -> Result<Vec<f64>, SolverError> {
     let model = lever(k);
-    let mut solver = StaticSolver::new(&model, SolverOptions::default())?;
+    let mut solver = StaticSolver::taped(&model, SolverOptions::default(), taping)?;
     solver.replay_rows(Some(ReplayRows { near: Some(0.5), last: false, extremes: true }));
     let angles: Vec<f64> = solver.sweep(LoadPath::new(0.0, 1.0, 8), Mode::Corrected)?.steps.iter().map(angle).collect();
     let largest = (0..angles.len()).max_by(|&a, &b| angles[a].abs().total_cmp(&angles[b].abs())).unwrap();
-    replay::rows_read(&[largest]);
+    taping.rows_read(&[largest]);
     Ok(angles)
 }
 
 #[test]
 fn a_row_a_run_names_once_read_is_moved_by_the_replays_as_a_whole_replay_moves_it() {
     let k = 2e4;
-    let (base, tape) = record(|| angles_moving_the_largest(k));
+    let (base, tape) = record(|t| angles_moving_the_largest(k, t));
     let (base, tape) = (base.unwrap(), Arc::new(tape));
     let largest = (0..base.len()).max_by(|&a, &b| base[a].abs().total_cmp(&base[b].abs())).unwrap();
     assert!(![3, 4, 5].contains(&largest), "the largest angle is at step {largest}, among the rows near 0.5");
     let moved = k * 1.01;
-    let all = replay(&tape, || angles_moving(moved, None)).unwrap().value.unwrap();
-    let some = replay(&tape, || angles_moving_the_largest(moved)).unwrap().value.unwrap();
+    let all = replay(&tape, |t| angles_moving(moved, None, t)).unwrap().value.unwrap();
+    let some = replay(&tape, |t| angles_moving_the_largest(moved, t)).unwrap().value.unwrap();
     // The steps near 0.5 and the one named, in order, each as the whole replay moves it.
     let mut named = [3, 4, 5, largest];
     named.sort_unstable();
     assert_eq!(some, named.iter().map(|&i| all[i]).collect::<Vec<_>>());
     assert!(named.iter().all(|&i| all[i] != base[i]));
     // Outside a recording, naming rows changes nothing.
-    assert_eq!(angles_moving_the_largest(k).unwrap(), angles_moving(k, None).unwrap());
+    let none = Taping::default();
+    assert_eq!(angles_moving_the_largest(k, &none).unwrap(), angles_moving(k, None, &none).unwrap());
 }
 
 /// The lever's sweep angles, and whether its solver analysed the KKT pattern itself (not reusing a
 /// workspace).
-fn angles_analysed(k: f64) -> Result<(Vec<f64>, bool), SolverError> {
+fn angles_analysed(k: f64, taping: &Taping) -> Result<(Vec<f64>, bool), SolverError> {
     let model = lever(k);
-    let mut solver = StaticSolver::new(&model, SolverOptions::default())?;
+    let mut solver = StaticSolver::taped(&model, SolverOptions::default(), taping)?;
     let analysed = solver.counters().factor.symbolic_analyses > 0;
     Ok((solver.sweep(LoadPath::new(0.0, 1.0, 8), Mode::Corrected)?.steps.iter().map(angle).collect(), analysed))
 }
@@ -388,17 +401,17 @@ fn angles_analysed(k: f64) -> Result<(Vec<f64>, bool), SolverError> {
 #[test]
 fn a_replays_solver_takes_the_workspace_an_earlier_replay_left_and_reads_what_a_fresh_one_reads() {
     let k = 2e4;
-    let (_, tape) = record(|| angles_analysed(k));
+    let (_, tape) = record(|t| angles_analysed(k, t));
     let tape = Arc::new(tape);
     let moved = k * 1.01;
-    let (first, analysed) = replay(&tape, || angles_analysed(moved)).unwrap().value.unwrap();
+    let (first, analysed) = replay(&tape, |t| angles_analysed(moved, t)).unwrap().value.unwrap();
     assert!(analysed, "the first replay's solver has no workspace to take");
-    let (second, analysed) = replay(&tape, || angles_analysed(moved)).unwrap().value.unwrap();
+    let (second, analysed) = replay(&tape, |t| angles_analysed(moved, t)).unwrap().value.unwrap();
     assert!(!analysed, "the second replay's solver takes the first's workspace");
     assert_eq!(second, first);
     // A copy of the recording keeps no workspaces: its replay analyses afresh, and reads the same.
     let copy = Arc::new((*tape).clone());
-    let (third, analysed) = replay(&copy, || angles_analysed(moved)).unwrap().value.unwrap();
+    let (third, analysed) = replay(&copy, |t| angles_analysed(moved, t)).unwrap().value.unwrap();
     assert!(analysed);
     assert_eq!(third, first);
 }
@@ -406,20 +419,20 @@ fn a_replays_solver_takes_the_workspace_an_earlier_replay_left_and_reads_what_a_
 #[test]
 fn a_decision_a_recording_took_is_its_replays_without_deciding_again() {
     // The run decides twice, then sweeps: the decisions are `k`'s, as a model's form is its own.
-    let run = |k: f64| -> (u32, Vec<bool>, Result<Vec<f64>, SolverError>) {
-        let first = replay::decided(|| (k / 1e4) as u32);
-        let second = replay::decided(|| vec![k > 1e4, k > 3e4]);
-        (first, second, angles_moving(k, None))
+    let run = |k: f64, taping: &Taping| -> (u32, Vec<bool>, Result<Vec<f64>, SolverError>) {
+        let first = taping.decided(|| (k / 1e4) as u32);
+        let second = taping.decided(|| vec![k > 1e4, k > 3e4]);
+        (first, second, angles_moving(k, None, taping))
     };
-    let ((first, second, _), tape) = record(|| run(2e4));
+    let ((first, second, _), tape) = record(|t| run(2e4, t));
     assert_eq!((first, second.as_slice()), (2, [true, false].as_slice()));
     let tape = Arc::new(tape);
     // Replayed on a model whose own decisions would differ: the recording's, not decided again.
-    let (first, second, angles) = replay(&tape, || run(4e4)).unwrap().value;
+    let (first, second, angles) = replay(&tape, |t| run(4e4, t)).unwrap().value;
     assert_eq!((first, second.as_slice()), (2, [true, false].as_slice()));
     assert!(angles.is_ok());
     // Outside a recording or replay, decided.
-    assert_eq!(replay::decided(|| 7_u32), 7);
+    assert_eq!(Taping::default().decided(|| 7_u32), 7);
 }
 
 /// The lever with its spring's top `top_z` higher and its hinge `pivot_x` along x: moves that touch one
@@ -460,20 +473,20 @@ fn turn_moved(load: f64, top_z: f64, pivot_x: f64) -> f64 {
 
 #[test]
 fn a_replay_moving_a_spring_end_or_a_hinge_moves_at_the_balances_rate() {
-    let turns = |top_z: f64, pivot_x: f64| -> Vec<f64> {
+    let turns = |top_z: f64, pivot_x: f64, taping: &Taping| -> Vec<f64> {
         let model = lever_moved(top_z, pivot_x);
-        let mut solver = StaticSolver::new(&model, SolverOptions::default()).unwrap();
+        let mut solver = StaticSolver::taped(&model, SolverOptions::default(), taping).unwrap();
         let steps = solver.sweep(LoadPath::new(0.0, 1.0, 8), Mode::Corrected).unwrap().steps;
         // The body's reference is 0.25 m along the lever from the origin: its turn about the hinge.
         steps.iter().map(|s| (-s.poses[0].position.z).atan2(s.poses[0].position.x - pivot_x)).collect()
     };
-    let (_, tape) = record(|| turns(0.0, 0.0));
+    let (_, tape) = record(|t| turns(0.0, 0.0, t));
     let tape = Arc::new(tape);
     let h = 1e-4;
     for (name, at) in [("spring top z", [1.0, 0.0]), ("hinge x", [0.0, 1.0])] {
         let replayed: Vec<Vec<f64>> = [h, -h, 2.0 * h, -2.0 * h]
             .iter()
-            .map(|d| replay(&tape, || turns(d * at[0], d * at[1])).unwrap().value)
+            .map(|d| replay(&tape, |t| turns(d * at[0], d * at[1], t)).unwrap().value)
             .collect();
         for i in 0..9 {
             let load = i as f64 / 8.0;

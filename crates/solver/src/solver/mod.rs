@@ -40,7 +40,7 @@ use crate::error::SolverError;
 use crate::kkt::{Accuracy, AutoKkt, BackendChoice, KktBackend, KktValues};
 use crate::kkt::{FactorCounters, KktOptions};
 use crate::options::{ArcStep, LoadPath, Mode, SolverOptions, State};
-use crate::replay;
+use crate::replay::{self, Taping};
 use crate::results::{Diagnostics, LimitPoint, PathRates, RedundantRow, StepResult, Sweep};
 use elastokin_core::{Model, Pose, BODY_DOFS};
 
@@ -70,7 +70,7 @@ pub struct StaticSolver<'m> {
     /// from a kept factorization only when it is of the full tangent.
     assembled: Option<Tangent>,
     factored: Option<Tangent>,
-    /// Its rank in the thread's recording or replay ([`replay`]), if one is under way.
+    /// Its rank in the recording or replay it takes part in, if any.
     taped: Option<replay::Taped>,
     /// A recording's second dense LU, which factorizes the tangent at each recorded equilibrium for the
     /// replays and leaves the solver's own factorization as the run left it.
@@ -79,6 +79,8 @@ pub struct StaticSolver<'m> {
     replay_rows: Option<replay::ReplayRows>,
     /// In a replay, the recorded model and what this one differs from it in.
     touched: Option<replay::Touched>,
+    /// The recording or replay it takes part in ([`replay`]), if any.
+    taping: Taping,
 }
 
 /// What a [`StaticSolver`] allocates for one topology of model: the KKT pattern and slot maps, the
@@ -101,17 +103,19 @@ pub struct SolverWorkspace {
     history: Option<PathHistory>,
     /// What the Newton iterations of the current call have moved `[Δq; Δλ]`, summed.
     moved: Vec<f64>,
+    /// The replay its solver took part in, whose tape it goes to when dropped.
+    taping: Taping,
 }
 
-/// A replay's solver leaves its workspace to the next replays of the recording: dropped in a replay, a
-/// workspace's allocations go to the replay's tape (the default left in their place holds none).
+/// A replay's solver leaves its workspace to the next replays of the recording: dropped while its replay
+/// is under way, a solver's workspace goes to the replay's tape (the default left in its place holds
+/// nothing).
 impl Drop for SolverWorkspace {
     fn drop(&mut self) {
-        if self.holds() && replay::replaying() {
-            if let Some(mut refused) = replay::leave_workspace(std::mem::take(self)) {
-                // Emptied, so that dropping it here does not offer it again.
-                (refused.assembly, refused.rhs) = (Assembly::default(), Vec::new());
-            }
+        if self.holds() && self.taping.replaying() {
+            let taping = std::mem::take(&mut self.taping);
+            // Dropped here, with no taping left to offer it to again, when the tape keeps no more.
+            drop(taping.leave_workspace(std::mem::take(self)));
         }
     }
 }
@@ -294,7 +298,13 @@ impl<'m> StaticSolver<'m> {
     /// [`StaticSolver::diagnostics`]), analyses the KKT pattern once and checks at design that every body is
     /// restrained.
     pub fn new(model: &'m Model, options: SolverOptions) -> Result<Self, SolverError> {
-        Self::with_workspace(model, options, None)
+        Self::build(model, options, None, Taping::NONE)
+    }
+
+    /// As [`StaticSolver::new`], the solver taking part in `taping`: the recording ([`replay::record`])
+    /// or replay ([`replay::replay`]) the run that creates it was handed, if any.
+    pub fn taped(model: &'m Model, options: SolverOptions, taping: &Taping) -> Result<Self, SolverError> {
+        Self::build(model, options, None, taping.clone())
     }
 
     /// As [`StaticSolver::new`], reusing `workspace` — the pattern, slot maps, factorization analysis and
@@ -312,12 +322,21 @@ impl<'m> StaticSolver<'m> {
         options: SolverOptions,
         workspace: Option<SolverWorkspace>,
     ) -> Result<Self, SolverError> {
+        Self::build(model, options, workspace, Taping::NONE)
+    }
+
+    fn build(
+        model: &'m Model,
+        options: SolverOptions,
+        workspace: Option<SolverWorkspace>,
+        taping: Taping,
+    ) -> Result<Self, SolverError> {
         options.validate()?;
         model.validate()?;
         let poses = model.design_poses();
         // A replay of a solver that kept every row needs neither check again (see
         // `replay::replays_independent_rows`).
-        let checked = replay::replays_independent_rows(model.constraint_rows());
+        let checked = taping.replays_independent_rows(model.constraint_rows());
         let dropped = if checked { Vec::new() } else { redundant_rows_at_design(model, options.redundancy_tolerance) };
         let mut is_dropped = vec![false; model.constraint_rows()];
         for &r in &dropped {
@@ -340,8 +359,8 @@ impl<'m> StaticSolver<'m> {
                 && w.kkt == options.kkt
         };
         // A replay's solver takes the workspace a solver of an earlier replay of the recording left.
-        let reusable = workspace.filter(fits).or_else(|| replay::spare_workspace(fits));
-        let workspace = match reusable {
+        let reusable = workspace.filter(fits).or_else(|| taping.spare_workspace(fits));
+        let mut workspace = match reusable {
             Some(mut w) => {
                 w.factor.reset();
                 w.forget_path();
@@ -363,10 +382,12 @@ impl<'m> StaticSolver<'m> {
                     krylov: Krylov::default(),
                     history: None,
                     moved: vec![0.0; size],
+                    taping: Taping::default(),
                 }
             }
         };
-        let (taped, touched) = match replay::register(model, &workspace.assembly.active_rows)? {
+        workspace.taping = taping.clone();
+        let (taped, touched) = match taping.register(model, &workspace.assembly.active_rows)? {
             Some((taped, recorded)) => (Some(taped), recorded.and_then(|r| replay::Touched::between(r, model))),
             None => (None, None),
         };
@@ -384,6 +405,7 @@ impl<'m> StaticSolver<'m> {
             recorded_lu: None,
             replay_rows: None,
             touched,
+            taping,
         };
         if !checked {
             solver.check_restrained(&poses)?;
@@ -399,7 +421,9 @@ impl<'m> StaticSolver<'m> {
 
     /// The solver's allocations, to solve another model of the same topology with
     /// [`StaticSolver::with_workspace`].
-    pub fn into_workspace(self) -> SolverWorkspace {
+    pub fn into_workspace(mut self) -> SolverWorkspace {
+        // Given away, it is no replay's to take back.
+        self.work.taping = Taping::default();
         self.work
     }
 

@@ -263,13 +263,13 @@ impl<'m> StaticSolver<'m> {
 
     /// Static equilibrium at `state.t`, by Newton from `state`.
     pub fn equilibrium(&mut self, state: &mut State) -> Result<StepResult, SolverError> {
-        use super::replay::{next_equilibrium, Replayed};
-        match next_equilibrium(self.taped)? {
+        use super::replay::Replayed;
+        match self.taping.next_equilibrium(self.taped)? {
             Replayed::Solve => self.solve_equilibrium(state),
             Replayed::Record(taped) => {
                 let result = self.solve_equilibrium(state);
                 let factors = result.as_ref().ok().and_then(|step| self.recorded_factors(step));
-                super::replay::keep_equilibrium(taped, self.model, &result, factors);
+                self.taping.keep_equilibrium(taped, self.model, &result, factors);
                 result
             }
             Replayed::Call(recorded) => self.replay_equilibrium(recorded, state),

@@ -5,15 +5,13 @@ use super::StaticSolver;
 use crate::assembly::pair_dofs;
 use crate::error::SolverError;
 use crate::options::{LoadPath, State};
-use crate::replay::{
-    keep_sweep, moved_t, next_sweep, note_kink, Factors, Kept, RecordedEquilibrium, RecordedSweep, Replayed,
-};
+use crate::replay::{moved_t, Factors, Kept, RecordedEquilibrium, RecordedSweep, Replayed};
 use crate::results::{StepResult, Sweep};
 use elastokin_core::ElementEval;
 use std::sync::Arc;
 
 impl StaticSolver<'_> {
-    /// A sweep along `path` as the thread's recording or replay has it: `solve` it (and keep what it
+    /// A sweep along `path` as the recording or replay the solver takes part in has it: `solve` it (and keep what it
     /// returned when recording), or move the recorded one when replaying.
     pub(super) fn taped_sweep(
         &mut self,
@@ -21,12 +19,12 @@ impl StaticSolver<'_> {
         path: LoadPath,
         solve: impl FnOnce(&mut Self, &mut State) -> Result<Sweep, SolverError>,
     ) -> Result<Sweep, SolverError> {
-        match next_sweep(self.taped)? {
+        match self.taping.next_sweep(self.taped)? {
             Replayed::Solve => solve(self, state),
             Replayed::Record(taped) => {
                 let result = solve(self, state);
                 // The factors where the replays will move the step: every step, or those of `replay_rows`
-                // (every step where the run names rows it read afterwards, `replay::rows_read`)
+                // (every step where the run names rows it read afterwards, `Taping::rows_read`)
                 // (a replayed step without them, should its load parameter move across the edge of the
                 // rows asked for, takes the exact Newton iteration instead).
                 let factors = match &result {
@@ -38,7 +36,7 @@ impl StaticSolver<'_> {
                     }
                     Err(_) => Vec::new(),
                 };
-                keep_sweep(taped, self.model, path, &result, factors);
+                self.taping.keep_sweep(taped, self.model, path, &result, factors);
                 result
             }
             Replayed::Call(recorded) => self.replay_sweep(recorded, path, state),
@@ -61,7 +59,7 @@ impl StaticSolver<'_> {
             None => self.newton_correction(&at)?,
         };
         if moved.element_pieces(self.model) != pieces {
-            note_kink();
+            self.taping.note_kink();
         }
         Ok(moved)
     }

@@ -139,7 +139,7 @@ impl<'m> StaticSolver<'m> {
     /// arm's mount, that left 5.5e-5 of its wheel rate's derivative.
     pub fn factorize_tangent(&mut self, state: &State) -> Result<(), SolverError> {
         self.assemble(state, Some(Tangent::Full));
-        if replay::replaying() {
+        if self.taping.replaying() {
             self.work.factor.reset();
         }
         self.factorize()?;

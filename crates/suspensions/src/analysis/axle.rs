@@ -122,7 +122,7 @@ pub fn axle_sweep_with(
         });
     }
     let model = &axle.model;
-    let mut solver = StaticSolver::new(model, SolverOptions::default())?;
+    let mut solver = StaticSolver::taped(model, SolverOptions::default(), extras.taping())?;
     let mut start = solver.design_state(from);
     let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, &extras)?;
     let drivers = (model.joint_id(&format!("left {WHEEL_TRAVEL}")), model.joint_id(&format!("right {WHEEL_TRAVEL}")));

@@ -5,6 +5,7 @@
 use crate::assembly::Corner;
 use crate::wheel::Wheel;
 use elastokin_core::Vec3;
+use elastokin_solver::replay::Taping;
 use elastokin_solver::{SolverError, SolverOptions, State, StaticSolver};
 
 /// The 6×6 compliance of the wheel at the equilibrium of load parameter `t`: column `k` is the response
@@ -15,7 +16,7 @@ use elastokin_solver::{SolverError, SolverOptions, State, StaticSolver};
 /// height). With a partner wheel (a solid axle) each unit load acts on both wheels alike, in phase, as the
 /// load sweeps apply them; the response is the corner's own wheel's.
 pub fn wheel_compliance(corner: &Corner, t: f64) -> Result<[[f64; 6]; 6], SolverError> {
-    Ok(compliance_at(corner, t)?.wheel)
+    Ok(compliance_at(corner, t, &Taping::NONE)?.wheel)
 }
 
 /// The wheel compliance at an equilibrium, with the solver that found it and factorized its tangent there:
@@ -33,9 +34,9 @@ pub(crate) struct ComplianceAt<'m> {
 }
 
 /// The wheel compliance at the equilibrium of load parameter `t`, and the solver and equilibrium it was
-/// taken at.
-pub(crate) fn compliance_at(corner: &Corner, t: f64) -> Result<ComplianceAt<'_>, SolverError> {
-    let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
+/// taken at, the solver taking part in `taping`.
+pub(crate) fn compliance_at<'c>(corner: &'c Corner, t: f64, taping: &Taping) -> Result<ComplianceAt<'c>, SolverError> {
+    let mut solver = StaticSolver::taped(&corner.model, SolverOptions::default(), taping)?;
     let mut state = solver.design_state(t);
     let at = solver.equilibrium(&mut state)?;
     let wheel = compliance_with(&mut solver, &corner.wheel, corner.partner.as_ref(), &state)?;
@@ -132,7 +133,7 @@ fn attitude_change(a: &Vec3, s: f64, dpi: &Vec3) -> (f64, f64) {
 
 /// [`PatchCompliance`] at the equilibrium of load parameter `t` (see [`wheel_compliance`]).
 pub fn patch_compliance(corner: &Corner, t: f64) -> Result<PatchCompliance, SolverError> {
-    let at = compliance_at(corner, t)?;
+    let at = compliance_at(corner, t, &Taping::NONE)?;
     Ok(patch_compliance_from(corner, &at.wheel, &at.state.poses))
 }
 

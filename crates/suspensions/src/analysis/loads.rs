@@ -7,6 +7,7 @@ use crate::assembly::rig::WHEEL_TRAVEL;
 use crate::assembly::{Corner, Rig};
 use crate::wheel::WheelAttitude;
 use elastokin_core::{BodyRef, JointId, Model, Vec3};
+use elastokin_solver::replay::Taping;
 use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, State, StaticSolver, StepResult, Sweep};
 use std::sync::Arc;
 
@@ -14,17 +15,22 @@ use std::sync::Arc;
 /// corner load the design position carries. The corner must hold its wheel-centre height
 /// ([`Rig::WheelTravel`] at `t = 0`, or [`Rig::HeightHeld`]).
 pub fn design_wheel_load(corner: &Corner) -> Result<f64, SolverError> {
-    Ok(design_wheel_load_estimated(corner, false)?.0)
+    Ok(design_wheel_load_estimated(corner, false, &Taping::NONE)?.0)
 }
 
 /// [`design_wheel_load`] and, when `estimate`, its error estimate: the change of the load over one exact
-/// Newton iteration from the equilibrium (the rows' estimate, [`SweepExtras::error_estimate`]).
-pub fn design_wheel_load_estimated(corner: &Corner, estimate: bool) -> Result<(f64, Option<f64>), SolverError> {
+/// Newton iteration from the equilibrium (the rows' estimate, [`SweepExtras::error_estimate`]). Its solver
+/// takes part in `taping`.
+pub fn design_wheel_load_estimated(
+    corner: &Corner,
+    estimate: bool,
+    taping: &Taping,
+) -> Result<(f64, Option<f64>), SolverError> {
     require_rig(corner, &[Rig::WheelTravel, Rig::HeightHeld])?;
     let Some(driver) = corner.model.joint_id(WHEEL_TRAVEL) else {
         return Err(SolverError::InvalidInput { what: "corner", why: "it has no \"wheel travel\" driver".into() });
     };
-    let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
+    let mut solver = StaticSolver::taped(&corner.model, SolverOptions::default(), taping)?;
     let mut state = solver.design_state(0.0);
     let step = solver.equilibrium(&mut state)?;
     let load = |s: &elastokin_solver::StepResult| s.joint_reaction(&corner.model, driver).force.z;
@@ -228,7 +234,7 @@ pub fn vertical_force_sweep_with(
     require_rig(&corner, &[Rig::Free])?;
     let patch = corner.wheel.contact_patch;
     corner.add_wheel_force("vertical force", corner.load_point_at(patch), Vec3::z())?;
-    let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
+    let mut solver = StaticSolver::taped(&corner.model, SolverOptions::default(), extras.taping())?;
     let mut start = solver.design_state(from);
     let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, &extras)?;
     let local_patch = corner.model.bodies()[corner.wheel.upright.0].design_pose.to_local_point(&patch);
@@ -324,18 +330,18 @@ fn loaded_sweep(
 ) -> Result<SweepOutput<LoadRow>, SolverError> {
     require_rig(&corner, &[Rig::HeightHeld, Rig::Free])?;
     add_corner_load(&mut corner, corner_load)?;
-    let (mut start, patch_local) = rest_without_swept_load(&corner)?;
+    let (mut start, patch_local) = rest_without_swept_load(&corner, &extras)?;
     let patch_at_design = corner.model.bodies()[corner.wheel.upright.0].design_pose.point(&patch_local);
     add(&mut corner, patch_at_design)?;
-    let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
+    let mut solver = StaticSolver::taped(&corner.model, SolverOptions::default(), extras.taping())?;
     let walked = walk(&mut solver, &mut start, path, mode, &extras)?;
     load_rows(&mut solver, &corner, walked, patch_local, extras)
 }
 
 /// The equilibrium without the swept load (the load parameter at zero): where the patch loads act, and
 /// where the path starts from; with the contact patch there as a point of the upright.
-fn rest_without_swept_load(corner: &Corner) -> Result<(State, Vec3), SolverError> {
-    let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
+fn rest_without_swept_load(corner: &Corner, extras: &SweepExtras) -> Result<(State, Vec3), SolverError> {
+    let mut solver = StaticSolver::taped(&corner.model, SolverOptions::default(), extras.taping())?;
     let mut state = solver.design_state(0.0);
     solver.equilibrium(&mut state)?;
     let patch = corner.wheel.steering_geometry(&state.poses).contact_patch;
@@ -423,16 +429,17 @@ const STATIC_LOAD_STEPS: usize = 20;
 /// [`SolverError::InvalidInput`] on the corner load when no rest position is found or the one found is
 /// unstable; model and factorization failures pass through.
 pub fn static_load_case(corner: Corner, corner_load: f64) -> Result<StaticLoad, SolverError> {
-    Ok(static_load_case_estimated(corner, corner_load, false)?.0)
+    Ok(static_load_case_estimated(corner, corner_load, false, &Taping::NONE)?.0)
 }
 
 /// [`static_load_case`], and with `estimate` the rest position read again one exact Newton iteration on:
 /// what it reads differs from the first by the error estimate of each (as every sweep's rows are read again,
-/// [`SweepExtras::error_estimate`]).
+/// [`SweepExtras::error_estimate`]). Its solver takes part in `taping`.
 pub fn static_load_case_estimated(
     mut corner: Corner,
     corner_load: f64,
     estimate: bool,
+    taping: &Taping,
 ) -> Result<(StaticLoad, Option<StaticLoad>), SolverError> {
     require_rig(&corner, &[Rig::Free])?;
     if !corner_load.is_finite() {
@@ -446,7 +453,7 @@ pub fn static_load_case_estimated(
     let model = &corner.model;
     let upright = corner.wheel.upright.0;
     let patch_local = model.bodies()[upright].design_pose.to_local_point(&patch);
-    let mut solver = StaticSolver::new(model, SolverOptions::default())?;
+    let mut solver = StaticSolver::taped(model, SolverOptions::default(), taping)?;
     let mut state = solver.design_state(corner_load);
     let step = match solver.equilibrium(&mut state) {
         Ok(step) => step,

@@ -6,7 +6,7 @@ use crate::analysis::compliance::compliance_with;
 use crate::assembly::{Corner, Rig};
 use crate::wheel::Wheel;
 use elastokin_core::Pose;
-use elastokin_solver::replay::ReplayRows;
+use elastokin_solver::replay::{ReplayRows, Taping, NO_TAPING};
 use elastokin_solver::{ArcStep, LoadPath, Mode, SolverError, State, StaticSolver, StepResult, Sweep, MAX_STEPS};
 
 /// Refuses a corner held differently from what the analysis needs: `rigs` lists the rigs it accepts.
@@ -58,7 +58,7 @@ pub const AT_ROW: f64 = 1e-9;
 /// What a sweep can do besides walking its rows: read more at every step, at the cost of more
 /// factorizations, and go on through a limit point.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct SweepExtras {
+pub struct SweepExtras<'t> {
     /// Every row read again one exact Newton iteration away ([`StaticSolver::newton_correction`]): the
     /// difference is the row's error estimate. One factorization per row.
     pub error_estimate: bool,
@@ -88,6 +88,15 @@ pub struct SweepExtras {
     /// [`AtDesign`] besides its rows: the exact equilibrium there and the path's expansion to second order through
     /// it. One equilibrium and one factorization more (two of each with the error estimate).
     pub at_design: Option<f64>,
+    /// The recording or replay the sweep's solvers take part in ([`elastokin_solver::replay`]), if any.
+    pub taping: Option<&'t Taping>,
+}
+
+impl SweepExtras<'_> {
+    /// The recording or replay the sweep's solvers take part in: [`SweepExtras::taping`], or none.
+    pub fn taping(&self) -> &Taping {
+        self.taping.unwrap_or(&NO_TAPING)
+    }
 }
 
 /// How many arc-length steps of [`SweepExtras::through_limits`] a path through a limit point may take,

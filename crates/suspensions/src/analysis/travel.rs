@@ -75,7 +75,7 @@ fn driven_sweep_with(
     extras: SweepExtras,
 ) -> Result<SweepOutput<TravelRow>, SolverError> {
     require_rig(corner, &[rig])?;
-    let mut solver = StaticSolver::new(&corner.model, SolverOptions::default())?;
+    let mut solver = StaticSolver::taped(&corner.model, SolverOptions::default(), extras.taping())?;
     let mut start = solver.design_state(from);
     let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, &extras)?;
     read_sweep(&mut solver, &corner.wheel, corner.partner.as_ref(), walked, extras, |_, s, _| Ok(travel_row(corner, s)))

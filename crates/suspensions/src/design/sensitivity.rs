@@ -380,7 +380,7 @@ fn analysis_sensitivity_of(
     settings: &Settings,
 ) -> Result<AnalysisSensitivity, SensitivityError> {
     let parameters = models.parameters;
-    let (report, tape) = record(|| kc::run_on(analysis, &models.base, settings));
+    let (report, tape) = record(|taping| kc::run_taped(analysis, &models.base, settings, taping));
     let report = report.map_err(|e| SensitivityError::Analysis(e.cause))?;
     if let Some(at) = tape.limit_point() {
         return Err(SensitivityError::LimitPoint { at, unit: analysis.unit() });
@@ -471,7 +471,7 @@ fn parameter_rates(
     let h = step(models.parameters, k);
     let replayed = |m: usize| -> Result<Replay<AnalysisReport>, SensitivityError> {
         let (moved, shift) = (models.models(k, m)?, MOVES[m]);
-        let run = replay(tape, || kc::run_on(analysis, moved, settings))
+        let run = replay(tape, |taping| kc::run_taped(analysis, moved, settings, taping))
             .map_err(|diverged| SensitivityError::ChangesAnalysis { pointer: pointer.clone(), diverged })?;
         let value = run.value.map_err(|e| SensitivityError::MovedFails {
             pointer: pointer.clone(),

@@ -2,7 +2,7 @@
 //! load carried; its table, figures and charts.
 
 use crate::analysis::{
-    design_wheel_load, model_load_sweep_with, wheel_load_sweep_with, ComponentForces, LoadRow, WheelLoad,
+    design_wheel_load_estimated, model_load_sweep_with, wheel_load_sweep_with, ComponentForces, LoadRow, WheelLoad,
 };
 use crate::assembly::{LoadPoint, Rig};
 use crate::description::Side;
@@ -14,6 +14,7 @@ use crate::kc::reduce::{axis, bushings_share, chart, corner_drawing, deg, finish
 use crate::kc::report::{AnalysisReport, Cell, Column, Figure, FigureKind, Table};
 use crate::kc::settings::{Analysis, Cause, Quantity, Settings};
 use crate::kc::unit::Unit;
+use elastokin_solver::replay::Taping;
 use elastokin_solver::LoadPath;
 
 /// Why the `loads` analysis cannot run.
@@ -46,14 +47,19 @@ fn component_columns<'a>(forces: &ComponentForces) -> Vec<Column<'a, LoadRow>> {
 }
 
 /// A road load or the model's own loads, swept with the corner load carried.
-pub(super) fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Result<AnalysisReport, Cause> {
+pub(super) fn loaded(
+    models: &Models,
+    analysis: Analysis,
+    s: &Settings,
+    taping: &Taping,
+) -> Result<AnalysisReport, Cause> {
     let file = models.file();
     let quantity = analysis.declaration().quantity;
     let unit = quantity.unit();
     let range = analysis.range_or_default(s.range)?;
     let corner_load = match &file.vehicle {
         Some(v) => v.corner_load,
-        None => design_wheel_load(models.corner_ref(Rig::WheelTravel)?)?,
+        None => design_wheel_load_estimated(models.corner_ref(Rig::WheelTravel)?, false, taping)?.0,
     };
     let rig = if s.height_held { Rig::HeightHeld } else { Rig::Free };
     let mut corner = models.corner(rig)?;
@@ -61,7 +67,7 @@ pub(super) fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Resul
     // Drawn as walked: with the model's own loads, once they are added.
     let drawing;
     // The figures read the rates at zero load (at design) and the last row.
-    let extras = s.extras_reading(range, 0.0, analysis.declaration().figure_rows);
+    let extras = s.extras_reading(range, 0.0, analysis.declaration().figure_rows, taping);
     let out = match analysis {
         Analysis::Road(load) => {
             drawing = corner_drawing(&corner, s);
@@ -102,7 +108,7 @@ pub(super) fn loaded(models: &Models, analysis: Analysis, s: &Settings) -> Resul
     let mut report =
         finish(analysis, description, range, s, &out, Reduction { table: &table, figures: &figures, drawing }, charts);
     if let (Analysis::Road(WheelLoad::Lateral), Some(rigid)) = (analysis, models.rigid()) {
-        let rigid = loaded(rigid, analysis, &Settings { motion: false, ..*s });
+        let rigid = loaded(rigid, analysis, &Settings { motion: false, ..*s }, taping);
         bushings_share(&mut report, "steer", "lateral-force compliance steer", rigid);
     }
     Ok(report)

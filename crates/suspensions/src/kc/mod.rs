@@ -42,6 +42,7 @@ pub use unit::{Shown, Unit, Units};
 
 use crate::analysis::WheelLoad;
 use crate::file::SuspensionFile;
+use elastokin_solver::replay::Taping;
 use elastokin_solver::LoadPath;
 
 impl Analysis {
@@ -69,15 +70,26 @@ pub fn run(analysis: Analysis, file: &SuspensionFile, settings: &Settings) -> Re
 
 /// Runs one analysis on the model of `models`, building only what no analysis run on them built before.
 pub fn run_on(analysis: Analysis, models: &Models, settings: &Settings) -> Result<AnalysisReport, AnalysisError> {
+    run_taped(analysis, models, settings, &Taping::default())
+}
+
+/// [`run_on`] with every solver of the analysis taking part in `taping`: a recording of its solves, or a
+/// replay of one ([`elastokin_solver::replay`]).
+pub fn run_taped(
+    analysis: Analysis,
+    models: &Models,
+    settings: &Settings,
+    taping: &Taping,
+) -> Result<AnalysisReport, AnalysisError> {
     check_settings(analysis, settings)?;
     let result = match analysis {
-        Analysis::ParallelTravel => parallel_travel::parallel_travel(models, settings),
-        Analysis::Roll => roll::roll(models, settings),
-        Analysis::Steering => steering::steering(models, settings),
-        Analysis::VerticalForce => vertical_force::vertical_force(models, settings),
-        Analysis::Road(load) => road_load::road_load(models, load, settings),
-        Analysis::StaticLoad => static_load::static_load(models, settings),
-        Analysis::ModelLoads => model_loads::model_loads(models, settings),
+        Analysis::ParallelTravel => parallel_travel::parallel_travel(models, settings, taping),
+        Analysis::Roll => roll::roll(models, settings, taping),
+        Analysis::Steering => steering::steering(models, settings, taping),
+        Analysis::VerticalForce => vertical_force::vertical_force(models, settings, taping),
+        Analysis::Road(load) => road_load::road_load(models, load, settings, taping),
+        Analysis::StaticLoad => static_load::static_load(models, settings, taping),
+        Analysis::ModelLoads => model_loads::model_loads(models, settings, taping),
     };
     result.map_err(|cause| AnalysisError { analysis: analysis.name(), cause })
 }

@@ -4,6 +4,7 @@
 use crate::kc::models::Models;
 use crate::kc::report::AnalysisReport;
 use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, FigureRows, Quantity, Settings};
+use elastokin_solver::replay::Taping;
 
 /// The model file's own load case, as the command and the reports name it.
 pub(super) const DECLARATION: Declaration = Declaration {
@@ -17,6 +18,6 @@ pub(super) const DECLARATION: Declaration = Declaration {
 };
 
 /// The model file's own load case (`loads` of the general form), applied from zero to its full value.
-pub(super) fn model_loads(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
-    super::load_sweep::loaded(models, Analysis::ModelLoads, s)
+pub(super) fn model_loads(models: &Models, s: &Settings, taping: &Taping) -> Result<AnalysisReport, Cause> {
+    super::load_sweep::loaded(models, Analysis::ModelLoads, s, taping)
 }

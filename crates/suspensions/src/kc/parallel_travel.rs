@@ -12,6 +12,7 @@ use crate::kc::models::Models;
 use crate::kc::reduce::{axis, chart, corner_drawing, deg, finish, needs_vehicle, Design, Reduction};
 use crate::kc::report::{AnalysisReport, Column, Figure, FigureKind, Table, Warning};
 use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, FigureRows, Quantity, Settings};
+use elastokin_solver::replay::Taping;
 
 /// Parallel travel, as the command and the reports name it.
 pub(super) const DECLARATION: Declaration = Declaration {
@@ -24,7 +25,7 @@ pub(super) const DECLARATION: Declaration = Declaration {
     figure_rows: FigureRows::DesignOnly,
 };
 
-pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
+pub(super) fn parallel_travel(models: &Models, s: &Settings, taping: &Taping) -> Result<AnalysisReport, Cause> {
     let file = models.file();
     let range = Analysis::ParallelTravel.range_or_default(s.range)?;
     let corner = models.corner_ref(Rig::WheelTravel)?;
@@ -34,7 +35,7 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
         range.1,
         s.steps,
         s.mode,
-        s.extras_reading(range, 0.0, DECLARATION.figure_rows),
+        s.extras_reading(range, 0.0, DECLARATION.figure_rows, taping),
     )?;
     let table = |rows: &[TravelRow]| parallel_travel_table(corner, rows);
     let figures = |_: &[TravelRow], design: Design<TravelRow>| parallel_travel_figures(file, corner, design);
@@ -52,7 +53,7 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings) -> Result<AnalysisR
     );
     // Toe, camber and wheel rate no car has, inside the travel asked for.
     report.warnings.extend(crate::check::check_travel_rows(&out.rows));
-    design_compliance(file, corner, s, &mut report)?;
+    design_compliance(file, corner, s, taping, &mut report)?;
     Ok(report)
 }
 
@@ -111,16 +112,17 @@ fn design_compliance(
     file: &SuspensionFile,
     corner: &Corner,
     s: &Settings,
+    taping: &Taping,
     report: &mut AnalysisReport,
 ) -> Result<(), Cause> {
-    let mut design = compliance_at(corner, 0.0)?;
+    let mut design = compliance_at(corner, 0.0, taping)?;
     let compliance = design.wheel;
     // The joints alone may hold the patch inboard or rearward (ideal joints, no bushing in the load path):
     // the compliance that way is then rounding, and its inverse no stiffness. Decided once by a recording,
     // for its replays (a property of the joints' form).
     let inboard = elastokin_core::Vec3::new(0.0, -corner.wheel.side.sign(), 0.0);
     let rearward = elastokin_core::Vec3::new(-1.0, 0.0, 0.0);
-    let held = elastokin_solver::replay::decided(|| {
+    let held = taping.decided(|| {
         crate::assembly::mobility::holds_point(
             &corner.model,
             corner.wheel.upright,

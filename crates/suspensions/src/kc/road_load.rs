@@ -5,6 +5,7 @@ use crate::analysis::WheelLoad;
 use crate::kc::models::Models;
 use crate::kc::report::AnalysisReport;
 use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, FigureRows, Quantity, Settings};
+use elastokin_solver::replay::Taping;
 
 /// The lateral force sweep.
 pub(super) const LATERAL: Declaration = Declaration {
@@ -50,6 +51,11 @@ pub(super) const ALIGNING_TORQUE: Declaration = Declaration {
     figure_rows: FigureRows::LastRow,
 };
 
-pub(super) fn road_load(models: &Models, load: WheelLoad, s: &Settings) -> Result<AnalysisReport, Cause> {
-    super::load_sweep::loaded(models, Analysis::Road(load), s)
+pub(super) fn road_load(
+    models: &Models,
+    load: WheelLoad,
+    s: &Settings,
+    taping: &Taping,
+) -> Result<AnalysisReport, Cause> {
+    super::load_sweep::loaded(models, Analysis::Road(load), s, taping)
 }

@@ -12,6 +12,7 @@ use crate::kc::reduce::{axis, axle_drawing, bushings_share, chart, deg, finish, 
 use crate::kc::report::{slug, AnalysisReport, Cell, Column, Figure, Table};
 use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, FigureRows, Quantity, Settings};
 use crate::kc::unit::Unit;
+use elastokin_solver::replay::Taping;
 
 /// Roll, as the command and the reports name it.
 pub(super) const DECLARATION: Declaration = Declaration {
@@ -30,7 +31,7 @@ fn ground_camber(camber_to_body: f64, side: Side, roll: f64) -> f64 {
     camber_to_body - side.sign() * roll
 }
 
-pub(super) fn roll(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
+pub(super) fn roll(models: &Models, s: &Settings, taping: &Taping) -> Result<AnalysisReport, Cause> {
     let file = models.file();
     let range = Analysis::Roll.range_or_default(s.range)?;
     let axle = models.axle_ref(AxleRig::OppositeTravel)?;
@@ -43,7 +44,7 @@ pub(super) fn roll(models: &Models, s: &Settings) -> Result<AnalysisReport, Caus
         range.1,
         s.steps,
         s.mode,
-        s.extras_reading(range, 0.0, DECLARATION.figure_rows),
+        s.extras_reading(range, 0.0, DECLARATION.figure_rows, taping),
     )?;
     let table = |rows: &[AxleRow]| roll_table(rows, &members);
     let figures = |_: &[AxleRow], design: Design<AxleRow>| roll_figures(design, &members, has_bars);
@@ -57,7 +58,7 @@ pub(super) fn roll(models: &Models, s: &Settings) -> Result<AnalysisReport, Caus
     let reduce = Reduction { table: &table, figures: &figures, drawing: axle_drawing(axle, s) };
     let mut report = finish(Analysis::Roll, description, range, s, &out, reduce, charts);
     if let Some(rigid) = models.rigid() {
-        bushings_share(&mut report, "roll_steer", "roll steer", roll(rigid, &Settings { motion: false, ..*s }));
+        bushings_share(&mut report, "roll_steer", "roll steer", roll(rigid, &Settings { motion: false, ..*s }, taping));
     }
     Ok(report)
 }

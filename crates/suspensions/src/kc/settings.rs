@@ -4,7 +4,7 @@
 use crate::analysis::{SweepExtras, WheelLoad};
 use crate::description::limits::plain;
 use crate::kc::unit::Units;
-use elastokin_solver::replay::ReplayRows;
+use elastokin_solver::replay::{ReplayRows, Taping};
 use elastokin_solver::Mode;
 use serde::Serialize;
 
@@ -316,7 +316,7 @@ pub enum FigureRows {
     /// The last row too (a value at the end of the range).
     LastRow,
     /// Rows found by their values once the sweep is read (full steer, the largest Ackermann error), which
-    /// the analysis names as it reads them (`replay::rows_read`).
+    /// the analysis names as it reads them (`Taping::rows_read`).
     Extremes,
 }
 
@@ -334,7 +334,7 @@ impl FigureRows {
 
 impl Settings {
     /// What the sweeps over `range` take besides their rows.
-    pub(super) fn extras(&self, range: (f64, f64)) -> SweepExtras {
+    pub(super) fn extras<'t>(&self, range: (f64, f64), taping: &'t Taping) -> SweepExtras<'t> {
         let one_step = (range.1 - range.0).abs() / self.steps as f64;
         SweepExtras {
             error_estimate: self.error_estimate,
@@ -344,15 +344,22 @@ impl Settings {
             figures_only: self.figures_only,
             figure_rows: None,
             at_design: None,
+            taping: Some(taping),
         }
     }
 
     /// [`Settings::extras`] of a sweep whose figures read its readings at the design load parameter
     /// `design` ([`SweepExtras::at_design`]) and only `rows` of it: when reading for the figures alone, a
-    /// replay moves only those ([`SweepExtras::figure_rows`]).
-    pub(super) fn extras_reading(&self, range: (f64, f64), design: f64, rows: FigureRows) -> SweepExtras {
+    /// replay moves only those ([`SweepExtras::figure_rows`]). The sweeps' solvers take part in `taping`.
+    pub(super) fn extras_reading<'t>(
+        &self,
+        range: (f64, f64),
+        design: f64,
+        rows: FigureRows,
+        taping: &'t Taping,
+    ) -> SweepExtras<'t> {
         let figure_rows = self.figures_only.then_some(rows.replayed());
-        SweepExtras { figure_rows, at_design: Some(design), ..self.extras(range) }
+        SweepExtras { figure_rows, at_design: Some(design), ..self.extras(range, taping) }
     }
 }
 

@@ -7,6 +7,7 @@ use crate::kc::figures;
 use crate::kc::models::Models;
 use crate::kc::report::{Accuracy, AnalysisReport, Cell, Column, Figure, Table, Warning};
 use crate::kc::settings::{mode_word, Analysis, Cause, Declaration, DefaultRange, FigureRows, Quantity, Settings};
+use elastokin_solver::replay::Taping;
 
 /// The static load case: no range, the corner load applied at once.
 pub(super) const DECLARATION: Declaration = Declaration {
@@ -19,7 +20,7 @@ pub(super) const DECLARATION: Declaration = Declaration {
     figure_rows: FigureRows::DesignOnly,
 };
 
-pub(super) fn static_load(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
+pub(super) fn static_load(models: &Models, s: &Settings, taping: &Taping) -> Result<AnalysisReport, Cause> {
     let file = models.file();
     let vehicle = file.vehicle.as_ref().ok_or_else(|| {
         Cause::Lacks(
@@ -28,7 +29,7 @@ pub(super) fn static_load(models: &Models, s: &Settings) -> Result<AnalysisRepor
         )
     })?;
     let corner = models.corner(Rig::Free)?;
-    let (rest, corrected) = static_load_case_estimated(corner, vehicle.corner_load, s.error_estimate)?;
+    let (rest, corrected) = static_load_case_estimated(corner, vehicle.corner_load, s.error_estimate, taping)?;
     let table = static_load_table(&rest);
     let mut at_rest = rest_figures(&rest);
     let columns = match &corrected {

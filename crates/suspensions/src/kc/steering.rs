@@ -9,6 +9,7 @@ use crate::kc::models::Models;
 use crate::kc::reduce::{axis, axle_drawing, chart, deg, finish, needs_vehicle, Design, Reduction};
 use crate::kc::report::{AnalysisReport, Cell, Column, Figure, Table};
 use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, FigureRows, Quantity, Settings};
+use elastokin_solver::replay::Taping;
 
 /// Steering, as the command and the reports name it.
 pub(super) const DECLARATION: Declaration = Declaration {
@@ -46,8 +47,9 @@ fn steering_table(rows: &[AxleRow], track: f64, wheelbase: Option<f64>) -> Table
 
 /// The steering figures: the steer per rack travel at design, the steering ratio (with the rack's travel
 /// per turn of the hand wheel, `c_factor`), and Ackermann at full steer and its largest error, read off the
-/// rows, where the `wheelbase` is known.
+/// rows, where the `wheelbase` is known. The rows they are read from are named to `taping`.
 fn steering_figures(
+    taping: &Taping,
     rows: &[AxleRow],
     design: Design<AxleRow>,
     track: f64,
@@ -95,7 +97,7 @@ fn steering_figures(
             let (end, worst) = read(1);
             // A recording's replays move these rows too (they are found by their values).
             let named: Vec<usize> = [end.map(|r| r.0), worst.map(|r| r.0)].into_iter().flatten().collect();
-            elastokin_solver::replay::rows_read(&named);
+            taping.rows_read(&named);
             let (end, worst) = (end.map(|r| r.1), worst.map(|r| r.1));
             let (coarse_end, coarse_worst) = read(2);
             let (coarse_end, coarse_worst) = (coarse_end.map(|r| r.1), coarse_worst.map(|r| r.1));
@@ -152,7 +154,7 @@ fn ackermann(r: &AxleRow, track: f64, wheelbase: f64) -> Option<(f64, f64, f64)>
         .then(|| (inner, outer, ideal_outer_steer(inner, track, wheelbase)))
 }
 
-pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
+pub(super) fn steering(models: &Models, s: &Settings, taping: &Taping) -> Result<AnalysisReport, Cause> {
     let file = models.file();
     let range = Analysis::Steering.range_or_default(s.range)?;
     let axle = models.axle_ref(AxleRig::Steering)?;
@@ -164,7 +166,7 @@ pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, 
         range.1,
         s.steps,
         s.mode,
-        s.extras_reading(range, 0.0, DECLARATION.figure_rows),
+        s.extras_reading(range, 0.0, DECLARATION.figure_rows, taping),
     )?;
     let wheelbase = file.vehicle.as_ref().map(|v| v.wheelbase);
     // Track between the contact patches at design: the lateral distance Ackermann's rule uses.
@@ -172,7 +174,7 @@ pub(super) fn steering(models: &Models, s: &Settings) -> Result<AnalysisReport, 
     let table = |rows: &[AxleRow]| steering_table(rows, track, wheelbase);
     let c_factor = file.vehicle.as_ref().and_then(|v| v.rack_travel_per_revolution);
     let figures =
-        |rows: &[AxleRow], design: Design<AxleRow>| steering_figures(rows, design, track, wheelbase, c_factor);
+        |rows: &[AxleRow], design: Design<AxleRow>| steering_figures(taping, rows, design, track, wheelbase, c_factor);
     let x = |r: &AxleRow| r.travel * 1e3;
     let charts = vec![chart(
         file,

@@ -8,6 +8,7 @@ use crate::kc::models::Models;
 use crate::kc::reduce::{axis, chart, corner_drawing, deg, finish, Design, Reduction};
 use crate::kc::report::{AnalysisReport, Column, Figure, Table};
 use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, FigureRows, Quantity, Settings};
+use elastokin_solver::replay::Taping;
 
 /// The vertical force sweep, as the command and the reports name it: its design position is the design
 /// wheel load, which only the solved model gives.
@@ -21,10 +22,10 @@ pub(super) const DECLARATION: Declaration = Declaration {
     figure_rows: FigureRows::DesignOnly,
 };
 
-pub(super) fn vertical_force(models: &Models, s: &Settings) -> Result<AnalysisReport, Cause> {
+pub(super) fn vertical_force(models: &Models, s: &Settings, taping: &Taping) -> Result<AnalysisReport, Cause> {
     let file = models.file();
     let held = models.corner_ref(Rig::WheelTravel)?;
-    let (design_load, design_load_error) = design_wheel_load_estimated(held, s.error_estimate)?;
+    let (design_load, design_load_error) = design_wheel_load_estimated(held, s.error_estimate, taping)?;
     let range = s.range.unwrap_or_else(|| DefaultRange::around_design_load(design_load));
     let mut corner = models.corner(Rig::Free)?;
     corner.load_point = s.load_point;
@@ -36,7 +37,7 @@ pub(super) fn vertical_force(models: &Models, s: &Settings) -> Result<AnalysisRe
         range.1,
         s.steps,
         s.mode,
-        s.extras_reading(range, design_load, DECLARATION.figure_rows),
+        s.extras_reading(range, design_load, DECLARATION.figure_rows, taping),
     )?;
     let table = |rows: &[LoadRow]| {
         let columns: [Column<LoadRow>; 5] = [
