@@ -289,125 +289,162 @@ type Run = (crate::kc::Analysis, Option<(f64, f64)>, AnalysisSensitivity);
 /// The targets' residuals and Jacobian with the free numbers of `parameters` at `x`.
 pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result<Evaluation, TuneError> {
     let p = parameters.at(x)?;
-    let n = x.len();
-    // One run per analysis and range.
-    let mut runs: Vec<Run> = Vec::new();
-    for t in &targets.targets {
-        if runs.iter().any(|(a, r, _)| *a == t.analysis && *r == t.range) {
-            continue;
-        }
-        // Where only figures are aimed at, the rows are read as far as the figures read them.
-        let figures_only = targets
-            .targets
-            .iter()
-            .filter(|u| u.analysis == t.analysis && u.range == t.range)
-            .all(|u| matches!(u.aim, Aim::Figure { .. }));
-        let settings = Settings { range: t.range, steps: targets.steps, figures_only, ..Settings::default() };
-        let s = analysis_sensitivity(t.analysis, &p, &settings)
-            .map_err(|error| TuneError::Analysis { analysis: t.analysis.name(), error })?;
-        runs.push((t.analysis, t.range, s));
-    }
-    let (mut residuals, mut jacobian, mut rows) = (Vec::new(), Vec::new(), Vec::new());
+    let runs = runs_for(targets, &p)?;
+    let mut misses = Misses::default();
     for (k, t) in targets.targets.iter().enumerate() {
-        let s = &runs.iter().find(|(a, r, _)| *a == t.analysis && *r == t.range).expect("run above").2;
+        let s = &runs.iter().find(|(a, r, _)| *a == t.analysis && *r == t.range).expect("run for every target").2;
         match &t.aim {
-            Aim::Figure { key, value } => {
-                let (figure, rates) = s.figure(key).ok_or_else(|| NotGiven::NoFigure {
-                    label: t.label.clone(),
-                    analysis: t.analysis.name(),
-                    key: key.clone(),
-                    has: s.report.figures.iter().map(|f| f.key.clone()).collect(),
-                })?;
-                let reached = figure.value.ok_or_else(|| NotGiven::NoValue {
-                    label: t.label.clone(),
-                    reason: figure.reason.clone().unwrap_or_default(),
-                })?;
-                // The target is in the unit the figure is written in; the figure and its rates are in SI.
-                let factor = figure.unit.shown().factor;
-                let reached = reached * factor;
-                let gradient = rates
-                    .iter()
-                    .map(|r| {
-                        r.map(|r| r.value * factor).map_err(|why| NoReading::FigureRate { label: t.label.clone(), why })
-                    })
-                    .collect::<Result<Vec<f64>, _>>()?;
-                let (residual, rates) = scaled_miss(t, reached, *value, &gradient)?;
-                residuals.push(residual);
-                jacobian.push(rates);
-                rows.push(Row { target: k, at: None, value: reached, aim: *value });
-            }
-            Aim::Curve { column, points } => {
-                let table = &s.report.table;
-                if !table.columns.contains(column) {
-                    return Err(NotGiven::NoColumn {
-                        label: t.label.clone(),
-                        analysis: t.analysis.name(),
-                        column: column.clone(),
-                        has: table.columns.clone(),
-                    }
-                    .into());
-                }
-                let along = s.column(&table.columns[0]);
-                let along: Vec<f64> = along.iter().map(|v| v.unwrap_or(f64::NAN)).collect();
-                // The rows must sit where they sit for every model: a range that moves with the model
-                // (the vertical-force sweep's, around its design load) moves the curve under its points.
-                let span = along.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-                for q in 0..n {
-                    let moved = s
-                        .d_column(&table.columns[0], q)
-                        .iter()
-                        .filter_map(|d| d.ok())
-                        .fold(0.0f64, |m, d| m.max(d.value.abs()));
-                    if moved * x[q].abs().max(0.1) > 1e-9 * span {
-                        return Err(
-                            NotGiven::RowsMove { label: t.label.clone(), pointer: p.pointers[q].clone() }.into()
-                        );
-                    }
-                }
-                let values = s.column(column);
-                let rates: Vec<Vec<super::sensitivity::Rate>> = (0..n).map(|q| s.d_column(column, q)).collect();
-                for &(at, aim) in points {
-                    let weights = interpolation(&along, at).ok_or_else(|| {
-                        let (lo, hi) =
-                            along.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
-                        NotGiven::OutsideRange { label: t.label.clone(), at, lo, hi, parameter: t.analysis.parameter() }
-                    })?;
-                    let mut reached = 0.0;
-                    let mut gradient = vec![0.0; n];
-                    for &(j, w) in &weights {
-                        let v = values[j].ok_or_else(|| NoReading::NoCell {
-                            label: t.label.clone(),
-                            at: along[j],
-                            column: column.clone(),
-                        })?;
-                        reached += w * v;
-                        for q in 0..n {
-                            let d = rates[q][j].map_err(|why| NoReading::CellRate {
-                                label: t.label.clone(),
-                                at: along[j],
-                                why,
-                            })?;
-                            gradient[q] += w * d.value;
-                        }
-                    }
-                    let (residual, rates) = scaled_miss(t, reached, aim, &gradient)?;
-                    residuals.push(residual);
-                    jacobian.push(rates);
-                    rows.push(Row { target: k, at: Some(at), value: reached, aim });
-                }
-            }
+            Aim::Figure { key, value } => misses.figure(k, t, s, key, *value)?,
+            Aim::Curve { column, points } => misses.curve(k, t, s, &p, column, points)?,
         }
     }
     let packaging =
         targets.constraints.iter().map(|c| linearise(c, p.document(), &p.pointers)).collect::<Result<_, _>>()?;
     Ok(Evaluation {
         x: x.to_vec(),
-        residuals,
-        jacobian,
-        rows,
+        residuals: misses.residuals,
+        jacobian: misses.jacobian,
+        rows: misses.rows,
         packaging,
         reports: runs.into_iter().map(|(_, _, s)| s.report).collect(),
     })
+}
+
+/// The analyses the targets read, with their sensitivities to the free numbers of `p`: one run per
+/// analysis and range, its rows read only as far as its figures read them where only figures are aimed at.
+fn runs_for(targets: &Targets, p: &Parameters) -> Result<Vec<Run>, TuneError> {
+    let mut runs: Vec<Run> = Vec::new();
+    for t in &targets.targets {
+        if runs.iter().any(|(a, r, _)| *a == t.analysis && *r == t.range) {
+            continue;
+        }
+        let figures_only = targets
+            .targets
+            .iter()
+            .filter(|u| u.analysis == t.analysis && u.range == t.range)
+            .all(|u| matches!(u.aim, Aim::Figure { .. }));
+        let settings = Settings { range: t.range, steps: targets.steps, figures_only, ..Settings::default() };
+        let s = analysis_sensitivity(t.analysis, p, &settings)
+            .map_err(|error| TuneError::Analysis { analysis: t.analysis.name(), error })?;
+        runs.push((t.analysis, t.range, s));
+    }
+    Ok(runs)
+}
+
+/// The residuals, their rates and their provenance, target by target.
+#[derive(Default)]
+struct Misses {
+    residuals: Vec<f64>,
+    jacobian: Vec<Vec<f64>>,
+    rows: Vec<Row>,
+}
+
+impl Misses {
+    /// One residual of target `k`, `t`: `reached` (with its `gradient`) against `aim`, at a curve's point
+    /// `at`.
+    fn push(
+        &mut self,
+        k: usize,
+        t: &Target,
+        at: Option<f64>,
+        reached: f64,
+        aim: f64,
+        gradient: &[f64],
+    ) -> Result<(), TuneError> {
+        let (residual, rates) = scaled_miss(t, reached, aim, gradient)?;
+        self.residuals.push(residual);
+        self.jacobian.push(rates);
+        self.rows.push(Row { target: k, at, value: reached, aim });
+        Ok(())
+    }
+
+    /// The residual of target `k`, `t`, that aims the figure `key` of `s` at `value`.
+    fn figure(
+        &mut self,
+        k: usize,
+        t: &Target,
+        s: &AnalysisSensitivity,
+        key: &str,
+        value: f64,
+    ) -> Result<(), TuneError> {
+        let (figure, rates) = s.figure(key).ok_or_else(|| NotGiven::NoFigure {
+            label: t.label.clone(),
+            analysis: t.analysis.name(),
+            key: key.to_string(),
+            has: s.report.figures.iter().map(|f| f.key.clone()).collect(),
+        })?;
+        let reached = figure.value.ok_or_else(|| NotGiven::NoValue {
+            label: t.label.clone(),
+            reason: figure.reason.clone().unwrap_or_default(),
+        })?;
+        // The target is in the unit the figure is written in; the figure and its rates are in SI.
+        let factor = figure.unit.shown().factor;
+        let gradient = rates
+            .iter()
+            .map(|r| r.map(|r| r.value * factor).map_err(|why| NoReading::FigureRate { label: t.label.clone(), why }))
+            .collect::<Result<Vec<f64>, _>>()?;
+        self.push(k, t, None, reached * factor, value, &gradient)
+    }
+
+    /// The residuals of target `k`, `t`, that aims the `column` of `s`'s table at `points` (load parameter,
+    /// aim), each read between the rows about it; `p` are the free numbers.
+    fn curve(
+        &mut self,
+        k: usize,
+        t: &Target,
+        s: &AnalysisSensitivity,
+        p: &Parameters,
+        column: &str,
+        points: &[(f64, f64)],
+    ) -> Result<(), TuneError> {
+        let table = &s.report.table;
+        if !table.columns.iter().any(|c| c == column) {
+            let has = table.columns.clone();
+            let (label, analysis, column) = (t.label.clone(), t.analysis.name(), column.to_string());
+            return Err(NotGiven::NoColumn { label, analysis, column, has }.into());
+        }
+        let along: Vec<f64> = s.column(&table.columns[0]).iter().map(|v| v.unwrap_or(f64::NAN)).collect();
+        rows_stay(t, s, p, &along)?;
+        let values = s.column(column);
+        let rates: Vec<Vec<super::sensitivity::Rate>> = (0..p.len()).map(|q| s.d_column(column, q)).collect();
+        for &(at, aim) in points {
+            let weights = interpolation(&along, at).ok_or_else(|| {
+                let (lo, hi) = along.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+                NotGiven::OutsideRange { label: t.label.clone(), at, lo, hi, parameter: t.analysis.parameter() }
+            })?;
+            let (mut reached, mut gradient) = (0.0, vec![0.0; p.len()]);
+            for &(j, w) in &weights {
+                let v = values[j].ok_or_else(|| NoReading::NoCell {
+                    label: t.label.clone(),
+                    at: along[j],
+                    column: column.to_string(),
+                })?;
+                reached += w * v;
+                for (g, rates) in gradient.iter_mut().zip(&rates) {
+                    let d =
+                        rates[j].map_err(|why| NoReading::CellRate { label: t.label.clone(), at: along[j], why })?;
+                    *g += w * d.value;
+                }
+            }
+            self.push(k, t, Some(at), reached, aim, &gradient)?;
+        }
+        Ok(())
+    }
+}
+
+/// Refuses a curve target whose rows move with the free numbers: the rows must sit where they sit for
+/// every model, and a range that moves with the model (the vertical-force sweep's, around its design load)
+/// moves the curve under its points. `along` is the rows' load parameter, `p` the free numbers.
+fn rows_stay(t: &Target, s: &AnalysisSensitivity, p: &Parameters, along: &[f64]) -> Result<(), TuneError> {
+    let first = &s.report.table.columns[0];
+    let span = along.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    for (q, xq) in p.values.iter().enumerate() {
+        let moved = s.d_column(first, q).iter().filter_map(|d| d.ok()).fold(0.0f64, |m, d| m.max(d.value.abs()));
+        if moved * xq.abs().max(0.1) > 1e-9 * span {
+            return Err(NotGiven::RowsMove { label: t.label.clone(), pointer: p.pointers[q].clone() }.into());
+        }
+    }
+    Ok(())
 }
 
 /// The miss of `reached` from `aim` over the target's tolerance, and its rates from the figure's `gradient`:
