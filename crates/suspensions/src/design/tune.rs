@@ -84,6 +84,15 @@ impl Evaluation {
         0.5 * self.residuals.iter().map(|r| r * r).sum::<f64>()
     }
 
+    /// `½ Σ (r + J d)²`: the objective the Gauss–Newton model predicts a step `d` leads to.
+    fn predicted_objective(&self, d: &[f64]) -> f64 {
+        let moved = |(r, row): (&f64, &Vec<f64>)| {
+            let m = r + row.iter().zip(d).map(|(j, d)| j * d).sum::<f64>();
+            m * m
+        };
+        self.residuals.iter().zip(&self.jacobian).map(moved).sum::<f64>() * 0.5
+    }
+
     /// `Jᵀ r`.
     pub fn gradient(&self) -> Vec<f64> {
         let n = self.x.len();
@@ -847,150 +856,18 @@ pub fn tune(
     mut progress: impl FnMut(&Iteration),
 ) -> Result<Tuned, TuneError> {
     let free: Vec<(f64, f64)> = targets.free.iter().map(|f| (f.min, f.max)).collect();
-    let mut evaluations = 1;
     let start = evaluate(parameters, targets, &parameters.values)?;
     if let Some(why) = too_wide(&start, targets, &free) {
         return Err(TuneError::Targets(why));
     }
-    let mut here = start.clone();
-    let mut iterations = vec![record(0, &here, &free, 0.0, 0.0, evaluations, "start")];
+    let mut search = Search::new(parameters, targets, free, start.clone());
+    let mut iterations = vec![Iteration { damping: 0.0, ..search.record(0, 0.0, "start") }];
     progress(&iterations[0]);
-    // Each number measured by the span of its bounds: the damping, and the step where the targets leave
-    // a combination of the numbers free, then prefer the smallest moves relative to what each may move
-    // (a millimetre of a hardpoint free over ±20 mm weighs as much as 10 N/mm of a rate free over ±200 N/mm).
-    // (Marquardt's scaling by each number's own curvature instead sends an insensitive number, such as a
-    // tie-rod point along the rod, far in every step: the MacPherson's toe curve then crept for 60 steps.)
-    let scale: Vec<f64> = free.iter().map(|(lo, hi)| 1.0 / ((hi - lo) * (hi - lo))).collect();
-    let mut damping = 1e-3;
-    // How far inside its linearised bounds each packaging constraint is kept: a distance bends away from
-    // its linearisation (it is convex), so a step to its bound overshoots by the bend; a step that broke
-    // it is retried with the overshoot held back.
-    let mut margins = vec![0.0; targets.constraints.len()];
-    // How far a step may reach (relative to the bounds' span): unlimited until a step is stepped back
-    // from, then half of that step's, so that a model that cannot be built or run beyond some point is
-    // approached, not stepped over again and again (damping alone shortens a step slowly where the
-    // targets see the number strongly).
-    let mut reach = f64::INFINITY;
-    // Why the model could not be evaluated at the last step stepped back from, if that was why.
-    let mut unbuildable: Option<TuneError> = None;
-    // Why no step could be computed at all, if the tune stopped for that.
-    let mut no_step: Option<NotGiven> = None;
-    let mut stopped = format!("the iteration limit ({MAX_ITERATIONS}) was reached");
-    let mut rejected = 0;
-    // A step taken that gained next to nothing, or moved next to nothing: the last.
-    let mut converged = false;
-    for iteration in 1..=MAX_ITERATIONS {
-        let f = here.objective();
-        if here.residuals.iter().all(|r| r.abs() <= MET_EXACTLY) && packaged(&here) {
-            stopped = format!("every target is met to {MET_EXACTLY:e} of its tolerance");
-            break;
-        }
-        // Bounds that are too wide where the tune starts are refused above; the rates may grow on the way.
-        if let Some(why) = too_wide(&here, targets, &free) {
-            stopped = why.to_string();
-            no_step = Some(why);
-            break;
-        }
-        let restoring = restoration(&here, &margins);
-        let (basis, basis_margins) = restoring.as_ref().map_or((&here, &margins[..]), |(e, m)| (e, &m[..]));
-        let (outcome, step_size) = match step(basis, &free, damping, &scale, basis_margins) {
-            Err(e) => {
-                damping *= 10.0;
-                (e, 0.0)
-            }
-            Ok(d) => {
-                // Within the reach a step back left (the largest move relative to the bounds' span).
-                let wanted = d.iter().zip(&free).map(|(d, (lo, hi))| d.abs() / (hi - lo)).fold(0.0, f64::max);
-                let shrink = if wanted > reach { reach / wanted } else { 1.0 };
-                let d: Vec<f64> = d.iter().map(|v| v * shrink).collect();
-                let x: Vec<f64> =
-                    here.x.iter().zip(&d).zip(&free).map(|((x, d), (lo, hi))| (x + d).clamp(*lo, *hi)).collect();
-                let size = wanted * shrink;
-                // What the Gauss–Newton model predicts the step gains.
-                let model: f64 = here
-                    .residuals
-                    .iter()
-                    .zip(&here.jacobian)
-                    .map(|(r, row)| {
-                        let m = r + row.iter().zip(&d).map(|(j, d)| j * d).sum::<f64>();
-                        m * m
-                    })
-                    .sum::<f64>()
-                    * 0.5;
-                let predicted = f - model;
-                evaluations += 1;
-                match evaluate(parameters, targets, &x) {
-                    Err(e) => {
-                        damping *= 4.0;
-                        reach = 0.5 * size;
-                        let outcome = format!("stepped back: {e}");
-                        unbuildable = Some(e);
-                        (outcome, size)
-                    }
-                    // Where the packaging is broken a step is taken for bringing it back, whatever it does
-                    // to the targets; where it holds, for gaining on the targets and keeping it.
-                    Ok(next)
-                        if (restoring.is_some() && broken(&next) < broken(&here))
-                            || (restoring.is_none() && next.objective() < f && packaged(&next)) =>
-                    {
-                        let restored = restoring.is_some();
-                        margins.iter_mut().for_each(|m| *m *= 0.5);
-                        let ratio = (f - next.objective()) / predicted.max(f64::MIN_POSITIVE);
-                        damping = if restored {
-                            damping
-                        } else if ratio > 0.75 {
-                            damping / 3.0
-                        } else if ratio < 0.25 {
-                            damping * 2.0
-                        } else {
-                            damping
-                        };
-                        damping = damping.max(1e-12);
-                        let gain = f - next.objective();
-                        reach *= 2.0;
-                        unbuildable = None;
-                        here = next;
-                        rejected = 0;
-                        if !restored && (gain <= 1e-9 * f || size < 1e-9) {
-                            converged = true;
-                        }
-                        ("taken".into(), size)
-                    }
-                    Ok(next) if restoring.is_none() && !packaged(&next) => {
-                        reach = 0.5 * size;
-                        for ((m, c), was) in margins.iter_mut().zip(&next.packaging).zip(&here.packaging) {
-                            let over = broken_by(c);
-                            // The bend of the constraint over the step, held back next time.
-                            *m += 2.0 * over + 1e-12 * was.value.abs();
-                        }
-                        ("stepped back: it broke the packaging".to_string(), size)
-                    }
-                    Ok(_) => {
-                        damping *= 4.0;
-                        reach = 0.5 * size;
-                        ("stepped back: it gained nothing".to_string(), size)
-                    }
-                }
-            }
-        };
-        if outcome != "taken" {
-            rejected += 1;
-        }
-        iterations.push(record(iteration, &here, &free, step_size, damping, evaluations, &outcome));
-        progress(&iterations[iterations.len() - 1]);
-        if converged {
-            stopped = "the steps no longer gain: the targets are met as nearly as they can be".into();
-            break;
-        }
-        if projected_gradient(&here, &free) <= 1e-13 * (1.0 + here.objective()) * here.x.len() as f64 {
-            stopped = "the gradient vanishes within the bounds: the targets are met as nearly as they can be".into();
-            break;
-        }
-        if rejected >= 12 || damping > 1e12 {
-            stopped = "no step gains any more: the targets are met as nearly as they can be".into();
-            break;
-        }
-    }
+    let (mut stopped, no_step) = search.run(|iteration| {
+        progress(&iteration);
+        iterations.push(iteration);
+    });
+    let Search { here, free, unbuildable, .. } = search;
     if !packaged(&here) {
         stopped = "the packaging is still broken, and no step within the bounds brings it back further".into();
     }
@@ -1009,23 +886,204 @@ pub fn tune(
     Ok(Tuned { start, end: here, iterations, verdicts, packaging, stopped, document })
 }
 
-fn record(
-    iteration: usize,
-    e: &Evaluation,
-    free: &[(f64, f64)],
-    step: f64,
+/// What became of an iteration's step.
+enum Outcome {
+    /// None could be computed, for this reason.
+    NoStep(String),
+    /// It was taken.
+    Taken,
+    /// Stepped back from: the model there could not be evaluated, for this reason.
+    Unbuildable(String),
+    /// Stepped back from: it broke the packaging.
+    BrokePackaging,
+    /// Stepped back from: it gained nothing.
+    GainedNothing,
+}
+
+impl std::fmt::Display for Outcome {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Outcome::NoStep(why) => f.write_str(why),
+            Outcome::Taken => f.write_str("taken"),
+            Outcome::Unbuildable(why) => write!(f, "stepped back: {why}"),
+            Outcome::BrokePackaging => f.write_str("stepped back: it broke the packaging"),
+            Outcome::GainedNothing => f.write_str("stepped back: it gained nothing"),
+        }
+    }
+}
+
+/// Where a tune stands between iterations, and what shapes its next step.
+struct Search<'a> {
+    parameters: &'a Parameters,
+    targets: &'a Targets,
+    /// Each free number's bounds.
+    free: Vec<(f64, f64)>,
+    /// Each number measured by the span of its bounds: the damping, and the step where the targets leave
+    /// a combination of the numbers free, then prefer the smallest moves relative to what each may move (a
+    /// millimetre of a hardpoint free over ±20 mm weighs as much as 10 N/mm of a rate free over
+    /// ±200 N/mm). (Marquardt's scaling by each number's own curvature instead sends an insensitive
+    /// number, such as a tie-rod point along the rod, far in every step: the MacPherson's toe curve then
+    /// crept for 60 steps.)
+    scale: Vec<f64>,
+    /// The model where the tune stands.
+    here: Evaluation,
     damping: f64,
+    /// How far inside its linearised bounds each packaging constraint is kept: a distance bends away from
+    /// its linearisation (it is convex), so a step to its bound overshoots by the bend; a step that broke
+    /// it is retried with the overshoot held back.
+    margins: Vec<f64>,
+    /// How far a step may reach (relative to the bounds' span): unlimited until a step is stepped back
+    /// from, then half of that step's, so that a model that cannot be built or run beyond some point is
+    /// approached, not stepped over again and again (damping alone shortens a step slowly where the
+    /// targets see the number strongly).
+    reach: f64,
+    /// Why the model could not be evaluated at the last step stepped back from, if that was why.
+    unbuildable: Option<TuneError>,
+    /// How many times the targets were evaluated.
     evaluations: usize,
-    outcome: &str,
-) -> Iteration {
-    Iteration {
-        iteration,
-        objective: e.objective(),
-        gradient_norm: projected_gradient(e, free),
-        step,
-        damping,
-        evaluations,
-        outcome: outcome.into(),
+    /// A step taken that gained next to nothing, or moved next to nothing: the last.
+    converged: bool,
+}
+
+impl<'a> Search<'a> {
+    /// A search from `start`, the model as it is.
+    fn new(parameters: &'a Parameters, targets: &'a Targets, free: Vec<(f64, f64)>, start: Evaluation) -> Self {
+        Search {
+            parameters,
+            targets,
+            scale: free.iter().map(|(lo, hi)| 1.0 / ((hi - lo) * (hi - lo))).collect(),
+            free,
+            here: start,
+            damping: 1e-3,
+            margins: vec![0.0; targets.constraints.len()],
+            reach: f64::INFINITY,
+            unbuildable: None,
+            evaluations: 1,
+            converged: false,
+        }
+    }
+
+    /// Iterates until the targets are met, no step gains any more, or the iteration limit; `heard` hears
+    /// of each iteration. Why it stopped, and the step that could not be computed if that was why.
+    fn run(&mut self, mut heard: impl FnMut(Iteration)) -> (String, Option<NotGiven>) {
+        let mut rejected = 0;
+        for iteration in 1..=MAX_ITERATIONS {
+            if self.here.residuals.iter().all(|r| r.abs() <= MET_EXACTLY) && packaged(&self.here) {
+                return (format!("every target is met to {MET_EXACTLY:e} of its tolerance"), None);
+            }
+            // Bounds that are too wide where the tune starts are refused there; the rates may grow on the way.
+            if let Some(why) = too_wide(&self.here, self.targets, &self.free) {
+                return (why.to_string(), Some(why));
+            }
+            let (outcome, size) = self.iterate();
+            rejected = if matches!(outcome, Outcome::Taken) { 0 } else { rejected + 1 };
+            heard(self.record(iteration, size, &outcome.to_string()));
+            if self.converged {
+                return ("the steps no longer gain: the targets are met as nearly as they can be".into(), None);
+            }
+            let objective = self.here.objective();
+            if projected_gradient(&self.here, &self.free) <= 1e-13 * (1.0 + objective) * self.here.x.len() as f64 {
+                let why = "the gradient vanishes within the bounds: the targets are met as nearly as they can be";
+                return (why.into(), None);
+            }
+            if rejected >= 12 || self.damping > 1e12 {
+                return ("no step gains any more: the targets are met as nearly as they can be".into(), None);
+            }
+        }
+        (format!("the iteration limit ({MAX_ITERATIONS}) was reached"), None)
+    }
+
+    /// One iteration: a step computed (for bringing the packaging back where it is broken, else for the
+    /// targets), evaluated, and taken or stepped back from. What became of it, and its size.
+    fn iterate(&mut self) -> (Outcome, f64) {
+        let restoring = restoration(&self.here, &self.margins);
+        let (basis, margins) = restoring.as_ref().map_or((&self.here, &self.margins[..]), |(e, m)| (e, &m[..]));
+        match step(basis, &self.free, self.damping, &self.scale, margins) {
+            Err(why) => {
+                self.damping *= 10.0;
+                (Outcome::NoStep(why), 0.0)
+            }
+            Ok(d) => self.try_step(&d, restoring.is_some()),
+        }
+    }
+
+    /// The step `d`, within the reach a step back left, evaluated, and taken or stepped back from; where
+    /// `restoring`, it is taken for bringing the packaging back, whatever it does to the targets, else for
+    /// gaining on the targets and keeping the packaging.
+    fn try_step(&mut self, d: &[f64], restoring: bool) -> (Outcome, f64) {
+        let f = self.here.objective();
+        // The largest move relative to the bounds' span.
+        let wanted = d.iter().zip(&self.free).map(|(d, (lo, hi))| d.abs() / (hi - lo)).fold(0.0, f64::max);
+        let shrink = if wanted > self.reach { self.reach / wanted } else { 1.0 };
+        let d: Vec<f64> = d.iter().map(|v| v * shrink).collect();
+        let x: Vec<f64> =
+            self.here.x.iter().zip(&d).zip(&self.free).map(|((x, d), (lo, hi))| (x + d).clamp(*lo, *hi)).collect();
+        let size = wanted * shrink;
+        let predicted = f - self.here.predicted_objective(&d);
+        self.evaluations += 1;
+        match evaluate(self.parameters, self.targets, &x) {
+            Err(e) => {
+                self.damping *= 4.0;
+                self.reach = 0.5 * size;
+                let outcome = Outcome::Unbuildable(e.to_string());
+                self.unbuildable = Some(e);
+                (outcome, size)
+            }
+            Ok(next)
+                if (restoring && broken(&next) < broken(&self.here))
+                    || (!restoring && next.objective() < f && packaged(&next)) =>
+            {
+                self.take(next, predicted, size, restoring);
+                (Outcome::Taken, size)
+            }
+            Ok(next) if !restoring && !packaged(&next) => {
+                self.reach = 0.5 * size;
+                for ((m, c), was) in self.margins.iter_mut().zip(&next.packaging).zip(&self.here.packaging) {
+                    // The bend of the constraint over the step, held back next time.
+                    *m += 2.0 * broken_by(c) + 1e-12 * was.value.abs();
+                }
+                (Outcome::BrokePackaging, size)
+            }
+            Ok(_) => {
+                self.damping *= 4.0;
+                self.reach = 0.5 * size;
+                (Outcome::GainedNothing, size)
+            }
+        }
+    }
+
+    /// Moves to `next`, a step of `size` whose gain the Gauss–Newton model `predicted`: the damping follows
+    /// how well the model predicted it (unless the step `restored` the packaging), the reach doubles.
+    fn take(&mut self, next: Evaluation, predicted: f64, size: f64, restored: bool) {
+        let f = self.here.objective();
+        let gain = f - next.objective();
+        self.margins.iter_mut().for_each(|m| *m *= 0.5);
+        let ratio = gain / predicted.max(f64::MIN_POSITIVE);
+        if !restored && ratio > 0.75 {
+            self.damping /= 3.0;
+        } else if !restored && ratio < 0.25 {
+            self.damping *= 2.0;
+        }
+        self.damping = self.damping.max(1e-12);
+        self.reach *= 2.0;
+        self.unbuildable = None;
+        self.here = next;
+        if !restored && (gain <= 1e-9 * f || size < 1e-9) {
+            self.converged = true;
+        }
+    }
+
+    /// The record of iteration `iteration`, a step of `size` that ended `outcome`.
+    fn record(&self, iteration: usize, size: f64, outcome: &str) -> Iteration {
+        Iteration {
+            iteration,
+            objective: self.here.objective(),
+            gradient_norm: projected_gradient(&self.here, &self.free),
+            step: size,
+            damping: self.damping,
+            evaluations: self.evaluations,
+            outcome: outcome.into(),
+        }
     }
 }
 
