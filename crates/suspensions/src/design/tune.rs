@@ -716,13 +716,30 @@ fn projected_gradient(e: &Evaluation, free: &[(f64, f64)]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// Why no step could be computed.
+#[derive(Debug, thiserror::Error)]
+enum NoStep {
+    /// The rates or residuals are no finite numbers.
+    #[error("the step's least squares: its rates or residuals are no finite numbers")]
+    NotFinite,
+    /// The least-squares solve refused.
+    #[error("the step's least squares: {0}")]
+    LeastSquares(&'static str),
+    /// The quadratic program could not be set up.
+    #[error("the step's QP: {0}")]
+    Program(String),
+    /// The quadratic program ended unsolved.
+    #[error("the step's QP ended {0:?}")]
+    Ended(SolverStatus),
+}
+
 /// The damped Gauss–Newton step within the bounds and the linearised packaging:
 /// `min ½‖J d + r‖² + ½ μ Σ Dₖ dₖ²` over `lo − x ≤ d ≤ hi − x`, `min ≤ g + G d ≤ max`. In the numbers scaled
 /// by `√Dₖ` (so that each moves its residuals alike); first as the least-squares solution of
 /// `[J; √μ I] d = [−r; 0]` by a singular-value decomposition, which stays accurate where the targets leave a
 /// combination of the numbers free (rank-deficient `J`); where that step leaves the bounds or the packaging,
 /// as the quadratic program it is, by Clarabel.
-fn step(e: &Evaluation, free: &[(f64, f64)], damping: f64, scale: &[f64], margins: &[f64]) -> Result<Vec<f64>, String> {
+fn step(e: &Evaluation, free: &[(f64, f64)], damping: f64, scale: &[f64], margins: &[f64]) -> Result<Vec<f64>, NoStep> {
     let n = e.x.len();
     let m = e.residuals.len();
     let unscale: Vec<f64> = scale.iter().map(|d| 1.0 / d.sqrt()).collect();
@@ -740,13 +757,13 @@ fn step(e: &Evaluation, free: &[(f64, f64)], damping: f64, scale: &[f64], margin
     }
     // The decomposition panics on a number that is not finite ([`too_wide`] stops the tune before).
     if !(a.iter().all(|v| v.is_finite()) && b.iter().all(|v| v.is_finite())) {
-        return Err("the step's least squares: its rates or residuals are no finite numbers".into());
+        return Err(NoStep::NotFinite);
     }
     // A combination of the numbers the targets barely see (a singular value a billionth of the largest)
     // is left where it is: a step along it would follow rounding, not the targets.
     let svd = a.clone().svd(true, true);
     let floor = 1e-9 * svd.singular_values.max();
-    let free_step = svd.solve(&b, floor).map_err(|e| format!("the step's least squares: {e}"))?;
+    let free_step = svd.solve(&b, floor).map_err(NoStep::LeastSquares)?;
     let d: Vec<f64> = (0..n).map(|k| free_step[k] * unscale[k]).collect();
     let inside = d.iter().zip(&e.x).zip(free).all(|((d, x), (lo, hi))| (*lo..=*hi).contains(&(x + d)));
     let packed = e.packaging.iter().zip(margins).all(|(c, m)| {
@@ -794,15 +811,16 @@ fn step(e: &Evaluation, free: &[(f64, f64)], damping: f64, scale: &[f64], margin
     let p = CscMatrix::from(&upper);
     let a_matrix = CscMatrix::from(&rows);
     let cones: [SupportedConeT<f64>; 1] = [NonnegativeConeT(bound.len())];
-    let settings = DefaultSettingsBuilder::default().verbose(false).build().map_err(|e| e.to_string())?;
-    let mut solver =
-        DefaultSolver::new(&p, &q, &a_matrix, &bound, &cones, settings).map_err(|e| format!("the step's QP: {e:?}"))?;
+    let settings =
+        DefaultSettingsBuilder::default().verbose(false).build().map_err(|e| NoStep::Program(e.to_string()))?;
+    let mut solver = DefaultSolver::new(&p, &q, &a_matrix, &bound, &cones, settings)
+        .map_err(|e| NoStep::Program(format!("{e:?}")))?;
     solver.solve();
     match solver.solution.status {
         SolverStatus::Solved | SolverStatus::AlmostSolved => {
             Ok(solver.solution.x.iter().zip(&unscale).map(|(v, u)| v * u).collect())
         }
-        other => Err(format!("the step's QP ended {other:?}")),
+        other => Err(NoStep::Ended(other)),
     }
 }
 
@@ -888,8 +906,8 @@ pub fn tune(
 
 /// What became of an iteration's step.
 enum Outcome {
-    /// None could be computed, for this reason.
-    NoStep(String),
+    /// None could be computed.
+    NoStep(NoStep),
     /// It was taken.
     Taken,
     /// Stepped back from: the model there could not be evaluated, for this reason.
@@ -903,7 +921,7 @@ enum Outcome {
 impl std::fmt::Display for Outcome {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Outcome::NoStep(why) => f.write_str(why),
+            Outcome::NoStep(why) => write!(f, "{why}"),
             Outcome::Taken => f.write_str("taken"),
             Outcome::Unbuildable(why) => write!(f, "stepped back: {why}"),
             Outcome::BrokePackaging => f.write_str("stepped back: it broke the packaging"),
