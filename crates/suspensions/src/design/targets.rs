@@ -479,6 +479,30 @@ fn targets_in(
     let object = root.as_object().ok_or(R::NotObject)?;
     only(object, &["free", "targets", "constraints", "steps"], "the top level")?;
     let steps = steps(object)?;
+    let free = free_numbers(object, document)?;
+    let listed = object.get("targets").and_then(Value::as_array).ok_or(R::NoTargetList)?;
+    if listed.is_empty() {
+        return Err(R::NoTargets);
+    }
+    let mut targets = Vec::new();
+    for (k, t) in listed.iter().enumerate() {
+        targets.extend(targets_of(k, t, &read_file)?);
+    }
+    // A range the analysis cannot walk is a mistake in the file, said as the command says it of --range.
+    for target in targets.iter().filter(|t| t.range.is_some()) {
+        let settings = kc::Settings { range: target.range, steps, ..kc::Settings::default() };
+        kc::check_settings(target.analysis, &settings)
+            .map_err(|e| R::Range { label: target.label.clone(), cause: e.cause })?;
+    }
+    let listed = object.get("constraints").and_then(Value::as_array).into_iter().flatten();
+    let constraints = listed.enumerate().map(|(k, c)| constraint(k, c, document)).collect::<Result<_, _>>()?;
+    Ok(Targets { free, targets, constraints, steps })
+}
+
+/// The `free` numbers of the TARGETS file's top level `object`, each with its bounds, which must hold its
+/// value in the model `document`.
+fn free_numbers(object: &serde_json::Map<String, Value>, document: &Value) -> Result<Vec<Free>, TargetsRefusal> {
+    use TargetsRefusal as R;
     let free_object = object.get("free").and_then(Value::as_object).ok_or(R::NoFree)?;
     if free_object.is_empty() {
         return Err(R::NothingFree);
@@ -497,146 +521,154 @@ fn targets_in(
         }
         free.push(Free { pointer: pointer.clone(), min, max });
     }
-    let listed = object.get("targets").and_then(Value::as_array).ok_or(R::NoTargetList)?;
-    if listed.is_empty() {
-        return Err(R::NoTargets);
+    Ok(free)
+}
+
+/// The targets of entry `k`, `t`, of the `targets` list: one for a figure or a curve, one per column for
+/// a measured file (read by `read_file`).
+fn targets_of(
+    k: usize,
+    t: &Value,
+    read_file: &impl Fn(&str) -> Result<String, String>,
+) -> Result<Vec<Target>, TargetsRefusal> {
+    use TargetsRefusal as R;
+    let key = format!("targets[{k}]");
+    let o = t.as_object().ok_or_else(|| R::NotObjectAt { key: key.clone() })?;
+    let range = match o.get("range") {
+        None => None,
+        Some(r) => Some(pair(r, &format!("{key}.range"))?),
+    };
+    let split = |path: &str, what: &'static str| -> Result<(Analysis, String), TargetsRefusal> {
+        let (analysis, name) = path.split_once('/').ok_or_else(|| R::NotAnalysisPath {
+            key: key.clone(),
+            what,
+            path: path.to_string(),
+        })?;
+        Ok((analysis_named(analysis, &format!("{key}.{what}"))?, name.to_string()))
+    };
+    if let Some(path) = o.get("figure") {
+        only(o, &["figure", "value", "tolerance", "range"], &key)?;
+        let (analysis, name) = split(name_in(path, &format!("{key}.figure"))?, "figure")?;
+        let value = number(o.get("value").unwrap_or(&Value::Null), &format!("{key}.value"))?;
+        Ok(vec![Target {
+            label: format!("{key} ({}/{name})", analysis.name()),
+            analysis,
+            range,
+            aim: Aim::Figure { key: name, value },
+            tolerance: tolerance(o, &key)?,
+        }])
+    } else if let Some(path) = o.get("curve") {
+        only(o, &["curve", "points", "tolerance", "range"], &key)?;
+        let (analysis, column) = split(name_in(path, &format!("{key}.curve"))?, "curve")?;
+        let points = o
+            .get("points")
+            .and_then(Value::as_array)
+            .filter(|p| !p.is_empty())
+            .ok_or_else(|| R::NoPoints { key: key.clone() })?
+            .iter()
+            .enumerate()
+            .map(|(i, p)| pair(p, &format!("{key}.points[{i}]")))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(vec![Target {
+            label: format!("{key} ({}/{column})", analysis.name()),
+            analysis,
+            range,
+            aim: Aim::Curve { column, points },
+            tolerance: tolerance(o, &key)?,
+        }])
+    } else if let Some(file) = o.get("measured") {
+        measured_targets(key, o, file, range, read_file)
+    } else {
+        Err(R::NoAim { key })
     }
+}
+
+/// The targets of the entry `key`, `o`, that aims at the measured `file` (read by `read_file`): one curve
+/// per column it names (every column but the first when it names none).
+fn measured_targets(
+    key: String,
+    o: &serde_json::Map<String, Value>,
+    file: &Value,
+    range: Option<(f64, f64)>,
+    read_file: &impl Fn(&str) -> Result<String, String>,
+) -> Result<Vec<Target>, TargetsRefusal> {
+    use TargetsRefusal as R;
+    only(o, &["measured", "analysis", "columns", "tolerance", "range"], &key)?;
+    let file = name_in(file, &format!("{key}.measured"))?;
+    let name = name_in(o.get("analysis").unwrap_or(&Value::Null), &format!("{key}.analysis"))?;
+    let analysis = analysis_named(name, &format!("{key}.analysis"))?;
+    let text = read_file(file).map_err(|why| R::Unreadable { key: key.clone(), why })?;
+    let measured = read_measured(&text, file).map_err(|error| R::Measured { key: key.clone(), error })?;
+    if let Some(said) = measured.analysis.as_deref().filter(|a| *a != name) {
+        return Err(R::OtherAnalysis { key: key.clone(), file: file.into(), said: said.into(), name: name.into() });
+    }
+    let columns: Vec<String> = match o.get("columns") {
+        None => measured.columns[1..].to_vec(),
+        Some(c) => c
+            .as_array()
+            .ok_or_else(|| R::ColumnsNotList { key: key.clone() })?
+            .iter()
+            .map(|v| name_in(v, &format!("{key}.columns")).map(String::from))
+            .collect::<Result<_, _>>()?,
+    };
+    let tolerance = tolerance(o, &key)?;
     let mut targets = Vec::new();
-    for (k, t) in listed.iter().enumerate() {
-        let key = format!("targets[{k}]");
-        let o = t.as_object().ok_or_else(|| R::NotObjectAt { key: key.clone() })?;
-        let range = match o.get("range") {
-            None => None,
-            Some(r) => Some(pair(r, &format!("{key}.range"))?),
+    for column in columns {
+        let Some(c) = measured.columns.iter().position(|x| *x == column) else {
+            return Err(R::NoColumn { key, file: file.into(), column, has: measured.columns });
         };
-        let split = |path: &str, what: &'static str| -> Result<(Analysis, String), TargetsRefusal> {
-            let (analysis, name) = path.split_once('/').ok_or_else(|| R::NotAnalysisPath {
-                key: key.clone(),
-                what,
-                path: path.to_string(),
-            })?;
-            Ok((analysis_named(analysis, &format!("{key}.{what}"))?, name.to_string()))
-        };
-        if let Some(path) = o.get("figure") {
-            only(o, &["figure", "value", "tolerance", "range"], &key)?;
-            let (analysis, name) = split(name_in(path, &format!("{key}.figure"))?, "figure")?;
-            let value = number(o.get("value").unwrap_or(&Value::Null), &format!("{key}.value"))?;
-            targets.push(Target {
-                label: format!("{key} ({}/{name})", analysis.name()),
-                analysis,
-                range,
-                aim: Aim::Figure { key: name, value },
-                tolerance: tolerance(o, &key)?,
-            });
-        } else if let Some(path) = o.get("curve") {
-            only(o, &["curve", "points", "tolerance", "range"], &key)?;
-            let (analysis, column) = split(name_in(path, &format!("{key}.curve"))?, "curve")?;
-            let points = o
-                .get("points")
-                .and_then(Value::as_array)
-                .filter(|p| !p.is_empty())
-                .ok_or_else(|| R::NoPoints { key: key.clone() })?
-                .iter()
-                .enumerate()
-                .map(|(i, p)| pair(p, &format!("{key}.points[{i}]")))
-                .collect::<Result<Vec<_>, _>>()?;
-            targets.push(Target {
-                label: format!("{key} ({}/{column})", analysis.name()),
-                analysis,
-                range,
-                aim: Aim::Curve { column, points },
-                tolerance: tolerance(o, &key)?,
-            });
-        } else if let Some(file) = o.get("measured") {
-            only(o, &["measured", "analysis", "columns", "tolerance", "range"], &key)?;
-            let file = name_in(file, &format!("{key}.measured"))?;
-            let name = name_in(o.get("analysis").unwrap_or(&Value::Null), &format!("{key}.analysis"))?;
-            let analysis = analysis_named(name, &format!("{key}.analysis"))?;
-            let text = read_file(file).map_err(|why| R::Unreadable { key: key.clone(), why })?;
-            let measured = read_measured(&text, file).map_err(|error| R::Measured { key: key.clone(), error })?;
-            if let Some(said) = measured.analysis.as_deref().filter(|a| *a != name) {
-                return Err(R::OtherAnalysis {
-                    key: key.clone(),
-                    file: file.into(),
-                    said: said.into(),
-                    name: name.into(),
-                });
-            }
-            let columns: Vec<String> = match o.get("columns") {
-                None => measured.columns[1..].to_vec(),
-                Some(c) => c
-                    .as_array()
-                    .ok_or_else(|| R::ColumnsNotList { key: key.clone() })?
-                    .iter()
-                    .map(|v| name_in(v, &format!("{key}.columns")).map(String::from))
-                    .collect::<Result<_, _>>()?,
-            };
-            let tolerance = tolerance(o, &key)?;
-            for column in columns {
-                let Some(c) = measured.columns.iter().position(|x| *x == column) else {
-                    return Err(R::NoColumn { key, file: file.into(), column, has: measured.columns });
-                };
-                let points = measured.rows.iter().map(|r| (r[0], r[c])).collect();
-                targets.push(Target {
-                    label: format!("{key} ({file}: {}/{column})", analysis.name()),
-                    analysis,
-                    range,
-                    aim: Aim::Curve { column, points },
-                    tolerance,
-                });
-            }
-        } else {
-            return Err(R::NoAim { key });
-        }
+        let points = measured.rows.iter().map(|r| (r[0], r[c])).collect();
+        targets.push(Target {
+            label: format!("{key} ({file}: {}/{column})", analysis.name()),
+            analysis,
+            range,
+            aim: Aim::Curve { column, points },
+            tolerance,
+        });
     }
-    // A range the analysis cannot walk is a mistake in the file, said as the command says it of --range.
-    for target in targets.iter().filter(|t| t.range.is_some()) {
-        let settings = kc::Settings { range: target.range, steps, ..kc::Settings::default() };
-        kc::check_settings(target.analysis, &settings)
-            .map_err(|e| R::Range { label: target.label.clone(), cause: e.cause })?;
-    }
-    let mut constraints = Vec::new();
+    Ok(targets)
+}
+
+/// Entry `k`, `c`, of the `constraints` list, on hardpoints of the model `document`.
+fn constraint(k: usize, c: &Value, document: &Value) -> Result<Constraint, TargetsRefusal> {
+    use TargetsRefusal as R;
     let hardpoint = |name: &str, key: &str| -> Result<String, TargetsRefusal> {
         hardpoint_pointer(document, name)
             .map(|_| name.to_string())
             .ok_or_else(|| R::NoHardpoint { key: key.into(), name: name.into() })
     };
-    for (k, c) in object.get("constraints").and_then(Value::as_array).into_iter().flatten().enumerate() {
-        let key = format!("constraints[{k}]");
-        let o = c.as_object().ok_or_else(|| R::NotObjectAt { key: key.clone() })?;
-        if let Some(points) = o.get("distance") {
-            only(o, &["distance", "min", "max"], &key)?;
-            let names =
-                points.as_array().filter(|p| p.len() == 2).ok_or_else(|| R::NotTwoNames { key: key.clone() })?;
-            let a = hardpoint(name_in(&names[0], &key)?, &format!("{key}.distance"))?;
-            let b = hardpoint(name_in(&names[1], &key)?, &format!("{key}.distance"))?;
-            let min = o.get("min").map(|v| number(v, &format!("{key}.min"))).transpose()?.unwrap_or(0.0);
-            let max = o.get("max").map(|v| number(v, &format!("{key}.max"))).transpose()?.unwrap_or(f64::INFINITY);
-            if min >= max {
-                return Err(R::MinNotBelowMax { key, min, max });
-            }
-            constraints.push(Constraint::Distance { points: [a, b], min, max });
-        } else if let Some(point) = o.get("outside_sphere") {
-            only(o, &["outside_sphere", "centre", "radius"], &key)?;
-            let point = hardpoint(name_in(point, &key)?, &format!("{key}.outside_sphere"))?;
-            let centre = triple(o.get("centre").unwrap_or(&Value::Null), &format!("{key}.centre"))?;
-            let radius = number(o.get("radius").unwrap_or(&Value::Null), &format!("{key}.radius"))?;
-            if radius <= 0.0 {
-                return Err(R::RadiusNotPositive { key, got: radius });
-            }
-            constraints.push(Constraint::OutsideSphere { point, centre, radius });
-        } else if let Some(point) = o.get("outside_box") {
-            only(o, &["outside_box", "min", "max"], &key)?;
-            let point = hardpoint(name_in(point, &key)?, &format!("{key}.outside_box"))?;
-            let min = triple(o.get("min").unwrap_or(&Value::Null), &format!("{key}.min"))?;
-            let max = triple(o.get("max").unwrap_or(&Value::Null), &format!("{key}.max"))?;
-            if (0..3).any(|i| min[i] >= max[i]) {
-                return Err(R::BoxInsideOut { key });
-            }
-            constraints.push(Constraint::OutsideBox { point, min, max });
-        } else {
-            return Err(R::NoPackaging { key });
+    let key = format!("constraints[{k}]");
+    let o = c.as_object().ok_or_else(|| R::NotObjectAt { key: key.clone() })?;
+    if let Some(points) = o.get("distance") {
+        only(o, &["distance", "min", "max"], &key)?;
+        let names = points.as_array().filter(|p| p.len() == 2).ok_or_else(|| R::NotTwoNames { key: key.clone() })?;
+        let a = hardpoint(name_in(&names[0], &key)?, &format!("{key}.distance"))?;
+        let b = hardpoint(name_in(&names[1], &key)?, &format!("{key}.distance"))?;
+        let min = o.get("min").map(|v| number(v, &format!("{key}.min"))).transpose()?.unwrap_or(0.0);
+        let max = o.get("max").map(|v| number(v, &format!("{key}.max"))).transpose()?.unwrap_or(f64::INFINITY);
+        if min >= max {
+            return Err(R::MinNotBelowMax { key, min, max });
         }
+        Ok(Constraint::Distance { points: [a, b], min, max })
+    } else if let Some(point) = o.get("outside_sphere") {
+        only(o, &["outside_sphere", "centre", "radius"], &key)?;
+        let point = hardpoint(name_in(point, &key)?, &format!("{key}.outside_sphere"))?;
+        let centre = triple(o.get("centre").unwrap_or(&Value::Null), &format!("{key}.centre"))?;
+        let radius = number(o.get("radius").unwrap_or(&Value::Null), &format!("{key}.radius"))?;
+        if radius <= 0.0 {
+            return Err(R::RadiusNotPositive { key, got: radius });
+        }
+        Ok(Constraint::OutsideSphere { point, centre, radius })
+    } else if let Some(point) = o.get("outside_box") {
+        only(o, &["outside_box", "min", "max"], &key)?;
+        let point = hardpoint(name_in(point, &key)?, &format!("{key}.outside_box"))?;
+        let min = triple(o.get("min").unwrap_or(&Value::Null), &format!("{key}.min"))?;
+        let max = triple(o.get("max").unwrap_or(&Value::Null), &format!("{key}.max"))?;
+        if (0..3).any(|i| min[i] >= max[i]) {
+            return Err(R::BoxInsideOut { key });
+        }
+        Ok(Constraint::OutsideBox { point, min, max })
+    } else {
+        Err(R::NoPackaging { key })
     }
-    Ok(Targets { free, targets, constraints, steps })
 }
