@@ -66,6 +66,22 @@ pub fn try_redundant_rows(
     if m == 0 {
         return Ok(Vec::new());
     }
+    let normalized = normalized_rows(m, j_row_idx, j_values)?;
+    let gram = Gram::of(m, n, j_col_ptr, j_row_idx, &normalized);
+    let factor = GramFactor::of(&gram, tol)?;
+    let dropped: Vec<usize> = (0..m).filter(|&k| factor.dropped(k)).collect();
+    if dropped.is_empty() {
+        return Ok(Vec::new());
+    }
+    // One work vector for all, left zero by each.
+    let mut work = vec![0.0f64; m];
+    let basis = dropped.iter().map(|&j| factor.null_vector(j, &mut work)).collect();
+    Ok(leading_rows(basis))
+}
+
+/// The values of `J` with each row scaled to unit length, `Ĵ_i = J_i / ‖J_i‖` (zero rows stay zero), in
+/// the order of `j_row_idx`.
+fn normalized_rows(m: usize, j_row_idx: &[usize], j_values: &[f64]) -> Result<Vec<f64>, FactorError> {
     let mut rmax = try_vec(m, 0.0f64)?;
     // Row scaling by powers of two first (overflow-safe norms), then exact norms.
     for (e, &i) in j_row_idx.iter().enumerate() {
@@ -78,139 +94,148 @@ pub fn try_redundant_rows(
             sq[i] += v * v;
         }
     }
-    // Normalized rows: Ĵ_i = J_i / ‖J_i‖ (zero rows stay zero).
-    let jn: Vec<f64> = j_row_idx
+    Ok(j_row_idx
         .iter()
         .zip(j_values)
         .map(|(&i, &v)| if rmax[i] > 0.0 { (v / rmax[i]) / sq[i].sqrt() } else { 0.0 })
-        .collect();
-    let (jr_ptr, jr_col, jr_src) = transpose_pattern(m, n, j_col_ptr, j_row_idx);
+        .collect())
+}
 
-    // Upper pattern and values of G, column by column.
-    let mut g_ptr = vec![0usize];
-    let mut g_row: Vec<usize> = Vec::new();
-    let mut g_val: Vec<f64> = Vec::new();
-    let mut mark = vec![usize::MAX; m];
-    let mut acc = vec![0.0f64; m];
-    let mut list: Vec<usize> = Vec::new();
-    for i in 0..m {
-        list.clear();
-        mark[i] = i;
-        acc[i] = 0.0;
-        list.push(i);
-        for q in jr_ptr[i]..jr_ptr[i + 1] {
-            let c = jr_col[q];
-            let vic = jn[jr_src[q]];
-            for e in j_col_ptr[c]..j_col_ptr[c + 1] {
-                let r = j_row_idx[e];
-                if r > i {
-                    break;
+/// The upper triangle of the Gram matrix `G = ĴĴᵀ` of the normalized rows, column by column (CSC).
+struct Gram {
+    m: usize,
+    col_ptr: Vec<usize>,
+    row: Vec<usize>,
+    values: Vec<f64>,
+}
+
+impl Gram {
+    /// `G` of the `m × n` Jacobian whose pattern is `j_col_ptr`, `j_row_idx` and whose normalized values are
+    /// `normalized`.
+    fn of(m: usize, n: usize, j_col_ptr: &[usize], j_row_idx: &[usize], normalized: &[f64]) -> Gram {
+        let (jr_ptr, jr_col, jr_src) = transpose_pattern(m, n, j_col_ptr, j_row_idx);
+        let mut gram = Gram { m, col_ptr: vec![0usize], row: Vec::new(), values: Vec::new() };
+        let mut mark = vec![usize::MAX; m];
+        let mut acc = vec![0.0f64; m];
+        let mut list: Vec<usize> = Vec::new();
+        for i in 0..m {
+            list.clear();
+            mark[i] = i;
+            acc[i] = 0.0;
+            list.push(i);
+            for q in jr_ptr[i]..jr_ptr[i + 1] {
+                let c = jr_col[q];
+                let vic = normalized[jr_src[q]];
+                for e in j_col_ptr[c]..j_col_ptr[c + 1] {
+                    let r = j_row_idx[e];
+                    if r > i {
+                        break;
+                    }
+                    if mark[r] != i {
+                        mark[r] = i;
+                        acc[r] = 0.0;
+                        list.push(r);
+                    }
+                    acc[r] += normalized[e] * vic;
                 }
-                if mark[r] != i {
-                    mark[r] = i;
-                    acc[r] = 0.0;
-                    list.push(r);
-                }
-                acc[r] += jn[e] * vic;
+            }
+            list.sort_unstable();
+            for &r in &list {
+                gram.row.push(r);
+                gram.values.push(acc[r]);
+            }
+            gram.col_ptr.push(gram.row.len());
+        }
+        gram
+    }
+}
+
+/// The LDLᵀ factor of the Gram matrix in AMD order, a pivot at or below `tol²` replaced by [`DROP_PIVOT`]
+/// (the row dropped from the basis), with the elimination tree's children for the null vectors.
+struct GramFactor {
+    /// The AMD order: `perm[k]` is the original row eliminated `k`-th.
+    perm: Vec<usize>,
+    symbolic: simplicial::SymbolicSimplicialCholesky<usize>,
+    l_values: Vec<f64>,
+    /// Row access to `L`: for each row, its columns and where their values are.
+    l_row_ptr: Vec<usize>,
+    l_row_col: Vec<usize>,
+    l_row_src: Vec<usize>,
+    /// Each column's children in the elimination tree (CSR-like).
+    child_ptr: Vec<usize>,
+    child: Vec<usize>,
+}
+
+impl GramFactor {
+    fn of(gram: &Gram, tol: f64) -> Result<GramFactor, FactorError> {
+        let m = gram.m;
+        let (perm, perm_inv) = amd_order(m, &gram.col_ptr, &gram.row)?;
+        let mut entries = Vec::with_capacity(gram.row.len());
+        for i in 0..m {
+            for &r in &gram.row[gram.col_ptr[i]..gram.col_ptr[i + 1]] {
+                let (a, b) = (perm_inv[r], perm_inv[i]);
+                entries.push((a.min(b), a.max(b)));
             }
         }
-        list.sort_unstable();
-        for &r in &list {
-            g_row.push(r);
-            g_val.push(acc[r]);
+        let (p_ptr, p_row, slot) = build_csc(m, &entries);
+        let mut p_val = vec![0.0f64; gram.values.len()];
+        for (e, &v) in gram.values.iter().enumerate() {
+            p_val[slot[e]] = v;
         }
-        g_ptr.push(g_row.len());
+        let gp = SymbolicSparseColMat::<usize>::new_checked(m, m, p_ptr, None, p_row);
+        let mut etree = vec![0isize; m];
+        let mut col_counts = vec![0usize; m];
+        let mut mem = MemBuffer::try_new(StackReq::any_of(&[
+            simplicial::prefactorize_symbolic_cholesky_scratch::<usize>(m, gram.values.len()),
+            simplicial::factorize_simplicial_symbolic_cholesky_scratch::<usize>(m),
+            simplicial::factorize_simplicial_numeric_ldlt_scratch::<usize, f64>(m),
+        ]))
+        .map_err(alloc_err)?;
+        let stack = MemStack::new(&mut mem);
+        let et = simplicial::prefactorize_symbolic_cholesky::<usize>(&mut etree, &mut col_counts, gp.as_ref(), stack);
+        let symbolic = simplicial::factorize_simplicial_symbolic_cholesky(gp.as_ref(), et, &col_counts, stack)
+            .map_err(|e| FactorError::Analysis(format!("{e:?}")))?;
+        let mut l_values = vec![0.0f64; symbolic.len_val()];
+        let signs = vec![1i8; m];
+        let reg = LdltRegularization {
+            dynamic_regularization_signs: Some(&signs),
+            dynamic_regularization_delta: DROP_PIVOT,
+            dynamic_regularization_epsilon: (tol * tol).max(GRAM_PIVOT_FLOOR),
+        };
+        simplicial::factorize_simplicial_numeric_ldlt(
+            &mut l_values,
+            SparseColMatRef::new(gp.as_ref(), &p_val),
+            reg,
+            &symbolic,
+            stack,
+        )
+        .map_err(|_| FactorError::Singular { kind: "constraint row", index: 0 })?;
+        let (l_row_ptr, l_row_col, l_row_src) = transpose_pattern(m, m, symbolic.col_ptr(), symbolic.row_idx());
+        let (child_ptr, child) = children(&etree);
+        Ok(GramFactor { perm, symbolic, l_values, l_row_ptr, l_row_col, l_row_src, child_ptr, child })
     }
 
-    let (perm, perm_inv) = amd_order(m, &g_ptr, &g_row)?;
-    let mut entries = Vec::with_capacity(g_row.len());
-    for i in 0..m {
-        for &r in &g_row[g_ptr[i]..g_ptr[i + 1]] {
-            let (a, b) = (perm_inv[r], perm_inv[i]);
-            entries.push((a.min(b), a.max(b)));
-        }
-    }
-    let (p_ptr, p_row, slot) = build_csc(m, &entries);
-    let mut p_val = vec![0.0f64; g_val.len()];
-    for (e, &v) in g_val.iter().enumerate() {
-        p_val[slot[e]] = v;
-    }
-    let gp = SymbolicSparseColMat::<usize>::new_checked(m, m, p_ptr, None, p_row);
-
-    let mut etree = vec![0isize; m];
-    let mut col_counts = vec![0usize; m];
-    let mut mem = MemBuffer::try_new(StackReq::any_of(&[
-        simplicial::prefactorize_symbolic_cholesky_scratch::<usize>(m, g_val.len()),
-        simplicial::factorize_simplicial_symbolic_cholesky_scratch::<usize>(m),
-        simplicial::factorize_simplicial_numeric_ldlt_scratch::<usize, f64>(m),
-    ]))
-    .map_err(alloc_err)?;
-    let stack = MemStack::new(&mut mem);
-    let et = simplicial::prefactorize_symbolic_cholesky::<usize>(&mut etree, &mut col_counts, gp.as_ref(), stack);
-    let sym = simplicial::factorize_simplicial_symbolic_cholesky(gp.as_ref(), et, &col_counts, stack)
-        .map_err(|e| FactorError::Analysis(format!("{e:?}")))?;
-    let mut l_val = vec![0.0f64; sym.len_val()];
-    let signs = vec![1i8; m];
-    let reg = LdltRegularization {
-        dynamic_regularization_signs: Some(&signs),
-        dynamic_regularization_delta: DROP_PIVOT,
-        dynamic_regularization_epsilon: (tol * tol).max(GRAM_PIVOT_FLOOR),
-    };
-    simplicial::factorize_simplicial_numeric_ldlt(
-        &mut l_val,
-        SparseColMatRef::new(gp.as_ref(), &p_val),
-        reg,
-        &sym,
-        stack,
-    )
-    .map_err(|_| FactorError::Singular { kind: "constraint row", index: 0 })?;
-    let lcp = sym.col_ptr();
-    let lri = sym.row_idx();
-    let dropped: Vec<usize> = (0..m).filter(|&k| l_val[lcp[k]] == DROP_PIVOT).collect();
-    if dropped.is_empty() {
-        return Ok(Vec::new());
+    /// Whether the row eliminated `k`-th was dropped (its pivot replaced by [`DROP_PIVOT`]).
+    fn dropped(&self, k: usize) -> bool {
+        self.l_values[self.symbolic.col_ptr()[k]] == DROP_PIVOT
     }
 
-    // Row access to L and children lists of the elimination tree.
-    let (lr_ptr, lr_col, lr_src) = transpose_pattern(m, m, lcp, lri);
-    let mut child_ptr = vec![0usize; m + 1];
-    for &p in &etree {
-        if p >= 0 {
-            child_ptr[p as usize + 1] += 1;
-        }
-    }
-    for k in 0..m {
-        child_ptr[k + 1] += child_ptr[k];
-    }
-    let mut child = vec![0usize; child_ptr[m]];
-    {
-        let mut next = child_ptr.clone();
-        for (k, &p) in etree.iter().enumerate() {
-            if p >= 0 {
-                child[next[p as usize]] = k;
-                next[p as usize] += 1;
-            }
-        }
-    }
-
-    // Null vector of every dropped row, in original numbering.
-    let mut u = vec![0.0f64; m];
-    let mut desc: Vec<usize> = Vec::new();
-    let mut dfs: Vec<usize> = Vec::new();
-    let mut basis: Vec<Vec<(usize, f64)>> = Vec::with_capacity(dropped.len());
-    for &j in &dropped {
-        desc.clear();
-        dfs.clear();
-        dfs.extend_from_slice(&child[child_ptr[j]..child_ptr[j + 1]]);
+    /// The null vector `ĴᵀW = 0` of the dropped row eliminated `j`-th, in original numbering, sorted: a
+    /// triangular solve restricted to its elimination subtree, in `u` (zero on entry, left zero: the
+    /// nonzeros of row `j` of `L` lie in that subtree).
+    fn null_vector(&self, j: usize, u: &mut [f64]) -> Vec<(usize, f64)> {
+        let (lcp, lri, l_val) = (self.symbolic.col_ptr(), self.symbolic.row_idx(), &self.l_values);
+        let mut desc: Vec<usize> = Vec::new();
+        let mut dfs: Vec<usize> = self.child[self.child_ptr[j]..self.child_ptr[j + 1]].to_vec();
         while let Some(k) = dfs.pop() {
             desc.push(k);
-            dfs.extend_from_slice(&child[child_ptr[k]..child_ptr[k + 1]]);
+            dfs.extend_from_slice(&self.child[self.child_ptr[k]..self.child_ptr[k + 1]]);
         }
         desc.sort_unstable_by(|a, b| b.cmp(a));
-        for q in lr_ptr[j]..lr_ptr[j + 1] {
-            let k = lr_col[q];
+        for q in self.l_row_ptr[j]..self.l_row_ptr[j + 1] {
+            let k = self.l_row_col[q];
             if k < j {
-                u[k] = l_val[lr_src[q]];
+                u[k] = l_val[self.l_row_src[q]];
             }
         }
         for &k in &desc {
@@ -225,19 +250,46 @@ pub fn try_redundant_rows(
             u[k] = s;
         }
         let mut v: Vec<(usize, f64)> = Vec::with_capacity(desc.len() + 1);
-        v.push((perm[j], 1.0));
+        v.push((self.perm[j], 1.0));
         for &k in &desc {
             if u[k] != 0.0 && u[k].is_finite() {
-                v.push((perm[k], -u[k]));
+                v.push((self.perm[k], -u[k]));
             }
             u[k] = 0.0;
         }
         v.sort_unstable_by_key(|e| e.0);
         prune(&mut v);
-        basis.push(v);
+        v
     }
+}
 
-    // Echelon form with respect to the largest original index.
+/// The children of each node of the elimination tree `etree` (`-1` for a root), as a pointer array and
+/// the children in order.
+fn children(etree: &[isize]) -> (Vec<usize>, Vec<usize>) {
+    let m = etree.len();
+    let mut child_ptr = vec![0usize; m + 1];
+    for &p in etree {
+        if p >= 0 {
+            child_ptr[p as usize + 1] += 1;
+        }
+    }
+    for k in 0..m {
+        child_ptr[k + 1] += child_ptr[k];
+    }
+    let mut child = vec![0usize; child_ptr[m]];
+    let mut next = child_ptr.clone();
+    for (k, &p) in etree.iter().enumerate() {
+        if p >= 0 {
+            child[next[p as usize]] = k;
+            next[p as usize] += 1;
+        }
+    }
+    (child_ptr, child)
+}
+
+/// The rows the null-space `basis` makes dependent on earlier rows: its leading indices once in echelon
+/// form with respect to the largest original index, ascending.
+fn leading_rows(basis: Vec<Vec<(usize, f64)>>) -> Vec<usize> {
     let mut result = Vec::with_capacity(basis.len());
     let mut live: Vec<Vec<(usize, f64)>> = basis.into_iter().filter(|v| !v.is_empty()).collect();
     while !live.is_empty() {
@@ -271,7 +323,7 @@ pub fn try_redundant_rows(
         live.retain(|v| !v.is_empty());
     }
     result.sort_unstable();
-    Ok(result)
+    result
 }
 
 /// Drops entries below `1e-9 ×` the largest magnitude (rounding noise of the
