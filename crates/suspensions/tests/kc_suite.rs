@@ -700,7 +700,7 @@ fn the_suite_on_models_built_once_reports_what_each_analysis_reports_alone() {
 }
 
 /// A model file with a hardpoint that places a body moved by 5 mm (the wheel centre, where the upright's
-/// reference point is), built in the coordinates of the file it was moved from (`kc::Models::moved`):
+/// reference point is), built in the coordinates of the file it was moved from (`kc::Models::in_coordinates_of`):
 /// its upright's reference point stays where the first file's was, while a build of its own puts it at
 /// the moved wheel centre, and every analysis of the suite reports the same figures either way, to the
 /// solver's convergence: the same scene in other coordinates. Measured: 4.9e-12 of a figure (of 1 where
@@ -719,7 +719,8 @@ fn a_moved_file_built_in_the_coordinates_of_its_origin_reports_what_its_own_buil
             Parameters::new(&doc, &[format!("/suspension/macpherson/hardpoints/wheel_centre/{coordinate}")]).unwrap();
         let origin = Arc::new(kc::Models::owning(p.file().unwrap()));
         let moved = p.file_moved(0, 5e-3).unwrap();
-        let (own, in_origin) = (kc::Models::owning(moved.clone()), kc::Models::moved(moved, origin.clone()));
+        let (own, in_origin) =
+            (kc::Models::owning(moved.clone()), kc::Models::in_coordinates_of(moved, origin.clone()));
         let upright = |m: &kc::Models| {
             let corner = m.corner(Rig::WheelTravel).unwrap();
             corner.model.bodies()[corner.wheel.upright.0].design_pose.position

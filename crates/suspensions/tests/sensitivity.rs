@@ -438,7 +438,7 @@ fn every_figure_and_cell_of_the_macpherson_suite_matches_the_report_re_run() {
 /// Every figure of every analysis of the MacPherson's suite against the report re-run, for every
 /// hardpoint coordinate: among them those that are also a body's reference point (the wheel centre the
 /// upright's, the lower ball joint the lower arm's, the strut's ends the rod's). The moved models are built
-/// in the recorded ones' coordinates (`kc::Models::moved`): built with their bodies where the move puts
+/// in the recorded ones' coordinates (`kc::Models::in_coordinates_of`): built with their bodies where the move puts
 /// them, one Newton iteration from a recorded pose would carry each such body by the move itself, an error
 /// of the order of the rate sought. Measured: see the line printed.
 #[test]

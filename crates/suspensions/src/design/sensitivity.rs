@@ -21,7 +21,7 @@
 //! which `crates/suspensions/tests/sensitivity.rs` holds against re-runs of the moved models.
 //!
 //! Each moved model is built in the coordinates of the model as it is, its bodies' reference points where
-//! the model's are ([`Models::moved`]): a hardpoint that also places a body (the wheel centre the
+//! the model's are ([`Models::in_coordinates_of`]): a hardpoint that also places a body (the wheel centre the
 //! upright) then moves that point alone, and the recorded pose is the moved model's to within what the
 //! move changes. Built with its bodies where the move puts them, the iteration would first carry each
 //! such body by the move itself, and its error, of the second order in that, is as large as the rate
@@ -85,7 +85,7 @@ fn step(parameters: &Parameters, k: usize) -> f64 {
 
 /// The model read with each parameter moved by each of [`MOVES`], each read once, when first asked for,
 /// and built once per rig, for every analysis that replays it, in the coordinates of the model as it is
-/// (`base`, [`Models::moved`]).
+/// (`base`, [`Models::in_coordinates_of`]).
 struct MovedModels<'p> {
     parameters: &'p Parameters,
     base: Arc<Models<'static>>,
@@ -100,7 +100,7 @@ impl<'p> MovedModels<'p> {
 
     /// The model with parameter `k` moved by `MOVES[m]` steps.
     fn models(&self, k: usize, m: usize) -> Result<&Models<'static>, ParameterError> {
-        let moved = |file| Models::moved(file, self.base.clone());
+        let moved = |file| Models::in_coordinates_of(file, self.base.clone());
         // Built at once for the analyses that replay it, each of which says why a build fails.
         let read = || self.parameters.file_moved_to_build(k, MOVES[m] * step(self.parameters, k)).map(moved);
         self.files[k][m].get_or_init(read).as_ref().map_err(Clone::clone)

@@ -10,17 +10,17 @@ use std::sync::{Arc, OnceLock};
 
 /// A model file and what the K&C analyses build of it — its left corner on each rig, its axle on each
 /// axle rig, the file with its bushings made rigid — each built when an analysis first asks for it and
-/// kept for every other analysis run on the same `Models` (a suite, the replays of sensitivities on one
-/// moved model). An analysis takes its own copy of a corner or axle to load and solve: what it gets is
+/// kept for every other analysis run on the same `Models` (a suite, the replays of a recorded run on
+/// one variant). An analysis takes its own copy of a corner or axle to load and solve: what it gets is
 /// the model a build of the file gives, number for number (in the coordinates of another file's
-/// models for [`Models::moved`]).
+/// models for [`Models::in_coordinates_of`]).
 #[derive(Debug)]
 pub struct Models<'f> {
     file: Cow<'f, SuspensionFile>,
     corners: [OnceLock<Result<Corner, ModelError>>; 4],
     axles: [OnceLock<Result<Axle, ModelError>>; 5],
     rigid: OnceLock<Option<Arc<Models<'static>>>>,
-    /// The models whose bodies' reference points these are built with ([`Models::moved`]).
+    /// The models whose bodies' reference points these are built with ([`Models::in_coordinates_of`]).
     from: Option<Arc<Models<'static>>>,
 }
 
@@ -35,13 +35,13 @@ impl<'f> Models<'f> {
         Models::of(Cow::Owned(file))
     }
 
-    /// Nothing built yet of `file`, a move of the file of `from` (a number of it changed), whose models
-    /// are each built with the bodies' reference points of the same model of `from`
+    /// Nothing built yet of `file`, a variant of the file of `from` (a number of it changed), whose
+    /// models are each built with the bodies' reference points of the same model of `from`
     /// ([`Model::with_body_origins`]): the same scenes as [`Models::owning`] builds, in `from`'s
-    /// coordinates, so that a pose of one of `from`'s models places every material point of the moved
-    /// one as it placed it in `from`'s (a replay of a recorded run on them moves by what the move
-    /// changes, not by a shift of coordinates; `crate::design::sensitivity`).
-    pub fn moved(file: SuspensionFile, from: Arc<Models<'static>>) -> Models<'static> {
+    /// coordinates, so that a pose of one of `from`'s models places every material point of the variant
+    /// as it placed it in `from`'s (a run replayed on them moves by what the variant changes, not by a
+    /// shift of coordinates).
+    pub fn in_coordinates_of(file: SuspensionFile, from: Arc<Models<'static>>) -> Models<'static> {
         Models { from: Some(from), ..Models::owning(file) }
     }
 
@@ -49,7 +49,7 @@ impl<'f> Models<'f> {
         Models { file, corners: Default::default(), axles: Default::default(), rigid: OnceLock::new(), from: None }
     }
 
-    /// An empty model for a build of this file, in the coordinates of `model` of [`Models::moved`]'s
+    /// An empty model for a build of this file, in the coordinates of `model` of [`Models::in_coordinates_of`]'s
     /// `from` (where it has that model: else a build's own).
     fn empty(&self, model: impl for<'m> FnOnce(&'m Models<'static>) -> Option<&'m Model>) -> Model {
         match self.from.as_deref().and_then(model) {
@@ -120,10 +120,10 @@ impl<'f> Models<'f> {
         self.built_rigid().map(Arc::as_ref)
     }
 
-    /// [`Models::rigid`], built once (in the coordinates of `from`'s own, for [`Models::moved`]).
+    /// [`Models::rigid`], built once (in the coordinates of `from`'s own, for [`Models::in_coordinates_of`]).
     fn built_rigid(&self) -> Option<&Arc<Models<'static>>> {
         let build = |f| match self.from.as_deref().and_then(Models::built_rigid) {
-            Some(from) => Arc::new(Models::moved(f, from.clone())),
+            Some(from) => Arc::new(Models::in_coordinates_of(f, from.clone())),
             None => Arc::new(Models::owning(f)),
         };
         self.rigid.get_or_init(|| with_rigid_bushings(&self.file).map(build)).as_ref()

@@ -245,7 +245,10 @@ impl Builder {
     /// A joint of `kind` at `at` (hardpoint name or coordinates), or — when `bushing` holds Chrono's
     /// `Bushing Data` — the bushing Chrono puts there instead. `frame` is Chrono's joint frame as `(u, w)`:
     /// w its axis, u its x axis (v = w × u).
-    #[allow(clippy::too_many_arguments)]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "a Chrono joint entry as the file gives it: name, kind, bodies, place, frame and bushing data"
+    )]
     pub(crate) fn joint(
         &mut self,
         doc: &Doc,
