@@ -163,46 +163,98 @@ fn projection_svg(out: &mut String, motion: &Motion, rows: [usize; 3], projectio
 fn layers_svg(out: &mut String, layers: &[Layer], projection: Projection, id: &str) -> std::fmt::Result {
     // Each layer's strokes, made once for the extents and the drawing.
     let strokes: Vec<Vec<Stroke>> = layers.iter().map(|l| l.motion.drawing.strokes()).collect();
-    // Extents over every row drawn.
-    let (mut lo, mut hi) = ((f64::INFINITY, f64::INFINITY), (f64::NEG_INFINITY, f64::NEG_INFINITY));
-    let mut grow = |p: &Vec3| {
-        let (u, v) = projection.project(p);
-        if u.is_finite() && v.is_finite() {
-            lo = (lo.0.min(u), lo.1.min(v));
-            hi = (hi.0.max(u), hi.1.max(v));
-        }
-    };
-    for (layer, strokes) in layers.iter().zip(&strokes) {
-        for s in strokes {
-            stroke_points(s, &layer.motion.frames[layer.row]).iter().for_each(&mut grow);
-        }
-    }
-    if !(lo.0.is_finite() && hi.0.is_finite()) {
-        return Ok(());
-    }
-    let (lo, hi) = ((lo.0 - PAD_M, lo.1 - PAD_M), (hi.0 + PAD_M, hi.1 + PAD_M));
-    let scale = ((VIEW_WIDTH - LABEL_ROOM) / (hi.0 - lo.0)).min((VIEW_MAX_HEIGHT - LABEL_ROOM) / (hi.1 - lo.1));
-    let (w, h) = ((hi.0 - lo.0) * scale + LABEL_ROOM, (hi.1 - lo.1) * scale + LABEL_ROOM);
-    let x = |u: f64| LABEL_ROOM + (u - lo.0) * scale;
-    let y = |v: f64| (hi.1 - v) * scale;
-    let [(_, su, nu), (_, sv, nv)] = projection.axes();
+    let Some(canvas) = Canvas::over(layers, &strokes, projection) else { return Ok(()) };
+    let (w, h) = (canvas.w, canvas.h);
     writeln!(out, "<figure class=\"view\" id=\"{}\">", attr(id))?;
     writeln!(
         out,
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{h:.0}" viewBox="0 0 {w:.1} {h:.1}" role="img" aria-label="{}">"#,
         projection.caption()
     )?;
-    // The grid, labelled with the global coordinate in mm.
+    let step = grid_svg(out, &canvas, projection)?;
+    for (layer, strokes) in layers.iter().zip(&strokes) {
+        layer_svg(out, &canvas, projection, layer, strokes)?;
+    }
+    writeln!(out, "</svg>")?;
+    writeln!(out, "<figcaption>{}; grid {:.0} mm</figcaption>", projection.caption(), step * 1e3)?;
+    writeln!(out, "</figure>")
+}
+
+/// Where a projection's coordinates (m) land on its SVG: the extents of every row drawn, padded, at one
+/// scale, with room for the grid's labels to the left and below.
+struct Canvas {
+    lo: (f64, f64),
+    hi: (f64, f64),
+    scale: f64,
+    /// The SVG's width and height (px).
+    w: f64,
+    h: f64,
+}
+
+impl Canvas {
+    /// The canvas over the `strokes` of each of `layers` in `projection`; `None` when nothing drawn has a
+    /// finite place.
+    fn over(layers: &[Layer], strokes: &[Vec<Stroke>], projection: Projection) -> Option<Canvas> {
+        let (mut lo, mut hi) = ((f64::INFINITY, f64::INFINITY), (f64::NEG_INFINITY, f64::NEG_INFINITY));
+        let mut grow = |p: &Vec3| {
+            let (u, v) = projection.project(p);
+            if u.is_finite() && v.is_finite() {
+                lo = (lo.0.min(u), lo.1.min(v));
+                hi = (hi.0.max(u), hi.1.max(v));
+            }
+        };
+        for (layer, strokes) in layers.iter().zip(strokes) {
+            for s in strokes {
+                stroke_points(s, &layer.motion.frames[layer.row]).iter().for_each(&mut grow);
+            }
+        }
+        if !(lo.0.is_finite() && hi.0.is_finite()) {
+            return None;
+        }
+        let (lo, hi) = ((lo.0 - PAD_M, lo.1 - PAD_M), (hi.0 + PAD_M, hi.1 + PAD_M));
+        let scale = ((VIEW_WIDTH - LABEL_ROOM) / (hi.0 - lo.0)).min((VIEW_MAX_HEIGHT - LABEL_ROOM) / (hi.1 - lo.1));
+        let (w, h) = ((hi.0 - lo.0) * scale + LABEL_ROOM, (hi.1 - lo.1) * scale + LABEL_ROOM);
+        Some(Canvas { lo, hi, scale, w, h })
+    }
+
+    /// The SVG's x of the horizontal coordinate `u`.
+    fn x(&self, u: f64) -> f64 {
+        LABEL_ROOM + (u - self.lo.0) * self.scale
+    }
+
+    /// The SVG's y of the vertical coordinate `v` (up in the model, down in the SVG).
+    fn y(&self, v: f64) -> f64 {
+        (self.hi.1 - v) * self.scale
+    }
+
+    /// The SVG path through `points` projected, closed if `closed`.
+    fn path(&self, projection: Projection, points: &[Vec3], closed: bool) -> String {
+        let mut d = String::new();
+        for (i, p) in points.iter().enumerate() {
+            let (u, v) = projection.project(p);
+            let _ = write!(d, "{}{:.1} {:.1}", if i == 0 { "M" } else { " L" }, self.x(u), self.y(v));
+        }
+        if closed {
+            d.push_str(" Z");
+        }
+        d
+    }
+}
+
+/// The grid of `canvas`, labelled with the global coordinate in mm, and the axes' names; its step (m).
+fn grid_svg(out: &mut String, canvas: &Canvas, projection: Projection) -> Result<f64, std::fmt::Error> {
+    let Canvas { lo, hi, w, h, .. } = *canvas;
+    let [(_, su, nu), (_, sv, nv)] = projection.axes();
     let step = grid_step((hi.0 - lo.0).max(hi.1 - lo.1));
     writeln!(out, r##"<g stroke="#e4e4e4" stroke-width="1" font-size="10" fill="#666">"##)?;
     let mut k = (lo.0 / step).ceil() as i64;
     while (k as f64) * step <= hi.0 {
         let u = k as f64 * step;
-        writeln!(out, r#"<line x1="{0:.1}" y1="0" x2="{0:.1}" y2="{1:.1}"/>"#, x(u), h - LABEL_ROOM)?;
+        writeln!(out, r#"<line x1="{0:.1}" y1="0" x2="{0:.1}" y2="{1:.1}"/>"#, canvas.x(u), h - LABEL_ROOM)?;
         writeln!(
             out,
             r#"<text x="{:.1}" y="{:.1}" text-anchor="middle" stroke="none">{:.0}</text>"#,
-            x(u),
+            canvas.x(u),
             h - LABEL_ROOM + 13.0,
             mm(su * u)
         )?;
@@ -211,12 +263,12 @@ fn layers_svg(out: &mut String, layers: &[Layer], projection: Projection, id: &s
     let mut k = (lo.1 / step).ceil() as i64;
     while (k as f64) * step <= hi.1 {
         let v = k as f64 * step;
-        writeln!(out, r#"<line x1="{:.1}" y1="{1:.1}" x2="{2:.1}" y2="{1:.1}"/>"#, LABEL_ROOM, y(v), w)?;
+        writeln!(out, r#"<line x1="{:.1}" y1="{1:.1}" x2="{2:.1}" y2="{1:.1}"/>"#, LABEL_ROOM, canvas.y(v), w)?;
         writeln!(
             out,
             r#"<text x="{:.1}" y="{:.1}" text-anchor="end" stroke="none">{:.0}</text>"#,
             LABEL_ROOM - 4.0,
-            y(v) + 3.5,
+            canvas.y(v) + 3.5,
             mm(sv * v)
         )?;
         k += 1;
@@ -233,52 +285,47 @@ fn layers_svg(out: &mut String, layers: &[Layer], projection: Projection, id: &s
         (h - LABEL_ROOM) / 2.0
     )?;
     writeln!(out, "</g>")?;
-    let path = |points: &[Vec3], closed: bool| -> String {
-        let mut d = String::new();
-        for (i, p) in points.iter().enumerate() {
-            let (u, v) = projection.project(p);
-            let _ = write!(d, "{}{:.1} {:.1}", if i == 0 { "M" } else { " L" }, x(u), y(v));
+    Ok(step)
+}
+
+/// One layer's `strokes` on `canvas`: ghosted faint without its deflections, else with its dots too.
+fn layer_svg(
+    out: &mut String,
+    canvas: &Canvas,
+    projection: Projection,
+    layer: &Layer,
+    strokes: &[Stroke],
+) -> std::fmt::Result {
+    let (ghost, poses) = (layer.ghost, &layer.motion.frames[layer.row]);
+    let opacity = if ghost { " opacity=\"0.25\"" } else { "" };
+    writeln!(out, "<g fill=\"none\" stroke-linecap=\"round\"{opacity}>")?;
+    for s in strokes {
+        if ghost && s.pen == Pen::Deflection {
+            continue;
         }
-        if closed {
-            d.push_str(" Z");
+        let points = stroke_points(s, poses);
+        if points.len() < 2 || points.iter().any(|p| !p.iter().all(|c| c.is_finite())) {
+            continue;
         }
-        d
-    };
-    for (layer, strokes) in layers.iter().zip(&strokes) {
-        let (ghost, poses) = (layer.ghost, &layer.motion.frames[layer.row]);
-        let opacity = if ghost { " opacity=\"0.25\"" } else { "" };
-        writeln!(out, "<g fill=\"none\" stroke-linecap=\"round\"{opacity}>")?;
-        for s in strokes {
-            if ghost && s.pen == Pen::Deflection {
-                continue;
-            }
-            let points = stroke_points(s, poses);
-            if points.len() < 2 || points.iter().any(|p| !p.iter().all(|c| c.is_finite())) {
-                continue;
-            }
-            let (own, width, dash) = pen_style(s.pen);
-            let colour = layer.colour.as_deref().unwrap_or(own);
-            let dash = if dash.is_empty() { String::new() } else { format!(" stroke-dasharray=\"{dash}\"") };
-            writeln!(
-                out,
-                r#"<path d="{}" stroke="{colour}" stroke-width="{width}"{dash}><title>{}</title></path>"#,
-                path(&points, s.closed),
-                text(&s.name)
-            )?;
-        }
-        if !ghost && layer.colour.is_none() {
-            for d in &layer.motion.drawing.dots() {
-                write_dot(out, d, poses, &|p| {
-                    let (u, v) = projection.project(p);
-                    (x(u), y(v))
-                })?;
-            }
-        }
-        writeln!(out, "</g>")?;
+        let (own, width, dash) = pen_style(s.pen);
+        let colour = layer.colour.as_deref().unwrap_or(own);
+        let dash = if dash.is_empty() { String::new() } else { format!(" stroke-dasharray=\"{dash}\"") };
+        writeln!(
+            out,
+            r#"<path d="{}" stroke="{colour}" stroke-width="{width}"{dash}><title>{}</title></path>"#,
+            canvas.path(projection, &points, s.closed),
+            text(&s.name)
+        )?;
     }
-    writeln!(out, "</svg>")?;
-    writeln!(out, "<figcaption>{}; grid {:.0} mm</figcaption>", projection.caption(), step * 1e3)?;
-    writeln!(out, "</figure>")
+    if !ghost && layer.colour.is_none() {
+        for d in &layer.motion.drawing.dots() {
+            write_dot(out, d, poses, &|p| {
+                let (u, v) = projection.project(p);
+                (canvas.x(u), canvas.y(v))
+            })?;
+        }
+    }
+    writeln!(out, "</g>")
 }
 
 fn write_dot(out: &mut String, d: &Dot, poses: &[Pose], at: &dyn Fn(&Vec3) -> (f64, f64)) -> std::fmt::Result {

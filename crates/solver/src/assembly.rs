@@ -142,61 +142,118 @@ pub struct Assembly {
 
 const NO_SLOT: u32 = u32::MAX;
 
+/// For each body's column block of `K`'s upper triangle, the row blocks `a ≤ b` coupled to it (itself
+/// and every body an element or joint joins it to), sorted.
+fn coupled_blocks(model: &Model) -> Vec<Vec<usize>> {
+    let mut couplings: Vec<(usize, usize)> = Vec::new();
+    let mut couple = |i: BodyRef, j: BodyRef| {
+        if let (Some(a), Some(b)) = (i.id(), j.id()) {
+            if a != b {
+                couplings.push((a.0.min(b.0), a.0.max(b.0)));
+            }
+        }
+    };
+    for e in model.elements() {
+        let [i, j] = e.bodies();
+        couple(i, j);
+    }
+    for jt in model.joints() {
+        couple(jt.spec.body_i, jt.spec.body_j);
+    }
+    couplings.sort_unstable();
+    couplings.dedup();
+    let mut col_blocks: Vec<Vec<usize>> = (0..model.bodies().len()).map(|b| vec![b]).collect();
+    for &(a, b) in &couplings {
+        col_blocks[b].push(a);
+    }
+    for blocks in &mut col_blocks {
+        blocks.sort_unstable();
+    }
+    col_blocks
+}
+
+/// The CSC pattern (column pointers, row indices) of `K`'s upper triangle with the column blocks
+/// `col_blocks`: 6×6 entries per off-diagonal block and the 21 of each diagonal block's upper triangle,
+/// reserved exactly, as the pattern is kept for the solver's lifetime.
+fn k_pattern(col_blocks: &[Vec<usize>]) -> (Vec<usize>, Vec<usize>) {
+    let nnz_k: usize = col_blocks
+        .iter()
+        .map(|blocks| BODY_DOFS * BODY_DOFS * (blocks.len() - 1) + BODY_DOFS * (BODY_DOFS + 1) / 2)
+        .sum();
+    let mut k_col_ptr = Vec::with_capacity(col_blocks.len() * BODY_DOFS + 1);
+    let mut k_row_idx = Vec::with_capacity(nnz_k);
+    k_col_ptr.push(0);
+    for (b, blocks) in col_blocks.iter().enumerate() {
+        for cl in 0..BODY_DOFS {
+            let col = b * BODY_DOFS + cl;
+            for &a in blocks {
+                for rl in 0..BODY_DOFS {
+                    let row = a * BODY_DOFS + rl;
+                    if row <= col {
+                        k_row_idx.push(row);
+                    }
+                }
+            }
+            k_col_ptr.push(k_row_idx.len());
+        }
+    }
+    debug_assert_eq!(k_row_idx.len(), nnz_k);
+    (k_col_ptr, k_row_idx)
+}
+
+/// The CSC pattern of `J` over the active rows, with where each row sits in its bodies' columns and which
+/// joint row it is.
+struct JPattern {
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    row_slots: Vec<[u32; 2]>,
+    row_joint: Vec<(usize, usize)>,
+}
+
+impl JPattern {
+    fn of(model: &Model, active_rows: &[usize]) -> JPattern {
+        let n = model.dofs();
+        let mut row_joint = Vec::with_capacity(active_rows.len());
+        let mut row_dofs = Vec::with_capacity(active_rows.len());
+        for &r in active_rows {
+            let o = model.row_origin(r).expect("active rows are model rows");
+            let jt = &model.joints()[o.joint.0];
+            row_joint.push((o.joint.0, o.row));
+            row_dofs.push(pair_dofs(jt.spec.body_i, jt.spec.body_j));
+        }
+        let mut counts = vec![0usize; n];
+        for dofs in &row_dofs {
+            for d in dofs.iter().flatten() {
+                counts[*d] += 1;
+            }
+        }
+        let mut col_ptr = vec![0usize; n + 1];
+        for c in 0..n {
+            col_ptr[c + 1] = col_ptr[c] + counts[c];
+        }
+        let mut fill = col_ptr[..n].to_vec();
+        let mut row_idx = vec![0usize; col_ptr[n]];
+        let mut row_slots = vec![[NO_SLOT; 2]; active_rows.len()];
+        // Rows are visited in increasing order, so each column's row list comes out sorted.
+        for (k, dofs) in row_dofs.iter().enumerate() {
+            for (local, d) in dofs.iter().enumerate() {
+                if let Some(c) = *d {
+                    row_idx[fill[c]] = k;
+                    row_slots[k][local / BODY_DOFS] = (fill[c] - col_ptr[c]) as u32;
+                    fill[c] += 1;
+                }
+            }
+        }
+        JPattern { col_ptr, row_idx, row_slots, row_joint }
+    }
+}
+
 impl Assembly {
     /// Analyses the pattern of `model` with the given active constraint rows (model row numbering).
     pub fn new(model: &Model, active_rows: Vec<usize>) -> Self {
         let n = model.dofs();
-        let nb = model.bodies().len();
-        // Body-pair coupling (a < b) in the upper triangle.
-        let mut couplings: Vec<(usize, usize)> = Vec::new();
-        let mut couple = |i: BodyRef, j: BodyRef| {
-            if let (Some(a), Some(b)) = (i.id(), j.id()) {
-                if a != b {
-                    couplings.push((a.0.min(b.0), a.0.max(b.0)));
-                }
-            }
-        };
-        for e in model.elements() {
-            let [i, j] = e.bodies();
-            couple(i, j);
-        }
-        for jt in model.joints() {
-            couple(jt.spec.body_i, jt.spec.body_j);
-        }
-        couplings.sort_unstable();
-        couplings.dedup();
-        // Column structure of the upper triangle: for body column block b, the row blocks a ≤ b coupled to it.
-        let mut col_blocks: Vec<Vec<usize>> = (0..nb).map(|b| vec![b]).collect();
-        for &(a, b) in &couplings {
-            col_blocks[b].push(a);
-        }
-        for blocks in &mut col_blocks {
-            blocks.sort_unstable();
-        }
-        // Each column block holds 6×6 entries per off-diagonal block and the 21 of its diagonal block's
-        // upper triangle: reserved exactly, as the pattern is kept for the solver's lifetime.
-        let nnz_k: usize = col_blocks
-            .iter()
-            .map(|blocks| BODY_DOFS * BODY_DOFS * (blocks.len() - 1) + BODY_DOFS * (BODY_DOFS + 1) / 2)
-            .sum();
-        let mut k_col_ptr = Vec::with_capacity(n + 1);
-        let mut k_row_idx = Vec::with_capacity(nnz_k);
-        k_col_ptr.push(0);
-        for b in 0..nb {
-            for cl in 0..BODY_DOFS {
-                let col = b * BODY_DOFS + cl;
-                for &a in &col_blocks[b] {
-                    for rl in 0..BODY_DOFS {
-                        let row = a * BODY_DOFS + rl;
-                        if row <= col {
-                            k_row_idx.push(row);
-                        }
-                    }
-                }
-                k_col_ptr.push(k_row_idx.len());
-            }
-        }
-        debug_assert_eq!(k_row_idx.len(), nnz_k);
+        let col_blocks = coupled_blocks(model);
+        let (k_col_ptr, k_row_idx) = k_pattern(&col_blocks);
         let pair_block = |i: BodyRef, j: BodyRef| -> PairBlock {
             match (i.id(), j.id()) {
                 (Some(a), Some(b)) if a != b => {
@@ -217,52 +274,19 @@ impl Assembly {
             .collect();
         let joint_blocks: Vec<PairBlock> =
             model.joints().iter().map(|jt| pair_block(jt.spec.body_i, jt.spec.body_j)).collect();
-
-        // J: triplets (row, col) of the active rows, then CSC.
-        let mut row_joint = Vec::with_capacity(active_rows.len());
-        let mut row_dofs = Vec::with_capacity(active_rows.len());
-        for &r in &active_rows {
-            let o = model.row_origin(r).expect("active rows are model rows");
-            let jt = &model.joints()[o.joint.0];
-            row_joint.push((o.joint.0, o.row));
-            row_dofs.push(pair_dofs(jt.spec.body_i, jt.spec.body_j));
-        }
-        let mut counts = vec![0usize; n];
-        for dofs in &row_dofs {
-            for d in dofs.iter().flatten() {
-                counts[*d] += 1;
-            }
-        }
-        let mut j_col_ptr = vec![0usize; n + 1];
-        for c in 0..n {
-            j_col_ptr[c + 1] = j_col_ptr[c] + counts[c];
-        }
-        let mut fill = j_col_ptr[..n].to_vec();
-        let mut j_row_idx = vec![0usize; j_col_ptr[n]];
-        let mut row_slots = vec![[NO_SLOT; 2]; active_rows.len()];
-        // Rows are visited in increasing order, so each column's row list comes out sorted.
-        for (k, dofs) in row_dofs.iter().enumerate() {
-            for (local, d) in dofs.iter().enumerate() {
-                if let Some(c) = *d {
-                    j_row_idx[fill[c]] = k;
-                    row_slots[k][local / BODY_DOFS] = (fill[c] - j_col_ptr[c]) as u32;
-                    fill[c] += 1;
-                }
-            }
-        }
-        let m = active_rows.len();
-        let nnz_j = j_row_idx.len();
+        let j = JPattern::of(model, &active_rows);
+        let (m, nnz_k, nnz_j) = (active_rows.len(), k_row_idx.len(), j.row_idx.len());
         Assembly {
             n,
             active_rows,
             k_col_ptr,
             k_row_idx,
-            j_col_ptr,
-            j_row_idx,
+            j_col_ptr: j.col_ptr,
+            j_row_idx: j.row_idx,
             element_blocks,
             joint_blocks,
-            row_slots,
-            row_joint,
+            row_slots: j.row_slots,
+            row_joint: j.row_joint,
             k_values: vec![0.0; nnz_k],
             k_skew: vec![0.0; nnz_k],
             has_skew: false,
@@ -308,6 +332,18 @@ impl Assembly {
             self.k_values.fill(0.0);
             self.k_skew.fill(0.0);
         }
+        self.assemble_elements(model, poses, t, tangent);
+        self.assemble_rows(model, poses, t, lambda, tangent);
+        if with_k {
+            self.has_skew = self.k_skew.iter().any(|&v| v != 0.0);
+        }
+    }
+
+    /// The elements' part: forces into `Q`, the loads' rates into `∂Q/∂t`, and (with a `tangent` that
+    /// takes them) their stiffnesses into `K`; the elements are evaluated a chunk at a time, in parallel
+    /// where a chunk is large.
+    fn assemble_elements(&mut self, model: &Model, poses: &[Pose], t: f64, tangent: Option<Tangent>) {
+        let with_k = tangent.is_some();
         let elements = model.elements();
         let eval_one = |e: &dyn elastokin_core::ForceElement, out: &mut ElementEval| {
             let [i, j] = e.bodies();
@@ -330,48 +366,69 @@ impl Assembly {
             }
             #[cfg(not(feature = "parallel"))]
             evals.iter_mut().zip(chunk.iter()).for_each(|(out, e)| eval_one(e.as_ref(), out));
-
             for (offset, e) in chunk.iter().enumerate() {
-                let k = start + offset;
-                let [i, j] = e.bodies();
-                let dofs = pair_dofs(i, j);
-                let ev = &self.evals[offset];
-                // Plain comparisons, not `f64::max`, whose NaN handling, twelve times in a chain, cost 5 to
-                // 7 % of a corrected sweep; a force that is no finite number is noted instead.
-                for v in ev.force.iter() {
-                    let size = v.abs();
-                    if !size.is_finite() {
-                        self.non_finite_element.get_or_insert(k);
-                    } else if size > self.force_scale {
-                        self.force_scale = size;
-                    }
-                }
-                for (local, d) in dofs.iter().enumerate() {
-                    if let Some(g) = d {
-                        self.applied[*g] += ev.force[local];
-                    }
-                }
-                if e.role() == ElementRole::Load {
-                    e.load_rate(&i.pose(poses), &j.pose(poses), t, &mut rate);
-                    for (local, d) in dofs.iter().enumerate() {
-                        if let Some(g) = d {
-                            self.load_rate[*g] += rate[local];
-                        }
-                    }
-                }
-                let include = match tangent {
-                    Some(Tangent::Full) | Some(Tangent::Paper) => true,
-                    Some(Tangent::Elastic) => e.role() == ElementRole::Elastic,
-                    None => false,
-                };
-                if include {
-                    let block = self.element_blocks[k];
-                    scatter(&dofs, block, &self.k_col_ptr, &ev.stiffness, &mut self.k_values, &mut self.k_skew);
+                self.add_element(start + offset, offset, e.as_ref(), poses, t, tangent, &mut rate);
+            }
+        }
+    }
+
+    /// Adds element `k`, evaluated into `evals[offset]`, to `Q`, `∂Q/∂t` (a load, its rate computed into
+    /// `rate`) and, where `tangent` takes its role, `K`.
+    #[inline]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the element, where its evaluation is, the state and the tangent asked: each once, in the assembly's inner loop"
+    )]
+    fn add_element(
+        &mut self,
+        k: usize,
+        offset: usize,
+        e: &dyn elastokin_core::ForceElement,
+        poses: &[Pose],
+        t: f64,
+        tangent: Option<Tangent>,
+        rate: &mut RowGradient,
+    ) {
+        let [i, j] = e.bodies();
+        let dofs = pair_dofs(i, j);
+        let ev = &self.evals[offset];
+        // Plain comparisons, not `f64::max`, whose NaN handling, twelve times in a chain, cost 5 to
+        // 7 % of a corrected sweep; a force that is no finite number is noted instead.
+        for v in ev.force.iter() {
+            let size = v.abs();
+            if !size.is_finite() {
+                self.non_finite_element.get_or_insert(k);
+            } else if size > self.force_scale {
+                self.force_scale = size;
+            }
+        }
+        for (local, d) in dofs.iter().enumerate() {
+            if let Some(g) = d {
+                self.applied[*g] += ev.force[local];
+            }
+        }
+        if e.role() == ElementRole::Load {
+            e.load_rate(&i.pose(poses), &j.pose(poses), t, rate);
+            for (local, d) in dofs.iter().enumerate() {
+                if let Some(g) = d {
+                    self.load_rate[*g] += rate[local];
                 }
             }
         }
+        let include = match tangent {
+            Some(Tangent::Full) | Some(Tangent::Paper) => true,
+            Some(Tangent::Elastic) => e.role() == ElementRole::Elastic,
+            None => false,
+        };
+        if include {
+            let block = self.element_blocks[k];
+            scatter(&dofs, block, &self.k_col_ptr, &ev.stiffness, &mut self.k_values, &mut self.k_skew);
+        }
+    }
 
-        // Constraint rows: Φ, J and (Full) the geometric stiffness Σ λ ∂(∇Φ)/∂q per joint.
+    /// The constraint rows' part: `Φ`, its rate and `J`, and with the full tangent the geometric stiffness
+    /// `Σ λ ∂(∇Φ)/∂q` of each joint into `K`.
+    fn assemble_rows(&mut self, model: &Model, poses: &[Pose], t: f64, lambda: &[f64], tangent: Option<Tangent>) {
         let mut geometric = PairMatrix::zeros();
         let mut current_joint = usize::MAX;
         for k in 0..self.row_joint.len() {
@@ -402,9 +459,6 @@ impl Assembly {
         }
         if current_joint != usize::MAX {
             self.scatter_joint(model, current_joint, &geometric);
-        }
-        if with_k {
-            self.has_skew = self.k_skew.iter().any(|&v| v != 0.0);
         }
     }
 
