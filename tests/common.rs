@@ -1,5 +1,5 @@
 //! Shared scenes of the whole-pipeline tests (each scene has a closed-form answer in the test that uses it).
-#![allow(dead_code)]
+#![allow(dead_code, reason = "each test file uses the helpers it needs")]
 
 use elastokin::elements::{Bushing, CoilSpring, PointForce};
 use elastokin::prelude::*;

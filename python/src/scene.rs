@@ -717,7 +717,7 @@ impl SceneSweep {
 
     /// The joint's reaction on its second body at each step: `(force, torque)`, the force (N) and the
     /// moment about the joint's point (N·m), global, one row per step.
-    #[allow(clippy::type_complexity)]
+    #[allow(clippy::type_complexity, reason = "the pair of NumPy arrays Python receives, spelled out")]
     fn reaction<'py>(
         &self,
         py: Python<'py>,

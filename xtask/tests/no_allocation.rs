@@ -35,7 +35,7 @@ struct Counting;
 
 // SAFETY: every method forwards to `System` with the caller's pointer and layout unchanged; the counter is
 // a plain atomic and the flag a constant-initialized thread-local, neither touches the memory.
-#[allow(unsafe_code)]
+#[allow(unsafe_code, reason = "a global allocator is an unsafe trait; the impl only forwards to System")]
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
         count();

@@ -39,7 +39,7 @@ fn counted() {
 
 // SAFETY: every method forwards to `System` with the caller's pointer and layout unchanged, so `System`'s
 // guarantees hold; the counters are plain atomics and never touch the memory.
-#[allow(unsafe_code)]
+#[allow(unsafe_code, reason = "a global allocator is an unsafe trait; the impl only forwards to System")]
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
         let p = System.alloc(layout);

@@ -1,6 +1,6 @@
 //! Test helpers: a small deterministic RNG, random poses and rotations, central differences along the
 //! exact left increments of `Pose::apply_increment6`, and block-wise comparisons.
-#![allow(dead_code)]
+#![allow(dead_code, reason = "each test file uses the helpers it needs")]
 
 use elastokin_core::math::quat_exp;
 use elastokin_core::{BodyId, BodyRef, ElementEval, ForceElement, Mat3, PairMatrix, Pose, RowGradient, Vec3};

@@ -1,5 +1,5 @@
 //! Random KKT systems and error measures shared by the factorization tests.
-#![allow(dead_code)]
+#![allow(dead_code, reason = "each test file uses the helpers it needs")]
 
 use elastokin_solver::kkt::KktPattern;
 use nalgebra::DMatrix;

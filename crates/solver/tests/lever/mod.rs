@@ -1,6 +1,6 @@
 //! A lever hinged at the origin about y, held by a coil spring, its tip loaded: the model the replay and
 //! path-rate tests solve, with its moment balance written out for them to check against.
-#![allow(dead_code)]
+#![allow(dead_code, reason = "each test file uses the helpers it needs")]
 
 use elastokin_core::{BodyRef, JointSpec, Model, Pose, Vec3};
 use elastokin_elements::{CoilSpring, PointForce};

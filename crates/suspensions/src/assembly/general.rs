@@ -523,7 +523,10 @@ impl FieldDef {
     /// frame's z axis over (as a bushing's frame does): in the right corner's frame the deflection along z and
     /// the rotation about x and y change sign, so the matrix is `T K T` with `T = diag(1, 1, −1, −1, −1, 1)`,
     /// and the preload changes as a bushing's.
-    #[allow(clippy::too_many_arguments)]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "an entry's name and key for messages, its bodies and point, its frame as written for the left corner and the side it is mirrored to"
+    )]
     pub fn field(
         &self,
         key: impl std::fmt::Display + Copy,

@@ -1,7 +1,7 @@
 //! Reference machinery of the loop-closure tests, independent of the engine; what the tests of Chrono's
 //! files share (their fixtures, and the engine's rows they walk a closure along) is in [`chrono`].
 
-#![allow(dead_code)] // Each test file uses the closures it needs.
+#![allow(dead_code, reason = "each test file uses the closures it needs")]
 
 use elastokin_core::Vec3;
 use elastokin_suspensions::{DoubleWishboneHardpoints, MacPhersonHardpoints};
