@@ -981,3 +981,131 @@ fn every_joint_kind_takes_the_keys_its_documentation_lists() {
     }
     assert_eq!(documented, 11);
 }
+
+/// The element kinds a model file takes, corner and axle alike, in the order a written file lists them.
+const ELEMENT_KINDS: [&str; 5] = ["bushings", "fields", "beams", "springs", "stops"];
+
+/// An entry of the element kind `kind` named `name`, between `bodies`, from `from` to `to` (a bushing or
+/// a field at `to`): what each kind needs to build.
+fn element_entry(kind: &str, name: &str, bodies: [&str; 2], from: serde_json::Value, to: &str) -> serde_json::Value {
+    use serde_json::json;
+    let diagonal: Vec<Vec<f64>> = (0..6)
+        .map(|r| {
+            (0..6)
+                .map(|c| {
+                    if r != c {
+                        0.0
+                    } else if r < 3 {
+                        1e6
+                    } else {
+                        1e3
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    match kind {
+        "bushings" => json!({ "name": name, "bodies": bodies, "at": to, "axis": [0.0, 0.0, 1.0],
+            "radial": 1e6, "axial": 1e5, "torsion": 100.0, "conical": 1000.0 }),
+        "fields" => json!({ "name": name, "bodies": bodies, "at": to, "stiffness": diagonal }),
+        "beams" => json!({ "name": name, "bodies": bodies, "from": from, "to": to, "y_axis": [1.0, 0.0, 0.0],
+            "section": { "youngs_modulus": 2.1e11, "shear_modulus": 8.1e10, "area": 1e-4, "iy": 1e-9, "iz": 1e-9,
+                         "j": 2e-9 } }),
+        "springs" => json!({ "name": name, "bodies": bodies, "from": from, "to": to, "rate": 20000.0,
+            "design_force": 500.0 }),
+        "stops" => json!({ "name": name, "kind": "bump", "bodies": bodies, "from": from, "to": to,
+            "clearance": 0.05, "curve": [[0.0, 0.0], [0.01, 1000.0]] }),
+        other => panic!("no entry of the kind '{other}' is written here: add one"),
+    }
+}
+
+/// The names of the entries of `list` (a kind's list in a model file).
+fn entry_names(list: &serde_json::Value) -> Vec<String> {
+    let entries = list.as_array().map(Vec::as_slice).unwrap_or_default();
+    entries.iter().map(|e| e["name"].as_str().unwrap().to_string()).collect()
+}
+
+/// The live axle with an entry of every element kind added to its corner and to its axle section: each
+/// reads, is written back under its kind's key in its place, builds into its element (the corner's on
+/// each side, the axle's once) found in the build map under its key, and a mistake in it is named by that
+/// key (the axle's under `axle.`). The kinds are this test's own list: one declared in `ElementLists`
+/// and not here, or one the builder or the build map leaves out, fails here.
+#[test]
+fn every_element_kind_reads_writes_builds_and_is_mapped_in_a_corner_and_in_an_axle() {
+    use elastokin_suspensions::description::general::ElementLists;
+    use elastokin_suspensions::{Axle, AxleRig};
+    assert_eq!(ElementLists::KINDS, ELEMENT_KINDS, "the declared element kinds are the ones this test writes");
+    let text = std::fs::read_to_string(example_path("four_link_axle.json")).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let g = &mut v["suspension"]["general"];
+    let push = |list: &mut serde_json::Value, entry: serde_json::Value| match list.as_array_mut() {
+        Some(entries) => entries.push(entry),
+        None => *list = serde_json::json!([entry]),
+    };
+    for kind in ELEMENT_KINDS {
+        let bodies = ["chassis", "axle tube"];
+        let corner = element_entry(kind, &format!("corner {kind}"), bodies, "spring_chassis".into(), "spring_axle");
+        push(&mut g[kind], corner);
+        let axle =
+            element_entry(kind, &format!("axle {kind}"), bodies, serde_json::json!([0.2, 0.0, 0.6]), "axle_centre");
+        push(&mut g["axle"][kind], axle);
+    }
+    let file = SuspensionFile::from_json(&v.to_string(), "every kind").unwrap();
+    let written: serde_json::Value = serde_json::from_str(&file.to_json()).unwrap();
+    let (general, axle) = (&v["suspension"]["general"], &v["suspension"]["general"]["axle"]);
+    let keys = |section: &serde_json::Value| -> Vec<String> { section.as_object().unwrap().keys().cloned().collect() };
+    let corner_keys = ["hardpoints", "bodies", "joints"].into_iter().chain(ELEMENT_KINDS);
+    let corner_keys: Vec<&str> = corner_keys.chain(["anti_roll_bars", "axle", "corner"]).collect();
+    assert_eq!(keys(&written["suspension"]["general"]), corner_keys);
+    let axle_keys: Vec<&str> = ["hardpoints", "bodies"].into_iter().chain(ELEMENT_KINDS).collect();
+    assert_eq!(keys(&written["suspension"]["general"]["axle"]), axle_keys);
+    for kind in ELEMENT_KINDS {
+        assert_eq!(entry_names(&written["suspension"]["general"][kind]), entry_names(&general[kind]), "{kind}");
+        assert_eq!(
+            entry_names(&written["suspension"]["general"]["axle"][kind]),
+            entry_names(&axle[kind]),
+            "axle.{kind}"
+        );
+    }
+    // Built: every entry is one element on each side (the corner's) or once (the axle's), under its key.
+    let built = Axle::build(&file.suspension, AxleRig::ParallelTravel).unwrap();
+    let count = |name: &str| built.model.elements().iter().filter(|e| e.name() == name).count();
+    let Template::General(described) = &file.suspension else { panic!("general form") };
+    let map = built.build_map(described);
+    let element_names = |key: &str| -> Vec<Vec<&str>> {
+        let items = map.find(key).map(|b| b.elements.iter().map(|e| built.model.elements()[e.0].name()).collect());
+        items.collect()
+    };
+    let mut entries = 0;
+    for kind in ELEMENT_KINDS {
+        for (k, name) in entry_names(&general[kind]).iter().enumerate() {
+            for side in ["left", "right"] {
+                assert_eq!(count(&format!("{side} {name}")), 1, "{side} {kind}[{k}] ({name})");
+            }
+            let expected = vec![vec![format!("left {name}")], vec![format!("right {name}")]];
+            assert_eq!(element_names(&format!("{kind}[{k}]")), expected, "{kind}[{k}]");
+            entries += 1;
+        }
+        for (k, name) in entry_names(&axle[kind]).iter().enumerate() {
+            assert_eq!(count(name), 1, "axle.{kind}[{k}] ({name})");
+            assert_eq!(element_names(&format!("axle.{kind}[{k}]")), vec![vec![name.as_str()]], "axle.{kind}[{k}]");
+            entries += 1;
+        }
+    }
+    // The example's spring and the ten added.
+    assert_eq!(entries, 11);
+    // A mistake in an entry is named by its key.
+    for kind in ELEMENT_KINDS {
+        for under in ["", "axle."] {
+            let mut edited = v.clone();
+            let section = &mut edited["suspension"]["general"];
+            let list = if under.is_empty() { &mut section[kind] } else { &mut section["axle"][kind] };
+            let k = list.as_array().unwrap().len() - 1;
+            let name = list[k]["name"].as_str().unwrap().to_string();
+            list[k]["bodies"][1] = "no such body".into();
+            let err = SuspensionFile::from_json(&edited.to_string(), "edited").unwrap_err().to_string();
+            let key = format!("{under}{kind}[{k}] ({name}).bodies");
+            assert!(err.contains(&key) && err.contains("no body 'no such body'"), "'{key}' not in: {err}");
+        }
+    }
+}

@@ -7,8 +7,8 @@
 use crate::assembly::map::load_labels;
 use crate::assembly::template::{CornerParts, CornerTemplate, CrossAxle, ElasticMember, SteeringLink, TieRod};
 use crate::description::general::{
-    part_name, Axis, BeamDef, BodyDef, BushingDef, FieldDef, GeneralCorner, Hardpoints, JointDef, Place, SectionDef,
-    SpringDef, Stiffness, StopDef, StopType, CHASSIS,
+    part_name, Axis, BeamDef, BodyDef, BushingDef, ElementLists, FieldDef, GeneralCorner, Hardpoints, JointDef, Place,
+    SectionDef, SpringDef, Stiffness, StopDef, StopType, CHASSIS,
 };
 use crate::description::limits::{
     check_hardpoints, check_rate, check_spring_force, check_steering_arm, check_steering_axis, check_tie_rod_mounts,
@@ -454,6 +454,13 @@ impl std::fmt::Display for EntryKey<'_> {
     }
 }
 
+/// What the callers keep of the elements [`GeneralCorner::add_elements`] adds: each spring's element, and
+/// each beam as the segments it was built in.
+struct AddedElements {
+    springs: Vec<ElementId>,
+    members: Vec<ElasticMember>,
+}
+
 /// What a bushing or a field entry names, resolved: its bodies, its point (on the side built), and its
 /// frame's x axis and y hint as the left corner gives them (the frame is mirrored as a whole).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -608,6 +615,37 @@ impl GeneralCorner {
         };
         model.add_joint(joint_spec(key, &part_name(r.prefix, &j.name), j.kind, [bi, bj], &geometry)?)?;
         Ok(())
+    }
+
+    /// Adds every element of `elements`, kind after kind in their declared order, each entry keyed by its
+    /// place in its kind's list (`bushings[2]`); what the corner and the axle keep of them is returned.
+    fn add_elements(
+        &self,
+        model: &mut Model,
+        r: &Resolver,
+        elements: ElementLists,
+    ) -> Result<AddedElements, ModelError> {
+        // Every kind named: a kind declared without its build here does not compile.
+        let ElementLists { bushings, fields, beams, springs, stops } = elements;
+        for (k, b) in bushings.iter().enumerate() {
+            self.add_bushing(model, r, k, b)?;
+        }
+        for (k, f) in fields.iter().enumerate() {
+            self.add_field(model, r, k, f)?;
+        }
+        let mut members = Vec::with_capacity(beams.len());
+        for (k, b) in beams.iter().enumerate() {
+            let segments = self.add_beam(model, r, k, b)?;
+            members.push(ElasticMember { name: b.name.clone(), segments });
+        }
+        let mut added_springs = Vec::with_capacity(springs.len());
+        for (k, s) in springs.iter().enumerate() {
+            added_springs.push(self.add_spring(model, r, k, s)?);
+        }
+        for (k, s) in stops.iter().enumerate() {
+            self.add_stop(model, r, k, s)?;
+        }
+        Ok(AddedElements { springs: added_springs, members })
     }
 
     fn add_bushing(&self, model: &mut Model, r: &Resolver, k: usize, b: &BushingDef) -> Result<(), ModelError> {
@@ -796,22 +834,7 @@ impl CornerTemplate for GeneralCorner {
         for (k, j) in self.joints.iter().enumerate() {
             self.add_joint(model, &r, k, j)?;
         }
-        for (k, b) in self.bushings.iter().enumerate() {
-            self.add_bushing(model, &r, k, b)?;
-        }
-        for (k, f) in self.fields.iter().enumerate() {
-            self.add_field(model, &r, k, f)?;
-        }
-        for (k, b) in self.beams.iter().enumerate() {
-            self.add_beam(model, &r, k, b)?;
-        }
-        let mut springs = Vec::with_capacity(self.springs.len());
-        for (k, s) in self.springs.iter().enumerate() {
-            springs.push(self.add_spring(model, &r, k, s)?);
-        }
-        for (k, s) in self.stops.iter().enumerate() {
-            self.add_stop(model, &r, k, s)?;
-        }
+        let AddedElements { springs, .. } = self.add_elements(model, &r, self.elements())?;
         let upright =
             r.body(model, "corner.upright", &c.upright)?.id().expect("the upright is a body, not the chassis");
         let spin = Vec3::from(c.spin_axis);
@@ -911,23 +934,7 @@ impl CornerTemplate for GeneralCorner {
         for (k, j) in axle.joints.iter().enumerate() {
             self.add_joint(model, &r, k, j).map_err(under_axle)?;
         }
-        for (k, b) in axle.bushings.iter().enumerate() {
-            self.add_bushing(model, &r, k, b).map_err(under_axle)?;
-        }
-        for (k, f) in axle.fields.iter().enumerate() {
-            self.add_field(model, &r, k, f).map_err(under_axle)?;
-        }
-        let mut members = Vec::with_capacity(axle.beams.len());
-        for (k, b) in axle.beams.iter().enumerate() {
-            let segments = self.add_beam(model, &r, k, b).map_err(under_axle)?;
-            members.push(ElasticMember { name: b.name.clone(), segments });
-        }
-        for (k, sp) in axle.springs.iter().enumerate() {
-            self.add_spring(model, &r, k, sp).map_err(under_axle)?;
-        }
-        for (k, st) in axle.stops.iter().enumerate() {
-            self.add_stop(model, &r, k, st).map_err(under_axle)?;
-        }
+        let AddedElements { members, .. } = self.add_elements(model, &r, axle.elements()).map_err(under_axle)?;
         let mut anti_roll_bars = anti_roll_bars;
         for (k, name) in axle.anti_roll_bar_springs.iter().enumerate() {
             let known = axle.bushings.iter().any(|b| &b.name == name);

@@ -9,7 +9,7 @@
 //! through the builder. A template's items are those of its expansion into the general form.
 
 use crate::assembly::rig::{RACK, RACK_SLIDE, RACK_TRAVEL, STEERING_LINK, TIE_ROD, WHEEL_TRAVEL};
-use crate::description::general::{BushingDef, FieldDef, GeneralCorner, JointDef, LoadDef, SpringDef, StopDef};
+use crate::description::general::{BodyDef, ElementLists, GeneralCorner, JointDef, LoadDef};
 use crate::description::place::part_name;
 use crate::description::Side;
 use elastokin_core::{BodyId, ElementId, JointId, Model};
@@ -51,34 +51,28 @@ pub(crate) fn load_labels(load: &LoadDef, prefix: &str) -> (Option<String>, Opti
     (force, torque)
 }
 
-/// The names of joints, bushings, fields, springs and stops, in that order.
-fn parts<'a>(
-    joints: &'a [JointDef],
-    bushings: &'a [BushingDef],
-    fields: &'a [FieldDef],
-    springs: &'a [SpringDef],
-    stops: &'a [StopDef],
-) -> [Vec<&'a str>; 5] {
-    [
-        joints.iter().map(|j| j.name.as_str()).collect(),
-        bushings.iter().map(|b| b.name.as_str()).collect(),
-        fields.iter().map(|f| f.name.as_str()).collect(),
-        springs.iter().map(|sp| sp.name.as_str()).collect(),
-        stops.iter().map(|st| st.name.as_str()).collect(),
-    ]
-}
-
-/// Each entry's key under `under` (`""` or `"axle."`) with its name: the bodies, then `parts` (joints,
-/// bushings, fields, springs, stops).
+/// Each entry's key under `under` (`""` or `"axle."`) with its name and the names of what it became on
+/// a corner whose names start with `prefix` (`""` on the axle): the bodies, the joints, then every element
+/// kind in the order [`ElementLists`] declares them.
 fn entries<'a>(
     under: &str,
-    bodies: impl Iterator<Item = &'a String>,
-    parts: &[Vec<&'a str>; 5],
-) -> Vec<(String, &'a str)> {
-    let mut out: Vec<(String, &str)> =
-        bodies.enumerate().map(|(k, name)| (format!("{under}bodies[{k}]"), name.as_str())).collect();
-    for (list, names) in ["joints", "bushings", "fields", "springs", "stops"].into_iter().zip(parts) {
-        out.extend(names.iter().enumerate().map(|(k, name)| (format!("{under}{list}[{k}]"), *name)));
+    prefix: &str,
+    bodies: &'a [BodyDef],
+    joints: &'a [JointDef],
+    elements: ElementLists<'a>,
+) -> Vec<(String, &'a str, Vec<String>)> {
+    let mut out = Vec::new();
+    let named = |name: &str| vec![part_name(prefix, name)];
+    for (k, b) in bodies.iter().enumerate() {
+        out.push((format!("{under}bodies[{k}]"), b.name.as_str(), named(&b.name)));
+    }
+    for (k, j) in joints.iter().enumerate() {
+        out.push((format!("{under}joints[{k}]"), j.name.as_str(), named(&j.name)));
+    }
+    for (list, kind) in elements.by_kind() {
+        for (k, e) in kind.into_iter().enumerate() {
+            out.push((format!("{under}{list}[{k}]"), e.name(), e.part_names(prefix)));
+        }
     }
     out
 }
@@ -109,19 +103,12 @@ impl BuildMap {
         for &(side, prefix) in sides {
             let named = |n: &str| vec![part_name(prefix, n)];
             let s = Some(side);
-            for (key, name) in entries(
-                "",
-                general.bodies.iter().map(|b| &b.name),
-                &parts(&general.joints, &general.bushings, &general.fields, &general.springs, &general.stops),
-            ) {
-                item(key, name, s, &named(name));
+            for (key, name, names) in entries("", prefix, &general.bodies, &general.joints, general.elements()) {
+                item(key, name, s, &names);
             }
             for (k, bar) in general.anti_roll_bars.iter().enumerate() {
                 let names: Vec<String> = bar.part_names(prefix).into_iter().chain(bar.arm_names(prefix)).collect();
                 item(format!("anti_roll_bars[{k}]"), &bar.name, s, &names);
-            }
-            for (k, b) in general.beams.iter().enumerate() {
-                item(format!("beams[{k}]"), &b.name, s, &b.part_names(prefix));
             }
             for (k, load) in general.loads.iter().enumerate() {
                 let (force, torque) = load_labels(load, prefix);
@@ -136,12 +123,8 @@ impl BuildMap {
             item(format!("anti_roll_bars[{k}]"), &bar.name, None, std::slice::from_ref(&bar.name));
         }
         if let Some(axle) = &general.axle {
-            let shared = parts(&axle.joints, &axle.bushings, &axle.fields, &axle.springs, &axle.stops);
-            for (key, name) in entries("axle.", axle.bodies.iter().map(|b| &b.name), &shared) {
-                item(key, name, None, &[name.to_string()]);
-            }
-            for (k, b) in axle.beams.iter().enumerate() {
-                item(format!("axle.beams[{k}]"), &b.name, None, &b.part_names(""));
+            for (key, name, names) in entries("axle.", "", &axle.bodies, &axle.joints, axle.elements()) {
+                item(key, name, None, &names);
             }
             if axle.steering_link.is_some() {
                 item("axle.steering_link".into(), STEERING_LINK, None, &rod(STEERING_LINK));

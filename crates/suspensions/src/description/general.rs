@@ -435,83 +435,175 @@ pub struct SteeringLinkDef {
     pub rack_axis: [f64; 3],
 }
 
-/// The parts two corners share: the axle tube of a solid axle and what hangs on it once (a tie rod
-/// across, a Panhard rod, a bell crank). Written as they are in the car, both sides given, nothing
-/// mirrored; built once, on the whole axle. A corner names an axle body by its name; an axle part names a
-/// corner's body or hardpoint as `"left …"` or `"right …"` (the corner's, placed on that side). A model
-/// with an `axle` builds only whole: every corner analysis moves and loads both wheels alike.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct AxleDef {
-    /// Named points of the axle's own parts (global, not mirrored).
-    #[serde(default, skip_serializing_if = "Hardpoints::is_empty")]
-    pub hardpoints: Hardpoints,
-    /// The shared bodies.
-    pub bodies: Vec<BodyDef>,
-    /// Kinematic joints of the shared parts.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub joints: Vec<JointDef>,
-    /// Bushings of the shared parts.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub bushings: Vec<BushingDef>,
-    /// Field elements of the shared parts.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub fields: Vec<FieldDef>,
-    /// Elastic beams of the shared parts: a twist-beam axle's cross member, from `"left …"` to `"right …"`.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub beams: Vec<BeamDef>,
-    /// Springs between shared parts (each corner's own springs go in the corner).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub springs: Vec<SpringDef>,
-    /// Stops between shared parts.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub stops: Vec<StopDef>,
-    /// The steering input, when the corners have no tie rods of their own.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub steering_link: Option<SteeringLinkDef>,
-    /// Names of the axle's bushings that are anti-roll bars' torsion springs (a bar built of its own parts,
-    /// twisting about the bushing's x axis): the roll analysis counts their energy as the bars'.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub anti_roll_bar_springs: Vec<String>,
+/// An entry of an element kind's list, as the build map reads any kind: its name and the names of what it
+/// becomes.
+pub trait ElementEntry {
+    /// Its name in the description.
+    fn name(&self) -> &str;
+
+    /// The names of its parts on a corner whose names start with `prefix` (`""` on the axle): its element
+    /// alone, unless the kind builds more.
+    fn part_names(&self, prefix: &str) -> Vec<String> {
+        vec![part_name(prefix, self.name())]
+    }
 }
 
-/// A suspension corner of any topology (see the [module docs](self)).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct GeneralCorner {
-    /// Named hardpoints of the left corner.
-    pub hardpoints: Hardpoints,
-    /// The moving parts.
-    pub bodies: Vec<BodyDef>,
-    /// Kinematic joints.
-    #[serde(default)]
-    pub joints: Vec<JointDef>,
-    /// Rubber bushings.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub bushings: Vec<BushingDef>,
-    /// Field elements: coupled 6×6 stiffnesses.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub fields: Vec<FieldDef>,
-    /// Elastic beams.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub beams: Vec<BeamDef>,
-    /// Coil springs.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub springs: Vec<SpringDef>,
-    /// Bump and rebound stops.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub stops: Vec<StopDef>,
-    /// Anti-roll bars: built on a full axle, coupling the two corners.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub anti_roll_bars: Vec<AntiRollBar>,
-    /// A load case at any point of any body, run by the `loads` analysis.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub loads: Vec<LoadDef>,
-    /// Parts shared by the two corners (a solid axle): the model then builds only as a whole axle.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub axle: Option<AxleDef>,
-    /// Where the wheel is.
-    pub corner: CornerDef,
+impl ElementEntry for BushingDef {
+    fn name(&self) -> &str {
+        &self.name
+    }
+}
+
+impl ElementEntry for FieldDef {
+    fn name(&self) -> &str {
+        &self.name
+    }
+}
+
+impl ElementEntry for BeamDef {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn part_names(&self, prefix: &str) -> Vec<String> {
+        BeamDef::part_names(self, prefix)
+    }
+}
+
+impl ElementEntry for SpringDef {
+    fn name(&self) -> &str {
+        &self.name
+    }
+}
+
+impl ElementEntry for StopDef {
+    fn name(&self) -> &str {
+        &self.name
+    }
+}
+
+/// Declares the one list of element kinds, [`ElementLists`] (a slice of each kind), and the structs that
+/// hold elements, each with every kind's list where its `..elements` stands and an `elements()` that lends
+/// them. A corner and the axle's shared parts thus take the same kinds, under the same keys, in the same
+/// place of the file, and a kind is declared once. Each kind's list is optional and left out of a written
+/// file when empty.
+macro_rules! holding_elements {
+    (kinds $kinds:tt $( $(#[$meta:meta])* pub struct $name:ident $body:tt )*) => {
+        holding_elements!(@lists $kinds);
+        $( holding_elements!(@holder $kinds $(#[$meta])* pub struct $name $body); )*
+    };
+    (@lists { $( $(#[$doc:meta])* $kind:ident: $def:ty, )* }) => {
+        /// The element lists of a corner or of the axle's shared parts, one slice of each kind, in the order
+        /// of the file and of the build.
+        #[derive(Debug, Clone, Copy)]
+        pub struct ElementLists<'a> {
+            $( $(#[$doc])* pub $kind: &'a [$def], )*
+        }
+
+        impl<'a> ElementLists<'a> {
+            /// The kinds' keys in a model file, in the order of the file.
+            pub const KINDS: &'static [&'static str] = &[$( stringify!($kind) ),*];
+
+            /// Each kind's key with its entries, in the order of [`Self::KINDS`].
+            pub fn by_kind(&self) -> Vec<(&'static str, Vec<&'a dyn ElementEntry>)> {
+                vec![$( (stringify!($kind), self.$kind.iter().map(|e| e as &dyn ElementEntry).collect()) ),*]
+            }
+        }
+    };
+    (@holder { $( $(#[$doc:meta])* $kind:ident: $def:ty, )* }
+        $(#[$meta:meta])*
+        pub struct $name:ident {
+            $( $(#[$before_meta:meta])* pub $before:ident: $before_ty:ty, )*
+            ..elements,
+            $( $(#[$after_meta:meta])* pub $after:ident: $after_ty:ty, )*
+        }
+    ) => {
+        $(#[$meta])*
+        pub struct $name {
+            $( $(#[$before_meta])* pub $before: $before_ty, )*
+            $(
+                $(#[$doc])*
+                #[serde(default, skip_serializing_if = "Vec::is_empty")]
+                pub $kind: Vec<$def>,
+            )*
+            $( $(#[$after_meta])* pub $after: $after_ty, )*
+        }
+
+        impl $name {
+            /// Its element lists, by kind.
+            pub fn elements(&self) -> ElementLists<'_> {
+                ElementLists { $( $kind: &self.$kind ),* }
+            }
+        }
+    };
+}
+
+holding_elements! {
+    kinds {
+        /// Rubber bushings.
+        bushings: BushingDef,
+        /// Field elements: coupled 6×6 stiffnesses.
+        fields: FieldDef,
+        /// Elastic beams.
+        beams: BeamDef,
+        /// Coil springs.
+        springs: SpringDef,
+        /// Bump and rebound stops.
+        stops: StopDef,
+    }
+
+    /// The parts two corners share: the axle tube of a solid axle and what hangs on it once (a tie rod
+    /// across, a Panhard rod, a bell crank). Written as they are in the car, both sides given, nothing
+    /// mirrored; built once, on the whole axle. A corner names an axle body by its name; an axle part names a
+    /// corner's body or hardpoint as `"left …"` or `"right …"` (the corner's, placed on that side). A model
+    /// with an `axle` builds only whole: every corner analysis moves and loads both wheels alike. Its
+    /// elements are those between shared parts (each corner's own go in the corner); a twist-beam axle's
+    /// cross member is one of its beams, from `"left …"` to `"right …"`.
+    #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct AxleDef {
+        /// Named points of the axle's own parts (global, not mirrored).
+        #[serde(default, skip_serializing_if = "Hardpoints::is_empty")]
+        pub hardpoints: Hardpoints,
+        /// The shared bodies.
+        pub bodies: Vec<BodyDef>,
+        /// Kinematic joints of the shared parts.
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        pub joints: Vec<JointDef>,
+        ..elements,
+        /// The steering input, when the corners have no tie rods of their own.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub steering_link: Option<SteeringLinkDef>,
+        /// Names of the axle's bushings that are anti-roll bars' torsion springs (a bar built of its own
+        /// parts, twisting about the bushing's x axis): the roll analysis counts their energy as the bars'.
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        pub anti_roll_bar_springs: Vec<String>,
+    }
+
+    /// A suspension corner of any topology (see the [module docs](self)).
+    #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct GeneralCorner {
+        /// Named hardpoints of the left corner.
+        pub hardpoints: Hardpoints,
+        /// The moving parts.
+        pub bodies: Vec<BodyDef>,
+        /// Kinematic joints.
+        #[serde(default)]
+        pub joints: Vec<JointDef>,
+        ..elements,
+        /// Anti-roll bars: built on a full axle, coupling the two corners.
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        pub anti_roll_bars: Vec<AntiRollBar>,
+        /// A load case at any point of any body, run by the `loads` analysis.
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        pub loads: Vec<LoadDef>,
+        /// Parts shared by the two corners (a solid axle): the model then builds only as a whole axle.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub axle: Option<AxleDef>,
+        /// Where the wheel is.
+        pub corner: CornerDef,
+    }
 }
 
 impl GeneralCorner {
