@@ -201,3 +201,31 @@ fn a_field_matrix_no_elastic_element_has_is_refused_by_its_key() {
     let said = e.to_string();
     assert!(said.contains("fields[0] (lower arm front bushing).stiffness") && said.contains("not symmetric"), "{said}");
 }
+
+/// A bushing's or a field's y axis that leans along its x axis gives no frame: refused by the entry's key and
+/// name, saying why, in the left corner's build and the right's.
+#[test]
+fn a_frame_whose_y_axis_leans_along_its_x_axis_is_refused_by_its_key() {
+    use elastokin_suspensions::description::Axis;
+    use elastokin_suspensions::{Rig, Side};
+    let parallel = |axis: &mut Option<Axis>, y: &mut Option<Axis>| {
+        *axis = Some(Axis::Vector(Vec3::new(0.3, 1.0, 0.0)));
+        *y = Some(Axis::Vector(Vec3::new(-0.6, -2.0, 0.0)));
+    };
+    let mut file = macpherson_general();
+    let g = general(&mut file);
+    let k = g.bushings.iter().position(|b| b.name == "lower arm front bushing").unwrap();
+    let b = &mut g.bushings[k];
+    parallel(&mut b.axis, &mut b.y_axis);
+    for side in [Side::Left, Side::Right] {
+        let said = file.suspension.build(side, Rig::WheelTravel).unwrap_err().to_string();
+        let key = format!("bushings[{k}] (lower arm front bushing)");
+        assert!(said.contains(&key) && said.contains("y_axis is parallel to the bushing's axis"), "{said}");
+    }
+    let mut file = macpherson_general();
+    as_field(&mut file, 0.0);
+    let f = &mut general(&mut file).fields[0];
+    parallel(&mut f.axis, &mut f.y_axis);
+    let said = file.suspension.build(Side::Left, Rig::WheelTravel).unwrap_err().to_string();
+    assert!(said.contains("fields[0]") && said.contains("y_axis is parallel"), "{said}");
+}

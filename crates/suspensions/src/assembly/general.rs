@@ -49,8 +49,7 @@ impl BushingDef {
     ) -> Result<Bushing, ModelError> {
         let FramedEntry { bodies, point, x: x_left, y: y_hint_left } = *placed;
         let (translational, rotational) = self.rates(key)?;
-        let frame = bushing_frame(x_left, y_hint_left, side)
-            .map_err(|why| ModelError::OutOfRange { item: format!("{key} ({})", self.name), why })?;
+        let frame = bushing_frame(format_args!("{key} ({})", self.name), x_left, y_hint_left, side)?;
         let (force, torque) = mirrored_preload(self.preload_force, self.preload_torque, side);
         Bushing::from_spec(BushingSpec {
             name: name.to_string(),
@@ -505,9 +504,14 @@ fn mirrored_preload(force: Option<[f64; 3]>, torque: Option<[f64; 3]>, side: Sid
 
 /// A bushing frame as the model file gives it, placed on `side`: x along `x_left`, y towards `y_hint_left`
 /// made perpendicular (any perpendicular without it), both mirrored for the right corner, z completing a
-/// right-handed frame. The columns are the frame's x, y, z axes in global components. The error says why
-/// the hint gives no y axis (it is parallel to x). `x_left` must have a length.
-fn bushing_frame(x_left: Vec3, y_hint_left: Option<Vec3>, side: Side) -> Result<Mat3, String> {
+/// right-handed frame. The columns are the frame's x, y, z axes in global components. The error names the
+/// entry, `item`, and says why the hint gives no y axis (it is parallel to x). `x_left` must have a length.
+fn bushing_frame(
+    item: impl std::fmt::Display,
+    x_left: Vec3,
+    y_hint_left: Option<Vec3>,
+    side: Side,
+) -> Result<Mat3, ModelError> {
     let x = x_left / x_left.norm();
     let y = match y_hint_left {
         None => orthonormal_complement(&x).0,
@@ -515,7 +519,8 @@ fn bushing_frame(x_left: Vec3, y_hint_left: Option<Vec3>, side: Side) -> Result<
             let y = h - x * x.dot(&h);
             let n = y.norm();
             if n.is_nan() || n <= 1e-6 * h.norm() {
-                return Err("y_axis is parallel to the bushing's axis: give a direction across it".into());
+                let why = "y_axis is parallel to the bushing's axis: give a direction across it".into();
+                return Err(ModelError::OutOfRange { item: item.to_string(), why });
             }
             y / n
         }
@@ -544,8 +549,7 @@ impl FieldDef {
         y_hint_left: Option<Vec3>,
         side: Side,
     ) -> Result<Field, ModelError> {
-        let frame = bushing_frame(x_left, y_hint_left, side)
-            .map_err(|why| ModelError::OutOfRange { item: key.to_string(), why })?;
+        let frame = bushing_frame(key, x_left, y_hint_left, side)?;
         let s = side.sign();
         let t = nalgebra::Vector6::new(1.0, 1.0, s, s, s, 1.0);
         let stiffness = nalgebra::Matrix6::from_fn(|a, b| t[a] * self.stiffness[a][b] * t[b]);
