@@ -432,22 +432,7 @@ impl Layout {
     fn new(chart: &Chart) -> Result<Layout, PlotError> {
         font_ready()?;
         let mut left_out = LeftOut::default();
-        let two_axes = chart.right.is_some();
-        let mut curves = Vec::new();
-        let axes = std::iter::once((&chart.left, false)).chain(chart.right.iter().map(|axis| (axis, true)));
-        for (axis, on_right) in axes {
-            for series in &axis.series {
-                let runs = curve(series, chart.x_scale, axis.scale, &mut left_out);
-                let count: usize = runs.iter().map(Vec::len).sum();
-                let legend = match (two_axes, on_right) {
-                    (false, _) => series.name.clone(),
-                    (true, false) => format!("{} (left axis)", series.name),
-                    (true, true) => format!("{} (right axis)", series.name),
-                };
-                let colour = series_colour(curves.len());
-                curves.push(Curve { legend, colour, on_right, runs, marked: count <= MARKED_POINTS });
-            }
-        }
+        let mut curves = curves_of(chart, &mut left_out);
         let values = |pick: &dyn Fn(&(f64, f64)) -> f64, right: Option<bool>| -> Vec<f64> {
             curves
                 .iter()
@@ -488,34 +473,8 @@ impl Layout {
         let subtitle = fit(&shown(&chart.subtitle, text_width as usize), SUBTITLE_SIZE, text_width)?;
         let title_band = 16 + text_size("Mg", TITLE_SIZE)?.1 + if subtitle.is_empty() { 0 } else { 24 };
 
-        // Legend entries flow left to right under the frame, wrapping to new rows.
-        let legend_width = frame_width as i32;
-        let mut legend_rows: Vec<Vec<(usize, i32)>> = Vec::new();
-        let mut cursor = 0;
-        for (k, c) in curves.iter_mut().enumerate() {
-            c.legend = fit(&c.legend, LEGEND_SIZE, (legend_width - SWATCH - 8).max(40) as u32)?;
-            let width = SWATCH + 8 + text_size(&c.legend, LEGEND_SIZE)?.0 as i32 + 24;
-            match legend_rows.last_mut() {
-                Some(row) if cursor + width - 24 <= legend_width => row.push((k, cursor)),
-                _ => {
-                    legend_rows.push(vec![(k, 0)]);
-                    cursor = 0;
-                }
-            }
-            cursor += width;
-        }
-
-        let mut notes = Vec::new();
-        if curves.iter().all(|c| c.runs.is_empty()) {
-            notes.push("no point to draw".to_string());
-        }
-        if left_out.not_finite > 0 {
-            notes.push(format!("{} point(s) with a non-finite value are not drawn", left_out.not_finite));
-        }
-        if left_out.not_positive > 0 {
-            notes.push(format!("{} point(s) at or below zero are not drawn on the log scale", left_out.not_positive));
-        }
-        let note = if notes.is_empty() { None } else { Some(fit(&notes.join("; "), NOTE_SIZE, text_width)?) };
+        let legend_rows = legend_rows(&mut curves, frame_width as i32)?;
+        let note = note(&curves, &left_out, text_width)?;
 
         let design_x = chart
             .design_x
@@ -548,6 +507,66 @@ impl Layout {
     }
 }
 
+/// The chart's curves, left axis first, each with its legend (naming its axis where there are two), colour
+/// and runs of drawable points; what cannot be drawn is counted in `left_out`.
+fn curves_of(chart: &Chart, left_out: &mut LeftOut) -> Vec<Curve> {
+    let two_axes = chart.right.is_some();
+    let mut curves = Vec::new();
+    let axes = std::iter::once((&chart.left, false)).chain(chart.right.iter().map(|axis| (axis, true)));
+    for (axis, on_right) in axes {
+        for series in &axis.series {
+            let runs = curve(series, chart.x_scale, axis.scale, left_out);
+            let count: usize = runs.iter().map(Vec::len).sum();
+            let legend = match (two_axes, on_right) {
+                (false, _) => series.name.clone(),
+                (true, false) => format!("{} (left axis)", series.name),
+                (true, true) => format!("{} (right axis)", series.name),
+            };
+            let colour = series_colour(curves.len());
+            curves.push(Curve { legend, colour, on_right, runs, marked: count <= MARKED_POINTS });
+        }
+    }
+    curves
+}
+
+/// The legend's rows under a frame `width` wide: entries flow left to right, wrapping to new rows, each
+/// `(curve, offset)`; each curve's legend is cut to fit a row.
+fn legend_rows(curves: &mut [Curve], width: i32) -> Result<Vec<Vec<(usize, i32)>>, PlotError> {
+    let mut rows: Vec<Vec<(usize, i32)>> = Vec::new();
+    let mut cursor = 0;
+    for (k, c) in curves.iter_mut().enumerate() {
+        c.legend = fit(&c.legend, LEGEND_SIZE, (width - SWATCH - 8).max(40) as u32)?;
+        let entry = SWATCH + 8 + text_size(&c.legend, LEGEND_SIZE)?.0 as i32 + 24;
+        match rows.last_mut() {
+            Some(row) if cursor + entry - 24 <= width => row.push((k, cursor)),
+            _ => {
+                rows.push(vec![(k, 0)]);
+                cursor = 0;
+            }
+        }
+        cursor += entry;
+    }
+    Ok(rows)
+}
+
+/// The note under the legend, fitted to `width`: nothing to draw, or how many points were left out and why.
+fn note(curves: &[Curve], left_out: &LeftOut, width: u32) -> Result<Option<String>, PlotError> {
+    let mut notes = Vec::new();
+    if curves.iter().all(|c| c.runs.is_empty()) {
+        notes.push("no point to draw".to_string());
+    }
+    if left_out.not_finite > 0 {
+        notes.push(format!("{} point(s) with a non-finite value are not drawn", left_out.not_finite));
+    }
+    if left_out.not_positive > 0 {
+        notes.push(format!("{} point(s) at or below zero are not drawn on the log scale", left_out.not_positive));
+    }
+    if notes.is_empty() {
+        return Ok(None);
+    }
+    Ok(Some(fit(&notes.join("; "), NOTE_SIZE, width)?))
+}
+
 fn draw_error(e: impl std::fmt::Display) -> PlotError {
     PlotError::Draw(e.to_string())
 }
@@ -558,18 +577,7 @@ fn style(size: f64, colour: &RGBColor, h: HPos, v: VPos) -> TextStyle<'static> {
 
 fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, layout: &Layout) -> Result<(), PlotError> {
     root.fill(&WHITE).map_err(draw_error)?;
-    let centre = layout.width as i32 / 2;
-    root.draw(&Text::new(layout.title.as_str(), (centre, 12), style(TITLE_SIZE, &BLACK, HPos::Center, VPos::Top)))
-        .map_err(draw_error)?;
-    if !layout.subtitle.is_empty() {
-        let top = 16 + text_size("Mg", TITLE_SIZE)?.1 as i32;
-        root.draw(&Text::new(
-            layout.subtitle.as_str(),
-            (centre, top),
-            style(SUBTITLE_SIZE, &MUTED, HPos::Center, VPos::Top),
-        ))
-        .map_err(draw_error)?;
-    }
+    draw_titles(&root, layout)?;
 
     let (_, below_title) = root.split_vertically(layout.title_band);
     let (block, below_plot) = below_title.split_vertically(PLOT_HEIGHT);
@@ -642,33 +650,50 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, layout: &Layout) -> Re
         }
     }
 
+    draw_legend(&legend_area, layout)?;
+    root.present().map_err(draw_error)
+}
+
+/// The title, centred at the top, and the subtitle under it.
+fn draw_titles<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, layout: &Layout) -> Result<(), PlotError> {
+    let centre = layout.width as i32 / 2;
+    root.draw(&Text::new(layout.title.as_str(), (centre, 12), style(TITLE_SIZE, &BLACK, HPos::Center, VPos::Top)))
+        .map_err(draw_error)?;
+    if !layout.subtitle.is_empty() {
+        let top = 16 + text_size("Mg", TITLE_SIZE)?.1 as i32;
+        root.draw(&Text::new(
+            layout.subtitle.as_str(),
+            (centre, top),
+            style(SUBTITLE_SIZE, &MUTED, HPos::Center, VPos::Top),
+        ))
+        .map_err(draw_error)?;
+    }
+    Ok(())
+}
+
+/// The legend's rows, each entry a swatch (with a dot where the curve's points are marked) and its words,
+/// and the note under them.
+fn draw_legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, layout: &Layout) -> Result<(), PlotError> {
     for (row_index, row) in layout.legend_rows.iter().enumerate() {
         let y = row_index as i32 * LEGEND_ROW as i32 + LEGEND_ROW as i32 / 2;
         for &(k, offset) in row {
             let c = &layout.curves[k];
             let x0 = layout.legend_x + offset;
-            legend_area
-                .draw(&PathElement::new(vec![(x0, y), (x0 + SWATCH, y)], c.colour.stroke_width(2)))
+            area.draw(&PathElement::new(vec![(x0, y), (x0 + SWATCH, y)], c.colour.stroke_width(2)))
                 .map_err(draw_error)?;
             if c.marked {
-                legend_area.draw(&Circle::new((x0 + SWATCH / 2, y), 3, c.colour.filled())).map_err(draw_error)?;
+                area.draw(&Circle::new((x0 + SWATCH / 2, y), 3, c.colour.filled())).map_err(draw_error)?;
             }
-            legend_area
-                .draw(&Text::new(
-                    c.legend.as_str(),
-                    (x0 + SWATCH + 8, y),
-                    style(LEGEND_SIZE, &BLACK, HPos::Left, VPos::Center),
-                ))
-                .map_err(draw_error)?;
+            let words = style(LEGEND_SIZE, &BLACK, HPos::Left, VPos::Center);
+            area.draw(&Text::new(c.legend.as_str(), (x0 + SWATCH + 8, y), words)).map_err(draw_error)?;
         }
     }
     if let Some(note) = &layout.note {
         let y = (layout.legend_rows.len() as u32 * LEGEND_ROW + 10) as i32;
-        legend_area
-            .draw(&Text::new(note.as_str(), (layout.legend_x, y), style(NOTE_SIZE, &MUTED, HPos::Left, VPos::Center)))
+        area.draw(&Text::new(note.as_str(), (layout.legend_x, y), style(NOTE_SIZE, &MUTED, HPos::Left, VPos::Center)))
             .map_err(draw_error)?;
     }
-    root.present().map_err(draw_error)
+    Ok(())
 }
 
 #[cfg(test)]
