@@ -3,14 +3,14 @@
 //! Tasks:
 //! - `ci`: format check and tests — what `.ci/run` starts with.
 //! - `bench`: the benchmark instrument (error against run time, step cost, scaling, stiff cases, batch
-//!   throughput, Exudyn side by side), tracked over commits; see `bench/mod.rs` and the README's "Benchmarks".
+//!   throughput, Exudyn side by side), tracked over commits; see `bench/mod.rs` and `docs/benchmarks.md`.
 //!
 //! It depends on the facade package `elastokin` for `elastokin::plot`, so the benchmark's plots are drawn
 //! by the same renderer as the command's.
 //! - `fuzz`: the long fuzz campaign over every shipped model and Chrono file, its report written to
 //!   `bench/results/fuzz.md`; see `fuzz.rs`.
 //! - `screenshot`: the HTML K&C report of `examples/macpherson.json`, and pictures of it and of its
-//!   geometry views taken by headless Chromium for the README; see `screenshot.rs` (and `browser.rs`, the
+//!   geometry views taken by headless Chromium for the README and `docs/commands.md`; see `screenshot.rs` (and `browser.rs`, the
 //!   Chromium it runs, also loading every example's report in the browser test). It uses the `elastokin`
 //!   facade (the suite, the plots, the HTML report and the provenance), as the command does.
 

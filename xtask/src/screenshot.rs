@@ -1,5 +1,5 @@
 //! `cargo xtask screenshot`: the K&C report of `examples/macpherson.json` and its views as pictures, for
-//! the README.
+//! the README and `docs/commands.md`.
 //!
 //! Writes the report as `elastokin run` writes it (`browser::report_page`: the suite through the library,
 //! the plots by `elastokin::plot::svg`, the geometry views, the provenance) to

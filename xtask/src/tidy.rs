@@ -654,6 +654,43 @@ fn every_solver_of_an_analysis_takes_part_in_its_taping() {
     assert_eq!(solvers_outside_the_taping(planted), vec![2]);
 }
 
+/// The keys a design file's reader accepts: every list given to `only(object, &[...], …)` in `text`.
+fn accepted_keys(text: &str) -> Vec<String> {
+    // The keys are string literals, which `code_only` blanks: comment lines are left out instead.
+    let code: String = text.lines().filter(|l| !l.trim_start().starts_with("//")).collect::<Vec<_>>().join("\n");
+    let mut keys = Vec::new();
+    for (at, _) in code.match_indices("only(") {
+        let call = &code[at..];
+        let Some(open) = call.find("&[") else { continue };
+        let Some(close) = call[open..].find(']') else { continue };
+        for key in call[open + 2..open + close].split(',') {
+            let key = key.trim().trim_matches('"');
+            if !key.is_empty() {
+                keys.push(key.to_string());
+            }
+        }
+    }
+    keys
+}
+
+/// Every key the TARGETS and TOLERANCES readers accept is documented in `docs/design-files.md` (as
+/// `` `key` ``): a key added to a reader and not to the page fails here.
+#[test]
+fn every_key_of_the_design_files_is_documented() {
+    let root = repo_root();
+    let page = std::fs::read_to_string(root.join("docs/design-files.md")).expect("the page reads");
+    let mut keys = Vec::new();
+    for reader in ["crates/suspensions/src/design/targets.rs", "crates/suspensions/src/design/tolerance.rs"] {
+        let text = std::fs::read_to_string(root.join(reader)).expect("a reader reads");
+        keys.extend(accepted_keys(&text));
+    }
+    assert!(keys.len() >= 20, "the readers accept {} keys: the rule reads no code", keys.len());
+    let missing: Vec<&String> = keys.iter().filter(|k| !page.contains(&format!("`{k}`"))).collect();
+    assert!(missing.is_empty(), "keys the design files take that docs/design-files.md leaves out: {missing:?}");
+    let planted = "only(o, &[\"figure\", \"value\"], &key)?;\nonly(object, &[\"free\"], \"the top level\")?;";
+    assert_eq!(accepted_keys(planted), ["figure", "value", "free"]);
+}
+
 /// The public functions of `text` whose error is text (`-> Result<_, String>`), by line: a library's
 /// errors are typed to the top, rendered where text is written.
 fn text_errors(text: &str) -> Vec<usize> {

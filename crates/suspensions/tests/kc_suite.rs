@@ -17,7 +17,7 @@ const EXAMPLES: [&str; 2] = ["generic/macpherson.json", "generic/double_wishbone
 
 /// Paper mode's error estimate (each row against one exact Newton iteration from it) is 0.75–1.1× its
 /// error against a converged corrected run, column by column and figure by figure, on every analysis of
-/// the shipped templates: what the README says of it.
+/// the shipped templates: what `docs/commands.md` says of it.
 #[test]
 fn paper_mode_error_estimate_is_0_75_to_1_1_times_the_error_against_a_converged_run() {
     let mut ratios = Vec::new();
@@ -746,12 +746,12 @@ fn a_moved_file_built_in_the_coordinates_of_its_origin_reports_what_its_own_buil
 }
 
 /// Each analysis walks, by default, the range it declares (`Analysis::default_range`, which the command's
-/// help shows), and that is the range the README's table of analyses documents: its first and last rows at
+/// help shows), and that is the range the table of analyses in `docs/analyses.md` documents: its first and last rows at
 /// those ends.
 #[test]
 fn every_analysis_walks_the_default_range_it_declares() {
     use elastokin_suspensions::kc::DefaultRange;
-    // The README's defaults: ±80, ±50 and ±40 mm, ±3 kN, 0–3 kN twice, ±200 N·m.
+    // The documented defaults: ±80, ±50 and ±40 mm, ±3 kN, 0–3 kN twice, ±200 N·m.
     let documented = [
         ("parallel-travel", -0.08, 0.08),
         ("roll", -0.05, 0.05),
@@ -774,7 +774,7 @@ fn every_analysis_walks_the_default_range_it_declares() {
         assert_eq!((first, last), (low, high), "{name}");
         checked += 1;
     }
-    // Every one the README lists (the MacPherson has no load case of its own).
+    // Every one the table lists (the MacPherson has no load case of its own).
     assert_eq!(checked, documented.len());
 }
 

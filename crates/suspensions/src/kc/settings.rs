@@ -105,7 +105,7 @@ impl Analysis {
 
 /// What an analysis declares of itself, in its own file (`kc/parallel_travel.rs`, `kc/roll.rs`, …): its
 /// name, its load parameter and the range it walks when none is given. The command's help, Python, the
-/// reports and the README's table read these ([`Analysis::declaration`]).
+/// reports and the table of `docs/analyses.md` read these ([`Analysis::declaration`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Declaration {
     /// The name used on the command line and in reports.
