@@ -140,6 +140,23 @@ fn static_load_refuses_a_range_it_would_ignore_and_every_parameter_reads_in_a_se
     assert!(e.to_string().contains("apart in the fraction of the model file's loads"), "{e}");
 }
 
+/// A travel range in millimetres (`--range -100,100` for ±100 mm) is refused before solving, saying the range
+/// is in metres and what it is in metres; a range no unit makes a suspension's, or a force, gets no such guess.
+#[test]
+fn a_travel_range_in_millimetres_is_named_before_solving() {
+    use elastokin_suspensions::kc::{self, Analysis, Settings};
+    let check =
+        |a: Analysis, range: (f64, f64)| kc::check_settings(a, &Settings { range: Some(range), ..Settings::default() });
+    for a in [Analysis::ParallelTravel, Analysis::Roll, Analysis::Steering] {
+        let e = check(a, (-100.0, 100.0)).unwrap_err().to_string();
+        assert!(e.contains("millimetres? in metres that is --range -0.1,0.1"), "{}: {e}", a.name());
+        assert!(check(a, (-0.1, 0.1)).is_ok());
+    }
+    let e = check(Analysis::ParallelTravel, (-5000.0, 5000.0)).unwrap_err().to_string();
+    assert!(e.contains("reaches beyond 1 in the") && !e.contains("millimetres"), "{e}");
+    assert!(check(Analysis::Road(elastokin_suspensions::analysis::WheelLoad::Lateral), (-3000.0, 3000.0)).is_ok());
+}
+
 /// An unrestrained corner's condition printed as "condition at design: inf": it says what that means.
 #[test]
 fn an_infinite_condition_is_said_in_words() {

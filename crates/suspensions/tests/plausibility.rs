@@ -154,6 +154,30 @@ fn millimetres_are_recognised() {
     }
 }
 
+/// A spring rate given in N/mm where the file reads N/m (70 for 70 N/mm) solves, to a spring deflected by
+/// metres: it is named at `check`, with the rate to give.
+#[test]
+fn a_spring_rate_in_newtons_per_millimetre_is_named() {
+    for name in EXAMPLES {
+        let mut v = example(name);
+        template(&mut v)["spring"]["rate"] = serde_json::json!(70.0);
+        let c = check(&v);
+        let w =
+            c.warnings.iter().find(|w| w.code == "spring-rate").unwrap_or_else(|| panic!("{name}: {:#?}", c.warnings));
+        assert!(
+            w.message.contains("70 N/m (0.07 N/mm)") && w.message.contains("for 70 N/mm give 70000"),
+            "{}",
+            w.message
+        );
+    }
+    // In the general form too, and not for a rate a car's spring has.
+    let mut v = example("five_link.json");
+    v["suspension"]["general"]["springs"][0]["rate"] = serde_json::json!(35.0);
+    assert!(codes(&check(&v)).contains(&"spring-rate"));
+    v["suspension"]["general"]["springs"][0]["rate"] = serde_json::json!(1500.0);
+    assert!(!codes(&check(&v)).contains(&"spring-rate"));
+}
+
 #[test]
 fn a_right_corner_is_named() {
     for name in EXAMPLES {

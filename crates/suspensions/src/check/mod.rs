@@ -9,7 +9,7 @@ use crate::analysis::TravelRow;
 use crate::assembly::mobility::{joint_mobility, mobility, reduced_condition};
 use crate::assembly::{Corner, Rig};
 use crate::description::layout::Layout;
-use crate::description::limits::{looks_like_millimetres, FAR_FROM_WHEEL_CENTRE};
+use crate::description::limits::{looks_like_millimetres, plain, FAR_FROM_WHEEL_CENTRE};
 use crate::description::{Connection, Side};
 use crate::file::SuspensionFile;
 use elastokin_core::{ModelError, Vec3, BODY_DOFS};
@@ -20,7 +20,7 @@ use serde::Serialize;
 pub struct Warning {
     /// Short stable name of the finding: `millimetres`, `wrong-side`, `far-hardpoint`,
     /// `tie-rod-on-steering-axis`, `pivot-through-ball-joint`, `near-singular`, `motion-ratio`, `toe-range`,
-    /// `camber-range`, `wheel-rate`.
+    /// `camber-range`, `wheel-rate`, `spring-rate`.
     pub code: &'static str,
     /// The model file's hardpoint names involved (empty when the finding is not about hardpoints).
     pub hardpoints: Vec<String>,
@@ -150,6 +150,7 @@ pub fn check_model(file: &SuspensionFile) -> Result<ModelCheck, ModelError> {
     if !in_millimetres {
         warnings.extend(motion_ratio(&points, &layout, &on_rig));
     }
+    warnings.extend(spring_rates(template));
     Ok(ModelCheck {
         degrees_of_freedom: dof,
         degrees_of_freedom_on_rig: dof_on_rig,
@@ -267,6 +268,35 @@ fn arm_pivots(points: &[(String, Vec3)], layout: &Layout) -> Vec<Warning> {
         });
     }
     out
+}
+
+/// The softest rate a car's coil spring has (N/m): 1 N/mm. A rate below it is most likely one in N/mm given
+/// where N/m is read (70 for 70 N/mm), which solves, but to a spring deflected by metres.
+const SOFTEST_SPRING_RATE: f64 = 1e3;
+
+/// Springs whose rate looks like N/mm given for N/m.
+fn spring_rates(template: &crate::description::Template) -> Vec<Warning> {
+    let general = template.expand();
+    let axle_springs = general.axle.iter().flat_map(|a| &a.springs);
+    let springs = general.springs.iter().chain(axle_springs);
+    springs
+        .filter_map(|spring| {
+            let rate = spring.rate.filter(|r| *r > 0.0 && *r < SOFTEST_SPRING_RATE)?;
+            Some(Warning {
+                code: "spring-rate",
+                hardpoints: Vec::new(),
+                message: format!(
+                    "the spring '{}' has a rate of {} N/m ({} N/mm): a car's springs are 10 to 300 N/mm; rates \
+                     are in N/m, so for {} N/mm give {}",
+                    spring.name,
+                    plain(rate),
+                    plain(rate * 1e-3),
+                    plain(rate),
+                    plain(rate * 1e3)
+                ),
+            })
+        })
+        .collect()
 }
 
 /// Spring length change per metre of wheel travel at design, from the rig's exact path tangent.

@@ -139,14 +139,21 @@ pub fn check_settings(analysis: Analysis, settings: &Settings) -> Result<(), Ana
             });
         }
         // Far beyond what a suspension meets, the solver's numbers overflow before the linkage says
-        // anything: a travel of kilometres, a force of a thousand tonnes.
-        let most = analysis.declaration().quantity.largest_range_end();
+        // anything: a travel of a metre, a force of a thousand tonnes.
+        let quantity = analysis.declaration().quantity;
+        let most = quantity.largest_range_end();
         if from.abs().max(to.abs()) > most {
+            // A travel in millimetres is the likely slip: say what it is in metres.
+            let in_metres = if quantity == Quantity::Travel && from.abs().max(to.abs()) * 1e-3 <= most {
+                format!(" (millimetres? in metres that is --range {},{})", plain(from * 1e-3), plain(to * 1e-3))
+            } else {
+                String::new()
+            };
             return Err(AnalysisError {
                 analysis: analysis.name(),
                 cause: Cause::Settings(format!(
                     "the range {} to {} reaches beyond {} in the {}: no suspension meets that; \
-                     give a range in the analysis's own units",
+                     give a range in the analysis's own units{in_metres}",
                     plain(from),
                     plain(to),
                     plain(most),

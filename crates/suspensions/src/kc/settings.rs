@@ -393,8 +393,9 @@ pub enum Cause {
 
 /// Narrowest range an analysis walks, in its own parameter's unit (m, N, N·m).
 pub const MIN_RANGE: f64 = 1e-9;
-/// The largest travel a range may reach (m).
-pub const MAX_RANGE_TRAVEL: f64 = 1e3;
+/// The largest travel a range may reach (m): no wheel or rack travels a metre, so a range beyond it is
+/// taken for one in millimetres, and said so.
+pub const MAX_RANGE_TRAVEL: f64 = 1.0;
 /// The largest force or torque a range may reach (N, N·m).
 pub const MAX_RANGE_LOAD: f64 = 1e8;
 /// The largest multiple of the model's own load case a range may reach.
