@@ -829,6 +829,11 @@ fn an_implausible_model_is_named_and_refused_under_strict() {
         stdout.contains("warning [tie-rod-on-steering-axis]") && stdout.contains("warning [toe-range]"),
         "{stdout}"
     );
+    // The model's warning leads, before the figures it qualifies; the one the run found follows them.
+    let at = |what: &str| stdout.find(what).unwrap_or_else(|| panic!("{what} in {stdout}"));
+    assert!(at("warning [tie-rod-on-steering-axis]") < at("bump steer"), "{stdout}");
+    assert!(at("bump steer") < at("warning [toe-range]"), "{stdout}");
+    assert_eq!(stdout.matches("warning [tie-rod-on-steering-axis]").count(), 1, "{stdout}");
     std::fs::remove_dir_all(&out).ok();
     let o = elastokin(&["run", model, "--strict", "--out", out.to_str().unwrap()]);
     let err = String::from_utf8_lossy(&o.stderr);
@@ -1775,7 +1780,20 @@ fn compare_overlays_two_models_and_a_measured_file_and_refuses_a_mixed_pair() {
 fn vehicle_gives_the_shipped_cars_budget_and_refuses_a_car_that_cannot_be_by_key() {
     let dir = scratch("vehicle");
     let out = dir.join("out");
-    succeeds(&["vehicle", "examples/vehicle/compact_car.json", "--steps", "8", "--out", out.to_str().unwrap()]);
+    let o =
+        elastokin(&["vehicle", "examples/vehicle/compact_car.json", "--steps", "8", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success());
+    // The rear's ideal links give no compliance steer: its terms print 0, not the rounding (6e-30 deg/g)
+    // that the sums leave, and every other term prints its digits.
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let terms: Vec<&str> = stdout.lines().filter(|l| l.starts_with("    ") && l.ends_with(" deg/g")).collect();
+    assert_eq!(terms.len(), 12, "{stdout}");
+    let compliance_rear = |l: &&&str| l.contains("compliance") && l.contains(" rear ");
+    assert!(terms.iter().filter(compliance_rear).all(|l| l.split_whitespace().rev().nth(1) == Some("0")), "{stdout}");
+    assert!(
+        terms.iter().filter(|l| !compliance_rear(l)).all(|l| l.split_whitespace().rev().nth(1) != Some("0")),
+        "{stdout}"
+    );
     let rows = read_csv(&out.join("vehicle.csv"));
     let value = |what: &str, axle: &str| -> f64 {
         rows.iter().find(|r| &r[0] == what && &r[1] == axle).unwrap_or_else(|| panic!("{what}"))[2].parse().unwrap()

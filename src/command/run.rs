@@ -177,14 +177,21 @@ pub fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(),
     let progress = Progress::new("analyses", count, quiet);
     let result = (|| -> Result<(Vec<PathBuf>, Vec<kc::Failed>), Failure> {
         out.line(format!("{} — {} mode", read.file.name, kc::mode_word(settings.mode)))?;
+        // The model's own warnings first (millimetres, a spring rate in N/mm): they say what the figures
+        // below are worth; the run's, found while solving, after the figures.
+        let model_warnings = model_check.as_ref().map(|c| c.warnings.clone()).unwrap_or_default();
+        for w in &model_warnings {
+            out.line(format!("warning [{}]: {}", w.code, w.message))?;
+        }
         let report = solve(&read.file, model_check, &which, &settings, out, &progress)?;
         // Nothing ran: there is nothing to report but the reasons, and the previous results stay.
         if report.analyses.is_empty() && !report.failed.is_empty() {
             return Err(Failure::Run(failed_lines(&report.failed)));
         }
-        if !report.warnings.is_empty() {
+        let found: Vec<_> = report.warnings.iter().filter(|w| !model_warnings.contains(w)).collect();
+        if !found.is_empty() {
             out.line("")?;
-            for w in &report.warnings {
+            for w in found {
                 out.line(format!("warning [{}]: {}", w.code, w.message))?;
             }
         }

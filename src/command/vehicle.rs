@@ -81,8 +81,11 @@ fn print_budget(out: &Stdout, report: &VehicleReport) -> Result<(), Failure> {
         100.0 * b.roll_stiffness_front_share,
         100.0 * b.load_transfer_front_share
     ))?;
+    // A term zero by the model's form (the compliance steer of ideal links) is rounding beside the others.
+    let scale = b.contributions.iter().fold(0.0f64, |m, c| m.max(c.value.abs()));
     for c in &b.contributions {
-        out.line(format!("    {:<36} {:<5} {:>9} deg/g", c.effect, c.axle.name(), kc::significant(c.value, 3)))?;
+        let value = kc::significant_among(c.value, 3, scale);
+        out.line(format!("    {:<36} {:<5} {value:>9} deg/g", c.effect, c.axle.name()))?;
     }
     for w in &report.warnings {
         out.line(format!("  warning: {w}"))?;

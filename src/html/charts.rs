@@ -2,7 +2,7 @@
 //! and the pages' own bar charts.
 
 use crate::markup::text;
-use crate::suspensions::kc::{significant, Chart};
+use crate::suspensions::kc::{significant_among, Chart};
 use std::fmt::Write;
 
 /// `chart` drawn by `render_chart`, inline in a figure; one that could not be drawn shows why.
@@ -36,7 +36,8 @@ fn inline_svg(svg: &str) -> &str {
 }
 
 /// A horizontal bar chart as inline SVG: one bar per `(label, value)`, drawn from a centre line (negative
-/// to the left), the largest magnitude the full width, each value printed with `unit`.
+/// to the left), the largest magnitude the full width, each value printed with `unit` (a value that is
+/// rounding beside the largest as 0).
 pub(super) fn write_bars(out: &mut String, bars: &[(String, f64)], unit: &str) -> std::fmt::Result {
     let (width, label_width, row) = (900.0, 430.0, 20.0);
     let half = (width - label_width - 120.0) / 2.0;
@@ -67,7 +68,7 @@ pub(super) fn write_bars(out: &mut String, bars: &[(String, f64)], unit: &str) -
             r#"<text x="{}" y="{}" font-size="11" font-family="sans-serif">{} {}</text>"#,
             centre + half + 6.0,
             y + 13.0,
-            text(&significant(*v, 3)),
+            text(&significant_among(*v, 3, largest)),
             text(unit)
         )?;
     }

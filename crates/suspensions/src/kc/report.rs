@@ -302,6 +302,16 @@ pub fn significant(v: f64, digits: usize) -> String {
     }
 }
 
+/// [`significant`] of `v` among values of size `scale`: `0` where `v` is rounding beside them (below 1e-12
+/// of `scale`), as a term that is zero by the model's form (the compliance steer of ideal links) comes out
+/// of sums and differences of numbers of that size.
+pub fn significant_among(v: f64, digits: usize, scale: f64) -> String {
+    if v.abs() < 1e-12 * scale.abs() {
+        return "0".into();
+    }
+    significant(v, digits)
+}
+
 /// How accurate an analysis's rows are, and how that was estimated.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Accuracy {
