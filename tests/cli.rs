@@ -204,13 +204,15 @@ fn bad_files_and_arguments_exit_non_zero_with_a_named_problem() {
 #[test]
 fn batch_runs_variants_in_parallel_and_agrees_with_run() {
     let out = std::env::temp_dir().join(format!("elastokin-batch-{}", std::process::id()));
-    succeeds(&[
+    let o = elastokin(&[
         "batch",
         "examples/generic/macpherson.json",
         "examples/generic/macpherson_variants.txt",
         "--out",
         out.to_str().unwrap(),
     ]);
+    assert!(o.status.success());
+    let printed = String::from_utf8_lossy(&o.stdout).to_string();
     let csv = read_csv(&out.join("batch.csv"));
     let value = |row: &str, col: usize| -> f64 {
         let record = csv.iter().find(|r| &r[0] == row).unwrap();
@@ -225,6 +227,9 @@ fn batch_runs_variants_in_parallel_and_agrees_with_run() {
     let run_rate = summary["analyses"]["parallel-travel"]["figures"]["wheel_rate"]["value"].as_f64().unwrap() * 1e3;
     assert!((value("baseline", 1) - run_bump).abs() < 1e-6 * run_bump.abs(), "{} vs {run_bump}", value("baseline", 1));
     assert!((value("baseline", 3) - run_rate).abs() < 1e-6 * run_rate, "{} vs {run_rate}", value("baseline", 3));
+    // Printed in run's units, as run prints bump steer.
+    let baseline = printed.lines().find(|l| l.starts_with("baseline")).unwrap_or_else(|| panic!("{printed}"));
+    assert!(printed.contains("bump deg/m") && baseline.contains(&format!("{run_bump:.3}")), "{printed}");
     // Moving the inner tie-rod point up and down moves bump steer in opposite directions around the baseline.
     let (up, base, down) =
         (value("tie rod inner up 10 mm", 1), value("baseline", 1), value("tie rod inner down 10 mm", 1));

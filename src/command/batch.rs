@@ -105,17 +105,18 @@ fn variants_table(
     results: &[Result<Outcome, VariantFailed>],
     shard: bool,
 ) -> Result<Table, Failure> {
-    out.line(format!("{:<28} {:>16} {:>16} {:>14}", "variant", "bump °/10 mm", "camber °/10 mm", "rate N/mm"))?;
+    // In run's units: deg/m, N/mm.
+    out.line(format!("{:<28} {:>16} {:>16} {:>14}", "variant", "bump deg/m", "camber deg/m", "rate N/mm"))?;
     let mut rows = Vec::new();
     for ((k, v), r) in list.iter().enumerate().skip(range.start).zip(results) {
         let name = Cell::Text(v.name.clone());
         let mut row = match r {
             Ok(o) => {
                 out.line(format!(
-                    "{:<28} {:>16.4} {:>16.4} {:>14.2}",
+                    "{:<28} {:>16.3} {:>16.3} {:>14.2}",
                     v.name,
-                    o.bump_steer * 0.01,
-                    o.camber_gain * 0.01,
+                    o.bump_steer,
+                    o.camber_gain,
                     o.wheel_rate * 1e-3
                 ))?;
                 let figures = o.figures().map(Cell::from);
