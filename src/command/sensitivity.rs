@@ -121,11 +121,11 @@ fn print_effects(out: &Stdout, suite: &SuiteSensitivity, parameters: &Parameters
                 let pointer = &parameters.pointers[k];
                 let per = effect_unit(pointer);
                 let e = kc::significant(e * written.factor, 3);
-                out.line(format!("      {:<52} {:>12} {unit}per {per}", pointer, e))?;
+                out.line(format!("      {:<40} {:>12} {unit}per {per}", design::parameter_words(pointer), e))?;
             }
             let missing = (0..parameters.len()).filter_map(|k| a.figures[k][j].err().map(|e| (k, e))).next();
             if let Some((k, why)) = missing {
-                out.line(format!("      {:<52} {}", parameters.pointers[k], why.reason()))?;
+                out.line(format!("      {:<40} {}", design::parameter_words(&parameters.pointers[k]), why.reason()))?;
             }
         }
     }

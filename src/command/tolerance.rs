@@ -7,7 +7,7 @@ use crate::output::{failed_lines, write_table, wrote, Failure, Provenance, Stagi
 use clap::Args;
 use elastokin::solver::Mode;
 use elastokin::suspensions::design::tolerance::{read_tolerances, stack_up, StackUp};
-use elastokin::suspensions::kc;
+use elastokin::suspensions::{design, kc};
 use std::path::PathBuf;
 
 #[derive(Debug, Args)]
@@ -96,7 +96,8 @@ fn print_spreads(out: &Stdout, stack: &StackUp) -> Result<(), Failure> {
             unit.symbol
         ))?;
         for (p, c) in s.contributions.iter().take(3) {
-            out.line(format!("      {:<56} {:>12} {}", stack.parameters.pointers[*p], shown(*c, 3), unit.symbol))?;
+            let name = design::parameter_words(&stack.parameters.pointers[*p]);
+            out.line(format!("      {name:<40} {:>12} {}", shown(*c, 3), unit.symbol))?;
         }
     }
     Ok(())

@@ -9,7 +9,7 @@ use elastokin::solver::Mode;
 use elastokin::suspensions::design::targets::{read_targets, Targets};
 use elastokin::suspensions::design::tune::{self, Tuned};
 use elastokin::suspensions::design::Parameters;
-use elastokin::suspensions::kc;
+use elastokin::suspensions::{design, kc};
 use std::path::{Path, PathBuf};
 
 #[derive(Debug, Args)]
@@ -125,10 +125,10 @@ fn tune_printing(
 fn print_tuned(out: &Stdout, tuned: &Tuned, targets: &Targets) -> Result<(), Failure> {
     for (f, k) in targets.free.iter().zip(0..) {
         out.line(format!(
-            "  {:<56} {:>12} -> {:<12}",
-            f.pointer,
-            kc::significant(tuned.start.x[k], 6),
-            kc::significant(tuned.end.x[k], 6)
+            "  {:<40} {:>14} -> {:<14}",
+            design::parameter_words(&f.pointer),
+            design::parameter_value_words(&f.pointer, tuned.start.x[k]),
+            design::parameter_value_words(&f.pointer, tuned.end.x[k])
         ))?;
     }
     for v in &tuned.verdicts {

@@ -569,3 +569,22 @@ fn a_target_without_a_rate_is_said_naming_the_target_and_the_row() {
          switching as it moves): no derivative"
     );
 }
+
+/// A parameter is printed as an engineer names it: a hardpoint's coordinate as the point and its axis, its
+/// value in millimetres; any other number by its pointer, as the file gives it.
+#[test]
+fn parameters_are_named_and_valued_as_an_engineer_writes_them() {
+    use elastokin_suspensions::design::{parameter_value_words, parameter_words};
+    for (pointer, words) in [
+        ("/suspension/macpherson/hardpoints/tie_rod_inner/2", "tie_rod_inner z"),
+        ("/suspension/general/hardpoints/toe_link_outer/0", "toe_link_outer x"),
+        ("/suspension/general/axle/hardpoints/tube_left/1", "axle tube_left y"),
+        ("/Tierod/Location Chassis/2", "Tierod Location Chassis z"),
+        ("/suspension/macpherson/spring/rate", "/suspension/macpherson/spring/rate"),
+        ("/suspension/general/bodies/2/at/1", "/suspension/general/bodies/2/at/1"),
+    ] {
+        assert_eq!(parameter_words(pointer), words, "{pointer}");
+    }
+    assert_eq!(parameter_value_words("/suspension/macpherson/hardpoints/tie_rod_inner/2", -0.0374142), "-37.4142 mm");
+    assert_eq!(parameter_value_words("/suspension/macpherson/spring/rate", 30000.0), "30000.0");
+}

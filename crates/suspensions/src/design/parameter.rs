@@ -249,6 +249,36 @@ pub fn hardpoint_pointer(document: &Value, name: &str) -> Option<String> {
     named_hardpoints(document).find(|(n, _)| *n == name).map(|(_, pointer)| pointer)
 }
 
+/// A parameter as an engineer names it: a hardpoint's coordinate as the point and its axis
+/// (`/suspension/macpherson/hardpoints/tie_rod_inner/2` is `tie_rod_inner z`, an axle's point
+/// `axle tube_left y`, a Chrono file's `/Tierod/Location Chassis/2` `Tierod Location Chassis z`); any
+/// other number by its pointer, which is how the file names it.
+pub fn parameter_words(pointer: &str) -> String {
+    let segments: Vec<&str> = pointer.split('/').collect();
+    let axis = match segments.last() {
+        Some(&"0") => "x",
+        Some(&"1") => "y",
+        Some(&"2") => "z",
+        _ => return pointer.to_string(),
+    };
+    match segments.len().checked_sub(4).map(|k| &segments[k..segments.len() - 1]) {
+        Some(["axle", "hardpoints", name]) => format!("axle {name} {axis}"),
+        Some([_, "hardpoints", name]) => format!("{name} {axis}"),
+        Some([_, part, point]) if is_chrono_point(point) => format!("{part} {point} {axis}"),
+        _ => pointer.to_string(),
+    }
+}
+
+/// A parameter's value as an engineer writes it: a length (a hardpoint's coordinate, in the file's metres)
+/// in millimetres, with its unit; any other number as the file gives it.
+pub fn parameter_value_words(pointer: &str, value: f64) -> String {
+    if super::sensitivity::effect_unit(pointer) == "mm" {
+        format!("{} mm", crate::kc::significant(value * 1e3, 6))
+    } else {
+        crate::kc::significant(value, 6)
+    }
+}
+
 /// Whether the key names a point of a Project Chrono part (`Location Chassis`, `Location Upright`, …).
 pub fn is_chrono_point(key: &str) -> bool {
     key.starts_with("Location")
