@@ -1071,10 +1071,13 @@ fn sensitivity_gives_the_derivatives_that_reruns_of_the_model_give() {
     let stdout = String::from_utf8_lossy(&o.stdout);
     let line = stdout.lines().find(|l| l.starts_with("  bump steer")).unwrap_or_default();
     assert!(line.ends_with(" -32.691 deg/m") && stdout.contains("deg/m per mm"), "{stdout}");
+    assert!(stdout.contains("      tie_rod_inner z ") && !stdout.contains("/hardpoints/"), "{stdout}");
     // The page: well formed, a bar chart of each figure's largest effects.
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     roxmltree::Document::parse(html.strip_prefix("<!DOCTYPE html>").unwrap()).unwrap();
     assert!(html.contains("bump steer (toe-in +): -32.691 deg/m") && html.contains("<rect"), "{html}");
+    // Its bars name the parameter as an engineer does.
+    assert!(html.contains("tie_rod_inner z (per mm)"), "{html}");
     // Every analysis the suite runs on the model, its table's derivatives in a file of its own.
     for table in ["parallel_travel", "roll", "steering", "vertical_force", "lateral_force", "static_load"] {
         assert!(out.join(format!("sensitivity_{table}.csv")).exists(), "{table}");

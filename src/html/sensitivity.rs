@@ -51,7 +51,7 @@ pub(super) fn write_sensitivity_sections(
     parameters: &crate::suspensions::design::Parameters,
     heading: &str,
 ) -> std::fmt::Result {
-    use crate::suspensions::design::sensitivity::effect_unit;
+    use crate::suspensions::design::{parameter_words, sensitivity::effect_unit};
     for f in &suite.failed {
         writeln!(out, "<p class=\"error\">{}: {}</p>", text(f.analysis.name()), text(&f.reason))?;
     }
@@ -66,7 +66,11 @@ pub(super) fn write_sensitivity_sections(
                 .into_iter()
                 .map(|(k, e)| {
                     (
-                        format!("{} (per {})", parameters.pointers[k], effect_unit(&parameters.pointers[k])),
+                        format!(
+                            "{} (per {})",
+                            parameter_words(&parameters.pointers[k]),
+                            effect_unit(&parameters.pointers[k])
+                        ),
                         e * written.factor,
                     )
                 })

@@ -4,6 +4,7 @@ use super::charts::write_bars;
 use super::tables::write_open_table;
 use super::{write_foot, write_head, NAME_SHOWN};
 use crate::markup::text;
+use crate::suspensions::design::parameter_words;
 use crate::suspensions::kc::significant;
 use serde_json::Value;
 use std::fmt::Write;
@@ -93,7 +94,7 @@ fn write_contributors(out: &mut String, stack: &crate::suspensions::design::tole
             .contributions
             .iter()
             .take(8)
-            .map(|(p, c)| (stack.parameters.pointers[*p].clone(), *c * unit.factor))
+            .map(|(p, c)| (parameter_words(&stack.parameters.pointers[*p]), *c * unit.factor))
             .collect();
         write_bars(out, &bars, unit.symbol)?;
         writeln!(out, "</figure>")?;
