@@ -1734,7 +1734,7 @@ fn run_with_sensitivity_adds_the_sensitivity_command_s_numbers_to_the_report() {
     }
     let html = std::fs::read_to_string(run.join("report.html")).unwrap();
     roxmltree::Document::parse(html.strip_prefix("<!DOCTYPE html>").unwrap()).unwrap();
-    assert!(html.contains("<h2>Sensitivities</h2>") && html.contains("tie_rod_inner/2 (per mm)"));
+    assert!(html.contains("<h2>Sensitivities</h2>") && html.contains("tie_rod_inner z (per mm)"));
     std::fs::remove_dir_all(&dir).ok();
 }
 
