@@ -249,6 +249,19 @@ pub fn hardpoint_pointer(document: &Value, name: &str) -> Option<String> {
     named_hardpoints(document).find(|(n, _)| *n == name).map(|(_, pointer)| pointer)
 }
 
+/// How a parameter's effect is told: per millimetre of a length (a hardpoint coordinate, a Chrono part's
+/// `Location …` point, a loaded radius, a stop's clearance, a spring's free length), per percent of
+/// anything else (a rate, a force, a section's property).
+pub fn effect_unit(pointer: &str) -> &'static str {
+    let chrono_point = pointer.split('/').any(is_chrono_point);
+    let length = ["/loaded_radius", "/clearance", "/free_length"].iter().any(|end| pointer.ends_with(end));
+    if pointer.contains("/hardpoints/") || chrono_point || length {
+        "mm"
+    } else {
+        "%"
+    }
+}
+
 /// A parameter as an engineer names it: a hardpoint's coordinate as the point and its axis
 /// (`/suspension/macpherson/hardpoints/tie_rod_inner/2` is `tie_rod_inner z`, an axle's point
 /// `axle tube_left y`, a Chrono file's `/Tierod/Location Chassis/2` `Tierod Location Chassis z`); any
@@ -272,7 +285,7 @@ pub fn parameter_words(pointer: &str) -> String {
 /// A parameter's value as an engineer writes it: a length (a hardpoint's coordinate, in the file's metres)
 /// in millimetres, with its unit; any other number as the file gives it.
 pub fn parameter_value_words(pointer: &str, value: f64) -> String {
-    if super::sensitivity::effect_unit(pointer) == "mm" {
+    if effect_unit(pointer) == "mm" {
         format!("{} mm", crate::kc::significant(value * 1e3, 6))
     } else {
         crate::kc::significant(value, 6)

@@ -34,6 +34,7 @@
 //!
 //! Only corrected-mode rows are equilibria: sensitivities are of the corrected path.
 
+pub use super::parameter::effect_unit;
 use super::parameter::{ParameterError, Parameters};
 use crate::kc::{self, Analysis, AnalysisReport, Cell, Failed, Figure, Models, Settings, Skipped, Table};
 use elastokin_solver::replay::{record, replay, Replay, Tape};
@@ -579,19 +580,6 @@ pub fn suite_sensitivity(
         }
     }
     Ok(out)
-}
-
-/// How a parameter's effect is told: per millimetre of a length (a hardpoint coordinate, a Chrono part's
-/// `Location …` point, a loaded radius, a stop's clearance, a spring's free length), per percent of
-/// anything else (a rate, a force, a section's property).
-pub fn effect_unit(pointer: &str) -> &'static str {
-    let chrono_point = pointer.split('/').any(super::parameter::is_chrono_point);
-    let length = ["/loaded_radius", "/clearance", "/free_length"].iter().any(|end| pointer.ends_with(end));
-    if pointer.contains("/hardpoints/") || chrono_point || length {
-        "mm"
-    } else {
-        "%"
-    }
 }
 
 /// A figure's derivative as an effect: per millimetre of a length, per percent of its value otherwise.
