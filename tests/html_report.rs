@@ -400,3 +400,17 @@ fn geometry_views_are_inline_svg_and_the_3d_view_is_one_script_that_no_name_can_
         .collect();
     assert!(names.contains(&hostile), "{names:?}");
 }
+
+/// Each analysis's note says what it walked in words that read: the static load is one equilibrium at the
+/// vehicle's corner load ("at 4100", not "4100 to 4100, 1 steps"), a sweep its range and steps.
+#[test]
+fn each_analysis_says_what_it_walked() {
+    let file = SuspensionFile::read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/macpherson.json")).unwrap();
+    let which = [kc::Analysis::StaticLoad, kc::Analysis::ParallelTravel];
+    let report = kc::run_suite(&file, &which, &Settings { steps: 4, ..Default::default() }, |_| {}).complete().unwrap();
+    let html = report_html(&report, &file, &provenance(), title_svg);
+    let load = file.vehicle.as_ref().unwrap().corner_load;
+    assert!(html.contains(&format!("applied at once; at {}</p>", kc::plain(load))), "{html}");
+    assert!(html.contains("-0.08 to 0.08, 4 steps</p>"), "{html}");
+    assert!(!html.contains(" 1 steps"), "{html}");
+}

@@ -18,14 +18,14 @@ pub(super) fn write_analysis(
     writeln!(out, "<section class=\"analysis\" id=\"{}\">", attr(a.analysis.name()))?;
     writeln!(out, "<h2>{}</h2>", text(a.analysis.name()))?;
     writeln!(out, "<p class=\"description\">{}</p>", text(&a.description))?;
-    writeln!(
-        out,
-        "<p class=\"note\">load parameter: {}; {} to {}, {} steps</p>",
-        text(&a.parameter),
-        plain(a.range.0),
-        plain(a.range.1),
-        a.steps
-    )?;
+    // The static load is one equilibrium at one load: no range, no steps to count.
+    let walked = if a.range.0 == a.range.1 {
+        format!("at {}", plain(a.range.0))
+    } else {
+        let steps = if a.steps == 1 { "1 step".to_string() } else { format!("{} steps", a.steps) };
+        format!("{} to {}, {steps}", plain(a.range.0), plain(a.range.1))
+    };
+    writeln!(out, "<p class=\"note\">load parameter: {}; {walked}</p>", text(&a.parameter))?;
 
     write_figures(out, &a.figures, a.units)?;
     write_accuracy(out, a, report)?;
