@@ -1771,6 +1771,8 @@ fn compare_overlays_two_models_and_a_measured_file_and_refuses_a_mixed_pair() {
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     roxmltree::Document::parse(html.strip_prefix("<!DOCTYPE html>").unwrap()).unwrap();
     assert!(html.contains("rig.csv") && html.contains("id=\"overlay-front\""));
+    // The page's table names each figure in words; compare.csv keeps the keys (read above).
+    assert!(html.contains("<td>bump steer (toe-in +)</td>") && !html.contains("<td>bump_steer</td>"), "{html}");
 
     let o =
         elastokin(&["compare", models[0], "examples/four_link_axle.json", "--out", dir.join("x").to_str().unwrap()]);

@@ -5,7 +5,7 @@ use super::charts::write_chart;
 use super::tables::write_open_table;
 use super::{write_foot, write_head, NAME_SHOWN};
 use crate::markup::text;
-use crate::suspensions::kc::{Chart, KcReport};
+use crate::suspensions::kc::{Cell, Chart, KcReport};
 use serde_json::Value;
 use std::fmt::Write;
 
@@ -95,6 +95,18 @@ fn write_figures(
          the first; every number is in compare.csv</p>"
     )?;
     let mut shown = comparison.figures.clone();
+    // Each figure in words (compare.csv keeps its key, which the tools that read it look up).
+    let words = |analysis: &str, key: &str| {
+        let analyses = models.iter().flat_map(|(_, r)| &r.analyses).filter(|a| a.analysis.name() == analysis);
+        analyses.filter_map(|a| a.figure(key)).map(|f| f.label.clone()).next()
+    };
+    for row in &mut shown.rows {
+        if let [Cell::Text(analysis), Cell::Text(key), ..] = &row[..] {
+            if let Some(label) = words(analysis, key) {
+                row[1] = Cell::Text(label);
+            }
+        }
+    }
     shown.columns.truncate(3);
     for (l, _) in &letters {
         shown.columns.push(l.clone());
