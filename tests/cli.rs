@@ -1599,7 +1599,7 @@ fn tune_meets_the_shipped_targets_and_says_why_when_it_cannot() {
     assert_eq!(&iterations[0][6], "start");
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     roxmltree::Document::parse(html.strip_prefix("<!DOCTYPE html>").unwrap()).unwrap();
-    assert!(html.contains("Before and after") && html.contains("tie_rod_inner/2"));
+    assert!(html.contains("Before and after") && html.contains("<td>tie_rod_inner z</td><td>mm</td>"));
     // Bad targets: refused by key, nothing written.
     let bad = dir.join("bad.json");
     std::fs::write(&bad, r#"{"free": {"/suspension/macpherson/hardpoints/nowhere/0": [0, 1]}, "targets": []}"#)

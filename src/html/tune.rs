@@ -5,7 +5,8 @@ use super::charts::write_chart;
 use super::tables::{write_open_table, write_table};
 use super::{write_foot, write_head, NAME_SHOWN};
 use crate::markup::text;
-use crate::suspensions::kc::{significant, Chart};
+use crate::suspensions::design::{parameter_words, sensitivity::effect_unit};
+use crate::suspensions::kc::{significant, Cell, Chart, Table};
 use serde_json::Value;
 use std::fmt::Write;
 
@@ -53,7 +54,7 @@ fn write_tune_page(
     write_targets(out, tuned)?;
     writeln!(out, "<section id=\"parameters\">")?;
     writeln!(out, "<h2>The free numbers</h2>")?;
-    write_open_table(out, &tuned.moved_table(targets))?;
+    write_open_table(out, &moved_in_words(tuned, targets))?;
     writeln!(out, "</section>")?;
     writeln!(out, "<section id=\"curves\">")?;
     writeln!(out, "<h2>Before and after</h2>")?;
@@ -105,4 +106,27 @@ fn write_targets(out: &mut String, tuned: &crate::suspensions::design::tune::Tun
         writeln!(out, "</tbody></table>")?;
     }
     writeln!(out, "</section>")
+}
+
+/// The free numbers before and after as an engineer reads them: a hardpoint's coordinate by the point and
+/// its axis, in millimetres; any other number by its pointer, in the file's unit.
+fn moved_in_words(
+    tuned: &crate::suspensions::design::tune::Tuned,
+    targets: &crate::suspensions::design::targets::Targets,
+) -> Table {
+    let mut table = tuned.moved_table(targets);
+    table.columns.insert(1, "unit".into());
+    for (row, free) in table.rows.iter_mut().zip(&targets.free) {
+        let length = effect_unit(&free.pointer) == "mm";
+        if length {
+            for cell in row.iter_mut().skip(1) {
+                if let Some(v) = cell.number() {
+                    *cell = Cell::from(v * 1e3);
+                }
+            }
+        }
+        row[0] = Cell::Text(parameter_words(&free.pointer));
+        row.insert(1, Cell::Text(if length { "mm" } else { "as in the file" }.into()));
+    }
+    table
 }
