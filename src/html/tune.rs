@@ -5,7 +5,7 @@ use super::charts::write_chart;
 use super::tables::{write_open_table, write_table};
 use super::{write_foot, write_head, NAME_SHOWN};
 use crate::markup::text;
-use crate::suspensions::design::{parameter_words, sensitivity::effect_unit};
+use crate::suspensions::design::parameter::{is_length, parameter_words};
 use crate::suspensions::kc::{significant, Cell, Chart, Table};
 use serde_json::Value;
 use std::fmt::Write;
@@ -117,7 +117,7 @@ fn moved_in_words(
     let mut table = tuned.moved_table(targets);
     table.columns.insert(1, "unit".into());
     for (row, free) in table.rows.iter_mut().zip(&targets.free) {
-        let length = effect_unit(&free.pointer) == "mm";
+        let length = is_length(&free.pointer);
         if length {
             for cell in row.iter_mut().skip(1) {
                 if let Some(v) = cell.number() {

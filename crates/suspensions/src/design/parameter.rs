@@ -249,13 +249,19 @@ pub fn hardpoint_pointer(document: &Value, name: &str) -> Option<String> {
     named_hardpoints(document).find(|(n, _)| *n == name).map(|(_, pointer)| pointer)
 }
 
-/// How a parameter's effect is told: per millimetre of a length (a hardpoint coordinate, a Chrono part's
-/// `Location …` point, a loaded radius, a stop's clearance, a spring's free length), per percent of
-/// anything else (a rate, a force, a section's property).
-pub fn effect_unit(pointer: &str) -> &'static str {
+/// Whether the parameter is a length (a hardpoint coordinate, a Chrono part's `Location …` point, a loaded
+/// radius, a stop's clearance, a spring's free length), in the file's metres: an engineer moves it and
+/// reads it in millimetres.
+pub fn is_length(pointer: &str) -> bool {
     let chrono_point = pointer.split('/').any(is_chrono_point);
     let length = ["/loaded_radius", "/clearance", "/free_length"].iter().any(|end| pointer.ends_with(end));
-    if pointer.contains("/hardpoints/") || chrono_point || length {
+    pointer.contains("/hardpoints/") || chrono_point || length
+}
+
+/// How a parameter's effect is told: per millimetre of a length ([`is_length`]), per percent of anything
+/// else (a rate, a force, a section's property).
+pub fn effect_unit(pointer: &str) -> &'static str {
+    if is_length(pointer) {
         "mm"
     } else {
         "%"
@@ -285,7 +291,7 @@ pub fn parameter_words(pointer: &str) -> String {
 /// A parameter's value as an engineer writes it: a length (a hardpoint's coordinate, in the file's metres)
 /// in millimetres, with its unit; any other number as the file gives it.
 pub fn parameter_value_words(pointer: &str, value: f64) -> String {
-    if effect_unit(pointer) == "mm" {
+    if is_length(pointer) {
         format!("{} mm", crate::kc::significant(value * 1e3, 6))
     } else {
         crate::kc::significant(value, 6)

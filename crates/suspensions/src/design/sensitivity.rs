@@ -35,7 +35,7 @@
 //! Only corrected-mode rows are equilibria: sensitivities are of the corrected path.
 
 pub use super::parameter::effect_unit;
-use super::parameter::{ParameterError, Parameters};
+use super::parameter::{is_length, ParameterError, Parameters};
 use crate::kc::{self, Analysis, AnalysisReport, Cell, Failed, Figure, Models, Settings, Skipped, Table};
 use elastokin_solver::replay::{record, replay, Replay, Tape};
 use elastokin_solver::Mode;
@@ -80,7 +80,7 @@ enum Differences {
 fn step(parameters: &Parameters, k: usize) -> f64 {
     let pointer = &parameters.pointers[k];
     let size = parameters.values[k].abs();
-    let size = if effect_unit(pointer) == "mm" || size == 0.0 { size.max(0.1) } else { size };
+    let size = if is_length(pointer) || size == 0.0 { size.max(0.1) } else { size };
     RELATIVE_STEP * size
 }
 
@@ -584,8 +584,9 @@ pub fn suite_sensitivity(
 
 /// A figure's derivative as an effect: per millimetre of a length, per percent of its value otherwise.
 pub fn effect(pointer: &str, value: f64, derivative: f64) -> f64 {
-    match effect_unit(pointer) {
-        "mm" => derivative * 1e-3,
-        _ => derivative * value.abs() * 1e-2,
+    if is_length(pointer) {
+        derivative * 1e-3
+    } else {
+        derivative * value.abs() * 1e-2
     }
 }
