@@ -229,8 +229,9 @@ impl std::fmt::Debug for Taping {
     }
 }
 
-/// A taping that takes part in nothing, for a `&'static` reference where none is given.
-pub static NO_TAPING: Taping = Taping::NONE;
+/// The taping that takes part in nothing (`Taping::default()`), for a `&'static` reference where none is
+/// given.
+pub static NO_TAPING: Taping = Taping(None);
 
 /// Two tapings are equal when they are the same recording or replay (or both none).
 impl PartialEq for Taping {
@@ -244,26 +245,24 @@ impl PartialEq for Taping {
 }
 
 impl Taping {
-    /// None: its solvers solve.
-    pub const NONE: Taping = Taping(None);
-
     fn of(active: Active) -> Taping {
         Taping(Some(Arc::new(Mutex::new(Some(active)))))
     }
 
+    /// The recording or replay, locked; `None` for a taping of none.
+    fn lock(&self) -> Option<std::sync::MutexGuard<'_, Option<Active>>> {
+        // A computation that panicked while holding the lock left nothing half-done that matters here.
+        self.0.as_ref().map(|cell| cell.lock().unwrap_or_else(|e| e.into_inner()))
+    }
+
     /// `f` of the recording or replay under way, if any.
     fn with<R>(&self, f: impl FnOnce(&mut Active) -> R) -> Option<R> {
-        let cell = self.0.as_ref()?;
-        // A computation that panicked while holding the lock left nothing half-done that matters here.
-        let mut active = cell.lock().unwrap_or_else(|e| e.into_inner());
-        active.as_mut().map(f)
+        self.lock()?.as_mut().map(f)
     }
 
     /// What was recorded or replayed, the taping ended: its solvers solve from now on.
     fn finish(&self) -> Option<Active> {
-        let cell = self.0.as_ref()?;
-        let mut active = cell.lock().unwrap_or_else(|e| e.into_inner());
-        active.take()
+        self.lock()?.take()
     }
 }
 

@@ -298,7 +298,7 @@ impl<'m> StaticSolver<'m> {
     /// [`StaticSolver::diagnostics`]), analyses the KKT pattern once and checks at design that every body is
     /// restrained.
     pub fn new(model: &'m Model, options: SolverOptions) -> Result<Self, SolverError> {
-        Self::build(model, options, None, Taping::NONE)
+        Self::build(model, options, None, Taping::default())
     }
 
     /// As [`StaticSolver::new`], the solver taking part in `taping`: the recording ([`replay::record`])
@@ -322,7 +322,7 @@ impl<'m> StaticSolver<'m> {
         options: SolverOptions,
         workspace: Option<SolverWorkspace>,
     ) -> Result<Self, SolverError> {
-        Self::build(model, options, workspace, Taping::NONE)
+        Self::build(model, options, workspace, Taping::default())
     }
 
     fn build(

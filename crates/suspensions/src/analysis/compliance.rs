@@ -5,7 +5,7 @@
 use crate::assembly::Corner;
 use crate::wheel::Wheel;
 use elastokin_core::Vec3;
-use elastokin_solver::replay::Taping;
+use elastokin_solver::replay::{Taping, NO_TAPING};
 use elastokin_solver::{SolverError, SolverOptions, State, StaticSolver};
 
 /// The 6×6 compliance of the wheel at the equilibrium of load parameter `t`: column `k` is the response
@@ -16,7 +16,7 @@ use elastokin_solver::{SolverError, SolverOptions, State, StaticSolver};
 /// height). With a partner wheel (a solid axle) each unit load acts on both wheels alike, in phase, as the
 /// load sweeps apply them; the response is the corner's own wheel's.
 pub fn wheel_compliance(corner: &Corner, t: f64) -> Result<[[f64; 6]; 6], SolverError> {
-    Ok(compliance_at(corner, t, &Taping::NONE)?.wheel)
+    Ok(compliance_at(corner, t, &NO_TAPING)?.wheel)
 }
 
 /// The wheel compliance at an equilibrium, with the solver that found it and factorized its tangent there:
@@ -133,7 +133,7 @@ fn attitude_change(a: &Vec3, s: f64, dpi: &Vec3) -> (f64, f64) {
 
 /// [`PatchCompliance`] at the equilibrium of load parameter `t` (see [`wheel_compliance`]).
 pub fn patch_compliance(corner: &Corner, t: f64) -> Result<PatchCompliance, SolverError> {
-    let at = compliance_at(corner, t, &Taping::NONE)?;
+    let at = compliance_at(corner, t, &NO_TAPING)?;
     Ok(patch_compliance_from(corner, &at.wheel, &at.state.poses))
 }
 

@@ -7,7 +7,7 @@ use crate::assembly::rig::WHEEL_TRAVEL;
 use crate::assembly::{Corner, Rig};
 use crate::wheel::WheelAttitude;
 use elastokin_core::{BodyRef, JointId, Model, Vec3};
-use elastokin_solver::replay::Taping;
+use elastokin_solver::replay::{Taping, NO_TAPING};
 use elastokin_solver::{LoadPath, Mode, SolverError, SolverOptions, State, StaticSolver, StepResult, Sweep};
 use std::sync::Arc;
 
@@ -15,7 +15,7 @@ use std::sync::Arc;
 /// corner load the design position carries. The corner must hold its wheel-centre height
 /// ([`Rig::WheelTravel`] at `t = 0`, or [`Rig::HeightHeld`]).
 pub fn design_wheel_load(corner: &Corner) -> Result<f64, SolverError> {
-    Ok(design_wheel_load_estimated(corner, false, &Taping::NONE)?.0)
+    Ok(design_wheel_load_estimated(corner, false, &NO_TAPING)?.0)
 }
 
 /// [`design_wheel_load`] and, when `estimate`, its error estimate: the change of the load over one exact
@@ -429,7 +429,7 @@ const STATIC_LOAD_STEPS: usize = 20;
 /// [`SolverError::InvalidInput`] on the corner load when no rest position is found or the one found is
 /// unstable; model and factorization failures pass through.
 pub fn static_load_case(corner: Corner, corner_load: f64) -> Result<StaticLoad, SolverError> {
-    Ok(static_load_case_estimated(corner, corner_load, false, &Taping::NONE)?.0)
+    Ok(static_load_case_estimated(corner, corner_load, false, &NO_TAPING)?.0)
 }
 
 /// [`static_load_case`], and with `estimate` the rest position read again one exact Newton iteration on:
