@@ -625,7 +625,7 @@ fn solvers_outside_the_taping(text: &str) -> Vec<usize> {
 /// handed (`kc::run_taped`), so that a replay moves every equilibrium the analysis solves (a solver
 /// outside it would solve the moved model outright: right, but as slow as a re-run, and its rate as noisy
 /// as a difference of re-solves). The analyses' public functions outside the suite that take no taping
-/// hand theirs `Taping::NONE`, except `anti_pitch`, which the suite does not call.
+/// hand theirs `NO_TAPING`, except `anti_pitch`, which the suite does not call.
 #[test]
 fn every_solver_of_an_analysis_takes_part_in_its_taping() {
     let root = repo_root();
