@@ -73,9 +73,8 @@ pub fn try_redundant_rows(
     if dropped.is_empty() {
         return Ok(Vec::new());
     }
-    // One work vector for all, left zero by each.
-    let mut work = vec![0.0f64; m];
-    let basis = dropped.iter().map(|&j| factor.null_vector(j, &mut work)).collect();
+    let mut scratch = NullScratch { u: vec![0.0f64; m], desc: Vec::new(), dfs: Vec::new() };
+    let basis = dropped.iter().map(|&j| factor.null_vector(j, &mut scratch)).collect();
     Ok(leading_rows(basis))
 }
 
@@ -221,12 +220,13 @@ impl GramFactor {
     }
 
     /// The null vector `ĴᵀW = 0` of the dropped row eliminated `j`-th, in original numbering, sorted: a
-    /// triangular solve restricted to its elimination subtree, in `u` (zero on entry, left zero: the
-    /// nonzeros of row `j` of `L` lie in that subtree).
-    fn null_vector(&self, j: usize, u: &mut [f64]) -> Vec<(usize, f64)> {
+    /// triangular solve restricted to its elimination subtree, in `scratch`.
+    fn null_vector(&self, j: usize, scratch: &mut NullScratch) -> Vec<(usize, f64)> {
         let (lcp, lri, l_val) = (self.symbolic.col_ptr(), self.symbolic.row_idx(), &self.l_values);
-        let mut desc: Vec<usize> = Vec::new();
-        let mut dfs: Vec<usize> = self.child[self.child_ptr[j]..self.child_ptr[j + 1]].to_vec();
+        let NullScratch { u, desc, dfs } = scratch;
+        desc.clear();
+        dfs.clear();
+        dfs.extend_from_slice(&self.child[self.child_ptr[j]..self.child_ptr[j + 1]]);
         while let Some(k) = dfs.pop() {
             desc.push(k);
             dfs.extend_from_slice(&self.child[self.child_ptr[k]..self.child_ptr[k + 1]]);
@@ -238,7 +238,7 @@ impl GramFactor {
                 u[k] = l_val[self.l_row_src[q]];
             }
         }
-        for &k in &desc {
+        for &k in desc.iter() {
             let mut s = u[k];
             for e in lcp[k] + 1..lcp[k + 1] {
                 let i = lri[e];
@@ -251,7 +251,7 @@ impl GramFactor {
         }
         let mut v: Vec<(usize, f64)> = Vec::with_capacity(desc.len() + 1);
         v.push((self.perm[j], 1.0));
-        for &k in &desc {
+        for &k in desc.iter() {
             if u[k] != 0.0 && u[k].is_finite() {
                 v.push((self.perm[k], -u[k]));
             }
@@ -261,6 +261,15 @@ impl GramFactor {
         prune(&mut v);
         v
     }
+}
+
+/// What the null vectors are worked out in, kept from one dropped row to the next: `u` (zero between them:
+/// the nonzeros of a row of `L` lie in its elimination subtree, whose entries each leaves zero), and the
+/// subtree's nodes and the search that finds them.
+struct NullScratch {
+    u: Vec<f64>,
+    desc: Vec<usize>,
+    dfs: Vec<usize>,
 }
 
 /// The children of each node of the elimination tree `etree` (`-1` for a root), as a pointer array and
