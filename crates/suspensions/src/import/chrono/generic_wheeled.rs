@@ -255,10 +255,7 @@ impl Elements {
         for path in list(doc, "Distance Constraints") {
             let name = text(doc, &format!("{path}/Name"))?;
             let mirrored = flag(doc, &format!("{path}/Mirrored"))?;
-            let parts = [
-                part(doc, &format!("{path}/Body1"), bodies, mirrored)?,
-                part(doc, &format!("{path}/Body2"), bodies, mirrored)?,
-            ];
+            let parts = two_parts(doc, &path, bodies, mirrored)?;
             let points = [doc.point(&format!("{path}/Point1"))?, doc.point(&format!("{path}/Point2"))?];
             links.push(Link { path, name, parts, points, mirrored });
         }
@@ -291,10 +288,7 @@ fn joint(doc: &Doc, path: String, bodies: &Bodies) -> Result<Joint, Refusal> {
             ));
         }
     };
-    let parts = [
-        part(doc, &format!("{path}/Body1"), bodies, mirrored)?,
-        part(doc, &format!("{path}/Body2"), bodies, mirrored)?,
-    ];
+    let parts = two_parts(doc, &path, bodies, mirrored)?;
     let frame = rotation(doc, &format!("{path}/Rotation"))?;
     doc.expect(&format!("{path}/Position"));
     let bushing = doc.at(&format!("{path}/Bushing Data")).is_some_and(Value::is_object);
@@ -315,10 +309,7 @@ fn joint(doc: &Doc, path: String, bodies: &Bodies) -> Result<Joint, Refusal> {
 /// The spring or damper at `path` of `TSDAs`: what it joins, which is never the steering link.
 fn tsda(doc: &Doc, path: String, bodies: &Bodies) -> Result<Tsda, Refusal> {
     let mirrored = flag(doc, &format!("{path}/Mirrored"))?;
-    let parts = [
-        part(doc, &format!("{path}/Body1"), bodies, mirrored)?,
-        part(doc, &format!("{path}/Body2"), bodies, mirrored)?,
-    ];
+    let parts = two_parts(doc, &path, bodies, mirrored)?;
     if parts.contains(&Part::Steering) {
         return Err(Refusal::unusable(
             &[],
@@ -810,6 +801,11 @@ struct Bodies {
     shared: BTreeSet<String>,
 }
 
+/// The two parts joined by the element at `path` (its `Body1` and `Body2`, each read by [`part`]).
+fn two_parts(doc: &Doc, path: &str, bodies: &Bodies, mirrored: bool) -> Result<[Part; 2], Refusal> {
+    Ok([part(doc, &format!("{path}/Body1"), bodies, mirrored)?, part(doc, &format!("{path}/Body2"), bodies, mirrored)?])
+}
+
 /// The body an element names at `path`: a name, or `[name, side]` (Chrono's `ReadBodyIdentifierJSON`).
 /// A mirrored element (one per side) names a body alone: each side's own, or a shared one. An element that
 /// is not mirrored names a shared body alone, or one side's copy of a mirrored body by `[name, side]`
@@ -902,10 +898,7 @@ fn rsdas(doc: &Doc, bodies: &Bodies, joints: &[Joint]) -> Result<Vec<Rsda>, Refu
     for path in list(doc, "RSDAs") {
         let name = text(doc, &format!("{path}/Name"))?;
         let mirrored = flag(doc, &format!("{path}/Mirrored"))?;
-        let parts = [
-            part(doc, &format!("{path}/Body1"), bodies, mirrored)?,
-            part(doc, &format!("{path}/Body2"), bodies, mirrored)?,
-        ];
+        let parts = two_parts(doc, &path, bodies, mirrored)?;
         let key = |k: &str| format!("{path}/{k}");
         doc.expect(&key("Position"));
         let axis = super::builder::direction(doc, &key("Axis"))?.normalize();
