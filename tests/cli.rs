@@ -1580,21 +1580,48 @@ fn tune_meets_the_shipped_targets_and_says_why_when_it_cannot() {
         |v: &serde_json::Value| v["suspension"]["macpherson"].as_object().unwrap().keys().cloned().collect::<Vec<_>>();
     assert_eq!(order(&tuned), order(&base));
     // The tuned model, run, has the bump steer the tune reached.
+    // Judged against the same targets, the tuned model meets each of them, as the tune said.
     let run_out = dir.join("run");
-    succeeds(&[
+    let o = succeeds(&[
         "run",
         out.join("tuned.json").to_str().unwrap(),
         "--analysis",
         "parallel-travel",
+        "--targets",
+        "examples/targets/bump_steer.json",
         "--out",
         run_out.to_str().unwrap(),
     ]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("met: targets[0] (parallel-travel/bump_steer)") && !stdout.contains("NOT"), "{stdout}");
+    let judged = read_csv(&run_out.join("targets.csv"));
+    assert_eq!(judged.len(), 4, "a figure, a curve's two points and a constraint");
+    assert!(judged.iter().all(|r| &r[7] == "1"), "{judged:?}");
+    let html = std::fs::read_to_string(run_out.join("report.html")).unwrap();
+    assert!(html.contains("every target met"));
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(run_out.join("summary.json")).unwrap()).unwrap();
     let bump_steer = summary["analyses"]["parallel-travel"]["figures"]["bump_steer"]["value"].as_f64().unwrap();
     let residuals = read_csv(&out.join("tune_targets.csv"));
     let reached: f64 = residuals.iter().find(|r| r[0].contains("bump_steer")).unwrap()[4].parse().unwrap();
     assert!((bump_steer - reached).abs() < 1e-9 && (bump_steer + 2.0).abs() < 0.25, "{bump_steer} {reached}");
+    let judged_bump_steer: f64 = judged[0][6].parse().unwrap();
+    assert!((judged_bump_steer - reached).abs() < 1e-9, "{judged_bump_steer} {reached}");
+    // The model before the tune misses them: exit 1, each miss named, the results written.
+    let o = elastokin(&[
+        "run",
+        "examples/generic/macpherson.json",
+        "--analysis",
+        "parallel-travel",
+        "--targets",
+        "examples/targets/bump_steer.json",
+        "--out",
+        dir.join("before").to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("3 target points and packaging constraints not met") && err.contains("NOT met: targets[0]"));
+    assert!(dir.join("before/targets.csv").exists());
     let iterations = read_csv(&out.join("tune.csv"));
     assert_eq!(&iterations[0][6], "start");
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();

@@ -1,7 +1,9 @@
 //! The HTML K&C report: well-formed, self-contained, and showing what the report holds — every analysis,
 //! figure (or its reason), plot, warning, hardpoint and skipped analysis — with nothing non-finite.
 
-use elastokin::html::{report_html, TABLE_ROW_LIMIT};
+use elastokin::html::{report_html, report_html_with, Extras, Judged, TABLE_ROW_LIMIT};
+use elastokin::suspensions::design::judge::judge;
+use elastokin::suspensions::design::targets::{read_targets_as, Reading};
 use elastokin::suspensions::kc::{self, Cell, Chart, Figure, KcReport, Settings, Table, Warning};
 use elastokin::suspensions::SuspensionFile;
 use serde_json::json;
@@ -102,9 +104,14 @@ fn report_is_well_formed_self_contained_and_shows_every_analysis() {
                     if value.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
                         value = value.trim_start_matches('-').to_string(); // a rounded zero has no sign
                     }
-                    let error = if f.error.is_some() { "± " } else { "not estimated" };
-                    let row =
-                        format!("<td class=\"value\">{value}</td><td>{unit}</td><td class=\"error-estimate\">{error}");
+                    // The estimate written out where it matters, else on hover beside "within".
+                    let relative = report.settings.tolerance.relative;
+                    let error = match f.error {
+                        Some(_) if f.estimate_matters(relative) => "<td class=\"error-estimate over\">± ",
+                        Some(_) => "<td class=\"error-estimate\" title=\"± ",
+                        None => "<td class=\"error-estimate over\">not estimated",
+                    };
+                    let row = format!("<td class=\"value\">{value}</td><td>{unit}</td>{error}");
                     assert!(html.contains(&row), "{}: {row}", f.label);
                 }
                 None => assert!(html.contains(&*html_escape::encode_text(f.reason.as_deref().unwrap()))),
@@ -414,4 +421,56 @@ fn each_analysis_says_what_it_walked() {
     assert!(html.contains("applied at once; at 4100</p>"), "{html}");
     assert!(html.contains("-0.08 to 0.08, 4 steps</p>"), "{html}");
     assert!(!html.contains(" 1 steps"), "{html}");
+}
+
+#[test]
+fn the_summary_leads_with_every_figure_and_the_targets_judged() {
+    let mut report = suite().clone();
+    // One figure whose estimate matters: 10 % of its value, over the 0.5 % tolerance on figures.
+    let f = &mut report.analyses[0].figures[0];
+    f.error = f.value.map(|v| 0.1 * v.abs());
+    let matters = f.label.clone();
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/generic/macpherson.json");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let document = elastokin::suspensions::study::batch::base_document(&text, "m.json").unwrap();
+    let bump = report.analyses[0].figures.iter().find(|f| f.key == "bump_steer").unwrap();
+    let deg_per_m = bump.written(kc::Units::default()).value.unwrap();
+    let targets = json!({ "targets": [
+        { "figure": "parallel-travel/bump_steer", "value": deg_per_m, "tolerance": 0.1 },
+        { "figure": "parallel-travel/camber_gain", "value": 1e3, "tolerance": 0.1 },
+    ]})
+    .to_string();
+    let targets = read_targets_as(Reading::ToJudge, &targets, "t.json", &document, |_| Err(String::new())).unwrap();
+    let (points, constraints) = judge(&report, &document, &targets);
+    let extras = Extras { judged: Some(Judged { points: &points, constraints: &constraints }), ..Extras::default() };
+    let html = report_html_with(&report, &model(), &provenance(), title_svg, extras);
+    element_names(&html);
+
+    let summary = html.find("<section id=\"summary\">").unwrap();
+    let warnings = html.find("<section id=\"warnings\">").unwrap();
+    let first_analysis = html.find("<section class=\"analysis\"").unwrap();
+    assert!(summary < warnings && warnings < first_analysis, "the summary comes first");
+    let section = &html[summary..warnings];
+    for a in &report.analyses {
+        assert!(section.contains(&format!("<a href=\"#{}\">", a.analysis.name())), "{}", a.analysis.name());
+        for f in &a.figures {
+            let w = f.written(a.units);
+            let shown = match w.value {
+                Some(v) => w.number(v),
+                None => "n/a".into(),
+            };
+            let label = html_escape::encode_text(&f.label);
+            assert!(section.contains(&format!("<td>{label}</td><td class=\"value\" title=")), "{label}");
+            assert!(section.contains(&format!("\">{shown}</td>")), "{label}: {shown}");
+        }
+    }
+    // The verdict: one target missed, the estimate that matters counted and shown under its figure.
+    assert!(section.contains("1 of 2 target points and constraints not met"), "{section}");
+    assert!(section.contains("1 figure with an error estimate over the tolerance"));
+    let row = section.find(&*html_escape::encode_text(&matters)).unwrap();
+    assert!(section[row..].split("</tr>").nth(1).unwrap().contains("class=\"over\">error estimate ±"));
+    assert!(section.contains("<tr class=\"met\"><td>bump steer (toe-in +)</td>"));
+    assert!(section.contains("<tr class=\"missed\"><td>camber gain (top out +)</td>"));
+    assert_eq!(section.matches("<td class=\"bad\">not met</td>").count(), 1);
+    assert_eq!(section.matches("<td class=\"ok\">met</td>").count(), 1);
 }

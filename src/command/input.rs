@@ -3,6 +3,7 @@
 
 use super::strict::strict_model;
 use crate::output::{Failure, Stdout};
+use elastokin::suspensions::design::targets::{read_targets_as, Reading, Targets};
 use elastokin::suspensions::import::chrono::Imported;
 use elastokin::suspensions::study::batch::base_document;
 use elastokin::suspensions::SuspensionFile;
@@ -59,4 +60,23 @@ pub fn read_model(path: &Path) -> Result<ModelInput, Failure> {
     let (file, imported) = elastokin::suspensions::document::parse_model(&text, &path.display().to_string())
         .map_err(|e| Failure::Input(e.to_string()))?;
     Ok(ModelInput { bytes, file, imported })
+}
+
+/// The TARGETS file at `path`, read for `reading` against the model's document `base`, with its bytes (for
+/// the provenance hash); a measured file it names is read beside it.
+pub fn read_targets_file(
+    path: &Path,
+    base: &serde_json::Value,
+    reading: Reading,
+) -> Result<(Vec<u8>, Targets), Failure> {
+    let (bytes, text) = read_input(path, "TARGETS")?;
+    // A measured file is named relative to the targets file.
+    let beside = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    let read_file = |name: &str| {
+        std::fs::read_to_string(beside.join(name))
+            .map_err(|e| format!("cannot read {}: {e}", beside.join(name).display()))
+    };
+    let targets = read_targets_as(reading, &text, &path.display().to_string(), base, read_file)
+        .map_err(|e| Failure::Input(e.to_string()))?;
+    Ok((bytes, targets))
 }

@@ -1,7 +1,7 @@
 //! `elastokin run MODEL`: the model's K&C suite (or one analysis), its headline figures printed as each
 //! analysis ends, and its tables, plots, report page and summary written.
 
-use super::input::read_model;
+use super::input::{read_model, read_targets_file};
 use super::sensitivity::{hardpoint_parameters, write_sensitivities};
 use super::strict::{refuse_implausible, refuse_warned};
 use super::sweeps::SweepArgs;
@@ -10,7 +10,9 @@ use clap::{Args, ValueEnum};
 use elastokin::plot;
 use elastokin::solver::Mode;
 use elastokin::suspensions::check::ModelCheck;
-use elastokin::suspensions::design::{self, Parameters, SuiteSensitivity};
+use elastokin::suspensions::design;
+use elastokin::suspensions::design::judge::{ConstraintCheck, TargetPoint};
+use elastokin::suspensions::design::targets::Reading;
 use elastokin::suspensions::kc::{self, Analysis, Chart, KcReport, Settings, SuiteEvent, Tolerance};
 use elastokin::suspensions::{LoadPoint, SuspensionFile};
 use std::collections::HashMap;
@@ -68,6 +70,11 @@ pub struct RunArgs {
     /// step, (TO - FROM) / STEPS (needs --analysis)
     #[arg(long, value_name = "VALUE", requires = "through_limits", value_parser = parse_arc_step, allow_negative_numbers = true)]
     pub arc_step: Option<f64>,
+    /// A TARGETS file (as `tune` reads, `free` optional) to judge the run against: its figure and curve
+    /// targets and packaging constraints met or not, in the report's summary and targets.csv; the run
+    /// exits 1 when one is not met
+    #[arg(long, value_name = "FILE")]
+    pub targets: Option<PathBuf>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -159,7 +166,15 @@ pub fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(),
     if strict {
         refuse_implausible(&args.model, model_check.as_ref())?;
     }
-    let provenance = provenance(&args, &read.bytes, &settings);
+    // A TARGETS file is read before anything runs, so that a mistake in it costs no solving.
+    let targets = match &args.targets {
+        Some(path) => Some(read_targets_file(path, &read.document(&args.model)?, Reading::ToJudge)?),
+        None => None,
+    };
+    let mut provenance = provenance(&args, &read.bytes, &settings);
+    if let (Some(path), Some((bytes, _))) = (&args.targets, &targets) {
+        provenance.targets = Some((path.display().to_string(), elastokin::provenance::sha256_hex(bytes)));
+    }
     let which = args.sweeps.which();
     // The sensitivities' parameters, refused before anything runs when the model has none.
     let hardpoints = match args.sensitivity {
@@ -175,7 +190,7 @@ pub fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(),
     let staging = Staging::new(&args.out)?;
     let count = if which.is_empty() { kc::ALL.len() } else { which.len() };
     let progress = Progress::new("analyses", count, quiet);
-    let result = (|| -> Result<(Vec<PathBuf>, Vec<kc::Failed>), Failure> {
+    let result = (|| -> Result<Ran, Failure> {
         out.line(format!("{} — {} mode", read.file.name, kc::mode_word(settings.mode)))?;
         // The model's own warnings first (millimetres, a spring rate in N/mm): they say what the figures
         // below are worth; the run's, found while solving, after the figures.
@@ -206,25 +221,98 @@ pub fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(),
             }
             None => None,
         };
-        let with = sensitivities.as_ref().zip(hardpoints.as_ref());
-        written.extend(write_report(&staging, &report, &read.file, &provenance, &svgs, with)?);
-        Ok((written, report.failed))
+        let document = read.document(&args.model)?;
+        let judged = targets.as_ref().map(|(_, t)| design::judge::judge(&report, &document, t));
+        let unmet = match &judged {
+            Some((points, constraints)) => {
+                let table = design::judge::judged_table(points, constraints);
+                written.push(staging.write("targets.csv", &write_table(&table, &provenance))?);
+                print_judged(out, points, constraints)?
+            }
+            None => Vec::new(),
+        };
+        let extras = elastokin::html::Extras {
+            sensitivities: sensitivities.as_ref().zip(hardpoints.as_ref()),
+            judged: judged.as_ref().map(|(points, constraints)| elastokin::html::Judged { points, constraints }),
+        };
+        written.extend(write_report(&staging, &report, &read.file, &provenance, &svgs, extras)?);
+        Ok(Ran { written, failed: report.failed, unmet })
     })();
     progress.finish();
-    let (written, failed) = result.map_err(|e| staging.failed(e))?;
+    let Ran { written, failed, unmet } = result.map_err(|e| staging.failed(e))?;
     staging.commit()?;
     out.line("")?;
     out.line(wrote(&written))?;
     // The others' results are written whole; the run still failed.
-    if failed.is_empty() {
-        return Ok(());
+    if !failed.is_empty() {
+        return Err(Failure::Run(format!(
+            "{} of the analyses failed (the others' results are in {}):\n{}",
+            failed.len(),
+            args.out.display(),
+            failed_lines(&failed)
+        )));
     }
-    Err(Failure::Run(format!(
-        "{} of the analyses failed (the others' results are in {}):\n{}",
-        failed.len(),
-        args.out.display(),
-        failed_lines(&failed)
-    )))
+    if !unmet.is_empty() {
+        return Err(Failure::Run(format!(
+            "{} target points and packaging constraints not met (the results are in {}):\n{}",
+            unmet.len(),
+            args.out.display(),
+            unmet.join("\n")
+        )));
+    }
+    Ok(())
+}
+
+/// What a run wrote, the analyses that failed, and the targets it did not meet (each as printed).
+struct Ran {
+    written: Vec<PathBuf>,
+    failed: Vec<kc::Failed>,
+    unmet: Vec<String>,
+}
+
+/// Prints each target point and packaging constraint judged, met or not, as `tune` prints its verdicts;
+/// gives the lines of those not met.
+fn print_judged(out: &Stdout, points: &[TargetPoint], constraints: &[ConstraintCheck]) -> Result<Vec<String>, Failure> {
+    out.line("")?;
+    out.line("targets:")?;
+    let mut unmet = Vec::new();
+    for p in points {
+        let at = p.at.map_or(String::new(), |at| format!(" at {}", kc::plain(at)));
+        let line = match &p.reached {
+            Ok(r) => format!(
+                "{} {}{at}: {} for {} ± {}",
+                if p.met() { "met:" } else { "NOT met:" },
+                p.target.label,
+                kc::significant(*r, 4),
+                kc::significant(p.aim, 4),
+                kc::significant(p.target.tolerance, 2)
+            ),
+            Err(why) => format!("NOT judged: {}{at}: {why}", p.target.label),
+        };
+        if !p.met() {
+            unmet.push(line.clone());
+        }
+        out.line(format!("  {line}"))?;
+    }
+    for c in constraints {
+        let mm = |v: f64| if v.is_finite() { format!("{} mm", kc::significant(v * 1e3, 4)) } else { "∞".into() };
+        let line = match &c.reached {
+            Ok((v, min, max)) => format!(
+                "{} {}: {} within {} to {}",
+                if c.met() { "met:" } else { "NOT met:" },
+                c.constraint.said(),
+                mm(*v),
+                mm(*min),
+                mm(*max)
+            ),
+            Err(why) => format!("NOT judged: {}: {why}", c.constraint.said()),
+        };
+        if !c.met() {
+            unmet.push(line.clone());
+        }
+        out.line(format!("  {line}"))?;
+    }
+    Ok(unmet)
 }
 
 /// The suite's settings as the arguments give them.
@@ -345,10 +433,10 @@ fn write_report(
     file: &SuspensionFile,
     provenance: &Provenance,
     svgs: &HashMap<&str, String>,
-    sensitivities: Option<(&SuiteSensitivity, &Parameters)>,
+    extras: elastokin::html::Extras,
 ) -> Result<Vec<PathBuf>, Failure> {
     let drawn = |chart: &Chart| svgs.get(chart.name.as_str()).map_or_else(|| plot::svg(chart), |svg| Ok(svg.clone()));
-    let html = elastokin::html::report_html_with(report, file, &provenance.to_json(), drawn, sensitivities);
+    let html = elastokin::html::report_html_with(report, file, &provenance.to_json(), drawn, extras);
     let page = staging.write("report.html", html.as_bytes())?;
     let mut summary = serde_json::to_value(report).map_err(|e| Failure::Run(e.to_string()))?;
     summary["provenance"] = provenance.to_json();

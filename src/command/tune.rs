@@ -1,16 +1,16 @@
 //! `elastokin tune MODEL TARGETS`: the model's free numbers moved within their bounds to meet the targets.
 
-use super::input::{open_model, read_input};
+use super::input::{open_model, read_targets_file};
 use super::strict::refuse_warned;
 use crate::output::{write_table, wrote, Failure, Progress, Provenance, Staging, Stdout};
 use clap::Args;
 use elastokin::plot;
 use elastokin::solver::Mode;
-use elastokin::suspensions::design::targets::{read_targets, Targets};
+use elastokin::suspensions::design::targets::{Reading, Targets};
 use elastokin::suspensions::design::tune::{self, Tuned};
 use elastokin::suspensions::design::Parameters;
 use elastokin::suspensions::{design, kc};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 #[derive(Debug, Args)]
 pub struct TuneArgs {
@@ -29,7 +29,7 @@ pub fn run(args: TuneArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<()
     let read = open_model(&args.model, out, strict)?;
     let origin = args.model.display().to_string();
     let base = read.document(&args.model)?;
-    let (targets_bytes, targets) = read_targets_file(&args.targets, &base)?;
+    let (targets_bytes, targets) = read_targets_file(&args.targets, &base, Reading::ToTune)?;
     let pointers: Vec<String> = targets.free.iter().map(|f| f.pointer.clone()).collect();
     let parameters = Parameters::new(&base, &pointers).map_err(|e| Failure::Input(format!("{origin}: {e}")))?;
     let tuned = tune_printing(&parameters, &targets, &origin, out, quiet)?;
@@ -67,21 +67,6 @@ pub fn run(args: TuneArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<()
         args.out.display(),
         unmet.join("\n")
     )))
-}
-
-/// The TARGETS file at `path`, read against the model's document `base`, with its bytes (for the
-/// provenance hash); a measured file it names is read beside it.
-fn read_targets_file(path: &Path, base: &serde_json::Value) -> Result<(Vec<u8>, Targets), Failure> {
-    let (bytes, text) = read_input(path, "TARGETS")?;
-    // A measured file is named relative to the targets file.
-    let beside = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    let read_file = |name: &str| {
-        std::fs::read_to_string(beside.join(name))
-            .map_err(|e| format!("cannot read {}: {e}", beside.join(name).display()))
-    };
-    let targets =
-        read_targets(&text, &path.display().to_string(), base, read_file).map_err(|e| Failure::Input(e.to_string()))?;
-    Ok((bytes, targets))
 }
 
 /// The tune of `parameters` (of the model file `origin`) to `targets`, each iteration after the first

@@ -27,7 +27,7 @@ pub(super) fn write_analysis(
     };
     writeln!(out, "<p class=\"note\">load parameter: {}; {walked}</p>", text(&a.parameter))?;
 
-    write_figures(out, &a.figures, a.units)?;
+    write_figures(out, &a.figures, a.units, report.settings.tolerance.relative)?;
     write_accuracy(out, a, report)?;
     if !a.warnings.is_empty() {
         writeln!(out, "<ul class=\"warnings\">")?;

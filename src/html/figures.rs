@@ -1,12 +1,14 @@
 //! An analysis's headline figures: each with its value, unit and error estimate, or "n/a" and the reason it
-//! is missing.
+//! is missing. The estimate is written out only where it matters (over the tolerance on figures, and
+//! showing in the printed decimals); elsewhere a mark says it is within, the estimate itself on hover.
 
-use crate::markup::text;
+use crate::markup::{attr, text};
 use crate::suspensions::kc::{significant, Figure, Units};
 use std::fmt::Write;
 
-/// The table of `figures` in `units`, or that there are none.
-pub(super) fn write_figures(out: &mut String, figures: &[Figure], units: Units) -> std::fmt::Result {
+/// The table of `figures` in `units`, their estimates judged against `relative` (the tolerance on
+/// figures), or that there are none.
+pub(super) fn write_figures(out: &mut String, figures: &[Figure], units: Units, relative: f64) -> std::fmt::Result {
     if figures.is_empty() {
         return writeln!(out, "<p class=\"none\">no headline figures</p>");
     }
@@ -18,16 +20,12 @@ pub(super) fn write_figures(out: &mut String, figures: &[Figure], units: Units) 
         write!(out, "<tr><td>{}</td>", text(&f.label))?;
         match w.value.filter(|v| v.is_finite()) {
             Some(v) => {
-                let error = match w.error.filter(|e| e.is_finite()) {
-                    Some(e) => format!("± {}", significant(e, 2)),
-                    None => "not estimated".into(),
-                };
                 writeln!(
                     out,
-                    "<td class=\"value\">{}</td><td>{}</td><td class=\"error-estimate\">{}</td></tr>",
+                    "<td class=\"value\">{}</td><td>{}</td>{}</tr>",
                     w.number(v),
                     text(w.unit),
-                    text(&error)
+                    estimate_cell(f, units, relative)
                 )?;
             }
             None => {
@@ -42,4 +40,20 @@ pub(super) fn write_figures(out: &mut String, figures: &[Figure], units: Units) 
         }
     }
     writeln!(out, "</tbody></table>")
+}
+
+/// The error-estimate cell of the figure `f` (which has a value) in `units`: `± e` in red where the estimate
+/// matters against `relative`, a quiet mark otherwise; the estimate is its hover text either way.
+pub(super) fn estimate_cell(f: &Figure, units: Units, relative: f64) -> String {
+    let w = f.written(units);
+    match w.error.filter(|e| e.is_finite()) {
+        Some(e) if f.estimate_matters(relative) => {
+            format!("<td class=\"error-estimate over\">± {} {}</td>", text(&significant(e, 2)), text(w.unit))
+        }
+        Some(e) => format!(
+            "<td class=\"error-estimate\" title=\"{}\">within</td>",
+            attr(&format!("± {} {}: within the tolerance", significant(e, 2), w.unit))
+        ),
+        None => "<td class=\"error-estimate over\">not estimated</td>".into(),
+    }
 }

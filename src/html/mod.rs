@@ -34,6 +34,7 @@ mod report;
 mod sensitivity;
 mod skipped;
 mod style;
+mod summary;
 mod tables;
 mod tolerance;
 mod tune;
@@ -41,8 +42,9 @@ mod vehicle;
 mod warnings;
 
 pub use compare::compare_html;
-pub use report::{report_html, report_html_with, Sensitivities};
+pub use report::{report_html, report_html_with, Extras, Sensitivities};
 pub use sensitivity::sensitivity_html;
+pub use summary::Judged;
 pub use tables::TABLE_ROW_LIMIT;
 pub use tolerance::tolerance_html;
 pub use tune::tune_html;

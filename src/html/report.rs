@@ -7,6 +7,7 @@ use super::model::write_model;
 use super::provenance::write_provenance;
 use super::sensitivity::write_sensitivity_sections;
 use super::skipped::write_skipped;
+use super::summary::{write_summary, Judged};
 use super::warnings::{write_failed, write_warnings};
 use super::{write_head, NAME_SHOWN};
 use crate::suspensions::kc::{Chart, KcReport};
@@ -29,38 +30,48 @@ pub fn report_html<E: std::fmt::Display>(
     provenance: &Value,
     render_chart: impl Fn(&Chart) -> Result<String, E>,
 ) -> String {
-    report_html_with(report, model, provenance, render_chart, None)
+    report_html_with(report, model, provenance, render_chart, Extras::default())
 }
 
 /// Sensitivities of a suite and the parameters they are taken to, for a page's sensitivity section.
 pub type Sensitivities<'a> =
     (&'a crate::suspensions::design::SuiteSensitivity, &'a crate::suspensions::design::Parameters);
 
-/// [`report_html`] with a section of the `sensitivities` (`run --sensitivity`): per analysis and headline
-/// figure, the parameters with the largest effects as a bar chart.
+/// What a K&C page shows beyond the suite, each when given.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Extras<'a> {
+    /// A section of the sensitivities (`run --sensitivity`): per analysis and headline figure, the
+    /// parameters with the largest effects as a bar chart.
+    pub sensitivities: Option<Sensitivities<'a>>,
+    /// The targets of a TARGETS file judged on the run (`run --targets`), in the summary.
+    pub judged: Option<Judged<'a>>,
+}
+
+/// [`report_html`] with the `extras` given.
 pub fn report_html_with<E: std::fmt::Display>(
     report: &KcReport,
     model: &SuspensionFile,
     provenance: &Value,
     render_chart: impl Fn(&Chart) -> Result<String, E>,
-    sensitivities: Option<Sensitivities>,
+    extras: Extras,
 ) -> String {
     let render = |chart: &Chart| render_chart(chart).map_err(|e| e.to_string());
     let mut page = String::new();
     // Writing into a String cannot fail.
-    let _ = write_page(&mut page, report, model, provenance, &render, sensitivities);
+    let _ = write_page(&mut page, report, model, provenance, &render, extras);
     page
 }
 
-/// The page: the head, the warnings and failed analyses, the provenance beside the hardpoints, the
-/// contents, the geometry, each analysis, the sensitivities when given, the analyses not run, the model.
+/// The page: the head, the summary (the answer first), the warnings and failed analyses, the contents, the
+/// geometry, each analysis, the sensitivities when given, the analyses not run, the provenance beside the
+/// hardpoints, the model.
 fn write_page(
     out: &mut String,
     report: &KcReport,
     model: &SuspensionFile,
     provenance: &Value,
     render_chart: &dyn Fn(&Chart) -> Result<String, String>,
-    sensitivities: Option<Sensitivities>,
+    extras: Extras,
 ) -> std::fmt::Result {
     // The name is shown shortened; it is whole in the model below and in summary.json.
     let name = crate::plot::shown(&report.model, NAME_SHOWN);
@@ -73,22 +84,23 @@ fn write_page(
     );
     write_head(out, &format!("K&C report: {name}"), &lede)?;
 
-    // Warnings first: what the colleague must know before reading any figure.
+    // The answer first, then what the colleague must know before reading any figure further.
+    write_summary(out, report, extras.judged)?;
     write_warnings(out, report)?;
     write_failed(out, report)?;
-    writeln!(out, "<div class=\"columns\">")?;
-    write_provenance(out, provenance)?;
-    write_hardpoints(out, model)?;
-    writeln!(out, "</div>")?;
     write_contents(out, report)?;
     crate::view::write_geometry(out, report)?;
     for analysis in &report.analyses {
         write_analysis(out, analysis, report, render_chart)?;
     }
-    if let Some((suite, parameters)) = sensitivities {
+    if let Some((suite, parameters)) = extras.sensitivities {
         write_sensitivities(out, suite, parameters)?;
     }
     write_skipped(out, report)?;
+    writeln!(out, "<div class=\"columns\">")?;
+    write_provenance(out, provenance)?;
+    write_hardpoints(out, model)?;
+    writeln!(out, "</div>")?;
     write_model(out, model)?;
 
     writeln!(out, "</body>")?;

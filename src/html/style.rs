@@ -27,6 +27,18 @@ table.figures { min-width: 70%; }
 table.figures td.value { text-align: right; font-variant-numeric: tabular-nums; font-weight: 600; }
 table.figures td.error-estimate { color: #57606a; font-variant-numeric: tabular-nums; }
 td.reason { color: #9a6700; }
+td.error-estimate.over, td.over { color: #cf222e; }
+.verdict { font-size: 1.05em; }
+.summary-grid { display: grid; grid-template-columns: repeat(auto-fill, minmax(min(100%, 500px), 1fr)); gap: 4px 28px; }
+.summary-grid h3 { margin: 12px 0 2px; font-size: 1em; font-family: "DejaVu Sans Mono", Menlo, Consolas, monospace; }
+table.compact { width: 100%; font-size: 0.9em; margin: 0; }
+table.compact td { padding: 1px 6px; }
+table.compact td.value { white-space: nowrap; }
+tr.met td:first-child { border-left: 4px solid #1a7f37; }
+tr.missed td:first-child { border-left: 4px solid #cf222e; }
+tr.met td.aim { color: #1a7f37; }
+table.compact td.aim, table.compact td.over { padding-left: 18px; border-top: 0; }
+tr.missed td.aim { color: #cf222e; font-weight: 600; }
 table.warnings td:nth-child(2) { white-space: nowrap; }
 code { font-family: "DejaVu Sans Mono", Menlo, Consolas, monospace; font-size: 0.9em;
   background: #f6f8fa; padding: 0 3px; border-radius: 3px; }

@@ -174,8 +174,7 @@ impl AnalysisSensitivity {
     /// The values of the table's column `name` (`None` where a cell is empty, or there is no such column).
     pub fn column(&self, name: &str) -> Vec<Option<f64>> {
         let table = &self.report.table;
-        let c = table.columns.iter().position(|x| x == name);
-        table.rows.iter().map(|r| c.and_then(|c| r[c].number())).collect()
+        table.column(name).unwrap_or_else(|| vec![None; table.rows.len()])
     }
 
     /// The derivatives of column `name` with respect to parameter `k`, row by row.

@@ -465,7 +465,29 @@ pub fn read_targets(
     document: &Value,
     read_file: impl Fn(&str) -> Result<String, String>,
 ) -> Result<Targets, TargetsError> {
-    targets_in(text, document, read_file)
+    read_targets_as(Reading::ToTune, text, origin, document, read_file)
+}
+
+/// What a TARGETS file is read for: to tune, which moves its free numbers, or to judge a run against its
+/// targets (`run --targets`), which moves nothing, so that `free` may be left out (free numbers given are
+/// still checked against the model).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Reading {
+    /// For `tune`: `free` names at least one number.
+    ToTune,
+    /// For judging a run: `free` may be left out.
+    ToJudge,
+}
+
+/// [`read_targets`], read for `reading`.
+pub fn read_targets_as(
+    reading: Reading,
+    text: &str,
+    origin: &str,
+    document: &Value,
+    read_file: impl Fn(&str) -> Result<String, String>,
+) -> Result<Targets, TargetsError> {
+    targets_in(text, document, read_file, reading)
         .map_err(|refusal| TargetsError { origin: origin.into(), refusal: Box::new(refusal) })
 }
 
@@ -473,13 +495,18 @@ fn targets_in(
     text: &str,
     document: &Value,
     read_file: impl Fn(&str) -> Result<String, String>,
+    reading: Reading,
 ) -> Result<Targets, TargetsRefusal> {
     use TargetsRefusal as R;
     let root = super::keys::read_json(text)?;
     let object = root.as_object().ok_or(R::NotObject)?;
     only(object, &["free", "targets", "constraints", "steps"], "the top level")?;
     let steps = steps(object)?;
-    let free = free_numbers(object, document)?;
+    let free = if reading == Reading::ToJudge && !object.contains_key("free") {
+        Vec::new()
+    } else {
+        free_numbers(object, document)?
+    };
     let listed = object.get("targets").and_then(Value::as_array).ok_or(R::NoTargetList)?;
     if listed.is_empty() {
         return Err(R::NoTargets);
@@ -671,4 +698,29 @@ fn constraint(k: usize, c: &Value, document: &Value) -> Result<Constraint, Targe
     } else {
         Err(R::NoPackaging { key })
     }
+}
+
+/// The value of `column` at `at` from the table's rows by the cubic through the four nearest rows (fewer
+/// when the table has fewer): its weights on the rows, which also carry the rows' derivatives. `None`
+/// outside the rows' range.
+pub(super) fn interpolation(t: &[f64], at: f64) -> Option<Vec<(usize, f64)>> {
+    let n = t.len();
+    let (lo, hi) = t.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+    if n == 0 || !(lo..=hi).contains(&at) {
+        return None;
+    }
+    if let Some(k) = t.iter().position(|&v| v == at) {
+        return Some(vec![(k, 1.0)]);
+    }
+    let i = t.windows(2).position(|w| (w[0] - at) * (w[1] - at) < 0.0)?;
+    let first = i.saturating_sub(1).min(n.saturating_sub(4));
+    let near: Vec<usize> = (first..(first + 4).min(n)).collect();
+    Some(
+        near.iter()
+            .map(|&j| {
+                let w = near.iter().filter(|&&m| m != j).map(|&m| (at - t[m]) / (t[j] - t[m])).product();
+                (j, w)
+            })
+            .collect(),
+    )
 }

@@ -19,7 +19,7 @@
 use super::parameter::hardpoint_pointer;
 use super::parameter::{ParameterError, Parameters};
 use super::sensitivity::{analysis_sensitivity, AnalysisSensitivity, NoDerivative, SensitivityError};
-use super::targets::{Aim, Constraint, Target, Targets};
+use super::targets::{interpolation, Aim, Constraint, Target, Targets};
 use crate::kc::{AnalysisReport, Cell, Chart, Scale, Series, Settings, Table, YAxis};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
@@ -98,31 +98,6 @@ impl Evaluation {
         let n = self.x.len();
         (0..n).map(|k| self.residuals.iter().zip(&self.jacobian).map(|(r, row)| r * row[k]).sum()).collect()
     }
-}
-
-/// The value of `column` at `at` from the table's rows by the cubic through the four nearest rows (fewer
-/// when the table has fewer): its weights on the rows, which also carry the rows' derivatives. `None`
-/// outside the rows' range.
-fn interpolation(t: &[f64], at: f64) -> Option<Vec<(usize, f64)>> {
-    let n = t.len();
-    let (lo, hi) = t.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
-    if n == 0 || !(lo..=hi).contains(&at) {
-        return None;
-    }
-    if let Some(k) = t.iter().position(|&v| v == at) {
-        return Some(vec![(k, 1.0)]);
-    }
-    let i = t.windows(2).position(|w| (w[0] - at) * (w[1] - at) < 0.0)?;
-    let first = i.saturating_sub(1).min(n.saturating_sub(4));
-    let near: Vec<usize> = (first..(first + 4).min(n)).collect();
-    Some(
-        near.iter()
-            .map(|&j| {
-                let w = near.iter().filter(|&&m| m != j).map(|&m| (at - t[m]) / (t[j] - t[m])).product();
-                (j, w)
-            })
-            .collect(),
-    )
 }
 
 /// Why the targets could not be evaluated on a model: they ask what its analyses do not give (a figure or
@@ -479,7 +454,7 @@ fn point(document: &Value, name: &str, pointers: &[String]) -> Result<([f64; 3],
     Ok(([c(0), c(1), c(2)], which))
 }
 
-fn linearise(c: &Constraint, document: &Value, pointers: &[String]) -> Result<Linearised, NotGiven> {
+pub(super) fn linearise(c: &Constraint, document: &Value, pointers: &[String]) -> Result<Linearised, NotGiven> {
     let n = pointers.len();
     let rates_of = |which: &[Option<usize>], along: [f64; 3]| -> Vec<f64> {
         which.iter().map(|w| w.map_or(0.0, |i| along[i])).collect()

@@ -269,7 +269,7 @@ pub(super) fn limit_warning(analysis: Analysis, limit: &SweepLimit, last: f64) -
 pub(super) fn over_tolerance(f: &Figure, relative: f64) -> Option<String> {
     let (v, e) = (f.value?, f.error?);
     let ratio = e / v.abs();
-    (e > relative * v.abs() && f.shows(e)).then(|| {
+    f.estimate_matters(relative).then(|| {
         if ratio < 10.0 {
             format!("{} ±{:.1} %", f.label, 100.0 * ratio)
         } else {

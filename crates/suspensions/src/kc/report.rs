@@ -83,6 +83,12 @@ impl<'a, R> Column<'a, R> {
 }
 
 impl Table {
+    /// The numbers of the column `name` (`None` where a cell is empty), or `None` when there is no such column.
+    pub fn column(&self, name: &str) -> Option<Vec<Option<f64>>> {
+        let c = self.columns.iter().position(|x| x == name)?;
+        Some(self.rows.iter().map(|r| r.get(c).and_then(Cell::number)).collect())
+    }
+
     /// The table `name` of `rows`, one column per entry of `columns`.
     pub(crate) fn of_columns<'r, R: 'r>(
         name: &str,
@@ -188,6 +194,16 @@ impl Figure {
     /// units (more than half its last digit).
     pub fn shows(&self, e: f64) -> bool {
         e * self.unit.shown().factor > 0.5 * 10f64.powi(-(self.decimals as i32))
+    }
+
+    /// Whether its error estimate matters to a reader: over `relative` of its value (the tolerance on
+    /// figures) and showing in its printed decimals. A figure with no value or no estimate has none that
+    /// matters.
+    pub fn estimate_matters(&self, relative: f64) -> bool {
+        match (self.value, self.error) {
+            (Some(v), Some(e)) => e > relative * v.abs() && self.shows(e),
+            _ => false,
+        }
     }
 
     /// The figure as written under `units`: its unit, value, error estimate and decimals.

@@ -1,0 +1,182 @@
+//! A run judged against a TARGETS file (`run --targets`): each figure target, each point of a curve
+//! target and each packaging constraint met or not, counted as `tune` counts them (a miss within the
+//! tolerance, a constraint within its bounds), on the model as it is. Nothing is moved.
+
+use super::targets::{interpolation, Aim, Constraint, Target, Targets};
+use super::tune::linearise;
+use crate::kc::report::Column;
+use crate::kc::{AnalysisReport, Cell, KcReport, Table};
+use serde_json::Value;
+
+/// One point of a target judged: a figure target is one point, a curve target one per point it gives.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TargetPoint<'a> {
+    /// The target.
+    pub target: &'a Target,
+    /// The load parameter of a curve target's point (the analysis's own unit); `None` for a figure.
+    pub at: Option<f64>,
+    /// What the target asks, in its own unit (a figure's unit as written under the default units, a
+    /// column's unit).
+    pub aim: f64,
+    /// What the run gives there, in the same unit, or why it gives nothing to judge.
+    pub reached: Result<f64, String>,
+}
+
+impl TargetPoint<'_> {
+    /// Whether the run meets the point: its miss within the target's tolerance.
+    pub fn met(&self) -> bool {
+        matches!(self.reached, Ok(r) if (r - self.aim).abs() <= self.target.tolerance)
+    }
+
+    /// The miss over the tolerance (1 at the tolerance's edge), when the run gives a value.
+    pub fn miss_over_tolerance(&self) -> Option<f64> {
+        self.reached.as_ref().ok().map(|r| (r - self.aim).abs() / self.target.tolerance)
+    }
+}
+
+/// A packaging constraint of the TARGETS file judged on the model file: its value and bounds (m), or why
+/// it could not be read.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConstraintCheck<'a> {
+    /// The constraint.
+    pub constraint: &'a Constraint,
+    /// Its value and allowed range on the model as it is (m).
+    pub reached: Result<(f64, f64, f64), String>,
+}
+
+impl ConstraintCheck<'_> {
+    /// Whether the model keeps it.
+    pub fn met(&self) -> bool {
+        matches!(self.reached, Ok((v, min, max)) if (min..=max).contains(&v))
+    }
+}
+
+/// The targets of `targets` judged on the suite `report` of the model file `document`, point by point, in
+/// the file's order; and its packaging constraints.
+pub fn judge<'a>(
+    report: &KcReport,
+    document: &Value,
+    targets: &'a Targets,
+) -> (Vec<TargetPoint<'a>>, Vec<ConstraintCheck<'a>>) {
+    let mut points = Vec::new();
+    for target in &targets.targets {
+        let analysis = report.analyses.iter().find(|a| a.analysis == target.analysis);
+        match &target.aim {
+            Aim::Figure { key, value } => {
+                let reached = analysis.ok_or_else(|| not_run(report, target)).and_then(|a| figure(a, key));
+                points.push(TargetPoint { target, at: None, aim: *value, reached });
+            }
+            Aim::Curve { column, points: aims } => {
+                for &(at, aim) in aims {
+                    let reached = analysis.ok_or_else(|| not_run(report, target)).and_then(|a| curve(a, column, at));
+                    points.push(TargetPoint { target, at: Some(at), aim, reached });
+                }
+            }
+        }
+    }
+    let constraints = targets
+        .constraints
+        .iter()
+        .map(|c| ConstraintCheck {
+            constraint: c,
+            reached: linearise(c, document, &[]).map(|l| (l.value, l.min, l.max)).map_err(|e| e.to_string()),
+        })
+        .collect();
+    (points, constraints)
+}
+
+/// Why the analysis of `target` gave nothing: failed (with its error), or not run.
+fn not_run(report: &KcReport, target: &Target) -> String {
+    let name = target.analysis.name();
+    match report.failed.iter().find(|f| f.analysis == target.analysis) {
+        Some(f) => format!("{name} failed: {}", f.reason),
+        None => format!("{name} was not run"),
+    }
+}
+
+/// The figure `key` of `a` in the unit it is written in under the default units, as a target gives it.
+fn figure(a: &AnalysisReport, key: &str) -> Result<f64, String> {
+    let f = a.figures.iter().find(|f| f.key == key).ok_or_else(|| {
+        let has: Vec<&str> = a.figures.iter().map(|f| f.key.as_str()).collect();
+        format!("{} has no figure '{key}' (it has {})", a.analysis.name(), has.join(", "))
+    })?;
+    let value = f.value.ok_or_else(|| f.reason.clone().unwrap_or_default())?;
+    Ok(value * f.unit.shown().factor)
+}
+
+/// The column `column` of `a`'s table at the load parameter `at`, by the interpolation `tune` reads curves
+/// with.
+fn curve(a: &AnalysisReport, column: &str, at: f64) -> Result<f64, String> {
+    let table = &a.table;
+    let values = table.column(column).ok_or_else(|| {
+        format!("{} has no column '{column}' (it has {})", a.analysis.name(), table.columns.join(", "))
+    })?;
+    let along: Vec<f64> =
+        table.column(&table.columns[0]).into_iter().flatten().map(|v| v.unwrap_or(f64::NAN)).collect();
+    let weights = interpolation(&along, at).ok_or_else(|| {
+        let (lo, hi) = along.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+        format!("{at} is outside the rows run, {lo} to {hi}: run the analysis over a range that holds it")
+    })?;
+    weights.iter().try_fold(0.0, |sum, &(j, w)| {
+        let v = values[j].ok_or_else(|| format!("the cell of '{column}' at {} is empty", along[j]))?;
+        Ok(sum + w * v)
+    })
+}
+
+/// A row of the targets judged: a target's point or a packaging constraint.
+enum Row<'r, 'a> {
+    Point(&'r TargetPoint<'a>),
+    Constraint(&'r ConstraintCheck<'a>),
+}
+
+impl Row<'_, '_> {
+    fn met(&self) -> bool {
+        match self {
+            Row::Point(p) => p.met(),
+            Row::Constraint(c) => c.met(),
+        }
+    }
+
+    fn not_judged_because(&self) -> Option<&str> {
+        match self {
+            Row::Point(p) => p.reached.as_ref().err(),
+            Row::Constraint(c) => c.reached.as_ref().err(),
+        }
+        .map(String::as_str)
+    }
+}
+
+/// The targets judged as `targets.csv` lists them: a row per target point (its label, the load parameter
+/// of a curve's point, the aim and tolerance in the target's unit) and per packaging constraint (its
+/// bounds, m); what the run reached, met as 1 or 0, and why a row could not be judged.
+pub fn judged_table(points: &[TargetPoint], constraints: &[ConstraintCheck]) -> Table {
+    let point = |r: &Row, f: &dyn Fn(&TargetPoint) -> Option<f64>| match r {
+        Row::Point(p) => Cell::from(f(p)),
+        Row::Constraint(_) => Cell::Empty,
+    };
+    let bound = |r: &Row, f: &dyn Fn(&(f64, f64, f64)) -> f64| match r {
+        Row::Constraint(c) => Cell::from(c.reached.as_ref().ok().map(f)),
+        Row::Point(_) => Cell::Empty,
+    };
+    let columns: [Column<Row>; 9] = [
+        Column::new("target", |r: &Row| {
+            Cell::Text(match r {
+                Row::Point(p) => p.target.label.clone(),
+                Row::Constraint(c) => c.constraint.said(),
+            })
+        }),
+        Column::new("at", move |r: &Row| point(r, &|p| p.at)),
+        Column::new("aim", move |r: &Row| point(r, &|p| Some(p.aim))),
+        Column::new("tolerance", move |r: &Row| point(r, &|p| Some(p.target.tolerance))),
+        Column::new("min_m", move |r: &Row| bound(r, &|b| b.1)),
+        Column::new("max_m", move |r: &Row| bound(r, &|b| b.2)),
+        Column::new("reached", move |r: &Row| match r {
+            Row::Point(p) => Cell::from(p.reached.as_ref().ok().copied()),
+            Row::Constraint(c) => Cell::from(c.reached.as_ref().ok().map(|b| b.0)),
+        }),
+        Column::new("met", |r: &Row| Cell::from(if r.met() { 1.0 } else { 0.0 })),
+        Column::new("not_judged_because", |r: &Row| Cell::Text(r.not_judged_because().unwrap_or("").to_string())),
+    ];
+    let rows: Vec<Row> = points.iter().map(Row::Point).chain(constraints.iter().map(Row::Constraint)).collect();
+    Table::of_columns("targets", &columns, &rows)
+}

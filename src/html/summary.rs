@@ -1,0 +1,194 @@
+//! The K&C report's first section, the answer: what the run found in a sentence (targets met, warnings,
+//! estimates over the tolerance), the targets judged when a TARGETS file was given (`run --targets`), and
+//! every analysis's headline figures side by side, each linked to its section.
+
+use crate::markup::{attr, text};
+use crate::suspensions::design::judge::{ConstraintCheck, TargetPoint};
+use crate::suspensions::design::targets::Aim;
+use crate::suspensions::kc::{plain, significant, AnalysisReport, KcReport};
+use std::fmt::Write;
+
+/// A run's targets judged: each target's points and each packaging constraint.
+#[derive(Debug, Clone, Copy)]
+pub struct Judged<'a> {
+    /// Every point of every target, in the TARGETS file's order.
+    pub points: &'a [TargetPoint<'a>],
+    /// Every packaging constraint.
+    pub constraints: &'a [ConstraintCheck<'a>],
+}
+
+/// The section "Summary" of `report`, with the targets `judged` when given.
+pub(super) fn write_summary(out: &mut String, report: &KcReport, judged: Option<Judged>) -> std::fmt::Result {
+    writeln!(out, "<section id=\"summary\">")?;
+    writeln!(out, "<h2>Summary</h2>")?;
+    write_verdict(out, report, judged)?;
+    if let Some(judged) = judged {
+        write_targets(out, judged)?;
+    }
+    writeln!(out, "<div class=\"summary-grid\">")?;
+    for a in &report.analyses {
+        write_card(out, a, report.settings.tolerance.relative, judged)?;
+    }
+    writeln!(out, "</div>")?;
+    writeln!(out, "</section>")
+}
+
+/// The run's answer in a sentence: the targets met, the warnings, the estimates over the tolerance.
+fn write_verdict(out: &mut String, report: &KcReport, judged: Option<Judged>) -> std::fmt::Result {
+    let mut said = Vec::new();
+    if let Some(j) = judged {
+        let missed = j.points.iter().filter(|p| !p.met()).count() + j.constraints.iter().filter(|c| !c.met()).count();
+        let all = j.points.len() + j.constraints.len();
+        said.push(if missed == 0 {
+            format!("<span class=\"ok\">every target met</span> ({all} points and constraints)")
+        } else {
+            format!("<span class=\"bad\">{missed} of {all} target points and constraints not met</span>")
+        });
+    }
+    let warnings = report.all_warnings().count();
+    said.push(match warnings {
+        0 => "<span class=\"ok\">no warnings</span>".to_string(),
+        1 => "<a href=\"#warnings\" class=\"bad\">1 warning</a>".to_string(),
+        n => format!("<a href=\"#warnings\" class=\"bad\">{n} warnings</a>"),
+    });
+    let relative = report.settings.tolerance.relative;
+    let over: usize =
+        report.analyses.iter().map(|a| a.figures.iter().filter(|f| f.estimate_matters(relative)).count()).sum();
+    said.push(if over == 0 {
+        format!(
+            "every figure's error estimate within {} % of it (hover over a figure for its estimate)",
+            significant(relative * 100.0, 2)
+        )
+    } else {
+        let figures = if over == 1 { "figure" } else { "figures" };
+        format!("<span class=\"bad\">{over} {figures} with an error estimate over the tolerance</span>")
+    });
+    if !report.failed.is_empty() {
+        said.push(format!("<a href=\"#failed\" class=\"bad\">{} analyses failed</a>", report.failed.len()));
+    }
+    writeln!(out, "<p class=\"verdict\">{}.</p>", said.join("; "))
+}
+
+/// The table of the targets judged: per point, the target, where, the aim with its tolerance, what the run
+/// reached, and met or not; then the packaging constraints.
+fn write_targets(out: &mut String, judged: Judged) -> std::fmt::Result {
+    writeln!(out, "<table class=\"targets\">")?;
+    writeln!(out, "<thead><tr><th>target</th><th>at</th><th>aim</th><th>reached</th><th></th></tr></thead><tbody>")?;
+    for p in judged.points {
+        let t = p.target;
+        let at = p.at.map_or(String::new(), plain);
+        let aim = format!("{} ± {}", significant(p.aim, 4), significant(t.tolerance, 2));
+        let (reached, mark) = match &p.reached {
+            Ok(r) if p.met() => (significant(*r, 4), "<td class=\"ok\">met</td>".to_string()),
+            Ok(r) => (significant(*r, 4), "<td class=\"bad\">not met</td>".to_string()),
+            Err(why) => (String::new(), format!("<td class=\"bad\">not judged: {}</td>", text(why))),
+        };
+        let what = match &t.aim {
+            Aim::Figure { key, .. } => format!("{} {key}", t.analysis.name()),
+            Aim::Curve { column, .. } => format!("{} {column}", t.analysis.name()),
+        };
+        writeln!(
+            out,
+            "<tr><td title=\"{}\">{}</td><td>{}</td><td>{}</td><td>{}</td>{mark}</tr>",
+            attr(&t.label),
+            text(&what),
+            text(&at),
+            text(&aim),
+            text(&reached)
+        )?;
+    }
+    for c in judged.constraints {
+        let (reached, aim, mark) = match &c.reached {
+            Ok((v, min, max)) => {
+                let mm = |v: f64| if v.is_finite() { significant(v * 1e3, 4) } else { "∞".into() };
+                let mark = if c.met() { "<td class=\"ok\">met</td>" } else { "<td class=\"bad\">not met</td>" };
+                (format!("{} mm", mm(*v)), format!("{} to {} mm", mm(*min), mm(*max)), mark.to_string())
+            }
+            Err(why) => (String::new(), String::new(), format!("<td class=\"bad\">not judged: {}</td>", text(why))),
+        };
+        writeln!(
+            out,
+            "<tr><td>{}</td><td></td><td>{}</td><td>{}</td>{mark}</tr>",
+            text(&c.constraint.said()),
+            text(&aim),
+            text(&reached)
+        )?;
+    }
+    writeln!(out, "</tbody></table>")
+}
+
+/// One analysis's card: its name linked to its section, and its headline figures with their values and
+/// units, each figure a target names marked met or not.
+fn write_card(out: &mut String, a: &AnalysisReport, relative: f64, judged: Option<Judged>) -> std::fmt::Result {
+    let name = a.analysis.name();
+    writeln!(out, "<div class=\"card\">")?;
+    writeln!(out, "<h3><a href=\"#{}\">{}</a></h3>", attr(name), text(name))?;
+    if a.figures.is_empty() {
+        writeln!(out, "<p class=\"note\">no headline figures; its curves are in its section</p>")?;
+        return writeln!(out, "</div>");
+    }
+    writeln!(out, "<table class=\"figures compact\"><tbody>")?;
+    for f in &a.figures {
+        let w = f.written(a.units);
+        let targeted: Vec<&TargetPoint> = judged
+            .into_iter()
+            .flat_map(|j| j.points)
+            .filter(|p| {
+                p.target.analysis == a.analysis && matches!(&p.target.aim, Aim::Figure { key, .. } if *key == f.key)
+            })
+            .collect();
+        // A figure a target names says its aim and whether it is met; an estimate that matters is shown.
+        let (class, aside) = match targeted.as_slice() {
+            [] => ("", String::new()),
+            points => {
+                let met = points.iter().all(|p| p.met());
+                let aims: Vec<String> = points
+                    .iter()
+                    .map(|p| format!("{} ± {}", significant(p.aim, 4), significant(p.target.tolerance, 2)))
+                    .collect();
+                let verdict = if met { "met" } else { "not met" };
+                (
+                    if met { " class=\"met\"" } else { " class=\"missed\"" },
+                    format!("target {}: {verdict}", aims.join(", ")),
+                )
+            }
+        };
+        let unit = if w.unit == "-" { "" } else { w.unit };
+        let estimate = match w.error {
+            Some(e) if f.estimate_matters(relative) => format!("± {}", significant(e, 2)),
+            Some(e) => format!("± {} {unit}", significant(e, 2)),
+            None => String::new(),
+        };
+        let over = f.estimate_matters(relative);
+        // What a figure's row adds, on a line of its own beneath it: its target, an estimate that matters.
+        let aside = match (over, aside.is_empty()) {
+            (true, true) => format!("<tr class=\"aside\"><td colspan=\"3\" class=\"over\">error estimate {}</td></tr>", text(&estimate)),
+            (true, false) => format!(
+                "<tr{class}><td colspan=\"3\" class=\"aim\">{}; <span class=\"over\">error estimate {}</span></td></tr>",
+                text(&aside),
+                text(&estimate)
+            ),
+            (false, false) => format!("<tr{class}><td colspan=\"3\" class=\"aim\">{}</td></tr>", text(&aside)),
+            (false, true) => String::new(),
+        };
+        match w.value {
+            Some(v) => writeln!(
+                out,
+                "<tr{class}><td>{}</td><td class=\"value\" title=\"{}\">{}</td><td>{}</td></tr>{aside}",
+                text(&f.label),
+                attr(&estimate),
+                w.number(v),
+                text(unit)
+            )?,
+            None => writeln!(
+                out,
+                "<tr{class}><td>{}</td><td class=\"value\" title=\"{}\">n/a</td><td>{}</td></tr>{aside}",
+                text(&f.label),
+                attr(f.reason.as_deref().unwrap_or("")),
+                text(unit)
+            )?,
+        }
+    }
+    writeln!(out, "</tbody></table>")?;
+    writeln!(out, "</div>")
+}
