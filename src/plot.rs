@@ -75,17 +75,23 @@ const WIDTH: u32 = 820;
 const PLOT_HEIGHT: u32 = 440;
 const OUTER_MARGIN: u32 = 10;
 /// Room above the plotting area for the "design" label.
-const MARKER_ROOM: u32 = 22;
-const TITLE_SIZE: f64 = 20.0;
-const SUBTITLE_SIZE: f64 = 15.0;
-const TICK_SIZE: f64 = 14.0;
-const AXIS_LABEL_SIZE: f64 = 15.0;
-const LEGEND_SIZE: f64 = 14.0;
-const NOTE_SIZE: f64 = 12.0;
-const LEGEND_ROW: u32 = 20;
+const MARKER_ROOM: u32 = 28;
+// Text sizes as plotters takes them (its SVG writes 1/1.24 of each as the font size), chosen so that a chart
+// shown two to a row in the report, at about 0.65 of its width, has no label under 10 px (the layout test
+// in `xtask/src/browser.rs` holds it).
+const TITLE_SIZE: f64 = 23.0;
+const SUBTITLE_SIZE: f64 = 19.0;
+const TICK_SIZE: f64 = 19.0;
+const AXIS_LABEL_SIZE: f64 = 20.0;
+const LEGEND_SIZE: f64 = 19.0;
+const NOTE_SIZE: f64 = 19.0;
+const LEGEND_ROW: u32 = 28;
 /// Space between the horizontal axis label and the legend.
 const LEGEND_GAP: u32 = 8;
 const SWATCH: i32 = 28;
+/// A right-axis curve's dashes and gaps (px).
+const DASH: u32 = 9;
+const GAP: u32 = 6;
 /// Series with at most this many drawn points also get a dot at each point, so a sparse or single-point
 /// curve is visible.
 const MARKED_POINTS: usize = 20;
@@ -640,8 +646,11 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, layout: &Layout) -> Re
         for run in &c.runs {
             let line = LineSeries::new(run.iter().copied(), c.colour.stroke_width(2));
             let dots = run.iter().filter(|_| c.marked).map(|&p| Circle::new(p, 3, c.colour.filled()));
+            // A right-axis curve is dashed: where the two axes' autoscaled curves fall on one another (two
+            // quantities proportional to the load), the left one shows between its dashes.
             if c.on_right {
-                chart.draw_secondary_series(line).map_err(draw_error)?;
+                let dashed = DashedLineSeries::new(run.iter().copied(), DASH, GAP, c.colour.stroke_width(3));
+                chart.draw_secondary_series(dashed).map_err(draw_error)?;
                 chart.draw_secondary_series(dots).map_err(draw_error)?;
             } else {
                 chart.draw_series(line).map_err(draw_error)?;
@@ -679,8 +688,17 @@ fn draw_legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, layout: &Layou
         for &(k, offset) in row {
             let c = &layout.curves[k];
             let x0 = layout.legend_x + offset;
-            area.draw(&PathElement::new(vec![(x0, y), (x0 + SWATCH, y)], c.colour.stroke_width(2)))
-                .map_err(draw_error)?;
+            if c.on_right {
+                let (dash, step) = (DASH as i32, (DASH + GAP) as i32);
+                for start in (x0..x0 + SWATCH).step_by(step as usize) {
+                    let end = (start + dash).min(x0 + SWATCH);
+                    area.draw(&PathElement::new(vec![(start, y), (end, y)], c.colour.stroke_width(3)))
+                        .map_err(draw_error)?;
+                }
+            } else {
+                area.draw(&PathElement::new(vec![(x0, y), (x0 + SWATCH, y)], c.colour.stroke_width(2)))
+                    .map_err(draw_error)?;
+            }
             if c.marked {
                 area.draw(&Circle::new((x0 + SWATCH / 2, y), 3, c.colour.filled())).map_err(draw_error)?;
             }

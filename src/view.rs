@@ -135,6 +135,10 @@ fn mm(metres: f64) -> f64 {
 const VIEW_WIDTH: f64 = 380.0;
 const VIEW_MAX_HEIGHT: f64 = 420.0;
 const LABEL_ROOM: f64 = 44.0;
+/// Room right of and above the grid, for the half of a tick label centred on the last grid line.
+const EDGE_ROOM: f64 = 18.0;
+/// The grid labels' size (px of the view, drawn at about its own size in the report).
+const GRID_FONT: f64 = 12.0;
 const PAD_M: f64 = 0.03;
 
 /// A grid step (m) giving four to ten lines over `span` (m).
@@ -212,8 +216,9 @@ impl Canvas {
             return None;
         }
         let (lo, hi) = ((lo.0 - PAD_M, lo.1 - PAD_M), (hi.0 + PAD_M, hi.1 + PAD_M));
-        let scale = ((VIEW_WIDTH - LABEL_ROOM) / (hi.0 - lo.0)).min((VIEW_MAX_HEIGHT - LABEL_ROOM) / (hi.1 - lo.1));
-        let (w, h) = ((hi.0 - lo.0) * scale + LABEL_ROOM, (hi.1 - lo.1) * scale + LABEL_ROOM);
+        let room = LABEL_ROOM + EDGE_ROOM;
+        let scale = ((VIEW_WIDTH - room) / (hi.0 - lo.0)).min((VIEW_MAX_HEIGHT - room) / (hi.1 - lo.1));
+        let (w, h) = ((hi.0 - lo.0) * scale + room, (hi.1 - lo.1) * scale + room);
         Some(Canvas { lo, hi, scale, w, h })
     }
 
@@ -224,7 +229,7 @@ impl Canvas {
 
     /// The SVG's y of the vertical coordinate `v` (up in the model, down in the SVG).
     fn y(&self, v: f64) -> f64 {
-        (self.hi.1 - v) * self.scale
+        EDGE_ROOM + (self.hi.1 - v) * self.scale
     }
 
     /// The SVG path through `points` projected, closed if `closed`.
@@ -246,16 +251,16 @@ fn grid_svg(out: &mut String, canvas: &Canvas, projection: Projection) -> Result
     let Canvas { lo, hi, w, h, .. } = *canvas;
     let [(_, su, nu), (_, sv, nv)] = projection.axes();
     let step = grid_step((hi.0 - lo.0).max(hi.1 - lo.1));
-    writeln!(out, r##"<g stroke="#e4e4e4" stroke-width="1" font-size="10" fill="#666">"##)?;
+    writeln!(out, r##"<g stroke="#e4e4e4" stroke-width="1" font-size="{GRID_FONT}" fill="#666">"##)?;
     let mut k = (lo.0 / step).ceil() as i64;
     while (k as f64) * step <= hi.0 {
         let u = k as f64 * step;
-        writeln!(out, r#"<line x1="{0:.1}" y1="0" x2="{0:.1}" y2="{1:.1}"/>"#, canvas.x(u), h - LABEL_ROOM)?;
+        writeln!(out, r#"<line x1="{0:.1}" y1="{EDGE_ROOM}" x2="{0:.1}" y2="{1:.1}"/>"#, canvas.x(u), h - LABEL_ROOM)?;
         writeln!(
             out,
             r#"<text x="{:.1}" y="{:.1}" text-anchor="middle" stroke="none">{:.0}</text>"#,
             canvas.x(u),
-            h - LABEL_ROOM + 13.0,
+            h - LABEL_ROOM + GRID_FONT + 3.0,
             mm(su * u)
         )?;
         k += 1;
@@ -263,12 +268,18 @@ fn grid_svg(out: &mut String, canvas: &Canvas, projection: Projection) -> Result
     let mut k = (lo.1 / step).ceil() as i64;
     while (k as f64) * step <= hi.1 {
         let v = k as f64 * step;
-        writeln!(out, r#"<line x1="{:.1}" y1="{1:.1}" x2="{2:.1}" y2="{1:.1}"/>"#, LABEL_ROOM, canvas.y(v), w)?;
+        writeln!(
+            out,
+            r#"<line x1="{:.1}" y1="{1:.1}" x2="{2:.1}" y2="{1:.1}"/>"#,
+            LABEL_ROOM,
+            canvas.y(v),
+            w - EDGE_ROOM
+        )?;
         writeln!(
             out,
             r#"<text x="{:.1}" y="{:.1}" text-anchor="end" stroke="none">{:.0}</text>"#,
             LABEL_ROOM - 4.0,
-            canvas.y(v) + 3.5,
+            canvas.y(v) + 0.35 * GRID_FONT,
             mm(sv * v)
         )?;
         k += 1;
@@ -276,13 +287,13 @@ fn grid_svg(out: &mut String, canvas: &Canvas, projection: Projection) -> Result
     writeln!(
         out,
         r#"<text x="{:.1}" y="{:.1}" text-anchor="middle" stroke="none">{nu} [mm]</text>"#,
-        LABEL_ROOM + (w - LABEL_ROOM) / 2.0,
-        h - 8.0
+        LABEL_ROOM + (w - LABEL_ROOM - EDGE_ROOM) / 2.0,
+        h - 6.0
     )?;
     writeln!(
         out,
-        r#"<text x="10" y="{:.1}" text-anchor="middle" stroke="none" transform="rotate(-90 10 {0:.1})">{nv} [mm]</text>"#,
-        (h - LABEL_ROOM) / 2.0
+        r#"<text x="12" y="{:.1}" text-anchor="middle" stroke="none" transform="rotate(-90 12 {0:.1})">{nv} [mm]</text>"#,
+        (EDGE_ROOM + h - LABEL_ROOM) / 2.0
     )?;
     writeln!(out, "</g>")?;
     Ok(step)

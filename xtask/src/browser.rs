@@ -110,6 +110,25 @@ pub fn loaded(chromium: &Path, page: &Path, query: &str, profile: &Path) -> Resu
     Ok((dom, console))
 }
 
+/// `page` as the browser leaves it once its scripts have run in a `window` of pixels, and its console's
+/// lines, as [`loaded`] gives them.
+#[cfg(test)]
+pub fn loaded_in(
+    chromium: &Path,
+    page: &Path,
+    window: (u32, u32),
+    profile: &Path,
+) -> Result<(String, Vec<String>), String> {
+    let extra = [
+        format!("--virtual-time-budget={SCRIPT_TIME_MS}"),
+        format!("--window-size={},{}", window.0, window.1),
+        "--dump-dom".to_string(),
+    ];
+    let (dom, log) = run(chromium, page, "", &extra, profile)?;
+    let console = log.lines().filter(|l| l.contains(":CONSOLE(") || l.contains("Uncaught")).map(String::from).collect();
+    Ok((dom, console))
+}
+
 /// Has Chromium draw `page` (with `query`) in a `window` of pixels and save it as `picture`.
 pub fn screenshot(
     chromium: &Path,
@@ -213,6 +232,87 @@ mod tests {
                 assert_eq!(state["view"], view, "{name}{query}");
             }
         }
+    }
+
+    /// A script the layout test adds to a report's page: it measures, as the browser lays the page out,
+    /// every non-empty text of every SVG shown (the plots and the geometry's projections) and writes what
+    /// it finds as JSON into `<output id="layout-check">`: a label whose box leaves its picture (cut off),
+    /// two labels of one picture whose boxes overlap, the smallest label's size in CSS pixels, and whether
+    /// the page is wider than the window (a table or chart that does not fit).
+    const LAYOUT_CHECK: &str = r#"<script>//<![CDATA[
+addEventListener('load', () => {
+  const cut = [], overlaps = [];
+  let smallest = Infinity, smallestLabel = '', labels = 0;
+  document.querySelectorAll('svg').forEach((svg, i) => {
+    const box = svg.getBoundingClientRect();
+    const texts = Array.from(svg.querySelectorAll('text')).filter(t => t.textContent.trim() !== '');
+    if (box.width === 0 || texts.length === 0) return;
+    const picture = (svg.querySelector('title') || {}).textContent || (svg.closest('[id]') || {}).id || ('svg ' + i);
+    const view = svg.viewBox && svg.viewBox.baseVal && svg.viewBox.baseVal.width ? svg.viewBox.baseVal.width : box.width;
+    const scale = box.width / view;
+    const rects = texts.map(t => t.getBoundingClientRect());
+    texts.forEach((t, k) => {
+      const r = rects[k];
+      labels += 1;
+      const size = parseFloat(getComputedStyle(t).fontSize) * scale;
+      if (size < smallest) { smallest = size; smallestLabel = picture + ': ' + t.textContent.trim() + ' (' + box.width + ' px wide, ' + innerWidth + ')'; }
+      if (r.left < box.left - 1 || r.right > box.right + 1 || r.top < box.top - 1 || r.bottom > box.bottom + 1) {
+        cut.push(picture + ': ' + t.textContent.trim());
+      }
+      for (let m = 0; m < k; m++) {
+        const q = rects[m];
+        const w = Math.min(r.right, q.right) - Math.max(r.left, q.left);
+        const h = Math.min(r.bottom, q.bottom) - Math.max(r.top, q.top);
+        if (w > 1 && h > 1) overlaps.push(picture + ': ' + texts[m].textContent.trim() + ' / ' + t.textContent.trim());
+      }
+    });
+  });
+  const out = document.createElement('output');
+  out.id = 'layout-check';
+  out.textContent = JSON.stringify({
+    labels, cut, overlaps, smallest, smallestLabel,
+    wider: document.documentElement.scrollWidth > window.innerWidth + 1
+  });
+  document.body.appendChild(out);
+});
+//]]></script>"#;
+
+    /// The shipped MacPherson's report as a user sees it in a window 1280 px wide: every label of its plots
+    /// and projections inside its picture, clear of the others and at least 10 px high, and the page no
+    /// wider than the window.
+    #[test]
+    fn every_label_of_the_report_is_inside_its_picture_clear_of_the_others_and_legible() {
+        let chromium = match find_chromium() {
+            Ok(c) => c,
+            Err(e) if std::env::var_os("CI").is_none() => {
+                eprintln!("skipped: {e}");
+                return;
+            }
+            Err(e) => panic!("{e}"),
+        };
+        let root = crate::workspace_root();
+        let dir = root.join("target/report-layout");
+        std::fs::create_dir_all(&dir).unwrap();
+        let html = report_page(&root, "examples/macpherson.json")
+            .unwrap()
+            .replace("</body>", &format!("{LAYOUT_CHECK}</body>"));
+        let page = dir.join("macpherson.html");
+        std::fs::write(&page, &html).unwrap();
+        let (dom, console) = loaded_in(&chromium, &page, (1280, 1600), &dir.join("profile")).unwrap();
+        assert!(console.is_empty(), "the console says {console:#?}");
+        let found = dom
+            .split("id=\"layout-check\"")
+            .nth(1)
+            .and_then(|s| s.split('>').nth(1))
+            .and_then(|s| s.split("</output").next())
+            .expect("the layout check reported");
+        let found: serde_json::Value = serde_json::from_str(&html_unescape(found)).unwrap();
+        assert!(found["labels"].as_u64().unwrap() > 100, "{found}");
+        assert_eq!(found["cut"], serde_json::json!([]), "labels cut off");
+        assert_eq!(found["overlaps"], serde_json::json!([]), "labels over one another");
+        let smallest = found["smallest"].as_f64().unwrap();
+        assert!(smallest >= 10.0, "the smallest label is {smallest} px: {}", found["smallestLabel"]);
+        assert_eq!(found["wider"], false, "the page is wider than the window");
     }
 
     /// The text of an element as `--dump-dom` serialises it: the three entities it writes in text.
