@@ -70,10 +70,16 @@ figure.view3d canvas { width: 100%; height: 560px; display: block; border: 1px s
 .view3d-controls { display: flex; flex-wrap: wrap; gap: 8px; align-items: center; margin-bottom: 6px; }
 .view3d-controls input[type=range] { flex: 1 1 200px; }
 @media print {
+  @page { size: A4 portrait; margin: 12mm; }
   body { max-width: none; padding: 0; font-size: 10pt; }
   section.analysis { break-before: page; }
-  figure, table.figures, .accuracy { break-inside: avoid; }
+  figure, table.figures, .accuracy, .summary-grid .card { break-inside: avoid; }
   summary { color: inherit; }
   a { color: inherit; text-decoration: none; }
+  /* Plot sheets: one chart across the page, two to a page, as a K&C rig's plots are filed. */
+  .charts { display: block; }
+  .charts figure { width: 100%; max-width: none; margin: 0 0 6mm; }
+  .charts figure svg { height: 118mm; width: auto; max-width: 100%; margin: 0 auto; border: 0; }
+  figure.view3d, .view3d-controls { display: none; }
 }
 "#;

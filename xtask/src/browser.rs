@@ -315,6 +315,68 @@ addEventListener('load', () => {
         assert_eq!(found["wider"], false, "the page is wider than the window");
     }
 
+    /// The report's print stylesheet as the browser's Print lays it out, on an A4 sheet's printable width
+    /// (186 mm, 703 CSS px): its `@media print` rules applied to the screen, every chart then on the
+    /// sheet between 0.4 and 0.5 of its printable height (two to a sheet, where the screen's two to a row would
+    /// give about a quarter), the 3D view left out.
+    #[test]
+    fn the_print_stylesheet_gives_plot_sheets_two_charts_to_an_a4_page() {
+        let chromium = match find_chromium() {
+            Ok(c) => c,
+            Err(e) if std::env::var_os("CI").is_none() => {
+                eprintln!("skipped: {e}");
+                return;
+            }
+            Err(e) => panic!("{e}"),
+        };
+        let root = crate::workspace_root();
+        let dir = root.join("target/report-print");
+        std::fs::create_dir_all(&dir).unwrap();
+        let html = report_page(&root, "examples/macpherson.json").unwrap();
+        // The print rules, as screen rules: the block of `@media print`, without its page size.
+        let at = html.find("@media print {").expect("a print stylesheet");
+        let body = &html[at + "@media print {".len()..];
+        let end = body.find("\n}").expect("the print block closes");
+        let rules: String =
+            body[..end].lines().filter(|l| !l.trim_start().starts_with("@page")).collect::<Vec<_>>().join("\n");
+        let measure = r#"<script>//<![CDATA[
+addEventListener('load', () => {
+  const charts = Array.from(document.querySelectorAll('.charts figure svg')).map(svg => {
+    const r = svg.getBoundingClientRect();
+    return [r.width, r.height];
+  });
+  const view3d = document.querySelector('figure.view3d');
+  const out = document.createElement('output');
+  out.id = 'print-check';
+  out.textContent = JSON.stringify({ charts, view3d: view3d ? view3d.getBoundingClientRect().height : 0 });
+  document.body.appendChild(out);
+});
+//]]></script>"#;
+        let page = html
+            .replace("</head>", &format!("<style>{rules}</style></head>"))
+            .replace("</body>", &format!("{measure}</body>"));
+        let path = dir.join("macpherson.html");
+        std::fs::write(&path, &page).unwrap();
+        let (dom, console) = loaded_in(&chromium, &path, (703, 1000), &dir.join("profile")).unwrap();
+        assert!(console.is_empty(), "the console says {console:#?}");
+        let found = dom
+            .split("id=\"print-check\"")
+            .nth(1)
+            .and_then(|s| s.split('>').nth(1))
+            .and_then(|s| s.split("</output").next())
+            .expect("the print check reported");
+        let found: serde_json::Value = serde_json::from_str(&html_unescape(found)).unwrap();
+        let charts = found["charts"].as_array().unwrap();
+        assert!(charts.len() >= 8, "{found}");
+        // A4's printable height under 12 mm margins: 273 mm, 1032 CSS px.
+        let sheet = 273.0 / 25.4 * 96.0;
+        for c in charts {
+            let h = c[1].as_f64().unwrap();
+            assert!(h >= 0.4 * sheet && h <= 0.5 * sheet, "a chart {h} px high on a sheet of {sheet} px");
+        }
+        assert_eq!(found["view3d"], 0.0, "the 3D view is left out of print");
+    }
+
     /// The text of an element as `--dump-dom` serialises it: the three entities it writes in text.
     fn html_unescape(s: &str) -> String {
         s.replace("&quot;", "\"").replace("&lt;", "<").replace("&gt;", ">").replace("&amp;", "&")
