@@ -1800,6 +1800,27 @@ fn compare_overlays_two_models_and_a_measured_file_and_refuses_a_mixed_pair() {
     assert!(html.contains("rig.csv") && html.contains("id=\"overlay-front\""));
     // The page's table names each figure in words; compare.csv keeps the keys (read above).
     assert!(html.contains("<td>bump steer (toe-in +)</td>") && !html.contains("<td>bump_steer</td>"), "{html}");
+    // Each value at its figure's decimals (bump steer's three), its estimate on hover.
+    let bump_steer = format!("{:.3}</td>", run_figure(models[0], "bump_steer"));
+    assert!(html.contains(&bump_steer), "{bump_steer}");
+    // Two designs of one name (a copy, as a tuned model keeps its parent's name) are told apart by file.
+    let copy = dir.join("copy.json");
+    std::fs::copy(models[0], &copy).unwrap();
+    let twins = dir.join("twins");
+    succeeds(&[
+        "compare",
+        models[0],
+        copy.to_str().unwrap(),
+        "--analysis",
+        "parallel-travel",
+        "--steps",
+        "4",
+        "--out",
+        twins.to_str().unwrap(),
+    ]);
+    let header = std::fs::read_to_string(twins.join("compare.csv")).unwrap();
+    assert!(header.contains(&format!("{}: ", models[0])) && header.contains("copy.json: "), "{header}");
+    assert!(!header.contains(" (2)"), "{header}");
 
     let o =
         elastokin(&["compare", models[0], "examples/four_link_axle.json", "--out", dir.join("x").to_str().unwrap()]);

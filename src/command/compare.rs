@@ -35,6 +35,13 @@ pub fn run(args: CompareArgs, out: &Stdout, strict: bool) -> Result<(), Failure>
         files.push((path.display().to_string(), elastokin::provenance::sha256_hex(&bytes)));
         designs.push(design);
     }
+    // Designs of one name (a tuned model keeps its parent's) are told apart by their files.
+    let names: Vec<String> = designs.iter().map(|d| d.name().to_string()).collect();
+    for ((design, name), path) in designs.iter_mut().zip(&names).zip(&args.designs) {
+        if names.iter().filter(|n| *n == name).count() > 1 {
+            design.rename(format!("{}: {name}", path.display()));
+        }
+    }
     let comparison = compare(&designs).map_err(|e| Failure::Input(e.to_string()))?;
     let mut provenance = Provenance::new(&args.designs[0], &[], kc::mode_word(settings.mode), settings.steps);
     provenance.model_sha256 = files[0].1.clone();

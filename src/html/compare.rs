@@ -2,10 +2,10 @@
 //! overlaid.
 
 use super::charts::write_chart;
-use super::tables::write_open_table;
+use super::tables::cell;
 use super::{write_foot, write_head, NAME_SHOWN};
-use crate::markup::text;
-use crate::suspensions::kc::{Cell, Chart, KcReport};
+use crate::markup::{attr, text};
+use crate::suspensions::kc::{fixed, significant, Cell, Chart, KcReport};
 use serde_json::Value;
 use std::fmt::Write;
 
@@ -91,30 +91,62 @@ fn write_figures(
     writeln!(out, "</ul>")?;
     writeln!(
         out,
-        "<p class=\"note\">each model's value and its error estimate (±), then each later model's difference to \
-         the first; every number is in compare.csv</p>"
+        "<p class=\"note\">each model's value at the figure's decimals (its error estimate on hover, written out in \
+         red where it is over the tolerance on figures), then each later model's difference to the first; every \
+         number, with every estimate, is in compare.csv</p>"
     )?;
-    let mut shown = comparison.figures.clone();
-    // Each figure in words (compare.csv keeps its key, which the tools that read it look up).
-    let words = |analysis: &str, key: &str| {
-        let analyses = models.iter().flat_map(|(_, r)| &r.analyses).filter(|a| a.analysis.name() == analysis);
-        analyses.filter_map(|a| a.figure(key)).map(|f| f.label.clone()).next()
-    };
-    for row in &mut shown.rows {
-        if let [Cell::Text(analysis), Cell::Text(key), ..] = &row[..] {
-            if let Some(label) = words(analysis, key) {
-                row[1] = Cell::Text(label);
-            }
-        }
-    }
-    shown.columns.truncate(3);
-    for (l, _) in &letters {
-        shown.columns.push(l.clone());
-        shown.columns.push(format!("± {l}"));
+    write_figure_rows(out, comparison, models, &letters)?;
+    writeln!(out, "</section>")
+}
+
+/// The figures' table: a row per analysis, then its figures in words with their unit, each model's value and
+/// each later model's difference to the first, at the figure's decimals; the estimate is a value's hover text,
+/// and written under it where it matters.
+fn write_figure_rows(
+    out: &mut String,
+    comparison: &crate::suspensions::compare::Comparison,
+    models: &[(&str, &KcReport)],
+    letters: &[(String, &str)],
+) -> std::fmt::Result {
+    let n = models.len();
+    writeln!(out, "<div class=\"scroll\"><table class=\"numbers comparison\">")?;
+    write!(out, "<thead><tr><th>figure</th><th>unit</th>")?;
+    for (l, _) in letters {
+        write!(out, "<th>{}</th>", text(l))?;
     }
     for (l, _) in letters.iter().skip(1) {
-        shown.columns.push(format!("{l} − {}", letters[0].0));
+        write!(out, "<th>{} − {}</th>", text(l), text(&letters[0].0))?;
     }
-    write_open_table(out, &shown)?;
-    writeln!(out, "</section>")
+    writeln!(out, "</tr></thead><tbody>")?;
+    let mut analysis_shown = String::new();
+    for row in &comparison.figures.rows {
+        let [Cell::Text(analysis), Cell::Text(key), unit, ..] = &row[..] else { continue };
+        let figure = |k: usize| {
+            let a = models[k].1.analyses.iter().find(|a| a.analysis.name() == analysis)?;
+            Some((a.figure(key)?, a.units, models[k].1.settings.tolerance.relative))
+        };
+        let Some((first, units, _)) = (0..n).find_map(figure) else { continue };
+        if *analysis != analysis_shown {
+            writeln!(out, "<tr class=\"group\"><th colspan=\"{}\">{}</th></tr>", 2 + 2 * n - 1, text(analysis))?;
+            analysis_shown = analysis.clone();
+        }
+        let decimals = first.written(units).decimals;
+        let number = |c: &Cell| c.number().map_or(String::new(), |v| fixed(v, decimals));
+        write!(out, "<tr><td>{}</td><td>{}</td>", text(&first.label), cell(unit, 6))?;
+        for k in 0..n {
+            let (value, error) = (&row[3 + 2 * k], &row[4 + 2 * k]);
+            let matters = figure(k).is_some_and(|(f, _, relative)| f.estimate_matters(relative));
+            let estimate = error.number().map_or(String::new(), |e| format!("± {}", significant(e, 2)));
+            if matters {
+                write!(out, "<td>{}<br/><span class=\"over\">{}</span></td>", number(value), text(&estimate))?;
+            } else {
+                write!(out, "<td title=\"{}\">{}</td>", attr(&estimate), number(value))?;
+            }
+        }
+        for k in 1..n {
+            write!(out, "<td>{}</td>", number(&row[3 + 2 * n + k - 1]))?;
+        }
+        writeln!(out, "</tr>")?;
+    }
+    writeln!(out, "</tbody></table></div>")
 }

@@ -23,6 +23,9 @@ th, td { padding: 3px 10px; border-bottom: 1px solid #d8dee4; text-align: left; 
 thead th { border-bottom: 2px solid #8c959f; background: #f6f8fa; }
 table.numbers td { text-align: right; font-variant-numeric: tabular-nums; }
 table.numbers td:first-child { text-align: left; }
+table.comparison td { white-space: nowrap; }
+table.comparison td:first-child { white-space: normal; }
+table.comparison tr.group th { background: #f6f8fa; text-align: left; font-family: "DejaVu Sans Mono", Menlo, Consolas, monospace; }
 table.figures { min-width: 70%; }
 table.figures td.value { text-align: right; font-variant-numeric: tabular-nums; font-weight: 600; }
 table.figures td.error-estimate { color: #57606a; font-variant-numeric: tabular-nums; }
@@ -76,7 +79,7 @@ figure.view3d canvas { width: 100%; height: 560px; display: block; border: 1px s
   figure, table.figures, .accuracy, .summary-grid .card { break-inside: avoid; }
   summary { color: inherit; }
   a { color: inherit; text-decoration: none; }
-  /* Plot sheets: one chart across the page, two to a page, as a K&C rig's plots are filed. */
+  /* Plot sheets: one chart across the page, two to a page, as a rig's plots are filed. */
   .charts { display: block; }
   .charts figure { width: 100%; max-width: none; margin: 0 0 6mm; }
   .charts figure svg { height: 118mm; width: auto; max-width: 100%; margin: 0 auto; border: 0; }

@@ -41,6 +41,13 @@ impl Design {
         Design::Model { name: file.name.clone(), solid_axle, report: Box::new(report) }
     }
 
+    /// Names it `name` (a design whose model's name another design shares, told apart by its file).
+    pub fn rename(&mut self, to: String) {
+        match self {
+            Design::Model { name, .. } | Design::Measured { name, .. } => *name = to,
+        }
+    }
+
     /// Its name.
     pub fn name(&self) -> &str {
         match self {
