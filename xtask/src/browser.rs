@@ -178,14 +178,7 @@ mod tests {
     /// developer's machine, and fails under CI (`CI` set), where it must run.
     #[test]
     fn every_shipped_examples_report_loads_in_chromium_without_error_and_draws_its_scene() {
-        let chromium = match find_chromium() {
-            Ok(c) => c,
-            Err(e) if std::env::var_os("CI").is_none() => {
-                eprintln!("skipped: {e}");
-                return;
-            }
-            Err(e) => panic!("{e}"),
-        };
+        let Some(chromium) = chromium_or_skip() else { return };
         let root = crate::workspace_root();
         let dir = root.join("target/report-in-browser");
         std::fs::create_dir_all(&dir).unwrap();
@@ -282,14 +275,7 @@ addEventListener('load', () => {
     /// wider than the window.
     #[test]
     fn every_label_of_the_report_is_inside_its_picture_clear_of_the_others_and_legible() {
-        let chromium = match find_chromium() {
-            Ok(c) => c,
-            Err(e) if std::env::var_os("CI").is_none() => {
-                eprintln!("skipped: {e}");
-                return;
-            }
-            Err(e) => panic!("{e}"),
-        };
+        let Some(chromium) = chromium_or_skip() else { return };
         let root = crate::workspace_root();
         let dir = root.join("target/report-layout");
         std::fs::create_dir_all(&dir).unwrap();
@@ -300,13 +286,7 @@ addEventListener('load', () => {
         std::fs::write(&page, &html).unwrap();
         let (dom, console) = loaded_in(&chromium, &page, (1280, 1600), &dir.join("profile")).unwrap();
         assert!(console.is_empty(), "the console says {console:#?}");
-        let found = dom
-            .split("id=\"layout-check\"")
-            .nth(1)
-            .and_then(|s| s.split('>').nth(1))
-            .and_then(|s| s.split("</output").next())
-            .expect("the layout check reported");
-        let found: serde_json::Value = serde_json::from_str(&html_unescape(found)).unwrap();
+        let found = output_of(&dom, "layout-check");
         assert!(found["labels"].as_u64().unwrap() > 100, "{found}");
         assert_eq!(found["cut"], serde_json::json!([]), "labels cut off");
         assert_eq!(found["overlaps"], serde_json::json!([]), "labels over one another");
@@ -321,14 +301,7 @@ addEventListener('load', () => {
     /// give about a quarter), the 3D view left out.
     #[test]
     fn the_print_stylesheet_gives_plot_sheets_two_charts_to_an_a4_page() {
-        let chromium = match find_chromium() {
-            Ok(c) => c,
-            Err(e) if std::env::var_os("CI").is_none() => {
-                eprintln!("skipped: {e}");
-                return;
-            }
-            Err(e) => panic!("{e}"),
-        };
+        let Some(chromium) = chromium_or_skip() else { return };
         let root = crate::workspace_root();
         let dir = root.join("target/report-print");
         std::fs::create_dir_all(&dir).unwrap();
@@ -359,13 +332,7 @@ addEventListener('load', () => {
         std::fs::write(&path, &page).unwrap();
         let (dom, console) = loaded_in(&chromium, &path, (703, 1000), &dir.join("profile")).unwrap();
         assert!(console.is_empty(), "the console says {console:#?}");
-        let found = dom
-            .split("id=\"print-check\"")
-            .nth(1)
-            .and_then(|s| s.split('>').nth(1))
-            .and_then(|s| s.split("</output").next())
-            .expect("the print check reported");
-        let found: serde_json::Value = serde_json::from_str(&html_unescape(found)).unwrap();
+        let found = output_of(&dom, "print-check");
         let charts = found["charts"].as_array().unwrap();
         assert!(charts.len() >= 8, "{found}");
         // A4's printable height under 12 mm margins: 273 mm, 1032 CSS px.
@@ -375,6 +342,30 @@ addEventListener('load', () => {
             assert!(h >= 0.4 * sheet && h <= 0.5 * sheet, "a chart {h} px high on a sheet of {sheet} px");
         }
         assert_eq!(found["view3d"], 0.0, "the 3D view is left out of print");
+    }
+
+    /// Chromium, or `None` on a developer's machine without it (the test says so and passes); under CI
+    /// (`CI` set), where the tests must run, its absence fails.
+    fn chromium_or_skip() -> Option<PathBuf> {
+        match find_chromium() {
+            Ok(c) => Some(c),
+            Err(e) if std::env::var_os("CI").is_none() => {
+                eprintln!("skipped: {e}");
+                None
+            }
+            Err(e) => panic!("{e}"),
+        }
+    }
+
+    /// The JSON a test's script wrote into `<output id="ID">` of the page as the browser left it (`dom`).
+    fn output_of(dom: &str, id: &str) -> serde_json::Value {
+        let text = dom
+            .split(&format!("id=\"{id}\""))
+            .nth(1)
+            .and_then(|s| s.split('>').nth(1))
+            .and_then(|s| s.split("</output").next())
+            .unwrap_or_else(|| panic!("no output {id} in the page"));
+        serde_json::from_str(&html_unescape(text)).unwrap_or_else(|e| panic!("output {id} ({e}): {text}"))
     }
 
     /// The text of an element as `--dump-dom` serialises it: the three entities it writes in text.
