@@ -137,13 +137,38 @@ fn report_is_well_formed_self_contained_and_shows_every_analysis() {
     }
 
     assert_eq!(non_finite_words(&html), Vec::<String>::new());
-    for outside in ["src=\"http", "href=\"http", "<script", "<link", "url(", "@import"] {
+    for outside in ["src=\"http", "href=\"http", "<script src", "<link", "url(", "@import", "import("] {
         assert!(!html.contains(outside), "the page reaches outside itself: {outside}");
     }
     let charts: usize = report.analyses.iter().map(|a| a.charts.len()).sum();
     assert!(charts >= 8, "{charts} charts");
     assert_eq!(html.matches("<svg").count(), charts);
     assert_eq!(elements.iter().filter(|e| *e == "svg").count(), charts);
+    // One script, inline, draws the charts interactively from each chart's data: the chart's own curves,
+    // their finite points only.
+    assert_eq!(elements.iter().filter(|e| *e == "script").count(), 1);
+    let body = html.strip_prefix("<!DOCTYPE html>").unwrap();
+    let doc = roxmltree::Document::parse(body).unwrap();
+    let figures: Vec<_> = doc.descendants().filter(|n| n.attribute("data-chart").is_some()).collect();
+    assert_eq!(figures.len(), charts);
+    for (figure, chart) in figures.iter().zip(report.analyses.iter().flat_map(|a| &a.charts)) {
+        let data: serde_json::Value = serde_json::from_str(figure.attribute("data-chart").unwrap()).unwrap();
+        assert_eq!(data["title"], chart.title.as_str());
+        let axes = std::iter::once(&chart.left).chain(chart.right.as_ref());
+        for (shown, axis) in data["axes"].as_array().unwrap().iter().zip(axes) {
+            assert_eq!(shown["label"], axis.label.as_str());
+            for (s, series) in shown["series"].as_array().unwrap().iter().zip(&axis.series) {
+                let finite: Vec<&(f64, f64)> =
+                    series.points.iter().filter(|p| p.0.is_finite() && p.1.is_finite()).collect();
+                let x = s["x"].as_array().unwrap();
+                assert_eq!(x.len(), finite.len(), "{}", series.name);
+                for (k, p) in finite.iter().enumerate() {
+                    assert_eq!(x[k].as_f64(), Some(p.0));
+                    assert_eq!(s["y"][k].as_f64(), Some(p.1));
+                }
+            }
+        }
+    }
     assert!(elements.iter().filter(|e| *e == "details").count() > report.analyses.len());
     assert!(!html.contains("<?xml"), "the SVG's XML declaration is left out inline");
 
@@ -378,9 +403,10 @@ fn geometry_views_are_inline_svg_and_the_3d_view_is_one_script_that_no_name_can_
         let text: String = figure.descendants().filter_map(|n| n.text()).collect();
         assert!(text.contains("[mm]"), "{view} view is dimensioned in mm");
     }
-    // One script of code, inline, and its data: nothing loaded from anywhere.
+    // Two scripts of code, inline (the 3D view's, the charts'), and the 3D view's data: nothing loaded from
+    // anywhere.
     let scripts: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("script")).collect();
-    assert_eq!(scripts.len(), 2);
+    assert_eq!(scripts.len(), 3);
     assert!(scripts.iter().all(|s| s.attribute("src").is_none()));
     for outside in ["src=\"http", "href=\"http", "<link", "url(", "@import", "import("] {
         assert!(!html.contains(outside), "the page reaches outside itself: {outside}");

@@ -1,18 +1,35 @@
 //! Plots in a page: a chart drawn by the caller's renderer and put inline as SVG (or its error in its place),
-//! and the pages' own bar charts.
+//! with its data for the interactive chart drawn over it when scripts run ([`write_chart_script`]); and the
+//! pages' own bar charts.
 
-use crate::markup::text;
-use crate::suspensions::kc::{significant_among, Chart};
+use crate::markup::{attr, text};
+use crate::suspensions::kc::{significant_among, Chart, Scale, YAxis};
+use serde_json::{json, Value};
 use std::fmt::Write;
 
-/// `chart` drawn by `render_chart`, inline in a figure; one that could not be drawn shows why.
+/// uPlot (`assets/uplot/`, MIT), the charting library the interactive charts are drawn with: 51 kB, with
+/// the pointer's read-out, legend toggles and zoom built in, where Chart.js 4.6 weighs 210 kB and needs a
+/// plugin to zoom.
+const UPLOT_SCRIPT: &str = include_str!("../../assets/uplot/uPlot.iife.min.js");
+/// uPlot's own style, in every page's head.
+pub(super) const UPLOT_STYLE: &str = include_str!("../../assets/uplot/uPlot.min.css");
+/// The interactive charts drawn from each figure's data.
+const CHARTS_SCRIPT: &str = include_str!("../charts.js");
+
+/// `chart` drawn by `render_chart`, inline in a figure with its data (`data-chart`) for the interactive
+/// chart; one that could not be drawn shows why.
 pub(super) fn write_chart(
     out: &mut String,
     chart: &Chart,
     render_chart: &dyn Fn(&Chart) -> Result<String, String>,
 ) -> std::fmt::Result {
     // The plot carries its own title; one that could not be drawn is named in its error.
-    writeln!(out, "<figure>")?;
+    writeln!(
+        out,
+        "<figure class=\"chart\" id=\"chart-{}\" data-chart=\"{}\">",
+        attr(&chart.name),
+        attr(&chart_data(chart).to_string())
+    )?;
     match render_chart(chart) {
         Ok(svg) => writeln!(out, "{}", inline_svg(&svg))?,
         Err(e) => {
@@ -33,6 +50,41 @@ fn inline_svg(svg: &str) -> &str {
             _ => return s.trim_end(),
         }
     }
+}
+
+/// The script that draws every chart of the page interactively (uPlot and the page's own), and the state
+/// it reports (`charts-state`: charts found, drawn, errors); written once, after the page's charts.
+pub(super) fn write_chart_script(out: &mut String) -> std::fmt::Result {
+    writeln!(out, "<output id=\"charts-state\" hidden=\"hidden\"></output>")?;
+    writeln!(out, "<script>//<![CDATA[\n{UPLOT_SCRIPT}\n{CHARTS_SCRIPT}\n//]]></script>")
+}
+
+/// The data of `chart` for the interactive chart: title, axes' labels and scales, the design position, and
+/// each curve's finite points with its colour (the SVG's: counted over both axes).
+fn chart_data(chart: &Chart) -> Value {
+    let mut k = 0;
+    let mut axis = |a: &YAxis| {
+        let series: Vec<Value> = a
+            .series
+            .iter()
+            .map(|s| {
+                let finite = s.points.iter().filter(|p| p.0.is_finite() && p.1.is_finite());
+                let (x, y): (Vec<f64>, Vec<f64>) = finite.copied().unzip();
+                k += 1;
+                json!({ "name": s.name, "colour": crate::plot::series_colour_hex(k - 1), "x": x, "y": y })
+            })
+            .collect();
+        json!({ "label": a.label, "log": a.scale == Scale::Log, "series": series })
+    };
+    let mut axes = vec![axis(&chart.left)];
+    axes.extend(chart.right.as_ref().map(&mut axis));
+    json!({
+        "title": chart.title,
+        "x_label": chart.x_label,
+        "x_log": chart.x_scale == Scale::Log,
+        "design_x": chart.design_x.filter(|x| x.is_finite()),
+        "axes": axes,
+    })
 }
 
 /// A horizontal bar chart as inline SVG: one bar per `(label, value)`, drawn from a centre line (negative

@@ -1,7 +1,7 @@
 //! The comparison's page: the figures side by side, the geometry of every model overlaid, every curve
 //! overlaid.
 
-use super::charts::write_chart;
+use super::charts::{write_chart, write_chart_script};
 use super::tables::cell;
 use super::{write_foot, write_head, NAME_SHOWN};
 use crate::markup::{attr, text};
@@ -62,6 +62,9 @@ fn write_compare_page(
         write_chart(out, chart, render_chart)?;
     }
     writeln!(out, "</div>")?;
+    if !comparison.charts.is_empty() {
+        write_chart_script(out)?;
+    }
     writeln!(out, "</section>")?;
     write_foot(out, provenance)
 }

@@ -2,11 +2,13 @@
 //! headline figures with their error estimates, the plots inline, the accuracy of every analysis, the
 //! warnings, the hardpoints and the model itself, under a block saying how the run was made.
 //!
-//! The page needs nothing but itself: CSS inline, no font, no link out of the file, and one script, inline:
-//! the 3D view's ([`crate::view`]); everything else, the geometry's projections included, is SVG and
-//! shows with scripts off. It is written as XHTML-compatible HTML (every element closed, only the five
-//! XML entities, the script in a CDATA section) so an XML parser can check that it is well-formed, and it
-//! prints on paper as it shows on screen.
+//! The page needs nothing but itself: CSS inline, no font, no link out of the file, and two scripts,
+//! inline: the 3D view's ([`crate::view`]) and the interactive charts' (uPlot, `assets/uplot/`, with
+//! `src/charts.js`: a read-out under the pointer, curves toggled from the legend, zoom by dragging), drawn
+//! from each chart's data in place of its SVG. Everything else, the geometry's projections included, is
+//! SVG and shows with scripts off, and the SVG charts are what prints. It is written as XHTML-compatible
+//! HTML (every element closed, only the five XML entities, the scripts in CDATA sections) so an XML
+//! parser can check that it is well-formed.
 //!
 //! Every number on the page comes from the report or the model file: a figure without a value shows
 //! its reason, an empty table cell stays empty, and nothing non-finite is printed.
@@ -63,7 +65,7 @@ fn write_head(out: &mut String, title: &str, lede: &str) -> std::fmt::Result {
     writeln!(out, r#"<meta name="viewport" content="width=device-width, initial-scale=1"/>"#)?;
     writeln!(out, r#"<meta name="generator" content="elastokin {}"/>"#, attr(env!("CARGO_PKG_VERSION")))?;
     writeln!(out, "<title>{}</title>", text(title))?;
-    writeln!(out, "<style>{STYLE}</style>")?;
+    writeln!(out, "<style>{STYLE}{}</style>", charts::UPLOT_STYLE)?;
     writeln!(out, "</head>")?;
     writeln!(out, "<body>")?;
     writeln!(out, "<header>")?;

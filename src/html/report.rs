@@ -1,6 +1,7 @@
 //! The K&C report's page: its sections in order, from the warnings to the model file.
 
 use super::analysis::write_analysis;
+use super::charts::write_chart_script;
 use super::contents::write_contents;
 use super::hardpoints::write_hardpoints;
 use super::model::write_model;
@@ -92,6 +93,9 @@ fn write_page(
     crate::view::write_geometry(out, report)?;
     for analysis in &report.analyses {
         write_analysis(out, analysis, report, render_chart)?;
+    }
+    if report.analyses.iter().any(|a| !a.charts.is_empty()) {
+        write_chart_script(out)?;
     }
     if let Some((suite, parameters)) = extras.sensitivities {
         write_sensitivities(out, suite, parameters)?;

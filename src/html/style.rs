@@ -57,6 +57,11 @@ section.analysis h2 { font-family: "DejaVu Sans Mono", Menlo, Consolas, monospac
 .charts { display: flex; flex-wrap: wrap; gap: 16px; }
 figure { margin: 8px 0; flex: 0 1 552px; max-width: 100%; }
 figure svg { width: 100%; height: auto; display: block; border: 1px solid #e5e8eb; }
+/* A chart drawn interactively stands in for its SVG on screen; the SVG is what prints. */
+figure.live > svg { display: none; }
+.live-chart { border: 1px solid #e5e8eb; }
+.live-chart .u-title { font-size: 15px; font-weight: 600; }
+.live-chart .u-legend { font-size: 13px; }
 details { margin: 6px 0; }
 summary { cursor: pointer; color: #0b5394; }
 .scroll { overflow-x: auto; max-width: 100%; }
@@ -83,6 +88,7 @@ figure.view3d canvas { width: 100%; height: 560px; display: block; border: 1px s
   .charts { display: block; }
   .charts figure { width: 100%; max-width: none; margin: 0 0 6mm; }
   .charts figure svg { height: 118mm; width: auto; max-width: 100%; margin: 0 auto; border: 0; }
-  figure.view3d, .view3d-controls { display: none; }
+  figure.view3d, .view3d-controls, .live-chart { display: none; }
+  figure.live > svg { display: block; }
 }
 "#;

@@ -1,7 +1,7 @@
 //! The tune's page: the targets met or not and why, the free numbers before and after, each curve target
 //! before and after, every residual and iteration.
 
-use super::charts::write_chart;
+use super::charts::{write_chart, write_chart_script};
 use super::tables::{write_open_table, write_table};
 use super::{write_foot, write_head, NAME_SHOWN};
 use crate::markup::text;
@@ -64,6 +64,9 @@ fn write_tune_page(
     }
     for chart in &charts {
         write_chart(out, chart, render_chart)?;
+    }
+    if !charts.is_empty() {
+        write_chart_script(out)?;
     }
     writeln!(out, "</section>")?;
     writeln!(out, "<section id=\"residuals\">")?;

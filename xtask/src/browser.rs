@@ -234,6 +234,9 @@ mod tests {
     /// the page is wider than the window (a table or chart that does not fit).
     const LAYOUT_CHECK: &str = r#"<script>//<![CDATA[
 addEventListener('load', () => {
+  // The SVGs as they show with scripts off and on paper, where the interactive charts do not stand in.
+  document.querySelectorAll('figure.live').forEach(f => f.classList.remove('live'));
+  document.querySelectorAll('.live-chart').forEach(c => { c.style.display = 'none'; });
   const cut = [], overlaps = [];
   let smallest = Infinity, smallestLabel = '', labels = 0;
   document.querySelectorAll('svg').forEach((svg, i) => {
@@ -342,6 +345,85 @@ addEventListener('load', () => {
             assert!(h >= 0.4 * sheet && h <= 0.5 * sheet, "a chart {h} px high on a sheet of {sheet} px");
         }
         assert_eq!(found["view3d"], 0.0, "the 3D view is left out of print");
+    }
+
+    /// A script the chart test adds to a report's page: on the first interactive chart, the pointer put on
+    /// its sixth point's x and the legend's read-out taken, a click on the second curve's legend entry,
+    /// and a drag across the middle of the plot; written as JSON into `<output id="chart-check">`.
+    const CHART_CHECK: &str = r#"<script>//<![CDATA[
+addEventListener('load', async () => {
+  const frame = () => new Promise(r => setTimeout(r, 30));
+  const u = window.elastokinCharts[0];
+  const x = u.data[0][5];
+  u.setCursor({ left: u.valToPos(x, 'x'), top: 10 });
+  const values = Array.from(u.root.querySelectorAll('.u-legend .u-series')).map(r => r.querySelector('.u-value').textContent);
+  const entry = u.root.querySelectorAll('.u-legend .u-series')[2];
+  entry.querySelector('.u-label').dispatchEvent(new MouseEvent('click', { bubbles: true }));
+  const shown = u.series[2].show;
+  const before = [u.scales.x.min, u.scales.x.max];
+  const box = u.over.getBoundingClientRect();
+  const at = (f, type, target) => target.dispatchEvent(new MouseEvent(type, {
+    bubbles: true, clientX: box.left + f * box.width, clientY: box.top + 0.5 * box.height, button: 0, buttons: 1,
+    movementX: 5, movementY: 0 }));
+  at(0.3, 'mousemove', u.over);
+  await frame();
+  at(0.3, 'mousedown', u.over);
+  await frame();
+  at(0.5, 'mousemove', u.over);
+  await frame();
+  at(0.6, 'mousemove', u.over);
+  await frame();
+  at(0.6, 'mouseup', document);
+  await frame();
+  const after = [u.scales.x.min, u.scales.x.max];
+  const out = document.createElement('output');
+  out.id = 'chart-check';
+  out.textContent = JSON.stringify({ state: JSON.parse(document.getElementById('charts-state').textContent),
+    x, values, shown, before, after });
+  document.body.appendChild(out);
+});
+//]]></script>"#;
+
+    /// The MacPherson's report in Chromium with its charts drawn interactively: every chart drawn, none in
+    /// error; the pointer's read-out on the first chart gives each curve's value at that x as the library's
+    /// chart holds it; a click on a legend entry hides its curve; a drag zooms into the part dragged over.
+    #[test]
+    fn the_charts_read_out_under_the_pointer_toggle_and_zoom_in_chromium() {
+        let Some(chromium) = chromium_or_skip() else { return };
+        let root = crate::workspace_root();
+        let dir = root.join("target/report-charts");
+        std::fs::create_dir_all(&dir).unwrap();
+        let html = report_page(&root, "examples/macpherson.json")
+            .unwrap()
+            .replace("</body>", &format!("{CHART_CHECK}</body>"));
+        let page = dir.join("macpherson.html");
+        std::fs::write(&page, &html).unwrap();
+        let (dom, console) = loaded_in(&chromium, &page, (1280, 1600), &dir.join("profile")).unwrap();
+        assert!(console.is_empty(), "the console says {console:#?}");
+        let found = output_of(&dom, "chart-check");
+        // What the library's suite charts hold.
+        let file = SuspensionFile::read(&root.join("examples/macpherson.json")).unwrap();
+        let suite = kc::run_suite(&file, &[], &Settings { motion: true, ..Settings::default() }, |_| {});
+        let charts: Vec<_> = suite.analyses.iter().flat_map(|a| &a.charts).collect();
+        assert_eq!(found["state"]["charts"], charts.len(), "{found}");
+        assert_eq!(found["state"]["drawn"], charts.len(), "{found}");
+        assert_eq!(found["state"]["errors"], serde_json::json!([]));
+        // The read-out: the x, then each curve's value there, written to 4 significant digits.
+        let first = charts[0];
+        let x = found["x"].as_f64().unwrap();
+        let values = found["values"].as_array().unwrap();
+        let curves: Vec<_> = std::iter::once(&first.left).chain(first.right.as_ref()).flat_map(|a| &a.series).collect();
+        assert_eq!(values.len(), 1 + curves.len(), "{found}");
+        let read = |k: usize| values[k].as_str().unwrap().parse::<f64>().unwrap();
+        assert!((read(0) - x).abs() <= 5e-4 * x.abs().max(1e-9), "{found}");
+        for (k, s) in curves.iter().enumerate() {
+            let y = s.points.iter().find(|p| p.0 == x).expect("a point at the x read").1;
+            assert!((read(k + 1) - y).abs() <= 5e-4 * y.abs().max(1e-9), "{}: {} against {y}", s.name, read(k + 1));
+        }
+        assert_eq!(found["shown"], false, "a click on the legend hides the curve");
+        let (before, after) = (found["before"].as_array().unwrap(), found["after"].as_array().unwrap());
+        let span = |r: &Vec<serde_json::Value>| r[1].as_f64().unwrap() - r[0].as_f64().unwrap();
+        assert!(span(after) < 0.5 * span(before), "a drag over 30 % of the plot zooms: {before:?} → {after:?}");
     }
 
     /// Chromium, or `None` on a developer's machine without it (the test says so and passes); under CI

@@ -1,0 +1,118 @@
+// The reports' interactive charts: each <figure class="chart"> carries its chart as JSON (data-chart),
+// drawn here with uPlot (inlined before this script) in place of the SVG drawn for it, which stays for
+// scripts off and for print. The pointer reads every curve's value out in the legend; a click on a legend
+// entry shows or hides its curve; dragging zooms, a double click zooms back out.
+(function () {
+  'use strict';
+  const state = { charts: 0, drawn: 0, errors: [] };
+  const plots = [];
+  const fmt = (v) => (v == null || !isFinite(v) ? '–' : Number(v.toPrecision(4)).toString());
+
+  // One x for all curves: the union of their points' x, each curve null where it has no point.
+  function aligned(chart) {
+    const curves = chart.axes.flatMap((axis, a) => axis.series.map((s) => ({ s, a })));
+    const keep = (x) => isFinite(x) && (!chart.x_log || x > 0);
+    const xs = Array.from(new Set(curves.flatMap(({ s }) => s.x.filter(keep)))).sort((p, q) => p - q);
+    const at = new Map(xs.map((x, i) => [x, i]));
+    const ys = curves.map(({ s }) => {
+      const y = new Array(xs.length).fill(null);
+      s.x.forEach((x, i) => {
+        if (at.has(x) && isFinite(s.y[i])) y[at.get(x)] = s.y[i];
+      });
+      return y;
+    });
+    return { curves, data: [xs, ...ys] };
+  }
+
+  function draw(figure) {
+    const chart = JSON.parse(figure.getAttribute('data-chart'));
+    const { curves, data } = aligned(chart);
+    const font = '13px system-ui, sans-serif';
+    const labelFont = '14px system-ui, sans-serif';
+    const scale = (a) => (a === 0 ? 'y' : 'y2');
+    const axes = [{ label: chart.x_label, font, labelFont, labelSize: 22, values: (u, v) => v.map(fmt) }];
+    chart.axes.forEach((axis, a) =>
+      axes.push({
+        scale: scale(a),
+        side: a === 0 ? 3 : 1,
+        label: axis.label,
+        font,
+        labelFont,
+        labelSize: 22,
+        size: 64,
+        values: (u, v) => v.map(fmt),
+        grid: { show: a === 0 },
+      })
+    );
+    const scales = { x: { time: false, distr: chart.x_log ? 3 : 1 } };
+    chart.axes.forEach((axis, a) => (scales[scale(a)] = { distr: axis.log ? 3 : 1 }));
+    const series = [{ label: chart.x_label, value: (u, v) => fmt(v) }].concat(
+      curves.map(({ s, a }) => ({
+        label: chart.axes.length > 1 && a > 0 ? s.name + ' (right axis)' : s.name,
+        scale: scale(a),
+        stroke: s.colour,
+        width: 2,
+        // A right-axis curve is dashed, as in the SVG: a left one under it shows between the dashes.
+        dash: a === 0 ? undefined : [9, 6],
+        points: { show: s.x.length <= 20 },
+        spanGaps: true,
+        value: (u, v) => fmt(v),
+      }))
+    );
+    const marker = (u) => {
+      if (chart.design_x == null) return;
+      const x = u.valToPos(chart.design_x, 'x', true);
+      const ctx = u.ctx;
+      ctx.save();
+      ctx.setLineDash([6, 4]);
+      ctx.strokeStyle = '#606060';
+      ctx.lineWidth = devicePixelRatio;
+      ctx.beginPath();
+      ctx.moveTo(x, u.bbox.top);
+      ctx.lineTo(x, u.bbox.top + u.bbox.height);
+      ctx.stroke();
+      ctx.restore();
+    };
+    const size = () => {
+      const width = Math.max(280, figure.clientWidth - 2);
+      return { width, height: Math.round(0.62 * width) };
+    };
+    const holder = document.createElement('div');
+    holder.className = 'live-chart';
+    figure.appendChild(holder);
+    const opts = Object.assign(size(), {
+      title: chart.title,
+      scales,
+      axes,
+      series,
+      cursor: { drag: { x: true, y: true, uni: 40 } },
+      legend: { live: true },
+      hooks: { draw: [marker] },
+    });
+    const plot = new uPlot(opts, data, holder);
+    figure.classList.add('live');
+    if (typeof ResizeObserver === 'function') {
+      new ResizeObserver(() => plot.setSize(size())).observe(figure);
+    }
+    return plot;
+  }
+
+  function drawAll() {
+    const figures = document.querySelectorAll('figure.chart[data-chart]');
+    state.charts = figures.length;
+    figures.forEach((figure) => {
+      try {
+        plots.push(draw(figure));
+        state.drawn += 1;
+      } catch (e) {
+        state.errors.push((figure.id || 'chart') + ': ' + e);
+      }
+    });
+    window.elastokinCharts = plots;
+    const out = document.getElementById('charts-state');
+    if (out) out.textContent = JSON.stringify(state);
+  }
+
+  if (document.readyState === 'loading') document.addEventListener('DOMContentLoaded', drawAll);
+  else drawAll();
+})();
