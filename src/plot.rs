@@ -638,7 +638,19 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, layout: &Layout) -> Re
             .draw_series(DashedLineSeries::new([(design, left.lo), (design, left.hi)], 6, 4, MUTED.stroke_width(1)))
             .map_err(draw_error)?;
         let (px, py) = chart.backend_coord(&(design, left.hi));
-        root.draw(&Text::new("design", (px, py - 4), style(NOTE_SIZE, &MUTED, HPos::Center, VPos::Bottom)))
+        // Centred on the line, except where half of it would reach past the frame's edge, over the tick
+        // labels beside it: there it reads inward from the line.
+        let (left_edge, _) = chart.backend_coord(&(x.lo, left.hi));
+        let (right_edge, _) = chart.backend_coord(&(x.hi, left.hi));
+        let half = text_size("design", NOTE_SIZE)?.0 as i32 / 2;
+        let anchor = if px - half < left_edge {
+            HPos::Left
+        } else if px + half > right_edge {
+            HPos::Right
+        } else {
+            HPos::Center
+        };
+        root.draw(&Text::new("design", (px, py - 4), style(NOTE_SIZE, &MUTED, anchor, VPos::Bottom)))
             .map_err(draw_error)?;
     }
 

@@ -273,29 +273,49 @@ addEventListener('load', () => {
 });
 //]]></script>"#;
 
-    /// The shipped MacPherson's report as a user sees it in a window 1280 px wide: every label of its plots
-    /// and projections inside its picture, clear of the others and at least 10 px high, and the page no
-    /// wider than the window.
+    /// The shipped MacPherson's report, and its comparison with the generic one, as a user sees them in a
+    /// window 1280 px wide: every label of their plots and projections inside its picture, clear of the
+    /// others and at least 10 px high, and each page no wider than the window.
     #[test]
     fn every_label_of_the_report_is_inside_its_picture_clear_of_the_others_and_legible() {
         let Some(chromium) = chromium_or_skip() else { return };
         let root = crate::workspace_root();
         let dir = root.join("target/report-layout");
         std::fs::create_dir_all(&dir).unwrap();
-        let html = report_page(&root, "examples/macpherson.json")
-            .unwrap()
-            .replace("</body>", &format!("{LAYOUT_CHECK}</body>"));
-        let page = dir.join("macpherson.html");
-        std::fs::write(&page, &html).unwrap();
-        let (dom, console) = loaded_in(&chromium, &page, (1280, 1600), &dir.join("profile")).unwrap();
-        assert!(console.is_empty(), "the console says {console:#?}");
-        let found = output_of(&dom, "layout-check");
-        assert!(found["labels"].as_u64().unwrap() > 100, "{found}");
-        assert_eq!(found["cut"], serde_json::json!([]), "labels cut off");
-        assert_eq!(found["overlaps"], serde_json::json!([]), "labels over one another");
-        let smallest = found["smallest"].as_f64().unwrap();
-        assert!(smallest >= 10.0, "the smallest label is {smallest} px: {}", found["smallestLabel"]);
-        assert_eq!(found["wider"], false, "the page is wider than the window");
+        let pages = [
+            ("macpherson", report_page(&root, "examples/macpherson.json").unwrap()),
+            ("compare", compare_page(&root, &["examples/macpherson.json", "examples/generic/macpherson.json"])),
+        ];
+        for (name, html) in pages {
+            let page = dir.join(format!("{name}.html"));
+            std::fs::write(&page, html.replace("</body>", &format!("{LAYOUT_CHECK}</body>"))).unwrap();
+            let (dom, console) = loaded_in(&chromium, &page, (1280, 1600), &dir.join("profile")).unwrap();
+            assert!(console.is_empty(), "{name}: the console says {console:#?}");
+            let found = output_of(&dom, "layout-check");
+            assert!(found["labels"].as_u64().unwrap() > 100, "{name}: {found}");
+            assert_eq!(found["cut"], serde_json::json!([]), "{name}: labels cut off");
+            assert_eq!(found["overlaps"], serde_json::json!([]), "{name}: labels over one another");
+            let smallest = found["smallest"].as_f64().unwrap();
+            assert!(smallest >= 10.0, "{name}: the smallest label is {smallest} px: {}", found["smallestLabel"]);
+            assert_eq!(found["wider"], false, "{name}: the page is wider than the window");
+        }
+    }
+
+    /// The comparison page `elastokin compare` writes of the models at `paths`, made through the library.
+    fn compare_page(root: &Path, paths: &[&str]) -> String {
+        use elastokin::suspensions::compare::{compare, Design};
+        let settings = Settings { motion: true, ..Settings::default() };
+        let designs: Vec<Design> = paths
+            .iter()
+            .map(|p| {
+                let file = SuspensionFile::read(&root.join(p)).unwrap();
+                let report = kc::run_suite(&file, &[], &settings, |_| {});
+                Design::model(&file, report)
+            })
+            .collect();
+        let comparison = compare(&designs).unwrap();
+        let models = comparison.models(&designs);
+        elastokin::html::compare_html(&comparison, &models, &serde_json::json!({}), elastokin::plot::svg)
     }
 
     /// The report's print stylesheet as the browser's Print lays it out, on an A4 sheet's printable width
