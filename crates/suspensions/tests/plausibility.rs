@@ -308,3 +308,50 @@ fn every_hardpoint_of_the_file_is_named() {
         }
     }
 }
+
+/// The shipped MacPherson as a car's front an engineer would draw: numbers written as one writes them (to
+/// 0.1 mm and round rates, not a tune's seventeen digits), a ride frequency inside the 1.0–1.5 Hz of a
+/// passenger car's front, a static spring deflection of 100–250 mm, and bushings under 15 % of the wheel
+/// rate (against the same model with ideal joints in their place).
+#[test]
+fn the_shipped_macpherson_is_a_plausible_cars_front_in_round_numbers() {
+    use elastokin_suspensions::kc::{self, Analysis, Settings};
+    let text =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/macpherson.json")).unwrap();
+    // Round numbers: every number of the file has at most four decimals (0.1 mm in metres).
+    let mut numbers = Vec::new();
+    fn collect(v: &Value, out: &mut Vec<f64>) {
+        match v {
+            Value::Number(n) => out.push(n.as_f64().unwrap()),
+            Value::Array(a) => a.iter().for_each(|v| collect(v, out)),
+            Value::Object(o) => o.values().for_each(|v| collect(v, out)),
+            _ => {}
+        }
+    }
+    let mut doc: Value = serde_json::from_str(&text).unwrap();
+    collect(&doc, &mut numbers);
+    for v in &numbers {
+        assert!((v * 1e4 - (v * 1e4).round()).abs() < 1e-6 * v.abs().max(1.0) * 1e4, "{v} is no round number");
+    }
+    let run = |doc: &Value| {
+        let file = SuspensionFile::from_json(&doc.to_string(), "m.json").unwrap();
+        let settings = Settings { steps: 8, ..Settings::default() };
+        let travel = kc::run(Analysis::ParallelTravel, &file, &settings).unwrap();
+        let rest = kc::run(Analysis::StaticLoad, &file, &settings).unwrap();
+        let figure = |a: &kc::AnalysisReport, key: &str| a.figure(key).unwrap().value.unwrap();
+        (figure(&travel, "wheel_rate"), figure(&travel, "ride_rate"), figure(&rest, "spring_deflection"))
+    };
+    let (wheel_rate, ride_rate, deflection) = run(&doc);
+    // The corner's sprung mass: its load over g, less an unsprung 33 kg.
+    let corner_load = doc["vehicle"]["corner_load"].as_f64().unwrap();
+    let sprung = corner_load / 9.81 - 33.0;
+    let frequency = (ride_rate / sprung).sqrt() / (2.0 * std::f64::consts::PI);
+    assert!((1.0..=1.5).contains(&frequency), "ride frequency {frequency} Hz");
+    assert!((0.100..=0.250).contains(&-deflection), "static spring deflection {deflection} m");
+    for mount in ["lower_arm_mounts", "top_mount"] {
+        template(&mut doc)[mount] = serde_json::json!("ideal");
+    }
+    let (joints_alone, _, _) = run(&doc);
+    let share = 1.0 - joints_alone / wheel_rate;
+    assert!(share > 0.0 && share < 0.15, "the bushings carry {share} of the wheel rate");
+}

@@ -350,7 +350,10 @@ fn bushing_rates_are_fitted_to_a_measured_lateral_force_test() {
 /// accepts (a positive rate), and the verdict says the model stopped it, with the model's own reason.
 #[test]
 fn a_tune_whose_steps_leave_what_the_model_accepts_steps_back_and_says_so() {
-    let base = document("macpherson.json");
+    // Lower-arm bushings stiff in torsion (10 N·m/deg), which carry the corner when the spring goes soft:
+    // the steps reach a rate the model refuses (not positive) before any sweep fails to solve.
+    let mut base = document("macpherson.json");
+    *base.pointer_mut("/suspension/macpherson/lower_arm_mounts/bushing/torsion").unwrap() = json!(573.0);
     let text = json!({
         "free": { "/suspension/macpherson/spring/rate": [-1e5, 1e5] },
         "targets": [ { "figure": "parallel-travel/wheel_rate", "value": -5.0, "tolerance": 0.01 } ],
@@ -402,7 +405,15 @@ fn the_shipped_fronts_meet_their_tuning_targets_and_a_passenger_cars_ranges() {
         let base = base_document(&read(&format!("{model}.json")), model).unwrap();
         let (_, tuned) = run(&base, &read(&format!("targets/{model}.json")));
         assert!(tuned.all_met(), "{model}: {:?}", tuned.verdicts);
-        assert_eq!(tuned.start.x, tuned.end.x, "{model}: already where the tune left it");
+        // The model as shipped (its tuned numbers rounded as an engineer writes them) meets them as it is.
+        let targets =
+            read_targets(&read(&format!("targets/{model}.json")), "t", &base, |_| Err(String::new())).unwrap();
+        let file = Parameters::new(&base, &[]).unwrap().file().unwrap();
+        let settings = Settings { steps: targets.steps, ..Settings::default() };
+        let which: Vec<Analysis> = targets.targets.iter().map(|t| t.analysis).collect();
+        let report = kc::run_suite(&file, &which, &settings, |_| {});
+        let (points, _) = elastokin_suspensions::design::judge::judge(&report, &base, &targets);
+        assert!(points.iter().all(|p| p.met()), "{model}: {points:?}");
         let file = Parameters::new(&base, &[]).unwrap().file().unwrap();
         in_ranges(model, &file, ranges);
     }
