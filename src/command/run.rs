@@ -167,12 +167,17 @@ pub fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(),
         refuse_implausible(&args.model, model_check.as_ref())?;
     }
     // A TARGETS file is read before anything runs, so that a mistake in it costs no solving.
+    // With the model's document, which the packaging constraints are judged on.
     let targets = match &args.targets {
-        Some(path) => Some(read_targets_file(path, &read.document(&args.model)?, Reading::ToJudge)?),
+        Some(path) => {
+            let document = read.document(&args.model)?;
+            let (bytes, targets) = read_targets_file(path, &document, Reading::ToJudge)?;
+            Some((bytes, targets, document))
+        }
         None => None,
     };
     let mut provenance = provenance(&args, &read.bytes, &settings);
-    if let (Some(path), Some((bytes, _))) = (&args.targets, &targets) {
+    if let (Some(path), Some((bytes, _, _))) = (&args.targets, &targets) {
         provenance.targets = Some((path.display().to_string(), elastokin::provenance::sha256_hex(bytes)));
     }
     let which = args.sweeps.which();
@@ -221,8 +226,7 @@ pub fn run(args: RunArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(),
             }
             None => None,
         };
-        let document = read.document(&args.model)?;
-        let judged = targets.as_ref().map(|(_, t)| design::judge::judge(&report, &document, t));
+        let judged = targets.as_ref().map(|(_, t, document)| design::judge::judge(&report, document, t));
         let unmet = match &judged {
             Some((points, constraints)) => {
                 let table = design::judge::judged_table(points, constraints);
