@@ -3,7 +3,7 @@
 
 use crate::analysis::anti_pitch::anti_pitch_at;
 use crate::analysis::compliance::{compliance_at, compliance_with, patch_compliance_from};
-use crate::analysis::{parallel_wheel_travel_with, TravelRow};
+use crate::analysis::{parallel_wheel_travel_with, InstantCentre, SwingArms, TravelRow};
 use crate::assembly::{Corner, Rig};
 use crate::file::SuspensionFile;
 use crate::kc::chart::Chart;
@@ -57,8 +57,8 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings, taping: &Taping) ->
     Ok(report)
 }
 
-/// The parallel-travel charts of `corner`'s `rows`: toe and camber, and the wheel centre's motion with the
-/// wheel load.
+/// The parallel-travel charts of `corner`'s `rows`: toe and camber, the wheel centre's motion with the
+/// wheel load, and the swing arms.
 fn parallel_travel_charts(file: &SuspensionFile, corner: &Corner, rows: &[TravelRow]) -> Vec<Chart> {
     let wheel = &corner.wheel;
     let sign = wheel.side.sign();
@@ -100,6 +100,31 @@ fn parallel_travel_charts(file: &SuspensionFile, corner: &Corner, rows: &[Travel
                 ],
             ),
             Some(axis("wheel load [N]", rows, x, &[("wheel load", &|r: &TravelRow| Some(r.wheel_load))])),
+            Some(0.0),
+        ),
+        chart(
+            file,
+            "parallel_travel_swing_arms",
+            "swing arms in parallel wheel travel",
+            "wheel travel [mm], bump +",
+            axis(
+                "swing arm length [mm]",
+                rows,
+                x,
+                &[
+                    ("front view", &|r: &TravelRow| Some(r.swing_arms?.front?.swing_arm_length * 1e3)),
+                    ("side view", &|r: &TravelRow| Some(r.swing_arms?.side?.swing_arm_length * 1e3)),
+                ],
+            ),
+            Some(axis(
+                "instant centre height z [mm]",
+                rows,
+                x,
+                &[
+                    ("front-view instant centre", &|r: &TravelRow| Some(r.swing_arms?.front?.z * 1e3)),
+                    ("side-view instant centre", &|r: &TravelRow| Some(r.swing_arms?.side?.z * 1e3)),
+                ],
+            )),
             Some(0.0),
         ),
     ]
@@ -217,7 +242,9 @@ fn compliance_figures(
 fn parallel_travel_table(corner: &Corner, rows: &[TravelRow]) -> Table {
     let wheel = &corner.wheel;
     let sign = wheel.side.sign();
-    let columns: [Column<TravelRow>; 15] = [
+    let front = |r: &TravelRow| r.swing_arms.and_then(|s| s.front);
+    let side = |r: &TravelRow| r.swing_arms.and_then(|s| s.side);
+    let columns: [Column<TravelRow>; 21] = [
         Column::new("travel_m", |r: &TravelRow| r.travel.into()),
         Column::new("toe_deg", |r: &TravelRow| deg(r.attitude.toe).into()),
         Column::new("camber_deg", |r: &TravelRow| deg(r.attitude.camber).into()),
@@ -235,6 +262,12 @@ fn parallel_travel_table(corner: &Corner, rows: &[TravelRow]) -> Table {
         Column::new("kingpin_offset_m", |r: &TravelRow| r.steering.kingpin_offset.into()),
         Column::new("wheel_load_n", |r: &TravelRow| r.wheel_load.into()),
         Column::new("spring_deflection_m", |r: &TravelRow| r.spring_deflection.into()),
+        Column::new("front_view_instant_centre_y_m", move |r: &TravelRow| front(r).map(|c| c.horizontal).into()),
+        Column::new("front_view_instant_centre_z_m", move |r: &TravelRow| front(r).map(|c| c.z).into()),
+        Column::new("front_view_swing_arm_length_m", move |r: &TravelRow| front(r).map(|c| c.swing_arm_length).into()),
+        Column::new("side_view_instant_centre_x_m", move |r: &TravelRow| side(r).map(|c| c.horizontal).into()),
+        Column::new("side_view_instant_centre_z_m", move |r: &TravelRow| side(r).map(|c| c.z).into()),
+        Column::new("side_view_swing_arm_length_m", move |r: &TravelRow| side(r).map(|c| c.swing_arm_length).into()),
     ];
     Table::of_columns("parallel_travel", &columns, rows)
 }
@@ -273,6 +306,20 @@ fn parallel_travel_figures(file: &SuspensionFile, corner: &Corner, design: Desig
         at_design(&figures::SCRUB_RADIUS, &|r| r.steering.scrub_radius),
         at_design(&figures::MECHANICAL_TRAIL, &|r| r.steering.mechanical_trail),
         at_design(&figures::KINGPIN_OFFSET, &|r| r.steering.kingpin_offset),
+    ]);
+    // A view in which the upright does not turn at design has its instant centre at infinity.
+    let swing_arm = |kind: &FigureKind, view: &dyn Fn(&SwingArms) -> Option<InstantCentre>, words: &str| {
+        let arms = design.ok().and_then(|d| d.row.swing_arms);
+        let reason = if arms.is_some() {
+            format!("the upright does not turn in the {words} at design (its arms parallel there): no instant centre")
+        } else {
+            why.to_string()
+        };
+        Figure::of(kind, arms.as_ref().and_then(view).map(|c| c.swing_arm_length), &reason)
+    };
+    f.extend([
+        swing_arm(&figures::FRONT_VIEW_SWING_ARM_LENGTH, &|a| a.front, "front view"),
+        swing_arm(&figures::SIDE_VIEW_SWING_ARM_LENGTH, &|a| a.side, "side view"),
     ]);
     f
 }
