@@ -6,7 +6,7 @@ use elastokin_suspensions::analysis::{
     design_wheel_load, vertical_force_sweep, vertical_force_sweep_with, wheel_compliance, SweepExtras,
 };
 use elastokin_suspensions::kc::{self, Analysis, Settings};
-use elastokin_suspensions::{LoadPoint, Rig, Side, SuspensionFile};
+use elastokin_suspensions::{AxleRig, LoadPoint, Rig, Side, SuspensionFile};
 use std::path::Path;
 
 fn example(name: &str) -> SuspensionFile {
@@ -103,6 +103,52 @@ fn ideal_outer_steer_puts_the_turn_centre_on_the_rear_axle_line() {
         let got = kc::ideal_outer_steer(inner, track, wheelbase);
         assert!((got - outer).abs() < 1e-14, "R {radius}: {got} vs {outer}");
     }
+}
+
+/// The Ackermann chart draws the steering table's angles, the outer wheel's against the inner's (turning
+/// left the left wheel is the inner one, turning right the right), and its ideal curve is Ackermann's at
+/// every point: cot δo − cot δi = T / L, with T the track between the built contact patches and L the
+/// vehicle's wheelbase.
+#[test]
+fn the_ackermann_chart_is_the_table_s_steer_angles_and_its_ideal_is_ackermann_s() {
+    let mut worst: f64 = 0.0;
+    for name in ["double_wishbone.json", "macpherson.json", "generic/double_wishbone.json"] {
+        let file = example(name);
+        let wheelbase = file.vehicle.as_ref().unwrap().wheelbase;
+        let settings = Settings { steps: 16, ..Settings::default() };
+        let report = kc::run(Analysis::Steering, &file, &settings).unwrap();
+        // The track between the built contact patches, as Ackermann's rule is read at design.
+        let axle = kc::Models::new(&file).axle(AxleRig::Steering).unwrap();
+        let track = axle.left.contact_patch.y - axle.right.contact_patch.y;
+        let column = |name: &str| report.table.columns.iter().position(|c| c == name).unwrap();
+        let (left, right, ideal) =
+            (column("left_steer_deg"), column("right_steer_deg"), column("ideal_outer_steer_deg"));
+        // (inner, outer, ideal outer) of every row turned, from the table.
+        let turned: Vec<(f64, f64, f64)> = report
+            .table
+            .rows
+            .iter()
+            .filter_map(|r| {
+                let (l, r, i) = (r[left].number()?, r[right].number()?, r[ideal].number()?);
+                Some(if l + r > 0.0 { (l, r, i) } else { (-r, -l, i) })
+            })
+            .collect();
+        assert!(turned.len() >= 14, "{name}: {} rows turned", turned.len());
+        let chart = report.charts.iter().find(|c| c.name == "steering_ackermann").unwrap();
+        let [outer, ideal] = &chart.left.series[..] else { panic!("{name}: two curves") };
+        let table_outer: Vec<(f64, f64)> = turned.iter().map(|&(i, o, _)| (i, o)).collect();
+        let table_ideal: Vec<(f64, f64)> = turned.iter().map(|&(i, _, d)| (i, d)).collect();
+        assert_eq!(outer.points, table_outer, "{name}");
+        assert_eq!(ideal.points, table_ideal, "{name}");
+        for &(inner, ideal) in &ideal.points {
+            let cot = |deg: f64| 1.0 / deg.to_radians().tan();
+            let miss = (cot(ideal) - cot(inner) - track / wheelbase).abs();
+            worst = worst.max(miss);
+            // Measured: 4.1e-15 at most (the angles' rounding to degrees and back).
+            assert!(miss < 1e-13, "{name}: inner {inner} deg, ideal outer {ideal} deg: {miss:e} off");
+        }
+    }
+    eprintln!("Ackermann's ideal curve: cot δo − cot δi off T/L by {worst:e} at most");
 }
 
 /// Ride rate is the wheel rate in series with the tyre, the wheel rate here measured a second way: as the
