@@ -204,11 +204,26 @@ fn the_swing_arm_columns_and_figures_are_the_rows_and_the_design_reading() {
         assert!((f.value.unwrap() - value).abs() < 1e-8 * value, "{key}: {:?} against the row's {value}", f.value);
         assert!(f.error.is_some(), "{key}");
     }
-    // The chart draws the table's columns, in millimetres.
-    let chart = report.charts.iter().find(|c| c.name == "parallel_travel_swing_arms").unwrap();
-    let front_series = &chart.left.series[0];
-    for (k, &(x, y)) in front_series.points.iter().enumerate() {
-        assert_eq!(x, report.table.rows[k][0].number().unwrap() * 1e3);
-        assert_eq!(y, report.table.rows[k][column("front_view_swing_arm_length_m")].number().unwrap() * 1e3);
+    // The charts draw the table's columns, in millimetres, where the centre lies within 100 m.
+    for (view, length, z) in [
+        ("front", "front_view_swing_arm_length_m", "front_view_instant_centre_z_m"),
+        ("side", "side_view_swing_arm_length_m", "side_view_instant_centre_z_m"),
+    ] {
+        let chart = report.charts.iter().find(|c| c.name == format!("parallel_travel_{view}_view_swing_arm")).unwrap();
+        let drawn: Vec<&Vec<kc::Cell>> = report
+            .table
+            .rows
+            .iter()
+            .filter(|r| r[column(length)].number().is_some_and(|l| l <= 100.0))
+            .filter(|r| r[column(z)].number().is_some_and(|z| z.abs() <= 100.0))
+            .collect();
+        let expected = |c: usize| -> Vec<(f64, f64)> {
+            drawn.iter().map(|r| (r[0].number().unwrap() * 1e3, r[c].number().unwrap() * 1e3)).collect()
+        };
+        assert_eq!(chart.left.series[0].points, expected(column(length)), "{view}");
+        assert_eq!(chart.right.as_ref().unwrap().series[0].points, expected(column(z)), "{view}");
     }
+    // The double wishbone's side-view centre runs off beyond 100 m near full rebound: those rows are left out.
+    let side = report.charts.iter().find(|c| c.name == "parallel_travel_side_view_swing_arm").unwrap();
+    assert!(side.left.series[0].points.len() < report.table.rows.len());
 }

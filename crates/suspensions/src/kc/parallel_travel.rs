@@ -73,6 +73,38 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings, taping: &Taping) ->
     Ok(report)
 }
 
+/// How far from the patch an instant centre is drawn (m): beyond it the arms are near parallel in that view,
+/// and a centre running off towards infinity would flatten the rest of the curve (the table has it).
+const DRAWN_REACH: f64 = 100.0;
+
+/// The swing arm of one view (`words`: front or side) over `rows`: its length and its instant centre's
+/// height, where the centre lies within [`DRAWN_REACH`].
+fn swing_arm_chart(
+    file: &SuspensionFile,
+    rows: &[TravelRow],
+    words: &str,
+    view: &dyn Fn(&SwingArms) -> Option<InstantCentre>,
+) -> Chart {
+    let drawn = |r: &TravelRow| {
+        r.swing_arms.as_ref().and_then(view).filter(|c| c.swing_arm_length <= DRAWN_REACH && c.z.abs() <= DRAWN_REACH)
+    };
+    let x = |r: &TravelRow| r.travel * 1e3;
+    chart(
+        file,
+        &format!("parallel_travel_{words}_view_swing_arm"),
+        &format!("{words}-view swing arm in parallel wheel travel (instant centres within {DRAWN_REACH:.0} m drawn)"),
+        "wheel travel [mm], bump +",
+        axis("swing arm length [mm]", rows, x, &[("length", &|r: &TravelRow| Some(drawn(r)?.swing_arm_length * 1e3))]),
+        Some(axis(
+            "instant centre height z [mm]",
+            rows,
+            x,
+            &[("instant centre height", &|r: &TravelRow| Some(drawn(r)?.z * 1e3))],
+        )),
+        Some(0.0),
+    )
+}
+
 /// A row of parallel travel: the corner's, and the roll centre of the whole axle driven alike at its
 /// travel (none where the axle's sweep has no row at that travel, and when the figures alone are read).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -148,7 +180,7 @@ fn roll_centre_chart(file: &SuspensionFile, rows: &[Row]) -> Chart {
 }
 
 /// The parallel-travel charts of `corner`'s `rows`: toe and camber, the wheel centre's motion with the
-/// wheel load, and the swing arms.
+/// wheel load, and the swing arms in front and side view.
 fn parallel_travel_charts(file: &SuspensionFile, corner: &Corner, rows: &[TravelRow]) -> Vec<Chart> {
     let wheel = &corner.wheel;
     let sign = wheel.side.sign();
@@ -192,31 +224,8 @@ fn parallel_travel_charts(file: &SuspensionFile, corner: &Corner, rows: &[Travel
             Some(axis("wheel load [N]", rows, x, &[("wheel load", &|r: &TravelRow| Some(r.wheel_load))])),
             Some(0.0),
         ),
-        chart(
-            file,
-            "parallel_travel_swing_arms",
-            "swing arms in parallel wheel travel",
-            "wheel travel [mm], bump +",
-            axis(
-                "swing arm length [mm]",
-                rows,
-                x,
-                &[
-                    ("front view", &|r: &TravelRow| Some(r.swing_arms?.front?.swing_arm_length * 1e3)),
-                    ("side view", &|r: &TravelRow| Some(r.swing_arms?.side?.swing_arm_length * 1e3)),
-                ],
-            ),
-            Some(axis(
-                "instant centre height z [mm]",
-                rows,
-                x,
-                &[
-                    ("front-view instant centre", &|r: &TravelRow| Some(r.swing_arms?.front?.z * 1e3)),
-                    ("side-view instant centre", &|r: &TravelRow| Some(r.swing_arms?.side?.z * 1e3)),
-                ],
-            )),
-            Some(0.0),
-        ),
+        swing_arm_chart(file, rows, "front", &|a| a.front),
+        swing_arm_chart(file, rows, "side", &|a| a.side),
     ]
 }
 
