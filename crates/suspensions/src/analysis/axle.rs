@@ -48,8 +48,8 @@ pub struct AxleRow {
     pub roll_moment: f64,
     /// Roll centre from the instantaneous motion of the contact patches in roll (the wheels driven
     /// opposite: the path itself in opposite travel, the drivers' rates so changed at a state of parallel
-    /// travel); `None` under steering (the motion is not a travel) or when the two force lines are
-    /// parallel (roll centre at infinity).
+    /// travel); `None` under steering (the motion is not a travel), for a solid axle whose joints lock its
+    /// roll, or when the two force lines are parallel (roll centre at infinity).
     pub roll_centre: Option<RollCentre>,
 }
 
@@ -143,15 +143,19 @@ pub fn axle_sweep_with(
         {
             None
         } else {
-            solver.factorize_tangent(&solver.state_of(step))?;
-            let rates = match (axle.rig, drivers.1) {
+            let (state, opposite) = (solver.state_of(step), drivers.1.map(|right| [(right, -1.0)]));
+            match (axle.rig, opposite) {
                 // The roll centre is the roll's: at a state of parallel travel, the wheels driven opposite.
-                (AxleRig::ParallelTravel, Some(right)) => {
-                    solver.path_tangent_factored_with_drivers_scaled(&[(right, -1.0)])?
+                (AxleRig::ParallelTravel, Some(opposite)) => {
+                    solver.factorize_tangent(&state)?;
+                    let rates = solver.path_tangent_factored_with_drivers_scaled(&opposite)?;
+                    axle.roll_centre(&step.poses, &rates)
                 }
-                _ => solver.path_tangent_factored()?,
-            };
-            axle.roll_centre(&step.poses, &rates)
+                // A solid axle whose joints lock its roll has its right wheel's height follow the left's
+                // (no driver of its own): it cannot roll, and has no roll centre.
+                (AxleRig::ParallelTravel, None) => None,
+                _ => axle.roll_centre(&step.poses, &solver.path_tangent(&state)?),
+            }
         };
         let reports =
             (!(axle.anti_roll_bars.is_empty() && axle.members.is_empty())).then(|| step.element_reports(model));
