@@ -238,3 +238,32 @@ def test_threads_give_the_sequential_results(model):
     for name in names:
         for column, values in sequential[name].items():
             numpy.testing.assert_array_equal(threaded[name][column], values)
+
+
+def test_parallel_travel_has_the_swing_arms_and_the_axle_s_roll_centre(model):
+    # The instant centres and swing arms of the corner and the whole axle's roll centre, a column each; at
+    # zero travel the swing arms are the figures read at design and the roll centre the roll analysis's
+    # (the equilibria's tolerance apart).
+    result = model.run("parallel-travel", steps=8)
+    for name in [
+        "front_view_instant_centre_y_m",
+        "front_view_instant_centre_z_m",
+        "front_view_swing_arm_length_m",
+        "side_view_instant_centre_x_m",
+        "side_view_instant_centre_z_m",
+        "side_view_swing_arm_length_m",
+        "roll_centre_lateral_m",
+        "roll_centre_height_m",
+    ]:
+        assert numpy.all(numpy.isfinite(result.columns[name])), name
+    design = list(result.columns["travel_m"]).index(0.0)
+    for column, key in [
+        ("front_view_swing_arm_length_m", "front_view_swing_arm_length"),
+        ("side_view_swing_arm_length_m", "side_view_swing_arm_length"),
+    ]:
+        # Measured through the command's CSV (12 digits): 9.2e-12 of the length at most.
+        assert result.columns[column][design] == pytest.approx(result.figure(key, si=True), rel=1e-10)
+    roll = model.run("roll", steps=8)
+    height = result.columns["roll_centre_height_m"][design]
+    # Measured through the command's CSV: 4.5e-13 m.
+    assert height == pytest.approx(roll.figure("roll_centre_height", si=True), abs=4e-11)

@@ -29,7 +29,7 @@ def test_sensitivities_are_the_commands(tmp_path):
     model = elastokin.load(MODEL)
     s = model.sensitivities([TIE_ROD_Z, RATE])
     assert s["parameters"] == [TIE_ROD_Z, RATE] and s["analysis"] == "parallel-travel"
-    assert len(rows) == 2 * len(s["figures"]) and len(s["figures"]) == 21
+    assert len(rows) == 2 * len(s["figures"]) and len(s["figures"]) == 23
     for row in rows:
         analysis, figure, parameter = row[0], row[1], row[4]
         assert analysis == "parallel-travel"

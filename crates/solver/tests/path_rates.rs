@@ -1,7 +1,8 @@
 //! The rates of an equilibrium along its load path (`StaticSolver::path_rates_factored`) and the tangent
 //! line they span (`StaticSolver::along_path`): the lever's turn rate against the implicit function
 //! theorem on its moment balance written here, the multipliers' rates against differences of equilibria
-//! solved apart.
+//! solved apart; the rates with a driver scaled (`StaticSolver::path_tangent_factored_with_drivers_scaled`)
+//! against two driven levers' geometry.
 
 mod lever;
 
@@ -100,4 +101,42 @@ fn the_second_rates_are_the_curvature_of_equilibria_solved_apart() {
     let line = |k: f64| angle(&solver.along_path(&state, &rates, None, k * h));
     let straight = (line(1.0) + line(-1.0) - 2.0 * angle(&at)) / (h * h);
     assert!((straight - apart).abs() > 0.5 * apart.abs(), "{straight:e} against {apart:e}");
+}
+
+/// Two levers hinged about y, side by side, each tip driven up by the load parameter: with the second
+/// driver's rate scaled by −1 the rates are those of the second tip driven down, each lever turning at the
+/// rate its tip's height gives, dθ/dt = −(tip's rate) / (TIP cos θ) (z = −TIP sin θ), from the state the
+/// path reached with both driven up.
+#[test]
+fn scaling_a_driver_gives_the_rates_of_the_path_it_would_drive() {
+    use elastokin_core::{BodyRef, JointSpec, Model, Pose, Vec3, BODY_DOFS};
+    let mut model = Model::new();
+    let mut drivers = Vec::new();
+    for (k, y) in [0.0, 1.0].into_iter().enumerate() {
+        let lever = model.add_body(&format!("lever {k}"), Pose::at(Vec3::new(0.25, y, 0.0))).unwrap();
+        let hinge =
+            JointSpec::revolute(&format!("hinge {k}"), BodyRef::Ground, lever, Vec3::new(0.0, y, 0.0), Vec3::y());
+        model.add_joint(hinge).unwrap();
+        let tip = Vec3::new(lever::TIP, y, 0.0);
+        drivers
+            .push(model.add_joint(JointSpec::point_driver(&format!("tip {k}"), lever, tip, Vec3::z(), 1.0)).unwrap());
+    }
+    let mut solver = StaticSolver::new(&model, SolverOptions::default()).unwrap();
+    let t = 0.05;
+    let mut state = solver.design_state(t);
+    let at = solver.equilibrium(&mut state).unwrap();
+    solver.factorize_tangent(&state).unwrap();
+    let path = solver.path_tangent_factored().unwrap();
+    let scaled = solver.path_tangent_factored_with_drivers_scaled(&[(drivers[1], -1.0)]).unwrap();
+    // Each lever's turn about y, its rate about y, and its tip's rate along the path that was driven.
+    for (k, tip_rate) in [1.0, -1.0].into_iter().enumerate() {
+        let p = at.poses[k].position;
+        let theta = (-p.z).atan2(p.x);
+        let expected = -tip_rate / (lever::TIP * theta.cos());
+        let got = scaled[k * BODY_DOFS + 4];
+        // Measured: equal to the bit; a few ulps allowed.
+        assert!((got - expected).abs() <= 1e-15 * expected.abs(), "lever {k}: {got} against {expected}");
+        // The path's own rates turn both levers alike.
+        assert!((path[k * BODY_DOFS + 4] + 1.0 / (lever::TIP * theta.cos())).abs() <= 1e-15 * expected.abs());
+    }
 }

@@ -126,8 +126,13 @@ impl Wheel {
     pub fn point_velocity(&self, poses: &[Pose], rates: &[f64], point: Vec3) -> Vec3 {
         let base = self.upright.0 * BODY_DOFS;
         let v = Vec3::new(rates[base], rates[base + 1], rates[base + 2]);
-        let w = Vec3::new(rates[base + 3], rates[base + 4], rates[base + 5]);
-        v + w.cross(&(point - poses[self.upright.0].position))
+        v + self.angular_velocity(rates).cross(&(point - poses[self.upright.0].position))
+    }
+
+    /// Angular velocity of the upright for body velocities `rates` (as [`Wheel::point_velocity`] takes).
+    pub fn angular_velocity(&self, rates: &[f64]) -> Vec3 {
+        let base = self.upright.0 * BODY_DOFS;
+        Vec3::new(rates[base + 3], rates[base + 4], rates[base + 5])
     }
 
     /// Caster, kingpin inclination, scrub radius, trail and kingpin offset at the given poses.

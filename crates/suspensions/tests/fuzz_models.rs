@@ -328,13 +328,20 @@ fn check_refusal(message: &str) -> Result<(), String> {
 }
 
 /// Table columns whose cells are empty by definition in some rows.
-const MAY_BE_EMPTY: [&str; 5] = [
+const MAY_BE_EMPTY: [&str; 11] = [
     "ideal_outer_steer_deg",
     "ackermann_error_deg",
     "ackermann_percent",
     // No roll centre where the front-view lines through the patches are parallel.
     "roll_centre_lateral_m",
     "roll_centre_height_m",
+    // No instant centre in a view where the upright does not turn.
+    "front_view_instant_centre_y_m",
+    "front_view_instant_centre_z_m",
+    "front_view_swing_arm_length_m",
+    "side_view_instant_centre_x_m",
+    "side_view_instant_centre_z_m",
+    "side_view_swing_arm_length_m",
 ];
 
 /// A suite's report of one analysis alone, as [`check_report`] takes it.

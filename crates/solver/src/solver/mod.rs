@@ -42,7 +42,7 @@ use crate::kkt::{FactorCounters, KktOptions};
 use crate::options::{ArcStep, LoadPath, Mode, SolverOptions, State};
 use crate::replay::{self, Taping};
 use crate::results::{Diagnostics, LimitPoint, PathRates, RedundantRow, StepResult, Sweep};
-use elastokin_core::{Model, Pose, BODY_DOFS};
+use elastokin_core::{JointId, Model, Pose, BODY_DOFS};
 
 /// Counters that prove reuse: how often each costly operation ran.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

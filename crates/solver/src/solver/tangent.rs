@@ -55,6 +55,25 @@ impl<'m> StaticSolver<'m> {
         Ok(self.path_rates_factored()?.dq)
     }
 
+    /// [`StaticSolver::path_tangent_factored`] with the drivers of each joint of `scaled` moving at their
+    /// rates along the path times its factor: the equilibrium's rate along another path through the same
+    /// state, one the model's drivers would walk with their rates so changed (a rig's other motion: the
+    /// wheels driven opposite at a state of parallel travel, the right wheel's driver scaled by −1).
+    pub fn path_tangent_factored_with_drivers_scaled(
+        &mut self,
+        scaled: &[(JointId, f64)],
+    ) -> Result<Vec<f64>, SolverError> {
+        self.load_direction_rhs();
+        let n = self.work.assembly.n;
+        for (k, &(joint, _)) in self.work.assembly.row_joint.iter().enumerate() {
+            if let Some(&(_, factor)) = scaled.iter().find(|(j, _)| j.0 == joint) {
+                self.work.rhs[n + k] *= factor;
+            }
+        }
+        self.solve_with_skew(Accuracy::Refined)?;
+        Ok(self.rates_in_rhs("path tangent")?.dq)
+    }
+
     /// The rates of the equilibrium along the load path at the state the tangent was last factorized at:
     /// `dq/dt` and `dλ/dt` of the active rows, the one solve of [`StaticSolver::path_tangent_factored`]
     /// read whole. What a rig measures as a rate at that state (a wheel rate is `dλ/dt` of the travel

@@ -46,14 +46,18 @@ pub struct AxleRow {
     /// Moment of the two wheel loads about the x axis, Σ yᵢ·Fᵢ at the wheel centres (N·m). The roll
     /// stiffness is −dM/dφ.
     pub roll_moment: f64,
-    /// Roll centre from the instantaneous motion of the contact patches; `None` under steering (the
-    /// motion is not a travel) or when the two force lines are parallel (roll centre at infinity).
+    /// Roll centre from the instantaneous motion of the contact patches in roll (the wheels driven
+    /// opposite: the path itself in opposite travel, the drivers' rates so changed at a state of parallel
+    /// travel); `None` under steering (the motion is not a travel), for a solid axle whose joints lock its
+    /// roll, or when the two force lines are parallel (roll centre at infinity).
     pub roll_centre: Option<RollCentre>,
 }
 
 impl Axle {
-    /// The roll centre at `poses`, for body velocities `rates` along a wheel-travel path (from
-    /// [`StaticSolver::path_tangent`]).
+    /// The roll centre at `poses`, for body velocities `rates` of the wheels driven opposite (from
+    /// [`StaticSolver::path_tangent`] in opposite travel, or
+    /// [`StaticSolver::path_tangent_factored_with_drivers_scaled`] at a state of parallel travel). For
+    /// wheels whose motions do not depend on each other the rates of parallel travel give the same lines.
     ///
     /// Each contact patch `P` (the wheel's lowest point) belongs, for an instant, to the upright, whose
     /// material point there moves with velocity `v`. A force at `P` along the front-view line perpendicular
@@ -97,7 +101,8 @@ impl Axle {
 /// Walks the axle's driven path from `from` to `to` in `steps` steps: parallel travel, opposite travel or
 /// steering, whichever the axle was built for (refused for [`AxleRig::HeightHeld`] and [`AxleRig::Free`],
 /// where `t` drives nothing). Each row carries both wheels, track, roll angle, wheel loads, roll moment and
-/// — for the travel rigs — the roll centre from the path's exact tangent (one more factorization per row).
+/// — for the travel rigs — the roll centre from the exact tangent at the row (one more factorization per
+/// row), of the roll there: in parallel travel, of the wheels driven opposite from the row's state.
 pub fn axle_sweep(axle: &Axle, from: f64, to: f64, steps: usize, mode: Mode) -> Result<Vec<AxleRow>, SolverError> {
     whole(axle_sweep_with(axle, from, to, steps, mode, SweepExtras::default())?)
 }
@@ -138,8 +143,19 @@ pub fn axle_sweep_with(
         {
             None
         } else {
-            let rates = solver.path_tangent(&solver.state_of(step))?;
-            axle.roll_centre(&step.poses, &rates)
+            let (state, opposite) = (solver.state_of(step), drivers.1.map(|right| [(right, -1.0)]));
+            match (axle.rig, opposite) {
+                // The roll centre is the roll's: at a state of parallel travel, the wheels driven opposite.
+                (AxleRig::ParallelTravel, Some(opposite)) => {
+                    solver.factorize_tangent(&state)?;
+                    let rates = solver.path_tangent_factored_with_drivers_scaled(&opposite)?;
+                    axle.roll_centre(&step.poses, &rates)
+                }
+                // A solid axle whose joints lock its roll has its right wheel's height follow the left's
+                // (no driver of its own): it cannot roll, and has no roll centre.
+                (AxleRig::ParallelTravel, None) => None,
+                _ => axle.roll_centre(&step.poses, &solver.path_tangent(&state)?),
+            }
         };
         let reports =
             (!(axle.anti_roll_bars.is_empty() && axle.members.is_empty())).then(|| step.element_reports(model));

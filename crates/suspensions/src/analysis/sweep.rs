@@ -227,6 +227,12 @@ impl<R> AtDesign<R> {
         (16.0 * near - far) / 15.0
     }
 
+    /// The same readings, each made another row by `f` (a reading joined to what another sweep read there).
+    pub fn map<S>(&self, f: impl Fn(&R) -> S) -> AtDesign<S> {
+        let expansion = self.expansion.each_ref().map(&f);
+        AtDesign { row: f(&self.row), expansion, h: self.h, unextrapolated: self.unextrapolated }
+    }
+
     /// The same readings, differenced without extrapolation: how far that moves a figure bounds the
     /// extrapolated figure's truncation (by the factor the extrapolation gains, `h²` and more).
     pub fn unextrapolated(&self) -> AtDesign<R>

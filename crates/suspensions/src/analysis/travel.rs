@@ -1,7 +1,8 @@
 //! Driven sweeps of one corner: parallel wheel travel and steering, a row of toe, camber, wheel-centre
 //! position, steering geometry and wheel load at every step.
 
-use crate::analysis::sweep::{read_sweep, require_rig, walk, whole, SweepExtras, SweepOutput};
+use crate::analysis::sweep::{read_sweep, require_rig, walk, whole, Reading, SweepExtras, SweepOutput};
+use crate::analysis::swing_arm::SwingArms;
 use crate::assembly::rig::WHEEL_TRAVEL;
 use crate::assembly::{Corner, Rig};
 use crate::wheel::{SteeringGeometry, WheelAttitude};
@@ -22,6 +23,10 @@ pub struct TravelRow {
     /// Spring deflection `L − L₀` (m, compression negative). Its slope against wheel travel is the
     /// (signed) spring motion ratio.
     pub spring_deflection: f64,
+    /// The front-view and side-view swing arms from the path's exact tangent, in wheel travel; `None` in
+    /// steering, at the points of the path's expansion through design, and on rows read for the figures
+    /// alone ([`SweepExtras::figures_only`]).
+    pub swing_arms: Option<SwingArms>,
 }
 
 /// Parallel wheel travel from `from` to `to` metres in `steps` steps (the corner must be built with
@@ -78,7 +83,20 @@ fn driven_sweep_with(
     let mut solver = StaticSolver::taped(&corner.model, SolverOptions::default(), extras.taping())?;
     let mut start = solver.design_state(from);
     let walked = walk(&mut solver, &mut start, LoadPath::new(from, to, steps), mode, &extras)?;
-    read_sweep(&mut solver, &corner.wheel, corner.partner.as_ref(), walked, extras, |_, s, _| Ok(travel_row(corner, s)))
+    read_sweep(&mut solver, &corner.wheel, corner.partner.as_ref(), walked, extras, |solver, s, reading| {
+        // The swing arms cost a factorization of the exact tangent at the row (the walk's own are of other
+        // states, or of the paper tangent); no rate is taken of them.
+        let swing_arms = match reading {
+            _ if rig != Rig::WheelTravel => None,
+            Reading::Row if extras.figures_only => None,
+            Reading::Expansion => None,
+            Reading::Row | Reading::Design => {
+                let rates = solver.path_tangent(&solver.state_of(s))?;
+                Some(SwingArms::of(&corner.wheel, &s.poses, &rates))
+            }
+        };
+        Ok(TravelRow { swing_arms, ..travel_row(corner, s) })
+    })
 }
 
 /// One row of a driven sweep of `corner`, read from a state of its model: the wheel's attitude and steering
@@ -91,5 +109,6 @@ fn travel_row(corner: &Corner, s: &StepResult) -> TravelRow {
         steering: corner.wheel.steering_geometry(&s.poses),
         wheel_load: driver.map_or(0.0, |d| s.joint_reaction(&corner.model, d).force.z),
         spring_deflection: corner.spring.map_or(0.0, |e| s.element_report(&corner.model, e).deflection.x),
+        swing_arms: None,
     }
 }

@@ -66,6 +66,12 @@ pub const SWING_ARM_ANGLE_AT_PATCH: FigureKind =
 /// The wheel centre's side-view path against the vertical.
 pub const SWING_ARM_ANGLE_AT_WHEEL_CENTRE: FigureKind =
     kind("side_view_swing_arm_angle_at_wheel_centre", "side-view swing arm angle at the wheel centre", Unit::Degree, 2);
+/// The lateral distance from the patch to the front-view instant centre at design.
+pub const FRONT_VIEW_SWING_ARM_LENGTH: FigureKind =
+    kind("front_view_swing_arm_length", "front-view swing arm length at design", Unit::Millimetre, 0);
+/// The longitudinal distance from the patch to the side-view instant centre at design.
+pub const SIDE_VIEW_SWING_ARM_LENGTH: FigureKind =
+    kind("side_view_swing_arm_length", "side-view swing arm length at design", Unit::Millimetre, 0);
 
 // roll
 /// The lateral distance between the contact patches at design.
@@ -150,7 +156,7 @@ pub const SPRING_DEFLECTION: FigureKind =
     kind("spring_deflection", "spring deflection (compression -)", Unit::Millimetre, 2);
 
 /// Every declared figure (`crates/suspensions/tests/figures.rs` keeps it in step with this file).
-pub const ALL: [&FigureKind; 47] = [
+pub const ALL: [&FigureKind; 49] = [
     &BUMP_STEER,
     &CAMBER_GAIN,
     &WHEEL_RATE,
@@ -172,6 +178,8 @@ pub const ALL: [&FigureKind; 47] = [
     &TRACTION_ANTI_PITCH,
     &SWING_ARM_ANGLE_AT_PATCH,
     &SWING_ARM_ANGLE_AT_WHEEL_CENTRE,
+    &FRONT_VIEW_SWING_ARM_LENGTH,
+    &SIDE_VIEW_SWING_ARM_LENGTH,
     &TRACK,
     &ROLL_CENTRE_HEIGHT,
     &ROLL_CENTRE_LATERAL,

@@ -3,8 +3,11 @@
 
 use crate::analysis::anti_pitch::anti_pitch_at;
 use crate::analysis::compliance::{compliance_at, compliance_with, patch_compliance_from};
-use crate::analysis::{parallel_wheel_travel_with, TravelRow};
-use crate::assembly::{Corner, Rig};
+use crate::analysis::{
+    axle_sweep_with, parallel_wheel_travel_with, AxleRow, InstantCentre, RollCentre, SweepExtras, SweepOutput,
+    SwingArms, TravelRow,
+};
+use crate::assembly::{AxleRig, Corner, Rig};
 use crate::file::SuspensionFile;
 use crate::kc::chart::Chart;
 use crate::kc::figures;
@@ -37,9 +40,14 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings, taping: &Taping) ->
         s.mode,
         s.extras_reading(range, 0.0, DECLARATION.figure_rows, taping),
     )?;
-    let table = |rows: &[TravelRow]| parallel_travel_table(corner, rows);
-    let figures = |_: &[TravelRow], design: Design<TravelRow>| parallel_travel_figures(file, corner, design);
-    let charts = parallel_travel_charts(file, corner, &out.rows);
+    // Toe, camber and wheel rate no car has, inside the travel asked for.
+    let travel_warnings = crate::check::check_travel_rows(&out.rows);
+    let axle = axle_in_parallel_travel(models, range, s, taping);
+    let mut charts = parallel_travel_charts(file, corner, &out.rows);
+    let out = with_roll_centres(out, axle.as_ref().and_then(|a| a.as_ref().ok()));
+    charts.push(roll_centre_chart(file, &out.rows));
+    let table = |rows: &[Row]| parallel_travel_table(corner, rows);
+    let figures = |_: &[Row], design: Design<Row>| parallel_travel_figures(file, corner, design);
     let description =
         format!("parallel wheel travel {:+.0}..{:+.0} mm, {} steps", range.0 * 1e3, range.1 * 1e3, s.steps);
     let mut report = finish(
@@ -51,14 +59,128 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings, taping: &Taping) ->
         Reduction { table: &table, figures: &figures, drawing: corner_drawing(corner, s) },
         charts,
     );
-    // Toe, camber and wheel rate no car has, inside the travel asked for.
-    report.warnings.extend(crate::check::check_travel_rows(&out.rows));
+    report.warnings.extend(travel_warnings);
+    if let Some(Err(why)) = axle {
+        report.warnings.push(Warning {
+            code: "no-roll-centre-in-parallel-travel",
+            hardpoints: Vec::new(),
+            message: format!(
+                "parallel-travel: the roll centre columns are empty: the whole axle driven alike gives none ({why})"
+            ),
+        });
+    }
     design_compliance(file, corner, s, taping, &mut report)?;
     Ok(report)
 }
 
-/// The parallel-travel charts of `corner`'s `rows`: toe and camber, and the wheel centre's motion with the
-/// wheel load.
+/// How far from the patch an instant centre is drawn (m): beyond it the arms are near parallel in that view,
+/// and a centre running off towards infinity would flatten the rest of the curve (the table has it).
+const DRAWN_REACH: f64 = 100.0;
+
+/// The swing arm of one view (`words`: front or side) over `rows`: its length and its instant centre's
+/// height, where the centre lies within [`DRAWN_REACH`].
+fn swing_arm_chart(
+    file: &SuspensionFile,
+    rows: &[TravelRow],
+    words: &str,
+    view: &dyn Fn(&SwingArms) -> Option<InstantCentre>,
+) -> Chart {
+    let drawn = |r: &TravelRow| {
+        r.swing_arms.as_ref().and_then(view).filter(|c| c.swing_arm_length <= DRAWN_REACH && c.z.abs() <= DRAWN_REACH)
+    };
+    let x = |r: &TravelRow| r.travel * 1e3;
+    chart(
+        file,
+        &format!("parallel_travel_{words}_view_swing_arm"),
+        &format!("{words}-view swing arm in parallel wheel travel (instant centres within {DRAWN_REACH:.0} m drawn)"),
+        "wheel travel [mm], bump +",
+        axis("swing arm length [mm]", rows, x, &[("length", &|r: &TravelRow| Some(drawn(r)?.swing_arm_length * 1e3))]),
+        Some(axis(
+            "instant centre height z [mm]",
+            rows,
+            x,
+            &[("instant centre height", &|r: &TravelRow| Some(drawn(r)?.z * 1e3))],
+        )),
+        Some(0.0),
+    )
+}
+
+/// A row of parallel travel: the corner's, and the roll centre of the whole axle driven alike at its
+/// travel (none where the axle's sweep has no row at that travel, and when the figures alone are read).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Row {
+    corner: TravelRow,
+    roll_centre: Option<RollCentre>,
+}
+
+impl std::ops::Deref for Row {
+    type Target = TravelRow;
+    fn deref(&self) -> &TravelRow {
+        &self.corner
+    }
+}
+
+/// The whole axle driven alike over the range of parallel travel, its roll centre read at every row; or
+/// why it could not be built or walked. Nothing when the figures alone are read: no figure reads it.
+fn axle_in_parallel_travel(
+    models: &Models,
+    range: (f64, f64),
+    s: &Settings,
+    taping: &Taping,
+) -> Option<Result<SweepOutput<AxleRow>, String>> {
+    if s.figures_only {
+        return None;
+    }
+    let axle = match models.axle_ref(AxleRig::ParallelTravel) {
+        Ok(axle) => axle,
+        Err(e) => return Some(Err(e.to_string())),
+    };
+    let extras = SweepExtras { compliance: false, poses: false, ..s.extras(range, taping) };
+    Some(axle_sweep_with(axle, range.0, range.1, s.steps, s.mode, extras).map_err(|e| e.to_string()))
+}
+
+/// The corner's sweep `out` with the roll centre of the `axle`'s row at each row's travel (its corrected
+/// row at each corrected row's).
+fn with_roll_centres(out: SweepOutput<TravelRow>, axle: Option<&SweepOutput<AxleRow>>) -> SweepOutput<Row> {
+    let pair = |rows: Vec<TravelRow>, axle_rows: Option<&Vec<AxleRow>>| -> Vec<Row> {
+        let centre =
+            |k: usize, r: &TravelRow| axle_rows?.get(k).filter(|a| a.travel == r.travel).and_then(|a| a.roll_centre);
+        rows.into_iter().enumerate().map(|(k, r)| Row { roll_centre: centre(k, &r), corner: r }).collect()
+    };
+    let alone = |r: &TravelRow| Row { corner: *r, roll_centre: None };
+    SweepOutput {
+        rows: pair(out.rows, axle.map(|a| &a.rows)),
+        limit: out.limit,
+        corrected: out.corrected.map(|c| pair(c, axle.and_then(|a| a.corrected.as_ref()))),
+        residuals: out.residuals,
+        compliance: out.compliance,
+        poses: out.poses,
+        design: out.design.map(|d| d.map(|d| d.map(alone))),
+        design_corrected: out.design_corrected.map(|d| d.map(alone)),
+    }
+}
+
+/// The roll centre's height of the whole axle driven alike over parallel travel, from `rows` (its lateral
+/// position stays on the centre plane of an axle whose sides mirror each other, the table has it).
+fn roll_centre_chart(file: &SuspensionFile, rows: &[Row]) -> Chart {
+    chart(
+        file,
+        "parallel_travel_roll_centre",
+        "roll centre in parallel wheel travel (the whole axle)",
+        "wheel travel [mm], bump +",
+        axis(
+            "roll centre height above ground [mm]",
+            rows,
+            |r: &Row| r.travel * 1e3,
+            &[("height", &|r: &Row| r.roll_centre.map(|c| c.height * 1e3))],
+        ),
+        None,
+        Some(0.0),
+    )
+}
+
+/// The parallel-travel charts of `corner`'s `rows`: toe and camber, the wheel centre's motion with the
+/// wheel load, and the swing arms in front and side view.
 fn parallel_travel_charts(file: &SuspensionFile, corner: &Corner, rows: &[TravelRow]) -> Vec<Chart> {
     let wheel = &corner.wheel;
     let sign = wheel.side.sign();
@@ -102,6 +224,8 @@ fn parallel_travel_charts(file: &SuspensionFile, corner: &Corner, rows: &[Travel
             Some(axis("wheel load [N]", rows, x, &[("wheel load", &|r: &TravelRow| Some(r.wheel_load))])),
             Some(0.0),
         ),
+        swing_arm_chart(file, rows, "front", &|a| a.front),
+        swing_arm_chart(file, rows, "side", &|a| a.side),
     ]
 }
 
@@ -213,40 +337,50 @@ fn compliance_figures(
     Ok(figures)
 }
 
-/// The parallel-travel table of `rows` of `corner` (half-track and wheelbase change from its design wheel).
-fn parallel_travel_table(corner: &Corner, rows: &[TravelRow]) -> Table {
+/// The parallel-travel table of `rows` of `corner` (half-track and wheelbase change from its design wheel),
+/// with the roll centre of the whole axle.
+fn parallel_travel_table(corner: &Corner, rows: &[Row]) -> Table {
     let wheel = &corner.wheel;
     let sign = wheel.side.sign();
-    let columns: [Column<TravelRow>; 15] = [
-        Column::new("travel_m", |r: &TravelRow| r.travel.into()),
-        Column::new("toe_deg", |r: &TravelRow| deg(r.attitude.toe).into()),
-        Column::new("camber_deg", |r: &TravelRow| deg(r.attitude.camber).into()),
-        Column::new("wheel_centre_x_m", |r: &TravelRow| r.attitude.wheel_centre.x.into()),
-        Column::new("wheel_centre_y_m", |r: &TravelRow| r.attitude.wheel_centre.y.into()),
-        Column::new("wheel_centre_z_m", |r: &TravelRow| r.attitude.wheel_centre.z.into()),
-        Column::new("half_track_change_m", move |r: &TravelRow| {
+    let front = |r: &Row| r.swing_arms.and_then(|s| s.front);
+    let side = |r: &Row| r.swing_arms.and_then(|s| s.side);
+    let columns: [Column<Row>; 23] = [
+        Column::new("travel_m", |r: &Row| r.travel.into()),
+        Column::new("toe_deg", |r: &Row| deg(r.attitude.toe).into()),
+        Column::new("camber_deg", |r: &Row| deg(r.attitude.camber).into()),
+        Column::new("wheel_centre_x_m", |r: &Row| r.attitude.wheel_centre.x.into()),
+        Column::new("wheel_centre_y_m", |r: &Row| r.attitude.wheel_centre.y.into()),
+        Column::new("wheel_centre_z_m", |r: &Row| r.attitude.wheel_centre.z.into()),
+        Column::new("half_track_change_m", move |r: &Row| {
             (sign * (r.steering.contact_patch.y - wheel.contact_patch.y)).into()
         }),
-        Column::new("wheelbase_change_m", |r: &TravelRow| (r.attitude.wheel_centre.x - wheel.wheel_centre.x).into()),
-        Column::new("caster_deg", |r: &TravelRow| deg(r.steering.caster).into()),
-        Column::new("kingpin_inclination_deg", |r: &TravelRow| deg(r.steering.kingpin_inclination).into()),
-        Column::new("scrub_radius_m", |r: &TravelRow| r.steering.scrub_radius.into()),
-        Column::new("mechanical_trail_m", |r: &TravelRow| r.steering.mechanical_trail.into()),
-        Column::new("kingpin_offset_m", |r: &TravelRow| r.steering.kingpin_offset.into()),
-        Column::new("wheel_load_n", |r: &TravelRow| r.wheel_load.into()),
-        Column::new("spring_deflection_m", |r: &TravelRow| r.spring_deflection.into()),
+        Column::new("wheelbase_change_m", |r: &Row| (r.attitude.wheel_centre.x - wheel.wheel_centre.x).into()),
+        Column::new("caster_deg", |r: &Row| deg(r.steering.caster).into()),
+        Column::new("kingpin_inclination_deg", |r: &Row| deg(r.steering.kingpin_inclination).into()),
+        Column::new("scrub_radius_m", |r: &Row| r.steering.scrub_radius.into()),
+        Column::new("mechanical_trail_m", |r: &Row| r.steering.mechanical_trail.into()),
+        Column::new("kingpin_offset_m", |r: &Row| r.steering.kingpin_offset.into()),
+        Column::new("wheel_load_n", |r: &Row| r.wheel_load.into()),
+        Column::new("spring_deflection_m", |r: &Row| r.spring_deflection.into()),
+        Column::new("front_view_instant_centre_y_m", move |r: &Row| front(r).map(|c| c.horizontal).into()),
+        Column::new("front_view_instant_centre_z_m", move |r: &Row| front(r).map(|c| c.z).into()),
+        Column::new("front_view_swing_arm_length_m", move |r: &Row| front(r).map(|c| c.swing_arm_length).into()),
+        Column::new("side_view_instant_centre_x_m", move |r: &Row| side(r).map(|c| c.horizontal).into()),
+        Column::new("side_view_instant_centre_z_m", move |r: &Row| side(r).map(|c| c.z).into()),
+        Column::new("side_view_swing_arm_length_m", move |r: &Row| side(r).map(|c| c.swing_arm_length).into()),
+        Column::new("roll_centre_lateral_m", |r: &Row| r.roll_centre.map(|c| c.lateral).into()),
+        Column::new("roll_centre_height_m", |r: &Row| r.roll_centre.map(|c| c.height).into()),
     ];
     Table::of_columns("parallel_travel", &columns, rows)
 }
 
 /// The parallel-travel headline figures of `corner` read at design, of the model in `file` (its tyre rate):
 /// rates and values at design.
-fn parallel_travel_figures(file: &SuspensionFile, corner: &Corner, design: Design<TravelRow>) -> Vec<Figure> {
+fn parallel_travel_figures(file: &SuspensionFile, corner: &Corner, design: Design<Row>) -> Vec<Figure> {
     let tyre_rate = file.vehicle.as_ref().and_then(|v| v.tyre_rate);
     let why = design.err().unwrap_or_default();
-    let slope = |y: &dyn Fn(&TravelRow) -> f64| design.ok().map(|d| d.rate(y));
-    let at_design =
-        |kind: &FigureKind, y: &dyn Fn(&TravelRow) -> f64| Figure::of(kind, design.ok().map(|d| y(&d.row)), why);
+    let slope = |y: &dyn Fn(&Row) -> f64| design.ok().map(|d| d.rate(y));
+    let at_design = |kind: &FigureKind, y: &dyn Fn(&Row) -> f64| Figure::of(kind, design.ok().map(|d| y(&d.row)), why);
     let rate = slope(&|r| r.wheel_load);
     let mut f = vec![
         Figure::of(&figures::BUMP_STEER, slope(&|r| r.attitude.toe), why),
@@ -273,6 +407,20 @@ fn parallel_travel_figures(file: &SuspensionFile, corner: &Corner, design: Desig
         at_design(&figures::SCRUB_RADIUS, &|r| r.steering.scrub_radius),
         at_design(&figures::MECHANICAL_TRAIL, &|r| r.steering.mechanical_trail),
         at_design(&figures::KINGPIN_OFFSET, &|r| r.steering.kingpin_offset),
+    ]);
+    // A view in which the upright does not turn at design has its instant centre at infinity.
+    let swing_arm = |kind: &FigureKind, view: &dyn Fn(&SwingArms) -> Option<InstantCentre>, words: &str| {
+        let arms = design.ok().and_then(|d| d.row.swing_arms);
+        let reason = if arms.is_some() {
+            format!("the upright does not turn in the {words} at design (its arms parallel there): no instant centre")
+        } else {
+            why.to_string()
+        };
+        Figure::of(kind, arms.as_ref().and_then(view).map(|c| c.swing_arm_length), &reason)
+    };
+    f.extend([
+        swing_arm(&figures::FRONT_VIEW_SWING_ARM_LENGTH, &|a| a.front, "front view"),
+        swing_arm(&figures::SIDE_VIEW_SWING_ARM_LENGTH, &|a| a.side, "side view"),
     ]);
     f
 }

@@ -4,9 +4,11 @@
 use crate::analysis::{axle_sweep_with, AxleRow};
 use crate::assembly::AxleRig;
 use crate::description::Side;
+use crate::file::SuspensionFile;
+use crate::kc::chart::Chart;
 use crate::kc::figures;
 use crate::kc::models::Models;
-use crate::kc::reduce::{axis, axle_drawing, chart, deg, finish, needs_vehicle, Design, Reduction};
+use crate::kc::reduce::{axis, axle_drawing, chart, deg, finish, needs_vehicle, Curve, Design, Reduction};
 use crate::kc::report::{AnalysisReport, Cell, Column, Figure, Table};
 use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, FigureRows, Quantity, Settings};
 use elastokin_solver::replay::Taping;
@@ -144,14 +146,41 @@ pub fn ideal_outer_steer(inner: f64, track: f64, wheelbase: f64) -> f64 {
 /// travel).
 const STRAIGHT_AHEAD: f64 = 1.75e-4;
 
-/// Ackermann figures of one steering row: `(inner, outer, ideal outer)` steer angles (rad, positive);
-/// `None` straight ahead.
-fn ackermann(r: &AxleRow, track: f64, wheelbase: f64) -> Option<(f64, f64, f64)> {
+/// The inner and outer wheels' steer angles of one steering row (rad, positive in the turn); `None`
+/// straight ahead.
+fn inner_and_outer(r: &AxleRow) -> Option<(f64, f64)> {
     let (left, right) = (steer_angle(r.left.toe, Side::Left), steer_angle(r.right.toe, Side::Right));
     // Turning left, the left wheel is the inner one.
     let (inner, outer) = if left + right > 0.0 { (left, right) } else { (-right, -left) };
-    (0.5 * (left + right).abs() > STRAIGHT_AHEAD && inner > 0.0)
-        .then(|| (inner, outer, ideal_outer_steer(inner, track, wheelbase)))
+    (0.5 * (left + right).abs() > STRAIGHT_AHEAD && inner > 0.0).then_some((inner, outer))
+}
+
+/// Ackermann figures of one steering row: `(inner, outer, ideal outer)` steer angles (rad, positive);
+/// `None` straight ahead.
+fn ackermann(r: &AxleRow, track: f64, wheelbase: f64) -> Option<(f64, f64, f64)> {
+    let (inner, outer) = inner_and_outer(r)?;
+    Some((inner, outer, ideal_outer_steer(inner, track, wheelbase)))
+}
+
+/// The outer wheel's steer against the inner's over the `rows`, both turns folded into one (positive in the
+/// turn), with Ackermann's ideal outer steer where the `wheelbase` is known (and the patches' `track`).
+fn ackermann_chart(file: &SuspensionFile, rows: &[AxleRow], track: f64, wheelbase: Option<f64>) -> Chart {
+    let inner = |r: &AxleRow| inner_and_outer(r).map_or(f64::NAN, |(i, _)| deg(i));
+    let outer = |r: &AxleRow| inner_and_outer(r).map(|(_, o)| deg(o));
+    let ideal = |r: &AxleRow| Some(deg(ackermann(r, track, wheelbase?)?.2));
+    let curves: Vec<Curve<AxleRow>> = match wheelbase {
+        Some(_) => vec![("outer wheel", &outer), ("Ackermann's ideal outer wheel", &ideal)],
+        None => vec![("outer wheel", &outer)],
+    };
+    chart(
+        file,
+        "steering_ackermann",
+        "outer against inner wheel steer, and Ackermann's ideal",
+        "inner wheel steer [deg]",
+        axis("outer wheel steer [deg]", rows, inner, &curves),
+        None,
+        None,
+    )
 }
 
 pub(super) fn steering(models: &Models, s: &Settings, taping: &Taping) -> Result<AnalysisReport, Cause> {
@@ -176,7 +205,7 @@ pub(super) fn steering(models: &Models, s: &Settings, taping: &Taping) -> Result
     let figures =
         |rows: &[AxleRow], design: Design<AxleRow>| steering_figures(taping, rows, design, track, wheelbase, c_factor);
     let x = |r: &AxleRow| r.travel * 1e3;
-    let charts = vec![chart(
+    let mut charts = vec![chart(
         file,
         "steering",
         "steer angles",
@@ -193,6 +222,7 @@ pub(super) fn steering(models: &Models, s: &Settings, taping: &Taping) -> Result
         None,
         Some(0.0),
     )];
+    charts.push(ackermann_chart(file, &out.rows, track, wheelbase));
     let description =
         format!("steering (rack {:+.0}..{:+.0} mm, heights held), {} steps", range.0 * 1e3, range.1 * 1e3, s.steps);
     let reduce = Reduction { table: &table, figures: &figures, drawing: axle_drawing(axle, s) };

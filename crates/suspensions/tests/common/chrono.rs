@@ -162,6 +162,10 @@ pub fn assert_roll_locked(file: &SuspensionFile) -> KcReport {
     let report = kc::run_suite(file, &[], &kc::Settings { steps: 4, ..Default::default() }, |_| {}).complete().unwrap();
     let roll = report.skipped.iter().find(|s| s.analysis == kc::Analysis::Roll).unwrap();
     assert!(roll.reason.contains("lock its roll"), "{}", roll.reason);
+    // Nor has it a roll centre in parallel travel: the column is empty at every row.
+    let travel = report.analyses.iter().find(|a| a.analysis == kc::Analysis::ParallelTravel).unwrap();
+    let c = travel.table.columns.iter().position(|n| n == "roll_centre_height_m").unwrap();
+    assert!(travel.table.rows.iter().all(|r| r[c] == kc::Cell::Empty));
     report
 }
 
