@@ -267,3 +267,30 @@ def test_parallel_travel_has_the_swing_arms_and_the_axle_s_roll_centre(model):
     height = result.columns["roll_centre_height_m"][design]
     # Measured through the command's CSV: 4.5e-13 m.
     assert height == pytest.approx(roll.figure("roll_centre_height", si=True), abs=4e-11)
+
+
+def test_the_half_shaft_columns_follow_the_wheel():
+    # The shipped MacPherson names its drive shaft: its plunge and joint angles are columns of parallel
+    # travel and, per wheel, of steering; the plunge is the change of the joints' distance, read here
+    # from the wheel centre and spin axis of each row (toe and camber) and the file's joint centres.
+    import math
+    import pathlib
+
+    shipped = pathlib.Path(__file__).resolve().parents[2] / "examples" / "macpherson.json"
+    model = elastokin.load(str(shipped))
+    result = model.run("parallel-travel", steps=8)
+    shaft = {"inner": (0.0, 0.22, 0.0), "outer": (0.0, 0.68, 0.0)}
+    length = math.dist(shaft["inner"], shaft["outer"])
+    inboard = 0.77 - 0.68
+    for k in range(len(result.columns["travel_m"])):
+        toe, camber = math.radians(result.columns["toe_deg"][k]), math.radians(result.columns["camber_deg"][k])
+        axis = (math.sin(toe) * math.cos(camber), math.cos(toe) * math.cos(camber), -math.sin(camber))
+        centre = [result.columns[f"wheel_centre_{c}_m"][k] for c in "xyz"]
+        outer = [centre[i] - inboard * axis[i] for i in range(3)]
+        # Measured 1.1e-16 m.
+        assert result.columns["half_shaft_plunge_m"][k] == pytest.approx(
+            math.dist(shaft["inner"], outer) - length, abs=1e-14
+        )
+    steering = model.run("steering", steps=8)
+    for side in ["left", "right"]:
+        assert numpy.all(numpy.isfinite(steering.columns[f"{side}_half_shaft_outer_angle_deg"])), side

@@ -4,7 +4,7 @@
 //! and then reads any configuration of it.
 
 use crate::description::limits::MAX_LOADED_RADIUS;
-use crate::description::Side;
+use crate::description::{HalfShaft, Side};
 use elastokin_core::{BodyId, BodyRef, Model, ModelError, Pose, Vec3, BODY_DOFS};
 
 /// Where a wheel is in a model: its upright, and the wheel's points and axes on it.
@@ -172,4 +172,72 @@ impl Wheel {
 fn down_the_wheel_plane(a: &Vec3) -> Vec3 {
     let up_in_plane = Vec3::z() - a * a.z;
     -up_in_plane / up_in_plane.norm()
+}
+
+/// A drive shaft's plunge and its joints' angles at a wheel position.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShaftReading {
+    /// Change of the distance between the joints' centres from design (m, longer +).
+    pub plunge: f64,
+    /// Angle between the shaft and the lateral axis, the differential's output (rad).
+    pub inner_angle: f64,
+    /// Angle between the shaft and the wheel's spin axis (rad).
+    pub outer_angle: f64,
+}
+
+/// A corner's drive shaft as the wheel carries it: its inner joint's centre fixed, its outer joint's on
+/// the spin axis `inboard` of the wheel centre.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DriveShaft {
+    inner: Vec3,
+    inboard: f64,
+    length: f64,
+}
+
+/// Most an outer joint's centre may lie off the wheel's spin axis at design (m): a driven wheel's sits on it.
+pub const SHAFT_OFF_AXIS: f64 = 1e-3;
+
+impl DriveShaft {
+    /// The shaft `shaft` (given for the left corner; mirrored in y for a right one) on `wheel` at its design
+    /// `poses`; `Err` with the outer joint's distance from the spin axis (m) when over [`SHAFT_OFF_AXIS`].
+    pub fn on(shaft: &HalfShaft, wheel: &Wheel, poses: &[Pose]) -> Result<DriveShaft, f64> {
+        let s = wheel.side.sign();
+        let mirrored = |p: [f64; 3]| Vec3::new(p[0], s * p[1], p[2]);
+        let (inner, outer) = (mirrored(shaft.inner), mirrored(shaft.outer));
+        let attitude = wheel.attitude(poses);
+        let axis = attitude.spin_axis(wheel.side);
+        let inboard = (attitude.wheel_centre - outer).dot(&axis);
+        let off = (attitude.wheel_centre - axis * inboard - outer).norm();
+        // A NaN distance (coordinates no number) is off the axis too.
+        if off.is_nan() || off > SHAFT_OFF_AXIS {
+            return Err(off);
+        }
+        Ok(DriveShaft { inner, inboard, length: (outer - inner).norm() })
+    }
+
+    /// The shaft with the wheel at `attitude` on `side`.
+    pub fn at(&self, side: Side, attitude: &WheelAttitude) -> ShaftReading {
+        let axis = attitude.spin_axis(side);
+        let outer = attitude.wheel_centre - axis * self.inboard;
+        let shaft = outer - self.inner;
+        let length = shaft.norm();
+        let u = shaft / length;
+        // Angles by atan2 of sine and cosine: an arccosine of a cosine near 1 (a straight shaft) would
+        // carry rounding as its square root.
+        let lateral = Vec3::new(0.0, 1.0, 0.0);
+        ShaftReading {
+            plunge: length - self.length,
+            inner_angle: u.cross(&lateral).norm().atan2(u.y.abs()),
+            outer_angle: u.cross(&axis).norm().atan2(u.dot(&axis)),
+        }
+    }
+}
+
+impl WheelAttitude {
+    /// The outward spin axis its toe and camber say, on `side`: the inverse of [`Wheel::attitude`]'s
+    /// formulas, `a = (sin toe cos camber, s cos toe cos camber, −sin camber)`.
+    pub fn spin_axis(&self, side: Side) -> Vec3 {
+        let (toe, camber) = (self.toe, self.camber);
+        Vec3::new(toe.sin() * camber.cos(), side.sign() * toe.cos() * camber.cos(), -camber.sin())
+    }
 }

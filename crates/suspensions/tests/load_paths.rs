@@ -439,6 +439,7 @@ fn front_vehicle() -> VehicleParameters {
         axle: AxlePosition::Front,
         tyre_rate: None,
         rack_travel_per_revolution: None,
+        half_shaft: None,
     }
 }
 

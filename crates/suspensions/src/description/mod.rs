@@ -36,4 +36,4 @@ pub use macpherson::{MacPherson, MacPhersonHardpoints, StrutJoint};
 pub use side::Side;
 pub use template::Template;
 pub use twist_beam::{CrossMember, TwistBeam, TwistBeamHardpoints};
-pub use vehicle::{AxlePosition, VehicleError, VehicleParameters};
+pub use vehicle::{AxlePosition, HalfShaft, VehicleError, VehicleParameters};

@@ -38,6 +38,29 @@ pub struct VehicleParameters {
     /// steering ratio; optional.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rack_travel_per_revolution: Option<f64>,
+    /// The drive shaft of a driven corner, for its plunge and its joints' angles over travel and steer;
+    /// optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub half_shaft: Option<HalfShaft>,
+}
+
+/// A drive shaft at design (m, the left corner's coordinates): the centre of its inner joint, fixed to
+/// the chassis at the differential's output, and of its outer joint, on the wheel's spin axis inboard of
+/// the wheel centre, carried by the upright.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HalfShaft {
+    /// The inner joint's centre.
+    pub inner: [f64; 3],
+    /// The outer joint's centre.
+    pub outer: [f64; 3],
+}
+
+impl HalfShaft {
+    /// The distance between its joints' centres at design (m).
+    pub fn length(&self) -> f64 {
+        (0..3).map(|i| (self.outer[i] - self.inner[i]).powi(2)).sum::<f64>().sqrt()
+    }
 }
 
 impl VehicleParameters {
@@ -115,6 +138,7 @@ mod tests {
             axle: AxlePosition::Front,
             tyre_rate: None,
             rack_travel_per_revolution: None,
+            half_shaft: None,
         };
         let e = vehicle.validate().unwrap_err();
         assert!(matches!(e, VehicleError::OutOfRange { field: "wheelbase", .. }), "{e:?}");

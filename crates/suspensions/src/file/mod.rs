@@ -611,6 +611,14 @@ fn check_vehicle(v: &VehicleParameters) -> Result<(), OutOfRange> {
             "m",
             "rack travel per turn of the hand wheel: a car's is 0.04–0.06 m",
         ),
+        (
+            "half_shaft",
+            v.half_shaft.map(|h| h.length()),
+            0.1,
+            1.5,
+            "m",
+            "the distance between the shaft's joint centres: a car's is 0.3–0.9 m",
+        ),
     ];
     let given = optional
         .into_iter()

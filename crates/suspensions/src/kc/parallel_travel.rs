@@ -12,9 +12,12 @@ use crate::file::SuspensionFile;
 use crate::kc::chart::Chart;
 use crate::kc::figures;
 use crate::kc::models::Models;
-use crate::kc::reduce::{axis, chart, corner_drawing, deg, finish, needs_vehicle, Design, Reduction};
+use crate::kc::reduce::{
+    axis, chart, corner_drawing, deg, drive_shaft, finish, half_shaft_columns, needs_vehicle, Design, Reduction,
+};
 use crate::kc::report::{AnalysisReport, Column, Figure, FigureKind, Table, Warning};
 use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, FigureRows, Quantity, Settings};
+use crate::wheel::DriveShaft;
 use elastokin_solver::replay::Taping;
 
 /// Parallel travel, as the command and the reports name it.
@@ -43,10 +46,15 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings, taping: &Taping) ->
     // Toe, camber and wheel rate no car has, inside the travel asked for.
     let travel_warnings = crate::check::check_travel_rows(&out.rows);
     let axle = axle_in_parallel_travel(models, range, s, taping);
+    let (shaft, shaft_warning) = match drive_shaft(file, &corner.wheel, &corner.model.design_poses()) {
+        Ok(shaft) => (shaft, None),
+        Err(w) => (None, Some(w)),
+    };
     let mut charts = parallel_travel_charts(file, corner, &out.rows);
+    charts.extend(shaft.map(|shaft| half_shaft_chart(file, corner, shaft, &out.rows)));
     let out = with_roll_centres(out, axle.as_ref().and_then(|a| a.as_ref().ok()));
     charts.push(roll_centre_chart(file, &out.rows));
-    let table = |rows: &[Row]| parallel_travel_table(corner, rows);
+    let table = |rows: &[Row]| parallel_travel_table(corner, shaft, rows);
     let figures = |_: &[Row], design: Design<Row>| parallel_travel_figures(file, corner, design);
     let description =
         format!("parallel wheel travel {:+.0}..{:+.0} mm, {} steps", range.0 * 1e3, range.1 * 1e3, s.steps);
@@ -60,6 +68,7 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings, taping: &Taping) ->
         charts,
     );
     report.warnings.extend(travel_warnings);
+    report.warnings.extend(shaft_warning);
     if let Some(Err(why)) = axle {
         report.warnings.push(Warning {
             code: "no-roll-centre-in-parallel-travel",
@@ -229,6 +238,34 @@ fn parallel_travel_charts(file: &SuspensionFile, corner: &Corner, rows: &[Travel
     ]
 }
 
+/// The drive shaft's plunge and its joints' angles in parallel travel.
+fn half_shaft_chart(file: &SuspensionFile, corner: &Corner, shaft: DriveShaft, rows: &[TravelRow]) -> Chart {
+    let side = corner.wheel.side;
+    let x = |r: &TravelRow| r.travel * 1e3;
+    chart(
+        file,
+        "parallel_travel_half_shaft",
+        "half-shaft joint angles and plunge in parallel wheel travel",
+        "wheel travel [mm], bump +",
+        axis(
+            "joint angle [deg]",
+            rows,
+            x,
+            &[
+                ("inner joint", &|r: &TravelRow| Some(deg(shaft.at(side, &r.attitude).inner_angle))),
+                ("outer joint", &|r: &TravelRow| Some(deg(shaft.at(side, &r.attitude).outer_angle))),
+            ],
+        ),
+        Some(axis(
+            "plunge [mm], longer +",
+            rows,
+            x,
+            &[("plunge", &|r: &TravelRow| Some(shaft.at(side, &r.attitude).plunge * 1e3))],
+        )),
+        Some(0.0),
+    )
+}
+
 /// The figures of the design position itself, from the tangent there (not read off the rows): at the
 /// equilibrium, and one exact Newton iteration on for their error estimate; and the wheel's compliance
 /// matrix there, added to `report`.
@@ -339,12 +376,12 @@ fn compliance_figures(
 
 /// The parallel-travel table of `rows` of `corner` (half-track and wheelbase change from its design wheel),
 /// with the roll centre of the whole axle.
-fn parallel_travel_table(corner: &Corner, rows: &[Row]) -> Table {
+fn parallel_travel_table(corner: &Corner, shaft: Option<DriveShaft>, rows: &[Row]) -> Table {
     let wheel = &corner.wheel;
     let sign = wheel.side.sign();
     let front = |r: &Row| r.swing_arms.and_then(|s| s.front);
     let side = |r: &Row| r.swing_arms.and_then(|s| s.side);
-    let columns: [Column<Row>; 23] = [
+    let mut columns: Vec<Column<Row>> = vec![
         Column::new("travel_m", |r: &Row| r.travel.into()),
         Column::new("toe_deg", |r: &Row| deg(r.attitude.toe).into()),
         Column::new("camber_deg", |r: &Row| deg(r.attitude.camber).into()),
@@ -371,6 +408,9 @@ fn parallel_travel_table(corner: &Corner, rows: &[Row]) -> Table {
         Column::new("roll_centre_lateral_m", |r: &Row| r.roll_centre.map(|c| c.lateral).into()),
         Column::new("roll_centre_height_m", |r: &Row| r.roll_centre.map(|c| c.height).into()),
     ];
+    if let Some(shaft) = shaft {
+        columns.extend(half_shaft_columns("", shaft, wheel.side, |r: &Row| &r.attitude));
+    }
     Table::of_columns("parallel_travel", &columns, rows)
 }
 

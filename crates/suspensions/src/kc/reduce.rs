@@ -7,7 +7,7 @@ use crate::assembly::{Axle, Corner};
 use crate::drawing::{Drawing, Motion};
 use crate::file::SuspensionFile;
 use crate::kc::chart::{Chart, Scale, Series, YAxis};
-use crate::kc::report::{significant, Accuracy, AnalysisReport, Cell, Figure, Table, Warning};
+use crate::kc::report::{significant, Accuracy, AnalysisReport, Cell, Column, Figure, Table, Warning};
 use crate::kc::settings::{mode_word, Analysis, Cause, Settings};
 use crate::kc::unit::Unit;
 use crate::wheel::Wheel;
@@ -403,6 +403,41 @@ pub(super) fn bushings_share(report: &mut AnalysisReport, key: &str, what: &str,
         .filter(|e| e.is_finite());
     report.figures.push(rigid_figure);
     report.figures.push(share);
+}
+
+/// The drive shaft the file's vehicle section names, on `wheel` of a model at its design `poses`: `None`
+/// when it names none; a warning instead when its outer joint is off the wheel's spin axis.
+pub(super) fn drive_shaft(
+    file: &SuspensionFile,
+    wheel: &Wheel,
+    poses: &[elastokin_core::Pose],
+) -> Result<Option<crate::wheel::DriveShaft>, Warning> {
+    let Some(shaft) = file.vehicle.as_ref().and_then(|v| v.half_shaft) else { return Ok(None) };
+    crate::wheel::DriveShaft::on(&shaft, wheel, poses).map(Some).map_err(|off| Warning {
+        code: "half-shaft-off-axis",
+        hardpoints: Vec::new(),
+        message: format!(
+            "vehicle.half_shaft.outer is {:.1} mm off the wheel's spin axis: a driven wheel's outer joint sits on \
+             it; give its centre on the axis (the half-shaft columns are left out)",
+            off * 1e3
+        ),
+    })
+}
+
+/// The half-shaft columns of rows whose wheel `attitude` on `side` carries `shaft`, their names after
+/// `prefix` (`""`, `"left_"`): plunge (m), the inner and outer joints' angles (deg).
+pub(super) fn half_shaft_columns<'a, R: 'a>(
+    prefix: &str,
+    shaft: crate::wheel::DriveShaft,
+    side: crate::description::Side,
+    attitude: impl Fn(&R) -> &crate::wheel::WheelAttitude + Copy + 'a,
+) -> Vec<Column<'a, R>> {
+    let read = move |r: &R| shaft.at(side, attitude(r));
+    vec![
+        Column::new(format!("{prefix}half_shaft_plunge_m"), move |r: &R| read(r).plunge.into()),
+        Column::new(format!("{prefix}half_shaft_inner_angle_deg"), move |r: &R| deg(read(r).inner_angle).into()),
+        Column::new(format!("{prefix}half_shaft_outer_angle_deg"), move |r: &R| deg(read(r).outer_angle).into()),
+    ]
 }
 
 #[cfg(test)]

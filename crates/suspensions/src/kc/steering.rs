@@ -8,9 +8,12 @@ use crate::file::SuspensionFile;
 use crate::kc::chart::Chart;
 use crate::kc::figures;
 use crate::kc::models::Models;
-use crate::kc::reduce::{axis, axle_drawing, chart, deg, finish, needs_vehicle, Curve, Design, Reduction};
+use crate::kc::reduce::{
+    axis, axle_drawing, chart, deg, drive_shaft, finish, half_shaft_columns, needs_vehicle, Curve, Design, Reduction,
+};
 use crate::kc::report::{AnalysisReport, Cell, Column, Figure, Table};
 use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, FigureRows, Quantity, Settings};
+use crate::wheel::{DriveShaft, WheelAttitude};
 use elastokin_solver::replay::Taping;
 
 /// Steering, as the command and the reports name it.
@@ -25,10 +28,11 @@ pub(super) const DECLARATION: Declaration = Declaration {
 };
 
 /// The steering table of `rows`: steer angles, and Ackermann's ideal outer steer and the error from it
-/// where the `wheelbase` is known (with the contact patches' `track` at design).
-fn steering_table(rows: &[AxleRow], track: f64, wheelbase: Option<f64>) -> Table {
+/// where the `wheelbase` is known (with the contact patches' `track` at design), and each wheel's drive
+/// shaft of `shafts`.
+fn steering_table(rows: &[AxleRow], track: f64, wheelbase: Option<f64>, shafts: &[(Side, DriveShaft)]) -> Table {
     let a = move |r: &AxleRow| wheelbase.and_then(|l| ackermann(r, track, l));
-    let columns: Vec<Column<AxleRow>> = vec![
+    let mut columns: Vec<Column<AxleRow>> = vec![
         Column::new("rack_travel_m", |r: &AxleRow| r.travel.into()),
         Column::new("left_steer_deg", |r: &AxleRow| deg(steer_angle(r.left.toe, Side::Left)).into()),
         Column::new("right_steer_deg", |r: &AxleRow| deg(steer_angle(r.right.toe, Side::Right)).into()),
@@ -44,6 +48,13 @@ fn steering_table(rows: &[AxleRow], track: f64, wheelbase: Option<f64>) -> Table
             Cell::from(a(r).map(|(inner, outer, ideal)| 100.0 * (inner - outer) / (inner - ideal)))
         }),
     ];
+    for &(side, shaft) in shafts {
+        let (prefix, attitude): (&str, fn(&AxleRow) -> &WheelAttitude) = match side {
+            Side::Left => ("left_", |r| &r.left),
+            Side::Right => ("right_", |r| &r.right),
+        };
+        columns.extend(half_shaft_columns(prefix, shaft, side, attitude));
+    }
     Table::of_columns("steering", &columns, rows)
 }
 
@@ -200,7 +211,18 @@ pub(super) fn steering(models: &Models, s: &Settings, taping: &Taping) -> Result
     let wheelbase = file.vehicle.as_ref().map(|v| v.wheelbase);
     // Track between the contact patches at design: the lateral distance Ackermann's rule uses.
     let track = axle.left.contact_patch.y - axle.right.contact_patch.y;
-    let table = |rows: &[AxleRow]| steering_table(rows, track, wheelbase);
+    // The drive shafts of both wheels, when the file names one (mirrored for the right).
+    let poses = axle.model.design_poses();
+    let (mut shafts, mut shaft_warnings) = (Vec::new(), Vec::new());
+    for (side, wheel) in [(Side::Left, &axle.left), (Side::Right, &axle.right)] {
+        match drive_shaft(file, wheel, &poses) {
+            Ok(shaft) => shafts.extend(shaft.map(|s| (side, s))),
+            Err(w) => shaft_warnings.push(w),
+        }
+    }
+    // Both wheels' shafts are off their axes alike (one is the other mirrored): said once.
+    shaft_warnings.truncate(1);
+    let table = |rows: &[AxleRow]| steering_table(rows, track, wheelbase, &shafts);
     let c_factor = file.vehicle.as_ref().and_then(|v| v.rack_travel_per_revolution);
     let figures =
         |rows: &[AxleRow], design: Design<AxleRow>| steering_figures(taping, rows, design, track, wheelbase, c_factor);
@@ -226,5 +248,7 @@ pub(super) fn steering(models: &Models, s: &Settings, taping: &Taping) -> Result
     let description =
         format!("steering (rack {:+.0}..{:+.0} mm, heights held), {} steps", range.0 * 1e3, range.1 * 1e3, s.steps);
     let reduce = Reduction { table: &table, figures: &figures, drawing: axle_drawing(axle, s) };
-    Ok(finish(Analysis::Steering, description, range, s, &out, reduce, charts))
+    let mut report = finish(Analysis::Steering, description, range, s, &out, reduce, charts);
+    report.warnings.extend(shaft_warnings);
+    Ok(report)
 }
