@@ -3,38 +3,12 @@
 //! distance from a fine reference, and the rates at design against a second method written here: the
 //! slopes of a narrow sweep's own rows, Richardson extrapolated.
 
+mod common;
 use elastokin_suspensions::kc::{self, Analysis, AnalysisReport, Figure, KcReport, Settings};
 use elastokin_suspensions::SuspensionFile;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-/// Every suspension model shipped in `examples/` (the vehicle file `vehicle/compact_car.json` joins two
-/// of them; `targets/` holds tuning and tolerance files).
-const MODELS: [&str; 12] = [
-    "macpherson.json",
-    "double_wishbone.json",
-    "double_wishbone_axle.json",
-    "five_link.json",
-    "four_link_axle.json",
-    "pushrod_rocker.json",
-    "twist_beam.json",
-    "twist_beam_template.json",
-    "generic/macpherson.json",
-    "generic/double_wishbone.json",
-    "vehicle/front_macpherson_with_bar.json",
-    "vehicle/compact_car.json",
-];
-
-fn examples() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
-}
-
-/// The models of [`MODELS`], the vehicle file left out.
-fn models() -> impl Iterator<Item = (&'static str, SuspensionFile)> {
-    MODELS
-        .into_iter()
-        .filter(|m| *m != "vehicle/compact_car.json")
-        .map(|m| (m, SuspensionFile::read(&examples().join(m)).unwrap()))
-}
+use common::{examples, models, MODELS};
 
 #[test]
 fn the_list_of_models_is_every_json_file_shipped_outside_targets() {

@@ -2,14 +2,14 @@
 //! model (solid axles and an anti-roll bar among them); over the travel, where the front-view lines from
 //! each patch through its corner's instant centre meet (the swing arms of a lone corner, mirrored).
 
+mod common;
 use elastokin_solver::{Mode, SolverOptions, StaticSolver};
 use elastokin_suspensions::analysis::{parallel_wheel_travel_with, SweepExtras};
 use elastokin_suspensions::kc::{self, Analysis, AnalysisReport, Models, Settings};
 use elastokin_suspensions::{AxleRig, Rig, SuspensionFile};
-use std::path::Path;
 
 fn example(name: &str) -> SuspensionFile {
-    SuspensionFile::read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples").join(name)).unwrap()
+    SuspensionFile::read(&common::examples().join(name)).unwrap()
 }
 
 /// The cell of `column` in the row of `report`'s table whose load parameter is zero.
@@ -22,19 +22,7 @@ fn at_zero(report: &AnalysisReport, column: &str) -> Option<f64> {
 #[test]
 fn at_design_the_roll_centre_in_heave_is_the_roll_analysis_s() {
     let mut worst: f64 = 0.0;
-    for name in [
-        "macpherson.json",
-        "double_wishbone.json",
-        "double_wishbone_axle.json",
-        "five_link.json",
-        "four_link_axle.json",
-        "pushrod_rocker.json",
-        "twist_beam.json",
-        "generic/macpherson.json",
-        "generic/double_wishbone.json",
-        "vehicle/front_macpherson_with_bar.json",
-    ] {
-        let file = example(name);
+    for (name, file) in common::models() {
         let settings = Settings { steps: 8, ..Settings::default() };
         let heave = kc::run(Analysis::ParallelTravel, &file, &settings).unwrap();
         let roll = kc::run(Analysis::Roll, &file, &settings).unwrap();

@@ -4,10 +4,40 @@
 #![allow(dead_code, reason = "each test file uses the closures it needs")]
 
 use elastokin_core::Vec3;
-use elastokin_suspensions::{DoubleWishboneHardpoints, MacPhersonHardpoints};
+use elastokin_suspensions::{DoubleWishboneHardpoints, MacPhersonHardpoints, SuspensionFile};
 use nalgebra::{DMatrix, DVector, Matrix3, Rotation3, Unit};
+use std::path::{Path, PathBuf};
 
 pub mod chrono;
+
+/// Every suspension model shipped in `examples/` (the vehicle file `vehicle/compact_car.json` joins two
+/// of them; `targets/` holds tuning and tolerance files).
+pub const MODELS: [&str; 12] = [
+    "macpherson.json",
+    "double_wishbone.json",
+    "double_wishbone_axle.json",
+    "five_link.json",
+    "four_link_axle.json",
+    "pushrod_rocker.json",
+    "twist_beam.json",
+    "twist_beam_template.json",
+    "generic/macpherson.json",
+    "generic/double_wishbone.json",
+    "vehicle/front_macpherson_with_bar.json",
+    "vehicle/compact_car.json",
+];
+
+pub fn examples() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
+}
+
+/// The models of [`MODELS`], each read, the vehicle file left out.
+pub fn models() -> impl Iterator<Item = (&'static str, SuspensionFile)> {
+    MODELS
+        .into_iter()
+        .filter(|m| *m != "vehicle/compact_car.json")
+        .map(|m| (m, SuspensionFile::read(&examples().join(m)).unwrap()))
+}
 
 /// Newton's method with a central-difference Jacobian on `residual(x) = 0`, from the guess in `x`;
 /// panics when it does not close (the tests start it near a solution).
