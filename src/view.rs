@@ -12,7 +12,7 @@
 
 use crate::markup::{attr, text};
 use crate::suspensions::drawing::{Anchor, Dot, Motion, Pen, Spot, Stroke, DEFLECTION_SCALE};
-use crate::suspensions::kc::{AnalysisReport, KcReport};
+use crate::suspensions::kc::{AnalysisReport, Construction, KcReport};
 use elastokin_core::{BodyRef, Pose, Vec3};
 use serde_json::{json, Value};
 use std::fmt::Write;
@@ -156,15 +156,27 @@ struct Layer<'a> {
 }
 
 /// One projection of the model at its design row, its extremes ghosted, as an inline SVG.
-fn projection_svg(out: &mut String, motion: &Motion, rows: [usize; 3], projection: Projection) -> std::fmt::Result {
+fn projection_svg(
+    out: &mut String,
+    motion: &Motion,
+    rows: [usize; 3],
+    projection: Projection,
+    construction: Option<&Construction>,
+) -> std::fmt::Result {
     let [design, first, last] = rows;
     let layer = |row, ghost| Layer { motion, row, ghost, colour: None };
     let layers = [layer(first, true), layer(last, true), layer(design, false)];
-    layers_svg(out, &layers, projection, &format!("view-{}", projection.name()))
+    layers_svg(out, &layers, projection, &format!("view-{}", projection.name()), construction)
 }
 
 /// `layers` in one projection, as an inline SVG in a figure of id `id`, the grid over all of them.
-fn layers_svg(out: &mut String, layers: &[Layer], projection: Projection, id: &str) -> std::fmt::Result {
+fn layers_svg(
+    out: &mut String,
+    layers: &[Layer],
+    projection: Projection,
+    id: &str,
+    construction: Option<&Construction>,
+) -> std::fmt::Result {
     // Each layer's strokes, made once for the extents and the drawing.
     let strokes: Vec<Vec<Stroke>> = layers.iter().map(|l| l.motion.drawing.strokes()).collect();
     let Some(canvas) = Canvas::over(layers, &strokes, projection) else { return Ok(()) };
@@ -179,9 +191,71 @@ fn layers_svg(out: &mut String, layers: &[Layer], projection: Projection, id: &s
     for (layer, strokes) in layers.iter().zip(&strokes) {
         layer_svg(out, &canvas, projection, layer, strokes)?;
     }
+    if let Some(c) = construction {
+        construction_svg(out, &canvas, projection, c)?;
+    }
     writeln!(out, "</svg>")?;
     writeln!(out, "<figcaption>{}; grid {:.0} mm</figcaption>", projection.caption(), step * 1e3)?;
     writeln!(out, "</figure>")
+}
+
+/// The colour of the instant centres' construction.
+const CONSTRUCTION: &str = "#b8860b";
+
+/// The construction of the instant centres `c` in `projection`, its lines dashed over the parts: in the
+/// front view the line from the contact patch through the wheel's instant centre and on to the roll
+/// centre; in the side view the lines from the patch and from the wheel centre to the side-view instant
+/// centre. An instant centre is a ring, the roll centre a square; a centre far off the view runs its line
+/// out of the picture. Nothing in the plan view.
+fn construction_svg(out: &mut String, canvas: &Canvas, projection: Projection, c: &Construction) -> std::fmt::Result {
+    let at = |p: [f64; 3]| {
+        let (u, v) = projection.project(&Vec3::new(p[0], p[1], p[2]));
+        (canvas.x(u), canvas.y(v))
+    };
+    let [px, py, _] = c.patch;
+    let (lines, rings, squares) = match projection {
+        Projection::Front => {
+            let ic = c.front_view_centre.map(|[y, z]| at([px, y, z]));
+            let rc = c.roll_centre.map(|[y, z]| at([px, y, z]));
+            let from = at(c.patch);
+            let mut lines: Vec<[(f64, f64); 2]> = ic.map(|ic| [from, ic]).into_iter().collect();
+            lines.extend(rc.map(|rc| [ic.unwrap_or(from), rc]));
+            (lines, ic.into_iter().collect::<Vec<_>>(), rc.into_iter().collect::<Vec<_>>())
+        }
+        Projection::Side => match c.side_view_centre.map(|[x, z]| at([x, py, z])) {
+            Some(ic) => (vec![[at(c.patch), ic], [at(c.wheel_centre), ic]], vec![ic], Vec::new()),
+            None => (Vec::new(), Vec::new(), Vec::new()),
+        },
+        Projection::Plan => (Vec::new(), Vec::new(), Vec::new()),
+    };
+    if lines.is_empty() && rings.is_empty() && squares.is_empty() {
+        return Ok(());
+    }
+    // A viewport over the grid clips what runs off it, as the grid's own area (no reference out of the
+    // element, which a clip path would need).
+    let (x0, y0) = (LABEL_ROOM, EDGE_ROOM);
+    let (w, h) = (canvas.w - LABEL_ROOM - EDGE_ROOM, canvas.h - LABEL_ROOM - EDGE_ROOM);
+    writeln!(
+        out,
+        r#"<svg x="{x0:.1}" y="{y0:.1}" width="{w:.1}" height="{h:.1}" viewBox="{x0:.1} {y0:.1} {w:.1} {h:.1}" overflow="hidden">"#
+    )?;
+    writeln!(out, r#"<g class="construction" stroke="{CONSTRUCTION}" stroke-width="1.5" fill="none">"#)?;
+    for [(x1, y1), (x2, y2)] in lines {
+        writeln!(out, r#"<line x1="{x1:.1}" y1="{y1:.1}" x2="{x2:.1}" y2="{y2:.1}" stroke-dasharray="5 3"/>"#)?;
+    }
+    for (x, y) in rings {
+        writeln!(out, r#"<circle class="instant-centre" cx="{x:.1}" cy="{y:.1}" r="5"/>"#)?;
+    }
+    for (x, y) in squares {
+        writeln!(
+            out,
+            r#"<rect class="roll-centre" x="{:.1}" y="{:.1}" width="9" height="9" fill="{CONSTRUCTION}"/>"#,
+            x - 4.5,
+            y - 4.5
+        )?;
+    }
+    writeln!(out, "</g>")?;
+    writeln!(out, "</svg>")
 }
 
 /// Where a projection's coordinates (m) land on its SVG: the extents of every row drawn, padded, at one
@@ -367,7 +441,7 @@ fn write_dot(out: &mut String, d: &Dot, poses: &[Pose], at: &dyn Fn(&Vec3) -> (f
 }
 
 /// The legend of the views: a swatch per pen and spot, and the deflections' scale.
-fn write_legend(out: &mut String) -> std::fmt::Result {
+fn write_legend(out: &mut String, construction: bool) -> std::fmt::Result {
     writeln!(out, "<ul class=\"view-legend\">")?;
     for (pen, label) in [
         (Pen::Part, "part"),
@@ -386,6 +460,12 @@ fn write_legend(out: &mut String) -> std::fmt::Result {
             out,
             r#"<li><svg xmlns="http://www.w3.org/2000/svg" width="28" height="10"><line x1="2" y1="5" x2="26" y2="5" stroke="{colour}" stroke-width="{width}"{dash}/></svg> {}</li>"#,
             text(label)
+        )?;
+    }
+    if construction {
+        writeln!(
+            out,
+            r#"<li><svg xmlns="http://www.w3.org/2000/svg" width="28" height="10"><line x1="2" y1="5" x2="26" y2="5" stroke="{CONSTRUCTION}" stroke-width="1.5" stroke-dasharray="5 3"/></svg> instant centres (ring) and roll centre (square) with their construction, at the row drawn</li>"#
         )?;
     }
     writeln!(out, "</ul>")
@@ -411,11 +491,12 @@ pub fn write_geometry(out: &mut String, report: &KcReport) -> std::fmt::Result {
         text(&row_label(a, rows[2]))
     )?;
     writeln!(out, "<div class=\"views\">")?;
+    let construction = a.construction.get(rows[0]);
     for projection in Projection::ALL {
-        projection_svg(out, motion, rows, projection)?;
+        projection_svg(out, motion, rows, projection, construction)?;
     }
     writeln!(out, "</div>")?;
-    write_legend(out)?;
+    write_legend(out, construction.is_some())?;
     write_viewer(out, report)?;
     writeln!(out, "</section>")
 }
@@ -489,8 +570,20 @@ pub fn viewer_data(report: &KcReport) -> Value {
             })
             .collect();
         let labels: Vec<String> = (0..motion.frames.len()).map(|r| row_label(a, r)).collect();
+        // The instant centres' construction at every row (parallel travel's), drawn in the front and side
+        // views as the projections draw it at design.
+        let pair = |p: Option<[f64; 2]>| p.map(|[u, v]| json!([round(u), round(v)]));
+        let construction: Vec<Value> = a
+            .construction
+            .iter()
+            .map(|c| {
+                json!({ "patch": c.patch.map(round), "wheel_centre": c.wheel_centre.map(round),
+                        "front": pair(c.front_view_centre), "side": pair(c.side_view_centre),
+                        "roll": pair(c.roll_centre) })
+            })
+            .collect();
         analyses.push(json!({ "name": a.analysis.name(), "drawing": index, "design": a.design_row(),
-                              "labels": labels, "frames": frames }));
+                              "labels": labels, "frames": frames, "construction": construction }));
     }
     let pens: serde_json::Map<String, Value> = [
         Pen::Part,
@@ -517,7 +610,7 @@ pub fn viewer_data(report: &KcReport) -> Value {
             (s.name().to_string(), json!({ "colour": colour, "radius": r }))
         })
         .collect();
-    json!({ "drawings": drawings, "analyses": analyses, "pens": pens, "spots": spots,
+    json!({ "drawings": drawings, "analyses": analyses, "pens": pens, "spots": spots, "construction": CONSTRUCTION,
             "deflection_scale": DEFLECTION_SCALE })
 }
 
@@ -583,7 +676,7 @@ pub fn write_overlay(out: &mut String, models: &[(&str, &KcReport)]) -> std::fmt
         })
         .collect();
     for projection in Projection::ALL {
-        layers_svg(out, &layers, projection, &format!("overlay-{}", projection.name()))?;
+        layers_svg(out, &layers, projection, &format!("overlay-{}", projection.name()), None)?;
     }
     writeln!(out, "</div>")?;
     writeln!(out, "<ul class=\"view-legend\">")?;

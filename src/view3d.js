@@ -159,6 +159,7 @@
         ctx.fill();
       }
     });
+    var construction = drawConstruction(a.construction[row], screen);
     label.textContent = a.labels[row];
     summary = {
       analyses: data.analyses.length,
@@ -168,9 +169,55 @@
       strokes: d.strokes.length,
       dots: d.dots.length,
       drawn: drawn,
+      construction: construction,
       view: camera.view || 'custom'
     };
     report();
+  }
+
+  // The instant centres' construction of a row `c` (parallel travel's), in the front and side views
+  // alone, as the projections draw it: in front, the patch's line through the instant centre on to the
+  // roll centre; from the side, the patch's and the wheel centre's lines to the side-view instant centre.
+  // An instant centre is a ring, the roll centre a square. Returns the lines drawn.
+  function drawConstruction(c, screen) {
+    if (!c || (camera.view !== 'front' && camera.view !== 'side')) {
+      return 0;
+    }
+    var lines = [], rings = [], squares = [];
+    var x = c.patch[0], y = c.patch[1];
+    if (camera.view === 'front') {
+      var ic = c.front ? [x, c.front[0], c.front[1]] : null;
+      var rc = c.roll ? [x, c.roll[0], c.roll[1]] : null;
+      if (ic) { lines.push([c.patch, ic]); rings.push(ic); }
+      if (rc) { lines.push([ic || c.patch, rc]); squares.push(rc); }
+    } else if (c.side) {
+      var sc = [c.side[0], y, c.side[1]];
+      lines.push([c.patch, sc], [c.wheel_centre, sc]);
+      rings.push(sc);
+    }
+    ctx.strokeStyle = data.construction;
+    ctx.fillStyle = data.construction;
+    ctx.lineWidth = 1.5;
+    ctx.setLineDash([5, 3]);
+    lines.forEach(function (l) {
+      var p = screen(l[0]), q = screen(l[1]);
+      ctx.beginPath();
+      ctx.moveTo(p[0], p[1]);
+      ctx.lineTo(q[0], q[1]);
+      ctx.stroke();
+    });
+    ctx.setLineDash([]);
+    rings.forEach(function (r) {
+      var p = screen(r);
+      ctx.beginPath();
+      ctx.arc(p[0], p[1], 5, 0, 2 * Math.PI);
+      ctx.stroke();
+    });
+    squares.forEach(function (r) {
+      var p = screen(r);
+      ctx.fillRect(p[0] - 4.5, p[1] - 4.5, 9, 9);
+    });
+    return lines.length;
   }
 
   function choose(k) {

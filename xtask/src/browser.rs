@@ -172,7 +172,8 @@ mod tests {
     /// Every shipped example's report (as `elastokin run` writes it) loaded in headless Chromium: no error
     /// on the console, and the 3D view's scene has what the model's drawing has — a stroke for each of
     /// its parts, links, springs, bushings and wheels, a dot for each joint — all of them drawn, for every
-    /// analysis that moves; on the first example each preset view is taken as asked.
+    /// analysis that moves; on the first example each preset view is taken as asked, and its front and side
+    /// views draw the instant centres' construction of the row shown (the library's, line for line).
     ///
     /// Needs Debian's chromium: `.ci/run` installs it. Without it the test says so and passes on a
     /// developer's machine, and fails under CI (`CI` set), where it must run.
@@ -223,6 +224,19 @@ mod tests {
                 assert_eq!(state["dots"], motion.drawing.dots().len(), "{name}{query}");
                 let view = query.strip_prefix("?view=").unwrap_or("3d");
                 assert_eq!(state["view"], view, "{name}{query}");
+                // The instant centres' construction at the row shown, in the front and side views alone.
+                let c = first.construction.get(first.design_row());
+                let lines = match (view, c) {
+                    ("front", Some(c)) => {
+                        usize::from(c.front_view_centre.is_some()) + usize::from(c.roll_centre.is_some())
+                    }
+                    ("side", Some(c)) => 2 * usize::from(c.side_view_centre.is_some()),
+                    _ => 0,
+                };
+                assert_eq!(state["construction"], lines, "{name}{query}");
+                if first.analysis.name() == "parallel-travel" && view != "3d" && view != "plan" {
+                    assert!(lines > 0, "{name}{query}: the construction is drawn");
+                }
             }
         }
     }

@@ -30,8 +30,8 @@ pub use chart::{Chart, Scale, Series, YAxis};
 pub use models::Models;
 pub use reduce::{COMPLIANCE_LOAD, COMPLIANCE_RESPONSE};
 pub use report::{
-    fixed, significant, significant_among, Accuracy, AnalysisReport, Cell, Failed, Figure, FigureKind, KcReport,
-    NoFigure, Skipped, Table, Warning, Written,
+    fixed, significant, significant_among, Accuracy, AnalysisReport, Cell, Construction, Failed, Figure, FigureKind,
+    KcReport, NoFigure, Skipped, Table, Warning, Written,
 };
 pub use settings::{
     mode_from_word, mode_word, Analysis, AnalysisError, Cause, Declaration, DefaultRange, FigureRows, Quantity,

@@ -15,7 +15,7 @@ use crate::kc::models::Models;
 use crate::kc::reduce::{
     axis, chart, corner_drawing, deg, drive_shaft, finish, half_shaft_columns, needs_vehicle, Design, Reduction,
 };
-use crate::kc::report::{AnalysisReport, Column, Figure, FigureKind, Table, Warning};
+use crate::kc::report::{AnalysisReport, Column, Construction, Figure, FigureKind, Table, Warning};
 use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, FigureRows, Quantity, Settings};
 use crate::wheel::DriveShaft;
 use elastokin_solver::replay::Taping;
@@ -67,6 +67,9 @@ pub(super) fn parallel_travel(models: &Models, s: &Settings, taping: &Taping) ->
         Reduction { table: &table, figures: &figures, drawing: corner_drawing(corner, s) },
         charts,
     );
+    if s.motion {
+        report.construction = out.rows.iter().map(construction).collect();
+    }
     report.warnings.extend(travel_warnings);
     report.warnings.extend(shaft_warning);
     if let Some(Err(why)) = axle {
@@ -126,6 +129,20 @@ impl std::ops::Deref for Row {
     type Target = TravelRow;
     fn deref(&self) -> &TravelRow {
         &self.corner
+    }
+}
+
+/// The construction of `r`'s instant centres, in global coordinates: the roll centre's height is above
+/// the ground line through the patches, the patch's z.
+fn construction(r: &Row) -> Construction {
+    let patch = r.steering.contact_patch;
+    let centre = |c: Option<crate::analysis::InstantCentre>| c.map(|c| [c.horizontal, c.z]);
+    Construction {
+        patch: [patch.x, patch.y, patch.z],
+        wheel_centre: [r.attitude.wheel_centre.x, r.attitude.wheel_centre.y, r.attitude.wheel_centre.z],
+        front_view_centre: centre(r.swing_arms.and_then(|s| s.front)),
+        side_view_centre: centre(r.swing_arms.and_then(|s| s.side)),
+        roll_centre: r.roll_centre.map(|c| [c.lateral, patch.z + c.height]),
     }
 }
 

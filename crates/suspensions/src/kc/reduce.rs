@@ -125,6 +125,7 @@ pub(super) fn finish<R: Clone>(
         charts,
         warnings,
         motion: out.poses.clone().zip(reduce.drawing).map(|(frames, drawing)| Motion { drawing, frames }),
+        construction: Vec::new(),
     }
 }
 

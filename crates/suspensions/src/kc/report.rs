@@ -384,6 +384,28 @@ pub struct AnalysisReport {
     /// The model drawn and its parts' poses at every row, when the settings ask for them
     /// ([`Settings::motion`](crate::kc::Settings::motion)).
     pub motion: Option<Motion>,
+    /// The instant centres' construction at every row, for the views to draw (parallel travel's; empty
+    /// for the others).
+    pub construction: Vec<Construction>,
+}
+
+/// How a row's instant centres are found, as a view draws it (global coordinates, m): the contact patch
+/// and the wheel centre, the wheel's front-view instant centre (y, z) and side-view instant centre (x, z),
+/// and the axle's roll centre (y, z); each centre `None` where there is none. In the front view the patch,
+/// its instant centre and the roll centre lie on one line; in the side view the patch's and the wheel
+/// centre's lines to the instant centre are the anti-pitch constructions.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Construction {
+    /// The contact patch.
+    pub patch: [f64; 3],
+    /// The wheel centre.
+    pub wheel_centre: [f64; 3],
+    /// The front-view instant centre, (y, z).
+    pub front_view_centre: Option<[f64; 2]>,
+    /// The side-view instant centre, (x, z).
+    pub side_view_centre: Option<[f64; 2]>,
+    /// The roll centre, (y, z).
+    pub roll_centre: Option<[f64; 2]>,
 }
 
 /// The JSON summary of an analysis: what was run, the figures written in the report's units, the wheel

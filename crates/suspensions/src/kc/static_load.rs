@@ -68,6 +68,7 @@ pub(super) fn static_load(models: &Models, s: &Settings, taping: &Taping) -> Res
         wheel_compliance_at_design: None,
         charts: Vec::new(),
         motion: None,
+        construction: Vec::new(),
         accuracy: Accuracy {
             method: format!(
                 "converged residuals of the rest position (Newton on the exact equilibrium; {} mode does not \
