@@ -201,9 +201,7 @@ impl DriveShaft {
     /// The shaft `shaft` (given for the left corner; mirrored in y for a right one) on `wheel` at its design
     /// `poses`; `Err` with the outer joint's distance from the spin axis (m) when over [`SHAFT_OFF_AXIS`].
     pub fn on(shaft: &HalfShaft, wheel: &Wheel, poses: &[Pose]) -> Result<DriveShaft, f64> {
-        let s = wheel.side.sign();
-        let mirrored = |p: [f64; 3]| Vec3::new(p[0], s * p[1], p[2]);
-        let (inner, outer) = (mirrored(shaft.inner), mirrored(shaft.outer));
+        let (inner, outer) = (wheel.side.place(shaft.inner.into()), wheel.side.place(shaft.outer.into()));
         let attitude = wheel.attitude(poses);
         let axis = attitude.spin_axis(wheel.side);
         let inboard = (attitude.wheel_centre - outer).dot(&axis);
@@ -224,20 +222,18 @@ impl DriveShaft {
         let u = shaft / length;
         // Angles by atan2 of sine and cosine: an arccosine of a cosine near 1 (a straight shaft) would
         // carry rounding as its square root.
-        let lateral = Vec3::new(0.0, 1.0, 0.0);
         ShaftReading {
             plunge: length - self.length,
-            inner_angle: u.cross(&lateral).norm().atan2(u.y.abs()),
+            inner_angle: u.x.hypot(u.z).atan2(u.y.abs()),
             outer_angle: u.cross(&axis).norm().atan2(u.dot(&axis)),
         }
     }
 }
 
 impl WheelAttitude {
-    /// The outward spin axis its toe and camber say, on `side`: the inverse of [`Wheel::attitude`]'s
-    /// formulas, `a = (sin toe cos camber, s cos toe cos camber, −sin camber)`.
+    /// The outward spin axis its toe and camber say, on `side` ([`Side::spin_axis`], the inverse of
+    /// [`Wheel::attitude`]'s formulas).
     pub fn spin_axis(&self, side: Side) -> Vec3 {
-        let (toe, camber) = (self.toe, self.camber);
-        Vec3::new(toe.sin() * camber.cos(), side.sign() * toe.cos() * camber.cos(), -camber.sin())
+        side.spin_axis(self.toe, self.camber)
     }
 }

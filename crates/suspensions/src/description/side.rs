@@ -35,6 +35,14 @@ impl Side {
     pub fn place(self, left: Vec3) -> Vec3 {
         Vec3::new(left.x, self.sign() * left.y, left.z)
     }
+
+    /// The outward spin axis of a wheel on this side at `toe` and `camber` (rad): the lateral axis turned by
+    /// the toe about z (toe-in turns the wheel's front inward) and tilted by the camber about the wheel's
+    /// heading (negative camber, the top inward, lifts the outward axis),
+    /// `(sin toe cos camber, s cos toe cos camber, −sin camber)`.
+    pub fn spin_axis(self, toe: f64, camber: f64) -> Vec3 {
+        self.place(Vec3::new(camber.cos() * toe.sin(), camber.cos() * toe.cos(), -camber.sin()))
+    }
 }
 
 /// Reads a hardpoint `[x, y, z]`, saying what was given when it is not three numbers (the model file

@@ -9,6 +9,7 @@ use crate::description::general::{
 use crate::description::layout::Layout;
 use crate::description::limits::default_loaded_radius;
 use crate::description::section::SectionDef;
+use crate::description::side::Side;
 use elastokin_core::{JointKind, Vec3};
 use serde::{Deserialize, Serialize};
 
@@ -97,12 +98,9 @@ impl TwistBeam {
     /// The default number of the cross member's segments.
     pub const SEGMENTS: usize = 6;
 
-    /// The left wheel's outward spin axis at its static toe and camber: the lateral axis turned by the
-    /// toe about z (toe-in turns the wheel's front inward) and tilted by the camber about the wheel's
-    /// heading (negative camber, the top inward, lifts the outward axis).
+    /// The left wheel's outward spin axis at its static toe and camber ([`Side::spin_axis`]).
     pub fn spin_axis(&self) -> [f64; 3] {
-        let (t, c) = (self.toe.to_radians(), self.camber.to_radians());
-        [c.cos() * t.sin(), c.cos() * t.cos(), -c.sin()]
+        Side::Left.spin_axis(self.toe.to_radians(), self.camber.to_radians()).into()
     }
 
     /// The axle in the general form: per side the bodies `arm eye` (at the pivot), `arm` (at the junction)

@@ -151,7 +151,7 @@ impl Builder {
         doc.expect("Vehicle-Frame Inertia");
         let camber = doc.optional_number("Camber Angle (deg)")?.unwrap_or(0.0).to_radians();
         let toe = doc.optional_number("Toe Angle (deg)")?.unwrap_or(0.0).to_radians();
-        self.general.corner.spin_axis = [camber.cos() * toe.sin(), camber.cos() * toe.cos(), -camber.sin()];
+        self.general.corner.spin_axis = Side::Left.spin_axis(toe, camber).into();
         Ok(())
     }
 
