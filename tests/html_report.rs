@@ -460,7 +460,7 @@ fn the_summary_leads_with_every_figure_and_the_targets_judged() {
     let text = std::fs::read_to_string(&path).unwrap();
     let document = elastokin::suspensions::study::batch::base_document(&text, "m.json").unwrap();
     let bump = report.analyses[0].figures.iter().find(|f| f.key == "bump_steer").unwrap();
-    let deg_per_m = bump.written(kc::Units::default()).value.unwrap();
+    let deg_per_m = bump.value.unwrap().to_degrees();
     let targets = json!({ "targets": [
         { "figure": "parallel-travel/bump_steer", "value": deg_per_m, "tolerance": 0.1 },
         { "figure": "parallel-travel/camber_gain", "value": 1e3, "tolerance": 0.1 },

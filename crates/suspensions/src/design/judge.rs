@@ -96,7 +96,7 @@ fn not_run(report: &KcReport, target: &Target) -> String {
 
 /// The figure `key` of `a` in the unit it is written in under the default units, as a target gives it.
 fn figure(a: &AnalysisReport, key: &str) -> Result<f64, String> {
-    let f = a.figures.iter().find(|f| f.key == key).ok_or_else(|| {
+    let f = a.figure(key).ok_or_else(|| {
         let has: Vec<&str> = a.figures.iter().map(|f| f.key.as_str()).collect();
         format!("{} has no figure '{key}' (it has {})", a.analysis.name(), has.join(", "))
     })?;
@@ -111,10 +111,9 @@ fn curve(a: &AnalysisReport, column: &str, at: f64) -> Result<f64, String> {
     let values = table.column(column).ok_or_else(|| {
         format!("{} has no column '{column}' (it has {})", a.analysis.name(), table.columns.join(", "))
     })?;
-    let along: Vec<f64> =
-        table.column(&table.columns[0]).into_iter().flatten().map(|v| v.unwrap_or(f64::NAN)).collect();
-    let weights = interpolation(&along, at).ok_or_else(|| {
-        let (lo, hi) = along.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+    // The first column is the load parameter.
+    let along: Vec<f64> = table.rows.iter().map(|r| r.first().and_then(Cell::number).unwrap_or(f64::NAN)).collect();
+    let weights = interpolation(&along, at).map_err(|(lo, hi)| {
         format!("{at} is outside the rows run, {lo} to {hi}: run the analysis over a range that holds it")
     })?;
     weights.iter().try_fold(0.0, |sum, &(j, w)| {

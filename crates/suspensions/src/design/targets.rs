@@ -701,26 +701,25 @@ fn constraint(k: usize, c: &Value, document: &Value) -> Result<Constraint, Targe
 }
 
 /// The value of `column` at `at` from the table's rows by the cubic through the four nearest rows (fewer
-/// when the table has fewer): its weights on the rows, which also carry the rows' derivatives. `None`
-/// outside the rows' range.
-pub(super) fn interpolation(t: &[f64], at: f64) -> Option<Vec<(usize, f64)>> {
+/// when the table has fewer): its weights on the rows, which also carry the rows' derivatives. Outside the
+/// rows' range (or with no row bracketing `at`), the range `(lo, hi)` the rows span.
+pub(super) fn interpolation(t: &[f64], at: f64) -> Result<Vec<(usize, f64)>, (f64, f64)> {
     let n = t.len();
     let (lo, hi) = t.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
     if n == 0 || !(lo..=hi).contains(&at) {
-        return None;
+        return Err((lo, hi));
     }
     if let Some(k) = t.iter().position(|&v| v == at) {
-        return Some(vec![(k, 1.0)]);
+        return Ok(vec![(k, 1.0)]);
     }
-    let i = t.windows(2).position(|w| (w[0] - at) * (w[1] - at) < 0.0)?;
+    let i = t.windows(2).position(|w| (w[0] - at) * (w[1] - at) < 0.0).ok_or((lo, hi))?;
     let first = i.saturating_sub(1).min(n.saturating_sub(4));
     let near: Vec<usize> = (first..(first + 4).min(n)).collect();
-    Some(
-        near.iter()
-            .map(|&j| {
-                let w = near.iter().filter(|&&m| m != j).map(|&m| (at - t[m]) / (t[j] - t[m])).product();
-                (j, w)
-            })
-            .collect(),
-    )
+    Ok(near
+        .iter()
+        .map(|&j| {
+            let w = near.iter().filter(|&&m| m != j).map(|&m| (at - t[m]) / (t[j] - t[m])).product();
+            (j, w)
+        })
+        .collect())
 }

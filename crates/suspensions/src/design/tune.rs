@@ -392,9 +392,12 @@ impl Misses {
         let values = s.column(column);
         let rates: Vec<Vec<super::sensitivity::Rate>> = (0..p.len()).map(|q| s.d_column(column, q)).collect();
         for &(at, aim) in points {
-            let weights = interpolation(&along, at).ok_or_else(|| {
-                let (lo, hi) = along.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
-                NotGiven::OutsideRange { label: t.label.clone(), at, lo, hi, parameter: t.analysis.parameter() }
+            let weights = interpolation(&along, at).map_err(|(lo, hi)| NotGiven::OutsideRange {
+                label: t.label.clone(),
+                at,
+                lo,
+                hi,
+                parameter: t.analysis.parameter(),
             })?;
             let (mut reached, mut gradient) = (0.0, vec![0.0; p.len()]);
             for &(j, w) in &weights {
