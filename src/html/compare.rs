@@ -2,10 +2,11 @@
 //! overlaid.
 
 use super::charts::{write_chart, write_chart_script};
+use super::figures::estimate_words;
 use super::tables::cell;
 use super::{write_foot, write_head, NAME_SHOWN};
 use crate::markup::{attr, text};
-use crate::suspensions::kc::{fixed, significant, Cell, Chart, KcReport};
+use crate::suspensions::kc::{fixed, Cell, Chart, KcReport};
 use serde_json::Value;
 use std::fmt::Write;
 
@@ -137,9 +138,10 @@ fn write_figure_rows(
         let number = |c: &Cell| c.number().map_or(String::new(), |v| fixed(v, decimals));
         write!(out, "<tr><td>{}</td><td>{}</td>", text(&first.label), cell(unit, 6))?;
         for k in 0..n {
-            let (value, error) = (&row[3 + 2 * k], &row[4 + 2 * k]);
+            // The value as the table writes it, in the first model's units; the estimate alike.
+            let value = &row[3 + 2 * k];
             let matters = figure(k).is_some_and(|(f, _, relative)| f.estimate_matters(relative));
-            let estimate = error.number().map_or(String::new(), |e| format!("± {}", significant(e, 2)));
+            let estimate = figure(k).and_then(|(f, _, _)| estimate_words(f, units)).unwrap_or_default();
             if matters {
                 write!(out, "<td>{}<br/><span class=\"over\">{}</span></td>", number(value), text(&estimate))?;
             } else {

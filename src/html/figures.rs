@@ -45,15 +45,23 @@ pub(super) fn write_figures(out: &mut String, figures: &[Figure], units: Units, 
 /// The error-estimate cell of the figure `f` (which has a value) in `units`: `± e` in red where the estimate
 /// matters against `relative`, a quiet mark otherwise; the estimate is its hover text either way.
 pub(super) fn estimate_cell(f: &Figure, units: Units, relative: f64) -> String {
-    let w = f.written(units);
-    match w.error.filter(|e| e.is_finite()) {
-        Some(e) if f.estimate_matters(relative) => {
-            format!("<td class=\"error-estimate over\">± {} {}</td>", text(&significant(e, 2)), text(w.unit))
-        }
+    match estimate_words(f, units) {
+        Some(e) if f.estimate_matters(relative) => format!("<td class=\"error-estimate over\">{}</td>", text(&e)),
         Some(e) => format!(
             "<td class=\"error-estimate\" title=\"{}\">within</td>",
-            attr(&format!("± {} {}: within the tolerance", significant(e, 2), w.unit))
+            attr(&format!("{e}: within the tolerance"))
         ),
         None => "<td class=\"error-estimate over\">not estimated</td>".into(),
     }
+}
+
+/// The error estimate of `f` as written in `units`, `± e unit`; `None` when it has none.
+pub(super) fn estimate_words(f: &Figure, units: Units) -> Option<String> {
+    let w = f.written(units);
+    let e = w.error.filter(|e| e.is_finite())?;
+    Some(if w.unit == "-" {
+        format!("± {}", significant(e, 2))
+    } else {
+        format!("± {} {}", significant(e, 2), w.unit)
+    })
 }

@@ -2,6 +2,7 @@
 //! estimates over the tolerance), the targets judged when a TARGETS file was given (`run --targets`), and
 //! every analysis's headline figures side by side, each linked to its section.
 
+use super::figures::estimate_words;
 use crate::markup::{attr, text};
 use crate::suspensions::design::judge::{ConstraintCheck, TargetPoint};
 use crate::suspensions::design::targets::Aim;
@@ -137,40 +138,32 @@ fn write_card(out: &mut String, a: &AnalysisReport, relative: f64, judged: Optio
                 p.target.analysis == a.analysis && matches!(&p.target.aim, Aim::Figure { key, .. } if *key == f.key)
             })
             .collect();
-        // A figure a target names says its aim and whether it is met; an estimate that matters is shown.
-        let (class, aside) = match targeted.as_slice() {
-            [] => ("", String::new()),
-            points => {
-                let met = points.iter().all(|p| p.met());
-                let aims: Vec<String> = points
-                    .iter()
-                    .map(|p| format!("{} ± {}", significant(p.aim, 4), significant(p.target.tolerance, 2)))
-                    .collect();
-                let verdict = if met { "met" } else { "not met" };
-                (
-                    if met { " class=\"met\"" } else { " class=\"missed\"" },
-                    format!("target {}: {verdict}", aims.join(", ")),
-                )
-            }
+        // What a figure's row adds, on a line of its own beneath it: its target and whether it is met, and
+        // an estimate that matters.
+        let met = (!targeted.is_empty()).then(|| targeted.iter().all(|p| p.met()));
+        let class = match met {
+            Some(true) => " class=\"met\"",
+            Some(false) => " class=\"missed\"",
+            None => "",
+        };
+        let estimate = estimate_words(f, a.units).unwrap_or_default();
+        let mut aside = Vec::new();
+        if let Some(met) = met {
+            let aims: Vec<String> = targeted
+                .iter()
+                .map(|p| format!("{} ± {}", significant(p.aim, 4), significant(p.target.tolerance, 2)))
+                .collect();
+            aside.push(text(&format!("target {}: {}", aims.join(", "), if met { "met" } else { "not met" })));
+        }
+        if f.estimate_matters(relative) {
+            aside.push(format!("<span class=\"over\">error estimate {}</span>", text(&estimate)));
+        }
+        let aside = if aside.is_empty() {
+            String::new()
+        } else {
+            format!("<tr{class}><td colspan=\"3\" class=\"aim\">{}</td></tr>", aside.join("; "))
         };
         let unit = if w.unit == "-" { "" } else { w.unit };
-        let estimate = match w.error {
-            Some(e) if f.estimate_matters(relative) => format!("± {}", significant(e, 2)),
-            Some(e) => format!("± {} {unit}", significant(e, 2)),
-            None => String::new(),
-        };
-        let over = f.estimate_matters(relative);
-        // What a figure's row adds, on a line of its own beneath it: its target, an estimate that matters.
-        let aside = match (over, aside.is_empty()) {
-            (true, true) => format!("<tr class=\"aside\"><td colspan=\"3\" class=\"over\">error estimate {}</td></tr>", text(&estimate)),
-            (true, false) => format!(
-                "<tr{class}><td colspan=\"3\" class=\"aim\">{}; <span class=\"over\">error estimate {}</span></td></tr>",
-                text(&aside),
-                text(&estimate)
-            ),
-            (false, false) => format!("<tr{class}><td colspan=\"3\" class=\"aim\">{}</td></tr>", text(&aside)),
-            (false, true) => String::new(),
-        };
         match w.value {
             Some(v) => writeln!(
                 out,
