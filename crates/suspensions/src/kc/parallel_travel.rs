@@ -136,7 +136,7 @@ impl std::ops::Deref for Row {
 /// the ground line through the patches, the patch's z.
 fn construction(r: &Row) -> Construction {
     let patch = r.steering.contact_patch;
-    let centre = |c: Option<crate::analysis::InstantCentre>| c.map(|c| [c.horizontal, c.z]);
+    let centre = |c: Option<InstantCentre>| c.map(|c| [c.horizontal, c.z]);
     Construction {
         patch: [patch.x, patch.y, patch.z],
         wheel_centre: [r.attitude.wheel_centre.x, r.attitude.wheel_centre.y, r.attitude.wheel_centre.z],
