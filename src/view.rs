@@ -202,6 +202,10 @@ fn layers_svg(
 /// The colour of the instant centres' construction.
 const CONSTRUCTION: &str = "#b8860b";
 
+/// The colour of the wheel's swept envelope (drawn faint) and of the packaging it clears.
+const ENVELOPE: &str = "#7f7f7f";
+const PACKAGING: &str = "#d62728";
+
 /// The construction of the instant centres `c` in `projection`, its lines dashed over the parts: in the
 /// front view the line from the contact patch through the wheel's instant centre and on to the roll
 /// centre; in the side view the lines from the patch and from the wheel centre to the side-view instant
@@ -582,8 +586,20 @@ pub fn viewer_data(report: &KcReport) -> Value {
                         "roll": pair(c.roll_centre) })
             })
             .collect();
+        // The wheel's swept envelope (the wheel envelope's): the tyre at every point of the grid, drawn at
+        // every row, with the body's points and boxes it clears.
+        let envelope = a.envelope.as_ref().map(|e| {
+            let placements: Vec<[f64; 6]> =
+                e.placements.iter().map(|(c, s)| [c.x, c.y, c.z, s.x, s.y, s.z].map(round)).collect();
+            let points: Vec<[f64; 3]> = e.packaging.points.iter().map(|p| p.at.map(round)).collect();
+            let boxes: Vec<[[f64; 3]; 2]> =
+                e.packaging.boxes.iter().map(|b| [b.min.map(round), b.max.map(round)]).collect();
+            json!({ "tyre": [round(e.tyre.radius), round(e.tyre.width)], "placements": placements,
+                    "points": points, "boxes": boxes })
+        });
         analyses.push(json!({ "name": a.analysis.name(), "drawing": index, "design": a.design_row(),
-                              "labels": labels, "frames": frames, "construction": construction }));
+                              "labels": labels, "frames": frames, "construction": construction,
+                              "envelope": envelope }));
     }
     let pens: serde_json::Map<String, Value> = [
         Pen::Part,
@@ -611,7 +627,7 @@ pub fn viewer_data(report: &KcReport) -> Value {
         })
         .collect();
     json!({ "drawings": drawings, "analyses": analyses, "pens": pens, "spots": spots, "construction": CONSTRUCTION,
-            "deflection_scale": DEFLECTION_SCALE })
+            "envelope": ENVELOPE, "packaging": PACKAGING, "deflection_scale": DEFLECTION_SCALE })
 }
 
 /// The viewer's script.

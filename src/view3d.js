@@ -87,6 +87,21 @@
         });
       });
     });
+    // The envelope's tyres and packaging, on both sides, are in the picture too.
+    var grow = function (p, by) {
+      [1, -1].forEach(function (side) {
+        var q = [p[0], side * p[1], p[2]];
+        for (var k = 0; k < 3; k++) {
+          lo[k] = Math.min(lo[k], q[k] - by);
+          hi[k] = Math.max(hi[k], q[k] + by);
+        }
+      });
+    };
+    if (a.envelope) {
+      a.envelope.placements.forEach(function (p) { grow(p, a.envelope.tyre[0]); });
+      a.envelope.points.forEach(function (p) { grow(p, 0); });
+      a.envelope.boxes.forEach(function (b) { grow(b[0], 0); grow(b[1], 0); });
+    }
     var centre = [0, 1, 2].map(function (k) { return (lo[k] + hi[k]) / 2; });
     var radius = Math.max(1e-3, Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) / 2);
     fit = { centre: centre, radius: radius };
@@ -159,6 +174,7 @@
         ctx.fill();
       }
     });
+    var envelope = drawEnvelope(a.envelope, screen);
     var construction = drawConstruction(a.construction[row], screen);
     label.textContent = a.labels[row];
     summary = {
@@ -170,9 +186,87 @@
       dots: d.dots.length,
       drawn: drawn,
       construction: construction,
+      envelope: envelope,
       view: camera.view || 'custom'
     };
     report();
+  }
+
+  // The wheel's swept envelope `e` (the wheel envelope's), whatever the row: each tyre of the grid's
+  // points as its two rims, faint, on both sides (the right the left mirrored), and the body's points
+  // (crosses) and boxes (their edges) it clears. Returns how many tyres, points and boxes it drew.
+  function drawEnvelope(e, screen) {
+    if (!e) {
+      return null;
+    }
+    var r = e.tyre[0], half = e.tyre[1] / 2;
+    var mirror = function (p) { return [p[0], -p[1], p[2]]; };
+    var segments = 32;
+    ctx.strokeStyle = data.envelope;
+    ctx.lineWidth = 1;
+    ctx.globalAlpha = 0.25;
+    ctx.setLineDash([]);
+    var tyres = 0;
+    e.placements.forEach(function (p) {
+      [1, -1].forEach(function (side) {
+        var c = [p[0], side * p[1], p[2]], s = [p[3], side * p[4], p[5]];
+        // Two unit vectors across the spin axis: u horizontal (or x where the axis is vertical), v = s × u.
+        var u = Math.abs(s[2]) < 0.9 ? [-s[1], s[0], 0] : [1, 0, 0];
+        var n = Math.hypot(u[0], u[1], u[2]);
+        u = [u[0] / n, u[1] / n, u[2] / n];
+        var v = [s[1] * u[2] - s[2] * u[1], s[2] * u[0] - s[0] * u[2], s[0] * u[1] - s[1] * u[0]];
+        [-half, half].forEach(function (offset) {
+          ctx.beginPath();
+          for (var k = 0; k <= segments; k++) {
+            var t = 2 * Math.PI * k / segments, a = r * Math.cos(t), b = r * Math.sin(t);
+            var q = screen([
+              c[0] + offset * s[0] + a * u[0] + b * v[0],
+              c[1] + offset * s[1] + a * u[1] + b * v[1],
+              c[2] + offset * s[2] + a * u[2] + b * v[2]
+            ]);
+            if (k === 0) { ctx.moveTo(q[0], q[1]); } else { ctx.lineTo(q[0], q[1]); }
+          }
+          ctx.stroke();
+        });
+        tyres++;
+      });
+    });
+    ctx.globalAlpha = 1;
+    ctx.strokeStyle = data.packaging;
+    ctx.lineWidth = 1.5;
+    e.boxes.forEach(function (b) {
+      [false, true].forEach(function (right) {
+        var lo = b[0], hi = b[1];
+        var corner = function (k) {
+          var p = [(k & 1) ? hi[0] : lo[0], (k & 2) ? hi[1] : lo[1], (k & 4) ? hi[2] : lo[2]];
+          return screen(right ? mirror(p) : p);
+        };
+        // The twelve edges: corners differing in one coordinate.
+        for (var k = 0; k < 8; k++) {
+          [1, 2, 4].forEach(function (bit) {
+            if (!(k & bit)) {
+              var p = corner(k), q = corner(k | bit);
+              ctx.beginPath();
+              ctx.moveTo(p[0], p[1]);
+              ctx.lineTo(q[0], q[1]);
+              ctx.stroke();
+            }
+          });
+        }
+      });
+    });
+    e.points.forEach(function (pt) {
+      [pt, mirror(pt)].forEach(function (p) {
+        var q = screen(p);
+        ctx.beginPath();
+        ctx.moveTo(q[0] - 5, q[1] - 5);
+        ctx.lineTo(q[0] + 5, q[1] + 5);
+        ctx.moveTo(q[0] - 5, q[1] + 5);
+        ctx.lineTo(q[0] + 5, q[1] - 5);
+        ctx.stroke();
+      });
+    });
+    return { tyres: tyres, points: 2 * e.points.length, boxes: 2 * e.boxes.length };
   }
 
   // The instant centres' construction of a row `c` (parallel travel's), in the front and side views
@@ -300,9 +394,13 @@
     draw();
   }, { passive: false });
   window.addEventListener('resize', draw);
-  // A view asked for in the address (report.html?view=side) is the one shown first.
+  // A view and an analysis asked for in the address (report.html?view=side&analysis=steering) are the
+  // ones shown first.
   var asked = /[?&]view=([a-z0-9]+)/.exec(window.location.search);
-  choose(0);
+  var named = /[?&]analysis=([a-z0-9-]+)/.exec(window.location.search);
+  var first = named ? data.analyses.findIndex(function (a) { return a.name === named[1]; }) : 0;
+  select.value = String(Math.max(first, 0));
+  choose(Math.max(first, 0));
   if (asked) {
     setView(asked[1]);
   } else {

@@ -18,7 +18,7 @@ import elastokin
 
 def test_analyses_are_the_command_line_names():
     names = elastokin.analyses()
-    assert names[0] == "parallel-travel" and "loads" in names and len(names) == 10
+    assert names[0] == "parallel-travel" and "loads" in names and names[-1] == "wheel-envelope" and len(names) == 11
     assert elastokin.parameter("parallel-travel") == "wheel travel, m, bump +"
 
 
@@ -294,3 +294,26 @@ def test_the_half_shaft_columns_follow_the_wheel():
     steering = model.run("steering", steps=8)
     for side in ["left", "right"]:
         assert numpy.all(numpy.isfinite(steering.columns[f"{side}_half_shaft_outer_angle_deg"])), side
+
+
+def test_the_wheel_envelope_names_the_least_clearance_and_a_tyre_reaching_into_the_body():
+    # The shipped MacPherson's packaging: per wheel height, each obstacle's least clearance over the rack's
+    # travel; the least of all is the figure, in SI. With the wheel-arch liner lowered to 40 mm above the
+    # tyre's top, full bump reaches into it: a negative figure and a warning naming it.
+    import json
+    import pathlib
+
+    shipped = pathlib.Path(__file__).resolve().parents[2] / "examples" / "macpherson.json"
+    document = json.loads(shipped.read_text())
+    result = elastokin.load(document).run("wheel-envelope", steps=32)
+    names = ["brake_line_clip", "wheel_arch_liner", "frame_rail"]
+    for k in range(len(result.columns["travel_m"])):
+        least = min(result.columns[f"clearance_{n}_m"][k] for n in names)
+        assert result.columns["least_clearance_m"][k] == least
+    assert result.figure("least_wheel_clearance", si=True) == min(result.columns["least_clearance_m"])
+    assert result.figure("least_wheel_clearance", si=True) > 0.02
+    document["packaging"]["boxes"][0]["min"][2] = 0.356
+    lowered = elastokin.load(document).run("wheel-envelope", steps=32)
+    assert lowered.figure("least_wheel_clearance", si=True) < -0.02
+    codes = [w["code"] for w in lowered.summary["warnings"]]
+    assert "wheel-interference" in codes

@@ -241,6 +241,41 @@ mod tests {
         }
     }
 
+    /// The shipped MacPherson's report with its wheel envelope shown (`?analysis=wheel-envelope`): the 3D
+    /// view draws the tyre at every point of the envelope's grid on both wheels, and the packaging's points
+    /// and boxes on both sides, in 3D and in the front view; the console stays clean.
+    #[test]
+    fn the_wheel_envelope_and_its_packaging_are_drawn_in_the_3d_view() {
+        let Some(chromium) = chromium_or_skip() else { return };
+        let root = crate::workspace_root();
+        let dir = root.join("target/report-in-browser");
+        std::fs::create_dir_all(&dir).unwrap();
+        let shown = "examples/macpherson.json";
+        let page = dir.join("envelope.html");
+        std::fs::write(&page, report_page(&root, shown).unwrap()).unwrap();
+        let file = SuspensionFile::read(&root.join(shown)).unwrap();
+        let settings = Settings { motion: true, ..Settings::default() };
+        let envelope = kc::run(kc::Analysis::WheelEnvelope, &file, &settings).unwrap();
+        let placements = envelope.envelope.as_ref().unwrap().placements.len();
+        let packaging = file.packaging.as_ref().unwrap();
+        assert!(placements >= 81, "{placements}");
+        for query in ["?analysis=wheel-envelope", "?analysis=wheel-envelope&view=front"] {
+            let (dom, console) = loaded(&chromium, &page, query, &dir.join("profile")).unwrap();
+            assert!(console.is_empty(), "{query}: the console says {console:#?}");
+            let state = output_of(&dom, "view3d-state");
+            assert_eq!(state["errors"], serde_json::json!([]), "{query}");
+            assert_eq!(state["analysis"], "wheel-envelope", "{query}");
+            assert_eq!(state["rows"], envelope.table.rows.len(), "{query}");
+            let drawn = &state["envelope"];
+            assert_eq!(drawn["tyres"], 2 * placements, "{query}");
+            assert_eq!(drawn["points"], 2 * packaging.points.len(), "{query}");
+            assert_eq!(drawn["boxes"], 2 * packaging.boxes.len(), "{query}");
+        }
+        // Another analysis shown draws no envelope.
+        let (dom, _) = loaded(&chromium, &page, "", &dir.join("profile")).unwrap();
+        assert_eq!(output_of(&dom, "view3d-state")["envelope"], serde_json::Value::Null);
+    }
+
     /// A script the layout test adds to a report's page: it measures, as the browser lays the page out,
     /// every non-empty text of every SVG shown (the plots and the geometry's projections) and writes what
     /// it finds as JSON into `<output id="layout-check">`: a label whose box leaves its picture (cut off),

@@ -152,6 +152,29 @@ impl Model {
         Ok(ElementId(self.elements.len() - 1))
     }
 
+    /// Holds driver `joint` at `travel` (m) from design along its direction or axis, whatever the load
+    /// parameter: its row no longer moves with `t`. A rig that walks one motion at each position of another
+    /// (the rack swept at each wheel height) holds the other's drivers so.
+    pub fn hold_driver(&mut self, joint: JointId, travel: f64) -> Result<(), ModelError> {
+        let Some(held) = self.joints.get(joint.0).filter(|j| j.is_driver()) else {
+            return Err(ModelError::OutOfRange {
+                item: format!("joint #{}", joint.0),
+                why: "only a driver can be held at a travel: name a point or travel driver".into(),
+            });
+        };
+        if !travel.is_finite() {
+            return Err(ModelError::NonFinite { item: held.name().to_string(), what: "hardpoint or travel" });
+        }
+        let spec = JointSpec { travel: 0.0, ..held.spec.clone() };
+        let (pi, pj) = (self.design_pose(spec.body_i), self.design_pose(spec.body_j));
+        let mut rebuilt = build_joint(spec, &pi, &pj)?;
+        for row in &mut rebuilt.rows {
+            row.offset += travel;
+        }
+        self.joints[joint.0] = rebuilt;
+        Ok(())
+    }
+
     /// The bodies, indexed by [`BodyId`].
     pub fn bodies(&self) -> &[Body] {
         &self.bodies

@@ -200,3 +200,38 @@ fn each_constraint_row_is_found_in_its_joint() {
     }
     assert!(m.row_origin(expected.len()).is_none());
 }
+
+#[test]
+fn a_held_driver_holds_its_point_at_the_travel_whatever_the_load_parameter() {
+    // Each driver's body moved by 30 mm along its direction: the held driver is met there at any `t`, the
+    // driver as built only at the `t` its rate takes to travel 30 mm; a joint that is no driver is refused.
+    let (mut m, i, j) = two_bodies();
+    let travel = 0.03;
+    let h = Vec3::new(0.3, -0.2, 0.9).normalize();
+    let specs = all_specs(i, j);
+    let drivers: Vec<_> = specs.into_iter().filter(|s| s.kind.is_driver()).collect();
+    assert_eq!(drivers.len(), 2);
+    for spec in drivers {
+        let (direction, rate) = (if spec.kind == JointKind::PointDriver { Vec3::z() } else { h }, spec.travel);
+        let id = m.add_joint(spec).unwrap();
+        let mut poses = m.design_poses();
+        let BodyRef::Body(b) = j else { unreachable!() };
+        poses[b.0].position += direction * travel;
+        let value = |m: &Model, t: f64| {
+            let jt = &m.joints()[id.0];
+            jt.rows[0].value(&jt.spec.body_i.pose(&poses), &jt.spec.body_j.pose(&poses), t)
+        };
+        // Measured 0 and 1e-17.
+        assert!(value(&m, travel / rate).abs() < 1e-15, "{}", value(&m, travel / rate));
+        let mut held = m.clone();
+        held.hold_driver(id, travel).unwrap();
+        for t in [-1.0, 0.0, 0.4, 7.0] {
+            assert!(value(&held, t).abs() < 1e-15, "{t}: {}", value(&held, t));
+        }
+        assert!(!held.joints()[id.0].rows[0].is_driver());
+    }
+    let mut m = m;
+    let ball = m.add_joint(JointSpec::spherical("ball", i, j, Vec3::new(0.0, 0.6, 0.0))).unwrap();
+    let refused = m.hold_driver(ball, travel).unwrap_err().to_string();
+    assert!(refused.contains("only a driver can be held"), "{refused}");
+}

@@ -18,6 +18,7 @@ pub mod general;
 pub(crate) mod layout;
 pub mod limits;
 pub mod macpherson;
+pub mod packaging;
 pub mod place;
 pub mod section;
 pub mod side;
@@ -33,6 +34,7 @@ pub use general::{
     SpringDef, SteeringLinkDef, Stiffness, StopDef, StopType, TieRodDef, CHASSIS,
 };
 pub use macpherson::{MacPherson, MacPhersonHardpoints, StrutJoint};
+pub use packaging::{Obstacle, Packaging, PackagingBox, PackagingPoint, Tyre};
 pub use side::Side;
 pub use template::Template;
 pub use twist_beam::{CrossMember, TwistBeam, TwistBeamHardpoints};

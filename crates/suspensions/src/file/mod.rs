@@ -19,7 +19,8 @@ pub mod key_path;
 
 use crate::description::limits::{looks_like_millimetres, MAX_COORDINATE, MAX_FORCE, MAX_RATE};
 use crate::description::{
-    ArmMounts, BushingDef, Connection, GeneralCorner, LoadDef, SpringSpec, Stiffness, Template, VehicleParameters,
+    ArmMounts, BushingDef, Connection, GeneralCorner, LoadDef, Packaging, SpringSpec, Stiffness, Template,
+    VehicleParameters,
 };
 use elastokin_core::ModelError;
 pub use key_path::key_path_at;
@@ -40,6 +41,10 @@ pub struct SuspensionFile {
     /// optional (those analyses are then skipped or take the design wheel load).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub vehicle: Option<VehicleParameters>,
+    /// What the wheel must clear, for its swept envelope over travel and steer; optional (the
+    /// `wheel-envelope` analysis is then skipped).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub packaging: Option<Packaging>,
 }
 
 /// The templates a model file may name in `suspension`.
@@ -317,14 +322,18 @@ impl SuspensionFile {
     /// (0, 10¹²], a loaded radius outside 0.05–2 m, a design force beyond ±10⁶ N, and vehicle
     /// parameters outside the ranges of road vehicles. The first refused is the first of: a hardpoint, a
     /// general model's load, a spring's or bar's rate, a spring's design force, the loaded radius, any other
-    /// rate, the vehicle.
+    /// rate, the vehicle, the packaging (tyre sizes, rack travel, points and boxes).
     pub fn check_ranges(&self) -> Result<(), OutOfRange> {
         self.check_hardpoints()?;
         if let Template::General(g) = &self.suspension {
             check_loads(&g.loads)?;
         }
         RangedValues::of(&self.suspension).check()?;
-        self.vehicle.as_ref().map_or(Ok(()), check_vehicle)
+        self.vehicle.as_ref().map_or(Ok(()), check_vehicle)?;
+        match self.packaging.as_ref().map(Packaging::check) {
+            Some(Err((keys, message))) => Err(OutOfRange { keys, message }),
+            _ => Ok(()),
+        }
     }
 
     /// Every hardpoint coordinate within ±[`MAX_COORDINATE`]; a file in millimetres is told so.

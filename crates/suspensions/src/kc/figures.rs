@@ -155,8 +155,13 @@ pub const SPRING_FORCE: FigureKind = kind("spring_force", "spring force (compres
 pub const SPRING_DEFLECTION: FigureKind =
     kind("spring_deflection", "spring deflection (compression -)", Unit::Millimetre, 2);
 
+// wheel-envelope
+/// The tyre's least clearance to the body's packaging over travel and rack travel.
+pub const LEAST_WHEEL_CLEARANCE: FigureKind =
+    kind("least_wheel_clearance", "least clearance of the tyre to the packaging", Unit::Millimetre, 1);
+
 /// Every declared figure (`crates/suspensions/tests/figures.rs` keeps it in step with this file).
-pub const ALL: [&FigureKind; 49] = [
+pub const ALL: [&FigureKind; 50] = [
     &BUMP_STEER,
     &CAMBER_GAIN,
     &WHEEL_RATE,
@@ -206,4 +211,5 @@ pub const ALL: [&FigureKind; 49] = [
     &WHEEL_RATE_AT_REST,
     &SPRING_FORCE,
     &SPRING_DEFLECTION,
+    &LEAST_WHEEL_CLEARANCE,
 ];

@@ -24,14 +24,15 @@ mod static_load;
 mod steering;
 pub mod unit;
 mod vertical_force;
+mod wheel_envelope;
 
 pub use crate::description::limits::plain;
 pub use chart::{Chart, Scale, Series, YAxis};
 pub use models::Models;
 pub use reduce::{COMPLIANCE_LOAD, COMPLIANCE_RESPONSE};
 pub use report::{
-    fixed, significant, significant_among, Accuracy, AnalysisReport, Cell, Construction, Failed, Figure, FigureKind,
-    KcReport, NoFigure, Skipped, Table, Warning, Written,
+    fixed, significant, significant_among, Accuracy, AnalysisReport, Cell, Construction, Envelope, Failed, Figure,
+    FigureKind, KcReport, NoFigure, Skipped, Table, Warning, Written,
 };
 pub use settings::{
     mode_from_word, mode_word, Analysis, AnalysisError, Cause, Declaration, DefaultRange, FigureRows, Quantity,
@@ -39,6 +40,7 @@ pub use settings::{
 };
 pub use steering::ideal_outer_steer;
 pub use unit::{Shown, Unit, Units};
+pub use wheel_envelope::{clearance, grid_steps};
 
 use crate::analysis::WheelLoad;
 use crate::file::SuspensionFile;
@@ -59,6 +61,7 @@ impl Analysis {
             Analysis::Road(WheelLoad::AligningTorque) => &road_load::ALIGNING_TORQUE,
             Analysis::StaticLoad => &static_load::DECLARATION,
             Analysis::ModelLoads => &model_loads::DECLARATION,
+            Analysis::WheelEnvelope => &wheel_envelope::DECLARATION,
         }
     }
 }
@@ -90,6 +93,7 @@ pub fn run_taped(
         Analysis::Road(load) => road_load::road_load(models, load, settings, taping),
         Analysis::StaticLoad => static_load::static_load(models, settings, taping),
         Analysis::ModelLoads => model_loads::model_loads(models, settings, taping),
+        Analysis::WheelEnvelope => wheel_envelope::wheel_envelope(models, settings, taping),
     };
     result.map_err(|cause| AnalysisError { analysis: analysis.name(), cause })
 }
@@ -185,6 +189,9 @@ pub fn left_out(file: &SuspensionFile, analysis: Analysis) -> Option<&'static st
             Some("the corner has no steering input (corner.tie_rod, or axle.steering_link): its toe is held by its own links")
         }
         Analysis::ModelLoads if !loaded => Some("the model file has no load case (\"loads\" of the general form)"),
+        Analysis::WheelEnvelope if file.packaging.is_none() => {
+            Some("the model file has no \"packaging\" section with the tyre's size and what the wheel must clear")
+        }
         Analysis::Roll if roll_locked(&file.suspension) => Some(
             "the axle's joints lock its roll (with the wheels free it has one way to move, in travel): its \
              wheels cannot travel opposite",

@@ -126,6 +126,7 @@ pub(super) fn finish<R: Clone>(
         warnings,
         motion: out.poses.clone().zip(reduce.drawing).map(|(frames, drawing)| Motion { drawing, frames }),
         construction: Vec::new(),
+        envelope: None,
     }
 }
 

@@ -387,6 +387,21 @@ pub struct AnalysisReport {
     /// The instant centres' construction at every row, for the views to draw (parallel travel's; empty
     /// for the others).
     pub construction: Vec<Construction>,
+    /// The wheel's swept envelope, for the views to draw (the wheel envelope's; `None` for the others).
+    pub envelope: Option<Envelope>,
+}
+
+/// The wheel's swept envelope as a view draws it: the tyre, the left wheel's centre and outward spin axis
+/// at every point of the travel × rack grid (global, m; the right wheel's are their mirror images), and
+/// the packaging it is measured against.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Envelope {
+    /// The tyre.
+    pub tyre: crate::description::Tyre,
+    /// The left wheel's centre and outward spin axis at each point of the grid.
+    pub placements: Vec<(elastokin_core::Vec3, elastokin_core::Vec3)>,
+    /// The points and boxes of the body.
+    pub packaging: crate::description::Packaging,
 }
 
 /// How a row's instant centres are found, as a view draws it (global coordinates, m): the contact patch

@@ -27,6 +27,9 @@ pub enum Analysis {
     StaticLoad,
     /// The model file's own load case (`loads` of the general form), from zero to its full value.
     ModelLoads,
+    /// The tyre swept over wheel travel and rack travel on the full axle, and its least clearance to the
+    /// body's packaging.
+    WheelEnvelope,
 }
 
 impl From<Analysis> for &'static str {
@@ -36,7 +39,7 @@ impl From<Analysis> for &'static str {
 }
 
 /// Every analysis, in the order the suite runs them.
-pub const ALL: [Analysis; 10] = [
+pub const ALL: [Analysis; 11] = [
     Analysis::ParallelTravel,
     Analysis::Roll,
     Analysis::Steering,
@@ -47,6 +50,7 @@ pub const ALL: [Analysis; 10] = [
     Analysis::Road(WheelLoad::AligningTorque),
     Analysis::StaticLoad,
     Analysis::ModelLoads,
+    Analysis::WheelEnvelope,
 ];
 
 impl Analysis {

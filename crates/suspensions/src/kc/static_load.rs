@@ -69,6 +69,7 @@ pub(super) fn static_load(models: &Models, s: &Settings, taping: &Taping) -> Res
         charts: Vec::new(),
         motion: None,
         construction: Vec::new(),
+        envelope: None,
         accuracy: Accuracy {
             method: format!(
                 "converged residuals of the rest position (Newton on the exact equilibrium; {} mode does not \

@@ -22,10 +22,13 @@ pub(super) const DECLARATION: Declaration = Declaration {
     parameter: "rack travel, m, towards +y (left)",
     quantity: Quantity::Travel,
     rig_words: Some("full axle, wheel-centre heights held"),
-    default_range: DefaultRange::Ends(-0.04, 0.04),
+    default_range: DefaultRange::Ends(RACK_TRAVEL.0, RACK_TRAVEL.1),
     design_parameter: Some(0.0),
     figure_rows: FigureRows::Extremes,
 };
+
+/// The rack travel steering walks when none is given (m, towards +y): a car's rack to near full lock.
+pub(super) const RACK_TRAVEL: (f64, f64) = (-0.04, 0.04);
 
 /// The steering table of `rows`: steer angles, and Ackermann's ideal outer steer and the error from it
 /// where the `wheelbase` is known (with the contact patches' `track` at design), and each wheel's drive

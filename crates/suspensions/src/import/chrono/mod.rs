@@ -149,6 +149,7 @@ pub fn read(text: &str, origin: &str, loaded_radius: Option<f64>) -> Result<Impo
         name: format!("{name} (Project Chrono {template})"),
         suspension: Template::General(Box::new(b.general)),
         vehicle: None,
+        packaging: None,
     };
     // The general model's own checks, as a model file's: the builder's follow in `document::import_chrono`.
     let text = file.to_json();
