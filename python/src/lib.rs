@@ -590,7 +590,7 @@ fn compare<'py>(
         .map_err(|e| PyValueError::new_err(e.to_string()))?;
     let d = PyDict::new(py);
     d.set_item("names", comparison.names.clone())?;
-    d.set_item("figures", column_dict(py, &comparison.figures)?)?;
+    d.set_item("figures", column_dict(py, &comparison.table())?)?;
     let charts = PyList::empty(py);
     for chart in &comparison.charts {
         let c = PyDict::new(py);

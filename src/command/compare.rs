@@ -53,7 +53,7 @@ pub fn run(args: CompareArgs, out: &Stdout, strict: bool) -> Result<(), Failure>
     let written = (|| -> Result<Vec<PathBuf>, Failure> {
         let html = elastokin::html::compare_html(&comparison, &models, &provenance.to_json(), plot::svg);
         Ok(vec![
-            staging.write("compare.csv", &write_table(&comparison.figures, &provenance))?,
+            staging.write("compare.csv", &write_table(&comparison.table(), &provenance))?,
             staging.write("report.html", html.as_bytes())?,
         ])
     })()
@@ -63,7 +63,7 @@ pub fn run(args: CompareArgs, out: &Stdout, strict: bool) -> Result<(), Failure>
     out.line(format!(
         "{} ({} figures, {} curves overlaid)",
         wrote(&written),
-        comparison.figures.rows.len(),
+        comparison.figures.len(),
         comparison.charts.len()
     ))?;
     let failed: Vec<String> = models

@@ -3,10 +3,9 @@
 
 use super::charts::{write_chart, write_chart_script};
 use super::figures::estimate_words;
-use super::tables::cell;
 use super::{write_foot, write_head, NAME_SHOWN};
 use crate::markup::{attr, text};
-use crate::suspensions::kc::{fixed, Cell, Chart, KcReport};
+use crate::suspensions::kc::{fixed, Chart, Figure, KcReport};
 use serde_json::Value;
 use std::fmt::Write;
 
@@ -38,7 +37,7 @@ fn write_compare_page(
     let lede = format!(
         "{} designs; {} figures side by side, {} curves overlaid; written by elastokin {}.",
         names.len(),
-        comparison.figures.rows.len(),
+        comparison.figures.len(),
         comparison.charts.len(),
         env!("CARGO_PKG_VERSION")
     );
@@ -122,34 +121,38 @@ fn write_figure_rows(
         write!(out, "<th>{} − {}</th>", text(l), text(&letters[0].0))?;
     }
     writeln!(out, "</tr></thead><tbody>")?;
-    let mut analysis_shown = String::new();
-    for row in &comparison.figures.rows {
-        let [Cell::Text(analysis), Cell::Text(key), unit, ..] = &row[..] else { continue };
-        let figure = |k: usize| {
-            let a = models[k].1.analyses.iter().find(|a| a.analysis.name() == analysis)?;
-            Some((a.figure(key)?, a.units, models[k].1.settings.tolerance.relative))
-        };
-        let Some((first, units, _)) = (0..n).find_map(figure) else { continue };
-        if *analysis != analysis_shown {
-            writeln!(out, "<tr class=\"group\"><th colspan=\"{}\">{}</th></tr>", 2 + 2 * n - 1, text(analysis))?;
-            analysis_shown = analysis.clone();
+    let mut analysis_shown = None;
+    let units = comparison.units;
+    for compared in &comparison.figures {
+        let first = compared.first();
+        if analysis_shown != Some(compared.analysis) {
+            let name = compared.analysis.name();
+            writeln!(out, "<tr class=\"group\"><th colspan=\"{}\">{}</th></tr>", 2 + 2 * n - 1, text(name))?;
+            analysis_shown = Some(compared.analysis);
         }
-        let decimals = first.written(units).decimals;
-        let number = |c: &Cell| c.number().map_or(String::new(), |v| fixed(v, decimals));
-        write!(out, "<tr><td>{}</td><td>{}</td>", text(&first.label), cell(unit, 6))?;
-        for k in 0..n {
-            // The value as the table writes it, in the first model's units; the estimate alike.
-            let value = &row[3 + 2 * k];
-            let matters = figure(k).is_some_and(|(f, _, relative)| f.estimate_matters(relative));
-            let estimate = figure(k).and_then(|(f, _, _)| estimate_words(f, units)).unwrap_or_default();
+        let shown = first.written(units);
+        let number = |f: Option<&Figure>| {
+            f.and_then(|f| f.written(units).value).map_or(String::new(), |v| fixed(v, shown.decimals))
+        };
+        write!(out, "<tr><td>{}</td><td>{}</td>", text(&first.label), text(shown.unit))?;
+        for (k, figure) in compared.figures.iter().enumerate() {
+            // The value and its estimate in the first model's units, against that model's own tolerance.
+            let relative = models[k].1.settings.tolerance.relative;
+            let matters = figure.as_ref().is_some_and(|f| f.estimate_matters(relative));
+            let estimate = figure.as_ref().and_then(|f| estimate_words(f, units)).unwrap_or_default();
             if matters {
-                write!(out, "<td>{}<br/><span class=\"over\">{}</span></td>", number(value), text(&estimate))?;
+                write!(
+                    out,
+                    "<td>{}<br/><span class=\"over\">{}</span></td>",
+                    number(figure.as_ref()),
+                    text(&estimate)
+                )?;
             } else {
-                write!(out, "<td title=\"{}\">{}</td>", attr(&estimate), number(value))?;
+                write!(out, "<td title=\"{}\">{}</td>", attr(&estimate), number(figure.as_ref()))?;
             }
         }
-        for k in 1..n {
-            write!(out, "<td>{}</td>", number(&row[3 + 2 * n + k - 1]))?;
+        for k in 1..compared.figures.len() {
+            write!(out, "<td>{}</td>", number(compared.difference(k).as_ref()))?;
         }
         writeln!(out, "</tr>")?;
     }

@@ -11,7 +11,7 @@
 use crate::design::targets::Measured;
 use crate::file::SuspensionFile;
 use crate::kc::report::slug;
-use crate::kc::{Analysis, AnalysisReport, Cell, Chart, KcReport, Series, Table, YAxis};
+use crate::kc::{Analysis, AnalysisReport, Cell, Chart, Figure, KcReport, Series, Table, Units, YAxis};
 
 /// One design in a comparison: a model's K&C suite, or a measured file of one analysis.
 #[derive(Debug, Clone)]
@@ -61,14 +61,77 @@ impl Design {
 pub struct Comparison {
     /// The designs' names, made distinct (a repeated name gets ` (2)`, …), in the order given.
     pub names: Vec<String>,
-    /// `compare.csv`: per analysis and figure, its unit, each model's value and error estimate, and each
-    /// later model's difference to the first.
-    pub figures: Table,
+    /// Which of the designs are models (indices into `names`), in order: the figures' columns.
+    pub models: Vec<usize>,
+    /// Per analysis every model ran and figure of it, each model's, in SI ([`Comparison::table`] writes
+    /// them as `compare.csv`).
+    pub figures: Vec<ComparedFigure>,
+    /// The units the first model's report is written in, which the table and page write every model's in.
+    pub units: Units,
     /// The overlaid charts.
     pub charts: Vec<Chart>,
 }
 
+/// One figure of an analysis every model compared ran: each model's own, in SI with its error estimate, in
+/// the models' order; `None` where a model reports no such figure.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ComparedFigure {
+    /// The analysis.
+    pub analysis: Analysis,
+    /// Each model's figure; the first model's is always there (it names the row).
+    pub figures: Vec<Option<Figure>>,
+}
+
+impl ComparedFigure {
+    /// The first model's figure, which names the row: its key, words, unit and decimals.
+    pub fn first(&self) -> &Figure {
+        self.figures[0].as_ref().expect("a compared figure is one the first model reports")
+    }
+
+    /// Model `k`'s value less the first model's, as a figure of the first's kind (SI; no estimate).
+    pub fn difference(&self, k: usize) -> Option<Figure> {
+        let (first, other) = (self.first().value?, self.figures[k].as_ref()?.value?);
+        Some(Figure { value: Some(other - first), error: None, ..self.first().clone() })
+    }
+}
+
 impl Comparison {
+    /// `compare.csv`: every figure compared, each model's value and error estimate, and each later model's
+    /// difference to the first (empty where either has no value), written in the first model's units.
+    pub fn table(&self) -> Table {
+        let mut columns: Vec<String> = ["analysis", "figure", "unit"].map(String::from).to_vec();
+        for &k in &self.models {
+            columns.push(self.names[k].clone());
+            columns.push(format!("{} error", self.names[k]));
+        }
+        let first = &self.names[self.models[0]];
+        for &k in &self.models[1..] {
+            columns.push(format!("{} − {first}", self.names[k]));
+        }
+        let rows = self
+            .figures
+            .iter()
+            .map(|c| {
+                let mut row = vec![
+                    Cell::Text(c.analysis.name().into()),
+                    Cell::Text(c.first().key.clone()),
+                    Cell::Text(c.first().written(self.units).unit.into()),
+                ];
+                for f in &c.figures {
+                    let w = f.as_ref().map(|f| f.written(self.units));
+                    row.push(Cell::from(w.as_ref().and_then(|w| w.value)));
+                    row.push(Cell::from(w.as_ref().and_then(|w| w.error)));
+                }
+                for k in 1..c.figures.len() {
+                    let difference = c.difference(k);
+                    row.push(Cell::from(difference.as_ref().and_then(|d| d.written(self.units).value)));
+                }
+                row
+            })
+            .collect();
+        Table { name: "compare".into(), columns, rows }
+    }
+
     /// The models among `designs` (the designs compared, in their order), each by its name here, with its
     /// suite: what the pages draw the geometry and the failures of.
     pub fn models<'a>(&'a self, designs: &'a [Design]) -> Vec<(&'a str, &'a KcReport)> {
@@ -216,8 +279,9 @@ pub fn compare(designs: &[Design]) -> Result<Comparison, CompareError> {
             charts.extend(measured_charts(k, measured, &models, &names)?);
         }
     }
-    let figures = figure_table(&analyses, &models, &names);
-    Ok(Comparison { names, figures, charts })
+    let figures = compared_figures(&analyses, &models);
+    let units = models[0].1.settings.units;
+    Ok(Comparison { names, models: models.iter().map(|m| m.0).collect(), figures, units, charts })
 }
 
 /// The designs' names, a repeated one numbered.
@@ -333,45 +397,17 @@ fn measured_charts(
     Ok(out)
 }
 
-/// `compare.csv`: every figure of the analyses compared, each model's value and error estimate, and each
-/// later model's difference to the first (empty where either has no value), in the first model's units.
-fn figure_table(analyses: &[Analysis], models: &[(usize, &KcReport, bool)], names: &[String]) -> Table {
-    let mut columns: Vec<String> = ["analysis", "figure", "unit"].map(String::from).to_vec();
-    for (k, _, _) in models {
-        columns.push(names[*k].clone());
-        columns.push(format!("{} error", names[*k]));
-    }
-    let first = models[0].0;
-    for (k, _, _) in &models[1..] {
-        columns.push(format!("{} − {}", names[*k], names[first]));
-    }
-    let mut rows = Vec::new();
+/// Every figure of the `analyses` compared, each of the `models`' own (by the first model's figures' keys).
+fn compared_figures(analyses: &[Analysis], models: &[(usize, &KcReport, bool)]) -> Vec<ComparedFigure> {
+    let mut out = Vec::new();
     for &analysis in analyses {
         let reports: Vec<Option<&AnalysisReport>> =
             models.iter().map(|(_, r, _)| r.analyses.iter().find(|a| a.analysis == analysis)).collect();
         let Some(Some(base)) = reports.first() else { continue };
         for figure in &base.figures {
-            let values: Vec<(Option<f64>, Option<f64>)> = reports
-                .iter()
-                .map(|r| {
-                    let written = r.and_then(|r| r.figure(&figure.key)).map(|f| f.written(base.units));
-                    written.map_or((None, None), |w| (w.value, w.error))
-                })
-                .collect();
-            let mut row = vec![
-                Cell::Text(analysis.name().into()),
-                Cell::Text(figure.key.clone()),
-                Cell::Text(figure.written(base.units).unit.into()),
-            ];
-            for (v, e) in &values {
-                row.push(Cell::from(*v));
-                row.push(Cell::from(*e));
-            }
-            for (v, _) in &values[1..] {
-                row.push(Cell::from(v.zip(values[0].0).map(|(v, b)| v - b)));
-            }
-            rows.push(row);
+            let figures = reports.iter().map(|r| r.and_then(|r| r.figure(&figure.key)).cloned()).collect();
+            out.push(ComparedFigure { analysis, figures });
         }
     }
-    Table { name: "compare".into(), columns, rows }
+    out
 }
