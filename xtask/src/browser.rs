@@ -260,7 +260,7 @@ mod tests {
         let packaging = file.packaging.as_ref().unwrap();
         assert!(placements >= 81, "{placements}");
         for query in ["?analysis=wheel-envelope", "?analysis=wheel-envelope&view=front"] {
-            let (dom, console) = loaded(&chromium, &page, query, &dir.join("profile")).unwrap();
+            let (dom, console) = loaded(&chromium, &page, query, &dir.join("profile-envelope")).unwrap();
             assert!(console.is_empty(), "{query}: the console says {console:#?}");
             let state = output_of(&dom, "view3d-state");
             assert_eq!(state["errors"], serde_json::json!([]), "{query}");
@@ -272,7 +272,7 @@ mod tests {
             assert_eq!(drawn["boxes"], 2 * packaging.boxes.len(), "{query}");
         }
         // Another analysis shown draws no envelope.
-        let (dom, _) = loaded(&chromium, &page, "", &dir.join("profile")).unwrap();
+        let (dom, _) = loaded(&chromium, &page, "", &dir.join("profile-envelope")).unwrap();
         assert_eq!(output_of(&dom, "view3d-state")["envelope"], serde_json::Value::Null);
     }
 
