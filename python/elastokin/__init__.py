@@ -283,7 +283,11 @@ class Model:
         tune`` does: a dict of ``stopped``, ``all_met``, ``verdicts`` (each target's largest miss over its
         tolerance, whether met and why not), ``packaging`` (each packaging constraint and how far it is
         broken, in m: 0 where it holds), ``parameters`` with their values ``before`` and ``after``,
-        ``iterations`` (tune.csv's columns) and ``tuned``, the model file's text with the numbers moved.
+        ``iterations`` (tune.csv's columns), ``uncertainty`` (each number's ``standard`` uncertainty, NaN
+        where the fit gives none, their ``correlation``, the ``residual_scale`` and ``degrees_of_freedom``
+        it is taken over, the numbers ``at_bound``, the directions the targets cannot tell, ``unseen``, in
+        words, and whether the answer is ``unique``) and ``tuned``, the model file's text with the numbers
+        moved.
         Measured files named in a dict are read from ``directory``; in a file, beside it. Targets the
         model's analyses do not give (a figure or column they have not, a point outside the range walked)
         raise ``ValueError``, as a bad file does; a model that cannot be analysed, ``AnalysisError``."""

@@ -291,10 +291,24 @@ impl Model {
             packaging.append(e)?;
         }
         d.set_item("packaging", packaging)?;
-        d.set_item("parameters", pointers)?;
+        d.set_item("parameters", &pointers)?;
         d.set_item("before", PyArray1::from_vec(py, tuned.start.x.clone()))?;
         d.set_item("after", PyArray1::from_vec(py, tuned.end.x.clone()))?;
         d.set_item("iterations", column_dict(py, &tuned.iteration_table())?)?;
+        let u = &tuned.uncertainty;
+        let uncertainty = PyDict::new(py);
+        uncertainty.set_item("standard", u.standard.iter().map(|s| s.unwrap_or(f64::NAN)).collect::<Vec<f64>>())?;
+        let correlation: Vec<Vec<f64>> =
+            u.correlation.iter().map(|row| row.iter().map(|c| c.unwrap_or(f64::NAN)).collect()).collect();
+        uncertainty.set_item("correlation", correlation)?;
+        uncertainty.set_item("residual_scale", u.residual_scale)?;
+        uncertainty.set_item("degrees_of_freedom", u.degrees_of_freedom)?;
+        let at_bound: Vec<&str> = u.at_bound.iter().map(|&k| pointers[k].as_str()).collect();
+        uncertainty.set_item("at_bound", at_bound)?;
+        let unseen: Vec<String> = u.unseen.iter().map(|d| d.said(&pointers)).collect();
+        uncertainty.set_item("unseen", unseen)?;
+        uncertainty.set_item("unique", u.unique())?;
+        d.set_item("uncertainty", uncertainty)?;
         let text = serde_json::to_string_pretty(&tuned.document).map_err(|e| AnalysisError::new_err(e.to_string()))?;
         d.set_item("tuned", text)?;
         Ok(d)

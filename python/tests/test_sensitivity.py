@@ -160,6 +160,16 @@ def test_tune_gives_the_commands_numbers(tmp_path):
     assert json.loads(t["tuned"]) == tuned
     header, rows = read_csv(out / "tune.csv")
     assert len(rows) == len(t["iterations"]["iteration"])
+    # The fit's uncertainty as tune_uncertainty.csv gives it: each number's standard uncertainty (none here:
+    # the targets leave no degree of freedom) and those a bound holds.
+    header, rows = read_csv(out / "tune_uncertainty.csv")
+    u = t["uncertainty"]
+    assert [r[0] for r in rows] == t["parameters"]
+    for k, row in enumerate(rows):
+        cell = row[header.index("standard_uncertainty")]
+        assert (cell == "" and math.isnan(u["standard"][k])) or float(cell) == pytest.approx(u["standard"][k], rel=1e-11)
+        assert (row[header.index("at_bound")] == "yes") == (t["parameters"][k] in u["at_bound"])
+    assert u["unique"] == (u["unseen"] == [])
 
 
 def test_a_target_the_model_has_not_is_a_bad_file_not_a_failed_analysis():

@@ -46,6 +46,7 @@ pub fn run(args: TuneArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<()
             staging.write("tuned.json", json.as_bytes())?,
             staging.write("tune.csv", &write_table(&tuned.iteration_table(), &provenance))?,
             staging.write("tune_targets.csv", &write_table(&tuned.residual_table(&targets), &provenance))?,
+            staging.write("tune_uncertainty.csv", &write_table(&tuned.uncertainty_table(&targets), &provenance))?,
             staging.write("report.html", html.as_bytes())?,
         ])
     })()
@@ -106,14 +107,40 @@ fn tune_printing(
     Ok(tuned)
 }
 
-/// Each free number before and after, whether each target is met, whether each packaging constraint holds.
+/// Each free number before and after with its standard uncertainty, what the fit cannot tell, whether
+/// each target is met, whether each packaging constraint holds.
 fn print_tuned(out: &Stdout, tuned: &Tuned, targets: &Targets) -> Result<(), Failure> {
+    let u = &tuned.uncertainty;
     for (f, k) in targets.free.iter().zip(0..) {
+        let uncertainty = match (u.standard[k], u.at_bound.contains(&k)) {
+            (_, true) => "held by a bound".to_string(),
+            (Some(s), false) => format!("± {}", design::parameter_value_words(&f.pointer, s)),
+            (None, false) => String::new(),
+        };
         out.line(format!(
-            "  {:<40} {:>14} -> {:<14}",
+            "  {:<40} {:>14} -> {:<14} {uncertainty}",
             design::parameter_words(&f.pointer),
             design::parameter_value_words(&f.pointer, tuned.start.x[k]),
             design::parameter_value_words(&f.pointer, tuned.end.x[k])
+        ))?;
+    }
+    let pointers: Vec<String> = targets.free.iter().map(|f| f.pointer.clone()).collect();
+    match u.residual_scale {
+        Some(s) => out.line(format!(
+            "  uncertainties: one standard deviation, from the residuals' spread ({} of the tolerances over {} \
+             degrees of freedom); correlations in tune_uncertainty.csv",
+            kc::significant(s, 3),
+            u.degrees_of_freedom
+        ))?,
+        None => out.line(
+            "  uncertainties: none, the targets leave no degree of freedom (as many numbers fitted as target \
+             points): give more points, or free fewer numbers",
+        )?,
+    }
+    for unseen in &u.unseen {
+        out.line(format!(
+            "  NOT unique: the targets cannot tell {}; fix one of these numbers, or add a target that moves them",
+            unseen.said(&pointers)
         ))?;
     }
     for v in &tuned.verdicts {

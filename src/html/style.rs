@@ -30,7 +30,7 @@ table.figures { min-width: 70%; }
 table.figures td.value { text-align: right; font-variant-numeric: tabular-nums; font-weight: 600; }
 table.figures td.error-estimate { color: #57606a; font-variant-numeric: tabular-nums; }
 td.reason { color: #9a6700; }
-td.error-estimate.over, td.over { color: #cf222e; }
+td.error-estimate.over, td.over, p.over, span.over { color: #cf222e; }
 .verdict { font-size: 1.05em; }
 .summary-grid { display: grid; grid-template-columns: repeat(auto-fill, minmax(min(100%, 500px), 1fr)); gap: 4px 28px; }
 .summary-grid h3 { margin: 12px 0 2px; font-size: 1em; font-family: "DejaVu Sans Mono", Menlo, Consolas, monospace; }

@@ -55,6 +55,7 @@ fn write_tune_page(
     writeln!(out, "<section id=\"parameters\">")?;
     writeln!(out, "<h2>The free numbers</h2>")?;
     write_open_table(out, &moved_in_words(tuned, targets))?;
+    write_uncertainty(out, tuned, targets)?;
     writeln!(out, "</section>")?;
     writeln!(out, "<section id=\"curves\">")?;
     writeln!(out, "<h2>Before and after</h2>")?;
@@ -109,6 +110,38 @@ fn write_targets(out: &mut String, tuned: &crate::suspensions::design::tune::Tun
         writeln!(out, "</tbody></table>")?;
     }
     writeln!(out, "</section>")
+}
+
+/// What the fit can know of the free numbers: how the standard uncertainties are taken, the numbers a
+/// bound holds, and the directions the targets cannot tell.
+fn write_uncertainty(
+    out: &mut String,
+    tuned: &crate::suspensions::design::tune::Tuned,
+    targets: &crate::suspensions::design::targets::Targets,
+) -> std::fmt::Result {
+    let u = &tuned.uncertainty;
+    let pointers: Vec<String> = targets.free.iter().map(|f| f.pointer.clone()).collect();
+    let how = match u.residual_scale {
+        Some(s) => format!(
+            "standard uncertainties: one standard deviation, from the residuals' spread ({} of the tolerances \
+             over {} degrees of freedom)",
+            significant(s, 3),
+            u.degrees_of_freedom
+        ),
+        None => "no standard uncertainties: the targets leave no degree of freedom (as many numbers fitted as \
+                 target points)"
+            .to_string(),
+    };
+    writeln!(out, "<p class=\"note\">{}</p>", text(&how))?;
+    if !u.at_bound.is_empty() {
+        let held: Vec<String> = u.at_bound.iter().map(|&k| parameter_words(&pointers[k])).collect();
+        writeln!(out, "<p class=\"note\">held by a bound, not fitted: {}</p>", text(&held.join(", ")))?;
+    }
+    for unseen in &u.unseen {
+        let said = format!("not unique: the targets cannot tell {}", unseen.said(&pointers));
+        writeln!(out, "<p class=\"over\">{}</p>", text(&said))?;
+    }
+    Ok(())
 }
 
 /// The free numbers before and after as an engineer reads them: a hardpoint's coordinate by the point and

@@ -3,6 +3,7 @@
 //! derivatives of an analysis's rows and figures through the equilibrium ([`sensitivity`]). On them:
 //! tuning to targets ([`targets`], [`tune`]) and tolerance stack-up ([`tolerance`]).
 
+pub mod fit;
 pub mod judge;
 mod keys;
 pub mod parameter;

@@ -16,6 +16,7 @@
 //! What is not met is said, and why: a bound or the packaging holds a number that would otherwise
 //! move, or the targets fight one another (the least-squares optimum leaves the miss).
 
+use super::fit::FitUncertainty;
 use super::parameter::hardpoint_pointer;
 use super::parameter::{ParameterError, Parameters};
 use super::sensitivity::{analysis_sensitivity, AnalysisSensitivity, NoDerivative, SensitivityError};
@@ -555,6 +556,9 @@ pub struct Tuned {
     pub stopped: String,
     /// The model file with the free numbers at the end, every other key and the order of keys as given.
     pub document: Value,
+    /// What the fit can know of the free numbers at the end: their uncertainties and correlations, those a
+    /// bound holds, the directions the targets cannot tell.
+    pub uncertainty: FitUncertainty,
 }
 
 impl Tuned {
@@ -611,9 +615,10 @@ impl Tuned {
         Table { name: "tune_targets".into(), columns: columns.map(String::from).to_vec(), rows }
     }
 
-    /// The free numbers: each before and after the tune, its move and its bounds.
+    /// The free numbers: each before and after the tune, its move, its standard uncertainty at the end
+    /// (empty where the fit gives none) and its bounds.
     pub fn moved_table(&self, targets: &Targets) -> Table {
-        let columns = ["parameter", "before", "after", "move", "min", "max"];
+        let columns = ["parameter", "before", "after", "move", "standard_uncertainty", "min", "max"];
         let rows = targets
             .free
             .iter()
@@ -624,12 +629,38 @@ impl Tuned {
                     Cell::from(self.start.x[k]),
                     Cell::from(self.end.x[k]),
                     Cell::from(self.end.x[k] - self.start.x[k]),
+                    Cell::from(self.uncertainty.standard[k]),
                     Cell::from(f.min),
                     Cell::from(f.max),
                 ]
             })
             .collect();
         Table { name: "tune_parameters".into(), columns: columns.map(String::from).to_vec(), rows }
+    }
+
+    /// `tune_uncertainty.csv`: each free number at the end, its standard uncertainty (empty where the fit
+    /// gives none), whether a bound holds it, and its correlation with each other free number.
+    pub fn uncertainty_table(&self, targets: &Targets) -> Table {
+        let u = &self.uncertainty;
+        let mut columns: Vec<String> =
+            ["parameter", "value", "standard_uncertainty", "at_bound"].map(String::from).to_vec();
+        columns.extend(targets.free.iter().map(|f| format!("correlation with {}", super::parameter_words(&f.pointer))));
+        let rows = targets
+            .free
+            .iter()
+            .enumerate()
+            .map(|(k, f)| {
+                let mut row = vec![
+                    Cell::Text(f.pointer.clone()),
+                    Cell::from(self.end.x[k]),
+                    Cell::from(u.standard[k]),
+                    Cell::Text(if u.at_bound.contains(&k) { "yes" } else { "no" }.into()),
+                ];
+                row.extend(u.correlation[k].iter().map(|c| Cell::from(*c)));
+                row
+            })
+            .collect();
+        Table { name: "tune_uncertainty".into(), columns, rows }
     }
 
     /// Before-and-after plots: each curve target's column against its load parameter at the start and
@@ -879,7 +910,8 @@ pub fn tune(
         })
         .collect();
     let document = parameters.document_at(&here.x)?;
-    Ok(Tuned { start, end: here, iterations, verdicts, packaging, stopped, document })
+    let uncertainty = FitUncertainty::of(&here.x, &free, &here.residuals, &here.jacobian);
+    Ok(Tuned { start, end: here, iterations, verdicts, packaging, stopped, document, uncertainty })
 }
 
 /// What became of an iteration's step.

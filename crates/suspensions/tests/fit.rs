@@ -1,0 +1,163 @@
+//! What a fit can know (`design::fit`): the reported standard uncertainties of bushing rates fitted to
+//! noisy K&C data against the scatter of the fits over many noise draws; the covariance against linear
+//! least squares' closed form; a number a bound holds left out and named; a direction the data cannot see
+//! named in the engineer's words.
+
+use elastokin_suspensions::design::fit::FitUncertainty;
+use elastokin_suspensions::design::targets::read_targets;
+use elastokin_suspensions::design::tune::tune;
+use elastokin_suspensions::design::Parameters;
+use elastokin_suspensions::kc::{self, Analysis, Settings};
+use elastokin_suspensions::study::batch::base_document;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use serde_json::{json, Value};
+
+fn document(name: &str) -> Value {
+    let path = format!("{}/../../examples/{name}", env!("CARGO_MANIFEST_DIR"));
+    base_document(&std::fs::read_to_string(&path).unwrap(), &path).unwrap()
+}
+
+fn value(doc: &Value, pointer: &str) -> f64 {
+    doc.pointer(pointer).unwrap().as_f64().unwrap()
+}
+
+/// A normal draw by Box and Muller's transform.
+fn normal(rng: &mut ChaCha8Rng) -> f64 {
+    let (u, v): (f64, f64) = (rng.random::<f64>().max(1e-300), rng.random());
+    (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+}
+
+/// Bushing rates fitted to a lateral-force test whose toe and camber carry noise of 0.005° (one standard
+/// deviation), 24 draws: the scatter of the fitted rates is what each fit reports as its standard
+/// uncertainty, within what 24 draws can tell (a sample's standard deviation is off by 1/√46 = 15 % of
+/// itself, one standard deviation).
+#[test]
+fn the_reported_uncertainty_of_fitted_rates_is_the_scatter_of_noisy_fits() {
+    let base = document("macpherson.json");
+    let arm = "/suspension/macpherson/lower_arm_mounts/bushing/radial";
+    let top = "/suspension/macpherson/top_mount/bushing/radial";
+    let mut rig = base.clone();
+    *rig.pointer_mut(arm).unwrap() = json!(value(&base, arm) * 1.25);
+    *rig.pointer_mut(top).unwrap() = json!(value(&base, top) * 0.8);
+    let file = Parameters::new(&rig, &[]).unwrap().file().unwrap();
+    let settings = Settings { steps: 16, ..Settings::default() };
+    let measured = kc::run(Analysis::from_name("lateral-force").unwrap(), &file, &settings).unwrap();
+    let column = |c: &str| measured.table.column(c).unwrap().into_iter().map(Option::unwrap).collect::<Vec<f64>>();
+    let (load, toe, camber) = (column("load_n"), column("toe_deg"), column("camber_deg"));
+    let noise = 0.005;
+    let p = Parameters::new(&base, &[arm.to_string(), top.to_string()]).unwrap();
+    let (mut fitted, mut reported): (Vec<[f64; 2]>, Vec<[f64; 2]>) = (Vec::new(), Vec::new());
+    for seed in 0..24 {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let mut csv = "# analysis: lateral-force\nload_n,toe_deg,camber_deg\n".to_string();
+        for k in 0..load.len() {
+            let (t, c) = (toe[k] + noise * normal(&mut rng), camber[k] + noise * normal(&mut rng));
+            csv.push_str(&format!("{},{t},{c}\n", load[k]));
+        }
+        let text = json!({
+            "free": { arm: [2e6, 1e7], top: [1e6, 4e6] },
+            "targets": [{ "measured": "rig.csv", "analysis": "lateral-force", "columns": ["toe_deg", "camber_deg"],
+                          "tolerance": noise }],
+            "steps": 16,
+        })
+        .to_string();
+        let targets = read_targets(&text, "fit.json", &base, |_| Ok(csv.clone())).unwrap();
+        let tuned = tune(&p, &targets, |_| {}).unwrap();
+        let u = &tuned.uncertainty;
+        assert!(u.at_bound.is_empty() && u.unique(), "{seed}: {u:?}");
+        assert_eq!(u.degrees_of_freedom, 2 * load.len() - 2);
+        fitted.push([tuned.end.x[0], tuned.end.x[1]]);
+        reported.push([u.standard[0].unwrap(), u.standard[1].unwrap()]);
+    }
+    let n = fitted.len() as f64;
+    for k in 0..2 {
+        let mean = fitted.iter().map(|f| f[k]).sum::<f64>() / n;
+        let scatter = (fitted.iter().map(|f| (f[k] - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+        let claimed = (reported.iter().map(|r| r[k] * r[k]).sum::<f64>() / n).sqrt();
+        // The truth within three standard errors of the mean: the fit is unbiased.
+        let truth = value(&rig, [arm, top][k]);
+        assert!((mean - truth).abs() < 3.0 * claimed / n.sqrt(), "{k}: mean {mean} against {truth} (± {claimed})");
+        // Measured ratios 1.02 and 0.84; the band is three standard deviations of a 24-draw scatter.
+        let ratio = scatter / claimed;
+        assert!((0.55..1.45).contains(&ratio), "{k}: scatter {scatter} against reported {claimed}: {ratio}");
+        // Guard: the noise moves the rates (by more than a part in ten thousand).
+        assert!(claimed > 1e-4 * truth, "{k}: {claimed}");
+    }
+}
+
+/// Linear least squares: for residuals `r = A x − b` the covariance of the fit is `s² (AᵀA)⁻¹`, written out
+/// here for two numbers; a number at its bound is left out and named; a column of zeros is a direction the
+/// data do not see, and no uncertainty is claimed.
+#[test]
+fn the_covariance_is_least_squares_closed_form_and_what_it_cannot_see_is_named() {
+    let a = [[1.0, 0.5], [0.3, 2.0], [1.2, -0.7], [0.1, 0.4], [-0.8, 1.1]];
+    let r = [0.02, -0.01, 0.015, -0.03, 0.005];
+    let jacobian: Vec<Vec<f64>> = a.iter().map(|row| row.to_vec()).collect();
+    let bounds = [(-10.0, 10.0), (-5.0, 5.0)];
+    let u = FitUncertainty::of(&[1.0, 2.0], &bounds, &r, &jacobian);
+    let s2 = r.iter().map(|r| r * r).sum::<f64>() / 3.0;
+    let (p, q, t) = (
+        a.iter().map(|x| x[0] * x[0]).sum::<f64>(),
+        a.iter().map(|x| x[0] * x[1]).sum::<f64>(),
+        a.iter().map(|x| x[1] * x[1]).sum::<f64>(),
+    );
+    let det = p * t - q * q;
+    let (c00, c11, c01) = (s2 * t / det, s2 * p / det, -s2 * q / det);
+    let (s0, s1) = (u.standard[0].unwrap(), u.standard[1].unwrap());
+    let rho = u.correlation[0][1].unwrap();
+    // Measured 1e-16 relative.
+    assert!((s0 / c00.sqrt() - 1.0).abs() < 1e-13 && (s1 / c11.sqrt() - 1.0).abs() < 1e-13, "{s0} {s1}");
+    assert!((rho - c01 / (c00 * c11).sqrt()).abs() < 1e-13, "{rho}");
+    assert_eq!(u.degrees_of_freedom, 3);
+    assert!(u.unique());
+    // The second number at its upper bound: the first alone is fitted, by its own column.
+    let held = FitUncertainty::of(&[1.0, 5.0], &bounds, &r, &jacobian);
+    assert_eq!(held.at_bound, [1]);
+    assert_eq!(held.standard[1], None);
+    let alone = (r.iter().map(|r| r * r).sum::<f64>() / 4.0 / p).sqrt();
+    assert!((held.standard[0].unwrap() / alone - 1.0).abs() < 1e-13);
+    // A second number the residuals do not move: unseen, named as the second alone, and no uncertainty.
+    let blind: Vec<Vec<f64>> = a.iter().map(|row| vec![row[0], 0.0]).collect();
+    let u = FitUncertainty::of(&[1.0, 2.0], &bounds, &r, &blind);
+    assert!(!u.unique() && u.unseen.len() == 1 && u.unseen[0].share.is_none(), "{u:?}");
+    assert!((u.unseen[0].direction[1] - 1.0).abs() < 1e-12 && u.unseen[0].direction[0].abs() < 1e-12);
+    assert!(u.standard.iter().all(Option::is_none));
+}
+
+/// The MacPherson's toe curve fitted with the inner tie-rod point free in x, along the rod, besides z: the
+/// toe barely moves with x, so the fit cannot place it, and says so in the parameters' words.
+#[test]
+fn a_tie_rod_point_along_the_rod_is_named_as_what_the_toe_curve_cannot_see() {
+    let base = document("macpherson.json");
+    let (x, z) =
+        ("/suspension/macpherson/hardpoints/tie_rod_inner/0", "/suspension/macpherson/hardpoints/tie_rod_inner/2");
+    let file = Parameters::new(&base, &[]).unwrap().file().unwrap();
+    let settings = Settings { range: Some((-0.05, 0.05)), steps: 10, ..Settings::default() };
+    let r = kc::run(Analysis::ParallelTravel, &file, &settings).unwrap();
+    let toe = r.table.column("toe_deg").unwrap();
+    // The measured toe with noise of 0.01° on each point, alternating in sign.
+    let points: Vec<(f64, f64)> = r
+        .table
+        .rows
+        .iter()
+        .zip(&toe)
+        .enumerate()
+        .map(|(k, (row, t))| (row[0].number().unwrap(), t.unwrap() + if k % 2 == 0 { 0.01 } else { -0.01 }))
+        .collect();
+    let text = json!({
+        "free": { x: [value(&base, x) - 0.02, value(&base, x) + 0.02], z: [value(&base, z) - 0.02, value(&base, z) + 0.02] },
+        "targets": [{ "curve": "parallel-travel/toe_deg", "range": [-0.05, 0.05], "points": points, "tolerance": 0.01 }],
+        "steps": 10,
+    })
+    .to_string();
+    let targets = read_targets(&text, "t.json", &base, |f| Err(format!("no file {f}"))).unwrap();
+    let p = Parameters::new(&base, &[x.to_string(), z.to_string()]).unwrap();
+    let tuned = tune(&p, &targets, |_| {}).unwrap();
+    let u = &tuned.uncertainty;
+    assert!(!u.unique(), "{u:?}");
+    let said = u.unseen[0].said(&[x.to_string(), z.to_string()]);
+    // Measured: x alone (+1.00), uncertain by 80 % of its ±20 mm; z is seen.
+    assert!(said.starts_with("tie_rod_inner x (+1.00)") && !said.contains(" z "), "{said}");
+    assert!(u.unseen.len() == 1 && u.unseen[0].share.is_some_and(|s| s > 0.5), "{u:?}");
+}
