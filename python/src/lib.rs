@@ -279,6 +279,7 @@ impl Model {
             e.set_item("target", &v.target)?;
             e.set_item("worst", v.worst)?;
             e.set_item("met", v.met)?;
+            e.set_item("judged", &v.judged)?;
             e.set_item("why", v.why.as_deref())?;
             verdicts.append(e)?;
         }

@@ -145,7 +145,7 @@ fn print_tuned(out: &Stdout, tuned: &Tuned, targets: &Targets) -> Result<(), Fai
     }
     for v in &tuned.verdicts {
         let state = if v.met { "met" } else { "NOT met" };
-        out.line(format!("  {state}: {} (largest miss {} of its tolerance)", v.target, kc::significant(v.worst, 3)))?;
+        out.line(format!("  {state}: {} ({})", v.target, v.judged))?;
     }
     for p in &tuned.packaging {
         out.line(if p.broken_by == 0.0 {

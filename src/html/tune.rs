@@ -78,19 +78,20 @@ fn write_tune_page(
     write_foot(out, provenance)
 }
 
-/// The section "Targets": each target's largest miss against its tolerance, whether it is met and why not;
-/// each packaging constraint, whether it holds.
+/// The section "Targets": how each target was judged (its largest miss against its tolerance, or its misses'
+/// χ² against the measured data's noise), whether it is met and why not; each packaging constraint, whether
+/// it holds.
 fn write_targets(out: &mut String, tuned: &crate::suspensions::design::tune::Tuned) -> std::fmt::Result {
     writeln!(out, "<section id=\"targets\">")?;
     writeln!(out, "<h2>Targets</h2>")?;
-    writeln!(out, "<table class=\"figures\"><thead><tr><th>target</th><th>largest miss / tolerance</th><th>met</th><th>why not</th></tr></thead><tbody>")?;
+    writeln!(out, "<table class=\"figures\"><thead><tr><th>target</th><th>judged by</th><th>met</th><th>why not</th></tr></thead><tbody>")?;
     for v in &tuned.verdicts {
         let (class, said) = if v.met { ("ok", "yes") } else { ("bad", "no") };
         writeln!(
             out,
-            "<tr><td>{}</td><td class=\"value\">{}</td><td class=\"{class}\">{said}</td><td>{}</td></tr>",
+            "<tr><td>{}</td><td>{}</td><td class=\"{class}\">{said}</td><td>{}</td></tr>",
             text(&v.target),
-            text(&significant(v.worst, 3)),
+            text(&v.judged),
             text(v.why.as_deref().unwrap_or(""))
         )?;
     }

@@ -29,7 +29,8 @@ fn normal(rng: &mut ChaCha8Rng) -> f64 {
 }
 
 /// Bushing rates fitted to a lateral-force test whose toe and camber carry noise of 0.005° (one standard
-/// deviation), 24 draws: the scatter of the fitted rates is what each fit reports as its standard
+/// deviation, given as the target's noise), 24 draws: each fit is judged met against the noise, where point by
+/// point most would not be; the scatter of the fitted rates is what each fit reports as its standard
 /// uncertainty, within what 24 draws can tell (a sample's standard deviation is off by 1/√46 = 15 % of
 /// itself, one standard deviation).
 #[test]
@@ -48,6 +49,7 @@ fn the_reported_uncertainty_of_fitted_rates_is_the_scatter_of_noisy_fits() {
     let noise = 0.005;
     let p = Parameters::new(&base, &[arm.to_string(), top.to_string()]).unwrap();
     let (mut fitted, mut reported): (Vec<[f64; 2]>, Vec<[f64; 2]>) = (Vec::new(), Vec::new());
+    let mut within_tolerance = 0;
     for seed in 0..24 {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let mut csv = "# analysis: lateral-force\nload_n,toe_deg,camber_deg\n".to_string();
@@ -58,18 +60,24 @@ fn the_reported_uncertainty_of_fitted_rates_is_the_scatter_of_noisy_fits() {
         let text = json!({
             "free": { arm: [2e6, 1e7], top: [1e6, 4e6] },
             "targets": [{ "measured": "rig.csv", "analysis": "lateral-force", "columns": ["toe_deg", "camber_deg"],
-                          "tolerance": noise }],
+                          "noise": { "toe_deg": noise, "camber_deg": noise } }],
             "steps": 16,
         })
         .to_string();
         let targets = read_targets(&text, "fit.json", &base, |_| Ok(csv.clone())).unwrap();
         let tuned = tune(&p, &targets, |_| {}).unwrap();
+        // Judged against the noise it is met; point by point against a tolerance of the noise's size, a
+        // fit to the truth is not.
+        assert!(tuned.all_met(), "{seed}: {:?}", tuned.verdicts);
+        within_tolerance += usize::from(tuned.end.residuals.iter().all(|r| r.abs() <= 1.0));
         let u = &tuned.uncertainty;
         assert!(u.at_bound.is_empty() && u.unique(), "{seed}: {u:?}");
         assert_eq!(u.degrees_of_freedom, 2 * load.len() - 2);
         fitted.push([tuned.end.x[0], tuned.end.x[1]]);
         reported.push([u.standard[0].unwrap(), u.standard[1].unwrap()]);
     }
+    // Measured 0 of 24: 34 misses all within one standard deviation has a chance of about 0.68^34 = 2e-6.
+    assert_eq!(within_tolerance, 0, "{within_tolerance} of 24 fits within the noise point by point");
     let n = fitted.len() as f64;
     for k in 0..2 {
         let mean = fitted.iter().map(|f| f[k]).sum::<f64>() / n;
@@ -160,4 +168,73 @@ fn a_tie_rod_point_along_the_rod_is_named_as_what_the_toe_curve_cannot_see() {
     // Measured: x alone (+1.00), uncertain by 80 % of its ±20 mm; z is seen.
     assert!(said.starts_with("tie_rod_inner x (+1.00)") && !said.contains(" z "), "{said}");
     assert!(u.unseen.len() == 1 && u.unseen[0].share.is_some_and(|s| s > 0.5), "{u:?}");
+}
+
+/// A model that cannot follow the data: the top mount's rate held at twice the rig's, the arm's alone free.
+/// The misses exceed what the noise gives, and the verdict says so in the data's words.
+#[test]
+fn a_model_that_cannot_follow_noisy_data_is_judged_not_met_against_its_noise() {
+    let base = document("macpherson.json");
+    let arm = "/suspension/macpherson/lower_arm_mounts/bushing/radial";
+    let top = "/suspension/macpherson/top_mount/bushing/radial";
+    let mut rig = base.clone();
+    *rig.pointer_mut(top).unwrap() = json!(value(&base, top) * 0.5);
+    let file = Parameters::new(&rig, &[]).unwrap().file().unwrap();
+    let measured =
+        kc::run(Analysis::from_name("lateral-force").unwrap(), &file, &Settings { steps: 16, ..Settings::default() })
+            .unwrap();
+    let column = |c: &str| measured.table.column(c).unwrap().into_iter().map(Option::unwrap).collect::<Vec<f64>>();
+    let (load, toe, camber) = (column("load_n"), column("toe_deg"), column("camber_deg"));
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    // The loads too carry the rig's noise: the end rows lie past the analysis's default ±3 kN.
+    let mut csv = "# analysis: lateral-force\nload_n,toe_deg,camber_deg\n".to_string();
+    for k in 0..load.len() {
+        let f = load[k] * (1.0 + 0.01 * normal(&mut rng).abs());
+        csv.push_str(&format!("{f},{},{}\n", toe[k] + 0.005 * normal(&mut rng), camber[k] + 0.005 * normal(&mut rng)));
+    }
+    let text = json!({
+        "free": { arm: [2e6, 1e7] },
+        "targets": [{ "measured": "rig.csv", "analysis": "lateral-force", "noise": 0.005 }],
+        "steps": 16,
+    })
+    .to_string();
+    let targets = read_targets(&text, "fit.json", &base, |_| Ok(csv.clone())).unwrap();
+    let range = targets.targets[0].range.unwrap();
+    assert!(range.0 < -3000.0 && range.1 > 3000.0, "{range:?}");
+    let p = Parameters::new(&base, &[arm.to_string()]).unwrap();
+    let tuned = tune(&p, &targets, |_| {}).unwrap();
+    let v = tuned.verdicts.iter().find(|v| !v.met).unwrap_or_else(|| panic!("{:?}", tuned.verdicts));
+    assert!(v.judged.contains("beyond"), "{v:?}");
+    assert!(v.why.as_deref().unwrap().contains("larger than the data's noise"), "{v:?}");
+}
+
+#[test]
+fn a_measured_targets_noise_and_tolerance_are_read_per_column_and_refused_by_key() {
+    let base = document("macpherson.json");
+    let csv = "# analysis: lateral-force\nload_n,toe_deg,camber_deg\n-3000,0.1,0.02\n0,0,0\n3000,-0.1,-0.02\n";
+    let read = |target: Value| {
+        let text = json!({ "free": { "/suspension/macpherson/spring/rate": [2e4, 3e4] }, "targets": [target] });
+        let text = text.to_string();
+        read_targets(&text, "t.json", &base, |_| Ok(csv.to_string())).map_err(|e| e.to_string())
+    };
+    let m = |extra: Value| {
+        let mut t = json!({ "measured": "rig.csv", "analysis": "lateral-force" });
+        t.as_object_mut().unwrap().extend(extra.as_object().unwrap().clone());
+        read(t)
+    };
+    let t = m(json!({ "tolerance": { "toe_deg": 0.01, "camber_deg": 0.02 } })).unwrap();
+    assert_eq!(t.targets.iter().map(|t| t.tolerance).collect::<Vec<_>>(), [0.01, 0.02]);
+    let refused = [
+        (json!({ "tolerance": 0.01, "noise": 0.01 }), "not both"),
+        (json!({ "noise": { "toe_deg": 0.01 } }), "give one for 'camber_deg' too"),
+        (
+            json!({ "noise": { "toe_deg": 0.01, "camber_deg": 0.01, "toe": 0.1 } }),
+            "'toe' is not one of the target's columns",
+        ),
+        (json!({ "noise": -1 }), "targets[0].noise: give a positive miss"),
+    ];
+    for (extra, words) in refused {
+        let e = m(extra.clone()).unwrap_err();
+        assert!(e.contains(words), "{extra}: {e}");
+    }
 }

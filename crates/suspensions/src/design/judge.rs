@@ -2,7 +2,7 @@
 //! target and each packaging constraint met or not, counted as `tune` counts them (a miss within the
 //! tolerance, a constraint within its bounds), on the model as it is. Nothing is moved.
 
-use super::targets::{interpolation, Aim, Constraint, Target, Targets};
+use super::targets::{interpolation, Aim, Constraint, MissScale, Target, Targets};
 use super::tune::linearise;
 use crate::kc::report::Column;
 use crate::kc::{AnalysisReport, Cell, KcReport, Table};
@@ -20,12 +20,16 @@ pub struct TargetPoint<'a> {
     pub aim: f64,
     /// What the run gives there, in the same unit, or why it gives nothing to judge.
     pub reached: Result<f64, String>,
+    /// For a target judged against a measured file's noise, whether the target as a whole is met (its
+    /// points' χ², [`Target::met_by`]): a point of it is met when its target is.
+    pub statistical: Option<bool>,
 }
 
 impl TargetPoint<'_> {
-    /// Whether the run meets the point: its miss within the target's tolerance.
+    /// Whether the run meets the point: its miss within the target's tolerance, or, against noise, its
+    /// target met.
     pub fn met(&self) -> bool {
-        matches!(self.reached, Ok(r) if (r - self.aim).abs() <= self.target.tolerance)
+        self.statistical.unwrap_or(matches!(self.reached, Ok(r) if (r - self.aim).abs() <= self.target.tolerance))
     }
 
     /// The miss over the tolerance (1 at the tolerance's edge), when the run gives a value.
@@ -64,12 +68,20 @@ pub fn judge<'a>(
         match &target.aim {
             Aim::Figure { key, value } => {
                 let reached = analysis.ok_or_else(|| not_run(report, target)).and_then(|a| figure(a, key));
-                points.push(TargetPoint { target, at: None, aim: *value, reached });
+                points.push(TargetPoint { target, at: None, aim: *value, reached, statistical: None });
             }
             Aim::Curve { column, points: aims } => {
+                let first = points.len();
                 for &(at, aim) in aims {
                     let reached = analysis.ok_or_else(|| not_run(report, target)).and_then(|a| curve(a, column, at));
-                    points.push(TargetPoint { target, at: Some(at), aim, reached });
+                    points.push(TargetPoint { target, at: Some(at), aim, reached, statistical: None });
+                }
+                if target.scale == MissScale::Noise {
+                    // Judged whole: every point read, and their χ² within what the noise gives.
+                    let misses: Option<Vec<f64>> =
+                        points[first..].iter().map(TargetPoint::miss_over_tolerance).collect();
+                    let met = misses.is_some_and(|m| target.met_by(&m));
+                    points[first..].iter_mut().for_each(|p| p.statistical = Some(met));
                 }
             }
         }

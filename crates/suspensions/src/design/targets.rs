@@ -55,8 +55,65 @@ pub struct Target {
     pub range: Option<(f64, f64)>,
     /// What to meet.
     pub aim: Aim,
-    /// The miss that counts as met (the figure's or column's unit): each residual is the miss over it.
+    /// The miss that counts as met, or the measured data's noise (the figure's or column's unit): each
+    /// residual is the miss over it.
     pub tolerance: f64,
+    /// Which of the two `tolerance` is, and so how the target is judged.
+    pub scale: MissScale,
+}
+
+/// What a target's misses are measured by, and how it is judged.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MissScale {
+    /// A tolerance: met when every point's miss is within it.
+    Tolerance,
+    /// The measured data's noise, one standard deviation (a measured target's `noise`): met when the misses
+    /// are as large as the noise makes them, `χ²/n = Σ (miss/noise)² / n` within three of its standard
+    /// deviations, `√(2/n)`, above its mean, 1. A fit to noisy data misses every point by the noise; judged
+    /// point by point against it, it would be "not met" although it found the truth.
+    Noise,
+}
+
+impl Target {
+    /// Whether the target's points, whose residuals (each miss over [`Target::tolerance`]) are `residuals`,
+    /// meet it.
+    pub fn met_by(&self, residuals: &[f64]) -> bool {
+        match self.scale {
+            MissScale::Tolerance => residuals.iter().all(|r| r.abs() <= 1.0),
+            MissScale::Noise => {
+                let (chi2, limit) = chi_square_per_point(residuals);
+                chi2 <= limit
+            }
+        }
+    }
+
+    /// How the target is judged on `residuals`, in words: the largest miss against the tolerance, or the
+    /// misses' χ² per point against what the noise allows.
+    pub fn judged_words(&self, residuals: &[f64]) -> String {
+        match self.scale {
+            MissScale::Tolerance => {
+                let worst = residuals.iter().fold(0.0f64, |m, r| m.max(r.abs()));
+                format!("largest miss {} of its tolerance", kc::significant(worst, 3))
+            }
+            MissScale::Noise => {
+                let (chi2, limit) = chi_square_per_point(residuals);
+                format!(
+                    "χ²/n {} over {} points against the noise, {} the {} that noise alone reaches",
+                    kc::significant(chi2, 3),
+                    residuals.len(),
+                    if chi2 <= limit { "within" } else { "beyond" },
+                    kc::significant(limit, 3)
+                )
+            }
+        }
+    }
+}
+
+/// The misses' `χ²/n` over the `residuals` (each miss over the noise) and the largest that noise alone
+/// gives but rarely: its mean, 1, and three standard deviations, `3 √(2/n)`.
+pub fn chi_square_per_point(residuals: &[f64]) -> (f64, f64) {
+    let n = residuals.len().max(1) as f64;
+    (residuals.iter().map(|r| r * r).sum::<f64>() / n, 1.0 + 3.0 * (2.0 / n).sqrt())
 }
 
 /// Packaging a moved hardpoint must keep.
@@ -332,13 +389,38 @@ pub enum TargetsRefusal {
         /// The target's key.
         key: String,
     },
-    /// A tolerance that is not positive.
-    #[error("{key}.tolerance: give a positive miss in the target's unit, got {}", kc::plain(*got))]
+    /// A tolerance or noise that is not positive.
+    #[error("{key}: give a positive miss in the target's unit, got {}", kc::plain(*got))]
     ToleranceNotPositive {
         /// The target's key.
         key: String,
         /// The tolerance given.
         got: f64,
+    },
+    /// A measured target with both a tolerance and a noise.
+    #[error(
+        "{key}: give its \"tolerance\" (the miss that counts as met, every point within it) or its \"noise\" (the \
+         data's, one standard deviation: judged by χ² against it), not both"
+    )]
+    ToleranceAndNoise {
+        /// The target's key.
+        key: String,
+    },
+    /// A per-column tolerance or noise naming a column the target does not aim at.
+    #[error("{key}: '{name}' is not one of the target's columns")]
+    NotAColumn {
+        /// The key of the tolerance or noise.
+        key: String,
+        /// The name given.
+        name: String,
+    },
+    /// A per-column tolerance or noise without a column's.
+    #[error("{key}: give one for '{column}' too, or one number for every column")]
+    NoColumnScale {
+        /// The key of the tolerance or noise.
+        key: String,
+        /// The column.
+        column: String,
     },
     /// A measured file that cannot be read, in the words of the caller that reads it.
     #[error("{key}.measured: {why}")]
@@ -448,7 +530,11 @@ pub enum TargetsRefusal {
 
 fn tolerance(object: &serde_json::Map<String, Value>, key: &str) -> Result<f64, TargetsRefusal> {
     let t = object.get("tolerance").ok_or_else(|| TargetsRefusal::NoTolerance { key: key.into() })?;
-    let t = number(t, &format!("{key}.tolerance"))?;
+    positive(number(t, &format!("{key}.tolerance"))?, &format!("{key}.tolerance"))
+}
+
+/// A tolerance or a noise at `key`, which must be positive.
+fn positive(t: f64, key: &str) -> Result<f64, TargetsRefusal> {
     if t > 0.0 {
         Ok(t)
     } else {
@@ -583,6 +669,7 @@ fn targets_of(
             range,
             aim: Aim::Figure { key: name, value },
             tolerance: tolerance(o, &key)?,
+            scale: MissScale::Tolerance,
         }])
     } else if let Some(path) = o.get("curve") {
         only(o, &["curve", "points", "tolerance", "range"], &key)?;
@@ -602,6 +689,7 @@ fn targets_of(
             range,
             aim: Aim::Curve { column, points },
             tolerance: tolerance(o, &key)?,
+            scale: MissScale::Tolerance,
         }])
     } else if let Some(file) = o.get("measured") {
         measured_targets(key, o, file, range, read_file)
@@ -620,7 +708,7 @@ fn measured_targets(
     read_file: &impl Fn(&str) -> Result<String, String>,
 ) -> Result<Vec<Target>, TargetsRefusal> {
     use TargetsRefusal as R;
-    only(o, &["measured", "analysis", "columns", "tolerance", "range"], &key)?;
+    only(o, &["measured", "analysis", "columns", "tolerance", "noise", "range"], &key)?;
     let file = name_in(file, &format!("{key}.measured"))?;
     let name = name_in(o.get("analysis").unwrap_or(&Value::Null), &format!("{key}.analysis"))?;
     let analysis = analysis_named(name, &format!("{key}.analysis"))?;
@@ -638,19 +726,48 @@ fn measured_targets(
             .map(|v| name_in(v, &format!("{key}.columns")).map(String::from))
             .collect::<Result<_, _>>()?,
     };
-    let tolerance = tolerance(o, &key)?;
+    // A tolerance, or the data's noise: one number for every column, or one per column by its name.
+    let (scale, word) = match (o.contains_key("tolerance"), o.contains_key("noise")) {
+        (true, true) => return Err(R::ToleranceAndNoise { key }),
+        (false, true) => (MissScale::Noise, "noise"),
+        _ => (MissScale::Tolerance, "tolerance"),
+    };
+    let per_column = |column: &str| -> Result<f64, TargetsRefusal> {
+        let given = o.get(word);
+        match given.and_then(Value::as_object) {
+            Some(by_column) => {
+                if let Some(other) = by_column.keys().find(|k| !columns.contains(k)) {
+                    return Err(R::NotAColumn { key: format!("{key}.{word}"), name: other.clone() });
+                }
+                let one = by_column
+                    .get(column)
+                    .ok_or_else(|| R::NoColumnScale { key: format!("{key}.{word}"), column: column.into() })?;
+                positive(number(one, &format!("{key}.{word}.{column}"))?, &format!("{key}.{word}.{column}"))
+            }
+            None if word == "noise" => {
+                let n = number(given.unwrap_or(&Value::Null), &format!("{key}.noise"))?;
+                positive(n, &format!("{key}.noise"))
+            }
+            None => tolerance(o, &key),
+        }
+    };
+    // The rows walked cover the measured loads, which a rig's noise carries past its nominal range.
+    let loads = measured.rows.iter().map(|r| r[0]);
+    let span = (loads.clone().fold(f64::INFINITY, f64::min), loads.fold(f64::NEG_INFINITY, f64::max));
+    let range = range.or((span.0 < span.1).then_some(span));
     let mut targets = Vec::new();
-    for column in columns {
-        let Some(c) = measured.columns.iter().position(|x| *x == column) else {
-            return Err(R::NoColumn { key, file: file.into(), column, has: measured.columns });
+    for column in &columns {
+        let Some(c) = measured.columns.iter().position(|x| x == column) else {
+            return Err(R::NoColumn { key, file: file.into(), column: column.clone(), has: measured.columns });
         };
         let points = measured.rows.iter().map(|r| (r[0], r[c])).collect();
         targets.push(Target {
             label: format!("{key} ({file}: {}/{column})", analysis.name()),
             analysis,
             range,
-            aim: Aim::Curve { column, points },
-            tolerance,
+            aim: Aim::Curve { column: column.clone(), points },
+            tolerance: per_column(column)?,
+            scale,
         });
     }
     Ok(targets)

@@ -20,7 +20,7 @@ use super::fit::FitUncertainty;
 use super::parameter::hardpoint_pointer;
 use super::parameter::{ParameterError, Parameters};
 use super::sensitivity::{analysis_sensitivity, AnalysisSensitivity, NoDerivative, SensitivityError};
-use super::targets::{interpolation, Aim, Constraint, Target, Targets};
+use super::targets::{interpolation, Aim, Constraint, MissScale, Target, Targets};
 use crate::kc::{AnalysisReport, Cell, Chart, Scale, Series, Settings, Table, YAxis};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
@@ -524,8 +524,11 @@ pub struct Verdict {
     pub target: String,
     /// The largest residual of it (miss over tolerance).
     pub worst: f64,
-    /// Whether every residual of it is within one.
+    /// Whether it is met: every residual within one, or, against a measured file's noise, their `χ²/n`
+    /// within what the noise gives ([`Target::met_by`]).
     pub met: bool,
+    /// How it was judged, in words ([`Target::judged_words`]).
+    pub judged: String,
     /// Why not, when not.
     pub why: Option<String>,
 }
@@ -1152,14 +1155,11 @@ fn verdicts(
         .iter()
         .enumerate()
         .map(|(k, t)| {
-            let worst = e
-                .rows
-                .iter()
-                .zip(&e.residuals)
-                .filter(|(r, _)| r.target == k)
-                .map(|(_, r)| r.abs())
-                .fold(0.0, f64::max);
-            let met = worst <= 1.0;
+            let own: Vec<f64> =
+                e.rows.iter().zip(&e.residuals).filter(|(r, _)| r.target == k).map(|(_, r)| *r).collect();
+            let worst = own.iter().fold(0.0f64, |m, r| m.max(r.abs()));
+            let met = t.met_by(&own);
+            let judged = t.judged_words(&own);
             let why = (!met).then(|| {
                 let held: Vec<String> = at_bound.iter().chain(&packed).cloned().collect();
                 if let Some(why) = no_step {
@@ -1169,6 +1169,10 @@ fn verdicts(
                         "held where the model stops: a step further could not be evaluated ({why}); narrow the \
                          bounds to the numbers the model accepts, or free another number"
                     )
+                } else if held.is_empty() && t.scale == MissScale::Noise {
+                    "the misses are larger than the data's noise makes them: the model cannot follow the \
+                     measurement within its noise (a part it lacks, a free number it needs, or more noise than given)"
+                        .to_string()
                 } else if held.is_empty() {
                     "the targets fight one another: with every free number inside its bounds, the best compromise \
                      of their tolerances leaves this miss; loosen a tolerance or free another number"
@@ -1177,7 +1181,7 @@ fn verdicts(
                     format!("held by {}: widen the bounds or the packaging, or free another number", held.join(", "))
                 }
             });
-            Verdict { target: t.label.clone(), worst, met, why }
+            Verdict { target: t.label.clone(), worst, met, judged, why }
         })
         .collect()
 }
