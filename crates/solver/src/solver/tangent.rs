@@ -148,17 +148,20 @@ impl<'m> StaticSolver<'m> {
 
     /// Assembles and factorizes the tangent at `state` for [`StaticSolver::solve_factored`].
     ///
-    /// In a replay ([`crate::replay`]), whose equilibria are the recorded ones moved, the factorization
+    /// In a replay ([`crate::replay`]), at an equilibrium it moved with the recorded tangent's factors,
+    /// the moved tangent is assembled but not factorized: every solve with it until the next factorization
+    /// is the recorded factors' solve and one step of refinement against it (`StaticSolver::solve_kept`),
+    /// whose rate with respect to the move is the exact solve's. Elsewhere in a replay the factorization
     /// is scaled afresh, so that it is the same whichever steps the replay factorized before (a replay
     /// that moves only some rows, `replay::ReplayRows`, reads there what a whole replay reads, to the
-    /// bit). It is the moved model's own tangent there, not the recorded one's refined: a solve with the recorded
-    /// factors `T₀` refined against the moved tangent `T` is off by `(I − T₀⁻¹T)²` of it, of the square
-    /// of the move but as large as `T₀⁻¹T` is far from the identity; on a double wishbone's free rig,
-    /// where each further refinement step gained only a factor of about 0.8 at a move of 0.1 % of an
-    /// arm's mount, that left 5.5e-5 of its wheel rate's derivative.
+    /// bit).
     pub fn factorize_tangent(&mut self, state: &State) -> Result<(), SolverError> {
         self.assemble(state, Some(Tangent::Full));
         if self.taping.replaying() {
+            if let Some(factors) = self.kept_factors_at(state) {
+                self.keep_tangent(factors);
+                return Ok(());
+            }
             self.work.factor.reset();
         }
         self.factorize()?;
