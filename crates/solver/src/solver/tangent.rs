@@ -114,8 +114,11 @@ impl<'m> StaticSolver<'m> {
                 *s += weight * r / (h * h);
             }
         }
-        // The design's own assembly again (its constraint rows), for the refinement of the solve.
-        self.assemble(state, None);
+        // The design's own assembly again (its constraint rows), for the refinement of the solve; a
+        // replay's kept tangent is refined against its own copy.
+        if self.kept_tangent.is_none() {
+            self.assemble(state, None);
+        }
         self.work.rhs.copy_from_slice(&second);
         self.solve_with_skew(Accuracy::Refined)?;
         self.rates_in_rhs("path curvature")
