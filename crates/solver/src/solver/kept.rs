@@ -4,16 +4,19 @@
 
 use crate::assembly::Assembly;
 use crate::kkt::LuFactors;
+use crate::replay::Factors;
 
 /// The tangent of a moved equilibrium as a replay solves with it (`StaticSolver::solve_kept`): its values
-/// as assembled there (the assembly's own are written over by any later one, such as a path's second
-/// rates' residuals), and the residual of the solve under way with its rounding.
+/// and the load path's rates as assembled there (the assembly's own are written over by any later one,
+/// such as a path's second rates' residuals), and the residual of the solve under way with its rounding.
 #[derive(Debug, Default)]
 pub(crate) struct KeptTangent {
     k: Vec<Split>,
     skew: Vec<Split>,
     has_skew: bool,
     j: Vec<Split>,
+    load_rate: Vec<f64>,
+    phi_rate: Vec<f64>,
     x: Vec<Split>,
     residual: Vec<Exact>,
     correction: Vec<f64>,
@@ -100,6 +103,13 @@ impl KeptTangent {
         split(&mut self.skew, &a.k_skew);
         self.has_skew = a.has_skew;
         split(&mut self.j, &a.j_values);
+        self.load_rate.clone_from(&a.load_rate);
+        self.phi_rate.clone_from(&a.phi_rate);
+    }
+
+    /// The load path's rates assembled with the kept tangent: `∂Q/∂t` and `∂Φ/∂t`.
+    pub(crate) fn rates(&self) -> (&[f64], &[f64]) {
+        (&self.load_rate, &self.phi_rate)
     }
 
     /// `x ← M b + M (b − A M b)` for `b` in `x`, with `A` the kept tangent (on the pattern of `a`) and `M`
@@ -143,4 +153,12 @@ impl KeptTangent {
             *x += d;
         }
     }
+}
+
+/// The tangent a replayed solver solves with at one of its moved equilibria (`StaticSolver::keep_tangent`):
+/// which one, and the recorded factors there.
+#[derive(Debug)]
+pub(crate) struct KeptAt {
+    pub(crate) at: usize,
+    pub(crate) factors: Factors,
 }

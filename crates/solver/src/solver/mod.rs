@@ -44,7 +44,7 @@ use crate::options::{ArcStep, LoadPath, Mode, SolverOptions, State};
 use crate::replay::{self, Taping};
 use crate::results::{Diagnostics, LimitPoint, PathRates, RedundantRow, StepResult, Sweep};
 use elastokin_core::{JointId, Model, Pose, BODY_DOFS};
-use kept::KeptTangent;
+use kept::{KeptAt, KeptTangent};
 
 /// Counters that prove reuse: how often each costly operation ran.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -84,9 +84,9 @@ pub struct StaticSolver<'m> {
     /// In a replay, each equilibrium it moved with recorded factors, and those factors: a tangent
     /// factorized there is solved with them ([`StaticSolver::factorize_tangent`]).
     moved_equilibria: Vec<(State, replay::Factors)>,
-    /// The recorded factors the tangent last factorized is solved with, when it was one of
+    /// The recorded factors the tangent last factorized is solved with, when it was at one of
     /// `moved_equilibria` (then `factored` is `None`: the solver's own factorization is of no state).
-    kept_tangent: Option<replay::Factors>,
+    kept_tangent: Option<KeptAt>,
     /// The recording or replay it takes part in ([`replay`]), if any.
     taping: Taping,
 }

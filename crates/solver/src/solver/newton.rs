@@ -150,7 +150,7 @@ impl<'m> StaticSolver<'m> {
     /// once, and GMRES is left out.
     pub(super) fn solve_with_skew(&mut self, accuracy: Accuracy) -> Result<(), SolverError> {
         // A replay's tangent at a moved equilibrium, solved with the recorded factors there.
-        if let Some(factors) = self.kept_tangent.clone() {
+        if let Some(factors) = self.kept_tangent.as_ref().map(|k| k.factors.clone()) {
             return self.solve_kept(&factors);
         }
         let size = self.work.rhs.len();

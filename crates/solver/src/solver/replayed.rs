@@ -1,6 +1,7 @@
 //! The solves of a replayed run (see [`crate::replay`]): each a recorded equilibrium moved by one exact
 //! Newton iteration of the solver's model.
 
+use super::kept::KeptAt;
 use super::StaticSolver;
 use crate::assembly::pair_dofs;
 use crate::error::SolverError;
@@ -159,18 +160,17 @@ impl StaticSolver<'_> {
 }
 
 impl StaticSolver<'_> {
-    /// The recorded factors of the recorded equilibrium that `state` is the move of, when `state` is an
-    /// equilibrium this replayed solver moved with recorded factors.
-    pub(super) fn kept_factors_at(&self, state: &State) -> Option<Factors> {
-        self.moved_equilibria.iter().rev().find(|(s, _)| s == state).map(|(_, f)| f.clone())
+    /// Which of the equilibria this replayed solver moved with recorded factors `state` is, if any.
+    pub(super) fn moved_equilibrium(&self, state: &State) -> Option<usize> {
+        self.moved_equilibria.iter().rposition(|(s, _)| s == state)
     }
 
-    /// Keeps the tangent just assembled at a moved equilibrium, to be solved with `factors`, the recorded
-    /// tangent's there, until the next factorization.
-    pub(super) fn keep_tangent(&mut self, factors: Factors) {
+    /// Keeps the tangent just assembled at moved equilibrium `at`, to be solved with the recorded
+    /// tangent's factors there, until the next factorization.
+    pub(super) fn keep_tangent(&mut self, at: usize) {
         self.work.kept.keep(&self.work.assembly);
         self.factored = None;
-        self.kept_tangent = Some(factors);
+        self.kept_tangent = Some(KeptAt { at, factors: self.moved_equilibria[at].1.clone() });
     }
 
     /// Solves the kept tangent `A` of a moved equilibrium ([`StaticSolver::keep_tangent`]) for the

@@ -159,13 +159,19 @@ impl<'m> StaticSolver<'m> {
     /// that moves only some rows, `replay::ReplayRows`, reads there what a whole replay reads, to the
     /// bit).
     pub fn factorize_tangent(&mut self, state: &State) -> Result<(), SolverError> {
-        self.assemble(state, Some(Tangent::Full));
         if self.taping.replaying() {
-            if let Some(factors) = self.kept_factors_at(state) {
-                self.keep_tangent(factors);
+            if let Some(at) = self.moved_equilibrium(state) {
+                // The tangent kept there, if it is the last, still holds: nothing factorized since.
+                if self.kept_tangent.as_ref().is_none_or(|kept| kept.at != at) {
+                    self.assemble(state, Some(Tangent::Full));
+                    self.keep_tangent(at);
+                }
                 return Ok(());
             }
+            self.assemble(state, Some(Tangent::Full));
             self.work.factor.reset();
+        } else {
+            self.assemble(state, Some(Tangent::Full));
         }
         self.factorize()?;
         Ok(())
