@@ -28,10 +28,12 @@
 //! (`StaticSolver::kept_chord_correction`) a right-hand side that is
 //! the recorded one corrected by the few elements and joints the move touched (the moved model's
 //! differing from the recorded one's, found once per solver), or, at another load parameter, the moved
-//! model's assembled whole. A path tangent or a compliance read at a moved equilibrium is the moved
-//! model's own, its tangent there factorized ([`StaticSolver::path_tangent`](crate::StaticSolver::path_tangent),
-//! [`StaticSolver::factorize_tangent`](crate::StaticSolver::factorize_tangent): the recorded factors
-//! refined against it are off by as much as the move changes the tangent's softest modes). No replay
+//! model's assembled whole. A path tangent or a compliance read at a moved equilibrium
+//! ([`StaticSolver::path_tangent`](crate::StaticSolver::path_tangent),
+//! [`StaticSolver::factorize_tangent`](crate::StaticSolver::factorize_tangent)) is solved with the
+//! recorded factors there and one step of refinement against the moved model's tangent, assembled
+//! there and never factorized: it is the moved model's own to the square of the move, and its rate
+//! with respect to the move is the exact one's, `d(A⁻¹b) = A⁻¹(db − dA·x)`. No replay
 //! assembles the residual at its moved equilibria (a moved equilibrium reports the
 //! recorded one's residuals: its own are of the second order in the move), and a replayed solver whose
 //! recorded one kept every constraint row checks neither redundancy nor restraint again

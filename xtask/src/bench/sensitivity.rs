@@ -17,8 +17,9 @@ pub fn run(s: &Settings) -> SectionOutput {
                 steps): alone (the model read, every analysis walked with its error estimate); with the \
                 derivatives of every figure and cell with respect to its 24 hardpoint coordinates (the suite's \
                 solves recorded with the factors of the tangent at each equilibrium, then replayed on each moved \
-                model: one Newton iteration per equilibrium and move solved with those factors, four moves \
-                per parameter); the same for the figures alone, the target's measure (each row read for the \
+                model: one Newton iteration per equilibrium and move solved with those factors, and the path \
+                tangents and compliances read there solved with them too, refined once against the moved \
+                tangent, four moves per parameter); the same for the figures alone, the target's measure (each row read for the \
                 figures: no component forces in the load sweeps, the roll centre at design only; and moved \
                 only where the figures read it: the design equilibrium, a load sweep's last row, the \
                 steering's rows of full steer and of the largest Ackermann error); and the 48 re-run \

@@ -84,8 +84,13 @@ impl<'m> StaticSolver<'m> {
     /// `rhs = [∂Q/∂t; −∂Φ/∂t]` from the assembled state.
     pub(super) fn load_direction_rhs(&mut self) {
         let n = self.work.assembly.n;
-        self.work.rhs[..n].copy_from_slice(&self.work.assembly.load_rate);
-        for (k, r) in self.work.assembly.phi_rate.iter().enumerate() {
+        // A replay's kept tangent keeps the rates assembled with it.
+        let (load_rate, phi_rate) = match self.kept_tangent {
+            Some(_) => self.work.kept.rates(),
+            None => (&self.work.assembly.load_rate[..], &self.work.assembly.phi_rate[..]),
+        };
+        self.work.rhs[..n].copy_from_slice(load_rate);
+        for (k, r) in phi_rate.iter().enumerate() {
             self.work.rhs[n + k] = -r;
         }
     }

@@ -26,6 +26,7 @@
 mod arc_length;
 mod corrected;
 mod diagnostics;
+mod kept;
 mod limit;
 mod newton;
 mod paper;
@@ -43,6 +44,7 @@ use crate::options::{ArcStep, LoadPath, Mode, SolverOptions, State};
 use crate::replay::{self, Taping};
 use crate::results::{Diagnostics, LimitPoint, PathRates, RedundantRow, StepResult, Sweep};
 use elastokin_core::{JointId, Model, Pose, BODY_DOFS};
+use kept::{KeptAt, KeptTangent};
 
 /// Counters that prove reuse: how often each costly operation ran.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -79,6 +81,12 @@ pub struct StaticSolver<'m> {
     replay_rows: Option<replay::ReplayRows>,
     /// In a replay, the recorded model and what this one differs from it in.
     touched: Option<replay::Touched>,
+    /// In a replay, each equilibrium it moved with recorded factors, and those factors: a tangent
+    /// factorized there is solved with them ([`StaticSolver::factorize_tangent`]).
+    moved_equilibria: Vec<(State, replay::Factors)>,
+    /// The recorded factors the tangent last factorized is solved with, when it was at one of
+    /// `moved_equilibria` (then `factored` is `None`: the solver's own factorization is of no state).
+    kept_tangent: Option<KeptAt>,
     /// The recording or replay it takes part in ([`replay`]), if any.
     taping: Taping,
 }
@@ -103,6 +111,9 @@ pub struct SolverWorkspace {
     history: Option<PathHistory>,
     /// What the Newton iterations of the current call have moved `[Δq; Δλ]`, summed.
     moved: Vec<f64>,
+    /// The tangent a replay solves with recorded factors, as assembled at the moved equilibrium, and a
+    /// solve's right-hand side ([`StaticSolver::solve_kept`]).
+    kept: KeptTangent,
     /// The replay its solver took part in, whose tape it goes to when dropped.
     taping: Taping,
 }
@@ -382,6 +393,7 @@ impl<'m> StaticSolver<'m> {
                     krylov: Krylov::default(),
                     history: None,
                     moved: vec![0.0; size],
+                    kept: KeptTangent::default(),
                     taping: Taping::default(),
                 }
             }
@@ -405,6 +417,8 @@ impl<'m> StaticSolver<'m> {
             recorded_lu: None,
             replay_rows: None,
             touched,
+            moved_equilibria: Vec::new(),
+            kept_tangent: None,
             taping,
         };
         if !checked {
@@ -464,6 +478,7 @@ impl<'m> StaticSolver<'m> {
         let a = &self.work.assembly;
         let values = KktValues { k: &a.k_values, k_skew: a.has_skew.then_some(&a.k_skew[..]), j: &a.j_values };
         self.factored = None;
+        self.kept_tangent = None;
         let report = self.work.factor.factorize(values).map_err(|e| self.named(e))?;
         self.factored = self.assembled;
         Ok(report)

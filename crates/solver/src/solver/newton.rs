@@ -149,6 +149,10 @@ impl<'m> StaticSolver<'m> {
     /// A backend that factorizes the skew part with the rest (the dense LU) solves the whole system at
     /// once, and GMRES is left out.
     pub(super) fn solve_with_skew(&mut self, accuracy: Accuracy) -> Result<(), SolverError> {
+        // A replay's tangent at a moved equilibrium, solved with the recorded factors there.
+        if let Some(factors) = self.kept_tangent.as_ref().map(|k| k.factors.clone()) {
+            return self.solve_kept(&factors);
+        }
         let size = self.work.rhs.len();
         self.work.factor.solve_in_place(&mut self.work.rhs, accuracy).map_err(|e| self.named(e))?;
         if !self.work.assembly.has_skew || self.work.factor.solves_skew() {

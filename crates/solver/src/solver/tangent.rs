@@ -114,8 +114,11 @@ impl<'m> StaticSolver<'m> {
                 *s += weight * r / (h * h);
             }
         }
-        // The design's own assembly again (its constraint rows), for the refinement of the solve.
-        self.assemble(state, None);
+        // The design's own assembly again (its constraint rows), for the refinement of the solve; a
+        // replay's kept tangent is refined against its own copy.
+        if self.kept_tangent.is_none() {
+            self.assemble(state, None);
+        }
         self.work.rhs.copy_from_slice(&second);
         self.solve_with_skew(Accuracy::Refined)?;
         self.rates_in_rhs("path curvature")
@@ -148,18 +151,27 @@ impl<'m> StaticSolver<'m> {
 
     /// Assembles and factorizes the tangent at `state` for [`StaticSolver::solve_factored`].
     ///
-    /// In a replay ([`crate::replay`]), whose equilibria are the recorded ones moved, the factorization
+    /// In a replay ([`crate::replay`]), at an equilibrium it moved with the recorded tangent's factors,
+    /// the moved tangent is assembled but not factorized: every solve with it until the next factorization
+    /// is the recorded factors' solve and one step of refinement against it (`StaticSolver::solve_kept`),
+    /// whose rate with respect to the move is the exact solve's. Elsewhere in a replay the factorization
     /// is scaled afresh, so that it is the same whichever steps the replay factorized before (a replay
     /// that moves only some rows, `replay::ReplayRows`, reads there what a whole replay reads, to the
-    /// bit). It is the moved model's own tangent there, not the recorded one's refined: a solve with the recorded
-    /// factors `T₀` refined against the moved tangent `T` is off by `(I − T₀⁻¹T)²` of it, of the square
-    /// of the move but as large as `T₀⁻¹T` is far from the identity; on a double wishbone's free rig,
-    /// where each further refinement step gained only a factor of about 0.8 at a move of 0.1 % of an
-    /// arm's mount, that left 5.5e-5 of its wheel rate's derivative.
+    /// bit).
     pub fn factorize_tangent(&mut self, state: &State) -> Result<(), SolverError> {
-        self.assemble(state, Some(Tangent::Full));
         if self.taping.replaying() {
+            if let Some(at) = self.moved_equilibrium(state) {
+                // The tangent kept there, if it is the last, still holds: nothing factorized since.
+                if self.kept_tangent.as_ref().is_none_or(|kept| kept.at != at) {
+                    self.assemble(state, Some(Tangent::Full));
+                    self.keep_tangent(at);
+                }
+                return Ok(());
+            }
+            self.assemble(state, Some(Tangent::Full));
             self.work.factor.reset();
+        } else {
+            self.assemble(state, Some(Tangent::Full));
         }
         self.factorize()?;
         Ok(())
