@@ -127,7 +127,10 @@ fn a_bound_that_holds_a_number_is_named_when_the_target_is_not_met() {
     let (_, tuned) = run(&base, &text);
     assert!(!tuned.all_met());
     let why = tuned.verdicts[0].why.as_deref().unwrap();
-    assert!(why.contains(&format!("'{inner}' at its upper bound")), "{why}");
+    // In the engineer's words: the point and its axis, the bound in millimetres.
+    let said = why.split("tie_rod_inner z at its upper bound, ").nth(1).unwrap_or_else(|| panic!("{why}"));
+    let bound: f64 = said.split(" mm").next().unwrap().parse().unwrap();
+    assert!((bound - (z + 0.001) * 1e3).abs() < 1e-9, "{why}");
     assert!((tuned.end.x[0] - (z + 0.001)).abs() < 1e-12, "{}", tuned.end.x[0]);
 }
 
@@ -200,6 +203,22 @@ fn the_packaging_is_kept() {
     let end = &tuned.end.packaging[0];
     assert!(end.value >= length - 5e-4 - 1e-9 && end.value <= length + 5e-4 + 1e-9, "{}", end.value);
     assert!(tuned.all_met(), "{:?}", tuned.verdicts);
+}
+
+/// The tie rod's length held within a micrometre of its own while the inner point's z alone is free: the
+/// curve needs that point 4 mm higher, which the length forbids, and the verdict names the packaging in
+/// words.
+#[test]
+fn a_packaging_constraint_that_holds_a_tune_is_named_in_words() {
+    let base = document("macpherson.json");
+    let a: Vec<f64> = (0..3).map(|i| value(&base, &format!("{H}/tie_rod_inner/{i}"))).collect();
+    let b: Vec<f64> = (0..3).map(|i| value(&base, &format!("{H}/tie_rod_outer/{i}"))).collect();
+    let length = (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt();
+    let keep = json!({ "distance": ["tie_rod_inner", "tie_rod_outer"], "min": length - 1e-6, "max": length + 1e-6 });
+    let (_, tuned) = run(&base, &targets_text(&base, &[format!("{H}/tie_rod_inner/2")], 0.02, &[], &[keep]));
+    let why = tuned.verdicts[0].why.as_deref().unwrap_or_else(|| panic!("{:?}", tuned.verdicts));
+    assert!(why.contains("the packaging's distance tie_rod_inner–tie_rod_outer at its"), "{why}");
+    assert!(why.contains("(constraints[0])") && !why.contains("holding"), "{why}");
 }
 
 /// The residuals' Jacobian is the derivative of the residuals (central differences of evaluations,

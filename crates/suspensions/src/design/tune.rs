@@ -1134,10 +1134,12 @@ fn verdicts(
             .zip(&targets.free)
             .filter_map(|((x, (lo, hi)), f)| {
                 let span = hi - lo;
+                let words = super::parameter_words(&f.pointer);
+                let value = |v: f64| super::parameter_value_words(&f.pointer, v);
                 if (x - lo).abs() <= 1e-9 * span {
-                    Some(format!("'{}' at its lower bound {lo}", f.pointer))
+                    Some(format!("{words} at its lower bound, {}", value(*lo)))
                 } else if (hi - x).abs() <= 1e-9 * span {
-                    Some(format!("'{}' at its upper bound {hi}", f.pointer))
+                    Some(format!("{words} at its upper bound, {}", value(*hi)))
                 } else {
                     None
                 }
@@ -1148,7 +1150,10 @@ fn verdicts(
         .iter()
         .enumerate()
         .filter(|(_, c)| (c.value - c.min).abs() <= 1e-7 || (c.max - c.value).abs() <= 1e-7)
-        .map(|(k, _)| format!("constraints[{k}] holding"))
+        .map(|(k, c)| {
+            let side = if (c.value - c.min).abs() <= 1e-7 { "least" } else { "most" };
+            format!("the packaging's {} at its {side} (constraints[{k}])", targets.constraints[k].said())
+        })
         .collect();
     targets
         .targets
