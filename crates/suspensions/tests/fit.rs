@@ -3,6 +3,9 @@
 //! least squares' closed form; a number a bound holds left out and named; a direction the data cannot see
 //! named in the engineer's words.
 
+mod common;
+
+use common::{lateral_force_rig, ARM_RADIAL, TOP_RADIAL};
 use elastokin_suspensions::design::fit::FitUncertainty;
 use elastokin_suspensions::design::targets::read_targets;
 use elastokin_suspensions::design::tune::tune;
@@ -36,16 +39,8 @@ fn normal(rng: &mut ChaCha8Rng) -> f64 {
 #[test]
 fn the_reported_uncertainty_of_fitted_rates_is_the_scatter_of_noisy_fits() {
     let base = document("macpherson.json");
-    let arm = "/suspension/macpherson/lower_arm_mounts/bushing/radial";
-    let top = "/suspension/macpherson/top_mount/bushing/radial";
-    let mut rig = base.clone();
-    *rig.pointer_mut(arm).unwrap() = json!(value(&base, arm) * 1.25);
-    *rig.pointer_mut(top).unwrap() = json!(value(&base, top) * 0.8);
-    let file = Parameters::new(&rig, &[]).unwrap().file().unwrap();
-    let settings = Settings { steps: 16, ..Settings::default() };
-    let measured = kc::run(Analysis::from_name("lateral-force").unwrap(), &file, &settings).unwrap();
-    let column = |c: &str| measured.table.column(c).unwrap().into_iter().map(Option::unwrap).collect::<Vec<f64>>();
-    let (load, toe, camber) = (column("load_n"), column("toe_deg"), column("camber_deg"));
+    let (arm, top) = (ARM_RADIAL, TOP_RADIAL);
+    let (rig, [load, toe, camber]) = lateral_force_rig(&base, 1.25, 0.8);
     let noise = 0.005;
     let p = Parameters::new(&base, &[arm.to_string(), top.to_string()]).unwrap();
     let (mut fitted, mut reported): (Vec<[f64; 2]>, Vec<[f64; 2]>) = (Vec::new(), Vec::new());
@@ -175,16 +170,8 @@ fn a_tie_rod_point_along_the_rod_is_named_as_what_the_toe_curve_cannot_see() {
 #[test]
 fn a_model_that_cannot_follow_noisy_data_is_judged_not_met_against_its_noise() {
     let base = document("macpherson.json");
-    let arm = "/suspension/macpherson/lower_arm_mounts/bushing/radial";
-    let top = "/suspension/macpherson/top_mount/bushing/radial";
-    let mut rig = base.clone();
-    *rig.pointer_mut(top).unwrap() = json!(value(&base, top) * 0.5);
-    let file = Parameters::new(&rig, &[]).unwrap().file().unwrap();
-    let measured =
-        kc::run(Analysis::from_name("lateral-force").unwrap(), &file, &Settings { steps: 16, ..Settings::default() })
-            .unwrap();
-    let column = |c: &str| measured.table.column(c).unwrap().into_iter().map(Option::unwrap).collect::<Vec<f64>>();
-    let (load, toe, camber) = (column("load_n"), column("toe_deg"), column("camber_deg"));
+    let arm = ARM_RADIAL;
+    let (_, [load, toe, camber]) = lateral_force_rig(&base, 1.0, 0.5);
     let mut rng = ChaCha8Rng::seed_from_u64(7);
     // The loads too carry the rig's noise: the end rows lie past the analysis's default ±3 kN.
     let mut csv = "# analysis: lateral-force\nload_n,toe_deg,camber_deg\n".to_string();

@@ -2,6 +2,9 @@
 //! hidden moves of its tie-rod points, tuned back from the model without them), bounds and packaging that
 //! hold a tune and are named for it, targets that fight, and bad TARGETS files refused by key.
 
+mod common;
+
+use common::{lateral_force_rig, ARM_RADIAL, TOP_RADIAL};
 use elastokin_suspensions::design::targets::{read_targets, Targets, TargetsRefusal};
 use elastokin_suspensions::design::tune::{evaluate, tune, NotGiven, TuneError, Tuned};
 use elastokin_suspensions::design::KeyRefusal;
@@ -331,20 +334,11 @@ fn bad_targets_are_refused_by_key() {
 #[test]
 fn bushing_rates_are_fitted_to_a_measured_lateral_force_test() {
     let base = document("macpherson.json");
-    let arm = "/suspension/macpherson/lower_arm_mounts/bushing/radial";
-    let top = "/suspension/macpherson/top_mount/bushing/radial";
-    let mut rig = base.clone();
-    *rig.pointer_mut(arm).unwrap() = json!(value(&base, arm) * 1.25);
-    *rig.pointer_mut(top).unwrap() = json!(value(&base, top) * 0.8);
-    let file = Parameters::new(&rig, &[]).unwrap().file().unwrap();
-    let settings = Settings { steps: 16, ..Settings::default() };
-    let measured = kc::run(Analysis::from_name("lateral-force").unwrap(), &file, &settings).unwrap();
-    let (t, toe, camber) =
-        ["load_n", "toe_deg", "camber_deg"].map(|c| measured.table.columns.iter().position(|x| x == c).unwrap()).into();
+    let (arm, top) = (ARM_RADIAL, TOP_RADIAL);
+    let (rig, [load, toe, camber]) = lateral_force_rig(&base, 1.25, 0.8);
     let mut csv = "# analysis: lateral-force\n# the wheel-centre height held, the force at the contact patch\nload_n,toe_deg,camber_deg\n".to_string();
-    for row in measured.table.rows.iter().step_by(2) {
-        let n = |c: usize| row[c].number().unwrap();
-        csv.push_str(&format!("{},{},{}\n", n(t), n(toe), n(camber)));
+    for k in (0..load.len()).step_by(2) {
+        csv.push_str(&format!("{},{},{}\n", load[k], toe[k], camber[k]));
     }
     let text = json!({
         "free": { arm: [2e6, 1e7], top: [1e6, 4e6] },

@@ -27,6 +27,30 @@ pub const MODELS: [&str; 12] = [
     "vehicle/compact_car.json",
 ];
 
+/// The shipped MacPherson's lower-arm and top-mount radial bushing rates, by pointer.
+pub const ARM_RADIAL: &str = "/suspension/macpherson/lower_arm_mounts/bushing/radial";
+pub const TOP_RADIAL: &str = "/suspension/macpherson/top_mount/bushing/radial";
+
+/// A lateral-force test (16 steps) "measured" on a rig: the MacPherson `base` (a model file's document)
+/// with its lower-arm and top-mount radial rates times `arm` and `top`. The rig's document, and its load,
+/// toe and camber columns.
+pub fn lateral_force_rig(base: &serde_json::Value, arm: f64, top: f64) -> (serde_json::Value, [Vec<f64>; 3]) {
+    use elastokin_suspensions::analysis::WheelLoad;
+    use elastokin_suspensions::design::Parameters;
+    use elastokin_suspensions::kc::{self, Analysis, Settings};
+    let mut rig = base.clone();
+    for (pointer, factor) in [(ARM_RADIAL, arm), (TOP_RADIAL, top)] {
+        let moved = base.pointer(pointer).and_then(serde_json::Value::as_f64).unwrap() * factor;
+        *rig.pointer_mut(pointer).unwrap() = serde_json::json!(moved);
+    }
+    let file = Parameters::new(&rig, &[]).unwrap().file().unwrap();
+    let settings = Settings { steps: 16, ..Settings::default() };
+    let measured = kc::run(Analysis::Road(WheelLoad::Lateral), &file, &settings).unwrap();
+    let column = |c: &str| measured.table.column(c).unwrap().into_iter().map(Option::unwrap).collect::<Vec<f64>>();
+    let columns = [column("load_n"), column("toe_deg"), column("camber_deg")];
+    (rig, columns)
+}
+
 pub fn examples() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
 }
