@@ -191,6 +191,35 @@ fn targets_that_fight_are_said_to() {
     assert!(!unmet.is_empty() && unmet.iter().all(|w| w.contains("fight one another")), "{unmet:?}");
 }
 
+/// A weight of 10 on the fighting bump-steer target: the tune ends where the same target with a tenth of
+/// its tolerance and no weight ends (the objective is the same), nearer its aim than unweighted; its verdict
+/// is still judged against its own tolerance.
+#[test]
+fn a_targets_weight_counts_as_a_tolerance_that_much_tighter_in_the_objective() {
+    let base = document("macpherson.json");
+    let free = [format!("{H}/tie_rod_inner/2")];
+    let end = |fight: Value| run(&base, &targets_text(&base, &free, 0.1, &[fight], &[])).1;
+    let figure = |extra: Value| {
+        let mut f = json!({ "figure": "parallel-travel/bump_steer", "range": [-0.05, 0.05], "value": -10.0 });
+        f.as_object_mut().unwrap().extend(extra.as_object().unwrap().clone());
+        f
+    };
+    let weighted = end(figure(json!({ "tolerance": 0.5, "weight": 10.0 })));
+    let tighter = end(figure(json!({ "tolerance": 0.05 })));
+    let plain = end(figure(json!({ "tolerance": 0.5 })));
+    // Measured 0 m apart: the same objective, the same steps.
+    assert!((weighted.end.x[0] - tighter.end.x[0]).abs() < 1e-12, "{} {}", weighted.end.x[0], tighter.end.x[0]);
+    let miss = |t: &Tuned| t.end.rows.iter().find(|r| r.at.is_none()).map(|r| (r.value - r.aim).abs()).unwrap();
+    // The weight moves the compromise towards the weighted target (measured misses 6.8 and 12.7 deg/m).
+    assert!(miss(&weighted) < 0.75 * miss(&plain), "{} {}", miss(&weighted), miss(&plain));
+    // Judged unweighted: the largest miss over its own tolerance of 0.5.
+    let v = weighted.verdicts.iter().find(|v| v.target.contains("bump_steer")).unwrap();
+    assert!((v.worst - miss(&weighted) / 0.5).abs() < 1e-12, "{v:?}");
+    let bad = targets_text(&base, &free, 0.1, &[figure(json!({ "tolerance": 0.5, "weight": 0 }))], &[]);
+    let e = read_targets(&bad, "t.json", &base, |f| Err(format!("no file {f}"))).unwrap_err().to_string();
+    assert!(e.contains("targets[1].weight: give a positive number"), "{e}");
+}
+
 /// The tie rod's length kept within ±0.5 mm of its own while both its points are free: the tune keeps
 /// it there (to 1e-9 m) and still meets the curve.
 #[test]

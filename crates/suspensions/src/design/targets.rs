@@ -60,6 +60,9 @@ pub struct Target {
     pub tolerance: f64,
     /// Which of the two `tolerance` is, and so how the target is judged.
     pub scale: MissScale,
+    /// How much the target counts in a tune against the others (`weight`, default 1): its residuals are
+    /// its misses over its tolerance times it. Whether it is met is judged unweighted.
+    pub weight: f64,
 }
 
 /// What a target's misses are measured by, and how it is judged.
@@ -397,6 +400,17 @@ pub enum TargetsRefusal {
         /// The tolerance given.
         got: f64,
     },
+    /// A weight that is not a positive number.
+    #[error(
+        "{key}: give a positive number, how much the target counts against the others in a tune (default 1), got {}",
+        kc::plain(*got)
+    )]
+    WeightNotPositive {
+        /// The weight's key.
+        key: String,
+        /// The weight given.
+        got: f64,
+    },
     /// A measured target with both a tolerance and a noise.
     #[error(
         "{key}: give its \"tolerance\" (the miss that counts as met, every point within it) or its \"noise\" (the \
@@ -533,6 +547,17 @@ fn tolerance(object: &serde_json::Map<String, Value>, key: &str) -> Result<f64, 
     positive(number(t, &format!("{key}.tolerance"))?, &format!("{key}.tolerance"))
 }
 
+/// A target's `weight`: a positive number, 1 when not given.
+fn weight(object: &serde_json::Map<String, Value>, key: &str) -> Result<f64, TargetsRefusal> {
+    let Some(w) = object.get("weight") else { return Ok(1.0) };
+    let w = number(w, &format!("{key}.weight"))?;
+    if w > 0.0 && w.is_finite() {
+        Ok(w)
+    } else {
+        Err(TargetsRefusal::WeightNotPositive { key: format!("{key}.weight"), got: w })
+    }
+}
+
 /// A tolerance or a noise at `key`, which must be positive.
 fn positive(t: f64, key: &str) -> Result<f64, TargetsRefusal> {
     if t > 0.0 {
@@ -660,7 +685,7 @@ fn targets_of(
         Ok((analysis_named(analysis, &format!("{key}.{what}"))?, name.to_string()))
     };
     if let Some(path) = o.get("figure") {
-        only(o, &["figure", "value", "tolerance", "range"], &key)?;
+        only(o, &["figure", "value", "tolerance", "range", "weight"], &key)?;
         let (analysis, name) = split(name_in(path, &format!("{key}.figure"))?, "figure")?;
         let value = number(o.get("value").unwrap_or(&Value::Null), &format!("{key}.value"))?;
         Ok(vec![Target {
@@ -670,9 +695,10 @@ fn targets_of(
             aim: Aim::Figure { key: name, value },
             tolerance: tolerance(o, &key)?,
             scale: MissScale::Tolerance,
+            weight: weight(o, &key)?,
         }])
     } else if let Some(path) = o.get("curve") {
-        only(o, &["curve", "points", "tolerance", "range"], &key)?;
+        only(o, &["curve", "points", "tolerance", "range", "weight"], &key)?;
         let (analysis, column) = split(name_in(path, &format!("{key}.curve"))?, "curve")?;
         let points = o
             .get("points")
@@ -690,6 +716,7 @@ fn targets_of(
             aim: Aim::Curve { column, points },
             tolerance: tolerance(o, &key)?,
             scale: MissScale::Tolerance,
+            weight: weight(o, &key)?,
         }])
     } else if let Some(file) = o.get("measured") {
         measured_targets(key, o, file, range, read_file)
@@ -708,7 +735,7 @@ fn measured_targets(
     read_file: &impl Fn(&str) -> Result<String, String>,
 ) -> Result<Vec<Target>, TargetsRefusal> {
     use TargetsRefusal as R;
-    only(o, &["measured", "analysis", "columns", "tolerance", "noise", "range"], &key)?;
+    only(o, &["measured", "analysis", "columns", "tolerance", "noise", "range", "weight"], &key)?;
     let file = name_in(file, &format!("{key}.measured"))?;
     let name = name_in(o.get("analysis").unwrap_or(&Value::Null), &format!("{key}.analysis"))?;
     let analysis = analysis_named(name, &format!("{key}.analysis"))?;
@@ -768,6 +795,7 @@ fn measured_targets(
             aim: Aim::Curve { column: column.clone(), points },
             tolerance: per_column(column)?,
             scale,
+            weight: weight(o, &key)?,
         });
     }
     Ok(targets)

@@ -12,7 +12,8 @@
 //! (`optimization_engine`'s PANOC with L-BFGS) on the MacPherson's toe curve with both tie-rod points free
 //! (`cargo xtask bench`, section `tuning`).
 //!
-//! A residual is a target's miss over its tolerance: a target is met when its residual is at most one.
+//! A residual is a target's miss over its tolerance, times its weight (1 unless given): a target is met when
+//! its miss over its tolerance is at most one.
 //! What is not met is said, and why: a bound or the packaging holds a number that would otherwise
 //! move, or the targets fight one another (the least-squares optimum leaves the miss).
 
@@ -439,8 +440,9 @@ fn rows_stay(t: &Target, s: &AnalysisSensitivity, p: &Parameters, along: &[f64])
 /// refused, naming the target, where they are too large to be squared (an aim of 1e308, a tolerance of
 /// 1e-300), which the objective `½ Σ r²` is.
 fn scaled_miss(t: &Target, reached: f64, aim: f64, gradient: &[f64]) -> Result<(f64, Vec<f64>), NotGiven> {
-    let residual = (reached - aim) / t.tolerance;
-    let rates: Vec<f64> = gradient.iter().map(|g| g / t.tolerance).collect();
+    let scale = t.weight / t.tolerance;
+    let residual = (reached - aim) * scale;
+    let rates: Vec<f64> = gradient.iter().map(|g| g * scale).collect();
     if (residual * residual).is_finite() && rates.iter().all(|r| (r * r).is_finite()) {
         Ok((residual, rates))
     } else {
@@ -604,14 +606,15 @@ impl Tuned {
             .zip(&self.start.rows)
             .zip(self.end.residuals.iter().zip(&self.start.residuals))
             .map(|((end, start), (r_end, r_start))| {
+                let weight = targets.targets[end.target].weight;
                 vec![
                     Cell::Text(targets.targets[end.target].label.clone()),
                     Cell::from(end.at),
                     Cell::from(end.aim),
                     Cell::from(start.value),
                     Cell::from(end.value),
-                    Cell::from(*r_start),
-                    Cell::from(*r_end),
+                    Cell::from(r_start / weight),
+                    Cell::from(r_end / weight),
                 ]
             })
             .collect();
@@ -1160,8 +1163,9 @@ fn verdicts(
         .iter()
         .enumerate()
         .map(|(k, t)| {
+            // Judged unweighted: each miss over the tolerance.
             let own: Vec<f64> =
-                e.rows.iter().zip(&e.residuals).filter(|(r, _)| r.target == k).map(|(_, r)| *r).collect();
+                e.rows.iter().zip(&e.residuals).filter(|(r, _)| r.target == k).map(|(_, r)| r / t.weight).collect();
             let worst = own.iter().fold(0.0f64, |m, r| m.max(r.abs()));
             let met = t.met_by(&own);
             let judged = t.judged_words(&own);
