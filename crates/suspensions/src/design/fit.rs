@@ -26,6 +26,19 @@ const RANK: f64 = 1e-8;
 /// steps of a tune stop a little inside a bound that holds a number.
 const AT_BOUND: f64 = 1e-4;
 
+/// Which bound of `(lo, hi)` holds a number at `x`, if one does: `Some(lo)` or `Some(hi)`. The one rule
+/// for the fit's uncertainty and the tune's verdicts.
+pub fn held_at(x: f64, (lo, hi): (f64, f64)) -> Option<f64> {
+    let near = AT_BOUND * (hi - lo);
+    if (x - lo).abs() <= near {
+        Some(lo)
+    } else if (hi - x).abs() <= near {
+        Some(hi)
+    } else {
+        None
+    }
+}
+
 /// The uncertainty of a fit's numbers.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FitUncertainty {
@@ -80,11 +93,7 @@ impl FitUncertainty {
     pub fn of(x: &[f64], bounds: &[(f64, f64)], residuals: &[f64], jacobian: &[Vec<f64>]) -> FitUncertainty {
         let n = x.len();
         let span: Vec<f64> = bounds.iter().map(|(lo, hi)| hi - lo).collect();
-        let at_bound: Vec<usize> = (0..n)
-            .filter(|&k| {
-                (x[k] - bounds[k].0).abs() <= AT_BOUND * span[k] || (bounds[k].1 - x[k]).abs() <= AT_BOUND * span[k]
-            })
-            .collect();
+        let at_bound: Vec<usize> = (0..n).filter(|&k| held_at(x[k], bounds[k]).is_some()).collect();
         let fitted: Vec<usize> = (0..n).filter(|k| !at_bound.contains(k)).collect();
         let m = residuals.len();
         let degrees_of_freedom = m.saturating_sub(fitted.len());

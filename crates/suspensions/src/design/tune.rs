@@ -1135,17 +1135,11 @@ fn verdicts(
         e.x.iter()
             .zip(free)
             .zip(&targets.free)
-            .filter_map(|((x, (lo, hi)), f)| {
-                let span = hi - lo;
-                let words = super::parameter_words(&f.pointer);
-                let value = |v: f64| super::parameter_value_words(&f.pointer, v);
-                if (x - lo).abs() <= 1e-9 * span {
-                    Some(format!("{words} at its lower bound, {}", value(*lo)))
-                } else if (hi - x).abs() <= 1e-9 * span {
-                    Some(format!("{words} at its upper bound, {}", value(*hi)))
-                } else {
-                    None
-                }
+            .filter_map(|((x, &(lo, hi)), f)| {
+                let bound = super::fit::held_at(*x, (lo, hi))?;
+                let which = if bound == lo { "lower" } else { "upper" };
+                let value = super::parameter_value_words(&f.pointer, bound);
+                Some(format!("{} at its {which} bound, {value}", super::parameter_words(&f.pointer)))
             })
             .collect();
     let packed: Vec<String> = e
