@@ -229,6 +229,11 @@ fn a_held_driver_holds_its_point_at_the_travel_whatever_the_load_parameter() {
             assert!(value(&held, t).abs() < 1e-15, "{t}: {}", value(&held, t));
         }
         assert!(!held.joints()[id.0].rows[0].is_driver());
+        // A hold is from design, not from the last hold: held elsewhere first, then at the travel, it holds there.
+        let mut again = m.clone();
+        again.hold_driver(id, 0.5).unwrap();
+        again.hold_driver(id, travel).unwrap();
+        assert!(value(&again, 3.0).abs() < 1e-15, "{}", value(&again, 3.0));
     }
     let mut m = m;
     let ball = m.add_joint(JointSpec::spherical("ball", i, j, Vec3::new(0.0, 0.6, 0.0))).unwrap();

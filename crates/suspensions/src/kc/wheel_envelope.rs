@@ -21,6 +21,7 @@ use crate::description::{Obstacle, Packaging, PackagingBox, Side, Tyre};
 use crate::kc::figures;
 use crate::kc::models::Models;
 use crate::kc::reduce::{axle_drawing, chart, finish, Design, Reduction};
+use crate::kc::report::slug;
 use crate::kc::report::{AnalysisReport, Cell, Column, Envelope, Figure, Table, Warning};
 use crate::kc::settings::{Analysis, Cause, Declaration, DefaultRange, FigureRows, Quantity, Settings};
 use crate::kc::steering;
@@ -187,6 +188,8 @@ struct Least {
     clearance: f64,
     /// The rack travel there (m).
     rack: f64,
+    /// Its place in the rack's sweep.
+    at: usize,
     /// How far a parabola through it and its neighbours in rack travel falls below it (m), the rack grid's
     /// share of the estimate.
     dip: f64,
@@ -236,17 +239,10 @@ fn height(tyre: &Tyre, obstacles: &[Obstacle], travel: f64, rows: &[AxleRow]) ->
             // and the pick must not flip between readings of one height.
             let least = per_rack.iter().copied().fold(f64::INFINITY, f64::min);
             let k = per_rack.iter().position(|&c| c <= least + TIE).unwrap_or(0);
-            Ok(Least { clearance: per_rack[k], rack: rows[k].travel, dip: dip(&per_rack, k) })
+            Ok(Least { clearance: per_rack[k], rack: rows[k].travel, at: k, dip: dip(&per_rack, k) })
         })
         .collect::<Result<_, Cause>>()?;
     Ok(Height { travel, least, left: rows.iter().map(|r| r.left).collect() })
-}
-
-/// The column of obstacle `name`'s clearance.
-fn column_name(name: &str) -> String {
-    let words: String =
-        name.chars().map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_lowercase() } else { '_' }).collect();
-    format!("clearance_{}_m", words.trim_matches('_'))
 }
 
 /// The envelope's table: per height, each obstacle's least clearance and the rack travel where, and the
@@ -257,11 +253,9 @@ fn envelope_table(names: &[String], rows: &[Height]) -> Table {
         Column::new("least_clearance_m", |h: &Height| Cell::from(least_of(h).map(|(l, _)| l.clearance))),
     ];
     for (k, name) in names.iter().enumerate() {
-        columns.push(Column::new(column_name(name), move |h: &Height| h.least[k].clearance.into()));
-        columns.push(Column::new(
-            format!("{}_rack_travel_m", column_name(name).trim_end_matches("_m")),
-            move |h: &Height| h.least[k].rack.into(),
-        ));
+        let column = format!("clearance_{}", slug(name));
+        columns.push(Column::new(format!("{column}_m"), move |h: &Height| h.least[k].clearance.into()));
+        columns.push(Column::new(format!("{column}_rack_travel_m"), move |h: &Height| h.least[k].rack.into()));
     }
     Table::of_columns("wheel_envelope", &columns, rows)
 }
@@ -315,11 +309,13 @@ pub(super) fn wheel_envelope(models: &Models, s: &Settings, taping: &Taping) -> 
     let names: Vec<String> = obstacles.iter().map(|o| o.name().to_string()).collect();
     let steered = file.suspension.expand().is_steered();
     let extras = || s.extras(range, taping);
+    let n = grid_steps(s.steps);
     let (out, rack_range, drawing_axle) = if steered {
         let rack = rack_range(packaging);
         let axle = models.axle_ref(AxleRig::Steering)?;
         let drivers = height_drivers(axle);
-        let n = grid_steps(s.steps);
+        // One copy of the axle, its heights held anew at each travel (a hold is from design, not cumulative).
+        let mut held = axle.clone();
         let travels: Vec<f64> = (0..=n).map(|i| range.0 + (range.1 - range.0) * i as f64 / n as f64).collect();
         let mut out = SweepOutput {
             rows: Vec::new(),
@@ -332,7 +328,6 @@ pub(super) fn wheel_envelope(models: &Models, s: &Settings, taping: &Taping) -> 
             design_corrected: None,
         };
         for &travel in &travels {
-            let mut held = axle.clone();
             for &d in &drivers {
                 held.model.hold_driver(d, travel)?;
             }
@@ -352,16 +347,14 @@ pub(super) fn wheel_envelope(models: &Models, s: &Settings, taping: &Taping) -> 
             out.residuals.extend(swept.residuals);
             if let (Some(all), Some(poses)) = (out.poses.as_mut(), swept.poses) {
                 // The height's frame: the rack where the tyre comes closest to anything.
-                let k = least_of(out.rows.last().expect("just pushed"))
-                    .and_then(|(l, _)| swept.rows.iter().position(|r| r.travel == l.rack))
-                    .unwrap_or(swept.rows.len() / 2);
+                let k = least_of(out.rows.last().expect("just pushed")).map_or(swept.rows.len() / 2, |(l, _)| l.at);
                 all.push(poses[k].clone());
             }
         }
         (out, Some(rack), axle)
     } else {
         let axle = models.axle_ref(AxleRig::ParallelTravel)?;
-        let swept = axle_sweep_with(axle, range.0, range.1, grid_steps(s.steps), s.mode, extras())?;
+        let swept = axle_sweep_with(axle, range.0, range.1, n, s.mode, extras())?;
         let each = |rows: &[AxleRow]| -> Result<Vec<Height>, Cause> {
             rows.iter().map(|r| height(&packaging.tyre, &obstacles, r.travel, std::slice::from_ref(r))).collect()
         };
@@ -403,21 +396,18 @@ pub(super) fn wheel_envelope(models: &Models, s: &Settings, taping: &Taping) -> 
             "wheel envelope (travel {:+.0}..{:+.0} mm, {} steps; rack {:+.0}..{:+.0} mm at each height, {} steps)",
             range.0 * 1e3,
             range.1 * 1e3,
-            grid_steps(s.steps),
+            n,
             r.0 * 1e3,
             r.1 * 1e3,
-            grid_steps(s.steps)
+            n
         ),
-        None => format!(
-            "wheel envelope (travel {:+.0}..{:+.0} mm, {} steps; no steering)",
-            range.0 * 1e3,
-            range.1 * 1e3,
-            grid_steps(s.steps)
-        ),
+        None => {
+            format!("wheel envelope (travel {:+.0}..{:+.0} mm, {} steps; no steering)", range.0 * 1e3, range.1 * 1e3, n)
+        }
     };
     let reduce = Reduction { table: &table, figures: &figures, drawing: axle_drawing(drawing_axle, s) };
     let mut report = finish(Analysis::WheelEnvelope, description, range, s, &out, reduce, charts);
-    report.steps = grid_steps(s.steps);
+    report.steps = n;
     if let Some((least, _, obstacle, row)) = least_clearance(&out.rows).filter(|l| l.0 < 0.0) {
         let h = &out.rows[row];
         let rack = match rack_range {
