@@ -6,6 +6,7 @@ use crate::output::{write_table, wrote, Failure, Progress, Provenance, Staging, 
 use clap::Args;
 use elastokin::plot;
 use elastokin::solver::Mode;
+use elastokin::suspensions::design::fit::FitUncertainty;
 use elastokin::suspensions::design::targets::{Reading, Targets};
 use elastokin::suspensions::design::tune::{self, Tuned};
 use elastokin::suspensions::design::Parameters;
@@ -125,23 +126,10 @@ fn print_tuned(out: &Stdout, tuned: &Tuned, targets: &Targets) -> Result<(), Fai
         ))?;
     }
     let pointers: Vec<String> = targets.free.iter().map(|f| f.pointer.clone()).collect();
-    match u.residual_scale {
-        Some(s) => out.line(format!(
-            "  uncertainties: one standard deviation, from the residuals' spread ({} of the tolerances over {} \
-             degrees of freedom); correlations in tune_uncertainty.csv",
-            kc::significant(s, 3),
-            u.degrees_of_freedom
-        ))?,
-        None => out.line(
-            "  uncertainties: none, the targets leave no degree of freedom (as many numbers fitted as target \
-             points): give more points, or free fewer numbers",
-        )?,
-    }
+    let correlations = if u.residual_scale.is_some() { "; correlations in tune_uncertainty.csv" } else { "" };
+    out.line(format!("  {}{correlations}", u.basis()))?;
     for unseen in &u.unseen {
-        out.line(format!(
-            "  NOT unique: the targets cannot tell {}; fix one of these numbers, or add a target that moves them",
-            unseen.said(&pointers)
-        ))?;
+        out.line(format!("  {}", FitUncertainty::not_unique(unseen, &pointers)))?;
     }
     for v in &tuned.verdicts {
         let state = if v.met { "met" } else { "NOT met" };

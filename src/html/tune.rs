@@ -5,6 +5,7 @@ use super::charts::{write_chart, write_chart_script};
 use super::tables::{write_open_table, write_table};
 use super::{write_foot, write_head, NAME_SHOWN};
 use crate::markup::text;
+use crate::suspensions::design::fit::FitUncertainty;
 use crate::suspensions::design::parameter::{is_length, parameter_words};
 use crate::suspensions::kc::{significant, Cell, Chart, Table};
 use serde_json::Value;
@@ -122,25 +123,13 @@ fn write_uncertainty(
 ) -> std::fmt::Result {
     let u = &tuned.uncertainty;
     let pointers: Vec<String> = targets.free.iter().map(|f| f.pointer.clone()).collect();
-    let how = match u.residual_scale {
-        Some(s) => format!(
-            "standard uncertainties: one standard deviation, from the residuals' spread ({} of the tolerances \
-             over {} degrees of freedom)",
-            significant(s, 3),
-            u.degrees_of_freedom
-        ),
-        None => "no standard uncertainties: the targets leave no degree of freedom (as many numbers fitted as \
-                 target points)"
-            .to_string(),
-    };
-    writeln!(out, "<p class=\"note\">{}</p>", text(&how))?;
+    writeln!(out, "<p class=\"note\">{}</p>", text(&u.basis()))?;
     if !u.at_bound.is_empty() {
         let held: Vec<String> = u.at_bound.iter().map(|&k| parameter_words(&pointers[k])).collect();
         writeln!(out, "<p class=\"note\">held by a bound, not fitted: {}</p>", text(&held.join(", ")))?;
     }
     for unseen in &u.unseen {
-        let said = format!("not unique: the targets cannot tell {}", unseen.said(&pointers));
-        writeln!(out, "<p class=\"over\">{}</p>", text(&said))?;
+        writeln!(out, "<p class=\"over\">{}</p>", text(&FitUncertainty::not_unique(unseen, &pointers)))?;
     }
     Ok(())
 }

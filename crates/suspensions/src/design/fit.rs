@@ -149,6 +149,30 @@ impl FitUncertainty {
         out
     }
 
+    /// How the standard uncertainties were taken, or why there are none, in words (the command and the
+    /// report say it alike).
+    pub fn basis(&self) -> String {
+        match self.residual_scale {
+            Some(s) => format!(
+                "uncertainties: one standard deviation, from the residuals' spread ({} of the tolerances over {} \
+                 degrees of freedom)",
+                crate::kc::significant(s, 3),
+                self.degrees_of_freedom
+            ),
+            None => "uncertainties: none, the targets leave no degree of freedom (as many numbers fitted as target \
+                     points): give more points, or free fewer numbers"
+                .to_string(),
+        }
+    }
+
+    /// What the fit cannot tell along `unseen`, with what to do, for free numbers of `pointers`.
+    pub fn not_unique(unseen: &Unseen, pointers: &[String]) -> String {
+        format!(
+            "NOT unique: the targets cannot tell {}; fix one of these numbers, or add a target that moves them",
+            unseen.said(pointers)
+        )
+    }
+
     /// Whether the fit's answer is unique: no direction unseen.
     pub fn unique(&self) -> bool {
         self.unseen.is_empty()
