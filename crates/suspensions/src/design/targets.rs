@@ -771,11 +771,10 @@ fn measured_targets(
                     .ok_or_else(|| R::NoColumnScale { key: format!("{key}.{word}"), column: column.into() })?;
                 positive(number(one, &format!("{key}.{word}.{column}"))?, &format!("{key}.{word}.{column}"))
             }
-            None if word == "noise" => {
-                let n = number(given.unwrap_or(&Value::Null), &format!("{key}.noise"))?;
-                positive(n, &format!("{key}.noise"))
+            None => {
+                let one = given.ok_or_else(|| R::NoTolerance { key: key.clone() })?;
+                positive(number(one, &format!("{key}.{word}"))?, &format!("{key}.{word}"))
             }
-            None => tolerance(o, &key),
         }
     };
     // The rows walked cover the measured loads, which a rig's noise carries past its nominal range.
