@@ -2126,3 +2126,49 @@ fn an_interrupted_command_leaves_nothing_beside_its_out() {
     assert_eq!(std::fs::read_to_string(out.join("batch.csv")).unwrap(), previous);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `run --targets` with a curve measured by its root mean square: the target judged whole, one line with
+/// its measure in words, one row in the report's summary; `targets.csv` lists every reading (its three
+/// points, of which design is a row, and the 18 other rows between its ends at 20 steps over ±50 mm),
+/// each met with it. A tolerance a
+/// hundredth of the measure is not met, and exits 1 naming it.
+#[test]
+fn run_judges_a_curve_by_its_root_mean_square_in_one_line() {
+    let dir = scratch("rms-targets");
+    for (tolerance, met) in [(10.0, true), (1e-4, false)] {
+        let targets = dir.join(format!("rms-{met}.json"));
+        let text = serde_json::json!({ "targets": [
+            { "curve": "parallel-travel/toe_deg", "points": [[-0.05, 0.3], [0.0, 0.0], [0.05, -0.2]],
+              "measure": "rms", "tolerance": tolerance } ]});
+        std::fs::write(&targets, text.to_string()).unwrap();
+        let out = dir.join(format!("out-{met}"));
+        let o = elastokin(&[
+            "run",
+            "examples/generic/macpherson.json",
+            "--analysis",
+            "parallel-travel",
+            "--range=-0.05,0.05",
+            "--steps",
+            "20",
+            "--targets",
+            targets.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let (stdout, stderr) = (String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+        let said = "targets[0] (parallel-travel/toe_deg): root mean square of the miss over the curve's span";
+        assert_eq!(stdout.matches("targets[0]").count(), 1, "{stdout}");
+        if met {
+            assert!(o.status.success() && stdout.contains(&format!("met: {said}")), "{stdout}{stderr}");
+        } else {
+            assert_eq!(o.status.code(), Some(1), "{stderr}");
+            assert!(stderr.contains(&format!("NOT met: {said}")), "{stderr}");
+        }
+        let judged = read_csv(&out.join("targets.csv"));
+        assert_eq!(judged.len(), 21, "{judged:?}");
+        assert!(judged.iter().all(|r| &r[7] == if met { "1" } else { "0" }), "{judged:?}");
+        let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+        assert_eq!(html.matches("root mean square of the miss over the curve").count(), 1);
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

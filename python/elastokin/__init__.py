@@ -280,8 +280,10 @@ class Model:
 
     def tune(self, targets: Union[str, Dict[str, Any]], directory: str = ".") -> Dict[str, Any]:
         """Tunes the model to ``targets`` (a TARGETS file's path, or its content as a dict), as ``elastokin
-        tune`` does: a dict of ``stopped``, ``all_met``, ``verdicts`` (each target's largest miss over its
-        tolerance, whether met and why not), ``packaging`` (each packaging constraint and how far it is
+        tune`` does: a dict of ``stopped``, ``all_met``, ``verdicts`` (each target's ``worst``, its misses
+        measured against its tolerance — the largest miss, a curve's root mean square or area, or against
+        noise ``χ²/n`` over the most noise gives; met when at most 1 —, how it was ``judged`` in words,
+        whether ``met`` and ``why`` not), ``packaging`` (each packaging constraint and how far it is
         broken, in m: 0 where it holds), ``parameters`` with their values ``before`` and ``after``,
         ``iterations`` (tune.csv's columns), ``uncertainty`` (each number's ``standard`` uncertainty, NaN
         where the fit gives none, their ``correlation``, the ``residual_scale`` and ``degrees_of_freedom``

@@ -172,6 +172,32 @@ def test_tune_gives_the_commands_numbers(tmp_path):
     assert u["unique"] == (u["unseen"] == [])
 
 
+def test_a_curve_tuned_by_its_root_mean_square_reports_it():
+    # The toe curve straight through three points, measured by its root mean square over their span: the
+    # verdict's measure is the trapezoidal root mean square of the tuned model's own rows (20 steps over
+    # ±50 mm, design a row, the target bent there), computed here from its table.
+    points = [[-0.05, 0.3], [0.0, 0.0], [0.05, -0.2]]
+    model = elastokin.load(MODEL)
+    base = json.loads(open(MODEL).read())
+    value = base
+    for key in TIE_ROD_Z.strip("/").split("/"):
+        value = value[int(key)] if isinstance(value, list) else value[key]
+    targets = {"free": {TIE_ROD_Z: [value - 0.01, value + 0.01]}, "steps": 20,
+               "targets": [{"curve": "parallel-travel/toe_deg", "range": [-0.05, 0.05], "points": points,
+                            "measure": "rms", "tolerance": 1e-3}]}
+    t = model.tune(targets)
+    (verdict,) = t["verdicts"]
+    assert "root mean square" in verdict["judged"]
+    tuned = elastokin.load(json.loads(t["tuned"]))
+    table = tuned.run("parallel-travel", range=(-0.05, 0.05), steps=20).columns
+    s = numpy.asarray(table["travel_m"])
+    miss = numpy.asarray(table["toe_deg"]) - numpy.interp(s, [p[0] for p in points], [p[1] for p in points])
+    rms = math.sqrt(numpy.trapezoid(miss**2, s) / 0.1)
+    # Measured: the same to 1.8e-16 relative (the same rows, summed in another order).
+    assert verdict["worst"] * 1e-3 == pytest.approx(rms, rel=1e-14)
+    assert verdict["met"] == (rms <= 1e-3)
+
+
 def test_a_target_the_model_has_not_is_a_bad_file_not_a_failed_analysis():
     # Known only once the analysis runs, as the command's exit 2 says: a ValueError, as a bad file is.
     targets = json.loads(open("examples/targets/bump_steer.json").read())

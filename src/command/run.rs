@@ -280,23 +280,35 @@ fn print_judged(out: &Stdout, points: &[TargetPoint], constraints: &[ConstraintC
     out.line("")?;
     out.line("targets:")?;
     let mut unmet = Vec::new();
-    for p in points {
-        let at = p.at.map_or(String::new(), |at| format!(" at {}", kc::plain(at)));
-        let line = match &p.reached {
-            Ok(r) => format!(
-                "{} {}{at}: {} for {} ± {}",
-                if p.met() { "met:" } else { "NOT met:" },
-                p.target.label,
-                kc::significant(*r, 4),
-                kc::significant(p.aim, 4),
-                kc::significant(p.target.tolerance, 2)
-            ),
-            Err(why) => format!("NOT judged: {}{at}: {why}", p.target.label),
-        };
-        if !p.met() {
-            unmet.push(line.clone());
+    for target in design::judge::by_target(points) {
+        // A target judged whole is one line, its measure in words.
+        if let Some(words) = design::judge::judged_whole(target) {
+            let met = target[0].met();
+            let line = format!("{} {}: {words}", if met { "met:" } else { "NOT met:" }, target[0].target.label);
+            if !met {
+                unmet.push(line.clone());
+            }
+            out.line(format!("  {line}"))?;
+            continue;
         }
-        out.line(format!("  {line}"))?;
+        for p in target {
+            let at = p.at.map_or(String::new(), |at| format!(" at {}", kc::plain(at)));
+            let line = match &p.reached {
+                Ok(r) => format!(
+                    "{} {}{at}: {} for {} ± {}",
+                    if p.met() { "met:" } else { "NOT met:" },
+                    p.target.label,
+                    kc::significant(*r, 4),
+                    kc::significant(p.aim, 4),
+                    kc::significant(p.target.tolerance, 2)
+                ),
+                Err(why) => format!("NOT judged: {}{at}: {why}", p.target.label),
+            };
+            if !p.met() {
+                unmet.push(line.clone());
+            }
+            out.line(format!("  {line}"))?;
+        }
     }
     for c in constraints {
         let mm = |v: f64| if v.is_finite() { format!("{} mm", kc::significant(v * 1e3, 4)) } else { "∞".into() };

@@ -4,8 +4,8 @@
 
 use super::figures::estimate_words;
 use crate::markup::{attr, text};
-use crate::suspensions::design::judge::{ConstraintCheck, TargetPoint};
-use crate::suspensions::design::targets::Aim;
+use crate::suspensions::design::judge::{by_target, judged_whole, ConstraintCheck, TargetPoint};
+use crate::suspensions::design::targets::{Aim, Target};
 use crate::suspensions::kc::{plain, significant, AnalysisReport, KcReport};
 use std::fmt::Write;
 
@@ -70,33 +70,57 @@ fn write_verdict(out: &mut String, report: &KcReport, judged: Option<Judged>) ->
     writeln!(out, "<p class=\"verdict\">{}.</p>", said.join("; "))
 }
 
+/// What target `t` aims at, in the table's words: the analysis and the figure or column.
+fn what_aimed(t: &Target) -> String {
+    match &t.aim {
+        Aim::Figure { key, .. } => format!("{} {key}", t.analysis.name()),
+        Aim::Curve { column, .. } => format!("{} {column}", t.analysis.name()),
+    }
+}
+
 /// The table of the targets judged: per point, the target, where, the aim with its tolerance, what the run
 /// reached, and met or not; then the packaging constraints.
 fn write_targets(out: &mut String, judged: Judged) -> std::fmt::Result {
     writeln!(out, "<table class=\"targets\">")?;
     writeln!(out, "<thead><tr><th>target</th><th>at</th><th>aim</th><th>reached</th><th></th></tr></thead><tbody>")?;
-    for p in judged.points {
-        let t = p.target;
-        let at = p.at.map_or(String::new(), plain);
-        let aim = format!("{} ± {}", significant(p.aim, 4), significant(t.tolerance, 2));
-        let (reached, mark) = match &p.reached {
-            Ok(r) if p.met() => (significant(*r, 4), "<td class=\"ok\">met</td>".to_string()),
-            Ok(r) => (significant(*r, 4), "<td class=\"bad\">not met</td>".to_string()),
-            Err(why) => (String::new(), format!("<td class=\"bad\">not judged: {}</td>", text(why))),
-        };
-        let what = match &t.aim {
-            Aim::Figure { key, .. } => format!("{} {key}", t.analysis.name()),
-            Aim::Curve { column, .. } => format!("{} {column}", t.analysis.name()),
-        };
-        writeln!(
-            out,
-            "<tr><td title=\"{}\">{}</td><td>{}</td><td>{}</td><td>{}</td>{mark}</tr>",
-            attr(&t.label),
-            text(&what),
-            text(&at),
-            text(&aim),
-            text(&reached)
-        )?;
+    for readings in by_target(judged.points) {
+        // A target judged whole is one row: its measure in words.
+        if let Some(words) = judged_whole(readings) {
+            let t = readings[0].target;
+            let mark = if readings[0].met() { "<td class=\"ok\">met</td>" } else { "<td class=\"bad\">not met</td>" };
+            let span = match (readings.first().and_then(|p| p.at), readings.last().and_then(|p| p.at)) {
+                (Some(a), Some(b)) => format!("{} to {}", plain(a), plain(b)),
+                _ => String::new(),
+            };
+            writeln!(
+                out,
+                "<tr><td title=\"{}\">{}</td><td>{}</td><td colspan=\"2\">{}</td>{mark}</tr>",
+                attr(&t.label),
+                text(&what_aimed(t)),
+                text(&span),
+                text(&words)
+            )?;
+            continue;
+        }
+        for p in readings {
+            let t = p.target;
+            let at = p.at.map_or(String::new(), plain);
+            let aim = format!("{} ± {}", significant(p.aim, 4), significant(t.tolerance, 2));
+            let (reached, mark) = match &p.reached {
+                Ok(r) if p.met() => (significant(*r, 4), "<td class=\"ok\">met</td>".to_string()),
+                Ok(r) => (significant(*r, 4), "<td class=\"bad\">not met</td>".to_string()),
+                Err(why) => (String::new(), format!("<td class=\"bad\">not judged: {}</td>", text(why))),
+            };
+            writeln!(
+                out,
+                "<tr><td title=\"{}\">{}</td><td>{}</td><td>{}</td><td>{}</td>{mark}</tr>",
+                attr(&t.label),
+                text(&what_aimed(t)),
+                text(&at),
+                text(&aim),
+                text(&reached)
+            )?;
+        }
     }
     for c in judged.constraints {
         let (reached, aim, mark) = match &c.reached {

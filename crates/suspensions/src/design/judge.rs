@@ -2,7 +2,9 @@
 //! target and each packaging constraint met or not, counted as `tune` counts them (a miss within the
 //! tolerance, a constraint within its bounds), on the model as it is. Nothing is moved.
 
-use super::targets::{interpolation, Aim, Constraint, MissScale, Target, Targets};
+use super::targets::{
+    interpolation, readings, Aim, Constraint, CurveMeasure, CurveReading, MissScale, Target, Targets,
+};
 use super::tune::linearise;
 use crate::kc::report::Column;
 use crate::kc::{AnalysisReport, Cell, KcReport, Table};
@@ -13,29 +15,49 @@ use serde_json::Value;
 pub struct TargetPoint<'a> {
     /// The target.
     pub target: &'a Target,
-    /// The load parameter of a curve target's point (the analysis's own unit); `None` for a figure.
+    /// The load parameter of a curve target's reading (the analysis's own unit); `None` for a figure.
     pub at: Option<f64>,
+    /// The reading's weight in its target's measure ([`CurveReading::weight`]; 1 for a figure and a point).
+    pub weight: f64,
     /// What the target asks, in its own unit (a figure's unit as written under the default units, a
     /// column's unit).
     pub aim: f64,
     /// What the run gives there, in the same unit, or why it gives nothing to judge.
     pub reached: Result<f64, String>,
-    /// For a target judged against a measured file's noise, whether the target as a whole is met (its
-    /// points' χ², [`Target::met_by`]): a point of it is met when its target is.
-    pub statistical: Option<bool>,
+    /// For a target judged whole — against a measured file's noise (its points' χ²), or a curve by its
+    /// root mean square or area ([`Target::met_by`]) — whether it is met: a reading of it is met when its
+    /// target is.
+    pub whole: Option<bool>,
 }
 
 impl TargetPoint<'_> {
-    /// Whether the run meets the point: its miss within the target's tolerance, or, against noise, its
-    /// target met.
+    /// Whether the run meets the point: its miss within the target's tolerance, or, for a target judged
+    /// whole, its target met.
     pub fn met(&self) -> bool {
-        self.statistical.unwrap_or(matches!(self.reached, Ok(r) if (r - self.aim).abs() <= self.target.tolerance))
+        self.whole.unwrap_or(matches!(self.reached, Ok(r) if (r - self.aim).abs() <= self.target.tolerance))
     }
 
     /// The miss over the tolerance (1 at the tolerance's edge), when the run gives a value.
     pub fn miss_over_tolerance(&self) -> Option<f64> {
         self.reached.as_ref().ok().map(|r| (r - self.aim).abs() / self.target.tolerance)
     }
+}
+
+/// The points judged, a slice per target in the file's order (a target's readings are consecutive).
+pub fn by_target<'r, 'a>(points: &'r [TargetPoint<'a>]) -> impl Iterator<Item = &'r [TargetPoint<'a>]> {
+    points.chunk_by(|a, b| std::ptr::eq(a.target, b.target))
+}
+
+/// How a target judged whole (its readings `readings`, [`TargetPoint::whole`]) was judged, in words
+/// ([`Target::judged_words`]); `None` for a target judged point by point, or when a reading has no value
+/// (each says why).
+pub fn judged_whole(readings: &[TargetPoint]) -> Option<String> {
+    let target = readings.first()?.target;
+    readings.first()?.whole?;
+    let misses: Option<Vec<f64>> =
+        readings.iter().map(|p| p.reached.as_ref().ok().map(|r| (r - p.aim) / target.tolerance)).collect();
+    let weights: Vec<f64> = readings.iter().map(|p| p.weight).collect();
+    Some(target.judged_words(&misses?, &weights))
 }
 
 /// A packaging constraint of the TARGETS file judged on the model file: its value and bounds (m), or why
@@ -68,20 +90,25 @@ pub fn judge<'a>(
         match &target.aim {
             Aim::Figure { key, value } => {
                 let reached = analysis.ok_or_else(|| not_run(report, target)).and_then(|a| figure(a, key));
-                points.push(TargetPoint { target, at: None, aim: *value, reached, statistical: None });
+                points.push(TargetPoint { target, at: None, weight: 1.0, aim: *value, reached, whole: None });
             }
-            Aim::Curve { column, points: aims } => {
+            Aim::Curve { column, points: aims, measure } => {
                 let first = points.len();
-                for &(at, aim) in aims {
+                // The rows' load parameters, where the analysis ran, for a measure over the points' span.
+                let rows = analysis.map(|a| along(&a.table)).unwrap_or_default();
+                for CurveReading { at, aim, weight } in readings(aims, *measure, &rows) {
                     let reached = analysis.ok_or_else(|| not_run(report, target)).and_then(|a| curve(a, column, at));
-                    points.push(TargetPoint { target, at: Some(at), aim, reached, statistical: None });
+                    points.push(TargetPoint { target, at: Some(at), weight, aim, reached, whole: None });
                 }
-                if target.scale == MissScale::Noise {
-                    // Judged whole: every point read, and their χ² within what the noise gives.
-                    let misses: Option<Vec<f64>> =
-                        points[first..].iter().map(TargetPoint::miss_over_tolerance).collect();
-                    let met = misses.is_some_and(|m| target.met_by(&m));
-                    points[first..].iter_mut().for_each(|p| p.statistical = Some(met));
+                if target.scale == MissScale::Noise || *measure != CurveMeasure::Points {
+                    // Judged whole: every reading read, and their measure within the tolerance or the noise.
+                    let misses: Option<Vec<f64>> = points[first..]
+                        .iter()
+                        .map(|p| p.reached.as_ref().ok().map(|r| (r - p.aim) / target.tolerance))
+                        .collect();
+                    let weights: Vec<f64> = points[first..].iter().map(|p| p.weight).collect();
+                    let met = misses.is_some_and(|m| target.met_by(&m, &weights));
+                    points[first..].iter_mut().for_each(|p| p.whole = Some(met));
                 }
             }
         }
@@ -123,8 +150,7 @@ fn curve(a: &AnalysisReport, column: &str, at: f64) -> Result<f64, String> {
     let values = table.column(column).ok_or_else(|| {
         format!("{} has no column '{column}' (it has {})", a.analysis.name(), table.columns.join(", "))
     })?;
-    // The first column is the load parameter.
-    let along: Vec<f64> = table.rows.iter().map(|r| r.first().and_then(Cell::number).unwrap_or(f64::NAN)).collect();
+    let along = along(table);
     let weights = interpolation(&along, at).map_err(|(lo, hi)| {
         format!("{at} is outside the rows run, {lo} to {hi}: run the analysis over a range that holds it")
     })?;
@@ -132,6 +158,11 @@ fn curve(a: &AnalysisReport, column: &str, at: f64) -> Result<f64, String> {
         let v = values[j].ok_or_else(|| format!("the cell of '{column}' at {} is empty", along[j]))?;
         Ok(sum + w * v)
     })
+}
+
+/// The load parameter of each of `table`'s rows, its first column.
+fn along(table: &Table) -> Vec<f64> {
+    table.rows.iter().map(|r| r.first().and_then(Cell::number).unwrap_or(f64::NAN)).collect()
 }
 
 /// A row of the targets judged: a target's point or a packaging constraint.

@@ -39,8 +39,74 @@ pub enum Aim {
     /// in with the default units (`deg/m`, `N/mm`, `%`: `docs/figures.md`, "printed").
     Figure { key: String, value: f64 },
     /// A column of the analysis's table (by its name in the CSV) to pass through `(load parameter, value)`
-    /// points, the table interpolated between its rows.
-    Curve { column: String, points: Vec<(f64, f64)> },
+    /// points, the table interpolated between its rows, its miss measured as `measure` says.
+    Curve { column: String, points: Vec<(f64, f64)>, measure: CurveMeasure },
+}
+
+/// How a curve target's miss is measured (its `measure`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CurveMeasure {
+    /// At each of its points: met when every point's miss is within the tolerance.
+    Points,
+    /// The root mean square of the miss over the points' span, the target curve straight between its
+    /// points: met when it is within the tolerance (in the column's unit).
+    Rms,
+    /// The area between the two curves over the points' span: met when it is within the tolerance (in the
+    /// column's unit times the load parameter's: deg·m for a toe curve over wheel travel).
+    Area,
+}
+
+impl CurveMeasure {
+    /// The measure's name in the TARGETS file.
+    pub fn name(self) -> &'static str {
+        match self {
+            CurveMeasure::Points => "points",
+            CurveMeasure::Rms => "rms",
+            CurveMeasure::Area => "area",
+        }
+    }
+}
+
+/// One place a curve target is read: the load parameter `at`, the target curve's value there, and the
+/// reading's quadrature weight over the span (load parameter's unit; 1 for a point of a [`CurveMeasure::Points`]
+/// target, and for a figure).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurveReading {
+    /// The load parameter.
+    pub at: f64,
+    /// The target's value there.
+    pub aim: f64,
+    /// The reading's weight.
+    pub weight: f64,
+}
+
+/// Where a curve target with `points` is read under `measure`, given the load parameters of the table's
+/// rows, `rows`. At its points alone for [`CurveMeasure::Points`]. Over the points' span otherwise, the
+/// target curve straight between its points: at each point and at each row inside the span, weighted by
+/// the trapezoidal rule, so that `Σ w e²` and `Σ w |e|` of the misses `e` are the span's integrals of the
+/// miss squared and of its size, to the second order in the rows' spacing; the points are nodes too, so
+/// the target's corners fall between panels, not inside one.
+pub fn readings(points: &[(f64, f64)], measure: CurveMeasure, rows: &[f64]) -> Vec<CurveReading> {
+    if measure == CurveMeasure::Points {
+        return points.iter().map(|&(at, aim)| CurveReading { at, aim, weight: 1.0 }).collect();
+    }
+    // Read as sorted by load parameter, each load once (the file's checks).
+    let (a, b) = (points[0].0, points[points.len() - 1].0);
+    let mut at: Vec<f64> = points.iter().map(|p| p.0).chain(rows.iter().copied().filter(|&t| a < t && t < b)).collect();
+    at.sort_by(f64::total_cmp);
+    at.dedup();
+    let aim = |t: f64| {
+        let k = points.windows(2).position(|w| t <= w[1].0).unwrap_or(points.len() - 2);
+        let ((t0, v0), (t1, v1)) = (points[k], points[k + 1]);
+        v0 + (v1 - v0) * (t - t0) / (t1 - t0)
+    };
+    (0..at.len())
+        .map(|i| {
+            let left = if i > 0 { at[i] - at[i - 1] } else { 0.0 };
+            let right = if i + 1 < at.len() { at[i + 1] - at[i] } else { 0.0 };
+            CurveReading { at: at[i], aim: aim(at[i]), weight: 0.5 * (left + right) }
+        })
+        .collect()
 }
 
 /// One target: an analysis, what it is to show, the tolerance its miss is measured in, and where it was
@@ -78,32 +144,57 @@ pub enum MissScale {
 }
 
 impl Target {
-    /// Whether the target's points, whose residuals (each miss over [`Target::tolerance`]) are `residuals`,
-    /// meet it.
-    pub fn met_by(&self, residuals: &[f64]) -> bool {
-        match self.scale {
-            MissScale::Tolerance => residuals.iter().all(|r| r.abs() <= 1.0),
-            MissScale::Noise => {
-                let (chi2, limit) = chi_square_per_point(residuals);
-                chi2 <= limit
-            }
+    /// The curve measure, [`CurveMeasure::Points`] for a figure.
+    pub fn measure(&self) -> CurveMeasure {
+        match self.aim {
+            Aim::Curve { measure, .. } => measure,
+            Aim::Figure { .. } => CurveMeasure::Points,
         }
     }
 
-    /// How the target is judged on `residuals`, in words: the largest miss against the tolerance, or the
-    /// misses' χ² per point against what the noise allows.
-    pub fn judged_words(&self, residuals: &[f64]) -> String {
-        match self.scale {
-            MissScale::Tolerance => {
-                let worst = residuals.iter().fold(0.0f64, |m, r| m.max(r.abs()));
-                format!("largest miss {} of its tolerance", kc::significant(worst, 3))
+    /// What the target's misses `misses` (each reading's miss over [`Target::tolerance`], unweighted by the
+    /// target's `weight`), read with the `weights` of its [`CurveReading`]s, measure against its tolerance: the
+    /// largest miss; the misses' root mean square or the area between the curves; or, against noise, `χ²/n`
+    /// over the most that noise alone gives. It is met when this is at most 1.
+    pub fn measured(&self, misses: &[f64], weights: &[f64]) -> f64 {
+        let span: f64 = weights.iter().sum();
+        match (self.scale, self.measure()) {
+            (MissScale::Noise, _) => {
+                let (chi2, limit) = chi_square_per_point(misses);
+                chi2 / limit
             }
-            MissScale::Noise => {
-                let (chi2, limit) = chi_square_per_point(residuals);
+            (MissScale::Tolerance, CurveMeasure::Points) => misses.iter().fold(0.0f64, |m, r| m.max(r.abs())),
+            (MissScale::Tolerance, CurveMeasure::Rms) => {
+                (misses.iter().zip(weights).map(|(m, w)| w * m * m).sum::<f64>() / span).sqrt()
+            }
+            (MissScale::Tolerance, CurveMeasure::Area) => misses.iter().zip(weights).map(|(m, w)| w * m.abs()).sum(),
+        }
+    }
+
+    /// Whether the misses read with `weights` meet the target ([`Target::measured`] at most 1).
+    pub fn met_by(&self, misses: &[f64], weights: &[f64]) -> bool {
+        self.measured(misses, weights) <= 1.0
+    }
+
+    /// How the target is judged on `misses` read with `weights`, in words: the largest miss against the
+    /// tolerance, the root mean square or area of the miss against it, or the misses' χ² per point against
+    /// what the noise allows.
+    pub fn judged_words(&self, misses: &[f64], weights: &[f64]) -> String {
+        let measured = kc::significant(self.measured(misses, weights), 3);
+        match (self.scale, self.measure()) {
+            (MissScale::Tolerance, CurveMeasure::Points) => format!("largest miss {measured} of its tolerance"),
+            (MissScale::Tolerance, CurveMeasure::Rms) => {
+                format!("root mean square of the miss over the curve's span {measured} of its tolerance")
+            }
+            (MissScale::Tolerance, CurveMeasure::Area) => {
+                format!("area between the curves over its span {measured} of its tolerance")
+            }
+            (MissScale::Noise, _) => {
+                let (chi2, limit) = chi_square_per_point(misses);
                 format!(
                     "χ²/n {} over {} points against the noise, {} the {} that noise alone reaches",
                     kc::significant(chi2, 3),
-                    residuals.len(),
+                    misses.len(),
                     if chi2 <= limit { "within" } else { "beyond" },
                     kc::significant(limit, 3)
                 )
@@ -386,6 +477,25 @@ pub enum TargetsRefusal {
         /// The target's key.
         key: String,
     },
+    /// A curve measure of no known name.
+    #[error("{key}: '{got}' is no curve measure: give \"points\" (each point's miss), \"rms\" (the miss's root mean square over the points' span) or \"area\" (the area between the curves)")]
+    NoMeasure {
+        /// The measure's key.
+        key: String,
+        /// The name given.
+        got: String,
+    },
+    /// An `rms` or `area` curve whose points span no range.
+    #[error(
+        "{key}: a curve measured by its {measure} needs at least two points in increasing order of the load \
+         parameter, which span the curve it measures"
+    )]
+    NoSpan {
+        /// The points' key.
+        key: String,
+        /// The measure.
+        measure: &'static str,
+    },
     /// A target without a tolerance.
     #[error("{key}: give its \"tolerance\": the miss that counts as met")]
     NoTolerance {
@@ -547,6 +657,29 @@ fn tolerance(object: &serde_json::Map<String, Value>, key: &str) -> Result<f64, 
     positive(number(t, &format!("{key}.tolerance"))?, &format!("{key}.tolerance"))
 }
 
+/// A curve target's `measure` (`"points"` when not given); an `rms` or `area` measure needs at least two
+/// `points` in increasing order of the load parameter, which span the curve it measures.
+fn curve_measure(
+    object: &serde_json::Map<String, Value>,
+    key: &str,
+    points: &[(f64, f64)],
+) -> Result<CurveMeasure, TargetsRefusal> {
+    let measures = [CurveMeasure::Points, CurveMeasure::Rms, CurveMeasure::Area];
+    let Some(m) = object.get("measure") else { return Ok(CurveMeasure::Points) };
+    let name = name_in(m, &format!("{key}.measure"))?;
+    let measure = measures
+        .into_iter()
+        .find(|m| m.name() == name)
+        .ok_or_else(|| TargetsRefusal::NoMeasure { key: format!("{key}.measure"), got: name.to_string() })?;
+    if measure != CurveMeasure::Points
+        && (points.len() < 2
+            || points.windows(2).any(|w| w[0].0.partial_cmp(&w[1].0) != Some(std::cmp::Ordering::Less)))
+    {
+        return Err(TargetsRefusal::NoSpan { key: format!("{key}.points"), measure: measure.name() });
+    }
+    Ok(measure)
+}
+
 /// A target's `weight`: a positive number, 1 when not given.
 fn weight(object: &serde_json::Map<String, Value>, key: &str) -> Result<f64, TargetsRefusal> {
     let Some(w) = object.get("weight") else { return Ok(1.0) };
@@ -698,7 +831,7 @@ fn targets_of(
             weight: weight(o, &key)?,
         }])
     } else if let Some(path) = o.get("curve") {
-        only(o, &["curve", "points", "tolerance", "range", "weight"], &key)?;
+        only(o, &["curve", "points", "measure", "tolerance", "range", "weight"], &key)?;
         let (analysis, column) = split(name_in(path, &format!("{key}.curve"))?, "curve")?;
         let points = o
             .get("points")
@@ -709,11 +842,12 @@ fn targets_of(
             .enumerate()
             .map(|(i, p)| pair(p, &format!("{key}.points[{i}]")))
             .collect::<Result<Vec<_>, _>>()?;
+        let measure = curve_measure(o, &key, &points)?;
         Ok(vec![Target {
             label: format!("{key} ({}/{column})", analysis.name()),
             analysis,
             range,
-            aim: Aim::Curve { column, points },
+            aim: Aim::Curve { column, points, measure },
             tolerance: tolerance(o, &key)?,
             scale: MissScale::Tolerance,
             weight: weight(o, &key)?,
@@ -791,7 +925,7 @@ fn measured_targets(
             label: format!("{key} ({file}: {}/{column})", analysis.name()),
             analysis,
             range,
-            aim: Aim::Curve { column: column.clone(), points },
+            aim: Aim::Curve { column: column.clone(), points, measure: CurveMeasure::Points },
             tolerance: per_column(column)?,
             scale,
             weight: weight(o, &key)?,

@@ -21,7 +21,9 @@ use super::fit::FitUncertainty;
 use super::parameter::hardpoint_pointer;
 use super::parameter::{ParameterError, Parameters};
 use super::sensitivity::{analysis_sensitivity, AnalysisSensitivity, NoDerivative, SensitivityError};
-use super::targets::{interpolation, Aim, Constraint, MissScale, Target, Targets};
+use super::targets::{
+    interpolation, readings, Aim, Constraint, CurveMeasure, CurveReading, MissScale, Target, Targets,
+};
 use crate::kc::{AnalysisReport, Cell, Chart, Scale, Series, Settings, Table, YAxis};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
@@ -65,6 +67,8 @@ pub struct Row {
     pub value: f64,
     /// The value aimed at.
     pub aim: f64,
+    /// The reading's weight in its target's measure ([`CurveReading::weight`]; 1 for a figure and a point).
+    pub weight: f64,
 }
 
 /// A packaging constraint at a point: `min ≤ value + rates · d ≤ max` to first order.
@@ -281,7 +285,7 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
         let s = &runs.iter().find(|(a, r, _)| *a == t.analysis && *r == t.range).expect("run for every target").2;
         match &t.aim {
             Aim::Figure { key, value } => misses.figure(k, t, s, key, *value)?,
-            Aim::Curve { column, points } => misses.curve(k, t, s, &p, column, points)?,
+            Aim::Curve { .. } => misses.curve(k, t, s, &p)?,
         }
     }
     let packaging =
@@ -326,21 +330,12 @@ struct Misses {
 }
 
 impl Misses {
-    /// One residual of target `k`, `t`: `reached` (with its `gradient`) against `aim`, at a curve's point
-    /// `at`.
-    fn push(
-        &mut self,
-        k: usize,
-        t: &Target,
-        at: Option<f64>,
-        reached: f64,
-        aim: f64,
-        gradient: &[f64],
-    ) -> Result<(), TuneError> {
-        let (residual, rates) = scaled_miss(t, reached, aim, gradient)?;
+    /// The residual of `row`, of the target `t`, whose value's rates are `gradient`.
+    fn push(&mut self, t: &Target, row: Row, gradient: &[f64]) -> Result<(), TuneError> {
+        let (residual, rates) = scaled_miss(t, row.weight, row.value, row.aim, gradient)?;
         self.residuals.push(residual);
         self.jacobian.push(rates);
-        self.rows.push(Row { target: k, at, value: reached, aim });
+        self.rows.push(row);
         Ok(())
     }
 
@@ -369,20 +364,14 @@ impl Misses {
             .iter()
             .map(|r| r.map(|r| r.value * factor).map_err(|why| NoReading::FigureRate { label: t.label.clone(), why }))
             .collect::<Result<Vec<f64>, _>>()?;
-        self.push(k, t, None, reached * factor, value, &gradient)
+        self.push(t, Row { target: k, at: None, value: reached * factor, aim: value, weight: 1.0 }, &gradient)
     }
 
-    /// The residuals of target `k`, `t`, that aims the `column` of `s`'s table at `points` (load parameter,
-    /// aim), each read between the rows about it; `p` are the free numbers.
-    fn curve(
-        &mut self,
-        k: usize,
-        t: &Target,
-        s: &AnalysisSensitivity,
-        p: &Parameters,
-        column: &str,
-        points: &[(f64, f64)],
-    ) -> Result<(), TuneError> {
+    /// The residuals of target `k`, `t`, a curve that aims a column of `s`'s table at its points (load
+    /// parameter, aim) under its measure, each reading ([`readings`]) between the rows about it; `p` are the
+    /// free numbers.
+    fn curve(&mut self, k: usize, t: &Target, s: &AnalysisSensitivity, p: &Parameters) -> Result<(), TuneError> {
+        let Aim::Curve { column, points, measure } = &t.aim else { return Ok(()) };
         let table = &s.report.table;
         if !table.columns.iter().any(|c| c == column) {
             let has = table.columns.clone();
@@ -393,7 +382,7 @@ impl Misses {
         rows_stay(t, s, p, &along)?;
         let values = s.column(column);
         let rates: Vec<Vec<super::sensitivity::Rate>> = (0..p.len()).map(|q| s.d_column(column, q)).collect();
-        for &(at, aim) in points {
+        for CurveReading { at, aim, weight } in readings(points, *measure, &along) {
             let weights = interpolation(&along, at).map_err(|(lo, hi)| NotGiven::OutsideRange {
                 label: t.label.clone(),
                 at,
@@ -415,7 +404,7 @@ impl Misses {
                     *g += w * d.value;
                 }
             }
-            self.push(k, t, Some(at), reached, aim, &gradient)?;
+            self.push(t, Row { target: k, at: Some(at), value: reached, aim, weight }, &gradient)?;
         }
         Ok(())
     }
@@ -439,14 +428,30 @@ fn rows_stay(t: &Target, s: &AnalysisSensitivity, p: &Parameters, along: &[f64])
 /// The miss of `reached` from `aim` over the target's tolerance, and its rates from the figure's `gradient`:
 /// refused, naming the target, where they are too large to be squared (an aim of 1e308, a tolerance of
 /// 1e-300), which the objective `½ Σ r²` is.
-fn scaled_miss(t: &Target, reached: f64, aim: f64, gradient: &[f64]) -> Result<(f64, Vec<f64>), NotGiven> {
-    let scale = t.weight / t.tolerance;
+fn scaled_miss(t: &Target, weight: f64, reached: f64, aim: f64, gradient: &[f64]) -> Result<(f64, Vec<f64>), NotGiven> {
+    let scale = t.weight / t.tolerance * reading_scale(t, weight);
     let residual = (reached - aim) * scale;
     let rates: Vec<f64> = gradient.iter().map(|g| g * scale).collect();
     if (residual * residual).is_finite() && rates.iter().all(|r| (r * r).is_finite()) {
         Ok((residual, rates))
     } else {
         Err(NotGiven::TooFar { label: t.label.clone(), reached, aim, tolerance: t.tolerance })
+    }
+}
+
+/// What a reading of quadrature weight `weight` ([`CurveReading::weight`]) of target `t` counts in the
+/// objective `½ Σ r²`, its miss over the tolerance times this: 1 at a point; `√(w / L)` for a curve
+/// measured by its root mean square over its span `L`, so that `Σ r²` is that measure over the tolerance,
+/// squared; `√(w L)` for one measured by the area between the curves, so that `Σ r²` is `L` times the
+/// root mean square over the tolerance, squared, which bounds the area over the tolerance from above
+/// (`∫|e| ≤ √(L ∫e²)`): a tune that brings its objective within 1 meets the area.
+fn reading_scale(t: &Target, weight: f64) -> f64 {
+    let Aim::Curve { points, measure, .. } = &t.aim else { return 1.0 };
+    let span = points.last().map_or(0.0, |l| l.0) - points[0].0;
+    match measure {
+        CurveMeasure::Points => 1.0,
+        CurveMeasure::Rms => (weight / span).sqrt(),
+        CurveMeasure::Area => (weight * span).sqrt(),
     }
 }
 
@@ -524,10 +529,10 @@ pub struct Iteration {
 pub struct Verdict {
     /// The target's label.
     pub target: String,
-    /// The largest residual of it (miss over tolerance).
+    /// Its misses measured against its tolerance ([`Target::measured`]): the largest miss over the
+    /// tolerance, a curve's root mean square or area over it, or `χ²/n` over the most noise gives.
     pub worst: f64,
-    /// Whether it is met: every residual within one, or, against a measured file's noise, their `χ²/n`
-    /// within what the noise gives ([`Target::met_by`]).
+    /// Whether it is met: [`Target::measured`] at most 1 ([`Target::met_by`]).
     pub met: bool,
     /// How it was judged, in words ([`Target::judged_words`]).
     pub judged: String,
@@ -674,7 +679,7 @@ impl Tuned {
     pub fn charts(&self, targets: &Targets, model: &str) -> Vec<Chart> {
         let mut charts = Vec::new();
         for (k, t) in targets.targets.iter().enumerate() {
-            let Aim::Curve { column, points } = &t.aim else { continue };
+            let Aim::Curve { column, points, .. } = &t.aim else { continue };
             let curve = |e: &Evaluation, name: &str| -> Option<Series> {
                 let report = e.reports.iter().find(|r| r.analysis == t.analysis)?;
                 let c = report.table.columns.iter().position(|x| x == column)?;
@@ -1158,11 +1163,11 @@ fn verdicts(
         .enumerate()
         .map(|(k, t)| {
             // Judged unweighted: each miss over the tolerance.
-            let own: Vec<f64> =
-                e.rows.iter().zip(&e.residuals).filter(|(r, _)| r.target == k).map(|(_, r)| r / t.weight).collect();
-            let worst = own.iter().fold(0.0f64, |m, r| m.max(r.abs()));
-            let met = t.met_by(&own);
-            let judged = t.judged_words(&own);
+            let (own, weights): (Vec<f64>, Vec<f64>) =
+                e.rows.iter().filter(|r| r.target == k).map(|r| ((r.value - r.aim) / t.tolerance, r.weight)).unzip();
+            let worst = t.measured(&own, &weights);
+            let met = t.met_by(&own, &weights);
+            let judged = t.judged_words(&own, &weights);
             let why = (!met).then(|| {
                 let held: Vec<String> = at_bound.iter().chain(&packed).cloned().collect();
                 if let Some(why) = no_step {
