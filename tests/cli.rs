@@ -2172,3 +2172,35 @@ fn run_judges_a_curve_by_its_root_mean_square_in_one_line() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `tune` with an objective: the figure before and after and what holds it, in the terminal and the
+/// report; no uncertainty for an optimum, which is no fit; each target kept as a bound.
+#[test]
+fn tune_with_an_objective_says_the_figure_and_what_holds_it() {
+    let dir = scratch("objective");
+    let targets = dir.join("objective.json");
+    let text = serde_json::json!({
+        "free": { "/suspension/macpherson/hardpoints/tie_rod_inner/2": [-0.099, -0.019],
+                  "/suspension/macpherson/hardpoints/lower_arm_front/2": [-0.196, -0.116] },
+        "objective": { "most": "parallel-travel/bump_steer" },
+        "targets": [ { "figure": "parallel-travel/camber_gain", "value": -15.059, "tolerance": 0.5 } ],
+        "steps": 20 });
+    std::fs::write(&targets, text.to_string()).unwrap();
+    let out = dir.join("out");
+    let o = succeeds(&[
+        "tune",
+        "examples/generic/macpherson.json",
+        targets.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let said = stdout.lines().find(|l| l.contains("objective (most parallel-travel/bump_steer): -32.69 ->")).unwrap();
+    assert!(said.contains("at the lower end of its tolerance"), "{stdout}");
+    assert!(stdout.contains("met: targets[0] (parallel-travel/camber_gain)") && !stdout.contains("±"), "{stdout}");
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(html.contains("objective (most parallel-travel/bump_steer)") && html.contains("no uncertainty"));
+    let uncertainty = read_csv(&out.join("tune_uncertainty.csv"));
+    assert!(uncertainty.iter().all(|r| r[2].is_empty()), "{uncertainty:?}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -296,20 +296,22 @@ impl Model {
         d.set_item("before", PyArray1::from_vec(py, tuned.start.x.clone()))?;
         d.set_item("after", PyArray1::from_vec(py, tuned.end.x.clone()))?;
         d.set_item("iterations", column_dict(py, &tuned.iteration_table())?)?;
-        let u = &tuned.uncertainty;
-        let uncertainty = PyDict::new(py);
-        uncertainty.set_item("standard", u.standard.iter().map(|s| s.unwrap_or(f64::NAN)).collect::<Vec<f64>>())?;
-        let correlation: Vec<Vec<f64>> =
-            u.correlation.iter().map(|row| row.iter().map(|c| c.unwrap_or(f64::NAN)).collect()).collect();
-        uncertainty.set_item("correlation", correlation)?;
-        uncertainty.set_item("residual_scale", u.residual_scale)?;
-        uncertainty.set_item("degrees_of_freedom", u.degrees_of_freedom)?;
-        let at_bound: Vec<&str> = u.at_bound.iter().map(|&k| pointers[k].as_str()).collect();
-        uncertainty.set_item("at_bound", at_bound)?;
-        let unseen: Vec<String> = u.unseen.iter().map(|d| d.said(&pointers)).collect();
-        uncertainty.set_item("unseen", unseen)?;
-        uncertainty.set_item("unique", u.unique())?;
-        d.set_item("uncertainty", uncertainty)?;
+        match &tuned.uncertainty {
+            Some(u) => d.set_item("uncertainty", uncertainty_dict(py, u, &pointers)?)?,
+            None => d.set_item("uncertainty", py.None())?,
+        }
+        match &tuned.objective {
+            Some(o) => {
+                let e = PyDict::new(py);
+                e.set_item("objective", &o.label)?;
+                e.set_item("before", o.start)?;
+                e.set_item("after", o.end)?;
+                e.set_item("unit", &o.unit)?;
+                e.set_item("held_by", &o.held_by)?;
+                d.set_item("objective", e)?;
+            }
+            None => d.set_item("objective", py.None())?,
+        }
         let text = serde_json::to_string_pretty(&tuned.document).map_err(|e| AnalysisError::new_err(e.to_string()))?;
         d.set_item("tuned", text)?;
         Ok(d)
@@ -673,4 +675,25 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("BATCH_STEPS", batch::STEPS)?;
     m.add("BATCH_FIGURES", batch::FIGURES.to_vec())?;
     Ok(())
+}
+
+/// A fit's uncertainty as the tune's dict gives it, for free numbers `pointers`.
+fn uncertainty_dict<'py>(
+    py: Python<'py>,
+    u: &elastokin_suspensions::design::fit::FitUncertainty,
+    pointers: &[String],
+) -> PyResult<Bound<'py, PyDict>> {
+    let uncertainty = PyDict::new(py);
+    uncertainty.set_item("standard", u.standard.iter().map(|s| s.unwrap_or(f64::NAN)).collect::<Vec<f64>>())?;
+    let correlation: Vec<Vec<f64>> =
+        u.correlation.iter().map(|row| row.iter().map(|c| c.unwrap_or(f64::NAN)).collect()).collect();
+    uncertainty.set_item("correlation", correlation)?;
+    uncertainty.set_item("residual_scale", u.residual_scale)?;
+    uncertainty.set_item("degrees_of_freedom", u.degrees_of_freedom)?;
+    let at_bound: Vec<&str> = u.at_bound.iter().map(|&k| pointers[k].as_str()).collect();
+    uncertainty.set_item("at_bound", at_bound)?;
+    let unseen: Vec<String> = u.unseen.iter().map(|d| d.said(pointers)).collect();
+    uncertainty.set_item("unseen", unseen)?;
+    uncertainty.set_item("unique", u.unique())?;
+    Ok(uncertainty)
 }

@@ -198,6 +198,28 @@ def test_a_curve_tuned_by_its_root_mean_square_reports_it():
     assert verdict["met"] == (rms <= 1e-3)
 
 
+def test_an_objective_reports_its_figure_before_and_after():
+    # The most bump steer with the camber gain within 0.5 deg/m of the model's: the figure after is the
+    # tuned model's own, run again; an optimum is no fit, so no uncertainty.
+    model = elastokin.load(MODEL)
+    before = model.run("parallel-travel", steps=20)
+    camber = before.figure("camber_gain")
+    front = "/suspension/macpherson/hardpoints/lower_arm_front/2"
+    base = json.loads(open(MODEL).read())["suspension"]["macpherson"]["hardpoints"]
+    inner_z, front_z = base["tie_rod_inner"][2], base["lower_arm_front"][2]
+    targets = {"free": {TIE_ROD_Z: [inner_z - 0.04, inner_z + 0.04], front: [front_z - 0.04, front_z + 0.04]},
+               "objective": {"most": "parallel-travel/bump_steer"}, "steps": 20,
+               "targets": [{"figure": "parallel-travel/camber_gain", "value": camber, "tolerance": 0.5}]}
+    t = model.tune(targets)
+    o = t["objective"]
+    assert t["uncertainty"] is None and o["unit"] == "deg/m"
+    assert o["before"] == pytest.approx(before.figure("bump_steer"), rel=1e-12)
+    after = elastokin.load(json.loads(t["tuned"])).run("parallel-travel", steps=20)
+    # Measured: the same to the bit (the tuned file holds every digit of the numbers).
+    assert o["after"] == pytest.approx(after.figure("bump_steer"), rel=1e-13)
+    assert o["after"] > o["before"] + 30 and any("end of its tolerance" in h for h in o["held_by"])
+
+
 def test_a_target_the_model_has_not_is_a_bad_file_not_a_failed_analysis():
     # Known only once the analysis runs, as the command's exit 2 says: a ValueError, as a bad file is.
     targets = json.loads(open("examples/targets/bump_steer.json").read())

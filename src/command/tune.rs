@@ -111,12 +111,11 @@ fn tune_printing(
 /// Each free number before and after with its standard uncertainty, what the fit cannot tell, whether
 /// each target is met, whether each packaging constraint holds.
 fn print_tuned(out: &Stdout, tuned: &Tuned, targets: &Targets) -> Result<(), Failure> {
-    let u = &tuned.uncertainty;
     for (f, k) in targets.free.iter().zip(0..) {
-        let uncertainty = match (u.standard[k], u.at_bound.contains(&k)) {
-            (_, true) => "held by a bound".to_string(),
-            (Some(s), false) => format!("± {}", design::parameter_value_words(&f.pointer, s)),
-            (None, false) => String::new(),
+        let uncertainty = match tuned.uncertainty.as_ref().map(|u| (u.standard[k], u.at_bound.contains(&k))) {
+            Some((_, true)) => "held by a bound".to_string(),
+            Some((Some(s), false)) => format!("± {}", design::parameter_value_words(&f.pointer, s)),
+            Some((None, false)) | None => String::new(),
         };
         out.line(format!(
             "  {:<40} {:>14} -> {:<14} {uncertainty}",
@@ -126,10 +125,15 @@ fn print_tuned(out: &Stdout, tuned: &Tuned, targets: &Targets) -> Result<(), Fai
         ))?;
     }
     let pointers: Vec<String> = targets.free.iter().map(|f| f.pointer.clone()).collect();
-    let correlations = if u.residual_scale.is_some() { "; correlations in tune_uncertainty.csv" } else { "" };
-    out.line(format!("  {}{correlations}", u.basis()))?;
-    for unseen in &u.unseen {
-        out.line(format!("  {}", FitUncertainty::not_unique(unseen, &pointers)))?;
+    if let Some(u) = &tuned.uncertainty {
+        let correlations = if u.residual_scale.is_some() { "; correlations in tune_uncertainty.csv" } else { "" };
+        out.line(format!("  {}{correlations}", u.basis()))?;
+        for unseen in &u.unseen {
+            out.line(format!("  {}", FitUncertainty::not_unique(unseen, &pointers)))?;
+        }
+    }
+    if let Some(o) = &tuned.objective {
+        out.line(format!("  {}", o.said()))?;
     }
     for v in &tuned.verdicts {
         let state = if v.met { "met" } else { "NOT met" };

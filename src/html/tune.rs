@@ -85,6 +85,9 @@ fn write_tune_page(
 fn write_targets(out: &mut String, tuned: &crate::suspensions::design::tune::Tuned) -> std::fmt::Result {
     writeln!(out, "<section id=\"targets\">")?;
     writeln!(out, "<h2>Targets</h2>")?;
+    if let Some(o) = &tuned.objective {
+        writeln!(out, "<p class=\"verdict\">{}; each target below is a bound it keeps.</p>", text(&o.said()))?;
+    }
     writeln!(out, "<table class=\"figures\"><thead><tr><th>target</th><th>judged by</th><th>met</th><th>why not</th></tr></thead><tbody>")?;
     for v in &tuned.verdicts {
         let (class, said) = if v.met { ("ok", "yes") } else { ("bad", "no") };
@@ -121,7 +124,12 @@ fn write_uncertainty(
     tuned: &crate::suspensions::design::tune::Tuned,
     targets: &crate::suspensions::design::targets::Targets,
 ) -> std::fmt::Result {
-    let u = &tuned.uncertainty;
+    let Some(u) = &tuned.uncertainty else {
+        return writeln!(
+            out,
+            "<p class=\"note\">an objective's optimum is no fit: its numbers have no uncertainty</p>"
+        );
+    };
     let pointers: Vec<String> = targets.free.iter().map(|f| f.pointer.clone()).collect();
     writeln!(out, "<p class=\"note\">{}</p>", text(&u.basis()))?;
     if !u.at_bound.is_empty() {

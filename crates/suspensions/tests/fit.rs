@@ -65,7 +65,7 @@ fn the_reported_uncertainty_of_fitted_rates_is_the_scatter_of_noisy_fits() {
         // fit to the truth is not.
         assert!(tuned.all_met(), "{seed}: {:?}", tuned.verdicts);
         within_tolerance += usize::from(tuned.end.residuals.iter().all(|r| r.abs() <= 1.0));
-        let u = &tuned.uncertainty;
+        let u = tuned.uncertainty.as_ref().expect("a fit has an uncertainty");
         assert!(u.at_bound.is_empty() && u.unique(), "{seed}: {u:?}");
         assert_eq!(u.degrees_of_freedom, 2 * load.len() - 2);
         fitted.push([tuned.end.x[0], tuned.end.x[1]]);
@@ -157,7 +157,7 @@ fn a_tie_rod_point_along_the_rod_is_named_as_what_the_toe_curve_cannot_see() {
     let targets = read_targets(&text, "t.json", &base, |f| Err(format!("no file {f}"))).unwrap();
     let p = Parameters::new(&base, &[x.to_string(), z.to_string()]).unwrap();
     let tuned = tune(&p, &targets, |_| {}).unwrap();
-    let u = &tuned.uncertainty;
+    let u = tuned.uncertainty.as_ref().expect("a fit has an uncertainty");
     assert!(!u.unique(), "{u:?}");
     let said = u.unseen[0].said(&[x.to_string(), z.to_string()]);
     // Measured: x alone (+1.00), uncertain by 80 % of its ±20 mm; z is seen.

@@ -232,9 +232,46 @@ impl Constraint {
     }
 }
 
+/// A figure to make as small or as large as the targets, held as bounds, allow (the `objective`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Objective {
+    /// Where it was given, for messages: `objective (parallel-travel/bump_steer)`.
+    pub label: String,
+    /// The analysis.
+    pub analysis: Analysis,
+    /// The load parameter's range to walk, when given.
+    pub range: Option<(f64, f64)>,
+    /// The figure's key.
+    pub key: String,
+    /// Least or most.
+    pub sense: Sense,
+}
+
+/// Which way an [`Objective`] moves its figure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Sense {
+    /// As small as it can be (the most negative, for a signed figure).
+    Least,
+    /// As large as it can be.
+    Most,
+}
+
+impl Sense {
+    /// The word, as the TARGETS file gives it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Sense::Least => "least",
+            Sense::Most => "most",
+        }
+    }
+}
+
 /// A TARGETS file, read and checked against the model.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Targets {
+    /// The figure to make least or most, if any: then each target is a bound the tune must keep (each
+    /// point's miss within its tolerance), not a miss to make small.
+    pub objective: Option<Objective>,
     /// The free numbers, in the file's order.
     pub free: Vec<Free>,
     /// The targets, a measured file's columns each its own curve target.
@@ -496,6 +533,24 @@ pub enum TargetsRefusal {
         /// The measure.
         measure: &'static str,
     },
+    /// An objective that names neither `least` nor `most`, or both.
+    #[error("objective: give one of \"least\" or \"most\", the figure by \"analysis/key\"")]
+    NoSense,
+    /// A target that cannot be a bound under an objective.
+    #[error(
+        "{label}: with an objective each target is a bound, every point's miss within its tolerance: give a \
+         figure or a curve measured at its points, with a tolerance (no noise, rms or area)"
+    )]
+    NotBound {
+        /// The target.
+        label: String,
+    },
+    /// A weight on a target that is a bound.
+    #[error("{label}: with an objective each target is a bound, which a weight does not change: leave out \"weight\"")]
+    WeightedBound {
+        /// The target.
+        label: String,
+    },
     /// A target without a tolerance.
     #[error("{key}: give its \"tolerance\": the miss that counts as met")]
     NoTolerance {
@@ -657,6 +712,35 @@ fn tolerance(object: &serde_json::Map<String, Value>, key: &str) -> Result<f64, 
     positive(number(t, &format!("{key}.tolerance"))?, &format!("{key}.tolerance"))
 }
 
+/// The `objective`: `{"least": "analysis/figure"}` or `{"most": …}`, and an optional `range`.
+fn objective(o: &Value) -> Result<Objective, TargetsRefusal> {
+    use TargetsRefusal as R;
+    let key = "objective";
+    let o = o.as_object().ok_or_else(|| R::NotObjectAt { key: key.into() })?;
+    only(o, &["least", "most", "range"], key)?;
+    let (sense, path) = match (o.get("least"), o.get("most")) {
+        (Some(p), None) => (Sense::Least, p),
+        (None, Some(p)) => (Sense::Most, p),
+        _ => return Err(R::NoSense),
+    };
+    let named = format!("{key}.{}", sense.name());
+    let path = name_in(path, &named)?;
+    let (analysis, figure) = path.split_once('/').ok_or_else(|| R::NotAnalysisPath {
+        key: key.into(),
+        what: "figure",
+        path: path.to_string(),
+    })?;
+    let analysis = analysis_named(analysis, &named)?;
+    let range = o.get("range").map(|r| pair(r, &format!("{key}.range"))).transpose()?;
+    Ok(Objective {
+        label: format!("{key} ({} {}/{figure})", sense.name(), analysis.name()),
+        analysis,
+        range,
+        key: figure.to_string(),
+        sense,
+    })
+}
+
 /// A curve target's `measure` (`"points"` when not given); an `rms` or `area` measure needs at least two
 /// `points` in increasing order of the load parameter, which span the curve it measures.
 fn curve_measure(
@@ -744,7 +828,7 @@ fn targets_in(
     use TargetsRefusal as R;
     let root = super::keys::read_json(text)?;
     let object = root.as_object().ok_or(R::NotObject)?;
-    only(object, &["free", "targets", "constraints", "steps"], "the top level")?;
+    only(object, &["free", "objective", "targets", "constraints", "steps"], "the top level")?;
     let steps = steps(object)?;
     let free = if reading == Reading::ToJudge && !object.contains_key("free") {
         Vec::new()
@@ -767,7 +851,21 @@ fn targets_in(
     }
     let listed = object.get("constraints").and_then(Value::as_array).into_iter().flatten();
     let constraints = listed.enumerate().map(|(k, c)| constraint(k, c, document)).collect::<Result<_, _>>()?;
-    Ok(Targets { free, targets, constraints, steps })
+    let objective = object.get("objective").map(objective).transpose()?;
+    if objective.is_some() {
+        // Each target a bound: a miss within its tolerance at every point, as given.
+        if let Some(t) = targets.iter().find(|t| t.scale == MissScale::Noise || t.measure() != CurveMeasure::Points) {
+            return Err(R::NotBound { label: t.label.clone() });
+        }
+        if let Some(t) = targets.iter().find(|t| t.weight != 1.0) {
+            return Err(R::WeightedBound { label: t.label.clone() });
+        }
+    }
+    if let Some(o) = &objective {
+        let settings = kc::Settings { range: o.range, steps, ..kc::Settings::default() };
+        kc::check_settings(o.analysis, &settings).map_err(|e| R::Range { label: o.label.clone(), cause: e.cause })?;
+    }
+    Ok(Targets { objective, free, targets, constraints, steps })
 }
 
 /// The `free` numbers of the TARGETS file's top level `object`, each with its bounds, which must hold its

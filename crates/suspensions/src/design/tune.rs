@@ -24,7 +24,7 @@ use super::sensitivity::{analysis_sensitivity, AnalysisSensitivity, NoDerivative
 use super::targets::{
     interpolation, readings, Aim, Constraint, CurveMeasure, CurveReading, MissScale, Target, Targets,
 };
-use crate::kc::{AnalysisReport, Cell, Chart, Scale, Series, Settings, Table, YAxis};
+use crate::kc::{self, Analysis, AnalysisReport, Cell, Chart, Scale, Series, Settings, Table, YAxis};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus, SupportedConeT,
@@ -50,10 +50,24 @@ pub struct Evaluation {
     /// For each residual: its target (index into [`Targets::targets`]), the value reached and the value aimed
     /// at, in the target's unit.
     pub rows: Vec<Row>,
-    /// Each packaging constraint's value, rates and allowed range.
+    /// Each packaging constraint's value, rates and allowed range, in the file's order; with an objective,
+    /// then each target's residual as a bound, within ±1.
     pub packaging: Vec<Linearised>,
+    /// The objective's figure, when the targets have one.
+    pub goal: Option<Goal>,
     /// The analyses run, one per analysis and range the targets name.
     pub reports: Vec<AnalysisReport>,
+}
+
+/// An objective's figure at one point of the free numbers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Goal {
+    /// The figure, in the unit it is written in (as a figure target gives its value).
+    pub figure: f64,
+    /// Its rates with respect to the free numbers.
+    pub rates: Vec<f64>,
+    /// +1 where the least is sought, −1 for the most: the tune makes `sign × figure` least.
+    pub sign: f64,
 }
 
 /// One residual's provenance.
@@ -85,9 +99,12 @@ pub struct Linearised {
 }
 
 impl Evaluation {
-    /// `½ Σ r²`.
+    /// What the tune makes least: `½ Σ r²`, or with an objective, its figure (negated for the most).
     pub fn objective(&self) -> f64 {
-        0.5 * self.residuals.iter().map(|r| r * r).sum::<f64>()
+        match &self.goal {
+            Some(g) => g.sign * g.figure,
+            None => 0.5 * self.residuals.iter().map(|r| r * r).sum::<f64>(),
+        }
     }
 
     /// `½ Σ (r + J d)²`: the objective the Gauss–Newton model predicts a step `d` leads to.
@@ -288,14 +305,31 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
             Aim::Curve { .. } => misses.curve(k, t, s, &p)?,
         }
     }
-    let packaging =
+    let mut packaging: Vec<Linearised> =
         targets.constraints.iter().map(|c| linearise(c, p.document(), &p.pointers)).collect::<Result<_, _>>()?;
+    let goal = match &targets.objective {
+        None => None,
+        Some(o) => {
+            // With an objective the targets are bounds: each miss over its tolerance within ±1.
+            let bounds = misses.residuals.iter().zip(&misses.jacobian);
+            packaging.extend(bounds.map(|(r, rates)| Linearised {
+                value: *r,
+                rates: rates.clone(),
+                min: -1.0,
+                max: 1.0,
+            }));
+            let s = &runs.iter().find(|(a, r, _)| *a == o.analysis && *r == o.range).expect("run for the objective").2;
+            let (figure, rates) = figure_reading(&o.label, o.analysis, s, &o.key)?;
+            Some(Goal { figure, rates, sign: if o.sense == super::targets::Sense::Least { 1.0 } else { -1.0 } })
+        }
+    };
     Ok(Evaluation {
         x: x.to_vec(),
         residuals: misses.residuals,
         jacobian: misses.jacobian,
         rows: misses.rows,
         packaging,
+        goal,
         reports: runs.into_iter().map(|(_, _, s)| s.report).collect(),
     })
 }
@@ -304,19 +338,20 @@ pub fn evaluate(parameters: &Parameters, targets: &Targets, x: &[f64]) -> Result
 /// analysis and range, its rows read only as far as its figures read them where only figures are aimed at.
 fn runs_for(targets: &Targets, p: &Parameters) -> Result<Vec<Run>, TuneError> {
     let mut runs: Vec<Run> = Vec::new();
-    for t in &targets.targets {
-        if runs.iter().any(|(a, r, _)| *a == t.analysis && *r == t.range) {
+    let objective = targets.objective.iter().map(|o| (o.analysis, o.range));
+    for (analysis, range) in targets.targets.iter().map(|t| (t.analysis, t.range)).chain(objective) {
+        if runs.iter().any(|(a, r, _)| *a == analysis && *r == range) {
             continue;
         }
         let figures_only = targets
             .targets
             .iter()
-            .filter(|u| u.analysis == t.analysis && u.range == t.range)
+            .filter(|u| u.analysis == analysis && u.range == range)
             .all(|u| matches!(u.aim, Aim::Figure { .. }));
-        let settings = Settings { range: t.range, steps: targets.steps, figures_only, ..Settings::default() };
-        let s = analysis_sensitivity(t.analysis, p, &settings)
-            .map_err(|error| TuneError::Analysis { analysis: t.analysis.name(), error })?;
-        runs.push((t.analysis, t.range, s));
+        let settings = Settings { range, steps: targets.steps, figures_only, ..Settings::default() };
+        let s = analysis_sensitivity(analysis, p, &settings)
+            .map_err(|error| TuneError::Analysis { analysis: analysis.name(), error })?;
+        runs.push((analysis, range, s));
     }
     Ok(runs)
 }
@@ -348,23 +383,8 @@ impl Misses {
         key: &str,
         value: f64,
     ) -> Result<(), TuneError> {
-        let (figure, rates) = s.figure(key).ok_or_else(|| NotGiven::NoFigure {
-            label: t.label.clone(),
-            analysis: t.analysis.name(),
-            key: key.to_string(),
-            has: s.report.figures.iter().map(|f| f.key.clone()).collect(),
-        })?;
-        let reached = figure.value.ok_or_else(|| NotGiven::NoValue {
-            label: t.label.clone(),
-            reason: figure.reason.clone().unwrap_or_default(),
-        })?;
-        // The target is in the unit the figure is written in; the figure and its rates are in SI.
-        let factor = figure.unit.shown().factor;
-        let gradient = rates
-            .iter()
-            .map(|r| r.map(|r| r.value * factor).map_err(|why| NoReading::FigureRate { label: t.label.clone(), why }))
-            .collect::<Result<Vec<f64>, _>>()?;
-        self.push(t, Row { target: k, at: None, value: reached * factor, aim: value, weight: 1.0 }, &gradient)
+        let (reached, gradient) = figure_reading(&t.label, t.analysis, s, key)?;
+        self.push(t, Row { target: k, at: None, value: reached, aim: value, weight: 1.0 }, &gradient)
     }
 
     /// The residuals of target `k`, `t`, a curve that aims a column of `s`'s table at its points (load
@@ -408,6 +428,33 @@ impl Misses {
         }
         Ok(())
     }
+}
+
+/// The figure `key` of `s`, a run of `analysis` read for what `label` names, and its rates, in the unit
+/// the figure is written in (the unit a target gives its value in; the figure and its rates are held in
+/// SI).
+fn figure_reading(
+    label: &str,
+    analysis: Analysis,
+    s: &AnalysisSensitivity,
+    key: &str,
+) -> Result<(f64, Vec<f64>), TuneError> {
+    let (figure, rates) = s.figure(key).ok_or_else(|| NotGiven::NoFigure {
+        label: label.to_string(),
+        analysis: analysis.name(),
+        key: key.to_string(),
+        has: s.report.figures.iter().map(|f| f.key.clone()).collect(),
+    })?;
+    let reached = figure.value.ok_or_else(|| NotGiven::NoValue {
+        label: label.to_string(),
+        reason: figure.reason.clone().unwrap_or_default(),
+    })?;
+    let factor = figure.unit.shown().factor;
+    let gradient = rates
+        .iter()
+        .map(|r| r.map(|r| r.value * factor).map_err(|why| NoReading::FigureRate { label: label.to_string(), why }))
+        .collect::<Result<Vec<f64>, _>>()?;
+    Ok((reached * factor, gradient))
 }
 
 /// Refuses a curve target whose rows move with the free numbers: the rows must sit where they sit for
@@ -566,9 +613,28 @@ pub struct Tuned {
     pub stopped: String,
     /// The model file with the free numbers at the end, every other key and the order of keys as given.
     pub document: Value,
+    /// The objective's figure at the start and the end, and what holds it, when the targets have one.
+    pub objective: Option<ObjectiveVerdict>,
     /// What the fit can know of the free numbers at the end: their uncertainties and correlations, those a
-    /// bound holds, the directions the targets cannot tell.
-    pub uncertainty: FitUncertainty,
+    /// bound holds, the directions the targets cannot tell (none with an objective, which is no fit).
+    pub uncertainty: Option<FitUncertainty>,
+}
+
+/// An objective's outcome: its figure before and after (in the unit it is written in), and what holds it
+/// there.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObjectiveVerdict {
+    /// The objective, in the TARGETS file's words: `objective (least parallel-travel/bump_steer)`.
+    pub label: String,
+    /// The figure at the start.
+    pub start: f64,
+    /// The figure at the end.
+    pub end: f64,
+    /// The unit both are in, as the figure is written.
+    pub unit: String,
+    /// What holds it: the free numbers at a bound, the packaging at its limits, the targets at the ends
+    /// of their tolerances, in the engineer's words.
+    pub held_by: Vec<String>,
 }
 
 impl Tuned {
@@ -640,7 +706,7 @@ impl Tuned {
                     Cell::from(self.start.x[k]),
                     Cell::from(self.end.x[k]),
                     Cell::from(self.end.x[k] - self.start.x[k]),
-                    Cell::from(self.uncertainty.standard[k]),
+                    Cell::from(self.uncertainty.as_ref().and_then(|u| u.standard[k])),
                     Cell::from(f.min),
                     Cell::from(f.max),
                 ]
@@ -650,9 +716,9 @@ impl Tuned {
     }
 
     /// `tune_uncertainty.csv`: each free number at the end, its standard uncertainty (empty where the fit
-    /// gives none), whether a bound holds it, and its correlation with each other free number.
+    /// gives none, and throughout for an objective's optimum), whether a bound holds it, and its
+    /// correlation with each other free number.
     pub fn uncertainty_table(&self, targets: &Targets) -> Table {
-        let u = &self.uncertainty;
         let mut columns: Vec<String> =
             ["parameter", "value", "standard_uncertainty", "at_bound"].map(String::from).to_vec();
         columns.extend(targets.free.iter().map(|f| format!("correlation with {}", super::parameter_words(&f.pointer))));
@@ -661,13 +727,20 @@ impl Tuned {
             .iter()
             .enumerate()
             .map(|(k, f)| {
+                let held = match &self.uncertainty {
+                    Some(u) => u.at_bound.contains(&k),
+                    None => super::fit::held_at(self.end.x[k], (f.min, f.max)).is_some(),
+                };
                 let mut row = vec![
                     Cell::Text(f.pointer.clone()),
                     Cell::from(self.end.x[k]),
-                    Cell::from(u.standard[k]),
-                    Cell::Text(if u.at_bound.contains(&k) { "yes" } else { "no" }.into()),
+                    Cell::from(self.uncertainty.as_ref().and_then(|u| u.standard[k])),
+                    Cell::Text(if held { "yes" } else { "no" }.into()),
                 ];
-                row.extend(u.correlation[k].iter().map(|c| Cell::from(*c)));
+                match &self.uncertainty {
+                    Some(u) => row.extend(u.correlation[k].iter().map(|c| Cell::from(*c))),
+                    None => row.extend(targets.free.iter().map(|_| Cell::Empty)),
+                }
                 row
             })
             .collect();
@@ -759,10 +832,54 @@ enum NoStep {
 /// `[J; √μ I] d = [−r; 0]` by a singular-value decomposition, which stays accurate where the targets leave a
 /// combination of the numbers free (rank-deficient `J`); where that step leaves the bounds or the packaging,
 /// as the quadratic program it is, by Clarabel.
-fn step(e: &Evaluation, free: &[(f64, f64)], damping: f64, scale: &[f64], margins: &[f64]) -> Result<Vec<f64>, NoStep> {
+///
+/// With an objective (`e.goal`, and its `curvature`, `B`), the step of sequential quadratic programming
+/// instead: `min g·d + ½ dᵀ B d + ½ μ Σ Dₖ dₖ²` of the objective's gradient `g` within the same bounds, the
+/// packaging and the targets' bounds, linearised.
+fn step(
+    e: &Evaluation,
+    free: &[(f64, f64)],
+    damping: f64,
+    scale: &[f64],
+    margins: &[f64],
+    curvature: Option<&nalgebra::DMatrix<f64>>,
+) -> Result<Vec<f64>, NoStep> {
+    let n = e.x.len();
+    let unscale: Vec<f64> = scale.iter().map(|d| 1.0 / d.sqrt()).collect();
+    let (p_full, q) = match (&e.goal, curvature) {
+        (Some(goal), Some(b)) => {
+            let mut p = nalgebra::DMatrix::<f64>::identity(n, n) * damping;
+            for i in 0..n {
+                for j in 0..n {
+                    p[(i, j)] += unscale[i] * b[(i, j)] * unscale[j];
+                }
+            }
+            let q: Vec<f64> = goal.rates.iter().zip(&unscale).map(|(r, u)| goal.sign * r * u).collect();
+            if !(p.iter().chain(&q).all(|v| v.is_finite())) {
+                return Err(NoStep::NotFinite);
+            }
+            (p, q)
+        }
+        _ => match least_squares_step(e, damping, &unscale, free, margins)? {
+            Ok(d) => return Ok(d),
+            Err(program) => program,
+        },
+    };
+    constrained_step(e, free, margins, &unscale, &p_full, &q)
+}
+
+/// The damped Gauss–Newton step by least squares where it stays within the bounds and the packaging, else
+/// the quadratic program's `(P, q)` in the scaled numbers.
+#[allow(clippy::type_complexity, reason = "a step, or the program that gives it")]
+fn least_squares_step(
+    e: &Evaluation,
+    damping: f64,
+    unscale: &[f64],
+    free: &[(f64, f64)],
+    margins: &[f64],
+) -> Result<Result<Vec<f64>, (nalgebra::DMatrix<f64>, Vec<f64>)>, NoStep> {
     let n = e.x.len();
     let m = e.residuals.len();
-    let unscale: Vec<f64> = scale.iter().map(|d| 1.0 / d.sqrt()).collect();
     // The scaled Jacobian J S, stacked over √μ I.
     let mut a = nalgebra::DMatrix::<f64>::zeros(m + n, n);
     let mut b = nalgebra::DVector::<f64>::zeros(m + n);
@@ -791,13 +908,28 @@ fn step(e: &Evaluation, free: &[(f64, f64)], damping: f64, scale: &[f64], margin
         v >= c.min + m && v <= c.max - m
     });
     if inside && packed {
-        return Ok(d);
+        return Ok(Ok(d));
     }
     // The quadratic program in the scaled numbers: P = (JS)ᵀ(JS) + μI, q = (JS)ᵀ r.
     let js = a.rows(0, m);
     let p_full = js.transpose() * js + nalgebra::DMatrix::<f64>::identity(n, n) * damping;
     let q: Vec<f64> =
         (js.transpose() * nalgebra::DVector::from_iterator(m, e.residuals.iter().copied())).iter().copied().collect();
+    Ok(Err((p_full, q)))
+}
+
+/// The step as the quadratic program `min ½ uᵀ P u + q·u` in the scaled numbers `u` (`d = S u`, `S` =
+/// `unscale`), within the bounds and the linearised packaging (kept inside by its `margins`, a broken
+/// constraint brought back).
+fn constrained_step(
+    e: &Evaluation,
+    free: &[(f64, f64)],
+    margins: &[f64],
+    unscale: &[f64],
+    p_full: &nalgebra::DMatrix<f64>,
+    q: &[f64],
+) -> Result<Vec<f64>, NoStep> {
+    let n = e.x.len();
     // Rows of `A d ≤ b` (Clarabel's `A d + s = b`, `s ≥ 0`).
     let (mut rows, mut bound): (Vec<Vec<f64>>, Vec<f64>) = (Vec::new(), Vec::new());
     for (k, &(lo, hi)) in free.iter().enumerate() {
@@ -812,7 +944,7 @@ fn step(e: &Evaluation, free: &[(f64, f64)], damping: f64, scale: &[f64], margin
         if c.rates.iter().all(|r| *r == 0.0) {
             continue;
         }
-        let scaled: Vec<f64> = c.rates.iter().zip(&unscale).map(|(r, u)| r * u).collect();
+        let scaled: Vec<f64> = c.rates.iter().zip(unscale).map(|(r, u)| r * u).collect();
         // A broken constraint is brought back inside by the step, to first order; one that holds stays
         // inside, by its margin where it can.
         let restore = broken_by(c) > 0.0;
@@ -833,12 +965,12 @@ fn step(e: &Evaluation, free: &[(f64, f64)], damping: f64, scale: &[f64], margin
     let cones: [SupportedConeT<f64>; 1] = [NonnegativeConeT(bound.len())];
     let settings =
         DefaultSettingsBuilder::default().verbose(false).build().map_err(|e| NoStep::Program(e.to_string()))?;
-    let mut solver = DefaultSolver::new(&p, &q, &a_matrix, &bound, &cones, settings)
+    let mut solver = DefaultSolver::new(&p, q, &a_matrix, &bound, &cones, settings)
         .map_err(|e| NoStep::Program(format!("{e:?}")))?;
     solver.solve();
     match solver.solution.status {
         SolverStatus::Solved | SolverStatus::AlmostSolved => {
-            Ok(solver.solution.x.iter().zip(&unscale).map(|(v, u)| v * u).collect())
+            Ok(solver.solution.x.iter().zip(unscale).map(|(v, u)| v * u).collect())
         }
         other => Err(NoStep::Ended(other)),
     }
@@ -874,6 +1006,7 @@ fn restoration(e: &Evaluation, margins: &[f64]) -> Option<(Evaluation, Vec<f64>)
         jacobian: broken.iter().map(|(c, _)| c.rates.clone()).collect(),
         rows: Vec::new(),
         packaging: holding.iter().map(|(c, _)| (*c).clone()).collect(),
+        goal: None,
         reports: Vec::new(),
     };
     Some((restoring, holding.iter().map(|(_, m)| **m).collect()))
@@ -906,8 +1039,11 @@ pub fn tune(
         iterations.push(iteration);
     });
     let Search { here, free, unbuildable, .. } = search;
-    if !packaged(&here) {
+    let (packaging, bounds) = here.packaging.split_at(targets.constraints.len());
+    if packaging.iter().any(|c| broken_by(c) > 0.0) {
         stopped = "the packaging is still broken, and no step within the bounds brings it back further".into();
+    } else if bounds.iter().any(|c| broken_by(c) > 0.0) {
+        stopped = "a target is still beyond its tolerance, and no step within the bounds brings it back further".into();
     }
     let verdicts = verdicts(&here, targets, &free, unbuildable.as_ref(), no_step.as_ref());
     let packaging = targets
@@ -921,8 +1057,24 @@ pub fn tune(
         })
         .collect();
     let document = parameters.document_at(&here.x)?;
-    let uncertainty = FitUncertainty::of(&here.x, &free, &here.residuals, &here.jacobian);
-    Ok(Tuned { start, end: here, iterations, verdicts, packaging, stopped, document, uncertainty })
+    // An objective's optimum is no fit: its numbers have no uncertainty to give.
+    let uncertainty =
+        targets.objective.is_none().then(|| FitUncertainty::of(&here.x, &free, &here.residuals, &here.jacobian));
+    let objective = targets.objective.as_ref().zip(start.goal.as_ref().zip(here.goal.as_ref())).map(|(o, (a, b))| {
+        ObjectiveVerdict {
+            label: o.label.clone(),
+            start: a.figure,
+            end: b.figure,
+            unit: here
+                .reports
+                .iter()
+                .filter(|r| r.analysis == o.analysis)
+                .find_map(|r| r.figure(&o.key))
+                .map_or_else(String::new, |f| f.unit.shown().symbol.to_string()),
+            held_by: held_by(&here, targets, &free),
+        }
+    });
+    Ok(Tuned { start, end: here, iterations, verdicts, packaging, objective, stopped, document, uncertainty })
 }
 
 /// What became of an iteration's step.
@@ -937,6 +1089,9 @@ enum Outcome {
     BrokePackaging,
     /// Stepped back from: it gained nothing.
     GainedNothing,
+    /// Not taken: with an objective, the step vanishes (the bounds, the packaging and the targets' bounds
+    /// hold the objective where it is, or its rate vanishes).
+    Vanished,
 }
 
 impl std::fmt::Display for Outcome {
@@ -947,6 +1102,7 @@ impl std::fmt::Display for Outcome {
             Outcome::Unbuildable(why) => write!(f, "stepped back: {why}"),
             Outcome::BrokePackaging => f.write_str("stepped back: it broke the packaging"),
             Outcome::GainedNothing => f.write_str("stepped back: it gained nothing"),
+            Outcome::Vanished => f.write_str("no step: the objective can gain no more within the bounds"),
         }
     }
 }
@@ -982,6 +1138,9 @@ struct Search<'a> {
     evaluations: usize,
     /// A step taken that gained next to nothing, or moved next to nothing: the last.
     converged: bool,
+    /// With an objective, the curvature of its figure the steps have measured (BFGS, in the numbers'
+    /// own units; zero at the start, where the damping alone shapes the step).
+    curvature: nalgebra::DMatrix<f64>,
 }
 
 impl<'a> Search<'a> {
@@ -991,14 +1150,15 @@ impl<'a> Search<'a> {
             parameters,
             targets,
             scale: free.iter().map(|(lo, hi)| 1.0 / ((hi - lo) * (hi - lo))).collect(),
+            margins: vec![0.0; start.packaging.len()],
             free,
             here: start,
             damping: 1e-3,
-            margins: vec![0.0; targets.constraints.len()],
             reach: f64::INFINITY,
             unbuildable: None,
             evaluations: 1,
             converged: false,
+            curvature: nalgebra::DMatrix::zeros(parameters.len(), parameters.len()),
         }
     }
 
@@ -1007,7 +1167,8 @@ impl<'a> Search<'a> {
     fn run(&mut self, mut heard: impl FnMut(Iteration)) -> (String, Option<NotGiven>) {
         let mut rejected = 0;
         for iteration in 1..=MAX_ITERATIONS {
-            if self.here.residuals.iter().all(|r| r.abs() <= MET_EXACTLY) && packaged(&self.here) {
+            let sought = self.here.goal.is_some();
+            if !sought && self.here.residuals.iter().all(|r| r.abs() <= MET_EXACTLY) && packaged(&self.here) {
                 return (format!("every target is met to {MET_EXACTLY:e} of its tolerance"), None);
             }
             // Bounds that are too wide where the tune starts are refused there; the rates may grow on the way.
@@ -1021,7 +1182,9 @@ impl<'a> Search<'a> {
                 return ("the steps no longer gain: the targets are met as nearly as they can be".into(), None);
             }
             let objective = self.here.objective();
-            if projected_gradient(&self.here, &self.free) <= 1e-13 * (1.0 + objective) * self.here.x.len() as f64 {
+            if !sought
+                && projected_gradient(&self.here, &self.free) <= 1e-13 * (1.0 + objective) * self.here.x.len() as f64
+            {
                 let why = "the gradient vanishes within the bounds: the targets are met as nearly as they can be";
                 return (why.into(), None);
             }
@@ -1037,7 +1200,8 @@ impl<'a> Search<'a> {
     fn iterate(&mut self) -> (Outcome, f64) {
         let restoring = restoration(&self.here, &self.margins);
         let (basis, margins) = restoring.as_ref().map_or((&self.here, &self.margins[..]), |(e, m)| (e, &m[..]));
-        match step(basis, &self.free, self.damping, &self.scale, margins) {
+        let curvature = (restoring.is_none() && self.here.goal.is_some()).then_some(&self.curvature);
+        match step(basis, &self.free, self.damping, &self.scale, margins, curvature) {
             Err(why) => {
                 self.damping *= 10.0;
                 (Outcome::NoStep(why), 0.0)
@@ -1058,7 +1222,19 @@ impl<'a> Search<'a> {
         let x: Vec<f64> =
             self.here.x.iter().zip(&d).zip(&self.free).map(|((x, d), (lo, hi))| (x + d).clamp(*lo, *hi)).collect();
         let size = wanted * shrink;
-        let predicted = f - self.here.predicted_objective(&d);
+        if self.here.goal.is_some() && !restoring && size < 1e-9 {
+            self.converged = true;
+            return (Outcome::Vanished, size);
+        }
+        let predicted = match &self.here.goal {
+            // The quadratic model's gain: −(g·d + ½ dᵀ B d).
+            Some(g) => {
+                let bd = &self.curvature * nalgebra::DVector::from_column_slice(&d);
+                -(g.rates.iter().zip(&d).map(|(r, d)| g.sign * r * d).sum::<f64>()
+                    + 0.5 * bd.iter().zip(&d).map(|(b, d)| b * d).sum::<f64>())
+            }
+            None => f - self.here.predicted_objective(&d),
+        };
         self.evaluations += 1;
         match evaluate(self.parameters, self.targets, &x) {
             Err(e) => {
@@ -1106,9 +1282,33 @@ impl<'a> Search<'a> {
         self.damping = self.damping.max(1e-12);
         self.reach *= 2.0;
         self.unbuildable = None;
+        if let (Some(was), Some(now)) = (&self.here.goal, &next.goal) {
+            self.measure_curvature(&self.here.x.clone(), &next.x, &was.rates.clone(), &now.rates);
+        }
+        let sought = next.goal.is_some();
         self.here = next;
-        if !restored && (gain <= 1e-9 * f || size < 1e-9) {
+        // An objective's figure may be near zero or negative: its gain is measured against its size and 1.
+        let small = if sought { 1e-12 * (1.0 + f.abs()) } else { 1e-9 * f };
+        if !restored && (gain <= small || size < 1e-9) {
             self.converged = true;
+        }
+    }
+
+    /// The BFGS update of the objective's curvature by a step from `x` to `next`, where its rates went
+    /// from `was` to `now`; a step along which the rates fell (no curvature that a least has) is left out.
+    fn measure_curvature(&mut self, x: &[f64], next: &[f64], was: &[f64], now: &[f64]) {
+        let sign = self.here.goal.as_ref().map_or(1.0, |g| g.sign);
+        let s = nalgebra::DVector::from_iterator(x.len(), next.iter().zip(x).map(|(a, b)| a - b));
+        let y = nalgebra::DVector::from_iterator(x.len(), now.iter().zip(was).map(|(a, b)| sign * (a - b)));
+        let sy = s.dot(&y);
+        if sy.is_nan() || sy <= 1e-12 * s.norm() * y.norm() {
+            return;
+        }
+        let bs = &self.curvature * &s;
+        let sbs = s.dot(&bs);
+        self.curvature += &y * y.transpose() / sy;
+        if sbs > 0.0 {
+            self.curvature -= &bs * bs.transpose() / sbs;
         }
     }
 
@@ -1126,6 +1326,52 @@ impl<'a> Search<'a> {
     }
 }
 
+impl ObjectiveVerdict {
+    /// In words: the figure before and after, and what holds it.
+    pub fn said(&self) -> String {
+        let held = if self.held_by.is_empty() {
+            "where its rate vanishes within the bounds".to_string()
+        } else {
+            format!("held by {}", self.held_by.join(", "))
+        };
+        format!(
+            "{}: {} -> {} {}, {held}",
+            self.label,
+            kc::significant(self.start, 4),
+            kc::significant(self.end, 4),
+            self.unit
+        )
+    }
+}
+
+/// What holds the model at `e`: the free numbers at a bound, the packaging at its limits and, with an
+/// objective, the targets at an end of their tolerance, in the engineer's words.
+fn held_by(e: &Evaluation, targets: &Targets, free: &[(f64, f64)]) -> Vec<String> {
+    let at_bound = e.x.iter().zip(free).zip(&targets.free).filter_map(|((x, &(lo, hi)), f)| {
+        let bound = super::fit::held_at(*x, (lo, hi))?;
+        let which = if bound == lo { "lower" } else { "upper" };
+        let value = super::parameter_value_words(&f.pointer, bound);
+        Some(format!("{} at its {which} bound, {value}", super::parameter_words(&f.pointer)))
+    });
+    let (packaging, bounds) = e.packaging.split_at(targets.constraints.len());
+    let packed = packaging
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| (c.value - c.min).abs() <= 1e-7 || (c.max - c.value).abs() <= 1e-7)
+        .map(|(k, c)| {
+            let side = if (c.value - c.min).abs() <= 1e-7 { "least" } else { "most" };
+            format!("the packaging's {} at its {side} (constraints[{k}])", targets.constraints[k].said())
+        });
+    // A bound's rows are the targets' residuals, in order.
+    let tolerances = bounds.iter().zip(&e.rows).filter(|(c, _)| c.value.abs() >= 1.0 - 1e-6).map(|(c, row)| {
+        let t = &targets.targets[row.target];
+        let at = row.at.map_or(String::new(), |at| format!(" at {}", kc::plain(at)));
+        let side = if c.value > 0.0 { "upper" } else { "lower" };
+        format!("{}{at} at the {side} end of its tolerance, {}", t.label, kc::significant(row.value, 4))
+    });
+    at_bound.chain(packed).chain(tolerances).collect()
+}
+
 /// Each target's outcome at the end, and why one is not met: no step that could be computed (`no_step`),
 /// the model that could not be evaluated a step further (`unbuildable`), the bounds or packaging that
 /// hold, or the targets that fight it.
@@ -1136,27 +1382,7 @@ fn verdicts(
     unbuildable: Option<&TuneError>,
     no_step: Option<&NotGiven>,
 ) -> Vec<Verdict> {
-    let at_bound: Vec<String> =
-        e.x.iter()
-            .zip(free)
-            .zip(&targets.free)
-            .filter_map(|((x, &(lo, hi)), f)| {
-                let bound = super::fit::held_at(*x, (lo, hi))?;
-                let which = if bound == lo { "lower" } else { "upper" };
-                let value = super::parameter_value_words(&f.pointer, bound);
-                Some(format!("{} at its {which} bound, {value}", super::parameter_words(&f.pointer)))
-            })
-            .collect();
-    let packed: Vec<String> = e
-        .packaging
-        .iter()
-        .enumerate()
-        .filter(|(_, c)| (c.value - c.min).abs() <= 1e-7 || (c.max - c.value).abs() <= 1e-7)
-        .map(|(k, c)| {
-            let side = if (c.value - c.min).abs() <= 1e-7 { "least" } else { "most" };
-            format!("the packaging's {} at its {side} (constraints[{k}])", targets.constraints[k].said())
-        })
-        .collect();
+    let held = held_by(e, targets, free);
     targets
         .targets
         .iter()
@@ -1169,7 +1395,6 @@ fn verdicts(
             let met = t.met_by(&own, &weights);
             let judged = t.judged_words(&own, &weights);
             let why = (!met).then(|| {
-                let held: Vec<String> = at_bound.iter().chain(&packed).cloned().collect();
                 if let Some(why) = no_step {
                     format!("no step could be taken: {why}")
                 } else if let Some(why) = unbuildable {
