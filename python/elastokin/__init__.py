@@ -284,14 +284,14 @@ class Model:
         measured against its tolerance — the largest miss, a curve's root mean square or area, or against
         noise ``χ²/n`` over the most noise gives; met when at most 1 —, how it was ``judged`` in words,
         whether ``met`` and ``why`` not), ``objective`` (with an objective in the targets: its figure
-        ``before`` and ``after`` in ``unit`` and what holds it, ``held_by``; else None), ``packaging`` (each packaging constraint and how far it is
-        broken, in m: 0 where it holds), ``parameters`` with their values ``before`` and ``after``,
-        ``iterations`` (tune.csv's columns), ``uncertainty`` (each number's ``standard`` uncertainty, NaN
-        where the fit gives none, their ``correlation``, the ``residual_scale`` and ``degrees_of_freedom``
-        it is taken over, the numbers ``at_bound``, the directions the targets cannot tell, ``unseen``, in
-        words, and whether the answer is ``unique``; None with an objective, whose optimum is no fit) and
-        ``tuned``, the model file's text with the numbers
-        moved.
+        ``before`` and ``after`` in ``unit`` and what holds it, ``held_by``; else None), ``packaging``
+        (each packaging constraint and how far it is broken, in m: 0 where it holds), ``parameters`` with
+        their values ``before`` and ``after``, ``iterations`` (tune.csv's columns), ``uncertainty`` (each
+        number's ``standard`` uncertainty, NaN where the fit gives none, their ``correlation``, the
+        ``residual_scale`` and ``degrees_of_freedom`` it is taken over, the numbers ``at_bound``, the
+        combinations the packaging holds, ``held_by_packaging``, the directions the targets cannot tell,
+        ``unseen``, in words, and whether the answer is ``unique``; None with an objective, whose optimum
+        is no fit) and ``tuned``, the model file's text with the numbers moved.
         Measured files named in a dict are read from ``directory``; in a file, beside it. Targets the
         model's analyses do not give (a figure or column they have not, a point outside the range walked)
         raise ``ValueError``, as a bad file does; a model that cannot be analysed, ``AnalysisError``."""

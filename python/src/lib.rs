@@ -690,6 +690,7 @@ fn uncertainty_dict<'py>(
     uncertainty.set_item("correlation", correlation)?;
     uncertainty.set_item("residual_scale", u.residual_scale)?;
     uncertainty.set_item("degrees_of_freedom", u.degrees_of_freedom)?;
+    uncertainty.set_item("held_by_packaging", u.held_by_packaging)?;
     let at_bound: Vec<&str> = u.at_bound.iter().map(|&k| pointers[k].as_str()).collect();
     uncertainty.set_item("at_bound", at_bound)?;
     let unseen: Vec<String> = u.unseen.iter().map(|d| d.said(pointers)).collect();

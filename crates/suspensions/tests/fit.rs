@@ -98,7 +98,7 @@ fn the_covariance_is_least_squares_closed_form_and_what_it_cannot_see_is_named()
     let r = [0.02, -0.01, 0.015, -0.03, 0.005];
     let jacobian: Vec<Vec<f64>> = a.iter().map(|row| row.to_vec()).collect();
     let bounds = [(-10.0, 10.0), (-5.0, 5.0)];
-    let u = FitUncertainty::of(&[1.0, 2.0], &bounds, &r, &jacobian);
+    let u = FitUncertainty::of(&[1.0, 2.0], &bounds, &r, &jacobian, &[]);
     let s2 = r.iter().map(|r| r * r).sum::<f64>() / 3.0;
     let (p, q, t) = (
         a.iter().map(|x| x[0] * x[0]).sum::<f64>(),
@@ -115,17 +115,44 @@ fn the_covariance_is_least_squares_closed_form_and_what_it_cannot_see_is_named()
     assert_eq!(u.degrees_of_freedom, 3);
     assert!(u.unique());
     // The second number at its upper bound: the first alone is fitted, by its own column.
-    let held = FitUncertainty::of(&[1.0, 5.0], &bounds, &r, &jacobian);
+    let held = FitUncertainty::of(&[1.0, 5.0], &bounds, &r, &jacobian, &[]);
     assert_eq!(held.at_bound, [1]);
     assert_eq!(held.standard[1], None);
     let alone = (r.iter().map(|r| r * r).sum::<f64>() / 4.0 / p).sqrt();
     assert!((held.standard[0].unwrap() / alone - 1.0).abs() < 1e-13);
     // A second number the residuals do not move: unseen, named as the second alone, and no uncertainty.
     let blind: Vec<Vec<f64>> = a.iter().map(|row| vec![row[0], 0.0]).collect();
-    let u = FitUncertainty::of(&[1.0, 2.0], &bounds, &r, &blind);
+    let u = FitUncertainty::of(&[1.0, 2.0], &bounds, &r, &blind, &[]);
     assert!(!u.unique() && u.unseen.len() == 1 && u.unseen[0].share.is_none(), "{u:?}");
     assert!((u.unseen[0].direction[1] - 1.0).abs() < 1e-12 && u.unseen[0].direction[0].abs() < 1e-12);
     assert!(u.standard.iter().all(Option::is_none));
+}
+
+/// A packaging constraint at its limit, `x₀ + 2 x₁` held, leaves the fit one combination, along
+/// `(2, −1)`: its uncertainty is the one-number fit's by the column `J (2, −1)ᵀ` over one degree of freedom
+/// more, written out here, and the two numbers fully anti-correlated. A constraint along one number alone
+/// holds that number: no uncertainty for it, the other fitted by its own column.
+#[test]
+fn a_packaging_constraint_that_holds_the_fit_takes_its_degree_of_freedom() {
+    let a = [[1.0, 0.5], [0.3, 2.0], [1.2, -0.7], [0.1, 0.4], [-0.8, 1.1]];
+    let r = [0.02, -0.01, 0.015, -0.03, 0.005];
+    let jacobian: Vec<Vec<f64>> = a.iter().map(|row| row.to_vec()).collect();
+    let bounds = [(-10.0, 10.0), (-5.0, 5.0)];
+    let u = FitUncertainty::of(&[1.0, 2.0], &bounds, &r, &jacobian, &[vec![1.0, 2.0]]);
+    // Along the constraint x = (2, −1) t: the column J (2, −1)ᵀ, four degrees of freedom.
+    let column: Vec<f64> = a.iter().map(|row| 2.0 * row[0] - row[1]).collect();
+    let s2 = r.iter().map(|r| r * r).sum::<f64>() / 4.0;
+    let t = (s2 / column.iter().map(|c| c * c).sum::<f64>()).sqrt();
+    let (s0, s1) = (u.standard[0].unwrap(), u.standard[1].unwrap());
+    // Measured: equal to the bit, and a correlation of exactly −1.
+    assert!((s0 / (2.0 * t) - 1.0).abs() < 1e-14 && (s1 / t - 1.0).abs() < 1e-14, "{s0} {s1} {t}");
+    assert!((u.correlation[0][1].unwrap() + 1.0).abs() < 1e-14, "{u:?}");
+    assert_eq!((u.degrees_of_freedom, u.held_by_packaging), (4, 1));
+    assert!(u.basis().contains("along the packaging that holds 1 combination"), "{}", u.basis());
+    // Held along the second number alone: the first fitted by its own column, the second not at all.
+    let u = FitUncertainty::of(&[1.0, 2.0], &bounds, &r, &jacobian, &[vec![0.0, 3.0]]);
+    let alone = (s2 / a.iter().map(|x| x[0] * x[0]).sum::<f64>()).sqrt();
+    assert!((u.standard[0].unwrap() / alone - 1.0).abs() < 1e-13 && u.standard[1].is_none(), "{u:?}");
 }
 
 /// The MacPherson's toe curve fitted with the inner tie-rod point free in x, along the rod, besides z: the

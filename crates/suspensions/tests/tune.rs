@@ -251,6 +251,10 @@ fn a_packaging_constraint_that_holds_a_tune_is_named_in_words() {
     let why = tuned.verdicts[0].why.as_deref().unwrap_or_else(|| panic!("{:?}", tuned.verdicts));
     assert!(why.contains("the packaging's distance tie_rod_inner–tie_rod_outer at its"), "{why}");
     assert!(why.contains("(constraints[0])") && !why.contains("holding"), "{why}");
+    // The constraint holds the one free number: the fit has nothing left to place, and claims nothing.
+    let u = tuned.uncertainty.as_ref().unwrap();
+    assert_eq!(u.held_by_packaging, 1, "{u:?}");
+    assert!(u.standard.iter().all(Option::is_none), "{u:?}");
 }
 
 /// The residuals' Jacobian is the derivative of the residuals (central differences of evaluations,

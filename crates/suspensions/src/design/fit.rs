@@ -22,6 +22,24 @@ pub const UNSEEN_SHARE: f64 = 0.5;
 /// Below this share of the largest singular value, a direction is not seen at all.
 const RANK: f64 = 1e-8;
 
+/// Below this share of the largest variance, a number's variance is rounding's: the packaging holds it.
+const PINNED: f64 = 1e-20;
+
+/// The combinations of the `fitted` numbers (each measured by its `span`) that the packaging constraints
+/// whose rates are `held` leave free: an orthonormal basis, a column each, of what their rates do not see
+/// (all of them when none holds).
+fn free_combinations(fitted: &[usize], span: &[f64], held: &[Vec<f64>]) -> DMatrix<f64> {
+    let f = fitted.len();
+    let g = DMatrix::from_fn(held.len(), f, |c, j| held[c][fitted[j]] * span[fitted[j]]);
+    if held.is_empty() || f == 0 {
+        return DMatrix::identity(f, f);
+    }
+    let eigen = (g.transpose() * &g).symmetric_eigen();
+    let largest = eigen.eigenvalues.iter().copied().fold(0.0, f64::max);
+    let free: Vec<usize> = (0..f).filter(|&i| eigen.eigenvalues[i] <= RANK * RANK * largest).collect();
+    DMatrix::from_fn(f, free.len(), |i, j| eigen.eigenvectors[(i, free[j])])
+}
+
 /// How close to a bound a number counts as held by it, as a share of its bounds' span: the interior-point
 /// steps of a tune stop a little inside a bound that holds a number.
 const AT_BOUND: f64 = 1e-4;
@@ -54,6 +72,9 @@ pub struct FitUncertainty {
     pub degrees_of_freedom: usize,
     /// The free numbers a bound holds, by index.
     pub at_bound: Vec<usize>,
+    /// How many combinations of the numbers the packaging holds: the rank of the constraints at their
+    /// limits, which the fit moves along, not across.
+    pub held_by_packaging: usize,
     /// The directions the targets cannot tell, most uncertain first.
     pub unseen: Vec<Unseen>,
 }
@@ -89,28 +110,42 @@ impl Unseen {
 
 impl FitUncertainty {
     /// The uncertainty of the numbers `x` fitted within `bounds` whose residuals `residuals` and their
-    /// Jacobian `jacobian` (a row per residual) are those at the end of the fit.
-    pub fn of(x: &[f64], bounds: &[(f64, f64)], residuals: &[f64], jacobian: &[Vec<f64>]) -> FitUncertainty {
+    /// Jacobian `jacobian` (a row per residual) are those at the end of the fit, where the packaging
+    /// constraints whose rates are `held` (a row each, over the numbers) are at their limits.
+    ///
+    /// A constraint at its limit holds the fit on it: the numbers move along it only, so the covariance is
+    /// the one of the fit in the combinations it leaves free, `N (Nᵀ JᵀJ N)⁻¹ Nᵀ s²` with `N` a basis of
+    /// what the constraints' rates do not see, and each constraint that holds takes a degree of freedom
+    /// from the fitted numbers as a bound does.
+    pub fn of(
+        x: &[f64],
+        bounds: &[(f64, f64)],
+        residuals: &[f64],
+        jacobian: &[Vec<f64>],
+        held: &[Vec<f64>],
+    ) -> FitUncertainty {
         let n = x.len();
         let span: Vec<f64> = bounds.iter().map(|(lo, hi)| hi - lo).collect();
         let at_bound: Vec<usize> = (0..n).filter(|&k| held_at(x[k], bounds[k]).is_some()).collect();
         let fitted: Vec<usize> = (0..n).filter(|k| !at_bound.contains(k)).collect();
+        let free = free_combinations(&fitted, &span, held);
         let m = residuals.len();
-        let degrees_of_freedom = m.saturating_sub(fitted.len());
+        let degrees_of_freedom = m.saturating_sub(free.ncols());
         let none = FitUncertainty {
             standard: vec![None; n],
             correlation: vec![vec![None; n]; n],
             residual_scale: None,
             degrees_of_freedom,
             at_bound: at_bound.clone(),
+            held_by_packaging: fitted.len() - free.ncols(),
             unseen: Vec::new(),
         };
-        if fitted.is_empty() || degrees_of_freedom == 0 {
+        if free.ncols() == 0 || degrees_of_freedom == 0 {
             return none;
         }
         let s = (residuals.iter().map(|r| r * r).sum::<f64>() / degrees_of_freedom as f64).sqrt();
-        // J D over the numbers fitted: each measured by its span.
-        let scaled = DMatrix::from_fn(m, fitted.len(), |i, j| jacobian[i][fitted[j]] * span[fitted[j]]);
+        // J D N over the combinations fitted: each number measured by its span.
+        let scaled = DMatrix::from_fn(m, fitted.len(), |i, j| jacobian[i][fitted[j]] * span[fitted[j]]) * &free;
         let svd = scaled.svd(false, true);
         let Some(v_t) = svd.v_t.as_ref() else { return none };
         let largest = svd.singular_values.max();
@@ -120,8 +155,9 @@ impl FitUncertainty {
             let share = (!blind).then(|| s / sigma);
             if blind || share.is_some_and(|share| share > UNSEEN_SHARE) {
                 let mut direction = vec![0.0; n];
+                let along = &free * v_t.row(i).transpose();
                 for (j, &k) in fitted.iter().enumerate() {
-                    direction[k] = v_t[(i, j)];
+                    direction[k] = along[j];
                 }
                 let biggest = direction.iter().copied().fold(0.0f64, |a, b| if b.abs() > a.abs() { b } else { a });
                 if biggest < 0.0 {
@@ -136,13 +172,17 @@ impl FitUncertainty {
             // A direction J does not see has no finite uncertainty: none is claimed for any number.
             return out;
         }
-        // The covariance in the spans' measure, V Σ⁻² Vᵀ s², then in the numbers' own units.
-        let inverse = DVector::from_iterator(fitted.len(), svd.singular_values.iter().map(|sigma| s / sigma));
-        let root = v_t.transpose() * DMatrix::from_diagonal(&inverse);
+        // The covariance in the spans' measure, N V Σ⁻² Vᵀ Nᵀ s², then in the numbers' own units. A number
+        // the packaging holds alone (its variance rounding's) is held, not fitted.
+        let inverse = DVector::from_iterator(free.ncols(), svd.singular_values.iter().map(|sigma| s / sigma));
+        let root = &free * v_t.transpose() * DMatrix::from_diagonal(&inverse);
         let covariance = &root * root.transpose();
-        for (a, &k) in fitted.iter().enumerate() {
+        let largest = covariance.diagonal().max();
+        let fit: Vec<(usize, usize)> =
+            fitted.iter().copied().enumerate().filter(|&(a, _)| covariance[(a, a)] > PINNED * largest).collect();
+        for &(a, k) in &fit {
             out.standard[k] = Some(covariance[(a, a)].sqrt() * span[k]);
-            for (b, &l) in fitted.iter().enumerate() {
+            for &(b, l) in &fit {
                 out.correlation[k][l] = Some(covariance[(a, b)] / (covariance[(a, a)] * covariance[(b, b)]).sqrt());
             }
         }
@@ -155,9 +195,13 @@ impl FitUncertainty {
         match self.residual_scale {
             Some(s) => format!(
                 "uncertainties: one standard deviation, from the residuals' spread ({} of the tolerances over {} \
-                 degrees of freedom)",
+                 degrees of freedom){}",
                 crate::kc::significant(s, 3),
-                self.degrees_of_freedom
+                self.degrees_of_freedom,
+                match self.held_by_packaging {
+                    0 => String::new(),
+                    k => format!(", along the packaging that holds {k} combination(s) of the numbers"),
+                }
             ),
             None => "uncertainties: none, the targets leave no degree of freedom (as many numbers fitted as target \
                      points): give more points, or free fewer numbers"

@@ -1012,6 +1012,11 @@ fn restoration(e: &Evaluation, margins: &[f64]) -> Option<(Evaluation, Vec<f64>)
     Some((restoring, holding.iter().map(|(_, m)| **m).collect()))
 }
 
+/// Whether a packaging constraint is at a limit (within 1e-7 m), where it holds the tune.
+fn at_limit(c: &Linearised) -> bool {
+    (c.value - c.min).abs() <= 1e-7 || (c.max - c.value).abs() <= 1e-7
+}
+
 /// Whether the packaging holds at `e`, to 1e-9 m.
 fn packaged(e: &Evaluation) -> bool {
     broken(e) == 0.0
@@ -1058,8 +1063,14 @@ pub fn tune(
         .collect();
     let document = parameters.document_at(&here.x)?;
     // An objective's optimum is no fit: its numbers have no uncertainty to give.
-    let uncertainty =
-        targets.objective.is_none().then(|| FitUncertainty::of(&here.x, &free, &here.residuals, &here.jacobian));
+    let uncertainty = targets.objective.is_none().then(|| {
+        let held: Vec<Vec<f64>> = here.packaging[..targets.constraints.len()]
+            .iter()
+            .filter(|c| at_limit(c))
+            .map(|c| c.rates.clone())
+            .collect();
+        FitUncertainty::of(&here.x, &free, &here.residuals, &here.jacobian, &held)
+    });
     let objective = targets.objective.as_ref().zip(start.goal.as_ref().zip(here.goal.as_ref())).map(|(o, (a, b))| {
         ObjectiveVerdict {
             label: o.label.clone(),
@@ -1354,14 +1365,10 @@ fn held_by(e: &Evaluation, targets: &Targets, free: &[(f64, f64)]) -> Vec<String
         Some(format!("{} at its {which} bound, {value}", super::parameter_words(&f.pointer)))
     });
     let (packaging, bounds) = e.packaging.split_at(targets.constraints.len());
-    let packed = packaging
-        .iter()
-        .enumerate()
-        .filter(|(_, c)| (c.value - c.min).abs() <= 1e-7 || (c.max - c.value).abs() <= 1e-7)
-        .map(|(k, c)| {
-            let side = if (c.value - c.min).abs() <= 1e-7 { "least" } else { "most" };
-            format!("the packaging's {} at its {side} (constraints[{k}])", targets.constraints[k].said())
-        });
+    let packed = packaging.iter().enumerate().filter(|(_, c)| at_limit(c)).map(|(k, c)| {
+        let side = if (c.value - c.min).abs() <= 1e-7 { "least" } else { "most" };
+        format!("the packaging's {} at its {side} (constraints[{k}])", targets.constraints[k].said())
+    });
     // A bound's rows are the targets' residuals, in order.
     let tolerances = bounds.iter().zip(&e.rows).filter(|(c, _)| c.value.abs() >= 1.0 - 1e-6).map(|(c, row)| {
         let t = &targets.targets[row.target];
