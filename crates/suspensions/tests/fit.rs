@@ -89,15 +89,18 @@ fn the_reported_uncertainty_of_fitted_rates_is_the_scatter_of_noisy_fits() {
     }
 }
 
+/// A linear fit's Jacobian `A`, its residuals at the end and the bounds of its two numbers.
+const LINEAR: [[f64; 2]; 5] = [[1.0, 0.5], [0.3, 2.0], [1.2, -0.7], [0.1, 0.4], [-0.8, 1.1]];
+const LINEAR_RESIDUALS: [f64; 5] = [0.02, -0.01, 0.015, -0.03, 0.005];
+const LINEAR_BOUNDS: [(f64, f64); 2] = [(-10.0, 10.0), (-5.0, 5.0)];
+
 /// Linear least squares: for residuals `r = A x − b` the covariance of the fit is `s² (AᵀA)⁻¹`, written out
 /// here for two numbers; a number at its bound is left out and named; a column of zeros is a direction the
 /// data do not see, and no uncertainty is claimed.
 #[test]
 fn the_covariance_is_least_squares_closed_form_and_what_it_cannot_see_is_named() {
-    let a = [[1.0, 0.5], [0.3, 2.0], [1.2, -0.7], [0.1, 0.4], [-0.8, 1.1]];
-    let r = [0.02, -0.01, 0.015, -0.03, 0.005];
+    let (a, r, bounds) = (LINEAR, LINEAR_RESIDUALS, LINEAR_BOUNDS);
     let jacobian: Vec<Vec<f64>> = a.iter().map(|row| row.to_vec()).collect();
-    let bounds = [(-10.0, 10.0), (-5.0, 5.0)];
     let u = FitUncertainty::of(&[1.0, 2.0], &bounds, &r, &jacobian, &[]);
     let s2 = r.iter().map(|r| r * r).sum::<f64>() / 3.0;
     let (p, q, t) = (
@@ -134,10 +137,8 @@ fn the_covariance_is_least_squares_closed_form_and_what_it_cannot_see_is_named()
 /// holds that number: no uncertainty for it, the other fitted by its own column.
 #[test]
 fn a_packaging_constraint_that_holds_the_fit_takes_its_degree_of_freedom() {
-    let a = [[1.0, 0.5], [0.3, 2.0], [1.2, -0.7], [0.1, 0.4], [-0.8, 1.1]];
-    let r = [0.02, -0.01, 0.015, -0.03, 0.005];
+    let (a, r, bounds) = (LINEAR, LINEAR_RESIDUALS, LINEAR_BOUNDS);
     let jacobian: Vec<Vec<f64>> = a.iter().map(|row| row.to_vec()).collect();
-    let bounds = [(-10.0, 10.0), (-5.0, 5.0)];
     let u = FitUncertainty::of(&[1.0, 2.0], &bounds, &r, &jacobian, &[vec![1.0, 2.0]]);
     // Along the constraint x = (2, −1) t: the column J (2, −1)ᵀ, four degrees of freedom.
     let column: Vec<f64> = a.iter().map(|row| 2.0 * row[0] - row[1]).collect();
