@@ -1679,6 +1679,51 @@ fn tune_meets_the_shipped_targets_and_says_why_when_it_cannot() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// `tolerance` with a normal band, a group, an alignment and a limit: every output carries them —
+/// tolerance.csv the limit and the share outside, tolerance_adjustments.csv the number set, each sample of
+/// tolerance_samples.csv the figure held at its nominal value (within 1e-6 of its σ before alignment; the
+/// printed values to their ten significant digits), the report its alignment and the share outside.
+#[test]
+fn tolerance_writes_groups_alignment_and_limits_in_every_output() {
+    let dir = scratch("tolerance-aligned");
+    let file = dir.join("tolerances.json");
+    std::fs::write(
+        &file,
+        r#"{"tolerances": {"/suspension/twist_beam/toe": {"normal": 0.05}},
+            "groups": [{"name": "axle", "points": ["pivot", "junction"], "shift": {"z": 0.001}}],
+            "adjust": [{"figure": "static-load/toe", "by": "/suspension/twist_beam/toe"}],
+            "limits": {"static-load/camber": [-1.2, null]},
+            "analyses": ["static-load"], "steps": 8}"#,
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let args = ["tolerance", "examples/twist_beam_template.json", file.to_str().unwrap(), "--monte-carlo", "6"];
+    let o = succeeds(&[&args[..], &["--out", out.to_str().unwrap()]].concat());
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("outside its limit:") && stdout.contains("set at alignment by"), "{stdout}");
+    let header = |p: &Path| std::fs::read_to_string(p).unwrap().lines().nth(1).unwrap().to_string();
+    assert!(header(&out.join("tolerance.csv")).contains("limit_min,limit_max,outside,sampled_outside"));
+    let rows = read_csv(&out.join("tolerance.csv"));
+    let camber = rows.iter().find(|r| &r[1] == "camber").unwrap();
+    assert_eq!(&camber[11], "-1.2");
+    let toe = rows.iter().find(|r| &r[1] == "toe").unwrap();
+    let nominal: f64 = toe[3].parse().unwrap();
+    let adjustments = read_csv(&out.join("tolerance_adjustments.csv"));
+    assert_eq!((adjustments.len(), &adjustments[0][2]), (1, "/suspension/twist_beam/toe"));
+    let samples_header = header(&out.join("tolerance_samples.csv"));
+    let column = samples_header.split(',').position(|c| c == "static-load/toe (deg)").unwrap();
+    let samples = read_csv(&out.join("tolerance_samples.csv"));
+    assert_eq!(samples.len(), 6);
+    for r in &samples {
+        let v: f64 = r[column].parse().unwrap();
+        assert!((v - nominal).abs() < 1e-6, "{v} {nominal}");
+    }
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    roxmltree::Document::parse(html.strip_prefix("<!DOCTYPE html>").unwrap()).unwrap();
+    assert!(html.contains("Set at alignment") && html.contains("outside its limit"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// `tolerance` on the shipped tolerances example: tolerance.csv holds each figure's first-order worst case
 /// and σ with the Monte Carlo's beside them (the same seed, the same samples: the file again byte for
 /// byte after the provenance line), the contributions sum to the worst case, report.html is well formed;
@@ -1718,12 +1763,15 @@ fn tolerance_stacks_up_the_shipped_example_and_checks_it_by_sampling() {
     let sum: f64 = contributions
         .iter()
         .filter(|r| &r[1] == "bump_steer" && &r[0] == "parallel-travel" && &r[2] == "deg/m")
-        .map(|r| r[5].parse::<f64>().unwrap().abs())
+        .map(|r| r[6].parse::<f64>().unwrap().abs())
         .sum();
     assert!((sum - worst).abs() <= 1e-9 * worst, "{sum} {worst}");
     let html = std::fs::read_to_string(a.join("report.html")).unwrap();
     roxmltree::Document::parse(html.strip_prefix("<!DOCTYPE html>").unwrap()).unwrap();
     assert!(html.contains("The largest contributors") && html.contains("<rect"));
+    // The samples' histogram, one per figure sampled.
+    assert_eq!(html.matches("60 samples</text>").count(), rows.len());
+    assert_eq!(read_csv(&a.join("tolerance_samples.csv")).len(), 60);
     let bad = dir.join("bad.json");
     std::fs::write(&bad, r#"{"tolerances": {"/suspension/macpherson/spring/rate": "lots"}}"#).unwrap();
     let o = elastokin(&[

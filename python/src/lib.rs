@@ -316,8 +316,11 @@ impl Model {
     }
 
     /// The tolerance stack-up of the TOLERANCES file's text `tolerances`, as the command's `tolerance`:
-    /// `tolerance.csv`'s columns by name (each figure's value, first-order `worst_case` and `sigma`, and
-    /// with `monte_carlo` samples the sampled spread beside them), the same seed giving the same samples.
+    /// `tolerance.csv`'s columns by name (each figure's value, first-order `worst_case` and `sigma`, the
+    /// share `outside` a limit, and with `monte_carlo` samples the sampled spread beside them), the same seed
+    /// giving the same samples; and, as tables of columns by name, `contributions`
+    /// (tolerance_contributions.csv), `adjustments` (tolerance_adjustments.csv, None without adjustments)
+    /// and `samples` (tolerance_samples.csv, None without a Monte Carlo).
     #[pyo3(signature = (tolerances, monte_carlo=None, seed=1))]
     fn tolerance<'py>(
         &self,
@@ -338,11 +341,17 @@ impl Model {
                 Ok(stack)
             })
             .map_err(|e: StackUpError| AnalysisError::new_err(e.to_string()))?;
-        column_dict(py, &stack.table())
+        let d = column_dict(py, &stack.table())?;
+        d.set_item("contributions", column_dict(py, &stack.contribution_table())?)?;
+        let optional = |table: Option<Table>| table.map(|t| column_dict(py, &t)).transpose();
+        d.set_item("adjustments", optional(stack.adjustment_table())?)?;
+        d.set_item("samples", optional(stack.sample_table())?)?;
+        Ok(d)
     }
 
     /// The Monte Carlo samples of the TOLERANCES file's text `tolerances` that `tolerance(monte_carlo=n,
-    /// seed=seed)` draws, as a variant table: each number's pointer and its `n` sampled values.
+    /// seed=seed)` draws, as a variant table: each number's pointer and its `n` sampled values, as drawn
+    /// (before any adjustment the alignment makes).
     #[pyo3(signature = (tolerances, n, seed=1))]
     fn tolerance_samples<'py>(
         &self,
@@ -351,16 +360,14 @@ impl Model {
         n: usize,
         seed: u64,
     ) -> PyResult<Bound<'py, PyDict>> {
-        use elastokin_suspensions::design::tolerance::{read_tolerances, sample};
+        use elastokin_suspensions::design::tolerance::read_tolerances;
         use elastokin_suspensions::design::Parameters;
         let t =
             read_tolerances(tolerances, "tolerances", &self.base).map_err(|e| PyValueError::new_err(e.to_string()))?;
-        let pointers: Vec<String> = t.bands.iter().map(|(p, _)| p.clone()).collect();
-        let bands: Vec<f64> = t.bands.iter().map(|(_, b)| *b).collect();
-        let p = Parameters::new(&self.base, &pointers).map_err(|e| ModelError::new_err(e.to_string()))?;
-        let samples: Vec<Vec<f64>> = (0..n).map(|i| sample(&p.values, &bands, seed, i)).collect();
+        let p = Parameters::new(&self.base, &t.pointers).map_err(|e| ModelError::new_err(e.to_string()))?;
+        let samples: Vec<Vec<f64>> = (0..n).map(|i| t.sample(&p.values, seed, i)).collect();
         let d = PyDict::new(py);
-        for (k, pointer) in pointers.iter().enumerate() {
+        for (k, pointer) in t.pointers.iter().enumerate() {
             d.set_item(pointer, PyArray1::from_vec(py, samples.iter().map(|x| x[k]).collect()))?;
         }
         Ok(d)

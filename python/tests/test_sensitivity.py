@@ -191,6 +191,12 @@ def test_tolerance_gives_the_commands_numbers(tmp_path):
         for column in ("worst_case", "sigma", "sampled_sigma"):
             got = s[column][k]
             assert got == pytest.approx(float(row[header.index(column)]), rel=1e-11), (row[1], column)
+    # The contributions and the samples as the command writes them.
+    _, contributions = read_csv(out / "tolerance_contributions.csv")
+    assert list(s["contributions"]["source"]) == [r[3] for r in contributions]
+    _, samples = read_csv(out / "tolerance_samples.csv")
+    assert len(s["samples"]["sample"]) == len(samples) == 20
+    assert s["adjustments"] is None
     with pytest.raises(ValueError, match="unknown key 'hardpoint'"):
         elastokin.load(MODEL).tolerance({"hardpoint": 0.001})
 
