@@ -1679,6 +1679,78 @@ fn tune_meets_the_shipped_targets_and_says_why_when_it_cannot() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// The tolerance's Monte Carlo run through `batch --analyses`: its samples (drawn by the library as the
+/// stack-up draws them) written as a variants file, every figure of parallel travel and the static load of
+/// every variant in batch_figures.csv. Each figure's spread over the variants is the stack-up's own Monte
+/// Carlo's (the same models through another path: measured at most 2.4e-10 apart, the CSVs' digits) and its
+/// first order's within the sampling's error (a σ from 40 samples is known to 11 %: allowed four of those,
+/// measured at most 20 % apart over the 29 figures the tolerances move).
+#[test]
+fn a_monte_carlo_through_batch_gives_the_tolerance_spreads_of_every_figure() {
+    use elastokin::suspensions::design::tolerance::read_tolerances;
+    use elastokin::suspensions::design::Parameters;
+    use elastokin::suspensions::study::batch::base_document;
+    let dir = scratch("tolerance-batch");
+    let model = "examples/macpherson.json";
+    let tolerances = r#"{"hardpoints": 0.001, "tolerances": {"/suspension/macpherson/spring/rate": {"normal": "3%"}},
+                         "analyses": ["parallel-travel", "static-load"], "steps": 8}"#;
+    let file = dir.join("tolerances.json");
+    std::fs::write(&file, tolerances).unwrap();
+    let (n, seed) = (40, 2);
+    let doc = base_document(&std::fs::read_to_string(model).unwrap(), model).unwrap();
+    let t = read_tolerances(tolerances, "t", &doc).unwrap();
+    let p = Parameters::new(&doc, &t.pointers).unwrap();
+    let variants: String = (0..n)
+        .map(|i| {
+            let x = t.sample(&p.values, seed, i);
+            let edits: Vec<String> = t.pointers.iter().zip(&x).map(|(q, v)| format!("{q}={v:e}")).collect();
+            format!("sample {i}: {}\n", edits.join("; "))
+        })
+        .collect();
+    let variants_file = dir.join("variants.txt");
+    std::fs::write(&variants_file, variants).unwrap();
+    let (batch, stack) = (dir.join("batch"), dir.join("stack"));
+    let path = |p: &Path| p.to_str().unwrap().to_string();
+    succeeds(&[
+        "batch",
+        model,
+        &path(&variants_file),
+        "--analyses",
+        "parallel-travel,static-load",
+        "--quiet",
+        "--out",
+        &path(&batch),
+    ]);
+    let mc = n.to_string();
+    succeeds(&["tolerance", model, &path(&file), "--monte-carlo", &mc, "--seed", "2", "--out", &path(&stack)]);
+    let text = std::fs::read_to_string(batch.join("batch_figures.csv")).unwrap();
+    let header: Vec<String> = text.lines().nth(1).unwrap().split(',').map(String::from).collect();
+    let rows = read_csv(&batch.join("batch_figures.csv"));
+    assert_eq!(rows.len(), n);
+    let standard_error = 1.0 / (2.0 * (n as f64 - 1.0)).sqrt();
+    let (mut compared, mut worst_same, mut worst_first) = (0, 0.0_f64, 0.0_f64);
+    for r in read_csv(&stack.join("tolerance.csv")) {
+        let column = format!("{}/{} ({})", &r[0], &r[1], &r[2]);
+        let k = header.iter().position(|h| *h == column).unwrap_or_else(|| panic!("{column} not in {header:?}"));
+        let (sigma, sampled): (f64, f64) = (r[5].parse().unwrap(), r[6].parse().unwrap());
+        let value: f64 = r[3].parse().unwrap();
+        // A figure the tolerances do not move (the corner load, a ratio fixed by the rig) spreads by rounding.
+        if sigma <= 1e-6 * value.abs().max(1.0) {
+            continue;
+        }
+        let v: Vec<f64> = rows.iter().map(|row| row[k].parse::<f64>().unwrap()).collect();
+        let mean = v.iter().sum::<f64>() / n as f64;
+        let spread = (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n as f64 - 1.0)).sqrt();
+        worst_same = worst_same.max((spread / sampled - 1.0).abs());
+        worst_first = worst_first.max((spread / sigma - 1.0).abs());
+        compared += 1;
+    }
+    assert!(compared >= 20, "{compared}");
+    assert!(worst_same < 1e-8, "{worst_same}");
+    assert!(worst_first < 4.0 * standard_error, "{worst_first}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// `tolerance` with a normal band, a group, an alignment and a limit: every output carries them —
 /// tolerance.csv the limit and the share outside, tolerance_adjustments.csv the number set, each sample of
 /// tolerance_samples.csv the figure held at its nominal value (within 1e-6 of its σ before alignment; the

@@ -1215,9 +1215,7 @@ impl StackUp {
             return None;
         }
         let mut columns = vec!["sample".to_string()];
-        columns.extend(
-            self.spreads.iter().map(|s| format!("{}/{} ({})", s.analysis.name(), s.figure, s.unit.shown().symbol)),
-        );
+        columns.extend(self.spreads.iter().map(|s| kc::figure_column(s.analysis, &s.figure, s.unit)));
         columns.extend(self.adjusters.iter().map(|a| self.parameters.pointers[a.adjustment.by].clone()));
         columns.push("error".into());
         let width = columns.len();
