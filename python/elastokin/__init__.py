@@ -232,9 +232,9 @@ class Model:
         height, so the vertical row and column are zero."""
         return self._native.compliance()
 
-    def batch(self, variants: Any) -> List[Dict[str, Any]]:
+    def batch(self, variants: Any, *, analyses: Optional[Sequence[str]] = None) -> List[Dict[str, Any]]:
         """Design variants of this model; see :func:`elastokin.batch`."""
-        return batch(self, variants)
+        return batch(self, variants, analyses=analyses)
 
     def hardpoint_parameters(self) -> List[str]:
         """Every coordinate of every hardpoint, as parameter pointers (the command's ``--hardpoints``)."""
@@ -431,6 +431,8 @@ def load(source: Union[str, "os.PathLike[str]", Mapping[str, Any]], *, origin: s
 def batch(
     model: Union[Model, str, "os.PathLike[str]", Mapping[str, Any]],
     variants: Any,
+    *,
+    analyses: Optional[Sequence[str]] = None,
 ) -> List[Dict[str, Any]]:
     """Runs design variants of a model, as ``elastokin batch MODEL VARIANTS`` does: each variant walks
     parallel wheel travel ±``BATCH_HALF_RANGE`` m in ``BATCH_STEPS`` steps (corrected mode), all on every
@@ -444,11 +446,15 @@ def batch(
 
     Gives one dict per variant with the columns of batch.csv: ``variant``, ``bump_steer_deg_per_m``,
     ``camber_gain_deg_per_m``, ``wheel_rate_n_per_m`` (None when the variant failed) and ``error`` (the
-    reason, else None). Raises ModelError when a variant cannot be read or edits a key the model lacks."""
+    reason, else None). With ``analyses`` (analysis names, ``"all"`` for the whole suite), as ``batch
+    --analyses``, each dict also holds every figure those analyses report, keyed as batch_figures.csv's
+    columns (``"parallel-travel/caster (deg)"``) in the unit written there (None where the variant has
+    none). Raises ModelError when a variant cannot be read or edits a key the model lacks."""
     if not isinstance(model, Model):
         model = load(model)
     # Read once, by the batch itself (a pointer the model lacks is said before anything runs).
-    return model._native.batch(_items(variants))
+    which = None if analyses is None else [analyses] if isinstance(analyses, str) else list(analyses)
+    return model._native.batch(_items(variants), analyses=which)
 
 
 def compare(

@@ -469,17 +469,29 @@ impl Model {
     /// `(name, [(pointer, JSON text of the value)])` pair.
     /// `threads`: how many threads run the variants (None: every core). A study's task takes one CPU of
     /// its engine and runs its variants on one thread, so that tasks side by side do not oversubscribe.
-    #[pyo3(signature = (variants, threads=None))]
+    /// `analyses`: as `batch --analyses`, analysis names (`all`: the whole suite) whose every figure each
+    /// dict also holds, by the column of batch_figures.csv (`analysis/figure (unit)`), in its written unit.
+    #[pyo3(signature = (variants, threads=None, analyses=None))]
     fn batch<'py>(
         &self,
         py: Python<'py>,
         variants: &Bound<'py, PyAny>,
         threads: Option<usize>,
+        analyses: Option<Vec<String>>,
     ) -> PyResult<Vec<Bound<'py, PyDict>>> {
         let list = parse_variants(variants, Some(batch::MAX_VARIANTS))?;
         if threads == Some(0) {
             return Err(PyValueError::new_err("threads: give at least 1 (or None for every core)"));
         }
+        // `all` is the whole suite, as the command's `--analyses all`.
+        let suite = analyses
+            .map(|names| -> PyResult<Vec<Analysis>> {
+                if names.iter().any(|n| n == "all") {
+                    return Ok(Vec::new());
+                }
+                names.iter().map(|n| analysis(n)).collect()
+            })
+            .transpose()?;
         // A variant that names a key the model lacks is a mistake in the list: said before running anything.
         let files: Vec<SuspensionFile> = py
             .detach(|| list.iter().map(|v| batch::apply(&self.base, v)).collect::<Result<_, _>>())
@@ -488,42 +500,65 @@ impl Model {
             .map(|n| rayon::ThreadPoolBuilder::new().num_threads(n).build())
             .transpose()
             .map_err(|e| AnalysisError::new_err(format!("threads: {e}")))?;
-        // The variants run in chunks of about a tenth of a second each, Python's signals heard between
-        // them: Ctrl-C stops a long batch at once rather than when the last variant is done.
-        let mut results = Vec::with_capacity(files.len());
-        let mut chunk = pool.as_ref().map_or_else(rayon::current_num_threads, |p| p.current_num_threads()).max(1);
-        while results.len() < files.len() {
-            let part = &files[results.len()..(results.len() + chunk).min(files.len())];
-            let started = std::time::Instant::now();
-            let evaluate = || -> Vec<Result<batch::Outcome, String>> {
-                let run = |file| batch::evaluate(file, batch::HALF_RANGE, batch::STEPS).map_err(|e| e.to_string());
-                part.par_iter().map(run).collect()
-            };
-            results.extend(py.detach(|| match &pool {
-                None => evaluate(),
-                Some(pool) => pool.install(evaluate),
-            }));
-            py.check_signals()?;
-            let took = started.elapsed().as_secs_f64().max(1e-6);
-            chunk = ((chunk as f64 * CHUNK_SECONDS / took) as usize).clamp(1, 2 * chunk);
-        }
+        let results = in_chunks(py, pool.as_ref(), &files, |file| {
+            batch::evaluate(file, batch::HALF_RANGE, batch::STEPS).map_err(|e| e.to_string())
+        })?;
+        let suite = suite
+            .map(|which| in_chunks(py, pool.as_ref(), &files, |file| batch::evaluate_suite(file, &which, batch::STEPS)))
+            .transpose()?;
+        let columns = suite.as_deref().map(batch::suite_columns).unwrap_or_default();
         list.iter()
+            .enumerate()
             .zip(results)
-            .map(|(v, r)| {
+            .map(|((k, v), r)| {
                 let row = PyDict::new(py);
                 row.set_item("variant", &v.name)?;
-                let (outcome, error) = match r {
+                let (outcome, mut error) = match r {
                     Ok(o) => (Some(o), None),
                     Err(e) => (None, Some(e)),
                 };
                 for (k, figure) in batch::FIGURES.into_iter().enumerate() {
                     row.set_item(figure, outcome.map(|o| o.figures()[k]))?;
                 }
+                if let Some(suite) = &suite {
+                    let reported = suite[k].as_ref().map_err(|e| error.get_or_insert_with(|| e.to_string())).ok();
+                    for (a, key, unit) in &columns {
+                        let f = reported.and_then(|r| r.iter().find(|(b, f)| b == a && f.key == *key));
+                        let value = f.and_then(|(_, f)| f.value).map(|x| x * unit.shown().factor);
+                        row.set_item(kc::figure_column(*a, key, *unit), value)?;
+                    }
+                }
                 row.set_item("error", error)?;
                 Ok(row)
             })
             .collect()
     }
+}
+
+/// `run` of every file on `pool` (rayon's own when None), in chunks of about [`CHUNK_SECONDS`] each with
+/// Python's signals heard between them: Ctrl-C stops a long batch at once rather than when the last
+/// variant is done.
+fn in_chunks<T: Send>(
+    py: Python<'_>,
+    pool: Option<&rayon::ThreadPool>,
+    files: &[SuspensionFile],
+    run: impl Fn(&SuspensionFile) -> T + Sync,
+) -> PyResult<Vec<T>> {
+    let mut results = Vec::with_capacity(files.len());
+    let mut chunk = pool.map_or_else(rayon::current_num_threads, |p| p.current_num_threads()).max(1);
+    while results.len() < files.len() {
+        let part = &files[results.len()..(results.len() + chunk).min(files.len())];
+        let started = std::time::Instant::now();
+        let evaluate = || -> Vec<T> { part.par_iter().map(&run).collect() };
+        results.extend(py.detach(|| match pool {
+            None => evaluate(),
+            Some(pool) => pool.install(evaluate),
+        }));
+        py.check_signals()?;
+        let took = started.elapsed().as_secs_f64().max(1e-6);
+        chunk = ((chunk as f64 * CHUNK_SECONDS / took) as usize).clamp(1, 2 * chunk);
+    }
+    Ok(results)
 }
 
 /// The variants of `Model.batch`: a variants file's text, or a list of lines and `(name, edits)` pairs; at
