@@ -10,16 +10,16 @@
 //! car. Checked by Monte Carlo: the model sampled within the bands, adjusted, every sample run, the spread
 //! and the share of cars outside each limit counted.
 //!
-//! The TOLERANCES file:
+//! The TOLERANCES file (every key: docs/design-files.md):
 //!
 //! ```json
-//! { "tolerances": { "/suspension/macpherson/hardpoints/tie_rod_inner/2": {"normal": 0.0003},
-//!                   "/suspension/macpherson/lower_arm_mounts/bushing/radial": "15%" },
-//!   "hardpoints": 0.001,
-//!   "groups": [ { "name": "subframe", "points": ["lower_arm_front", "lower_arm_rear"], "shift": 0.002 } ],
+//! { "tolerances": { "/suspension/twist_beam/spring/rate": "5%",
+//!                   "/suspension/twist_beam/toe": { "uniform": 0.1 } },
+//!   "hardpoints": { "normal": 0.0004 },
+//!   "groups": [ { "name": "wheel carrier", "points": ["wheel_centre", "arm_end"], "shift": 0.0005 } ],
 //!   "adjust": [ { "figure": "static-load/toe", "by": "/suspension/twist_beam/toe" } ],
-//!   "limits": { "parallel-travel/bump_steer": [-3, 0] },
-//!   "analyses": ["parallel-travel"],
+//!   "limits": { "static-load/camber": [-1.2, -1.1] },
+//!   "analyses": ["parallel-travel", "static-load"],
 //!   "steps": 32 }
 //! ```
 //!
