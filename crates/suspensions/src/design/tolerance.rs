@@ -99,8 +99,9 @@ pub struct Source {
     pub words: String,
     /// Its band, in the file's units.
     pub band: Band,
-    /// The parameters it moves, each by the whole draw (indices into [`Tolerances::pointers`]).
-    pub moves: Vec<usize>,
+    /// The parameters it moves and by how much per unit of the draw (indices into [`Tolerances::pointers`]:
+    /// 1 for a number's band and a shift, the lever of a rotation).
+    pub moves: Vec<(usize, f64)>,
 }
 
 /// A number set at alignment so that a figure is back at its nominal value.
@@ -194,8 +195,8 @@ pub enum TolerancesRefusal {
         /// What it holds.
         got: Value,
     },
-    /// A group's shift given as a percent, which a shift is not.
-    #[error("{key}: a shift is a length: give it in the file's units (m), not as a percent")]
+    /// A group's shift or rotation given as a percent, which neither is.
+    #[error("{key}: a shift is a length and a rotation an angle: give it in the file's units (m) or in rad, not as a percent")]
     ShiftPercent {
         /// The key.
         key: String,
@@ -318,6 +319,27 @@ fn band_of(v: &Value, key: &str, value: Option<f64>) -> Result<Band, TolerancesR
     }
 }
 
+/// A group's band per axis at `key`: one band for each of x, y and z, or an object of `x`, `y`, `z` → band
+/// for those axes alone (`(axis, band)`); a percent refused (a shift is a length, a rotation an angle).
+fn by_axes(v: &Value, key: &str) -> Result<Vec<(usize, Band)>, TolerancesRefusal> {
+    match v.as_object() {
+        Some(by_axis) if ["x", "y", "z"].iter().any(|a| by_axis.contains_key(*a)) => {
+            only(by_axis, &["x", "y", "z"], key)?;
+            let mut axes = Vec::new();
+            for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+                if let Some(b) = by_axis.get(*axis) {
+                    axes.push((k, band_of(b, &format!("{key}.{axis}"), None)?));
+                }
+            }
+            Ok(axes)
+        }
+        _ => {
+            let band = band_of(v, key, None)?;
+            Ok((0..3).map(|k| (k, band)).collect())
+        }
+    }
+}
+
 /// An `"analysis/figure"` path at `key`.
 fn figure_path(v: &Value, key: &str) -> Result<(Analysis, String), TolerancesRefusal> {
     let path = name_in(v, key)?;
@@ -376,14 +398,14 @@ fn tolerances_in(text: &str, document: &Value) -> Result<Tolerances, TolerancesR
     let mut sources: Vec<Source> = bands
         .iter()
         .enumerate()
-        .map(|(k, (p, band))| Source { name: p.clone(), words: parameter_words(p), band: *band, moves: vec![k] })
+        .map(|(k, (p, band))| Source { name: p.clone(), words: parameter_words(p), band: *band, moves: vec![(k, 1.0)] })
         .collect();
     for (g, entry) in list(object, "groups", "groups {\"name\", \"points\", \"shift\"}")?.iter().enumerate() {
         let key = format!("groups[{g}]");
         let o = entry
             .as_object()
             .ok_or_else(|| R::NotObjectAt { key: key.clone(), what: "{\"name\", \"points\", \"shift\"}" })?;
-        only(o, &["name", "points", "shift"], &key)?;
+        only(o, &["name", "points", "shift", "rotate"], &key)?;
         let missing = |missing, what| R::Missing { key: key.clone(), missing, what };
         let name = name_in(
             o.get("name").ok_or_else(|| missing("name", "what the group is: \"subframe\""))?,
@@ -421,31 +443,42 @@ fn tolerances_in(text: &str, document: &Value) -> Result<Tolerances, TolerancesR
             }
             members.push(pointer);
         }
-        let shift_key = format!("{key}.shift");
-        let shift = o.get("shift").ok_or_else(|| missing("shift", "the band of the whole group's shift, m"))?;
-        // One band for every axis, or one per axis named.
-        let axes: Vec<(usize, Band)> = match shift.as_object() {
-            Some(by_axis) if ["x", "y", "z"].iter().any(|a| by_axis.contains_key(*a)) => {
-                only(by_axis, &["x", "y", "z"], &shift_key)?;
-                let mut axes = Vec::new();
-                for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-                    if let Some(b) = by_axis.get(*axis) {
-                        axes.push((k, band_of(b, &format!("{shift_key}.{axis}"), None)?));
-                    }
-                }
-                axes
-            }
-            _ => {
-                let band = band_of(shift, &shift_key, None)?;
-                (0..3).map(|k| (k, band)).collect()
-            }
-        };
-        for (k, band) in axes {
+        let (shift, rotate) = (o.get("shift"), o.get("rotate"));
+        if shift.is_none() && rotate.is_none() {
+            return Err(missing("shift", "the band of the whole group's shift, m, or \"rotate\", rad"));
+        }
+        // A shift along axis k moves each point's coordinate k by the draw.
+        for (k, band) in shift.map(|v| by_axes(v, &format!("{key}.shift"))).transpose()?.into_iter().flatten() {
             let axis = ["x", "y", "z"][k];
-            let moves = members.iter().map(|m| index_of(&mut pointers, &format!("{m}/{k}"))).collect();
+            let moves = members.iter().map(|m| (index_of(&mut pointers, &format!("{m}/{k}")), 1.0)).collect();
             sources.push(Source {
                 name: format!("group {name} {axis}"),
                 words: format!("{name} shifted {axis}"),
+                band,
+                moves,
+            });
+        }
+        // A small rotation ω about axis k through the points' centroid c moves point p by ω e_k × (p − c).
+        let at: Vec<[f64; 3]> = members
+            .iter()
+            .map(|m| {
+                std::array::from_fn(|k| document.pointer(&format!("{m}/{k}")).and_then(Value::as_f64).unwrap_or(0.0))
+            })
+            .collect();
+        let centre: [f64; 3] = std::array::from_fn(|k| at.iter().map(|p| p[k]).sum::<f64>() / at.len() as f64);
+        for (k, band) in rotate.map(|v| by_axes(v, &format!("{key}.rotate"))).transpose()?.into_iter().flatten() {
+            let axis = ["x", "y", "z"][k];
+            let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+            let mut moves = Vec::new();
+            for (m, p) in members.iter().zip(&at) {
+                let r = [p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]];
+                // e_k × r: its i-th coordinate −r_j, its j-th r_i.
+                moves.push((index_of(&mut pointers, &format!("{m}/{i}")), -r[j]));
+                moves.push((index_of(&mut pointers, &format!("{m}/{j}")), r[i]));
+            }
+            sources.push(Source {
+                name: format!("group {name} r{axis}"),
+                words: format!("{name} rotated about {axis}"),
                 band,
                 moves,
             });
@@ -531,8 +564,8 @@ impl Tolerances {
         let mut x = values.to_vec();
         for s in &self.sources {
             let d = s.band.draw(&mut rng);
-            for &p in &s.moves {
-                x[p] += d;
+            for &(p, lever) in &s.moves {
+                x[p] += lever * d;
             }
         }
         x
@@ -808,9 +841,9 @@ pub fn stack_up(document: &Value, tolerances: &Tolerances) -> Result<StackUp, St
             StackUpError::NoFigure { key, analysis: analysis.name(), figure: figure.into(), why }
         })
     };
-    // Each figure's rate per source: the sum of the rates of the numbers it moves.
+    // Each figure's rate per source: the sum of the rates of the numbers it moves, each times its lever.
     let by_source = |rates: &[f64]| -> Vec<f64> {
-        tolerances.sources.iter().map(|s| s.moves.iter().map(|&p| rates[p]).sum()).collect()
+        tolerances.sources.iter().map(|s| s.moves.iter().map(|&(p, lever)| lever * rates[p]).sum()).collect()
     };
     // The alignment: the adjusted figures' rates per adjuster `A` and per source `B`; every figure's rates
     // per source lose their part through the adjusters, `g − g_a A⁻¹ B`.
@@ -912,7 +945,9 @@ pub fn stack_up(document: &Value, tolerances: &Tolerances) -> Result<StackUp, St
                 .sources
                 .iter()
                 .zip(m)
-                .map(|(s, m)| m + s.moves.iter().filter(|&&p| p == adjustment.by).count() as f64)
+                .map(|(s, m)| {
+                    m + s.moves.iter().filter(|(p, _)| *p == adjustment.by).map(|(_, lever)| lever).sum::<f64>()
+                })
                 .collect();
             let (worst_case, sigma) = spread_of(&set);
             AdjusterSpread { adjustment: adjustment.clone(), worst_case, sigma, sampled: None }
