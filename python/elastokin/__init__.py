@@ -299,15 +299,18 @@ class Model:
     ) -> Dict[str, Any]:
         """The tolerance stack-up of ``tolerances`` (a TOLERANCES file's path, or its content as a dict), as
         ``elastokin tolerance`` gives it: tolerance.csv's columns by name (each figure's first-order
-        ``worst_case`` and ``sigma``, and with ``monte_carlo`` samples the sampled spread beside them)."""
+        ``worst_case`` and ``sigma``, the share ``outside`` its limit, and with ``monte_carlo`` samples the
+        sampled spread beside them), and the other CSVs' columns by name: ``contributions``, ``adjustments``
+        (None without ``adjust``) and ``samples`` (None without ``monte_carlo``)."""
         return self._native.tolerance(_design_file(tolerances)[0], monte_carlo=monte_carlo, seed=seed)
 
     def tolerance_samples(
         self, tolerances: Union[str, Dict[str, Any]], n: int, *, seed: int = 1
     ) -> Dict[str, numpy.ndarray]:
         """The ``n`` models ``tolerance(monte_carlo=n, seed=seed)`` samples, as a variant table (each number's
-        JSON pointer and its sampled values): ``elastokin.study(model, samples, engine="ray")`` (or "dask")
-        runs the Monte Carlo on a cluster, each sample the same as the command draws."""
+        JSON pointer and its sampled values, as drawn: before the alignment sets any adjuster):
+        ``elastokin.study(model, samples, engine="ray")`` (or "dask") runs the Monte Carlo on a cluster, each
+        sample the same as the command draws."""
         return self._native.tolerance_samples(_design_file(tolerances)[0], n, seed=seed)
 
     def objective(
