@@ -1751,6 +1751,37 @@ fn a_monte_carlo_through_batch_gives_the_tolerance_spreads_of_every_figure() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// `batch --analyses all` runs the whole suite on every variant: batch_figures.csv holds a column for each
+/// figure of every analysis the model takes, each variant's row its own; with `--shard` (whose shards
+/// `merge` joins by batch.csv alone) it is refused, exit 2.
+#[test]
+fn batch_through_the_whole_suite_writes_every_figure_and_is_no_shard() {
+    let dir = scratch("batch-suite");
+    let out = dir.join("out");
+    let model = "examples/generic/macpherson.json";
+    let variants = "examples/generic/macpherson_variants.txt";
+    succeeds(&["batch", model, variants, "--analyses", "all", "--quiet", "--out", out.to_str().unwrap()]);
+    let text = std::fs::read_to_string(out.join("batch_figures.csv")).unwrap();
+    let header: Vec<&str> = text.lines().nth(1).unwrap().split(',').collect();
+    for column in ["parallel-travel/bump_steer (deg/m)", "roll/roll_centre_height (mm)", "static-load/toe (deg)"] {
+        assert!(header.contains(&column), "{column} not in {header:?}");
+    }
+    let rows = read_csv(&out.join("batch_figures.csv"));
+    assert_eq!(rows.len(), read_csv(&out.join("batch.csv")).len());
+    // The bump steer of batch.csv's own sweep is the suite's, to the digit: both read it off the design
+    // equilibrium, whatever the sweep's range and steps.
+    let batch = read_csv(&out.join("batch.csv"));
+    let k = header.iter().position(|h| *h == "parallel-travel/bump_steer (deg/m)").unwrap();
+    for (a, b) in batch.iter().zip(&rows) {
+        assert_eq!(&a[1], &b[k]);
+    }
+    let o =
+        elastokin(&["batch", model, variants, "--analyses", "all", "--shard", "1/2", "--out", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--shard"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// `tolerance` with a normal band, a group, an alignment and a limit: every output carries them —
 /// tolerance.csv the limit and the share outside, tolerance_adjustments.csv the number set, each sample of
 /// tolerance_samples.csv the figure held at its nominal value (within 1e-6 of its σ before alignment; the
