@@ -128,8 +128,8 @@ pub(super) fn write_bars(out: &mut String, bars: &[(String, f64)], unit: &str) -
 }
 
 /// A histogram of `samples` as inline SVG: twenty bins spanning the samples, the nominal value `nominal` a
-/// dark line and a limit's ends (`(min, max)`, either open) red lines, the axis's ends and each line's value
-/// written with `unit`.
+/// dark line and a limit's ends (`(min, max)`, either open) red lines where they lie within the samples'
+/// span of them (one further would squeeze the bins to a sliver), the axis's ends written with `unit`.
 pub(super) fn write_histogram(
     out: &mut String,
     samples: &[f64],
@@ -139,13 +139,13 @@ pub(super) fn write_histogram(
 ) -> std::fmt::Result {
     const BINS: usize = 20;
     let (width, height, base, margin) = (900.0, 160.0, 130.0, 40.0);
-    let ends = limit.into_iter().flat_map(|(a, b)| [a, b]).flatten();
-    let (low, high) = samples
-        .iter()
-        .copied()
-        .chain([nominal])
-        .chain(ends.clone())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
+    let range = |values: &mut dyn Iterator<Item = f64>| {
+        values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)))
+    };
+    let (least, most) = range(&mut samples.iter().copied().chain([nominal]));
+    let near = |e: &f64| *e >= least - (most - least) && *e <= most + (most - least);
+    let ends: Vec<f64> = limit.into_iter().flat_map(|(a, b)| [a, b]).flatten().filter(near).collect();
+    let (low, high) = range(&mut [least, most].into_iter().chain(ends.iter().copied()));
     // A spread of rounding is drawn as one bin about its value.
     let span = (high - low).max(1e-12 * low.abs().max(1e-300));
     let x_of = |v: f64| margin + (width - 2.0 * margin) * (v - low) / span;
@@ -202,6 +202,21 @@ pub(super) fn write_histogram(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// 100 samples evenly over their span fall five to each of the twenty bins; a limit end within the span
+    /// is drawn and one a hundred spans away is not; an equal spread of samples draws one full bin.
+    #[test]
+    fn a_histogram_counts_every_sample_once_and_draws_the_limits_near_them() {
+        let samples: Vec<f64> = (0..100).map(|k| k as f64 + 0.5).collect();
+        let mut out = String::new();
+        write_histogram(&mut out, &samples, 50.0, Some((Some(10.0), Some(1e4))), "mm").unwrap();
+        assert_eq!(out.matches("<title>5</title>").count(), 20, "{out}");
+        assert_eq!(out.matches("stroke=\"#cf222e\"").count(), 1);
+        roxmltree::Document::parse(&out).unwrap();
+        let mut out = String::new();
+        write_histogram(&mut out, &[2.0; 7], 2.0, None, "deg").unwrap();
+        assert!(out.contains("<title>7</title>") && !out.contains("NaN") && !out.contains("inf"), "{out}");
+    }
 
     #[test]
     fn prolog_of_a_standalone_svg_is_dropped() {
