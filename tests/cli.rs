@@ -1679,6 +1679,154 @@ fn tune_meets_the_shipped_targets_and_says_why_when_it_cannot() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// The tolerance's Monte Carlo run through `batch --analyses`: its samples (drawn by the library as the
+/// stack-up draws them) written as a variants file, every figure of parallel travel and the static load of
+/// every variant in batch_figures.csv. Each figure's spread over the variants is the stack-up's own Monte
+/// Carlo's (the same models through another path: measured at most 2.4e-10 apart, the CSVs' digits) and its
+/// first order's within the sampling's error (a σ from 40 samples is known to 11 %: allowed four of those,
+/// measured at most 20 % apart over the 29 figures the tolerances move).
+#[test]
+fn a_monte_carlo_through_batch_gives_the_tolerance_spreads_of_every_figure() {
+    use elastokin::suspensions::design::tolerance::read_tolerances;
+    use elastokin::suspensions::design::Parameters;
+    use elastokin::suspensions::study::batch::base_document;
+    let dir = scratch("tolerance-batch");
+    let model = "examples/macpherson.json";
+    let tolerances = r#"{"hardpoints": 0.001, "tolerances": {"/suspension/macpherson/spring/rate": {"normal": "3%"}},
+                         "analyses": ["parallel-travel", "static-load"], "steps": 8}"#;
+    let file = dir.join("tolerances.json");
+    std::fs::write(&file, tolerances).unwrap();
+    let (n, seed) = (40, 2);
+    let doc = base_document(&std::fs::read_to_string(model).unwrap(), model).unwrap();
+    let t = read_tolerances(tolerances, "t", &doc).unwrap();
+    let p = Parameters::new(&doc, &t.pointers).unwrap();
+    let variants: String = (0..n)
+        .map(|i| {
+            let x = t.sample(&p.values, seed, i);
+            let edits: Vec<String> = t.pointers.iter().zip(&x).map(|(q, v)| format!("{q}={v:e}")).collect();
+            format!("sample {i}: {}\n", edits.join("; "))
+        })
+        .collect();
+    let variants_file = dir.join("variants.txt");
+    std::fs::write(&variants_file, variants).unwrap();
+    let (batch, stack) = (dir.join("batch"), dir.join("stack"));
+    let path = |p: &Path| p.to_str().unwrap().to_string();
+    succeeds(&[
+        "batch",
+        model,
+        &path(&variants_file),
+        "--analyses",
+        "parallel-travel,static-load",
+        "--quiet",
+        "--out",
+        &path(&batch),
+    ]);
+    let mc = n.to_string();
+    succeeds(&["tolerance", model, &path(&file), "--monte-carlo", &mc, "--seed", "2", "--out", &path(&stack)]);
+    let text = std::fs::read_to_string(batch.join("batch_figures.csv")).unwrap();
+    let header: Vec<String> = text.lines().nth(1).unwrap().split(',').map(String::from).collect();
+    let rows = read_csv(&batch.join("batch_figures.csv"));
+    assert_eq!(rows.len(), n);
+    let standard_error = 1.0 / (2.0 * (n as f64 - 1.0)).sqrt();
+    let (mut compared, mut worst_same, mut worst_first) = (0, 0.0_f64, 0.0_f64);
+    for r in read_csv(&stack.join("tolerance.csv")) {
+        let column = format!("{}/{} ({})", &r[0], &r[1], &r[2]);
+        let k = header.iter().position(|h| *h == column).unwrap_or_else(|| panic!("{column} not in {header:?}"));
+        let (sigma, sampled): (f64, f64) = (r[5].parse().unwrap(), r[6].parse().unwrap());
+        let value: f64 = r[3].parse().unwrap();
+        // A figure the tolerances do not move (the corner load, a ratio fixed by the rig) spreads by rounding.
+        if sigma <= 1e-6 * value.abs().max(1.0) {
+            continue;
+        }
+        let v: Vec<f64> = rows.iter().map(|row| row[k].parse::<f64>().unwrap()).collect();
+        let mean = v.iter().sum::<f64>() / n as f64;
+        let spread = (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n as f64 - 1.0)).sqrt();
+        worst_same = worst_same.max((spread / sampled - 1.0).abs());
+        worst_first = worst_first.max((spread / sigma - 1.0).abs());
+        compared += 1;
+    }
+    assert!(compared >= 20, "{compared}");
+    assert!(worst_same < 1e-8, "{worst_same}");
+    assert!(worst_first < 4.0 * standard_error, "{worst_first}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `batch --analyses all` runs the whole suite on every variant: batch_figures.csv holds a column for each
+/// figure of every analysis the model takes, each variant's row its own; with `--shard` (whose shards
+/// `merge` joins by batch.csv alone) it is refused, exit 2.
+#[test]
+fn batch_through_the_whole_suite_writes_every_figure_and_is_no_shard() {
+    let dir = scratch("batch-suite");
+    let out = dir.join("out");
+    let model = "examples/generic/macpherson.json";
+    let variants = "examples/generic/macpherson_variants.txt";
+    succeeds(&["batch", model, variants, "--analyses", "all", "--quiet", "--out", out.to_str().unwrap()]);
+    let text = std::fs::read_to_string(out.join("batch_figures.csv")).unwrap();
+    let header: Vec<&str> = text.lines().nth(1).unwrap().split(',').collect();
+    for column in ["parallel-travel/bump_steer (deg/m)", "roll/roll_centre_height (mm)", "static-load/toe (deg)"] {
+        assert!(header.contains(&column), "{column} not in {header:?}");
+    }
+    let rows = read_csv(&out.join("batch_figures.csv"));
+    assert_eq!(rows.len(), read_csv(&out.join("batch.csv")).len());
+    // The bump steer of batch.csv's own sweep is the suite's, to the digit: both read it off the design
+    // equilibrium, whatever the sweep's range and steps.
+    let batch = read_csv(&out.join("batch.csv"));
+    let k = header.iter().position(|h| *h == "parallel-travel/bump_steer (deg/m)").unwrap();
+    for (a, b) in batch.iter().zip(&rows) {
+        assert_eq!(&a[1], &b[k]);
+    }
+    let o =
+        elastokin(&["batch", model, variants, "--analyses", "all", "--shard", "1/2", "--out", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--shard"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `tolerance` with a normal band, a group, an alignment and a limit: every output carries them —
+/// tolerance.csv the limit and the share outside, tolerance_adjustments.csv the number set, each sample of
+/// tolerance_samples.csv the figure held at its nominal value (within 1e-6 of its σ before alignment; the
+/// printed values to their ten significant digits), the report its alignment and the share outside.
+#[test]
+fn tolerance_writes_groups_alignment_and_limits_in_every_output() {
+    let dir = scratch("tolerance-aligned");
+    let file = dir.join("tolerances.json");
+    std::fs::write(
+        &file,
+        r#"{"tolerances": {"/suspension/twist_beam/toe": {"normal": 0.05}},
+            "groups": [{"name": "axle", "points": ["pivot", "junction"], "shift": {"z": 0.001}}],
+            "adjust": [{"figure": "static-load/toe", "by": "/suspension/twist_beam/toe"}],
+            "limits": {"static-load/camber": [-1.2, null]},
+            "analyses": ["static-load"], "steps": 8}"#,
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let args = ["tolerance", "examples/twist_beam_template.json", file.to_str().unwrap(), "--monte-carlo", "6"];
+    let o = succeeds(&[&args[..], &["--out", out.to_str().unwrap()]].concat());
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("outside its limit:") && stdout.contains("set at alignment by"), "{stdout}");
+    let header = |p: &Path| std::fs::read_to_string(p).unwrap().lines().nth(1).unwrap().to_string();
+    assert!(header(&out.join("tolerance.csv")).contains("limit_min,limit_max,outside,sampled_outside"));
+    let rows = read_csv(&out.join("tolerance.csv"));
+    let camber = rows.iter().find(|r| &r[1] == "camber").unwrap();
+    assert_eq!(&camber[11], "-1.2");
+    let toe = rows.iter().find(|r| &r[1] == "toe").unwrap();
+    let nominal: f64 = toe[3].parse().unwrap();
+    let adjustments = read_csv(&out.join("tolerance_adjustments.csv"));
+    assert_eq!((adjustments.len(), &adjustments[0][2]), (1, "/suspension/twist_beam/toe"));
+    let samples_header = header(&out.join("tolerance_samples.csv"));
+    let column = samples_header.split(',').position(|c| c == "static-load/toe (deg)").unwrap();
+    let samples = read_csv(&out.join("tolerance_samples.csv"));
+    assert_eq!(samples.len(), 6);
+    for r in &samples {
+        let v: f64 = r[column].parse().unwrap();
+        assert!((v - nominal).abs() < 1e-6, "{v} {nominal}");
+    }
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    roxmltree::Document::parse(html.strip_prefix("<!DOCTYPE html>").unwrap()).unwrap();
+    assert!(html.contains("Set at alignment") && html.contains("outside its limit"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// `tolerance` on the shipped tolerances example: tolerance.csv holds each figure's first-order worst case
 /// and σ with the Monte Carlo's beside them (the same seed, the same samples: the file again byte for
 /// byte after the provenance line), the contributions sum to the worst case, report.html is well formed;
@@ -1718,12 +1866,15 @@ fn tolerance_stacks_up_the_shipped_example_and_checks_it_by_sampling() {
     let sum: f64 = contributions
         .iter()
         .filter(|r| &r[1] == "bump_steer" && &r[0] == "parallel-travel" && &r[2] == "deg/m")
-        .map(|r| r[5].parse::<f64>().unwrap().abs())
+        .map(|r| r[6].parse::<f64>().unwrap().abs())
         .sum();
     assert!((sum - worst).abs() <= 1e-9 * worst, "{sum} {worst}");
     let html = std::fs::read_to_string(a.join("report.html")).unwrap();
     roxmltree::Document::parse(html.strip_prefix("<!DOCTYPE html>").unwrap()).unwrap();
     assert!(html.contains("The largest contributors") && html.contains("<rect"));
+    // The samples' histogram, one per figure sampled.
+    assert_eq!(html.matches("60 samples</text>").count(), rows.len());
+    assert_eq!(read_csv(&a.join("tolerance_samples.csv")).len(), 60);
     let bad = dir.join("bad.json");
     std::fs::write(&bad, r#"{"tolerances": {"/suspension/macpherson/spring/rate": "lots"}}"#).unwrap();
     let o = elastokin(&[

@@ -232,9 +232,9 @@ class Model:
         height, so the vertical row and column are zero."""
         return self._native.compliance()
 
-    def batch(self, variants: Any) -> List[Dict[str, Any]]:
+    def batch(self, variants: Any, *, analyses: Optional[Sequence[str]] = None) -> List[Dict[str, Any]]:
         """Design variants of this model; see :func:`elastokin.batch`."""
-        return batch(self, variants)
+        return batch(self, variants, analyses=analyses)
 
     def hardpoint_parameters(self) -> List[str]:
         """Every coordinate of every hardpoint, as parameter pointers (the command's ``--hardpoints``)."""
@@ -303,15 +303,18 @@ class Model:
     ) -> Dict[str, Any]:
         """The tolerance stack-up of ``tolerances`` (a TOLERANCES file's path, or its content as a dict), as
         ``elastokin tolerance`` gives it: tolerance.csv's columns by name (each figure's first-order
-        ``worst_case`` and ``sigma``, and with ``monte_carlo`` samples the sampled spread beside them)."""
+        ``worst_case`` and ``sigma``, the share ``outside`` its limit, and with ``monte_carlo`` samples the
+        sampled spread beside them), and the other CSVs' columns by name: ``contributions``, ``adjustments``
+        (None without ``adjust``) and ``samples`` (None without ``monte_carlo``)."""
         return self._native.tolerance(_design_file(tolerances)[0], monte_carlo=monte_carlo, seed=seed)
 
     def tolerance_samples(
         self, tolerances: Union[str, Dict[str, Any]], n: int, *, seed: int = 1
     ) -> Dict[str, numpy.ndarray]:
         """The ``n`` models ``tolerance(monte_carlo=n, seed=seed)`` samples, as a variant table (each number's
-        JSON pointer and its sampled values): ``elastokin.study(model, samples, engine="ray")`` (or "dask")
-        runs the Monte Carlo on a cluster, each sample the same as the command draws."""
+        JSON pointer and its sampled values, as drawn: before the alignment sets any adjuster):
+        ``elastokin.study(model, samples, engine="ray")`` (or "dask") runs the Monte Carlo on a cluster, each
+        sample the same as the command draws."""
         return self._native.tolerance_samples(_design_file(tolerances)[0], n, seed=seed)
 
     def objective(
@@ -435,6 +438,8 @@ def load(source: Union[str, "os.PathLike[str]", Mapping[str, Any]], *, origin: s
 def batch(
     model: Union[Model, str, "os.PathLike[str]", Mapping[str, Any]],
     variants: Any,
+    *,
+    analyses: Optional[Sequence[str]] = None,
 ) -> List[Dict[str, Any]]:
     """Runs design variants of a model, as ``elastokin batch MODEL VARIANTS`` does: each variant walks
     parallel wheel travel ±``BATCH_HALF_RANGE`` m in ``BATCH_STEPS`` steps (corrected mode), all on every
@@ -448,11 +453,15 @@ def batch(
 
     Gives one dict per variant with the columns of batch.csv: ``variant``, ``bump_steer_deg_per_m``,
     ``camber_gain_deg_per_m``, ``wheel_rate_n_per_m`` (None when the variant failed) and ``error`` (the
-    reason, else None). Raises ModelError when a variant cannot be read or edits a key the model lacks."""
+    reason, else None). With ``analyses`` (analysis names, ``"all"`` for the whole suite), as ``batch
+    --analyses``, each dict also holds every figure those analyses report, keyed as batch_figures.csv's
+    columns (``"parallel-travel/caster (deg)"``) in the unit written there (None where the variant has
+    none). Raises ModelError when a variant cannot be read or edits a key the model lacks."""
     if not isinstance(model, Model):
         model = load(model)
     # Read once, by the batch itself (a pointer the model lacks is said before anything runs).
-    return model._native.batch(_items(variants))
+    which = None if analyses is None else [analyses] if isinstance(analyses, str) else list(analyses)
+    return model._native.batch(_items(variants), analyses=which)
 
 
 def compare(

@@ -87,6 +87,7 @@ class Model:
         self,
         variants: Union[str, Sequence[Union[str, Tuple[Optional[str], Sequence[Tuple[str, str]]]]]],
         threads: Optional[int] = None,
+        analyses: Optional[Sequence[str]] = None,
     ) -> List[Dict[str, Any]]: ...
 
 _Vector3 = Tuple[float, float, float]

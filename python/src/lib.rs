@@ -318,8 +318,11 @@ impl Model {
     }
 
     /// The tolerance stack-up of the TOLERANCES file's text `tolerances`, as the command's `tolerance`:
-    /// `tolerance.csv`'s columns by name (each figure's value, first-order `worst_case` and `sigma`, and
-    /// with `monte_carlo` samples the sampled spread beside them), the same seed giving the same samples.
+    /// `tolerance.csv`'s columns by name (each figure's value, first-order `worst_case` and `sigma`, the
+    /// share `outside` a limit, and with `monte_carlo` samples the sampled spread beside them), the same seed
+    /// giving the same samples; and, as tables of columns by name, `contributions`
+    /// (tolerance_contributions.csv), `adjustments` (tolerance_adjustments.csv, None without adjustments)
+    /// and `samples` (tolerance_samples.csv, None without a Monte Carlo).
     #[pyo3(signature = (tolerances, monte_carlo=None, seed=1))]
     fn tolerance<'py>(
         &self,
@@ -340,11 +343,17 @@ impl Model {
                 Ok(stack)
             })
             .map_err(|e: StackUpError| AnalysisError::new_err(e.to_string()))?;
-        column_dict(py, &stack.table())
+        let d = column_dict(py, &stack.table())?;
+        d.set_item("contributions", column_dict(py, &stack.contribution_table())?)?;
+        let optional = |table: Option<Table>| table.map(|t| column_dict(py, &t)).transpose();
+        d.set_item("adjustments", optional(stack.adjustment_table())?)?;
+        d.set_item("samples", optional(stack.sample_table())?)?;
+        Ok(d)
     }
 
     /// The Monte Carlo samples of the TOLERANCES file's text `tolerances` that `tolerance(monte_carlo=n,
-    /// seed=seed)` draws, as a variant table: each number's pointer and its `n` sampled values.
+    /// seed=seed)` draws, as a variant table: each number's pointer and its `n` sampled values, as drawn
+    /// (before any adjustment the alignment makes).
     #[pyo3(signature = (tolerances, n, seed=1))]
     fn tolerance_samples<'py>(
         &self,
@@ -353,16 +362,14 @@ impl Model {
         n: usize,
         seed: u64,
     ) -> PyResult<Bound<'py, PyDict>> {
-        use elastokin_suspensions::design::tolerance::{read_tolerances, sample};
+        use elastokin_suspensions::design::tolerance::read_tolerances;
         use elastokin_suspensions::design::Parameters;
         let t =
             read_tolerances(tolerances, "tolerances", &self.base).map_err(|e| PyValueError::new_err(e.to_string()))?;
-        let pointers: Vec<String> = t.bands.iter().map(|(p, _)| p.clone()).collect();
-        let bands: Vec<f64> = t.bands.iter().map(|(_, b)| *b).collect();
-        let p = Parameters::new(&self.base, &pointers).map_err(|e| ModelError::new_err(e.to_string()))?;
-        let samples: Vec<Vec<f64>> = (0..n).map(|i| sample(&p.values, &bands, seed, i)).collect();
+        let p = Parameters::new(&self.base, &t.pointers).map_err(|e| ModelError::new_err(e.to_string()))?;
+        let samples: Vec<Vec<f64>> = (0..n).map(|i| t.sample(&p.values, seed, i)).collect();
         let d = PyDict::new(py);
-        for (k, pointer) in pointers.iter().enumerate() {
+        for (k, pointer) in t.pointers.iter().enumerate() {
             d.set_item(pointer, PyArray1::from_vec(py, samples.iter().map(|x| x[k]).collect()))?;
         }
         Ok(d)
@@ -464,17 +471,29 @@ impl Model {
     /// `(name, [(pointer, JSON text of the value)])` pair.
     /// `threads`: how many threads run the variants (None: every core). A study's task takes one CPU of
     /// its engine and runs its variants on one thread, so that tasks side by side do not oversubscribe.
-    #[pyo3(signature = (variants, threads=None))]
+    /// `analyses`: as `batch --analyses`, analysis names (`all`: the whole suite) whose every figure each
+    /// dict also holds, by the column of batch_figures.csv (`analysis/figure (unit)`), in its written unit.
+    #[pyo3(signature = (variants, threads=None, analyses=None))]
     fn batch<'py>(
         &self,
         py: Python<'py>,
         variants: &Bound<'py, PyAny>,
         threads: Option<usize>,
+        analyses: Option<Vec<String>>,
     ) -> PyResult<Vec<Bound<'py, PyDict>>> {
         let list = parse_variants(variants, Some(batch::MAX_VARIANTS))?;
         if threads == Some(0) {
             return Err(PyValueError::new_err("threads: give at least 1 (or None for every core)"));
         }
+        // `all` is the whole suite, as the command's `--analyses all`.
+        let suite = analyses
+            .map(|names| -> PyResult<Vec<Analysis>> {
+                if names.iter().any(|n| n == "all") {
+                    return Ok(Vec::new());
+                }
+                names.iter().map(|n| analysis(n)).collect()
+            })
+            .transpose()?;
         // A variant that names a key the model lacks is a mistake in the list: said before running anything.
         let files: Vec<SuspensionFile> = py
             .detach(|| list.iter().map(|v| batch::apply(&self.base, v)).collect::<Result<_, _>>())
@@ -483,42 +502,65 @@ impl Model {
             .map(|n| rayon::ThreadPoolBuilder::new().num_threads(n).build())
             .transpose()
             .map_err(|e| AnalysisError::new_err(format!("threads: {e}")))?;
-        // The variants run in chunks of about a tenth of a second each, Python's signals heard between
-        // them: Ctrl-C stops a long batch at once rather than when the last variant is done.
-        let mut results = Vec::with_capacity(files.len());
-        let mut chunk = pool.as_ref().map_or_else(rayon::current_num_threads, |p| p.current_num_threads()).max(1);
-        while results.len() < files.len() {
-            let part = &files[results.len()..(results.len() + chunk).min(files.len())];
-            let started = std::time::Instant::now();
-            let evaluate = || -> Vec<Result<batch::Outcome, String>> {
-                let run = |file| batch::evaluate(file, batch::HALF_RANGE, batch::STEPS).map_err(|e| e.to_string());
-                part.par_iter().map(run).collect()
-            };
-            results.extend(py.detach(|| match &pool {
-                None => evaluate(),
-                Some(pool) => pool.install(evaluate),
-            }));
-            py.check_signals()?;
-            let took = started.elapsed().as_secs_f64().max(1e-6);
-            chunk = ((chunk as f64 * CHUNK_SECONDS / took) as usize).clamp(1, 2 * chunk);
-        }
+        let results = in_chunks(py, pool.as_ref(), &files, |file| {
+            batch::evaluate(file, batch::HALF_RANGE, batch::STEPS).map_err(|e| e.to_string())
+        })?;
+        let suite = suite
+            .map(|which| in_chunks(py, pool.as_ref(), &files, |file| batch::evaluate_suite(file, &which, batch::STEPS)))
+            .transpose()?;
+        let columns = suite.as_deref().map(batch::suite_columns).unwrap_or_default();
         list.iter()
+            .enumerate()
             .zip(results)
-            .map(|(v, r)| {
+            .map(|((k, v), r)| {
                 let row = PyDict::new(py);
                 row.set_item("variant", &v.name)?;
-                let (outcome, error) = match r {
+                let (outcome, mut error) = match r {
                     Ok(o) => (Some(o), None),
                     Err(e) => (None, Some(e)),
                 };
                 for (k, figure) in batch::FIGURES.into_iter().enumerate() {
                     row.set_item(figure, outcome.map(|o| o.figures()[k]))?;
                 }
+                if let Some(suite) = &suite {
+                    let reported = suite[k].as_ref().map_err(|e| error.get_or_insert_with(|| e.to_string())).ok();
+                    for (a, key, unit) in &columns {
+                        let f = reported.and_then(|r| r.iter().find(|(b, f)| b == a && f.key == *key));
+                        let value = f.and_then(|(_, f)| f.value).map(|x| x * unit.shown().factor);
+                        row.set_item(kc::figure_column(*a, key, *unit), value)?;
+                    }
+                }
                 row.set_item("error", error)?;
                 Ok(row)
             })
             .collect()
     }
+}
+
+/// `run` of every file on `pool` (rayon's own when None), in chunks of about [`CHUNK_SECONDS`] each with
+/// Python's signals heard between them: Ctrl-C stops a long batch at once rather than when the last
+/// variant is done.
+fn in_chunks<T: Send>(
+    py: Python<'_>,
+    pool: Option<&rayon::ThreadPool>,
+    files: &[SuspensionFile],
+    run: impl Fn(&SuspensionFile) -> T + Sync,
+) -> PyResult<Vec<T>> {
+    let mut results = Vec::with_capacity(files.len());
+    let mut chunk = pool.map_or_else(rayon::current_num_threads, |p| p.current_num_threads()).max(1);
+    while results.len() < files.len() {
+        let part = &files[results.len()..(results.len() + chunk).min(files.len())];
+        let started = std::time::Instant::now();
+        let evaluate = || -> Vec<T> { part.par_iter().map(&run).collect() };
+        results.extend(py.detach(|| match pool {
+            None => evaluate(),
+            Some(pool) => pool.install(evaluate),
+        }));
+        py.check_signals()?;
+        let took = started.elapsed().as_secs_f64().max(1e-6);
+        chunk = ((chunk as f64 * CHUNK_SECONDS / took) as usize).clamp(1, 2 * chunk);
+    }
+    Ok(results)
 }
 
 /// The variants of `Model.batch`: a variants file's text, or a list of lines and `(name, edits)` pairs; at

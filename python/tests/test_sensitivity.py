@@ -239,6 +239,12 @@ def test_tolerance_gives_the_commands_numbers(tmp_path):
         for column in ("worst_case", "sigma", "sampled_sigma"):
             got = s[column][k]
             assert got == pytest.approx(float(row[header.index(column)]), rel=1e-11), (row[1], column)
+    # The contributions and the samples as the command writes them.
+    _, contributions = read_csv(out / "tolerance_contributions.csv")
+    assert list(s["contributions"]["source"]) == [r[3] for r in contributions]
+    _, samples = read_csv(out / "tolerance_samples.csv")
+    assert len(s["samples"]["sample"]) == len(samples) == 20
+    assert s["adjustments"] is None
     with pytest.raises(ValueError, match="unknown key 'hardpoint'"):
         elastokin.load(MODEL).tolerance({"hardpoint": 0.001})
 
@@ -261,3 +267,19 @@ def test_a_tolerance_monte_carlo_runs_as_a_study_with_the_commands_samples():
     k = list(sampled["figure"]).index("bump_steer")
     assert spread == pytest.approx(sampled["sampled_sigma"][k], rel=1e-10)
     assert spread == pytest.approx(sampled["sigma"][k], rel=4 / numpy.sqrt(158))
+
+
+def test_a_batch_through_the_suite_gives_the_commands_figures(tmp_path):
+    out = tmp_path / "out"
+    variants = "examples/generic/macpherson_variants.txt"
+    command("batch", MODEL, variants, "--analyses", "parallel-travel,static-load", "--quiet", "--out", out)
+    header, rows = read_csv(out / "batch_figures.csv")
+    got = elastokin.batch(MODEL, open(variants).read(), analyses=["parallel-travel", "static-load"])
+    assert [g["variant"] for g in got] == [r[0] for r in rows]
+    assert "parallel-travel/caster (deg)" in header and "static-load/toe (deg)" in header
+    for g, row in zip(got, rows):
+        for column, cell in zip(header[1:-1], row[1:-1]):
+            if cell == "":
+                assert g[column] is None, column
+            else:
+                assert g[column] == pytest.approx(float(cell), rel=1e-9), column

@@ -29,6 +29,11 @@ pub struct BatchArgs {
     /// first line; `elastokin merge` joins the shards
     #[arg(long, value_name = "I/N", value_parser = Shard::parse)]
     pub shard: Option<Shard>,
+    /// Also run these analyses of the K&C suite on every variant (comma-separated names; `all` for the whole
+    /// suite), each over its default range in 8 steps, and write every figure they report in
+    /// batch_figures.csv (one column per figure, `analysis/figure (unit)`); not with --shard
+    #[arg(long, value_name = "A,B", value_delimiter = ',', conflicts_with = "shard")]
+    pub analyses: Option<Vec<SuiteChoice>>,
     /// Where batch.csv goes; the directory is replaced as a whole when the batch succeeds
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
@@ -84,16 +89,119 @@ pub fn run(args: BatchArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(
     let progress = Progress::new("variants", range.len(), quiet);
     let results = run_all(&list[range.clone()], &files[range.clone()], &progress);
     progress.finish();
-    let table = variants_table(out, &list, range, &results, args.shard.is_some());
-    let path = table
-        .and_then(|table| staging.write(&format!("{}.csv", table.name), &write_table(&table, &provenance)))
+    let table = variants_table(out, &list, range.clone(), &results, args.shard.is_some());
+    let suite = args.analyses.map(|choices| {
+        let analyses = SuiteChoice::analyses(&choices);
+        let progress = Progress::new("variants through the suite", range.len(), quiet);
+        let r = run_suite(&list[range.clone()], &files[range.clone()], &analyses, &progress);
+        progress.finish();
+        r
+    });
+    let paths = table
+        .and_then(|table| {
+            let mut paths = vec![staging.write(&format!("{}.csv", table.name), &write_table(&table, &provenance))?];
+            if let Some(results) = &suite {
+                let table = suite_table(&list[range.clone()], results);
+                paths.push(staging.write(&format!("{}.csv", table.name), &write_table(&table, &provenance))?);
+            }
+            Ok(paths)
+        })
         .map_err(|e| staging.failed(e))?;
     staging.commit()?;
     let failed = results.iter().filter(|r| r.is_err()).count();
     if failed > 0 && !quiet {
         note(format!("{failed} of {} variants failed (their error is in the error column)", results.len()));
     }
-    out.line(format!("wrote {}", path.display()))
+    let suite_failed = suite.iter().flatten().filter(|r| r.is_err()).count();
+    if suite_failed > 0 && !quiet {
+        note(format!("{suite_failed} variants failed in the suite (their error is in batch_figures.csv)"));
+    }
+    out.line(crate::output::wrote(&paths))
+}
+
+/// An analysis of `--analyses`, or the whole suite.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SuiteChoice {
+    /// One analysis.
+    One(super::sweeps::AnalysisName),
+    /// Every analysis the suite runs on the model.
+    All,
+}
+
+impl clap::ValueEnum for SuiteChoice {
+    fn value_variants<'a>() -> &'a [Self] {
+        static CHOICES: std::sync::LazyLock<Vec<SuiteChoice>> = std::sync::LazyLock::new(|| {
+            let names = super::sweeps::AnalysisName::value_variants().iter().map(|&a| SuiteChoice::One(a));
+            names.chain([SuiteChoice::All]).collect()
+        });
+        &CHOICES
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        match self {
+            SuiteChoice::One(a) => a.to_possible_value(),
+            SuiteChoice::All => Some(clap::builder::PossibleValue::new("all").help("every analysis of the suite")),
+        }
+    }
+}
+
+impl SuiteChoice {
+    /// The analyses chosen (none: every one the suite runs on the model).
+    fn analyses(choices: &[SuiteChoice]) -> Vec<kc::Analysis> {
+        if choices.contains(&SuiteChoice::All) {
+            return Vec::new();
+        }
+        choices.iter().filter_map(|c| if let SuiteChoice::One(a) = c { Some(a.analysis()) } else { None }).collect()
+    }
+}
+
+/// Every variant through `analyses` of the suite ([`evaluate_suite`]) on the rayon pool.
+fn run_suite(
+    variants: &[Variant],
+    files: &[SuspensionFile],
+    analyses: &[kc::Analysis],
+    progress: &Progress,
+) -> Vec<Result<Vec<(kc::Analysis, kc::Figure)>, VariantFailed>> {
+    variants
+        .par_iter()
+        .zip(files)
+        .map(|(v, file)| {
+            let r = evaluate_suite(file, analyses, STEPS);
+            progress.end(Some(&v.name));
+            r
+        })
+        .collect()
+}
+
+/// `batch_figures.csv`: per variant, every figure of the suite's analyses in its written unit (empty where
+/// the variant has none), and why it failed.
+fn suite_table(list: &[Variant], results: &[Result<Vec<(kc::Analysis, kc::Figure)>, VariantFailed>]) -> Table {
+    let figures = suite_columns(results);
+    let mut columns = vec!["variant".to_string()];
+    columns.extend(figures.iter().map(|(a, key, unit)| kc::figure_column(*a, key, *unit)));
+    columns.push("error".into());
+    let rows = list
+        .iter()
+        .zip(results)
+        .map(|(v, r)| {
+            let mut row = vec![Cell::Text(v.name.clone())];
+            match r {
+                Ok(reported) => {
+                    row.extend(figures.iter().map(|(a, key, unit)| {
+                        let f = reported.iter().find(|(b, f)| b == a && f.key == *key);
+                        Cell::from(f.and_then(|(_, f)| f.value).map(|x| x * unit.shown().factor))
+                    }));
+                    row.push(Cell::Empty);
+                }
+                Err(e) => {
+                    row.extend(figures.iter().map(|_| Cell::Empty));
+                    row.push(Cell::Text(e.to_string()));
+                }
+            }
+            row
+        })
+        .collect();
+    Table { name: "batch_figures".into(), columns, rows }
 }
 
 /// The table of the variants `list[range]`, whose `results` are printed a line each as it is made; a

@@ -23,8 +23,9 @@ pub struct ToleranceArgs {
     /// The seed of the Monte Carlo's samples (the same seed, the same samples)
     #[arg(long, value_name = "S", default_value_t = 1)]
     pub seed: u64,
-    /// Where tolerance.csv, tolerance_contributions.csv and report.html go; the directory is replaced as a
-    /// whole on success
+    /// Where tolerance.csv, tolerance_contributions.csv, tolerance_adjustments.csv (with adjustments),
+    /// tolerance_samples.csv (with --monte-carlo) and report.html go; the directory is replaced as a whole
+    /// on success
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
 }
@@ -54,15 +55,19 @@ pub fn run(args: ToleranceArgs, out: &Stdout, strict: bool) -> Result<(), Failur
     let staging = Staging::new(&args.out)?;
     let written = (|| -> Result<Vec<PathBuf>, Failure> {
         let html = elastokin::html::tolerance_html(&stack, &read.file.name, &provenance.to_json());
-        Ok(vec![
+        let mut written = vec![
             staging.write("tolerance.csv", &write_table(&stack.table(), &provenance))?,
             staging.write("tolerance_contributions.csv", &write_table(&stack.contribution_table(), &provenance))?,
-            staging.write("report.html", html.as_bytes())?,
-        ])
+        ];
+        for table in [stack.adjustment_table(), stack.sample_table()].into_iter().flatten() {
+            written.push(staging.write(&format!("{}.csv", table.name), &write_table(&table, &provenance))?);
+        }
+        written.push(staging.write("report.html", html.as_bytes())?);
+        Ok(written)
     })()
     .map_err(|e| staging.failed(e))?;
     staging.commit()?;
-    out.line(format!("{} — {} numbers within their tolerances", read.file.name, stack.bands.len()))?;
+    out.line(format!("{} — {} sources within their tolerances", read.file.name, stack.sources.len()))?;
     print_spreads(out, &stack)?;
     out.line("")?;
     for w in &stack.warnings {
@@ -81,7 +86,8 @@ pub fn run(args: ToleranceArgs, out: &Stdout, strict: bool) -> Result<(), Failur
     )))
 }
 
-/// Each figure's value, worst case and σ (and the sampled σ), with its three largest contributors.
+/// Each figure's value, worst case and σ (and the sampled σ), the share of cars outside its limit, with its
+/// three largest contributors; each adjuster's range.
 fn print_spreads(out: &Stdout, stack: &StackUp) -> Result<(), Failure> {
     for s in &stack.spreads {
         let unit = s.unit.shown();
@@ -95,10 +101,25 @@ fn print_spreads(out: &Stdout, stack: &StackUp) -> Result<(), Failure> {
             shown(s.sigma, 3),
             unit.symbol
         ))?;
-        for (p, c) in s.contributions.iter().take(3) {
-            let name = design::parameter_words(&stack.parameters.pointers[*p]);
-            out.line(format!("      {name:<40} {:>12} {}", shown(*c, 3), unit.symbol))?;
+        if let Some(share) = s.outside {
+            out.line(format!("      {}", elastokin::html::outside_words(share, s.sampled.and_then(|m| m.outside))))?;
         }
+        for c in s.contributions.iter().take(3) {
+            let name = stack.source_words(c.source);
+            out.line(format!("      {name:<40} {:>12} {}", shown(c.worst, 3), unit.symbol))?;
+        }
+    }
+    for a in &stack.adjusters {
+        let pointer = &stack.parameters.pointers[a.adjustment.by];
+        let sampled = a.sampled.map_or(String::new(), |m| format!(", sampled σ {}", kc::significant(m.sigma, 3)));
+        out.line(format!(
+            "  {} {} set at alignment by {}: ±{} worst, σ {}{sampled}",
+            a.adjustment.analysis.name(),
+            a.adjustment.figure,
+            design::parameter_words(pointer),
+            kc::significant(a.worst_case, 3),
+            kc::significant(a.sigma, 3),
+        ))?;
     }
     Ok(())
 }

@@ -127,9 +127,96 @@ pub(super) fn write_bars(out: &mut String, bars: &[(String, f64)], unit: &str) -
     writeln!(out, "</svg>")
 }
 
+/// A histogram of `samples` as inline SVG: twenty bins spanning the samples, the nominal value `nominal` a
+/// dark line and a limit's ends (`(min, max)`, either open) red lines where they lie within the samples'
+/// span of them (one further would squeeze the bins to a sliver), the axis's ends written with `unit`.
+pub(super) fn write_histogram(
+    out: &mut String,
+    samples: &[f64],
+    nominal: f64,
+    limit: Option<(Option<f64>, Option<f64>)>,
+    unit: &str,
+) -> std::fmt::Result {
+    const BINS: usize = 20;
+    let (width, height, base, margin) = (900.0, 160.0, 130.0, 40.0);
+    let range = |values: &mut dyn Iterator<Item = f64>| {
+        values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)))
+    };
+    let (least, most) = range(&mut samples.iter().copied().chain([nominal]));
+    let near = |e: &f64| *e >= least - (most - least) && *e <= most + (most - least);
+    let ends: Vec<f64> = limit.into_iter().flat_map(|(a, b)| [a, b]).flatten().filter(near).collect();
+    let (low, high) = range(&mut [least, most].into_iter().chain(ends.iter().copied()));
+    // A spread of rounding is drawn as one bin about its value.
+    let span = (high - low).max(1e-12 * low.abs().max(1e-300));
+    let x_of = |v: f64| margin + (width - 2.0 * margin) * (v - low) / span;
+    let mut counts = [0usize; BINS];
+    for v in samples {
+        counts[(((v - low) / span * BINS as f64) as usize).min(BINS - 1)] += 1;
+    }
+    let most = counts.iter().copied().max().unwrap_or(1).max(1) as f64;
+    let bin = (width - 2.0 * margin) / BINS as f64;
+    writeln!(
+        out,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" role="img">"#
+    )?;
+    for (k, n) in counts.iter().enumerate() {
+        let h = (base - 10.0) * *n as f64 / most;
+        writeln!(
+            out,
+            r##"<rect x="{:.1}" y="{:.1}" width="{:.1}" height="{h:.1}" fill="#0969da"><title>{n}</title></rect>"##,
+            margin + bin * k as f64 + 1.0,
+            base - h,
+            bin - 2.0
+        )?;
+    }
+    writeln!(out, r##"<line x1="{margin}" y1="{base}" x2="{}" y2="{base}" stroke="#8c959f"/>"##, width - margin)?;
+    let label = |out: &mut String, x: f64, v: f64, anchor: &str| {
+        writeln!(
+            out,
+            r#"<text x="{x:.1}" y="{}" font-size="11" text-anchor="{anchor}" font-family="sans-serif">{} {}</text>"#,
+            base + 16.0,
+            text(&significant_among(v, 4, span)),
+            text(unit)
+        )
+    };
+    label(out, margin, low, "start")?;
+    label(out, width - margin, high, "end")?;
+    let mut line = |v: f64, colour: &str| {
+        let x = x_of(v);
+        writeln!(out, r#"<line x1="{x:.1}" y1="4" x2="{x:.1}" y2="{base}" stroke="{colour}" stroke-width="2"/>"#)
+    };
+    line(nominal, "#24292f")?;
+    for end in ends {
+        line(end, "#cf222e")?;
+    }
+    writeln!(
+        out,
+        r#"<text x="{}" y="{}" font-size="11" text-anchor="middle" font-family="sans-serif">{} samples</text>"#,
+        width / 2.0,
+        base + 28.0,
+        samples.len()
+    )?;
+    writeln!(out, "</svg>")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// 100 samples evenly over their span fall five to each of the twenty bins; a limit end within the span
+    /// is drawn and one a hundred spans away is not; an equal spread of samples draws one full bin.
+    #[test]
+    fn a_histogram_counts_every_sample_once_and_draws_the_limits_near_them() {
+        let samples: Vec<f64> = (0..100).map(|k| k as f64 + 0.5).collect();
+        let mut out = String::new();
+        write_histogram(&mut out, &samples, 50.0, Some((Some(10.0), Some(1e4))), "mm").unwrap();
+        assert_eq!(out.matches("<title>5</title>").count(), 20, "{out}");
+        assert_eq!(out.matches("stroke=\"#cf222e\"").count(), 1);
+        roxmltree::Document::parse(&out).unwrap();
+        let mut out = String::new();
+        write_histogram(&mut out, &[2.0; 7], 2.0, None, "deg").unwrap();
+        assert!(out.contains("<title>7</title>") && !out.contains("NaN") && !out.contains("inf"), "{out}");
+    }
 
     #[test]
     fn prolog_of_a_standalone_svg_is_dropped() {

@@ -48,7 +48,7 @@ pub use report::{report_html, report_html_with, Extras, Sensitivities};
 pub use sensitivity::sensitivity_html;
 pub use summary::Judged;
 pub use tables::TABLE_ROW_LIMIT;
-pub use tolerance::tolerance_html;
+pub use tolerance::{outside_words, tolerance_html};
 pub use tune::tune_html;
 pub use vehicle::vehicle_html;
 

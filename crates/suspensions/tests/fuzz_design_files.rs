@@ -213,9 +213,18 @@ fn mutated_targets_files_are_refused_with_a_message_or_tuned_without_panic() {
 
 #[test]
 fn mutated_tolerance_files_are_refused_with_a_message_or_stacked_up_without_panic() {
-    let base = model("examples/generic/macpherson.json");
+    for (tolerances, model_file) in [
+        ("examples/targets/tolerances.json", "examples/generic/macpherson.json"),
+        ("examples/targets/tolerances_as_built.json", "examples/twist_beam_template.json"),
+    ] {
+        mutated_tolerance_file(tolerances, model_file);
+    }
+}
+
+fn mutated_tolerance_file(tolerances: &str, model_file: &str) {
+    let base = model(model_file);
     let (mut refused, mut stacked) = (0, 0);
-    for (case, text) in cases("examples/targets/tolerances.json", 7) {
+    for (case, text) in cases(tolerances, 7) {
         let read = || read_tolerances(&text, "tolerances.json", &base);
         let Some(t) = read_or_refused(case, &text, &mut refused, read) else { continue };
         if case % 50 != 0 {
@@ -237,7 +246,7 @@ fn mutated_tolerance_files_are_refused_with_a_message_or_stacked_up_without_pani
             }
         }
     }
-    println!("tolerances: {refused} refused, {stacked} stacked up");
+    println!("{tolerances}: {refused} refused, {stacked} stacked up");
 }
 
 /// Found by the campaign: a design file's key with a control character in it was echoed raw in the

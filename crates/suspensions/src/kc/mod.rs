@@ -31,8 +31,8 @@ pub use chart::{Chart, Scale, Series, YAxis};
 pub use models::Models;
 pub use reduce::{COMPLIANCE_LOAD, COMPLIANCE_RESPONSE};
 pub use report::{
-    fixed, significant, significant_among, Accuracy, AnalysisReport, Cell, Construction, Envelope, Failed, Figure,
-    FigureKind, KcReport, NoFigure, Skipped, Table, Warning, Written,
+    figure_column, fixed, significant, significant_among, Accuracy, AnalysisReport, Cell, Construction, Envelope,
+    Failed, Figure, FigureKind, KcReport, NoFigure, Skipped, Table, Warning, Written,
 };
 pub use settings::{
     mode_from_word, mode_word, Analysis, AnalysisError, Cause, Declaration, DefaultRange, FigureRows, Quantity,

@@ -574,6 +574,12 @@ impl KcReport {
     }
 }
 
+/// A figure as the column of a table of many analyses' figures (`parallel-travel/bump_steer (deg/m)`):
+/// its analysis, its key and the unit its values are written in.
+pub fn figure_column(analysis: Analysis, key: &str, unit: Unit) -> String {
+    format!("{}/{key} ({})", analysis.name(), unit.shown().symbol)
+}
+
 /// A name as part of a key or a file name: its letters and digits in lower case, the rest one underscore.
 pub(crate) fn slug(name: &str) -> String {
     let mut out = String::new();

@@ -1,5 +1,6 @@
 //! Design variants of one model (`elastokin batch MODEL VARIANTS`): edits of the model file by JSON pointer,
-//! each variant judged by its bump steer, camber gain and wheel rate at design.
+//! each variant judged by its bump steer, camber gain and wheel rate at design, and, when asked, by every
+//! figure of analyses of the K&C suite ([`evaluate_suite`]).
 //!
 //! A variants file has one variant per line: an optional `name:` and then `pointer=value` edits separated
 //! by `;`, where `pointer` is a JSON pointer into the model file and `value` is JSON. Blank lines and lines
@@ -16,6 +17,7 @@ use crate::assembly::Rig;
 use crate::description::Side;
 use crate::document::DocumentError;
 use crate::file::SuspensionFile;
+use crate::kc::{self, Analysis, Figure, Unit};
 use elastokin_core::ModelError;
 use elastokin_solver::{Mode, SolverError};
 use std::sync::Arc;
@@ -307,6 +309,9 @@ pub enum VariantFailed {
     /// Its sweep or the reading at design failed.
     #[error(transparent)]
     Solver(#[from] SolverError),
+    /// An analysis of the suite failed on it.
+    #[error(transparent)]
+    Analysis(#[from] kc::AnalysisError),
 }
 
 /// Headline figures of one variant.
@@ -347,6 +352,37 @@ pub fn evaluate(file: &SuspensionFile, half_range: f64, steps: usize) -> Result<
         camber_gain: design.rate(|r| r.attitude.camber.to_degrees()),
         wheel_rate: design.rate(|r| r.wheel_load),
     })
+}
+
+/// Every figure of `analyses` of one variant as the suite reports it (SI; a figure without a value kept,
+/// with its reason), each analysis over its default range in `steps` steps, its figures read at design
+/// (the same at any steps and range); an analysis the model does not take (a steering without a tie rod)
+/// is left out as the suite leaves it out.
+pub fn evaluate_suite(
+    file: &SuspensionFile,
+    analyses: &[Analysis],
+    steps: usize,
+) -> Result<Vec<(Analysis, Figure)>, VariantFailed> {
+    let models = kc::Models::owning(file.clone());
+    let settings = kc::Settings { steps, figures_only: true, error_estimate: false, ..kc::Settings::default() };
+    let mut out = Vec::new();
+    for analysis in kc::planned(file, analyses).into_iter().flatten() {
+        let report = kc::run_on(analysis, &models, &settings)?;
+        out.extend(report.figures.into_iter().map(|f| (analysis, f)));
+    }
+    Ok(out)
+}
+
+/// The figures of a batch's variants run by [`evaluate_suite`], as columns: every figure any variant
+/// reports, `(analysis, key, unit)`, in the order they first appear, variant by variant.
+pub fn suite_columns<E>(results: &[Result<Vec<(Analysis, Figure)>, E>]) -> Vec<(Analysis, String, Unit)> {
+    let mut columns: Vec<(Analysis, String, Unit)> = Vec::new();
+    for (analysis, figure) in results.iter().filter_map(|r| r.as_ref().ok()).flatten() {
+        if !columns.iter().any(|(a, key, _)| a == analysis && *key == figure.key) {
+            columns.push((*analysis, figure.key.clone(), figure.unit));
+        }
+    }
+    columns
 }
 
 #[cfg(test)]
