@@ -6,6 +6,7 @@
 pub mod fit;
 pub mod judge;
 mod keys;
+pub mod live;
 pub mod parameter;
 pub mod sensitivity;
 pub mod targets;
