@@ -6,7 +6,7 @@
 //! elastokin check MODEL
 //! elastokin batch MODEL VARIANTS [--shard I/N] [--out DIR]
 //! elastokin merge [--out DIR] SHARD...
-//! elastokin live MODEL [--analysis NAME]... [--bind ADDR] [--port N] [--no-open]
+//! elastokin live MODEL [--analysis NAME]... [--targets FILE] [--bind ADDR] [--port N] [--no-open]
 //! ```
 //!
 //! Each subcommand is a module of [`command`], holding its arguments and its `run`; this file parses the

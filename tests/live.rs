@@ -23,7 +23,7 @@ struct Server {
 }
 
 impl Server {
-    fn start(name: &str) -> Server {
+    fn start(name: &str, more: &[&str]) -> Server {
         let dir = std::env::temp_dir().join(format!("elastokin-live-{name}-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
@@ -31,7 +31,9 @@ impl Server {
         std::fs::copy(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/macpherson.json"), &model).unwrap();
         let mut child = Command::new(env!("CARGO_BIN_EXE_elastokin"))
             .args(["live", "--no-open", "--analysis", "parallel-travel", "--steps", "8"])
+            .args(more)
             .arg(&model)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
             .stdout(Stdio::piped())
             .stderr(Stdio::piped())
             .spawn()
@@ -106,7 +108,7 @@ type Case<'a> = (&'a str, &'a str, Vec<(&'a str, &'a str)>, u16);
 
 #[test]
 fn every_request_without_the_token_or_from_elsewhere_is_refused() {
-    let server = Server::start("refusals");
+    let server = Server::start("refusals", &["--targets", "examples/targets/macpherson.json"]);
     let host = server.host();
     let state = format!("/{}/state", server.token);
     let wrong = format!("/{}/state", "0".repeat(32));
@@ -145,14 +147,18 @@ fn every_request_without_the_token_or_from_elsewhere_is_refused() {
     }
     let _ = stream.write_all(b"0\r\n\r\n");
     assert_eq!(read_response(stream).0, 413);
-    // Still serving, the design untouched.
+    // Still serving, the design untouched; judged against the targets given.
     let (status, body) = server.call("GET", "state", "");
     assert_eq!((status, body["state"]["version"].as_u64()), (200, Some(1)));
+    let targets = body["state"]["targets"].as_array().unwrap();
+    let judged: Vec<(&str, bool)> =
+        targets.iter().map(|t| (t["figure"].as_str().unwrap(), t["met"].as_bool().unwrap())).collect();
+    assert_eq!(judged, [("bump_steer", true), ("wheel_rate", true)], "the shipped example meets its targets");
 }
 
 #[test]
 fn an_edit_answers_as_the_file_edited_by_hand_runs_and_a_save_writes_that_file() {
-    let server = Server::start("edit");
+    let server = Server::start("edit", &[]);
     let original = std::fs::read_to_string(&server.model).unwrap();
     let (status, first) = server.call("GET", "state", "");
     assert_eq!(status, 200);
@@ -217,7 +223,7 @@ fn an_edit_answers_as_the_file_edited_by_hand_runs_and_a_save_writes_that_file()
 
 #[test]
 fn ctrl_c_stops_the_server_and_leaves_nothing_behind() {
-    let mut server = Server::start("interrupt");
+    let mut server = Server::start("interrupt", &[]);
     let (status, _) = server.call("POST", "edit", &format!(r#"{{"pointer": "{RATE}", "value": 26000}}"#));
     assert_eq!(status, 200);
     let interrupted = Command::new("kill").args(["-INT", &server.child.id().to_string()]).status().unwrap();

@@ -9,12 +9,13 @@
 //! nothing in 11 s with 6 crates against axum's 66 s with 45, and the stripped test program was 0.7 MB against
 //! 1.3 MB.
 
-use super::input::read_input;
+use super::input::{read_input, read_targets_file};
 use super::sweeps::{parse_steps, AnalysisName};
 use crate::output::{note, on_interrupt_stop, Failure, Stdout};
 use clap::Args;
 use elastokin::live::{Head, Live, Response, Token, BODY_LIMIT};
 use elastokin::suspensions::design::live::LiveDesign;
+use elastokin::suspensions::design::targets::Reading;
 use elastokin::suspensions::kc::{self, Settings};
 use std::io::Read;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
@@ -38,6 +39,10 @@ pub struct LiveArgs {
         help = format!("Load steps per sweep, 1 to {}", super::sweeps::MAX_STEPS)
     )]
     pub steps: usize,
+    /// A TARGETS file (as `tune` reads, `free` optional) every design is judged against: each figure and
+    /// curve target and packaging constraint met or not
+    #[arg(long, value_name = "FILE")]
+    pub targets: Option<PathBuf>,
     /// The address to listen on (default 127.0.0.1, this machine alone); any other is reachable from
     /// elsewhere, and the command warns
     #[arg(long, value_name = "ADDR")]
@@ -59,7 +64,12 @@ pub fn run(args: LiveArgs, out: &Stdout) -> Result<(), Failure> {
     }
     let (_, text) = read_input(&args.model, "MODEL")?;
     let origin = args.model.display().to_string();
-    let design = LiveDesign::open(&text, &origin, &which, settings).map_err(|e| Failure::Input(e.to_string()))?;
+    let mut design = LiveDesign::open(&text, &origin, &which, settings).map_err(|e| Failure::Input(e.to_string()))?;
+    if let Some(path) = &args.targets {
+        let document = design.document().map_err(|e| Failure::Input(e.to_string()))?;
+        let (_, targets) = read_targets_file(path, &document, Reading::ToJudge)?;
+        design = design.judged_against(targets);
+    }
     let ip = args.bind.unwrap_or(IpAddr::V4(Ipv4Addr::LOCALHOST));
     if !ip.is_loopback() {
         note(format!(

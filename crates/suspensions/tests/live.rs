@@ -128,3 +128,28 @@ fn the_state_holds_every_figure_in_si_and_every_hardpoint() {
     assert_eq!(z.value, -0.0374);
     assert!(!json["analyses"][0]["charts"].as_array().unwrap().is_empty());
 }
+
+#[test]
+fn each_design_is_judged_against_the_targets() {
+    use elastokin_suspensions::design::targets::{read_targets_as, Reading};
+    let text = include_str!("../../../examples/targets/macpherson.json");
+    let live = open(&[Analysis::ParallelTravel]);
+    let document = live.document().unwrap();
+    let no_file = |name: &str| Err(format!("no file {name}"));
+    let targets = read_targets_as(Reading::ToJudge, text, "macpherson targets", &document, no_file).unwrap();
+    let mut live = live.judged_against(targets);
+    let degrees = 180.0 / std::f64::consts::PI;
+    let mut met = Vec::new();
+    for z in [-0.0374, -0.0574] {
+        live.edit(TIE_ROD_INNER_Z, z).unwrap();
+        let state = live.state().unwrap();
+        let bump = state.targets.iter().find(|t| t.figure.as_deref() == Some("bump_steer")).unwrap();
+        let figure = live.current().report.analyses[0].figure("bump_steer").unwrap().value.unwrap();
+        // The figure in deg/m, as the target gives it: the same product.
+        assert_eq!(bump.reached, Some(figure * degrees));
+        assert_eq!((bump.aim, bump.tolerance), (-2.0, 0.5));
+        assert_eq!(bump.met, (figure * degrees + 2.0).abs() <= 0.5);
+        met.push(bump.met);
+    }
+    assert_eq!(met, [true, false], "the file's design meets bump steer, 20 mm lower it does not");
+}

@@ -8,7 +8,9 @@
 //! design stays. Every design made, undone or redone counts one more version, so that every view of the
 //! design can tell that it changed.
 
+use super::judge::judge;
 use super::parameter::{hardpoint_pointers, number_at, ParameterError, Parameters};
+use super::targets::{Aim, Targets};
 use crate::document::DocumentError;
 use crate::file::numbers::{with_numbers, NumberEditError};
 use crate::file::SuspensionFile;
@@ -32,6 +34,8 @@ pub struct LiveDesign {
     history: Vec<Design>,
     at: usize,
     version: u64,
+    /// What every design is judged against, when given.
+    targets: Option<Targets>,
 }
 
 /// One design: the numbers moved from the file as read, and its analyses' report.
@@ -60,7 +64,16 @@ impl LiveDesign {
             history: vec![Design { moved: Vec::new(), report }],
             at: 0,
             version: 1,
+            targets: None,
         })
+    }
+
+    /// The same design, each of its designs judged against `targets` (a TARGETS file read against the
+    /// model's document) in its state: each figure and curve target and each packaging constraint, met or
+    /// not, as `run --targets` judges them.
+    pub fn judged_against(mut self, targets: Targets) -> LiveDesign {
+        self.targets = Some(targets);
+        self
     }
 
     /// The current design.
@@ -174,6 +187,42 @@ impl LiveDesign {
             })
             .filter(|m| m.in_file.is_finite())
             .collect();
+        let (points, constraints) = match &self.targets {
+            Some(targets) => judge(report, &document, targets),
+            None => (Vec::new(), Vec::new()),
+        };
+        let targets = points
+            .iter()
+            .map(|p| JudgedTarget {
+                label: p.target.label.clone(),
+                analysis: p.target.analysis.name(),
+                figure: match &p.target.aim {
+                    Aim::Figure { key, .. } => Some(key.clone()),
+                    Aim::Curve { .. } => None,
+                },
+                column: match &p.target.aim {
+                    Aim::Curve { column, .. } => Some(column.clone()),
+                    Aim::Figure { .. } => None,
+                },
+                at: p.at,
+                aim: p.aim,
+                tolerance: p.target.tolerance,
+                reached: p.reached.as_ref().ok().copied(),
+                why_not: p.reached.as_ref().err().cloned(),
+                met: p.met(),
+            })
+            .collect();
+        let constraints = constraints
+            .iter()
+            .map(|c| JudgedConstraint {
+                said: c.constraint.said(),
+                reached: c.reached.as_ref().ok().map(|r| r.0),
+                min: c.reached.as_ref().ok().map(|r| r.1),
+                max: c.reached.as_ref().ok().map(|r| r.2),
+                why_not: c.reached.as_ref().err().cloned(),
+                met: c.met(),
+            })
+            .collect();
         Ok(State {
             version: self.version,
             model: &report.model,
@@ -185,6 +234,8 @@ impl LiveDesign {
             failed: &report.failed,
             warnings: report.all_warnings().collect(),
             hardpoints,
+            targets,
+            constraints,
         })
     }
 
@@ -218,6 +269,53 @@ pub struct State<'a> {
     pub warnings: Vec<&'a Warning>,
     /// Every coordinate of every hardpoint of the design (m).
     pub hardpoints: Vec<Number>,
+    /// Each point of each target judged on the design (none without targets).
+    pub targets: Vec<JudgedTarget>,
+    /// Each packaging constraint judged on the design.
+    pub constraints: Vec<JudgedConstraint>,
+}
+
+/// A point of a target judged on a design: a figure target, or one point of a curve target. Its numbers are
+/// in the unit the target is given in (a figure's as written under the default units, a column's).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct JudgedTarget {
+    /// Where the target was given (`targets[1] (parallel-travel/bump_steer)`).
+    pub label: String,
+    /// Its analysis.
+    pub analysis: &'static str,
+    /// The figure's key, for a figure target.
+    pub figure: Option<String>,
+    /// The column, for a curve target.
+    pub column: Option<String>,
+    /// The load parameter of a curve target's point.
+    pub at: Option<f64>,
+    /// What the target asks.
+    pub aim: f64,
+    /// The miss that counts as met (or the measured data's noise).
+    pub tolerance: f64,
+    /// What the design gives.
+    pub reached: Option<f64>,
+    /// Why the design gives nothing to judge.
+    pub why_not: Option<String>,
+    /// Whether the design meets it.
+    pub met: bool,
+}
+
+/// A packaging constraint judged on a design (m).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct JudgedConstraint {
+    /// What it keeps, in the TARGETS file's words.
+    pub said: String,
+    /// Its value on the design.
+    pub reached: Option<f64>,
+    /// The least it may be.
+    pub min: Option<f64>,
+    /// The most it may be.
+    pub max: Option<f64>,
+    /// Why it could not be read.
+    pub why_not: Option<String>,
+    /// Whether the design keeps it.
+    pub met: bool,
 }
 
 /// A number of the design by its pointer.
