@@ -9,11 +9,12 @@
 //! Origin, when the browser sends one, must be the server's own, so that no other page open in the browser
 //! can drive it. Anything else is refused with 403, and a body over [`BODY_LIMIT`] with 413.
 //!
-//! Routes, each under `/TOKEN`: `GET /state` the current design ([`State`]); `POST /edit` with
+//! Routes, each under `/TOKEN`: `GET /` the page (`html::live_html`); `GET /state` the current design ([`State`]); `POST /edit` with
 //! `{"pointer": "/json/pointer", "value": number}` (SI, as the model file stores it) a new design;
 //! `POST /undo`, `POST /redo`; `POST /save` the model file written where it was read. A design refused
 //! comes back with the reason and the design kept.
 
+use crate::html::{live_chart_data, live_html};
 use elastokin_suspensions::design::live::{LiveDesign, LiveError};
 use serde_json::{json, Value};
 use std::net::{IpAddr, SocketAddr};
@@ -180,6 +181,11 @@ impl Live {
         let path = head.url.split(['?', '#']).next().unwrap_or("");
         let route = path.strip_prefix('/').and_then(|p| p.split_once('/')).map_or("", |(_, r)| r);
         match (head.method, route) {
+            ("GET", "") => Response {
+                status: 200,
+                content_type: "text/html; charset=utf-8",
+                body: live_html(&self.design.current().report.model).into_bytes(),
+            },
             ("GET", "state") => self.state(200, None),
             ("POST", "edit") => self.edit(body),
             ("POST", "undo") => {
@@ -191,7 +197,7 @@ impl Live {
                 self.after(done, 409)
             }
             ("POST", "save") => self.save(),
-            (_, "state" | "edit" | "undo" | "redo" | "save") => Response::refused(
+            (_, "" | "state" | "edit" | "undo" | "redo" | "save") => Response::refused(
                 405,
                 &format!("{} /{route} is not served: state is read with GET, every change is a POST", head.method),
             ),
@@ -199,11 +205,15 @@ impl Live {
         }
     }
 
-    /// The current design with `status`, and the error when a change was refused.
+    /// The current design with `status`, and the error when a change was refused; each chart as the page
+    /// draws it.
     fn state(&self, status: u16, error: Option<String>) -> Response {
         match self.design.state() {
             Ok(state) => {
                 let mut body = json!({ "state": state });
+                for (k, a) in self.design.current().report.analyses.iter().enumerate() {
+                    body["state"]["analyses"][k]["charts"] = a.charts.iter().map(live_chart_data).collect();
+                }
                 if let Some(error) = error {
                     body["error"] = Value::String(error);
                 }

@@ -244,3 +244,235 @@ fn ctrl_c_stops_the_server_and_leaves_nothing_behind() {
     assert_eq!(left, ["macpherson.json"]);
     assert!(TcpStream::connect(("127.0.0.1", server.port)).is_err(), "the port is closed");
 }
+
+/// Headless Chromium driven through its DevTools protocol on a pipe (`--remote-debugging-pipe`: commands
+/// on its descriptor 3, answers and events on 4, each a JSON message ended by a NUL byte), with the page's
+/// console kept.
+struct Browser {
+    child: Child,
+    to: std::process::ChildStdin,
+    from: BufReader<std::process::ChildStdout>,
+    profile: PathBuf,
+    next: u64,
+    /// What each page logged as an error or warning, and every exception it threw, by its session.
+    console: Vec<(String, String)>,
+}
+
+impl Browser {
+    /// Chromium with a fresh profile, or `None` on a machine without it (CI installs it, and there its
+    /// absence fails).
+    fn start(profile: PathBuf) -> Option<Browser> {
+        let found = std::env::split_paths(&std::env::var_os("PATH").unwrap_or_default())
+            .map(|d| d.join("chromium"))
+            .find(|p| p.is_file());
+        let chromium = match found {
+            Some(c) => c,
+            None if std::env::var_os("CI").is_none() => {
+                eprintln!("skipped: chromium is not on PATH (apt-get install chromium)");
+                return None;
+            }
+            None => panic!("chromium is not on PATH: .ci/run installs Debian's chromium"),
+        };
+        let _ = std::fs::remove_dir_all(&profile);
+        std::fs::create_dir_all(&profile).unwrap();
+        // The shell hands the pipes over as descriptors 3 and 4.
+        let script = r#"exec "$0" --headless --no-sandbox --disable-gpu --no-first-run --disable-background-networking \
+            --disable-component-update --disable-sync --remote-debugging-pipe --user-data-dir="$1" \
+            3<&0 4>&1 0</dev/null 1>/dev/null 2>/dev/null"#;
+        let mut child = Command::new("sh")
+            .args(["-c", script])
+            .arg(&chromium)
+            .arg(&profile)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let (to, from) = (child.stdin.take().unwrap(), BufReader::new(child.stdout.take().unwrap()));
+        Some(Browser { child, to, from, profile, next: 0, console: Vec::new() })
+    }
+
+    /// Sends `method` with `params` (to the page of `session`, or the browser) and returns its result; the
+    /// page's console events read meanwhile are kept.
+    fn send(&mut self, session: Option<&str>, method: &str, params: Value) -> Value {
+        self.next += 1;
+        let mut message = serde_json::json!({ "id": self.next, "method": method, "params": params });
+        if let Some(s) = session {
+            message["sessionId"] = Value::String(s.into());
+        }
+        self.to.write_all(message.to_string().as_bytes()).unwrap();
+        self.to.write_all(b"\0").unwrap();
+        self.to.flush().unwrap();
+        loop {
+            let mut bytes = Vec::new();
+            self.from.read_until(0, &mut bytes).unwrap();
+            assert!(bytes.ends_with(b"\0"), "chromium closed its pipe");
+            let answer: Value = serde_json::from_slice(&bytes[..bytes.len() - 1]).unwrap();
+            if answer["id"].as_u64() == Some(self.next) {
+                assert!(answer.get("error").is_none(), "{method}: {answer}");
+                return answer["result"].clone();
+            }
+            let from = answer["sessionId"].as_str().unwrap_or("").to_string();
+            let params = &answer["params"];
+            let said = match answer["method"].as_str() {
+                Some("Runtime.consoleAPICalled") if matches!(params["type"].as_str(), Some("error" | "warning")) => {
+                    Some(params["args"].to_string())
+                }
+                Some("Runtime.exceptionThrown") => Some(params["exceptionDetails"].to_string()),
+                Some("Log.entryAdded") if params["entry"]["level"] != "info" => Some(params["entry"].to_string()),
+                _ => None,
+            };
+            if let Some(said) = said {
+                self.console.push((from, said));
+            }
+        }
+    }
+
+    /// A new page at `url`, attached: its session.
+    fn open(&mut self, url: &str) -> String {
+        let target = self.send(None, "Target.createTarget", serde_json::json!({ "url": "about:blank" }));
+        let attached = self.send(
+            None,
+            "Target.attachToTarget",
+            serde_json::json!({ "targetId": target["targetId"], "flatten": true }),
+        );
+        let session = attached["sessionId"].as_str().unwrap().to_string();
+        for domain in ["Runtime.enable", "Log.enable", "Page.enable"] {
+            self.send(Some(&session), domain, serde_json::json!({}));
+        }
+        self.send(Some(&session), "Page.navigate", serde_json::json!({ "url": url }));
+        session
+    }
+
+    /// The value of the script `expression` in the page of `session` (awaited when it is a promise).
+    fn evaluate(&mut self, session: &str, expression: &str) -> Value {
+        let params = serde_json::json!({ "expression": expression, "returnByValue": true, "awaitPromise": true });
+        let result = self.send(Some(session), "Runtime.evaluate", params);
+        assert!(result.get("exceptionDetails").is_none(), "{expression}: {result}");
+        result["result"]["value"].clone()
+    }
+
+    /// The page's report (`<output id="live-state">`) once `ready` holds of it, within 20 s.
+    fn live_state(&mut self, session: &str, ready: impl Fn(&Value) -> bool) -> Value {
+        let start = Instant::now();
+        loop {
+            let text = self.evaluate(session, "(document.getElementById('live-state') || {}).textContent || ''");
+            if let Some(state) = text.as_str().and_then(|t| serde_json::from_str::<Value>(t).ok()) {
+                if ready(&state) {
+                    return state;
+                }
+            }
+            assert!(start.elapsed() < Duration::from_secs(20), "the page did not get there: {text}");
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+}
+
+impl Drop for Browser {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+        let _ = std::fs::remove_dir_all(&self.profile);
+    }
+}
+
+/// The page in a real browser: it shows every figure, chart and hardpoint of the design; a hardpoint typed
+/// in millimetres is the edit the file edited by hand makes, its figure shown as the server holds it; undo
+/// puts the number back; a save writes the file edited by hand; a page of another origin cannot edit the
+/// design; the console stays clean.
+#[test]
+fn the_page_in_chromium_edits_by_typing_undoes_saves_and_no_other_page_drives_it() {
+    let server = Server::start("browser", &["--targets", "examples/targets/macpherson.json"]);
+    let Some(mut browser) = Browser::start(server.dir.with_extension("profile")) else { return };
+    let address = format!("http://127.0.0.1:{}/{}/", server.port, server.token);
+    let page = browser.open(&address);
+    let shown = browser.live_state(&page, |s| s["version"] == 1);
+    let (_, state) = server.call("GET", "state", "");
+    let state = &state["state"];
+    let analyses = state["analyses"].as_array().unwrap();
+    let figures: usize = analyses.iter().map(|a| a["figures"].as_array().unwrap().len()).sum();
+    let charts: usize = analyses.iter().map(|a| a["charts"].as_array().unwrap().len()).sum();
+    assert_eq!(shown["figures"], figures, "{shown}");
+    assert_eq!((&shown["charts"], &shown["drawn"]), (&charts.into(), &charts.into()), "{shown}");
+    assert_eq!(shown["inputs"], state["hardpoints"].as_array().unwrap().len(), "{shown}");
+    assert_eq!(shown["errors"], serde_json::json!([]));
+
+    // Typed: -39.4 mm into the tie rod's inner z, committed as a user does, by leaving the field.
+    let input = format!("document.querySelector('input[data-pointer=\"{TIE_ROD_INNER_Z}\"]')");
+    browser.evaluate(&page, &format!("{input}.focus(); {input}.select(); true"));
+    browser.send(Some(&page), "Input.insertText", serde_json::json!({ "text": "-39.4" }));
+    browser.evaluate(&page, &format!("{input}.blur(); true"));
+    let shown = browser.live_state(&page, |s| s["version"] == 2);
+    let (_, edited) = server.call("GET", "state", "");
+    // Every curve of the previous design drawn in grey beneath the new one.
+    let curves: usize = edited["state"]["analyses"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|a| a["charts"].as_array().unwrap())
+        .flat_map(|c| c["axes"].as_array().unwrap())
+        .map(|axis| axis["series"].as_array().unwrap().len())
+        .sum();
+    assert_eq!(shown["ghosts"], curves, "{shown}");
+    assert_eq!(shown["drawn"], shown["charts"], "{shown}");
+    assert_eq!(edited["state"]["moved"][0]["pointer"], TIE_ROD_INNER_Z);
+    assert_eq!(edited["state"]["moved"][0]["value"].as_f64(), Some(-0.0394), "39.4 mm is 0.0394 m, to the bit");
+    // The figure shown is the server's, as written: its SI value times its factor, at its decimals.
+    let bump = edited["state"]["analyses"][0]["figures"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["key"] == "bump_steer")
+        .unwrap();
+    let written = format!(
+        "{:.*} {}",
+        bump["decimals"].as_u64().unwrap() as usize,
+        bump["value"].as_f64().unwrap() * bump["factor"].as_f64().unwrap(),
+        bump["unit"].as_str().unwrap()
+    );
+    let cell = browser
+        .evaluate(&page, "document.querySelector('tr[data-key=\"parallel-travel/bump_steer\"] td.value').textContent");
+    assert_eq!(cell.as_str(), Some(written.as_str()));
+    // The previous design's value stays beside it.
+    let before = browser
+        .evaluate(&page, "document.querySelector('tr[data-key=\"parallel-travel/bump_steer\"] td.quiet').textContent");
+    assert!(before.as_str().is_some_and(|b| b.ends_with("deg/m")), "{before}");
+
+    // Undo by its button: the field shows the file's number again; redo; save by its button.
+    browser.evaluate(&page, "document.getElementById('undo').click(); true");
+    browser.live_state(&page, |s| s["version"] == 3);
+    assert_eq!(browser.evaluate(&page, &format!("{input}.value")).as_str(), Some("-37.4"));
+    browser.evaluate(&page, "document.getElementById('redo').click(); true");
+    browser.live_state(&page, |s| s["version"] == 4);
+    let original = std::fs::read_to_string(&server.model).unwrap();
+    browser.evaluate(&page, "document.getElementById('save').click(); true");
+    let start = Instant::now();
+    while std::fs::read_to_string(&server.model).unwrap() == original {
+        assert!(start.elapsed() < Duration::from_secs(20), "the page's save wrote nothing");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let by_hand = original.replacen("[-0.150, 0.370, -0.0374]", "[-0.150, 0.370, -0.0394]", 1);
+    assert_eq!(std::fs::read_to_string(&server.model).unwrap(), by_hand);
+
+    // Another page (a file on disk: another origin) posts an edit as a form could: the server refuses it.
+    let foreign = server.dir.join("foreign.html");
+    let post = format!(
+        "<script>fetch('{address}edit', {{ method: 'POST', mode: 'no-cors', body: JSON.stringify({{ pointer: '{RATE}', \
+         value: 1000 }}) }}).then(() => document.title = 'sent', () => document.title = 'sent');</script>"
+    );
+    std::fs::write(&foreign, post).unwrap();
+    let other = browser.open(&format!("file://{}", foreign.display()));
+    let start = Instant::now();
+    while browser.evaluate(&other, "document.title").as_str() != Some("sent") {
+        assert!(start.elapsed() < Duration::from_secs(20), "the foreign page sent nothing");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let (_, after) = server.call("GET", "state", "");
+    assert_eq!(after["state"]["version"].as_u64(), Some(4), "the foreign page's edit was refused");
+    assert_eq!(after["state"]["moved"].as_array().unwrap().len(), 1);
+
+    // What the live page logged: nothing; the foreign page's console has the refusal.
+    browser.evaluate(&page, "true");
+    let console: Vec<&String> = browser.console.iter().filter(|(s, _)| *s == page).map(|(_, l)| l).collect();
+    assert!(console.is_empty(), "the console says {console:#?}");
+    assert!(browser.console.iter().any(|(s, l)| *s == other && l.contains("403")), "{:#?}", browser.console);
+}
