@@ -115,6 +115,38 @@
     report.inputs = inputs;
   }
 
+  // The rates, each an input as the model file stores it (SI: N/m, N·m/rad), named by its keys.
+  function showRates(state) {
+    const holder = el('rates');
+    holder.replaceChildren();
+    if (!state.rates.length) return 0;
+    holder.appendChild(make('h2', 'Rates (N/m, N·m/rad)'));
+    const table = make('table', null, 'numbers');
+    const body = table.appendChild(make('tbody'));
+    state.rates.forEach((n) => {
+      const row = make('tr');
+      const name = n.pointer.replace(/^\/suspension\/[^/]+\//, '').split('/').join(' ').replace(/~1/g, '/').replace(/~0/g, '~');
+      row.appendChild(make('td', name));
+      const input = make('input');
+      input.type = 'number';
+      input.step = 'any';
+      input.value = String(n.value);
+      input.dataset.pointer = n.pointer;
+      input.setAttribute('aria-label', n.pointer);
+      if (state.moved.some((m) => m.pointer === n.pointer)) input.className = 'moved';
+      input.addEventListener('change', () => {
+        const value = input.value.trim() === '' ? NaN : Number(input.value);
+        if (!isFinite(value)) return refused(n.pointer + ': type a number');
+        report.edits += 1;
+        ask('POST', 'edit', { pointer: n.pointer, value });
+      });
+      row.appendChild(make('td')).appendChild(input);
+      body.appendChild(row);
+    });
+    holder.appendChild(table);
+    return state.rates.length;
+  }
+
   // Each chart drawn with the previous design's curves, where it had the chart, in grey beneath.
   function showCharts(state) {
     plots.forEach((p) => p.destroy());
@@ -162,6 +194,7 @@
     el('redo').disabled = !state.can_redo;
     showFigures(state);
     showHardpoints(state);
+    report.inputs += showRates(state);
     showCharts(state);
     const failed = state.failed.map((f) => f.analysis + ': ' + f.reason);
     el('status').textContent =

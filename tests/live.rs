@@ -393,7 +393,8 @@ fn the_page_in_chromium_edits_by_typing_undoes_saves_and_no_other_page_drives_it
     let charts: usize = analyses.iter().map(|a| a["charts"].as_array().unwrap().len()).sum();
     assert_eq!(shown["figures"], figures, "{shown}");
     assert_eq!((&shown["charts"], &shown["drawn"]), (&charts.into(), &charts.into()), "{shown}");
-    assert_eq!(shown["inputs"], state["hardpoints"].as_array().unwrap().len(), "{shown}");
+    let numbers = state["hardpoints"].as_array().unwrap().len() + state["rates"].as_array().unwrap().len();
+    assert_eq!(shown["inputs"], numbers, "{shown}: a field for every hardpoint coordinate and rate");
     assert_eq!(shown["errors"], serde_json::json!([]));
 
     // Typed: -39.4 mm into the tie rod's inner z, committed as a user does, by leaving the field.

@@ -1,6 +1,6 @@
 //! `elastokin live`'s page: the report's style and interactive charts (uPlot with `src/charts.js`), and
-//! `src/live.js`, which asks the server for the design, shows its figures, charts and hardpoints, sends a
-//! hardpoint typed in millimetres as an edit, and draws each chart's previous design under the new one.
+//! `src/live.js`, which asks the server for the design, shows its figures, charts, hardpoints and rates,
+//! sends a hardpoint typed in millimetres (a rate in SI) as an edit, and draws each chart's previous design under the new one.
 //! Everything it shows comes from the server's state; the page holds no figure of its own.
 
 use super::charts::{chart_data, CHARTS_SCRIPT, UPLOT_SCRIPT};
@@ -30,7 +30,10 @@ fn write_page(out: &mut String, model: &str) -> std::fmt::Result {
         r#"<p class="live-bar"><button id="undo" type="button" disabled="disabled">Undo</button> <button id="redo" type="button" disabled="disabled">Redo</button> <button id="save" type="button">Save</button> <span id="status" role="status" class="note"></span></p>"#
     )?;
     writeln!(out, r#"<p id="error" class="error" hidden="hidden"></p>"#)?;
-    writeln!(out, r#"<div class="columns"><section id="figures"></section><section id="hardpoints"></section></div>"#)?;
+    writeln!(
+        out,
+        r#"<div class="columns"><section id="figures"></section><section><div id="hardpoints"></div><div id="rates"></div></section></div>"#
+    )?;
     writeln!(out, r#"<section id="charts" class="charts"></section>"#)?;
     writeln!(out, r#"<output id="charts-state" hidden="hidden"></output>"#)?;
     writeln!(out, r#"<output id="live-state" hidden="hidden"></output>"#)?;

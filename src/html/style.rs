@@ -78,8 +78,9 @@ figure.view3d canvas { width: 100%; height: 560px; display: block; border: 1px s
 .view3d-controls { display: flex; flex-wrap: wrap; gap: 8px; align-items: center; margin-bottom: 6px; }
 .view3d-controls input[type=range] { flex: 1 1 200px; }
 .live-bar button { font: inherit; padding: 2px 12px; }
-#hardpoints input { width: 6.5em; font: inherit; text-align: right; }
-#hardpoints input.moved { background: #fff8c5; }
+#hardpoints input, #rates input { width: 6.5em; font: inherit; text-align: right; }
+#rates input { width: 9em; }
+#hardpoints input.moved, #rates input.moved { background: #fff8c5; }
 #figures td.value, #figures td.quiet, #figures td.error { white-space: nowrap; }
 @media print {
   @page { size: A4 portrait; margin: 12mm; }

@@ -127,6 +127,21 @@ fn the_state_holds_every_figure_in_si_and_every_hardpoint() {
     let z = state.hardpoints.iter().find(|n| n.pointer == TIE_ROD_INNER_Z).unwrap();
     assert_eq!(z.value, -0.0374);
     assert!(!json["analyses"][0]["charts"].as_array().unwrap().is_empty());
+    // The rates the file writes: the two bushings' four, the spring's and the tyre's.
+    let rates: Vec<(&str, f64)> = state.rates.iter().map(|n| (n.pointer.as_str(), n.value)).collect();
+    let mount = |part: &str, key: &str| format!("/suspension/macpherson/{part}/bushing/{key}");
+    let mut expected = Vec::new();
+    for (part, values) in
+        [("lower_arm_mounts", [5.0e6, 1.0e6, 115.0, 5730.0]), ("top_mount", [2.0e6, 1.0e6, 115.0, 2865.0])]
+    {
+        for (key, value) in ["radial", "axial", "torsion", "conical"].into_iter().zip(values) {
+            expected.push((mount(part, key), value));
+        }
+    }
+    expected.push((SPRING_RATE.to_string(), 25000.0));
+    expected.push(("/vehicle/tyre_rate".to_string(), 230000.0));
+    let expected: Vec<(&str, f64)> = expected.iter().map(|(p, v)| (p.as_str(), *v)).collect();
+    assert_eq!(rates, expected);
 }
 
 #[test]

@@ -9,7 +9,7 @@
 //! design can tell that it changed.
 
 use super::judge::judge;
-use super::parameter::{hardpoint_pointers, number_at, ParameterError, Parameters};
+use super::parameter::{hardpoint_pointers, number_at, rate_pointers, ParameterError, Parameters};
 use super::targets::{Aim, Targets};
 use crate::document::DocumentError;
 use crate::file::numbers::{with_numbers, NumberEditError};
@@ -173,10 +173,13 @@ impl LiveDesign {
                 charts: &a.charts,
             })
             .collect();
-        let hardpoints = hardpoint_pointers(&document)
-            .into_iter()
-            .filter_map(|pointer| number_at(&document, &pointer).ok().map(|value| Number { pointer, value }))
-            .collect();
+        let numbers = |pointers: Vec<String>| -> Vec<Number> {
+            pointers
+                .into_iter()
+                .filter_map(|pointer| number_at(&document, &pointer).ok().map(|value| Number { pointer, value }))
+                .collect()
+        };
+        let (hardpoints, rates) = (numbers(hardpoint_pointers(&document)), numbers(rate_pointers(&document)));
         let moved = design
             .moved
             .iter()
@@ -234,6 +237,7 @@ impl LiveDesign {
             failed: &report.failed,
             warnings: report.all_warnings().collect(),
             hardpoints,
+            rates,
             targets,
             constraints,
         })
@@ -269,6 +273,9 @@ pub struct State<'a> {
     pub warnings: Vec<&'a Warning>,
     /// Every coordinate of every hardpoint of the design (m).
     pub hardpoints: Vec<Number>,
+    /// Every rate of the design written as a number: springs', bars', bushings', the tyre's (SI: N/m,
+    /// N·m/rad).
+    pub rates: Vec<Number>,
     /// Each point of each target judged on the design (none without targets).
     pub targets: Vec<JudgedTarget>,
     /// Each packaging constraint judged on the design.
