@@ -210,8 +210,14 @@
   }
 
   // A request to the server; its answer's state shown when it is another design than the one on screen.
+  // One asked while another is under way waits for it (the last one asked; those between are dropped).
+  let waiting = null;
   async function ask(method, route, body) {
-    if (busy) return null;
+    if (busy) {
+      waiting = [method, route, body];
+      el('status').textContent = 'solving… (then the next change)';
+      return null;
+    }
     busy = true;
     el('status').textContent = 'solving…';
     try {
@@ -239,6 +245,11 @@
       return null;
     } finally {
       busy = false;
+      if (waiting) {
+        const next = waiting;
+        waiting = null;
+        ask(...next);
+      }
     }
   }
 
