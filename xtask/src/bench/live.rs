@@ -21,7 +21,8 @@ pub fn run(s: &Settings) -> SectionOutput {
                 from its request to the JSON of the new design with every figure and every chart's data, \
                 through the function the server hands each request to, without the socket. The tie rod's inner \
                 z moves between two values 1 mm apart, each move a new design. Median of repeated moves. The \
-                browser's share (drawing every chart again) is not in it."
+                browser's share (drawing every chart again) is not in it. Then the suite alone, one analysis \
+                after another and on every thread as the server runs it."
             .into(),
         ..SectionOutput::default()
     };
@@ -38,6 +39,20 @@ pub fn run(s: &Settings) -> SectionOutput {
             out.figure("live.move_macpherson_s", *t, "s", Kind::Time);
         }
         Err(e) => table.failed_row(vec![Cell::text("a hardpoint moved")], e.clone()),
+    }
+    // The analyses run at once on the threads against one after another, measured in this run: the
+    // ratio is what to read on a shared machine.
+    match suites(s) {
+        Ok((in_turn, on_threads)) => {
+            for (what, t) in
+                [("the suite, one analysis after another", in_turn), ("the suite on every thread", on_threads)]
+            {
+                table.row(vec![Cell::text(what), Cell::num(t), Cell::text(""), Cell::text("ok")]);
+            }
+            out.figure("live.suite_in_turn_s", in_turn, "s", Kind::Time);
+            out.figure("live.suite_on_threads_s", on_threads, "s", Kind::Time);
+        }
+        Err(e) => table.failed_row(vec![Cell::text("the suite")], e),
     }
     out.targets.push(Target {
         goal: "a hardpoint moved on the MacPherson's suite answered by the server".into(),
@@ -81,4 +96,15 @@ fn measure(s: &Settings) -> Result<(f64, usize), String> {
         Some(why) => Err(format!("an edit was refused: {why}")),
         None => Ok((timing.median, size)),
     }
+}
+
+/// The median times of the MacPherson's suite run one analysis after another (`kc::run_suite`) and on
+/// every thread (`kc::run_suite_on_threads`, as the server runs it).
+fn suites(s: &Settings) -> Result<(f64, f64), String> {
+    let path = crate::workspace_root().join("examples/macpherson.json");
+    let file = elastokin::suspensions::SuspensionFile::read(&path).map_err(|e| e.to_string())?;
+    let settings = kc::Settings::default();
+    let in_turn = s.batch_budget().time(|| kc::run_suite(&file, &[], &settings, |_| {}).analyses.len());
+    let on_threads = s.batch_budget().time(|| kc::run_suite_on_threads(&file, &[], &settings).analyses.len());
+    Ok((in_turn.median, on_threads.median))
 }

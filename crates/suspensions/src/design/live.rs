@@ -55,7 +55,7 @@ impl LiveDesign {
     pub fn open(text: &str, origin: &str, which: &[Analysis], settings: Settings) -> Result<LiveDesign, LiveError> {
         let base = base_document(text, origin).map_err(LiveError::Document)?;
         let (file, _) = crate::document::parse_model(text, origin).map_err(|e| LiveError::Model(Arc::new(e)))?;
-        let report = kc::run_suite(&file, which, &settings, |_| {});
+        let report = kc::run_suite_on_threads(&file, which, &settings);
         Ok(LiveDesign {
             text: text.to_string(),
             base,
@@ -97,7 +97,7 @@ impl LiveDesign {
         // Refused here: a pointer that names anything but a number, or a count (a whole number of things).
         let parameter = Parameters::new(&document, &[pointer.to_string()]).map_err(LiveError::Parameter)?;
         let file = parameter.at(&[value]).and_then(|p| p.file()).map_err(LiveError::Parameter)?;
-        let report = kc::run_suite(&file, &self.which, &self.settings, |_| {});
+        let report = kc::run_suite_on_threads(&file, &self.which, &self.settings);
         let ran = &self.current().report.analyses;
         let newly_failed: Vec<Failed> =
             report.failed.iter().filter(|f| ran.iter().any(|a| a.analysis == f.analysis)).cloned().collect();
