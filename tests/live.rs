@@ -477,3 +477,40 @@ fn the_page_in_chromium_edits_by_typing_undoes_saves_and_no_other_page_drives_it
     assert!(console.is_empty(), "the console says {console:#?}");
     assert!(browser.console.iter().any(|(s, l)| *s == other && l.contains("403")), "{:#?}", browser.console);
 }
+
+/// Bound to every address as `--bind` asks: the command warns that the design can be edited from
+/// elsewhere, and serves its own Host, a literal address or localhost, at its port.
+#[test]
+fn a_bind_beyond_this_machine_is_warned_of() {
+    let mut server = Server::start("bind", &["--bind", "0.0.0.0"]);
+    let (status, _) = server.call("GET", "state", "");
+    assert_eq!(status, 200);
+    let localhost = format!("localhost:{}", server.port);
+    let (status, _) = server.raw("GET", &format!("/{}/state", server.token), &[("Host", &localhost)], b"");
+    assert_eq!(status, 200);
+    let (status, _) = server.raw("GET", &format!("/{}/state", server.token), &[("Host", "rebound.example")], b"");
+    assert_eq!(status, 403);
+    server.child.kill().unwrap();
+    server.child.wait().unwrap();
+    let mut said = String::new();
+    server.child.stderr.take().unwrap().read_to_string(&mut said).unwrap();
+    assert!(said.contains("warning: listening on 0.0.0.0, reachable from other machines"), "{said}");
+}
+
+/// A model or targets file that cannot be read is refused before anything listens: exit 2, naming it.
+#[test]
+fn bad_files_are_refused_by_name_before_the_server_listens() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let cases: [(&[&str], &str); 3] = [
+        (&["live", "--no-open", "nowhere.json"], "nowhere.json"),
+        (&["live", "--no-open", "examples/macpherson.json", "--targets", "nowhere.json"], "nowhere.json"),
+        (&["live", "--no-open", "examples/macpherson_variants.txt"], "macpherson_variants.txt"),
+    ];
+    for (args, named) in cases {
+        let o = Command::new(env!("CARGO_BIN_EXE_elastokin")).args(args).current_dir(root).output().unwrap();
+        let said = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {said}");
+        assert!(said.contains(named) && !said.contains("panicked"), "{args:?}: {said}");
+        assert!(!String::from_utf8_lossy(&o.stdout).contains("http://"), "{args:?}: nothing served");
+    }
+}

@@ -168,3 +168,18 @@ fn each_design_is_judged_against_the_targets() {
     }
     assert_eq!(met, [true, false], "the file's design meets bump steer, 20 mm lower it does not");
 }
+
+/// A Project Chrono file edited live: the figures are those of the file edited by hand, and the saved
+/// text is the file with the one number rewritten.
+#[test]
+fn a_chrono_file_is_edited_as_the_file_edited_by_hand_reads() {
+    let text = include_str!("../../../tests/data/chrono/MacPhersonStrut.json");
+    let which = [Analysis::ParallelTravel];
+    let mut live = LiveDesign::open(text, "MacPhersonStrut.json", &which, settings()).unwrap();
+    live.edit("/Control Arm/Location Upright/2", -0.17).unwrap();
+    let written = "\"Location Upright\":         [-0.02165371, 0.94057703, -0.17402826]";
+    assert_eq!(text.matches(written).count(), 1);
+    let by_hand = text.replacen(written, "\"Location Upright\":         [-0.02165371, 0.94057703, -0.17]", 1);
+    assert_eq!(live.text().unwrap(), by_hand);
+    assert_same_figures(&live.current().report, &run_text(&by_hand, &which));
+}
