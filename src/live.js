@@ -1,12 +1,12 @@
 // `elastokin live`'s page: the design asked of the server (the page's address ends in its token, so the
-// routes are relative), its figures, charts and hardpoints shown; a hardpoint typed in millimetres sent as
+// routes are relative), its figures, hardpoints, rates, projections and charts shown; a hardpoint typed in millimetres sent as
 // an edit in metres, and the answer shown with the previous design's curves in grey beneath. A refused
 // edit shows the server's reason and leaves the design on screen. What the page did is kept as JSON in
 // <output id="live-state"> for the browser test.
 (function () {
   'use strict';
   const el = (id) => document.getElementById(id);
-  const report = { version: 0, figures: 0, charts: 0, drawn: 0, ghosts: 0, inputs: 0, edits: 0, refused: 0, errors: [] };
+  const report = { version: 0, figures: 0, charts: 0, drawn: 0, ghosts: 0, inputs: 0, projections: 0, edits: 0, refused: 0, errors: [] };
   let current = null;
   let previous = null;
   let plots = [];
@@ -195,6 +195,9 @@
     showFigures(state);
     showHardpoints(state);
     report.inputs += showRates(state);
+    // The projections as the server drew them (SVG, every text in it escaped there).
+    el('projections').innerHTML = state.projections || '';
+    report.projections = el('projections').querySelectorAll('figure.view').length;
     showCharts(state);
     const failed = state.failed.map((f) => f.analysis + ': ' + f.reason);
     el('status').textContent =

@@ -206,13 +206,18 @@ impl Live {
     }
 
     /// The current design with `status`, and the error when a change was refused; each chart as the page
-    /// draws it.
+    /// draws it, and the geometry's three projections as SVG (when the analyses recorded the parts' poses).
     fn state(&self, status: u16, error: Option<String>) -> Response {
         match self.design.state() {
             Ok(state) => {
                 let mut body = json!({ "state": state });
-                for (k, a) in self.design.current().report.analyses.iter().enumerate() {
+                let report = &self.design.current().report;
+                for (k, a) in report.analyses.iter().enumerate() {
                     body["state"]["analyses"][k]["charts"] = a.charts.iter().map(live_chart_data).collect();
+                }
+                let mut projections = String::new();
+                if crate::view::write_projections(&mut projections, report).is_ok() {
+                    body["state"]["projections"] = Value::String(projections);
                 }
                 if let Some(error) = error {
                     body["error"] = Value::String(error);

@@ -163,6 +163,10 @@ fn an_edit_answers_as_the_file_edited_by_hand_runs_and_a_save_writes_that_file()
     let (status, first) = server.call("GET", "state", "");
     assert_eq!(status, 200);
     let first_bump = figure(&first["state"], "bump_steer");
+    let projections = first["state"]["projections"].as_str().unwrap();
+    for view in ["front", "side", "plan"] {
+        assert_eq!(projections.matches(&format!("id=\"view-{view}\"")).count(), 1, "the {view} view drawn");
+    }
 
     let edit = format!(r#"{{"pointer": "{TIE_ROD_INNER_Z}", "value": -0.0394}}"#);
     let (status, edited) = server.call("POST", "edit", &edit);
@@ -396,6 +400,7 @@ fn the_page_in_chromium_edits_by_typing_undoes_saves_and_no_other_page_drives_it
     let numbers = state["hardpoints"].as_array().unwrap().len() + state["rates"].as_array().unwrap().len();
     assert_eq!(shown["inputs"], numbers, "{shown}: a field for every hardpoint coordinate and rate");
     assert_eq!(shown["errors"], serde_json::json!([]));
+    assert_eq!(shown["projections"], 3, "{shown}: front, side and plan");
 
     // Typed: -39.4 mm into the tie rod's inner z, committed as a user does, by leaving the field.
     let input = format!("document.querySelector('input[data-pointer=\"{TIE_ROD_INNER_Z}\"]')");

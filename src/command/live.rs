@@ -58,7 +58,8 @@ pub struct LiveArgs {
 /// `live`: the design served until Ctrl-C.
 pub fn run(args: LiveArgs, out: &Stdout) -> Result<(), Failure> {
     let which: Vec<_> = args.analyses.iter().map(|a| a.analysis()).collect();
-    let settings = Settings { steps: args.steps, ..Settings::default() };
+    // The parts' poses at every row, for the page's projections of the geometry.
+    let settings = Settings { steps: args.steps, motion: true, ..Settings::default() };
     for &a in if which.is_empty() { &kc::ALL[..] } else { &which[..] } {
         kc::check_settings(a, &settings).map_err(|e| Failure::Input(e.to_string()))?;
     }
@@ -144,7 +145,10 @@ fn serve(live: &mut Live, mut request: tiny_http::Request) {
         }
     };
     let content_type = tiny_http::Header::from_bytes(&b"Content-Type"[..], response.content_type.as_bytes());
-    let mut answer = tiny_http::Response::from_data(response.body).with_status_code(response.status);
+    // Sent whole with its length, never in chunks: the answer is in memory already.
+    let mut answer = tiny_http::Response::from_data(response.body)
+        .with_status_code(response.status)
+        .with_chunked_threshold(usize::MAX);
     if let Ok(h) = content_type {
         answer.add_header(h);
     }

@@ -34,6 +34,7 @@ fn write_page(out: &mut String, model: &str) -> std::fmt::Result {
         out,
         r#"<div class="columns"><section id="figures"></section><section><div id="hardpoints"></div><div id="rates"></div></section></div>"#
     )?;
+    writeln!(out, r#"<section id="geometry"><h2>Geometry</h2><div id="projections"></div></section>"#)?;
     writeln!(out, r#"<section id="charts" class="charts"></section>"#)?;
     writeln!(out, r#"<output id="charts-state" hidden="hidden"></output>"#)?;
     writeln!(out, r#"<output id="live-state" hidden="hidden"></output>"#)?;
