@@ -6,11 +6,14 @@
 (function () {
   'use strict';
   const el = (id) => document.getElementById(id);
-  const report = { version: 0, figures: 0, charts: 0, drawn: 0, ghosts: 0, inputs: 0, projections: 0, edits: 0, refused: 0, errors: [] };
+  const report = { version: 0, figures: 0, charts: 0, drawn: 0, ghosts: 0, inputs: 0, projections: 0, guided: 0, edits: 0, refused: 0, errors: [] };
   let current = null;
   let previous = null;
   let plots = [];
   let busy = false;
+  // The hardpoint whose guidance is shown, and the guidance (of the design of its version).
+  let selected = null;
+  let guidance = null;
 
   function publish() {
     el('live-state').textContent = JSON.stringify(report);
@@ -55,7 +58,9 @@
       const table = make('table', null, 'figures');
       table.appendChild(make('caption', a.description));
       const head = make('tr');
-      ['figure', 'value', 'before', 'target'].forEach((h) => head.appendChild(make('th', h)));
+      ['figure', 'value', 'before', 'target', 'per mm of the point selected (x, y, z)'].forEach((h) =>
+        head.appendChild(make('th', h))
+      );
       table.appendChild(make('thead')).appendChild(head);
       const body = table.appendChild(make('tbody'));
       a.figures.forEach((f) => {
@@ -71,6 +76,7 @@
         const targets = state.targets.filter((t) => t.analysis === a.name && t.figure === f.key);
         const aims = targets.map((t) => (t.met ? '✓ ' : '✗ ') + t.aim + ' ± ' + t.tolerance);
         row.appendChild(make('td', aims.join(', '), targets.some((t) => !t.met) ? 'error' : ''));
+        row.appendChild(make('td', '', 'guide quiet'));
         body.appendChild(row);
         count += 1;
       });
@@ -79,7 +85,51 @@
     report.figures = count;
   }
 
-  // The hardpoints, one row a point, each coordinate an input in millimetres.
+  // Each figure's derivatives to the selected hardpoint's x, y and z, per millimetre in the figure's unit.
+  function showGuidance() {
+    let guided = 0;
+    document.querySelectorAll('#figures tr[data-key]').forEach((row) => {
+      const cell = row.querySelector('td.guide');
+      const [analysis, key] = row.dataset.key.split('/');
+      const g = guidance && current && guidance.version === current.version
+        ? (guidance.analyses.find((a) => a.name === analysis) || { figures: [] }).figures.find((f) => f.key === key)
+        : null;
+      const f = figureOf(current, analysis, key);
+      if (!g || !f) {
+        cell.textContent = '';
+        return;
+      }
+      const per = g.per_metre.map((d) => (d == null ? '–' : Number((d * f.factor / 1000).toPrecision(3)).toString()));
+      cell.textContent = per.join(', ') + (f.unit === '-' ? '' : ' ' + f.unit) + ' /mm';
+      cell.title = g.why_not.filter((w) => w).join('; ');
+      if (g.per_metre.some((d) => d != null)) guided += 1;
+    });
+    report.guided = guided;
+  }
+
+  // The guidance for the hardpoint at `point`, asked of the server for the design on screen.
+  async function guide(point) {
+    selected = point;
+    document.querySelectorAll('#hardpoints tr').forEach((r) => r.classList.toggle('selected', r.dataset.point === point));
+    try {
+      const response = await fetch('guidance', {
+        method: 'POST',
+        cache: 'no-store',
+        headers: { 'Content-Type': 'application/json' },
+        body: JSON.stringify({ point }),
+      });
+      const answer = await response.json();
+      if (!response.ok) return refused(answer.error || 'refused (' + response.status + ')');
+      guidance = answer.guidance;
+      showGuidance();
+      publish();
+    } catch (e) {
+      refused('the server does not answer: ' + e);
+    }
+  }
+
+  // The hardpoints, one row a point, each coordinate an input in millimetres; a point's name selects it
+  // for guidance.
   function showHardpoints(state) {
     const holder = el('hardpoints');
     holder.replaceChildren(make('h2', 'Hardpoints (mm)'));
@@ -96,7 +146,13 @@
       if (!rows.has(point)) {
         const name = point.slice(point.lastIndexOf('/') + 1).replace(/~1/g, '/').replace(/~0/g, '~');
         const row = make('tr');
-        row.appendChild(make('td', name));
+        row.dataset.point = point;
+        if (point === selected) row.className = 'selected';
+        const cell = row.appendChild(make('td'));
+        const button = cell.appendChild(make('button', name, 'point'));
+        button.type = 'button';
+        button.title = 'how every figure moves with this point';
+        button.addEventListener('click', () => guide(point));
         rows.set(point, row);
         body.appendChild(row);
       }
@@ -199,6 +255,8 @@
     el('projections').innerHTML = state.projections || '';
     report.projections = el('projections').querySelectorAll('figure.view').length;
     showCharts(state);
+    showGuidance();
+    if (selected && (!guidance || guidance.version !== state.version)) guide(selected);
     const failed = state.failed.map((f) => f.analysis + ': ' + f.reason);
     el('status').textContent =
       'version ' + state.version + (state.moved.length ? ', ' + state.moved.length + ' numbers moved' : '') +

@@ -11,7 +11,8 @@
 //!
 //! Routes, each under `/TOKEN`: `GET /` the page (`html::live_html`); `GET /state` the current design ([`State`]); `POST /edit` with
 //! `{"pointer": "/json/pointer", "value": number}` (SI, as the model file stores it) a new design;
-//! `POST /undo`, `POST /redo`; `POST /save` the model file written where it was read. A design refused
+//! `POST /undo`, `POST /redo`; `POST /save` the model file written where it was read; `POST /guidance`
+//! with `{"point": "/…/hardpoints/NAME"}` every figure's derivatives to that hardpoint's x, y and z. A design refused
 //! comes back with the reason and the design kept.
 
 use crate::html::{live_chart_data, live_html};
@@ -197,11 +198,15 @@ impl Live {
                 self.after(done, 409)
             }
             ("POST", "save") => self.save(),
-            (_, "" | "state" | "edit" | "undo" | "redo" | "save") => Response::refused(
+            ("POST", "guidance") => self.guidance(body),
+            (_, "" | "state" | "edit" | "undo" | "redo" | "save" | "guidance") => Response::refused(
                 405,
                 &format!("{} /{route} is not served: state is read with GET, every change is a POST", head.method),
             ),
-            _ => Response::refused(404, &format!("nothing at /{route}: the routes are state, edit, undo, redo, save")),
+            _ => Response::refused(
+                404,
+                &format!("nothing at /{route}: the routes are state, edit, undo, redo, save, guidance"),
+            ),
         }
     }
 
@@ -251,6 +256,22 @@ impl Live {
         };
         let done = self.design.edit(pointer, value).map(|_| ());
         self.after(done, 422)
+    }
+
+    /// `POST /guidance`: `{"point": …}`, a hardpoint's pointer: how every figure of the current design
+    /// moves with its x, y and z.
+    fn guidance(&self, body: &[u8]) -> Response {
+        let asked: Value = serde_json::from_slice(body).unwrap_or(Value::Null);
+        let Some(point) = asked["point"].as_str() else {
+            return Response::refused(
+                400,
+                "give the hardpoint as {\"point\": \"/suspension/…/hardpoints/NAME\"} (its pointer, without a coordinate)",
+            );
+        };
+        match self.design.guidance(point) {
+            Ok(guidance) => Response::json(200, &json!({ "guidance": guidance })),
+            Err(e) => Response::refused(422, &e.to_string()),
+        }
     }
 
     /// `POST /save`: the model file written where it was read, through a file beside it renamed over it

@@ -443,6 +443,29 @@ fn the_page_in_chromium_edits_by_typing_undoes_saves_and_no_other_page_drives_it
         .evaluate(&page, "document.querySelector('tr[data-key=\"parallel-travel/bump_steer\"] td.quiet').textContent");
     assert!(before.as_str().is_some_and(|b| b.ends_with("deg/m")), "{before}");
 
+    // The tie rod's inner point selected by its name: every figure's derivatives to it, per mm, as the
+    // server's guidance gives them.
+    browser.evaluate(&page, "document.querySelector('tr[data-point=\"/suspension/macpherson/hardpoints/tie_rod_inner\"] button').click(); true");
+    let guided = browser.live_state(&page, |s| s["guided"].as_u64().unwrap_or(0) > 0);
+    let (status, guidance) =
+        server.call("POST", "guidance", r#"{"point": "/suspension/macpherson/hardpoints/tie_rod_inner"}"#);
+    assert_eq!(status, 200, "{guidance}");
+    let derivatives = &guidance["guidance"]["analyses"][0]["figures"];
+    let bump_d = derivatives.as_array().unwrap().iter().find(|f| f["key"] == "bump_steer").unwrap();
+    let factor = bump["factor"].as_f64().unwrap();
+    let per_mm: Vec<f64> =
+        bump_d["per_metre"].as_array().unwrap().iter().map(|d| d.as_f64().unwrap() * factor / 1000.0).collect();
+    let shown = browser
+        .evaluate(&page, "document.querySelector('tr[data-key=\"parallel-travel/bump_steer\"] td.guide').textContent");
+    let shown: Vec<f64> =
+        shown.as_str().unwrap().trim_end_matches(" deg/m /mm").split(", ").map(|v| v.parse().unwrap()).collect();
+    assert_eq!(shown.len(), 3, "{guided}");
+    for (s, d) in shown.iter().zip(&per_mm) {
+        // Written to three significant digits.
+        assert!((s - d).abs() <= 5e-3 * d.abs(), "{shown:?} against {per_mm:?}");
+    }
+    assert!(per_mm[2].abs() > 1e-3, "the tie rod's height moves bump steer: {per_mm:?}");
+
     // Undo by its button: the field shows the file's number again; redo; save by its button.
     browser.evaluate(&page, "document.getElementById('undo').click(); true");
     browser.live_state(&page, |s| s["version"] == 3);

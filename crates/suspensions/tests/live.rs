@@ -183,3 +183,35 @@ fn a_chrono_file_is_edited_as_the_file_edited_by_hand_reads() {
     assert_eq!(live.text().unwrap(), by_hand);
     assert_same_figures(&live.current().report, &run_text(&by_hand, &which));
 }
+
+/// The guidance for a hardpoint: each figure's derivative to its coordinates equals a central difference of
+/// the design edited either side of it.
+#[test]
+fn the_guidance_for_a_hardpoint_is_the_slope_of_the_design_moved_either_side() {
+    let which = [Analysis::ParallelTravel];
+    let mut live = open(&which);
+    let guidance = live.guidance("/suspension/macpherson/hardpoints/tie_rod_inner").unwrap();
+    assert_eq!(guidance.analyses.len(), 1);
+    let figure =
+        |live: &LiveDesign, key: &str| live.current().report.analyses[0].figure(key).and_then(|f| f.value).unwrap();
+    let h = 1e-5;
+    let mut worst: f64 = 0.0;
+    for key in ["bump_steer", "camber_gain", "wheel_rate"] {
+        let guided = guidance.analyses[0].figures.iter().find(|f| f.key == key).unwrap();
+        for (k, in_file) in [(1usize, 0.370), (2, -0.0374)] {
+            let pointer = format!("/suspension/macpherson/hardpoints/tie_rod_inner/{k}");
+            live.edit(&pointer, in_file + h).unwrap();
+            let up = figure(&live, key);
+            live.edit(&pointer, in_file - h).unwrap();
+            let down = figure(&live, key);
+            live.edit(&pointer, in_file).unwrap();
+            let slope = (up - down) / (2.0 * h);
+            let d = guided.per_metre[k].unwrap();
+            worst = worst.max((d - slope).abs() / slope.abs().max(1e-3));
+        }
+    }
+    // Measured: 2.6e-8 (the difference's own truncation and rounding at h = 0.01 mm).
+    assert!(worst < 1e-6, "{worst}");
+    let refused = live.guidance("/suspension/macpherson/hardpoints").unwrap_err().to_string();
+    assert!(refused.contains("names no hardpoint"), "{refused}");
+}

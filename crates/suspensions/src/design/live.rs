@@ -10,6 +10,7 @@
 
 use super::judge::judge;
 use super::parameter::{hardpoint_pointers, number_at, rate_pointers, ParameterError, Parameters};
+use super::sensitivity::{suite_sensitivity, Rate};
 use super::targets::{Aim, Targets};
 use crate::document::DocumentError;
 use crate::file::numbers::{with_numbers, NumberEditError};
@@ -243,6 +244,53 @@ impl LiveDesign {
         })
     }
 
+    /// How each figure of the current design moves with the hardpoint at `point` (its pointer, e.g.
+    /// `/suspension/macpherson/hardpoints/tie_rod_inner`): the derivatives of every figure to its x, y and
+    /// z through the equilibrium, with their error estimates (`design::sensitivity`, figures only).
+    /// Refused when `point` names no hardpoint of the model.
+    pub fn guidance(&self, point: &str) -> Result<Guidance, LiveError> {
+        let document = self.document()?;
+        let pointers: Vec<String> = (0..3).map(|k| format!("{point}/{k}")).collect();
+        let hardpoints = hardpoint_pointers(&document);
+        if !pointers.iter().all(|p| hardpoints.contains(p)) {
+            return Err(LiveError::NoHardpoint { point: point.to_string() });
+        }
+        let parameters = Parameters::new(&document, &pointers).map_err(LiveError::Parameter)?;
+        let settings = Settings { figures_only: true, motion: false, ..self.settings };
+        let suite = suite_sensitivity(&parameters, &self.which, &settings).map_err(LiveError::Parameter)?;
+        let analyses = suite
+            .analyses
+            .iter()
+            .map(|a| GuidedAnalysis {
+                name: a.report.analysis.name(),
+                figures: a
+                    .report
+                    .figures
+                    .iter()
+                    .enumerate()
+                    .map(|(f, figure)| {
+                        let rate = |k: usize| a.figures.get(k).and_then(|row| row.get(f)).copied();
+                        let xyz: Vec<Option<Rate>> = (0..3).map(rate).collect();
+                        GuidedFigure {
+                            key: figure.key.clone(),
+                            per_metre: xyz.iter().map(|r| r.and_then(|r| r.ok()).map(|d| d.value)).collect(),
+                            error: xyz.iter().map(|r| r.and_then(|r| r.ok()).map(|d| d.error)).collect(),
+                            why_not: xyz
+                                .iter()
+                                .map(|r| match r {
+                                    Some(Err(no)) => Some(no.reason()),
+                                    Some(Ok(_)) => None,
+                                    None => Some("no derivative was made"),
+                                })
+                                .collect(),
+                        }
+                    })
+                    .collect(),
+            })
+            .collect();
+        Ok(Guidance { point: point.to_string(), version: self.version, analyses })
+    }
+
     /// The current design's model, read afresh from its document as the command reads a file.
     pub fn file(&self) -> Result<SuspensionFile, LiveError> {
         let document = self.document()?;
@@ -323,6 +371,40 @@ pub struct JudgedConstraint {
     pub why_not: Option<String>,
     /// Whether the design keeps it.
     pub met: bool,
+}
+
+/// How the figures of a design move with one hardpoint ([`LiveDesign::guidance`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Guidance {
+    /// The hardpoint's pointer.
+    pub point: String,
+    /// The version of the design it is of.
+    pub version: u64,
+    /// Each analysis's figures.
+    pub analyses: Vec<GuidedAnalysis>,
+}
+
+/// The derivatives of one analysis's figures to a hardpoint.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GuidedAnalysis {
+    /// The analysis's name.
+    pub name: &'static str,
+    /// Its figures, in its report's order.
+    pub figures: Vec<GuidedFigure>,
+}
+
+/// One figure's derivatives to a hardpoint's x, y and z: SI per metre, each with its error estimate, or
+/// why there is none.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GuidedFigure {
+    /// The figure's key.
+    pub key: String,
+    /// The derivatives to x, y and z (the figure's SI unit per metre).
+    pub per_metre: Vec<Option<f64>>,
+    /// Their error estimates.
+    pub error: Vec<Option<f64>>,
+    /// Why a derivative is missing.
+    pub why_not: Vec<Option<&'static str>>,
 }
 
 /// A number of the design by its pointer.
@@ -434,6 +516,15 @@ pub enum LiveError {
         value: f64,
         /// Each analysis that failed, with the reason.
         failed: Vec<Failed>,
+    },
+    /// A pointer that names no hardpoint of the model.
+    #[error(
+        "'{point}' names no hardpoint of the model: give a point's pointer, its three coordinates under it \
+         (e.g. /suspension/macpherson/hardpoints/tie_rod_inner)"
+    )]
+    NoHardpoint {
+        /// The pointer given.
+        point: String,
     },
     /// Undo at the design as opened.
     #[error("nothing to undo: this is the design as the file was read")]
