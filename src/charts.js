@@ -1,4 +1,4 @@
-// The reports' interactive charts: each <figure class="chart"> carries its chart as JSON (data-chart),
+// The reports' interactive charts (and the live page's, drawn by `window.elastokinDrawChart`): each <figure class="chart"> carries its chart as JSON (data-chart),
 // drawn here with uPlot (inlined before this script) in place of the SVG drawn for it, which stays for
 // scripts off and for print. The pointer reads every curve's value out in the legend; a click on a legend
 // entry shows or hides its curve; dragging zooms, a double click zooms back out.
@@ -51,9 +51,10 @@
         label: chart.axes.length > 1 && a > 0 ? s.name + ' (right axis)' : s.name,
         scale: scale(a),
         stroke: s.colour,
-        width: 2,
-        // A right-axis curve is dashed, as in the SVG: a left one under it shows between the dashes.
-        dash: a === 0 ? undefined : [9, 6],
+        width: s.width || 2,
+        // A right-axis curve is dashed, as in the SVG: a left one under it shows between the dashes. A
+        // curve may say its own (the live page's previous design).
+        dash: s.dash || (a === 0 ? undefined : [9, 6]),
         points: { show: s.x.length <= 20 },
         spanGaps: true,
         value: (u, v) => fmt(v),
@@ -112,6 +113,9 @@
     const out = document.getElementById('charts-state');
     if (out) out.textContent = JSON.stringify(state);
   }
+
+  // The live page draws its charts as the design changes.
+  window.elastokinDrawChart = draw;
 
   if (document.readyState === 'loading') document.addEventListener('DOMContentLoaded', drawAll);
   else drawAll();

@@ -20,6 +20,9 @@
 //! through the png encoder, with its text in a font compiled in so that no system font is needed), and
 //! thiserror for its error type. Its tests read the SVG back with roxmltree.
 //!
+//! [`live`] serves a design edited from a browser as plain functions from request to response: getrandom
+//! gives its token, subtle compares it in constant time.
+//!
 //! [`html`] writes the K&C report as one self-contained HTML page; it escapes every text it prints with
 //! html-escape, so names and messages from a model file cannot break the page.
 
@@ -29,6 +32,7 @@ pub use elastokin_solver as solver;
 pub use elastokin_suspensions as suspensions;
 
 pub mod html;
+pub mod live;
 mod markup;
 pub mod plot;
 pub mod provenance;

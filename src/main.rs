@@ -6,6 +6,7 @@
 //! elastokin check MODEL
 //! elastokin batch MODEL VARIANTS [--shard I/N] [--out DIR]
 //! elastokin merge [--out DIR] SHARD...
+//! elastokin live MODEL [--analysis NAME]... [--targets FILE] [--bind ADDR] [--port N] [--no-open]
 //! ```
 //!
 //! Each subcommand is a module of [`command`], holding its arguments and its `run`; this file parses the
@@ -13,10 +14,11 @@
 //!
 //! What the command depends on, and why: clap parses the arguments (help, `--version`, suggestions for
 //! mistyped names, errors that name the argument); csv writes the tables (quoting done right); sha2 gives
-//! each result the model file's SHA-256; indicatif draws progress bars on a terminal.
+//! each result the model file's SHA-256; indicatif draws progress bars on a terminal; tiny_http serves
+//! `live` (its choice is told in `command/live.rs`).
 
 use clap::{Parser, Subcommand};
-use command::{batch, check, compare, expand, import, merge, run, sensitivity, tolerance, tune, vehicle};
+use command::{batch, check, compare, expand, import, live, merge, run, sensitivity, tolerance, tune, vehicle};
 use output::{note, Stdout};
 use std::process::ExitCode;
 
@@ -112,6 +114,16 @@ pub enum Command {
     /// differ; docs/vehicle.md gives every formula. Writes vehicle.csv and report.html.
     #[command(after_help = EXIT_STATUS)]
     Vehicle(vehicle::VehicleArgs),
+    /// Serve the model on this machine: move its numbers from a browser and watch its figures answer
+    ///
+    /// Prints the page's address, with a random token that every request must carry; a browser opens it
+    /// unless --no-open. Listens on 127.0.0.1 alone unless --bind says otherwise. Requests from another page
+    /// or for another host are refused. Each edit (a number of the model file by its JSON pointer, in the
+    /// file's SI units) runs the analyses again; an edit that does not solve is refused with the reason and
+    /// the design kept. Undo and redo; a save writes MODEL itself, only the moved numbers rewritten, every
+    /// other byte as it was. Ctrl-C stops the server.
+    #[command(after_help = EXIT_STATUS)]
+    Live(live::LiveArgs),
     /// Join the batch.csv files of `batch --shard I/N` runs into the batch.csv one `batch` writes
     ///
     /// The shards must be of one model and one variants file (the same SHA-256 in their first lines) and
@@ -143,6 +155,7 @@ fn main() -> ExitCode {
         Command::Tolerance(args) => tolerance::run(args, &out, cli.strict),
         Command::Compare(args) => compare::run(args, &out, cli.strict),
         Command::Vehicle(args) => vehicle::run(args, &out, cli.strict),
+        Command::Live(args) => live::run(args, &out),
         Command::Merge(args) => merge::run(args, &out),
         Command::Expand(args) => expand::run(args, &out, cli.strict),
         Command::Import(args) => import::run(args, &out),

@@ -146,6 +146,11 @@ static STAGED: std::sync::Mutex<Vec<(PathBuf, PathBuf, PathBuf)>> = std::sync::M
 /// error, and exit status 130. An interrupted command leaves `--out` as it found it, and nothing beside it.
 pub fn on_interrupt_remove_staging() {
     let handler = || {
+        // A command that stops by itself (a server) is told to, and says what it leaves.
+        if let Some(stop) = STOP.lock().ok().as_deref().and_then(Option::as_ref) {
+            stop();
+            return;
+        }
         let staged = STAGED.lock().map(|s| s.clone()).unwrap_or_default();
         for (tmp, old, out) in &staged {
             if old.exists() && !out.exists() {
@@ -158,6 +163,18 @@ pub fn on_interrupt_remove_staging() {
     };
     if let Err(e) = ctrlc::set_handler(handler) {
         note(format!("warning: an interrupt may leave a staging directory beside --out: {e}"));
+    }
+}
+
+/// What an interrupt does instead of exiting, when a command set it ([`on_interrupt_stop`]).
+type Stop = Box<dyn Fn() + Send>;
+static STOP: std::sync::Mutex<Option<Stop>> = std::sync::Mutex::new(None);
+
+/// On Ctrl-C, SIGTERM or SIGHUP from now on: `stop` called, for a command that then ends by itself (a
+/// server finishing the request it is serving), instead of the exit of [`on_interrupt_remove_staging`].
+pub fn on_interrupt_stop(stop: impl Fn() + Send + 'static) {
+    if let Ok(mut slot) = STOP.lock() {
+        *slot = Some(Box::new(stop));
     }
 }
 

@@ -479,13 +479,27 @@ fn write_legend(out: &mut String, construction: bool) -> std::fmt::Result {
 /// where there is one) and the 3D view of every analysis with a motion. Nothing when no analysis has
 /// one (a report run without [`Settings::motion`](crate::suspensions::kc::Settings::motion)).
 pub fn write_geometry(out: &mut String, report: &KcReport) -> std::fmt::Result {
+    let mut projections = String::new();
+    write_projections(&mut projections, report)?;
+    if projections.is_empty() {
+        return Ok(());
+    }
+    writeln!(out, "<section id=\"geometry\">")?;
+    writeln!(out, "<h2>Geometry</h2>")?;
+    out.push_str(&projections);
+    write_viewer(out, report)?;
+    writeln!(out, "</section>")
+}
+
+/// The three projections of the analysis shown (parallel travel where there is one), with what is drawn
+/// and ghosted said above them and their legend below: the geometry section without the 3D view, which
+/// `elastokin live`'s page draws anew with every design. Nothing when no analysis has a motion.
+pub fn write_projections(out: &mut String, report: &KcReport) -> std::fmt::Result {
     let Some((a, motion)) = shown_analysis(report) else { return Ok(()) };
     if motion.frames.is_empty() {
         return Ok(());
     }
     let rows = [a.design_row(), 0, motion.frames.len() - 1];
-    writeln!(out, "<section id=\"geometry\">")?;
-    writeln!(out, "<h2>Geometry</h2>")?;
     writeln!(
         out,
         "<p class=\"note\">{}: {} drawn, {} and {} ghosted</p>",
@@ -500,9 +514,7 @@ pub fn write_geometry(out: &mut String, report: &KcReport) -> std::fmt::Result {
         projection_svg(out, motion, rows, projection, construction)?;
     }
     writeln!(out, "</div>")?;
-    write_legend(out, construction.is_some())?;
-    write_viewer(out, report)?;
-    writeln!(out, "</section>")
+    write_legend(out, construction.is_some())
 }
 
 /// A global or body-fixed point as the 3D view reads it: `[body, x, y, z]`, body −1 for the ground.

@@ -8,6 +8,7 @@ pub mod compare;
 pub mod expand;
 pub mod import;
 pub mod input;
+pub mod live;
 pub mod merge;
 pub mod run;
 pub mod sensitivity;

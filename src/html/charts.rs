@@ -10,11 +10,11 @@ use std::fmt::Write;
 /// uPlot (`assets/uplot/`, MIT), the charting library the interactive charts are drawn with: 51 kB, with
 /// the pointer's read-out, legend toggles and zoom built in, where Chart.js 4.6 weighs 210 kB and needs a
 /// plugin to zoom.
-const UPLOT_SCRIPT: &str = include_str!("../../assets/uplot/uPlot.iife.min.js");
+pub(super) const UPLOT_SCRIPT: &str = include_str!("../../assets/uplot/uPlot.iife.min.js");
 /// uPlot's own style, in every page's head.
 pub(super) const UPLOT_STYLE: &str = include_str!("../../assets/uplot/uPlot.min.css");
 /// The interactive charts drawn from each figure's data.
-const CHARTS_SCRIPT: &str = include_str!("../charts.js");
+pub(super) const CHARTS_SCRIPT: &str = include_str!("../charts.js");
 
 /// `chart` drawn by `render_chart`, inline in a figure with its data (`data-chart`) for the interactive
 /// chart; one that could not be drawn shows why.
@@ -61,7 +61,7 @@ pub(super) fn write_chart_script(out: &mut String) -> std::fmt::Result {
 
 /// The data of `chart` for the interactive chart: title, axes' labels and scales, the design position, and
 /// each curve's finite points with its colour (the SVG's: counted over both axes).
-fn chart_data(chart: &Chart) -> Value {
+pub(super) fn chart_data(chart: &Chart) -> Value {
     let mut k = 0;
     let mut axis = |a: &YAxis| {
         let series: Vec<Value> = a

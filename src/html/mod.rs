@@ -15,7 +15,7 @@
 //!
 //! This module is the skeleton every page shares: its head with the style inline ([`style`]), its header,
 //! and its foot, how the run was made ([`provenance`]). Each page is a module ([`report`], the K&C report;
-//! [`sensitivity`], [`tolerance`], [`tune`], [`compare`], [`vehicle`]), and each section of the K&C report
+//! [`sensitivity`], [`tolerance`], [`tune`], [`compare`], [`vehicle`], and `elastokin live`'s page, [`live`]), and each section of the K&C report
 //! one more (warnings, hardpoints, the analyses' contents, each analysis with its figures, the analyses not
 //! run, the model file); the geometry's projections and 3D view are [`crate::view`]'s.
 
@@ -30,6 +30,7 @@ mod compare;
 mod contents;
 mod figures;
 mod hardpoints;
+mod live;
 mod model;
 mod provenance;
 mod report;
@@ -44,6 +45,7 @@ mod vehicle;
 mod warnings;
 
 pub use compare::compare_html;
+pub use live::{live_chart_data, live_html};
 pub use report::{report_html, report_html_with, Extras, Sensitivities};
 pub use sensitivity::sensitivity_html;
 pub use summary::Judged;

@@ -77,6 +77,13 @@ figure.view3d { margin: 12px 0; }
 figure.view3d canvas { width: 100%; height: 560px; display: block; border: 1px solid #e5e8eb; touch-action: none; }
 .view3d-controls { display: flex; flex-wrap: wrap; gap: 8px; align-items: center; margin-bottom: 6px; }
 .view3d-controls input[type=range] { flex: 1 1 200px; }
+.live-bar button { font: inherit; padding: 2px 12px; }
+#hardpoints input, #rates input { width: 6.5em; font: inherit; text-align: right; }
+#rates input { width: 9em; }
+#hardpoints input.moved, #rates input.moved { background: #fff8c5; }
+#figures td.value, #figures td.quiet, #figures td.error { white-space: nowrap; }
+#hardpoints button.point { font: inherit; border: none; background: none; padding: 0; color: #0969da; cursor: pointer; }
+#hardpoints tr.selected td { background: #ddf4ff; }
 @media print {
   @page { size: A4 portrait; margin: 12mm; }
   body { max-width: none; padding: 0; font-size: 10pt; }

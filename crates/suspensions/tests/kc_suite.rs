@@ -862,3 +862,17 @@ fn every_analysis_is_declared_once_in_its_own_file_and_listed() {
     }
     assert_eq!(declared, kc::ALL.len(), "declarations in {}", dir.display());
 }
+
+/// The suite with its analyses run at once on rayon's threads reports what the suite run one analysis
+/// after another reports, to the bit: every analysis, figure, cell, chart, skip, failure and warning.
+#[test]
+fn the_suite_on_threads_reports_what_the_suite_in_turn_reports() {
+    let settings = Settings { steps: 8, ..Settings::default() };
+    for name in ["macpherson.json", "twist_beam.json", "generic/double_wishbone.json"] {
+        let file = example(name);
+        let in_turn = kc::run_suite(&file, &[], &settings, |_| {});
+        let on_threads = kc::run_suite_on_threads(&file, &[], &settings);
+        assert!(in_turn.analyses.len() >= 5, "{name}");
+        assert_eq!(on_threads, in_turn, "{name}");
+    }
+}

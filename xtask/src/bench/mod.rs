@@ -6,7 +6,7 @@
 //!
 //! Sections (each a module named for what it measures): error against run time on the shipped models,
 //! the cost of one step against a bare factorization + solve, scaling with the number of bodies, stiff and
-//! extreme cases, batch throughput, the cost of sensitivities, and (when Python with Exudyn is installed) the same sweep in Exudyn,
+//! extreme cases, batch throughput, the cost of sensitivities, a move in `elastokin live`, and (when Python with Exudyn is installed) the same sweep in Exudyn,
 //! side by side. Output in `bench/results/` (or `--out`): `latest.md`, one CSV per
 //! table, SVG plots; `--save NAME` writes `NAME.json` with the commit id and every figure, `--compare NAME`
 //! prints now/then per figure and flags what got slower than `--threshold` (default 1.25).
@@ -20,6 +20,7 @@ mod big_models;
 mod elastic_members;
 mod error_vs_time;
 mod exudyn;
+mod live;
 mod models;
 pub mod report;
 mod report_page;
@@ -43,7 +44,7 @@ use std::time::Instant;
 type Section = (&'static str, fn(&Settings) -> SectionOutput);
 
 /// The sections, in the order they run and appear.
-const SECTIONS: [Section; 11] = [
+const SECTIONS: [Section; 12] = [
     ("error-vs-time", error_vs_time::run),
     ("step-cost", step_cost::run),
     ("scaling", scaling::run),
@@ -53,6 +54,7 @@ const SECTIONS: [Section; 11] = [
     ("sensitivity", sensitivity::run),
     ("tuning", tuning::run),
     ("report-page", report_page::run),
+    ("live", live::run),
     ("elastic-members", elastic_members::run),
     ("exudyn", exudyn::run),
 ];
@@ -65,7 +67,7 @@ usage: cargo xtask bench [--quick] [--out DIR] [--save NAME] [--compare NAME] [-
     --compare NAME   print now/then for every figure of DIR/NAME.json, flag the slower ones
     --threshold X    flag figures slower than X times then (default 1.25)
     --only LIST      comma-separated sections: error-vs-time, step-cost, scaling, big-models, stiff-cases, batch,
-                     sensitivity, tuning, report-page, elastic-members, exudyn
+                     sensitivity, tuning, report-page, live, elastic-members, exudyn
                      (exudyn needs Python with Exudyn, `pip install exudyn`; without it, it is skipped)";
 
 /// Parsed command line.

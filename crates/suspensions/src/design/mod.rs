@@ -6,6 +6,7 @@
 pub mod fit;
 pub mod judge;
 mod keys;
+pub mod live;
 pub mod parameter;
 pub mod sensitivity;
 pub mod targets;
@@ -13,7 +14,9 @@ pub mod tolerance;
 pub mod tune;
 
 pub use keys::KeyRefusal;
-pub use parameter::{hardpoint_pointers, parameter_value_words, parameter_words, NoNumber, ParameterError, Parameters};
+pub use parameter::{
+    hardpoint_pointers, parameter_value_words, parameter_words, rate_pointers, NoNumber, ParameterError, Parameters,
+};
 pub use sensitivity::{
     analysis_sensitivity, suite_sensitivity, AnalysisSensitivity, Derivative, NoDerivative, Rate, SensitivityError,
     SuiteSensitivity,

@@ -298,6 +298,38 @@ pub fn parameter_value_words(pointer: &str, value: f64) -> String {
     }
 }
 
+/// The keys a model file gives a rate under: a spring's or a bar's `rate`, a bushing's four, the tyre's.
+const RATE_KEYS: [&str; 6] = ["rate", "radial", "axial", "torsion", "conical", "tyre_rate"];
+
+/// Every rate of a model document written as a number, as pointers in the file's order: springs' and
+/// anti-roll bars' `rate`, bushings' `radial`, `axial`, `torsion` and `conical`, the tyre's `tyre_rate`
+/// (a rate given as a measured curve is no one number, and is left out).
+pub fn rate_pointers(document: &Value) -> Vec<String> {
+    fn walk(value: &Value, at: &str, out: &mut Vec<String>) {
+        match value {
+            Value::Object(map) => {
+                for (key, v) in map {
+                    let pointer = format!("{at}/{}", token(key));
+                    if v.is_number() && RATE_KEYS.contains(&key.as_str()) {
+                        out.push(pointer);
+                    } else {
+                        walk(v, &pointer, out);
+                    }
+                }
+            }
+            Value::Array(items) => {
+                for (k, v) in items.iter().enumerate() {
+                    walk(v, &format!("{at}/{k}"), out);
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    walk(document, "", &mut out);
+    out
+}
+
 /// Whether the key names a point of a Project Chrono part (`Location Chassis`, `Location Upright`, …).
 pub fn is_chrono_point(key: &str) -> bool {
     key.starts_with("Location")

@@ -16,6 +16,7 @@
 //! mark at the start is skipped.
 
 pub mod key_path;
+pub mod numbers;
 
 use crate::description::limits::{looks_like_millimetres, MAX_COORDINATE, MAX_FORCE, MAX_RATE};
 use crate::description::{

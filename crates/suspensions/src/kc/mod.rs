@@ -254,17 +254,7 @@ pub fn run_suite_checked(
     settings: &Settings,
     mut progress: impl FnMut(SuiteEvent),
 ) -> KcReport {
-    let warnings = model_check.as_ref().map_or_else(Vec::new, |c| c.warnings.clone());
-    let mut report = KcReport {
-        model: file.name.clone(),
-        settings: *settings,
-        analyses: Vec::new(),
-        skipped: Vec::new(),
-        failed: Vec::new(),
-        model_check,
-        warnings,
-    };
-    report.warnings.extend(crate::check::bushing_deflection_at_design(file));
+    let mut report = suite_report(file, model_check, settings);
     let models = Models::new(file);
     for planned in planned(file, which) {
         let analysis = match planned {
@@ -276,21 +266,74 @@ pub fn run_suite_checked(
             }
         };
         progress(SuiteEvent::Starting(analysis));
-        match run_on(analysis, &models, settings) {
-            Ok(done) => {
-                report.analyses.push(done);
-                progress(SuiteEvent::Done(&report.analyses[report.analyses.len() - 1]));
-            }
-            Err(e) => {
-                // An analysis that fails on an implausible model fails because of it: say so with the failure.
-                let mut reason = e.cause.to_string();
-                for w in &report.warnings {
-                    reason.push_str(&format!("; note: {}", w.message));
-                }
-                report.failed.push(Failed { analysis, reason });
-                progress(SuiteEvent::Failed(&report.failed[report.failed.len() - 1]));
-            }
+        let result = run_on(analysis, &models, settings);
+        record(&mut report, analysis, result, &mut progress);
+    }
+    report
+}
+
+/// [`run_suite`] with its analyses, and the plausibility checks, run at once on rayon's threads: the same
+/// report, to the bit (each analysis reports on models built once for the suite what it reports alone),
+/// sooner on more than one core. For a caller that waits for the whole report (`elastokin live`).
+pub fn run_suite_on_threads(file: &SuspensionFile, which: &[Analysis], settings: &Settings) -> KcReport {
+    use rayon::prelude::*;
+    let models = Models::new(file);
+    let plan = planned(file, which);
+    let (model_check, results) = rayon::join(
+        || crate::check::check_model(file).ok(),
+        || {
+            let run = |p: &Result<Analysis, Skipped>| p.as_ref().ok().map(|&a| run_on(a, &models, settings));
+            plan.par_iter().map(run).collect::<Vec<_>>()
+        },
+    );
+    let mut report = suite_report(file, model_check, settings);
+    for (planned, result) in plan.into_iter().zip(results) {
+        match (planned, result) {
+            (Ok(analysis), Some(result)) => record(&mut report, analysis, result, &mut |_| {}),
+            (Err(skipped), _) => report.skipped.push(skipped),
+            (Ok(_), None) => {}
         }
     }
     report
+}
+
+/// A suite's report before any analysis: the model's name, the settings, the plausibility check and its
+/// warnings, and the bushings' deflection at design.
+fn suite_report(file: &SuspensionFile, model_check: Option<crate::check::ModelCheck>, settings: &Settings) -> KcReport {
+    let warnings = model_check.as_ref().map_or_else(Vec::new, |c| c.warnings.clone());
+    let mut report = KcReport {
+        model: file.name.clone(),
+        settings: *settings,
+        analyses: Vec::new(),
+        skipped: Vec::new(),
+        failed: Vec::new(),
+        model_check,
+        warnings,
+    };
+    report.warnings.extend(crate::check::bushing_deflection_at_design(file));
+    report
+}
+
+/// An analysis's result put in the suite's `report`, and `progress` told.
+fn record(
+    report: &mut KcReport,
+    analysis: Analysis,
+    result: Result<AnalysisReport, AnalysisError>,
+    progress: &mut impl FnMut(SuiteEvent),
+) {
+    match result {
+        Ok(done) => {
+            report.analyses.push(done);
+            progress(SuiteEvent::Done(&report.analyses[report.analyses.len() - 1]));
+        }
+        Err(e) => {
+            // An analysis that fails on an implausible model fails because of it: say so with the failure.
+            let mut reason = e.cause.to_string();
+            for w in &report.warnings {
+                reason.push_str(&format!("; note: {}", w.message));
+            }
+            report.failed.push(Failed { analysis, reason });
+            progress(SuiteEvent::Failed(&report.failed[report.failed.len() - 1]));
+        }
+    }
 }

@@ -1,0 +1,50 @@
+//! `elastokin live`'s page: the report's style and interactive charts (uPlot with `src/charts.js`), and
+//! `src/live.js`, which asks the server for the design, shows its figures, charts, hardpoints and rates,
+//! sends a hardpoint typed in millimetres (a rate in SI) as an edit, and draws each chart's previous design under the new one.
+//! Everything it shows comes from the server's state; the page holds no figure of its own.
+
+use super::charts::{chart_data, CHARTS_SCRIPT, UPLOT_SCRIPT};
+use super::write_head;
+use crate::suspensions::kc::Chart;
+use std::fmt::Write;
+
+/// The page's own script.
+const LIVE_SCRIPT: &str = include_str!("../live.js");
+
+/// The page of the design of the model named `model`: its skeleton, filled in by its script from the
+/// server's state.
+pub fn live_html(model: &str) -> String {
+    let mut out = String::new();
+    write_page(&mut out, model).expect("writing to a String cannot fail");
+    out
+}
+
+fn write_page(out: &mut String, model: &str) -> std::fmt::Result {
+    let lede = "Type a hardpoint's coordinate in millimetres: every figure and chart answers; the previous \
+                design's curves stay in grey beneath.";
+    write_head(out, model, lede)?;
+    // No icon to ask the server for: a request without the token would be refused, in the console.
+    *out = out.replacen("</head>", "<link rel=\"icon\" href=\"data:,\"/>\n</head>", 1);
+    writeln!(
+        out,
+        r#"<p class="live-bar"><button id="undo" type="button" disabled="disabled">Undo</button> <button id="redo" type="button" disabled="disabled">Redo</button> <button id="save" type="button">Save</button> <span id="status" role="status" class="note"></span></p>"#
+    )?;
+    writeln!(out, r#"<p id="error" class="error" hidden="hidden"></p>"#)?;
+    writeln!(
+        out,
+        r#"<div class="columns"><section id="figures"></section><section><div id="hardpoints"></div><div id="rates"></div></section></div>"#
+    )?;
+    writeln!(out, r#"<section id="geometry"><h2>Geometry</h2><div id="projections"></div></section>"#)?;
+    writeln!(out, r#"<section id="charts" class="charts"></section>"#)?;
+    writeln!(out, r#"<output id="charts-state" hidden="hidden"></output>"#)?;
+    writeln!(out, r#"<output id="live-state" hidden="hidden"></output>"#)?;
+    writeln!(out, "<script>//<![CDATA[\n{UPLOT_SCRIPT}\n{CHARTS_SCRIPT}\n{LIVE_SCRIPT}\n//]]></script>")?;
+    writeln!(out, "</body>")?;
+    writeln!(out, "</html>")
+}
+
+/// Each chart of the state's analyses as the page draws it (the report's data of a chart: its curves'
+/// finite points and colours).
+pub fn live_chart_data(chart: &Chart) -> serde_json::Value {
+    chart_data(chart)
+}

@@ -1,0 +1,338 @@
+// `elastokin live`'s page: the design asked of the server (the page's address ends in its token, so the
+// routes are relative), its figures, hardpoints, rates, projections and charts shown; a hardpoint typed in millimetres sent as
+// an edit in metres, and the answer shown with the previous design's curves in grey beneath. A refused
+// edit shows the server's reason and leaves the design on screen. What the page did is kept as JSON in
+// <output id="live-state"> for the browser test.
+(function () {
+  'use strict';
+  const el = (id) => document.getElementById(id);
+  const report = { version: 0, figures: 0, charts: 0, drawn: 0, ghosts: 0, inputs: 0, projections: 0, guided: 0, edits: 0, refused: 0, errors: [] };
+  let current = null;
+  let previous = null;
+  let plots = [];
+  let busy = false;
+  // The hardpoint whose guidance is shown, and the guidance (of the design of its version).
+  let selected = null;
+  let guidance = null;
+
+  function publish() {
+    el('live-state').textContent = JSON.stringify(report);
+  }
+
+  function make(tag, text, className) {
+    const e = document.createElement(tag);
+    if (text != null) e.textContent = text;
+    if (className) e.className = className;
+    return e;
+  }
+
+  // A figure as written: its SI value times the factor to its unit, at its decimals.
+  function written(f) {
+    if (f.value == null) return 'n/a';
+    const v = f.value * f.factor;
+    const s = v.toFixed(f.decimals);
+    return (Number(s) === 0 ? (0).toFixed(f.decimals) : s) + (f.unit === '-' ? '' : ' ' + f.unit);
+  }
+
+  // Millimetres typed as metres, without the binary rounding of the division showing (39.4 mm is 0.0394).
+  function metres(typed) {
+    const mm = Number(typed);
+    return isFinite(mm) && typed.trim() !== '' ? Number((mm / 1000).toPrecision(15)) : NaN;
+  }
+
+  function millimetres(m) {
+    return String(Number((m * 1000).toPrecision(12)));
+  }
+
+  function figureOf(state, analysis, key) {
+    if (!state) return null;
+    const a = state.analyses.find((x) => x.name === analysis);
+    return a ? a.figures.find((f) => f.key === key) : null;
+  }
+
+  function showFigures(state) {
+    const holder = el('figures');
+    holder.replaceChildren(make('h2', 'Figures'));
+    let count = 0;
+    state.analyses.forEach((a) => {
+      const table = make('table', null, 'figures');
+      table.appendChild(make('caption', a.description));
+      const head = make('tr');
+      ['figure', 'value', 'before', 'target', 'per mm of the point selected (x, y, z)'].forEach((h) =>
+        head.appendChild(make('th', h))
+      );
+      table.appendChild(make('thead')).appendChild(head);
+      const body = table.appendChild(make('tbody'));
+      a.figures.forEach((f) => {
+        const row = make('tr');
+        row.dataset.key = a.name + '/' + f.key;
+        row.appendChild(make('td', f.label));
+        const value = make('td', written(f), 'value');
+        if (f.value == null) value.title = f.reason || '';
+        row.appendChild(value);
+        const before = figureOf(previous, a.name, f.key);
+        const moved = before && before.value !== f.value;
+        row.appendChild(make('td', moved ? written(before) : '', 'quiet'));
+        const targets = state.targets.filter((t) => t.analysis === a.name && t.figure === f.key);
+        const aims = targets.map((t) => (t.met ? '✓ ' : '✗ ') + t.aim + ' ± ' + t.tolerance);
+        row.appendChild(make('td', aims.join(', '), targets.some((t) => !t.met) ? 'error' : ''));
+        row.appendChild(make('td', '', 'guide quiet'));
+        body.appendChild(row);
+        count += 1;
+      });
+      holder.appendChild(table);
+    });
+    report.figures = count;
+  }
+
+  // Each figure's derivatives to the selected hardpoint's x, y and z, per millimetre in the figure's unit.
+  function showGuidance() {
+    let guided = 0;
+    document.querySelectorAll('#figures tr[data-key]').forEach((row) => {
+      const cell = row.querySelector('td.guide');
+      const [analysis, key] = row.dataset.key.split('/');
+      const g = guidance && current && guidance.version === current.version
+        ? (guidance.analyses.find((a) => a.name === analysis) || { figures: [] }).figures.find((f) => f.key === key)
+        : null;
+      const f = figureOf(current, analysis, key);
+      if (!g || !f) {
+        cell.textContent = '';
+        return;
+      }
+      const per = g.per_metre.map((d) => (d == null ? '–' : Number((d * f.factor / 1000).toPrecision(3)).toString()));
+      cell.textContent = per.join(', ') + (f.unit === '-' ? '' : ' ' + f.unit) + ' /mm';
+      cell.title = g.why_not.filter((w) => w).join('; ');
+      if (g.per_metre.some((d) => d != null)) guided += 1;
+    });
+    report.guided = guided;
+  }
+
+  // The guidance for the hardpoint at `point`, asked of the server for the design on screen.
+  async function guide(point) {
+    selected = point;
+    document.querySelectorAll('#hardpoints tr').forEach((r) => r.classList.toggle('selected', r.dataset.point === point));
+    try {
+      const response = await fetch('guidance', {
+        method: 'POST',
+        cache: 'no-store',
+        headers: { 'Content-Type': 'application/json' },
+        body: JSON.stringify({ point }),
+      });
+      const answer = await response.json();
+      if (!response.ok) return refused(answer.error || 'refused (' + response.status + ')');
+      guidance = answer.guidance;
+      showGuidance();
+      publish();
+    } catch (e) {
+      refused('the server does not answer: ' + e);
+    }
+  }
+
+  // The hardpoints, one row a point, each coordinate an input in millimetres; a point's name selects it
+  // for guidance.
+  function showHardpoints(state) {
+    const holder = el('hardpoints');
+    holder.replaceChildren(make('h2', 'Hardpoints (mm)'));
+    const table = make('table', null, 'numbers');
+    const head = make('tr');
+    ['point', 'x', 'y', 'z'].forEach((h) => head.appendChild(make('th', h)));
+    table.appendChild(make('thead')).appendChild(head);
+    const body = table.appendChild(make('tbody'));
+    const rows = new Map();
+    let inputs = 0;
+    state.hardpoints.forEach((n) => {
+      const cut = n.pointer.lastIndexOf('/');
+      const point = n.pointer.slice(0, cut);
+      if (!rows.has(point)) {
+        const name = point.slice(point.lastIndexOf('/') + 1).replace(/~1/g, '/').replace(/~0/g, '~');
+        const row = make('tr');
+        row.dataset.point = point;
+        if (point === selected) row.className = 'selected';
+        const cell = row.appendChild(make('td'));
+        const button = cell.appendChild(make('button', name, 'point'));
+        button.type = 'button';
+        button.title = 'how every figure moves with this point';
+        button.addEventListener('click', () => guide(point));
+        rows.set(point, row);
+        body.appendChild(row);
+      }
+      const input = make('input');
+      input.type = 'number';
+      input.step = '0.1';
+      input.value = millimetres(n.value);
+      input.dataset.pointer = n.pointer;
+      input.setAttribute('aria-label', n.pointer);
+      if (state.moved.some((m) => m.pointer === n.pointer)) input.className = 'moved';
+      input.addEventListener('change', () => edit(n.pointer, input));
+      rows.get(point).appendChild(make('td')).appendChild(input);
+      inputs += 1;
+    });
+    holder.appendChild(table);
+    report.inputs = inputs;
+  }
+
+  // The rates, each an input as the model file stores it (SI: N/m, N·m/rad), named by its keys.
+  function showRates(state) {
+    const holder = el('rates');
+    holder.replaceChildren();
+    if (!state.rates.length) return 0;
+    holder.appendChild(make('h2', 'Rates (N/m, N·m/rad)'));
+    const table = make('table', null, 'numbers');
+    const body = table.appendChild(make('tbody'));
+    state.rates.forEach((n) => {
+      const row = make('tr');
+      const name = n.pointer.replace(/^\/suspension\/[^/]+\//, '').split('/').join(' ').replace(/~1/g, '/').replace(/~0/g, '~');
+      row.appendChild(make('td', name));
+      const input = make('input');
+      input.type = 'number';
+      input.step = 'any';
+      input.value = String(n.value);
+      input.dataset.pointer = n.pointer;
+      input.setAttribute('aria-label', n.pointer);
+      if (state.moved.some((m) => m.pointer === n.pointer)) input.className = 'moved';
+      input.addEventListener('change', () => {
+        const value = input.value.trim() === '' ? NaN : Number(input.value);
+        if (!isFinite(value)) return refused(n.pointer + ': type a number');
+        report.edits += 1;
+        ask('POST', 'edit', { pointer: n.pointer, value });
+      });
+      row.appendChild(make('td')).appendChild(input);
+      body.appendChild(row);
+    });
+    holder.appendChild(table);
+    return state.rates.length;
+  }
+
+  // Each chart drawn with the previous design's curves, where it had the chart, in grey beneath.
+  function showCharts(state) {
+    plots.forEach((p) => p.destroy());
+    plots = [];
+    const holder = el('charts');
+    holder.replaceChildren();
+    let count = 0;
+    let drawn = 0;
+    let ghosts = 0;
+    state.analyses.forEach((a) => {
+      const before = previous && previous.analyses.find((x) => x.name === a.name);
+      a.charts.forEach((chart) => {
+        count += 1;
+        const data = JSON.parse(JSON.stringify(chart));
+        const old = before && before.charts.find((c) => c.title === chart.title);
+        if (old) {
+          old.axes.forEach((axis, k) => {
+            if (!data.axes[k]) return;
+            axis.series.forEach((s) => {
+              data.axes[k].series.push({ name: 'before: ' + s.name, colour: '#8c959f', x: s.x, y: s.y, dash: [4, 4], width: 1.5 });
+              ghosts += 1;
+            });
+          });
+        }
+        const figure = make('figure', null, 'chart');
+        figure.setAttribute('data-chart', JSON.stringify(data));
+        holder.appendChild(figure);
+        try {
+          plots.push(window.elastokinDrawChart(figure));
+          drawn += 1;
+        } catch (e) {
+          report.errors.push(chart.title + ': ' + e);
+        }
+      });
+    });
+    report.charts = count;
+    report.drawn = drawn;
+    report.ghosts = ghosts;
+  }
+
+  function show(state) {
+    current = state;
+    report.version = state.version;
+    el('undo').disabled = !state.can_undo;
+    el('redo').disabled = !state.can_redo;
+    showFigures(state);
+    showHardpoints(state);
+    report.inputs += showRates(state);
+    // The projections as the server drew them (SVG, every text in it escaped there).
+    el('projections').innerHTML = state.projections || '';
+    report.projections = el('projections').querySelectorAll('figure.view').length;
+    showCharts(state);
+    showGuidance();
+    if (selected && (!guidance || guidance.version !== state.version)) guide(selected);
+    const failed = state.failed.map((f) => f.analysis + ': ' + f.reason);
+    el('status').textContent =
+      'version ' + state.version + (state.moved.length ? ', ' + state.moved.length + ' numbers moved' : '') +
+      (failed.length ? '; failed: ' + failed.join('; ') : '');
+    publish();
+  }
+
+  function refused(why) {
+    const e = el('error');
+    e.textContent = why;
+    e.hidden = !why;
+  }
+
+  // A request to the server; its answer's state shown when it is another design than the one on screen.
+  // One asked while another is under way waits for it (the last one asked; those between are dropped).
+  let waiting = null;
+  async function ask(method, route, body) {
+    if (busy) {
+      waiting = [method, route, body];
+      el('status').textContent = 'solving… (then the next change)';
+      return null;
+    }
+    busy = true;
+    el('status').textContent = 'solving…';
+    try {
+      const init = { method, cache: 'no-store' };
+      if (body) {
+        init.headers = { 'Content-Type': 'application/json' };
+        init.body = JSON.stringify(body);
+      }
+      const response = await fetch(route, init);
+      const answer = await response.json();
+      refused(response.ok ? '' : answer.error || 'refused (' + response.status + ')');
+      if (!response.ok) report.refused += 1;
+      if (answer.state && (!current || answer.state.version !== current.version)) {
+        previous = current;
+        show(answer.state);
+      } else if (current) {
+        show(current);
+      }
+      return answer;
+    } catch (e) {
+      refused('the server does not answer: ' + e + ' (is `elastokin live` still running?)');
+      report.errors.push(String(e));
+      publish();
+      if (current) el('status').textContent = 'version ' + current.version;
+      return null;
+    } finally {
+      busy = false;
+      if (waiting) {
+        const next = waiting;
+        waiting = null;
+        ask(...next);
+      }
+    }
+  }
+
+  function edit(pointer, input) {
+    const value = metres(input.value);
+    if (!isFinite(value)) {
+      refused(pointer + ': type a number of millimetres');
+      return;
+    }
+    report.edits += 1;
+    ask('POST', 'edit', { pointer, value });
+  }
+
+  el('undo').addEventListener('click', () => ask('POST', 'undo'));
+  el('redo').addEventListener('click', () => ask('POST', 'redo'));
+  el('save').addEventListener('click', async () => {
+    const answer = await ask('POST', 'save');
+    if (answer && answer.saved) el('status').textContent += ' — saved to ' + answer.saved;
+  });
+  // Another tab may have moved the design: asked again whenever this one is shown.
+  document.addEventListener('visibilitychange', () => {
+    if (document.visibilityState === 'visible') ask('GET', 'state');
+  });
+  ask('GET', 'state');
+})();
