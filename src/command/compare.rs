@@ -26,7 +26,8 @@ pub struct CompareArgs {
 
 /// `compare`: the designs' figures and curves side by side, written as one table and one page.
 pub fn run(args: CompareArgs, out: &Stdout, strict: bool) -> Result<(), Failure> {
-    let settings = Settings { range: args.sweeps.range, steps: args.sweeps.steps, motion: true, ..Settings::default() };
+    let settings =
+        Settings { range: args.sweeps.range, steps: args.sweeps.load.steps, motion: true, ..Settings::default() };
     args.sweeps.check(&settings)?;
     let mut designs = Vec::new();
     let mut files = Vec::new();

@@ -10,7 +10,7 @@
 //! 1.3 MB.
 
 use super::input::{read_input, read_targets_file};
-use super::sweeps::{parse_steps, AnalysisName};
+use super::sweeps::{AnalysisName, LoadSteps};
 use crate::output::{note, on_interrupt_stop, Failure, Stdout};
 use clap::Args;
 use elastokin::live::{Head, Live, Response, Token, BODY_LIMIT};
@@ -30,15 +30,8 @@ pub struct LiveArgs {
     /// An analysis to run on every design, as often as wanted (default: the suite)
     #[arg(long = "analysis", value_enum, value_name = "NAME")]
     pub analyses: Vec<AnalysisName>,
-    #[arg(
-        long,
-        value_name = "N",
-        default_value_t = 32,
-        value_parser = parse_steps,
-        allow_negative_numbers = true,
-        help = format!("Load steps per sweep, 1 to {}", super::sweeps::MAX_STEPS)
-    )]
-    pub steps: usize,
+    #[command(flatten)]
+    pub load: LoadSteps,
     /// A TARGETS file (as `tune` reads, `free` optional) every design is judged against: each figure and
     /// curve target and packaging constraint met or not
     #[arg(long, value_name = "FILE")]
@@ -59,7 +52,7 @@ pub struct LiveArgs {
 pub fn run(args: LiveArgs, out: &Stdout) -> Result<(), Failure> {
     let which: Vec<_> = args.analyses.iter().map(|a| a.analysis()).collect();
     // The parts' poses at every row, for the page's projections of the geometry.
-    let settings = Settings { steps: args.steps, motion: true, ..Settings::default() };
+    let settings = Settings { steps: args.load.steps, motion: true, ..Settings::default() };
     for &a in if which.is_empty() { &kc::ALL[..] } else { &which[..] } {
         kc::check_settings(a, &settings).map_err(|e| Failure::Input(e.to_string()))?;
     }

@@ -335,7 +335,7 @@ fn print_judged(out: &Stdout, points: &[TargetPoint], constraints: &[ConstraintC
 fn settings(args: &RunArgs) -> Settings {
     Settings {
         range: args.sweeps.range,
-        steps: args.sweeps.steps,
+        steps: args.sweeps.load.steps,
         mode: match args.mode {
             ModeName::Corrected => Mode::Corrected,
             ModeName::Paper => Mode::Paper,
@@ -359,7 +359,7 @@ fn settings(args: &RunArgs) -> Settings {
 
 /// How the run is made, for every file it writes: the model file (its `bytes` hashed) and the settings.
 fn provenance(args: &RunArgs, bytes: &[u8], settings: &Settings) -> Provenance {
-    let mut provenance = Provenance::new(&args.model, bytes, kc::mode_word(settings.mode), args.sweeps.steps);
+    let mut provenance = Provenance::new(&args.model, bytes, kc::mode_word(settings.mode), args.sweeps.load.steps);
     provenance.wheel = Some(if settings.height_held { "held" } else { "free" });
     provenance.load_point = Some(match settings.load_point {
         LoadPoint::ContactPatch => "contact_patch",

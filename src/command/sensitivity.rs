@@ -40,7 +40,7 @@ pub struct SensitivityArgs {
 pub fn run(args: SensitivityArgs, out: &Stdout, strict: bool) -> Result<(), Failure> {
     let settings = Settings {
         range: args.sweeps.range,
-        steps: args.sweeps.steps,
+        steps: args.sweeps.load.steps,
         figures_only: args.figures_only,
         ..Settings::default()
     };
@@ -57,7 +57,8 @@ pub fn run(args: SensitivityArgs, out: &Stdout, strict: bool) -> Result<(), Fail
             args.out.display()
         )));
     }
-    let mut provenance = Provenance::new(&args.model, &read.bytes, kc::mode_word(Mode::Corrected), args.sweeps.steps);
+    let mut provenance =
+        Provenance::new(&args.model, &read.bytes, kc::mode_word(Mode::Corrected), args.sweeps.load.steps);
     provenance.range = args.sweeps.range;
     let staging = Staging::new(&args.out)?;
     let written = (|| -> Result<Vec<PathBuf>, Failure> {
@@ -72,7 +73,7 @@ pub fn run(args: SensitivityArgs, out: &Stdout, strict: bool) -> Result<(), Fail
         "{} — {} parameters, {} steps per sweep, corrected mode",
         read.file.name,
         parameters.len(),
-        args.sweeps.steps
+        args.sweeps.load.steps
     ))?;
     print_effects(out, &suite, &parameters)?;
     out.line("")?;

@@ -18,6 +18,13 @@ pub struct SweepArgs {
     /// The load parameter's range, in the analysis's own units (needs --analysis)
     #[arg(long, value_name = "FROM,TO", value_parser = parse_range, allow_hyphen_values = true)]
     pub range: Option<(f64, f64)>,
+    #[command(flatten)]
+    pub load: LoadSteps,
+}
+
+/// How many load steps each sweep takes: `--steps`, shared by the commands that walk the suite.
+#[derive(Debug, Args)]
+pub struct LoadSteps {
     #[arg(
         long,
         value_name = "N",
