@@ -156,19 +156,25 @@
         rows.set(point, row);
         body.appendChild(row);
       }
-      const input = make('input');
-      input.type = 'number';
-      input.step = '0.1';
-      input.value = millimetres(n.value);
-      input.dataset.pointer = n.pointer;
-      input.setAttribute('aria-label', n.pointer);
-      if (state.moved.some((m) => m.pointer === n.pointer)) input.className = 'moved';
+      const input = numberInput(state, n.pointer, millimetres(n.value), '0.1');
       input.addEventListener('change', () => edit(n.pointer, input));
       rows.get(point).appendChild(make('td')).appendChild(input);
       inputs += 1;
     });
     holder.appendChild(table);
     report.inputs = inputs;
+  }
+
+  // An input for the number at `pointer`, showing `value` (text), marked when the design has moved it.
+  function numberInput(state, pointer, value, step) {
+    const input = make('input');
+    input.type = 'number';
+    input.step = step;
+    input.value = value;
+    input.dataset.pointer = pointer;
+    input.setAttribute('aria-label', pointer);
+    if (state.moved.some((m) => m.pointer === pointer)) input.className = 'moved';
+    return input;
   }
 
   // The rates, each an input as the model file stores it (SI: N/m, N·m/rad), named by its keys.
@@ -183,13 +189,7 @@
       const row = make('tr');
       const name = n.pointer.replace(/^\/suspension\/[^/]+\//, '').split('/').join(' ').replace(/~1/g, '/').replace(/~0/g, '~');
       row.appendChild(make('td', name));
-      const input = make('input');
-      input.type = 'number';
-      input.step = 'any';
-      input.value = String(n.value);
-      input.dataset.pointer = n.pointer;
-      input.setAttribute('aria-label', n.pointer);
-      if (state.moved.some((m) => m.pointer === n.pointer)) input.className = 'moved';
+      const input = numberInput(state, n.pointer, String(n.value), 'any');
       input.addEventListener('change', () => {
         const value = input.value.trim() === '' ? NaN : Number(input.value);
         if (!isFinite(value)) return refused(n.pointer + ': type a number');
