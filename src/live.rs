@@ -199,13 +199,17 @@ impl Live {
             }
             ("POST", "save") => self.save(),
             ("POST", "guidance") => self.guidance(body),
-            (_, "" | "state" | "edit" | "undo" | "redo" | "save" | "guidance") => Response::refused(
+            ("POST", "tune") => match self.design.tune() {
+                Ok(said) => self.state_noted(200, None, Some(said)),
+                Err(e) => self.state(422, Some(e.to_string())),
+            },
+            (_, "" | "state" | "edit" | "undo" | "redo" | "save" | "guidance" | "tune") => Response::refused(
                 405,
                 &format!("{} /{route} is not served: state is read with GET, every change is a POST", head.method),
             ),
             _ => Response::refused(
                 404,
-                &format!("nothing at /{route}: the routes are state, edit, undo, redo, save, guidance"),
+                &format!("nothing at /{route}: the routes are state, edit, undo, redo, save, guidance, tune"),
             ),
         }
     }
@@ -213,6 +217,11 @@ impl Live {
     /// The current design with `status`, and the error when a change was refused; each chart as the page
     /// draws it, and the geometry's three projections as SVG (when the analyses recorded the parts' poses).
     fn state(&self, status: u16, error: Option<String>) -> Response {
+        self.state_noted(status, error, None)
+    }
+
+    /// [`Self::state`], with what the change did in words (`tuned`: how a tune ended), when said.
+    fn state_noted(&self, status: u16, error: Option<String>, tuned: Option<String>) -> Response {
         match self.design.state() {
             Ok(state) => {
                 let mut body = json!({ "state": state });
@@ -226,6 +235,9 @@ impl Live {
                 }
                 if let Some(error) = error {
                     body["error"] = Value::String(error);
+                }
+                if let Some(tuned) = tuned {
+                    body["tuned"] = Value::String(tuned);
                 }
                 Response::json(status, &body)
             }
@@ -385,6 +397,11 @@ mod tests {
         assert_eq!(ask(&mut live, "GET", "nothing", b"").status, 404);
         assert_eq!(ask(&mut live, "POST", "edit", b"{").status, 400);
         assert_eq!(ask(&mut live, "POST", "undo", b"").status, 409);
+        // No TARGETS file: nothing to tune to, said, the design kept.
+        let tune = ask(&mut live, "POST", "tune", b"");
+        assert_eq!(tune.status, 422);
+        assert!(String::from_utf8_lossy(&tune.body).contains("nothing to tune to: start the server with --targets"));
+        assert_eq!(ask(&mut live, "GET", "tune", b"").status, 405);
         assert_eq!(ask(&mut live, "POST", "edit", &vec![b' '; BODY_LIMIT + 1]).status, 413);
         let edit = br#"{"pointer": "/suspension/macpherson/spring/rate", "value": 27000}"#;
         let done = ask(&mut live, "POST", "edit", edit);

@@ -215,3 +215,43 @@ fn the_guidance_for_a_hardpoint_is_the_slope_of_the_design_moved_either_side() {
     let refused = live.guidance("/suspension/macpherson/hardpoints").unwrap_err().to_string();
     assert!(refused.contains("names no hardpoint"), "{refused}");
 }
+
+/// The one-click tune: the TARGETS file's free numbers tuned from the current design, as `tune` tunes the
+/// current design's file (the same numbers to the bit), set as one design whose figures are the tuned
+/// file's read afresh; one undo goes back to the design before it. Without targets, refused in words.
+#[test]
+fn a_tune_from_the_current_design_is_one_design_as_tune_makes_it() {
+    use elastokin_suspensions::design::targets::read_targets;
+    use elastokin_suspensions::design::tune::tune;
+    use elastokin_suspensions::design::Parameters;
+    let text = include_str!("../../../examples/targets/macpherson.json");
+    let which = [Analysis::ParallelTravel];
+    let mut bare = open(&which);
+    assert!(matches!(bare.tune(), Err(LiveError::NoTargets)));
+    let live = open(&which);
+    let no_file = |name: &str| Err(format!("no file {name}"));
+    let targets = read_targets(text, "macpherson targets", &live.document().unwrap(), no_file).unwrap();
+    let mut live = live.judged_against(targets.clone());
+    live.edit(TIE_ROD_INNER_Z, -0.0574).unwrap();
+    let before = live.version();
+    let said = live.tune().unwrap();
+    assert!(said.contains("targets met"), "{said}");
+    assert_eq!(live.version(), before + 1);
+    // The same tune, run on the current design's file by the library as `elastokin tune` runs it.
+    let document = {
+        live.undo().unwrap();
+        let d = live.document().unwrap();
+        live.redo().unwrap();
+        d
+    };
+    let pointers: Vec<String> = targets.free.iter().map(|f| f.pointer.clone()).collect();
+    let tuned = tune(&Parameters::new(&document, &pointers).unwrap(), &targets, |_| {}).unwrap();
+    let moved = &live.current().moved;
+    for (pointer, x) in pointers.iter().zip(&tuned.end.x) {
+        let got = moved.iter().find(|(p, _)| p == pointer).map(|m| m.1).unwrap();
+        assert_eq!(got.to_bits(), x.to_bits(), "{pointer}");
+    }
+    assert_same_figures(&live.current().report, &run_text(&live.text().unwrap(), &which));
+    live.undo().unwrap();
+    assert_eq!(live.current().moved, [(TIE_ROD_INNER_Z.to_string(), -0.0574)]);
+}

@@ -91,32 +91,65 @@ impl LiveDesign {
     /// model reads and builds and no analysis fails on it that the current design ran; the designs undone
     /// before it can no longer be redone. Refused with the reason otherwise, the current design kept.
     pub fn edit(&mut self, pointer: &str, value: f64) -> Result<&Design, LiveError> {
-        if !value.is_finite() {
-            return Err(LiveError::NotFinite { pointer: pointer.to_string() });
+        self.edit_all(&[(pointer.to_string(), value)])
+    }
+
+    /// Each number of `edits` (pointer, value) set at once, as one design: as [`LiveDesign::edit`] sets one.
+    fn edit_all(&mut self, edits: &[(String, f64)]) -> Result<&Design, LiveError> {
+        if let Some((pointer, _)) = edits.iter().find(|(_, v)| !v.is_finite()) {
+            return Err(LiveError::NotFinite { pointer: pointer.clone() });
         }
         let document = self.document()?;
+        let (pointers, values): (Vec<String>, Vec<f64>) = edits.iter().cloned().unzip();
         // Refused here: a pointer that names anything but a number, or a count (a whole number of things).
-        let parameter = Parameters::new(&document, &[pointer.to_string()]).map_err(LiveError::Parameter)?;
-        let file = parameter.at(&[value]).and_then(|p| p.file()).map_err(LiveError::Parameter)?;
+        let parameters = Parameters::new(&document, &pointers).map_err(LiveError::Parameter)?;
+        let file = parameters.at(&values).and_then(|p| p.file()).map_err(LiveError::Parameter)?;
         let report = kc::run_suite_on_threads(&file, &self.which, &self.settings);
         let ran = &self.current().report.analyses;
         let newly_failed: Vec<Failed> =
             report.failed.iter().filter(|f| ran.iter().any(|a| a.analysis == f.analysis)).cloned().collect();
         if !newly_failed.is_empty() {
-            return Err(LiveError::Solve { pointer: pointer.to_string(), value, failed: newly_failed });
+            let (pointer, value) = edits[0].clone();
+            return Err(LiveError::Solve { pointer, value, failed: newly_failed });
         }
         let mut moved = self.current().moved.clone();
-        let in_file = number_at(&self.base, pointer).ok();
-        match moved.iter().position(|(p, _)| p == pointer) {
-            _ if in_file.map(f64::to_bits) == Some(value.to_bits()) => moved.retain(|(p, _)| p != pointer),
-            Some(k) => moved[k].1 = value,
-            None => moved.push((pointer.to_string(), value)),
+        for (pointer, value) in edits {
+            let in_file = number_at(&self.base, pointer).ok();
+            match moved.iter().position(|(p, _)| p == pointer) {
+                _ if in_file.map(f64::to_bits) == Some(value.to_bits()) => moved.retain(|(p, _)| p != pointer),
+                Some(k) => moved[k].1 = *value,
+                None => moved.push((pointer.clone(), *value)),
+            }
         }
         self.history.truncate(self.at + 1);
         self.history.push(Design { moved, report });
         self.at += 1;
         self.version += 1;
         Ok(self.current())
+    }
+
+    /// The free numbers of the TARGETS file tuned to its targets from the current design (as `elastokin
+    /// tune` tunes the current design's file), set as one new design; how the tune ended, in words. Refused
+    /// without targets, without free numbers, or with a free number the edits have moved outside its bounds.
+    pub fn tune(&mut self) -> Result<String, LiveError> {
+        let targets = self.targets.as_ref().ok_or(LiveError::NoTargets)?;
+        if targets.free.is_empty() {
+            return Err(LiveError::NothingFree);
+        }
+        let document = self.document()?;
+        let pointers: Vec<String> = targets.free.iter().map(|f| f.pointer.clone()).collect();
+        let parameters = Parameters::new(&document, &pointers).map_err(LiveError::Parameter)?;
+        for (f, &x) in targets.free.iter().zip(&parameters.values) {
+            if !(f.min..=f.max).contains(&x) {
+                return Err(LiveError::OutsideBounds { pointer: f.pointer.clone(), value: x, min: f.min, max: f.max });
+            }
+        }
+        let tuned = super::tune::tune(&parameters, targets, |_| {}).map_err(|e| LiveError::Tune(e.to_string()))?;
+        let met = tuned.verdicts.iter().filter(|v| v.met).count();
+        let said = format!("{met} of {} targets met; {}", tuned.verdicts.len(), tuned.stopped);
+        let edits: Vec<(String, f64)> = pointers.into_iter().zip(tuned.end.x.iter().copied()).collect();
+        self.edit_all(&edits)?;
+        Ok(said)
     }
 
     /// Back to the design before the current one.
@@ -535,4 +568,25 @@ pub enum LiveError {
     /// The file's text cannot take a moved number.
     #[error("{0}")]
     Text(NumberEditError),
+    /// A tune asked for without a TARGETS file.
+    #[error("nothing to tune to: start the server with --targets FILE")]
+    NoTargets,
+    /// A tune asked for with a TARGETS file that frees no number.
+    #[error("nothing to tune: the TARGETS file's \"free\" names no number")]
+    NothingFree,
+    /// A free number the edits have moved outside its bounds.
+    #[error("'{pointer}' is at {value}, outside its bounds [{min}, {max}] in the TARGETS file: move it back inside, or widen them")]
+    OutsideBounds {
+        /// The number.
+        pointer: String,
+        /// Its value in the current design.
+        value: f64,
+        /// Its lower bound.
+        min: f64,
+        /// Its upper bound.
+        max: f64,
+    },
+    /// The tune could not run.
+    #[error("the tune could not run: {0}")]
+    Tune(String),
 }
