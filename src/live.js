@@ -248,6 +248,8 @@
     report.version = state.version;
     el('undo').disabled = !state.can_undo;
     el('redo').disabled = !state.can_redo;
+    // Tuning needs a TARGETS file: the button shows when the design is judged against one.
+    el('tune').hidden = !(state.targets && state.targets.length);
     showFigures(state);
     showHardpoints(state);
     report.inputs += showRates(state);
@@ -260,7 +262,8 @@
     const failed = state.failed.map((f) => f.analysis + ': ' + f.reason);
     el('status').textContent =
       'version ' + state.version + (state.moved.length ? ', ' + state.moved.length + ' numbers moved' : '') +
-      (failed.length ? '; failed: ' + failed.join('; ') : '');
+      (failed.length ? '; failed: ' + failed.join('; ') : '') +
+      (tuned && tuned.version === state.version ? ' — tuned: ' + tuned.said : '');
     publish();
   }
 
@@ -269,6 +272,8 @@
     e.textContent = why;
     e.hidden = !why;
   }
+
+  let tuned = null;
 
   // A request to the server; its answer's state shown when it is another design than the one on screen.
   // One asked while another is under way waits for it (the last one asked; those between are dropped).
@@ -291,6 +296,8 @@
       const answer = await response.json();
       refused(response.ok ? '' : answer.error || 'refused (' + response.status + ')');
       if (!response.ok) report.refused += 1;
+      // How a tune ended, said beside the status while its design is on screen.
+      if (answer.tuned && answer.state) tuned = { version: answer.state.version, said: answer.tuned };
       if (answer.state && (!current || answer.state.version !== current.version)) {
         previous = current;
         show(answer.state);
@@ -330,6 +337,8 @@
     const answer = await ask('POST', 'save');
     if (answer && answer.saved) el('status').textContent += ' — saved to ' + answer.saved;
   });
+  // The TARGETS file's free numbers tuned from this design, one design more; how the tune ended said.
+  el('tune').addEventListener('click', () => ask('POST', 'tune'));
   // Another tab may have moved the design: asked again whenever this one is shown.
   document.addEventListener('visibilitychange', () => {
     if (document.visibilityState === 'visible') ask('GET', 'state');

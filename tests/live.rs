@@ -381,7 +381,8 @@ impl Drop for Browser {
 
 /// The page in a real browser: it shows every figure, chart and hardpoint of the design; a hardpoint typed
 /// in millimetres is the edit the file edited by hand makes, its figure shown as the server holds it; undo
-/// puts the number back; a save writes the file edited by hand; a page of another origin cannot edit the
+/// puts the number back; a save writes the file edited by hand; the tune button moves the TARGETS file's
+/// free numbers as one design and says how the tune ended; a page of another origin cannot edit the
 /// design; the console stays clean.
 #[test]
 fn the_page_in_chromium_edits_by_typing_undoes_saves_and_no_other_page_drives_it() {
@@ -482,6 +483,22 @@ fn the_page_in_chromium_edits_by_typing_undoes_saves_and_no_other_page_drives_it
     let by_hand = original.replacen("[-0.150, 0.370, -0.0374]", "[-0.150, 0.370, -0.0394]", 1);
     assert_eq!(std::fs::read_to_string(&server.model).unwrap(), by_hand);
 
+    // Tune by its button: one design more, the free numbers moved, how the tune ended said on the page.
+    browser.evaluate(&page, "document.getElementById('tune').click(); true");
+    browser.live_state(&page, |s| s["version"] == 5);
+    let (_, tuned) = server.call("GET", "state", "");
+    let moved = tuned["state"]["moved"].as_array().map_or(0, Vec::len);
+    assert!(moved > 1, "the tune moved the free numbers: {}", tuned["state"]["moved"]);
+    let start = Instant::now();
+    loop {
+        let status = browser.evaluate(&page, "document.getElementById('status').textContent");
+        if status.as_str().is_some_and(|s| s.contains("tuned: ") && s.contains("targets met")) {
+            break;
+        }
+        assert!(start.elapsed() < Duration::from_secs(20), "the page does not say how the tune ended: {status}");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+
     // Another page (a file on disk: another origin) posts an edit as a form could: the server refuses it.
     let foreign = server.dir.join("foreign.html");
     let post = format!(
@@ -496,8 +513,8 @@ fn the_page_in_chromium_edits_by_typing_undoes_saves_and_no_other_page_drives_it
         std::thread::sleep(Duration::from_millis(20));
     }
     let (_, after) = server.call("GET", "state", "");
-    assert_eq!(after["state"]["version"].as_u64(), Some(4), "the foreign page's edit was refused");
-    assert_eq!(after["state"]["moved"].as_array().unwrap().len(), 1);
+    assert_eq!(after["state"]["version"].as_u64(), Some(5), "the foreign page's edit was refused");
+    assert_eq!(after["state"]["moved"], tuned["state"]["moved"]);
 
     // What the live page logged: nothing; the foreign page's console has the refusal.
     browser.evaluate(&page, "true");

@@ -27,7 +27,7 @@ fn write_page(out: &mut String, model: &str) -> std::fmt::Result {
     *out = out.replacen("</head>", "<link rel=\"icon\" href=\"data:,\"/>\n</head>", 1);
     writeln!(
         out,
-        r#"<p class="live-bar"><button id="undo" type="button" disabled="disabled">Undo</button> <button id="redo" type="button" disabled="disabled">Redo</button> <button id="save" type="button">Save</button> <span id="status" role="status" class="note"></span></p>"#
+        r#"<p class="live-bar"><button id="undo" type="button" disabled="disabled">Undo</button> <button id="redo" type="button" disabled="disabled">Redo</button> <button id="save" type="button">Save</button> <button id="tune" type="button" hidden="hidden">Tune to the targets</button> <span id="status" role="status" class="note"></span></p>"#
     )?;
     writeln!(out, r#"<p id="error" class="error" hidden="hidden"></p>"#)?;
     writeln!(
