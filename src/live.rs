@@ -12,8 +12,9 @@
 //! Routes, each under `/TOKEN`: `GET /` the page (`html::live_html`); `GET /state` the current design ([`State`]); `POST /edit` with
 //! `{"pointer": "/json/pointer", "value": number}` (SI, as the model file stores it) a new design;
 //! `POST /undo`, `POST /redo`; `POST /save` the model file written where it was read; `POST /guidance`
-//! with `{"point": "/…/hardpoints/NAME"}` every figure's derivatives to that hardpoint's x, y and z. A design refused
-//! comes back with the reason and the design kept.
+//! with `{"point": "/…/hardpoints/NAME"}` every figure's derivatives to that hardpoint's x, y and z;
+//! `POST /tune` the TARGETS file's free numbers tuned from the current design, one design more. A design
+//! refused comes back with the reason and the design kept.
 
 use crate::html::{live_chart_data, live_html};
 use elastokin_suspensions::design::live::{LiveDesign, LiveError};

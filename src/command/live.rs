@@ -16,7 +16,7 @@ use clap::Args;
 use elastokin::live::{Head, Live, Response, Token, BODY_LIMIT};
 use elastokin::suspensions::design::live::LiveDesign;
 use elastokin::suspensions::design::targets::Reading;
-use elastokin::suspensions::kc::{self, Settings};
+use elastokin::suspensions::kc::Settings;
 use std::io::Read;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::path::PathBuf;
@@ -53,9 +53,7 @@ pub fn run(args: LiveArgs, out: &Stdout) -> Result<(), Failure> {
     let which: Vec<_> = args.analyses.iter().map(|a| a.analysis()).collect();
     // The parts' poses at every row, for the page's projections of the geometry.
     let settings = Settings { steps: args.load.steps, motion: true, ..Settings::default() };
-    for &a in if which.is_empty() { &kc::ALL[..] } else { &which[..] } {
-        kc::check_settings(a, &settings).map_err(|e| Failure::Input(e.to_string()))?;
-    }
+    super::sweeps::check_each(&which, &settings)?;
     let (_, text) = read_input(&args.model, "MODEL")?;
     let origin = args.model.display().to_string();
     let mut design = LiveDesign::open(&text, &origin, &which, settings).map_err(|e| Failure::Input(e.to_string()))?;

@@ -50,12 +50,17 @@ impl SweepArgs {
                 "--range needs --analysis NAME: each analysis has its own load parameter and units".into(),
             ));
         }
-        let which = self.which();
-        for &a in if which.is_empty() { &kc::ALL[..] } else { &which[..] } {
-            kc::check_settings(a, settings).map_err(|e| Failure::Input(e.to_string()))?;
-        }
-        Ok(())
+        check_each(&self.which(), settings)
     }
+}
+
+/// Refuses `settings` that an analysis of `which` (the suite when empty) cannot take, as bad input before
+/// anything runs.
+pub fn check_each(which: &[Analysis], settings: &Settings) -> Result<(), Failure> {
+    for &a in if which.is_empty() { &kc::ALL[..] } else { which } {
+        kc::check_settings(a, settings).map_err(|e| Failure::Input(e.to_string()))?;
+    }
+    Ok(())
 }
 
 /// An analysis by its command-line name. Its help (what its load parameter is, and its default range) is

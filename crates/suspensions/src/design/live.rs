@@ -182,10 +182,7 @@ impl LiveDesign {
     pub fn document(&self) -> Result<Value, LiveError> {
         let mut document = self.base.clone();
         for (pointer, value) in &self.current().moved {
-            let number = serde_json::Number::from_f64(*value)
-                .ok_or_else(|| LiveError::NotFinite { pointer: pointer.clone() })?;
-            *document.pointer_mut(pointer).ok_or_else(|| LiveError::Gone { pointer: pointer.clone() })? =
-                Value::Number(number);
+            super::parameter::set(&mut document, pointer, *value).map_err(LiveError::Parameter)?;
         }
         Ok(document)
     }
@@ -214,16 +211,16 @@ impl LiveDesign {
                 .collect()
         };
         let (hardpoints, rates) = (numbers(hardpoint_pointers(&document)), numbers(rate_pointers(&document)));
+        // Every moved number was read from the file before it was moved.
         let moved = design
             .moved
             .iter()
-            .map(|(pointer, value)| Moved {
-                pointer: pointer.clone(),
-                value: *value,
-                in_file: number_at(&self.base, pointer).unwrap_or(f64::NAN),
+            .map(|(pointer, value)| {
+                let in_file = number_at(&self.base, pointer)
+                    .map_err(|_| LiveError::Parameter(ParameterError::Gone { pointer: pointer.clone() }))?;
+                Ok(Moved { pointer: pointer.clone(), value: *value, in_file })
             })
-            .filter(|m| m.in_file.is_finite())
-            .collect();
+            .collect::<Result<_, LiveError>>()?;
         let (points, constraints) = match &self.targets {
             Some(targets) => judge(report, &document, targets),
             None => (Vec::new(), Vec::new()),
@@ -528,12 +525,6 @@ pub enum LiveError {
     /// A value that is no finite number.
     #[error("'{pointer}' needs a finite number")]
     NotFinite {
-        /// The pointer.
-        pointer: String,
-    },
-    /// A moved number no longer in the document.
-    #[error("'{pointer}' names nothing in the model file")]
-    Gone {
         /// The pointer.
         pointer: String,
     },

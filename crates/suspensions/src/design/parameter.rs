@@ -112,7 +112,7 @@ fn is_count(document: &Value, pointer: &str, value: f64) -> bool {
 }
 
 /// Writes `value` at `pointer` of `document`.
-fn set(document: &mut Value, pointer: &str, value: f64) -> Result<(), ParameterError> {
+pub(super) fn set(document: &mut Value, pointer: &str, value: f64) -> Result<(), ParameterError> {
     let number = serde_json::Number::from_f64(value)
         .ok_or_else(|| ParameterError::NotFinite { pointer: pointer.to_string(), value })?;
     *document.pointer_mut(pointer).ok_or_else(|| ParameterError::Gone { pointer: pointer.to_string() })? =
