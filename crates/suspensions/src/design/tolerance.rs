@@ -81,11 +81,7 @@ impl Band {
     fn draw(self, rng: &mut impl Rng) -> f64 {
         match self {
             Band::Uniform(t) => t * (2.0 * rng.random::<f64>() - 1.0),
-            // Box–Muller: two uniforms, one normal (the first in (0, 1], so its logarithm is finite).
-            Band::Normal(s) => {
-                let (u, v) = (1.0 - rng.random::<f64>(), rng.random::<f64>());
-                s * (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
-            }
+            Band::Normal(s) => s * rng.sample::<f64, _>(rand_distr::StandardNormal),
         }
     }
 }
@@ -750,58 +746,25 @@ pub enum StackUpError {
 /// The share of a normal distribution of mean `mean` and deviation `sigma` outside `[min, max]`.
 fn outside_normal(mean: f64, sigma: f64, min: Option<f64>, max: Option<f64>) -> f64 {
     // A tail beyond `d` deviations: ½ erfc(d/√2).
-    let tail = |d: f64| 0.5 * erfc(d / std::f64::consts::SQRT_2);
+    let tail = |d: f64| 0.5 * libm::erfc(d / std::f64::consts::SQRT_2);
     let below = min.map_or(0.0, |a| if sigma > 0.0 { tail((mean - a) / sigma) } else { f64::from(mean < a) });
     let above = max.map_or(0.0, |b| if sigma > 0.0 { tail((b - mean) / sigma) } else { f64::from(mean > b) });
     (below + above).min(1.0)
 }
 
-/// The complementary error function, to a relative error below 1.2e-7 everywhere (a Chebyshev fit of
-/// `erfc(z) e^{z²}·(1 + z/2)`).
-fn erfc(x: f64) -> f64 {
-    let z = x.abs();
-    let t = 1.0 / (1.0 + 0.5 * z);
-    let poly = -z * z - 1.265_512_23
-        + t * (1.000_023_68
-            + t * (0.374_091_96
-                + t * (0.096_784_18
-                    + t * (-0.186_288_06
-                        + t * (0.278_868_07
-                            + t * (-1.135_203_98 + t * (1.488_515_87 + t * (-0.822_152_23 + t * 0.170_872_77))))))));
-    let r = t * poly.exp();
-    if x >= 0.0 {
-        r
-    } else {
-        2.0 - r
-    }
-}
-
-/// `m⁻¹` by Gauss–Jordan with partial pivoting, or the column whose pivot vanished.
+/// `m⁻¹` by LU with partial pivoting, or the first column whose pivot vanishes (a column no combination of
+/// the columns before it leaves room for).
 fn inverse(m: &[Vec<f64>]) -> Result<Vec<Vec<f64>>, usize> {
     let n = m.len();
-    let scale = m.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
-    let mut a: Vec<Vec<f64>> = m
-        .iter()
-        .enumerate()
-        .map(|(i, r)| r.iter().copied().chain((0..n).map(|j| f64::from(i == j))).collect())
-        .collect();
-    for c in 0..n {
-        let p = (c..n).max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs())).unwrap_or(c);
-        if a[p][c].is_nan() || a[p][c].abs() <= 1e-12 * scale {
-            return Err(c);
-        }
-        a.swap(c, p);
-        let pivot = a[c][c];
-        a[c].iter_mut().for_each(|v| *v /= pivot);
-        for i in (0..n).filter(|&i| i != c) {
-            let f = a[i][c];
-            if f != 0.0 {
-                let row = a[c].clone();
-                a[i].iter_mut().zip(&row).for_each(|(v, r)| *v -= f * r);
-            }
-        }
+    let a = nalgebra::DMatrix::from_fn(n, n, |i, j| m[i][j]);
+    let scale = a.amax();
+    let lu = a.lu();
+    let u = lu.u();
+    if let Some(c) = (0..n).find(|&c| u[(c, c)].is_nan() || u[(c, c)].abs() <= 1e-12 * scale) {
+        return Err(c);
     }
-    Ok(a.into_iter().map(|r| r[n..].to_vec()).collect())
+    let inverse = lu.try_inverse().ok_or(0usize)?;
+    Ok((0..n).map(|i| (0..n).map(|j| inverse[(i, j)]).collect()).collect())
 }
 
 /// The first-order stack-up of `tolerances` on the model `document`. Refused, naming the number: a band that
