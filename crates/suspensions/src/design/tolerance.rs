@@ -31,6 +31,7 @@ use super::parameter::{
     hardpoint_pointer, hardpoint_pointers, number_at, parameter_words, NoNumber, ParameterError, Parameters,
 };
 use super::sensitivity::{sensitivity_settings, suite_sensitivity, SuiteSensitivity};
+use crate::kc::report::Column;
 use crate::kc::{self, Analysis, AnalysisReport, Cell, Failed, Settings, Table, Unit};
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
@@ -573,14 +574,27 @@ impl Tolerances {
         if self.analyses.is_empty() {
             return Vec::new();
         }
-        let mut which = self.analyses.clone();
         let more = self.adjustments.iter().map(|a| a.analysis).chain(self.limits.iter().map(|l| l.analysis));
-        for a in more {
-            if !which.contains(&a) {
-                which.push(a);
-            }
+        distinct(self.analyses.iter().copied().chain(more))
+    }
+}
+
+/// Each analysis of `analyses` once, in the order first met.
+fn distinct(analyses: impl IntoIterator<Item = Analysis>) -> Vec<Analysis> {
+    let mut once = Vec::new();
+    for a in analyses {
+        if !once.contains(&a) {
+            once.push(a);
         }
-        which
+    }
+    once
+}
+
+impl Limit {
+    /// Its ends in SI, for a figure written in `unit`.
+    fn in_si(&self, unit: Unit) -> (Option<f64>, Option<f64>) {
+        let factor = unit.shown().factor;
+        (self.min.map(|a| a / factor), self.max.map(|b| b / factor))
     }
 }
 
@@ -893,8 +907,7 @@ pub fn stack_up(document: &Value, tolerances: &Tolerances) -> Result<StackUp, St
     for limit in &tolerances.limits {
         let k = find(format!("limits[\"{}/{}\"]", limit.analysis.name(), limit.figure), limit.analysis, &limit.figure)?;
         let s = &mut spreads[k];
-        let factor = s.unit.shown().factor;
-        let (min, max) = (limit.min.map(|a| a / factor), limit.max.map(|b| b / factor));
+        let (min, max) = limit.in_si(s.unit);
         s.outside = Some(outside_normal(s.value, s.sigma, min, max));
         s.limit = Some(limit.clone());
     }
@@ -971,12 +984,7 @@ impl StackUp {
     pub fn monte_carlo(&mut self, samples: usize, seed: u64) {
         // The analyses the spreads are of, each once; the samples read their figures alone, so no error
         // estimate (a Newton iteration more per row).
-        let mut which: Vec<Analysis> = Vec::new();
-        for s in &self.spreads {
-            if !which.contains(&s.analysis) {
-                which.push(s.analysis);
-            }
-        }
+        let which = distinct(self.spreads.iter().map(|s| s.analysis));
         if which.is_empty() {
             return;
         }
@@ -989,8 +997,7 @@ impl StackUp {
         let values: Vec<&(Vec<Option<f64>>, Vec<f64>)> = runs.iter().filter_map(|r| r.as_ref().ok()).collect();
         for (j, s) in self.spreads.iter_mut().enumerate() {
             let v: Vec<f64> = values.iter().filter_map(|r| r.0[j]).collect();
-            let factor = s.unit.shown().factor;
-            let limit = s.limit.as_ref().map(|l| (l.min.map(|a| a / factor), l.max.map(|b| b / factor)));
+            let limit = s.limit.as_ref().map(|l| l.in_si(s.unit));
             s.sampled = statistics(&v, limit);
         }
         for (k, a) in self.adjusters.iter_mut().enumerate() {
@@ -1012,12 +1019,7 @@ impl StackUp {
         };
         let mut adjusted_reports: Vec<AnalysisReport> = Vec::new();
         if !adjustments.is_empty() {
-            let mut adjusted: Vec<Analysis> = Vec::new();
-            for a in adjustments.iter().map(|a| a.analysis) {
-                if !adjusted.contains(&a) {
-                    adjusted.push(a);
-                }
-            }
+            let adjusted = distinct(adjustments.iter().map(|a| a.analysis));
             let mut aligned = false;
             for _ in 0..ALIGNMENT_ITERATIONS {
                 adjusted_reports = run(&x, &mut adjusted.iter().copied())?;
@@ -1069,102 +1071,65 @@ impl StackUp {
     /// the Monte Carlo's when run, its limit and the share of cars outside it, and its three largest
     /// contributors, in the figure's written unit.
     pub fn table(&self) -> Table {
-        let columns = [
-            "analysis",
-            "figure",
-            "unit",
-            "value",
-            "worst_case",
-            "sigma",
-            "sampled_sigma",
-            "sampled_mean",
-            "sampled_min",
-            "sampled_max",
-            "samples",
-            "limit_min",
-            "limit_max",
-            "outside",
-            "sampled_outside",
-            "sampled_outside_error",
-            "first_contributor",
-            "second_contributor",
-            "third_contributor",
+        // A number of the figure in SI, written in the figure's unit.
+        let shown = |s: &Spread, v: Option<f64>| Cell::from(v.map(|v| v * s.unit.shown().factor));
+        let sampled = |f: fn(Sampled) -> f64| move |s: &Spread| shown(s, s.sampled.map(f));
+        let outside = |f: fn((f64, f64)) -> f64| move |s: &Spread| Cell::from(s.sampled.and_then(|m| m.outside).map(f));
+        let mut columns: Vec<Column<Spread>> = vec![
+            Column::new("analysis", |s: &Spread| Cell::Text(s.analysis.name().into())),
+            Column::new("figure", |s: &Spread| Cell::Text(s.figure.clone())),
+            Column::new("unit", |s: &Spread| Cell::Text(s.unit.shown().symbol.into())),
+            Column::new("value", move |s: &Spread| shown(s, Some(s.value))),
+            Column::new("worst_case", move |s: &Spread| shown(s, Some(s.worst_case))),
+            Column::new("sigma", move |s: &Spread| shown(s, Some(s.sigma))),
+            Column::new("sampled_sigma", sampled(|m| m.sigma)),
+            Column::new("sampled_mean", sampled(|m| m.mean)),
+            Column::new("sampled_min", sampled(|m| m.min)),
+            Column::new("sampled_max", sampled(|m| m.max)),
+            Column::new("samples", |s: &Spread| Cell::from(s.sampled.map(|m| m.count as f64))),
+            Column::new("limit_min", |s: &Spread| Cell::from(s.limit.as_ref().and_then(|l| l.min))),
+            Column::new("limit_max", |s: &Spread| Cell::from(s.limit.as_ref().and_then(|l| l.max))),
+            Column::new("outside", |s: &Spread| Cell::from(s.outside)),
+            Column::new("sampled_outside", outside(|o| o.0)),
+            Column::new("sampled_outside_error", outside(|o| o.1)),
         ];
-        let rows = self
-            .spreads
-            .iter()
-            .map(|s| {
-                let m = s.sampled;
-                let unit = s.unit.shown();
-                let shown = |v: Option<f64>| Cell::from(v.map(|v| v * unit.factor));
-                let outside = m.and_then(|m| m.outside);
-                let mut row = vec![
-                    Cell::Text(s.analysis.name().into()),
-                    Cell::Text(s.figure.clone()),
-                    Cell::Text(unit.symbol.into()),
-                    shown(Some(s.value)),
-                    shown(Some(s.worst_case)),
-                    shown(Some(s.sigma)),
-                    shown(m.map(|m| m.sigma)),
-                    shown(m.map(|m| m.mean)),
-                    shown(m.map(|m| m.min)),
-                    shown(m.map(|m| m.max)),
-                    Cell::from(m.map(|m| m.count as f64)),
-                    Cell::from(s.limit.as_ref().and_then(|l| l.min)),
-                    Cell::from(s.limit.as_ref().and_then(|l| l.max)),
-                    Cell::from(s.outside),
-                    Cell::from(outside.map(|o| o.0)),
-                    Cell::from(outside.map(|o| o.1)),
-                ];
-                for k in 0..3 {
-                    row.push(s.contributions.get(k).map_or(Cell::Empty, |c| {
-                        let w = kc::significant(c.worst * unit.factor, 3);
-                        Cell::Text(format!("{} ({w})", self.sources[c.source].name))
-                    }));
-                }
-                row
-            })
-            .collect();
-        Table { name: "tolerance".into(), columns: columns.map(String::from).to_vec(), rows }
+        for (k, name) in ["first_contributor", "second_contributor", "third_contributor"].into_iter().enumerate() {
+            columns.push(Column::new(name, move |s: &Spread| {
+                s.contributions.get(k).map_or(Cell::Empty, |c| {
+                    let w = kc::significant(c.worst * s.unit.shown().factor, 3);
+                    Cell::Text(format!("{} ({w})", self.sources[c.source].name))
+                })
+            }));
+        }
+        Table::of_columns("tolerance", &columns, &self.spreads)
     }
 
     /// `tolerance_contributions.csv`: every figure and source — the source's distribution and band (file
     /// units), the figure's rate times the band's end (its first-order share of the worst case, signed) and
     /// times its σ, in the figure's written unit, and its share of the figure's variance.
     pub fn contribution_table(&self) -> Table {
-        let columns = [
-            "analysis",
-            "figure",
-            "unit",
-            "source",
-            "distribution",
-            "tolerance",
-            "contribution",
-            "sigma_contribution",
-            "variance_share",
+        type Row<'s> = (&'s Spread, Contribution);
+        let in_unit = |(s, _): &Row, v: f64| Cell::from(v * s.unit.shown().factor);
+        let columns: [Column<Row>; 9] = [
+            Column::new("analysis", |(s, _): &Row| Cell::Text(s.analysis.name().into())),
+            Column::new("figure", |(s, _): &Row| Cell::Text(s.figure.clone())),
+            Column::new("unit", |(s, _): &Row| Cell::Text(s.unit.shown().symbol.into())),
+            Column::new("source", |(_, c): &Row| Cell::Text(self.sources[c.source].name.clone())),
+            Column::new("distribution", |(_, c): &Row| Cell::Text(self.sources[c.source].band.distribution().into())),
+            Column::new("tolerance", |(_, c): &Row| Cell::from(self.sources[c.source].band.width())),
+            Column::new("contribution", move |r: &Row| in_unit(r, r.1.worst)),
+            Column::new("sigma_contribution", move |r: &Row| in_unit(r, r.1.sigma)),
+            Column::new("variance_share", |(s, c): &Row| {
+                Cell::from((s.sigma > 0.0).then(|| (c.sigma / s.sigma).powi(2)))
+            }),
         ];
-        let mut rows = Vec::new();
+        let mut rows: Vec<Row> = Vec::new();
         for s in &self.spreads {
-            let unit = s.unit.shown();
             let mut by_source = s.contributions.clone();
             by_source.sort_by_key(|c| c.source);
-            for c in by_source {
-                let source = &self.sources[c.source];
-                let share = (s.sigma > 0.0).then(|| (c.sigma / s.sigma).powi(2));
-                rows.push(vec![
-                    Cell::Text(s.analysis.name().into()),
-                    Cell::Text(s.figure.clone()),
-                    Cell::Text(unit.symbol.into()),
-                    Cell::Text(source.name.clone()),
-                    Cell::Text(source.band.distribution().into()),
-                    Cell::from(source.band.width()),
-                    Cell::from(c.worst * unit.factor),
-                    Cell::from(c.sigma * unit.factor),
-                    Cell::from(share),
-                ]);
-            }
+            rows.extend(by_source.into_iter().map(|c| (s, c)));
         }
-        Table { name: "tolerance_contributions".into(), columns: columns.map(String::from).to_vec(), rows }
+        Table::of_columns("tolerance_contributions", &columns, &rows)
     }
 
     /// `tolerance_adjustments.csv`: per adjustment, the figure it holds, the number that sets it and how far
@@ -1173,36 +1138,19 @@ impl StackUp {
         if self.adjusters.is_empty() {
             return None;
         }
-        let columns = [
-            "analysis",
-            "figure",
-            "by",
-            "nominal",
-            "worst_case",
-            "sigma",
-            "sampled_sigma",
-            "sampled_min",
-            "sampled_max",
+        let sampled = |f: fn(Sampled) -> f64| move |a: &AdjusterSpread| Cell::from(a.sampled.map(f));
+        let columns: [Column<AdjusterSpread>; 9] = [
+            Column::new("analysis", |a: &AdjusterSpread| Cell::Text(a.adjustment.analysis.name().into())),
+            Column::new("figure", |a: &AdjusterSpread| Cell::Text(a.adjustment.figure.clone())),
+            Column::new("by", |a: &AdjusterSpread| Cell::Text(self.parameters.pointers[a.adjustment.by].clone())),
+            Column::new("nominal", |a: &AdjusterSpread| Cell::from(self.parameters.values[a.adjustment.by])),
+            Column::new("worst_case", |a: &AdjusterSpread| Cell::from(a.worst_case)),
+            Column::new("sigma", |a: &AdjusterSpread| Cell::from(a.sigma)),
+            Column::new("sampled_sigma", sampled(|m| m.sigma)),
+            Column::new("sampled_min", sampled(|m| m.min)),
+            Column::new("sampled_max", sampled(|m| m.max)),
         ];
-        let rows = self
-            .adjusters
-            .iter()
-            .map(|a| {
-                let m = a.sampled;
-                vec![
-                    Cell::Text(a.adjustment.analysis.name().into()),
-                    Cell::Text(a.adjustment.figure.clone()),
-                    Cell::Text(self.parameters.pointers[a.adjustment.by].clone()),
-                    Cell::from(self.parameters.values[a.adjustment.by]),
-                    Cell::from(a.worst_case),
-                    Cell::from(a.sigma),
-                    Cell::from(m.map(|m| m.sigma)),
-                    Cell::from(m.map(|m| m.min)),
-                    Cell::from(m.map(|m| m.max)),
-                ]
-            })
-            .collect();
-        Some(Table { name: "tolerance_adjustments".into(), columns: columns.map(String::from).to_vec(), rows })
+        Some(Table::of_columns("tolerance_adjustments", &columns, &self.adjusters))
     }
 
     /// `tolerance_samples.csv`: one row per sample of the Monte Carlo — every figure (`analysis/figure`, in
