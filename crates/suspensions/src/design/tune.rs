@@ -22,8 +22,9 @@ use super::parameter::hardpoint_pointer;
 use super::parameter::{ParameterError, Parameters};
 use super::sensitivity::{analysis_sensitivity, AnalysisSensitivity, NoDerivative, SensitivityError};
 use super::targets::{
-    interpolation, readings, Aim, Constraint, CurveMeasure, CurveReading, MissScale, Target, Targets,
+    interpolation, readings, Aim, Constraint, CurveMeasure, CurveReading, Free, MissScale, Target, Targets,
 };
+use crate::kc::report::Column;
 use crate::kc::{self, Analysis, AnalysisReport, Cell, Chart, Scale, Series, Settings, Table, YAxis};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
@@ -646,105 +647,81 @@ impl Tuned {
     /// `tune.csv`: every iteration — its objective, projected gradient, step, damping, evaluations so far
     /// and what became of the step.
     pub fn iteration_table(&self) -> Table {
-        let columns = ["iteration", "objective", "gradient_norm", "step", "damping", "evaluations", "outcome"];
-        let rows = self
-            .iterations
-            .iter()
-            .map(|i| {
-                vec![
-                    Cell::from(i.iteration as f64),
-                    Cell::from(i.objective),
-                    Cell::from(i.gradient_norm),
-                    Cell::from(i.step),
-                    Cell::from(i.damping),
-                    Cell::from(i.evaluations as f64),
-                    Cell::Text(i.outcome.clone()),
-                ]
-            })
-            .collect();
-        Table { name: "tune".into(), columns: columns.map(String::from).to_vec(), rows }
+        let columns: [Column<Iteration>; 7] = [
+            Column::new("iteration", |i: &Iteration| Cell::from(i.iteration as f64)),
+            Column::new("objective", |i: &Iteration| Cell::from(i.objective)),
+            Column::new("gradient_norm", |i: &Iteration| Cell::from(i.gradient_norm)),
+            Column::new("step", |i: &Iteration| Cell::from(i.step)),
+            Column::new("damping", |i: &Iteration| Cell::from(i.damping)),
+            Column::new("evaluations", |i: &Iteration| Cell::from(i.evaluations as f64)),
+            Column::new("outcome", |i: &Iteration| Cell::Text(i.outcome.clone())),
+        ];
+        Table::of_columns("tune", &columns, &self.iterations)
     }
 
     /// `tune_targets.csv`: every residual at the start and the end — its target, the load parameter of a
-    /// curve point, the value aimed at, the values reached, and the miss over the tolerance.
+    /// curve point, the value aimed at, the values reached, and the miss over the tolerance (unweighted,
+    /// and unscaled by a curve measure's reading weight: each reading's own).
     pub fn residual_table(&self, targets: &Targets) -> Table {
-        let columns =
-            ["target", "at", "aim", "before", "after", "miss_over_tolerance_before", "miss_over_tolerance_after"];
-        let rows = self
-            .end
-            .rows
-            .iter()
-            .zip(&self.start.rows)
-            .zip(self.end.residuals.iter().zip(&self.start.residuals))
-            .map(|((end, start), (r_end, r_start))| {
-                let weight = targets.targets[end.target].weight;
-                vec![
-                    Cell::Text(targets.targets[end.target].label.clone()),
-                    Cell::from(end.at),
-                    Cell::from(end.aim),
-                    Cell::from(start.value),
-                    Cell::from(end.value),
-                    Cell::from(r_start / weight),
-                    Cell::from(r_end / weight),
-                ]
-            })
-            .collect();
-        Table { name: "tune_targets".into(), columns: columns.map(String::from).to_vec(), rows }
+        type Pair<'r> = (&'r Row, &'r Row);
+        let miss = |r: &Row| Cell::from((r.value - r.aim) / targets.targets[r.target].tolerance);
+        let columns: [Column<Pair>; 7] = [
+            Column::new("target", |(end, _): &Pair| Cell::Text(targets.targets[end.target].label.clone())),
+            Column::new("at", |(end, _): &Pair| Cell::from(end.at)),
+            Column::new("aim", |(end, _): &Pair| Cell::from(end.aim)),
+            Column::new("before", |(_, start): &Pair| Cell::from(start.value)),
+            Column::new("after", |(end, _): &Pair| Cell::from(end.value)),
+            Column::new("miss_over_tolerance_before", move |(_, start): &Pair| miss(start)),
+            Column::new("miss_over_tolerance_after", move |(end, _): &Pair| miss(end)),
+        ];
+        let rows: Vec<Pair> = self.end.rows.iter().zip(&self.start.rows).collect();
+        Table::of_columns("tune_targets", &columns, &rows)
     }
 
     /// The free numbers: each before and after the tune, its move, its standard uncertainty at the end
     /// (empty where the fit gives none) and its bounds.
     pub fn moved_table(&self, targets: &Targets) -> Table {
-        let columns = ["parameter", "before", "after", "move", "standard_uncertainty", "min", "max"];
-        let rows = targets
-            .free
-            .iter()
-            .enumerate()
-            .map(|(k, f)| {
-                vec![
-                    Cell::Text(f.pointer.clone()),
-                    Cell::from(self.start.x[k]),
-                    Cell::from(self.end.x[k]),
-                    Cell::from(self.end.x[k] - self.start.x[k]),
-                    Cell::from(self.uncertainty.as_ref().and_then(|u| u.standard[k])),
-                    Cell::from(f.min),
-                    Cell::from(f.max),
-                ]
-            })
-            .collect();
-        Table { name: "tune_parameters".into(), columns: columns.map(String::from).to_vec(), rows }
+        let standard = |k: usize| Cell::from(self.uncertainty.as_ref().and_then(|u| u.standard[k]));
+        let columns: [Column<(usize, &Free)>; 7] = [
+            Column::new("parameter", |(_, f): &(usize, &Free)| Cell::Text(f.pointer.clone())),
+            Column::new("before", |&(k, _): &(usize, &Free)| Cell::from(self.start.x[k])),
+            Column::new("after", |&(k, _): &(usize, &Free)| Cell::from(self.end.x[k])),
+            Column::new("move", |&(k, _): &(usize, &Free)| Cell::from(self.end.x[k] - self.start.x[k])),
+            Column::new("standard_uncertainty", move |&(k, _): &(usize, &Free)| standard(k)),
+            Column::new("min", |(_, f): &(usize, &Free)| Cell::from(f.min)),
+            Column::new("max", |(_, f): &(usize, &Free)| Cell::from(f.max)),
+        ];
+        let rows: Vec<(usize, &Free)> = targets.free.iter().enumerate().collect();
+        Table::of_columns("tune_parameters", &columns, &rows)
     }
 
     /// `tune_uncertainty.csv`: each free number at the end, its standard uncertainty (empty where the fit
     /// gives none, and throughout for an objective's optimum), whether a bound holds it, and its
     /// correlation with each other free number.
     pub fn uncertainty_table(&self, targets: &Targets) -> Table {
-        let mut columns: Vec<String> =
-            ["parameter", "value", "standard_uncertainty", "at_bound"].map(String::from).to_vec();
-        columns.extend(targets.free.iter().map(|f| format!("correlation with {}", super::parameter_words(&f.pointer))));
-        let rows = targets
-            .free
-            .iter()
-            .enumerate()
-            .map(|(k, f)| {
-                let held = match &self.uncertainty {
+        let u = self.uncertainty.as_ref();
+        let mut columns: Vec<Column<(usize, &Free)>> = vec![
+            Column::new("parameter", |(_, f): &(usize, &Free)| Cell::Text(f.pointer.clone())),
+            Column::new("value", |&(k, _): &(usize, &Free)| Cell::from(self.end.x[k])),
+            Column::new("standard_uncertainty", move |&(k, _): &(usize, &Free)| {
+                Cell::from(u.and_then(|u| u.standard[k]))
+            }),
+            Column::new("at_bound", move |&(k, f): &(usize, &Free)| {
+                let held = match u {
                     Some(u) => u.at_bound.contains(&k),
                     None => super::fit::held_at(self.end.x[k], (f.min, f.max)).is_some(),
                 };
-                let mut row = vec![
-                    Cell::Text(f.pointer.clone()),
-                    Cell::from(self.end.x[k]),
-                    Cell::from(self.uncertainty.as_ref().and_then(|u| u.standard[k])),
-                    Cell::Text(if held { "yes" } else { "no" }.into()),
-                ];
-                match &self.uncertainty {
-                    Some(u) => row.extend(u.correlation[k].iter().map(|c| Cell::from(*c))),
-                    None => row.extend(targets.free.iter().map(|_| Cell::Empty)),
-                }
-                row
-            })
-            .collect();
-        Table { name: "tune_uncertainty".into(), columns, rows }
+                Cell::Text(if held { "yes" } else { "no" }.into())
+            }),
+        ];
+        for (l, other) in targets.free.iter().enumerate() {
+            let name = format!("correlation with {}", super::parameter_words(&other.pointer));
+            columns.push(Column::new(name, move |&(k, _): &(usize, &Free)| {
+                Cell::from(u.and_then(|u| u.correlation[k][l]))
+            }));
+        }
+        let rows: Vec<(usize, &Free)> = targets.free.iter().enumerate().collect();
+        Table::of_columns("tune_uncertainty", &columns, &rows)
     }
 
     /// Before-and-after plots: each curve target's column against its load parameter at the start and
