@@ -123,16 +123,18 @@ fn the_root_mean_square_and_the_area_of_a_curve_miss_are_its_integrals_over_the_
 }
 
 /// The verdict on either side of the tolerance, as `tune` and `run --targets` give it: a root mean square
-/// 5 % inside its tolerance is met though the worst reading misses by several tolerances; 5 % beyond it,
-/// not.
+/// (and an area) 5 % inside its tolerance is met though the worst reading misses by several tolerances; 5 %
+/// beyond it, not. The measures are Simpson's over 400 steps, which the 20 steps' quadrature meets to 0.3 %
+/// (the first test), well inside the 5 %.
 #[test]
 fn a_curve_measured_whole_is_met_on_its_measure_not_its_worst_reading() {
     let doc = document();
     let steps = 20;
+    let (squared, size) = integrals(&doc, 400);
+    let (rms, area) = ((squared / (SPAN.1 - SPAN.0)).sqrt(), size);
     let t = targets(&doc, 1.0, 1.0, steps);
     let z = doc.pointer(INNER_Z).unwrap().as_f64().unwrap();
     let e = evaluate(&Parameters::new(&doc, &[INNER_Z.to_string()]).unwrap(), &t, &[z]).unwrap();
-    let (rms, area) = (measured(&t, &e, 0), measured(&t, &e, 1));
     let worst = e.rows.iter().filter(|r| r.target == 0).map(|r| (r.value - r.aim).abs()).fold(0.0, f64::max);
     assert!(worst > 1.5 * rms, "the worst reading misses by more than the root mean square: {worst} {rms}");
     let file = Parameters::new(&doc, &[]).unwrap().file().unwrap();

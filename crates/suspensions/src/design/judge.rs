@@ -52,12 +52,19 @@ pub fn by_target<'r, 'a>(points: &'r [TargetPoint<'a>]) -> impl Iterator<Item = 
 /// ([`Target::judged_words`]); `None` for a target judged point by point, or when a reading has no value
 /// (each says why).
 pub fn judged_whole(readings: &[TargetPoint]) -> Option<String> {
-    let target = readings.first()?.target;
     readings.first()?.whole?;
-    let misses: Option<Vec<f64>> =
-        readings.iter().map(|p| p.reached.as_ref().ok().map(|r| (r - p.aim) / target.tolerance)).collect();
-    let weights: Vec<f64> = readings.iter().map(|p| p.weight).collect();
-    Some(target.judged_words(&misses?, &weights))
+    let (misses, weights) = misses_and_weights(readings)?;
+    Some(readings[0].target.judged_words(&misses, &weights))
+}
+
+/// The misses over the tolerance and the weights of one target's `readings`, as [`Target::measured`] takes
+/// them; `None` when a reading has no value.
+fn misses_and_weights(readings: &[TargetPoint]) -> Option<(Vec<f64>, Vec<f64>)> {
+    readings
+        .iter()
+        .map(|p| p.reached.as_ref().ok().map(|r| ((r - p.aim) / p.target.tolerance, p.weight)))
+        .collect::<Option<Vec<(f64, f64)>>>()
+        .map(|pairs| pairs.into_iter().unzip())
 }
 
 /// A packaging constraint of the TARGETS file judged on the model file: its value and bounds (m), or why
@@ -102,12 +109,7 @@ pub fn judge<'a>(
                 }
                 if target.scale == MissScale::Noise || *measure != CurveMeasure::Points {
                     // Judged whole: every reading read, and their measure within the tolerance or the noise.
-                    let misses: Option<Vec<f64>> = points[first..]
-                        .iter()
-                        .map(|p| p.reached.as_ref().ok().map(|r| (r - p.aim) / target.tolerance))
-                        .collect();
-                    let weights: Vec<f64> = points[first..].iter().map(|p| p.weight).collect();
-                    let met = misses.is_some_and(|m| target.met_by(&m, &weights));
+                    let met = misses_and_weights(&points[first..]).is_some_and(|(m, w)| target.met_by(&m, &w));
                     points[first..].iter_mut().for_each(|p| p.whole = Some(met));
                 }
             }

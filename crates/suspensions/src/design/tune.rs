@@ -1271,7 +1271,9 @@ impl<'a> Search<'a> {
         self.reach *= 2.0;
         self.unbuildable = None;
         if let (Some(was), Some(now)) = (&self.here.goal, &next.goal) {
-            self.measure_curvature(&self.here.x.clone(), &next.x, &was.rates.clone(), &now.rates);
+            let step = next.x.iter().zip(&self.here.x).map(|(a, b)| a - b);
+            let change = now.rates.iter().zip(&was.rates).map(|(a, b)| now.sign * (a - b));
+            measure_curvature(&mut self.curvature, step.collect(), change.collect());
         }
         let sought = next.goal.is_some();
         self.here = next;
@@ -1279,24 +1281,6 @@ impl<'a> Search<'a> {
         let small = if sought { 1e-12 * (1.0 + f.abs()) } else { 1e-9 * f };
         if !restored && (gain <= small || size < 1e-9) {
             self.converged = true;
-        }
-    }
-
-    /// The BFGS update of the objective's curvature by a step from `x` to `next`, where its rates went
-    /// from `was` to `now`; a step along which the rates fell (no curvature that a least has) is left out.
-    fn measure_curvature(&mut self, x: &[f64], next: &[f64], was: &[f64], now: &[f64]) {
-        let sign = self.here.goal.as_ref().map_or(1.0, |g| g.sign);
-        let s = nalgebra::DVector::from_iterator(x.len(), next.iter().zip(x).map(|(a, b)| a - b));
-        let y = nalgebra::DVector::from_iterator(x.len(), now.iter().zip(was).map(|(a, b)| sign * (a - b)));
-        let sy = s.dot(&y);
-        if sy.is_nan() || sy <= 1e-12 * s.norm() * y.norm() {
-            return;
-        }
-        let bs = &self.curvature * &s;
-        let sbs = s.dot(&bs);
-        self.curvature += &y * y.transpose() / sy;
-        if sbs > 0.0 {
-            self.curvature -= &bs * bs.transpose() / sbs;
         }
     }
 
@@ -1354,6 +1338,22 @@ fn held_by(e: &Evaluation, targets: &Targets, free: &[(f64, f64)]) -> Vec<String
         format!("{}{at} at the {side} end of its tolerance, {}", t.label, kc::significant(row.value, 4))
     });
     at_bound.chain(packed).chain(tolerances).collect()
+}
+
+/// The BFGS update of an objective's `curvature` by a step `s` along which its rates changed by `y`; a
+/// step along which the rates fell (no curvature that a least has) is left out.
+fn measure_curvature(curvature: &mut nalgebra::DMatrix<f64>, s: Vec<f64>, y: Vec<f64>) {
+    let (s, y) = (nalgebra::DVector::from_vec(s), nalgebra::DVector::from_vec(y));
+    let sy = s.dot(&y);
+    if sy.is_nan() || sy <= 1e-12 * s.norm() * y.norm() {
+        return;
+    }
+    let bs = &*curvature * &s;
+    let sbs = s.dot(&bs);
+    *curvature += &y * y.transpose() / sy;
+    if sbs > 0.0 {
+        *curvature -= &bs * bs.transpose() / sbs;
+    }
 }
 
 /// Each target's outcome at the end, and why one is not met: no step that could be computed (`no_step`),
