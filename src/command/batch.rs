@@ -50,18 +50,19 @@ pub fn columns(shard: bool) -> Vec<String> {
     std::iter::once("variant").chain(FIGURES).chain(["error"]).chain(number).map(String::from).collect()
 }
 
-/// Runs every variant, `files[k]` being `variants[k]` applied, on the rayon pool, counting each one done on
-/// `progress`.
-pub fn run_all(
+/// Runs `judge` on every variant, `files[k]` being `variants[k]` applied, on the rayon pool, counting each
+/// one done on `progress`.
+pub fn run_all<T: Send>(
     variants: &[Variant],
     files: &[SuspensionFile],
     progress: &Progress,
-) -> Vec<Result<Outcome, VariantFailed>> {
+    judge: impl Fn(&SuspensionFile) -> T + Sync,
+) -> Vec<T> {
     variants
         .par_iter()
         .zip(files)
         .map(|(v, file)| {
-            let r = evaluate(file, HALF_RANGE, STEPS);
+            let r = judge(file);
             progress.end(Some(&v.name));
             r
         })
@@ -87,13 +88,16 @@ pub fn run(args: BatchArgs, out: &Stdout, quiet: bool, strict: bool) -> Result<(
     provenance.part = args.shard.map(|s| Part::Shard { index: s.index, count: s.count, variants: list.len() });
     let staging = Staging::new(&args.out)?;
     let progress = Progress::new("variants", range.len(), quiet);
-    let results = run_all(&list[range.clone()], &files[range.clone()], &progress);
+    let results =
+        run_all(&list[range.clone()], &files[range.clone()], &progress, |file| evaluate(file, HALF_RANGE, STEPS));
     progress.finish();
     let table = variants_table(out, &list, range.clone(), &results, args.shard.is_some());
     let suite = args.analyses.map(|choices| {
         let analyses = SuiteChoice::analyses(&choices);
         let progress = Progress::new("variants through the suite", range.len(), quiet);
-        let r = run_suite(&list[range.clone()], &files[range.clone()], &analyses, &progress);
+        let r = run_all(&list[range.clone()], &files[range.clone()], &progress, |file| {
+            evaluate_suite(file, &analyses, STEPS)
+        });
         progress.finish();
         r
     });
@@ -153,24 +157,6 @@ impl SuiteChoice {
         }
         choices.iter().filter_map(|c| if let SuiteChoice::One(a) = c { Some(a.analysis()) } else { None }).collect()
     }
-}
-
-/// Every variant through `analyses` of the suite ([`evaluate_suite`]) on the rayon pool.
-fn run_suite(
-    variants: &[Variant],
-    files: &[SuspensionFile],
-    analyses: &[kc::Analysis],
-    progress: &Progress,
-) -> Vec<Result<Vec<(kc::Analysis, kc::Figure)>, VariantFailed>> {
-    variants
-        .par_iter()
-        .zip(files)
-        .map(|(v, file)| {
-            let r = evaluate_suite(file, analyses, STEPS);
-            progress.end(Some(&v.name));
-            r
-        })
-        .collect()
 }
 
 /// `batch_figures.csv`: per variant, every figure of the suite's analyses in its written unit (empty where
