@@ -278,20 +278,18 @@ pub fn run_suite_checked(
 pub fn run_suite_on_threads(file: &SuspensionFile, which: &[Analysis], settings: &Settings) -> KcReport {
     use rayon::prelude::*;
     let models = Models::new(file);
-    let plan = planned(file, which);
     let (model_check, results) = rayon::join(
         || crate::check::check_model(file).ok(),
         || {
-            let run = |p: &Result<Analysis, Skipped>| p.as_ref().ok().map(|&a| run_on(a, &models, settings));
-            plan.par_iter().map(run).collect::<Vec<_>>()
+            let run = |planned: Result<Analysis, Skipped>| planned.map(|a| (a, run_on(a, &models, settings)));
+            planned(file, which).into_par_iter().map(run).collect::<Vec<_>>()
         },
     );
     let mut report = suite_report(file, model_check, settings);
-    for (planned, result) in plan.into_iter().zip(results) {
-        match (planned, result) {
-            (Ok(analysis), Some(result)) => record(&mut report, analysis, result, &mut |_| {}),
-            (Err(skipped), _) => report.skipped.push(skipped),
-            (Ok(_), None) => {}
+    for result in results {
+        match result {
+            Ok((analysis, result)) => record(&mut report, analysis, result, &mut |_| {}),
+            Err(skipped) => report.skipped.push(skipped),
         }
     }
     report
