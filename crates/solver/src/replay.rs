@@ -262,6 +262,12 @@ impl Taping {
         self.lock()?.as_mut().map(f)
     }
 
+    /// Whether this taping records or replays: solves that take part must then be made in the order the
+    /// recording made them, one after another.
+    pub fn takes_part(&self) -> bool {
+        self.lock().is_some_and(|active| active.is_some())
+    }
+
     /// What was recorded or replayed, the taping ended: its solvers solve from now on.
     fn finish(&self) -> Option<Active> {
         self.lock()?.take()

@@ -287,3 +287,25 @@ fn packaging_mistakes_are_named_with_how_to_mend_them() {
         assert!(message.contains(words), "{words}: {message}");
     }
 }
+
+#[test]
+fn the_heights_run_at_once_give_the_envelope_of_one_thread_to_the_bit() {
+    let doc = document("macpherson.json");
+    let one_thread = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    let two_threads = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+    let alone = one_thread.install(|| run(&doc, Analysis::WheelEnvelope, 32));
+    let at_once = two_threads.install(|| run(&doc, Analysis::WheelEnvelope, 32));
+    assert_eq!(alone.table, at_once.table);
+    assert_eq!(alone.figures, at_once.figures);
+    assert_eq!(alone.envelope, at_once.envelope);
+    // A recorded run (as sensitivities record it) takes the heights in turn and reads the same.
+    let (recorded, _) = elastokin_solver::replay::record(|taping| {
+        kc::run_taped(
+            Analysis::WheelEnvelope,
+            &kc::Models::new(&file(&doc)),
+            &Settings { steps: 32, ..Settings::default() },
+            taping,
+        )
+    });
+    assert_eq!(recorded.unwrap().table, at_once.table);
+}

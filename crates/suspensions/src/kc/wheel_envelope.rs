@@ -31,6 +31,7 @@ use elastokin_core::{JointId, Vec3};
 use elastokin_solver::replay::Taping;
 use parry3d_f64::math::{Pose, Rotation, Vector};
 use parry3d_f64::shape::{Cuboid, Cylinder};
+use rayon::prelude::*;
 
 /// The wheel's envelope, as the command and the reports name it.
 pub(super) const DECLARATION: Declaration = Declaration {
@@ -314,9 +315,22 @@ pub(super) fn wheel_envelope(models: &Models, s: &Settings, taping: &Taping) -> 
         let rack = rack_range(packaging);
         let axle = models.axle_ref(AxleRig::Steering)?;
         let drivers = height_drivers(axle);
-        // One copy of the axle, its heights held anew at each travel (a hold is from design, not cumulative).
-        let mut held = axle.clone();
         let travels: Vec<f64> = (0..=n).map(|i| range.0 + (range.1 - range.0) * i as f64 / n as f64).collect();
+        // Each height is the axle held there from design (a hold is not cumulative) and swept on its own:
+        // the heights run at once on rayon's threads unless a taping records or replays them, which takes
+        // its solves in order.
+        let at_height = |travel: f64| -> Result<(f64, SweepOutput<AxleRow>), Cause> {
+            let mut held = axle.clone();
+            for &d in &drivers {
+                held.model.hold_driver(d, travel)?;
+            }
+            Ok((travel, axle_sweep_with(&held, rack.0, rack.1, n, s.mode, extras())?))
+        };
+        let heights: Vec<Result<_, Cause>> = if taping.takes_part() {
+            travels.iter().map(|&t| at_height(t)).collect()
+        } else {
+            travels.par_iter().map(|&t| at_height(t)).collect()
+        };
         let mut out = SweepOutput {
             rows: Vec::new(),
             limit: None,
@@ -327,11 +341,8 @@ pub(super) fn wheel_envelope(models: &Models, s: &Settings, taping: &Taping) -> 
             design: None,
             design_corrected: None,
         };
-        for &travel in &travels {
-            for &d in &drivers {
-                held.model.hold_driver(d, travel)?;
-            }
-            let swept = axle_sweep_with(&held, rack.0, rack.1, n, s.mode, extras())?;
+        for height_swept in heights {
+            let (travel, swept) = height_swept?;
             if let Some(limit) = swept.limit {
                 return Err(Cause::Lacks(format!(
                     "at a wheel travel of {:+.1} mm the rack cannot travel beyond {:+.1} mm: the linkage reaches \
