@@ -140,13 +140,25 @@ fn distance_apart(tyre: &Tyre, centre: Vec3, axis: Vec3, (lo, hi): (Vec3, Vec3))
         }
     }
     let corner = |m: usize| Vec3::new([lo.x, hi.x][m & 1], [lo.y, hi.y][(m >> 1) & 1], [lo.z, hi.z][(m >> 2) & 1]);
-    for m in 0..8 {
-        for bit in [1, 2, 4] {
-            if m & bit == 0 {
-                let (a, b) = (corner(m), corner(m | bit));
-                least = least.min(least_along(|t| to_point(a + (b - a) * t)));
-            }
+    // The tyre lies within the sphere about its centre through its tread's edges: no point of an edge is
+    // nearer the tyre than the edge's distance from the centre less that sphere's radius. The edges are
+    // searched nearest bound first, and an edge whose bound is no nearer than the least found is not.
+    let sphere = tyre.radius.hypot(0.5 * tyre.width);
+    let mut edges: Vec<(f64, Vec3, Vec3)> = (0..8)
+        .flat_map(|m| [1, 2, 4].into_iter().filter(move |&bit| m & bit == 0).map(move |bit| (m, m | bit)))
+        .map(|(i, j)| {
+            let (a, b) = (corner(i), corner(j));
+            let length2 = (b - a).norm_squared();
+            let t = if length2 > 0.0 { ((centre - a).dot(&(b - a)) / length2).clamp(0.0, 1.0) } else { 0.0 };
+            ((a + (b - a) * t - centre).norm() - sphere, a, b)
+        })
+        .collect();
+    edges.sort_by(|x, y| x.0.total_cmp(&y.0));
+    for (bound, a, b) in edges {
+        if bound >= least {
+            break;
         }
+        least = least.min(least_along(|t| to_point(a + (b - a) * t)));
     }
     least
 }
