@@ -1,8 +1,9 @@
 // `elastokin live`'s page: the design asked of the server (the page's address ends in its token, so the
-// routes are relative), its figures, hardpoints, rates, projections and charts shown; a hardpoint typed in millimetres sent as
-// an edit in metres, and the answer shown with the previous design's curves in grey beneath. A refused
-// edit shows the server's reason and leaves the design on screen. What the page did is kept as JSON in
-// <output id="live-state"> for the browser test.
+// routes are relative), its figures, hardpoints, rates, projections, 3D view and charts shown; a hardpoint
+// typed in millimetres, or dragged in a projection (src/live_views.js), sent as an edit in metres, and the
+// answer shown with the previous design's curves in grey beneath. A refused edit shows the server's reason
+// and leaves the design on screen. What the page did is kept as JSON in <output id="live-state"> for the
+// browser test.
 (function () {
   'use strict';
   const el = (id) => document.getElementById(id);
@@ -14,6 +15,8 @@
   // The hardpoint whose guidance is shown, and the guidance (of the design of its version).
   let selected = null;
   let guidance = null;
+  // The figure the projections' arrows are drawn for ('analysis/key').
+  let chosen = null;
 
   function publish() {
     el('live-state').textContent = JSON.stringify(report);
@@ -66,6 +69,10 @@
       a.figures.forEach((f) => {
         const row = make('tr');
         row.dataset.key = a.name + '/' + f.key;
+        // The value in SI as the server gave it, exactly (what the browser test reads).
+        if (f.value != null) row.dataset.si = String(f.value);
+        row.title = 'click to draw the arrows at the point selected for this figure';
+        row.addEventListener('click', () => choose(row.dataset.key));
         row.appendChild(make('td', f.label));
         const value = make('td', written(f), 'value');
         if (f.value == null) value.title = f.reason || '';
@@ -85,32 +92,64 @@
     report.figures = count;
   }
 
-  // Each figure's derivatives to the selected hardpoint's x, y and z, per millimetre in the figure's unit.
+  // The figure the arrows are for: the one chosen while the design has it, else the first with a target,
+  // else bump steer, else the first.
+  function chosenFigure(state) {
+    const has = (key) => key && state.analyses.some((a) => a.figures.some((f) => a.name + '/' + f.key === key));
+    if (has(chosen)) return chosen;
+    const target = state.targets.find((t) => t.figure);
+    const bump = state.analyses.find((a) => a.figures.some((f) => f.key === 'bump_steer'));
+    const first = state.analyses.find((a) => a.figures.length);
+    if (target) return target.analysis + '/' + target.figure;
+    if (bump) return bump.name + '/bump_steer';
+    return first ? first.name + '/' + first.figures[0].key : null;
+  }
+
+  function choose(key) {
+    chosen = key;
+    showGuidance();
+    publish();
+  }
+
+  // The guidance of figure `key` ('analysis/key') at the point selected on the design on screen, with how
+  // the figure is written.
+  function guidanceOf(key) {
+    if (!key || !guidance || !current || guidance.version !== current.version || guidance.point !== selected) return null;
+    const [analysis, figure] = key.split('/');
+    const a = guidance.analyses.find((x) => x.name === analysis);
+    const g = a ? a.figures.find((x) => x.key === figure) : null;
+    const f = figureOf(current, analysis, figure);
+    return g && f ? { label: f.label, unit: f.unit, factor: f.factor, per_metre: g.per_metre, why_not: g.why_not } : null;
+  }
+
+  // Each figure's derivatives to the selected hardpoint's x, y and z, per millimetre in the figure's unit;
+  // the chosen figure's drawn as arrows at the point.
   function showGuidance() {
     let guided = 0;
+    chosen = current ? chosenFigure(current) : null;
     document.querySelectorAll('#figures tr[data-key]').forEach((row) => {
+      row.classList.toggle('chosen', row.dataset.key === chosen);
       const cell = row.querySelector('td.guide');
-      const [analysis, key] = row.dataset.key.split('/');
-      const g = guidance && current && guidance.version === current.version
-        ? (guidance.analyses.find((a) => a.name === analysis) || { figures: [] }).figures.find((f) => f.key === key)
-        : null;
-      const f = figureOf(current, analysis, key);
-      if (!g || !f) {
+      const g = guidanceOf(row.dataset.key);
+      if (!g) {
         cell.textContent = '';
         return;
       }
-      const per = g.per_metre.map((d) => (d == null ? '–' : Number((d * f.factor / 1000).toPrecision(3)).toString()));
-      cell.textContent = per.join(', ') + (f.unit === '-' ? '' : ' ' + f.unit) + ' /mm';
+      const per = g.per_metre.map((d) => (d == null ? '–' : Number((d * g.factor / 1000).toPrecision(3)).toString()));
+      cell.textContent = per.join(', ') + (g.unit === '-' ? '' : ' ' + g.unit) + ' /mm';
       cell.title = g.why_not.filter((w) => w).join('; ');
       if (g.per_metre.some((d) => d != null)) guided += 1;
     });
     report.guided = guided;
+    report.chosen = chosen;
+    views.arrows(selected, guidanceOf(chosen));
   }
 
   // The guidance for the hardpoint at `point`, asked of the server for the design on screen.
   async function guide(point) {
     selected = point;
     document.querySelectorAll('#hardpoints tr').forEach((r) => r.classList.toggle('selected', r.dataset.point === point));
+    views.select(point);
     try {
       const response = await fetch('guidance', {
         method: 'POST',
@@ -253,9 +292,12 @@
     showFigures(state);
     showHardpoints(state);
     report.inputs += showRates(state);
-    // The projections as the server drew them (SVG, every text in it escaped there).
+    // The projections as the server drew them (SVG, every text in it escaped there), a ring at each
+    // hardpoint.
     el('projections').innerHTML = state.projections || '';
     report.projections = el('projections').querySelectorAll('figure.view').length;
+    views.show(state, selected);
+    showView3d(state);
     showCharts(state);
     showGuidance();
     if (selected && (!guidance || guidance.version !== state.version)) guide(selected);
@@ -267,6 +309,14 @@
     publish();
   }
 
+  // The 3D view drawn anew from the design's poses, the camera kept.
+  function showView3d(state) {
+    if (!window.elastokinView3d || !state.view3d) return;
+    window.elastokinView3d.show(state.view3d);
+    const drawn = JSON.parse(el('view3d-state').textContent || '{}');
+    report.view3d = { shows: drawn.shows, strokes: drawn.strokes, drawn: drawn.drawn };
+  }
+
   function refused(why) {
     const e = el('error');
     e.textContent = why;
@@ -275,12 +325,13 @@
 
   let tuned = null;
 
-  // A request to the server; its answer's state shown when it is another design than the one on screen.
-  // One asked while another is under way waits for it (the last one asked; those between are dropped).
+  // A request to the server; its answer's state shown when it is another design than the one on screen,
+  // with `animated` the hardpoints moved there first. One asked while another is under way waits for it
+  // (the last one asked; those between are dropped).
   let waiting = null;
-  async function ask(method, route, body) {
+  async function ask(method, route, body, animated) {
     if (busy) {
-      waiting = [method, route, body];
+      waiting = [method, route, body, animated];
       el('status').textContent = 'solving… (then the next change)';
       return null;
     }
@@ -299,6 +350,10 @@
       // How a tune ended, said beside the status while its design is on screen.
       if (answer.tuned && answer.state) tuned = { version: answer.state.version, said: answer.tuned };
       if (answer.state && (!current || answer.state.version !== current.version)) {
+        if (animated && current) {
+          el('status').textContent = 'moving the points…';
+          await views.animate(current, answer.state, 500);
+        }
         previous = current;
         show(answer.state);
       } else if (current) {
@@ -321,6 +376,23 @@
     }
   }
 
+  // A hardpoint dragged in a projection to `value` (m, on the 0.1 mm grid): the edit typing sends.
+  function dragged(pointer, value) {
+    report.edits += 1;
+    report.dragged = { pointer, value };
+    ask('POST', 'edit', { pointer, value });
+  }
+
+  const views = window.elastokinLiveViews(el('projections'), {
+    edit: dragged,
+    select: guide,
+    metres,
+    millimetres,
+    report,
+    publish,
+    legend: el('arrows-legend'),
+  });
+
   function edit(pointer, input) {
     const value = metres(input.value);
     if (!isFinite(value)) {
@@ -337,8 +409,9 @@
     const answer = await ask('POST', 'save');
     if (answer && answer.saved) el('status').textContent += ' — saved to ' + answer.saved;
   });
-  // The TARGETS file's free numbers tuned from this design, one design more; how the tune ended said.
-  el('tune').addEventListener('click', () => ask('POST', 'tune'));
+  // The TARGETS file's free numbers tuned from this design, one design more, the points it moves moved on
+  // screen to where it puts them; how the tune ended said.
+  el('tune').addEventListener('click', () => ask('POST', 'tune', null, true));
   // Another tab may have moved the design: asked again whenever this one is shown.
   document.addEventListener('visibilitychange', () => {
     if (document.visibilityState === 'visible') ask('GET', 'state');

@@ -216,7 +216,8 @@ impl Live {
     }
 
     /// The current design with `status`, and the error when a change was refused; each chart as the page
-    /// draws it, and the geometry's three projections as SVG (when the analyses recorded the parts' poses).
+    /// draws it, and, when the analyses recorded the parts' poses, the geometry's three projections as SVG
+    /// with where each puts a point (the page's hardpoints and arrows go there) and the 3D view's data.
     fn state(&self, status: u16, error: Option<String>) -> Response {
         self.state_noted(status, error, None)
     }
@@ -233,7 +234,10 @@ impl Live {
                 let mut projections = String::new();
                 if crate::view::write_projections(&mut projections, report).is_ok() {
                     body["state"]["projections"] = Value::String(projections);
+                    body["state"]["projection_frames"] =
+                        crate::view::projection_frames(report).iter().map(|f| f.json()).collect();
                 }
+                body["state"]["view3d"] = crate::view::viewer_data(report);
                 if let Some(error) = error {
                     body["error"] = Value::String(error);
                 }

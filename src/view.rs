@@ -155,6 +155,14 @@ struct Layer<'a> {
     colour: Option<String>,
 }
 
+/// The layers of the projections of a motion: its design row drawn over its extremes ghosted (`rows`:
+/// design, first, last).
+fn design_layers(motion: &Motion, rows: [usize; 3]) -> [Layer<'_>; 3] {
+    let [design, first, last] = rows;
+    let layer = |row, ghost| Layer { motion, row, ghost, colour: None };
+    [layer(first, true), layer(last, true), layer(design, false)]
+}
+
 /// One projection of the model at its design row, its extremes ghosted, as an inline SVG.
 fn projection_svg(
     out: &mut String,
@@ -163,10 +171,55 @@ fn projection_svg(
     projection: Projection,
     construction: Option<&Construction>,
 ) -> std::fmt::Result {
-    let [design, first, last] = rows;
-    let layer = |row, ghost| Layer { motion, row, ghost, colour: None };
-    let layers = [layer(first, true), layer(last, true), layer(design, false)];
+    let layers = design_layers(motion, rows);
     layers_svg(out, &layers, projection, &format!("view-{}", projection.name()), construction)
+}
+
+/// Where one of the projections [`write_projections`] draws puts a global point on its SVG (px of its
+/// viewBox): x is `origin[0] + scale · sign · p[axis]` of its `horizontal` (axis, sign), y is
+/// `origin[1] − scale · sign · p[axis]` of its `vertical` (the SVG's y runs down).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProjectionFrame {
+    /// The id of the projection's figure (`view-front`, `view-side`, `view-plan`).
+    pub id: String,
+    /// The global coordinate (0 x, 1 y, 2 z) the page's x runs along, and its sign.
+    pub horizontal: (usize, f64),
+    /// The global coordinate the page's y runs up along, and its sign.
+    pub vertical: (usize, f64),
+    /// Where the global origin lands (px).
+    pub origin: [f64; 2],
+    /// Pixels per metre.
+    pub scale: f64,
+}
+
+impl ProjectionFrame {
+    /// As JSON: `{"id", "horizontal": [axis, sign], "vertical": [axis, sign], "origin": [x, y], "scale"}`.
+    pub fn json(&self) -> Value {
+        json!({ "id": self.id, "horizontal": self.horizontal, "vertical": self.vertical, "origin": self.origin,
+                "scale": self.scale })
+    }
+}
+
+/// The frame of each projection [`write_projections`] draws of `report`, in its order: what a page needs
+/// to put its own marks on them. Empty when it draws none.
+pub fn projection_frames(report: &KcReport) -> Vec<ProjectionFrame> {
+    let Some((_, motion, rows)) = projected(report) else { return Vec::new() };
+    let layers = design_layers(motion, rows);
+    let strokes: Vec<Vec<Stroke>> = layers.iter().map(|l| l.motion.drawing.strokes()).collect();
+    Projection::ALL
+        .into_iter()
+        .filter_map(|projection| {
+            let canvas = Canvas::over(&layers, &strokes, projection)?;
+            let [(a, sa, _), (b, sb, _)] = projection.axes();
+            Some(ProjectionFrame {
+                id: format!("view-{}", projection.name()),
+                horizontal: (a, sa),
+                vertical: (b, sb),
+                origin: [canvas.x(0.0), canvas.y(0.0)],
+                scale: canvas.scale,
+            })
+        })
+        .collect()
 }
 
 /// `layers` in one projection, as an inline SVG in a figure of id `id`, the grid over all of them.
@@ -491,15 +544,19 @@ pub fn write_geometry(out: &mut String, report: &KcReport) -> std::fmt::Result {
     writeln!(out, "</section>")
 }
 
+/// The analysis the projections show, its motion, and the rows they draw: its design row, its first and
+/// its last. `None` when no analysis has a motion with a row.
+fn projected(report: &KcReport) -> Option<(&AnalysisReport, &Motion, [usize; 3])> {
+    let (a, motion) = shown_analysis(report)?;
+    let last = motion.frames.len().checked_sub(1)?;
+    Some((a, motion, [a.design_row(), 0, last]))
+}
+
 /// The three projections of the analysis shown (parallel travel where there is one), with what is drawn
 /// and ghosted said above them and their legend below: the geometry section without the 3D view, which
 /// `elastokin live`'s page draws anew with every design. Nothing when no analysis has a motion.
 pub fn write_projections(out: &mut String, report: &KcReport) -> std::fmt::Result {
-    let Some((a, motion)) = shown_analysis(report) else { return Ok(()) };
-    if motion.frames.is_empty() {
-        return Ok(());
-    }
-    let rows = [a.design_row(), 0, motion.frames.len() - 1];
+    let Some((a, motion, rows)) = projected(report) else { return Ok(()) };
     writeln!(
         out,
         "<p class=\"note\">{}: {} drawn, {} and {} ghosted</p>",
@@ -642,8 +699,10 @@ pub fn viewer_data(report: &KcReport) -> Value {
             "envelope": ENVELOPE, "packaging": PACKAGING, "deflection_scale": DEFLECTION_SCALE })
 }
 
-/// The viewer's script.
-const VIEWER_SCRIPT: &str = include_str!("view3d.js");
+/// The 3D view's script: it draws the data of `<script id="view3d-data">` when the page has one, and
+/// `window.elastokinView3d.show(data)` draws new data in the same view (`elastokin live`'s page, at every
+/// design).
+pub const VIEWER_SCRIPT: &str = include_str!("view3d.js");
 
 /// JSON put inside a script element: every `<`, `>` and `&` written as a `\u` escape, so that no text of
 /// the data (a part's name) can close the element or the page's CDATA section.
@@ -654,6 +713,18 @@ fn script_safe(json: &str) -> String {
 /// The 3D view: its canvas and controls, its data, and its script.
 fn write_viewer(out: &mut String, report: &KcReport) -> std::fmt::Result {
     let data = viewer_data(report);
+    write_viewer_figure(
+        out,
+        "3D view: drag to turn, wheel to zoom; the slider moves the parts through the analysis as solved \
+         (scripts off, the projections above still show the geometry)",
+    )?;
+    writeln!(out, "<script type=\"application/json\" id=\"view3d-data\">{}</script>", script_safe(&data.to_string()))?;
+    writeln!(out, "<script>//<![CDATA[\n{VIEWER_SCRIPT}\n//]]></script>")
+}
+
+/// The 3D view's figure, its data and script aside: its controls, its canvas, `caption`, and the
+/// `<output id="view3d-state">` its script reports what it drew in.
+pub fn write_viewer_figure(out: &mut String, caption: &str) -> std::fmt::Result {
     writeln!(out, "<figure class=\"view3d\" id=\"view-3d\">")?;
     writeln!(out, "<div class=\"view3d-controls\">")?;
     writeln!(out, "<label>analysis <select id=\"view3d-analysis\"></select></label>")?;
@@ -665,15 +736,9 @@ fn write_viewer(out: &mut String, report: &KcReport) -> std::fmt::Result {
     }
     writeln!(out, "</div>")?;
     writeln!(out, "<canvas id=\"view3d-canvas\" width=\"900\" height=\"560\"></canvas>")?;
-    writeln!(
-        out,
-        "<figcaption>3D view: drag to turn, wheel to zoom; the slider moves the parts through the analysis as \
-         solved (scripts off, the projections above still show the geometry)</figcaption>"
-    )?;
+    writeln!(out, "<figcaption>{}</figcaption>", text(caption))?;
     writeln!(out, "<output id=\"view3d-state\" hidden=\"hidden\"></output>")?;
-    writeln!(out, "</figure>")?;
-    writeln!(out, "<script type=\"application/json\" id=\"view3d-data\">{}</script>", script_safe(&data.to_string()))?;
-    writeln!(out, "<script>//<![CDATA[\n{VIEWER_SCRIPT}\n//]]></script>")
+    writeln!(out, "</figure>")
 }
 
 /// The geometry of designs compared, overlaid in each projection: each model at its design row, in its

@@ -1,6 +1,8 @@
 // The report's 3D view (see src/view.rs): places each stroke's and dot's anchored points by the poses of
 // the row shown, projects them orthographically and draws them on a 2D canvas. Drag turns the view,
-// the wheel zooms, the slider and play move through the analysis's rows.
+// the wheel zooms, the slider and play move through the analysis's rows. It draws the page's
+// <script id="view3d-data"> when there is one; window.elastokinView3d.show(data) draws new data in the
+// same view, its controls and listeners set up once.
 (function () {
   'use strict';
   var state = document.getElementById('view3d-state');
@@ -15,7 +17,9 @@
     report();
   });
 
-  var data = JSON.parse(document.getElementById('view3d-data').textContent);
+  var data = null;
+  // How many times data was given to the view.
+  var shows = 0;
   var canvas = document.getElementById('view3d-canvas');
   var ctx = canvas.getContext('2d');
   var select = document.getElementById('view3d-analysis');
@@ -28,7 +32,7 @@
     side: [Math.PI / 2, 0],
     plan: [Math.PI, Math.PI / 2]
   };
-  var camera = { yaw: VIEWS['3d'][0], pitch: VIEWS['3d'][1], zoom: 1 };
+  var camera = { yaw: VIEWS['3d'][0], pitch: VIEWS['3d'][1], zoom: 1, view: '3d' };
   var shown = 0;
   var row = 0;
   var timer = null;
@@ -108,6 +112,9 @@
   }
 
   function draw() {
+    if (!data || !data.analyses.length) {
+      return;
+    }
     var a = data.analyses[shown];
     var d = data.drawings[a.drawing];
     var poses = a.frames[row];
@@ -187,7 +194,8 @@
       drawn: drawn,
       construction: construction,
       envelope: envelope,
-      view: camera.view || 'custom'
+      view: camera.view || 'custom',
+      shows: shows
     };
     report();
   }
@@ -335,17 +343,43 @@
     draw();
   }
 
-  if (!data.analyses.length) {
-    summary = { analyses: 0 };
-    report();
-    return;
+  // `next` drawn in the view as it stands: the analysis `wanted` (by name), else the one shown, else the
+  // first; the row and the camera kept where the analysis is the one shown before, so that a design
+  // changed shows as parts moved in a still view.
+  function show(next, wanted) {
+    var before = data && data.analyses.length ? data.analyses[shown].name : null;
+    data = next;
+    shows++;
+    select.replaceChildren();
+    if (!data.analyses.length) {
+      summary = { analyses: 0, shows: shows };
+      report();
+      return;
+    }
+    data.analyses.forEach(function (a, k) {
+      var option = document.createElement('option');
+      option.value = String(k);
+      option.textContent = a.name;
+      select.appendChild(option);
+    });
+    var named = function (name) {
+      return data.analyses.findIndex(function (a) { return a.name === name; });
+    };
+    var k = named(wanted || before);
+    select.value = String(Math.max(k, 0));
+    if (k < 0 || !fit || wanted) {
+      choose(Math.max(k, 0));
+      return;
+    }
+    shown = k;
+    var last = data.analyses[k].frames.length - 1;
+    slider.max = String(last);
+    row = Math.min(row, last);
+    slider.value = String(row);
+    draw();
   }
-  data.analyses.forEach(function (a, k) {
-    var option = document.createElement('option');
-    option.value = String(k);
-    option.textContent = a.name;
-    select.appendChild(option);
-  });
+  window.elastokinView3d = { show: show };
+
   select.addEventListener('change', function () { choose(Number(select.value)); });
   slider.addEventListener('input', function () {
     row = Number(slider.value);
@@ -360,6 +394,9 @@
     }
     play.textContent = 'pause';
     timer = setInterval(function () {
+      if (!data || !data.analyses.length) {
+        return;
+      }
       var last = data.analyses[shown].frames.length - 1;
       if (row + direction > last || row + direction < 0) {
         direction = -direction;
@@ -394,17 +431,15 @@
     draw();
   }, { passive: false });
   window.addEventListener('resize', draw);
-  // A view and an analysis asked for in the address (report.html?view=side&analysis=steering) are the
-  // ones shown first.
-  var asked = /[?&]view=([a-z0-9]+)/.exec(window.location.search);
-  var named = /[?&]analysis=([a-z0-9-]+)/.exec(window.location.search);
-  var first = named ? data.analyses.findIndex(function (a) { return a.name === named[1]; }) : 0;
-  select.value = String(Math.max(first, 0));
-  choose(Math.max(first, 0));
-  if (asked) {
-    setView(asked[1]);
-  } else {
-    camera.view = '3d';
-    draw();
+  // The report's data, in the page; a view and an analysis asked for in the address
+  // (report.html?view=side&analysis=steering) are the ones shown first.
+  var given = document.getElementById('view3d-data');
+  if (given) {
+    var named = /[?&]analysis=([a-z0-9-]+)/.exec(window.location.search);
+    show(JSON.parse(given.textContent), named ? named[1] : null);
+    var asked = /[?&]view=([a-z0-9]+)/.exec(window.location.search);
+    if (asked) {
+      setView(asked[1]);
+    }
   }
 })();

@@ -4,6 +4,7 @@
 use elastokin::html::{report_html, report_html_with, Extras, Judged, TABLE_ROW_LIMIT};
 use elastokin::suspensions::design::judge::judge;
 use elastokin::suspensions::design::targets::{read_targets_as, Reading};
+use elastokin::suspensions::drawing::Spot;
 use elastokin::suspensions::kc::{self, Cell, Chart, Figure, KcReport, Settings, Table, Warning};
 use elastokin::suspensions::SuspensionFile;
 use serde_json::json;
@@ -434,6 +435,44 @@ fn geometry_views_are_inline_svg_and_the_3d_view_is_one_script_that_no_name_can_
         .filter_map(|s| s["name"].as_str())
         .collect();
     assert!(names.contains(&hostile), "{names:?}");
+}
+
+/// The frame given for each projection (what `elastokin live`'s page places its hardpoints and arrows by)
+/// puts every joint of the drawing where the projection's SVG draws it, to the SVG's tenth of a pixel.
+#[test]
+fn each_projections_frame_puts_a_point_where_its_svg_draws_it() {
+    let report = suite_with_motion();
+    let mut svg = String::new();
+    elastokin::view::write_projections(&mut svg, report).unwrap();
+    let wrapped = format!("<div>{svg}</div>");
+    let doc = roxmltree::Document::parse(&wrapped).unwrap();
+    let travel = report.analyses.iter().find(|a| a.analysis == kc::Analysis::ParallelTravel).unwrap();
+    let motion = travel.motion.as_ref().unwrap();
+    let poses = &motion.frames[travel.design_row()];
+    let frames = elastokin::view::projection_frames(report);
+    assert_eq!(frames.iter().map(|f| f.id.as_str()).collect::<Vec<_>>(), ["view-front", "view-side", "view-plan"]);
+    for frame in &frames {
+        let figure = doc.descendants().find(|n| n.attribute("id") == Some(&*frame.id)).unwrap();
+        let joints: Vec<_> = motion.drawing.dots().into_iter().filter(|d| d.spot == Spot::Joint).collect();
+        assert!(joints.len() >= 3, "{joints:?}");
+        for dot in joints {
+            let p = dot.at.placed(poses);
+            let ((a, sa), (b, sb)) = (frame.horizontal, frame.vertical);
+            let placed = [frame.origin[0] + frame.scale * sa * p[a], frame.origin[1] - frame.scale * sb * p[b]];
+            // Where the SVG draws the joints of that name (a part may have more than one).
+            let drawn: Vec<[f64; 2]> = figure
+                .descendants()
+                .filter(|n| {
+                    n.has_tag_name("circle")
+                        && n.children().any(|t| t.has_tag_name("title") && t.text() == Some(dot.name.as_str()))
+                })
+                .map(|n| ["cx", "cy"].map(|a| n.attribute(a).unwrap().parse().unwrap()))
+                .collect();
+            // The SVG writes a tenth of a pixel: half of it, and the rounding of the sum.
+            let on = |d: &[f64; 2]| (0..2).all(|k| (placed[k] - d[k]).abs() <= 0.05 + 1e-9);
+            assert!(drawn.iter().any(on), "{} {}: {placed:?}, drawn at {drawn:?}", frame.id, dot.name);
+        }
+    }
 }
 
 /// Each analysis's note says what it walked in words that read: the static load is one equilibrium at the

@@ -84,6 +84,9 @@ figure.view3d canvas { width: 100%; height: 560px; display: block; border: 1px s
 #figures td.value, #figures td.quiet, #figures td.error { white-space: nowrap; }
 #hardpoints button.point { font: inherit; border: none; background: none; padding: 0; color: #0969da; cursor: pointer; }
 #hardpoints tr.selected td { background: #ddf4ff; }
+#figures tr[data-key] { cursor: pointer; }
+#figures tr.chosen td { background: #fbefff; }
+#projections circle.handle { cursor: grab; touch-action: none; }
 @media print {
   @page { size: A4 portrait; margin: 12mm; }
   body { max-width: none; padding: 0; font-size: 10pt; }
