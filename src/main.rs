@@ -14,8 +14,9 @@
 //!
 //! What the command depends on, and why: clap parses the arguments (help, `--version`, suggestions for
 //! mistyped names, errors that name the argument); csv writes the tables (quoting done right); sha2 gives
-//! each result the model file's SHA-256; indicatif draws progress bars on a terminal; tiny_http serves
-//! `live` (its choice is told in `command/live.rs`).
+//! each result the model file's SHA-256; indicatif draws progress bars on a terminal; ctrlc hears Ctrl-C
+//! (a run's staging removed, `live`'s server stopped: the library's `elastokin::live::LiveServer`, on
+//! tiny_http).
 
 use clap::{Parser, Subcommand};
 use command::{batch, check, compare, expand, import, live, merge, run, sensitivity, tolerance, tune, vehicle};

@@ -1,12 +1,16 @@
 //! `elastokin live` over real HTTP on the loopback: who is refused (no token, a wrong one, a foreign Origin
 //! or Host, a body over the limit), an edit's figures against `elastokin run` on the file edited by hand,
 //! undo, two clients seeing one design, a save writing the file with the moved number alone rewritten, and
-//! Ctrl-C stopping the server with nothing left behind; and the page in headless Chromium, a number typed
-//! and a hardpoint dragged as a user does.
+//! Ctrl-C stopping the server with nothing left behind; the page in headless Chromium, a number typed and a
+//! hardpoint dragged as a user does. The library's server (`elastokin::live::LiveServer`, which the command
+//! and Python start) started and stopped in the test's own process, and its page shown in another origin's
+//! frame when, and only when, that origin is given as a frame ancestor.
 
+use elastokin::live::{FrameAncestors, LiveServer, Served};
+use elastokin::suspensions::kc::Analysis;
 use serde_json::Value;
 use std::io::{BufRead, BufReader, Read, Write};
-use std::net::TcpStream;
+use std::net::{SocketAddr, TcpListener, TcpStream};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
@@ -267,6 +271,9 @@ struct Browser {
     next: u64,
     /// What each page logged as an error or warning, and every exception it threw, by its session.
     console: Vec<(String, String)>,
+    /// The frames of another origin attached to a page (`Target.setAutoAttach`): the page's session, the
+    /// frame's session and its address.
+    frames: Vec<(String, String, String)>,
 }
 
 impl Browser {
@@ -299,7 +306,7 @@ impl Browser {
             .spawn()
             .unwrap();
         let (to, from) = (child.stdin.take().unwrap(), BufReader::new(child.stdout.take().unwrap()));
-        Some(Browser { child, to, from, profile, next: 0, console: Vec::new() })
+        Some(Browser { child, to, from, profile, next: 0, console: Vec::new(), frames: Vec::new() })
     }
 
     /// Sends `method` with `params` (to the page of `session`, or the browser) and returns its result; the
@@ -324,6 +331,14 @@ impl Browser {
             }
             let from = answer["sessionId"].as_str().unwrap_or("").to_string();
             let params = &answer["params"];
+            if answer["method"] == "Target.attachedToTarget" {
+                let (session, url) = (&params["sessionId"], &params["targetInfo"]["url"]);
+                self.frames.push((
+                    from.clone(),
+                    session.as_str().unwrap_or("").into(),
+                    url.as_str().unwrap_or("").into(),
+                ));
+            }
             let said = match answer["method"].as_str() {
                 Some("Runtime.consoleAPICalled") if matches!(params["type"].as_str(), Some("error" | "warning")) => {
                     Some(params["args"].to_string())
@@ -340,6 +355,12 @@ impl Browser {
 
     /// A new page at `url`, attached: its session.
     fn open(&mut self, url: &str) -> String {
+        self.open_with_frames(url, false)
+    }
+
+    /// A new page at `url`, attached, and with `frames` each frame of another origin it shows attached too
+    /// (listed in `frames` once loaded): the page's session.
+    fn open_with_frames(&mut self, url: &str, frames: bool) -> String {
         let target = self.send(None, "Target.createTarget", serde_json::json!({ "url": "about:blank" }));
         let attached = self.send(
             None,
@@ -349,6 +370,10 @@ impl Browser {
         let session = attached["sessionId"].as_str().unwrap().to_string();
         for domain in ["Runtime.enable", "Log.enable", "Page.enable"] {
             self.send(Some(&session), domain, serde_json::json!({}));
+        }
+        if frames {
+            let attach = serde_json::json!({ "autoAttach": true, "waitForDebuggerOnStart": false, "flatten": true });
+            self.send(Some(&session), "Target.setAutoAttach", attach);
         }
         self.send(Some(&session), "Page.navigate", serde_json::json!({ "url": url }));
         session
@@ -822,4 +847,202 @@ fn bad_files_are_refused_by_name_before_the_server_listens() {
         assert!(said.contains(named) && !said.contains("panicked"), "{args:?}: {said}");
         assert!(!String::from_utf8_lossy(&o.stdout).contains("http://"), "{args:?}: nothing served");
     }
+}
+
+/// A copy of the MacPherson example in a directory of its own, opened as the library serves it: parallel
+/// travel in 8 steps.
+fn served_copy(name: &str) -> (Served, PathBuf) {
+    let dir = std::env::temp_dir().join(format!("elastokin-live-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let model = dir.join("macpherson.json");
+    std::fs::copy(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/macpherson.json"), &model).unwrap();
+    (Served::open(&model, &[Analysis::ParallelTravel], 8).unwrap(), dir)
+}
+
+/// A request as written to `at`, on a connection of its own: the status, the head (in lower case) and the
+/// body as text.
+fn request(at: SocketAddr, method: &str, path: &str, headers: &[(&str, &str)], body: &str) -> (u16, String, String) {
+    let mut stream = TcpStream::connect(at).unwrap();
+    stream.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
+    let mut head = format!("{method} {path} HTTP/1.1\r\nContent-Length: {}\r\n", body.len());
+    for (name, value) in headers {
+        head.push_str(&format!("{name}: {value}\r\n"));
+    }
+    stream.write_all(format!("{head}\r\n{body}").as_bytes()).unwrap();
+    // Read as a browser reads it: the head, then as many bytes as its Content-Length says.
+    let mut bytes = Vec::new();
+    let mut chunk = [0u8; 4096];
+    let split = loop {
+        let n = stream.read(&mut chunk).unwrap();
+        assert!(n > 0, "the connection closed before the answer: {}", String::from_utf8_lossy(&bytes));
+        bytes.extend_from_slice(&chunk[..n]);
+        if let Some(at) = bytes.windows(4).position(|w| w == b"\r\n\r\n") {
+            break at;
+        }
+    };
+    let head = String::from_utf8_lossy(&bytes[..split]).to_ascii_lowercase();
+    let length: usize = head
+        .lines()
+        .find_map(|l| l.strip_prefix("content-length: "))
+        .and_then(|l| l.trim().parse().ok())
+        .unwrap_or_else(|| panic!("no length: {head}"));
+    while bytes.len() < split + 4 + length {
+        let n = stream.read(&mut chunk).unwrap();
+        assert!(n > 0, "the answer was cut short");
+        bytes.extend_from_slice(&chunk[..n]);
+    }
+    let body = String::from_utf8_lossy(&bytes[split + 4..]).into_owned();
+    let status = head.split(' ').nth(1).and_then(|s| s.parse().ok()).unwrap_or_else(|| panic!("{head}"));
+    (status, head, body)
+}
+
+/// The library's server in this process: started on any free port, serving its token's requests (each on
+/// a connection it closes), refusing others; stopped, its thread ended and its port free at once, however
+/// it is stopped: by `stop`, by a stopper from another thread, or by being dropped.
+#[test]
+fn the_library_server_starts_on_a_free_port_serves_and_stops_leaving_its_port_free() {
+    let (served, dir) = served_copy("library");
+    let model = served.model.clone();
+    let any = "127.0.0.1:0".parse().unwrap();
+    let mut server = LiveServer::start(served, any, FrameAncestors::none()).unwrap();
+    let at = server.bound();
+    assert_ne!(at.port(), 0);
+    let address = server.address().to_string();
+    let token = address.trim_end_matches('/').rsplit('/').next().unwrap().to_string();
+    assert_eq!(address, format!("http://127.0.0.1:{}/{token}/", at.port()));
+    let host = at.to_string();
+    let (status, head, body) = request(at, "GET", &format!("/{token}/state"), &[("Host", &host)], "");
+    assert_eq!(status, 200, "{body}");
+    assert!(head.contains("\r\nconnection: close"), "{head}");
+    assert!(head.contains("\r\ncontent-security-policy: frame-ancestors 'self'\r\n"), "{head}");
+    assert!(head.contains("\r\nx-frame-options: sameorigin"), "{head}");
+    let state: Value = serde_json::from_str(&body).unwrap();
+    assert_eq!(state["state"]["version"].as_u64(), Some(1));
+    assert_eq!(request(at, "GET", "/state", &[("Host", &host)], "").0, 403);
+    let edit = format!(r#"{{"pointer": "{RATE}", "value": 26000}}"#);
+    let (status, _, _) = request(at, "POST", &format!("/{token}/edit"), &[("Host", &host)], &edit);
+    assert_eq!(status, 200);
+
+    let live = server.stop().expect("the design as the server left it");
+    assert!(live.unsaved(), "the edit was not saved");
+    assert_eq!(live.design().version(), 2);
+    assert!(TcpStream::connect(at).is_err(), "nothing listens at {at} once stopped");
+    drop(TcpListener::bind(at).expect("the port is free once stopped"));
+    assert!(server.stop().is_none(), "a second stop has nothing to stop");
+    assert_eq!(std::fs::read_to_string(&model).unwrap(), include_str!("../examples/macpherson.json"));
+
+    // Stopped from another thread, as Ctrl-C stops the command, and waited for.
+    let (served, _) = served_copy("library");
+    let mut server = LiveServer::start(served, any, FrameAncestors::none()).unwrap();
+    let (at, stopper) = (server.bound(), server.stopper());
+    std::thread::spawn(move || stopper.stop()).join().unwrap();
+    assert!(server.wait().is_some());
+    assert!(TcpStream::connect(at).is_err(), "nothing listens at {at} once stopped by a stopper");
+
+    // Dropped.
+    let (served, _) = served_copy("library");
+    let server = LiveServer::start(served, any, FrameAncestors::none()).unwrap();
+    let at = server.bound();
+    drop(server);
+    assert!(TcpStream::connect(at).is_err(), "nothing listens at {at} once dropped");
+    drop(TcpListener::bind(at).expect("the port is free once dropped"));
+
+    // A port taken is refused by name.
+    let taken = TcpListener::bind("127.0.0.1:0").unwrap();
+    let (served, _) = served_copy("library");
+    let refused = LiveServer::start(served, taken.local_addr().unwrap(), FrameAncestors::none()).unwrap_err();
+    let said = refused.to_string();
+    assert!(
+        said.starts_with(&format!("cannot listen on 127.0.0.1 port {}", taken.local_addr().unwrap().port())),
+        "{said}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A page of another origin (a notebook's, here `http://localhost:PORT`) that shows the live page in a
+/// frame, served by a thread of the test to every request.
+fn framing_page(live: &str) -> (SocketAddr, String) {
+    let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+    let at = listener.local_addr().unwrap();
+    let page = format!(
+        "<!DOCTYPE html><html><head><title>notebook</title><link rel=\"icon\" href=\"data:,\"></head><body>\
+         <iframe src=\"{live}\" width=\"1200\" height=\"800\"></iframe></body></html>"
+    );
+    std::thread::spawn(move || {
+        for stream in listener.incoming().flatten() {
+            let mut stream = stream;
+            let mut asked = [0u8; 4096];
+            let _ = stream.read(&mut asked);
+            let answer = format!(
+                "HTTP/1.1 200 OK\r\nContent-Type: text/html\r\nContent-Length: {}\r\nConnection: close\r\n\r\n{page}",
+                page.len()
+            );
+            let _ = stream.write_all(answer.as_bytes());
+        }
+    });
+    (at, format!("http://localhost:{}/", at.port()))
+}
+
+/// The live page in a notebook's frame, in Chromium: given the notebook's origin as a frame ancestor
+/// (`http://localhost:*`, Python's default), the frame shows the design, every chart drawn, and an edit
+/// posted by the framed page is made, while one posted by the notebook's page is refused; without it (the
+/// command's server), the browser refuses to show the page in the frame.
+#[test]
+fn the_page_is_framed_by_a_notebook_given_as_a_frame_ancestor_and_by_no_other() {
+    let (served, dir) = served_copy("framed");
+    let notebook = FrameAncestors::new(["http://localhost:*", "http://127.0.0.1:*"]).unwrap();
+    let server = LiveServer::start(served, "127.0.0.1:0".parse().unwrap(), notebook).unwrap();
+    let Some(mut browser) = Browser::start(dir.with_extension("profile")) else { return };
+    let (_, parent) = framing_page(server.address());
+    let page = browser.open_with_frames(&parent, true);
+    let start = Instant::now();
+    let frame = loop {
+        // The page's one frame, attached before it navigated.
+        if let Some((_, frame, _)) = browser.frames.iter().find(|(p, ..)| *p == page) {
+            break frame.clone();
+        }
+        assert!(start.elapsed() < Duration::from_secs(20), "no frame of the live page attached: {:?}", browser.frames);
+        browser.evaluate(&page, "true");
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    let shown = browser
+        .live_state(&frame, |s| s["version"] == 1 && s["charts"].as_u64() > Some(0) && s["drawn"] == s["charts"]);
+    assert_eq!(shown["errors"], serde_json::json!([]), "{shown}");
+    // An edit the framed page posts comes from its own origin, with the token: made.
+    let post = format!(
+        "fetch('edit', {{ method: 'POST', body: JSON.stringify({{ pointer: '{RATE}', value: 26000 }}) }}).then(r => r.status)"
+    );
+    assert_eq!(browser.evaluate(&frame, &post), 200);
+    // The notebook's page posts the same, knowing the address: another origin, refused.
+    let foreign = format!(
+        "fetch('{}edit', {{ method: 'POST', mode: 'no-cors', body: JSON.stringify({{ pointer: '{RATE}', value: 1000 }}) }}).then(() => 'sent')",
+        server.address()
+    );
+    assert_eq!(browser.evaluate(&page, &foreign), "sent");
+    let state = browser
+        .evaluate(&frame, "fetch('state').then(r => r.json()).then(b => [b.state.version, b.state.moved[0].value])");
+    assert_eq!(state, serde_json::json!([2, 26000]), "the framed page's edit alone was made");
+    let refused: Vec<&String> = browser.console.iter().filter(|(s, _)| *s == page).map(|(_, l)| l).collect();
+    assert!(refused.iter().any(|l| l.contains("403")), "the notebook's post is refused: {refused:#?}");
+    assert!(!refused.iter().any(|l| l.contains("frame-ancestors")), "{refused:#?}");
+    drop(server);
+
+    // The command's server: framed by its own origin alone.
+    let (served, _) = served_copy("framed");
+    let server = LiveServer::start(served, "127.0.0.1:0".parse().unwrap(), FrameAncestors::none()).unwrap();
+    let (_, parent) = framing_page(server.address());
+    let page = browser.open_with_frames(&parent, true);
+    let start = Instant::now();
+    loop {
+        let said =
+            browser.console.iter().filter(|(s, _)| *s == page).any(|(_, l)| l.contains("frame-ancestors 'self'"));
+        if said {
+            break;
+        }
+        assert!(start.elapsed() < Duration::from_secs(20), "the frame was not refused: {:#?}", browser.console);
+        browser.evaluate(&page, "true");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -5,7 +5,7 @@
 
 use super::report::{Cell, Judge, Kind, SectionOutput, Table, Target};
 use super::Settings;
-use elastokin::live::{Head, Live, Token};
+use elastokin::live::{Admission, FrameAncestors, Head, Live, Served, Token};
 use elastokin::suspensions::design::live::LiveDesign;
 use elastokin::suspensions::kc;
 
@@ -77,7 +77,8 @@ fn measure(s: &Settings) -> Result<(f64, usize), String> {
     let token = Token::random()?;
     let url = format!("/{}/edit", token.as_str());
     // A save is never asked: the path is only where one would go.
-    let mut live = Live::new(design, text, &path, token, bound);
+    let admission = Admission::new(token, bound, FrameAncestors::none());
+    let mut live = Live::new(Served { design, text, model: path }, admission);
     let head = Head { method: "POST", url: &url, host: Some("127.0.0.1:1"), origin: None, content_length: None };
     let mut moves = 0u32;
     let mut failed = None;

@@ -1,101 +1,62 @@
-//! `elastokin live`'s server as plain functions from a request to its response: who may be served (the
-//! token, the Host and the Origin), the routes, and the design they edit (`design::live`). The command
-//! (`src/command/live.rs`) carries requests between a socket and [`Live::handle`]; everything here is
-//! testable without one.
-//!
-//! Safe by default: every request names the server's token, 128 random bits in hex, as the first segment of
-//! its path, compared in constant time; its Host must be the address the server is bound to (or
-//! `localhost` at its port), which keeps a name that a foreign page rebinds to this machine away; an
-//! Origin, when the browser sends one, must be the server's own, so that no other page open in the browser
-//! can drive it. Anything else is refused with 403, and a body over [`BODY_LIMIT`] with 413.
-//!
-//! Routes, each under `/TOKEN`: `GET /` the page (`html::live_html`); `GET /state` the current design ([`State`]); `POST /edit` with
-//! `{"pointer": "/json/pointer", "value": number}` (SI, as the model file stores it) a new design;
-//! `POST /undo`, `POST /redo`; `POST /save` the model file written where it was read; `POST /guidance`
-//! with `{"point": "/…/hardpoints/NAME"}` every figure's derivatives to that hardpoint's x, y and z;
-//! `POST /tune` the TARGETS file's free numbers tuned from the current design, one design more. A design
-//! refused comes back with the reason and the design kept.
+//! The routes on a design: each request admitted ([`Admission`]) and answered from the design it edits
+//! (`design::live`), the model file read where it was and saved there.
 
+use super::admission::Admission;
+use super::request::{Head, Response, BODY_LIMIT};
 use crate::html::{live_chart_data, live_html};
 use elastokin_suspensions::design::live::{LiveDesign, LiveError};
+use elastokin_suspensions::file::{read_input, InputError};
+use elastokin_suspensions::kc::{self, Analysis, Settings};
 use serde_json::{json, Value};
-use std::net::{IpAddr, SocketAddr};
 use std::path::{Path, PathBuf};
-use subtle::ConstantTimeEq;
 
-/// The largest request body served: an edit is some hundred bytes.
-pub const BODY_LIMIT: usize = 1 << 20;
+/// What a server serves: the design of the model file at `model`, whose text was `text`.
+#[derive(Debug)]
+pub struct Served {
+    /// The design, as edited.
+    pub design: LiveDesign,
+    /// The model file's text as read.
+    pub text: String,
+    /// The model file: the one file a save writes.
+    pub model: PathBuf,
+}
 
-/// The server's token: 128 random bits, in hex.
-#[derive(Debug, Clone)]
-pub struct Token(String);
+/// Why a model file's design is not served: settings an analysis cannot take, a file that cannot be read,
+/// or a model that does not read or build.
+#[derive(Debug, thiserror::Error)]
+pub enum OpenError {
+    /// Settings an analysis cannot take.
+    #[error(transparent)]
+    Settings(#[from] kc::AnalysisError),
+    /// A file that cannot be read.
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// A model that does not read or build.
+    #[error(transparent)]
+    Design(#[from] LiveError),
+}
 
-impl Token {
-    /// A token from the operating system's random source.
-    pub fn random() -> Result<Token, String> {
-        let mut bytes = [0u8; 16];
-        getrandom::fill(&mut bytes).map_err(|e| format!("no random numbers for the server's token: {e}"))?;
-        Ok(Token(bytes.iter().map(|b| format!("{b:02x}")).collect()))
-    }
-
-    /// The token as written in the address.
-    pub fn as_str(&self) -> &str {
-        &self.0
-    }
-
-    /// Whether `given` is the token, compared in constant time (a length differing is no secret).
-    fn is(&self, given: &str) -> bool {
-        bool::from(self.0.as_bytes().ct_eq(given.as_bytes()))
+impl Served {
+    /// The design of the model file at `model` (named as given in messages): its analyses `which` (the
+    /// suite when empty) walked in `steps` load steps on every design, each with the parts' poses at every
+    /// row for the page's projections of the geometry. Settings an analysis cannot take are refused before
+    /// the file is read.
+    pub fn open(model: &Path, which: &[Analysis], steps: usize) -> Result<Served, OpenError> {
+        let settings = Settings { steps, motion: true, ..Settings::default() };
+        for &a in if which.is_empty() { &kc::ALL[..] } else { which } {
+            kc::check_settings(a, &settings)?;
+        }
+        let (_, text) = read_input(model, "MODEL")?;
+        let design = LiveDesign::open(&text, &model.display().to_string(), which, settings)?;
+        Ok(Served { design, text, model: model.to_path_buf() })
     }
 }
 
-/// What the server reads of a request before its body: whether it is served at all is decided on it.
-#[derive(Debug, Clone, Copy)]
-pub struct Head<'a> {
-    /// `GET`, `POST`, …
-    pub method: &'a str,
-    /// The path and query, as sent.
-    pub url: &'a str,
-    /// The Host header.
-    pub host: Option<&'a str>,
-    /// The Origin header.
-    pub origin: Option<&'a str>,
-    /// The Content-Length header, when given.
-    pub content_length: Option<usize>,
-}
-
-/// A response: its status, its content type and its body.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Response {
-    /// The HTTP status.
-    pub status: u16,
-    /// The content type.
-    pub content_type: &'static str,
-    /// The body.
-    pub body: Vec<u8>,
-}
-
-impl Response {
-    fn json(status: u16, body: &Value) -> Response {
-        Response { status, content_type: "application/json", body: body.to_string().into_bytes() }
-    }
-
-    fn refused(status: u16, why: &str) -> Response {
-        Response::json(status, &json!({ "error": why }))
-    }
-
-    /// 413: a body over [`BODY_LIMIT`].
-    pub fn too_large() -> Response {
-        Response::refused(413, &format!("the request's body is over {BODY_LIMIT} bytes: an edit is one number"))
-    }
-}
-
-/// The server: the design, the token, the address it is bound to and the file a save writes.
+/// The server's state: the design, who is served, and the file a save writes.
 #[derive(Debug)]
 pub struct Live {
     design: LiveDesign,
-    token: Token,
-    bound: SocketAddr,
+    admission: Admission,
     model: PathBuf,
     /// The model file's text as the server last read or wrote it: a save refuses to write over other
     /// changes.
@@ -103,21 +64,15 @@ pub struct Live {
 }
 
 impl Live {
-    /// The server of `design`, read from the file at `model` whose text was `text`, with `token`, bound to
-    /// `bound`. A save writes to `model` and nowhere else.
-    pub fn new(design: LiveDesign, text: String, model: &Path, token: Token, bound: SocketAddr) -> Live {
-        Live { design, token, bound, model: model.to_path_buf(), on_disk: text }
+    /// The server of `served`, admitting as `admission` says. A save writes to the model file and nowhere
+    /// else.
+    pub fn new(served: Served, admission: Admission) -> Live {
+        Live { design: served.design, admission, model: served.model, on_disk: served.text }
     }
 
-    /// The page's address, token included.
-    pub fn address(&self) -> String {
-        let host = match self.bound.ip() {
-            ip if ip.is_unspecified() && ip.is_ipv4() => "127.0.0.1".to_string(),
-            ip if ip.is_unspecified() => "[::1]".to_string(),
-            IpAddr::V6(ip) => format!("[{ip}]"),
-            IpAddr::V4(ip) => ip.to_string(),
-        };
-        format!("http://{host}:{}/{}/", self.bound.port(), self.token.as_str())
+    /// Who is served.
+    pub fn admission(&self) -> &Admission {
+        &self.admission
     }
 
     /// The design served.
@@ -130,58 +85,15 @@ impl Live {
         self.design.text().map_or(true, |text| text != self.on_disk)
     }
 
-    /// Whether a request with `head` is served at all: refused with 403 unless its path starts with the
-    /// token, its Host is this server's and its Origin, when sent, is this server's; with 413 when it says
-    /// its body is over [`BODY_LIMIT`]. Decided before the body is read.
-    pub fn admit(&self, head: &Head) -> Result<(), Response> {
-        let path = head.url.split(['?', '#']).next().unwrap_or("");
-        let first = path.strip_prefix('/').and_then(|p| p.split('/').next()).unwrap_or("");
-        if !self.token.is(first) {
-            return Err(Response::refused(403, "the address lacks the server's token: use the address it printed"));
-        }
-        let Some(host) = head.host.filter(|h| self.is_own_host(h)) else {
-            return Err(Response::refused(403, "the request's Host is not this server's address"));
-        };
-        if let Some(origin) = head.origin {
-            if !origin.eq_ignore_ascii_case(&format!("http://{host}")) {
-                return Err(Response::refused(403, "the request comes from another page than the server's own"));
-            }
-        }
-        if head.content_length.is_some_and(|n| n > BODY_LIMIT) {
-            return Err(Response::too_large());
-        }
-        Ok(())
-    }
-
-    /// Whether `host` (a Host header: a name or address and the port) names this server: its port, and
-    /// `localhost`, or the address it is bound to (any literal address of this machine when bound to all of
-    /// them). A name other than `localhost` is refused: a foreign page could have it point here.
-    fn is_own_host(&self, host: &str) -> bool {
-        let Some((name, port)) = host.rsplit_once(':') else { return false };
-        if port != self.bound.port().to_string() {
-            return false;
-        }
-        if name.eq_ignore_ascii_case("localhost") {
-            return self.bound.ip().is_loopback() || self.bound.ip().is_unspecified();
-        }
-        let literal = name.strip_prefix('[').and_then(|n| n.strip_suffix(']')).unwrap_or(name);
-        match literal.parse::<IpAddr>() {
-            Ok(ip) if self.bound.ip().is_unspecified() => ip.is_ipv4() == self.bound.ip().is_ipv4(),
-            Ok(ip) => ip == self.bound.ip(),
-            Err(_) => false,
-        }
-    }
-
-    /// The response to a request with `head` and `body`: admitted ([`Live::admit`]) and routed.
+    /// The response to a request with `head` and `body`: admitted ([`Admission::admit`]) and routed.
     pub fn handle(&mut self, head: &Head, body: &[u8]) -> Response {
-        if let Err(refused) = self.admit(head) {
+        if let Err(refused) = self.admission.admit(head) {
             return refused;
         }
         if body.len() > BODY_LIMIT {
             return Response::too_large();
         }
-        let path = head.url.split(['?', '#']).next().unwrap_or("");
-        let route = path.strip_prefix('/').and_then(|p| p.split_once('/')).map_or("", |(_, r)| r);
+        let route = head.path().strip_prefix('/').and_then(|p| p.split_once('/')).map_or("", |(_, r)| r);
         match (head.method, route) {
             ("GET", "") => Response {
                 status: 200,
@@ -332,65 +244,22 @@ impl Live {
 
 #[cfg(test)]
 mod tests {
+    use super::super::admission::{FrameAncestors, Token};
     use super::*;
-    use elastokin_suspensions::kc::{Analysis, Settings};
 
     fn served(bound: &str) -> Live {
-        let text = include_str!("../examples/macpherson.json");
+        let text = include_str!("../../examples/macpherson.json");
         let settings = Settings { steps: 4, ..Settings::default() };
         let design = LiveDesign::open(text, "macpherson.json", &[Analysis::ParallelTravel], settings).unwrap();
-        Live::new(
-            design,
-            text.into(),
-            Path::new("/nowhere/macpherson.json"),
-            Token::random().unwrap(),
-            bound.parse().unwrap(),
-        )
-    }
-
-    fn head<'a>(url: &'a str, host: &'a str, origin: Option<&'a str>) -> Head<'a> {
-        Head { method: "GET", url, host: Some(host), origin, content_length: None }
-    }
-
-    #[test]
-    fn a_token_is_128_random_bits_in_hex() {
-        let (a, b) = (Token::random().unwrap(), Token::random().unwrap());
-        assert_eq!(a.as_str().len(), 32);
-        assert!(a.as_str().bytes().all(|c| c.is_ascii_hexdigit()));
-        assert_ne!(a.as_str(), b.as_str());
-        assert!(a.is(a.as_str()) && !a.is(b.as_str()) && !a.is(&a.as_str()[..31]) && !a.is(""));
-    }
-
-    #[test]
-    fn only_the_servers_own_host_and_origin_are_served() {
-        let live = served("127.0.0.1:4000");
-        let url = format!("/{}/state", live.token.as_str());
-        let status = |host: &str, origin: Option<&str>| live.admit(&head(&url, host, origin)).err().map(|r| r.status);
-        assert_eq!(status("127.0.0.1:4000", None), None);
-        assert_eq!(status("localhost:4000", Some("http://localhost:4000")), None);
-        assert_eq!(status("127.0.0.1:4000", Some("http://127.0.0.1:4000")), None);
-        assert_eq!(status("127.0.0.1:4001", None), Some(403));
-        assert_eq!(status("evil.example:4000", None), Some(403));
-        assert_eq!(status("127.0.0.2:4000", None), Some(403));
-        assert_eq!(status("127.0.0.1:4000", Some("http://evil.example")), Some(403));
-        assert_eq!(status("127.0.0.1:4000", Some("null")), Some(403));
-        assert_eq!(status("127.0.0.1:4000", Some("http://localhost:4000")), Some(403));
-
-        // Bound to every address: any literal address of the family at the port, never a name but localhost.
-        let all = served("0.0.0.0:4000");
-        let url = format!("/{}/state", all.token.as_str());
-        let status = |host: &str| all.admit(&head(&url, host, None)).err().map(|r| r.status);
-        assert_eq!(status("192.0.2.7:4000"), None);
-        assert_eq!(status("localhost:4000"), None);
-        assert_eq!(status("rebound.example:4000"), Some(403));
-        assert_eq!(status("[::1]:4000"), Some(403));
-        assert_eq!(all.address(), format!("http://127.0.0.1:4000/{}/", all.token.as_str()));
+        let served = Served { design, text: text.into(), model: PathBuf::from("/nowhere/macpherson.json") };
+        let admission = Admission::new(Token::random().unwrap(), bound.parse().unwrap(), FrameAncestors::none());
+        Live::new(served, admission)
     }
 
     #[test]
     fn routes_answer_and_an_oversize_body_is_refused() {
         let mut live = served("127.0.0.1:4000");
-        let token = live.token.as_str().to_string();
+        let token = live.admission().token().as_str().to_string();
         let url = |route: &str| format!("/{token}/{route}");
         let ask = |live: &mut Live, method: &str, route: &str, body: &[u8]| {
             let url = url(route);
