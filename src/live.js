@@ -10,7 +10,6 @@
   const report = { version: 0, figures: 0, charts: 0, drawn: 0, ghosts: 0, inputs: 0, projections: 0, guided: 0, edits: 0, refused: 0, errors: [] };
   let current = null;
   let previous = null;
-  let plots = [];
   let busy = false;
   // The hardpoint whose guidance is shown, and the guidance (of the design of its version).
   let selected = null;
@@ -243,11 +242,13 @@
   }
 
   // Each chart drawn with the previous design's curves, where it had the chart, in grey beneath.
+  // The charts of each design: one whose shape is the drawn one's (the same curves, the previous design's
+  // beneath from the second design on) takes the new numbers in place; any other is drawn anew.
+  let charted = new Map();
   function showCharts(state) {
-    plots.forEach((p) => p.destroy());
-    plots = [];
     const holder = el('charts');
-    holder.replaceChildren();
+    const next = new Map();
+    const order = [];
     let count = 0;
     let drawn = 0;
     let ghosts = 0;
@@ -266,17 +267,38 @@
             });
           });
         }
-        const figure = make('figure', null, 'chart');
-        figure.setAttribute('data-chart', JSON.stringify(data));
-        holder.appendChild(figure);
+        const key = a.name + '\n' + chart.title;
+        let shown = charted.get(key);
+        charted.delete(key);
         try {
-          plots.push(window.elastokinDrawChart(figure));
+          if (!shown || !shown.plot.elastokinShow(data)) {
+            if (shown) shown.plot.destroy();
+            const figure = shown ? shown.figure : make('figure', null, 'chart');
+            figure.replaceChildren();
+            figure.setAttribute('data-chart', JSON.stringify(data));
+            // In the page while drawn: the chart takes its width from it.
+            if (!figure.parentNode) holder.appendChild(figure);
+            shown = { figure, plot: window.elastokinDrawChart(figure) };
+          }
           drawn += 1;
         } catch (e) {
           report.errors.push(chart.title + ': ' + e);
+          if (shown) shown.figure.remove();
+          return;
         }
+        next.set(key, shown);
+        order.push(shown.figure);
       });
     });
+    // Charts of analyses no longer shown.
+    charted.forEach((shown) => {
+      shown.plot.destroy();
+      shown.figure.remove();
+    });
+    charted = next;
+    if (order.some((figure, k) => holder.children[k] !== figure) || holder.children.length !== order.length) {
+      holder.replaceChildren(...order);
+    }
     report.charts = count;
     report.drawn = drawn;
     report.ghosts = ghosts;
