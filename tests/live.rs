@@ -930,7 +930,11 @@ fn the_page_is_framed_by_a_notebook_given_as_a_frame_ancestor_and_by_no_other() 
     let refused: Vec<&String> = browser.console.iter().filter(|(s, _)| *s == page).map(|(_, l)| l).collect();
     assert!(refused.iter().any(|l| l.contains("403")), "the notebook's post is refused: {refused:#?}");
     assert!(!refused.iter().any(|l| l.contains("frame-ancestors")), "{refused:#?}");
+    // Stopped, the server leaves the page nothing to wait on: its next request is refused at once.
     drop(server);
+    let next = "Promise.race([fetch('state').then(() => 'answered', () => 'refused'), \
+                new Promise(r => setTimeout(() => r('still waiting'), 10000))])";
+    assert_eq!(browser.evaluate(&frame, next), "refused");
 
     // The command's server: framed by its own origin alone.
     let (served, _) = served_copy("framed");

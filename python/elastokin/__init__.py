@@ -25,6 +25,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 import numpy
 
 from . import _native
+from ._live import NOTEBOOK_ORIGINS, LiveServer
 from ._study import BATCH_FIGURES, ENGINES, Grid, Parts, Study, _items, read_variants, study, study_parts
 from ._native import (
     BATCH_HALF_RANGE,
@@ -48,9 +49,11 @@ __all__ = [
     "COMPLIANCE_ROWS",
     "Error",
     "Grid",
+    "LiveServer",
     "MAX_VARIANTS",
     "Model",
     "ModelError",
+    "NOTEBOOK_ORIGINS",
     "Parts",
     "Result",
     "Scene",
@@ -235,6 +238,48 @@ class Model:
     def batch(self, variants: Any, *, analyses: Optional[Sequence[str]] = None) -> List[Dict[str, Any]]:
         """Design variants of this model; see :func:`elastokin.batch`."""
         return batch(self, variants, analyses=analyses)
+
+    def live(
+        self,
+        analyses: Optional[Union[str, Sequence[str]]] = None,
+        *,
+        steps: int = 32,
+        targets: Optional[Union[str, "os.PathLike[str]", Dict[str, Any]]] = None,
+        port: int = 0,
+        bind: str = "127.0.0.1",
+        frame_ancestors: Sequence[str] = NOTEBOOK_ORIGINS,
+    ) -> LiveServer:
+        """Serves the model's file live, as ``elastokin live MODEL`` does, and gives the running server:
+        its :attr:`~LiveServer.url` opened in a browser shows every figure and chart of ``analyses`` (a
+        list of names, or one name; the suite when None), walked in ``steps`` load steps; a hardpoint or a
+        rate typed there runs them again, the previous design's curves in grey beneath; undo, redo, and
+        save, which rewrites the moved numbers in the file and leaves every other byte as it was. In a
+        notebook, the server as a cell's value shows the page in a frame.
+
+        The file is read as it is on disk now; a model made from a dict or text has none (raises
+        ModelError saying what to do). ``targets`` (a TARGETS file's path, or its content as a dict) judges
+        every design and lets the page tune to them. ``port`` 0 takes any free one; ``bind`` other than
+        this machine's own address is reachable from elsewhere (warned). ``frame_ancestors``: the origins
+        whose pages may show the page in a frame (default :data:`NOTEBOOK_ORIGINS`, a notebook on this
+        machine; ``()`` for the page's own alone, as the command serves it).
+
+        Stop it with :meth:`LiveServer.stop`, or use it in a ``with`` block. Raises ValueError for an
+        unknown analysis, bad settings, targets, bind address or frame ancestor, OSError when the port
+        cannot be listened on."""
+        text: Optional[str] = None
+        beside: Optional[str] = None
+        if targets is not None:
+            text, beside = _design_file(targets)
+        native = self._native.live(
+            _names(analyses),
+            steps=steps,
+            targets=text,
+            directory="." if beside is None else beside,
+            port=port,
+            bind=bind,
+            frame_ancestors=[str(f) for f in frame_ancestors],
+        )
+        return LiveServer(native, self.name)
 
     def hardpoint_parameters(self) -> List[str]:
         """Every coordinate of every hardpoint, as parameter pointers (the command's ``--hardpoints``)."""

@@ -18,6 +18,7 @@ use rayon::prelude::*;
 use std::path::Path;
 
 mod errors;
+mod live;
 mod scene;
 mod words;
 
@@ -34,6 +35,9 @@ struct Model {
     base: serde_json::Value,
     /// Where it came from, for error messages (a path, or the origin given with a dict).
     origin: String,
+    /// The model file it was read from, made absolute when read (None for a dict or text): what `live`
+    /// serves and saves.
+    path: Option<std::path::PathBuf>,
 }
 
 /// The command's options of `run` as the library's settings.
@@ -132,7 +136,8 @@ impl Model {
             let (_, text) = read_input(Path::new(path), "MODEL").map_err(|e| e.to_string())?;
             let (file, _) = parse_model(&text, path).map_err(|e| e.to_string())?;
             let base = batch::base_document(&text, path).map_err(|e| e.to_string())?;
-            Ok::<_, String>(Model { file, base, origin: path.to_string() })
+            let absolute = std::path::absolute(path).map_err(|e| format!("{path}: {e}"))?;
+            Ok::<_, String>(Model { file, base, origin: path.to_string(), path: Some(absolute) })
         })
         .map_err(ModelError::new_err)
     }
@@ -145,7 +150,7 @@ impl Model {
         py.detach(|| {
             let (file, _) = parse_document(text, origin).map_err(|e| e.to_string())?;
             let base = batch::base_document(text, origin).map_err(|e| e.to_string())?;
-            Ok::<_, String>(Model { file, base, origin: origin.to_string() })
+            Ok::<_, String>(Model { file, base, origin: origin.to_string(), path: None })
         })
         .map_err(ModelError::new_err)
     }
@@ -240,6 +245,34 @@ impl Model {
             .detach(|| kc::run_suite(&self.file, &which, &settings, |_| {}).complete())
             .map_err(|e| AnalysisError::new_err(e.to_string()))?;
         to_json(&report)
+    }
+
+    /// The model file served as `elastokin live` serves it, on `bind` and `port` (0: any free one), its
+    /// page framed by its own origin and `frame_ancestors`: see [`live::start`].
+    #[pyo3(signature = (analyses=None, steps=32, targets=None, directory=".", port=0, bind="127.0.0.1",
+                        frame_ancestors=Vec::new()))]
+    #[allow(clippy::too_many_arguments, reason = "a Python method's keyword arguments, each named by its caller")]
+    fn live(
+        &self,
+        py: Python<'_>,
+        analyses: Option<Vec<String>>,
+        steps: usize,
+        targets: Option<&str>,
+        directory: &str,
+        port: u16,
+        bind: &str,
+        frame_ancestors: Vec<String>,
+    ) -> PyResult<live::LiveServer> {
+        let Some(path) = &self.path else {
+            return Err(ModelError::new_err(format!(
+                "{}: the model was not read from a file, and the live server edits and saves a model file: write \
+                 the model to a file (json.dump(model.to_dict(), f)) and serve that (elastokin.load(path).live())",
+                self.origin
+            )));
+        };
+        let which = analyses.unwrap_or_default().iter().map(|n| analysis(n)).collect::<PyResult<Vec<_>>>()?;
+        let asked = live::Asked { path, which, steps, targets, directory, port, bind, frame_ancestors };
+        live::start(py, asked)
     }
 
     /// Every coordinate of every hardpoint, as parameter pointers (the command's `--hardpoints`).
@@ -701,6 +734,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Model>()?;
     m.add_class::<scene::Scene>()?;
     m.add_class::<scene::SceneSweep>()?;
+    m.add_class::<live::LiveServer>()?;
     m.add_function(wrap_pyfunction!(analyses, m)?)?;
     m.add_function(wrap_pyfunction!(parameter, m)?)?;
     m.add_function(wrap_pyfunction!(shard_blocks, m)?)?;

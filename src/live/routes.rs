@@ -274,7 +274,9 @@ mod tests {
         // No TARGETS file: nothing to tune to, said, the design kept.
         let tune = ask(&mut live, "POST", "tune", b"");
         assert_eq!(tune.status, 422);
-        assert!(String::from_utf8_lossy(&tune.body).contains("nothing to tune to: start the server with --targets"));
+        assert!(
+            String::from_utf8_lossy(&tune.body).contains("nothing to tune to: start the server with a TARGETS file")
+        );
         assert_eq!(ask(&mut live, "GET", "tune", b"").status, 405);
         assert_eq!(ask(&mut live, "POST", "edit", &vec![b' '; BODY_LIMIT + 1]).status, 413);
         let edit = br#"{"pointer": "/suspension/macpherson/spring/rate", "value": 27000}"#;

@@ -42,8 +42,9 @@ pub fn report_page(root: &Path, shown_path: &str) -> Result<String, String> {
     Ok(elastokin::html::report_html(&report, &file, &provenance.to_json(), elastokin::plot::svg))
 }
 
-/// Runs Chromium headless on `page` with `extra` arguments; returns its standard output and error.
-/// `profile` is made fresh and removed after.
+/// Runs Chromium headless on `page` (with `query`) with `extra` arguments; returns its standard output and
+/// error. `profile` is made fresh and removed after.
+#[cfg(test)]
 fn run(
     chromium: &Path,
     page: &Path,
@@ -51,9 +52,15 @@ fn run(
     extra: &[String],
     profile: &Path,
 ) -> Result<(String, String), String> {
+    let page = page.canonicalize().map_err(|e| format!("{}: {e}", page.display()))?;
+    run_at(chromium, &format!("file://{}{query}", page.display()), extra, profile)
+}
+
+/// Runs Chromium headless on the address `url` with `extra` arguments; returns its standard output and
+/// error. `profile` is made fresh and removed after.
+fn run_at(chromium: &Path, url: &str, extra: &[String], profile: &Path) -> Result<(String, String), String> {
     let _ = std::fs::remove_dir_all(profile);
     std::fs::create_dir_all(profile).map_err(|e| format!("{}: {e}", profile.display()))?;
-    let page = page.canonicalize().map_err(|e| format!("{}: {e}", page.display()))?;
     let mut cmd = Command::new(chromium);
     cmd.args([
         "--headless",
@@ -70,7 +77,7 @@ fn run(
     ])
     .arg(format!("--user-data-dir={}", profile.display()))
     .args(extra)
-    .arg(format!("file://{}{query}", page.display()))
+    .arg(url)
     .stdout(Stdio::piped())
     .stderr(Stdio::piped());
     let mut child = cmd.spawn().map_err(|e| format!("could not start {}: {e}", chromium.display()))?;
@@ -138,17 +145,48 @@ pub fn screenshot(
     window: (u32, u32),
     profile: &Path,
 ) -> Result<(), String> {
+    let page = page.canonicalize().map_err(|e| format!("{}: {e}", page.display()))?;
+    screenshot_at(chromium, &format!("file://{}{query}", page.display()), picture, window, profile)
+}
+
+/// Has Chromium draw the page at the address `url` in a `window` of pixels, once its scripts have run and
+/// every request they made has been answered, and save it as `picture`.
+pub fn screenshot_at(
+    chromium: &Path,
+    url: &str,
+    picture: &Path,
+    window: (u32, u32),
+    profile: &Path,
+) -> Result<(), String> {
     let _ = std::fs::remove_file(picture);
     let extra = [
         format!("--virtual-time-budget={SCRIPT_TIME_MS}"),
         format!("--screenshot={}", picture.display()),
         format!("--window-size={},{}", window.0, window.1),
     ];
-    run(chromium, page, query, &extra, profile)?;
+    run_at(chromium, url, &extra, profile)?;
     if !picture.is_file() {
         return Err(format!("chromium wrote no {}", picture.display()));
     }
     Ok(())
+}
+
+/// The page at the address `url` as the browser leaves it once its scripts have run (every request they
+/// made answered, virtual time), in a `window` of pixels, and its console's lines.
+pub fn loaded_at(
+    chromium: &Path,
+    url: &str,
+    window: (u32, u32),
+    profile: &Path,
+) -> Result<(String, Vec<String>), String> {
+    let extra = [
+        format!("--virtual-time-budget={SCRIPT_TIME_MS}"),
+        format!("--window-size={},{}", window.0, window.1),
+        "--dump-dom".to_string(),
+    ];
+    let (dom, log) = run_at(chromium, url, &extra, profile)?;
+    let console = log.lines().filter(|l| l.contains(":CONSOLE(") || l.contains("Uncaught")).map(String::from).collect();
+    Ok((dom, console))
 }
 
 /// The part of a report page from the start of the element with `id` (opened by `open`, e.g.
@@ -163,6 +201,23 @@ pub fn part_of_page(page: &str, open: &str, id: &str, close: &str) -> Option<Str
     let end = at + page[at..].find(close)? + close.len();
     let head = &page[..page.find("<body>")? + "<body>".len()];
     Some(format!("{head}\n{}\n</body>\n</html>\n", &page[at..end]))
+}
+
+/// The JSON a page's script wrote into its `<output id="ID">`, read from the page as the browser left it
+/// (`dom`, as `--dump-dom` writes it).
+pub fn output_in(dom: &str, id: &str) -> Result<serde_json::Value, String> {
+    let text = dom
+        .split(&format!("id=\"{id}\""))
+        .nth(1)
+        .and_then(|s| s.split('>').nth(1))
+        .and_then(|s| s.split("</output").next())
+        .ok_or_else(|| format!("no output {id} in the page"))?;
+    serde_json::from_str(&html_unescape(text)).map_err(|e| format!("output {id} ({e}): {text}"))
+}
+
+/// The text of an element as `--dump-dom` serialises it: the three entities it writes in text.
+fn html_unescape(s: &str) -> String {
+    s.replace("&quot;", "\"").replace("&lt;", "<").replace("&gt;", ">").replace("&amp;", "&")
 }
 
 #[cfg(test)]
@@ -510,18 +565,7 @@ addEventListener('load', async () => {
 
     /// The JSON a test's script wrote into `<output id="ID">` of the page as the browser left it (`dom`).
     fn output_of(dom: &str, id: &str) -> serde_json::Value {
-        let text = dom
-            .split(&format!("id=\"{id}\""))
-            .nth(1)
-            .and_then(|s| s.split('>').nth(1))
-            .and_then(|s| s.split("</output").next())
-            .unwrap_or_else(|| panic!("no output {id} in the page"));
-        serde_json::from_str(&html_unescape(text)).unwrap_or_else(|e| panic!("output {id} ({e}): {text}"))
-    }
-
-    /// The text of an element as `--dump-dom` serialises it: the three entities it writes in text.
-    fn html_unescape(s: &str) -> String {
-        s.replace("&quot;", "\"").replace("&lt;", "<").replace("&gt;", ">").replace("&amp;", "&")
+        output_in(dom, id).unwrap_or_else(|e| panic!("{e}"))
     }
 
     #[test]

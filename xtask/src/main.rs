@@ -9,10 +9,12 @@
 //! by the same renderer as the command's.
 //! - `fuzz`: the long fuzz campaign over every shipped model and Chrono file, its report written to
 //!   `bench/results/fuzz.md`; see `fuzz.rs`.
-//! - `screenshot`: the HTML K&C report of `examples/macpherson.json`, and pictures of it and of its
-//!   geometry views taken by headless Chromium for the README and `docs/commands.md`; see `screenshot.rs` (and `browser.rs`, the
+//! - `screenshot`: the HTML K&C report of `examples/macpherson.json`, and pictures of it, of its
+//!   geometry views and of its live page (`elastokin live`'s, from the library's server) taken by headless
+//!   Chromium for the README and `docs/commands.md`; see `screenshot.rs` (and `browser.rs`, the
 //!   Chromium it runs, also loading every example's report in the browser test). It uses the `elastokin`
-//!   facade (the suite, the plots, the HTML report and the provenance), as the command does.
+//!   facade (the suite, the plots, the HTML report, the provenance and the live server), as the command
+//!   does.
 
 use std::process::{Command, ExitCode};
 

@@ -12,10 +12,14 @@
 //!   browser draws there;
 //! - `docs/images/compare.png`: the top of the comparison of `examples/macpherson.json` with the generic
 //!   MacPherson it was tuned from, as `elastokin compare` writes it, and `docs/images/vehicle.png`: the top
-//!   of the page `elastokin vehicle examples/vehicle/compact_car.json` writes.
+//!   of the page `elastokin vehicle examples/vehicle/compact_car.json` writes;
+//! - `docs/images/live.png`: the page of `elastokin live examples/macpherson.json --targets
+//!   examples/targets/macpherson.json`, 1280 × 900 px, served by the library's server in this process (on a
+//!   copy of the model, which no save could write), taken once the page says every chart is drawn.
 
-use crate::browser::{find_chromium, part_of_page, report_page, screenshot};
-use std::path::PathBuf;
+use crate::browser::{find_chromium, loaded_at, output_in, part_of_page, report_page, screenshot, screenshot_at};
+use elastokin::live::{FrameAncestors, LiveServer, Served};
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 /// The model shown, relative to the workspace root.
@@ -24,6 +28,12 @@ const MODEL: &str = "examples/macpherson.json";
 const PICTURE: &str = "docs/images/report.png";
 /// Chromium's window: the width of a laptop screen, tall enough for the summary and the first analyses.
 const WINDOW: (u32, u32) = (1200, 3000);
+/// The live page's picture, relative to the workspace root (committed; the README shows it).
+const LIVE_PICTURE: &str = "docs/images/live.png";
+/// The TARGETS file the live page judges every design against.
+const LIVE_TARGETS: &str = "examples/targets/macpherson.json";
+/// Chromium's window for the live page: a laptop's screen.
+const LIVE_WINDOW: (u32, u32) = (1280, 900);
 /// A view's picture: the figure it is (its id, and the text that ends it), the picture, the window.
 struct View {
     id: &'static str,
@@ -44,7 +54,7 @@ const VIEWS: [View; 4] = [
 pub fn main(args: &[String]) -> ExitCode {
     if !args.is_empty() {
         eprintln!(
-            "usage: cargo xtask screenshot   (writes target/screenshot/report.html, {PICTURE} and the views' pictures)"
+            "usage: cargo xtask screenshot   (writes target/screenshot/report.html, {PICTURE}, the views' pictures and {LIVE_PICTURE})"
         );
         return ExitCode::from(2);
     }
@@ -99,7 +109,45 @@ fn run() -> Result<Vec<PathBuf>, String> {
         screenshot(&chromium, &path, "", &picture, (1200, 1500), &profile)?;
         pictures.push(picture);
     }
+    let picture = root.join(LIVE_PICTURE);
+    live_picture(&root, &chromium, &dir.join("live"), &picture)?;
+    pictures.push(picture);
     Ok(pictures)
+}
+
+/// The live page of a copy of [`MODEL`] in `dir`, judged against [`LIVE_TARGETS`], served by the library's
+/// server, saved as `picture` once the page says it drew every chart of the design with no error.
+fn live_picture(root: &Path, chromium: &Path, dir: &Path, picture: &Path) -> Result<(), String> {
+    use elastokin::suspensions::design::targets::{read_targets_as, Reading};
+    let _ = std::fs::remove_dir_all(dir);
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let copy = dir.join("macpherson.json");
+    std::fs::copy(root.join(MODEL), &copy).map_err(|e| format!("{}: {e}", copy.display()))?;
+    eprintln!("serving {MODEL} live");
+    let mut served = Served::open(&copy, &[], 32).map_err(|e| e.to_string())?;
+    let targets = root.join(LIVE_TARGETS);
+    let text = std::fs::read_to_string(&targets).map_err(|e| format!("{}: {e}", targets.display()))?;
+    let beside = targets.parent().unwrap_or(root).to_path_buf();
+    let read_file = |name: &str| std::fs::read_to_string(beside.join(name)).map_err(|e| format!("{name}: {e}"));
+    let document = served.design.document().map_err(|e| e.to_string())?;
+    let judged =
+        read_targets_as(Reading::ToJudge, &text, LIVE_TARGETS, &document, read_file).map_err(|e| e.to_string())?;
+    served.design = served.design.judged_against(judged);
+    let any = std::net::SocketAddr::from(([127, 0, 0, 1], 0));
+    let mut server = LiveServer::start(served, any, FrameAncestors::none()).map_err(|e| e.to_string())?;
+    let profile = dir.join("chromium-profile");
+    let (dom, console) = loaded_at(chromium, server.address(), LIVE_WINDOW, &profile)?;
+    if !console.is_empty() {
+        return Err(format!("the live page's console says {console:#?}"));
+    }
+    let state = output_in(&dom, "live-state")?;
+    let charts = state["charts"].as_u64().unwrap_or(0);
+    if charts == 0 || state["drawn"] != charts || state["errors"] != serde_json::json!([]) || state["version"] != 1 {
+        return Err(format!("the live page did not draw its design: {state}"));
+    }
+    screenshot_at(chromium, server.address(), picture, LIVE_WINDOW, &profile)?;
+    server.stop();
+    Ok(())
 }
 
 /// The model of the workspace's file `path`, read as the command reads it.
@@ -134,4 +182,34 @@ fn vehicle_page(root: &std::path::Path) -> Result<String, String> {
     let report = run_vehicle(&file, &front, &rear, &elastokin::suspensions::kc::Settings::default())
         .map_err(|e| e.to_string())?;
     Ok(elastokin::html::vehicle_html(&report, &serde_json::json!({})))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The live page's picture, taken into a scratch directory as `cargo xtask screenshot` takes it: the
+    /// page drew every chart of the design first (else no picture), the picture is the window's size, and
+    /// the server has stopped, its port free.
+    ///
+    /// Needs Debian's chromium, as the browser tests do: without it the test says so and passes on a
+    /// developer's machine, and fails under CI (`CI` set).
+    #[test]
+    fn the_live_picture_is_taken_once_the_page_has_drawn_its_design() {
+        let chromium = match find_chromium() {
+            Ok(c) => c,
+            Err(e) if std::env::var_os("CI").is_none() => return eprintln!("skipped: {e}"),
+            Err(e) => panic!("{e}"),
+        };
+        let root = crate::workspace_root();
+        let dir = root.join("target/screenshot-test");
+        let picture = dir.join("live.png");
+        live_picture(&root, &chromium, &dir.join("live"), &picture).unwrap();
+        let bytes = std::fs::read(&picture).unwrap();
+        // A PNG's IHDR: its width and height, big-endian, at bytes 16 to 24.
+        assert_eq!(&bytes[1..4], b"PNG");
+        let size = |at: usize| u32::from_be_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]);
+        assert_eq!((size(16), size(20)), LIVE_WINDOW);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

@@ -560,7 +560,7 @@ pub enum LiveError {
     #[error("{0}")]
     Text(NumberEditError),
     /// A tune asked for without a TARGETS file.
-    #[error("nothing to tune to: start the server with --targets FILE")]
+    #[error("nothing to tune to: start the server with a TARGETS file (--targets FILE, or targets= in Python)")]
     NoTargets,
     /// A tune asked for with a TARGETS file that frees no number.
     #[error("nothing to tune: the TARGETS file's \"free\" names no number")]
