@@ -113,8 +113,7 @@ fn run_at(chromium: &Path, url: &str, extra: &[String], profile: &Path) -> Resul
 pub fn loaded(chromium: &Path, page: &Path, query: &str, profile: &Path) -> Result<(String, Vec<String>), String> {
     let extra = [format!("--virtual-time-budget={SCRIPT_TIME_MS}"), "--dump-dom".to_string()];
     let (dom, log) = run(chromium, page, query, &extra, profile)?;
-    let console = log.lines().filter(|l| l.contains(":CONSOLE(") || l.contains("Uncaught")).map(String::from).collect();
-    Ok((dom, console))
+    Ok((dom, console_lines(&log)))
 }
 
 /// `page` as the browser leaves it once its scripts have run in a `window` of pixels, and its console's
@@ -126,14 +125,8 @@ pub fn loaded_in(
     window: (u32, u32),
     profile: &Path,
 ) -> Result<(String, Vec<String>), String> {
-    let extra = [
-        format!("--virtual-time-budget={SCRIPT_TIME_MS}"),
-        format!("--window-size={},{}", window.0, window.1),
-        "--dump-dom".to_string(),
-    ];
-    let (dom, log) = run(chromium, page, "", &extra, profile)?;
-    let console = log.lines().filter(|l| l.contains(":CONSOLE(") || l.contains("Uncaught")).map(String::from).collect();
-    Ok((dom, console))
+    let page = page.canonicalize().map_err(|e| format!("{}: {e}", page.display()))?;
+    loaded_at(chromium, &format!("file://{}", page.display()), window, profile)
 }
 
 /// Has Chromium draw `page` (with `query`) in a `window` of pixels and save it as `picture`.
@@ -185,8 +178,13 @@ pub fn loaded_at(
         "--dump-dom".to_string(),
     ];
     let (dom, log) = run_at(chromium, url, &extra, profile)?;
-    let console = log.lines().filter(|l| l.contains(":CONSOLE(") || l.contains("Uncaught")).map(String::from).collect();
-    Ok((dom, console))
+    Ok((dom, console_lines(&log)))
+}
+
+/// The lines Chromium logged from a page's console (its messages and uncaught errors), its own start-up
+/// chatter left out.
+fn console_lines(log: &str) -> Vec<String> {
+    log.lines().filter(|l| l.contains(":CONSOLE(") || l.contains("Uncaught")).map(String::from).collect()
 }
 
 /// The part of a report page from the start of the element with `id` (opened by `open`, e.g.
