@@ -24,13 +24,13 @@
     return { curves, data: [xs, ...ys] };
   }
 
-  // What a chart draws besides its numbers: a chart of the same shape takes new numbers in place.
+  // What a chart draws besides its numbers and its design's mark: a chart of the same shape takes new ones
+  // in place.
   const shapeOf = (chart) =>
     JSON.stringify([
       chart.title,
       chart.x_label,
       chart.x_log,
-      chart.design_x,
       chart.axes.map((axis) => [
         axis.label,
         axis.log,
@@ -75,9 +75,11 @@
         value: (u, v) => fmt(v),
       }))
     );
+    // The design's mark, where the chart shown last says (a new design may move it).
+    let marked = chart.design_x;
     const marker = (u) => {
-      if (chart.design_x == null) return;
-      const x = u.valToPos(chart.design_x, 'x', true);
+      if (marked == null) return;
+      const x = u.valToPos(marked, 'x', true);
       const ctx = u.ctx;
       ctx.save();
       ctx.setLineDash([6, 4]);
@@ -110,12 +112,22 @@
     // else nothing done (false: the chart must be drawn anew).
     plot.elastokinShow = (next) => {
       if (shapeOf(next) !== shape) return false;
+      marked = next.design_x;
       plot.setData(aligned(next).data);
       return true;
     };
     figure.classList.add('live');
     if (typeof ResizeObserver === 'function') {
-      new ResizeObserver(() => plot.setSize(size())).observe(figure);
+      // Sized by the figure's width alone: its height follows the legend, which every new set of numbers
+      // may change.
+      let width = null;
+      new ResizeObserver((entries) => {
+        const seen = entries[entries.length - 1].contentRect.width;
+        if (seen !== width) {
+          width = seen;
+          plot.setSize(size());
+        }
+      }).observe(figure);
     }
     return plot;
   }

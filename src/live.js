@@ -252,6 +252,7 @@
     let count = 0;
     let drawn = 0;
     let ghosts = 0;
+    let anew = 0;
     state.analyses.forEach((a) => {
       const before = previous && previous.analyses.find((x) => x.name === a.name);
       a.charts.forEach((chart) => {
@@ -279,6 +280,7 @@
             // In the page while drawn: the chart takes its width from it.
             if (!figure.parentNode) holder.appendChild(figure);
             shown = { figure, plot: window.elastokinDrawChart(figure) };
+            anew += 1;
           }
           drawn += 1;
         } catch (e) {
@@ -302,6 +304,7 @@
     report.charts = count;
     report.drawn = drawn;
     report.ghosts = ghosts;
+    report.anew = anew;
   }
 
   function show(state) {

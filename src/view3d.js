@@ -76,6 +76,8 @@
   }
 
   var fit = null;
+  // The canvas's laid-out size in CSS pixels, once the page has laid it out.
+  var seen = null;
   function fitTo(a) {
     var d = data.drawings[a.drawing];
     var lo = [1e300, 1e300, 1e300], hi = [-1e300, -1e300, -1e300];
@@ -119,7 +121,10 @@
     var d = data.drawings[a.drawing];
     var poses = a.frames[row];
     var ratio = window.devicePixelRatio || 1;
-    var width = canvas.clientWidth || canvas.width, height = canvas.clientHeight || canvas.height;
+    // The canvas's size as last laid out (`seen`), read from the page only before the first layout is
+    // seen: reading it would lay out a page whose other parts a new design has just changed.
+    var width = seen ? seen[0] : canvas.clientWidth || canvas.width;
+    var height = seen ? seen[1] : canvas.clientHeight || canvas.height;
     if (canvas.width !== Math.round(width * ratio)) {
       canvas.width = Math.round(width * ratio);
       canvas.height = Math.round(height * ratio);
@@ -430,7 +435,18 @@
     camera.zoom = Math.max(0.1, Math.min(50, camera.zoom * Math.exp(-e.deltaY * 0.001)));
     draw();
   }, { passive: false });
-  window.addEventListener('resize', draw);
+  if (typeof ResizeObserver === 'function') {
+    new ResizeObserver(function (entries) {
+      var box = entries[entries.length - 1].contentRect;
+      var next = [box.width || canvas.width, box.height || canvas.height];
+      if (!seen || seen[0] !== next[0] || seen[1] !== next[1]) {
+        seen = next;
+        draw();
+      }
+    }).observe(canvas);
+  } else {
+    window.addEventListener('resize', draw);
+  }
   // The report's data, in the page; a view and an analysis asked for in the address
   // (report.html?view=side&analysis=steering) are the ones shown first.
   var given = document.getElementById('view3d-data');

@@ -419,7 +419,9 @@ fn the_page_in_chromium_edits_by_typing_undoes_saves_and_no_other_page_drives_it
 
     // Undo by its button: the field shows the file's number again; redo; save by its button.
     browser.evaluate(&page, "document.getElementById('undo').click(); true");
-    browser.live_state(&page, |s| s["version"] == 3);
+    let undone = browser.live_state(&page, |s| s["version"] == 3);
+    // Its curves the same as the design before's, each chart took the new numbers in place.
+    assert_eq!((&undone["anew"], &undone["drawn"]), (&0.into(), &undone["charts"]), "{undone}");
     assert_eq!(browser.evaluate(&page, &format!("{input}.value")).as_str(), Some("-37.4"));
     browser.evaluate(&page, "document.getElementById('redo').click(); true");
     browser.live_state(&page, |s| s["version"] == 4);
