@@ -32,8 +32,9 @@ fn write_page(out: &mut String, model: &str) -> std::fmt::Result {
     // No icon to ask the server for: a request without the token would be refused, in the console.
     *out = out.replacen("</head>", "<link rel=\"icon\" href=\"data:,\"/>\n</head>", 1);
     // Every design redraws every chart: those out of the window are laid out and painted only when
-    // scrolled to, and a chart's own changes never lay out the page around it.
-    *out = out.replacen("</head>", "<style>#charts figure.chart { content-visibility: auto; contain-intrinsic-size: auto 480px; }</style>\n</head>", 1);
+    // scrolled to, and a chart's own changes never lay out the page around it. The figures' table, wide
+    // with the guidance beside each figure, scrolls within its column.
+    *out = out.replacen("</head>", "<style>#charts figure.chart { content-visibility: auto; contain-intrinsic-size: auto 480px; } #figures { overflow-x: auto; }</style>\n</head>", 1);
     writeln!(
         out,
         r#"<p class="live-bar"><button id="undo" type="button" disabled="disabled">Undo</button> <button id="redo" type="button" disabled="disabled">Redo</button> <button id="save" type="button">Save</button> <button id="tune" type="button" hidden="hidden">Tune to the targets</button> <span id="status" role="status" class="note"></span></p>"#

@@ -1,6 +1,7 @@
-//! Headless Chromium (Debian's `chromium` package) for the report: its page as a picture, and its page as
-//! the browser leaves it once the scripts have run, with everything the browser logged. Used by
-//! `cargo xtask screenshot` and by the test that loads every shipped example's report in a real browser.
+//! Headless Chromium (Debian's `chromium` package, found by `elastokin_chromium::find`) for the report:
+//! its page as a picture, and its page as the browser leaves it once the scripts have run, with everything
+//! the browser logged. Used by `cargo xtask screenshot` and by the test that loads every shipped example's
+//! report in a real browser.
 //!
 //! Each run gets a fresh profile, removed after, so no earlier state (cache, settings) changes what is
 //! seen; everything that would reach the network is off, since a report needs nothing outside itself.
@@ -8,7 +9,7 @@
 use elastokin::provenance::Provenance;
 use elastokin::suspensions::kc::{self, Settings};
 use elastokin::suspensions::SuspensionFile;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
@@ -17,15 +18,6 @@ const TIME_LIMIT: Duration = Duration::from_secs(120);
 
 /// How long the page's scripts may run (virtual time) before the DOM is read.
 const SCRIPT_TIME_MS: u32 = 3000;
-
-/// Chromium on `PATH`, or why not.
-pub fn find_chromium() -> Result<PathBuf, String> {
-    let path = std::env::var_os("PATH").unwrap_or_default();
-    std::env::split_paths(&path)
-        .map(|dir| dir.join("chromium"))
-        .find(|p| p.is_file())
-        .ok_or_else(|| "chromium is not on PATH: install Debian's chromium package: apt-get install chromium".into())
-}
 
 /// The report `elastokin run MODEL` writes (every analysis of the suite, the plots, the geometry views),
 /// made through the library as the command makes it; `shown_path` names the model in the provenance.
@@ -166,6 +158,7 @@ pub fn screenshot_at(
 
 /// The page at the address `url` as the browser leaves it once its scripts have run (every request they
 /// made answered, virtual time), in a `window` of pixels, and its console's lines.
+#[cfg(test)]
 pub fn loaded_at(
     chromium: &Path,
     url: &str,
@@ -183,6 +176,7 @@ pub fn loaded_at(
 
 /// The lines Chromium logged from a page's console (its messages and uncaught errors), its own start-up
 /// chatter left out.
+#[cfg(test)]
 fn console_lines(log: &str) -> Vec<String> {
     log.lines().filter(|l| l.contains(":CONSOLE(") || l.contains("Uncaught")).map(String::from).collect()
 }
@@ -203,6 +197,7 @@ pub fn part_of_page(page: &str, open: &str, id: &str, close: &str) -> Option<Str
 
 /// The JSON a page's script wrote into its `<output id="ID">`, read from the page as the browser left it
 /// (`dom`, as `--dump-dom` writes it).
+#[cfg(test)]
 pub fn output_in(dom: &str, id: &str) -> Result<serde_json::Value, String> {
     let text = dom
         .split(&format!("id=\"{id}\""))
@@ -214,6 +209,7 @@ pub fn output_in(dom: &str, id: &str) -> Result<serde_json::Value, String> {
 }
 
 /// The text of an element as `--dump-dom` serialises it: the three entities it writes in text.
+#[cfg(test)]
 fn html_unescape(s: &str) -> String {
     s.replace("&quot;", "\"").replace("&lt;", "<").replace("&gt;", ">").replace("&amp;", "&")
 }
@@ -550,8 +546,8 @@ addEventListener('load', async () => {
 
     /// Chromium, or `None` on a developer's machine without it (the test says so and passes); under CI
     /// (`CI` set), where the tests must run, its absence fails.
-    fn chromium_or_skip() -> Option<PathBuf> {
-        match find_chromium() {
+    fn chromium_or_skip() -> Option<std::path::PathBuf> {
+        match elastokin_chromium::find() {
             Ok(c) => Some(c),
             Err(e) if std::env::var_os("CI").is_none() => {
                 eprintln!("skipped: {e}");

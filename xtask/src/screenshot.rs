@@ -14,10 +14,13 @@
 //!   MacPherson it was tuned from, as `elastokin compare` writes it, and `docs/images/vehicle.png`: the top
 //!   of the page `elastokin vehicle examples/vehicle/compact_car.json` writes;
 //! - `docs/images/live.png`: the page of `elastokin live examples/macpherson.json --targets
-//!   examples/targets/macpherson.json`, 1280 × 900 px, served by the library's server in this process (on a
-//!   copy of the model, which no save could write), taken once the page says every chart is drawn.
+//!   examples/targets/macpherson.json`, 1280 × 2150 px from its views down, served by the library's server
+//!   in this process (on a copy of the model, which no save could write) and driven through Chromium's
+//!   DevTools protocol (`elastokin_chromium`): a hardpoint typed, every chart redrawn over the design
+//!   before, the point selected with its arrows.
 
-use crate::browser::{find_chromium, loaded_at, output_in, part_of_page, report_page, screenshot, screenshot_at};
+use crate::browser::{part_of_page, report_page, screenshot};
+
 use elastokin::live::{FrameAncestors, LiveServer, Served};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -32,8 +35,8 @@ const WINDOW: (u32, u32) = (1200, 3000);
 const LIVE_PICTURE: &str = "docs/images/live.png";
 /// The TARGETS file the live page judges every design against.
 const LIVE_TARGETS: &str = "examples/targets/macpherson.json";
-/// Chromium's window for the live page: a laptop's screen.
-const LIVE_WINDOW: (u32, u32) = (1280, 900);
+/// The live page's picture: a laptop screen's width, and tall enough for the views and the first charts.
+const LIVE_WINDOW: (u32, u32) = (1280, 2150);
 /// A view's picture: the figure it is (its id, and the text that ends it), the picture, the window.
 struct View {
     id: &'static str,
@@ -74,7 +77,7 @@ pub fn main(args: &[String]) -> ExitCode {
 
 fn run() -> Result<Vec<PathBuf>, String> {
     // Look for Chromium first: without it the run would be wasted.
-    let chromium = find_chromium()?;
+    let chromium = elastokin_chromium::find()?;
     let root = crate::workspace_root();
     eprintln!("running the K&C suite on {MODEL}");
     let html = report_page(&root, MODEL)?;
@@ -116,7 +119,9 @@ fn run() -> Result<Vec<PathBuf>, String> {
 }
 
 /// The live page of a copy of [`MODEL`] in `dir`, judged against [`LIVE_TARGETS`], served by the library's
-/// server, saved as `picture` once the page says it drew every chart of the design with no error.
+/// server and driven in headless Chromium as a user does: the tie rod's inner point typed 2 mm lower (every
+/// chart then shows the design before in grey) and selected (arrows at it show the way that raises bump
+/// steer); saved as `picture` once the page says it drew all of that with no error.
 fn live_picture(root: &Path, chromium: &Path, dir: &Path, picture: &Path) -> Result<(), String> {
     use elastokin::suspensions::design::targets::{read_targets_as, Reading};
     let _ = std::fs::remove_dir_all(dir);
@@ -135,17 +140,45 @@ fn live_picture(root: &Path, chromium: &Path, dir: &Path, picture: &Path) -> Res
     served.design = served.design.judged_against(judged);
     let any = std::net::SocketAddr::from(([127, 0, 0, 1], 0));
     let mut server = LiveServer::start(served, any, FrameAncestors::none()).map_err(|e| e.to_string())?;
-    let profile = dir.join("chromium-profile");
-    let (dom, console) = loaded_at(chromium, server.address(), LIVE_WINDOW, &profile)?;
-    if !console.is_empty() {
-        return Err(format!("the live page's console says {console:#?}"));
+    let mut browser = elastokin_chromium::Browser::start(chromium, dir.join("chromium-profile"))?;
+    let page = browser.open(server.address())?;
+    // A window as tall as the page down to the picture's end: the page draws only the charts in its window.
+    browser.window(&page, (LIVE_WINDOW.0, 4500))?;
+    let shown = |browser: &mut elastokin_chromium::Browser, ready: &dyn Fn(&serde_json::Value) -> bool| {
+        let start = std::time::Instant::now();
+        loop {
+            let text = browser.evaluate(&page, "(document.getElementById('live-state') || {}).textContent || '{}'")?;
+            let state: serde_json::Value = serde_json::from_str(text.as_str().unwrap_or("{}")).unwrap_or_default();
+            let drawn = state["charts"].as_u64().is_some_and(|c| c > 0 && state["drawn"] == c);
+            if drawn && state["errors"] == serde_json::json!([]) && ready(&state) {
+                return Ok(state);
+            }
+            if start.elapsed().as_secs() > 60 {
+                return Err(format!("the live page did not get there within 60 s: {state}"));
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+    };
+    shown(&mut browser, &|s| s["version"] == 1)?;
+    let point = "/suspension/macpherson/hardpoints/tie_rod_inner";
+    let typed = format!(
+        "(() => {{ const input = document.querySelector('input[data-pointer=\"{point}/2\"]'); input.value = '-39.4'; \
+         input.dispatchEvent(new Event('change')); return true; }})()"
+    );
+    browser.evaluate(&page, &typed)?;
+    shown(&mut browser, &|s| s["version"] == 2 && s["ghosts"].as_u64().unwrap_or(0) > 0)?;
+    browser.evaluate(&page, &format!("document.querySelector('tr[data-point=\"{point}\"] button').click(); true"))?;
+    shown(&mut browser, &|s| s["arrows"].as_u64().unwrap_or(0) > 0)?;
+    let said: Vec<&String> = browser.console.iter().filter(|(s, _)| *s == page).map(|(_, l)| l).collect();
+    if !said.is_empty() {
+        return Err(format!("the live page's console says {said:#?}"));
     }
-    let state = output_in(&dom, "live-state")?;
-    let charts = state["charts"].as_u64().unwrap_or(0);
-    if charts == 0 || state["drawn"] != charts || state["errors"] != serde_json::json!([]) || state["version"] != 1 {
-        return Err(format!("the live page did not draw its design: {state}"));
-    }
-    screenshot_at(chromium, server.address(), picture, LIVE_WINDOW, &profile)?;
+    // From the views down: the point's arrows, the 3D view and the first charts over the design before.
+    let top =
+        browser.evaluate(&page, "document.getElementById('geometry').getBoundingClientRect().top + window.scrollY")?;
+    let bytes = browser.picture(&page, (top.as_f64().unwrap_or(0.0) - 12.0).max(0.0), LIVE_WINDOW)?;
+    std::fs::write(picture, bytes).map_err(|e| format!("{}: {e}", picture.display()))?;
+    drop(browser);
     server.stop();
     Ok(())
 }
@@ -196,7 +229,7 @@ mod tests {
     /// developer's machine, and fails under CI (`CI` set).
     #[test]
     fn the_live_picture_is_taken_once_the_page_has_drawn_its_design() {
-        let chromium = match find_chromium() {
+        let chromium = match elastokin_chromium::find() {
             Ok(c) => c,
             Err(e) if std::env::var_os("CI").is_none() => return eprintln!("skipped: {e}"),
             Err(e) => panic!("{e}"),

@@ -165,6 +165,23 @@ impl Browser {
         Ok(())
     }
 
+    /// The page of `session` laid out in a window of `size` CSS pixels (one device pixel each).
+    pub fn window(&mut self, session: &str, size: (u32, u32)) -> Result<(), String> {
+        let metrics = json!({ "width": size.0, "height": size.1, "deviceScaleFactor": 1, "mobile": false });
+        self.send(Some(session), "Emulation.setDeviceMetricsOverride", metrics).map(drop)
+    }
+
+    /// The part of the page of `session` at `top` (CSS pixels from the page's top) of `size` (width and
+    /// height) as a PNG picture, drawn whether or not it is in the window.
+    pub fn picture(&mut self, session: &str, top: f64, size: (u32, u32)) -> Result<Vec<u8>, String> {
+        use base64::Engine;
+        let clip = json!({ "x": 0, "y": top, "width": size.0, "height": size.1, "scale": 1 });
+        let params = json!({ "format": "png", "clip": clip, "captureBeyondViewport": true });
+        let shot = self.send(Some(session), "Page.captureScreenshot", params)?;
+        let data = shot["data"].as_str().ok_or("Page.captureScreenshot: no picture")?;
+        base64::engine::general_purpose::STANDARD.decode(data).map_err(|e| format!("the page's picture: {e}"))
+    }
+
     /// A press at `from`, the mouse moved by each of `path` (from where it was pressed) in turn, then,
     /// with `escape`, the Escape key pressed, and the button released where the path ends.
     pub fn drag(&mut self, session: &str, from: (f64, f64), path: &[(f64, f64)], escape: bool) -> Result<(), String> {
