@@ -52,10 +52,30 @@
     return a ? a.figures.find((f) => f.key === key) : null;
   }
 
+  // The figures of each design, a table an analysis, a row a figure: built when the analyses or their
+  // figures differ from those shown, else filled in place (a rebuilt table lays the page out anew).
+  let figureLayout = null;
+  let figureCells = new Map();
   function showFigures(state) {
+    const layout = JSON.stringify(state.analyses.map((a) => [a.name, a.description, a.figures.map((f) => [f.key, f.label])]));
+    if (layout !== figureLayout) {
+      buildFigures(state);
+      figureLayout = layout;
+    }
+    let count = 0;
+    state.analyses.forEach((a) =>
+      a.figures.forEach((f) => {
+        fillFigure(figureCells.get(a.name + '/' + f.key), a, f, state);
+        count += 1;
+      })
+    );
+    report.figures = count;
+  }
+
+  function buildFigures(state) {
     const holder = el('figures');
     holder.replaceChildren(make('h2', 'Figures'));
-    let count = 0;
+    figureCells = new Map();
     state.analyses.forEach((a) => {
       const table = make('table', null, 'figures');
       table.appendChild(make('caption', a.description));
@@ -68,27 +88,33 @@
       a.figures.forEach((f) => {
         const row = make('tr');
         row.dataset.key = a.name + '/' + f.key;
-        // The value in SI as the server gave it, exactly (what the browser test reads).
-        if (f.value != null) row.dataset.si = String(f.value);
         row.title = 'click to draw the arrows at the point selected for this figure';
         row.addEventListener('click', () => choose(row.dataset.key));
         row.appendChild(make('td', f.label));
-        const value = make('td', written(f), 'value');
-        if (f.value == null) value.title = f.reason || '';
-        row.appendChild(value);
-        const before = figureOf(previous, a.name, f.key);
-        const moved = before && before.value !== f.value;
-        row.appendChild(make('td', moved ? written(before) : '', 'quiet'));
-        const targets = state.targets.filter((t) => t.analysis === a.name && t.figure === f.key);
-        const aims = targets.map((t) => (t.met ? '✓ ' : '✗ ') + t.aim + ' ± ' + t.tolerance);
-        row.appendChild(make('td', aims.join(', '), targets.some((t) => !t.met) ? 'error' : ''));
+        const cells = { row, value: make('td', null, 'value'), before: make('td', null, 'quiet'), target: make('td') };
+        row.appendChild(cells.value);
+        row.appendChild(cells.before);
+        row.appendChild(cells.target);
         row.appendChild(make('td', '', 'guide quiet'));
         body.appendChild(row);
-        count += 1;
+        figureCells.set(row.dataset.key, cells);
       });
       holder.appendChild(table);
     });
-    report.figures = count;
+  }
+
+  // A figure's row: its value (in SI, exactly as the server gave it, in `data-si`: what the browser test
+  // reads), the previous design's where it moved, and its targets met or not.
+  function fillFigure(cells, a, f, state) {
+    if (f.value != null) cells.row.dataset.si = String(f.value);
+    else delete cells.row.dataset.si;
+    cells.value.textContent = written(f);
+    cells.value.title = f.value == null ? f.reason || '' : '';
+    const before = figureOf(previous, a.name, f.key);
+    cells.before.textContent = before && before.value !== f.value ? written(before) : '';
+    const targets = state.targets.filter((t) => t.analysis === a.name && t.figure === f.key);
+    cells.target.textContent = targets.map((t) => (t.met ? '✓ ' : '✗ ') + t.aim + ' ± ' + t.tolerance).join(', ');
+    cells.target.className = targets.some((t) => !t.met) ? 'error' : '';
   }
 
   // The figure the arrows are for: the one chosen while the design has it, else the first with a target,
@@ -167,8 +193,19 @@
   }
 
   // The hardpoints, one row a point, each coordinate an input in millimetres; a point's name selects it
-  // for guidance.
+  // for guidance. Built when the numbers differ from those shown, else their values set in place.
+  let hardpointLayout = null;
   function showHardpoints(state) {
+    const layout = JSON.stringify(state.hardpoints.map((n) => n.pointer));
+    if (layout !== hardpointLayout) {
+      buildHardpoints(state);
+      hardpointLayout = layout;
+    }
+    state.hardpoints.forEach((n) => setNumber(state, n.pointer, millimetres(n.value)));
+    return state.hardpoints.length;
+  }
+
+  function buildHardpoints(state) {
     const holder = el('hardpoints');
     holder.replaceChildren(make('h2', 'Hardpoints (mm)'));
     const table = make('table', null, 'numbers');
@@ -177,7 +214,6 @@
     table.appendChild(make('thead')).appendChild(head);
     const body = table.appendChild(make('tbody'));
     const rows = new Map();
-    let inputs = 0;
     state.hardpoints.forEach((n) => {
       const cut = n.pointer.lastIndexOf('/');
       const point = n.pointer.slice(0, cut);
@@ -194,32 +230,52 @@
         rows.set(point, row);
         body.appendChild(row);
       }
-      const input = numberInput(state, n.pointer, millimetres(n.value), '0.1');
+      const input = numberInput(n.pointer, '0.1');
       input.addEventListener('change', () => edit(n.pointer, input));
       rows.get(point).appendChild(make('td')).appendChild(input);
-      inputs += 1;
     });
     holder.appendChild(table);
-    report.inputs = inputs;
   }
 
-  // An input for the number at `pointer`, showing `value` (text), marked when the design has moved it.
-  function numberInput(state, pointer, value, step) {
+  // Each number's input by its pointer, as built.
+  const numberInputs = new Map();
+
+  // An input for the number at `pointer`.
+  function numberInput(pointer, step) {
     const input = make('input');
+    numberInputs.set(pointer, input);
     input.type = 'number';
     input.step = step;
-    input.value = value;
     input.dataset.pointer = pointer;
     input.setAttribute('aria-label', pointer);
-    if (state.moved.some((m) => m.pointer === pointer)) input.className = 'moved';
     return input;
   }
 
-  // The rates, each an input as the model file stores it (SI: N/m, N·m/rad), named by its keys.
+  // The input of the number at `pointer` showing `value` (text), marked when the design has moved it.
+  function setNumber(state, pointer, value) {
+    const input = numberInputs.get(pointer);
+    if (!input) return;
+    input.value = value;
+    input.className = state.moved.some((m) => m.pointer === pointer) ? 'moved' : '';
+  }
+
+  // The rates, each an input as the model file stores it (SI: N/m, N·m/rad), named by its keys; built
+  // when they differ from those shown, else their values set in place.
+  let rateLayout = null;
   function showRates(state) {
+    const layout = JSON.stringify(state.rates.map((n) => n.pointer));
+    if (layout !== rateLayout) {
+      buildRates(state);
+      rateLayout = layout;
+    }
+    state.rates.forEach((n) => setNumber(state, n.pointer, String(n.value)));
+    return state.rates.length;
+  }
+
+  function buildRates(state) {
     const holder = el('rates');
     holder.replaceChildren();
-    if (!state.rates.length) return 0;
+    if (!state.rates.length) return;
     holder.appendChild(make('h2', 'Rates (N/m, N·m/rad)'));
     const table = make('table', null, 'numbers');
     const body = table.appendChild(make('tbody'));
@@ -227,7 +283,7 @@
       const row = make('tr');
       const name = n.pointer.replace(/^\/suspension\/[^/]+\//, '').split('/').join(' ').replace(/~1/g, '/').replace(/~0/g, '~');
       row.appendChild(make('td', name));
-      const input = numberInput(state, n.pointer, String(n.value), 'any');
+      const input = numberInput(n.pointer, 'any');
       input.addEventListener('change', () => {
         const value = input.value.trim() === '' ? NaN : Number(input.value);
         if (!isFinite(value)) return refused(n.pointer + ': type a number');
@@ -238,10 +294,8 @@
       body.appendChild(row);
     });
     holder.appendChild(table);
-    return state.rates.length;
   }
 
-  // Each chart drawn with the previous design's curves, where it had the chart, in grey beneath.
   // The charts of each design: one whose shape is the drawn one's (the same curves, the previous design's
   // beneath from the second design on) takes the new numbers in place; any other is drawn anew.
   let charted = new Map();
@@ -315,8 +369,7 @@
     // Tuning needs a TARGETS file: the button shows when the design is judged against one.
     el('tune').hidden = !(state.targets && state.targets.length);
     showFigures(state);
-    showHardpoints(state);
-    report.inputs += showRates(state);
+    report.inputs = showHardpoints(state) + showRates(state);
     // The projections as the server drew them (SVG, every text in it escaped there), a ring at each
     // hardpoint.
     el('projections').innerHTML = state.projections || '';

@@ -418,8 +418,13 @@ fn the_page_in_chromium_edits_by_typing_undoes_saves_and_no_other_page_drives_it
     assert!(per_mm[2].abs() > 1e-3, "the tie rod's height moves bump steer: {per_mm:?}");
 
     // Undo by its button: the field shows the file's number again; redo; save by its button.
+    let bump_row = "document.querySelector('tr[data-key=\"parallel-travel/bump_steer\"]')";
+    browser.evaluate(&page, &format!("window.kept = [{input}, {bump_row}]; true"));
     browser.evaluate(&page, "document.getElementById('undo').click(); true");
     let undone = browser.live_state(&page, |s| s["version"] == 3);
+    // Its numbers and figures the design before's, filled into the same fields and rows.
+    let same = browser.evaluate(&page, &format!("window.kept[0] === {input} && window.kept[1] === {bump_row}"));
+    assert_eq!(same, true, "the hardpoint's field and the figure's row were filled in place");
     // Its curves the same as the design before's, each chart took the new numbers in place.
     assert_eq!((&undone["anew"], &undone["drawn"]), (&0.into(), &undone["charts"]), "{undone}");
     assert_eq!(browser.evaluate(&page, &format!("{input}.value")).as_str(), Some("-37.4"));
