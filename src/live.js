@@ -104,12 +104,13 @@
   }
 
   // A figure's row: its value (in SI, exactly as the server gave it, in `data-si`: what the browser test
-  // reads), the previous design's where it moved, and its targets met or not.
+  // reads) with its error estimate as the report writes it in its hover text, the previous design's where
+  // it moved, and its targets met or not.
   function fillFigure(cells, a, f, state) {
     if (f.value != null) cells.row.dataset.si = String(f.value);
     else delete cells.row.dataset.si;
     cells.value.textContent = written(f);
-    cells.value.title = f.value == null ? f.reason || '' : '';
+    cells.value.title = f.value == null ? f.reason || '' : f.estimate ? f.estimate + ': its error estimate' : 'not estimated';
     const before = figureOf(previous, a.name, f.key);
     cells.before.textContent = before && before.value !== f.value ? written(before) : '';
     const targets = state.targets.filter((t) => t.analysis === a.name && t.figure === f.key);

@@ -389,6 +389,14 @@ fn the_page_in_chromium_edits_by_typing_undoes_saves_and_no_other_page_drives_it
     let cell = browser
         .evaluate(&page, "document.querySelector('tr[data-key=\"parallel-travel/bump_steer\"] td.value').textContent");
     assert_eq!(cell.as_str(), Some(written.as_str()));
+    // Its error estimate in its hover text, as the report writes it: the server's SI estimate times the
+    // factor, to two significant digits.
+    let hover =
+        browser.evaluate(&page, "document.querySelector('tr[data-key=\"parallel-travel/bump_steer\"] td.value').title");
+    let said: f64 = hover.as_str().unwrap().strip_prefix("± ").unwrap().split(' ').next().unwrap().parse().unwrap();
+    let estimate = bump["error"].as_f64().unwrap() * bump["factor"].as_f64().unwrap();
+    assert!(estimate > 0.0 && (said - estimate).abs() <= 0.05 * estimate, "{hover} against {estimate}");
+    assert!(hover.as_str().unwrap().ends_with("deg/m: its error estimate"), "{hover}");
     // The previous design's value stays beside it.
     let before = browser
         .evaluate(&page, "document.querySelector('tr[data-key=\"parallel-travel/bump_steer\"] td.quiet').textContent");

@@ -7,7 +7,7 @@
 
 use super::charts::{chart_data, CHARTS_SCRIPT, UPLOT_SCRIPT};
 use super::write_head;
-use crate::suspensions::kc::Chart;
+use crate::suspensions::kc::{Chart, Figure, Units};
 use crate::view::{write_viewer_figure, VIEWER_SCRIPT};
 use std::fmt::Write;
 
@@ -66,6 +66,12 @@ fn write_page(out: &mut String, model: &str) -> std::fmt::Result {
     )?;
     writeln!(out, "</body>")?;
     writeln!(out, "</html>")
+}
+
+/// A figure's error estimate as the report writes it (`± e unit` under `units`), for the page to show
+/// beside its value; `None` when it has none.
+pub fn live_estimate_words(figure: &Figure, units: Units) -> Option<String> {
+    super::figures::estimate_words(figure, units)
 }
 
 /// Each chart of the state's analyses as the page draws it (the report's data of a chart: its curves'

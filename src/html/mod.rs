@@ -45,7 +45,7 @@ mod vehicle;
 mod warnings;
 
 pub use compare::compare_html;
-pub use live::{live_chart_data, live_html};
+pub use live::{live_chart_data, live_estimate_words, live_html};
 pub use report::{report_html, report_html_with, Extras, Sensitivities};
 pub use sensitivity::sensitivity_html;
 pub use summary::Judged;

@@ -3,7 +3,7 @@
 
 use super::admission::Admission;
 use super::request::{Head, Response, BODY_LIMIT};
-use crate::html::{live_chart_data, live_html};
+use crate::html::{live_chart_data, live_estimate_words, live_html};
 use elastokin_suspensions::design::live::{LiveDesign, LiveError};
 use elastokin_suspensions::file::{read_input, InputError};
 use elastokin_suspensions::kc::{self, Analysis, Settings};
@@ -142,6 +142,11 @@ impl Live {
                 let report = &self.design.current().report;
                 for (k, a) in report.analyses.iter().enumerate() {
                     body["state"]["analyses"][k]["charts"] = a.charts.iter().map(live_chart_data).collect();
+                    for (j, f) in a.figures.iter().enumerate() {
+                        if let Some(words) = live_estimate_words(f, a.units) {
+                            body["state"]["analyses"][k]["figures"][j]["estimate"] = Value::String(words);
+                        }
+                    }
                 }
                 let mut projections = String::new();
                 if crate::view::write_projections(&mut projections, report).is_ok() {
