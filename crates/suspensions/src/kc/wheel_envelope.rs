@@ -328,20 +328,20 @@ pub(super) fn wheel_envelope(models: &Models, s: &Settings, taping: &Taping) -> 
         let axle = models.axle_ref(AxleRig::Steering)?;
         let drivers = height_drivers(axle);
         let travels: Vec<f64> = (0..=n).map(|i| range.0 + (range.1 - range.0) * i as f64 / n as f64).collect();
-        // Each height is the axle held there from design (a hold is not cumulative) and swept on its own:
-        // the heights run at once on rayon's threads unless a taping records or replays them, which takes
-        // its solves in order.
-        let at_height = |travel: f64| -> Result<(f64, SweepOutput<AxleRow>), Cause> {
-            let mut held = axle.clone();
+        // Each height is swept on its own, on a copy of the axle (`held`) per thread whose heights are held
+        // anew at each travel (a hold is from design, not cumulative): the heights run at once on rayon's
+        // threads unless a taping records or replays them, which takes its solves in order.
+        let at_height = |held: &mut Axle, travel: f64| -> Result<(f64, SweepOutput<AxleRow>), Cause> {
             for &d in &drivers {
                 held.model.hold_driver(d, travel)?;
             }
-            Ok((travel, axle_sweep_with(&held, rack.0, rack.1, n, s.mode, extras())?))
+            Ok((travel, axle_sweep_with(held, rack.0, rack.1, n, s.mode, extras())?))
         };
         let heights: Vec<Result<_, Cause>> = if taping.takes_part() {
-            travels.iter().map(|&t| at_height(t)).collect()
+            let mut held = axle.clone();
+            travels.iter().map(|&t| at_height(&mut held, t)).collect()
         } else {
-            travels.par_iter().map(|&t| at_height(t)).collect()
+            travels.par_iter().map_init(|| axle.clone(), |held, &t| at_height(held, t)).collect()
         };
         let mut out = SweepOutput {
             rows: Vec::new(),
