@@ -52,16 +52,28 @@
     return a ? a.figures.find((f) => f.key === key) : null;
   }
 
-  // The figures of each design, a table an analysis, a row a figure: built when the analyses or their
-  // figures differ from those shown, else filled in place (a rebuilt table lays the page out anew).
-  let figureLayout = null;
+  // `build` run on a state only when `rowsOf` it differs from those of the state it last built: a table
+  // rebuilt lays the page out anew, so the tables below are built when their rows change and else filled
+  // in place.
+  function builtOnChange(rowsOf, build) {
+    let built = null;
+    return (state) => {
+      const rows = JSON.stringify(rowsOf(state));
+      if (rows !== built) {
+        build(state);
+        built = rows;
+      }
+    };
+  }
+
+  // The figures of each design, a table an analysis, a row a figure.
   let figureCells = new Map();
+  const figureTables = builtOnChange(
+    (state) => state.analyses.map((a) => [a.name, a.description, a.figures.map((f) => [f.key, f.label])]),
+    buildFigures
+  );
   function showFigures(state) {
-    const layout = JSON.stringify(state.analyses.map((a) => [a.name, a.description, a.figures.map((f) => [f.key, f.label])]));
-    if (layout !== figureLayout) {
-      buildFigures(state);
-      figureLayout = layout;
-    }
+    figureTables(state);
     let count = 0;
     state.analyses.forEach((a) =>
       a.figures.forEach((f) => {
@@ -194,20 +206,17 @@
   }
 
   // The hardpoints, one row a point, each coordinate an input in millimetres; a point's name selects it
-  // for guidance. Built when the numbers differ from those shown, else their values set in place.
-  let hardpointLayout = null;
+  // for guidance.
+  const hardpointTable = builtOnChange((state) => state.hardpoints.map((n) => n.pointer), buildHardpoints);
   function showHardpoints(state) {
-    const layout = JSON.stringify(state.hardpoints.map((n) => n.pointer));
-    if (layout !== hardpointLayout) {
-      buildHardpoints(state);
-      hardpointLayout = layout;
-    }
+    hardpointTable(state);
     state.hardpoints.forEach((n) => setNumber(state, n.pointer, millimetres(n.value)));
     return state.hardpoints.length;
   }
 
   function buildHardpoints(state) {
     const holder = el('hardpoints');
+    forgetInputs(holder);
     holder.replaceChildren(make('h2', 'Hardpoints (mm)'));
     const table = make('table', null, 'numbers');
     const head = make('tr');
@@ -241,6 +250,11 @@
   // Each number's input by its pointer, as built.
   const numberInputs = new Map();
 
+  // The inputs of `holder`, about to be built anew, no longer looked up.
+  function forgetInputs(holder) {
+    holder.querySelectorAll('input[data-pointer]').forEach((input) => numberInputs.delete(input.dataset.pointer));
+  }
+
   // An input for the number at `pointer`.
   function numberInput(pointer, step) {
     const input = make('input');
@@ -260,21 +274,17 @@
     input.className = state.moved.some((m) => m.pointer === pointer) ? 'moved' : '';
   }
 
-  // The rates, each an input as the model file stores it (SI: N/m, N·m/rad), named by its keys; built
-  // when they differ from those shown, else their values set in place.
-  let rateLayout = null;
+  // The rates, each an input as the model file stores it (SI: N/m, N·m/rad), named by its keys.
+  const rateTable = builtOnChange((state) => state.rates.map((n) => n.pointer), buildRates);
   function showRates(state) {
-    const layout = JSON.stringify(state.rates.map((n) => n.pointer));
-    if (layout !== rateLayout) {
-      buildRates(state);
-      rateLayout = layout;
-    }
+    rateTable(state);
     state.rates.forEach((n) => setNumber(state, n.pointer, String(n.value)));
     return state.rates.length;
   }
 
   function buildRates(state) {
     const holder = el('rates');
+    forgetInputs(holder);
     holder.replaceChildren();
     if (!state.rates.length) return;
     holder.appendChild(make('h2', 'Rates (N/m, N·m/rad)'));
@@ -312,17 +322,17 @@
       const before = previous && previous.analyses.find((x) => x.name === a.name);
       a.charts.forEach((chart) => {
         count += 1;
-        const data = JSON.parse(JSON.stringify(chart));
+        // The chart with each axis's curves of the design before beneath its own (its numbers shared, not
+        // copied).
         const old = before && before.charts.find((c) => c.title === chart.title);
-        if (old) {
-          old.axes.forEach((axis, k) => {
-            if (!data.axes[k]) return;
-            axis.series.forEach((s) => {
-              data.axes[k].series.push({ name: 'before: ' + s.name, colour: '#8c959f', x: s.x, y: s.y, dash: [4, 4], width: 1.5 });
-              ghosts += 1;
-            });
-          });
-        }
+        const data = Object.assign({}, chart, {
+          axes: chart.axes.map((axis, k) => {
+            const was = old && old.axes[k] ? old.axes[k].series : [];
+            ghosts += was.length;
+            const ghost = (s) => ({ name: 'before: ' + s.name, colour: '#8c959f', x: s.x, y: s.y, dash: [4, 4], width: 1.5 });
+            return Object.assign({}, axis, { series: axis.series.concat(was.map(ghost)) });
+          }),
+        });
         const key = a.name + '\n' + chart.title;
         let shown = charted.get(key);
         charted.delete(key);
