@@ -315,17 +315,7 @@ impl Browser {
 
     /// The page's report (`<output id="live-state">`) once `ready` holds of it, within 20 s.
     fn live_state(&mut self, session: &str, ready: impl Fn(&Value) -> bool) -> Value {
-        let start = Instant::now();
-        loop {
-            let text = self.evaluate(session, "(document.getElementById('live-state') || {}).textContent || ''");
-            if let Some(state) = text.as_str().and_then(|t| serde_json::from_str::<Value>(t).ok()) {
-                if ready(&state) {
-                    return state;
-                }
-            }
-            assert!(start.elapsed() < Duration::from_secs(20), "the page did not get there: {text}");
-            std::thread::sleep(Duration::from_millis(20));
-        }
+        self.0.output_when(session, "live-state", ready, Duration::from_secs(20)).unwrap()
     }
 }
 

@@ -144,20 +144,13 @@ fn live_picture(root: &Path, chromium: &Path, dir: &Path, picture: &Path) -> Res
     let page = browser.open(server.address())?;
     // A window as tall as the page down to the picture's end: the page draws only the charts in its window.
     browser.window(&page, (LIVE_WINDOW.0, 4500))?;
+    // The page's report once every chart is drawn with no error and `ready` holds of it.
     let shown = |browser: &mut elastokin_chromium::Browser, ready: &dyn Fn(&serde_json::Value) -> bool| {
-        let start = std::time::Instant::now();
-        loop {
-            let text = browser.evaluate(&page, "(document.getElementById('live-state') || {}).textContent || '{}'")?;
-            let state: serde_json::Value = serde_json::from_str(text.as_str().unwrap_or("{}")).unwrap_or_default();
-            let drawn = state["charts"].as_u64().is_some_and(|c| c > 0 && state["drawn"] == c);
-            if drawn && state["errors"] == serde_json::json!([]) && ready(&state) {
-                return Ok(state);
-            }
-            if start.elapsed().as_secs() > 60 {
-                return Err(format!("the live page did not get there within 60 s: {state}"));
-            }
-            std::thread::sleep(std::time::Duration::from_millis(20));
-        }
+        let drawn = |state: &serde_json::Value| {
+            let charts = state["charts"].as_u64().is_some_and(|c| c > 0 && state["drawn"] == c);
+            charts && state["errors"] == serde_json::json!([]) && ready(state)
+        };
+        browser.output_when(&page, "live-state", drawn, std::time::Duration::from_secs(60))
     };
     shown(&mut browser, &|s| s["version"] == 1)?;
     let point = "/suspension/macpherson/hardpoints/tie_rod_inner";

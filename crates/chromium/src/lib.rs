@@ -148,6 +148,30 @@ impl Browser {
         self.evaluate_with(session, expression, false)
     }
 
+    /// The JSON a page's script keeps in its `<output id="ID">` (as `elastokin live`'s page keeps what it
+    /// did in `live-state`) once `ready` holds of it, read every 20 ms for at most `limit`.
+    pub fn output_when(
+        &mut self,
+        session: &str,
+        id: &str,
+        ready: impl Fn(&Value) -> bool,
+        limit: std::time::Duration,
+    ) -> Result<Value, String> {
+        let start = std::time::Instant::now();
+        let read = format!("(document.getElementById('{id}') || {{}}).textContent || ''");
+        loop {
+            let text = self.evaluate(session, &read)?;
+            let kept = text.as_str().and_then(|t| serde_json::from_str::<Value>(t).ok());
+            if let Some(kept) = kept.filter(|k| ready(k)) {
+                return Ok(kept);
+            }
+            if start.elapsed() > limit {
+                return Err(format!("the page's {id} did not get there within {limit:?}: {text}"));
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+    }
+
     /// The mouse's `kind` of event (`mousePressed`, `mouseMoved`, `mouseReleased`) at `at` (CSS pixels of
     /// the page's viewport), its left button held while `held`, as a user's mouse gives it.
     pub fn mouse(&mut self, session: &str, kind: &str, at: (f64, f64), held: bool) -> Result<(), String> {

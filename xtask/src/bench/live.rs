@@ -132,19 +132,8 @@ fn in_browser(s: &Settings) -> Result<f64, String> {
     let profile = std::env::temp_dir().join(format!("elastokin-bench-live-{}", std::process::id()));
     let mut browser = elastokin_chromium::Browser::start(&chromium, profile)?;
     let page = browser.open(server.address())?;
-    let version = |browser: &mut elastokin_chromium::Browser| -> Result<u64, String> {
-        let state = browser.evaluate(&page, "(document.getElementById('live-state') || {}).textContent || '{}'")?;
-        let state: serde_json::Value =
-            serde_json::from_str(state.as_str().unwrap_or("{}")).map_err(|e| e.to_string())?;
-        Ok(state["version"].as_u64().unwrap_or(0))
-    };
-    let start = std::time::Instant::now();
-    while version(&mut browser)? < 1 {
-        if start.elapsed().as_secs() > 60 {
-            return Err("the live page did not show its first design within 60 s".into());
-        }
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
+    let first = |state: &serde_json::Value| state["version"].as_u64().unwrap_or(0) >= 1;
+    browser.output_when(&page, "live-state", first, std::time::Duration::from_secs(60))?;
     let moves = if s.quick { 5 } else { 21 };
     let mut times = Vec::with_capacity(moves);
     for k in 0..moves {
