@@ -78,6 +78,15 @@ fn what_aimed(t: &Target) -> String {
     }
 }
 
+/// The cell that says whether a target or constraint is met.
+fn met_cell(met: bool) -> &'static str {
+    if met {
+        "<td class=\"ok\">met</td>"
+    } else {
+        "<td class=\"bad\">not met</td>"
+    }
+}
+
 /// The table of the targets judged: per point, the target, where, the aim with its tolerance, what the run
 /// reached, and met or not; then the packaging constraints.
 fn write_targets(out: &mut String, judged: Judged) -> std::fmt::Result {
@@ -87,7 +96,7 @@ fn write_targets(out: &mut String, judged: Judged) -> std::fmt::Result {
         // A target judged whole is one row: its measure in words.
         if let Some(words) = judged_whole(readings) {
             let t = readings[0].target;
-            let mark = if readings[0].met() { "<td class=\"ok\">met</td>" } else { "<td class=\"bad\">not met</td>" };
+            let mark = met_cell(readings[0].met());
             let span = match (readings.first().and_then(|p| p.at), readings.last().and_then(|p| p.at)) {
                 (Some(a), Some(b)) => format!("{} to {}", plain(a), plain(b)),
                 _ => String::new(),
@@ -107,8 +116,7 @@ fn write_targets(out: &mut String, judged: Judged) -> std::fmt::Result {
             let at = p.at.map_or(String::new(), plain);
             let aim = format!("{} ± {}", significant(p.aim, 4), significant(t.tolerance, 2));
             let (reached, mark) = match &p.reached {
-                Ok(r) if p.met() => (significant(*r, 4), "<td class=\"ok\">met</td>".to_string()),
-                Ok(r) => (significant(*r, 4), "<td class=\"bad\">not met</td>".to_string()),
+                Ok(r) => (significant(*r, 4), met_cell(p.met()).to_string()),
                 Err(why) => (String::new(), format!("<td class=\"bad\">not judged: {}</td>", text(why))),
             };
             writeln!(
@@ -126,7 +134,7 @@ fn write_targets(out: &mut String, judged: Judged) -> std::fmt::Result {
         let (reached, aim, mark) = match &c.reached {
             Ok((v, min, max)) => {
                 let mm = |v: f64| if v.is_finite() { significant(v * 1e3, 4) } else { "∞".into() };
-                let mark = if c.met() { "<td class=\"ok\">met</td>" } else { "<td class=\"bad\">not met</td>" };
+                let mark = met_cell(c.met());
                 (format!("{} mm", mm(*v)), format!("{} to {} mm", mm(*min), mm(*max)), mark.to_string())
             }
             Err(why) => (String::new(), String::new(), format!("<td class=\"bad\">not judged: {}</td>", text(why))),
