@@ -61,8 +61,9 @@ fn k_slot(k_col_ptr: &[usize], offdiag: PairBlock, r: usize, c: usize) -> usize 
 }
 
 /// Adds the symmetric part of `block` (over the 12 coordinates `dofs`) to `values` and its skew part to
-/// `skew` (both upper triangles): weight ½ off the diagonal (symmetrisation), 1 on it; skew weight +½ when
-/// the entry lands above the diagonal, −½ below, 0 on it.
+/// `skew` (both upper triangles): each entry and its mirror, `(p, q)` and `(q, p)`, fall in one slot, which
+/// takes half their sum (their sum on the diagonal) and, in `skew`, half the one above the diagonal less
+/// the one below. A pair of zeros (most of a joint's geometric stiffness) is passed over.
 #[inline]
 fn scatter(
     dofs: &[Option<usize>; 12],
@@ -75,17 +76,26 @@ fn scatter(
     let data = block.as_slice(); // column-major: index = q*12 + p
     for p in 0..12 {
         let Some(gp) = dofs[p] else { continue };
-        for q in 0..12 {
+        values[k_slot(k_col_ptr, offdiag, gp, gp)] += data[p * 12 + p];
+        for q in p + 1..12 {
             let Some(gq) = dofs[q] else { continue };
-            let (weight, skew_weight) = match gp.cmp(&gq) {
-                std::cmp::Ordering::Equal => (1.0, 0.0),
-                std::cmp::Ordering::Less => (0.5, 0.5),
-                std::cmp::Ordering::Greater => (0.5, -0.5),
-            };
-            let slot = k_slot(k_col_ptr, offdiag, gp.min(gq), gp.max(gq));
-            let v = data[q * 12 + p];
-            values[slot] += weight * v;
-            skew[slot] += skew_weight * v;
+            let (pq, qp) = (data[q * 12 + p], data[p * 12 + q]);
+            if pq == 0.0 && qp == 0.0 {
+                continue;
+            }
+            match gp.cmp(&gq) {
+                std::cmp::Ordering::Equal => values[k_slot(k_col_ptr, offdiag, gp, gq)] += pq + qp,
+                std::cmp::Ordering::Less => {
+                    let slot = k_slot(k_col_ptr, offdiag, gp, gq);
+                    values[slot] += 0.5 * (pq + qp);
+                    skew[slot] += 0.5 * (pq - qp);
+                }
+                std::cmp::Ordering::Greater => {
+                    let slot = k_slot(k_col_ptr, offdiag, gq, gp);
+                    values[slot] += 0.5 * (pq + qp);
+                    skew[slot] += 0.5 * (qp - pq);
+                }
+            }
         }
     }
 }
@@ -436,7 +446,20 @@ impl Assembly {
             let jt = &model.joints()[jidx];
             let (pi, pj) = (jt.spec.body_i.pose(poses), jt.spec.body_j.pose(poses));
             let row = &jt.rows[ridx];
-            let ev = row.evaluate(&pi, &pj, t);
+            let with_geometric = tangent == Some(Tangent::Full) && lambda[k] != 0.0;
+            if with_geometric && jidx != current_joint {
+                if current_joint != usize::MAX {
+                    self.scatter_joint(model, current_joint, &geometric);
+                }
+                geometric.fill(0.0);
+                current_joint = jidx;
+            }
+            // The constraint force applied to the bodies is −Jᵀλ, so its stiffness is +λ ∂(∇Φ)/∂q.
+            let ev = if with_geometric {
+                row.evaluate_with_force_derivative(&pi, &pj, t, lambda[k], &mut geometric)
+            } else {
+                row.evaluate(&pi, &pj, t)
+            };
             self.phi[k] = ev.value;
             self.phi_rate[k] = -row.driver_rate;
             for (local, d) in pair_dofs(jt.spec.body_i, jt.spec.body_j).iter().enumerate() {
@@ -444,17 +467,6 @@ impl Assembly {
                     let slot = self.j_col_ptr[c] + self.row_slots[k][local / BODY_DOFS] as usize;
                     self.j_values[slot] = ev.gradient[local];
                 }
-            }
-            if tangent == Some(Tangent::Full) && lambda[k] != 0.0 {
-                if jidx != current_joint {
-                    if current_joint != usize::MAX {
-                        self.scatter_joint(model, current_joint, &geometric);
-                    }
-                    geometric.fill(0.0);
-                    current_joint = jidx;
-                }
-                // The constraint force applied to the bodies is −Jᵀλ, so its stiffness is +λ ∂(∇Φ)/∂q.
-                row.add_force_derivative(&pi, &pj, lambda[k], &mut geometric);
             }
         }
         if current_joint != usize::MAX {
