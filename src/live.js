@@ -7,7 +7,7 @@
 (function () {
   'use strict';
   const el = (id) => document.getElementById(id);
-  const report = { version: 0, figures: 0, charts: 0, drawn: 0, ghosts: 0, inputs: 0, projections: 0, guided: 0, edits: 0, refused: 0, errors: [] };
+  const report = { version: 0, estimated: 0, figures: 0, charts: 0, drawn: 0, ghosts: 0, inputs: 0, projections: 0, guided: 0, edits: 0, refused: 0, errors: [] };
   let current = null;
   let previous = null;
   let busy = false;
@@ -122,7 +122,14 @@
     if (f.value != null) cells.row.dataset.si = String(f.value);
     else delete cells.row.dataset.si;
     cells.value.textContent = written(f);
-    cells.value.title = f.value == null ? f.reason || '' : f.estimate ? f.estimate + ': its error estimate' : 'not estimated';
+    cells.value.title =
+      f.value == null
+        ? f.reason || ''
+        : f.estimate
+          ? f.estimate + ': its error estimate'
+          : state.estimated
+            ? 'not estimated'
+            : 'its error estimate follows once the design rests';
     const before = figureOf(previous, a.name, f.key);
     cells.before.textContent = before && before.value !== f.value ? written(before) : '';
     const targets = state.targets.filter((t) => t.analysis === a.name && t.figure === f.key);
@@ -395,7 +402,45 @@
       'version ' + state.version + (state.moved.length ? ', ' + state.moved.length + ' numbers moved' : '') +
       (failed.length ? '; failed: ' + failed.join('; ') : '') +
       (tuned && tuned.version === state.version ? ' — tuned: ' + tuned.said : '');
+    if (state.estimated) report.estimated = state.version;
+    else estimateLater(state.version);
     publish();
+  }
+
+  // The error estimates of a design an edit made without them, asked for once it has rested on screen for
+  // REST_MS: a run of moves is not slowed by the estimates of designs passed through. Each figure's
+  // estimate goes into its hover text; `report.estimated` is the version they are of.
+  const REST_MS = 300;
+  let resting = null;
+  function estimateLater(version) {
+    clearTimeout(resting);
+    resting = setTimeout(async () => {
+      if (busy || !current || current.version !== version) return;
+      try {
+        const response = await fetch('estimate', {
+          method: 'POST',
+          cache: 'no-store',
+          headers: { 'Content-Type': 'application/json' },
+          body: JSON.stringify({ version }),
+        });
+        const answer = await response.json();
+        // Another design on screen by now (409): its own rest asks for its estimates.
+        if (!response.ok || !current || current.version !== answer.version) return;
+        answer.analyses.forEach((a) =>
+          a.figures.forEach((e) => {
+            const f = figureOf(current, a.name, e.key);
+            if (f) Object.assign(f, { error: e.error, estimate: e.estimate });
+          })
+        );
+        current.estimated = true;
+        showFigures(current);
+        report.estimated = answer.version;
+        publish();
+      } catch (e) {
+        report.errors.push('estimate: ' + e);
+        publish();
+      }
+    }, REST_MS);
   }
 
   // The 3D view drawn anew from the design's poses, the camera kept.
@@ -425,6 +470,7 @@
       return null;
     }
     busy = true;
+    clearTimeout(resting);
     el('status').textContent = 'solving…';
     try {
       const init = { method, cache: 'no-store' };

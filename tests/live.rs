@@ -379,12 +379,23 @@ fn the_page_in_chromium_edits_by_typing_undoes_saves_and_no_other_page_drives_it
     let cell = browser
         .evaluate(&page, "document.querySelector('tr[data-key=\"parallel-travel/bump_steer\"] td.value').textContent");
     assert_eq!(cell.as_str(), Some(written.as_str()));
-    // Its error estimate in its hover text, as the report writes it: the server's SI estimate times the
-    // factor, to two significant digits.
+    // Its error estimate follows once the design has rested on screen, in its hover text as the report
+    // writes it: the server's SI estimate times the factor, to two significant digits. The design walked
+    // again with the estimates has the same figure, to the bit.
+    browser.live_state(&page, |s| s["estimated"] == 2);
+    let (_, rested) = server.call("GET", "state", "");
+    assert_eq!((&rested["state"]["version"], &rested["state"]["estimated"]), (&2.into(), &true.into()));
+    let bump_rested = rested["state"]["analyses"][0]["figures"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["key"] == "bump_steer")
+        .unwrap();
+    assert_eq!(bump_rested["value"].as_f64().map(f64::to_bits), bump["value"].as_f64().map(f64::to_bits));
     let hover =
         browser.evaluate(&page, "document.querySelector('tr[data-key=\"parallel-travel/bump_steer\"] td.value').title");
     let said: f64 = hover.as_str().unwrap().strip_prefix("± ").unwrap().split(' ').next().unwrap().parse().unwrap();
-    let estimate = bump["error"].as_f64().unwrap() * bump["factor"].as_f64().unwrap();
+    let estimate = bump_rested["error"].as_f64().unwrap() * bump_rested["factor"].as_f64().unwrap();
     assert!(estimate > 0.0 && (said - estimate).abs() <= 0.05 * estimate, "{hover} against {estimate}");
     assert!(hover.as_str().unwrap().ends_with("deg/m: its error estimate"), "{hover}");
     // The previous design's value stays beside it.

@@ -112,17 +112,20 @@ impl Live {
             }
             ("POST", "save") => self.save(),
             ("POST", "guidance") => self.guidance(body),
+            ("POST", "estimate") => self.estimate(body),
             ("POST", "tune") => match self.design.tune() {
                 Ok(said) => self.state_noted(200, None, Some(said)),
                 Err(e) => self.state(422, Some(e.to_string())),
             },
-            (_, "" | "state" | "edit" | "undo" | "redo" | "save" | "guidance" | "tune") => Response::refused(
-                405,
-                &format!("{} /{route} is not served: state is read with GET, every change is a POST", head.method),
-            ),
+            (_, "" | "state" | "edit" | "undo" | "redo" | "save" | "guidance" | "tune" | "estimate") => {
+                Response::refused(
+                    405,
+                    &format!("{} /{route} is not served: state is read with GET, every change is a POST", head.method),
+                )
+            }
             _ => Response::refused(
                 404,
-                &format!("nothing at /{route}: the routes are state, edit, undo, redo, save, guidance, tune"),
+                &format!("nothing at /{route}: the routes are state, edit, undo, redo, save, guidance, tune, estimate"),
             ),
         }
     }
@@ -208,6 +211,41 @@ impl Live {
         }
     }
 
+    /// `POST /estimate`: `{"version": …}`, the version the page shows: every figure's error estimate of the
+    /// current design, walked with them now if an edit made it without ([`LiveDesign::estimate`]); refused
+    /// when the design is no longer that version (the page asks again for the one it then shows).
+    fn estimate(&mut self, body: &[u8]) -> Response {
+        let asked: Value = serde_json::from_slice(body).unwrap_or(Value::Null);
+        let Some(version) = asked["version"].as_u64() else {
+            return Response::refused(400, "give the version shown as {\"version\": 3}");
+        };
+        if version != self.design.version() {
+            return Response::refused(
+                409,
+                &format!("the design is at version {}, not {version}: ask for its estimates", self.design.version()),
+            );
+        }
+        match self.design.estimate() {
+            Ok(design) => {
+                let analyses: Vec<Value> = design
+                    .report
+                    .analyses
+                    .iter()
+                    .map(|a| {
+                        let figures: Vec<Value> = a
+                            .figures
+                            .iter()
+                            .map(|f| json!({ "key": f.key, "error": f.error, "estimate": live_estimate_words(f, a.units) }))
+                            .collect();
+                        json!({ "name": a.analysis.name(), "figures": figures })
+                    })
+                    .collect();
+                Response::json(200, &json!({ "version": version, "analyses": analyses }))
+            }
+            Err(e) => Response::refused(422, &e.to_string()),
+        }
+    }
+
     /// `POST /save`: the model file written where it was read, through a file beside it renamed over it
     /// (a reader sees the old file or the new one); refused when the file changed on disk since the server
     /// last read or wrote it.
@@ -289,6 +327,23 @@ mod tests {
         let body: Value = serde_json::from_slice(&done.body).unwrap();
         assert_eq!((done.status, body["state"]["version"].as_u64()), (200, Some(2)));
         assert!(live.unsaved());
+        // The edit's figures come without their estimates; asked for the version shown, they follow (an
+        // older version is refused, the page asks for the one it shows).
+        let bump = |body: &Value, field: &str| body["state"]["analyses"][0]["figures"][0][field].clone();
+        assert_eq!((body["state"]["estimated"].as_bool(), bump(&body, "error")), (Some(false), Value::Null));
+        assert_eq!(ask(&mut live, "POST", "estimate", br#"{"version": 1}"#).status, 409);
+        assert_eq!(ask(&mut live, "POST", "estimate", b"{}").status, 400);
+        let estimated = ask(&mut live, "POST", "estimate", br#"{"version": 2}"#);
+        let answer: Value = serde_json::from_slice(&estimated.body).unwrap();
+        let figure = &answer["analyses"][0]["figures"][0];
+        let state: Value = serde_json::from_slice(&ask(&mut live, "GET", "state", b"").body).unwrap();
+        assert_eq!(state["state"]["estimated"].as_bool(), Some(true));
+        assert_eq!(
+            (estimated.status, &figure["key"], &figure["error"]),
+            (200, &bump(&state, "key"), &bump(&state, "error"))
+        );
+        assert!(figure["error"].as_f64().is_some_and(|e| e > 0.0) && figure["estimate"].is_string(), "{figure}");
+        assert_eq!(bump(&state, "value"), bump(&body, "value"), "the same figure, to the bit");
         // The file is nowhere: the save says so and the design stays.
         let failed = ask(&mut live, "POST", "save", b"");
         let body: Value = serde_json::from_slice(&failed.body).unwrap();

@@ -68,6 +68,42 @@ fn an_edit_reports_what_the_file_edited_by_hand_reports_and_saves_only_its_numbe
 }
 
 #[test]
+fn an_edit_answers_without_the_estimates_and_they_follow_as_the_file_edited_by_hand_has_them() {
+    let which = [Analysis::ParallelTravel, Analysis::Steering];
+    let mut live = open(&which);
+    assert!(live.current().estimated, "the design as opened carries its estimates");
+    live.edit(TIE_ROD_INNER_Z, -0.0394).unwrap();
+    let quick = live.current().report.clone();
+    assert!(!live.current().estimated && !live.state().unwrap().estimated);
+    let errors = |r: &KcReport| -> Vec<Option<u64>> {
+        r.analyses.iter().flat_map(|a| a.figures.iter().map(|f| f.error.map(f64::to_bits))).collect()
+    };
+    let estimated = |r: &KcReport| errors(r).iter().flatten().count();
+
+    let version = live.version();
+    live.estimate().unwrap();
+    assert_eq!(live.version(), version, "the same design");
+    assert!(live.current().estimated && live.state().unwrap().estimated);
+    // The same figures to the bit, now with the estimates of the file edited by hand, to the bit.
+    assert_same_figures(&live.current().report, &quick);
+    let by_hand = MACPHERSON.replacen(
+        "\"tie_rod_inner\": [-0.150, 0.370, -0.0374]",
+        "\"tie_rod_inner\": [-0.150, 0.370, -0.0394]",
+        1,
+    );
+    let reference = run_text(&by_hand, &which);
+    assert_eq!(errors(&live.current().report), errors(&reference));
+    // Walked without them, only the figures exact by construction had one (Ackermann's, 0).
+    assert!(estimated(&reference) > 10 && estimated(&quick) <= 3, "{} of {}", estimated(&quick), estimated(&reference));
+
+    // Undone and redone, the design keeps them.
+    live.undo().unwrap();
+    live.redo().unwrap();
+    assert!(live.current().estimated);
+    assert_eq!(errors(&live.current().report), errors(&reference));
+}
+
+#[test]
 fn undo_and_redo_go_back_to_each_design_and_on_again() {
     let which = [Analysis::ParallelTravel];
     let mut live = open(&which);

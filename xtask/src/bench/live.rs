@@ -22,14 +22,16 @@ pub fn run(s: &Settings) -> SectionOutput {
     let mut out = SectionOutput {
         title: "Live design".into(),
         intro: "A hardpoint moved in `elastokin live` on the shipped MacPherson (every analysis of its suite, \
-                default ranges, 32 corrected steps with their error estimates and the parts' poses at every \
-                row, as the server runs it). In the browser: headless Chromium on the served page, the tie \
-                rod's inner z typed between two values 1 mm apart, each a new design, timed by the page's \
-                clock from the field's change to the frame after the new design is shown (every figure, \
-                chart with its ghost, projection and the 3D view drawn). The server's share: from the edit's \
-                request to the JSON of the new design, through the function the server hands each request \
-                to, without the socket. Medians of repeated moves. Then the suite alone, one analysis after \
-                another on one thread and on every thread as the server runs it."
+                default ranges, 32 corrected steps and the parts' poses at every row, as the server runs it: \
+                an edit is answered without the error estimates, which the page asks for once the design has \
+                rested on screen for 300 ms, timed apart below). In the browser: headless Chromium on the \
+                served page, the tie rod's inner z typed between two values 1 mm apart, each a new design, \
+                timed by the page's clock from the field's change to the frame after the new design is shown \
+                (every figure, chart with its ghost, projection and the 3D view drawn). The server's share: \
+                from the edit's request to the JSON of the new design, through the function the server hands \
+                each request to, without the socket; and the same for the estimates of a design an edit \
+                made. Medians of repeated moves. Then the suite alone with its estimates, one analysis after \
+                another on one thread and on every thread."
             .into(),
         ..SectionOutput::default()
     };
@@ -45,14 +47,21 @@ pub fn run(s: &Settings) -> SectionOutput {
     }
     let server_share = server_share(s);
     match &server_share {
-        Ok((t, size)) => {
+        Ok(share) => {
             table.row(vec![
                 Cell::text("the server's share: the suite run again, the state written"),
-                Cell::num(*t),
-                Cell::num(*size as f64 / 1e3),
+                Cell::num(share.edit),
+                Cell::num(share.size as f64 / 1e3),
                 Cell::text("ok"),
             ]);
-            out.figure("live.move_macpherson_s", *t, "s", Kind::Time);
+            table.row(vec![
+                Cell::text("the server's share of the estimates, once the design rests"),
+                Cell::num(share.estimate),
+                Cell::text(""),
+                Cell::text("ok"),
+            ]);
+            out.figure("live.move_macpherson_s", share.edit, "s", Kind::Time);
+            out.figure("live.estimate_macpherson_s", share.estimate, "s", Kind::Time);
         }
         Err(e) => table.failed_row(vec![Cell::text("the server's share")], e.clone()),
     }
@@ -72,7 +81,11 @@ pub fn run(s: &Settings) -> SectionOutput {
         Err(e) => table.failed_row(vec![Cell::text("the suite")], e),
     }
     let detail = match &server_share {
-        Ok((t, _)) => format!("the server's share {:.1} ms", t * 1e3),
+        Ok(share) => format!(
+            "the server's share {:.1} ms; the estimates once the design rests {:.1} ms more",
+            share.edit * 1e3,
+            share.estimate * 1e3
+        ),
         Err(e) => format!("the server's share not measured: {e}"),
     };
     out.targets.push(Target {
@@ -94,30 +107,55 @@ fn served() -> Result<(Served, PathBuf), String> {
     Ok((served, path))
 }
 
-/// The median time of the server's answer to a move, and the answer's size.
-fn server_share(s: &Settings) -> Result<(f64, usize), String> {
+/// The server's share of a move and of its estimates.
+struct ServerShare {
+    /// The median time of the answer to an edit (s).
+    edit: f64,
+    /// The answer's size (bytes).
+    size: usize,
+    /// The median time of the answer to the estimates of the design an edit made (s).
+    estimate: f64,
+}
+
+/// The server's share: the median time of its answer to a move, the answer's size, and the median time
+/// of its answer to the estimates of the design a move made.
+fn server_share(s: &Settings) -> Result<ServerShare, String> {
     let (served, _) = served()?;
     let bound = "127.0.0.1:1".parse().map_err(|e| format!("{e}"))?;
     let token = Token::random()?;
-    let url = format!("/{}/edit", token.as_str());
+    let (url, estimate_url) = (format!("/{}/edit", token.as_str()), format!("/{}/estimate", token.as_str()));
     // A save is never asked: the path is only where one would go.
     let mut live = Live::new(served, Admission::new(token, bound, FrameAncestors::none()));
     let head = Head { method: "POST", url: &url, host: Some("127.0.0.1:1"), origin: None, content_length: None };
+    let estimate_head = Head { url: &estimate_url, ..head };
     let mut moves = 0usize;
     let mut failed = None;
     let mut size = 0;
-    let timing = s.batch_budget().time(|| {
-        moves += 1;
-        let body = format!(r#"{{"pointer": "{MOVED}", "value": {}}}"#, HEIGHTS[moves % 2]);
-        let answer = live.handle(&head, body.as_bytes());
+    // Each answer refused is noted in `failed`.
+    let ask = |live: &mut Live, head: &Head, body: String, failed: &mut Option<String>| {
+        let answer = live.handle(head, body.as_bytes());
         if answer.status != 200 {
-            failed = Some(String::from_utf8_lossy(&answer.body).into_owned());
+            *failed = Some(String::from_utf8_lossy(&answer.body).into_owned());
         }
-        size = answer.body.len();
-    });
-    match failed {
-        Some(why) => Err(format!("an edit was refused: {why}")),
-        None => Ok((timing.median, size)),
+        answer.body.len()
+    };
+    let edit = |moves: &mut usize| {
+        *moves += 1;
+        format!(r#"{{"pointer": "{MOVED}", "value": {}}}"#, HEIGHTS[*moves % 2])
+    };
+    let timing = s.batch_budget().time(|| size = ask(&mut live, &head, edit(&mut moves), &mut failed));
+    let mut estimates = Vec::new();
+    for _ in 0..if s.quick { 3 } else { 11 } {
+        ask(&mut live, &head, edit(&mut moves), &mut failed);
+        let body = format!(r#"{{"version": {}}}"#, live.design().version());
+        let start = std::time::Instant::now();
+        ask(&mut live, &estimate_head, body, &mut failed);
+        estimates.push(start.elapsed().as_secs_f64());
+    }
+    match (failed, median(&estimates)) {
+        (Some(why), _) => Err(format!("an edit or its estimates were refused: {why}")),
+        (None, None) => Err("no estimate was timed".into()),
+        (None, Some(estimate)) => Ok(ServerShare { edit: timing.median, size, estimate }),
     }
 }
 

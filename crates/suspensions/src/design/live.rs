@@ -7,6 +7,11 @@
 //! or on which an analysis fails that the current design ran, is refused with the reason and the current
 //! design stays. Every design made, undone or redone counts one more version, so that every view of the
 //! design can tell that it changed.
+//!
+//! An edit answers first and estimates after: its analyses are walked without the error estimates (one
+//! factorization less per row, and the same figures and curves to the bit), and
+//! [`LiveDesign::estimate`] walks them again with them once the user rests on the design, so that a run of
+//! moves is not slowed by estimates of designs passed through.
 
 use super::judge::judge;
 use super::parameter::{hardpoint_pointers, number_at, rate_pointers, ParameterError, Parameters};
@@ -47,6 +52,8 @@ pub struct Design {
     pub moved: Vec<(String, f64)>,
     /// The analyses run on it.
     pub report: KcReport,
+    /// Whether `report` carries the error estimates the settings ask for ([`LiveDesign::estimate`]).
+    pub estimated: bool,
 }
 
 impl LiveDesign {
@@ -62,7 +69,7 @@ impl LiveDesign {
             base,
             which: which.to_vec(),
             settings,
-            history: vec![Design { moved: Vec::new(), report }],
+            history: vec![Design { moved: Vec::new(), report, estimated: true }],
             at: 0,
             version: 1,
             targets: None,
@@ -104,7 +111,8 @@ impl LiveDesign {
         // Refused here: a pointer that names anything but a number, or a count (a whole number of things).
         let parameters = Parameters::new(&document, &pointers).map_err(LiveError::Parameter)?;
         let file = parameters.at(&values).and_then(|p| p.file()).map_err(LiveError::Parameter)?;
-        let report = kc::run_suite_on_threads(&file, &self.which, &self.settings);
+        let quick = Settings { error_estimate: false, ..self.settings };
+        let report = kc::run_suite_on_threads(&file, &self.which, &quick);
         let ran = &self.current().report.analyses;
         let newly_failed: Vec<Failed> =
             report.failed.iter().filter(|f| ran.iter().any(|a| a.analysis == f.analysis)).cloned().collect();
@@ -122,7 +130,7 @@ impl LiveDesign {
             }
         }
         self.history.truncate(self.at + 1);
-        self.history.push(Design { moved, report });
+        self.history.push(Design { moved, report, estimated: !self.settings.error_estimate });
         self.at += 1;
         self.version += 1;
         Ok(self.current())
@@ -150,6 +158,20 @@ impl LiveDesign {
         let edits: Vec<(String, f64)> = pointers.into_iter().zip(tuned.end.x.iter().copied()).collect();
         self.edit_all(&edits)?;
         Ok(said)
+    }
+
+    /// The current design with the error estimates its settings ask for: its analyses walked again with
+    /// them, once, when an edit made it without ([`Design::estimated`]). The figures and curves are those
+    /// it had, to the bit; the version stays, as the design does.
+    pub fn estimate(&mut self) -> Result<&Design, LiveError> {
+        if !self.current().estimated {
+            let file = self.file()?;
+            let report = kc::run_suite_on_threads(&file, &self.which, &self.settings);
+            let design = &mut self.history[self.at];
+            design.report = report;
+            design.estimated = true;
+        }
+        Ok(self.current())
     }
 
     /// Back to the design before the current one.
@@ -259,6 +281,7 @@ impl LiveDesign {
             .collect();
         Ok(State {
             version: self.version,
+            estimated: design.estimated,
             model: &report.model,
             moved,
             can_undo: self.at > 0,
@@ -333,6 +356,8 @@ impl LiveDesign {
 pub struct State<'a> {
     /// Counts every change of design: a view showing an older one is behind.
     pub version: u64,
+    /// Whether the figures carry their error estimates yet ([`LiveDesign::estimate`]).
+    pub estimated: bool,
     /// The model's name.
     pub model: &'a str,
     /// The numbers moved from the file as read.
