@@ -83,6 +83,15 @@ def test_the_served_figures_are_the_runs_and_an_edit_is_the_file_edited_by_hand(
         run = elastokin.load(hand).run("parallel-travel", steps=STEPS)
         same_to_the_bit(figures(edited["state"]), run)
         assert abs(figures(edited["state"])["bump_steer"] - figures(first["state"])["bump_steer"]) > 1e-3
+        # The edit answers without the error estimates; asked for, they are the run's, to the bit.
+        assert edited["state"]["estimated"] is False
+        status, rested = ask(server.url + "estimate", {"version": 2})
+        assert status == 200, rested
+        errors = {f["key"]: f["error"] for f in rested["analyses"][0]["figures"]}
+        ran = {key: f["si_error"] for key, f in run.summary["figures"].items() if f.get("si_error") is not None}
+        assert len(ran) >= 5
+        for key, error in ran.items():
+            assert errors[key] == error, f"{key}: live {errors[key]!r}, run {error!r}"
         assert copy.read_text() == original, "nothing saved unless asked"
     finally:
         unsaved = server.stop()
