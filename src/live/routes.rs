@@ -10,6 +10,10 @@ use elastokin_suspensions::kc::{self, Analysis, Settings};
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 
+/// The routes under the page's address, as a refusal names them: state is read with GET, every change
+/// is a POST (`routes_answer_and_an_oversize_body_is_refused` asks each with the other method).
+const ROUTES: [&str; 8] = ["state", "edit", "undo", "redo", "save", "guidance", "tune", "estimate"];
+
 /// What a server serves: the design of the model file at `model`, whose text was `text`.
 #[derive(Debug)]
 pub struct Served {
@@ -117,16 +121,11 @@ impl Live {
                 Ok(said) => self.state_noted(200, None, Some(said)),
                 Err(e) => self.state(422, Some(e.to_string())),
             },
-            (_, "" | "state" | "edit" | "undo" | "redo" | "save" | "guidance" | "tune" | "estimate") => {
-                Response::refused(
-                    405,
-                    &format!("{} /{route} is not served: state is read with GET, every change is a POST", head.method),
-                )
-            }
-            _ => Response::refused(
-                404,
-                &format!("nothing at /{route}: the routes are state, edit, undo, redo, save, guidance, tune, estimate"),
+            _ if route.is_empty() || ROUTES.contains(&route) => Response::refused(
+                405,
+                &format!("{} /{route} is not served: state is read with GET, every change is a POST", head.method),
             ),
+            _ => Response::refused(404, &format!("nothing at /{route}: the routes are {}", ROUTES.join(", "))),
         }
     }
 
@@ -310,7 +309,11 @@ mod tests {
             live.handle(&head, body)
         };
         assert_eq!(ask(&mut live, "GET", "state", b"").status, 200);
-        assert_eq!(ask(&mut live, "GET", "edit", b"").status, 405);
+        // Each route asked with the method it does not take is refused as such, not as unknown.
+        for route in ROUTES {
+            let other = if route == "state" { "POST" } else { "GET" };
+            assert_eq!(ask(&mut live, other, route, b"").status, 405, "{other} /{route}");
+        }
         assert_eq!(ask(&mut live, "GET", "nothing", b"").status, 404);
         assert_eq!(ask(&mut live, "POST", "edit", b"{").status, 400);
         assert_eq!(ask(&mut live, "POST", "undo", b"").status, 409);
