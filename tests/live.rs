@@ -694,6 +694,11 @@ fn the_page_in_chromium_moves_a_point_by_a_drag_and_draws_its_guidance_and_3d_vi
     browser.drag(&page, at, &path, false);
     let dragged = browser.live_state(&page, |s| s["version"] == 2);
     let (_, edited) = server.call("GET", "state", "");
+    // Every ring where the new design has its point; the dragged coordinate's label gone.
+    for (point, at) in hardpoints(&edited["state"]) {
+        assert_rings_at(&mut browser, &page, &edited["state"], &point, at);
+    }
+    assert!(browser.evaluate(&page, "document.querySelector('text.dragged') === null").as_bool().unwrap());
     let moved = edited["state"]["moved"].as_array().unwrap();
     assert_eq!(moved.len(), 1, "one axis only: {moved:?}");
     assert_eq!(moved[0]["pointer"], format!("{TIE_ROD_INNER}/2"));
