@@ -12,6 +12,12 @@
   function aligned(chart) {
     const curves = chart.axes.flatMap((axis, a) => axis.series.map((s) => ({ s, a })));
     const keep = (x) => isFinite(x) && (!chart.x_log || x > 0);
+    // Every curve on the same increasing x (most charts, and the live page's previous design's): that x.
+    const first = curves.length ? curves[0].s.x : [];
+    const same = (x) => x === first || (x.length === first.length && x.every((v, i) => v === first[i]));
+    if (curves.every(({ s }) => same(s.x)) && first.every((x, i) => keep(x) && (i === 0 || x > first[i - 1]))) {
+      return { curves, data: [first, ...curves.map(({ s }) => first.map((x, i) => (isFinite(s.y[i]) ? s.y[i] : null)))] };
+    }
     const xs = Array.from(new Set(curves.flatMap(({ s }) => s.x.filter(keep)))).sort((p, q) => p - q);
     const at = new Map(xs.map((x, i) => [x, i]));
     const ys = curves.map(({ s }) => {

@@ -21,6 +21,8 @@
     el('live-state').textContent = JSON.stringify(report);
   }
 
+  const put = window.elastokinPut;
+
   function make(tag, text, className) {
     const e = document.createElement(tag);
     if (text != null) e.textContent = text;
@@ -119,22 +121,25 @@
   // reads) with its error estimate as the report writes it in its hover text, the previous design's where
   // it moved, and its targets met or not.
   function fillFigure(cells, a, f, state) {
-    if (f.value != null) cells.row.dataset.si = String(f.value);
+    if (f.value != null) put.attribute(cells.row, 'data-si', String(f.value));
     else delete cells.row.dataset.si;
-    cells.value.textContent = written(f);
-    cells.value.title =
+    put.text(cells.value, written(f));
+    put.attribute(
+      cells.value,
+      'title',
       f.value == null
         ? f.reason || ''
         : f.estimate
           ? f.estimate + ': its error estimate'
           : state.estimated
             ? 'not estimated'
-            : 'its error estimate follows once the design rests';
+            : 'its error estimate follows once the design rests'
+    );
     const before = figureOf(previous, a.name, f.key);
-    cells.before.textContent = before && before.value !== f.value ? written(before) : '';
+    put.text(cells.before, before && before.value !== f.value ? written(before) : '');
     const targets = state.targets.filter((t) => t.analysis === a.name && t.figure === f.key);
-    cells.target.textContent = targets.map((t) => (t.met ? '✓ ' : '✗ ') + t.aim + ' ± ' + t.tolerance).join(', ');
-    cells.target.className = targets.some((t) => !t.met) ? 'error' : '';
+    put.text(cells.target, targets.map((t) => (t.met ? '✓ ' : '✗ ') + t.aim + ' ± ' + t.tolerance).join(', '));
+    put.attribute(cells.target, 'class', targets.some((t) => !t.met) ? 'error' : '');
   }
 
   // The figure the arrows are for: the one chosen while the design has it, else the first with a target,
@@ -177,12 +182,12 @@
       const cell = row.querySelector('td.guide');
       const g = guidanceOf(row.dataset.key);
       if (!g) {
-        cell.textContent = '';
+        put.text(cell, '');
         return;
       }
       const per = g.per_metre.map((d) => (d == null ? '–' : Number((d * g.factor / 1000).toPrecision(3)).toString()));
-      cell.textContent = per.join(', ') + (g.unit === '-' ? '' : ' ' + g.unit) + ' /mm';
-      cell.title = g.why_not.filter((w) => w).join('; ');
+      put.text(cell, per.join(', ') + (g.unit === '-' ? '' : ' ' + g.unit) + ' /mm');
+      put.attribute(cell, 'title', g.why_not.filter((w) => w).join('; '));
       if (g.per_metre.some((d) => d != null)) guided += 1;
     });
     report.guided = guided;
@@ -277,8 +282,8 @@
   function setNumber(state, pointer, value) {
     const input = numberInputs.get(pointer);
     if (!input) return;
-    input.value = value;
-    input.className = state.moved.some((m) => m.pointer === pointer) ? 'moved' : '';
+    if (input.value !== value) input.value = value;
+    input.classList.toggle('moved', state.moved.some((m) => m.pointer === pointer));
   }
 
   // The rates, each an input as the model file stores it (SI: N/m, N·m/rad), named by its keys.
@@ -330,13 +335,14 @@
       a.charts.forEach((chart) => {
         count += 1;
         // The chart with each axis's curves of the design before beneath its own (its numbers shared, not
-        // copied).
+        // copied), dashed one pixel wide: a line no wider than a pixel is drawn as a hairline, at a fraction
+        // of the cost of a wider one, and every chart's ghosts are drawn again at every design.
         const old = before && before.charts.find((c) => c.title === chart.title);
         const data = Object.assign({}, chart, {
           axes: chart.axes.map((axis, k) => {
             const was = old && old.axes[k] ? old.axes[k].series : [];
             ghosts += was.length;
-            const ghost = (s) => ({ name: 'before: ' + s.name, colour: '#8c959f', x: s.x, y: s.y, dash: [4, 4], width: 1.5 });
+            const ghost = (s) => ({ name: 'before: ' + s.name, colour: '#8c959f', x: s.x, y: s.y, dash: [4, 4], width: 1 });
             return Object.assign({}, axis, { series: axis.series.concat(was.map(ghost)) });
           }),
         });
@@ -382,26 +388,26 @@
   function show(state) {
     current = state;
     report.version = state.version;
-    el('undo').disabled = !state.can_undo;
-    el('redo').disabled = !state.can_redo;
+    put.flag(el('undo'), 'disabled', !state.can_undo);
+    put.flag(el('redo'), 'disabled', !state.can_redo);
     // Tuning needs a TARGETS file: the button shows when the design is judged against one.
-    el('tune').hidden = !(state.targets && state.targets.length);
+    put.flag(el('tune'), 'hidden', !(state.targets && state.targets.length));
     showFigures(state);
     report.inputs = showHardpoints(state) + showRates(state);
-    // The projections as the server drew them (SVG, every text in it escaped there), a ring at each
-    // hardpoint.
-    el('projections').innerHTML = state.projections || '';
-    report.projections = el('projections').querySelectorAll('figure.view').length;
+    // The projections as the server drew them, a ring at each hardpoint.
     views.show(state, selected);
+    report.projections = el('projections').querySelectorAll('figure.view').length;
     showView3d(state);
     showCharts(state);
     showGuidance();
     if (selected && (!guidance || guidance.version !== state.version)) guide(selected);
     const failed = state.failed.map((f) => f.analysis + ': ' + f.reason);
-    el('status').textContent =
+    put.text(
+      el('status'),
       'version ' + state.version + (state.moved.length ? ', ' + state.moved.length + ' numbers moved' : '') +
       (failed.length ? '; failed: ' + failed.join('; ') : '') +
-      (tuned && tuned.version === state.version ? ' — tuned: ' + tuned.said : '');
+      (tuned && tuned.version === state.version ? ' — tuned: ' + tuned.said : '')
+    );
     if (state.estimated) report.estimated = state.version;
     else estimateLater(state.version);
     publish();
@@ -453,8 +459,8 @@
 
   function refused(why) {
     const e = el('error');
-    e.textContent = why;
-    e.hidden = !why;
+    put.text(e, why);
+    put.flag(e, 'hidden', !why);
   }
 
   let tuned = null;

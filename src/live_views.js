@@ -3,7 +3,9 @@
 // moves its point along one of the view's two axes (the one the pointer first moves most along), in steps
 // of 0.1 mm, and is sent as one edit when released; Escape cancels, a click selects the point. The
 // guidance for the selected point is drawn as an arrow in each view, the way that raises the figure
-// chosen; a tune's move is shown as the rings moving from the old design's places to the new.
+// chosen; a tune's move is shown as the rings moving from the old design's places to the new. Each design
+// after the first changes only what moved in the views shown (the lines of the server's SVG that differ,
+// the rings' places); `window.elastokinPut` is the page's way of writing only what changes.
 (function () {
   'use strict';
   const SVG = 'http://www.w3.org/2000/svg';
@@ -20,6 +22,39 @@
     Object.entries(attributes || {}).forEach(([k, v]) => e.setAttribute(k, String(v)));
     if (text != null) e.textContent = text;
     return e;
+  }
+
+  // The live page's writes to what it shows, each left undone where it would change nothing: a text or an
+  // attribute set anew, even to what it was, has its element laid out and painted anew.
+  const put = {
+    // `e`'s text, into the text node it holds when it holds one alone.
+    text(e, text) {
+      const only = e.firstChild && !e.firstChild.nextSibling && e.firstChild.nodeType === Node.TEXT_NODE ? e.firstChild : null;
+      if (only ? only.nodeValue === text : e.textContent === text) return;
+      if (only) only.nodeValue = text;
+      else e.textContent = text;
+    },
+    // `e`'s attribute `name`, `value` written as text.
+    attribute(e, name, value) {
+      const text = String(value);
+      if (e.getAttribute(name) !== text) e.setAttribute(name, text);
+    },
+    // `e`'s property `name` (disabled, hidden) set to `on`.
+    flag(e, name, on) {
+      if (e[name] !== on) e[name] = on;
+    },
+  };
+  window.elastokinPut = put;
+
+  // A line of the server's SVG with its attribute values and texts taken out: two lines alike differ in
+  // those alone.
+  function skeleton(line) {
+    return line.replace(/"[^"]*"/g, '""').replace(/>[^<]+</g, '><');
+  }
+
+  // How many elements a line of the server's SVG starts.
+  function started(line) {
+    return (line.match(/<[a-zA-Z]/g) || []).length;
   }
 
   // Where a projection puts a global point `p` (m) on its SVG: by its frame from the server.
@@ -79,32 +114,108 @@
         const frame = frames.find((f) => f.id === ring.dataset.view);
         if (!frame) return;
         const [x, y] = place(frame, p);
-        ring.setAttribute('cx', String(x));
-        ring.setAttribute('cy', String(y));
+        put.attribute(ring, 'cx', x);
+        put.attribute(ring, 'cy', y);
       });
     }
 
-    // A ring for every hardpoint in every view, over everything drawn.
+    // The server's projections as last drawn: their lines, and the elements each line started (in the
+    // page, in the order of the lines).
+    let drawn = null;
+
+    // The server's projections (`html`: SVG, every text in it escaped there; an element, or its end, a
+    // line) shown. Drawn as the ones shown with other numbers (every design after the first, unless the
+    // views change), only the lines that differ are read and only their attributes and texts that differ
+    // changed, so only what moved is laid out and painted anew; any other drawing replaces them.
+    function draw(html) {
+      const lines = html.split('\n');
+      if (drawn && lines.length === drawn.lines.length && patch(lines)) {
+        drawn.lines = lines;
+        return;
+      }
+      const next = document.createElement('template');
+      next.innerHTML = html;
+      holder.replaceChildren(next.content);
+      const elements = Array.from(holder.querySelectorAll('*'));
+      let count = 0;
+      const of = lines.map((line) => {
+        const first = count;
+        count += started(line);
+        return elements.slice(first, count);
+      });
+      drawn = count === elements.length ? { lines, of } : null;
+    }
+
+    // The projections shown made `lines`, alike line for line: false, nothing changed, where a line is
+    // not its drawn one's alike. The lines that differ are read at once, each within an element of its
+    // own (the first element it starts is in SVG or not).
+    function patch(lines) {
+      const differ = [];
+      for (let i = 0; i < lines.length; i++) {
+        if (lines[i] === drawn.lines[i]) continue;
+        if (!drawn.of[i].length || skeleton(lines[i]) !== skeleton(drawn.lines[i])) return false;
+        differ.push(i);
+      }
+      const read = document.createElement('template');
+      read.innerHTML = differ
+        .map((i) => (drawn.of[i][0].namespaceURI === SVG ? '<svg>' + lines[i] + '</svg>' : '<div>' + lines[i] + '</div>'))
+        .join('');
+      const changes = [];
+      for (let j = 0; j < differ.length; j++) {
+        const i = differ[j];
+        const shown = drawn.of[i];
+        const parsed = read.content.children[j] ? read.content.children[j].querySelectorAll('*') : [];
+        if (parsed.length !== shown.length) return false;
+        for (let k = 0; k < parsed.length; k++) {
+          const [a, b] = [shown[k], parsed[k]];
+          for (const name of b.getAttributeNames()) {
+            const value = b.getAttribute(name);
+            if (a.getAttribute(name) !== value) changes.push(() => a.setAttribute(name, value));
+          }
+          // The text of an element that holds text alone, ended on its line.
+          const text = b.textContent;
+          if (!b.childElementCount && !a.childElementCount && lines[i].includes('</' + b.localName) && a.textContent !== text) {
+            changes.push(() => (a.textContent = text));
+          }
+        }
+      }
+      changes.forEach((change) => change());
+      return true;
+    }
+
+    // The server's projections, and a ring for every hardpoint in every view over everything drawn: the
+    // rings shown moved where they are the same points, else drawn anew.
     function show(state, selected) {
       if (drag) cancel();
+      draw(state.projections || '');
       frames = state.projection_frames || [];
       points = pointsOf(state);
+      const placed = Array.from(points).filter(([, p]) => p.every((c) => isFinite(c)));
       let count = 0;
       frames.forEach((frame) => {
         const svg = svgOf(frame);
         if (!svg) return;
-        const g = svgElement('g', { class: 'handles' });
-        points.forEach((p, point) => {
-          if (!p.every((c) => isFinite(c))) return;
+        let g = svg.querySelector(':scope > g.handles');
+        if (g) g.querySelectorAll('text.dragged').forEach((label) => label.remove());
+        const rings = g ? g.children : [];
+        if (!g || rings.length !== placed.length || placed.some(([point], k) => rings[k].dataset.point !== point)) {
+          if (g) g.remove();
+          g = svgElement('g', { class: 'handles' });
+          placed.forEach(([point]) => {
+            const ring = svgElement('circle', { class: 'handle', r: RING, 'fill-opacity': 0.2, 'stroke-width': 1.5 });
+            ring.dataset.point = point;
+            ring.dataset.view = frame.id;
+            ring.appendChild(svgElement('title', {}, nameOf(point) + ': drag to move it, click to select it'));
+            g.appendChild(ring);
+          });
+          svg.appendChild(g);
+        }
+        placed.forEach(([, p], k) => {
           const [x, y] = place(frame, p);
-          const ring = svgElement('circle', { class: 'handle', cx: x, cy: y, r: RING, 'fill-opacity': 0.2, 'stroke-width': 1.5 });
-          ring.dataset.point = point;
-          ring.dataset.view = frame.id;
-          ring.appendChild(svgElement('title', {}, nameOf(point) + ': drag to move it, click to select it'));
-          g.appendChild(ring);
-          count += 1;
+          put.attribute(g.children[k], 'cx', x);
+          put.attribute(g.children[k], 'cy', y);
         });
-        svg.appendChild(g);
+        count += placed.length;
       });
       select(selected);
       report.handles = count;
@@ -114,8 +225,8 @@
     function select(point) {
       holder.querySelectorAll('circle.handle').forEach((ring) => {
         const colour = ring.dataset.point === point ? SELECTED_COLOUR : RING_COLOUR;
-        ring.setAttribute('fill', colour);
-        ring.setAttribute('stroke', colour);
+        put.attribute(ring, 'fill', colour);
+        put.attribute(ring, 'stroke', colour);
       });
     }
 
@@ -222,7 +333,7 @@
       const p = point ? points.get(point) : null;
       report.arrows = 0;
       if (!p || !g) {
-        legend.hidden = true;
+        put.flag(legend, 'hidden', true);
         return;
       }
       const per = g.per_metre;

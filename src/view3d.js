@@ -188,7 +188,9 @@
     });
     var envelope = drawEnvelope(a.envelope, screen);
     var construction = drawConstruction(a.construction[row], screen);
-    label.textContent = a.labels[row];
+    if (label.textContent !== a.labels[row]) {
+      label.textContent = a.labels[row];
+    }
     summary = {
       analyses: data.analyses.length,
       analysis: a.name,
@@ -355,32 +357,43 @@
     var before = data && data.analyses.length ? data.analyses[shown].name : null;
     data = next;
     shows++;
-    select.replaceChildren();
+    // The analyses' choices made anew only when they change: a design changed keeps them.
+    var names = data.analyses.map(function (a) { return a.name; });
+    var listed = Array.prototype.map.call(select.options, function (o) { return o.textContent; });
+    if (names.join('\n') !== listed.join('\n')) {
+      select.replaceChildren();
+      names.forEach(function (name, k) {
+        var option = document.createElement('option');
+        option.value = String(k);
+        option.textContent = name;
+        select.appendChild(option);
+      });
+    }
     if (!data.analyses.length) {
       summary = { analyses: 0, shows: shows };
       report();
       return;
     }
-    data.analyses.forEach(function (a, k) {
-      var option = document.createElement('option');
-      option.value = String(k);
-      option.textContent = a.name;
-      select.appendChild(option);
-    });
     var named = function (name) {
       return data.analyses.findIndex(function (a) { return a.name === name; });
     };
     var k = named(wanted || before);
-    select.value = String(Math.max(k, 0));
+    if (select.value !== String(Math.max(k, 0))) {
+      select.value = String(Math.max(k, 0));
+    }
     if (k < 0 || !fit || wanted) {
       choose(Math.max(k, 0));
       return;
     }
     shown = k;
     var last = data.analyses[k].frames.length - 1;
-    slider.max = String(last);
+    if (slider.max !== String(last)) {
+      slider.max = String(last);
+    }
     row = Math.min(row, last);
-    slider.value = String(row);
+    if (slider.value !== String(row)) {
+      slider.value = String(row);
+    }
     draw();
   }
   window.elastokinView3d = { show: show };

@@ -343,7 +343,10 @@ fn the_page_in_chromium_edits_by_typing_undoes_saves_and_no_other_page_drives_it
     assert_eq!(shown["errors"], serde_json::json!([]));
     assert_eq!(shown["projections"], 3, "{shown}: front, side and plan");
 
+    assert_projections_are(&mut browser, &page, state);
+
     // Typed: -39.4 mm into the tie rod's inner z, committed as a user does, by leaving the field.
+    browser.evaluate(&page, "window.keptView = document.querySelector('#view-front svg'); true");
     let input = format!("document.querySelector('input[data-pointer=\"{TIE_ROD_INNER_Z}\"]')");
     browser.evaluate(&page, &format!("{input}.focus(); {input}.select(); true"));
     browser.send(Some(&page), "Input.insertText", serde_json::json!({ "text": "-39.4" }));
@@ -361,6 +364,10 @@ fn the_page_in_chromium_edits_by_typing_undoes_saves_and_no_other_page_drives_it
         .sum();
     assert_eq!(shown["ghosts"], curves, "{shown}");
     assert_eq!(shown["drawn"], shown["charts"], "{shown}");
+    // The projections are the server's new drawing, its lines that moved changed in the views shown.
+    assert_projections_are(&mut browser, &page, &edited["state"]);
+    let kept = browser.evaluate(&page, "window.keptView === document.querySelector('#view-front svg')");
+    assert_eq!(kept, true, "the front view was changed in place");
     assert_eq!(edited["state"]["moved"][0]["pointer"], TIE_ROD_INNER_Z);
     assert_eq!(edited["state"]["moved"][0]["value"].as_f64(), Some(-0.0394), "39.4 mm is 0.0394 m, to the bit");
     // The figure shown is the server's, as written: its SI value times its factor, at its decimals.
@@ -488,6 +495,7 @@ fn the_page_in_chromium_edits_by_typing_undoes_saves_and_no_other_page_drives_it
     for point in &moving {
         assert_rings_at(&mut browser, &page, &tuned["state"], point, after[*point]);
     }
+    assert_projections_are(&mut browser, &page, &tuned["state"]);
     for n in tuned["state"]["hardpoints"].as_array().unwrap() {
         let pointer = n["pointer"].as_str().unwrap();
         let field =
@@ -582,6 +590,23 @@ fn assert_rings_at(browser: &mut Browser, page: &str, state: &Value, point: &str
         let y = origin[1].as_f64().unwrap() - scale * sb * at[b];
         assert_eq!((ring[1].as_f64().unwrap(), ring[2].as_f64().unwrap()), (x, y), "{point} in {}", ring[0]);
     }
+}
+
+/// The page's projections, its rings and arrows aside, are the server's drawing of `state`
+/// (`projections`) as a browser reads it afresh: every element, attribute and text.
+fn assert_projections_are(browser: &mut Browser, page: &str, state: &Value) {
+    let given = &state["projections"];
+    assert!(given.as_str().is_some_and(|p| p.contains("<svg")), "{given}");
+    let compared = browser.evaluate(
+        page,
+        &format!(
+            "(() => {{ const shown = document.getElementById('projections').cloneNode(true); \
+             shown.querySelectorAll('g.handles, g.guide-arrow').forEach((g) => g.remove()); \
+             const given = document.createElement('div'); given.innerHTML = {given}; \
+             return [shown.innerHTML === given.innerHTML, shown.innerHTML.length, given.innerHTML.length]; }})()"
+        ),
+    );
+    assert_eq!(compared[0], true, "the projections shown are not the server's: {compared}");
 }
 
 /// The SI value of parallel travel's figure `key` as the page holds it (its row's `data-si`).
@@ -680,6 +705,11 @@ fn the_page_in_chromium_moves_a_point_by_a_drag_and_draws_its_guidance_and_3d_vi
     browser.drag(&page, at, &path, false);
     let dragged = browser.live_state(&page, |s| s["version"] == 2);
     let (_, edited) = server.call("GET", "state", "");
+    // Every ring where the new design has its point; the dragged coordinate's label gone.
+    for (point, at) in hardpoints(&edited["state"]) {
+        assert_rings_at(&mut browser, &page, &edited["state"], &point, at);
+    }
+    assert!(browser.evaluate(&page, "document.querySelector('text.dragged') === null").as_bool().unwrap());
     let moved = edited["state"]["moved"].as_array().unwrap();
     assert_eq!(moved.len(), 1, "one axis only: {moved:?}");
     assert_eq!(moved[0]["pointer"], format!("{TIE_ROD_INNER}/2"));
@@ -724,6 +754,22 @@ fn the_page_in_chromium_moves_a_point_by_a_drag_and_draws_its_guidance_and_3d_vi
     assert_arrows_follow_the_guidance(&mut browser, &page, &server, &edited["state"], "camber_gain");
     let legend = browser.evaluate(&page, "document.getElementById('arrows-legend').textContent");
     assert!(legend.as_str().unwrap().contains("raises camber gain"), "{legend}");
+    assert_projections_are(&mut browser, &page, &edited["state"]);
+
+    // The top mount typed 900 mm high: the views' grid changes with the geometry's extent, and the page
+    // draws the server's new drawing in place of the old, its rings and arrows over it.
+    let top = "document.querySelector('input[data-pointer=\"/suspension/macpherson/hardpoints/top_mount/2\"]')";
+    browser.evaluate(&page, &format!("{top}.value = '900'; {top}.dispatchEvent(new Event('change')); true"));
+    browser.live_state(&page, |s| s["version"] == 3 && s["arrows"].as_u64().unwrap_or(0) > 0);
+    let (_, higher) = server.call("GET", "state", "");
+    let lines = |state: &Value| state["projections"].as_str().unwrap().lines().count();
+    assert_ne!(lines(&higher["state"]), lines(&edited["state"]), "the drawing's elements changed");
+    assert_projections_are(&mut browser, &page, &higher["state"]);
+    let points = hardpoints(&higher["state"]);
+    for (point, at) in &points {
+        assert_rings_at(&mut browser, &page, &higher["state"], point, *at);
+    }
+    assert_arrows_follow_the_guidance(&mut browser, &page, &server, &higher["state"], "camber_gain");
 
     // Every listener the page set is there once, as before any of it.
     assert_eq!(browser.listeners(&page), listeners);
