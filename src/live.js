@@ -195,18 +195,23 @@
     views.arrows(selected, guidanceOf(chosen));
   }
 
+  // A POST of `body` as JSON to `route`, never answered from a cache.
+  function posted(route, body) {
+    return fetch(route, {
+      method: 'POST',
+      cache: 'no-store',
+      headers: { 'Content-Type': 'application/json' },
+      body: JSON.stringify(body),
+    });
+  }
+
   // The guidance for the hardpoint at `point`, asked of the server for the design on screen.
   async function guide(point) {
     selected = point;
     document.querySelectorAll('#hardpoints tr').forEach((r) => r.classList.toggle('selected', r.dataset.point === point));
     views.select(point);
     try {
-      const response = await fetch('guidance', {
-        method: 'POST',
-        cache: 'no-store',
-        headers: { 'Content-Type': 'application/json' },
-        body: JSON.stringify({ point }),
-      });
+      const response = await posted('guidance', { point });
       const answer = await response.json();
       if (!response.ok) return refused(answer.error || 'refused (' + response.status + ')');
       guidance = answer.guidance;
@@ -423,12 +428,7 @@
     resting = setTimeout(async () => {
       if (busy || !current || current.version !== version) return;
       try {
-        const response = await fetch('estimate', {
-          method: 'POST',
-          cache: 'no-store',
-          headers: { 'Content-Type': 'application/json' },
-          body: JSON.stringify({ version }),
-        });
+        const response = await posted('estimate', { version });
         const answer = await response.json();
         // Another design on screen by now (409): its own rest asks for its estimates.
         if (!response.ok || !current || current.version !== answer.version) return;

@@ -371,12 +371,11 @@ fn the_page_in_chromium_edits_by_typing_undoes_saves_and_no_other_page_drives_it
     assert_eq!(edited["state"]["moved"][0]["pointer"], TIE_ROD_INNER_Z);
     assert_eq!(edited["state"]["moved"][0]["value"].as_f64(), Some(-0.0394), "39.4 mm is 0.0394 m, to the bit");
     // The figure shown is the server's, as written: its SI value times its factor, at its decimals.
-    let bump = edited["state"]["analyses"][0]["figures"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|f| f["key"] == "bump_steer")
-        .unwrap();
+    let bump_steer = |state: &Value| -> Value {
+        let figures = state["state"]["analyses"][0]["figures"].as_array().unwrap();
+        figures.iter().find(|f| f["key"] == "bump_steer").unwrap().clone()
+    };
+    let bump = &bump_steer(&edited);
     let written = format!(
         "{:.*} {}",
         bump["decimals"].as_u64().unwrap() as usize,
@@ -392,12 +391,7 @@ fn the_page_in_chromium_edits_by_typing_undoes_saves_and_no_other_page_drives_it
     browser.live_state(&page, |s| s["estimated"] == 2);
     let (_, rested) = server.call("GET", "state", "");
     assert_eq!((&rested["state"]["version"], &rested["state"]["estimated"]), (&2.into(), &true.into()));
-    let bump_rested = rested["state"]["analyses"][0]["figures"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|f| f["key"] == "bump_steer")
-        .unwrap();
+    let bump_rested = bump_steer(&rested);
     assert_eq!(bump_rested["value"].as_f64().map(f64::to_bits), bump["value"].as_f64().map(f64::to_bits));
     let hover =
         browser.evaluate(&page, "document.querySelector('tr[data-key=\"parallel-travel/bump_steer\"] td.value').title");
