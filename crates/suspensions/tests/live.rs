@@ -71,10 +71,10 @@ fn an_edit_reports_what_the_file_edited_by_hand_reports_and_saves_only_its_numbe
 fn an_edit_answers_without_the_estimates_and_they_follow_as_the_file_edited_by_hand_has_them() {
     let which = [Analysis::ParallelTravel, Analysis::Steering];
     let mut live = open(&which);
-    assert!(live.current().estimated, "the design as opened carries its estimates");
+    assert!(live.estimated(), "the design as opened carries its estimates");
     live.edit(TIE_ROD_INNER_Z, -0.0394).unwrap();
     let quick = live.current().report.clone();
-    assert!(!live.current().estimated && !live.state().unwrap().estimated);
+    assert!(!live.estimated() && !live.state().unwrap().estimated);
     let errors = |r: &KcReport| -> Vec<Option<u64>> {
         r.analyses.iter().flat_map(|a| a.figures.iter().map(|f| f.error.map(f64::to_bits))).collect()
     };
@@ -83,7 +83,7 @@ fn an_edit_answers_without_the_estimates_and_they_follow_as_the_file_edited_by_h
     let version = live.version();
     live.estimate().unwrap();
     assert_eq!(live.version(), version, "the same design");
-    assert!(live.current().estimated && live.state().unwrap().estimated);
+    assert!(live.estimated() && live.state().unwrap().estimated);
     // The same figures to the bit, now with the estimates of the file edited by hand, to the bit.
     assert_same_figures(&live.current().report, &quick);
     let by_hand = MACPHERSON.replacen(
@@ -99,7 +99,7 @@ fn an_edit_answers_without_the_estimates_and_they_follow_as_the_file_edited_by_h
     // Undone and redone, the design keeps them.
     live.undo().unwrap();
     live.redo().unwrap();
-    assert!(live.current().estimated);
+    assert!(live.estimated());
     assert_eq!(errors(&live.current().report), errors(&reference));
 }
 

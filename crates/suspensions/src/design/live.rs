@@ -50,10 +50,8 @@ pub struct Design {
     /// Each moved number's pointer and value (SI, as the file stores it), in the order first moved; a
     /// number moved back to its value in the file is no longer listed.
     pub moved: Vec<(String, f64)>,
-    /// The analyses run on it.
+    /// The analyses run on it, with the settings they were walked with (`report.settings`).
     pub report: KcReport,
-    /// Whether `report` carries the error estimates the settings ask for ([`LiveDesign::estimate`]).
-    pub estimated: bool,
 }
 
 impl LiveDesign {
@@ -69,7 +67,7 @@ impl LiveDesign {
             base,
             which: which.to_vec(),
             settings,
-            history: vec![Design { moved: Vec::new(), report, estimated: true }],
+            history: vec![Design { moved: Vec::new(), report }],
             at: 0,
             version: 1,
             targets: None,
@@ -130,7 +128,7 @@ impl LiveDesign {
             }
         }
         self.history.truncate(self.at + 1);
-        self.history.push(Design { moved, report, estimated: !self.settings.error_estimate });
+        self.history.push(Design { moved, report });
         self.at += 1;
         self.version += 1;
         Ok(self.current())
@@ -160,16 +158,19 @@ impl LiveDesign {
         Ok(said)
     }
 
+    /// Whether the current design carries the error estimates the settings ask for: its report was walked
+    /// with them, or none are asked.
+    pub fn estimated(&self) -> bool {
+        self.current().report.settings.error_estimate || !self.settings.error_estimate
+    }
+
     /// The current design with the error estimates its settings ask for: its analyses walked again with
-    /// them, once, when an edit made it without ([`Design::estimated`]). The figures and curves are those
-    /// it had, to the bit; the version stays, as the design does.
+    /// them, once, when an edit made it without ([`LiveDesign::estimated`]). The figures and curves are
+    /// those it had, to the bit; the version stays, as the design does.
     pub fn estimate(&mut self) -> Result<&Design, LiveError> {
-        if !self.current().estimated {
+        if !self.estimated() {
             let file = self.file()?;
-            let report = kc::run_suite_on_threads(&file, &self.which, &self.settings);
-            let design = &mut self.history[self.at];
-            design.report = report;
-            design.estimated = true;
+            self.history[self.at].report = kc::run_suite_on_threads(&file, &self.which, &self.settings);
         }
         Ok(self.current())
     }
@@ -281,7 +282,7 @@ impl LiveDesign {
             .collect();
         Ok(State {
             version: self.version,
-            estimated: design.estimated,
+            estimated: self.estimated(),
             model: &report.model,
             moved,
             can_undo: self.at > 0,
@@ -356,7 +357,7 @@ impl LiveDesign {
 pub struct State<'a> {
     /// Counts every change of design: a view showing an older one is behind.
     pub version: u64,
-    /// Whether the figures carry their error estimates yet ([`LiveDesign::estimate`]).
+    /// Whether the figures carry their error estimates yet ([`LiveDesign::estimated`]).
     pub estimated: bool,
     /// The model's name.
     pub model: &'a str,
