@@ -214,9 +214,14 @@ impl ConstraintRow {
     pub fn evaluate(&self, pi: &Pose, pj: &Pose, t: f64) -> RowEval {
         let u = self.u.eval(pi, pj);
         let w = self.w.eval(pi, pj);
+        self.evaluation_of(&u, &w, t)
+    }
+
+    /// Value and gradient of the row whose kinematic vectors evaluate to `u` and `w`.
+    fn evaluation_of(&self, u: &KinEval, w: &KinEval, t: f64) -> RowEval {
         RowEval {
             value: self.scale * u.value.dot(&w.value) - self.offset - self.driver_rate * t,
-            gradient: self.gradient(&u, &w),
+            gradient: self.gradient(u, w),
         }
     }
 
@@ -244,10 +249,7 @@ impl ConstraintRow {
         let u = self.u.eval(pi, pj);
         let w = self.w.eval(pi, pj);
         self.add_derivative_of(&u, &w, lambda, out);
-        RowEval {
-            value: self.scale * u.value.dot(&w.value) - self.offset - self.driver_rate * t,
-            gradient: self.gradient(&u, &w),
-        }
+        self.evaluation_of(&u, &w, t)
     }
 
     /// Adds `λ · ∂(∇Φ)/∂Δq` (the geometric stiffness of the joint reaction λ) to `out`.
