@@ -108,14 +108,18 @@
       return Array.from(holder.querySelectorAll('circle.handle')).filter((r) => r.dataset.point === point);
     }
 
+    // `ring` put where the point `p` (m) lands in the view of `frame`.
+    function putRing(ring, frame, p) {
+      const [x, y] = place(frame, p);
+      put.attribute(ring, 'cx', x);
+      put.attribute(ring, 'cy', y);
+    }
+
     // Every ring of `point` put where the point `p` (m) lands in its view.
     function placeRings(point, p) {
       ringsOf(point).forEach((ring) => {
         const frame = frames.find((f) => f.id === ring.dataset.view);
-        if (!frame) return;
-        const [x, y] = place(frame, p);
-        put.attribute(ring, 'cx', x);
-        put.attribute(ring, 'cy', y);
+        if (frame) putRing(ring, frame, p);
       });
     }
 
@@ -210,11 +214,7 @@
           });
           svg.appendChild(g);
         }
-        placed.forEach(([, p], k) => {
-          const [x, y] = place(frame, p);
-          put.attribute(g.children[k], 'cx', x);
-          put.attribute(g.children[k], 'cy', y);
-        });
+        placed.forEach(([, p], k) => putRing(g.children[k], frame, p));
         count += placed.length;
       });
       select(selected);

@@ -75,6 +75,14 @@
     return { right: right, up: up };
   }
 
+  // `element`'s `property` set to `value` where it is not that already: a text or value set anew, even
+  // to what it was, has the page laid out again.
+  function changed(element, property, value) {
+    if (element[property] !== value) {
+      element[property] = value;
+    }
+  }
+
   var fit = null;
   // The canvas's laid-out size in CSS pixels, once the page has laid it out.
   var seen = null;
@@ -188,9 +196,7 @@
     });
     var envelope = drawEnvelope(a.envelope, screen);
     var construction = drawConstruction(a.construction[row], screen);
-    if (label.textContent !== a.labels[row]) {
-      label.textContent = a.labels[row];
-    }
+    changed(label, 'textContent', a.labels[row]);
     summary = {
       analyses: data.analyses.length,
       analysis: a.name,
@@ -378,22 +384,16 @@
       return data.analyses.findIndex(function (a) { return a.name === name; });
     };
     var k = named(wanted || before);
-    if (select.value !== String(Math.max(k, 0))) {
-      select.value = String(Math.max(k, 0));
-    }
+    changed(select, 'value', String(Math.max(k, 0)));
     if (k < 0 || !fit || wanted) {
       choose(Math.max(k, 0));
       return;
     }
     shown = k;
     var last = data.analyses[k].frames.length - 1;
-    if (slider.max !== String(last)) {
-      slider.max = String(last);
-    }
+    changed(slider, 'max', String(last));
     row = Math.min(row, last);
-    if (slider.value !== String(row)) {
-      slider.value = String(row);
-    }
+    changed(slider, 'value', String(row));
     draw();
   }
   window.elastokinView3d = { show: show };
