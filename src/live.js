@@ -479,12 +479,8 @@
     clearTimeout(resting);
     el('status').textContent = 'solving…';
     try {
-      const init = { method, cache: 'no-store' };
-      if (body) {
-        init.headers = { 'Content-Type': 'application/json' };
-        init.body = JSON.stringify(body);
-      }
-      const response = await fetch(route, init);
+      // A change with a body is POSTed as JSON, as guidance and estimates are.
+      const response = await (body ? posted(route, body) : fetch(route, { method, cache: 'no-store' }));
       const answer = await response.json();
       refused(response.ok ? '' : answer.error || 'refused (' + response.status + ')');
       if (!response.ok) report.refused += 1;
