@@ -255,14 +255,8 @@ mod tests {
             for query in queries {
                 let (dom, console) = loaded(&chromium, &page, query, &dir.join("profile")).unwrap();
                 assert!(console.is_empty(), "{name}{query}: the console says {console:#?}");
-                let state = dom
-                    .split("id=\"view3d-state\"")
-                    .nth(1)
-                    .and_then(|s| s.split('>').nth(1))
-                    .and_then(|s| s.split("</output").next())
-                    .unwrap_or_else(|| panic!("{name}{query}: no state of the 3D view in the page"));
-                let state: serde_json::Value = serde_json::from_str(&html_unescape(state))
-                    .unwrap_or_else(|e| panic!("{name}{query}: the 3D view did not report ({e}): {state}"));
+                let state = output_in(&dom, "view3d-state")
+                    .unwrap_or_else(|e| panic!("{name}{query}: the 3D view did not report: {e}"));
                 assert_eq!(state["errors"], serde_json::json!([]), "{name}{query}");
                 assert_eq!(state["analyses"], moving.len(), "{name}{query}");
                 assert_eq!(state["analysis"], first.analysis.name(), "{name}{query}");
